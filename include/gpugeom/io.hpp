@@ -1,0 +1,76 @@
+// Reading and writing the files users already have. Formats are chosen by extension.
+//
+// Points in:  .xyz .txt .csv (2 or 3 numeric columns), .ply (ascii / binary little / big
+//             endian), .off, .obj (v lines), .node (Triangle/TetGen), .npy (float32/float64,
+//             N x 2 or N x 3).
+// Meshes out: .ply, .off, .obj, .ele (+ .node beside it), .vtu (VTK XML, ParaView), .npy (the
+//             cell array only, int32 N x 3 or N x 4). The same formats read back.
+// Grids:      .pgm/.pbm (P1/P2/P4/P5, 8/16-bit), .png (8/16-bit grey; colour is converted to
+//             luminance), .npy (2D/3D, bool/uint8/uint16/int32/int64/float32/float64), raw
+//             (shape and type given by the caller).
+//
+// Every parse error is an Error(Parse) naming the file, the line (text formats) and what was
+// expected. Writers go to a temporary file in the same folder, renamed over the target only
+// once complete, so a failure never leaves a half-written file.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gpugeom/common.hpp"
+
+namespace gpugeom::io {
+
+struct PointSet {
+  int dim = 3;                 // 2 or 3
+  std::vector<double> coords;  // dim values per point
+  std::size_t size() const { return dim ? coords.size() / dim : 0; }
+};
+
+struct Mesh {
+  int dim = 3;                  // coordinates per vertex (2 or 3)
+  std::vector<double> coords;   // dim per vertex; may be empty for a cells-only .npy
+  int cell_size = 3;            // 3: triangles, 4: tetrahedra
+  std::vector<std::int32_t> cells;
+  std::size_t num_vertices() const { return dim ? coords.size() / dim : 0; }
+  std::size_t num_cells() const { return cell_size ? cells.size() / cell_size : 0; }
+};
+
+enum class ScalarType { Bool, U8, U16, I32, I64, F32, F64 };
+std::size_t scalar_size(ScalarType t);
+const char* scalar_name(ScalarType t);
+ScalarType parse_scalar(const std::string& name);  // "uint8", "float32", ...
+
+struct Grid {
+  std::vector<std::int64_t> shape;  // C order: (rows, cols) or (slices, rows, cols)
+  ScalarType type = ScalarType::U8;
+  std::vector<unsigned char> data;  // native byte order
+  std::int64_t count() const;
+  double value(std::int64_t i) const;  // element i as a double
+};
+
+struct WriteOptions {
+  bool binary = true;  // PLY: binary little endian (true) or ascii
+};
+
+PointSet read_points(const std::string& path);
+void write_points(const std::string& path, const PointSet& pts, const WriteOptions& o = {});
+
+Mesh read_mesh(const std::string& path);
+void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& o = {});
+
+Grid read_grid(const std::string& path);
+// Raw files carry no header: the caller says the shape and the element type.
+Grid read_raw_grid(const std::string& path, const std::vector<std::int64_t>& shape,
+                   ScalarType type);
+void write_grid(const std::string& path, const Grid& grid);
+
+// Parsers over memory, for fuzzing and tests: name is used in messages, ext picks the format.
+PointSet parse_points(const std::string& bytes, const std::string& ext, const std::string& name);
+Mesh parse_mesh(const std::string& bytes, const std::string& ext, const std::string& name);
+Grid parse_grid(const std::string& bytes, const std::string& ext, const std::string& name);
+
+// Lower-case extension with the dot, e.g. ".ply".
+std::string extension(const std::string& path);
+
+}  // namespace gpugeom::io

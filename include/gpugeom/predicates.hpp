@@ -1,0 +1,38 @@
+// Exact geometric predicates for host code (see src/predicates/predicates.hpp for the
+// conventions; device code includes that header directly). Results are -1, 0 or +1; the
+// *_sos variants break every tie by simulation of simplicity using the point indices, are
+// consistent under any permutation of their arguments, and never return 0 for distinct indices.
+#pragma once
+#include "gpugeom/common.hpp"
+
+namespace gpugeom {
+
+int orient2d(const Point2& a, const Point2& b, const Point2& c);
+int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+int incircle(const Point2& a, const Point2& b, const Point2& c, const Point2& d);
+int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+             const Point3& e);
+// Orientation of five 4D points (x, y, z, w): det[b-a; c-a; d-a; e-a].
+int orient4d(const double a[4], const double b[4], const double c[4], const double d[4],
+             const double e[4]);
+// orient4d of 3D points lifted to the paraboloid; equals -insphere.
+int orient4d_lifted(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                    const Point3& e);
+
+int orient2d_sos(const Point2& a, int ia, const Point2& b, int ib, const Point2& c, int ic);
+int orient3d_sos(const Point3& a, int ia, const Point3& b, int ib, const Point3& c, int ic,
+                 const Point3& d, int id);
+int incircle_sos(const Point2& a, int ia, const Point2& b, int ib, const Point2& c, int ic,
+                 const Point2& d, int id);
+int insphere_sos(const Point3& a, int ia, const Point3& b, int ib, const Point3& c, int ic,
+                 const Point3& d, int id, const Point3& e, int ie);
+int orient4d_sos(const double a[4], int ia, const double b[4], int ib, const double c[4], int ic,
+                 const double d[4], int id, const double e[4], int ie);
+int orient4d_lifted_sos(const Point3& a, int ia, const Point3& b, int ib, const Point3& c, int ic,
+                        const Point3& d, int id, const Point3& e, int ie);
+
+// True when every coordinate is 0 or has a magnitude in [2^-142, 2^180], the range in which
+// the predicates are exact.
+bool in_exact_range(double v);
+
+}  // namespace gpugeom

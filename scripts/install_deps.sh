@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs everything gpugeom needs on a fresh Debian 12 machine (run as root).
+# Idempotent: packages already present are skipped quickly.
+set -euo pipefail
+APT_PKGS=(cmake g++ make ninja-build ccache clang libomp-dev libgtest-dev googletest
+          libpng-dev zlib1g-dev libcgal-dev libgmp-dev libmpfr-dev libbenchmark-dev
+          clang-format pkg-config)
+missing=()
+for p in "${APT_PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "[install_deps] apt-get install ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+# Python side: the oracles and plotting used by tests and benchmarks.
+PY=${PYTHON:-python3}
+if ! "$PY" -c "import numpy, scipy, matplotlib" >/dev/null 2>&1; then
+  echo "[install_deps] pip install numpy scipy matplotlib"
+  "$PY" -m pip install -q numpy scipy matplotlib
+fi
+echo "[install_deps] done"

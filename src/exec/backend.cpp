@@ -1,0 +1,67 @@
+// Backend names, parsing and resolution (Auto, GPUGEOM_BACKEND), shared by every module.
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+
+#include "gpugeom/common.hpp"
+
+namespace gpugeom {
+
+const char* backend_name(Backend b) {
+  switch (b) {
+    case Backend::Auto: return "auto";
+    case Backend::Cpu: return "cpu";
+    case Backend::Cuda: return "cuda";
+  }
+  return "?";
+}
+
+Backend parse_backend(const std::string& s) {
+  std::string l(s);
+  std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (l == "auto") return Backend::Auto;
+  if (l == "cpu") return Backend::Cpu;
+  if (l == "cuda" || l == "gpu") return Backend::Cuda;
+  throw Error(ErrorCode::InvalidArgument,
+              "unknown backend '" + s + "': expected one of auto, cpu, cuda");
+}
+
+Backend resolve_backend(Backend requested) {
+  if (requested == Backend::Auto) {
+    if (const char* env = std::getenv("GPUGEOM_BACKEND"); env && *env) {
+      requested = parse_backend(env);
+    }
+  }
+  if (requested == Backend::Cpu) return Backend::Cpu;
+  DeviceInfo d = query_device();
+  if (requested == Backend::Cuda) {
+    if (!d.available)
+      throw Error(ErrorCode::Unsupported,
+                  "the CUDA backend was requested but cannot be used: " + d.reason +
+                      " (use --backend cpu or GPUGEOM_BACKEND=cpu)");
+    return Backend::Cuda;
+  }
+  return d.available ? Backend::Cuda : Backend::Cpu;
+}
+
+const char* error_code_name(ErrorCode c) {
+  switch (c) {
+    case ErrorCode::InvalidArgument: return "invalid argument";
+    case ErrorCode::InvalidInput: return "invalid input";
+    case ErrorCode::DegenerateInput: return "degenerate input";
+    case ErrorCode::Parse: return "parse error";
+    case ErrorCode::Io: return "I/O error";
+    case ErrorCode::Unsupported: return "unsupported";
+    case ErrorCode::OutOfMemory: return "out of memory";
+    case ErrorCode::Cuda: return "CUDA error";
+  }
+  return "error";
+}
+
+double Stats::total_ms() const {
+  double t = 0;
+  for (auto& p : phase_ms) t += p.second;
+  return t;
+}
+
+}  // namespace gpugeom

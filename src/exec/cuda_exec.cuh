@@ -1,0 +1,207 @@
+// The CUDA executor: one stream, stream-ordered allocation (cudaMallocAsync), CUB for scans,
+// sorts, selection and reductions. Same members as CpuExec. Only for nvcc translation units.
+#pragma once
+#include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_reduce.cuh>
+#include <cub/device/device_scan.cuh>
+#include <cub/device/device_select.cuh>
+#include <cuda_runtime.h>
+#include <thrust/iterator/counting_iterator.h>
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+
+#include "exec/cuda_check.cuh"
+#include "exec/hd.hpp"
+
+namespace gpugeom {
+
+template <class T>
+class DeviceBuffer {
+ public:
+  DeviceBuffer() = default;
+  DeviceBuffer(std::size_t n, cudaStream_t s) : n_(n), s_(s) {
+    if (n) GG_CUDA_CHECK(cudaMallocAsync(reinterpret_cast<void**>(&p_), n * sizeof(T), s));
+  }
+  DeviceBuffer(DeviceBuffer&& o) noexcept { swap(o); }
+  DeviceBuffer& operator=(DeviceBuffer&& o) noexcept {
+    DeviceBuffer tmp(std::move(o));
+    swap(tmp);
+    return *this;
+  }
+  DeviceBuffer(const DeviceBuffer&) = delete;
+  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
+  // A destructor cannot throw: a failed free is left to surface at the next checked call.
+  ~DeviceBuffer() {
+    if (p_) (void)cudaFreeAsync(p_, s_);
+  }
+  T* data() { return p_; }
+  const T* data() const { return p_; }
+  std::size_t size() const { return n_; }
+
+ private:
+  void swap(DeviceBuffer& o) noexcept {
+    std::swap(p_, o.p_);
+    std::swap(n_, o.n_);
+    std::swap(s_, o.s_);
+  }
+  T* p_ = nullptr;
+  std::size_t n_ = 0;
+  cudaStream_t s_ = nullptr;
+};
+
+namespace cuda_detail {
+template <class F>
+__global__ void for_each_kernel(std::int64_t n, F f) {
+  const std::int64_t stride = std::int64_t(gridDim.x) * blockDim.x;
+  for (std::int64_t i = std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride)
+    f(i);
+}
+template <class F>
+struct IndexPred {
+  F f;
+  __device__ bool operator()(std::int32_t i) const { return f(std::int64_t(i)); }
+};
+}  // namespace cuda_detail
+
+class CudaExec {
+ public:
+  static constexpr Backend backend = Backend::Cuda;
+  template <class T>
+  using Buffer = DeviceBuffer<T>;
+
+  explicit CudaExec(cudaStream_t s = nullptr) : s_(s) {
+    int dev = 0;
+    GG_CUDA_CHECK(cudaGetDevice(&dev));
+    GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms_, cudaDevAttrMultiProcessorCount, dev));
+  }
+  cudaStream_t stream() const { return s_; }
+
+  template <class T>
+  Buffer<T> alloc(std::size_t n) {
+    return Buffer<T>(n, s_);
+  }
+
+  template <class F>
+  void for_each_index(std::int64_t n, F f) {
+    if (n <= 0) return;
+    constexpr int kBlock = 256;
+    std::int64_t blocks = (n + kBlock - 1) / kBlock;
+    const std::int64_t cap = std::int64_t(sms_) * 32;  // grid-stride beyond this
+    if (blocks > cap) blocks = cap;
+    cuda_detail::for_each_kernel<<<unsigned(blocks), kBlock, 0, s_>>>(n, f);
+    GG_CUDA_CHECK_LAUNCH("for_each_kernel");
+  }
+
+  template <class T>
+  void fill(T* p, std::int64_t n, T v) {
+    for_each_index(n, [=] __device__(std::int64_t i) { p[i] = v; });
+  }
+  template <class T>
+  void copy(const T* src, std::int64_t n, T* dst) {
+    if (n > 0) GG_CUDA_CHECK(cudaMemcpyAsync(dst, src, sizeof(T) * n, cudaMemcpyDefault, s_));
+  }
+  // Host copies complete before returning, so the host array may be used or freed at once.
+  template <class T>
+  void to_host(const T* src, std::int64_t n, T* host) {
+    copy(src, n, host);
+    sync();
+  }
+  template <class T>
+  void from_host(const T* host, std::int64_t n, T* dst) {
+    copy(host, n, dst);
+    sync();
+  }
+
+  template <class T>
+  void exclusive_scan(const T* in, T* out, std::int64_t n) {
+    if (n <= 0) return;
+    run_cub([&](void* tmp, std::size_t& bytes) {
+      return cub::DeviceScan::ExclusiveSum(tmp, bytes, in, out, n, s_);
+    });
+  }
+  template <class T>
+  void inclusive_scan(const T* in, T* out, std::int64_t n) {
+    if (n <= 0) return;
+    run_cub([&](void* tmp, std::size_t& bytes) {
+      return cub::DeviceScan::InclusiveSum(tmp, bytes, in, out, n, s_);
+    });
+  }
+  template <class T, class Op>
+  T reduce(const T* in, std::int64_t n, T init, Op op) {
+    Buffer<T> res = alloc<T>(1);
+    T* r = res.data();
+    run_cub([&](void* tmp, std::size_t& bytes) {
+      return cub::DeviceReduce::Reduce(tmp, bytes, in, r, n, op, init, s_);
+    });
+    T h;
+    to_host(r, 1, &h);
+    return h;
+  }
+  template <class K>
+  void sort(K* keys, std::int64_t n) {
+    if (n <= 1) return;
+    Buffer<K> alt = alloc<K>(n);
+    cub::DoubleBuffer<K> kb(keys, alt.data());
+    run_cub([&](void* tmp, std::size_t& bytes) {
+      return cub::DeviceRadixSort::SortKeys(tmp, bytes, kb, n, 0, int(sizeof(K) * 8), s_);
+    });
+    if (kb.Current() != keys) copy(kb.Current(), n, keys);
+  }
+  template <class K, class V>
+  void sort_by_key(K* keys, V* vals, std::int64_t n) {
+    if (n <= 1) return;
+    Buffer<K> ka = alloc<K>(n);
+    Buffer<V> va = alloc<V>(n);
+    cub::DoubleBuffer<K> kb(keys, ka.data());
+    cub::DoubleBuffer<V> vb(vals, va.data());
+    run_cub([&](void* tmp, std::size_t& bytes) {
+      return cub::DeviceRadixSort::SortPairs(tmp, bytes, kb, vb, n, 0, int(sizeof(K) * 8), s_);
+    });
+    if (kb.Current() != keys) copy(kb.Current(), n, keys);
+    if (vb.Current() != vals) copy(vb.Current(), n, vals);
+  }
+  template <class T, class Pred>
+  std::int64_t copy_if(const T* in, std::int64_t n, T* out, Pred pred) {
+    if (n <= 0) return 0;
+    Buffer<std::int64_t> cnt = alloc<std::int64_t>(1);
+    std::int64_t* c = cnt.data();
+    run_cub([&](void* tmp, std::size_t& bytes) {
+      return cub::DeviceSelect::If(tmp, bytes, in, out, c, n, pred, s_);
+    });
+    std::int64_t h = 0;
+    to_host(c, 1, &h);
+    return h;
+  }
+  template <class Pred>
+  std::int64_t compact_indices(std::int64_t n, Pred pred, std::int32_t* out) {
+    thrust::counting_iterator<std::int32_t> first(0);
+    if (n <= 0) return 0;
+    Buffer<std::int64_t> cnt = alloc<std::int64_t>(1);
+    std::int64_t* c = cnt.data();
+    cuda_detail::IndexPred<Pred> ip{pred};
+    run_cub([&](void* tmp, std::size_t& bytes) {
+      return cub::DeviceSelect::If(tmp, bytes, first, out, c, n, ip, s_);
+    });
+    std::int64_t h = 0;
+    to_host(c, 1, &h);
+    return h;
+  }
+  void sync() { GG_CUDA_CHECK(cudaStreamSynchronize(s_)); }
+  // How many independent work items fill the device (sizes scratch pools).
+  std::int64_t concurrency() const { return std::int64_t(sms_) * 1024; }
+
+ private:
+  // CUB's two-call protocol: ask for the temporary size, allocate it stream-ordered, run.
+  template <class Call>
+  void run_cub(Call call) {
+    std::size_t bytes = 0;
+    GG_CUDA_CHECK(call(nullptr, bytes));
+    Buffer<unsigned char> tmp = alloc<unsigned char>(bytes ? bytes : 1);
+    GG_CUDA_CHECK(call(tmp.data(), bytes));
+  }
+  cudaStream_t s_;
+  int sms_ = 1;
+};
+
+}  // namespace gpugeom

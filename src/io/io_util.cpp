@@ -1,0 +1,107 @@
+#include "io/io_util.hpp"
+
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <unistd.h>
+
+namespace gpugeom::io::detail {
+
+std::string read_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw Error(ErrorCode::Io, "cannot open '" + path + "' for reading: " + std::strerror(errno));
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  if (f.bad()) throw Error(ErrorCode::Io, "error while reading '" + path + "'");
+  return ss.str();
+}
+
+void write_file_atomic(const std::string& path, const std::string& bytes) {
+  std::random_device rd;
+  char suffix[32];
+  std::snprintf(suffix, sizeof suffix, ".tmp-%d-%08x", int(getpid()), unsigned(rd()));
+  const std::string tmp = path + suffix;
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f)
+    throw Error(ErrorCode::Io, "cannot create '" + tmp + "' (writing '" + path + "'): " +
+                                   std::strerror(errno));
+  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+  ok = (std::fflush(f) == 0) && ok;
+  ok = (std::fclose(f) == 0) && ok;
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    int e = errno;
+    std::remove(tmp.c_str());
+    throw Error(ErrorCode::Io, "cannot write '" + path + "': " + std::strerror(e));
+  }
+}
+
+void parse_fail(const std::string& name, std::int64_t line, const std::string& what) {
+  std::string where = name;
+  if (line > 0) where += ":" + std::to_string(line);
+  throw Error(ErrorCode::Parse, where + ": " + what);
+}
+
+bool Lines::next(std::string_view& line, bool skip_comments) {
+  while (pos_ < t_.size()) {
+    std::size_t e = t_.find('\n', pos_);
+    if (e == std::string_view::npos) e = t_.size();
+    line = t_.substr(pos_, e - pos_);
+    pos_ = e + 1;
+    ++line_;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    std::size_t first = line.find_first_not_of(" \t");
+    if (first == std::string_view::npos) continue;
+    line = line.substr(first);
+    if (skip_comments && line[0] == '#') continue;
+    return true;
+  }
+  return false;
+}
+
+std::vector<std::string_view> split(std::string_view line, bool commas) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  auto sep = [&](char c) { return c == ' ' || c == '\t' || (commas && c == ','); };
+  while (i < line.size()) {
+    while (i < line.size() && sep(line[i])) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !sep(line[j])) ++j;
+    if (j > i) out.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+bool to_double(std::string_view s, double& v) {
+  if (!s.empty() && s[0] == '+') s.remove_prefix(1);
+  auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+bool to_int64(std::string_view s, std::int64_t& v) {
+  if (!s.empty() && s[0] == '+') s.remove_prefix(1);
+  auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+double need_double(const Lines& l, std::string_view s, const char* what) {
+  double v;
+  if (!to_double(s, v))
+    l.fail(std::string("expected a number for ") + what + ", found '" + std::string(s) + "'");
+  return v;
+}
+std::int64_t need_int(const Lines& l, std::string_view s, const char* what) {
+  std::int64_t v;
+  if (!to_int64(s, v))
+    l.fail(std::string("expected an integer for ") + what + ", found '" + std::string(s) + "'");
+  return v;
+}
+
+void append_double(std::string& out, double v) {
+  char buf[32];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+}  // namespace gpugeom::io::detail

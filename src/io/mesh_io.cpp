@@ -1,0 +1,232 @@
+// Triangle and tetrahedron meshes: .ply .off .obj .ele/.node .vtu .npy.
+#include "gpugeom/io.hpp"
+#include "io/io_util.hpp"
+
+namespace gpugeom::io {
+namespace detail {
+PointSet parse_off_mesh(const std::string& b, const std::string& name, Mesh* m);
+PointSet parse_obj_mesh(const std::string& b, const std::string& name, Mesh* m);
+PointSet parse_node_file(const std::string& b, const std::string& name, int* base);
+}  // namespace detail
+using namespace detail;
+
+namespace {
+
+std::string sibling(const std::string& path, const std::string& ext) {
+  std::size_t dot = path.find_last_of('.');
+  return path.substr(0, dot) + ext;
+}
+
+Mesh parse_ele(const std::string& b, const std::string& name, int base, std::int64_t nv) {
+  Lines l(b, name);
+  std::string_view line;
+  if (!l.next(line)) l.fail("empty file: expected '<#cells> <nodes per cell> <#attributes>'");
+  auto t = split(line);
+  if (t.size() < 2) l.fail("expected '<#cells> <nodes per cell> <#attributes>'");
+  std::int64_t nc = need_int(l, t[0], "the cell count"), k = need_int(l, t[1], "the nodes per cell");
+  if (k != 3 && k != 4) l.fail("only triangles (3) and tetrahedra (4) are supported");
+  if (nc < 0 || std::uint64_t(nc) > b.size()) l.fail("the cell count is out of range");
+  Mesh m;
+  m.cell_size = int(k);
+  m.cells.reserve(std::size_t(nc * k));
+  for (std::int64_t c = 0; c < nc; ++c) {
+    if (!l.next(line)) l.fail("file ends after " + std::to_string(c) + " of " + std::to_string(nc) + " cells");
+    auto v = split(line);
+    if (std::int64_t(v.size()) < 1 + k) l.fail("expected '<index>' and " + std::to_string(k) + " vertex indices");
+    for (int j = 1; j <= k; ++j) {
+      std::int64_t x = need_int(l, v[j], "a vertex index") - base;
+      if (x < 0 || (nv >= 0 && x >= nv)) l.fail("vertex index " + std::string(v[j]) + " is out of range");
+      m.cells.push_back(std::int32_t(x));
+    }
+  }
+  return m;
+}
+
+// Our own ascii VTU: the Points array, then connectivity / offsets / types.
+std::vector<double> vtu_array(const std::string& b, const std::string& name, const std::string& key,
+                              std::size_t from) {
+  std::size_t k = b.find(key, from);
+  if (k == std::string::npos) parse_fail(name, 0, "no DataArray " + key + " found");
+  std::size_t s = b.find('>', k), e = b.find("</DataArray>", k);
+  if (s == std::string::npos || e == std::string::npos || e < s)
+    parse_fail(name, 0, "DataArray " + key + " is not closed");
+  if (b.substr(k, s - k).find("format=\"ascii\"") == std::string::npos)
+    parse_fail(name, 0, "only ascii VTU DataArrays are supported");
+  std::vector<double> v;
+  for (auto t : split(std::string_view(b).substr(s + 1, e - s - 1))) {
+    std::string_view tt = t;
+    while (!tt.empty() && (tt.back() == '\n' || tt.back() == '\r')) tt.remove_suffix(1);
+    if (tt.empty()) continue;
+    double x;
+    if (!to_double(tt, x)) parse_fail(name, 0, "bad number '" + std::string(tt) + "' in " + key);
+    v.push_back(x);
+  }
+  return v;
+}
+
+Mesh parse_vtu(const std::string& b, const std::string& name) {
+  if (b.find("<VTKFile") == std::string::npos || b.find("UnstructuredGrid") == std::string::npos)
+    parse_fail(name, 0, "not a VTK UnstructuredGrid (.vtu) file");
+  std::size_t pts = b.find("<Points>");
+  if (pts == std::string::npos) parse_fail(name, 0, "no <Points> section");
+  Mesh m;
+  std::vector<double> xyz = vtu_array(b, name, "<DataArray", pts);
+  std::vector<double> conn = vtu_array(b, name, "Name=\"connectivity\"", 0);
+  std::vector<double> offs = vtu_array(b, name, "Name=\"offsets\"", 0);
+  std::vector<double> types = vtu_array(b, name, "Name=\"types\"", 0);
+  if (xyz.size() % 3) parse_fail(name, 0, "Points must have 3 components");
+  if (offs.size() != types.size()) parse_fail(name, 0, "offsets and types differ in length");
+  m.cell_size = types.empty() || types[0] == 5 ? 3 : 4;
+  bool flat = true;
+  for (double t : types)
+    if (t != (m.cell_size == 3 ? 5 : 10)) parse_fail(name, 0, "mixed or unsupported VTK cell types (expected all 5 or all 10)");
+  if (conn.size() != offs.size() * m.cell_size) parse_fail(name, 0, "connectivity length does not match the cells");
+  const std::size_t nv = xyz.size() / 3;
+  for (std::size_t i = 0; i < offs.size(); ++i)
+    if (offs[i] != double((i + 1) * m.cell_size)) parse_fail(name, 0, "unexpected offsets");
+  for (double c : conn) {
+    if (c < 0 || c >= double(nv)) parse_fail(name, 0, "connectivity refers to a missing point");
+    m.cells.push_back(std::int32_t(c));
+  }
+  for (std::size_t i = 2; i < xyz.size(); i += 3) flat = flat && xyz[i] == 0.0;
+  m.dim = (flat && m.cell_size == 3) ? 2 : 3;
+  for (std::size_t i = 0; i < nv; ++i)
+    for (int d = 0; d < m.dim; ++d) m.coords.push_back(xyz[i * 3 + d]);
+  return m;
+}
+
+std::string format_vtu(const Mesh& m) {
+  const std::size_t nv = m.num_vertices(), nc = m.num_cells();
+  std::string o = "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+                  "byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" +
+                  std::to_string(nv) + "\" NumberOfCells=\"" + std::to_string(nc) + "\">\n";
+  o += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (std::size_t i = 0; i < nv; ++i) {
+    for (int d = 0; d < 3; ++d) {
+      if (d) o += ' ';
+      append_double(o, d < m.dim ? m.coords[i * m.dim + d] : 0.0);
+    }
+    o += '\n';
+  }
+  o += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (std::size_t c = 0; c < nc; ++c) {
+    for (int k = 0; k < m.cell_size; ++k) o += (k ? " " : "") + std::to_string(m.cells[c * m.cell_size + k]);
+    o += '\n';
+  }
+  o += "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
+  for (std::size_t c = 0; c < nc; ++c) o += std::to_string((c + 1) * m.cell_size) + '\n';
+  o += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  const std::string type = m.cell_size == 3 ? "5\n" : "10\n";
+  for (std::size_t c = 0; c < nc; ++c) o += type;
+  o += "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  return o;
+}
+
+Mesh parse_npy_cells(const std::string& b, const std::string& name) {
+  NpyArray a = parse_npy(b, name);
+  if (a.shape.size() != 2 || (a.shape[1] != 3 && a.shape[1] != 4) || (a.descr[1] != 'i' && a.descr[1] != 'u'))
+    parse_fail(name, 0, "expected an integer cell array of shape (N, 3) or (N, 4)");
+  Mesh m;
+  m.cell_size = int(a.shape[1]);
+  const std::int64_t n = a.shape[0] * a.shape[1];
+  m.cells.resize(std::size_t(n));
+  for (std::int64_t i = 0; i < n; ++i) {
+    double v = npy_value(a, i, name);
+    if (v < 0 || v > 2147483647.0) parse_fail(name, 0, "cell index out of range");
+    m.cells[i] = std::int32_t(v);
+  }
+  return m;
+}
+
+}  // namespace
+
+Mesh parse_mesh(const std::string& b, const std::string& ext, const std::string& name) {
+  Mesh m;
+  if (ext == ".ply") {
+    PlyData d = parse_ply(b, name);
+    m.dim = d.dim;
+    m.coords = std::move(d.coords);
+    m.cell_size = d.cell_size ? d.cell_size : 3;
+    m.cells = std::move(d.cells);
+  } else if (ext == ".off" || ext == ".obj") {
+    PointSet p = ext == ".off" ? parse_off_mesh(b, name, &m) : parse_obj_mesh(b, name, &m);
+    m.dim = 3;
+    m.coords = std::move(p.coords);
+  } else if (ext == ".vtu") {
+    m = parse_vtu(b, name);
+  } else if (ext == ".npy") {
+    m = parse_npy_cells(b, name);
+  } else if (ext == ".ele") {
+    m = parse_ele(b, name, 0, -1);
+  } else {
+    throw Error(ErrorCode::InvalidArgument, name + ": unknown mesh format '" + ext +
+                                                "': expected .ply .off .obj .ele .vtu or .npy");
+  }
+  return m;
+}
+
+Mesh read_mesh(const std::string& path) {
+  const std::string ext = extension(path);
+  if (ext == ".ele") {
+    int base = 0;
+    PointSet p = parse_node_file(read_file(sibling(path, ".node")), sibling(path, ".node"), &base);
+    Mesh m = parse_ele(read_file(path), path, base, std::int64_t(p.size()));
+    m.dim = p.dim;
+    m.coords = std::move(p.coords);
+    return m;
+  }
+  return parse_mesh(read_file(path), ext, path);
+}
+
+void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {
+  const std::string ext = extension(path);
+  if (m.cell_size != 3 && m.cell_size != 4)
+    throw Error(ErrorCode::InvalidArgument, "cells must be triangles or tetrahedra");
+  const std::size_t nv = m.num_vertices(), nc = m.num_cells();
+  for (auto c : m.cells)
+    if (c < 0 || (nv && std::size_t(c) >= nv))
+      throw Error(ErrorCode::InvalidArgument, "a cell refers to a vertex that does not exist");
+  std::string out;
+  if (ext == ".ply") {
+    out = format_ply(m.coords.data(), m.dim, nv, m.cells.data(), m.cell_size, nc, o.binary);
+  } else if (ext == ".off" || ext == ".obj") {
+    if (m.cell_size != 3)
+      throw Error(ErrorCode::InvalidArgument, ext + " holds surfaces only: write tetrahedra as .vtu, .ele or .ply");
+    if (ext == ".off") out = "OFF\n" + std::to_string(nv) + " " + std::to_string(nc) + " 0\n";
+    for (std::size_t i = 0; i < nv; ++i) {
+      if (ext == ".obj") out += "v ";
+      for (int d = 0; d < 3; ++d) {
+        if (d) out += ' ';
+        append_double(out, d < m.dim ? m.coords[i * m.dim + d] : 0.0);
+      }
+      out += '\n';
+    }
+    for (std::size_t c = 0; c < nc; ++c) {
+      const int base = ext == ".obj" ? 1 : 0;
+      out += ext == ".obj" ? "f" : "3";
+      for (int k = 0; k < 3; ++k) out += ' ' + std::to_string(m.cells[c * 3 + k] + base);
+      out += '\n';
+    }
+  } else if (ext == ".ele") {
+    PointSet p;
+    p.dim = m.dim;
+    p.coords = m.coords;
+    write_points(sibling(path, ".node"), p);
+    out = std::to_string(nc) + " " + std::to_string(m.cell_size) + " 0\n";
+    for (std::size_t c = 0; c < nc; ++c) {
+      out += std::to_string(c);
+      for (int k = 0; k < m.cell_size; ++k) out += ' ' + std::to_string(m.cells[c * m.cell_size + k]);
+      out += '\n';
+    }
+  } else if (ext == ".vtu") {
+    out = format_vtu(m);
+  } else if (ext == ".npy") {
+    out = format_npy("<i4", {std::int64_t(nc), m.cell_size}, m.cells.data(), m.cells.size() * 4);
+  } else {
+    throw Error(ErrorCode::InvalidArgument, path + ": unknown mesh format '" + ext +
+                                                "': expected .ply .off .obj .ele .vtu or .npy");
+  }
+  write_file_atomic(path, out);
+}
+
+}  // namespace gpugeom::io

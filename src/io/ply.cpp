@@ -1,0 +1,260 @@
+// PLY (Stanford polygon format): ascii, binary_little_endian and binary_big_endian bodies.
+#include <cctype>
+#include <cstring>
+
+#include "io/io_util.hpp"
+
+namespace gpugeom::io::detail {
+namespace {
+
+enum class T { I8, U8, I16, U16, I32, U32, F32, F64 };
+bool type_of(std::string_view s, T& t) {
+  static const struct {
+    const char* a;
+    const char* b;
+    T t;
+  } m[] = {{"char", "int8", T::I8},     {"uchar", "uint8", T::U8},     {"short", "int16", T::I16},
+           {"ushort", "uint16", T::U16}, {"int", "int32", T::I32},      {"uint", "uint32", T::U32},
+           {"float", "float32", T::F32}, {"double", "float64", T::F64}};
+  for (auto& e : m)
+    if (s == e.a || s == e.b) return t = e.t, true;
+  return false;
+}
+std::size_t size_of(T t) {
+  switch (t) {
+    case T::I8: case T::U8: return 1;
+    case T::I16: case T::U16: return 2;
+    case T::I32: case T::U32: case T::F32: return 4;
+    default: return 8;
+  }
+}
+
+struct Prop {
+  std::string name;
+  bool list = false;
+  T count_t = T::U8, t = T::F32;
+};
+struct Elem {
+  std::string name;
+  std::int64_t count = 0;
+  std::vector<Prop> props;
+};
+
+// Reads values from the body, in whichever encoding the header declared.
+class Body {
+ public:
+  Body(std::string_view b, int enc, const Lines& l) : b_(b), enc_(enc), lines_(l) {}
+  double get(T t) {
+    if (enc_ == 0) return ascii();
+    const std::size_t n = size_of(t);
+    if (pos_ + n > b_.size()) lines_.fail("binary body is truncated (expected more vertex or face data)");
+    unsigned char raw[8];
+    std::memcpy(raw, b_.data() + pos_, n);
+    pos_ += n;
+    if (enc_ == 2)
+      for (std::size_t k = 0; k < n / 2; ++k) std::swap(raw[k], raw[n - 1 - k]);
+    auto as = [&](auto v) {
+      std::memcpy(&v, raw, sizeof v);
+      return double(v);
+    };
+    switch (t) {
+      case T::I8: return as(std::int8_t());
+      case T::U8: return as(std::uint8_t());
+      case T::I16: return as(std::int16_t());
+      case T::U16: return as(std::uint16_t());
+      case T::I32: return as(std::int32_t());
+      case T::U32: return as(std::uint32_t());
+      case T::F32: return as(float());
+      default: return as(double());
+    }
+  }
+  std::size_t remaining() const { return b_.size() - pos_; }
+
+ private:
+  double ascii() {
+    while (pos_ < b_.size() && std::isspace((unsigned char)b_[pos_])) {
+      if (b_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+    std::size_t e = pos_;
+    while (e < b_.size() && !std::isspace((unsigned char)b_[e])) ++e;
+    if (e == pos_) parse_fail(lines_.name(), lines_.line_no() + line_ + 1, "ascii body ends early (expected more values)");
+    double v;
+    if (!to_double(b_.substr(pos_, e - pos_), v))
+      parse_fail(lines_.name(), lines_.line_no() + line_ + 1,
+                 "expected a number, found '" + std::string(b_.substr(pos_, e - pos_)) + "'");
+    pos_ = e;
+    return v;
+  }
+  std::string_view b_;
+  int enc_;
+  const Lines& lines_;
+  std::size_t pos_ = 0;
+  std::int64_t line_ = 0;
+};
+
+}  // namespace
+
+PlyData parse_ply(const std::string& bytes, const std::string& name) {
+  Lines l(bytes, name);
+  std::string_view line;
+  if (!l.next(line, false) || line != "ply") l.fail("not a PLY file: the first line must be 'ply'");
+  int enc = -1;
+  std::vector<Elem> elems;
+  bool ended = false;
+  while (l.next(line, false)) {
+    auto tok = split(line);
+    if (tok.empty()) continue;
+    if (tok[0] == "comment" || tok[0] == "obj_info") continue;
+    if (tok[0] == "end_header") {
+      ended = true;
+      break;
+    }
+    if (tok[0] == "format") {
+      if (tok.size() < 2) l.fail("incomplete 'format' line");
+      if (tok[1] == "ascii") enc = 0;
+      else if (tok[1] == "binary_little_endian") enc = 1;
+      else if (tok[1] == "binary_big_endian") enc = 2;
+      else l.fail("unknown PLY format '" + std::string(tok[1]) + "'");
+    } else if (tok[0] == "element") {
+      if (tok.size() != 3) l.fail("expected 'element NAME COUNT'");
+      Elem e;
+      e.name = std::string(tok[1]);
+      e.count = need_int(l, tok[2], "the element count");
+      if (e.count < 0) l.fail("negative element count");
+      elems.push_back(e);
+    } else if (tok[0] == "property") {
+      if (elems.empty()) l.fail("'property' before any 'element'");
+      Prop p;
+      if (tok.size() == 5 && tok[1] == "list") {
+        p.list = true;
+        if (!type_of(tok[2], p.count_t) || !type_of(tok[3], p.t)) l.fail("unknown property type in list");
+        p.name = std::string(tok[4]);
+      } else if (tok.size() == 3) {
+        if (!type_of(tok[1], p.t)) l.fail("unknown property type '" + std::string(tok[1]) + "'");
+        p.name = std::string(tok[2]);
+      } else {
+        l.fail("expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
+      }
+      elems.back().props.push_back(p);
+    } else {
+      l.fail("unexpected header line '" + std::string(line) + "'");
+    }
+  }
+  if (!ended) l.fail("the header has no 'end_header' line");
+  if (enc < 0) l.fail("the header has no 'format' line");
+  Body body(std::string_view(bytes).substr(l.offset() > bytes.size() ? bytes.size() : l.offset()), enc, l);
+  PlyData out;
+  for (const Elem& e : elems) {
+    // Refuse counts the body cannot possibly hold, before allocating for them.
+    if (!e.props.empty() && std::uint64_t(e.count) > body.remaining() + 1)
+      l.fail("element '" + e.name + "' claims " + std::to_string(e.count) + " items but the body is only " +
+             std::to_string(body.remaining()) + " bytes");
+    const bool vertex = e.name == "vertex";
+    const bool cells = e.name == "face" || e.name == "tetra";
+    int ix = -1, iy = -1, iz = -1, il = -1;
+    for (int k = 0; k < int(e.props.size()); ++k) {
+      const auto& p = e.props[k];
+      if (vertex && !p.list && p.name == "x") ix = k;
+      if (vertex && !p.list && p.name == "y") iy = k;
+      if (vertex && !p.list && p.name == "z") iz = k;
+      if (cells && p.list && (p.name == "vertex_indices" || p.name == "vertex_index")) il = k;
+    }
+    if (vertex) {
+      if (ix < 0 || iy < 0) l.fail("the vertex element needs properties x and y");
+      out.dim = iz >= 0 ? 3 : 2;
+      out.coords.reserve(std::size_t(e.count) * out.dim);
+    }
+    for (std::int64_t i = 0; i < e.count; ++i) {
+      for (int k = 0; k < int(e.props.size()); ++k) {
+        const Prop& p = e.props[k];
+        if (!p.list) {
+          double v = body.get(p.t);
+          if (k == ix) out.coords.push_back(v);
+          if (k == iy) out.coords.push_back(v);
+          if (k == iz) out.coords.push_back(v);
+          continue;
+        }
+        double c = body.get(p.count_t);
+        if (c < 0 || c > 1e6) l.fail("list length " + std::to_string(c) + " is out of range");
+        const int n = int(c);
+        if (k == il) {
+          const int want = e.name == "tetra" ? 4 : 3;
+          if (out.cell_size == 0) out.cell_size = want;
+          if (n != out.cell_size)
+            l.fail(e.name + " " + std::to_string(i) + " has " + std::to_string(n) +
+                   " indices; only triangles (3) and tetrahedra (4) are supported");
+        }
+        for (int j = 0; j < n; ++j) {
+          double v = body.get(p.t);
+          if (k == il) {
+            if (v < 0 || v > 2147483647.0 || v != double(std::int64_t(v)))
+              l.fail(e.name + " " + std::to_string(i) + " has an invalid vertex index");
+            out.cells.push_back(std::int32_t(v));
+          }
+        }
+      }
+    }
+    // The reordering above pushes x,y,z in property order; put them back as x,y,z.
+    if (vertex && !(ix < iy && (iz < 0 || iy < iz))) {
+      const int d = out.dim;
+      int order[3] = {ix, iy, iz};
+      int rank[3];
+      for (int a = 0; a < d; ++a) {
+        rank[a] = 0;
+        for (int b = 0; b < d; ++b) rank[a] += order[b] < order[a];
+      }
+      for (std::size_t v = 0; v < out.coords.size(); v += d) {
+        double t[3];
+        for (int a = 0; a < d; ++a) t[a] = out.coords[v + rank[a]];
+        for (int a = 0; a < d; ++a) out.coords[v + a] = t[a];
+      }
+    }
+  }
+  const std::size_t nv = out.coords.size() / out.dim;
+  for (auto c : out.cells)
+    if (std::size_t(c) >= nv)
+      parse_fail(name, 0, "a cell refers to vertex " + std::to_string(c) + " but there are only " +
+                              std::to_string(nv) + " vertices");
+  return out;
+}
+
+std::string format_ply(const double* coords, int dim, std::size_t nv, const std::int32_t* cells,
+                       int cell_size, std::size_t nc, bool binary) {
+  std::string h = "ply\nformat ";
+  h += binary ? "binary_little_endian 1.0\n" : "ascii 1.0\n";
+  h += "comment written by gpugeom\n";
+  h += "element vertex " + std::to_string(nv) + "\n";
+  const char* axes[3] = {"x", "y", "z"};
+  for (int d = 0; d < dim; ++d) h += std::string("property double ") + axes[d] + "\n";
+  if (nc) {
+    h += std::string("element ") + (cell_size == 4 ? "tetra " : "face ") + std::to_string(nc) + "\n";
+    h += "property list uchar int vertex_indices\n";
+  }
+  h += "end_header\n";
+  std::string out = h;
+  if (binary) {
+    out.reserve(h.size() + nv * dim * 8 + nc * (1 + 4 * cell_size));
+    out.append(reinterpret_cast<const char*>(coords), nv * dim * sizeof(double));
+    for (std::size_t c = 0; c < nc; ++c) {
+      out += char(cell_size);
+      out.append(reinterpret_cast<const char*>(cells + c * cell_size), cell_size * 4);
+    }
+  } else {
+    for (std::size_t v = 0; v < nv; ++v) {
+      for (int d = 0; d < dim; ++d) {
+        if (d) out += ' ';
+        append_double(out, coords[v * dim + d]);
+      }
+      out += '\n';
+    }
+    for (std::size_t c = 0; c < nc; ++c) {
+      out += std::to_string(cell_size);
+      for (int k = 0; k < cell_size; ++k) out += ' ' + std::to_string(cells[c * cell_size + k]);
+      out += '\n';
+    }
+  }
+  return out;
+}
+
+}  // namespace gpugeom::io::detail

@@ -1,0 +1,246 @@
+// Point-cloud readers and writers.
+#include <algorithm>
+#include <cctype>
+
+#include "gpugeom/io.hpp"
+#include "io/io_util.hpp"
+
+namespace gpugeom::io {
+using namespace detail;
+
+std::string extension(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+namespace {
+
+PointSet parse_table(const std::string& b, const std::string& name, bool csv) {
+  Lines l(b, name);
+  std::string_view line;
+  PointSet p;
+  p.dim = 0;
+  bool first = true;
+  while (l.next(line)) {
+    auto tok = split(line, csv || line.find(',') != std::string_view::npos);
+    double v;
+    if (first && !tok.empty() && !to_double(tok[0], v)) {  // a header row of column names
+      first = false;
+      continue;
+    }
+    first = false;
+    if (p.dim == 0) {
+      if (tok.size() != 2 && tok.size() != 3)
+        l.fail("expected 2 or 3 coordinates per line, found " + std::to_string(tok.size()));
+      p.dim = int(tok.size());
+    }
+    if (int(tok.size()) != p.dim)
+      l.fail("expected " + std::to_string(p.dim) + " coordinates (as on the first line), found " +
+             std::to_string(tok.size()));
+    for (auto t : tok) p.coords.push_back(need_double(l, t, "a coordinate"));
+  }
+  if (p.dim == 0) parse_fail(name, 0, "no points found");
+  return p;
+}
+
+PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* mesh) {
+  Lines l(b, name);
+  std::string_view line;
+  if (!l.next(line)) l.fail("empty file: expected 'OFF'");
+  auto tok = split(line);
+  if (tok.empty() || tok[0] != "OFF") l.fail("not an OFF file: the first line must be 'OFF'");
+  tok.erase(tok.begin());
+  if (tok.empty()) {
+    if (!l.next(line)) l.fail("expected the counts 'vertices faces edges'");
+    tok = split(line);
+  }
+  if (tok.size() < 2) l.fail("expected the counts 'vertices faces edges'");
+  std::int64_t nv = need_int(l, tok[0], "the vertex count"), nf = need_int(l, tok[1], "the face count");
+  if (nv < 0 || nf < 0 || std::uint64_t(nv) > b.size() || std::uint64_t(nf) > b.size())
+    l.fail("vertex/face counts are out of range for this file");
+  PointSet p;
+  p.dim = 3;
+  p.coords.reserve(std::size_t(nv) * 3);
+  for (std::int64_t i = 0; i < nv; ++i) {
+    if (!l.next(line)) l.fail("file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
+    auto t = split(line);
+    if (t.size() < 3) l.fail("expected 'x y z' for vertex " + std::to_string(i));
+    for (int k = 0; k < 3; ++k) p.coords.push_back(need_double(l, t[k], "a coordinate"));
+  }
+  if (mesh) {
+    mesh->cell_size = 3;
+    for (std::int64_t f = 0; f < nf; ++f) {
+      if (!l.next(line)) l.fail("file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
+      auto t = split(line);
+      if (t.empty() || need_int(l, t[0], "the face size") != 3 || t.size() < 4)
+        l.fail("face " + std::to_string(f) + " is not a triangle ('3 a b c')");
+      for (int k = 1; k <= 3; ++k) {
+        std::int64_t v = need_int(l, t[k], "a vertex index");
+        if (v < 0 || v >= nv) l.fail("vertex index " + std::to_string(v) + " is out of range");
+        mesh->cells.push_back(std::int32_t(v));
+      }
+    }
+  }
+  return p;
+}
+
+PointSet parse_obj(const std::string& b, const std::string& name, Mesh* mesh) {
+  Lines l(b, name);
+  std::string_view line;
+  PointSet p;
+  p.dim = 3;
+  while (l.next(line)) {
+    auto t = split(line);
+    if (t[0] == "v") {
+      if (t.size() < 4) l.fail("expected 'v x y z'");
+      for (int k = 1; k <= 3; ++k) p.coords.push_back(need_double(l, t[k], "a coordinate"));
+    } else if (t[0] == "f" && mesh) {
+      if (t.size() != 4) l.fail("only triangular faces ('f a b c') are supported");
+      const std::int64_t nv = std::int64_t(p.coords.size() / 3);
+      for (int k = 1; k <= 3; ++k) {
+        std::string_view s = t[k].substr(0, t[k].find('/'));
+        std::int64_t v = need_int(l, s, "a vertex index");
+        v = v < 0 ? nv + v : v - 1;  // OBJ is 1-based; negative counts back from the end
+        if (v < 0 || v >= nv) l.fail("face refers to vertex " + std::string(s) + " which is not defined yet");
+        mesh->cells.push_back(std::int32_t(v));
+      }
+    }
+  }
+  if (p.coords.empty()) parse_fail(name, 0, "no 'v' lines found");
+  if (mesh) mesh->cell_size = 3;
+  return p;
+}
+
+// Triangle/TetGen .node; base receives the first index (0 or 1) for a matching .ele.
+PointSet parse_node(const std::string& b, const std::string& name, int* base) {
+  Lines l(b, name);
+  std::string_view line;
+  if (!l.next(line)) l.fail("empty file: expected '<#points> <dimension> <#attributes> <#markers>'");
+  auto t = split(line);
+  if (t.size() < 2) l.fail("expected '<#points> <dimension> <#attributes> <#markers>'");
+  std::int64_t n = need_int(l, t[0], "the point count"), dim = need_int(l, t[1], "the dimension");
+  std::int64_t nattr = t.size() > 2 ? need_int(l, t[2], "the attribute count") : 0;
+  std::int64_t nmark = t.size() > 3 ? need_int(l, t[3], "the marker count") : 0;
+  if (dim != 2 && dim != 3) l.fail("dimension must be 2 or 3");
+  if (n < 0 || std::uint64_t(n) > b.size() || nattr < 0 || nmark < 0 || nmark > 1 || nattr > 1000)
+    l.fail("header counts are out of range");
+  PointSet p;
+  p.dim = int(dim);
+  p.coords.reserve(std::size_t(n) * dim);
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!l.next(line)) l.fail("file ends after " + std::to_string(i) + " of " + std::to_string(n) + " points");
+    auto v = split(line);
+    if (std::int64_t(v.size()) < 1 + dim) l.fail("expected '<index> x y" + std::string(dim == 3 ? " z'" : "'"));
+    std::int64_t idx = need_int(l, v[0], "the point index");
+    if (i == 0) {
+      if (idx != 0 && idx != 1) l.fail("the first point index must be 0 or 1");
+      if (base) *base = int(idx);
+    }
+    for (int k = 1; k <= dim; ++k) p.coords.push_back(need_double(l, v[k], "a coordinate"));
+  }
+  return p;
+}
+
+PointSet parse_npy_points(const std::string& b, const std::string& name) {
+  NpyArray a = parse_npy(b, name);
+  if (a.shape.size() != 2 || (a.shape[1] != 2 && a.shape[1] != 3))
+    parse_fail(name, 0, "expected a point array of shape (N, 2) or (N, 3)");
+  if (a.descr[1] != 'f') parse_fail(name, 0, "expected float32 or float64 points, found dtype '" + a.descr + "'");
+  PointSet p;
+  p.dim = int(a.shape[1]);
+  const std::int64_t n = a.shape[0] * a.shape[1];
+  p.coords.resize(std::size_t(n));
+  for (std::int64_t i = 0; i < n; ++i) p.coords[i] = npy_value(a, i, name);
+  return p;
+}
+
+}  // namespace
+
+PointSet parse_points(const std::string& b, const std::string& ext, const std::string& name) {
+  if (ext == ".xyz" || ext == ".txt") return parse_table(b, name, false);
+  if (ext == ".csv") return parse_table(b, name, true);
+  if (ext == ".off") return parse_off_points(b, name, nullptr);
+  if (ext == ".obj") return parse_obj(b, name, nullptr);
+  if (ext == ".node") return parse_node(b, name, nullptr);
+  if (ext == ".npy") return parse_npy_points(b, name);
+  if (ext == ".ply") {
+    PlyData d = parse_ply(b, name);
+    PointSet p;
+    p.dim = d.dim;
+    p.coords = std::move(d.coords);
+    return p;
+  }
+  throw Error(ErrorCode::InvalidArgument,
+              name + ": unknown point format '" + ext +
+                  "': expected .xyz .txt .csv .ply .off .obj .node or .npy");
+}
+
+PointSet read_points(const std::string& path) {
+  return parse_points(read_file(path), extension(path), path);
+}
+
+void write_points(const std::string& path, const PointSet& p, const WriteOptions& o) {
+  const std::string ext = extension(path);
+  const std::size_t n = p.size();
+  std::string out;
+  if (p.dim != 2 && p.dim != 3) throw Error(ErrorCode::InvalidArgument, "points must be 2D or 3D");
+  if (ext == ".xyz" || ext == ".txt" || ext == ".csv") {
+    const char sep = ext == ".csv" ? ',' : ' ';
+    out.reserve(n * p.dim * 24);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int d = 0; d < p.dim; ++d) {
+        if (d) out += sep;
+        append_double(out, p.coords[i * p.dim + d]);
+      }
+      out += '\n';
+    }
+  } else if (ext == ".ply") {
+    out = format_ply(p.coords.data(), p.dim, n, nullptr, 3, 0, o.binary);
+  } else if (ext == ".off" || ext == ".obj") {
+    if (ext == ".off") out = "OFF\n" + std::to_string(n) + " 0 0\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      if (ext == ".obj") out += "v ";
+      for (int d = 0; d < 3; ++d) {
+        if (d) out += ' ';
+        append_double(out, d < p.dim ? p.coords[i * p.dim + d] : 0.0);
+      }
+      out += '\n';
+    }
+  } else if (ext == ".node") {
+    out = std::to_string(n) + " " + std::to_string(p.dim) + " 0 0\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      out += std::to_string(i);
+      for (int d = 0; d < p.dim; ++d) {
+        out += ' ';
+        append_double(out, p.coords[i * p.dim + d]);
+      }
+      out += '\n';
+    }
+  } else if (ext == ".npy") {
+    out = format_npy("<f8", {std::int64_t(n), p.dim}, p.coords.data(), p.coords.size() * 8);
+  } else {
+    throw Error(ErrorCode::InvalidArgument,
+                path + ": unknown point format '" + ext +
+                    "': expected .xyz .txt .csv .ply .off .obj .node or .npy");
+  }
+  write_file_atomic(path, out);
+}
+
+// Mesh helpers that share the point parsers live here too.
+namespace detail {
+PointSet parse_off_mesh(const std::string& b, const std::string& name, Mesh* m) {
+  return parse_off_points(b, name, m);
+}
+PointSet parse_obj_mesh(const std::string& b, const std::string& name, Mesh* m) {
+  return parse_obj(b, name, m);
+}
+PointSet parse_node_file(const std::string& b, const std::string& name, int* base) {
+  return parse_node(b, name, base);
+}
+}  // namespace detail
+
+}  // namespace gpugeom::io

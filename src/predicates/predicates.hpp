@@ -1,0 +1,325 @@
+// Exact geometric predicates, callable from host and device code.
+//
+// Each predicate is adaptive: a floating-point filter with a proven error bound (the *_fast
+// functions; 0 means "cannot tell"), then exact expansion arithmetic (*_exact). The *_sos
+// variants add simulation of simplicity (sos.hpp) and never return 0 for distinct indices.
+//
+// Sign conventions (all points double[dim]):
+//   orient2d(a,b,c)      > 0  iff a,b,c counter-clockwise          = det[b-a; c-a]
+//   orient3d(a,b,c,d)    > 0  iff d lies on the side of triangle abc where (b-a)x(c-a)
+//                             points, i.e. tetrahedron abcd is positively oriented
+//                             = det[b-a; c-a; d-a]
+//   incircle(a,b,c,d)    > 0  iff d inside the circle through a,b,c (abc counter-clockwise)
+//   insphere(a,b,c,d,e)  > 0  iff e inside the sphere through a,b,c,d (abcd positive)
+//   orient4d(a,b,c,d,e)  4D points; = det[b-a; c-a; d-a; e-a]
+//   orient4d_lifted(..)  orient4d of the 3D points lifted to (x,y,z,x^2+y^2+z^2)
+//                        = -insphere(a,b,c,d,e); what star splaying in 4D uses
+//
+// Exactness holds for coordinates that are 0 or of magnitude in [2^-142, 2^180] (about
+// 1.8e-43 .. 1.5e54): beyond that the products of the exact stage could under- or overflow.
+// in_exact_range() tells; the algorithms refuse other inputs with a clear error.
+//
+// Scratch: the exact stages need the k*_scratch doubles given below. Host code may use the
+// overloads in include/gpugeom/predicates.hpp, which bring their own; device code passes a
+// local array (small predicates) or a slice of global memory (see split_pass.hpp).
+#pragma once
+#include <cmath>
+
+#include "predicates/sos.hpp"
+
+namespace gpugeom::pred {
+
+using namespace ::gpugeom::exact;
+
+constexpr double kEps = 1.1102230246251565e-16;  // 2^-53
+// Filter bounds: Shewchuk's published first-stage bounds for these expression trees, times
+// 2 as a margin (it costs nothing measurable in the fraction of cases decided).
+constexpr double kOrient2dBound = 2 * (3.0 + 16.0 * kEps) * kEps;
+constexpr double kOrient3dBound = 2 * (7.0 + 56.0 * kEps) * kEps;
+constexpr double kIncircleBound = 2 * (10.0 + 96.0 * kEps) * kEps;
+constexpr double kInsphereBound = 2 * (16.0 + 224.0 * kEps) * kEps;
+// Below this permanent the filter's relative bound could be spoiled by underflow: go exact.
+constexpr double kTinyPermanent = 1e-280;
+
+GG_INLINE bool in_exact_range(double v) {
+  double a = std::fabs(v);
+  return a == 0.0 || (a >= 0x1p-142 && a <= 0x1p180);
+}
+
+GG_INLINE int sign_of(double d) { return (d > 0.0) - (d < 0.0); }
+GG_INLINE int decide(double det, double perm, double bound) {
+  if (!(perm > kTinyPermanent) || !(perm < 1e290)) return 0;
+  double err = bound * perm;
+  if (det > err || -det > err) return sign_of(det);
+  return 0;
+}
+
+// ---- scratch sizes (doubles) ----
+constexpr int kOrient2dScratch = Om<2>::len + Om<2>::scratch + SosScratch<2, 0>::value;
+constexpr int kOrient3dScratch = Om<3>::len + Om<3>::scratch + SosScratch<3, 0>::value;
+constexpr int kIncircleScratch =
+    cmax(Lm<2, 4>::len + Lm<2, 4>::scratch, SosScratch<2, 4>::value);
+constexpr int kInsphereScratch =
+    cmax(Lm<3, 6>::len + Lm<3, 6>::scratch, SosScratch<3, 6>::value);
+constexpr int kOrient4dScratch =
+    cmax(Lm<3, 1>::len + Lm<3, 1>::scratch, SosScratch<3, 1>::value);
+
+// ---- filters ----
+GG_INLINE int orient2d_fast(const double* a, const double* b, const double* c) {
+  double l = mul_rn(sub_rn(a[0], c[0]), sub_rn(b[1], c[1]));
+  double r = mul_rn(sub_rn(a[1], c[1]), sub_rn(b[0], c[0]));
+  return decide(sub_rn(l, r), add_rn(std::fabs(l), std::fabs(r)), kOrient2dBound);
+}
+
+GG_INLINE int orient3d_fast(const double* a, const double* b, const double* c, const double* d) {
+  double adx = sub_rn(a[0], d[0]), bdx = sub_rn(b[0], d[0]), cdx = sub_rn(c[0], d[0]);
+  double ady = sub_rn(a[1], d[1]), bdy = sub_rn(b[1], d[1]), cdy = sub_rn(c[1], d[1]);
+  double adz = sub_rn(a[2], d[2]), bdz = sub_rn(b[2], d[2]), cdz = sub_rn(c[2], d[2]);
+  double bc1 = mul_rn(bdx, cdy), bc2 = mul_rn(bdy, cdx);
+  double ca1 = mul_rn(cdx, ady), ca2 = mul_rn(cdy, adx);
+  double ab1 = mul_rn(adx, bdy), ab2 = mul_rn(ady, bdx);
+  double det = add_rn(add_rn(mul_rn(adz, sub_rn(bc1, bc2)), mul_rn(bdz, sub_rn(ca1, ca2))),
+                      mul_rn(cdz, sub_rn(ab1, ab2)));
+  double perm = add_rn(add_rn(mul_rn(add_rn(std::fabs(bc1), std::fabs(bc2)), std::fabs(adz)),
+                              mul_rn(add_rn(std::fabs(ca1), std::fabs(ca2)), std::fabs(bdz))),
+                       mul_rn(add_rn(std::fabs(ab1), std::fabs(ab2)), std::fabs(cdz)));
+  // det = det[a-d; b-d; c-d] = -det[b-a; c-a; d-a]
+  return -decide(det, perm, kOrient3dBound);
+}
+
+GG_INLINE int incircle_fast(const double* a, const double* b, const double* c, const double* d) {
+  double adx = sub_rn(a[0], d[0]), bdx = sub_rn(b[0], d[0]), cdx = sub_rn(c[0], d[0]);
+  double ady = sub_rn(a[1], d[1]), bdy = sub_rn(b[1], d[1]), cdy = sub_rn(c[1], d[1]);
+  double bc1 = mul_rn(bdx, cdy), bc2 = mul_rn(cdx, bdy);
+  double ca1 = mul_rn(cdx, ady), ca2 = mul_rn(adx, cdy);
+  double ab1 = mul_rn(adx, bdy), ab2 = mul_rn(bdx, ady);
+  double al = add_rn(mul_rn(adx, adx), mul_rn(ady, ady));
+  double bl = add_rn(mul_rn(bdx, bdx), mul_rn(bdy, bdy));
+  double cl = add_rn(mul_rn(cdx, cdx), mul_rn(cdy, cdy));
+  double det = add_rn(add_rn(mul_rn(al, sub_rn(bc1, bc2)), mul_rn(bl, sub_rn(ca1, ca2))),
+                      mul_rn(cl, sub_rn(ab1, ab2)));
+  double perm = add_rn(add_rn(mul_rn(add_rn(std::fabs(bc1), std::fabs(bc2)), al),
+                              mul_rn(add_rn(std::fabs(ca1), std::fabs(ca2)), bl)),
+                       mul_rn(add_rn(std::fabs(ab1), std::fabs(ab2)), cl));
+  return decide(det, perm, kIncircleBound);
+}
+
+// The 4x4 determinant det[[a-e, la], [b-e, lb], [c-e, lc], [d-e, ld]] by 2x2 minors of the
+// first two columns, its permanent alongside. Shared by insphere and orient4d.
+GG_INLINE void det4_translated(const double* a, const double* b, const double* c,
+                               const double* d, const double* e, double la, double lb,
+                               double lc, double ld, double& det, double& perm) {
+  double aex = sub_rn(a[0], e[0]), bex = sub_rn(b[0], e[0]), cex = sub_rn(c[0], e[0]),
+         dex = sub_rn(d[0], e[0]);
+  double aey = sub_rn(a[1], e[1]), bey = sub_rn(b[1], e[1]), cey = sub_rn(c[1], e[1]),
+         dey = sub_rn(d[1], e[1]);
+  double aez = sub_rn(a[2], e[2]), bez = sub_rn(b[2], e[2]), cez = sub_rn(c[2], e[2]),
+         dez = sub_rn(d[2], e[2]);
+  double aexbey = mul_rn(aex, bey), bexaey = mul_rn(bex, aey);
+  double bexcey = mul_rn(bex, cey), cexbey = mul_rn(cex, bey);
+  double cexdey = mul_rn(cex, dey), dexcey = mul_rn(dex, cey);
+  double dexaey = mul_rn(dex, aey), aexdey = mul_rn(aex, dey);
+  double aexcey = mul_rn(aex, cey), cexaey = mul_rn(cex, aey);
+  double bexdey = mul_rn(bex, dey), dexbey = mul_rn(dex, bey);
+  double ab = sub_rn(aexbey, bexaey), bc = sub_rn(bexcey, cexbey), cd = sub_rn(cexdey, dexcey),
+         da = sub_rn(dexaey, aexdey), ac = sub_rn(aexcey, cexaey), bd = sub_rn(bexdey, dexbey);
+  // 3x3 minors of rows (x, y, z): abc = det[a;b;c] etc.
+  double abc = add_rn(sub_rn(mul_rn(aez, bc), mul_rn(bez, ac)), mul_rn(cez, ab));
+  double bcd = add_rn(sub_rn(mul_rn(bez, cd), mul_rn(cez, bd)), mul_rn(dez, bc));
+  double cda = add_rn(add_rn(mul_rn(cez, da), mul_rn(dez, ac)), mul_rn(aez, cd));
+  double dab = add_rn(add_rn(mul_rn(dez, ab), mul_rn(aez, bd)), mul_rn(bez, da));
+  det = add_rn(sub_rn(mul_rn(ld, abc), mul_rn(lc, dab)), sub_rn(mul_rn(lb, cda), mul_rn(la, bcd)));
+  double pab = add_rn(std::fabs(aexbey), std::fabs(bexaey));
+  double pbc = add_rn(std::fabs(bexcey), std::fabs(cexbey));
+  double pcd = add_rn(std::fabs(cexdey), std::fabs(dexcey));
+  double pda = add_rn(std::fabs(dexaey), std::fabs(aexdey));
+  double pac = add_rn(std::fabs(aexcey), std::fabs(cexaey));
+  double pbd = add_rn(std::fabs(bexdey), std::fabs(dexbey));
+  double aezp = std::fabs(aez), bezp = std::fabs(bez), cezp = std::fabs(cez), dezp = std::fabs(dez);
+  double pabc = add_rn(add_rn(mul_rn(aezp, pbc), mul_rn(bezp, pac)), mul_rn(cezp, pab));
+  double pbcd = add_rn(add_rn(mul_rn(bezp, pcd), mul_rn(cezp, pbd)), mul_rn(dezp, pbc));
+  double pcda = add_rn(add_rn(mul_rn(cezp, pda), mul_rn(dezp, pac)), mul_rn(aezp, pcd));
+  double pdab = add_rn(add_rn(mul_rn(dezp, pab), mul_rn(aezp, pbd)), mul_rn(bezp, pda));
+  perm = add_rn(add_rn(mul_rn(std::fabs(ld), pabc), mul_rn(std::fabs(lc), pdab)),
+                add_rn(mul_rn(std::fabs(lb), pcda), mul_rn(std::fabs(la), pbcd)));
+}
+
+GG_INLINE double lift3(const double* p, const double* e) {
+  double x = sub_rn(p[0], e[0]), y = sub_rn(p[1], e[1]), z = sub_rn(p[2], e[2]);
+  return add_rn(add_rn(mul_rn(x, x), mul_rn(y, y)), mul_rn(z, z));
+}
+
+GG_INLINE int insphere_fast(const double* a, const double* b, const double* c, const double* d,
+                            const double* e) {
+  double det, perm;
+  det4_translated(a, b, c, d, e, lift3(a, e), lift3(b, e), lift3(c, e), lift3(d, e), det, perm);
+  return -decide(det, perm, kInsphereBound);  // det = det(M); insphere = -det(M)
+}
+
+GG_INLINE int orient4d_fast(const double* a, const double* b, const double* c, const double* d,
+                            const double* e) {
+  double det, perm;
+  det4_translated(a, b, c, d, e, sub_rn(a[3], e[3]), sub_rn(b[3], e[3]), sub_rn(c[3], e[3]),
+                  sub_rn(d[3], e[3]), det, perm);
+  return decide(det, perm, kInsphereBound);  // det[x-e] = det(M) = orient4d
+}
+
+// ---- exact stages (s: scratch of the predicate's k*Scratch doubles) ----
+GG_HD inline int orient2d_exact(const double* a, const double* b, const double* c, double* s) {
+  const double* r[3] = {a, b, c};
+  const int cols[2] = {0, 1};
+  int n = orient_minor<2>(r, cols, s, s + Om<2>::len);
+  return expansion_sign(n, s);
+}
+GG_HD inline int orient3d_exact(const double* a, const double* b, const double* c,
+                                const double* d, double* s) {
+  const double* r[4] = {a, b, c, d};
+  const int cols[3] = {0, 1, 2};
+  int n = orient_minor<3>(r, cols, s, s + Om<3>::len);
+  return -expansion_sign(n, s);
+}
+
+template <int D, int LW>
+GG_HD inline int lifted_det_sign(const double* const* r, const double* const* lift,
+                                 const int* liftlen, double* s) {
+  const int cols[3] = {0, 1, 2};
+  int n = lifted_minor<D, LW>(r, cols, lift, liftlen, s, s + Lm<D, LW>::len);
+  return expansion_sign(n, s);
+}
+
+GG_HD inline int incircle_exact(const double* a, const double* b, const double* c,
+                                const double* d, double* s) {
+  const double* r[4] = {a, b, c, d};
+  double lw[4][4];
+  const double* l[4];
+  int ll[4];
+  for (int i = 0; i < 4; ++i) {
+    ll[i] = square_lift<2>(r[i], lw[i]);
+    l[i] = lw[i];
+  }
+  return lifted_det_sign<2, 4>(r, l, ll, s);
+}
+GG_HD inline int insphere_exact(const double* a, const double* b, const double* c,
+                                const double* d, const double* e, double* s) {
+  const double* r[5] = {a, b, c, d, e};
+  double lw[5][6];
+  const double* l[5];
+  int ll[5];
+  for (int i = 0; i < 5; ++i) {
+    ll[i] = square_lift<3>(r[i], lw[i]);
+    l[i] = lw[i];
+  }
+  return -lifted_det_sign<3, 6>(r, l, ll, s);
+}
+GG_HD inline int orient4d_exact(const double* a, const double* b, const double* c,
+                                const double* d, const double* e, double* s) {
+  const double* r[5] = {a, b, c, d, e};
+  const double* l[5];
+  int ll[5];
+  for (int i = 0; i < 5; ++i) {
+    l[i] = r[i] + 3;
+    ll[i] = r[i][3] != 0.0 ? 1 : 0;
+  }
+  return lifted_det_sign<3, 1>(r, l, ll, s);
+}
+
+// ---- adaptive: filter, then exact ----
+GG_HD inline int orient2d(const double* a, const double* b, const double* c, double* s) {
+  int r = orient2d_fast(a, b, c);
+  return r ? r : orient2d_exact(a, b, c, s);
+}
+GG_HD inline int orient3d(const double* a, const double* b, const double* c, const double* d,
+                          double* s) {
+  int r = orient3d_fast(a, b, c, d);
+  return r ? r : orient3d_exact(a, b, c, d, s);
+}
+GG_HD inline int incircle(const double* a, const double* b, const double* c, const double* d,
+                          double* s) {
+  int r = incircle_fast(a, b, c, d);
+  return r ? r : incircle_exact(a, b, c, d, s);
+}
+GG_HD inline int insphere(const double* a, const double* b, const double* c, const double* d,
+                          const double* e, double* s) {
+  int r = insphere_fast(a, b, c, d, e);
+  return r ? r : insphere_exact(a, b, c, d, e, s);
+}
+GG_HD inline int orient4d(const double* a, const double* b, const double* c, const double* d,
+                          const double* e, double* s) {
+  int r = orient4d_fast(a, b, c, d, e);
+  return r ? r : orient4d_exact(a, b, c, d, e, s);
+}
+GG_HD inline int orient4d_lifted(const double* a, const double* b, const double* c,
+                                 const double* d, const double* e, double* s) {
+  return -insphere(a, b, c, d, e, s);
+}
+
+// ---- simulation of simplicity (indices must be distinct) ----
+GG_HD inline int orient2d_sos(const double* a, int ia, const double* b, int ib, const double* c,
+                              int ic, double* s) {
+  if (int r = orient2d(a, b, c, s)) return r;
+  const double* r[3] = {a, b, c};
+  int idx[3] = {ia, ib, ic};
+  int parity = sort_rows<3>(r, idx, nullptr, nullptr);
+  return parity * sos_resolve<2, 0>(r, nullptr, nullptr, s);
+}
+GG_HD inline int orient3d_sos(const double* a, int ia, const double* b, int ib, const double* c,
+                              int ic, const double* d, int id, double* s) {
+  if (int r = orient3d(a, b, c, d, s)) return r;
+  const double* r[4] = {a, b, c, d};
+  int idx[4] = {ia, ib, ic, id};
+  int parity = sort_rows<4>(r, idx, nullptr, nullptr);
+  return -parity * sos_resolve<3, 0>(r, nullptr, nullptr, s);
+}
+GG_HD inline int incircle_sos(const double* a, int ia, const double* b, int ib, const double* c,
+                              int ic, const double* d, int id, double* s) {
+  if (int r = incircle(a, b, c, d, s)) return r;
+  const double* r[4] = {a, b, c, d};
+  int idx[4] = {ia, ib, ic, id};
+  double lw[4][4];
+  const double* l[4];
+  int ll[4];
+  for (int i = 0; i < 4; ++i) {
+    ll[i] = square_lift<2>(r[i], lw[i]);
+    l[i] = lw[i];
+  }
+  int parity = sort_rows<4>(r, idx, l, ll);
+  return parity * sos_resolve<2, 4>(r, l, ll, s);
+}
+GG_HD inline int insphere_sos(const double* a, int ia, const double* b, int ib, const double* c,
+                              int ic, const double* d, int id, const double* e, int ie,
+                              double* s) {
+  if (int r = insphere(a, b, c, d, e, s)) return r;
+  const double* r[5] = {a, b, c, d, e};
+  int idx[5] = {ia, ib, ic, id, ie};
+  double lw[5][6];
+  const double* l[5];
+  int ll[5];
+  for (int i = 0; i < 5; ++i) {
+    ll[i] = square_lift<3>(r[i], lw[i]);
+    l[i] = lw[i];
+  }
+  int parity = sort_rows<5>(r, idx, l, ll);
+  return -parity * sos_resolve<3, 6>(r, l, ll, s);
+}
+GG_HD inline int orient4d_sos(const double* a, int ia, const double* b, int ib, const double* c,
+                              int ic, const double* d, int id, const double* e, int ie,
+                              double* s) {
+  if (int r = orient4d(a, b, c, d, e, s)) return r;
+  const double* r[5] = {a, b, c, d, e};
+  int idx[5] = {ia, ib, ic, id, ie};
+  const double* l[5];
+  int ll[5];
+  for (int i = 0; i < 5; ++i) {
+    l[i] = r[i] + 3;
+    ll[i] = r[i][3] != 0.0 ? 1 : 0;
+  }
+  int parity = sort_rows<5>(r, idx, l, ll);
+  return parity * sos_resolve<3, 1>(r, l, ll, s);
+}
+GG_HD inline int orient4d_lifted_sos(const double* a, int ia, const double* b, int ib,
+                                     const double* c, int ic, const double* d, int id,
+                                     const double* e, int ie, double* s) {
+  return -insphere_sos(a, ia, b, ib, c, ic, d, id, e, ie, s);
+}
+
+}  // namespace gpugeom::pred

@@ -1,0 +1,172 @@
+// Simulation of simplicity (Edelsbrunner & Muecke's scheme, derived here for our matrices).
+//
+// Every input entry gets an infinitesimal perturbation eps^(2^bit): entry (row r, column c) of
+// a predicate matrix, rows sorted by the points' global indices. A perturbed determinant is a
+// polynomial in eps whose terms, in increasing power, are indexed by the integers mask = 1, 2,
+// 3, ...: a mask is a set of perturbed entries (distinct rows, distinct columns) and its
+// coefficient is the determinant with those rows replaced by unit vectors, i.e. a signed minor
+// of the unperturbed matrix. The sign of the first nonzero coefficient is the answer. Because
+// a mask that perturbs every coordinate column leaves the all-ones column alone, some term is
+// always nonzero: the SoS predicates never return 0 (given distinct indices).
+//
+// Bit order: for lifted predicates (in-circle, in-sphere, orient4d) the lift column of every
+// point comes first (bits 0..k-1 by index), then the coordinates, point by point in index order.
+// Orientation predicates use the same coordinate order, so one global perturbation of the
+// points serves all predicates and they agree with each other. Only the relative order of the
+// bits matters, so bits can be numbered locally after sorting the rows by global index.
+#pragma once
+#include <cstdint>
+
+#include "predicates/determinant.hpp"
+
+namespace gpugeom::exact {
+
+constexpr int cmax(int a, int b) { return a > b ? a : b; }
+
+// Scratch (in doubles) needed by sos_resolve<D, LW>.
+template <int D, int LW>
+struct SosScratch {
+  static constexpr int orient_part() {
+    int m = 0;
+    if constexpr (D >= 0) m = cmax(m, Om<D>::len + Om<D>::scratch);
+    return m;
+  }
+  static constexpr int lifted_part() {
+    if constexpr (LW == 0) {
+      return 0;
+    } else {
+      return Lm<D - 1, LW>::len + Lm<D - 1, LW>::scratch;
+    }
+  }
+  static constexpr int value = cmax(orient_part(), lifted_part());
+};
+
+template <int Q, int D>
+GG_HD int orient_minor_sign(const double* const* rows, const int* cols, double* s) {
+  int n = orient_minor<Q>(rows, cols, s, s + Om<Q>::len);
+  return expansion_sign(n, s);
+}
+
+template <int Q, int LW>
+GG_HD int lifted_minor_sign(const double* const* rows, const int* cols, const double* const* lift,
+                            const int* liftlen, double* s) {
+  int n = lifted_minor<Q, LW>(rows, cols, lift, liftlen, s, s + Lm<Q, LW>::len);
+  return expansion_sign(n, s);
+}
+
+// Sorts rows (and lifts) by index; returns the parity of the permutation (+1 or -1).
+template <int N>
+GG_HD int sort_rows(const double** rows, int* idx, const double** lift, int* liftlen) {
+  int parity = 1;
+  for (int i = 1; i < N; ++i)
+    for (int j = i; j > 0 && idx[j - 1] > idx[j]; --j) {
+      auto sw = [](auto& a, auto& b) {
+        auto t = a;
+        a = b;
+        b = t;
+      };
+      sw(rows[j - 1], rows[j]);
+      sw(idx[j - 1], idx[j]);
+      if (lift) {
+        sw(lift[j - 1], lift[j]);
+        sw(liftlen[j - 1], liftlen[j]);
+      }
+      parity = -parity;
+    }
+  return parity;
+}
+
+// Sign of the perturbed determinant of the matrix with rows [p[0..D-1], (w), 1], given that the
+// unperturbed determinant is zero. Rows must be sorted by global index. LW = 0: no lift column.
+template <int D, int LW>
+GG_HD int sos_resolve(const double* const* rows, const double* const* lift, const int* liftlen,
+                      double* s) {
+  constexpr bool kLift = LW > 0;
+  constexpr int k = D + 1 + (kLift ? 1 : 0);  // rows, = columns
+  constexpr int wbits = kLift ? k : 0;
+  constexpr int nbits = k * D + wbits;
+  constexpr int W = D;  // column id of the lift; coordinate columns are 0..D-1
+  for (std::uint32_t mask = 1; mask < (1u << nbits); ++mask) {
+    int er[k], ec[k], m = 0;
+    unsigned rused = 0, cused = 0;
+    bool ok = true;
+    for (int b = 0; b < nbits && ok; ++b) {
+      if (!(mask >> b & 1u)) continue;
+      int r, c;
+      if (b < wbits) {
+        r = b;
+        c = W;
+      } else {
+        r = (b - wbits) / D;
+        c = (b - wbits) % D;
+      }
+      if ((rused >> r & 1u) || (cused >> c & 1u) || m == k - 1) {
+        ok = false;
+        break;
+      }
+      rused |= 1u << r;
+      cused |= 1u << c;
+      er[m] = r;
+      ec[m] = c;
+      ++m;
+    }
+    if (!ok) continue;
+    // Remove each perturbed row/column (a unit row): Laplace along that row.
+    int rl[k], rn = k;
+    int cl[D + 2], cn = 0;
+    for (int i = 0; i < k; ++i) rl[i] = i;
+    for (int c = 0; c < D; ++c) cl[cn++] = c;
+    if (kLift) cl[cn++] = W;
+    cl[cn++] = D + 1;  // the ones column
+    int sign = 1;
+    for (int e = 0; e < m; ++e) {
+      int pr = 0, pc = 0;
+      while (rl[pr] != er[e]) ++pr;
+      while (cl[pc] != ec[e]) ++pc;
+      if ((pr + pc) & 1) sign = -sign;
+      for (int i = pr; i + 1 < rn; ++i) rl[i] = rl[i + 1];
+      for (int i = pc; i + 1 < cn; ++i) cl[i] = cl[i + 1];
+      --rn;
+      --cn;
+    }
+    const double* rr[k];
+    const double* ll[k];
+    int lll[k];
+    for (int i = 0; i < rn; ++i) {
+      rr[i] = rows[rl[i]];
+      if (kLift) {
+        ll[i] = lift[rl[i]];
+        lll[i] = liftlen[rl[i]];
+      }
+    }
+    int coords[D + 1], q = 0;
+    bool has_w = false;
+    for (int i = 0; i < cn - 1; ++i) {
+      if (cl[i] == W && kLift)
+        has_w = true;
+      else
+        coords[q++] = cl[i];
+    }
+    int v = 0;
+    if (has_w) {
+      if constexpr (kLift) {
+        if (q == 0) v = lifted_minor_sign<0, LW>(rr, coords, ll, lll, s);
+        if constexpr (D >= 2)
+          if (q == 1) v = lifted_minor_sign<1, LW>(rr, coords, ll, lll, s);
+        if constexpr (D >= 3)
+          if (q == 2) v = lifted_minor_sign<2, LW>(rr, coords, ll, lll, s);
+      }
+    } else {
+      if (q == 0) v = 1;
+      if (q == 1) v = orient_minor_sign<1, D>(rr, coords, s);
+      if constexpr (D >= 2)
+        if (q == 2) v = orient_minor_sign<2, D>(rr, coords, s);
+      if constexpr (D >= 3)
+        if (q == 3) v = orient_minor_sign<3, D>(rr, coords, s);
+    }
+    if (v != 0) return sign * v;
+  }
+  return 0;  // unreachable: the mask perturbing every coordinate column gives +-1
+}
+
+}  // namespace gpugeom::exact

@@ -1,0 +1,110 @@
+// 2D: a valid triangulation of the convex hull of the input, and the Delaunay property.
+//
+// Why these checks suffice: every triangle positively oriented and every edge shared by at most
+// two triangles with opposite directions make the triangles a locally injective oriented map;
+// a single boundary cycle that only turns left and winds once around makes its image the
+// boundary of a convex polygon with degree one, so the triangles tile that polygon exactly
+// once. With every input point a vertex, the polygon is the convex hull.
+#include <algorithm>
+#include <unordered_map>
+
+#include "verify_common.hpp"
+
+namespace gpugeom::verify {
+using namespace detail;
+
+namespace {
+// Half-plane of a direction: true for angles in [0, pi). Exact: only comparisons of inputs.
+bool upper(const double* from, const double* to) {
+  return to[1] > from[1] || (to[1] == from[1] && to[0] > from[0]);
+}
+}  // namespace
+
+Report check_triangulation2d(const double* p, std::int64_t n, const std::int32_t* t,
+                             std::int64_t nt, const std::int32_t* dup_of) {
+  Report r;
+  if (nt == 0) {
+    r.fail("the triangulation has no triangles");
+    return r;
+  }
+  if (!check_cells(r, n, t, nt, 3, dup_of, p, 2)) return r;
+  for (std::int64_t c = 0; c < nt; ++c) {
+    const double *a = p + 2 * t[3 * c], *b = p + 2 * t[3 * c + 1], *d = p + 2 * t[3 * c + 2];
+    int o = pred::orient2d(a, b, d, scratch());
+    if (o <= 0)
+      return r.fail(cell_name(3, c, t) + (o == 0 ? " is degenerate (collinear)" : " is clockwise")), r;
+  }
+  // Directed edges: each at most once; an edge without its reverse is on the boundary.
+  std::unordered_map<std::uint64_t, std::int64_t> dir;
+  dir.reserve(std::size_t(nt) * 3 * 2);
+  auto key = [](std::uint32_t u, std::uint32_t v) { return (std::uint64_t(u) << 32) | v; };
+  for (std::int64_t c = 0; c < nt; ++c)
+    for (int j = 0; j < 3; ++j) {
+      std::uint32_t u = t[3 * c + j], v = t[3 * c + (j + 1) % 3];
+      if (!dir.emplace(key(u, v), c).second)
+        return r.fail("edge " + std::to_string(u) + "->" + std::to_string(v) +
+                      " is used twice in the same direction (overlapping triangles), by " +
+                      cell_name(3, c, t)), r;
+    }
+  std::unordered_map<std::uint32_t, std::uint32_t> next;  // boundary: u -> v
+  for (auto& e : dir) {
+    std::uint32_t u = std::uint32_t(e.first >> 32), v = std::uint32_t(e.first);
+    if (dir.count(key(v, u))) continue;
+    if (!next.emplace(u, v).second)
+      return r.fail("boundary vertex " + std::to_string(u) + " has two outgoing boundary edges (pinched)"), r;
+  }
+  std::int64_t count = 0, windings = 0;
+  std::uint32_t start = next.begin()->first, u = start;
+  do {
+    auto it = next.find(u);
+    if (it == next.end()) return r.fail("the boundary is not closed at vertex " + std::to_string(u)), r;
+    std::uint32_t v = it->second;
+    auto jt = next.find(v);
+    if (jt == next.end()) return r.fail("the boundary is not closed at vertex " + std::to_string(v)), r;
+    std::uint32_t w = jt->second;
+    const double *a = p + 2 * u, *b = p + 2 * v, *c = p + 2 * w;
+    if (pred::orient2d(a, b, c, scratch()) < 0)
+      return r.fail("the boundary turns right at vertex " + std::to_string(v) +
+                    ": the triangulated region is not convex"), r;
+    if (!upper(a, b) && upper(b, c)) ++windings;
+    u = v;
+    if (++count > std::int64_t(next.size())) break;
+  } while (u != start);
+  if (count != std::int64_t(next.size()))
+    return r.fail("the boundary consists of more than one cycle (" + std::to_string(next.size()) +
+                  " boundary edges, the cycle from vertex " + std::to_string(start) + " has " +
+                  std::to_string(count) + ")"), r;
+  if (windings != 1)
+    return r.fail("the boundary winds " + std::to_string(windings) + " times around the region"), r;
+  r.notes.push_back(std::to_string(nt) + " triangles, " + std::to_string(next.size()) +
+                    " boundary edges: valid triangulation of the convex hull");
+  return r;
+}
+
+Report check_delaunay2d(const double* p, std::int64_t n, const std::int32_t* t, std::int64_t nt,
+                        const std::int32_t* dup_of) {
+  Report r = check_triangulation2d(p, n, t, nt, dup_of);
+  if (!r.ok) return r;
+  std::unordered_map<std::uint64_t, std::int64_t> dir;
+  dir.reserve(std::size_t(nt) * 6);
+  auto key = [](std::uint32_t u, std::uint32_t v) { return (std::uint64_t(u) << 32) | v; };
+  for (std::int64_t c = 0; c < nt; ++c)
+    for (int j = 0; j < 3; ++j) dir.emplace(key(t[3 * c + j], t[3 * c + (j + 1) % 3]), c);
+  for (std::int64_t c = 0; c < nt; ++c)
+    for (int j = 0; j < 3; ++j) {
+      std::uint32_t u = t[3 * c + j], v = t[3 * c + (j + 1) % 3];
+      auto it = dir.find(key(v, u));
+      if (it == dir.end()) continue;
+      std::int64_t o = it->second;
+      std::int64_t far = std::int64_t(t[3 * o]) + t[3 * o + 1] + t[3 * o + 2] - u - v;
+      const std::int32_t* a = t + 3 * c;
+      if (pred::incircle(p + 2 * a[0], p + 2 * a[1], p + 2 * a[2], p + 2 * far, scratch()) > 0)
+        return r.fail("edge " + std::to_string(u) + "-" + std::to_string(v) +
+                      " is not locally Delaunay: vertex " + std::to_string(far) +
+                      " lies inside the circumcircle of " + cell_name(3, c, t)), r;
+    }
+  r.notes.push_back("every interior edge is locally Delaunay (exact in-circle)");
+  return r;
+}
+
+}  // namespace gpugeom::verify

@@ -1,0 +1,48 @@
+// Independent checkers: they use only the exact predicates and plain data structures, never
+// any algorithm of the library, so they can judge every output in the tests and in
+// `gpugeom check`. Each returns a Report; ok == false comes with a message naming the first
+// violation found (which simplex, which vertex, what is wrong).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gpugeom::verify {
+
+struct Report {
+  bool ok = true;
+  std::string message;               // first violation, empty when ok
+  std::vector<std::string> notes;    // what was checked, and anything checked only partially
+  bool fail(const std::string& m) {
+    if (ok) message = m;
+    ok = false;
+    return false;
+  }
+};
+
+// pts: n points (2 or 3 doubles each). cells: simplices, 3 (2D) or 4 (3D) indices each.
+// dup_of (optional, n entries): -1 for a kept point, else the index of the kept point with the
+// same coordinates; a duplicate must not be a vertex, every other point must be.
+Report check_triangulation2d(const double* pts, std::int64_t n, const std::int32_t* tris,
+                             std::int64_t ntri, const std::int32_t* dup_of = nullptr);
+Report check_delaunay2d(const double* pts, std::int64_t n, const std::int32_t* tris,
+                        std::int64_t ntri, const std::int32_t* dup_of = nullptr);
+Report check_triangulation3d(const double* pts, std::int64_t n, const std::int32_t* tets,
+                             std::int64_t ntet, const std::int32_t* dup_of = nullptr);
+Report check_delaunay3d(const double* pts, std::int64_t n, const std::int32_t* tets,
+                        std::int64_t ntet, const std::int32_t* dup_of = nullptr);
+
+// Convex hull surface: triangles counter-clockwise seen from outside. Checks a closed oriented
+// 2-manifold of genus 0, every edge convex, every input point inside or on (all n points when
+// n * faces <= max_pairs, else an evenly spaced sample, said in the notes), every vertex extreme.
+Report check_hull3d(const double* pts, std::int64_t n, const std::int32_t* tris, std::int64_t ntri,
+                    std::int64_t max_pairs = 4'000'000'000LL);
+
+// Exact EDT by brute force: shape (rows, cols) or (slices, rows, cols); sites as integer
+// coordinates in the same order; sqdist[i] is the claimed squared distance of voxel i to its
+// nearest site; nearest (optional) the claimed site index of voxel i, which must be at that
+// distance.
+Report check_edt(const std::vector<std::int64_t>& shape, const std::vector<std::int64_t>& sites,
+                 const std::int64_t* sqdist, const std::int32_t* nearest = nullptr);
+
+}  // namespace gpugeom::verify

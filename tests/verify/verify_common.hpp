@@ -1,0 +1,21 @@
+// Helpers shared by the checkers (internal to tests/verify).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "predicates/predicates.hpp"
+#include "verify.hpp"
+
+namespace gpugeom::verify::detail {
+
+inline double* scratch() {
+  thread_local std::vector<double> s(pred::kInsphereScratch + pred::kOrient4dScratch);
+  return s.data();
+}
+// Vertex indices in range, distinct within each cell, not duplicates; every kept point used.
+bool check_cells(Report& r, std::int64_t n, const std::int32_t* cells, std::int64_t ncell, int k,
+                 const std::int32_t* dup_of, const double* pts, int dim);
+std::string cell_name(int k, std::int64_t c, const std::int32_t* cells);
+
+}  // namespace gpugeom::verify::detail

@@ -1,0 +1,58 @@
+// Shared pieces of the command-line program: argument access, global options, timing, exit codes.
+#pragma once
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "gpugeom/common.hpp"
+
+namespace gpugeom::cli {
+
+enum Exit { kOk = 0, kCheckFailed = 1, kUsage = 2, kBadInput = 3, kInternal = 4 };
+
+struct Global {
+  Backend backend = Backend::Auto;
+  bool verbose = false, quiet = false;
+};
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Remaining arguments of a subcommand, consumed as options are recognised.
+class Args {
+ public:
+  explicit Args(std::vector<std::string> a) : a_(std::move(a)) {}
+  bool flag(const std::string& name);                        // --name
+  bool value(const std::string& name, std::string& out);     // --name V or --name=V
+  std::vector<std::string> positionals();                    // the rest; rejects unknown --options
+  bool help() { return flag("--help") || flag("-h"); }
+
+ private:
+  std::vector<std::string> a_;
+};
+
+long long to_count(const std::string& s, const char* what);  // accepts 1e6, 1000000
+
+class Timer {
+ public:
+  Timer(const Global& g, const char* phase) : g_(g), phase_(phase), t0_(std::chrono::steady_clock::now()) {}
+  ~Timer() {
+    if (!g_.verbose) return;
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
+    std::fprintf(stderr, "[time] %-12s %10.2f ms\n", phase_, ms);
+  }
+
+ private:
+  const Global& g_;
+  const char* phase_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+int cmd_gen(const Global& g, Args& a);
+int cmd_check(const Global& g, Args& a);
+int cmd_info(const Global& g, Args& a);
+
+}  // namespace gpugeom::cli

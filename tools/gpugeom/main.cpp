@@ -1,0 +1,120 @@
+// gpugeom: exact computational geometry on the GPU, from the command line.
+#include <cstring>
+#include <iostream>
+
+#include "cli.hpp"
+
+namespace gpugeom::cli {
+
+bool Args::flag(const std::string& name) {
+  for (std::size_t i = 0; i < a_.size(); ++i)
+    if (a_[i] == name) {
+      a_.erase(a_.begin() + i);
+      return true;
+    }
+  return false;
+}
+
+bool Args::value(const std::string& name, std::string& out) {
+  for (std::size_t i = 0; i < a_.size(); ++i) {
+    if (a_[i] == name) {
+      if (i + 1 >= a_.size()) throw UsageError("option " + name + " needs a value");
+      out = a_[i + 1];
+      a_.erase(a_.begin() + i, a_.begin() + i + 2);
+      return true;
+    }
+    if (a_[i].rfind(name + "=", 0) == 0) {
+      out = a_[i].substr(name.size() + 1);
+      a_.erase(a_.begin() + i);
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<std::string> Args::positionals() {
+  for (auto& s : a_)
+    if (s.size() > 1 && s[0] == '-' && !(s[1] >= '0' && s[1] <= '9'))
+      throw UsageError("unknown option '" + s + "'");
+  return a_;
+}
+
+long long to_count(const std::string& s, const char* what) {
+  char* end = nullptr;
+  double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end || v < 0 || v != double((long long)v))
+    throw UsageError(std::string("expected a non-negative whole number for ") + what + ", got '" + s + "'");
+  return (long long)v;
+}
+
+}  // namespace gpugeom::cli
+
+using namespace gpugeom;
+using namespace gpugeom::cli;
+
+static const char* kUsageText =
+    "usage: gpugeom [--backend auto|cpu|cuda] [--verbose] [--quiet] COMMAND [ARGS]\n"
+    "\n"
+    "commands:\n"
+    "  gen DIST -n N -o FILE   generate a seeded point set (e.g. uniform3d, ball3d, circle2d)\n"
+    "  check MESH [--points P] check a triangulation / Delaunay / convex hull exactly\n"
+    "  info FILE | --device    summarise a point, mesh or grid file; or show the GPU\n"
+    "\n"
+    "global options:\n"
+    "  --backend B   executor: auto (CUDA if a GPU is usable, else CPU), cpu, cuda;\n"
+    "                the environment variable GPUGEOM_BACKEND sets the default\n"
+    "  --verbose     print phase timings on stderr\n"
+    "  --quiet       print nothing but errors\n"
+    "\n"
+    "'gpugeom COMMAND --help' describes each command. Exit status: 0 success, 1 a check\n"
+    "failed, 2 usage error, 3 bad input file, 4 internal or GPU error.\n";
+
+int main(int argc, char** argv) {
+  Global g;
+  std::vector<std::string> rest;
+  std::string cmd;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      std::string s = argv[i];
+      if (s == "--verbose" || s == "-v") g.verbose = true;
+      else if (s == "--quiet" || s == "-q") g.quiet = true;
+      else if (s == "--backend" && i + 1 < argc) g.backend = parse_backend(argv[++i]);
+      else if (s.rfind("--backend=", 0) == 0) g.backend = parse_backend(s.substr(10));
+      else if (s == "--backend") throw UsageError("option --backend needs a value");
+      else if (cmd.empty() && (s == "--help" || s == "-h")) {
+        std::cout << kUsageText;
+        return kOk;
+      } else if (cmd.empty() && s[0] != '-') cmd = s;
+      else rest.push_back(s);
+    }
+    if (cmd.empty()) {
+      std::cerr << kUsageText;
+      return kUsage;
+    }
+    Args a(rest);
+    if (cmd == "gen") return cmd_gen(g, a);
+    if (cmd == "check") return cmd_check(g, a);
+    if (cmd == "info") return cmd_info(g, a);
+    throw UsageError("unknown command '" + cmd + "' (try 'gpugeom --help')");
+  } catch (const UsageError& e) {
+    std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << e.what() << "\n";
+    return kUsage;
+  } catch (const Error& e) {
+    std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << error_code_name(e.code()) << ": "
+              << e.what() << "\n";
+    switch (e.code()) {
+      case ErrorCode::InvalidArgument: return kUsage;
+      case ErrorCode::InvalidInput:
+      case ErrorCode::DegenerateInput:
+      case ErrorCode::Parse:
+      case ErrorCode::Io: return kBadInput;
+      default: return kInternal;
+    }
+  } catch (const std::bad_alloc&) {
+    std::cerr << "gpugeom: out of host memory\n";
+    return kInternal;
+  } catch (const std::exception& e) {
+    std::cerr << "gpugeom: internal error: " << e.what() << "\n";
+    return kInternal;
+  }
+}
