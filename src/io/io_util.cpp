@@ -64,7 +64,9 @@ bool Lines::next(std::string_view& line, bool skip_comments) {
 std::vector<std::string_view> split(std::string_view line, bool commas) {
   std::vector<std::string_view> out;
   std::size_t i = 0;
-  auto sep = [&](char c) { return c == ' ' || c == '\t' || (commas && c == ','); };
+  auto sep = [&](char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || (commas && c == ',');
+  };
   while (i < line.size()) {
     while (i < line.size() && sep(line[i])) ++i;
     std::size_t j = i;

@@ -1,4 +1,7 @@
 // Triangle and tetrahedron meshes: .ply .off .obj .ele/.node .vtu .npy.
+#include <algorithm>
+#include <iterator>
+
 #include "gpugeom/io.hpp"
 #include "io/io_util.hpp"
 
@@ -175,6 +178,9 @@ Mesh read_mesh(const std::string& path) {
     m.coords = std::move(p.coords);
     return m;
   }
+  static const char* known[] = {".ply", ".off", ".obj", ".vtu", ".npy"};
+  if (std::find(std::begin(known), std::end(known), ext) == std::end(known))
+    return parse_mesh("", ext, path);  // reports the unknown format before touching the file
   return parse_mesh(read_file(path), ext, path);
 }
 

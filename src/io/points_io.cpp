@@ -180,6 +180,10 @@ PointSet parse_points(const std::string& b, const std::string& ext, const std::s
 }
 
 PointSet read_points(const std::string& path) {
+  const std::string ext = extension(path);
+  static const char* known[] = {".xyz", ".txt", ".csv", ".off", ".obj", ".node", ".npy", ".ply"};
+  if (std::find(std::begin(known), std::end(known), ext) == std::end(known))
+    return parse_points("", ext, path);  // reports the unknown format before touching the file
   return parse_points(read_file(path), extension(path), path);
 }
 

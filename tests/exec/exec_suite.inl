@@ -1,0 +1,131 @@
+// One suite for every executor: included by test_exec_cpu.cpp (CpuExec) and
+// test_exec_cuda.cu (CudaExec) with EXEC and SUITE defined. Data is random, never zeros,
+// and outputs are poisoned first so an unwritten element shows.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <random>
+#include <vector>
+
+namespace {
+
+template <class T>
+std::vector<T> to_vec(EXEC& ex, const T* d, std::int64_t n) {
+  std::vector<T> h(n);
+  ex.to_host(d, n, h.data());
+  return h;
+}
+template <class B, class T>
+void upload(EXEC& ex, B& buf, const std::vector<T>& h) {
+  ex.from_host(h.data(), std::int64_t(h.size()), buf.data());
+}
+
+TEST(SUITE, ForEachIndexAndFill) {
+  EXEC ex;
+  for (std::int64_t n : {1, 255, 256, 257, 100000, 3000001}) {
+    auto b = ex.template alloc<std::int64_t>(n);
+    ex.fill(b.data(), n, std::int64_t(-7));
+    std::int64_t* p = b.data();
+    ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
+      if (i % 3) p[i] = i * 5 + 1;
+    });
+    auto h = to_vec(ex, b.data(), n);
+    for (std::int64_t i = 0; i < n; ++i) ASSERT_EQ(h[i], i % 3 ? i * 5 + 1 : -7) << "n=" << n << " i=" << i;
+  }
+}
+
+TEST(SUITE, ScansReduceAndCopies) {
+  EXEC ex;
+  std::mt19937 g(11);
+  for (std::int64_t n : {1, 1000, 1 << 20}) {
+    std::vector<std::int32_t> in(n);
+    for (auto& v : in) v = std::int32_t(g() % 100) - 30;
+    auto a = ex.template alloc<std::int32_t>(n), b = ex.template alloc<std::int32_t>(n);
+    upload(ex, a, in);
+    ex.exclusive_scan(a.data(), b.data(), n);
+    auto h = to_vec(ex, b.data(), n);
+    std::int32_t s = 0;
+    for (std::int64_t i = 0; i < n; ++i) {
+      ASSERT_EQ(h[i], s) << i;
+      s += in[i];
+    }
+    ex.inclusive_scan(a.data(), b.data(), n);
+    h = to_vec(ex, b.data(), n);
+    ASSERT_EQ(h[n - 1], s);
+    const std::int32_t mx = ex.reduce(a.data(), n, std::numeric_limits<std::int32_t>::min(),
+                                      GG_LAMBDA(std::int32_t x, std::int32_t y) { return x > y ? x : y; });
+    ASSERT_EQ(mx, *std::max_element(in.begin(), in.end()));
+    auto c = ex.template alloc<std::int32_t>(n);
+    ex.copy(a.data(), n, c.data());
+    ASSERT_EQ(to_vec(ex, c.data(), n), in);
+  }
+}
+
+TEST(SUITE, SortByKeyIsStableAndComplete) {
+  EXEC ex;
+  std::mt19937_64 g(5);
+  for (std::int64_t n : {2, 777, 1 << 20}) {
+    std::vector<std::uint64_t> k(n);
+    std::vector<std::int32_t> v(n);
+    for (std::int64_t i = 0; i < n; ++i) k[i] = g() % std::uint64_t(n / 2 + 1), v[i] = std::int32_t(i);
+    auto dk = ex.template alloc<std::uint64_t>(n);
+    auto dv = ex.template alloc<std::int32_t>(n);
+    upload(ex, dk, k);
+    upload(ex, dv, v);
+    ex.sort_by_key(dk.data(), dv.data(), n);
+    auto hk = to_vec(ex, dk.data(), n);
+    auto hv = to_vec(ex, dv.data(), n);
+    std::vector<std::int32_t> ref(n);
+    std::iota(ref.begin(), ref.end(), 0);
+    std::stable_sort(ref.begin(), ref.end(), [&](int a, int b) { return k[a] < k[b]; });
+    for (std::int64_t i = 0; i < n; ++i) {
+      ASSERT_EQ(hv[i], ref[i]) << i;
+      ASSERT_EQ(hk[i], k[ref[i]]) << i;
+    }
+    ex.sort(dk.data(), n);  // already sorted keys stay sorted
+    ASSERT_TRUE(std::is_sorted(hk.begin(), hk.end()));
+  }
+}
+
+TEST(SUITE, CompactionKeepsOrder) {
+  EXEC ex;
+  std::mt19937 g(3);
+  const std::int64_t n = 1 << 20;
+  std::vector<std::int32_t> in(n);
+  for (auto& v : in) v = std::int32_t(g() % 1000);
+  auto a = ex.template alloc<std::int32_t>(n), o = ex.template alloc<std::int32_t>(n);
+  upload(ex, a, in);
+  ex.fill(o.data(), n, std::int32_t(-1));
+  const std::int64_t m = ex.copy_if(a.data(), n, o.data(), GG_LAMBDA(std::int32_t x) { return x % 7 == 0; });
+  std::vector<std::int32_t> ref;
+  for (auto x : in)
+    if (x % 7 == 0) ref.push_back(x);
+  ASSERT_EQ(m, std::int64_t(ref.size()));
+  auto h = to_vec(ex, o.data(), m);
+  ASSERT_EQ(h, ref);
+  const std::int32_t* ap = a.data();
+  const std::int64_t m2 = ex.compact_indices(n, GG_LAMBDA(std::int64_t i) { return ap[i] < 10; }, o.data());
+  std::vector<std::int32_t> ri;
+  for (std::int64_t i = 0; i < n; ++i)
+    if (in[i] < 10) ri.push_back(std::int32_t(i));
+  ASSERT_EQ(m2, std::int64_t(ri.size()));
+  ASSERT_EQ(to_vec(ex, o.data(), m2), ri);
+}
+
+TEST(SUITE, AtomicsCountEveryIncrement) {
+  EXEC ex;
+  const std::int64_t n = 1 << 20;
+  auto c = ex.template alloc<std::int32_t>(16);
+  ex.fill(c.data(), 16, std::int32_t(0));
+  std::int32_t* cp = c.data();
+  ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
+    cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> r(cp[i % 16]);
+    r.fetch_add(1, cuda::memory_order_relaxed);
+  });
+  auto h = to_vec(ex, c.data(), 16);
+  for (auto v : h) ASSERT_EQ(v, n / 16);
+}
+
+}  // namespace

@@ -1,0 +1,241 @@
+// Round trips for every format, and one test per kind of malformed input.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <cstring>
+#include <unistd.h>
+
+#include "gpugeom/generate.hpp"
+#include "gpugeom/io.hpp"
+
+using namespace gpugeom;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string tmpdir() {
+  static std::string d = [] {
+    auto p = fs::temp_directory_path() / ("gg_io_" + std::to_string(::getpid()));
+    fs::create_directories(p);
+    return p.string();
+  }();
+  return d;
+}
+std::string path(const std::string& name) { return tmpdir() + "/" + name; }
+void write_text(const std::string& p, const std::string& s) { std::ofstream(p, std::ios::binary) << s; }
+bool no_temp_files() {
+  for (auto& e : fs::directory_iterator(tmpdir()))
+    if (e.path().string().find(".tmp-") != std::string::npos) return false;
+  return true;
+}
+
+io::PointSet sample(int dim, int n) {
+  io::PointSet p;
+  p.dim = dim;
+  if (dim == 2) {
+    for (auto& q : generate2d("gaussian", n, 3)) p.coords.insert(p.coords.end(), {q.x, q.y});
+  } else {
+    for (auto& q : generate3d("gaussian", n, 3)) p.coords.insert(p.coords.end(), {q.x, q.y, q.z});
+  }
+  p.coords[0] = 1e-300;  // extremes survive text formats exactly
+  p.coords[1] = -1.2345678901234567e300;
+  return p;
+}
+
+std::string expect_parse_error(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    EXPECT_EQ(int(e.code()), int(ErrorCode::Parse)) << e.what();
+    return e.what();
+  }
+  ADD_FAILURE() << "no parse error";
+  return "";
+}
+
+}  // namespace
+
+TEST(Io, PointRoundTrips) {
+  for (int dim : {2, 3})
+    for (std::string ext : {".xyz", ".txt", ".csv", ".ply", ".npy", ".node", ".off", ".obj"}) {
+      if ((ext == ".off" || ext == ".obj") && dim == 2) continue;  // 3D formats
+      auto p = sample(dim, 1000);
+      for (bool binary : {true, false}) {
+        if (!binary && ext != ".ply") continue;
+        io::WriteOptions o;
+        o.binary = binary;
+        const std::string f = path("p" + std::to_string(dim) + ext);
+        io::write_points(f, p, o);
+        auto q = io::read_points(f);
+        EXPECT_EQ(q.dim, dim) << ext;
+        EXPECT_EQ(q.coords, p.coords) << ext << " binary=" << binary;
+      }
+    }
+  EXPECT_TRUE(no_temp_files());
+}
+
+TEST(Io, PlyBigEndianAndFloat) {
+  // Hand-made binary big-endian PLY with float x,y,z and an extra property.
+  std::string s = "ply\nformat binary_big_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                  "property float z\nproperty uchar red\nend_header\n";
+  auto put = [&](float f) {
+    unsigned char b[4];
+    std::memcpy(b, &f, 4);
+    for (int i = 3; i >= 0; --i) s += char(b[i]);
+  };
+  put(1.5f), put(-2.0f), put(0.25f), s += char(7);
+  put(3.0f), put(4.0f), put(5.0f), s += char(9);
+  auto p = io::parse_points(s, ".ply", "be.ply");
+  EXPECT_EQ(p.coords, (std::vector<double>{1.5, -2.0, 0.25, 3, 4, 5}));
+}
+
+TEST(Io, NpyFloat32Points) {
+  io::Grid g;  // write a float32 N x 3 array through the grid writer, read as points
+  g.shape = {4, 3};
+  g.type = io::ScalarType::F32;
+  std::vector<float> v{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11.5f};
+  g.data.assign(reinterpret_cast<unsigned char*>(v.data()), reinterpret_cast<unsigned char*>(v.data() + 12));
+  io::write_grid(path("f32.npy"), g);
+  auto p = io::read_points(path("f32.npy"));
+  EXPECT_EQ(p.dim, 3);
+  EXPECT_EQ(p.coords.back(), 11.5);
+}
+
+TEST(Io, MeshRoundTrips) {
+  io::Mesh tri;
+  tri.dim = 2;
+  tri.coords = {0, 0, 1, 0, 0, 1, 1, 1};
+  tri.cell_size = 3;
+  tri.cells = {0, 1, 2, 1, 3, 2};
+  io::Mesh tet;
+  tet.dim = 3;
+  tet.coords = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
+  tet.cell_size = 4;
+  tet.cells = {0, 1, 2, 3, 1, 2, 3, 4};
+  for (std::string ext : {".ply", ".off", ".obj", ".ele", ".vtu", ".npy"})
+    for (const io::Mesh* m : {&tri, &tet}) {
+      const std::string f = path("m" + std::to_string(m->cell_size) + ext);
+      if ((ext == ".off" || ext == ".obj") && m->cell_size == 4) {
+        EXPECT_THROW(io::write_mesh(f, *m), Error);
+        continue;
+      }
+      io::write_mesh(f, *m);
+      auto r = io::read_mesh(f);
+      EXPECT_EQ(r.cells, m->cells) << ext;
+      EXPECT_EQ(r.cell_size, m->cell_size) << ext;
+      if (ext == ".npy") continue;  // cells only
+      std::vector<double> want = m->coords;
+      if ((ext == ".off" || ext == ".obj") && m->dim == 2) {  // 3D formats pad z = 0
+        want.clear();
+        for (std::size_t i = 0; i < m->coords.size(); i += 2) want.insert(want.end(), {m->coords[i], m->coords[i + 1], 0});
+      }
+      EXPECT_EQ(r.coords, want) << ext;
+    }
+  EXPECT_TRUE(no_temp_files());
+}
+
+TEST(Io, GridRoundTrips) {
+  io::Grid g;
+  g.shape = {5, 7};
+  g.type = io::ScalarType::U8;
+  for (int i = 0; i < 35; ++i) g.data.push_back(std::uint8_t(i * 7));
+  for (std::string ext : {".png", ".pgm", ".npy"}) {
+    io::write_grid(path("g" + ext), g);
+    auto r = io::read_grid(path("g" + ext));
+    EXPECT_EQ(r.shape, g.shape) << ext;
+    EXPECT_EQ(r.data, g.data) << ext;
+  }
+  io::Grid w = g;  // 16-bit
+  w.type = io::ScalarType::U16;
+  w.data.clear();
+  for (int i = 0; i < 35; ++i) {
+    std::uint16_t v = std::uint16_t(i * 1871);
+    w.data.push_back(v & 0xff), w.data.push_back(v >> 8);
+  }
+  for (std::string ext : {".png", ".pgm", ".npy"}) {
+    io::write_grid(path("w" + ext), w);
+    auto r = io::read_grid(path("w" + ext));
+    EXPECT_EQ(int(r.type), int(io::ScalarType::U16)) << ext;
+    EXPECT_EQ(r.data, w.data) << ext;
+  }
+  io::Grid b = g;  // bitmap
+  for (auto& v : b.data) v = v % 3 == 0;
+  io::write_grid(path("b.pbm"), b);
+  EXPECT_EQ(io::read_grid(path("b.pbm")).data, b.data);
+  io::Grid v3;  // 3D volumes of every type through npy and raw
+  v3.shape = {3, 4, 5};
+  for (auto t : {io::ScalarType::Bool, io::ScalarType::U8, io::ScalarType::U16, io::ScalarType::I32,
+                 io::ScalarType::I64, io::ScalarType::F32, io::ScalarType::F64}) {
+    v3.type = t;
+    v3.data.assign(60 * io::scalar_size(t), 0);
+    for (std::size_t i = 0; i < v3.data.size(); i += io::scalar_size(t)) v3.data[i] = std::uint8_t(i % 2);
+    io::write_grid(path("v.npy"), v3);
+    EXPECT_EQ(io::read_grid(path("v.npy")).data, v3.data) << io::scalar_name(t);
+    io::write_grid(path("v.raw"), v3);
+    EXPECT_EQ(io::read_raw_grid(path("v.raw"), v3.shape, t).data, v3.data);
+  }
+  EXPECT_THROW(io::read_raw_grid(path("v.raw"), {3, 4, 6}, io::ScalarType::F64), Error);
+  EXPECT_TRUE(no_temp_files());
+}
+
+TEST(Io, MalformedInputsNameFileLineAndWhat) {
+  std::string m;
+  m = expect_parse_error([] { io::parse_points("1 2 3\n4 5\n", ".xyz", "a.xyz"); });
+  EXPECT_NE(m.find("a.xyz:2"), std::string::npos) << m;
+  m = expect_parse_error([] { io::parse_points("1 2 3\n4 five 6\n", ".xyz", "a.xyz"); });
+  EXPECT_NE(m.find("'five'"), std::string::npos) << m;
+  m = expect_parse_error([] { io::parse_points("", ".xyz", "e.xyz"); });
+  m = expect_parse_error([] { io::parse_points("plx\n", ".ply", "a.ply"); });
+  EXPECT_NE(m.find("a.ply:1"), std::string::npos) << m;
+  m = expect_parse_error([] {
+    io::parse_points("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nend_header\n1 2\n", ".ply", "t.ply");
+  });
+  EXPECT_NE(m.find("ends early"), std::string::npos) << m;
+  m = expect_parse_error([] {
+    io::parse_points("ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty double x\n"
+                     "property double y\nend_header\n12345678", ".ply", "huge.ply");
+  });
+  EXPECT_NE(m.find("claims"), std::string::npos) << m;
+  m = expect_parse_error([] { io::parse_points("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1\n", ".ply", "nox.ply"); });
+  EXPECT_NE(m.find("x and y"), std::string::npos) << m;
+  m = expect_parse_error([] { io::parse_points("OFF\n2 0 0\n1 2 3\n", ".off", "a.off"); });
+  EXPECT_NE(m.find("1 of 2"), std::string::npos) << m;
+  m = expect_parse_error([] { io::parse_points("v 1 2\n", ".obj", "a.obj"); });
+  m = expect_parse_error([] { io::parse_points("3 2 0 0\n0 1 1\n1 2 2\n", ".node", "a.node"); });
+  m = expect_parse_error([] { io::parse_points("\x93NUMPY\x01", ".npy", "a.npy"); });
+  m = expect_parse_error([] {
+    std::string h = "{'descr': '<f8', 'fortran_order': False, 'shape': (10, 3), }";
+    std::string s = std::string("\x93NUMPY\x01\x00", 8) + char(h.size()) + char(0) + h + "abc";
+    io::parse_points(s, ".npy", "short.npy");
+  });
+  EXPECT_NE(m.find("truncated"), std::string::npos) << m;
+  m = expect_parse_error([] {
+    std::string h = "{'descr': '<c16', 'fortran_order': False, 'shape': (1, 3), }";
+    io::parse_points(std::string("\x93NUMPY\x01\x00", 8) + char(h.size()) + char(0) + h, ".npy", "c.npy");
+  });
+  EXPECT_NE(m.find("dtype"), std::string::npos) << m;
+  m = expect_parse_error([] { io::parse_mesh("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", ".off", "f.off"); });
+  EXPECT_NE(m.find("out of range"), std::string::npos) << m;
+  m = expect_parse_error([] { io::parse_grid("P5\n4 4\n255\nab", ".pgm", "g.pgm"); });
+  EXPECT_NE(m.find("truncated"), std::string::npos) << m;
+  m = expect_parse_error([] { io::parse_grid("\x89PNG\r\n\x1a\nbroken", ".png", "g.png"); });
+  EXPECT_NE(m.find("g.png"), std::string::npos) << m;
+  EXPECT_THROW(io::read_points(path("does-not-exist.xyz")), Error);
+  EXPECT_THROW(io::parse_points("1 2\n", ".abc", "x.abc"), Error);
+}
+
+TEST(Io, FailedWriteLeavesNothing) {
+  io::PointSet p = sample(3, 10);
+  EXPECT_THROW(io::write_points(tmpdir() + "/no/such/dir/p.xyz", p), Error);
+  EXPECT_FALSE(fs::exists(tmpdir() + "/no"));
+  io::Mesh bad;
+  bad.dim = 3;
+  bad.coords = {0, 0, 0};
+  bad.cells = {0, 0, 5};
+  EXPECT_THROW(io::write_mesh(path("bad.ply"), bad), Error);
+  EXPECT_FALSE(fs::exists(path("bad.ply")));
+  EXPECT_TRUE(no_temp_files());
+}
