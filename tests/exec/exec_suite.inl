@@ -11,6 +11,8 @@
 
 namespace {
 
+// nvcc forbids extended lambdas in TestBody (a private member): each test's body is a free function.
+
 template <class T>
 std::vector<T> to_vec(EXEC& ex, const T* d, std::int64_t n) {
   std::vector<T> h(n);
@@ -22,7 +24,9 @@ void upload(EXEC& ex, B& buf, const std::vector<T>& h) {
   ex.from_host(h.data(), std::int64_t(h.size()), buf.data());
 }
 
-TEST(SUITE, ForEachIndexAndFill) {
+void ForEachIndexAndFill_body();
+TEST(SUITE, ForEachIndexAndFill) { ForEachIndexAndFill_body(); }
+void ForEachIndexAndFill_body() {
   EXEC ex;
   for (std::int64_t n : {1, 255, 256, 257, 100000, 3000001}) {
     auto b = ex.template alloc<std::int64_t>(n);
@@ -36,7 +40,9 @@ TEST(SUITE, ForEachIndexAndFill) {
   }
 }
 
-TEST(SUITE, ScansReduceAndCopies) {
+void ScansReduceAndCopies_body();
+TEST(SUITE, ScansReduceAndCopies) { ScansReduceAndCopies_body(); }
+void ScansReduceAndCopies_body() {
   EXEC ex;
   std::mt19937 g(11);
   for (std::int64_t n : {1, 1000, 1 << 20}) {
@@ -63,7 +69,9 @@ TEST(SUITE, ScansReduceAndCopies) {
   }
 }
 
-TEST(SUITE, SortByKeyIsStableAndComplete) {
+void SortByKeyIsStableAndComplete_body();
+TEST(SUITE, SortByKeyIsStableAndComplete) { SortByKeyIsStableAndComplete_body(); }
+void SortByKeyIsStableAndComplete_body() {
   EXEC ex;
   std::mt19937_64 g(5);
   for (std::int64_t n : {2, 777, 1 << 20}) {
@@ -89,7 +97,9 @@ TEST(SUITE, SortByKeyIsStableAndComplete) {
   }
 }
 
-TEST(SUITE, CompactionKeepsOrder) {
+void CompactionKeepsOrder_body();
+TEST(SUITE, CompactionKeepsOrder) { CompactionKeepsOrder_body(); }
+void CompactionKeepsOrder_body() {
   EXEC ex;
   std::mt19937 g(3);
   const std::int64_t n = 1 << 20;
@@ -114,7 +124,9 @@ TEST(SUITE, CompactionKeepsOrder) {
   ASSERT_EQ(to_vec(ex, o.data(), m2), ri);
 }
 
-TEST(SUITE, AtomicsCountEveryIncrement) {
+void AtomicsCountEveryIncrement_body();
+TEST(SUITE, AtomicsCountEveryIncrement) { AtomicsCountEveryIncrement_body(); }
+void AtomicsCountEveryIncrement_body() {
   EXEC ex;
   const std::int64_t n = 1 << 20;
   auto c = ex.template alloc<std::int32_t>(16);

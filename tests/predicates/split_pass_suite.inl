@@ -30,26 +30,26 @@ Run evaluate(EXEC& ex, const gg_test::Tuples& t) {
   auto P = [=] GG_HD(std::int64_t i, int j) { return v + (i * k + j) * st; };
   auto I = [=] GG_HD(std::int64_t i, int j) { return int(i * k + (j * 7) % k); };
   auto fast = GG_LAMBDA(std::int64_t i)->int {
-    if constexpr (kind == 0) return pred::orient2d_fast(P(i, 0), P(i, 1), P(i, 2));
-    if constexpr (kind == 1) return pred::orient3d_fast(P(i, 0), P(i, 1), P(i, 2), P(i, 3));
-    if constexpr (kind == 2) return pred::incircle_fast(P(i, 0), P(i, 1), P(i, 2), P(i, 3));
-    if constexpr (kind == 3) return pred::insphere_fast(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4));
+    if (kind == 0) return pred::orient2d_fast(P(i, 0), P(i, 1), P(i, 2));
+    if (kind == 1) return pred::orient3d_fast(P(i, 0), P(i, 1), P(i, 2), P(i, 3));
+    if (kind == 2) return pred::incircle_fast(P(i, 0), P(i, 1), P(i, 2), P(i, 3));
+    if (kind == 3) return pred::insphere_fast(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4));
     return pred::orient4d_fast(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4));
   };
   auto exact = GG_LAMBDA(std::int64_t i, double* s)->int {
-    if constexpr (!sos) {
-      if constexpr (kind == 0) return pred::orient2d_exact(P(i, 0), P(i, 1), P(i, 2), s);
-      if constexpr (kind == 1) return pred::orient3d_exact(P(i, 0), P(i, 1), P(i, 2), P(i, 3), s);
-      if constexpr (kind == 2) return pred::incircle_exact(P(i, 0), P(i, 1), P(i, 2), P(i, 3), s);
-      if constexpr (kind == 3) return pred::insphere_exact(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4), s);
+    if (!sos) {
+      if (kind == 0) return pred::orient2d_exact(P(i, 0), P(i, 1), P(i, 2), s);
+      if (kind == 1) return pred::orient3d_exact(P(i, 0), P(i, 1), P(i, 2), P(i, 3), s);
+      if (kind == 2) return pred::incircle_exact(P(i, 0), P(i, 1), P(i, 2), P(i, 3), s);
+      if (kind == 3) return pred::insphere_exact(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4), s);
       return pred::orient4d_exact(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4), s);
     }
-    if constexpr (kind == 0) return pred::orient2d_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), s);
-    if constexpr (kind == 1)
+    if (kind == 0) return pred::orient2d_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), s);
+    if (kind == 1)
       return pred::orient3d_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3), I(i, 3), s);
-    if constexpr (kind == 2)
+    if (kind == 2)
       return pred::incircle_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3), I(i, 3), s);
-    if constexpr (kind == 3)
+    if (kind == 3)
       return pred::insphere_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3), I(i, 3), P(i, 4),
                                 I(i, 4), s);
     return pred::orient4d_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3), I(i, 3), P(i, 4),

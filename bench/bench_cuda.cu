@@ -1,0 +1,15 @@
+#include <algorithm>
+#include <chrono>
+#include <functional>
+
+#include "bench_problems.hpp"
+#include "exec/cuda_exec.cuh"
+#include "predicates/predicates.hpp"
+#include "predicates/split_pass.hpp"
+#include "spatial/hilbert.hpp"
+
+namespace gpugeom::bench::cuda_impl {
+using Exec = CudaExec;
+#include "spatial/impl/hilbert_sort.inl"
+#include "impl/problems.inl"
+}  // namespace gpugeom::bench::cuda_impl

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Quick start 1: install what is needed, build (CUDA when nvcc is present), run the demo job:
+# generate a million points, summarise them, show the device, run the benchmark skeleton small.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install_deps.sh
+BUILD=${BUILD_DIR:-build}
+cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DGPUGEOM_CUDA=${GPUGEOM_CUDA:-AUTO}
+cmake --build "$BUILD" --target gpugeom_cli gpugeom_bench
+G="$BUILD/tools/gpugeom/gpugeom"
+OUT=${DEMO_OUT:-$BUILD/demo}
+mkdir -p "$OUT"
+"$G" info --device
+"$G" --verbose gen uniform3d -n 1000000 -o "$OUT/p.ply"
+"$G" info "$OUT/p.ply"
+"$G" gen thin_circle2d -n 100000 -o "$OUT/ring.npy"
+"$G" info "$OUT/ring.npy"
+bash bench/run_bench.sh --quick --build "$BUILD" --out "$OUT/bench"
