@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
                                               : bench::cpu_impl::run(in);
         const double resident = ph["compute"], total = ph["upload"] + ph["compute"] + ph["download"];
         const double exact = ph.count("exact_fraction") ? ph["exact_fraction"] : 0.0;
-        std::printf("%-9s %-12s %10lld %-5s %10.3f %10.3f %12.1f %8.4f\n", problem.c_str(), d.c_str(), n,
+        std::printf("%-9s %-12s %10lld %-5s %10.3f %10.3f %12.1f %8.4f\n", problem.c_str(), (d + (dim == 2 ? "2d" : "3d")).c_str(), n,
                     backend_name(b), resident, total, n / resident / 1e3, 100 * exact);
         if (f)
           f << problem << "," << d << (dim == 2 ? "2d" : "3d") << "," << n << "," << backend_name(b) << ","

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Runs on the lent GPU machine (from the repository root, .devbin/ carried): GPU tests, then
+# compute-sanitizer over them, then the benchmarks; a short table last. Logs go to $OUT.
+set -u
+export LD_LIBRARY_PATH=$PWD/.devbin/lib:${LD_LIBRARY_PATH:-}
+OUT=${OUT:-/tmp/gg_out}
+mkdir -p "$OUT"
+nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$OUT/gpu.txt"
+echo "== GPU tests (label gpu)"
+status=0
+for t in .devbin/test_*_cuda; do
+  "$t" --gtest_brief=1 >"$OUT/$(basename "$t").log" 2>&1
+  rc=$?
+  echo "$(basename "$t"): rc=$rc $(grep -E '^\[  (PASSED|FAILED)' "$OUT/$(basename "$t").log" | tr '\n' ' ')"
+  [ $rc -ne 0 ] && { status=1; tail -30 "$OUT/$(basename "$t").log"; }
+done
+if [ "${SKIP_SANITIZER:-0}" != 1 ]; then
+  echo "== compute-sanitizer memcheck"
+  CS=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
+  for t in .devbin/test_*_cuda; do
+    GG_TEST_TUPLES=1500 timeout 240 "$CS" --tool memcheck --leak-check full --error-exitcode 9 "$t" --gtest_brief=1 \
+      >"$OUT/memcheck_$(basename "$t").log" 2>&1
+    echo "memcheck $(basename "$t"): rc=$? $(grep -E 'ERROR SUMMARY' "$OUT/memcheck_$(basename "$t").log" | tail -1)"
+  done
+  GG_TEST_TUPLES=1500 timeout 120 "$CS" --tool synccheck --error-exitcode 9 .devbin/test_exec_cuda --gtest_brief=1 >"$OUT/synccheck.log" 2>&1
+  echo "synccheck test_exec_cuda: rc=$? $(grep -E 'ERROR SUMMARY' "$OUT/synccheck.log" | tail -1)"
+fi
+if [ "${SKIP_BENCH:-0}" != 1 ]; then
+  echo "== benchmarks"
+  CSV="$OUT/bench.csv"
+  rm -f "$CSV"
+  B=.devbin/gpugeom_bench
+  SIZES=${BENCH_SIZES:-1000000,10000000}
+  $B --problem hilbert --dist uniform,grid --sizes $SIZES --csv "$CSV" >"$OUT/bench_hilbert.txt"
+  $B --problem hilbert --dim 2 --dist uniform --sizes $SIZES --csv "$CSV" >>"$OUT/bench_hilbert.txt"
+  $B --problem orient3d --dist uniform,sphere,grid --sizes $SIZES --csv "$CSV" >"$OUT/bench_orient.txt"
+  $B --problem insphere --dist uniform,grid --sizes $SIZES --csv "$CSV" >"$OUT/bench_insphere.txt"
+  $B --problem insphere --dist sphere --sizes 100000,1000000 --csv "$CSV" >>"$OUT/bench_insphere.txt"
+  if [ -x .devbin/anchor_cgal ]; then
+    .devbin/anchor_cgal --problem delaunay2d --dist uniform --sizes 1000000 --csv "$CSV" >"$OUT/anchor.txt" 2>&1
+    .devbin/anchor_cgal --problem hull3d --dist ball --sizes 1000000 --csv "$CSV" >>"$OUT/anchor.txt" 2>&1
+    cat "$OUT/anchor.txt"
+  fi
+  cat "$OUT/bench_hilbert.txt" "$OUT/bench_orient.txt" "$OUT/bench_insphere.txt" | grep -v '^problem' | sort -s -k1,1 -k2,2 -k3,3n
+fi
+exit $status

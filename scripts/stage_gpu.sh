@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Developer helper: copy the CUDA build's test and bench binaries, and the shared libraries they
+# need beyond a bare CUDA image, into .devbin/ (git-ignored) to carry to the lent GPU machine.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+B=${1:-build-cuda}
+rm -rf .devbin && mkdir -p .devbin/lib
+cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/tools/gpugeom/gpugeom .devbin/
+[ -x "$B/bench/anchor_cgal" ] && cp "$B/bench/anchor_cgal" .devbin/
+for f in .devbin/*; do
+  [ -f "$f" ] || continue
+  ldd "$f" | awk '/=> \//{print $3}' | grep -E 'libcudart|libgomp|libpng|libgmp|libmpfr|libz\.' | xargs -r -I{} cp -L {} .devbin/lib/
+done
+du -sh .devbin
