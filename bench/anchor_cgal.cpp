@@ -21,12 +21,18 @@ int main(int argc, char** argv) {
   unsigned long long seed = 1;
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string a = argv[i], v = argv[i + 1];
-    if (a == "--problem") problem = v;
-    else if (a == "--dist") dists = v;
-    else if (a == "--sizes") sizes = v;
-    else if (a == "--seed") seed = std::stoull(v);
-    else if (a == "--csv") csv = v;
-    else return std::cerr << "unknown option " << a << "\n", 2;
+    if (a == "--problem")
+      problem = v;
+    else if (a == "--dist")
+      dists = v;
+    else if (a == "--sizes")
+      sizes = v;
+    else if (a == "--seed")
+      seed = std::stoull(v);
+    else if (a == "--csv")
+      csv = v;
+    else
+      return std::cerr << "unknown option " << a << "\n", 2;
   }
   std::ofstream f;
   if (!csv.empty()) f.open(csv, std::ios::app);
@@ -69,10 +75,11 @@ int main(int argc, char** argv) {
         return std::cerr << "unknown problem " << problem << "\n", 2;
       }
       ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      std::printf("%-11s %-12s %10lld cgal  %10.1f ms  (%zu simplices)\n", problem.c_str(), d.c_str(), n, ms, out);
+      std::printf("%-11s %-12s %10lld cgal  %10.1f ms  (%zu simplices)\n", problem.c_str(),
+                  d.c_str(), n, ms, out);
       if (f)
-        f << problem << "," << d << (problem == "delaunay2d" ? "2d" : "3d") << "," << n << ",cgal,cpu-1core,0," << ms
-          << ",0," << ms << "," << ms << ",0\n";
+        f << problem << "," << d << (problem == "delaunay2d" ? "2d" : "3d") << "," << n
+          << ",cgal,cpu-1core,0," << ms << ",0," << ms << "," << ms << ",0\n";
     }
   return 0;
 }

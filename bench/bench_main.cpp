@@ -21,13 +21,15 @@ std::vector<std::string> list(const std::string& s) {
 }
 void usage() {
   std::cout << "usage: gpugeom_bench [--problem hilbert|orient3d|insphere] [--dim 2|3]\n"
-               "                     [--dist uniform,ball,...] [--sizes 1e5,1e6] [--backend cpu|cuda|all]\n"
+               "                     [--dist uniform,ball,...] [--sizes 1e5,1e6] [--backend "
+               "cpu|cuda|all]\n"
                "                     [--reps 5] [--seed 1] [--csv FILE]\n";
 }
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string problem = "hilbert", dists = "uniform", sizes = "100000,1000000", backends = "all", csv;
+  std::string problem = "hilbert", dists = "uniform", sizes = "100000,1000000", backends = "all",
+              csv;
   int dim = 3, reps = 5;
   unsigned long long seed = 1;
   for (int i = 1; i < argc; ++i) {
@@ -39,16 +41,26 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--problem") problem = next();
-    else if (a == "--dim") dim = std::stoi(next());
-    else if (a == "--dist") dists = next();
-    else if (a == "--sizes") sizes = next();
-    else if (a == "--backend") backends = next();
-    else if (a == "--reps") reps = std::stoi(next());
-    else if (a == "--seed") seed = std::stoull(next());
-    else if (a == "--csv") csv = next();
-    else if (a == "--help" || a == "-h") return usage(), 0;
-    else return usage(), 2;
+    if (a == "--problem")
+      problem = next();
+    else if (a == "--dim")
+      dim = std::stoi(next());
+    else if (a == "--dist")
+      dists = next();
+    else if (a == "--sizes")
+      sizes = next();
+    else if (a == "--backend")
+      backends = next();
+    else if (a == "--reps")
+      reps = std::stoi(next());
+    else if (a == "--seed")
+      seed = std::stoull(next());
+    else if (a == "--csv")
+      csv = next();
+    else if (a == "--help" || a == "-h")
+      return usage(), 0;
+    else
+      return usage(), 2;
   }
   std::vector<Backend> bks;
   for (auto& b : list(backends == "all" ? "cpu,cuda" : backends)) {
@@ -64,11 +76,12 @@ int main(int argc, char** argv) {
   if (!csv.empty()) {
     f.open(csv, std::ios::app);
     if (f.tellp() == 0)
-      f << "problem,distribution,n,backend,device,upload_ms,compute_ms,download_ms,device_resident_ms,"
+      f << "problem,distribution,n,backend,device,upload_ms,compute_ms,download_ms,device_resident_"
+           "ms,"
            "with_copies_ms,exact_fraction\n";
   }
-  std::printf("%-9s %-12s %10s %-5s %10s %10s %12s %8s\n", "problem", "dist", "n", "bk", "compute", "w/copies",
-              "Mitems/s", "exact%");
+  std::printf("%-9s %-12s %10s %-5s %10s %10s %12s %8s\n", "problem", "dist", "n", "bk", "compute",
+              "w/copies", "Mitems/s", "exact%");
   for (auto& d : list(dists))
     for (auto& s : list(sizes)) {
       const long long n = (long long)std::stod(s);
@@ -97,14 +110,17 @@ int main(int argc, char** argv) {
                                               bench::Phases{}
 #endif
                                               : bench::cpu_impl::run(in);
-        const double resident = ph["compute"], total = ph["upload"] + ph["compute"] + ph["download"];
+        const double resident = ph["compute"],
+                     total = ph["upload"] + ph["compute"] + ph["download"];
         const double exact = ph.count("exact_fraction") ? ph["exact_fraction"] : 0.0;
-        std::printf("%-9s %-12s %10lld %-5s %10.3f %10.3f %12.1f %8.4f\n", problem.c_str(), (d + (dim == 2 ? "2d" : "3d")).c_str(), n,
-                    backend_name(b), resident, total, n / resident / 1e3, 100 * exact);
+        std::printf("%-9s %-12s %10lld %-5s %10.3f %10.3f %12.1f %8.4f\n", problem.c_str(),
+                    (d + (dim == 2 ? "2d" : "3d")).c_str(), n, backend_name(b), resident, total,
+                    n / resident / 1e3, 100 * exact);
         if (f)
-          f << problem << "," << d << (dim == 2 ? "2d" : "3d") << "," << n << "," << backend_name(b) << ","
-            << (b == Backend::Cuda ? gpu : std::string("cpu")) << "," << ph["upload"] << "," << ph["compute"]
-            << "," << ph["download"] << "," << resident << "," << total << "," << exact << "\n";
+          f << problem << "," << d << (dim == 2 ? "2d" : "3d") << "," << n << "," << backend_name(b)
+            << "," << (b == Backend::Cuda ? gpu : std::string("cpu")) << "," << ph["upload"] << ","
+            << ph["compute"] << "," << ph["download"] << "," << resident << "," << total << ","
+            << exact << "\n";
       }
     }
   return 0;

@@ -10,7 +10,7 @@ namespace gpugeom::bench {
 using Phases = std::map<std::string, double>;
 
 struct ProblemInput {
-  std::string problem;         // hilbert, orient3d, insphere
+  std::string problem;  // hilbert, orient3d, insphere
   int dim = 3;
   std::vector<double> coords;  // dim per point
   int reps = 5;

@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
     std::printf("SKIPPED: no usable CUDA device (%s)\n", d.reason.c_str());
     return 77;
   }
-  std::printf("GPU: %s, %d SMs, %zu MiB\n", d.name.c_str(), d.multiprocessors, d.total_memory >> 20);
+  std::printf("GPU: %s, %d SMs, %zu MiB\n", d.name.c_str(), d.multiprocessors,
+              d.total_memory >> 20);
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }

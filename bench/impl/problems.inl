@@ -3,7 +3,9 @@
 namespace {
 
 double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 double median_ms(Exec& ex, int reps, const std::function<void()>& f) {
@@ -24,7 +26,8 @@ spatial::Box box_of(const std::vector<double>& c, int dim) {
   spatial::Box b{};
   for (int d = 0; d < dim; ++d) {
     b.lo[d] = 1e300, b.hi[d] = -1e300;
-    for (std::size_t i = d; i < c.size(); i += dim) b.lo[d] = std::min(b.lo[d], c[i]), b.hi[d] = std::max(b.hi[d], c[i]);
+    for (std::size_t i = d; i < c.size(); i += dim)
+      b.lo[d] = std::min(b.lo[d], c[i]), b.hi[d] = std::max(b.hi[d], c[i]);
   }
   return b;
 }
@@ -36,13 +39,17 @@ Phases run(const ProblemInput& in) {
   Phases ph;
   const std::int64_t n = std::int64_t(in.coords.size() / in.dim);
   auto dp = ex.template alloc<double>(in.coords.size());
-  ph["upload"] = median_ms(ex, in.reps, [&] { ex.from_host(in.coords.data(), std::int64_t(in.coords.size()), dp.data()); });
+  ph["upload"] = median_ms(ex, in.reps, [&] {
+    ex.from_host(in.coords.data(), std::int64_t(in.coords.size()), dp.data());
+  });
   if (in.problem == "hilbert") {
     auto order = ex.template alloc<std::int32_t>(n);
     const spatial::Box box = box_of(in.coords, in.dim);
     ph["compute"] = median_ms(ex, in.reps, [&] {
-      if (in.dim == 2) hilbert_sort<2>(ex, dp.data(), n, order.data(), box);
-      else hilbert_sort<3>(ex, dp.data(), n, order.data(), box);
+      if (in.dim == 2)
+        hilbert_sort<2>(ex, dp.data(), n, order.data(), box);
+      else
+        hilbert_sort<3>(ex, dp.data(), n, order.data(), box);
     });
     std::vector<std::int32_t> h(n);
     ph["download"] = median_ms(ex, in.reps, [&] { ex.to_host(order.data(), n, h.data()); });
@@ -51,7 +58,8 @@ Phases run(const ProblemInput& in) {
   // Predicate throughput: tuple i takes points i, i+1, ... (mod n), so tuples are local when
   // the input is Hilbert-sorted and near-degenerate when the distribution is.
   const bool sphere = in.problem == "insphere";
-  if (!sphere && in.problem != "orient3d") throw Error(ErrorCode::InvalidArgument, "unknown problem " + in.problem);
+  if (!sphere && in.problem != "orient3d")
+    throw Error(ErrorCode::InvalidArgument, "unknown problem " + in.problem);
   if (in.dim != 3) throw Error(ErrorCode::InvalidArgument, in.problem + " needs 3D points");
   auto out = ex.template alloc<std::int8_t>(n);
   const double* p = dp.data();
@@ -63,12 +71,14 @@ Phases run(const ProblemInput& in) {
   auto exact = GG_LAMBDA(std::int64_t i, double* s)->int {
     auto I = [&](int j) { return int((i + j * 7) % n); };
     if (sphere)
-      return pred::insphere_sos(P(i, 0), I(0), P(i, 1), I(1), P(i, 2), I(2), P(i, 3), I(3), P(i, 4), I(4), s);
+      return pred::insphere_sos(P(i, 0), I(0), P(i, 1), I(1), P(i, 2), I(2), P(i, 3), I(3), P(i, 4),
+                                I(4), s);
     return pred::orient3d_sos(P(i, 0), I(0), P(i, 1), I(1), P(i, 2), I(2), P(i, 3), I(3), s);
   };
   std::int64_t exact_items = 0;
   ph["compute"] = median_ms(ex, in.reps, [&] {
-    exact_items = split_pass(ex, n, out.data(), fast, exact, sphere ? pred::kInsphereScratch : pred::kOrient3dScratch)
+    exact_items = split_pass(ex, n, out.data(), fast, exact,
+                             sphere ? pred::kInsphereScratch : pred::kOrient3dScratch)
                       .exact_items;
   });
   ph["exact_fraction"] = double(exact_items) / double(n);

@@ -41,14 +41,14 @@ DeviceInfo query_device();
 // Every failure the library reports is an Error with one of these codes, so callers can
 // react by kind; the message says what went wrong and what to do about it.
 enum class ErrorCode {
-  InvalidArgument,   // a parameter is out of range or inconsistent
-  InvalidInput,      // NaN/Inf, too few points, sizes beyond index limits
-  DegenerateInput,   // e.g. all points collinear / coplanar where that makes the problem void
-  Parse,             // a file does not follow its format
-  Io,                // a file cannot be opened, read or written
-  Unsupported,       // asked for something this build or machine cannot do
-  OutOfMemory,       // host or device allocation failed
-  Cuda,              // any other CUDA runtime failure
+  InvalidArgument,  // a parameter is out of range or inconsistent
+  InvalidInput,     // NaN/Inf, too few points, sizes beyond index limits
+  DegenerateInput,  // e.g. all points collinear / coplanar where that makes the problem void
+  Parse,            // a file does not follow its format
+  Io,               // a file cannot be opened, read or written
+  Unsupported,      // asked for something this build or machine cannot do
+  OutOfMemory,      // host or device allocation failed
+  Cuda,             // any other CUDA runtime failure
 };
 const char* error_code_name(ErrorCode c);
 

@@ -28,9 +28,9 @@ struct PointSet {
 };
 
 struct Mesh {
-  int dim = 3;                  // coordinates per vertex (2 or 3)
-  std::vector<double> coords;   // dim per vertex; may be empty for a cells-only .npy
-  int cell_size = 3;            // 3: triangles, 4: tetrahedra
+  int dim = 3;                 // coordinates per vertex (2 or 3)
+  std::vector<double> coords;  // dim per vertex; may be empty for a cells-only .npy
+  int cell_size = 3;           // 3: triangles, 4: tetrahedra
   std::vector<std::int32_t> cells;
   std::size_t num_vertices() const { return dim ? coords.size() / dim : 0; }
   std::size_t num_cells() const { return cell_size ? cells.size() / cell_size : 0; }

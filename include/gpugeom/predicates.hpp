@@ -10,8 +10,7 @@ namespace gpugeom {
 int orient2d(const Point2& a, const Point2& b, const Point2& c);
 int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
 int incircle(const Point2& a, const Point2& b, const Point2& c, const Point2& d);
-int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-             const Point3& e);
+int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e);
 // Orientation of five 4D points (x, y, z, w): det[b-a; c-a; d-a; e-a].
 int orient4d(const double a[4], const double b[4], const double c[4], const double d[4],
              const double e[4]);

@@ -9,9 +9,12 @@ namespace gpugeom {
 
 const char* backend_name(Backend b) {
   switch (b) {
-    case Backend::Auto: return "auto";
-    case Backend::Cpu: return "cpu";
-    case Backend::Cuda: return "cuda";
+    case Backend::Auto:
+      return "auto";
+    case Backend::Cpu:
+      return "cpu";
+    case Backend::Cuda:
+      return "cuda";
   }
   return "?";
 }
@@ -46,14 +49,22 @@ Backend resolve_backend(Backend requested) {
 
 const char* error_code_name(ErrorCode c) {
   switch (c) {
-    case ErrorCode::InvalidArgument: return "invalid argument";
-    case ErrorCode::InvalidInput: return "invalid input";
-    case ErrorCode::DegenerateInput: return "degenerate input";
-    case ErrorCode::Parse: return "parse error";
-    case ErrorCode::Io: return "I/O error";
-    case ErrorCode::Unsupported: return "unsupported";
-    case ErrorCode::OutOfMemory: return "out of memory";
-    case ErrorCode::Cuda: return "CUDA error";
+    case ErrorCode::InvalidArgument:
+      return "invalid argument";
+    case ErrorCode::InvalidInput:
+      return "invalid input";
+    case ErrorCode::DegenerateInput:
+      return "degenerate input";
+    case ErrorCode::Parse:
+      return "parse error";
+    case ErrorCode::Io:
+      return "I/O error";
+    case ErrorCode::Unsupported:
+      return "unsupported";
+    case ErrorCode::OutOfMemory:
+      return "out of memory";
+    case ErrorCode::Cuda:
+      return "CUDA error";
   }
   return "error";
 }

@@ -28,8 +28,8 @@ class HostBuffer {
     if (n == 0) return;
     p_.reset(new (std::nothrow) T[n]);
     if (!p_)
-      throw Error(ErrorCode::OutOfMemory, "host allocation of " +
-                                              std::to_string(n * sizeof(T)) + " bytes failed");
+      throw Error(ErrorCode::OutOfMemory,
+                  "host allocation of " + std::to_string(n * sizeof(T)) + " bytes failed");
   }
   T* data() { return p_.get(); }
   const T* data() const { return p_.get(); }
@@ -109,7 +109,9 @@ struct CpuExec {
   }
   void sync() {}
   // How many independent work items keep every core busy (sizes scratch pools).
-  std::int64_t concurrency() const { return std::int64_t(omp_get_max_threads()) * 4; }
+  std::int64_t concurrency() const {
+    return std::int64_t(omp_get_max_threads()) * 4;
+  }
 };
 
 }  // namespace gpugeom

@@ -12,17 +12,17 @@ namespace gpugeom::detail {
                     std::to_string(line) + "): " + cudaGetErrorString(e);
   if (e == cudaErrorMemoryAllocation)
     throw Error(ErrorCode::OutOfMemory,
-                msg + "; the problem does not fit in GPU memory: use a smaller input, or the "
-                      "CPU backend (--backend cpu)");
+                msg +
+                    "; the problem does not fit in GPU memory: use a smaller input, or the "
+                    "CPU backend (--backend cpu)");
   throw Error(ErrorCode::Cuda, msg);
 }
 }  // namespace gpugeom::detail
 
-#define GG_CUDA_CHECK(call)                                                        \
-  do {                                                                             \
-    cudaError_t gg_err_ = (call);                                                  \
-    if (gg_err_ != cudaSuccess)                                                    \
-      ::gpugeom::detail::throw_cuda(gg_err_, #call, __FILE__, __LINE__);           \
+#define GG_CUDA_CHECK(call)                                                                        \
+  do {                                                                                             \
+    cudaError_t gg_err_ = (call);                                                                  \
+    if (gg_err_ != cudaSuccess) ::gpugeom::detail::throw_cuda(gg_err_, #call, __FILE__, __LINE__); \
   } while (0)
 
 #define GG_CUDA_CHECK_LAUNCH(name) GG_CUDA_CHECK(cudaGetLastError())

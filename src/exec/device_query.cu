@@ -5,16 +5,18 @@
 
 namespace gpugeom {
 
-bool built_with_cuda() { return true; }
+bool built_with_cuda() {
+  return true;
+}
 
 DeviceInfo query_device() {
   DeviceInfo d;
   int n = 0;
   cudaError_t e = cudaGetDeviceCount(&n);
   if (e != cudaSuccess || n == 0) {
-    d.reason = e != cudaSuccess ? std::string("no usable CUDA driver/device (") +
-                                      cudaGetErrorString(e) + ")"
-                                : std::string("no CUDA device found");
+    d.reason = e != cudaSuccess
+                   ? std::string("no usable CUDA driver/device (") + cudaGetErrorString(e) + ")"
+                   : std::string("no CUDA device found");
     cudaGetLastError();  // clear the sticky-free error so later calls start clean
     return d;
   }

@@ -2,7 +2,9 @@
 #include "gpugeom/common.hpp"
 
 namespace gpugeom {
-bool built_with_cuda() { return false; }
+bool built_with_cuda() {
+  return false;
+}
 DeviceInfo query_device() {
   DeviceInfo d;
   d.reason = "this build of gpugeom was compiled without CUDA (GPUGEOM_CUDA=OFF or no nvcc)";

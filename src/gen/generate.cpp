@@ -23,7 +23,10 @@ struct Rng {
   std::uint64_t seed, i;
   int k = 0;
   // Uniform in [0, 1) with 53 random bits.
-  double u() { return double(mix(mix(seed ^ (i * 0x632be59bd9b4e019ull)) + std::uint64_t(k++)) >> 11) * 0x1p-53; }
+  double u() {
+    return double(mix(mix(seed ^ (i * 0x632be59bd9b4e019ull)) + std::uint64_t(k++)) >> 11) *
+           0x1p-53;
+  }
   double gauss() {
     double a = u(), b = u();
     return std::sqrt(-2.0 * std::log(1.0 - a)) * std::cos(2 * kPi * b);
@@ -49,7 +52,7 @@ struct GridPick {
     c = mix(seed + 1) % cells;
   }
   std::uint64_t cell(std::uint64_t i) const {
-    return std::uint64_t((unsigned __int128)(a) * i % cells + c) % cells;
+    return std::uint64_t((unsigned __int128)(a)*i % cells + c) % cells;
   }
 };
 
@@ -67,8 +70,8 @@ const std::vector<std::string>& distributions2d() {
   return v;
 }
 const std::vector<std::string>& distributions3d() {
-  static const std::vector<std::string> v{"uniform", "ball",     "gaussian", "thin_sphere",
-                                          "sphere",  "grid",     "thin_box", "two_lines"};
+  static const std::vector<std::string> v{"uniform", "ball", "gaussian", "thin_sphere",
+                                          "sphere",  "grid", "thin_box", "two_lines"};
   return v;
 }
 
@@ -86,8 +89,12 @@ std::vector<Point2> generate2d(const std::string& d, std::int64_t n, std::uint64
     Rng r{seed, std::uint64_t(i)};
     Point2& q = p[i];
     switch (which) {
-      case 0: q = {r.u(), r.u()}; break;
-      case 1: q = {r.gauss(), r.gauss()}; break;
+      case 0:
+        q = {r.u(), r.u()};
+        break;
+      case 1:
+        q = {r.gauss(), r.gauss()};
+        break;
       case 2:
       case 3: {
         double t = 2 * kPi * r.u();
@@ -132,7 +139,9 @@ std::vector<Point3> generate3d(const std::string& d, std::int64_t n, std::uint64
       return Point3{x / l, y / l, z / l};
     };
     switch (which) {
-      case 0: q = {r.u(), r.u(), r.u()}; break;
+      case 0:
+        q = {r.u(), r.u(), r.u()};
+        break;
       case 1:
       case 3:
       case 4: {
@@ -144,7 +153,9 @@ std::vector<Point3> generate3d(const std::string& d, std::int64_t n, std::uint64
         q = {0.5 + rad * v.x, 0.5 + rad * v.y, 0.5 + rad * v.z};
         break;
       }
-      case 2: q = {r.gauss(), r.gauss(), r.gauss()}; break;
+      case 2:
+        q = {r.gauss(), r.gauss(), r.gauss()};
+        break;
       case 5: {
         std::uint64_t c = grid.cell(i);
         q = {double(c % grid.side), double(c / grid.side % grid.side),

@@ -12,39 +12,60 @@ using namespace detail;
 
 std::size_t scalar_size(ScalarType t) {
   switch (t) {
-    case ScalarType::Bool: case ScalarType::U8: return 1;
-    case ScalarType::U16: return 2;
-    case ScalarType::I32: case ScalarType::F32: return 4;
-    default: return 8;
+    case ScalarType::Bool:
+    case ScalarType::U8:
+      return 1;
+    case ScalarType::U16:
+      return 2;
+    case ScalarType::I32:
+    case ScalarType::F32:
+      return 4;
+    default:
+      return 8;
   }
 }
 const char* scalar_name(ScalarType t) {
   switch (t) {
-    case ScalarType::Bool: return "bool";
-    case ScalarType::U8: return "uint8";
-    case ScalarType::U16: return "uint16";
-    case ScalarType::I32: return "int32";
-    case ScalarType::I64: return "int64";
-    case ScalarType::F32: return "float32";
-    default: return "float64";
+    case ScalarType::Bool:
+      return "bool";
+    case ScalarType::U8:
+      return "uint8";
+    case ScalarType::U16:
+      return "uint16";
+    case ScalarType::I32:
+      return "int32";
+    case ScalarType::I64:
+      return "int64";
+    case ScalarType::F32:
+      return "float32";
+    default:
+      return "float64";
   }
 }
 ScalarType parse_scalar(const std::string& s) {
   for (ScalarType t : {ScalarType::Bool, ScalarType::U8, ScalarType::U16, ScalarType::I32,
                        ScalarType::I64, ScalarType::F32, ScalarType::F64})
     if (s == scalar_name(t)) return t;
-  throw Error(ErrorCode::InvalidArgument, "unknown element type '" + s +
-                                              "': expected bool, uint8, uint16, int32, int64, float32 or float64");
+  throw Error(ErrorCode::InvalidArgument,
+              "unknown element type '" + s +
+                  "': expected bool, uint8, uint16, int32, int64, float32 or float64");
 }
 static const char* npy_descr(ScalarType t) {
   switch (t) {
-    case ScalarType::Bool: return "|b1";
-    case ScalarType::U8: return "|u1";
-    case ScalarType::U16: return "<u2";
-    case ScalarType::I32: return "<i4";
-    case ScalarType::I64: return "<i8";
-    case ScalarType::F32: return "<f4";
-    default: return "<f8";
+    case ScalarType::Bool:
+      return "|b1";
+    case ScalarType::U8:
+      return "|u1";
+    case ScalarType::U16:
+      return "<u2";
+    case ScalarType::I32:
+      return "<i4";
+    case ScalarType::I64:
+      return "<i8";
+    case ScalarType::F32:
+      return "<f4";
+    default:
+      return "<f8";
   }
 }
 
@@ -60,13 +81,20 @@ double Grid::value(std::int64_t i) const {
     return double(v);
   };
   switch (type) {
-    case ScalarType::Bool: return p[0] ? 1.0 : 0.0;
-    case ScalarType::U8: return p[0];
-    case ScalarType::U16: return get(std::uint16_t());
-    case ScalarType::I32: return get(std::int32_t());
-    case ScalarType::I64: return get(std::int64_t());
-    case ScalarType::F32: return get(float());
-    default: return get(double());
+    case ScalarType::Bool:
+      return p[0] ? 1.0 : 0.0;
+    case ScalarType::U8:
+      return p[0];
+    case ScalarType::U16:
+      return get(std::uint16_t());
+    case ScalarType::I32:
+      return get(std::int32_t());
+    case ScalarType::I64:
+      return get(std::int64_t());
+    case ScalarType::F32:
+      return get(float());
+    default:
+      return get(double());
   }
 }
 
@@ -74,7 +102,9 @@ namespace {
 
 void check_shape(const std::vector<std::int64_t>& shape, const std::string& name) {
   if (shape.size() != 2 && shape.size() != 3)
-    parse_fail(name, 0, "a grid must be 2D or 3D, this one has " + std::to_string(shape.size()) + " dimensions");
+    parse_fail(
+        name, 0,
+        "a grid must be 2D or 3D, this one has " + std::to_string(shape.size()) + " dimensions");
   for (auto s : shape)
     if (s <= 0) parse_fail(name, 0, "grid dimensions must be positive");
 }
@@ -99,9 +129,12 @@ Grid parse_pnm(const std::string& b, const std::string& name) {
   };
   const std::string magic = token();
   if (magic != "P1" && magic != "P2" && magic != "P4" && magic != "P5")
-    parse_fail(name, 0, "unsupported Netpbm type '" + magic + "': expected P1, P2, P4 or P5 (grey or bitmap)");
+    parse_fail(
+        name, 0,
+        "unsupported Netpbm type '" + magic + "': expected P1, P2, P4 or P5 (grey or bitmap)");
   std::int64_t w, h, maxv = 1;
-  if (!to_int64(token(), w) || !to_int64(token(), h) || w <= 0 || h <= 0 || w > (1 << 24) || h > (1 << 24))
+  if (!to_int64(token(), w) || !to_int64(token(), h) || w <= 0 || h <= 0 || w > (1 << 24) ||
+      h > (1 << 24))
     parse_fail(name, 0, "bad image width/height");
   const bool bitmap = magic == "P1" || magic == "P4";
   if (!bitmap && (!to_int64(token(), maxv) || maxv <= 0 || maxv > 65535))
@@ -119,10 +152,13 @@ Grid parse_pnm(const std::string& b, const std::string& name) {
       std::int64_t v;
       if (magic == "P1") {  // bits may be written without separators
         while (pos < b.size() && (std::isspace((unsigned char)b[pos]) || b[pos] == '#')) {
-          if (b[pos] == '#') while (pos < b.size() && b[pos] != '\n') ++pos;
-          else ++pos;
+          if (b[pos] == '#')
+            while (pos < b.size() && b[pos] != '\n') ++pos;
+          else
+            ++pos;
         }
-        if (pos >= b.size() || (b[pos] != '0' && b[pos] != '1')) parse_fail(name, 0, "expected a 0/1 pixel");
+        if (pos >= b.size() || (b[pos] != '0' && b[pos] != '1'))
+          parse_fail(name, 0, "expected a 0/1 pixel");
         v = b[pos++] - '0';
       } else if (!to_int64(token(), v) || v < 0 || v > maxv) {
         parse_fail(name, 0, "bad pixel value at pixel " + std::to_string(i));
@@ -192,7 +228,7 @@ Grid parse_png(const std::string& b, const std::string& name) {
   if (ct & PNG_COLOR_MASK_ALPHA) png_set_strip_alpha(png);
   if (ct == PNG_COLOR_TYPE_RGB || ct == PNG_COLOR_TYPE_RGB_ALPHA || ct == PNG_COLOR_TYPE_PALETTE)
     png_set_rgb_to_gray_fixed(png, 1, -1, -1);  // ITU-R 709 luminance
-  if (depth == 16) png_set_swap(png);             // to little-endian samples
+  if (depth == 16) png_set_swap(png);           // to little-endian samples
   png_read_update_info(png, info);
   const std::size_t rb = png_get_rowbytes(png, info);
   if (std::uint64_t(w) * h > (std::uint64_t(1) << 32)) png_error(png, "image too large");
@@ -208,7 +244,8 @@ Grid parse_png(const std::string& b, const std::string& name) {
 }
 
 std::string format_png(const Grid& g) {
-  if (g.shape.size() != 2 || (g.type != ScalarType::U8 && g.type != ScalarType::U16 && g.type != ScalarType::Bool))
+  if (g.shape.size() != 2 ||
+      (g.type != ScalarType::U8 && g.type != ScalarType::U16 && g.type != ScalarType::Bool))
     throw Error(ErrorCode::InvalidArgument, "PNG output needs a 2D uint8, uint16 or bool grid");
   std::string out, err;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, png_error_fn, png_warn_fn);
@@ -219,9 +256,12 @@ std::string format_png(const Grid& g) {
     png_destroy_write_struct(&png, &info);
     throw Error(ErrorCode::Io, "PNG encoding failed: " + err);
   }
-  png_set_write_fn(png, &out, [](png_structp p, png_bytep d, png_size_t n) {
-    static_cast<std::string*>(png_get_io_ptr(p))->append(reinterpret_cast<char*>(d), n);
-  }, nullptr);
+  png_set_write_fn(
+      png, &out,
+      [](png_structp p, png_bytep d, png_size_t n) {
+        static_cast<std::string*>(png_get_io_ptr(p))->append(reinterpret_cast<char*>(d), n);
+      },
+      nullptr);
   const int depth = g.type == ScalarType::U16 ? 16 : 8;
   png_set_IHDR(png, info, png_uint_32(g.shape[1]), png_uint_32(g.shape[0]), depth,
                PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
@@ -245,12 +285,18 @@ Grid parse_npy_grid(const std::string& b, const std::string& name) {
   g.shape = a.shape;
   const char k = a.descr[1];
   const std::size_t sz = npy_item_size(a.descr, name);
-  if (k == 'b') g.type = ScalarType::Bool;
-  else if (k == 'f') g.type = sz == 4 ? ScalarType::F32 : ScalarType::F64;
-  else if (k == 'u' && sz == 1) g.type = ScalarType::U8;
-  else if (k == 'u' && sz == 2) g.type = ScalarType::U16;
-  else if (sz <= 4 && !(k == 'u' && sz == 4)) g.type = ScalarType::I32;
-  else g.type = ScalarType::I64;
+  if (k == 'b')
+    g.type = ScalarType::Bool;
+  else if (k == 'f')
+    g.type = sz == 4 ? ScalarType::F32 : ScalarType::F64;
+  else if (k == 'u' && sz == 1)
+    g.type = ScalarType::U8;
+  else if (k == 'u' && sz == 2)
+    g.type = ScalarType::U16;
+  else if (sz <= 4 && !(k == 'u' && sz == 4))
+    g.type = ScalarType::I32;
+  else
+    g.type = ScalarType::I64;
   const std::int64_t n = g.count();
   g.data.resize(std::size_t(n) * scalar_size(g.type));
   if (npy_item_size(a.descr, name) == scalar_size(g.type) && a.descr[0] != '>') {
@@ -260,12 +306,22 @@ Grid parse_npy_grid(const std::string& b, const std::string& name) {
   for (std::int64_t i = 0; i < n; ++i) {  // widen (int8/int16/uint32...) or byte-swap
     double v = npy_value(a, i, name);
     unsigned char* p = g.data.data() + i * scalar_size(g.type);
-    if (g.type == ScalarType::I32) { std::int32_t x = std::int32_t(v); std::memcpy(p, &x, 4); }
-    else if (g.type == ScalarType::I64) { std::int64_t x = std::int64_t(v); std::memcpy(p, &x, 8); }
-    else if (g.type == ScalarType::U16) { std::uint16_t x = std::uint16_t(v); std::memcpy(p, &x, 2); }
-    else if (g.type == ScalarType::F32) { float x = float(v); std::memcpy(p, &x, 4); }
-    else if (g.type == ScalarType::F64) std::memcpy(p, &v, 8);
-    else p[0] = std::uint8_t(v);
+    if (g.type == ScalarType::I32) {
+      std::int32_t x = std::int32_t(v);
+      std::memcpy(p, &x, 4);
+    } else if (g.type == ScalarType::I64) {
+      std::int64_t x = std::int64_t(v);
+      std::memcpy(p, &x, 8);
+    } else if (g.type == ScalarType::U16) {
+      std::uint16_t x = std::uint16_t(v);
+      std::memcpy(p, &x, 2);
+    } else if (g.type == ScalarType::F32) {
+      float x = float(v);
+      std::memcpy(p, &x, 4);
+    } else if (g.type == ScalarType::F64)
+      std::memcpy(p, &v, 8);
+    else
+      p[0] = std::uint8_t(v);
   }
   return g;
 }
@@ -281,7 +337,9 @@ Grid parse_grid(const std::string& b, const std::string& ext, const std::string&
                   "': expected .png .pgm .pbm or .npy (raw files need --shape and --dtype)");
 }
 
-Grid read_grid(const std::string& path) { return parse_grid(read_file(path), extension(path), path); }
+Grid read_grid(const std::string& path) {
+  return parse_grid(read_file(path), extension(path), path);
+}
 
 Grid read_raw_grid(const std::string& path, const std::vector<std::int64_t>& shape, ScalarType t) {
   check_shape(shape, path);
@@ -292,7 +350,8 @@ Grid read_raw_grid(const std::string& path, const std::vector<std::int64_t>& sha
   const std::uint64_t want = std::uint64_t(g.count()) * scalar_size(t);
   if (b.size() != want)
     throw Error(ErrorCode::Parse, path + ": raw file has " + std::to_string(b.size()) +
-                                      " bytes, but the given shape and type need " + std::to_string(want));
+                                      " bytes, but the given shape and type need " +
+                                      std::to_string(want));
   g.data.assign(b.begin(), b.end());
   return g;
 }
@@ -322,7 +381,8 @@ void write_grid(const std::string& path, const Grid& g) {
       if (g.type != ScalarType::U8 && g.type != ScalarType::U16)
         throw Error(ErrorCode::InvalidArgument, "PGM output needs a uint8 or uint16 grid");
       const bool wide = g.type == ScalarType::U16;
-      out = "P5\n" + std::to_string(w) + " " + std::to_string(h) + "\n" + (wide ? "65535\n" : "255\n");
+      out = "P5\n" + std::to_string(w) + " " + std::to_string(h) + "\n" +
+            (wide ? "65535\n" : "255\n");
       std::string body(g.data.begin(), g.data.end());
       if (wide)
         for (std::size_t i = 0; i < body.size(); i += 2) std::swap(body[i], body[i + 1]);

@@ -12,7 +12,8 @@ namespace gpugeom::io::detail {
 
 std::string read_file(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) throw Error(ErrorCode::Io, "cannot open '" + path + "' for reading: " + std::strerror(errno));
+  if (!f)
+    throw Error(ErrorCode::Io, "cannot open '" + path + "' for reading: " + std::strerror(errno));
   std::ostringstream ss;
   ss << f.rdbuf();
   if (f.bad()) throw Error(ErrorCode::Io, "error while reading '" + path + "'");
@@ -26,8 +27,8 @@ void write_file_atomic(const std::string& path, const std::string& bytes) {
   const std::string tmp = path + suffix;
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f)
-    throw Error(ErrorCode::Io, "cannot create '" + tmp + "' (writing '" + path + "'): " +
-                                   std::strerror(errno));
+    throw Error(ErrorCode::Io,
+                "cannot create '" + tmp + "' (writing '" + path + "'): " + std::strerror(errno));
   bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
   ok = (std::fflush(f) == 0) && ok;
   ok = (std::fclose(f) == 0) && ok;

@@ -26,19 +26,23 @@ Mesh parse_ele(const std::string& b, const std::string& name, int base, std::int
   if (!l.next(line)) l.fail("empty file: expected '<#cells> <nodes per cell> <#attributes>'");
   auto t = split(line);
   if (t.size() < 2) l.fail("expected '<#cells> <nodes per cell> <#attributes>'");
-  std::int64_t nc = need_int(l, t[0], "the cell count"), k = need_int(l, t[1], "the nodes per cell");
+  std::int64_t nc = need_int(l, t[0], "the cell count"),
+               k = need_int(l, t[1], "the nodes per cell");
   if (k != 3 && k != 4) l.fail("only triangles (3) and tetrahedra (4) are supported");
   if (nc < 0 || std::uint64_t(nc) > b.size()) l.fail("the cell count is out of range");
   Mesh m;
   m.cell_size = int(k);
   m.cells.reserve(std::size_t(nc * k));
   for (std::int64_t c = 0; c < nc; ++c) {
-    if (!l.next(line)) l.fail("file ends after " + std::to_string(c) + " of " + std::to_string(nc) + " cells");
+    if (!l.next(line))
+      l.fail("file ends after " + std::to_string(c) + " of " + std::to_string(nc) + " cells");
     auto v = split(line);
-    if (std::int64_t(v.size()) < 1 + k) l.fail("expected '<index>' and " + std::to_string(k) + " vertex indices");
+    if (std::int64_t(v.size()) < 1 + k)
+      l.fail("expected '<index>' and " + std::to_string(k) + " vertex indices");
     for (int j = 1; j <= k; ++j) {
       std::int64_t x = need_int(l, v[j], "a vertex index") - base;
-      if (x < 0 || (nv >= 0 && x >= nv)) l.fail("vertex index " + std::string(v[j]) + " is out of range");
+      if (x < 0 || (nv >= 0 && x >= nv))
+        l.fail("vertex index " + std::string(v[j]) + " is out of range");
       m.cells.push_back(std::int32_t(x));
     }
   }
@@ -82,8 +86,10 @@ Mesh parse_vtu(const std::string& b, const std::string& name) {
   m.cell_size = types.empty() || types[0] == 5 ? 3 : 4;
   bool flat = true;
   for (double t : types)
-    if (t != (m.cell_size == 3 ? 5 : 10)) parse_fail(name, 0, "mixed or unsupported VTK cell types (expected all 5 or all 10)");
-  if (conn.size() != offs.size() * m.cell_size) parse_fail(name, 0, "connectivity length does not match the cells");
+    if (t != (m.cell_size == 3 ? 5 : 10))
+      parse_fail(name, 0, "mixed or unsupported VTK cell types (expected all 5 or all 10)");
+  if (conn.size() != offs.size() * m.cell_size)
+    parse_fail(name, 0, "connectivity length does not match the cells");
   const std::size_t nv = xyz.size() / 3;
   for (std::size_t i = 0; i < offs.size(); ++i)
     if (offs[i] != double((i + 1) * m.cell_size)) parse_fail(name, 0, "unexpected offsets");
@@ -100,9 +106,10 @@ Mesh parse_vtu(const std::string& b, const std::string& name) {
 
 std::string format_vtu(const Mesh& m) {
   const std::size_t nv = m.num_vertices(), nc = m.num_cells();
-  std::string o = "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
-                  "byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" +
-                  std::to_string(nv) + "\" NumberOfCells=\"" + std::to_string(nc) + "\">\n";
+  std::string o =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+      "byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" +
+      std::to_string(nv) + "\" NumberOfCells=\"" + std::to_string(nc) + "\">\n";
   o += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (std::size_t i = 0; i < nv; ++i) {
     for (int d = 0; d < 3; ++d) {
@@ -111,9 +118,11 @@ std::string format_vtu(const Mesh& m) {
     }
     o += '\n';
   }
-  o += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
+  o += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" "
+       "format=\"ascii\">\n";
   for (std::size_t c = 0; c < nc; ++c) {
-    for (int k = 0; k < m.cell_size; ++k) o += (k ? " " : "") + std::to_string(m.cells[c * m.cell_size + k]);
+    for (int k = 0; k < m.cell_size; ++k)
+      o += (k ? " " : "") + std::to_string(m.cells[c * m.cell_size + k]);
     o += '\n';
   }
   o += "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
@@ -127,7 +136,8 @@ std::string format_vtu(const Mesh& m) {
 
 Mesh parse_npy_cells(const std::string& b, const std::string& name) {
   NpyArray a = parse_npy(b, name);
-  if (a.shape.size() != 2 || (a.shape[1] != 3 && a.shape[1] != 4) || (a.descr[1] != 'i' && a.descr[1] != 'u'))
+  if (a.shape.size() != 2 || (a.shape[1] != 3 && a.shape[1] != 4) ||
+      (a.descr[1] != 'i' && a.descr[1] != 'u'))
     parse_fail(name, 0, "expected an integer cell array of shape (N, 3) or (N, 4)");
   Mesh m;
   m.cell_size = int(a.shape[1]);
@@ -197,7 +207,8 @@ void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {
     out = format_ply(m.coords.data(), m.dim, nv, m.cells.data(), m.cell_size, nc, o.binary);
   } else if (ext == ".off" || ext == ".obj") {
     if (m.cell_size != 3)
-      throw Error(ErrorCode::InvalidArgument, ext + " holds surfaces only: write tetrahedra as .vtu, .ele or .ply");
+      throw Error(ErrorCode::InvalidArgument,
+                  ext + " holds surfaces only: write tetrahedra as .vtu, .ele or .ply");
     if (ext == ".off") out = "OFF\n" + std::to_string(nv) + " " + std::to_string(nc) + " 0\n";
     for (std::size_t i = 0; i < nv; ++i) {
       if (ext == ".obj") out += "v ";
@@ -221,7 +232,8 @@ void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {
     out = std::to_string(nc) + " " + std::to_string(m.cell_size) + " 0\n";
     for (std::size_t c = 0; c < nc; ++c) {
       out += std::to_string(c);
-      for (int k = 0; k < m.cell_size; ++k) out += ' ' + std::to_string(m.cells[c * m.cell_size + k]);
+      for (int k = 0; k < m.cell_size; ++k)
+        out += ' ' + std::to_string(m.cells[c * m.cell_size + k]);
       out += '\n';
     }
   } else if (ext == ".vtu") {

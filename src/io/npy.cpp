@@ -28,11 +28,12 @@ std::size_t npy_item_size(const std::string& d, const std::string& name) {
   char kind = d[1];
   std::int64_t sz = 0;
   if (!to_int64(std::string_view(d).substr(2), sz) ||
-      !((kind == 'f' && (sz == 4 || sz == 8)) || ((kind == 'i' || kind == 'u') &&
-        (sz == 1 || sz == 2 || sz == 4 || sz == 8)) || (kind == 'b' && sz == 1)))
-    parse_fail(name, 0,
-               "unsupported npy dtype '" + d +
-                   "': expected bool, (u)int8/16/32/64, float32 or float64");
+      !((kind == 'f' && (sz == 4 || sz == 8)) ||
+        ((kind == 'i' || kind == 'u') && (sz == 1 || sz == 2 || sz == 4 || sz == 8)) ||
+        (kind == 'b' && sz == 1)))
+    parse_fail(
+        name, 0,
+        "unsupported npy dtype '" + d + "': expected bool, (u)int8/16/32/64, float32 or float64");
   if (d[0] != '<' && d[0] != '>' && d[0] != '|' && d[0] != '=')
     parse_fail(name, 0, "npy dtype '" + d + "' has an unknown byte-order mark");
   return std::size_t(sz);
@@ -71,7 +72,8 @@ NpyArray parse_npy(const std::string& b, const std::string& name) {
     parse_fail(name, 0, "npy 'shape' is not a tuple");
   for (auto tok : split(std::string_view(s).substr(lp + 1, rp - lp - 1), true)) {
     std::int64_t v;
-    if (!to_int64(tok, v) || v < 0) parse_fail(name, 0, "bad npy shape entry '" + std::string(tok) + "'");
+    if (!to_int64(tok, v) || v < 0)
+      parse_fail(name, 0, "bad npy shape entry '" + std::string(tok) + "'");
     a.shape.push_back(v);
   }
   const std::size_t item = npy_item_size(a.descr, name);
@@ -79,9 +81,10 @@ NpyArray parse_npy(const std::string& b, const std::string& name) {
   for (auto v : a.shape) total *= (unsigned __int128)v;
   const std::size_t avail = b.size() - start - hlen;
   if (total > avail)
-    parse_fail(name, 0, "npy payload is truncated: the header promises " +
-                            std::to_string((unsigned long long)total) + " bytes, the file has " +
-                            std::to_string(avail));
+    parse_fail(name, 0,
+               "npy payload is truncated: the header promises " +
+                   std::to_string((unsigned long long)total) + " bytes, the file has " +
+                   std::to_string(avail));
   a.payload = std::string_view(b).substr(start + hlen, std::size_t(total));
   return a;
 }
@@ -90,7 +93,8 @@ double npy_value(const NpyArray& a, std::int64_t i, const std::string& name) {
   const std::size_t sz = npy_item_size(a.descr, name);
   unsigned char raw[8];
   std::memcpy(raw, a.payload.data() + std::size_t(i) * sz, sz);
-  const bool little = a.descr[0] == '<' || ((a.descr[0] == '=' || a.descr[0] == '|') && host_little());
+  const bool little =
+      a.descr[0] == '<' || ((a.descr[0] == '=' || a.descr[0] == '|') && host_little());
   if (little != host_little())
     for (std::size_t k = 0; k < sz / 2; ++k) std::swap(raw[k], raw[sz - 1 - k]);
   const char kind = a.descr[1];
@@ -103,17 +107,25 @@ double npy_value(const NpyArray& a, std::int64_t i, const std::string& name) {
   if (kind == 'b') return raw[0] ? 1.0 : 0.0;
   if (kind == 'u') {
     switch (sz) {
-      case 1: return get(std::uint8_t());
-      case 2: return get(std::uint16_t());
-      case 4: return get(std::uint32_t());
-      default: return get(std::uint64_t());
+      case 1:
+        return get(std::uint8_t());
+      case 2:
+        return get(std::uint16_t());
+      case 4:
+        return get(std::uint32_t());
+      default:
+        return get(std::uint64_t());
     }
   }
   switch (sz) {
-    case 1: return get(std::int8_t());
-    case 2: return get(std::int16_t());
-    case 4: return get(std::int32_t());
-    default: return get(std::int64_t());
+    case 1:
+      return get(std::int8_t());
+    case 2:
+      return get(std::int16_t());
+    case 4:
+      return get(std::int32_t());
+    default:
+      return get(std::int64_t());
   }
 }
 

@@ -13,8 +13,8 @@ bool type_of(std::string_view s, T& t) {
     const char* a;
     const char* b;
     T t;
-  } m[] = {{"char", "int8", T::I8},     {"uchar", "uint8", T::U8},     {"short", "int16", T::I16},
-           {"ushort", "uint16", T::U16}, {"int", "int32", T::I32},      {"uint", "uint32", T::U32},
+  } m[] = {{"char", "int8", T::I8},      {"uchar", "uint8", T::U8},    {"short", "int16", T::I16},
+           {"ushort", "uint16", T::U16}, {"int", "int32", T::I32},     {"uint", "uint32", T::U32},
            {"float", "float32", T::F32}, {"double", "float64", T::F64}};
   for (auto& e : m)
     if (s == e.a || s == e.b) return t = e.t, true;
@@ -22,10 +22,18 @@ bool type_of(std::string_view s, T& t) {
 }
 std::size_t size_of(T t) {
   switch (t) {
-    case T::I8: case T::U8: return 1;
-    case T::I16: case T::U16: return 2;
-    case T::I32: case T::U32: case T::F32: return 4;
-    default: return 8;
+    case T::I8:
+    case T::U8:
+      return 1;
+    case T::I16:
+    case T::U16:
+      return 2;
+    case T::I32:
+    case T::U32:
+    case T::F32:
+      return 4;
+    default:
+      return 8;
   }
 }
 
@@ -47,7 +55,8 @@ class Body {
   double get(T t) {
     if (enc_ == 0) return ascii();
     const std::size_t n = size_of(t);
-    if (pos_ + n > b_.size()) lines_.fail("binary body is truncated (expected more vertex or face data)");
+    if (pos_ + n > b_.size())
+      lines_.fail("binary body is truncated (expected more vertex or face data)");
     unsigned char raw[8];
     std::memcpy(raw, b_.data() + pos_, n);
     pos_ += n;
@@ -58,14 +67,22 @@ class Body {
       return double(v);
     };
     switch (t) {
-      case T::I8: return as(std::int8_t());
-      case T::U8: return as(std::uint8_t());
-      case T::I16: return as(std::int16_t());
-      case T::U16: return as(std::uint16_t());
-      case T::I32: return as(std::int32_t());
-      case T::U32: return as(std::uint32_t());
-      case T::F32: return as(float());
-      default: return as(double());
+      case T::I8:
+        return as(std::int8_t());
+      case T::U8:
+        return as(std::uint8_t());
+      case T::I16:
+        return as(std::int16_t());
+      case T::U16:
+        return as(std::uint16_t());
+      case T::I32:
+        return as(std::int32_t());
+      case T::U32:
+        return as(std::uint32_t());
+      case T::F32:
+        return as(float());
+      default:
+        return as(double());
     }
   }
   std::size_t remaining() const { return b_.size() - pos_; }
@@ -78,7 +95,9 @@ class Body {
     }
     std::size_t e = pos_;
     while (e < b_.size() && !std::isspace((unsigned char)b_[e])) ++e;
-    if (e == pos_) parse_fail(lines_.name(), lines_.line_no() + line_ + 1, "ascii body ends early (expected more values)");
+    if (e == pos_)
+      parse_fail(lines_.name(), lines_.line_no() + line_ + 1,
+                 "ascii body ends early (expected more values)");
     double v;
     if (!to_double(b_.substr(pos_, e - pos_), v))
       parse_fail(lines_.name(), lines_.line_no() + line_ + 1,
@@ -112,10 +131,14 @@ PlyData parse_ply(const std::string& bytes, const std::string& name) {
     }
     if (tok[0] == "format") {
       if (tok.size() < 2) l.fail("incomplete 'format' line");
-      if (tok[1] == "ascii") enc = 0;
-      else if (tok[1] == "binary_little_endian") enc = 1;
-      else if (tok[1] == "binary_big_endian") enc = 2;
-      else l.fail("unknown PLY format '" + std::string(tok[1]) + "'");
+      if (tok[1] == "ascii")
+        enc = 0;
+      else if (tok[1] == "binary_little_endian")
+        enc = 1;
+      else if (tok[1] == "binary_big_endian")
+        enc = 2;
+      else
+        l.fail("unknown PLY format '" + std::string(tok[1]) + "'");
     } else if (tok[0] == "element") {
       if (tok.size() != 3) l.fail("expected 'element NAME COUNT'");
       Elem e;
@@ -128,7 +151,8 @@ PlyData parse_ply(const std::string& bytes, const std::string& name) {
       Prop p;
       if (tok.size() == 5 && tok[1] == "list") {
         p.list = true;
-        if (!type_of(tok[2], p.count_t) || !type_of(tok[3], p.t)) l.fail("unknown property type in list");
+        if (!type_of(tok[2], p.count_t) || !type_of(tok[3], p.t))
+          l.fail("unknown property type in list");
         p.name = std::string(tok[4]);
       } else if (tok.size() == 3) {
         if (!type_of(tok[1], p.t)) l.fail("unknown property type '" + std::string(tok[1]) + "'");
@@ -143,13 +167,14 @@ PlyData parse_ply(const std::string& bytes, const std::string& name) {
   }
   if (!ended) l.fail("the header has no 'end_header' line");
   if (enc < 0) l.fail("the header has no 'format' line");
-  Body body(std::string_view(bytes).substr(l.offset() > bytes.size() ? bytes.size() : l.offset()), enc, l);
+  Body body(std::string_view(bytes).substr(l.offset() > bytes.size() ? bytes.size() : l.offset()),
+            enc, l);
   PlyData out;
   for (const Elem& e : elems) {
     // Refuse counts the body cannot possibly hold, before allocating for them.
     if (!e.props.empty() && std::uint64_t(e.count) > body.remaining() + 1)
-      l.fail("element '" + e.name + "' claims " + std::to_string(e.count) + " items but the body is only " +
-             std::to_string(body.remaining()) + " bytes");
+      l.fail("element '" + e.name + "' claims " + std::to_string(e.count) +
+             " items but the body is only " + std::to_string(body.remaining()) + " bytes");
     const bool vertex = e.name == "vertex";
     const bool cells = e.name == "face" || e.name == "tetra";
     int ix = -1, iy = -1, iz = -1, il = -1;
@@ -214,8 +239,9 @@ PlyData parse_ply(const std::string& bytes, const std::string& name) {
   const std::size_t nv = out.coords.size() / out.dim;
   for (auto c : out.cells)
     if (std::size_t(c) >= nv)
-      parse_fail(name, 0, "a cell refers to vertex " + std::to_string(c) + " but there are only " +
-                              std::to_string(nv) + " vertices");
+      parse_fail(name, 0,
+                 "a cell refers to vertex " + std::to_string(c) + " but there are only " +
+                     std::to_string(nv) + " vertices");
   return out;
 }
 
@@ -228,7 +254,8 @@ std::string format_ply(const double* coords, int dim, std::size_t nv, const std:
   const char* axes[3] = {"x", "y", "z"};
   for (int d = 0; d < dim; ++d) h += std::string("property double ") + axes[d] + "\n";
   if (nc) {
-    h += std::string("element ") + (cell_size == 4 ? "tetra " : "face ") + std::to_string(nc) + "\n";
+    h +=
+        std::string("element ") + (cell_size == 4 ? "tetra " : "face ") + std::to_string(nc) + "\n";
     h += "property list uchar int vertex_indices\n";
   }
   h += "end_header\n";

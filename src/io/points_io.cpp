@@ -59,14 +59,16 @@ PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* m
     tok = split(line);
   }
   if (tok.size() < 2) l.fail("expected the counts 'vertices faces edges'");
-  std::int64_t nv = need_int(l, tok[0], "the vertex count"), nf = need_int(l, tok[1], "the face count");
+  std::int64_t nv = need_int(l, tok[0], "the vertex count"),
+               nf = need_int(l, tok[1], "the face count");
   if (nv < 0 || nf < 0 || std::uint64_t(nv) > b.size() || std::uint64_t(nf) > b.size())
     l.fail("vertex/face counts are out of range for this file");
   PointSet p;
   p.dim = 3;
   p.coords.reserve(std::size_t(nv) * 3);
   for (std::int64_t i = 0; i < nv; ++i) {
-    if (!l.next(line)) l.fail("file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
+    if (!l.next(line))
+      l.fail("file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
     auto t = split(line);
     if (t.size() < 3) l.fail("expected 'x y z' for vertex " + std::to_string(i));
     for (int k = 0; k < 3; ++k) p.coords.push_back(need_double(l, t[k], "a coordinate"));
@@ -74,7 +76,8 @@ PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* m
   if (mesh) {
     mesh->cell_size = 3;
     for (std::int64_t f = 0; f < nf; ++f) {
-      if (!l.next(line)) l.fail("file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
+      if (!l.next(line))
+        l.fail("file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
       auto t = split(line);
       if (t.empty() || need_int(l, t[0], "the face size") != 3 || t.size() < 4)
         l.fail("face " + std::to_string(f) + " is not a triangle ('3 a b c')");
@@ -105,7 +108,8 @@ PointSet parse_obj(const std::string& b, const std::string& name, Mesh* mesh) {
         std::string_view s = t[k].substr(0, t[k].find('/'));
         std::int64_t v = need_int(l, s, "a vertex index");
         v = v < 0 ? nv + v : v - 1;  // OBJ is 1-based; negative counts back from the end
-        if (v < 0 || v >= nv) l.fail("face refers to vertex " + std::string(s) + " which is not defined yet");
+        if (v < 0 || v >= nv)
+          l.fail("face refers to vertex " + std::string(s) + " which is not defined yet");
         mesh->cells.push_back(std::int32_t(v));
       }
     }
@@ -119,7 +123,8 @@ PointSet parse_obj(const std::string& b, const std::string& name, Mesh* mesh) {
 PointSet parse_node(const std::string& b, const std::string& name, int* base) {
   Lines l(b, name);
   std::string_view line;
-  if (!l.next(line)) l.fail("empty file: expected '<#points> <dimension> <#attributes> <#markers>'");
+  if (!l.next(line))
+    l.fail("empty file: expected '<#points> <dimension> <#attributes> <#markers>'");
   auto t = split(line);
   if (t.size() < 2) l.fail("expected '<#points> <dimension> <#attributes> <#markers>'");
   std::int64_t n = need_int(l, t[0], "the point count"), dim = need_int(l, t[1], "the dimension");
@@ -132,9 +137,11 @@ PointSet parse_node(const std::string& b, const std::string& name, int* base) {
   p.dim = int(dim);
   p.coords.reserve(std::size_t(n) * dim);
   for (std::int64_t i = 0; i < n; ++i) {
-    if (!l.next(line)) l.fail("file ends after " + std::to_string(i) + " of " + std::to_string(n) + " points");
+    if (!l.next(line))
+      l.fail("file ends after " + std::to_string(i) + " of " + std::to_string(n) + " points");
     auto v = split(line);
-    if (std::int64_t(v.size()) < 1 + dim) l.fail("expected '<index> x y" + std::string(dim == 3 ? " z'" : "'"));
+    if (std::int64_t(v.size()) < 1 + dim)
+      l.fail("expected '<index> x y" + std::string(dim == 3 ? " z'" : "'"));
     std::int64_t idx = need_int(l, v[0], "the point index");
     if (i == 0) {
       if (idx != 0 && idx != 1) l.fail("the first point index must be 0 or 1");
@@ -149,7 +156,8 @@ PointSet parse_npy_points(const std::string& b, const std::string& name) {
   NpyArray a = parse_npy(b, name);
   if (a.shape.size() != 2 || (a.shape[1] != 2 && a.shape[1] != 3))
     parse_fail(name, 0, "expected a point array of shape (N, 2) or (N, 3)");
-  if (a.descr[1] != 'f') parse_fail(name, 0, "expected float32 or float64 points, found dtype '" + a.descr + "'");
+  if (a.descr[1] != 'f')
+    parse_fail(name, 0, "expected float32 or float64 points, found dtype '" + a.descr + "'");
   PointSet p;
   p.dim = int(a.shape[1]);
   const std::int64_t n = a.shape[0] * a.shape[1];

@@ -53,7 +53,9 @@ GG_INLINE void fast_two_sum(double a, double b, double& x, double& y) {
   x = add_rn(a, b);
   y = sub_rn(b, sub_rn(x, a));
 }
-GG_INLINE void two_diff(double a, double b, double& x, double& y) { two_sum(a, -b, x, y); }
+GG_INLINE void two_diff(double a, double b, double& x, double& y) {
+  two_sum(a, -b, x, y);
+}
 // x + y == a * b exactly (the FMA gives the rounding error of the product).
 GG_INLINE void two_product(double a, double b, double& x, double& y) {
   x = mul_rn(a, b);

@@ -8,15 +8,19 @@
 namespace gpugeom {
 namespace {
 double* scratch() {
-  constexpr int n = exact::cmax(
-      exact::cmax(pred::kOrient2dScratch, pred::kOrient3dScratch),
-      exact::cmax(pred::kIncircleScratch,
-                  exact::cmax(pred::kInsphereScratch, pred::kOrient4dScratch)));
+  constexpr int n =
+      exact::cmax(exact::cmax(pred::kOrient2dScratch, pred::kOrient3dScratch),
+                  exact::cmax(pred::kIncircleScratch,
+                              exact::cmax(pred::kInsphereScratch, pred::kOrient4dScratch)));
   thread_local std::vector<double> s(n);
   return s.data();
 }
-const double* p(const Point2& q) { return &q.x; }
-const double* p(const Point3& q) { return &q.x; }
+const double* p(const Point2& q) {
+  return &q.x;
+}
+const double* p(const Point3& q) {
+  return &q.x;
+}
 }  // namespace
 
 static_assert(sizeof(Point2) == 2 * sizeof(double) && sizeof(Point3) == 3 * sizeof(double),
@@ -31,8 +35,7 @@ int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d)
 int incircle(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
   return pred::incircle(p(a), p(b), p(c), p(d), scratch());
 }
-int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-             const Point3& e) {
+int insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e) {
   return pred::insphere(p(a), p(b), p(c), p(d), p(e), scratch());
 }
 int orient4d(const double a[4], const double b[4], const double c[4], const double d[4],
@@ -66,6 +69,8 @@ int orient4d_lifted_sos(const Point3& a, int ia, const Point3& b, int ib, const 
                         const Point3& d, int id, const Point3& e, int ie) {
   return pred::orient4d_lifted_sos(p(a), ia, p(b), ib, p(c), ic, p(d), id, p(e), ie, scratch());
 }
-bool in_exact_range(double v) { return pred::in_exact_range(v); }
+bool in_exact_range(double v) {
+  return pred::in_exact_range(v);
+}
 
 }  // namespace gpugeom

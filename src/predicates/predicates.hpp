@@ -46,7 +46,9 @@ GG_INLINE bool in_exact_range(double v) {
   return a == 0.0 || (a >= 0x1p-142 && a <= 0x1p180);
 }
 
-GG_INLINE int sign_of(double d) { return (d > 0.0) - (d < 0.0); }
+GG_INLINE int sign_of(double d) {
+  return (d > 0.0) - (d < 0.0);
+}
 GG_INLINE int decide(double det, double perm, double bound) {
   if (!(perm > kTinyPermanent) || !(perm < 1e290)) return 0;
   double err = bound * perm;
@@ -57,12 +59,9 @@ GG_INLINE int decide(double det, double perm, double bound) {
 // ---- scratch sizes (doubles) ----
 constexpr int kOrient2dScratch = Om<2>::len + Om<2>::scratch + SosScratch<2, 0>::value;
 constexpr int kOrient3dScratch = Om<3>::len + Om<3>::scratch + SosScratch<3, 0>::value;
-constexpr int kIncircleScratch =
-    cmax(Lm<2, 4>::len + Lm<2, 4>::scratch, SosScratch<2, 4>::value);
-constexpr int kInsphereScratch =
-    cmax(Lm<3, 6>::len + Lm<3, 6>::scratch, SosScratch<3, 6>::value);
-constexpr int kOrient4dScratch =
-    cmax(Lm<3, 1>::len + Lm<3, 1>::scratch, SosScratch<3, 1>::value);
+constexpr int kIncircleScratch = cmax(Lm<2, 4>::len + Lm<2, 4>::scratch, SosScratch<2, 4>::value);
+constexpr int kInsphereScratch = cmax(Lm<3, 6>::len + Lm<3, 6>::scratch, SosScratch<3, 6>::value);
+constexpr int kOrient4dScratch = cmax(Lm<3, 1>::len + Lm<3, 1>::scratch, SosScratch<3, 1>::value);
 
 // ---- filters ----
 GG_INLINE int orient2d_fast(const double* a, const double* b, const double* c) {
@@ -106,9 +105,9 @@ GG_INLINE int incircle_fast(const double* a, const double* b, const double* c, c
 
 // The 4x4 determinant det[[a-e, la], [b-e, lb], [c-e, lc], [d-e, ld]] by 2x2 minors of the
 // first two columns, its permanent alongside. Shared by insphere and orient4d.
-GG_INLINE void det4_translated(const double* a, const double* b, const double* c,
-                               const double* d, const double* e, double la, double lb,
-                               double lc, double ld, double& det, double& perm) {
+GG_INLINE void det4_translated(const double* a, const double* b, const double* c, const double* d,
+                               const double* e, double la, double lb, double lc, double ld,
+                               double& det, double& perm) {
   double aex = sub_rn(a[0], e[0]), bex = sub_rn(b[0], e[0]), cex = sub_rn(c[0], e[0]),
          dex = sub_rn(d[0], e[0]);
   double aey = sub_rn(a[1], e[1]), bey = sub_rn(b[1], e[1]), cey = sub_rn(c[1], e[1]),
@@ -171,8 +170,8 @@ GG_HD inline int orient2d_exact(const double* a, const double* b, const double* 
   int n = orient_minor<2>(r, cols, s, s + Om<2>::len);
   return expansion_sign(n, s);
 }
-GG_HD inline int orient3d_exact(const double* a, const double* b, const double* c,
-                                const double* d, double* s) {
+GG_HD inline int orient3d_exact(const double* a, const double* b, const double* c, const double* d,
+                                double* s) {
   const double* r[4] = {a, b, c, d};
   const int cols[3] = {0, 1, 2};
   int n = orient_minor<3>(r, cols, s, s + Om<3>::len);
@@ -187,8 +186,8 @@ GG_HD inline int lifted_det_sign(const double* const* r, const double* const* li
   return expansion_sign(n, s);
 }
 
-GG_HD inline int incircle_exact(const double* a, const double* b, const double* c,
-                                const double* d, double* s) {
+GG_HD inline int incircle_exact(const double* a, const double* b, const double* c, const double* d,
+                                double* s) {
   const double* r[4] = {a, b, c, d};
   double lw[4][4];
   const double* l[4];
@@ -199,8 +198,8 @@ GG_HD inline int incircle_exact(const double* a, const double* b, const double* 
   }
   return lifted_det_sign<2, 4>(r, l, ll, s);
 }
-GG_HD inline int insphere_exact(const double* a, const double* b, const double* c,
-                                const double* d, const double* e, double* s) {
+GG_HD inline int insphere_exact(const double* a, const double* b, const double* c, const double* d,
+                                const double* e, double* s) {
   const double* r[5] = {a, b, c, d, e};
   double lw[5][6];
   const double* l[5];
@@ -211,8 +210,8 @@ GG_HD inline int insphere_exact(const double* a, const double* b, const double* 
   }
   return -lifted_det_sign<3, 6>(r, l, ll, s);
 }
-GG_HD inline int orient4d_exact(const double* a, const double* b, const double* c,
-                                const double* d, const double* e, double* s) {
+GG_HD inline int orient4d_exact(const double* a, const double* b, const double* c, const double* d,
+                                const double* e, double* s) {
   const double* r[5] = {a, b, c, d, e};
   const double* l[5];
   int ll[5];
@@ -248,8 +247,8 @@ GG_HD inline int orient4d(const double* a, const double* b, const double* c, con
   int r = orient4d_fast(a, b, c, d, e);
   return r ? r : orient4d_exact(a, b, c, d, e, s);
 }
-GG_HD inline int orient4d_lifted(const double* a, const double* b, const double* c,
-                                 const double* d, const double* e, double* s) {
+GG_HD inline int orient4d_lifted(const double* a, const double* b, const double* c, const double* d,
+                                 const double* e, double* s) {
   return -insphere(a, b, c, d, e, s);
 }
 
@@ -286,8 +285,7 @@ GG_HD inline int incircle_sos(const double* a, int ia, const double* b, int ib, 
   return parity * sos_resolve<2, 4>(r, l, ll, s);
 }
 GG_HD inline int insphere_sos(const double* a, int ia, const double* b, int ib, const double* c,
-                              int ic, const double* d, int id, const double* e, int ie,
-                              double* s) {
+                              int ic, const double* d, int id, const double* e, int ie, double* s) {
   if (int r = insphere(a, b, c, d, e, s)) return r;
   const double* r[5] = {a, b, c, d, e};
   int idx[5] = {ia, ib, ic, id, ie};
@@ -302,8 +300,7 @@ GG_HD inline int insphere_sos(const double* a, int ia, const double* b, int ib, 
   return -parity * sos_resolve<3, 6>(r, l, ll, s);
 }
 GG_HD inline int orient4d_sos(const double* a, int ia, const double* b, int ib, const double* c,
-                              int ic, const double* d, int id, const double* e, int ie,
-                              double* s) {
+                              int ic, const double* d, int id, const double* e, int ie, double* s) {
   if (int r = orient4d(a, b, c, d, e, s)) return r;
   const double* r[5] = {a, b, c, d, e};
   int idx[5] = {ia, ib, ic, id, ie};

@@ -21,7 +21,9 @@
 
 namespace gpugeom::exact {
 
-constexpr int cmax(int a, int b) { return a > b ? a : b; }
+constexpr int cmax(int a, int b) {
+  return a > b ? a : b;
+}
 
 // Scratch (in doubles) needed by sos_resolve<D, LW>.
 template <int D, int LW>

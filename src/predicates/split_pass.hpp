@@ -28,11 +28,12 @@ SplitPassResult split_pass(Exec& ex, std::int64_t n, std::int8_t* out, Fast fast
                            std::size_t scratch_budget_bytes = std::size_t(256) << 20) {
   SplitPassResult res;
   if (n <= 0) return res;
-  ex.for_each_index(n, GG_LAMBDA(std::int64_t i) { out[i] = std::int8_t(fast(i)); });
+  ex.for_each_index(
+      n, GG_LAMBDA(std::int64_t i) { out[i] = std::int8_t(fast(i)); });
   auto list = ex.template alloc<std::int32_t>(std::size_t(n));
   const std::int8_t* o = out;
-  const std::int64_t m =
-      ex.compact_indices(n, GG_LAMBDA(std::int64_t i) { return o[i] == 0; }, list.data());
+  const std::int64_t m = ex.compact_indices(
+      n, GG_LAMBDA(std::int64_t i) { return o[i] == 0; }, list.data());
   res.exact_items = m;
   if (m == 0) return res;
   const std::int64_t per_slot = std::int64_t(scratch_doubles) * std::int64_t(sizeof(double));
@@ -43,12 +44,13 @@ SplitPassResult split_pass(Exec& ex, std::int64_t n, std::int8_t* out, Fast fast
   const std::int32_t* lp = list.data();
   double* sp = scratch.data();
   const std::int64_t nslots = slots;
-  ex.for_each_index(nslots, GG_LAMBDA(std::int64_t t) {
-    for (std::int64_t j = t; j < m; j += nslots) {
-      const std::int32_t i = lp[j];
-      out[i] = std::int8_t(exact(i, sp + t * scratch_doubles));
-    }
-  });
+  ex.for_each_index(
+      nslots, GG_LAMBDA(std::int64_t t) {
+        for (std::int64_t j = t; j < m; j += nslots) {
+          const std::int32_t i = lp[j];
+          out[i] = std::int8_t(exact(i, sp + t * scratch_doubles));
+        }
+      });
   ex.sync();
   return res;
 }

@@ -34,8 +34,7 @@ std::vector<std::int32_t> order_of(const double* p, std::int64_t n, Backend back
     box.lo[d] = lo;
     box.hi[d] = hi;
   }
-  if (!finite)
-    throw Error(ErrorCode::InvalidInput, "point coordinates contain NaN or Inf");
+  if (!finite) throw Error(ErrorCode::InvalidInput, "point coordinates contain NaN or Inf");
   std::vector<std::int32_t> order(n);
   if (n == 0) return order;
 #ifdef GPUGEOM_HAVE_CUDA

@@ -11,7 +11,8 @@
 
 namespace {
 
-// nvcc forbids extended lambdas in TestBody (a private member): each test's body is a free function.
+// nvcc forbids extended lambdas in TestBody (a private member): each test's body is a free
+// function.
 
 template <class T>
 std::vector<T> to_vec(EXEC& ex, const T* d, std::int64_t n) {
@@ -25,23 +26,29 @@ void upload(EXEC& ex, B& buf, const std::vector<T>& h) {
 }
 
 void ForEachIndexAndFill_body();
-TEST(SUITE, ForEachIndexAndFill) { ForEachIndexAndFill_body(); }
+TEST(SUITE, ForEachIndexAndFill) {
+  ForEachIndexAndFill_body();
+}
 void ForEachIndexAndFill_body() {
   EXEC ex;
   for (std::int64_t n : {1, 255, 256, 257, 100000, 3000001}) {
     auto b = ex.template alloc<std::int64_t>(n);
     ex.fill(b.data(), n, std::int64_t(-7));
     std::int64_t* p = b.data();
-    ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
-      if (i % 3) p[i] = i * 5 + 1;
-    });
+    ex.for_each_index(
+        n, GG_LAMBDA(std::int64_t i) {
+          if (i % 3) p[i] = i * 5 + 1;
+        });
     auto h = to_vec(ex, b.data(), n);
-    for (std::int64_t i = 0; i < n; ++i) ASSERT_EQ(h[i], i % 3 ? i * 5 + 1 : -7) << "n=" << n << " i=" << i;
+    for (std::int64_t i = 0; i < n; ++i)
+      ASSERT_EQ(h[i], i % 3 ? i * 5 + 1 : -7) << "n=" << n << " i=" << i;
   }
 }
 
 void ScansReduceAndCopies_body();
-TEST(SUITE, ScansReduceAndCopies) { ScansReduceAndCopies_body(); }
+TEST(SUITE, ScansReduceAndCopies) {
+  ScansReduceAndCopies_body();
+}
 void ScansReduceAndCopies_body() {
   EXEC ex;
   std::mt19937 g(11);
@@ -60,8 +67,9 @@ void ScansReduceAndCopies_body() {
     ex.inclusive_scan(a.data(), b.data(), n);
     h = to_vec(ex, b.data(), n);
     ASSERT_EQ(h[n - 1], s);
-    const std::int32_t mx = ex.reduce(a.data(), n, std::numeric_limits<std::int32_t>::min(),
-                                      GG_LAMBDA(std::int32_t x, std::int32_t y) { return x > y ? x : y; });
+    const std::int32_t mx = ex.reduce(
+        a.data(), n, std::numeric_limits<std::int32_t>::min(),
+        GG_LAMBDA(std::int32_t x, std::int32_t y) { return x > y ? x : y; });
     ASSERT_EQ(mx, *std::max_element(in.begin(), in.end()));
     auto c = ex.template alloc<std::int32_t>(n);
     ex.copy(a.data(), n, c.data());
@@ -70,14 +78,17 @@ void ScansReduceAndCopies_body() {
 }
 
 void SortByKeyIsStableAndComplete_body();
-TEST(SUITE, SortByKeyIsStableAndComplete) { SortByKeyIsStableAndComplete_body(); }
+TEST(SUITE, SortByKeyIsStableAndComplete) {
+  SortByKeyIsStableAndComplete_body();
+}
 void SortByKeyIsStableAndComplete_body() {
   EXEC ex;
   std::mt19937_64 g(5);
   for (std::int64_t n : {2, 777, 1 << 20}) {
     std::vector<std::uint64_t> k(n);
     std::vector<std::int32_t> v(n);
-    for (std::int64_t i = 0; i < n; ++i) k[i] = g() % std::uint64_t(n / 2 + 1), v[i] = std::int32_t(i);
+    for (std::int64_t i = 0; i < n; ++i)
+      k[i] = g() % std::uint64_t(n / 2 + 1), v[i] = std::int32_t(i);
     auto dk = ex.template alloc<std::uint64_t>(n);
     auto dv = ex.template alloc<std::int32_t>(n);
     upload(ex, dk, k);
@@ -98,7 +109,9 @@ void SortByKeyIsStableAndComplete_body() {
 }
 
 void CompactionKeepsOrder_body();
-TEST(SUITE, CompactionKeepsOrder) { CompactionKeepsOrder_body(); }
+TEST(SUITE, CompactionKeepsOrder) {
+  CompactionKeepsOrder_body();
+}
 void CompactionKeepsOrder_body() {
   EXEC ex;
   std::mt19937 g(3);
@@ -108,7 +121,8 @@ void CompactionKeepsOrder_body() {
   auto a = ex.template alloc<std::int32_t>(n), o = ex.template alloc<std::int32_t>(n);
   upload(ex, a, in);
   ex.fill(o.data(), n, std::int32_t(-1));
-  const std::int64_t m = ex.copy_if(a.data(), n, o.data(), GG_LAMBDA(std::int32_t x) { return x % 7 == 0; });
+  const std::int64_t m = ex.copy_if(
+      a.data(), n, o.data(), GG_LAMBDA(std::int32_t x) { return x % 7 == 0; });
   std::vector<std::int32_t> ref;
   for (auto x : in)
     if (x % 7 == 0) ref.push_back(x);
@@ -116,7 +130,8 @@ void CompactionKeepsOrder_body() {
   auto h = to_vec(ex, o.data(), m);
   ASSERT_EQ(h, ref);
   const std::int32_t* ap = a.data();
-  const std::int64_t m2 = ex.compact_indices(n, GG_LAMBDA(std::int64_t i) { return ap[i] < 10; }, o.data());
+  const std::int64_t m2 = ex.compact_indices(
+      n, GG_LAMBDA(std::int64_t i) { return ap[i] < 10; }, o.data());
   std::vector<std::int32_t> ri;
   for (std::int64_t i = 0; i < n; ++i)
     if (in[i] < 10) ri.push_back(std::int32_t(i));
@@ -125,17 +140,20 @@ void CompactionKeepsOrder_body() {
 }
 
 void AtomicsCountEveryIncrement_body();
-TEST(SUITE, AtomicsCountEveryIncrement) { AtomicsCountEveryIncrement_body(); }
+TEST(SUITE, AtomicsCountEveryIncrement) {
+  AtomicsCountEveryIncrement_body();
+}
 void AtomicsCountEveryIncrement_body() {
   EXEC ex;
   const std::int64_t n = 1 << 20;
   auto c = ex.template alloc<std::int32_t>(16);
   ex.fill(c.data(), 16, std::int32_t(0));
   std::int32_t* cp = c.data();
-  ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
-    cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> r(cp[i % 16]);
-    r.fetch_add(1, cuda::memory_order_relaxed);
-  });
+  ex.for_each_index(
+      n, GG_LAMBDA(std::int64_t i) {
+        cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> r(cp[i % 16]);
+        r.fetch_add(1, cuda::memory_order_relaxed);
+      });
   auto h = to_vec(ex, c.data(), 16);
   for (auto v : h) ASSERT_EQ(v, n / 16);
 }

@@ -14,7 +14,8 @@ TEST(Generate, DeterministicAndSeeded) {
     ASSERT_EQ(a.size(), 5000u);
     EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(Point3))) << d;
     EXPECT_NE(0, std::memcmp(a.data(), c.data(), a.size() * sizeof(Point3))) << d;
-    for (auto& p : a) ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) << d;
+    for (auto& p : a)
+      ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) << d;
   }
   for (auto& d : distributions2d()) {
     auto a = generate2d(d, 5000, 42), b = generate2d(d, 5000, 42);
@@ -24,11 +25,13 @@ TEST(Generate, DeterministicAndSeeded) {
 
 TEST(Generate, ShapesOfDistributions) {
   for (auto& p : generate3d("ball", 20000, 1)) {
-    double r = std::sqrt((p.x - .5) * (p.x - .5) + (p.y - .5) * (p.y - .5) + (p.z - .5) * (p.z - .5));
+    double r =
+        std::sqrt((p.x - .5) * (p.x - .5) + (p.y - .5) * (p.y - .5) + (p.z - .5) * (p.z - .5));
     ASSERT_LE(r, 0.45 * (1 + 1e-12));
   }
   for (auto& p : generate3d("thin_sphere", 20000, 1)) {
-    double r = std::sqrt((p.x - .5) * (p.x - .5) + (p.y - .5) * (p.y - .5) + (p.z - .5) * (p.z - .5));
+    double r =
+        std::sqrt((p.x - .5) * (p.x - .5) + (p.y - .5) * (p.y - .5) + (p.z - .5) * (p.z - .5));
     ASSERT_GE(r, 0.45 * (1 - 1e-12));
     ASSERT_LE(r, 0.4501 * (1 + 1e-12));
   }
@@ -46,7 +49,8 @@ TEST(Generate, ShapesOfDistributions) {
     s.insert({p.x, p.y, p.z});
   }
   EXPECT_EQ(s.size(), g.size()) << "grid points must be distinct";
-  for (auto& p : generate3d("two_lines", 1000, 1)) ASSERT_TRUE((p.y == 0 && p.z == 0) || (p.x == 0.5 && p.z == 1));
+  for (auto& p : generate3d("two_lines", 1000, 1))
+    ASSERT_TRUE((p.y == 0 && p.z == 0) || (p.x == 0.5 && p.z == 1));
 }
 
 TEST(Generate, BadArguments) {

@@ -24,8 +24,12 @@ std::string tmpdir() {
   }();
   return d;
 }
-std::string path(const std::string& name) { return tmpdir() + "/" + name; }
-void write_text(const std::string& p, const std::string& s) { std::ofstream(p, std::ios::binary) << s; }
+std::string path(const std::string& name) {
+  return tmpdir() + "/" + name;
+}
+void write_text(const std::string& p, const std::string& s) {
+  std::ofstream(p, std::ios::binary) << s;
+}
 bool no_temp_files() {
   for (auto& e : fs::directory_iterator(tmpdir()))
     if (e.path().string().find(".tmp-") != std::string::npos) return false;
@@ -79,8 +83,9 @@ TEST(Io, PointRoundTrips) {
 
 TEST(Io, PlyBigEndianAndFloat) {
   // Hand-made binary big-endian PLY with float x,y,z and an extra property.
-  std::string s = "ply\nformat binary_big_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
-                  "property float z\nproperty uchar red\nend_header\n";
+  std::string s =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+      "property float z\nproperty uchar red\nend_header\n";
   auto put = [&](float f) {
     unsigned char b[4];
     std::memcpy(b, &f, 4);
@@ -97,7 +102,8 @@ TEST(Io, NpyFloat32Points) {
   g.shape = {4, 3};
   g.type = io::ScalarType::F32;
   std::vector<float> v{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11.5f};
-  g.data.assign(reinterpret_cast<unsigned char*>(v.data()), reinterpret_cast<unsigned char*>(v.data() + 12));
+  g.data.assign(reinterpret_cast<unsigned char*>(v.data()),
+                reinterpret_cast<unsigned char*>(v.data() + 12));
   io::write_grid(path("f32.npy"), g);
   auto p = io::read_points(path("f32.npy"));
   EXPECT_EQ(p.dim, 3);
@@ -130,7 +136,8 @@ TEST(Io, MeshRoundTrips) {
       std::vector<double> want = m->coords;
       if ((ext == ".off" || ext == ".obj") && m->dim == 2) {  // 3D formats pad z = 0
         want.clear();
-        for (std::size_t i = 0; i < m->coords.size(); i += 2) want.insert(want.end(), {m->coords[i], m->coords[i + 1], 0});
+        for (std::size_t i = 0; i < m->coords.size(); i += 2)
+          want.insert(want.end(), {m->coords[i], m->coords[i + 1], 0});
       }
       EXPECT_EQ(r.coords, want) << ext;
     }
@@ -171,7 +178,8 @@ TEST(Io, GridRoundTrips) {
                  io::ScalarType::I64, io::ScalarType::F32, io::ScalarType::F64}) {
     v3.type = t;
     v3.data.assign(60 * io::scalar_size(t), 0);
-    for (std::size_t i = 0; i < v3.data.size(); i += io::scalar_size(t)) v3.data[i] = std::uint8_t(i % 2);
+    for (std::size_t i = 0; i < v3.data.size(); i += io::scalar_size(t))
+      v3.data[i] = std::uint8_t(i % 2);
     io::write_grid(path("v.npy"), v3);
     EXPECT_EQ(io::read_grid(path("v.npy")).data, v3.data) << io::scalar_name(t);
     io::write_grid(path("v.raw"), v3);
@@ -191,15 +199,23 @@ TEST(Io, MalformedInputsNameFileLineAndWhat) {
   m = expect_parse_error([] { io::parse_points("plx\n", ".ply", "a.ply"); });
   EXPECT_NE(m.find("a.ply:1"), std::string::npos) << m;
   m = expect_parse_error([] {
-    io::parse_points("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nend_header\n1 2\n", ".ply", "t.ply");
+    io::parse_points(
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float "
+        "y\nend_header\n1 2\n",
+        ".ply", "t.ply");
   });
   EXPECT_NE(m.find("ends early"), std::string::npos) << m;
   m = expect_parse_error([] {
-    io::parse_points("ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty double x\n"
-                     "property double y\nend_header\n12345678", ".ply", "huge.ply");
+    io::parse_points(
+        "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty double x\n"
+        "property double y\nend_header\n12345678",
+        ".ply", "huge.ply");
   });
   EXPECT_NE(m.find("claims"), std::string::npos) << m;
-  m = expect_parse_error([] { io::parse_points("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1\n", ".ply", "nox.ply"); });
+  m = expect_parse_error([] {
+    io::parse_points("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1\n",
+                     ".ply", "nox.ply");
+  });
   EXPECT_NE(m.find("x and y"), std::string::npos) << m;
   m = expect_parse_error([] { io::parse_points("OFF\n2 0 0\n1 2 3\n", ".off", "a.off"); });
   EXPECT_NE(m.find("1 of 2"), std::string::npos) << m;
@@ -214,10 +230,12 @@ TEST(Io, MalformedInputsNameFileLineAndWhat) {
   EXPECT_NE(m.find("truncated"), std::string::npos) << m;
   m = expect_parse_error([] {
     std::string h = "{'descr': '<c16', 'fortran_order': False, 'shape': (1, 3), }";
-    io::parse_points(std::string("\x93NUMPY\x01\x00", 8) + char(h.size()) + char(0) + h, ".npy", "c.npy");
+    io::parse_points(std::string("\x93NUMPY\x01\x00", 8) + char(h.size()) + char(0) + h, ".npy",
+                     "c.npy");
   });
   EXPECT_NE(m.find("dtype"), std::string::npos) << m;
-  m = expect_parse_error([] { io::parse_mesh("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", ".off", "f.off"); });
+  m = expect_parse_error(
+      [] { io::parse_mesh("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", ".off", "f.off"); });
   EXPECT_NE(m.find("out of range"), std::string::npos) << m;
   m = expect_parse_error([] { io::parse_grid("P5\n4 4\n255\nab", ".pgm", "g.pgm"); });
   EXPECT_NE(m.find("truncated"), std::string::npos) << m;

@@ -45,16 +45,19 @@ Run evaluate(EXEC& ex, const gg_test::Tuples& t) {
       if (kind == 3) return pred::insphere_exact(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4), s);
       return pred::orient4d_exact(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4), s);
     }
-    if (kind == 0) return pred::orient2d_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), s);
+    if (kind == 0)
+      return pred::orient2d_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), s);
     if (kind == 1)
-      return pred::orient3d_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3), I(i, 3), s);
+      return pred::orient3d_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                I(i, 3), s);
     if (kind == 2)
-      return pred::incircle_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3), I(i, 3), s);
+      return pred::incircle_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                I(i, 3), s);
     if (kind == 3)
-      return pred::insphere_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3), I(i, 3), P(i, 4),
-                                I(i, 4), s);
-    return pred::orient4d_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3), I(i, 3), P(i, 4),
-                              I(i, 4), s);
+      return pred::insphere_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                I(i, 3), P(i, 4), I(i, 4), s);
+    return pred::orient4d_sos(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                              I(i, 3), P(i, 4), I(i, 4), s);
   };
   constexpr int scratch = kind == 0   ? pred::kOrient2dScratch
                           : kind == 1 ? pred::kOrient3dScratch
@@ -78,18 +81,29 @@ std::vector<std::int8_t> host_reference(const gg_test::Tuples& t) {
     auto I = [&](int j) { return int(i * t.k + (j * 7) % t.k); };
     int v;
     if (!sos) {
-      if (kind == 0) v = pred::orient2d(P(0), P(1), P(2), s.data());
-      else if (kind == 1) v = pred::orient3d(P(0), P(1), P(2), P(3), s.data());
-      else if (kind == 2) v = pred::incircle(P(0), P(1), P(2), P(3), s.data());
-      else if (kind == 3) v = pred::insphere(P(0), P(1), P(2), P(3), P(4), s.data());
-      else v = pred::orient4d(P(0), P(1), P(2), P(3), P(4), s.data());
-    } else {
-      if (kind == 0) v = pred::orient2d_sos(P(0), I(0), P(1), I(1), P(2), I(2), s.data());
-      else if (kind == 1) v = pred::orient3d_sos(P(0), I(0), P(1), I(1), P(2), I(2), P(3), I(3), s.data());
-      else if (kind == 2) v = pred::incircle_sos(P(0), I(0), P(1), I(1), P(2), I(2), P(3), I(3), s.data());
+      if (kind == 0)
+        v = pred::orient2d(P(0), P(1), P(2), s.data());
+      else if (kind == 1)
+        v = pred::orient3d(P(0), P(1), P(2), P(3), s.data());
+      else if (kind == 2)
+        v = pred::incircle(P(0), P(1), P(2), P(3), s.data());
       else if (kind == 3)
-        v = pred::insphere_sos(P(0), I(0), P(1), I(1), P(2), I(2), P(3), I(3), P(4), I(4), s.data());
-      else v = pred::orient4d_sos(P(0), I(0), P(1), I(1), P(2), I(2), P(3), I(3), P(4), I(4), s.data());
+        v = pred::insphere(P(0), P(1), P(2), P(3), P(4), s.data());
+      else
+        v = pred::orient4d(P(0), P(1), P(2), P(3), P(4), s.data());
+    } else {
+      if (kind == 0)
+        v = pred::orient2d_sos(P(0), I(0), P(1), I(1), P(2), I(2), s.data());
+      else if (kind == 1)
+        v = pred::orient3d_sos(P(0), I(0), P(1), I(1), P(2), I(2), P(3), I(3), s.data());
+      else if (kind == 2)
+        v = pred::incircle_sos(P(0), I(0), P(1), I(1), P(2), I(2), P(3), I(3), s.data());
+      else if (kind == 3)
+        v = pred::insphere_sos(P(0), I(0), P(1), I(1), P(2), I(2), P(3), I(3), P(4), I(4),
+                               s.data());
+      else
+        v = pred::orient4d_sos(P(0), I(0), P(1), I(1), P(2), I(2), P(3), I(3), P(4), I(4),
+                               s.data());
     }
     r[i] = std::int8_t(v);
   }
@@ -112,21 +126,42 @@ void compare(int dim, int k, bool sphere, int stride = 0) {
     auto ref = host_reference<kind, sos>(t);
     EXPECT_GT(r.exact, count / 20) << "the exact pass was hardly exercised";
     for (std::size_t i = 0; i < ref.size(); ++i) {
-      ASSERT_EQ(int(r.signs[i]), int(ref[i])) << "kind " << kind << " sos " << sos << " scale " << scale << " case " << i;
+      ASSERT_EQ(int(r.signs[i]), int(ref[i]))
+          << "kind " << kind << " sos " << sos << " scale " << scale << " case " << i;
       if (sos) ASSERT_NE(ref[i], 0);
     }
   }
 }
 
-TEST(SUITE, Orient2d) { compare<0, false>(2, 3, false); }
-TEST(SUITE, Orient3d) { compare<1, false>(3, 4, false); }
-TEST(SUITE, Incircle) { compare<2, false>(2, 4, true); }
-TEST(SUITE, Insphere) { compare<3, false>(3, 5, true); }
-TEST(SUITE, Orient4d) { compare<4, false>(3, 5, false, 4); }
-TEST(SUITE, Orient2dSos) { compare<0, true>(2, 3, false); }
-TEST(SUITE, Orient3dSos) { compare<1, true>(3, 4, false); }
-TEST(SUITE, IncircleSos) { compare<2, true>(2, 4, true); }
-TEST(SUITE, InsphereSos) { compare<3, true>(3, 5, true); }
-TEST(SUITE, Orient4dSos) { compare<4, true>(3, 5, false, 4); }
+TEST(SUITE, Orient2d) {
+  compare<0, false>(2, 3, false);
+}
+TEST(SUITE, Orient3d) {
+  compare<1, false>(3, 4, false);
+}
+TEST(SUITE, Incircle) {
+  compare<2, false>(2, 4, true);
+}
+TEST(SUITE, Insphere) {
+  compare<3, false>(3, 5, true);
+}
+TEST(SUITE, Orient4d) {
+  compare<4, false>(3, 5, false, 4);
+}
+TEST(SUITE, Orient2dSos) {
+  compare<0, true>(2, 3, false);
+}
+TEST(SUITE, Orient3dSos) {
+  compare<1, true>(3, 4, false);
+}
+TEST(SUITE, IncircleSos) {
+  compare<2, true>(2, 4, true);
+}
+TEST(SUITE, InsphereSos) {
+  compare<3, true>(3, 5, true);
+}
+TEST(SUITE, Orient4dSos) {
+  compare<4, true>(3, 5, false, 4);
+}
 
 }  // namespace

@@ -16,7 +16,9 @@ using gg_test::make_tuples;
 namespace {
 
 std::vector<double> S(pred::kInsphereScratch + pred::kOrient4dScratch);
-double* s() { return S.data(); }
+double* s() {
+  return S.data();
+}
 
 int mpq_sign(const mpq_class& q) {
   const int s = mpq_sgn(q.get_mpq_t());
@@ -38,14 +40,16 @@ mpq_class det(std::vector<std::vector<mpq_class>> m) {
   return r;
 }
 // sign of det[p1-p0; p2-p0; ...] over the first `dim` coordinates (+ lift / 4th coordinate).
-int ref_orient(const std::vector<const double*>& p, int dim, int lift /*0 none,1 squares,2 coord 3*/) {
+int ref_orient(const std::vector<const double*>& p, int dim,
+               int lift /*0 none,1 squares,2 coord 3*/) {
   std::vector<std::vector<mpq_class>> m;
   for (std::size_t i = 1; i < p.size(); ++i) {
     std::vector<mpq_class> row;
     for (int d = 0; d < dim; ++d) row.push_back(mpq_class(p[i][d]) - mpq_class(p[0][d]));
     if (lift == 1) {
       mpq_class a = 0, b = 0;
-      for (int d = 0; d < dim; ++d) a += mpq_class(p[i][d]) * mpq_class(p[i][d]), b += mpq_class(p[0][d]) * mpq_class(p[0][d]);
+      for (int d = 0; d < dim; ++d)
+        a += mpq_class(p[i][d]) * mpq_class(p[i][d]), b += mpq_class(p[0][d]) * mpq_class(p[0][d]);
       row.push_back(a - b);
     }
     if (lift == 2) row.push_back(mpq_class(p[i][3]) - mpq_class(p[0][3]));
@@ -76,7 +80,8 @@ TEST_P(Scales, Orient2dMatchesRationals) {
     c.zero += ref == 0;
   }
   EXPECT_GT(c.exact, 100) << "the exact stage was hardly exercised";
-  if (pow2(GetParam())) EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
+  if (pow2(GetParam()))
+    EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
 }
 
 TEST_P(Scales, Orient3dMatchesRationals) {
@@ -90,7 +95,8 @@ TEST_P(Scales, Orient3dMatchesRationals) {
     c.zero += ref == 0;
   }
   EXPECT_GT(c.exact, 100);
-  if (pow2(GetParam())) EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
+  if (pow2(GetParam()))
+    EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
 }
 
 TEST_P(Scales, IncircleMatchesRationals) {
@@ -106,14 +112,16 @@ TEST_P(Scales, IncircleMatchesRationals) {
     c.zero += ref == 0;
   }
   EXPECT_GT(c.exact, 100);
-  if (pow2(GetParam())) EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
+  if (pow2(GetParam()))
+    EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
 }
 
 TEST_P(Scales, InsphereMatchesRationals) {
   Count c;
   auto t = make_tuples(3, 5, 2000, 10, GetParam(), true);
   for (std::size_t i = 0; i < t.size(); ++i) {
-    const double *a = t.at(i, 0), *b = t.at(i, 1), *d = t.at(i, 2), *e = t.at(i, 3), *f = t.at(i, 4);
+    const double *a = t.at(i, 0), *b = t.at(i, 1), *d = t.at(i, 2), *e = t.at(i, 3),
+                 *f = t.at(i, 4);
     // orient4d of lifted points = det[b-a; c-a; d-a; e-a] (lifted) = -insphere
     const int ref = -ref_orient({a, b, d, e, f}, 3, 1);
     ASSERT_EQ(pred::insphere(a, b, d, e, f, s()), ref) << "case " << i;
@@ -122,25 +130,29 @@ TEST_P(Scales, InsphereMatchesRationals) {
     c.zero += ref == 0;
   }
   EXPECT_GT(c.exact, 100);
-  if (pow2(GetParam())) EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
+  if (pow2(GetParam()))
+    EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
 }
 
 TEST_P(Scales, Orient4dMatchesRationals) {
   Count c;
   auto t = make_tuples(3, 5, 2000, 11, GetParam(), false, 4);
   for (std::size_t i = 0; i < t.size(); ++i) {
-    const double *a = t.at(i, 0), *b = t.at(i, 1), *d = t.at(i, 2), *e = t.at(i, 3), *f = t.at(i, 4);
+    const double *a = t.at(i, 0), *b = t.at(i, 1), *d = t.at(i, 2), *e = t.at(i, 3),
+                 *f = t.at(i, 4);
     const int ref = ref_orient({a, b, d, e, f}, 3, 2);
     ASSERT_EQ(pred::orient4d(a, b, d, e, f, s()), ref) << "case " << i;
     c.exact += pred::orient4d_fast(a, b, d, e, f) == 0;
     c.zero += ref == 0;
   }
   EXPECT_GT(c.exact, 100);
-  if (pow2(GetParam())) EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
+  if (pow2(GetParam()))
+    EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
 }
 
 // Powers of two keep integer degeneracies exact; 2^-100 and 2^100 test tiny and huge inputs.
-INSTANTIATE_TEST_SUITE_P(Magnitudes, Scales, ::testing::Values(1.0, 0x1p-100, 0x1p100, 1e-30, 3e25));
+INSTANTIATE_TEST_SUITE_P(Magnitudes, Scales,
+                         ::testing::Values(1.0, 0x1p-100, 0x1p100, 1e-30, 3e25));
 
 TEST(Predicates, ExactRange) {
   EXPECT_TRUE(pred::in_exact_range(0.0));
@@ -174,40 +186,48 @@ TEST(Sos, PermutationConsistentAndNeverZero) {
       const int ids[4] = {int(i * 4 + 3), int(i * 4), int(i * 4 + 2), int(i * 4 + 1)};
       const double* p[4] = {t2.at(i, 0), t2.at(i, 1), t2.at(i, 2), t2.at(i, 3)};
       const int o = pred::orient2d_sos(p[0], ids[0], p[1], ids[1], p[2], ids[2], s());
-      const int ic = pred::incircle_sos(p[0], ids[0], p[1], ids[1], p[2], ids[2], p[3], ids[3], s());
+      const int ic =
+          pred::incircle_sos(p[0], ids[0], p[1], ids[1], p[2], ids[2], p[3], ids[3], s());
       ASSERT_NE(o, 0);
       ASSERT_NE(ic, 0);
       if (int e = pred::orient2d(p[0], p[1], p[2], s())) ASSERT_EQ(o, e);
       if (int e = pred::incircle(p[0], p[1], p[2], p[3], s())) ASSERT_EQ(ic, e);
       for_each_permutation<3>([&](auto q, int par) {
-        ASSERT_EQ(pred::orient2d_sos(p[q[0]], ids[q[0]], p[q[1]], ids[q[1]], p[q[2]], ids[q[2]], s()), par * o);
+        ASSERT_EQ(
+            pred::orient2d_sos(p[q[0]], ids[q[0]], p[q[1]], ids[q[1]], p[q[2]], ids[q[2]], s()),
+            par * o);
       });
       for_each_permutation<4>([&](auto q, int par) {
-        ASSERT_EQ(pred::incircle_sos(p[q[0]], ids[q[0]], p[q[1]], ids[q[1]], p[q[2]], ids[q[2]], p[q[3]], ids[q[3]], s()),
+        ASSERT_EQ(pred::incircle_sos(p[q[0]], ids[q[0]], p[q[1]], ids[q[1]], p[q[2]], ids[q[2]],
+                                     p[q[3]], ids[q[3]], s()),
                   par * ic);
       });
     }
     for (std::size_t i = 0; i < t3.size(); ++i) {
-      const int ids[5] = {int(i * 5 + 4), int(i * 5 + 1), int(i * 5), int(i * 5 + 3), int(i * 5 + 2)};
+      const int ids[5] = {int(i * 5 + 4), int(i * 5 + 1), int(i * 5), int(i * 5 + 3),
+                          int(i * 5 + 2)};
       const double* p[5] = {t3.at(i, 0), t3.at(i, 1), t3.at(i, 2), t3.at(i, 3), t3.at(i, 4)};
       const double* w[5] = {t4.at(i, 0), t4.at(i, 1), t4.at(i, 2), t4.at(i, 3), t4.at(i, 4)};
       const int o = pred::orient3d_sos(p[0], ids[0], p[1], ids[1], p[2], ids[2], p[3], ids[3], s());
-      const int is = pred::insphere_sos(p[0], ids[0], p[1], ids[1], p[2], ids[2], p[3], ids[3], p[4], ids[4], s());
-      const int o4 = pred::orient4d_sos(w[0], ids[0], w[1], ids[1], w[2], ids[2], w[3], ids[3], w[4], ids[4], s());
+      const int is = pred::insphere_sos(p[0], ids[0], p[1], ids[1], p[2], ids[2], p[3], ids[3],
+                                        p[4], ids[4], s());
+      const int o4 = pred::orient4d_sos(w[0], ids[0], w[1], ids[1], w[2], ids[2], w[3], ids[3],
+                                        w[4], ids[4], s());
       ASSERT_NE(o, 0);
       ASSERT_NE(is, 0);
       ASSERT_NE(o4, 0);
       if (int e = pred::insphere(p[0], p[1], p[2], p[3], p[4], s())) ASSERT_EQ(is, e);
       for_each_permutation<4>([&](auto q, int par) {
-        ASSERT_EQ(pred::orient3d_sos(p[q[0]], ids[q[0]], p[q[1]], ids[q[1]], p[q[2]], ids[q[2]], p[q[3]], ids[q[3]], s()),
+        ASSERT_EQ(pred::orient3d_sos(p[q[0]], ids[q[0]], p[q[1]], ids[q[1]], p[q[2]], ids[q[2]],
+                                     p[q[3]], ids[q[3]], s()),
                   par * o);
       });
       for_each_permutation<5>([&](auto q, int par) {
-        ASSERT_EQ(pred::insphere_sos(p[q[0]], ids[q[0]], p[q[1]], ids[q[1]], p[q[2]], ids[q[2]], p[q[3]], ids[q[3]],
-                                     p[q[4]], ids[q[4]], s()),
+        ASSERT_EQ(pred::insphere_sos(p[q[0]], ids[q[0]], p[q[1]], ids[q[1]], p[q[2]], ids[q[2]],
+                                     p[q[3]], ids[q[3]], p[q[4]], ids[q[4]], s()),
                   par * is);
-        ASSERT_EQ(pred::orient4d_sos(w[q[0]], ids[q[0]], w[q[1]], ids[q[1]], w[q[2]], ids[q[2]], w[q[3]], ids[q[3]],
-                                     w[q[4]], ids[q[4]], s()),
+        ASSERT_EQ(pred::orient4d_sos(w[q[0]], ids[q[0]], w[q[1]], ids[q[1]], w[q[2]], ids[q[2]],
+                                     w[q[3]], ids[q[3]], w[q[4]], ids[q[4]], s()),
                   par * o4);
       });
     }
@@ -220,13 +240,16 @@ TEST(Sos, FirstTermsFollowTheDocumentedOrder) {
   const double a[2] = {0, 0}, b[2] = {1, 1}, c[2] = {3, 3};  // collinear, not horizontal
   // orient2d: term 1 is sign(y_b - y_c).
   EXPECT_EQ(pred::orient2d_sos(a, 0, b, 1, c, 2, s()), -1);
-  const double h0[2] = {0, 0}, h1[2] = {2, 0}, h2[2] = {1, 0};  // horizontal: next term -sign(x_b - x_c)
+  const double h0[2] = {0, 0}, h1[2] = {2, 0},
+               h2[2] = {1, 0};  // horizontal: next term -sign(x_b - x_c)
   EXPECT_EQ(pred::orient2d_sos(h0, 0, h1, 1, h2, 2, s()), -1);
   // incircle of cocircular a<b<c<d: orient2d(b, c, d).
   const double q[4][2] = {{5, 0}, {0, 5}, {-5, 0}, {3, -4}};
   EXPECT_EQ(pred::incircle(q[0], q[1], q[2], q[3], s()), 0);
-  EXPECT_EQ(pred::incircle_sos(q[0], 0, q[1], 1, q[2], 2, q[3], 3, s()), pred::orient2d(q[1], q[2], q[3], s()));
-  EXPECT_EQ(pred::incircle_sos(q[3], 0, q[1], 1, q[2], 2, q[0], 3, s()), pred::orient2d(q[1], q[2], q[0], s()));
+  EXPECT_EQ(pred::incircle_sos(q[0], 0, q[1], 1, q[2], 2, q[3], 3, s()),
+            pred::orient2d(q[1], q[2], q[3], s()));
+  EXPECT_EQ(pred::incircle_sos(q[3], 0, q[1], 1, q[2], 2, q[0], 3, s()),
+            pred::orient2d(q[1], q[2], q[0], s()));
   // insphere of cospherical a<b<c<d<e: -orient3d(b, c, d, e).
   const double r[5][3] = {{5, 0, 0}, {0, 5, 0}, {0, 0, 5}, {3, 4, 0}, {0, -3, -4}};
   EXPECT_EQ(pred::insphere(r[0], r[1], r[2], r[3], r[4], s()), 0);
@@ -238,7 +261,8 @@ TEST(Sos, FirstTermsFollowTheDocumentedOrder) {
 TEST(Sos, DuplicatesAreOrderedByIndex) {
   const double a[3] = {1, 2, 3};
   EXPECT_NE(pred::orient3d_sos(a, 0, a, 1, a, 2, a, 3, s()), 0);
-  EXPECT_EQ(pred::orient3d_sos(a, 0, a, 1, a, 2, a, 3, s()), -pred::orient3d_sos(a, 1, a, 0, a, 2, a, 3, s()));
+  EXPECT_EQ(pred::orient3d_sos(a, 0, a, 1, a, 2, a, 3, s()),
+            -pred::orient3d_sos(a, 1, a, 0, a, 2, a, 3, s()));
 }
 
 }  // namespace

@@ -33,8 +33,12 @@ void check_curve() {
   }
 }
 
-TEST(Hilbert, Curve2d) { check_curve<2, 5>(); }
-TEST(Hilbert, Curve3d) { check_curve<3, 4>(); }
+TEST(Hilbert, Curve2d) {
+  check_curve<2, 5>();
+}
+TEST(Hilbert, Curve3d) {
+  check_curve<3, 4>();
+}
 
 TEST(Hilbert, OrderIsAPermutationAndLocal) {
   auto pts = generate3d("uniform", 200000, 3);

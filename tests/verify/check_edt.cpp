@@ -8,7 +8,8 @@ Report check_edt(const std::vector<std::int64_t>& shape, const std::vector<std::
   Report r;
   const int d = int(shape.size());
   if (d != 2 && d != 3) return r.fail("the grid must be 2D or 3D"), r;
-  if (sites.empty() || sites.size() % d) return r.fail("no sites, or a site list not a multiple of the dimension"), r;
+  if (sites.empty() || sites.size() % d)
+    return r.fail("no sites, or a site list not a multiple of the dimension"), r;
   const std::int64_t ns = std::int64_t(sites.size()) / d;
   std::int64_t total = 1;
   for (auto s : shape) total *= s;
@@ -45,8 +46,9 @@ Report check_edt(const std::vector<std::int64_t>& shape, const std::vector<std::
 #pragma omp critical
       if (bad < 0 || i < bad) {
         bad = i;
-        why = "voxel " + std::to_string(i) + ": squared distance " + std::to_string(best) + " expected, got " +
-              std::to_string(sqdist[i]) + (nearest ? ", nearest site " + std::to_string(nearest[i]) : "");
+        why = "voxel " + std::to_string(i) + ": squared distance " + std::to_string(best) +
+              " expected, got " + std::to_string(sqdist[i]) +
+              (nearest ? ", nearest site " + std::to_string(nearest[i]) : "");
       }
     }
   }

@@ -33,8 +33,10 @@ Report check_hull3d(const double* p, std::int64_t n, const std::int32_t* t, std:
   for (std::int64_t f = 0; f < nt; ++f) {
     const std::int32_t* v = t + 3 * f;
     for (int j = 0; j < 3; ++j)
-      if (v[j] < 0 || v[j] >= n) return r.fail(cell_name(3, f, t) + " refers to a missing point"), r;
-    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) return r.fail(cell_name(3, f, t) + " repeats a vertex"), r;
+      if (v[j] < 0 || v[j] >= n)
+        return r.fail(cell_name(3, f, t) + " refers to a missing point"), r;
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
+      return r.fail(cell_name(3, f, t) + " repeats a vertex"), r;
     if (collinear3(p + 3 * v[0], p + 3 * v[1], p + 3 * v[2]))
       return r.fail(cell_name(3, f, t) + " is degenerate (its vertices are collinear)"), r;
   }
@@ -46,26 +48,29 @@ Report check_hull3d(const double* p, std::int64_t n, const std::int32_t* t, std:
       std::uint32_t u = t[3 * f + j], v = t[3 * f + (j + 1) % 3];
       if (!edge.emplace(key(u, v), std::make_pair(f, t[3 * f + (j + 2) % 3])).second)
         return r.fail("edge " + std::to_string(u) + "->" + std::to_string(v) +
-                      " appears twice with the same direction (not an oriented 2-manifold)"), r;
+                      " appears twice with the same direction (not an oriented 2-manifold)"),
+               r;
     }
   std::unordered_map<std::int32_t, std::vector<std::int32_t>> nbrs;
   for (auto& e : edge) {
     std::uint32_t u = std::uint32_t(e.first >> 32), v = std::uint32_t(e.first);
     auto it = edge.find(key(v, u));
     if (it == edge.end())
-      return r.fail("the surface is not closed: edge " + std::to_string(u) + "-" + std::to_string(v) +
-                    " has only one triangle"), r;
+      return r.fail("the surface is not closed: edge " + std::to_string(u) + "-" +
+                    std::to_string(v) + " has only one triangle"),
+             r;
     const std::int32_t* f = t + 3 * e.second.first;
     const std::int32_t far = it->second.second;
     if (pred::orient3d(p + 3 * f[0], p + 3 * f[1], p + 3 * f[2], p + 3 * far, scratch()) > 0)
-      return r.fail("edge " + std::to_string(u) + "-" + std::to_string(v) +
-                    " is reflex: vertex " + std::to_string(far) + " lies outside " +
-                    cell_name(3, e.second.first, t)), r;
+      return r.fail("edge " + std::to_string(u) + "-" + std::to_string(v) + " is reflex: vertex " +
+                    std::to_string(far) + " lies outside " + cell_name(3, e.second.first, t)),
+             r;
     nbrs[std::int32_t(u)].push_back(std::int32_t(v));
   }
   const std::int64_t V = std::int64_t(nbrs.size()), E = std::int64_t(edge.size() / 2);
   if (V - E + nt != 2)
-    return r.fail("the surface has Euler characteristic " + std::to_string(V - E + nt) + ", not 2"), r;
+    return r.fail("the surface has Euler characteristic " + std::to_string(V - E + nt) + ", not 2"),
+           r;
   // Connected: flood over edges.
   {
     std::unordered_set<std::int32_t> seen{nbrs.begin()->first};
@@ -87,13 +92,18 @@ Report check_hull3d(const double* p, std::int64_t n, const std::int32_t* t, std:
       if (!collinear3(pv, a, p + 3 * nb[i])) b = p + 3 * nb[i];
     if (b)
       for (auto w : nb) flat = flat && pred::orient3d(pv, a, b, p + 3 * w, scratch()) == 0;
-    if (flat) return r.fail("hull vertex " + std::to_string(v) + " is not extreme: it lies inside a flat face"), r;
+    if (flat)
+      return r.fail("hull vertex " + std::to_string(v) +
+                    " is not extreme: it lies inside a flat face"),
+             r;
     for (std::size_t i = 0; i < nb.size(); ++i)
       for (std::size_t j = i + 1; j < nb.size(); ++j) {
         const double *x = p + 3 * nb[i], *y = p + 3 * nb[j];
         if (collinear3(x, pv, y) && between(x, pv, y))
-          return r.fail("hull vertex " + std::to_string(v) + " is not extreme: it lies on the segment " +
-                        std::to_string(nb[i]) + "-" + std::to_string(nb[j])), r;
+          return r.fail("hull vertex " + std::to_string(v) +
+                        " is not extreme: it lies on the segment " + std::to_string(nb[i]) + "-" +
+                        std::to_string(nb[j])),
+                 r;
       }
   }
   // Containment, in parallel; a sample when the full check would be too long.
@@ -113,7 +123,8 @@ Report check_hull3d(const double* p, std::int64_t n, const std::int32_t* t, std:
     }
   }
   if (bad >= 0) return r.fail("input point " + std::to_string(bad) + " lies outside the hull"), r;
-  r.notes.push_back(std::to_string(nt) + " faces, " + std::to_string(V) + " extreme vertices: valid convex hull");
+  r.notes.push_back(std::to_string(nt) + " faces, " + std::to_string(V) +
+                    " extreme vertices: valid convex hull");
   if (step > 1)
     r.notes.push_back("containment checked on every " + std::to_string(step) + "th point only");
   return r;

@@ -32,7 +32,8 @@ Report check_triangulation2d(const double* p, std::int64_t n, const std::int32_t
     const double *a = p + 2 * t[3 * c], *b = p + 2 * t[3 * c + 1], *d = p + 2 * t[3 * c + 2];
     int o = pred::orient2d(a, b, d, scratch());
     if (o <= 0)
-      return r.fail(cell_name(3, c, t) + (o == 0 ? " is degenerate (collinear)" : " is clockwise")), r;
+      return r.fail(cell_name(3, c, t) + (o == 0 ? " is degenerate (collinear)" : " is clockwise")),
+             r;
   }
   // Directed edges: each at most once; an edge without its reverse is on the boundary.
   std::unordered_map<std::uint64_t, std::int64_t> dir;
@@ -44,28 +45,34 @@ Report check_triangulation2d(const double* p, std::int64_t n, const std::int32_t
       if (!dir.emplace(key(u, v), c).second)
         return r.fail("edge " + std::to_string(u) + "->" + std::to_string(v) +
                       " is used twice in the same direction (overlapping triangles), by " +
-                      cell_name(3, c, t)), r;
+                      cell_name(3, c, t)),
+               r;
     }
   std::unordered_map<std::uint32_t, std::uint32_t> next;  // boundary: u -> v
   for (auto& e : dir) {
     std::uint32_t u = std::uint32_t(e.first >> 32), v = std::uint32_t(e.first);
     if (dir.count(key(v, u))) continue;
     if (!next.emplace(u, v).second)
-      return r.fail("boundary vertex " + std::to_string(u) + " has two outgoing boundary edges (pinched)"), r;
+      return r.fail("boundary vertex " + std::to_string(u) +
+                    " has two outgoing boundary edges (pinched)"),
+             r;
   }
   std::int64_t count = 0, windings = 0;
   std::uint32_t start = next.begin()->first, u = start;
   do {
     auto it = next.find(u);
-    if (it == next.end()) return r.fail("the boundary is not closed at vertex " + std::to_string(u)), r;
+    if (it == next.end())
+      return r.fail("the boundary is not closed at vertex " + std::to_string(u)), r;
     std::uint32_t v = it->second;
     auto jt = next.find(v);
-    if (jt == next.end()) return r.fail("the boundary is not closed at vertex " + std::to_string(v)), r;
+    if (jt == next.end())
+      return r.fail("the boundary is not closed at vertex " + std::to_string(v)), r;
     std::uint32_t w = jt->second;
     const double *a = p + 2 * u, *b = p + 2 * v, *c = p + 2 * w;
     if (pred::orient2d(a, b, c, scratch()) < 0)
       return r.fail("the boundary turns right at vertex " + std::to_string(v) +
-                    ": the triangulated region is not convex"), r;
+                    ": the triangulated region is not convex"),
+             r;
     if (!upper(a, b) && upper(b, c)) ++windings;
     u = v;
     if (++count > std::int64_t(next.size())) break;
@@ -73,7 +80,8 @@ Report check_triangulation2d(const double* p, std::int64_t n, const std::int32_t
   if (count != std::int64_t(next.size()))
     return r.fail("the boundary consists of more than one cycle (" + std::to_string(next.size()) +
                   " boundary edges, the cycle from vertex " + std::to_string(start) + " has " +
-                  std::to_string(count) + ")"), r;
+                  std::to_string(count) + ")"),
+           r;
   if (windings != 1)
     return r.fail("the boundary winds " + std::to_string(windings) + " times around the region"), r;
   r.notes.push_back(std::to_string(nt) + " triangles, " + std::to_string(next.size()) +
@@ -101,7 +109,8 @@ Report check_delaunay2d(const double* p, std::int64_t n, const std::int32_t* t, 
       if (pred::incircle(p + 2 * a[0], p + 2 * a[1], p + 2 * a[2], p + 2 * far, scratch()) > 0)
         return r.fail("edge " + std::to_string(u) + "-" + std::to_string(v) +
                       " is not locally Delaunay: vertex " + std::to_string(far) +
-                      " lies inside the circumcircle of " + cell_name(3, c, t)), r;
+                      " lies inside the circumcircle of " + cell_name(3, c, t)),
+               r;
     }
   r.notes.push_back("every interior edge is locally Delaunay (exact in-circle)");
   return r;

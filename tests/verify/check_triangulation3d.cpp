@@ -58,7 +58,9 @@ static Report triangulation3d(const double* p, std::int64_t n, const std::int32_
     const std::int32_t* v = t + 4 * c;
     int o = pred::orient3d(p + 3 * v[0], p + 3 * v[1], p + 3 * v[2], p + 3 * v[3], scratch());
     if (o <= 0)
-      return r.fail(cell_name(4, c, t) + (o == 0 ? " is flat (coplanar)" : " is negatively oriented")), r;
+      return r.fail(cell_name(4, c, t) +
+                    (o == 0 ? " is flat (coplanar)" : " is negatively oriented")),
+             r;
   }
   faces.map.reserve(std::size_t(nt) * 3);
   for (std::int64_t c = 0; c < nt; ++c)
@@ -70,7 +72,8 @@ static Report triangulation3d(const double* p, std::int64_t n, const std::int32_
       if (slot[par] >= 0)
         return r.fail("triangle " + std::to_string(fk.v[0]) + " " + std::to_string(fk.v[1]) + " " +
                       std::to_string(fk.v[2]) + " is used twice with the same orientation " +
-                      "(overlapping tetrahedra), by " + cell_name(4, c, t)), r;
+                      "(overlapping tetrahedra), by " + cell_name(4, c, t)),
+               r;
       slot[par] = c * 4 + k;
     }
   // Boundary surface: outward faces present on one side only.
@@ -86,27 +89,35 @@ static Report triangulation3d(const double* p, std::int64_t n, const std::int32_
   auto key = [](std::uint32_t u, std::uint32_t v) { return (std::uint64_t(u) << 32) | v; };
   for (std::size_t f = 0; f < bnd.size(); ++f)
     for (int j = 0; j < 3; ++j)
-      if (!edge.emplace(key(bnd[f][j], bnd[f][(j + 1) % 3]), std::make_pair(std::int64_t(f), bnd[f][(j + 2) % 3])).second)
-        return r.fail("boundary edge " + std::to_string(bnd[f][j]) + "-" + std::to_string(bnd[f][(j + 1) % 3]) +
-                      " is shared by more than two boundary triangles"), r;
+      if (!edge.emplace(key(bnd[f][j], bnd[f][(j + 1) % 3]),
+                        std::make_pair(std::int64_t(f), bnd[f][(j + 2) % 3]))
+               .second)
+        return r.fail("boundary edge " + std::to_string(bnd[f][j]) + "-" +
+                      std::to_string(bnd[f][(j + 1) % 3]) +
+                      " is shared by more than two boundary triangles"),
+               r;
   std::map<std::int32_t, int> bverts;
   for (auto& e : edge) {
     std::uint32_t u = std::uint32_t(e.first >> 32), v = std::uint32_t(e.first);
     auto it = edge.find(key(v, u));
     if (it == edge.end())
-      return r.fail("the boundary surface is not closed at edge " + std::to_string(u) + "-" + std::to_string(v)), r;
+      return r.fail("the boundary surface is not closed at edge " + std::to_string(u) + "-" +
+                    std::to_string(v)),
+             r;
     const auto& f = bnd[e.second.first];
     int far = it->second.second;
     if (pred::orient3d(p + 3 * f[0], p + 3 * f[1], p + 3 * f[2], p + 3 * far, scratch()) > 0)
-      return r.fail("the boundary is reflex at edge " + std::to_string(u) + "-" + std::to_string(v) +
-                    ": the region is not convex"), r;
+      return r.fail("the boundary is reflex at edge " + std::to_string(u) + "-" +
+                    std::to_string(v) + ": the region is not convex"),
+             r;
     bverts[std::int32_t(u)] = 1;
   }
   const std::int64_t V = std::int64_t(bverts.size()), E = std::int64_t(edge.size() / 2),
                      F = std::int64_t(bnd.size());
   if (V - E + F != 2)
     return r.fail("the boundary surface has Euler characteristic " + std::to_string(V - E + F) +
-                  " (a convex boundary has 2)"), r;
+                  " (a convex boundary has 2)"),
+           r;
   // Covering degree at the centroids of a few tetrahedra, counted with SoS (index n).
   for (std::int64_t s = 0; s < std::min<std::int64_t>(nt, 3); ++s) {
     const std::int64_t c = (s * (nt - 1)) / 2;
@@ -130,7 +141,8 @@ static Report triangulation3d(const double* p, std::int64_t n, const std::int32_
     }
     if (inside != 1 && !(inside == 0 && s > 0))
       return r.fail("the tetrahedra cover the point near " + cell_name(4, c, t) + " " +
-                    std::to_string(inside) + " times (must be once)"), r;
+                    std::to_string(inside) + " times (must be once)"),
+             r;
   }
   r.notes.push_back(std::to_string(nt) + " tetrahedra, " + std::to_string(F) +
                     " boundary triangles: valid tetrahedralisation of the convex hull");
@@ -154,10 +166,13 @@ Report check_delaunay3d(const double* p, std::int64_t n, const std::int32_t* t, 
     const int ko = int(f.second[1] % 4);
     const std::int32_t* v = t + 4 * c;
     const std::int32_t far = t[4 * o + ko];
-    if (pred::insphere(p + 3 * v[0], p + 3 * v[1], p + 3 * v[2], p + 3 * v[3], p + 3 * far, scratch()) > 0)
-      return r.fail("triangle " + std::to_string(f.first.v[0]) + " " + std::to_string(f.first.v[1]) + " " +
-                    std::to_string(f.first.v[2]) + " is not locally Delaunay: vertex " + std::to_string(far) +
-                    " lies inside the circumsphere of " + cell_name(4, c, t)), r;
+    if (pred::insphere(p + 3 * v[0], p + 3 * v[1], p + 3 * v[2], p + 3 * v[3], p + 3 * far,
+                       scratch()) > 0)
+      return r.fail("triangle " + std::to_string(f.first.v[0]) + " " +
+                    std::to_string(f.first.v[1]) + " " + std::to_string(f.first.v[2]) +
+                    " is not locally Delaunay: vertex " + std::to_string(far) +
+                    " lies inside the circumsphere of " + cell_name(4, c, t)),
+             r;
   }
   r.notes.push_back("every interior triangle is locally Delaunay (exact in-sphere)");
   return r;

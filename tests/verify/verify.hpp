@@ -11,8 +11,8 @@ namespace gpugeom::verify {
 
 struct Report {
   bool ok = true;
-  std::string message;               // first violation, empty when ok
-  std::vector<std::string> notes;    // what was checked, and anything checked only partially
+  std::string message;             // first violation, empty when ok
+  std::vector<std::string> notes;  // what was checked, and anything checked only partially
   bool fail(const std::string& m) {
     if (ok) message = m;
     ok = false;

@@ -34,7 +34,8 @@ std::vector<std::int32_t> brute_delaunay2d(const std::vector<double>& p) {
         int x = a, y = o > 0 ? b : c, z = o > 0 ? c : b;
         bool empty = true;
         for (int d = 0; d < n && empty; ++d)
-          if (d != a && d != b && d != c) empty = pred::incircle(&p[2 * x], &p[2 * y], &p[2 * z], &p[2 * d], S.data()) < 0;
+          if (d != a && d != b && d != c)
+            empty = pred::incircle(&p[2 * x], &p[2 * y], &p[2 * z], &p[2 * d], S.data()) < 0;
         if (empty) t.insert(t.end(), {x, y, z});
       }
   return t;
@@ -51,7 +52,8 @@ std::vector<std::int32_t> brute_delaunay3d(const std::vector<double>& p) {
           bool empty = true;
           for (int e = 0; e < n && empty; ++e)
             if (e != a && e != b && e != c && e != d)
-              empty = pred::insphere(&p[3 * v[0]], &p[3 * v[1]], &p[3 * v[2]], &p[3 * v[3]], &p[3 * e], S.data()) < 0;
+              empty = pred::insphere(&p[3 * v[0]], &p[3 * v[1]], &p[3 * v[2]], &p[3 * v[3]],
+                                     &p[3 * e], S.data()) < 0;
           if (empty) t.insert(t.end(), v, v + 4);
         }
   return t;
@@ -65,7 +67,8 @@ std::vector<std::int32_t> brute_hull(const std::vector<double>& p) {
         if (!(a < b && a < c && b != c)) continue;
         bool face = true;
         for (int d = 0; d < n && face; ++d)
-          if (d != a && d != b && d != c) face = pred::orient3d(&p[3 * a], &p[3 * b], &p[3 * c], &p[3 * d], S.data()) < 0;
+          if (d != a && d != b && d != c)
+            face = pred::orient3d(&p[3 * a], &p[3 * b], &p[3 * c], &p[3 * d], S.data()) < 0;
         if (face) t.insert(t.end(), {a, b, c});
       }
   return t;
@@ -160,7 +163,8 @@ TEST(Verify, Delaunay3dAcceptsAndRejects) {
     for (std::int64_t i = 0; i < nt && !done; ++i)
       for (std::int64_t j = 0; j < nt && !done; ++j) {
         if (i == j) continue;
-        std::vector<int> a(t.begin() + 4 * i, t.begin() + 4 * i + 4), b(t.begin() + 4 * j, t.begin() + 4 * j + 4);
+        std::vector<int> a(t.begin() + 4 * i, t.begin() + 4 * i + 4),
+            b(t.begin() + 4 * j, t.begin() + 4 * j + 4);
         std::vector<int> common;
         for (int x : a)
           if (std::count(b.begin(), b.end(), x)) common.push_back(x);
@@ -176,14 +180,19 @@ TEST(Verify, Delaunay3dAcceptsAndRejects) {
           int c0 = common[k], c1 = common[(k + 1) % 3];
           int o = pred::orient3d(&p[3 * u], &p[3 * v], &p[3 * c0], &p[3 * c1], S.data());
           if (o == 0) ok = false;
-          if (o > 0) q.insert(q.end(), {u, v, c0, c1});
-          else q.insert(q.end(), {u, v, c1, c0});
+          if (o > 0)
+            q.insert(q.end(), {u, v, c0, c1});
+          else
+            q.insert(q.end(), {u, v, c1, c0});
         }
         // valid 2-3 flip only if segment uv crosses the common triangle
-        int s0 = pred::orient3d(&p[3 * common[0]], &p[3 * common[1]], &p[3 * common[2]], &p[3 * u], S.data());
-        int s1 = pred::orient3d(&p[3 * common[0]], &p[3 * common[1]], &p[3 * common[2]], &p[3 * v], S.data());
+        int s0 = pred::orient3d(&p[3 * common[0]], &p[3 * common[1]], &p[3 * common[2]], &p[3 * u],
+                                S.data());
+        int s1 = pred::orient3d(&p[3 * common[0]], &p[3 * common[1]], &p[3 * common[2]], &p[3 * v],
+                                S.data());
         for (int k = 0; k < 3 && ok; ++k)
-          ok = pred::orient3d(&p[3 * u], &p[3 * v], &p[3 * common[k]], &p[3 * common[(k + 1) % 3]], S.data()) ==
+          ok = pred::orient3d(&p[3 * u], &p[3 * v], &p[3 * common[k]], &p[3 * common[(k + 1) % 3]],
+                              S.data()) ==
                pred::orient3d(&p[3 * u], &p[3 * v], &p[3 * common[1]], &p[3 * common[2]], S.data());
         if (!ok || s0 == s1) continue;
         std::vector<std::int32_t> r2;
@@ -243,11 +252,13 @@ TEST(Verify, HullAcceptsAndRejects) {
     // the midpoint of edge a-b is exactly representable only approximately; use a point on
     // the segment that is exact: a + (b - a) when coordinates are dyadic. Build dyadic copy.
     std::vector<double> d(p.size());
-    for (std::size_t i = 0; i < p.size(); ++i) d[i] = std::ldexp(std::round(std::ldexp(p[i], 20)), -20);
+    for (std::size_t i = 0; i < p.size(); ++i)
+      d[i] = std::ldexp(std::round(std::ldexp(p[i], 20)), -20);
     auto td = brute_hull(d);
     ASSERT_TRUE(verify::check_hull3d(d.data(), n, td.data(), std::int64_t(td.size() / 3)).ok);
     const std::int32_t x = td[0], y = td[1], z = td[2];
-    d.insert(d.end(), {(d[3 * x] + d[3 * y]) / 2, (d[3 * x + 1] + d[3 * y + 1]) / 2, (d[3 * x + 2] + d[3 * y + 2]) / 2});
+    d.insert(d.end(), {(d[3 * x] + d[3 * y]) / 2, (d[3 * x + 1] + d[3 * y + 1]) / 2,
+                       (d[3 * x + 2] + d[3 * y + 2]) / 2});
     // replace face x,y,z by x,m,z and m,y,z, and the neighbour across y-x likewise
     auto q = td;
     const std::int32_t m = std::int32_t(n);
@@ -278,7 +289,8 @@ TEST(Verify, EdtBruteForce) {
     for (int x = 0; x < 9; ++x) {
       std::int64_t best = 1 << 30;
       for (int s = 0; s < 3; ++s) {
-        std::int64_t q = (y - sites[2 * s]) * (y - sites[2 * s]) + (x - sites[2 * s + 1]) * (x - sites[2 * s + 1]);
+        std::int64_t q = (y - sites[2 * s]) * (y - sites[2 * s]) +
+                         (x - sites[2 * s + 1]) * (x - sites[2 * s + 1]);
         if (q < best) best = q, nn[y * 9 + x] = s;
       }
       d[y * 9 + x] = best;

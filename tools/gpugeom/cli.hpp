@@ -25,9 +25,9 @@ class UsageError : public std::runtime_error {
 class Args {
  public:
   explicit Args(std::vector<std::string> a) : a_(std::move(a)) {}
-  bool flag(const std::string& name);                        // --name
-  bool value(const std::string& name, std::string& out);     // --name V or --name=V
-  std::vector<std::string> positionals();                    // the rest; rejects unknown --options
+  bool flag(const std::string& name);                     // --name
+  bool value(const std::string& name, std::string& out);  // --name V or --name=V
+  std::vector<std::string> positionals();                 // the rest; rejects unknown --options
   bool help() { return flag("--help") || flag("-h"); }
 
  private:
@@ -38,10 +38,12 @@ long long to_count(const std::string& s, const char* what);  // accepts 1e6, 100
 
 class Timer {
  public:
-  Timer(const Global& g, const char* phase) : g_(g), phase_(phase), t0_(std::chrono::steady_clock::now()) {}
+  Timer(const Global& g, const char* phase)
+      : g_(g), phase_(phase), t0_(std::chrono::steady_clock::now()) {}
   ~Timer() {
     if (!g_.verbose) return;
-    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
+    double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
     std::fprintf(stderr, "[time] %-12s %10.2f ms\n", phase_, ms);
   }
 

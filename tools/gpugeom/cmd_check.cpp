@@ -9,12 +9,13 @@ namespace gpugeom::cli {
 
 int cmd_check(const Global& g, Args& a) {
   if (a.help()) {
-    std::cout << "usage: gpugeom check MESH [--points FILE] [--kind KIND]\n\n"
-                 "Checks MESH exactly with the independent checkers. The vertices are MESH's own,\n"
-                 "or FILE's points when given (for cells-only files such as .npy). KIND is one of\n"
-                 "  delaunay2d  triangulation2d  delaunay3d  triangulation3d  hull3d\n"
-                 "and defaults to delaunay2d for 2D triangles, delaunay3d for tetrahedra and hull3d\n"
-                 "for 3D triangles. Exit status 0 when valid, 1 when not.\n";
+    std::cout
+        << "usage: gpugeom check MESH [--points FILE] [--kind KIND]\n\n"
+           "Checks MESH exactly with the independent checkers. The vertices are MESH's own,\n"
+           "or FILE's points when given (for cells-only files such as .npy). KIND is one of\n"
+           "  delaunay2d  triangulation2d  delaunay3d  triangulation3d  hull3d\n"
+           "and defaults to delaunay2d for 2D triangles, delaunay3d for tetrahedra and hull3d\n"
+           "for 3D triangles. Exit status 0 when valid, 1 when not.\n";
     return kOk;
   }
   std::string points, kind;
@@ -30,7 +31,8 @@ int cmd_check(const Global& g, Args& a) {
     if (!points.empty()) {
       p = io::read_points(points);
     } else {
-      if (m.coords.empty()) throw UsageError(pos[0] + " holds no vertices: give them with --points FILE");
+      if (m.coords.empty())
+        throw UsageError(pos[0] + " holds no vertices: give them with --points FILE");
       p.dim = m.dim;
       p.coords = m.coords;
     }
@@ -45,17 +47,23 @@ int cmd_check(const Global& g, Args& a) {
                                              "D points, these are " + std::to_string(p.dim) + "D");
   const int want_cell = (kind == "delaunay3d" || kind == "triangulation3d") ? 4 : 3;
   if (m.cell_size != want_cell)
-    throw Error(ErrorCode::InvalidInput, "a " + kind + " check needs cells of " + std::to_string(want_cell) +
-                                             " vertices, the mesh has " + std::to_string(m.cell_size));
+    throw Error(ErrorCode::InvalidInput,
+                "a " + kind + " check needs cells of " + std::to_string(want_cell) +
+                    " vertices, the mesh has " + std::to_string(m.cell_size));
   const std::int64_t n = std::int64_t(p.size()), nc = std::int64_t(m.num_cells());
   verify::Report r;
   {
     Timer t(g, "check");
-    if (kind == "delaunay2d") r = verify::check_delaunay2d(p.coords.data(), n, m.cells.data(), nc);
-    else if (kind == "triangulation2d") r = verify::check_triangulation2d(p.coords.data(), n, m.cells.data(), nc);
-    else if (kind == "delaunay3d") r = verify::check_delaunay3d(p.coords.data(), n, m.cells.data(), nc);
-    else if (kind == "triangulation3d") r = verify::check_triangulation3d(p.coords.data(), n, m.cells.data(), nc);
-    else r = verify::check_hull3d(p.coords.data(), n, m.cells.data(), nc);
+    if (kind == "delaunay2d")
+      r = verify::check_delaunay2d(p.coords.data(), n, m.cells.data(), nc);
+    else if (kind == "triangulation2d")
+      r = verify::check_triangulation2d(p.coords.data(), n, m.cells.data(), nc);
+    else if (kind == "delaunay3d")
+      r = verify::check_delaunay3d(p.coords.data(), n, m.cells.data(), nc);
+    else if (kind == "triangulation3d")
+      r = verify::check_triangulation3d(p.coords.data(), n, m.cells.data(), nc);
+    else
+      r = verify::check_hull3d(p.coords.data(), n, m.cells.data(), nc);
   }
   if (!r.ok) {
     std::cerr << "INVALID " << kind << ": " << r.message << "\n";

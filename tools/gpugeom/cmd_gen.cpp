@@ -14,8 +14,9 @@ int cmd_gen(const Global& g, Args& a) {
     for (auto& d : distributions2d()) std::cout << " " << d << "2d";
     std::cout << "\n  3d:";
     for (auto& d : distributions3d()) std::cout << " " << d << "3d";
-    std::cout << "\n\nFILE's extension picks the format: .ply (binary unless --ascii) .xyz .txt .csv\n"
-                 ".off .obj .node .npy. The points depend only on DIST, N and the seed (default 1).\n";
+    std::cout
+        << "\n\nFILE's extension picks the format: .ply (binary unless --ascii) .xyz .txt .csv\n"
+           ".off .obj .node .npy. The points depend only on DIST, N and the seed (default 1).\n";
     return kOk;
   }
   std::string n_s, out, seed_s = "1";
@@ -26,8 +27,10 @@ int cmd_gen(const Global& g, Args& a) {
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one distribution name, e.g. 'uniform3d'");
   const std::string dist = pos[0];
-  if (dist.size() < 3 || (dist.substr(dist.size() - 2) != "2d" && dist.substr(dist.size() - 2) != "3d"))
-    throw UsageError("distribution '" + dist + "' must end in 2d or 3d (e.g. uniform3d); see 'gpugeom gen --help'");
+  if (dist.size() < 3 ||
+      (dist.substr(dist.size() - 2) != "2d" && dist.substr(dist.size() - 2) != "3d"))
+    throw UsageError("distribution '" + dist +
+                     "' must end in 2d or 3d (e.g. uniform3d); see 'gpugeom gen --help'");
   const int dim = dist[dist.size() - 2] - '0';
   const std::string base = dist.substr(0, dist.size() - 2);
   const long long n = to_count(n_s, "-n");

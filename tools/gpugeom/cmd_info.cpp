@@ -17,7 +17,10 @@ void print_bbox(const std::vector<double>& c, int dim) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (std::size_t i = 0; i < n; ++i) {
       double v = c[i * dim + d];
-      if (!std::isfinite(v)) { ++bad; continue; }
+      if (!std::isfinite(v)) {
+        ++bad;
+        continue;
+      }
       lo = std::min(lo, v), hi = std::max(hi, v);
     }
     std::cout << "  " << ax[d] << " range  [" << std::setprecision(17) << lo << ", " << hi << "]\n";
@@ -37,14 +40,16 @@ int cmd_info(const Global& g, Args& a) {
     DeviceInfo d = query_device();
     std::cout << "build:    " << (built_with_cuda() ? "with CUDA" : "CPU only") << "\n";
     if (d.available) {
-      std::cout << "device:   " << d.name << " (compute " << d.compute_major << "." << d.compute_minor
-                << ", " << d.multiprocessors << " SMs)\n"
-                << "memory:   " << (d.free_memory >> 20) << " MiB free of " << (d.total_memory >> 20) << " MiB\n";
+      std::cout << "device:   " << d.name << " (compute " << d.compute_major << "."
+                << d.compute_minor << ", " << d.multiprocessors << " SMs)\n"
+                << "memory:   " << (d.free_memory >> 20) << " MiB free of "
+                << (d.total_memory >> 20) << " MiB\n";
     } else {
       std::cout << "device:   none usable (" << d.reason << ")\n";
     }
     std::cout << "auto:     " << backend_name(resolve_backend(Backend::Auto)) << "\n";
-    if (g.backend != Backend::Auto) std::cout << "selected: " << backend_name(resolve_backend(g.backend)) << "\n";
+    if (g.backend != Backend::Auto)
+      std::cout << "selected: " << backend_name(resolve_backend(g.backend)) << "\n";
     return kOk;
   }
   auto pos = a.positionals();
@@ -53,7 +58,8 @@ int cmd_info(const Global& g, Args& a) {
   const std::string ext = io::extension(f);
   if (ext == ".png" || ext == ".pgm" || ext == ".pbm") {
     io::Grid gr = io::read_grid(f);
-    std::cout << f << ": grid " << gr.shape[0] << " x " << gr.shape[1] << " " << io::scalar_name(gr.type) << "\n";
+    std::cout << f << ": grid " << gr.shape[0] << " x " << gr.shape[1] << " "
+              << io::scalar_name(gr.type) << "\n";
     return kOk;
   }
   if (ext == ".npy") {  // a grid, a point array or a cell array: decide by shape and type
@@ -78,7 +84,8 @@ int cmd_info(const Global& g, Args& a) {
   }
   io::Mesh m = io::read_mesh(f);
   std::cout << f << ": " << m.num_vertices() << " vertices, " << m.dim << "D";
-  if (m.num_cells()) std::cout << ", " << m.num_cells() << (m.cell_size == 3 ? " triangles" : " tetrahedra");
+  if (m.num_cells())
+    std::cout << ", " << m.num_cells() << (m.cell_size == 3 ? " triangles" : " tetrahedra");
   std::cout << "\n";
   print_bbox(m.coords, m.dim);
   return kOk;

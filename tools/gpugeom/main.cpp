@@ -43,7 +43,8 @@ long long to_count(const std::string& s, const char* what) {
   char* end = nullptr;
   double v = std::strtod(s.c_str(), &end);
   if (s.empty() || *end || v < 0 || v != double((long long)v))
-    throw UsageError(std::string("expected a non-negative whole number for ") + what + ", got '" + s + "'");
+    throw UsageError(std::string("expected a non-negative whole number for ") + what + ", got '" +
+                     s + "'");
   return (long long)v;
 }
 
@@ -76,16 +77,23 @@ int main(int argc, char** argv) {
   try {
     for (int i = 1; i < argc; ++i) {
       std::string s = argv[i];
-      if (s == "--verbose" || s == "-v") g.verbose = true;
-      else if (s == "--quiet" || s == "-q") g.quiet = true;
-      else if (s == "--backend" && i + 1 < argc) g.backend = parse_backend(argv[++i]);
-      else if (s.rfind("--backend=", 0) == 0) g.backend = parse_backend(s.substr(10));
-      else if (s == "--backend") throw UsageError("option --backend needs a value");
+      if (s == "--verbose" || s == "-v")
+        g.verbose = true;
+      else if (s == "--quiet" || s == "-q")
+        g.quiet = true;
+      else if (s == "--backend" && i + 1 < argc)
+        g.backend = parse_backend(argv[++i]);
+      else if (s.rfind("--backend=", 0) == 0)
+        g.backend = parse_backend(s.substr(10));
+      else if (s == "--backend")
+        throw UsageError("option --backend needs a value");
       else if (cmd.empty() && (s == "--help" || s == "-h")) {
         std::cout << kUsageText;
         return kOk;
-      } else if (cmd.empty() && s[0] != '-') cmd = s;
-      else rest.push_back(s);
+      } else if (cmd.empty() && s[0] != '-')
+        cmd = s;
+      else
+        rest.push_back(s);
     }
     if (cmd.empty()) {
       std::cerr << kUsageText;
@@ -100,15 +108,18 @@ int main(int argc, char** argv) {
     std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << e.what() << "\n";
     return kUsage;
   } catch (const Error& e) {
-    std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << error_code_name(e.code()) << ": "
-              << e.what() << "\n";
+    std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << error_code_name(e.code())
+              << ": " << e.what() << "\n";
     switch (e.code()) {
-      case ErrorCode::InvalidArgument: return kUsage;
+      case ErrorCode::InvalidArgument:
+        return kUsage;
       case ErrorCode::InvalidInput:
       case ErrorCode::DegenerateInput:
       case ErrorCode::Parse:
-      case ErrorCode::Io: return kBadInput;
-      default: return kInternal;
+      case ErrorCode::Io:
+        return kBadInput;
+      default:
+        return kInternal;
     }
   } catch (const std::bad_alloc&) {
     std::cerr << "gpugeom: out of host memory\n";

@@ -5,10 +5,11 @@ void hilbert_sort(Exec& ex, const double* pts, std::int64_t n, std::int32_t* ord
                   const spatial::Box& box) {
   auto keys = ex.template alloc<std::uint64_t>(std::size_t(n));
   std::uint64_t* k = keys.data();
-  ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
-    k[i] = spatial::hilbert_key<D>(pts + i * D, box);
-    order[i] = std::int32_t(i);
-  });
+  ex.for_each_index(
+      n, GG_LAMBDA(std::int64_t i) {
+        k[i] = spatial::hilbert_key<D>(pts + i * D, box);
+        order[i] = std::int32_t(i);
+      });
   ex.sort_by_key(k, order, n);
   ex.sync();
 }
