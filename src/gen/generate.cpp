@@ -56,7 +56,10 @@ struct GridPick {
   }
 };
 
-[[noreturn]] void unknown(const std::string& d, const std::vector<std::string>& names) {
+// Index of d in names; an unknown name is an error listing the known ones.
+int find_distribution(const std::string& d, const std::vector<std::string>& names) {
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (names[k] == d) return int(k);
   std::string all;
   for (auto& s : names) all += (all.empty() ? "" : ", ") + s;
   throw Error(ErrorCode::InvalidArgument, "unknown distribution '" + d + "': expected " + all);
@@ -77,11 +80,7 @@ const std::vector<std::string>& distributions3d() {
 
 std::vector<Point2> generate2d(const std::string& d, std::int64_t n, std::uint64_t seed) {
   check_n(n);
-  const auto& names = distributions2d();
-  int which = -1;
-  for (size_t k = 0; k < names.size(); ++k)
-    if (names[k] == d) which = int(k);
-  if (which < 0) unknown(d, names);
+  const int which = find_distribution(d, distributions2d());
   std::vector<Point2> p(n);
   GridPick grid(which == 4 ? n : 1, 2, seed);
 #pragma omp parallel for schedule(static)
@@ -119,11 +118,7 @@ std::vector<Point2> generate2d(const std::string& d, std::int64_t n, std::uint64
 
 std::vector<Point3> generate3d(const std::string& d, std::int64_t n, std::uint64_t seed) {
   check_n(n);
-  const auto& names = distributions3d();
-  int which = -1;
-  for (size_t k = 0; k < names.size(); ++k)
-    if (names[k] == d) which = int(k);
-  if (which < 0) unknown(d, names);
+  const int which = find_distribution(d, distributions3d());
   std::vector<Point3> p(n);
   GridPick grid(which == 5 ? n : 1, 3, seed);
 #pragma omp parallel for schedule(static)

@@ -62,15 +62,9 @@ GG_HD int orient_minor(const double* const* rows, const int* cols, double* out, 
         if (j != i) r[m++] = rows[j];
       int sl = orient_minor<K - 1>(r, cols + 1, sub, ss);
       double c = rows[i][cols[0]];
-      int tl = scale_expansion(sl, sub, (i & 1) ? -c : c, term);
-      int nl = expansion_sum(len, acc, tl, term, other);
-      double* t = acc;
-      acc = other;
-      other = t;
-      len = nl;
+      accumulate(acc, other, len, term, scale_expansion(sl, sub, (i & 1) ? -c : c, term));
     }
-    if (acc != out)
-      for (int i = 0; i < len; ++i) out[i] = acc[i];
+    settle(acc, len, out);
     return len;
   }
 }
@@ -95,15 +89,10 @@ GG_HD int lifted_minor(const double* const* rows, const int* cols, const double*
     int sl = orient_minor<K>(r, cols, sub, ss);
     if ((i + K) & 1)
       for (int t = 0; t < sl; ++t) sub[t] = -sub[t];
-    int tl = expansion_product(sl, sub, liftlen[i], lift[i], term, tmp1, tmp2);
-    int nl = expansion_sum(len, acc, tl, term, other);
-    double* t = acc;
-    acc = other;
-    other = t;
-    len = nl;
+    accumulate(acc, other, len, term,
+               expansion_product(sl, sub, liftlen[i], lift[i], term, tmp1, tmp2));
   }
-  if (acc != out)
-    for (int i = 0; i < len; ++i) out[i] = acc[i];
+  settle(acc, len, out);
   return len;
 }
 
@@ -124,5 +113,19 @@ GG_HD int square_lift(const double* p, double* out) {
   for (int i = 0; i < len; ++i) out[i] = parts[i];
   return len;
 }
+
+// The lifts |p|^2 of N rows, as the pointer/length arrays lifted_minor and sos_resolve take.
+template <int N, int D>
+struct SquareLifts {
+  double w[N][2 * D];
+  const double* p[N];
+  int len[N];
+  GG_HD explicit SquareLifts(const double* const* rows) {
+    for (int i = 0; i < N; ++i) {
+      len[i] = square_lift<D>(rows[i], w[i]);
+      p[i] = w[i];
+    }
+  }
+};
 
 }  // namespace gpugeom::exact

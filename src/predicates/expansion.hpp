@@ -105,22 +105,30 @@ GG_HD inline int scale_expansion(int elen, const double* e, double b, double* h)
   return k;
 }
 
+// Adds the expansion t (length tl) into the running sum held in acc (length len), using other
+// as the destination and swapping the two buffers, so callers ping-pong without copies.
+GG_INLINE void accumulate(double*& acc, double*& other, int& len, const double* t, int tl) {
+  const int nl = expansion_sum(len, acc, tl, t, other);
+  double* x = acc;
+  acc = other;
+  other = x;
+  len = nl;
+}
+// Copies the result to out when the ping-pong left it in the other buffer.
+GG_INLINE void settle(const double* acc, int len, double* out) {
+  if (acc != out)
+    for (int i = 0; i < len; ++i) out[i] = acc[i];
+}
+
 // h = e * f. h and tmp2 hold 2*elen*flen doubles each, tmp1 holds 2*elen.
 GG_HD inline int expansion_product(int elen, const double* e, int flen, const double* f, double* h,
                                    double* tmp1, double* tmp2) {
   int len = 0;
   double* acc = h;
   double* other = tmp2;
-  for (int j = 0; j < flen; ++j) {
-    int tl = scale_expansion(elen, e, f[j], tmp1);
-    int nl = expansion_sum(len, acc, tl, tmp1, other);
-    double* t = acc;
-    acc = other;
-    other = t;
-    len = nl;
-  }
-  if (acc != h)
-    for (int i = 0; i < len; ++i) h[i] = acc[i];
+  for (int j = 0; j < flen; ++j)
+    accumulate(acc, other, len, tmp1, scale_expansion(elen, e, f[j], tmp1));
+  settle(acc, len, h);
   return len;
 }
 

@@ -189,26 +189,14 @@ GG_HD inline int lifted_det_sign(const double* const* r, const double* const* li
 GG_HD inline int incircle_exact(const double* a, const double* b, const double* c, const double* d,
                                 double* s) {
   const double* r[4] = {a, b, c, d};
-  double lw[4][4];
-  const double* l[4];
-  int ll[4];
-  for (int i = 0; i < 4; ++i) {
-    ll[i] = square_lift<2>(r[i], lw[i]);
-    l[i] = lw[i];
-  }
-  return lifted_det_sign<2, 4>(r, l, ll, s);
+  SquareLifts<4, 2> l(r);
+  return lifted_det_sign<2, 4>(r, l.p, l.len, s);
 }
 GG_HD inline int insphere_exact(const double* a, const double* b, const double* c, const double* d,
                                 const double* e, double* s) {
   const double* r[5] = {a, b, c, d, e};
-  double lw[5][6];
-  const double* l[5];
-  int ll[5];
-  for (int i = 0; i < 5; ++i) {
-    ll[i] = square_lift<3>(r[i], lw[i]);
-    l[i] = lw[i];
-  }
-  return -lifted_det_sign<3, 6>(r, l, ll, s);
+  SquareLifts<5, 3> l(r);
+  return -lifted_det_sign<3, 6>(r, l.p, l.len, s);
 }
 GG_HD inline int orient4d_exact(const double* a, const double* b, const double* c, const double* d,
                                 const double* e, double* s) {
@@ -274,30 +262,18 @@ GG_HD inline int incircle_sos(const double* a, int ia, const double* b, int ib, 
   if (int r = incircle(a, b, c, d, s)) return r;
   const double* r[4] = {a, b, c, d};
   int idx[4] = {ia, ib, ic, id};
-  double lw[4][4];
-  const double* l[4];
-  int ll[4];
-  for (int i = 0; i < 4; ++i) {
-    ll[i] = square_lift<2>(r[i], lw[i]);
-    l[i] = lw[i];
-  }
-  int parity = sort_rows<4>(r, idx, l, ll);
-  return parity * sos_resolve<2, 4>(r, l, ll, s);
+  SquareLifts<4, 2> l(r);
+  int parity = sort_rows<4>(r, idx, l.p, l.len);
+  return parity * sos_resolve<2, 4>(r, l.p, l.len, s);
 }
 GG_HD inline int insphere_sos(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, const double* e, int ie, double* s) {
   if (int r = insphere(a, b, c, d, e, s)) return r;
   const double* r[5] = {a, b, c, d, e};
   int idx[5] = {ia, ib, ic, id, ie};
-  double lw[5][6];
-  const double* l[5];
-  int ll[5];
-  for (int i = 0; i < 5; ++i) {
-    ll[i] = square_lift<3>(r[i], lw[i]);
-    l[i] = lw[i];
-  }
-  int parity = sort_rows<5>(r, idx, l, ll);
-  return -parity * sos_resolve<3, 6>(r, l, ll, s);
+  SquareLifts<5, 3> l(r);
+  int parity = sort_rows<5>(r, idx, l.p, l.len);
+  return -parity * sos_resolve<3, 6>(r, l.p, l.len, s);
 }
 GG_HD inline int orient4d_sos(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, const double* e, int ie, double* s) {
