@@ -6,8 +6,10 @@ export LD_LIBRARY_PATH=$PWD/.devbin/lib:${LD_LIBRARY_PATH:-}
 OUT=${OUT:-/tmp/gg_out}
 mkdir -p "$OUT"
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$OUT/gpu.txt"
+LD_LIBRARY_PATH=$LD_LIBRARY_PATH .devbin/gpugeom info --device
 echo "== GPU tests (label gpu)"
 status=0
+ctest --test-dir .devbin -L gpu 2>&1 | tail -8 | tee "$OUT/ctest_gpu.txt" 
 for t in .devbin/test_*_cuda; do
   "$t" --gtest_brief=1 >"$OUT/$(basename "$t").log" 2>&1
   rc=$?

@@ -11,4 +11,12 @@ for f in .devbin/*; do
   [ -f "$f" ] || continue
   ldd "$f" | awk '/=> \//{print $3}' | grep -E 'libcudart|libgomp|libpng|libgmp|libmpfr|libz\.' | xargs -r -I{} cp -L {} .devbin/lib/
 done
+# A CTest file, so that the GPU machine can run 'ctest --test-dir .devbin -L gpu'.
+{
+  for t in .devbin/test_*_cuda; do
+    n=$(basename "$t")
+    echo "add_test($n \"\${CMAKE_CURRENT_LIST_DIR}/$n\")"
+    echo "set_tests_properties($n PROPERTIES LABELS gpu SKIP_RETURN_CODE 77)"
+  done
+} >.devbin/CTestTestfile.cmake
 du -sh .devbin
