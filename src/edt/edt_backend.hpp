@@ -1,0 +1,42 @@
+// What the public EDT entry hands to a backend, and what it gets back (internal).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "edt/edt_common.hpp"
+#include "gpugeom/edt.hpp"
+
+namespace gpugeom::edt {
+
+struct Request {
+  Layout layout;
+  Metric metric;
+  EdtMethod method = EdtMethod::Pba;
+  std::int64_t bands[3] = {0, 0, 0};  // 0: automatic
+  // Sites: a mask with one byte per voxel (nonzero = site), or a list of packed sites.
+  const std::uint8_t* mask = nullptr;
+  std::vector<std::uint32_t> sites;
+  // Slice-by-slice: the z values to compute (3D only); empty = the whole volume.
+  std::vector<std::int64_t> slices;
+  bool want_sqdist = false, want_features = false, want_labels = false;
+  int want_distance = 0;  // 0 none, 32 float32, 64 float64
+};
+
+struct Output {
+  std::vector<std::int64_t> sqdist_int;  // isotropic
+  std::vector<double> sqdist_real;       // anisotropic
+  std::vector<float> dist32;
+  std::vector<double> dist64;
+  std::vector<std::int32_t> features;  // nd arrays of voxel count, C axis order
+  std::vector<std::int32_t> labels;
+  double transform_ms = 0;  // device-resident feature transform only
+};
+
+namespace cpu_impl {
+void run(const Request& req, Output& out, Stats& stats);
+}
+namespace cuda_impl {
+void run(const Request& req, Output& out, Stats& stats);
+}
+
+}  // namespace gpugeom::edt

@@ -1,0 +1,126 @@
+// Shared device/host pieces of the distance transform: how a site is packed into 32 bits, and
+// the exact comparisons every pass makes.
+//
+// A site is stored as its coordinates packed into one uint32 (x in the low bits, then y, then
+// z), so comparing packed values compares sites lexicographically by (z, y, x): the raster
+// order. Ties between equally near sites always go to the smaller packed value, in every pass,
+// which makes the result independent of the order of the passes (whole volume, or slice by
+// slice) and equal to "the nearest site with the smallest raster index".
+//
+// Distances are sum_k w_k * d_k^2 with w_k = sampling_k^2 (1 when isotropic). Every decision is
+// the sign of sum_k w_k * I_k for integers I_k: exact in int64 when isotropic, otherwise by a
+// floating filter and an exact expansion fallback (w_k is split into two doubles exactly).
+#pragma once
+#include <cstdint>
+
+#include "exec/hd.hpp"
+#include "predicates/expansion.hpp"
+
+namespace gpugeom::edt {
+
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+
+struct Layout {
+  int nd = 2;
+  std::int64_t n[3] = {1, 1, 1};  // extent along x, y, z (z = 1 in 2D)
+  int shift[3] = {0, 0, 0};       // bit position of x, y, z in a packed site
+  std::uint32_t mask[3] = {0, 0, 0};
+  std::int64_t z0 = 0;  // z of the first slice held (slice-by-slice mode), 0 otherwise
+  std::int64_t count() const { return n[0] * n[1] * n[2]; }
+  GG_INLINE std::int64_t stride(int a) const { return a == 0 ? 1 : (a == 1 ? n[0] : n[0] * n[1]); }
+  GG_INLINE std::uint32_t pack(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return std::uint32_t(x) << shift[0] | std::uint32_t(y) << shift[1] | std::uint32_t(z) << shift[2];
+  }
+  GG_INLINE std::int64_t coord(std::uint32_t s, int a) const { return (s >> shift[a]) & mask[a]; }
+  GG_INLINE std::int64_t voxel_of(std::uint32_t s) const {
+    return coord(s, 0) + n[0] * (coord(s, 1) + n[1] * coord(s, 2));
+  }
+};
+
+struct Metric {
+  bool iso = true;
+  double wh[3] = {1, 1, 1}, wl[3] = {0, 0, 0};  // w_k = wh + wl exactly (sampling_k^2)
+  double w[3] = {1, 1, 1};                      // rounded, for filters and output distances
+};
+
+// sign(sum_k w_k I_k), exactly.
+GG_INLINE int weighted_sign(const Metric& m, const std::int64_t I[3]) {
+  if (m.iso) {
+    const std::int64_t s = I[0] + I[1] + I[2];
+    return (s > 0) - (s < 0);
+  }
+  double approx = 0, mag = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double t = m.w[k] * double(I[k]);
+    approx += t;
+    mag += t < 0 ? -t : t;
+  }
+  const double bound = 8 * 1.1102230246251565e-16 * mag;
+  if (approx > bound) return 1;
+  if (-approx > bound) return -1;
+  double acc[12], tmp[12], part[4];
+  int len = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double h[2] = {m.wl[k], m.wh[k]};
+    const int hl = m.wl[k] != 0 ? 2 : 1;
+    const int pl = exact::scale_expansion(hl, m.wl[k] != 0 ? h : h + 1, double(I[k]), part);
+    const int nl = exact::expansion_sum(len, acc, pl, part, tmp);
+    for (int i = 0; i < nl; ++i) acc[i] = tmp[i];
+    len = nl;
+  }
+  return exact::expansion_sign(len, acc);
+}
+
+// Does site q beat site p at voxel position (v[0], v[1], v[2])? Nearer, or as near and first
+// in raster order.
+GG_INLINE bool beats(const Layout& L, const Metric& m, std::uint32_t q, std::uint32_t p,
+                     const std::int64_t v[3]) {
+  std::int64_t I[3] = {0, 0, 0};
+  for (int k = 0; k < L.nd; ++k) {
+    const std::int64_t dq = L.coord(q, k) - v[k], dp = L.coord(p, k) - v[k];
+    I[k] = dq * dq - dp * dp;
+  }
+  const int s = weighted_sign(m, I);
+  return s < 0 || (s == 0 && q < p);
+}
+
+// Along axis a of a line whose other coordinates are v[], can site b be dropped given its
+// neighbours a_ (before) and c (after) in the candidate list? Yes when the A|B bisector lies at
+// or beyond the B|C bisector, unless the three tie exactly at a grid point that B wins.
+GG_INLINE bool dominated(const Layout& L, const Metric& m, int a, std::uint32_t A, std::uint32_t B,
+                         std::uint32_t C, const std::int64_t v[3]) {
+  const std::int64_t ta = L.coord(A, a), tb = L.coord(B, a), tc = L.coord(C, a);
+  std::int64_t I[3] = {0, 0, 0};
+  for (int p = 0; p < L.nd; ++p) {
+    if (p == a) {
+      I[p] = (tc - tb) * (tb - ta) * (ta - tc);
+    } else {
+      const std::int64_t da = L.coord(A, p) - v[p], db = L.coord(B, p) - v[p],
+                         dc = L.coord(C, p) - v[p];
+      I[p] = (tc - tb) * (db * db - da * da) - (tb - ta) * (dc * dc - db * db);
+    }
+  }
+  const int s = weighted_sign(m, I);
+  if (s != 0) return s > 0;
+  // u == v: B's cell on this line is one point. Keep B only if that point is a grid point
+  // where B is first in raster order among the three.
+  if (!(B < A && B < C)) return true;
+  double num = m.w[a] * double(tb * tb - ta * ta);
+  for (int p = 0; p < L.nd; ++p) {
+    if (p == a) continue;
+    const double da = double(L.coord(A, p) - v[p]), db = double(L.coord(B, p) - v[p]);
+    num += m.w[p] * (db * db - da * da);
+  }
+  const double u = num / (2 * m.w[a] * double(tb - ta));
+  const std::int64_t t0 = std::int64_t(u < 0 ? u - 0.5 : u + 0.5);
+  std::int64_t w[3] = {v[0], v[1], v[2]};
+  w[a] = t0;
+  std::int64_t J[3] = {0, 0, 0};
+  for (int k = 0; k < L.nd; ++k) {
+    const std::int64_t db = L.coord(B, k) - w[k], da = L.coord(A, k) - w[k];
+    J[k] = db * db - da * da;
+  }
+  return weighted_sign(m, J) != 0;  // not a grid-point tie: B colours nothing
+}
+
+}  // namespace gpugeom::edt

@@ -1,0 +1,199 @@
+// The backend entry: upload, feature transform (whole grid or slice by slice), outputs,
+// download. Included after pba.inl and jfa.inl.
+
+namespace {
+double clock_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+// Per-voxel outputs of one computed block (whole grid or one slice) appended at `at`.
+inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std::uint32_t* feat,
+                         const std::uint32_t* sorted_sites, const std::int32_t* sorted_idx,
+                         std::int64_t nsites, Output& out, std::int64_t at, std::int64_t total) {
+  const std::int64_t n = L.count();
+  const Layout Ly = L;
+  const Metric Mt = rq.metric;
+  if (rq.want_sqdist || rq.want_distance) {
+    auto sq = ex.template alloc<double>(std::size_t(n));
+    auto sqi = ex.template alloc<std::int64_t>(std::size_t(n));
+    double* sp = sq.data();
+    std::int64_t* si = sqi.data();
+    ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
+      const std::int64_t v[3] = {i % Ly.n[0], (i / Ly.n[0]) % Ly.n[1], i / (Ly.n[0] * Ly.n[1]) + Ly.z0};
+      std::int64_t q = 0;
+      double r = 0;
+      for (int k = 0; k < Ly.nd; ++k) {
+        const std::int64_t d = Ly.coord(feat[i], k) - v[k];
+        q += d * d;
+        r += Mt.w[k] * double(d * d);
+      }
+      si[i] = q;
+      sp[i] = Mt.iso ? double(q) : r;
+    });
+    if (rq.want_sqdist && rq.metric.iso) {
+      out.sqdist_int.resize(total);
+      ex.to_host(si, n, out.sqdist_int.data() + at);
+    } else if (rq.want_sqdist) {
+      out.sqdist_real.resize(total);
+      ex.to_host(sp, n, out.sqdist_real.data() + at);
+    }
+    if (rq.want_distance == 64) {
+      ex.for_each_index(n, GG_LAMBDA(std::int64_t i) { sp[i] = sqrt(sp[i]); });
+      out.dist64.resize(total);
+      ex.to_host(sp, n, out.dist64.data() + at);
+    } else if (rq.want_distance == 32) {
+      auto f = ex.template alloc<float>(std::size_t(n));
+      float* fp = f.data();
+      ex.for_each_index(n, GG_LAMBDA(std::int64_t i) { fp[i] = float(sqrt(sp[i])); });
+      out.dist32.resize(total);
+      ex.to_host(fp, n, out.dist32.data() + at);
+    }
+  }
+  if (rq.want_features) {
+    auto c = ex.template alloc<std::int32_t>(std::size_t(n));
+    std::int32_t* cp = c.data();
+    out.features.resize(std::size_t(total) * L.nd);
+    for (int j = 0; j < L.nd; ++j) {  // C axis j is internal axis nd-1-j
+      const int a = L.nd - 1 - j;
+      ex.for_each_index(n, GG_LAMBDA(std::int64_t i) { cp[i] = std::int32_t(Ly.coord(feat[i], a)); });
+      ex.to_host(cp, n, out.features.data() + std::size_t(j) * total + at);
+    }
+  }
+  if (rq.want_labels) {
+    auto lab = ex.template alloc<std::int32_t>(std::size_t(n));
+    std::int32_t* lp = lab.data();
+    const std::int64_t ns = nsites;
+    ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
+      std::int64_t lo = 0, hi = ns;  // lower_bound of the site in the sorted list
+      while (lo < hi) {
+        const std::int64_t mid = (lo + hi) / 2;
+        if (sorted_sites[mid] < feat[i]) lo = mid + 1;
+        else hi = mid;
+      }
+      lp[i] = sorted_idx ? sorted_idx[lo] : std::int32_t(lo);
+    });
+    out.labels.resize(total);
+    ex.to_host(lp, n, out.labels.data() + at);
+  }
+}
+
+inline void run_impl(const Request& rq, Output& out, Stats& stats) {
+  Exec ex;
+  const Layout L = rq.layout;
+  const std::int64_t nvox = L.count();
+  // The sorted site list: for labels, and for the slice-by-slice mode.
+  std::int64_t ns = 0;
+  auto sites = ex.template alloc<std::uint32_t>(rq.mask ? 0 : rq.sites.size());
+  auto sidx = ex.template alloc<std::int32_t>(rq.mask ? 0 : rq.sites.size());
+  auto mask = ex.template alloc<std::uint8_t>(rq.mask ? std::size_t(nvox) : 0);
+  const double t0 = clock_ms();
+  if (rq.mask) {
+    ex.from_host(rq.mask, nvox, mask.data());
+  } else {
+    ns = std::int64_t(rq.sites.size());
+    ex.from_host(rq.sites.data(), ns, sites.data());
+    std::int32_t* ip = sidx.data();
+    ex.for_each_index(ns, GG_LAMBDA(std::int64_t i) { ip[i] = std::int32_t(i); });
+    ex.sort_by_key(sites.data(), sidx.data(), ns);  // stable: duplicates keep the lower index
+  }
+  std::uint32_t* sorted = sites.data();
+  const std::int32_t* sorted_idx = rq.mask ? nullptr : sidx.data();
+  if (rq.mask && (rq.want_labels || !rq.slices.empty())) {  // raster order = packed order
+    auto vox = ex.template alloc<std::int32_t>(std::size_t(nvox));
+    const std::uint8_t* mp = mask.data();
+    ns = ex.compact_indices(nvox, GG_LAMBDA(std::int64_t i) { return mp[i] != 0; }, vox.data());
+    sites = ex.template alloc<std::uint32_t>(std::size_t(ns));
+    sorted = sites.data();
+    const std::int32_t* vp = vox.data();
+    const Layout Ly = L;
+    std::uint32_t* sp = sorted;
+    ex.for_each_index(ns, GG_LAMBDA(std::int64_t i) {
+      const std::int64_t v = vp[i];
+      sp[i] = Ly.pack(v % Ly.n[0], (v / Ly.n[0]) % Ly.n[1], v / (Ly.n[0] * Ly.n[1]));
+    });
+  }
+  ex.sync();
+  stats.phase_ms.push_back({"upload", clock_ms() - t0});
+
+  if (rq.slices.empty()) {
+    auto feat = ex.template alloc<std::uint32_t>(std::size_t(nvox));
+    std::uint32_t* fp = feat.data();
+    if (rq.mask) {
+      init_features(ex, L, mask.data(), fp);
+    } else {
+      ex.fill(fp, nvox, kNone);
+      const std::uint32_t* sp = sorted;
+      const Layout Ly = L;
+      ex.for_each_index(ns, GG_LAMBDA(std::int64_t i) { fp[Ly.voxel_of(sp[i])] = sp[i]; });
+    }
+    ex.sync();
+    const double t1 = clock_ms();
+    if (rq.method == EdtMethod::Jfa) jump_flood(ex, L, rq.metric, fp);
+    else feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, &stats);
+    ex.sync();
+    out.transform_ms = clock_ms() - t1;
+    stats.phase_ms.push_back({"transform", out.transform_ms});
+    const double t2 = clock_ms();
+    emit_outputs(ex, rq, L, fp, sorted, sorted_idx, ns, out, 0, nvox);
+    stats.phase_ms.push_back({"outputs", clock_ms() - t2});
+    return;
+  }
+
+  // Slice by slice: sites sorted by (y, x, z) give, for each (x, y) and a slice z0, the
+  // nearest site along z by binary search; then the x and y passes run on that slice alone.
+  const std::int64_t nxy = L.n[0] * L.n[1];
+  auto keys = ex.template alloc<std::uint64_t>(std::size_t(ns));
+  auto order = ex.template alloc<std::uint32_t>(std::size_t(ns));
+  {
+    std::uint64_t* kp = keys.data();
+    std::uint32_t* op = order.data();
+    const std::uint32_t* sp = sorted;
+    const Layout Ly = L;
+    ex.for_each_index(ns, GG_LAMBDA(std::int64_t i) {
+      const std::uint32_t s = sp[i];
+      kp[i] = (std::uint64_t(Ly.coord(s, 1) * Ly.n[0] + Ly.coord(s, 0)) << 32) | std::uint64_t(Ly.coord(s, 2));
+      op[i] = s;
+    });
+    ex.sort_by_key(kp, op, ns);
+  }
+  Layout Ls = L;
+  Ls.n[2] = 1;
+  auto feat = ex.template alloc<std::uint32_t>(std::size_t(nxy));
+  const std::int64_t nsl = std::int64_t(rq.slices.size());
+  double transform = 0;
+  for (std::int64_t k = 0; k < nsl; ++k) {
+    Ls.z0 = rq.slices[k];
+    const double t1 = clock_ms();
+    std::uint32_t* fp = feat.data();
+    const std::uint64_t* kp = keys.data();
+    const std::uint32_t* op = order.data();
+    const std::int64_t z0 = Ls.z0, nsites = ns;
+    ex.for_each_index(nxy, GG_LAMBDA(std::int64_t c) {
+      const std::uint64_t want = (std::uint64_t(c) << 32) | std::uint64_t(z0);
+      std::int64_t lo = 0, hi = nsites;  // first key >= (c, z0)
+      while (lo < hi) {
+        const std::int64_t mid = (lo + hi) / 2;
+        if (kp[mid] < want) lo = mid + 1;
+        else hi = mid;
+      }
+      std::uint32_t best = kNone;
+      std::int64_t bd = 0;
+      if (lo < nsites && (kp[lo] >> 32) == std::uint64_t(c)) {
+        best = op[lo];
+        bd = std::int64_t(kp[lo] & 0xffffffffu) - z0;
+      }
+      if (lo > 0 && (kp[lo - 1] >> 32) == std::uint64_t(c)) {  // below: wins ties (smaller z)
+        const std::int64_t d = z0 - std::int64_t(kp[lo - 1] & 0xffffffffu);
+        if (best == kNone || d <= bd) best = op[lo - 1];
+      }
+      fp[c] = best;
+    });
+    feature_transform(ex, Ls, rq.metric, fp, rq.bands, 2, &stats);
+    ex.sync();
+    transform += clock_ms() - t1;
+    emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, out, k * nxy, nsl * nxy);
+  }
+  out.transform_ms = transform;
+  stats.phase_ms.push_back({"transform", transform});
+}

@@ -1,0 +1,178 @@
+// The exact distance transform on the CPU executor against a brute-force rational reference,
+// for many shapes, densities and samplings; slice mode against the whole volume; band counts;
+// SciPy-style zero sites; errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "edt_cases.hpp"
+#include "verify.hpp"
+
+using namespace gpugeom;
+using gg_edt::brute_force;
+using gg_edt::random_grid;
+
+namespace {
+
+EdtOptions all_outputs(Backend b = Backend::Cpu) {
+  EdtOptions o;
+  o.backend = b;
+  o.squared = true;
+  o.distance = 64;
+  o.features = true;
+  o.labels = true;
+  return o;
+}
+
+void expect_exact(const io::Grid& g, const EdtOptions& o, const std::string& what) {
+  const auto ref = brute_force(g, o.sampling);
+  const auto r = distance_transform(g, SiteRule::NonZero, o);
+  const std::int64_t n = g.count();
+  const int nd = int(g.shape.size());
+  ASSERT_EQ(r.labels.size(), std::size_t(n)) << what;
+  // labels are raster ranks of the sites
+  std::vector<std::int64_t> rank(n, -1);
+  for (std::int64_t i = 0, k = 0; i < n; ++i)
+    if (g.data[i]) rank[i] = k++;
+  for (std::int64_t i = 0; i < n; ++i) {
+    std::int64_t f = 0;
+    for (int j = 0; j < nd; ++j) f = f * g.shape[j] + r.features[std::size_t(j) * n + i];
+    ASSERT_EQ(f, ref.nearest[i]) << what << " voxel " << i << ": wrong nearest site (tie rule?)";
+    ASSERT_EQ(r.labels[i], rank[ref.nearest[i]]) << what << " voxel " << i;
+    if (o.sampling.empty()) {
+      ASSERT_EQ(mpq_class((long)r.sqdist_int[i]), ref.sq[i]) << what << " voxel " << i;
+    } else {
+      ASSERT_NEAR(r.sqdist_real[i], ref.sq[i].get_d(), 1e-12 * (1 + ref.sq[i].get_d())) << what;
+    }
+    ASSERT_NEAR(r.distance64[i], std::sqrt(ref.sq[i].get_d()), 1e-12 * (1 + r.distance64[i])) << what;
+  }
+}
+
+}  // namespace
+
+TEST(Edt, ShapesAndDensities2d) {
+  const std::vector<std::vector<std::int64_t>> shapes{{1, 1}, {1, 37}, {41, 1}, {7, 13}, {32, 32}, {33, 65}, {64, 17}};
+  unsigned seed = 1;
+  for (auto& s : shapes)
+    for (double d : {0.001, 0.02, 0.1, 0.5, 0.9, 1.0}) expect_exact(random_grid(s, d, seed++), all_outputs(), "2d");
+}
+
+TEST(Edt, ShapesAndDensities3d) {
+  const std::vector<std::vector<std::int64_t>> shapes{{1, 1, 9}, {5, 1, 1}, {3, 7, 5}, {9, 8, 17}, {16, 16, 16}};
+  unsigned seed = 100;
+  for (auto& s : shapes)
+    for (double d : {0.001, 0.05, 0.3, 0.9}) expect_exact(random_grid(s, d, seed++), all_outputs(), "3d");
+}
+
+TEST(Edt, TiesOnSymmetricGrids) {
+  // Sites on a coarse lattice make many exact ties: the first site in raster order must win.
+  for (auto shape : {std::vector<std::int64_t>{31, 29}, std::vector<std::int64_t>{9, 11, 13}}) {
+    io::Grid g = random_grid(shape, 0, 7);
+    std::fill(g.data.begin(), g.data.end(), 0);
+    for (std::int64_t i = 0; i < g.count(); i += 6) g.data[i] = 1;
+    expect_exact(g, all_outputs(), "lattice");
+  }
+}
+
+TEST(Edt, AnisotropicSampling) {
+  for (auto sampling : {std::vector<double>{1.5, 0.5}, std::vector<double>{0.1, 0.3}, std::vector<double>{2, 1}}) {
+    EdtOptions o = all_outputs();
+    o.sampling = sampling;
+    expect_exact(random_grid({23, 31}, 0.05, 3), o, "aniso2d");
+    io::Grid g = random_grid({20, 20}, 0, 3);
+    std::fill(g.data.begin(), g.data.end(), 0);
+    for (std::int64_t i = 0; i < g.count(); i += 7) g.data[i] = 1;
+    expect_exact(g, o, "aniso2d lattice");
+  }
+  EdtOptions o = all_outputs();
+  o.sampling = {0.7, 1.3, 2.0};
+  expect_exact(random_grid({9, 14, 11}, 0.05, 4), o, "aniso3d");
+}
+
+TEST(Edt, BandCountsDoNotChangeTheResult) {
+  io::Grid g = random_grid({67, 45, 38}, 0.03, 11);
+  EdtOptions base = all_outputs();
+  const auto ref = distance_transform(g, SiteRule::NonZero, base);
+  for (std::int64_t k : {1, 2, 3, 5, 16, 64}) {
+    EdtOptions o = base;
+    o.bands[0] = o.bands[1] = o.bands[2] = k;
+    const auto r = distance_transform(g, SiteRule::NonZero, o);
+    ASSERT_EQ(r.labels, ref.labels) << "bands " << k;
+    ASSERT_EQ(r.sqdist_int, ref.sqdist_int) << "bands " << k;
+  }
+}
+
+TEST(Edt, SlicesEqualWholeVolume) {
+  io::Grid g = random_grid({21, 18, 25}, 0.02, 5);
+  EdtOptions o = all_outputs();
+  const auto whole = distance_transform(g, SiteRule::NonZero, o);
+  o.slices = {0, 7, 20, 3};
+  const auto part = distance_transform(g, SiteRule::NonZero, o);
+  const std::int64_t plane = 18 * 25, n = g.count();
+  ASSERT_EQ(part.shape, (std::vector<std::int64_t>{4, 18, 25}));
+  for (std::size_t k = 0; k < o.slices.size(); ++k)
+    for (std::int64_t i = 0; i < plane; ++i) {
+      const std::int64_t w = o.slices[k] * plane + i, p = std::int64_t(k) * plane + i;
+      ASSERT_EQ(part.labels[p], whole.labels[w]);
+      ASSERT_EQ(part.sqdist_int[p], whole.sqdist_int[w]);
+      for (int j = 0; j < 3; ++j) ASSERT_EQ(part.features[j * part.count() + p], whole.features[j * n + w]);
+    }
+}
+
+TEST(Edt, ExplicitSitesAndZeroRule) {
+  const std::vector<std::int64_t> shape{12, 15};
+  const std::vector<std::int64_t> sites{3, 4, 10, 14, 3, 4, 0, 0};  // a duplicate keeps index 0
+  EdtOptions o = all_outputs();
+  const auto r = distance_transform_sites(shape, sites, o);
+  std::vector<std::int64_t> flat{3, 4, 10, 14, 0, 0};
+  std::vector<std::int64_t> sq(r.sqdist_int.begin(), r.sqdist_int.end());
+  std::vector<std::int32_t> near(r.labels.size());
+  for (std::size_t i = 0; i < near.size(); ++i) near[i] = r.labels[i] == 3 ? 2 : (r.labels[i] == 2 ? -1 : r.labels[i]);
+  EXPECT_TRUE(verify::check_edt(shape, flat, sq.data(), near.data()).ok);
+  for (auto l : r.labels) EXPECT_NE(l, 2) << "the duplicate of site 0 must never be reported";
+  // Zero rule: SciPy's convention (distance to the nearest zero element).
+  io::Grid g = random_grid({10, 10}, 0.9, 2);
+  const auto a = distance_transform(g, SiteRule::Zero, o);
+  for (auto& v : g.data) v = !v;
+  const auto b = distance_transform(g, SiteRule::NonZero, o);
+  EXPECT_EQ(a.sqdist_int, b.sqdist_int);
+}
+
+TEST(Edt, JfaIsApproximateButClose) {
+  io::Grid g = random_grid({64, 64}, 0.01, 9);
+  EdtOptions o;
+  o.backend = Backend::Cpu;
+  o.squared = true;
+  const auto exact = distance_transform(g, SiteRule::NonZero, o);
+  o.method = EdtMethod::Jfa;
+  const auto jfa = distance_transform(g, SiteRule::NonZero, o);
+  std::int64_t wrong = 0;
+  for (std::size_t i = 0; i < exact.sqdist_int.size(); ++i) {
+    EXPECT_GE(jfa.sqdist_int[i], exact.sqdist_int[i]);  // never better than exact
+    wrong += jfa.sqdist_int[i] != exact.sqdist_int[i];
+  }
+  EXPECT_LT(wrong, std::int64_t(exact.sqdist_int.size()) / 20);
+}
+
+TEST(Edt, ClearErrors) {
+  io::Grid empty = random_grid({5, 5}, 0, 1);
+  std::fill(empty.data.begin(), empty.data.end(), 0);
+  EXPECT_THROW(distance_transform(empty, SiteRule::NonZero), Error);
+  io::Grid g = random_grid({5, 5}, 0.5, 1);
+  EdtOptions o;
+  o.backend = Backend::Cpu;
+  o.sampling = {1, -2};
+  EXPECT_THROW(distance_transform(g, SiteRule::NonZero, o), Error);
+  o.sampling = {1};
+  EXPECT_THROW(distance_transform(g, SiteRule::NonZero, o), Error);
+  o.sampling = {};
+  o.slices = {1};
+  EXPECT_THROW(distance_transform(g, SiteRule::NonZero, o), Error);  // 2D
+  EXPECT_THROW(distance_transform_sites({4, 4}, {4, 0}, o), Error);  // outside
+  try {
+    distance_transform(empty, SiteRule::NonZero);
+  } catch (const Error& e) {
+    EXPECT_EQ(int(e.code()), int(ErrorCode::InvalidInput));
+    EXPECT_NE(std::string(e.what()).find("no site"), std::string::npos);
+  }
+}
