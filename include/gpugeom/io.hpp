@@ -64,6 +64,9 @@ Grid read_grid(const std::string& path);
 Grid read_raw_grid(const std::string& path, const std::vector<std::int64_t>& shape,
                    ScalarType type);
 void write_grid(const std::string& path, const Grid& grid);
+// An 8-bit RGB PNG (rgb: rows * cols * 3 bytes), for previews a person looks at.
+void write_png_rgb(const std::string& path, std::int64_t rows, std::int64_t cols,
+                   const std::vector<unsigned char>& rgb);
 
 // Parsers over memory, for fuzzing and tests: name is used in messages, ext picks the format.
 PointSet parse_points(const std::string& bytes, const std::string& ext, const std::string& name);

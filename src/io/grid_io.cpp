@@ -243,10 +243,12 @@ Grid parse_png(const std::string& b, const std::string& name) {
   return g;
 }
 
-std::string format_png(const Grid& g) {
+// rgb: the grid holds rows x (3 * cols) bytes of RGB triples.
+std::string format_png(const Grid& g, bool rgb = false) {
   if (g.shape.size() != 2 ||
       (g.type != ScalarType::U8 && g.type != ScalarType::U16 && g.type != ScalarType::Bool))
     throw Error(ErrorCode::InvalidArgument, "PNG output needs a 2D uint8, uint16 or bool grid");
+  const int channels = rgb ? 3 : 1;
   std::string out, err;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, png_error_fn, png_warn_fn);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -263,8 +265,8 @@ std::string format_png(const Grid& g) {
       },
       nullptr);
   const int depth = g.type == ScalarType::U16 ? 16 : 8;
-  png_set_IHDR(png, info, png_uint_32(g.shape[1]), png_uint_32(g.shape[0]), depth,
-               PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+  png_set_IHDR(png, info, png_uint_32(g.shape[1] / channels), png_uint_32(g.shape[0]), depth,
+               rgb ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   if (depth == 16) png_set_swap(png);
@@ -356,9 +358,21 @@ Grid read_raw_grid(const std::string& path, const std::vector<std::int64_t>& sha
   return g;
 }
 
+void write_png_rgb(const std::string& path, std::int64_t rows, std::int64_t cols,
+                   const std::vector<unsigned char>& rgb) {
+  if (rows <= 0 || cols <= 0 || rgb.size() != std::size_t(rows * cols * 3))
+    throw Error(ErrorCode::InvalidArgument, "RGB image data does not match its size");
+  Grid g;  // rows x (3 * cols) bytes, written as RGB
+  g.shape = {rows, cols * 3};
+  g.type = ScalarType::U8;
+  g.data = rgb;
+  write_file_atomic(path, format_png(g, true));
+}
+
 void write_grid(const std::string& path, const Grid& g) {
   const std::string ext = extension(path);
-  check_shape(g.shape, path);
+  if (ext != ".npy" && ext != ".raw") check_shape(g.shape, path);  // .npy takes any rank
+  if (g.shape.empty()) throw Error(ErrorCode::InvalidArgument, "a grid needs at least one dimension");
   if (g.data.size() != std::size_t(g.count()) * scalar_size(g.type))
     throw Error(ErrorCode::InvalidArgument, "grid data size does not match its shape");
   std::string out;

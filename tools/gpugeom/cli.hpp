@@ -56,5 +56,6 @@ class Timer {
 int cmd_gen(const Global& g, Args& a);
 int cmd_check(const Global& g, Args& a);
 int cmd_info(const Global& g, Args& a);
+int cmd_edt(const Global& g, Args& a);
 
 }  // namespace gpugeom::cli

@@ -60,6 +60,7 @@ static const char* kUsageText =
     "  gen DIST -n N -o FILE   generate a seeded point set (e.g. uniform3d, ball3d, circle2d)\n"
     "  check MESH [--points P] check a triangulation / Delaunay / convex hull exactly\n"
     "  info FILE | --device    summarise a point, mesh or grid file; or show the GPU\n"
+    "  edt IN -o OUT.npy       exact distance transform / Voronoi diagram of an image or volume\n"
     "\n"
     "global options:\n"
     "  --backend B   executor: auto (CUDA if a GPU is usable, else CPU), cpu, cuda;\n"
@@ -103,6 +104,7 @@ int main(int argc, char** argv) {
     if (cmd == "gen") return cmd_gen(g, a);
     if (cmd == "check") return cmd_check(g, a);
     if (cmd == "info") return cmd_info(g, a);
+    if (cmd == "edt") return cmd_edt(g, a);
     throw UsageError("unknown command '" + cmd + "' (try 'gpugeom --help')");
   } catch (const UsageError& e) {
     std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << e.what() << "\n";
