@@ -4,6 +4,7 @@
 // JFA beside PBA with its error rate (voxels whose distance is wrong).
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -111,6 +112,8 @@ int main(int argc, char** argv) {
             for (std::size_t i = 0; i < ex.distance32.size(); ++i) bad += ex.distance32[i] != r.distance32[i];
             wrong = double(bad) / double(ex.distance32.size());
           }
+          if (std::getenv("GPUGEOM_EDT_PROFILE"))
+            for (auto& p : r.stats.phase_ms) std::printf("    %-10s %10.3f ms\n", p.first.c_str(), p.second);
           char grid[32];
           std::snprintf(grid, sizeof grid, dim == 2 ? "%lld^2" : "%lld^3", (long long)s);
           std::printf("%-6s %-12s %8.4f %-5s %-4s %11.3f %12.3f %10.4f\n", "edt", grid, d, backend_name(b),

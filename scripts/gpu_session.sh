@@ -27,10 +27,26 @@ if [ "${SKIP_SANITIZER:-0}" != 1 ]; then
   GG_TEST_TUPLES=1500 timeout 120 "$CS" --tool synccheck --error-exitcode 9 .devbin/test_exec_cuda --gtest_brief=1 >"$OUT/synccheck.log" 2>&1
   echo "synccheck test_exec_cuda: rc=$? $(grep -E 'ERROR SUMMARY' "$OUT/synccheck.log" | tail -1)"
 fi
-if [ "${SKIP_BENCH:-0}" != 1 ]; then
+echo "== SciPy oracle through the CLI on the CUDA backend"
+GPUGEOM_BACKEND=cuda python3 tests/edt/test_scipy_oracle.py .devbin/gpugeom 2>&1 | tail -1
+CSV="$OUT/bench.csv"
+rm -f "$CSV"
+if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = edt ]; then
+  echo "== EDT benchmarks (PBA on both backends, JFA, CuPy/SciPy/OpenCV anchors)"
+  E=.devbin/gpugeom_bench_edt
+  {
+    $E --backend cuda --sides 1024,2048,4096,8192,16384 --density 0.001,0.1,0.5 --reps 5 --csv "$CSV"
+    $E --backend cuda --sides 2048,8192 --density 0.1 --reps 3 --jfa --csv "$CSV" | grep jfa
+    $E --backend cpu --sides 1024,4096 --density 0.1 --reps 3 --csv "$CSV" | grep -v '^edt  *grid'
+    $E --backend cuda --dim 3 --sides 128,256,512 --density 0.001,0.1,0.5 --reps 5 --csv "$CSV" | grep -v '^edt  *grid'
+    $E --backend cuda --dim 3 --sides 1024 --density 0.1 --reps 2 --csv "$CSV" | grep -v '^edt  *grid'
+    $E --backend cpu --dim 3 --sides 256 --density 0.1 --reps 2 --csv "$CSV" | grep -v '^edt  *grid'
+  } 2>&1 | tee "$OUT/bench_edt.txt"
+  python3 bench/anchor_edt.py --sides 1024,2048,4096,8192,16384 --density 0.1 --tools cupy,scipy,opencv,edt --csv "$CSV" 2>&1 | tee "$OUT/anchor_edt.txt"
+  python3 bench/anchor_edt.py --dim 3 --sides 128,256,512,1024 --density 0.1 --tools cupy,scipy --csv "$CSV" 2>&1 | tee -a "$OUT/anchor_edt.txt"
+fi
+if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = foundation ]; then
   echo "== benchmarks"
-  CSV="$OUT/bench.csv"
-  rm -f "$CSV"
   B=.devbin/gpugeom_bench
   SIZES=${BENCH_SIZES:-1000000,10000000}
   $B --problem hilbert --dist uniform,grid --sizes $SIZES --csv "$CSV" >"$OUT/bench_hilbert.txt"

@@ -118,9 +118,10 @@ EdtResult distance_transform(const io::Grid& g, SiteRule rule, const EdtOptions&
   std::vector<std::uint8_t> mask(n);
   std::int64_t sites = 0;
   bool finite = true;
+  const bool bytes = g.type == io::ScalarType::U8 || g.type == io::ScalarType::Bool;
 #pragma omp parallel for reduction(+ : sites) reduction(&& : finite)
   for (std::int64_t i = 0; i < n; ++i) {
-    const double v = g.value(i);
+    const double v = bytes ? double(g.data[i]) : g.value(i);  // bytes: the common, fast case
     finite = finite && !std::isnan(v);
     const bool s = rule == SiteRule::NonZero ? v != 0 : v == 0;
     mask[i] = s;

@@ -43,10 +43,14 @@ struct Metric {
   double w[3] = {1, 1, 1};                      // rounded, for filters and output distances
 };
 
-// sign(sum_k w_k I_k), exactly.
-GG_INLINE int weighted_sign(const Metric& m, const std::int64_t I[3]) {
+// sign(sum_k w_k I_k), exactly. The I_k are integers below 2^51 held in T: int64_t, or
+// double, where they are exact too (grid coordinates are below 2^16, so every product the
+// passes form is below 2^49). Doubles are faster than 64-bit integer multiplies on the GPU,
+// integers faster on the CPU; each executor picks its own (pba.inl).
+template <class T>
+GG_INLINE int weighted_sign(const Metric& m, const T I[3]) {
   if (m.iso) {
-    const std::int64_t s = I[0] + I[1] + I[2];
+    const T s = I[0] + I[1] + I[2];  // exact: below 2^53
     return (s > 0) - (s < 0);
   }
   double approx = 0, mag = 0;
@@ -73,11 +77,12 @@ GG_INLINE int weighted_sign(const Metric& m, const std::int64_t I[3]) {
 
 // Does site q beat site p at voxel position (v[0], v[1], v[2])? Nearer, or as near and first
 // in raster order.
+template <class T>
 GG_INLINE bool beats(const Layout& L, const Metric& m, std::uint32_t q, std::uint32_t p,
                      const std::int64_t v[3]) {
-  std::int64_t I[3] = {0, 0, 0};
+  T I[3] = {0, 0, 0};
   for (int k = 0; k < L.nd; ++k) {
-    const std::int64_t dq = L.coord(q, k) - v[k], dp = L.coord(p, k) - v[k];
+    const T dq = T(L.coord(q, k) - v[k]), dp = T(L.coord(p, k) - v[k]);
     I[k] = dq * dq - dp * dp;
   }
   const int s = weighted_sign(m, I);
@@ -87,16 +92,16 @@ GG_INLINE bool beats(const Layout& L, const Metric& m, std::uint32_t q, std::uin
 // Along axis a of a line whose other coordinates are v[], can site b be dropped given its
 // neighbours a_ (before) and c (after) in the candidate list? Yes when the A|B bisector lies at
 // or beyond the B|C bisector, unless the three tie exactly at a grid point that B wins.
+template <class T>
 GG_INLINE bool dominated(const Layout& L, const Metric& m, int a, std::uint32_t A, std::uint32_t B,
                          std::uint32_t C, const std::int64_t v[3]) {
-  const std::int64_t ta = L.coord(A, a), tb = L.coord(B, a), tc = L.coord(C, a);
-  std::int64_t I[3] = {0, 0, 0};
+  const T ta = T(L.coord(A, a)), tb = T(L.coord(B, a)), tc = T(L.coord(C, a));
+  T I[3] = {0, 0, 0};
   for (int p = 0; p < L.nd; ++p) {
     if (p == a) {
       I[p] = (tc - tb) * (tb - ta) * (ta - tc);
     } else {
-      const std::int64_t da = L.coord(A, p) - v[p], db = L.coord(B, p) - v[p],
-                         dc = L.coord(C, p) - v[p];
+      const T da = T(L.coord(A, p) - v[p]), db = T(L.coord(B, p) - v[p]), dc = T(L.coord(C, p) - v[p]);
       I[p] = (tc - tb) * (db * db - da * da) - (tb - ta) * (dc * dc - db * db);
     }
   }
@@ -115,9 +120,9 @@ GG_INLINE bool dominated(const Layout& L, const Metric& m, int a, std::uint32_t 
   const std::int64_t t0 = std::int64_t(u < 0 ? u - 0.5 : u + 0.5);
   std::int64_t w[3] = {v[0], v[1], v[2]};
   w[a] = t0;
-  std::int64_t J[3] = {0, 0, 0};
+  T J[3] = {0, 0, 0};
   for (int k = 0; k < L.nd; ++k) {
-    const std::int64_t db = L.coord(B, k) - w[k], da = L.coord(A, k) - w[k];
+    const T db = T(L.coord(B, k) - w[k]), da = T(L.coord(A, k) - w[k]);
     J[k] = db * db - da * da;
   }
   return weighted_sign(m, J) != 0;  // not a grid-point tie: B colours nothing

@@ -1,7 +1,10 @@
 // The distance transform compiled for the CPU executor.
 #include <chrono>
+#include <cstdlib>
+#include <functional>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "edt/edt_backend.hpp"
 #include "exec/cpu_exec.hpp"

@@ -1,7 +1,10 @@
 // The distance transform compiled for the CUDA executor.
 #include <chrono>
+#include <cstdlib>
+#include <functional>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "edt/edt_backend.hpp"
 #include "exec/cuda_exec.cuh"

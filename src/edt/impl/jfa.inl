@@ -23,7 +23,7 @@ inline void jump_flood(Exec& ex, const Layout& L, const Metric& M, std::uint32_t
             const std::int64_t x = v[0] + ox * st, y = v[1] + oy * st, z = v[2] - Ly.z0 + oz * st;
             if (x < 0 || y < 0 || z < 0 || x >= Ly.n[0] || y >= Ly.n[1] || z >= Ly.n[2]) continue;
             const std::uint32_t c = in[x + Ly.n[0] * (y + Ly.n[1] * z)];
-            if (c != kNone && (best == kNone || beats(Ly, Mt, c, best, v))) best = c;
+            if (c != kNone && (best == kNone || beats<Num>(Ly, Mt, c, best, v))) best = c;
           }
       o[i] = best;
     });

@@ -13,6 +13,9 @@
 // Phase 1 (band sweeping) is the same machinery on the x axis, where a candidate is a site of
 // the line itself. Work O(M log bands), with NL * bands independent items per step.
 
+// Exact integer arithmetic in doubles on the GPU, in int64 on the CPU (edt_common.hpp).
+using Num = std::conditional_t<Exec::backend == Backend::Cuda, double, std::int64_t>;
+
 struct PassGeom {
   int a;
   std::int64_t len, lines, stride;
@@ -68,7 +71,7 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
     for (std::int64_t t = t0; t < t1; ++t) {
       const std::uint32_t c = cand[base + t * G.stride];
       if (c == kNone) continue;
-      while (n >= 2 && dominated(Ly, Mt, G.a, s[(n - 2) * G.stride], s[(n - 1) * G.stride], c, v)) --n;
+      while (n >= 2 && dominated<Num>(Ly, Mt, G.a, s[(n - 2) * G.stride], s[(n - 1) * G.stride], c, v)) --n;
       s[n * G.stride] = c;
       ++n;
     }
@@ -93,7 +96,7 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
       for (; i < nr; ++i) {
         const std::uint32_t c = right[i * G.stride];
         while (from_right < 2 && top >= 2 &&
-               dominated(Ly, Mt, G.a, left[(top - 2) * G.stride], left[(top - 1) * G.stride], c, v)) {
+               dominated<Num>(Ly, Mt, G.a, left[(top - 2) * G.stride], left[(top - 1) * G.stride], c, v)) {
           --top;
           from_right = from_right > 0 ? from_right - 1 : 0;
         }
@@ -125,14 +128,49 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
     std::int32_t lo = 0, hi = n - 1;  // first k whose successor does not beat it at t0
     while (lo < hi) {
       const std::int32_t mid = (lo + hi) / 2;
-      if (beats(Ly, Mt, s[(mid + 1) * G.stride], s[mid * G.stride], v)) lo = mid + 1;
+      if (beats<Num>(Ly, Mt, s[(mid + 1) * G.stride], s[mid * G.stride], v)) lo = mid + 1;
       else hi = mid;
     }
     std::int32_t k = lo;
     for (std::int64_t t = t0; t < t1; ++t) {
       v[G.a] = t;
-      while (k + 1 < n && beats(Ly, Mt, s[(k + 1) * G.stride], s[k * G.stride], v)) ++k;
+      while (k + 1 < n && beats<Num>(Ly, Mt, s[(k + 1) * G.stride], s[k * G.stride], v)) ++k;
       cand[base + t * G.stride] = s[k * G.stride];
+    }
+  });
+}
+
+// The x pass of a whole grid, where every candidate is a site of the row itself: the nearest
+// site to the left and to the right of each voxel come from a max scan and a reverse min scan
+// of site positions over the whole array (positions outside the voxel's row are ignored). All
+// accesses are coalesced, unlike a thread walking each row.
+inline void x_pass_by_scans(Exec& ex, const Layout& L, std::uint32_t* feat) {
+  const std::int64_t n = L.count();
+  auto left = ex.template alloc<std::int32_t>(std::size_t(n));
+  auto right = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* lp = left.data();
+  std::int32_t* rp = right.data();
+  ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
+    const bool site = feat[i] != kNone;
+    lp[i] = site ? std::int32_t(i) : -1;
+    rp[i] = site ? std::int32_t(i) : 0x7fffffff;
+  });
+  ex.inclusive_scan(lp, lp, n, GG_LAMBDA(std::int32_t a, std::int32_t b) { return a > b ? a : b; }, false);
+  ex.inclusive_scan(rp, rp, n, GG_LAMBDA(std::int32_t a, std::int32_t b) { return a < b ? a : b; }, true);
+  const Layout Ly = L;
+  ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
+    const std::int64_t x = i % Ly.n[0], row = i - x;
+    const std::int64_t l = lp[i], r = rp[i];
+    const bool hl = l >= row, hr = r < row + Ly.n[0];
+    std::int64_t s = -1;
+    if (hl && hr) s = (i - l <= r - i) ? l : r;  // a tie goes left: the smaller x
+    else if (hl) s = l;
+    else if (hr) s = r;
+    if (s < 0) {
+      feat[i] = kNone;
+    } else {
+      const std::int64_t rest = s / Ly.n[0];
+      feat[i] = Ly.pack(s % Ly.n[0], rest % Ly.n[1], rest / Ly.n[1]);
     }
   });
 }
@@ -140,8 +178,10 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
 // feat: in = voxel's own packed coordinates where it is a site, else kNone; out = nearest site.
 // naxes: how many axes to sweep, from x (all of them for a whole grid; x and y for a slice whose
 // candidates already hold the nearest site along z).
+// profile_step(a), when given, is called after the pass along axis a (to time the passes).
 inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
-                              const std::int64_t bands_override[3], int naxes, Stats* stats) {
+                              const std::int64_t bands_override[3], int naxes, Stats* stats,
+                              const std::function<void(int)>& profile_step = {}) {
   auto stk = ex.template alloc<std::uint32_t>(std::size_t(L.count()));
   std::int64_t max_items = 0;
   PassGeom gs[3];
@@ -150,9 +190,15 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
     max_items = gs[a].lines * gs[a].bands > max_items ? gs[a].lines * gs[a].bands : max_items;
   }
   auto counts = ex.template alloc<std::int32_t>(std::size_t(max_items));
+  // A whole grid starts with the sites themselves: on the GPU the x pass is two scans. A slice
+  // starts with sites from other slices, so it takes the general line pass.
+  // On the CPU a thread walking its own rows is cache-friendly, and faster than the scans.
+  const bool whole = naxes == L.nd && Exec::backend == Backend::Cuda;
   for (int a = 0; a < naxes; ++a) {
-    line_pass(ex, L, M, gs[a], feat, stk.data(), counts.data());
-    if (stats) stats->counters[std::string("bands_") + "xyz"[a]] = gs[a].bands;
+    if (a == 0 && whole) x_pass_by_scans(ex, L, feat);
+    else line_pass(ex, L, M, gs[a], feat, stk.data(), counts.data());
+    if (profile_step) profile_step(a);
+    if (stats) stats->counters[std::string("bands_") + "xyz"[a]] = a == 0 && whole ? 0 : gs[a].bands;
   }
 }
 

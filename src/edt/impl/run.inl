@@ -129,7 +129,17 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     }
     ex.sync();
     const double t1 = clock_ms();
+    // GPUGEOM_EDT_PROFILE=1 times each pass (a synchronisation after each: for tuning only).
+    const char* prof = std::getenv("GPUGEOM_EDT_PROFILE");
+    double last = t1;
+    auto step = [&](int a) {
+      ex.sync();
+      const double now = clock_ms();
+      stats.phase_ms.push_back({std::string("pass_") + "xyz"[a], now - last});
+      last = now;
+    };
     if (rq.method == EdtMethod::Jfa) jump_flood(ex, L, rq.metric, fp);
+    else if (prof && *prof == '1') feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, &stats, step);
     else feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, &stats);
     ex.sync();
     out.transform_ms = clock_ms() - t1;
