@@ -37,7 +37,9 @@ struct EdtOptions {
   bool features = false;         // nearest site coordinates, SciPy's return_indices layout
   bool labels = false;           // index of the nearest site (mask: raster rank of the site)
   // PBA band counts per axis (x, y, z: the thesis' k1, k2 and the 3D pass); 0 picks them by
-  // size: the smallest power of two giving every executor thread a band of >= 16 voxels.
+  // size: the smallest power of two that gives the executor enough independent (line, band)
+  // items (its concurrency: 1024 per GPU multiprocessor, 4 per CPU thread) while keeping bands
+  // of at least 16 voxels; at most 64.
   std::int64_t bands[3] = {0, 0, 0};
   std::vector<std::int64_t> slices;  // 3D only: compute just these z slices (slice-by-slice)
 };

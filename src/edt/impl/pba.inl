@@ -16,6 +16,8 @@
 // Exact integer arithmetic in doubles on the GPU, in int64 on the CPU (edt_common.hpp).
 using Num = std::conditional_t<Exec::backend == Backend::Cuda, double, std::int64_t>;
 
+constexpr std::int64_t kMaxBands = 64;
+
 struct PassGeom {
   int a;
   std::int64_t len, lines, stride;
@@ -49,16 +51,32 @@ inline PassGeom make_geom(const Layout& L, int a, std::int64_t want_items, std::
     while (bands * g.lines < want_items && bands * 2 * 16 <= g.len) bands *= 2;
   }
   g.bands = bands < 1 ? 1 : (bands > g.len ? g.len : bands);
+  if (g.bands > kMaxBands) g.bands = kMaxBands;
   g.band_len = (g.len + g.bands - 1) / g.bands;
   return g;
 }
 
+// The live candidates of one line: band b keeps the slice [lo_b, hi_b) of its own stack. Merges
+// only move these bounds (pops come off the tail of the upper group and the head of the lower
+// one; nothing is copied), and the list of the line is the concatenation of the slices.
+struct Segs {
+  std::uint32_t* stk;
+  std::int64_t base, stride, band_len, lines, l;
+  std::int32_t* lo;
+  std::int32_t* hi;
+  GG_INLINE std::uint32_t& at(std::int64_t b, std::int32_t i) const {
+    return stk[base + (b * band_len + i) * stride];
+  }
+  GG_INLINE std::int32_t& L(std::int64_t b) const { return lo[b * lines + l]; }
+  GG_INLINE std::int32_t& H(std::int64_t b) const { return hi[b * lines + l]; }
+};
+
 inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
-                      std::uint32_t* cand, std::uint32_t* stk, std::int32_t* counts) {
+                      std::uint32_t* cand, std::uint32_t* stk, std::int32_t* lo, std::int32_t* hi) {
   const Layout Ly = L;
   const Metric Mt = M;
   const PassGeom G = g;
-  // Stacks of non-dominated candidates per band.
+  // Stacks of non-dominated candidates per band; the top two stay in registers.
   ex.for_each_index(G.lines * G.bands, GG_LAMBDA(std::int64_t item) {
     const std::int64_t b = item / G.lines, l = item % G.lines;
     const std::int64_t base = line_base(Ly, G.a, l);
@@ -68,16 +86,24 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
     const std::int64_t t1 = t0 + G.band_len < G.len ? t0 + G.band_len : G.len;
     std::uint32_t* s = stk + base + t0 * G.stride;
     std::int32_t n = 0;
+    std::uint32_t top = kNone, second = kNone;
     for (std::int64_t t = t0; t < t1; ++t) {
       const std::uint32_t c = cand[base + t * G.stride];
       if (c == kNone) continue;
-      while (n >= 2 && dominated<Num>(Ly, Mt, G.a, s[(n - 2) * G.stride], s[(n - 1) * G.stride], c, v)) --n;
+      while (n >= 2 && dominated<Num>(Ly, Mt, G.a, second, top, c, v)) {
+        --n;
+        top = second;
+        second = n >= 2 ? s[(n - 2) * G.stride] : kNone;
+      }
       s[n * G.stride] = c;
       ++n;
+      second = top;
+      top = c;
     }
-    counts[item] = n;
+    lo[item] = 0;
+    hi[item] = n;
   });
-  // Pairwise merges of neighbouring band groups.
+  // Pairwise merges of neighbouring band groups (Algorithm 4.1 on the slices).
   for (std::int64_t width = 1; width < G.bands; width *= 2) {
     const std::int64_t groups = (G.bands + 2 * width - 1) / (2 * width);
     const std::int64_t wd = width;
@@ -85,57 +111,138 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
       const std::int64_t grp = item / G.lines, l = item % G.lines;
       const std::int64_t bl = grp * 2 * wd, br = bl + wd;
       if (br >= G.bands) return;
-      const std::int64_t base = line_base(Ly, G.a, l);
+      const std::int64_t be = br + wd < G.bands ? br + wd : G.bands;
+      Segs S{stk, line_base(Ly, G.a, l), G.stride, G.band_len, G.lines, l, lo, hi};
       std::int64_t v[3];
       line_coords(Ly, G.a, l, v);
-      std::uint32_t* left = stk + base + bl * G.band_len * G.stride;
-      const std::uint32_t* right = stk + base + br * G.band_len * G.stride;
-      std::int32_t top = counts[bl * G.lines + l];
-      const std::int32_t nr = counts[br * G.lines + l];
-      std::int32_t i = 0, from_right = 0;
-      for (; i < nr; ++i) {
-        const std::uint32_t c = right[i * G.stride];
-        while (from_right < 2 && top >= 2 &&
-               dominated<Num>(Ly, Mt, G.a, left[(top - 2) * G.stride], left[(top - 1) * G.stride], c, v)) {
-          --top;
-          from_right = from_right > 0 ? from_right - 1 : 0;
+      // Tail of the upper group: band ub, index ui (ub < bl: empty).
+      std::int64_t ub = br - 1;
+      while (ub >= bl && S.H(ub) == S.L(ub)) --ub;
+      std::int32_t ui = ub >= bl ? S.H(ub) - 1 : -1;
+      auto back = [&](std::int64_t& b, std::int32_t& i) {  // the live element before (b, i)
+        if (i > S.L(b)) {
+          --i;
+          return;
         }
-        left[top * G.stride] = c;
-        ++top;
-        if (++from_right >= 2) {  // right-band sites never dominate each other: copy the rest
-          for (++i; i < nr; ++i, ++top) left[top * G.stride] = right[i * G.stride];
-          break;
+        do --b;
+        while (b >= bl && S.H(b) == S.L(b));
+        i = b >= bl ? S.H(b) - 1 : -1;
+      };
+      std::int64_t ucount = 0;
+      for (std::int64_t b = bl; b < br; ++b) ucount += S.H(b) - S.L(b);
+      // Walk the lower group's elements in order.
+      std::int64_t vb = br;
+      std::int32_t vi = S.L(br);
+      std::int64_t dropped = 0;  // lower-group elements popped (always a prefix)
+      int pushed = 0;            // lower-group elements on the stack (0 or 1 while popping)
+      std::uint32_t last = kNone;
+      while (true) {
+        while (vb < be && vi >= S.H(vb)) {
+          ++vb;
+          if (vb < be) vi = S.L(vb);
         }
+        if (vb >= be) break;
+        const std::uint32_t c = S.at(vb, vi);
+        while (ucount + pushed >= 2) {
+          std::uint32_t t, sec;
+          if (pushed == 1) {
+            t = last;
+            sec = S.at(ub, ui);
+          } else {
+            t = S.at(ub, ui);
+            std::int64_t pb = ub;
+            std::int32_t pi = ui;
+            back(pb, pi);
+            sec = S.at(pb, pi);
+          }
+          if (!dominated<Num>(Ly, Mt, G.a, sec, t, c, v)) break;
+          if (pushed == 1) {
+            pushed = 0;
+            ++dropped;
+          } else {
+            back(ub, ui);
+            --ucount;
+          }
+        }
+        last = c;
+        if (++pushed == 2) break;  // lower-group sites never dominate each other
+        ++vi;
       }
-      counts[bl * G.lines + l] = top;
+      // Upper group: everything after the tail (ub, ui) is gone.
+      for (std::int64_t b = br - 1; b >= bl; --b) {
+        if (b > ub) S.H(b) = S.L(b);
+        else if (b == ub) S.H(b) = ui + 1;
+        else break;
+      }
+      // Lower group: drop the popped prefix.
+      for (std::int64_t b = br; b < be && dropped > 0; ++b) {
+        const std::int64_t take = S.H(b) - S.L(b) < dropped ? S.H(b) - S.L(b) : dropped;
+        S.L(b) += std::int32_t(take);
+        dropped -= take;
+      }
     });
   }
-  // Colouring: binary search for each band's first winner, then a forward walk.
+  // Colouring: find each band's first winner by binary search over the concatenated slices,
+  // then walk forward.
   ex.for_each_index(G.lines * G.bands, GG_LAMBDA(std::int64_t item) {
-    const std::int64_t b = item / G.lines, l = item % G.lines;
-    const std::int64_t base = line_base(Ly, G.a, l);
+    const std::int64_t b0 = item / G.lines, l = item % G.lines;
+    Segs S{stk, line_base(Ly, G.a, l), G.stride, G.band_len, G.lines, l, lo, hi};
     std::int64_t v[3];
     line_coords(Ly, G.a, l, v);
-    const std::int64_t t0 = b * G.band_len;
+    const std::int64_t t0 = b0 * G.band_len;
     const std::int64_t t1 = t0 + G.band_len < G.len ? t0 + G.band_len : G.len;
-    const std::uint32_t* s = stk + base;
-    const std::int32_t n = counts[l];
+    std::int32_t pre[kMaxBands + 1];  // live elements before each band
+    pre[0] = 0;
+    for (std::int64_t b = 0; b < G.bands; ++b) pre[b + 1] = pre[b] + S.H(b) - S.L(b);
+    const std::int64_t n = pre[G.bands];
     if (n == 0) {
-      for (std::int64_t t = t0; t < t1; ++t) cand[base + t * G.stride] = kNone;
+      for (std::int64_t t = t0; t < t1; ++t) cand[S.base + t * G.stride] = kNone;
       return;
     }
+    auto locate = [&](std::int64_t k, std::int64_t& b, std::int32_t& i) {  // k-th live element
+      std::int64_t a = 0, z = G.bands - 1;  // last band with pre[b] <= k
+      while (a < z) {
+        const std::int64_t m = (a + z + 1) / 2;
+        if (pre[m] <= k) a = m;
+        else z = m - 1;
+      }
+      b = a;
+      i = S.L(b) + std::int32_t(k - pre[b]);
+    };
+    auto next = [&](std::int64_t& b, std::int32_t& i) {
+      ++i;
+      while (b < G.bands && i >= S.H(b)) {
+        ++b;
+        if (b < G.bands) i = S.L(b);
+      }
+    };
     v[G.a] = t0;
-    std::int32_t lo = 0, hi = n - 1;  // first k whose successor does not beat it at t0
-    while (lo < hi) {
-      const std::int32_t mid = (lo + hi) / 2;
-      if (beats<Num>(Ly, Mt, s[(mid + 1) * G.stride], s[mid * G.stride], v)) lo = mid + 1;
-      else hi = mid;
+    std::int64_t lo_k = 0, hi_k = n - 1;  // first k whose successor does not beat it at t0
+    while (lo_k < hi_k) {
+      const std::int64_t mid = (lo_k + hi_k) / 2;
+      std::int64_t b, b2;
+      std::int32_t i, i2;
+      locate(mid, b, i);
+      b2 = b, i2 = i;
+      next(b2, i2);
+      if (beats<Num>(Ly, Mt, S.at(b2, i2), S.at(b, i), v)) lo_k = mid + 1;
+      else hi_k = mid;
     }
-    std::int32_t k = lo;
+    std::int64_t cb, nb;
+    std::int32_t ci, ni;
+    locate(lo_k, cb, ci);
+    nb = cb, ni = ci;
+    next(nb, ni);
+    std::uint32_t cur = S.at(cb, ci);
+    std::uint32_t nxt = nb < G.bands ? S.at(nb, ni) : kNone;
     for (std::int64_t t = t0; t < t1; ++t) {
       v[G.a] = t;
-      while (k + 1 < n && beats<Num>(Ly, Mt, s[(k + 1) * G.stride], s[k * G.stride], v)) ++k;
-      cand[base + t * G.stride] = s[k * G.stride];
+      while (nxt != kNone && beats<Num>(Ly, Mt, nxt, cur, v)) {
+        cur = nxt;
+        next(nb, ni);
+        nxt = nb < G.bands ? S.at(nb, ni) : kNone;
+      }
+      cand[S.base + t * G.stride] = cur;
     }
   });
 }
@@ -189,14 +296,15 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
     gs[a] = make_geom(L, a, ex.concurrency(), bands_override ? bands_override[a] : 0);
     max_items = gs[a].lines * gs[a].bands > max_items ? gs[a].lines * gs[a].bands : max_items;
   }
-  auto counts = ex.template alloc<std::int32_t>(std::size_t(max_items));
+  auto lo = ex.template alloc<std::int32_t>(std::size_t(max_items));
+  auto hi = ex.template alloc<std::int32_t>(std::size_t(max_items));
   // A whole grid starts with the sites themselves: on the GPU the x pass is two scans. A slice
   // starts with sites from other slices, so it takes the general line pass.
   // On the CPU a thread walking its own rows is cache-friendly, and faster than the scans.
   const bool whole = naxes == L.nd && Exec::backend == Backend::Cuda;
   for (int a = 0; a < naxes; ++a) {
     if (a == 0 && whole) x_pass_by_scans(ex, L, feat);
-    else line_pass(ex, L, M, gs[a], feat, stk.data(), counts.data());
+    else line_pass(ex, L, M, gs[a], feat, stk.data(), lo.data(), hi.data());
     if (profile_step) profile_step(a);
     if (stats) stats->counters[std::string("bands_") + "xyz"[a]] = a == 0 && whole ? 0 : gs[a].bands;
   }
