@@ -71,6 +71,47 @@ struct Segs {
   GG_INLINE std::int32_t& H(std::int64_t b) const { return hi[b * lines + l]; }
 };
 
+// A candidate as the passes compare it: its packed site, its position t along the pass axis
+// and, when the metric is isotropic, f = its squared distance to the line (other axes). With
+// those two numbers the isotropic tests are a few exact double operations (values < 2^51);
+// anisotropic metrics take the general exact tests of edt_common.hpp.
+struct Cand {
+  std::uint32_t s;
+  double t, f;
+};
+
+GG_INLINE Cand decode(const Layout& L, int a, std::uint32_t s, const std::int64_t v[3]) {
+  Cand c{s, double(L.coord(s, a)), 0.0};
+  for (int k = 0; k < 3; ++k)
+    if (k != a && k < L.nd) {
+      const double d = double(std::int32_t(L.coord(s, k)) - std::int32_t(v[k]));
+      c.f += d * d;
+    }
+  return c;
+}
+
+GG_INLINE bool cand_dominated(const Layout& L, const Metric& M, int a, const Cand& A, const Cand& B,
+                              const Cand& C, const std::int64_t v[3]) {
+  if (M.iso) {
+    const double e = (C.t - B.t) * (B.f - A.f) - (B.t - A.t) * (C.f - B.f) +
+                     (C.t - B.t) * (B.t - A.t) * (A.t - C.t);
+    if (e != 0) return e > 0;
+  }
+  return dominated<Num>(L, M, a, A.s, B.s, C.s, v);  // anisotropic, or an exact tie
+}
+
+GG_INLINE bool cand_beats(const Layout& L, const Metric& M, int a, const Cand& Q, const Cand& P,
+                          std::int64_t t, const std::int64_t v[3]) {
+  if (M.iso) {
+    const double dq = Q.t - double(t), dp = P.t - double(t);
+    const double e = (Q.f + dq * dq) - (P.f + dp * dp);
+    return e < 0 || (e == 0 && Q.s < P.s);
+  }
+  std::int64_t w[3] = {v[0], v[1], v[2]};
+  w[a] = t;
+  return beats<Num>(L, M, Q.s, P.s, w);
+}
+
 inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
                       std::uint32_t* cand, std::uint32_t* stk, std::int32_t* lo, std::int32_t* hi) {
   const Layout Ly = L;
@@ -86,16 +127,17 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
     const std::int64_t t1 = t0 + G.band_len < G.len ? t0 + G.band_len : G.len;
     std::uint32_t* s = stk + base + t0 * G.stride;
     std::int32_t n = 0;
-    std::uint32_t top = kNone, second = kNone;
+    Cand top{kNone, 0, 0}, second{kNone, 0, 0};
     for (std::int64_t t = t0; t < t1; ++t) {
-      const std::uint32_t c = cand[base + t * G.stride];
-      if (c == kNone) continue;
-      while (n >= 2 && dominated<Num>(Ly, Mt, G.a, second, top, c, v)) {
+      const std::uint32_t cs = cand[base + t * G.stride];
+      if (cs == kNone) continue;
+      const Cand c = decode(Ly, G.a, cs, v);
+      while (n >= 2 && cand_dominated(Ly, Mt, G.a, second, top, c, v)) {
         --n;
         top = second;
-        second = n >= 2 ? s[(n - 2) * G.stride] : kNone;
+        if (n >= 2) second = decode(Ly, G.a, s[(n - 2) * G.stride], v);
       }
-      s[n * G.stride] = c;
+      s[n * G.stride] = cs;
       ++n;
       second = top;
       top = c;
@@ -135,27 +177,27 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
       std::int32_t vi = S.L(br);
       std::int64_t dropped = 0;  // lower-group elements popped (always a prefix)
       int pushed = 0;            // lower-group elements on the stack (0 or 1 while popping)
-      std::uint32_t last = kNone;
+      Cand last{kNone, 0, 0};
       while (true) {
         while (vb < be && vi >= S.H(vb)) {
           ++vb;
           if (vb < be) vi = S.L(vb);
         }
         if (vb >= be) break;
-        const std::uint32_t c = S.at(vb, vi);
+        const Cand c = decode(Ly, G.a, S.at(vb, vi), v);
         while (ucount + pushed >= 2) {
-          std::uint32_t t, sec;
+          Cand t, sec;
           if (pushed == 1) {
             t = last;
-            sec = S.at(ub, ui);
+            sec = decode(Ly, G.a, S.at(ub, ui), v);
           } else {
-            t = S.at(ub, ui);
+            t = decode(Ly, G.a, S.at(ub, ui), v);
             std::int64_t pb = ub;
             std::int32_t pi = ui;
             back(pb, pi);
-            sec = S.at(pb, pi);
+            sec = decode(Ly, G.a, S.at(pb, pi), v);
           }
-          if (!dominated<Num>(Ly, Mt, G.a, sec, t, c, v)) break;
+          if (!cand_dominated(Ly, Mt, G.a, sec, t, c, v)) break;
           if (pushed == 1) {
             pushed = 0;
             ++dropped;
@@ -216,7 +258,6 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
         if (b < G.bands) i = S.L(b);
       }
     };
-    v[G.a] = t0;
     std::int64_t lo_k = 0, hi_k = n - 1;  // first k whose successor does not beat it at t0
     while (lo_k < hi_k) {
       const std::int64_t mid = (lo_k + hi_k) / 2;
@@ -225,7 +266,8 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
       locate(mid, b, i);
       b2 = b, i2 = i;
       next(b2, i2);
-      if (beats<Num>(Ly, Mt, S.at(b2, i2), S.at(b, i), v)) lo_k = mid + 1;
+      if (cand_beats(Ly, Mt, G.a, decode(Ly, G.a, S.at(b2, i2), v), decode(Ly, G.a, S.at(b, i), v), t0, v))
+        lo_k = mid + 1;
       else hi_k = mid;
     }
     std::int64_t cb, nb;
@@ -233,16 +275,15 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
     locate(lo_k, cb, ci);
     nb = cb, ni = ci;
     next(nb, ni);
-    std::uint32_t cur = S.at(cb, ci);
-    std::uint32_t nxt = nb < G.bands ? S.at(nb, ni) : kNone;
+    Cand cur = decode(Ly, G.a, S.at(cb, ci), v);
+    Cand nxt = decode(Ly, G.a, nb < G.bands ? S.at(nb, ni) : kNone, v);
     for (std::int64_t t = t0; t < t1; ++t) {
-      v[G.a] = t;
-      while (nxt != kNone && beats<Num>(Ly, Mt, nxt, cur, v)) {
+      while (nxt.s != kNone && cand_beats(Ly, Mt, G.a, nxt, cur, t, v)) {
         cur = nxt;
         next(nb, ni);
-        nxt = nb < G.bands ? S.at(nb, ni) : kNone;
+        nxt = decode(Ly, G.a, nb < G.bands ? S.at(nb, ni) : kNone, v);
       }
-      cand[S.base + t * G.stride] = cur;
+      cand[S.base + t * G.stride] = cur.s;
     }
   });
 }
@@ -265,19 +306,22 @@ inline void x_pass_by_scans(Exec& ex, const Layout& L, std::uint32_t* feat) {
   ex.inclusive_scan(lp, lp, n, GG_LAMBDA(std::int32_t a, std::int32_t b) { return a > b ? a : b; }, false);
   ex.inclusive_scan(rp, rp, n, GG_LAMBDA(std::int32_t a, std::int32_t b) { return a < b ? a : b; }, true);
   const Layout Ly = L;
-  ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
-    const std::int64_t x = i % Ly.n[0], row = i - x;
-    const std::int64_t l = lp[i], r = rp[i];
-    const bool hl = l >= row, hr = r < row + Ly.n[0];
-    std::int64_t s = -1;
-    if (hl && hr) s = (i - l <= r - i) ? l : r;  // a tie goes left: the smaller x
+  const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
+  ex.for_each_index(n, GG_LAMBDA(std::int64_t i64) {
+    // 32-bit index arithmetic: grids hold fewer than 2^31 voxels, and 64-bit division is
+    // several times dearer on the GPU.
+    const std::uint32_t i = std::uint32_t(i64), x = i % nx, row = i - x;
+    const std::int32_t l = lp[i], r = rp[i];
+    const bool hl = l >= std::int32_t(row), hr = r < std::int32_t(row + nx);
+    std::int32_t s = -1;
+    if (hl && hr) s = (std::int32_t(i) - l <= r - std::int32_t(i)) ? l : r;  // a tie goes left
     else if (hl) s = l;
     else if (hr) s = r;
     if (s < 0) {
       feat[i] = kNone;
     } else {
-      const std::int64_t rest = s / Ly.n[0];
-      feat[i] = Ly.pack(s % Ly.n[0], rest % Ly.n[1], rest / Ly.n[1]);
+      const std::uint32_t rest = std::uint32_t(s) / nx;
+      feat[i] = Ly.pack(std::uint32_t(s) - rest * nx, rest % ny, rest / ny);
     }
   });
 }
@@ -313,8 +357,9 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
 // Marks sites: feat[i] = packed(i) where site[i] != 0.
 inline void init_features(Exec& ex, const Layout& L, const std::uint8_t* site, std::uint32_t* feat) {
   const Layout Ly = L;
-  ex.for_each_index(L.count(), GG_LAMBDA(std::int64_t i) {
-    const std::int64_t x = i % Ly.n[0], y = (i / Ly.n[0]) % Ly.n[1], z = i / (Ly.n[0] * Ly.n[1]);
-    feat[i] = site[i] ? Ly.pack(x, y, z) : kNone;
+  const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
+  ex.for_each_index(L.count(), GG_LAMBDA(std::int64_t i64) {
+    const std::uint32_t i = std::uint32_t(i64), rest = i / nx;
+    feat[i] = site[i] ? Ly.pack(i - rest * nx, rest % ny, rest / ny) : kNone;
   });
 }

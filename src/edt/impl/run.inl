@@ -19,8 +19,11 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
     auto sqi = ex.template alloc<std::int64_t>(std::size_t(n));
     double* sp = sq.data();
     std::int64_t* si = sqi.data();
+    const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
     ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
-      const std::int64_t v[3] = {i % Ly.n[0], (i / Ly.n[0]) % Ly.n[1], i / (Ly.n[0] * Ly.n[1]) + Ly.z0};
+      const std::uint32_t rest = std::uint32_t(i) / nx;
+      const std::int64_t v[3] = {std::int64_t(std::uint32_t(i) - rest * nx), std::int64_t(rest % ny),
+                                 std::int64_t(rest / ny) + Ly.z0};
       std::int64_t q = 0;
       double r = 0;
       for (int k = 0; k < Ly.nd; ++k) {
