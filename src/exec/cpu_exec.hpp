@@ -11,7 +11,6 @@
 #include <vector>
 #include <thrust/copy.h>
 #include <thrust/iterator/counting_iterator.h>
-#include <thrust/iterator/reverse_iterator.h>
 #include <thrust/reduce.h>
 #include <thrust/scan.h>
 #include <thrust/sort.h>
@@ -85,16 +84,6 @@ struct CpuExec {
   template <class T>
   void inclusive_scan(const T* in, T* out, std::int64_t n) {
     thrust::inclusive_scan(thrust::omp::par, in, in + n, out);
-  }
-  // Inclusive scan with an associative operator, front to back or (reverse) back to front.
-  template <class T, class Op>
-  void inclusive_scan(const T* in, T* out, std::int64_t n, Op op, bool reverse) {
-    if (n <= 0) return;
-    if (reverse)
-      thrust::inclusive_scan(thrust::omp::par, thrust::make_reverse_iterator(in + n),
-                             thrust::make_reverse_iterator(in), thrust::make_reverse_iterator(out + n), op);
-    else
-      thrust::inclusive_scan(thrust::omp::par, in, in + n, out, op);
   }
   template <class T, class Op>
   T reduce(const T* in, std::int64_t n, T init, Op op) {

@@ -7,7 +7,6 @@
 #include <cub/device/device_select.cuh>
 #include <cuda_runtime.h>
 #include <thrust/iterator/counting_iterator.h>
-#include <thrust/iterator/reverse_iterator.h>
 #include <cstdint>
 #include <type_traits>
 #include <utility>
@@ -127,22 +126,6 @@ class CudaExec {
     run_cub([&](void* tmp, std::size_t& bytes) {
       return cub::DeviceScan::InclusiveSum(tmp, bytes, in, out, n, s_);
     });
-  }
-  // Inclusive scan with an associative operator, front to back or (reverse) back to front.
-  template <class T, class Op>
-  void inclusive_scan(const T* in, T* out, std::int64_t n, Op op, bool reverse) {
-    if (n <= 0) return;
-    if (reverse) {
-      auto ri = thrust::make_reverse_iterator(in + n);
-      auto ro = thrust::make_reverse_iterator(out + n);
-      run_cub([&](void* tmp, std::size_t& bytes) {
-        return cub::DeviceScan::InclusiveScan(tmp, bytes, ri, ro, op, n, s_);
-      });
-    } else {
-      run_cub([&](void* tmp, std::size_t& bytes) {
-        return cub::DeviceScan::InclusiveScan(tmp, bytes, in, out, op, n, s_);
-      });
-    }
   }
   template <class T, class Op>
   T reduce(const T* in, std::int64_t n, T init, Op op) {

@@ -288,43 +288,11 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
   });
 }
 
-// The x pass of a whole grid, where every candidate is a site of the row itself: the nearest
-// site to the left and to the right of each voxel come from a max scan and a reverse min scan
-// of site positions over the whole array (positions outside the voxel's row are ignored). All
-// accesses are coalesced, unlike a thread walking each row.
-inline void x_pass_by_scans(Exec& ex, const Layout& L, std::uint32_t* feat) {
-  const std::int64_t n = L.count();
-  auto left = ex.template alloc<std::int32_t>(std::size_t(n));
-  auto right = ex.template alloc<std::int32_t>(std::size_t(n));
-  std::int32_t* lp = left.data();
-  std::int32_t* rp = right.data();
-  ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
-    const bool site = feat[i] != kNone;
-    lp[i] = site ? std::int32_t(i) : -1;
-    rp[i] = site ? std::int32_t(i) : 0x7fffffff;
-  });
-  ex.inclusive_scan(lp, lp, n, GG_LAMBDA(std::int32_t a, std::int32_t b) { return a > b ? a : b; }, false);
-  ex.inclusive_scan(rp, rp, n, GG_LAMBDA(std::int32_t a, std::int32_t b) { return a < b ? a : b; }, true);
-  const Layout Ly = L;
-  const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
-  ex.for_each_index(n, GG_LAMBDA(std::int64_t i64) {
-    // 32-bit index arithmetic: grids hold fewer than 2^31 voxels, and 64-bit division is
-    // several times dearer on the GPU.
-    const std::uint32_t i = std::uint32_t(i64), x = i % nx, row = i - x;
-    const std::int32_t l = lp[i], r = rp[i];
-    const bool hl = l >= std::int32_t(row), hr = r < std::int32_t(row + nx);
-    std::int32_t s = -1;
-    if (hl && hr) s = (std::int32_t(i) - l <= r - std::int32_t(i)) ? l : r;  // a tie goes left
-    else if (hl) s = l;
-    else if (hr) s = r;
-    if (s < 0) {
-      feat[i] = kNone;
-    } else {
-      const std::uint32_t rest = std::uint32_t(s) / nx;
-      feat[i] = Ly.pack(std::uint32_t(s) - rest * nx, rest % ny, rest / ny);
-    }
-  });
-}
+// The x pass of a whole grid, where every candidate is a site of the row itself. Each backend
+// provides it (edt_cpu.cpp: the general line pass, whose row walks suit a CPU cache;
+// edt_cuda.cu: a warp per row with coalesced tiles and warp scans).
+void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g, std::uint32_t* feat,
+                 std::uint32_t* scratch, std::int32_t* lo, std::int32_t* hi);
 
 // feat: in = voxel's own packed coordinates where it is a site, else kNone; out = nearest site.
 // naxes: how many axes to sweep, from x (all of them for a whole grid; x and y for a slice whose
@@ -342,15 +310,14 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
   }
   auto lo = ex.template alloc<std::int32_t>(std::size_t(max_items));
   auto hi = ex.template alloc<std::int32_t>(std::size_t(max_items));
-  // A whole grid starts with the sites themselves: on the GPU the x pass is two scans. A slice
-  // starts with sites from other slices, so it takes the general line pass.
-  // On the CPU a thread walking its own rows is cache-friendly, and faster than the scans.
-  const bool whole = naxes == L.nd && Exec::backend == Backend::Cuda;
+  // A whole grid starts with the sites themselves (x_pass_rows); a slice starts with sites
+  // from other slices, so it takes the general line pass.
+  const bool whole = naxes == L.nd;
   for (int a = 0; a < naxes; ++a) {
-    if (a == 0 && whole) x_pass_by_scans(ex, L, feat);
+    if (a == 0 && whole) x_pass_rows(ex, L, M, gs[0], feat, stk.data(), lo.data(), hi.data());
     else line_pass(ex, L, M, gs[a], feat, stk.data(), lo.data(), hi.data());
     if (profile_step) profile_step(a);
-    if (stats) stats->counters[std::string("bands_") + "xyz"[a]] = a == 0 && whole ? 0 : gs[a].bands;
+    if (stats) stats->counters[std::string("bands_") + "xyz"[a]] = gs[a].bands;
   }
 }
 
