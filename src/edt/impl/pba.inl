@@ -128,8 +128,13 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
     std::uint32_t* s = stk + base + t0 * G.stride;
     std::int32_t n = 0;
     Cand top{kNone, 0, 0}, second{kNone, 0, 0};
+    // Loads run two positions ahead: the loop is latency-bound, not bandwidth-bound.
+    std::uint32_t ahead1 = t0 < t1 ? cand[base + t0 * G.stride] : kNone;
+    std::uint32_t ahead2 = t0 + 1 < t1 ? cand[base + (t0 + 1) * G.stride] : kNone;
     for (std::int64_t t = t0; t < t1; ++t) {
-      const std::uint32_t cs = cand[base + t * G.stride];
+      const std::uint32_t cs = ahead1;
+      ahead1 = ahead2;
+      if (t + 2 < t1) ahead2 = cand[base + (t + 2) * G.stride];
       if (cs == kNone) continue;
       const Cand c = decode(Ly, G.a, cs, v);
       while (n >= 2 && cand_dominated(Ly, Mt, G.a, second, top, c, v)) {
@@ -272,16 +277,22 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
     }
     std::int64_t cb, nb;
     std::int32_t ci, ni;
-    locate(lo_k, cb, ci);
+    locate(lo_k, cb, ci);  // the current winner; (nb, ni) its successor
     nb = cb, ni = ci;
     next(nb, ni);
     Cand cur = decode(Ly, G.a, S.at(cb, ci), v);
     Cand nxt = decode(Ly, G.a, nb < G.bands ? S.at(nb, ni) : kNone, v);
+    // The element after nxt is loaded one advance ahead, to hide its latency.
+    std::int64_t ab = nb;
+    std::int32_t ai = ni;
+    if (ab < G.bands) next(ab, ai);
+    std::uint32_t after = ab < G.bands ? S.at(ab, ai) : kNone;
     for (std::int64_t t = t0; t < t1; ++t) {
       while (nxt.s != kNone && cand_beats(Ly, Mt, G.a, nxt, cur, t, v)) {
         cur = nxt;
-        next(nb, ni);
-        nxt = decode(Ly, G.a, nb < G.bands ? S.at(nb, ni) : kNone, v);
+        nxt = decode(Ly, G.a, after, v);
+        if (ab < G.bands) next(ab, ai);
+        after = ab < G.bands ? S.at(ab, ai) : kNone;
       }
       cand[S.base + t * G.stride] = cur.s;
     }
