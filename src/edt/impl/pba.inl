@@ -81,29 +81,13 @@ struct Cand {
 };
 
 GG_INLINE Cand decode(const Layout& L, int a, std::uint32_t s, const std::int64_t v[3]) {
-  // 32-bit field extraction, then exact doubles: no 64-bit integer work in the hot loops.
-  Cand c{s, double((s >> L.shift[a]) & L.mask[a]), 0.0};
+  Cand c{s, double(L.coord(s, a)), 0.0};
   for (int k = 0; k < 3; ++k)
     if (k != a && k < L.nd) {
-      const double d = double(std::int32_t((s >> L.shift[k]) & L.mask[k]) - std::int32_t(v[k]));
+      const double d = double(std::int32_t(L.coord(s, k)) - std::int32_t(v[k]));
       c.f += d * d;
     }
   return c;
-}
-
-// The general tests (anisotropic metrics, exact ties), out of line: rare in the hot loops.
-// The line's coordinates come by value, so the caller's array can stay in registers.
-GG_NOINLINE bool general_dominated(const Layout& L, const Metric& M, int a, std::uint32_t A,
-                                   std::uint32_t B, std::uint32_t C, std::int64_t v0, std::int64_t v1,
-                                   std::int64_t v2) {
-  const std::int64_t v[3] = {v0, v1, v2};
-  return dominated<Num>(L, M, a, A, B, C, v);
-}
-GG_NOINLINE bool general_beats(const Layout& L, const Metric& M, int a, std::uint32_t Q, std::uint32_t P,
-                               std::int64_t t, std::int64_t v0, std::int64_t v1, std::int64_t v2) {
-  std::int64_t w[3] = {v0, v1, v2};
-  w[a] = t;
-  return beats<Num>(L, M, Q, P, w);
 }
 
 GG_INLINE bool cand_dominated(const Layout& L, const Metric& M, int a, const Cand& A, const Cand& B,
@@ -113,7 +97,7 @@ GG_INLINE bool cand_dominated(const Layout& L, const Metric& M, int a, const Can
                      (C.t - B.t) * (B.t - A.t) * (A.t - C.t);
     if (e != 0) return e > 0;
   }
-  return general_dominated(L, M, a, A.s, B.s, C.s, v[0], v[1], v[2]);  // anisotropic, or an exact tie
+  return dominated<Num>(L, M, a, A.s, B.s, C.s, v);  // anisotropic, or an exact tie
 }
 
 GG_INLINE bool cand_beats(const Layout& L, const Metric& M, int a, const Cand& Q, const Cand& P,
@@ -123,7 +107,9 @@ GG_INLINE bool cand_beats(const Layout& L, const Metric& M, int a, const Cand& Q
     const double e = (Q.f + dq * dq) - (P.f + dp * dp);
     return e < 0 || (e == 0 && Q.s < P.s);
   }
-  return general_beats(L, M, a, Q.s, P.s, t, v[0], v[1], v[2]);
+  std::int64_t w[3] = {v[0], v[1], v[2]};
+  w[a] = t;
+  return beats<Num>(L, M, Q.s, P.s, w);
 }
 
 inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
