@@ -125,32 +125,24 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
     line_coords(Ly, G.a, l, v);
     const std::int64_t t0 = b * G.band_len;
     const std::int64_t t1 = t0 + G.band_len < G.len ? t0 + G.band_len : G.len;
-    // Strided pointers advance by addition: no 64-bit multiply per access.
-    const std::int64_t st = G.stride;
-    std::uint32_t* const s = stk + base + t0 * st;
-    std::uint32_t* push = s;  // where the next stack element goes
+    std::uint32_t* s = stk + base + t0 * G.stride;
     std::int32_t n = 0;
     Cand top{kNone, 0, 0}, second{kNone, 0, 0};
     // Loads run two positions ahead: the loop is latency-bound, not bandwidth-bound.
-    const std::uint32_t* in = cand + base + t0 * st;
-    const std::int64_t len = t1 - t0;
-    std::uint32_t ahead1 = len > 0 ? in[0] : kNone;
-    std::uint32_t ahead2 = len > 1 ? in[st] : kNone;
-    in += 2 * st;
-    for (std::int64_t k = 0; k < len; ++k, in += st) {
+    std::uint32_t ahead1 = t0 < t1 ? cand[base + t0 * G.stride] : kNone;
+    std::uint32_t ahead2 = t0 + 1 < t1 ? cand[base + (t0 + 1) * G.stride] : kNone;
+    for (std::int64_t t = t0; t < t1; ++t) {
       const std::uint32_t cs = ahead1;
       ahead1 = ahead2;
-      if (k + 2 < len) ahead2 = *in;
+      if (t + 2 < t1) ahead2 = cand[base + (t + 2) * G.stride];
       if (cs == kNone) continue;
       const Cand c = decode(Ly, G.a, cs, v);
       while (n >= 2 && cand_dominated(Ly, Mt, G.a, second, top, c, v)) {
         --n;
-        push -= st;
         top = second;
-        if (n >= 2) second = decode(Ly, G.a, *(push - 2 * st), v);
+        if (n >= 2) second = decode(Ly, G.a, s[(n - 2) * G.stride], v);
       }
-      *push = cs;
-      push += st;
+      s[n * G.stride] = cs;
       ++n;
       second = top;
       top = c;
@@ -295,15 +287,14 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
     std::int32_t ai = ni;
     if (ab < G.bands) next(ab, ai);
     std::uint32_t after = ab < G.bands ? S.at(ab, ai) : kNone;
-    std::uint32_t* outp = cand + S.base + t0 * G.stride;
-    for (std::int64_t t = t0; t < t1; ++t, outp += G.stride) {
+    for (std::int64_t t = t0; t < t1; ++t) {
       while (nxt.s != kNone && cand_beats(Ly, Mt, G.a, nxt, cur, t, v)) {
         cur = nxt;
         nxt = decode(Ly, G.a, after, v);
         if (ab < G.bands) next(ab, ai);
         after = ab < G.bands ? S.at(ab, ai) : kNone;
       }
-      *outp = cur.s;
+      cand[S.base + t * G.stride] = cur.s;
     }
   });
 }
