@@ -46,7 +46,7 @@ double ms_since(std::chrono::steady_clock::time_point t) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string sides = "1024,2048", dens = "0.1", backends = "all", csv;
+  std::string sides = "1024,2048", dens = "0.1", backends = "all", csv, shapes;
   int dim = 2, reps = 5;
   bool jfa = false;
   for (int i = 1; i < argc; ++i) {
@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
     else if (a == "--reps") reps = std::stoi(next());
     else if (a == "--csv") csv = next();
     else if (a == "--jfa") jfa = true;
+    else if (a == "--shapes") shapes = next();  // e.g. 4096x16384,8000x8400 (C order)
     else {
       std::cout << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
                    "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--csv FILE]\n";
@@ -76,12 +77,23 @@ int main(int argc, char** argv) {
       f << "problem,distribution,n,backend,device,upload_ms,compute_ms,download_ms,device_resident_ms,"
            "with_copies_ms,exact_fraction\n";
   }
-  std::printf("%-6s %-12s %8s %-5s %-4s %11s %12s %10s\n", "edt", "grid", "density", "bk", "meth", "transform",
+  std::printf("%-6s %-14s %8s %-5s %-4s %11s %12s %10s\n", "edt", "grid", "density", "bk", "meth", "transform",
               "w/copies", "wrong%");
-  for (double side : list(sides))
+  std::vector<std::vector<std::int64_t>> all_shapes;
+  if (!shapes.empty()) {
+    std::stringstream ss(shapes);
+    for (std::string one; std::getline(ss, one, ',');) {
+      std::vector<std::int64_t> sh;
+      std::stringstream parts(one);
+      for (std::string x; std::getline(parts, x, 'x');) sh.push_back(std::stoll(x));
+      all_shapes.push_back(sh);
+    }
+  } else {
+    for (double side : list(sides)) all_shapes.push_back(std::vector<std::int64_t>(dim, std::int64_t(side)));
+  }
+  for (const auto& shape : all_shapes)
     for (double d : list(dens)) {
-      const std::int64_t s = std::int64_t(side);
-      std::vector<std::int64_t> shape(dim, s);
+      dim = int(shape.size());
       io::Grid g = random_sites(shape, d, 12345);
       for (Backend b : bks)
         for (int m = 0; m < (jfa ? 2 : 1); ++m) {
@@ -114,9 +126,9 @@ int main(int argc, char** argv) {
           }
           if (std::getenv("GPUGEOM_EDT_PROFILE"))
             for (auto& p : r.stats.phase_ms) std::printf("    %-10s %10.3f ms\n", p.first.c_str(), p.second);
-          char grid[32];
-          std::snprintf(grid, sizeof grid, dim == 2 ? "%lld^2" : "%lld^3", (long long)s);
-          std::printf("%-6s %-12s %8.4f %-5s %-4s %11.3f %12.3f %10.4f\n", "edt", grid, d, backend_name(b),
+          std::string grid;
+          for (auto e : shape) grid += (grid.empty() ? "" : "x") + std::to_string(e);
+          std::printf("%-6s %-14s %8.4f %-5s %-4s %11.3f %12.3f %10.4f\n", "edt", grid.c_str(), d, backend_name(b),
                       m ? "jfa" : "pba", tt[tt.size() / 2], tw[tw.size() / 2], 100 * wrong);
           if (f)
             f << (m ? "edt_jfa" : "edt") << dim << "d,density" << d << "," << g.count() << "," << backend_name(b)

@@ -23,6 +23,10 @@ echo "== gpugeom ($("$G" info --device | grep -E '^device' | sed 's/device: *//'
 "$B" --problem hilbert --dim 2 --dist uniform --sizes $SIZES --csv "$CSV"
 "$B" --problem orient3d --dist uniform,sphere,grid --sizes $SIZES --csv "$CSV"
 "$B" --problem insphere --dist uniform,sphere,grid --sizes $SIZES --csv "$CSV"
+echo "== distance transform"
+if [ "$QUICK" = 1 ]; then ESIDES=1024,2048; else ESIDES=2048,4096,8192; fi
+"$BUILD/bench/gpugeom_bench_edt" --sides $ESIDES --density 0.001,0.1,0.5 --reps 3 --csv "$CSV"
+python3 bench/anchor_edt.py --sides $ESIDES --density 0.1 --tools cupy,scipy,opencv,edt --csv "$CSV" || true
 echo "== anchors (CPU, one core)"
 if [ -x "$BUILD/bench/anchor_cgal" ]; then
   "$BUILD/bench/anchor_cgal" --problem delaunay2d --dist uniform --sizes $ASIZES --csv "$CSV"
