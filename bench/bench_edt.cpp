@@ -52,14 +52,22 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-    if (a == "--dim") dim = std::stoi(next());
-    else if (a == "--sides") sides = next();
-    else if (a == "--density") dens = next();
-    else if (a == "--backend") backends = next();
-    else if (a == "--reps") reps = std::stoi(next());
-    else if (a == "--csv") csv = next();
-    else if (a == "--jfa") jfa = true;
-    else if (a == "--shapes") shapes = next();  // e.g. 4096x16384,8000x8400 (C order)
+    if (a == "--dim")
+      dim = std::stoi(next());
+    else if (a == "--sides")
+      sides = next();
+    else if (a == "--density")
+      dens = next();
+    else if (a == "--backend")
+      backends = next();
+    else if (a == "--reps")
+      reps = std::stoi(next());
+    else if (a == "--csv")
+      csv = next();
+    else if (a == "--jfa")
+      jfa = true;
+    else if (a == "--shapes")
+      shapes = next();  // e.g. 4096x16384,8000x8400 (C order)
     else {
       std::cout << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
                    "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--csv FILE]\n";
@@ -68,17 +76,19 @@ int main(int argc, char** argv) {
   }
   std::vector<Backend> bks;
   if (backends == "all" || backends == "cpu") bks.push_back(Backend::Cpu);
-  if ((backends == "all" || backends == "cuda") && query_device().available) bks.push_back(Backend::Cuda);
+  if ((backends == "all" || backends == "cuda") && query_device().available)
+    bks.push_back(Backend::Cuda);
   const std::string gpu = query_device().available ? query_device().name : "none";
   std::ofstream f;
   if (!csv.empty()) {
     f.open(csv, std::ios::app);
     if (f.tellp() == 0)
-      f << "problem,distribution,n,backend,device,upload_ms,compute_ms,download_ms,device_resident_ms,"
+      f << "problem,distribution,n,backend,device,upload_ms,compute_ms,download_ms,device_resident_"
+           "ms,"
            "with_copies_ms,exact_fraction\n";
   }
-  std::printf("%-6s %-14s %8s %-5s %-4s %11s %12s %10s\n", "edt", "grid", "density", "bk", "meth", "transform",
-              "w/copies", "wrong%");
+  std::printf("%-6s %-14s %8s %-5s %-4s %11s %12s %10s\n", "edt", "grid", "density", "bk", "meth",
+              "transform", "w/copies", "wrong%");
   std::vector<std::vector<std::int64_t>> all_shapes;
   if (!shapes.empty()) {
     std::stringstream ss(shapes);
@@ -89,7 +99,8 @@ int main(int argc, char** argv) {
       all_shapes.push_back(sh);
     }
   } else {
-    for (double side : list(sides)) all_shapes.push_back(std::vector<std::int64_t>(dim, std::int64_t(side)));
+    for (double side : list(sides))
+      all_shapes.push_back(std::vector<std::int64_t>(dim, std::int64_t(side)));
   }
   for (const auto& shape : all_shapes)
     for (double d : list(dens)) {
@@ -121,19 +132,23 @@ int main(int argc, char** argv) {
             e.method = EdtMethod::Pba;
             const auto ex = distance_transform(g, SiteRule::NonZero, e);
             std::int64_t bad = 0;
-            for (std::size_t i = 0; i < ex.distance32.size(); ++i) bad += ex.distance32[i] != r.distance32[i];
+            for (std::size_t i = 0; i < ex.distance32.size(); ++i)
+              bad += ex.distance32[i] != r.distance32[i];
             wrong = double(bad) / double(ex.distance32.size());
           }
           if (std::getenv("GPUGEOM_EDT_PROFILE"))
-            for (auto& p : r.stats.phase_ms) std::printf("    %-10s %10.3f ms\n", p.first.c_str(), p.second);
+            for (auto& p : r.stats.phase_ms)
+              std::printf("    %-10s %10.3f ms\n", p.first.c_str(), p.second);
           std::string grid;
           for (auto e : shape) grid += (grid.empty() ? "" : "x") + std::to_string(e);
-          std::printf("%-6s %-14s %8.4f %-5s %-4s %11.3f %12.3f %10.4f\n", "edt", grid.c_str(), d, backend_name(b),
-                      m ? "jfa" : "pba", tt[tt.size() / 2], tw[tw.size() / 2], 100 * wrong);
+          std::printf("%-6s %-14s %8.4f %-5s %-4s %11.3f %12.3f %10.4f\n", "edt", grid.c_str(), d,
+                      backend_name(b), m ? "jfa" : "pba", tt[tt.size() / 2], tw[tw.size() / 2],
+                      100 * wrong);
           if (f)
-            f << (m ? "edt_jfa" : "edt") << dim << "d,density" << d << "," << g.count() << "," << backend_name(b)
-              << "," << (b == Backend::Cuda ? gpu : "cpu") << ",0," << tt[tt.size() / 2] << ",0,"
-              << tt[tt.size() / 2] << "," << tw[tw.size() / 2] << "," << wrong << "\n";
+            f << (m ? "edt_jfa" : "edt") << dim << "d,density" << d << "," << g.count() << ","
+              << backend_name(b) << "," << (b == Backend::Cuda ? gpu : "cpu") << ",0,"
+              << tt[tt.size() / 2] << ",0," << tt[tt.size() / 2] << "," << tw[tw.size() / 2] << ","
+              << wrong << "\n";
         }
     }
   return 0;

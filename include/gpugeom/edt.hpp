@@ -45,12 +45,12 @@ struct EdtOptions {
 };
 
 struct EdtResult {
-  std::vector<std::int64_t> shape;        // of the output (slices replace the first extent)
-  std::vector<std::int64_t> sqdist_int;   // squared distances, isotropic
-  std::vector<double> sqdist_real;        // squared distances, anisotropic
+  std::vector<std::int64_t> shape;       // of the output (slices replace the first extent)
+  std::vector<std::int64_t> sqdist_int;  // squared distances, isotropic
+  std::vector<double> sqdist_real;       // squared distances, anisotropic
   std::vector<float> distance32;
   std::vector<double> distance64;
-  std::vector<std::int32_t> features;     // ndim arrays of count() each (axis 0 first)
+  std::vector<std::int32_t> features;  // ndim arrays of count() each (axis 0 first)
   std::vector<std::int32_t> labels;
   Stats stats;
   std::int64_t count() const;
@@ -60,7 +60,8 @@ struct EdtResult {
 // that are not 2D/3D, or sizes whose coordinates do not fit 32 bits together.
 EdtResult distance_transform(const io::Grid& grid, SiteRule rule, const EdtOptions& opt = {});
 // Sites given by coordinates (ndim per site, C order). Duplicates keep the lower index.
-EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape, const std::vector<std::int64_t>& sites,
-                                  const EdtOptions& opt = {});
+EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
+                                   const std::vector<std::int64_t>& sites,
+                                   const EdtOptions& opt = {});
 
 }  // namespace gpugeom

@@ -29,7 +29,8 @@ struct Layout {
   std::int64_t count() const { return n[0] * n[1] * n[2]; }
   GG_INLINE std::int64_t stride(int a) const { return a == 0 ? 1 : (a == 1 ? n[0] : n[0] * n[1]); }
   GG_INLINE std::uint32_t pack(std::int64_t x, std::int64_t y, std::int64_t z) const {
-    return std::uint32_t(x) << shift[0] | std::uint32_t(y) << shift[1] | std::uint32_t(z) << shift[2];
+    return std::uint32_t(x) << shift[0] | std::uint32_t(y) << shift[1] |
+           std::uint32_t(z) << shift[2];
   }
   GG_INLINE std::int64_t coord(std::uint32_t s, int a) const { return (s >> shift[a]) & mask[a]; }
   GG_INLINE std::int64_t voxel_of(std::uint32_t s) const {
@@ -101,7 +102,8 @@ GG_INLINE bool dominated(const Layout& L, const Metric& m, int a, std::uint32_t 
     if (p == a) {
       I[p] = (tc - tb) * (tb - ta) * (ta - tc);
     } else {
-      const T da = T(L.coord(A, p) - v[p]), db = T(L.coord(B, p) - v[p]), dc = T(L.coord(C, p) - v[p]);
+      const T da = T(L.coord(A, p) - v[p]), db = T(L.coord(B, p) - v[p]),
+              dc = T(L.coord(C, p) - v[p]);
       I[p] = (tc - tb) * (db * db - da * da) - (tb - ta) * (dc * dc - db * db);
     }
   }

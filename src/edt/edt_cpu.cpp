@@ -20,5 +20,7 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g, 
   line_pass(ex, L, M, g, feat, scratch, lo, hi);
 }
 #include "edt/impl/run.inl"
-void run(const Request& req, Output& out, Stats& stats) { run_impl(req, out, stats); }
+void run(const Request& req, Output& out, Stats& stats) {
+  run_impl(req, out, stats);
+}
 }  // namespace gpugeom::edt::cpu_impl

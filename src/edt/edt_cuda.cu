@@ -21,7 +21,8 @@ __global__ void x_pass_warps(Layout L, std::uint32_t* feat, std::int32_t* left, 
   const int lane = threadIdx.x & 31;
   const std::int64_t warps = std::int64_t(gridDim.x) * blockDim.x / 32;
   const std::int32_t nx = std::int32_t(L.n[0]), ny = std::int32_t(L.n[1]);
-  for (std::int64_t row = (std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x) / 32; row < rows; row += warps) {
+  for (std::int64_t row = (std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x) / 32; row < rows;
+       row += warps) {
     std::uint32_t* f = feat + row * nx;
     std::int32_t* lf = left + row * nx;
     std::int32_t carry = -1;
@@ -50,9 +51,12 @@ __global__ void x_pass_warps(Layout L, std::uint32_t* feat, std::int32_t* left, 
       if (x < nx) {
         const std::int32_t l = lf[x];
         std::int32_t s = -1;
-        if (l >= 0 && r < nx) s = (x - l <= r - x) ? l : r;
-        else if (l >= 0) s = l;
-        else if (r < nx) s = r;
+        if (l >= 0 && r < nx)
+          s = (x - l <= r - x) ? l : r;
+        else if (l >= 0)
+          s = l;
+        else if (r < nx)
+          s = r;
         f[x] = s < 0 ? kNone : L.pack(std::uint32_t(s), y, z);
       }
     }
@@ -67,10 +71,13 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric&, const PassGeom&, std:
   GG_CUDA_CHECK(cudaGetDevice(&dev));
   GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, dev));
   if (blocks > std::int64_t(sms) * 16) blocks = std::int64_t(sms) * 16;
-  x_pass_warps<<<unsigned(blocks), 256, 0, ex.stream()>>>(L, feat, reinterpret_cast<std::int32_t*>(scratch), rows);
+  x_pass_warps<<<unsigned(blocks), 256, 0, ex.stream()>>>(
+      L, feat, reinterpret_cast<std::int32_t*>(scratch), rows);
   GG_CUDA_CHECK_LAUNCH("x_pass_warps");
 }
 
 #include "edt/impl/run.inl"
-void run(const Request& req, Output& out, Stats& stats) { run_impl(req, out, stats); }
+void run(const Request& req, Output& out, Stats& stats) {
+  run_impl(req, out, stats);
+}
 }  // namespace gpugeom::edt::cuda_impl

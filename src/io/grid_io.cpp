@@ -266,8 +266,8 @@ std::string format_png(const Grid& g, bool rgb = false) {
       nullptr);
   const int depth = g.type == ScalarType::U16 ? 16 : 8;
   png_set_IHDR(png, info, png_uint_32(g.shape[1] / channels), png_uint_32(g.shape[0]), depth,
-               rgb ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
+               rgb ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   if (depth == 16) png_set_swap(png);
   const std::size_t rb = std::size_t(g.shape[1]) * (depth / 8);
@@ -372,7 +372,8 @@ void write_png_rgb(const std::string& path, std::int64_t rows, std::int64_t cols
 void write_grid(const std::string& path, const Grid& g) {
   const std::string ext = extension(path);
   if (ext != ".npy" && ext != ".raw") check_shape(g.shape, path);  // .npy takes any rank
-  if (g.shape.empty()) throw Error(ErrorCode::InvalidArgument, "a grid needs at least one dimension");
+  if (g.shape.empty())
+    throw Error(ErrorCode::InvalidArgument, "a grid needs at least one dimension");
   if (g.data.size() != std::size_t(g.count()) * scalar_size(g.type))
     throw Error(ErrorCode::InvalidArgument, "grid data size does not match its shape");
   std::string out;

@@ -11,7 +11,8 @@
 
 namespace gg_edt {
 
-inline gpugeom::io::Grid random_grid(const std::vector<std::int64_t>& shape, double density, unsigned seed) {
+inline gpugeom::io::Grid random_grid(const std::vector<std::int64_t>& shape, double density,
+                                     unsigned seed) {
   gpugeom::io::Grid g;
   g.shape = shape;
   g.type = gpugeom::io::ScalarType::U8;
@@ -24,8 +25,9 @@ inline gpugeom::io::Grid random_grid(const std::vector<std::int64_t>& shape, dou
 }
 
 struct Reference {
-  std::vector<mpq_class> sq;           // exact weighted squared distance
-  std::vector<std::int64_t> nearest;   // voxel (raster index) of the nearest site, first in raster order
+  std::vector<mpq_class> sq;  // exact weighted squared distance
+  std::vector<std::int64_t>
+      nearest;  // voxel (raster index) of the nearest site, first in raster order
 };
 
 // O(voxels * sites), exact with rationals: for small grids only.
@@ -36,7 +38,8 @@ inline Reference brute_force(const gpugeom::io::Grid& g, const std::vector<doubl
   for (std::int64_t i = 0; i < n; ++i)
     if (g.data[i]) sites.push_back(i);
   std::vector<mpq_class> w(nd, 1);
-  for (int j = 0; j < int(sampling.size()); ++j) w[j] = mpq_class(sampling[j]) * mpq_class(sampling[j]);
+  for (int j = 0; j < int(sampling.size()); ++j)
+    w[j] = mpq_class(sampling[j]) * mpq_class(sampling[j]);
   auto coords = [&](std::int64_t i, std::int64_t* c) {
     for (int j = nd - 1; j >= 0; --j) c[j] = i % g.shape[j], i /= g.shape[j];
   };

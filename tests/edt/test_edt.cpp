@@ -44,24 +44,29 @@ void expect_exact(const io::Grid& g, const EdtOptions& o, const std::string& wha
     } else {
       ASSERT_NEAR(r.sqdist_real[i], ref.sq[i].get_d(), 1e-12 * (1 + ref.sq[i].get_d())) << what;
     }
-    ASSERT_NEAR(r.distance64[i], std::sqrt(ref.sq[i].get_d()), 1e-12 * (1 + r.distance64[i])) << what;
+    ASSERT_NEAR(r.distance64[i], std::sqrt(ref.sq[i].get_d()), 1e-12 * (1 + r.distance64[i]))
+        << what;
   }
 }
 
 }  // namespace
 
 TEST(Edt, ShapesAndDensities2d) {
-  const std::vector<std::vector<std::int64_t>> shapes{{1, 1}, {1, 37}, {41, 1}, {7, 13}, {32, 32}, {33, 65}, {64, 17}};
+  const std::vector<std::vector<std::int64_t>> shapes{{1, 1},   {1, 37},  {41, 1}, {7, 13},
+                                                      {32, 32}, {33, 65}, {64, 17}};
   unsigned seed = 1;
   for (auto& s : shapes)
-    for (double d : {0.001, 0.02, 0.1, 0.5, 0.9, 1.0}) expect_exact(random_grid(s, d, seed++), all_outputs(), "2d");
+    for (double d : {0.001, 0.02, 0.1, 0.5, 0.9, 1.0})
+      expect_exact(random_grid(s, d, seed++), all_outputs(), "2d");
 }
 
 TEST(Edt, ShapesAndDensities3d) {
-  const std::vector<std::vector<std::int64_t>> shapes{{1, 1, 9}, {5, 1, 1}, {3, 7, 5}, {9, 8, 17}, {16, 16, 16}};
+  const std::vector<std::vector<std::int64_t>> shapes{
+      {1, 1, 9}, {5, 1, 1}, {3, 7, 5}, {9, 8, 17}, {16, 16, 16}};
   unsigned seed = 100;
   for (auto& s : shapes)
-    for (double d : {0.001, 0.05, 0.3, 0.9}) expect_exact(random_grid(s, d, seed++), all_outputs(), "3d");
+    for (double d : {0.001, 0.05, 0.3, 0.9})
+      expect_exact(random_grid(s, d, seed++), all_outputs(), "3d");
 }
 
 TEST(Edt, TiesOnSymmetricGrids) {
@@ -75,7 +80,8 @@ TEST(Edt, TiesOnSymmetricGrids) {
 }
 
 TEST(Edt, AnisotropicSampling) {
-  for (auto sampling : {std::vector<double>{1.5, 0.5}, std::vector<double>{0.1, 0.3}, std::vector<double>{2, 1}}) {
+  for (auto sampling :
+       {std::vector<double>{1.5, 0.5}, std::vector<double>{0.1, 0.3}, std::vector<double>{2, 1}}) {
     EdtOptions o = all_outputs();
     o.sampling = sampling;
     expect_exact(random_grid({23, 31}, 0.05, 3), o, "aniso2d");
@@ -115,7 +121,8 @@ TEST(Edt, SlicesEqualWholeVolume) {
       const std::int64_t w = o.slices[k] * plane + i, p = std::int64_t(k) * plane + i;
       ASSERT_EQ(part.labels[p], whole.labels[w]);
       ASSERT_EQ(part.sqdist_int[p], whole.sqdist_int[w]);
-      for (int j = 0; j < 3; ++j) ASSERT_EQ(part.features[j * part.count() + p], whole.features[j * n + w]);
+      for (int j = 0; j < 3; ++j)
+        ASSERT_EQ(part.features[j * part.count() + p], whole.features[j * n + w]);
     }
 }
 
@@ -127,7 +134,8 @@ TEST(Edt, ExplicitSitesAndZeroRule) {
   std::vector<std::int64_t> flat{3, 4, 10, 14, 0, 0};
   std::vector<std::int64_t> sq(r.sqdist_int.begin(), r.sqdist_int.end());
   std::vector<std::int32_t> near(r.labels.size());
-  for (std::size_t i = 0; i < near.size(); ++i) near[i] = r.labels[i] == 3 ? 2 : (r.labels[i] == 2 ? -1 : r.labels[i]);
+  for (std::size_t i = 0; i < near.size(); ++i)
+    near[i] = r.labels[i] == 3 ? 2 : (r.labels[i] == 2 ? -1 : r.labels[i]);
   EXPECT_TRUE(verify::check_edt(shape, flat, sq.data(), near.data()).ok);
   for (auto l : r.labels) EXPECT_NE(l, 2) << "the duplicate of site 0 must never be reported";
   // Zero rule: SciPy's convention (distance to the nearest zero element).

@@ -26,7 +26,8 @@ std::vector<T> parse_list(const std::string& s, const char* what) {
   return v;
 }
 
-io::Grid array_grid(const std::vector<std::int64_t>& shape, io::ScalarType t, const void* p, std::size_t bytes) {
+io::Grid array_grid(const std::vector<std::int64_t>& shape, io::ScalarType t, const void* p,
+                    std::size_t bytes) {
   io::Grid g;
   g.shape = shape;
   g.type = t;
@@ -69,8 +70,10 @@ int cmd_edt(const Global& g, Args& a) {
            "  --sampling a,b[,c]    voxel spacing per axis (C order), as in SciPy\n"
            "  --float64             write float64 distances\n"
            "  --squared FILE.npy    squared distances (int64, or float64 with --sampling)\n"
-           "  --indices FILE.npy    nearest-site coordinates, int32 (ndim, *shape), SciPy's layout\n"
-           "  --labels FILE.npy     nearest-site index (the digital Voronoi diagram), int32; sites\n"
+           "  --indices FILE.npy    nearest-site coordinates, int32 (ndim, *shape), SciPy's "
+           "layout\n"
+           "  --labels FILE.npy     nearest-site index (the digital Voronoi diagram), int32; "
+           "sites\n"
            "                        are numbered in raster order; ties go to the first site in\n"
            "                        raster order\n"
            "  --preview FILE.png    look at it: grey distance field (2D, or the first slice)\n"
@@ -81,8 +84,8 @@ int cmd_edt(const Global& g, Args& a) {
            "  --shape S0,S1[,S2] --dtype T   for raw input (T: uint8 uint16 int32 float32 ...)\n";
     return kOk;
   }
-  std::string out, sites = "nonzero", sampling, squared, indices, labels, prev, slices, method = "pba", bands,
-                   shape, dtype;
+  std::string out, sites = "nonzero", sampling, squared, indices, labels, prev, slices,
+                   method = "pba", bands, shape, dtype;
   a.value("-o", out) || a.value("--output", out);
   a.value("--sites", sites);
   a.value("--sampling", sampling);
@@ -99,19 +102,23 @@ int cmd_edt(const Global& g, Args& a) {
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one input image or volume");
   if (out.empty() && squared.empty() && indices.empty() && labels.empty() && prev.empty())
-    throw UsageError("nothing to write: give -o OUT.npy and/or --squared/--indices/--labels/--preview");
+    throw UsageError(
+        "nothing to write: give -o OUT.npy and/or --squared/--indices/--labels/--preview");
   if (sites != "nonzero" && sites != "zero") throw UsageError("--sites must be nonzero or zero");
   if (method != "pba" && method != "jfa") throw UsageError("--method must be pba or jfa");
   for (const std::string* f : {&out, &squared, &indices, &labels})
-    if (!f->empty() && io::extension(*f) != ".npy") throw UsageError("outputs are .npy files: " + *f);
-  if (!prev.empty() && io::extension(prev) != ".png") throw UsageError("--preview writes a .png file");
+    if (!f->empty() && io::extension(*f) != ".npy")
+      throw UsageError("outputs are .npy files: " + *f);
+  if (!prev.empty() && io::extension(prev) != ".png")
+    throw UsageError("--preview writes a .png file");
 
   io::Grid grid;
   {
     Timer t(g, "read");
     if (io::extension(pos[0]) == ".raw" || !shape.empty()) {
       if (shape.empty() || dtype.empty()) throw UsageError("raw input needs --shape and --dtype");
-      grid = io::read_raw_grid(pos[0], parse_list<std::int64_t>(shape, "--shape"), io::parse_scalar(dtype));
+      grid = io::read_raw_grid(pos[0], parse_list<std::int64_t>(shape, "--shape"),
+                               io::parse_scalar(dtype));
     } else {
       grid = io::read_grid(pos[0]);
     }
@@ -135,7 +142,8 @@ int cmd_edt(const Global& g, Args& a) {
     r = distance_transform(grid, sites == "zero" ? SiteRule::Zero : SiteRule::NonZero, o);
   }
   if (g.verbose)
-    for (auto& p : r.stats.phase_ms) std::fprintf(stderr, "[time]   %-10s %10.2f ms\n", p.first.c_str(), p.second);
+    for (auto& p : r.stats.phase_ms)
+      std::fprintf(stderr, "[time]   %-10s %10.2f ms\n", p.first.c_str(), p.second);
   {
     Timer t(g, "write");
     const std::size_t n = std::size_t(r.count());
@@ -151,22 +159,27 @@ int cmd_edt(const Global& g, Args& a) {
     }
     if (!squared.empty()) {
       if (!r.sqdist_int.empty())
-        io::write_grid(squared, array_grid(r.shape, io::ScalarType::I64, r.sqdist_int.data(), n * 8));
+        io::write_grid(squared,
+                       array_grid(r.shape, io::ScalarType::I64, r.sqdist_int.data(), n * 8));
       else
-        io::write_grid(squared, array_grid(r.shape, io::ScalarType::F64, r.sqdist_real.data(), n * 8));
+        io::write_grid(squared,
+                       array_grid(r.shape, io::ScalarType::F64, r.sqdist_real.data(), n * 8));
     }
     if (!indices.empty()) {
       std::vector<std::int64_t> s{std::int64_t(r.shape.size())};
       s.insert(s.end(), r.shape.begin(), r.shape.end());
-      io::Grid ig = array_grid({1, 1}, io::ScalarType::I32, r.features.data(), r.features.size() * 4);
+      io::Grid ig =
+          array_grid({1, 1}, io::ScalarType::I32, r.features.data(), r.features.size() * 4);
       ig.shape = s;  // (ndim, *shape): write through the npy writer, which takes any rank
       io::write_grid(indices, ig);
     }
-    if (!labels.empty()) io::write_grid(labels, array_grid(r.shape, io::ScalarType::I32, r.labels.data(), n * 4));
+    if (!labels.empty())
+      io::write_grid(labels, array_grid(r.shape, io::ScalarType::I32, r.labels.data(), n * 4));
     if (!prev.empty()) preview(prev, r, voronoi);
   }
   if (!g.quiet)
-    std::cout << "edt " << pos[0] << ": " << r.count() << " voxels on " << backend_name(r.stats.backend) << ", "
+    std::cout << "edt " << pos[0] << ": " << r.count() << " voxels on "
+              << backend_name(r.stats.backend) << ", "
               << (o.method == EdtMethod::Jfa ? "JFA (approximate)" : "exact") << "\n";
   return kOk;
 }

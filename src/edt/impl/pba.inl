@@ -118,185 +118,195 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
   const Metric Mt = M;
   const PassGeom G = g;
   // Stacks of non-dominated candidates per band; the top two stay in registers.
-  ex.for_each_index(G.lines * G.bands, GG_LAMBDA(std::int64_t item) {
-    const std::int64_t b = item / G.lines, l = item % G.lines;
-    const std::int64_t base = line_base(Ly, G.a, l);
-    std::int64_t v[3];
-    line_coords(Ly, G.a, l, v);
-    const std::int64_t t0 = b * G.band_len;
-    const std::int64_t t1 = t0 + G.band_len < G.len ? t0 + G.band_len : G.len;
-    std::uint32_t* s = stk + base + t0 * G.stride;
-    std::int32_t n = 0;
-    Cand top{kNone, 0, 0}, second{kNone, 0, 0};
-    // Loads run two positions ahead: the loop is latency-bound, not bandwidth-bound.
-    std::uint32_t ahead1 = t0 < t1 ? cand[base + t0 * G.stride] : kNone;
-    std::uint32_t ahead2 = t0 + 1 < t1 ? cand[base + (t0 + 1) * G.stride] : kNone;
-    for (std::int64_t t = t0; t < t1; ++t) {
-      const std::uint32_t cs = ahead1;
-      ahead1 = ahead2;
-      if (t + 2 < t1) ahead2 = cand[base + (t + 2) * G.stride];
-      if (cs == kNone) continue;
-      const Cand c = decode(Ly, G.a, cs, v);
-      while (n >= 2 && cand_dominated(Ly, Mt, G.a, second, top, c, v)) {
-        --n;
-        top = second;
-        if (n >= 2) second = decode(Ly, G.a, s[(n - 2) * G.stride], v);
-      }
-      s[n * G.stride] = cs;
-      ++n;
-      second = top;
-      top = c;
-    }
-    lo[item] = 0;
-    hi[item] = n;
-  });
+  ex.for_each_index(
+      G.lines * G.bands, GG_LAMBDA(std::int64_t item) {
+        const std::int64_t b = item / G.lines, l = item % G.lines;
+        const std::int64_t base = line_base(Ly, G.a, l);
+        std::int64_t v[3];
+        line_coords(Ly, G.a, l, v);
+        const std::int64_t t0 = b * G.band_len;
+        const std::int64_t t1 = t0 + G.band_len < G.len ? t0 + G.band_len : G.len;
+        std::uint32_t* s = stk + base + t0 * G.stride;
+        std::int32_t n = 0;
+        Cand top{kNone, 0, 0}, second{kNone, 0, 0};
+        // Loads run two positions ahead: the loop is latency-bound, not bandwidth-bound.
+        std::uint32_t ahead1 = t0 < t1 ? cand[base + t0 * G.stride] : kNone;
+        std::uint32_t ahead2 = t0 + 1 < t1 ? cand[base + (t0 + 1) * G.stride] : kNone;
+        for (std::int64_t t = t0; t < t1; ++t) {
+          const std::uint32_t cs = ahead1;
+          ahead1 = ahead2;
+          if (t + 2 < t1) ahead2 = cand[base + (t + 2) * G.stride];
+          if (cs == kNone) continue;
+          const Cand c = decode(Ly, G.a, cs, v);
+          while (n >= 2 && cand_dominated(Ly, Mt, G.a, second, top, c, v)) {
+            --n;
+            top = second;
+            if (n >= 2) second = decode(Ly, G.a, s[(n - 2) * G.stride], v);
+          }
+          s[n * G.stride] = cs;
+          ++n;
+          second = top;
+          top = c;
+        }
+        lo[item] = 0;
+        hi[item] = n;
+      });
   // Pairwise merges of neighbouring band groups (Algorithm 4.1 on the slices).
   for (std::int64_t width = 1; width < G.bands; width *= 2) {
     const std::int64_t groups = (G.bands + 2 * width - 1) / (2 * width);
     const std::int64_t wd = width;
-    ex.for_each_index(G.lines * groups, GG_LAMBDA(std::int64_t item) {
-      const std::int64_t grp = item / G.lines, l = item % G.lines;
-      const std::int64_t bl = grp * 2 * wd, br = bl + wd;
-      if (br >= G.bands) return;
-      const std::int64_t be = br + wd < G.bands ? br + wd : G.bands;
-      Segs S{stk, line_base(Ly, G.a, l), G.stride, G.band_len, G.lines, l, lo, hi};
-      std::int64_t v[3];
-      line_coords(Ly, G.a, l, v);
-      // Tail of the upper group: band ub, index ui (ub < bl: empty).
-      std::int64_t ub = br - 1;
-      while (ub >= bl && S.H(ub) == S.L(ub)) --ub;
-      std::int32_t ui = ub >= bl ? S.H(ub) - 1 : -1;
-      auto back = [&](std::int64_t& b, std::int32_t& i) {  // the live element before (b, i)
-        if (i > S.L(b)) {
-          --i;
-          return;
-        }
-        do --b;
-        while (b >= bl && S.H(b) == S.L(b));
-        i = b >= bl ? S.H(b) - 1 : -1;
-      };
-      std::int64_t ucount = 0;
-      for (std::int64_t b = bl; b < br; ++b) ucount += S.H(b) - S.L(b);
-      // Walk the lower group's elements in order.
-      std::int64_t vb = br;
-      std::int32_t vi = S.L(br);
-      std::int64_t dropped = 0;  // lower-group elements popped (always a prefix)
-      int pushed = 0;            // lower-group elements on the stack (0 or 1 while popping)
-      Cand last{kNone, 0, 0};
-      while (true) {
-        while (vb < be && vi >= S.H(vb)) {
-          ++vb;
-          if (vb < be) vi = S.L(vb);
-        }
-        if (vb >= be) break;
-        const Cand c = decode(Ly, G.a, S.at(vb, vi), v);
-        while (ucount + pushed >= 2) {
-          Cand t, sec;
-          if (pushed == 1) {
-            t = last;
-            sec = decode(Ly, G.a, S.at(ub, ui), v);
-          } else {
-            t = decode(Ly, G.a, S.at(ub, ui), v);
-            std::int64_t pb = ub;
-            std::int32_t pi = ui;
-            back(pb, pi);
-            sec = decode(Ly, G.a, S.at(pb, pi), v);
+    ex.for_each_index(
+        G.lines * groups, GG_LAMBDA(std::int64_t item) {
+          const std::int64_t grp = item / G.lines, l = item % G.lines;
+          const std::int64_t bl = grp * 2 * wd, br = bl + wd;
+          if (br >= G.bands) return;
+          const std::int64_t be = br + wd < G.bands ? br + wd : G.bands;
+          Segs S{stk, line_base(Ly, G.a, l), G.stride, G.band_len, G.lines, l, lo, hi};
+          std::int64_t v[3];
+          line_coords(Ly, G.a, l, v);
+          // Tail of the upper group: band ub, index ui (ub < bl: empty).
+          std::int64_t ub = br - 1;
+          while (ub >= bl && S.H(ub) == S.L(ub)) --ub;
+          std::int32_t ui = ub >= bl ? S.H(ub) - 1 : -1;
+          auto back = [&](std::int64_t& b, std::int32_t& i) {  // the live element before (b, i)
+            if (i > S.L(b)) {
+              --i;
+              return;
+            }
+            do --b;
+            while (b >= bl && S.H(b) == S.L(b));
+            i = b >= bl ? S.H(b) - 1 : -1;
+          };
+          std::int64_t ucount = 0;
+          for (std::int64_t b = bl; b < br; ++b) ucount += S.H(b) - S.L(b);
+          // Walk the lower group's elements in order.
+          std::int64_t vb = br;
+          std::int32_t vi = S.L(br);
+          std::int64_t dropped = 0;  // lower-group elements popped (always a prefix)
+          int pushed = 0;            // lower-group elements on the stack (0 or 1 while popping)
+          Cand last{kNone, 0, 0};
+          while (true) {
+            while (vb < be && vi >= S.H(vb)) {
+              ++vb;
+              if (vb < be) vi = S.L(vb);
+            }
+            if (vb >= be) break;
+            const Cand c = decode(Ly, G.a, S.at(vb, vi), v);
+            while (ucount + pushed >= 2) {
+              Cand t, sec;
+              if (pushed == 1) {
+                t = last;
+                sec = decode(Ly, G.a, S.at(ub, ui), v);
+              } else {
+                t = decode(Ly, G.a, S.at(ub, ui), v);
+                std::int64_t pb = ub;
+                std::int32_t pi = ui;
+                back(pb, pi);
+                sec = decode(Ly, G.a, S.at(pb, pi), v);
+              }
+              if (!cand_dominated(Ly, Mt, G.a, sec, t, c, v)) break;
+              if (pushed == 1) {
+                pushed = 0;
+                ++dropped;
+              } else {
+                back(ub, ui);
+                --ucount;
+              }
+            }
+            last = c;
+            if (++pushed == 2) break;  // lower-group sites never dominate each other
+            ++vi;
           }
-          if (!cand_dominated(Ly, Mt, G.a, sec, t, c, v)) break;
-          if (pushed == 1) {
-            pushed = 0;
-            ++dropped;
-          } else {
-            back(ub, ui);
-            --ucount;
+          // Upper group: everything after the tail (ub, ui) is gone.
+          for (std::int64_t b = br - 1; b >= bl; --b) {
+            if (b > ub)
+              S.H(b) = S.L(b);
+            else if (b == ub)
+              S.H(b) = ui + 1;
+            else
+              break;
           }
-        }
-        last = c;
-        if (++pushed == 2) break;  // lower-group sites never dominate each other
-        ++vi;
-      }
-      // Upper group: everything after the tail (ub, ui) is gone.
-      for (std::int64_t b = br - 1; b >= bl; --b) {
-        if (b > ub) S.H(b) = S.L(b);
-        else if (b == ub) S.H(b) = ui + 1;
-        else break;
-      }
-      // Lower group: drop the popped prefix.
-      for (std::int64_t b = br; b < be && dropped > 0; ++b) {
-        const std::int64_t take = S.H(b) - S.L(b) < dropped ? S.H(b) - S.L(b) : dropped;
-        S.L(b) += std::int32_t(take);
-        dropped -= take;
-      }
-    });
+          // Lower group: drop the popped prefix.
+          for (std::int64_t b = br; b < be && dropped > 0; ++b) {
+            const std::int64_t take = S.H(b) - S.L(b) < dropped ? S.H(b) - S.L(b) : dropped;
+            S.L(b) += std::int32_t(take);
+            dropped -= take;
+          }
+        });
   }
   // Colouring: find each band's first winner by binary search over the concatenated slices,
   // then walk forward.
-  ex.for_each_index(G.lines * G.bands, GG_LAMBDA(std::int64_t item) {
-    const std::int64_t b0 = item / G.lines, l = item % G.lines;
-    Segs S{stk, line_base(Ly, G.a, l), G.stride, G.band_len, G.lines, l, lo, hi};
-    std::int64_t v[3];
-    line_coords(Ly, G.a, l, v);
-    const std::int64_t t0 = b0 * G.band_len;
-    const std::int64_t t1 = t0 + G.band_len < G.len ? t0 + G.band_len : G.len;
-    std::int32_t pre[kMaxBands + 1];  // live elements before each band
-    pre[0] = 0;
-    for (std::int64_t b = 0; b < G.bands; ++b) pre[b + 1] = pre[b] + S.H(b) - S.L(b);
-    const std::int64_t n = pre[G.bands];
-    if (n == 0) {
-      for (std::int64_t t = t0; t < t1; ++t) cand[S.base + t * G.stride] = kNone;
-      return;
-    }
-    auto locate = [&](std::int64_t k, std::int64_t& b, std::int32_t& i) {  // k-th live element
-      std::int64_t a = 0, z = G.bands - 1;  // last band with pre[b] <= k
-      while (a < z) {
-        const std::int64_t m = (a + z + 1) / 2;
-        if (pre[m] <= k) a = m;
-        else z = m - 1;
-      }
-      b = a;
-      i = S.L(b) + std::int32_t(k - pre[b]);
-    };
-    auto next = [&](std::int64_t& b, std::int32_t& i) {
-      ++i;
-      while (b < G.bands && i >= S.H(b)) {
-        ++b;
-        if (b < G.bands) i = S.L(b);
-      }
-    };
-    std::int64_t lo_k = 0, hi_k = n - 1;  // first k whose successor does not beat it at t0
-    while (lo_k < hi_k) {
-      const std::int64_t mid = (lo_k + hi_k) / 2;
-      std::int64_t b, b2;
-      std::int32_t i, i2;
-      locate(mid, b, i);
-      b2 = b, i2 = i;
-      next(b2, i2);
-      if (cand_beats(Ly, Mt, G.a, decode(Ly, G.a, S.at(b2, i2), v), decode(Ly, G.a, S.at(b, i), v), t0, v))
-        lo_k = mid + 1;
-      else hi_k = mid;
-    }
-    std::int64_t cb, nb;
-    std::int32_t ci, ni;
-    locate(lo_k, cb, ci);  // the current winner; (nb, ni) its successor
-    nb = cb, ni = ci;
-    next(nb, ni);
-    Cand cur = decode(Ly, G.a, S.at(cb, ci), v);
-    Cand nxt = decode(Ly, G.a, nb < G.bands ? S.at(nb, ni) : kNone, v);
-    // The element after nxt is loaded one advance ahead, to hide its latency.
-    std::int64_t ab = nb;
-    std::int32_t ai = ni;
-    if (ab < G.bands) next(ab, ai);
-    std::uint32_t after = ab < G.bands ? S.at(ab, ai) : kNone;
-    for (std::int64_t t = t0; t < t1; ++t) {
-      while (nxt.s != kNone && cand_beats(Ly, Mt, G.a, nxt, cur, t, v)) {
-        cur = nxt;
-        nxt = decode(Ly, G.a, after, v);
+  ex.for_each_index(
+      G.lines * G.bands, GG_LAMBDA(std::int64_t item) {
+        const std::int64_t b0 = item / G.lines, l = item % G.lines;
+        Segs S{stk, line_base(Ly, G.a, l), G.stride, G.band_len, G.lines, l, lo, hi};
+        std::int64_t v[3];
+        line_coords(Ly, G.a, l, v);
+        const std::int64_t t0 = b0 * G.band_len;
+        const std::int64_t t1 = t0 + G.band_len < G.len ? t0 + G.band_len : G.len;
+        std::int32_t pre[kMaxBands + 1];  // live elements before each band
+        pre[0] = 0;
+        for (std::int64_t b = 0; b < G.bands; ++b) pre[b + 1] = pre[b] + S.H(b) - S.L(b);
+        const std::int64_t n = pre[G.bands];
+        if (n == 0) {
+          for (std::int64_t t = t0; t < t1; ++t) cand[S.base + t * G.stride] = kNone;
+          return;
+        }
+        auto locate = [&](std::int64_t k, std::int64_t& b, std::int32_t& i) {  // k-th live element
+          std::int64_t a = 0, z = G.bands - 1;  // last band with pre[b] <= k
+          while (a < z) {
+            const std::int64_t m = (a + z + 1) / 2;
+            if (pre[m] <= k)
+              a = m;
+            else
+              z = m - 1;
+          }
+          b = a;
+          i = S.L(b) + std::int32_t(k - pre[b]);
+        };
+        auto next = [&](std::int64_t& b, std::int32_t& i) {
+          ++i;
+          while (b < G.bands && i >= S.H(b)) {
+            ++b;
+            if (b < G.bands) i = S.L(b);
+          }
+        };
+        std::int64_t lo_k = 0, hi_k = n - 1;  // first k whose successor does not beat it at t0
+        while (lo_k < hi_k) {
+          const std::int64_t mid = (lo_k + hi_k) / 2;
+          std::int64_t b, b2;
+          std::int32_t i, i2;
+          locate(mid, b, i);
+          b2 = b, i2 = i;
+          next(b2, i2);
+          if (cand_beats(Ly, Mt, G.a, decode(Ly, G.a, S.at(b2, i2), v),
+                         decode(Ly, G.a, S.at(b, i), v), t0, v))
+            lo_k = mid + 1;
+          else
+            hi_k = mid;
+        }
+        std::int64_t cb, nb;
+        std::int32_t ci, ni;
+        locate(lo_k, cb, ci);  // the current winner; (nb, ni) its successor
+        nb = cb, ni = ci;
+        next(nb, ni);
+        Cand cur = decode(Ly, G.a, S.at(cb, ci), v);
+        Cand nxt = decode(Ly, G.a, nb < G.bands ? S.at(nb, ni) : kNone, v);
+        // The element after nxt is loaded one advance ahead, to hide its latency.
+        std::int64_t ab = nb;
+        std::int32_t ai = ni;
         if (ab < G.bands) next(ab, ai);
-        after = ab < G.bands ? S.at(ab, ai) : kNone;
-      }
-      cand[S.base + t * G.stride] = cur.s;
-    }
-  });
+        std::uint32_t after = ab < G.bands ? S.at(ab, ai) : kNone;
+        for (std::int64_t t = t0; t < t1; ++t) {
+          while (nxt.s != kNone && cand_beats(Ly, Mt, G.a, nxt, cur, t, v)) {
+            cur = nxt;
+            nxt = decode(Ly, G.a, after, v);
+            if (ab < G.bands) next(ab, ai);
+            after = ab < G.bands ? S.at(ab, ai) : kNone;
+          }
+          cand[S.base + t * G.stride] = cur.s;
+        }
+      });
 }
 
 // The x pass of a whole grid, where every candidate is a site of the row itself. Each backend
@@ -325,19 +335,23 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
   // from other slices, so it takes the general line pass.
   const bool whole = naxes == L.nd;
   for (int a = 0; a < naxes; ++a) {
-    if (a == 0 && whole) x_pass_rows(ex, L, M, gs[0], feat, stk.data(), lo.data(), hi.data());
-    else line_pass(ex, L, M, gs[a], feat, stk.data(), lo.data(), hi.data());
+    if (a == 0 && whole)
+      x_pass_rows(ex, L, M, gs[0], feat, stk.data(), lo.data(), hi.data());
+    else
+      line_pass(ex, L, M, gs[a], feat, stk.data(), lo.data(), hi.data());
     if (profile_step) profile_step(a);
     if (stats) stats->counters[std::string("bands_") + "xyz"[a]] = gs[a].bands;
   }
 }
 
 // Marks sites: feat[i] = packed(i) where site[i] != 0.
-inline void init_features(Exec& ex, const Layout& L, const std::uint8_t* site, std::uint32_t* feat) {
+inline void init_features(Exec& ex, const Layout& L, const std::uint8_t* site,
+                          std::uint32_t* feat) {
   const Layout Ly = L;
   const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
-  ex.for_each_index(L.count(), GG_LAMBDA(std::int64_t i64) {
-    const std::uint32_t i = std::uint32_t(i64), rest = i / nx;
-    feat[i] = site[i] ? Ly.pack(i - rest * nx, rest % ny, rest / ny) : kNone;
-  });
+  ex.for_each_index(
+      L.count(), GG_LAMBDA(std::int64_t i64) {
+        const std::uint32_t i = std::uint32_t(i64), rest = i / nx;
+        feat[i] = site[i] ? Ly.pack(i - rest * nx, rest % ny, rest / ny) : kNone;
+      });
 }

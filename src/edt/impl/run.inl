@@ -3,7 +3,9 @@
 
 namespace {
 double clock_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 }  // namespace
 
@@ -20,20 +22,21 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
     double* sp = sq.data();
     std::int64_t* si = sqi.data();
     const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
-    ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
-      const std::uint32_t rest = std::uint32_t(i) / nx;
-      const std::int64_t v[3] = {std::int64_t(std::uint32_t(i) - rest * nx), std::int64_t(rest % ny),
-                                 std::int64_t(rest / ny) + Ly.z0};
-      std::int64_t q = 0;
-      double r = 0;
-      for (int k = 0; k < Ly.nd; ++k) {
-        const std::int64_t d = Ly.coord(feat[i], k) - v[k];
-        q += d * d;
-        r += Mt.w[k] * double(d * d);
-      }
-      si[i] = q;
-      sp[i] = Mt.iso ? double(q) : r;
-    });
+    ex.for_each_index(
+        n, GG_LAMBDA(std::int64_t i) {
+          const std::uint32_t rest = std::uint32_t(i) / nx;
+          const std::int64_t v[3] = {std::int64_t(std::uint32_t(i) - rest * nx),
+                                     std::int64_t(rest % ny), std::int64_t(rest / ny) + Ly.z0};
+          std::int64_t q = 0;
+          double r = 0;
+          for (int k = 0; k < Ly.nd; ++k) {
+            const std::int64_t d = Ly.coord(feat[i], k) - v[k];
+            q += d * d;
+            r += Mt.w[k] * double(d * d);
+          }
+          si[i] = q;
+          sp[i] = Mt.iso ? double(q) : r;
+        });
     if (rq.want_sqdist && rq.metric.iso) {
       out.sqdist_int.resize(total);
       ex.to_host(si, n, out.sqdist_int.data() + at);
@@ -42,13 +45,15 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
       ex.to_host(sp, n, out.sqdist_real.data() + at);
     }
     if (rq.want_distance == 64) {
-      ex.for_each_index(n, GG_LAMBDA(std::int64_t i) { sp[i] = sqrt(sp[i]); });
+      ex.for_each_index(
+          n, GG_LAMBDA(std::int64_t i) { sp[i] = sqrt(sp[i]); });
       out.dist64.resize(total);
       ex.to_host(sp, n, out.dist64.data() + at);
     } else if (rq.want_distance == 32) {
       auto f = ex.template alloc<float>(std::size_t(n));
       float* fp = f.data();
-      ex.for_each_index(n, GG_LAMBDA(std::int64_t i) { fp[i] = float(sqrt(sp[i])); });
+      ex.for_each_index(
+          n, GG_LAMBDA(std::int64_t i) { fp[i] = float(sqrt(sp[i])); });
       out.dist32.resize(total);
       ex.to_host(fp, n, out.dist32.data() + at);
     }
@@ -59,7 +64,8 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
     out.features.resize(std::size_t(total) * L.nd);
     for (int j = 0; j < L.nd; ++j) {  // C axis j is internal axis nd-1-j
       const int a = L.nd - 1 - j;
-      ex.for_each_index(n, GG_LAMBDA(std::int64_t i) { cp[i] = std::int32_t(Ly.coord(feat[i], a)); });
+      ex.for_each_index(
+          n, GG_LAMBDA(std::int64_t i) { cp[i] = std::int32_t(Ly.coord(feat[i], a)); });
       ex.to_host(cp, n, out.features.data() + std::size_t(j) * total + at);
     }
   }
@@ -67,15 +73,18 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
     auto lab = ex.template alloc<std::int32_t>(std::size_t(n));
     std::int32_t* lp = lab.data();
     const std::int64_t ns = nsites;
-    ex.for_each_index(n, GG_LAMBDA(std::int64_t i) {
-      std::int64_t lo = 0, hi = ns;  // lower_bound of the site in the sorted list
-      while (lo < hi) {
-        const std::int64_t mid = (lo + hi) / 2;
-        if (sorted_sites[mid] < feat[i]) lo = mid + 1;
-        else hi = mid;
-      }
-      lp[i] = sorted_idx ? sorted_idx[lo] : std::int32_t(lo);
-    });
+    ex.for_each_index(
+        n, GG_LAMBDA(std::int64_t i) {
+          std::int64_t lo = 0, hi = ns;  // lower_bound of the site in the sorted list
+          while (lo < hi) {
+            const std::int64_t mid = (lo + hi) / 2;
+            if (sorted_sites[mid] < feat[i])
+              lo = mid + 1;
+            else
+              hi = mid;
+          }
+          lp[i] = sorted_idx ? sorted_idx[lo] : std::int32_t(lo);
+        });
     out.labels.resize(total);
     ex.to_host(lp, n, out.labels.data() + at);
   }
@@ -97,7 +106,8 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     ns = std::int64_t(rq.sites.size());
     ex.from_host(rq.sites.data(), ns, sites.data());
     std::int32_t* ip = sidx.data();
-    ex.for_each_index(ns, GG_LAMBDA(std::int64_t i) { ip[i] = std::int32_t(i); });
+    ex.for_each_index(
+        ns, GG_LAMBDA(std::int64_t i) { ip[i] = std::int32_t(i); });
     ex.sort_by_key(sites.data(), sidx.data(), ns);  // stable: duplicates keep the lower index
   }
   std::uint32_t* sorted = sites.data();
@@ -105,16 +115,18 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   if (rq.mask && (rq.want_labels || !rq.slices.empty())) {  // raster order = packed order
     auto vox = ex.template alloc<std::int32_t>(std::size_t(nvox));
     const std::uint8_t* mp = mask.data();
-    ns = ex.compact_indices(nvox, GG_LAMBDA(std::int64_t i) { return mp[i] != 0; }, vox.data());
+    ns = ex.compact_indices(
+        nvox, GG_LAMBDA(std::int64_t i) { return mp[i] != 0; }, vox.data());
     sites = ex.template alloc<std::uint32_t>(std::size_t(ns));
     sorted = sites.data();
     const std::int32_t* vp = vox.data();
     const Layout Ly = L;
     std::uint32_t* sp = sorted;
-    ex.for_each_index(ns, GG_LAMBDA(std::int64_t i) {
-      const std::int64_t v = vp[i];
-      sp[i] = Ly.pack(v % Ly.n[0], (v / Ly.n[0]) % Ly.n[1], v / (Ly.n[0] * Ly.n[1]));
-    });
+    ex.for_each_index(
+        ns, GG_LAMBDA(std::int64_t i) {
+          const std::int64_t v = vp[i];
+          sp[i] = Ly.pack(v % Ly.n[0], (v / Ly.n[0]) % Ly.n[1], v / (Ly.n[0] * Ly.n[1]));
+        });
   }
   ex.sync();
   stats.phase_ms.push_back({"upload", clock_ms() - t0});
@@ -128,7 +140,8 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
       ex.fill(fp, nvox, kNone);
       const std::uint32_t* sp = sorted;
       const Layout Ly = L;
-      ex.for_each_index(ns, GG_LAMBDA(std::int64_t i) { fp[Ly.voxel_of(sp[i])] = sp[i]; });
+      ex.for_each_index(
+          ns, GG_LAMBDA(std::int64_t i) { fp[Ly.voxel_of(sp[i])] = sp[i]; });
     }
     ex.sync();
     const double t1 = clock_ms();
@@ -141,9 +154,12 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
       stats.phase_ms.push_back({std::string("pass_") + "xyz"[a], now - last});
       last = now;
     };
-    if (rq.method == EdtMethod::Jfa) jump_flood(ex, L, rq.metric, fp);
-    else if (prof && *prof == '1') feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, &stats, step);
-    else feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, &stats);
+    if (rq.method == EdtMethod::Jfa)
+      jump_flood(ex, L, rq.metric, fp);
+    else if (prof && *prof == '1')
+      feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, &stats, step);
+    else
+      feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, &stats);
     ex.sync();
     out.transform_ms = clock_ms() - t1;
     stats.phase_ms.push_back({"transform", out.transform_ms});
@@ -163,11 +179,13 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     std::uint32_t* op = order.data();
     const std::uint32_t* sp = sorted;
     const Layout Ly = L;
-    ex.for_each_index(ns, GG_LAMBDA(std::int64_t i) {
-      const std::uint32_t s = sp[i];
-      kp[i] = (std::uint64_t(Ly.coord(s, 1) * Ly.n[0] + Ly.coord(s, 0)) << 32) | std::uint64_t(Ly.coord(s, 2));
-      op[i] = s;
-    });
+    ex.for_each_index(
+        ns, GG_LAMBDA(std::int64_t i) {
+          const std::uint32_t s = sp[i];
+          kp[i] = (std::uint64_t(Ly.coord(s, 1) * Ly.n[0] + Ly.coord(s, 0)) << 32) |
+                  std::uint64_t(Ly.coord(s, 2));
+          op[i] = s;
+        });
     ex.sort_by_key(kp, op, ns);
   }
   Layout Ls = L;
@@ -182,26 +200,29 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     const std::uint64_t* kp = keys.data();
     const std::uint32_t* op = order.data();
     const std::int64_t z0 = Ls.z0, nsites = ns;
-    ex.for_each_index(nxy, GG_LAMBDA(std::int64_t c) {
-      const std::uint64_t want = (std::uint64_t(c) << 32) | std::uint64_t(z0);
-      std::int64_t lo = 0, hi = nsites;  // first key >= (c, z0)
-      while (lo < hi) {
-        const std::int64_t mid = (lo + hi) / 2;
-        if (kp[mid] < want) lo = mid + 1;
-        else hi = mid;
-      }
-      std::uint32_t best = kNone;
-      std::int64_t bd = 0;
-      if (lo < nsites && (kp[lo] >> 32) == std::uint64_t(c)) {
-        best = op[lo];
-        bd = std::int64_t(kp[lo] & 0xffffffffu) - z0;
-      }
-      if (lo > 0 && (kp[lo - 1] >> 32) == std::uint64_t(c)) {  // below: wins ties (smaller z)
-        const std::int64_t d = z0 - std::int64_t(kp[lo - 1] & 0xffffffffu);
-        if (best == kNone || d <= bd) best = op[lo - 1];
-      }
-      fp[c] = best;
-    });
+    ex.for_each_index(
+        nxy, GG_LAMBDA(std::int64_t c) {
+          const std::uint64_t want = (std::uint64_t(c) << 32) | std::uint64_t(z0);
+          std::int64_t lo = 0, hi = nsites;  // first key >= (c, z0)
+          while (lo < hi) {
+            const std::int64_t mid = (lo + hi) / 2;
+            if (kp[mid] < want)
+              lo = mid + 1;
+            else
+              hi = mid;
+          }
+          std::uint32_t best = kNone;
+          std::int64_t bd = 0;
+          if (lo < nsites && (kp[lo] >> 32) == std::uint64_t(c)) {
+            best = op[lo];
+            bd = std::int64_t(kp[lo] & 0xffffffffu) - z0;
+          }
+          if (lo > 0 && (kp[lo - 1] >> 32) == std::uint64_t(c)) {  // below: wins ties (smaller z)
+            const std::int64_t d = z0 - std::int64_t(kp[lo - 1] & 0xffffffffu);
+            if (best == kNone || d <= bd) best = op[lo - 1];
+          }
+          fp[c] = best;
+        });
     feature_transform(ex, Ls, rq.metric, fp, rq.bands, 2, &stats);
     ex.sync();
     transform += clock_ms() - t1;
