@@ -10,6 +10,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "bench_csv.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/io.hpp"
 
@@ -79,14 +80,7 @@ int main(int argc, char** argv) {
   if ((backends == "all" || backends == "cuda") && query_device().available)
     bks.push_back(Backend::Cuda);
   const std::string gpu = query_device().available ? query_device().name : "none";
-  std::ofstream f;
-  if (!csv.empty()) {
-    f.open(csv, std::ios::app);
-    if (f.tellp() == 0)
-      f << "problem,distribution,n,backend,device,upload_ms,compute_ms,download_ms,device_resident_"
-           "ms,"
-           "with_copies_ms,exact_fraction\n";
-  }
+  std::ofstream f = bench::open_bench_csv(csv);
   std::printf("%-6s %-14s %8s %-5s %-4s %11s %12s %10s\n", "edt", "grid", "density", "bk", "meth",
               "transform", "w/copies", "wrong%");
   std::vector<std::vector<std::int64_t>> all_shapes;

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "bench_csv.hpp"
 #include "bench_problems.hpp"
 #include "gpugeom/generate.hpp"
 #include "gpugeom/spatial.hpp"
@@ -72,14 +73,7 @@ int main(int argc, char** argv) {
     bks.push_back(k);
   }
   std::string gpu = query_device().available ? query_device().name : "none";
-  std::ofstream f;
-  if (!csv.empty()) {
-    f.open(csv, std::ios::app);
-    if (f.tellp() == 0)
-      f << "problem,distribution,n,backend,device,upload_ms,compute_ms,download_ms,device_resident_"
-           "ms,"
-           "with_copies_ms,exact_fraction\n";
-  }
+  std::ofstream f = bench::open_bench_csv(csv);
   std::printf("%-9s %-12s %10s %-5s %10s %10s %12s %8s\n", "problem", "dist", "n", "bk", "compute",
               "w/copies", "Mitems/s", "exact%");
   for (auto& d : list(dists))
