@@ -17,10 +17,16 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
   const Layout Ly = L;
   const Metric Mt = rq.metric;
   if (rq.want_sqdist || rq.want_distance) {
-    auto sq = ex.template alloc<double>(std::size_t(n));
-    auto sqi = ex.template alloc<std::int64_t>(std::size_t(n));
-    double* sp = sq.data();
+    // One kernel writes exactly the arrays asked for: nothing computed or copied in vain.
+    const bool iso = rq.metric.iso;
+    auto sqi = ex.template alloc<std::int64_t>(rq.want_sqdist && iso ? std::size_t(n) : 0);
+    auto sqr = ex.template alloc<double>(rq.want_sqdist && !iso ? std::size_t(n) : 0);
+    auto d64 = ex.template alloc<double>(rq.want_distance == 64 ? std::size_t(n) : 0);
+    auto d32 = ex.template alloc<float>(rq.want_distance == 32 ? std::size_t(n) : 0);
     std::int64_t* si = sqi.data();
+    double* sr = sqr.data();
+    double* dd = d64.data();
+    float* df = d32.data();
     const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
     ex.for_each_index(
         n, GG_LAMBDA(std::int64_t i) {
@@ -34,28 +40,27 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
             q += d * d;
             r += Mt.w[k] * double(d * d);
           }
-          si[i] = q;
-          sp[i] = Mt.iso ? double(q) : r;
+          const double d2 = Mt.iso ? double(q) : r;
+          if (si) si[i] = q;
+          if (sr) sr[i] = r;
+          if (dd) dd[i] = sqrt(d2);
+          if (df) df[i] = float(sqrt(d2));
         });
-    if (rq.want_sqdist && rq.metric.iso) {
+    if (si) {
       out.sqdist_int.resize(total);
       ex.to_host(si, n, out.sqdist_int.data() + at);
-    } else if (rq.want_sqdist) {
-      out.sqdist_real.resize(total);
-      ex.to_host(sp, n, out.sqdist_real.data() + at);
     }
-    if (rq.want_distance == 64) {
-      ex.for_each_index(
-          n, GG_LAMBDA(std::int64_t i) { sp[i] = sqrt(sp[i]); });
+    if (sr) {
+      out.sqdist_real.resize(total);
+      ex.to_host(sr, n, out.sqdist_real.data() + at);
+    }
+    if (dd) {
       out.dist64.resize(total);
-      ex.to_host(sp, n, out.dist64.data() + at);
-    } else if (rq.want_distance == 32) {
-      auto f = ex.template alloc<float>(std::size_t(n));
-      float* fp = f.data();
-      ex.for_each_index(
-          n, GG_LAMBDA(std::int64_t i) { fp[i] = float(sqrt(sp[i])); });
+      ex.to_host(dd, n, out.dist64.data() + at);
+    }
+    if (df) {
       out.dist32.resize(total);
-      ex.to_host(fp, n, out.dist32.data() + at);
+      ex.to_host(df, n, out.dist32.data() + at);
     }
   }
   if (rq.want_features) {
