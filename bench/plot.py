@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
-"""Turns bench CSV into PNG plots: time against n per problem and distribution, one line per
-backend/anchor, and the speed-up of each gpugeom backend over each anchor where both exist."""
-import csv, sys, collections, os
+"""Turns bench CSV into PNG plots, per problem and distribution: time against n for every
+backend and anchor (with copies), and the speed-up of each gpugeom backend over each anchor
+measured at the same n (device-resident time for gpugeom, as the anchors keep their data where
+they compute)."""
+import collections, csv, os, sys
+
+GPUGEOM = {"cpu", "cuda"}
 
 def main(path, outdir):
     try:
@@ -12,19 +16,37 @@ def main(path, outdir):
         print("note: matplotlib missing, no plots")
         return 0
     rows = list(csv.DictReader(open(path)))
-    groups = collections.defaultdict(lambda: collections.defaultdict(list))
+    groups = collections.defaultdict(lambda: collections.defaultdict(dict))
     for r in rows:
-        groups[(r["problem"], r["distribution"])][r["backend"]].append((int(r["n"]), float(r["with_copies_ms"])))
+        g = groups[(r["problem"], r["distribution"])][r["backend"]]
+        g[int(r["n"])] = (float(r["with_copies_ms"]), float(r["device_resident_ms"]))
     os.makedirs(outdir, exist_ok=True)
+    written = 0
     for (prob, dist), series in groups.items():
-        fig, ax = plt.subplots(figsize=(6, 4))
+        anchors = [b for b in series if b not in GPUGEOM]
+        ours = [b for b in series if b in GPUGEOM]
+        fig, axes = plt.subplots(1, 2 if anchors and ours else 1, figsize=(11 if anchors and ours else 6, 4))
+        axes = axes if hasattr(axes, "__len__") else [axes]
         for bk, pts in sorted(series.items()):
-            pts.sort()
-            ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=bk)
-        ax.set_xlabel("points"); ax.set_ylabel("ms (with copies)"); ax.set_title(f"{prob} / {dist}")
-        ax.grid(True, which="both", alpha=.3); ax.legend()
-        fig.tight_layout(); fig.savefig(os.path.join(outdir, f"{prob}_{dist}.png"), dpi=110); plt.close(fig)
-    print(f"plots written to {outdir}")
+            ns = sorted(pts)
+            axes[0].loglog(ns, [pts[n][0] for n in ns], "o-", label=bk)
+        axes[0].set_xlabel("n"); axes[0].set_ylabel("ms (with copies)"); axes[0].set_title(f"{prob} / {dist}")
+        axes[0].grid(True, which="both", alpha=.3); axes[0].legend()
+        if anchors and ours:
+            ax = axes[1]
+            for o in ours:
+                for a in anchors:
+                    ns = sorted(set(series[o]) & set(series[a]))
+                    if ns:
+                        ax.loglog(ns, [series[a][n][1] / series[o][n][1] for n in ns], "o-", label=f"{o} vs {a}")
+            ax.axhline(1, color="grey", lw=.8)
+            ax.set_xlabel("n"); ax.set_ylabel("speed-up (anchor time / gpugeom time)")
+            ax.set_title("speed-up, device-resident"); ax.grid(True, which="both", alpha=.3); ax.legend()
+        fig.tight_layout()
+        fig.savefig(os.path.join(outdir, f"{prob}_{dist}.png"), dpi=100)
+        plt.close(fig)
+        written += 1
+    print(f"{written} plots written to {outdir}")
     return 0
 
 if __name__ == "__main__":
