@@ -53,7 +53,9 @@ bool Lines::next(std::string_view& line, bool skip_comments) {
     pos_ = e + 1;
     ++line_;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    std::size_t first = line.find_first_not_of(" \t");
+    // Any mix of spaces, tabs and stray carriage returns is a blank line (split() treats all
+    // of them as separators, so a line kept here always has a first token).
+    std::size_t first = line.find_first_not_of(" \t\r");
     if (first == std::string_view::npos) continue;
     line = line.substr(first);
     if (skip_comments && line[0] == '#') continue;

@@ -241,6 +241,10 @@ TEST(Io, MalformedInputsNameFileLineAndWhat) {
   EXPECT_NE(m.find("truncated"), std::string::npos) << m;
   m = expect_parse_error([] { io::parse_grid("\x89PNG\r\n\x1a\nbroken", ".png", "g.png"); });
   EXPECT_NE(m.find("g.png"), std::string::npos) << m;
+  // Found by the fuzzer: a line of blanks and carriage returns is blank, not a token-less line.
+  auto obj = io::parse_mesh("v 0 0 0\n  \r\r \nv 1 0 0\nv 0 1 0\nf 1 2 3\n", ".obj", "cr.obj");
+  EXPECT_EQ(obj.cells.size(), 3u);
+  EXPECT_THROW(io::parse_mesh("   \r\r\r ", ".obj", "cr.obj"), Error);
   EXPECT_THROW(io::read_points(path("does-not-exist.xyz")), Error);
   EXPECT_THROW(io::parse_points("1 2\n", ".abc", "x.abc"), Error);
 }
