@@ -301,29 +301,36 @@ Grid parse_npy_grid(const std::string& b, const std::string& name) {
     g.type = ScalarType::I64;
   const std::int64_t n = g.count();
   g.data.resize(std::size_t(n) * scalar_size(g.type));
-  if (npy_item_size(a.descr, name) == scalar_size(g.type) && a.descr[0] != '>') {
+  // Same size and byte order: copy as is (uint64 goes the checked way, into int64).
+  if (npy_item_size(a.descr, name) == scalar_size(g.type) && a.descr[0] != '>' &&
+      !(k == 'u' && sz == 8)) {
     std::memcpy(g.data.data(), a.payload.data(), g.data.size());
     return g;
   }
   for (std::int64_t i = 0; i < n; ++i) {  // widen (int8/int16/uint32...) or byte-swap
-    double v = npy_value(a, i, name);
     unsigned char* p = g.data.data() + i * scalar_size(g.type);
+    if (g.type == ScalarType::F32 || g.type == ScalarType::F64) {
+      const double v = npy_value(a, i, name);
+      if (g.type == ScalarType::F32) {
+        const float x = float(v);
+        std::memcpy(p, &x, 4);
+      } else {
+        std::memcpy(p, &v, 8);
+      }
+      continue;
+    }
+    const std::int64_t v = npy_integer(a, i, name);  // integers never pass through a double
     if (g.type == ScalarType::I32) {
-      std::int32_t x = std::int32_t(v);
+      const std::int32_t x = std::int32_t(v);  // only int8/int16/int32/uint8/uint16 map here
       std::memcpy(p, &x, 4);
     } else if (g.type == ScalarType::I64) {
-      std::int64_t x = std::int64_t(v);
-      std::memcpy(p, &x, 8);
-    } else if (g.type == ScalarType::U16) {
-      std::uint16_t x = std::uint16_t(v);
-      std::memcpy(p, &x, 2);
-    } else if (g.type == ScalarType::F32) {
-      float x = float(v);
-      std::memcpy(p, &x, 4);
-    } else if (g.type == ScalarType::F64)
       std::memcpy(p, &v, 8);
-    else
+    } else if (g.type == ScalarType::U16) {
+      const std::uint16_t x = std::uint16_t(v);
+      std::memcpy(p, &x, 2);
+    } else {
       p[0] = std::uint8_t(v);
+    }
   }
   return g;
 }

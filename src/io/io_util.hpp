@@ -51,6 +51,8 @@ std::string format_npy(const std::string& descr, const std::vector<std::int64_t>
                        const void* data, std::size_t bytes);
 // Element i of an npy payload as a double; supports the descr codes listed in io.hpp.
 double npy_value(const NpyArray& a, std::int64_t i, const std::string& name);
+// Element i of an integer or bool array, exactly (uint64 above 2^63-1 is a parse error).
+std::int64_t npy_integer(const NpyArray& a, std::int64_t i, const std::string& name);
 std::size_t npy_item_size(const std::string& descr, const std::string& name);
 
 // PLY: vertices and one list element of faces or tetrahedra.

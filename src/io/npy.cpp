@@ -1,4 +1,6 @@
 // The NumPy .npy container (format versions 1-3, C order).
+#include <climits>
+#include <cstdint>
 #include <cstring>
 
 #include "io/io_util.hpp"
@@ -87,6 +89,21 @@ NpyArray parse_npy(const std::string& b, const std::string& name) {
                    std::to_string(avail));
   a.payload = std::string_view(b).substr(start + hlen, std::size_t(total));
   return a;
+}
+
+std::int64_t npy_integer(const NpyArray& a, std::int64_t i, const std::string& name) {
+  const std::size_t sz = npy_item_size(a.descr, name);
+  unsigned char raw[8];
+  std::memcpy(raw, a.payload.data() + std::size_t(i) * sz, sz);
+  const bool little =
+      a.descr[0] == '<' || ((a.descr[0] == '=' || a.descr[0] == '|') && host_little());
+  std::uint64_t u = 0;  // assemble the value from its bytes, in the file's byte order
+  for (std::size_t k = 0; k < sz; ++k) u |= std::uint64_t(raw[little ? k : sz - 1 - k]) << (8 * k);
+  if (a.descr[1] == 'i' && sz < 8 && (u >> (8 * sz - 1)) & 1)
+    u |= ~std::uint64_t(0) << (8 * sz);  // sign
+  if (a.descr[1] == 'u' && sz == 8 && u > std::uint64_t(INT64_MAX))
+    parse_fail(name, 0, "uint64 value " + std::to_string(u) + " is above the supported 2^63-1");
+  return std::int64_t(u);
 }
 
 double npy_value(const NpyArray& a, std::int64_t i, const std::string& name) {

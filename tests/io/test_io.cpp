@@ -249,6 +249,29 @@ TEST(Io, MalformedInputsNameFileLineAndWhat) {
   EXPECT_THROW(io::parse_points("1 2\n", ".abc", "x.abc"), Error);
 }
 
+// Found by the fuzzer: integer arrays used to pass through a double (lossy above 2^53, and
+// undefined for uint64 values above 2^63).
+TEST(Io, NpyIntegersAreExact) {
+  auto npy = [](const std::string& descr, const std::string& payload) {
+    std::string h = "{'descr': '" + descr + "', 'fortran_order': False, 'shape': (1, 2), }";
+    return std::string("\x93NUMPY\x01\x00", 8) + char(h.size()) + char(0) + h + payload;
+  };
+  std::string big(16, '\0');  // int64 2^62 + 1 and -3, little endian
+  const std::int64_t vals[2] = {(std::int64_t(1) << 62) + 1, -3};
+  std::memcpy(&big[0], vals, 16);
+  auto g = io::parse_grid(npy("<i8", big), ".npy", "i8.npy");
+  std::int64_t back[2];
+  std::memcpy(back, g.data.data(), 16);
+  EXPECT_EQ(back[0], vals[0]);
+  EXPECT_EQ(back[1], vals[1]);
+  auto be =
+      io::parse_grid(npy(">i2", std::string("\xff\xfe\x00\x07", 4)), ".npy", "be.npy");  // -2, 7
+  EXPECT_EQ(be.value(0), -2);
+  EXPECT_EQ(be.value(1), 7);
+  expect_parse_error(
+      [&] { io::parse_grid(npy("<u8", std::string(16, '\xff')), ".npy", "u8.npy"); });
+}
+
 TEST(Io, FailedWriteLeavesNothing) {
   io::PointSet p = sample(3, 10);
   EXPECT_THROW(io::write_points(tmpdir() + "/no/such/dir/p.xyz", p), Error);
