@@ -11,7 +11,8 @@ inline std::ofstream open_bench_csv(const std::string& path) {
   if (path.empty()) return f;
   f.open(path, std::ios::app);
   if (f.tellp() == 0)
-    f << "problem,distribution,n,backend,device,upload_ms,compute_ms,download_ms,device_resident_ms,"
+    f << "problem,distribution,n,backend,device,upload_ms,compute_ms,download_ms,device_resident_"
+         "ms,"
          "with_copies_ms,exact_fraction\n";
   return f;
 }

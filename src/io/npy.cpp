@@ -108,42 +108,21 @@ std::int64_t npy_integer(const NpyArray& a, std::int64_t i, const std::string& n
 
 double npy_value(const NpyArray& a, std::int64_t i, const std::string& name) {
   const std::size_t sz = npy_item_size(a.descr, name);
+  if (a.descr[1] != 'f') return double(npy_integer(a, i, name));
   unsigned char raw[8];
   std::memcpy(raw, a.payload.data() + std::size_t(i) * sz, sz);
   const bool little =
       a.descr[0] == '<' || ((a.descr[0] == '=' || a.descr[0] == '|') && host_little());
   if (little != host_little())
     for (std::size_t k = 0; k < sz / 2; ++k) std::swap(raw[k], raw[sz - 1 - k]);
-  const char kind = a.descr[1];
-  auto get = [&](auto t) {
-    decltype(t) v;
-    std::memcpy(&v, raw, sizeof v);
-    return double(v);
-  };
-  if (kind == 'f') return sz == 4 ? get(float()) : get(double());
-  if (kind == 'b') return raw[0] ? 1.0 : 0.0;
-  if (kind == 'u') {
-    switch (sz) {
-      case 1:
-        return get(std::uint8_t());
-      case 2:
-        return get(std::uint16_t());
-      case 4:
-        return get(std::uint32_t());
-      default:
-        return get(std::uint64_t());
-    }
+  if (sz == 4) {
+    float f;
+    std::memcpy(&f, raw, 4);
+    return f;
   }
-  switch (sz) {
-    case 1:
-      return get(std::int8_t());
-    case 2:
-      return get(std::int16_t());
-    case 4:
-      return get(std::int32_t());
-    default:
-      return get(std::int64_t());
-  }
+  double d;
+  std::memcpy(&d, raw, 8);
+  return d;
 }
 
 std::string format_npy(const std::string& descr, const std::vector<std::int64_t>& shape,
