@@ -101,6 +101,7 @@ std::int64_t npy_integer(const NpyArray& a, std::int64_t i, const std::string& n
   for (std::size_t k = 0; k < sz; ++k) u |= std::uint64_t(raw[little ? k : sz - 1 - k]) << (8 * k);
   if (a.descr[1] == 'i' && sz < 8 && (u >> (8 * sz - 1)) & 1)
     u |= ~std::uint64_t(0) << (8 * sz);  // sign
+  if (a.descr[1] == 'b') return u != 0;
   if (a.descr[1] == 'u' && sz == 8 && u > std::uint64_t(INT64_MAX))
     parse_fail(name, 0, "uint64 value " + std::to_string(u) + " is above the supported 2^63-1");
   return std::int64_t(u);
