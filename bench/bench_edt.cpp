@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
   std::string sides = "1024,2048", dens = "0.1", backends = "all", csv, shapes;
   int dim = 2, reps = 5;
   bool jfa = false;
+  std::int64_t bands[3] = {0, 0, 0};
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -67,7 +68,11 @@ int main(int argc, char** argv) {
       csv = next();
     else if (a == "--jfa")
       jfa = true;
-    else if (a == "--shapes")
+    else if (a == "--bands") {  // kx,ky[,kz]: PBA band counts (0: the automatic rule)
+      std::stringstream bs(next());
+      int k = 0;
+      for (std::string x; std::getline(bs, x, ',') && k < 3; ++k) bands[k] = std::stoll(x);
+    } else if (a == "--shapes")
       shapes = next();  // e.g. 4096x16384,8000x8400 (C order)
     else {
       std::cout << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
@@ -107,6 +112,7 @@ int main(int argc, char** argv) {
           o.distance = 32;
           o.labels = true;
           o.method = m ? EdtMethod::Jfa : EdtMethod::Pba;
+          for (int k = 0; k < 3; ++k) o.bands[k] = bands[k];
           std::vector<double> tt, tw;
           EdtResult r;
           for (int k = 0; k <= reps; ++k) {  // the first run warms up
