@@ -42,6 +42,19 @@ expect 0 "valid delaunay2d" -- "$G" check "$W/q.ele"
 printf '2 3 0\n0 0 1 3\n1 0 3 2\n' >"$W/bad.ele"
 cp "$W/q.node" "$W/bad.node"
 expect 1 "not locally Delaunay" -- "$G" check "$W/bad.ele"
+# edt: a small image, its outputs, and its errors
+printf 'P2\n5 3\n255\n0 0 0 0 0\n0 0 255 0 0\n0 0 0 0 0\n' >"$W/one.pgm"
+expect 0 "15 voxels on cpu, exact" -- "$G" edt "$W/one.pgm" -o "$W/d.npy" --labels "$W/l.npy" --preview "$W/p.png" --voronoi
+[ -s "$W/d.npy" ] && [ -s "$W/l.npy" ] && [ -s "$W/p.png" ] || { echo "FAIL: edt outputs missing"; fail=1; }
+expect 0 "usage: gpugeom edt" -- "$G" edt --help
+expect 0 "JFA \(approximate\)" -- "$G" edt "$W/one.pgm" -o "$W/j.npy" --sites zero --sampling 1,2 --method jfa
+expect 2 "slices apply to 3D grids only" -- "$G" edt "$W/one.pgm" -o "$W/z.npy" --slices 0
+printf 'P2\n2 2\n255\n0 0\n0 0\n' >"$W/none.pgm"
+expect 3 "has no site" -- "$G" edt "$W/none.pgm" -o "$W/z.npy"
+[ -e "$W/z.npy" ] && { echo "FAIL: a failed edt left an output file"; fail=1; }
+expect 2 "sampling needs one value per axis" -- "$G" edt "$W/one.pgm" -o "$W/z.npy" --sampling 1,2,3
+expect 2 "raw input needs --shape and --dtype" -- "$G" edt "$W/vol.raw" -o "$W/z.npy"
+expect 2 "outputs are .npy files" -- "$G" edt "$W/one.pgm" -o "$W/z.png"
 # a failed write leaves no file behind
 expect 3 "cannot create" -- "$G" gen uniform2d -n 10 -o "$W/nodir/x.xyz"
 [ -e "$W/nodir" ] && { echo "FAIL: output folder appeared"; fail=1; }
