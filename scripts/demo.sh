@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 BUILD=${BUILD_DIR:-build}
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DGPUGEOM_CUDA=${GPUGEOM_CUDA:-AUTO}
-cmake --build "$BUILD" --target gpugeom_cli gpugeom_bench
+cmake --build "$BUILD"  # everything: the CLI, the benchmark drivers and the anchors
 G="$BUILD/tools/gpugeom/gpugeom"
 OUT=${DEMO_OUT:-$BUILD/demo}
 mkdir -p "$OUT"
