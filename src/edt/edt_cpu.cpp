@@ -1,5 +1,6 @@
 // The distance transform compiled for the CPU executor.
 #include <chrono>
+#include <cuda/atomic>
 #include <cstdlib>
 #include <functional>
 #include <cmath>

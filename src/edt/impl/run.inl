@@ -12,7 +12,8 @@ double clock_ms() {
 // Per-voxel outputs of one computed block (whole grid or one slice) appended at `at`.
 inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std::uint32_t* feat,
                          const std::uint32_t* sorted_sites, const std::int32_t* sorted_idx,
-                         std::int64_t nsites, Output& out, std::int64_t at, std::int64_t total) {
+                         std::int64_t nsites, const std::int32_t* rank_grid, Output& out,
+                         std::int64_t at, std::int64_t total) {
   const std::int64_t n = L.count();
   const Layout Ly = L;
   const Metric Mt = rq.metric;
@@ -80,7 +81,11 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
     const std::int64_t ns = nsites;
     ex.for_each_index(
         n, GG_LAMBDA(std::int64_t i) {
-          std::int64_t lo = 0, hi = ns;  // lower_bound of the site in the sorted list
+          if (rank_grid) {  // whole grid: the label of every site voxel is at hand
+            lp[i] = rank_grid[Ly.voxel_of(feat[i])];
+            return;
+          }
+          std::int64_t lo = 0, hi = ns;  // slices: lower_bound of the site in the sorted list
           while (lo < hi) {
             const std::int64_t mid = (lo + hi) / 2;
             if (sorted_sites[mid] < feat[i])
@@ -117,7 +122,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   }
   std::uint32_t* sorted = sites.data();
   const std::int32_t* sorted_idx = rq.mask ? nullptr : sidx.data();
-  if (rq.mask && (rq.want_labels || !rq.slices.empty())) {  // raster order = packed order
+  if (rq.mask && !rq.slices.empty()) {  // raster order = packed order
     auto vox = ex.template alloc<std::int32_t>(std::size_t(nvox));
     const std::uint8_t* mp = mask.data();
     ns = ex.compact_indices(
@@ -169,7 +174,27 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     out.transform_ms = clock_ms() - t1;
     stats.phase_ms.push_back({"transform", out.transform_ms});
     const double t2 = clock_ms();
-    emit_outputs(ex, rq, L, fp, sorted, sorted_idx, ns, out, 0, nvox);
+    // Labels: the label of every site voxel in a grid (raster rank of a mask's sites, or the
+    // lowest index among a list's duplicates), so each voxel's label is one lookup.
+    auto rank = ex.template alloc<std::int32_t>(rq.want_labels ? std::size_t(nvox) : 0);
+    std::int32_t* rp = rank.data();
+    if (rq.want_labels && rq.mask) {
+      const std::uint8_t* mp = mask.data();
+      ex.for_each_index(
+          nvox, GG_LAMBDA(std::int64_t i) { rp[i] = mp[i] ? 1 : 0; });
+      ex.exclusive_scan(rp, rp, nvox);
+    } else if (rq.want_labels) {
+      ex.fill(rp, nvox, std::int32_t(0x7fffffff));
+      const std::uint32_t* sp = sorted;
+      const std::int32_t* ip = sorted_idx;
+      const Layout Ly = L;
+      ex.for_each_index(
+          ns, GG_LAMBDA(std::int64_t j) {
+            cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> r(rp[Ly.voxel_of(sp[j])]);
+            r.fetch_min(ip[j], cuda::memory_order_relaxed);
+          });
+    }
+    emit_outputs(ex, rq, L, fp, sorted, sorted_idx, ns, rp, out, 0, nvox);
     stats.phase_ms.push_back({"outputs", clock_ms() - t2});
     return;
   }
@@ -231,7 +256,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     feature_transform(ex, Ls, rq.metric, fp, rq.bands, 2, &stats);
     ex.sync();
     transform += clock_ms() - t1;
-    emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, out, k * nxy, nsl * nxy);
+    emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, nullptr, out, k * nxy, nsl * nxy);
   }
   out.transform_ms = transform;
   stats.phase_ms.push_back({"transform", transform});
