@@ -143,6 +143,8 @@ PlyData parse_ply(const std::string& bytes, const std::string& name) {
       if (tok.size() != 3) l.fail("expected 'element NAME COUNT'");
       Elem e;
       e.name = std::string(tok[1]);
+      for (const Elem& f : elems)
+        if (f.name == e.name) l.fail("element '" + e.name + "' is declared twice");
       e.count = need_int(l, tok[2], "the element count");
       if (e.count < 0) l.fail("negative element count");
       elems.push_back(e);
@@ -160,6 +162,9 @@ PlyData parse_ply(const std::string& bytes, const std::string& name) {
       } else {
         l.fail("expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
       }
+      for (const Prop& q : elems.back().props)
+        if (q.name == p.name)
+          l.fail("element '" + elems.back().name + "' declares property '" + p.name + "' twice");
       elems.back().props.push_back(p);
     } else {
       l.fail("unexpected header line '" + std::string(line) + "'");

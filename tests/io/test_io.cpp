@@ -217,6 +217,21 @@ TEST(Io, MalformedInputsNameFileLineAndWhat) {
                      ".ply", "nox.ply");
   });
   EXPECT_NE(m.find("x and y"), std::string::npos) << m;
+  // Found by the fuzzer: repeated elements or properties must not confuse the vertex layout.
+  m = expect_parse_error([] {
+    io::parse_points(
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "element vertex 1\nproperty float z\nproperty float x\nend_header\n1 2\n3 4\n",
+        ".ply", "d.ply");
+  });
+  EXPECT_NE(m.find("declared twice"), std::string::npos) << m;
+  m = expect_parse_error([] {
+    io::parse_points(
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float x\n"
+        "property float y\nend_header\n1 2 3\n",
+        ".ply", "p.ply");
+  });
+  EXPECT_NE(m.find("twice"), std::string::npos) << m;
   m = expect_parse_error([] { io::parse_points("OFF\n2 0 0\n1 2 3\n", ".off", "a.off"); });
   EXPECT_NE(m.find("1 of 2"), std::string::npos) << m;
   m = expect_parse_error([] { io::parse_points("v 1 2\n", ".obj", "a.obj"); });
