@@ -20,6 +20,10 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g, 
                  std::uint32_t* scratch, std::int32_t* lo, std::int32_t* hi) {
   line_pass(ex, L, M, g, feat, scratch, lo, hi);
 }
+// Tiles in on-chip memory are a GPU device: a CPU thread's cache already holds its line.
+bool line_pass_tiled(Exec&, const Layout&, const Metric&, int, std::int64_t, std::uint32_t*) {
+  return false;
+}
 #include "edt/impl/run.inl"
 void run(const Request& req, Output& out, Stats& stats) {
   run_impl(req, out, stats);

@@ -21,7 +21,22 @@ class DeviceBuffer {
  public:
   DeviceBuffer() = default;
   DeviceBuffer(std::size_t n, cudaStream_t s) : n_(n), s_(s) {
-    if (n) GG_CUDA_CHECK(cudaMallocAsync(reinterpret_cast<void**>(&p_), n * sizeof(T), s));
+    if (!n) return;
+    void** pp = reinterpret_cast<void**>(&p_);
+    const cudaError_t first = cudaMallocAsync(pp, n * sizeof(T), s);
+    if (first == cudaErrorMemoryAllocation) {
+      // The pool keeps freed blocks (CudaExec); hand them back to the driver and retry once.
+      (void)cudaGetLastError();
+      int dev = 0;
+      cudaMemPool_t pool;
+      GG_CUDA_CHECK(cudaStreamSynchronize(s));
+      GG_CUDA_CHECK(cudaGetDevice(&dev));
+      GG_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool, dev));
+      GG_CUDA_CHECK(cudaMemPoolTrimTo(pool, 0));
+      GG_CUDA_CHECK(cudaMallocAsync(pp, n * sizeof(T), s));
+    } else {
+      GG_CUDA_CHECK(first);
+    }
   }
   DeviceBuffer(DeviceBuffer&& o) noexcept { swap(o); }
   DeviceBuffer& operator=(DeviceBuffer&& o) noexcept {
@@ -74,6 +89,13 @@ class CudaExec {
     int dev = 0;
     GG_CUDA_CHECK(cudaGetDevice(&dev));
     GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms_, cudaDevAttrMultiProcessorCount, dev));
+    // Freed blocks stay in the device's default pool for the next call (as CuPy's memory pool
+    // does): by default the pool returns them to the driver at every synchronisation, and the
+    // next large cudaMallocAsync then maps fresh pages, about 1 ms per 512 MB.
+    cudaMemPool_t pool;
+    GG_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool, dev));
+    std::uint64_t keep = ~std::uint64_t(0);
+    GG_CUDA_CHECK(cudaMemPoolSetAttribute(pool, cudaMemPoolAttrReleaseThreshold, &keep));
   }
   cudaStream_t stream() const { return s_; }
 

@@ -2,6 +2,8 @@
 // on grids large enough to use many bands, in 2D and 3D, whole and slice by slice.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "edt_cases.hpp"
 
 using namespace gpugeom;
@@ -46,6 +48,42 @@ TEST(CudaEdt, SameAsCpuBitForBit) {
           ASSERT_EQ(sl.labels[k * plane + i], cpu.labels[o.slices[k] * plane + i]);
     }
   }
+}
+
+// The y and z passes on shared-memory tiles (forced here: by default they take grids with blocks
+// enough for every SM), on shapes whose x extent is not a multiple of the 32-line tile.
+TEST(CudaEdt, TiledPassesSameAsCpu) {
+  struct Case {
+    std::vector<std::int64_t> shape;
+    double density;
+    std::vector<double> sampling;
+    std::int64_t bands;
+  };
+  const std::vector<Case> cases{{{70, 40, 50}, 0.001, {}, 0},
+                                {{100, 60, 40}, 0.2, {}, 0},
+                                {{33, 65, 17}, 0.05, {2.0, 1.0, 0.5}, 0},
+                                {{50, 200, 45}, 0.1, {}, 8},
+                                {{40, 130, 7}, 0.6, {}, 32},
+                                {{777, 300}, 0.01, {}, 0},
+                                {{5, 7, 300}, 0.05, {}, 4}};
+  setenv("GPUGEOM_EDT_TILES", "1", 1);
+  unsigned seed = 200;
+  for (auto& c : cases) {
+    io::Grid g = gg_edt::random_grid(c.shape, c.density, seed++);
+    EdtOptions o;
+    o.squared = true;
+    o.labels = true;
+    o.sampling = c.sampling;
+    for (int k = 0; k < 3; ++k) o.bands[k] = c.bands;
+    o.backend = Backend::Cpu;
+    const auto cpu = distance_transform(g, SiteRule::NonZero, o);
+    o.backend = Backend::Cuda;
+    const auto gpu = distance_transform(g, SiteRule::NonZero, o);
+    EXPECT_EQ(gpu.labels, cpu.labels);
+    EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int);
+    EXPECT_EQ(gpu.sqdist_real, cpu.sqdist_real);
+  }
+  unsetenv("GPUGEOM_EDT_TILES");
 }
 
 TEST(CudaEdt, BruteForceOnSmallGrids) {

@@ -90,9 +90,12 @@ GG_INLINE Cand decode(const Layout& L, int a, std::uint32_t s, const std::int64_
   return c;
 }
 
+// Iso: the metric is isotropic (known at compile time, so the isotropic kernels carry none of
+// the general tests' registers except the exact-tie fallback).
+template <bool Iso>
 GG_INLINE bool cand_dominated(const Layout& L, const Metric& M, int a, const Cand& A, const Cand& B,
                               const Cand& C, const std::int64_t v[3]) {
-  if (M.iso) {
+  if constexpr (Iso) {
     const double e = (C.t - B.t) * (B.f - A.f) - (B.t - A.t) * (C.f - B.f) +
                      (C.t - B.t) * (B.t - A.t) * (A.t - C.t);
     if (e != 0) return e > 0;
@@ -100,58 +103,215 @@ GG_INLINE bool cand_dominated(const Layout& L, const Metric& M, int a, const Can
   return dominated<Num>(L, M, a, A.s, B.s, C.s, v);  // anisotropic, or an exact tie
 }
 
+template <bool Iso>
 GG_INLINE bool cand_beats(const Layout& L, const Metric& M, int a, const Cand& Q, const Cand& P,
                           std::int64_t t, const std::int64_t v[3]) {
-  if (M.iso) {
+  if constexpr (Iso) {
     const double dq = Q.t - double(t), dp = P.t - double(t);
     const double e = (Q.f + dq * dq) - (P.f + dp * dp);
     return e < 0 || (e == 0 && Q.s < P.s);
+  } else {
+    std::int64_t w[3] = {v[0], v[1], v[2]};
+    w[a] = t;
+    return beats<Num>(L, M, Q.s, P.s, w);
   }
-  std::int64_t w[3] = {v[0], v[1], v[2]};
-  w[a] = t;
-  return beats<Num>(L, M, Q.s, P.s, w);
 }
 
-inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
-                      std::uint32_t* cand, std::uint32_t* stk, std::int32_t* lo, std::int32_t* hi) {
+// One band's stack: scans positions [t0, t1) of a line (in[base + t * stride]) and keeps the
+// band's non-dominated candidates at stk[base + (t0 + i) * stride], i < n; returns n. In place
+// when stk == in: the slot written never lies ahead of the position read. The top two stay in
+// registers; loads run two positions ahead (the loop is latency-bound). A flat loop (each step
+// pops or pushes) was tried to keep lanes converged: 10-35 % slower.
+template <bool Iso>
+GG_INLINE std::int32_t band_stack(const Layout& L, const Metric& M, int a, const std::int64_t v[3],
+                                  const std::uint32_t* in, std::uint32_t* stk, std::int64_t base,
+                                  std::int64_t stride, std::int64_t t0, std::int64_t t1) {
+  std::uint32_t* s = stk + base + t0 * stride;
+  std::int32_t n = 0;
+  Cand top{kNone, 0, 0}, second{kNone, 0, 0};
+  std::uint32_t ahead1 = t0 < t1 ? in[base + t0 * stride] : kNone;
+  std::uint32_t ahead2 = t0 + 1 < t1 ? in[base + (t0 + 1) * stride] : kNone;
+  for (std::int64_t t = t0; t < t1; ++t) {
+    const std::uint32_t cs = ahead1;
+    ahead1 = ahead2;
+    if (t + 2 < t1) ahead2 = in[base + (t + 2) * stride];
+    if (cs == kNone) continue;
+    const Cand c = decode(L, a, cs, v);
+    while (n >= 2 && cand_dominated<Iso>(L, M, a, second, top, c, v)) {
+      --n;
+      top = second;
+      if (n >= 2) second = decode(L, a, s[(n - 2) * stride], v);
+    }
+    s[n * stride] = cs;
+    ++n;
+    second = top;
+    top = c;
+  }
+  return n;
+}
+
+// Merges band groups [bl, br) and [br, be) of one line (Algorithm 4.1 on the slices): pops
+// come off the tail of the upper group and the head of the lower one; only bounds move.
+template <bool Iso>
+GG_INLINE void merge_groups(const Layout& L, const Metric& M, int a, const std::int64_t v[3],
+                            const Segs& S, std::int64_t bl, std::int64_t br, std::int64_t be) {
+  // Tail of the upper group: band ub, index ui (ub < bl: empty).
+  std::int64_t ub = br - 1;
+  while (ub >= bl && S.H(ub) == S.L(ub)) --ub;
+  std::int32_t ui = ub >= bl ? S.H(ub) - 1 : -1;
+  auto back = [&](std::int64_t& b, std::int32_t& i) {  // the live element before (b, i)
+    if (i > S.L(b)) {
+      --i;
+      return;
+    }
+    do --b;
+    while (b >= bl && S.H(b) == S.L(b));
+    i = b >= bl ? S.H(b) - 1 : -1;
+  };
+  std::int64_t ucount = 0;
+  for (std::int64_t b = bl; b < br; ++b) ucount += S.H(b) - S.L(b);
+  // Walk the lower group's elements in order.
+  std::int64_t vb = br;
+  std::int32_t vi = S.L(br);
+  std::int64_t dropped = 0;  // lower-group elements popped (always a prefix)
+  int pushed = 0;            // lower-group elements on the stack (0 or 1 while popping)
+  Cand last{kNone, 0, 0};
+  while (true) {
+    while (vb < be && vi >= S.H(vb)) {
+      ++vb;
+      if (vb < be) vi = S.L(vb);
+    }
+    if (vb >= be) break;
+    const Cand c = decode(L, a, S.at(vb, vi), v);
+    while (ucount + pushed >= 2) {
+      Cand t, sec;
+      if (pushed == 1) {
+        t = last;
+        sec = decode(L, a, S.at(ub, ui), v);
+      } else {
+        t = decode(L, a, S.at(ub, ui), v);
+        std::int64_t pb = ub;
+        std::int32_t pi = ui;
+        back(pb, pi);
+        sec = decode(L, a, S.at(pb, pi), v);
+      }
+      if (!cand_dominated<Iso>(L, M, a, sec, t, c, v)) break;
+      if (pushed == 1) {
+        pushed = 0;
+        ++dropped;
+      } else {
+        back(ub, ui);
+        --ucount;
+      }
+    }
+    last = c;
+    if (++pushed == 2) break;  // lower-group sites never dominate each other
+    ++vi;
+  }
+  // Upper group: everything after the tail (ub, ui) is gone.
+  for (std::int64_t b = br - 1; b >= bl; --b) {
+    if (b > ub)
+      S.H(b) = S.L(b);
+    else if (b == ub)
+      S.H(b) = ui + 1;
+    else
+      break;
+  }
+  // Lower group: drop the popped prefix.
+  for (std::int64_t b = br; b < be && dropped > 0; ++b) {
+    const std::int64_t take = S.H(b) - S.L(b) < dropped ? S.H(b) - S.L(b) : dropped;
+    S.L(b) += std::int32_t(take);
+    dropped -= take;
+  }
+}
+
+// Colours positions [t0, t1) of band b0 into out[out_base + t * out_stride]: the first winner by
+// binary search over the line's concatenated slices, then a walk forward (Lemma 4.3).
+template <bool Iso>
+GG_INLINE void colour_band(const Layout& L, const Metric& M, int a, const std::int64_t v[3],
+                           const Segs& S, std::int64_t nbands, std::int64_t t0, std::int64_t t1,
+                           std::uint32_t* out, std::int64_t out_base, std::int64_t out_stride) {
+  std::int32_t pre[kMaxBands + 1];  // live elements before each band
+  pre[0] = 0;
+  for (std::int64_t b = 0; b < nbands; ++b) pre[b + 1] = pre[b] + S.H(b) - S.L(b);
+  const std::int64_t n = pre[nbands];
+  if (n == 0) {
+    for (std::int64_t t = t0; t < t1; ++t) out[out_base + t * out_stride] = kNone;
+    return;
+  }
+  auto locate = [&](std::int64_t k, std::int64_t& b, std::int32_t& i) {  // k-th live element
+    std::int64_t lo = 0, hi = nbands - 1;  // last band with pre[b] <= k
+    while (lo < hi) {
+      const std::int64_t m = (lo + hi + 1) / 2;
+      if (pre[m] <= k)
+        lo = m;
+      else
+        hi = m - 1;
+    }
+    b = lo;
+    i = S.L(b) + std::int32_t(k - pre[b]);
+  };
+  auto next = [&](std::int64_t& b, std::int32_t& i) {
+    ++i;
+    while (b < nbands && i >= S.H(b)) {
+      ++b;
+      if (b < nbands) i = S.L(b);
+    }
+  };
+  std::int64_t lo_k = 0, hi_k = n - 1;  // first k whose successor does not beat it at t0
+  while (lo_k < hi_k) {
+    const std::int64_t mid = (lo_k + hi_k) / 2;
+    std::int64_t b, b2;
+    std::int32_t i, i2;
+    locate(mid, b, i);
+    b2 = b, i2 = i;
+    next(b2, i2);
+    if (cand_beats<Iso>(L, M, a, decode(L, a, S.at(b2, i2), v), decode(L, a, S.at(b, i), v), t0, v))
+      lo_k = mid + 1;
+    else
+      hi_k = mid;
+  }
+  std::int64_t cb, nb;
+  std::int32_t ci, ni;
+  locate(lo_k, cb, ci);  // the current winner; (nb, ni) its successor
+  nb = cb, ni = ci;
+  next(nb, ni);
+  Cand cur = decode(L, a, S.at(cb, ci), v);
+  Cand nxt = decode(L, a, nb < nbands ? S.at(nb, ni) : kNone, v);
+  // The element after nxt is loaded one advance ahead, to hide its latency.
+  std::int64_t ab = nb;
+  std::int32_t ai = ni;
+  if (ab < nbands) next(ab, ai);
+  std::uint32_t after = ab < nbands ? S.at(ab, ai) : kNone;
+  for (std::int64_t t = t0; t < t1; ++t) {
+    while (nxt.s != kNone && cand_beats<Iso>(L, M, a, nxt, cur, t, v)) {
+      cur = nxt;
+      nxt = decode(L, a, after, v);
+      if (ab < nbands) next(ab, ai);
+      after = ab < nbands ? S.at(ab, ai) : kNone;
+    }
+    out[out_base + t * out_stride] = cur.s;
+  }
+}
+
+// The line pass with every band of every line an independent item, stacks in global memory.
+template <bool Iso>
+void line_pass_t(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g, std::uint32_t* cand,
+                 std::uint32_t* stk, std::int32_t* lo, std::int32_t* hi) {
   const Layout Ly = L;
   const Metric Mt = M;
   const PassGeom G = g;
-  // Stacks of non-dominated candidates per band; the top two stay in registers.
   ex.for_each_index(
       G.lines * G.bands, GG_LAMBDA(std::int64_t item) {
         const std::int64_t b = item / G.lines, l = item % G.lines;
-        const std::int64_t base = line_base(Ly, G.a, l);
         std::int64_t v[3];
         line_coords(Ly, G.a, l, v);
         const std::int64_t t0 = b * G.band_len;
         const std::int64_t t1 = t0 + G.band_len < G.len ? t0 + G.band_len : G.len;
-        std::uint32_t* s = stk + base + t0 * G.stride;
-        std::int32_t n = 0;
-        Cand top{kNone, 0, 0}, second{kNone, 0, 0};
-        // Loads run two positions ahead: the loop is latency-bound, not bandwidth-bound.
-        std::uint32_t ahead1 = t0 < t1 ? cand[base + t0 * G.stride] : kNone;
-        std::uint32_t ahead2 = t0 + 1 < t1 ? cand[base + (t0 + 1) * G.stride] : kNone;
-        for (std::int64_t t = t0; t < t1; ++t) {
-          const std::uint32_t cs = ahead1;
-          ahead1 = ahead2;
-          if (t + 2 < t1) ahead2 = cand[base + (t + 2) * G.stride];
-          if (cs == kNone) continue;
-          const Cand c = decode(Ly, G.a, cs, v);
-          while (n >= 2 && cand_dominated(Ly, Mt, G.a, second, top, c, v)) {
-            --n;
-            top = second;
-            if (n >= 2) second = decode(Ly, G.a, s[(n - 2) * G.stride], v);
-          }
-          s[n * G.stride] = cs;
-          ++n;
-          second = top;
-          top = c;
-        }
         lo[item] = 0;
-        hi[item] = n;
+        hi[item] =
+            band_stack<Iso>(Ly, Mt, G.a, v, cand, stk, line_base(Ly, G.a, l), G.stride, t0, t1);
       });
-  // Pairwise merges of neighbouring band groups (Algorithm 4.1 on the slices).
   for (std::int64_t width = 1; width < G.bands; width *= 2) {
     const std::int64_t groups = (G.bands + 2 * width - 1) / (2 * width);
     const std::int64_t wd = width;
@@ -161,152 +321,35 @@ inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom
           const std::int64_t bl = grp * 2 * wd, br = bl + wd;
           if (br >= G.bands) return;
           const std::int64_t be = br + wd < G.bands ? br + wd : G.bands;
-          Segs S{stk, line_base(Ly, G.a, l), G.stride, G.band_len, G.lines, l, lo, hi};
+          const Segs S{stk, line_base(Ly, G.a, l), G.stride, G.band_len, G.lines, l, lo, hi};
           std::int64_t v[3];
           line_coords(Ly, G.a, l, v);
-          // Tail of the upper group: band ub, index ui (ub < bl: empty).
-          std::int64_t ub = br - 1;
-          while (ub >= bl && S.H(ub) == S.L(ub)) --ub;
-          std::int32_t ui = ub >= bl ? S.H(ub) - 1 : -1;
-          auto back = [&](std::int64_t& b, std::int32_t& i) {  // the live element before (b, i)
-            if (i > S.L(b)) {
-              --i;
-              return;
-            }
-            do --b;
-            while (b >= bl && S.H(b) == S.L(b));
-            i = b >= bl ? S.H(b) - 1 : -1;
-          };
-          std::int64_t ucount = 0;
-          for (std::int64_t b = bl; b < br; ++b) ucount += S.H(b) - S.L(b);
-          // Walk the lower group's elements in order.
-          std::int64_t vb = br;
-          std::int32_t vi = S.L(br);
-          std::int64_t dropped = 0;  // lower-group elements popped (always a prefix)
-          int pushed = 0;            // lower-group elements on the stack (0 or 1 while popping)
-          Cand last{kNone, 0, 0};
-          while (true) {
-            while (vb < be && vi >= S.H(vb)) {
-              ++vb;
-              if (vb < be) vi = S.L(vb);
-            }
-            if (vb >= be) break;
-            const Cand c = decode(Ly, G.a, S.at(vb, vi), v);
-            while (ucount + pushed >= 2) {
-              Cand t, sec;
-              if (pushed == 1) {
-                t = last;
-                sec = decode(Ly, G.a, S.at(ub, ui), v);
-              } else {
-                t = decode(Ly, G.a, S.at(ub, ui), v);
-                std::int64_t pb = ub;
-                std::int32_t pi = ui;
-                back(pb, pi);
-                sec = decode(Ly, G.a, S.at(pb, pi), v);
-              }
-              if (!cand_dominated(Ly, Mt, G.a, sec, t, c, v)) break;
-              if (pushed == 1) {
-                pushed = 0;
-                ++dropped;
-              } else {
-                back(ub, ui);
-                --ucount;
-              }
-            }
-            last = c;
-            if (++pushed == 2) break;  // lower-group sites never dominate each other
-            ++vi;
-          }
-          // Upper group: everything after the tail (ub, ui) is gone.
-          for (std::int64_t b = br - 1; b >= bl; --b) {
-            if (b > ub)
-              S.H(b) = S.L(b);
-            else if (b == ub)
-              S.H(b) = ui + 1;
-            else
-              break;
-          }
-          // Lower group: drop the popped prefix.
-          for (std::int64_t b = br; b < be && dropped > 0; ++b) {
-            const std::int64_t take = S.H(b) - S.L(b) < dropped ? S.H(b) - S.L(b) : dropped;
-            S.L(b) += std::int32_t(take);
-            dropped -= take;
-          }
+          merge_groups<Iso>(Ly, Mt, G.a, v, S, bl, br, be);
         });
   }
-  // Colouring: find each band's first winner by binary search over the concatenated slices,
-  // then walk forward.
   ex.for_each_index(
       G.lines * G.bands, GG_LAMBDA(std::int64_t item) {
         const std::int64_t b0 = item / G.lines, l = item % G.lines;
-        Segs S{stk, line_base(Ly, G.a, l), G.stride, G.band_len, G.lines, l, lo, hi};
+        const Segs S{stk, line_base(Ly, G.a, l), G.stride, G.band_len, G.lines, l, lo, hi};
         std::int64_t v[3];
         line_coords(Ly, G.a, l, v);
         const std::int64_t t0 = b0 * G.band_len;
         const std::int64_t t1 = t0 + G.band_len < G.len ? t0 + G.band_len : G.len;
-        std::int32_t pre[kMaxBands + 1];  // live elements before each band
-        pre[0] = 0;
-        for (std::int64_t b = 0; b < G.bands; ++b) pre[b + 1] = pre[b] + S.H(b) - S.L(b);
-        const std::int64_t n = pre[G.bands];
-        if (n == 0) {
-          for (std::int64_t t = t0; t < t1; ++t) cand[S.base + t * G.stride] = kNone;
-          return;
-        }
-        auto locate = [&](std::int64_t k, std::int64_t& b, std::int32_t& i) {  // k-th live element
-          std::int64_t a = 0, z = G.bands - 1;  // last band with pre[b] <= k
-          while (a < z) {
-            const std::int64_t m = (a + z + 1) / 2;
-            if (pre[m] <= k)
-              a = m;
-            else
-              z = m - 1;
-          }
-          b = a;
-          i = S.L(b) + std::int32_t(k - pre[b]);
-        };
-        auto next = [&](std::int64_t& b, std::int32_t& i) {
-          ++i;
-          while (b < G.bands && i >= S.H(b)) {
-            ++b;
-            if (b < G.bands) i = S.L(b);
-          }
-        };
-        std::int64_t lo_k = 0, hi_k = n - 1;  // first k whose successor does not beat it at t0
-        while (lo_k < hi_k) {
-          const std::int64_t mid = (lo_k + hi_k) / 2;
-          std::int64_t b, b2;
-          std::int32_t i, i2;
-          locate(mid, b, i);
-          b2 = b, i2 = i;
-          next(b2, i2);
-          if (cand_beats(Ly, Mt, G.a, decode(Ly, G.a, S.at(b2, i2), v),
-                         decode(Ly, G.a, S.at(b, i), v), t0, v))
-            lo_k = mid + 1;
-          else
-            hi_k = mid;
-        }
-        std::int64_t cb, nb;
-        std::int32_t ci, ni;
-        locate(lo_k, cb, ci);  // the current winner; (nb, ni) its successor
-        nb = cb, ni = ci;
-        next(nb, ni);
-        Cand cur = decode(Ly, G.a, S.at(cb, ci), v);
-        Cand nxt = decode(Ly, G.a, nb < G.bands ? S.at(nb, ni) : kNone, v);
-        // The element after nxt is loaded one advance ahead, to hide its latency.
-        std::int64_t ab = nb;
-        std::int32_t ai = ni;
-        if (ab < G.bands) next(ab, ai);
-        std::uint32_t after = ab < G.bands ? S.at(ab, ai) : kNone;
-        for (std::int64_t t = t0; t < t1; ++t) {
-          while (nxt.s != kNone && cand_beats(Ly, Mt, G.a, nxt, cur, t, v)) {
-            cur = nxt;
-            nxt = decode(Ly, G.a, after, v);
-            if (ab < G.bands) next(ab, ai);
-            after = ab < G.bands ? S.at(ab, ai) : kNone;
-          }
-          cand[S.base + t * G.stride] = cur.s;
-        }
+        colour_band<Iso>(Ly, Mt, G.a, v, S, G.bands, t0, t1, cand, S.base, G.stride);
       });
+}
+
+// A pass along y or z on tiles in on-chip memory, where the backend has them (edt_cuda.cu);
+// returns false when it does not apply (then the general pass runs).
+bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int64_t bands,
+                     std::uint32_t* cand);
+
+inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
+                      std::uint32_t* cand, std::uint32_t* stk, std::int32_t* lo, std::int32_t* hi) {
+  if (M.iso)
+    line_pass_t<true>(ex, L, M, g, cand, stk, lo, hi);
+  else
+    line_pass_t<false>(ex, L, M, g, cand, stk, lo, hi);
 }
 
 // The x pass of a whole grid, where every candidate is a site of the row itself. Each backend
@@ -337,7 +380,7 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
   for (int a = 0; a < naxes; ++a) {
     if (a == 0 && whole)
       x_pass_rows(ex, L, M, gs[0], feat, stk.data(), lo.data(), hi.data());
-    else
+    else if (a == 0 || !line_pass_tiled(ex, L, M, a, bands_override ? bands_override[a] : 0, feat))
       line_pass(ex, L, M, gs[a], feat, stk.data(), lo.data(), hi.data());
     if (profile_step) profile_step(a);
     if (stats) stats->counters[std::string("bands_") + "xyz"[a]] = gs[a].bands;
