@@ -1,6 +1,7 @@
 // Umbrella header: everything public in gpugeom.
 #pragma once
 #include "gpugeom/common.hpp"
+#include "gpugeom/cvd.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/generate.hpp"
 #include "gpugeom/io.hpp"

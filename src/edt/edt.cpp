@@ -16,20 +16,22 @@ std::int64_t EdtResult::count() const {
   return shape.empty() ? 0 : n;
 }
 
-namespace {
+namespace edt {
 
+namespace {
 int bits_for(std::int64_t n) {
   int b = 0;
   while ((std::int64_t(1) << b) < n) ++b;
   return b;
 }
+}  // namespace
 
 // sliced: only slices of nx * ny voxels are held at once, so only they must fit int32 indexing.
-edt::Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced = false) {
+Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced) {
   if (shape.size() != 2 && shape.size() != 3)
     throw Error(ErrorCode::InvalidInput, "the distance transform needs a 2D or 3D grid, got " +
                                              std::to_string(shape.size()) + " dimensions");
-  edt::Layout L;
+  Layout L;
   L.nd = int(shape.size());
   for (int a = 0; a < L.nd; ++a) {
     const std::int64_t e = shape[L.nd - 1 - a];  // internal axis a = C axis nd-1-a
@@ -55,6 +57,10 @@ edt::Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced = fa
                     " voxels, at most 2^31-2): use the slice-by-slice mode (slices) for volumes");
   return L;
 }
+
+}  // namespace edt
+
+namespace {
 
 edt::Metric make_metric(const std::vector<double>& sampling, int nd) {
   edt::Metric m;
@@ -123,7 +129,7 @@ EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std:
 
 EdtResult distance_transform(const io::Grid& g, SiteRule rule, const EdtOptions& opt) {
   edt::Request rq;
-  rq.layout = make_layout(g.shape, !opt.slices.empty());
+  rq.layout = edt::make_layout(g.shape, !opt.slices.empty());
   rq.metric = make_metric(opt.sampling, rq.layout.nd);
   const std::int64_t n = g.count();
   std::vector<std::uint8_t> mask(n);
@@ -158,7 +164,7 @@ EdtResult distance_transform(const io::Grid& g, SiteRule rule, const EdtOptions&
 EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
                                    const std::vector<std::int64_t>& sites, const EdtOptions& opt) {
   edt::Request rq;
-  rq.layout = make_layout(shape, !opt.slices.empty());
+  rq.layout = edt::make_layout(shape, !opt.slices.empty());
   rq.metric = make_metric(opt.sampling, rq.layout.nd);
   const int nd = rq.layout.nd;
   if (sites.empty() || sites.size() % nd)

@@ -32,6 +32,10 @@ struct Output {
   double transform_ms = 0;  // device-resident feature transform only
 };
 
+// The packing of a C-order shape (2D/3D); throws Error(InvalidInput) for shapes the transform
+// cannot hold (sliced: only one z slice must fit int32 indexing).
+Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced = false);
+
 namespace cpu_impl {
 void run(const Request& req, Output& out, Stats& stats);
 }

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "edt/edt_backend.hpp"
+#include "edt/edt_device.hpp"
 #include "exec/cpu_exec.hpp"
 
 namespace gpugeom::edt::cpu_impl {
@@ -27,5 +28,9 @@ bool line_pass_tiled(Exec&, const Layout&, const Metric&, int, std::int64_t, std
 #include "edt/impl/run.inl"
 void run(const Request& req, Output& out, Stats& stats) {
   run_impl(req, out, stats);
+}
+void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat) {
+  const std::int64_t automatic[3] = {0, 0, 0};
+  feature_transform(ex, L, M, feat, automatic, L.nd, nullptr);
 }
 }  // namespace gpugeom::edt::cpu_impl

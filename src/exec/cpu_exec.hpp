@@ -12,6 +12,7 @@
 #include <thrust/copy.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
+#include <thrust/transform_reduce.h>
 #include <thrust/scan.h>
 #include <thrust/sort.h>
 #include <thrust/system/omp/execution_policy.h>
@@ -88,6 +89,11 @@ struct CpuExec {
   template <class T, class Op>
   T reduce(const T* in, std::int64_t n, T init, Op op) {
     return thrust::reduce(thrust::omp::par, in, in + n, init, op);
+  }
+  template <class T, class F, class Op>
+  void transform_reduce_into(std::int64_t n, F f, T init, Op op, T* out) {
+    thrust::counting_iterator<std::int64_t> first(0);
+    *out = thrust::transform_reduce(thrust::omp::par, first, first + n, f, init, op);
   }
   template <class K>
   void sort(K* keys, std::int64_t n) {

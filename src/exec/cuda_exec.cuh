@@ -7,6 +7,7 @@
 #include <cub/device/device_select.cuh>
 #include <cuda_runtime.h>
 #include <thrust/iterator/counting_iterator.h>
+#include <thrust/iterator/transform_iterator.h>
 #include <cstdint>
 #include <type_traits>
 #include <utility>
@@ -72,6 +73,11 @@ __global__ void for_each_kernel(std::int64_t n, F f) {
   for (std::int64_t i = std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride)
     f(i);
 }
+template <class F, class T>
+struct IndexMap {
+  F f;
+  __device__ T operator()(std::int64_t i) const { return f(i); }
+};
 template <class F>
 struct IndexPred {
   F f;
@@ -159,6 +165,16 @@ class CudaExec {
     T h;
     to_host(r, 1, &h);
     return h;
+  }
+  // *out = op-reduction of f(0), ..., f(n-1) and init, written on the device without waiting
+  // (so that several results can come back in one copy).
+  template <class T, class F, class Op>
+  void transform_reduce_into(std::int64_t n, F f, T init, Op op, T* out) {
+    auto it = thrust::make_transform_iterator(thrust::counting_iterator<std::int64_t>(0),
+                                              cuda_detail::IndexMap<F, T>{f});
+    run_cub([&](void* tmp, std::size_t& bytes) {
+      return cub::DeviceReduce::Reduce(tmp, bytes, it, out, n, op, init, s_);
+    });
   }
   template <class K>
   void sort(K* keys, std::int64_t n) {

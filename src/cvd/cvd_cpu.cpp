@@ -1,0 +1,19 @@
+// Weighted Lloyd iteration compiled for the CPU executor.
+#include <chrono>
+#include <cuda/atomic>
+#include <cstdint>
+#include <thrust/functional.h>
+#include <vector>
+
+#include "cvd/cvd_backend.hpp"
+#include "edt/edt_device.hpp"
+#include "exec/cpu_exec.hpp"
+
+namespace gpugeom::cvd::cpu_impl {
+using Exec = CpuExec;
+namespace edt_impl = gpugeom::edt::cpu_impl;
+#include "cvd/impl/lloyd.inl"
+void lloyd(const Request& rq, Output& out, Stats& stats) {
+  lloyd_impl(rq, out, stats);
+}
+}  // namespace gpugeom::cvd::cpu_impl

@@ -1,0 +1,19 @@
+// Weighted Lloyd iteration compiled for the CUDA executor.
+#include <chrono>
+#include <cuda/atomic>
+#include <cstdint>
+#include <thrust/functional.h>
+#include <vector>
+
+#include "cvd/cvd_backend.hpp"
+#include "edt/edt_device.hpp"
+#include "exec/cuda_exec.cuh"
+
+namespace gpugeom::cvd::cuda_impl {
+using Exec = CudaExec;
+namespace edt_impl = gpugeom::edt::cuda_impl;
+#include "cvd/impl/lloyd.inl"
+void lloyd(const Request& rq, Output& out, Stats& stats) {
+  lloyd_impl(rq, out, stats);
+}
+}  // namespace gpugeom::cvd::cuda_impl
