@@ -68,6 +68,9 @@ void write_grid(const std::string& path, const Grid& grid);
 void write_png_rgb(const std::string& path, std::int64_t rows, std::int64_t cols,
                    const std::vector<unsigned char>& rgb);
 
+// Any text (an SVG drawing, a report), written atomically like every other output.
+void write_text(const std::string& path, const std::string& text);
+
 // Parsers over memory, for fuzzing and tests: name is used in messages, ext picks the format.
 PointSet parse_points(const std::string& bytes, const std::string& ext, const std::string& name);
 Mesh parse_mesh(const std::string& bytes, const std::string& ext, const std::string& name);

@@ -376,6 +376,10 @@ void write_png_rgb(const std::string& path, std::int64_t rows, std::int64_t cols
   write_file_atomic(path, format_png(g, true));
 }
 
+void write_text(const std::string& path, const std::string& text) {
+  write_file_atomic(path, text);
+}
+
 void write_grid(const std::string& path, const Grid& g) {
   const std::string ext = extension(path);
   if (ext != ".npy" && ext != ".raw") check_shape(g.shape, path);  // .npy takes any rank

@@ -55,6 +55,24 @@ expect 3 "has no site" -- "$G" edt "$W/none.pgm" -o "$W/z.npy"
 expect 2 "sampling needs one value per axis" -- "$G" edt "$W/one.pgm" -o "$W/z.npy" --sampling 1,2,3
 expect 2 "raw input needs --shape and --dtype" -- "$G" edt "$W/vol.raw" -o "$W/z.npy"
 expect 2 "outputs are .npy files" -- "$G" edt "$W/one.pgm" -o "$W/z.png"
+# cvd and stipple: a 40 x 30 gradient (dark on the left), its outputs, and their errors
+{ printf 'P2\n40 30\n255\n'; for y in $(seq 30); do for x in $(seq 40); do printf '%d ' $((x * 6)); done; echo; done; } >"$W/grad.pgm"
+expect 0 "stipple .*: 300 dots" -- "$G" stipple "$W/grad.pgm" -n 300 -o "$W/s.svg" --png "$W/s.png"
+[ "$(grep -c '<circle' "$W/s.svg")" = 300 ] && [ -s "$W/s.png" ] || { echo "FAIL: stipple outputs"; fail=1; }
+# the dots crowd where the image is dark: more of them in the left half than in the right
+left=$(grep -o 'cx="[0-9.]*"' "$W/s.svg" | tr -dc '0-9.\n' | awk '$1 < 20' | wc -l)
+[ "$left" -gt 200 ] || { echo "FAIL: stipple dots not denser where dark ($left of 300 left)"; fail=1; }
+expect 0 "cvd .*: 50 sites" -- "$G" cvd "$W/grad.pgm" -n 50 -o "$W/c.xyz" --mass "$W/m.npy" --energy "$W/e.csv" --preview "$W/v.png"
+[ "$(wc -l <"$W/c.xyz")" = 50 ] && [ -s "$W/m.npy" ] && [ -s "$W/v.png" ] || { echo "FAIL: cvd outputs"; fail=1; }
+expect 0 "cvd .*: 50 sites" -- "$G" cvd "$W/grad.pgm" --initial "$W/c.xyz" -o "$W/c2.npy" --iterations 3
+expect 0 "usage: gpugeom cvd" -- "$G" cvd --help
+expect 0 "usage: gpugeom stipple" -- "$G" stipple --help
+expect 3 "positive at only" -- "$G" cvd "$W/grad.pgm" -n 5000 -o "$W/z.xyz"
+expect 3 "zero everywhere" -- "$G" cvd "$W/none.pgm" -n 5 -o "$W/z.xyz"
+[ -e "$W/z.xyz" ] && { echo "FAIL: a failed cvd left an output file"; fail=1; }
+expect 2 "give -o OUT.svg" -- "$G" stipple "$W/grad.pgm" -o "$W/s.pdf"
+expect 2 "supersample must be in 1..64" -- "$G" cvd "$W/grad.pgm" -n 5 -o "$W/z.xyz" --supersample 0
+expect 2 "either -n N or --initial" -- "$G" cvd "$W/grad.pgm" -o "$W/z.xyz"
 # a failed write leaves no file behind
 expect 3 "cannot create" -- "$G" gen uniform2d -n 10 -o "$W/nodir/x.xyz"
 [ -e "$W/nodir" ] && { echo "FAIL: output folder appeared"; fail=1; }

@@ -57,5 +57,7 @@ int cmd_gen(const Global& g, Args& a);
 int cmd_check(const Global& g, Args& a);
 int cmd_info(const Global& g, Args& a);
 int cmd_edt(const Global& g, Args& a);
+int cmd_cvd(const Global& g, Args& a);
+int cmd_stipple(const Global& g, Args& a);
 
 }  // namespace gpugeom::cli

@@ -61,6 +61,8 @@ static const char* kUsageText =
     "  check MESH [--points P] check a triangulation / Delaunay / convex hull exactly\n"
     "  info FILE | --device    summarise a point, mesh or grid file; or show the GPU\n"
     "  edt IN -o OUT.npy       exact distance transform / Voronoi diagram of an image or volume\n"
+    "  cvd DENSITY -n N -o P   weighted centroidal Voronoi diagram (Lloyd) of a density\n"
+    "  stipple IMG -o OUT.svg  stipple drawing of a photograph (also --png)\n"
     "\n"
     "global options:\n"
     "  --backend B   executor: auto (CUDA if a GPU is usable, else CPU), cpu, cuda;\n"
@@ -105,6 +107,8 @@ int main(int argc, char** argv) {
     if (cmd == "check") return cmd_check(g, a);
     if (cmd == "info") return cmd_info(g, a);
     if (cmd == "edt") return cmd_edt(g, a);
+    if (cmd == "cvd") return cmd_cvd(g, a);
+    if (cmd == "stipple") return cmd_stipple(g, a);
     throw UsageError("unknown command '" + cmd + "' (try 'gpugeom --help')");
   } catch (const UsageError& e) {
     std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << e.what() << "\n";
