@@ -45,6 +45,21 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = edt ]; then
   python3 bench/anchor_edt.py --sides 1024,2048,4096,8192,16384 --density 0.1 --tools cupy,scipy,opencv,edt --csv "$CSV" 2>&1 | tee "$OUT/anchor_edt.txt"
   python3 bench/anchor_edt.py --dim 3 --sides 128,256,512,1024 --density 0.1 --tools cupy,scipy --csv "$CSV" 2>&1 | tee -a "$OUT/anchor_edt.txt"
 fi
+if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = cvd ]; then
+  echo "== CVD benchmarks (time per Lloyd iteration) and a stipple of a photograph"
+  C=.devbin/gpugeom_bench_cvd
+  {
+    $C --backend cuda --sides 1024,4096,8192 --sites 1000,10000,100000,1000000 --iters 10 --csv "$CSV"
+    $C --backend cpu --sides 1024,4096 --sites 1000,100000 --iters 3 --csv "$CSV" | grep -v '^cvd  grid'
+    $C --backend cuda --dim 3 --sides 128,256 --sites 1000,100000 --iters 5 --csv "$CSV" | grep -v '^cvd  grid'
+  } 2>&1 | tee "$OUT/bench_cvd.txt"
+  # scikit-image's "camera" photograph (512^2), upscaled to 1024^2 (bilinear)
+  python3 -c "import numpy as n, skimage.data as d, skimage.transform as t; n.save('/tmp/camera1024.npy', t.resize(d.camera(), (1024, 1024), order=1).astype(n.float32))" &&
+  for b in cuda cpu; do
+    /usr/bin/time -f "stipple end to end ($b): %e s wall" .devbin/gpugeom --backend $b --verbose stipple /tmp/camera1024.npy -n 20000 \
+      -o "$OUT/camera_$b.svg" --png "$OUT/camera_$b.png" --png-scale 1 2>&1 | tr '\r' '\n' | grep -E "converged|stopped|time|wall|dots"
+  done
+fi
 if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = foundation ]; then
   echo "== benchmarks"
   B=.devbin/gpugeom_bench

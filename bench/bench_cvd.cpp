@@ -1,0 +1,110 @@
+// gpugeom_bench_cvd: time per weighted Lloyd iteration (PBA Voronoi diagram + every cell's
+// weighted centroid + the moves, with the one scalar copy back) over grid sizes and site
+// counts on each backend. The density is a smooth ramp times hashed noise in [0.25, 1].
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "bench_csv.hpp"
+#include "gpugeom/cvd.hpp"
+#include "gpugeom/io.hpp"
+
+using namespace gpugeom;
+
+namespace {
+std::vector<double> list(const std::string& s) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  for (std::string x; std::getline(ss, x, ',');)
+    if (!x.empty()) v.push_back(std::stod(x));
+  return v;
+}
+io::Grid density(const std::vector<std::int64_t>& shape) {
+  io::Grid g;
+  g.shape = shape;
+  g.type = io::ScalarType::F32;
+  g.data.resize(std::size_t(g.count()) * 4);
+  const std::int64_t cols = shape.back();
+#pragma omp parallel for
+  for (std::int64_t i = 0; i < g.count(); ++i) {
+    std::uint64_t z = std::uint64_t(i) * 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    const double noise = double((z ^ (z >> 31)) >> 11) / 9007199254740992.0;
+    const float v = float((0.25 + 0.75 * double(i % cols) / cols) * (0.5 + 0.5 * noise));
+    std::memcpy(&g.data[std::size_t(i) * 4], &v, 4);
+  }
+  return g;
+}
+double phase(const Stats& s, const char* name) {
+  for (auto& p : s.phase_ms)
+    if (p.first == name) return p.second;
+  return 0;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string sides = "1024", sites = "1000", backends = "all", csv;
+  int dim = 2, iters = 10;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+    if (a == "--dim")
+      dim = std::stoi(next());
+    else if (a == "--sides")
+      sides = next();
+    else if (a == "--sites")
+      sites = next();
+    else if (a == "--backend")
+      backends = next();
+    else if (a == "--iters")
+      iters = std::stoi(next());
+    else if (a == "--csv")
+      csv = next();
+    else {
+      std::cout << "usage: gpugeom_bench_cvd [--dim 2|3] [--sides 1024,4096] [--sites 1e3,1e5] "
+                   "[--backend cpu|cuda|all] [--iters 10] [--csv FILE]\n";
+      return a == "--help" ? 0 : 2;
+    }
+  }
+  std::vector<Backend> bks;
+  if (backends == "all" || backends == "cpu") bks.push_back(Backend::Cpu);
+  if ((backends == "all" || backends == "cuda") && query_device().available)
+    bks.push_back(Backend::Cuda);
+  const std::string gpu = query_device().available ? query_device().name : "none";
+  std::ofstream f = bench::open_bench_csv(csv);
+  std::printf("%-4s %-16s %9s %-5s %8s %12s %10s %12s\n", "cvd", "grid", "sites", "bk", "iters",
+              "ms/iter", "setup", "energy drop");
+  for (double side : list(sides)) {
+    const std::vector<std::int64_t> shape(dim, std::int64_t(side));
+    const io::Grid g = density(shape);
+    for (double ns : list(sites)) {
+      if (ns >= std::pow(side, dim) / 4) continue;
+      for (Backend b : bks) {
+        CvdOptions o;
+        o.backend = b;
+        o.num_sites = std::int64_t(ns);
+        o.max_iterations = 2;  // warm-up
+        o.move_tolerance = 0;
+        centroidal_voronoi(g, o);
+        o.max_iterations = iters;
+        const CvdResult r = centroidal_voronoi(g, o);
+        const double per = phase(r.stats, "iterations") / r.iterations;
+        const std::string grid =
+            dim == 2 ? std::to_string(shape[0]) + "^2" : std::to_string(shape[0]) + "^3";
+        std::printf("%-4s %-16s %9lld %-5s %8d %12.3f %10.1f %11.1f%%\n", "cvd", grid.c_str(),
+                    (long long)ns, backend_name(b), r.iterations, per, phase(r.stats, "setup"),
+                    100 * (1 - r.energy.back() / r.energy.front()));
+        if (f)
+          f << "cvd_iteration," << grid << "_" << (long long)ns << "sites," << (long long)ns << ","
+            << backend_name(b) << "," << (b == Backend::Cuda ? gpu : "cpu") << ",0," << per << ",0,"
+            << per << "," << per << ",0\n";
+      }
+    }
+  }
+  return 0;
+}
