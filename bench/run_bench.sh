@@ -27,6 +27,9 @@ echo "== distance transform"
 if [ "$QUICK" = 1 ]; then ESIDES=1024,2048; else ESIDES=2048,4096,8192; fi
 "$BUILD/bench/gpugeom_bench_edt" --sides $ESIDES --density 0.001,0.1,0.5 --reps 3 --csv "$CSV"
 python3 bench/anchor_edt.py --sides $ESIDES --density 0.1 --tools cupy,scipy,opencv,edt --csv "$CSV" || true
+echo "== centroidal Voronoi diagram (time per Lloyd iteration)"
+if [ "$QUICK" = 1 ]; then CSIDES=1024; CSITES=1000,100000; else CSIDES=1024,4096,8192; CSITES=1000,100000,1000000; fi
+"$BUILD/bench/gpugeom_bench_cvd" --sides $CSIDES --sites $CSITES --iters 5 --csv "$CSV"
 echo "== anchors (CPU, one core)"
 if [ -x "$BUILD/bench/anchor_cgal" ]; then
   "$BUILD/bench/anchor_cgal" --problem delaunay2d --dist uniform --sizes $ASIZES --csv "$CSV"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Quick start 1: install what is needed, build (CUDA when nvcc is present), run the demo job:
-# generate a million points, summarise them, show the device, run the benchmark skeleton small.
+# generate a million points, summarise them, show the device, draw a stipple of a photograph
+# (matplotlib's sample portrait of Grace Hopper), run the benchmarks small.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
@@ -15,4 +16,8 @@ mkdir -p "$OUT"
 "$G" info "$OUT/p.ply"
 "$G" gen thin_circle2d -n 100000 -o "$OUT/ring.npy"
 "$G" info "$OUT/ring.npy"
+python3 -c "import sys, numpy as n, matplotlib.image as m, matplotlib.cbook as c; \
+a = m.imread(c.get_sample_data('grace_hopper.jpg', asfileobj=False)).astype(float); \
+n.save(sys.argv[1], ((a[..., 0] * .299 + a[..., 1] * .587 + a[..., 2] * .114) / 255).astype(n.float32))" "$OUT/hopper.npy"
+"$G" stipple "$OUT/hopper.npy" -n 20000 -o "$OUT/hopper_stipple.svg" --png "$OUT/hopper_stipple.png"
 bash bench/run_bench.sh --quick --build "$BUILD" --out "$OUT/bench"
