@@ -11,7 +11,7 @@
 namespace gg_cvd {
 
 // A uint16 density (C order shape) whose maximum is 65535, so that the library's 16-bit
-// quantisation keeps every value as it is. zero_frac of the pixels are 0.
+// quantisation keeps every value as it is. zero_frac of the pixels are 0 (below 0: uniform).
 inline gpugeom::io::Grid random_density(const std::vector<std::int64_t>& shape, double zero_frac,
                                         unsigned seed) {
   gpugeom::io::Grid g;
@@ -20,7 +20,9 @@ inline gpugeom::io::Grid random_density(const std::vector<std::int64_t>& shape, 
   std::mt19937 r(seed);
   std::uniform_real_distribution<double> U(0, 1);
   std::vector<std::uint16_t> v(std::size_t(g.count()));
-  for (auto& x : v) x = U(r) < zero_frac ? 0 : std::uint16_t(1 + r() % 65535);
+  // zero_frac < 0: a uniform density (every value 65535), the unweighted diagram.
+  for (auto& x : v)
+    x = zero_frac < 0 ? 65535 : U(r) < zero_frac ? 0 : std::uint16_t(1 + r() % 65535);
   v[r() % v.size()] = 65535;
   g.data.resize(v.size() * 2);
   std::memcpy(g.data.data(), v.data(), g.data.size());

@@ -63,10 +63,12 @@ TEST(Cvd, EveryStepEqualsBruteForce) {
     int sites;
   };
   // Many sites on small grids (thin cells, cells in several pieces), few sites on large ones
-  // (elongated cells reaching across empty regions and the border), zero-density regions.
+  // (elongated cells reaching across empty regions and the border), zero-density regions, and
+  // uniform densities (the unweighted diagram).
   const std::vector<Case> cases{{{40, 40}, 0.0, 150},   {{23, 61}, 0.3, 40}, {{64, 48}, 0.0, 3},
                                 {{1, 50}, 0.0, 5},      {{50, 1}, 0.2, 4},   {{9, 10, 11}, 0.0, 60},
-                                {{17, 5, 30}, 0.5, 12}, {{30, 30}, 0.9, 6}};
+                                {{17, 5, 30}, 0.5, 12}, {{30, 30}, 0.9, 6},  {{37, 29}, -1, 25},
+                                {{12, 13, 14}, -1, 30}};
   unsigned seed = 10;
   int split = 0;
   for (const auto& c : cases) {
