@@ -149,6 +149,7 @@ EdtResult distance_transform(const io::Grid& g, SiteRule rule, const EdtOptions&
     throw Error(ErrorCode::InvalidInput, std::string("the grid has no site (no ") +
                                              (rule == SiteRule::NonZero ? "nonzero" : "zero") +
                                              " element): every distance would be infinite");
+  rq.site_count = sites;
   if (opt.slices.empty()) {
     rq.mask = mask.data();
   } else {  // slice by slice: the device holds the site list and one slice, never the volume
@@ -175,6 +176,7 @@ EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
   if (ns >= (std::int64_t(1) << 31))
     throw Error(ErrorCode::InvalidInput, "too many sites (at most 2^31-1)");
   rq.sites.resize(ns);
+  rq.site_count = ns;
   for (std::int64_t i = 0; i < ns; ++i) {
     std::int64_t c[3] = {0, 0, 0};
     for (int j = 0; j < nd; ++j) {

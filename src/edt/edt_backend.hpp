@@ -16,6 +16,7 @@ struct Request {
   // Sites: a mask with one byte per voxel (nonzero = site), or a list of packed sites.
   const std::uint8_t* mask = nullptr;
   std::vector<std::uint32_t> sites;
+  std::int64_t site_count = 0;  // sites in the mask or the list (chooses the windowed passes)
   // Slice-by-slice: the z values to compute (3D only); empty = the whole volume.
   std::vector<std::int64_t> slices;
   bool want_sqdist = false, want_features = false, want_labels = false;

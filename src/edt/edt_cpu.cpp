@@ -22,15 +22,17 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g, 
   line_pass(ex, L, M, g, feat, scratch, lo, hi);
 }
 // Tiles in on-chip memory are a GPU device: a CPU thread's cache already holds its line.
-bool line_pass_tiled(Exec&, const Layout&, const Metric&, int, std::int64_t, std::uint32_t*) {
+bool line_pass_tiled(Exec&, const Layout&, const Metric&, int, std::int64_t, std::uint32_t*,
+                     std::uint32_t*, const std::uint8_t*) {
   return false;
 }
 #include "edt/impl/run.inl"
 void run(const Request& req, Output& out, Stats& stats) {
   run_impl(req, out, stats);
 }
-void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat) {
+void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
+                            std::int64_t sites) {
   const std::int64_t automatic[3] = {0, 0, 0};
-  feature_transform(ex, L, M, feat, automatic, L.nd, nullptr);
+  feature_transform(ex, L, M, feat, automatic, L.nd, sites, nullptr);
 }
 }  // namespace gpugeom::edt::cpu_impl

@@ -182,7 +182,8 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric&, const PassGeom&, std:
 template <bool Iso>
 __global__ void line_pass_tile_kernel(Layout L, Metric M, int a, std::int32_t len,
                                       std::int32_t bands, std::int32_t band_len,
-                                      std::int64_t stride, std::uint32_t* cand) {
+                                      std::int64_t stride, const std::uint32_t* cand,
+                                      std::uint32_t* out, const std::uint8_t* flags) {
   extern __shared__ std::uint32_t tile[];  // [position][lane], then lo[band][lane], hi[band][lane]
   std::int32_t* lo = reinterpret_cast<std::int32_t*>(tile + std::int64_t(len) * 32);
   std::int32_t* hi = lo + bands * 32;
@@ -192,6 +193,7 @@ __global__ void line_pass_tile_kernel(Layout L, Metric M, int a, std::int32_t le
   const bool live = x < nx;
   const std::int64_t l = (blockIdx.x / xblocks) * nx + x;  // lines are numbered x fastest
   const std::int64_t base = live ? line_base(L, a, l) : 0;
+  if (flags && !__syncthreads_or(live && flags[l])) return;  // none of the 32 lines is asked for
 #pragma unroll 8
   for (std::int32_t p = band; p < len; p += bands)
     tile[p * 32 + lane] = live ? cand[base + p * stride] : kNone;
@@ -208,13 +210,13 @@ __global__ void line_pass_tile_kernel(Layout L, Metric M, int a, std::int32_t le
     if (br < bands) merge_groups<Iso>(L, M, a, v, S, bl, br, min(br + width, bands));
   }
   __syncthreads();
-  if (live && t0 < t1) colour_band<Iso>(L, M, a, v, S, bands, t0, t1, cand, base, stride);
+  if (live && t0 < t1) colour_band<Iso>(L, M, a, v, S, bands, t0, t1, out, base, stride);
 }
 
 constexpr std::int64_t kTileSmemMax = 160 * 1024;  // leaves room for a second block per SM
 
 bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int64_t bands,
-                     std::uint32_t* cand) {
+                     std::uint32_t* cand, std::uint32_t* out, const std::uint8_t* flags) {
   const std::int64_t len = L.n[a], nx = L.n[0];
   const std::int64_t lines = L.count() / len, blocks = lines / nx * ((nx + 31) / 32);
   int dev = 0, sms = 0;
@@ -245,7 +247,8 @@ bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int
     GG_CUDA_CHECK(
         cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize, int(smem)));
     kernel<<<unsigned(blocks), unsigned(32 * bands), std::size_t(smem), ex.stream()>>>(
-        L, M, a, std::int32_t(len), std::int32_t(bands), std::int32_t(band_len), stride, cand);
+        L, M, a, std::int32_t(len), std::int32_t(bands), std::int32_t(band_len), stride, cand, out,
+        flags);
     GG_CUDA_CHECK_LAUNCH("line_pass_tile_kernel");
     return true;
   };
@@ -256,8 +259,9 @@ bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int
 void run(const Request& req, Output& out, Stats& stats) {
   run_impl(req, out, stats);
 }
-void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat) {
+void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
+                            std::int64_t sites) {
   const std::int64_t automatic[3] = {0, 0, 0};
-  feature_transform(ex, L, M, feat, automatic, L.nd, nullptr);
+  feature_transform(ex, L, M, feat, automatic, L.nd, sites, nullptr);
 }
 }  // namespace gpugeom::edt::cuda_impl

@@ -108,6 +108,33 @@ TEST(Edt, BandCountsDoNotChangeTheResult) {
   }
 }
 
+// The windowed y/z passes settle a voxel within R positions or hand its line to the banded
+// pass: any reach gives the exact transform, with few lines handed over (large R, dense
+// sites) or nearly all (R = 1, sparse sites), or none windowed at all (0).
+TEST(Edt, WindowReachDoesNotChangeTheResult) {
+  unsigned seed = 40;
+  for (auto shape : {std::vector<std::int64_t>{30, 41}, std::vector<std::int64_t>{1, 90},
+                     std::vector<std::int64_t>{90, 1}, std::vector<std::int64_t>{13, 17, 19}})
+    for (double d : {0.002, 0.05, 0.6})
+      for (const char* reach : {"0", "1", "3", "16", "1000"}) {
+        setenv("GPUGEOM_EDT_WINDOW", reach, 1);
+        const io::Grid g = random_grid(shape, d, seed++);
+        expect_exact(g, all_outputs(), std::string("reach ") + reach);
+        for (bool slices : {false, true})
+          if (slices && shape.size() == 3) {
+            EdtOptions o = all_outputs();
+            o.slices = {0, 9, 12};
+            const auto whole = distance_transform(g, SiteRule::NonZero, all_outputs());
+            const auto sl = distance_transform(g, SiteRule::NonZero, o);
+            const std::int64_t plane = shape[1] * shape[2];
+            for (std::size_t k = 0; k < o.slices.size(); ++k)
+              for (std::int64_t i = 0; i < plane; ++i)
+                ASSERT_EQ(sl.labels[k * plane + i], whole.labels[o.slices[k] * plane + i]);
+          }
+      }
+  unsetenv("GPUGEOM_EDT_WINDOW");
+}
+
 TEST(Edt, SlicesEqualWholeVolume) {
   io::Grid g = random_grid({21, 18, 25}, 0.02, 5);
   EdtOptions o = all_outputs();

@@ -86,6 +86,32 @@ TEST(CudaEdt, TiledPassesSameAsCpu) {
   unsetenv("GPUGEOM_EDT_TILES");
 }
 
+// The windowed passes with short reaches (most lines handed to the banded pass, on tiles or
+// not) and long ones, sparse and dense, against the CPU executor.
+TEST(CudaEdt, WindowReachesSameAsCpu) {
+  unsigned seed = 400;
+  for (auto shape : {std::vector<std::int64_t>{700, 900}, std::vector<std::int64_t>{64, 70, 90},
+                     std::vector<std::int64_t>{20, 300, 40}})
+    for (double d : {0.001, 0.1})
+      for (const char* reach : {"1", "4", "16"})
+        for (const char* tiles : {"0", "1"}) {
+          setenv("GPUGEOM_EDT_WINDOW", reach, 1);
+          setenv("GPUGEOM_EDT_TILES", tiles, 1);
+          const io::Grid g = gg_edt::random_grid(shape, d, seed++);
+          EdtOptions o;
+          o.squared = true;
+          o.labels = true;
+          o.backend = Backend::Cpu;
+          const auto cpu = distance_transform(g, SiteRule::NonZero, o);
+          o.backend = Backend::Cuda;
+          const auto gpu = distance_transform(g, SiteRule::NonZero, o);
+          EXPECT_EQ(gpu.labels, cpu.labels) << "reach " << reach << " tiles " << tiles;
+          EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int);
+        }
+  unsetenv("GPUGEOM_EDT_WINDOW");
+  unsetenv("GPUGEOM_EDT_TILES");
+}
+
 TEST(CudaEdt, BruteForceOnSmallGrids) {
   unsigned seed = 50;
   for (auto shape : {std::vector<std::int64_t>{1, 300}, std::vector<std::int64_t>{45, 38},

@@ -212,7 +212,7 @@ inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
               lp[Ly.voxel_of(Ly.pack(x, y, z))]);
           r.fetch_min(std::int32_t(i), cuda::memory_order_relaxed);
         });
-    edt_impl::feature_transform_held(ex, L, edt::Metric{}, fp);
+    edt_impl::feature_transform_held(ex, L, edt::Metric{}, fp, ns);
     // Energy of this diagram: every term is an exact integer below 2^53.
     ex.transform_reduce_into(
         n,

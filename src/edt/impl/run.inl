@@ -167,9 +167,9 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     if (rq.method == EdtMethod::Jfa)
       jump_flood(ex, L, rq.metric, fp);
     else if (prof && *prof == '1')
-      feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, &stats, step);
+      feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, rq.site_count, &stats, step);
     else
-      feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, &stats);
+      feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, rq.site_count, &stats);
     ex.sync();
     out.transform_ms = clock_ms() - t1;
     stats.phase_ms.push_back({"transform", out.transform_ms});
@@ -253,7 +253,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
           }
           fp[c] = best;
         });
-    feature_transform(ex, Ls, rq.metric, fp, rq.bands, 2, &stats);
+    feature_transform(ex, Ls, rq.metric, fp, rq.bands, 2, 0, &stats);
     ex.sync();
     transform += clock_ms() - t1;
     emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, nullptr, out, k * nxy, nsl * nxy);
