@@ -1,9 +1,31 @@
-// The CSV every benchmark driver and anchor appends to (plot.py reads it).
+// The CSV every benchmark driver and anchor appends to (plot.py reads it), and the small
+// helpers the drivers share.
 #pragma once
+#include <cstdint>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace gpugeom::bench {
+
+// "1024,2048,1e6" -> {1024, 2048, 1000000}
+inline std::vector<double> numbers(const std::string& s) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  for (std::string x; std::getline(ss, x, ',');)
+    if (!x.empty()) v.push_back(std::stod(x));
+  return v;
+}
+
+// A counter-based hash (splitmix64's finaliser): the same pseudo-random grid for every backend
+// and run, generated in parallel.
+inline std::uint64_t hash64(std::uint64_t i, std::uint64_t seed) {
+  std::uint64_t z = i * 0x9e3779b97f4a7c15ull + seed;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
 
 // Opens path for appending; writes the header when the file is new.
 inline std::ofstream open_bench_csv(const std::string& path) {

@@ -16,13 +16,6 @@
 using namespace gpugeom;
 
 namespace {
-std::vector<double> list(const std::string& s) {
-  std::vector<double> v;
-  std::stringstream ss(s);
-  for (std::string x; std::getline(ss, x, ',');)
-    if (!x.empty()) v.push_back(std::stod(x));
-  return v;
-}
 io::Grid density(const std::vector<std::int64_t>& shape) {
   io::Grid g;
   g.shape = shape;
@@ -31,10 +24,7 @@ io::Grid density(const std::vector<std::int64_t>& shape) {
   const std::int64_t cols = shape.back();
 #pragma omp parallel for
   for (std::int64_t i = 0; i < g.count(); ++i) {
-    std::uint64_t z = std::uint64_t(i) * 0x9e3779b97f4a7c15ull;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    const double noise = double((z ^ (z >> 31)) >> 11) / 9007199254740992.0;
+    const double noise = double(bench::hash64(std::uint64_t(i), 0) >> 11) / 9007199254740992.0;
     const float v = float((0.25 + 0.75 * double(i % cols) / cols) * (0.5 + 0.5 * noise));
     std::memcpy(&g.data[std::size_t(i) * 4], &v, 4);
   }
@@ -79,10 +69,10 @@ int main(int argc, char** argv) {
   std::ofstream f = bench::open_bench_csv(csv);
   std::printf("%-4s %-16s %9s %-5s %8s %12s %10s %12s\n", "cvd", "grid", "sites", "bk", "iters",
               "ms/iter", "setup", "energy drop");
-  for (double side : list(sides)) {
+  for (double side : bench::numbers(sides)) {
     const std::vector<std::int64_t> shape(dim, std::int64_t(side));
     const io::Grid g = density(shape);
-    for (double ns : list(sites)) {
+    for (double ns : bench::numbers(sites)) {
       if (ns >= std::pow(side, dim) / 4) continue;
       for (Backend b : bks) {
         CvdOptions o;

@@ -17,13 +17,6 @@
 using namespace gpugeom;
 
 namespace {
-std::vector<double> list(const std::string& s) {
-  std::vector<double> v;
-  std::stringstream ss(s);
-  for (std::string x; std::getline(ss, x, ',');)
-    if (!x.empty()) v.push_back(std::stod(x));
-  return v;
-}
 // Sites at a given density from a counter-based hash: the same grid for every backend and run.
 io::Grid random_sites(const std::vector<std::int64_t>& shape, double density, std::uint64_t seed) {
   io::Grid g;
@@ -33,10 +26,7 @@ io::Grid random_sites(const std::vector<std::int64_t>& shape, double density, st
   const std::uint64_t cut = std::uint64_t(density * 18446744073709551615.0);
 #pragma omp parallel for
   for (std::int64_t i = 0; i < g.count(); ++i) {
-    std::uint64_t z = std::uint64_t(i) * 0x9e3779b97f4a7c15ull + seed;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    g.data[i] = (z ^ (z >> 31)) < cut;
+    g.data[i] = bench::hash64(std::uint64_t(i), seed) < cut;
   }
   g.data[0] = 1;
   return g;
@@ -98,11 +88,11 @@ int main(int argc, char** argv) {
       all_shapes.push_back(sh);
     }
   } else {
-    for (double side : list(sides))
+    for (double side : bench::numbers(sides))
       all_shapes.push_back(std::vector<std::int64_t>(dim, std::int64_t(side)));
   }
   for (const auto& shape : all_shapes)
-    for (double d : list(dens)) {
+    for (double d : bench::numbers(dens)) {
       dim = int(shape.size());
       io::Grid g = random_sites(shape, d, 12345);
       for (Backend b : bks)
