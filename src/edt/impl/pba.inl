@@ -454,17 +454,16 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
   auto lo = ex.template alloc<std::int32_t>(std::size_t(max_items));
   auto hi = ex.template alloc<std::int32_t>(std::size_t(max_items));
   // Windowed passes where sites are dense enough that most voxels settle within 16 positions:
-  // a mean site spacing of at most 4 voxels in 3D, 2 in 2D (H100, transform: 512^3 with 10 %
-  // sites 8.9 -> 6.5 ms, 50 % 8.8 -> 4.3 ms; 8192^2 with 50 % 2.7 -> 1.6 ms, but 10 % 2.25 ->
-  // 2.35 ms, the banded 2D pass being cheap already; at 0.1 % nearly every line falls back and
-  // the window is pure overhead). sites = 0: unknown, never windowed. GPUGEOM_EDT_WINDOW=R
-  // forces the reach (0: never).
+  // a mean site spacing (voxels per site)^(1/d) of at most 4. H100, transform, with the 32-bit
+  // costs: 8192^2 at 10 % sites 2.19 -> 1.96 ms, 20 % 2.39 -> 1.71 ms, but 3 % 1.98 -> 2.69 ms;
+  // 512^3 at 10 % 8.9 -> 5.7 ms, 50 % 8.8 -> 3.8 ms, but 1 % 7.7 -> 12.2 ms (at low density
+  // nearly every line falls back after a full window). sites = 0: unknown, never windowed.
+  // GPUGEOM_EDT_WINDOW=R forces the reach (0: never).
   const char* wenv = std::getenv("GPUGEOM_EDT_WINDOW");
   std::int64_t reach = 0;
   if (wenv && *wenv)
     reach = std::atoll(wenv);
-  else if (sites > 0 &&
-           std::pow(double(L.count()) / double(sites), 1.0 / L.nd) <= (L.nd == 3 ? 4.0 : 2.0))
+  else if (sites > 0 && std::pow(double(L.count()) / double(sites), 1.0 / L.nd) <= 4.0)
     reach = 16;
   auto flags = ex.template alloc<std::uint8_t>(M.iso && reach > 0 ? std::size_t(max_items) : 0);
   // A whole grid starts with the sites themselves (x_pass_rows); a slice starts with sites
