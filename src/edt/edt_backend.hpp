@@ -30,7 +30,8 @@ struct Output {
   std::vector<double> dist64;
   std::vector<std::int32_t> features;  // nd arrays of voxel count, C axis order
   std::vector<std::int32_t> labels;
-  double transform_ms = 0;  // device-resident feature transform only
+  double transform_ms = 0;       // device-resident feature transform only
+  double device_outputs_at = 0;  // clock when the distance / label arrays were on the device
 };
 
 // The packing of a C-order shape (2D/3D); throws Error(InvalidInput) for shapes the transform
