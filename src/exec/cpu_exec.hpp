@@ -11,6 +11,7 @@
 #include <vector>
 #include <thrust/copy.h>
 #include <thrust/iterator/counting_iterator.h>
+#include <thrust/iterator/transform_iterator.h>
 #include <thrust/reduce.h>
 #include <thrust/transform_reduce.h>
 #include <thrust/scan.h>
@@ -81,6 +82,12 @@ struct CpuExec {
   template <class T>
   void exclusive_scan(const T* in, T* out, std::int64_t n) {
     thrust::exclusive_scan(thrust::omp::par, in, in + n, out, T(0));
+  }
+  template <class F, class T>
+  void exclusive_scan_of(std::int64_t n, F f, T* out) {
+    thrust::counting_iterator<std::int64_t> first(0);
+    thrust::exclusive_scan(thrust::omp::par, thrust::make_transform_iterator(first, f),
+                           thrust::make_transform_iterator(first + n, f), out, T(0));
   }
   template <class T>
   void inclusive_scan(const T* in, T* out, std::int64_t n) {

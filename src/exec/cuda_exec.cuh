@@ -148,6 +148,16 @@ class CudaExec {
       return cub::DeviceScan::ExclusiveSum(tmp, bytes, in, out, n, s_);
     });
   }
+  // out[i] = f(0) + ... + f(i-1): the scan reads f's values straight from the function.
+  template <class F, class T>
+  void exclusive_scan_of(std::int64_t n, F f, T* out) {
+    if (n <= 0) return;
+    auto it = thrust::make_transform_iterator(thrust::counting_iterator<std::int64_t>(0),
+                                              cuda_detail::IndexMap<F, T>{f});
+    run_cub([&](void* tmp, std::size_t& bytes) {
+      return cub::DeviceScan::ExclusiveSum(tmp, bytes, it, out, n, s_);
+    });
+  }
   template <class T>
   void inclusive_scan(const T* in, T* out, std::int64_t n) {
     if (n <= 0) return;

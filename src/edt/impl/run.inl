@@ -28,17 +28,37 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
   double* sr = sqr.data();
   double* dd = d64.data();
   float* df = d32.data();
-  if (dist) {
+  auto lab = ex.template alloc<std::int32_t>(rq.want_labels ? std::size_t(n) : 0);
+  std::int32_t* lp = lab.data();
+  if (dist || rq.want_labels) {  // one pass over the features writes every array asked for
     const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
+    const std::int64_t ns = nsites;
     ex.for_each_index(
         n, GG_LAMBDA(std::int64_t i) {
+          const std::uint32_t f = feat[i];
+          if (lp) {
+            if (rank_grid) {  // whole grid: the label of every site voxel is at hand
+              lp[i] = rank_grid[Ly.voxel_of(f)];
+            } else {  // slices: lower_bound of the site in the sorted list
+              std::int64_t lo = 0, hi = ns;
+              while (lo < hi) {
+                const std::int64_t mid = (lo + hi) / 2;
+                if (sorted_sites[mid] < f)
+                  lo = mid + 1;
+                else
+                  hi = mid;
+              }
+              lp[i] = sorted_idx ? sorted_idx[lo] : std::int32_t(lo);
+            }
+          }
+          if (!dist) return;
           const std::uint32_t rest = std::uint32_t(i) / nx;
           const std::int64_t v[3] = {std::int64_t(std::uint32_t(i) - rest * nx),
                                      std::int64_t(rest % ny), std::int64_t(rest / ny) + Ly.z0};
           std::int64_t q = 0;
           double r = 0;
           for (int k = 0; k < Ly.nd; ++k) {
-            const std::int64_t d = Ly.coord(feat[i], k) - v[k];
+            const std::int64_t d = Ly.coord(f, k) - v[k];
             q += d * d;
             r += Mt.w[k] * double(d * d);
           }
@@ -47,27 +67,6 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
           if (sr) sr[i] = r;
           if (dd) dd[i] = sqrt(d2);
           if (df) df[i] = float(sqrt(d2));
-        });
-  }
-  auto lab = ex.template alloc<std::int32_t>(rq.want_labels ? std::size_t(n) : 0);
-  std::int32_t* lp = lab.data();
-  if (rq.want_labels) {
-    const std::int64_t ns = nsites;
-    ex.for_each_index(
-        n, GG_LAMBDA(std::int64_t i) {
-          if (rank_grid) {  // whole grid: the label of every site voxel is at hand
-            lp[i] = rank_grid[Ly.voxel_of(feat[i])];
-            return;
-          }
-          std::int64_t lo = 0, hi = ns;  // slices: lower_bound of the site in the sorted list
-          while (lo < hi) {
-            const std::int64_t mid = (lo + hi) / 2;
-            if (sorted_sites[mid] < feat[i])
-              lo = mid + 1;
-            else
-              hi = mid;
-          }
-          lp[i] = sorted_idx ? sorted_idx[lo] : std::int32_t(lo);
         });
   }
   ex.sync();  // distances and labels are on the device: the device-resident result
@@ -185,9 +184,8 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     std::int32_t* rp = rank.data();
     if (rq.want_labels && rq.mask) {
       const std::uint8_t* mp = mask.data();
-      ex.for_each_index(
-          nvox, GG_LAMBDA(std::int64_t i) { rp[i] = mp[i] ? 1 : 0; });
-      ex.exclusive_scan(rp, rp, nvox);
+      ex.exclusive_scan_of(
+          nvox, GG_LAMBDA(std::int64_t i)->std::int32_t { return mp[i] ? 1 : 0; }, rp);
     } else if (rq.want_labels) {
       ex.fill(rp, nvox, std::int32_t(0x7fffffff));
       const std::uint32_t* sp = sorted;
