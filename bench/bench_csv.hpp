@@ -7,7 +7,17 @@
 #include <string>
 #include <vector>
 
+#include "gpugeom/common.hpp"
+
 namespace gpugeom::bench {
+
+// "all", "cpu" or "cuda": the backends to time, CUDA only where a device is usable.
+inline std::vector<Backend> backends(const std::string& which) {
+  std::vector<Backend> b;
+  if (which == "all" || which == "cpu") b.push_back(Backend::Cpu);
+  if ((which == "all" || which == "cuda") && query_device().available) b.push_back(Backend::Cuda);
+  return b;
+}
 
 // "1024,2048,1e6" -> {1024, 2048, 1000000}
 inline std::vector<double> numbers(const std::string& s) {

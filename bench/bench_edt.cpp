@@ -71,10 +71,7 @@ int main(int argc, char** argv) {
       return a == "--help" ? 0 : 2;
     }
   }
-  std::vector<Backend> bks;
-  if (backends == "all" || backends == "cpu") bks.push_back(Backend::Cpu);
-  if ((backends == "all" || backends == "cuda") && query_device().available)
-    bks.push_back(Backend::Cuda);
+  const std::vector<Backend> bks = bench::backends(backends);
   const std::string gpu = query_device().available ? query_device().name : "none";
   std::ofstream f = bench::open_bench_csv(csv);
   std::printf("%-6s %-14s %8s %-5s %-4s %11s %11s %12s %10s\n", "edt", "grid", "density", "bk",
