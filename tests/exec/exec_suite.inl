@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include <thrust/functional.h>
+
 namespace {
 
 // nvcc forbids extended lambdas in TestBody (a private member): each test's body is a free
@@ -42,6 +44,41 @@ void ForEachIndexAndFill_body() {
     auto h = to_vec(ex, b.data(), n);
     for (std::int64_t i = 0; i < n; ++i)
       ASSERT_EQ(h[i], i % 3 ? i * 5 + 1 : -7) << "n=" << n << " i=" << i;
+  }
+}
+
+// Scans and reductions over a function of the index (nothing materialised), results left on
+// the device: several of them come back in one copy.
+void FunctionScanAndReduce_body();
+TEST(SUITE, FunctionScanAndReduce) {
+  FunctionScanAndReduce_body();
+}
+void FunctionScanAndReduce_body() {
+  EXEC ex;
+  for (std::int64_t n : {1, 777, 1 << 20}) {
+    auto out = ex.template alloc<std::int32_t>(n);
+    auto sums = ex.template alloc<double>(2);
+    ex.fill(out.data(), n, std::int32_t(-1));
+    ex.exclusive_scan_of(
+        n, GG_LAMBDA(std::int64_t i)->std::int32_t { return (i * 7) % 5 == 1 ? 1 : 0; },
+        out.data());
+    ex.transform_reduce_into(
+        n, GG_LAMBDA(std::int64_t i)->double { return double(i % 1000) * 0.5; }, 0.0,
+        thrust::plus<double>(), sums.data());
+    ex.transform_reduce_into(
+        n, GG_LAMBDA(std::int64_t i)->double { return double(i % 13); }, -1.0,
+        thrust::maximum<double>(), sums.data() + 1);
+    const auto h = to_vec(ex, out.data(), n);
+    const auto r = to_vec(ex, sums.data(), 2);
+    std::int32_t run = 0;
+    double total = 0;
+    for (std::int64_t i = 0; i < n; ++i) {
+      ASSERT_EQ(h[i], run) << "n=" << n << " i=" << i;
+      run += (i * 7) % 5 == 1;
+      total += double(i % 1000) * 0.5;
+    }
+    EXPECT_EQ(r[0], total);  // halves of integers below 2^53: exact in any order
+    EXPECT_EQ(r[1], n >= 13 ? 12.0 : double(n - 1));
   }
 }
 
