@@ -35,44 +35,59 @@ void check_options(const CvdOptions& o) {
   if (o.initial_sites.empty() && o.num_sites < 1) bad_arg("num_sites must be at least 1");
 }
 
-// Density-weighted draw of distinct grid points (internal raster order).
-std::vector<std::int32_t> draw_sites(const edt::Layout& L, const std::vector<std::uint32_t>& w,
-                                     std::int64_t want, std::uint64_t seed) {
-  const std::int64_t n = L.count();
-  std::vector<std::uint64_t> cum(std::size_t(n) + 1, 0);
+// Density-weighted draw of distinct grid points: a pixel with probability proportional to its
+// weight (cumulative sums over pixels, not grid points: s^d times less memory when
+// supersampled), then one of its s^d grid points uniformly. Returns grid coordinates, nd per
+// site, internal axis order.
+std::vector<std::int32_t> draw_sites(const edt::Layout& L, const std::vector<std::uint32_t>& q,
+                                     const std::int64_t pext[3], int s, std::int64_t want,
+                                     std::uint64_t seed) {
+  const std::int64_t np = std::int64_t(q.size());
+  std::int64_t per = 1;  // grid points per pixel
+  for (int a = 0; a < L.nd; ++a) per *= s;
+  std::vector<std::uint64_t> cum(std::size_t(np) + 1, 0);
   std::int64_t positive = 0;
-  for (std::int64_t i = 0; i < n; ++i) {
-    cum[i + 1] = cum[i] + w[i];
-    positive += w[i] > 0;
+  for (std::int64_t i = 0; i < np; ++i) {
+    cum[i + 1] = cum[i] + q[i];
+    positive += q[i] > 0 ? per : 0;
   }
   if (want > positive)
     bad_input("asked for " + std::to_string(want) + " sites but the density is positive at only " +
               std::to_string(positive) +
               " grid points: ask for fewer sites or a larger supersample");
   if (want >= (std::int64_t(1) << 31)) bad_input("too many sites (at most 2^31-1)");
+  // Grid point k (0 <= k < per) of pixel p, as a raster index of the grid.
+  auto point = [&](std::int64_t p, std::int64_t k) {
+    const std::int64_t px = p % pext[0], py = (p / pext[0]) % pext[1], pz = p / (pext[0] * pext[1]);
+    const std::int64_t x = px * s + k % s, y = py * s + (k / s) % s, z = pz * s + k / (s * s);
+    return x + L.n[0] * (y + L.n[1] * (L.nd == 3 ? z : 0));
+  };
   std::mt19937_64 rng(seed);
-  std::uniform_int_distribution<std::uint64_t> pick(0, cum[n] - 1);
+  std::uniform_int_distribution<std::uint64_t> pick(0, cum[np] - 1);
+  std::uniform_int_distribution<std::int64_t> sub(0, per - 1);
   std::unordered_set<std::int64_t> used;
   used.reserve(std::size_t(want) * 2);
   std::vector<std::int64_t> chosen;
   chosen.reserve(std::size_t(want));
   const std::int64_t tries = 50 * want + 1000;
   for (std::int64_t k = 0; k < tries && std::int64_t(chosen.size()) < want; ++k) {
-    const std::uint64_t r = pick(rng);  // the grid point whose weight interval holds r
-    const std::int64_t i =
+    const std::uint64_t r = pick(rng);  // the pixel whose weight interval holds r
+    const std::int64_t p =
         std::int64_t(std::upper_bound(cum.begin(), cum.end(), r) - cum.begin()) - 1;
+    const std::int64_t i = point(p, sub(rng));
     if (used.insert(i).second) chosen.push_back(i);
   }
-  for (std::int64_t i = 0; i < n && std::int64_t(chosen.size()) < want; ++i)  // nearly full
-    if (w[i] > 0 && used.insert(i).second) chosen.push_back(i);
-  std::vector<std::int32_t> s;
-  s.reserve(chosen.size() * L.nd);
+  for (std::int64_t p = 0; p < np && std::int64_t(chosen.size()) < want; ++p)  // nearly full
+    for (std::int64_t k = 0; k < per && q[p] > 0 && std::int64_t(chosen.size()) < want; ++k)
+      if (used.insert(point(p, k)).second) chosen.push_back(point(p, k));
+  std::vector<std::int32_t> out;
+  out.reserve(chosen.size() * L.nd);
   for (std::int64_t i : chosen) {
-    s.push_back(std::int32_t(i % L.n[0]));
-    s.push_back(std::int32_t((i / L.n[0]) % L.n[1]));
-    if (L.nd == 3) s.push_back(std::int32_t(i / (L.n[0] * L.n[1])));
+    out.push_back(std::int32_t(i % L.n[0]));
+    out.push_back(std::int32_t((i / L.n[0]) % L.n[1]));
+    if (L.nd == 3) out.push_back(std::int32_t(i / (L.n[0] * L.n[1])));
   }
-  return s;
+  return out;
 }
 
 }  // namespace
@@ -139,7 +154,8 @@ CvdResult centroidal_voronoi(const io::Grid& g, const CvdOptions& opt) {
         rq.sites[i * nd + a] = std::int32_t(gp);
       }
   } else {
-    rq.sites = draw_sites(L, rq.weights, opt.num_sites, opt.seed);
+    const std::int64_t pext[3] = {px, py, nd == 3 ? g.shape[0] : 1};
+    rq.sites = draw_sites(L, q, pext, s, opt.num_sites, opt.seed);
   }
   const double unit_mass = vmax / kLevels / std::pow(double(s), nd);
   const double unit_energy = unit_mass / (double(s) * s);

@@ -200,15 +200,22 @@ TEST(Cvd, DrawnSitesAreDistinctAndOnPositiveDensity) {
   const io::Grid g = gg_cvd::random_density({30, 40}, 0.7, 4);
   std::int64_t positive = 0;
   for (std::int64_t i = 0; i < g.count(); ++i) positive += g.value(i) > 0;
-  CvdOptions o;
-  o.backend = Backend::Cpu;
-  o.num_sites = positive;  // every positive pixel: the draw must find them all
-  o.max_iterations = 1;
-  const auto r = centroidal_voronoi(g, o);
-  EXPECT_EQ(r.size(), positive);
-  for (double m : r.mass) EXPECT_GT(m, 0);
-  o.num_sites = positive + 1;
-  EXPECT_THROW(centroidal_voronoi(g, o), Error);
+  for (int s : {1, 3}) {  // with supersampling, pixels are drawn, then one of their points
+    CvdOptions o;
+    o.backend = Backend::Cpu;
+    o.supersample = s;
+    o.num_sites = positive * s * s;  // every positive grid point: the draw must find them all
+    o.max_iterations = 1;
+    const auto r = centroidal_voronoi(g, o);
+    EXPECT_EQ(r.size(), o.num_sites);
+    for (double m : r.mass) EXPECT_GT(m, 0);       // a repeated point would have no cell
+    for (std::int64_t i = 0; i < r.size(); ++i) {  // on positive density
+      const std::int64_t x = std::lround(r.sites[2 * i]), y = std::lround(r.sites[2 * i + 1]);
+      EXPECT_GT(g.value(y * 40 + x), 0);
+    }
+    o.num_sites = positive * s * s + 1;
+    EXPECT_THROW(centroidal_voronoi(g, o), Error);
+  }
 }
 
 TEST(Cvd, BadInputIsATypedError) {
