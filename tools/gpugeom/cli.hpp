@@ -35,6 +35,7 @@ class Args {
 };
 
 long long to_count(const std::string& s, const char* what);  // accepts 1e6, 1000000
+double to_real(const std::string& s, const char* what);      // a finite number
 
 class Timer {
  public:

@@ -37,8 +37,8 @@ io::Grid darkness(const io::Grid& img, bool invert, double contrast, double gamm
   d.type = io::ScalarType::F64;
   d.data.resize(std::size_t(img.count()) * 8);
   for (std::int64_t i = 0; i < img.count(); ++i) {
-    double v = std::clamp(img.value(i) / range, 0.0, 1.0);  // NaN: refused by the CVD itself
-    if (std::isnan(img.value(i))) v = img.value(i);
+    const double v =
+        std::clamp(img.value(i) / range, 0.0, 1.0);  // NaN stays NaN: the CVD refuses it
     double k = invert ? v : 1 - v;
     k = std::clamp((k - 0.5) * contrast + 0.5, 0.0, 1.0);
     k = std::pow(k, gamma);

@@ -7,14 +7,6 @@
 
 namespace gpugeom::cli {
 
-double to_real(const std::string& s, const char* what) {
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end || !std::isfinite(v))
-    throw UsageError(std::string("expected a number for ") + what + ", got '" + s + "'");
-  return v;
-}
-
 const char* const kLloydHelp =
     "  --iterations K        at most K Lloyd iterations (default 200)\n"
     "  --tolerance T         stop once no site moves more than T pixels (default 0.1)\n"

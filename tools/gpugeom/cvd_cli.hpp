@@ -8,9 +8,6 @@
 
 namespace gpugeom::cli {
 
-// A finite number from an option's text, or a UsageError naming the option.
-double to_real(const std::string& s, const char* what);
-
 // Reads --iterations --tolerance --energy-tolerance --supersample --seed into o.
 void read_lloyd_options(Args& a, CvdOptions& o);
 extern const char* const kLloydHelp;  // their --help lines

@@ -1,4 +1,6 @@
 // gpugeom: exact computational geometry on the GPU, from the command line.
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 
@@ -48,6 +50,13 @@ long long to_count(const std::string& s, const char* what) {
   return (long long)v;
 }
 
+double to_real(const std::string& s, const char* what) {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end || !std::isfinite(v))
+    throw UsageError(std::string("expected a number for ") + what + ", got '" + s + "'");
+  return v;
+}
 }  // namespace gpugeom::cli
 
 using namespace gpugeom;
