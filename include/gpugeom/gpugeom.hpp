@@ -2,6 +2,7 @@
 #pragma once
 #include "gpugeom/common.hpp"
 #include "gpugeom/cvd.hpp"
+#include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/generate.hpp"
 #include "gpugeom/io.hpp"

@@ -1,0 +1,69 @@
+// Exact 2D Delaunay triangulation (batch insertion with parallel flipping, thesis 5.3 applied
+// to 2D) and the Voronoi diagram derived from it.
+//
+// Exactness: every decision is an exact predicate with simulation of simplicity, so
+// cocircular and collinear subsets get one consistent answer; the triangulation returned is a
+// Delaunay triangulation of the distinct input points, every distinct point is a vertex, and
+// no triangle is degenerate (collinear points on the hull become hull vertices).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "gpugeom/common.hpp"
+
+namespace gpugeom {
+
+struct Delaunay2dOptions {
+  Backend backend = Backend::Auto;
+};
+
+struct Triangulation2d {
+  // Counter-clockwise triangles, 3 input-point indices each.
+  std::vector<std::int32_t> triangles;
+  // neighbors[3*i + k]: the triangle opposite vertex k of triangle i, -1 on the hull (SciPy's
+  // convention).
+  std::vector<std::int32_t> neighbors;
+  // One entry per input point: -1 when the point is a vertex, else the index of the earlier
+  // point with the same coordinates, which is the one used.
+  std::vector<std::int32_t> duplicate_of;
+  std::int64_t num_duplicates = 0;
+  // Stats: phases "prepare", "insert" (with its flips), "finish" and "copies"; counters
+  // "batches", "flips", "flip_rounds", "exact_predicates", "points", "distinct_points".
+  Stats stats;
+  std::size_t num_triangles() const { return triangles.size() / 3; }
+};
+
+// xy: n points, x and y interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
+// outside the exactly representable range, more than 2^30 points; Error(DegenerateInput) for
+// fewer than 3 distinct points or all points on one line.
+Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt = {});
+Triangulation2d delaunay2d(const std::vector<Point2>& pts, const Delaunay2dOptions& opt = {});
+
+// The Voronoi diagram dual to a Delaunay triangulation, in SciPy's `Voronoi` conventions.
+struct Voronoi2d {
+  std::vector<double> vertices;  // circumcentres, x and y interleaved (one per triangle)
+  // Ridges: the pair of input points each ridge separates, and its two Voronoi vertices
+  // (-1 for a ridge that goes to infinity).
+  std::vector<std::int32_t> ridge_points;
+  std::vector<std::int32_t> ridge_vertices;
+  // Cells: for each input point, its Voronoi vertices in counter-clockwise order; an unbounded
+  // cell starts with -1 (its two unbounded ridges leave from its first and last vertex).
+  // Duplicate points share the cell of the point they duplicate.
+  std::vector<std::int64_t> cell_offsets;  // n + 1 offsets into cell_vertices
+  std::vector<std::int32_t> cell_vertices;
+  // For an unbounded ridge, the outward direction (unit vector) of its ray, else (0, 0).
+  std::vector<double> ridge_directions;
+};
+Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri);
+
+// Voronoi cells clipped to a box [xmin, xmax] x [ymin, ymax] that contains every input point:
+// each cell as a closed counter-clockwise polygon (x, y interleaved).
+struct ClippedCells {
+  std::vector<std::int64_t> offsets;  // n + 1 offsets (in points) into xy
+  std::vector<double> xy;
+};
+ClippedCells clip_voronoi_cells(const double* xy, std::int64_t n, const Triangulation2d& tri,
+                                const Voronoi2d& vor, double xmin, double ymin, double xmax,
+                                double ymax);
+
+}  // namespace gpugeom

@@ -1,0 +1,25 @@
+// What the public 2D Delaunay entry gets back from a backend (internal).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "gpugeom/common.hpp"
+
+namespace gpugeom::del2d {
+
+struct Output {
+  std::vector<std::int32_t> triangles;     // 3 per triangle, input indices, counter-clockwise
+  std::vector<std::int32_t> neighbors;     // 3 per triangle, -1 on the hull
+  std::vector<std::int32_t> duplicate_of;  // n entries
+  std::int64_t num_duplicates = 0;
+};
+
+// xy: n points on the host. Validates the coordinates on the executor (throws Error).
+namespace cpu_impl {
+void triangulate(const double* xy, std::int64_t n, Output& out, Stats& stats);
+}
+namespace cuda_impl {
+void triangulate(const double* xy, std::int64_t n, Output& out, Stats& stats);
+}
+
+}  // namespace gpugeom::del2d

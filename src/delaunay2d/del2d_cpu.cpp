@@ -1,0 +1,25 @@
+// 2D Delaunay triangulation compiled for the CPU executor.
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <cuda/atomic>
+#include <string>
+#include <thrust/functional.h>
+#include <vector>
+
+#include "delaunay2d/del2d_backend.hpp"
+#include "exec/cpu_exec.hpp"
+#include "predicates/predicates.hpp"
+#include "spatial/hilbert.hpp"
+
+namespace gpugeom::del2d::cpu_impl {
+using Exec = CpuExec;
+#include "delaunay2d/impl/geometry.inl"
+#include "delaunay2d/impl/prepare.inl"
+#include "delaunay2d/impl/mesh.inl"
+#include "delaunay2d/impl/triangulate.inl"
+void triangulate(const double* xy, std::int64_t n, Output& out, Stats& stats) {
+  triangulate_impl(xy, n, out, stats);
+}
+}  // namespace gpugeom::del2d::cpu_impl

@@ -1,0 +1,48 @@
+// Public entry of the 2D Delaunay module: checks sizes, picks the backend, packs the result.
+#include "gpugeom/delaunay2d.hpp"
+
+#include <string>
+
+#include "delaunay2d/del2d_backend.hpp"
+
+namespace gpugeom {
+
+namespace {
+// Slots of the extended triangulation (2m - 2) times 4 must fit the int32 neighbour encoding.
+constexpr std::int64_t kMaxPoints = std::int64_t(1) << 28;
+}  // namespace
+
+Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt) {
+  if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
+  if (n > kMaxPoints)
+    throw Error(ErrorCode::InvalidInput,
+                "too many points (" + std::to_string(n) + "): at most " +
+                    std::to_string(kMaxPoints) + " per triangulation");
+  if (n < 3)
+    throw Error(ErrorCode::DegenerateInput,
+                "fewer than 3 points (" + std::to_string(n) +
+                    "): a triangulation needs at least 3 points not on one line");
+  Triangulation2d r;
+  const Backend b = resolve_backend(opt.backend);
+  r.stats.backend = b;
+  del2d::Output out;
+#ifdef GPUGEOM_HAVE_CUDA
+  if (b == Backend::Cuda)
+    del2d::cuda_impl::triangulate(xy, n, out, r.stats);
+  else
+    del2d::cpu_impl::triangulate(xy, n, out, r.stats);
+#else
+  del2d::cpu_impl::triangulate(xy, n, out, r.stats);
+#endif
+  r.triangles = std::move(out.triangles);
+  r.neighbors = std::move(out.neighbors);
+  r.duplicate_of = std::move(out.duplicate_of);
+  r.num_duplicates = out.num_duplicates;
+  return r;
+}
+
+Triangulation2d delaunay2d(const std::vector<Point2>& pts, const Delaunay2dOptions& opt) {
+  return delaunay2d(pts.empty() ? nullptr : &pts.data()->x, std::int64_t(pts.size()), opt);
+}
+
+}  // namespace gpugeom

@@ -1,0 +1,90 @@
+// Predicates on the extended triangulation (thesis 6.4), included inside
+// gpugeom::del2d::{cpu,cuda}_impl.
+//
+// The points are the m distinct input points in curve order; vertex index m is the infinity
+// point. In orientation tests it stands for the kernel point s (inside the first triangle, and
+// so inside every later hull) with the sign reversed, which makes the boundary of the
+// triangulation star-shaped from s and splits the outside into the cones from s over the
+// boundary edges: an outside point lies in exactly one infinite triangle. In the Delaunay test
+// an infinite triangle (a, b, inf) has the open half-plane left of a->b as its circle, the
+// limit of the circles through a and b. s takes SoS index m, so every test is perturbed
+// consistently and never ties.
+
+using pred::kIncircleScratch;
+using pred::kOrient2dScratch;
+
+struct Geo {
+  const double* p;  // 2 per point
+  double s[2];      // kernel point
+  std::int32_t m;   // number of points = index of the infinity vertex
+  GG_INLINE const double* at(std::int32_t i) const { return i == m ? s : p + 2 * std::int64_t(i); }
+};
+
+// Orientation with the infinity vertex standing for s, sign reversed; q is finite.
+GG_HD inline int orient_ext(const Geo& g, std::int32_t a, std::int32_t b, std::int32_t c) {
+  const int flip = (a == g.m || b == g.m || c == g.m) ? -1 : 1;
+  const double *pa = g.at(a), *pb = g.at(b), *pc = g.at(c);
+  int r = pred::orient2d_fast(pa, pb, pc);
+  if (!r) {
+    double scratch[kOrient2dScratch];
+    r = pred::orient2d_sos(pa, a, pb, b, pc, c, scratch);
+  }
+  return flip * r;
+}
+
+// Is q inside triangle t (vertices v)? Exactly one triangle of the extended triangulation
+// contains each point not yet inserted.
+GG_HD inline bool inside_ext(const Geo& g, const std::int32_t* v, std::int32_t q) {
+  return orient_ext(g, v[0], v[1], q) > 0 && orient_ext(g, v[1], v[2], q) > 0 &&
+         orient_ext(g, v[2], v[0], q) > 0;
+}
+
+// Edge-legality decision for triangle v and the vertex d opposite its edge across from v[k]:
+// +1 illegal (flip), -1 legal, 0 the filter cannot tell (the exact pass decides).
+GG_HD inline int illegal_fast(const Geo& g, const std::int32_t* v, std::int32_t d) {
+  if (d == g.m) return -1;  // the infinity vertex is outside every circle
+  int gi = v[0] == g.m ? 0 : v[1] == g.m ? 1 : v[2] == g.m ? 2 : -1;
+  if (gi >= 0) {  // half-plane left of the finite edge
+    const std::int32_t a = v[(gi + 1) % 3], b = v[(gi + 2) % 3];
+    return pred::orient2d_fast(g.at(a), g.at(b), g.at(d));
+  }
+  return pred::incircle_fast(g.at(v[0]), g.at(v[1]), g.at(v[2]), g.at(d));
+}
+GG_HD inline int illegal_exact(const Geo& g, const std::int32_t* v, std::int32_t d,
+                               double* scratch) {
+  int gi = v[0] == g.m ? 0 : v[1] == g.m ? 1 : v[2] == g.m ? 2 : -1;
+  if (gi >= 0) {
+    const std::int32_t a = v[(gi + 1) % 3], b = v[(gi + 2) % 3];
+    return pred::orient2d_sos(g.at(a), a, g.at(b), b, g.at(d), d, scratch);
+  }
+  return pred::incircle_sos(g.at(v[0]), v[0], g.at(v[1]), v[1], g.at(v[2]), v[2], g.at(d), d,
+                            scratch);
+}
+
+// Order-preserving map of a float to 32 bits (NaN sorts last).
+GG_INLINE std::uint32_t ordered_bits(float f) {
+  if (f != f) return 0xFFFFFFFFu;
+  std::uint32_t u;
+  memcpy(&u, &f, 4);
+  return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+}
+
+// Which point a triangle takes in the next batch: the one nearest its circumcentre (thesis
+// 5.3.3); for an infinite triangle the one farthest beyond its edge. Smaller is better; the
+// choice only steers the work, never the result.
+GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::int32_t q) {
+  const double* pq = g.at(q);
+  int gi = v[0] == g.m ? 0 : v[1] == g.m ? 1 : v[2] == g.m ? 2 : -1;
+  if (gi >= 0) {
+    const double *a = g.at(v[(gi + 1) % 3]), *b = g.at(v[(gi + 2) % 3]);
+    double o = (b[0] - a[0]) * (pq[1] - a[1]) - (b[1] - a[1]) * (pq[0] - a[0]);
+    return ordered_bits(float(-o));
+  }
+  const double *a = g.at(v[0]), *b = g.at(v[1]), *c = g.at(v[2]);
+  const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
+  const double d = 2 * (bx * cy - by * cx);
+  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  const double ux = (cy * b2 - by * c2) / d, uy = (bx * c2 - cx * b2) / d;
+  const double dx = pq[0] - a[0] - ux, dy = pq[1] - a[1] - uy;
+  return ordered_bits(float(dx * dx + dy * dy));
+}

@@ -1,0 +1,511 @@
+// Batch insertion with parallel flipping (thesis 5.3 in 2D), one algorithm for both
+// executors; included inside gpugeom::del2d::{cpu,cuda}_impl after prepare.inl and
+// mesh.inl.
+//
+// Each batch: every triangle holding points not yet inserted takes the one nearest its
+// circumcentre and splits around it; points of split triangles move to the child holding them.
+// Then rounds of flips: every triangle on the work list tests its three edges (filter, then an
+// exact pass over the compacted undecided tests), proposes to flip its first illegal edge, and
+// a flip goes ahead when its proposer is the smallest slot proposing for either of its two
+// triangles (so every round flips, and the result never depends on timing). Flipped and
+// outvoted triangles form the next list; points of flipped triangles move across the new
+// diagonal at once (the thesis keeps a flip history and relocates once per batch; relocating
+// per round reads only the points whose triangle changed, and needs no history storage).
+// The final triangulation is the Delaunay triangulation of the perturbed points; flat
+// triangles on the hull (collinear hull points the perturbation moved inward) are flipped
+// away at the end, which leaves every finite triangle of positive area.
+
+constexpr std::int64_t kExactSlots = 8192;  // exact-pass threads (each owns a scratch slice)
+constexpr std::int64_t kMaxRounds = 1000000;  // per batch; every round flips at least once
+
+// (Every member is public: nvcc's extended lambdas may not live in private members.)
+class Triangulator {
+ public:
+  Triangulator(Exec& ex, Prepared& P, Stats& st) : ex_(ex), P_(P), st_(st) {
+    m_ = std::int32_t(P.m);
+    tmax_ = 2 * std::int64_t(m_) - 2;
+    g_.p = P.pts.data();
+    g_.s[0] = P.kernel[0];
+    g_.s[1] = P.kernel[1];
+    g_.m = m_;
+    const std::size_t T = std::size_t(tmax_), n = std::size_t(m_);
+    tv_ = ex.template alloc<std::int32_t>(3 * T);
+    to_ = ex.template alloc<std::int32_t>(3 * T);
+    stamp_ = ex.template alloc<std::int32_t>(T);
+    pair_ = ex.template alloc<std::int32_t>(T);
+    remap_ = ex.template alloc<std::int32_t>(3 * T);
+    vote_ = ex.template alloc<u64>(T);
+    mark_ = ex.template alloc<std::int32_t>(T);
+    best_ = ex.template alloc<u64>(T);
+    split_rank_ = ex.template alloc<std::int32_t>(T);
+    act_ = ex.template alloc<std::int32_t>(T);
+    next_ = ex.template alloc<std::int32_t>(T);
+    dec_ = ex.template alloc<std::int8_t>(3 * T);
+    exl_ = ex.template alloc<std::int32_t>(3 * T);
+    loc_ = ex.template alloc<std::int32_t>(n);
+    un_ = ex.template alloc<std::int32_t>(n);
+    un2_ = ex.template alloc<std::int32_t>(n);
+    ins_ = ex.template alloc<std::int32_t>(n);
+    ctr_ = ex.template alloc<Counters>(1);
+    const std::int64_t slots = std::min<std::int64_t>(kExactSlots, ex.concurrency());
+    exact_slots_ = std::max<std::int64_t>(1, slots);
+    scratch_ = ex.template alloc<double>(std::size_t(exact_slots_) * kIncircleScratch);
+    M_ = Mesh{tv_.data(), to_.data(), stamp_.data(), pair_.data(),
+              remap_.data(), vote_.data(), mark_.data()};
+    ex.fill(stamp_.data(), tmax_, std::int32_t(-1));
+    ex.fill(mark_.data(), tmax_, std::int32_t(-1));
+    ex.fill(vote_.data(), tmax_, u64(0));
+    ex.fill(best_.data(), tmax_, ~u64(0));
+    ex.fill(split_rank_.data(), tmax_, std::int32_t(-1));
+    Counters zero{};
+    ex.from_host(&zero, 1, ctr_.data());
+  }
+
+  void run() {
+    auto t0 = clock::now();
+    start();
+    while (nun_ > 0) batch();
+    phase("insert", t0);
+    t0 = clock::now();
+    peel();
+    phase("peel", t0);
+  }
+
+  // Finite triangles in input indices, neighbours among them.
+  void output(Output& out) {
+    const std::int32_t m = m_;
+    const std::int32_t* tv = tv_.data();
+    const std::int32_t* to = to_.data();
+    const std::int32_t* orig = P_.orig.data();
+    auto finite = GG_LAMBDA(std::int64_t t)->bool {
+      return tv[3 * t] != m && tv[3 * t + 1] != m && tv[3 * t + 2] != m;
+    };
+    auto rank = ex_.template alloc<std::int32_t>(std::size_t(tmax_));
+    std::int32_t* rk = rank.data();
+    ex_.exclusive_scan_of(
+        tmax_, GG_LAMBDA(std::int64_t t)->std::int32_t { return finite(t) ? 1 : 0; }, rk);
+    std::int32_t last = 0;
+    ex_.to_host(rk + tmax_ - 1, 1, &last);
+    const std::int64_t nt = last + (tri_finite_host(tmax_ - 1) ? 1 : 0);
+    auto tris = ex_.template alloc<std::int32_t>(std::size_t(3 * nt));
+    auto nbrs = ex_.template alloc<std::int32_t>(std::size_t(3 * nt));
+    std::int32_t* ot = tris.data();
+    std::int32_t* on = nbrs.data();
+    ex_.for_each_index(
+        tmax_, GG_LAMBDA(std::int64_t t) {
+          if (!finite(t)) return;
+          const std::int64_t r = rk[t];
+          for (int k = 0; k < 3; ++k) {
+            ot[3 * r + k] = orig[tv[3 * t + k]];
+            const std::int32_t nb = tri_of(to[3 * t + k]);
+            on[3 * r + k] = finite(nb) ? rk[nb] : -1;
+          }
+        });
+    out.triangles.resize(std::size_t(3 * nt));
+    out.neighbors.resize(std::size_t(3 * nt));
+    ex_.to_host(ot, 3 * nt, out.triangles.data());
+    ex_.to_host(on, 3 * nt, out.neighbors.data());
+  }
+
+  using clock = std::chrono::steady_clock;
+  void phase(const char* name, clock::time_point t0) {
+    ex_.sync();
+    st_.phase_ms.push_back(
+        {name, std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
+  }
+  bool tri_finite_host(std::int64_t t) {
+    std::int32_t v[3];
+    ex_.to_host(tv_.data() + 3 * t, 3, v);
+    return v[0] != m_ && v[1] != m_ && v[2] != m_;
+  }
+  Counters counters() {
+    Counters c;
+    ex_.to_host(ctr_.data(), 1, &c);
+    return c;
+  }
+
+  // The first triangle and its three infinite neighbours; every other point is located.
+  void start() {
+    const std::int32_t a = P_.first[0], b = P_.first[1], c = P_.first[2], I = m_;
+    // slot 0 (a,b,c); slot 1 (c,b,I) across bc; slot 2 (a,c,I) across ca; slot 3 (b,a,I).
+    const std::int32_t tv[12] = {a, b, c, c, b, I, a, c, I, b, a, I};
+    const std::int32_t to[12] = {enc(1, 2), enc(2, 2), enc(3, 2),  // slot 0
+                                 enc(3, 1), enc(2, 0), enc(0, 0),  // slot 1: (b,I) (I,c) (c,b)
+                                 enc(1, 1), enc(3, 0), enc(0, 1),  // slot 2: (c,I) (I,a) (a,c)
+                                 enc(2, 1), enc(1, 0), enc(0, 2)};  // slot 3: (a,I) (I,b) (b,a)
+    ex_.from_host(tv, 12, tv_.data());
+    ex_.from_host(to, 12, to_.data());
+    ntri_ = 4;
+    const Geo g = g_;
+    std::int32_t* loc = loc_.data();
+    const std::int32_t* tvp = tv_.data();
+    Counters* ctr = ctr_.data();
+    ex_.for_each_index(
+        m_, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t q = std::int32_t(i);
+          if (q == a || q == b || q == c) {
+            loc[q] = -1;
+            return;
+          }
+          std::int32_t found = -1;
+          for (std::int32_t t = 0; t < 4 && found < 0; ++t)
+            if (inside_ext(g, tvp + 3 * t, q)) found = t;
+          loc[q] = found;
+          if (found < 0) atomic_add(&ctr->lost, std::int64_t(1));
+        });
+    nun_ = ex_.compact_indices(
+        m_, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, un_.data());
+    check_lost();
+  }
+
+  void check_lost() {
+    Counters c = counters();
+    if (c.lost)
+      throw Error(ErrorCode::InvalidInput,
+                  "internal error: " + std::to_string(c.lost) +
+                      " point(s) could not be located; please report this input");
+  }
+
+  void batch() {
+    ++batches_;
+    const Geo g = g_;
+    const std::int32_t* un = un_.data();
+    std::int32_t* loc = loc_.data();
+    u64* best = best_.data();
+    std::int32_t* tv = tv_.data();
+    const std::int64_t nun = nun_;
+    // 1. each triangle picks one point
+    ex_.for_each_index(
+        nun, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t q = un[i], t = loc[q];
+          const u64 key = (u64(choice_key(g, tv + 3 * t, q)) << 32) | u64(std::uint32_t(q));
+          atomic_min(best + t, key);
+        });
+    std::int32_t* sel = ins_.data();
+    const std::int64_t nins = ex_.compact_indices(
+        nun,
+        GG_LAMBDA(std::int64_t i) {
+          const std::int32_t q = un[i];
+          return std::uint32_t(best[loc[q]]) == std::uint32_t(q);
+        },
+        sel);
+    // sel[r]: position in the list -> the point; split ranks of the chosen triangles
+    std::int32_t* srank = split_rank_.data();
+    ex_.for_each_index(
+        nins, GG_LAMBDA(std::int64_t r) {
+          const std::int32_t q = un[sel[r]];
+          sel[r] = q;
+          srank[loc[q]] = std::int32_t(r);
+        });
+    // 2. split
+    const Mesh M = M_;
+    const std::int32_t first_new = std::int32_t(ntri_);
+    std::int32_t* act = act_.data();
+    ex_.for_each_index(
+        nins, GG_LAMBDA(std::int64_t r) {
+          const std::int32_t q = sel[r], t = loc[q];
+          const std::int32_t base = first_new + 2 * std::int32_t(r);
+          split_triangle(M, t, q, base, srank, first_new);
+          best[t] = ~u64(0);
+          act[3 * r] = t;
+          act[3 * r + 1] = base;
+          act[3 * r + 2] = base + 1;
+        });
+    ntri_ += 2 * nins;
+    // 3. the other points of split triangles move to their child
+    ex_.for_each_index(
+        nun, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t q = un[i], t = loc[q];
+          const std::int32_t r = srank[t];
+          if (r < 0) return;
+          const std::int32_t p = sel[r];
+          if (p == q) return;
+          // children: c0 = t = (p, v1, v2), c1 = (p, v2, v0), c2 = (p, v0, v1)
+          const std::int32_t c1 = first_new + 2 * r, c2 = c1 + 1;
+          const std::int32_t v1 = tv[3 * t + 1], v2 = tv[3 * t + 2], v0 = tv[3 * c1 + 2];
+          std::int32_t child;
+          if (orient_ext(g, p, v1, q) > 0)
+            child = orient_ext(g, p, v2, q) < 0 ? t : c1;
+          else
+            child = orient_ext(g, p, v0, q) > 0 ? c2 : c1;
+          loc[q] = child;
+        });
+    ex_.for_each_index(
+        nins, GG_LAMBDA(std::int64_t r) {
+          const std::int32_t q = sel[r];
+          srank[loc[q]] = -1;
+          loc[q] = -1;
+        });
+    nun_ = ex_.copy_if(un, nun, un2_.data(), NotInserted{loc});
+    std::swap(un_, un2_);
+    nact_ = 3 * nins;
+    flip_until_delaunay();
+  }
+
+  struct NotInserted {
+    const std::int32_t* loc;
+    GG_HD bool operator()(std::int32_t q) const { return loc[q] >= 0; }
+  };
+
+  // Rounds of flips over the work list until no edge of it is illegal.
+  void flip_until_delaunay() {
+    std::int64_t rounds_here = 0;
+    while (nact_ > 0) {
+      if (++rounds_here > kMaxRounds)
+        throw Error(ErrorCode::InvalidInput,
+                    "internal error: flipping did not converge; please report this input");
+      ++round_;
+      ++rounds_;
+      const Geo g = g_;
+      const Mesh M = M_;
+      const std::int32_t round = round_;
+      const std::int32_t* act = act_.data();
+      std::int8_t* dec = dec_.data();
+      std::int32_t* exl = exl_.data();
+      Counters* ctr = ctr_.data();
+      const std::int64_t nact = nact_;
+      ex_.for_each_index(
+          1, GG_LAMBDA(std::int64_t) {
+            ctr->flips = 0;
+            ctr->next = 0;
+            ctr->exact = 0;
+          });
+      // test every edge with the filter; undecided tests go to the exact list
+      ex_.for_each_index(
+          nact, GG_LAMBDA(std::int64_t i) {
+            const std::int32_t t = act[i];
+            for (int k = 0; k < 3; ++k) {
+              const std::int32_t e = M.to[3 * t + k];
+              const std::int32_t d = M.tv[3 * tri_of(e) + loc_of(e)];
+              const int r = illegal_fast(g, M.tv + 3 * t, d);
+              dec[3 * i + k] = std::int8_t(r);
+              if (r == 0) exl[atomic_add(&ctr->exact, std::int64_t(1))] = std::int32_t(3 * i + k);
+            }
+          });
+      exact_pass(nact);
+      // propose, vote, flip
+      ex_.for_each_index(
+          nact, GG_LAMBDA(std::int64_t i) {
+            const std::int32_t t = act[i];
+            const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
+            if (k < 0) return;
+            const u64 key = (u64(round) << 32) | u64(0xFFFFFFFFu - std::uint32_t(t));
+            atomic_max(M.vote + t, key);
+            atomic_max(M.vote + tri_of(M.to[3 * t + k]), key);
+          });
+      std::int32_t* next = next_.data();
+      ex_.for_each_index(
+          nact, GG_LAMBDA(std::int64_t i) {
+            const std::int32_t t = act[i];
+            const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
+            if (k < 0) return;
+            const u64 key = (u64(round) << 32) | u64(0xFFFFFFFFu - std::uint32_t(t));
+            auto push = [&](std::int32_t s) {
+              if (atomic_exchange(M.mark + s, round) != round)
+                next[atomic_add(&ctr->next, std::int64_t(1))] = s;
+            };
+            // a slot that lost may be rewritten by the flip that beat it: read nb only after
+            const std::int32_t nb = M.vote[t] == key ? tri_of(M.to[3 * t + k]) : t;
+            if (M.vote[t] == key && M.vote[nb] == key) {
+              flip_phase1(M, t, k, round);
+              atomic_add(&ctr->flips, std::int64_t(1));
+              push(t);
+              push(nb);
+            } else {
+              push(t);
+            }
+          });
+      fix_round(nact);
+      relocate_round();
+      const Counters c = counters();
+      flips_ += c.flips;
+      exact_ += c.exact;
+      std::swap(act_, next_);
+      nact_ = c.next;
+    }
+  }
+
+  // Exact decisions for the tests the filter left open; a bounded number of threads, each
+  // with its own scratch, strides over the list (its length stays on the executor).
+  void exact_pass(std::int64_t nact) {
+    const Geo g = g_;
+    const Mesh M = M_;
+    const std::int32_t* act = act_.data();
+    std::int8_t* dec = dec_.data();
+    const std::int32_t* exl = exl_.data();
+    const Counters* ctr = ctr_.data();
+    double* scr = scratch_.data();
+    const std::int64_t S = std::min<std::int64_t>(exact_slots_, 3 * nact);
+    ex_.for_each_index(
+        S, GG_LAMBDA(std::int64_t s) {
+          const std::int64_t n = ctr->exact;
+          for (std::int64_t j = s; j < n; j += S) {
+            const std::int32_t e = exl[j];
+            const std::int32_t t = act[e / 3];
+            const int k = e % 3;
+            const std::int32_t o = M.to[3 * t + k];
+            const std::int32_t d = M.tv[3 * tri_of(o) + loc_of(o)];
+            dec[e] = std::int8_t(illegal_exact(g, M.tv + 3 * t, d, scr + s * kIncircleScratch));
+          }
+        });
+  }
+
+  // Phase 2 of the round's flips: each proposer fixes the outer edges of its pair.
+  void fix_round(std::int64_t nact) {
+    const Mesh M = M_;
+    const std::int32_t round = round_;
+    const std::int32_t* act = act_.data();
+    ex_.for_each_index(
+        nact, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t t = act[i];
+          if (M.stamp[t] != round || !(M.pair[t] & 1)) return;
+          const std::int32_t nb = M.pair[t] >> 1;
+          fix_edge(M, t, 0, round);
+          fix_edge(M, t, 2, round);
+          fix_edge(M, nb, 0, round);
+          fix_edge(M, nb, 1, round);
+        });
+  }
+
+  // Points whose triangle flipped this round cross to the side of the new diagonal.
+  void relocate_round() {
+    if (nun_ == 0) return;
+    const Geo g = g_;
+    const Mesh M = M_;
+    const std::int32_t round = round_;
+    const std::int32_t* un = un_.data();
+    std::int32_t* loc = loc_.data();
+    ex_.for_each_index(
+        nun_, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t q = un[i], L = loc[q];
+          if (M.stamp[L] != round) return;
+          const std::int32_t tp = (M.pair[L] & 1) ? L : (M.pair[L] >> 1);
+          const std::int32_t np = M.pair[tp] >> 1;
+          loc[q] = orient_ext(g, M.tv[3 * tp], M.tv[3 * tp + 2], q) > 0 ? np : tp;
+        });
+  }
+
+  // Flat triangles: collinear vertices the perturbation ordered counter-clockwise. They can
+  // only lie on the hull; each is flipped with the infinite triangle across its long edge,
+  // which makes its middle vertex a hull vertex, until none is left next to the outside.
+  void peel() {
+    const std::int32_t m = m_;
+    const Geo g = g_;
+    const std::int32_t* tv = tv_.data();
+    const std::int64_t nflat = ex_.compact_indices(
+        tmax_,
+        GG_LAMBDA(std::int64_t t) {
+          const std::int32_t a = tv[3 * t], b = tv[3 * t + 1], c = tv[3 * t + 2];
+          if (a == m || b == m || c == m) return false;
+          if (pred::orient2d_fast(g.at(a), g.at(b), g.at(c)) != 0) return false;
+          double s[kOrient2dScratch];
+          return pred::orient2d_exact(g.at(a), g.at(b), g.at(c), s) == 0;
+        },
+        act_.data());
+    st_.counters["flat_triangles"] = nflat;
+    if (nflat == 0) return;
+    const Mesh M = M_;
+    const std::int32_t* act = act_.data();
+    std::int8_t* dec = dec_.data();
+    Counters* ctr = ctr_.data();
+    for (;;) {
+      ++round_;
+      const std::int32_t round = round_;
+      ex_.for_each_index(
+          1, GG_LAMBDA(std::int64_t) { ctr->flips = 0; });
+      ex_.for_each_index(
+          nflat, GG_LAMBDA(std::int64_t i) {
+            const std::int32_t t = act[i];
+            for (int k = 0; k < 3; ++k) dec[3 * i + k] = -1;
+            if (M.tv[3 * t] == m || M.tv[3 * t + 1] == m || M.tv[3 * t + 2] == m) return;
+            for (int k = 0; k < 3; ++k) {
+              const std::int32_t e = M.to[3 * t + k];
+              const std::int32_t nb = tri_of(e);
+              const bool outside =
+                  M.tv[3 * nb] == m || M.tv[3 * nb + 1] == m || M.tv[3 * nb + 2] == m;
+              if (outside && between(g.at(M.tv[3 * t + (k + 1) % 3]), g.at(M.tv[3 * t + k]),
+                                     g.at(M.tv[3 * t + (k + 2) % 3])))
+                dec[3 * i + k] = 1;
+            }
+          });
+      ex_.for_each_index(
+          nflat, GG_LAMBDA(std::int64_t i) {
+            const std::int32_t t = act[i];
+            const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
+            if (k < 0) return;
+            const u64 key = (u64(round) << 32) | u64(0xFFFFFFFFu - std::uint32_t(t));
+            atomic_max(M.vote + t, key);
+            atomic_max(M.vote + tri_of(M.to[3 * t + k]), key);
+          });
+      ex_.for_each_index(
+          nflat, GG_LAMBDA(std::int64_t i) {
+            const std::int32_t t = act[i];
+            const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
+            if (k < 0) return;
+            const u64 key = (u64(round) << 32) | u64(0xFFFFFFFFu - std::uint32_t(t));
+            if (M.vote[t] != key) return;
+            if (M.vote[tri_of(M.to[3 * t + k])] == key) {
+              flip_phase1(M, t, k, round);
+              atomic_add(&ctr->flips, std::int64_t(1));
+            }
+          });
+      fix_round(nflat);
+      const Counters c = counters();
+      flips_ += c.flips;
+      if (c.flips == 0) break;
+    }
+  }
+
+  // b strictly between a and c, all three on one line (lexicographic order of coordinates).
+  GG_HD static bool between(const double* a, const double* b, const double* c) {
+    auto less = [](const double* u, const double* v) {
+      return u[0] < v[0] || (u[0] == v[0] && u[1] < v[1]);
+    };
+    return (less(a, b) && less(b, c)) || (less(c, b) && less(b, a));
+  }
+
+  void report() {
+    st_.counters["batches"] = batches_;
+    st_.counters["flip_rounds"] = rounds_;
+    st_.counters["flips"] = flips_;
+    st_.counters["exact_predicates"] = exact_;
+  }
+
+  // state
+  Exec& ex_;
+  Prepared& P_;
+  Stats& st_;
+  Geo g_;
+  Mesh M_;
+  std::int32_t m_ = 0;
+  std::int64_t tmax_ = 0, ntri_ = 0, nun_ = 0, nact_ = 0;
+  std::int32_t round_ = 0;
+  std::int64_t batches_ = 0, rounds_ = 0, flips_ = 0, exact_ = 0, exact_slots_ = 1;
+  typename Exec::template Buffer<std::int32_t> tv_, to_, stamp_, pair_, remap_, mark_, split_rank_;
+  typename Exec::template Buffer<u64> vote_, best_;
+  typename Exec::template Buffer<std::int32_t> act_, next_, exl_, loc_, un_, un2_, ins_;
+  typename Exec::template Buffer<std::int8_t> dec_;
+  typename Exec::template Buffer<Counters> ctr_;
+  typename Exec::template Buffer<double> scratch_;
+};
+
+inline void triangulate_impl(const double* xy, std::int64_t n, Output& out, Stats& st) {
+  Exec ex;
+  auto t0 = std::chrono::steady_clock::now();
+  Prepared P = prepare(ex, xy, n, out);
+  out.num_duplicates = P.duplicates;
+  st.counters["points"] = n;
+  st.counters["distinct_points"] = P.m;
+  ex.sync();
+  st.phase_ms.push_back(
+      {"prepare",
+       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+  Triangulator T(ex, P, st);
+  T.run();
+  t0 = std::chrono::steady_clock::now();
+  T.output(out);
+  T.report();
+  st.phase_ms.push_back(
+      {"output",
+       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+}

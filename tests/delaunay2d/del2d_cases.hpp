@@ -1,0 +1,154 @@
+// Inputs and checks shared by the CPU and CUDA 2D Delaunay tests.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gpugeom/delaunay2d.hpp"
+#include "gpugeom/generate.hpp"
+#include "verify.hpp"
+
+namespace gg_del2d {
+using namespace gpugeom;
+
+struct Case {
+  std::string name;
+  std::vector<Point2> pts;
+};
+
+// Exactly degenerate and awkward inputs the generators do not make.
+inline std::vector<Case> degenerate_cases() {
+  std::vector<Case> cs;
+  {  // 12 integer points exactly on the circle of radius 5, plus its centre
+    Case c{"integer circle", {}};
+    for (int x = -5; x <= 5; ++x)
+      for (int y = -5; y <= 5; ++y)
+        if (x * x + y * y == 25) c.pts.push_back({double(x), double(y)});
+    cs.push_back(c);
+    c.name = "integer circle and centre";
+    c.pts.push_back({0, 0});
+    cs.push_back(c);
+  }
+  {  // many exactly cocircular points: Pythagorean points on x^2 + y^2 = 5^2 * 13^2 * 17^2
+    Case c{"big integer circle", {}};
+    const long r2 = 5L * 5 * 13 * 13 * 17 * 17;
+    for (long x = -1105; x <= 1105; ++x) {
+      long y2 = r2 - x * x;
+      long y = std::lround(std::sqrt(double(y2)));
+      if (y * y == y2) {
+        c.pts.push_back({double(x), double(y)});
+        if (y) c.pts.push_back({double(x), double(-y)});
+      }
+    }
+    cs.push_back(c);
+  }
+  for (int w : {2, 3, 7, 31}) {  // grids: every square cocircular, every row collinear
+    Case c{"grid " + std::to_string(w) + "x" + std::to_string(w + 3), {}};
+    for (int i = 0; i < w; ++i)
+      for (int j = 0; j < w + 3; ++j) c.pts.push_back({double(i), double(j)});
+    cs.push_back(c);
+  }
+  {  // a line of points and one point off it: every triangle shares the apex
+    Case c{"fan", {}};
+    for (int i = 0; i < 50; ++i) c.pts.push_back({double(i), 0.0});
+    c.pts.push_back({20.5, 3.0});
+    cs.push_back(c);
+  }
+  {  // collinear points on every side of a square
+    Case c{"square outline", {}};
+    for (int i = 0; i < 10; ++i) {
+      c.pts.push_back({double(i), 0});
+      c.pts.push_back({10, double(i)});
+      c.pts.push_back({double(10 - i), 10});
+      c.pts.push_back({0, double(10 - i)});
+    }
+    cs.push_back(c);
+  }
+  {  // duplicates, some many times, with -0 and +0
+    Case c{"duplicates", {}};
+    std::mt19937_64 rng(5);
+    std::uniform_int_distribution<int> u(0, 20);
+    for (int i = 0; i < 400; ++i) c.pts.push_back({double(u(rng)) / 4, double(u(rng)) / 8});
+    c.pts.push_back({0.0, 0.0});
+    c.pts.push_back({-0.0, 0.0});
+    c.pts.push_back({0.0, -0.0});
+    cs.push_back(c);
+  }
+  {  // huge and tiny coordinates together
+    Case c{"huge and tiny", {}};
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int i = 0; i < 300; ++i) c.pts.push_back({u(rng) * 1e-30, u(rng) * 1e-30});
+    for (int i = 0; i < 300; ++i) c.pts.push_back({u(rng) * 1e40, u(rng) * 1e40});
+    c.pts.push_back({1e-40, 0});
+    cs.push_back(c);
+  }
+  {  // nearly collinear: a long thin sliver of points
+    Case c{"sliver", {}};
+    for (int i = 0; i < 500; ++i) c.pts.push_back({double(i), double(i) * 1e-14 * (i % 3)});
+    cs.push_back(c);
+  }
+  return cs;
+}
+
+inline std::vector<Case> distribution_cases(const std::vector<std::int64_t>& sizes,
+                                            std::uint64_t seed) {
+  std::vector<Case> cs;
+  for (const auto& d : distributions2d())
+    for (std::int64_t n : sizes) cs.push_back({d + " " + std::to_string(n), generate2d(d, n, seed)});
+  return cs;
+}
+
+// The checker's verdict plus what the checker does not look at: neighbours and the duplicate
+// map.
+inline void expect_valid(const std::vector<Point2>& pts, const Triangulation2d& t) {
+  const std::int64_t n = std::int64_t(pts.size());
+  ASSERT_EQ(std::int64_t(t.duplicate_of.size()), n);
+  std::int64_t ndup = 0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int32_t d = t.duplicate_of[i];
+    if (d < 0) continue;
+    ++ndup;
+    ASSERT_LT(d, i) << "point " << i;
+    ASSERT_EQ(t.duplicate_of[d], -1);
+    ASSERT_TRUE(pts[d].x == pts[i].x && pts[d].y == pts[i].y) << "point " << i;
+  }
+  EXPECT_EQ(ndup, t.num_duplicates);
+  const auto r = verify::check_delaunay2d(&pts.data()->x, n, t.triangles.data(),
+                                          std::int64_t(t.num_triangles()), t.duplicate_of.data());
+  ASSERT_TRUE(r.ok) << r.message;
+  // neighbours: opposite vertex k, shared edge, symmetric
+  const std::int64_t nt = std::int64_t(t.num_triangles());
+  ASSERT_EQ(t.neighbors.size(), t.triangles.size());
+  std::int64_t hull = 0;
+  for (std::int64_t c = 0; c < nt; ++c)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t o = t.neighbors[3 * c + k];
+      const std::int32_t u = t.triangles[3 * c + (k + 1) % 3], v = t.triangles[3 * c + (k + 2) % 3];
+      if (o < 0) {
+        ++hull;
+        continue;
+      }
+      ASSERT_LT(o, nt);
+      int shared = 0, back = 0;
+      for (int j = 0; j < 3; ++j) {
+        const std::int32_t w = t.triangles[3 * o + j];
+        shared += (w == u || w == v);
+        back += t.neighbors[3 * o + j] == c;
+      }
+      ASSERT_EQ(shared, 2) << "triangle " << c << " edge " << k;
+      ASSERT_EQ(back, 1) << "triangle " << c << " edge " << k;
+    }
+  // Euler: triangles = 2 * vertices - 2 - hull edges
+  const std::int64_t nv = n - ndup;
+  EXPECT_EQ(nt, 2 * nv - 2 - hull);
+}
+
+}  // namespace gg_del2d
