@@ -70,21 +70,45 @@ GG_INLINE std::uint32_t ordered_bits(float f) {
 }
 
 // Which point a triangle takes in the next batch: the one nearest its circumcentre (thesis
-// 5.3.3); for an infinite triangle the one farthest beyond its edge. Smaller is better; the
-// choice only steers the work, never the result.
+// 5.3.3); for an infinite triangle, whose circumcentre is at infinity beyond its edge, the one
+// farthest beyond the edge. Where that measure cannot separate the points (nearly flat
+// triangles, points on the line of a hull edge) the one nearest the middle of the triangle or
+// edge: taking the nearest to an end would cost one batch per point on collinear input.
+// Smaller is better; the choice only steers the work, never the result.
 GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::int32_t q) {
   const double* pq = g.at(q);
   int gi = v[0] == g.m ? 0 : v[1] == g.m ? 1 : v[2] == g.m ? 2 : -1;
   if (gi >= 0) {
     const double *a = g.at(v[(gi + 1) % 3]), *b = g.at(v[(gi + 2) % 3]);
-    double o = (b[0] - a[0]) * (pq[1] - a[1]) - (b[1] - a[1]) * (pq[0] - a[0]);
-    return ordered_bits(float(-o));
+    const double ex = b[0] - a[0], ey = b[1] - a[1];
+    const double o = ex * (pq[1] - a[1]) - ey * (pq[0] - a[0]);  // |ab| * distance beyond
+    const double e2 = ex * ex + ey * ey;
+    if (o > 1e-6 * e2) return ordered_bits(float(-o / e2));
+    const double mx = pq[0] - 0.5 * (a[0] + b[0]), my = pq[1] - 0.5 * (a[1] + b[1]);
+    return ordered_bits(float((mx * mx + my * my) / e2));
   }
   const double *a = g.at(v[0]), *b = g.at(v[1]), *c = g.at(v[2]);
   const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
   const double d = 2 * (bx * cy - by * cx);
   const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  const double qx = pq[0] - a[0], qy = pq[1] - a[1];
+  if (!(d * d > 1e-12 * b2 * c2)) {  // sliver: the circumcentre is far off; use the centroid
+    const double mx = qx - (bx + cx) / 3, my = qy - (by + cy) / 3;
+    return ordered_bits(float(mx * mx + my * my));
+  }
   const double ux = (cy * b2 - by * c2) / d, uy = (bx * c2 - cx * b2) / d;
-  const double dx = pq[0] - a[0] - ux, dy = pq[1] - a[1] - uy;
+  const double dx = qx - ux, dy = qy - uy;
   return ordered_bits(float(dx * dx + dy * dy));
+}
+
+// A bijection of 32-bit integers that scatters neighbouring slots (murmur3's finaliser): flip
+// priorities by slot number would let only one flip per round go ahead along a chain of
+// proposals with increasing slots, as in fans.
+GG_INLINE std::uint32_t scatter(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x85ebca6bu;
+  x ^= x >> 13;
+  x *= 0xc2b2ae35u;
+  x ^= x >> 16;
+  return x;
 }

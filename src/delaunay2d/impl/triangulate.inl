@@ -6,8 +6,9 @@
 // circumcentre and splits around it; points of split triangles move to the child holding them.
 // Then rounds of flips: every triangle on the work list tests its three edges (filter, then an
 // exact pass over the compacted undecided tests), proposes to flip its first illegal edge, and
-// a flip goes ahead when its proposer is the smallest slot proposing for either of its two
-// triangles (so every round flips, and the result never depends on timing). Flipped and
+// a flip goes ahead when its proposer has the highest priority (a fixed scramble of the slot
+// number) among the proposals touching either of its two triangles (so every round flips, and
+// the result never depends on timing). Flipped and
 // outvoted triangles form the next list; points of flipped triangles move across the new
 // diagonal at once (the thesis keeps a flip history and relocates once per batch; relocating
 // per round reads only the points whose triangle changed, and needs no history storage).
@@ -289,7 +290,7 @@ class Triangulator {
             const std::int32_t t = act[i];
             const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
             if (k < 0) return;
-            const u64 key = (u64(round) << 32) | u64(0xFFFFFFFFu - std::uint32_t(t));
+            const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
             atomic_max(M.vote + t, key);
             atomic_max(M.vote + tri_of(M.to[3 * t + k]), key);
           });
@@ -299,7 +300,7 @@ class Triangulator {
             const std::int32_t t = act[i];
             const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
             if (k < 0) return;
-            const u64 key = (u64(round) << 32) | u64(0xFFFFFFFFu - std::uint32_t(t));
+            const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
             auto push = [&](std::int32_t s) {
               if (atomic_exchange(M.mark + s, round) != round)
                 next[atomic_add(&ctr->next, std::int64_t(1))] = s;
@@ -433,7 +434,7 @@ class Triangulator {
             const std::int32_t t = act[i];
             const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
             if (k < 0) return;
-            const u64 key = (u64(round) << 32) | u64(0xFFFFFFFFu - std::uint32_t(t));
+            const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
             atomic_max(M.vote + t, key);
             atomic_max(M.vote + tri_of(M.to[3 * t + k]), key);
           });
@@ -442,7 +443,7 @@ class Triangulator {
             const std::int32_t t = act[i];
             const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
             if (k < 0) return;
-            const u64 key = (u64(round) << 32) | u64(0xFFFFFFFFu - std::uint32_t(t));
+            const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
             if (M.vote[t] != key) return;
             if (M.vote[tri_of(M.to[3 * t + k])] == key) {
               flip_phase1(M, t, k, round);
