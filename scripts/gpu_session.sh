@@ -10,7 +10,8 @@ LD_LIBRARY_PATH=$LD_LIBRARY_PATH .devbin/gpugeom info --device
 echo "== GPU tests (label gpu)"
 status=0
 ctest --test-dir .devbin -L gpu 2>&1 | tail -8 | tee "$OUT/ctest_gpu.txt" 
-for t in .devbin/test_*_cuda; do
+TESTS=${TESTS:-test_*_cuda}  # a glob: which GPU test binaries to run (and sanitise)
+for t in .devbin/$TESTS; do
   "$t" --gtest_brief=1 >"$OUT/$(basename "$t").log" 2>&1
   rc=$?
   echo "$(basename "$t"): rc=$rc $(grep -E '^\[  (PASSED|FAILED)' "$OUT/$(basename "$t").log" | tr '\n' ' ')"
@@ -19,18 +20,33 @@ done
 if [ "${SKIP_SANITIZER:-0}" != 1 ]; then
   echo "== compute-sanitizer memcheck"
   CS=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
-  for t in .devbin/test_*_cuda; do
-    GG_TEST_TUPLES=1500 timeout 240 "$CS" --tool memcheck --leak-check full --error-exitcode 9 "$t" --gtest_brief=1 \
+  for t in .devbin/$TESTS; do
+    GG_DEL2D_MAX_N=5000 GG_TEST_TUPLES=1500 timeout 240 "$CS" --tool memcheck --leak-check full --error-exitcode 9 "$t" --gtest_brief=1 \
       >"$OUT/memcheck_$(basename "$t").log" 2>&1
     echo "memcheck $(basename "$t"): rc=$? $(grep -E 'ERROR SUMMARY' "$OUT/memcheck_$(basename "$t").log" | tail -1)"
   done
   GG_TEST_TUPLES=1500 timeout 120 "$CS" --tool synccheck --error-exitcode 9 .devbin/test_exec_cuda --gtest_brief=1 >"$OUT/synccheck.log" 2>&1
   echo "synccheck test_exec_cuda: rc=$? $(grep -E 'ERROR SUMMARY' "$OUT/synccheck.log" | tail -1)"
 fi
-echo "== SciPy oracle through the CLI on the CUDA backend"
-GPUGEOM_BACKEND=cuda python3 tests/edt/test_scipy_oracle.py .devbin/gpugeom 2>&1 | tail -1
+if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = edt ]; then
+  echo "== SciPy oracle through the CLI on the CUDA backend"
+  GPUGEOM_BACKEND=cuda python3 tests/edt/test_scipy_oracle.py .devbin/gpugeom 2>&1 | tail -1
+fi
 CSV="$OUT/bench.csv"
 rm -f "$CSV"
+if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del2d ]; then
+  echo "== 2D Delaunay benchmarks (end to end, host in and out; CGAL on one core in the same run)"
+  D=.devbin/gpugeom_bench_del2d
+  SZ=${DEL2D_SIZES:-1e5,1e6,1e7}
+  for n in 1e6 1e7; do python3 bench/terrain_contours.py -n $n -o /tmp/terrain_$n.npy; done
+  {
+    $D --backend cuda --dists uniform,gaussian,thin_circle,circle,grid,two_segments --sizes $SZ --reps 3 --csv "$CSV"
+    $D --backend cuda --files /tmp/terrain_1e6.npy,/tmp/terrain_1e7.npy --reps 3 --csv "$CSV" | tail -n +3
+    $D --backend cpu --dists uniform,circle,grid --sizes 1e6 --reps 3 --cgal --csv "$CSV" | tail -n +3
+    $D --backend cpu --dists uniform --sizes 1e7 --reps 1 --cgal --csv "$CSV" | tail -n +3
+    [ "${DEL2D_HUGE:-1e8}" != skip ] && $D --backend cuda --dists uniform --sizes ${DEL2D_HUGE:-1e8} --reps 1 --csv "$CSV" | tail -n +3
+  } 2>&1 | tee "$OUT/bench_del2d.txt"
+fi
 if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = edt ]; then
   echo "== EDT benchmarks (PBA on both backends, JFA, CuPy/SciPy/OpenCV anchors)"
   E=.devbin/gpugeom_bench_edt

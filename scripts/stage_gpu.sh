@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build-cuda}
 rm -rf .devbin && mkdir -p .devbin/lib
-cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt "$B"/bench/gpugeom_bench_cvd "$B"/tools/gpugeom/gpugeom .devbin/
+cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt "$B"/bench/gpugeom_bench_cvd "$B"/bench/gpugeom_bench_del2d "$B"/tools/gpugeom/gpugeom .devbin/
 [ -x "$B/bench/anchor_cgal" ] && cp "$B/bench/anchor_cgal" .devbin/
 for f in .devbin/*; do
   [ -f "$f" ] || continue

@@ -1,5 +1,7 @@
 // 2D Delaunay on the CPU executor: the checker on every distribution and degenerate input,
 // errors, and the Voronoi diagram.
+#include <array>
+
 #include "del2d_cases.hpp"
 
 using namespace gpugeom;
@@ -28,3 +30,155 @@ TEST(Delaunay2d, Degenerate) {
     expect_valid(c.pts, t);
   }
 }
+
+TEST(Delaunay2d, Errors) {
+  auto code = [](const std::vector<Point2>& p) {
+    try {
+      delaunay2d(p, cpu());
+    } catch (const Error& e) {
+      EXPECT_FALSE(std::string(e.what()).empty());
+      return e.code();
+    }
+    return ErrorCode::Cuda;  // "no error": no test expects this code
+  };
+  const double nan = std::nan(""), inf = HUGE_VAL;
+  EXPECT_EQ(code({}), ErrorCode::DegenerateInput);
+  EXPECT_EQ(code({{0, 0}, {1, 0}}), ErrorCode::DegenerateInput);
+  EXPECT_EQ(code({{0, 0}, {1, 1}, {0, 0}, {1, 1}}), ErrorCode::DegenerateInput);  // 2 distinct
+  EXPECT_EQ(code({{0, 0}, {1, 1}, {2, 2}, {3, 3}, {1, 1}}), ErrorCode::DegenerateInput);
+  EXPECT_EQ(code({{0, 0}, {1, 0}, {0, nan}}), ErrorCode::InvalidInput);
+  EXPECT_EQ(code({{0, 0}, {1, 0}, {inf, 1}}), ErrorCode::InvalidInput);
+  EXPECT_EQ(code({{0, 0}, {1, 0}, {1e300, 1}}), ErrorCode::InvalidInput);  // beyond exact range
+  // the collinear message names the case
+  try {
+    delaunay2d(std::vector<Point2>{{0, 0}, {1, 2}, {2, 4}, {0.5, 1}}, cpu());
+    FAIL() << "collinear input accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("one line"), std::string::npos) << e.what();
+  }
+  // nearly collinear is not collinear: exactly decided
+  const auto t = delaunay2d(std::vector<Point2>{{0, 0}, {1, 1}, {2, 2 + 1e-15}}, cpu());
+  EXPECT_EQ(t.num_triangles(), 1u);
+}
+
+TEST(Delaunay2d, DuplicatesMapToFirst) {
+  std::vector<Point2> p{{0, 0}, {1, 0}, {0, 1}, {1, 0}, {0, 0}, {1, 1}, {1, 0}};
+  const auto t = delaunay2d(p, cpu());
+  EXPECT_EQ(t.duplicate_of, (std::vector<std::int32_t>{-1, -1, -1, 1, 0, -1, 1}));
+  EXPECT_EQ(t.num_duplicates, 3);
+  EXPECT_EQ(t.num_triangles(), 2u);
+}
+
+// Both executors and every thread count must give the same arrays: the algorithm's choices
+// never depend on timing.
+TEST(Delaunay2d, Deterministic) {
+  const auto p = generate2d("gaussian", 20000, 3);
+  const auto a = delaunay2d(p, cpu());
+  const auto b = delaunay2d(p, cpu());
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.neighbors, b.neighbors);
+}
+
+TEST(Delaunay2d, Voronoi) {
+  // a square grid's centre point has the unit square around it as its cell
+  std::vector<Point2> p;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) p.push_back({double(i), double(j)});
+  const auto t = delaunay2d(p, cpu());
+  const auto v = voronoi2d(&p.data()->x, 9, t);
+  ASSERT_EQ(v.cell_offsets.size(), 10u);
+  // centre (index 4): bounded, its vertices the four cell corners (each square's two
+  // triangles share one circumcentre)
+  std::vector<std::pair<double, double>> corners;
+  for (std::int64_t j = v.cell_offsets[4]; j < v.cell_offsets[5]; ++j) {
+    const std::int32_t w = v.cell_vertices[j];
+    ASSERT_GE(w, 0);
+    corners.push_back({v.vertices[2 * w], v.vertices[2 * w + 1]});
+  }
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  EXPECT_EQ(corners, (std::vector<std::pair<double, double>>{
+                         {0.5, 0.5}, {0.5, 1.5}, {1.5, 0.5}, {1.5, 1.5}}));
+  // every other point is on the hull: unbounded
+  for (int i = 0; i < 9; ++i)
+    if (i != 4) EXPECT_EQ(v.cell_vertices[v.cell_offsets[i]], -1) << i;
+  // ridges: one per Delaunay edge, unbounded ones with a unit outward direction
+  EXPECT_EQ(v.ridge_points.size() / 2, (3 * t.num_triangles() + 8) / 2);
+  // clipped cells tile the box: areas sum to the box area
+  const auto c = clip_voronoi_cells(&p.data()->x, 9, t, v, -1, -1, 3, 3);
+  double total = 0;
+  for (int i = 0; i < 9; ++i) {
+    double a = 0;
+    const std::int64_t b = c.offsets[i], e = c.offsets[i + 1];
+    for (std::int64_t j = b; j < e; ++j) {
+      const std::int64_t k = j + 1 < e ? j + 1 : b;
+      a += c.xy[2 * j] * c.xy[2 * k + 1] - c.xy[2 * k] * c.xy[2 * j + 1];
+    }
+    EXPECT_GT(a, 0) << i;  // counter-clockwise
+    total += a / 2;
+    if (i == 4) EXPECT_NEAR(a / 2, 1.0, 1e-12);
+  }
+  EXPECT_NEAR(total, 16.0, 1e-9);
+}
+
+TEST(Delaunay2d, VoronoiCellsTileTheBox) {
+  const auto p = generate2d("uniform", 3000, 9);
+  const auto t = delaunay2d(p, cpu());
+  const auto v = voronoi2d(&p.data()->x, 3000, t);
+  const auto c = clip_voronoi_cells(&p.data()->x, 3000, t, v, -0.5, -0.5, 1.5, 1.5);
+  double total = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const std::int64_t b = c.offsets[i], e = c.offsets[i + 1];
+    double a = 0;
+    for (std::int64_t j = b; j < e; ++j) {
+      const std::int64_t k = j + 1 < e ? j + 1 : b;
+      a += c.xy[2 * j] * c.xy[2 * k + 1] - c.xy[2 * k] * c.xy[2 * j + 1];
+    }
+    total += a / 2;
+    // the site lies in its own cell: its bounded cell vertices are circumcentres of its star
+    for (std::int64_t j = v.cell_offsets[i]; j < v.cell_offsets[i + 1]; ++j) {
+      const std::int32_t w = v.cell_vertices[j];
+      if (w < 0) continue;
+      const std::int32_t* tri = &t.triangles[3 * std::size_t(w)];
+      EXPECT_TRUE(tri[0] == i || tri[1] == i || tri[2] == i);
+    }
+  }
+  EXPECT_NEAR(total, 4.0, 1e-9);
+}
+
+#ifdef GG_HAVE_CGAL
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+// In general position the Delaunay triangulation is unique: the triangle sets must be equal.
+TEST(Delaunay2d, SameAsCgal) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, K>;
+  using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+  using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
+  for (const char* d : {"uniform", "gaussian", "thin_circle"})
+    for (std::int64_t n : {100, 5000, 100000}) {
+      SCOPED_TRACE(std::string(d) + " " + std::to_string(n));
+      const auto p = generate2d(d, n, 21);
+      std::vector<std::pair<K::Point_2, std::int32_t>> in;
+      for (std::int64_t i = 0; i < n; ++i) in.push_back({K::Point_2(p[i].x, p[i].y), std::int32_t(i)});
+      DT dt(in.begin(), in.end());
+      auto canon = [](std::int32_t a, std::int32_t b, std::int32_t c) {
+        // rotate so the smallest comes first (orientation kept)
+        if (b < a && b < c) return std::array<std::int32_t, 3>{b, c, a};
+        if (c < a && c < b) return std::array<std::int32_t, 3>{c, a, b};
+        return std::array<std::int32_t, 3>{a, b, c};
+      };
+      std::vector<std::array<std::int32_t, 3>> ref, got;
+      for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+        ref.push_back(canon(f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()));
+      const auto t = delaunay2d(p, cpu());
+      for (std::size_t i = 0; i < t.num_triangles(); ++i)
+        got.push_back(canon(t.triangles[3 * i], t.triangles[3 * i + 1], t.triangles[3 * i + 2]));
+      std::sort(ref.begin(), ref.end());
+      std::sort(got.begin(), got.end());
+      EXPECT_EQ(got, ref);
+    }
+}
+#endif

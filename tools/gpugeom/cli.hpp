@@ -60,5 +60,6 @@ int cmd_info(const Global& g, Args& a);
 int cmd_edt(const Global& g, Args& a);
 int cmd_cvd(const Global& g, Args& a);
 int cmd_stipple(const Global& g, Args& a);
+int cmd_delaunay2d(const Global& g, Args& a);
 
 }  // namespace gpugeom::cli

@@ -72,6 +72,7 @@ static const char* kUsageText =
     "  edt IN -o OUT.npy       exact distance transform / Voronoi diagram of an image or volume\n"
     "  cvd DENSITY -n N -o P   weighted centroidal Voronoi diagram (Lloyd) of a density\n"
     "  stipple IMG -o OUT.svg  stipple drawing of a photograph (also --png)\n"
+    "  delaunay2d P -o MESH    exact 2D Delaunay triangulation (--voronoi, --draw, --check)\n"
     "\n"
     "global options:\n"
     "  --backend B   executor: auto (CUDA if a GPU is usable, else CPU), cpu, cuda;\n"
@@ -118,6 +119,7 @@ int main(int argc, char** argv) {
     if (cmd == "edt") return cmd_edt(g, a);
     if (cmd == "cvd") return cmd_cvd(g, a);
     if (cmd == "stipple") return cmd_stipple(g, a);
+    if (cmd == "delaunay2d") return cmd_delaunay2d(g, a);
     throw UsageError("unknown command '" + cmd + "' (try 'gpugeom --help')");
   } catch (const UsageError& e) {
     std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << e.what() << "\n";

@@ -1,0 +1,154 @@
+// gpugeom_bench_del2d: 2D Delaunay end to end (host points in, host triangles out) over
+// distributions and sizes on each backend, with CGAL's Delaunay_triangulation_2 timed on the
+// same points in the same run when the build found CGAL. Points come from the generators, or
+// from .npy files (x, y columns) for the terrain contour set (bench/terrain_contours.py).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench_csv.hpp"
+#include "gpugeom/delaunay2d.hpp"
+#include "gpugeom/generate.hpp"
+#include "gpugeom/io.hpp"
+#include "verify.hpp"
+
+#ifdef GG_BENCH_CGAL
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#endif
+
+using namespace gpugeom;
+
+namespace {
+using clk = std::chrono::steady_clock;
+double ms_since(clk::time_point t0) {
+  return std::chrono::duration<double, std::milli>(clk::now() - t0).count();
+}
+double phase(const Stats& s, const char* name) {
+  for (auto& p : s.phase_ms)
+    if (p.first == name) return p.second;
+  return 0;
+}
+double cgal_ms(const std::vector<Point2>& p) {
+#ifdef GG_BENCH_CGAL
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<K::Point_2> in;
+  in.reserve(p.size());
+  for (auto& q : p) in.emplace_back(q.x, q.y);
+  const auto t0 = clk::now();
+  CGAL::Delaunay_triangulation_2<K> dt(in.begin(), in.end());
+  const double ms = ms_since(t0);
+  if (dt.number_of_faces() == 0) std::printf("(CGAL built no triangle)\n");
+  return ms;
+#else
+  (void)p;
+  return -1;
+#endif
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string dists = "uniform", sizes = "1e5,1e6", backends = "all", csv, files;
+  int reps = 3;
+  bool cgal = false, check = false;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+    if (a == "--dists")
+      dists = next();
+    else if (a == "--sizes")
+      sizes = next();
+    else if (a == "--files")
+      files = next();
+    else if (a == "--backend")
+      backends = next();
+    else if (a == "--reps")
+      reps = std::stoi(next());
+    else if (a == "--cgal")
+      cgal = true;
+    else if (a == "--check")
+      check = true;
+    else if (a == "--csv")
+      csv = next();
+    else {
+      std::cout << "usage: gpugeom_bench_del2d [--dists uniform,circle] [--sizes 1e5,1e6] "
+                   "[--files a.npy,b.npy] [--backend cpu|cuda|all] [--reps 3] [--cgal] [--check] "
+                   "[--csv FILE]\n";
+      return a == "--help" ? 0 : 2;
+    }
+  }
+  struct Input {
+    std::string name;
+    std::vector<Point2> pts;
+  };
+  std::vector<Input> inputs;
+  std::stringstream ds(dists);
+  for (std::string d; std::getline(ds, d, ',');)
+    if (!d.empty())
+      for (double n : bench::numbers(sizes))
+        if (d != "skip") inputs.push_back({d, generate2d(d, std::int64_t(n), 1)});
+  std::stringstream fs(files);
+  for (std::string f; std::getline(fs, f, ',');) {
+    if (f.empty()) continue;
+    const io::PointSet ps = io::read_points(f);
+    Input in{f.substr(f.find_last_of('/') + 1), {}};
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      in.pts.push_back({ps.coords[ps.dim * i], ps.coords[ps.dim * i + 1]});
+    inputs.push_back(std::move(in));
+  }
+  const std::vector<Backend> bks = bench::backends(backends);
+  const std::string gpu = query_device().available ? query_device().name : "none";
+  std::printf("GPU: %s\n", gpu.c_str());
+  std::ofstream f = bench::open_bench_csv(csv);
+  std::printf("%-22s %10s %-5s %10s %9s %9s %9s %9s %7s %7s %9s %s\n", "distribution", "n", "bk",
+              "total ms", "prepare", "insert", "output", "Mpts/s", "batches", "rounds", "CGAL ms",
+              "vertices / check");
+  for (const auto& in : inputs) {
+    const std::int64_t n = std::int64_t(in.pts.size());
+    const double cg = cgal ? cgal_ms(in.pts) : -1;
+    for (Backend b : bks) {
+      Delaunay2dOptions o;
+      o.backend = b;
+      Triangulation2d r = delaunay2d(in.pts, o);  // warm-up
+      std::vector<double> t;
+      for (int k = 0; k < reps; ++k) {
+        const auto t0 = clk::now();
+        r = delaunay2d(in.pts, o);
+        t.push_back(ms_since(t0));
+      }
+      std::sort(t.begin(), t.end());
+      const double med = t[t.size() / 2];
+      // every distinct input point must be a vertex (cheap enough for any size)
+      std::vector<char> seen(std::size_t(n), 0);
+      for (std::int32_t v : r.triangles) seen[std::size_t(v)] = 1;
+      std::int64_t missing = 0;
+      for (std::int64_t i = 0; i < n; ++i) missing += !seen[i] && r.duplicate_of[i] < 0;
+      std::string verdict = missing ? std::to_string(missing) + " points missing" : "all points";
+      if (check) {
+        const auto rep = verify::check_delaunay2d(&in.pts.data()->x, n, r.triangles.data(),
+                                                  std::int64_t(r.num_triangles()),
+                                                  r.duplicate_of.data());
+        verdict += rep.ok ? ", valid" : ", INVALID: " + rep.message;
+      }
+      std::printf("%-22s %10lld %-5s %10.1f %9.1f %9.1f %9.1f %9.1f %7lld %7lld %9.1f %s\n",
+                  in.name.c_str(), (long long)n, backend_name(b), med, phase(r.stats, "prepare"),
+                  phase(r.stats, "insert"), phase(r.stats, "output"), n / med / 1e3,
+                  (long long)r.stats.counters["batches"], (long long)r.stats.counters["flip_rounds"],
+                  cg, verdict.c_str());
+      std::fflush(stdout);
+      if (f)
+        f << "delaunay2d," << in.name << "," << n << "," << backend_name(b) << ","
+          << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med << ",0,0," << med << ","
+          << double(r.stats.counters["exact_predicates"]) / std::max<double>(1, n) << "\n";
+    }
+    if (f && cg >= 0)
+      f << "delaunay2d," << in.name << "," << n << ",cgal,cpu-1core,0," << cg << ",0,0," << cg
+        << ",0\n";
+  }
+  return 0;
+}

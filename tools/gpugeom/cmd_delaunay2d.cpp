@@ -1,0 +1,190 @@
+// gpugeom delaunay2d: the exact Delaunay triangulation of a 2D point file, its Voronoi diagram,
+// a drawing a person can look at, and an optional exact check of the result.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "cli.hpp"
+#include "draw2d.hpp"
+#include "gpugeom/delaunay2d.hpp"
+#include "gpugeom/io.hpp"
+#include "verify.hpp"
+
+namespace gpugeom::cli {
+
+namespace {
+
+const char* kHelp =
+    "usage: gpugeom delaunay2d POINTS -o MESH [--voronoi VOR.json] [--clip xmin,ymin,xmax,ymax]\n"
+    "                          [--draw FILE.svg|FILE.png] [--check]\n\n"
+    "Exact Delaunay triangulation of the 2D points in POINTS (.xyz .txt .csv .ply .off .obj\n"
+    ".node .npy; 3D files are accepted when every z is 0). Duplicate points are kept once.\n"
+    "  -o MESH        .ply .off .obj .ele(+.node) .vtu, or .npy (the int32 triangle array)\n"
+    "  --voronoi F    the Voronoi diagram as JSON in SciPy's terms: vertices, ridge_points,\n"
+    "                 ridge_vertices, regions (one per input point, -1 first when unbounded)\n"
+    "  --clip BOX     also the cells clipped to BOX, as polygons (\"clipped\" in the JSON);\n"
+    "                 the default box is the points' bounding box grown by 10 %\n"
+    "  --draw F       draw the triangulation (and the Voronoi diagram with --voronoi) as SVG\n"
+    "                 or PNG (also --svg F)\n"
+    "  --check        verify the result with the independent exact checker\n";
+
+std::string json_array(const std::vector<double>& v, int per) {
+  std::string s = "[";
+  char buf[64];
+  for (std::size_t i = 0; i < v.size(); i += per) {
+    s += i ? ",[" : "[";
+    for (int k = 0; k < per; ++k) {
+      std::snprintf(buf, sizeof buf, "%s%.17g", k ? "," : "", v[i + k]);
+      s += buf;
+    }
+    s += "]";
+  }
+  return s + "]";
+}
+template <class T>
+std::string json_pairs(const std::vector<T>& v) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < v.size(); i += 2)
+    s += (i ? ",[" : "[") + std::to_string(v[i]) + "," + std::to_string(v[i + 1]) + "]";
+  return s + "]";
+}
+
+std::string voronoi_json(const Voronoi2d& v, const ClippedCells* clip) {
+  std::string s = "{\n\"vertices\": " + json_array(v.vertices, 2);
+  s += ",\n\"ridge_points\": " + json_pairs(v.ridge_points);
+  s += ",\n\"ridge_vertices\": " + json_pairs(v.ridge_vertices);
+  s += ",\n\"ridge_directions\": " + json_array(v.ridge_directions, 2);
+  s += ",\n\"regions\": [";
+  for (std::size_t i = 0; i + 1 < v.cell_offsets.size(); ++i) {
+    s += i ? ",[" : "[";
+    for (std::int64_t j = v.cell_offsets[i]; j < v.cell_offsets[i + 1]; ++j)
+      s += (j > v.cell_offsets[i] ? "," : "") + std::to_string(v.cell_vertices[j]);
+    s += "]";
+  }
+  s += "]";
+  if (clip) {
+    s += ",\n\"clipped\": [";
+    for (std::size_t i = 0; i + 1 < clip->offsets.size(); ++i) {
+      std::vector<double> poly(clip->xy.begin() + 2 * clip->offsets[i],
+                               clip->xy.begin() + 2 * clip->offsets[i + 1]);
+      s += (i ? "," : "") + json_array(poly, 2);
+    }
+    s += "]";
+  }
+  return s + "\n}\n";
+}
+
+std::vector<double> parse_box(const std::string& s) {
+  std::vector<double> b;
+  std::size_t at = 0;
+  while (at <= s.size()) {
+    const std::size_t c = std::min(s.find(',', at), s.size());
+    b.push_back(to_real(s.substr(at, c - at), "--clip"));
+    at = c + 1;
+  }
+  if (b.size() != 4 || !(b[0] < b[2] && b[1] < b[3]))
+    throw UsageError("--clip takes xmin,ymin,xmax,ymax with xmin < xmax and ymin < ymax");
+  return b;
+}
+
+}  // namespace
+
+int cmd_delaunay2d(const Global& g, Args& a) {
+  if (a.help()) {
+    std::cout << kHelp;
+    return kOk;
+  }
+  std::string out, vor_path, draw, clip_s;
+  a.value("-o", out) || a.value("--output", out);
+  a.value("--voronoi", vor_path);
+  a.value("--clip", clip_s);
+  a.value("--draw", draw) || a.value("--svg", draw);
+  const bool check = a.flag("--check");
+  auto pos = a.positionals();
+  if (pos.size() != 1) throw UsageError("expected one point file (see --help)");
+  if (out.empty() && vor_path.empty() && draw.empty() && !check)
+    throw UsageError("nothing to do: give -o MESH, --voronoi F, --draw F or --check");
+  io::PointSet p;
+  {
+    Timer t(g, "read");
+    p = io::read_points(pos[0]);
+  }
+  if (p.dim == 3) {  // accept planar files written as 3D
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.coords[3 * i + 2] != 0)
+        throw Error(ErrorCode::InvalidInput, pos[0] + " holds 3D points (point " +
+                                                 std::to_string(i) +
+                                                 " has z != 0): delaunay2d needs 2D points");
+    std::vector<double> xy(2 * p.size());
+    for (std::size_t i = 0; i < p.size(); ++i)
+      xy[2 * i] = p.coords[3 * i], xy[2 * i + 1] = p.coords[3 * i + 1];
+    p.coords.swap(xy);
+    p.dim = 2;
+  }
+  const std::int64_t n = std::int64_t(p.size());
+  Delaunay2dOptions opt;
+  opt.backend = g.backend;
+  Triangulation2d tri;
+  {
+    Timer t(g, "triangulate");
+    tri = delaunay2d(p.coords.data(), n, opt);
+  }
+  if (!g.quiet) {
+    std::cout << n << " points";
+    if (tri.num_duplicates) std::cout << " (" << tri.num_duplicates << " duplicates kept once)";
+    std::cout << " -> " << tri.num_triangles() << " triangles on " << backend_name(tri.stats.backend)
+              << "\n";
+    if (g.verbose) {
+      for (auto& ph : tri.stats.phase_ms)
+        std::fprintf(stderr, "[phase] %-12s %10.2f ms\n", ph.first.c_str(), ph.second);
+      for (auto& c : tri.stats.counters)
+        std::fprintf(stderr, "[count] %-18s %lld\n", c.first.c_str(), (long long)c.second);
+    }
+  }
+  int status = kOk;
+  if (check) {
+    Timer t(g, "check");
+    const auto r = verify::check_delaunay2d(p.coords.data(), n, tri.triangles.data(),
+                                            std::int64_t(tri.num_triangles()),
+                                            tri.duplicate_of.data());
+    if (!r.ok) {
+      std::cerr << "INVALID delaunay2d: " << r.message << "\n";
+      status = kCheckFailed;
+    } else if (!g.quiet) {
+      std::cout << "check: valid Delaunay triangulation\n";
+    }
+  }
+  if (!out.empty()) {
+    Timer t(g, "write");
+    io::Mesh m;
+    m.dim = 2;
+    m.coords = p.coords;
+    m.cell_size = 3;
+    m.cells = tri.triangles;
+    io::write_mesh(out, m);
+  }
+  Voronoi2d vor;
+  ClippedCells clipped;
+  const bool want_vor = !vor_path.empty();
+  if (want_vor) {
+    Timer t(g, "voronoi");
+    vor = voronoi2d(p.coords.data(), n, tri);
+    std::vector<double> box;
+    if (!clip_s.empty()) box = parse_box(clip_s);
+    if (!box.empty() || !draw.empty()) {
+      if (box.empty()) box = grown_box(p.coords, 0.1);
+      clipped = clip_voronoi_cells(p.coords.data(), n, tri, vor, box[0], box[1], box[2], box[3]);
+    }
+    io::write_text(vor_path, voronoi_json(vor, clip_s.empty() ? nullptr : &clipped));
+  } else if (!clip_s.empty()) {
+    throw UsageError("--clip needs --voronoi");
+  }
+  if (!draw.empty()) {
+    Timer t(g, "draw");
+    draw_triangulation(draw, p.coords, tri, want_vor ? &clipped : nullptr);
+  }
+  return status;
+}
+
+}  // namespace gpugeom::cli
