@@ -75,30 +75,40 @@ GG_INLINE std::uint32_t ordered_bits(float f) {
 // triangles, points on the line of a hull edge) the one nearest the middle of the triangle or
 // edge: taking the nearest to an end would cost one batch per point on collinear input.
 // Smaller is better; the choice only steers the work, never the result.
+// (Every product and sum rounded on its own, as on the CPU: nvcc would otherwise contract to
+// FMA, and the two executors would choose differently on near-ties.)
 GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::int32_t q) {
+  using pred::add_rn;
+  using pred::mul_rn;
+  using pred::sub_rn;
   const double* pq = g.at(q);
   int gi = v[0] == g.m ? 0 : v[1] == g.m ? 1 : v[2] == g.m ? 2 : -1;
   if (gi >= 0) {
     const double *a = g.at(v[(gi + 1) % 3]), *b = g.at(v[(gi + 2) % 3]);
-    const double ex = b[0] - a[0], ey = b[1] - a[1];
-    const double o = ex * (pq[1] - a[1]) - ey * (pq[0] - a[0]);  // |ab| * distance beyond
-    const double e2 = ex * ex + ey * ey;
-    if (o > 1e-6 * e2) return ordered_bits(float(-o / e2));
-    const double mx = pq[0] - 0.5 * (a[0] + b[0]), my = pq[1] - 0.5 * (a[1] + b[1]);
-    return ordered_bits(float((mx * mx + my * my) / e2));
+    const double ex = sub_rn(b[0], a[0]), ey = sub_rn(b[1], a[1]);
+    const double o = sub_rn(mul_rn(ex, sub_rn(pq[1], a[1])), mul_rn(ey, sub_rn(pq[0], a[0])));
+    const double e2 = add_rn(mul_rn(ex, ex), mul_rn(ey, ey));  // o = |ab| * distance beyond
+    if (o > mul_rn(1e-6, e2)) return ordered_bits(float(-o / e2));
+    const double mx = sub_rn(pq[0], mul_rn(0.5, add_rn(a[0], b[0])));
+    const double my = sub_rn(pq[1], mul_rn(0.5, add_rn(a[1], b[1])));
+    return ordered_bits(float(add_rn(mul_rn(mx, mx), mul_rn(my, my)) / e2));
   }
   const double *a = g.at(v[0]), *b = g.at(v[1]), *c = g.at(v[2]);
-  const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
-  const double d = 2 * (bx * cy - by * cx);
-  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-  const double qx = pq[0] - a[0], qy = pq[1] - a[1];
-  if (!(d * d > 1e-12 * b2 * c2)) {  // sliver: the circumcentre is far off; use the centroid
-    const double mx = qx - (bx + cx) / 3, my = qy - (by + cy) / 3;
-    return ordered_bits(float(mx * mx + my * my));
+  const double bx = sub_rn(b[0], a[0]), by = sub_rn(b[1], a[1]);
+  const double cx = sub_rn(c[0], a[0]), cy = sub_rn(c[1], a[1]);
+  const double d = mul_rn(2.0, sub_rn(mul_rn(bx, cy), mul_rn(by, cx)));
+  const double b2 = add_rn(mul_rn(bx, bx), mul_rn(by, by));
+  const double c2 = add_rn(mul_rn(cx, cx), mul_rn(cy, cy));
+  const double qx = sub_rn(pq[0], a[0]), qy = sub_rn(pq[1], a[1]);
+  if (!(mul_rn(d, d) > mul_rn(mul_rn(1e-12, b2), c2))) {  // sliver: far circumcentre, use the
+    const double mx = sub_rn(qx, add_rn(bx, cx) / 3);     // centroid
+    const double my = sub_rn(qy, add_rn(by, cy) / 3);
+    return ordered_bits(float(add_rn(mul_rn(mx, mx), mul_rn(my, my))));
   }
-  const double ux = (cy * b2 - by * c2) / d, uy = (bx * c2 - cx * b2) / d;
-  const double dx = qx - ux, dy = qy - uy;
-  return ordered_bits(float(dx * dx + dy * dy));
+  const double ux = sub_rn(mul_rn(cy, b2), mul_rn(by, c2)) / d;
+  const double uy = sub_rn(mul_rn(bx, c2), mul_rn(cx, b2)) / d;
+  const double dx = sub_rn(qx, ux), dy = sub_rn(qy, uy);
+  return ordered_bits(float(add_rn(mul_rn(dx, dx), mul_rn(dy, dy))));
 }
 
 // A bijection of 32-bit integers that scatters neighbouring slots (murmur3's finaliser): flip

@@ -43,8 +43,8 @@ struct Counters {
   std::int64_t flips;
   std::int64_t next;   // triangles in the next round's work list
   std::int64_t exact;  // edge tests the filter left to the exact pass this round
-  std::int64_t exact_total;
-  std::int64_t lost;  // points no triangle claimed (a bug guard: reported, never silent)
+  std::int64_t log;    // flip records since the last relocation
+  std::int64_t lost;   // points no triangle claimed (a bug guard: reported, never silent)
 };
 
 struct Mesh {
@@ -55,6 +55,12 @@ struct Mesh {
   std::int32_t* remap;  // 3 per slot: where an old edge of a flipped slot went
   u64* vote;
   std::int32_t* mark;  // round in which the slot was put on the next work list
+  // Flip history since the last relocation (thesis 5.3.4): record r = {t', n' slots, the new
+  // diagonal's two vertices, the next record that rewrote the t' slot, same for n'}, and per
+  // slot its first and latest record, so a point can follow its triangle through the flips.
+  std::int32_t* rec;
+  std::int32_t* slot_first;
+  std::int32_t* slot_last;
 };
 
 // Splits triangle t at point p into child k = (p, v[k+1], v[k+2]) in slots c[k] = t, base,
@@ -90,7 +96,8 @@ GG_HD inline void split_triangle(const Mesh& M, std::int32_t t, std::int32_t p,
 // becomes t' = (v[k], v[k+1], d) in slot t and n' = (v[k], d, v[k+2]) in slot nb. The four
 // outer neighbour pointers are left as they were (phase 2 fixes them, once every flip of the
 // round has recorded where its old edges went).
-GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, int k, std::int32_t round) {
+GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, int k, std::int32_t round,
+                              std::int32_t record) {
   const std::int32_t e = M.to[3 * t + k];
   const std::int32_t nb = tri_of(e);
   const int j = loc_of(e);
@@ -109,6 +116,30 @@ GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, int k, std::int32_t
   M.remap[3 * nb + j2] = enc(nb, 0);
   M.stamp[t] = round, M.stamp[nb] = round;
   M.pair[t] = 2 * nb + 1, M.pair[nb] = 2 * t;
+  if (record < 0) return;
+  std::int32_t* r = M.rec + 6 * std::int64_t(record);
+  r[0] = t, r[1] = nb, r[2] = vk, r[3] = d, r[4] = -1, r[5] = -1;
+  for (int side = 0; side < 2; ++side) {
+    const std::int32_t s = side ? nb : t;
+    const std::int32_t prev = M.slot_last[s];
+    if (prev >= 0)
+      M.rec[6 * std::int64_t(prev) + 4 + (M.rec[6 * std::int64_t(prev)] == s ? 0 : 1)] = record;
+    else
+      M.slot_first[s] = record;
+    M.slot_last[s] = record;
+  }
+}
+
+// Where point q is after the recorded flips, starting from slot L.
+GG_HD inline std::int32_t follow_history(const Geo& g, const Mesh& M, std::int32_t L,
+                                         std::int32_t q) {
+  for (std::int32_t r = M.slot_first[L]; r >= 0;) {
+    const std::int32_t* x = M.rec + 6 * std::int64_t(r);
+    const int side = orient_ext(g, x[2], x[3], q) > 0 ? 1 : 0;
+    L = x[side];
+    r = x[4 + side];
+  }
+  return L;
 }
 
 // Phase 2 for one outer edge (slot x, local l) of a flipped pair: follow the neighbour to

@@ -196,7 +196,10 @@ inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, Output& out)
   ex.transform_reduce_into(
       m,
       GG_LAMBDA(std::int64_t i)->Extreme {
-        const double o2 = (bx - ax) * (pts[2 * i + 1] - ay) - (by - ay) * (pts[2 * i] - ax);
+        using pred::mul_rn;  // no FMA: both executors pick the same point
+        using pred::sub_rn;
+        const double o2 = sub_rn(mul_rn(sub_rn(bx, ax), sub_rn(pts[2 * i + 1], ay)),
+                                 mul_rn(sub_rn(by, ay), sub_rn(pts[2 * i], ax)));
         return Extreme{o2 < 0 ? -o2 : o2, 0.0, std::int32_t(i)};
       },
       Extreme{-1.0, 0.0, 0}, Farthest{}, e + 2);

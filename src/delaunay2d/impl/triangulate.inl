@@ -9,9 +9,9 @@
 // a flip goes ahead when its proposer has the highest priority (a fixed scramble of the slot
 // number) among the proposals touching either of its two triangles (so every round flips, and
 // the result never depends on timing). Flipped and
-// outvoted triangles form the next list; points of flipped triangles move across the new
-// diagonal at once (the thesis keeps a flip history and relocates once per batch; relocating
-// per round reads only the points whose triangle changed, and needs no history storage).
+// outvoted triangles form the next list. Every flip is recorded; after the batch's last round
+// each point not yet inserted follows its triangle through the records (the thesis' flip
+// history), so the points are read once per batch, not once per round.
 // The final triangulation is the Delaunay triangulation of the perturbed points; flat
 // triangles on the hull (collinear hull points the perturbation moved inward) are flipped
 // away at the end, which leaves every finite triangle of positive area.
@@ -48,11 +48,18 @@ class Triangulator {
     un2_ = ex.template alloc<std::int32_t>(n);
     ins_ = ex.template alloc<std::int32_t>(n);
     ctr_ = ex.template alloc<Counters>(1);
+    log_cap_ = std::max<std::int64_t>(tmax_ / 2, 1 << 16);
+    rec_ = ex.template alloc<std::int32_t>(std::size_t(6 * log_cap_));
+    slot_first_ = ex.template alloc<std::int32_t>(T);
+    slot_last_ = ex.template alloc<std::int32_t>(T);
     const std::int64_t slots = std::min<std::int64_t>(kExactSlots, ex.concurrency());
     exact_slots_ = std::max<std::int64_t>(1, slots);
     scratch_ = ex.template alloc<double>(std::size_t(exact_slots_) * kIncircleScratch);
-    M_ = Mesh{tv_.data(), to_.data(), stamp_.data(), pair_.data(),
-              remap_.data(), vote_.data(), mark_.data()};
+    M_ = Mesh{tv_.data(),   to_.data(),   stamp_.data(),      pair_.data(),
+              remap_.data(), vote_.data(), mark_.data(),       rec_.data(),
+              slot_first_.data(), slot_last_.data()};
+    ex.fill(slot_first_.data(), tmax_, std::int32_t(-1));
+    ex.fill(slot_last_.data(), tmax_, std::int32_t(-1));
     ex.fill(stamp_.data(), tmax_, std::int32_t(-1));
     ex.fill(mark_.data(), tmax_, std::int32_t(-1));
     ex.fill(vote_.data(), tmax_, u64(0));
@@ -252,6 +259,7 @@ class Triangulator {
   void flip_until_delaunay() {
     std::int64_t rounds_here = 0;
     while (nact_ > 0) {
+      if (logged_ + nact_ > log_cap_) relocate_history();  // at most nact_ flips per round
       if (++rounds_here > kMaxRounds)
         throw Error(ErrorCode::InvalidInput,
                     "internal error: flipping did not converge; please report this input");
@@ -308,8 +316,8 @@ class Triangulator {
             // a slot that lost may be rewritten by the flip that beat it: read nb only after
             const std::int32_t nb = M.vote[t] == key ? tri_of(M.to[3 * t + k]) : t;
             if (M.vote[t] == key && M.vote[nb] == key) {
-              flip_phase1(M, t, k, round);
               atomic_add(&ctr->flips, std::int64_t(1));
+              flip_phase1(M, t, k, round, std::int32_t(atomic_add(&ctr->log, std::int64_t(1))));
               push(t);
               push(nb);
             } else {
@@ -317,13 +325,14 @@ class Triangulator {
             }
           });
       fix_round(nact);
-      relocate_round();
       const Counters c = counters();
       flips_ += c.flips;
       exact_ += c.exact;
+      logged_ = c.log;
       std::swap(act_, next_);
       nact_ = c.next;
     }
+    relocate_history();
   }
 
   // Exact decisions for the tests the filter left open; a bounded number of threads, each
@@ -368,22 +377,31 @@ class Triangulator {
         });
   }
 
-  // Points whose triangle flipped this round cross to the side of the new diagonal.
-  void relocate_round() {
-    if (nun_ == 0) return;
+  // Points not yet inserted follow their triangle through the recorded flips; then the
+  // records are cleared.
+  void relocate_history() {
+    if (logged_ == 0) return;
     const Geo g = g_;
     const Mesh M = M_;
-    const std::int32_t round = round_;
     const std::int32_t* un = un_.data();
     std::int32_t* loc = loc_.data();
     ex_.for_each_index(
         nun_, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t q = un[i], L = loc[q];
-          if (M.stamp[L] != round) return;
-          const std::int32_t tp = (M.pair[L] & 1) ? L : (M.pair[L] >> 1);
-          const std::int32_t np = M.pair[tp] >> 1;
-          loc[q] = orient_ext(g, M.tv[3 * tp], M.tv[3 * tp + 2], q) > 0 ? np : tp;
+          const std::int32_t q = un[i];
+          loc[q] = follow_history(g, M, loc[q], q);
         });
+    ex_.for_each_index(
+        logged_, GG_LAMBDA(std::int64_t r) {
+          for (int side = 0; side < 2; ++side) {
+            const std::int32_t s = M.rec[6 * r + side];
+            M.slot_first[s] = -1;
+            M.slot_last[s] = -1;
+          }
+        });
+    Counters* ctr = ctr_.data();
+    ex_.for_each_index(
+        1, GG_LAMBDA(std::int64_t) { ctr->log = 0; });
+    logged_ = 0;
   }
 
   // Flat triangles: collinear vertices the perturbation ordered counter-clockwise. They can
@@ -446,7 +464,7 @@ class Triangulator {
             const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
             if (M.vote[t] != key) return;
             if (M.vote[tri_of(M.to[3 * t + k])] == key) {
-              flip_phase1(M, t, k, round);
+              flip_phase1(M, t, k, round, -1);  // no point is left to follow it
               atomic_add(&ctr->flips, std::int64_t(1));
             }
           });
@@ -482,9 +500,11 @@ class Triangulator {
   std::int64_t tmax_ = 0, ntri_ = 0, nun_ = 0, nact_ = 0;
   std::int32_t round_ = 0;
   std::int64_t batches_ = 0, rounds_ = 0, flips_ = 0, exact_ = 0, exact_slots_ = 1;
+  std::int64_t log_cap_ = 0, logged_ = 0;
   typename Exec::template Buffer<std::int32_t> tv_, to_, stamp_, pair_, remap_, mark_, split_rank_;
   typename Exec::template Buffer<u64> vote_, best_;
   typename Exec::template Buffer<std::int32_t> act_, next_, exl_, loc_, un_, un2_, ins_;
+  typename Exec::template Buffer<std::int32_t> rec_, slot_first_, slot_last_;
   typename Exec::template Buffer<std::int8_t> dec_;
   typename Exec::template Buffer<Counters> ctr_;
   typename Exec::template Buffer<double> scratch_;
