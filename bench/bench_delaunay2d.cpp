@@ -17,6 +17,9 @@
 #include "gpugeom/io.hpp"
 #include "verify.hpp"
 
+#ifdef GPUGEOM_HAVE_CUDA
+#include <cuda_runtime.h>
+#endif
 #ifdef GG_BENCH_CGAL
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -47,6 +50,28 @@ double cgal_ms(const std::vector<Point2>& p) {
   return ms;
 #else
   (void)p;
+  return -1;
+#endif
+}
+// Median time with the points already on the GPU and the result left there; -1 without CUDA.
+double device_resident_ms(const std::vector<Point2>& p, int reps) {
+#ifdef GPUGEOM_HAVE_CUDA
+  double* d = nullptr;
+  const std::size_t bytes = p.size() * sizeof(Point2);
+  if (cudaMalloc(&d, bytes) != cudaSuccess) return -1;
+  cudaMemcpy(d, p.data(), bytes, cudaMemcpyHostToDevice);
+  delaunay2d_device(d, std::int64_t(p.size()));  // warm-up
+  std::vector<double> t;
+  for (int k = 0; k < reps; ++k) {
+    const auto t0 = clk::now();
+    auto r = delaunay2d_device(d, std::int64_t(p.size()));
+    t.push_back(ms_since(t0));
+  }
+  cudaFree(d);
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+#else
+  (void)p, (void)reps;
   return -1;
 #endif
 }
@@ -105,8 +130,9 @@ int main(int argc, char** argv) {
   const std::string gpu = query_device().available ? query_device().name : "none";
   std::printf("GPU: %s\n", gpu.c_str());
   std::ofstream f = bench::open_bench_csv(csv);
-  std::printf("%-22s %10s %-5s %10s %9s %9s %9s %9s %7s %7s %9s %s\n", "distribution", "n", "bk",
-              "total ms", "prepare", "insert", "output", "Mpts/s", "batches", "rounds", "CGAL ms",
+  std::printf("%-22s %10s %-5s %10s %9s %9s %9s %9s %9s %7s %7s %9s %s\n", "distribution", "n",
+              "bk", "total ms", "on-device", "prepare", "insert", "output", "Mpts/s", "batches",
+              "rounds", "CGAL ms",
               "vertices / check");
   for (const auto& in : inputs) {
     const std::int64_t n = std::int64_t(in.pts.size());
@@ -135,15 +161,17 @@ int main(int argc, char** argv) {
                                                   r.duplicate_of.data());
         verdict += rep.ok ? ", valid" : ", INVALID: " + rep.message;
       }
-      std::printf("%-22s %10lld %-5s %10.1f %9.1f %9.1f %9.1f %9.1f %7lld %7lld %9.1f %s\n",
-                  in.name.c_str(), (long long)n, backend_name(b), med, phase(r.stats, "prepare"),
+      const double dev = b == Backend::Cuda ? device_resident_ms(in.pts, reps) : -1;
+      std::printf("%-22s %10lld %-5s %10.1f %9.1f %9.1f %9.1f %9.1f %9.1f %7lld %7lld %9.1f %s\n",
+                  in.name.c_str(), (long long)n, backend_name(b), med, dev, phase(r.stats, "prepare"),
                   phase(r.stats, "insert"), phase(r.stats, "output"), n / med / 1e3,
                   (long long)r.stats.counters["batches"], (long long)r.stats.counters["flip_rounds"],
                   cg, verdict.c_str());
       std::fflush(stdout);
       if (f)
         f << "delaunay2d," << in.name << "," << n << "," << backend_name(b) << ","
-          << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med << ",0,0," << med << ","
+          << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med << ",0," << (dev > 0 ? dev : 0) << ","
+          << med << ","
           << double(r.stats.counters["exact_predicates"]) / std::max<double>(1, n) << "\n";
     }
     if (f && cg >= 0)

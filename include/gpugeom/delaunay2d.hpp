@@ -7,6 +7,7 @@
 // no triangle is degenerate (collinear points on the hull become hull vertices).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "gpugeom/common.hpp"
@@ -38,6 +39,20 @@ struct Triangulation2d {
 // fewer than 3 distinct points or all points on one line.
 Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt = {});
 Triangulation2d delaunay2d(const std::vector<Point2>& pts, const Delaunay2dOptions& opt = {});
+
+// The same triangulation with the points already on the GPU and the result left there (CUDA
+// builds): device_xy is device memory holding n points, x and y interleaved, ready when the
+// call starts (it runs on the default stream). The arrays are device memory freed when the
+// last copy of their pointer goes; they can be wrapped without copying, e.g. by CuPy.
+struct DeviceTriangulation2d {
+  std::int64_t num_points = 0, num_triangles = 0, num_duplicates = 0;
+  std::shared_ptr<std::int32_t> triangles;     // 3 * num_triangles, as Triangulation2d's
+  std::shared_ptr<std::int32_t> neighbors;     // 3 * num_triangles
+  std::shared_ptr<std::int32_t> duplicate_of;  // num_points
+  Stats stats;
+};
+// Throws Error(Unsupported) where the build or the machine has no CUDA device.
+DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n);
 
 // The Voronoi diagram dual to a Delaunay triangulation, in SciPy's `Voronoi` conventions.
 struct Voronoi2d {

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <cuda/atomic>
 #include <string>
+#include <thread>
 #include <thrust/functional.h>
 #include <vector>
 

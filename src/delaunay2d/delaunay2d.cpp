@@ -10,9 +10,8 @@ namespace gpugeom {
 namespace {
 // Slots of the extended triangulation (2m - 2) times 4 must fit the int32 neighbour encoding.
 constexpr std::int64_t kMaxPoints = std::int64_t(1) << 28;
-}  // namespace
 
-Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt) {
+void check_count(std::int64_t n) {
   if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
   if (n > kMaxPoints)
     throw Error(ErrorCode::InvalidInput,
@@ -22,6 +21,11 @@ Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOpt
     throw Error(ErrorCode::DegenerateInput,
                 "fewer than 3 points (" + std::to_string(n) +
                     "): a triangulation needs at least 3 points not on one line");
+}
+}  // namespace
+
+Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt) {
+  check_count(n);
   Triangulation2d r;
   const Backend b = resolve_backend(opt.backend);
   r.stats.backend = b;
@@ -38,6 +42,25 @@ Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOpt
   r.neighbors = std::move(out.neighbors);
   r.duplicate_of = std::move(out.duplicate_of);
   r.num_duplicates = out.num_duplicates;
+  return r;
+}
+
+DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n) {
+  check_count(n);
+  DeviceTriangulation2d r;
+  r.stats.backend = resolve_backend(Backend::Cuda);  // throws where there is no device
+  r.num_points = n;
+#ifdef GPUGEOM_HAVE_CUDA
+  del2d::DeviceOutput out;
+  del2d::cuda_impl::triangulate_device(device_xy, n, out, r.stats);
+  r.num_triangles = out.num_triangles;
+  r.num_duplicates = out.num_duplicates;
+  r.triangles = std::move(out.triangles);
+  r.neighbors = std::move(out.neighbors);
+  r.duplicate_of = std::move(out.duplicate_of);
+#else
+  (void)device_xy;
+#endif
   return r;
 }
 

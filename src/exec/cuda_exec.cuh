@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "exec/cuda_check.cuh"
+#include "exec/host_staging.hpp"
 #include "exec/hd.hpp"
 
 namespace gpugeom {
@@ -54,6 +55,13 @@ class DeviceBuffer {
   T* data() { return p_; }
   const T* data() const { return p_; }
   std::size_t size() const { return n_; }
+  // Gives up ownership (for results handed to the caller); free with cudaFree.
+  T* release() {
+    T* p = p_;
+    p_ = nullptr;
+    n_ = 0;
+    return p;
+  }
 
  private:
   void swap(DeviceBuffer& o) noexcept {
@@ -132,11 +140,19 @@ class CudaExec {
   // Host copies complete before returning, so the host array may be used or freed at once.
   template <class T>
   void to_host(const T* src, std::int64_t n, T* host) {
+    if (std::size_t(n) * sizeof(T) >= staging::kMinBytes && is_pageable(host)) {
+      staging::to_host(host, src, std::size_t(n) * sizeof(T), s_);
+      return;
+    }
     copy(src, n, host);
     sync();
   }
   template <class T>
   void from_host(const T* host, std::int64_t n, T* dst) {
+    if (std::size_t(n) * sizeof(T) >= staging::kMinBytes && is_pageable(host)) {
+      staging::from_host(dst, host, std::size_t(n) * sizeof(T), s_);
+      return;
+    }
     copy(host, n, dst);
     sync();
   }
@@ -236,6 +252,15 @@ class CudaExec {
     return h;
   }
   void sync() { GG_CUDA_CHECK(cudaStreamSynchronize(s_)); }
+  // Plain host memory (not pinned, not managed): large copies then go through staging.
+  static bool is_pageable(const void* p) {
+    cudaPointerAttributes a;
+    if (cudaPointerGetAttributes(&a, p) != cudaSuccess) {
+      (void)cudaGetLastError();
+      return true;
+    }
+    return a.type == cudaMemoryTypeUnregistered;
+  }
   // How many independent work items fill the device (sizes scratch pools).
   std::int64_t concurrency() const { return std::int64_t(sms_) * 1024; }
 

@@ -1,6 +1,8 @@
 // The CUDA executor's 2D Delaunay triangulation: valid by the exact checker on every
 // distribution and degenerate input, and the same arrays as the CPU executor's (the algorithm's
 // choices never depend on timing or on the executor).
+#include <cuda_runtime.h>
+
 #include <cstdlib>
 
 #include "del2d_cases.hpp"
@@ -50,5 +52,30 @@ TEST(CudaDelaunay2d, Repeatable) {  // a race would show as a different result
     const auto b = delaunay2d(p, o);
     ASSERT_EQ(a.triangles, b.triangles);
     ASSERT_EQ(a.neighbors, b.neighbors);
+  }
+}
+
+TEST(CudaDelaunay2d, DeviceResident) {  // points on the GPU in, result left there
+  for (const char* d : {"uniform", "grid"}) {
+    auto p = generate2d(d, 50000, 8);
+    p.push_back(p[7]);  // a duplicate
+    const std::size_t bytes = p.size() * sizeof(Point2);
+    double* dp = nullptr;
+    ASSERT_EQ(cudaMalloc(&dp, bytes), cudaSuccess);
+    ASSERT_EQ(cudaMemcpy(dp, p.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+    const auto r = delaunay2d_device(dp, std::int64_t(p.size()));
+    cudaFree(dp);
+    Delaunay2dOptions o;
+    o.backend = Backend::Cuda;
+    const auto h = delaunay2d(p, o);
+    ASSERT_EQ(r.num_triangles, std::int64_t(h.num_triangles()));
+    EXPECT_EQ(r.num_duplicates, 1);
+    std::vector<std::int32_t> tris(3 * r.num_triangles), nbrs(tris.size()), dup(p.size());
+    cudaMemcpy(tris.data(), r.triangles.get(), tris.size() * 4, cudaMemcpyDeviceToHost);
+    cudaMemcpy(nbrs.data(), r.neighbors.get(), nbrs.size() * 4, cudaMemcpyDeviceToHost);
+    cudaMemcpy(dup.data(), r.duplicate_of.get(), dup.size() * 4, cudaMemcpyDeviceToHost);
+    EXPECT_EQ(tris, h.triangles);
+    EXPECT_EQ(nbrs, h.neighbors);
+    EXPECT_EQ(dup, h.duplicate_of);
   }
 }

@@ -55,16 +55,21 @@ GG_INLINE u64 ordered_key(double v) {
 struct Prepared {
   typename Exec::template Buffer<double> pts;        // 2 per distinct point, curve order
   typename Exec::template Buffer<std::int32_t> orig;  // input index of each
+  typename Exec::template Buffer<std::int32_t> dup;   // n entries (duplicate_of), when any
   std::int64_t m = 0;
   std::int64_t duplicates = 0;
   std::int32_t first[3] = {0, 0, 0};  // the first triangle, counter-clockwise
   double kernel[2] = {0, 0};
 };
 
-inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, Output& out) {
+// xy: on the host, or on the executor when on_device.
+inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_device) {
   Prepared P;
   auto raw = ex.template alloc<double>(std::size_t(2 * n));
-  ex.from_host(xy, 2 * n, raw.data());
+  if (on_device)
+    ex.copy(xy, 2 * n, raw.data());
+  else
+    ex.from_host(xy, 2 * n, raw.data());
   double* r = raw.data();
 
   // Validation and the bounding box in one reduction; -0 becomes +0 (so equal points have
@@ -162,19 +167,17 @@ inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, Output& out)
       });
   // duplicate_of: the kept point of each run (its rank is the number of kept points up to and
   // including the position, minus one).
-  out.duplicate_of.assign(std::size_t(n), -1);
   if (P.duplicates) {
     auto rank = ex.template alloc<std::int32_t>(std::size_t(n));
-    auto dup = ex.template alloc<std::int32_t>(std::size_t(n));
+    P.dup = ex.template alloc<std::int32_t>(std::size_t(n));
     std::int32_t* rk = rank.data();
-    std::int32_t* dp = dup.data();
+    std::int32_t* dp = P.dup.data();
     ex.exclusive_scan_of(
         n, GG_LAMBDA(std::int64_t i)->std::int32_t { return is_dup(i) ? 0 : 1; }, rk);
     ex.for_each_index(
         n, GG_LAMBDA(std::int64_t i) {
           dp[o[i]] = is_dup(i) ? orig[rk[i] - 1] : -1;
         });
-    ex.to_host(dp, n, out.duplicate_of.data());
   }
   if (m < 3)
     throw Error(ErrorCode::DegenerateInput,

@@ -79,8 +79,12 @@ class Triangulator {
     phase("peel", t0);
   }
 
-  // Finite triangles in input indices, neighbours among them.
-  void output(Output& out) {
+  // Finite triangles in input indices, neighbours among them, left on the executor.
+  struct Finished {
+    typename Exec::template Buffer<std::int32_t> tris, nbrs;
+    std::int64_t count = 0;
+  };
+  Finished finish() {
     const std::int32_t m = m_;
     const std::int32_t* tv = tv_.data();
     const std::int32_t* to = to_.data();
@@ -88,17 +92,21 @@ class Triangulator {
     auto finite = GG_LAMBDA(std::int64_t t)->bool {
       return tv[3 * t] != m && tv[3 * t + 1] != m && tv[3 * t + 2] != m;
     };
-    auto rank = ex_.template alloc<std::int32_t>(std::size_t(tmax_));
+    // ranks of the finite slots; the extended triangulation has 2m - 2 slots, of which the
+    // infinite ones are as many as the hull edges
+    auto rank = ex_.template alloc<std::int32_t>(std::size_t(tmax_) + 1);
     std::int32_t* rk = rank.data();
     ex_.exclusive_scan_of(
-        tmax_, GG_LAMBDA(std::int64_t t)->std::int32_t { return finite(t) ? 1 : 0; }, rk);
-    std::int32_t last = 0;
-    ex_.to_host(rk + tmax_ - 1, 1, &last);
-    const std::int64_t nt = last + (tri_finite_host(tmax_ - 1) ? 1 : 0);
-    auto tris = ex_.template alloc<std::int32_t>(std::size_t(3 * nt));
-    auto nbrs = ex_.template alloc<std::int32_t>(std::size_t(3 * nt));
-    std::int32_t* ot = tris.data();
-    std::int32_t* on = nbrs.data();
+        tmax_ + 1,
+        GG_LAMBDA(std::int64_t t)->std::int32_t { return t < tmax_ && finite(t) ? 1 : 0; }, rk);
+    Finished f;
+    std::int32_t nt = 0;
+    ex_.to_host(rk + tmax_, 1, &nt);
+    f.count = nt;
+    f.tris = ex_.template alloc<std::int32_t>(std::size_t(3 * nt));
+    f.nbrs = ex_.template alloc<std::int32_t>(std::size_t(3 * nt));
+    std::int32_t* ot = f.tris.data();
+    std::int32_t* on = f.nbrs.data();
     ex_.for_each_index(
         tmax_, GG_LAMBDA(std::int64_t t) {
           if (!finite(t)) return;
@@ -109,10 +117,7 @@ class Triangulator {
             on[3 * r + k] = finite(nb) ? rk[nb] : -1;
           }
         });
-    out.triangles.resize(std::size_t(3 * nt));
-    out.neighbors.resize(std::size_t(3 * nt));
-    ex_.to_host(ot, 3 * nt, out.triangles.data());
-    ex_.to_host(on, 3 * nt, out.neighbors.data());
+    return f;
   }
 
   using clock = std::chrono::steady_clock;
@@ -120,11 +125,6 @@ class Triangulator {
     ex_.sync();
     st_.phase_ms.push_back(
         {name, std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
-  }
-  bool tri_finite_host(std::int64_t t) {
-    std::int32_t v[3];
-    ex_.to_host(tv_.data() + 3 * t, 3, v);
-    return v[0] != m_ && v[1] != m_ && v[2] != m_;
   }
   Counters counters() {
     Counters c;
@@ -510,23 +510,60 @@ class Triangulator {
   typename Exec::template Buffer<double> scratch_;
 };
 
-inline void triangulate_impl(const double* xy, std::int64_t n, Output& out, Stats& st) {
-  Exec ex;
+// Sizes the host result arrays on another thread while the executor works: zero-filling and
+// first-touching hundreds of megabytes costs as much as copying them. The triangle count is
+// at most 2n - 2 (the extended triangulation's), so the arrays are cut to size at the end.
+class HostSizer {
+ public:
+  HostSizer(Output& out, std::int64_t n)
+      : th_([&out, n] {
+          out.triangles.resize(std::size_t(6 * n));
+          out.neighbors.resize(std::size_t(6 * n));
+          out.duplicate_of.assign(std::size_t(n), -1);
+        }) {}
+  ~HostSizer() { join(); }
+  void join() {
+    if (th_.joinable()) th_.join();
+  }
+
+ private:
+  std::thread th_;
+};
+
+inline double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The whole pipeline; the result stays on the executor (f) with P's duplicate map.
+template <class Body>
+inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device,
+                             Stats& st, Body body) {
   auto t0 = std::chrono::steady_clock::now();
-  Prepared P = prepare(ex, xy, n, out);
-  out.num_duplicates = P.duplicates;
+  Prepared P = prepare(ex, xy, n, on_device);
   st.counters["points"] = n;
   st.counters["distinct_points"] = P.m;
+  st.counters["duplicates"] = P.duplicates;
   ex.sync();
-  st.phase_ms.push_back(
-      {"prepare",
-       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+  st.phase_ms.push_back({"prepare", ms_since(t0)});
   Triangulator T(ex, P, st);
   T.run();
   t0 = std::chrono::steady_clock::now();
-  T.output(out);
+  auto f = T.finish();
   T.report();
-  st.phase_ms.push_back(
-      {"output",
-       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+  body(P, f);
+  st.phase_ms.push_back({"output", ms_since(t0)});
+}
+
+inline void triangulate_impl(const double* xy, std::int64_t n, Output& out, Stats& st) {
+  Exec ex;
+  HostSizer sizer(out, n);
+  triangulate_core(ex, xy, n, false, st, [&](Prepared& P, typename Triangulator::Finished& f) {
+    sizer.join();
+    out.num_duplicates = P.duplicates;
+    ex.to_host(f.tris.data(), 3 * f.count, out.triangles.data());
+    ex.to_host(f.nbrs.data(), 3 * f.count, out.neighbors.data());
+    out.triangles.resize(std::size_t(3 * f.count));
+    out.neighbors.resize(std::size_t(3 * f.count));
+    if (P.duplicates) ex.to_host(P.dup.data(), n, out.duplicate_of.data());
+  });
 }

@@ -1,0 +1,20 @@
+// Large copies between pageable host memory and the device through pinned staging buffers
+// (internal; CUDA builds only). A pageable cudaMemcpy moves about 3 GB/s on the H100 host;
+// chunks through two pinned buffers, with the host-side copies spread over the cores and
+// overlapped with the next chunk's transfer, move about an order of magnitude faster.
+#pragma once
+#include <cstddef>
+
+#include <cuda_runtime.h>
+
+namespace gpugeom::staging {
+
+// Below this size a plain copy costs less than the pipeline.
+constexpr std::size_t kMinBytes = std::size_t(4) << 20;
+
+// Both wait for the copy to finish. Work queued on stream s before the call is ordered before
+// the copy.
+void to_host(void* host, const void* device, std::size_t bytes, cudaStream_t s);
+void from_host(void* device, const void* host, std::size_t bytes, cudaStream_t s);
+
+}  // namespace gpugeom::staging
