@@ -94,11 +94,12 @@ class Triangulator {
     };
     // ranks of the finite slots; the extended triangulation has 2m - 2 slots, of which the
     // infinite ones are as many as the hull edges
-    auto rank = ex_.template alloc<std::int32_t>(std::size_t(tmax_) + 1);
+    const std::int64_t tmax = tmax_;  // (a member read in a device lambda would read `this`)
+    auto rank = ex_.template alloc<std::int32_t>(std::size_t(tmax) + 1);
     std::int32_t* rk = rank.data();
     ex_.exclusive_scan_of(
-        tmax_ + 1,
-        GG_LAMBDA(std::int64_t t)->std::int32_t { return t < tmax_ && finite(t) ? 1 : 0; }, rk);
+        tmax + 1,
+        GG_LAMBDA(std::int64_t t)->std::int32_t { return t < tmax && finite(t) ? 1 : 0; }, rk);
     Finished f;
     std::int32_t nt = 0;
     ex_.to_host(rk + tmax_, 1, &nt);
