@@ -3,15 +3,16 @@
 // mesh.inl.
 //
 // Each batch: every triangle holding points not yet inserted takes the one nearest its
-// circumcentre and splits around it; points of split triangles move to the child holding them.
+// circumcentre and splits around it.
 // Then rounds of flips: every triangle on the work list tests its three edges (filter, then an
 // exact pass over the compacted undecided tests), proposes to flip its first illegal edge, and
 // a flip goes ahead when its proposer has the highest priority (a fixed scramble of the slot
 // number) among the proposals touching either of its two triangles (so every round flips, and
 // the result never depends on timing). Flipped and
-// outvoted triangles form the next list. Every flip is recorded; after the batch's last round
-// each point not yet inserted follows its triangle through the records (the thesis' flip
-// history), so the points are read once per batch, not once per round.
+// outvoted triangles form the next list. Splits and flips are recorded; at the start of the
+// next batch each point not yet inserted follows its triangle through the records (the
+// thesis' history) and takes part in the choice in the same pass, so the points are read once
+// per batch.
 // The final triangulation is the Delaunay triangulation of the perturbed points; flat
 // triangles on the hull (collinear hull points the perturbation moved inward) are flipped
 // away at the end, which leaves every finite triangle of positive area.
@@ -47,6 +48,7 @@ class Triangulator {
     un_ = ex.template alloc<std::int32_t>(n);
     un2_ = ex.template alloc<std::int32_t>(n);
     ins_ = ex.template alloc<std::int32_t>(n);
+    split_ = ex.template alloc<std::int32_t>(4 * n);
     ctr_ = ex.template alloc<Counters>(1);
     log_cap_ = std::max<std::int64_t>(tmax_ / 2, 1 << 16);
     rec_ = ex.template alloc<std::int32_t>(std::size_t(6 * log_cap_));
@@ -72,7 +74,8 @@ class Triangulator {
   void run() {
     auto t0 = clock::now();
     start();
-    while (nun_ > 0) batch();
+    remaining_ = nun_;
+    while (remaining_ > 0) batch();
     phase("insert", t0);
     t0 = clock::now();
     peel();
@@ -175,78 +178,46 @@ class Triangulator {
                       " point(s) could not be located; please report this input");
   }
 
+  // One batch. The points move (through the last batch's split and flips) and choose in one
+  // pass; the chosen triangles are found by a compaction over the triangles, not the points.
   void batch() {
     ++batches_;
-    const Geo g = g_;
-    const std::int32_t* un = un_.data();
-    std::int32_t* loc = loc_.data();
+    relocate(true);
     u64* best = best_.data();
-    std::int32_t* tv = tv_.data();
-    const std::int64_t nun = nun_;
-    // 1. each triangle picks one point
-    ex_.for_each_index(
-        nun, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t q = un[i], t = loc[q];
-          const u64 key = (u64(choice_key(g, tv + 3 * t, q)) << 32) | u64(std::uint32_t(q));
-          atomic_min(best + t, key);
-        });
-    std::int32_t* sel = ins_.data();
+    std::int32_t* ins = ins_.data();
     const std::int64_t nins = ex_.compact_indices(
-        nun,
-        GG_LAMBDA(std::int64_t i) {
-          const std::int32_t q = un[i];
-          return std::uint32_t(best[loc[q]]) == std::uint32_t(q);
-        },
-        sel);
-    // sel[r]: position in the list -> the point; split ranks of the chosen triangles
+        ntri_, GG_LAMBDA(std::int64_t t) { return best[t] != ~u64(0); }, ins);
     std::int32_t* srank = split_rank_.data();
     ex_.for_each_index(
-        nins, GG_LAMBDA(std::int64_t r) {
-          const std::int32_t q = un[sel[r]];
-          sel[r] = q;
-          srank[loc[q]] = std::int32_t(r);
-        });
-    // 2. split
+        nins, GG_LAMBDA(std::int64_t r) { srank[ins[r]] = std::int32_t(r); });
     const Mesh M = M_;
     const std::int32_t first_new = std::int32_t(ntri_);
     std::int32_t* act = act_.data();
+    std::int32_t* sp = split_.data();
+    std::int32_t* loc = loc_.data();
     ex_.for_each_index(
         nins, GG_LAMBDA(std::int64_t r) {
-          const std::int32_t q = sel[r], t = loc[q];
+          const std::int32_t t = ins[r], q = std::int32_t(std::uint32_t(best[t]));
           const std::int32_t base = first_new + 2 * std::int32_t(r);
+          sp[4 * r] = q;  // what the points of t need to find their child later
+          for (int k = 0; k < 3; ++k) sp[4 * r + 1 + k] = M.tv[3 * t + k];
           split_triangle(M, t, q, base, srank, first_new);
           best[t] = ~u64(0);
+          loc[q] = -1;
           act[3 * r] = t;
           act[3 * r + 1] = base;
           act[3 * r + 2] = base + 1;
         });
     ntri_ += 2 * nins;
-    // 3. the other points of split triangles move to their child
-    ex_.for_each_index(
-        nun, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t q = un[i], t = loc[q];
-          const std::int32_t r = srank[t];
-          if (r < 0) return;
-          const std::int32_t p = sel[r];
-          if (p == q) return;
-          // children: c0 = t = (p, v1, v2), c1 = (p, v2, v0), c2 = (p, v0, v1)
-          const std::int32_t c1 = first_new + 2 * r, c2 = c1 + 1;
-          const std::int32_t v1 = tv[3 * t + 1], v2 = tv[3 * t + 2], v0 = tv[3 * c1 + 2];
-          std::int32_t child;
-          if (orient_ext(g, p, v1, q) > 0)
-            child = orient_ext(g, p, v2, q) < 0 ? t : c1;
-          else
-            child = orient_ext(g, p, v0, q) > 0 ? c2 : c1;
-          loc[q] = child;
-        });
-    ex_.for_each_index(
-        nins, GG_LAMBDA(std::int64_t r) {
-          const std::int32_t q = sel[r];
-          srank[loc[q]] = -1;
-          loc[q] = -1;
-        });
-    nun_ = ex_.copy_if(un, nun, un2_.data(), NotInserted{loc});
-    std::swap(un_, un2_);
+    epoch_splits_ = nins;
+    epoch_first_new_ = first_new;
+    remaining_ -= nins;
+    dead_ += nins;
+    if (dead_ * 4 > nun_) {  // drop inserted points from the list once they are a quarter
+      nun_ = ex_.copy_if(un_.data(), nun_, un2_.data(), NotInserted{loc});
+      std::swap(un_, un2_);
+      dead_ = 0;
+    }
     nact_ = 3 * nins;
     flip_until_delaunay();
   }
@@ -260,7 +231,7 @@ class Triangulator {
   void flip_until_delaunay() {
     std::int64_t rounds_here = 0;
     while (nact_ > 0) {
-      if (logged_ + nact_ > log_cap_) relocate_history();  // at most nact_ flips per round
+      if (logged_ + nact_ > log_cap_) relocate(false);  // at most nact_ flips per round
       if (++rounds_here > kMaxRounds)
         throw Error(ErrorCode::InvalidInput,
                     "internal error: flipping did not converge; please report this input");
@@ -333,7 +304,6 @@ class Triangulator {
       std::swap(act_, next_);
       nact_ = c.next;
     }
-    relocate_history();
   }
 
   // Exact decisions for the tests the filter left open; a bounded number of threads, each
@@ -378,19 +348,48 @@ class Triangulator {
         });
   }
 
-  // Points not yet inserted follow their triangle through the recorded flips; then the
+  // Points not yet inserted follow their triangle through this epoch's split and recorded
+  // flips (and, when choose, each triangle then picks one of its points); then the epoch's
   // records are cleared.
-  void relocate_history() {
-    if (logged_ == 0) return;
+  void relocate(bool choose) {
     const Geo g = g_;
     const Mesh M = M_;
     const std::int32_t* un = un_.data();
     std::int32_t* loc = loc_.data();
+    const std::int32_t* srank = split_rank_.data();
+    const std::int32_t* sp = split_.data();
+    const std::int32_t first_new = epoch_first_new_;
+    u64* best = best_.data();
+    const std::int32_t* tv = tv_.data();
+    const bool moved = epoch_splits_ > 0 || logged_ > 0;
+    if (!moved && !choose) return;
     ex_.for_each_index(
         nun_, GG_LAMBDA(std::int64_t i) {
           const std::int32_t q = un[i];
-          loc[q] = follow_history(g, M, loc[q], q);
+          std::int32_t L = loc[q];
+          if (L < 0) return;  // inserted
+          if (moved) {
+            const std::int32_t r = srank[L];
+            if (r >= 0) {  // children: L = (p, v1, v2), c1 = (p, v2, v0), c2 = (p, v0, v1)
+              const std::int32_t* x = sp + 4 * std::int64_t(r);
+              const std::int32_t p = x[0], c1 = first_new + 2 * r;
+              if (orient_ext(g, p, x[2], q) > 0)
+                L = orient_ext(g, p, x[3], q) < 0 ? L : c1;
+              else
+                L = orient_ext(g, p, x[1], q) > 0 ? c1 + 1 : c1;
+            }
+            L = follow_history(g, M, L, q);
+            loc[q] = L;
+          }
+          if (choose) {
+            const u64 key = (u64(choice_key(g, tv + 3 * L, q)) << 32) | u64(std::uint32_t(q));
+            atomic_min(best + L, key);
+          }
         });
+    std::int32_t* sr = split_rank_.data();
+    const std::int32_t* ins = ins_.data();
+    ex_.for_each_index(
+        epoch_splits_, GG_LAMBDA(std::int64_t r) { sr[ins[r]] = -1; });
     ex_.for_each_index(
         logged_, GG_LAMBDA(std::int64_t r) {
           for (int side = 0; side < 2; ++side) {
@@ -399,10 +398,13 @@ class Triangulator {
             M.slot_last[s] = -1;
           }
         });
-    Counters* ctr = ctr_.data();
-    ex_.for_each_index(
-        1, GG_LAMBDA(std::int64_t) { ctr->log = 0; });
+    if (logged_) {
+      Counters* ctr = ctr_.data();
+      ex_.for_each_index(
+          1, GG_LAMBDA(std::int64_t) { ctr->log = 0; });
+    }
     logged_ = 0;
+    epoch_splits_ = 0;
   }
 
   // Flat triangles: collinear vertices the perturbation ordered counter-clockwise. They can
@@ -502,10 +504,12 @@ class Triangulator {
   std::int32_t round_ = 0;
   std::int64_t batches_ = 0, rounds_ = 0, flips_ = 0, exact_ = 0, exact_slots_ = 1;
   std::int64_t log_cap_ = 0, logged_ = 0;
+  std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;  // points; list entries; splits
+  std::int32_t epoch_first_new_ = 0;
   typename Exec::template Buffer<std::int32_t> tv_, to_, stamp_, pair_, remap_, mark_, split_rank_;
   typename Exec::template Buffer<u64> vote_, best_;
   typename Exec::template Buffer<std::int32_t> act_, next_, exl_, loc_, un_, un2_, ins_;
-  typename Exec::template Buffer<std::int32_t> rec_, slot_first_, slot_last_;
+  typename Exec::template Buffer<std::int32_t> rec_, slot_first_, slot_last_, split_;
   typename Exec::template Buffer<std::int8_t> dec_;
   typename Exec::template Buffer<Counters> ctr_;
   typename Exec::template Buffer<double> scratch_;
