@@ -167,6 +167,10 @@ int main(int argc, char** argv) {
                   phase(r.stats, "insert"), phase(r.stats, "output"), n / med / 1e3,
                   (long long)r.stats.counters["batches"], (long long)r.stats.counters["flip_rounds"],
                   cg, verdict.c_str());
+      if (b == Backend::Cuda)
+        std::printf("    upload %.1f ms, waiting for host arrays %.1f ms, copy back %.1f ms\n",
+                    phase(r.stats, "upload"), phase(r.stats, "wait_host_arrays"),
+                    phase(r.stats, "copy_back"));
       std::fflush(stdout);
       if (f)
         f << "delaunay2d," << in.name << "," << n << "," << backend_name(b) << ","

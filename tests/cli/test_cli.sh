@@ -73,6 +73,36 @@ expect 3 "zero everywhere" -- "$G" cvd "$W/none.pgm" -n 5 -o "$W/z.xyz"
 expect 2 "give -o OUT.svg" -- "$G" stipple "$W/grad.pgm" -o "$W/s.pdf"
 expect 2 "supersample must be in 1..64" -- "$G" cvd "$W/grad.pgm" -n 5 -o "$W/z.xyz" --supersample 0
 expect 2 "either -n N or --initial" -- "$G" cvd "$W/grad.pgm" -o "$W/z.xyz"
+# delaunay2d: outputs in each mesh format, the checker, Voronoi JSON, drawings, errors
+expect 0 "wrote 3000 grid2d" -- "$G" gen grid2d -n 3000 -o "$W/g.npy"
+expect 0 "check: valid Delaunay" -- "$G" delaunay2d "$W/g.npy" -o "$W/g.ply" --check
+expect 0 "valid delaunay2d" -- "$G" check "$W/g.ply"
+for ext in off obj ele vtu npy; do
+  expect 0 "2000 points -> 1998 triangles" -- "$G" delaunay2d "$W/c.csv" -o "$W/t.$ext"
+  [ -s "$W/t.$ext" ] || { echo "FAIL: delaunay2d wrote no .$ext"; fail=1; }
+done
+expect 0 "valid delaunay2d" -- "$G" check "$W/t.ele"
+expect 0 "2000 points -> " -- "$G" delaunay2d "$W/c.csv" --voronoi "$W/v.json" --clip -1,-1,2,2 --draw "$W/t.svg"
+python3 - "$W/v.json" <<'PY' || { echo "FAIL: Voronoi JSON"; fail=1; }
+import json, sys
+v = json.load(open(sys.argv[1]))
+assert len(v["regions"]) == 2000 and len(v["clipped"]) == 2000
+assert all(len(c) >= 3 for c in v["clipped"])
+assert len(v["ridge_points"]) == len(v["ridge_vertices"])
+PY
+grep -q "<polygon" "$W/t.svg" || { echo "FAIL: delaunay2d drawing has no Voronoi cells"; fail=1; }
+expect 0 "2000 points -> " -- "$G" delaunay2d "$W/c.csv" --draw "$W/t.png"
+[ -s "$W/t.png" ] || { echo "FAIL: delaunay2d PNG"; fail=1; }
+printf '0 0\n1 1\n2 2\n3 3\n' >"$W/line.xyz"
+expect 3 "one line" -- "$G" delaunay2d "$W/line.xyz" -o "$W/l.ply"
+printf '0 0\n1 0\nnan 1\n' >"$W/nan.xyz"
+expect 3 "NaN" -- "$G" delaunay2d "$W/nan.xyz" -o "$W/l.ply"
+[ -e "$W/l.ply" ] && { echo "FAIL: a failed delaunay2d left an output file"; fail=1; }
+printf '0 0 0\n1 0 1\n0 1 0\n' >"$W/p3.xyz"
+expect 3 "3D points" -- "$G" delaunay2d "$W/p3.xyz" -o "$W/l.ply"
+expect 2 "nothing to do" -- "$G" delaunay2d "$W/c.csv"
+expect 2 "writes .svg or .png" -- "$G" delaunay2d "$W/c.csv" --draw "$W/t.pdf"
+expect 0 "usage: gpugeom delaunay2d" -- "$G" delaunay2d --help
 # a failed write leaves no file behind
 expect 3 "cannot create" -- "$G" gen uniform2d -n 10 -o "$W/nodir/x.xyz"
 [ -e "$W/nodir" ] && { echo "FAIL: output folder appeared"; fail=1; }

@@ -60,16 +60,20 @@ struct Prepared {
   std::int64_t duplicates = 0;
   std::int32_t first[3] = {0, 0, 0};  // the first triangle, counter-clockwise
   double kernel[2] = {0, 0};
+  double upload_ms = 0;
 };
 
 // xy: on the host, or on the executor when on_device.
 inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_device) {
   Prepared P;
+  const auto t0 = std::chrono::steady_clock::now();
   auto raw = ex.template alloc<double>(std::size_t(2 * n));
   if (on_device)
     ex.copy(xy, 2 * n, raw.data());
   else
     ex.from_host(xy, 2 * n, raw.data());
+  P.upload_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                    .count();
   double* r = raw.data();
 
   // Validation and the bounding box in one reduction; -0 becomes +0 (so equal points have

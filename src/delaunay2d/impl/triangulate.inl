@@ -550,6 +550,7 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
   st.counters["duplicates"] = P.duplicates;
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
+  st.phase_ms.push_back({"upload", P.upload_ms});  // (part of prepare)
   Triangulator T(ex, P, st);
   T.run();
   t0 = std::chrono::steady_clock::now();
@@ -563,12 +564,17 @@ inline void triangulate_impl(const double* xy, std::int64_t n, Output& out, Stat
   Exec ex;
   HostSizer sizer(out, n);
   triangulate_core(ex, xy, n, false, st, [&](Prepared& P, typename Triangulator::Finished& f) {
+    ex.sync();
+    auto t0 = std::chrono::steady_clock::now();
     sizer.join();
+    st.phase_ms.push_back({"wait_host_arrays", ms_since(t0)});
+    t0 = std::chrono::steady_clock::now();
     out.num_duplicates = P.duplicates;
     ex.to_host(f.tris.data(), 3 * f.count, out.triangles.data());
     ex.to_host(f.nbrs.data(), 3 * f.count, out.neighbors.data());
     out.triangles.resize(std::size_t(3 * f.count));
     out.neighbors.resize(std::size_t(3 * f.count));
     if (P.duplicates) ex.to_host(P.dup.data(), n, out.duplicate_of.data());
+    st.phase_ms.push_back({"copy_back", ms_since(t0)});
   });
 }
