@@ -42,8 +42,10 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del2d ]; then
   {
     $D --backend cuda --dists uniform,gaussian,thin_circle,circle,grid,two_segments --sizes $SZ --reps 3 --csv "$CSV"
     $D --backend cuda --files /tmp/terrain_1e6.npy,/tmp/terrain_1e7.npy --reps 3 --csv "$CSV" | tail -n +3
-    $D --backend cpu --dists uniform,circle,grid --sizes 1e6 --reps 3 --cgal --csv "$CSV" | tail -n +3
-    $D --backend cpu --dists uniform --sizes 1e7 --reps 1 --cgal --csv "$CSV" | tail -n +3
+    if [ "${DEL2D_CPU:-1}" = 1 ]; then
+      $D --backend cpu --dists uniform,circle,grid --sizes 1e6 --reps 3 --cgal --csv "$CSV" | tail -n +3
+      $D --backend cpu --dists uniform --sizes 1e7 --reps 1 --cgal --csv "$CSV" | tail -n +3
+    fi
     [ "${DEL2D_HUGE:-1e8}" != skip ] && $D --backend cuda --dists uniform --sizes ${DEL2D_HUGE:-1e8} --reps 1 --csv "$CSV" | tail -n +3
   } 2>&1 | tee "$OUT/bench_del2d.txt"
 fi
