@@ -171,6 +171,9 @@ int main(int argc, char** argv) {
         std::printf("    upload %.1f ms, waiting for host arrays %.1f ms, copy back %.1f ms\n",
                     phase(r.stats, "upload"), phase(r.stats, "wait_host_arrays"),
                     phase(r.stats, "copy_back"));
+      for (auto& ph : r.stats.phase_ms)
+        if (ph.first.rfind("insert/", 0) == 0)
+          std::printf("    %-28s %8.2f ms\n", ph.first.c_str(), ph.second);
       std::fflush(stdout);
       if (f)
         f << "delaunay2d," << in.name << "," << n << "," << backend_name(b) << ","

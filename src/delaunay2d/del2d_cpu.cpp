@@ -2,9 +2,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <map>
 #include <cuda/atomic>
 #include <string>
+#include <sys/mman.h>
 #include <thread>
 #include <thrust/functional.h>
 #include <vector>

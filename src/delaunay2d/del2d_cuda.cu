@@ -2,9 +2,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <map>
 #include <cuda/atomic>
 #include <string>
+#include <sys/mman.h>
 #include <thread>
 #include <thrust/functional.h>
 #include <vector>
@@ -25,7 +28,7 @@ void triangulate(const double* xy, std::int64_t n, Output& out, Stats& stats) {
 }
 void triangulate_device(const double* xy, std::int64_t n, DeviceOutput& out, Stats& stats) {
   Exec ex;
-  triangulate_core(ex, xy, n, true, stats, [&](Prepared& P, Triangulator::Finished& f) {
+  triangulate_core(ex, xy, n, true, stats, [] {}, [&](Prepared& P, Triangulator::Finished& f) {
     auto own = [](std::int32_t* p) {
       return std::shared_ptr<std::int32_t>(p, [](std::int32_t* q) { (void)cudaFree(q); });
     };

@@ -64,7 +64,9 @@ struct Prepared {
 };
 
 // xy: on the host, or on the executor when on_device.
-inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_device) {
+template <class AfterUpload>
+inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_device,
+                        AfterUpload after_upload) {
   Prepared P;
   const auto t0 = std::chrono::steady_clock::now();
   auto raw = ex.template alloc<double>(std::size_t(2 * n));
@@ -74,6 +76,7 @@ inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_devi
     ex.from_host(xy, 2 * n, raw.data());
   P.upload_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                     .count();
+  after_upload();
   double* r = raw.data();
 
   // Validation and the bounding box in one reduction; -0 becomes +0 (so equal points have

@@ -69,6 +69,8 @@ class Triangulator {
     ex.fill(split_rank_.data(), tmax_, std::int32_t(-1));
     Counters zero{};
     ex.from_host(&zero, 1, ctr_.data());
+    const char* pe = std::getenv("GPUGEOM_PROFILE");
+    profile_ = pe && pe[0] == '1';
   }
 
   void run() {
@@ -182,11 +184,14 @@ class Triangulator {
   // pass; the chosen triangles are found by a compaction over the triangles, not the points.
   void batch() {
     ++batches_;
+    mark("other");
     relocate(true);
+    mark("relocate+choose");
     u64* best = best_.data();
     std::int32_t* ins = ins_.data();
     const std::int64_t nins = ex_.compact_indices(
         ntri_, GG_LAMBDA(std::int64_t t) { return best[t] != ~u64(0); }, ins);
+    mark("compact chosen");
     std::int32_t* srank = split_rank_.data();
     ex_.for_each_index(
         nins, GG_LAMBDA(std::int64_t r) { srank[ins[r]] = std::int32_t(r); });
@@ -209,6 +214,7 @@ class Triangulator {
           act[3 * r + 2] = base + 1;
         });
     ntri_ += 2 * nins;
+    mark("split");
     epoch_splits_ = nins;
     epoch_first_new_ = first_new;
     remaining_ -= nins;
@@ -218,6 +224,7 @@ class Triangulator {
       std::swap(un_, un2_);
       dead_ = 0;
     }
+    mark("compact points");
     nact_ = 3 * nins;
     flip_until_delaunay();
   }
@@ -263,7 +270,9 @@ class Triangulator {
               if (r == 0) exl[atomic_add(&ctr->exact, std::int64_t(1))] = std::int32_t(3 * i + k);
             }
           });
+      mark("flip: test");
       exact_pass(nact);
+      mark("flip: exact");
       // propose, vote, flip
       ex_.for_each_index(
           nact, GG_LAMBDA(std::int64_t i) {
@@ -296,8 +305,11 @@ class Triangulator {
               push(t);
             }
           });
+      mark("flip: vote+flip");
       fix_round(nact);
+      mark("flip: fix");
       const Counters c = counters();
+      mark("flip: counters");
       flips_ += c.flips;
       exact_ += c.exact;
       logged_ = c.log;
@@ -486,7 +498,17 @@ class Triangulator {
     return (less(a, b) && less(b, c)) || (less(c, b) && less(b, a));
   }
 
+  // GPUGEOM_PROFILE=1: each step is synchronised and timed (slower; for finding where the time
+  // goes), reported as phases "insert/<step>".
+  void mark(const char* step) {
+    if (!profile_) return;
+    ex_.sync();
+    const auto now = clock::now();
+    prof_[step] += std::chrono::duration<double, std::milli>(now - last_).count();
+    last_ = now;
+  }
   void report() {
+    for (auto& p : prof_) st_.phase_ms.push_back({"insert/" + p.first, p.second});
     st_.counters["batches"] = batches_;
     st_.counters["flip_rounds"] = rounds_;
     st_.counters["flips"] = flips_;
@@ -506,6 +528,9 @@ class Triangulator {
   std::int64_t log_cap_ = 0, logged_ = 0;
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;  // points; list entries; splits
   std::int32_t epoch_first_new_ = 0;
+  bool profile_ = false;
+  std::map<std::string, double> prof_;
+  clock::time_point last_ = clock::now();
   typename Exec::template Buffer<std::int32_t> tv_, to_, stamp_, pair_, remap_, mark_, split_rank_;
   typename Exec::template Buffer<u64> vote_, best_;
   typename Exec::template Buffer<std::int32_t> act_, next_, exl_, loc_, un_, un2_, ins_;
@@ -515,24 +540,36 @@ class Triangulator {
   typename Exec::template Buffer<double> scratch_;
 };
 
-// Sizes the host result arrays on another thread while the executor works: zero-filling and
-// first-touching hundreds of megabytes costs as much as copying them. The triangle count is
-// at most 2n - 2 (the extended triangulation's), so the arrays are cut to size at the end.
+// Sizes the host result arrays on other threads while the executor works: zero-filling and
+// first-touching hundreds of megabytes costs as much as copying them. Each array gets its own
+// thread, and huge pages where the kernel offers them (a fault per 2 MB instead of per 4 kB).
+// The triangle count is at most 2n - 2 (the extended triangulation's), so the arrays are cut
+// to size at the end.
 class HostSizer {
  public:
-  HostSizer(Output& out, std::int64_t n)
-      : th_([&out, n] {
-          out.triangles.resize(std::size_t(6 * n));
-          out.neighbors.resize(std::size_t(6 * n));
-          out.duplicate_of.assign(std::size_t(n), -1);
-        }) {}
+  void start(Output& out, std::int64_t n) {
+    th_[0] = std::thread([&out, n] { size(out.triangles, 6 * n, 0); });
+    th_[1] = std::thread([&out, n] { size(out.neighbors, 6 * n, 0); });
+    th_[2] = std::thread([&out, n] { size(out.duplicate_of, n, -1); });
+  }
   ~HostSizer() { join(); }
   void join() {
-    if (th_.joinable()) th_.join();
+    for (auto& t : th_)
+      if (t.joinable()) t.join();
   }
 
  private:
-  std::thread th_;
+  static void size(std::vector<std::int32_t>& v, std::int64_t n, std::int32_t fill) {
+    v.clear();
+    v.reserve(std::size_t(n));
+#ifdef MADV_HUGEPAGE
+    const std::uintptr_t a = (reinterpret_cast<std::uintptr_t>(v.data()) + 0x1FFFFF) & ~0x1FFFFFull;
+    const std::uintptr_t e = (reinterpret_cast<std::uintptr_t>(v.data() + n)) & ~0x1FFFFFull;
+    if (e > a) (void)madvise(reinterpret_cast<void*>(a), e - a, MADV_HUGEPAGE);
+#endif
+    v.assign(std::size_t(n), fill);
+  }
+  std::thread th_[3];
 };
 
 inline double ms_since(std::chrono::steady_clock::time_point t0) {
@@ -540,11 +577,12 @@ inline double ms_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
-template <class Body>
+// after_upload runs once the points are on the executor.
+template <class AfterUpload, class Body>
 inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device,
-                             Stats& st, Body body) {
+                             Stats& st, AfterUpload after_upload, Body body) {
   auto t0 = std::chrono::steady_clock::now();
-  Prepared P = prepare(ex, xy, n, on_device);
+  Prepared P = prepare(ex, xy, n, on_device, after_upload);
   st.counters["points"] = n;
   st.counters["distinct_points"] = P.m;
   st.counters["duplicates"] = P.duplicates;
@@ -562,8 +600,10 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
 
 inline void triangulate_impl(const double* xy, std::int64_t n, Output& out, Stats& st) {
   Exec ex;
-  HostSizer sizer(out, n);
-  triangulate_core(ex, xy, n, false, st, [&](Prepared& P, typename Triangulator::Finished& f) {
+  HostSizer sizer;  // after the upload, so that it does not compete with it
+  triangulate_core(
+      ex, xy, n, false, st, [&] { sizer.start(out, n); },
+      [&](Prepared& P, typename Triangulator::Finished& f) {
     ex.sync();
     auto t0 = std::chrono::steady_clock::now();
     sizer.join();
