@@ -4,7 +4,9 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <map>
+#include <cooperative_groups.h>
 #include <cuda/atomic>
 #include <string>
 #include <sys/mman.h>

@@ -64,9 +64,10 @@ struct Prepared {
 };
 
 // xy: on the host, or on the executor when on_device.
-template <class AfterUpload>
+// (after_upload is a std::function: nvcc refuses a lambda type as a template argument of a
+// function holding device lambdas.)
 inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_device,
-                        AfterUpload after_upload) {
+                        const std::function<void()>& after_upload) {
   Prepared P;
   const auto t0 = std::chrono::steady_clock::now();
   auto raw = ex.template alloc<double>(std::size_t(2 * n));

@@ -267,7 +267,7 @@ class Triangulator {
               const std::int32_t d = M.tv[3 * tri_of(e) + loc_of(e)];
               const int r = illegal_fast(g, M.tv + 3 * t, d);
               dec[3 * i + k] = std::int8_t(r);
-              if (r == 0) exl[atomic_add(&ctr->exact, std::int64_t(1))] = std::int32_t(3 * i + k);
+              if (r == 0) exl[append_slot(&ctr->exact)] = std::int32_t(3 * i + k);
             }
           });
       mark("flip: test");
@@ -292,13 +292,12 @@ class Triangulator {
             const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
             auto push = [&](std::int32_t s) {
               if (atomic_exchange(M.mark + s, round) != round)
-                next[atomic_add(&ctr->next, std::int64_t(1))] = s;
+                next[append_slot(&ctr->next)] = s;
             };
             // a slot that lost may be rewritten by the flip that beat it: read nb only after
             const std::int32_t nb = M.vote[t] == key ? tri_of(M.to[3 * t + k]) : t;
             if (M.vote[t] == key && M.vote[nb] == key) {
-              atomic_add(&ctr->flips, std::int64_t(1));
-              flip_phase1(M, t, k, round, std::int32_t(atomic_add(&ctr->log, std::int64_t(1))));
+              flip_phase1(M, t, k, round, std::int32_t(append_slot(&ctr->log)));
               push(t);
               push(nb);
             } else {
@@ -310,7 +309,7 @@ class Triangulator {
       mark("flip: fix");
       const Counters c = counters();
       mark("flip: counters");
-      flips_ += c.flips;
+      flips_ += c.log - logged_;  // one record per flip
       exact_ += c.exact;
       logged_ = c.log;
       std::swap(act_, next_);
@@ -578,9 +577,9 @@ inline double ms_since(std::chrono::steady_clock::time_point t0) {
 
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
 // after_upload runs once the points are on the executor.
-template <class AfterUpload, class Body>
+template <class Body>
 inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device,
-                             Stats& st, AfterUpload after_upload, Body body) {
+                             Stats& st, const std::function<void()>& after_upload, Body body) {
   auto t0 = std::chrono::steady_clock::now();
   Prepared P = prepare(ex, xy, n, on_device, after_upload);
   st.counters["points"] = n;
