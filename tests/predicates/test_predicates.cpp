@@ -266,3 +266,24 @@ TEST(Sos, DuplicatesAreOrderedByIndex) {
 }
 
 }  // namespace
+
+// The 128-bit integer stage agrees with the expansion arithmetic on whole-number inputs, from
+// tiny grids (mostly cocircular) up to the largest magnitude it accepts, and declines beyond.
+TEST(Incircle, IntegerStageMatchesExact) {
+  std::mt19937_64 rng(99);
+  for (double range : {3.0, 1000.0, 268435456.0}) {
+    std::uniform_int_distribution<long long> u(-(long long)range, (long long)range);
+    for (int i = 0; i < 20000; ++i) {
+      double q[4][2];
+      for (auto& p : q) p[0] = double(u(rng)), p[1] = double(u(rng));
+      int si = 7;
+      ASSERT_TRUE(pred::incircle_int(q[0], q[1], q[2], q[3], si));
+      ASSERT_EQ(si, pred::incircle_exact(q[0], q[1], q[2], q[3], s())) << "range " << range;
+    }
+  }
+  const double big[2] = {268435457.0, 0}, half[2] = {0.5, 0}, o[2] = {0, 0}, x[2] = {1, 0};
+  int si = 7;
+  EXPECT_FALSE(pred::incircle_int(big, o, x, o, si));
+  EXPECT_FALSE(pred::incircle_int(half, o, x, o, si));
+  EXPECT_EQ(si, 7);
+}

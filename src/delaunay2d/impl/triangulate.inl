@@ -17,7 +17,9 @@
 // triangles on the hull (collinear hull points the perturbation moved inward) are flipped
 // away at the end, which leaves every finite triangle of positive area.
 
-constexpr std::int64_t kExactSlots = 8192;  // exact-pass threads (each owns a scratch slice)
+// Exact-pass threads, each with an 8 kB scratch slice: enough to fill the GPU on degenerate
+// input (an integer grid sends most in-circle tests to the exact stage), at most ~0.5 GB.
+constexpr std::int64_t kExactSlotsMin = 1024, kExactSlotsMax = 65536;
 constexpr std::int64_t kMaxRounds = 1000000;  // per batch; every round flips at least once
 
 // (Every member is public: nvcc's extended lambdas may not live in private members.)
@@ -54,8 +56,8 @@ class Triangulator {
     rec_ = ex.template alloc<std::int32_t>(std::size_t(6 * log_cap_));
     slot_first_ = ex.template alloc<std::int32_t>(T);
     slot_last_ = ex.template alloc<std::int32_t>(T);
-    const std::int64_t slots = std::min<std::int64_t>(kExactSlots, ex.concurrency());
-    exact_slots_ = std::max<std::int64_t>(1, slots);
+    const std::int64_t want = std::clamp<std::int64_t>(tmax_ / 64, kExactSlotsMin, kExactSlotsMax);
+    exact_slots_ = std::max<std::int64_t>(1, std::min<std::int64_t>(want, ex.concurrency()));
     scratch_ = ex.template alloc<double>(std::size_t(exact_slots_) * kIncircleScratch);
     M_ = Mesh{tv_.data(),   to_.data(),   stamp_.data(),      pair_.data(),
               remap_.data(), vote_.data(), mark_.data(),       rec_.data(),
