@@ -132,8 +132,7 @@ int main(int argc, char** argv) {
   std::ofstream f = bench::open_bench_csv(csv);
   std::printf("%-22s %10s %-5s %10s %9s %9s %9s %9s %9s %7s %7s %9s %s\n", "distribution", "n",
               "bk", "total ms", "on-device", "prepare", "insert", "output", "Mpts/s", "batches",
-              "rounds", "CGAL ms",
-              "vertices / check");
+              "rounds", "CGAL ms", "vertices / check");
   for (const auto& in : inputs) {
     const std::int64_t n = std::int64_t(in.pts.size());
     const double cg = cgal ? cgal_ms(in.pts) : -1;
@@ -156,17 +155,17 @@ int main(int argc, char** argv) {
       for (std::int64_t i = 0; i < n; ++i) missing += !seen[i] && r.duplicate_of[i] < 0;
       std::string verdict = missing ? std::to_string(missing) + " points missing" : "all points";
       if (check) {
-        const auto rep = verify::check_delaunay2d(&in.pts.data()->x, n, r.triangles.data(),
-                                                  std::int64_t(r.num_triangles()),
-                                                  r.duplicate_of.data());
+        const auto rep =
+            verify::check_delaunay2d(&in.pts.data()->x, n, r.triangles.data(),
+                                     std::int64_t(r.num_triangles()), r.duplicate_of.data());
         verdict += rep.ok ? ", valid" : ", INVALID: " + rep.message;
       }
       const double dev = b == Backend::Cuda ? device_resident_ms(in.pts, reps) : -1;
       std::printf("%-22s %10lld %-5s %10.1f %9.1f %9.1f %9.1f %9.1f %9.1f %7lld %7lld %9.1f %s\n",
-                  in.name.c_str(), (long long)n, backend_name(b), med, dev, phase(r.stats, "prepare"),
-                  phase(r.stats, "insert"), phase(r.stats, "output"), n / med / 1e3,
-                  (long long)r.stats.counters["batches"], (long long)r.stats.counters["flip_rounds"],
-                  cg, verdict.c_str());
+                  in.name.c_str(), (long long)n, backend_name(b), med, dev,
+                  phase(r.stats, "prepare"), phase(r.stats, "insert"), phase(r.stats, "output"),
+                  n / med / 1e3, (long long)r.stats.counters["batches"],
+                  (long long)r.stats.counters["flip_rounds"], cg, verdict.c_str());
       if (b == Backend::Cuda)
         std::printf("    upload %.1f ms, waiting for host arrays %.1f ms, copy back %.1f ms\n",
                     phase(r.stats, "upload"), phase(r.stats, "wait_host_arrays"),
@@ -177,8 +176,8 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
       if (f)
         f << "delaunay2d," << in.name << "," << n << "," << backend_name(b) << ","
-          << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med << ",0," << (dev > 0 ? dev : 0) << ","
-          << med << ","
+          << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med << ",0," << (dev > 0 ? dev : 0)
+          << "," << med << ","
           << double(r.stats.counters["exact_predicates"]) / std::max<double>(1, n) << "\n";
     }
     if (f && cg >= 0)

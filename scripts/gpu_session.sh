@@ -39,10 +39,15 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del2d ]; then
   D=.devbin/gpugeom_bench_del2d
   SZ=${DEL2D_SIZES:-1e5,1e6,1e7}
   for n in 1e6 1e7; do python3 bench/terrain_contours.py -n $n -o /tmp/terrain_$n.npy; done
+  # Triangle's wheel comes carried in .whl/ (the GPU machine has no network)
+  python3 -c "import triangle" 2>/dev/null || python3 -m pip install -q --no-index .whl/triangle-*.whl 2>&1 | tail -1
   {
     $D --backend cuda --dists uniform,gaussian,thin_circle,circle,grid,two_segments --sizes $SZ --reps 3 --csv "$CSV"
     $D --backend cuda --files /tmp/terrain_1e6.npy,/tmp/terrain_1e7.npy --reps 3 --csv "$CSV" | tail -n +3
     if [ "${DEL2D_CPU:-1}" = 1 ]; then
+      python3 bench/anchor_del2d.py --gpugeom .devbin/gpugeom --dists uniform,gaussian,thin_circle,circle,grid --sizes 1e6 \
+        --files /tmp/terrain_1e6.npy --csv "$CSV"
+      python3 bench/anchor_del2d.py --gpugeom .devbin/gpugeom --dists uniform --sizes 1e7 --csv "$CSV" | tail -n +2
       $D --backend cpu --dists uniform,circle,grid --sizes 1e6 --reps 3 --cgal --csv "$CSV" | tail -n +3
       $D --backend cpu --dists uniform --sizes 1e7 --reps 1 --cgal --csv "$CSV" | tail -n +3
     fi

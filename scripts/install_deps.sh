@@ -21,4 +21,8 @@ if ! "$PY" -c "import numpy, scipy, matplotlib" >/dev/null 2>&1; then
   echo "[install_deps] pip install numpy scipy matplotlib"
   "$PY" -m pip install -q numpy scipy matplotlib
 fi
+# Benchmark-only anchor (Shewchuk's Triangle): optional, the tests never need it.
+if ! "$PY" -c "import triangle" >/dev/null 2>&1; then
+  "$PY" -m pip install -q triangle >/dev/null 2>&1 || echo "[install_deps] note: the 'triangle' package (a benchmark anchor) could not be installed"
+fi
 echo "[install_deps] done"

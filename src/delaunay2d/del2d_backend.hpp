@@ -29,6 +29,6 @@ namespace cuda_impl {
 void triangulate(const double* xy, std::int64_t n, Output& out, Stats& stats);
 // xy: n points in device memory.
 void triangulate_device(const double* xy, std::int64_t n, DeviceOutput& out, Stats& stats);
-}
+}  // namespace cuda_impl
 
 }  // namespace gpugeom::del2d

@@ -14,9 +14,8 @@ constexpr std::int64_t kMaxPoints = std::int64_t(1) << 28;
 void check_count(std::int64_t n) {
   if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
   if (n > kMaxPoints)
-    throw Error(ErrorCode::InvalidInput,
-                "too many points (" + std::to_string(n) + "): at most " +
-                    std::to_string(kMaxPoints) + " per triangulation");
+    throw Error(ErrorCode::InvalidInput, "too many points (" + std::to_string(n) + "): at most " +
+                                             std::to_string(kMaxPoints) + " per triangulation");
   if (n < 3)
     throw Error(ErrorCode::DegenerateInput,
                 "fewer than 3 points (" + std::to_string(n) +

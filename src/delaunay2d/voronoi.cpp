@@ -99,8 +99,8 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
       throw Error(ErrorCode::InvalidArgument,
                   "point " + std::to_string(src) + " is not a vertex of the triangulation");
     const std::size_t at = v.cell_vertices.size();
-    const bool open = walk_star(
-        tri, c, [&](std::int64_t t, int) { v.cell_vertices.push_back(std::int32_t(t)); });
+    const bool open =
+        walk_star(tri, c, [&](std::int64_t t, int) { v.cell_vertices.push_back(std::int32_t(t)); });
     if (open) v.cell_vertices.insert(v.cell_vertices.begin() + std::ptrdiff_t(at), -1);
     v.cell_offsets[i + 1] = std::int64_t(v.cell_vertices.size());
   }
@@ -113,8 +113,7 @@ ClippedCells clip_voronoi_cells(const double* xy, std::int64_t n, const Triangul
   check_sizes(n, tri);
   if (std::int64_t(vor.cell_offsets.size()) != n + 1)
     throw Error(ErrorCode::InvalidArgument, "the Voronoi diagram does not belong to these points");
-  if (!(xmin < xmax && ymin < ymax))
-    throw Error(ErrorCode::InvalidArgument, "empty clip box");
+  if (!(xmin < xmax && ymin < ymax)) throw Error(ErrorCode::InvalidArgument, "empty clip box");
   ClippedCells out;
   out.offsets.assign(std::size_t(n + 1), 0);
   const auto start = star_starts(n, tri);

@@ -60,8 +60,7 @@ void parallel_copy(void* dst, const void* src, std::size_t bytes) {
     const std::size_t per = (bytes + nt - 1) / nt;
     const std::size_t a = std::min(bytes, per * std::size_t(omp_get_thread_num()));
     const std::size_t b = std::min(bytes, a + per);
-    if (b > a)
-      std::memcpy(static_cast<char*>(dst) + a, static_cast<const char*>(src) + a, b - a);
+    if (b > a) std::memcpy(static_cast<char*>(dst) + a, static_cast<const char*>(src) + a, b - a);
   }
 }
 

@@ -102,7 +102,8 @@ inline std::vector<Case> distribution_cases(const std::vector<std::int64_t>& siz
                                             std::uint64_t seed) {
   std::vector<Case> cs;
   for (const auto& d : distributions2d())
-    for (std::int64_t n : sizes) cs.push_back({d + " " + std::to_string(n), generate2d(d, n, seed)});
+    for (std::int64_t n : sizes)
+      cs.push_back({d + " " + std::to_string(n), generate2d(d, n, seed)});
   return cs;
 }
 

@@ -162,7 +162,8 @@ TEST(Delaunay2d, SameAsCgal) {
       SCOPED_TRACE(std::string(d) + " " + std::to_string(n));
       const auto p = generate2d(d, n, 21);
       std::vector<std::pair<K::Point_2, std::int32_t>> in;
-      for (std::int64_t i = 0; i < n; ++i) in.push_back({K::Point_2(p[i].x, p[i].y), std::int32_t(i)});
+      for (std::int64_t i = 0; i < n; ++i)
+        in.push_back({K::Point_2(p[i].x, p[i].y), std::int32_t(i)});
       DT dt(in.begin(), in.end());
       auto canon = [](std::int32_t a, std::int32_t b, std::int32_t c) {
         // rotate so the smallest comes first (orientation kept)

@@ -133,8 +133,8 @@ int cmd_delaunay2d(const Global& g, Args& a) {
   if (!g.quiet) {
     std::cout << n << " points";
     if (tri.num_duplicates) std::cout << " (" << tri.num_duplicates << " duplicates kept once)";
-    std::cout << " -> " << tri.num_triangles() << " triangles on " << backend_name(tri.stats.backend)
-              << "\n";
+    std::cout << " -> " << tri.num_triangles() << " triangles on "
+              << backend_name(tri.stats.backend) << "\n";
     if (g.verbose) {
       for (auto& ph : tri.stats.phase_ms)
         std::fprintf(stderr, "[phase] %-12s %10.2f ms\n", ph.first.c_str(), ph.second);
@@ -145,9 +145,9 @@ int cmd_delaunay2d(const Global& g, Args& a) {
   int status = kOk;
   if (check) {
     Timer t(g, "check");
-    const auto r = verify::check_delaunay2d(p.coords.data(), n, tri.triangles.data(),
-                                            std::int64_t(tri.num_triangles()),
-                                            tri.duplicate_of.data());
+    const auto r =
+        verify::check_delaunay2d(p.coords.data(), n, tri.triangles.data(),
+                                 std::int64_t(tri.num_triangles()), tri.duplicate_of.data());
     if (!r.ok) {
       std::cerr << "INVALID delaunay2d: " << r.message << "\n";
       status = kCheckFailed;

@@ -100,14 +100,13 @@ struct Canvas {
     r[i] += (c[0] - r[i]) * a, g[i] += (c[1] - g[i]) * a, b[i] += (c[2] - b[i]) * a;
   }
   void line(double x0, double y0, double x1, double y1, const float c[3]) {
-    if (!(std::isfinite(x0) && std::isfinite(y0) && std::isfinite(x1) && std::isfinite(y1)))
-      return;
+    if (!(std::isfinite(x0) && std::isfinite(y0) && std::isfinite(x1) && std::isfinite(y1))) return;
     const bool steep = std::fabs(y1 - y0) > std::fabs(x1 - x0);
     if (steep) std::swap(x0, y0), std::swap(x1, y1);
     if (x0 > x1) std::swap(x0, x1), std::swap(y0, y1);
     const double dx = x1 - x0, grad = dx > 0 ? (y1 - y0) / dx : 0;
-    const int xa = std::max(0, int(std::floor(x0))), xb = std::min(steep ? h - 1 : w - 1,
-                                                                   int(std::ceil(x1)));
+    const int xa = std::max(0, int(std::floor(x0))),
+              xb = std::min(steep ? h - 1 : w - 1, int(std::ceil(x1)));
     for (int x = xa; x <= xb; ++x) {
       const double y = y0 + grad * (x - x0);
       const int yi = int(std::floor(y));
@@ -130,8 +129,7 @@ struct Canvas {
 void png(const std::string& path, const std::vector<double>& xy, const Triangulation2d& tri,
          const ClippedCells* cells, const View& v) {
   Canvas cv(v.width, v.height);
-  const float grey[3] = {0.55f, 0.55f, 0.55f}, red[3] = {0.85f, 0.12f, 0.12f},
-              black[3] = {0, 0, 0};
+  const float grey[3] = {0.55f, 0.55f, 0.55f}, red[3] = {0.85f, 0.12f, 0.12f}, black[3] = {0, 0, 0};
   each_edge(tri, [&](std::int32_t a, std::int32_t b) {
     cv.line(v.px(xy[2 * a]), v.py(xy[2 * a + 1]), v.px(xy[2 * b]), v.py(xy[2 * b + 1]), grey);
   });

@@ -83,9 +83,8 @@ struct Mesh {
 // Splits triangle t at point p into child k = (p, v[k+1], v[k+2]) in slots c[k] = t, base,
 // base + 1. split_rank / base give the child slots of neighbours split in the same batch; a
 // neighbour not split gets its back pointer from the child that now holds the shared edge.
-GG_HD inline void split_triangle(const Mesh& M, std::int32_t t, std::int32_t p,
-                                 std::int32_t base, const std::int32_t* split_rank,
-                                 std::int32_t first_new) {
+GG_HD inline void split_triangle(const Mesh& M, std::int32_t t, std::int32_t p, std::int32_t base,
+                                 const std::int32_t* split_rank, std::int32_t first_new) {
   const std::int32_t v[3] = {M.tv[3 * t], M.tv[3 * t + 1], M.tv[3 * t + 2]};
   const std::int32_t o[3] = {M.to[3 * t], M.to[3 * t + 1], M.to[3 * t + 2]};
   const std::int32_t c[3] = {t, base, base + 1};

@@ -53,7 +53,7 @@ GG_INLINE u64 ordered_key(double v) {
 }
 
 struct Prepared {
-  typename Exec::template Buffer<double> pts;        // 2 per distinct point, curve order
+  typename Exec::template Buffer<double> pts;         // 2 per distinct point, curve order
   typename Exec::template Buffer<std::int32_t> orig;  // input index of each
   typename Exec::template Buffer<std::int32_t> dup;   // n entries (duplicate_of), when any
   std::int64_t m = 0;
@@ -75,8 +75,8 @@ inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_devi
     ex.copy(xy, 2 * n, raw.data());
   else
     ex.from_host(xy, 2 * n, raw.data());
-  P.upload_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                    .count();
+  P.upload_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   after_upload();
   double* r = raw.data();
 
@@ -183,9 +183,7 @@ inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_devi
     ex.exclusive_scan_of(
         n, GG_LAMBDA(std::int64_t i)->std::int32_t { return is_dup(i) ? 0 : 1; }, rk);
     ex.for_each_index(
-        n, GG_LAMBDA(std::int64_t i) {
-          dp[o[i]] = is_dup(i) ? orig[rk[i] - 1] : -1;
-        });
+        n, GG_LAMBDA(std::int64_t i) { dp[o[i]] = is_dup(i) ? orig[rk[i] - 1] : -1; });
   }
   if (m < 3)
     throw Error(ErrorCode::DegenerateInput,

@@ -59,9 +59,8 @@ class Triangulator {
     const std::int64_t want = std::clamp<std::int64_t>(tmax_ / 64, kExactSlotsMin, kExactSlotsMax);
     exact_slots_ = std::max<std::int64_t>(1, std::min<std::int64_t>(want, ex.concurrency()));
     scratch_ = ex.template alloc<double>(std::size_t(exact_slots_) * kIncircleScratch);
-    M_ = Mesh{tv_.data(),   to_.data(),   stamp_.data(),      pair_.data(),
-              remap_.data(), vote_.data(), mark_.data(),       rec_.data(),
-              slot_first_.data(), slot_last_.data()};
+    M_ = Mesh{tv_.data(),   to_.data(),   stamp_.data(), pair_.data(),       remap_.data(),
+              vote_.data(), mark_.data(), rec_.data(),   slot_first_.data(), slot_last_.data()};
     ex.fill(slot_first_.data(), tmax_, std::int32_t(-1));
     ex.fill(slot_last_.data(), tmax_, std::int32_t(-1));
     ex.fill(stamp_.data(), tmax_, std::int32_t(-1));
@@ -105,8 +104,8 @@ class Triangulator {
     auto rank = ex_.template alloc<std::int32_t>(std::size_t(tmax) + 1);
     std::int32_t* rk = rank.data();
     ex_.exclusive_scan_of(
-        tmax + 1,
-        GG_LAMBDA(std::int64_t t)->std::int32_t { return t < tmax && finite(t) ? 1 : 0; }, rk);
+        tmax + 1, GG_LAMBDA(std::int64_t t)->std::int32_t { return t < tmax && finite(t) ? 1 : 0; },
+        rk);
     Finished f;
     std::int32_t nt = 0;
     ex_.to_host(rk + tmax_, 1, &nt);
@@ -145,9 +144,9 @@ class Triangulator {
     const std::int32_t a = P_.first[0], b = P_.first[1], c = P_.first[2], I = m_;
     // slot 0 (a,b,c); slot 1 (c,b,I) across bc; slot 2 (a,c,I) across ca; slot 3 (b,a,I).
     const std::int32_t tv[12] = {a, b, c, c, b, I, a, c, I, b, a, I};
-    const std::int32_t to[12] = {enc(1, 2), enc(2, 2), enc(3, 2),  // slot 0
-                                 enc(3, 1), enc(2, 0), enc(0, 0),  // slot 1: (b,I) (I,c) (c,b)
-                                 enc(1, 1), enc(3, 0), enc(0, 1),  // slot 2: (c,I) (I,a) (a,c)
+    const std::int32_t to[12] = {enc(1, 2), enc(2, 2), enc(3, 2),   // slot 0
+                                 enc(3, 1), enc(2, 0), enc(0, 0),   // slot 1: (b,I) (I,c) (c,b)
+                                 enc(1, 1), enc(3, 0), enc(0, 1),   // slot 2: (c,I) (I,a) (a,c)
                                  enc(2, 1), enc(1, 0), enc(0, 2)};  // slot 3: (a,I) (I,b) (b,a)
     ex_.from_host(tv, 12, tv_.data());
     ex_.from_host(to, 12, to_.data());
@@ -293,8 +292,7 @@ class Triangulator {
             if (k < 0) return;
             const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
             auto push = [&](std::int32_t s) {
-              if (atomic_exchange(M.mark + s, round) != round)
-                next[append_slot(&ctr->next)] = s;
+              if (atomic_exchange(M.mark + s, round) != round) next[append_slot(&ctr->next)] = s;
             };
             // a slot that lost may be rewritten by the flip that beat it: read nb only after
             const std::int32_t nb = M.vote[t] == key ? tri_of(M.to[3 * t + k]) : t;
@@ -580,8 +578,8 @@ inline double ms_since(std::chrono::steady_clock::time_point t0) {
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
 // after_upload runs once the points are on the executor.
 template <class Body>
-inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device,
-                             Stats& st, const std::function<void()>& after_upload, Body body) {
+inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device, Stats& st,
+                             const std::function<void()>& after_upload, Body body) {
   auto t0 = std::chrono::steady_clock::now();
   Prepared P = prepare(ex, xy, n, on_device, after_upload);
   st.counters["points"] = n;
@@ -605,17 +603,17 @@ inline void triangulate_impl(const double* xy, std::int64_t n, Output& out, Stat
   triangulate_core(
       ex, xy, n, false, st, [&] { sizer.start(out, n); },
       [&](Prepared& P, typename Triangulator::Finished& f) {
-    ex.sync();
-    auto t0 = std::chrono::steady_clock::now();
-    sizer.join();
-    st.phase_ms.push_back({"wait_host_arrays", ms_since(t0)});
-    t0 = std::chrono::steady_clock::now();
-    out.num_duplicates = P.duplicates;
-    ex.to_host(f.tris.data(), 3 * f.count, out.triangles.data());
-    ex.to_host(f.nbrs.data(), 3 * f.count, out.neighbors.data());
-    out.triangles.resize(std::size_t(3 * f.count));
-    out.neighbors.resize(std::size_t(3 * f.count));
-    if (P.duplicates) ex.to_host(P.dup.data(), n, out.duplicate_of.data());
-    st.phase_ms.push_back({"copy_back", ms_since(t0)});
-  });
+        ex.sync();
+        auto t0 = std::chrono::steady_clock::now();
+        sizer.join();
+        st.phase_ms.push_back({"wait_host_arrays", ms_since(t0)});
+        t0 = std::chrono::steady_clock::now();
+        out.num_duplicates = P.duplicates;
+        ex.to_host(f.tris.data(), 3 * f.count, out.triangles.data());
+        ex.to_host(f.nbrs.data(), 3 * f.count, out.neighbors.data());
+        out.triangles.resize(std::size_t(3 * f.count));
+        out.neighbors.resize(std::size_t(3 * f.count));
+        if (P.duplicates) ex.to_host(P.dup.data(), n, out.duplicate_of.data());
+        st.phase_ms.push_back({"copy_back", ms_since(t0)});
+      });
 }

@@ -1,0 +1,56 @@
+#!/usr/bin/env python3
+"""CPU anchors for the 2D Delaunay benchmark, on the very points gpugeom_bench_del2d uses
+(`gpugeom gen` with the same seed, or the same .npy files): Triangle (the `triangle` package,
+Shewchuk's code) and SciPy's Delaunay (Qhull), one core each. Prints a table, appends CSV rows.
+"""
+import argparse, os, subprocess, sys, tempfile, time
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--gpugeom", required=True)
+    ap.add_argument("--dists", default="uniform")
+    ap.add_argument("--sizes", default="1e5,1e6")
+    ap.add_argument("--files", default="")
+    ap.add_argument("--scipy-max", type=float, default=1e6, help="skip Qhull above this size")
+    ap.add_argument("--csv")
+    a = ap.parse_args()
+    import numpy as np
+    tools = {}
+    try:
+        import triangle
+        tools["triangle"] = lambda p: len(triangle.triangulate({"vertices": p}, "Q")["triangles"])
+    except ImportError as e:
+        print(f"note: Triangle anchor skipped ({e})")
+    try:
+        from scipy.spatial import Delaunay
+        tools["scipy-qhull"] = lambda p: len(Delaunay(p).simplices)
+    except ImportError as e:
+        print(f"note: SciPy anchor skipped ({e})")
+    inputs = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for d in filter(None, a.dists.split(",")):
+            for s in filter(None, a.sizes.split(",")):
+                n = int(float(s))
+                f = os.path.join(tmp, f"{d}_{n}.npy")
+                subprocess.run([a.gpugeom, "--quiet", "gen", d + "2d", "-n", str(n), "--seed", "1",
+                                "-o", f], check=True)
+                inputs.append((d, np.load(f)))
+        for f in filter(None, a.files.split(",")):
+            inputs.append((os.path.basename(f), np.load(f)))
+        print(f"{'distribution':22s} {'n':>10s} {'tool':12s} {'ms':>10s} {'triangles':>10s}")
+        for name, p in inputs:
+            p = np.ascontiguousarray(p[:, :2], dtype=np.float64)
+            for tool, run in tools.items():
+                if tool == "scipy-qhull" and len(p) > a.scipy_max:
+                    continue
+                t0 = time.perf_counter()
+                nt = run(p)
+                ms = 1e3 * (time.perf_counter() - t0)
+                print(f"{name:22s} {len(p):10d} {tool:12s} {ms:10.1f} {nt:10d}", flush=True)
+                if a.csv:
+                    with open(a.csv, "a") as c:
+                        c.write(f"delaunay2d,{name},{len(p)},{tool},cpu-1core,0,{ms},0,0,{ms},0\n")
+    return 0
+
+if __name__ == "__main__":
+    sys.exit(main())
