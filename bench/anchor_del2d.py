@@ -12,6 +12,7 @@ def main():
     ap.add_argument("--sizes", default="1e5,1e6")
     ap.add_argument("--files", default="")
     ap.add_argument("--scipy-max", type=float, default=1e6, help="skip Qhull above this size")
+    ap.add_argument("--tools", default="triangle,scipy-qhull")
     ap.add_argument("--csv")
     a = ap.parse_args()
     import numpy as np
@@ -26,6 +27,7 @@ def main():
         tools["scipy-qhull"] = lambda p: len(Delaunay(p).simplices)
     except ImportError as e:
         print(f"note: SciPy anchor skipped ({e})")
+    tools = {k: v for k, v in tools.items() if k in a.tools.split(",")}
     inputs = []
     with tempfile.TemporaryDirectory() as tmp:
         for d in filter(None, a.dists.split(",")):

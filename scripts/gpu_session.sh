@@ -7,10 +7,11 @@ OUT=${OUT:-/tmp/gg_out}
 mkdir -p "$OUT"
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$OUT/gpu.txt"
 LD_LIBRARY_PATH=$LD_LIBRARY_PATH .devbin/gpugeom info --device
-echo "== GPU tests (label gpu)"
 status=0
-ctest --test-dir .devbin -L gpu 2>&1 | tail -8 | tee "$OUT/ctest_gpu.txt" 
-TESTS=${TESTS:-test_*_cuda}  # a glob: which GPU test binaries to run (and sanitise)
+TESTS=${TESTS:-test_*_cuda}  # a glob: which GPU test binaries to run (and sanitise); none: skip
+if [ "$TESTS" != none ]; then
+echo "== GPU tests (label gpu)"
+ctest --test-dir .devbin -L gpu 2>&1 | tail -8 | tee "$OUT/ctest_gpu.txt"
 for t in .devbin/$TESTS; do
   "$t" --gtest_brief=1 >"$OUT/$(basename "$t").log" 2>&1
   rc=$?
@@ -28,6 +29,7 @@ if [ "${SKIP_SANITIZER:-0}" != 1 ]; then
   GG_TEST_TUPLES=1500 timeout 120 "$CS" --tool synccheck --error-exitcode 9 .devbin/test_exec_cuda --gtest_brief=1 >"$OUT/synccheck.log" 2>&1
   echo "synccheck test_exec_cuda: rc=$? $(grep -E 'ERROR SUMMARY' "$OUT/synccheck.log" | tail -1)"
 fi
+fi
 if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = edt ]; then
   echo "== SciPy oracle through the CLI on the CUDA backend"
   GPUGEOM_BACKEND=cuda python3 tests/edt/test_scipy_oracle.py .devbin/gpugeom 2>&1 | tail -1
@@ -40,14 +42,15 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del2d ]; then
   SZ=${DEL2D_SIZES:-1e5,1e6,1e7}
   for n in 1e6 1e7; do python3 bench/terrain_contours.py -n $n -o /tmp/terrain_$n.npy; done
   # Triangle's wheel comes carried in .whl/ (the GPU machine has no network)
-  python3 -c "import triangle" 2>/dev/null || python3 -m pip install -q --no-index .whl/triangle-*.whl 2>&1 | tail -1
+  python3 -c "import triangle" 2>/dev/null || python3 -m pip install -q --no-index --find-links .whl triangle 2>&1 | tail -1
   {
     $D --backend cuda --dists uniform,gaussian,thin_circle,circle,grid,two_segments --sizes $SZ --reps 3 --csv "$CSV"
     $D --backend cuda --files /tmp/terrain_1e6.npy,/tmp/terrain_1e7.npy --reps 3 --csv "$CSV" | tail -n +3
     if [ "${DEL2D_CPU:-1}" = 1 ]; then
-      python3 bench/anchor_del2d.py --gpugeom .devbin/gpugeom --dists uniform,gaussian,thin_circle,circle,grid --sizes 1e6 \
-        --files /tmp/terrain_1e6.npy --csv "$CSV"
-      python3 bench/anchor_del2d.py --gpugeom .devbin/gpugeom --dists uniform --sizes 1e7 --csv "$CSV" | tail -n +2
+      python3 bench/anchor_del2d.py --gpugeom .devbin/gpugeom --dists uniform,circle,grid --sizes 1e6 \
+        --files /tmp/terrain_1e6.npy --tools triangle --csv "$CSV"
+      python3 bench/anchor_del2d.py --gpugeom .devbin/gpugeom --dists uniform --sizes 1e6,1e7 --tools triangle,scipy-qhull \
+        --csv "$CSV" | tail -n +2
       $D --backend cpu --dists uniform,circle,grid --sizes 1e6 --reps 3 --cgal --csv "$CSV" | tail -n +3
       $D --backend cpu --dists uniform --sizes 1e7 --reps 1 --cgal --csv "$CSV" | tail -n +3
     fi
