@@ -80,6 +80,15 @@ struct Mesh {
   std::int32_t* slot_last;
 };
 
+// The first edge a triangle's tests found illegal (+1), or -1.
+GG_INLINE int first_illegal(const std::int8_t* dec) {
+  return dec[0] > 0 ? 0 : dec[1] > 0 ? 1 : dec[2] > 0 ? 2 : -1;
+}
+// A flip proposal's key: newer rounds win over stale keys, then a fixed scramble of the slot.
+GG_INLINE u64 vote_key(std::int32_t round, std::int32_t t) {
+  return (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
+}
+
 // Splits triangle t at point p into child k = (p, v[k+1], v[k+2]) in slots c[k] = t, base,
 // base + 1. split_rank / base give the child slots of neighbours split in the same batch; a
 // neighbour not split gets its back pointer from the child that now holds the shared edge.

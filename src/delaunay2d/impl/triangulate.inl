@@ -275,22 +275,14 @@ class Triangulator {
       exact_pass(nact);
       mark("flip: exact");
       // propose, vote, flip
-      ex_.for_each_index(
-          nact, GG_LAMBDA(std::int64_t i) {
-            const std::int32_t t = act[i];
-            const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
-            if (k < 0) return;
-            const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
-            atomic_max(M.vote + t, key);
-            atomic_max(M.vote + tri_of(M.to[3 * t + k]), key);
-          });
+      vote(nact);
       std::int32_t* next = next_.data();
       ex_.for_each_index(
           nact, GG_LAMBDA(std::int64_t i) {
             const std::int32_t t = act[i];
-            const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
+            const int k = first_illegal(dec + 3 * i);
             if (k < 0) return;
-            const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
+            const u64 key = vote_key(round, t);
             auto push = [&](std::int32_t s) {
               if (atomic_exchange(M.mark + s, round) != round) next[append_slot(&ctr->next)] = s;
             };
@@ -339,6 +331,24 @@ class Triangulator {
             const std::int32_t d = M.tv[3 * tri_of(o) + loc_of(o)];
             dec[e] = std::int8_t(illegal_exact(g, M.tv + 3 * t, d, scr + s * kIncircleScratch));
           }
+        });
+  }
+
+  // Every triangle of the work list with an illegal edge proposes to flip the first one: its
+  // key goes to both triangles, the largest key on a triangle wins it.
+  void vote(std::int64_t nact) {
+    const Mesh M = M_;
+    const std::int32_t round = round_;
+    const std::int32_t* act = act_.data();
+    const std::int8_t* dec = dec_.data();
+    ex_.for_each_index(
+        nact, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t t = act[i];
+          const int k = first_illegal(dec + 3 * i);
+          if (k < 0) return;
+          const u64 key = vote_key(round, t);
+          atomic_max(M.vote + t, key);
+          atomic_max(M.vote + tri_of(M.to[3 * t + k]), key);
         });
   }
 
@@ -461,21 +471,13 @@ class Triangulator {
                 dec[3 * i + k] = 1;
             }
           });
+      vote(nflat);
       ex_.for_each_index(
           nflat, GG_LAMBDA(std::int64_t i) {
             const std::int32_t t = act[i];
-            const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
+            const int k = first_illegal(dec + 3 * i);
             if (k < 0) return;
-            const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
-            atomic_max(M.vote + t, key);
-            atomic_max(M.vote + tri_of(M.to[3 * t + k]), key);
-          });
-      ex_.for_each_index(
-          nflat, GG_LAMBDA(std::int64_t i) {
-            const std::int32_t t = act[i];
-            const int k = dec[3 * i] > 0 ? 0 : dec[3 * i + 1] > 0 ? 1 : dec[3 * i + 2] > 0 ? 2 : -1;
-            if (k < 0) return;
-            const u64 key = (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
+            const u64 key = vote_key(round, t);
             if (M.vote[t] != key) return;
             if (M.vote[tri_of(M.to[3 * t + k])] == key) {
               flip_phase1(M, t, k, round, -1);  // no point is left to follow it
