@@ -30,6 +30,10 @@ python3 bench/anchor_edt.py --sides $ESIDES --density 0.1 --tools cupy,scipy,ope
 echo "== centroidal Voronoi diagram (time per Lloyd iteration)"
 if [ "$QUICK" = 1 ]; then CSIDES=1024; CSITES=1000,100000; else CSIDES=1024,4096,8192; CSITES=1000,100000,1000000; fi
 "$BUILD/bench/gpugeom_bench_cvd" --sides $CSIDES --sites $CSITES --iters 5 --csv "$CSV"
+echo "== 2D Delaunay (end to end and on the device; CGAL in the same process, then Triangle)"
+if [ "$QUICK" = 1 ]; then DSIZES=100000,1000000; else DSIZES=1000000,10000000; fi
+"$BUILD/bench/gpugeom_bench_del2d" --dists uniform,thin_circle,circle,grid --sizes $DSIZES --reps 3 --cgal --csv "$CSV"
+python3 bench/anchor_del2d.py --gpugeom "$G" --dists uniform,circle,grid --sizes $ASIZES --tools triangle --csv "$CSV" || true
 echo "== anchors (CPU, one core)"
 if [ -x "$BUILD/bench/anchor_cgal" ]; then
   "$BUILD/bench/anchor_cgal" --problem delaunay2d --dist uniform --sizes $ASIZES --csv "$CSV"
