@@ -227,7 +227,7 @@ class Triangulator {
     }
     mark("compact points");
     nact_ = 3 * nins;
-    flip_until_delaunay();
+    flip_until_delaunay(true);  // the list holds the children of the splits, new point first
   }
 
   struct NotInserted {
@@ -236,7 +236,7 @@ class Triangulator {
   };
 
   // Rounds of flips over the work list until no edge of it is illegal.
-  void flip_until_delaunay() {
+  void flip_until_delaunay(bool first_round) {
     std::int64_t rounds_here = 0;
     while (nact_ > 0) {
       if (logged_ + nact_ > log_cap_) relocate(false);  // at most nact_ flips per round
@@ -259,11 +259,19 @@ class Triangulator {
             ctr->next = 0;
             ctr->exact = 0;
           });
-      // test every edge with the filter; undecided tests go to the exact list
+      // test every edge with the filter; undecided tests go to the exact list. In a batch's
+      // first round the list holds the children of the splits, and only their edges opposite
+      // the new point need a test: the edges at the new point are locally Delaunay (the point
+      // lies inside the old triangle's circumcircle, so the circle through it and an old edge
+      // leaves the old triangle's third vertex outside; for an infinite triangle the point lies
+      // beyond the old edge, which keeps both half-planes clear).
+      const int edges = first_round ? 1 : 3;
+      first_round = false;
       ex_.for_each_index(
           nact, GG_LAMBDA(std::int64_t i) {
             const std::int32_t t = act[i];
-            for (int k = 0; k < 3; ++k) {
+            for (int k = 1; k < 3; ++k) dec[3 * i + k] = -1;
+            for (int k = 0; k < edges; ++k) {
               const std::int32_t e = M.to[3 * t + k];
               const std::int32_t d = M.tv[3 * tri_of(e) + loc_of(e)];
               const int r = illegal_fast(g, M.tv + 3 * t, d);
