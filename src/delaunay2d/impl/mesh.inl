@@ -80,6 +80,18 @@ struct Mesh {
   std::int32_t* slot_last;
 };
 
+// A work-list entry: the slot, and the local index of an edge known to be locally Delaunay
+// (the diagonal its flip just made) in bits 29-30 as index + 1 (slots stay below 2^29).
+GG_INLINE std::int32_t list_entry(std::int32_t slot, int legal) {
+  return slot | ((legal + 1) << 29);
+}
+GG_INLINE std::int32_t slot_of(std::int32_t entry) {
+  return entry & 0x1FFFFFFF;
+}
+GG_INLINE int legal_edge_of(std::int32_t entry) {
+  return ((entry >> 29) & 3) - 1;
+}
+
 // The first edge a triangle's tests found illegal (+1), or -1.
 GG_INLINE int first_illegal(const std::int8_t* dec) {
   return dec[0] > 0 ? 0 : dec[1] > 0 ? 1 : dec[2] > 0 ? 2 : -1;

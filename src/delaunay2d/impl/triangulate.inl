@@ -265,13 +265,20 @@ class Triangulator {
       // lies inside the old triangle's circumcircle, so the circle through it and an old edge
       // leaves the old triangle's third vertex outside; for an infinite triangle the point lies
       // beyond the old edge, which keeps both half-planes clear).
+      // Later rounds skip the diagonal a flip just made (locally Delaunay by the flip), which
+      // the list entry carries.
       const int edges = first_round ? 1 : 3;
       first_round = false;
       ex_.for_each_index(
           nact, GG_LAMBDA(std::int64_t i) {
-            const std::int32_t t = act[i];
+            const std::int32_t t = slot_of(act[i]);
+            const int known = legal_edge_of(act[i]);
             for (int k = 1; k < 3; ++k) dec[3 * i + k] = -1;
             for (int k = 0; k < edges; ++k) {
+              if (k == known) {
+                dec[3 * i + k] = -1;
+                continue;
+              }
               const std::int32_t e = M.to[3 * t + k];
               const std::int32_t d = M.tv[3 * tri_of(e) + loc_of(e)];
               const int r = illegal_fast(g, M.tv + 3 * t, d);
@@ -287,21 +294,22 @@ class Triangulator {
       std::int32_t* next = next_.data();
       ex_.for_each_index(
           nact, GG_LAMBDA(std::int64_t i) {
-            const std::int32_t t = act[i];
+            const std::int32_t t = slot_of(act[i]);
             const int k = first_illegal(dec + 3 * i);
             if (k < 0) return;
             const u64 key = vote_key(round, t);
-            auto push = [&](std::int32_t s) {
-              if (atomic_exchange(M.mark + s, round) != round) next[append_slot(&ctr->next)] = s;
+            auto push = [&](std::int32_t s, int legal) {
+              if (atomic_exchange(M.mark + s, round) != round)
+                next[append_slot(&ctr->next)] = list_entry(s, legal);
             };
             // a slot that lost may be rewritten by the flip that beat it: read nb only after
             const std::int32_t nb = M.vote[t] == key ? tri_of(M.to[3 * t + k]) : t;
             if (M.vote[t] == key && M.vote[nb] == key) {
               flip_phase1(M, t, k, round, std::int32_t(append_slot(&ctr->log)));
-              push(t);
-              push(nb);
+              push(t, 1);   // t' = (v_k, v_k+1, d): the diagonal is opposite its vertex 1
+              push(nb, 2);  // n' = (v_k, d, v_k+2): opposite its vertex 2
             } else {
-              push(t);
+              push(t, -1);
             }
           });
       mark("flip: vote+flip");
@@ -333,7 +341,7 @@ class Triangulator {
           const std::int64_t n = ctr->exact;
           for (std::int64_t j = s; j < n; j += S) {
             const std::int32_t e = exl[j];
-            const std::int32_t t = act[e / 3];
+            const std::int32_t t = slot_of(act[e / 3]);
             const int k = e % 3;
             const std::int32_t o = M.to[3 * t + k];
             const std::int32_t d = M.tv[3 * tri_of(o) + loc_of(o)];
@@ -351,7 +359,7 @@ class Triangulator {
     const std::int8_t* dec = dec_.data();
     ex_.for_each_index(
         nact, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t t = act[i];
+          const std::int32_t t = slot_of(act[i]);
           const int k = first_illegal(dec + 3 * i);
           if (k < 0) return;
           const u64 key = vote_key(round, t);
@@ -367,7 +375,7 @@ class Triangulator {
     const std::int32_t* act = act_.data();
     ex_.for_each_index(
         nact, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t t = act[i];
+          const std::int32_t t = slot_of(act[i]);
           if (M.stamp[t] != round || !(M.pair[t] & 1)) return;
           const std::int32_t nb = M.pair[t] >> 1;
           fix_edge(M, t, 0, round);
