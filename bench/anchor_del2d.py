@@ -3,7 +3,9 @@
 (`gpugeom gen` with the same seed, or the same .npy files): Triangle (the `triangle` package,
 Shewchuk's code) and SciPy's Delaunay (Qhull), one core each. Prints a table, appends CSV rows.
 """
-import argparse, os, subprocess, sys, tempfile, time
+import argparse, os, subprocess, sys, tempfile
+
+from anchor_common import append_row, timed_ms
 
 def main():
     ap = argparse.ArgumentParser()
@@ -45,13 +47,9 @@ def main():
             for tool, run in tools.items():
                 if tool == "scipy-qhull" and len(p) > a.scipy_max:
                     continue
-                t0 = time.perf_counter()
-                nt = run(p)
-                ms = 1e3 * (time.perf_counter() - t0)
+                nt, ms = timed_ms(run, p)
                 print(f"{name:22s} {len(p):10d} {tool:12s} {ms:10.1f} {nt:10d}", flush=True)
-                if a.csv:
-                    with open(a.csv, "a") as c:
-                        c.write(f"delaunay2d,{name},{len(p)},{tool},cpu-1core,0,{ms},0,0,{ms},0\n")
+                append_row(a.csv, "delaunay2d", name, len(p), tool, ms)
     return 0
 
 if __name__ == "__main__":

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """SciPy / Qhull anchors on the same points gpugeom generates (read back from .npy files
 written by `gpugeom gen`): 2D/3D Delaunay and the 3D convex hull. Appends CSV rows."""
-import argparse, os, subprocess, sys, tempfile, time
+import argparse, os, subprocess, sys, tempfile
+
+from anchor_common import append_row, timed_ms
 
 def main():
     ap = argparse.ArgumentParser()
@@ -26,13 +28,10 @@ def main():
                 f = os.path.join(tmp, "p.npy")
                 subprocess.run([a.gpugeom, "--quiet", "gen", d + dim, "-n", str(n), "--seed", a.seed, "-o", f], check=True)
                 p = np.load(f)
-                t0 = time.perf_counter()
-                out = len(ConvexHull(p).simplices) if a.problem == "hull3d" else len(Delaunay(p).simplices)
-                ms = 1e3 * (time.perf_counter() - t0)
+                build = ConvexHull if a.problem == "hull3d" else Delaunay
+                out, ms = timed_ms(lambda q: len(build(q).simplices), p)
                 print(f"{a.problem:11s} {d:12s} {n:10d} scipy {ms:10.1f} ms  ({out} simplices)")
-                if a.csv:
-                    with open(a.csv, "a") as c:
-                        c.write(f"{a.problem},{d}{dim},{n},scipy-qhull,cpu-1core,0,{ms},0,{ms},{ms},0\n")
+                append_row(a.csv, a.problem, d + dim, n, "scipy-qhull", ms, resident_ms=ms)
     return 0
 
 if __name__ == "__main__":

@@ -1,0 +1,18 @@
+"""Helpers the Python anchor scripts share: timing one call and appending a CSV row in the
+format every benchmark driver writes (bench_csv.hpp)."""
+import time
+
+
+def timed_ms(fn, *args):
+    """(result, milliseconds) of fn(*args), wall clock."""
+    t0 = time.perf_counter()
+    out = fn(*args)
+    return out, 1e3 * (time.perf_counter() - t0)
+
+
+def append_row(csv, problem, distribution, n, tool, ms, resident_ms=0):
+    """One CPU anchor row: compute and with-copies time are the same measurement."""
+    if not csv:
+        return
+    with open(csv, "a") as c:
+        c.write(f"{problem},{distribution},{n},{tool},cpu-1core,0,{ms},0,{resident_ms},{ms},0\n")
