@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Quick start 1: install what is needed, build (CUDA when nvcc is present), run the demo job:
 # generate a million points, summarise them, show the device, draw a stipple of a photograph
-# (matplotlib's sample portrait of Grace Hopper), run the benchmarks small.
+# (matplotlib's sample portrait of Grace Hopper), triangulate a terrain's contour lines (the
+# Jacksboro fault DEM shipped with matplotlib) and a million points exactly, run the
+# benchmarks small.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
@@ -20,4 +22,8 @@ python3 -c "import sys, numpy as n, matplotlib.image as m, matplotlib.cbook as c
 a = m.imread(c.get_sample_data('grace_hopper.jpg', asfileobj=False)).astype(float); \
 n.save(sys.argv[1], ((a[..., 0] * .299 + a[..., 1] * .587 + a[..., 2] * .114) / 255).astype(n.float32))" "$OUT/hopper.npy"
 "$G" stipple "$OUT/hopper.npy" -n 20000 -o "$OUT/hopper_stipple.svg" --png "$OUT/hopper_stipple.png"
+python3 bench/terrain_contours.py -n 1e4 --levels 6 -o "$OUT/contours.npy"
+"$G" delaunay2d "$OUT/contours.npy" -o "$OUT/terrain_tin.ply" --check --draw "$OUT/terrain_tin.png"
+"$G" gen uniform2d -n 1000000 -o "$OUT/plane.npy"
+"$G" --verbose delaunay2d "$OUT/plane.npy" -o "$OUT/plane_tri.npy" --check
 bash bench/run_bench.sh --quick --build "$BUILD" --out "$OUT/bench"
