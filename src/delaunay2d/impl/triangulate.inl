@@ -565,28 +565,42 @@ class Triangulator {
 class HostSizer {
  public:
   void start(Output& out, std::int64_t n) {
-    th_[0] = std::thread([&out, n] { size(out.triangles, 6 * n, 0); });
-    th_[1] = std::thread([&out, n] { size(out.neighbors, 6 * n, 0); });
-    th_[2] = std::thread([&out, n] { size(out.duplicate_of, n, -1); });
+    th_[0] = std::thread([this, &out, n] { size(0, out.triangles, 6 * n, 0); });
+    th_[1] = std::thread([this, &out, n] { size(1, out.neighbors, 6 * n, 0); });
+    th_[2] = std::thread([this, &out, n] { size(2, out.duplicate_of, n, -1); });
   }
-  ~HostSizer() { join(); }
-  void join() {
+  ~HostSizer() {
     for (auto& t : th_)
       if (t.joinable()) t.join();
   }
+  // Waits for the arrays; a failed allocation surfaces here as Error(OutOfMemory).
+  void join() {
+    for (auto& t : th_)
+      if (t.joinable()) t.join();
+    for (const auto& e : err_)
+      if (e) std::rethrow_exception(e);
+  }
 
  private:
-  static void size(std::vector<std::int32_t>& v, std::int64_t n, std::int32_t fill) {
-    v.clear();
-    v.reserve(std::size_t(n));
+  void size(int which, std::vector<std::int32_t>& v, std::int64_t n, std::int32_t fill) {
+    try {
+      v.clear();
+      v.reserve(std::size_t(n));
 #ifdef MADV_HUGEPAGE
-    const std::uintptr_t a = (reinterpret_cast<std::uintptr_t>(v.data()) + 0x1FFFFF) & ~0x1FFFFFull;
-    const std::uintptr_t e = (reinterpret_cast<std::uintptr_t>(v.data() + n)) & ~0x1FFFFFull;
-    if (e > a) (void)madvise(reinterpret_cast<void*>(a), e - a, MADV_HUGEPAGE);
+      const std::uintptr_t a =
+          (reinterpret_cast<std::uintptr_t>(v.data()) + 0x1FFFFF) & ~0x1FFFFFull;
+      const std::uintptr_t e = (reinterpret_cast<std::uintptr_t>(v.data() + n)) & ~0x1FFFFFull;
+      if (e > a) (void)madvise(reinterpret_cast<void*>(a), e - a, MADV_HUGEPAGE);
 #endif
-    v.assign(std::size_t(n), fill);
+      v.assign(std::size_t(n), fill);
+    } catch (const std::bad_alloc&) {  // an exception may not leave a thread
+      err_[which] = std::make_exception_ptr(Error(
+          ErrorCode::OutOfMemory,
+          "host allocation of " + std::to_string(4 * n) + " bytes for the triangulation failed"));
+    }
   }
   std::thread th_[3];
+  std::exception_ptr err_[3];
 };
 
 inline double ms_since(std::chrono::steady_clock::time_point t0) {
