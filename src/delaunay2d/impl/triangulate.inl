@@ -1,20 +1,17 @@
 // Batch insertion with parallel flipping (thesis 5.3 in 2D), one algorithm for both
-// executors; included inside gpugeom::del2d::{cpu,cuda}_impl after prepare.inl and
-// mesh.inl.
+// executors; included inside gpugeom::del2d::{cpu,cuda}_impl after prepare.inl and mesh.inl.
 //
 // Each batch: every triangle holding points not yet inserted takes the one nearest its
-// circumcentre and splits around it.
-// Then rounds of flips: every triangle on the work list tests its three edges (filter, then an
-// exact pass over the compacted undecided tests), proposes to flip its first illegal edge, and
-// a flip goes ahead when its proposer has the highest priority (a fixed scramble of the slot
-// number) among the proposals touching either of its two triangles (so every round flips, and
-// the result never depends on timing). Flipped and
+// circumcentre and splits around it. Then rounds of flips: every triangle on the work list
+// tests its edges (filter, then an exact pass over the compacted undecided tests), proposes to
+// flip its first illegal edge, and a flip goes ahead when its proposer has the highest
+// priority (a fixed scramble of the slot number) among the proposals touching either of its
+// two triangles, so every round flips and the result never depends on timing. Flipped and
 // outvoted triangles form the next list. Splits and flips are recorded; at the start of the
 // next batch each point not yet inserted follows its triangle through the records (the
 // thesis' history) and takes part in the choice in the same pass, so the points are read once
-// per batch.
-// The final triangulation is the Delaunay triangulation of the perturbed points; flat
-// triangles on the hull (collinear hull points the perturbation moved inward) are flipped
+// per batch. The final triangulation is the Delaunay triangulation of the perturbed points;
+// flat triangles on the hull (collinear hull points the perturbation moved inward) are flipped
 // away at the end, which leaves every finite triangle of positive area.
 
 // Exact-pass threads, each with an 8 kB scratch slice: enough to fill the GPU on degenerate
