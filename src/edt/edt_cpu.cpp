@@ -27,12 +27,4 @@ bool line_pass_tiled(Exec&, const Layout&, const Metric&, int, std::int64_t, std
   return false;
 }
 #include "edt/impl/run.inl"
-void run(const Request& req, Output& out, Stats& stats) {
-  run_impl(req, out, stats);
-}
-void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
-                            std::int64_t sites) {
-  const std::int64_t automatic[3] = {0, 0, 0};
-  feature_transform(ex, L, M, feat, automatic, L.nd, sites, nullptr);
-}
 }  // namespace gpugeom::edt::cpu_impl

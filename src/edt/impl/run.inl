@@ -266,3 +266,13 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   out.transform_ms = transform;
   stats.phase_ms.push_back({"transform", transform});
 }
+
+// The entry points edt_backend.hpp and edt_device.hpp declare, the same for both executors.
+void run(const Request& req, Output& out, Stats& stats) {
+  run_impl(req, out, stats);
+}
+void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
+                            std::int64_t sites) {
+  const std::int64_t automatic[3] = {0, 0, 0};
+  feature_transform(ex, L, M, feat, automatic, L.nd, sites, nullptr);
+}
