@@ -255,8 +255,8 @@ GG_HD inline bool incircle_int(const double* a, const double* b, const double* c
     if (!small_integer(p[0]) || !small_integer(p[1])) return false;
   using i64 = long long;
   const i64 dx = i64(d[0]), dy = i64(d[1]);
-  const i64 adx = i64(a[0]) - dx, ady = i64(a[1]) - dy, bdx = i64(b[0]) - dx,
-            bdy = i64(b[1]) - dy, cdx = i64(c[0]) - dx, cdy = i64(c[1]) - dy;
+  const i64 adx = i64(a[0]) - dx, ady = i64(a[1]) - dy, bdx = i64(b[0]) - dx, bdy = i64(b[1]) - dy,
+            cdx = i64(c[0]) - dx, cdy = i64(c[1]) - dy;
   const i64 al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
   const __int128 det = __int128(al) * (bdx * cdy - cdx * bdy) +
                        __int128(bl) * (cdx * ady - adx * cdy) +
