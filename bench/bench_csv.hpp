@@ -1,6 +1,7 @@
 // The CSV every benchmark driver and anchor appends to (plot.py reads it), and the small
 // helpers the drivers share.
 #pragma once
+#include <chrono>
 #include <cstdint>
 #include <fstream>
 #include <sstream>
@@ -35,6 +36,17 @@ inline std::uint64_t hash64(std::uint64_t i, std::uint64_t seed) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
   return z ^ (z >> 31);
+}
+
+inline double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// A phase's time in a run's Stats, 0 when the run had no such phase.
+inline double phase_ms(const Stats& s, const char* name) {
+  for (auto& p : s.phase_ms)
+    if (p.first == name) return p.second;
+  return 0;
 }
 
 // Opens path for appending; writes the header when the file is new.

@@ -30,11 +30,6 @@ io::Grid density(const std::vector<std::int64_t>& shape) {
   }
   return g;
 }
-double phase(const Stats& s, const char* name) {
-  for (auto& p : s.phase_ms)
-    if (p.first == name) return p.second;
-  return 0;
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -80,11 +75,12 @@ int main(int argc, char** argv) {
         centroidal_voronoi(g, o);
         o.max_iterations = iters;
         const CvdResult r = centroidal_voronoi(g, o);
-        const double per = phase(r.stats, "iterations") / r.iterations;
+        const double per = bench::phase_ms(r.stats, "iterations") / r.iterations;
         const std::string grid =
             dim == 2 ? std::to_string(shape[0]) + "^2" : std::to_string(shape[0]) + "^3";
         std::printf("%-4s %-16s %9lld %-5s %8d %12.3f %10.1f %11.1f%%\n", "cvd", grid.c_str(),
-                    (long long)ns, backend_name(b), r.iterations, per, phase(r.stats, "setup"),
+                    (long long)ns, backend_name(b), r.iterations, per,
+                    bench::phase_ms(r.stats, "setup"),
                     100 * (1 - r.energy.back() / r.energy.front()));
         if (f)
           f << "cvd_iteration," << grid << "_" << (long long)ns << "sites," << (long long)ns << ","

@@ -29,14 +29,6 @@ using namespace gpugeom;
 
 namespace {
 using clk = std::chrono::steady_clock;
-double ms_since(clk::time_point t0) {
-  return std::chrono::duration<double, std::milli>(clk::now() - t0).count();
-}
-double phase(const Stats& s, const char* name) {
-  for (auto& p : s.phase_ms)
-    if (p.first == name) return p.second;
-  return 0;
-}
 double cgal_ms(const std::vector<Point2>& p) {
 #ifdef GG_BENCH_CGAL
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -45,7 +37,7 @@ double cgal_ms(const std::vector<Point2>& p) {
   for (auto& q : p) in.emplace_back(q.x, q.y);
   const auto t0 = clk::now();
   CGAL::Delaunay_triangulation_2<K> dt(in.begin(), in.end());
-  const double ms = ms_since(t0);
+  const double ms = bench::ms_since(t0);
   if (dt.number_of_faces() == 0) std::printf("(CGAL built no triangle)\n");
   return ms;
 #else
@@ -65,7 +57,7 @@ double device_resident_ms(const std::vector<Point2>& p, int reps) {
   for (int k = 0; k < reps; ++k) {
     const auto t0 = clk::now();
     auto r = delaunay2d_device(d, std::int64_t(p.size()));
-    t.push_back(ms_since(t0));
+    t.push_back(bench::ms_since(t0));
   }
   cudaFree(d);
   std::sort(t.begin(), t.end());
@@ -144,7 +136,7 @@ int main(int argc, char** argv) {
       for (int k = 0; k < reps; ++k) {
         const auto t0 = clk::now();
         r = delaunay2d(in.pts, o);
-        t.push_back(ms_since(t0));
+        t.push_back(bench::ms_since(t0));
       }
       std::sort(t.begin(), t.end());
       const double med = t[t.size() / 2];
@@ -163,13 +155,15 @@ int main(int argc, char** argv) {
       const double dev = b == Backend::Cuda ? device_resident_ms(in.pts, reps) : -1;
       std::printf("%-22s %10lld %-5s %10.1f %9.1f %9.1f %9.1f %9.1f %9.1f %7lld %7lld %9.1f %s\n",
                   in.name.c_str(), (long long)n, backend_name(b), med, dev,
-                  phase(r.stats, "prepare"), phase(r.stats, "insert"), phase(r.stats, "output"),
-                  n / med / 1e3, (long long)r.stats.counters["batches"],
+                  bench::phase_ms(r.stats, "prepare"), bench::phase_ms(r.stats, "insert"),
+                  bench::phase_ms(r.stats, "output"), n / med / 1e3,
+                  (long long)r.stats.counters["batches"],
                   (long long)r.stats.counters["flip_rounds"], cg, verdict.c_str());
       if (b == Backend::Cuda)
         std::printf("    upload %.1f ms, waiting for host arrays %.1f ms, copy back %.1f ms\n",
-                    phase(r.stats, "upload"), phase(r.stats, "wait_host_arrays"),
-                    phase(r.stats, "copy_back"));
+                    bench::phase_ms(r.stats, "upload"),
+                    bench::phase_ms(r.stats, "wait_host_arrays"),
+                    bench::phase_ms(r.stats, "copy_back"));
       for (auto& ph : r.stats.phase_ms)
         if (ph.first.rfind("insert/", 0) == 0)
           std::printf("    %-28s %8.2f ms\n", ph.first.c_str(), ph.second);

@@ -32,9 +32,6 @@ io::Grid random_sites(const std::vector<std::int64_t>& shape, double density, st
   g.data[0] = 1;
   return g;
 }
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -106,7 +103,7 @@ int main(int argc, char** argv) {
           for (int k = 0; k <= reps; ++k) {  // the first run warms up
             auto t0 = std::chrono::steady_clock::now();
             r = distance_transform(g, SiteRule::NonZero, o);
-            const double w = ms_since(t0);
+            const double w = bench::ms_since(t0);
             double t = 0, out = 0;
             for (auto& p : r.stats.phase_ms) {
               if (p.first == "transform") t = p.second;

@@ -424,19 +424,16 @@ class Triangulator {
     const std::int32_t* ins = ins_.data();
     ex_.for_each_index(
         epoch_splits_, GG_LAMBDA(std::int64_t r) { sr[ins[r]] = -1; });
+    Counters* ctr = ctr_.data();
     ex_.for_each_index(
         logged_, GG_LAMBDA(std::int64_t r) {
+          if (r == 0) ctr->log = 0;  // the records are read, not appended to, here
           for (int side = 0; side < 2; ++side) {
             const std::int32_t s = M.rec[6 * r + side];
             M.slot_first[s] = -1;
             M.slot_last[s] = -1;
           }
         });
-    if (logged_) {
-      Counters* ctr = ctr_.data();
-      ex_.for_each_index(
-          1, GG_LAMBDA(std::int64_t) { ctr->log = 0; });
-    }
     logged_ = 0;
     epoch_splits_ = 0;
   }
