@@ -49,6 +49,7 @@ enum class ErrorCode {
   Unsupported,      // asked for something this build or machine cannot do
   OutOfMemory,      // host or device allocation failed
   Cuda,             // any other CUDA runtime failure
+  Internal,         // an invariant of an algorithm failed: a bug, please report it
 };
 const char* error_code_name(ErrorCode c);
 

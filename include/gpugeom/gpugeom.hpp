@@ -5,6 +5,7 @@
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/generate.hpp"
+#include "gpugeom/hull3d.hpp"
 #include "gpugeom/io.hpp"
 #include "gpugeom/predicates.hpp"
 #include "gpugeom/spatial.hpp"

@@ -7,6 +7,7 @@
 
 #include "cvd/cvd_backend.hpp"
 #include "edt/edt_device.hpp"
+#include "exec/atomics.hpp"
 #include "exec/cpu_exec.hpp"
 
 namespace gpugeom::cvd::cpu_impl {

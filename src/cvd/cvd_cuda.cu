@@ -7,6 +7,7 @@
 
 #include "cvd/cvd_backend.hpp"
 #include "edt/edt_device.hpp"
+#include "exec/atomics.hpp"
 #include "exec/cuda_exec.cuh"
 
 namespace gpugeom::cvd::cuda_impl {

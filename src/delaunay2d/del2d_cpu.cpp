@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "delaunay2d/del2d_backend.hpp"
+#include "exec/atomics.hpp"
 #include "exec/cpu_exec.hpp"
 #include "predicates/predicates.hpp"
 #include "spatial/hilbert.hpp"

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "delaunay2d/del2d_backend.hpp"
+#include "exec/atomics.hpp"
 #include "exec/cuda_exec.cuh"
 #include "predicates/predicates.hpp"
 #include "spatial/hilbert.hpp"

@@ -65,6 +65,8 @@ const char* error_code_name(ErrorCode c) {
       return "out of memory";
     case ErrorCode::Cuda:
       return "CUDA error";
+    case ErrorCode::Internal:
+      return "internal error";
   }
   return "error";
 }

@@ -23,6 +23,7 @@
 // overloads in include/gpugeom/predicates.hpp, which bring their own; device code passes a
 // local array (small predicates) or a slice of global memory (see split_pass.hpp).
 #pragma once
+#include <initializer_list>
 #include <cmath>
 
 #include "predicates/sos.hpp"

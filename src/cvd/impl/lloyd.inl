@@ -43,8 +43,7 @@ GG_INLINE void voxel_coords(const Layout& L, std::int64_t i, std::int64_t v[3]) 
   v[2] = i / (L.n[0] * L.n[1]);
 }
 GG_INLINE void add_u64(u64* p, u64 v) {
-  cuda::atomic_ref<u64, cuda::thread_scope_device> r(*p);
-  r.fetch_add(v, cuda::memory_order_relaxed);
+  atomic_add(p, v);
 }
 
 struct Planes {  // one array per axis; a null entry: moment implied by the coordinate

@@ -17,43 +17,7 @@ GG_INLINE int loc_of(std::int32_t e) {
   return e & 3;
 }
 
-template <class T>
-GG_INLINE T atomic_add(T* p, T v) {
-  cuda::atomic_ref<T, cuda::thread_scope_device> r(*p);
-  return r.fetch_add(v, cuda::memory_order_relaxed);
-}
-// Minimum / maximum that skip the atomic when a plain read shows it cannot win: many threads
-// aim at few addresses (millions of points choosing among a handful of early triangles), and
-// same-address atomics serialise.
-template <class T>
-GG_INLINE void atomic_min(T* p, T v) {
-  cuda::atomic_ref<T, cuda::thread_scope_device> r(*p);
-  if (r.load(cuda::memory_order_relaxed) > v) r.fetch_min(v, cuda::memory_order_relaxed);
-}
-template <class T>
-GG_INLINE void atomic_max(T* p, T v) {
-  cuda::atomic_ref<T, cuda::thread_scope_device> r(*p);
-  if (r.load(cuda::memory_order_relaxed) < v) r.fetch_max(v, cuda::memory_order_relaxed);
-}
-// A slot in a list whose length is *counter: on the GPU one atomic per group of converged
-// threads (a single counter bumped by every thread of a large kernel serialises them all).
-GG_INLINE std::int64_t append_slot(std::int64_t* counter) {
-#ifdef __CUDA_ARCH__
-  namespace cg = cooperative_groups;
-  const cg::coalesced_group g = cg::coalesced_threads();
-  unsigned long long base = 0;
-  if (g.thread_rank() == 0)
-    base = atomicAdd(reinterpret_cast<unsigned long long*>(counter), (unsigned long long)g.size());
-  return std::int64_t(g.shfl(base, 0)) + g.thread_rank();
-#else
-  return atomic_add(counter, std::int64_t(1));
-#endif
-}
-template <class T>
-GG_INLINE T atomic_exchange(T* p, T v) {
-  cuda::atomic_ref<T, cuda::thread_scope_device> r(*p);
-  return r.exchange(v, cuda::memory_order_relaxed);
-}
+// (atomic_add/min/max/exchange and append_slot come from exec/atomics.hpp.)
 
 // Per-round figures, the only values copied back while flipping.
 struct Counters {

@@ -1,0 +1,27 @@
+// 3D convex hull compiled for the CPU executor.
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "exec/atomics.hpp"
+#include "exec/cpu_exec.hpp"
+#include "hull3d/hull3d_backend.hpp"
+#include "predicates/predicates.hpp"
+
+namespace gpugeom::hull3d::cpu_impl {
+using Exec = CpuExec;
+#include "hull3d/impl/geometry.inl"
+#include "hull3d/impl/prepare.inl"
+#include "hull3d/impl/surface.inl"
+#include "hull3d/impl/construct.inl"
+#include "hull3d/impl/flipflop.inl"
+#include "hull3d/impl/hull.inl"
+void compute(const double* xyz, std::int64_t n, Output& out, Stats& stats) {
+  compute_impl(xyz, n, out, stats);
+}
+}  // namespace gpugeom::hull3d::cpu_impl

@@ -1,0 +1,40 @@
+// 3D convex hull compiled for the CUDA executor.
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "exec/atomics.hpp"
+#include "exec/cuda_exec.cuh"
+#include "hull3d/hull3d_backend.hpp"
+#include "predicates/predicates.hpp"
+
+namespace gpugeom::hull3d::cuda_impl {
+using Exec = CudaExec;
+#include "hull3d/impl/geometry.inl"
+#include "hull3d/impl/prepare.inl"
+#include "hull3d/impl/surface.inl"
+#include "hull3d/impl/construct.inl"
+#include "hull3d/impl/flipflop.inl"
+#include "hull3d/impl/hull.inl"
+void compute(const double* xyz, std::int64_t n, Output& out, Stats& stats) {
+  compute_impl(xyz, n, out, stats);
+}
+void compute_device(const double* xyz, std::int64_t n, DeviceOutput& out, Stats& stats) {
+  Exec ex;
+  Result R = hull_core(ex, xyz, n, stats);
+  auto own = [](std::int32_t* p) {
+    return std::shared_ptr<std::int32_t>(p, [](std::int32_t* q) { (void)cudaFree(q); });
+  };
+  ex.sync();  // the buffers were allocated stream-ordered; cudaFree later is not
+  out.num_facets = R.facets.count;
+  out.num_vertices = R.num_vertices;
+  out.triangles = own(R.facets.tris.release());
+  out.neighbors = own(R.facets.nbrs.release());
+  out.vertices = own(R.vertices.release());
+}
+}  // namespace gpugeom::hull3d::cuda_impl

@@ -1,0 +1,268 @@
+// Phase 1 (thesis Alg. 5.3): a star-shaped polyhedron whose vertices are input points and
+// which holds every input point. Included inside gpugeom::hull3d::{cpu,cuda}_impl after
+// surface.inl.
+//
+// Every point outside the current polyhedron belongs to the facet whose cone from s holds it.
+// Each round, every facet with points takes the farthest one above it and splits around it;
+// the other points of a split facet move to the child whose cone holds them, and a point that
+// falls inside its child is dropped for good (it is inside the polyhedron, hence not extreme).
+// Splitting inside a facet's cone keeps the polyhedron star-shaped from s.
+
+// Exact-stage threads of the split passes, each with a kScratch slice (3.9 kB).
+constexpr std::int64_t kExactSlots = 16384;
+
+struct Counters {
+  std::int64_t exact;   // items the filter left to the exact stage this round
+  std::int64_t next;    // work-list length for the next flip round
+  std::int64_t labels;  // vertices newly labelled non-extreme
+  std::int64_t flips22, flips31, lost;
+};
+
+// Buffers of one hull computation, shared by the two phases. (Every member is public: nvcc's
+// extended lambdas may not live in private members.)
+struct PassState {
+  Exec& ex;
+  Geo g;
+  std::int64_t n = 0;     // points
+  std::int64_t cap = 0;   // facet slots
+  std::int64_t used = 0;  // slots handed out
+  typename Exec::template Buffer<std::int32_t> tv, to, stamp, remap, deg;
+  typename Exec::template Buffer<Counters> ctr;
+  typename Exec::template Buffer<double> scratch;
+  typename Exec::template Buffer<std::int32_t> exl;  // exact-stage work list
+  std::int64_t exl_cap = 0;
+  Stats& st;
+  std::int64_t exact_total = 0;
+
+  PassState(Exec& e, const double* pts, std::int64_t np, const double* s, Stats& stats)
+      : ex(e), n(np), st(stats) {
+    g.p = pts;
+    g.s[0] = s[0], g.s[1] = s[1], g.s[2] = s[2];
+    g.n = std::int32_t(np);
+    cap = 2 * np;  // a closed triangulated sphere on V <= n vertices has 2V - 4 facets
+    tv = ex.template alloc<std::int32_t>(std::size_t(3 * cap));
+    to = ex.template alloc<std::int32_t>(std::size_t(3 * cap));
+    stamp = ex.template alloc<std::int32_t>(std::size_t(cap));
+    remap = ex.template alloc<std::int32_t>(std::size_t(3 * cap));
+    deg = ex.template alloc<std::int32_t>(std::size_t(np));
+    ctr = ex.template alloc<Counters>(1);
+    const std::int64_t slots =
+        std::max<std::int64_t>(1, std::min<std::int64_t>(kExactSlots, ex.concurrency()));
+    scratch = ex.template alloc<double>(std::size_t(slots * kScratch));
+    ex.fill(deg.data(), np, std::int32_t(0));
+    ex.fill(stamp.data(), cap, std::int32_t(-1));
+    reset_counters();
+  }
+  Surface surface() {
+    return Surface{tv.data(), to.data(), stamp.data(), remap.data(), deg.data()};
+  }
+  void reset_counters() {
+    Counters z{};
+    ex.from_host(&z, 1, ctr.data());
+  }
+  Counters counters() {
+    Counters c;
+    ex.to_host(ctr.data(), 1, &c);
+    return c;
+  }
+  // A work list for the exact stage of at least `items` entries.
+  std::int32_t* exact_list(std::int64_t items) {
+    if (items > exl_cap) {
+      exl_cap = std::max<std::int64_t>(items, 1024);
+      exl = ex.template alloc<std::int32_t>(std::size_t(exl_cap));
+    }
+    return exl.data();
+  }
+  // Runs f(item, ExactOrient) for the `count` listed items, striding over bounded slots.
+  template <class F>
+  void exact_pass(std::int64_t count, F f) {
+    if (count <= 0) return;
+    exact_total += count;
+    const std::int64_t slots = std::max<std::int64_t>(
+        1, std::min<std::int64_t>(count, std::int64_t(scratch.size()) / kScratch));
+    const std::int32_t* list = exl.data();
+    double* sc = scratch.data();
+    const Geo geo = g;
+    ex.for_each_index(
+        slots, GG_LAMBDA(std::int64_t t) {
+          const ExactOrient o{geo, sc + t * kScratch};
+          for (std::int64_t j = t; j < count; j += slots) f(list[j], o);
+        });
+  }
+};
+
+// The exact stage of the two point-location kernels below (namespace-scope functors: nvcc
+// allows no lambda type as a template argument of a function that defines device lambdas).
+struct LocateFirstExact {
+  const std::int32_t* F;
+  std::int32_t* loc;
+  std::int32_t s;
+  GG_HD void operator()(std::int32_t q, const ExactOrient& o) const {
+    const int r = locate_first(o, s, F, q);
+    loc[q] = r == kLost ? -1 : r;  // (kLost cannot happen with exact signs)
+  }
+};
+struct LocateChildExact {
+  std::int32_t* loc;
+  const std::int32_t* rank;
+  const std::int32_t* spl;
+  std::int32_t s, base;
+  GG_HD void operator()(std::int32_t q, const ExactOrient& o) const {
+    const std::int32_t f = ~loc[q], r = rank[f];
+    const std::int32_t* x = spl + 4 * r;
+    const int c = locate_child(o, s, x[0], x + 1, q);
+    loc[q] = c < 0 ? -1 : c == 0 ? f : base + 2 * r + (c - 1);
+  }
+};
+
+class Constructor {
+ public:
+  Constructor(PassState& S, const Tetra& t) : S_(S), t_(t) {}
+
+  void run() {
+    start();
+    std::int64_t rounds = 0;
+    while (live_n_ > 0) {
+      round();
+      ++rounds;
+    }
+    S_.st.counters["insert_rounds"] += rounds;
+  }
+
+  void start() {
+    Exec& ex = S_.ex;
+    const std::int64_t n = S_.n;
+    // The four facets (a, b, c), (a, d, b), (b, d, c), (c, d, a), counter-clockwise from
+    // outside since d lies below (a, b, c); neighbours found by matching reversed edges.
+    const std::int32_t a = t_.v[0], b = t_.v[1], c = t_.v[2], d = t_.v[3];
+    const std::int32_t fv[12] = {a, b, c, a, d, b, b, d, c, c, d, a};
+    std::int32_t fo[12];
+    for (int f = 0; f < 4; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t u = fv[3 * f + (k + 1) % 3], v = fv[3 * f + (k + 2) % 3];
+        for (int h = 0; h < 4; ++h)
+          for (int j = 0; j < 3; ++j)
+            if (fv[3 * h + (j + 1) % 3] == v && fv[3 * h + (j + 2) % 3] == u)
+              fo[3 * f + k] = enc(h, j);
+      }
+    ex.from_host(fv, 12, S_.tv.data());
+    ex.from_host(fo, 12, S_.to.data());
+    const std::int32_t three[4] = {3, 3, 3, 3};
+    for (int k = 0; k < 4; ++k) ex.from_host(three + k, 1, S_.deg.data() + t_.v[k]);
+    S_.used = 4;
+    cap_ = S_.cap;
+    loc_ = ex.template alloc<std::int32_t>(std::size_t(n));
+    live_ = ex.template alloc<std::int32_t>(std::size_t(n));
+    live2_ = ex.template alloc<std::int32_t>(std::size_t(n));
+    best_ = ex.template alloc<u64>(std::size_t(cap_));
+    rank_ = ex.template alloc<std::int32_t>(std::size_t(cap_));
+    list_ = ex.template alloc<std::int32_t>(std::size_t(cap_ / 3 + 4));
+    spl_ = ex.template alloc<std::int32_t>(std::size_t(4 * (cap_ / 3 + 4)));
+    ex.fill(best_.data(), cap_, u64(0));
+    ex.fill(rank_.data(), cap_, std::int32_t(-1));
+    // Locate every point among the four cones (filter, then the exact stage on the rest).
+    auto fvb = ex.template alloc<std::int32_t>(12);
+    ex.from_host(fv, 12, fvb.data());
+    const std::int32_t* F = fvb.data();
+    std::int32_t* loc = loc_.data();
+    Counters* ctr = S_.ctr.data();
+    std::int32_t* exl = S_.exact_list(n);
+    const Geo geo = S_.g;
+    const std::int32_t s = geo.n;
+    ex.for_each_index(
+        n, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t q = std::int32_t(i);
+          if (q == a || q == b || q == c || q == d) {
+            loc[i] = -1;
+            return;
+          }
+          const int r = locate_first(FastOrient{geo}, s, F, q);
+          if (r == kUndecided) {
+            exl[append_slot(&ctr->exact)] = q;
+            return;
+          }
+          loc[i] = r;
+        });
+    const Counters c0 = S_.counters();
+    S_.exact_pass(c0.exact, LocateFirstExact{F, loc, s});
+    S_.reset_counters();
+    live_n_ = ex.compact_indices(
+        n, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, live_.data());
+  }
+
+  void round() {
+    Exec& ex = S_.ex;
+    const Geo geo = S_.g;
+    const std::int32_t s = geo.n;
+    std::int32_t* loc = loc_.data();
+    const std::int32_t* live = live_.data();
+    u64* best = best_.data();
+    std::int32_t* tv = S_.tv.data();
+    const std::int64_t nl = live_n_;
+    // Each facet's farthest point.
+    ex.for_each_index(
+        nl, GG_LAMBDA(std::int64_t j) {
+          const std::int32_t q = live[j], f = loc[q];
+          atomic_max(best + f, distance_key(geo, tv[3 * f], tv[3 * f + 1], tv[3 * f + 2], q));
+        });
+    // The facets that split, in slot order; two new slots each.
+    const std::int64_t used = S_.used;
+    std::int32_t* list = list_.data();
+    const std::int64_t m = ex.compact_indices(
+        used, GG_LAMBDA(std::int64_t f) { return best[f] != 0; }, list);
+    if (used + 2 * m > cap_)
+      throw Error(ErrorCode::Internal, "convex hull: facet store overflow while inserting");
+    std::int32_t* rank = rank_.data();
+    std::int32_t* spl = spl_.data();
+    const Surface Sf = S_.surface();
+    const std::int32_t base = std::int32_t(used);
+    ex.for_each_index(
+        m, GG_LAMBDA(std::int64_t r) { rank[list[r]] = std::int32_t(r); });
+    ex.for_each_index(
+        m, GG_LAMBDA(std::int64_t r) {
+          const std::int32_t f = list[r];
+          const std::int32_t p = point_of_key(best[f]);
+          spl[4 * r] = p;
+          for (int k = 0; k < 3; ++k) spl[4 * r + 1 + k] = Sf.tv[3 * f + k];
+          split_facet(Sf, f, p, base + 2 * std::int32_t(r), rank, base);
+        });
+    S_.used = used + 2 * m;
+    // Points of split facets move to a child or drop out.
+    Counters* ctr = S_.ctr.data();
+    std::int32_t* exl = S_.exact_list(nl);
+    ex.for_each_index(
+        nl, GG_LAMBDA(std::int64_t j) {
+          const std::int32_t q = live[j], f = loc[q], r = rank[f];
+          if (r < 0) return;
+          const std::int32_t* x = spl + 4 * r;
+          if (x[0] == q) {  // inserted
+            loc[q] = -1;
+            return;
+          }
+          const int c = locate_child(FastOrient{geo}, s, x[0], x + 1, q);
+          if (c == kUndecided) {
+            exl[append_slot(&ctr->exact)] = q;
+            loc[q] = ~f;  // decided below
+            return;
+          }
+          loc[q] = c < 0 ? -1 : c == 0 ? f : base + 2 * r + (c - 1);
+        });
+    const Counters c0 = S_.counters();
+    S_.exact_pass(c0.exact, LocateChildExact{loc, rank, spl, s, base});
+    if (c0.exact) S_.reset_counters();
+    ex.for_each_index(
+        m, GG_LAMBDA(std::int64_t r) {
+          best[list[r]] = 0;
+          rank[list[r]] = -1;
+        });
+    live_n_ = ex.copy_if(
+        live, nl, live2_.data(), GG_LAMBDA(std::int32_t q) { return loc[q] >= 0; });
+    std::swap(live_, live2_);
+  }
+
+  PassState& S_;
+  Tetra t_;
+  std::int64_t cap_ = 0, live_n_ = 0;
+  typename Exec::template Buffer<std::int32_t> loc_, live_, live2_, rank_, list_, spl_;
+  typename Exec::template Buffer<u64> best_;
+};

@@ -1,0 +1,271 @@
+// The whole computation: checks, construction, Flip-Flop, and the hull of the extreme points
+// when the first hull had vertices that are not extreme. Included inside
+// gpugeom::hull3d::{cpu,cuda}_impl after flipflop.inl.
+//
+// With simulation of simplicity the first pass gives the hull of the perturbed points. Its
+// vertices include every extreme point, and may also include points the perturbation moved
+// just outside: points inside a flat face or on a hull edge, and copies of a vertex. Each
+// vertex is therefore tested exactly on its fan (flat fan: inside a face; two neighbours on a
+// line through it: inside an edge), copies are merged, and when anything was dropped a second
+// pass builds the hull of the extreme points alone, where every vertex is extreme and no
+// facet is degenerate.
+
+using clock = std::chrono::steady_clock;
+inline double ms_since(clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(clock::now() - t0).count();
+}
+
+struct Facets {
+  typename Exec::template Buffer<std::int32_t> tris, nbrs;
+  std::int64_t count = 0;
+};
+
+// Live facets of the final surface, renumbered, with neighbours among them.
+inline Facets compact(PassState& S) {
+  Exec& ex = S.ex;
+  const std::int64_t used = S.used;
+  const std::int32_t* tv = S.tv.data();
+  const std::int32_t* to = S.to.data();
+  auto rank = ex.template alloc<std::int32_t>(std::size_t(used) + 1);
+  std::int32_t* rk = rank.data();
+  ex.exclusive_scan_of(
+      used + 1, GG_LAMBDA(std::int64_t f)->std::int32_t { return f < used && tv[3 * f] >= 0; }, rk);
+  std::int32_t nt = 0;
+  ex.to_host(rk + used, 1, &nt);
+  Facets out;
+  out.count = nt;
+  out.tris = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
+  out.nbrs = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
+  std::int32_t* ot = out.tris.data();
+  std::int32_t* on = out.nbrs.data();
+  ex.for_each_index(
+      used, GG_LAMBDA(std::int64_t f) {
+        if (tv[3 * f] < 0) return;
+        const std::int64_t r = rk[f];
+        for (int k = 0; k < 3; ++k) {
+          ot[3 * r + k] = tv[3 * f + k];
+          on[3 * r + k] = rk[facet_of(to[3 * f + k])];
+        }
+      });
+  return out;
+}
+
+inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st) {
+  auto t0 = clock::now();
+  const Tetra t = first_tetrahedron(ex, pts, n);
+  PassState S(ex, pts, n, t.s, st);
+  {
+    Constructor C(S, t);
+    C.run();
+  }
+  ex.sync();
+  st.phase_ms.emplace_back("construct", ms_since(t0));
+  t0 = clock::now();
+  {
+    FlipFlop F(S);
+    F.run();
+  }
+  Facets out = compact(S);
+  ex.sync();
+  st.phase_ms.emplace_back("flip", ms_since(t0));
+  st.counters["exact_predicates"] += S.exact_total;
+  return out;
+}
+
+// Is vertex v (first corner e0 = 4 * facet + local) extreme? Walks its fan twice: a flat fan
+// means v lies inside a face, two neighbours on a line through v that v lies between means it
+// lies inside an edge. Neighbours with v's coordinates (copies) are skipped.
+struct ExtremeTest {
+  const double* p;
+  const std::int32_t* tris;
+  const std::int32_t* nbrs;
+  GG_HD std::int32_t next_corner(std::int32_t e) const {  // the next facet around the vertex
+    const std::int32_t f = e >> 2;
+    const int l = e & 3;
+    const std::int32_t v = tris[3 * f + l], g = nbrs[3 * f + (l + 1) % 3];
+    const int m = tris[3 * g] == v ? 0 : tris[3 * g + 1] == v ? 1 : 2;
+    return 4 * g + m;
+  }
+  GG_HD std::int32_t nb(std::int32_t e) const { return tris[3 * (e >> 2) + ((e & 3) + 1) % 3]; }
+  GG_HD bool operator()(std::int32_t v, std::int32_t e0, double* s) const {
+    const double* pv = p + 3 * std::int64_t(v);
+    const double *a = nullptr, *b = nullptr;
+    std::int32_t e = e0;
+    do {  // a: a neighbour apart from v; b: one off the line va
+      const double* w = p + 3 * std::int64_t(nb(e));
+      if (!same_point(w, pv)) {
+        if (!a)
+          a = w;
+        else if (!b && !collinear3(pv, a, w))
+          b = w;
+      }
+      e = next_corner(e);
+    } while (e != e0);
+    if (!a || !b) return false;  // every neighbour a copy or on one line: degenerate fan
+    bool flat = true;
+    e = e0;
+    do {
+      const double* w = p + 3 * std::int64_t(nb(e));
+      if (!same_point(w, pv) && pred::orient3d(pv, a, b, w, s) != 0) flat = false;
+      e = next_corner(e);
+    } while (flat && e != e0);
+    if (flat) return false;
+    std::int32_t ex = e0;
+    do {
+      const double* x = p + 3 * std::int64_t(nb(ex));
+      if (!same_point(x, pv)) {
+        for (std::int32_t ey = next_corner(ex); ey != e0; ey = next_corner(ey)) {
+          const double* y = p + 3 * std::int64_t(nb(ey));
+          if (same_point(y, pv) || !collinear3(x, pv, y)) continue;
+          for (int d = 0; d < 3; ++d)
+            if (x[d] != y[d]) {
+              if ((x[d] < pv[d] && pv[d] < y[d]) || (y[d] < pv[d] && pv[d] < x[d])) return false;
+              break;
+            }
+        }
+      }
+      ex = next_corner(ex);
+    } while (ex != e0);
+    return true;
+  }
+};
+
+GG_INLINE u64 ordered_key(double v) {  // doubles as unsigned keys with the same order
+  if (v == 0) v = 0;                   // -0 == +0
+  u64 u;
+  memcpy(&u, &v, 8);
+  return (u >> 63) ? ~u : (u | (u64(1) << 63));
+}
+
+struct Result {
+  Facets facets;
+  typename Exec::template Buffer<std::int32_t> vertices;  // sorted input indices
+  std::int64_t num_vertices = 0;
+};
+
+// pts: n points on the executor.
+inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st) {
+  auto t0 = clock::now();
+  validate(ex, pts, n);
+  st.phase_ms.emplace_back("prepare", ms_since(t0));
+  Result R;
+  R.facets = one_pass(ex, pts, n, st);
+  t0 = clock::now();
+  // The vertices, each with one corner, in index order.
+  auto corner = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* cr = corner.data();
+  ex.fill(cr, n, std::numeric_limits<std::int32_t>::max());
+  const std::int32_t* tris = R.facets.tris.data();
+  const std::int32_t* nbrs = R.facets.nbrs.data();
+  ex.for_each_index(
+      3 * R.facets.count,
+      GG_LAMBDA(std::int64_t i) { atomic_min(cr + tris[i], std::int32_t(4 * (i / 3) + i % 3)); });
+  auto verts = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* vp = verts.data();
+  const std::int64_t nv = ex.compact_indices(
+      n, GG_LAMBDA(std::int64_t v) { return cr[v] != std::numeric_limits<std::int32_t>::max(); },
+      vp);
+  // Exact extremeness, on bounded scratch slots.
+  auto keep = ex.template alloc<std::int32_t>(std::size_t(nv));
+  std::int32_t* kp = keep.data();
+  {
+    const std::int64_t slots =
+        std::max<std::int64_t>(1, std::min<std::int64_t>({nv, ex.concurrency(), kExactSlots}));
+    auto scratch = ex.template alloc<double>(std::size_t(slots * kScratch));
+    double* sc = scratch.data();
+    const ExtremeTest test{pts, tris, nbrs};
+    ex.for_each_index(
+        slots, GG_LAMBDA(std::int64_t t) {
+          for (std::int64_t j = t; j < nv; j += slots) {
+            const std::int32_t v = vp[j];
+            kp[j] = test(v, cr[v], sc + t * kScratch) ? v : -1;
+          }
+        });
+  }
+  auto kept = ex.template alloc<std::int32_t>(std::size_t(nv));
+  std::int64_t nk = ex.copy_if(
+      kp, nv, kept.data(), GG_LAMBDA(std::int32_t v) { return v >= 0; });
+  // Copies: sort the kept points lexicographically (stable passes z, y, x from index order),
+  // keep the first of each run of equal points.
+  std::int64_t copies = 0;
+  {
+    auto key = ex.template alloc<u64>(std::size_t(nk));
+    u64* kk = key.data();
+    std::int32_t* kv = kept.data();
+    for (int d = 2; d >= 0; --d) {
+      ex.for_each_index(
+          nk, GG_LAMBDA(std::int64_t j) { kk[j] = ordered_key(pts[3 * std::int64_t(kv[j]) + d]); });
+      ex.sort_by_key(kk, kv, nk);
+    }
+    auto uniq = ex.template alloc<std::int32_t>(std::size_t(nk));
+    const std::int64_t nu = ex.compact_indices(
+        nk,
+        GG_LAMBDA(std::int64_t j) {
+          return j == 0 ||
+                 !same_point(pts + 3 * std::int64_t(kv[j]), pts + 3 * std::int64_t(kv[j - 1]));
+        },
+        uniq.data());
+    copies = nk - nu;
+    const std::int32_t* up = uniq.data();
+    auto sel = ex.template alloc<std::int32_t>(std::size_t(nu));
+    std::int32_t* sp = sel.data();
+    ex.for_each_index(
+        nu, GG_LAMBDA(std::int64_t j) { sp[j] = kv[up[j]]; });
+    ex.sort(sp, nu);
+    kept = std::move(sel);
+    nk = nu;
+  }
+  st.counters["first_pass_vertices"] = nv;
+  st.counters["nonextreme_vertices_dropped"] = nv - nk - copies;
+  st.counters["copies_dropped"] = copies;
+  st.phase_ms.emplace_back("extreme_test", ms_since(t0));
+  if (nk == nv) {
+    R.vertices = std::move(verts);
+    R.num_vertices = nv;
+    return R;
+  }
+  // Second pass on the extreme points alone.
+  auto sub = ex.template alloc<double>(std::size_t(3 * nk));
+  double* sp = sub.data();
+  const std::int32_t* kv = kept.data();
+  ex.for_each_index(
+      3 * nk, GG_LAMBDA(std::int64_t i) { sp[i] = pts[3 * std::int64_t(kv[i / 3]) + i % 3]; });
+  Facets F2 = one_pass(ex, sp, nk, st);
+  if (F2.count != 2 * nk - 4)  // Euler: every one of the nk extreme points must be a vertex
+    throw Error(ErrorCode::Internal, "convex hull: the hull of the extreme points lost a vertex");
+  std::int32_t* t2 = F2.tris.data();
+  ex.for_each_index(
+      3 * F2.count, GG_LAMBDA(std::int64_t i) { t2[i] = kv[t2[i]]; });
+  st.counters["passes"] = 2;
+  R.facets = std::move(F2);
+  R.vertices = std::move(kept);
+  R.num_vertices = nk;
+  return R;
+}
+
+// Host points in, host arrays out.
+inline void compute_impl(const double* xyz, std::int64_t n, Output& out, Stats& st) {
+  Exec ex;
+  const double* p = xyz;
+  typename Exec::template Buffer<double> dev;
+  if constexpr (Exec::backend == Backend::Cuda) {
+    auto t0 = clock::now();
+    dev = ex.template alloc<double>(std::size_t(3 * n));
+    ex.from_host(xyz, 3 * n, dev.data());
+    p = dev.data();
+    ex.sync();
+    st.phase_ms.emplace_back("copies", ms_since(t0));
+  }
+  Result R = hull_core(ex, p, n, st);
+  auto t0 = clock::now();
+  out.triangles.resize(std::size_t(3 * R.facets.count));
+  out.neighbors.resize(std::size_t(3 * R.facets.count));
+  out.vertices.resize(std::size_t(R.num_vertices));
+  ex.to_host(R.facets.tris.data(), 3 * R.facets.count, out.triangles.data());
+  ex.to_host(R.facets.nbrs.data(), 3 * R.facets.count, out.neighbors.data());
+  ex.to_host(R.vertices.data(), R.num_vertices, out.vertices.data());
+  if constexpr (Exec::backend == Backend::Cuda) {
+    for (auto& ph : st.phase_ms)
+      if (ph.first == "copies") ph.second += ms_since(t0);
+  }
+}

@@ -1,0 +1,187 @@
+// Shared by the CPU and CUDA hull tests: inputs (distributions and degenerate sets) and the
+// full validation of a result.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "gpugeom/generate.hpp"
+#include "gpugeom/hull3d.hpp"
+#include "verify.hpp"
+
+namespace gg_hull3d {
+using gpugeom::Point3;
+
+struct Case {
+  std::string name;
+  std::vector<Point3> pts;
+};
+
+inline std::vector<Case> distribution_cases(const std::vector<std::int64_t>& sizes,
+                                            std::uint64_t seed) {
+  std::vector<Case> out;
+  for (const auto& d : gpugeom::distributions3d())
+    for (auto n : sizes) {
+      if ((d == "grid" || d == "two_lines") && n < 100) continue;  // may be coplanar
+      out.push_back({d + "/" + std::to_string(n), gpugeom::generate3d(d, n, seed)});
+    }
+  return out;
+}
+
+// Exactly degenerate inputs: points on faces and edges, grids, copies, cospherical points,
+// coordinates of very different magnitudes.
+inline std::vector<Case> degenerate_cases() {
+  std::vector<Case> out;
+  std::mt19937_64 rng(7);
+  for (int k : {1, 2, 3, 5, 8}) {  // full integer grids
+    Case c{"grid" + std::to_string(k + 1), {}};
+    for (int x = 0; x <= k; ++x)
+      for (int y = 0; y <= k; ++y)
+        for (int z = 0; z <= k; ++z) c.pts.push_back({double(x), double(y), double(z)});
+    std::shuffle(c.pts.begin(), c.pts.end(), rng);
+    out.push_back(c);
+  }
+  {  // integer points on the cube's faces only
+    Case c{"cube_faces", {}};
+    const int k = 9;
+    for (int x = 0; x <= k; ++x)
+      for (int y = 0; y <= k; ++y)
+        for (int z = 0; z <= k; ++z)
+          if (x == 0 || y == 0 || z == 0 || x == k || y == k || z == k)
+            c.pts.push_back({double(x), double(y), double(z)});
+    std::shuffle(c.pts.begin(), c.pts.end(), rng);
+    out.push_back(c);
+  }
+  {  // a tetrahedron with integer points on its faces and edges, and some inside
+    Case c{"tetra_faces", {}};
+    const int k = 12;
+    for (int x = 0; x <= k; ++x)
+      for (int y = 0; x + y <= k; ++y)
+        for (int z = 0; x + y + z <= k; ++z)
+          if (x == 0 || y == 0 || z == 0 || x + y + z == k || (x + y + z) % 5 == 1)
+            c.pts.push_back({double(x), double(y), double(z)});
+    std::shuffle(c.pts.begin(), c.pts.end(), rng);
+    out.push_back(c);
+  }
+  {  // an octahedron with points along its edges
+    Case c{"octahedron_edges", {}};
+    const int k = 16;
+    const int ax[6][3] = {{k, 0, 0}, {-k, 0, 0}, {0, k, 0}, {0, -k, 0}, {0, 0, k}, {0, 0, -k}};
+    for (int a = 0; a < 6; ++a)
+      for (int b = a + 1; b < 6; ++b) {
+        if (a / 2 == b / 2) continue;  // opposite vertices: not an edge
+        for (int t = 0; t <= k; ++t)
+          c.pts.push_back({double((ax[a][0] * (k - t) + ax[b][0] * t) / k),
+                           double((ax[a][1] * (k - t) + ax[b][1] * t) / k),
+                           double((ax[a][2] * (k - t) + ax[b][2] * t) / k)});
+      }
+    c.pts.push_back({0, 0, 0});
+    std::shuffle(c.pts.begin(), c.pts.end(), rng);
+    out.push_back(c);
+  }
+  {  // integer points on the sphere x^2 + y^2 + z^2 = 3 * 7^2 (exactly cospherical)
+    Case c{"cospherical", {}};
+    const int r2 = 147;
+    for (int x = -12; x <= 12; ++x)
+      for (int y = -12; y <= 12; ++y)
+        for (int z = -12; z <= 12; ++z)
+          if (x * x + y * y + z * z == r2) c.pts.push_back({double(x), double(y), double(z)});
+    out.push_back(c);
+  }
+  {  // every point three times, in shuffled order, with -0 for some zeros
+    Case c{"copies", {}};
+    auto b = gpugeom::generate3d("ball", 500, 3);
+    for (int r = 0; r < 3; ++r) c.pts.insert(c.pts.end(), b.begin(), b.end());
+    c.pts.push_back({0.0, -0.0, 0.0});
+    c.pts.push_back({-0.0, 0.0, -0.0});
+    std::shuffle(c.pts.begin(), c.pts.end(), rng);
+    out.push_back(c);
+  }
+  {  // a box's 8 corners repeated, with points inside its faces
+    Case c{"box_copies", {}};
+    for (int r = 0; r < 4; ++r)
+      for (int m = 0; m < 8; ++m)
+        c.pts.push_back({double(m & 1), double((m >> 1) & 1), double(m >> 2)});
+    for (int i = 1; i < 8; ++i) c.pts.push_back({i / 8.0, 0.5, 1.0});
+    std::shuffle(c.pts.begin(), c.pts.end(), rng);
+    out.push_back(c);
+  }
+  {  // huge and tiny coordinates together
+    Case c{"magnitudes", {}};
+    for (auto p : gpugeom::generate3d("ball", 300, 5))
+      c.pts.push_back({p.x * 1e40, p.y * 1e40, p.z * 1e40});
+    for (auto p : gpugeom::generate3d("sphere", 300, 6))
+      c.pts.push_back({p.x * 1e-30, p.y * 1e-30, p.z * 1e-30});
+    c.pts.push_back({1e-40, -3e-41, 2e-42});
+    out.push_back(c);
+  }
+  {  // a needle: almost collinear, but not
+    Case c{"needle",
+           {{0, 0, 0}, {1, 0, 0}, {0.5, 1e-12, 0}, {0.25, 0, 1e-12}, {0.75, -1e-13, -1e-13}}};
+    out.push_back(c);
+  }
+  return out;
+}
+
+// The checker, plus the parts of the result the checker does not see: vertex list,
+// neighbours, plane equations, and that no two vertices are copies of one point.
+inline void expect_valid(const std::vector<Point3>& pts, const gpugeom::ConvexHull3d& h) {
+  const double* p = &pts.data()->x;
+  const std::int64_t n = std::int64_t(pts.size());
+  const auto nt = std::int64_t(h.num_facets());
+  auto r = gpugeom::verify::check_hull3d(p, n, h.triangles.data(), nt);
+  ASSERT_TRUE(r.ok) << r.message;
+  std::set<std::int32_t> vs(h.triangles.begin(), h.triangles.end());
+  ASSERT_EQ(std::vector<std::int32_t>(vs.begin(), vs.end()), h.vertices);
+  ASSERT_EQ(h.neighbors.size(), h.triangles.size());
+  for (std::int64_t f = 0; f < nt; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t g = h.neighbors[3 * f + k];
+      ASSERT_TRUE(g >= 0 && g < nt);
+      const std::int32_t u = h.triangles[3 * f + (k + 1) % 3], v = h.triangles[3 * f + (k + 2) % 3];
+      bool shares = false, back = false;
+      for (int j = 0; j < 3; ++j) {
+        shares = shares ||
+                 (h.triangles[3 * g + (j + 1) % 3] == v && h.triangles[3 * g + (j + 2) % 3] == u);
+        back = back || h.neighbors[3 * g + j] == f;
+      }
+      ASSERT_TRUE(shares && back) << "facet " << f << " neighbour " << k;
+    }
+  ASSERT_EQ(h.equations.size(), std::size_t(4 * nt));
+  for (std::int64_t f = 0; f < nt; ++f) {
+    const double* e = h.equations.data() + 4 * f;
+    ASSERT_NEAR(e[0] * e[0] + e[1] * e[1] + e[2] * e[2], 1.0, 1e-12);
+    double scale = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Point3& q = pts[h.triangles[3 * f + k]];
+      scale = std::max({scale, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+    }
+    for (int k = 0; k < 3; ++k) {
+      const Point3& q = pts[h.triangles[3 * f + k]];
+      ASSERT_LE(std::fabs(e[0] * q.x + e[1] * q.y + e[2] * q.z + e[3]), 1e-9 * scale);
+    }
+  }
+  std::set<std::tuple<double, double, double>> seen;
+  for (auto v : h.vertices)
+    ASSERT_TRUE(seen.insert(std::make_tuple(pts[v].x + 0.0, pts[v].y + 0.0, pts[v].z + 0.0)).second)
+        << "vertex " << v << " is a second copy of an extreme point";
+}
+
+// Facets as a canonical set (each rotated to start at its smallest index).
+inline std::set<std::array<std::int32_t, 3>> facet_set(const std::vector<std::int32_t>& t) {
+  std::set<std::array<std::int32_t, 3>> s;
+  for (std::size_t f = 0; f < t.size() / 3; ++f) {
+    std::array<std::int32_t, 3> a{t[3 * f], t[3 * f + 1], t[3 * f + 2]};
+    std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());
+    s.insert(a);
+  }
+  return s;
+}
+
+}  // namespace gg_hull3d

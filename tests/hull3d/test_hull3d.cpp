@@ -1,0 +1,116 @@
+// 3D convex hull on the CPU executor: the checker on every distribution and degenerate input,
+// errors, and CGAL's extreme points as an oracle where CGAL is installed.
+#include <array>
+#include <cmath>
+
+#include "hull3d_cases.hpp"
+
+#ifdef GG_HAVE_CGAL
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+#endif
+
+using namespace gpugeom;
+using gg_hull3d::expect_valid;
+
+namespace {
+Hull3dOptions cpu() {
+  Hull3dOptions o;
+  o.backend = Backend::Cpu;
+  return o;
+}
+}  // namespace
+
+TEST(Hull3d, Distributions) {
+  for (const auto& c : gg_hull3d::distribution_cases({4, 5, 10, 100, 1000, 30000}, 11)) {
+    SCOPED_TRACE(c.name);
+    expect_valid(c.pts, convex_hull3d(c.pts, cpu()));
+  }
+}
+
+TEST(Hull3d, Degenerate) {
+  for (const auto& c : gg_hull3d::degenerate_cases()) {
+    SCOPED_TRACE(c.name);
+    const auto h = convex_hull3d(c.pts, cpu());
+    expect_valid(c.pts, h);
+    if (c.name.rfind("grid", 0) == 0 || c.name == "cube_faces" || c.name == "box_copies")
+      EXPECT_EQ(h.vertices.size(), 8u);  // the corners only
+    if (c.name == "tetra_faces") EXPECT_EQ(h.vertices.size(), 4u);
+    if (c.name == "octahedron_edges") EXPECT_EQ(h.vertices.size(), 6u);
+    if (c.name == "cospherical") EXPECT_EQ(h.vertices.size(), c.pts.size());
+  }
+}
+
+TEST(Hull3d, Repeatable) {
+  const auto pts = generate3d("thin_sphere", 20000, 4);
+  const auto a = convex_hull3d(pts, cpu()), b = convex_hull3d(pts, cpu());
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.neighbors, b.neighbors);
+}
+
+TEST(Hull3d, Errors) {
+  auto code = [](const std::vector<Point3>& p) {
+    try {
+      convex_hull3d(p, cpu());
+    } catch (const Error& e) {
+      EXPECT_FALSE(std::string(e.what()).empty());
+      return e.code();
+    }
+    return ErrorCode::Cuda;  // "no error": no test expects this code
+  };
+  const double nan = std::nan(""), inf = HUGE_VAL;
+  EXPECT_EQ(code({}), ErrorCode::DegenerateInput);
+  EXPECT_EQ(code({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}), ErrorCode::DegenerateInput);
+  EXPECT_EQ(code({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}, {1, 2, 3}}), ErrorCode::DegenerateInput);
+  EXPECT_EQ(code({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}, {1, 1, 1}}),
+            ErrorCode::DegenerateInput);
+  EXPECT_EQ(code({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0}, {1, 0, 0}}),
+            ErrorCode::DegenerateInput);  // 3 distinct points
+  EXPECT_EQ(code({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, nan}}), ErrorCode::InvalidInput);
+  EXPECT_EQ(code({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {inf, 0, 1}}), ErrorCode::InvalidInput);
+  EXPECT_EQ(code({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1e300}}), ErrorCode::InvalidInput);
+  auto message = [](const std::vector<Point3>& p) {
+    try {
+      convex_hull3d(p, cpu());
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message({{0, 0, 0}, {1, 2, 3}, {2, 4, 6}, {0.5, 1, 1.5}}).find("one line"),
+            std::string::npos);
+  std::vector<Point3> plane;
+  for (int i = 0; i < 100; ++i)
+    plane.push_back({double(i % 10), double(i / 10), 2.0 * (i % 10) - 3.0 * (i / 10)});
+  EXPECT_NE(message(plane).find("one plane"), std::string::npos);
+  EXPECT_NE(message({{1, 1, 1}, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}}).find("coincide"),
+            std::string::npos);
+  // nearly coplanar is not coplanar: exactly decided
+  const auto h =
+      convex_hull3d(std::vector<Point3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 1e-30}}, cpu());
+  EXPECT_EQ(h.vertices.size(), 4u);
+}
+
+#ifdef GG_HAVE_CGAL
+TEST(Hull3d, EqualsCgal) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  for (const char* d : {"ball", "gaussian", "thin_sphere", "sphere"})
+    for (std::int64_t n : {1000, 100000}) {
+      SCOPED_TRACE(std::string(d) + "/" + std::to_string(n));
+      const auto pts = generate3d(d, n, 21);
+      std::vector<K::Point_3> cp;
+      for (const auto& p : pts) cp.emplace_back(p.x, p.y, p.z);
+      CGAL::Surface_mesh<K::Point_3> sm;
+      CGAL::convex_hull_3(cp.begin(), cp.end(), sm);
+      std::set<std::array<double, 3>> want, got;
+      for (auto v : sm.vertices()) {
+        const auto& q = sm.point(v);
+        want.insert({q.x(), q.y(), q.z()});
+      }
+      const auto h = convex_hull3d(pts, cpu());
+      for (auto v : h.vertices) got.insert({pts[v].x, pts[v].y, pts[v].z});
+      EXPECT_EQ(got, want);
+    }
+}
+#endif
