@@ -61,5 +61,6 @@ int cmd_edt(const Global& g, Args& a);
 int cmd_cvd(const Global& g, Args& a);
 int cmd_stipple(const Global& g, Args& a);
 int cmd_delaunay2d(const Global& g, Args& a);
+int cmd_hull3d(const Global& g, Args& a);
 
 }  // namespace gpugeom::cli

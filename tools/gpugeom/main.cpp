@@ -73,6 +73,7 @@ static const char* kUsageText =
     "  cvd DENSITY -n N -o P   weighted centroidal Voronoi diagram (Lloyd) of a density\n"
     "  stipple IMG -o OUT.svg  stipple drawing of a photograph (also --png)\n"
     "  delaunay2d P -o MESH    exact 2D Delaunay triangulation (--voronoi, --draw, --check)\n"
+    "  hull3d P -o MESH        exact 3D convex hull (--check)\n"
     "\n"
     "global options:\n"
     "  --backend B   executor: auto (CUDA if a GPU is usable, else CPU), cpu, cuda;\n"
@@ -120,6 +121,7 @@ int main(int argc, char** argv) {
     if (cmd == "cvd") return cmd_cvd(g, a);
     if (cmd == "stipple") return cmd_stipple(g, a);
     if (cmd == "delaunay2d") return cmd_delaunay2d(g, a);
+    if (cmd == "hull3d") return cmd_hull3d(g, a);
     throw UsageError("unknown command '" + cmd + "' (try 'gpugeom --help')");
   } catch (const UsageError& e) {
     std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << e.what() << "\n";
