@@ -1,0 +1,196 @@
+// gpugeom_bench_hull3d: 3D convex hull end to end (host points in, host arrays out) and with the
+// points and the result on the GPU, over distributions and sizes on each backend, with CGAL's
+// convex_hull_3 timed on the same points in the same run when the build found CGAL. Also the
+// thesis' scalability test: n fixed, k points on a sphere and the rest strictly inside
+// ("scal:K" as a distribution). --save DIR writes every input as .npy for the Qhull anchor
+// (bench/anchor_hull3d.py).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench_csv.hpp"
+#include "gpugeom/generate.hpp"
+#include "gpugeom/hull3d.hpp"
+#include "gpugeom/io.hpp"
+#include "verify.hpp"
+
+#ifdef GPUGEOM_HAVE_CUDA
+#include <cuda_runtime.h>
+#endif
+#ifdef GG_BENCH_CGAL
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+#endif
+
+using namespace gpugeom;
+
+namespace {
+using clk = std::chrono::steady_clock;
+
+// k points on the sphere of radius 0.45 around (0.5, 0.5, 0.5), n - k in the ball of radius
+// 0.44 (inside the hull of the sphere points once k is more than a handful).
+std::vector<Point3> scalability(std::int64_t n, std::int64_t k) {
+  auto s = generate3d("sphere", k, 3);
+  auto b = generate3d("ball", n - k, 4);
+  for (auto& p : b)
+    p = {0.5 + (p.x - 0.5) * (0.44 / 0.45), 0.5 + (p.y - 0.5) * (0.44 / 0.45),
+         0.5 + (p.z - 0.5) * (0.44 / 0.45)};
+  s.insert(s.end(), b.begin(), b.end());
+  std::shuffle(s.begin(), s.end(), std::mt19937_64(5));
+  return s;
+}
+
+double cgal_ms(const std::vector<Point3>& p, std::int64_t& vertices) {
+#ifdef GG_BENCH_CGAL
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<K::Point_3> in;
+  in.reserve(p.size());
+  for (auto& q : p) in.emplace_back(q.x, q.y, q.z);
+  CGAL::Surface_mesh<K::Point_3> sm;
+  const auto t0 = clk::now();
+  CGAL::convex_hull_3(in.begin(), in.end(), sm);
+  const double ms = bench::ms_since(t0);
+  vertices = std::int64_t(sm.number_of_vertices());
+  return ms;
+#else
+  (void)p;
+  vertices = -1;
+  return -1;
+#endif
+}
+// Median time with the points already on the GPU and the result left there; -1 without CUDA.
+double device_resident_ms(const std::vector<Point3>& p, int reps) {
+#ifdef GPUGEOM_HAVE_CUDA
+  double* d = nullptr;
+  const std::size_t bytes = p.size() * sizeof(Point3);
+  if (cudaMalloc(&d, bytes) != cudaSuccess) return -1;
+  cudaMemcpy(d, p.data(), bytes, cudaMemcpyHostToDevice);
+  convex_hull3d_device(d, std::int64_t(p.size()));  // warm-up
+  std::vector<double> t;
+  for (int k = 0; k < reps; ++k) {
+    const auto t0 = clk::now();
+    auto r = convex_hull3d_device(d, std::int64_t(p.size()));
+    t.push_back(bench::ms_since(t0));
+  }
+  cudaFree(d);
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+#else
+  (void)p, (void)reps;
+  return -1;
+#endif
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string dists = "ball", sizes = "1e5,1e6", backends = "all", csv, save;
+  int reps = 3;
+  std::int64_t cgal_max = 0;
+  bool check = false;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+    if (a == "--dists")
+      dists = next();
+    else if (a == "--sizes")
+      sizes = next();
+    else if (a == "--backend")
+      backends = next();
+    else if (a == "--reps")
+      reps = std::stoi(next());
+    else if (a == "--cgal")
+      cgal_max = std::int64_t(std::stod(next()));
+    else if (a == "--check")
+      check = true;
+    else if (a == "--csv")
+      csv = next();
+    else if (a == "--save")
+      save = next();
+    else {
+      std::cout << "usage: gpugeom_bench_hull3d [--dists ball,uniform,thin_box,thin_sphere,sphere,"
+                   "scal:10000] [--sizes 1e6,1e7] [--backend cpu|cuda|all] [--reps 3] [--cgal "
+                   "MAX_N] [--check] [--csv FILE] [--save DIR]\n";
+      return a == "--help" ? 0 : 2;
+    }
+  }
+  const std::vector<Backend> bks = bench::backends(backends);
+  const std::string gpu = query_device().available ? query_device().name : "none";
+  std::printf("GPU: %s\n", gpu.c_str());
+  std::ofstream f = bench::open_bench_csv(csv);
+  std::printf("%-18s %10s %-5s %9s %9s %8s %9s %7s %9s %8s %9s %s\n", "distribution", "n", "bk",
+              "total ms", "on-device", "copies", "construct", "flip", "vertices", "rounds",
+              "CGAL ms", "check");
+  std::stringstream ds(dists);
+  for (std::string d; std::getline(ds, d, ',');) {
+    if (d.empty()) continue;
+    for (double nn : bench::numbers(sizes)) {
+      const std::int64_t n = std::int64_t(nn);
+      std::vector<Point3> pts;
+      std::string name = d;
+      if (d.rfind("scal:", 0) == 0) {
+        const std::int64_t k = std::int64_t(std::stod(d.substr(5)));
+        if (k >= n) continue;
+        pts = scalability(n, k);
+      } else {
+        pts = generate3d(d, n, 1);
+      }
+      if (!save.empty()) {
+        io::PointSet ps;
+        ps.dim = 3;
+        ps.coords.assign(&pts.data()->x, &pts.data()->x + 3 * pts.size());
+        io::write_points(save + "/" + (d.rfind("scal:", 0) == 0 ? "scal_" + d.substr(5) : d) +
+                             "_" + std::to_string(n) + ".npy",
+                         ps);
+      }
+      std::int64_t cgal_v = -1;
+      const double cg = n <= cgal_max ? cgal_ms(pts, cgal_v) : -1;
+      for (Backend b : bks) {
+        Hull3dOptions o;
+        o.backend = b;
+        ConvexHull3d r = convex_hull3d(pts, o);  // warm-up
+        std::vector<double> t;
+        for (int k = 0; k < reps; ++k) {
+          const auto t0 = clk::now();
+          r = convex_hull3d(pts, o);
+          t.push_back(bench::ms_since(t0));
+        }
+        std::sort(t.begin(), t.end());
+        const double med = t[t.size() / 2];
+        std::string verdict = cgal_v >= 0 ? (std::int64_t(r.vertices.size()) == cgal_v
+                                                 ? "vertices as CGAL"
+                                                 : "VERTEX COUNT DIFFERS FROM CGAL")
+                                          : "";
+        if (check) {
+          const auto rep = verify::check_hull3d(&pts.data()->x, n, r.triangles.data(),
+                                                std::int64_t(r.num_facets()), 2'000'000'000LL);
+          verdict += rep.ok ? " valid" : " INVALID: " + rep.message;
+        }
+        const double dev = b == Backend::Cuda ? device_resident_ms(pts, reps) : -1;
+        std::printf("%-18s %10lld %-5s %9.1f %9.1f %8.1f %9.1f %7.1f %9zu %8lld %9.1f %s\n",
+                    name.c_str(), (long long)n, backend_name(b), med, dev,
+                    bench::phase_ms(r.stats, "copies"), bench::phase_ms(r.stats, "construct"),
+                    bench::phase_ms(r.stats, "flip"), r.vertices.size(),
+                    (long long)(r.stats.counters["insert_rounds"] + r.stats.counters["flip_rounds"]),
+                    cg, verdict.c_str());
+        std::fflush(stdout);
+        if (f)
+          f << "hull3d," << name << "," << n << "," << backend_name(b) << ","
+            << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med << ",0," << (dev > 0 ? dev : 0)
+            << "," << med << ","
+            << double(r.stats.counters["exact_predicates"]) / std::max<double>(1, n) << "\n";
+      }
+      if (f && cg >= 0)
+        f << "hull3d," << name << "," << n << ",cgal,cpu-1core,0," << cg << ",0,0," << cg
+          << ",0\n";
+    }
+  }
+  return 0;
+}
