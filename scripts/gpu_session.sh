@@ -22,7 +22,7 @@ if [ "${SKIP_SANITIZER:-0}" != 1 ]; then
   echo "== compute-sanitizer memcheck"
   CS=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
   for t in .devbin/$TESTS; do
-    GG_DEL2D_MAX_N=5000 GG_TEST_TUPLES=1500 timeout 240 "$CS" --tool memcheck --leak-check full --error-exitcode 9 "$t" --gtest_brief=1 \
+    GG_DEL2D_MAX_N=5000 GG_HULL3D_MAX_N=5000 GG_TEST_TUPLES=1500 timeout 240 "$CS" --tool memcheck --leak-check full --error-exitcode 9 "$t" --gtest_brief=1 \
       >"$OUT/memcheck_$(basename "$t").log" 2>&1
     echo "memcheck $(basename "$t"): rc=$? $(grep -E 'ERROR SUMMARY' "$OUT/memcheck_$(basename "$t").log" | tail -1)"
   done
@@ -56,6 +56,22 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del2d ]; then
     fi
     [ "${DEL2D_HUGE:-1e8}" != skip ] && $D --backend cuda --dists uniform --sizes ${DEL2D_HUGE:-1e8} --reps 1 --csv "$CSV" | tail -n +3
   } 2>&1 | tee "$OUT/bench_del2d.txt"
+fi
+if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = hull3d ]; then
+  echo "== 3D convex hull benchmarks (end to end and on the device; CGAL and Qhull on one core)"
+  H=.devbin/gpugeom_bench_hull3d
+  HD=/tmp/hull_inputs
+  rm -rf $HD && mkdir -p $HD
+  {
+    $H --backend cuda --dists ball,uniform,thin_box,thin_sphere,sphere --sizes ${HULL3D_SIZES:-1e6,1e7} --reps 3 \
+      --cgal ${HULL3D_CGAL_MAX:-1e6} --save $HD --csv "$CSV"
+    [ "${HULL3D_HUGE:-1e8}" != skip ] && $H --backend cuda --dists ball --sizes ${HULL3D_HUGE:-1e8} --reps 1 --csv "$CSV" | tail -n +3
+    if [ "${HULL3D_SCAL:-1}" = 1 ]; then
+      $H --backend cuda --dists scal:10000,scal:20000,scal:40000,scal:80000,scal:160000,scal:320000,scal:640000 \
+        --sizes 1e6 --reps 3 --cgal 1e6 --save $HD --csv "$CSV" | tail -n +3
+    fi
+    python3 bench/anchor_hull3d.py --dir $HD --max-n ${HULL3D_QHULL_MAX:-1e6} --csv "$CSV"
+  } 2>&1 | tee "$OUT/bench_hull3d.txt"
 fi
 if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = edt ]; then
   echo "== EDT benchmarks (PBA on both backends, JFA, CuPy/SciPy/OpenCV anchors)"

@@ -5,8 +5,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build-cuda}
 rm -rf .devbin && mkdir -p .devbin/lib
-cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt "$B"/bench/gpugeom_bench_cvd "$B"/bench/gpugeom_bench_del2d "$B"/tools/gpugeom/gpugeom .devbin/
+cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt "$B"/bench/gpugeom_bench_cvd "$B"/bench/gpugeom_bench_del2d "$B"/bench/gpugeom_bench_hull3d "$B"/tools/gpugeom/gpugeom .devbin/
 [ -x "$B/bench/anchor_cgal" ] && cp "$B/bench/anchor_cgal" .devbin/
+# The carry limit is 64 MiB: EXCLUDE="gpugeom_bench_cvd gpugeom" leaves out what a run needs not.
+for x in ${EXCLUDE:-}; do rm -f ".devbin/$x"; done
 for f in .devbin/*; do
   [ -f "$f" ] || continue
   ldd "$f" | awk '/=> \//{print $3}' | grep -E 'libcudart|libgomp|libpng|libgmp|libmpfr|libz\.' | xargs -r -I{} cp -L {} .devbin/lib/

@@ -33,7 +33,9 @@ std::vector<double> plane_equations(const double* p, const std::vector<std::int3
     out[1] += (long double)u[2] * v[0] - (long double)u[0] * v[2];
     out[2] += (long double)u[0] * v[1] - (long double)u[1] * v[0];
   };
-  for (std::size_t f = 0; f < t.size() / 3; ++f) {
+  const std::int64_t nf = std::int64_t(t.size() / 3);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t f = 0; f < nf; ++f) {
     const double *a = p + 3 * std::int64_t(t[3 * f]), *b = p + 3 * std::int64_t(t[3 * f + 1]),
                  *c = p + 3 * std::int64_t(t[3 * f + 2]);
     long double nrm[3] = {0, 0, 0};

@@ -35,7 +35,7 @@ void same_on_both(const gg_hull3d::Case& c) {
 }  // namespace
 
 TEST(CudaHull3d, Distributions) {
-  for (const auto& c : gg_hull3d::distribution_cases(sizes({4, 100, 5000, 200000, 1000000}), 17))
+  for (const auto& c : gg_hull3d::distribution_cases(sizes({4, 100, 5000, 200000}), 17))
     same_on_both(c);
 }
 
