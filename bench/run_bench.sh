@@ -34,6 +34,11 @@ echo "== 2D Delaunay (end to end and on the device; CGAL in the same process, th
 if [ "$QUICK" = 1 ]; then DSIZES=100000,1000000; else DSIZES=1000000,10000000; fi
 "$BUILD/bench/gpugeom_bench_del2d" --dists uniform,thin_circle,circle,grid --sizes $DSIZES --reps 3 --cgal --csv "$CSV"
 python3 bench/anchor_del2d.py --gpugeom "$G" --dists uniform,circle,grid --sizes $ASIZES --tools triangle --csv "$CSV" || true
+echo "== 3D convex hull (end to end and on the device; CGAL in the same process, then Qhull)"
+HD=$(mktemp -d)
+"$BUILD/bench/gpugeom_bench_hull3d" --dists ball,uniform,thin_box,thin_sphere,sphere --sizes $DSIZES --reps 3 --cgal $ASIZES --save "$HD" --csv "$CSV"
+python3 bench/anchor_hull3d.py --dir "$HD" --max-n $ASIZES --csv "$CSV" || true
+rm -rf "$HD"
 echo "== anchors (CPU, one core)"
 if [ -x "$BUILD/bench/anchor_cgal" ]; then
   "$BUILD/bench/anchor_cgal" --problem delaunay2d --dist uniform --sizes $ASIZES --csv "$CSV"
