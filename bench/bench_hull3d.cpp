@@ -180,6 +180,11 @@ int main(int argc, char** argv) {
                     bench::phase_ms(r.stats, "flip"), r.vertices.size(),
                     (long long)(r.stats.counters["insert_rounds"] + r.stats.counters["flip_rounds"]),
                     cg, verdict.c_str());
+        std::printf("   ");
+        for (auto& ph : r.stats.phase_ms) std::printf(" %s %.1f", ph.first.c_str(), ph.second);
+        std::printf(" ms; end-to-end runs:");
+        for (double x : t) std::printf(" %.1f", x);
+        std::printf("\n");
         std::fflush(stdout);
         if (f)
           f << "hull3d," << name << "," << n << "," << backend_name(b) << ","
