@@ -12,14 +12,12 @@
 #include <vector>
 
 #include "bench_csv.hpp"
+#include "device_timing.hpp"
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/generate.hpp"
 #include "gpugeom/io.hpp"
 #include "verify.hpp"
 
-#ifdef GPUGEOM_HAVE_CUDA
-#include <cuda_runtime.h>
-#endif
 #ifdef GG_BENCH_CGAL
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -42,28 +40,6 @@ double cgal_ms(const std::vector<Point2>& p) {
   return ms;
 #else
   (void)p;
-  return -1;
-#endif
-}
-// Median time with the points already on the GPU and the result left there; -1 without CUDA.
-double device_resident_ms(const std::vector<Point2>& p, int reps) {
-#ifdef GPUGEOM_HAVE_CUDA
-  double* d = nullptr;
-  const std::size_t bytes = p.size() * sizeof(Point2);
-  if (cudaMalloc(&d, bytes) != cudaSuccess) return -1;
-  cudaMemcpy(d, p.data(), bytes, cudaMemcpyHostToDevice);
-  delaunay2d_device(d, std::int64_t(p.size()));  // warm-up
-  std::vector<double> t;
-  for (int k = 0; k < reps; ++k) {
-    const auto t0 = clk::now();
-    auto r = delaunay2d_device(d, std::int64_t(p.size()));
-    t.push_back(bench::ms_since(t0));
-  }
-  cudaFree(d);
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-#else
-  (void)p, (void)reps;
   return -1;
 #endif
 }
@@ -152,7 +128,11 @@ int main(int argc, char** argv) {
                                      std::int64_t(r.num_triangles()), r.duplicate_of.data());
         verdict += rep.ok ? ", valid" : ", INVALID: " + rep.message;
       }
-      const double dev = b == Backend::Cuda ? device_resident_ms(in.pts, reps) : -1;
+      const double dev =
+          b == Backend::Cuda
+              ? bench::device_resident_ms(
+                    in.pts, reps, [](const double* d, std::int64_t n) { delaunay2d_device(d, n); })
+              : -1;
       std::printf("%-22s %10lld %-5s %10.1f %9.1f %9.1f %9.1f %9.1f %9.1f %7lld %7lld %9.1f %s\n",
                   in.name.c_str(), (long long)n, backend_name(b), med, dev,
                   bench::phase_ms(r.stats, "prepare"), bench::phase_ms(r.stats, "insert"),

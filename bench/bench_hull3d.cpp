@@ -16,14 +16,12 @@
 #include <vector>
 
 #include "bench_csv.hpp"
+#include "device_timing.hpp"
 #include "gpugeom/generate.hpp"
 #include "gpugeom/hull3d.hpp"
 #include "gpugeom/io.hpp"
 #include "verify.hpp"
 
-#ifdef GPUGEOM_HAVE_CUDA
-#include <cuda_runtime.h>
-#endif
 #ifdef GG_BENCH_CGAL
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -63,28 +61,6 @@ double cgal_ms(const std::vector<Point3>& p, std::int64_t& vertices) {
 #else
   (void)p;
   vertices = -1;
-  return -1;
-#endif
-}
-// Median time with the points already on the GPU and the result left there; -1 without CUDA.
-double device_resident_ms(const std::vector<Point3>& p, int reps) {
-#ifdef GPUGEOM_HAVE_CUDA
-  double* d = nullptr;
-  const std::size_t bytes = p.size() * sizeof(Point3);
-  if (cudaMalloc(&d, bytes) != cudaSuccess) return -1;
-  cudaMemcpy(d, p.data(), bytes, cudaMemcpyHostToDevice);
-  convex_hull3d_device(d, std::int64_t(p.size()));  // warm-up
-  std::vector<double> t;
-  for (int k = 0; k < reps; ++k) {
-    const auto t0 = clk::now();
-    auto r = convex_hull3d_device(d, std::int64_t(p.size()));
-    t.push_back(bench::ms_since(t0));
-  }
-  cudaFree(d);
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-#else
-  (void)p, (void)reps;
   return -1;
 #endif
 }
@@ -146,8 +122,8 @@ int main(int argc, char** argv) {
         io::PointSet ps;
         ps.dim = 3;
         ps.coords.assign(&pts.data()->x, &pts.data()->x + 3 * pts.size());
-        io::write_points(save + "/" + (d.rfind("scal:", 0) == 0 ? "scal_" + d.substr(5) : d) +
-                             "_" + std::to_string(n) + ".npy",
+        io::write_points(save + "/" + (d.rfind("scal:", 0) == 0 ? "scal_" + d.substr(5) : d) + "_" +
+                             std::to_string(n) + ".npy",
                          ps);
       }
       std::int64_t cgal_v = -1;
@@ -173,13 +149,19 @@ int main(int argc, char** argv) {
                                                 std::int64_t(r.num_facets()), 2'000'000'000LL);
           verdict += rep.ok ? " valid" : " INVALID: " + rep.message;
         }
-        const double dev = b == Backend::Cuda ? device_resident_ms(pts, reps) : -1;
-        std::printf("%-18s %10lld %-5s %9.1f %9.1f %8.1f %9.1f %7.1f %9zu %8lld %9.1f %s\n",
-                    name.c_str(), (long long)n, backend_name(b), med, dev,
-                    bench::phase_ms(r.stats, "copies"), bench::phase_ms(r.stats, "construct"),
-                    bench::phase_ms(r.stats, "flip"), r.vertices.size(),
-                    (long long)(r.stats.counters["insert_rounds"] + r.stats.counters["flip_rounds"]),
-                    cg, verdict.c_str());
+        const double dev = b == Backend::Cuda
+                               ? bench::device_resident_ms(pts, reps,
+                                                           [](const double* d, std::int64_t n) {
+                                                             convex_hull3d_device(d, n);
+                                                           })
+                               : -1;
+        std::printf(
+            "%-18s %10lld %-5s %9.1f %9.1f %8.1f %9.1f %7.1f %9zu %8lld %9.1f %s\n", name.c_str(),
+            (long long)n, backend_name(b), med, dev, bench::phase_ms(r.stats, "copies"),
+            bench::phase_ms(r.stats, "construct"), bench::phase_ms(r.stats, "flip"),
+            r.vertices.size(),
+            (long long)(r.stats.counters["insert_rounds"] + r.stats.counters["flip_rounds"]), cg,
+            verdict.c_str());
         std::printf("   ");
         for (auto& ph : r.stats.phase_ms) std::printf(" %s %.1f", ph.first.c_str(), ph.second);
         std::printf(" ms; end-to-end runs:");
@@ -193,8 +175,7 @@ int main(int argc, char** argv) {
             << double(r.stats.counters["exact_predicates"]) / std::max<double>(1, n) << "\n";
       }
       if (f && cg >= 0)
-        f << "hull3d," << name << "," << n << ",cgal,cpu-1core,0," << cg << ",0,0," << cg
-          << ",0\n";
+        f << "hull3d," << name << "," << n << ",cgal,cpu-1core,0," << cg << ",0,0," << cg << ",0\n";
     }
   }
   return 0;
