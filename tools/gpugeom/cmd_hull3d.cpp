@@ -64,8 +64,8 @@ int cmd_hull3d(const Global& g, Args& a) {
   int status = kOk;
   if (check) {
     Timer t(g, "check");
-    const auto r = verify::check_hull3d(p.coords.data(), n, h.triangles.data(),
-                                        std::int64_t(h.num_facets()));
+    const auto r =
+        verify::check_hull3d(p.coords.data(), n, h.triangles.data(), std::int64_t(h.num_facets()));
     if (!r.ok) {
       std::cerr << "INVALID hull3d: " << r.message << "\n";
       status = kCheckFailed;
@@ -87,7 +87,8 @@ int cmd_hull3d(const Global& g, Args& a) {
       std::vector<std::int32_t> index(std::size_t(n), -1);
       for (std::size_t i = 0; i < h.vertices.size(); ++i) {
         index[h.vertices[i]] = std::int32_t(i);
-        for (int d = 0; d < 3; ++d) m.coords.push_back(p.coords[3 * std::size_t(h.vertices[i]) + d]);
+        for (int d = 0; d < 3; ++d)
+          m.coords.push_back(p.coords[3 * std::size_t(h.vertices[i]) + d]);
       }
       m.cells.reserve(h.triangles.size());
       for (auto v : h.triangles) m.cells.push_back(index[v]);
