@@ -157,7 +157,8 @@ int main(int argc, char** argv) {
                                : -1;
         std::printf(
             "%-18s %10lld %-5s %9.1f %9.1f %8.1f %9.1f %7.1f %9zu %8lld %9.1f %s\n", name.c_str(),
-            (long long)n, backend_name(b), med, dev, bench::phase_ms(r.stats, "copies"),
+            (long long)n, backend_name(b), med, dev,
+            bench::phase_ms(r.stats, "upload") + bench::phase_ms(r.stats, "copy_back"),
             bench::phase_ms(r.stats, "construct"), bench::phase_ms(r.stats, "flip"),
             r.vertices.size(),
             (long long)(r.stats.counters["insert_rounds"] + r.stats.counters["flip_rounds"]), cg,

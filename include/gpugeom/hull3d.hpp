@@ -30,7 +30,8 @@ struct ConvexHull3d {
   // offset d, with a x + b y + c z + d <= 0 for every input point up to rounding (the planes
   // are computed in floating point; the hull itself is exact).
   std::vector<double> equations;
-  // Stats: phases "prepare", "construct", "flip", "extreme_test", "copies" (CUDA); counters
+  // Stats: phases "upload" (CUDA), "prepare", "construct", "flip", "extreme_test",
+  // "host_arrays", "copy_back" (CUDA), "planes"; counters
   // "insert_rounds", "flip_rounds", "flips22", "flips31", "labelled_nonextreme",
   // "exact_predicates", "first_pass_vertices", "nonextreme_vertices_dropped",
   // "copies_dropped", "passes" (2 when the extreme points needed a hull of their own).

@@ -1,6 +1,7 @@
 // Public entry of the 3D convex hull module: checks sizes, picks the backend, adds the planes.
 #include "gpugeom/hull3d.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -23,30 +24,38 @@ void check_count(std::int64_t n) {
                     "): a convex hull in 3D needs 4 points not on one plane");
 }
 
-// Unit outward normal and offset of each facet. The normal is summed as a x b + b x c + c x a
-// (equal to (b - a) x (c - a)), in long double: differences of points of very different
-// magnitudes would lose the small one entirely.
+// Unit outward normal and offset of each facet: (b - a) x (c - a) in double. Where the
+// differences lose a point entirely (coordinates of very different magnitudes, e.g. a facet
+// with one huge and two tiny vertices, whose rounded normal is zero), the normal is summed
+// again as a x b + b x c + c x a in long double.
 std::vector<double> plane_equations(const double* p, const std::vector<std::int32_t>& t) {
   std::vector<double> eq(t.size() / 3 * 4);
-  auto cross = [](const double* u, const double* v, long double* out) {
-    out[0] += (long double)u[1] * v[2] - (long double)u[2] * v[1];
-    out[1] += (long double)u[2] * v[0] - (long double)u[0] * v[2];
-    out[2] += (long double)u[0] * v[1] - (long double)u[1] * v[0];
-  };
   const std::int64_t nf = std::int64_t(t.size() / 3);
 #pragma omp parallel for schedule(static)
   for (std::int64_t f = 0; f < nf; ++f) {
     const double *a = p + 3 * std::int64_t(t[3 * f]), *b = p + 3 * std::int64_t(t[3 * f + 1]),
                  *c = p + 3 * std::int64_t(t[3 * f + 2]);
-    long double nrm[3] = {0, 0, 0};
-    cross(a, b, nrm);
-    cross(b, c, nrm);
-    cross(c, a, nrm);
-    const long double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-    if (len > 0)
-      for (auto& x : nrm) x /= len;
-    for (int d = 0; d < 3; ++d) eq[4 * f + d] = double(nrm[d]);
-    eq[4 * f + 3] = double(-(nrm[0] * a[0] + nrm[1] * a[1] + nrm[2] * a[2]));
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double nrm[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                     u[0] * v[1] - u[1] * v[0]};
+    double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+    if (!(len > 0) || !std::isfinite(len)) {
+      long double w[3] = {0, 0, 0};
+      auto cross = [&w](const double* x, const double* y) {
+        w[0] += (long double)x[1] * y[2] - (long double)x[2] * y[1];
+        w[1] += (long double)x[2] * y[0] - (long double)x[0] * y[2];
+        w[2] += (long double)x[0] * y[1] - (long double)x[1] * y[0];
+      };
+      cross(a, b);
+      cross(b, c);
+      cross(c, a);
+      const long double wl = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+      for (int d = 0; d < 3; ++d) nrm[d] = wl > 0 ? double(w[d] / wl) : 0.0;
+      len = 1;
+    }
+    for (int d = 0; d < 3; ++d) eq[4 * f + d] = nrm[d] / len;
+    eq[4 * f + 3] = -(eq[4 * f] * a[0] + eq[4 * f + 1] * a[1] + eq[4 * f + 2] * a[2]);
   }
   return eq;
 }
@@ -69,7 +78,11 @@ ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOption
   r.triangles = std::move(out.triangles);
   r.neighbors = std::move(out.neighbors);
   r.vertices = std::move(out.vertices);
+  const auto t0 = std::chrono::steady_clock::now();
   r.equations = plane_equations(xyz, r.triangles);
+  r.stats.phase_ms.emplace_back(
+      "planes",
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   return r;
 }
 

@@ -218,6 +218,7 @@ inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st) 
   st.counters["first_pass_vertices"] = nv;
   st.counters["nonextreme_vertices_dropped"] = nv - nk - copies;
   st.counters["copies_dropped"] = copies;
+  ex.sync();
   st.phase_ms.emplace_back("extreme_test", ms_since(t0));
   if (nk == nv) {
     R.vertices = std::move(verts);
@@ -254,18 +255,17 @@ inline void compute_impl(const double* xyz, std::int64_t n, Output& out, Stats& 
     ex.from_host(xyz, 3 * n, dev.data());
     p = dev.data();
     ex.sync();
-    st.phase_ms.emplace_back("copies", ms_since(t0));
+    st.phase_ms.emplace_back("upload", ms_since(t0));
   }
   Result R = hull_core(ex, p, n, st);
   auto t0 = clock::now();
   out.triangles.resize(std::size_t(3 * R.facets.count));
   out.neighbors.resize(std::size_t(3 * R.facets.count));
   out.vertices.resize(std::size_t(R.num_vertices));
+  st.phase_ms.emplace_back("host_arrays", ms_since(t0));
+  t0 = clock::now();
   ex.to_host(R.facets.tris.data(), 3 * R.facets.count, out.triangles.data());
   ex.to_host(R.facets.nbrs.data(), 3 * R.facets.count, out.neighbors.data());
   ex.to_host(R.vertices.data(), R.num_vertices, out.vertices.data());
-  if constexpr (Exec::backend == Backend::Cuda) {
-    for (auto& ph : st.phase_ms)
-      if (ph.first == "copies") ph.second += ms_since(t0);
-  }
+  if constexpr (Exec::backend == Backend::Cuda) st.phase_ms.emplace_back("copy_back", ms_since(t0));
 }
