@@ -16,6 +16,7 @@ struct Counters {
   std::int64_t next;    // work-list length for the next flip round
   std::int64_t labels;  // vertices newly labelled non-extreme
   std::int64_t flips22, flips31, lost;
+  std::int64_t exact_all;  // exact-stage items over the whole pass (reset adds `exact` in)
 };
 
 // Buffers of one hull computation, shared by the two phases. (Every member is public: nvcc's
@@ -32,7 +33,6 @@ struct PassState {
   typename Exec::template Buffer<std::int32_t> exl;  // exact-stage work list
   std::int64_t exl_cap = 0;
   Stats& st;
-  std::int64_t exact_total = 0;
 
   PassState(Exec& e, const double* pts, std::int64_t np, const double* s, Stats& stats)
       : ex(e), n(np), st(stats) {
@@ -51,14 +51,20 @@ struct PassState {
     scratch = ex.template alloc<double>(std::size_t(slots * kScratch));
     ex.fill(deg.data(), np, std::int32_t(0));
     ex.fill(stamp.data(), cap, std::int32_t(-1));
-    reset_counters();
+    Counters z{};
+    ex.from_host(&z, 1, ctr.data());
   }
   Surface surface() {
     return Surface{tv.data(), to.data(), stamp.data(), remap.data(), deg.data()};
   }
+  // Zeroes the per-round counters on the executor (no host round trip).
   void reset_counters() {
-    Counters z{};
-    ex.from_host(&z, 1, ctr.data());
+    Counters* c = ctr.data();
+    ex.for_each_index(
+        1, GG_LAMBDA(std::int64_t) {
+          c->exact_all += c->exact;
+          c->exact = c->next = c->labels = c->flips22 = c->flips31 = c->lost = 0;
+        });
   }
   Counters counters() {
     Counters c;
@@ -73,18 +79,18 @@ struct PassState {
     }
     return exl.data();
   }
-  // Runs f(item, ExactOrient) for the `count` listed items, striding over bounded slots.
+  // Runs f(item, ExactOrient) for the items the filter queued this round (their count is read
+  // on the executor, so no copy to the host is needed to launch), striding over the slots.
   template <class F>
-  void exact_pass(std::int64_t count, F f) {
-    if (count <= 0) return;
-    exact_total += count;
-    const std::int64_t slots = std::max<std::int64_t>(
-        1, std::min<std::int64_t>(count, std::int64_t(scratch.size()) / kScratch));
+  void exact_pass(F f) {
+    const std::int64_t slots = std::max<std::int64_t>(1, std::int64_t(scratch.size()) / kScratch);
     const std::int32_t* list = exl.data();
     double* sc = scratch.data();
+    const Counters* c = ctr.data();
     const Geo geo = g;
     ex.for_each_index(
         slots, GG_LAMBDA(std::int64_t t) {
+          const std::int64_t count = c->exact;
           const ExactOrient o{geo, sc + t * kScratch};
           for (std::int64_t j = t; j < count; j += slots) f(list[j], o);
         });
@@ -183,8 +189,7 @@ class Constructor {
           }
           loc[i] = r;
         });
-    const Counters c0 = S_.counters();
-    S_.exact_pass(c0.exact, LocateFirstExact{F, loc, s});
+    S_.exact_pass(LocateFirstExact{F, loc, s});
     S_.reset_counters();
     live_n_ = ex.compact_indices(
         n, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, live_.data());
@@ -247,9 +252,8 @@ class Constructor {
           }
           loc[q] = c < 0 ? -1 : c == 0 ? f : base + 2 * r + (c - 1);
         });
-    const Counters c0 = S_.counters();
-    S_.exact_pass(c0.exact, LocateChildExact{loc, rank, spl, s, base});
-    if (c0.exact) S_.reset_counters();
+    S_.exact_pass(LocateChildExact{loc, rank, spl, s, base});
+    S_.reset_counters();
     ex.for_each_index(
         m, GG_LAMBDA(std::int64_t r) {
           best[list[r]] = 0;

@@ -127,8 +127,7 @@ class FlipFlop {
           const std::int32_t f = act[i];
           if (!decide(f, FastOrient{geo})) exl[append_slot(&ctr->exact)] = f;
         });
-    Counters c0 = S_.counters();
-    S_.exact_pass(c0.exact, decide);
+    S_.exact_pass(decide);
 
     // 2. Vote: each proposal claims its facets.
     const u64 rk = u64(std::uint32_t(round)) << 32;

@@ -68,7 +68,7 @@ inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st) {
   Facets out = compact(S);
   ex.sync();
   st.phase_ms.emplace_back("flip", ms_since(t0));
-  st.counters["exact_predicates"] += S.exact_total;
+  st.counters["exact_predicates"] += S.counters().exact_all;
   return out;
 }
 
