@@ -165,7 +165,10 @@ int main(int argc, char** argv) {
             verdict.c_str());
         std::printf("   ");
         for (auto& ph : r.stats.phase_ms) std::printf(" %s %.1f", ph.first.c_str(), ph.second);
-        std::printf(" ms; end-to-end runs:");
+        std::printf(" ms;");
+        for (auto& c : r.stats.counters)
+          std::printf(" %s %lld", c.first.c_str(), (long long)c.second);
+        std::printf("; end-to-end runs:");
         for (double x : t) std::printf(" %.1f", x);
         std::printf("\n");
         std::fflush(stdout);

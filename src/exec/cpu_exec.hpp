@@ -62,6 +62,12 @@ struct CpuExec {
     for (std::int64_t i = 0; i < n; ++i) f(i);
   }
 
+  // f(i) for every i < *count (CudaExec reads the count on the device; here it is just memory).
+  template <class F>
+  void for_each_counted(const std::int64_t* count, std::int64_t /*bound*/, F f) {
+    for_each_index(*count, f);
+  }
+
   template <class T>
   void fill(T* p, std::int64_t n, T v) {
     for_each_index(n, [=](std::int64_t i) { p[i] = v; });
@@ -127,6 +133,14 @@ struct CpuExec {
     thrust::counting_iterator<std::int32_t> first(0);
     auto by_index = [&](std::int32_t i) { return bool(pred(std::int64_t(i))); };
     return thrust::copy_if(thrust::omp::par, first, first + n, out, by_index) - out;
+  }
+  template <class T, class Pred>
+  void copy_if_to(const T* in, std::int64_t n, T* out, Pred pred, std::int64_t* count) {
+    *count = n > 0 ? copy_if(in, n, out, pred) : 0;
+  }
+  template <class Pred>
+  void compact_indices_to(std::int64_t n, Pred pred, std::int32_t* out, std::int64_t* count) {
+    *count = n > 0 ? compact_indices(n, pred, out) : 0;
   }
   void sync() {}
 

@@ -81,6 +81,14 @@ __global__ void for_each_kernel(std::int64_t n, F f) {
   for (std::int64_t i = std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride)
     f(i);
 }
+// f(i) for i < *count, the count read when the kernel runs.
+template <class F>
+__global__ void for_each_counted_kernel(const std::int64_t* count, F f) {
+  const std::int64_t n = *count;
+  const std::int64_t stride = std::int64_t(gridDim.x) * blockDim.x;
+  for (std::int64_t i = std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride)
+    f(i);
+}
 template <class F, class T>
 struct IndexMap {
   F f;
@@ -129,6 +137,19 @@ class CudaExec {
     GG_CUDA_CHECK_LAUNCH("for_each_kernel");
   }
 
+  // f(i) for every i < *count, where count lives on the device and is read when the kernel runs,
+  // so the host need not wait for the work that produces it; bound >= *count sizes the grid.
+  template <class F>
+  void for_each_counted(const std::int64_t* count, std::int64_t bound, F f) {
+    if (bound <= 0) return;
+    constexpr int kBlock = 256;
+    std::int64_t blocks = (bound + kBlock - 1) / kBlock;
+    const std::int64_t cap = std::int64_t(sms_) * 8;  // one full wave; grid-stride beyond
+    if (blocks > cap) blocks = cap;
+    cuda_detail::for_each_counted_kernel<<<unsigned(blocks), kBlock, 0, s_>>>(count, f);
+    GG_CUDA_CHECK_LAUNCH("for_each_counted_kernel");
+  }
+
   template <class T>
   void fill(T* p, std::int64_t n, T v) {
     for_each_index(n, [=] __device__(std::int64_t i) { p[i] = v; });
@@ -142,6 +163,10 @@ class CudaExec {
   void to_host(const T* src, std::int64_t n, T* host) {
     if (std::size_t(n) * sizeof(T) >= staging::kMinBytes && is_pageable(host)) {
       staging::to_host(host, src, std::size_t(n) * sizeof(T), s_);
+      return;
+    }
+    if (std::size_t(n) * sizeof(T) <= staging::kMailBytes && is_pageable(host)) {
+      staging::small_to_host(host, src, std::size_t(n) * sizeof(T), s_);
       return;
     }
     copy(src, n, host);
@@ -229,27 +254,43 @@ class CudaExec {
   std::int64_t copy_if(const T* in, std::int64_t n, T* out, Pred pred) {
     if (n <= 0) return 0;
     Buffer<std::int64_t> cnt = alloc<std::int64_t>(1);
-    std::int64_t* c = cnt.data();
-    run_cub([&](void* tmp, std::size_t& bytes) {
-      return cub::DeviceSelect::If(tmp, bytes, in, out, c, n, pred, s_);
-    });
+    copy_if_to(in, n, out, pred, cnt.data());
     std::int64_t h = 0;
-    to_host(c, 1, &h);
+    to_host(cnt.data(), 1, &h);
     return h;
+  }
+  // The same, leaving the count on the device (in *count) without waiting for it.
+  template <class T, class Pred>
+  void copy_if_to(const T* in, std::int64_t n, T* out, Pred pred, std::int64_t* count) {
+    if (n <= 0) {
+      fill(count, 1, std::int64_t(0));
+      return;
+    }
+    run_cub([&](void* tmp, std::size_t& bytes) {
+      return cub::DeviceSelect::If(tmp, bytes, in, out, count, n, pred, s_);
+    });
   }
   template <class Pred>
   std::int64_t compact_indices(std::int64_t n, Pred pred, std::int32_t* out) {
-    thrust::counting_iterator<std::int32_t> first(0);
     if (n <= 0) return 0;
     Buffer<std::int64_t> cnt = alloc<std::int64_t>(1);
-    std::int64_t* c = cnt.data();
+    compact_indices_to(n, pred, out, cnt.data());
+    std::int64_t h = 0;
+    to_host(cnt.data(), 1, &h);
+    return h;
+  }
+  // The same, leaving the count on the device (in *count) without waiting for it.
+  template <class Pred>
+  void compact_indices_to(std::int64_t n, Pred pred, std::int32_t* out, std::int64_t* count) {
+    if (n <= 0) {
+      fill(count, 1, std::int64_t(0));
+      return;
+    }
+    thrust::counting_iterator<std::int32_t> first(0);
     cuda_detail::IndexPred<Pred> ip{pred};
     run_cub([&](void* tmp, std::size_t& bytes) {
-      return cub::DeviceSelect::If(tmp, bytes, first, out, c, n, ip, s_);
+      return cub::DeviceSelect::If(tmp, bytes, first, out, count, n, ip, s_);
     });
-    std::int64_t h = 0;
-    to_host(c, 1, &h);
-    return h;
   }
   void sync() { GG_CUDA_CHECK(cudaStreamSynchronize(s_)); }
   // Plain host memory (not pinned, not managed): large copies then go through staging.

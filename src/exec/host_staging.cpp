@@ -52,6 +52,22 @@ Pool& pool() {
   return *p;
 }
 
+// One pinned page for small reads, made on first use (apart from the large buffers, so that
+// a program that only reads counters never pins 64 MB).
+struct Mailbox {
+  void* buf = nullptr;
+  std::mutex busy;
+  Mailbox() { check(cudaMallocHost(&buf, kMailBytes), "pinned mailbox"); }
+};
+Mailbox& mailbox() {
+  static Mailbox* m = [] {
+    Mailbox* q = new Mailbox;
+    std::atexit([] { (void)cudaFreeHost(mailbox().buf); });
+    return q;
+  }();
+  return *m;
+}
+
 // memcpy over the cores: one thread cannot keep up with the link.
 void parallel_copy(void* dst, const void* src, std::size_t bytes) {
   const int nt = std::max(1, std::min(omp_get_max_threads(), int(bytes >> 20)));
@@ -84,6 +100,14 @@ void to_host(void* host, const void* device, std::size_t bytes, cudaStream_t s) 
     const std::size_t off = c * kChunk, len = std::min(kChunk, bytes - off);
     parallel_copy(static_cast<char*>(host) + off, p.buf[c % 2], len);
   }
+}
+
+void small_to_host(void* host, const void* device, std::size_t bytes, cudaStream_t s) {
+  Mailbox& m = mailbox();
+  std::lock_guard<std::mutex> lock(m.busy);
+  check(cudaMemcpyAsync(m.buf, device, bytes, cudaMemcpyDeviceToHost, s), "copy to host");
+  check(cudaStreamSynchronize(s), "copy to host");
+  std::memcpy(host, m.buf, bytes);
 }
 
 void from_host(void* device, const void* host, std::size_t bytes, cudaStream_t s) {

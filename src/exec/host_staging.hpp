@@ -17,4 +17,9 @@ constexpr std::size_t kMinBytes = std::size_t(4) << 20;
 void to_host(void* host, const void* device, std::size_t bytes, cudaStream_t s);
 void from_host(void* device, const void* host, std::size_t bytes, cudaStream_t s);
 
+// Small reads (counters, one element): through a pinned mailbox, since a copy into pageable
+// memory takes the driver's slow path. Waits for the copy.
+constexpr std::size_t kMailBytes = 4096;
+void small_to_host(void* host, const void* device, std::size_t bytes, cudaStream_t s);
+
 }  // namespace gpugeom::staging

@@ -11,12 +11,15 @@
 // Exact-stage threads of the split passes, each with a kScratch slice (3.9 kB).
 constexpr std::int64_t kExactSlots = 16384;
 
+// Counters on the executor. The per-round fields are added into the totals when a kernel resets
+// them, so the host reads them only when it must (a round's sizes) or once at the end.
 struct Counters {
-  std::int64_t exact;   // items the filter left to the exact stage this round
-  std::int64_t next;    // work-list length for the next flip round
-  std::int64_t labels;  // vertices newly labelled non-extreme
-  std::int64_t flips22, flips31, lost;
-  std::int64_t exact_all;  // exact-stage items over the whole pass (reset adds `exact` in)
+  std::int64_t exact;   // items the filter left to the exact stage of the current pass
+  std::int64_t labels;  // vertices labelled non-extreme this flip round
+  std::int64_t len[2];  // flip work-list lengths, by round parity
+  std::int64_t split;   // facets split this insertion round
+  std::int64_t live;    // points still outside after this insertion round (next to split)
+  std::int64_t exact_all, flips22, flips31, labels_all, flip_rounds;  // totals
 };
 
 // Buffers of one hull computation, shared by the two phases. (Every member is public: nvcc's
@@ -57,13 +60,19 @@ struct PassState {
   Surface surface() {
     return Surface{tv.data(), to.data(), stamp.data(), remap.data(), deg.data()};
   }
-  // Zeroes the per-round counters on the executor (no host round trip).
-  void reset_counters() {
+  // Zeroes the per-round counters on the executor (no host round trip), adding them into the
+  // totals. parity >= 0 ends a flip round: its work list was len[parity].
+  void reset_counters(int parity = -1) {
     Counters* c = ctr.data();
     ex.for_each_index(
         1, GG_LAMBDA(std::int64_t) {
           c->exact_all += c->exact;
-          c->exact = c->next = c->labels = c->flips22 = c->flips31 = c->lost = 0;
+          c->labels_all += c->labels;
+          c->exact = c->labels = 0;
+          if (parity >= 0) {
+            c->flip_rounds += c->len[parity] > 0;
+            c->len[parity] = 0;
+          }
         });
   }
   Counters counters() {
@@ -153,8 +162,11 @@ class Constructor {
       }
     ex.from_host(fv, 12, S_.tv.data());
     ex.from_host(fo, 12, S_.to.data());
-    const std::int32_t three[4] = {3, 3, 3, 3};
-    for (int k = 0; k < 4; ++k) ex.from_host(three + k, 1, S_.deg.data() + t_.v[k]);
+    std::int32_t* deg = S_.deg.data();
+    ex.for_each_index(
+        4, GG_LAMBDA(std::int64_t k) {
+          deg[k == 0 ? a : k == 1 ? b : k == 2 ? c : d] = 3;
+        });
     S_.used = 4;
     cap_ = S_.cap;
     loc_ = ex.template alloc<std::int32_t>(std::size_t(n));
@@ -210,30 +222,30 @@ class Constructor {
           const std::int32_t q = live[j], f = loc[q];
           atomic_max(best + f, distance_key(geo, tv[3 * f], tv[3 * f + 1], tv[3 * f + 2], q));
         });
-    // The facets that split, in slot order; two new slots each.
+    // The facets that split, in slot order; two new slots each. Their count stays on the
+    // executor until the end of the round. (No overflow: each point is inserted at most once,
+    // so at most 4 + 2 (n - 4) < cap slots are ever handed out.)
     const std::int64_t used = S_.used;
     std::int32_t* list = list_.data();
-    const std::int64_t m = ex.compact_indices(
-        used, GG_LAMBDA(std::int64_t f) { return best[f] != 0; }, list);
-    if (used + 2 * m > cap_)
-      throw Error(ErrorCode::Internal, "convex hull: facet store overflow while inserting");
+    Counters* ctr = S_.ctr.data();
+    const std::int64_t* m = &ctr->split;
+    ex.compact_indices_to(
+        used, GG_LAMBDA(std::int64_t f) { return best[f] != 0; }, list, &ctr->split);
     std::int32_t* rank = rank_.data();
     std::int32_t* spl = spl_.data();
     const Surface Sf = S_.surface();
     const std::int32_t base = std::int32_t(used);
-    ex.for_each_index(
-        m, GG_LAMBDA(std::int64_t r) { rank[list[r]] = std::int32_t(r); });
-    ex.for_each_index(
-        m, GG_LAMBDA(std::int64_t r) {
+    ex.for_each_counted(
+        m, used, GG_LAMBDA(std::int64_t r) { rank[list[r]] = std::int32_t(r); });
+    ex.for_each_counted(
+        m, used, GG_LAMBDA(std::int64_t r) {
           const std::int32_t f = list[r];
           const std::int32_t p = point_of_key(best[f]);
           spl[4 * r] = p;
           for (int k = 0; k < 3; ++k) spl[4 * r + 1 + k] = Sf.tv[3 * f + k];
           split_facet(Sf, f, p, base + 2 * std::int32_t(r), rank, base);
         });
-    S_.used = used + 2 * m;
     // Points of split facets move to a child or drop out.
-    Counters* ctr = S_.ctr.data();
     std::int32_t* exl = S_.exact_list(nl);
     ex.for_each_index(
         nl, GG_LAMBDA(std::int64_t j) {
@@ -254,14 +266,21 @@ class Constructor {
         });
     S_.exact_pass(LocateChildExact{loc, rank, spl, s, base});
     S_.reset_counters();
-    ex.for_each_index(
-        m, GG_LAMBDA(std::int64_t r) {
+    ex.for_each_counted(
+        m, used, GG_LAMBDA(std::int64_t r) {
           best[list[r]] = 0;
           rank[list[r]] = -1;
         });
-    live_n_ = ex.copy_if(
-        live, nl, live2_.data(), GG_LAMBDA(std::int32_t q) { return loc[q] >= 0; });
+    ex.copy_if_to(
+        live, nl, live2_.data(), GG_LAMBDA(std::int32_t q) { return loc[q] >= 0; }, &ctr->live);
     std::swap(live_, live2_);
+    // The round's one wait: facets split and points left (adjacent fields, one copy).
+    std::int64_t sizes[2];
+    ex.to_host(&ctr->split, 2, sizes);
+    S_.used = used + 2 * sizes[0];
+    live_n_ = sizes[1];
+    if (S_.used > cap_)
+      throw Error(ErrorCode::Internal, "convex hull: facet store overflow while inserting");
   }
 
   PassState& S_;

@@ -27,19 +27,24 @@ GG_INLINE std::uint32_t scramble(std::uint32_t x) {  // a bijection: distinct sl
   return x;
 }
 
-// One facet's decisions for the edges it owns; false when the filter could not tell.
+// One facet's decisions for the edges it owns, and the vote of its proposal (the first flip it
+// found) on the two or three facets that flip would change; false when the filter could not
+// tell (nothing is written then but labels, which the exact stage finds again).
 struct Decide {
   Surface Sf;
   const std::int8_t* ne;
   std::int32_t* labround;
   std::int32_t* newlab;
   std::int32_t* prop;
+  std::int32_t* clm;
+  u64* vote;
   Counters* ctr;
   std::int32_t s, round;
   template <class O>
   GG_HD bool operator()(std::int32_t f, const O& o) const {
     prop[f] = -1;
     if (Sf.tv[3 * f] < 0) return true;
+    std::int32_t pr = -1;
     for (int k = 0; k < 3; ++k) {
       const std::int32_t e = Sf.to[3 * f + k], g = facet_of(e);
       if (g < f) continue;
@@ -51,11 +56,28 @@ struct Decide {
         const std::int32_t x = act == kLabelA ? a : b;
         if (!ne[x] && atomic_exchange(labround + x, round) != round)
           newlab[append_slot(&ctr->labels)] = x;
-      } else if (act != kNone && prop[f] < 0) {
-        prop[f] = (act << 2) | k;
+      } else if (act != kNone && pr < 0) {
+        pr = (act << 2) | k;
       }
     }
+    prop[f] = pr;
+    if (pr < 0) return true;
+    // The vote (the topology is not changed before every facet has voted).
+    const int k = pr & 3, kind = pr >> 2;
+    std::int32_t* c = clm + 3 * std::int64_t(f);
+    if (kind == kFlip22) {
+      c[0] = f, c[1] = facet_of(Sf.to[3 * f + k]), c[2] = -1;
+    } else {
+      int L[3];
+      fan3(Sf, f, kind == kRemoveA ? (k + 1) % 3 : (k + 2) % 3, c, L);
+    }
+    const u64 key = vote_key(f);
+    for (int j = 0; j < 3; ++j)
+      if (c[j] >= 0) atomic_max(vote + c[j], key);
     return true;
+  }
+  GG_HD u64 vote_key(std::int32_t f) const {
+    return (u64(std::uint32_t(round)) << 32) | scramble(std::uint32_t(f));
   }
 };
 // Puts facet x on the next round's list once.
@@ -72,6 +94,11 @@ struct Enlist {
 class FlipFlop {
  public:
   explicit FlipFlop(PassState& S) : S_(S) {}
+
+  // Rounds run in chunks with no wait in between: every kernel reads its work-list length on
+  // the executor, so a round past the last one does nothing, and the host checks for the end
+  // once per chunk.
+  static constexpr int kChunk = 4;
 
   void run() {
     Exec& ex = S_.ex;
@@ -92,14 +119,27 @@ class FlipFlop {
     std::int32_t* act = act_.data();
     ex.for_each_index(
         used, GG_LAMBDA(std::int64_t f) { act[f] = std::int32_t(f); });
-    nact_ = used;
+    Counters* ctr = S_.ctr.data();
+    ex.for_each_index(
+        1, GG_LAMBDA(std::int64_t) {
+          ctr->len[0] = used;
+          ctr->len[1] = 0;
+        });
+    S_.exact_list(used);
     std::int32_t round = 0;
-    while (nact_ > 0) {
+    for (;;) {
+      for (int k = 0; k < kChunk; ++k) step(round++);
+      std::int64_t len[2];
+      ex.to_host(ctr->len, 2, len);
+      if (len[round & 1] == 0) break;
       if (round >= kMaxFlipRounds)
         throw Error(ErrorCode::Internal, "convex hull: Flip-Flop did not finish");
-      step(round++);
     }
-    S_.st.counters["flip_rounds"] += round;
+    const Counters c = S_.counters();
+    S_.st.counters["flip_rounds"] += c.flip_rounds;
+    S_.st.counters["flips22"] += c.flips22;
+    S_.st.counters["flips31"] += c.flips31;
+    S_.st.counters["labelled_nonextreme"] += c.labels_all;
   }
 
   void step(std::int32_t round) {
@@ -113,48 +153,29 @@ class FlipFlop {
     u64* vote = vote_.data();
     std::int32_t* mark = mark_.data();
     std::int32_t* next = next_.data();
-    const std::int8_t* ne = ne_.data();
+    std::int8_t* ne = ne_.data();
     std::int32_t* labround = labround_.data();
     std::int32_t* newlab = newlab_.data();
     Counters* ctr = S_.ctr.data();
-    const std::int64_t nact = nact_;
-    std::int32_t* exl = S_.exact_list(nact);
+    const std::int64_t used = S_.used;
+    const std::int64_t* nact = &ctr->len[round & 1];
+    std::int32_t* exl = S_.exact_list(used);
 
-    // 1. Decide (filter; undecided facets go to the exact stage whole).
-    const Decide decide{Sf, ne, labround, newlab, prop, ctr, s, round};
-    ex.for_each_index(
-        nact, GG_LAMBDA(std::int64_t i) {
+    // 1. Decide and vote (filter; undecided facets go to the exact stage whole).
+    const Decide decide{Sf, ne, labround, newlab, prop, clm, vote, ctr, s, round};
+    ex.for_each_counted(
+        nact, used, GG_LAMBDA(std::int64_t i) {
           const std::int32_t f = act[i];
           if (!decide(f, FastOrient{geo})) exl[append_slot(&ctr->exact)] = f;
         });
     S_.exact_pass(decide);
-
-    // 2. Vote: each proposal claims its facets.
-    const u64 rk = u64(std::uint32_t(round)) << 32;
-    ex.for_each_index(
-        nact, GG_LAMBDA(std::int64_t i) {
+    // 2. Flip the winners (phase 1); outvoted proposers try again next round.
+    const Enlist enlist{mark, next, &ctr->len[(round + 1) & 1], round + 1};
+    ex.for_each_counted(
+        nact, used, GG_LAMBDA(std::int64_t i) {
           const std::int32_t f = act[i], pr = prop[f];
           if (pr < 0) return;
-          const int k = pr & 3, kind = pr >> 2;
-          std::int32_t* c = clm + 3 * std::int64_t(f);
-          if (kind == kFlip22) {
-            c[0] = f, c[1] = facet_of(Sf.to[3 * f + k]), c[2] = -1;
-          } else {
-            int L[3];
-            fan3(Sf, f, kind == kRemoveA ? (k + 1) % 3 : (k + 2) % 3, c, L);
-          }
-          const u64 key = rk | scramble(std::uint32_t(f));
-          for (int j = 0; j < 3; ++j)
-            if (c[j] >= 0) atomic_max(vote + c[j], key);
-        });
-    // 3. Flip the winners (phase 1); outvoted proposers try again next round.
-    const std::int32_t nr = round + 1;
-    const Enlist enlist{mark, next, &ctr->next, nr};
-    ex.for_each_index(
-        nact, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t f = act[i], pr = prop[f];
-          if (pr < 0) return;
-          const u64 key = rk | scramble(std::uint32_t(f));
+          const u64 key = decide.vote_key(f);
           const std::int32_t* c = clm + 3 * std::int64_t(f);
           bool won = true;
           for (int j = 0; j < 3; ++j) won = won && (c[j] < 0 || vote[c[j]] == key);
@@ -172,9 +193,9 @@ class FlipFlop {
             atomic_add(&ctr->flips31, std::int64_t(1));
           }
         });
-    // 4. Phase 2: outer neighbour pointers; the changed facets and their neighbours go next.
-    ex.for_each_index(
-        nact, GG_LAMBDA(std::int64_t i) {
+    // 3. Phase 2: outer neighbour pointers; the changed facets and their neighbours go next.
+    ex.for_each_counted(
+        nact, used, GG_LAMBDA(std::int64_t i) {
           const std::int32_t f = act[i], pr = prop[f];
           if (pr < 0) return;
           const int kind = pr >> 2;
@@ -192,34 +213,29 @@ class FlipFlop {
             for (int l = 0; l < 3; ++l) enlist(fix_edge(Sf, f, l, round));
           }
         });
-    Counters c1 = S_.counters();
-    // 5. Labels take effect; the facets around each new label (and their neighbours) go next.
-    if (c1.labels > 0) {
-      std::int8_t* nem = ne_.data();
-      ex.for_each_index(
-          c1.labels, GG_LAMBDA(std::int64_t i) { nem[newlab[i]] = 1; });
-      ex.for_each_index(
-          S_.used, GG_LAMBDA(std::int64_t fi) {
+    // 4. Labels take effect; the facets around each new label (and their neighbours) go next.
+    // On rounds that label nothing every thread leaves at once.
+    const std::int64_t T = std::max<std::int64_t>(1, std::min(used, ex.concurrency()));
+    ex.for_each_index(
+        T, GG_LAMBDA(std::int64_t t) {
+          const std::int64_t nl = ctr->labels;
+          if (nl == 0) return;
+          for (std::int64_t i = t; i < nl; i += T) ne[newlab[i]] = 1;
+          for (std::int64_t fi = t; fi < used; fi += T) {
             const std::int32_t f = std::int32_t(fi);
-            if (Sf.tv[3 * f] < 0) return;
+            if (Sf.tv[3 * f] < 0) continue;
             bool hit = false;
             for (int k = 0; k < 3; ++k) hit = hit || labround[Sf.tv[3 * f + k]] == round;
-            if (!hit) return;
+            if (!hit) continue;
             enlist(f);
             for (int k = 0; k < 3; ++k) enlist(facet_of(Sf.to[3 * f + k]));
-          });
-      c1 = S_.counters();
-      S_.st.counters["labelled_nonextreme"] += c1.labels;
-    }
-    S_.st.counters["flips22"] += c1.flips22;
-    S_.st.counters["flips31"] += c1.flips31;
-    nact_ = c1.next;
-    S_.reset_counters();
+          }
+        });
+    S_.reset_counters(round & 1);
     std::swap(act_, next_);
   }
 
   PassState& S_;
-  std::int64_t nact_ = 0;
   typename Exec::template Buffer<std::int32_t> act_, next_, prop_, clm_, mark_, labround_, newlab_;
   typename Exec::template Buffer<u64> vote_;
   typename Exec::template Buffer<std::int8_t> ne_;
