@@ -14,7 +14,13 @@ namespace gpugeom::staging {
 
 namespace {
 
-constexpr std::size_t kChunk = std::size_t(32) << 20;  // each pinned buffer
+constexpr std::size_t kChunk = std::size_t(32) << 20;
+
+void check(cudaError_t e, const char* what) {
+  if (e != cudaSuccess)
+    throw Error(e == cudaErrorMemoryAllocation ? ErrorCode::OutOfMemory : ErrorCode::Cuda,
+                std::string(what) + ": " + cudaGetErrorString(e));
+}
 
 // Two pinned buffers and their events, made once per process on first use and kept (pinning
 // is slow; keeping 64 MB pinned is cheap). One copy at a time uses them.
