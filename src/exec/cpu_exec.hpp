@@ -46,6 +46,14 @@ class HostBuffer {
   std::size_t n_ = 0;
 };
 
+// The CPU executor's team: the threads of one OpenMP parallel region.
+struct CpuTeam {
+  int rank, size;
+  void barrier() const {
+#pragma omp barrier
+  }
+};
+
 struct CpuExec {
   static constexpr Backend backend = Backend::Cpu;
   template <class T>
@@ -66,6 +74,17 @@ struct CpuExec {
   template <class F>
   void for_each_counted(const std::int64_t* count, std::int64_t /*bound*/, F f) {
     for_each_index(*count, f);
+  }
+
+  // Threads that share barriers (see CudaExec::team).
+  using Team = CpuTeam;
+  int team_size() const {
+    return omp_get_max_threads();
+  }
+  template <class F>
+  void team(F f) {
+#pragma omp parallel
+    f(CpuTeam{omp_get_thread_num(), omp_get_num_threads()});
   }
 
   template <class T>

@@ -89,6 +89,20 @@ __global__ void for_each_counted_kernel(const std::int64_t* count, F f) {
   for (std::int64_t i = std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride)
     f(i);
 }
+// One block running f(team) on every thread: loops of short rounds with no kernel boundary.
+constexpr int kTeamThreads = 1024;
+struct Team {
+  int rank, size;
+  __host__ __device__ void barrier() const {  // (host side only so that GG_LAMBDA can call it)
+#ifdef __CUDA_ARCH__
+    __syncthreads();
+#endif
+  }
+};
+template <class F>
+__global__ void __launch_bounds__(kTeamThreads) team_kernel(F f) {
+  f(Team{int(threadIdx.x), int(blockDim.x)});
+}
 template <class F, class T>
 struct IndexMap {
   F f;
@@ -148,6 +162,17 @@ class CudaExec {
     if (blocks > cap) blocks = cap;
     cuda_detail::for_each_counted_kernel<<<unsigned(blocks), kBlock, 0, s_>>>(count, f);
     GG_CUDA_CHECK_LAUNCH("for_each_counted_kernel");
+  }
+
+  // A team: threads that share barriers (one thread block here), for iterations so short that a
+  // kernel launch per step would cost more than the step. f(const Team&) runs on each thread;
+  // team.barrier() makes every thread's writes visible to all the others.
+  using Team = cuda_detail::Team;
+  int team_size() const { return cuda_detail::kTeamThreads; }
+  template <class F>
+  void team(F f) {
+    cuda_detail::team_kernel<<<1, cuda_detail::kTeamThreads, 0, s_>>>(f);
+    GG_CUDA_CHECK_LAUNCH("team_kernel");
   }
 
   template <class T>

@@ -174,6 +174,53 @@ void CompactionKeepsOrder_body() {
     if (in[i] < 10) ri.push_back(std::int32_t(i));
   ASSERT_EQ(m2, std::int64_t(ri.size()));
   ASSERT_EQ(to_vec(ex, o.data(), m2), ri);
+  // The variants that leave the count on the executor, and a loop over that count.
+  auto cnt = ex.template alloc<std::int64_t>(2);
+  std::int64_t* cn = cnt.data();
+  ex.copy_if_to(
+      a.data(), n, o.data(), GG_LAMBDA(std::int32_t x) { return x % 7 == 0; }, cn);
+  ex.compact_indices_to(
+      n, GG_LAMBDA(std::int64_t i) { return ap[i] < 10; }, o.data() + m, cn + 1);
+  std::int64_t hc[2];
+  ex.to_host(cn, 2, hc);  // a small read: through the pinned mailbox on CUDA
+  ASSERT_EQ(hc[0], m);
+  ASSERT_EQ(hc[1], m2);
+  std::vector<std::int32_t> both = ref;
+  both.insert(both.end(), ri.begin(), ri.end());
+  ASSERT_EQ(to_vec(ex, o.data(), m + m2), both);
+  std::int32_t* op = o.data();
+  ex.for_each_counted(
+      cn, n, GG_LAMBDA(std::int64_t i) { op[i] = -op[i] - 1; });  // only the first m
+  auto neg = to_vec(ex, o.data(), m + 1);
+  for (std::int64_t i = 0; i < m; ++i) ASSERT_EQ(neg[i], -ref[i] - 1);
+  ASSERT_EQ(neg[m], ri[0]);
+}
+
+// A team runs rounds separated by barriers: each round every thread reads what all the others
+// wrote in the round before (a wrong barrier shows as a wrong sum).
+void TeamBarriersOrderRounds_body();
+TEST(SUITE, TeamBarriersOrderRounds) {
+  TeamBarriersOrderRounds_body();
+}
+void TeamBarriersOrderRounds_body() {
+  EXEC ex;
+  const int T = ex.team_size();
+  ASSERT_GE(T, 1);
+  auto buf = ex.template alloc<std::int64_t>(2 * std::size_t(T));
+  std::int64_t* b = buf.data();
+  ex.fill(b, 2 * std::int64_t(T), std::int64_t(1));
+  constexpr int kRounds = 40;
+  ex.team(GG_LAMBDA(const EXEC::Team& t) {
+    for (int r = 0; r < kRounds; ++r) {
+      const std::int64_t* src = b + (r & 1) * t.size;
+      std::int64_t* dst = b + ((r + 1) & 1) * t.size;
+      // dst[i] = src[i] + src[i + 1] (cyclic): after r rounds every entry is 2^r
+      dst[t.rank] = src[t.rank] + src[(t.rank + 1) % t.size];
+      t.barrier();
+    }
+  });
+  auto h = to_vec(ex, b + (kRounds & 1) * T, T);
+  for (int i = 0; i < T; ++i) ASSERT_EQ(h[i], std::int64_t(1) << kRounds) << "thread " << i;
 }
 
 void AtomicsCountEveryIncrement_body();

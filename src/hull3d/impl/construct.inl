@@ -19,6 +19,7 @@ struct Counters {
   std::int64_t len[2];  // flip work-list lengths, by round parity
   std::int64_t split;   // facets split this insertion round
   std::int64_t live;    // points still outside after this insertion round (next to split)
+  std::int64_t round;   // the flip round a team stopped at
   std::int64_t exact_all, flips22, flips31, labels_all, flip_rounds;  // totals
 };
 
@@ -60,19 +61,14 @@ struct PassState {
   Surface surface() {
     return Surface{tv.data(), to.data(), stamp.data(), remap.data(), deg.data()};
   }
-  // Zeroes the per-round counters on the executor (no host round trip), adding them into the
-  // totals. parity >= 0 ends a flip round: its work list was len[parity].
-  void reset_counters(int parity = -1) {
+  // Zeroes the per-round counters of an insertion round on the executor (no host round trip),
+  // adding them into the totals.
+  void reset_counters() {
     Counters* c = ctr.data();
     ex.for_each_index(
         1, GG_LAMBDA(std::int64_t) {
           c->exact_all += c->exact;
-          c->labels_all += c->labels;
-          c->exact = c->labels = 0;
-          if (parity >= 0) {
-            c->flip_rounds += c->len[parity] > 0;
-            c->len[parity] = 0;
-          }
+          c->exact = 0;
         });
   }
   Counters counters() {

@@ -13,6 +13,11 @@
 // in a second phase as in delaunay2d. Changed facets and their neighbours, outvoted proposers
 // and the facets around newly labelled vertices form the next list.
 //
+// No round waits for the host: kernels read the list length on the executor, and the host looks
+// once per few rounds. Once the list and the surface are small, when a round is a few hundred
+// facets and the cost is launches and memory latency, one team (a thread block) runs the
+// remaining rounds in one launch with barriers between the steps.
+//
 // The geometry is in edge_action and the topology in surface.inl; the loop itself only moves
 // lists, so a polyhedron one dimension higher needs those two parts replaced, not this one.
 
@@ -27,9 +32,33 @@ GG_INLINE std::uint32_t scramble(std::uint32_t x) {  // a bijection: distinct sl
   return x;
 }
 
+// Puts facet x on the next round's list once.
+struct Enlist {
+  std::int32_t* mark;
+  std::int32_t* next;
+  std::int64_t* count;
+  std::int32_t round;
+  GG_HD void operator()(std::int32_t x) const {
+    if (atomic_exchange(mark + x, round) != round) next[append_slot(count)] = x;
+  }
+  // The same for K facets at once: the K marks are claimed with independent atomics (in flight
+  // together rather than one after another) and the new ones appended with one atomic.
+  template <int K>
+  GG_HD void many(const std::int32_t (&x)[K]) const {
+    bool fresh[K];
+    int m = 0;
+    for (int j = 0; j < K; ++j) fresh[j] = atomic_exchange(mark + x[j], round) != round;
+    for (int j = 0; j < K; ++j) m += fresh[j];
+    if (m == 0) return;
+    std::int64_t at = atomic_add(count, std::int64_t(m));
+    for (int j = 0; j < K; ++j)
+      if (fresh[j]) next[at++] = x[j];
+  }
+};
+
 // One facet's decisions for the edges it owns, and the vote of its proposal (the first flip it
 // found) on the two or three facets that flip would change; false when the filter could not
-// tell (nothing is written then but labels, which the exact stage finds again).
+// tell (nothing is written then but labels, which the exact stage does not repeat).
 struct Decide {
   Surface Sf;
   const std::int8_t* ne;
@@ -80,14 +109,94 @@ struct Decide {
     return (u64(std::uint32_t(round)) << 32) | scramble(std::uint32_t(f));
   }
 };
-// Puts facet x on the next round's list once.
-struct Enlist {
-  std::int32_t* mark;
-  std::int32_t* next;
-  std::int64_t* count;
-  std::int32_t round;
-  GG_HD void operator()(std::int32_t x) const {
-    if (atomic_exchange(mark + x, round) != round) next[append_slot(count)] = x;
+
+// Ends flip round `parity`'s bookkeeping: per-round counts into the totals, its list emptied.
+GG_HD inline void end_flip_round(Counters* c, int parity) {
+  c->exact_all += c->exact;
+  c->labels_all += c->labels;
+  c->exact = c->labels = 0;
+  c->flip_rounds += c->len[parity] > 0;
+  c->len[parity] = 0;
+}
+
+// The steps of one Flip-Flop round, each over the round's work list (item i is facet act[i]).
+// Round r reads list r & 1 and writes list (r + 1) & 1.
+struct FlipRound {
+  Decide dec;
+  Enlist next;
+  Geo geo;
+  std::int32_t* lists[2];
+  std::int8_t* ne;
+  const std::int32_t* act;
+
+  GG_HD void set_round(std::int32_t r) {
+    dec.round = r;
+    act = lists[r & 1];
+    next.next = lists[(r + 1) & 1];
+    next.count = &dec.ctr->len[(r + 1) & 1];
+    next.round = r + 1;
+  }
+  GG_HD const std::int64_t* count() const { return &dec.ctr->len[dec.round & 1]; }
+  // 1. Decide and vote with the filter; false: the item needs the exact stage.
+  GG_HD bool decide_fast(std::int64_t i) const { return dec(act[i], FastOrient{geo}); }
+  // 2. Flip the winners (phase 1); outvoted proposers try again next round.
+  GG_HD void flip(std::int64_t i) const {
+    const std::int32_t f = act[i], pr = dec.prop[f];
+    if (pr < 0) return;
+    const Surface& Sf = dec.Sf;
+    const u64 key = dec.vote_key(f);
+    const std::int32_t* c = dec.clm + 3 * std::int64_t(f);
+    bool won = true;
+    for (int j = 0; j < 3; ++j) won = won && (c[j] < 0 || dec.vote[c[j]] == key);
+    if (!won) {
+      dec.prop[f] = -1;
+      next(f);
+      return;
+    }
+    const int k = pr & 3, kind = pr >> 2;
+    if (kind == kFlip22) {
+      flip22(Sf, f, k, dec.round);
+      atomic_add(&dec.ctr->flips22, std::int64_t(1));
+    } else {
+      remove3(Sf, f, kind == kRemoveA ? (k + 1) % 3 : (k + 2) % 3, dec.round);
+      atomic_add(&dec.ctr->flips31, std::int64_t(1));
+    }
+  }
+  // 3. Phase 2: outer neighbour pointers; the changed facets and their neighbours go next.
+  GG_HD void fix(std::int64_t i) const {
+    const std::int32_t f = act[i], pr = dec.prop[f];
+    if (pr < 0) return;
+    const Surface& Sf = dec.Sf;
+    const std::int32_t* c = dec.clm + 3 * std::int64_t(f);
+    if ((pr >> 2) == kFlip22) {
+      std::int32_t x[8];
+      for (int side = 0; side < 2; ++side) {
+        const std::int32_t y = c[side];
+        x[4 * side] = y;
+        x[4 * side + 1] = fix_edge(Sf, y, 0, dec.round);
+        x[4 * side + 2] = fix_edge(Sf, y, 2, dec.round);
+        x[4 * side + 3] = facet_of(Sf.to[3 * y + 1]);
+      }
+      next.many(x);
+    } else {
+      std::int32_t x[4] = {f, 0, 0, 0};
+      for (int l = 0; l < 3; ++l) x[l + 1] = fix_edge(Sf, f, l, dec.round);
+      next.many(x);
+    }
+  }
+  // 4. The round's labels take effect (label i) ...
+  GG_HD void apply_label(std::int64_t i) const { ne[dec.newlab[i]] = 1; }
+  // ... and the facets around them, with their neighbours, go next (facet f of the surface).
+  GG_HD void list_labelled(std::int64_t fi) const {
+    const std::int32_t f = std::int32_t(fi);
+    const Surface& Sf = dec.Sf;
+    if (Sf.tv[3 * f] < 0) return;
+    bool hit = false;
+    for (int k = 0; k < 3; ++k) hit = hit || dec.labround[Sf.tv[3 * f + k]] == dec.round;
+    if (!hit) return;
+    std::int32_t x[4] = {f, 0, 0, 0};
+    for (int k = 0; k < 3; ++k) x[k + 1] = facet_of(Sf.to[3 * f + k]);
+    next.many(x);
   }
 };
 
@@ -97,14 +206,14 @@ class FlipFlop {
 
   // Rounds run in chunks with no wait in between: every kernel reads its work-list length on
   // the executor, so a round past the last one does nothing, and the host checks for the end
-  // once per chunk.
+  // once per chunk. Once the list is short, one team runs the rounds in a single launch.
   static constexpr int kChunk = 4;
 
   void run() {
     Exec& ex = S_.ex;
     const std::int64_t used = S_.used;
-    act_ = ex.template alloc<std::int32_t>(std::size_t(used));
-    next_ = ex.template alloc<std::int32_t>(std::size_t(used));
+    list_[0] = ex.template alloc<std::int32_t>(std::size_t(used));
+    list_[1] = ex.template alloc<std::int32_t>(std::size_t(used));
     prop_ = ex.template alloc<std::int32_t>(std::size_t(used));
     clm_ = ex.template alloc<std::int32_t>(std::size_t(3 * used));
     vote_ = ex.template alloc<u64>(std::size_t(used));
@@ -116,7 +225,7 @@ class FlipFlop {
     ex.fill(mark_.data(), used, std::int32_t(-1));
     ex.fill(ne_.data(), S_.n, std::int8_t(0));
     ex.fill(labround_.data(), S_.n, std::int32_t(-1));
-    std::int32_t* act = act_.data();
+    std::int32_t* act = list_[0].data();
     ex.for_each_index(
         used, GG_LAMBDA(std::int64_t f) { act[f] = std::int32_t(f); });
     Counters* ctr = S_.ctr.data();
@@ -126,14 +235,21 @@ class FlipFlop {
           ctr->len[1] = 0;
         });
     S_.exact_list(used);
+    const std::int64_t team_max = 2 * ex.team_size();
     std::int32_t round = 0;
-    for (;;) {
-      for (int k = 0; k < kChunk; ++k) step(round++);
-      std::int64_t len[2];
-      ex.to_host(ctr->len, 2, len);
-      if (len[round & 1] == 0) break;
+    std::int64_t len = used;
+    while (len > 0) {
       if (round >= kMaxFlipRounds)
         throw Error(ErrorCode::Internal, "convex hull: Flip-Flop did not finish");
+      if (len <= team_max && S_.used <= 8 * team_max &&
+          std::int64_t(S_.scratch.size()) / kScratch >= ex.team_size()) {
+        round = team_rounds(round, team_max);
+      } else {
+        for (int k = 0; k < kChunk; ++k) step(round++);
+      }
+      std::int64_t l[2];
+      ex.to_host(ctr->len, 2, l);
+      len = l[round & 1];
     }
     const Counters c = S_.counters();
     S_.st.counters["flip_rounds"] += c.flip_rounds;
@@ -142,101 +258,96 @@ class FlipFlop {
     S_.st.counters["labelled_nonextreme"] += c.labels_all;
   }
 
+  FlipRound make_round(std::int32_t round) {
+    FlipRound R;
+    R.dec = Decide{S_.surface(), ne_.data(),   labround_.data(), newlab_.data(), prop_.data(),
+                   clm_.data(),  vote_.data(), S_.ctr.data(),    S_.g.n,         0};
+    R.next = Enlist{mark_.data(), nullptr, nullptr, 0};
+    R.geo = S_.g;
+    R.lists[0] = list_[0].data();
+    R.lists[1] = list_[1].data();
+    R.ne = ne_.data();
+    R.set_round(round);
+    return R;
+  }
+
+  // One round as a few kernels, each over the list length read on the executor.
   void step(std::int32_t round) {
     Exec& ex = S_.ex;
-    const Geo geo = S_.g;
-    const std::int32_t s = geo.n;
-    const Surface Sf = S_.surface();
-    const std::int32_t* act = act_.data();
-    std::int32_t* prop = prop_.data();
-    std::int32_t* clm = clm_.data();
-    u64* vote = vote_.data();
-    std::int32_t* mark = mark_.data();
-    std::int32_t* next = next_.data();
-    std::int8_t* ne = ne_.data();
-    std::int32_t* labround = labround_.data();
-    std::int32_t* newlab = newlab_.data();
+    const FlipRound R = make_round(round);
     Counters* ctr = S_.ctr.data();
     const std::int64_t used = S_.used;
-    const std::int64_t* nact = &ctr->len[round & 1];
+    const std::int64_t* nact = R.count();
     std::int32_t* exl = S_.exact_list(used);
-
-    // 1. Decide and vote (filter; undecided facets go to the exact stage whole).
-    const Decide decide{Sf, ne, labround, newlab, prop, clm, vote, ctr, s, round};
     ex.for_each_counted(
         nact, used, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t f = act[i];
-          if (!decide(f, FastOrient{geo})) exl[append_slot(&ctr->exact)] = f;
+          if (!R.decide_fast(i)) exl[append_slot(&ctr->exact)] = R.act[i];
         });
-    S_.exact_pass(decide);
-    // 2. Flip the winners (phase 1); outvoted proposers try again next round.
-    const Enlist enlist{mark, next, &ctr->len[(round + 1) & 1], round + 1};
+    S_.exact_pass(R.dec);
     ex.for_each_counted(
-        nact, used, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t f = act[i], pr = prop[f];
-          if (pr < 0) return;
-          const u64 key = decide.vote_key(f);
-          const std::int32_t* c = clm + 3 * std::int64_t(f);
-          bool won = true;
-          for (int j = 0; j < 3; ++j) won = won && (c[j] < 0 || vote[c[j]] == key);
-          if (!won) {
-            prop[f] = -1;
-            enlist(f);
-            return;
-          }
-          const int k = pr & 3, kind = pr >> 2;
-          if (kind == kFlip22) {
-            flip22(Sf, f, k, round);
-            atomic_add(&ctr->flips22, std::int64_t(1));
-          } else {
-            remove3(Sf, f, kind == kRemoveA ? (k + 1) % 3 : (k + 2) % 3, round);
-            atomic_add(&ctr->flips31, std::int64_t(1));
-          }
-        });
-    // 3. Phase 2: outer neighbour pointers; the changed facets and their neighbours go next.
+        nact, used, GG_LAMBDA(std::int64_t i) { R.flip(i); });
     ex.for_each_counted(
-        nact, used, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t f = act[i], pr = prop[f];
-          if (pr < 0) return;
-          const int kind = pr >> 2;
-          const std::int32_t* c = clm + 3 * std::int64_t(f);
-          if (kind == kFlip22) {
-            for (int side = 0; side < 2; ++side) {
-              const std::int32_t x = c[side];
-              enlist(x);
-              enlist(fix_edge(Sf, x, 0, round));
-              enlist(fix_edge(Sf, x, 2, round));
-              enlist(facet_of(Sf.to[3 * x + 1]));
-            }
-          } else {
-            enlist(f);
-            for (int l = 0; l < 3; ++l) enlist(fix_edge(Sf, f, l, round));
-          }
-        });
-    // 4. Labels take effect; the facets around each new label (and their neighbours) go next.
-    // On rounds that label nothing every thread leaves at once.
+        nact, used, GG_LAMBDA(std::int64_t i) { R.fix(i); });
+    // (On rounds that label nothing every thread of the last kernel leaves at once.)
+    ex.for_each_counted(
+        &ctr->labels, used, GG_LAMBDA(std::int64_t i) { R.apply_label(i); });
     const std::int64_t T = std::max<std::int64_t>(1, std::min(used, ex.concurrency()));
     ex.for_each_index(
         T, GG_LAMBDA(std::int64_t t) {
-          const std::int64_t nl = ctr->labels;
-          if (nl == 0) return;
-          for (std::int64_t i = t; i < nl; i += T) ne[newlab[i]] = 1;
-          for (std::int64_t fi = t; fi < used; fi += T) {
-            const std::int32_t f = std::int32_t(fi);
-            if (Sf.tv[3 * f] < 0) continue;
-            bool hit = false;
-            for (int k = 0; k < 3; ++k) hit = hit || labround[Sf.tv[3 * f + k]] == round;
-            if (!hit) continue;
-            enlist(f);
-            for (int k = 0; k < 3; ++k) enlist(facet_of(Sf.to[3 * f + k]));
-          }
+          if (ctr->labels == 0) return;
+          for (std::int64_t f = t; f < used; f += T) R.list_labelled(f);
         });
-    S_.reset_counters(round & 1);
-    std::swap(act_, next_);
+    const int parity = round & 1;
+    ex.for_each_index(
+        1, GG_LAMBDA(std::int64_t) { end_flip_round(ctr, parity); });
+  }
+
+  // Rounds from `round` on in one team, while the list is non-empty and at most `max` long
+  // (about two facets per thread: a round then costs a few dependent memory accesses per step
+  // rather than a launch per step; the surface must be small too, since the team scans it on
+  // rounds that label). Returns the round it stopped at.
+  std::int32_t team_rounds(std::int32_t round, std::int64_t max) {
+    Exec& ex = S_.ex;
+    const FlipRound R0 = make_round(round);
+    Counters* ctr = S_.ctr.data();
+    double* scratch = S_.scratch.data();
+    const std::int64_t used = S_.used;
+    const std::int32_t stop = std::int32_t(kMaxFlipRounds);
+    ex.team(GG_LAMBDA(const Exec::Team& t) {
+      FlipRound R = R0;
+      const ExactOrient exact{R.geo, scratch + std::int64_t(t.rank) * kScratch};
+      std::int32_t r = R.dec.round;
+      for (;;) {
+        const std::int64_t n = *R.count();
+        if (n == 0 || n > max || r >= stop) break;
+        for (std::int64_t i = t.rank; i < n; i += t.size)
+          if (!R.decide_fast(i)) {
+            atomic_add(&ctr->exact, std::int64_t(1));
+            R.dec(R.act[i], exact);
+          }
+        t.barrier();
+        for (std::int64_t i = t.rank; i < n; i += t.size) R.flip(i);
+        t.barrier();
+        for (std::int64_t i = t.rank; i < n; i += t.size) R.fix(i);
+        t.barrier();
+        const std::int64_t nl = ctr->labels;
+        for (std::int64_t i = t.rank; i < nl; i += t.size) R.apply_label(i);
+        if (nl > 0)
+          for (std::int64_t f = t.rank; f < used; f += t.size) R.list_labelled(f);
+        t.barrier();
+        if (t.rank == 0) end_flip_round(ctr, r & 1);
+        t.barrier();
+        R.set_round(++r);
+      }
+      if (t.rank == 0) ctr->round = r;
+    });
+    std::int64_t r = 0;
+    S_.ex.to_host(&ctr->round, 1, &r);
+    return std::int32_t(r);
   }
 
   PassState& S_;
-  typename Exec::template Buffer<std::int32_t> act_, next_, prop_, clm_, mark_, labround_, newlab_;
+  typename Exec::template Buffer<std::int32_t> list_[2], prop_, clm_, mark_, labround_, newlab_;
   typename Exec::template Buffer<u64> vote_;
   typename Exec::template Buffer<std::int8_t> ne_;
 };
