@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
     else if (a == "--backend")
       backends = next();
     else if (a == "--reps")
-      reps = std::stoi(next());
+      reps = std::max(1, std::stoi(next()));
     else if (a == "--cgal")
       cgal_max = std::int64_t(std::stod(next()));
     else if (a == "--check")
@@ -126,19 +126,36 @@ int main(int argc, char** argv) {
                              std::to_string(n) + ".npy",
                          ps);
       }
-      std::int64_t cgal_v = -1;
-      const double cg = n <= cgal_max ? cgal_ms(pts, cgal_v) : -1;
+      // Ours first, CGAL after: CGAL's long single-threaded run, when it came first, left the
+      // next row's host copies up to 6x slower on the lent machine (cause not established).
+      struct Timed {
+        ConvexHull3d r;
+        std::vector<double> t;
+        double dev = -1;
+      };
+      std::vector<Timed> timed;
       for (Backend b : bks) {
         Hull3dOptions o;
         o.backend = b;
-        ConvexHull3d r = convex_hull3d(pts, o);  // warm-up
-        std::vector<double> t;
+        Timed x;
+        x.r = convex_hull3d(pts, o);  // warm-up
         for (int k = 0; k < reps; ++k) {
           const auto t0 = clk::now();
-          r = convex_hull3d(pts, o);
-          t.push_back(bench::ms_since(t0));
+          x.r = convex_hull3d(pts, o);
+          x.t.push_back(bench::ms_since(t0));
         }
-        std::sort(t.begin(), t.end());
+        std::sort(x.t.begin(), x.t.end());
+        if (b == Backend::Cuda)
+          x.dev = bench::device_resident_ms(
+              pts, reps, [](const double* d, std::int64_t n) { convex_hull3d_device(d, n); });
+        timed.push_back(std::move(x));
+      }
+      std::int64_t cgal_v = -1;
+      const double cg = n <= cgal_max ? cgal_ms(pts, cgal_v) : -1;
+      for (std::size_t bi = 0; bi < bks.size(); ++bi) {
+        const Backend b = bks[bi];
+        ConvexHull3d& r = timed[bi].r;
+        const std::vector<double>& t = timed[bi].t;
         const double med = t[t.size() / 2];
         std::string verdict = cgal_v >= 0 ? (std::int64_t(r.vertices.size()) == cgal_v
                                                  ? "vertices as CGAL"
@@ -149,12 +166,7 @@ int main(int argc, char** argv) {
                                                 std::int64_t(r.num_facets()), 2'000'000'000LL);
           verdict += rep.ok ? " valid" : " INVALID: " + rep.message;
         }
-        const double dev = b == Backend::Cuda
-                               ? bench::device_resident_ms(pts, reps,
-                                                           [](const double* d, std::int64_t n) {
-                                                             convex_hull3d_device(d, n);
-                                                           })
-                               : -1;
+        const double dev = timed[bi].dev;
         std::printf(
             "%-18s %10lld %-5s %9.1f %9.1f %8.1f %9.1f %7.1f %9zu %8lld %9.1f %s\n", name.c_str(),
             (long long)n, backend_name(b), med, dev,

@@ -2,11 +2,16 @@
 #include "exec/host_staging.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <omp.h>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "gpugeom/common.hpp"
 
@@ -68,16 +73,98 @@ Mailbox& mailbox() {
   return *m;
 }
 
-// memcpy over the cores: one thread cannot keep up with the link.
-void parallel_copy(void* dst, const void* src, std::size_t bytes) {
-  const int nt = std::max(1, std::min(omp_get_max_threads(), int(bytes >> 20)));
-#pragma omp parallel num_threads(nt)
-  {
-    const std::size_t per = (bytes + nt - 1) / nt;
-    const std::size_t a = std::min(bytes, per * std::size_t(omp_get_thread_num()));
-    const std::size_t b = std::min(bytes, a + per);
-    if (b > a) std::memcpy(static_cast<char*>(dst) + a, static_cast<const char*>(src) + a, b - a);
+// memcpy over the cores: one thread cannot keep up with the link. Not an OpenMP region: its
+// closing barrier waits for every thread, and on a virtual machine a core left idle while the
+// GPU works can take milliseconds to wake (seen on the lent H100 host: a 24 MB copy at 1.0 ms
+// most times, 3.5-6.6 ms after idle). Here the calling thread and whichever helpers are awake
+// take 1 MB pieces from a shared counter, and the copy is done when the pieces are, whether or
+// not every helper ever woke up.
+class CopyPool {
+ public:
+  static CopyPool& get() {
+    static CopyPool p;
+    return p;
   }
+  void copy(void* dst, const void* src, std::size_t bytes) {
+    Job j;
+    j.dst = static_cast<char*>(dst);
+    j.src = static_cast<const char*>(src);
+    j.bytes = bytes;
+    j.pieces = (bytes + kPiece - 1) / kPiece;
+    if (helpers_.empty() || j.pieces < 2) {
+      std::memcpy(dst, src, bytes);
+      return;
+    }
+    {
+      std::lock_guard<std::mutex> lk(m_);
+      job_ = &j;
+      ++gen_;
+    }
+    cv_.notify_all();
+    work(j);
+    while (j.done.load(std::memory_order_acquire) < j.pieces) std::this_thread::yield();
+    // Withdraw the job; helpers that took it are awake and leave at once (no pieces left).
+    std::unique_lock<std::mutex> lk(m_);
+    job_ = nullptr;
+    idle_.wait(lk, [&] { return active_ == 0; });
+  }
+
+ private:
+  static constexpr std::size_t kPiece = std::size_t(1) << 20;
+  struct Job {
+    char* dst;
+    const char* src;
+    std::size_t bytes = 0, pieces = 0;
+    std::atomic<std::size_t> next{0}, done{0};
+  };
+  static void work(Job& j) {
+    for (std::size_t i; (i = j.next.fetch_add(1, std::memory_order_relaxed)) < j.pieces;) {
+      const std::size_t off = i * kPiece, len = std::min(kPiece, j.bytes - off);
+      std::memcpy(j.dst + off, j.src + off, len);
+      j.done.fetch_add(1, std::memory_order_release);
+    }
+  }
+  CopyPool() {
+    const int n = std::max(1, omp_get_max_threads()) - 1;
+    for (int i = 0; i < n; ++i) helpers_.emplace_back([this] { loop(); });
+  }
+  ~CopyPool() {
+    {
+      std::lock_guard<std::mutex> lk(m_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    for (auto& t : helpers_) t.join();
+  }
+  void loop() {
+    std::uint64_t seen = 0;
+    for (;;) {
+      Job* j = nullptr;
+      {
+        std::unique_lock<std::mutex> lk(m_);
+        cv_.wait(lk, [&] { return stop_ || gen_ != seen; });
+        if (stop_) return;
+        seen = gen_;
+        j = job_;
+        if (!j) continue;
+        ++active_;
+      }
+      work(*j);
+      std::lock_guard<std::mutex> lk(m_);
+      if (--active_ == 0) idle_.notify_all();
+    }
+  }
+  std::vector<std::thread> helpers_;
+  std::mutex m_;
+  std::condition_variable cv_, idle_;
+  Job* job_ = nullptr;
+  std::uint64_t gen_ = 0;
+  int active_ = 0;
+  bool stop_ = false;
+};
+
+void parallel_copy(void* dst, const void* src, std::size_t bytes) {
+  CopyPool::get().copy(dst, src, bytes);
 }
 
 }  // namespace

@@ -96,8 +96,17 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
     return Cand{p[3 * i], p[3 * i + 1], p[3 * i + 2], 0.0, std::int32_t(i)};
   };
   const double inf = std::numeric_limits<double>::infinity();
-  const Cand lo = reduce_cand(ex, n, cand, MinLex{}, inf);
-  const Cand hi = reduce_cand(ex, n, cand, MaxLex{}, -inf);
+  // Both extremes come back in one copy.
+  auto ext = ex.template alloc<Cand>(2);
+  ex.transform_reduce_into(n, cand,
+                           Cand{inf, inf, inf, -1, std::numeric_limits<std::int32_t>::max()},
+                           MinLex{}, ext.data());
+  ex.transform_reduce_into(n, cand,
+                           Cand{-inf, -inf, -inf, -1, std::numeric_limits<std::int32_t>::max()},
+                           MaxLex{}, ext.data() + 1);
+  Cand lh[2];
+  ex.to_host(ext.data(), 2, lh);
+  const Cand lo = lh[0], hi = lh[1];
   const double A[3] = {lo.x, lo.y, lo.z}, B[3] = {hi.x, hi.y, hi.z};
   if (same_point(A, B))
     throw Error(ErrorCode::DegenerateInput, "all " + std::to_string(n) +
@@ -112,12 +121,11 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
         const double* q = p + 3 * i;
         const double wx = q[0] - ax, wy = q[1] - ay, wz = q[2] - az;
         const double cx = uy * wz - uz * wy, cy = uz * wx - ux * wz, cz = ux * wy - uy * wx;
-        return Cand{0, 0, 0, cx * cx + cy * cy + cz * cz, std::int32_t(i)};
+        return Cand{q[0], q[1], q[2], cx * cx + cy * cy + cz * cz, std::int32_t(i)};
       },
       Farthest{});
-  double C[3];
-  ex.to_host(p + 3 * std::int64_t(c.i), 3, C);
-  if (collinear3(A, B, C)) {  // rounding hid a tiny offset, or the input is on one line
+  double C[3] = {c.x, c.y, c.z};  // (the reduction carries the point along)
+  if (collinear3(A, B, C)) {      // rounding hid a tiny offset, or the input is on one line
     auto out = ex.template alloc<std::int32_t>(1);
     ex.transform_reduce_into(
         n,
@@ -146,11 +154,10 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
         for (int k = 0; k < 3; ++k) u[k] = pb[k] - pa[k], v[k] = pc[k] - pa[k], w[k] = q[k] - pa[k];
         const double det = w[0] * (u[1] * v[2] - u[2] * v[1]) + w[1] * (u[2] * v[0] - u[0] * v[2]) +
                            w[2] * (u[0] * v[1] - u[1] * v[0]);
-        return Cand{0, 0, 0, det < 0 ? -det : det, std::int32_t(i)};
+        return Cand{q[0], q[1], q[2], det < 0 ? -det : det, std::int32_t(i)};
       },
       Farthest{});
-  double D[3];
-  ex.to_host(p + 3 * std::int64_t(d.i), 3, D);
+  double D[3] = {d.x, d.y, d.z};
   {
     double s[pred::kOrient3dScratch];
     if (pred::orient3d(A, B, C, D, s) == 0) {
