@@ -31,9 +31,9 @@ void check_count(std::int64_t n) {
 std::vector<double> plane_equations(const double* p, const std::vector<std::int32_t>& t) {
   std::vector<double> eq(t.size() / 3 * 4);
   const std::int64_t nf = std::int64_t(t.size() / 3);
-  // Threads only where the work outweighs waking them (about 20 ns a facet; waking idle cores
+  // Threads only where the work outweighs waking them (about 35 ns a facet; waking idle cores
   // on a virtual machine has cost milliseconds).
-#pragma omp parallel for schedule(static) if (nf > 200000)
+#pragma omp parallel for schedule(static) if (nf > 50000)
   for (std::int64_t f = 0; f < nf; ++f) {
     const double *a = p + 3 * std::int64_t(t[3 * f]), *b = p + 3 * std::int64_t(t[3 * f + 1]),
                  *c = p + 3 * std::int64_t(t[3 * f + 2]);
