@@ -70,10 +70,12 @@ struct CpuExec {
     for (std::int64_t i = 0; i < n; ++i) f(i);
   }
 
-  // f(i) for every i < *count (CudaExec reads the count on the device; here it is just memory).
+  // f(i) for every i < per * *count (CudaExec reads the count on the device; here it is just
+  // memory).
   template <class F>
-  void for_each_counted(const std::int64_t* count, std::int64_t /*bound*/, F f) {
-    for_each_index(*count, f);
+  void for_each_counted(const std::int64_t* count, std::int64_t /*bound*/, F f,
+                        std::int64_t per = 1) {
+    for_each_index(per * *count, f);
   }
 
   // Threads that share barriers (see CudaExec::team).

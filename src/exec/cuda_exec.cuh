@@ -83,8 +83,8 @@ __global__ void for_each_kernel(std::int64_t n, F f) {
 }
 // f(i) for i < *count, the count read when the kernel runs.
 template <class F>
-__global__ void for_each_counted_kernel(const std::int64_t* count, F f) {
-  const std::int64_t n = *count;
+__global__ void for_each_counted_kernel(const std::int64_t* count, std::int64_t per, F f) {
+  const std::int64_t n = per * *count;
   const std::int64_t stride = std::int64_t(gridDim.x) * blockDim.x;
   for (std::int64_t i = std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride)
     f(i);
@@ -151,16 +151,17 @@ class CudaExec {
     GG_CUDA_CHECK_LAUNCH("for_each_kernel");
   }
 
-  // f(i) for every i < *count, where count lives on the device and is read when the kernel runs,
-  // so the host need not wait for the work that produces it; bound >= *count sizes the grid.
+  // f(i) for every i < per * *count, where count lives on the device and is read when the kernel
+  // runs, so the host need not wait for the work that produces it; bound >= per * *count sizes
+  // the grid.
   template <class F>
-  void for_each_counted(const std::int64_t* count, std::int64_t bound, F f) {
+  void for_each_counted(const std::int64_t* count, std::int64_t bound, F f, std::int64_t per = 1) {
     if (bound <= 0) return;
     constexpr int kBlock = 256;
     std::int64_t blocks = (bound + kBlock - 1) / kBlock;
     const std::int64_t cap = std::int64_t(sms_) * 8;  // one full wave; grid-stride beyond
     if (blocks > cap) blocks = cap;
-    cuda_detail::for_each_counted_kernel<<<unsigned(blocks), kBlock, 0, s_>>>(count, f);
+    cuda_detail::for_each_counted_kernel<<<unsigned(blocks), kBlock, 0, s_>>>(count, per, f);
     GG_CUDA_CHECK_LAUNCH("for_each_counted_kernel");
   }
 

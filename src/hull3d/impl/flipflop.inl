@@ -56,9 +56,10 @@ struct Enlist {
   }
 };
 
-// One facet's decisions for the edges it owns, and the vote of its proposal (the first flip it
-// found) on the two or three facets that flip would change; false when the filter could not
-// tell (nothing is written then but labels, which the exact stage does not repeat).
+// The decisions of a round, in two steps so that no thread walks a facet's three edges one
+// after another: edge() decides one edge (filter first; the exact stage for what the filter
+// cannot tell) and writes its action, then propose() takes a facet's first flip among its edges
+// and votes for it on the two or three facets that flip would change.
 struct Decide {
   Surface Sf;
   const std::int8_t* ne;
@@ -67,30 +68,48 @@ struct Decide {
   std::int32_t* prop;
   std::int32_t* clm;
   u64* vote;
+  std::int8_t* eact;  // per facet and edge: the action of this round (kNone: none, or not owned)
   Counters* ctr;
   std::int32_t s, round;
+  // Edge k of facet f, decided where f owns it (the neighbour's slot is not lower) and labels
+  // recorded; false when the filter could not tell.
   template <class O>
-  GG_HD bool operator()(std::int32_t f, const O& o) const {
+  GG_HD bool edge(std::int32_t f, int k, const O& o) const {
+    std::int8_t* out = eact + 3 * std::int64_t(f) + k;
+    const std::int32_t e = Sf.to[3 * f + k], g = facet_of(e);
+    if (Sf.tv[3 * f] < 0 || g < f) {
+      *out = kNone;
+      return true;
+    }
+    const std::int32_t c = Sf.tv[3 * f + k], a = Sf.tv[3 * f + (k + 1) % 3],
+                       b = Sf.tv[3 * f + (k + 2) % 3], d = Sf.tv[3 * g + loc_of(e)];
+    const int act = edge_action(o, s, a, b, c, d, Sf.deg[a], Sf.deg[b], ne);
+    if (act == kUndecided) return false;
+    if (act == kLabelA || act == kLabelB) {
+      const std::int32_t x = act == kLabelA ? a : b;
+      if (!ne[x] && atomic_exchange(labround + x, round) != round)
+        newlab[append_slot(&ctr->labels)] = x;
+      *out = kNone;
+    } else {
+      *out = std::int8_t(act);
+    }
+    return true;
+  }
+  // The exact stage's item: enc(facet, edge).
+  template <class O>
+  GG_HD void operator()(std::int32_t item, const O& o) const {
+    edge(facet_of(item), loc_of(item), o);
+  }
+  GG_HD void propose(std::int32_t f) const {
     prop[f] = -1;
-    if (Sf.tv[3 * f] < 0) return true;
+    if (Sf.tv[3 * f] < 0) return;
     std::int32_t pr = -1;
-    for (int k = 0; k < 3; ++k) {
-      const std::int32_t e = Sf.to[3 * f + k], g = facet_of(e);
-      if (g < f) continue;
-      const std::int32_t c = Sf.tv[3 * f + k], a = Sf.tv[3 * f + (k + 1) % 3],
-                         b = Sf.tv[3 * f + (k + 2) % 3], d = Sf.tv[3 * g + loc_of(e)];
-      const int act = edge_action(o, s, a, b, c, d, Sf.deg[a], Sf.deg[b], ne);
-      if (act == kUndecided) return false;
-      if (act == kLabelA || act == kLabelB) {
-        const std::int32_t x = act == kLabelA ? a : b;
-        if (!ne[x] && atomic_exchange(labround + x, round) != round)
-          newlab[append_slot(&ctr->labels)] = x;
-      } else if (act != kNone && pr < 0) {
-        pr = (act << 2) | k;
-      }
+    for (int k = 0; k < 3 && pr < 0; ++k) {
+      const int act = eact[3 * std::int64_t(f) + k];
+      if (act != kNone) pr = (act << 2) | k;
     }
     prop[f] = pr;
-    if (pr < 0) return true;
+    if (pr < 0) return;
     // The vote (the topology is not changed before every facet has voted).
     const int k = pr & 3, kind = pr >> 2;
     std::int32_t* c = clm + 3 * std::int64_t(f);
@@ -103,7 +122,6 @@ struct Decide {
     const u64 key = vote_key(f);
     for (int j = 0; j < 3; ++j)
       if (c[j] >= 0) atomic_max(vote + c[j], key);
-    return true;
   }
   GG_HD u64 vote_key(std::int32_t f) const {
     return (u64(std::uint32_t(round)) << 32) | scramble(std::uint32_t(f));
@@ -137,9 +155,15 @@ struct FlipRound {
     next.round = r + 1;
   }
   GG_HD const std::int64_t* count() const { return &dec.ctr->len[dec.round & 1]; }
-  // 1. Decide and vote with the filter; false: the item needs the exact stage.
-  GG_HD bool decide_fast(std::int64_t i) const { return dec(act[i], FastOrient{geo}); }
-  // 2. Flip the winners (phase 1); outvoted proposers try again next round.
+  // 1. Edge j % 3 of the list's facet j / 3 with the filter; false: it needs the exact stage
+  // (as item enc(facet, edge)).
+  GG_HD bool edge_fast(std::int64_t j) const {
+    return dec.edge(act[j / 3], int(j % 3), FastOrient{geo});
+  }
+  GG_HD std::int32_t edge_item(std::int64_t j) const { return enc(act[j / 3], int(j % 3)); }
+  // 2. The facet's proposal and vote.
+  GG_HD void propose(std::int64_t i) const { dec.propose(act[i]); }
+  // 3. Flip the winners (phase 1); outvoted proposers try again next round.
   GG_HD void flip(std::int64_t i) const {
     const std::int32_t f = act[i], pr = dec.prop[f];
     if (pr < 0) return;
@@ -162,7 +186,7 @@ struct FlipRound {
       atomic_add(&dec.ctr->flips31, std::int64_t(1));
     }
   }
-  // 3. Phase 2: outer neighbour pointers; the changed facets and their neighbours go next.
+  // 4. Phase 2: outer neighbour pointers; the changed facets and their neighbours go next.
   GG_HD void fix(std::int64_t i) const {
     const std::int32_t f = act[i], pr = dec.prop[f];
     if (pr < 0) return;
@@ -184,7 +208,7 @@ struct FlipRound {
       next.many(x);
     }
   }
-  // 4. The round's labels take effect (label i) ...
+  // 5. The round's labels take effect (label i) ...
   GG_HD void apply_label(std::int64_t i) const { ne[dec.newlab[i]] = 1; }
   // ... and the facets around them, with their neighbours, go next (facet f of the surface).
   GG_HD void list_labelled(std::int64_t fi) const {
@@ -216,6 +240,7 @@ class FlipFlop {
     list_[1] = ex.template alloc<std::int32_t>(std::size_t(used));
     prop_ = ex.template alloc<std::int32_t>(std::size_t(used));
     clm_ = ex.template alloc<std::int32_t>(std::size_t(3 * used));
+    eact_ = ex.template alloc<std::int8_t>(std::size_t(3 * used));
     vote_ = ex.template alloc<u64>(std::size_t(used));
     mark_ = ex.template alloc<std::int32_t>(std::size_t(used));
     ne_ = ex.template alloc<std::int8_t>(std::size_t(S_.n));
@@ -234,7 +259,7 @@ class FlipFlop {
           ctr->len[0] = used;
           ctr->len[1] = 0;
         });
-    S_.exact_list(used);
+    S_.exact_list(3 * used);
     const std::int64_t team_max = 2 * ex.team_size();
     std::int32_t round = 0;
     std::int64_t len = used;
@@ -260,8 +285,17 @@ class FlipFlop {
 
   FlipRound make_round(std::int32_t round) {
     FlipRound R;
-    R.dec = Decide{S_.surface(), ne_.data(),   labround_.data(), newlab_.data(), prop_.data(),
-                   clm_.data(),  vote_.data(), S_.ctr.data(),    S_.g.n,         0};
+    R.dec = Decide{S_.surface(),
+                   ne_.data(),
+                   labround_.data(),
+                   newlab_.data(),
+                   prop_.data(),
+                   clm_.data(),
+                   vote_.data(),
+                   eact_.data(),
+                   S_.ctr.data(),
+                   S_.g.n,
+                   0};
     R.next = Enlist{mark_.data(), nullptr, nullptr, 0};
     R.geo = S_.g;
     R.lists[0] = list_[0].data();
@@ -278,12 +312,16 @@ class FlipFlop {
     Counters* ctr = S_.ctr.data();
     const std::int64_t used = S_.used;
     const std::int64_t* nact = R.count();
-    std::int32_t* exl = S_.exact_list(used);
+    std::int32_t* exl = S_.exact_list(3 * used);
     ex.for_each_counted(
-        nact, used, GG_LAMBDA(std::int64_t i) {
-          if (!R.decide_fast(i)) exl[append_slot(&ctr->exact)] = R.act[i];
-        });
+        nact, 3 * used,
+        GG_LAMBDA(std::int64_t j) {
+          if (!R.edge_fast(j)) exl[append_slot(&ctr->exact)] = R.edge_item(j);
+        },
+        3);
     S_.exact_pass(R.dec);
+    ex.for_each_counted(
+        nact, used, GG_LAMBDA(std::int64_t i) { R.propose(i); });
     ex.for_each_counted(
         nact, used, GG_LAMBDA(std::int64_t i) { R.flip(i); });
     ex.for_each_counted(
@@ -320,11 +358,13 @@ class FlipFlop {
       for (;;) {
         const std::int64_t n = *R.count();
         if (n == 0 || n > max || r >= stop) break;
-        for (std::int64_t i = t.rank; i < n; i += t.size)
-          if (!R.decide_fast(i)) {
+        for (std::int64_t j = t.rank; j < 3 * n; j += t.size)
+          if (!R.edge_fast(j)) {
             atomic_add(&ctr->exact, std::int64_t(1));
-            R.dec(R.act[i], exact);
+            R.dec(R.edge_item(j), exact);
           }
+        t.barrier();
+        for (std::int64_t i = t.rank; i < n; i += t.size) R.propose(i);
         t.barrier();
         for (std::int64_t i = t.rank; i < n; i += t.size) R.flip(i);
         t.barrier();
@@ -349,5 +389,5 @@ class FlipFlop {
   PassState& S_;
   typename Exec::template Buffer<std::int32_t> list_[2], prop_, clm_, mark_, labround_, newlab_;
   typename Exec::template Buffer<u64> vote_;
-  typename Exec::template Buffer<std::int8_t> ne_;
+  typename Exec::template Buffer<std::int8_t> ne_, eact_;
 };
