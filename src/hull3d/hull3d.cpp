@@ -1,7 +1,7 @@
-// Public entry of the 3D convex hull module: checks sizes, picks the backend, adds the planes.
+// Public entry of the 3D convex hull module: checks sizes, picks the backend, mends the planes the
+// executor could not give in double.
 #include "gpugeom/hull3d.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -24,42 +24,30 @@ void check_count(std::int64_t n) {
                     "): a convex hull in 3D needs 4 points not on one plane");
 }
 
-// Unit outward normal and offset of each facet: (b - a) x (c - a) in double. Where the
-// differences lose a point entirely (coordinates of very different magnitudes, e.g. a facet
-// with one huge and two tiny vertices, whose rounded normal is zero), the normal is summed
-// again as a x b + b x c + c x a in long double.
-std::vector<double> plane_equations(const double* p, const std::vector<std::int32_t>& t) {
-  std::vector<double> eq(t.size() / 3 * 4);
+// The executor gives each facet's unit outward normal and offset from (b - a) x (c - a) in
+// double (PlaneOf in impl/hull.inl). Where the differences lose a point entirely (coordinates of
+// very different magnitudes, e.g. a facet with one huge and two tiny vertices, whose rounded
+// normal is zero) it leaves NaN, and the normal is summed again here as a x b + b x c + c x a
+// in long double.
+void redo_planes(const double* p, const std::vector<std::int32_t>& t, std::vector<double>& eq) {
   const std::int64_t nf = std::int64_t(t.size() / 3);
-  // Threads only where the work outweighs waking them (about 35 ns a facet; waking idle cores
-  // on a virtual machine has cost milliseconds).
-#pragma omp parallel for schedule(static) if (nf > 50000)
   for (std::int64_t f = 0; f < nf; ++f) {
+    if (!std::isnan(eq[4 * f])) continue;
     const double *a = p + 3 * std::int64_t(t[3 * f]), *b = p + 3 * std::int64_t(t[3 * f + 1]),
                  *c = p + 3 * std::int64_t(t[3 * f + 2]);
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    double nrm[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                     u[0] * v[1] - u[1] * v[0]};
-    double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-    if (!(len > 0) || !std::isfinite(len)) {
-      long double w[3] = {0, 0, 0};
-      auto cross = [&w](const double* x, const double* y) {
-        w[0] += (long double)x[1] * y[2] - (long double)x[2] * y[1];
-        w[1] += (long double)x[2] * y[0] - (long double)x[0] * y[2];
-        w[2] += (long double)x[0] * y[1] - (long double)x[1] * y[0];
-      };
-      cross(a, b);
-      cross(b, c);
-      cross(c, a);
-      const long double wl = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-      for (int d = 0; d < 3; ++d) nrm[d] = wl > 0 ? double(w[d] / wl) : 0.0;
-      len = 1;
-    }
-    for (int d = 0; d < 3; ++d) eq[4 * f + d] = nrm[d] / len;
+    long double w[3] = {0, 0, 0};
+    auto cross = [&w](const double* x, const double* y) {
+      w[0] += (long double)x[1] * y[2] - (long double)x[2] * y[1];
+      w[1] += (long double)x[2] * y[0] - (long double)x[0] * y[2];
+      w[2] += (long double)x[0] * y[1] - (long double)x[1] * y[0];
+    };
+    cross(a, b);
+    cross(b, c);
+    cross(c, a);
+    const long double wl = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    for (int d = 0; d < 3; ++d) eq[4 * f + d] = wl > 0 ? double(w[d] / wl) : 0.0;
     eq[4 * f + 3] = -(eq[4 * f] * a[0] + eq[4 * f + 1] * a[1] + eq[4 * f + 2] * a[2]);
   }
-  return eq;
 }
 }  // namespace
 
@@ -80,11 +68,8 @@ ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOption
   r.triangles = std::move(out.triangles);
   r.neighbors = std::move(out.neighbors);
   r.vertices = std::move(out.vertices);
-  const auto t0 = std::chrono::steady_clock::now();
-  r.equations = plane_equations(xyz, r.triangles);
-  r.stats.phase_ms.emplace_back(
-      "planes",
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  r.equations = std::move(out.equations);
+  if (out.planes_redo > 0) redo_planes(xyz, r.triangles, r.equations);
   return r;
 }
 

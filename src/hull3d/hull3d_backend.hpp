@@ -12,6 +12,10 @@ struct Output {
   std::vector<std::int32_t> triangles;  // 3 per facet, input indices, counter-clockwise outside
   std::vector<std::int32_t> neighbors;  // 3 per facet
   std::vector<std::int32_t> vertices;   // sorted input indices of the extreme points
+  // 4 per facet (unit outward normal, offset); NaN for a facet whose rounded normal vanished,
+  // to be redone in long double on the host (planes_redo of them).
+  std::vector<double> equations;
+  std::int64_t planes_redo = 0;
 };
 
 // The result left on the device; the pointers own cudaMalloc'd memory.

@@ -29,6 +29,7 @@ void same_on_both(const gg_hull3d::Case& c) {
   const auto cpu = convex_hull3d(c.pts, o);
   EXPECT_EQ(gpu.triangles, cpu.triangles);
   EXPECT_EQ(gpu.neighbors, cpu.neighbors);
+  EXPECT_EQ(gpu.equations, cpu.equations);  // computed on each executor: equal bit for bit
   EXPECT_EQ(gpu.vertices, cpu.vertices);
   EXPECT_EQ(gpu.stats.counters.at("flips22"), cpu.stats.counters.at("flips22"));
 }

@@ -244,6 +244,39 @@ inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st) 
   return R;
 }
 
+// A facet's plane as Qhull's / SciPy's `equations` give it: the unit outward normal and the
+// offset. Every operation is rounded as written (no fused multiply-add), so both executors
+// agree bit for bit with each other and with the host's long-double fallback's neighbours. A
+// facet whose rounded normal is zero or not finite (coordinates of very different magnitudes)
+// gets NaN and is counted; the host redoes those in long double.
+struct PlaneOf {
+  const double* p;
+  const std::int32_t* t;
+  double* eq;
+  std::int64_t* redo;
+  GG_HD void operator()(std::int64_t f) const {
+    using pred::add_rn;
+    using pred::mul_rn;
+    using pred::sub_rn;
+    const double *a = p + 3 * std::int64_t(t[3 * f]), *b = p + 3 * std::int64_t(t[3 * f + 1]),
+                 *c = p + 3 * std::int64_t(t[3 * f + 2]);
+    double u[3], v[3];
+    for (int d = 0; d < 3; ++d) u[d] = sub_rn(b[d], a[d]), v[d] = sub_rn(c[d], a[d]);
+    const double n0 = sub_rn(mul_rn(u[1], v[2]), mul_rn(u[2], v[1])),
+                 n1 = sub_rn(mul_rn(u[2], v[0]), mul_rn(u[0], v[2])),
+                 n2 = sub_rn(mul_rn(u[0], v[1]), mul_rn(u[1], v[0]));
+    const double len = sqrt(add_rn(add_rn(mul_rn(n0, n0), mul_rn(n1, n1)), mul_rn(n2, n2)));
+    double* e = eq + 4 * f;
+    if (!(len > 0 && len <= std::numeric_limits<double>::max())) {
+      e[0] = e[1] = e[2] = e[3] = std::numeric_limits<double>::quiet_NaN();
+      atomic_add(redo, std::int64_t(1));
+      return;
+    }
+    e[0] = n0 / len, e[1] = n1 / len, e[2] = n2 / len;
+    e[3] = -add_rn(add_rn(mul_rn(e[0], a[0]), mul_rn(e[1], a[1])), mul_rn(e[2], a[2]));
+  }
+};
+
 // Host points in, host arrays out.
 inline void compute_impl(const double* xyz, std::int64_t n, Output& out, Stats& st) {
   Exec ex;
@@ -259,6 +292,15 @@ inline void compute_impl(const double* xyz, std::int64_t n, Output& out, Stats& 
   }
   Result R = hull_core(ex, p, n, st);
   auto t0 = clock::now();
+  const std::int64_t nf = R.facets.count;
+  auto eq = ex.template alloc<double>(std::size_t(4 * nf));
+  auto redo = ex.template alloc<std::int64_t>(1);
+  ex.fill(redo.data(), 1, std::int64_t(0));
+  ex.for_each_index(nf, PlaneOf{p, R.facets.tris.data(), eq.data(), redo.data()});
+  ex.to_host(redo.data(), 1, &out.planes_redo);
+  st.phase_ms.emplace_back("planes", ms_since(t0));
+  t0 = clock::now();
+  out.equations.resize(std::size_t(4 * nf));
   out.triangles.resize(std::size_t(3 * R.facets.count));
   out.neighbors.resize(std::size_t(3 * R.facets.count));
   out.vertices.resize(std::size_t(R.num_vertices));
@@ -267,5 +309,6 @@ inline void compute_impl(const double* xyz, std::int64_t n, Output& out, Stats& 
   ex.to_host(R.facets.tris.data(), 3 * R.facets.count, out.triangles.data());
   ex.to_host(R.facets.nbrs.data(), 3 * R.facets.count, out.neighbors.data());
   ex.to_host(R.vertices.data(), R.num_vertices, out.vertices.data());
+  ex.to_host(eq.data(), 4 * nf, out.equations.data());
   if constexpr (Exec::backend == Backend::Cuda) st.phase_ms.emplace_back("copy_back", ms_since(t0));
 }
