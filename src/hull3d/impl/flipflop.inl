@@ -23,15 +23,6 @@
 
 constexpr std::int64_t kMaxFlipRounds = 4000000;
 
-GG_INLINE std::uint32_t scramble(std::uint32_t x) {  // a bijection: distinct slots, distinct keys
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return x;
-}
-
 // Puts facet x on the next round's list once.
 struct Enlist {
   std::int32_t* mark;
