@@ -17,9 +17,9 @@ struct Counters {
   std::int64_t exact;   // items the filter left to the exact stage of the current pass
   std::int64_t labels;  // vertices labelled non-extreme this flip round
   std::int64_t len[2];  // flip work-list lengths, by round parity
+  std::int64_t round;   // the flip round a team stopped at (read with len in one copy)
   std::int64_t split;   // facets split this insertion round
   std::int64_t live;    // points still outside after this insertion round (next to split)
-  std::int64_t round;   // the flip round a team stopped at
   std::int64_t exact_all, flips22, flips31, labels_all, flip_rounds;  // totals
 };
 

@@ -30,9 +30,10 @@ struct Enlist {
   std::int64_t* count;
   std::int32_t round;
   GG_HD void operator()(std::int32_t x) const {
-    if (atomic_exchange(mark + x, round) != round) next[append_slot(count)] = x;
+    const std::int32_t one[1] = {x};
+    many(one);
   }
-  // The same for K facets at once: the K marks are claimed with independent atomics (in flight
+  // K facets at once: the K marks are claimed with independent atomics (in flight
   // together rather than one after another) and the new ones appended with one atomic.
   template <int K>
   GG_HD void many(const std::int32_t (&x)[K]) const {
@@ -199,8 +200,14 @@ struct FlipRound {
       next.many(x);
     }
   }
-  // 5. The round's labels take effect (label i) ...
-  GG_HD void apply_label(std::int64_t i) const { ne[dec.newlab[i]] = 1; }
+  // 5. The round's labels take effect, and the facets around them (with their neighbours) go
+  // next: thread t of T takes every T-th label and facet. Nothing to do on most rounds.
+  GG_HD void labels(std::int64_t t, std::int64_t T, std::int64_t used) const {
+    const std::int64_t nl = dec.ctr->labels;
+    if (nl == 0) return;
+    for (std::int64_t i = t; i < nl; i += T) ne[dec.newlab[i]] = 1;
+    for (std::int64_t f = t; f < used; f += T) list_labelled(f);
+  }
   // ... and the facets around them, with their neighbours, go next (facet f of the surface).
   GG_HD void list_labelled(std::int64_t fi) const {
     const std::int32_t f = std::int32_t(fi);
@@ -257,14 +264,16 @@ class FlipFlop {
     while (len > 0) {
       if (round >= kMaxFlipRounds)
         throw Error(ErrorCode::Internal, "convex hull: Flip-Flop did not finish");
-      if (len <= team_max && S_.used <= 8 * team_max &&
-          std::int64_t(S_.scratch.size()) / kScratch >= ex.team_size()) {
-        round = team_rounds(round, team_max);
-      } else {
+      const bool team = len <= team_max && used <= 8 * team_max &&
+                        std::int64_t(S_.scratch.size()) / kScratch >= ex.team_size();
+      if (team)
+        team_rounds(round, team_max);
+      else
         for (int k = 0; k < kChunk; ++k) step(round++);
-      }
-      std::int64_t l[2];
-      ex.to_host(ctr->len, 2, l);
+      // One read: both list lengths and the round a team stopped at (adjacent fields).
+      std::int64_t l[3];
+      ex.to_host(ctr->len, 3, l);
+      if (team) round = std::int32_t(l[2]);
       len = l[round & 1];
     }
     const Counters c = S_.counters();
@@ -317,15 +326,9 @@ class FlipFlop {
         nact, used, GG_LAMBDA(std::int64_t i) { R.flip(i); });
     ex.for_each_counted(
         nact, used, GG_LAMBDA(std::int64_t i) { R.fix(i); });
-    // (On rounds that label nothing every thread of the last kernel leaves at once.)
-    ex.for_each_counted(
-        &ctr->labels, used, GG_LAMBDA(std::int64_t i) { R.apply_label(i); });
     const std::int64_t T = std::max<std::int64_t>(1, std::min(used, ex.concurrency()));
     ex.for_each_index(
-        T, GG_LAMBDA(std::int64_t t) {
-          if (ctr->labels == 0) return;
-          for (std::int64_t f = t; f < used; f += T) R.list_labelled(f);
-        });
+        T, GG_LAMBDA(std::int64_t t) { R.labels(t, T, used); });
     const int parity = round & 1;
     ex.for_each_index(
         1, GG_LAMBDA(std::int64_t) { end_flip_round(ctr, parity); });
@@ -334,8 +337,8 @@ class FlipFlop {
   // Rounds from `round` on in one team, while the list is non-empty and at most `max` long
   // (about two facets per thread: a round then costs a few dependent memory accesses per step
   // rather than a launch per step; the surface must be small too, since the team scans it on
-  // rounds that label). Returns the round it stopped at.
-  std::int32_t team_rounds(std::int32_t round, std::int64_t max) {
+  // rounds that label). Leaves the round it stopped at in the counters.
+  void team_rounds(std::int32_t round, std::int64_t max) {
     Exec& ex = S_.ex;
     const FlipRound R0 = make_round(round);
     Counters* ctr = S_.ctr.data();
@@ -361,10 +364,7 @@ class FlipFlop {
         t.barrier();
         for (std::int64_t i = t.rank; i < n; i += t.size) R.fix(i);
         t.barrier();
-        const std::int64_t nl = ctr->labels;
-        for (std::int64_t i = t.rank; i < nl; i += t.size) R.apply_label(i);
-        if (nl > 0)
-          for (std::int64_t f = t.rank; f < used; f += t.size) R.list_labelled(f);
+        R.labels(t.rank, t.size, used);
         t.barrier();
         if (t.rank == 0) end_flip_round(ctr, r & 1);
         t.barrier();
@@ -372,9 +372,6 @@ class FlipFlop {
       }
       if (t.rank == 0) ctr->round = r;
     });
-    std::int64_t r = 0;
-    S_.ex.to_host(&ctr->round, 1, &r);
-    return std::int32_t(r);
   }
 
   PassState& S_;
