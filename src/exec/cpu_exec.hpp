@@ -49,8 +49,21 @@ class HostBuffer {
 // The CPU executor's team: the threads of one OpenMP parallel region.
 struct CpuTeam {
   int rank, size;
+  std::int64_t* shared;  // one slot per thread, for exclusive_scan
   void barrier() const {
 #pragma omp barrier
+  }  // As CudaExec's Team: the sum of lower ranks' v, and the total (all threads call it).
+  std::int64_t exclusive_scan(std::int64_t v, std::int64_t* total) const {
+    shared[rank] = v;
+    barrier();
+    std::int64_t before = 0, all = 0;
+    for (int r = 0; r < size; ++r) {
+      if (r == rank) before = all;
+      all += shared[r];
+    }
+    barrier();  // every thread has read the slots before the next scan writes them
+    *total = all;
+    return before;
   }
 };
 
@@ -85,8 +98,10 @@ struct CpuExec {
   }
   template <class F>
   void team(F f) {
+    std::vector<std::int64_t> shared(static_cast<std::size_t>(omp_get_max_threads()));
+    std::int64_t* sh = shared.data();
 #pragma omp parallel
-    f(CpuTeam{omp_get_thread_num(), omp_get_num_threads()});
+    f(CpuTeam{omp_get_thread_num(), omp_get_num_threads(), sh});
   }
 
   template <class T>

@@ -98,6 +98,38 @@ struct Team {
     __syncthreads();
 #endif
   }
+  // Every thread passes v; each gets the sum of the v of lower ranks, and *total the sum of all.
+  // Called by all threads together (it has barriers). Warp scans by shuffles, then one warp
+  // scans the warp sums in shared memory.
+  __host__ __device__ std::int64_t exclusive_scan(std::int64_t v, std::int64_t* total) const {
+#ifdef __CUDA_ARCH__
+    __shared__ std::int64_t warp_sum[kTeamThreads / 32];
+    const int lane = rank & 31, w = rank >> 5, warps = size >> 5;
+    std::int64_t x = v;
+    for (int d = 1; d < 32; d <<= 1) {
+      const std::int64_t y = __shfl_up_sync(0xffffffffu, x, d);
+      if (lane >= d) x += y;
+    }
+    __syncthreads();  // the previous scan's readers are done with warp_sum
+    if (lane == 31) warp_sum[w] = x;
+    __syncthreads();
+    if (w == 0) {
+      std::int64_t z = lane < warps ? warp_sum[lane] : 0;
+      for (int d = 1; d < 32; d <<= 1) {
+        const std::int64_t y = __shfl_up_sync(0xffffffffu, z, d);
+        if (lane >= d) z += y;
+      }
+      if (lane < warps) warp_sum[lane] = z;
+    }
+    __syncthreads();
+    *total = warp_sum[warps - 1];
+    return (w > 0 ? warp_sum[w - 1] : 0) + x - v;
+#else
+    (void)v;
+    *total = 0;
+    return 0;
+#endif
+  }
 };
 template <class F>
 __global__ void __launch_bounds__(kTeamThreads) team_kernel(F f) {

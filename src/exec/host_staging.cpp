@@ -20,6 +20,9 @@ namespace gpugeom::staging {
 namespace {
 
 constexpr std::size_t kChunk = std::size_t(32) << 20;
+// Parts of a chunk handed between the host copy and the link (4 MB each).
+constexpr std::size_t kPart = std::size_t(4) << 20;
+constexpr std::size_t kParts = kChunk / kPart;
 
 void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess)
@@ -32,11 +35,14 @@ void check(cudaError_t e, const char* what) {
 struct Pool {
   void* buf[2] = {nullptr, nullptr};
   cudaEvent_t ev[2];
+  cudaEvent_t part[2][kParts];  // the parts of a chunk coming back (to_host)
   std::mutex busy;
   Pool() {
     for (int i = 0; i < 2; ++i) {
       check(cudaMallocHost(&buf[i], kChunk), "pinned staging buffer");
       check(cudaEventCreateWithFlags(&ev[i], cudaEventDisableTiming), "staging event");
+      for (auto& e : part[i])
+        check(cudaEventCreateWithFlags(&e, cudaEventDisableTiming), "staging event");
     }
   }
 };
@@ -50,6 +56,7 @@ Pool& pool() {
       for (int i = 0; i < 2; ++i) {
         (void)cudaFreeHost(r.buf[i]);
         (void)cudaEventDestroy(r.ev[i]);
+        for (auto& e : r.part[i]) (void)cudaEventDestroy(e);
       }
     });
     return q;
@@ -85,14 +92,19 @@ class CopyPool {
     static CopyPool p;
     return p;
   }
-  void copy(void* dst, const void* src, std::size_t bytes) {
+  // Copies `bytes`; when `ready` is given, the calling thread calls ready(from, to) each time
+  // the copied prefix has grown by kStep bytes (and at the end), so that a transfer of that
+  // part can start while the rest is still being copied.
+  template <class Ready>
+  void copy(void* dst, const void* src, std::size_t bytes, Ready ready) {
     Job j;
     j.dst = static_cast<char*>(dst);
     j.src = static_cast<const char*>(src);
     j.bytes = bytes;
     j.pieces = (bytes + kPiece - 1) / kPiece;
-    if (helpers_.empty() || j.pieces < 2) {
+    if (helpers_.empty() || j.pieces < 2 || j.pieces > kMaxPieces) {
       std::memcpy(dst, src, bytes);
+      ready(std::size_t(0), bytes);
       return;
     }
     {
@@ -101,28 +113,52 @@ class CopyPool {
       ++gen_;
     }
     cv_.notify_all();
-    work(j);
-    while (j.done.load(std::memory_order_acquire) < j.pieces) std::this_thread::yield();
+    std::size_t prefix = 0, reported = 0;  // pieces known done in a row; bytes handed on
+    auto advance = [&] {
+      while (prefix < j.pieces && j.flag[prefix].load(std::memory_order_acquire)) ++prefix;
+      const std::size_t b = std::min(prefix * kPiece, bytes);
+      if (b > reported && (b - reported >= kStep || b == bytes)) {
+        ready(reported, b);
+        reported = b;
+      }
+    };
+    for (std::size_t i; (i = take(j)) < j.pieces;) {
+      do_piece(j, i);
+      advance();
+    }
+    while (reported < bytes) {
+      advance();
+      if (reported < bytes) std::this_thread::yield();
+    }
     // Withdraw the job; helpers that took it are awake and leave at once (no pieces left).
     std::unique_lock<std::mutex> lk(m_);
     job_ = nullptr;
     idle_.wait(lk, [&] { return active_ == 0; });
   }
+  void copy(void* dst, const void* src, std::size_t bytes) {
+    copy(dst, src, bytes, [](std::size_t, std::size_t) {});
+  }
+
+  static constexpr std::size_t kStep = kPart;
 
  private:
   static constexpr std::size_t kPiece = std::size_t(1) << 20;
+  static constexpr std::size_t kMaxPieces = kChunk / kPiece;
   struct Job {
     char* dst;
     const char* src;
     std::size_t bytes = 0, pieces = 0;
-    std::atomic<std::size_t> next{0}, done{0};
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> flag[kMaxPieces] = {};  // piece i copied
   };
+  static std::size_t take(Job& j) { return j.next.fetch_add(1, std::memory_order_relaxed); }
+  static void do_piece(Job& j, std::size_t i) {
+    const std::size_t off = i * kPiece, len = std::min(kPiece, j.bytes - off);
+    std::memcpy(j.dst + off, j.src + off, len);
+    j.flag[i].store(true, std::memory_order_release);
+  }
   static void work(Job& j) {
-    for (std::size_t i; (i = j.next.fetch_add(1, std::memory_order_relaxed)) < j.pieces;) {
-      const std::size_t off = i * kPiece, len = std::min(kPiece, j.bytes - off);
-      std::memcpy(j.dst + off, j.src + off, len);
-      j.done.fetch_add(1, std::memory_order_release);
-    }
+    for (std::size_t i; (i = take(j)) < j.pieces;) do_piece(j, i);
   }
   CopyPool() {
     const int n = std::max(1, omp_get_max_threads()) - 1;
@@ -163,29 +199,37 @@ class CopyPool {
   bool stop_ = false;
 };
 
-void parallel_copy(void* dst, const void* src, std::size_t bytes) {
-  CopyPool::get().copy(dst, src, bytes);
-}
-
 }  // namespace
 
 void to_host(void* host, const void* device, std::size_t bytes, cudaStream_t s) {
   Pool& p = pool();
   std::lock_guard<std::mutex> lock(p.busy);
+  constexpr std::size_t kStep = CopyPool::kStep;
   const std::size_t chunks = (bytes + kChunk - 1) / kChunk;
+  auto len_of = [&](std::size_t c) { return std::min(kChunk, bytes - c * kChunk); };
+  // Chunk c comes over in parts of kStep, each with its own event, so the cores copy a part
+  // out of the pinned buffer while the link brings the next.
   auto issue = [&](std::size_t c) {
-    const std::size_t off = c * kChunk, len = std::min(kChunk, bytes - off);
-    check(cudaMemcpyAsync(p.buf[c % 2], static_cast<const char*>(device) + off, len,
-                          cudaMemcpyDeviceToHost, s),
-          "copy to host");
-    check(cudaEventRecord(p.ev[c % 2], s), "staging event");
+    const std::size_t off = c * kChunk, len = len_of(c);
+    for (std::size_t q = 0; q * kStep < len; ++q) {
+      const std::size_t at = q * kStep, part = std::min(kStep, len - at);
+      check(cudaMemcpyAsync(static_cast<char*>(p.buf[c % 2]) + at,
+                            static_cast<const char*>(device) + off + at, part,
+                            cudaMemcpyDeviceToHost, s),
+            "copy to host");
+      check(cudaEventRecord(p.part[c % 2][q], s), "staging event");
+    }
   };
   issue(0);
   for (std::size_t c = 0; c < chunks; ++c) {
-    check(cudaEventSynchronize(p.ev[c % 2]), "copy to host");
     if (c + 1 < chunks) issue(c + 1);  // its buffer was emptied in the previous step
-    const std::size_t off = c * kChunk, len = std::min(kChunk, bytes - off);
-    parallel_copy(static_cast<char*>(host) + off, p.buf[c % 2], len);
+    const std::size_t off = c * kChunk, len = len_of(c);
+    for (std::size_t q = 0; q * kStep < len; ++q) {
+      const std::size_t at = q * kStep, part = std::min(kStep, len - at);
+      check(cudaEventSynchronize(p.part[c % 2][q]), "copy to host");
+      CopyPool::get().copy(static_cast<char*>(host) + off + at,
+                           static_cast<const char*>(p.buf[c % 2]) + at, part);
+    }
   }
 }
 
@@ -205,10 +249,15 @@ void from_host(void* device, const void* host, std::size_t bytes, cudaStream_t s
     // the buffer is free once the transfer issued from it two chunks ago is done
     if (c >= 2) check(cudaEventSynchronize(p.ev[c % 2]), "copy to device");
     const std::size_t off = c * kChunk, len = std::min(kChunk, bytes - off);
-    parallel_copy(p.buf[c % 2], static_cast<const char*>(host) + off, len);
-    check(cudaMemcpyAsync(static_cast<char*>(device) + off, p.buf[c % 2], len,
-                          cudaMemcpyHostToDevice, s),
-          "copy to device");
+    char* buf = static_cast<char*>(p.buf[c % 2]);
+    char* dst = static_cast<char*>(device) + off;
+    // Each part goes over the link as soon as it is in the pinned buffer, while the cores copy
+    // the next part (the transfer and the host copy overlap instead of adding up).
+    CopyPool::get().copy(
+        buf, static_cast<const char*>(host) + off, len, [&](std::size_t from, std::size_t to) {
+          check(cudaMemcpyAsync(dst + from, buf + from, to - from, cudaMemcpyHostToDevice, s),
+                "copy to device");
+        });
     check(cudaEventRecord(p.ev[c % 2], s), "staging event");
   }
   check(cudaStreamSynchronize(s), "copy to device");

@@ -17,7 +17,8 @@ struct Counters {
   std::int64_t exact;   // items the filter left to the exact stage of the current pass
   std::int64_t labels;  // vertices labelled non-extreme this flip round
   std::int64_t len[2];  // flip work-list lengths, by round parity
-  std::int64_t round;   // the flip round a team stopped at (read with len in one copy)
+  std::int64_t round;   // the flip round a team stopped at (read with len in one copy), or
+                        // the insertion rounds a team ran (read with split and live)
   std::int64_t split;   // facets split this insertion round
   std::int64_t live;    // points still outside after this insertion round (next to split)
   std::int64_t exact_all, flips22, flips31, labels_all, flip_rounds;  // totals
@@ -130,12 +131,22 @@ class Constructor {
  public:
   Constructor(PassState& S, const Tetra& t) : S_(S), t_(t) {}
 
+  // Late rounds, once few points are left, run in one team (see team_rounds).
+  static constexpr std::int64_t kTeamLive = 4;   // points per team thread
+  static constexpr std::int64_t kTeamUsed = 64;  // facet slots per team thread
+
   void run() {
     start();
     std::int64_t rounds = 0;
+    const std::int64_t T = S_.ex.team_size();
+    const bool team_ok = std::int64_t(S_.scratch.size()) / kScratch >= T;
     while (live_n_ > 0) {
-      round();
-      ++rounds;
+      if (team_ok && live_n_ <= kTeamLive * T && S_.used <= kTeamUsed * T) {
+        rounds += team_rounds(kTeamLive * T, kTeamUsed * T);
+      } else {
+        round();
+        ++rounds;
+      }
     }
     S_.st.counters["insert_rounds"] += rounds;
   }
@@ -277,6 +288,117 @@ class Constructor {
     live_n_ = sizes[1];
     if (S_.used > cap_)
       throw Error(ErrorCode::Internal, "convex hull: facet store overflow while inserting");
+  }
+
+  // The rounds of round(), from the current one on, in one team launch while at most max_live
+  // points are left and at most max_used slots are handed out: a round is then a few
+  // dependent memory accesses per step, not a dozen launches and a host wait. The steps and
+  // their order are round()'s, and the two compactions keep index order (a scan over the
+  // threads' contiguous ranges), so the surface is the same slot for slot. Returns the rounds
+  // run.
+  std::int64_t team_rounds(std::int64_t max_live, std::int64_t max_used) {
+    Exec& ex = S_.ex;
+    const Geo geo = S_.g;
+    const std::int32_t s = geo.n;
+    std::int32_t* loc = loc_.data();
+    std::int32_t* live_a = live_.data();  // the live list of even rounds (odd: live_b)
+    std::int32_t* live_b = live2_.data();
+    u64* best = best_.data();
+    std::int32_t* list = list_.data();
+    std::int32_t* rank = rank_.data();
+    std::int32_t* spl = spl_.data();
+    const Surface Sf = S_.surface();
+    Counters* ctr = S_.ctr.data();
+    double* scratch = S_.scratch.data();
+    const std::int64_t used0 = S_.used, live0 = live_n_;
+    ex.team(GG_LAMBDA(const Exec::Team& t) {
+      const ExactOrient exact{geo, scratch + std::int64_t(t.rank) * kScratch};
+      const std::int64_t T = t.size;
+      std::int64_t used = used0, nl = live0, rounds = 0;
+      while (nl > 0 && nl <= max_live && used <= max_used) {
+        const std::int32_t* live = (rounds & 1) ? live_b : live_a;
+        std::int32_t* keep = (rounds & 1) ? live_a : live_b;
+        for (std::int64_t j = t.rank; j < nl; j += T) {
+          const std::int32_t q = live[j], f = loc[q];
+          atomic_max(best + f,
+                     distance_key(geo, Sf.tv[3 * f], Sf.tv[3 * f + 1], Sf.tv[3 * f + 2], q));
+        }
+        t.barrier();
+        // The split facets in slot order: thread r takes the r-th contiguous range of slots.
+        std::int64_t m = 0;
+        {
+          const std::int64_t per = (used + T - 1) / T, lo = std::min(used, t.rank * per),
+                             hi = std::min(used, lo + per);
+          std::int64_t c = 0;
+          for (std::int64_t f = lo; f < hi; ++f) c += best[f] != 0;
+          std::int64_t at = t.exclusive_scan(c, &m);
+          for (std::int64_t f = lo; f < hi; ++f)
+            if (best[f] != 0) {
+              list[at] = std::int32_t(f);
+              rank[f] = std::int32_t(at++);
+            }
+        }
+        t.barrier();
+        const std::int32_t base = std::int32_t(used);
+        for (std::int64_t r = t.rank; r < m; r += T) {
+          const std::int32_t f = list[r];
+          const std::int32_t p = point_of_key(best[f]);
+          spl[4 * r] = p;
+          for (int k = 0; k < 3; ++k) spl[4 * r + 1 + k] = Sf.tv[3 * f + k];
+          split_facet(Sf, f, p, base + 2 * std::int32_t(r), rank, base);
+        }
+        t.barrier();
+        for (std::int64_t j = t.rank; j < nl; j += T) {
+          const std::int32_t q = live[j], f = loc[q], r = rank[f];
+          if (r < 0) continue;
+          const std::int32_t* x = spl + 4 * r;
+          if (x[0] == q) {  // inserted
+            loc[q] = -1;
+            continue;
+          }
+          int c = locate_child(FastOrient{geo}, s, x[0], x + 1, q);
+          if (c == kUndecided) {
+            atomic_add(&ctr->exact_all, std::int64_t(1));
+            c = locate_child(exact, s, x[0], x + 1, q);
+          }
+          loc[q] = c < 0 ? -1 : c == 0 ? f : base + 2 * r + (c - 1);
+        }
+        t.barrier();
+        for (std::int64_t r = t.rank; r < m; r += T) {
+          best[list[r]] = 0;
+          rank[list[r]] = -1;
+        }
+        // The points still outside, in order (as copy_if).
+        std::int64_t left = 0;
+        {
+          const std::int64_t per = (nl + T - 1) / T, lo = std::min(nl, t.rank * per),
+                             hi = std::min(nl, lo + per);
+          std::int64_t c = 0;
+          for (std::int64_t j = lo; j < hi; ++j) c += loc[live[j]] >= 0;
+          std::int64_t at = t.exclusive_scan(c, &left);
+          for (std::int64_t j = lo; j < hi; ++j)
+            if (loc[live[j]] >= 0) keep[at++] = live[j];
+        }
+        t.barrier();
+        used += 2 * m;
+        nl = left;
+        ++rounds;
+      }
+      if (t.rank == 0) {
+        ctr->round = rounds;
+        ctr->split = (used - used0) / 2;
+        ctr->live = nl;
+      }
+    });
+    // One read: rounds run, slots handed out, points left (adjacent fields).
+    std::int64_t r[3];
+    ex.to_host(&ctr->round, 3, r);
+    S_.used += 2 * r[1];
+    live_n_ = r[2];
+    if (r[0] & 1) std::swap(live_, live2_);
+    if (S_.used > cap_)
+      throw Error(ErrorCode::Internal, "convex hull: facet store overflow while inserting");
+    return r[0];
   }
 
   PassState& S_;
