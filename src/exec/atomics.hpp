@@ -6,6 +6,7 @@
 #include <cuda/atomic>
 #ifdef __CUDACC__
 #include <cooperative_groups.h>
+#include <cooperative_groups/reduce.h>
 #endif
 
 #include "exec/hd.hpp"
@@ -29,6 +30,21 @@ template <class T>
 GG_INLINE void atomic_max(T* p, T v) {
   cuda::atomic_ref<T, cuda::thread_scope_device> r(*p);
   if (r.load(cuda::memory_order_relaxed) < v) r.fetch_max(v, cuda::memory_order_relaxed);
+}
+// The same where most threads of a warp aim at one of a few addresses: converged threads with
+// the same address first agree on their maximum, and one of them does the atomic (millions of
+// points choosing among the first dozen facets would otherwise queue at those addresses).
+template <class T>
+GG_INLINE void atomic_max_grouped(T* p, T v) {
+#ifdef __CUDA_ARCH__
+  namespace cg = cooperative_groups;
+  const cg::coalesced_group g = cg::coalesced_threads();
+  const auto same = cg::labeled_partition(g, reinterpret_cast<unsigned long long>(p));
+  const T m = cg::reduce(same, v, cg::greater<T>());
+  if (same.thread_rank() == 0) atomic_max(p, m);
+#else
+  atomic_max(p, v);
+#endif
 }
 template <class T>
 GG_INLINE T atomic_exchange(T* p, T v) {

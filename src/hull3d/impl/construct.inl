@@ -223,11 +223,13 @@ class Constructor {
     u64* best = best_.data();
     std::int32_t* tv = S_.tv.data();
     const std::int64_t nl = live_n_;
-    // Each facet's farthest point.
+    // Each facet's farthest point (grouped: in early rounds nearly every point aims at one of
+    // a few facets).
     ex.for_each_index(
         nl, GG_LAMBDA(std::int64_t j) {
           const std::int32_t q = live[j], f = loc[q];
-          atomic_max(best + f, distance_key(geo, tv[3 * f], tv[3 * f + 1], tv[3 * f + 2], q));
+          atomic_max_grouped(best + f,
+                             distance_key(geo, tv[3 * f], tv[3 * f + 1], tv[3 * f + 2], q));
         });
     // The facets that split, in slot order; two new slots each. Their count stays on the
     // executor until the end of the round. (No overflow: each point is inserted at most once,

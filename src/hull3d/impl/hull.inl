@@ -53,6 +53,8 @@ inline Facets compact(PassState& S) {
 inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st) {
   auto t0 = clock::now();
   const Tetra t = first_tetrahedron(ex, pts, n);
+  st.phase_ms.emplace_back("prepare", ms_since(t0));
+  t0 = clock::now();
   PassState S(ex, pts, n, t.s, st);
   {
     Constructor C(S, t);
@@ -72,10 +74,13 @@ inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st) {
   return out;
 }
 
-// Is vertex v (first corner e0 = 4 * facet + local) extreme? Walks its fan twice: a flat fan
-// means v lies inside a face, two neighbours on a line through v that v lies between means it
-// lies inside an edge. Neighbours with v's coordinates (copies) are skipped.
+// Is vertex v (first corner e0 = 4 * facet + local) extreme? A flat fan means v lies inside a
+// face; two neighbours on a line through v that v lies between mean it lies inside an edge.
+// Neighbours with v's coordinates (copies) are skipped. The fan is walked once into a small
+// array when it fits (the checks then read it, not a chain of neighbour pointers per step);
+// larger fans are walked in place.
 struct ExtremeTest {
+  static constexpr int kFanMax = 24;
   const double* p;
   const std::int32_t* tris;
   const std::int32_t* nbrs;
@@ -87,46 +92,98 @@ struct ExtremeTest {
     return 4 * g + m;
   }
   GG_HD std::int32_t nb(std::int32_t e) const { return tris[3 * (e >> 2) + ((e & 3) + 1) % 3]; }
+  GG_HD const double* at(std::int32_t v) const { return p + 3 * std::int64_t(v); }
+
+  // The fan as an array of neighbour indices (copies left out).
+  struct ArrayFan {
+    const ExtremeTest& t;
+    const std::int32_t* w;
+    int m;
+    template <class F>  // f(position, neighbour) until it returns false
+    GG_HD void each(F f) const {
+      for (int i = 0; i < m; ++i)
+        if (!f(i, t.at(w[i]))) return;
+    }
+    template <class F>  // the same over the positions after `from`
+    GG_HD void each_after(int from, F f) const {
+      for (int i = from + 1; i < m; ++i)
+        if (!f(i, t.at(w[i]))) return;
+    }
+  };
+  // The fan walked in place (positions are corners).
+  struct WalkFan {
+    const ExtremeTest& t;
+    const double* pv;
+    std::int32_t e0;
+    template <class F>
+    GG_HD void each(F f) const {
+      std::int32_t e = e0;
+      do {
+        const double* w = t.at(t.nb(e));
+        if (!same_point(w, pv) && !f(e, w)) return;
+        e = t.next_corner(e);
+      } while (e != e0);
+    }
+    template <class F>
+    GG_HD void each_after(std::int32_t from, F f) const {
+      for (std::int32_t e = t.next_corner(from); e != e0; e = t.next_corner(e)) {
+        const double* w = t.at(t.nb(e));
+        if (!same_point(w, pv) && !f(e, w)) return;
+      }
+    }
+  };
+
+  template <class Fan>
+  GG_HD static bool judge(const double* pv, const Fan& fan, double* s) {
+    const double *a = nullptr, *b = nullptr;  // a: a neighbour; b: one off the line va
+    fan.each([&](std::int32_t, const double* w) {
+      if (!a) return a = w, true;
+      if (collinear3(pv, a, w)) return true;
+      b = w;
+      return false;
+    });
+    if (!b) return false;  // every neighbour a copy or on one line: degenerate fan
+    bool flat = true;
+    fan.each([&](std::int32_t, const double* w) {
+      flat = pred::orient3d(pv, a, b, w, s) == 0;
+      return flat;
+    });
+    if (flat) return false;
+    bool in_edge = false;
+    fan.each([&](std::int32_t px, const double* x) {
+      fan.each_after(px, [&](std::int32_t, const double* y) {
+        if (!collinear3(x, pv, y)) return true;
+        for (int d = 0; d < 3; ++d)
+          if (x[d] != y[d]) {
+            in_edge = (x[d] < pv[d] && pv[d] < y[d]) || (y[d] < pv[d] && pv[d] < x[d]);
+            break;
+          }
+        return !in_edge;
+      });
+      return !in_edge;
+    });
+    return !in_edge;
+  }
+
   GG_HD bool operator()(std::int32_t v, std::int32_t e0, double* s) const {
-    const double* pv = p + 3 * std::int64_t(v);
-    const double *a = nullptr, *b = nullptr;
+    const double* pv = at(v);
+    std::int32_t w[kFanMax];
+    int m = 0;
+    bool fits = true;
     std::int32_t e = e0;
-    do {  // a: a neighbour apart from v; b: one off the line va
-      const double* w = p + 3 * std::int64_t(nb(e));
-      if (!same_point(w, pv)) {
-        if (!a)
-          a = w;
-        else if (!b && !collinear3(pv, a, w))
-          b = w;
+    do {
+      const std::int32_t x = nb(e);
+      if (!same_point(at(x), pv)) {
+        if (m == kFanMax) {
+          fits = false;
+          break;
+        }
+        w[m++] = x;
       }
       e = next_corner(e);
     } while (e != e0);
-    if (!a || !b) return false;  // every neighbour a copy or on one line: degenerate fan
-    bool flat = true;
-    e = e0;
-    do {
-      const double* w = p + 3 * std::int64_t(nb(e));
-      if (!same_point(w, pv) && pred::orient3d(pv, a, b, w, s) != 0) flat = false;
-      e = next_corner(e);
-    } while (flat && e != e0);
-    if (flat) return false;
-    std::int32_t ex = e0;
-    do {
-      const double* x = p + 3 * std::int64_t(nb(ex));
-      if (!same_point(x, pv)) {
-        for (std::int32_t ey = next_corner(ex); ey != e0; ey = next_corner(ey)) {
-          const double* y = p + 3 * std::int64_t(nb(ey));
-          if (same_point(y, pv) || !collinear3(x, pv, y)) continue;
-          for (int d = 0; d < 3; ++d)
-            if (x[d] != y[d]) {
-              if ((x[d] < pv[d] && pv[d] < y[d]) || (y[d] < pv[d] && pv[d] < x[d])) return false;
-              break;
-            }
-        }
-      }
-      ex = next_corner(ex);
-    } while (ex != e0);
-    return true;
+    if (fits) return judge(pv, ArrayFan{*this, w, m}, s);
+    return judge(pv, WalkFan{*this, pv, e0}, s);
   }
 };
 
@@ -145,12 +202,9 @@ struct Result {
 
 // pts: n points on the executor.
 inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st) {
-  auto t0 = clock::now();
-  validate(ex, pts, n);
-  st.phase_ms.emplace_back("prepare", ms_since(t0));
   Result R;
   R.facets = one_pass(ex, pts, n, st);
-  t0 = clock::now();
+  auto t0 = clock::now();
   // The vertices, each with one corner, in index order.
   auto corner = ex.template alloc<std::int32_t>(std::size_t(n));
   std::int32_t* cr = corner.data();

@@ -1,10 +1,6 @@
 // Input checks and the first tetrahedron (thesis 6.4), on the executor; included inside
 // gpugeom::hull3d::{cpu,cuda}_impl after geometry.inl.
 
-struct BadCount {
-  GG_HD std::int64_t operator()(std::int64_t a, std::int64_t b) const { return a + b; }
-};
-
 // A point and its index, ordered lexicographically by (x, y, z) then index; `key` holds a
 // distance for the farthest-point reductions.
 struct Cand {
@@ -49,26 +45,28 @@ GG_HD inline bool same_point(const double* a, const double* b) {
   return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
 }
 
-// Refuses NaN, Inf and coordinates the exact predicates cannot take.
-inline void validate(Exec& ex, const double* p, std::int64_t n) {
-  auto out = ex.template alloc<std::int64_t>(1);
-  ex.transform_reduce_into(
-      n,
-      GG_LAMBDA(std::int64_t i)->std::int64_t {
-        const double* q = p + 3 * i;
-        return (pred::in_exact_range(q[0]) && pred::in_exact_range(q[1]) &&
-                pred::in_exact_range(q[2]))
-                   ? 0
-                   : 1;
-      },
-      std::int64_t(0), BadCount{}, out.data());
-  std::int64_t bad = 0;
-  ex.to_host(out.data(), 1, &bad);
-  if (bad)
-    throw Error(ErrorCode::InvalidInput,
-                std::to_string(bad) +
-                    " point(s) have a coordinate that is NaN, infinite or outside the exactly "
-                    "representable range (magnitude 1.8e-43 .. 1.5e54, or 0)");
+// Can the exact predicates take every coordinate of point q? (No NaN, Inf, or magnitudes out of
+// range.)
+GG_HD inline bool exact_ok(const double* q) {
+  return pred::in_exact_range(q[0]) && pred::in_exact_range(q[1]) && pred::in_exact_range(q[2]);
+}
+
+// The input check and both lexicographic extremes in one pass: the count of points the exact
+// predicates cannot take, and the smallest and largest point (meaningful once the count is 0).
+struct Scan0 {
+  Cand lo, hi;
+  std::int64_t bad;
+};
+struct Scan0Op {
+  GG_HD Scan0 operator()(const Scan0& a, const Scan0& b) const {
+    return Scan0{MinLex{}(a.lo, b.lo), MaxLex{}(a.hi, b.hi), a.bad + b.bad};
+  }
+};
+inline void throw_bad(std::int64_t bad) {
+  throw Error(ErrorCode::InvalidInput,
+              std::to_string(bad) +
+                  " point(s) have a coordinate that is NaN, infinite or outside the exactly "
+                  "representable range (magnitude 1.8e-43 .. 1.5e54, or 0)");
 }
 
 // The reduction of f over the points; init is the identity for each op (validated points are
@@ -83,7 +81,8 @@ Cand reduce_cand(Exec& ex, std::int64_t n, F f, Op op, double start = 0) {
   return h;
 }
 
-// The first tetrahedron: the lexicographically smallest and largest points, the point
+// The first tetrahedron (after the input check: Error(InvalidInput) for points the exact
+// predicates cannot take): the lexicographically smallest and largest points, the point
 // farthest from their line, the point farthest from the plane of the three (by the rounded
 // measure; the choice is then checked exactly, with an exact scan when the rounded one was
 // degenerate). Throws Error(DegenerateInput) naming the case when there is none.
@@ -92,21 +91,22 @@ struct Tetra {
   double s[3];
 };
 inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
-  auto cand = GG_LAMBDA(std::int64_t i)->Cand {
-    return Cand{p[3 * i], p[3 * i + 1], p[3 * i + 2], 0.0, std::int32_t(i)};
-  };
   const double inf = std::numeric_limits<double>::infinity();
-  // Both extremes come back in one copy.
-  auto ext = ex.template alloc<Cand>(2);
-  ex.transform_reduce_into(n, cand,
-                           Cand{inf, inf, inf, -1, std::numeric_limits<std::int32_t>::max()},
-                           MinLex{}, ext.data());
-  ex.transform_reduce_into(n, cand,
-                           Cand{-inf, -inf, -inf, -1, std::numeric_limits<std::int32_t>::max()},
-                           MaxLex{}, ext.data() + 1);
-  Cand lh[2];
-  ex.to_host(ext.data(), 2, lh);
-  const Cand lo = lh[0], hi = lh[1];
+  const std::int32_t none = std::numeric_limits<std::int32_t>::max();
+  auto ext = ex.template alloc<Scan0>(1);
+  ex.transform_reduce_into(
+      n,
+      GG_LAMBDA(std::int64_t i)->Scan0 {
+        const double* q = p + 3 * i;
+        const Cand c{q[0], q[1], q[2], 0.0, std::int32_t(i)};
+        return Scan0{c, c, exact_ok(q) ? 0 : 1};
+      },
+      Scan0{Cand{inf, inf, inf, -1, none}, Cand{-inf, -inf, -inf, -1, none}, 0}, Scan0Op{},
+      ext.data());
+  Scan0 x;
+  ex.to_host(ext.data(), 1, &x);
+  if (x.bad) throw_bad(x.bad);
+  const Cand lo = x.lo, hi = x.hi;
   const double A[3] = {lo.x, lo.y, lo.z}, B[3] = {hi.x, hi.y, hi.z};
   if (same_point(A, B))
     throw Error(ErrorCode::DegenerateInput, "all " + std::to_string(n) +
