@@ -93,10 +93,11 @@ struct CpuExec {
 
   // Threads that share barriers (see CudaExec::team).
   using Team = CpuTeam;
+  template <int Threads = 0>  // (CudaExec's block size; here the team is every thread)
   int team_size() const {
     return omp_get_max_threads();
   }
-  template <class F>
+  template <int Threads = 0, class F>
   void team(F f) {
     std::vector<std::int64_t> shared(static_cast<std::size_t>(omp_get_max_threads()));
     std::int64_t* sh = shared.data();

@@ -131,8 +131,8 @@ struct Team {
 #endif
   }
 };
-template <class F>
-__global__ void __launch_bounds__(kTeamThreads) team_kernel(F f) {
+template <int Threads, class F>
+__global__ void __launch_bounds__(Threads) team_kernel(F f) {
   f(Team{int(threadIdx.x), int(blockDim.x)});
 }
 template <class F, class T>
@@ -200,11 +200,17 @@ class CudaExec {
   // A team: threads that share barriers (one thread block here), for iterations so short that a
   // kernel launch per step would cost more than the step. f(const Team&) runs on each thread;
   // team.barrier() makes every thread's writes visible to all the others.
+  // Threads (a multiple of 32, at most kTeamThreads) trades threads for registers: a team of
+  // 1024 gets 64 registers a thread, one of 512 gets 128.
   using Team = cuda_detail::Team;
-  int team_size() const { return cuda_detail::kTeamThreads; }
-  template <class F>
+  template <int Threads = cuda_detail::kTeamThreads>
+  int team_size() const {
+    return Threads;
+  }
+  template <int Threads = cuda_detail::kTeamThreads, class F>
   void team(F f) {
-    cuda_detail::team_kernel<<<1, cuda_detail::kTeamThreads, 0, s_>>>(f);
+    static_assert(Threads % 32 == 0 && Threads <= cuda_detail::kTeamThreads, "team size");
+    cuda_detail::team_kernel<Threads><<<1, Threads, 0, s_>>>(f);
     GG_CUDA_CHECK_LAUNCH("team_kernel");
   }
 

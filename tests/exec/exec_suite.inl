@@ -225,17 +225,20 @@ void TeamBarriersOrderRounds_body() {
 
 // The team's scan, called many times in a row (a slot reused too early shows as a wrong
 // offset): thread r passes v(r, call), gets the sum over lower ranks and the total.
+template <int Threads>
 void TeamScanGivesOffsets_body();
 TEST(SUITE, TeamScanGivesOffsets) {
-  TeamScanGivesOffsets_body();
+  TeamScanGivesOffsets_body<1024>();
+  TeamScanGivesOffsets_body<512>();  // a smaller team (more registers a thread on the GPU)
 }
+template <int Threads>
 void TeamScanGivesOffsets_body() {
   EXEC ex;
-  const int T = ex.team_size();
+  const int T = ex.template team_size<Threads>();
   constexpr int kCalls = 7;
   auto buf = ex.template alloc<std::int64_t>(std::size_t(2 * kCalls * T));
   std::int64_t* b = buf.data();
-  ex.team(GG_LAMBDA(const EXEC::Team& t) {
+  ex.template team<Threads>(GG_LAMBDA(const EXEC::Team& t) {
     for (int c = 0; c < kCalls; ++c) {
       std::int64_t total = -1;
       const std::int64_t v = (std::int64_t(t.rank) * 7919 + c * 31) % 13;

@@ -29,9 +29,10 @@ struct Counters {
 struct PassState {
   Exec& ex;
   Geo g;
-  std::int64_t n = 0;     // points
-  std::int64_t cap = 0;   // facet slots
-  std::int64_t used = 0;  // slots handed out
+  std::int64_t n = 0;                                   // points
+  std::int64_t cap = 0;                                 // facet slots
+  std::int64_t used = 0;                                // slots handed out
+  typename Exec::template Buffer<double> kernel_point;  // Geo::s
   typename Exec::template Buffer<std::int32_t> tv, to, stamp, remap, deg;
   typename Exec::template Buffer<Counters> ctr;
   typename Exec::template Buffer<double> scratch;
@@ -41,8 +42,10 @@ struct PassState {
 
   PassState(Exec& e, const double* pts, std::int64_t np, const double* s, Stats& stats)
       : ex(e), n(np), st(stats) {
+    kernel_point = ex.template alloc<double>(3);
+    ex.from_host(s, 3, kernel_point.data());
     g.p = pts;
-    g.s[0] = s[0], g.s[1] = s[1], g.s[2] = s[2];
+    g.s = kernel_point.data();
     g.n = std::int32_t(np);
     cap = 2 * np;  // a closed triangulated sphere on V <= n vertices has 2V - 4 facets
     tv = ex.template alloc<std::int32_t>(std::size_t(3 * cap));
@@ -132,14 +135,18 @@ class Constructor {
   Constructor(PassState& S, const Tetra& t) : S_(S), t_(t) {}
 
   // Late rounds, once few points are left, run in one team (see team_rounds).
+  // (per thread of team_size<1024>(): 1024 on the GPU, every core on the CPU; the team itself
+  // has kTeam threads)
   static constexpr std::int64_t kTeamLive = 4;   // points per team thread
   static constexpr std::int64_t kTeamUsed = 64;  // facet slots per team thread
+  static constexpr int kTeam = 1024;
 
   void run() {
     start();
     std::int64_t rounds = 0;
-    const std::int64_t T = S_.ex.team_size();
-    const bool team_ok = std::int64_t(S_.scratch.size()) / kScratch >= T;
+    const std::int64_t T = S_.ex.template team_size<1024>();
+    const bool team_ok =
+        std::int64_t(S_.scratch.size()) / kScratch >= S_.ex.template team_size<kTeam>();
     while (live_n_ > 0) {
       if (team_ok && live_n_ <= kTeamLive * T && S_.used <= kTeamUsed * T) {
         rounds += team_rounds(kTeamLive * T, kTeamUsed * T);
@@ -313,7 +320,7 @@ class Constructor {
     Counters* ctr = S_.ctr.data();
     double* scratch = S_.scratch.data();
     const std::int64_t used0 = S_.used, live0 = live_n_;
-    ex.team(GG_LAMBDA(const Exec::Team& t) {
+    ex.template team<kTeam>(GG_LAMBDA(const Exec::Team& t) {
       const ExactOrient exact{geo, scratch + std::int64_t(t.rank) * kScratch};
       const std::int64_t T = t.size;
       std::int64_t used = used0, nl = live0, rounds = 0;

@@ -141,8 +141,9 @@ struct FlipRound {
 
   GG_HD void set_round(std::int32_t r) {
     dec.round = r;
-    act = lists[r & 1];
-    next.next = lists[(r + 1) & 1];
+    // (selects, not lists[r & 1]: an indexed array would keep the team's copy in local memory)
+    act = (r & 1) ? lists[1] : lists[0];
+    next.next = (r & 1) ? lists[0] : lists[1];
     next.count = &dec.ctr->len[(r + 1) & 1];
     next.round = r + 1;
   }
@@ -230,6 +231,9 @@ class FlipFlop {
   // the executor, so a round past the last one does nothing, and the host checks for the end
   // once per chunk. Once the list is short, one team runs the rounds in a single launch.
   static constexpr int kChunk = 4;
+  // Threads of the team. Where the team takes over is set by team_size<1024>() (1024 on the
+  // GPU, every core on the CPU) whatever this is.
+  static constexpr int kTeam = 1024;
 
   void run() {
     Exec& ex = S_.ex;
@@ -258,14 +262,15 @@ class FlipFlop {
           ctr->len[1] = 0;
         });
     S_.exact_list(3 * used);
-    const std::int64_t team_max = 2 * ex.team_size();
+    const std::int64_t team_max = 2 * ex.template team_size<1024>();
     std::int32_t round = 0;
     std::int64_t len = used;
     while (len > 0) {
       if (round >= kMaxFlipRounds)
         throw Error(ErrorCode::Internal, "convex hull: Flip-Flop did not finish");
-      const bool team = len <= team_max && used <= 8 * team_max &&
-                        std::int64_t(S_.scratch.size()) / kScratch >= ex.team_size();
+      const bool team =
+          len <= team_max && used <= 8 * team_max &&
+          std::int64_t(S_.scratch.size()) / kScratch >= ex.template team_size<kTeam>();
       if (team)
         team_rounds(round, team_max);
       else
@@ -345,7 +350,7 @@ class FlipFlop {
     double* scratch = S_.scratch.data();
     const std::int64_t used = S_.used;
     const std::int32_t stop = std::int32_t(kMaxFlipRounds);
-    ex.team(GG_LAMBDA(const Exec::Team& t) {
+    ex.template team<kTeam>(GG_LAMBDA(const Exec::Team& t) {
       FlipRound R = R0;
       const ExactOrient exact{R.geo, scratch + std::int64_t(t.rank) * kScratch};
       std::int32_t r = R.dec.round;

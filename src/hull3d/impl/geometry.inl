@@ -16,7 +16,9 @@ constexpr int kScratch = pred::kOrient3dScratch;
 
 struct Geo {
   const double* p;  // 3 doubles per point
-  double s[3];      // the kernel point
+  const double* s;  // the kernel point, on the executor too (not an array in here: at() would
+                    // hand out the address of a member, and every copy of Geo, the team's
+                    // included, would live in local memory)
   std::int32_t n;   // its index
   GG_HD const double* at(std::int32_t i) const { return i == n ? s : p + 3 * std::int64_t(i); }
 };
@@ -27,10 +29,19 @@ struct FastOrient {
     return pred::orient3d_fast(g.at(i), g.at(j), g.at(k), g.at(l));
   }
 };
+// The exact stage is a call, not inlined code: it is rare, and inlined at each of a decision's
+// orientation tests it made the team kernel 1 MB of code with registers spilled on the fast
+// path too (1 KB of stack per thread).
+#if defined(__CUDACC__)
+#define GG_HULL_NOINLINE __host__ __device__ __noinline__
+#else
+#define GG_HULL_NOINLINE __attribute__((noinline))
+#endif
 struct ExactOrient {
   Geo g;
   double* scratch;
-  GG_HD int operator()(std::int32_t i, std::int32_t j, std::int32_t k, std::int32_t l) const {
+  GG_HULL_NOINLINE int operator()(std::int32_t i, std::int32_t j, std::int32_t k,
+                                  std::int32_t l) const {
     return pred::orient3d_sos(g.at(i), i, g.at(j), j, g.at(k), k, g.at(l), l, scratch);
   }
 };

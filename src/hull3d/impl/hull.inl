@@ -187,13 +187,19 @@ struct ExtremeTest {
   }
 };
 
-GG_INLINE u64 ordered_key(double v) {  // doubles as unsigned keys with the same order
-  if (v == 0) v = 0;                   // -0 == +0
-  u64 u;
-  memcpy(&u, &v, 8);
-  return (u >> 63) ? ~u : (u | (u64(1) << 63));
+// A hash of a point's coordinates, equal for equal points (-0 and +0 alike).
+GG_INLINE u64 point_hash(const double* q) {
+  u64 h = 0x9e3779b97f4a7c15ULL;
+  for (int d = 0; d < 3; ++d) {
+    double v = q[d];
+    if (v == 0) v = 0;  // -0 == +0
+    u64 u;
+    memcpy(&u, &v, 8);
+    h = (h ^ u) * 0xff51afd7ed558ccdULL;
+    h ^= h >> 32;
+  }
+  return h;
 }
-
 struct Result {
   Facets facets;
   typename Exec::template Buffer<std::int32_t> vertices;  // sorted input indices
@@ -239,35 +245,47 @@ inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st) 
   auto kept = ex.template alloc<std::int32_t>(std::size_t(nv));
   std::int64_t nk = ex.copy_if(
       kp, nv, kept.data(), GG_LAMBDA(std::int32_t v) { return v >= 0; });
-  // Copies: sort the kept points lexicographically (stable passes z, y, x from index order),
-  // keep the first of each run of equal points.
+  // Copies: the kept points sorted by a hash of their coordinates, so that the copies of a point
+  // share a run of equal hashes; a point with a copy of lower index in its run is dropped, and
+  // the rest keep their index order (kept is in index order).
   std::int64_t copies = 0;
-  {
+  if (nk > 1) {
     auto key = ex.template alloc<u64>(std::size_t(nk));
+    auto pos = ex.template alloc<std::int32_t>(std::size_t(nk));
+    auto dup = ex.template alloc<std::int8_t>(std::size_t(nk));
     u64* kk = key.data();
-    std::int32_t* kv = kept.data();
-    for (int d = 2; d >= 0; --d) {
-      ex.for_each_index(
-          nk, GG_LAMBDA(std::int64_t j) { kk[j] = ordered_key(pts[3 * std::int64_t(kv[j]) + d]); });
-      ex.sort_by_key(kk, kv, nk);
-    }
-    auto uniq = ex.template alloc<std::int32_t>(std::size_t(nk));
-    const std::int64_t nu = ex.compact_indices(
-        nk,
-        GG_LAMBDA(std::int64_t j) {
-          return j == 0 ||
-                 !same_point(pts + 3 * std::int64_t(kv[j]), pts + 3 * std::int64_t(kv[j - 1]));
-        },
-        uniq.data());
-    copies = nk - nu;
-    const std::int32_t* up = uniq.data();
-    auto sel = ex.template alloc<std::int32_t>(std::size_t(nu));
-    std::int32_t* sp = sel.data();
+    std::int32_t* ps = pos.data();
+    std::int8_t* du = dup.data();
+    const std::int32_t* kv = kept.data();
     ex.for_each_index(
-        nu, GG_LAMBDA(std::int64_t j) { sp[j] = kv[up[j]]; });
-    ex.sort(sp, nu);
-    kept = std::move(sel);
-    nk = nu;
+        nk, GG_LAMBDA(std::int64_t j) {
+          kk[j] = point_hash(pts + 3 * std::int64_t(kv[j]));
+          ps[j] = std::int32_t(j);
+        });
+    ex.sort_by_key(kk, ps, nk);
+    ex.for_each_index(
+        nk, GG_LAMBDA(std::int64_t i) {
+          const double* q = pts + 3 * std::int64_t(kv[ps[i]]);
+          bool copy = false;  // a copy at a lower position in the run (either side of i)
+          for (std::int64_t h = i - 1; h >= 0 && kk[h] == kk[i] && !copy; --h)
+            copy = ps[h] < ps[i] && same_point(pts + 3 * std::int64_t(kv[ps[h]]), q);
+          for (std::int64_t h = i + 1; h < nk && kk[h] == kk[i] && !copy; ++h)
+            copy = ps[h] < ps[i] && same_point(pts + 3 * std::int64_t(kv[ps[h]]), q);
+          du[ps[i]] = copy;
+        });
+    auto uniq = ex.template alloc<std::int32_t>(std::size_t(nk));
+    std::int32_t* up = uniq.data();
+    const std::int64_t nu = ex.compact_indices(
+        nk, GG_LAMBDA(std::int64_t j) { return !du[j]; }, up);
+    copies = nk - nu;
+    if (copies > 0) {
+      auto sel = ex.template alloc<std::int32_t>(std::size_t(nu));
+      std::int32_t* sp = sel.data();
+      ex.for_each_index(
+          nu, GG_LAMBDA(std::int64_t j) { sp[j] = kv[up[j]]; });
+      kept = std::move(sel);
+      nk = nu;
+    }
   }
   st.counters["first_pass_vertices"] = nv;
   st.counters["nonextreme_vertices_dropped"] = nv - nk - copies;
