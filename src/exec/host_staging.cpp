@@ -138,6 +138,26 @@ class CopyPool {
   void copy(void* dst, const void* src, std::size_t bytes) {
     copy(dst, src, bytes, [](std::size_t, std::size_t) {});
   }
+  // The same as one job whose pieces wait for their source: whoever takes the piece at offset
+  // `off` first calls before(ctx, off), which returns once that part of src is there (false:
+  // it never will; the copy then reports failure). One job per chunk rather than one per part:
+  // handing out a job costs a wake-up of the helpers.
+  using Before = bool (*)(const void* ctx, std::size_t off);
+  bool copy_when(void* dst, const void* src, std::size_t bytes, Before before, const void* ctx) {
+    Job j;
+    j.dst = static_cast<char*>(dst);
+    j.src = static_cast<const char*>(src);
+    j.bytes = bytes;
+    j.pieces = (bytes + kPiece - 1) / kPiece;
+    j.before = before;
+    j.ctx = ctx;
+    if (helpers_.empty() || j.pieces < 2 || j.pieces > kMaxPieces) {
+      for (std::size_t i = 0; i < j.pieces; ++i) do_piece(j, i);
+      return !j.failed.load();
+    }
+    run(j);
+    return !j.failed.load();
+  }
 
   static constexpr std::size_t kStep = kPart;
 
@@ -150,12 +170,33 @@ class CopyPool {
     std::size_t bytes = 0, pieces = 0;
     std::atomic<std::size_t> next{0};
     std::atomic<bool> flag[kMaxPieces] = {};  // piece i copied
+    Before before = nullptr;                  // see copy_when
+    const void* ctx = nullptr;
+    std::atomic<bool> failed{false};
   };
   static std::size_t take(Job& j) { return j.next.fetch_add(1, std::memory_order_relaxed); }
   static void do_piece(Job& j, std::size_t i) {
     const std::size_t off = i * kPiece, len = std::min(kPiece, j.bytes - off);
-    std::memcpy(j.dst + off, j.src + off, len);
+    if (j.before && !j.before(j.ctx, off))
+      j.failed.store(true, std::memory_order_relaxed);
+    else
+      std::memcpy(j.dst + off, j.src + off, len);
     j.flag[i].store(true, std::memory_order_release);
+  }
+  // Runs job j on the calling thread and whichever helpers wake, until every piece is done.
+  void run(Job& j) {
+    {
+      std::lock_guard<std::mutex> lk(m_);
+      job_ = &j;
+      ++gen_;
+    }
+    cv_.notify_all();
+    work(j);
+    for (std::size_t i = 0; i < j.pieces; ++i)
+      while (!j.flag[i].load(std::memory_order_acquire)) std::this_thread::yield();
+    std::unique_lock<std::mutex> lk(m_);
+    job_ = nullptr;
+    idle_.wait(lk, [&] { return active_ == 0; });
   }
   static void work(Job& j) {
     for (std::size_t i; (i = take(j)) < j.pieces;) do_piece(j, i);
@@ -224,11 +265,17 @@ void to_host(void* host, const void* device, std::size_t bytes, cudaStream_t s) 
   for (std::size_t c = 0; c < chunks; ++c) {
     if (c + 1 < chunks) issue(c + 1);  // its buffer was emptied in the previous step
     const std::size_t off = c * kChunk, len = len_of(c);
-    for (std::size_t q = 0; q * kStep < len; ++q) {
-      const std::size_t at = q * kStep, part = std::min(kStep, len - at);
-      check(cudaEventSynchronize(p.part[c % 2][q]), "copy to host");
-      CopyPool::get().copy(static_cast<char*>(host) + off + at,
-                           static_cast<const char*>(p.buf[c % 2]) + at, part);
+    // A piece is copied once the part holding it has arrived (its event).
+    struct Parts {
+      const cudaEvent_t* ev;
+      static bool arrived(const void* ctx, std::size_t at) {
+        return cudaEventSynchronize(static_cast<const Parts*>(ctx)->ev[at / kPart]) == cudaSuccess;
+      }
+    } parts{p.part[c % 2]};
+    if (!CopyPool::get().copy_when(static_cast<char*>(host) + off, p.buf[c % 2], len,
+                                   &Parts::arrived, &parts)) {
+      check(cudaStreamSynchronize(s), "copy to host");  // reports the transfer's error
+      throw Error(ErrorCode::Cuda, "copy to host: a staged part never arrived");
     }
   }
 }
