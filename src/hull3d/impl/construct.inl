@@ -106,6 +106,23 @@ struct PassState {
   }
 };
 
+// Where a point of split facet f (split rank r, new slots from base) goes, given its child c
+// from locate_child: -1 when it dropped inside the polyhedron.
+GG_INLINE std::int32_t child_slot(int c, std::int32_t f, std::int32_t r, std::int32_t base) {
+  return c < 0 ? -1 : c == 0 ? f : base + 2 * r + (c - 1);
+}
+// Splits the r-th facet of the round's list at its farthest point, recording (point, old
+// corners) in spl for the point location after it.
+GG_HD inline void split_listed(const Surface& Sf, std::int64_t r, const std::int32_t* list,
+                               const u64* best, const std::int32_t* rank, std::int32_t* spl,
+                               std::int32_t base) {
+  const std::int32_t f = list[r];
+  const std::int32_t p = point_of_key(best[f]);
+  spl[4 * r] = p;
+  for (int k = 0; k < 3; ++k) spl[4 * r + 1 + k] = Sf.tv[3 * f + k];
+  split_facet(Sf, f, p, base + 2 * std::int32_t(r), rank, base);
+}
+
 // The exact stage of the two point-location kernels below (namespace-scope functors: nvcc
 // allows no lambda type as a template argument of a function that defines device lambdas).
 struct LocateFirstExact {
@@ -126,7 +143,7 @@ struct LocateChildExact {
     const std::int32_t f = ~loc[q], r = rank[f];
     const std::int32_t* x = spl + 4 * r;
     const int c = locate_child(o, s, x[0], x + 1, q);
-    loc[q] = c < 0 ? -1 : c == 0 ? f : base + 2 * r + (c - 1);
+    loc[q] = child_slot(c, f, r, base);
   }
 };
 
@@ -254,13 +271,7 @@ class Constructor {
     ex.for_each_counted(
         m, used, GG_LAMBDA(std::int64_t r) { rank[list[r]] = std::int32_t(r); });
     ex.for_each_counted(
-        m, used, GG_LAMBDA(std::int64_t r) {
-          const std::int32_t f = list[r];
-          const std::int32_t p = point_of_key(best[f]);
-          spl[4 * r] = p;
-          for (int k = 0; k < 3; ++k) spl[4 * r + 1 + k] = Sf.tv[3 * f + k];
-          split_facet(Sf, f, p, base + 2 * std::int32_t(r), rank, base);
-        });
+        m, used, GG_LAMBDA(std::int64_t r) { split_listed(Sf, r, list, best, rank, spl, base); });
     // Points of split facets move to a child or drop out.
     std::int32_t* exl = S_.exact_list(nl);
     ex.for_each_index(
@@ -278,7 +289,7 @@ class Constructor {
             loc[q] = ~f;  // decided below
             return;
           }
-          loc[q] = c < 0 ? -1 : c == 0 ? f : base + 2 * r + (c - 1);
+          loc[q] = child_slot(c, f, r, base);
         });
     S_.exact_pass(LocateChildExact{loc, rank, spl, s, base});
     S_.reset_counters();
@@ -349,13 +360,8 @@ class Constructor {
         }
         t.barrier();
         const std::int32_t base = std::int32_t(used);
-        for (std::int64_t r = t.rank; r < m; r += T) {
-          const std::int32_t f = list[r];
-          const std::int32_t p = point_of_key(best[f]);
-          spl[4 * r] = p;
-          for (int k = 0; k < 3; ++k) spl[4 * r + 1 + k] = Sf.tv[3 * f + k];
-          split_facet(Sf, f, p, base + 2 * std::int32_t(r), rank, base);
-        }
+        for (std::int64_t r = t.rank; r < m; r += T)
+          split_listed(Sf, r, list, best, rank, spl, base);
         t.barrier();
         for (std::int64_t j = t.rank; j < nl; j += T) {
           const std::int32_t q = live[j], f = loc[q], r = rank[f];
@@ -370,7 +376,7 @@ class Constructor {
             atomic_add(&ctr->exact_all, std::int64_t(1));
             c = locate_child(exact, s, x[0], x + 1, q);
           }
-          loc[q] = c < 0 ? -1 : c == 0 ? f : base + 2 * r + (c - 1);
+          loc[q] = child_slot(c, f, r, base);
         }
         t.barrier();
         for (std::int64_t r = t.rank; r < m; r += T) {
