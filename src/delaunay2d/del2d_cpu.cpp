@@ -10,13 +10,13 @@
 #include <map>
 #include <cuda/atomic>
 #include <string>
-#include <sys/mman.h>
 #include <thread>
 #include <thrust/functional.h>
 #include <vector>
 
 #include "delaunay2d/del2d_backend.hpp"
 #include "exec/atomics.hpp"
+#include "exec/host_sizer.hpp"
 #include "exec/cpu_exec.hpp"
 #include "predicates/predicates.hpp"
 #include "spatial/hilbert.hpp"

@@ -11,13 +11,13 @@
 #include <cooperative_groups.h>
 #include <cuda/atomic>
 #include <string>
-#include <sys/mman.h>
 #include <thread>
 #include <thrust/functional.h>
 #include <vector>
 
 #include "delaunay2d/del2d_backend.hpp"
 #include "exec/atomics.hpp"
+#include "exec/host_sizer.hpp"
 #include "exec/cuda_exec.cuh"
 #include "predicates/predicates.hpp"
 #include "spatial/hilbert.hpp"

@@ -3,12 +3,14 @@
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "exec/atomics.hpp"
+#include "exec/host_sizer.hpp"
 #include "exec/cpu_exec.hpp"
 #include "hull3d/hull3d_backend.hpp"
 #include "predicates/predicates.hpp"

@@ -551,52 +551,6 @@ class Triangulator {
   typename Exec::template Buffer<double> scratch_;
 };
 
-// Sizes the host result arrays on other threads while the executor works: zero-filling and
-// first-touching hundreds of megabytes costs as much as copying them. Each array gets its own
-// thread, and huge pages where the kernel offers them (a fault per 2 MB instead of per 4 kB).
-// The triangle count is at most 2n - 2 (the extended triangulation's), so the arrays are cut
-// to size at the end.
-class HostSizer {
- public:
-  void start(Output& out, std::int64_t n) {
-    th_[0] = std::thread([this, &out, n] { size(0, out.triangles, 6 * n, 0); });
-    th_[1] = std::thread([this, &out, n] { size(1, out.neighbors, 6 * n, 0); });
-    th_[2] = std::thread([this, &out, n] { size(2, out.duplicate_of, n, -1); });
-  }
-  ~HostSizer() {
-    for (auto& t : th_)
-      if (t.joinable()) t.join();
-  }
-  // Waits for the arrays; a failed allocation surfaces here as Error(OutOfMemory).
-  void join() {
-    for (auto& t : th_)
-      if (t.joinable()) t.join();
-    for (const auto& e : err_)
-      if (e) std::rethrow_exception(e);
-  }
-
- private:
-  void size(int which, std::vector<std::int32_t>& v, std::int64_t n, std::int32_t fill) {
-    try {
-      v.clear();
-      v.reserve(std::size_t(n));
-#ifdef MADV_HUGEPAGE
-      const std::uintptr_t a =
-          (reinterpret_cast<std::uintptr_t>(v.data()) + 0x1FFFFF) & ~0x1FFFFFull;
-      const std::uintptr_t e = (reinterpret_cast<std::uintptr_t>(v.data() + n)) & ~0x1FFFFFull;
-      if (e > a) (void)madvise(reinterpret_cast<void*>(a), e - a, MADV_HUGEPAGE);
-#endif
-      v.assign(std::size_t(n), fill);
-    } catch (const std::bad_alloc&) {  // an exception may not leave a thread
-      err_[which] = std::make_exception_ptr(Error(
-          ErrorCode::OutOfMemory,
-          "host allocation of " + std::to_string(4 * n) + " bytes for the triangulation failed"));
-    }
-  }
-  std::thread th_[3];
-  std::exception_ptr err_[3];
-};
-
 inline double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -627,7 +581,12 @@ inline void triangulate_impl(const double* xy, std::int64_t n, Output& out, Stat
   Exec ex;
   HostSizer sizer;  // after the upload, so that it does not compete with it
   triangulate_core(
-      ex, xy, n, false, st, [&] { sizer.start(out, n); },
+      ex, xy, n, false, st,
+      [&] {  // at most 2n - 2 triangles (the extended triangulation's): cut to size below
+        sizer.add(out.triangles, 6 * n, std::int32_t(0), "triangulation");
+        sizer.add(out.neighbors, 6 * n, std::int32_t(0), "triangulation");
+        sizer.add(out.duplicate_of, n, std::int32_t(-1), "triangulation");
+      },
       [&](Prepared& P, typename Triangulator::Finished& f) {
         ex.sync();
         auto t0 = std::chrono::steady_clock::now();

@@ -50,7 +50,10 @@ inline Facets compact(PassState& S) {
   return out;
 }
 
-inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st) {
+// constructed (if given) learns the facet count after the construction, a bound on the final
+// count (Flip-Flop only removes facets).
+inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st,
+                       const std::function<void(std::int64_t)>& constructed = {}) {
   auto t0 = clock::now();
   const Tetra t = first_tetrahedron(ex, pts, n);
   st.phase_ms.emplace_back("prepare", ms_since(t0));
@@ -62,6 +65,7 @@ inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st) {
   }
   ex.sync();
   st.phase_ms.emplace_back("construct", ms_since(t0));
+  if (constructed) constructed(S.used);  // (construction never frees a slot)
   t0 = clock::now();
   {
     FlipFlop F(S);
@@ -206,10 +210,12 @@ struct Result {
   std::int64_t num_vertices = 0;
 };
 
-// pts: n points on the executor.
-inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st) {
+// pts: n points on the executor. constructed: as one_pass's, for the first pass (whose bound
+// holds for the second too, a hull of fewer points).
+inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st,
+                        const std::function<void(std::int64_t)>& constructed = {}) {
   Result R;
-  R.facets = one_pass(ex, pts, n, st);
+  R.facets = one_pass(ex, pts, n, st, constructed);
   auto t0 = clock::now();
   // The vertices, each with one corner, in index order.
   auto corner = ex.template alloc<std::int32_t>(std::size_t(n));
@@ -349,6 +355,9 @@ struct PlaneOf {
   }
 };
 
+// From this many facets (about 0.5 MB of triangles) the result arrays are sized ahead.
+constexpr std::int64_t kSizeAheadFacets = 40000;
+
 // Host points in, host arrays out.
 inline void compute_impl(const double* xyz, std::int64_t n, Output& out, Stats& st) {
   Exec ex;
@@ -362,7 +371,17 @@ inline void compute_impl(const double* xyz, std::int64_t n, Output& out, Stats& 
     ex.sync();
     st.phase_ms.emplace_back("upload", ms_since(t0));
   }
-  Result R = hull_core(ex, p, n, st);
+  // With the GPU working, the result arrays are sized on host threads during Flip-Flop, for the
+  // facet count after the construction (F facets, (F + 4) / 2 vertices), where they are large
+  // enough for the first touch of their pages to matter. (The CPU executor has no idle cores.)
+  HostSizer sizer;
+  Result R = hull_core(ex, p, n, st, [&](std::int64_t facets) {
+    if (Exec::backend != Backend::Cuda || facets < kSizeAheadFacets) return;
+    sizer.add(out.triangles, 3 * facets, std::int32_t(0), "convex hull");
+    sizer.add(out.neighbors, 3 * facets, std::int32_t(0), "convex hull");
+    sizer.add(out.vertices, (facets + 4) / 2, std::int32_t(0), "convex hull");
+    sizer.add(out.equations, 4 * facets, 0.0, "convex hull");
+  });
   auto t0 = clock::now();
   const std::int64_t nf = R.facets.count;
   auto eq = ex.template alloc<double>(std::size_t(4 * nf));
@@ -372,6 +391,7 @@ inline void compute_impl(const double* xyz, std::int64_t n, Output& out, Stats& 
   ex.to_host(redo.data(), 1, &out.planes_redo);
   st.phase_ms.emplace_back("planes", ms_since(t0));
   t0 = clock::now();
+  sizer.join();  // (nothing to wait for when it was not started)
   out.equations.resize(std::size_t(4 * nf));
   out.triangles.resize(std::size_t(3 * R.facets.count));
   out.neighbors.resize(std::size_t(3 * R.facets.count));
