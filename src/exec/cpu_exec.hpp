@@ -52,7 +52,9 @@ struct CpuTeam {
   std::int64_t* shared;  // one slot per thread, for exclusive_scan
   void barrier() const {
 #pragma omp barrier
-  }  // As CudaExec's Team: the sum of lower ranks' v, and the total (all threads call it).
+  }
+
+  // As CudaExec's Team: the sum of lower ranks' v, and the total (all threads call it).
   std::int64_t exclusive_scan(std::int64_t v, std::int64_t* total) const {
     shared[rank] = v;
     barrier();
