@@ -107,12 +107,7 @@ class CopyPool {
       ready(std::size_t(0), bytes);
       return;
     }
-    {
-      std::lock_guard<std::mutex> lk(m_);
-      job_ = &j;
-      ++gen_;
-    }
-    cv_.notify_all();
+    publish(j);
     std::size_t prefix = 0, reported = 0;  // pieces known done in a row; bytes handed on
     auto advance = [&] {
       while (prefix < j.pieces && j.flag[prefix].load(std::memory_order_acquire)) ++prefix;
@@ -130,10 +125,7 @@ class CopyPool {
       advance();
       if (reported < bytes) std::this_thread::yield();
     }
-    // Withdraw the job; helpers that took it are awake and leave at once (no pieces left).
-    std::unique_lock<std::mutex> lk(m_);
-    job_ = nullptr;
-    idle_.wait(lk, [&] { return active_ == 0; });
+    withdraw();
   }
   void copy(void* dst, const void* src, std::size_t bytes) {
     copy(dst, src, bytes, [](std::size_t, std::size_t) {});
@@ -183,20 +175,29 @@ class CopyPool {
       std::memcpy(j.dst + off, j.src + off, len);
     j.flag[i].store(true, std::memory_order_release);
   }
-  // Runs job j on the calling thread and whichever helpers wake, until every piece is done.
-  void run(Job& j) {
+  // Hands job j to the helpers (those awake start on it; the others when they wake).
+  void publish(Job& j) {
     {
       std::lock_guard<std::mutex> lk(m_);
       job_ = &j;
       ++gen_;
     }
     cv_.notify_all();
-    work(j);
-    for (std::size_t i = 0; i < j.pieces; ++i)
-      while (!j.flag[i].load(std::memory_order_acquire)) std::this_thread::yield();
+  }
+  // Withdraws the job once its pieces are done; helpers that took it are awake and leave at
+  // once (no pieces left).
+  void withdraw() {
     std::unique_lock<std::mutex> lk(m_);
     job_ = nullptr;
     idle_.wait(lk, [&] { return active_ == 0; });
+  }
+  // Runs job j on the calling thread and whichever helpers wake, until every piece is done.
+  void run(Job& j) {
+    publish(j);
+    work(j);
+    for (std::size_t i = 0; i < j.pieces; ++i)
+      while (!j.flag[i].load(std::memory_order_acquire)) std::this_thread::yield();
+    withdraw();
   }
   static void work(Job& j) {
     for (std::size_t i; (i = take(j)) < j.pieces;) do_piece(j, i);
