@@ -111,6 +111,21 @@ struct PassState {
 GG_INLINE std::int32_t child_slot(int c, std::int32_t f, std::int32_t r, std::int32_t base) {
   return c < 0 ? -1 : c == 0 ? f : base + 2 * r + (c - 1);
 }
+// Point q of split facet f (split rank r) after the splits: inserted (loc -1), moved to a child
+// or dropped; false when o cannot tell (loc is left as it was).
+template <class O>
+GG_HD bool place_point(const O& o, std::int32_t s, std::int32_t* loc, const std::int32_t* spl,
+                       std::int32_t q, std::int32_t f, std::int32_t r, std::int32_t base) {
+  const std::int32_t* x = spl + 4 * r;
+  if (x[0] == q) {  // inserted
+    loc[q] = -1;
+    return true;
+  }
+  const int c = locate_child(o, s, x[0], x + 1, q);
+  if (c == kUndecided) return false;
+  loc[q] = child_slot(c, f, r, base);
+  return true;
+}
 // Splits the r-th facet of the round's list at its farthest point, recording (point, old
 // corners) in spl for the point location after it.
 GG_HD inline void split_listed(const Surface& Sf, std::int64_t r, const std::int32_t* list,
@@ -140,30 +155,39 @@ struct LocateChildExact {
   const std::int32_t* spl;
   std::int32_t s, base;
   GG_HD void operator()(std::int32_t q, const ExactOrient& o) const {
-    const std::int32_t f = ~loc[q], r = rank[f];
-    const std::int32_t* x = spl + 4 * r;
-    const int c = locate_child(o, s, x[0], x + 1, q);
-    loc[q] = child_slot(c, f, r, base);
+    const std::int32_t f = ~loc[q];
+    place_point(o, s, loc, spl, q, f, rank[f], base);
   }
 };
+
+// Compaction inside a team, in index order: thread r takes the r-th contiguous range of
+// [0, n), counts the kept items, and a scan over the threads gives each its first output slot;
+// emit(i, slot) for every kept i. Returns the count (every thread calls it).
+template <class Team, class Keep, class Emit>
+GG_HD std::int64_t team_compact(const Team& t, std::int64_t n, Keep keep, Emit emit) {
+  const std::int64_t per = (n + t.size - 1) / t.size, lo = std::min<std::int64_t>(n, t.rank * per),
+                     hi = std::min(n, lo + per);
+  std::int64_t c = 0, total = 0;
+  for (std::int64_t i = lo; i < hi; ++i) c += keep(i);
+  std::int64_t at = t.exclusive_scan(c, &total);
+  for (std::int64_t i = lo; i < hi; ++i)
+    if (keep(i)) emit(i, at++);
+  return total;
+}
 
 class Constructor {
  public:
   Constructor(PassState& S, const Tetra& t) : S_(S), t_(t) {}
 
   // Late rounds, once few points are left, run in one team (see team_rounds).
-  // (per thread of team_size<1024>(): 1024 on the GPU, every core on the CPU; the team itself
-  // has kTeam threads)
   static constexpr std::int64_t kTeamLive = 4;   // points per team thread
   static constexpr std::int64_t kTeamUsed = 64;  // facet slots per team thread
-  static constexpr int kTeam = 1024;
 
   void run() {
     start();
     std::int64_t rounds = 0;
-    const std::int64_t T = S_.ex.template team_size<1024>();
-    const bool team_ok =
-        std::int64_t(S_.scratch.size()) / kScratch >= S_.ex.template team_size<kTeam>();
+    const std::int64_t T = S_.ex.team_size();
+    const bool team_ok = std::int64_t(S_.scratch.size()) / kScratch >= T;
     while (live_n_ > 0) {
       if (team_ok && live_n_ <= kTeamLive * T && S_.used <= kTeamUsed * T) {
         rounds += team_rounds(kTeamLive * T, kTeamUsed * T);
@@ -277,19 +301,10 @@ class Constructor {
     ex.for_each_index(
         nl, GG_LAMBDA(std::int64_t j) {
           const std::int32_t q = live[j], f = loc[q], r = rank[f];
-          if (r < 0) return;
-          const std::int32_t* x = spl + 4 * r;
-          if (x[0] == q) {  // inserted
-            loc[q] = -1;
-            return;
-          }
-          const int c = locate_child(FastOrient{geo}, s, x[0], x + 1, q);
-          if (c == kUndecided) {
+          if (r >= 0 && !place_point(FastOrient{geo}, s, loc, spl, q, f, r, base)) {
             exl[append_slot(&ctr->exact)] = q;
             loc[q] = ~f;  // decided below
-            return;
           }
-          loc[q] = child_slot(c, f, r, base);
         });
     S_.exact_pass(LocateChildExact{loc, rank, spl, s, base});
     S_.reset_counters();
@@ -331,7 +346,7 @@ class Constructor {
     Counters* ctr = S_.ctr.data();
     double* scratch = S_.scratch.data();
     const std::int64_t used0 = S_.used, live0 = live_n_;
-    ex.template team<kTeam>(GG_LAMBDA(const Exec::Team& t) {
+    ex.team(GG_LAMBDA(const Exec::Team& t) {
       const ExactOrient exact{geo, scratch + std::int64_t(t.rank) * kScratch};
       const std::int64_t T = t.size;
       std::int64_t used = used0, nl = live0, rounds = 0;
@@ -344,20 +359,13 @@ class Constructor {
                      distance_key(geo, Sf.tv[3 * f], Sf.tv[3 * f + 1], Sf.tv[3 * f + 2], q));
         }
         t.barrier();
-        // The split facets in slot order: thread r takes the r-th contiguous range of slots.
-        std::int64_t m = 0;
-        {
-          const std::int64_t per = (used + T - 1) / T, lo = std::min(used, t.rank * per),
-                             hi = std::min(used, lo + per);
-          std::int64_t c = 0;
-          for (std::int64_t f = lo; f < hi; ++f) c += best[f] != 0;
-          std::int64_t at = t.exclusive_scan(c, &m);
-          for (std::int64_t f = lo; f < hi; ++f)
-            if (best[f] != 0) {
+        // The split facets in slot order.
+        const std::int64_t m = team_compact(
+            t, used, [&](std::int64_t f) { return best[f] != 0; },
+            [&](std::int64_t f, std::int64_t at) {
               list[at] = std::int32_t(f);
-              rank[f] = std::int32_t(at++);
-            }
-        }
+              rank[f] = std::int32_t(at);
+            });
         t.barrier();
         const std::int32_t base = std::int32_t(used);
         for (std::int64_t r = t.rank; r < m; r += T)
@@ -365,18 +373,10 @@ class Constructor {
         t.barrier();
         for (std::int64_t j = t.rank; j < nl; j += T) {
           const std::int32_t q = live[j], f = loc[q], r = rank[f];
-          if (r < 0) continue;
-          const std::int32_t* x = spl + 4 * r;
-          if (x[0] == q) {  // inserted
-            loc[q] = -1;
-            continue;
-          }
-          int c = locate_child(FastOrient{geo}, s, x[0], x + 1, q);
-          if (c == kUndecided) {
+          if (r >= 0 && !place_point(FastOrient{geo}, s, loc, spl, q, f, r, base)) {
             atomic_add(&ctr->exact_all, std::int64_t(1));
-            c = locate_child(exact, s, x[0], x + 1, q);
+            place_point(exact, s, loc, spl, q, f, r, base);
           }
-          loc[q] = child_slot(c, f, r, base);
         }
         t.barrier();
         for (std::int64_t r = t.rank; r < m; r += T) {
@@ -384,16 +384,9 @@ class Constructor {
           rank[list[r]] = -1;
         }
         // The points still outside, in order (as copy_if).
-        std::int64_t left = 0;
-        {
-          const std::int64_t per = (nl + T - 1) / T, lo = std::min(nl, t.rank * per),
-                             hi = std::min(nl, lo + per);
-          std::int64_t c = 0;
-          for (std::int64_t j = lo; j < hi; ++j) c += loc[live[j]] >= 0;
-          std::int64_t at = t.exclusive_scan(c, &left);
-          for (std::int64_t j = lo; j < hi; ++j)
-            if (loc[live[j]] >= 0) keep[at++] = live[j];
-        }
+        const std::int64_t left = team_compact(
+            t, nl, [&](std::int64_t j) { return loc[live[j]] >= 0; },
+            [&](std::int64_t j, std::int64_t at) { keep[at] = live[j]; });
         t.barrier();
         used += 2 * m;
         nl = left;

@@ -231,9 +231,6 @@ class FlipFlop {
   // the executor, so a round past the last one does nothing, and the host checks for the end
   // once per chunk. Once the list is short, one team runs the rounds in a single launch.
   static constexpr int kChunk = 4;
-  // Threads of the team. Where the team takes over is set by team_size<1024>() (1024 on the
-  // GPU, every core on the CPU) whatever this is.
-  static constexpr int kTeam = 1024;
 
   void run() {
     Exec& ex = S_.ex;
@@ -262,15 +259,14 @@ class FlipFlop {
           ctr->len[1] = 0;
         });
     S_.exact_list(3 * used);
-    const std::int64_t team_max = 2 * ex.template team_size<1024>();
+    const std::int64_t team_max = 2 * ex.team_size();
     std::int32_t round = 0;
     std::int64_t len = used;
     while (len > 0) {
       if (round >= kMaxFlipRounds)
         throw Error(ErrorCode::Internal, "convex hull: Flip-Flop did not finish");
-      const bool team =
-          len <= team_max && used <= 8 * team_max &&
-          std::int64_t(S_.scratch.size()) / kScratch >= ex.template team_size<kTeam>();
+      const bool team = len <= team_max && used <= 8 * team_max &&
+                        std::int64_t(S_.scratch.size()) / kScratch >= ex.team_size();
       if (team)
         team_rounds(round, team_max);
       else
@@ -350,7 +346,7 @@ class FlipFlop {
     double* scratch = S_.scratch.data();
     const std::int64_t used = S_.used;
     const std::int32_t stop = std::int32_t(kMaxFlipRounds);
-    ex.template team<kTeam>(GG_LAMBDA(const Exec::Team& t) {
+    ex.team(GG_LAMBDA(const Exec::Team& t) {
       FlipRound R = R0;
       const ExactOrient exact{R.geo, scratch + std::int64_t(t.rank) * kScratch};
       std::int32_t r = R.dec.round;
