@@ -16,11 +16,11 @@ using Exec = CudaExec;
 #include "edt/impl/pba.inl"
 #include "edt/impl/jfa.inl"
 // The x pass: a row is cut into segments of up to 32*K voxels and each warp holds one segment
-// in registers (K coalesced loads per lane, all in flight at once). A forward warp max-scan
-// gives each voxel the nearest site at or left of it, a backward min-scan the nearest at or
-// right of it, and the nearer wins (ties: the left one, the smaller x). The row is read and
-// written once. Rows longer than one segment first get, per segment, the last site before it
-// and the first site after it (x_seg_bounds + x_seg_carries), which seed the scans.
+// as bits in registers (K coalesced loads per lane, all in flight at once); each voxel takes
+// the nearer of the nearest sites at or left of it and at or right of it (ties: the left one,
+// the smaller x). The sites are read once (a byte per voxel from a mask) and the row written
+// once. Rows longer than one segment first get, per segment, the last site before it and the
+// first site after it (x_seg_bounds + x_seg_carries).
 constexpr int kSegK = 16;  // 512 voxels per segment: 16 registers per lane for the sites
 
 struct XSegs {
@@ -30,32 +30,29 @@ struct XSegs {
   std::int32_t* last;
 };
 
-__device__ __forceinline__ std::int32_t warp_max_scan(std::int32_t v, int lane) {
-  for (int o = 1; o < 32; o *= 2) {
-    const std::int32_t u = __shfl_up_sync(0xffffffffu, v, o);
-    if (lane >= o) v = max(v, u);
-  }
-  return v;
-}
-__device__ __forceinline__ std::int32_t warp_min_scan_down(std::int32_t v, int lane) {
-  for (int o = 1; o < 32; o *= 2) {
-    const std::int32_t u = __shfl_down_sync(0xffffffffu, v, o);
-    if (lane + o < 32) v = min(v, u);
-  }
-  return v;
-}
+// Where the x pass finds its sites: a byte mask (a quarter of the feature array's bytes) or
+// the packed features themselves.
+struct MaskSites {
+  const std::uint8_t* m;
+  __device__ bool operator()(std::int64_t i) const { return m[i] != 0; }
+};
+struct FeatSites {
+  const std::uint32_t* f;
+  __device__ bool operator()(std::int64_t i) const { return f[i] != kNone; }
+};
 
-__global__ void x_seg_bounds(const std::uint32_t* feat, XSegs S) {
+template <class Src>
+__global__ void x_seg_bounds(Src src, XSegs S) {
   const std::int64_t seg = (std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x) / 32;
   const int lane = threadIdx.x & 31;
   if (seg >= S.rows * S.per_row) return;
   const std::int64_t row = seg / S.per_row;
   const std::int32_t x0 = std::int32_t(seg % S.per_row) * S.seg_len;
   const std::int32_t x1 = min(x0 + S.seg_len, S.nx);
-  const std::uint32_t* f = feat + row * S.nx;
+  const std::int64_t r0 = row * S.nx;
   std::int32_t lo = 0x7fffffff, hi = -1;
   for (std::int32_t x = x0 + lane; x < x1; x += 32)
-    if (f[x] != kNone) lo = min(lo, x), hi = max(hi, x);
+    if (src(r0 + x)) lo = min(lo, x), hi = max(hi, x);
   lo = __reduce_min_sync(0xffffffffu, lo);
   hi = __reduce_max_sync(0xffffffffu, hi);
   if (lane == 0) S.first[seg] = lo == 0x7fffffff ? -1 : lo, S.last[seg] = hi;
@@ -81,40 +78,68 @@ __global__ void x_seg_carries(XSegs S) {
   }
 }
 
-template <int K>
-__global__ void x_pass_segments(Layout L, std::uint32_t* feat, XSegs S) {
+// A warp per segment of 32*K voxels. The k-th coalesced load of the warp (offsets k*32 + lane)
+// becomes one ballot word, so the segment's sites are K words of bits (one register a lane,
+// where the position scans this replaces held K positions: more warps per SM, and a few
+// shuffles per 32 voxels instead of ten). A voxel's nearest site on the left
+// is then the highest set bit at or below it in its word, else the last site of the words
+// before (or the carry from earlier segments); on the right, the lowest set bit at or above
+// it, else the first site of the words after. Reads every site of the segment before
+// writing: out may be the features src reads.
+template <int K, class Src>
+__global__ void x_pass_segments(Layout L, Src src, std::uint32_t* out, XSegs S) {
   const std::int64_t seg = (std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x) / 32;
   const int lane = threadIdx.x & 31;
   if (seg >= S.rows * S.per_row) return;  // whole warps leave together
   const std::int64_t row = seg / S.per_row;
   const std::int32_t x0 = std::int32_t(seg % S.per_row) * S.seg_len;
   const std::int32_t x1 = min(x0 + S.seg_len, S.nx);
-  std::uint32_t* f = feat + row * S.nx;
-  std::int32_t p[K];
+  const std::int64_t r0 = row * S.nx;
+  bool site[K];  // every load in flight before the first ballot waits for one
 #pragma unroll
   for (int k = 0; k < K; ++k) {
     const std::int32_t x = x0 + k * 32 + lane;
-    p[k] = (x < x1 && f[x] != kNone) ? x : -1;
+    site[k] = x < x1 && src(r0 + x);
   }
-  std::int32_t carry = S.per_row > 1 ? S.last[seg] : -1;
-  std::int32_t left[K];
+  std::uint32_t mine = 0;  // lane j < K keeps word j
 #pragma unroll
   for (int k = 0; k < K; ++k) {
-    const std::int32_t v = max(warp_max_scan(p[k], lane), carry);
-    carry = __shfl_sync(0xffffffffu, v, 31);
-    left[k] = v;
+    const std::uint32_t b = __ballot_sync(0xffffffffu, site[k]);
+    if (lane == k) mine = b;
   }
+  // Lane j < K owns word j: the last site before it and the first site after it come from
+  // one exclusive scan each over the lanes (carries from the other segments at the ends), and
+  // each word is broadcast with its pair when its voxels are written (K words or positions
+  // held in every lane's registers would cost warps per SM).
+  const std::int32_t wbase = x0 + lane * 32;
+  std::int32_t last = mine ? wbase + 31 - __clz(mine) : -1;
+  std::int32_t first = mine ? wbase + __ffs(mine) - 1 : 0x7fffffff;
+  for (int o = 1; o < 32; o *= 2) {  // inclusive scans: max from the left, min from the right
+    const std::int32_t u = __shfl_up_sync(0xffffffffu, last, o);
+    const std::int32_t w = __shfl_down_sync(0xffffffffu, first, o);
+    if (lane >= o) last = max(last, u);
+    if (lane + o < 32) first = min(first, w);
+  }
+  const std::int32_t up = __shfl_up_sync(0xffffffffu, last, 1);
+  const std::int32_t down = __shfl_down_sync(0xffffffffu, first, 1);
+  const std::int32_t before_w = max(lane > 0 ? up : -1, S.per_row > 1 ? S.last[seg] : -1);
+  const std::int32_t after_w =
+      min(lane < 31 ? down : 0x7fffffff, S.per_row > 1 ? S.first[seg] : 0x7fffffff);
+  const std::uint32_t at_or_below = 0xffffffffu >> (31 - lane), at_or_above = 0xffffffffu << lane;
   const std::int32_t ny = std::int32_t(L.n[1]);
   const std::uint32_t y = std::uint32_t(row % ny), z = std::uint32_t(row / ny);
-  carry = S.per_row > 1 ? S.first[seg] : 0x7fffffff;
+  std::uint32_t* f = out + r0;
 #pragma unroll
-  for (int k = K - 1; k >= 0; --k) {
-    const std::int32_t r = min(warp_min_scan_down(p[k] >= 0 ? p[k] : 0x7fffffff, lane), carry);
-    carry = __shfl_sync(0xffffffffu, r, 0);
-    const std::int32_t x = x0 + k * 32 + lane;
+  for (int k = 0; k < K; ++k) {
+    const std::int32_t x = x0 + k * 32 + lane, base = x0 + k * 32;
+    const std::int32_t before = __shfl_sync(0xffffffffu, before_w, k);
+    const std::int32_t after = __shfl_sync(0xffffffffu, after_w, k);
+    const std::uint32_t word = __shfl_sync(0xffffffffu, mine, k);
+    const std::uint32_t lo = word & at_or_below, hi = word & at_or_above;
+    const std::int32_t l = lo ? base + 31 - __clz(lo) : before;
+    const std::int32_t r = hi ? base + __ffs(hi) - 1 : after;
     if (x < x1) {
-      const std::int32_t l = left[k];
-      std::int32_t s = -1;
+      std::int32_t s = -1;  // ties: the left one, the smaller x
       if (l >= 0 && r < S.nx)
         s = (x - l <= r - x) ? l : r;
       else if (l >= 0)
@@ -126,15 +151,16 @@ __global__ void x_pass_segments(Layout L, std::uint32_t* feat, XSegs S) {
   }
 }
 
-template <int K>
-void launch_x_segments(cudaStream_t st, const Layout& L, std::uint32_t* feat, const XSegs& S) {
+template <int K, class Src>
+void launch_x_segments(cudaStream_t st, const Layout& L, Src src, std::uint32_t* out,
+                       const XSegs& S) {
   const std::int64_t blocks = (S.rows * S.per_row * 32 + 255) / 256;
-  x_pass_segments<K><<<unsigned(blocks), 256, 0, st>>>(L, feat, S);
+  x_pass_segments<K><<<unsigned(blocks), 256, 0, st>>>(L, src, out, S);
   GG_CUDA_CHECK_LAUNCH("x_pass_segments");
 }
 
-void x_pass_rows(Exec& ex, const Layout& L, const Metric&, const PassGeom&, std::uint32_t* feat,
-                 std::uint32_t* scratch, std::int32_t*, std::int32_t*) {
+template <class Src>
+void x_pass_from(Exec& ex, const Layout& L, Src src, std::uint32_t* out, std::uint32_t* scratch) {
   XSegs S;
   S.nx = std::int32_t(L.n[0]);
   S.rows = L.count() / L.n[0];
@@ -157,7 +183,7 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric&, const PassGeom&, std:
     S.first = reinterpret_cast<std::int32_t*>(scratch);
     S.last = S.first + S.rows * S.per_row;
     const std::int64_t blocks = (S.rows * S.per_row * 32 + 255) / 256;
-    x_seg_bounds<<<unsigned(blocks), 256, 0, st>>>(feat, S);
+    x_seg_bounds<<<unsigned(blocks), 256, 0, st>>>(src, S);
     GG_CUDA_CHECK_LAUNCH("x_seg_bounds");
     x_seg_carries<<<unsigned((S.rows + 255) / 256), 256, 0, st>>>(S);
     GG_CUDA_CHECK_LAUNCH("x_seg_carries");
@@ -166,45 +192,173 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric&, const PassGeom&, std:
   }
   switch (k) {
     case 1:
-      launch_x_segments<1>(st, L, feat, S);
-      break;
+      return launch_x_segments<1>(st, L, src, out, S);
     case 2:
-      launch_x_segments<2>(st, L, feat, S);
-      break;
+      return launch_x_segments<2>(st, L, src, out, S);
     case 4:
-      launch_x_segments<4>(st, L, feat, S);
-      break;
+      return launch_x_segments<4>(st, L, src, out, S);
     case 8:
-      launch_x_segments<8>(st, L, feat, S);
-      break;
+      return launch_x_segments<8>(st, L, src, out, S);
     case 10:
-      launch_x_segments<10>(st, L, feat, S);
-      break;
+      return launch_x_segments<10>(st, L, src, out, S);
     case 12:
-      launch_x_segments<12>(st, L, feat, S);
-      break;
+      return launch_x_segments<12>(st, L, src, out, S);
     case 14:
-      launch_x_segments<14>(st, L, feat, S);
-      break;
+      return launch_x_segments<14>(st, L, src, out, S);
     case 17:
-      launch_x_segments<17>(st, L, feat, S);
-      break;
+      return launch_x_segments<17>(st, L, src, out, S);
     case 18:
-      launch_x_segments<18>(st, L, feat, S);
-      break;
+      return launch_x_segments<18>(st, L, src, out, S);
     case 20:
-      launch_x_segments<20>(st, L, feat, S);
-      break;
+      return launch_x_segments<20>(st, L, src, out, S);
     case 22:
-      launch_x_segments<22>(st, L, feat, S);
-      break;
+      return launch_x_segments<22>(st, L, src, out, S);
     case 24:
-      launch_x_segments<24>(st, L, feat, S);
-      break;
+      return launch_x_segments<24>(st, L, src, out, S);
     default:
-      launch_x_segments<kSegK>(st, L, feat, S);
-      break;
+      return launch_x_segments<kSegK>(st, L, src, out, S);
   }
+}
+
+void x_pass_rows(Exec& ex, const Layout& L, const Metric&, const PassGeom&,
+                 const std::uint8_t* mask, const std::uint32_t* in, std::uint32_t* out,
+                 std::uint32_t* scratch, std::int32_t*, std::int32_t*) {
+  if (mask)
+    x_pass_from(ex, L, MaskSites{mask}, out, scratch);
+  else
+    x_pass_from(ex, L, FeatSites{in}, out, scratch);
+}
+
+// The windowed pass (pba.inl, window_pass_t) as a kernel of its own. Each thread takes T
+// consecutive voxels of one line, positions t0 .. t0+T-1, and widens one window around all of
+// them: each step loads the two positions just outside it and tests each candidate against
+// all T voxels, its distance to the line (the other axes) computed once. So a step costs two
+// loads and two decodes for T voxels, where a thread per voxel paid that for each. A voxel is
+// settled once d*d exceeds its best cost, d being the distance every position not yet seen
+// lies from it (everything nearer was seen: the window reaches at least d-1 past both ends).
+// Blocks are 32 x 8 threads (x fastest, so every load is a coalesced row) in raster order, so
+// the rows a window reads are still in L2 when neighbouring blocks read them (the generic loop
+// strides the grid with a fixed number of blocks, and each wave of them re-read most of the
+// array from DRAM: 4.1 GB read for a 1 GB array at 16384^2, measured). The axis and dimension
+// are template arguments, so coordinates stay in registers, and a candidate's cost and its
+// packed site form one 64-bit key: the nearest site with ties to the smaller packed value is
+// the minimum key.
+constexpr std::uint32_t kWinRows = 8;  // threadIdx.y: groups along y (A = 1) or y (A = 2)
+
+template <int ND, int A, int T>
+__global__ void window_kernel(Layout L, std::int32_t R, std::uint32_t xtiles, std::uint32_t nb1,
+                              const std::uint32_t* __restrict__ cand, std::uint32_t* out,
+                              std::uint8_t* flags) {
+  const std::uint32_t b = blockIdx.x, rest = b / xtiles, b1 = rest % nb1, b2 = rest / nb1;
+  const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
+  const std::uint32_t x = (b - rest * xtiles) * 32 + threadIdx.x;
+  // A = 1: threadIdx.y and b1 pick the group along y, b2 is z. A = 2: they pick y, b2 the
+  // group along z.
+  const std::uint32_t u = b1 * kWinRows + threadIdx.y;
+  const std::uint32_t g = A == 1 ? u : b2;
+  const std::uint32_t y = A == 1 ? g * T : u, z = A == 1 ? b2 : g * T;
+  const std::int32_t len = std::int32_t(L.n[A]);
+  if (x >= nx || (A == 1 ? y : z) >= std::uint32_t(len) || (A == 2 && y >= ny)) return;
+  const std::int32_t v[3] = {std::int32_t(x), std::int32_t(y), std::int32_t(z + L.z0)};
+  const std::int32_t t0 = std::int32_t(A == 1 ? y : z);
+  const std::int64_t stride = A == 1 ? std::int64_t(nx) : std::int64_t(nx) * ny;
+  const std::uint32_t* c0 = cand + (std::int64_t(z) * ny + y) * nx + x;  // position t0
+  const std::int32_t n = min(T, len - t0);                               // voxels held
+  // A candidate's squared distance to the line, with its site in the low word of the key.
+  auto line_key = [&](std::uint32_t s) {
+    std::uint32_t c = 0;
+#pragma unroll
+    for (int k = 0; k < ND; ++k)
+      if (k != A) {
+        const std::int32_t e = std::int32_t((s >> L.shift[k]) & L.mask[k]) - v[k];
+        c += std::uint32_t(e * e);
+      }
+    return s == kNone ? ~std::uint64_t(0) : (std::uint64_t(c) << 32 | s);
+  };
+  // Candidate at offset p (from t0) to voxel j: its line key plus (p - j)^2 in the cost word.
+  auto offer = [](std::uint64_t& best, std::uint64_t k, std::int32_t dist) {
+    best = min(best, k + (std::uint64_t(std::uint32_t(dist * dist)) << 32));
+  };
+  std::uint64_t best[T];
+#pragma unroll
+  for (int j = 0; j < T; ++j) best[j] = ~std::uint64_t(0);
+    // kNone's key is the maximum and is never offered: adding a distance would wrap it.
+#pragma unroll
+  for (int p = 0; p < T; ++p)
+    if (p < n) {
+      const std::uint64_t k = line_key(c0[p * stride]);
+#pragma unroll
+      for (int j = 0; j < T; ++j)
+        if (k != ~std::uint64_t(0)) offer(best[j], k, p - j);
+    }
+  auto settled = [&](std::int32_t d) {
+    bool all = true;
+#pragma unroll
+    for (int j = 0; j < T; ++j)
+      all = all && (j >= n || std::uint64_t(std::uint32_t(d * d)) << 32 > best[j]);
+    return all;
+  };
+  auto finish = [&]() {
+#pragma unroll
+    for (int j = 0; j < T; ++j)
+      if (j < n) out[c0 - cand + j * stride] = std::uint32_t(best[j]);
+  };
+  std::int32_t d = 1;
+  for (; d <= R; ++d) {
+    if (settled(d)) return finish();
+    const std::int32_t lo = t0 - d, hi = t0 + n - 1 + d;
+    const std::uint64_t kl = lo >= 0 ? line_key(c0[-d * stride]) : ~std::uint64_t(0);
+    const std::uint64_t kh = hi < len ? line_key(c0[(n - 1 + d) * stride]) : ~std::uint64_t(0);
+#pragma unroll
+    for (int j = 0; j < T; ++j) {
+      if (kl != ~std::uint64_t(0)) offer(best[j], kl, d + j);
+      if (kh != ~std::uint64_t(0)) offer(best[j], kh, n - 1 + d - j);
+    }
+  }
+  // Settled, or the whole line seen (kNone where it holds no site at all).
+  if (settled(d) || (t0 - R <= 0 && t0 + n - 1 + R >= len - 1)) return finish();
+  flags[A == 1 ? z * nx + x : y * nx + x] = 1;  // every writer writes 1
+}
+
+template <int ND, int A, int T>
+void launch_window(Exec& ex, const Layout& L, std::int32_t R, const std::uint32_t* cand,
+                   std::uint32_t* out, std::uint8_t* flags) {
+  const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
+  const std::uint32_t nz = std::uint32_t(L.n[2]), xtiles = (nx + 31) / 32;
+  const std::uint32_t groups = ((A == 1 ? ny : nz) + T - 1) / T;
+  const std::uint32_t nb1 = ((A == 1 ? groups : ny) + kWinRows - 1) / kWinRows;
+  const std::uint64_t blocks = std::uint64_t(xtiles) * nb1 * (A == 1 ? nz : groups);
+  window_kernel<ND, A, T><<<unsigned(blocks), dim3(32, kWinRows), 0, ex.stream()>>>(
+      L, R, xtiles, nb1, cand, out, flags);
+  GG_CUDA_CHECK_LAUNCH("window_kernel");
+}
+
+template <int T>
+void launch_window_t(Exec& ex, const Layout& L, int a, std::int32_t R, const std::uint32_t* cand,
+                     std::uint32_t* out, std::uint8_t* flags) {
+  if (L.nd == 2)
+    launch_window<2, 1, T>(ex, L, R, cand, out, flags);
+  else if (a == 1)
+    launch_window<3, 1, T>(ex, L, R, cand, out, flags);
+  else
+    launch_window<3, 2, T>(ex, L, R, cand, out, flags);
+}
+
+bool window_pass_kernel(Exec& ex, const Layout& L, int a, std::int64_t R, const std::uint32_t* cand,
+                        std::uint32_t* out, std::uint8_t* flags) {
+  if (L.nd < 2 || a < 1 || a >= L.nd) return false;
+  if (R > L.n[a]) R = L.n[a];  // d never exceeds the line: d * d stays within 32 bits
+  const char* env = std::getenv("GPUGEOM_EDT_WINT");
+  const int t = env && *env ? std::atoi(env) : 4;
+  if (t == 1)
+    launch_window_t<1>(ex, L, a, std::int32_t(R), cand, out, flags);
+  else if (t == 2)
+    launch_window_t<2>(ex, L, a, std::int32_t(R), cand, out, flags);
+  else if (t == 8)
+    launch_window_t<8>(ex, L, a, std::int32_t(R), cand, out, flags);
+  else
+    launch_window_t<4>(ex, L, a, std::int32_t(R), cand, out, flags);
+  return true;
 }
 
 // Passes along y and z on tiles: a block takes 32 neighbouring lines (consecutive x, so every

@@ -422,28 +422,43 @@ void window_pass_t(Exec& ex, const Layout& L, int a, std::int64_t R, const std::
       });
 }
 
+// The windowed pass as a kernel of the backend's own (edt_cuda.cu: voxels in raster order of
+// blocks, so the rows a window reads are still in cache); false where there is none (then the
+// generic loop above runs). Only for the 32-bit costs (extents up to 2^15).
+bool window_pass_kernel(Exec& ex, const Layout& L, int a, std::int64_t R, const std::uint32_t* cand,
+                        std::uint32_t* out, std::uint8_t* flags);
+
 inline void window_pass(Exec& ex, const Layout& L, int a, std::int64_t R, const std::uint32_t* cand,
                         std::uint32_t* out, std::uint8_t* flags) {
-  if (L.n[0] <= 32768 && L.n[1] <= 32768 && L.n[2] <= 32768)
-    window_pass_t<std::uint32_t>(ex, L, a, R, cand, out, flags);
-  else
+  if (L.n[0] <= 32768 && L.n[1] <= 32768 && L.n[2] <= 32768) {
+    if (!window_pass_kernel(ex, L, a, R, cand, out, flags))
+      window_pass_t<std::uint32_t>(ex, L, a, R, cand, out, flags);
+  } else {
     window_pass_t<Num>(ex, L, a, R, cand, out, flags);
+  }
 }
 
-// The x pass of a whole grid, where every candidate is a site of the row itself. Each backend
-// provides it (edt_cpu.cpp: the general line pass, whose row walks suit a CPU cache;
-// edt_cuda.cu: a warp per row with coalesced tiles and warp scans).
-void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g, std::uint32_t* feat,
+// The x pass of a whole grid, where every candidate is a site of the row itself. Sites come
+// from mask (non-zero: a site) when it is given, else from in (a site's own packed
+// coordinates, kNone elsewhere); nearest sites go to out, which may be in. scratch is an
+// array of count() words that is neither in (when read) nor out. Each backend provides it
+// (edt_cpu.cpp: the general line pass, whose row walks suit a CPU cache; edt_cuda.cu: a warp
+// per row with coalesced tiles and warp scans, reading the 1-byte mask where there is one).
+void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
+                 const std::uint8_t* mask, const std::uint32_t* in, std::uint32_t* out,
                  std::uint32_t* scratch, std::int32_t* lo, std::int32_t* hi);
 
 // feat: in = voxel's own packed coordinates where it is a site, else kNone; out = nearest site.
+// mask, when given (a whole grid only), holds the sites instead (non-zero: a site) and feat's
+// content is not read: the x pass reads a byte per voxel instead of a word.
 // sites: how many there are (0 if unknown), to choose the windowed passes.
 // naxes: how many axes to sweep, from x (all of them for a whole grid; x and y for a slice whose
 // candidates already hold the nearest site along z).
 // profile_step(a), when given, is called after the pass along axis a (to time the passes).
 inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
-                              const std::int64_t bands_override[3], int naxes, std::int64_t sites,
-                              Stats* stats, const std::function<void(int)>& profile_step = {}) {
+                              const std::uint8_t* mask, const std::int64_t bands_override[3],
+                              int naxes, std::int64_t sites, Stats* stats,
+                              const std::function<void(int)>& profile_step = {}) {
   auto stk = ex.template alloc<std::uint32_t>(std::size_t(L.count()));
   std::int64_t max_items = 0;
   PassGeom gs[3];
@@ -469,13 +484,17 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
   // A whole grid starts with the sites themselves (x_pass_rows); a slice starts with sites
   // from other slices, so it takes the general line pass.
   const bool whole = naxes == L.nd;
+  const bool windowed = M.iso && reach > 0;
   std::uint32_t* cur = feat;  // the windowed passes alternate between feat and stk
   std::uint32_t* other = stk.data();
+  // Reading a mask, the x pass may write either array: it picks the one that makes the last
+  // windowed pass end in feat (no copy back: a whole array's read and write at 16384^2).
+  if (whole && mask && windowed && (naxes - 1) % 2 == 1) std::swap(cur, other);
   for (int a = 0; a < naxes; ++a) {
     const std::int64_t bands = bands_override ? bands_override[a] : 0;
     if (a == 0 && whole) {
-      x_pass_rows(ex, L, M, gs[0], cur, other, lo.data(), hi.data());
-    } else if (a > 0 && M.iso && reach > 0) {
+      x_pass_rows(ex, L, M, gs[0], mask, feat, cur, other, lo.data(), hi.data());
+    } else if (a > 0 && windowed) {
       ex.fill(flags.data(), gs[a].lines, std::uint8_t(0));
       window_pass(ex, L, a, reach, cur, other, flags.data());
       // Flagged lines: the banded pass, its stacks in place in cur, colours into other.

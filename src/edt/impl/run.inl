@@ -148,9 +148,12 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   if (rq.slices.empty()) {
     auto feat = ex.template alloc<std::uint32_t>(std::size_t(nvox));
     std::uint32_t* fp = feat.data();
-    if (rq.mask) {
-      init_features(ex, L, mask.data(), fp);
-    } else {
+    // A mask goes to the transform as it is: its x pass reads a byte per voxel (JFA starts
+    // from the packed features).
+    const std::uint8_t* site_mask = rq.mask ? mask.data() : nullptr;
+    if (rq.mask && rq.method == EdtMethod::Jfa) {
+      init_features(ex, L, site_mask, fp);
+    } else if (!rq.mask) {
       ex.fill(fp, nvox, kNone);
       const std::uint32_t* sp = sorted;
       const Layout Ly = L;
@@ -171,9 +174,10 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     if (rq.method == EdtMethod::Jfa)
       jump_flood(ex, L, rq.metric, fp);
     else if (prof && *prof == '1')
-      feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, rq.site_count, &stats, step);
+      feature_transform(ex, L, rq.metric, fp, site_mask, rq.bands, L.nd, rq.site_count, &stats,
+                        step);
     else
-      feature_transform(ex, L, rq.metric, fp, rq.bands, L.nd, rq.site_count, &stats);
+      feature_transform(ex, L, rq.metric, fp, site_mask, rq.bands, L.nd, rq.site_count, &stats);
     ex.sync();
     out.transform_ms = clock_ms() - t1;
     stats.phase_ms.push_back({"transform", out.transform_ms});
@@ -258,7 +262,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
           }
           fp[c] = best;
         });
-    feature_transform(ex, Ls, rq.metric, fp, rq.bands, 2, 0, &stats);
+    feature_transform(ex, Ls, rq.metric, fp, nullptr, rq.bands, 2, 0, &stats);
     ex.sync();
     transform += clock_ms() - t1;
     emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, nullptr, out, k * nxy, nsl * nxy);
@@ -274,5 +278,5 @@ void run(const Request& req, Output& out, Stats& stats) {
 void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
                             std::int64_t sites) {
   const std::int64_t automatic[3] = {0, 0, 0};
-  feature_transform(ex, L, M, feat, automatic, L.nd, sites, nullptr);
+  feature_transform(ex, L, M, feat, nullptr, automatic, L.nd, sites, nullptr);
 }
