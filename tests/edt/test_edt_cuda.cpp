@@ -99,7 +99,7 @@ TEST(CudaEdt, WindowReachesSameAsCpu) {
   for (auto shape : {std::vector<std::int64_t>{700, 900}, std::vector<std::int64_t>{64, 70, 90},
                      std::vector<std::int64_t>{20, 300, 40}})
     for (double d : {0.001, 0.1})
-      for (const char* reach : {"1", "4", "16"})
+      for (const char* reach : {"1", "4", "16", "32"})
         for (const char* tiles : {"0", "1"}) {
           setenv("GPUGEOM_EDT_WINDOW", reach, 1);
           setenv("GPUGEOM_EDT_TILES", tiles, 1);

@@ -468,18 +468,24 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
   }
   auto lo = ex.template alloc<std::int32_t>(std::size_t(max_items));
   auto hi = ex.template alloc<std::int32_t>(std::size_t(max_items));
-  // Windowed passes where sites are dense enough that most voxels settle within 16 positions:
-  // a mean site spacing (voxels per site)^(1/d) of at most 4. H100, transform, with the 32-bit
-  // costs: 8192^2 at 10 % sites 2.19 -> 1.96 ms, 20 % 2.39 -> 1.71 ms, but 3 % 1.98 -> 2.69 ms;
-  // 512^3 at 10 % 8.9 -> 5.7 ms, 50 % 8.8 -> 3.8 ms, but 1 % 7.7 -> 12.2 ms (at low density
-  // nearly every line falls back after a full window). sites = 0: unknown, never windowed.
+  // Windowed passes where sites are dense enough that most voxels settle within the reach,
+  // judged by the mean site spacing (voxels per site)^(1/d). CPU executor (the generic loop):
+  // spacing at most 4, reach 16 (H100 host measurements of the generic loop on the GPU,
+  // 512^3: 10 % 8.9 -> 5.7 ms, but 1 % 7.7 -> 12.2 ms). CUDA (window_kernel, 4 voxels a
+  // thread), measured on the H100 against the banded passes: reach 32 is as fast as 16 from
+  // 3 % sites up and much faster below; it pays in 2D from 1 % sites (8192^2: 1 % 1.51 -> 1.26
+  // ms, 3 % 1.68 -> 0.97) but not at 0.3 % (1.34 -> 2.32), and in 3D from 0.3 % (512^3: 0.3 %
+  // 6.35 -> 5.55 ms, 1 % 7.11 -> 3.83) but not at 0.1 % (5.64 -> 8.92). Hence spacing at most
+  // 10 in 2D and 8 in 3D. sites = 0: unknown, never windowed.
   // GPUGEOM_EDT_WINDOW=R forces the reach (0: never).
   const char* wenv = std::getenv("GPUGEOM_EDT_WINDOW");
+  constexpr bool gpu = Exec::backend == Backend::Cuda;
+  const double spacing = sites > 0 ? std::pow(double(L.count()) / double(sites), 1.0 / L.nd) : 0;
   std::int64_t reach = 0;
   if (wenv && *wenv)
     reach = std::atoll(wenv);
-  else if (sites > 0 && std::pow(double(L.count()) / double(sites), 1.0 / L.nd) <= 4.0)
-    reach = 16;
+  else if (sites > 0 && spacing <= (gpu ? (L.nd == 2 ? 10.0 : 8.0) : 4.0))
+    reach = gpu ? 32 : 16;
   auto flags = ex.template alloc<std::uint8_t>(M.iso && reach > 0 ? std::size_t(max_items) : 0);
   // A whole grid starts with the sites themselves (x_pass_rows); a slice starts with sites
   // from other slices, so it takes the general line pass.
