@@ -248,10 +248,42 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric&, const PassGeom&,
 // packed site form one 64-bit key: the nearest site with ties to the smaller packed value is
 // the minimum key. H100, 10 % sites: 6 blocks per SM (40 registers) and the z-fastest order
 // along z took 1024^3 from 21.0 to 18.4 ms and 16384^2 from 2.97 to 2.77 ms.
+// A candidate's (cost, site) as the window kernel orders them. Narrow: every cost below 2^32,
+// so both fit one 64-bit integer (cost in the high word) and the order is one comparison.
+// Wide (an extent past 2^16, e.g. 1000 x 67108): the cost takes 64 bits of its own.
+struct NarrowKey {
+  using T = std::uint64_t;
+  using C = std::uint32_t;  // cost arithmetic: 32-bit (a third of the instructions of 64-bit)
+  static constexpr T none() { return ~T(0); }
+  __device__ static T make(C c, std::uint32_t s) { return std::uint64_t(c) << 32 | s; }
+  __device__ static T add(T k, C d2) { return k + (std::uint64_t(d2) << 32); }
+  __device__ static T least(T a, T b) { return a < b ? a : b; }
+  // Nothing at squared distance d2 or more can beat k (never true of none).
+  __device__ static bool beyond(C d2, T k) { return std::uint64_t(d2) << 32 > k; }
+  static constexpr int kBlocks = 6;  // per SM: 40 registers
+  __device__ static std::uint32_t site(T k) { return std::uint32_t(k); }
+  __device__ static bool is_none(T k) { return k == none(); }
+};
+struct WideKey {
+  struct T {
+    std::uint64_t c;
+    std::uint32_t s;
+  };
+  using C = std::uint64_t;
+  static constexpr T none() { return {~std::uint64_t(0), kNone}; }
+  __device__ static T make(std::uint64_t c, std::uint32_t s) { return {c, s}; }
+  __device__ static T add(T k, std::uint64_t d2) { return {k.c + d2, k.s}; }
+  __device__ static T least(T a, T b) { return a.c < b.c || (a.c == b.c && a.s < b.s) ? a : b; }
+  __device__ static bool beyond(C d2, T k) { return d2 > k.c; }
+  static constexpr int kBlocks = 4;  // per SM: 64 registers, as 40 spill
+  __device__ static std::uint32_t site(T k) { return k.s; }
+  __device__ static bool is_none(T k) { return k.s == kNone; }
+};
+
 constexpr std::uint32_t kWinRows = 8;  // threadIdx.y: groups along y (A = 1) or y (A = 2)
 
-template <int ND, int A, int T>
-__global__ void __launch_bounds__(256, 6)
+template <int ND, int A, int T, class Key>
+__global__ void __launch_bounds__(256, Key::kBlocks)
     window_kernel(Layout L, std::int32_t R, std::uint32_t xtiles, std::uint32_t nb1,
                   std::uint32_t ngroups, const std::uint32_t* __restrict__ cand, std::uint32_t* out,
                   std::uint8_t* flags) {
@@ -276,55 +308,56 @@ __global__ void __launch_bounds__(256, 6)
   const std::int64_t stride = A == 1 ? std::int64_t(nx) : std::int64_t(nx) * ny;
   const std::uint32_t* c0 = cand + (std::int64_t(z) * ny + y) * nx + x;  // position t0
   const std::int32_t n = min(T, len - t0);                               // voxels held
-  // A candidate's squared distance to the line, with its site in the low word of the key.
+  using K = typename Key::T;
+  // A candidate's squared distance to the line (the other axes) with its site.
+  using C = typename Key::C;
   auto line_key = [&](std::uint32_t s) {
-    std::uint32_t c = 0;
+    C c = 0;
 #pragma unroll
     for (int k = 0; k < ND; ++k)
       if (k != A) {
-        const std::int32_t e = std::int32_t((s >> L.shift[k]) & L.mask[k]) - v[k];
-        c += std::uint32_t(e * e);
+        const C e = C(std::int32_t((s >> L.shift[k]) & L.mask[k]) - v[k]);  // wraps, squares right
+        c += e * e;
       }
-    return s == kNone ? ~std::uint64_t(0) : (std::uint64_t(c) << 32 | s);
+    return s == kNone ? Key::none() : Key::make(c, s);
   };
-  // Candidate at offset p (from t0) to voxel j: its line key plus (p - j)^2 in the cost word.
-  auto offer = [](std::uint64_t& best, std::uint64_t k, std::int32_t dist) {
-    best = min(best, k + (std::uint64_t(std::uint32_t(dist * dist)) << 32));
+  // Candidate at offset p (from t0) to voxel j: its line key plus (p - j)^2. kNone's key is
+  // never offered (adding a distance would wrap it).
+  auto offer = [](K& best, K k, std::int32_t dist) {
+    best = Key::least(best, Key::add(k, C(dist) * C(dist)));
   };
-  std::uint64_t best[T];
+  K best[T];
 #pragma unroll
-  for (int j = 0; j < T; ++j) best[j] = ~std::uint64_t(0);
-    // kNone's key is the maximum and is never offered: adding a distance would wrap it.
+  for (int j = 0; j < T; ++j) best[j] = Key::none();
 #pragma unroll
   for (int p = 0; p < T; ++p)
     if (p < n) {
-      const std::uint64_t k = line_key(c0[p * stride]);
+      const K k = line_key(c0[p * stride]);
 #pragma unroll
       for (int j = 0; j < T; ++j)
-        if (k != ~std::uint64_t(0)) offer(best[j], k, p - j);
+        if (!Key::is_none(k)) offer(best[j], k, p - j);
     }
   auto settled = [&](std::int32_t d) {
     bool all = true;
 #pragma unroll
-    for (int j = 0; j < T; ++j)
-      all = all && (j >= n || std::uint64_t(std::uint32_t(d * d)) << 32 > best[j]);
+    for (int j = 0; j < T; ++j) all = all && (j >= n || Key::beyond(C(d) * C(d), best[j]));
     return all;
   };
   auto finish = [&]() {
 #pragma unroll
     for (int j = 0; j < T; ++j)
-      if (j < n) out[c0 - cand + j * stride] = std::uint32_t(best[j]);
+      if (j < n) out[c0 - cand + j * stride] = Key::site(best[j]);
   };
   std::int32_t d = 1;
   for (; d <= R; ++d) {
     if (settled(d)) return finish();
     const std::int32_t lo = t0 - d, hi = t0 + n - 1 + d;
-    const std::uint64_t kl = lo >= 0 ? line_key(c0[-d * stride]) : ~std::uint64_t(0);
-    const std::uint64_t kh = hi < len ? line_key(c0[(n - 1 + d) * stride]) : ~std::uint64_t(0);
+    const K kl = lo >= 0 ? line_key(c0[-d * stride]) : Key::none();
+    const K kh = hi < len ? line_key(c0[(n - 1 + d) * stride]) : Key::none();
 #pragma unroll
     for (int j = 0; j < T; ++j) {
-      if (kl != ~std::uint64_t(0)) offer(best[j], kl, d + j);
-      if (kh != ~std::uint64_t(0)) offer(best[j], kh, n - 1 + d - j);
+      if (!Key::is_none(kl)) offer(best[j], kl, d + j);
+      if (!Key::is_none(kh)) offer(best[j], kh, n - 1 + d - j);
     }
   }
   // Settled, or the whole line seen (kNone where it holds no site at all).
@@ -332,7 +365,7 @@ __global__ void __launch_bounds__(256, 6)
   flags[A == 1 ? z * nx + x : y * nx + x] = 1;  // every writer writes 1
 }
 
-template <int ND, int A, int T>
+template <int ND, int A, int T, class Key>
 void launch_window(Exec& ex, const Layout& L, std::int32_t R, const std::uint32_t* cand,
                    std::uint32_t* out, std::uint8_t* flags) {
   const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
@@ -340,7 +373,7 @@ void launch_window(Exec& ex, const Layout& L, std::int32_t R, const std::uint32_
   const std::uint32_t groups = ((A == 1 ? ny : nz) + T - 1) / T;
   const std::uint32_t nb1 = ((A == 1 ? groups : ny) + kWinRows - 1) / kWinRows;
   const std::uint64_t blocks = std::uint64_t(xtiles) * nb1 * (A == 1 ? nz : groups);
-  window_kernel<ND, A, T><<<unsigned(blocks), dim3(32, kWinRows), 0, ex.stream()>>>(
+  window_kernel<ND, A, T, Key><<<unsigned(blocks), dim3(32, kWinRows), 0, ex.stream()>>>(
       L, R, xtiles, nb1, groups, cand, out, flags);
   GG_CUDA_CHECK_LAUNCH("window_kernel");
 }
@@ -348,17 +381,30 @@ void launch_window(Exec& ex, const Layout& L, std::int32_t R, const std::uint32_
 bool window_pass_kernel(Exec& ex, const Layout& L, int a, std::int64_t R, const std::uint32_t* cand,
                         std::uint32_t* out, std::uint8_t* flags) {
   if (L.nd < 2 || a < 1 || a >= L.nd) return false;
-  if (R > L.n[a]) R = L.n[a];  // d never exceeds the line: d * d stays within 32 bits
+  // Past len - 1 every window already spans its whole line; so d stays below 2^16 where the
+  // keys are narrow, and d * d fits their 32-bit costs.
+  if (R > L.n[a] - 1) R = L.n[a] - 1;
   // 4 voxels a thread: measured on the H100 at 10 % sites against 1, 2 and 8 (8192^2 1.05 /
   // 0.83 / 0.81 / 0.93 ms for 1 / 2 / 4 / 8; 1024^3 28.6 / 21.2 / 20.8 / 22.0 ms).
   constexpr int T = 4;
   const std::int32_t reach = std::int32_t(R);
-  if (L.nd == 2)
-    launch_window<2, 1, T>(ex, L, reach, cand, out, flags);
-  else if (a == 1)
-    launch_window<3, 1, T>(ex, L, reach, cand, out, flags);
+  auto launch = [&](auto key) {
+    using Key = decltype(key);
+    if (L.nd == 2)
+      launch_window<2, 1, T, Key>(ex, L, reach, cand, out, flags);
+    else if (a == 1)
+      launch_window<3, 1, T, Key>(ex, L, reach, cand, out, flags);
+    else
+      launch_window<3, 2, T, Key>(ex, L, reach, cand, out, flags);
+  };
+  // Narrow keys when the largest squared distance in the grid stays below 2^32 - 1 (the
+  // narrow none's cost word).
+  std::uint64_t most = 0;
+  for (int k = 0; k < L.nd; ++k) most += std::uint64_t(L.n[k] - 1) * std::uint64_t(L.n[k] - 1);
+  if (most < 0xffffffffull)
+    launch(NarrowKey{});
   else
-    launch_window<3, 2, T>(ex, L, reach, cand, out, flags);
+    launch(WideKey{});
   return true;
 }
 

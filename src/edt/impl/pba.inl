@@ -422,20 +422,19 @@ void window_pass_t(Exec& ex, const Layout& L, int a, std::int64_t R, const std::
       });
 }
 
-// The windowed pass as a kernel of the backend's own (edt_cuda.cu: voxels in raster order of
-// blocks, so the rows a window reads are still in cache); false where there is none (then the
-// generic loop above runs). Only for the 32-bit costs (extents up to 2^15).
+// The windowed pass as a kernel of the backend's own (edt_cuda.cu: several voxels a thread,
+// blocks ordered so the rows a window reads are still in cache); false where there is none
+// (then the generic loop above runs).
 bool window_pass_kernel(Exec& ex, const Layout& L, int a, std::int64_t R, const std::uint32_t* cand,
                         std::uint32_t* out, std::uint8_t* flags);
 
 inline void window_pass(Exec& ex, const Layout& L, int a, std::int64_t R, const std::uint32_t* cand,
                         std::uint32_t* out, std::uint8_t* flags) {
-  if (L.n[0] <= 32768 && L.n[1] <= 32768 && L.n[2] <= 32768) {
-    if (!window_pass_kernel(ex, L, a, R, cand, out, flags))
-      window_pass_t<std::uint32_t>(ex, L, a, R, cand, out, flags);
-  } else {
+  if (window_pass_kernel(ex, L, a, R, cand, out, flags)) return;
+  if (L.n[0] <= 32768 && L.n[1] <= 32768 && L.n[2] <= 32768)
+    window_pass_t<std::uint32_t>(ex, L, a, R, cand, out, flags);
+  else
     window_pass_t<Num>(ex, L, a, R, cand, out, flags);
-  }
 }
 
 // The x pass of a whole grid, where every candidate is a site of the row itself. Sites come
