@@ -28,7 +28,7 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
 }
 // The windowed pass's generic loop already walks a CPU thread's voxels in raster order.
 bool window_pass_kernel(Exec&, const Layout&, int, std::int64_t, const std::uint32_t*,
-                        std::uint32_t*, std::uint8_t*) {
+                        std::uint32_t*, std::uint8_t*, bool) {
   return false;
 }
 // Tiles in on-chip memory are a GPU device: a CPU thread's cache already holds its line.

@@ -247,16 +247,35 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric&, const PassGeom&,
 // are template arguments, so coordinates stay in registers, and a candidate's cost and its
 // packed site form one 64-bit key: the nearest site with ties to the smaller packed value is
 // the minimum key. H100, 10 % sites: 6 blocks per SM (40 registers) and the z-fastest order
-// along z took 1024^3 from 21.0 to 18.4 ms and 16384^2 from 2.97 to 2.77 ms.
-// A candidate's (cost, site) as the window kernel orders them. Narrow: every cost below 2^32,
-// so both fit one 64-bit integer (cost in the high word) and the order is one comparison.
-// Wide (an extent past 2^16, e.g. 1000 x 67108): the cost takes 64 bits of its own.
+// along z took 1024^3 from 21.0 to 18.4 ms and 16384^2 from 2.97 to 2.77 ms; then loading the
+// first step's two positions with the thread's own four, and dropping the z term where every
+// candidate lies in the voxel's plane (the y pass of a whole volume), 1024^3 17.9 -> 17.1 ms.
+// A candidate's (cost, site) as the window kernel orders them. Narrow: costs in 32 bits, so
+// both fit one 64-bit integer (cost in the high word) and the order is one comparison; exact
+// where every cost the window can meet is below 2^32 - 1 (none's cost word). Where it is not
+// (a row longer than 2^16, e.g. 1000 x 67108), Sat saturates instead: a coordinate difference
+// counts at most 65535 and a cost at most kCap, so every cost below B = 65535^2 stays exact
+// and every larger one stays at least B. A voxel whose best is below B is then decided
+// exactly; one whose best is at least B never settles (d <= reach + 1 < 65535) and, as its
+// window cannot span its line (len > T + 2 * reach, checked on the host), flags the line for
+// the exact banded pass. Wide keeps 64-bit costs for the rest (short lines in such grids).
+template <bool Sat>
 struct NarrowKey {
   using T = std::uint64_t;
   using C = std::uint32_t;  // cost arithmetic: 32-bit (a third of the instructions of 64-bit)
+  static constexpr C kCap = 0xfffffffeu;
   static constexpr T none() { return ~T(0); }
+  __device__ static C square_add(C c, std::int32_t e) {
+    if (!Sat) return c + C(e) * C(e);  // wraps for e < 0, squares right
+    const C a = C(min(abs(e), 65535)), t = c + a * a;
+    return t < c || t > kCap ? kCap : t;
+  }
   __device__ static T make(C c, std::uint32_t s) { return std::uint64_t(c) << 32 | s; }
-  __device__ static T add(T k, C d2) { return k + (std::uint64_t(d2) << 32); }
+  __device__ static T add(T k, C d2) {
+    if (!Sat) return k + (std::uint64_t(d2) << 32);
+    const C c = C(k >> 32), t = c + d2;
+    return make(t < c || t > kCap ? kCap : t, std::uint32_t(k));
+  }
   __device__ static T least(T a, T b) { return a < b ? a : b; }
   // Nothing at squared distance d2 or more can beat k (never true of none).
   __device__ static bool beyond(C d2, T k) { return std::uint64_t(d2) << 32 > k; }
@@ -271,6 +290,7 @@ struct WideKey {
   };
   using C = std::uint64_t;
   static constexpr T none() { return {~std::uint64_t(0), kNone}; }
+  __device__ static C square_add(C c, std::int32_t e) { return c + C(std::int64_t(e) * e); }
   __device__ static T make(std::uint64_t c, std::uint32_t s) { return {c, s}; }
   __device__ static T add(T k, std::uint64_t d2) { return {k.c + d2, k.s}; }
   __device__ static T least(T a, T b) { return a.c < b.c || (a.c == b.c && a.s < b.s) ? a : b; }
@@ -282,7 +302,7 @@ struct WideKey {
 
 constexpr std::uint32_t kWinRows = 8;  // threadIdx.y: groups along y (A = 1) or y (A = 2)
 
-template <int ND, int A, int T, class Key>
+template <int ND, int A, int T, class Key, bool InPlane>
 __global__ void __launch_bounds__(256, Key::kBlocks)
     window_kernel(Layout L, std::int32_t R, std::uint32_t xtiles, std::uint32_t nb1,
                   std::uint32_t ngroups, const std::uint32_t* __restrict__ cand, std::uint32_t* out,
@@ -315,9 +335,8 @@ __global__ void __launch_bounds__(256, Key::kBlocks)
     C c = 0;
 #pragma unroll
     for (int k = 0; k < ND; ++k)
-      if (k != A) {
-        const C e = C(std::int32_t((s >> L.shift[k]) & L.mask[k]) - v[k]);  // wraps, squares right
-        c += e * e;
+      if (k != A && !(InPlane && k == 2)) {
+        c = Key::square_add(c, std::int32_t((s >> L.shift[k]) & L.mask[k]) - v[k]);
       }
     return s == kNone ? Key::none() : Key::make(c, s);
   };
@@ -326,6 +345,9 @@ __global__ void __launch_bounds__(256, Key::kBlocks)
   auto offer = [](K& best, K k, std::int32_t dist) {
     best = Key::least(best, Key::add(k, C(dist) * C(dist)));
   };
+  // The first step's two positions are needed by nearly every thread: loaded with its own.
+  const std::uint32_t pre_l = R >= 1 && t0 >= 1 ? c0[-stride] : kNone;
+  const std::uint32_t pre_h = R >= 1 && t0 + n < len ? c0[n * stride] : kNone;
   K best[T];
 #pragma unroll
   for (int j = 0; j < T; ++j) best[j] = Key::none();
@@ -352,8 +374,10 @@ __global__ void __launch_bounds__(256, Key::kBlocks)
   for (; d <= R; ++d) {
     if (settled(d)) return finish();
     const std::int32_t lo = t0 - d, hi = t0 + n - 1 + d;
-    const K kl = lo >= 0 ? line_key(c0[-d * stride]) : Key::none();
-    const K kh = hi < len ? line_key(c0[(n - 1 + d) * stride]) : Key::none();
+    const std::uint32_t rl = d == 1 ? pre_l : (lo >= 0 ? c0[-d * stride] : kNone);
+    const std::uint32_t rh = d == 1 ? pre_h : (hi < len ? c0[(n - 1 + d) * stride] : kNone);
+    const K kl = line_key(rl);
+    const K kh = line_key(rh);
 #pragma unroll
     for (int j = 0; j < T; ++j) {
       if (!Key::is_none(kl)) offer(best[j], kl, d + j);
@@ -367,19 +391,25 @@ __global__ void __launch_bounds__(256, Key::kBlocks)
 
 template <int ND, int A, int T, class Key>
 void launch_window(Exec& ex, const Layout& L, std::int32_t R, const std::uint32_t* cand,
-                   std::uint32_t* out, std::uint8_t* flags) {
+                   std::uint32_t* out, std::uint8_t* flags, bool in_plane) {
   const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
   const std::uint32_t nz = std::uint32_t(L.n[2]), xtiles = (nx + 31) / 32;
   const std::uint32_t groups = ((A == 1 ? ny : nz) + T - 1) / T;
   const std::uint32_t nb1 = ((A == 1 ? groups : ny) + kWinRows - 1) / kWinRows;
   const std::uint64_t blocks = std::uint64_t(xtiles) * nb1 * (A == 1 ? nz : groups);
-  window_kernel<ND, A, T, Key><<<unsigned(blocks), dim3(32, kWinRows), 0, ex.stream()>>>(
-      L, R, xtiles, nb1, groups, cand, out, flags);
+  auto go = [&](auto kernel) {
+    kernel<<<unsigned(blocks), dim3(32, kWinRows), 0, ex.stream()>>>(L, R, xtiles, nb1, groups,
+                                                                     cand, out, flags);
+  };
+  if (A == 1 && ND == 3 && in_plane)
+    go(window_kernel<ND, A, T, Key, true>);
+  else
+    go(window_kernel<ND, A, T, Key, false>);
   GG_CUDA_CHECK_LAUNCH("window_kernel");
 }
 
 bool window_pass_kernel(Exec& ex, const Layout& L, int a, std::int64_t R, const std::uint32_t* cand,
-                        std::uint32_t* out, std::uint8_t* flags) {
+                        std::uint32_t* out, std::uint8_t* flags, bool in_plane) {
   if (L.nd < 2 || a < 1 || a >= L.nd) return false;
   // Past len - 1 every window already spans its whole line; so d stays below 2^16 where the
   // keys are narrow, and d * d fits their 32-bit costs.
@@ -391,18 +421,22 @@ bool window_pass_kernel(Exec& ex, const Layout& L, int a, std::int64_t R, const 
   auto launch = [&](auto key) {
     using Key = decltype(key);
     if (L.nd == 2)
-      launch_window<2, 1, T, Key>(ex, L, reach, cand, out, flags);
+      launch_window<2, 1, T, Key>(ex, L, reach, cand, out, flags, in_plane);
     else if (a == 1)
-      launch_window<3, 1, T, Key>(ex, L, reach, cand, out, flags);
+      launch_window<3, 1, T, Key>(ex, L, reach, cand, out, flags, in_plane);
     else
-      launch_window<3, 2, T, Key>(ex, L, reach, cand, out, flags);
+      launch_window<3, 2, T, Key>(ex, L, reach, cand, out, flags, in_plane);
   };
-  // Narrow keys when the largest squared distance in the grid stays below 2^32 - 1 (the
-  // narrow none's cost word).
-  std::uint64_t most = 0;
-  for (int k = 0; k < L.nd; ++k) most += std::uint64_t(L.n[k] - 1) * std::uint64_t(L.n[k] - 1);
+  // The largest cost the window can meet: its farthest position along the line, and the
+  // farthest any site can lie from the line.
+  const std::uint64_t along = std::uint64_t(std::min<std::int64_t>(L.n[a] - 1, R + T - 1));
+  std::uint64_t most = along * along;
+  for (int k = 0; k < L.nd; ++k)
+    if (k != a) most += std::uint64_t(L.n[k] - 1) * std::uint64_t(L.n[k] - 1);
   if (most < 0xffffffffull)
-    launch(NarrowKey{});
+    launch(NarrowKey<false>{});
+  else if (L.n[a] > T + 2 * R && R + 1 < 65535)
+    launch(NarrowKey<true>{});
   else
     launch(WideKey{});
   return true;

@@ -119,28 +119,30 @@ TEST(CudaEdt, WindowReachesSameAsCpu) {
 }
 
 // Rows longer than 2^16: the windowed pass's costs no longer fit 32 bits (a site 70 000
-// columns away), so its keys are wide. One lone site (costs past 2^32) and dense sites, with
+// columns away). Short columns take wide keys, long ones saturated narrow keys (lines with a
+// far best go to the banded pass). One lone site (costs past 2^32) and dense sites, with
 // windows forced on.
 TEST(CudaEdt, WideRowsSameAsCpu) {
   unsigned seed = 900;
-  for (double d : {0.0, 0.2})
-    for (const char* reach : {"4", "32"}) {
-      setenv("GPUGEOM_EDT_WINDOW", reach, 1);
-      io::Grid g = gg_edt::random_grid({5, 70001}, d, seed++);
-      if (d == 0) {  // the lone site at x = 0: the far end of its row is 70 000 away
-        std::fill(g.data.begin(), g.data.end(), 0);
-        g.data[0] = 1;
+  for (std::int64_t rows : {5, 80})
+    for (double d : {0.0, 0.2})
+      for (const char* reach : {"4", "32"}) {
+        setenv("GPUGEOM_EDT_WINDOW", reach, 1);
+        io::Grid g = gg_edt::random_grid({rows, 70001}, d, seed++);
+        if (d == 0) {  // the lone site at x = 0: the far end of its row is 70 000 away
+          std::fill(g.data.begin(), g.data.end(), 0);
+          g.data[0] = 1;
+        }
+        EdtOptions o;
+        o.squared = true;
+        o.labels = true;
+        o.backend = Backend::Cpu;
+        const auto cpu = distance_transform(g, SiteRule::NonZero, o);
+        o.backend = Backend::Cuda;
+        const auto gpu = distance_transform(g, SiteRule::NonZero, o);
+        EXPECT_EQ(gpu.labels, cpu.labels) << rows << " rows, density " << d << " reach " << reach;
+        EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int);
       }
-      EdtOptions o;
-      o.squared = true;
-      o.labels = true;
-      o.backend = Backend::Cpu;
-      const auto cpu = distance_transform(g, SiteRule::NonZero, o);
-      o.backend = Backend::Cuda;
-      const auto gpu = distance_transform(g, SiteRule::NonZero, o);
-      EXPECT_EQ(gpu.labels, cpu.labels) << "density " << d << " reach " << reach;
-      EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int);
-    }
   unsetenv("GPUGEOM_EDT_WINDOW");
 }
 

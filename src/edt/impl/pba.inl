@@ -426,11 +426,13 @@ void window_pass_t(Exec& ex, const Layout& L, int a, std::int64_t R, const std::
 // blocks ordered so the rows a window reads are still in cache); false where there is none
 // (then the generic loop above runs).
 bool window_pass_kernel(Exec& ex, const Layout& L, int a, std::int64_t R, const std::uint32_t* cand,
-                        std::uint32_t* out, std::uint8_t* flags);
+                        std::uint32_t* out, std::uint8_t* flags, bool in_plane);
 
+// in_plane: every candidate lies in its voxel's z plane (the y pass of a whole 3D grid, after
+// the x pass), so the z term of the costs is zero.
 inline void window_pass(Exec& ex, const Layout& L, int a, std::int64_t R, const std::uint32_t* cand,
-                        std::uint32_t* out, std::uint8_t* flags) {
-  if (window_pass_kernel(ex, L, a, R, cand, out, flags)) return;
+                        std::uint32_t* out, std::uint8_t* flags, bool in_plane) {
+  if (window_pass_kernel(ex, L, a, R, cand, out, flags, in_plane)) return;
   if (L.n[0] <= 32768 && L.n[1] <= 32768 && L.n[2] <= 32768)
     window_pass_t<std::uint32_t>(ex, L, a, R, cand, out, flags);
   else
@@ -501,7 +503,7 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
       x_pass_rows(ex, L, M, gs[0], mask, feat, cur, other, lo.data(), hi.data());
     } else if (a > 0 && windowed) {
       ex.fill(flags.data(), gs[a].lines, std::uint8_t(0));
-      window_pass(ex, L, a, reach, cur, other, flags.data());
+      window_pass(ex, L, a, reach, cur, other, flags.data(), whole && a == 1 && L.nd == 3);
       // Flagged lines: the banded pass, its stacks in place in cur, colours into other.
       if (!line_pass_tiled(ex, L, M, a, bands, cur, other, flags.data()))
         line_pass_t<true>(ex, L, M, gs[a], cur, cur, lo.data(), hi.data(), other, flags.data());
