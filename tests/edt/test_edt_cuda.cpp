@@ -119,7 +119,7 @@ TEST(CudaEdt, WindowReachesSameAsCpu) {
 }
 
 // Rows longer than 2^16: the windowed pass's costs no longer fit 32 bits (a site 70 000
-// columns away). Short columns take wide keys, long ones saturated narrow keys (lines with a
+// columns away). Short columns take wide keys, long ones clamped narrow keys (lines with a
 // far best go to the banded pass). One lone site (costs past 2^32) and dense sites, with
 // windows forced on.
 TEST(CudaEdt, WideRowsSameAsCpu) {
