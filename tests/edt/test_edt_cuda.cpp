@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <string>
 
 #include "edt_cases.hpp"
 
@@ -92,6 +93,21 @@ TEST(CudaEdt, TiledPassesSameAsCpu) {
   unsetenv("GPUGEOM_EDT_TILES");
 }
 
+namespace {
+// Squared distances and labels of g on the CUDA executor equal the CPU executor's.
+void expect_same_as_cpu(const io::Grid& g, const std::string& what) {
+  EdtOptions o;
+  o.squared = true;
+  o.labels = true;
+  o.backend = Backend::Cpu;
+  const auto cpu = distance_transform(g, SiteRule::NonZero, o);
+  o.backend = Backend::Cuda;
+  const auto gpu = distance_transform(g, SiteRule::NonZero, o);
+  EXPECT_EQ(gpu.labels, cpu.labels) << what;
+  EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int) << what;
+}
+}  // namespace
+
 // The windowed passes with short reaches (most lines handed to the banded pass, on tiles or
 // not) and long ones, sparse and dense, against the CPU executor.
 TEST(CudaEdt, WindowReachesSameAsCpu) {
@@ -104,15 +120,7 @@ TEST(CudaEdt, WindowReachesSameAsCpu) {
           setenv("GPUGEOM_EDT_WINDOW", reach, 1);
           setenv("GPUGEOM_EDT_TILES", tiles, 1);
           const io::Grid g = gg_edt::random_grid(shape, d, seed++);
-          EdtOptions o;
-          o.squared = true;
-          o.labels = true;
-          o.backend = Backend::Cpu;
-          const auto cpu = distance_transform(g, SiteRule::NonZero, o);
-          o.backend = Backend::Cuda;
-          const auto gpu = distance_transform(g, SiteRule::NonZero, o);
-          EXPECT_EQ(gpu.labels, cpu.labels) << "reach " << reach << " tiles " << tiles;
-          EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int);
+          expect_same_as_cpu(g, std::string("reach ") + reach + " tiles " + tiles);
         }
   unsetenv("GPUGEOM_EDT_WINDOW");
   unsetenv("GPUGEOM_EDT_TILES");
@@ -133,15 +141,8 @@ TEST(CudaEdt, WideRowsSameAsCpu) {
           std::fill(g.data.begin(), g.data.end(), 0);
           g.data[0] = 1;
         }
-        EdtOptions o;
-        o.squared = true;
-        o.labels = true;
-        o.backend = Backend::Cpu;
-        const auto cpu = distance_transform(g, SiteRule::NonZero, o);
-        o.backend = Backend::Cuda;
-        const auto gpu = distance_transform(g, SiteRule::NonZero, o);
-        EXPECT_EQ(gpu.labels, cpu.labels) << rows << " rows, density " << d << " reach " << reach;
-        EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int);
+        expect_same_as_cpu(
+            g, std::to_string(rows) + " rows, density " + std::to_string(d) + " reach " + reach);
       }
   unsetenv("GPUGEOM_EDT_WINDOW");
 }

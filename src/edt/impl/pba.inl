@@ -444,7 +444,8 @@ inline void window_pass(Exec& ex, const Layout& L, int a, std::int64_t R, const 
 // coordinates, kNone elsewhere); nearest sites go to out, which may be in. scratch is an
 // array of count() words that is neither in (when read) nor out. Each backend provides it
 // (edt_cpu.cpp: the general line pass, whose row walks suit a CPU cache; edt_cuda.cu: a warp
-// per row with coalesced tiles and warp scans, reading the 1-byte mask where there is one).
+// per row segment holding its sites as ballot bits, reading the 1-byte mask where there is
+// one).
 void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
                  const std::uint8_t* mask, const std::uint32_t* in, std::uint32_t* out,
                  std::uint32_t* scratch, std::int32_t* lo, std::int32_t* hi);
@@ -471,8 +472,8 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
   auto hi = ex.template alloc<std::int32_t>(std::size_t(max_items));
   // Windowed passes where sites are dense enough that most voxels settle within the reach,
   // judged by the mean site spacing (voxels per site)^(1/d). CPU executor (the generic loop):
-  // spacing at most 4, reach 16 (H100 host measurements of the generic loop on the GPU,
-  // 512^3: 10 % 8.9 -> 5.7 ms, but 1 % 7.7 -> 12.2 ms). CUDA (window_kernel, 4 voxels a
+  // spacing at most 4, reach 16, the rule first tuned for that loop when it ran on the GPU too
+  // (512^3: 10 % 8.9 -> 5.7 ms, but 1 % 7.7 -> 12.2 ms). CUDA (window_kernel, 4 voxels a
   // thread), measured on the H100 against the banded passes: reach 32 is as fast as 16 from
   // 3 % sites up and much faster below; it pays in 2D from 1 % sites (8192^2: 1 % 1.51 -> 1.26
   // ms, 3 % 1.68 -> 0.97) but not at 0.3 % (1.34 -> 2.32), and in 3D from 0.3 % (512^3: 0.3 %
