@@ -104,6 +104,20 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
   }
 }
 
+// Starts zero-filling the result arrays the request asks for (total voxels each) on host
+// threads, to overlap the device work: filled on the calling thread as each copy back began,
+// their page faults were most of an end-to-end call.
+inline void size_outputs(HostSizer& sizer, const Request& rq, Output& out, std::int64_t total) {
+  const bool iso = rq.metric.iso;
+  if (rq.want_sqdist && iso) sizer.add(out.sqdist_int, total, std::int64_t(0), "squared distances");
+  if (rq.want_sqdist && !iso) sizer.add(out.sqdist_real, total, 0.0, "squared distances");
+  if (rq.want_distance == 64) sizer.add(out.dist64, total, 0.0, "distances");
+  if (rq.want_distance == 32) sizer.add(out.dist32, total, 0.0f, "distances");
+  if (rq.want_labels) sizer.add(out.labels, total, std::int32_t(0), "labels");
+  if (rq.want_features)
+    sizer.add(out.features, total * rq.layout.nd, std::int32_t(0), "nearest-site coordinates");
+}
+
 inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   Exec ex;
   const Layout L = rq.layout;
@@ -144,6 +158,9 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   }
   ex.sync();
   stats.phase_ms.push_back({"upload", clock_ms() - t0});
+  HostSizer sizer;  // after the upload, so that it does not compete with it
+  size_outputs(sizer, rq, out,
+               rq.slices.empty() ? nvox : std::int64_t(rq.slices.size()) * L.n[0] * L.n[1]);
 
   if (rq.slices.empty()) {
     auto feat = ex.template alloc<std::uint32_t>(std::size_t(nvox));
@@ -201,6 +218,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
             r.fetch_min(ip[j], cuda::memory_order_relaxed);
           });
     }
+    sizer.join();
     emit_outputs(ex, rq, L, fp, sorted, sorted_idx, ns, rp, out, 0, nvox);
     // Labels' grid, distance and label kernels, before any copy back (features excluded).
     stats.phase_ms.push_back({"outputs_device", out.device_outputs_at - t2});
@@ -265,6 +283,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     feature_transform(ex, Ls, rq.metric, fp, nullptr, rq.bands, 2, 0, &stats);
     ex.sync();
     transform += clock_ms() - t1;
+    sizer.join();
     emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, nullptr, out, k * nxy, nsl * nxy);
   }
   out.transform_ms = transform;
