@@ -9,11 +9,12 @@ double clock_ms() {
 }
 }  // namespace
 
-// Per-voxel outputs of one computed block (whole grid or one slice) appended at `at`.
+// Per-voxel outputs of one computed block (whole grid or one slice) appended at `at`, into
+// host arrays that `sizer` is sizing.
 inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std::uint32_t* feat,
                          const std::uint32_t* sorted_sites, const std::int32_t* sorted_idx,
                          std::int64_t nsites, const std::int32_t* rank_grid, Output& out,
-                         std::int64_t at, std::int64_t total) {
+                         std::int64_t at, std::int64_t total, HostSizer& sizer) {
   const std::int64_t n = L.count();
   const Layout Ly = L;
   const Metric Mt = rq.metric;
@@ -71,6 +72,7 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
   }
   ex.sync();  // distances and labels are on the device: the device-resident result
   out.device_outputs_at = clock_ms();
+  sizer.join();  // the host arrays (size_outputs) are ready for the copies
   if (si) {
     out.sqdist_int.resize(total);
     ex.to_host(si, n, out.sqdist_int.data() + at);
@@ -218,8 +220,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
             r.fetch_min(ip[j], cuda::memory_order_relaxed);
           });
     }
-    sizer.join();
-    emit_outputs(ex, rq, L, fp, sorted, sorted_idx, ns, rp, out, 0, nvox);
+    emit_outputs(ex, rq, L, fp, sorted, sorted_idx, ns, rp, out, 0, nvox, sizer);
     // Labels' grid, distance and label kernels, before any copy back (features excluded).
     stats.phase_ms.push_back({"outputs_device", out.device_outputs_at - t2});
     stats.phase_ms.push_back({"outputs", clock_ms() - t2});
@@ -283,8 +284,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     feature_transform(ex, Ls, rq.metric, fp, nullptr, rq.bands, 2, 0, &stats);
     ex.sync();
     transform += clock_ms() - t1;
-    sizer.join();
-    emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, nullptr, out, k * nxy, nsl * nxy);
+    emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, nullptr, out, k * nxy, nsl * nxy, sizer);
   }
   out.transform_ms = transform;
   stats.phase_ms.push_back({"transform", transform});
