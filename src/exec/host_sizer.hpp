@@ -5,7 +5,6 @@
 // array for an upper bound of the result and cuts it to size once the result is known (cutting
 // keeps the pages).
 #pragma once
-#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <exception>
@@ -39,7 +38,6 @@ class HostSizer {
         v.clear();
         v.reserve(std::size_t(n));
         advise_huge(v.data(), std::size_t(n) * sizeof(T));
-        populate(v.data(), std::size_t(n) * sizeof(T));
         v.assign(std::size_t(n), fill);
       } catch (const std::bad_alloc&) {  // an exception may not leave a thread
         *err = std::make_exception_ptr(
@@ -66,36 +64,6 @@ class HostSizer {
     const std::uintptr_t a = (reinterpret_cast<std::uintptr_t>(p) + 0x1FFFFF) & ~0x1FFFFFull;
     const std::uintptr_t e = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~0x1FFFFFull;
     if (e > a) (void)madvise(reinterpret_cast<void*>(a), e - a, MADV_HUGEPAGE);
-#else
-    (void)p;
-    (void)bytes;
-#endif
-  }
-  // Faults the pages of a large allocation in on several threads at once (the kernel zeroes
-  // them in parallel, with no trap per page), so that the fill that follows runs at memory
-  // speed: a lone thread faulting 1 GB in 4 kB pages took about 0.4 s on the lent machine.
-  // Where the kernel lacks MADV_POPULATE_WRITE (Linux < 5.14) nothing happens.
-  static void populate(void* p, std::size_t bytes) {
-#ifdef MADV_POPULATE_WRITE
-    constexpr std::size_t kPart = std::size_t(64) << 20, kMaxThreads = 8;
-    if (bytes < 2 * kPart) return;
-    const std::uintptr_t a = (reinterpret_cast<std::uintptr_t>(p) + 0xFFF) & ~std::uintptr_t(0xFFF);
-    const std::uintptr_t e = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~std::uintptr_t(0xFFF);
-    const std::size_t parts = std::min<std::size_t>(kMaxThreads, (e - a) / kPart);
-    const std::size_t step = ((e - a) / parts + 0xFFF) & ~std::size_t(0xFFF);
-    std::vector<std::thread> ts;
-    ts.reserve(parts);
-    for (std::size_t k = 0; k < parts; ++k) {
-      const std::uintptr_t lo = a + k * step, hi = std::min<std::uintptr_t>(e, lo + step);
-      if (lo >= hi) break;
-      try {
-        ts.emplace_back(
-            [lo, hi] { (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_POPULATE_WRITE); });
-      } catch (...) {  // no thread to spare: the fill faults the rest in itself
-        break;
-      }
-    }
-    for (auto& t : ts) t.join();
 #else
     (void)p;
     (void)bytes;
