@@ -160,9 +160,12 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   }
   ex.sync();
   stats.phase_ms.push_back({"upload", clock_ms() - t0});
-  HostSizer sizer;  // after the upload, so that it does not compete with it
-  size_outputs(sizer, rq, out,
-               rq.slices.empty() ? nvox : std::int64_t(rq.slices.size()) * L.n[0] * L.n[1]);
+  // After the upload, so that it does not compete with it; from a million voxels (below, a
+  // thread per array costs more than the fill it would overlap).
+  HostSizer sizer;
+  const std::int64_t total =
+      rq.slices.empty() ? nvox : std::int64_t(rq.slices.size()) * L.n[0] * L.n[1];
+  if (total >= (std::int64_t(1) << 20)) size_outputs(sizer, rq, out, total);
 
   if (rq.slices.empty()) {
     auto feat = ex.template alloc<std::uint32_t>(std::size_t(nvox));
