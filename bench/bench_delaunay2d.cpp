@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -147,6 +148,14 @@ int main(int argc, char** argv) {
       for (auto& ph : r.stats.phase_ms)
         if (ph.first.rfind("insert/", 0) == 0)
           std::printf("    %-28s %8.2f ms\n", ph.first.c_str(), ph.second);
+      if (std::getenv("GPUGEOM_PROFILE")) {
+        for (auto& c : r.stats.counters)
+          std::printf(" %s=%lld", c.first.c_str(), (long long)c.second);
+        for (auto& ph : r.stats.phase_ms)
+          if (ph.first.rfind("insert/", 0) != 0)
+            std::printf(" %s=%.2fms", ph.first.c_str(), ph.second);
+        std::printf("\n");
+      }
       std::fflush(stdout);
       if (f)
         f << "delaunay2d," << in.name << "," << n << "," << backend_name(b) << ","

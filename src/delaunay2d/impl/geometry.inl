@@ -122,3 +122,13 @@ GG_INLINE std::uint32_t scatter(std::uint32_t x) {
   x ^= x >> 16;
   return x;
 }
+// Its inverse (each step undone in reverse order; the odd multipliers' inverses mod 2^32), so
+// that a vote's key names its proposer.
+GG_INLINE std::uint32_t unscatter(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7ed1b41du;
+  x ^= (x >> 13) ^ (x >> 26);
+  x *= 0xa5cb9243u;
+  x ^= x >> 16;
+  return x;
+}

@@ -18,6 +18,7 @@
 // input (an integer grid sends most in-circle tests to the exact stage), at most ~0.5 GB.
 constexpr std::int64_t kExactSlotsMin = 1024, kExactSlotsMax = 65536;
 constexpr std::int64_t kMaxRounds = 1000000;  // per batch; every round flips at least once
+constexpr std::int64_t kSmallRound = 8192;    // (counted: rounds whose launches are mostly latency)
 
 // (Every member is public: nvcc's extended lambdas may not live in private members.)
 class Triangulator {
@@ -30,19 +31,14 @@ class Triangulator {
     g_.s[1] = P.kernel[1];
     g_.m = m_;
     const std::size_t T = std::size_t(tmax_), n = std::size_t(m_);
-    tv_ = ex.template alloc<std::int32_t>(3 * T);
-    to_ = ex.template alloc<std::int32_t>(3 * T);
-    stamp_ = ex.template alloc<std::int32_t>(T);
-    pair_ = ex.template alloc<std::int32_t>(T);
-    remap_ = ex.template alloc<std::int32_t>(3 * T);
+    tri_ = ex.template alloc<Tri>(T);
     vote_ = ex.template alloc<u64>(T);
-    mark_ = ex.template alloc<std::int32_t>(T);
     best_ = ex.template alloc<u64>(T);
     split_rank_ = ex.template alloc<std::int32_t>(T);
     act_ = ex.template alloc<std::int32_t>(T);
     next_ = ex.template alloc<std::int32_t>(T);
-    dec_ = ex.template alloc<std::int8_t>(3 * T);
-    exl_ = ex.template alloc<std::int32_t>(3 * T);
+    dec_ = ex.template alloc<std::int8_t>(T);
+    exl_ = ex.template alloc<std::int32_t>(T);
     loc_ = ex.template alloc<std::int32_t>(n);
     un_ = ex.template alloc<std::int32_t>(n);
     un2_ = ex.template alloc<std::int32_t>(n);
@@ -51,17 +47,12 @@ class Triangulator {
     ctr_ = ex.template alloc<Counters>(1);
     log_cap_ = std::max<std::int64_t>(tmax_ / 2, 1 << 16);
     rec_ = ex.template alloc<std::int32_t>(std::size_t(6 * log_cap_));
-    slot_first_ = ex.template alloc<std::int32_t>(T);
-    slot_last_ = ex.template alloc<std::int32_t>(T);
+    hist_ = ex.template alloc<Hist>(T);
     const std::int64_t want = std::clamp<std::int64_t>(tmax_ / 64, kExactSlotsMin, kExactSlotsMax);
     exact_slots_ = std::max<std::int64_t>(1, std::min<std::int64_t>(want, ex.concurrency()));
     scratch_ = ex.template alloc<double>(std::size_t(exact_slots_) * kIncircleScratch);
-    M_ = Mesh{tv_.data(),   to_.data(),   stamp_.data(), pair_.data(),       remap_.data(),
-              vote_.data(), mark_.data(), rec_.data(),   slot_first_.data(), slot_last_.data()};
-    ex.fill(slot_first_.data(), tmax_, std::int32_t(-1));
-    ex.fill(slot_last_.data(), tmax_, std::int32_t(-1));
-    ex.fill(stamp_.data(), tmax_, std::int32_t(-1));
-    ex.fill(mark_.data(), tmax_, std::int32_t(-1));
+    M_ = Mesh{tri_.data(), vote_.data(), rec_.data(), hist_.data(), 0};
+    ex.fill(hist_.data(), tmax_, Hist{-1, -1});
     ex.fill(vote_.data(), tmax_, u64(0));
     ex.fill(best_.data(), tmax_, ~u64(0));
     ex.fill(split_rank_.data(), tmax_, std::int32_t(-1));
@@ -89,19 +80,20 @@ class Triangulator {
   };
   Finished finish() {
     const std::int32_t m = m_;
-    const std::int32_t* tv = tv_.data();
-    const std::int32_t* to = to_.data();
+    const Tri* tri = tri_.data();
     const std::int32_t* orig = P_.orig.data();
-    auto finite = GG_LAMBDA(std::int64_t t)->bool {
-      return tv[3 * t] != m && tv[3 * t + 1] != m && tv[3 * t + 2] != m;
-    };
     // ranks of the finite slots; the extended triangulation has 2m - 2 slots, of which the
     // infinite ones are as many as the hull edges
     const std::int64_t tmax = tmax_;  // (a member read in a device lambda would read `this`)
     auto rank = ex_.template alloc<std::int32_t>(std::size_t(tmax) + 1);
     std::int32_t* rk = rank.data();
     ex_.exclusive_scan_of(
-        tmax + 1, GG_LAMBDA(std::int64_t t)->std::int32_t { return t < tmax && finite(t) ? 1 : 0; },
+        tmax + 1,
+        GG_LAMBDA(std::int64_t t)->std::int32_t {
+          if (t >= tmax) return 0;
+          const std::int32_t* v = tri[t].v;
+          return v[0] != m && v[1] != m && v[2] != m ? 1 : 0;
+        },
         rk);
     Finished f;
     std::int32_t nt = 0;
@@ -113,12 +105,14 @@ class Triangulator {
     std::int32_t* on = f.nbrs.data();
     ex_.for_each_index(
         tmax_, GG_LAMBDA(std::int64_t t) {
-          if (!finite(t)) return;
           const std::int64_t r = rk[t];
+          if (rk[t + 1] == r) return;  // infinite
+          const Tri T = tri[t];
           for (int k = 0; k < 3; ++k) {
-            ot[3 * r + k] = orig[tv[3 * t + k]];
-            const std::int32_t nb = tri_of(to[3 * t + k]);
-            on[3 * r + k] = finite(nb) ? rk[nb] : -1;
+            ot[3 * r + k] = orig[T.v[k]];
+            const std::int32_t nb = tri_of(T.n[k]);  // finite where its rank steps
+            const std::int32_t rn = rk[nb];
+            on[3 * r + k] = rk[nb + 1] != rn ? rn : -1;
           }
         });
     return f;
@@ -140,17 +134,16 @@ class Triangulator {
   void start() {
     const std::int32_t a = P_.first[0], b = P_.first[1], c = P_.first[2], I = m_;
     // slot 0 (a,b,c); slot 1 (c,b,I) across bc; slot 2 (a,c,I) across ca; slot 3 (b,a,I).
-    const std::int32_t tv[12] = {a, b, c, c, b, I, a, c, I, b, a, I};
-    const std::int32_t to[12] = {enc(1, 2), enc(2, 2), enc(3, 2),   // slot 0
-                                 enc(3, 1), enc(2, 0), enc(0, 0),   // slot 1: (b,I) (I,c) (c,b)
-                                 enc(1, 1), enc(3, 0), enc(0, 1),   // slot 2: (c,I) (I,a) (a,c)
-                                 enc(2, 1), enc(1, 0), enc(0, 2)};  // slot 3: (a,I) (I,b) (b,a)
-    ex_.from_host(tv, 12, tv_.data());
-    ex_.from_host(to, 12, to_.data());
+    const Tri first[4] = {
+        {{a, b, c}, {enc(1, 2), enc(2, 2), enc(3, 2)}, -1, 0},
+        {{c, b, I}, {enc(3, 1), enc(2, 0), enc(0, 0)}, -1, 0},   // (b,I) (I,c) (c,b)
+        {{a, c, I}, {enc(1, 1), enc(3, 0), enc(0, 1)}, -1, 0},   // (c,I) (I,a) (a,c)
+        {{b, a, I}, {enc(2, 1), enc(1, 0), enc(0, 2)}, -1, 0}};  // (a,I) (I,b) (b,a)
+    ex_.from_host(first, 4, tri_.data());
     ntri_ = 4;
     const Geo g = g_;
     std::int32_t* loc = loc_.data();
-    const std::int32_t* tvp = tv_.data();
+    const Tri* tri = tri_.data();
     Counters* ctr = ctr_.data();
     ex_.for_each_index(
         m_, GG_LAMBDA(std::int64_t i) {
@@ -161,7 +154,7 @@ class Triangulator {
           }
           std::int32_t found = -1;
           for (std::int32_t t = 0; t < 4 && found < 0; ++t)
-            if (inside_ext(g, tvp + 3 * t, q)) found = t;
+            if (inside_ext(g, tri[t].v, q)) found = t;
           loc[q] = found;
           if (found < 0) atomic_add(&ctr->lost, std::int64_t(1));
         });
@@ -203,7 +196,7 @@ class Triangulator {
           const std::int32_t t = ins[r], q = std::int32_t(std::uint32_t(best[t]));
           const std::int32_t base = first_new + 2 * std::int32_t(r);
           sp[4 * r] = q;  // what the points of t need to find their child later
-          for (int k = 0; k < 3; ++k) sp[4 * r + 1 + k] = M.tv[3 * t + k];
+          for (int k = 0; k < 3; ++k) sp[4 * r + 1 + k] = M.tri[t].v[k];
           split_triangle(M, t, q, base, srank, first_new);
           best[t] = ~u64(0);
           loc[q] = -1;
@@ -232,7 +225,10 @@ class Triangulator {
     GG_HD bool operator()(std::int32_t q) const { return loc[q] >= 0; }
   };
 
-  // Rounds of flips over the work list until no edge of it is illegal.
+  // Rounds of flips over the work list until no edge of it is illegal. A round: the edge tests
+  // (each entry stops at its first illegal edge, proposes it and votes at once; an entry the
+  // filter cannot decide goes to the exact pass, which goes on from there and votes), the flips
+  // (a proposal that won both its triangles), and the fix of the flipped pairs' outer edges.
   void flip_until_delaunay(bool first_round) {
     std::int64_t rounds_here = 0;
     while (nact_ > 0) {
@@ -242,6 +238,8 @@ class Triangulator {
                     "internal error: flipping did not converge; please report this input");
       ++round_;
       ++rounds_;
+      listed_ += nact_;
+      small_rounds_ += nact_ < kSmallRound;
       const Geo g = g_;
       const Mesh M = M_;
       const std::int32_t round = round_;
@@ -252,16 +250,14 @@ class Triangulator {
       const std::int64_t nact = nact_;
       ex_.for_each_index(
           1, GG_LAMBDA(std::int64_t) {
-            ctr->flips = 0;
             ctr->next = 0;
             ctr->exact = 0;
           });
-      // test every edge with the filter; undecided tests go to the exact list. In a batch's
-      // first round the list holds the children of the splits, and only their edges opposite
-      // the new point need a test: the edges at the new point are locally Delaunay (the point
-      // lies inside the old triangle's circumcircle, so the circle through it and an old edge
-      // leaves the old triangle's third vertex outside; for an infinite triangle the point lies
-      // beyond the old edge, which keeps both half-planes clear).
+      // In a batch's first round the list holds the children of the splits, and only their
+      // edges opposite the new point need a test: the edges at the new point are locally
+      // Delaunay (the point lies inside the old triangle's circumcircle, so the circle through
+      // it and an old edge leaves the old triangle's third vertex outside; for an infinite
+      // triangle the point lies beyond the old edge, which keeps both half-planes clear).
       // Later rounds skip the diagonal a flip just made (locally Delaunay by the flip), which
       // the list entry carries.
       const int edges = first_round ? 1 : 3;
@@ -270,44 +266,49 @@ class Triangulator {
           nact, GG_LAMBDA(std::int64_t i) {
             const std::int32_t t = slot_of(act[i]);
             const int known = legal_edge_of(act[i]);
-            for (int k = 1; k < 3; ++k) dec[3 * i + k] = -1;
+            const Tri T = M.tri[t];
+            int res = -1;
             for (int k = 0; k < edges; ++k) {
-              if (k == known) {
-                dec[3 * i + k] = -1;
-                continue;
-              }
-              const std::int32_t e = M.to[3 * t + k];
-              const std::int32_t d = M.tv[3 * tri_of(e) + loc_of(e)];
-              const int r = illegal_fast(g, M.tv + 3 * t, d);
-              dec[3 * i + k] = std::int8_t(r);
-              if (r == 0) exl[append_slot(&ctr->exact)] = std::int32_t(3 * i + k);
+              if (k == known) continue;
+              const std::int32_t d = M.tri[tri_of(T.n[k])].v[loc_of(T.n[k])];
+              const int r = illegal_fast(g, T.v, d);
+              if (r > 0) res = k;
+              if (r == 0) res = kUndecided + k;
+              if (r >= 0) break;
             }
+            dec[i] = std::int8_t(res);
+            if (res >= kUndecided)
+              exl[append_slot(&ctr->exact)] = std::int32_t(i);
+            else if (res >= 0)
+              propose(M, round, t, tri_of(T.n[res]));
           });
       mark("flip: test");
-      exact_pass(nact);
+      exact_pass(nact, edges);
       mark("flip: exact");
-      // propose, vote, flip
-      vote(nact);
       std::int32_t* next = next_.data();
+      const std::int32_t log_base = M.base;
       ex_.for_each_index(
           nact, GG_LAMBDA(std::int64_t i) {
-            const std::int32_t t = slot_of(act[i]);
-            const int k = first_illegal(dec + 3 * i);
+            const int k = dec[i];
             if (k < 0) return;
+            const std::int32_t t = slot_of(act[i]);
             const u64 key = vote_key(round, t);
-            auto push = [&](std::int32_t s, int legal) {
-              if (atomic_exchange(M.mark + s, round) != round)
-                next[append_slot(&ctr->next)] = list_entry(s, legal);
-            };
-            // a slot that lost may be rewritten by the flip that beat it: read nb only after
-            const std::int32_t nb = M.vote[t] == key ? tri_of(M.to[3 * t + k]) : t;
-            if (M.vote[t] == key && M.vote[nb] == key) {
-              flip_phase1(M, t, k, round, std::int32_t(append_slot(&ctr->log)));
-              push(t, 1);   // t' = (v_k, v_k+1, d): the diagonal is opposite its vertex 1
-              push(nb, 2);  // n' = (v_k, d, v_k+2): opposite its vertex 2
-            } else {
-              push(t, -1);
+            const u64 won = M.vote[t];
+            if (won == key) {  // t is this proposal's: no other thread writes it this round
+              const std::int32_t nb = tri_of(M.tri[t].n[k]);
+              if (M.vote[nb] == key) {
+                const std::int32_t rec = log_base + std::int32_t(append_slot(&ctr->log));
+                flip_phase1(M, t, k, round, rec);
+                // t' = (v_k, v_k+1, d): the diagonal is opposite its vertex 1; n' = (v_k, d,
+                // v_k+2): opposite its vertex 2
+                next[append_slot(&ctr->next)] = list_entry(t, 1);
+                next[append_slot(&ctr->next)] = list_entry(nb, 2);
+                return;
+              }
+            } else if (M.vote[voter_of(won)] == won) {
+              return;  // the proposal that took t won its own triangle too: it flips t, lists it
             }
+            next[append_slot(&ctr->next)] = list_entry(t, -1);  // lost: tests again
           });
       mark("flip: vote+flip");
       fix_round(nact);
@@ -322,46 +323,41 @@ class Triangulator {
     }
   }
 
-  // Exact decisions for the tests the filter left open; a bounded number of threads, each
-  // with its own scratch, strides over the list (its length stays on the executor).
-  void exact_pass(std::int64_t nact) {
+  // Exact decisions for the entries the filter left open, from the undecided edge on; each
+  // proposes its first illegal edge. A bounded number of threads, each with its own scratch,
+  // strides over the list (its length stays on the executor).
+  void exact_pass(std::int64_t nact, int edges) {
     const Geo g = g_;
     const Mesh M = M_;
+    const std::int32_t round = round_;
     const std::int32_t* act = act_.data();
     std::int8_t* dec = dec_.data();
     const std::int32_t* exl = exl_.data();
     const Counters* ctr = ctr_.data();
     double* scr = scratch_.data();
-    const std::int64_t S = std::min<std::int64_t>(exact_slots_, 3 * nact);
+    const std::int64_t S = std::min<std::int64_t>(exact_slots_, nact);
     ex_.for_each_index(
         S, GG_LAMBDA(std::int64_t s) {
           const std::int64_t n = ctr->exact;
           for (std::int64_t j = s; j < n; j += S) {
-            const std::int32_t e = exl[j];
-            const std::int32_t t = slot_of(act[e / 3]);
-            const int k = e % 3;
-            const std::int32_t o = M.to[3 * t + k];
-            const std::int32_t d = M.tv[3 * tri_of(o) + loc_of(o)];
-            dec[e] = std::int8_t(illegal_exact(g, M.tv + 3 * t, d, scr + s * kIncircleScratch));
+            const std::int32_t i = exl[j];
+            const std::int32_t t = slot_of(act[i]);
+            const int known = legal_edge_of(act[i]);
+            const Tri T = M.tri[t];
+            int res = -1;
+            for (int k = dec[i] - kUndecided; k < edges; ++k) {
+              if (k == known) continue;
+              const std::int32_t d = M.tri[tri_of(T.n[k])].v[loc_of(T.n[k])];
+              int r = illegal_fast(g, T.v, d);
+              if (r == 0) r = illegal_exact(g, T.v, d, scr + s * kIncircleScratch);
+              if (r > 0) {
+                res = k;
+                break;
+              }
+            }
+            dec[i] = std::int8_t(res);
+            if (res >= 0) propose(M, round, t, tri_of(T.n[res]));
           }
-        });
-  }
-
-  // Every triangle of the work list with an illegal edge proposes to flip the first one: its
-  // key goes to both triangles, the largest key on a triangle wins it.
-  void vote(std::int64_t nact) {
-    const Mesh M = M_;
-    const std::int32_t round = round_;
-    const std::int32_t* act = act_.data();
-    const std::int8_t* dec = dec_.data();
-    ex_.for_each_index(
-        nact, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t t = slot_of(act[i]);
-          const int k = first_illegal(dec + 3 * i);
-          if (k < 0) return;
-          const u64 key = vote_key(round, t);
-          atomic_max(M.vote + t, key);
-          atomic_max(M.vote + tri_of(M.to[3 * t + k]), key);
         });
   }
 
@@ -373,18 +369,20 @@ class Triangulator {
     ex_.for_each_index(
         nact, GG_LAMBDA(std::int64_t i) {
           const std::int32_t t = slot_of(act[i]);
-          if (M.stamp[t] != round || !(M.pair[t] & 1)) return;
-          const std::int32_t nb = M.pair[t] >> 1;
-          fix_edge(M, t, 0, round);
-          fix_edge(M, t, 2, round);
-          fix_edge(M, nb, 0, round);
-          fix_edge(M, nb, 1, round);
+          if (M.tri[t].stamp != round || !(M.tri[t].pair & 1)) return;
+          const Tri T = M.tri[t];  // (flipped: only this thread writes its pointers)
+          const std::int32_t nb = T.pair >> 1;
+          const Tri N = M.tri[nb];
+          fix_edge(M, t, T, 0, round);
+          fix_edge(M, t, T, 2, round);
+          fix_edge(M, nb, N, 0, round);
+          fix_edge(M, nb, N, 1, round);
         });
   }
 
   // Points not yet inserted follow their triangle through this epoch's split and recorded
-  // flips (and, when choose, each triangle then picks one of its points); then the epoch's
-  // records are cleared.
+  // flips (and, when choose, each triangle then picks one of its points); then a new epoch of
+  // records begins.
   void relocate(bool choose) {
     const Geo g = g_;
     const Mesh M = M_;
@@ -394,7 +392,6 @@ class Triangulator {
     const std::int32_t* sp = split_.data();
     const std::int32_t first_new = epoch_first_new_;
     u64* best = best_.data();
-    const std::int32_t* tv = tv_.data();
     const bool moved = epoch_splits_ > 0 || logged_ > 0;
     if (!moved && !choose) return;
     ex_.for_each_index(
@@ -416,7 +413,7 @@ class Triangulator {
             loc[q] = L;
           }
           if (choose) {
-            const u64 key = (u64(choice_key(g, tv + 3 * L, q)) << 32) | u64(std::uint32_t(q));
+            const u64 key = (u64(choice_key(g, M.tri[L].v, q)) << 32) | u64(std::uint32_t(q));
             atomic_min(best + L, key);
           }
         });
@@ -424,16 +421,19 @@ class Triangulator {
     const std::int32_t* ins = ins_.data();
     ex_.for_each_index(
         epoch_splits_, GG_LAMBDA(std::int64_t r) { sr[ins[r]] = -1; });
-    Counters* ctr = ctr_.data();
-    ex_.for_each_index(
-        logged_, GG_LAMBDA(std::int64_t r) {
-          if (r == 0) ctr->log = 0;  // the records are read, not appended to, here
-          for (int side = 0; side < 2; ++side) {
-            const std::int32_t s = M.rec[6 * r + side];
-            M.slot_first[s] = -1;
-            M.slot_last[s] = -1;
-          }
-        });
+    if (logged_ > 0) {
+      Counters* ctr = ctr_.data();
+      ex_.for_each_index(
+          1, GG_LAMBDA(std::int64_t) { ctr->log = 0; });
+      // the next epoch's records are numbered on; near the top of the range, start again at 0
+      // with the per-slot entries cleared
+      if (M_.base + logged_ + 2 * log_cap_ >= std::int64_t(INT32_MAX)) {
+        ex_.fill(hist_.data(), tmax_, Hist{-1, -1});
+        M_.base = 0;
+      } else {
+        M_.base += std::int32_t(logged_);
+      }
+    }
     logged_ = 0;
     epoch_splits_ = 0;
   }
@@ -444,11 +444,11 @@ class Triangulator {
   void peel() {
     const std::int32_t m = m_;
     const Geo g = g_;
-    const std::int32_t* tv = tv_.data();
+    const Tri* tri = tri_.data();
     const std::int64_t nflat = ex_.compact_indices(
         tmax_,
         GG_LAMBDA(std::int64_t t) {
-          const std::int32_t a = tv[3 * t], b = tv[3 * t + 1], c = tv[3 * t + 2];
+          const std::int32_t a = tri[t].v[0], b = tri[t].v[1], c = tri[t].v[2];
           if (a == m || b == m || c == m) return false;
           if (pred::orient2d_fast(g.at(a), g.at(b), g.at(c)) != 0) return false;
           double s[kOrient2dScratch];
@@ -469,27 +469,27 @@ class Triangulator {
       ex_.for_each_index(
           nflat, GG_LAMBDA(std::int64_t i) {
             const std::int32_t t = act[i];
-            for (int k = 0; k < 3; ++k) dec[3 * i + k] = -1;
-            if (M.tv[3 * t] == m || M.tv[3 * t + 1] == m || M.tv[3 * t + 2] == m) return;
+            const Tri T = M.tri[t];
+            dec[i] = -1;
+            if (infinite(T, m)) return;
             for (int k = 0; k < 3; ++k) {
-              const std::int32_t e = M.to[3 * t + k];
-              const std::int32_t nb = tri_of(e);
-              const bool outside =
-                  M.tv[3 * nb] == m || M.tv[3 * nb + 1] == m || M.tv[3 * nb + 2] == m;
-              if (outside && between(g.at(M.tv[3 * t + (k + 1) % 3]), g.at(M.tv[3 * t + k]),
-                                     g.at(M.tv[3 * t + (k + 2) % 3])))
-                dec[3 * i + k] = 1;
+              const std::int32_t nb = tri_of(T.n[k]);
+              if (infinite(M.tri[nb], m) &&
+                  between(g.at(T.v[(k + 1) % 3]), g.at(T.v[k]), g.at(T.v[(k + 2) % 3]))) {
+                dec[i] = std::int8_t(k);
+                propose(M, round, t, nb);
+                return;
+              }
             }
           });
-      vote(nflat);
       ex_.for_each_index(
           nflat, GG_LAMBDA(std::int64_t i) {
-            const std::int32_t t = act[i];
-            const int k = first_illegal(dec + 3 * i);
+            const int k = dec[i];
             if (k < 0) return;
+            const std::int32_t t = act[i];
             const u64 key = vote_key(round, t);
             if (M.vote[t] != key) return;
-            if (M.vote[tri_of(M.to[3 * t + k])] == key) {
+            if (M.vote[tri_of(M.tri[t].n[k])] == key) {
               flip_phase1(M, t, k, round, -1);  // no point is left to follow it
               atomic_add(&ctr->flips, std::int64_t(1));
             }
@@ -501,6 +501,9 @@ class Triangulator {
     }
   }
 
+  GG_HD static bool infinite(const Tri& T, std::int32_t m) {
+    return T.v[0] == m || T.v[1] == m || T.v[2] == m;
+  }
   // b strictly between a and c, all three on one line (lexicographic order of coordinates).
   GG_HD static bool between(const double* a, const double* b, const double* c) {
     auto less = [](const double* u, const double* v) {
@@ -524,6 +527,8 @@ class Triangulator {
     st_.counters["flip_rounds"] = rounds_;
     st_.counters["flips"] = flips_;
     st_.counters["exact_predicates"] = exact_;
+    st_.counters["work_list_entries"] = listed_;
+    st_.counters["small_flip_rounds"] = small_rounds_;
   }
 
   // state
@@ -537,15 +542,17 @@ class Triangulator {
   std::int32_t round_ = 0;
   std::int64_t batches_ = 0, rounds_ = 0, flips_ = 0, exact_ = 0, exact_slots_ = 1;
   std::int64_t log_cap_ = 0, logged_ = 0;
+  std::int64_t listed_ = 0, small_rounds_ = 0;  // work-list entries over all rounds; short rounds
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;  // points; list entries; splits
   std::int32_t epoch_first_new_ = 0;
   bool profile_ = false;
   std::map<std::string, double> prof_;
   clock::time_point last_ = clock::now();
-  typename Exec::template Buffer<std::int32_t> tv_, to_, stamp_, pair_, remap_, mark_, split_rank_;
+  typename Exec::template Buffer<Tri> tri_;
+  typename Exec::template Buffer<Hist> hist_;
+  typename Exec::template Buffer<std::int32_t> split_rank_, rec_, split_;
   typename Exec::template Buffer<u64> vote_, best_;
   typename Exec::template Buffer<std::int32_t> act_, next_, exl_, loc_, un_, un2_, ins_;
-  typename Exec::template Buffer<std::int32_t> rec_, slot_first_, slot_last_, split_;
   typename Exec::template Buffer<std::int8_t> dec_;
   typename Exec::template Buffer<Counters> ctr_;
   typename Exec::template Buffer<double> scratch_;
