@@ -21,11 +21,11 @@ GG_INLINE int loc_of(std::int32_t e) {
 
 // Per-round figures, the only values copied back while flipping.
 struct Counters {
-  std::int64_t flips;  // in the peel rounds (insertion flips are counted by their records)
-  std::int64_t next;   // triangles in the next round's work list
-  std::int64_t exact;  // edge tests the filter left to the exact pass this round
-  std::int64_t log;    // flip records since the last relocation
-  std::int64_t lost;   // points no triangle claimed (a bug guard: reported, never silent)
+  std::int64_t flips;     // in the peel rounds (insertion flips are counted by their records)
+  std::int64_t next[2];   // triangles in the next round's work list (by round parity)
+  std::int64_t exact[2];  // work-list entries the filter left to the exact pass (the same)
+  std::int64_t log;       // flip records since the last relocation
+  std::int64_t lost;      // points no triangle claimed (a bug guard: reported, never silent)
 };
 
 // One triangle in one 32-byte record, one memory sector: the flip rounds are bound by scattered
@@ -37,7 +37,8 @@ struct alignas(32) Tri {
   std::int32_t stamp;  // round in which the slot was last flipped
   std::int32_t pair;   // of that flip: 2 * partner slot, + 1 on the proposer's slot
 };
-// A slot's first and latest flip record of the current epoch (global record numbers).
+// A slot's first flip record of the current epoch (a global record number), and its latest as
+// 2 * number + the slot's side in it (0: t', 1: n'), so that chaining needs no read of it.
 struct alignas(8) Hist {
   std::int32_t first, last;
 };
@@ -78,11 +79,17 @@ GG_INLINE u64 vote_key(std::int32_t round, std::int32_t t) {
 GG_INLINE std::int32_t voter_of(u64 key) {
   return std::int32_t(unscatter(std::uint32_t(key)));
 }
+// atomic_max without the read first, for keys that usually win (each proposal of a fresh
+// round): the atomic then needs no reply, and the thread does not wait on a load.
+GG_INLINE void vote_max(u64* p, u64 v) {
+  cuda::atomic_ref<u64, cuda::thread_scope_device> r(*p);
+  (void)r.fetch_max(v, cuda::memory_order_relaxed);
+}
 // Proposer t asks to flip with nb: its key goes to both triangles, the largest key wins each.
 GG_INLINE void propose(const Mesh& M, std::int32_t round, std::int32_t t, std::int32_t nb) {
   const u64 key = vote_key(round, t);
-  atomic_max(M.vote + t, key);
-  atomic_max(M.vote + nb, key);
+  vote_max(M.vote + t, key);
+  vote_max(M.vote + nb, key);
 }
 
 // Splits triangle t at point p into child k = (p, v[k+1], v[k+2]) in slots c[k] = t, base,
@@ -108,34 +115,36 @@ GG_HD inline void split_triangle(const Mesh& M, std::int32_t t, std::int32_t p, 
 }
 
 // Flips the edge opposite vertex k of triangle t (phase 1 of 2): quad v[k], v[k+1], d, v[k+2]
-// becomes t' = (v[k], v[k+1], d) in slot t and n' = (v[k], d, v[k+2]) in slot nb. The four
-// outer neighbour pointers are left as they were (phase 2 fixes them once every flip of the
-// round is done). record: the flip's global record number, or -1 for none.
-GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, int k, std::int32_t round,
-                              std::int32_t record) {
-  const Tri T = M.tri[t];
-  const std::int32_t nb = tri_of(T.n[k]);
+// becomes t' = (v[k], v[k+1], d) in slot t and n' = (v[k], d, v[k+2]) in slot nb. T and N are
+// the two slots' records, nb = tri_of(T.n[k]). The four outer neighbour pointers are left as
+// they were (phase 2 fixes them once every flip of the round is done). record: the flip's
+// global record number, or -1 for none.
+GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, const Tri& T, int k, std::int32_t nb,
+                              const Tri& N, std::int32_t round, std::int32_t record) {
   const int j = loc_of(T.n[k]);
-  const Tri N = M.tri[nb];
   const int k1 = (k + 1) % 3, k2 = (k + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
   const std::int32_t vk = T.v[k], d = N.v[j];
+  Hist h[2];
+  if (record >= 0) h[0] = M.hist[t], h[1] = M.hist[nb];  // (loads before the stores)
   M.tri[t] = Tri{{vk, T.v[k1], d}, {N.n[j1], enc(nb, 2), T.n[k2]}, round, 2 * nb + 1};
   M.tri[nb] = Tri{{vk, d, T.v[k2]}, {N.n[j2], T.n[k1], enc(t, 1)}, round, 2 * t};
   if (record < 0) return;
   std::int32_t* r = M.record(record);
   r[0] = t, r[1] = nb, r[2] = vk, r[3] = d, r[4] = -1, r[5] = -1;
   for (int side = 0; side < 2; ++side) {
-    const std::int32_t s = side ? nb : t;
-    Hist h = M.hist[s];
-    if (h.last >= M.base) {
-      std::int32_t* prev = M.record(h.last);
-      prev[4 + (prev[0] == s ? 0 : 1)] = record;
-    } else {
-      h.first = record;
-    }
-    h.last = record;
-    M.hist[s] = h;
+    if ((h[side].last >> 1) >= M.base)
+      M.record(h[side].last >> 1)[4 + (h[side].last & 1)] = record;
+    else
+      h[side].first = record;
+    h[side].last = 2 * record + side;
+    M.hist[side ? nb : t] = h[side];
   }
+}
+GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, int k, std::int32_t round,
+                              std::int32_t record) {
+  const Tri T = M.tri[t];
+  const std::int32_t nb = tri_of(T.n[k]);
+  flip_phase1(M, t, T, k, nb, M.tri[nb], round, record);
 }
 
 // Where point q is after the recorded flips, starting from slot L.
@@ -159,11 +168,13 @@ GG_INLINE int opposite_of(const Mesh& M, std::int32_t s, std::int32_t a, std::in
 }
 
 // Phase 2 for one outer edge (local l of slot x, whose record X was read after phase 1) of a
-// flipped pair: if the neighbour flipped too, the shared edge is now in it or its partner, and
-// x points there (the neighbour's own fix points back); otherwise the neighbour points back at x.
-GG_HD inline void fix_edge(const Mesh& M, std::int32_t x, const Tri& X, int l, std::int32_t round) {
+// flipped pair, given the stamp of the neighbour across it: if the neighbour flipped too, the
+// shared edge is now in it or its partner, and x points there (the neighbour's own fix points
+// back); otherwise the neighbour points back at x.
+GG_HD inline void fix_edge(const Mesh& M, std::int32_t x, const Tri& X, int l, std::int32_t round,
+                           std::int32_t stamp) {
   const std::int32_t s = tri_of(X.n[l]);
-  if (M.tri[s].stamp != round) {
+  if (stamp != round) {
     M.tri[s].n[loc_of(X.n[l])] = enc(x, l);
     return;
   }
@@ -175,4 +186,17 @@ GG_HD inline void fix_edge(const Mesh& M, std::int32_t x, const Tri& X, int l, s
     i = opposite_of(M, y, a, b);
   }
   M.tri[x].n[l] = enc(y, i);
+}
+
+// Phase 2 for flipped pair t (the proposer's slot) and nb: its four outer edges. The four
+// neighbours' stamps are read together first (the writes that follow would otherwise keep
+// each read waiting on the one before).
+GG_HD inline void fix_pair(const Mesh& M, std::int32_t t, const Tri& T, std::int32_t nb,
+                           const Tri& N, std::int32_t round) {
+  const std::int32_t st0 = M.tri[tri_of(T.n[0])].stamp, st2 = M.tri[tri_of(T.n[2])].stamp;
+  const std::int32_t sn0 = M.tri[tri_of(N.n[0])].stamp, sn1 = M.tri[tri_of(N.n[1])].stamp;
+  fix_edge(M, t, T, 0, round, st0);
+  fix_edge(M, t, T, 2, round, st2);
+  fix_edge(M, nb, N, 0, round, sn0);
+  fix_edge(M, nb, N, 1, round, sn1);
 }

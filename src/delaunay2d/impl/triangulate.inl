@@ -18,7 +18,8 @@
 // input (an integer grid sends most in-circle tests to the exact stage), at most ~0.5 GB.
 constexpr std::int64_t kExactSlotsMin = 1024, kExactSlotsMax = 65536;
 constexpr std::int64_t kMaxRounds = 1000000;  // per batch; every round flips at least once
-constexpr std::int64_t kSmallRound = 8192;    // (counted: rounds whose launches are mostly latency)
+constexpr bool kReadAhead = Exec::backend == Backend::Cuda;  // (see the flip kernel)
+constexpr std::int64_t kSmallRound = 8192;  // (counted: rounds whose launches are mostly latency)
 
 // (Every member is public: nvcc's extended lambdas may not live in private members.)
 class Triangulator {
@@ -39,6 +40,7 @@ class Triangulator {
     next_ = ex.template alloc<std::int32_t>(T);
     dec_ = ex.template alloc<std::int8_t>(T);
     exl_ = ex.template alloc<std::int32_t>(T);
+    exd_ = ex.template alloc<std::int8_t>(3 * T);
     loc_ = ex.template alloc<std::int32_t>(n);
     un_ = ex.template alloc<std::int32_t>(n);
     un2_ = ex.template alloc<std::int32_t>(n);
@@ -172,20 +174,28 @@ class Triangulator {
   }
 
   // One batch. The points move (through the last batch's split and flips) and choose in one
-  // pass; the chosen triangles are found by a compaction over the triangles, not the points.
+  // pass; the chosen points are then collected in curve order.
   void batch() {
     ++batches_;
     mark("other");
     relocate(true);
     mark("relocate+choose");
+    // The chosen points in curve order, so that the new slots (and the work lists, which
+    // follow them) go through the plane along the curve: neighbouring slots then share memory
+    // sectors of the points and of each other, where triangle order scattered every access.
     u64* best = best_.data();
     std::int32_t* ins = ins_.data();
-    const std::int64_t nins = ex_.compact_indices(
-        ntri_, GG_LAMBDA(std::int64_t t) { return best[t] != ~u64(0); }, ins);
+    std::int32_t* chosen = un2_.data();  // (free until the point list is compacted below)
+    const std::int64_t nins = ex_.copy_if(un_.data(), nun_, chosen, Chosen{loc_.data(), best});
     mark("compact chosen");
     std::int32_t* srank = split_rank_.data();
+    const std::int32_t* locc = loc_.data();
     ex_.for_each_index(
-        nins, GG_LAMBDA(std::int64_t r) { srank[ins[r]] = std::int32_t(r); });
+        nins, GG_LAMBDA(std::int64_t r) {
+          const std::int32_t t = locc[chosen[r]];
+          ins[r] = t;
+          srank[t] = std::int32_t(r);
+        });
     const Mesh M = M_;
     const std::int32_t first_new = std::int32_t(ntri_);
     std::int32_t* act = act_.data();
@@ -220,6 +230,15 @@ class Triangulator {
     flip_until_delaunay(true);  // the list holds the children of the splits, new point first
   }
 
+  // q is the point its triangle chose (the choice key's low half names the point).
+  struct Chosen {
+    const std::int32_t* loc;
+    const u64* best;
+    GG_HD bool operator()(std::int32_t q) const {
+      const std::int32_t L = loc[q];
+      return L >= 0 && std::uint32_t(best[L]) == std::uint32_t(q);
+    }
+  };
   struct NotInserted {
     const std::int32_t* loc;
     GG_HD bool operator()(std::int32_t q) const { return loc[q] >= 0; }
@@ -248,11 +267,9 @@ class Triangulator {
       std::int32_t* exl = exl_.data();
       Counters* ctr = ctr_.data();
       const std::int64_t nact = nact_;
-      ex_.for_each_index(
-          1, GG_LAMBDA(std::int64_t) {
-            ctr->next = 0;
-            ctr->exact = 0;
-          });
+      // this round's list counters (the other pair is cleared in the flip kernel, after the
+      // host has read it: no launch of its own)
+      const int p = round & 1;
       // In a batch's first round the list holds the children of the splits, and only their
       // edges opposite the new point need a test: the edges at the new point are locally
       // Delaunay (the point lies inside the old triangle's circumcircle, so the circle through
@@ -278,7 +295,7 @@ class Triangulator {
             }
             dec[i] = std::int8_t(res);
             if (res >= kUndecided)
-              exl[append_slot(&ctr->exact)] = std::int32_t(i);
+              exl[append_slot(&ctr->exact[p])] = std::int32_t(i);
             else if (res >= 0)
               propose(M, round, t, tri_of(T.n[res]));
           });
@@ -289,26 +306,36 @@ class Triangulator {
       const std::int32_t log_base = M.base;
       ex_.for_each_index(
           nact, GG_LAMBDA(std::int64_t i) {
+            if (i == 0) ctr->next[p ^ 1] = ctr->exact[p ^ 1] = 0;  // the next round's
             const int k = dec[i];
             if (k < 0) return;
             const std::int32_t t = slot_of(act[i]);
             const u64 key = vote_key(round, t);
             const u64 won = M.vote[t];
+            // On the GPU the records are read at once, not after the votes that make them this
+            // thread's (a record read that way may be changing; it is then left unused): the
+            // kernel waits on memory, and this takes two round trips off each flip.
+            Tri T;
+            if (kReadAhead) T = M.tri[t];
             if (won == key) {  // t is this proposal's: no other thread writes it this round
-              const std::int32_t nb = tri_of(M.tri[t].n[k]);
+              if (!kReadAhead) T = M.tri[t];
+              const std::int32_t nb = tri_of(T.n[k]);
+              Tri N;
+              if (kReadAhead) N = M.tri[nb];
               if (M.vote[nb] == key) {
+                if (!kReadAhead) N = M.tri[nb];
                 const std::int32_t rec = log_base + std::int32_t(append_slot(&ctr->log));
-                flip_phase1(M, t, k, round, rec);
+                flip_phase1(M, t, T, k, nb, N, round, rec);
                 // t' = (v_k, v_k+1, d): the diagonal is opposite its vertex 1; n' = (v_k, d,
                 // v_k+2): opposite its vertex 2
-                next[append_slot(&ctr->next)] = list_entry(t, 1);
-                next[append_slot(&ctr->next)] = list_entry(nb, 2);
+                next[append_slot(&ctr->next[p])] = list_entry(t, 1);
+                next[append_slot(&ctr->next[p])] = list_entry(nb, 2);
                 return;
               }
             } else if (M.vote[voter_of(won)] == won) {
               return;  // the proposal that took t won its own triangle too: it flips t, lists it
             }
-            next[append_slot(&ctr->next)] = list_entry(t, -1);  // lost: tests again
+            next[append_slot(&ctr->next[p])] = list_entry(t, -1);  // lost: tests again
           });
       mark("flip: vote+flip");
       fix_round(nact);
@@ -316,48 +343,53 @@ class Triangulator {
       const Counters c = counters();
       mark("flip: counters");
       flips_ += c.log - logged_;  // one record per flip
-      exact_ += c.exact;
+      exact_ += c.exact[round_ & 1];
       logged_ = c.log;
       std::swap(act_, next_);
-      nact_ = c.next;
+      nact_ = c.next[round_ & 1];
     }
   }
 
-  // Exact decisions for the entries the filter left open, from the undecided edge on; each
-  // proposes its first illegal edge. A bounded number of threads, each with its own scratch,
-  // strides over the list (its length stays on the executor).
+  // Exact decisions for the entries the filter left open, from the undecided edge on, one
+  // thread per edge (an exact test is long: the round waits for the slowest thread); then each
+  // entry proposes its first illegal edge. A bounded number of threads, each with its own
+  // scratch, strides over the list (its length stays on the executor).
   void exact_pass(std::int64_t nact, int edges) {
     const Geo g = g_;
     const Mesh M = M_;
     const std::int32_t round = round_;
     const std::int32_t* act = act_.data();
     std::int8_t* dec = dec_.data();
+    std::int8_t* exd = exd_.data();
     const std::int32_t* exl = exl_.data();
-    const Counters* ctr = ctr_.data();
+    Counters* ctr = ctr_.data();
     double* scr = scratch_.data();
-    const std::int64_t S = std::min<std::int64_t>(exact_slots_, nact);
+    const std::int64_t S = std::min<std::int64_t>(exact_slots_, 3 * nact);
+    const int p = round & 1;
     ex_.for_each_index(
         S, GG_LAMBDA(std::int64_t s) {
-          const std::int64_t n = ctr->exact;
+          const std::int64_t n = 3 * ctr->exact[p];
           for (std::int64_t j = s; j < n; j += S) {
-            const std::int32_t i = exl[j];
-            const std::int32_t t = slot_of(act[i]);
-            const int known = legal_edge_of(act[i]);
-            const Tri T = M.tri[t];
-            int res = -1;
-            for (int k = dec[i] - kUndecided; k < edges; ++k) {
-              if (k == known) continue;
+            const std::int32_t i = exl[j / 3];
+            const int k = int(j % 3);
+            int r = -1;
+            if (k >= dec[i] - kUndecided && k < edges && k != legal_edge_of(act[i])) {
+              const Tri T = M.tri[slot_of(act[i])];
               const std::int32_t d = M.tri[tri_of(T.n[k])].v[loc_of(T.n[k])];
-              int r = illegal_fast(g, T.v, d);
+              r = illegal_fast(g, T.v, d);
               if (r == 0) r = illegal_exact(g, T.v, d, scr + s * kIncircleScratch);
-              if (r > 0) {
-                res = k;
-                break;
-              }
             }
-            dec[i] = std::int8_t(res);
-            if (res >= 0) propose(M, round, t, tri_of(T.n[res]));
+            exd[j] = std::int8_t(r);
           }
+        });
+    ex_.for_each_counted(
+        &ctr->exact[p], nact, GG_LAMBDA(std::int64_t j) {
+          const std::int32_t i = exl[j];
+          const int k = exd[3 * j] > 0 ? 0 : exd[3 * j + 1] > 0 ? 1 : exd[3 * j + 2] > 0 ? 2 : -1;
+          dec[i] = std::int8_t(k);
+          if (k < 0) return;
+          const std::int32_t t = slot_of(act[i]);
+          propose(M, round, t, tri_of(M.tri[t].n[k]));
         });
   }
 
@@ -369,14 +401,16 @@ class Triangulator {
     ex_.for_each_index(
         nact, GG_LAMBDA(std::int64_t i) {
           const std::int32_t t = slot_of(act[i]);
-          if (M.tri[t].stamp != round || !(M.tri[t].pair & 1)) return;
-          const Tri T = M.tri[t];  // (flipped: only this thread writes its pointers)
+          Tri T;
+          if (kReadAhead) {  // (an unflipped record may be changing: then unused)
+            T = M.tri[t];
+            if (T.stamp != round || !(T.pair & 1)) return;
+          } else {
+            if (M.tri[t].stamp != round || !(M.tri[t].pair & 1)) return;
+            T = M.tri[t];  // flipped: only this thread writes its pointers
+          }
           const std::int32_t nb = T.pair >> 1;
-          const Tri N = M.tri[nb];
-          fix_edge(M, t, T, 0, round);
-          fix_edge(M, t, T, 2, round);
-          fix_edge(M, nb, N, 0, round);
-          fix_edge(M, nb, N, 1, round);
+          fix_pair(M, t, T, nb, M.tri[nb], round);
         });
   }
 
@@ -427,7 +461,8 @@ class Triangulator {
           1, GG_LAMBDA(std::int64_t) { ctr->log = 0; });
       // the next epoch's records are numbered on; near the top of the range, start again at 0
       // with the per-slot entries cleared
-      if (M_.base + logged_ + 2 * log_cap_ >= std::int64_t(INT32_MAX)) {
+      // (hist keeps twice a record number)
+      if (M_.base + logged_ + 2 * log_cap_ >= std::int64_t(INT32_MAX / 2)) {
         ex_.fill(hist_.data(), tmax_, Hist{-1, -1});
         M_.base = 0;
       } else {
@@ -445,16 +480,28 @@ class Triangulator {
     const std::int32_t m = m_;
     const Geo g = g_;
     const Tri* tri = tri_.data();
-    const std::int64_t nflat = ex_.compact_indices(
+    // Flat triangles come in runs along a hull line, and each run has one next to the outside
+    // (the hull edge over the run lies on that line too): first look only there, reading the
+    // points of the few triangles on the hull rather than those of every triangle.
+    auto flat = GG_LAMBDA(const Tri& T)->bool {
+      const std::int32_t a = T.v[0], b = T.v[1], c = T.v[2];
+      if (a == m || b == m || c == m) return false;
+      if (pred::orient2d_fast(g.at(a), g.at(b), g.at(c)) != 0) return false;
+      double s[kOrient2dScratch];
+      return pred::orient2d_exact(g.at(a), g.at(b), g.at(c), s) == 0;
+    };
+    const std::int64_t on_hull = ex_.compact_indices(
         tmax_,
         GG_LAMBDA(std::int64_t t) {
-          const std::int32_t a = tri[t].v[0], b = tri[t].v[1], c = tri[t].v[2];
-          if (a == m || b == m || c == m) return false;
-          if (pred::orient2d_fast(g.at(a), g.at(b), g.at(c)) != 0) return false;
-          double s[kOrient2dScratch];
-          return pred::orient2d_exact(g.at(a), g.at(b), g.at(c), s) == 0;
+          const Tri T = tri[t];
+          const int gi = T.v[0] == m ? 0 : T.v[1] == m ? 1 : T.v[2] == m ? 2 : -1;
+          return gi >= 0 && flat(tri[tri_of(T.n[gi])]);
         },
         act_.data());
+    const std::int64_t nflat =
+        on_hull == 0 ? 0
+                     : ex_.compact_indices(
+                           tmax_, GG_LAMBDA(std::int64_t t) { return flat(tri[t]); }, act_.data());
     st_.counters["flat_triangles"] = nflat;
     if (nflat == 0) return;
     const Mesh M = M_;
@@ -553,7 +600,7 @@ class Triangulator {
   typename Exec::template Buffer<std::int32_t> split_rank_, rec_, split_;
   typename Exec::template Buffer<u64> vote_, best_;
   typename Exec::template Buffer<std::int32_t> act_, next_, exl_, loc_, un_, un2_, ins_;
-  typename Exec::template Buffer<std::int8_t> dec_;
+  typename Exec::template Buffer<std::int8_t> dec_, exd_;  // per entry; per exact-list edge
   typename Exec::template Buffer<Counters> ctr_;
   typename Exec::template Buffer<double> scratch_;
 };
