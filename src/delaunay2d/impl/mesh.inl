@@ -19,13 +19,17 @@ GG_INLINE int loc_of(std::int32_t e) {
 
 // (atomic_add/min/max/exchange and append_slot come from exec/atomics.hpp.)
 
-// Per-round figures, the only values copied back while flipping.
+// The figures the rounds keep on the executor; the host reads them once per few rounds.
 struct Counters {
   std::int64_t flips;     // in the peel rounds (insertion flips are counted by their records)
   std::int64_t next[2];   // triangles in the next round's work list (by round parity)
   std::int64_t exact[2];  // work-list entries the filter left to the exact pass (the same)
   std::int64_t log;       // flip records since the last relocation
   std::int64_t lost;      // points no triangle claimed (a bug guard: reported, never silent)
+  std::int64_t won[2];    // flips of the round (their proposers' slots are listed), by parity
+  // totals over the flip rounds, for Stats: rounds with a non-empty list, those shorter than
+  // kSmallRound, list entries, entries sent to the exact pass
+  std::int64_t rounds, small_rounds, listed, exact_total;
 };
 
 // One triangle in one 32-byte record, one memory sector: the flip rounds are bound by scattered

@@ -20,6 +20,9 @@ constexpr std::int64_t kExactSlotsMin = 1024, kExactSlotsMax = 65536;
 constexpr std::int64_t kMaxRounds = 1000000;  // per batch; every round flips at least once
 constexpr bool kReadAhead = Exec::backend == Backend::Cuda;  // (see the flip kernel)
 constexpr std::int64_t kSmallRound = 8192;  // (counted: rounds whose launches are mostly latency)
+// Lists this short run this many rounds between two reads of the counters.
+constexpr std::int64_t kChunkList = 65536;
+constexpr int kChunkRounds = 4;
 
 // (Every member is public: nvcc's extended lambdas may not live in private members.)
 class Triangulator {
@@ -38,6 +41,7 @@ class Triangulator {
     split_rank_ = ex.template alloc<std::int32_t>(T);
     act_ = ex.template alloc<std::int32_t>(T);
     next_ = ex.template alloc<std::int32_t>(T);
+    won_ = ex.template alloc<std::int32_t>(T / 2 + 1);  // a flip takes two slots
     dec_ = ex.template alloc<std::int8_t>(T);
     exl_ = ex.template alloc<std::int32_t>(T);
     exd_ = ex.template alloc<std::int8_t>(3 * T);
@@ -201,8 +205,11 @@ class Triangulator {
     std::int32_t* act = act_.data();
     std::int32_t* sp = split_.data();
     std::int32_t* loc = loc_.data();
+    Counters* ctr = ctr_.data();
+    const int pn = round_ & 1;  // the next round reads its list length here
     ex_.for_each_index(
         nins, GG_LAMBDA(std::int64_t r) {
+          if (r == 0) ctr->next[pn] = 3 * nins;
           const std::int32_t t = ins[r], q = std::int32_t(std::uint32_t(best[t]));
           const std::int32_t base = first_new + 2 * std::int32_t(r);
           sp[4 * r] = q;  // what the points of t need to find their child later
@@ -248,113 +255,123 @@ class Triangulator {
   // (each entry stops at its first illegal edge, proposes it and votes at once; an entry the
   // filter cannot decide goes to the exact pass, which goes on from there and votes), the flips
   // (a proposal that won both its triangles), and the fix of the flipped pairs' outer edges.
+  // The list lengths stay on the executor: short lists (a batch's last rounds) run several
+  // rounds between two reads of the counters, so that the host's round trip does not leave
+  // the GPU idle once per round (a round past the end finds an empty list and does nothing).
   void flip_until_delaunay(bool first_round) {
     std::int64_t rounds_here = 0;
     while (nact_ > 0) {
-      if (logged_ + nact_ > log_cap_) relocate(false);  // at most nact_ flips per round
-      if (++rounds_here > kMaxRounds)
+      const int chunk = nact_ <= kChunkList ? kChunkRounds : 1;
+      std::int64_t bound = nact_, records = 0;  // a list at most doubles; a round flips at most
+      for (int c = 0; c < chunk; ++c, bound = std::min(2 * bound, tmax_)) records += bound;
+      if (logged_ + records > log_cap_) relocate(false);
+      if ((rounds_here += chunk) > kMaxRounds)
         throw Error(ErrorCode::InvalidInput,
                     "internal error: flipping did not converge; please report this input");
-      ++round_;
-      ++rounds_;
-      listed_ += nact_;
-      small_rounds_ += nact_ < kSmallRound;
-      const Geo g = g_;
-      const Mesh M = M_;
-      const std::int32_t round = round_;
-      const std::int32_t* act = act_.data();
-      std::int8_t* dec = dec_.data();
-      std::int32_t* exl = exl_.data();
-      Counters* ctr = ctr_.data();
-      const std::int64_t nact = nact_;
-      // this round's list counters (the other pair is cleared in the flip kernel, after the
-      // host has read it: no launch of its own)
-      const int p = round & 1;
-      // In a batch's first round the list holds the children of the splits, and only their
-      // edges opposite the new point need a test: the edges at the new point are locally
-      // Delaunay (the point lies inside the old triangle's circumcircle, so the circle through
-      // it and an old edge leaves the old triangle's third vertex outside; for an infinite
-      // triangle the point lies beyond the old edge, which keeps both half-planes clear).
-      // Later rounds skip the diagonal a flip just made (locally Delaunay by the flip), which
-      // the list entry carries.
-      const int edges = first_round ? 1 : 3;
-      first_round = false;
-      ex_.for_each_index(
-          nact, GG_LAMBDA(std::int64_t i) {
-            const std::int32_t t = slot_of(act[i]);
-            const int known = legal_edge_of(act[i]);
-            const Tri T = M.tri[t];
-            int res = -1;
-            for (int k = 0; k < edges; ++k) {
-              if (k == known) continue;
-              const std::int32_t d = M.tri[tri_of(T.n[k])].v[loc_of(T.n[k])];
-              const int r = illegal_fast(g, T.v, d);
-              if (r > 0) res = k;
-              if (r == 0) res = kUndecided + k;
-              if (r >= 0) break;
-            }
-            dec[i] = std::int8_t(res);
-            if (res >= kUndecided)
-              exl[append_slot(&ctr->exact[p])] = std::int32_t(i);
-            else if (res >= 0)
-              propose(M, round, t, tri_of(T.n[res]));
-          });
-      mark("flip: test");
-      exact_pass(nact, edges);
-      mark("flip: exact");
-      std::int32_t* next = next_.data();
-      const std::int32_t log_base = M.base;
-      ex_.for_each_index(
-          nact, GG_LAMBDA(std::int64_t i) {
-            if (i == 0) ctr->next[p ^ 1] = ctr->exact[p ^ 1] = 0;  // the next round's
-            const int k = dec[i];
-            if (k < 0) return;
-            const std::int32_t t = slot_of(act[i]);
-            const u64 key = vote_key(round, t);
-            const u64 won = M.vote[t];
-            // On the GPU the records are read at once, not after the votes that make them this
-            // thread's (a record read that way may be changing; it is then left unused): the
-            // kernel waits on memory, and this takes two round trips off each flip.
-            Tri T;
-            if (kReadAhead) T = M.tri[t];
-            if (won == key) {  // t is this proposal's: no other thread writes it this round
-              if (!kReadAhead) T = M.tri[t];
-              const std::int32_t nb = tri_of(T.n[k]);
-              Tri N;
-              if (kReadAhead) N = M.tri[nb];
-              if (M.vote[nb] == key) {
-                if (!kReadAhead) N = M.tri[nb];
-                const std::int32_t rec = log_base + std::int32_t(append_slot(&ctr->log));
-                flip_phase1(M, t, T, k, nb, N, round, rec);
-                // t' = (v_k, v_k+1, d): the diagonal is opposite its vertex 1; n' = (v_k, d,
-                // v_k+2): opposite its vertex 2
-                next[append_slot(&ctr->next[p])] = list_entry(t, 1);
-                next[append_slot(&ctr->next[p])] = list_entry(nb, 2);
-                return;
-              }
-            } else if (M.vote[voter_of(won)] == won) {
-              return;  // the proposal that took t won its own triangle too: it flips t, lists it
-            }
-            next[append_slot(&ctr->next[p])] = list_entry(t, -1);  // lost: tests again
-          });
-      mark("flip: vote+flip");
-      fix_round(nact);
-      mark("flip: fix");
+      bound = nact_;
+      for (int c = 0; c < chunk; ++c, bound = std::min(2 * bound, tmax_)) {
+        flip_round(bound, first_round);
+        first_round = false;
+      }
       const Counters c = counters();
       mark("flip: counters");
       flips_ += c.log - logged_;  // one record per flip
-      exact_ += c.exact[round_ & 1];
       logged_ = c.log;
-      std::swap(act_, next_);
       nact_ = c.next[round_ & 1];
     }
+  }
+
+  // One round over the list in act_, whose length is ctr->next[] of the previous round's
+  // parity (at most bound); the next list goes to next_, and the two swap.
+  void flip_round(std::int64_t bound, bool first_round) {
+    ++round_;
+    const Geo g = g_;
+    const Mesh M = M_;
+    const std::int32_t round = round_;
+    const std::int32_t* act = act_.data();
+    std::int8_t* dec = dec_.data();
+    std::int32_t* exl = exl_.data();
+    Counters* ctr = ctr_.data();
+    const int p = round & 1;  // this round appends to next[p] and exact[p]
+    const std::int64_t* count = &ctr->next[p ^ 1];
+    // In a batch's first round the list holds the children of the splits, and only their
+    // edges opposite the new point need a test: the edges at the new point are locally
+    // Delaunay (the point lies inside the old triangle's circumcircle, so the circle through
+    // it and an old edge leaves the old triangle's third vertex outside; for an infinite
+    // triangle the point lies beyond the old edge, which keeps both half-planes clear).
+    // Later rounds skip the diagonal a flip just made (locally Delaunay by the flip), which
+    // the list entry carries.
+    const int edges = first_round ? 1 : 3;
+    ex_.for_each_counted(
+        count, bound, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t t = slot_of(act[i]);
+          const int known = legal_edge_of(act[i]);
+          const Tri T = M.tri[t];
+          int res = -1;
+          for (int k = 0; k < edges; ++k) {
+            if (k == known) continue;
+            const std::int32_t d = M.tri[tri_of(T.n[k])].v[loc_of(T.n[k])];
+            const int r = illegal_fast(g, T.v, d);
+            if (r > 0) res = k;
+            if (r == 0) res = kUndecided + k;
+            if (r >= 0) break;
+          }
+          dec[i] = std::int8_t(res);
+          if (res >= kUndecided)
+            exl[append_slot(&ctr->exact[p])] = std::int32_t(i);
+          else if (res >= 0)
+            propose(M, round, t, tri_of(T.n[res]));
+        });
+    mark("flip: test");
+    exact_pass(bound, edges);
+    mark("flip: exact");
+    std::int32_t* next = next_.data();
+    std::int32_t* wins = won_.data();
+    const std::int32_t log_base = M.base;
+    ex_.for_each_counted(
+        count, bound, GG_LAMBDA(std::int64_t i) {
+          const int k = dec[i];
+          if (k < 0) return;
+          const std::int32_t t = slot_of(act[i]);
+          const u64 key = vote_key(round, t);
+          const u64 won = M.vote[t];
+          // On the GPU the records are read at once, not after the votes that make them this
+          // thread's (a record read that way may be changing; it is then left unused): the
+          // kernel waits on memory, and this takes two round trips off each flip.
+          Tri T;
+          if (kReadAhead) T = M.tri[t];
+          if (won == key) {  // t is this proposal's: no other thread writes it this round
+            if (!kReadAhead) T = M.tri[t];
+            const std::int32_t nb = tri_of(T.n[k]);
+            Tri N;
+            if (kReadAhead) N = M.tri[nb];
+            if (M.vote[nb] == key) {
+              if (!kReadAhead) N = M.tri[nb];
+              const std::int32_t rec = log_base + std::int32_t(append_slot(&ctr->log));
+              flip_phase1(M, t, T, k, nb, N, round, rec);
+              wins[append_slot(&ctr->won[p])] = t;
+              // t' = (v_k, v_k+1, d): the diagonal is opposite its vertex 1; n' = (v_k, d,
+              // v_k+2): opposite its vertex 2
+              next[append_slot(&ctr->next[p])] = list_entry(t, 1);
+              next[append_slot(&ctr->next[p])] = list_entry(nb, 2);
+              return;
+            }
+          } else if (M.vote[voter_of(won)] == won) {
+            return;  // the proposal that took t won its own triangle too: it flips t, lists it
+          }
+          next[append_slot(&ctr->next[p])] = list_entry(t, -1);  // lost: tests again
+        });
+    mark("flip: vote+flip");
+    fix_round(&ctr->won[p], bound);
+    mark("flip: fix");
+    std::swap(act_, next_);
   }
 
   // Exact decisions for the entries the filter left open, from the undecided edge on, one
   // thread per edge (an exact test is long: the round waits for the slowest thread); then each
   // entry proposes its first illegal edge. A bounded number of threads, each with its own
   // scratch, strides over the list (its length stays on the executor).
-  void exact_pass(std::int64_t nact, int edges) {
+  void exact_pass(std::int64_t bound, int edges) {
     const Geo g = g_;
     const Mesh M = M_;
     const std::int32_t round = round_;
@@ -364,10 +381,20 @@ class Triangulator {
     const std::int32_t* exl = exl_.data();
     Counters* ctr = ctr_.data();
     double* scr = scratch_.data();
-    const std::int64_t S = std::min<std::int64_t>(exact_slots_, 3 * nact);
+    const std::int64_t S = std::min<std::int64_t>(exact_slots_, 3 * bound);
     const int p = round & 1;
     ex_.for_each_index(
         S, GG_LAMBDA(std::int64_t s) {
+          if (s == 0) {  // a thread that always runs, between the round's two uses of these
+            const std::int64_t listed = ctr->next[p ^ 1];
+            ctr->rounds += listed > 0;
+            ctr->small_rounds += listed > 0 && listed < kSmallRound;
+            ctr->listed += listed;
+            ctr->exact_total += ctr->exact[p];
+            ctr->next[p] = 0;       // this round's flips append here (the last round's list)
+            ctr->won[p] = 0;        // and here (the round before last's)
+            ctr->exact[p ^ 1] = 0;  // the next round's tests append here
+          }
           const std::int64_t n = 3 * ctr->exact[p];
           for (std::int64_t j = s; j < n; j += S) {
             const std::int32_t i = exl[j / 3];
@@ -383,7 +410,7 @@ class Triangulator {
           }
         });
     ex_.for_each_counted(
-        &ctr->exact[p], nact, GG_LAMBDA(std::int64_t j) {
+        &ctr->exact[p], bound, GG_LAMBDA(std::int64_t j) {
           const std::int32_t i = exl[j];
           const int k = exd[3 * j] > 0 ? 0 : exd[3 * j + 1] > 0 ? 1 : exd[3 * j + 2] > 0 ? 2 : -1;
           dec[i] = std::int8_t(k);
@@ -393,22 +420,16 @@ class Triangulator {
         });
   }
 
-  // Phase 2 of the round's flips: each proposer fixes the outer edges of its pair.
-  void fix_round(std::int64_t nact) {
+  // Phase 2 of the round's flips: each flip (its proposer's slot listed in won_, *count of
+  // them) fixes the outer edges of its pair.
+  void fix_round(const std::int64_t* count, std::int64_t bound) {
     const Mesh M = M_;
     const std::int32_t round = round_;
-    const std::int32_t* act = act_.data();
-    ex_.for_each_index(
-        nact, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t t = slot_of(act[i]);
-          Tri T;
-          if (kReadAhead) {  // (an unflipped record may be changing: then unused)
-            T = M.tri[t];
-            if (T.stamp != round || !(T.pair & 1)) return;
-          } else {
-            if (M.tri[t].stamp != round || !(M.tri[t].pair & 1)) return;
-            T = M.tri[t];  // flipped: only this thread writes its pointers
-          }
+    const std::int32_t* won = won_.data();
+    ex_.for_each_counted(
+        count, bound, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t t = won[i];
+          const Tri T = M.tri[t];  // flipped: only this thread writes its pointers now
           const std::int32_t nb = T.pair >> 1;
           fix_pair(M, t, T, nb, M.tri[nb], round);
         });
@@ -508,6 +529,7 @@ class Triangulator {
     const std::int32_t* act = act_.data();
     std::int8_t* dec = dec_.data();
     Counters* ctr = ctr_.data();
+    std::int32_t* won = won_.data();
     for (;;) {
       ++round_;
       const std::int32_t round = round_;
@@ -538,10 +560,10 @@ class Triangulator {
             if (M.vote[t] != key) return;
             if (M.vote[tri_of(M.tri[t].n[k])] == key) {
               flip_phase1(M, t, k, round, -1);  // no point is left to follow it
-              atomic_add(&ctr->flips, std::int64_t(1));
+              won[append_slot(&ctr->flips)] = t;
             }
           });
-      fix_round(nflat);
+      fix_round(&ctr->flips, nflat);
       const Counters c = counters();
       flips_ += c.flips;
       if (c.flips == 0) break;
@@ -569,13 +591,14 @@ class Triangulator {
     last_ = now;
   }
   void report() {
+    const Counters c = counters();
     for (auto& p : prof_) st_.phase_ms.push_back({"insert/" + p.first, p.second});
     st_.counters["batches"] = batches_;
-    st_.counters["flip_rounds"] = rounds_;
+    st_.counters["flip_rounds"] = c.rounds;
     st_.counters["flips"] = flips_;
-    st_.counters["exact_predicates"] = exact_;
-    st_.counters["work_list_entries"] = listed_;
-    st_.counters["small_flip_rounds"] = small_rounds_;
+    st_.counters["exact_predicates"] = c.exact_total;  // work-list entries the filter left open
+    st_.counters["work_list_entries"] = c.listed;
+    st_.counters["small_flip_rounds"] = c.small_rounds;
   }
 
   // state
@@ -587,9 +610,8 @@ class Triangulator {
   std::int32_t m_ = 0;
   std::int64_t tmax_ = 0, ntri_ = 0, nun_ = 0, nact_ = 0;
   std::int32_t round_ = 0;
-  std::int64_t batches_ = 0, rounds_ = 0, flips_ = 0, exact_ = 0, exact_slots_ = 1;
+  std::int64_t batches_ = 0, flips_ = 0, exact_slots_ = 1;
   std::int64_t log_cap_ = 0, logged_ = 0;
-  std::int64_t listed_ = 0, small_rounds_ = 0;  // work-list entries over all rounds; short rounds
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;  // points; list entries; splits
   std::int32_t epoch_first_new_ = 0;
   bool profile_ = false;
@@ -599,7 +621,7 @@ class Triangulator {
   typename Exec::template Buffer<Hist> hist_;
   typename Exec::template Buffer<std::int32_t> split_rank_, rec_, split_;
   typename Exec::template Buffer<u64> vote_, best_;
-  typename Exec::template Buffer<std::int32_t> act_, next_, exl_, loc_, un_, un2_, ins_;
+  typename Exec::template Buffer<std::int32_t> act_, next_, won_, exl_, loc_, un_, un2_, ins_;
   typename Exec::template Buffer<std::int8_t> dec_, exd_;  // per entry; per exact-list edge
   typename Exec::template Buffer<Counters> ctr_;
   typename Exec::template Buffer<double> scratch_;
