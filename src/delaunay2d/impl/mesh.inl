@@ -21,12 +21,12 @@ GG_INLINE int loc_of(std::int32_t e) {
 
 // The figures the rounds keep on the executor; the host reads them once per few rounds.
 struct Counters {
-  std::int64_t flips;     // in the peel rounds (insertion flips are counted by their records)
-  std::int64_t next[2];   // triangles in the next round's work list (by round parity)
-  std::int64_t exact[2];  // work-list entries the filter left to the exact pass (the same)
-  std::int64_t log;       // flip records since the last relocation
-  std::int64_t lost;      // points no triangle claimed (a bug guard: reported, never silent)
-  std::int64_t won[2];    // flips of the round (their proposers' slots are listed), by parity
+  std::int64_t flips;      // in the peel rounds (insertion flips are counted by their records)
+  std::int64_t next[2];    // triangles in the next round's work list (by round parity)
+  std::int64_t exact[2];   // work-list entries the filter left to the exact pass (the same)
+  std::int64_t log;        // flip records since the last relocation
+  std::int64_t lost;       // points no triangle claimed (a bug guard: reported, never silent)
+  std::int64_t peel_list;  // length of the peel's list
   // totals over the flip rounds, for Stats: rounds with a non-empty list, those shorter than
   // kSmallRound, list entries, entries sent to the exact pass
   std::int64_t rounds, small_rounds, listed, exact_total;
@@ -88,6 +88,26 @@ GG_INLINE std::int32_t voter_of(u64 key) {
 GG_INLINE void vote_max(u64* p, u64 v) {
   cuda::atomic_ref<u64, cuda::thread_scope_device> r(*p);
   (void)r.fetch_max(v, cuda::memory_order_relaxed);
+}
+// A flip's two slots in the next list (at, at + 1) and its record number (rec): on the GPU one
+// thread of each group of converged threads bumps both counters, with no wait between the two
+// atomics (the flip kernel waits on memory round trips).
+GG_INLINE void append_flip(std::int64_t* next, std::int64_t* log, std::int64_t& at,
+                           std::int64_t& rec) {
+#ifdef __CUDA_ARCH__
+  namespace cg = cooperative_groups;
+  const cg::coalesced_group g = cg::coalesced_threads();
+  unsigned long long a = 0, b = 0;
+  if (g.thread_rank() == 0) {
+    a = atomicAdd(reinterpret_cast<unsigned long long*>(next), 2ull * g.size());
+    b = atomicAdd(reinterpret_cast<unsigned long long*>(log), (unsigned long long)g.size());
+  }
+  at = std::int64_t(g.shfl(a, 0)) + 2 * std::int64_t(g.thread_rank());
+  rec = std::int64_t(g.shfl(b, 0)) + g.thread_rank();
+#else
+  at = atomic_add(next, std::int64_t(2));
+  rec = atomic_add(log, std::int64_t(1));
+#endif
 }
 // Proposer t asks to flip with nb: its key goes to both triangles, the largest key wins each.
 GG_INLINE void propose(const Mesh& M, std::int32_t round, std::int32_t t, std::int32_t nb) {

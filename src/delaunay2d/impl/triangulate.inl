@@ -41,10 +41,11 @@ class Triangulator {
     split_rank_ = ex.template alloc<std::int32_t>(T);
     act_ = ex.template alloc<std::int32_t>(T);
     next_ = ex.template alloc<std::int32_t>(T);
-    won_ = ex.template alloc<std::int32_t>(T / 2 + 1);  // a flip takes two slots
     dec_ = ex.template alloc<std::int8_t>(T);
     exl_ = ex.template alloc<std::int32_t>(T);
     exd_ = ex.template alloc<std::int8_t>(3 * T);
+    exc_ = ex.template alloc<std::int32_t>(T);
+    ex.fill(exc_.data(), tmax_, std::int32_t(0));
     loc_ = ex.template alloc<std::int32_t>(n);
     un_ = ex.template alloc<std::int32_t>(n);
     un2_ = ex.template alloc<std::int32_t>(n);
@@ -251,6 +252,26 @@ class Triangulator {
     GG_HD bool operator()(std::int32_t q) const { return loc[q] >= 0; }
   };
 
+  // f(i) for every i < *count (on the executor), *count <= bound. On the GPU a grid over the
+  // bound whose blocks past the count return at once: the executor's counted loop strides
+  // over one wave of blocks, and at these kernels' occupancy that leaves a second, partial
+  // wave as a tail (measured: fix and flip kernels 20-60% slower).
+  template <class F>
+  struct Guarded {
+    const std::int64_t* count;
+    F f;
+    GG_HD void operator()(std::int64_t i) const {
+      if (i < *count) f(i);
+    }
+  };
+  template <class F>
+  void listed(const std::int64_t* count, std::int64_t bound, F f) {
+    if constexpr (Exec::backend == Backend::Cuda)
+      ex_.for_each_index(bound, Guarded<F>{count, f});
+    else
+      ex_.for_each_counted(count, bound, f);
+  }
+
   // Rounds of flips over the work list until no edge of it is illegal. A round: the edge tests
   // (each entry stops at its first illegal edge, proposes it and votes at once; an entry the
   // filter cannot decide goes to the exact pass, which goes on from there and votes), the flips
@@ -302,7 +323,7 @@ class Triangulator {
     // Later rounds skip the diagonal a flip just made (locally Delaunay by the flip), which
     // the list entry carries.
     const int edges = first_round ? 1 : 3;
-    ex_.for_each_counted(
+    listed(
         count, bound, GG_LAMBDA(std::int64_t i) {
           const std::int32_t t = slot_of(act[i]);
           const int known = legal_edge_of(act[i]);
@@ -326,9 +347,8 @@ class Triangulator {
     exact_pass(bound, edges);
     mark("flip: exact");
     std::int32_t* next = next_.data();
-    std::int32_t* wins = won_.data();
     const std::int32_t log_base = M.base;
-    ex_.for_each_counted(
+    listed(
         count, bound, GG_LAMBDA(std::int64_t i) {
           const int k = dec[i];
           if (k < 0) return;
@@ -347,13 +367,13 @@ class Triangulator {
             if (kReadAhead) N = M.tri[nb];
             if (M.vote[nb] == key) {
               if (!kReadAhead) N = M.tri[nb];
-              const std::int32_t rec = log_base + std::int32_t(append_slot(&ctr->log));
-              flip_phase1(M, t, T, k, nb, N, round, rec);
-              wins[append_slot(&ctr->won[p])] = t;
+              std::int64_t at, rec;
+              append_flip(&ctr->next[p], &ctr->log, at, rec);
+              flip_phase1(M, t, T, k, nb, N, round, log_base + std::int32_t(rec));
               // t' = (v_k, v_k+1, d): the diagonal is opposite its vertex 1; n' = (v_k, d,
               // v_k+2): opposite its vertex 2
-              next[append_slot(&ctr->next[p])] = list_entry(t, 1);
-              next[append_slot(&ctr->next[p])] = list_entry(nb, 2);
+              next[at] = list_entry(t, 1);
+              next[at + 1] = list_entry(nb, 2);
               return;
             }
           } else if (M.vote[voter_of(won)] == won) {
@@ -362,15 +382,16 @@ class Triangulator {
           next[append_slot(&ctr->next[p])] = list_entry(t, -1);  // lost: tests again
         });
     mark("flip: vote+flip");
-    fix_round(&ctr->won[p], bound);
+    fix_round(count, bound);
     mark("flip: fix");
     std::swap(act_, next_);
   }
 
   // Exact decisions for the entries the filter left open, from the undecided edge on, one
   // thread per edge (an exact test is long: the round waits for the slowest thread); then each
-  // entry proposes its first illegal edge. A bounded number of threads, each with its own
-  // scratch, strides over the list (its length stays on the executor).
+  // entry proposes its first illegal edge (exc counts an entry's finished edges). A bounded
+  // number of threads, each with its own scratch, strides over the list (its length stays on
+  // the executor).
   void exact_pass(std::int64_t bound, int edges) {
     const Geo g = g_;
     const Mesh M = M_;
@@ -378,6 +399,7 @@ class Triangulator {
     const std::int32_t* act = act_.data();
     std::int8_t* dec = dec_.data();
     std::int8_t* exd = exd_.data();
+    std::int32_t* exc = exc_.data();
     const std::int32_t* exl = exl_.data();
     Counters* ctr = ctr_.data();
     double* scr = scratch_.data();
@@ -392,7 +414,6 @@ class Triangulator {
             ctr->listed += listed;
             ctr->exact_total += ctr->exact[p];
             ctr->next[p] = 0;       // this round's flips append here (the last round's list)
-            ctr->won[p] = 0;        // and here (the round before last's)
             ctr->exact[p ^ 1] = 0;  // the next round's tests append here
           }
           const std::int64_t n = 3 * ctr->exact[p];
@@ -407,29 +428,39 @@ class Triangulator {
               if (r == 0) r = illegal_exact(g, T.v, d, scr + s * kIncircleScratch);
             }
             exd[j] = std::int8_t(r);
+            // the last of the entry's three edges proposes (its acquire sees the others'
+            // decisions): no second kernel, which would be a launch per round even when the
+            // filter decided everything
+            cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> done(exc[j / 3]);
+            if (done.fetch_add(1, cuda::memory_order_acq_rel) != 2) continue;
+            done.store(0, cuda::memory_order_relaxed);  // ready for the next round
+            const std::int64_t e = j - j % 3;
+            const int first = exd[e] > 0 ? 0 : exd[e + 1] > 0 ? 1 : exd[e + 2] > 0 ? 2 : -1;
+            dec[i] = std::int8_t(first);
+            if (first < 0) continue;
+            const std::int32_t t = slot_of(act[i]);
+            propose(M, round, t, tri_of(M.tri[t].n[first]));
           }
-        });
-    ex_.for_each_counted(
-        &ctr->exact[p], bound, GG_LAMBDA(std::int64_t j) {
-          const std::int32_t i = exl[j];
-          const int k = exd[3 * j] > 0 ? 0 : exd[3 * j + 1] > 0 ? 1 : exd[3 * j + 2] > 0 ? 2 : -1;
-          dec[i] = std::int8_t(k);
-          if (k < 0) return;
-          const std::int32_t t = slot_of(act[i]);
-          propose(M, round, t, tri_of(M.tri[t].n[k]));
         });
   }
 
-  // Phase 2 of the round's flips: each flip (its proposer's slot listed in won_, *count of
-  // them) fixes the outer edges of its pair.
+  // Phase 2 of the round's flips: each proposer fixes the outer edges of its pair. (Over the
+  // whole list: a list of the flips alone, appended in the flip kernel, measured slower.)
   void fix_round(const std::int64_t* count, std::int64_t bound) {
     const Mesh M = M_;
     const std::int32_t round = round_;
-    const std::int32_t* won = won_.data();
-    ex_.for_each_counted(
+    const std::int32_t* act = act_.data();
+    listed(
         count, bound, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t t = won[i];
-          const Tri T = M.tri[t];  // flipped: only this thread writes its pointers now
+          const std::int32_t t = slot_of(act[i]);
+          Tri T;
+          if (kReadAhead) {  // (an unflipped record may be changing: then unused)
+            T = M.tri[t];
+            if (T.stamp != round || !(T.pair & 1)) return;
+          } else {
+            if (M.tri[t].stamp != round || !(M.tri[t].pair & 1)) return;
+            T = M.tri[t];  // flipped: only this thread writes its pointers
+          }
           const std::int32_t nb = T.pair >> 1;
           fix_pair(M, t, T, nb, M.tri[nb], round);
         });
@@ -529,7 +560,8 @@ class Triangulator {
     const std::int32_t* act = act_.data();
     std::int8_t* dec = dec_.data();
     Counters* ctr = ctr_.data();
-    std::int32_t* won = won_.data();
+    ex_.for_each_index(
+        1, GG_LAMBDA(std::int64_t) { ctr->peel_list = nflat; });
     for (;;) {
       ++round_;
       const std::int32_t round = round_;
@@ -560,10 +592,10 @@ class Triangulator {
             if (M.vote[t] != key) return;
             if (M.vote[tri_of(M.tri[t].n[k])] == key) {
               flip_phase1(M, t, k, round, -1);  // no point is left to follow it
-              won[append_slot(&ctr->flips)] = t;
+              atomic_add(&ctr->flips, std::int64_t(1));
             }
           });
-      fix_round(&ctr->flips, nflat);
+      fix_round(&ctr->peel_list, nflat);
       const Counters c = counters();
       flips_ += c.flips;
       if (c.flips == 0) break;
@@ -621,7 +653,7 @@ class Triangulator {
   typename Exec::template Buffer<Hist> hist_;
   typename Exec::template Buffer<std::int32_t> split_rank_, rec_, split_;
   typename Exec::template Buffer<u64> vote_, best_;
-  typename Exec::template Buffer<std::int32_t> act_, next_, won_, exl_, loc_, un_, un2_, ins_;
+  typename Exec::template Buffer<std::int32_t> act_, next_, exl_, exc_, loc_, un_, un2_, ins_;
   typename Exec::template Buffer<std::int8_t> dec_, exd_;  // per entry; per exact-list edge
   typename Exec::template Buffer<Counters> ctr_;
   typename Exec::template Buffer<double> scratch_;
