@@ -282,14 +282,21 @@ class Triangulator {
   void flip_until_delaunay(bool first_round) {
     std::int64_t rounds_here = 0;
     while (nact_ > 0) {
-      const int chunk = nact_ <= kChunkList ? kChunkRounds : 1;
-      std::int64_t bound = nact_, records = 0;  // a list at most doubles; a round flips at most
-      for (int c = 0; c < chunk; ++c, bound = std::min(2 * bound, tmax_)) records += bound;
-      if (logged_ + records > log_cap_) relocate(false);
+      // A list at most doubles per round, and a round flips at most one pair per entry and
+      // tmax / 2 <= log_cap_ pairs in all: a chunk whose records could overflow the log even
+      // after the points move is cut to one round.
+      int chunk = nact_ <= kChunkList ? kChunkRounds : 1;
+      auto records = [&](int rounds) {
+        std::int64_t b = nact_, r = 0;
+        for (int c = 0; c < rounds; ++c, b = std::min(2 * b, tmax_)) r += std::min(b, tmax_ / 2);
+        return r;
+      };
+      if (records(chunk) > log_cap_) chunk = 1;
+      if (logged_ + records(chunk) > log_cap_) relocate(false);
       if ((rounds_here += chunk) > kMaxRounds)
         throw Error(ErrorCode::InvalidInput,
                     "internal error: flipping did not converge; please report this input");
-      bound = nact_;
+      std::int64_t bound = nact_;
       for (int c = 0; c < chunk; ++c, bound = std::min(2 * bound, tmax_)) {
         flip_round(bound, first_round);
         first_round = false;
@@ -408,10 +415,10 @@ class Triangulator {
     ex_.for_each_index(
         S, GG_LAMBDA(std::int64_t s) {
           if (s == 0) {  // a thread that always runs, between the round's two uses of these
-            const std::int64_t listed = ctr->next[p ^ 1];
-            ctr->rounds += listed > 0;
-            ctr->small_rounds += listed > 0 && listed < kSmallRound;
-            ctr->listed += listed;
+            const std::int64_t len = ctr->next[p ^ 1];
+            ctr->rounds += len > 0;
+            ctr->small_rounds += len > 0 && len < kSmallRound;
+            ctr->listed += len;
             ctr->exact_total += ctr->exact[p];
             ctr->next[p] = 0;       // this round's flips append here (the last round's list)
             ctr->exact[p ^ 1] = 0;  // the next round's tests append here
