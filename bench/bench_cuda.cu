@@ -5,7 +5,7 @@
 #include "bench_problems.hpp"
 #include "exec/cuda_exec.cuh"
 #include "predicates/predicates.hpp"
-#include "predicates/split_pass.hpp"
+#include "exec/split_pass.hpp"
 #include "spatial/hilbert.hpp"
 
 namespace gpugeom::bench::cuda_impl {

@@ -108,6 +108,8 @@ int main(int argc, char** argv) {
     for (Backend b : bks) {
       Delaunay2dOptions o;
       o.backend = b;
+      // GPUGEOM_PROFILE=1: per-step times (the library synchronises after each step).
+      o.profile = std::getenv("GPUGEOM_PROFILE") != nullptr;
       Triangulation2d r = delaunay2d(in.pts, o);  // warm-up
       std::vector<double> t;
       for (int k = 0; k < reps; ++k) {

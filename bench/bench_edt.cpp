@@ -94,6 +94,8 @@ int main(int argc, char** argv) {
         for (int m = 0; m < (jfa ? 2 : 1); ++m) {
           EdtOptions o;
           o.backend = b;
+          // GPUGEOM_EDT_PROFILE=1: per-pass times (the library synchronises after each pass).
+          o.profile = std::getenv("GPUGEOM_EDT_PROFILE") != nullptr;
           o.distance = 32;
           o.labels = true;
           o.method = m ? EdtMethod::Jfa : EdtMethod::Pba;

@@ -6,7 +6,7 @@ export LD_LIBRARY_PATH=$PWD/.devbin/lib:${LD_LIBRARY_PATH:-}
 OUT=${OUT:-/tmp/gg_out}
 mkdir -p "$OUT"
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | tee "$OUT/gpu.txt"
-LD_LIBRARY_PATH=$LD_LIBRARY_PATH .devbin/gpugeom info --device
+[ -x .devbin/gpugeom ] && .devbin/gpugeom info --device
 status=0
 TESTS=${TESTS:-test_*_cuda}  # a glob: which GPU test binaries to run (and sanitise); none: skip
 if [ "$TESTS" != none ]; then

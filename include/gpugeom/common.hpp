@@ -23,20 +23,50 @@ const char* backend_name(Backend b);
 // Parses "auto", "cpu", "cuda" (case-insensitive); throws Error(InvalidArgument) otherwise.
 Backend parse_backend(const std::string& s);
 // Resolves Auto (and GPUGEOM_BACKEND) to a concrete backend; asking for Cuda where the build
-// or the machine has none throws Error(Unsupported).
-Backend resolve_backend(Backend requested);
+// or the machine has none throws Error(Unsupported). device: as RunOptions::device.
+Backend resolve_backend(Backend requested, int device = -1);
 // True when this build was compiled with CUDA support.
 bool built_with_cuda();
 
+// Where and how an algorithm runs; every capability's options carry these.
+struct RunOptions {
+  Backend backend = Backend::Auto;
+  // CUDA: the device (ordinal) and the stream (a cudaStream_t of that device, passed as void*
+  // so this header needs no CUDA). device -1 takes the stream's device, else the calling
+  // thread's current device; stream nullptr takes the calling thread's per-thread default
+  // stream (cudaStreamPerThread), which is ordered after work on the legacy default stream.
+  // The calling thread's current device is restored when the call returns. Several host
+  // threads may run calls at once, each with its own device or stream.
+  int device = -1;
+  void* stream = nullptr;
+  // CPU: OpenMP threads (0: OpenMP's default for the calling thread). Results do not depend on
+  // it.
+  int threads = 0;
+  // Per-phase timings in Stats synchronise the executor after each phase (slower, exact
+  // attribution); off, phases that overlap are timed as they come.
+  bool profile = false;
+};
+
 struct DeviceInfo {
   bool available = false;  // a CUDA device can be used by this build
+  int device = -1;         // its ordinal
+  int device_count = 0;    // CUDA devices on this machine
   std::string name;
   int compute_major = 0, compute_minor = 0;
   int multiprocessors = 0;
   std::size_t total_memory = 0, free_memory = 0;
   std::string reason;  // why not available, when it is not
 };
-DeviceInfo query_device();
+// The device given (-1: the calling thread's current device). available is false, with the
+// reason, where it cannot run this build's kernels (no device, too old, or no code built for
+// its architecture).
+DeviceInfo query_device(int device = -1);
+// The CUDA architectures this build has device code for, e.g. "sm_90 compute_90" ("" without
+// CUDA).
+std::string built_cuda_architectures();
+// Hands the device memory the library keeps for reuse (its own pool, one per device) back to
+// the driver. Call between phases of a program that needs the memory elsewhere.
+void release_cached_device_memory();
 
 // Every failure the library reports is an Error with one of these codes, so callers can
 // react by kind; the message says what went wrong and what to do about it.

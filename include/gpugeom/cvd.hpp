@@ -32,8 +32,7 @@ struct CvdProgress {
   std::int64_t moved = 0;  // sites that moved
 };
 
-struct CvdOptions {
-  Backend backend = Backend::Auto;
+struct CvdOptions : RunOptions {
   std::int64_t num_sites = 1000;      // when initial_sites is empty: drawn with probability
                                       // proportional to the density, never twice in one place
   std::vector<double> initial_sites;  // dim values per site, in density pixels

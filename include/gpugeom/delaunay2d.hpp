@@ -14,9 +14,7 @@
 
 namespace gpugeom {
 
-struct Delaunay2dOptions {
-  Backend backend = Backend::Auto;
-};
+struct Delaunay2dOptions : RunOptions {};
 
 struct Triangulation2d {
   // Counter-clockwise triangles, 3 input-point indices each.
@@ -35,15 +33,17 @@ struct Triangulation2d {
 };
 
 // xy: n points, x and y interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
-// outside the exactly representable range, more than 2^30 points; Error(DegenerateInput) for
+// outside the exactly representable range, more than 2^28 points; Error(DegenerateInput) for
 // fewer than 3 distinct points or all points on one line.
 Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt = {});
 Triangulation2d delaunay2d(const std::vector<Point2>& pts, const Delaunay2dOptions& opt = {});
 
 // The same triangulation with the points already on the GPU and the result left there (CUDA
-// builds): device_xy is device memory holding n points, x and y interleaved, ready when the
-// call starts (it runs on the default stream). The arrays are device memory freed when the
-// last copy of their pointer goes; they can be wrapped without copying, e.g. by CuPy.
+// builds): device_xy is device memory holding n points, x and y interleaved, on run's device.
+// The work runs on run.stream (see RunOptions), so the points must be ready in that stream's
+// order (work on the legacy default stream always is); the call returns once the result is
+// ready. The arrays are device memory freed when the last copy of their pointer goes; they can
+// be wrapped without copying, e.g. by CuPy. run.backend is ignored.
 struct DeviceTriangulation2d {
   std::int64_t num_points = 0, num_triangles = 0, num_duplicates = 0;
   std::shared_ptr<std::int32_t> triangles;     // 3 * num_triangles, as Triangulation2d's
@@ -52,7 +52,8 @@ struct DeviceTriangulation2d {
   Stats stats;
 };
 // Throws Error(Unsupported) where the build or the machine has no CUDA device.
-DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n);
+DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
+                                        const RunOptions& run = {});
 
 // The Voronoi diagram dual to a Delaunay triangulation, in SciPy's `Voronoi` conventions.
 struct Voronoi2d {

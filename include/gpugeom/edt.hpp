@@ -28,8 +28,7 @@ enum class EdtMethod {
 // (SciPy's distance_transform_edt: distance of every element to the nearest zero).
 enum class SiteRule { NonZero, Zero };
 
-struct EdtOptions {
-  Backend backend = Backend::Auto;
+struct EdtOptions : RunOptions {
   EdtMethod method = EdtMethod::Pba;
   std::vector<double> sampling;  // per axis, C order; empty = all 1. Positive and finite.
   bool squared = false;          // squared distances (int64 when isotropic, else float64)
@@ -41,6 +40,12 @@ struct EdtOptions {
   // items (its concurrency: 1024 per GPU multiprocessor, 4 per CPU thread) while keeping bands
   // of at least 16 voxels; at most 64.
   std::int64_t bands[3] = {0, 0, 0};
+  // Tuning for benchmarks and tests; the result never depends on it. window_reach: how far the
+  // windowed passes search a line before handing it to the banded pass (-1: chosen by site
+  // density, 0: never windowed). tiles (CUDA): banded passes in shared-memory tiles (-1: where
+  // they pay, 0: never, 1: wherever they fit).
+  std::int64_t window_reach = -1;
+  int tiles = -1;
   std::vector<std::int64_t> slices;  // 3D only: compute just these z slices (slice-by-slice)
 };
 

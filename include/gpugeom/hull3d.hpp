@@ -14,9 +14,7 @@
 
 namespace gpugeom {
 
-struct Hull3dOptions {
-  Backend backend = Backend::Auto;
-};
+struct Hull3dOptions : RunOptions {};
 
 struct ConvexHull3d {
   // Facets: 3 input-point indices each, counter-clockwise seen from outside.
@@ -47,9 +45,10 @@ ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOption
 ConvexHull3d convex_hull3d(const std::vector<Point3>& pts, const Hull3dOptions& opt = {});
 
 // The same hull with the points already on the GPU and the result left there (CUDA builds):
-// device_xyz is device memory holding n points, ready when the call starts (it runs on the
-// default stream). The arrays are device memory freed when the last copy of their pointer
-// goes. Throws Error(Unsupported) where the build or the machine has no CUDA device.
+// device_xyz is device memory holding n points on run's device, ready in run.stream's order (see
+// RunOptions; work on the legacy default stream always is). The arrays are device memory freed when
+// the last copy of their pointer goes. Throws Error(Unsupported) where the build or the machine has
+// no CUDA device.
 struct DeviceHull3d {
   std::int64_t num_points = 0, num_facets = 0, num_vertices = 0;
   std::shared_ptr<std::int32_t> triangles;  // 3 * num_facets, as ConvexHull3d's
@@ -57,6 +56,7 @@ struct DeviceHull3d {
   std::shared_ptr<std::int32_t> vertices;   // num_vertices
   Stats stats;
 };
-DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n);
+DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
+                                  const RunOptions& run = {});
 
 }  // namespace gpugeom

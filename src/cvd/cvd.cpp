@@ -160,6 +160,7 @@ CvdResult centroidal_voronoi(const io::Grid& g, const CvdOptions& opt) {
   const double unit_mass = vmax / kLevels / std::pow(double(s), nd);
   const double unit_energy = unit_mass / (double(s) * s);
   rq.max_iterations = opt.max_iterations;
+  rq.run = static_cast<const RunOptions&>(opt);
   rq.move_tol2 = (opt.move_tolerance * s) * (opt.move_tolerance * s);
   rq.energy_tol = opt.energy_tolerance;
   if (opt.progress)
@@ -174,7 +175,7 @@ CvdResult centroidal_voronoi(const io::Grid& g, const CvdOptions& opt) {
 
   CvdResult r;
   r.dim = nd;
-  const Backend b = resolve_backend(opt.backend);
+  const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
   r.stats.counters["sites"] = std::int64_t(rq.sites.size()) / nd;
   r.stats.counters["grid_points"] = gcount;

@@ -19,6 +19,7 @@ struct Request {
   edt::Layout layout;                  // the Voronoi grid (internal axes x, y, z)
   std::vector<std::uint32_t> weights;  // per grid point, quantised (< 2^16), raster order
   std::vector<std::int32_t> sites;     // nd per site, grid coordinates, internal axis order
+  RunOptions run;
   int max_iterations = 0;
   double move_tol2 = 0;   // squared, grid units
   double energy_tol = 0;  // relative

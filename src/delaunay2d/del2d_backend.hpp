@@ -23,12 +23,15 @@ struct DeviceOutput {
 
 // xy: n points on the host. Validates the coordinates on the executor (throws Error).
 namespace cpu_impl {
-void triangulate(const double* xy, std::int64_t n, Output& out, Stats& stats);
+void triangulate(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
+                 Stats& stats);
 }
 namespace cuda_impl {
-void triangulate(const double* xy, std::int64_t n, Output& out, Stats& stats);
+void triangulate(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
+                 Stats& stats);
 // xy: n points in device memory.
-void triangulate_device(const double* xy, std::int64_t n, DeviceOutput& out, Stats& stats);
+void triangulate_device(const double* xy, std::int64_t n, const RunOptions& run, DeviceOutput& out,
+                        Stats& stats);
 }  // namespace cuda_impl
 
 }  // namespace gpugeom::del2d

@@ -27,7 +27,8 @@ using Exec = CpuExec;
 #include "delaunay2d/impl/prepare.inl"
 #include "delaunay2d/impl/mesh.inl"
 #include "delaunay2d/impl/triangulate.inl"
-void triangulate(const double* xy, std::int64_t n, Output& out, Stats& stats) {
-  triangulate_impl(xy, n, out, stats);
+void triangulate(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
+                 Stats& stats) {
+  triangulate_impl(xy, n, run, out, stats);
 }
 }  // namespace gpugeom::del2d::cpu_impl

@@ -28,13 +28,15 @@ using Exec = CudaExec;
 #include "delaunay2d/impl/prepare.inl"
 #include "delaunay2d/impl/mesh.inl"
 #include "delaunay2d/impl/triangulate.inl"
-void triangulate(const double* xy, std::int64_t n, Output& out, Stats& stats) {
-  triangulate_impl(xy, n, out, stats);
+void triangulate(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
+                 Stats& stats) {
+  triangulate_impl(xy, n, run, out, stats);
 }
-void triangulate_device(const double* xy, std::int64_t n, DeviceOutput& out, Stats& stats) {
-  Exec ex;
+void triangulate_device(const double* xy, std::int64_t n, const RunOptions& run, DeviceOutput& out,
+                        Stats& stats) {
+  Exec ex(run);
   triangulate_core(
-      ex, xy, n, true, stats, [] {},
+      ex, xy, n, true, run.profile, stats, [] {},
       [&](Prepared& P, Triangulator::Finished& f) {
         auto own = [](std::int32_t* p) {
           return std::shared_ptr<std::int32_t>(p, [](std::int32_t* q) { (void)cudaFree(q); });

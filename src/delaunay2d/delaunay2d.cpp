@@ -26,16 +26,16 @@ void check_count(std::int64_t n) {
 Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt) {
   check_count(n);
   Triangulation2d r;
-  const Backend b = resolve_backend(opt.backend);
+  const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
   del2d::Output out;
 #ifdef GPUGEOM_HAVE_CUDA
   if (b == Backend::Cuda)
-    del2d::cuda_impl::triangulate(xy, n, out, r.stats);
+    del2d::cuda_impl::triangulate(xy, n, opt, out, r.stats);
   else
-    del2d::cpu_impl::triangulate(xy, n, out, r.stats);
+    del2d::cpu_impl::triangulate(xy, n, opt, out, r.stats);
 #else
-  del2d::cpu_impl::triangulate(xy, n, out, r.stats);
+  del2d::cpu_impl::triangulate(xy, n, opt, out, r.stats);
 #endif
   r.triangles = std::move(out.triangles);
   r.neighbors = std::move(out.neighbors);
@@ -44,14 +44,15 @@ Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOpt
   return r;
 }
 
-DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n) {
+DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
+                                        const RunOptions& run) {
   check_count(n);
   DeviceTriangulation2d r;
-  r.stats.backend = resolve_backend(Backend::Cuda);  // throws where there is no device
+  r.stats.backend = resolve_backend(Backend::Cuda, run.device);  // throws where there is none
   r.num_points = n;
 #ifdef GPUGEOM_HAVE_CUDA
   del2d::DeviceOutput out;
-  del2d::cuda_impl::triangulate_device(device_xy, n, out, r.stats);
+  del2d::cuda_impl::triangulate_device(device_xy, n, run, out, r.stats);
   r.num_triangles = out.num_triangles;
   r.num_duplicates = out.num_duplicates;
   r.triangles = std::move(out.triangles);
@@ -59,6 +60,7 @@ DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n)
   r.duplicate_of = std::move(out.duplicate_of);
 #else
   (void)device_xy;
+  (void)run;
 #endif
   return r;
 }

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "edt/edt_backend.hpp"
-#include "exec/hd.hpp"
+#include "base/hd.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/io.hpp"
 
@@ -87,7 +87,10 @@ EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std:
   if (opt.distance != 0 && opt.distance != 32 && opt.distance != 64)
     throw Error(ErrorCode::InvalidArgument, "distance must be 0, 32 or 64 (bits)");
   rq.method = opt.method;
-  for (int a = 0; a < 3; ++a) rq.bands[a] = opt.bands[a];
+  for (int a = 0; a < 3; ++a) rq.tune.bands[a] = opt.bands[a];
+  rq.tune.window_reach = opt.window_reach;
+  rq.tune.tiles = opt.tiles;
+  rq.run = static_cast<const RunOptions&>(opt);
   rq.want_sqdist = opt.squared;
   rq.want_distance = opt.distance;
   rq.want_features = opt.features;
@@ -105,7 +108,7 @@ EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std:
     rq.slices = opt.slices;
     r.shape[0] = std::int64_t(opt.slices.size());
   }
-  const Backend b = resolve_backend(opt.backend);
+  const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
   edt::Output out;
 #ifdef GPUGEOM_HAVE_CUDA

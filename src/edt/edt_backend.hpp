@@ -12,7 +12,8 @@ struct Request {
   Layout layout;
   Metric metric;
   EdtMethod method = EdtMethod::Pba;
-  std::int64_t bands[3] = {0, 0, 0};  // 0: automatic
+  Tuning tune;
+  RunOptions run;
   // Sites: a mask with one byte per voxel (nonzero = site), or a list of packed sites.
   const std::uint8_t* mask = nullptr;
   std::vector<std::uint32_t> sites;

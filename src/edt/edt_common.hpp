@@ -13,12 +13,22 @@
 #pragma once
 #include <cstdint>
 
-#include "exec/hd.hpp"
+#include "base/hd.hpp"
 #include "predicates/expansion.hpp"
 
 namespace gpugeom::edt {
 
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+
+// Choices that change the speed of the passes, never their result (EdtOptions has them for
+// benchmarks and tests): PBA band counts per axis (0: by size), the windowed passes' reach
+// (-1: by site density, 0: never), the GPU's shared-memory tiles (-1: where they pay, 0: never,
+// 1: wherever they fit).
+struct Tuning {
+  std::int64_t bands[3] = {0, 0, 0};
+  std::int64_t window_reach = -1;
+  int tiles = -1;
+};
 
 struct Layout {
   int nd = 2;

@@ -33,7 +33,7 @@ bool window_pass_kernel(Exec&, const Layout&, int, std::int64_t, const std::uint
   return false;
 }
 // Tiles in on-chip memory are a GPU device: a CPU thread's cache already holds its line.
-bool line_pass_tiled(Exec&, const Layout&, const Metric&, int, std::int64_t, std::uint32_t*,
+bool line_pass_tiled(Exec&, const Layout&, const Metric&, int, std::int64_t, int, std::uint32_t*,
                      std::uint32_t*, const std::uint8_t*) {
   return false;
 }

@@ -501,7 +501,8 @@ __global__ void line_pass_tile_kernel(Layout L, Metric M, int a, std::int32_t le
 constexpr std::int64_t kTileSmemMax = 160 * 1024;  // leaves room for a second block per SM
 
 bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int64_t bands,
-                     std::uint32_t* cand, std::uint32_t* out, const std::uint8_t* flags) {
+                     int tiles, std::uint32_t* cand, std::uint32_t* out,
+                     const std::uint8_t* flags) {
   const std::int64_t len = L.n[a], nx = L.n[0];
   const std::int64_t lines = L.count() / len, blocks = lines / nx * ((nx + 31) / 32);
   int dev = 0, sms = 0;
@@ -509,9 +510,8 @@ bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int
   GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, dev));
   // Whole 32-line tiles must fit on chip, x rows must fill them, and there must be blocks
   // enough for every SM (a 2D grid's few long columns take the global banded pass).
-  // GPUGEOM_EDT_TILES=0 never uses tiles, =1 whenever they fit (tests cover small grids so).
-  const char* force = std::getenv("GPUGEOM_EDT_TILES");
-  const int mode = force && *force ? std::atoi(force) : -1;
+  // tiles = 0 never uses tiles, 1 whenever they fit (tests cover small grids so).
+  const int mode = tiles;
   if (a == 0 || mode == 0) return false;
   if (mode != 1 && (nx < 32 || blocks < 4 * sms)) return false;
   if (bands <= 0) {  // bands of about 64 positions, at most 16 (512 threads)
@@ -528,7 +528,11 @@ bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int
     while (bands > 1 && 32 * bands > attr.maxThreadsPerBlock) bands = (bands + 1) / 2;
     const std::int64_t band_len = (len + bands - 1) / bands;
     const std::int64_t smem = (len * 32 + 2 * bands * 32) * 4;
-    if (smem > kTileSmemMax) return false;
+    // The device's opt-in limit per block (227 KB on the H100, 163 KB on an A100, 99 KB on
+    // sm_86/89): lines whose tiles do not fit take the banded pass in global memory instead.
+    int optin = 0;
+    GG_CUDA_CHECK(cudaDeviceGetAttribute(&optin, cudaDevAttrMaxSharedMemoryPerBlockOptin, dev));
+    if (smem > kTileSmemMax || smem + std::int64_t(attr.sharedSizeBytes) > optin) return false;
     GG_CUDA_CHECK(
         cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize, int(smem)));
     kernel<<<unsigned(blocks), unsigned(32 * bands), std::size_t(smem), ex.stream()>>>(

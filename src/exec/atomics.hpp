@@ -9,7 +9,7 @@
 #include <cooperative_groups/reduce.h>
 #endif
 
-#include "exec/hd.hpp"
+#include "base/hd.hpp"
 
 namespace gpugeom {
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <string>
 
 #include "gpugeom/common.hpp"
 
@@ -29,19 +30,23 @@ Backend parse_backend(const std::string& s) {
               "unknown backend '" + s + "': expected one of auto, cpu, cuda");
 }
 
-Backend resolve_backend(Backend requested) {
+Backend resolve_backend(Backend requested, int device) {
   if (requested == Backend::Auto) {
     if (const char* env = std::getenv("GPUGEOM_BACKEND"); env && *env) {
       requested = parse_backend(env);
     }
   }
   if (requested == Backend::Cpu) return Backend::Cpu;
-  DeviceInfo d = query_device();
-  if (requested == Backend::Cuda) {
-    if (!d.available)
-      throw Error(ErrorCode::Unsupported,
-                  "the CUDA backend was requested but cannot be used: " + d.reason +
+  DeviceInfo d = query_device(device);
+  // A device named explicitly is a request for CUDA: never a silent fall back to the CPU.
+  if (requested == Backend::Cuda || device >= 0) {
+    if (!d.available) {
+      const bool no_such = device >= 0 && d.device_count > 0 && device >= d.device_count;
+      throw Error(no_such ? ErrorCode::InvalidArgument : ErrorCode::Unsupported,
+                  "the CUDA backend" + (device >= 0 ? " on device " + std::to_string(device) : "") +
+                      " was requested but cannot be used: " + d.reason +
                       " (use --backend cpu or GPUGEOM_BACKEND=cpu)");
+    }
     return Backend::Cuda;
   }
   return d.available ? Backend::Cuda : Backend::Cpu;

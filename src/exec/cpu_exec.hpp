@@ -19,7 +19,7 @@
 #include <thrust/system/omp/execution_policy.h>
 
 #include "gpugeom/common.hpp"
-#include "exec/hd.hpp"
+#include "base/hd.hpp"
 
 namespace gpugeom {
 
@@ -69,10 +69,26 @@ struct CpuTeam {
   }
 };
 
+// Every member runs to completion before returning ("synchronises", in CudaExec's terms).
 struct CpuExec {
   static constexpr Backend backend = Backend::Cpu;
   template <class T>
   using Buffer = HostBuffer<T>;
+
+  CpuExec() = default;
+  // run.threads > 0 sets the OpenMP thread count of the calling thread for the executor's
+  // lifetime (restored after), which every parallel step here and in Thrust's omp policy uses.
+  explicit CpuExec(const RunOptions& run) {
+    if (run.threads > 0) {
+      prev_threads_ = omp_get_max_threads();
+      omp_set_num_threads(run.threads);
+    }
+  }
+  ~CpuExec() {
+    if (prev_threads_) omp_set_num_threads(prev_threads_);
+  }
+  CpuExec(const CpuExec&) = delete;
+  CpuExec& operator=(const CpuExec&) = delete;
 
   template <class T>
   Buffer<T> alloc(std::size_t n) {
@@ -245,6 +261,9 @@ struct CpuExec {
   std::int64_t concurrency() const {
     return std::int64_t(omp_get_max_threads()) * 4;
   }
+
+ private:
+  int prev_threads_ = 0;
 };
 
 }  // namespace gpugeom

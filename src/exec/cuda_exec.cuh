@@ -1,5 +1,7 @@
-// The CUDA executor: one stream, stream-ordered allocation (cudaMallocAsync), CUB for scans,
-// sorts, selection and reductions. Same members as CpuExec. Only for nvcc translation units.
+// The CUDA executor: one device and one stream given by the caller, stream-ordered allocation
+// from the library's own pool on that device, CUB for scans, sorts, selection and reductions.
+// Same members as CpuExec. Members marked [synchronises] wait for the stream; every other member
+// only queues work. Only for nvcc translation units.
 #pragma once
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_reduce.cuh>
@@ -8,13 +10,16 @@
 #include <cuda_runtime.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/iterator/transform_iterator.h>
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <type_traits>
 #include <utility>
 
 #include "exec/cuda_check.cuh"
+#include "exec/cuda_device.hpp"
 #include "exec/host_staging.hpp"
-#include "exec/hd.hpp"
+#include "base/hd.hpp"
 
 namespace gpugeom {
 
@@ -22,23 +27,26 @@ template <class T>
 class DeviceBuffer {
  public:
   DeviceBuffer() = default;
-  DeviceBuffer(std::size_t n, cudaStream_t s) : n_(n), s_(s) {
+  // Stream-ordered from the library's pool on the current device (see cuda_device.hpp).
+  DeviceBuffer(std::size_t n, cudaStream_t s, cudaMemPool_t pool, int device) : n_(n), s_(s) {
     if (!n) return;
     void** pp = reinterpret_cast<void**>(&p_);
-    const cudaError_t first = cudaMallocAsync(pp, n * sizeof(T), s);
-    if (first == cudaErrorMemoryAllocation) {
-      // The pool keeps freed blocks (CudaExec); hand them back to the driver and retry once.
+    const std::size_t bytes = n * sizeof(T);
+    cudaError_t e = cudaMallocFromPoolAsync(pp, bytes, pool, s);
+    if (e == cudaErrorMemoryAllocation) {
+      // The pool keeps freed blocks; hand them back to the driver and retry once.
       (void)cudaGetLastError();
-      int dev = 0;
-      cudaMemPool_t pool;
       GG_CUDA_CHECK(cudaStreamSynchronize(s));
-      GG_CUDA_CHECK(cudaGetDevice(&dev));
-      GG_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool, dev));
-      GG_CUDA_CHECK(cudaMemPoolTrimTo(pool, 0));
-      GG_CUDA_CHECK(cudaMallocAsync(pp, n * sizeof(T), s));
-    } else {
-      GG_CUDA_CHECK(first);
+      cuda_device::trim(device);
+      e = cudaMallocFromPoolAsync(pp, bytes, pool, s);
     }
+    if (e == cudaErrorMemoryAllocation) {
+      (void)cudaGetLastError();
+      p_ = nullptr;
+      n_ = 0;
+      cuda_device::throw_out_of_memory(bytes, "device allocation");
+    }
+    GG_CUDA_CHECK(e);
   }
   DeviceBuffer(DeviceBuffer&& o) noexcept { swap(o); }
   DeviceBuffer& operator=(DeviceBuffer&& o) noexcept {
@@ -55,7 +63,8 @@ class DeviceBuffer {
   T* data() { return p_; }
   const T* data() const { return p_; }
   std::size_t size() const { return n_; }
-  // Gives up ownership (for results handed to the caller); free with cudaFree.
+  // Gives up ownership (for results handed to the caller); free with cudaFree (which waits for
+  // the device) or cudaFreeAsync.
   T* release() {
     T* p = p_;
     p_ = nullptr;
@@ -135,6 +144,23 @@ template <int Threads, class F>
 __global__ void __launch_bounds__(Threads) team_kernel(F f) {
   f(Team{int(threadIdx.x), int(blockDim.x)});
 }
+// Resident blocks of `block` threads per SM for `kernel` on device dev (at least 1), computed
+// on first use per kernel and device.
+constexpr int kMaxDevices = 64;
+template <auto Kernel>
+int resident_blocks(int block, int dev) {
+  static std::atomic<int> cache[kMaxDevices] = {};
+  std::atomic<int>* c = dev < kMaxDevices ? &cache[dev] : nullptr;
+  if (c) {
+    const int v = c->load(std::memory_order_relaxed);
+    if (v) return v;
+  }
+  int n = 0;
+  GG_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&n, Kernel, block, 0));
+  n = n > 0 ? n : 1;
+  if (c) c->store(n, std::memory_order_relaxed);
+  return n;
+}
 template <class F, class T>
 struct IndexMap {
   F f;
@@ -153,48 +179,46 @@ class CudaExec {
   template <class T>
   using Buffer = DeviceBuffer<T>;
 
-  explicit CudaExec(cudaStream_t s = nullptr) : s_(s) {
-    int dev = 0;
-    GG_CUDA_CHECK(cudaGetDevice(&dev));
-    GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms_, cudaDevAttrMultiProcessorCount, dev));
-    // Freed blocks stay in the device's default pool for the next call (as CuPy's memory pool
-    // does): by default the pool returns them to the driver at every synchronisation, and the
-    // next large cudaMallocAsync then maps fresh pages, about 1 ms per 512 MB.
-    cudaMemPool_t pool;
-    GG_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool, dev));
-    std::uint64_t keep = ~std::uint64_t(0);
-    GG_CUDA_CHECK(cudaMemPoolSetAttribute(pool, cudaMemPoolAttrReleaseThreshold, &keep));
+  // Binds the executor to the device and stream of `run` (cuda_device::resolve) for its
+  // lifetime: the calling thread's current device is that device until the executor is
+  // destroyed, then restored. One executor is used by one host thread.
+  explicit CudaExec(const RunOptions& run = {})
+      : dev_(cuda_device::resolve(run)),
+        on_(dev_),
+        s_(run.stream ? cudaStream_t(run.stream) : cudaStreamPerThread),
+        pool_(cuda_device::pool(dev_)) {
+    GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms_, cudaDevAttrMultiProcessorCount, dev_));
   }
+  CudaExec(const CudaExec&) = delete;
+  CudaExec& operator=(const CudaExec&) = delete;
   cudaStream_t stream() const { return s_; }
+  int device() const { return dev_; }
 
   template <class T>
   Buffer<T> alloc(std::size_t n) {
-    return Buffer<T>(n, s_);
+    return Buffer<T>(n, s_, pool_, dev_);
   }
 
+  // f(i) for i < n.
   template <class F>
   void for_each_index(std::int64_t n, F f) {
     if (n <= 0) return;
     constexpr int kBlock = 256;
-    std::int64_t blocks = (n + kBlock - 1) / kBlock;
-    const std::int64_t cap = std::int64_t(sms_) * 32;  // grid-stride beyond this
-    if (blocks > cap) blocks = cap;
-    cuda_detail::for_each_kernel<<<unsigned(blocks), kBlock, 0, s_>>>(n, f);
-    GG_CUDA_CHECK_LAUNCH("for_each_kernel");
+    const std::int64_t blocks = grid<cuda_detail::for_each_kernel<F>>(kBlock, n);
+    cuda_detail::for_each_kernel<F><<<unsigned(blocks), kBlock, 0, s_>>>(n, f);
+    GG_CUDA_CHECK_LAUNCH_OF("for_each_kernel", F);
   }
 
   // f(i) for every i < per * *count, where count lives on the device and is read when the kernel
   // runs, so the host need not wait for the work that produces it; bound >= per * *count sizes
-  // the grid.
+  // the grid as for_each_index(bound) would (blocks past the count return at once).
   template <class F>
   void for_each_counted(const std::int64_t* count, std::int64_t bound, F f, std::int64_t per = 1) {
     if (bound <= 0) return;
     constexpr int kBlock = 256;
-    std::int64_t blocks = (bound + kBlock - 1) / kBlock;
-    const std::int64_t cap = std::int64_t(sms_) * 8;  // one full wave; grid-stride beyond
-    if (blocks > cap) blocks = cap;
-    cuda_detail::for_each_counted_kernel<<<unsigned(blocks), kBlock, 0, s_>>>(count, per, f);
-    GG_CUDA_CHECK_LAUNCH("for_each_counted_kernel");
+    const std::int64_t blocks = grid<cuda_detail::for_each_counted_kernel<F>>(kBlock, bound);
+    cuda_detail::for_each_counted_kernel<F><<<unsigned(blocks), kBlock, 0, s_>>>(count, per, f);
+    GG_CUDA_CHECK_LAUNCH_OF("for_each_counted_kernel", F);
   }
 
   // A team: threads that share barriers (one thread block here), for iterations so short that a
@@ -211,7 +235,7 @@ class CudaExec {
   void team(F f) {
     static_assert(Threads % 32 == 0 && Threads <= cuda_detail::kTeamThreads, "team size");
     cuda_detail::team_kernel<Threads><<<1, Threads, 0, s_>>>(f);
-    GG_CUDA_CHECK_LAUNCH("team_kernel");
+    GG_CUDA_CHECK_LAUNCH_OF("team_kernel", F);
   }
 
   template <class T>
@@ -222,7 +246,8 @@ class CudaExec {
   void copy(const T* src, std::int64_t n, T* dst) {
     if (n > 0) GG_CUDA_CHECK(cudaMemcpyAsync(dst, src, sizeof(T) * n, cudaMemcpyDefault, s_));
   }
-  // Host copies complete before returning, so the host array may be used or freed at once.
+  // [synchronises] Host copies complete before returning, so the host array may be used or
+  // freed at once (and everything queued before them has run).
   template <class T>
   void to_host(const T* src, std::int64_t n, T* host) {
     if (std::size_t(n) * sizeof(T) >= staging::kMinBytes && is_pageable(host)) {
@@ -236,6 +261,7 @@ class CudaExec {
     copy(src, n, host);
     sync();
   }
+  // [synchronises] as to_host.
   template <class T>
   void from_host(const T* host, std::int64_t n, T* dst) {
     if (std::size_t(n) * sizeof(T) >= staging::kMinBytes && is_pageable(host)) {
@@ -270,6 +296,7 @@ class CudaExec {
       return cub::DeviceScan::InclusiveSum(tmp, bytes, in, out, n, s_);
     });
   }
+  // [synchronises] returns the value on the host.
   template <class T, class Op>
   T reduce(const T* in, std::int64_t n, T init, Op op) {
     Buffer<T> res = alloc<T>(1);
@@ -314,6 +341,7 @@ class CudaExec {
     if (kb.Current() != keys) copy(kb.Current(), n, keys);
     if (vb.Current() != vals) copy(vb.Current(), n, vals);
   }
+  // [synchronises] returns the count on the host (copy_if_to does not wait).
   template <class T, class Pred>
   std::int64_t copy_if(const T* in, std::int64_t n, T* out, Pred pred) {
     if (n <= 0) return 0;
@@ -334,6 +362,7 @@ class CudaExec {
       return cub::DeviceSelect::If(tmp, bytes, in, out, count, n, pred, s_);
     });
   }
+  // [synchronises] returns the count on the host (compact_indices_to does not wait).
   template <class Pred>
   std::int64_t compact_indices(std::int64_t n, Pred pred, std::int32_t* out) {
     if (n <= 0) return 0;
@@ -356,6 +385,7 @@ class CudaExec {
       return cub::DeviceSelect::If(tmp, bytes, first, out, count, n, ip, s_);
     });
   }
+  // [synchronises] waits for everything queued on the executor's stream.
   void sync() { GG_CUDA_CHECK(cudaStreamSynchronize(s_)); }
   // Plain host memory (not pinned, not managed): large copies then go through staging.
   static bool is_pageable(const void* p) {
@@ -370,6 +400,17 @@ class CudaExec {
   std::int64_t concurrency() const { return std::int64_t(sms_) * 1024; }
 
  private:
+  // Blocks for a grid-stride kernel over `items`: one item a thread up to a cap of whole waves
+  // (the resident blocks per SM for this kernel, times the SMs, times as many waves as fit 32
+  // blocks per SM), so the last wave of a capped grid is never partial whatever the kernel's
+  // occupancy. The occupancy is read once per kernel and device.
+  template <auto Kernel>
+  std::int64_t grid(int block, std::int64_t items) const {
+    const std::int64_t want = (items + block - 1) / block;
+    const std::int64_t per_sm = cuda_detail::resident_blocks<Kernel>(block, dev_);
+    const std::int64_t waves = std::max<std::int64_t>(1, 32 / per_sm);
+    return std::min(want, std::int64_t(sms_) * per_sm * waves);
+  }
   // CUB's two-call protocol: ask for the temporary size, allocate it stream-ordered, run.
   template <class Call>
   void run_cub(Call call) {
@@ -378,7 +419,10 @@ class CudaExec {
     Buffer<unsigned char> tmp = alloc<unsigned char>(bytes ? bytes : 1);
     GG_CUDA_CHECK(call(tmp.data(), bytes));
   }
+  int dev_;
+  cuda_device::Scope on_;
   cudaStream_t s_;
+  cudaMemPool_t pool_;
   int sms_ = 1;
 };
 

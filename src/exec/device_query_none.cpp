@@ -5,9 +5,13 @@ namespace gpugeom {
 bool built_with_cuda() {
   return false;
 }
-DeviceInfo query_device() {
+std::string built_cuda_architectures() {
+  return "";
+}
+DeviceInfo query_device(int) {
   DeviceInfo d;
   d.reason = "this build of gpugeom was compiled without CUDA (GPUGEOM_CUDA=OFF or no nvcc)";
   return d;
 }
+void release_cached_device_memory() {}
 }  // namespace gpugeom

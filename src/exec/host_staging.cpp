@@ -30,14 +30,15 @@ void check(cudaError_t e, const char* what) {
                 std::string(what) + ": " + cudaGetErrorString(e));
 }
 
-// Two pinned buffers and their events, made once per process on first use and kept (pinning
-// is slow; keeping 64 MB pinned is cheap). One copy at a time uses them.
+// Two pinned buffers and their events per device, made on the device's first large copy and
+// kept (pinning is slow; keeping 64 MB pinned is cheap). One copy at a time per device uses
+// them; copies on different devices run side by side.
 struct Pool {
   void* buf[2] = {nullptr, nullptr};
   cudaEvent_t ev[2];
   cudaEvent_t part[2][kParts];  // the parts of a chunk coming back (to_host)
   std::mutex busy;
-  Pool() {
+  Pool() {  // on the current device, whose streams record the events
     for (int i = 0; i < 2; ++i) {
       check(cudaMallocHost(&buf[i], kChunk), "pinned staging buffer");
       check(cudaEventCreateWithFlags(&ev[i], cudaEventDisableTiming), "staging event");
@@ -45,39 +46,54 @@ struct Pool {
         check(cudaEventCreateWithFlags(&e, cudaEventDisableTiming), "staging event");
     }
   }
+  void release() {
+    for (int i = 0; i < 2; ++i) {
+      (void)cudaFreeHost(buf[i]);
+      (void)cudaEventDestroy(ev[i]);
+      for (auto& e : part[i]) (void)cudaEventDestroy(e);
+    }
+  }
 };
-Pool& pool() {
-  static Pool* p = [] {
-    Pool* q = new Pool;
+struct Pools {
+  std::mutex m;
+  std::vector<Pool*> per_device;
+};
+Pools& pools() {
+  static Pools* p = [] {
+    Pools* q = new Pools;
     // Freed before the CUDA runtime's own exit handler runs (registered after it), so leak
     // checkers see no pinned memory left behind.
     std::atexit([] {
-      Pool& r = pool();
-      for (int i = 0; i < 2; ++i) {
-        (void)cudaFreeHost(r.buf[i]);
-        (void)cudaEventDestroy(r.ev[i]);
-        for (auto& e : r.part[i]) (void)cudaEventDestroy(e);
-      }
+      for (Pool* x : pools().per_device)
+        if (x) x->release();
     });
     return q;
   }();
   return *p;
 }
+// The staging pool of the calling thread's current device (the executor's).
+Pool& pool() {
+  int dev = 0;
+  check(cudaGetDevice(&dev), "staging: current device");
+  Pools& P = pools();
+  std::lock_guard<std::mutex> lk(P.m);
+  if (P.per_device.size() <= std::size_t(dev)) P.per_device.resize(std::size_t(dev) + 1, nullptr);
+  Pool*& p = P.per_device[std::size_t(dev)];
+  if (!p) p = new Pool;
+  return *p;
+}
 
-// One pinned page for small reads, made on first use (apart from the large buffers, so that
-// a program that only reads counters never pins 64 MB).
+// One pinned page per host thread for small reads, made on first use (apart from the large
+// buffers, so that a program that only reads counters never pins 64 MB). Per thread, since a
+// read waits for its stream: a shared page would make threads wait for each other's streams.
 struct Mailbox {
   void* buf = nullptr;
-  std::mutex busy;
   Mailbox() { check(cudaMallocHost(&buf, kMailBytes), "pinned mailbox"); }
+  ~Mailbox() { (void)cudaFreeHost(buf); }
 };
 Mailbox& mailbox() {
-  static Mailbox* m = [] {
-    Mailbox* q = new Mailbox;
-    std::atexit([] { (void)cudaFreeHost(mailbox().buf); });
-    return q;
-  }();
-  return *m;
+  thread_local Mailbox m;
+  return m;
 }
 
 // memcpy over the cores: one thread cannot keep up with the link. Not an OpenMP region: its
@@ -102,9 +118,14 @@ class CopyPool {
     j.src = static_cast<const char*>(src);
     j.bytes = bytes;
     j.pieces = (bytes + kPiece - 1) / kPiece;
-    if (helpers_.empty() || j.pieces < 2 || j.pieces > kMaxPieces) {
-      std::memcpy(dst, src, bytes);
-      ready(std::size_t(0), bytes);
+    std::unique_lock<std::mutex> mine(use_, std::try_to_lock);
+    if (!mine || helpers_.empty() || j.pieces < 2 || j.pieces > kMaxPieces) {
+      // (busy with another device's copy: this one goes alone, in parts as it would have)
+      for (std::size_t at = 0; at < bytes; at += kStep) {
+        const std::size_t len = std::min(kStep, bytes - at);
+        std::memcpy(j.dst + at, j.src + at, len);
+        ready(at, at + len);
+      }
       return;
     }
     publish(j);
@@ -143,7 +164,8 @@ class CopyPool {
     j.pieces = (bytes + kPiece - 1) / kPiece;
     j.before = before;
     j.ctx = ctx;
-    if (helpers_.empty() || j.pieces < 2 || j.pieces > kMaxPieces) {
+    std::unique_lock<std::mutex> mine(use_, std::try_to_lock);
+    if (!mine || helpers_.empty() || j.pieces < 2 || j.pieces > kMaxPieces) {
       for (std::size_t i = 0; i < j.pieces; ++i) do_piece(j, i);
       return !j.failed.load();
     }
@@ -233,6 +255,7 @@ class CopyPool {
     }
   }
   std::vector<std::thread> helpers_;
+  std::mutex use_;  // one job at a time (copies for several devices at once: see copy)
   std::mutex m_;
   std::condition_variable cv_, idle_;
   Job* job_ = nullptr;
@@ -283,7 +306,6 @@ void to_host(void* host, const void* device, std::size_t bytes, cudaStream_t s) 
 
 void small_to_host(void* host, const void* device, std::size_t bytes, cudaStream_t s) {
   Mailbox& m = mailbox();
-  std::lock_guard<std::mutex> lock(m.busy);
   check(cudaMemcpyAsync(m.buf, device, bytes, cudaMemcpyDeviceToHost, s), "copy to host");
   check(cudaStreamSynchronize(s), "copy to host");
   std::memcpy(host, m.buf, bytes);

@@ -54,16 +54,16 @@ void redo_planes(const double* p, const std::vector<std::int32_t>& t, std::vecto
 ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOptions& opt) {
   check_count(n);
   ConvexHull3d r;
-  const Backend b = resolve_backend(opt.backend);
+  const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
   hull3d::Output out;
 #ifdef GPUGEOM_HAVE_CUDA
   if (b == Backend::Cuda)
-    hull3d::cuda_impl::compute(xyz, n, out, r.stats);
+    hull3d::cuda_impl::compute(xyz, n, opt, out, r.stats);
   else
-    hull3d::cpu_impl::compute(xyz, n, out, r.stats);
+    hull3d::cpu_impl::compute(xyz, n, opt, out, r.stats);
 #else
-  hull3d::cpu_impl::compute(xyz, n, out, r.stats);
+  hull3d::cpu_impl::compute(xyz, n, opt, out, r.stats);
 #endif
   r.triangles = std::move(out.triangles);
   r.neighbors = std::move(out.neighbors);
@@ -77,14 +77,14 @@ ConvexHull3d convex_hull3d(const std::vector<Point3>& pts, const Hull3dOptions& 
   return convex_hull3d(pts.empty() ? nullptr : &pts.data()->x, std::int64_t(pts.size()), opt);
 }
 
-DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n) {
+DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n, const RunOptions& run) {
   check_count(n);
   DeviceHull3d r;
-  r.stats.backend = resolve_backend(Backend::Cuda);  // throws where there is no device
+  r.stats.backend = resolve_backend(Backend::Cuda, run.device);  // throws where there is none
   r.num_points = n;
 #ifdef GPUGEOM_HAVE_CUDA
   hull3d::DeviceOutput out;
-  hull3d::cuda_impl::compute_device(device_xyz, n, out, r.stats);
+  hull3d::cuda_impl::compute_device(device_xyz, n, run, out, r.stats);
   r.num_facets = out.num_facets;
   r.num_vertices = out.num_vertices;
   r.triangles = std::move(out.triangles);
@@ -92,6 +92,7 @@ DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n) {
   r.vertices = std::move(out.vertices);
 #else
   (void)device_xyz;
+  (void)run;
 #endif
   return r;
 }

@@ -26,12 +26,13 @@ struct DeviceOutput {
 
 // xyz: n points on the host; validated on the executor (throws Error).
 namespace cpu_impl {
-void compute(const double* xyz, std::int64_t n, Output& out, Stats& stats);
+void compute(const double* xyz, std::int64_t n, const RunOptions& run, Output& out, Stats& stats);
 }
 namespace cuda_impl {
-void compute(const double* xyz, std::int64_t n, Output& out, Stats& stats);
+void compute(const double* xyz, std::int64_t n, const RunOptions& run, Output& out, Stats& stats);
 // xyz: n points in device memory.
-void compute_device(const double* xyz, std::int64_t n, DeviceOutput& out, Stats& stats);
+void compute_device(const double* xyz, std::int64_t n, const RunOptions& run, DeviceOutput& out,
+                    Stats& stats);
 }  // namespace cuda_impl
 
 }  // namespace gpugeom::hull3d

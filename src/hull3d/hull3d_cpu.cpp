@@ -23,7 +23,7 @@ using Exec = CpuExec;
 #include "hull3d/impl/construct.inl"
 #include "hull3d/impl/flipflop.inl"
 #include "hull3d/impl/hull.inl"
-void compute(const double* xyz, std::int64_t n, Output& out, Stats& stats) {
-  compute_impl(xyz, n, out, stats);
+void compute(const double* xyz, std::int64_t n, const RunOptions& run, Output& out, Stats& stats) {
+  compute_impl(xyz, n, run, out, stats);
 }
 }  // namespace gpugeom::hull3d::cpu_impl

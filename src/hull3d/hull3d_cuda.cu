@@ -23,11 +23,12 @@ using Exec = CudaExec;
 #include "hull3d/impl/construct.inl"
 #include "hull3d/impl/flipflop.inl"
 #include "hull3d/impl/hull.inl"
-void compute(const double* xyz, std::int64_t n, Output& out, Stats& stats) {
-  compute_impl(xyz, n, out, stats);
+void compute(const double* xyz, std::int64_t n, const RunOptions& run, Output& out, Stats& stats) {
+  compute_impl(xyz, n, run, out, stats);
 }
-void compute_device(const double* xyz, std::int64_t n, DeviceOutput& out, Stats& stats) {
-  Exec ex;
+void compute_device(const double* xyz, std::int64_t n, const RunOptions& run, DeviceOutput& out,
+                    Stats& stats) {
+  Exec ex(run);
   Result R = hull_core(ex, xyz, n, stats);
   auto own = [](std::int32_t* p) {
     return std::shared_ptr<std::int32_t>(p, [](std::int32_t* q) { (void)cudaFree(q); });

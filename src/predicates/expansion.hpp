@@ -8,7 +8,7 @@
 #pragma once
 #include <cmath>
 
-#include "exec/hd.hpp"
+#include "base/hd.hpp"
 
 namespace gpugeom::exact {
 

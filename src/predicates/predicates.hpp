@@ -21,7 +21,7 @@
 //
 // Scratch: the exact stages need the k*_scratch doubles given below. Host code may use the
 // overloads in include/gpugeom/predicates.hpp, which bring their own; device code passes a
-// local array (small predicates) or a slice of global memory (see split_pass.hpp).
+// local array (small predicates) or a slice of global memory (see exec/split_pass.hpp).
 #pragma once
 #include <initializer_list>
 #include <cmath>

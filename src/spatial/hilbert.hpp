@@ -4,7 +4,7 @@
 #pragma once
 #include <cstdint>
 
-#include "exec/hd.hpp"
+#include "base/hd.hpp"
 
 namespace gpugeom::spatial {
 

@@ -1,6 +1,7 @@
 // 2D Delaunay on the CPU executor: the checker on every distribution and degenerate input,
 // errors, and the Voronoi diagram.
 #include <array>
+#include <thread>
 
 #include "del2d_cases.hpp"
 
@@ -76,12 +77,44 @@ TEST(Delaunay2d, DuplicatesMapToFirst) {
 
 // Both executors and every thread count must give the same arrays: the algorithm's choices
 // never depend on timing.
-TEST(Delaunay2d, Deterministic) {
-  const auto p = generate2d("gaussian", 20000, 3);
-  const auto a = delaunay2d(p, cpu());
-  const auto b = delaunay2d(p, cpu());
-  EXPECT_EQ(a.triangles, b.triangles);
-  EXPECT_EQ(a.neighbors, b.neighbors);
+// The same arrays whatever the thread count: every choice (votes, chosen points, list order)
+// is a function of the input, never of which thread came first.
+TEST(Delaunay2d, SameForEveryThreadCount) {
+  for (const char* d : {"gaussian", "grid", "circle"}) {
+    const auto p = generate2d(d, 20000, 3);
+    Delaunay2dOptions o = cpu();
+    o.threads = 1;
+    const auto ref = delaunay2d(p, o);
+    for (int t : {2, 3, 0}) {
+      o.threads = t;
+      const auto r = delaunay2d(p, o);
+      EXPECT_EQ(r.triangles, ref.triangles) << d << ", " << t << " threads";
+      EXPECT_EQ(r.neighbors, ref.neighbors) << d << ", " << t << " threads";
+      EXPECT_EQ(r.stats.counters.at("flips"), ref.stats.counters.at("flips"));
+    }
+  }
+}
+
+// Several host threads, each with its own call (and thread count), at once: each gets the
+// result it would get alone.
+TEST(Delaunay2d, ConcurrentCallsFromHostThreads) {
+  const auto p = generate2d("uniform", 30000, 9);
+  Delaunay2dOptions o = cpu();
+  o.threads = 1;
+  const auto ref = delaunay2d(p, o);
+  std::vector<Triangulation2d> got(4);
+  std::vector<std::thread> th;
+  for (int k = 0; k < 4; ++k)
+    th.emplace_back([&, k] {
+      Delaunay2dOptions ok = cpu();
+      ok.threads = 1 + k % 2;
+      got[std::size_t(k)] = delaunay2d(p, ok);
+    });
+  for (auto& t : th) t.join();
+  for (auto& g : got) {
+    EXPECT_EQ(g.triangles, ref.triangles);
+    EXPECT_EQ(g.neighbors, ref.neighbors);
+  }
 }
 
 TEST(Delaunay2d, Voronoi) {

@@ -4,6 +4,9 @@
 #include <cuda_runtime.h>
 
 #include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <thread>
 
 #include "del2d_cases.hpp"
 
@@ -78,4 +81,77 @@ TEST(CudaDelaunay2d, DeviceResident) {  // points on the GPU in, result left the
     EXPECT_EQ(nbrs, h.neighbors);
     EXPECT_EQ(dup, h.duplicate_of);
   }
+}
+
+// Host threads at once, each with its own stream on a device it names (spread over the devices
+// there are): each gets the result of a call alone, and its current device is left as it was.
+TEST(CudaDelaunay2d, ConcurrentStreamsAndDevices) {
+  int ndev = 0;
+  ASSERT_EQ(cudaGetDeviceCount(&ndev), cudaSuccess);
+  const auto p = generate2d("uniform", sizes({200000, 5000}).front(), 5);
+  Delaunay2dOptions o;
+  o.backend = Backend::Cuda;
+  const auto ref = delaunay2d(p, o);
+  constexpr int kThreads = 4;
+  std::vector<Triangulation2d> got(kThreads);
+  std::vector<std::string> err(kThreads);
+  std::vector<int> after(kThreads, -1);
+  std::vector<std::thread> th;
+  for (int k = 0; k < kThreads; ++k)
+    th.emplace_back([&, k] {
+      try {
+        const int dev = k % ndev;
+        cudaStream_t s = nullptr;
+        if (cudaSetDevice(dev) != cudaSuccess ||
+            cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking) != cudaSuccess)
+          throw std::runtime_error("cannot make a stream");
+        cudaSetDevice(0);  // the call must switch to dev itself, and back
+        Delaunay2dOptions ok = o;
+        ok.device = dev;
+        ok.stream = s;
+        got[std::size_t(k)] = delaunay2d(p, ok);
+        cudaGetDevice(&after[std::size_t(k)]);
+        cudaStreamDestroy(s);
+      } catch (const std::exception& e) {
+        err[std::size_t(k)] = e.what();
+      }
+    });
+  for (auto& t : th) t.join();
+  for (int k = 0; k < kThreads; ++k) {
+    EXPECT_EQ(err[std::size_t(k)], "");
+    EXPECT_EQ(after[std::size_t(k)], 0);
+    EXPECT_EQ(got[std::size_t(k)].triangles, ref.triangles) << "thread " << k;
+    EXPECT_EQ(got[std::size_t(k)].neighbors, ref.neighbors) << "thread " << k;
+  }
+  // A device that does not exist is refused by name, not replaced by another.
+  o.device = ndev + 3;
+  try {
+    delaunay2d(p, o);
+    ADD_FAILURE() << "device " << o.device << " accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidArgument) << e.what();
+  }
+}
+
+// The device entry point on a caller's non-blocking stream.
+TEST(CudaDelaunay2d, DeviceEntryOnCallersStream) {
+  const auto p = generate2d("gaussian", 50000, 12);
+  cudaStream_t s = nullptr;
+  ASSERT_EQ(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking), cudaSuccess);
+  double* dp = nullptr;
+  const std::size_t bytes = p.size() * sizeof(Point2);
+  ASSERT_EQ(cudaMallocAsync(reinterpret_cast<void**>(&dp), bytes, s), cudaSuccess);
+  ASSERT_EQ(cudaMemcpyAsync(dp, p.data(), bytes, cudaMemcpyHostToDevice, s), cudaSuccess);
+  RunOptions run;
+  run.stream = s;  // the copy above is ordered before the call's work on s
+  const auto r = delaunay2d_device(dp, std::int64_t(p.size()), run);
+  Delaunay2dOptions o;
+  o.backend = Backend::Cuda;
+  const auto h = delaunay2d(p, o);
+  std::vector<std::int32_t> tris(3 * r.num_triangles);
+  ASSERT_EQ(cudaMemcpy(tris.data(), r.triangles.get(), tris.size() * 4, cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  EXPECT_EQ(tris, h.triangles);
+  cudaFreeAsync(dp, s);
+  cudaStreamDestroy(s);
 }

@@ -116,15 +116,16 @@ TEST(Edt, WindowReachDoesNotChangeTheResult) {
   for (auto shape : {std::vector<std::int64_t>{30, 41}, std::vector<std::int64_t>{1, 90},
                      std::vector<std::int64_t>{90, 1}, std::vector<std::int64_t>{13, 17, 19}})
     for (double d : {0.002, 0.05, 0.6})
-      for (const char* reach : {"0", "1", "3", "16", "1000"}) {
-        setenv("GPUGEOM_EDT_WINDOW", reach, 1);
+      for (int reach : {0, 1, 3, 16, 1000}) {
+        EdtOptions base = all_outputs();
+        base.window_reach = reach;
         const io::Grid g = random_grid(shape, d, seed++);
-        expect_exact(g, all_outputs(), std::string("reach ") + reach);
+        expect_exact(g, base, "reach " + std::to_string(reach));
         for (bool slices : {false, true})
           if (slices && shape.size() == 3) {
-            EdtOptions o = all_outputs();
+            EdtOptions o = base;
             o.slices = {0, 9, 12};
-            const auto whole = distance_transform(g, SiteRule::NonZero, all_outputs());
+            const auto whole = distance_transform(g, SiteRule::NonZero, base);
             const auto sl = distance_transform(g, SiteRule::NonZero, o);
             const std::int64_t plane = shape[1] * shape[2];
             for (std::size_t k = 0; k < o.slices.size(); ++k)
@@ -132,7 +133,6 @@ TEST(Edt, WindowReachDoesNotChangeTheResult) {
                 ASSERT_EQ(sl.labels[k * plane + i], whole.labels[o.slices[k] * plane + i]);
           }
       }
-  unsetenv("GPUGEOM_EDT_WINDOW");
 }
 
 TEST(Edt, SlicesEqualWholeVolume) {

@@ -73,7 +73,6 @@ TEST(CudaEdt, TiledPassesSameAsCpu) {
                                 {{40, 130, 7}, 0.6, {}, 32},
                                 {{777, 300}, 0.01, {}, 0},
                                 {{5, 7, 300}, 0.05, {}, 4}};
-  setenv("GPUGEOM_EDT_TILES", "1", 1);
   unsigned seed = 200;
   for (auto& c : cases) {
     io::Grid g = gg_edt::random_grid(c.shape, c.density, seed++);
@@ -82,6 +81,7 @@ TEST(CudaEdt, TiledPassesSameAsCpu) {
     o.labels = true;
     o.sampling = c.sampling;
     for (int k = 0; k < 3; ++k) o.bands[k] = c.bands;
+    o.tiles = 1;
     o.backend = Backend::Cpu;
     const auto cpu = distance_transform(g, SiteRule::NonZero, o);
     o.backend = Backend::Cuda;
@@ -90,13 +90,15 @@ TEST(CudaEdt, TiledPassesSameAsCpu) {
     EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int);
     EXPECT_EQ(gpu.sqdist_real, cpu.sqdist_real);
   }
-  unsetenv("GPUGEOM_EDT_TILES");
 }
 
 namespace {
 // Squared distances and labels of g on the CUDA executor equal the CPU executor's.
-void expect_same_as_cpu(const io::Grid& g, const std::string& what) {
+void expect_same_as_cpu(const io::Grid& g, const std::string& what, std::int64_t reach = -1,
+                        int tiles = -1) {
   EdtOptions o;
+  o.window_reach = reach;
+  o.tiles = tiles;
   o.squared = true;
   o.labels = true;
   o.backend = Backend::Cpu;
@@ -115,15 +117,13 @@ TEST(CudaEdt, WindowReachesSameAsCpu) {
   for (auto shape : {std::vector<std::int64_t>{700, 900}, std::vector<std::int64_t>{64, 70, 90},
                      std::vector<std::int64_t>{20, 300, 40}})
     for (double d : {0.001, 0.1})
-      for (const char* reach : {"1", "4", "16", "32"})
-        for (const char* tiles : {"0", "1"}) {
-          setenv("GPUGEOM_EDT_WINDOW", reach, 1);
-          setenv("GPUGEOM_EDT_TILES", tiles, 1);
+      for (int reach : {1, 4, 16, 32})
+        for (int tiles : {0, 1}) {
           const io::Grid g = gg_edt::random_grid(shape, d, seed++);
-          expect_same_as_cpu(g, std::string("reach ") + reach + " tiles " + tiles);
+          expect_same_as_cpu(g,
+                             "reach " + std::to_string(reach) + " tiles " + std::to_string(tiles),
+                             reach, tiles);
         }
-  unsetenv("GPUGEOM_EDT_WINDOW");
-  unsetenv("GPUGEOM_EDT_TILES");
 }
 
 // Rows longer than 2^16: the windowed pass's costs no longer fit 32 bits (a site 70 000
@@ -134,17 +134,17 @@ TEST(CudaEdt, WideRowsSameAsCpu) {
   unsigned seed = 900;
   for (std::int64_t rows : {5, 80})
     for (double d : {0.0, 0.2})
-      for (const char* reach : {"4", "32"}) {
-        setenv("GPUGEOM_EDT_WINDOW", reach, 1);
+      for (int reach : {4, 32}) {
         io::Grid g = gg_edt::random_grid({rows, 70001}, d, seed++);
         if (d == 0) {  // the lone site at x = 0: the far end of its row is 70 000 away
           std::fill(g.data.begin(), g.data.end(), 0);
           g.data[0] = 1;
         }
-        expect_same_as_cpu(
-            g, std::to_string(rows) + " rows, density " + std::to_string(d) + " reach " + reach);
+        expect_same_as_cpu(g,
+                           std::to_string(rows) + " rows, density " + std::to_string(d) +
+                               " reach " + std::to_string(reach),
+                           reach);
       }
-  unsetenv("GPUGEOM_EDT_WINDOW");
 }
 
 TEST(CudaEdt, BruteForceOnSmallGrids) {

@@ -50,6 +50,34 @@ inline std::vector<Case> degenerate_cases() {
     std::shuffle(c.pts.begin(), c.pts.end(), rng);
     out.push_back(c);
   }
+  {
+    // The first tetrahedron's third point is the one farthest from the line through the
+    // lexicographic extremes A and B: here thousands of points on a cylinder around that line
+    // are equally far but for rounding, so the choice hangs on how |(q - A) x (B - A)|^2 is
+    // rounded. Executors that contracted it differently (FMA on the GPU only) picked different
+    // points, and returned different arrays for the same hull.
+    Case c{"cylinder_ties", {}};
+    const double A[3] = {-10, -3, 1}, u[3] = {20, 13, 7};
+    // two unit vectors orthogonal to u and to each other
+    const double n0 = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    double e1[3] = {u[1], -u[0], 0}, e2[3];
+    const double l1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1]);
+    for (double& v : e1) v /= l1;
+    e2[0] = (u[1] * e1[2] - u[2] * e1[1]) / n0;
+    e2[1] = (u[2] * e1[0] - u[0] * e1[2]) / n0;
+    e2[2] = (u[0] * e1[1] - u[1] * e1[0]) / n0;
+    c.pts.push_back({A[0], A[1], A[2]});
+    c.pts.push_back({A[0] + u[0], A[1] + u[1], A[2] + u[2]});
+    std::uniform_real_distribution<double> t(0.2, 0.8), ang(0, 6.283185307179586);
+    for (int i = 0; i < 4000; ++i) {
+      const double s = t(rng), a = ang(rng), cs = std::cos(a), sn = std::sin(a);
+      c.pts.push_back({A[0] + s * u[0] + cs * e1[0] + sn * e2[0],
+                       A[1] + s * u[1] + cs * e1[1] + sn * e2[1],
+                       A[2] + s * u[2] + cs * e1[2] + sn * e2[2]});
+    }
+    std::shuffle(c.pts.begin(), c.pts.end(), rng);
+    out.push_back(c);
+  }
   {  // integer points on the cube's faces only
     Case c{"cube_faces", {}};
     const int k = 9;

@@ -2,6 +2,7 @@
 // errors, and CGAL's extreme points as an oracle where CGAL is installed.
 #include <array>
 #include <cmath>
+#include <thread>
 
 #include "hull3d_cases.hpp"
 
@@ -42,11 +43,41 @@ TEST(Hull3d, Degenerate) {
   }
 }
 
-TEST(Hull3d, Repeatable) {
-  const auto pts = generate3d("thin_sphere", 20000, 4);
-  const auto a = convex_hull3d(pts, cpu()), b = convex_hull3d(pts, cpu());
-  EXPECT_EQ(a.triangles, b.triangles);
-  EXPECT_EQ(a.neighbors, b.neighbors);
+// The same arrays whatever the thread count (see Delaunay2d.SameForEveryThreadCount).
+TEST(Hull3d, SameForEveryThreadCount) {
+  for (const char* d : {"thin_sphere", "sphere", "grid"}) {
+    const auto pts = generate3d(d, 20000, 4);
+    Hull3dOptions o = cpu();
+    o.threads = 1;
+    const auto ref = convex_hull3d(pts, o);
+    for (int t : {2, 3, 0}) {
+      o.threads = t;
+      const auto r = convex_hull3d(pts, o);
+      EXPECT_EQ(r.triangles, ref.triangles) << d << ", " << t << " threads";
+      EXPECT_EQ(r.neighbors, ref.neighbors) << d << ", " << t << " threads";
+      EXPECT_EQ(r.vertices, ref.vertices) << d << ", " << t << " threads";
+    }
+  }
+}
+
+TEST(Hull3d, ConcurrentCallsFromHostThreads) {
+  const auto pts = generate3d("ball", 40000, 5);
+  Hull3dOptions o = cpu();
+  o.threads = 1;
+  const auto ref = convex_hull3d(pts, o);
+  std::vector<ConvexHull3d> got(4);
+  std::vector<std::thread> th;
+  for (int k = 0; k < 4; ++k)
+    th.emplace_back([&, k] {
+      Hull3dOptions ok = cpu();
+      ok.threads = 1 + k % 2;
+      got[std::size_t(k)] = convex_hull3d(pts, ok);
+    });
+  for (auto& t : th) t.join();
+  for (auto& g : got) {
+    EXPECT_EQ(g.triangles, ref.triangles);
+    EXPECT_EQ(g.neighbors, ref.neighbors);
+  }
 }
 
 TEST(Hull3d, Errors) {

@@ -8,7 +8,7 @@
 
 #include "cases.hpp"
 #include "predicates/predicates.hpp"
-#include "predicates/split_pass.hpp"
+#include "exec/split_pass.hpp"
 
 namespace {
 using namespace gpugeom;

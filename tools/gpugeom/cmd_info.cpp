@@ -38,7 +38,9 @@ int cmd_info(const Global& g, Args& a) {
   }
   if (a.flag("--device")) {
     DeviceInfo d = query_device();
-    std::cout << "build:    " << (built_with_cuda() ? "with CUDA" : "CPU only") << "\n";
+    std::cout << "build:    "
+              << (built_with_cuda() ? "with CUDA (" + built_cuda_architectures() + ")" : "CPU only")
+              << "\n";
     if (d.available) {
       std::cout << "device:   " << d.name << " (compute " << d.compute_major << "."
                 << d.compute_minor << ", " << d.multiprocessors << " SMs)\n"

@@ -148,7 +148,7 @@ inline void collapse(Exec& ex, const Layout& L, int a, const u64* in_m, Planes i
 }
 
 inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
-  Exec ex;
+  Exec ex(rq.run);
   const Layout L = rq.layout;
   const int nd = L.nd;
   const std::int64_t n = L.count(), ns = std::int64_t(rq.sites.size()) / nd;

@@ -27,7 +27,8 @@ constexpr int kChunkRounds = 4;
 // (Every member is public: nvcc's extended lambdas may not live in private members.)
 class Triangulator {
  public:
-  Triangulator(Exec& ex, Prepared& P, Stats& st) : ex_(ex), P_(P), st_(st) {
+  Triangulator(Exec& ex, Prepared& P, Stats& st, bool profile)
+      : ex_(ex), P_(P), st_(st), profile_(profile) {
     m_ = std::int32_t(P.m);
     tmax_ = 2 * std::int64_t(m_) - 2;
     g_.p = P.pts.data();
@@ -65,8 +66,6 @@ class Triangulator {
     ex.fill(split_rank_.data(), tmax_, std::int32_t(-1));
     Counters zero{};
     ex.from_host(&zero, 1, ctr_.data());
-    const char* pe = std::getenv("GPUGEOM_PROFILE");
-    profile_ = pe && pe[0] == '1';
   }
 
   void run() {
@@ -173,7 +172,7 @@ class Triangulator {
   void check_lost() {
     Counters c = counters();
     if (c.lost)
-      throw Error(ErrorCode::InvalidInput,
+      throw Error(ErrorCode::Internal,
                   "internal error: " + std::to_string(c.lost) +
                       " point(s) could not be located; please report this input");
   }
@@ -252,24 +251,12 @@ class Triangulator {
     GG_HD bool operator()(std::int32_t q) const { return loc[q] >= 0; }
   };
 
-  // f(i) for every i < *count (on the executor), *count <= bound. On the GPU a grid over the
-  // bound whose blocks past the count return at once: the executor's counted loop strides
-  // over one wave of blocks, and at these kernels' occupancy that leaves a second, partial
-  // wave as a tail (measured: fix and flip kernels 20-60% slower).
-  template <class F>
-  struct Guarded {
-    const std::int64_t* count;
-    F f;
-    GG_HD void operator()(std::int64_t i) const {
-      if (i < *count) f(i);
-    }
-  };
+  // f(i) for every i < *count (on the executor), *count <= bound. (The executor's counted
+  // grid covers the bound in whole waves; an earlier one-wave cap left a partial second wave at
+  // these kernels' occupancy: fix and flip kernels 20-60% slower.)
   template <class F>
   void listed(const std::int64_t* count, std::int64_t bound, F f) {
-    if constexpr (Exec::backend == Backend::Cuda)
-      ex_.for_each_index(bound, Guarded<F>{count, f});
-    else
-      ex_.for_each_counted(count, bound, f);
+    ex_.for_each_counted(count, bound, f);
   }
 
   // Rounds of flips over the work list until no edge of it is illegal. A round: the edge tests
@@ -294,7 +281,7 @@ class Triangulator {
       if (records(chunk) > log_cap_) chunk = 1;
       if (logged_ + records(chunk) > log_cap_) relocate(false);
       if ((rounds_here += chunk) > kMaxRounds)
-        throw Error(ErrorCode::InvalidInput,
+        throw Error(ErrorCode::Internal,
                     "internal error: flipping did not converge; please report this input");
       std::int64_t bound = nact_;
       for (int c = 0; c < chunk; ++c, bound = std::min(2 * bound, tmax_)) {
@@ -620,7 +607,7 @@ class Triangulator {
     return (less(a, b) && less(b, c)) || (less(c, b) && less(b, a));
   }
 
-  // GPUGEOM_PROFILE=1: each step is synchronised and timed (slower; for finding where the time
+  // RunOptions::profile: each step is synchronised and timed (slower; for finding where the time
   // goes), reported as phases "insert/<step>".
   void mark(const char* step) {
     if (!profile_) return;
@@ -644,6 +631,7 @@ class Triangulator {
   Exec& ex_;
   Prepared& P_;
   Stats& st_;
+  bool profile_ = false;
   Geo g_;
   Mesh M_;
   std::int32_t m_ = 0;
@@ -653,7 +641,6 @@ class Triangulator {
   std::int64_t log_cap_ = 0, logged_ = 0;
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;  // points; list entries; splits
   std::int32_t epoch_first_new_ = 0;
-  bool profile_ = false;
   std::map<std::string, double> prof_;
   clock::time_point last_ = clock::now();
   typename Exec::template Buffer<Tri> tri_;
@@ -673,8 +660,9 @@ inline double ms_since(std::chrono::steady_clock::time_point t0) {
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
 // after_upload runs once the points are on the executor.
 template <class Body>
-inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device, Stats& st,
-                             const std::function<void()>& after_upload, Body body) {
+inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device,
+                             bool profile, Stats& st, const std::function<void()>& after_upload,
+                             Body body) {
   auto t0 = std::chrono::steady_clock::now();
   Prepared P = prepare(ex, xy, n, on_device, after_upload);
   st.counters["points"] = n;
@@ -683,7 +671,7 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   st.phase_ms.push_back({"upload", P.upload_ms});  // (part of prepare)
-  Triangulator T(ex, P, st);
+  Triangulator T(ex, P, st, profile);
   T.run();
   t0 = std::chrono::steady_clock::now();
   auto f = T.finish();
@@ -692,11 +680,12 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
   st.phase_ms.push_back({"output", ms_since(t0)});
 }
 
-inline void triangulate_impl(const double* xy, std::int64_t n, Output& out, Stats& st) {
-  Exec ex;
+inline void triangulate_impl(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
+                             Stats& st) {
+  Exec ex(run);
   HostSizer sizer;  // after the upload, so that it does not compete with it
   triangulate_core(
-      ex, xy, n, false, st,
+      ex, xy, n, false, run.profile, st,
       [&] {  // at most 2n - 2 triangles (the extended triangulation's): cut to size below
         sizer.add(out.triangles, 6 * n, std::int32_t(0), "triangulation");
         sizer.add(out.neighbors, 6 * n, std::int32_t(0), "triangulation");

@@ -347,7 +347,7 @@ void line_pass_t(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g, 
 // A pass along y or z on tiles in on-chip memory, where the backend has them (edt_cuda.cu);
 // returns false when it does not apply (then the general pass runs).
 bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int64_t bands,
-                     std::uint32_t* cand, std::uint32_t* out, const std::uint8_t* flags);
+                     int tiles, std::uint32_t* cand, std::uint32_t* out, const std::uint8_t* flags);
 
 inline void line_pass(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
                       std::uint32_t* cand, std::uint32_t* stk, std::int32_t* lo, std::int32_t* hi) {
@@ -458,14 +458,14 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
 // candidates already hold the nearest site along z).
 // profile_step(a), when given, is called after the pass along axis a (to time the passes).
 inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
-                              const std::uint8_t* mask, const std::int64_t bands_override[3],
-                              int naxes, std::int64_t sites, Stats* stats,
+                              const std::uint8_t* mask, const Tuning& tune, int naxes,
+                              std::int64_t sites, Stats* stats,
                               const std::function<void(int)>& profile_step = {}) {
   auto stk = ex.template alloc<std::uint32_t>(std::size_t(L.count()));
   std::int64_t max_items = 0;
   PassGeom gs[3];
   for (int a = 0; a < naxes; ++a) {
-    gs[a] = make_geom(L, a, ex.concurrency(), bands_override ? bands_override[a] : 0);
+    gs[a] = make_geom(L, a, ex.concurrency(), tune.bands[a]);
     max_items = gs[a].lines * gs[a].bands > max_items ? gs[a].lines * gs[a].bands : max_items;
   }
   auto lo = ex.template alloc<std::int32_t>(std::size_t(max_items));
@@ -479,13 +479,12 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
   // ms, 3 % 1.68 -> 0.97) but not at 0.3 % (1.34 -> 2.32), and in 3D from 0.3 % (512^3: 0.3 %
   // 6.35 -> 5.55 ms, 1 % 7.11 -> 3.83) but not at 0.1 % (5.64 -> 8.92). Hence spacing at most
   // 10 in 2D and 8 in 3D. sites = 0: unknown, never windowed.
-  // GPUGEOM_EDT_WINDOW=R forces the reach (0: never).
-  const char* wenv = std::getenv("GPUGEOM_EDT_WINDOW");
+  // tune.window_reach >= 0 forces the reach (0: never).
   constexpr bool gpu = Exec::backend == Backend::Cuda;
   const double spacing = sites > 0 ? std::pow(double(L.count()) / double(sites), 1.0 / L.nd) : 0;
   std::int64_t reach = 0;
-  if (wenv && *wenv)
-    reach = std::atoll(wenv);
+  if (tune.window_reach >= 0)
+    reach = tune.window_reach;
   else if (sites > 0 && spacing <= (gpu ? (L.nd == 2 ? 10.0 : 8.0) : 4.0))
     reach = gpu ? 32 : 16;
   auto flags = ex.template alloc<std::uint8_t>(M.iso && reach > 0 ? std::size_t(max_items) : 0);
@@ -499,17 +498,17 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
   // windowed pass end in feat (no copy back: a whole array's read and write at 16384^2).
   if (whole && mask && windowed && (naxes - 1) % 2 == 1) std::swap(cur, other);
   for (int a = 0; a < naxes; ++a) {
-    const std::int64_t bands = bands_override ? bands_override[a] : 0;
+    const std::int64_t bands = tune.bands[a];
     if (a == 0 && whole) {
       x_pass_rows(ex, L, M, gs[0], mask, feat, cur, other, lo.data(), hi.data());
     } else if (a > 0 && windowed) {
       ex.fill(flags.data(), gs[a].lines, std::uint8_t(0));
       window_pass(ex, L, a, reach, cur, other, flags.data(), whole && a == 1 && L.nd == 3);
       // Flagged lines: the banded pass, its stacks in place in cur, colours into other.
-      if (!line_pass_tiled(ex, L, M, a, bands, cur, other, flags.data()))
+      if (!line_pass_tiled(ex, L, M, a, bands, tune.tiles, cur, other, flags.data()))
         line_pass_t<true>(ex, L, M, gs[a], cur, cur, lo.data(), hi.data(), other, flags.data());
       std::swap(cur, other);
-    } else if (a == 0 || !line_pass_tiled(ex, L, M, a, bands, cur, cur, nullptr)) {
+    } else if (a == 0 || !line_pass_tiled(ex, L, M, a, bands, tune.tiles, cur, cur, nullptr)) {
       line_pass(ex, L, M, gs[a], cur, other, lo.data(), hi.data());
     }
     if (profile_step) profile_step(a);

@@ -121,7 +121,7 @@ inline void size_outputs(HostSizer& sizer, const Request& rq, Output& out, std::
 }
 
 inline void run_impl(const Request& rq, Output& out, Stats& stats) {
-  Exec ex;
+  Exec ex(rq.run);
   const Layout L = rq.layout;
   const std::int64_t nvox = L.count();
   // The sorted site list: for labels, and for the slice-by-slice mode.
@@ -184,8 +184,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     }
     ex.sync();
     const double t1 = clock_ms();
-    // GPUGEOM_EDT_PROFILE=1 times each pass (a synchronisation after each: for tuning only).
-    const char* prof = std::getenv("GPUGEOM_EDT_PROFILE");
+    // run.profile times each pass (a synchronisation after each: for tuning only).
     double last = t1;
     auto step = [&](int a) {
       ex.sync();
@@ -195,11 +194,11 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     };
     if (rq.method == EdtMethod::Jfa)
       jump_flood(ex, L, rq.metric, fp);
-    else if (prof && *prof == '1')
-      feature_transform(ex, L, rq.metric, fp, site_mask, rq.bands, L.nd, rq.site_count, &stats,
+    else if (rq.run.profile)
+      feature_transform(ex, L, rq.metric, fp, site_mask, rq.tune, L.nd, rq.site_count, &stats,
                         step);
     else
-      feature_transform(ex, L, rq.metric, fp, site_mask, rq.bands, L.nd, rq.site_count, &stats);
+      feature_transform(ex, L, rq.metric, fp, site_mask, rq.tune, L.nd, rq.site_count, &stats);
     ex.sync();
     out.transform_ms = clock_ms() - t1;
     stats.phase_ms.push_back({"transform", out.transform_ms});
@@ -284,7 +283,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
           }
           fp[c] = best;
         });
-    feature_transform(ex, Ls, rq.metric, fp, nullptr, rq.bands, 2, 0, &stats);
+    feature_transform(ex, Ls, rq.metric, fp, nullptr, rq.tune, 2, 0, &stats);
     ex.sync();
     transform += clock_ms() - t1;
     emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, nullptr, out, k * nxy, nsl * nxy, sizer);
@@ -299,6 +298,5 @@ void run(const Request& req, Output& out, Stats& stats) {
 }
 void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
                             std::int64_t sites) {
-  const std::int64_t automatic[3] = {0, 0, 0};
-  feature_transform(ex, L, M, feat, nullptr, automatic, L.nd, sites, nullptr);
+  feature_transform(ex, L, M, feat, nullptr, Tuning{}, L.nd, sites, nullptr);
 }

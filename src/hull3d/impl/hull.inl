@@ -359,8 +359,9 @@ struct PlaneOf {
 constexpr std::int64_t kSizeAheadFacets = 40000;
 
 // Host points in, host arrays out.
-inline void compute_impl(const double* xyz, std::int64_t n, Output& out, Stats& st) {
-  Exec ex;
+inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& run, Output& out,
+                         Stats& st) {
+  Exec ex(run);
   const double* p = xyz;
   typename Exec::template Buffer<double> dev;
   if constexpr (Exec::backend == Backend::Cuda) {

@@ -118,10 +118,16 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
   Cand c = reduce_cand(
       ex, n,
       GG_LAMBDA(std::int64_t i)->Cand {
+        // Rounded operations one by one (no FMA contraction, which nvcc would apply and g++
+        // here does not): both executors then pick the same point.
+        using pred::add_rn, pred::mul_rn, pred::sub_rn;
         const double* q = p + 3 * i;
-        const double wx = q[0] - ax, wy = q[1] - ay, wz = q[2] - az;
-        const double cx = uy * wz - uz * wy, cy = uz * wx - ux * wz, cz = ux * wy - uy * wx;
-        return Cand{q[0], q[1], q[2], cx * cx + cy * cy + cz * cz, std::int32_t(i)};
+        const double wx = sub_rn(q[0], ax), wy = sub_rn(q[1], ay), wz = sub_rn(q[2], az);
+        const double cx = sub_rn(mul_rn(uy, wz), mul_rn(uz, wy)),
+                     cy = sub_rn(mul_rn(uz, wx), mul_rn(ux, wz)),
+                     cz = sub_rn(mul_rn(ux, wy), mul_rn(uy, wx));
+        const double len2 = add_rn(add_rn(mul_rn(cx, cx), mul_rn(cy, cy)), mul_rn(cz, cz));
+        return Cand{q[0], q[1], q[2], len2, std::int32_t(i)};
       },
       Farthest{});
   double C[3] = {c.x, c.y, c.z};  // (the reduction carries the point along)
@@ -150,10 +156,14 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
       GG_LAMBDA(std::int64_t i)->Cand {
         const double *pa = p + 3 * std::int64_t(ia), *pb = p + 3 * std::int64_t(ib),
                      *pc = p + 3 * std::int64_t(ic), *q = p + 3 * i;
+        using pred::add_rn, pred::mul_rn, pred::sub_rn;  // no FMA: as above
         double u[3], v[3], w[3];
-        for (int k = 0; k < 3; ++k) u[k] = pb[k] - pa[k], v[k] = pc[k] - pa[k], w[k] = q[k] - pa[k];
-        const double det = w[0] * (u[1] * v[2] - u[2] * v[1]) + w[1] * (u[2] * v[0] - u[0] * v[2]) +
-                           w[2] * (u[0] * v[1] - u[1] * v[0]);
+        for (int k = 0; k < 3; ++k)
+          u[k] = sub_rn(pb[k], pa[k]), v[k] = sub_rn(pc[k], pa[k]), w[k] = sub_rn(q[k], pa[k]);
+        const double det =
+            add_rn(add_rn(mul_rn(w[0], sub_rn(mul_rn(u[1], v[2]), mul_rn(u[2], v[1]))),
+                          mul_rn(w[1], sub_rn(mul_rn(u[2], v[0]), mul_rn(u[0], v[2])))),
+                   mul_rn(w[2], sub_rn(mul_rn(u[0], v[1]), mul_rn(u[1], v[0]))));
         return Cand{q[0], q[1], q[2], det < 0 ? -det : det, std::int32_t(i)};
       },
       Farthest{});

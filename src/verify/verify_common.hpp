@@ -1,4 +1,4 @@
-// Helpers shared by the checkers (internal to tests/verify).
+// Helpers shared by the checkers (internal to src/verify).
 #pragma once
 #include <cstdint>
 #include <string>

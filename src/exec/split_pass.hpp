@@ -13,7 +13,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "exec/hd.hpp"
+#include "base/hd.hpp"
 
 namespace gpugeom {
 

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# A/B timing on the lent GPU machine: the benchmark binaries of two builds side by side in one
+# run, alternated (A, B, A, B) so drift and noise show as the spread between the two passes of
+# one build. Usage (repository root, .devbin/ carried): bench/ab_runs.sh DIR_A DIR_B
+# DIR_*: folders holding gpugeom_bench_del2d, gpugeom_bench_hull3d, gpugeom_bench_edt.
+set -u
+A=$1 B=$2
+OUT=${OUT:-/tmp/gg_out}
+mkdir -p "$OUT"
+export LD_LIBRARY_PATH=$PWD/.devbin/lib:${LD_LIBRARY_PATH:-}
+nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
+one() {  # $1 label, $2 dir
+  echo "=== $1 ($2)"
+  "$2/gpugeom_bench_del2d" --backend cuda --dists uniform,grid --sizes ${AB_DEL2D:-1e6,1e7} --reps 5 |
+    grep -E "^(uniform|grid)"
+  "$2/gpugeom_bench_hull3d" --backend cuda --dists ball,sphere --sizes ${AB_HULL:-1e6,1e7} --reps 5 |
+    grep -E "^(ball|sphere)"
+  "$2/gpugeom_bench_edt" --backend cuda --sides ${AB_EDT:-4096,8192} --density 0.1 --reps 5 |
+    grep -E "^edt "
+}
+for pass in 1 2; do
+  one "A pass $pass" "$A" 2>&1 | tee -a "$OUT/ab.txt"
+  one "B pass $pass" "$B" 2>&1 | tee -a "$OUT/ab.txt"
+done

@@ -1,0 +1,43 @@
+// Per-device state the CUDA executor needs and the library owns (CUDA builds only): which device
+// a call runs on, the library's own stream-ordered memory pool on each device. Nothing here
+// changes process-wide CUDA state (the device's default pool, the current device of a thread
+// beyond the call that set it).
+#pragma once
+#include <cstddef>
+
+#include <cuda_runtime.h>
+
+#include "gpugeom/common.hpp"
+
+namespace gpugeom::cuda_device {
+
+// The device a call with these options runs on: run.device when set (checked to exist and be
+// usable by this build), else the stream's device, else the calling thread's current device.
+// Throws Error(InvalidArgument) for a device that does not exist, Error(Unsupported) for one
+// this build has no code for.
+int resolve(const RunOptions& run);
+
+// The library's memory pool on `device`, created on first use. Freed blocks stay in it for the
+// next call (as CuPy's pool keeps them): by default a pool returns them to the driver at every
+// synchronisation, and the next large allocation then maps fresh pages (about 1 ms per 512 MB).
+cudaMemPool_t pool(int device);
+// Returns the pool's unused blocks to the driver (after an allocation failed, or on request).
+void trim(int device);
+
+// Sets the calling thread's current device for a scope, restoring the previous one after.
+class Scope {
+ public:
+  explicit Scope(int device);
+  ~Scope();
+  Scope(const Scope&) = delete;
+  Scope& operator=(const Scope&) = delete;
+
+ private:
+  int prev_ = -1;
+  bool changed_ = false;
+};
+
+// The message of an allocation failure: the bytes wanted and those free on the device.
+[[noreturn]] void throw_out_of_memory(std::size_t bytes, const char* what);
+
+}  // namespace gpugeom::cuda_device
