@@ -1,8 +1,8 @@
 // 2D Delaunay on the CPU executor: the checker on every distribution and degenerate input,
 // errors, and the Voronoi diagram.
 #include <array>
-#include <thread>
 
+#include "../common/on_host_threads.hpp"
 #include "del2d_cases.hpp"
 
 using namespace gpugeom;
@@ -102,15 +102,11 @@ TEST(Delaunay2d, ConcurrentCallsFromHostThreads) {
   Delaunay2dOptions o = cpu();
   o.threads = 1;
   const auto ref = delaunay2d(p, o);
-  std::vector<Triangulation2d> got(4);
-  std::vector<std::thread> th;
-  for (int k = 0; k < 4; ++k)
-    th.emplace_back([&, k] {
-      Delaunay2dOptions ok = cpu();
-      ok.threads = 1 + k % 2;
-      got[std::size_t(k)] = delaunay2d(p, ok);
-    });
-  for (auto& t : th) t.join();
+  const auto got = gg_test::on_host_threads(4, [&](int k) {
+    Delaunay2dOptions ok = cpu();
+    ok.threads = 1 + k % 2;
+    return delaunay2d(p, ok);
+  });
   for (auto& g : got) {
     EXPECT_EQ(g.triangles, ref.triangles);
     EXPECT_EQ(g.neighbors, ref.neighbors);

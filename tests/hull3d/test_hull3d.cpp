@@ -2,8 +2,8 @@
 // errors, and CGAL's extreme points as an oracle where CGAL is installed.
 #include <array>
 #include <cmath>
-#include <thread>
 
+#include "../common/on_host_threads.hpp"
 #include "hull3d_cases.hpp"
 
 #ifdef GG_HAVE_CGAL
@@ -65,15 +65,11 @@ TEST(Hull3d, ConcurrentCallsFromHostThreads) {
   Hull3dOptions o = cpu();
   o.threads = 1;
   const auto ref = convex_hull3d(pts, o);
-  std::vector<ConvexHull3d> got(4);
-  std::vector<std::thread> th;
-  for (int k = 0; k < 4; ++k)
-    th.emplace_back([&, k] {
-      Hull3dOptions ok = cpu();
-      ok.threads = 1 + k % 2;
-      got[std::size_t(k)] = convex_hull3d(pts, ok);
-    });
-  for (auto& t : th) t.join();
+  const auto got = gg_test::on_host_threads(4, [&](int k) {
+    Hull3dOptions ok = cpu();
+    ok.threads = 1 + k % 2;
+    return convex_hull3d(pts, ok);
+  });
   for (auto& g : got) {
     EXPECT_EQ(g.triangles, ref.triangles);
     EXPECT_EQ(g.neighbors, ref.neighbors);
