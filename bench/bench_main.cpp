@@ -21,7 +21,8 @@ std::vector<std::string> list(const std::string& s) {
   return v;
 }
 void usage() {
-  std::cout << "usage: gpugeom_bench [--problem hilbert|orient3d|insphere] [--dim 2|3]\n"
+  std::cout << "usage: gpugeom_bench [--problem "
+               "hilbert|orient3d|insphere|orient3d-full|insphere-full] [--dim 2|3]\n"
                "                     [--dist uniform,ball,...] [--sizes 1e5,1e6] [--backend "
                "cpu|cuda|all]\n"
                "                     [--reps 5] [--seed 1] [--csv FILE]\n";
@@ -74,8 +75,10 @@ int main(int argc, char** argv) {
   }
   std::string gpu = query_device().available ? query_device().name : "none";
   std::ofstream f = bench::open_bench_csv(csv);
-  std::printf("%-9s %-12s %10s %-5s %10s %10s %12s %8s\n", "problem", "dist", "n", "bk", "compute",
-              "w/copies", "Mitems/s", "exact%");
+  // exact%: items the filter left to the exact stages; last%: of all items, those the middle
+  // tier left to the full expansion (three-tier predicate problems only)
+  std::printf("%-13s %-12s %10s %-5s %10s %10s %12s %8s %8s\n", "problem", "dist", "n", "bk",
+              "compute", "w/copies", "Mitems/s", "exact%", "last%");
   for (auto& d : list(dists))
     for (auto& s : list(sizes)) {
       const long long n = (long long)std::stod(s);
@@ -107,9 +110,10 @@ int main(int argc, char** argv) {
         const double resident = ph["compute"],
                      total = ph["upload"] + ph["compute"] + ph["download"];
         const double exact = ph.count("exact_fraction") ? ph["exact_fraction"] : 0.0;
-        std::printf("%-9s %-12s %10lld %-5s %10.3f %10.3f %12.1f %8.4f\n", problem.c_str(),
+        const double last = ph.count("last_fraction") ? ph["last_fraction"] : 0.0;
+        std::printf("%-13s %-12s %10lld %-5s %10.3f %10.3f %12.1f %8.4f %8.4f\n", problem.c_str(),
                     (d + (dim == 2 ? "2d" : "3d")).c_str(), n, backend_name(b), resident, total,
-                    n / resident / 1e3, 100 * exact);
+                    n / resident / 1e3, 100 * exact, 100 * last);
         if (f)
           f << problem << "," << d << (dim == 2 ? "2d" : "3d") << "," << n << "," << backend_name(b)
             << "," << (b == Backend::Cuda ? gpu : std::string("cpu")) << "," << ph["upload"] << ","

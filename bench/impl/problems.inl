@@ -56,32 +56,47 @@ Phases run(const ProblemInput& in) {
     return ph;
   }
   // Predicate throughput: tuple i takes points i, i+1, ... (mod n), so tuples are local when
-  // the input is Hilbert-sorted and near-degenerate when the distribution is.
-  const bool sphere = in.problem == "insphere";
-  if (!sphere && in.problem != "orient3d")
+  // the input is Hilbert-sorted and near-degenerate when the distribution is. "insphere" and
+  // "orient3d" run the three-tier pass (filter; integer and translated stages with SoS on many
+  // small slots; the full expansion on what remains); the "-full" variants the two-tier one
+  // (filter; full expansion and SoS on large slots), as the library did before the middle tier.
+  const bool full = in.problem.size() > 5 && in.problem.substr(in.problem.size() - 5) == "-full";
+  const std::string base = full ? in.problem.substr(0, in.problem.size() - 5) : in.problem;
+  const bool sphere = base == "insphere";
+  if (!sphere && base != "orient3d")
     throw Error(ErrorCode::InvalidArgument, "unknown problem " + in.problem);
   if (in.dim != 3) throw Error(ErrorCode::InvalidArgument, in.problem + " needs 3D points");
   auto out = ex.template alloc<std::int8_t>(n);
   const double* p = dp.data();
   auto P = [=] GG_HD(std::int64_t i, int j) { return p + ((i + j * 7) % n) * 3; };
+  auto I = [=] GG_HD(std::int64_t i, int j) { return int((i + j * 7) % n); };
   auto fast = GG_LAMBDA(std::int64_t i)->int {
     if (sphere) return pred::insphere_fast(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4));
     return pred::orient3d_fast(P(i, 0), P(i, 1), P(i, 2), P(i, 3));
   };
-  auto exact = GG_LAMBDA(std::int64_t i, double* s)->int {
-    auto I = [&](int j) { return int((i + j * 7) % n); };
+  auto mid = GG_LAMBDA(std::int64_t i, double* s)->int {
     if (sphere)
-      return pred::insphere_sos(P(i, 0), I(0), P(i, 1), I(1), P(i, 2), I(2), P(i, 3), I(3), P(i, 4),
-                                I(4), s);
-    return pred::orient3d_sos(P(i, 0), I(0), P(i, 1), I(1), P(i, 2), I(2), P(i, 3), I(3), s);
+      return pred::insphere_sos_mid(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                    I(i, 3), P(i, 4), I(i, 4), s);
+    return pred::orient3d_sos_mid(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                  I(i, 3), s);
   };
-  std::int64_t exact_items = 0;
+  auto last = GG_LAMBDA(std::int64_t i, double* s)->int {
+    if (sphere)
+      return pred::insphere_sos_last(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                     I(i, 3), P(i, 4), I(i, 4), s);
+    return pred::orient3d_sos_last(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                   I(i, 3), s);
+  };
+  const int mid_doubles = sphere ? pred::kInsphereSosMidScratch : pred::kOrient3dSosMidScratch;
+  const int last_doubles = sphere ? pred::kInsphereScratch : pred::kOrient3dScratch;
+  SplitPassResult res;
   ph["compute"] = median_ms(ex, in.reps, [&] {
-    exact_items = split_pass(ex, n, out.data(), fast, exact,
-                             sphere ? pred::kInsphereScratch : pred::kOrient3dScratch)
-                      .exact_items;
+    res = full ? split_pass(ex, n, out.data(), fast, last, last_doubles)
+               : split_pass(ex, n, out.data(), fast, mid, mid_doubles, last, last_doubles);
   });
-  ph["exact_fraction"] = double(exact_items) / double(n);
+  ph["exact_fraction"] = double(res.exact_items) / double(n);
+  ph["last_fraction"] = double(full ? res.exact_items : res.last_items) / double(n);
   std::vector<std::int8_t> h(n);
   ph["download"] = median_ms(ex, in.reps, [&] { ex.to_host(out.data(), n, h.data()); });
   return ph;

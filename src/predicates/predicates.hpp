@@ -1,8 +1,15 @@
 // Exact geometric predicates, callable from host and device code.
 //
-// Each predicate is adaptive: a floating-point filter with a proven error bound (the *_fast
-// functions; 0 means "cannot tell"), then exact expansion arithmetic (*_exact). The *_sos
-// variants add simulation of simplicity (sos.hpp) and never return 0 for distinct indices.
+// Each predicate is adaptive, in tiers, each run only when the one before cannot tell:
+//   1. a floating-point filter with a proven error bound (*_fast; 0 means "cannot tell");
+//   2. for whole-number coordinates, 128-bit integer arithmetic (*_int; integer.hpp);
+//   3. exact arithmetic on the differences to the last point (*_translated; translated.hpp),
+//      exact when the differences are, else bounded; kUndecided when it cannot tell;
+//   4. the full expansion of the raw coordinates (*_exact).
+// *_mid runs tiers 1-3; the adaptive functions run all four. The *_sos variants add simulation
+// of simplicity (sos.hpp) and never return 0 for distinct indices; *_sos_mid and *_sos_last
+// split them the same way, so that a GPU pass can run tier 3 on many small scratch slots and
+// leave tier 4 to a second, short list with a few large ones (exec/split_pass.hpp).
 //
 // Sign conventions (all points double[dim]):
 //   orient2d(a,b,c)      > 0  iff a,b,c counter-clockwise          = det[b-a; c-a]
@@ -19,14 +26,17 @@
 // 1.8e-43 .. 1.5e54): beyond that the products of the exact stage could under- or overflow.
 // in_exact_range() tells; the algorithms refuse other inputs with a clear error.
 //
-// Scratch: the exact stages need the k*_scratch doubles given below. Host code may use the
-// overloads in include/gpugeom/predicates.hpp, which bring their own; device code passes a
-// local array (small predicates) or a slice of global memory (see exec/split_pass.hpp).
+// Scratch: the k*Scratch doubles given below (the k*MidScratch ones for the *_mid functions).
+// Host code may use the overloads in include/gpugeom/predicates.hpp, which bring their own;
+// device code passes a local array (small predicates) or a slice of global memory (see
+// exec/split_pass.hpp). Per slot: in-sphere 111.4 KB in full, 23.9 KB up to tier 3 with SoS.
 #pragma once
 #include <initializer_list>
 #include <cmath>
 
+#include "predicates/integer.hpp"
 #include "predicates/sos.hpp"
+#include "predicates/translated.hpp"
 
 namespace gpugeom::pred {
 
@@ -39,6 +49,11 @@ constexpr double kOrient2dBound = 2 * (3.0 + 16.0 * kEps) * kEps;
 constexpr double kOrient3dBound = 2 * (7.0 + 56.0 * kEps) * kEps;
 constexpr double kIncircleBound = 2 * (10.0 + 96.0 * kEps) * kEps;
 constexpr double kInsphereBound = 2 * (16.0 + 224.0 * kEps) * kEps;
+// Bounds of tier 3 on the exact determinant of the rounded differences (the published second-
+// stage bounds, same margin): what the differences' tails can change, relative to the permanent.
+constexpr double kOrient3dBoundB = 2 * (3.0 + 28.0 * kEps) * kEps;
+constexpr double kIncircleBoundB = 2 * (4.0 + 48.0 * kEps) * kEps;
+constexpr double kInsphereBoundB = 2 * (5.0 + 72.0 * kEps) * kEps;
 // Below this permanent the filter's relative bound could be spoiled by underflow: go exact.
 constexpr double kTinyPermanent = 1e-280;
 
@@ -63,6 +78,20 @@ constexpr int kOrient3dScratch = Om<3>::len + Om<3>::scratch + SosScratch<3, 0>:
 constexpr int kIncircleScratch = cmax(Lm<2, 4>::len + Lm<2, 4>::scratch, SosScratch<2, 4>::value);
 constexpr int kInsphereScratch = cmax(Lm<3, 6>::len + Lm<3, 6>::scratch, SosScratch<3, 6>::value);
 constexpr int kOrient4dScratch = cmax(Lm<3, 1>::len + Lm<3, 1>::scratch, SosScratch<3, 1>::value);
+// Tiers 1-3 (the *_mid functions), and tiers 1-3 with SoS on an exact zero (*_sos_mid).
+constexpr int kOrient3dMidScratch = kMinor3Len + kDet3PlainScratch;
+constexpr int kIncircleMidScratch = Det3Lifted<4>::scratch;
+constexpr int kInsphereMidScratch = Det4Lifted<6>::scratch;
+constexpr int kOrient4dMidScratch = Det4Lifted<1>::scratch;
+constexpr int kOrient3dSosMidScratch = cmax(kOrient3dMidScratch, SosScratch<3, 0>::value);
+constexpr int kIncircleSosMidScratch = cmax(kIncircleMidScratch, SosScratch<2, 4>::value);
+constexpr int kInsphereSosMidScratch = cmax(kInsphereMidScratch, SosScratch<3, 6>::value);
+constexpr int kOrient4dSosMidScratch = cmax(kOrient4dMidScratch, SosScratch<3, 1>::value);
+static_assert(kOrient3dScratch >= kOrient3dSosMidScratch &&
+                  kIncircleScratch >= kIncircleSosMidScratch &&
+                  kInsphereScratch >= kInsphereSosMidScratch &&
+                  kOrient4dScratch >= kOrient4dSosMidScratch,
+              "the adaptive predicates run tier 3 in their own scratch");
 
 // ---- filters ----
 GG_INLINE int orient2d_fast(const double* a, const double* b, const double* c) {
@@ -71,23 +100,32 @@ GG_INLINE int orient2d_fast(const double* a, const double* b, const double* c) {
   return decide(sub_rn(l, r), add_rn(std::fabs(l), std::fabs(r)), kOrient2dBound);
 }
 
-GG_INLINE int orient3d_fast(const double* a, const double* b, const double* c, const double* d) {
+// det[a-d; b-d; c-d] and its permanent (orient3d is minus that determinant).
+GG_INLINE void orient3d_terms(const double* a, const double* b, const double* c, const double* d,
+                              double& det, double& perm) {
   double adx = sub_rn(a[0], d[0]), bdx = sub_rn(b[0], d[0]), cdx = sub_rn(c[0], d[0]);
   double ady = sub_rn(a[1], d[1]), bdy = sub_rn(b[1], d[1]), cdy = sub_rn(c[1], d[1]);
   double adz = sub_rn(a[2], d[2]), bdz = sub_rn(b[2], d[2]), cdz = sub_rn(c[2], d[2]);
   double bc1 = mul_rn(bdx, cdy), bc2 = mul_rn(bdy, cdx);
   double ca1 = mul_rn(cdx, ady), ca2 = mul_rn(cdy, adx);
   double ab1 = mul_rn(adx, bdy), ab2 = mul_rn(ady, bdx);
-  double det = add_rn(add_rn(mul_rn(adz, sub_rn(bc1, bc2)), mul_rn(bdz, sub_rn(ca1, ca2))),
-                      mul_rn(cdz, sub_rn(ab1, ab2)));
-  double perm = add_rn(add_rn(mul_rn(add_rn(std::fabs(bc1), std::fabs(bc2)), std::fabs(adz)),
-                              mul_rn(add_rn(std::fabs(ca1), std::fabs(ca2)), std::fabs(bdz))),
-                       mul_rn(add_rn(std::fabs(ab1), std::fabs(ab2)), std::fabs(cdz)));
+  det = add_rn(add_rn(mul_rn(adz, sub_rn(bc1, bc2)), mul_rn(bdz, sub_rn(ca1, ca2))),
+               mul_rn(cdz, sub_rn(ab1, ab2)));
+  perm = add_rn(add_rn(mul_rn(add_rn(std::fabs(bc1), std::fabs(bc2)), std::fabs(adz)),
+                       mul_rn(add_rn(std::fabs(ca1), std::fabs(ca2)), std::fabs(bdz))),
+                mul_rn(add_rn(std::fabs(ab1), std::fabs(ab2)), std::fabs(cdz)));
+}
+
+GG_INLINE int orient3d_fast(const double* a, const double* b, const double* c, const double* d) {
+  double det, perm;
+  orient3d_terms(a, b, c, d, det, perm);
   // det = det[a-d; b-d; c-d] = -det[b-a; c-a; d-a]
   return -decide(det, perm, kOrient3dBound);
 }
 
-GG_INLINE int incircle_fast(const double* a, const double* b, const double* c, const double* d) {
+// The in-circle determinant det[[a-d, |a-d|^2]; [b-d, ..]; [c-d, ..]] and its permanent.
+GG_INLINE void incircle_terms(const double* a, const double* b, const double* c, const double* d,
+                              double& det, double& perm) {
   double adx = sub_rn(a[0], d[0]), bdx = sub_rn(b[0], d[0]), cdx = sub_rn(c[0], d[0]);
   double ady = sub_rn(a[1], d[1]), bdy = sub_rn(b[1], d[1]), cdy = sub_rn(c[1], d[1]);
   double bc1 = mul_rn(bdx, cdy), bc2 = mul_rn(cdx, bdy);
@@ -96,11 +134,16 @@ GG_INLINE int incircle_fast(const double* a, const double* b, const double* c, c
   double al = add_rn(mul_rn(adx, adx), mul_rn(ady, ady));
   double bl = add_rn(mul_rn(bdx, bdx), mul_rn(bdy, bdy));
   double cl = add_rn(mul_rn(cdx, cdx), mul_rn(cdy, cdy));
-  double det = add_rn(add_rn(mul_rn(al, sub_rn(bc1, bc2)), mul_rn(bl, sub_rn(ca1, ca2))),
-                      mul_rn(cl, sub_rn(ab1, ab2)));
-  double perm = add_rn(add_rn(mul_rn(add_rn(std::fabs(bc1), std::fabs(bc2)), al),
-                              mul_rn(add_rn(std::fabs(ca1), std::fabs(ca2)), bl)),
-                       mul_rn(add_rn(std::fabs(ab1), std::fabs(ab2)), cl));
+  det = add_rn(add_rn(mul_rn(al, sub_rn(bc1, bc2)), mul_rn(bl, sub_rn(ca1, ca2))),
+               mul_rn(cl, sub_rn(ab1, ab2)));
+  perm = add_rn(add_rn(mul_rn(add_rn(std::fabs(bc1), std::fabs(bc2)), al),
+                       mul_rn(add_rn(std::fabs(ca1), std::fabs(ca2)), bl)),
+                mul_rn(add_rn(std::fabs(ab1), std::fabs(ab2)), cl));
+}
+
+GG_INLINE int incircle_fast(const double* a, const double* b, const double* c, const double* d) {
+  double det, perm;
+  incircle_terms(a, b, c, d, det, perm);
   return decide(det, perm, kIncircleBound);
 }
 
@@ -211,62 +254,123 @@ GG_HD inline int orient4d_exact(const double* a, const double* b, const double* 
   return lifted_det_sign<3, 1>(r, l, ll, s);
 }
 
-// ---- adaptive: filter, then exact ----
+// ---- tier 3: exact arithmetic on the translated matrix (translated.hpp) ----
+GG_HD inline int orient3d_translated(const double* a, const double* b, const double* c,
+                                     const double* d, double* s) {
+  const double* p[3] = {a, b, c};
+  double h[3][3];
+  const bool ex = translate<3, 3, 3>(p, d, h);
+  const int n = det3_plain(h[0], h[1], h[2], s, s + kMinor3Len);
+  double det = 0.0, perm = 0.0;
+  if (!ex) orient3d_terms(a, b, c, d, det, perm);
+  const int r = judge(ex, n, s, perm, kOrient3dBoundB);
+  return r == kUndecided ? r : -r;  // orient3d = -det[a-d; b-d; c-d]
+}
+GG_HD inline int incircle_translated(const double* a, const double* b, const double* c,
+                                     const double* d, double* s) {
+  const double* p[3] = {a, b, c};
+  double h[3][2], w[3][4];
+  const bool ex = translate<3, 2, 2>(p, d, h);
+  const double* l[3] = {w[0], w[1], w[2]};
+  int ll[3];
+  for (int i = 0; i < 3; ++i) ll[i] = square_sum<2>(h[i], w[i]);
+  const int n = det3_lifted<4>(h, l, ll, s);
+  double det = 0.0, perm = 0.0;
+  if (!ex) incircle_terms(a, b, c, d, det, perm);
+  return judge(ex, n, s, perm, kIncircleBoundB);
+}
+GG_HD inline int insphere_translated(const double* a, const double* b, const double* c,
+                                     const double* d, const double* e, double* s) {
+  const double* p[4] = {a, b, c, d};
+  double h[4][3], w[4][6];
+  const bool ex = translate<4, 3, 3>(p, e, h);
+  const double* l[4] = {w[0], w[1], w[2], w[3]};
+  int ll[4];
+  for (int i = 0; i < 4; ++i) ll[i] = square_sum<3>(h[i], w[i]);
+  const int n = det4_lifted<6>(h, l, ll, s);
+  double det = 0.0, perm = 0.0;
+  if (!ex)
+    det4_translated(a, b, c, d, e, lift3(a, e), lift3(b, e), lift3(c, e), lift3(d, e), det, perm);
+  const int r = judge(ex, n, s, perm, kInsphereBoundB);
+  return r == kUndecided ? r : -r;  // insphere = -det(M)
+}
+// No published second-stage bound covers a free fourth column: exact differences or undecided.
+GG_HD inline int orient4d_translated(const double* a, const double* b, const double* c,
+                                     const double* d, const double* e, double* s) {
+  const double* p[4] = {a, b, c, d};
+  double h[4][4];
+  if (!translate<4, 4, 4>(p, e, h)) return kUndecided;
+  double r[4][3];
+  const double* l[4] = {&h[0][3], &h[1][3], &h[2][3], &h[3][3]};
+  int ll[4];
+  for (int i = 0; i < 4; ++i) {
+    for (int k = 0; k < 3; ++k) r[i][k] = h[i][k];
+    ll[i] = h[i][3] != 0.0 ? 1 : 0;
+  }
+  return expansion_sign(det4_lifted<1>(r, l, ll, s), s);  // orient4d = det(M)
+}
+
+// ---- tiers 1-3 (scratch: k*MidScratch); kUndecided leaves the rest to *_exact ----
+GG_HD inline int orient3d_mid(const double* a, const double* b, const double* c, const double* d,
+                              double* s) {
+  if (int r = orient3d_fast(a, b, c, d)) return r;
+  int si;
+  if (orient3d_int(a, b, c, d, si)) return si;
+  return orient3d_translated(a, b, c, d, s);
+}
+GG_HD inline int incircle_mid(const double* a, const double* b, const double* c, const double* d,
+                              double* s) {
+  if (int r = incircle_fast(a, b, c, d)) return r;
+  int si;
+  if (incircle_int(a, b, c, d, si)) return si;
+  return incircle_translated(a, b, c, d, s);
+}
+GG_HD inline int insphere_mid(const double* a, const double* b, const double* c, const double* d,
+                              const double* e, double* s) {
+  if (int r = insphere_fast(a, b, c, d, e)) return r;
+  int si;
+  if (insphere_int(a, b, c, d, e, si)) return si;
+  return insphere_translated(a, b, c, d, e, s);
+}
+GG_HD inline int orient4d_mid(const double* a, const double* b, const double* c, const double* d,
+                              const double* e, double* s) {
+  if (int r = orient4d_fast(a, b, c, d, e)) return r;
+  return orient4d_translated(a, b, c, d, e, s);
+}
+
+// ---- adaptive: every tier ----
 GG_HD inline int orient2d(const double* a, const double* b, const double* c, double* s) {
   int r = orient2d_fast(a, b, c);
   return r ? r : orient2d_exact(a, b, c, s);
 }
 GG_HD inline int orient3d(const double* a, const double* b, const double* c, const double* d,
                           double* s) {
-  int r = orient3d_fast(a, b, c, d);
-  return r ? r : orient3d_exact(a, b, c, d, s);
+  int r = orient3d_mid(a, b, c, d, s);
+  return r != kUndecided ? r : orient3d_exact(a, b, c, d, s);
 }
 GG_HD inline int incircle(const double* a, const double* b, const double* c, const double* d,
                           double* s) {
-  int r = incircle_fast(a, b, c, d);
-  return r ? r : incircle_exact(a, b, c, d, s);
+  int r = incircle_mid(a, b, c, d, s);
+  return r != kUndecided ? r : incircle_exact(a, b, c, d, s);
 }
 GG_HD inline int insphere(const double* a, const double* b, const double* c, const double* d,
                           const double* e, double* s) {
-  int r = insphere_fast(a, b, c, d, e);
-  return r ? r : insphere_exact(a, b, c, d, e, s);
+  int r = insphere_mid(a, b, c, d, e, s);
+  return r != kUndecided ? r : insphere_exact(a, b, c, d, e, s);
 }
 GG_HD inline int orient4d(const double* a, const double* b, const double* c, const double* d,
                           const double* e, double* s) {
-  int r = orient4d_fast(a, b, c, d, e);
-  return r ? r : orient4d_exact(a, b, c, d, e, s);
+  int r = orient4d_mid(a, b, c, d, e, s);
+  return r != kUndecided ? r : orient4d_exact(a, b, c, d, e, s);
 }
 GG_HD inline int orient4d_lifted(const double* a, const double* b, const double* c, const double* d,
                                  const double* e, double* s) {
   return -insphere(a, b, c, d, e, s);
 }
 
-// ---- intermediate stage for integer coordinates ----
-// Inputs that are whole numbers of magnitude at most 2^28 (integer grids, pixel and voxel
-// coordinates) have an in-circle determinant that 128-bit integers hold exactly: every
-// difference fits 29 bits, every lift and 2x2 minor 59 bits, each product 118 bits. Degenerate
-// input sends most tests past the filter, and this stage costs a small fraction of the
-// expansion arithmetic. Returns false (sign untouched) when the inputs do not qualify.
-GG_INLINE bool small_integer(double v) {
-  return std::fabs(v) <= 268435456.0 && v == std::floor(v);
-}
-GG_HD inline bool incircle_int(const double* a, const double* b, const double* c, const double* d,
-                               int& sign) {
-  for (const double* p : {a, b, c, d})
-    if (!small_integer(p[0]) || !small_integer(p[1])) return false;
-  using i64 = long long;
-  const i64 dx = i64(d[0]), dy = i64(d[1]);
-  const i64 adx = i64(a[0]) - dx, ady = i64(a[1]) - dy, bdx = i64(b[0]) - dx, bdy = i64(b[1]) - dy,
-            cdx = i64(c[0]) - dx, cdy = i64(c[1]) - dy;
-  const i64 al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
-  const __int128 det = __int128(al) * (bdx * cdy - cdx * bdy) +
-                       __int128(bl) * (cdx * ady - adx * cdy) +
-                       __int128(cl) * (adx * bdy - bdx * ady);
-  sign = (det > 0) - (det < 0);
-  return true;
-}
-
 // ---- simulation of simplicity (indices must be distinct) ----
+// Each *_sos_mid returns the sign, resolving an exact zero by SoS, or kUndecided when tier 3
+// could not tell; *_sos_last finishes such a test (tier 4, then SoS on a zero).
 GG_HD inline int orient2d_sos(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, double* s) {
   if (int r = orient2d(a, b, c, s)) return r;
@@ -275,41 +379,82 @@ GG_HD inline int orient2d_sos(const double* a, int ia, const double* b, int ib, 
   int parity = sort_rows<3>(r, idx, nullptr, nullptr);
   return parity * sos_resolve<2, 0>(r, nullptr, nullptr, s);
 }
-GG_HD inline int orient3d_sos(const double* a, int ia, const double* b, int ib, const double* c,
+
+GG_HD inline int orient3d_tie(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, double* s) {
-  if (int r = orient3d(a, b, c, d, s)) return r;
   const double* r[4] = {a, b, c, d};
   int idx[4] = {ia, ib, ic, id};
   int parity = sort_rows<4>(r, idx, nullptr, nullptr);
   return -parity * sos_resolve<3, 0>(r, nullptr, nullptr, s);
 }
-GG_HD inline int incircle_sos(const double* a, int ia, const double* b, int ib, const double* c,
+GG_HD inline int orient3d_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
+                                  int ic, const double* d, int id, double* s) {
+  const int r = orient3d_mid(a, b, c, d, s);
+  return r != 0 ? r : orient3d_tie(a, ia, b, ib, c, ic, d, id, s);
+}
+GG_HD inline int orient3d_sos_last(const double* a, int ia, const double* b, int ib,
+                                   const double* c, int ic, const double* d, int id, double* s) {
+  const int r = orient3d_exact(a, b, c, d, s);
+  return r != 0 ? r : orient3d_tie(a, ia, b, ib, c, ic, d, id, s);
+}
+GG_HD inline int orient3d_sos(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, double* s) {
-  if (int r = incircle_fast(a, b, c, d)) return r;
-  int si = 0;
-  if (incircle_int(a, b, c, d, si)) {
-    if (si) return si;
-  } else if (int r = incircle_exact(a, b, c, d, s)) {
-    return r;
-  }
+  const int r = orient3d_sos_mid(a, ia, b, ib, c, ic, d, id, s);
+  return r != kUndecided ? r : orient3d_sos_last(a, ia, b, ib, c, ic, d, id, s);
+}
+
+GG_HD inline int incircle_tie(const double* a, int ia, const double* b, int ib, const double* c,
+                              int ic, const double* d, int id, double* s) {
   const double* r[4] = {a, b, c, d};
   int idx[4] = {ia, ib, ic, id};
   SquareLifts<4, 2> l(r);
   int parity = sort_rows<4>(r, idx, l.p, l.len);
   return parity * sos_resolve<2, 4>(r, l.p, l.len, s);
 }
-GG_HD inline int insphere_sos(const double* a, int ia, const double* b, int ib, const double* c,
+GG_HD inline int incircle_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
+                                  int ic, const double* d, int id, double* s) {
+  const int r = incircle_mid(a, b, c, d, s);
+  return r != 0 ? r : incircle_tie(a, ia, b, ib, c, ic, d, id, s);
+}
+GG_HD inline int incircle_sos_last(const double* a, int ia, const double* b, int ib,
+                                   const double* c, int ic, const double* d, int id, double* s) {
+  const int r = incircle_exact(a, b, c, d, s);
+  return r != 0 ? r : incircle_tie(a, ia, b, ib, c, ic, d, id, s);
+}
+GG_HD inline int incircle_sos(const double* a, int ia, const double* b, int ib, const double* c,
+                              int ic, const double* d, int id, double* s) {
+  const int r = incircle_sos_mid(a, ia, b, ib, c, ic, d, id, s);
+  return r != kUndecided ? r : incircle_sos_last(a, ia, b, ib, c, ic, d, id, s);
+}
+
+GG_HD inline int insphere_tie(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, const double* e, int ie, double* s) {
-  if (int r = insphere(a, b, c, d, e, s)) return r;
   const double* r[5] = {a, b, c, d, e};
   int idx[5] = {ia, ib, ic, id, ie};
   SquareLifts<5, 3> l(r);
   int parity = sort_rows<5>(r, idx, l.p, l.len);
   return -parity * sos_resolve<3, 6>(r, l.p, l.len, s);
 }
-GG_HD inline int orient4d_sos(const double* a, int ia, const double* b, int ib, const double* c,
+GG_HD inline int insphere_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
+                                  int ic, const double* d, int id, const double* e, int ie,
+                                  double* s) {
+  const int r = insphere_mid(a, b, c, d, e, s);
+  return r != 0 ? r : insphere_tie(a, ia, b, ib, c, ic, d, id, e, ie, s);
+}
+GG_HD inline int insphere_sos_last(const double* a, int ia, const double* b, int ib,
+                                   const double* c, int ic, const double* d, int id,
+                                   const double* e, int ie, double* s) {
+  const int r = insphere_exact(a, b, c, d, e, s);
+  return r != 0 ? r : insphere_tie(a, ia, b, ib, c, ic, d, id, e, ie, s);
+}
+GG_HD inline int insphere_sos(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, const double* e, int ie, double* s) {
-  if (int r = orient4d(a, b, c, d, e, s)) return r;
+  const int r = insphere_sos_mid(a, ia, b, ib, c, ic, d, id, e, ie, s);
+  return r != kUndecided ? r : insphere_sos_last(a, ia, b, ib, c, ic, d, id, e, ie, s);
+}
+
+GG_HD inline int orient4d_tie(const double* a, int ia, const double* b, int ib, const double* c,
+                              int ic, const double* d, int id, const double* e, int ie, double* s) {
   const double* r[5] = {a, b, c, d, e};
   int idx[5] = {ia, ib, ic, id, ie};
   const double* l[5];
@@ -320,6 +465,23 @@ GG_HD inline int orient4d_sos(const double* a, int ia, const double* b, int ib, 
   }
   int parity = sort_rows<5>(r, idx, l, ll);
   return parity * sos_resolve<3, 1>(r, l, ll, s);
+}
+GG_HD inline int orient4d_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
+                                  int ic, const double* d, int id, const double* e, int ie,
+                                  double* s) {
+  const int r = orient4d_mid(a, b, c, d, e, s);
+  return r != 0 ? r : orient4d_tie(a, ia, b, ib, c, ic, d, id, e, ie, s);
+}
+GG_HD inline int orient4d_sos_last(const double* a, int ia, const double* b, int ib,
+                                   const double* c, int ic, const double* d, int id,
+                                   const double* e, int ie, double* s) {
+  const int r = orient4d_exact(a, b, c, d, e, s);
+  return r != 0 ? r : orient4d_tie(a, ia, b, ib, c, ic, d, id, e, ie, s);
+}
+GG_HD inline int orient4d_sos(const double* a, int ia, const double* b, int ib, const double* c,
+                              int ic, const double* d, int id, const double* e, int ie, double* s) {
+  const int r = orient4d_sos_mid(a, ia, b, ib, c, ic, d, id, e, ie, s);
+  return r != kUndecided ? r : orient4d_sos_last(a, ia, b, ib, c, ic, d, id, e, ie, s);
 }
 GG_HD inline int orient4d_lifted_sos(const double* a, int ia, const double* b, int ib,
                                      const double* c, int ic, const double* d, int id,

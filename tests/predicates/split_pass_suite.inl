@@ -15,11 +15,13 @@ using namespace gpugeom;
 
 struct Run {
   std::vector<std::int8_t> signs;
-  std::int64_t exact = 0;
+  std::int64_t exact = 0, last = 0;
 };
 
 // kind: 0 orient2d 1 orient3d 2 incircle 3 insphere 4 orient4d; sos adds indices 3*t+j.
-template <int kind, bool sos>
+// tiers 2: filter, then the whole adaptive predicate; 3: filter, the *_mid stages on small
+// slots, then the *_exact / *_sos_last stage on what they leave.
+template <int kind, bool sos, int tiers = 2>
 Run evaluate(EXEC& ex, const gg_test::Tuples& t) {
   const std::int64_t n = std::int64_t(t.size());
   auto dv = ex.template alloc<double>(t.v.size());
@@ -65,7 +67,53 @@ Run evaluate(EXEC& ex, const gg_test::Tuples& t) {
                           : kind == 3 ? pred::kInsphereScratch
                                       : pred::kOrient4dScratch;
   Run r;
-  r.exact = split_pass(ex, n, out.data(), fast, exact, scratch).exact_items;
+  if constexpr (tiers == 2) {
+    r.exact = split_pass(ex, n, out.data(), fast, exact, scratch).exact_items;
+  } else {
+    static_assert(kind != 0, "orient2d has no middle tier");
+    auto mid = GG_LAMBDA(std::int64_t i, double* s)->int {
+      if (!sos) {
+        if (kind == 1) return pred::orient3d_mid(P(i, 0), P(i, 1), P(i, 2), P(i, 3), s);
+        if (kind == 2) return pred::incircle_mid(P(i, 0), P(i, 1), P(i, 2), P(i, 3), s);
+        if (kind == 3) return pred::insphere_mid(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4), s);
+        return pred::orient4d_mid(P(i, 0), P(i, 1), P(i, 2), P(i, 3), P(i, 4), s);
+      }
+      if (kind == 1)
+        return pred::orient3d_sos_mid(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                      I(i, 3), s);
+      if (kind == 2)
+        return pred::incircle_sos_mid(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                      I(i, 3), s);
+      if (kind == 3)
+        return pred::insphere_sos_mid(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                      I(i, 3), P(i, 4), I(i, 4), s);
+      return pred::orient4d_sos_mid(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                    I(i, 3), P(i, 4), I(i, 4), s);
+    };
+    auto last = GG_LAMBDA(std::int64_t i, double* s)->int {
+      if (!sos) return exact(i, s);  // the *_exact stages
+      if (kind == 1)
+        return pred::orient3d_sos_last(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2),
+                                       P(i, 3), I(i, 3), s);
+      if (kind == 2)
+        return pred::incircle_sos_last(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2),
+                                       P(i, 3), I(i, 3), s);
+      if (kind == 3)
+        return pred::insphere_sos_last(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2),
+                                       P(i, 3), I(i, 3), P(i, 4), I(i, 4), s);
+      return pred::orient4d_sos_last(P(i, 0), I(i, 0), P(i, 1), I(i, 1), P(i, 2), I(i, 2), P(i, 3),
+                                     I(i, 3), P(i, 4), I(i, 4), s);
+    };
+    constexpr int mid_scratch =
+        kind == 1   ? (sos ? pred::kOrient3dSosMidScratch : pred::kOrient3dMidScratch)
+        : kind == 2 ? (sos ? pred::kIncircleSosMidScratch : pred::kIncircleMidScratch)
+        : kind == 3 ? (sos ? pred::kInsphereSosMidScratch : pred::kInsphereMidScratch)
+                    : (sos ? pred::kOrient4dSosMidScratch : pred::kOrient4dMidScratch);
+    const SplitPassResult res =
+        split_pass(ex, n, out.data(), fast, mid, mid_scratch, last, scratch);
+    r.exact = res.exact_items;
+    r.last = res.last_items;
+  }
   r.signs.resize(n);
   ex.to_host(out.data(), n, r.signs.data());
   return r;
@@ -116,15 +164,19 @@ int tuples_per_batch() {
   return e ? std::max(100, std::atoi(e)) : 20000;
 }
 
-template <int kind, bool sos>
+template <int kind, bool sos, int tiers = 2>
 void compare(int dim, int k, bool sphere, int stride = 0) {
   EXEC ex;
   const int count = tuples_per_batch();
-  for (double scale : {1.0, 0x1p-90, 0x1p90}) {
+  for (double scale : {1.0, 0x1p-90, 0x1p90, 3e25}) {
     auto t = gg_test::make_tuples(dim, k, count, 100 + kind, scale, sphere, stride);
-    Run r = evaluate<kind, sos>(ex, t);
+    Run r = evaluate<kind, sos, tiers>(ex, t);
     auto ref = host_reference<kind, sos>(t);
     EXPECT_GT(r.exact, count / 20) << "the exact pass was hardly exercised";
+    if (tiers == 3) {  // the middle tier decides part of it, and leaves some to the last one
+      EXPECT_LT(r.last, r.exact) << "scale " << scale;
+      if (kind != 4) EXPECT_GT(r.last, 0) << "scale " << scale;
+    }
     for (std::size_t i = 0; i < ref.size(); ++i) {
       ASSERT_EQ(int(r.signs[i]), int(ref[i]))
           << "kind " << kind << " sos " << sos << " scale " << scale << " case " << i;
@@ -162,6 +214,32 @@ TEST(SUITE, InsphereSos) {
 }
 TEST(SUITE, Orient4dSos) {
   compare<4, true>(3, 5, false, 4);
+}
+
+// The three-tier pass (GPU-sized middle tier, full expansion on a second list).
+TEST(SUITE, Orient3dTiered) {
+  compare<1, false, 3>(3, 4, false);
+}
+TEST(SUITE, IncircleTiered) {
+  compare<2, false, 3>(2, 4, true);
+}
+TEST(SUITE, InsphereTiered) {
+  compare<3, false, 3>(3, 5, true);
+}
+TEST(SUITE, Orient4dTiered) {
+  compare<4, false, 3>(3, 5, false, 4);
+}
+TEST(SUITE, Orient3dSosTiered) {
+  compare<1, true, 3>(3, 4, false);
+}
+TEST(SUITE, IncircleSosTiered) {
+  compare<2, true, 3>(2, 4, true);
+}
+TEST(SUITE, InsphereSosTiered) {
+  compare<3, true, 3>(3, 5, true);
+}
+TEST(SUITE, Orient4dSosTiered) {
+  compare<4, true, 3>(3, 5, false, 4);
 }
 
 }  // namespace
