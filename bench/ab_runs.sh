@@ -15,6 +15,7 @@ one() {  # $1 label, $2 dir
     grep -E "^(uniform|grid)"
   "$2/gpugeom_bench_hull3d" --backend cuda --dists ball,sphere --sizes ${AB_HULL:-1e6,1e7} --reps 5 |
     grep -E "^(ball|sphere)"
+  [ -x "$2/gpugeom_bench_edt" ] || return 0  # EDT left out of this comparison
   "$2/gpugeom_bench_edt" --backend cuda --sides ${AB_EDT:-4096,8192} --density 0.1 --reps 5 |
     grep -E "^edt "
 }

@@ -20,6 +20,7 @@
 #include "gpugeom/generate.hpp"
 #include "gpugeom/hull3d.hpp"
 #include "gpugeom/io.hpp"
+#include "gpugeom/spatial.hpp"
 #include "verify.hpp"
 
 #ifdef GG_BENCH_CGAL
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
   std::string dists = "ball", sizes = "1e5,1e6", backends = "all", csv, save;
   int reps = 3;
   std::int64_t cgal_max = 0;
-  bool check = false;
+  bool check = false, presort = false;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -90,10 +91,12 @@ int main(int argc, char** argv) {
       csv = next();
     else if (a == "--save")
       save = next();
+    else if (a == "--presort" && next() == "hilbert")
+      presort = true;
     else {
       std::cout << "usage: gpugeom_bench_hull3d [--dists ball,uniform,thin_box,thin_sphere,sphere,"
                    "scal:10000] [--sizes 1e6,1e7] [--backend cpu|cuda|all] [--reps 3] [--cgal "
-                   "MAX_N] [--check] [--csv FILE] [--save DIR]\n";
+                   "MAX_N] [--check] [--csv FILE] [--save DIR] [--presort hilbert]\n";
       return a == "--help" ? 0 : 2;
     }
   }
@@ -117,6 +120,13 @@ int main(int argc, char** argv) {
         pts = scalability(n, k);
       } else {
         pts = generate3d(d, n, 1);
+      }
+      if (presort) {  // the input in Hilbert order, outside the timed calls: does order matter?
+        const auto o = hilbert_order(pts, Backend::Cpu);
+        std::vector<Point3> q(pts.size());
+        for (std::size_t i = 0; i < o.size(); ++i) q[i] = pts[std::size_t(o[i])];
+        pts.swap(q);
+        name += "+hilbert";
       }
       if (!save.empty()) {
         io::PointSet ps;

@@ -5,6 +5,7 @@
 #include <thrust/functional.h>
 #include <vector>
 
+#include "base/clock.hpp"
 #include "cvd/cvd_backend.hpp"
 #include "edt/edt_device.hpp"
 #include "exec/atomics.hpp"

@@ -15,9 +15,12 @@
 #include <vector>
 
 #include "delaunay2d/del2d_backend.hpp"
+#include "base/clock.hpp"
 #include "exec/atomics.hpp"
 #include "exec/host_sizer.hpp"
 #include "exec/cpu_exec.hpp"
+#include "mesh/adjacency.hpp"
+#include "mesh/priority.hpp"
 #include "predicates/predicates.hpp"
 #include "spatial/hilbert.hpp"
 

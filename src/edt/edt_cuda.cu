@@ -7,6 +7,7 @@
 #include <string>
 #include <type_traits>
 
+#include "base/clock.hpp"
 #include "edt/edt_backend.hpp"
 #include "edt/edt_device.hpp"
 #include "exec/host_sizer.hpp"

@@ -9,10 +9,13 @@
 #include <utility>
 #include <vector>
 
+#include "base/clock.hpp"
 #include "exec/atomics.hpp"
 #include "exec/host_sizer.hpp"
 #include "exec/cuda_exec.cuh"
 #include "hull3d/hull3d_backend.hpp"
+#include "mesh/adjacency.hpp"
+#include "mesh/priority.hpp"
 #include "predicates/predicates.hpp"
 
 namespace gpugeom::hull3d::cuda_impl {

@@ -3,6 +3,7 @@
 // choices never depend on timing or on the executor).
 #include <cuda_runtime.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -88,6 +89,7 @@ TEST(CudaDelaunay2d, DeviceResident) {  // points on the GPU in, result left the
 TEST(CudaDelaunay2d, ConcurrentStreamsAndDevices) {
   int ndev = 0;
   ASSERT_EQ(cudaGetDeviceCount(&ndev), cudaSuccess);
+  std::printf("[ info     ] 4 host threads over %d device(s)\n", ndev);
   const auto p = generate2d("uniform", sizes({200000, 5000}).front(), 5);
   Delaunay2dOptions o;
   o.backend = Backend::Cuda;

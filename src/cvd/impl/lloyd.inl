@@ -152,7 +152,7 @@ inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
   const Layout L = rq.layout;
   const int nd = L.nd;
   const std::int64_t n = L.count(), ns = std::int64_t(rq.sites.size()) / nd;
-  const auto t_setup = std::chrono::steady_clock::now();
+  const auto t_setup = Clock::now();
   auto w = ex.template alloc<std::uint32_t>(std::size_t(n));
   ex.from_host(rq.weights.data(), n, w.data());
   // Site coordinates as one plane per axis.
@@ -180,9 +180,7 @@ inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
   auto mass = ex.template alloc<u64>(std::size_t(ns));
   auto scal = ex.template alloc<Scalars>(1);
   ex.sync();
-  stats.phase_ms.push_back({"setup", std::chrono::duration<double, std::milli>(
-                                         std::chrono::steady_clock::now() - t_setup)
-                                         .count()});
+  stats.phase_ms.push_back({"setup", ms_since(t_setup)});
 
   std::int32_t* P = pos.data();
   std::uint32_t* fp = feat.data();
@@ -192,7 +190,7 @@ inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
   u64* mp = mass.data();
   Scalars* sp = scal.data();
   const Layout Ly = L;
-  const auto t_iter = std::chrono::steady_clock::now();
+  const auto t_iter = Clock::now();
   double prev_energy = 0;
   for (int it = 1; it <= rq.max_iterations; ++it) {
     // 1. Sites into a feature grid; label[] at a site's point: the lowest site index there.
@@ -292,9 +290,7 @@ inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
     }
     if (!go) break;
   }
-  stats.phase_ms.push_back({"iterations", std::chrono::duration<double, std::milli>(
-                                              std::chrono::steady_clock::now() - t_iter)
-                                              .count()});
+  stats.phase_ms.push_back({"iterations", ms_since(t_iter)});
   stats.counters["iterations"] = out.iterations;
   ex.to_host(P, std::int64_t(planes.size()), planes.data());
   out.sites.resize(planes.size());

@@ -110,25 +110,3 @@ GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::
   const double dx = sub_rn(qx, ux), dy = sub_rn(qy, uy);
   return ordered_bits(float(add_rn(mul_rn(dx, dx), mul_rn(dy, dy))));
 }
-
-// A bijection of 32-bit integers that scatters neighbouring slots (murmur3's finaliser): flip
-// priorities by slot number would let only one flip per round go ahead along a chain of
-// proposals with increasing slots, as in fans.
-GG_INLINE std::uint32_t scatter(std::uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x85ebca6bu;
-  x ^= x >> 13;
-  x *= 0xc2b2ae35u;
-  x ^= x >> 16;
-  return x;
-}
-// Its inverse (each step undone in reverse order; the odd multipliers' inverses mod 2^32), so
-// that a vote's key names its proposer.
-GG_INLINE std::uint32_t unscatter(std::uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7ed1b41du;
-  x ^= (x >> 13) ^ (x >> 26);
-  x *= 0xa5cb9243u;
-  x ^= x >> 16;
-  return x;
-}

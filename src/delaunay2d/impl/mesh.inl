@@ -7,15 +7,12 @@
 // keeps the old slot for one child and takes two new ones, a flip rewrites its two slots, so the
 // extended triangulation of m + 1 vertices ends with exactly 2m - 2 slots, all in use.
 
-GG_INLINE std::int32_t enc(std::int32_t t, int k) {
-  return t * 4 + k;
-}
-GG_INLINE std::int32_t tri_of(std::int32_t e) {
-  return e >> 2;
-}
-GG_INLINE int loc_of(std::int32_t e) {
-  return e & 3;
-}
+// (The neighbour encoding and the vote keys come from mesh/adjacency.hpp and mesh/priority.hpp.)
+using mesh::enc;
+using mesh::loc_of;
+using mesh::simplex_of;
+using mesh::vote_key;
+using mesh::voter_of;
 
 // (atomic_add/min/max/exchange and append_slot come from exec/atomics.hpp.)
 
@@ -76,13 +73,6 @@ GG_INLINE int legal_edge_of(std::int32_t entry) {
 // A work-list entry's decision: the first illegal edge (0..2), none (-1), or kUndecided + k
 // when the filter could not decide edge k and the exact pass goes on from there.
 constexpr int kUndecided = 3;
-// A flip proposal's key: newer rounds win over stale keys, then a fixed scramble of the slot.
-GG_INLINE u64 vote_key(std::int32_t round, std::int32_t t) {
-  return (u64(round) << 32) | u64(scatter(std::uint32_t(t)));
-}
-GG_INLINE std::int32_t voter_of(u64 key) {
-  return std::int32_t(unscatter(std::uint32_t(key)));
-}
 // atomic_max without the read first, for keys that usually win (each proposal of a fresh
 // round): the atomic then needs no reply, and the thread does not wait on a load.
 GG_INLINE void vote_max(u64* p, u64 v) {
@@ -126,7 +116,7 @@ GG_HD inline void split_triangle(const Mesh& M, std::int32_t t, std::int32_t p, 
   for (int k = 0; k < 3; ++k) {
     const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
     const std::int32_t s = c[k], o = T.n[k];
-    const std::int32_t nb = tri_of(o);
+    const std::int32_t nb = simplex_of(o);
     const int j = loc_of(o);
     const std::int32_t r = split_rank[nb];
     std::int32_t across = o;
@@ -140,7 +130,7 @@ GG_HD inline void split_triangle(const Mesh& M, std::int32_t t, std::int32_t p, 
 
 // Flips the edge opposite vertex k of triangle t (phase 1 of 2): quad v[k], v[k+1], d, v[k+2]
 // becomes t' = (v[k], v[k+1], d) in slot t and n' = (v[k], d, v[k+2]) in slot nb. T and N are
-// the two slots' records, nb = tri_of(T.n[k]). The four outer neighbour pointers are left as
+// the two slots' records, nb = simplex_of(T.n[k]). The four outer neighbour pointers are left as
 // they were (phase 2 fixes them once every flip of the round is done). record: the flip's
 // global record number, or -1 for none.
 GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, const Tri& T, int k, std::int32_t nb,
@@ -167,7 +157,7 @@ GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, const Tri& T, int k
 GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, int k, std::int32_t round,
                               std::int32_t record) {
   const Tri T = M.tri[t];
-  const std::int32_t nb = tri_of(T.n[k]);
+  const std::int32_t nb = simplex_of(T.n[k]);
   flip_phase1(M, t, T, k, nb, M.tri[nb], round, record);
 }
 
@@ -197,7 +187,7 @@ GG_INLINE int opposite_of(const Mesh& M, std::int32_t s, std::int32_t a, std::in
 // back); otherwise the neighbour points back at x.
 GG_HD inline void fix_edge(const Mesh& M, std::int32_t x, const Tri& X, int l, std::int32_t round,
                            std::int32_t stamp) {
-  const std::int32_t s = tri_of(X.n[l]);
+  const std::int32_t s = simplex_of(X.n[l]);
   if (stamp != round) {
     M.tri[s].n[loc_of(X.n[l])] = enc(x, l);
     return;
@@ -217,8 +207,8 @@ GG_HD inline void fix_edge(const Mesh& M, std::int32_t x, const Tri& X, int l, s
 // each read waiting on the one before).
 GG_HD inline void fix_pair(const Mesh& M, std::int32_t t, const Tri& T, std::int32_t nb,
                            const Tri& N, std::int32_t round) {
-  const std::int32_t st0 = M.tri[tri_of(T.n[0])].stamp, st2 = M.tri[tri_of(T.n[2])].stamp;
-  const std::int32_t sn0 = M.tri[tri_of(N.n[0])].stamp, sn1 = M.tri[tri_of(N.n[1])].stamp;
+  const std::int32_t st0 = M.tri[simplex_of(T.n[0])].stamp, st2 = M.tri[simplex_of(T.n[2])].stamp;
+  const std::int32_t sn0 = M.tri[simplex_of(N.n[0])].stamp, sn1 = M.tri[simplex_of(N.n[1])].stamp;
   fix_edge(M, t, T, 0, round, st0);
   fix_edge(M, t, T, 2, round, st2);
   fix_edge(M, nb, N, 0, round, sn0);

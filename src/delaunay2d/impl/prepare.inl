@@ -69,14 +69,13 @@ struct Prepared {
 inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_device,
                         const std::function<void()>& after_upload) {
   Prepared P;
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   auto raw = ex.template alloc<double>(std::size_t(2 * n));
   if (on_device)
     ex.copy(xy, 2 * n, raw.data());
   else
     ex.from_host(xy, 2 * n, raw.data());
-  P.upload_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  P.upload_ms = ms_since(t0);
   after_upload();
   double* r = raw.data();
 

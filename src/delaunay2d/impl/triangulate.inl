@@ -116,7 +116,7 @@ class Triangulator {
           const Tri T = tri[t];
           for (int k = 0; k < 3; ++k) {
             ot[3 * r + k] = orig[T.v[k]];
-            const std::int32_t nb = tri_of(T.n[k]);  // finite where its rank steps
+            const std::int32_t nb = simplex_of(T.n[k]);  // finite where its rank steps
             const std::int32_t rn = rk[nb];
             on[3 * r + k] = rk[nb + 1] != rn ? rn : -1;
           }
@@ -127,8 +127,7 @@ class Triangulator {
   using clock = std::chrono::steady_clock;
   void phase(const char* name, clock::time_point t0) {
     ex_.sync();
-    st_.phase_ms.push_back(
-        {name, std::chrono::duration<double, std::milli>(clock::now() - t0).count()});
+    st_.phase_ms.push_back({name, ms_since(t0)});
   }
   Counters counters() {
     Counters c;
@@ -325,7 +324,7 @@ class Triangulator {
           int res = -1;
           for (int k = 0; k < edges; ++k) {
             if (k == known) continue;
-            const std::int32_t d = M.tri[tri_of(T.n[k])].v[loc_of(T.n[k])];
+            const std::int32_t d = M.tri[simplex_of(T.n[k])].v[loc_of(T.n[k])];
             const int r = illegal_fast(g, T.v, d);
             if (r > 0) res = k;
             if (r == 0) res = kUndecided + k;
@@ -335,7 +334,7 @@ class Triangulator {
           if (res >= kUndecided)
             exl[append_slot(&ctr->exact[p])] = std::int32_t(i);
           else if (res >= 0)
-            propose(M, round, t, tri_of(T.n[res]));
+            propose(M, round, t, simplex_of(T.n[res]));
         });
     mark("flip: test");
     exact_pass(bound, edges);
@@ -356,7 +355,7 @@ class Triangulator {
           if (kReadAhead) T = M.tri[t];
           if (won == key) {  // t is this proposal's: no other thread writes it this round
             if (!kReadAhead) T = M.tri[t];
-            const std::int32_t nb = tri_of(T.n[k]);
+            const std::int32_t nb = simplex_of(T.n[k]);
             Tri N;
             if (kReadAhead) N = M.tri[nb];
             if (M.vote[nb] == key) {
@@ -417,7 +416,7 @@ class Triangulator {
             int r = -1;
             if (k >= dec[i] - kUndecided && k < edges && k != legal_edge_of(act[i])) {
               const Tri T = M.tri[slot_of(act[i])];
-              const std::int32_t d = M.tri[tri_of(T.n[k])].v[loc_of(T.n[k])];
+              const std::int32_t d = M.tri[simplex_of(T.n[k])].v[loc_of(T.n[k])];
               r = illegal_fast(g, T.v, d);
               if (r == 0) r = illegal_exact(g, T.v, d, scr + s * kIncircleScratch);
             }
@@ -433,7 +432,7 @@ class Triangulator {
             dec[i] = std::int8_t(first);
             if (first < 0) continue;
             const std::int32_t t = slot_of(act[i]);
-            propose(M, round, t, tri_of(M.tri[t].n[first]));
+            propose(M, round, t, simplex_of(M.tri[t].n[first]));
           }
         });
   }
@@ -541,7 +540,7 @@ class Triangulator {
         GG_LAMBDA(std::int64_t t) {
           const Tri T = tri[t];
           const int gi = T.v[0] == m ? 0 : T.v[1] == m ? 1 : T.v[2] == m ? 2 : -1;
-          return gi >= 0 && flat(tri[tri_of(T.n[gi])]);
+          return gi >= 0 && flat(tri[simplex_of(T.n[gi])]);
         },
         act_.data());
     const std::int64_t nflat =
@@ -568,7 +567,7 @@ class Triangulator {
             dec[i] = -1;
             if (infinite(T, m)) return;
             for (int k = 0; k < 3; ++k) {
-              const std::int32_t nb = tri_of(T.n[k]);
+              const std::int32_t nb = simplex_of(T.n[k]);
               if (infinite(M.tri[nb], m) &&
                   between(g.at(T.v[(k + 1) % 3]), g.at(T.v[k]), g.at(T.v[(k + 2) % 3]))) {
                 dec[i] = std::int8_t(k);
@@ -584,7 +583,7 @@ class Triangulator {
             const std::int32_t t = act[i];
             const u64 key = vote_key(round, t);
             if (M.vote[t] != key) return;
-            if (M.vote[tri_of(M.tri[t].n[k])] == key) {
+            if (M.vote[simplex_of(M.tri[t].n[k])] == key) {
               flip_phase1(M, t, k, round, -1);  // no point is left to follow it
               atomic_add(&ctr->flips, std::int64_t(1));
             }
@@ -613,7 +612,7 @@ class Triangulator {
     if (!profile_) return;
     ex_.sync();
     const auto now = clock::now();
-    prof_[step] += std::chrono::duration<double, std::milli>(now - last_).count();
+    prof_[step] += ms_between(last_, now);
     last_ = now;
   }
   void report() {
@@ -652,10 +651,6 @@ class Triangulator {
   typename Exec::template Buffer<Counters> ctr_;
   typename Exec::template Buffer<double> scratch_;
 };
-
-inline double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
 // after_upload runs once the points are on the executor.

@@ -1,14 +1,6 @@
 // The backend entry: upload, feature transform (whole grid or slice by slice), outputs,
 // download. Included after pba.inl and jfa.inl.
 
-namespace {
-double clock_ms() {
-  return std::chrono::duration<double, std::milli>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-}  // namespace
-
 // Per-voxel outputs of one computed block (whole grid or one slice) appended at `at`, into
 // host arrays that `sizer` is sizing.
 inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std::uint32_t* feat,
@@ -71,7 +63,7 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
         });
   }
   ex.sync();  // distances and labels are on the device: the device-resident result
-  out.device_outputs_at = clock_ms();
+  out.device_outputs_at = now_ms();
   sizer.join();  // the host arrays (size_outputs) are ready for the copies
   if (si) {
     out.sqdist_int.resize(total);
@@ -129,7 +121,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   auto sites = ex.template alloc<std::uint32_t>(rq.mask ? 0 : rq.sites.size());
   auto sidx = ex.template alloc<std::int32_t>(rq.mask ? 0 : rq.sites.size());
   auto mask = ex.template alloc<std::uint8_t>(rq.mask ? std::size_t(nvox) : 0);
-  const double t0 = clock_ms();
+  const double t0 = now_ms();
   if (rq.mask) {
     ex.from_host(rq.mask, nvox, mask.data());
   } else {
@@ -159,7 +151,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
         });
   }
   ex.sync();
-  stats.phase_ms.push_back({"upload", clock_ms() - t0});
+  stats.phase_ms.push_back({"upload", now_ms() - t0});
   // After the upload, so that it does not compete with it; from a million voxels (below, a
   // thread per array costs more than the fill it would overlap).
   HostSizer sizer;
@@ -183,12 +175,12 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
           ns, GG_LAMBDA(std::int64_t i) { fp[Ly.voxel_of(sp[i])] = sp[i]; });
     }
     ex.sync();
-    const double t1 = clock_ms();
+    const double t1 = now_ms();
     // run.profile times each pass (a synchronisation after each: for tuning only).
     double last = t1;
     auto step = [&](int a) {
       ex.sync();
-      const double now = clock_ms();
+      const double now = now_ms();
       stats.phase_ms.push_back({std::string("pass_") + "xyz"[a], now - last});
       last = now;
     };
@@ -200,9 +192,9 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     else
       feature_transform(ex, L, rq.metric, fp, site_mask, rq.tune, L.nd, rq.site_count, &stats);
     ex.sync();
-    out.transform_ms = clock_ms() - t1;
+    out.transform_ms = now_ms() - t1;
     stats.phase_ms.push_back({"transform", out.transform_ms});
-    const double t2 = clock_ms();
+    const double t2 = now_ms();
     // Labels: the label of every site voxel in a grid (raster rank of a mask's sites, or the
     // lowest index among a list's duplicates), so each voxel's label is one lookup.
     auto rank = ex.template alloc<std::int32_t>(rq.want_labels ? std::size_t(nvox) : 0);
@@ -225,7 +217,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     emit_outputs(ex, rq, L, fp, sorted, sorted_idx, ns, rp, out, 0, nvox, sizer);
     // Labels' grid, distance and label kernels, before any copy back (features excluded).
     stats.phase_ms.push_back({"outputs_device", out.device_outputs_at - t2});
-    stats.phase_ms.push_back({"outputs", clock_ms() - t2});
+    stats.phase_ms.push_back({"outputs", now_ms() - t2});
     return;
   }
 
@@ -255,7 +247,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   double transform = 0;
   for (std::int64_t k = 0; k < nsl; ++k) {
     Ls.z0 = rq.slices[k];
-    const double t1 = clock_ms();
+    const double t1 = now_ms();
     std::uint32_t* fp = feat.data();
     const std::uint64_t* kp = keys.data();
     const std::uint32_t* op = order.data();
@@ -285,7 +277,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
         });
     feature_transform(ex, Ls, rq.metric, fp, nullptr, rq.tune, 2, 0, &stats);
     ex.sync();
-    transform += clock_ms() - t1;
+    transform += now_ms() - t1;
     emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, nullptr, out, k * nxy, nsl * nxy, sizer);
   }
   out.transform_ms = transform;

@@ -9,7 +9,7 @@
 // smallest labelled vertex involved. Labels take effect the next round, so every decision of a
 // round reads the same state. A facet proposes its first flip; a flip claims its two or three
 // facets and goes ahead when its key is the highest on each of them (keys: the round, then a
-// fixed scramble of the slot), so results never depend on timing. Neighbour pointers are fixed
+// fixed scatter of the slot), so results never depend on timing. Neighbour pointers are fixed
 // in a second phase as in delaunay2d. Changed facets and their neighbours, outvoted proposers
 // and the facets around newly labelled vertices form the next list.
 //
@@ -68,7 +68,7 @@ struct Decide {
   template <class O>
   GG_HD bool edge(std::int32_t f, int k, const O& o) const {
     std::int8_t* out = eact + 3 * std::int64_t(f) + k;
-    const std::int32_t e = Sf.to[3 * f + k], g = facet_of(e);
+    const std::int32_t e = Sf.to[3 * f + k], g = simplex_of(e);
     if (Sf.tv[3 * f] < 0 || g < f) {
       *out = kNone;
       return true;
@@ -90,7 +90,7 @@ struct Decide {
   // The exact stage's item: enc(facet, edge).
   template <class O>
   GG_HD void operator()(std::int32_t item, const O& o) const {
-    edge(facet_of(item), loc_of(item), o);
+    edge(simplex_of(item), loc_of(item), o);
   }
   GG_HD void propose(std::int32_t f) const {
     prop[f] = -1;
@@ -106,7 +106,7 @@ struct Decide {
     const int k = pr & 3, kind = pr >> 2;
     std::int32_t* c = clm + 3 * std::int64_t(f);
     if (kind == kFlip22) {
-      c[0] = f, c[1] = facet_of(Sf.to[3 * f + k]), c[2] = -1;
+      c[0] = f, c[1] = simplex_of(Sf.to[3 * f + k]), c[2] = -1;
     } else {
       int L[3];
       fan3(Sf, f, kind == kRemoveA ? (k + 1) % 3 : (k + 2) % 3, c, L);
@@ -115,9 +115,7 @@ struct Decide {
     for (int j = 0; j < 3; ++j)
       if (c[j] >= 0) atomic_max(vote + c[j], key);
   }
-  GG_HD u64 vote_key(std::int32_t f) const {
-    return (u64(std::uint32_t(round)) << 32) | scramble(std::uint32_t(f));
-  }
+  GG_HD u64 vote_key(std::int32_t f) const { return mesh::vote_key(round, f); }
 };
 
 // Ends flip round `parity`'s bookkeeping: per-round counts into the totals, its list emptied.
@@ -192,7 +190,7 @@ struct FlipRound {
         x[4 * side] = y;
         x[4 * side + 1] = fix_edge(Sf, y, 0, dec.round);
         x[4 * side + 2] = fix_edge(Sf, y, 2, dec.round);
-        x[4 * side + 3] = facet_of(Sf.to[3 * y + 1]);
+        x[4 * side + 3] = simplex_of(Sf.to[3 * y + 1]);
       }
       next.many(x);
     } else {
@@ -218,7 +216,7 @@ struct FlipRound {
     for (int k = 0; k < 3; ++k) hit = hit || dec.labround[Sf.tv[3 * f + k]] == dec.round;
     if (!hit) return;
     std::int32_t x[4] = {f, 0, 0, 0};
-    for (int k = 0; k < 3; ++k) x[k + 1] = facet_of(Sf.to[3 * f + k]);
+    for (int k = 0; k < 3; ++k) x[k + 1] = simplex_of(Sf.to[3 * f + k]);
     next.many(x);
   }
 };

@@ -53,28 +53,13 @@ struct ExactOrient {
 // The distance key of point q above facet (a, b, c): the orientation determinant rounded to
 // float (proportional to the distance for one facet), then the smaller index on ties. Written
 // with the FMA-free helpers so both executors choose the same points.
-GG_INLINE std::uint32_t scramble(std::uint32_t x) {  // a bijection: distinct slots, distinct keys
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return x;
-}
-GG_INLINE std::uint32_t unscramble(std::uint32_t x) {  // scramble's inverse
-  x ^= x >> 16;
-  x *= 0x43021123U;
-  x ^= (x >> 15) ^ (x >> 30);
-  x *= 0x1d69e2a5U;
-  x ^= x >> 16;
-  return x;
-}
 
 // A facet's farthest point is the one of largest key: the rounded distance above the facet
-// (as a float), then among equal distances a fixed scramble of the index. Ties are common where
-// points lie in the facet's plane (distance 0: points on a hull edge, inside a face); taking the
-// lowest index there would insert the points of a run in index order, one round each when the
-// input lists them along the run, while a scrambled choice splits runs like a random pivot.
+// (as a float), then among equal distances a fixed scatter of the index (mesh/priority.hpp). Ties
+// are common where points lie in the facet's plane (distance 0: points on a hull edge, inside a
+// face); taking the lowest index there would insert the points of a run in index order, one round
+// each when the input lists them along the run, while a scrambled choice splits runs like a random
+// pivot.
 GG_HD inline u64 distance_key(const Geo& g, std::int32_t a, std::int32_t b, std::int32_t c,
                               std::int32_t q) {
   using namespace pred;
@@ -91,11 +76,11 @@ GG_HD inline u64 distance_key(const Geo& g, std::int32_t a, std::int32_t b, std:
   const float f = det > 0 ? float(det) : 0.0f;
   std::uint32_t bits;
   memcpy(&bits, &f, 4);
-  // (q + 1: scramble(0) = 0, and a key of 0 means "no point")
-  return (u64(bits) << 32) | u64(scramble(std::uint32_t(q) + 1));
+  // (q + 1: scatter(0) = 0, and a key of 0 means "no point")
+  return (u64(bits) << 32) | u64(mesh::scatter(std::uint32_t(q) + 1));
 }
 GG_INLINE std::int32_t point_of_key(u64 key) {
-  return std::int32_t(unscramble(std::uint32_t(key & 0xFFFFFFFFu)) - 1);
+  return std::int32_t(mesh::unscatter(std::uint32_t(key & 0xFFFFFFFFu)) - 1);
 }
 
 // Point q (not a vertex) against the four facets of the first tetrahedron (fv: 4 x 3 vertex

@@ -10,11 +10,6 @@
 // pass builds the hull of the extreme points alone, where every vertex is extreme and no
 // facet is degenerate.
 
-using clock = std::chrono::steady_clock;
-inline double ms_since(clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(clock::now() - t0).count();
-}
-
 struct Facets {
   typename Exec::template Buffer<std::int32_t> tris, nbrs;
   std::int64_t count = 0;
@@ -44,7 +39,7 @@ inline Facets compact(PassState& S) {
         const std::int64_t r = rk[f];
         for (int k = 0; k < 3; ++k) {
           ot[3 * r + k] = tv[3 * f + k];
-          on[3 * r + k] = rk[facet_of(to[3 * f + k])];
+          on[3 * r + k] = rk[simplex_of(to[3 * f + k])];
         }
       });
   return out;
@@ -54,10 +49,10 @@ inline Facets compact(PassState& S) {
 // count (Flip-Flop only removes facets).
 inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st,
                        const std::function<void(std::int64_t)>& constructed = {}) {
-  auto t0 = clock::now();
+  auto t0 = Clock::now();
   const Tetra t = first_tetrahedron(ex, pts, n);
   st.phase_ms.emplace_back("prepare", ms_since(t0));
-  t0 = clock::now();
+  t0 = Clock::now();
   PassState S(ex, pts, n, t.s, st);
   {
     Constructor C(S, t);
@@ -66,7 +61,7 @@ inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st,
   ex.sync();
   st.phase_ms.emplace_back("construct", ms_since(t0));
   if (constructed) constructed(S.used);  // (construction never frees a slot)
-  t0 = clock::now();
+  t0 = Clock::now();
   {
     FlipFlop F(S);
     F.run();
@@ -216,7 +211,7 @@ inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st,
                         const std::function<void(std::int64_t)>& constructed = {}) {
   Result R;
   R.facets = one_pass(ex, pts, n, st, constructed);
-  auto t0 = clock::now();
+  auto t0 = Clock::now();
   // The vertices, each with one corner, in index order.
   auto corner = ex.template alloc<std::int32_t>(std::size_t(n));
   std::int32_t* cr = corner.data();
@@ -365,7 +360,7 @@ inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& ru
   const double* p = xyz;
   typename Exec::template Buffer<double> dev;
   if constexpr (Exec::backend == Backend::Cuda) {
-    auto t0 = clock::now();
+    auto t0 = Clock::now();
     dev = ex.template alloc<double>(std::size_t(3 * n));
     ex.from_host(xyz, 3 * n, dev.data());
     p = dev.data();
@@ -383,7 +378,7 @@ inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& ru
     sizer.add(out.vertices, (facets + 4) / 2, std::int32_t(0), "convex hull");
     sizer.add(out.equations, 4 * facets, 0.0, "convex hull");
   });
-  auto t0 = clock::now();
+  auto t0 = Clock::now();
   const std::int64_t nf = R.facets.count;
   auto eq = ex.template alloc<double>(std::size_t(4 * nf));
   auto redo = ex.template alloc<std::int64_t>(1);
@@ -391,14 +386,14 @@ inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& ru
   ex.for_each_index(nf, PlaneOf{p, R.facets.tris.data(), eq.data(), redo.data()});
   ex.to_host(redo.data(), 1, &out.planes_redo);
   st.phase_ms.emplace_back("planes", ms_since(t0));
-  t0 = clock::now();
+  t0 = Clock::now();
   sizer.join();  // (nothing to wait for when it was not started)
   out.equations.resize(std::size_t(4 * nf));
   out.triangles.resize(std::size_t(3 * R.facets.count));
   out.neighbors.resize(std::size_t(3 * R.facets.count));
   out.vertices.resize(std::size_t(R.num_vertices));
   st.phase_ms.emplace_back("host_arrays", ms_since(t0));
-  t0 = clock::now();
+  t0 = Clock::now();
   ex.to_host(R.facets.tris.data(), 3 * R.facets.count, out.triangles.data());
   ex.to_host(R.facets.nbrs.data(), 3 * R.facets.count, out.neighbors.data());
   ex.to_host(R.vertices.data(), R.num_vertices, out.vertices.data());

@@ -6,15 +6,10 @@
 // index of its vertex opposite the same edge). The surface is closed: every edge has two
 // facets. A removed facet has tv[3f] = -1. Slots are never reused.
 
-GG_INLINE std::int32_t enc(std::int32_t f, int k) {
-  return f * 4 + k;
-}
-GG_INLINE std::int32_t facet_of(std::int32_t e) {
-  return e >> 2;
-}
-GG_INLINE int loc_of(std::int32_t e) {
-  return e & 3;
-}
+// (The neighbour encoding comes from mesh/adjacency.hpp.)
+using mesh::enc;
+using mesh::loc_of;
+using mesh::simplex_of;
 
 struct Surface {
   std::int32_t* tv;
@@ -39,7 +34,7 @@ GG_HD inline void split_facet(const Surface& S, std::int32_t f, std::int32_t p, 
     S.tv[3 * t + 2] = v[(k + 2) % 3];
     S.to[3 * t + 1] = enc(c[(k + 1) % 3], 2);
     S.to[3 * t + 2] = enc(c[(k + 2) % 3], 1);
-    const std::int32_t nb = facet_of(o[k]);
+    const std::int32_t nb = simplex_of(o[k]);
     const int j = loc_of(o[k]);
     const std::int32_t r = split_rank[nb];
     if (r >= 0) {
@@ -59,7 +54,7 @@ GG_HD inline void split_facet(const Surface& S, std::int32_t f, std::int32_t p, 
 // them at the final slots once every change of the round has recorded where its edges went.
 GG_HD inline void flip22(const Surface& S, std::int32_t f, int k, std::int32_t round) {
   const std::int32_t e = S.to[3 * f + k];
-  const std::int32_t g = facet_of(e);
+  const std::int32_t g = simplex_of(e);
   const int j = loc_of(e);
   const int k1 = (k + 1) % 3, k2 = (k + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
   const std::int32_t c = S.tv[3 * f + k], a = S.tv[3 * f + k1], b = S.tv[3 * f + k2];
@@ -93,7 +88,7 @@ GG_HD inline void fan3(const Surface& S, std::int32_t f, int lx, std::int32_t* F
     // Across the edge (tv[l+2], x), opposite tv[l+1], lies the next facet counter-clockwise;
     // there x follows the vertex opposite the shared edge.
     const std::int32_t e = S.to[3 * F[i - 1] + (L[i - 1] + 1) % 3];
-    F[i] = facet_of(e);
+    F[i] = simplex_of(e);
     L[i] = (loc_of(e) + 1) % 3;
   }
 }
@@ -128,12 +123,12 @@ GG_HD inline void remove3(const Surface& S, std::int32_t f, int lx, std::int32_t
 // final neighbour slot.
 GG_HD inline std::int32_t fix_edge(const Surface& S, std::int32_t x, int l, std::int32_t round) {
   const std::int32_t old = S.to[3 * x + l];
-  const std::int32_t s = facet_of(old);
+  const std::int32_t s = simplex_of(old);
   const int i = loc_of(old);
   if (S.stamp[s] == round) {
     const std::int32_t r = S.remap[3 * s + i];
     S.to[3 * x + l] = r;
-    return facet_of(r);
+    return simplex_of(r);
   }
   S.to[3 * s + i] = enc(x, l);
   return s;
