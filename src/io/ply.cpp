@@ -195,6 +195,9 @@ PlyData parse_ply(const std::string& bytes, const std::string& name) {
       out.dim = iz >= 0 ? 3 : 2;
       out.coords.reserve(std::size_t(e.count) * out.dim);
     }
+    // An element without properties has nothing in the body, however many items it claims
+    // (the count check above cannot bound it, and looping over them would hang).
+    if (e.props.empty()) continue;
     for (std::int64_t i = 0; i < e.count; ++i) {
       for (int k = 0; k < int(e.props.size()); ++k) {
         const Prop& p = e.props[k];

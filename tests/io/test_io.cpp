@@ -232,6 +232,13 @@ TEST(Io, MalformedInputsNameFileLineAndWhat) {
         ".ply", "p.ply");
   });
   EXPECT_NE(m.find("twice"), std::string::npos) << m;
+  {  // Found by the fuzzer: an element without properties claiming 1.7e18 items hung the reader.
+    const auto p = io::parse_points(
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "element junk 1696801028708149930\nend_header\n1 2\n",
+        ".ply", "empty_element.ply");
+    EXPECT_EQ(p.coords, (std::vector<double>{1, 2}));
+  }
   m = expect_parse_error([] { io::parse_points("OFF\n2 0 0\n1 2 3\n", ".off", "a.off"); });
   EXPECT_NE(m.find("1 of 2"), std::string::npos) << m;
   m = expect_parse_error([] { io::parse_points("v 1 2\n", ".obj", "a.obj"); });
