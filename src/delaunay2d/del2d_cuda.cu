@@ -41,9 +41,6 @@ void triangulate_device(const double* xy, std::int64_t n, const RunOptions& run,
   triangulate_core(
       ex, xy, n, true, run.profile, stats, [] {},
       [&](Prepared& P, Triangulator::Finished& f) {
-        auto own = [](std::int32_t* p) {
-          return std::shared_ptr<std::int32_t>(p, [](std::int32_t* q) { (void)cudaFree(q); });
-        };
         if (!P.dup.size()) {  // no duplicates: the map is all -1
           P.dup = ex.alloc<std::int32_t>(std::size_t(n));
           ex.fill(P.dup.data(), n, std::int32_t(-1));
@@ -51,9 +48,9 @@ void triangulate_device(const double* xy, std::int64_t n, const RunOptions& run,
         ex.sync();  // the buffers were allocated stream-ordered; cudaFree later is not
         out.num_triangles = f.count;
         out.num_duplicates = P.duplicates;
-        out.triangles = own(f.tris.release());
-        out.neighbors = own(f.nbrs.release());
-        out.duplicate_of = own(P.dup.release());
+        out.triangles = f.tris.hand_over();
+        out.neighbors = f.nbrs.hand_over();
+        out.duplicate_of = P.dup.hand_over();
       });
 }
 }  // namespace gpugeom::del2d::cuda_impl

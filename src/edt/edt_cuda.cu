@@ -506,8 +506,8 @@ bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int
                      const std::uint8_t* flags) {
   const std::int64_t len = L.n[a], nx = L.n[0];
   const std::int64_t lines = L.count() / len, blocks = lines / nx * ((nx + 31) / 32);
-  int dev = 0, sms = 0;
-  GG_CUDA_CHECK(cudaGetDevice(&dev));
+  const int dev = ex.device();
+  int sms = 0;
   GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, dev));
   // Whole 32-line tiles must fit on chip, x rows must fill them, and there must be blocks
   // enough for every SM (a 2D grid's few long columns take the global banded pass).

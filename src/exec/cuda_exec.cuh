@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <type_traits>
 #include <utility>
 
@@ -70,6 +71,12 @@ class DeviceBuffer {
     p_ = nullptr;
     n_ = 0;
     return p;
+  }
+  // Hands the buffer to the caller (the device entry points' results) as a shared pointer that
+  // frees it with cudaFree. Call after the stream was synchronised: cudaFree is not
+  // stream-ordered, and the caller may read the memory on any stream.
+  std::shared_ptr<T> hand_over() {
+    return std::shared_ptr<T>(release(), [](T* q) { (void)cudaFree(q); });
   }
 
  private:

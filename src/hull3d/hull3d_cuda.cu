@@ -33,14 +33,11 @@ void compute_device(const double* xyz, std::int64_t n, const RunOptions& run, De
                     Stats& stats) {
   Exec ex(run);
   Result R = hull_core(ex, xyz, n, stats);
-  auto own = [](std::int32_t* p) {
-    return std::shared_ptr<std::int32_t>(p, [](std::int32_t* q) { (void)cudaFree(q); });
-  };
   ex.sync();  // the buffers were allocated stream-ordered; cudaFree later is not
   out.num_facets = R.facets.count;
   out.num_vertices = R.num_vertices;
-  out.triangles = own(R.facets.tris.release());
-  out.neighbors = own(R.facets.nbrs.release());
-  out.vertices = own(R.vertices.release());
+  out.triangles = R.facets.tris.hand_over();
+  out.neighbors = R.facets.nbrs.hand_over();
+  out.vertices = R.vertices.hand_over();
 }
 }  // namespace gpugeom::hull3d::cuda_impl

@@ -29,7 +29,8 @@
 // Scratch: the k*Scratch doubles given below (the k*MidScratch ones for the *_mid functions).
 // Host code may use the overloads in include/gpugeom/predicates.hpp, which bring their own;
 // device code passes a local array (small predicates) or a slice of global memory (see
-// exec/split_pass.hpp). Per slot: in-sphere 111.4 KB in full, 23.9 KB up to tier 3 with SoS.
+// exec/split_pass.hpp). Per slot: in-sphere 114.1 KB in full (14 262 doubles), 23.9 KB up to tier 3
+// with SoS (2 988 doubles).
 #pragma once
 #include <initializer_list>
 #include <cmath>
@@ -80,9 +81,9 @@ constexpr int kInsphereScratch = cmax(Lm<3, 6>::len + Lm<3, 6>::scratch, SosScra
 constexpr int kOrient4dScratch = cmax(Lm<3, 1>::len + Lm<3, 1>::scratch, SosScratch<3, 1>::value);
 // Tiers 1-3 (the *_mid functions), and tiers 1-3 with SoS on an exact zero (*_sos_mid).
 constexpr int kOrient3dMidScratch = kMinor3Len + kDet3PlainScratch;
-constexpr int kIncircleMidScratch = Det3Lifted<4>::scratch;
-constexpr int kInsphereMidScratch = Det4Lifted<6>::scratch;
-constexpr int kOrient4dMidScratch = Det4Lifted<1>::scratch;
+constexpr int kIncircleMidScratch = DetLifted<3, 4>::scratch;
+constexpr int kInsphereMidScratch = DetLifted<4, 6>::scratch;
+constexpr int kOrient4dMidScratch = DetLifted<4, 1>::scratch;
 constexpr int kOrient3dSosMidScratch = cmax(kOrient3dMidScratch, SosScratch<3, 0>::value);
 constexpr int kIncircleSosMidScratch = cmax(kIncircleMidScratch, SosScratch<2, 4>::value);
 constexpr int kInsphereSosMidScratch = cmax(kInsphereMidScratch, SosScratch<3, 6>::value);
@@ -273,8 +274,8 @@ GG_HD inline int incircle_translated(const double* a, const double* b, const dou
   const bool ex = translate<3, 2, 2>(p, d, h);
   const double* l[3] = {w[0], w[1], w[2]};
   int ll[3];
-  for (int i = 0; i < 3; ++i) ll[i] = square_sum<2>(h[i], w[i]);
-  const int n = det3_lifted<4>(h, l, ll, s);
+  for (int i = 0; i < 3; ++i) ll[i] = square_lift<2>(h[i], w[i]);
+  const int n = det_lifted<3, 4>(h, l, ll, s);
   double det = 0.0, perm = 0.0;
   if (!ex) incircle_terms(a, b, c, d, det, perm);
   return judge(ex, n, s, perm, kIncircleBoundB);
@@ -286,8 +287,8 @@ GG_HD inline int insphere_translated(const double* a, const double* b, const dou
   const bool ex = translate<4, 3, 3>(p, e, h);
   const double* l[4] = {w[0], w[1], w[2], w[3]};
   int ll[4];
-  for (int i = 0; i < 4; ++i) ll[i] = square_sum<3>(h[i], w[i]);
-  const int n = det4_lifted<6>(h, l, ll, s);
+  for (int i = 0; i < 4; ++i) ll[i] = square_lift<3>(h[i], w[i]);
+  const int n = det_lifted<4, 6>(h, l, ll, s);
   double det = 0.0, perm = 0.0;
   if (!ex)
     det4_translated(a, b, c, d, e, lift3(a, e), lift3(b, e), lift3(c, e), lift3(d, e), det, perm);
@@ -307,7 +308,7 @@ GG_HD inline int orient4d_translated(const double* a, const double* b, const dou
     for (int k = 0; k < 3; ++k) r[i][k] = h[i][k];
     ll[i] = h[i][3] != 0.0 ? 1 : 0;
   }
-  return expansion_sign(det4_lifted<1>(r, l, ll, s), s);  // orient4d = det(M)
+  return expansion_sign(det_lifted<4, 1>(r, l, ll, s), s);  // orient4d = det(M)
 }
 
 // ---- tiers 1-3 (scratch: k*MidScratch); kUndecided leaves the rest to *_exact ----

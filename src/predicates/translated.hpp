@@ -5,7 +5,7 @@
 // grid input, points that share an exponent range, any input near enough to its neighbours:
 // Sterbenz), the translated matrix holds the exact differences, one double each, and its
 // determinant in expansion arithmetic is exact: 4x4 in-sphere determinants then need at most
-// 1152 components where the raw 5x5 needs 5760, and a GPU slot 24 KB of scratch instead of 114.
+// 1152 components where the raw 5x5 needs 5760, and a GPU slot 23.9 KB of scratch instead of 114.1.
 // When some tail is not zero, the exact determinant of the rounded heads is compared with a bound
 // on what the tails can change (the second-stage bounds of Shewchuk's adaptive predicates, with
 // the same margin of 2 as our filters); only what that cannot decide goes on to the full
@@ -26,21 +26,17 @@ constexpr int kUndecided = 2;
 constexpr int kMinor2Len = 4;                   // a*d - b*c
 constexpr int kMinor3Len = 3 * 2 * kMinor2Len;  // 3x3 determinant of single doubles: 24
 
-// Scratch (doubles) of det3_plain (besides its result), det3_lifted<LW> and det4_lifted<LW>
-// (result included).
+// Scratch (doubles) of det3_plain, besides its result.
 constexpr int kDet3PlainScratch = kMinor2Len + 2 * kMinor2Len + kMinor3Len;
-template <int LW>
-struct Det3Lifted {
-  static constexpr int term = 2 * kMinor2Len * LW;
-  static constexpr int len = 3 * term;
-  static constexpr int scratch = 2 * len + kMinor2Len + term + 2 * kMinor2Len + term;
-};
-template <int LW>
-struct Det4Lifted {
-  static constexpr int term = 2 * kMinor3Len * LW;
-  static constexpr int len = 4 * term;
-  static constexpr int scratch =
-      2 * len + kMinor3Len + kDet3PlainScratch + term + 2 * kMinor3Len + term;
+// Sizes for det_lifted<N, LW> (N = 3 or 4): its minors, their scratch, one product term, the
+// result, and the whole scratch it needs (result included).
+template <int N, int LW>
+struct DetLifted {
+  static constexpr int minor = N == 3 ? kMinor2Len : kMinor3Len;
+  static constexpr int minor_scratch = N == 3 ? 0 : kDet3PlainScratch;
+  static constexpr int term = 2 * minor * LW;
+  static constexpr int len = N * term;
+  static constexpr int scratch = 2 * len + minor + minor_scratch + term + 2 * minor + term;
 };
 
 // Sum of an expansion's components, smallest first (the estimate the bounds are stated for).
@@ -86,55 +82,36 @@ GG_HD inline int det3_plain(const double* r0, const double* r1, const double* r2
   return len;
 }
 
-// det of the 3x3 matrix with rows [r_i (two single doubles), l_i (an expansion of at most LW
-// components)], expanded along the lift column: l0*M(r1,r2) - l1*M(r0,r2) + l2*M(r0,r1).
-// s holds Det3Lifted<LW>::scratch doubles; the result is left at s (returned length).
-template <int LW>
-GG_HD int det3_lifted(const double (*r)[2], const double* const* l, const int* ll, double* s) {
-  using L = Det3Lifted<LW>;
+// det of the NxN matrix (N = 3 or 4) with rows [r_i (N - 1 single doubles), l_i (an
+// expansion of at most LW components)], expanded along the lift column: the sum over i of
+// (-1)^(i + N - 1) l_i times the minor of the other rows, i.e. for N = 3
+// l0*M(r1,r2) - l1*M(r0,r2) + l2*M(r0,r1), and for N = 4 -l0*D(r1,r2,r3) + l1*D(r0,r2,r3) -
+// l2*D(r0,r1,r3) + l3*D(r0,r1,r2). s holds DetLifted<N, LW>::scratch doubles; the result is
+// left at s (returned length).
+template <int N, int LW>
+GG_HD int det_lifted(const double (*r)[N - 1], const double* const* l, const int* ll, double* s) {
+  static_assert(N == 3 || N == 4, "3x3 and 4x4 determinants only");
+  using L = DetLifted<N, LW>;
   double* out = s;
   double* alt = out + L::len;
   double* m = alt + L::len;
-  double* term = m + kMinor2Len;
+  double* ms = m + L::minor;
+  double* term = ms + L::minor_scratch;
   double* tmp1 = term + L::term;
-  double* tmp2 = tmp1 + 2 * kMinor2Len;
+  double* tmp2 = tmp1 + 2 * L::minor;
   double* acc = out;
   double* other = alt;
   int len = 0;
-  for (int i = 0; i < 3; ++i) {
-    const double* p = r[i == 0 ? 1 : 0];
-    const double* q = r[i == 2 ? 1 : 2];
-    const int ml = minor2(p[0], p[1], q[0], q[1], m);
-    if (i & 1)
-      for (int k = 0; k < ml; ++k) m[k] = -m[k];
-    accumulate(acc, other, len, term, expansion_product(ml, m, ll[i], l[i], term, tmp1, tmp2));
-  }
-  settle(acc, len, out);
-  return len;
-}
-
-// det of the 4x4 matrix with rows [r_i (three single doubles), l_i (at most LW components)],
-// expanded along the lift column: -l0*D(r1,r2,r3) + l1*D(r0,r2,r3) - l2*D(r0,r1,r3) +
-// l3*D(r0,r1,r2). s holds Det4Lifted<LW>::scratch doubles; the result is left at s.
-template <int LW>
-GG_HD int det4_lifted(const double (*r)[3], const double* const* l, const int* ll, double* s) {
-  using L = Det4Lifted<LW>;
-  double* out = s;
-  double* alt = out + L::len;
-  double* m = alt + L::len;
-  double* ms = m + kMinor3Len;
-  double* term = ms + kDet3PlainScratch;
-  double* tmp1 = term + L::term;
-  double* tmp2 = tmp1 + 2 * kMinor3Len;
-  double* acc = out;
-  double* other = alt;
-  int len = 0;
-  for (int i = 0; i < 4; ++i) {
-    const double* q[3];
-    for (int j = 0, k = 0; j < 4; ++j)
+  for (int i = 0; i < N; ++i) {
+    const double* q[N - 1];
+    for (int j = 0, k = 0; j < N; ++j)
       if (j != i) q[k++] = r[j];
-    const int ml = det3_plain(q[0], q[1], q[2], m, ms);
-    if (!(i & 1))
+    int ml;
+    if constexpr (N == 3)
+      ml = minor2(q[0][0], q[0][1], q[1][0], q[1][1], m);
+    else
+      ml = det3_plain(q[0], q[1], q[2], m, ms);
+    if ((i + N - 1) & 1)
       for (int k = 0; k < ml; ++k) m[k] = -m[k];
     accumulate(acc, other, len, term, expansion_product(ml, m, ll[i], l[i], term, tmp1, tmp2));
   }
@@ -153,24 +130,6 @@ GG_HD bool translate(const double* const* p, const double* q, double (*h)[W]) {
       exact = exact && t == 0.0;
     }
   return exact;
-}
-
-// |h|^2 over D single doubles, at most 2D components.
-template <int D>
-GG_HD int square_sum(const double* h, double* out) {
-  double parts[2 * D], tmp[2 * D];
-  int len = 0;
-  for (int c = 0; c < D; ++c) {
-    double sq[2], x, y;
-    two_product(h[c], h[c], x, y);
-    int k = 0;
-    if (y != 0.0) sq[k++] = y;
-    if (x != 0.0) sq[k++] = x;
-    len = expansion_sum(len, parts, k, sq, tmp);
-    for (int i = 0; i < len; ++i) parts[i] = tmp[i];
-  }
-  for (int i = 0; i < len; ++i) out[i] = parts[i];
-  return len;
 }
 
 // The sign of an exact determinant, or, when it was taken over rounded heads, the sign of its
