@@ -43,7 +43,8 @@ void on_slots(Exec& ex, std::int64_t m, int doubles, std::size_t budget, F f) {
       nslots, GG_LAMBDA(std::int64_t t) {
         for (std::int64_t j = t; j < m; j += nslots) f(j, sp + t * doubles);
       });
-  ex.sync();  // the scratch is released on return
+  // No wait: the scratch is released in stream order (CUDA) or after the synchronous loop
+  // (CPU), and the next pass's compaction waits anyway.
 }
 // Pass 1: the filter's sign for every item; the items it left (0) listed. Returns their count.
 template <class Exec, class Fast>
@@ -78,6 +79,7 @@ SplitPassResult split_pass(Exec& ex, std::int64_t n, std::int8_t* out, Fast fast
   res.exact_items = split_detail::filter(ex, n, out, fast, list.data());
   split_detail::on_list(ex, list.data(), res.exact_items, scratch_doubles, scratch_budget_bytes,
                         out, exact);
+  ex.sync();  // [synchronises] the signs are final on return
   return res;
 }
 
@@ -104,6 +106,7 @@ SplitPassResult split_pass(Exec& ex, std::int64_t n, std::int8_t* out, Fast fast
   ex.for_each_index(
       r, GG_LAMBDA(std::int64_t j) { rp[j] = lp[rp[j]]; });
   split_detail::on_list(ex, rp, r, last_doubles, scratch_budget_bytes, out, last);
+  ex.sync();  // [synchronises] the signs are final on return
   return res;
 }
 

@@ -14,4 +14,14 @@ auto on_host_threads(int n, F f) {
   for (auto& t : th) t.join();
   return out;
 }
+
+// solve(threads) runs one call with that many CPU threads. Four host threads call it at once
+// (1 or 2 CPU threads each); every result must be what a lone one-thread call gives, as judged
+// by same(reference, result).
+template <class Solve, class Same>
+void expect_concurrent_calls_agree(Solve solve, Same same) {
+  const auto ref = solve(1);
+  for (const auto& got : on_host_threads(4, [&](int k) { return solve(1 + k % 2); }))
+    same(ref, got);
+}
 }  // namespace gg_test

@@ -99,18 +99,16 @@ TEST(Delaunay2d, SameForEveryThreadCount) {
 // result it would get alone.
 TEST(Delaunay2d, ConcurrentCallsFromHostThreads) {
   const auto p = generate2d("uniform", 30000, 9);
-  Delaunay2dOptions o = cpu();
-  o.threads = 1;
-  const auto ref = delaunay2d(p, o);
-  const auto got = gg_test::on_host_threads(4, [&](int k) {
-    Delaunay2dOptions ok = cpu();
-    ok.threads = 1 + k % 2;
-    return delaunay2d(p, ok);
-  });
-  for (auto& g : got) {
-    EXPECT_EQ(g.triangles, ref.triangles);
-    EXPECT_EQ(g.neighbors, ref.neighbors);
-  }
+  gg_test::expect_concurrent_calls_agree(
+      [&](int threads) {
+        Delaunay2dOptions o = cpu();
+        o.threads = threads;
+        return delaunay2d(p, o);
+      },
+      [](const Triangulation2d& ref, const Triangulation2d& got) {
+        EXPECT_EQ(got.triangles, ref.triangles);
+        EXPECT_EQ(got.neighbors, ref.neighbors);
+      });
 }
 
 TEST(Delaunay2d, Voronoi) {

@@ -62,18 +62,16 @@ TEST(Hull3d, SameForEveryThreadCount) {
 
 TEST(Hull3d, ConcurrentCallsFromHostThreads) {
   const auto pts = generate3d("ball", 40000, 5);
-  Hull3dOptions o = cpu();
-  o.threads = 1;
-  const auto ref = convex_hull3d(pts, o);
-  const auto got = gg_test::on_host_threads(4, [&](int k) {
-    Hull3dOptions ok = cpu();
-    ok.threads = 1 + k % 2;
-    return convex_hull3d(pts, ok);
-  });
-  for (auto& g : got) {
-    EXPECT_EQ(g.triangles, ref.triangles);
-    EXPECT_EQ(g.neighbors, ref.neighbors);
-  }
+  gg_test::expect_concurrent_calls_agree(
+      [&](int threads) {
+        Hull3dOptions o = cpu();
+        o.threads = threads;
+        return convex_hull3d(pts, o);
+      },
+      [](const ConvexHull3d& ref, const ConvexHull3d& got) {
+        EXPECT_EQ(got.triangles, ref.triangles);
+        EXPECT_EQ(got.neighbors, ref.neighbors);
+      });
 }
 
 TEST(Hull3d, Errors) {
