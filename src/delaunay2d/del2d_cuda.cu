@@ -20,8 +20,15 @@
 #include "exec/atomics.hpp"
 #include "exec/host_sizer.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
+#include "mesh/compact.hpp"
+#include "mesh/decision.hpp"
+#include "mesh/flip_fix.hpp"
+#include "mesh/history.hpp"
+#include "mesh/prepare.hpp"
 #include "mesh/priority.hpp"
+#include "mesh/work_list.hpp"
 #include "predicates/predicates.hpp"
 #include "spatial/hilbert.hpp"
 
@@ -48,8 +55,8 @@ void triangulate_device(const double* xy, std::int64_t n, const RunOptions& run,
         ex.sync();  // the buffers were allocated stream-ordered; cudaFree later is not
         out.num_triangles = f.count;
         out.num_duplicates = P.duplicates;
-        out.triangles = f.tris.hand_over();
-        out.neighbors = f.nbrs.hand_over();
+        out.triangles = f.simplices.hand_over();
+        out.neighbors = f.neighbors.hand_over();
         out.duplicate_of = P.dup.hand_over();
       });
 }

@@ -4,9 +4,8 @@
 // The undecided items are compacted into a list, and pass 2 runs the next stage on that list
 // only, so the common case is never slowed by the exact code's registers and divergence. The
 // exact stages need scratch memory (23.9 KB per in-sphere test up to the translated tier,
-// 114.1 KB for the full expansion); rather than give every GPU thread a local frame that size,
-// a pass uses a bounded number of slots, each owning a slice of one global scratch buffer and
-// striding over its list. With three tiers, pass 2 runs the middle stage (predicates.hpp's
+// 114.1 KB for the full expansion), on a bounded number of slots (exec/scratch_slots.hpp). With
+// three tiers, pass 2 runs the middle stage (predicates.hpp's
 // *_mid / *_sos_mid) on many small slots and may answer kUndecided; those items are compacted
 // again and pass 3 runs the last stage on a few large slots.
 //
@@ -17,6 +16,7 @@
 #include <cstdint>
 
 #include "base/hd.hpp"
+#include "exec/scratch_slots.hpp"
 #include "predicates/translated.hpp"
 
 namespace gpugeom {
@@ -29,23 +29,6 @@ struct SplitPassResult {
 constexpr std::size_t kSplitPassScratchBudget = std::size_t(256) << 20;
 
 namespace split_detail {
-// Runs f(j, scratch) for every j < m on as many slots of `doubles` scratch as the budget and
-// the executor's concurrency allow.
-template <class Exec, class F>
-void on_slots(Exec& ex, std::int64_t m, int doubles, std::size_t budget, F f) {
-  const std::int64_t per_slot = std::int64_t(doubles) * std::int64_t(sizeof(double));
-  std::int64_t slots = std::min<std::int64_t>(m, ex.concurrency());
-  slots = std::max<std::int64_t>(1, std::min<std::int64_t>(slots, std::int64_t(budget) / per_slot));
-  auto scratch = ex.template alloc<double>(std::size_t(slots) * doubles);
-  double* sp = scratch.data();
-  const std::int64_t nslots = slots;
-  ex.for_each_index(
-      nslots, GG_LAMBDA(std::int64_t t) {
-        for (std::int64_t j = t; j < m; j += nslots) f(j, sp + t * doubles);
-      });
-  // No wait: the scratch is released in stream order (CUDA) or after the synchronous loop
-  // (CPU), and the next pass's compaction waits anyway.
-}
 // Pass 1: the filter's sign for every item; the items it left (0) listed. Returns their count.
 template <class Exec, class Fast>
 std::int64_t filter(Exec& ex, std::int64_t n, std::int8_t* out, Fast fast, std::int32_t* list) {
@@ -59,12 +42,15 @@ std::int64_t filter(Exec& ex, std::int64_t n, std::int8_t* out, Fast fast, std::
 template <class Exec, class Stage>
 void on_list(Exec& ex, const std::int32_t* list, std::int64_t m, int doubles, std::size_t budget,
              std::int8_t* out, Stage stage) {
-  if (m > 0)
-    on_slots(
-        ex, m, doubles, budget, GG_LAMBDA(std::int64_t j, double* s) {
-          const std::int32_t i = list[j];
-          out[i] = std::int8_t(stage(i, s));
-        });
+  if (m <= 0) return;
+  // No wait: the scratch is released in stream order (CUDA) or after the synchronous loop
+  // (CPU), and the next pass's compaction waits anyway.
+  ScratchSlots<Exec>(ex, m, doubles, budget)
+      .run(
+          ex, m, GG_LAMBDA(std::int64_t j, double* s) {
+            const std::int32_t i = list[j];
+            out[i] = std::int8_t(stage(i, s));
+          });
 }
 }  // namespace split_detail
 

@@ -14,8 +14,14 @@
 #include "exec/host_sizer.hpp"
 #include "exec/cpu_exec.hpp"
 #include "hull3d/hull3d_backend.hpp"
+#include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
+#include "mesh/compact.hpp"
+#include "mesh/decision.hpp"
+#include "mesh/flip_fix.hpp"
+#include "mesh/prepare.hpp"
 #include "mesh/priority.hpp"
+#include "mesh/work_list.hpp"
 #include "predicates/predicates.hpp"
 
 namespace gpugeom::hull3d::cpu_impl {

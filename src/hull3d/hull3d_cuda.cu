@@ -14,8 +14,14 @@
 #include "exec/host_sizer.hpp"
 #include "exec/cuda_exec.cuh"
 #include "hull3d/hull3d_backend.hpp"
+#include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
+#include "mesh/compact.hpp"
+#include "mesh/decision.hpp"
+#include "mesh/flip_fix.hpp"
+#include "mesh/prepare.hpp"
 #include "mesh/priority.hpp"
+#include "mesh/work_list.hpp"
 #include "predicates/predicates.hpp"
 
 namespace gpugeom::hull3d::cuda_impl {
@@ -36,8 +42,8 @@ void compute_device(const double* xyz, std::int64_t n, const RunOptions& run, De
   ex.sync();  // the buffers were allocated stream-ordered; cudaFree later is not
   out.num_facets = R.facets.count;
   out.num_vertices = R.num_vertices;
-  out.triangles = R.facets.tris.hand_over();
-  out.neighbors = R.facets.nbrs.hand_over();
+  out.triangles = R.facets.simplices.hand_over();
+  out.neighbors = R.facets.neighbors.hand_over();
   out.vertices = R.vertices.hand_over();
 }
 }  // namespace gpugeom::hull3d::cuda_impl

@@ -1,13 +1,28 @@
-// The shared mesh pieces: the adjacency encoding and the priority bijection.
+// The shared mesh pieces on the CPU executor: adjacency encoding, priority bijection,
+// undecided markers, work lists, flip history, output compaction, input preparation, and the
+// exact stages' scratch slots. (delaunay2d's and hull3d's suites run them on both executors.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <cuda/atomic>
+#include <map>
 #include <random>
+#include <set>
 #include <unordered_set>
+#include <vector>
 
 #include "base/clock.hpp"
+#include "exec/cpu_exec.hpp"
+#include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
+#include "mesh/compact.hpp"
+#include "mesh/decision.hpp"
+#include "mesh/history.hpp"
+#include "mesh/prepare.hpp"
 #include "mesh/priority.hpp"
+#include "mesh/work_list.hpp"
 
 using namespace gpugeom;
 
@@ -52,4 +67,177 @@ TEST(Clock, MillisecondsBetweenTimePoints) {
   const Clock::time_point t0 = Clock::now();
   EXPECT_DOUBLE_EQ(ms_between(t0, t0 + std::chrono::microseconds(1500)), 1.5);
   EXPECT_GE(ms_since(t0), 0.0);
+}
+
+TEST(MeshDecision, UndecidedMarksAreApartFromDecisions) {
+  for (int k = 0; k <= mesh::kMaxUndecidedFace; ++k) {
+    const int d = mesh::undecided_at(k);
+    EXPECT_TRUE(mesh::is_undecided(d));
+    EXPECT_EQ(mesh::undecided_face(d), k);
+    EXPECT_EQ(std::int8_t(d), d);  // fits the int8 decision arrays
+  }
+  for (int d = -1; d < 100; ++d) EXPECT_FALSE(mesh::is_undecided(d));
+}
+
+TEST(MeshWorkLists, RoundsAlternateListsAndLengths) {
+  std::int32_t a[1], b[1];
+  std::int64_t len[2];
+  const mesh::WorkLists L{{a, b}, len};
+  for (std::int32_t r = 0; r < 6; ++r) {
+    EXPECT_EQ(L.current(r), r % 2 ? b : a);
+    EXPECT_EQ(L.next(r), L.current(r + 1));
+    EXPECT_EQ(L.next_count(r), L.count(r + 1));
+    EXPECT_NE(L.count(r), L.next_count(r));
+  }
+}
+
+// The flip log against a replay: points in slots, flips rewriting random pairs of slots, each
+// point of a flipped slot going to the side its position picks against the flip's payload.
+TEST(MeshFlipLog, FollowMatchesAReplayAcrossEpochs) {
+  constexpr int kSlots = 64, kPoints = 500;
+  using Log = mesh::FlipLog<2, 2>;
+  std::mt19937 rng(11);
+  std::vector<mesh::FlipHist> hist(kSlots, mesh::FlipHist{-1, -1});
+  Log log{nullptr, hist.data(), 0};
+  std::vector<std::int32_t> where(kPoints), pos(kPoints);
+  for (int q = 0; q < kPoints; ++q) where[q] = std::int32_t(rng() % kSlots), pos[q] = q;
+  for (int epoch = 0; epoch < 5; ++epoch) {
+    const int flips = 1 + int(rng() % 300);
+    std::vector<std::int32_t> rec(std::size_t(Log::kStride) * flips);
+    log.rec = rec.data();
+    std::vector<std::int32_t> start = where;
+    for (int f = 0; f < flips; ++f) {
+      const std::int32_t s0 = std::int32_t(rng() % kSlots);
+      std::int32_t s1 = std::int32_t(rng() % kSlots);
+      if (s1 == s0) s1 = (s1 + 1) % kSlots;
+      const std::int32_t cut = std::int32_t(rng() % kPoints);
+      const std::int32_t slots[2] = {s0, s1};
+      mesh::FlipHist h[2];
+      log.load(slots, h);
+      log.append(log.base + f, slots, {cut, 0}, h);
+      for (int q = 0; q < kPoints; ++q)
+        if (where[q] == s0 || where[q] == s1) where[q] = pos[q] > cut ? s1 : s0;
+    }
+    for (int q = 0; q < kPoints; ++q) {
+      const auto side = [&](const std::int32_t* payload) { return pos[q] > payload[0] ? 1 : 0; };
+      ASSERT_EQ(log.follow(start[q], side), where[q]) << "epoch " << epoch << " point " << q;
+    }
+    // A new epoch: the old records are stale without clearing the per-slot entries.
+    if (log.next_epoch(flips, flips)) std::fill(hist.begin(), hist.end(), mesh::FlipHist{-1, -1});
+    for (int s = 0; s < kSlots; ++s)
+      ASSERT_EQ(log.follow(s, [](const std::int32_t*) { return 0; }), s);
+  }
+  // Near the top of the record numbers the caller is told to clear and start again at 0.
+  log.base = (INT32_MAX >> Log::kSideBits) - 100;
+  EXPECT_TRUE(log.next_epoch(10, 1000));
+  EXPECT_EQ(log.base, 0);
+}
+
+// A store of five slots, two of them not live, as compact_live reads it.
+struct ToyStore {
+  GG_HD bool live(std::int64_t t) const { return t != 1 && t != 3; }
+  GG_HD mesh::SimplexRecord<3> get(std::int64_t t) const {
+    mesh::SimplexRecord<3> r;
+    for (int k = 0; k < 3; ++k) {
+      r.v[k] = std::int32_t(10 * t + k);
+      r.n[k] = mesh::enc(std::int32_t((t + k + 1) % 5), k);  // slots t+1, t+2, t+3
+    }
+    return r;
+  }
+};
+TEST(MeshCompact, LiveSimplicesRenumberedWithTheirNeighbours) {
+  CpuExec ex;
+  const auto c = mesh::compact_live<3>(ex, 5, ToyStore{});
+  ASSERT_EQ(c.count, 3);
+  // live slots 0, 2, 4 become 0, 1, 2; neighbours in slots 1 and 3 become -1
+  const std::vector<std::int32_t> v(c.simplices.data(), c.simplices.data() + 9),
+      n(c.neighbors.data(), c.neighbors.data() + 9);
+  EXPECT_EQ(v, (std::vector<std::int32_t>{0, 1, 2, 20, 21, 22, 40, 41, 42}));
+  EXPECT_EQ(n, (std::vector<std::int32_t>{-1, 1, -1, -1, 2, 0, 0, -1, 1}));
+}
+
+TEST(MeshPrepare, ExtremesAndValidation) {
+  CpuExec ex;
+  const std::vector<double> p = {1, 2, 0, 5, 1, 2, -3, 9, 1, 2, -3, 9, 7, 7, 0, 5};
+  const auto e = mesh::extremes<2>(ex, p.data(), 8);
+  EXPECT_EQ(e.bad, 0);
+  EXPECT_EQ(e.lo.i, 3);  // (-3, 9) first seen at 3, again at 5: the smaller index
+  EXPECT_EQ(e.hi.i, 6);
+  std::vector<double> q = p;
+  q[5] = std::numeric_limits<double>::quiet_NaN();
+  q[8] = 1e300;
+  EXPECT_EQ(mesh::extremes<2>(ex, q.data(), 8).bad, 2);
+  q[9] = -0.0;
+  const auto b = mesh::bounds_in_place<2>(ex, q.data(), 8);
+  EXPECT_EQ(b.bad, 2);
+  EXPECT_FALSE(std::signbit(q[9]));  // -0 became +0
+  EXPECT_EQ(b.lo[0], -3);
+  EXPECT_EQ(b.hi[1], 9);
+}
+
+template <int D>
+void sorted_distinct_case(std::int64_t n, std::uint32_t seed) {
+  CpuExec ex;
+  std::mt19937 rng(seed);
+  std::vector<double> p(std::size_t(D * n));
+  for (auto& x : p) x = double(rng() % 16) * 0.25 - 1.0;  // a coarse lattice: many duplicates
+  const std::vector<double> input = p;
+  const auto box = mesh::bounds_in_place<D>(ex, p.data(), n);
+  ASSERT_EQ(box.bad, 0);
+  const auto S = mesh::sort_distinct<D>(ex, p.data(), n, box);
+  // the first index of each distinct point, by brute force
+  std::map<std::vector<double>, std::int32_t> first;
+  for (std::int64_t i = 0; i < n; ++i)
+    first.emplace(std::vector<double>(&input[D * i], &input[D * i] + D), std::int32_t(i));
+  ASSERT_EQ(S.m, std::int64_t(first.size()));
+  ASSERT_EQ(S.duplicates, n - S.m);
+  spatial::Box sb{};
+  for (int d = 0; d < D; ++d) sb.lo[d] = box.lo[d], sb.hi[d] = box.hi[d];
+  std::set<std::int32_t> kept;
+  for (std::int64_t i = 0; i < S.m; ++i) {
+    const std::int32_t o = S.orig.data()[i];
+    const std::vector<double> x(&S.pts.data()[D * i], &S.pts.data()[D * i] + D);
+    EXPECT_EQ(x, std::vector<double>(&input[D * o], &input[D * o] + D));
+    EXPECT_EQ(first.at(x), o);  // the kept copy is the one of smallest index
+    kept.insert(o);
+    if (i > 0)
+      EXPECT_LE(spatial::hilbert_key<D>(&S.pts.data()[D * (i - 1)], sb),
+                spatial::hilbert_key<D>(&S.pts.data()[D * i], sb));
+  }
+  EXPECT_EQ(std::int64_t(kept.size()), S.m);
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int32_t o = first.at(std::vector<double>(&input[D * i], &input[D * i] + D));
+    EXPECT_EQ(S.dup.data()[i], o == i ? -1 : o);
+  }
+}
+TEST(MeshPrepare, SortedDistinctPoints2d) {
+  sorted_distinct_case<2>(3000, 3);
+}
+TEST(MeshPrepare, SortedDistinctPoints3d) {
+  sorted_distinct_case<3>(20000, 4);
+}
+
+TEST(ScratchSlots, EveryItemOnceOnItsOwnSlot) {
+  CpuExec ex;
+  const ScratchSlots<CpuExec> slots(ex, 7, 16);
+  EXPECT_EQ(slots.slots(), std::min<std::int64_t>(7, ex.concurrency()));
+  EXPECT_EQ(ScratchSlots<CpuExec>(ex, 1000, 1000, 3 * 8000).slots(), 3);  // within the budget
+  for (std::int64_t m : {0, 1, 5, 7, 8, 1001}) {
+    std::vector<std::atomic<int>> hits(std::size_t(m + 1));
+    const SlotView v = slots.view();
+    slots.run(ex, m, [&](std::int64_t j, double* s) {
+      const std::int64_t t = (s - v.base) / v.doubles;  // the slot, and its items stride
+      EXPECT_EQ(j % std::min<std::int64_t>(m, v.slots), t);
+      s[0] = double(j);
+      hits[std::size_t(j)]++;
+    });
+    for (std::int64_t j = 0; j < m; ++j) ASSERT_EQ(hits[std::size_t(j)].load(), 1) << m;
+  }
+  // counted: the length read when the pass runs, once() on one slot
+  std::int64_t len = 40;
+  std::atomic<int> items{0}, once{0};
+  slots.run_counted(
+      ex, 100, CountAt{&len, 3}, [&](std::int64_t, double*) { items++; }, [&] { once++; });
+  EXPECT_EQ(items.load(), 120);
+  EXPECT_EQ(once.load(), 1);
 }

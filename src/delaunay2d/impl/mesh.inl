@@ -19,8 +19,8 @@ using mesh::voter_of;
 // The figures the rounds keep on the executor; the host reads them once per few rounds.
 struct Counters {
   std::int64_t flips;      // in the peel rounds (insertion flips are counted by their records)
-  std::int64_t next[2];    // triangles in the next round's work list (by round parity)
-  std::int64_t exact[2];   // work-list entries the filter left to the exact pass (the same)
+  std::int64_t len[2];     // work-list lengths: round r reads len[r & 1] (mesh/work_list.hpp)
+  std::int64_t exact[2];   // entries the filter left to round r's exact pass: exact[r & 1]
   std::int64_t log;        // flip records since the last relocation
   std::int64_t lost;       // points no triangle claimed (a bug guard: reported, never silent)
   std::int64_t peel_list;  // length of the peel's list
@@ -38,24 +38,16 @@ struct alignas(32) Tri {
   std::int32_t stamp;  // round in which the slot was last flipped
   std::int32_t pair;   // of that flip: 2 * partner slot, + 1 on the proposer's slot
 };
-// A slot's first flip record of the current epoch (a global record number), and its latest as
-// 2 * number + the slot's side in it (0: t', 1: n'), so that chaining needs no read of it.
-struct alignas(8) Hist {
-  std::int32_t first, last;
-};
+// Flip history since the last relocation (mesh/history.hpp): record = {t', n' slots, the new
+// diagonal's two vertices, the next records that rewrote t' and n'}, so a point can follow its
+// triangle through the flips.
+using Hist = mesh::FlipHist;
+using FlipLog = mesh::FlipLog<2, 2>;
 
 struct Mesh {
   Tri* tri;
   u64* vote;
-  // Flip history since the last relocation (thesis 5.3.4): record r = {t', n' slots, the new
-  // diagonal's two vertices, the next record that rewrote the t' slot, same for n'}, and per
-  // slot its first and latest record, so a point can follow its triangle through the flips.
-  // Records are numbered on from one epoch to the next; those below base are stale, so the
-  // per-slot entries need no clearing between epochs. rec holds the epoch's records from base.
-  std::int32_t* rec;
-  Hist* hist;
-  std::int32_t base;
-  GG_INLINE std::int32_t* record(std::int32_t r) const { return rec + 6 * std::int64_t(r - base); }
+  FlipLog log;
 };
 
 // A work-list entry: the slot, and the local index of an edge known to be locally Delaunay
@@ -70,9 +62,10 @@ GG_INLINE int legal_edge_of(std::int32_t entry) {
   return ((entry >> 29) & 3) - 1;
 }
 
-// A work-list entry's decision: the first illegal edge (0..2), none (-1), or kUndecided + k
-// when the filter could not decide edge k and the exact pass goes on from there.
-constexpr int kUndecided = 3;
+// A work-list entry's decision: the first illegal edge (0..2), none (-1), or
+// mesh::undecided_at(k) when the filter could not decide edge k and the exact pass goes on
+// from there.
+
 // atomic_max without the read first, for keys that usually win (each proposal of a fresh
 // round): the atomic then needs no reply, and the thread does not wait on a load.
 GG_INLINE void vote_max(u64* p, u64 v) {
@@ -138,21 +131,12 @@ GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, const Tri& T, int k
   const int j = loc_of(T.n[k]);
   const int k1 = (k + 1) % 3, k2 = (k + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
   const std::int32_t vk = T.v[k], d = N.v[j];
+  const std::int32_t slots[2] = {t, nb};
   Hist h[2];
-  if (record >= 0) h[0] = M.hist[t], h[1] = M.hist[nb];  // (loads before the stores)
+  if (record >= 0) M.log.load(slots, h);  // (loads before the stores)
   M.tri[t] = Tri{{vk, T.v[k1], d}, {N.n[j1], enc(nb, 2), T.n[k2]}, round, 2 * nb + 1};
   M.tri[nb] = Tri{{vk, d, T.v[k2]}, {N.n[j2], T.n[k1], enc(t, 1)}, round, 2 * t};
-  if (record < 0) return;
-  std::int32_t* r = M.record(record);
-  r[0] = t, r[1] = nb, r[2] = vk, r[3] = d, r[4] = -1, r[5] = -1;
-  for (int side = 0; side < 2; ++side) {
-    if ((h[side].last >> 1) >= M.base)
-      M.record(h[side].last >> 1)[4 + (h[side].last & 1)] = record;
-    else
-      h[side].first = record;
-    h[side].last = 2 * record + side;
-    M.hist[side ? nb : t] = h[side];
-  }
+  if (record >= 0) M.log.append(record, slots, {vk, d}, h);
 }
 GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, int k, std::int32_t round,
                               std::int32_t record) {
@@ -161,16 +145,18 @@ GG_HD inline void flip_phase1(const Mesh& M, std::int32_t t, int k, std::int32_t
   flip_phase1(M, t, T, k, nb, M.tri[nb], round, record);
 }
 
-// Where point q is after the recorded flips, starting from slot L.
+// Where point q is after the recorded flips, starting from slot L: at each flip, t' or n'
+// by the side of the new diagonal it lies on.
+struct DiagonalSide {
+  const Geo& g;
+  std::int32_t q;
+  GG_HD int operator()(const std::int32_t* diagonal) const {
+    return orient_ext(g, diagonal[0], diagonal[1], q) > 0 ? 1 : 0;
+  }
+};
 GG_HD inline std::int32_t follow_history(const Geo& g, const Mesh& M, std::int32_t L,
                                          std::int32_t q) {
-  for (std::int32_t r = M.hist[L].first; r >= M.base;) {
-    const std::int32_t* x = M.record(r);
-    const int side = orient_ext(g, x[2], x[3], q) > 0 ? 1 : 0;
-    L = x[side];
-    r = x[4 + side];
-  }
-  return L;
+  return M.log.follow(L, DiagonalSide{g, q});
 }
 
 // The local index of the vertex opposite the directed edge a -> b in slot s, or -1. (Field by
@@ -181,25 +167,24 @@ GG_INLINE int opposite_of(const Mesh& M, std::int32_t s, std::int32_t a, std::in
   return v1 == a && v2 == b ? 0 : v2 == a && v0 == b ? 1 : v0 == a && v1 == b ? 2 : -1;
 }
 
-// Phase 2 for one outer edge (local l of slot x, whose record X was read after phase 1) of a
-// flipped pair, given the stamp of the neighbour across it: if the neighbour flipped too, the
-// shared edge is now in it or its partner, and x points there (the neighbour's own fix points
-// back); otherwise the neighbour points back at x.
+// Phase 2 (mesh/flip_fix.hpp) for one outer edge of a flipped pair, whose record X was read
+// after phase 1, given the stamp of the neighbour across it. A flipped neighbour's copy of the
+// edge is in it or its partner; found by the edge's vertices.
+struct PairStore {
+  const Mesh& M;
+  std::int32_t a, b;  // the edge as the neighbour sees it
+  GG_HD void set(std::int32_t s, int i, std::int32_t e) const { M.tri[s].n[i] = e; }
+  GG_HD std::int32_t moved(std::int32_t outer) const {
+    const std::int32_t s = simplex_of(outer);
+    const int i = opposite_of(M, s, a, b);
+    if (i >= 0) return enc(s, i);
+    const std::int32_t y = M.tri[s].pair >> 1;
+    return enc(y, opposite_of(M, y, a, b));
+  }
+};
 GG_HD inline void fix_edge(const Mesh& M, std::int32_t x, const Tri& X, int l, std::int32_t round,
                            std::int32_t stamp) {
-  const std::int32_t s = simplex_of(X.n[l]);
-  if (stamp != round) {
-    M.tri[s].n[loc_of(X.n[l])] = enc(x, l);
-    return;
-  }
-  const std::int32_t a = X.v[(l + 2) % 3], b = X.v[(l + 1) % 3];  // the edge as s sees it
-  std::int32_t y = s;
-  int i = opposite_of(M, s, a, b);
-  if (i < 0) {
-    y = M.tri[s].pair >> 1;
-    i = opposite_of(M, y, a, b);
-  }
-  M.tri[x].n[l] = enc(y, i);
+  mesh::fix_face(PairStore{M, X.v[(l + 2) % 3], X.v[(l + 1) % 3]}, x, l, X.n[l], stamp == round);
 }
 
 // Phase 2 for flipped pair t (the proposer's slot) and nb: its four outer edges. The four

@@ -40,8 +40,8 @@ class Triangulator {
     vote_ = ex.template alloc<u64>(T);
     best_ = ex.template alloc<u64>(T);
     split_rank_ = ex.template alloc<std::int32_t>(T);
-    act_ = ex.template alloc<std::int32_t>(T);
-    next_ = ex.template alloc<std::int32_t>(T);
+    lists_[0] = ex.template alloc<std::int32_t>(T);
+    lists_[1] = ex.template alloc<std::int32_t>(T);
     dec_ = ex.template alloc<std::int8_t>(T);
     exl_ = ex.template alloc<std::int32_t>(T);
     exd_ = ex.template alloc<std::int8_t>(3 * T);
@@ -54,12 +54,11 @@ class Triangulator {
     split_ = ex.template alloc<std::int32_t>(4 * n);
     ctr_ = ex.template alloc<Counters>(1);
     log_cap_ = std::max<std::int64_t>(tmax_ / 2, 1 << 16);
-    rec_ = ex.template alloc<std::int32_t>(std::size_t(6 * log_cap_));
+    rec_ = ex.template alloc<std::int32_t>(std::size_t(FlipLog::kStride * log_cap_));
     hist_ = ex.template alloc<Hist>(T);
-    const std::int64_t want = std::clamp<std::int64_t>(tmax_ / 64, kExactSlotsMin, kExactSlotsMax);
-    exact_slots_ = std::max<std::int64_t>(1, std::min<std::int64_t>(want, ex.concurrency()));
-    scratch_ = ex.template alloc<double>(std::size_t(exact_slots_) * kIncircleScratch);
-    M_ = Mesh{tri_.data(), vote_.data(), rec_.data(), hist_.data(), 0};
+    slots_ = ScratchSlots<Exec>(
+        ex, std::clamp<std::int64_t>(tmax_ / 64, kExactSlotsMin, kExactSlotsMax), kIncircleScratch);
+    M_ = Mesh{tri_.data(), vote_.data(), FlipLog{rec_.data(), hist_.data(), 0}};
     ex.fill(hist_.data(), tmax_, Hist{-1, -1});
     ex.fill(vote_.data(), tmax_, u64(0));
     ex.fill(best_.data(), tmax_, ~u64(0));
@@ -80,54 +79,34 @@ class Triangulator {
   }
 
   // Finite triangles in input indices, neighbours among them, left on the executor.
-  struct Finished {
-    typename Exec::template Buffer<std::int32_t> tris, nbrs;
-    std::int64_t count = 0;
+  using Finished = mesh::Compacted<Exec>;
+  struct FiniteTriangles {  // (the store as the output step reads it)
+    const Tri* tri;
+    const std::int32_t* orig;
+    std::int32_t m;  // the infinity point
+    GG_HD bool live(std::int64_t t) const {
+      const std::int32_t* v = tri[t].v;
+      return v[0] != m && v[1] != m && v[2] != m;
+    }
+    GG_HD mesh::SimplexRecord<3> get(std::int64_t t) const {
+      const Tri T = tri[t];
+      mesh::SimplexRecord<3> r;
+      for (int k = 0; k < 3; ++k) r.v[k] = orig[T.v[k]], r.n[k] = T.n[k];
+      return r;
+    }
   };
   Finished finish() {
-    const std::int32_t m = m_;
-    const Tri* tri = tri_.data();
-    const std::int32_t* orig = P_.orig.data();
-    // ranks of the finite slots; the extended triangulation has 2m - 2 slots, of which the
-    // infinite ones are as many as the hull edges
-    const std::int64_t tmax = tmax_;  // (a member read in a device lambda would read `this`)
-    auto rank = ex_.template alloc<std::int32_t>(std::size_t(tmax) + 1);
-    std::int32_t* rk = rank.data();
-    ex_.exclusive_scan_of(
-        tmax + 1,
-        GG_LAMBDA(std::int64_t t)->std::int32_t {
-          if (t >= tmax) return 0;
-          const std::int32_t* v = tri[t].v;
-          return v[0] != m && v[1] != m && v[2] != m ? 1 : 0;
-        },
-        rk);
-    Finished f;
-    std::int32_t nt = 0;
-    ex_.to_host(rk + tmax_, 1, &nt);
-    f.count = nt;
-    f.tris = ex_.template alloc<std::int32_t>(std::size_t(3 * nt));
-    f.nbrs = ex_.template alloc<std::int32_t>(std::size_t(3 * nt));
-    std::int32_t* ot = f.tris.data();
-    std::int32_t* on = f.nbrs.data();
-    ex_.for_each_index(
-        tmax_, GG_LAMBDA(std::int64_t t) {
-          const std::int64_t r = rk[t];
-          if (rk[t + 1] == r) return;  // infinite
-          const Tri T = tri[t];
-          for (int k = 0; k < 3; ++k) {
-            ot[3 * r + k] = orig[T.v[k]];
-            const std::int32_t nb = simplex_of(T.n[k]);  // finite where its rank steps
-            const std::int32_t rn = rk[nb];
-            on[3 * r + k] = rk[nb + 1] != rn ? rn : -1;
-          }
-        });
-    return f;
+    // (the extended triangulation has 2m - 2 slots, all in use)
+    return mesh::compact_live<3>(ex_, tmax_, FiniteTriangles{tri_.data(), P_.orig.data(), m_});
   }
 
   using clock = std::chrono::steady_clock;
   void phase(const char* name, clock::time_point t0) {
     ex_.sync();
     st_.phase_ms.push_back({name, ms_since(t0)});
+  }
+  mesh::WorkLists work_lists() {
+    return mesh::WorkLists{{lists_[0].data(), lists_[1].data()}, ctr_.data()->len};
   }
   Counters counters() {
     Counters c;
@@ -201,14 +180,14 @@ class Triangulator {
         });
     const Mesh M = M_;
     const std::int32_t first_new = std::int32_t(ntri_);
-    std::int32_t* act = act_.data();
+    const mesh::WorkLists L = work_lists();
+    std::int32_t* act = L.current(round_ + 1);  // the next round's list
+    std::int64_t* len = L.count(round_ + 1);
     std::int32_t* sp = split_.data();
     std::int32_t* loc = loc_.data();
-    Counters* ctr = ctr_.data();
-    const int pn = round_ & 1;  // the next round reads its list length here
     ex_.for_each_index(
         nins, GG_LAMBDA(std::int64_t r) {
-          if (r == 0) ctr->next[pn] = 3 * nins;
+          if (r == 0) *len = 3 * nins;
           const std::int32_t t = ins[r], q = std::int32_t(std::uint32_t(best[t]));
           const std::int32_t base = first_new + 2 * std::int32_t(r);
           sp[4 * r] = q;  // what the points of t need to find their child later
@@ -291,23 +270,23 @@ class Triangulator {
       mark("flip: counters");
       flips_ += c.log - logged_;  // one record per flip
       logged_ = c.log;
-      nact_ = c.next[round_ & 1];
+      nact_ = c.len[(round_ + 1) & 1];
     }
   }
 
-  // One round over the list in act_, whose length is ctr->next[] of the previous round's
-  // parity (at most bound); the next list goes to next_, and the two swap.
+  // One round over its work list (at most bound long); the next round's list is appended.
   void flip_round(std::int64_t bound, bool first_round) {
     ++round_;
     const Geo g = g_;
     const Mesh M = M_;
     const std::int32_t round = round_;
-    const std::int32_t* act = act_.data();
+    const mesh::WorkLists L = work_lists();
+    const std::int32_t* act = L.current(round);
     std::int8_t* dec = dec_.data();
     std::int32_t* exl = exl_.data();
     Counters* ctr = ctr_.data();
-    const int p = round & 1;  // this round appends to next[p] and exact[p]
-    const std::int64_t* count = &ctr->next[p ^ 1];
+    const int p = round & 1;  // this round's tests append to exact[p]
+    const std::int64_t* count = L.count(round);
     // In a batch's first round the list holds the children of the splits, and only their
     // edges opposite the new point need a test: the edges at the new point are locally
     // Delaunay (the point lies inside the old triangle's circumcircle, so the circle through
@@ -327,11 +306,11 @@ class Triangulator {
             const std::int32_t d = M.tri[simplex_of(T.n[k])].v[loc_of(T.n[k])];
             const int r = illegal_fast(g, T.v, d);
             if (r > 0) res = k;
-            if (r == 0) res = kUndecided + k;
+            if (r == 0) res = mesh::undecided_at(k);
             if (r >= 0) break;
           }
           dec[i] = std::int8_t(res);
-          if (res >= kUndecided)
+          if (mesh::is_undecided(res))
             exl[append_slot(&ctr->exact[p])] = std::int32_t(i);
           else if (res >= 0)
             propose(M, round, t, simplex_of(T.n[res]));
@@ -339,8 +318,9 @@ class Triangulator {
     mark("flip: test");
     exact_pass(bound, edges);
     mark("flip: exact");
-    std::int32_t* next = next_.data();
-    const std::int32_t log_base = M.base;
+    std::int32_t* next = L.next(round);
+    std::int64_t* next_len = L.next_count(round);
+    const std::int32_t log_base = M.log.base;
     listed(
         count, bound, GG_LAMBDA(std::int64_t i) {
           const int k = dec[i];
@@ -361,7 +341,7 @@ class Triangulator {
             if (M.vote[nb] == key) {
               if (!kReadAhead) N = M.tri[nb];
               std::int64_t at, rec;
-              append_flip(&ctr->next[p], &ctr->log, at, rec);
+              append_flip(next_len, &ctr->log, at, rec);
               flip_phase1(M, t, T, k, nb, N, round, log_base + std::int32_t(rec));
               // t' = (v_k, v_k+1, d): the diagonal is opposite its vertex 1; n' = (v_k, d,
               // v_k+2): opposite its vertex 2
@@ -372,12 +352,11 @@ class Triangulator {
           } else if (M.vote[voter_of(won)] == won) {
             return;  // the proposal that took t won its own triangle too: it flips t, lists it
           }
-          next[append_slot(&ctr->next[p])] = list_entry(t, -1);  // lost: tests again
+          next[append_slot(next_len)] = list_entry(t, -1);  // lost: tests again
         });
     mark("flip: vote+flip");
-    fix_round(count, bound);
+    fix_round(act, count, bound);
     mark("flip: fix");
-    std::swap(act_, next_);
   }
 
   // Exact decisions for the entries the filter left open, from the undecided edge on, one
@@ -389,60 +368,56 @@ class Triangulator {
     const Geo g = g_;
     const Mesh M = M_;
     const std::int32_t round = round_;
-    const std::int32_t* act = act_.data();
+    const mesh::WorkLists L = work_lists();
+    const std::int32_t* act = L.current(round);
     std::int8_t* dec = dec_.data();
     std::int8_t* exd = exd_.data();
     std::int32_t* exc = exc_.data();
     const std::int32_t* exl = exl_.data();
     Counters* ctr = ctr_.data();
-    double* scr = scratch_.data();
-    const std::int64_t S = std::min<std::int64_t>(exact_slots_, 3 * bound);
     const int p = round & 1;
-    ex_.for_each_index(
-        S, GG_LAMBDA(std::int64_t s) {
-          if (s == 0) {  // a thread that always runs, between the round's two uses of these
-            const std::int64_t len = ctr->next[p ^ 1];
-            ctr->rounds += len > 0;
-            ctr->small_rounds += len > 0 && len < kSmallRound;
-            ctr->listed += len;
-            ctr->exact_total += ctr->exact[p];
-            ctr->next[p] = 0;       // this round's flips append here (the last round's list)
-            ctr->exact[p ^ 1] = 0;  // the next round's tests append here
+    slots_.run_counted(
+        ex_, 3 * bound, CountAt{&ctr->exact[p], 3},
+        GG_LAMBDA(std::int64_t j, double* scr) {
+          const std::int32_t i = exl[j / 3];
+          const int k = int(j % 3);
+          int r = -1;
+          if (k >= mesh::undecided_face(dec[i]) && k < edges && k != legal_edge_of(act[i])) {
+            const Tri T = M.tri[slot_of(act[i])];
+            const std::int32_t d = M.tri[simplex_of(T.n[k])].v[loc_of(T.n[k])];
+            r = illegal_fast(g, T.v, d);
+            if (r == 0) r = illegal_exact(g, T.v, d, scr);
           }
-          const std::int64_t n = 3 * ctr->exact[p];
-          for (std::int64_t j = s; j < n; j += S) {
-            const std::int32_t i = exl[j / 3];
-            const int k = int(j % 3);
-            int r = -1;
-            if (k >= dec[i] - kUndecided && k < edges && k != legal_edge_of(act[i])) {
-              const Tri T = M.tri[slot_of(act[i])];
-              const std::int32_t d = M.tri[simplex_of(T.n[k])].v[loc_of(T.n[k])];
-              r = illegal_fast(g, T.v, d);
-              if (r == 0) r = illegal_exact(g, T.v, d, scr + s * kIncircleScratch);
-            }
-            exd[j] = std::int8_t(r);
-            // the last of the entry's three edges proposes (its acquire sees the others'
-            // decisions): no second kernel, which would be a launch per round even when the
-            // filter decided everything
-            cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> done(exc[j / 3]);
-            if (done.fetch_add(1, cuda::memory_order_acq_rel) != 2) continue;
-            done.store(0, cuda::memory_order_relaxed);  // ready for the next round
-            const std::int64_t e = j - j % 3;
-            const int first = exd[e] > 0 ? 0 : exd[e + 1] > 0 ? 1 : exd[e + 2] > 0 ? 2 : -1;
-            dec[i] = std::int8_t(first);
-            if (first < 0) continue;
-            const std::int32_t t = slot_of(act[i]);
-            propose(M, round, t, simplex_of(M.tri[t].n[first]));
-          }
+          exd[j] = std::int8_t(r);
+          // the last of the entry's three edges proposes (its acquire sees the others'
+          // decisions): no second kernel, which would be a launch per round even when the
+          // filter decided everything
+          cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> done(exc[j / 3]);
+          if (done.fetch_add(1, cuda::memory_order_acq_rel) != 2) return;
+          done.store(0, cuda::memory_order_relaxed);  // ready for the next round
+          const std::int64_t e = j - j % 3;
+          const int first = exd[e] > 0 ? 0 : exd[e + 1] > 0 ? 1 : exd[e + 2] > 0 ? 2 : -1;
+          dec[i] = std::int8_t(first);
+          if (first < 0) return;
+          const std::int32_t t = slot_of(act[i]);
+          propose(M, round, t, simplex_of(M.tri[t].n[first]));
+        },
+        GG_LAMBDA() {  // between the round's two uses of these counters
+          const std::int64_t len = ctr->len[p];
+          ctr->rounds += len > 0;
+          ctr->small_rounds += len > 0 && len < kSmallRound;
+          ctr->listed += len;
+          ctr->exact_total += ctr->exact[p];
+          ctr->len[p ^ 1] = 0;    // this round's flips append here (the last round's list)
+          ctr->exact[p ^ 1] = 0;  // the next round's tests append here
         });
   }
 
   // Phase 2 of the round's flips: each proposer fixes the outer edges of its pair. (Over the
   // whole list: a list of the flips alone, appended in the flip kernel, measured slower.)
-  void fix_round(const std::int64_t* count, std::int64_t bound) {
+  void fix_round(const std::int32_t* act, const std::int64_t* count, std::int64_t bound) {
     const Mesh M = M_;
     const std::int32_t round = round_;
-    const std::int32_t* act = act_.data();
     listed(
         count, bound, GG_LAMBDA(std::int64_t i) {
           const std::int32_t t = slot_of(act[i]);
@@ -504,15 +479,7 @@ class Triangulator {
       Counters* ctr = ctr_.data();
       ex_.for_each_index(
           1, GG_LAMBDA(std::int64_t) { ctr->log = 0; });
-      // the next epoch's records are numbered on; near the top of the range, start again at 0
-      // with the per-slot entries cleared
-      // (hist keeps twice a record number)
-      if (M_.base + logged_ + 2 * log_cap_ >= std::int64_t(INT32_MAX / 2)) {
-        ex_.fill(hist_.data(), tmax_, Hist{-1, -1});
-        M_.base = 0;
-      } else {
-        M_.base += std::int32_t(logged_);
-      }
+      if (M_.log.next_epoch(logged_, log_cap_)) ex_.fill(hist_.data(), tmax_, Hist{-1, -1});
     }
     logged_ = 0;
     epoch_splits_ = 0;
@@ -542,15 +509,16 @@ class Triangulator {
           const int gi = T.v[0] == m ? 0 : T.v[1] == m ? 1 : T.v[2] == m ? 2 : -1;
           return gi >= 0 && flat(tri[simplex_of(T.n[gi])]);
         },
-        act_.data());
+        lists_[0].data());
     const std::int64_t nflat =
-        on_hull == 0 ? 0
-                     : ex_.compact_indices(
-                           tmax_, GG_LAMBDA(std::int64_t t) { return flat(tri[t]); }, act_.data());
+        on_hull == 0
+            ? 0
+            : ex_.compact_indices(
+                  tmax_, GG_LAMBDA(std::int64_t t) { return flat(tri[t]); }, lists_[0].data());
     st_.counters["flat_triangles"] = nflat;
     if (nflat == 0) return;
     const Mesh M = M_;
-    const std::int32_t* act = act_.data();
+    const std::int32_t* act = lists_[0].data();  // (the rounds are over: any list will do)
     std::int8_t* dec = dec_.data();
     Counters* ctr = ctr_.data();
     ex_.for_each_index(
@@ -588,7 +556,7 @@ class Triangulator {
               atomic_add(&ctr->flips, std::int64_t(1));
             }
           });
-      fix_round(&ctr->peel_list, nflat);
+      fix_round(act, &ctr->peel_list, nflat);
       const Counters c = counters();
       flips_ += c.flips;
       if (c.flips == 0) break;
@@ -636,7 +604,7 @@ class Triangulator {
   std::int32_t m_ = 0;
   std::int64_t tmax_ = 0, ntri_ = 0, nun_ = 0, nact_ = 0;
   std::int32_t round_ = 0;
-  std::int64_t batches_ = 0, flips_ = 0, exact_slots_ = 1;
+  std::int64_t batches_ = 0, flips_ = 0;
   std::int64_t log_cap_ = 0, logged_ = 0;
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;  // points; list entries; splits
   std::int32_t epoch_first_new_ = 0;
@@ -646,10 +614,11 @@ class Triangulator {
   typename Exec::template Buffer<Hist> hist_;
   typename Exec::template Buffer<std::int32_t> split_rank_, rec_, split_;
   typename Exec::template Buffer<u64> vote_, best_;
-  typename Exec::template Buffer<std::int32_t> act_, next_, exl_, exc_, loc_, un_, un2_, ins_;
+  typename Exec::template Buffer<std::int32_t> lists_[2];  // the rounds' work lists
+  typename Exec::template Buffer<std::int32_t> exl_, exc_, loc_, un_, un2_, ins_;
   typename Exec::template Buffer<std::int8_t> dec_, exd_;  // per entry; per exact-list edge
   typename Exec::template Buffer<Counters> ctr_;
-  typename Exec::template Buffer<double> scratch_;
+  ScratchSlots<Exec> slots_;  // of the exact pass
 };
 
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
@@ -693,8 +662,8 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const RunOptions&
         st.phase_ms.push_back({"wait_host_arrays", ms_since(t0)});
         t0 = std::chrono::steady_clock::now();
         out.num_duplicates = P.duplicates;
-        ex.to_host(f.tris.data(), 3 * f.count, out.triangles.data());
-        ex.to_host(f.nbrs.data(), 3 * f.count, out.neighbors.data());
+        ex.to_host(f.simplices.data(), 3 * f.count, out.triangles.data());
+        ex.to_host(f.neighbors.data(), 3 * f.count, out.neighbors.data());
         out.triangles.resize(std::size_t(3 * f.count));
         out.neighbors.resize(std::size_t(3 * f.count));
         if (P.duplicates) ex.to_host(P.dup.data(), n, out.duplicate_of.data());

@@ -35,7 +35,7 @@ struct PassState {
   typename Exec::template Buffer<double> kernel_point;  // Geo::s
   typename Exec::template Buffer<std::int32_t> tv, to, stamp, remap, deg;
   typename Exec::template Buffer<Counters> ctr;
-  typename Exec::template Buffer<double> scratch;
+  ScratchSlots<Exec> slots;  // of the exact stages (passes, and teams: one per thread)
   typename Exec::template Buffer<std::int32_t> exl;  // exact-stage work list
   std::int64_t exl_cap = 0;
   Stats& st;
@@ -54,9 +54,7 @@ struct PassState {
     remap = ex.template alloc<std::int32_t>(std::size_t(3 * cap));
     deg = ex.template alloc<std::int32_t>(std::size_t(np));
     ctr = ex.template alloc<Counters>(1);
-    const std::int64_t slots =
-        std::max<std::int64_t>(1, std::min<std::int64_t>(kExactSlots, ex.concurrency()));
-    scratch = ex.template alloc<double>(std::size_t(slots * kScratch));
+    slots = ScratchSlots<Exec>(ex, kExactSlots, kScratch);
     ex.fill(deg.data(), np, std::int32_t(0));
     ex.fill(stamp.data(), cap, std::int32_t(-1));
     Counters z{};
@@ -89,21 +87,18 @@ struct PassState {
     return exl.data();
   }
   // Runs f(item, ExactOrient) for the items the filter queued this round (their count is read
-  // on the executor, so no copy to the host is needed to launch), striding over the slots.
+  // on the executor, so no copy to the host is needed to launch).
   template <class F>
   void exact_pass(F f) {
-    const std::int64_t slots = std::max<std::int64_t>(1, std::int64_t(scratch.size()) / kScratch);
-    const std::int32_t* list = exl.data();
-    double* sc = scratch.data();
-    const Counters* c = ctr.data();
-    const Geo geo = g;
-    ex.for_each_index(
-        slots, GG_LAMBDA(std::int64_t t) {
-          const std::int64_t count = c->exact;
-          const ExactOrient o{geo, sc + t * kScratch};
-          for (std::int64_t j = t; j < count; j += slots) f(list[j], o);
-        });
+    slots.run_counted(ex, exl_cap, CountAt{&ctr.data()->exact}, ExactItem<F>{exl.data(), g, f});
   }
+  template <class F>
+  struct ExactItem {
+    const std::int32_t* list;
+    Geo g;
+    F f;
+    GG_HD void operator()(std::int64_t j, double* s) const { f(list[j], ExactOrient{g, s}); }
+  };
 };
 
 // Where a point of split facet f (split rank r, new slots from base) goes, given its child c
@@ -160,20 +155,7 @@ struct LocateChildExact {
   }
 };
 
-// Compaction inside a team, in index order: thread r takes the r-th contiguous range of
-// [0, n), counts the kept items, and a scan over the threads gives each its first output slot;
-// emit(i, slot) for every kept i. Returns the count (every thread calls it).
-template <class Team, class Keep, class Emit>
-GG_HD std::int64_t team_compact(const Team& t, std::int64_t n, Keep keep, Emit emit) {
-  const std::int64_t per = (n + t.size - 1) / t.size, lo = std::min<std::int64_t>(n, t.rank * per),
-                     hi = std::min(n, lo + per);
-  std::int64_t c = 0, total = 0;
-  for (std::int64_t i = lo; i < hi; ++i) c += keep(i);
-  std::int64_t at = t.exclusive_scan(c, &total);
-  for (std::int64_t i = lo; i < hi; ++i)
-    if (keep(i)) emit(i, at++);
-  return total;
-}
+using mesh::team_compact;
 
 class Constructor {
  public:
@@ -187,7 +169,7 @@ class Constructor {
     start();
     std::int64_t rounds = 0;
     const std::int64_t T = S_.ex.team_size();
-    const bool team_ok = std::int64_t(S_.scratch.size()) / kScratch >= T;
+    const bool team_ok = S_.slots.slots() >= T;
     while (live_n_ > 0) {
       if (team_ok && live_n_ <= kTeamLive * T && S_.used <= kTeamUsed * T) {
         rounds += team_rounds(kTeamLive * T, kTeamUsed * T);
@@ -344,10 +326,10 @@ class Constructor {
     std::int32_t* spl = spl_.data();
     const Surface Sf = S_.surface();
     Counters* ctr = S_.ctr.data();
-    double* scratch = S_.scratch.data();
+    const SlotView scratch = S_.slots.view();
     const std::int64_t used0 = S_.used, live0 = live_n_;
     ex.team(GG_LAMBDA(const Exec::Team& t) {
-      const ExactOrient exact{geo, scratch + std::int64_t(t.rank) * kScratch};
+      const ExactOrient exact{geo, scratch[t.rank]};
       const std::int64_t T = t.size;
       std::int64_t used = used0, nl = live0, rounds = 0;
       while (nl > 0 && nl <= max_live && used <= max_used) {

@@ -133,19 +133,18 @@ struct FlipRound {
   Decide dec;
   Enlist next;
   Geo geo;
-  std::int32_t* lists[2];
+  mesh::WorkLists lists;
   std::int8_t* ne;
   const std::int32_t* act;
 
   GG_HD void set_round(std::int32_t r) {
     dec.round = r;
-    // (selects, not lists[r & 1]: an indexed array would keep the team's copy in local memory)
-    act = (r & 1) ? lists[1] : lists[0];
-    next.next = (r & 1) ? lists[0] : lists[1];
-    next.count = &dec.ctr->len[(r + 1) & 1];
+    act = lists.current(r);
+    next.next = lists.next(r);
+    next.count = lists.next_count(r);
     next.round = r + 1;
   }
-  GG_HD const std::int64_t* count() const { return &dec.ctr->len[dec.round & 1]; }
+  GG_HD const std::int64_t* count() const { return lists.count(dec.round); }
   // 1. Edge j % 3 of the list's facet j / 3 with the filter; false: it needs the exact stage
   // (as item enc(facet, edge)).
   GG_HD bool edge_fast(std::int64_t j) const {
@@ -263,8 +262,8 @@ class FlipFlop {
     while (len > 0) {
       if (round >= kMaxFlipRounds)
         throw Error(ErrorCode::Internal, "convex hull: Flip-Flop did not finish");
-      const bool team = len <= team_max && used <= 8 * team_max &&
-                        std::int64_t(S_.scratch.size()) / kScratch >= ex.team_size();
+      const bool team =
+          len <= team_max && used <= 8 * team_max && S_.slots.slots() >= ex.team_size();
       if (team)
         team_rounds(round, team_max);
       else
@@ -297,8 +296,7 @@ class FlipFlop {
                    0};
     R.next = Enlist{mark_.data(), nullptr, nullptr, 0};
     R.geo = S_.g;
-    R.lists[0] = list_[0].data();
-    R.lists[1] = list_[1].data();
+    R.lists = mesh::WorkLists{{list_[0].data(), list_[1].data()}, S_.ctr.data()->len};
     R.ne = ne_.data();
     R.set_round(round);
     return R;
@@ -341,12 +339,12 @@ class FlipFlop {
     Exec& ex = S_.ex;
     const FlipRound R0 = make_round(round);
     Counters* ctr = S_.ctr.data();
-    double* scratch = S_.scratch.data();
+    const SlotView scratch = S_.slots.view();
     const std::int64_t used = S_.used;
     const std::int32_t stop = std::int32_t(kMaxFlipRounds);
     ex.team(GG_LAMBDA(const Exec::Team& t) {
       FlipRound R = R0;
-      const ExactOrient exact{R.geo, scratch + std::int64_t(t.rank) * kScratch};
+      const ExactOrient exact{R.geo, scratch[t.rank]};
       std::int32_t r = R.dec.round;
       for (;;) {
         const std::int64_t n = *R.count();

@@ -11,7 +11,7 @@
 
 using u64 = std::uint64_t;
 
-constexpr int kUndecided = -128;
+using mesh::kUndecided;  // (mesh/decision.hpp)
 constexpr int kScratch = pred::kOrient3dScratch;
 
 struct Geo {

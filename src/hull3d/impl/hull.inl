@@ -10,39 +10,23 @@
 // pass builds the hull of the extreme points alone, where every vertex is extreme and no
 // facet is degenerate.
 
-struct Facets {
-  typename Exec::template Buffer<std::int32_t> tris, nbrs;
-  std::int64_t count = 0;
+using Facets = mesh::Compacted<Exec>;
+
+// The surface as the output step reads it: every facet not removed.
+struct LiveFacets {
+  const std::int32_t* tv;
+  const std::int32_t* to;
+  GG_HD bool live(std::int64_t f) const { return tv[3 * f] >= 0; }
+  GG_HD mesh::SimplexRecord<3> get(std::int64_t f) const {
+    mesh::SimplexRecord<3> r;
+    for (int k = 0; k < 3; ++k) r.v[k] = tv[3 * f + k], r.n[k] = to[3 * f + k];
+    return r;
+  }
 };
 
 // Live facets of the final surface, renumbered, with neighbours among them.
 inline Facets compact(PassState& S) {
-  Exec& ex = S.ex;
-  const std::int64_t used = S.used;
-  const std::int32_t* tv = S.tv.data();
-  const std::int32_t* to = S.to.data();
-  auto rank = ex.template alloc<std::int32_t>(std::size_t(used) + 1);
-  std::int32_t* rk = rank.data();
-  ex.exclusive_scan_of(
-      used + 1, GG_LAMBDA(std::int64_t f)->std::int32_t { return f < used && tv[3 * f] >= 0; }, rk);
-  std::int32_t nt = 0;
-  ex.to_host(rk + used, 1, &nt);
-  Facets out;
-  out.count = nt;
-  out.tris = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
-  out.nbrs = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
-  std::int32_t* ot = out.tris.data();
-  std::int32_t* on = out.nbrs.data();
-  ex.for_each_index(
-      used, GG_LAMBDA(std::int64_t f) {
-        if (tv[3 * f] < 0) return;
-        const std::int64_t r = rk[f];
-        for (int k = 0; k < 3; ++k) {
-          ot[3 * r + k] = tv[3 * f + k];
-          on[3 * r + k] = rk[simplex_of(to[3 * f + k])];
-        }
-      });
-  return out;
+  return mesh::compact_live<3>(S.ex, S.used, LiveFacets{S.tv.data(), S.to.data()});
 }
 
 // constructed (if given) learns the facet count after the construction, a bound on the final
@@ -216,8 +200,8 @@ inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st,
   auto corner = ex.template alloc<std::int32_t>(std::size_t(n));
   std::int32_t* cr = corner.data();
   ex.fill(cr, n, std::numeric_limits<std::int32_t>::max());
-  const std::int32_t* tris = R.facets.tris.data();
-  const std::int32_t* nbrs = R.facets.nbrs.data();
+  const std::int32_t* tris = R.facets.simplices.data();
+  const std::int32_t* nbrs = R.facets.neighbors.data();
   ex.for_each_index(
       3 * R.facets.count,
       GG_LAMBDA(std::int64_t i) { atomic_min(cr + tris[i], std::int32_t(4 * (i / 3) + i % 3)); });
@@ -230,18 +214,13 @@ inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st,
   auto keep = ex.template alloc<std::int32_t>(std::size_t(nv));
   std::int32_t* kp = keep.data();
   {
-    const std::int64_t slots =
-        std::max<std::int64_t>(1, std::min<std::int64_t>({nv, ex.concurrency(), kExactSlots}));
-    auto scratch = ex.template alloc<double>(std::size_t(slots * kScratch));
-    double* sc = scratch.data();
     const ExtremeTest test{pts, tris, nbrs};
-    ex.for_each_index(
-        slots, GG_LAMBDA(std::int64_t t) {
-          for (std::int64_t j = t; j < nv; j += slots) {
-            const std::int32_t v = vp[j];
-            kp[j] = test(v, cr[v], sc + t * kScratch) ? v : -1;
-          }
-        });
+    ScratchSlots<Exec>(ex, std::min<std::int64_t>(nv, kExactSlots), kScratch)
+        .run(
+            ex, nv, GG_LAMBDA(std::int64_t j, double* s) {
+              const std::int32_t v = vp[j];
+              kp[j] = test(v, cr[v], s) ? v : -1;
+            });
   }
   auto kept = ex.template alloc<std::int32_t>(std::size_t(nv));
   std::int64_t nk = ex.copy_if(
@@ -307,7 +286,7 @@ inline Result hull_core(Exec& ex, const double* pts, std::int64_t n, Stats& st,
   Facets F2 = one_pass(ex, sp, nk, st);
   if (F2.count != 2 * nk - 4)  // Euler: every one of the nk extreme points must be a vertex
     throw Error(ErrorCode::Internal, "convex hull: the hull of the extreme points lost a vertex");
-  std::int32_t* t2 = F2.tris.data();
+  std::int32_t* t2 = F2.simplices.data();
   ex.for_each_index(
       3 * F2.count, GG_LAMBDA(std::int64_t i) { t2[i] = kv[t2[i]]; });
   st.counters["passes"] = 2;
@@ -383,7 +362,7 @@ inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& ru
   auto eq = ex.template alloc<double>(std::size_t(4 * nf));
   auto redo = ex.template alloc<std::int64_t>(1);
   ex.fill(redo.data(), 1, std::int64_t(0));
-  ex.for_each_index(nf, PlaneOf{p, R.facets.tris.data(), eq.data(), redo.data()});
+  ex.for_each_index(nf, PlaneOf{p, R.facets.simplices.data(), eq.data(), redo.data()});
   ex.to_host(redo.data(), 1, &out.planes_redo);
   st.phase_ms.emplace_back("planes", ms_since(t0));
   t0 = Clock::now();
@@ -394,8 +373,8 @@ inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& ru
   out.vertices.resize(std::size_t(R.num_vertices));
   st.phase_ms.emplace_back("host_arrays", ms_since(t0));
   t0 = Clock::now();
-  ex.to_host(R.facets.tris.data(), 3 * R.facets.count, out.triangles.data());
-  ex.to_host(R.facets.nbrs.data(), 3 * R.facets.count, out.neighbors.data());
+  ex.to_host(R.facets.simplices.data(), 3 * R.facets.count, out.triangles.data());
+  ex.to_host(R.facets.neighbors.data(), 3 * R.facets.count, out.neighbors.data());
   ex.to_host(R.vertices.data(), R.num_vertices, out.vertices.data());
   ex.to_host(eq.data(), 4 * nf, out.equations.data());
   if constexpr (Exec::backend == Backend::Cuda) st.phase_ms.emplace_back("copy_back", ms_since(t0));

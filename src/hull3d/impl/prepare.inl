@@ -1,33 +1,11 @@
 // Input checks and the first tetrahedron (thesis 6.4), on the executor; included inside
 // gpugeom::hull3d::{cpu,cuda}_impl after geometry.inl.
 
-// A point and its index, ordered lexicographically by (x, y, z) then index; `key` holds a
-// distance for the farthest-point reductions.
-struct Cand {
-  double x, y, z, key;
-  std::int32_t i;
-};
-GG_HD inline bool lex_less(const Cand& a, const Cand& b) {
-  if (a.x != b.x) return a.x < b.x;
-  if (a.y != b.y) return a.y < b.y;
-  if (a.z != b.z) return a.z < b.z;
-  return a.i < b.i;
-}
-struct MinLex {
-  GG_HD Cand operator()(const Cand& a, const Cand& b) const { return lex_less(a, b) ? a : b; }
-};
-struct MaxLex {  // largest coordinates, then the smaller index
-  GG_HD Cand operator()(const Cand& a, const Cand& b) const {
-    if (a.x != b.x || a.y != b.y || a.z != b.z) return lex_less(a, b) ? b : a;
-    return a.i < b.i ? a : b;
-  }
-};
-struct Farthest {
-  GG_HD Cand operator()(const Cand& a, const Cand& b) const {
-    if (a.key != b.key) return a.key > b.key ? a : b;
-    return a.i < b.i ? a : b;
-  }
-};
+// (Candidates and their reductions come from mesh/prepare.hpp.)
+using Cand = mesh::Cand<3>;
+using mesh::Farthest;
+using mesh::reduce_cand;
+
 struct MinIndex {
   GG_HD std::int32_t operator()(std::int32_t a, std::int32_t b) const { return a < b ? a : b; }
 };
@@ -45,40 +23,11 @@ GG_HD inline bool same_point(const double* a, const double* b) {
   return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
 }
 
-// Can the exact predicates take every coordinate of point q? (No NaN, Inf, or magnitudes out of
-// range.)
-GG_HD inline bool exact_ok(const double* q) {
-  return pred::in_exact_range(q[0]) && pred::in_exact_range(q[1]) && pred::in_exact_range(q[2]);
-}
-
-// The input check and both lexicographic extremes in one pass: the count of points the exact
-// predicates cannot take, and the smallest and largest point (meaningful once the count is 0).
-struct Scan0 {
-  Cand lo, hi;
-  std::int64_t bad;
-};
-struct Scan0Op {
-  GG_HD Scan0 operator()(const Scan0& a, const Scan0& b) const {
-    return Scan0{MinLex{}(a.lo, b.lo), MaxLex{}(a.hi, b.hi), a.bad + b.bad};
-  }
-};
 inline void throw_bad(std::int64_t bad) {
   throw Error(ErrorCode::InvalidInput,
               std::to_string(bad) +
                   " point(s) have a coordinate that is NaN, infinite or outside the exactly "
                   "representable range (magnitude 1.8e-43 .. 1.5e54, or 0)");
-}
-
-// The reduction of f over the points; init is the identity for each op (validated points are
-// finite, so the infinities lose every comparison).
-template <class F, class Op>
-Cand reduce_cand(Exec& ex, std::int64_t n, F f, Op op, double start = 0) {
-  auto out = ex.template alloc<Cand>(1);
-  const Cand init{start, start, start, -1, std::numeric_limits<std::int32_t>::max()};
-  ex.transform_reduce_into(n, f, init, op, out.data());
-  Cand h;
-  ex.to_host(out.data(), 1, &h);
-  return h;
 }
 
 // The first tetrahedron (after the input check: Error(InvalidInput) for points the exact
@@ -91,23 +40,10 @@ struct Tetra {
   double s[3];
 };
 inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
-  const double inf = std::numeric_limits<double>::infinity();
-  const std::int32_t none = std::numeric_limits<std::int32_t>::max();
-  auto ext = ex.template alloc<Scan0>(1);
-  ex.transform_reduce_into(
-      n,
-      GG_LAMBDA(std::int64_t i)->Scan0 {
-        const double* q = p + 3 * i;
-        const Cand c{q[0], q[1], q[2], 0.0, std::int32_t(i)};
-        return Scan0{c, c, exact_ok(q) ? 0 : 1};
-      },
-      Scan0{Cand{inf, inf, inf, -1, none}, Cand{-inf, -inf, -inf, -1, none}, 0}, Scan0Op{},
-      ext.data());
-  Scan0 x;
-  ex.to_host(ext.data(), 1, &x);
+  const mesh::Extremes<3> x = mesh::extremes<3>(ex, p, n);
   if (x.bad) throw_bad(x.bad);
   const Cand lo = x.lo, hi = x.hi;
-  const double A[3] = {lo.x, lo.y, lo.z}, B[3] = {hi.x, hi.y, hi.z};
+  const double A[3] = {lo.x[0], lo.x[1], lo.x[2]}, B[3] = {hi.x[0], hi.x[1], hi.x[2]};
   if (same_point(A, B))
     throw Error(ErrorCode::DegenerateInput, "all " + std::to_string(n) +
                                                 " points coincide: a convex hull needs 4 points "
@@ -115,7 +51,7 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
   const std::int32_t ia = lo.i, ib = hi.i;
   const double ax = A[0], ay = A[1], az = A[2], ux = B[0] - A[0], uy = B[1] - A[1],
                uz = B[2] - A[2];
-  Cand c = reduce_cand(
+  Cand c = reduce_cand<3>(
       ex, n,
       GG_LAMBDA(std::int64_t i)->Cand {
         // Rounded operations one by one (no FMA contraction, which nvcc would apply and g++
@@ -127,11 +63,11 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
                      cy = sub_rn(mul_rn(uz, wx), mul_rn(ux, wz)),
                      cz = sub_rn(mul_rn(ux, wy), mul_rn(uy, wx));
         const double len2 = add_rn(add_rn(mul_rn(cx, cx), mul_rn(cy, cy)), mul_rn(cz, cz));
-        return Cand{q[0], q[1], q[2], len2, std::int32_t(i)};
+        return mesh::cand_of<3>(p, i, len2);
       },
-      Farthest{});
-  double C[3] = {c.x, c.y, c.z};  // (the reduction carries the point along)
-  if (collinear3(A, B, C)) {      // rounding hid a tiny offset, or the input is on one line
+      Farthest<3>{});
+  double C[3] = {c.x[0], c.x[1], c.x[2]};  // (the reduction carries the point along)
+  if (collinear3(A, B, C)) {  // rounding hid a tiny offset, or the input is on one line
     auto out = ex.template alloc<std::int32_t>(1);
     ex.transform_reduce_into(
         n,
@@ -151,7 +87,7 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
     ex.to_host(p + 3 * std::int64_t(c.i), 3, C);
   }
   const std::int32_t ic = c.i;
-  Cand d = reduce_cand(
+  Cand d = reduce_cand<3>(
       ex, n,
       GG_LAMBDA(std::int64_t i)->Cand {
         const double *pa = p + 3 * std::int64_t(ia), *pb = p + 3 * std::int64_t(ib),
@@ -164,10 +100,10 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
             add_rn(add_rn(mul_rn(w[0], sub_rn(mul_rn(u[1], v[2]), mul_rn(u[2], v[1]))),
                           mul_rn(w[1], sub_rn(mul_rn(u[2], v[0]), mul_rn(u[0], v[2])))),
                    mul_rn(w[2], sub_rn(mul_rn(u[0], v[1]), mul_rn(u[1], v[0]))));
-        return Cand{q[0], q[1], q[2], det < 0 ? -det : det, std::int32_t(i)};
+        return mesh::cand_of<3>(p, i, det < 0 ? -det : det);
       },
-      Farthest{});
-  double D[3] = {d.x, d.y, d.z};
+      Farthest<3>{});
+  double D[3] = {d.x[0], d.x[1], d.x[2]};
   {
     double s[pred::kOrient3dScratch];
     if (pred::orient3d(A, B, C, D, s) == 0) {

@@ -118,18 +118,16 @@ GG_HD inline void remove3(const Surface& S, std::int32_t f, int lx, std::int32_t
   S.deg[x] = 0;
 }
 
-// Phase 2 for the outer edge (slot x, local l) of a changed facet: follow the neighbour to
-// where its edge went if it changed too, else point the neighbour back at x. Returns the
-// final neighbour slot.
+// Phase 2 (mesh/flip_fix.hpp) for the outer edge (slot x, local l) of a changed facet; where a
+// changed neighbour's edge went is in remap. Returns the final neighbour slot.
+struct RemapStore {
+  const Surface& S;
+  GG_HD void set(std::int32_t f, int k, std::int32_t e) const { S.to[3 * f + k] = e; }
+  GG_HD std::int32_t moved(std::int32_t outer) const {
+    return S.remap[3 * simplex_of(outer) + loc_of(outer)];
+  }
+};
 GG_HD inline std::int32_t fix_edge(const Surface& S, std::int32_t x, int l, std::int32_t round) {
   const std::int32_t old = S.to[3 * x + l];
-  const std::int32_t s = simplex_of(old);
-  const int i = loc_of(old);
-  if (S.stamp[s] == round) {
-    const std::int32_t r = S.remap[3 * s + i];
-    S.to[3 * x + l] = r;
-    return simplex_of(r);
-  }
-  S.to[3 * s + i] = enc(x, l);
-  return s;
+  return mesh::fix_face(RemapStore{S}, x, l, old, S.stamp[simplex_of(old)] == round);
 }

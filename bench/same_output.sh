@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Do two builds give the same results? Runs the CLIs of builds A and B on the same generated
+# inputs (general position, grids, circles and spheres, duplicates, near-degenerate sets) and
+# compares the output files byte for byte. For refactors that must not change any output.
+# Usage: bench/same_output.sh CLI_A CLI_B [cpu|cuda]. Prints one line per case; exit 1 on a
+# difference.
+set -u
+A=$1 B=$2 BK=${3:-cpu}
+W=$(mktemp -d)
+trap 'rm -rf "$W"' EXIT
+diffs=0
+gen() { "$A" --quiet gen "$1" -n "$2" -o "$W/$3" --seed "${4:-1}"; }
+gen uniform2d 200000 u2.npy
+gen gaussian2d 100000 g2.npy
+gen grid2d 90000 grid2.npy
+gen circle2d 20000 c2.npy
+gen thin_circle2d 50000 tc2.npy
+gen two_segments2d 5000 s2.npy
+gen uniform3d 200000 u3.npy
+gen ball3d 200000 b3.npy
+gen sphere3d 50000 sp3.npy
+gen grid3d 64000 grid3.npy
+gen thin_box3d 50000 tb3.npy
+# Duplicates: a grid and a shuffled copy of part of it, one file.
+python3 - "$W" <<'EOF'
+import sys, numpy as np
+w = sys.argv[1]
+for src, dst in (("grid2.npy", "dup2.npy"), ("grid3.npy", "dup3.npy")):
+    p = np.load(f"{w}/{src}")
+    rng = np.random.default_rng(7)
+    q = np.concatenate([p, p[rng.permutation(len(p))[: len(p) // 3]]])
+    np.save(f"{w}/{dst}", q[rng.permutation(len(q))])
+EOF
+run() {  # $1 command, $2 input, $3 output extension
+  local name="$1 $2"
+  "$A" --quiet --backend "$BK" "$1" "$W/$2" -o "$W/a.$3" >"$W/a.log" 2>&1
+  local ra=$?
+  "$B" --quiet --backend "$BK" "$1" "$W/$2" -o "$W/b.$3" >"$W/b.log" 2>&1
+  local rb=$?
+  if [ $ra -ne $rb ]; then
+    echo "DIFF  $name: exit $ra vs $rb"
+    diffs=$((diffs + 1))
+  elif [ $ra -ne 0 ]; then
+    if cmp -s "$W/a.log" "$W/b.log"; then echo "same  $name (both refused)"; else
+      echo "DIFF  $name: messages differ"
+      diffs=$((diffs + 1))
+    fi
+  elif cmp -s "$W/a.$3" "$W/b.$3"; then
+    echo "same  $name"
+  else
+    echo "DIFF  $name"
+    diffs=$((diffs + 1))
+  fi
+  rm -f "$W/a.$3" "$W/b.$3"
+}
+for f in u2 g2 grid2 c2 tc2 s2 dup2; do run delaunay2d $f.npy ply; done
+for f in u3 b3 sp3 grid3 tb3 dup3; do run hull3d $f.npy ply; done
+echo "differences: $diffs"
+[ $diffs -eq 0 ]

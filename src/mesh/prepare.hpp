@@ -1,0 +1,274 @@
+// Input preparation shared by the mesh modules (thesis 6.4), for points in D dimensions:
+// validation against the range the exact predicates take, the bounding box, the Hilbert order
+// with duplicates merged, and the reductions that pick a first simplex (lexicographic
+// extremes, farthest points). Every choice breaks ties by the smaller index, and every
+// reduction is exact comparisons of stored doubles, so both executors pick the same points.
+#pragma once
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+#include "base/hd.hpp"
+#include "predicates/predicates.hpp"
+#include "spatial/hilbert.hpp"
+
+namespace gpugeom::mesh {
+
+using u64 = std::uint64_t;
+
+// A point and its index, with a key for the farthest-point reductions.
+template <int D>
+struct Cand {
+  double x[D];
+  double key;
+  std::int32_t i;
+};
+template <int D>
+GG_HD inline bool lex_less(const Cand<D>& a, const Cand<D>& b) {
+  for (int d = 0; d < D; ++d)
+    if (a.x[d] != b.x[d]) return a.x[d] < b.x[d];
+  return a.i < b.i;
+}
+template <int D>
+struct MinLex {  // the lexicographically smallest point, then the smaller index
+  GG_HD Cand<D> operator()(const Cand<D>& a, const Cand<D>& b) const {
+    return lex_less(a, b) ? a : b;
+  }
+};
+template <int D>
+struct MaxLex {  // the lexicographically largest point, then the smaller index
+  GG_HD Cand<D> operator()(const Cand<D>& a, const Cand<D>& b) const {
+    for (int d = 0; d < D; ++d)
+      if (a.x[d] != b.x[d]) return a.x[d] > b.x[d] ? a : b;
+    return a.i < b.i ? a : b;
+  }
+};
+template <int D>
+struct Farthest {  // the largest key, then the smaller index
+  GG_HD Cand<D> operator()(const Cand<D>& a, const Cand<D>& b) const {
+    if (a.key != b.key) return a.key > b.key ? a : b;
+    return a.i < b.i ? a : b;
+  }
+};
+template <int D>
+GG_HD inline Cand<D> cand_of(const double* p, std::int64_t i, double key = 0) {
+  Cand<D> c;
+  for (int d = 0; d < D; ++d) c.x[d] = p[D * i + d];
+  c.key = key;
+  c.i = std::int32_t(i);
+  return c;
+}
+// The identity of every reduction above (validated points are finite: the infinities lose).
+template <int D>
+GG_HD inline Cand<D> cand_none(double coords) {
+  Cand<D> c;
+  for (int d = 0; d < D; ++d) c.x[d] = coords;
+  c.key = -1;
+  c.i = std::numeric_limits<std::int32_t>::max();
+  return c;
+}
+
+// The reduction of f(i) -> Cand<D> over i < n with op. [synchronises]
+template <int D, class Exec, class F, class Op>
+Cand<D> reduce_cand(Exec& ex, std::int64_t n, F f, Op op, double start = 0) {
+  auto out = ex.template alloc<Cand<D>>(1);
+  ex.transform_reduce_into(n, f, cand_none<D>(start), op, out.data());
+  Cand<D> h;
+  ex.to_host(out.data(), 1, &h);
+  return h;
+}
+
+// Can the exact predicates take every coordinate of point q?
+template <int D>
+GG_HD inline bool exact_ok(const double* q) {
+  for (int d = 0; d < D; ++d)
+    if (!pred::in_exact_range(q[d])) return false;
+  return true;
+}
+
+// The input check and both lexicographic extremes in one pass: the points the exact
+// predicates cannot take, and the smallest and largest point (meaningful once bad is 0).
+template <int D>
+struct Extremes {
+  Cand<D> lo, hi;
+  std::int64_t bad;  // points
+};
+template <int D>
+struct ExtremesOp {
+  GG_HD Extremes<D> operator()(const Extremes<D>& a, const Extremes<D>& b) const {
+    return Extremes<D>{MinLex<D>{}(a.lo, b.lo), MaxLex<D>{}(a.hi, b.hi), a.bad + b.bad};
+  }
+};
+template <int D>
+struct ExtremeOf {
+  const double* p;
+  GG_HD Extremes<D> operator()(std::int64_t i) const {
+    const Cand<D> c = cand_of<D>(p, i);
+    return Extremes<D>{c, c, exact_ok<D>(p + D * i) ? 0 : 1};
+  }
+};
+// [synchronises]
+template <int D, class Exec>
+Extremes<D> extremes(Exec& ex, const double* p, std::int64_t n) {
+  const double inf = std::numeric_limits<double>::infinity();
+  auto out = ex.template alloc<Extremes<D>>(1);
+  ex.transform_reduce_into(n, ExtremeOf<D>{p},
+                           Extremes<D>{cand_none<D>(inf), cand_none<D>(-inf), 0}, ExtremesOp<D>{},
+                           out.data());
+  Extremes<D> h;
+  ex.to_host(out.data(), 1, &h);
+  return h;
+}
+
+// The bounding box of the valid coordinates and the count of invalid ones, with -0 turned
+// into +0 in place (so that equal points have equal bits).
+template <int D>
+struct Bounds {
+  double lo[D], hi[D];
+  std::int64_t bad;  // coordinates
+};
+template <int D>
+struct BoundsOp {
+  GG_HD Bounds<D> operator()(const Bounds<D>& a, const Bounds<D>& b) const {
+    Bounds<D> r;
+    for (int d = 0; d < D; ++d) {
+      r.lo[d] = a.lo[d] < b.lo[d] ? a.lo[d] : b.lo[d];
+      r.hi[d] = a.hi[d] > b.hi[d] ? a.hi[d] : b.hi[d];
+    }
+    r.bad = a.bad + b.bad;
+    return r;
+  }
+};
+template <int D>
+struct BoundsOf {
+  double* r;
+  GG_HD Bounds<D> operator()(std::int64_t i) const {
+    Bounds<D> b;
+    b.bad = 0;
+    for (int d = 0; d < D; ++d) {
+      const double v = r[D * i + d] + 0.0;
+      r[D * i + d] = v;
+      const bool ok = pred::in_exact_range(v);
+      b.bad += ok ? 0 : 1;
+      b.lo[d] = ok ? v : 1e308;
+      b.hi[d] = ok ? v : -1e308;
+    }
+    return b;
+  }
+};
+// [synchronises]
+template <int D, class Exec>
+Bounds<D> bounds_in_place(Exec& ex, double* r, std::int64_t n) {
+  auto out = ex.template alloc<Bounds<D>>(1);
+  Bounds<D> init;
+  for (int d = 0; d < D; ++d) init.lo[d] = 1e308, init.hi[d] = -1e308;
+  init.bad = 0;
+  ex.transform_reduce_into(n, BoundsOf<D>{r}, init, BoundsOp<D>{}, out.data());
+  Bounds<D> h;
+  ex.to_host(out.data(), 1, &h);
+  return h;
+}
+
+// Doubles as unsigned keys with the same order (-0 turned into +0 before).
+GG_INLINE u64 ordered_key(double v) {
+  u64 u;
+  memcpy(&u, &v, 8);
+  return (u >> 63) ? ~u : (u | (u64(1) << 63));
+}
+
+// The distinct points in Hilbert order: D coordinates each, the input index of each, and for
+// every input point the input index of the point it duplicates (-1 for the kept ones: the
+// first of each run, which has the smallest input index), when there are duplicates.
+template <class Exec>
+struct SortedPoints {
+  typename Exec::template Buffer<double> pts;
+  typename Exec::template Buffer<std::int32_t> orig;
+  typename Exec::template Buffer<std::int32_t> dup;  // n entries, only when duplicates > 0
+  std::int64_t m = 0;
+  std::int64_t duplicates = 0;
+};
+
+namespace prepare_detail {
+struct Sum {
+  GG_HD std::int64_t operator()(std::int64_t a, std::int64_t b) const { return a + b; }
+};
+}  // namespace prepare_detail
+
+// r: n valid points on the executor (-0 turned into +0), box their bounding box. [synchronises]
+template <int D, class Exec>
+SortedPoints<Exec> sort_distinct(Exec& ex, const double* r, std::int64_t n, const Bounds<D>& box) {
+  spatial::Box sbox;
+  for (int d = 0; d < 3; ++d) sbox.lo[d] = sbox.hi[d] = 0;
+  for (int d = 0; d < D; ++d) sbox.lo[d] = box.lo[d], sbox.hi[d] = box.hi[d];
+  auto keys = ex.template alloc<u64>(std::size_t(n));
+  auto order = ex.template alloc<std::int32_t>(std::size_t(n));
+  u64* k = keys.data();
+  std::int32_t* o = order.data();
+  ex.for_each_index(
+      n, GG_LAMBDA(std::int64_t i) {
+        k[i] = spatial::hilbert_key<D>(r + D * i, sbox);
+        o[i] = std::int32_t(i);
+      });
+  ex.sort_by_key(k, o, n);
+  // Distinct points with equal keys (a curve cell holds several points) or duplicates: make
+  // equal points adjacent by sorting on (key, coordinates), least significant first (stable
+  // sorts keep input order within a run of equal points).
+  auto same_key = ex.template alloc<std::int64_t>(1);
+  ex.transform_reduce_into(
+      n, GG_LAMBDA(std::int64_t i)->std::int64_t { return i > 0 && k[i] == k[i - 1] ? 1 : 0; },
+      std::int64_t(0), prepare_detail::Sum{}, same_key.data());
+  std::int64_t nsame = 0;
+  ex.to_host(same_key.data(), 1, &nsame);
+  if (nsame) {
+    auto tmp = ex.template alloc<u64>(std::size_t(n));
+    u64* t = tmp.data();
+    for (int pass = 0; pass <= D; ++pass) {
+      ex.for_each_index(
+          n, GG_LAMBDA(std::int64_t i) {
+            const std::int32_t j = o[i];
+            t[i] = pass < D ? ordered_key(r[D * std::int64_t(j) + (D - 1 - pass)])
+                            : spatial::hilbert_key<D>(r + D * std::int64_t(j), sbox);
+          });
+      ex.sort_by_key(t, o, n);
+    }
+  }
+  // Duplicates: a point equal to its predecessor in this order.
+  auto is_dup = GG_LAMBDA(std::int64_t i)->bool {
+    if (i == 0) return false;
+    const std::int64_t a = o[i], b = o[i - 1];
+    for (int d = 0; d < D; ++d)
+      if (r[D * a + d] != r[D * b + d]) return false;
+    return true;
+  };
+  auto kept = ex.template alloc<std::int32_t>(std::size_t(n));
+  SortedPoints<Exec> S;
+  const std::int64_t m = S.m = ex.compact_indices(
+      n, GG_LAMBDA(std::int64_t i) { return !is_dup(i); }, kept.data());
+  S.duplicates = n - m;
+  S.pts = ex.template alloc<double>(std::size_t(D * m));
+  S.orig = ex.template alloc<std::int32_t>(std::size_t(m));
+  double* pts = S.pts.data();
+  std::int32_t* orig = S.orig.data();
+  const std::int32_t* kp = kept.data();
+  ex.for_each_index(
+      m, GG_LAMBDA(std::int64_t i) {
+        const std::int32_t j = o[kp[i]];
+        orig[i] = j;
+        for (int d = 0; d < D; ++d) pts[D * i + d] = r[D * std::int64_t(j) + d];
+      });
+  // duplicate_of: the kept point of each run (its rank is the number of kept points up to and
+  // including the position, minus one).
+  if (S.duplicates) {
+    auto rank = ex.template alloc<std::int32_t>(std::size_t(n));
+    S.dup = ex.template alloc<std::int32_t>(std::size_t(n));
+    std::int32_t* rk = rank.data();
+    std::int32_t* dp = S.dup.data();
+    ex.exclusive_scan_of(
+        n, GG_LAMBDA(std::int64_t i)->std::int32_t { return is_dup(i) ? 0 : 1; }, rk);
+    ex.for_each_index(
+        n, GG_LAMBDA(std::int64_t i) { dp[o[i]] = is_dup(i) ? orig[rk[i] - 1] : -1; });
+  }
+  return S;
+}
+
+}  // namespace gpugeom::mesh
