@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# A/B timing on the lent GPU machine: the benchmark binaries of two builds side by side in one
-# run, alternated (A, B, A, B) so drift and noise show as the spread between the two passes of
-# one build. Usage (repository root, .devbin/ carried): bench/ab_runs.sh DIR_A DIR_B
-# DIR_*: folders holding gpugeom_bench_del2d, gpugeom_bench_hull3d, gpugeom_bench_edt.
+# A/B timing on the lent GPU machine: the benchmark binaries of two or more builds side by side
+# in one run, alternated (A, B, A, B) so drift and noise show as the spread between the two
+# passes of one build. Usage (repository root, .devbin/ carried): bench/ab_runs.sh DIR_A DIR_B
+# [DIR_C ...]; DIR_*: folders holding gpugeom_bench_del2d, gpugeom_bench_hull3d and optionally
+# gpugeom_bench_edt.
 set -u
-A=$1 B=$2
 OUT=${OUT:-/tmp/gg_out}
 mkdir -p "$OUT"
 export LD_LIBRARY_PATH=$PWD/.devbin/lib:${LD_LIBRARY_PATH:-}
@@ -20,6 +20,5 @@ one() {  # $1 label, $2 dir
     grep -E "^edt "
 }
 for pass in 1 2; do
-  one "A pass $pass" "$A" 2>&1 | tee -a "$OUT/ab.txt"
-  one "B pass $pass" "$B" 2>&1 | tee -a "$OUT/ab.txt"
+  for dir in "$@"; do one "$(basename "$dir") pass $pass" "$dir" 2>&1 | tee -a "$OUT/ab.txt"; done
 done

@@ -2,10 +2,11 @@
 # Do two builds give the same results? Runs the CLIs of builds A and B on the same generated
 # inputs (general position, grids, circles and spheres, duplicates, near-degenerate sets) and
 # compares the output files byte for byte. For refactors that must not change any output.
-# Usage: bench/same_output.sh CLI_A CLI_B [cpu|cuda]. Prints one line per case; exit 1 on a
-# difference.
+# Usage: bench/same_output.sh CLI_A CLI_B [cpu|cuda] [sets]. Prints one line per case; exit 1
+# on a difference. With "sets", meshes are compared as sets of oriented simplices (the same
+# triangles in any order, each from any starting corner), for changes that may reorder them.
 set -u
-A=$1 B=$2 BK=${3:-cpu}
+A=$1 B=$2 BK=${3:-cpu} MODE=${4:-bytes}
 W=$(mktemp -d)
 trap 'rm -rf "$W"' EXIT
 diffs=0
@@ -31,6 +32,22 @@ for src, dst in (("grid2.npy", "dup2.npy"), ("grid3.npy", "dup3.npy")):
     q = np.concatenate([p, p[rng.permutation(len(p))[: len(p) // 3]]])
     np.save(f"{w}/{dst}", q[rng.permutation(len(q))])
 EOF
+same_sets() {  # two .off meshes: the same oriented triangles?
+  python3 - "$1" "$2" <<'PY'
+import sys
+def faces(path):
+    tok = open(path).read().split()
+    nv, nf = int(tok[1]), int(tok[2])
+    t = tok[4 + 3 * nv:]
+    out = set()
+    for i in range(nf):
+        a, b, c = (int(x) for x in t[4 * i + 1 : 4 * i + 4])
+        r = min((a, b, c), (b, c, a), (c, a, b))  # rotations keep the orientation
+        out.add(r)
+    return out
+sys.exit(0 if faces(sys.argv[1]) == faces(sys.argv[2]) else 1)
+PY
+}
 run() {  # $1 command, $2 input, $3 output extension
   local name="$1 $2"
   "$A" --quiet --backend "$BK" "$1" "$W/$2" -o "$W/a.$3" >"$W/a.log" 2>&1
@@ -47,13 +64,17 @@ run() {  # $1 command, $2 input, $3 output extension
     fi
   elif cmp -s "$W/a.$3" "$W/b.$3"; then
     echo "same  $name"
+  elif [ "$MODE" = sets ] && same_sets "$W/a.$3" "$W/b.$3"; then
+    echo "same  $name (as sets)"
   else
     echo "DIFF  $name"
     diffs=$((diffs + 1))
   fi
   rm -f "$W/a.$3" "$W/b.$3"
 }
-for f in u2 g2 grid2 c2 tc2 s2 dup2; do run delaunay2d $f.npy ply; done
-for f in u3 b3 sp3 grid3 tb3 dup3; do run hull3d $f.npy ply; done
+EXT=ply
+[ "$MODE" = sets ] && EXT=off
+for f in u2 g2 grid2 c2 tc2 s2 dup2; do run delaunay2d $f.npy $EXT; done
+for f in u3 b3 sp3 grid3 tb3 dup3; do run hull3d $f.npy $EXT; done
 echo "differences: $diffs"
 [ $diffs -eq 0 ]

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "base/hd.hpp"
 #include "predicates/predicates.hpp"
@@ -120,8 +121,8 @@ Extremes<D> extremes(Exec& ex, const double* p, std::int64_t n) {
   return h;
 }
 
-// The bounding box of the valid coordinates and the count of invalid ones, with -0 turned
-// into +0 in place (so that equal points have equal bits).
+// The bounding box of the valid coordinates and the count of invalid ones; bounds_in_place
+// also turns -0 into +0 (so that equal points have equal bits in every later step).
 template <int D>
 struct Bounds {
   double lo[D], hi[D];
@@ -139,15 +140,15 @@ struct BoundsOp {
     return r;
   }
 };
-template <int D>
+template <int D, bool kInPlace>
 struct BoundsOf {
-  double* r;
+  std::conditional_t<kInPlace, double*, const double*> r;
   GG_HD Bounds<D> operator()(std::int64_t i) const {
     Bounds<D> b;
     b.bad = 0;
     for (int d = 0; d < D; ++d) {
       const double v = r[D * i + d] + 0.0;
-      r[D * i + d] = v;
+      if constexpr (kInPlace) r[D * i + d] = v;
       const bool ok = pred::in_exact_range(v);
       b.bad += ok ? 0 : 1;
       b.lo[d] = ok ? v : 1e308;
@@ -156,17 +157,26 @@ struct BoundsOf {
     return b;
   }
 };
-// [synchronises]
-template <int D, class Exec>
-Bounds<D> bounds_in_place(Exec& ex, double* r, std::int64_t n) {
+template <int D, class Exec, class Of>
+Bounds<D> reduce_bounds(Exec& ex, std::int64_t n, Of of) {
   auto out = ex.template alloc<Bounds<D>>(1);
   Bounds<D> init;
   for (int d = 0; d < D; ++d) init.lo[d] = 1e308, init.hi[d] = -1e308;
   init.bad = 0;
-  ex.transform_reduce_into(n, BoundsOf<D>{r}, init, BoundsOp<D>{}, out.data());
+  ex.transform_reduce_into(n, of, init, BoundsOp<D>{}, out.data());
   Bounds<D> h;
   ex.to_host(out.data(), 1, &h);
   return h;
+}
+// [synchronises]
+template <int D, class Exec>
+Bounds<D> bounds_in_place(Exec& ex, double* r, std::int64_t n) {
+  return reduce_bounds<D>(ex, n, BoundsOf<D, true>{r});
+}
+// The same, leaving the points as they are (the caller's array). [synchronises]
+template <int D, class Exec>
+Bounds<D> bounds(Exec& ex, const double* r, std::int64_t n) {
+  return reduce_bounds<D>(ex, n, BoundsOf<D, false>{r});
 }
 
 // Doubles as unsigned keys with the same order (-0 turned into +0 before).
@@ -194,7 +204,8 @@ struct Sum {
 };
 }  // namespace prepare_detail
 
-// r: n valid points on the executor (-0 turned into +0), box their bounding box. [synchronises]
+// r: n valid points on the executor, box their bounding box. -0 and +0 are one value here
+// (keys and comparisons), and the distinct points come out with +0. [synchronises]
 template <int D, class Exec>
 SortedPoints<Exec> sort_distinct(Exec& ex, const double* r, std::int64_t n, const Bounds<D>& box) {
   spatial::Box sbox;
@@ -226,7 +237,7 @@ SortedPoints<Exec> sort_distinct(Exec& ex, const double* r, std::int64_t n, cons
       ex.for_each_index(
           n, GG_LAMBDA(std::int64_t i) {
             const std::int32_t j = o[i];
-            t[i] = pass < D ? ordered_key(r[D * std::int64_t(j) + (D - 1 - pass)])
+            t[i] = pass < D ? ordered_key(r[D * std::int64_t(j) + (D - 1 - pass)] + 0.0)
                             : spatial::hilbert_key<D>(r + D * std::int64_t(j), sbox);
           });
       ex.sort_by_key(t, o, n);
@@ -254,7 +265,7 @@ SortedPoints<Exec> sort_distinct(Exec& ex, const double* r, std::int64_t n, cons
       m, GG_LAMBDA(std::int64_t i) {
         const std::int32_t j = o[kp[i]];
         orig[i] = j;
-        for (int d = 0; d < D; ++d) pts[D * i + d] = r[D * std::int64_t(j) + d];
+        for (int d = 0; d < D; ++d) pts[D * i + d] = r[D * std::int64_t(j) + d] + 0.0;
       });
   // duplicate_of: the kept point of each run (its rank is the number of kept points up to and
   // including the position, minus one).

@@ -44,7 +44,7 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
   if (x.bad) throw_bad(x.bad);
   const Cand lo = x.lo, hi = x.hi;
   const double A[3] = {lo.x[0], lo.x[1], lo.x[2]}, B[3] = {hi.x[0], hi.x[1], hi.x[2]};
-  if (same_point(A, B))
+  if (same_point(A, B))  // (hull_core merges copies first: only a caller skipping it comes here)
     throw Error(ErrorCode::DegenerateInput, "all " + std::to_string(n) +
                                                 " points coincide: a convex hull needs 4 points "
                                                 "not on one plane");
