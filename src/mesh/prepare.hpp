@@ -230,9 +230,12 @@ SortedPoints<Exec> sort_distinct(Exec& ex, const double* r, std::int64_t n, cons
       std::int64_t(0), prepare_detail::Sum{}, same_key.data());
   std::int64_t nsame = 0;
   ex.to_host(same_key.data(), 1, &nsame);
+  const u64* sk = k;  // the keys in the final order
+  typename Exec::template Buffer<u64> tmp;
   if (nsame) {
-    auto tmp = ex.template alloc<u64>(std::size_t(n));
+    tmp = ex.template alloc<u64>(std::size_t(n));
     u64* t = tmp.data();
+    sk = t;  // (the last pass leaves the curve keys in t)
     for (int pass = 0; pass <= D; ++pass) {
       ex.for_each_index(
           n, GG_LAMBDA(std::int64_t i) {
@@ -243,9 +246,10 @@ SortedPoints<Exec> sort_distinct(Exec& ex, const double* r, std::int64_t n, cons
       ex.sort_by_key(t, o, n);
     }
   }
-  // Duplicates: a point equal to its predecessor in this order.
+  // Duplicates: a point equal to its predecessor in this order. Equal points have equal keys,
+  // so the coordinates (scattered reads) are compared only within runs of equal keys.
   auto is_dup = GG_LAMBDA(std::int64_t i)->bool {
-    if (i == 0) return false;
+    if (i == 0 || sk[i] != sk[i - 1]) return false;
     const std::int64_t a = o[i], b = o[i - 1];
     for (int d = 0; d < D; ++d)
       if (r[D * a + d] != r[D * b + d]) return false;
