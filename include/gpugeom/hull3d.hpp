@@ -2,9 +2,11 @@
 //
 // Exactness: every decision is an exact predicate with simulation of simplicity, and the
 // vertices returned are exactly the extreme points: a point inside a hull face or on a hull
-// edge is not a vertex, and of several copies of an extreme point exactly one is (which one
-// is fixed by the input, the same on every executor and every run). Coplanar extreme points of a
-// face are triangulated; no facet is degenerate.
+// edge is not a vertex, and of several copies of an extreme point exactly one is: the first in
+// input order. Coplanar extreme points of a face are triangulated; no facet is degenerate. The
+// points are processed along a Hilbert curve, and the perturbation follows that order, so the
+// result (which diagonals cut a flat face, the facet order) depends on the point set only, not
+// on the order of the input, and is the same on every executor and every run.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -28,11 +30,12 @@ struct ConvexHull3d {
   // offset d, with a x + b y + c z + d <= 0 for every input point up to rounding (the planes
   // are computed in floating point; the hull itself is exact).
   std::vector<double> equations;
-  // Stats: phases "upload" (CUDA), "prepare", "construct", "flip", "extreme_test",
-  // "host_arrays", "copy_back" (CUDA), "planes"; counters
-  // "insert_rounds", "flip_rounds", "flips22", "flips31", "labelled_nonextreme",
-  // "exact_predicates", "first_pass_vertices", "nonextreme_vertices_dropped",
-  // "copies_dropped", "passes" (2 when the extreme points needed a hull of their own).
+  // Stats: phases "upload" (CUDA), "sort" (validation, curve order, copies merged),
+  // "prepare", "construct", "flip", "extreme_test", "input_indices", "host_arrays",
+  // "copy_back" (CUDA), "planes"; counters "duplicates", "insert_rounds", "flip_rounds",
+  // "flips22", "flips31", "labelled_nonextreme", "exact_predicates", "first_pass_vertices",
+  // "nonextreme_vertices_dropped", "passes" (2 when the extreme points needed a hull of their
+  // own).
   Stats stats;
   std::size_t num_facets() const { return triangles.size() / 3; }
 };

@@ -1,7 +1,9 @@
 // 3D convex hull on the CPU executor: the checker on every distribution and degenerate input,
 // errors, and CGAL's extreme points as an oracle where CGAL is installed.
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <set>
 
 #include "../common/on_host_threads.hpp"
 #include "hull3d_cases.hpp"
@@ -58,6 +60,44 @@ TEST(Hull3d, SameForEveryThreadCount) {
       EXPECT_EQ(r.vertices, ref.vertices) << d << ", " << t << " threads";
     }
   }
+}
+
+// The points go along a Hilbert curve and the perturbation follows it: the same point set in
+// another order gives the same facets (as coordinates), flat faces included.
+TEST(Hull3d, IndependentOfInputOrder) {
+  for (const char* d : {"grid", "sphere", "thin_box"}) {
+    const auto pts = generate3d(d, 3000, 9);
+    std::vector<std::size_t> perm(pts.size());
+    for (std::size_t i = 0; i < perm.size(); ++i) perm[i] = (i * 7919) % perm.size();
+    std::vector<Point3> shuffled(pts.size());
+    for (std::size_t i = 0; i < perm.size(); ++i) shuffled[i] = pts[perm[i]];
+    using Tri = std::array<std::array<double, 3>, 3>;
+    auto facets = [](const std::vector<Point3>& p, const ConvexHull3d& h) {
+      std::set<Tri> out;
+      for (std::size_t f = 0; f < h.num_facets(); ++f) {
+        Tri t;
+        for (int k = 0; k < 3; ++k) {
+          const Point3& q = p[std::size_t(h.triangles[3 * f + k])];
+          t[std::size_t(k)] = {q.x, q.y, q.z};
+        }
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());  // orientation kept
+        out.insert(t);
+      }
+      return out;
+    };
+    const auto a = convex_hull3d(pts, cpu()), b = convex_hull3d(shuffled, cpu());
+    EXPECT_EQ(facets(pts, a), facets(shuffled, b)) << d;
+  }
+}
+
+// Of several copies of an extreme point, the first in input order is the vertex.
+TEST(Hull3d, FirstCopyIsTheVertex) {
+  std::vector<Point3> p = {{0.2, 0.2, 0.2}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0},
+                           {1, 0, 0},       {0, 0, 0}, {0, 0, 1}, {0, 1, 0}, {0, 0, 0}};
+  const auto h = convex_hull3d(p, cpu());
+  EXPECT_EQ(h.vertices, (std::vector<std::int32_t>{1, 2, 3, 4}));
+  EXPECT_EQ(h.stats.counters.at("duplicates"), 5);
+  expect_valid(p, h);
 }
 
 TEST(Hull3d, ConcurrentCallsFromHostThreads) {
