@@ -3,8 +3,11 @@
 // Points in:  .xyz .txt .csv (2 or 3 numeric columns), .ply (ascii / binary little / big
 //             endian), .off, .obj (v lines), .node (Triangle/TetGen), .npy (float32/float64,
 //             N x 2 or N x 3).
-// Meshes out: .ply, .off, .obj, .ele (+ .node beside it), .vtu (VTK XML, ParaView), .npy (the
-//             cell array only, int32 N x 3 or N x 4). The same formats read back.
+// Meshes out: .ply, .off, .obj, .ele (+ .node beside it), .vtu (VTK XML, ParaView: raw
+//             appended binary, optionally zlib-compressed, or ascii), .npy (the cell array
+//             only, int32 N x 3 or N x 4). The same formats read back; .vtu in every encoding
+//             VTK writes (ascii, inline base64, appended raw or base64; zlib or not; 32- or
+//             64-bit headers; either byte order).
 // Grids:      .pgm/.pbm (P1/P2/P4/P5, 8/16-bit), .png (8/16-bit grey; colour is converted to
 //             luminance), .npy (2D/3D, bool/uint8/uint16/int32/int64/float32/float64), raw
 //             (shape and type given by the caller).
@@ -50,7 +53,8 @@ struct Grid {
 };
 
 struct WriteOptions {
-  bool binary = true;  // PLY: binary little endian (true) or ascii
+  bool binary = true;     // PLY: binary little endian, or ascii; VTU: raw appended, or ascii
+  bool compress = false;  // VTU: zlib-compressed blocks (binary only)
 };
 
 PointSet read_points(const std::string& path);

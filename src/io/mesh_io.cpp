@@ -10,6 +10,8 @@ namespace detail {
 PointSet parse_off_mesh(const std::string& b, const std::string& name, Mesh* m);
 PointSet parse_obj_mesh(const std::string& b, const std::string& name, Mesh* m);
 PointSet parse_node_file(const std::string& b, const std::string& name, int* base);
+Mesh parse_vtu(const std::string& bytes, const std::string& name);  // (vtu.cpp)
+std::string format_vtu(const Mesh& m, bool binary, bool compress);
 }  // namespace detail
 using namespace detail;
 
@@ -47,91 +49,6 @@ Mesh parse_ele(const std::string& b, const std::string& name, int base, std::int
     }
   }
   return m;
-}
-
-// Our own ascii VTU: the Points array, then connectivity / offsets / types.
-std::vector<double> vtu_array(const std::string& b, const std::string& name, const std::string& key,
-                              std::size_t from) {
-  std::size_t k = b.find(key, from);
-  if (k == std::string::npos) parse_fail(name, 0, "no DataArray " + key + " found");
-  std::size_t s = b.find('>', k), e = b.find("</DataArray>", k);
-  if (s == std::string::npos || e == std::string::npos || e < s)
-    parse_fail(name, 0, "DataArray " + key + " is not closed");
-  if (b.substr(k, s - k).find("format=\"ascii\"") == std::string::npos)
-    parse_fail(name, 0, "only ascii VTU DataArrays are supported");
-  std::vector<double> v;
-  for (auto t : split(std::string_view(b).substr(s + 1, e - s - 1))) {
-    std::string_view tt = t;
-    while (!tt.empty() && (tt.back() == '\n' || tt.back() == '\r')) tt.remove_suffix(1);
-    if (tt.empty()) continue;
-    double x;
-    if (!to_double(tt, x)) parse_fail(name, 0, "bad number '" + std::string(tt) + "' in " + key);
-    v.push_back(x);
-  }
-  return v;
-}
-
-Mesh parse_vtu(const std::string& b, const std::string& name) {
-  if (b.find("<VTKFile") == std::string::npos || b.find("UnstructuredGrid") == std::string::npos)
-    parse_fail(name, 0, "not a VTK UnstructuredGrid (.vtu) file");
-  std::size_t pts = b.find("<Points>");
-  if (pts == std::string::npos) parse_fail(name, 0, "no <Points> section");
-  Mesh m;
-  std::vector<double> xyz = vtu_array(b, name, "<DataArray", pts);
-  std::vector<double> conn = vtu_array(b, name, "Name=\"connectivity\"", 0);
-  std::vector<double> offs = vtu_array(b, name, "Name=\"offsets\"", 0);
-  std::vector<double> types = vtu_array(b, name, "Name=\"types\"", 0);
-  if (xyz.size() % 3) parse_fail(name, 0, "Points must have 3 components");
-  if (offs.size() != types.size()) parse_fail(name, 0, "offsets and types differ in length");
-  m.cell_size = types.empty() || types[0] == 5 ? 3 : 4;
-  bool flat = true;
-  for (double t : types)
-    if (t != (m.cell_size == 3 ? 5 : 10))
-      parse_fail(name, 0, "mixed or unsupported VTK cell types (expected all 5 or all 10)");
-  if (conn.size() != offs.size() * m.cell_size)
-    parse_fail(name, 0, "connectivity length does not match the cells");
-  const std::size_t nv = xyz.size() / 3;
-  for (std::size_t i = 0; i < offs.size(); ++i)
-    if (offs[i] != double((i + 1) * m.cell_size)) parse_fail(name, 0, "unexpected offsets");
-  for (double c : conn) {
-    if (c < 0 || c >= double(nv)) parse_fail(name, 0, "connectivity refers to a missing point");
-    m.cells.push_back(std::int32_t(c));
-  }
-  for (std::size_t i = 2; i < xyz.size(); i += 3) flat = flat && xyz[i] == 0.0;
-  m.dim = (flat && m.cell_size == 3) ? 2 : 3;
-  for (std::size_t i = 0; i < nv; ++i)
-    for (int d = 0; d < m.dim; ++d) m.coords.push_back(xyz[i * 3 + d]);
-  return m;
-}
-
-std::string format_vtu(const Mesh& m) {
-  const std::size_t nv = m.num_vertices(), nc = m.num_cells();
-  std::string o =
-      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
-      "byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" +
-      std::to_string(nv) + "\" NumberOfCells=\"" + std::to_string(nc) + "\">\n";
-  o += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < nv; ++i) {
-    for (int d = 0; d < 3; ++d) {
-      if (d) o += ' ';
-      append_double(o, d < m.dim ? m.coords[i * m.dim + d] : 0.0);
-    }
-    o += '\n';
-  }
-  o += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" "
-       "format=\"ascii\">\n";
-  for (std::size_t c = 0; c < nc; ++c) {
-    for (int k = 0; k < m.cell_size; ++k)
-      o += (k ? " " : "") + std::to_string(m.cells[c * m.cell_size + k]);
-    o += '\n';
-  }
-  o += "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
-  for (std::size_t c = 0; c < nc; ++c) o += std::to_string((c + 1) * m.cell_size) + '\n';
-  o += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  const std::string type = m.cell_size == 3 ? "5\n" : "10\n";
-  for (std::size_t c = 0; c < nc; ++c) o += type;
-  o += "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  return o;
 }
 
 Mesh parse_npy_cells(const std::string& b, const std::string& name) {
@@ -237,7 +154,7 @@ void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {
       out += '\n';
     }
   } else if (ext == ".vtu") {
-    out = format_vtu(m);
+    out = format_vtu(m, o.binary, o.compress);
   } else if (ext == ".npy") {
     out = format_npy("<i4", {std::int64_t(nc), m.cell_size}, m.cells.data(), m.cells.size() * 4);
   } else {

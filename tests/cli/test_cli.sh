@@ -82,6 +82,16 @@ for ext in off obj ele vtu npy; do
   [ -s "$W/t.$ext" ] || { echo "FAIL: delaunay2d wrote no .$ext"; fail=1; }
 done
 expect 0 "valid delaunay2d" -- "$G" check "$W/t.ele"
+# VTU: binary by default, zlib with --compress, text with --ascii; each checks valid
+expect 0 "valid delaunay2d" -- "$G" check "$W/t.vtu"
+grep -q 'format="appended"' "$W/t.vtu" || { echo "FAIL: .vtu is not binary by default"; fail=1; }
+expect 0 "2000 points -> 1998 triangles" -- "$G" delaunay2d "$W/c.csv" -o "$W/z.vtu" --compress
+grep -q 'vtkZLibDataCompressor' "$W/z.vtu" || { echo "FAIL: --compress wrote no zlib"; fail=1; }
+expect 0 "valid delaunay2d" -- "$G" check "$W/z.vtu"
+expect 0 "2000 points -> 1998 triangles" -- "$G" delaunay2d "$W/c.csv" -o "$W/a.vtu" --ascii
+grep -q 'format="ascii"' "$W/a.vtu" || { echo "FAIL: --ascii wrote no text"; fail=1; }
+expect 0 "valid delaunay2d" -- "$G" check "$W/a.vtu"
+expect 2 "--compress applies to -o FILE.vtu" -- "$G" delaunay2d "$W/c.csv" -o "$W/z.ply" --compress
 expect 0 "2000 points -> " -- "$G" delaunay2d "$W/c.csv" --voronoi "$W/v.json" --clip -1,-1,2,2 --draw "$W/t.svg"
 python3 - "$W/v.json" <<'PY' || { echo "FAIL: Voronoi JSON"; fail=1; }
 import json, sys

@@ -17,10 +17,12 @@ namespace {
 
 const char* kHelp =
     "usage: gpugeom delaunay2d POINTS -o MESH [--voronoi VOR.json] [--clip xmin,ymin,xmax,ymax]\n"
-    "                          [--draw FILE.svg|FILE.png] [--check]\n\n"
+    "                          [--draw FILE.svg|FILE.png] [--check] [--compress] [--ascii]\n\n"
     "Exact Delaunay triangulation of the 2D points in POINTS (.xyz .txt .csv .ply .off .obj\n"
     ".node .npy; 3D files are accepted when every z is 0). Duplicate points are kept once.\n"
     "  -o MESH        .ply .off .obj .ele(+.node) .vtu, or .npy (the int32 triangle array)\n"
+    "  --compress     .vtu: zlib-compressed blocks (ParaView reads them)\n"
+    "  --ascii        .vtu and .ply as text instead of binary\n"
     "  --voronoi F    the Voronoi diagram as JSON in SciPy's terms: vertices, ridge_points,\n"
     "                 ridge_vertices, regions (one per input point, -1 first when unbounded)\n"
     "  --clip BOX     also the cells clipped to BOX, as polygons (\"clipped\" in the JSON);\n"
@@ -101,6 +103,12 @@ int cmd_delaunay2d(const Global& g, Args& a) {
   a.value("--clip", clip_s);
   a.value("--draw", draw) || a.value("--svg", draw);
   const bool check = a.flag("--check");
+  io::WriteOptions wo;
+  wo.compress = a.flag("--compress");
+  wo.binary = !a.flag("--ascii");
+  if (wo.compress && !wo.binary) throw UsageError("--compress and --ascii exclude each other");
+  if (wo.compress && (out.empty() || io::extension(out) != ".vtu"))
+    throw UsageError("--compress applies to -o FILE.vtu only");
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one point file (see --help)");
   if (out.empty() && vor_path.empty() && draw.empty() && !check)
@@ -162,7 +170,7 @@ int cmd_delaunay2d(const Global& g, Args& a) {
     m.coords = p.coords;
     m.cell_size = 3;
     m.cells = tri.triangles;
-    io::write_mesh(out, m);
+    io::write_mesh(out, m, wo);
   }
   Voronoi2d vor;
   ClippedCells clipped;

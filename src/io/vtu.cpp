@@ -1,0 +1,644 @@
+// VTK XML unstructured grids (.vtu), as ParaView and VTK write and read them.
+//
+// Written: raw appended binary (header_type UInt64), optionally zlib-compressed in blocks of
+// 1 MiB (compressed on all host threads, blocks being independent), or ascii on request.
+// Read: every DataArray encoding VTK defines: ascii, inline base64 ("binary"), appended raw
+// or base64; uncompressed or vtkZLibDataCompressor; header_type UInt32 or UInt64; little or
+// big endian; any numeric element type. Only what a triangle or tetrahedron mesh needs is
+// interpreted (Points, connectivity, offsets, types); other arrays are skipped.
+//
+// Every size read from a file is checked against the bytes that are there before it is used,
+// so a malformed or hostile file is a Parse error, never a huge allocation or a read past the
+// end.
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gpugeom/io.hpp"
+#include "io/io_util.hpp"
+
+namespace gpugeom::io::detail {
+namespace {
+
+// ---- base64 (RFC 4648) ----
+
+constexpr char kB64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+int b64_value(char c) {
+  if (c >= 'A' && c <= 'Z') return c - 'A';
+  if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+  if (c >= '0' && c <= '9') return c - '0' + 52;
+  if (c == '+') return 62;
+  if (c == '/') return 63;
+  return -1;
+}
+
+// The base64 characters of s, whitespace removed.
+std::string b64_chars(std::string_view s) {
+  std::string c;
+  c.reserve(s.size());
+  for (char x : s)
+    if (x != ' ' && x != '\n' && x != '\r' && x != '\t') c += x;
+  return c;
+}
+
+// Decodes whole 4-character groups of c (padding allowed in a group's last two places).
+std::string b64_decode(std::string_view c, const std::string& name) {
+  if (c.size() % 4) parse_fail(name, 0, "base64 data whose length is not a multiple of 4");
+  std::string out;
+  out.reserve(c.size() / 4 * 3);
+  for (std::size_t i = 0; i < c.size(); i += 4) {
+    int v[4];
+    int pad = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (c[i + k] == '=' && k >= 2) {
+        v[k] = 0;
+        ++pad;
+        continue;
+      }
+      v[k] = b64_value(c[i + k]);
+      if (v[k] < 0 || pad) parse_fail(name, 0, "a character that is not base64 in binary data");
+    }
+    const std::uint32_t w = (v[0] << 18) | (v[1] << 12) | (v[2] << 6) | v[3];
+    out += char(w >> 16);
+    if (pad < 2) out += char((w >> 8) & 0xFF);
+    if (pad < 1) out += char(w & 0xFF);
+  }
+  return out;
+}
+
+void b64_append(std::string& out, const unsigned char* p, std::size_t n) {
+  for (std::size_t i = 0; i < n; i += 3) {
+    const std::uint32_t w = (std::uint32_t(p[i]) << 16) |
+                            (i + 1 < n ? std::uint32_t(p[i + 1]) << 8 : 0) |
+                            (i + 2 < n ? std::uint32_t(p[i + 2]) : 0);
+    out += kB64[w >> 18];
+    out += kB64[(w >> 12) & 63];
+    out += i + 1 < n ? kB64[(w >> 6) & 63] : '=';
+    out += i + 2 < n ? kB64[w & 63] : '=';
+  }
+}
+
+// ---- a small XML scanner: tags and their attributes (no entities, no nesting rules) ----
+
+struct Tag {
+  std::string_view name;
+  std::string_view attrs;  // between the name and '>' or '/>'
+  std::size_t begin = 0;   // '<'
+  std::size_t end = 0;     // one past '>'
+  bool closed = false;     // "/>"
+};
+
+// The next tag named `name` at or after `from`, or none.
+bool find_tag(std::string_view b, std::string_view name, std::size_t from, Tag& t) {
+  for (std::size_t k = b.find('<', from); k != std::string_view::npos; k = b.find('<', k + 1)) {
+    if (b.compare(k + 1, name.size(), name) != 0) continue;
+    const std::size_t after = k + 1 + name.size();
+    if (after >= b.size() || !(b[after] == ' ' || b[after] == '>' || b[after] == '/' ||
+                               b[after] == '\n' || b[after] == '\r' || b[after] == '\t'))
+      continue;
+    const std::size_t gt = b.find('>', after);
+    if (gt == std::string_view::npos) return false;
+    t.name = b.substr(k + 1, name.size());
+    t.closed = gt > after && b[gt - 1] == '/';
+    t.attrs = b.substr(after, gt - after - (t.closed ? 1 : 0));
+    t.begin = k;
+    t.end = gt + 1;
+    return true;
+  }
+  return false;
+}
+
+// The value of attribute `key` (key="value" or key='value'), or empty.
+std::string_view attr(const Tag& t, std::string_view key) {
+  const std::string_view a = t.attrs;
+  for (std::size_t k = a.find(key); k != std::string_view::npos; k = a.find(key, k + 1)) {
+    if (k > 0 && !(a[k - 1] == ' ' || a[k - 1] == '\n' || a[k - 1] == '\t' || a[k - 1] == '\r'))
+      continue;
+    std::size_t e = k + key.size();
+    while (e < a.size() && a[e] == ' ') ++e;
+    if (e >= a.size() || a[e] != '=') continue;
+    ++e;
+    while (e < a.size() && a[e] == ' ') ++e;
+    if (e >= a.size() || (a[e] != '"' && a[e] != '\'')) continue;
+    const std::size_t close = a.find(a[e], e + 1);
+    if (close == std::string_view::npos) return {};
+    return a.substr(e + 1, close - e - 1);
+  }
+  return {};
+}
+
+// ---- element types ----
+
+struct Elem {
+  int bytes = 0;
+  char kind = 0;  // 'i' signed, 'u' unsigned, 'f' float
+};
+Elem elem_of(std::string_view type, const std::string& name) {
+  static const struct {
+    const char* n;
+    Elem e;
+  } kTypes[] = {
+      {"Int8", {1, 'i'}},    {"UInt8", {1, 'u'}},   {"Int16", {2, 'i'}}, {"UInt16", {2, 'u'}},
+      {"Int32", {4, 'i'}},   {"UInt32", {4, 'u'}},  {"Int64", {8, 'i'}}, {"UInt64", {8, 'u'}},
+      {"Float32", {4, 'f'}}, {"Float64", {8, 'f'}}, {"Char", {1, 'i'}},  {"UChar", {1, 'u'}},
+      {"Short", {2, 'i'}},   {"UShort", {2, 'u'}},  {"Int", {4, 'i'}},   {"UInt", {4, 'u'}},
+      {"Long", {8, 'i'}},    {"ULong", {8, 'u'}},   {"Float", {4, 'f'}}, {"Double", {8, 'f'}}};
+  for (const auto& t : kTypes)
+    if (type == t.n) return t.e;
+  parse_fail(name, 0, "unsupported DataArray type '" + std::string(type) + "'");
+}
+
+// Element i of raw bytes as a double (big-endian files swapped).
+double elem_value(const unsigned char* p, const Elem& e, bool big) {
+  unsigned char b[8];
+  for (int k = 0; k < e.bytes; ++k) b[k] = big ? p[e.bytes - 1 - k] : p[k];
+  switch (e.kind * 16 + e.bytes) {
+    case 'i' * 16 + 1:
+      return double(std::int8_t(b[0]));
+    case 'u' * 16 + 1:
+      return double(b[0]);
+    case 'i' * 16 + 2: {
+      std::int16_t v;
+      std::memcpy(&v, b, 2);
+      return double(v);
+    }
+    case 'u' * 16 + 2: {
+      std::uint16_t v;
+      std::memcpy(&v, b, 2);
+      return double(v);
+    }
+    case 'i' * 16 + 4: {
+      std::int32_t v;
+      std::memcpy(&v, b, 4);
+      return double(v);
+    }
+    case 'u' * 16 + 4: {
+      std::uint32_t v;
+      std::memcpy(&v, b, 4);
+      return double(v);
+    }
+    case 'i' * 16 + 8: {
+      std::int64_t v;
+      std::memcpy(&v, b, 8);
+      return double(v);
+    }
+    case 'u' * 16 + 8: {
+      std::uint64_t v;
+      std::memcpy(&v, b, 8);
+      return double(v);
+    }
+    case 'f' * 16 + 4: {
+      float v;
+      std::memcpy(&v, b, 4);
+      return double(v);
+    }
+    default: {
+      double v;
+      std::memcpy(&v, b, 8);
+      return v;
+    }
+  }
+}
+
+// ---- the file's encoding settings ----
+
+struct Encoding {
+  bool big = false;            // byte_order="BigEndian"
+  int header = 4;              // header_type UInt32 (VTK's default) or UInt64
+  bool zlib = false;           // compressor="vtkZLibDataCompressor"
+  std::string_view appended;   // the appended data after '_', raw or decoded base64
+  std::string appended_store;  // (owns decoded base64 appended data)
+  bool appended_base64 = false;
+  std::string name;
+};
+
+std::uint64_t header_word(const Encoding& E, const unsigned char* p) {
+  unsigned char b[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  for (int k = 0; k < E.header; ++k) b[k] = E.big ? p[E.header - 1 - k] : p[k];
+  std::uint64_t v;
+  std::memcpy(&v, b, 8);
+  return v;
+}
+
+// The length of a block's header (in bytes) given its first words, or 0 if more are needed.
+std::size_t header_bytes(const Encoding& E, std::uint64_t first_word) {
+  if (!E.zlib) return std::size_t(E.header);
+  return std::size_t(E.header) * std::size_t(3 + first_word);
+}
+
+// The data of one array from bytes that start with its header (uncompressed: the byte count;
+// zlib: block count, block size, last block size, compressed sizes). `avail`: bytes there.
+// Returns the uncompressed bytes; `used` the bytes consumed.
+std::string block_data(const Encoding& E, const unsigned char* p, std::size_t avail,
+                       std::size_t& used) {
+  const std::string& name = E.name;
+  auto need = [&](std::size_t n) {
+    if (n > avail) parse_fail(name, 0, "binary data ends before its header says");
+  };
+  need(std::size_t(E.header));
+  if (!E.zlib) {
+    const std::uint64_t n = header_word(E, p);
+    if (n > avail - std::size_t(E.header))
+      parse_fail(name, 0, "binary data ends before its header says");
+    used = std::size_t(E.header) + std::size_t(n);
+    return std::string(reinterpret_cast<const char*>(p) + E.header, std::size_t(n));
+  }
+  need(3 * std::size_t(E.header));
+  const std::uint64_t nb = header_word(E, p), bs = header_word(E, p + E.header),
+                      last = header_word(E, p + 2 * E.header);
+  if (nb > avail / std::size_t(E.header))
+    parse_fail(name, 0, "compressed block count out of range");
+  const std::size_t hb = header_bytes(E, nb);
+  need(hb);
+  if (nb > 0 && (bs == 0 || last > bs)) parse_fail(name, 0, "bad compressed block sizes");
+  std::uint64_t total_c = 0;  // (each size checked before adding: no wrap-around)
+  for (std::uint64_t i = 0; i < nb; ++i) {
+    const std::uint64_t c = header_word(E, p + (3 + i) * E.header);
+    if (c > avail - hb - total_c)
+      parse_fail(name, 0, "compressed data ends before its header says");
+    total_c += c;
+  }
+  // zlib expands at most about 1032 : 1; a larger claim is a broken header.
+  const std::uint64_t cap = (total_c + 64) * 1100;
+  if (nb > 1 && (bs > cap || nb - 1 > cap / bs))
+    parse_fail(name, 0, "compressed block sizes out of range");
+  const std::uint64_t total_u = nb == 0 ? 0 : (nb - 1) * bs + (last ? last : bs);
+  if (total_u > cap) parse_fail(name, 0, "compressed block sizes out of range");
+  std::string out(std::size_t(total_u), '\0');
+  std::size_t at = hb, put = 0;
+  for (std::uint64_t i = 0; i < nb; ++i) {
+    const std::uint64_t c = header_word(E, p + (3 + i) * E.header);
+    uLongf want = uLongf(i + 1 < nb || last == 0 ? bs : last);
+    const uLongf expect = want;
+    if (uncompress(reinterpret_cast<Bytef*>(&out[put]), &want, p + at, uLong(c)) != Z_OK ||
+        want != expect)
+      parse_fail(name, 0, "a zlib block does not decompress to its stated size");
+    at += std::size_t(c);
+    put += std::size_t(expect);
+  }
+  used = at;
+  return out;
+}
+
+// Inline base64 ("binary"): the header and the data may have been encoded together or apart
+// (VTK encodes them apart; other writers together). Apart, the header's own group ends in
+// '=' padding unless its length is a multiple of 3, in which case both readings agree.
+std::string inline_data(const Encoding& E, std::string_view text) {
+  const std::string c = b64_chars(text);
+  const std::string& name = E.name;
+  // the first words tell the header's length
+  const std::size_t first = E.zlib ? 3 * std::size_t(E.header) : std::size_t(E.header);
+  const std::size_t first_chars = (first + 2) / 3 * 4;
+  if (c.size() < first_chars) parse_fail(name, 0, "binary data shorter than its header");
+  const std::string head = b64_decode(std::string_view(c).substr(0, first_chars), name);
+  if (head.size() < first) parse_fail(name, 0, "binary data shorter than its header");
+  const std::uint64_t w0 = header_word(E, reinterpret_cast<const unsigned char*>(head.data()));
+  if (E.zlib && w0 > c.size()) parse_fail(name, 0, "compressed block count out of range");
+  const std::size_t hb = header_bytes(E, w0), hchars = (hb + 2) / 3 * 4;
+  if (c.size() < hchars) parse_fail(name, 0, "binary data shorter than its header");
+  const bool apart = c.compare(hchars - 1, 1, "=") == 0;
+  std::string bytes;
+  if (apart) {
+    bytes = b64_decode(std::string_view(c).substr(0, hchars), name);
+    bytes.resize(hb);  // (padding)
+    bytes += b64_decode(std::string_view(c).substr(hchars), name);
+  } else {
+    bytes = b64_decode(c, name);
+  }
+  std::size_t used = 0;
+  return block_data(E, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), used);
+}
+
+// One DataArray's values as doubles (exact for every integer below 2^53 and every float).
+std::vector<double> read_array(const Encoding& E, std::string_view b, const Tag& t) {
+  const std::string& name = E.name;
+  const Elem e = elem_of(attr(t, "type"), name);
+  const std::string_view format = attr(t, "format");
+  std::vector<double> v;
+  if (format == "ascii") {
+    if (t.closed) return v;
+    const std::size_t close = b.find("</DataArray>", t.end);
+    if (close == std::string_view::npos) parse_fail(name, 0, "a DataArray is not closed");
+    for (auto s : split(b.substr(t.end, close - t.end))) {
+      double x;
+      if (!to_double(s, x))
+        parse_fail(name, 0, "bad number '" + std::string(s) + "' in a DataArray");
+      v.push_back(x);
+    }
+    return v;
+  }
+  std::string bytes;
+  if (format == "binary") {
+    if (t.closed) parse_fail(name, 0, "an inline binary DataArray without data");
+    const std::size_t close = b.find("</DataArray>", t.end);
+    if (close == std::string_view::npos) parse_fail(name, 0, "a DataArray is not closed");
+    bytes = inline_data(E, b.substr(t.end, close - t.end));
+  } else if (format == "appended") {
+    std::int64_t off = 0;
+    if (!to_int64(attr(t, "offset"), off) || off < 0 || std::uint64_t(off) > E.appended.size())
+      parse_fail(name, 0, "an appended DataArray's offset is missing or out of range");
+    std::size_t used = 0;
+    bytes = block_data(E, reinterpret_cast<const unsigned char*>(E.appended.data()) + off,
+                       E.appended.size() - std::size_t(off), used);
+  } else {
+    parse_fail(name, 0, "unknown DataArray format '" + std::string(format) + "'");
+  }
+  if (bytes.size() % std::size_t(e.bytes))
+    parse_fail(name, 0, "binary DataArray length is not a whole number of elements");
+  const std::size_t n = bytes.size() / std::size_t(e.bytes);
+  v.resize(n);
+  const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
+  for (std::size_t i = 0; i < n; ++i) v[i] = elem_value(p + i * e.bytes, e, E.big);
+  return v;
+}
+
+// The first DataArray inside the element that starts at `from` (its section), optionally the
+// one with Name=name.
+std::vector<double> section_array(const Encoding& E, std::string_view b, std::string_view section,
+                                  std::string_view array_name) {
+  Tag s;
+  if (!find_tag(b, section, 0, s))
+    parse_fail(E.name, 0, "no <" + std::string(section) + "> section");
+  const std::string close = "</" + std::string(section) + ">";
+  const std::size_t end = b.find(close, s.end);
+  Tag t;
+  for (std::size_t at = s.end;
+       find_tag(b, "DataArray", at, t) && (end == std::string_view::npos || t.begin < end);
+       at = t.end) {
+    if (array_name.empty() || attr(t, "Name") == array_name) return read_array(E, b, t);
+  }
+  parse_fail(E.name, 0,
+             "no DataArray " +
+                 (array_name.empty() ? std::string() : "'" + std::string(array_name) + "' ") +
+                 "in <" + std::string(section) + ">");
+}
+
+}  // namespace
+
+Mesh parse_vtu(const std::string& bytes, const std::string& name) {
+  // The XML part ends where appended data begins (raw bytes may hold anything after it).
+  std::string_view all(bytes);
+  Tag file, grid, app;
+  if (!find_tag(all, "VTKFile", 0, file) || attr(file, "type") != "UnstructuredGrid" ||
+      !find_tag(all, "UnstructuredGrid", file.end, grid))
+    parse_fail(name, 0, "not a VTK UnstructuredGrid (.vtu) file");
+  Encoding E;
+  E.name = name;
+  const std::string_view order = attr(file, "byte_order"), ht = attr(file, "header_type"),
+                         comp = attr(file, "compressor");
+  E.big = order == "BigEndian";
+  if (!order.empty() && order != "BigEndian" && order != "LittleEndian")
+    parse_fail(name, 0, "unknown byte_order '" + std::string(order) + "'");
+  if (ht == "UInt64")
+    E.header = 8;
+  else if (ht.empty() || ht == "UInt32")
+    E.header = 4;
+  else
+    parse_fail(name, 0, "unsupported header_type '" + std::string(ht) + "'");
+  if (comp == "vtkZLibDataCompressor")
+    E.zlib = true;
+  else if (!comp.empty())
+    parse_fail(name, 0, "unsupported compressor '" + std::string(comp) + "' (zlib is read)");
+  std::string_view xml = all;
+  if (find_tag(all, "AppendedData", grid.end, app)) {
+    const std::string_view enc = attr(app, "encoding");
+    const std::size_t us = all.find('_', app.end);
+    if (us == std::string_view::npos) parse_fail(name, 0, "<AppendedData> without its '_' marker");
+    xml = all.substr(0, app.begin);
+    if (enc == "base64") {
+      const std::size_t close = all.find("</AppendedData>", us);
+      E.appended_store = b64_chars(all.substr(
+          us + 1, close == std::string_view::npos ? std::string_view::npos : close - us - 1));
+      E.appended_base64 = true;
+      E.appended = E.appended_store;
+    } else if (enc == "raw" || enc.empty()) {
+      E.appended = all.substr(us + 1);
+    } else {
+      parse_fail(name, 0, "unknown AppendedData encoding '" + std::string(enc) + "'");
+    }
+  }
+  // Appended base64: each array's block is its own base64 text from its offset (in
+  // characters); decoding from there on gives its bytes first.
+  auto array = [&](std::string_view section, std::string_view arr) {
+    if (!E.appended_base64) return section_array(E, xml, section, arr);
+    // base64 appended: decode from the array's character offset to the end, as inline data.
+    Tag s, t;
+    if (!find_tag(xml, section, 0, s))
+      parse_fail(name, 0, "no <" + std::string(section) + "> section");
+    const std::size_t end = xml.find("</" + std::string(section) + ">", s.end);
+    for (std::size_t at = s.end; find_tag(xml, "DataArray", at, t) && t.begin < end; at = t.end) {
+      if (!arr.empty() && attr(t, "Name") != arr) continue;
+      if (attr(t, "format") != "appended") return read_array(E, xml, t);
+      std::int64_t off = 0;
+      if (!to_int64(attr(t, "offset"), off) || off < 0 || std::uint64_t(off) > E.appended.size())
+        parse_fail(name, 0, "an appended DataArray's offset is missing or out of range");
+      const std::string_view rest = E.appended.substr(std::size_t(off));
+      const std::string data = inline_data(E, rest.substr(0, rest.size() / 4 * 4));
+      const Elem e = elem_of(attr(t, "type"), name);
+      if (data.size() % std::size_t(e.bytes))
+        parse_fail(name, 0, "binary DataArray length is not a whole number of elements");
+      std::vector<double> v(data.size() / std::size_t(e.bytes));
+      for (std::size_t i = 0; i < v.size(); ++i)
+        v[i] =
+            elem_value(reinterpret_cast<const unsigned char*>(data.data()) + i * e.bytes, e, E.big);
+      return v;
+    }
+    parse_fail(name, 0,
+               "no DataArray '" + std::string(arr) + "' in <" + std::string(section) + ">");
+  };
+  const std::vector<double> xyz = array("Points", "");
+  const std::vector<double> conn = array("Cells", "connectivity");
+  const std::vector<double> offs = array("Cells", "offsets");
+  const std::vector<double> types = array("Cells", "types");
+  if (xyz.size() % 3) parse_fail(name, 0, "Points must have 3 components");
+  if (offs.size() != types.size()) parse_fail(name, 0, "offsets and types differ in length");
+  Mesh m;
+  m.cell_size = types.empty() || types[0] == 5 ? 3 : 4;
+  for (double t : types)
+    if (t != (m.cell_size == 3 ? 5 : 10))
+      parse_fail(name, 0, "mixed or unsupported VTK cell types (expected all 5 or all 10)");
+  if (conn.size() != offs.size() * std::size_t(m.cell_size))
+    parse_fail(name, 0, "connectivity length does not match the cells");
+  const std::size_t nv = xyz.size() / 3;
+  for (std::size_t i = 0; i < offs.size(); ++i)
+    if (offs[i] != double((i + 1) * std::size_t(m.cell_size)))
+      parse_fail(name, 0, "unexpected offsets");
+  m.cells.reserve(conn.size());
+  for (double c : conn) {
+    if (!(c >= 0 && c < double(nv))) parse_fail(name, 0, "connectivity refers to a missing point");
+    m.cells.push_back(std::int32_t(c));
+  }
+  bool flat = true;
+  for (std::size_t i = 2; i < xyz.size(); i += 3) flat = flat && xyz[i] == 0.0;
+  m.dim = (flat && m.cell_size == 3) ? 2 : 3;
+  m.coords.reserve(nv * std::size_t(m.dim));
+  for (std::size_t i = 0; i < nv; ++i)
+    for (int d = 0; d < m.dim; ++d) m.coords.push_back(xyz[i * 3 + d]);
+  return m;
+}
+
+namespace {
+
+// Appends one array's bytes as an appended block: UInt64 length and the bytes, or zlib blocks
+// of kBlock bytes with their header (blocks compressed in parallel).
+constexpr std::size_t kBlock = std::size_t(1) << 20;
+// zlib's fastest level: on a triangulation of 10^6 points 2.4 times faster than its default and
+// 4 % larger (the coordinates hardly compress at any level; the index arrays compress well at
+// every level).
+constexpr int kLevel = 1;
+
+void put_u64(std::string& out, std::uint64_t v) {
+  char b[8];
+  std::memcpy(b, &v, 8);  // (little-endian hosts only: the file says LittleEndian)
+  out.append(b, 8);
+}
+
+void append_block(std::string& out, const void* data, std::size_t n, bool compress) {
+  const char* p = static_cast<const char*>(data);
+  if (!compress) {
+    put_u64(out, n);
+    out.append(p, n);
+    return;
+  }
+  const std::size_t nb = (n + kBlock - 1) / kBlock;
+  std::vector<std::string> blocks(nb);
+  std::int64_t failed = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : failed)
+  for (std::int64_t i = 0; i < std::int64_t(nb); ++i) {
+    const std::size_t len = std::min(kBlock, n - std::size_t(i) * kBlock);
+    uLongf cap = compressBound(uLong(len));
+    std::string& b = blocks[std::size_t(i)];
+    b.resize(cap);
+    if (compress2(reinterpret_cast<Bytef*>(&b[0]), &cap,
+                  reinterpret_cast<const Bytef*>(p + std::size_t(i) * kBlock), uLong(len),
+                  kLevel) != Z_OK)
+      ++failed;
+    b.resize(cap);
+  }
+  if (failed) throw Error(ErrorCode::Internal, "zlib failed to compress a VTU block");
+  put_u64(out, nb);
+  put_u64(out, kBlock);
+  put_u64(out, nb ? n - (nb - 1) * kBlock : 0);
+  for (const auto& b : blocks) put_u64(out, b.size());
+  for (const auto& b : blocks) out += b;
+}
+
+}  // namespace
+
+std::string format_vtu(const Mesh& m, bool binary, bool compress) {
+  const std::size_t nv = m.num_vertices(), nc = m.num_cells();
+  const int k = m.cell_size;
+  std::string head =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\"";
+  if (binary) head += " header_type=\"UInt64\"";
+  if (binary && compress) head += " compressor=\"vtkZLibDataCompressor\"";
+  head += ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" + std::to_string(nv) +
+          "\" NumberOfCells=\"" + std::to_string(nc) + "\">\n";
+  const bool wide = nc * std::size_t(k) > std::size_t(INT32_MAX);  // offsets need 64 bits
+  if (!binary) {
+    std::string o = head;
+    o += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (std::size_t i = 0; i < nv; ++i) {
+      for (int d = 0; d < 3; ++d) {
+        if (d) o += ' ';
+        append_double(o, d < m.dim ? m.coords[i * m.dim + d] : 0.0);
+      }
+      o += '\n';
+    }
+    o += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" "
+         "format=\"ascii\">\n";
+    for (std::size_t c = 0; c < nc; ++c) {
+      for (int j = 0; j < k; ++j) o += (j ? " " : "") + std::to_string(m.cells[c * k + j]);
+      o += '\n';
+    }
+    o += std::string("</DataArray>\n<DataArray type=\"") + (wide ? "Int64" : "Int32") +
+         "\" Name=\"offsets\" format=\"ascii\">\n";
+    for (std::size_t c = 0; c < nc; ++c) o += std::to_string((c + 1) * std::size_t(k)) + '\n';
+    o += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    const std::string type = k == 3 ? "5\n" : "10\n";
+    for (std::size_t c = 0; c < nc; ++c) o += type;
+    o += "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+    return o;
+  }
+  // Each array as its byte count and a function writing its bytes: uncompressed, they go
+  // straight into the output (one copy of the mesh, not three); compressed, through a buffer.
+  struct Array {
+    std::size_t bytes;
+    std::function<void(char*)> fill;
+  };
+  const Array arrays[4] = {
+      {24 * nv,
+       [&](char* d) {
+         if (m.dim == 3) {
+           std::memcpy(d, m.coords.data(), 24 * nv);
+           return;
+         }
+         for (std::size_t i = 0; i < nv; ++i) {
+           const double x[3] = {m.coords[i * m.dim], m.dim > 1 ? m.coords[i * m.dim + 1] : 0.0,
+                                0.0};
+           std::memcpy(d + 24 * i, x, 24);
+         }
+       }},
+      {4 * m.cells.size(), [&](char* d) { std::memcpy(d, m.cells.data(), 4 * m.cells.size()); }},
+      {(wide ? 8 : 4) * nc,
+       [&](char* d) {
+         for (std::size_t c = 0; c < nc; ++c) {
+           const std::int64_t v = std::int64_t((c + 1) * std::size_t(k));
+           if (wide) {
+             std::memcpy(d + 8 * c, &v, 8);
+           } else {
+             const std::int32_t w = std::int32_t(v);
+             std::memcpy(d + 4 * c, &w, 4);
+           }
+         }
+       }},
+      {nc, [&](char* d) { std::memset(d, k == 3 ? 5 : 10, nc); }}};
+  std::string blocks[4];  // (compressed only)
+  std::size_t at[5] = {0, 0, 0, 0, 0};
+  for (int i = 0; i < 4; ++i) {
+    if (compress) {
+      std::string raw(arrays[i].bytes, '\0');
+      arrays[i].fill(&raw[0]);
+      append_block(blocks[i], raw.data(), raw.size(), true);
+      at[i + 1] = at[i] + blocks[i].size();
+    } else {
+      at[i + 1] = at[i] + 8 + arrays[i].bytes;
+    }
+  }
+  std::string o = head;
+  o += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" "
+       "offset=\"" +
+       std::to_string(at[0]) + "\"/>\n</Points>\n<Cells>\n";
+  o += "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"appended\" offset=\"" +
+       std::to_string(at[1]) + "\"/>\n";
+  o += std::string("<DataArray type=\"") + (wide ? "Int64" : "Int32") +
+       "\" Name=\"offsets\" format=\"appended\" offset=\"" + std::to_string(at[2]) + "\"/>\n";
+  o += "<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"" +
+       std::to_string(at[3]) + "\"/>\n";
+  o += "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  const std::string tail = "\n</AppendedData>\n</VTKFile>\n";
+  const std::size_t start = o.size();
+  o.resize(start + at[4] + tail.size());
+  for (int i = 0; i < 4; ++i) {
+    char* d = &o[start + at[i]];
+    if (compress) {
+      std::memcpy(d, blocks[i].data(), blocks[i].size());
+    } else {
+      const std::uint64_t n = arrays[i].bytes;
+      std::memcpy(d, &n, 8);  // (little-endian hosts only: the file says LittleEndian)
+      arrays[i].fill(d + 8);
+    }
+  }
+  std::memcpy(&o[start + at[4]], tail.data(), tail.size());
+  return o;
+}
+
+}  // namespace gpugeom::io::detail
