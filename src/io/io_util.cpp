@@ -6,18 +6,28 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace gpugeom::io::detail {
 
 std::string read_file(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
+  // One read into a string of the file's size (no stream buffer copy in between).
+  std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f)
     throw Error(ErrorCode::Io, "cannot open '" + path + "' for reading: " + std::strerror(errno));
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  if (f.bad()) throw Error(ErrorCode::Io, "error while reading '" + path + "'");
-  return ss.str();
+  std::string b;
+  struct stat st;
+  if (::fstat(::fileno(f), &st) == 0 && S_ISREG(st.st_mode)) b.resize(std::size_t(st.st_size));
+  std::size_t got = b.empty() ? 0 : std::fread(&b[0], 1, b.size(), f);
+  b.resize(got);
+  // What fstat did not announce (a file that grew, a pipe): read on in blocks.
+  char chunk[1 << 16];
+  for (std::size_t k; (k = std::fread(chunk, 1, sizeof chunk, f)) > 0;) b.append(chunk, k);
+  const bool bad = std::ferror(f) != 0;
+  std::fclose(f);
+  if (bad) throw Error(ErrorCode::Io, "error while reading '" + path + "'");
+  return b;
 }
 
 void write_file_atomic(const std::string& path, const std::string& bytes) {

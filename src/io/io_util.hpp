@@ -20,6 +20,9 @@ void write_file_atomic(const std::string& path, const std::string& bytes);
 class Lines {
  public:
   Lines(std::string_view text, std::string name) : t_(text), name_(std::move(name)) {}
+  // A part of a file that starts after `lines_before` lines (line numbers count on from there).
+  Lines(std::string_view text, std::string name, std::int64_t lines_before)
+      : t_(text), name_(std::move(name)), line_(lines_before) {}
   bool next(std::string_view& line, bool skip_comments = true);
   std::int64_t line_no() const { return line_; }
   const std::string& name() const { return name_; }

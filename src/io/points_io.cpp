@@ -1,6 +1,13 @@
 // Point-cloud readers and writers.
 #include <algorithm>
 #include <cctype>
+#include <cstring>
+#include <new>
+#include <string_view>
+#include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "gpugeom/io.hpp"
 #include "io/io_util.hpp"
@@ -19,6 +26,36 @@ std::string extension(const std::string& path) {
 
 namespace {
 
+// Text tables are parsed in parallel: after the first line (a header row, or the first point,
+// which fixes the dimension), the text is cut at line ends into one part per thread (parts of
+// at least kMinPart bytes); each part's line ends are counted first, so every part knows the
+// number of its first line, then the parts are parsed on their own threads. The first error in
+// file order is reported: the same message, with the same line number, as a serial parse.
+constexpr std::size_t kMinPart = std::size_t(1) << 20;
+
+int host_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+// The coordinates of the lines of `text`, which follows `lines_before` lines of the file.
+void parse_table_part(std::string_view text, const std::string& name, std::int64_t lines_before,
+                      bool csv, int dim, std::vector<double>& out) {
+  Lines l(text, name, lines_before);
+  std::string_view line;
+  out.reserve(text.size() / 12);
+  while (l.next(line)) {
+    auto tok = split(line, csv || line.find(',') != std::string_view::npos);
+    if (int(tok.size()) != dim)
+      l.fail("expected " + std::to_string(dim) + " coordinates (as on the first line), found " +
+             std::to_string(tok.size()));
+    for (auto t : tok) out.push_back(need_double(l, t, "a coordinate"));
+  }
+}
+
 PointSet parse_table(const std::string& b, const std::string& name, bool csv) {
   Lines l(b, name);
   std::string_view line;
@@ -32,19 +69,91 @@ PointSet parse_table(const std::string& b, const std::string& name, bool csv) {
       first = false;
       continue;
     }
-    first = false;
-    if (p.dim == 0) {
-      if (tok.size() != 2 && tok.size() != 3)
-        l.fail("expected 2 or 3 coordinates per line, found " + std::to_string(tok.size()));
-      p.dim = int(tok.size());
-    }
-    if (int(tok.size()) != p.dim)
-      l.fail("expected " + std::to_string(p.dim) + " coordinates (as on the first line), found " +
-             std::to_string(tok.size()));
+    if (tok.size() != 2 && tok.size() != 3)
+      l.fail("expected 2 or 3 coordinates per line, found " + std::to_string(tok.size()));
+    p.dim = int(tok.size());
     for (auto t : tok) p.coords.push_back(need_double(l, t, "a coordinate"));
+    break;
   }
   if (p.dim == 0) parse_fail(name, 0, "no points found");
+  const std::string_view rest =
+      std::string_view(b).substr(l.offset() < b.size() ? l.offset() : b.size());
+  const std::size_t nparts = std::max<std::size_t>(
+      1, std::min<std::size_t>(std::size_t(host_threads()), rest.size() / kMinPart));
+  std::vector<std::size_t> start(nparts + 1, rest.size());
+  start[0] = 0;
+  for (std::size_t k = 1; k < nparts; ++k) {
+    const std::size_t nl = rest.find('\n', k * rest.size() / nparts);
+    start[k] = nl == std::string_view::npos ? rest.size() : std::max(start[k - 1], nl + 1);
+  }
+  std::vector<std::int64_t> lines(nparts + 1, 0);
+  std::vector<std::vector<double>> coords(nparts);
+  std::vector<std::string> error(nparts);
+  std::vector<ErrorCode> failed(nparts, ErrorCode::Internal);
+  std::vector<char> any(nparts, 0);
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k)
+    lines[std::size_t(k) + 1] =
+        std::int64_t(std::count(rest.begin() + std::ptrdiff_t(start[std::size_t(k)]),
+                                rest.begin() + std::ptrdiff_t(start[std::size_t(k) + 1]), '\n'));
+  lines[0] = l.line_no();
+  for (std::size_t k = 0; k < nparts; ++k) lines[k + 1] += lines[k];
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
+    const std::size_t i = std::size_t(k);
+    try {
+      parse_table_part(rest.substr(start[i], start[i + 1] - start[i]), name, lines[i], csv, p.dim,
+                       coords[i]);
+    } catch (const Error& e) {  // (an exception may not leave a parallel region)
+      any[i] = 1;
+      failed[i] = e.code();
+      error[i] = e.what();
+    } catch (const std::bad_alloc&) {
+      any[i] = 1;
+      failed[i] = ErrorCode::OutOfMemory;
+      error[i] = name + ": out of memory while reading";
+    }
+  }
+  for (std::size_t k = 0; k < nparts; ++k)
+    if (any[k]) throw Error(failed[k], error[k]);
+  std::vector<std::size_t> at(nparts + 1, p.coords.size());
+  for (std::size_t k = 0; k < nparts; ++k) at[k + 1] = at[k] + coords[k].size();
+  p.coords.resize(at[nparts]);
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k)
+    std::copy(coords[std::size_t(k)].begin(), coords[std::size_t(k)].end(),
+              p.coords.begin() + std::ptrdiff_t(at[std::size_t(k)]));
   return p;
+}
+
+// A point table as text, one line per point, formatted in parallel: each thread writes the
+// lines of its range of points into its own buffer, and the buffers are joined in order (the
+// same bytes as one thread writes).
+std::string format_table(const PointSet& p, char sep) {
+  const std::size_t n = p.size();
+  const std::size_t nparts =
+      std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(host_threads()), n / 65536));
+  std::vector<std::string> part(nparts);
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
+    const std::size_t lo = std::size_t(k) * n / nparts, hi = (std::size_t(k) + 1) * n / nparts;
+    std::string& o = part[std::size_t(k)];
+    o.reserve((hi - lo) * std::size_t(p.dim) * 24);
+    for (std::size_t i = lo; i < hi; ++i) {
+      for (int d = 0; d < p.dim; ++d) {
+        if (d) o += sep;
+        append_double(o, p.coords[i * std::size_t(p.dim) + std::size_t(d)]);
+      }
+      o += '\n';
+    }
+  }
+  std::vector<std::size_t> at(nparts + 1, 0);
+  for (std::size_t k = 0; k < nparts; ++k) at[k + 1] = at[k] + part[k].size();
+  std::string out(at[nparts], '\0');
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k)
+    std::memcpy(&out[at[std::size_t(k)]], part[std::size_t(k)].data(), part[std::size_t(k)].size());
+  return out;
 }
 
 PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* mesh) {
@@ -201,15 +310,7 @@ void write_points(const std::string& path, const PointSet& p, const WriteOptions
   std::string out;
   if (p.dim != 2 && p.dim != 3) throw Error(ErrorCode::InvalidArgument, "points must be 2D or 3D");
   if (ext == ".xyz" || ext == ".txt" || ext == ".csv") {
-    const char sep = ext == ".csv" ? ',' : ' ';
-    out.reserve(n * p.dim * 24);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int d = 0; d < p.dim; ++d) {
-        if (d) out += sep;
-        append_double(out, p.coords[i * p.dim + d]);
-      }
-      out += '\n';
-    }
+    out = format_table(p, ext == ".csv" ? ',' : ' ');
   } else if (ext == ".ply") {
     out = format_ply(p.coords.data(), p.dim, n, nullptr, 3, 0, o.binary);
   } else if (ext == ".off" || ext == ".obj") {

@@ -5,7 +5,12 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <charconv>
+#include <cmath>
 #include <cstring>
+#include <iterator>
+#include <random>
+#include <omp.h>
 #include <unistd.h>
 
 #include "gpugeom/generate.hpp"
@@ -78,6 +83,77 @@ TEST(Io, PointRoundTrips) {
         EXPECT_EQ(q.coords, p.coords) << ext << " binary=" << binary;
       }
     }
+  EXPECT_TRUE(no_temp_files());
+}
+
+// Text tables are read in parallel parts: the values and the errors (message and line number)
+// must be those of a line-by-line read, whatever the number of threads and wherever the parts
+// are cut (blank lines, comments, CRLF and comma lines on the way).
+TEST(Io, TextTablesInPartsAsOneReadWould) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1e3, 1e3);
+  const std::size_t n = 250000;  // about 13 MB: several 1 MiB parts
+  std::vector<double> want;
+  std::string text = "x y z\n";
+  std::vector<std::int64_t> line_of(n);  // the file line of each point
+  std::int64_t line = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i % 9973 == 0) text += "# a comment\n", ++line;
+    if (i % 7919 == 0) text += "   \n", ++line;
+    double v[3] = {u(rng), u(rng), std::ldexp(u(rng), int(i % 60) - 30)};
+    char buf[96];
+    std::snprintf(buf, sizeof buf, i % 5 == 0 ? "%.17g,%.17g,%.17g\r\n" : "%.17g %.17g %.17g\n",
+                  v[0], v[1], v[2]);
+    text += buf;
+    line_of[i] = ++line;
+    want.insert(want.end(), v, v + 3);
+  }
+  const std::string f = path("big.xyz");
+  write_text(f, text);
+  const int threads0 = omp_get_max_threads();
+  for (int threads : {1, 2, 3, 7}) {
+    omp_set_num_threads(threads);
+    const auto p = io::read_points(f);
+    EXPECT_EQ(p.dim, 3);
+    EXPECT_EQ(p.coords, want) << threads << " threads";
+    // an error late in the file, one in the middle: file:line: message, as read line by line
+    for (std::size_t bad : {n - 3, n / 2 + 11, std::size_t(5)}) {
+      std::string t = text;
+      const std::string token = "1.5 2.5 oops\n";
+      std::size_t at = 0;  // the start of point `bad`'s line
+      for (std::int64_t l = 1; l < line_of[bad]; ++l) at = t.find('\n', at) + 1;
+      t.replace(at, t.find('\n', at) + 1 - at, token);
+      write_text(path("bad.xyz"), t);
+      try {
+        io::read_points(path("bad.xyz"));
+        ADD_FAILURE() << "accepted a bad line";
+      } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::Parse);
+        EXPECT_EQ(std::string(e.what()), path("bad.xyz") + ":" + std::to_string(line_of[bad]) +
+                                             ": expected a number for a coordinate, found 'oops'")
+            << threads << " threads";
+      }
+    }
+  }
+  omp_set_num_threads(threads0);
+  // written in parallel parts: the same bytes as point by point
+  io::PointSet ps;
+  ps.dim = 3;
+  ps.coords = want;
+  io::write_points(path("out.xyz"), ps);
+  std::string serial;
+  for (std::size_t i = 0; i < n; ++i) {
+    char buf[96];
+    for (int d = 0; d < 3; ++d) {
+      auto r = std::to_chars(buf, buf + sizeof buf, want[3 * i + d]);
+      serial.append(d ? " " : "");
+      serial.append(buf, r.ptr);
+    }
+    serial += '\n';
+  }
+  std::ifstream in(path("out.xyz"), std::ios::binary);
+  const std::string got((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(got == serial);
   EXPECT_TRUE(no_temp_files());
 }
 
