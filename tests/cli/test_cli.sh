@@ -115,7 +115,7 @@ expect 2 "writes .svg or .png" -- "$G" delaunay2d "$W/c.csv" --draw "$W/t.pdf"
 expect 0 "usage: gpugeom delaunay2d" -- "$G" delaunay2d --help
 # hull3d: mesh formats, the checker, Qhull-style .npy, errors, no file left on failure
 expect 0 "wrote 5000 ball3d" -- "$G" gen ball3d -n 5000 -o "$W/ball.npy"
-for ext in ply off obj npy; do
+for ext in ply off obj vtu npy; do
   expect 0 "5000 points -> " -- "$G" hull3d "$W/ball.npy" -o "$W/h.$ext"
   [ -s "$W/h.$ext" ] || { echo "FAIL: hull3d wrote no .$ext"; fail=1; }
 done
@@ -129,7 +129,9 @@ printf '0 0 0\n1 0 0\n0 1 0\n0 0 inf\n' >"$W/inf.xyz"
 expect 3 "infinite" -- "$G" hull3d "$W/inf.xyz" -o "$W/hf.ply"
 [ -e "$W/hf.ply" ] && { echo "FAIL: a failed hull3d left an output file"; fail=1; }
 expect 3 "2D points" -- "$G" hull3d "$W/c.csv" -o "$W/hf.ply"
-expect 2 "-o takes" -- "$G" hull3d "$W/ball.npy" -o "$W/hf.vtu"
+expect 2 "-o takes" -- "$G" hull3d "$W/ball.npy" -o "$W/hf.stl"
+expect 0 "5000 points -> " -- "$G" hull3d "$W/ball.npy" -o "$W/h.vtu" --compress
+expect 0 "valid hull3d" -- "$G" check "$W/h.vtu"
 expect 0 "usage: gpugeom hull3d" -- "$G" hull3d --help
 # a failed write leaves no file behind
 expect 3 "cannot create" -- "$G" gen uniform2d -n 10 -o "$W/nodir/x.xyz"

@@ -12,14 +12,16 @@ namespace gpugeom::cli {
 
 namespace {
 const char* kHelp =
-    "usage: gpugeom hull3d POINTS -o MESH [--check]\n\n"
+    "usage: gpugeom hull3d POINTS -o MESH [--check] [--compress] [--ascii]\n\n"
     "Exact convex hull of the 3D points in POINTS (.xyz .txt .csv .ply .off .obj .node .npy).\n"
     "Only extreme points become vertices: points inside a face or on an edge do not, and of\n"
     "several copies of a point one does.\n"
-    "  -o MESH   .ply .off .obj: the hull as a mesh of its vertices, facets counter-clockwise\n"
-    "            seen from outside; .npy: the int32 facet array (F x 3) indexing the input\n"
-    "            points, like SciPy's ConvexHull.simplices\n"
-    "  --check   verify the result with the independent exact checker\n";
+    "  -o MESH     .ply .off .obj .vtu: the hull as a mesh of its vertices, facets\n"
+    "              counter-clockwise seen from outside; .npy: the int32 facet array (F x 3)\n"
+    "              indexing the input points, like SciPy's ConvexHull.simplices\n"
+    "  --compress  .vtu: zlib-compressed blocks\n"
+    "  --ascii     .vtu and .ply as text instead of binary\n"
+    "  --check     verify the result with the independent exact checker\n";
 }  // namespace
 
 int cmd_hull3d(const Global& g, Args& a) {
@@ -30,12 +32,19 @@ int cmd_hull3d(const Global& g, Args& a) {
   std::string out;
   a.value("-o", out) || a.value("--output", out);
   const bool check = a.flag("--check");
+  io::WriteOptions wo;
+  wo.compress = a.flag("--compress");
+  wo.binary = !a.flag("--ascii");
+  if (wo.compress && !wo.binary) throw UsageError("--compress and --ascii exclude each other");
+  if (wo.compress && (out.empty() || io::extension(out) != ".vtu"))
+    throw UsageError("--compress applies to -o FILE.vtu only");
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one point file (see --help)");
   if (out.empty() && !check) throw UsageError("nothing to do: give -o MESH or --check");
   const std::string ext = out.empty() ? "" : io::extension(out);
-  if (!out.empty() && ext != ".ply" && ext != ".off" && ext != ".obj" && ext != ".npy")
-    throw UsageError("-o takes .ply, .off, .obj or .npy for a hull (got '" + out + "')");
+  if (!out.empty() && ext != ".ply" && ext != ".off" && ext != ".obj" && ext != ".vtu" &&
+      ext != ".npy")
+    throw UsageError("-o takes .ply, .off, .obj, .vtu or .npy for a hull (got '" + out + "')");
   io::PointSet p;
   {
     Timer t(g, "read");
@@ -93,7 +102,7 @@ int cmd_hull3d(const Global& g, Args& a) {
       m.cells.reserve(h.triangles.size());
       for (auto v : h.triangles) m.cells.push_back(index[v]);
     }
-    io::write_mesh(out, m);
+    io::write_mesh(out, m, wo);
   }
   return status;
 }

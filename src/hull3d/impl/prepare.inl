@@ -23,11 +23,13 @@ GG_HD inline bool same_point(const double* a, const double* b) {
   return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
 }
 
+// bad: the coordinates the exact predicates cannot take (mesh::bounds counts coordinates).
 inline void throw_bad(std::int64_t bad) {
   throw Error(ErrorCode::InvalidInput,
               std::to_string(bad) +
-                  " point(s) have a coordinate that is NaN, infinite or outside the exactly "
-                  "representable range (magnitude 1.8e-43 .. 1.5e54, or 0)");
+                  " point coordinate(s) are NaN, infinite or outside the range the exact "
+                  "predicates support (0 or magnitude in [1.8e-43, 1.5e54]); remove or rescale "
+                  "those points");
 }
 
 // The first tetrahedron (after the input check: Error(InvalidInput) for points the exact
