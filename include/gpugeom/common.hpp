@@ -64,6 +64,12 @@ DeviceInfo query_device(int device = -1);
 // The CUDA architectures this build has device code for, e.g. "sm_90 compute_90" ("" without
 // CUDA).
 std::string built_cuda_architectures();
+// Creates the device's CUDA context and the library's memory pool on it ahead of the first
+// computation (-1: the calling thread's current device). A process's first CUDA call takes
+// about a quarter of a second (on the H100 machine); a program can call this on another
+// thread while it reads its input, and its first computation then starts at once. Does
+// nothing where there is no usable device; never throws.
+void prepare_device(int device = -1) noexcept;
 // Hands the device memory the library keeps for reuse (its own pool, one per device) back to
 // the driver. Call between phases of a program that needs the memory elsewhere.
 void release_cached_device_memory();

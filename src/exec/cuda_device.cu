@@ -125,6 +125,18 @@ DeviceInfo query_device(int device) {
   return d;
 }
 
+void prepare_device(int device) noexcept {
+  try {
+    const DeviceInfo d = query_device(device);
+    if (!d.available) return;
+    cuda_device::Scope on(d.device);
+    (void)cudaFree(nullptr);  // creates the device's primary context
+    (void)cuda_device::pool(d.device);
+  } catch (...) {  // (a later call reports whatever went wrong here)
+  }
+  (void)cudaGetLastError();
+}
+
 void release_cached_device_memory() {
   Pools& P = pools();
   std::lock_guard<std::mutex> lk(P.m);

@@ -14,4 +14,5 @@ DeviceInfo query_device(int) {
   return d;
 }
 void release_cached_device_memory() {}
+void prepare_device(int) noexcept {}
 }  // namespace gpugeom
