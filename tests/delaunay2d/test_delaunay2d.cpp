@@ -37,6 +37,20 @@ TEST(Delaunay2d, Degenerate) {
   EXPECT_GT(flat, 0);
 }
 
+// prepare_device never throws (no device, a device that does not exist), and a computation on
+// the automatic backend after it gives the same result as without.
+TEST(Delaunay2d, PrepareDeviceIsHarmless) {
+  const auto pts = generate2d("uniform", 5000, 3);
+  Delaunay2dOptions o;
+  o.backend = Backend::Cpu;
+  const auto ref = delaunay2d(pts, o);
+  prepare_device(12345);
+  prepare_device();
+  o.backend = Backend::Auto;
+  const auto r = delaunay2d(pts, o);
+  EXPECT_EQ(r.triangles, ref.triangles);
+}
+
 TEST(Delaunay2d, Errors) {
   auto code = [](const std::vector<Point2>& p) {
     try {
