@@ -6,6 +6,8 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -28,6 +30,26 @@ std::string read_file(const std::string& path) {
   std::fclose(f);
   if (bad) throw Error(ErrorCode::Io, "error while reading '" + path + "'");
   return b;
+}
+
+FileView::FileView(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0)
+    throw Error(ErrorCode::Io, "cannot open '" + path + "' for reading: " + std::strerror(errno));
+  struct stat st;
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+    void* p = ::mmap(nullptr, std::size_t(st.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
+    if (p != MAP_FAILED) {
+      map_ = static_cast<const char*>(p);
+      size_ = std::size_t(st.st_size);
+      (void)::madvise(p, size_, MADV_WILLNEED);  // read ahead while the first parts parse
+    }
+  }
+  ::close(fd);
+  if (!map_) copy_ = read_file(path);  // (pipes, empty files, systems that refuse to map)
+}
+FileView::~FileView() {
+  if (map_) ::munmap(const_cast<char*>(map_), size_);
 }
 
 void write_file_atomic(const std::string& path, const std::string& bytes) {

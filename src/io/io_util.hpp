@@ -11,6 +11,23 @@
 namespace gpugeom::io::detail {
 
 std::string read_file(const std::string& path);
+
+// A read-only view of a whole file without a copy: mapped where the system allows (its pages
+// come in as the parsers touch them, on the parsers' threads), else read into memory. Opening
+// errors are read_file's.
+class FileView {
+ public:
+  explicit FileView(const std::string& path);
+  ~FileView();
+  FileView(const FileView&) = delete;
+  FileView& operator=(const FileView&) = delete;
+  std::string_view view() const { return map_ ? std::string_view(map_, size_) : copy_; }
+
+ private:
+  const char* map_ = nullptr;
+  std::size_t size_ = 0;
+  std::string copy_;
+};
 // Writes bytes to path.tmp-XXXX beside the target, then renames it over path.
 void write_file_atomic(const std::string& path, const std::string& bytes);
 

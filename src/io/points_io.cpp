@@ -41,22 +41,43 @@ int host_threads() {
 #endif
 }
 
-// The coordinates of the lines of `text`, which follows `lines_before` lines of the file.
+// Counts the line ends of `text` and the lines Lines::next would return (not blank, not a
+// '#' comment): a part's first line number and its first point.
+void count_lines(std::string_view text, std::int64_t& ends, std::int64_t& data) {
+  ends = data = 0;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    std::size_t e = text.find('\n', i);
+    if (e == std::string_view::npos)
+      e = text.size();
+    else
+      ++ends;
+    std::size_t j = i;
+    while (j < e && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r')) ++j;
+    data += j < e && text[j] != '#';
+    i = e + 1;
+  }
+}
+
+// The coordinates of the lines of `text`, which follows `lines_before` lines of the file, into
+// out[0 .. dim * points) (points: its data lines, counted before).
 void parse_table_part(std::string_view text, const std::string& name, std::int64_t lines_before,
-                      bool csv, int dim, std::vector<double>& out) {
+                      bool csv, int dim, double* out, std::int64_t points) {
   Lines l(text, name, lines_before);
   std::string_view line;
-  out.reserve(text.size() / 12);
+  std::int64_t at = 0;
   while (l.next(line)) {
     auto tok = split(line, csv || line.find(',') != std::string_view::npos);
     if (int(tok.size()) != dim)
       l.fail("expected " + std::to_string(dim) + " coordinates (as on the first line), found " +
              std::to_string(tok.size()));
-    for (auto t : tok) out.push_back(need_double(l, t, "a coordinate"));
+    if (at == points) throw Error(ErrorCode::Internal, name + ": a text part grew while read");
+    for (auto t : tok) *out++ = need_double(l, t, "a coordinate");
+    ++at;
   }
 }
 
-PointSet parse_table(const std::string& b, const std::string& name, bool csv) {
+PointSet parse_table(std::string_view b, const std::string& name, bool csv) {
   Lines l(b, name);
   std::string_view line;
   PointSet p;
@@ -76,8 +97,7 @@ PointSet parse_table(const std::string& b, const std::string& name, bool csv) {
     break;
   }
   if (p.dim == 0) parse_fail(name, 0, "no points found");
-  const std::string_view rest =
-      std::string_view(b).substr(l.offset() < b.size() ? l.offset() : b.size());
+  const std::string_view rest = b.substr(l.offset() < b.size() ? l.offset() : b.size());
   const std::size_t nparts = std::max<std::size_t>(
       1, std::min<std::size_t>(std::size_t(host_threads()), rest.size() / kMinPart));
   std::vector<std::size_t> start(nparts + 1, rest.size());
@@ -86,43 +106,37 @@ PointSet parse_table(const std::string& b, const std::string& name, bool csv) {
     const std::size_t nl = rest.find('\n', k * rest.size() / nparts);
     start[k] = nl == std::string_view::npos ? rest.size() : std::max(start[k - 1], nl + 1);
   }
-  std::vector<std::int64_t> lines(nparts + 1, 0);
-  std::vector<std::vector<double>> coords(nparts);
+  // Per part: its line ends and data lines, then each part parses into its own slice of the
+  // result (no per-part buffers, no merge).
+  std::vector<std::int64_t> lines(nparts + 1, 0), points(nparts + 1, 0);
   std::vector<std::string> error(nparts);
   std::vector<ErrorCode> failed(nparts, ErrorCode::Internal);
   std::vector<char> any(nparts, 0);
 #pragma omp parallel for schedule(static, 1)
-  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k)
-    lines[std::size_t(k) + 1] =
-        std::int64_t(std::count(rest.begin() + std::ptrdiff_t(start[std::size_t(k)]),
-                                rest.begin() + std::ptrdiff_t(start[std::size_t(k) + 1]), '\n'));
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
+    const std::size_t i = std::size_t(k);
+    count_lines(rest.substr(start[i], start[i + 1] - start[i]), lines[i + 1], points[i + 1]);
+  }
   lines[0] = l.line_no();
-  for (std::size_t k = 0; k < nparts; ++k) lines[k + 1] += lines[k];
+  for (std::size_t k = 0; k < nparts; ++k) lines[k + 1] += lines[k], points[k + 1] += points[k];
+  const std::size_t head = p.coords.size();
+  p.coords.resize(head + std::size_t(p.dim) * std::size_t(points[nparts]));
+  double* out = p.coords.data() + head;
 #pragma omp parallel for schedule(static, 1)
   for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
     const std::size_t i = std::size_t(k);
     try {
       parse_table_part(rest.substr(start[i], start[i + 1] - start[i]), name, lines[i], csv, p.dim,
-                       coords[i]);
+                       out + std::size_t(p.dim) * std::size_t(points[i]),
+                       points[i + 1] - points[i]);
     } catch (const Error& e) {  // (an exception may not leave a parallel region)
       any[i] = 1;
       failed[i] = e.code();
       error[i] = e.what();
-    } catch (const std::bad_alloc&) {
-      any[i] = 1;
-      failed[i] = ErrorCode::OutOfMemory;
-      error[i] = name + ": out of memory while reading";
     }
   }
   for (std::size_t k = 0; k < nparts; ++k)
     if (any[k]) throw Error(failed[k], error[k]);
-  std::vector<std::size_t> at(nparts + 1, p.coords.size());
-  for (std::size_t k = 0; k < nparts; ++k) at[k + 1] = at[k] + coords[k].size();
-  p.coords.resize(at[nparts]);
-#pragma omp parallel for schedule(static, 1)
-  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k)
-    std::copy(coords[std::size_t(k)].begin(), coords[std::size_t(k)].end(),
-              p.coords.begin() + std::ptrdiff_t(at[std::size_t(k)]));
   return p;
 }
 
@@ -301,6 +315,10 @@ PointSet read_points(const std::string& path) {
   static const char* known[] = {".xyz", ".txt", ".csv", ".off", ".obj", ".node", ".npy", ".ply"};
   if (std::find(std::begin(known), std::end(known), ext) == std::end(known))
     return parse_points("", ext, path);  // reports the unknown format before touching the file
+  if (ext == ".xyz" || ext == ".txt" || ext == ".csv") {  // the large text files: no copy
+    const FileView f(path);
+    return parse_table(f.view(), path, ext == ".csv");
+  }
   return parse_points(read_file(path), extension(path), path);
 }
 
