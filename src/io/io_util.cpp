@@ -52,23 +52,47 @@ FileView::~FileView() {
   if (map_) ::munmap(const_cast<char*>(map_), size_);
 }
 
-void write_file_atomic(const std::string& path, const std::string& bytes) {
+AtomicFile::AtomicFile(const std::string& path) : path_(path) {
   std::random_device rd;
   char suffix[32];
   std::snprintf(suffix, sizeof suffix, ".tmp-%d-%08x", int(getpid()), unsigned(rd()));
-  const std::string tmp = path + suffix;
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f)
+  tmp_ = path + suffix;
+  f_ = std::fopen(tmp_.c_str(), "wb");
+  if (!f_)
     throw Error(ErrorCode::Io,
-                "cannot create '" + tmp + "' (writing '" + path + "'): " + std::strerror(errno));
-  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-  ok = (std::fflush(f) == 0) && ok;
-  ok = (std::fclose(f) == 0) && ok;
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    int e = errno;
-    std::remove(tmp.c_str());
-    throw Error(ErrorCode::Io, "cannot write '" + path + "': " + std::strerror(e));
+                "cannot create '" + tmp_ + "' (writing '" + path + "'): " + std::strerror(errno));
+}
+AtomicFile::~AtomicFile() {
+  if (f_) {
+    std::fclose(f_);
+    std::remove(tmp_.c_str());
   }
+}
+void AtomicFile::fail(int err) {
+  if (f_) std::fclose(f_);
+  f_ = nullptr;
+  std::remove(tmp_.c_str());
+  throw Error(ErrorCode::Io, "cannot write '" + path_ + "': " + std::strerror(err));
+}
+void AtomicFile::write(const void* data, std::size_t bytes) {
+  if (bytes && std::fwrite(data, 1, bytes, f_) != bytes) fail(errno);
+}
+void AtomicFile::commit() {
+  const bool ok = std::fflush(f_) == 0;
+  const int e = errno;
+  const bool closed = std::fclose(f_) == 0;
+  f_ = nullptr;
+  if (!ok || !closed || std::rename(tmp_.c_str(), path_.c_str()) != 0) {
+    const int err = ok && closed ? errno : e;
+    std::remove(tmp_.c_str());
+    throw Error(ErrorCode::Io, "cannot write '" + path_ + "': " + std::strerror(err));
+  }
+}
+
+void write_file_atomic(const std::string& path, const std::string& bytes) {
+  AtomicFile f(path);
+  f.write(bytes.data(), bytes.size());
+  f.commit();
 }
 
 void parse_fail(const std::string& name, std::int64_t line, const std::string& what) {

@@ -2,6 +2,7 @@
 // that knows where it is for error messages, and number parsing.
 #pragma once
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,7 +29,25 @@ class FileView {
   std::size_t size_ = 0;
   std::string copy_;
 };
-// Writes bytes to path.tmp-XXXX beside the target, then renames it over path.
+// A file written piece by piece to path.tmp-XXXX beside the target and renamed over path by
+// commit(); destroyed without commit() (an error on the way), the temporary is removed, so a
+// failure never leaves a half-written file. Errors are Error(Io) naming the target.
+class AtomicFile {
+ public:
+  explicit AtomicFile(const std::string& path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  void write(const void* data, std::size_t bytes);
+  void write(std::string_view s) { write(s.data(), s.size()); }
+  void commit();
+
+ private:
+  [[noreturn]] void fail(int err);
+  std::string path_, tmp_;
+  std::FILE* f_ = nullptr;
+};
+// Writes bytes to path through an AtomicFile.
 void write_file_atomic(const std::string& path, const std::string& bytes);
 
 [[noreturn]] void parse_fail(const std::string& name, std::int64_t line, const std::string& what);

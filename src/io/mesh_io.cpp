@@ -12,6 +12,7 @@ PointSet parse_obj_mesh(const std::string& b, const std::string& name, Mesh* m);
 PointSet parse_node_file(const std::string& b, const std::string& name, int* base);
 Mesh parse_vtu(const std::string& bytes, const std::string& name);  // (vtu.cpp)
 std::string format_vtu(const Mesh& m, bool binary, bool compress);
+void write_vtu(const std::string& path, const Mesh& m, bool binary, bool compress);
 }  // namespace detail
 using namespace detail;
 
@@ -154,7 +155,8 @@ void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {
       out += '\n';
     }
   } else if (ext == ".vtu") {
-    out = format_vtu(m, o.binary, o.compress);
+    write_vtu(path, m, o.binary, o.compress);  // (streamed to the file)
+    return;
   } else if (ext == ".npy") {
     out = format_npy("<i4", {std::int64_t(nc), m.cell_size}, m.cells.data(), m.cells.size() * 4);
   } else {

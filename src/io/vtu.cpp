@@ -530,18 +530,122 @@ void append_block(std::string& out, const void* data, std::size_t n, bool compre
   for (const auto& b : blocks) out += b;
 }
 
-}  // namespace
+// The four arrays of a mesh as VTU stores them (Points as 3 doubles, connectivity, offsets,
+// types), each written in ranges of items so that a writer can stream it in small pieces.
+class VtuArrays {
+ public:
+  explicit VtuArrays(const Mesh& m)
+      : m_(m),
+        nv_(m.num_vertices()),
+        nc_(m.num_cells()),
+        k_(std::size_t(m.cell_size)),
+        wide_(nc_ * k_ > std::size_t(INT32_MAX)) {}
+  bool wide() const { return wide_; }  // offsets need 64 bits
+  std::size_t items(int a) const { return a == 0 ? nv_ : a == 1 ? nc_ * k_ : nc_; }
+  std::size_t item_bytes(int a) const {
+    return a == 0 ? 24 : a == 1 ? 4 : a == 2 ? (wide_ ? 8 : 4) : 1;
+  }
+  std::size_t bytes(int a) const { return items(a) * item_bytes(a); }
+  // Items [first, first + count) of array a into d.
+  void fill(int a, char* d, std::size_t first, std::size_t count) const {
+    if (a == 0) {
+      if (m_.dim == 3) {
+        std::memcpy(d, m_.coords.data() + 3 * first, 24 * count);
+        return;
+      }
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t v = (first + i) * std::size_t(m_.dim);
+        const double x[3] = {m_.coords[v], m_.dim > 1 ? m_.coords[v + 1] : 0.0, 0.0};
+        std::memcpy(d + 24 * i, x, 24);
+      }
+    } else if (a == 1) {
+      std::memcpy(d, m_.cells.data() + first, 4 * count);
+    } else if (a == 2) {
+      for (std::size_t c = 0; c < count; ++c) {
+        const std::int64_t v = std::int64_t((first + c + 1) * k_);
+        if (wide_) {
+          std::memcpy(d + 8 * c, &v, 8);
+        } else {
+          const std::int32_t w = std::int32_t(v);
+          std::memcpy(d + 4 * c, &w, 4);
+        }
+      }
+    } else {
+      std::memset(d, k_ == 3 ? 5 : 10, count);
+    }
+  }
 
-std::string format_vtu(const Mesh& m, bool binary, bool compress) {
-  const std::size_t nv = m.num_vertices(), nc = m.num_cells();
-  const int k = m.cell_size;
+ private:
+  const Mesh& m_;
+  std::size_t nv_, nc_, k_;
+  bool wide_;
+};
+
+constexpr char kVtuTail[] = "\n</AppendedData>\n</VTKFile>\n";
+
+// The DataArray elements of the four appended arrays at byte offsets at[0..3], up to the '_'
+// that starts the appended data.
+std::string appended_xml(const std::size_t (&at)[5], bool wide) {
+  std::string o =
+      "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" "
+      "offset=\"" +
+      std::to_string(at[0]) + "\"/>\n</Points>\n<Cells>\n";
+  o += "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"appended\" offset=\"" +
+       std::to_string(at[1]) + "\"/>\n";
+  o += std::string("<DataArray type=\"") + (wide ? "Int64" : "Int32") +
+       "\" Name=\"offsets\" format=\"appended\" offset=\"" + std::to_string(at[2]) + "\"/>\n";
+  o += "<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"" +
+       std::to_string(at[3]) + "\"/>\n";
+  o += "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  return o;
+}
+
+std::string vtu_head(const Mesh& m, bool binary, bool compress) {
   std::string head =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
       "byte_order=\"LittleEndian\"";
   if (binary) head += " header_type=\"UInt64\"";
   if (binary && compress) head += " compressor=\"vtkZLibDataCompressor\"";
-  head += ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" + std::to_string(nv) +
-          "\" NumberOfCells=\"" + std::to_string(nc) + "\">\n";
+  head += ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" + std::to_string(m.num_vertices()) +
+          "\" NumberOfCells=\"" + std::to_string(m.num_cells()) + "\">\n";
+  return head;
+}
+
+}  // namespace
+
+std::string format_vtu(const Mesh& m, bool binary, bool compress);
+
+// Raw appended binary, streamed to the file in pieces of at most 1 MiB: no copy of the mesh
+// in memory, the arrays go from the caller's vectors to the file.
+void write_vtu(const std::string& path, const Mesh& m, bool binary, bool compress) {
+  if (!binary || compress) {
+    write_file_atomic(path, format_vtu(m, binary, compress));
+    return;
+  }
+  const VtuArrays arrays(m);
+  std::size_t at[5] = {0, 0, 0, 0, 0};
+  for (int i = 0; i < 4; ++i) at[i + 1] = at[i] + 8 + arrays.bytes(i);
+  AtomicFile f(path);
+  f.write(vtu_head(m, true, false) + appended_xml(at, arrays.wide()));
+  std::vector<char> buf(std::size_t(1) << 20);
+  for (int i = 0; i < 4; ++i) {
+    const std::uint64_t n = arrays.bytes(i);
+    f.write(&n, 8);  // (little-endian hosts only: the file says LittleEndian)
+    const std::size_t per = buf.size() / arrays.item_bytes(i), items = arrays.items(i);
+    for (std::size_t first = 0; first < items; first += per) {
+      const std::size_t count = std::min(per, items - first);
+      arrays.fill(i, buf.data(), first, count);
+      f.write(buf.data(), count * arrays.item_bytes(i));
+    }
+  }
+  f.write(kVtuTail, sizeof kVtuTail - 1);
+  f.commit();
+}
+
+std::string format_vtu(const Mesh& m, bool binary, bool compress) {
+  const std::size_t nv = m.num_vertices(), nc = m.num_cells();
+  const int k = m.cell_size;
+  const std::string head = vtu_head(m, binary, compress);
   const bool wide = nc * std::size_t(k) > std::size_t(INT32_MAX);  // offsets need 64 bits
   if (!binary) {
     std::string o = head;
@@ -568,76 +672,18 @@ std::string format_vtu(const Mesh& m, bool binary, bool compress) {
     o += "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
     return o;
   }
-  // Each array as its byte count and a function writing its bytes: uncompressed, they go
-  // straight into the output (one copy of the mesh, not three); compressed, through a buffer.
-  struct Array {
-    std::size_t bytes;
-    std::function<void(char*)> fill;
-  };
-  const Array arrays[4] = {
-      {24 * nv,
-       [&](char* d) {
-         if (m.dim == 3) {
-           std::memcpy(d, m.coords.data(), 24 * nv);
-           return;
-         }
-         for (std::size_t i = 0; i < nv; ++i) {
-           const double x[3] = {m.coords[i * m.dim], m.dim > 1 ? m.coords[i * m.dim + 1] : 0.0,
-                                0.0};
-           std::memcpy(d + 24 * i, x, 24);
-         }
-       }},
-      {4 * m.cells.size(), [&](char* d) { std::memcpy(d, m.cells.data(), 4 * m.cells.size()); }},
-      {(wide ? 8 : 4) * nc,
-       [&](char* d) {
-         for (std::size_t c = 0; c < nc; ++c) {
-           const std::int64_t v = std::int64_t((c + 1) * std::size_t(k));
-           if (wide) {
-             std::memcpy(d + 8 * c, &v, 8);
-           } else {
-             const std::int32_t w = std::int32_t(v);
-             std::memcpy(d + 4 * c, &w, 4);
-           }
-         }
-       }},
-      {nc, [&](char* d) { std::memset(d, k == 3 ? 5 : 10, nc); }}};
+  const VtuArrays arrays(m);
   std::string blocks[4];  // (compressed only)
   std::size_t at[5] = {0, 0, 0, 0, 0};
   for (int i = 0; i < 4; ++i) {
-    if (compress) {
-      std::string raw(arrays[i].bytes, '\0');
-      arrays[i].fill(&raw[0]);
-      append_block(blocks[i], raw.data(), raw.size(), true);
-      at[i + 1] = at[i] + blocks[i].size();
-    } else {
-      at[i + 1] = at[i] + 8 + arrays[i].bytes;
-    }
+    std::string raw(arrays.bytes(i), '\0');
+    arrays.fill(i, &raw[0], 0, arrays.items(i));
+    append_block(blocks[i], raw.data(), raw.size(), compress);
+    at[i + 1] = at[i] + blocks[i].size();
   }
-  std::string o = head;
-  o += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" "
-       "offset=\"" +
-       std::to_string(at[0]) + "\"/>\n</Points>\n<Cells>\n";
-  o += "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"appended\" offset=\"" +
-       std::to_string(at[1]) + "\"/>\n";
-  o += std::string("<DataArray type=\"") + (wide ? "Int64" : "Int32") +
-       "\" Name=\"offsets\" format=\"appended\" offset=\"" + std::to_string(at[2]) + "\"/>\n";
-  o += "<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"" +
-       std::to_string(at[3]) + "\"/>\n";
-  o += "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
-  const std::string tail = "\n</AppendedData>\n</VTKFile>\n";
-  const std::size_t start = o.size();
-  o.resize(start + at[4] + tail.size());
-  for (int i = 0; i < 4; ++i) {
-    char* d = &o[start + at[i]];
-    if (compress) {
-      std::memcpy(d, blocks[i].data(), blocks[i].size());
-    } else {
-      const std::uint64_t n = arrays[i].bytes;
-      std::memcpy(d, &n, 8);  // (little-endian hosts only: the file says LittleEndian)
-      arrays[i].fill(d + 8);
-    }
-  }
-  std::memcpy(&o[start + at[4]], tail.data(), tail.size());
+  std::string o = head + appended_xml(at, arrays.wide());
+  for (const auto& b : blocks) o += b;
+  o += kVtuTail;
   return o;
 }
 
