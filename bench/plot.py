@@ -36,9 +36,13 @@ def main(path, outdir):
             ax = axes[1]
             for o in ours:
                 for a in anchors:
-                    ns = sorted(set(series[o]) & set(series[a]))
+                    # device-resident time where the row has one (0: not measured, as on
+                    # the CPU backend), else the time with copies; pairs without both skipped
+                    t = lambda pt: pt[1] if pt[1] > 0 else pt[0]
+                    ns = [n for n in sorted(set(series[o]) & set(series[a]))
+                          if t(series[o][n]) > 0 and t(series[a][n]) > 0]
                     if ns:
-                        ax.loglog(ns, [series[a][n][1] / series[o][n][1] for n in ns], "o-", label=f"{o} vs {a}")
+                        ax.loglog(ns, [t(series[a][n]) / t(series[o][n]) for n in ns], "o-", label=f"{o} vs {a}")
             ax.axhline(1, color="grey", lw=.8)
             ax.set_xlabel("n"); ax.set_ylabel("speed-up (anchor time / gpugeom time)")
             ax.set_title("speed-up, device-resident"); ax.grid(True, which="both", alpha=.3); ax.legend()
