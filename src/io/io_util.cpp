@@ -10,6 +10,9 @@
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace gpugeom::io::detail {
 
@@ -93,6 +96,32 @@ void write_file_atomic(const std::string& path, const std::string& bytes) {
   AtomicFile f(path);
   f.write(bytes.data(), bytes.size());
   f.commit();
+}
+
+int host_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+// Counts the line ends of `text` and the lines Lines::next would return (not blank, not a
+// '#' comment): a part's first line number and its first point.
+void count_lines(std::string_view text, std::int64_t& ends, std::int64_t& data) {
+  ends = data = 0;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    std::size_t e = text.find('\n', i);
+    if (e == std::string_view::npos)
+      e = text.size();
+    else
+      ++ends;
+    std::size_t j = i;
+    while (j < e && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r')) ++j;
+    data += j < e && text[j] != '#';
+    i = e + 1;
+  }
 }
 
 void parse_fail(const std::string& name, std::int64_t line, const std::string& what) {

@@ -1,6 +1,7 @@
 // Shared helpers of the readers and writers: whole-file reads, atomic writes, a line cursor
 // that knows where it is for error messages, and number parsing.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -63,6 +64,8 @@ class Lines {
   std::int64_t line_no() const { return line_; }
   const std::string& name() const { return name_; }
   std::size_t offset() const { return pos_; }  // byte offset after the current line
+  // Continues after a section another reader took: at byte pos, after `lines` lines.
+  void skip_to(std::size_t pos, std::int64_t lines) { pos_ = pos, line_ = lines; }
   [[noreturn]] void fail(const std::string& what) const { parse_fail(name_, line_, what); }
 
  private:
@@ -71,6 +74,84 @@ class Lines {
   std::size_t pos_ = 0;
   std::int64_t line_ = 0;
 };
+
+// Counts the line ends of text and the lines Lines::next returns (not blank, not a comment).
+void count_lines(std::string_view text, std::int64_t& ends, std::int64_t& data);
+int host_threads();  // the threads a parallel reader may use
+
+// A counted section of a text format (the points of a .node file, the cells of a .ele file,
+// the vertices and faces of an .off file), read in parallel: the rest of l's text is cut at
+// line ends into parts, each part's line ends and records counted first (so it knows its first
+// line number and first record), the part holding the count-th record cut after it, and the
+// parts parsed on their own threads. record(part, line, index, out) reads record `index`
+// (failing through `part`, which numbers lines as l would) into out[0 .. per). l continues after
+// the section. Errors are those of a serial loop, the first in file order; too few records fail
+// with short(i) for the i found, on the line a serial loop would name.
+template <class T, class Record, class Short>
+void read_records(Lines& l, std::string_view text, std::int64_t count, int per, std::vector<T>& out,
+                  Record record, Short short_message) {
+  constexpr std::size_t kMinPart = std::size_t(1) << 20;
+  const std::size_t base = std::min(l.offset(), text.size());
+  const std::string_view rest = text.substr(base);
+  const std::size_t nparts = std::max<std::size_t>(
+      1, std::min<std::size_t>(std::size_t(host_threads()), rest.size() / kMinPart));
+  std::vector<std::size_t> start(nparts + 1, rest.size());
+  start[0] = 0;
+  for (std::size_t k = 1; k < nparts; ++k) {
+    const std::size_t nl = rest.find('\n', k * rest.size() / nparts);
+    start[k] = nl == std::string_view::npos ? rest.size() : std::max(start[k - 1], nl + 1);
+  }
+  std::vector<std::int64_t> lines(nparts + 1, 0), recs(nparts + 1, 0);
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
+    const std::size_t i = std::size_t(k);
+    count_lines(rest.substr(start[i], start[i + 1] - start[i]), lines[i + 1], recs[i + 1]);
+  }
+  lines[0] = l.line_no();
+  for (std::size_t k = 0; k < nparts; ++k) lines[k + 1] += lines[k], recs[k + 1] += recs[k];
+  // The section's end: after the count-th record, in the part that holds it.
+  std::size_t used = nparts;
+  std::size_t end = rest.size();
+  std::int64_t end_line = lines[nparts] + (!rest.empty() && rest.back() != '\n' ? 1 : 0);
+  for (std::size_t k = 0; k < nparts; ++k)
+    if (recs[k + 1] >= count) {
+      used = k + 1;
+      Lines scan(rest.substr(start[k], start[k + 1] - start[k]), l.name(), lines[k]);
+      std::string_view line;
+      for (std::int64_t r = recs[k]; r < count; ++r) scan.next(line);
+      end = start[k] + scan.offset();
+      end_line = scan.line_no();
+      if (count == recs[k]) end = start[k], end_line = lines[k];
+      break;
+    }
+  const std::int64_t found = std::min(count, recs[used]);
+  const std::size_t head = out.size();
+  out.resize(head + std::size_t(per) * std::size_t(found));
+  std::vector<std::string> error(used);
+  std::vector<ErrorCode> code(used, ErrorCode::Internal);
+  std::vector<char> any(used, 0);
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(used); ++k) {
+    const std::size_t i = std::size_t(k);
+    const std::size_t to = std::min(start[i + 1], end);
+    if (to <= start[i]) continue;
+    try {
+      Lines part(rest.substr(start[i], to - start[i]), l.name(), lines[i]);
+      std::string_view line;
+      T* o = out.data() + head + std::size_t(per) * std::size_t(recs[i]);
+      for (std::int64_t r = recs[i]; r < found && part.next(line); ++r, o += per)
+        record(part, line, r, o);
+    } catch (const Error& e) {  // (an exception may not leave a parallel region)
+      any[i] = 1;
+      code[i] = e.code();
+      error[i] = e.what();
+    }
+  }
+  for (std::size_t k = 0; k < used; ++k)
+    if (any[k]) throw Error(code[k], error[k]);
+  l.skip_to(base + end, end_line);
+  if (found < count) l.fail(short_message(found));
+}
 
 // Splits on spaces, tabs and (when commas is true) commas.
 std::vector<std::string_view> split(std::string_view line, bool commas = false);

@@ -35,20 +35,22 @@ Mesh parse_ele(const std::string& b, const std::string& name, int base, std::int
   if (nc < 0 || std::uint64_t(nc) > b.size()) l.fail("the cell count is out of range");
   Mesh m;
   m.cell_size = int(k);
-  m.cells.reserve(std::size_t(nc * k));
-  for (std::int64_t c = 0; c < nc; ++c) {
-    if (!l.next(line))
-      l.fail("file ends after " + std::to_string(c) + " of " + std::to_string(nc) + " cells");
-    auto v = split(line);
-    if (std::int64_t(v.size()) < 1 + k)
-      l.fail("expected '<index>' and " + std::to_string(k) + " vertex indices");
-    for (int j = 1; j <= k; ++j) {
-      std::int64_t x = need_int(l, v[j], "a vertex index") - base;
-      if (x < 0 || (nv >= 0 && x >= nv))
-        l.fail("vertex index " + std::string(v[j]) + " is out of range");
-      m.cells.push_back(std::int32_t(x));
-    }
-  }
+  read_records(
+      l, b, nc, m.cell_size, m.cells,
+      [&](const Lines& part, std::string_view line, std::int64_t, std::int32_t* out) {
+        auto v = split(line);
+        if (std::int64_t(v.size()) < 1 + k)
+          part.fail("expected '<index>' and " + std::to_string(k) + " vertex indices");
+        for (int j = 1; j <= k; ++j) {
+          std::int64_t x = need_int(part, v[j], "a vertex index") - base;
+          if (x < 0 || (nv >= 0 && x >= nv))
+            part.fail("vertex index " + std::string(v[j]) + " is out of range");
+          out[j - 1] = std::int32_t(x);
+        }
+      },
+      [&](std::int64_t c) {
+        return "file ends after " + std::to_string(c) + " of " + std::to_string(nc) + " cells";
+      });
   return m;
 }
 

@@ -33,32 +33,6 @@ namespace {
 // file order is reported: the same message, with the same line number, as a serial parse.
 constexpr std::size_t kMinPart = std::size_t(1) << 20;
 
-int host_threads() {
-#ifdef _OPENMP
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
-}
-
-// Counts the line ends of `text` and the lines Lines::next would return (not blank, not a
-// '#' comment): a part's first line number and its first point.
-void count_lines(std::string_view text, std::int64_t& ends, std::int64_t& data) {
-  ends = data = 0;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    std::size_t e = text.find('\n', i);
-    if (e == std::string_view::npos)
-      e = text.size();
-    else
-      ++ends;
-    std::size_t j = i;
-    while (j < e && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r')) ++j;
-    data += j < e && text[j] != '#';
-    i = e + 1;
-  }
-}
-
 // The coordinates of the lines of `text`, which follows `lines_before` lines of the file, into
 // out[0 .. dim * points) (points: its data lines, counted before).
 void parse_table_part(std::string_view text, const std::string& name, std::int64_t lines_before,
@@ -188,28 +162,34 @@ PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* m
     l.fail("vertex/face counts are out of range for this file");
   PointSet p;
   p.dim = 3;
-  p.coords.reserve(std::size_t(nv) * 3);
-  for (std::int64_t i = 0; i < nv; ++i) {
-    if (!l.next(line))
-      l.fail("file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
-    auto t = split(line);
-    if (t.size() < 3) l.fail("expected 'x y z' for vertex " + std::to_string(i));
-    for (int k = 0; k < 3; ++k) p.coords.push_back(need_double(l, t[k], "a coordinate"));
-  }
+  read_records(
+      l, b, nv, 3, p.coords,
+      [&](const Lines& part, std::string_view line, std::int64_t i, double* out) {
+        auto t = split(line);
+        if (t.size() < 3) part.fail("expected 'x y z' for vertex " + std::to_string(i));
+        for (int k = 0; k < 3; ++k) out[k] = need_double(part, t[k], "a coordinate");
+      },
+      [&](std::int64_t i) {
+        return "file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices";
+      });
   if (mesh) {
     mesh->cell_size = 3;
-    for (std::int64_t f = 0; f < nf; ++f) {
-      if (!l.next(line))
-        l.fail("file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
-      auto t = split(line);
-      if (t.empty() || need_int(l, t[0], "the face size") != 3 || t.size() < 4)
-        l.fail("face " + std::to_string(f) + " is not a triangle ('3 a b c')");
-      for (int k = 1; k <= 3; ++k) {
-        std::int64_t v = need_int(l, t[k], "a vertex index");
-        if (v < 0 || v >= nv) l.fail("vertex index " + std::to_string(v) + " is out of range");
-        mesh->cells.push_back(std::int32_t(v));
-      }
-    }
+    read_records(
+        l, b, nf, 3, mesh->cells,
+        [&](const Lines& part, std::string_view line, std::int64_t f, std::int32_t* out) {
+          auto t = split(line);
+          if (t.empty() || need_int(part, t[0], "the face size") != 3 || t.size() < 4)
+            part.fail("face " + std::to_string(f) + " is not a triangle ('3 a b c')");
+          for (int k = 1; k <= 3; ++k) {
+            std::int64_t v = need_int(part, t[k], "a vertex index");
+            if (v < 0 || v >= nv)
+              part.fail("vertex index " + std::to_string(v) + " is out of range");
+            out[k - 1] = std::int32_t(v);
+          }
+        },
+        [&](std::int64_t f) {
+          return "file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces";
+        });
   }
   return p;
 }
@@ -258,20 +238,22 @@ PointSet parse_node(const std::string& b, const std::string& name, int* base) {
     l.fail("header counts are out of range");
   PointSet p;
   p.dim = int(dim);
-  p.coords.reserve(std::size_t(n) * dim);
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (!l.next(line))
-      l.fail("file ends after " + std::to_string(i) + " of " + std::to_string(n) + " points");
-    auto v = split(line);
-    if (std::int64_t(v.size()) < 1 + dim)
-      l.fail("expected '<index> x y" + std::string(dim == 3 ? " z'" : "'"));
-    std::int64_t idx = need_int(l, v[0], "the point index");
-    if (i == 0) {
-      if (idx != 0 && idx != 1) l.fail("the first point index must be 0 or 1");
-      if (base) *base = int(idx);
-    }
-    for (int k = 1; k <= dim; ++k) p.coords.push_back(need_double(l, v[k], "a coordinate"));
-  }
+  read_records(
+      l, b, n, p.dim, p.coords,
+      [&](const Lines& part, std::string_view line, std::int64_t i, double* out) {
+        auto v = split(line);
+        if (std::int64_t(v.size()) < 1 + dim)
+          part.fail("expected '<index> x y" + std::string(dim == 3 ? " z'" : "'"));
+        std::int64_t idx = need_int(part, v[0], "the point index");
+        if (i == 0) {
+          if (idx != 0 && idx != 1) part.fail("the first point index must be 0 or 1");
+          if (base) *base = int(idx);
+        }
+        for (int k = 1; k <= dim; ++k) out[k - 1] = need_double(part, v[k], "a coordinate");
+      },
+      [&](std::int64_t i) {
+        return "file ends after " + std::to_string(i) + " of " + std::to_string(n) + " points";
+      });
   return p;
 }
 

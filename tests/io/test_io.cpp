@@ -157,6 +157,97 @@ TEST(Io, TextTablesInPartsAsOneReadWould) {
   EXPECT_TRUE(no_temp_files());
 }
 
+// Counted sections (.node points, .ele cells, .off vertices and faces) are read in parallel
+// parts too: values, the section ends, and errors (message, line) as a serial read gives them.
+TEST(Io, CountedSectionsInPartsAsOneReadWould) {
+  const std::int64_t n = 120000, nc = 100000;  // several 1 MiB parts in each file
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-10, 10);
+  std::vector<double> xy(std::size_t(2 * n));
+  for (auto& v : xy) v = u(rng);
+  std::vector<std::int32_t> cells(std::size_t(3 * nc));
+  for (auto& c : cells) c = std::int32_t(rng() % std::uint32_t(n));
+  // .node (1-based) with comments and blank lines; .ele beside it
+  std::string node = "# points\n" + std::to_string(n) + " 2 0 0\n";
+  std::vector<std::int64_t> node_line(static_cast<std::size_t>(n));
+  std::int64_t line = 2;
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (i % 5003 == 0) node += "\n# more\n", line += 2;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%lld %.17g %.17g\n", (long long)(i + 1), xy[2 * i],
+                  xy[2 * i + 1]);
+    node += buf;
+    node_line[std::size_t(i)] = ++line;
+  }
+  std::string ele = std::to_string(nc) + " 3 0\n";
+  std::vector<std::int64_t> ele_line(static_cast<std::size_t>(nc));
+  line = 1;
+  for (std::int64_t c = 0; c < nc; ++c) {
+    if (c % 7001 == 0) ele += "   \n", ++line;
+    ele += std::to_string(c + 1) + " " + std::to_string(cells[3 * c] + 1) + " " +
+           std::to_string(cells[3 * c + 1] + 1) + " " + std::to_string(cells[3 * c + 2] + 1) + "\n";
+    ele_line[std::size_t(c)] = ++line;
+  }
+  // .off with the same points (z = 0.5) and faces
+  std::string off = "OFF\n" + std::to_string(n) + " " + std::to_string(nc) + " 0\n";
+  for (std::int64_t i = 0; i < n; ++i) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%.17g %.17g 0.5\n", xy[2 * i], xy[2 * i + 1]);
+    off += buf;
+  }
+  for (std::int64_t c = 0; c < nc; ++c)
+    off += "3 " + std::to_string(cells[3 * c]) + " " + std::to_string(cells[3 * c + 1]) + " " +
+           std::to_string(cells[3 * c + 2]) + "\n";
+  auto replace_line = [](std::string t, std::int64_t at_line, const std::string& with) {
+    std::size_t at = 0;
+    for (std::int64_t l = 1; l < at_line; ++l) at = t.find('\n', at) + 1;
+    t.replace(at, t.find('\n', at) + 1 - at, with);
+    return t;
+  };
+  auto message = [](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  const int threads0 = omp_get_max_threads();
+  for (int threads : {1, 2, 3, 7}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    omp_set_num_threads(threads);
+    write_text(path("s.node"), node);
+    write_text(path("s.ele"), ele);
+    write_text(path("s.off"), off);
+    const auto m = io::read_mesh(path("s.ele"));
+    EXPECT_EQ(m.coords, xy);
+    EXPECT_EQ(m.cells, cells);
+    const auto o = io::read_mesh(path("s.off"));
+    EXPECT_EQ(o.cells, cells);
+    ASSERT_EQ(o.coords.size(), std::size_t(3 * n));
+    EXPECT_EQ(o.coords[3 * (n - 1) + 1], xy[2 * (n - 1) + 1]);
+    // errors deep in a section, with the serial line numbers
+    write_text(path("b.node"), replace_line(node, node_line[std::size_t(n - 7)], "9 1.0 x\n"));
+    EXPECT_EQ(message([&] { io::read_points(path("b.node")); }),
+              path("b.node") + ":" + std::to_string(node_line[std::size_t(n - 7)]) +
+                  ": expected a number for a coordinate, found 'x'");
+    write_text(path("b.ele"), replace_line(ele, ele_line[std::size_t(nc / 2)], "5 1 2\n"));
+    write_text(path("b.node"), node);
+    std::string be = path("b.ele");
+    EXPECT_EQ(message([&] { io::read_mesh(be); }),
+              be + ":" + std::to_string(ele_line[std::size_t(nc / 2)]) +
+                  ": expected '<index>' and 3 vertex indices");
+    // too few records: the count of those found, on the last line
+    std::string cut = ele.substr(0, ele.rfind('\n', ele.size() - 2) + 1);  // drop the last cell
+    write_text(be, cut);
+    const std::int64_t last_line = std::count(cut.begin(), cut.end(), '\n');
+    EXPECT_EQ(message([&] { io::read_mesh(be); }),
+              be + ":" + std::to_string(last_line) + ": file ends after " + std::to_string(nc - 1) +
+                  " of " + std::to_string(nc) + " cells");
+  }
+  omp_set_num_threads(threads0);
+}
+
 TEST(Io, PlyBigEndianAndFloat) {
   // Hand-made binary big-endian PLY with float x,y,z and an extra property.
   std::string s =
