@@ -36,20 +36,13 @@ struct Fixed {
   std::int64_t m;
   GG_HD std::int64_t operator()() const { return m; }
 };
-// Thread t of `threads` (at most the slots) takes items t, t + threads, ...
-template <class F, class Count>
-struct Strided {
-  SlotView v;
-  std::int64_t threads;
-  Count count;
-  F f;
-  GG_HD void operator()(std::int64_t t) const {
-    const std::int64_t n = count();
-    for (std::int64_t j = t; j < n; j += threads) f(j, v[t]);
-  }
+struct NoOnce {
+  GG_HD void operator()() const {}
 };
+// Thread t of `threads` (at most the slots) takes items t, t + threads, ...; thread 0 first
+// runs once().
 template <class F, class Count, class Once>
-struct StridedOnce {
+struct Strided {
   SlotView v;
   std::int64_t threads;
   Count count;
@@ -85,25 +78,17 @@ class ScratchSlots {
   // f(j, scratch) for every j < m (m known on the host).
   template <class F>
   void run(Exec& ex, std::int64_t m, F f) const {
-    if (m <= 0) return;
-    const std::int64_t T = std::min(m, v_.slots);
-    ex.for_each_index(T, slots_detail::Strided<F, slots_detail::Fixed>{v_, T, {m}, f});
+    run_counted(ex, m, slots_detail::Fixed{m}, f);
   }
   // f(j, scratch) for every j < count(), where count() reads a length on the executor when the
-  // pass runs (a list a kernel before it appended to: no wait for the host), and at most bound.
-  template <class Count, class F>
-  void run_counted(Exec& ex, std::int64_t bound, Count count, F f) const {
+  // pass runs (a list a kernel before it appended to: no wait for the host), and at most bound;
+  // once() runs on the first slot (unordered with the others: it must not write what they
+  // read), for a pass's bookkeeping without a launch of its own.
+  template <class Count, class F, class Once = slots_detail::NoOnce>
+  void run_counted(Exec& ex, std::int64_t bound, Count count, F f, Once once = {}) const {
     if (bound <= 0) return;
     const std::int64_t T = std::min(bound, v_.slots);
-    ex.for_each_index(T, slots_detail::Strided<F, Count>{v_, T, count, f});
-  }
-  // As run_counted, and once() runs on the first slot (unordered with the others: it must not
-  // write what they read), for a pass's bookkeeping without a launch of its own.
-  template <class Count, class F, class Once>
-  void run_counted(Exec& ex, std::int64_t bound, Count count, F f, Once once) const {
-    if (bound <= 0) return;
-    const std::int64_t T = std::min(bound, v_.slots);
-    ex.for_each_index(T, slots_detail::StridedOnce<F, Count, Once>{v_, T, count, f, once});
+    ex.for_each_index(T, slots_detail::Strided<F, Count, Once>{v_, T, count, f, once});
   }
 
  private:

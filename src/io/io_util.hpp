@@ -86,7 +86,8 @@ int host_threads();  // the threads a parallel reader may use
 // parts parsed on their own threads. record(part, line, index, out) reads record `index`
 // (failing through `part`, which numbers lines as l would) into out[0 .. per). l continues after
 // the section. Errors are those of a serial loop, the first in file order; too few records fail
-// with short(i) for the i found, on the line a serial loop would name.
+// with short(i) for the i found, on the line a serial loop would name. count < 0: every record
+// to the end of the text (a table without a count).
 template <class T, class Record, class Short>
 void read_records(Lines& l, std::string_view text, std::int64_t count, int per, std::vector<T>& out,
                   Record record, Short short_message) {
@@ -109,6 +110,7 @@ void read_records(Lines& l, std::string_view text, std::int64_t count, int per, 
   }
   lines[0] = l.line_no();
   for (std::size_t k = 0; k < nparts; ++k) lines[k + 1] += lines[k], recs[k + 1] += recs[k];
+  if (count < 0) count = recs[nparts];
   // The section's end: after the count-th record, in the part that holds it.
   std::size_t used = nparts;
   std::size_t end = rest.size();

@@ -26,31 +26,8 @@ std::string extension(const std::string& path) {
 
 namespace {
 
-// Text tables are parsed in parallel: after the first line (a header row, or the first point,
-// which fixes the dimension), the text is cut at line ends into one part per thread (parts of
-// at least kMinPart bytes); each part's line ends are counted first, so every part knows the
-// number of its first line, then the parts are parsed on their own threads. The first error in
-// file order is reported: the same message, with the same line number, as a serial parse.
-constexpr std::size_t kMinPart = std::size_t(1) << 20;
-
-// The coordinates of the lines of `text`, which follows `lines_before` lines of the file, into
-// out[0 .. dim * points) (points: its data lines, counted before).
-void parse_table_part(std::string_view text, const std::string& name, std::int64_t lines_before,
-                      bool csv, int dim, double* out, std::int64_t points) {
-  Lines l(text, name, lines_before);
-  std::string_view line;
-  std::int64_t at = 0;
-  while (l.next(line)) {
-    auto tok = split(line, csv || line.find(',') != std::string_view::npos);
-    if (int(tok.size()) != dim)
-      l.fail("expected " + std::to_string(dim) + " coordinates (as on the first line), found " +
-             std::to_string(tok.size()));
-    if (at == points) throw Error(ErrorCode::Internal, name + ": a text part grew while read");
-    for (auto t : tok) *out++ = need_double(l, t, "a coordinate");
-    ++at;
-  }
-}
-
+// Text tables: the first line (a header row, or the first point, which fixes the dimension)
+// serially, the rest in parallel parts (read_records).
 PointSet parse_table(std::string_view b, const std::string& name, bool csv) {
   Lines l(b, name);
   std::string_view line;
@@ -71,46 +48,17 @@ PointSet parse_table(std::string_view b, const std::string& name, bool csv) {
     break;
   }
   if (p.dim == 0) parse_fail(name, 0, "no points found");
-  const std::string_view rest = b.substr(l.offset() < b.size() ? l.offset() : b.size());
-  const std::size_t nparts = std::max<std::size_t>(
-      1, std::min<std::size_t>(std::size_t(host_threads()), rest.size() / kMinPart));
-  std::vector<std::size_t> start(nparts + 1, rest.size());
-  start[0] = 0;
-  for (std::size_t k = 1; k < nparts; ++k) {
-    const std::size_t nl = rest.find('\n', k * rest.size() / nparts);
-    start[k] = nl == std::string_view::npos ? rest.size() : std::max(start[k - 1], nl + 1);
-  }
-  // Per part: its line ends and data lines, then each part parses into its own slice of the
-  // result (no per-part buffers, no merge).
-  std::vector<std::int64_t> lines(nparts + 1, 0), points(nparts + 1, 0);
-  std::vector<std::string> error(nparts);
-  std::vector<ErrorCode> failed(nparts, ErrorCode::Internal);
-  std::vector<char> any(nparts, 0);
-#pragma omp parallel for schedule(static, 1)
-  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
-    const std::size_t i = std::size_t(k);
-    count_lines(rest.substr(start[i], start[i + 1] - start[i]), lines[i + 1], points[i + 1]);
-  }
-  lines[0] = l.line_no();
-  for (std::size_t k = 0; k < nparts; ++k) lines[k + 1] += lines[k], points[k + 1] += points[k];
-  const std::size_t head = p.coords.size();
-  p.coords.resize(head + std::size_t(p.dim) * std::size_t(points[nparts]));
-  double* out = p.coords.data() + head;
-#pragma omp parallel for schedule(static, 1)
-  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
-    const std::size_t i = std::size_t(k);
-    try {
-      parse_table_part(rest.substr(start[i], start[i + 1] - start[i]), name, lines[i], csv, p.dim,
-                       out + std::size_t(p.dim) * std::size_t(points[i]),
-                       points[i + 1] - points[i]);
-    } catch (const Error& e) {  // (an exception may not leave a parallel region)
-      any[i] = 1;
-      failed[i] = e.code();
-      error[i] = e.what();
-    }
-  }
-  for (std::size_t k = 0; k < nparts; ++k)
-    if (any[k]) throw Error(failed[k], error[k]);
+  read_records(
+      l, b, -1, p.dim, p.coords,
+      [&](const Lines& part, std::string_view line, std::int64_t, double* out) {
+        auto tok = split(line, csv || line.find(',') != std::string_view::npos);
+        if (int(tok.size()) != p.dim)
+          part.fail("expected " + std::to_string(p.dim) +
+                    " coordinates (as on the first line), found " + std::to_string(tok.size()));
+        for (int d = 0; d < p.dim; ++d)
+          out[d] = need_double(part, tok[std::size_t(d)], "a coordinate");
+      },
+      [](std::int64_t) { return std::string(); });
   return p;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/io.hpp"
 
 namespace gpugeom::cli {
 
@@ -62,5 +63,9 @@ int cmd_cvd(const Global& g, Args& a);
 int cmd_stipple(const Global& g, Args& a);
 int cmd_delaunay2d(const Global& g, Args& a);
 int cmd_hull3d(const Global& g, Args& a);
+
+// The mesh writers' options --compress (.vtu) and --ascii (.vtu, .ply), checked against the
+// output path `out` (UsageError where they do not apply).
+io::WriteOptions mesh_write_options(Args& a, const std::string& out);
 
 }  // namespace gpugeom::cli

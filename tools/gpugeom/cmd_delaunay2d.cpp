@@ -103,12 +103,7 @@ int cmd_delaunay2d(const Global& g, Args& a) {
   a.value("--clip", clip_s);
   a.value("--draw", draw) || a.value("--svg", draw);
   const bool check = a.flag("--check");
-  io::WriteOptions wo;
-  wo.compress = a.flag("--compress");
-  wo.binary = !a.flag("--ascii");
-  if (wo.compress && !wo.binary) throw UsageError("--compress and --ascii exclude each other");
-  if (wo.compress && (out.empty() || io::extension(out) != ".vtu"))
-    throw UsageError("--compress applies to -o FILE.vtu only");
+  const io::WriteOptions wo = mesh_write_options(a, out);
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one point file (see --help)");
   if (out.empty() && vor_path.empty() && draw.empty() && !check)

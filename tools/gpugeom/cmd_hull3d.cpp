@@ -32,12 +32,7 @@ int cmd_hull3d(const Global& g, Args& a) {
   std::string out;
   a.value("-o", out) || a.value("--output", out);
   const bool check = a.flag("--check");
-  io::WriteOptions wo;
-  wo.compress = a.flag("--compress");
-  wo.binary = !a.flag("--ascii");
-  if (wo.compress && !wo.binary) throw UsageError("--compress and --ascii exclude each other");
-  if (wo.compress && (out.empty() || io::extension(out) != ".vtu"))
-    throw UsageError("--compress applies to -o FILE.vtu only");
+  const io::WriteOptions wo = mesh_write_options(a, out);
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one point file (see --help)");
   if (out.empty() && !check) throw UsageError("nothing to do: give -o MESH or --check");

@@ -36,6 +36,16 @@ bool Args::value(const std::string& name, std::string& out) {
   return false;
 }
 
+io::WriteOptions mesh_write_options(Args& a, const std::string& out) {
+  io::WriteOptions wo;
+  wo.compress = a.flag("--compress");
+  wo.binary = !a.flag("--ascii");
+  if (wo.compress && !wo.binary) throw UsageError("--compress and --ascii exclude each other");
+  if (wo.compress && (out.empty() || io::extension(out) != ".vtu"))
+    throw UsageError("--compress applies to -o FILE.vtu only");
+  return wo;
+}
+
 std::vector<std::string> Args::positionals() {
   for (auto& s : a_)
     if (s.size() > 1 && s[0] == '-' && !(s[1] >= '0' && s[1] <= '9'))

@@ -30,11 +30,11 @@ inline Facets compact(PassState& S) {
 }
 
 // constructed (if given) learns the facet count after the construction, a bound on the final
-// count (Flip-Flop only removes facets).
-inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st,
+// count (Flip-Flop only removes facets). n_input: the caller's point count, for messages.
+inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st, std::int64_t n_input,
                        const std::function<void(std::int64_t)>& constructed = {}) {
   auto t0 = Clock::now();
-  const Tetra t = first_tetrahedron(ex, pts, n);
+  const Tetra t = first_tetrahedron(ex, pts, n, n_input);
   st.phase_ms.emplace_back("prepare", ms_since(t0));
   t0 = Clock::now();
   PassState S(ex, pts, n, t.s, st);
@@ -176,12 +176,14 @@ struct Result {
   std::int64_t num_vertices = 0;
 };
 
-// The hull of n distinct points on the executor, in their indices. constructed: as one_pass's,
+// The hull of n distinct points (of n_input given) on the executor, in their indices.
+// constructed: as one_pass's,
 // for the first pass (whose bound holds for the second too, a hull of fewer points).
 inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Stats& st,
+                            std::int64_t n_input,
                             const std::function<void(std::int64_t)>& constructed) {
   Result R;
-  R.facets = one_pass(ex, pts, n, st, constructed);
+  R.facets = one_pass(ex, pts, n, st, n_input, constructed);
   auto t0 = Clock::now();
   // The vertices, each with one corner, in index order.
   auto corner = ex.template alloc<std::int32_t>(std::size_t(n));
@@ -227,7 +229,7 @@ inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Stats& 
   const std::int32_t* kv = kept.data();
   ex.for_each_index(
       3 * nk, GG_LAMBDA(std::int64_t i) { sp[i] = pts[3 * std::int64_t(kv[i / 3]) + i % 3]; });
-  Facets F2 = one_pass(ex, sp, nk, st);
+  Facets F2 = one_pass(ex, sp, nk, st, nk);
   if (F2.count != 2 * nk - 4)  // Euler: every one of the nk extreme points must be a vertex
     throw Error(ErrorCode::Internal, "convex hull: the hull of the extreme points lost a vertex");
   std::int32_t* t2 = F2.simplices.data();
@@ -254,11 +256,7 @@ inline Result hull_core(Exec& ex, const double* in, std::int64_t n, Stats& st,
   st.counters["duplicates"] = S.duplicates;
   ex.sync();
   st.phase_ms.emplace_back("sort", ms_since(t0));
-  if (S.m == 1)
-    throw Error(ErrorCode::DegenerateInput, "all " + std::to_string(n) +
-                                                " points coincide: a convex hull needs 4 points "
-                                                "not on one plane");
-  Result R = distinct_hull(ex, S.pts.data(), S.m, st, constructed);
+  Result R = distinct_hull(ex, S.pts.data(), S.m, st, n, constructed);
   // Back to input indices: the facets' corners, and the vertices in increasing input order.
   t0 = Clock::now();
   const std::int32_t* orig = S.orig.data();

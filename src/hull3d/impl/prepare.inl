@@ -41,13 +41,14 @@ struct Tetra {
   std::int32_t v[4];
   double s[3];
 };
-inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
+// n_input: the caller's point count, for the messages (p holds n distinct points of them).
+inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n, std::int64_t n_input) {
   const mesh::Extremes<3> x = mesh::extremes<3>(ex, p, n);
   if (x.bad) throw_bad(x.bad);
   const Cand lo = x.lo, hi = x.hi;
   const double A[3] = {lo.x[0], lo.x[1], lo.x[2]}, B[3] = {hi.x[0], hi.x[1], hi.x[2]};
-  if (same_point(A, B))  // (hull_core merges copies first: only a caller skipping it comes here)
-    throw Error(ErrorCode::DegenerateInput, "all " + std::to_string(n) +
+  if (same_point(A, B))  // (one distinct point)
+    throw Error(ErrorCode::DegenerateInput, "all " + std::to_string(n_input) +
                                                 " points coincide: a convex hull needs 4 points "
                                                 "not on one plane");
   const std::int32_t ia = lo.i, ib = hi.i;
@@ -83,7 +84,7 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
     ex.to_host(out.data(), 1, &any);
     if (any == std::numeric_limits<std::int32_t>::max())
       throw Error(ErrorCode::DegenerateInput,
-                  "all " + std::to_string(n) +
+                  "all " + std::to_string(n_input) +
                       " points lie on one line: a convex hull needs 4 points not on one plane");
     c.i = any;
     ex.to_host(p + 3 * std::int64_t(c.i), 3, C);
@@ -126,7 +127,7 @@ inline Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n) {
       ex.to_host(out.data(), 1, &any);
       if (any == std::numeric_limits<std::int32_t>::max())
         throw Error(ErrorCode::DegenerateInput,
-                    "all " + std::to_string(n) +
+                    "all " + std::to_string(n_input) +
                         " points lie on one plane (or there are fewer than 4 distinct points): "
                         "a convex hull in 3D needs 4 points not on one plane");
       d.i = any;
