@@ -3,6 +3,7 @@
 #include "gpugeom/common.hpp"
 #include "gpugeom/cvd.hpp"
 #include "gpugeom/delaunay2d.hpp"
+#include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/generate.hpp"
 #include "gpugeom/hull3d.hpp"

@@ -19,6 +19,7 @@
 #include "mesh/compact.hpp"
 #include "mesh/decision.hpp"
 #include "mesh/flip_fix.hpp"
+#include "mesh/first_tetrahedron.hpp"
 #include "mesh/prepare.hpp"
 #include "mesh/priority.hpp"
 #include "mesh/work_list.hpp"

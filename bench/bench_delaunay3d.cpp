@@ -1,0 +1,113 @@
+// gpugeom_bench_del3d: 3D Delaunay end to end (host points in, host arrays out) on each backend,
+// with CGAL's Delaunay_triangulation_3 (sequential) on the same points in the same run when
+// the build found CGAL. Prints the GPU's name, the phase times, flips, failed vertices and
+// splaying time next to the totals; --check runs the exact checker on every result.
+// Usage: gpugeom_bench_del3d [--check] [--reps R] dist:n [dist:n ...]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "gpugeom/delaunay3d.hpp"
+#include "gpugeom/generate.hpp"
+#include "verify.hpp"
+
+#ifdef GG_BENCH_CGAL
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#endif
+
+using namespace gpugeom;
+
+namespace {
+using clk = std::chrono::steady_clock;
+double ms_since(clk::time_point t0) {
+  return std::chrono::duration<double, std::milli>(clk::now() - t0).count();
+}
+double phase(const Stats& s, const char* name) {
+  for (auto& p : s.phase_ms)
+    if (p.first == name) return p.second;
+  return 0;
+}
+std::int64_t counter(const Stats& s, const char* name) {
+  auto it = s.counters.find(name);
+  return it == s.counters.end() ? 0 : it->second;
+}
+
+double cgal_ms(const std::vector<Point3>& p, std::int64_t& cells) {
+#ifdef GG_BENCH_CGAL
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<K::Point_3> in;
+  in.reserve(p.size());
+  for (auto& q : p) in.emplace_back(q.x, q.y, q.z);
+  const auto t0 = clk::now();
+  CGAL::Delaunay_triangulation_3<K> dt(in.begin(), in.end());
+  const double ms = ms_since(t0);
+  cells = std::int64_t(dt.number_of_finite_cells());
+  return ms;
+#else
+  (void)p;
+  cells = -1;
+  return -1;
+#endif
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool check = false;
+  int reps = 3;
+  std::vector<std::string> jobs;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--check")
+      check = true;
+    else if (a == "--reps" && i + 1 < argc)
+      reps = std::atoi(argv[++i]);
+    else
+      jobs.push_back(a);
+  }
+  const DeviceInfo dev = query_device();
+  std::printf("# device: %s\n", dev.available ? dev.name.c_str() : "none");
+  std::printf("%-12s %9s %-5s %10s %8s %8s %8s %9s %8s %7s %10s %9s %6s\n", "dist", "n",
+              "back", "total_ms", "prep", "ins+flip", "splay", "flips", "failed", "stars",
+              "tets", "cgal_ms", "check");
+  for (const std::string& job : jobs) {
+    const auto colon = job.find(':');
+    const std::string dist = job.substr(0, colon);
+    const std::int64_t n = std::atoll(job.c_str() + colon + 1);
+    const auto pts = generate3d(dist, n, 7);
+    std::int64_t cells = 0;
+    const double cg = cgal_ms(pts, cells);
+    for (Backend b : {Backend::Cuda, Backend::Cpu}) {
+      if (b == Backend::Cuda && !dev.available) continue;
+      Delaunay3dOptions o;
+      o.backend = b;
+      std::vector<double> ms;
+      Triangulation3d t;
+      for (int r = 0; r < reps; ++r) {
+        const auto t0 = clk::now();
+        t = delaunay3d(pts, o);
+        ms.push_back(ms_since(t0));
+      }
+      std::sort(ms.begin(), ms.end());
+      std::string ok = "-";
+      if (check) {
+        auto rep = verify::check_delaunay3d(&pts.data()->x, n, t.tetrahedra.data(),
+                                            std::int64_t(t.num_tetrahedra()),
+                                            t.duplicate_of.data());
+        ok = rep.ok ? "ok" : "FAIL";
+        if (!rep.ok) std::printf("# %s\n", rep.message.c_str());
+      }
+      std::printf("%-12s %9lld %-5s %10.1f %8.1f %8.1f %8.1f %9lld %8lld %7lld %10zu %9.1f %6s\n",
+                  dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu", ms[ms.size() / 2],
+                  phase(t.stats, "prepare"), phase(t.stats, "insert_flip"),
+                  phase(t.stats, "splay"),
+                  (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
+                  (long long)counter(t.stats, "failed_vertices"),
+                  (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(), cg, ok.c_str());
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,56 @@
+// Exact 3D Delaunay tetrahedralisation (thesis 5.3: batch insertion with parallel 2-3 / 3-2
+// flipping on the executor, then adaptive star splaying where flipping got stuck).
+//
+// Exactness: every decision is an exact predicate with simulation of simplicity, so cospherical
+// and coplanar subsets get one consistent answer; the result is a Delaunay tetrahedralisation
+// of the distinct input points (every empty-sphere test is exact), every distinct point is a
+// vertex, and every tetrahedron has positive volume (the flat tetrahedra the perturbation may
+// put on the hull, over points exactly in a hull facet's plane, are removed, so such a facet's
+// plane may be covered by several hull facets). The points are processed along a Hilbert
+// curve and the perturbation follows that order, so the result depends on the point set only.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "gpugeom/common.hpp"
+
+namespace gpugeom {
+
+struct Delaunay3dOptions : RunOptions {
+  // Test switch: at most this many flip rounds after each batch (-1: until no flip is left),
+  // so that star splaying must repair a tetrahedralisation far from Delaunay (0: none).
+  std::int64_t max_flip_rounds = -1;
+};
+
+struct Triangulation3d {
+  // Positively oriented tetrahedra (orient3d > 0), 4 input-point indices each.
+  std::vector<std::int32_t> tetrahedra;
+  // neighbors[4*i + k]: the tetrahedron opposite vertex k of tetrahedron i, -1 on the hull
+  // (SciPy's convention).
+  std::vector<std::int32_t> neighbors;
+  // One entry per input point: -1 when the point is a vertex, else the index of the earlier
+  // point with the same coordinates, which is the one used.
+  std::vector<std::int32_t> duplicate_of;
+  std::int64_t num_duplicates = 0;
+  // The hull facets: 3 input indices each, counter-clockwise seen from outside.
+  std::vector<std::int32_t> hull_facets;
+  // One entry per input point: a tetrahedron having it as a vertex (a duplicate: that of the
+  // point it duplicates).
+  std::vector<std::int32_t> vertex_to_simplex;
+  // Stats: phases "prepare", "insert_flip", "find_failed", "splay" (phase 2, on the host),
+  // "output", "host_arrays"; counters "points", "distinct_points", "duplicates", "batches",
+  // "flip_rounds", "flips23", "flips32", "unflippable_tests", "failed_faces",
+  // "failed_vertices", "flat_tetrahedra" (removed from the hull), "stars_rebuilt", "stars_touched",
+  // "star_insertions", "splay_removed", "splay_added".
+  Stats stats;
+  std::size_t num_tetrahedra() const { return tetrahedra.size() / 4; }
+};
+
+// xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
+// outside the exactly representable range, or more than 2^26 points (this version's 32-bit
+// neighbour encoding; larger inputs are the size-limits issue's work); Error(DegenerateInput)
+// naming the case for fewer than 4 distinct points or all points on one line or one plane.
+Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt = {});
+Triangulation3d delaunay3d(const std::vector<Point3>& pts, const Delaunay3dOptions& opt = {});
+
+}  // namespace gpugeom

@@ -1,0 +1,28 @@
+// What the public 3D Delaunay entry gets back from a backend (internal).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "gpugeom/common.hpp"
+#include "gpugeom/delaunay3d.hpp"
+
+namespace gpugeom::del3d {
+
+struct Output {
+  std::vector<std::int32_t> tetrahedra;    // 4 per tetrahedron, input indices, positive
+  std::vector<std::int32_t> neighbors;     // 4 per tetrahedron, -1 on the hull
+  std::vector<std::int32_t> duplicate_of;  // n entries
+  std::int64_t num_duplicates = 0;
+};
+
+// xyz: n points on the host. Validates the coordinates on the executor (throws Error).
+namespace cpu_impl {
+void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
+                 Stats& stats);
+}
+namespace cuda_impl {
+void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
+                 Stats& stats);
+}
+
+}  // namespace gpugeom::del3d

@@ -1,0 +1,34 @@
+// 3D Delaunay tetrahedralisation compiled for the CPU executor.
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "base/clock.hpp"
+#include "delaunay3d/del3d_backend.hpp"
+#include "delaunay3d/tet.hpp"
+#include "exec/atomics.hpp"
+#include "exec/cpu_exec.hpp"
+#include "exec/scratch_lease.hpp"
+#include "mesh/adjacency.hpp"
+#include "mesh/compact.hpp"
+#include "mesh/first_tetrahedron.hpp"
+#include "mesh/flip_fix.hpp"
+#include "mesh/history.hpp"
+#include "mesh/prepare.hpp"
+#include "mesh/priority.hpp"
+#include "mesh/work_list.hpp"
+#include "predicates/predicates.hpp"
+
+namespace gpugeom::del3d::cpu_impl {
+using Exec = CpuExec;
+#include "delaunay3d/impl/geometry.inl"
+#include "delaunay3d/impl/triangulate.inl"
+void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
+                 Stats& stats) {
+  triangulate_impl(xyz, n, opt, out, stats);
+}
+}  // namespace gpugeom::del3d::cpu_impl

@@ -1,0 +1,807 @@
+// Phase 1 of the 3D Delaunay tetrahedralisation (thesis 5.3.1, Alg. 5.6), one algorithm for
+// both executors; included inside gpugeom::del3d::{cpu,cuda}_impl after geometry.inl.
+//
+// Each batch: every tetrahedron holding points not yet inserted takes the one nearest its
+// circumcentre and splits around it (1-4). Then rounds of flips: every tetrahedron on the
+// work list tests its faces; at its first face that is not locally Delaunay it proposes the
+// flip that removes it, 2-3 when the segment between the two apexes crosses the face, 3-2
+// when it passes outside across one edge of the face and that edge has degree 3 (otherwise
+// the face cannot be flipped now). A flip goes ahead when its proposer holds the highest
+// vote key (mesh/priority.hpp) on every tetrahedron it rewrites, so every round flips and the
+// result never depends on timing. The flipped tetrahedra and the outvoted proposers form the
+// next list. Flips are recorded (mesh/history.hpp); before the next choice each point not yet
+// inserted follows its tetrahedron through the split and the records.
+//
+// In 3D flipping can get stuck (Joe): faces that are not locally Delaunay but cannot be flipped.
+// After the last batch every face is tested, and the vertices of the failed ones go to phase 2
+// (splay.cpp), which repairs the tetrahedralisation by star splaying.
+
+using u64 = std::uint64_t;
+using mesh::enc;
+using mesh::loc_of;
+using mesh::simplex_of;
+using FlipLog = mesh::FlipLog<3, 6>;  // slots; payload: kind, then the five vertices
+using Hist = mesh::FlipHist;
+
+struct Counters {
+  std::int64_t len[2];    // work list lengths (mesh::WorkLists)
+  std::int64_t nflip[2];  // the round's flips (records), by round parity
+  std::int64_t log;       // records of the epoch
+  std::int64_t used;      // slots handed out
+  std::int64_t free_head, free_tail, popped, pushed;  // the queue of freed slots
+  std::int64_t flips23, flips32, rounds, unflippable, failed_faces, flat, lost, errors;
+};
+
+// The store as the kernels see it.
+struct Mesh {
+  Tet* tet;
+  u64* vote;
+  std::int32_t* stamp;  // the round a slot was last rewritten by a flip
+  FlipLog log;
+  std::int32_t* freeq;  // freed slots, a ring of cap entries
+  std::int64_t cap;
+  Counters* ctr;
+};
+
+// A slot for a 2-3 flip's third tetrahedron: a slot freed in an earlier round, else a new one.
+GG_HD inline std::int32_t take_slot(const Mesh& M) {
+  const std::int64_t avail = M.ctr->free_tail - M.ctr->free_head;
+  const std::int64_t k = atomic_add(&M.ctr->popped, std::int64_t(1));
+  if (k < avail) return M.freeq[(M.ctr->free_head + k) % M.cap];
+  return std::int32_t(atomic_add(&M.ctr->used, std::int64_t(1)));
+}
+GG_HD inline void free_slot(const Mesh& M, std::int32_t z) {
+  const std::int64_t j = atomic_add(&M.ctr->pushed, std::int64_t(1));
+  M.freeq[(M.ctr->free_tail + j) % M.cap] = z;
+}
+
+// The face of v opposite k, oriented outward.
+GG_INLINE void face_of(const std::int32_t* v, int k, std::int32_t* f) {
+  for (int i = 0; i < 3; ++i) f[i] = v[face_vertex(k, i)];
+}
+
+// Which side of a recorded flip holds q (payload: kind, x0, x1, x2, u, w).
+// 2-3: the slots hold (x_e, x_e+1, u, w); q lies in slot e when it is on the positive side of
+// the plane (x_e, u, w) (taken as orient(x_e, q, u, w) > 0) and not of (x_e+1, u, w).
+// 3-2: the slots hold (x0, x1, x2, u) and (x0, x2, x1, w) with payload (c, u', w', a, b) stored
+// as (x0, x1, x2) = (c, u', w'): slot 0 on the positive side of that plane.
+struct Side {
+  Geo g;
+  std::int32_t q;
+  GG_HD int operator()(const std::int32_t* P) const {
+    if (P[0] == 1) return orient_ext(g, P[1], P[2], P[3], q) > 0 ? 0 : 1;
+    int w[3];
+    for (int e = 0; e < 3; ++e) w[e] = orient_ext(g, P[1 + e], q, P[4], P[5]);
+    for (int e = 0; e < 3; ++e)
+      if (w[e] > 0 && w[(e + 1) % 3] < 0) return e;
+    return 0;  // (unreachable for a point inside the flipped region)
+  }
+};
+
+// Where a face of a flipped neighbour went (mesh::fix_face's store): the face (f0, f1, f2) of
+// the flipped slot simplex_of(outer) now lies in one of the slots of that slot's flip record.
+struct FaceStore {
+  Mesh M;
+  std::int32_t f[3];
+  GG_HD void set(std::int32_t slot, int face, std::int32_t e) const { M.tet[slot].n[face] = e; }
+  GG_HD std::int32_t moved(std::int32_t outer) const {
+    const std::int32_t o = simplex_of(outer);
+    const std::int32_t* x = M.log.record(M.log.hist[o].last >> FlipLog::kSideBits);
+    const int sides = x[3] == 1 ? 2 : 3;  // (x[3]: the payload's kind)
+    for (int s = 0; s < sides; ++s) {
+      const int l = opposite_of_face(M.tet[x[s]].v, f[0], f[1], f[2]);
+      if (l >= 0) return enc(x[s], l);
+    }
+    atomic_add(&M.ctr->errors, std::int64_t(1));
+    return outer;
+  }
+};
+
+// (Every member is public: nvcc's extended lambdas may not live in private members.)
+class Triangulator {
+ public:
+  Triangulator(Exec& ex, const double* pts, std::int32_t m, const mesh::Tetra& first,
+               std::int64_t max_rounds, Stats& st)
+      : ex_(ex), st_(st), max_rounds_(max_rounds) {
+    m_ = m;
+    g_.p = pts;
+    for (int k = 0; k < 3; ++k) g_.s[k] = first.s[k];
+    g_.m = m;
+    first_ = first;
+    // (one slot per thread that may hold one at a time on the CPU; on the GPU enough that
+    // threads rarely wait, at 114 KB a slot)
+    pool_ = LeasePool<Exec>(
+        ex, std::clamp<std::int64_t>(std::min<std::int64_t>(ex.concurrency(), m / 8), 64, 1024),
+        pred::kInsphereScratch);
+    g_.lease = pool_.view;
+    const std::size_t n = std::size_t(m);
+    loc_ = ex.template alloc<std::int32_t>(n);
+    un_ = ex.template alloc<std::int32_t>(n);
+    un2_ = ex.template alloc<std::int32_t>(n);
+    ins_ = ex.template alloc<std::int32_t>(n);
+    split_ = ex.template alloc<std::int32_t>(5 * n);
+    ctr_ = ex.template alloc<Counters>(1);
+    Counters zero{};
+    ex.from_host(&zero, 1, ctr_.data());
+    grow(std::max<std::int64_t>(8 * std::int64_t(m) + 64, 1024));
+  }
+
+  // Capacity for cap slots: every per-slot array (and the lists, whose entries are distinct
+  // slots) grows, keeping what it holds.
+  void grow(std::int64_t cap) {
+    if (cap > (std::int64_t(1) << 29))
+      throw Error(ErrorCode::OutOfMemory,
+                  "the tetrahedralisation needs more than 2^29 tetrahedra, more than this "
+                  "version's 32-bit neighbour encoding can address");
+    const std::int64_t old = cap_;
+    Counters c{};
+    if (old) c = counters();
+    auto tet = ex_.template alloc<Tet>(std::size_t(cap));
+    auto vote = ex_.template alloc<u64>(std::size_t(cap));
+    auto stamp = ex_.template alloc<std::int32_t>(std::size_t(cap));
+    auto hist = ex_.template alloc<Hist>(std::size_t(cap));
+    auto best = ex_.template alloc<u64>(std::size_t(cap));
+    auto srank = ex_.template alloc<std::int32_t>(std::size_t(cap));
+    auto freeq = ex_.template alloc<std::int32_t>(std::size_t(cap));
+    const std::int64_t keep = old ? std::min<std::int64_t>(c.used, old) : 0;
+    if (keep) {
+      ex_.copy(tet_.data(), keep, tet.data());
+      ex_.copy(vote_.data(), keep, vote.data());
+      ex_.copy(stamp_.data(), keep, stamp.data());
+      ex_.copy(hist_.data(), keep, hist.data());
+      ex_.copy(best_.data(), keep, best.data());
+      ex_.copy(srank_.data(), keep, srank.data());
+    }
+    ex_.fill(vote.data() + keep, cap - keep, u64(0));
+    ex_.fill(stamp.data() + keep, cap - keep, std::int32_t(-1));
+    ex_.fill(hist.data() + keep, cap - keep, Hist{-1, -1});
+    ex_.fill(best.data() + keep, cap - keep, ~u64(0));
+    ex_.fill(srank.data() + keep, cap - keep, std::int32_t(-1));
+    if (old) {  // the ring of freed slots, the last round's takes and frees applied, unrolled
+      const std::int64_t avail = c.free_tail - c.free_head;
+      c.free_head += std::min(c.popped, avail);
+      c.free_tail += c.pushed;
+      c.popped = c.pushed = 0;
+      const std::int64_t nfree = c.free_tail - c.free_head;
+      const std::int32_t* q = freeq_.data();
+      std::int32_t* nq = freeq.data();
+      const std::int64_t head = c.free_head, ocap = old;
+      ex_.for_each_index(
+          nfree, GG_LAMBDA(std::int64_t i) { nq[i] = q[(head + i) % ocap]; });
+      c.free_head = 0;
+      c.free_tail = nfree;
+    }
+    for (int l = 0; l < 2; ++l) {
+      auto list = ex_.template alloc<std::int32_t>(std::size_t(cap));
+      if (old) ex_.copy(lists_[l].data(), std::min(c.len[l], old), list.data());
+      lists_[l] = std::move(list);
+    }
+    tet_ = std::move(tet);
+    vote_ = std::move(vote);
+    stamp_ = std::move(stamp);
+    hist_ = std::move(hist);
+    best_ = std::move(best);
+    srank_ = std::move(srank);
+    freeq_ = std::move(freeq);
+    dec_ = ex_.template alloc<std::int8_t>(std::size_t(cap));
+    third_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
+    flipped_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
+    log_cap_ = std::max<std::int64_t>(cap / 2, 1 << 16);
+    if (!rec_.size() || std::int64_t(rec_.size()) < FlipLog::kStride * log_cap_) {
+      auto rec = ex_.template alloc<std::int32_t>(std::size_t(FlipLog::kStride * log_cap_));
+      if (old && c.log) ex_.copy(rec_.data(), FlipLog::kStride * c.log, rec.data());
+      rec_ = std::move(rec);
+    }
+    cap_ = cap;
+    if (old) ex_.from_host(&c, 1, ctr_.data());
+    M_ = Mesh{
+        tet_.data(),   vote_.data(), stamp_.data(), FlipLog{rec_.data(), hist_.data(), M_.log.base},
+        freeq_.data(), cap_,         ctr_.data()};
+  }
+  void reserve(std::int64_t slots) {
+    if (slots > cap_) grow(std::max(slots, cap_ + cap_ / 2));
+  }
+
+  void run() {
+    start();
+    remaining_ = nun_;
+    while (remaining_ > 0) batch();
+    ex_.sync();
+  }
+
+  Counters counters() {
+    Counters c;
+    ex_.to_host(ctr_.data(), 1, &c);
+    return c;
+  }
+  mesh::WorkLists work_lists() {
+    return mesh::WorkLists{{lists_[0].data(), lists_[1].data()}, ctr_.data()->len};
+  }
+
+  // The first tetrahedron and its four infinite neighbours; every other point is located.
+  void start() {
+    const std::int32_t I = m_;
+    Tet t[5];
+    for (int k = 0; k < 4; ++k) t[0].v[k] = first_.v[k];
+    for (int k = 0; k < 4; ++k) {  // infinite tetrahedron k + 1 over face k (outward)
+      std::int32_t f[3];
+      face_of(t[0].v, k, f);
+      t[k + 1] = Tet{{f[0], f[1], f[2], I}, {-1, -1, -1, -1}};
+    }
+    for (int a = 0; a < 5; ++a)  // adjacency by matching faces
+      for (int k = 0; k < 4; ++k) {
+        std::int32_t f[3];
+        face_of(t[a].v, k, f);
+        for (int b = 0; b < 5; ++b) {
+          const int l = b == a ? -1 : opposite_of_face(t[b].v, f[0], f[1], f[2]);
+          if (l >= 0) t[a].n[k] = enc(b, l);
+        }
+      }
+    ex_.from_host(t, 5, tet_.data());
+    Counters c{};
+    c.used = 5;
+    ex_.from_host(&c, 1, ctr_.data());
+    const Geo g = g_;
+    std::int32_t* loc = loc_.data();
+    const Tet* tet = tet_.data();
+    Counters* ctr = ctr_.data();
+    const std::int32_t a = t[0].v[0], b = t[0].v[1], cc = t[0].v[2], d = t[0].v[3];
+    ex_.for_each_index(
+        m_, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t q = std::int32_t(i);
+          if (q == a || q == b || q == cc || q == d) {
+            loc[q] = -1;
+            return;
+          }
+          std::int32_t found = -1;
+          for (std::int32_t s = 0; s < 5 && found < 0; ++s)
+            if (inside_ext(g, tet[s].v, q)) found = s;
+          loc[q] = found;
+          if (found < 0) atomic_add(&ctr->lost, std::int64_t(1));
+        });
+    nun_ = ex_.compact_indices(
+        m_, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, un_.data());
+    check_errors();
+  }
+
+  void check_errors() {
+    const Counters c = counters();
+    if (c.lost || c.errors)
+      throw Error(ErrorCode::Internal,
+                  "internal error: " + std::to_string(c.lost) + " point(s) could not be located, " +
+                      std::to_string(c.errors) + " face(s) lost; please report this input");
+  }
+
+  // One batch: relocate and choose, split, flip.
+  void batch() {
+    ++batches_;
+    relocate(true);
+    u64* best = best_.data();
+    std::int32_t* ins = ins_.data();
+    std::int32_t* chosen = un2_.data();  // (free until the point list is compacted below)
+    const std::int32_t* loc0 = loc_.data();
+    const std::int64_t nins = ex_.copy_if(
+        un_.data(), nun_, chosen, GG_LAMBDA(std::int32_t q) {
+          const std::int32_t L = loc0[q];
+          return L >= 0 && std::uint32_t(best[L]) == std::uint32_t(q);
+        });
+    Counters c = counters();
+    reserve(c.used + 3 * nins);
+    best = best_.data();
+    std::int32_t* srank = srank_.data();
+    ex_.for_each_index(
+        nins, GG_LAMBDA(std::int64_t r) {
+          const std::int32_t t = loc0[chosen[r]];
+          ins[r] = t;
+          srank[t] = std::int32_t(r);
+        });
+    const std::int32_t first_new = std::int32_t(c.used);
+    const Mesh M = M_;
+    const mesh::WorkLists L = work_lists();
+    std::int32_t* act = L.current(round_ + 1);  // the first flip round's list
+    std::int64_t* len = L.count(round_ + 1);
+    std::int32_t* sp = split_.data();
+    std::int32_t* loc = loc_.data();
+    ex_.for_each_index(
+        nins, GG_LAMBDA(std::int64_t r) {
+          if (r == 0) {
+            *len = 4 * nins;
+            M.ctr->used = first_new + 3 * nins;
+          }
+          const std::int32_t t = ins[r], q = std::int32_t(std::uint32_t(best[t]));
+          const Tet T = M.tet[t];
+          sp[5 * r] = q;
+          for (int k = 0; k < 4; ++k) sp[5 * r + 1 + k] = T.v[k];
+          auto child = [&](std::int32_t s, std::int32_t rank, int k) {
+            return k == 0 ? s : first_new + 3 * rank + k - 1;
+          };
+          for (int k = 0; k < 4; ++k) {
+            Tet C;
+            for (int j = 0; j < 4; ++j) C.v[j] = j == k ? q : T.v[j];
+            for (int j = 0; j < 4; ++j)
+              if (j != k) C.n[j] = enc(child(t, std::int32_t(r), j), k);
+            const std::int32_t e = T.n[k], nb = simplex_of(e);
+            const int jj = loc_of(e);
+            const std::int32_t rn = srank[nb];
+            if (rn >= 0) {
+              C.n[k] = enc(child(nb, rn, jj), jj);
+            } else {
+              C.n[k] = e;
+              M.tet[nb].n[jj] = enc(child(t, std::int32_t(r), k), k);
+            }
+            const std::int32_t slot = child(t, std::int32_t(r), k);
+            M.tet[slot] = C;
+            act[4 * r + k] = slot;
+          }
+          best[t] = ~u64(0);
+          loc[q] = -1;
+        });
+    epoch_splits_ = nins;
+    epoch_first_new_ = first_new;
+    remaining_ -= nins;
+    dead_ += nins;
+    if (dead_ * 4 > nun_) {  // drop inserted points from the list once they are a quarter
+      nun_ = ex_.copy_if(
+          un_.data(), nun_, un2_.data(), GG_LAMBDA(std::int32_t q) { return loc[q] >= 0; });
+      std::swap(un_, un2_);
+      dead_ = 0;
+    }
+    nact_ = 4 * nins;
+    flip_until_stuck();
+  }
+
+  void flip_until_stuck() {
+    std::int64_t rounds_here = 0;
+    while (nact_ > 0) {
+      if (max_rounds_ >= 0 && rounds_here >= max_rounds_) {  // (test mode: leave it to phase 2)
+        const mesh::WorkLists L = work_lists();
+        std::int64_t* len = L.count(round_ + 1);
+        ex_.for_each_index(
+            1, GG_LAMBDA(std::int64_t) { *len = 0; });
+        break;
+      }
+      ++rounds_here;
+      const Counters c0 = counters();
+      reserve(c0.used + nact_);
+      if (logged_ + nact_ > log_cap_) relocate(false);
+      flip_round(nact_);
+      const Counters c = counters();
+      logged_ = c.log;
+      nact_ = c.len[(round_ + 1) & 1];
+      if (c.errors) check_errors();
+    }
+  }
+
+  // One round over its work list (at most bound long); the next round's list is appended.
+  void flip_round(std::int64_t bound) {
+    ++round_;
+    const Geo g = g_;
+    const Mesh M = M_;
+    const std::int32_t round = round_;
+    const mesh::WorkLists L = work_lists();
+    const std::int32_t* act = L.current(round);
+    const std::int64_t* count = L.count(round);
+    std::int32_t* next = L.next(round);
+    std::int64_t* next_len = L.next_count(round);
+    std::int8_t* dec = dec_.data();
+    std::int32_t* third = third_.data();
+    std::int32_t* flipped = flipped_.data();
+    const int p = round & 1;
+    Counters* ctr = ctr_.data();
+    // The round's counters: the freed slots of the last round join the queue.
+    ex_.for_each_index(
+        1, GG_LAMBDA(std::int64_t) {
+          const std::int64_t avail = ctr->free_tail - ctr->free_head;
+          ctr->free_head += ctr->popped < avail ? ctr->popped : avail;
+          ctr->free_tail += ctr->pushed;
+          ctr->popped = ctr->pushed = 0;
+          *next_len = 0;
+          ctr->nflip[p] = 0;
+          ctr->rounds += 1;
+        });
+    // Tests and proposals.
+    ex_.for_each_counted(
+        count, bound, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t t = act[i];
+          const Tet T = M.tet[t];
+          int res = -1;
+          std::int32_t t3 = -1;
+          if (T.v[0] >= 0) {
+            for (int k = 0; k < 4 && res < 0; ++k) {
+              const std::int32_t nb = simplex_of(T.n[k]);
+              const std::int32_t d = M.tet[nb].v[loc_of(T.n[k])];
+              if (!in_sphere_ext(g, T.v, d)) continue;
+              std::int32_t x[3];
+              face_of(T.v, k, x);
+              const std::int32_t u = T.v[k];
+              int neg = -1, nneg = 0;
+              for (int e = 0; e < 3; ++e)
+                if (orient_ext(g, x[e], x[(e + 1) % 3], u, d) < 0) neg = e, ++nneg;
+              if (nneg == 0) {
+                res = k;
+              } else if (nneg == 1) {  // 3-2 if the edge x_neg x_neg+1 has degree 3
+                const std::int32_t c = x[(neg + 2) % 3];
+                const int kk = T.v[0] == c ? 0 : T.v[1] == c ? 1 : T.v[2] == c ? 2 : 3;
+                const std::int32_t z = simplex_of(T.n[kk]);
+                if (M.tet[z].v[loc_of(T.n[kk])] == d) {
+                  res = k | ((neg + 1) << 2);
+                  t3 = z;
+                } else {
+                  atomic_add(&ctr->unflippable, std::int64_t(1));
+                }
+              } else {
+                atomic_add(&ctr->unflippable, std::int64_t(1));
+              }
+              if (res >= 0) {
+                const u64 key = mesh::vote_key(round, t);
+                atomic_max(M.vote + t, key);
+                atomic_max(M.vote + nb, key);
+                if (t3 >= 0) atomic_max(M.vote + t3, key);
+              }
+            }
+          }
+          dec[i] = std::int8_t(res);
+          third[i] = t3;
+        });
+    // Flips: a proposal that holds the vote on every tetrahedron it rewrites.
+    const std::int32_t log_base = M.log.base;
+    ex_.for_each_counted(
+        count, bound, GG_LAMBDA(std::int64_t i) {
+          const int r = dec[i];
+          if (r < 0) return;
+          const std::int32_t t = act[i];
+          const u64 key = mesh::vote_key(round, t);
+          if (M.vote[t] != key) return;
+          const Tet T = M.tet[t];
+          const int k = r & 3, kind = r >> 2;
+          const std::int32_t nb = simplex_of(T.n[k]);
+          if (M.vote[nb] != key) return;
+          const std::int32_t z = third[i];
+          if (kind && M.vote[z] != key) return;
+          Tet old[3];
+          old[0] = T;
+          old[1] = M.tet[nb];
+          std::int32_t x[3];
+          face_of(T.v, k, x);
+          const std::int32_t u = T.v[k], w = old[1].v[loc_of(T.n[k])];
+          Tet y[3];
+          std::int32_t slots[3];
+          std::int32_t payload[6];
+          int nold, nnew;
+          if (kind == 0) {  // 2-3: (x_e, x_e+1, u, w)
+            nold = 2, nnew = 3;
+            slots[0] = t, slots[1] = nb, slots[2] = take_slot(M);
+            for (int e = 0; e < 3; ++e) {
+              y[e].v[0] = x[e], y[e].v[1] = x[(e + 1) % 3], y[e].v[2] = u, y[e].v[3] = w;
+            }
+            payload[0] = 0, payload[1] = x[0], payload[2] = x[1], payload[3] = x[2];
+            payload[4] = u, payload[5] = w;
+          } else {  // 3-2 around edge (a, b): (c, u, w, a) and (c, w, u, b)
+            nold = 3, nnew = 2;
+            old[2] = M.tet[z];
+            const int e = kind - 1;
+            const std::int32_t a = x[e], b = x[(e + 1) % 3], c = x[(e + 2) % 3];
+            slots[0] = t, slots[1] = nb, slots[2] = z;
+            y[0].v[0] = c, y[0].v[1] = u, y[0].v[2] = w, y[0].v[3] = a;
+            y[1].v[0] = c, y[1].v[1] = w, y[1].v[2] = u, y[1].v[3] = b;
+            payload[0] = 1, payload[1] = c, payload[2] = u, payload[3] = w;
+            payload[4] = a, payload[5] = b;
+          }
+          // Neighbours: faces among the new tetrahedra, else the old outer pointer as it was
+          // (the fix pass below settles the outer ones).
+          for (int s = 0; s < nnew; ++s)
+            for (int l = 0; l < 4; ++l) {
+              std::int32_t f[3];
+              face_of(y[s].v, l, f);
+              std::int32_t e = -1;
+              for (int s2 = 0; s2 < nnew && e < 0; ++s2) {
+                const int l2 = s2 == s ? -1 : opposite_of_face(y[s2].v, f[0], f[1], f[2]);
+                if (l2 >= 0) e = enc(slots[s2], l2);
+              }
+              for (int o = 0; o < nold && e < 0; ++o) {
+                const int lo = opposite_of_face(old[o].v, f[0], f[1], f[2]);
+                if (lo >= 0) e = old[o].n[lo];
+              }
+              y[s].n[l] = e;
+            }
+          for (int s = 0; s < nnew; ++s) {
+            M.tet[slots[s]] = y[s];
+            M.stamp[slots[s]] = round;
+          }
+          if (kind) {
+            Tet dead;
+            dead.v[0] = dead.v[1] = dead.v[2] = dead.v[3] = -1;
+            dead.n[0] = dead.n[1] = dead.n[2] = dead.n[3] = -1;
+            M.tet[z] = dead;
+            M.stamp[z] = round;
+            free_slot(M, z);
+            atomic_add(&M.ctr->flips32, std::int64_t(1));
+          } else {
+            atomic_add(&M.ctr->flips23, std::int64_t(1));
+          }
+          Hist h[3];
+          M.log.load(slots, h);
+          const std::int64_t rec = atomic_add(&M.ctr->log, std::int64_t(1));
+          M.log.append(log_base + std::int32_t(rec), slots, payload, h);
+          flipped[atomic_add(&M.ctr->nflip[p], std::int64_t(1))] = log_base + std::int32_t(rec);
+          const std::int64_t at = atomic_add(next_len, std::int64_t(nnew));
+          for (int s = 0; s < nnew; ++s) next[at + s] = slots[s];
+        });
+    // Phase 2 of the flips: outer faces point to where their neighbours' faces went.
+    ex_.for_each_counted(
+        &ctr->nflip[p], bound, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t* x = M.log.record(flipped[i]);
+          const int nnew = x[3] == 1 ? 2 : 3;
+          for (int s = 0; s < nnew; ++s) {
+            const std::int32_t ys = x[s];
+            const Tet Y = M.tet[ys];
+            for (int l = 0; l < 4; ++l) {
+              const std::int32_t o = simplex_of(Y.n[l]);
+              if (o == x[0] || o == x[1] || o == x[2]) continue;  // inner
+              FaceStore S{M, {0, 0, 0}};
+              face_of(Y.v, l, S.f);
+              mesh::fix_face(S, ys, l, Y.n[l], M.stamp[o] == round);
+            }
+          }
+        });
+    // Outvoted proposers test again (a proposer rewritten by another flip is listed by it).
+    ex_.for_each_counted(
+        count, bound, GG_LAMBDA(std::int64_t i) {
+          if (dec[i] < 0) return;
+          const std::int32_t t = act[i];
+          if (M.stamp[t] == round) return;
+          next[atomic_add(next_len, std::int64_t(1))] = t;
+        });
+  }
+
+  // Points not yet inserted follow their tetrahedron through this epoch's splits and recorded
+  // flips (and, when choose, each tetrahedron then picks one of its points); then a new epoch
+  // of records begins.
+  void relocate(bool choose) {
+    const Geo g = g_;
+    const Mesh M = M_;
+    const std::int32_t* un = un_.data();
+    std::int32_t* loc = loc_.data();
+    const std::int32_t* srank = srank_.data();
+    const std::int32_t* sp = split_.data();
+    const std::int32_t first_new = epoch_first_new_;
+    u64* best = best_.data();
+    const bool moved = epoch_splits_ > 0 || logged_ > 0;
+    if (!moved && !choose) return;
+    ex_.for_each_index(
+        nun_, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t q = un[i];
+          std::int32_t L = loc[q];
+          if (L < 0) return;  // inserted
+          if (moved) {
+            const std::int32_t r = srank[L];
+            if (r >= 0) {  // child k: the old tetrahedron with vertex k replaced by p
+              const std::int32_t* x = sp + 5 * std::int64_t(r);
+              int found = 3;
+              for (int k = 0; k < 3 && found == 3; ++k) {
+                std::int32_t c[4] = {x[1], x[2], x[3], x[4]};
+                c[k] = x[0];
+                bool in = true;
+                for (int j = 0; j < 4 && in; ++j)
+                  if (j != k) in = orient_with(g, c, j, q) > 0;
+                if (in) found = k;
+              }
+              L = found == 0 ? L : first_new + 3 * r + found - 1;
+            }
+            L = M.log.follow(L, Side{g, q});
+            loc[q] = L;
+          }
+          if (choose) {
+            const u64 key = (u64(choice_key(g, M.tet[L].v, q)) << 32) | u64(std::uint32_t(q));
+            atomic_min(best + L, key);
+          }
+        });
+    std::int32_t* sr = srank_.data();
+    const std::int32_t* ins = ins_.data();
+    ex_.for_each_index(
+        epoch_splits_, GG_LAMBDA(std::int64_t r) { sr[ins[r]] = -1; });
+    if (logged_ > 0) {
+      Counters* ctr = ctr_.data();
+      ex_.for_each_index(
+          1, GG_LAMBDA(std::int64_t) { ctr->log = 0; });
+      if (M_.log.next_epoch(logged_, log_cap_)) ex_.fill(hist_.data(), cap_, Hist{-1, -1});
+    }
+    logged_ = 0;
+    epoch_splits_ = 0;
+  }
+
+  // Every face of the tetrahedralisation tested; the vertices of faces that are not locally
+  // Delaunay are marked (failed: m + 1 entries). Also counts the flat finite tetrahedra next
+  // to the outside (see peel_flat). Returns the number of failed faces.
+  std::int64_t find_failed(typename Exec::template Buffer<std::int8_t>& failed,
+                           std::int64_t& flat) {
+    const Geo g = g_;
+    const Mesh M = M_;
+    std::int8_t* f = failed.data();
+    ex_.fill(f, std::int64_t(m_) + 1, std::int8_t(0));
+    Counters* ctr = ctr_.data();
+    const Counters c = counters();
+    const std::int32_t m = m_;
+    ex_.for_each_index(
+        c.used, GG_LAMBDA(std::int64_t t) {
+          const Tet T = M.tet[t];
+          if (T.v[0] < 0) return;
+          bool hull = false;
+          for (int k = 0; k < 4; ++k) {
+            const std::int32_t nb = simplex_of(T.n[k]);
+            const std::int32_t d = M.tet[nb].v[loc_of(T.n[k])];
+            hull = hull || d == m;
+            if (nb < t) continue;  // (each face once, from its higher slot)
+            if (!in_sphere_ext(g, T.v, d)) continue;
+            atomic_add(&ctr->failed_faces, std::int64_t(1));
+            for (int j = 0; j < 4; ++j) f[T.v[j]] = 1;
+            f[d] = 1;
+          }
+          if (!hull || T.v[0] == m || T.v[1] == m || T.v[2] == m || T.v[3] == m) return;
+          const double *a = g.at(T.v[0]), *b = g.at(T.v[1]), *cc = g.at(T.v[2]), *d = g.at(T.v[3]);
+          if (pred::orient3d_fast(a, b, cc, d) != 0) return;
+          double* s = g.lease.acquire(lease_hint(T.v[0], T.v[3]));
+          const int o = pred::orient3d(a, b, cc, d, s);
+          g.lease.release(s);
+          if (o == 0) atomic_add(&ctr->flat, std::int64_t(1));
+        });
+    const Counters after = counters();
+    flat = after.flat;
+    return after.failed_faces;
+  }
+
+  // The whole store to the host and back (phase 2 runs there).
+  void download(HostMesh& H) {
+    const Counters c = counters();
+    H.tets.resize(std::size_t(c.used));
+    ex_.to_host(tet_.data(), c.used, H.tets.data());
+  }
+  void upload(const HostMesh& H) {
+    const std::int64_t used = std::int64_t(H.tets.size());
+    reserve(used);
+    ex_.from_host(H.tets.data(), used, tet_.data());
+    Counters c = counters();
+    c.used = used;
+    ex_.from_host(&c, 1, ctr_.data());
+  }
+
+  // Finite tetrahedra in input indices, neighbours among them, left on the executor.
+  using Finished = mesh::Compacted<Exec>;
+  struct FiniteTets {  // (the store as the output step reads it)
+    const Tet* tet;
+    const std::int32_t* orig;
+    std::int32_t m;
+    GG_HD bool live(std::int64_t t) const {
+      const std::int32_t* v = tet[t].v;
+      return v[0] >= 0 && v[0] != m && v[1] != m && v[2] != m && v[3] != m;
+    }
+    GG_HD mesh::SimplexRecord<4> get(std::int64_t t) const {
+      const Tet T = tet[t];
+      mesh::SimplexRecord<4> r;
+      for (int k = 0; k < 4; ++k) r.v[k] = orig[T.v[k]], r.n[k] = T.n[k];
+      return r;
+    }
+  };
+  Finished finish(const std::int32_t* orig) {
+    const Counters c = counters();
+    return mesh::compact_live<4>(ex_, c.used, FiniteTets{tet_.data(), orig, m_});
+  }
+
+  void report() {
+    const Counters c = counters();
+    st_.counters["batches"] = batches_;
+    st_.counters["flip_rounds"] = c.rounds;
+    st_.counters["flips23"] = c.flips23;
+    st_.counters["flips32"] = c.flips32;
+    st_.counters["unflippable_tests"] = c.unflippable;
+    st_.counters["failed_faces"] = c.failed_faces;
+  }
+
+  // state
+  Exec& ex_;
+  Stats& st_;
+  std::int64_t max_rounds_ = -1;
+  Geo g_;
+  Mesh M_{};
+  mesh::Tetra first_;
+  std::int32_t m_ = 0;
+  std::int64_t cap_ = 0, nun_ = 0, nact_ = 0;
+  std::int32_t round_ = 0;
+  std::int64_t batches_ = 0;
+  std::int64_t log_cap_ = 0, logged_ = 0;
+  std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;
+  std::int32_t epoch_first_new_ = 0;
+  LeasePool<Exec> pool_;
+  typename Exec::template Buffer<Tet> tet_;
+  typename Exec::template Buffer<Hist> hist_;
+  typename Exec::template Buffer<std::int32_t> stamp_, srank_, rec_, split_, freeq_;
+  typename Exec::template Buffer<u64> vote_, best_;
+  typename Exec::template Buffer<std::int32_t> lists_[2];
+  typename Exec::template Buffer<std::int32_t> third_, flipped_, loc_, un_, un2_, ins_;
+  typename Exec::template Buffer<std::int8_t> dec_;
+  typename Exec::template Buffer<Counters> ctr_;
+};
+
+// The whole pipeline on the executor: prepare, phase 1, phase 2 on the host where phase 1
+// left failed faces, then the finite tetrahedra in input indices (f) with S's duplicate map.
+template <class Body>
+inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on_device,
+                             std::int64_t max_rounds, Stats& st, Body body) {
+  auto t0 = Clock::now();
+  auto raw = ex.template alloc<double>(std::size_t(3 * n));
+  if (on_device)
+    ex.copy(in, 3 * n, raw.data());
+  else
+    ex.from_host(in, 3 * n, raw.data());
+  const mesh::Bounds<3> box = mesh::bounds_in_place<3>(ex, raw.data(), n);
+  if (box.bad) mesh::throw_bad_coordinates(box.bad);
+  mesh::SortedPoints<Exec> S = mesh::sort_distinct<3>(ex, raw.data(), n, box);
+  raw = typename Exec::template Buffer<double>();
+  st.counters["points"] = n;
+  st.counters["distinct_points"] = S.m;
+  st.counters["duplicates"] = S.duplicates;
+  if (S.m < 4)
+    throw Error(ErrorCode::DegenerateInput,
+                "fewer than 4 distinct points (" + std::to_string(S.m) +
+                    "): a 3D Delaunay triangulation needs 4 points not on one plane");
+  const mesh::Tetra first =
+      mesh::first_tetrahedron(ex, S.pts.data(), S.m, n, "a 3D Delaunay triangulation", true);
+  ex.sync();
+  st.phase_ms.push_back({"prepare", ms_since(t0)});
+  t0 = Clock::now();
+  Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, max_rounds, st);
+  T.run();
+  st.phase_ms.push_back({"insert_flip", ms_since(t0)});
+  t0 = Clock::now();
+  auto failed = ex.template alloc<std::int8_t>(std::size_t(S.m + 1));
+  std::int64_t nflat = 0;
+  const std::int64_t nfailed = T.find_failed(failed, nflat);
+  st.phase_ms.push_back({"find_failed", ms_since(t0)});
+  t0 = Clock::now();
+  SplayStats sp;
+  std::int64_t peeled = 0;
+  if (nfailed > 0 || nflat > 0) {  // phase 2 and the flat tetrahedra, on the host
+    HostMesh H;
+    T.download(H);
+    std::vector<double> pts(std::size_t(3 * S.m));
+    ex.to_host(S.pts.data(), 3 * S.m, pts.data());
+    H.pts = pts.data();
+    H.m = std::int32_t(S.m);
+    for (int k = 0; k < 3; ++k) H.s[k] = first.s[k];
+    if (nfailed > 0) {
+      std::vector<std::int8_t> f(std::size_t(S.m + 1));
+      ex.to_host(failed.data(), S.m + 1, f.data());
+      sp = splay(H, f);
+    }
+    peeled = peel_flat(H);
+    T.upload(H);
+  }
+  st.phase_ms.push_back({"splay", ms_since(t0)});
+  st.counters["flat_tetrahedra"] = peeled;
+  st.counters["failed_vertices"] = sp.failed_vertices;
+  st.counters["stars_rebuilt"] = sp.stars_rebuilt;
+  st.counters["stars_touched"] = sp.stars_touched;
+  st.counters["star_insertions"] = sp.insertions;
+  st.counters["splay_removed"] = sp.removed;
+  st.counters["splay_added"] = sp.added;
+  t0 = Clock::now();
+  auto f = T.finish(S.orig.data());
+  T.report();
+  body(S, f);
+  st.phase_ms.push_back({"output", ms_since(t0)});
+}
+
+inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+                             Output& out, Stats& st) {
+  Exec ex(opt);
+  triangulate_core(ex, xyz, n, false, opt.max_flip_rounds, st,
+                   [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
+                     out.num_duplicates = S.duplicates;
+                     out.tetrahedra.resize(std::size_t(4 * f.count));
+                     out.neighbors.resize(std::size_t(4 * f.count));
+                     ex.to_host(f.simplices.data(), 4 * f.count, out.tetrahedra.data());
+                     ex.to_host(f.neighbors.data(), 4 * f.count, out.neighbors.data());
+                     out.duplicate_of.assign(std::size_t(n), -1);
+                     if (S.duplicates) ex.to_host(S.dup.data(), n, out.duplicate_of.data());
+                   });
+}

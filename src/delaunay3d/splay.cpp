@@ -1,0 +1,575 @@
+// Phase 2 of the 3D Delaunay tetrahedralisation: adaptive star splaying (thesis 5.3.2;
+// Shewchuk's star splaying), on host threads.
+//
+// The star of a vertex v is its link: triangles (a, b, c) such that (v, a, b, c) is a
+// positively oriented tetrahedron, a triangulated sphere around v (the infinity point is a
+// vertex of the links of hull vertices). Lifted to 4D, a star is convex when every link edge
+// is: for link triangles (a, b, c) and (b, a, d), d lies outside the sphere of (v, a, b, c).
+// A vertex whose faces are all locally Delaunay has a convex star in phase 1's result, so
+// only the stars of the failed vertices are rebuilt:
+//  1. each failed vertex's star is taken from the tetrahedralisation and made convex by
+//     Flip-Flop on the lifted star (thesis 5.2.2 one dimension up): a reflex link edge is
+//     flipped where the two new link triangles stay positively oriented around v; where it
+//     cannot be, the corner that lies inside the cone of the other three is not extreme: its
+//     link edges are flipped until it has three, and its three triangles become one.
+//  2. splaying: every tetrahedron of a changed star must be in the stars of its other finite
+//     vertices. Where star(w) lacks it, its vertices are inserted into star(w) (a convex star
+//     takes a vertex by removing the triangles whose spheres contain it and joining it to the
+//     boundary of that region, as Bowyer-Watson does); where star(w) still lacks it, star(w)
+//     has a vertex inside the tetrahedron's sphere, which is inserted into star(v). Stars only
+//     take vertices, each at most once, so this ends; when every star is consistent, the
+//     stars are those of the Delaunay tetrahedralisation (Shewchuk).
+//  3. the tetrahedra of the old stars that the new ones lack are removed, the new ones added,
+//     and the faces between them and the rest linked.
+// Stars not read from the tetrahedralisation are never built.
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <deque>
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "delaunay3d/tet.hpp"
+#include "exec/scratch_lease.hpp"
+#include "gpugeom/common.hpp"
+#include "mesh/adjacency.hpp"
+#include "predicates/predicates.hpp"
+
+namespace gpugeom::del3d {
+namespace host_impl {
+#include "delaunay3d/impl/geometry.inl"
+}  // namespace host_impl
+
+namespace {
+using host_impl::face_vertex;
+using host_impl::Geo;
+using host_impl::in_sphere_ext;
+using host_impl::orient_ext;
+using mesh::enc;
+using mesh::loc_of;
+using mesh::simplex_of;
+
+[[noreturn]] void internal(const std::string& what) {
+  throw Error(ErrorCode::Internal,
+              "internal error in star splaying: " + what + "; please report this input");
+}
+
+using Key4 = std::array<std::int32_t, 4>;
+using Key3 = std::array<std::int32_t, 3>;
+Key4 key4(std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d) {
+  Key4 k{a, b, c, d};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+Key3 key3(std::int32_t a, std::int32_t b, std::int32_t c) {
+  Key3 k{a, b, c};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+struct Hash4 {
+  std::size_t operator()(const Key4& k) const {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (std::int32_t x : k) h = (h ^ std::uint32_t(x)) * 0xbf58476d1ce4e5b9ull, h ^= h >> 29;
+    return std::size_t(h);
+  }
+};
+struct Hash3 {
+  std::size_t operator()(const Key3& k) const { return Hash4{}(Key4{k[0], k[1], k[2], -7}); }
+};
+
+// Replaces the tetrahedra in slots `removed` by `added`, which fill the same region: the new
+// ones take the freed slots (then new slots at the end), and their faces are linked among
+// themselves and, across the removed region's outer faces, with the tetrahedra that stay.
+void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vector<Tet>& added,
+                  const char* step) {
+  std::sort(removed.begin(), removed.end());
+  removed.erase(std::unique(removed.begin(), removed.end()), removed.end());
+  std::vector<Tet> old;
+  for (std::int32_t t : removed) old.push_back(H.tets[std::size_t(t)]);
+  std::unordered_set<std::int32_t> gone(removed.begin(), removed.end());
+  std::vector<std::int32_t> slots;
+  std::size_t r = 0;
+  for (const Tet& T : added) {
+    std::int32_t slot;
+    if (r < removed.size()) {
+      slot = removed[r++];
+    } else {
+      slot = std::int32_t(H.tets.size());
+      H.tets.push_back(Tet{});
+    }
+    H.tets[std::size_t(slot)] = T;
+    slots.push_back(slot);
+  }
+  for (; r < removed.size(); ++r) {
+    Tet dead;
+    for (int k = 0; k < 4; ++k) dead.v[k] = dead.n[k] = -1;
+    H.tets[std::size_t(removed[r])] = dead;
+  }
+  std::unordered_map<Key3, std::int32_t, Hash3> open;  // face -> enc(slot, local)
+  auto face_key = [](const Tet& T, int k) {
+    return key3(T.v[face_vertex(k, 0)], T.v[face_vertex(k, 1)], T.v[face_vertex(k, 2)]);
+  };
+  for (std::int32_t y : slots)
+    for (int l = 0; l < 4; ++l) {
+      const Key3 k = face_key(H.tets[std::size_t(y)], l);
+      auto it = open.find(k);
+      if (it == open.end()) {
+        open.emplace(k, enc(y, l));
+      } else {
+        const std::int32_t e = it->second;
+        H.tets[std::size_t(y)].n[l] = e;
+        H.tets[std::size_t(simplex_of(e))].n[loc_of(e)] = enc(y, l);
+        open.erase(it);
+      }
+    }
+  for (const Tet& D : old)
+    for (int k = 0; k < 4; ++k) {
+      const std::int32_t nb = simplex_of(D.n[k]);
+      if (gone.count(nb)) continue;  // inside the removed region
+      auto it = open.find(face_key(D, k));
+      if (it == open.end()) {
+        const Key3 fk = face_key(D, k);
+        internal(std::string(step) + ": surviving face " + std::to_string(fk[0]) + " " +
+                 std::to_string(fk[1]) + " " + std::to_string(fk[2]) + " (of " +
+                 std::to_string(D.v[0]) + " " + std::to_string(D.v[1]) + " " +
+                 std::to_string(D.v[2]) + " " + std::to_string(D.v[3]) + ", neighbour slot " +
+                 std::to_string(nb) + ") has no new tetrahedron");
+      }
+      const std::int32_t e = it->second;
+      H.tets[std::size_t(simplex_of(e))].n[loc_of(e)] = D.n[k];
+      H.tets[std::size_t(nb)].n[loc_of(D.n[k])] = e;
+      open.erase(it);
+    }
+  if (!open.empty())
+    internal(std::string(step) + ": " + std::to_string(open.size()) + " face(s) left unmatched");
+}
+
+// Every live slot's neighbours share its face and point back (a guard on the host paths).
+void check_adjacency(const HostMesh& H, const char* step) {
+  for (std::size_t t = 0; t < H.tets.size(); ++t) {
+    const Tet& T = H.tets[t];
+    if (T.v[0] < 0) continue;
+    for (int k = 0; k < 4; ++k) {
+      const std::int32_t e = T.n[k], o = simplex_of(e);
+      const bool ok =
+          e >= 0 && std::size_t(o) < H.tets.size() && H.tets[std::size_t(o)].v[0] >= 0 &&
+          H.tets[std::size_t(o)].n[loc_of(e)] == enc(std::int32_t(t), k) &&
+          host_impl::opposite_of_face(H.tets[std::size_t(o)].v, T.v[face_vertex(k, 0)],
+                                      T.v[face_vertex(k, 1)], T.v[face_vertex(k, 2)]) == loc_of(e);
+      if (!ok)
+        internal(std::string(step) + ": slot " + std::to_string(t) + " face " + std::to_string(k) +
+                 " has a wrong neighbour");
+    }
+  }
+}
+
+struct Tri {
+  std::int32_t a, b, c;
+  bool has(std::int32_t x) const { return a == x || b == x || c == x; }
+};
+
+struct Star {
+  std::vector<Tri> tris;
+  std::unordered_set<std::int32_t> offered;  // every vertex this star has been given
+  bool changed = false;
+  bool rebuilt = false;
+};
+
+class Splayer {
+ public:
+  Splayer(HostMesh& H) : H_(H) {
+    g_.p = H.pts;
+    for (int k = 0; k < 3; ++k) g_.s[k] = H.s[k];
+    g_.m = H.m;
+    scratch_.assign(std::size_t(pred::kInsphereScratch), 0.0);
+    g_.lease = ScratchLease{scratch_.data(), &busy_, 1, pred::kInsphereScratch};
+    vt_.assign(std::size_t(H.m) + 1, -1);
+    for (std::size_t t = 0; t < H.tets.size(); ++t)
+      if (H.tets[t].v[0] >= 0)
+        for (int k = 0; k < 4; ++k) vt_[std::size_t(H.tets[t].v[k])] = std::int32_t(t);
+  }
+
+  SplayStats run(const std::vector<std::int8_t>& failed) {
+    check_adjacency(H_, "before splaying");
+    for (std::int32_t v = 0; v < H_.m; ++v) {
+      if (!failed[std::size_t(v)]) continue;
+      ++st_.failed_vertices;
+      Star& s = star(v);
+      const std::vector<Tri> before = s.tris;
+      convexify(v, s);
+      s.rebuilt = s.changed = true;
+      ++st_.stars_rebuilt;
+      changed(v, before, s.tris);
+    }
+    splay();
+    patch();
+    return st_;
+  }
+
+  // ---- stars ----
+  // The star of v as the tetrahedralisation has it (slots too, for the patch).
+  void mesh_star(std::int32_t v, std::vector<Tri>* tris, std::vector<std::int32_t>* slots) {
+    const std::int32_t t0 = vt_[std::size_t(v)];
+    if (t0 < 0) internal("vertex " + std::to_string(v) + " is in no tetrahedron");
+    std::vector<std::int32_t> stack{t0};
+    std::unordered_set<std::int32_t> seen{t0};
+    while (!stack.empty()) {
+      const std::int32_t t = stack.back();
+      stack.pop_back();
+      const Tet& T = H_.tets[std::size_t(t)];
+      int k = 0;
+      while (k < 4 && T.v[k] != v) ++k;
+      if (k == 4) internal("vertex map out of date");
+      if (tris)
+        tris->push_back({T.v[face_vertex(k, 0)], T.v[face_vertex(k, 1)], T.v[face_vertex(k, 2)]});
+      if (slots) slots->push_back(t);
+      for (int j = 0; j < 4; ++j) {
+        if (j == k) continue;
+        const std::int32_t nb = simplex_of(T.n[j]);
+        if (seen.insert(nb).second) stack.push_back(nb);
+      }
+    }
+  }
+  Star& star(std::int32_t v) {
+    auto it = stars_.find(v);
+    if (it != stars_.end()) return it->second;
+    Star& s = stars_[v];
+    mesh_star(v, &s.tris, nullptr);
+    for (const Tri& t : s.tris) s.offered.insert(t.a), s.offered.insert(t.b), s.offered.insert(t.c);
+    return s;
+  }
+
+  static int find_edge(const Star& s, std::int32_t a, std::int32_t b) {  // directed a -> b
+    for (std::size_t i = 0; i < s.tris.size(); ++i) {
+      const Tri& t = s.tris[i];
+      if ((t.a == a && t.b == b) || (t.b == a && t.c == b) || (t.c == a && t.a == b)) return int(i);
+    }
+    return -1;
+  }
+  static std::int32_t third(const Tri& t, std::int32_t a, std::int32_t b) {
+    return t.a != a && t.a != b ? t.a : t.b != a && t.b != b ? t.b : t.c;
+  }
+  static bool contains(const Star& s, std::int32_t a, std::int32_t b, std::int32_t c) {
+    for (const Tri& t : s.tris)
+      if (t.has(a) && t.has(b) && t.has(c)) return true;
+    return false;
+  }
+  bool reflex(std::int32_t v, const Tri& t, std::int32_t d) {
+    const std::int32_t q[4] = {v, t.a, t.b, t.c};
+    return in_sphere_ext(g_, q, d);
+  }
+
+  // Link edge a -> b of triangles (a, b, c) and (b, a, d) replaced by (c, d): triangles
+  // (a, d, c) and (d, b, c), when both stay positively oriented around v.
+  bool try_flip(std::int32_t v, Star& s, std::int32_t a, std::int32_t b) {
+    const int i1 = find_edge(s, a, b), i2 = find_edge(s, b, a);
+    if (i1 < 0 || i2 < 0) internal("link edge without two triangles");
+    const std::int32_t c = third(s.tris[std::size_t(i1)], a, b);
+    const std::int32_t d = third(s.tris[std::size_t(i2)], a, b);
+    if (c == d) return false;
+    if (orient_ext(g_, v, a, d, c) <= 0 || orient_ext(g_, v, d, b, c) <= 0) return false;
+    s.tris[std::size_t(i1)] = {a, d, c};
+    s.tris[std::size_t(i2)] = {d, b, c};
+    return true;
+  }
+
+  // Removes x (not extreme in v's star) from the star: flips of its link edges until it has
+  // three neighbours, then its three triangles become one.
+  void remove_vertex(std::int32_t v, Star& s, std::int32_t x) {
+    for (int guard = 0;; ++guard) {
+      if (guard > 100000) internal("a vertex could not be removed from a star");
+      std::vector<std::int32_t> nbrs;
+      for (const Tri& t : s.tris) {
+        if (t.a == x) nbrs.push_back(t.b);
+        if (t.b == x) nbrs.push_back(t.c);
+        if (t.c == x) nbrs.push_back(t.a);
+      }
+      if (nbrs.empty()) return;
+      if (nbrs.size() == 3) {
+        // the triangles (x, y0, y1), (x, y1, y2), (x, y2, y0) -> (y0, y1, y2)
+        const std::int32_t y0 = nbrs[0];
+        const int i0 = find_edge(s, x, y0);
+        const std::int32_t y1 = third(s.tris[std::size_t(i0)], x, y0);
+        const int i1 = find_edge(s, x, y1);
+        const std::int32_t y2 = third(s.tris[std::size_t(i1)], x, y1);
+        if (orient_ext(g_, v, y0, y1, y2) <= 0) internal("a removed vertex left a folded star");
+        std::vector<Tri> keep;
+        for (const Tri& t : s.tris)
+          if (!t.has(x)) keep.push_back(t);
+        keep.push_back({y0, y1, y2});
+        s.tris.swap(keep);
+        return;
+      }
+      bool flipped = false;
+      for (std::int32_t y : nbrs)
+        if (try_flip(v, s, x, y)) {
+          flipped = true;
+          break;
+        }
+      if (!flipped) internal("no flip reduces a non-extreme vertex of a star");
+    }
+  }
+
+  // Flip-Flop on the lifted star of v (see the top of the file).
+  void convexify(std::int32_t v, Star& s) {
+    for (std::int64_t guard = 0;; ++guard) {
+      if (guard > 10000000) internal("Flip-Flop on a star did not converge");
+      bool progress = false;
+      for (std::size_t i = 0; i < s.tris.size() && !progress; ++i) {
+        const Tri t = s.tris[i];
+        const std::int32_t e[3][2] = {{t.a, t.b}, {t.b, t.c}, {t.c, t.a}};
+        for (int k = 0; k < 3 && !progress; ++k) {
+          const std::int32_t a = e[k][0], b = e[k][1];
+          if (a > b) continue;  // each edge once
+          const int j = find_edge(s, b, a);
+          if (j < 0) internal("open star");
+          const std::int32_t d = third(s.tris[std::size_t(j)], a, b);
+          const Tri rt{a, b, third(t, a, b)};
+          if (!reflex(v, rt, d)) continue;
+          progress = true;
+          if (try_flip(v, s, a, b)) continue;
+          // Not flippable: the corner inside the cone of the other three is not extreme.
+          const std::int32_t c = rt.c;
+          const std::int32_t x = orient_ext(g_, v, a, d, c) < 0 ? a : b;
+          remove_vertex(v, s, x);
+        }
+      }
+      if (!progress) return;
+    }
+  }
+
+  // Bowyer-Watson in a convex star: x enters when some triangle's sphere contains it.
+  bool insert(std::int32_t v, Star& s, std::int32_t x) {
+    if (x == v || !s.offered.insert(x).second) return false;
+    std::vector<char> conflict(s.tris.size(), 0);
+    bool any = false;
+    for (std::size_t i = 0; i < s.tris.size(); ++i)
+      if (reflex(v, s.tris[i], x)) conflict[i] = 1, any = true;
+    if (!any) return false;
+    std::vector<Tri> keep, added;
+    for (std::size_t i = 0; i < s.tris.size(); ++i) {
+      const Tri& t = s.tris[i];
+      if (!conflict[i]) {
+        keep.push_back(t);
+        continue;
+      }
+      const std::int32_t e[3][2] = {{t.a, t.b}, {t.b, t.c}, {t.c, t.a}};
+      for (auto& ed : e) {
+        const int j = find_edge(s, ed[1], ed[0]);
+        if (j < 0) internal("open star");
+        if (!conflict[std::size_t(j)]) added.push_back({ed[0], ed[1], x});
+      }
+    }
+    for (const Tri& t : added)
+      if (orient_ext(g_, v, t.a, t.b, t.c) <= 0) internal("a star insertion region is not a disk");
+    for (std::size_t i = 0; i < s.tris.size(); ++i)
+      if (conflict[i]) gone(v, s.tris[i]);
+    for (const Tri& t : added) {
+      keep.push_back(t);
+      queue_.push_back({{v, t.a, t.b, t.c}, 0});
+    }
+    s.tris.swap(keep);
+    s.changed = true;
+    ++st_.insertions;
+    return true;
+  }
+
+  // ---- splaying ----
+  // A tetrahedron to check, positively oriented, from the star of t[owner]: if that star has
+  // it, the stars of its other vertices must have it too.
+  struct Item {
+    std::array<std::int32_t, 4> t;
+    int owner;
+  };
+  // Triangle (a, b, c) left the star of v: the stars of a, b and c may still have (v, a, b, c).
+  void gone(std::int32_t v, const Tri& t) {
+    for (int o = 1; o < 4; ++o) queue_.push_back({{v, t.a, t.b, t.c}, o});
+  }
+  // The star of v went from `before` to `after`: check what left it and what came.
+  void changed(std::int32_t v, const std::vector<Tri>& before, const std::vector<Tri>& after) {
+    std::unordered_set<Key3, Hash3> now, was;
+    for (const Tri& t : after) now.insert(key3(t.a, t.b, t.c));
+    for (const Tri& t : before) {
+      was.insert(key3(t.a, t.b, t.c));
+      if (!now.count(key3(t.a, t.b, t.c))) gone(v, t);
+    }
+    for (const Tri& t : after)
+      if (!was.count(key3(t.a, t.b, t.c))) queue_.push_back({{v, t.a, t.b, t.c}, 0});
+  }
+  static void others(const std::array<std::int32_t, 4>& t, int i, std::int32_t* o) {
+    int n = 0;
+    for (int j = 0; j < 4; ++j)
+      if (j != i) o[n++] = t[std::size_t(j)];
+  }
+
+  void splay() {
+    while (!queue_.empty()) {
+      const Item it = queue_.front();
+      queue_.pop_front();
+      const std::array<std::int32_t, 4>& q = it.t;
+      const std::int32_t x = q[std::size_t(it.owner)];
+      if (x == H_.m) continue;
+      std::int32_t ox[3];
+      others(q, it.owner, ox);
+      if (!contains(star(x), ox[0], ox[1], ox[2])) continue;  // not (or no longer) in star(x)
+      for (int i = 0; i < 4; ++i) {
+        const std::int32_t w = q[std::size_t(i)];
+        if (i == it.owner || w == H_.m) continue;
+        std::int32_t o[3];
+        others(q, i, o);
+        if (contains(star(w), o[0], o[1], o[2])) continue;
+        for (int j = 0; j < 3; ++j) insert(w, star(w), o[j]);
+        if (contains(star(w), o[0], o[1], o[2])) continue;
+        // star(w) keeps a vertex inside the sphere of q: x's star takes it
+        std::vector<std::int32_t> cand;
+        for (const Tri& t : star(w).tris)
+          for (std::int32_t y : {t.a, t.b, t.c})
+            if (y != q[0] && y != q[1] && y != q[2] && y != q[3]) cand.push_back(y);
+        std::sort(cand.begin(), cand.end());
+        cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+        bool moved = false;
+        for (std::int32_t y : cand)
+          if (in_sphere_ext(g_, q.data(), y)) moved = insert(x, star(x), y) || moved;
+        if (!contains(star(x), ox[0], ox[1], ox[2])) break;  // removed: nothing left to check
+        if (!moved) internal("inconsistent stars that no insertion separates");
+      }
+    }
+  }
+
+  // ---- patch ----
+  void patch() {
+    std::unordered_set<Key4, Hash4> old_keys;
+    std::vector<std::int32_t> removed;
+    std::unordered_map<Key4, Tet, Hash4> added;
+    for (auto& [v, s] : stars_) {
+      if (!s.changed) continue;
+      ++st_.stars_touched;
+      std::vector<Tri> ot;
+      std::vector<std::int32_t> os;
+      mesh_star(v, &ot, &os);
+      std::unordered_set<Key3, Hash3> now;
+      for (const Tri& t : s.tris) now.insert(key3(t.a, t.b, t.c));
+      for (std::size_t i = 0; i < ot.size(); ++i) {
+        old_keys.insert(key4(v, ot[i].a, ot[i].b, ot[i].c));
+        if (!now.count(key3(ot[i].a, ot[i].b, ot[i].c))) removed.push_back(os[i]);
+      }
+    }
+    for (auto& [v, s] : stars_) {
+      if (!s.changed) continue;
+      for (const Tri& t : s.tris) {
+        const Key4 k = key4(v, t.a, t.b, t.c);
+        if (old_keys.count(k) || added.count(k)) continue;
+        added[k] = Tet{{v, t.a, t.b, t.c}, {-1, -1, -1, -1}};
+      }
+    }
+    std::vector<Tet> tets;
+    for (auto& kv : added) tets.push_back(kv.second);
+    st_.removed = std::int64_t(removed.size());
+    st_.added = std::int64_t(tets.size());
+    replace_tets(H_, removed, tets, "patch");
+  }
+
+  HostMesh& H_;
+  Geo g_;
+  std::vector<double> scratch_;
+  std::int32_t busy_ = 0;
+  std::vector<std::int32_t> vt_;  // a tetrahedron of each vertex
+  std::map<std::int32_t, Star> stars_;
+  std::deque<Item> queue_;
+  SplayStats st_;
+};
+
+// Flat tetrahedra on the hull (see tet.hpp): each one next to an infinite tetrahedron is handed
+// to the outside, its faces toward finite neighbours becoming hull facets (they lie in the
+// plane of the hull facets they replace, so the hull keeps its shape), until none is left.
+std::int64_t peel(HostMesh& H) {
+  std::vector<double> scratch(std::size_t(pred::kOrient3dScratch));
+  auto at = [&](std::int32_t i) { return H.pts + 3 * std::int64_t(i); };
+  auto flat = [&](const Tet& T) {
+    if (T.v[0] < 0) return false;
+    for (int k = 0; k < 4; ++k)
+      if (T.v[k] == H.m) return false;
+    return pred::orient3d(at(T.v[0]), at(T.v[1]), at(T.v[2]), at(T.v[3]), scratch.data()) == 0;
+  };
+  auto infinite = [&](const Tet& T) {
+    return T.v[0] == H.m || T.v[1] == H.m || T.v[2] == H.m || T.v[3] == H.m;
+  };
+  // Hull edges (the faces at the infinity point): a peel must not make one twice.
+  std::unordered_map<std::uint64_t, int> hull_edges;
+  auto edge_key = [](std::int32_t a, std::int32_t b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+  };
+  auto count_edges = [&](const Tet& T, int delta) {
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        if (T.v[i] != H.m && T.v[j] != H.m) hull_edges[edge_key(T.v[i], T.v[j])] += delta;
+  };
+  for (const Tet& T : H.tets)
+    if (T.v[0] >= 0 && infinite(T)) count_edges(T, 1);
+  std::int64_t peeled = 0;
+  for (;;) {
+    bool progress = false, left = false;
+    for (std::size_t t = 0; t < H.tets.size(); ++t) {
+      const Tet T = H.tets[t];
+      if (!flat(T)) continue;
+      std::vector<std::int32_t> removed{std::int32_t(t)};
+      std::vector<Tet> added;
+      for (int k = 0; k < 4; ++k) {
+        const std::int32_t nb = simplex_of(T.n[k]);
+        if (infinite(H.tets[std::size_t(nb)])) {
+          removed.push_back(nb);
+        } else {  // the face, oriented outward from the neighbour, with the infinity point
+          added.push_back(
+              Tet{{T.v[face_vertex(k, 0)], T.v[face_vertex(k, 2)], T.v[face_vertex(k, 1)], H.m},
+                  {-1, -1, -1, -1}});
+        }
+      }
+      if (removed.size() == 1) continue;  // not on the hull (yet)
+      left = true;
+      // The hull edges after the peel: those of the removed infinite tetrahedra go, those of
+      // the new ones come; an edge counted more than twice would be a fold.
+      for (std::size_t r = 1; r < removed.size(); ++r)
+        count_edges(H.tets[std::size_t(removed[r])], -1);
+      for (const Tet& A : added) count_edges(A, 1);
+      bool ok = true;
+      for (const Tet& A : added)
+        for (int i = 0; i < 3 && ok; ++i)
+          for (int j = i + 1; j < 3 && ok; ++j) ok = hull_edges[edge_key(A.v[i], A.v[j])] <= 2;
+      if (!ok) {  // not now: undo the count
+        for (const Tet& A : added) count_edges(A, -1);
+        for (std::size_t r = 1; r < removed.size(); ++r)
+          count_edges(H.tets[std::size_t(removed[r])], 1);
+        continue;
+      }
+      replace_tets(H, removed, added, "peel");
+      ++peeled;
+      progress = true;
+    }
+    if (!left) break;
+    if (!progress)  // (stacks of flat tetrahedra over large coplanar hull regions)
+      throw Error(ErrorCode::Unsupported,
+                  "this version cannot yet remove every flat tetrahedron that simulation of "
+                  "simplicity puts on the hull when many input points lie exactly on one hull "
+                  "plane (e.g. the faces of an integer grid); perturb such points or use the "
+                  "convex hull module for the hull alone");
+  }
+  check_adjacency(H, "after peeling");
+  return peeled;
+}
+
+}  // namespace
+
+SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed) {
+  Splayer s(mesh);
+  return s.run(failed);
+}
+
+std::int64_t peel_flat(HostMesh& mesh) {
+  return peel(mesh);
+}
+
+}  // namespace gpugeom::del3d

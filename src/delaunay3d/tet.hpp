@@ -1,0 +1,45 @@
+// The tetrahedron store of delaunay3d, shared by the executors' phase 1 and the host's star
+// splaying (internal).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+namespace gpugeom::del3d {
+
+// One slot: four vertices (a positively oriented tetrahedron; index m is the infinity point)
+// and the four neighbours (mesh/adjacency.hpp's encoding: the tetrahedron across the face
+// opposite vertex k). A dead slot has v[0] = -1. 32 bytes: one memory sector per read.
+struct alignas(32) Tet {
+  std::int32_t v[4];
+  std::int32_t n[4];
+};
+
+// What phase 2 works on: the extended tetrahedralisation after phase 1, on the host.
+struct HostMesh {
+  std::vector<Tet> tets;        // slots, dead ones included
+  const double* pts = nullptr;  // m points, 3 each, curve order (host memory)
+  std::int32_t m = 0;           // the infinity vertex
+  double s[3] = {0, 0, 0};      // the kernel point
+};
+
+struct SplayStats {
+  std::int64_t failed_vertices = 0;     // vertices on a face that is not locally Delaunay
+  std::int64_t stars_rebuilt = 0;       // made convex by Flip-Flop
+  std::int64_t stars_touched = 0;       // every star that changed, those included
+  std::int64_t insertions = 0;          // vertices inserted into stars while splaying
+  std::int64_t removed = 0, added = 0;  // tetrahedra patched
+};
+
+// Adaptive star splaying (thesis 5.3.2): failed[v] != 0 marks the vertices to start from.
+// Rewrites mesh.tets into the Delaunay tetrahedralisation (slots of removed tetrahedra are
+// reused or left dead; new ones may be appended). Throws Error(Internal) when a step that
+// cannot fail on a valid input fails.
+SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed);
+
+// Flat tetrahedra: four points exactly on one plane that the perturbation orders positively.
+// They can only lie on the hull (as in 2D, a perturbed point moved just inside a hull facet);
+// each next to the outside is given to it, which leaves every other tetrahedron as it was, so
+// the result is still Delaunay, and the hull facets cover the same planes. Returns how many.
+std::int64_t peel_flat(HostMesh& mesh);
+
+}  // namespace gpugeom::del3d

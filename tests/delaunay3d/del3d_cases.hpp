@@ -1,0 +1,82 @@
+// Shared by the CPU and CUDA 3D Delaunay tests: the full validation of a result (the inputs are
+// the hull tests' distributions and degenerate sets, tests/hull3d/hull3d_cases.hpp).
+#pragma once
+#include <gtest/gtest.h>
+
+#include <array>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "../hull3d/hull3d_cases.hpp"
+#include "gpugeom/delaunay3d.hpp"
+#include "verify.hpp"
+
+namespace gg_del3d {
+using gg_hull3d::Case;
+using gpugeom::Point3;
+
+// The exact checker, plus what it does not see: neighbours (symmetric, across the face opposite
+// each vertex, -1 exactly on the hull), the hull facets, the vertex map and the duplicate map.
+inline void expect_valid(const std::vector<Point3>& pts, const gpugeom::Triangulation3d& t) {
+  const double* p = &pts.data()->x;
+  const std::int64_t n = std::int64_t(pts.size());
+  const auto nt = std::int64_t(t.num_tetrahedra());
+  auto r = gpugeom::verify::check_delaunay3d(p, n, t.tetrahedra.data(), nt, t.duplicate_of.data());
+  ASSERT_TRUE(r.ok) << r.message;
+  ASSERT_EQ(t.neighbors.size(), t.tetrahedra.size());
+  std::int64_t hull = 0;
+  for (std::int64_t c = 0; c < nt; ++c)
+    for (int k = 0; k < 4; ++k) {
+      const std::int32_t o = t.neighbors[4 * c + k];
+      if (o < 0) {
+        ++hull;
+        continue;
+      }
+      ASSERT_LT(o, nt);
+      std::set<std::int32_t> f;
+      for (int j = 0; j < 4; ++j)
+        if (j != k) f.insert(t.tetrahedra[4 * c + j]);
+      int back = -1, shared = 0;
+      for (int j = 0; j < 4; ++j) {
+        if (t.neighbors[4 * o + j] == c) back = j;
+        shared += f.count(t.tetrahedra[4 * o + j]) ? 1 : 0;
+      }
+      ASSERT_GE(back, 0) << "tetrahedron " << c << " neighbour " << k << " does not point back";
+      ASSERT_EQ(shared, 3) << "tetrahedron " << c << " neighbour " << k << " shares no face";
+      ASSERT_EQ(f.count(t.tetrahedra[4 * o + back]), 0u);
+    }
+  ASSERT_EQ(std::int64_t(t.hull_facets.size()), 3 * hull);
+  ASSERT_EQ(t.vertex_to_simplex.size(), pts.size());
+  std::int64_t dups = 0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int32_t s = t.vertex_to_simplex[std::size_t(i)];
+    const std::int32_t d = t.duplicate_of[std::size_t(i)];
+    const std::int32_t v = d >= 0 ? d : std::int32_t(i);
+    if (d >= 0) {
+      ++dups;
+      ASSERT_LT(d, i);
+      ASSERT_EQ(pts[std::size_t(d)].x, pts[std::size_t(i)].x);
+      ASSERT_EQ(pts[std::size_t(d)].y, pts[std::size_t(i)].y);
+      ASSERT_EQ(pts[std::size_t(d)].z, pts[std::size_t(i)].z);
+    }
+    ASSERT_TRUE(s >= 0 && s < nt) << "point " << i;
+    bool has = false;
+    for (int k = 0; k < 4; ++k) has = has || t.tetrahedra[4 * std::size_t(s) + k] == v;
+    ASSERT_TRUE(has) << "vertex_to_simplex of point " << i;
+  }
+  ASSERT_EQ(dups, t.num_duplicates);
+}
+
+// Tetrahedra as a canonical set (sorted vertices), to compare executors and runs.
+inline std::set<std::array<std::int32_t, 4>> tet_set(const std::vector<std::int32_t>& t) {
+  std::set<std::array<std::int32_t, 4>> s;
+  for (std::size_t c = 0; c < t.size() / 4; ++c) {
+    std::array<std::int32_t, 4> a{t[4 * c], t[4 * c + 1], t[4 * c + 2], t[4 * c + 3]};
+    std::sort(a.begin(), a.end());
+    s.insert(a);
+  }
+  return s;
+}
+
+}  // namespace gg_del3d
