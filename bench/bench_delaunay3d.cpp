@@ -2,7 +2,8 @@
 // with CGAL's Delaunay_triangulation_3 (sequential) on the same points in the same run when
 // the build found CGAL. Prints the GPU's name, the phase times, flips, failed vertices and
 // splaying time next to the totals; --check runs the exact checker on every result.
-// Usage: gpugeom_bench_del3d [--check] [--reps R] dist:n [dist:n ...]
+// Usage: gpugeom_bench_del3d [--check] [--cpu] [--reps R] dist:n [dist:n ...] (--cpu: the CPU
+// executor too where there is a GPU)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -55,13 +56,15 @@ double cgal_ms(const std::vector<Point3>& p, std::int64_t& cells) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool check = false;
+  bool check = false, with_cpu = false;
   int reps = 3;
   std::vector<std::string> jobs;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--check")
       check = true;
+    else if (a == "--cpu")
+      with_cpu = true;
     else if (a == "--reps" && i + 1 < argc)
       reps = std::atoi(argv[++i]);
     else
@@ -69,9 +72,9 @@ int main(int argc, char** argv) {
   }
   const DeviceInfo dev = query_device();
   std::printf("# device: %s\n", dev.available ? dev.name.c_str() : "none");
-  std::printf("%-12s %9s %-5s %10s %8s %8s %8s %9s %8s %7s %10s %9s %6s\n", "dist", "n",
-              "back", "total_ms", "prep", "ins+flip", "splay", "flips", "failed", "stars",
-              "tets", "cgal_ms", "check");
+  std::printf("%-12s %9s %-5s %10s %8s %8s %8s %9s %8s %7s %10s %9s %6s\n", "dist", "n", "back",
+              "total_ms", "prep", "ins+flip", "splay", "flips", "failed", "stars", "tets",
+              "cgal_ms", "check");
   for (const std::string& job : jobs) {
     const auto colon = job.find(':');
     const std::string dist = job.substr(0, colon);
@@ -81,6 +84,7 @@ int main(int argc, char** argv) {
     const double cg = cgal_ms(pts, cells);
     for (Backend b : {Backend::Cuda, Backend::Cpu}) {
       if (b == Backend::Cuda && !dev.available) continue;
+      if (b == Backend::Cpu && !with_cpu && dev.available) continue;
       Delaunay3dOptions o;
       o.backend = b;
       std::vector<double> ms;
@@ -93,15 +97,15 @@ int main(int argc, char** argv) {
       std::sort(ms.begin(), ms.end());
       std::string ok = "-";
       if (check) {
-        auto rep = verify::check_delaunay3d(&pts.data()->x, n, t.tetrahedra.data(),
-                                            std::int64_t(t.num_tetrahedra()),
-                                            t.duplicate_of.data());
+        auto rep =
+            verify::check_delaunay3d(&pts.data()->x, n, t.tetrahedra.data(),
+                                     std::int64_t(t.num_tetrahedra()), t.duplicate_of.data());
         ok = rep.ok ? "ok" : "FAIL";
         if (!rep.ok) std::printf("# %s\n", rep.message.c_str());
       }
       std::printf("%-12s %9lld %-5s %10.1f %8.1f %8.1f %8.1f %9lld %8lld %7lld %10zu %9.1f %6s\n",
-                  dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu", ms[ms.size() / 2],
-                  phase(t.stats, "prepare"), phase(t.stats, "insert_flip"),
+                  dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu",
+                  ms[ms.size() / 2], phase(t.stats, "prepare"), phase(t.stats, "insert_flip"),
                   phase(t.stats, "splay"),
                   (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
                   (long long)counter(t.stats, "failed_vertices"),

@@ -22,7 +22,7 @@ if [ "${SKIP_SANITIZER:-0}" != 1 ]; then
   echo "== compute-sanitizer memcheck"
   CS=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
   for t in .devbin/$TESTS; do
-    GG_DEL2D_MAX_N=5000 GG_HULL3D_MAX_N=5000 GG_TEST_TUPLES=1500 timeout 420 "$CS" --tool memcheck --leak-check full --error-exitcode 9 "$t" --gtest_brief=1 \
+    GG_DEL2D_MAX_N=5000 GG_HULL3D_MAX_N=5000 GG_DEL3D_MAX_N=3000 GG_TEST_TUPLES=1500 timeout 420 "$CS" --tool memcheck --leak-check full --error-exitcode 9 "$t" --gtest_brief=1 \
       >"$OUT/memcheck_$(basename "$t").log" 2>&1
     echo "memcheck $(basename "$t"): rc=$? $(grep -E 'ERROR SUMMARY' "$OUT/memcheck_$(basename "$t").log" | tail -1)"
   done
@@ -56,6 +56,11 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del2d ]; then
     fi
     [ "${DEL2D_HUGE:-1e8}" != skip ] && $D --backend cuda --dists uniform --sizes ${DEL2D_HUGE:-1e8} --reps 1 --csv "$CSV" | tail -n +3
   } 2>&1 | tee "$OUT/bench_del2d.txt"
+fi
+if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del3d ]; then
+  echo "== 3D Delaunay benchmarks (end to end; CGAL Delaunay_triangulation_3 on one core)"
+  .devbin/gpugeom_bench_del3d --reps ${DEL3D_REPS:-3} ${DEL3D_JOBS:-uniform:100000 uniform:1000000 ball:1000000 gaussian:1000000 thin_sphere:1000000 sphere:1000000} \
+    2>&1 | tee "$OUT/bench_del3d.txt"
 fi
 if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = hull3d ]; then
   echo "== 3D convex hull benchmarks (end to end and on the device; CGAL and Qhull on one core)"

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build-cuda}
 rm -rf .devbin && mkdir -p .devbin/lib
-cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt "$B"/bench/gpugeom_bench_cvd "$B"/bench/gpugeom_bench_del2d "$B"/bench/gpugeom_bench_hull3d "$B"/tools/gpugeom/gpugeom .devbin/
+cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt "$B"/bench/gpugeom_bench_cvd "$B"/bench/gpugeom_bench_del2d "$B"/bench/gpugeom_bench_hull3d "$B"/bench/gpugeom_bench_del3d "$B"/tools/gpugeom/gpugeom .devbin/
 [ -x "$B/bench/anchor_cgal" ] && cp "$B/bench/anchor_cgal" .devbin/
 # The carry limit is 64 MiB: EXCLUDE="gpugeom_bench_cvd gpugeom" leaves out what a run needs not.
 for x in ${EXCLUDE:-}; do rm -f ".devbin/$x"; done
