@@ -287,6 +287,7 @@ class Triangulator {
         });
     Counters c = counters();
     reserve(c.used + 3 * nins);
+    used_ = c.used + 3 * nins;  // (the split below hands these out)
     best = best_.data();
     std::int32_t* srank = srank_.data();
     ex_.for_each_index(
@@ -361,11 +362,11 @@ class Triangulator {
         break;
       }
       ++rounds_here;
-      const Counters c0 = counters();
-      reserve(c0.used + nact_);
+      reserve(used_ + nact_);  // (the slots handed out as of the last read of the counters)
       if (logged_ + nact_ > log_cap_) relocate(false);
       flip_round(nact_);
-      const Counters c = counters();
+      const Counters c = counters();  // one read per round
+      used_ = c.used;
       logged_ = c.log;
       nact_ = c.len[(round_ + 1) & 1];
       if (c.errors) check_errors();
@@ -705,7 +706,7 @@ class Triangulator {
   Mesh M_{};
   mesh::Tetra first_;
   std::int32_t m_ = 0;
-  std::int64_t cap_ = 0, nun_ = 0, nact_ = 0;
+  std::int64_t cap_ = 0, nun_ = 0, nact_ = 0, used_ = 0;
   std::int32_t round_ = 0;
   std::int64_t batches_ = 0;
   std::int64_t log_cap_ = 0, logged_ = 0;
