@@ -102,11 +102,13 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
     }
     H.tets[std::size_t(slot)] = T;
     slots.push_back(slot);
+    H.written.push_back(slot);
   }
   for (; r < removed.size(); ++r) {
     Tet dead;
     for (int k = 0; k < 4; ++k) dead.v[k] = dead.n[k] = -1;
     H.tets[std::size_t(removed[r])] = dead;
+    H.written.push_back(removed[r]);
   }
   std::unordered_map<Key3, std::int32_t, Hash3> open;  // face -> enc(slot, local)
   auto face_key = [](const Tet& T, int k) {
@@ -141,22 +143,24 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
       const std::int32_t e = it->second;
       H.tets[std::size_t(simplex_of(e))].n[loc_of(e)] = D.n[k];
       H.tets[std::size_t(nb)].n[loc_of(D.n[k])] = e;
+      H.written.push_back(nb);
       open.erase(it);
     }
   if (!open.empty())
     internal(std::string(step) + ": " + std::to_string(open.size()) + " face(s) left unmatched");
 }
 
-// Every live slot's neighbours share its face and point back (a guard on the host paths).
+// The written live slots' neighbours share their faces and point back (a guard on the host
+// paths, local: the rest of the store is as phase 1 left it).
 void check_adjacency(const HostMesh& H, const char* step) {
-  for (std::size_t t = 0; t < H.tets.size(); ++t) {
-    const Tet& T = H.tets[t];
+  for (const std::int32_t t : H.written) {
+    const Tet& T = H.tets[std::size_t(t)];
     if (T.v[0] < 0) continue;
     for (int k = 0; k < 4; ++k) {
       const std::int32_t e = T.n[k], o = simplex_of(e);
       const bool ok =
           e >= 0 && std::size_t(o) < H.tets.size() && H.tets[std::size_t(o)].v[0] >= 0 &&
-          H.tets[std::size_t(o)].n[loc_of(e)] == enc(std::int32_t(t), k) &&
+          H.tets[std::size_t(o)].n[loc_of(e)] == enc(t, k) &&
           host_impl::opposite_of_face(H.tets[std::size_t(o)].v, T.v[face_vertex(k, 0)],
                                       T.v[face_vertex(k, 1)], T.v[face_vertex(k, 2)]) == loc_of(e);
       if (!ok)
@@ -184,16 +188,12 @@ class Splayer {
     g_.p = H.pts;
     for (int k = 0; k < 3; ++k) g_.s[k] = H.s[k];
     g_.m = H.m;
-    scratch_.assign(std::size_t(pred::kInsphereScratch), 0.0);
+    scratch_.assign(std::size_t(std::max(pred::kInsphereScratch, pred::kOrient3dScratch)), 0.0);
     g_.lease = ScratchLease{scratch_.data(), &busy_, 1, pred::kInsphereScratch};
-    vt_.assign(std::size_t(H.m) + 1, -1);
-    for (std::size_t t = 0; t < H.tets.size(); ++t)
-      if (H.tets[t].v[0] >= 0)
-        for (int k = 0; k < 4; ++k) vt_[std::size_t(H.tets[t].v[k])] = std::int32_t(t);
+    if (H.vt.size() != std::size_t(H.m) + 1) internal("no vertex map");
   }
 
   SplayStats run(const std::vector<std::int8_t>& failed) {
-    check_adjacency(H_, "before splaying");
     for (std::int32_t v = 0; v < H_.m; ++v) {
       if (!failed[std::size_t(v)]) continue;
       ++st_.failed_vertices;
@@ -206,13 +206,14 @@ class Splayer {
     }
     splay();
     patch();
+    check_adjacency(H_, "after splaying");
     return st_;
   }
 
   // ---- stars ----
   // The star of v as the tetrahedralisation has it (slots too, for the patch).
   void mesh_star(std::int32_t v, std::vector<Tri>* tris, std::vector<std::int32_t>* slots) {
-    const std::int32_t t0 = vt_[std::size_t(v)];
+    const std::int32_t t0 = H_.vt[std::size_t(v)];
     if (t0 < 0) internal("vertex " + std::to_string(v) + " is in no tetrahedron");
     std::vector<std::int32_t> stack{t0};
     std::unordered_set<std::int32_t> seen{t0};
@@ -466,17 +467,27 @@ class Splayer {
       }
     }
     std::vector<Tet> tets;
-    for (auto& kv : added) tets.push_back(kv.second);
+    for (auto& kv : added) {
+      tets.push_back(kv.second);
+      if (flat(kv.second)) ++st_.flat_added;
+    }
     st_.removed = std::int64_t(removed.size());
     st_.added = std::int64_t(tets.size());
     replace_tets(H_, removed, tets, "patch");
+  }
+
+  // Four finite points exactly on one plane (see peel_flat).
+  bool flat(const Tet& T) {
+    for (int k = 0; k < 4; ++k)
+      if (T.v[k] == H_.m) return false;
+    const double *a = g_.at(T.v[0]), *b = g_.at(T.v[1]), *c = g_.at(T.v[2]), *d = g_.at(T.v[3]);
+    return pred::orient3d_fast(a, b, c, d) == 0 && pred::orient3d(a, b, c, d, scratch_.data()) == 0;
   }
 
   HostMesh& H_;
   Geo g_;
   std::vector<double> scratch_;
   std::int32_t busy_ = 0;
-  std::vector<std::int32_t> vt_;  // a tetrahedron of each vertex
   std::map<std::int32_t, Star> stars_;
   std::deque<Item> queue_;
   SplayStats st_;

@@ -16,10 +16,12 @@ struct alignas(32) Tet {
 
 // What phase 2 works on: the extended tetrahedralisation after phase 1, on the host.
 struct HostMesh {
-  std::vector<Tet> tets;        // slots, dead ones included
-  const double* pts = nullptr;  // m points, 3 each, curve order (host memory)
-  std::int32_t m = 0;           // the infinity vertex
-  double s[3] = {0, 0, 0};      // the kernel point
+  std::vector<Tet> tets;              // slots, dead ones included
+  std::vector<std::int32_t> vt;       // a slot holding each vertex (m + 1 entries), as downloaded
+  std::vector<std::int32_t> written;  // slots phase 2 rewrote (only these go back up)
+  const double* pts = nullptr;        // m points, 3 each, curve order (host memory)
+  std::int32_t m = 0;                 // the infinity vertex
+  double s[3] = {0, 0, 0};            // the kernel point
 };
 
 struct SplayStats {
@@ -28,18 +30,22 @@ struct SplayStats {
   std::int64_t stars_touched = 0;       // every star that changed, those included
   std::int64_t insertions = 0;          // vertices inserted into stars while splaying
   std::int64_t removed = 0, added = 0;  // tetrahedra patched
+  std::int64_t flat_added = 0;          // flat tetrahedra among the added ones (see peel_flat)
 };
 
 // Adaptive star splaying (thesis 5.3.2): failed[v] != 0 marks the vertices to start from.
 // Rewrites mesh.tets into the Delaunay tetrahedralisation (slots of removed tetrahedra are
-// reused or left dead; new ones may be appended). Throws Error(Internal) when a step that
-// cannot fail on a valid input fails.
+// reused or left dead; new ones may be appended; every slot it writes is added to
+// mesh.written). Reads stars through mesh.vt, which must hold a live slot of every vertex;
+// its cost is in the failed vertices' neighbourhoods, never in the whole store. Throws
+// Error(Internal) when a step that cannot fail on a valid input fails.
 SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed);
 
 // Flat tetrahedra: four points exactly on one plane that the perturbation orders positively.
 // They can only lie on the hull (as in 2D, a perturbed point moved just inside a hull facet);
 // each next to the outside is given to it, which leaves every other tetrahedron as it was, so
 // the result is still Delaunay, and the hull facets cover the same planes. Returns how many.
+// (Scans the whole store: called only when phase 1 or the splaying left flat tetrahedra.)
 std::int64_t peel_flat(HostMesh& mesh);
 
 }  // namespace gpugeom::del3d

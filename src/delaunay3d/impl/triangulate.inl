@@ -651,16 +651,45 @@ class Triangulator {
     return after.failed_faces;
   }
 
-  // The whole store to the host and back (phase 2 runs there).
+  // The store to the host, with a live slot of every vertex (phase 2 runs there) ...
   void download(HostMesh& H) {
     const Counters c = counters();
     H.tets.resize(std::size_t(c.used));
     ex_.to_host(tet_.data(), c.used, H.tets.data());
+    auto vt = ex_.template alloc<std::int32_t>(std::size_t(m_) + 1);
+    std::int32_t* v = vt.data();
+    ex_.fill(v, std::int64_t(m_) + 1, std::int32_t(-1));
+    const Tet* tet = tet_.data();
+    ex_.for_each_index(
+        c.used, GG_LAMBDA(std::int64_t t) {
+          const Tet T = tet[t];
+          if (T.v[0] < 0) return;
+          for (int k = 0; k < 4; ++k) atomic_max(v + T.v[k], std::int32_t(t));
+        });
+    H.vt.resize(std::size_t(m_) + 1);
+    ex_.to_host(v, std::int64_t(m_) + 1, H.vt.data());
   }
-  void upload(const HostMesh& H) {
-    const std::int64_t used = std::int64_t(H.tets.size());
+  // ... and back: only the slots it wrote.
+  void upload(HostMesh& H) {
+    std::vector<std::int32_t>& w = H.written;
+    std::sort(w.begin(), w.end());
+    w.erase(std::unique(w.begin(), w.end()), w.end());
+    const std::int64_t used = std::int64_t(H.tets.size()), nw = std::int64_t(w.size());
     reserve(used);
-    ex_.from_host(H.tets.data(), used, tet_.data());
+    if (nw) {
+      std::vector<Tet> rows(w.size());
+      for (std::size_t i = 0; i < w.size(); ++i) rows[i] = H.tets[std::size_t(w[i])];
+      auto slots = ex_.template alloc<std::int32_t>(std::size_t(nw));
+      auto vals = ex_.template alloc<Tet>(std::size_t(nw));
+      ex_.from_host(w.data(), nw, slots.data());
+      ex_.from_host(rows.data(), nw, vals.data());
+      const std::int32_t* sl = slots.data();
+      const Tet* va = vals.data();
+      Tet* tet = tet_.data();
+      ex_.for_each_index(
+          nw, GG_LAMBDA(std::int64_t i) { tet[sl[i]] = va[i]; });
+      ex_.sync();
+    }
     Counters c = counters();
     c.used = used;
     ex_.from_host(&c, 1, ctr_.data());
@@ -774,7 +803,7 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
       ex.to_host(failed.data(), S.m + 1, f.data());
       sp = splay(H, f);
     }
-    peeled = peel_flat(H);
+    if (nflat > 0 || sp.flat_added > 0) peeled = peel_flat(H);
     T.upload(H);
   }
   st.phase_ms.push_back({"splay", ms_since(t0)});
