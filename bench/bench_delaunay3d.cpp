@@ -2,8 +2,8 @@
 // with CGAL's Delaunay_triangulation_3 (sequential) on the same points in the same run when
 // the build found CGAL. Prints the GPU's name, the phase times, flips, failed vertices and
 // splaying time next to the totals; --check runs the exact checker on every result.
-// Usage: gpugeom_bench_del3d [--check] [--cpu] [--reps R] dist:n [dist:n ...] (--cpu: the CPU
-// executor too where there is a GPU)
+// Usage: gpugeom_bench_del3d [--check] [--cpu] [--verbose] [--reps R] dist:n [dist:n ...]
+// (--cpu: the CPU executor too where there is a GPU; --verbose: every phase and counter)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -58,6 +58,7 @@ double cgal_ms(const std::vector<Point3>& p, std::int64_t& cells) {
 int main(int argc, char** argv) {
   bool check = false, with_cpu = false;
   int reps = 3;
+  bool verbose = false;  // every phase and counter of the last run, after its row
   std::vector<std::string> jobs;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -65,6 +66,8 @@ int main(int argc, char** argv) {
       check = true;
     else if (a == "--cpu")
       with_cpu = true;
+    else if (a == "--verbose")
+      verbose = true;
     else if (a == "--reps" && i + 1 < argc)
       reps = std::atoi(argv[++i]);
     else
@@ -110,6 +113,14 @@ int main(int argc, char** argv) {
                   (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
                   (long long)counter(t.stats, "failed_vertices"),
                   (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(), cg, ok.c_str());
+      if (verbose) {
+        std::printf("#   phases:");
+        for (auto& p : t.stats.phase_ms) std::printf(" %s %.1f", p.first.c_str(), p.second);
+        std::printf("\n#   counters:");
+        for (auto& c : t.stats.counters)
+          std::printf(" %s %lld", c.first.c_str(), (long long)c.second);
+        std::printf("\n");
+      }
       std::fflush(stdout);
     }
   }
