@@ -13,6 +13,8 @@ struct Output {
   std::vector<std::int32_t> neighbors;     // 4 per tetrahedron, -1 on the hull
   std::vector<std::int32_t> duplicate_of;  // n entries
   std::int64_t num_duplicates = 0;
+  std::vector<std::int32_t> hull_facets;        // 3 per hull facet, outward, input indices
+  std::vector<std::int32_t> vertex_to_simplex;  // n entries (a copy takes its original's)
 };
 
 // xyz: n points on the host. Validates the coordinates on the executor (throws Error).

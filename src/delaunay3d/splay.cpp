@@ -26,17 +26,20 @@
 #include <array>
 #include <cstring>
 #include <deque>
-#include <map>
+#include <exception>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
+#include "base/clock.hpp"
 #include "delaunay3d/tet.hpp"
 #include "exec/scratch_lease.hpp"
 #include "gpugeom/common.hpp"
 #include "mesh/adjacency.hpp"
 #include "predicates/predicates.hpp"
+
+#include <omp.h>
 
 namespace gpugeom::del3d {
 namespace host_impl {
@@ -175,9 +178,18 @@ struct Tri {
   bool has(std::int32_t x) const { return a == x || b == x || c == x; }
 };
 
+struct Edge {
+  std::int32_t a, b;
+};
+
 struct Star {
   std::vector<Tri> tris;
-  std::unordered_set<std::int32_t> offered;  // every vertex this star has been given
+  std::vector<std::int32_t> offered;  // every vertex this star has been given (a few dozen)
+  bool offer(std::int32_t x) {        // false if x was given before
+    if (std::find(offered.begin(), offered.end(), x) != offered.end()) return false;
+    offered.push_back(x);
+    return true;
+  }
   bool changed = false;
   bool rebuilt = false;
 };
@@ -193,20 +205,79 @@ class Splayer {
     if (H.vt.size() != std::size_t(H.m) + 1) internal("no vertex map");
   }
 
-  SplayStats run(const std::vector<std::int8_t>& failed) {
-    for (std::int32_t v = 0; v < H_.m; ++v) {
-      if (!failed[std::size_t(v)]) continue;
+  // faces: the failed faces (three vertices each), or empty with every vertex of a failed face
+  // marked in `failed` when the list did not fit.
+  SplayStats run(const std::vector<std::int8_t>& failed, const std::vector<std::int32_t>& faces,
+                 int threads) {
+    // The link edges each failed vertex must test first: a star read from the mesh is convex
+    // at every edge but those of its failed faces (the edge (a, b) of star(v) is reflex iff
+    // the face (v, a, b) is not locally Delaunay).
+    auto t0 = Clock::now();
+    std::unordered_map<std::int32_t, std::vector<Edge>> seeds;
+    for (std::size_t f = 0; f + 2 < faces.size(); f += 3)
+      for (int i = 0; i < 3; ++i) {
+        const std::int32_t v = faces[f + i], a = faces[f + (i + 1) % 3], b = faces[f + (i + 2) % 3];
+        if (v != H_.m) seeds[v].push_back({a, b});
+      }
+    std::vector<std::int32_t> fv;
+    if (faces.empty()) {
+      for (std::int32_t v = 0; v < H_.m; ++v)
+        if (failed[std::size_t(v)]) fv.push_back(v);
+    } else {
+      for (auto& kv : seeds) fv.push_back(kv.first);
+      std::sort(fv.begin(), fv.end());
+    }
+    // Each failed star read and made convex on its own (in parallel: they share nothing but
+    // the mesh, which they only read), then entered in order.
+    std::vector<Star> built(fv.size());
+    std::vector<std::vector<Tri>> before(fv.size());
+    std::exception_ptr err;
+#pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
+    {
+      std::vector<double> scratch(scratch_.size());
+      std::int32_t busy = 0;
+      Geo g = g_;
+      g.lease = ScratchLease{scratch.data(), &busy, 1, pred::kInsphereScratch};
+#pragma omp for schedule(dynamic, 8)
+      for (std::int64_t i = 0; i < std::int64_t(fv.size()); ++i) {
+        try {
+          const std::int32_t v = fv[std::size_t(i)];
+          Star& st = built[std::size_t(i)];
+          mesh_star(v, &st.tris, nullptr);
+          before[std::size_t(i)] = st.tris;
+          std::vector<Edge> work;
+          if (faces.empty()) {
+            all_edges(st, work);
+          } else {
+            work = seeds.at(v);
+          }
+          convexify(g, v, st, work);
+        } catch (...) {
+#pragma omp critical
+          if (!err) err = std::current_exception();
+        }
+      }
+    }
+    if (err) std::rethrow_exception(err);
+    st_.us_stars = std::int64_t(1000 * ms_since(t0));
+    for (std::size_t i = 0; i < fv.size(); ++i) {
+      const std::int32_t v = fv[i];
       ++st_.failed_vertices;
-      Star& s = star(v);
-      const std::vector<Tri> before = s.tris;
-      convexify(v, s);
+      Star& s = stars_[v];
+      s = std::move(built[i]);
+      for (const Tri& t : s.tris) s.offer(t.a), s.offer(t.b), s.offer(t.c);
+      for (const Tri& t : before[i]) s.offer(t.a), s.offer(t.b), s.offer(t.c);
       s.rebuilt = s.changed = true;
       ++st_.stars_rebuilt;
-      changed(v, before, s.tris);
+      changed(v, before[i], s.tris);
     }
+    t0 = Clock::now();
     splay();
-    patch();
+    st_.us_queue = std::int64_t(1000 * ms_since(t0));
+    t0 = Clock::now();
+    patch(threads);
     check_adjacency(H_, "after splaying");
+    st_.us_patch = std::int64_t(1000 * ms_since(t0));
     return st_;
   }
 
@@ -239,7 +310,7 @@ class Splayer {
     if (it != stars_.end()) return it->second;
     Star& s = stars_[v];
     mesh_star(v, &s.tris, nullptr);
-    for (const Tri& t : s.tris) s.offered.insert(t.a), s.offered.insert(t.b), s.offered.insert(t.c);
+    for (const Tri& t : s.tris) s.offer(t.a), s.offer(t.b), s.offer(t.c);
     return s;
   }
 
@@ -258,20 +329,23 @@ class Splayer {
       if (t.has(a) && t.has(b) && t.has(c)) return true;
     return false;
   }
-  bool reflex(std::int32_t v, const Tri& t, std::int32_t d) {
+  static bool reflex(const Geo& g, std::int32_t v, const Tri& t, std::int32_t d) {
     const std::int32_t q[4] = {v, t.a, t.b, t.c};
-    return in_sphere_ext(g_, q, d);
+    return in_sphere_ext(g, q, d);
+  }
+  bool reflex(std::int32_t v, const Tri& t, std::int32_t d) {
+    return reflex(g_, v, t, d);
   }
 
   // Link edge a -> b of triangles (a, b, c) and (b, a, d) replaced by (c, d): triangles
   // (a, d, c) and (d, b, c), when both stay positively oriented around v.
-  bool try_flip(std::int32_t v, Star& s, std::int32_t a, std::int32_t b) {
+  static bool try_flip(const Geo& g, std::int32_t v, Star& s, std::int32_t a, std::int32_t b) {
     const int i1 = find_edge(s, a, b), i2 = find_edge(s, b, a);
     if (i1 < 0 || i2 < 0) internal("link edge without two triangles");
     const std::int32_t c = third(s.tris[std::size_t(i1)], a, b);
     const std::int32_t d = third(s.tris[std::size_t(i2)], a, b);
     if (c == d) return false;
-    if (orient_ext(g_, v, a, d, c) <= 0 || orient_ext(g_, v, d, b, c) <= 0) return false;
+    if (orient_ext(g, v, a, d, c) <= 0 || orient_ext(g, v, d, b, c) <= 0) return false;
     s.tris[std::size_t(i1)] = {a, d, c};
     s.tris[std::size_t(i2)] = {d, b, c};
     return true;
@@ -279,7 +353,7 @@ class Splayer {
 
   // Removes x (not extreme in v's star) from the star: flips of its link edges until it has
   // three neighbours, then its three triangles become one.
-  void remove_vertex(std::int32_t v, Star& s, std::int32_t x) {
+  static void remove_vertex(const Geo& g, std::int32_t v, Star& s, std::int32_t x) {
     for (int guard = 0;; ++guard) {
       if (guard > 100000) internal("a vertex could not be removed from a star");
       std::vector<std::int32_t> nbrs;
@@ -296,7 +370,7 @@ class Splayer {
         const std::int32_t y1 = third(s.tris[std::size_t(i0)], x, y0);
         const int i1 = find_edge(s, x, y1);
         const std::int32_t y2 = third(s.tris[std::size_t(i1)], x, y1);
-        if (orient_ext(g_, v, y0, y1, y2) <= 0) internal("a removed vertex left a folded star");
+        if (orient_ext(g, v, y0, y1, y2) <= 0) internal("a removed vertex left a folded star");
         std::vector<Tri> keep;
         for (const Tri& t : s.tris)
           if (!t.has(x)) keep.push_back(t);
@@ -306,7 +380,7 @@ class Splayer {
       }
       bool flipped = false;
       for (std::int32_t y : nbrs)
-        if (try_flip(v, s, x, y)) {
+        if (try_flip(g, v, s, x, y)) {
           flipped = true;
           break;
         }
@@ -314,37 +388,53 @@ class Splayer {
     }
   }
 
-  // Flip-Flop on the lifted star of v (see the top of the file).
-  void convexify(std::int32_t v, Star& s) {
-    for (std::int64_t guard = 0;; ++guard) {
+  // Every link edge of s once.
+  static void all_edges(const Star& s, std::vector<Edge>& work) {
+    for (const Tri& t : s.tris) {
+      const std::int32_t e[3][2] = {{t.a, t.b}, {t.b, t.c}, {t.c, t.a}};
+      for (auto& x : e)
+        if (x[0] < x[1]) work.push_back({x[0], x[1]});
+    }
+  }
+
+  // Flip-Flop on the lifted star of v (see the top of the file), from the link edges in work:
+  // a flipped edge's four neighbours are tested next; a vertex taken out changes the link
+  // around it too much to follow, so every edge is tested again (rare).
+  static void convexify(const Geo& g, std::int32_t v, Star& s, std::vector<Edge>& work) {
+    for (std::int64_t guard = 0; !work.empty(); ++guard) {
       if (guard > 10000000) internal("Flip-Flop on a star did not converge");
-      bool progress = false;
-      for (std::size_t i = 0; i < s.tris.size() && !progress; ++i) {
-        const Tri t = s.tris[i];
-        const std::int32_t e[3][2] = {{t.a, t.b}, {t.b, t.c}, {t.c, t.a}};
-        for (int k = 0; k < 3 && !progress; ++k) {
-          const std::int32_t a = e[k][0], b = e[k][1];
-          if (a > b) continue;  // each edge once
-          const int j = find_edge(s, b, a);
-          if (j < 0) internal("open star");
-          const std::int32_t d = third(s.tris[std::size_t(j)], a, b);
-          const Tri rt{a, b, third(t, a, b)};
-          if (!reflex(v, rt, d)) continue;
-          progress = true;
-          if (try_flip(v, s, a, b)) continue;
-          // Not flippable: the corner inside the cone of the other three is not extreme.
-          const std::int32_t c = rt.c;
-          const std::int32_t x = orient_ext(g_, v, a, d, c) < 0 ? a : b;
-          remove_vertex(v, s, x);
-        }
+      Edge ed = work.back();
+      work.pop_back();
+      int i1 = find_edge(s, ed.a, ed.b);
+      if (i1 < 0) {
+        std::swap(ed.a, ed.b);
+        i1 = find_edge(s, ed.a, ed.b);
+        if (i1 < 0) continue;  // flipped away since it was listed
       }
-      if (!progress) return;
+      const std::int32_t a = ed.a, b = ed.b;
+      const int j = find_edge(s, b, a);
+      if (j < 0) internal("open star");
+      const std::int32_t c = third(s.tris[std::size_t(i1)], a, b);
+      const std::int32_t d = third(s.tris[std::size_t(j)], a, b);
+      if (!reflex(g, v, Tri{a, b, c}, d)) continue;
+      if (try_flip(g, v, s, a, b)) {
+        work.push_back({a, d});
+        work.push_back({d, b});
+        work.push_back({b, c});
+        work.push_back({c, a});
+        continue;
+      }
+      // Not flippable: the corner inside the cone of the other three is not extreme.
+      const std::int32_t x = orient_ext(g, v, a, d, c) < 0 ? a : b;
+      remove_vertex(g, v, s, x);
+      work.clear();
+      all_edges(s, work);
     }
   }
 
   // Bowyer-Watson in a convex star: x enters when some triangle's sphere contains it.
   bool insert(std::int32_t v, Star& s, std::int32_t x) {
-    if (x == v || !s.offered.insert(x).second) return false;
+    if (x == v || !s.offer(x)) return false;
     std::vector<char> conflict(s.tris.size(), 0);
     bool any = false;
     for (std::size_t i = 0; i < s.tris.size(); ++i)
@@ -441,36 +531,68 @@ class Splayer {
   }
 
   // ---- patch ----
-  void patch() {
-    std::unordered_set<Key4, Hash4> old_keys;
+  // Each changed star on its own (in parallel): the old tetrahedra of v the new star lacks go,
+  // the new ones of v the old star lacks come. A tetrahedron of the mesh is in the old star of
+  // each of its vertices, so one missing from the old star of v is new to the mesh; the same
+  // new tetrahedron comes from up to four stars and is added once, as the lowest vertex's star
+  // gives it (a positive order of its vertices, the same on every run).
+  void patch(int threads) {
+    std::vector<std::pair<std::int32_t, const Star*>> work;
+    for (auto& [v, s] : stars_)
+      if (s.changed) work.push_back({v, &s});
+    st_.stars_touched = std::int64_t(work.size());
+    struct New {
+      Key4 key;
+      std::int32_t v;
+      Tet tet;
+    };
+    std::vector<std::vector<std::int32_t>> gone(work.size());
+    std::vector<std::vector<New>> made(work.size());
+    std::exception_ptr err;
+#pragma omp parallel for schedule(dynamic, 8) \
+    num_threads(threads > 0 ? threads : omp_get_max_threads())
+    for (std::int64_t i = 0; i < std::int64_t(work.size()); ++i) {
+      try {
+        const std::int32_t v = work[std::size_t(i)].first;
+        const Star& s = *work[std::size_t(i)].second;
+        std::vector<Tri> ot;
+        std::vector<std::int32_t> os;
+        mesh_star(v, &ot, &os);
+        std::vector<Key3> now, was;
+        for (const Tri& t : s.tris) now.push_back(key3(t.a, t.b, t.c));
+        for (const Tri& t : ot) was.push_back(key3(t.a, t.b, t.c));
+        std::sort(now.begin(), now.end());
+        std::sort(was.begin(), was.end());
+        for (std::size_t j = 0; j < ot.size(); ++j)
+          if (!std::binary_search(now.begin(), now.end(), key3(ot[j].a, ot[j].b, ot[j].c)))
+            gone[std::size_t(i)].push_back(os[j]);
+        for (const Tri& t : s.tris)
+          if (!std::binary_search(was.begin(), was.end(), key3(t.a, t.b, t.c)))
+            made[std::size_t(i)].push_back(
+                {key4(v, t.a, t.b, t.c), v, Tet{{v, t.a, t.b, t.c}, {-1, -1, -1, -1}}});
+      } catch (...) {
+#pragma omp critical
+        if (!err) err = std::current_exception();
+      }
+    }
+    if (err) std::rethrow_exception(err);
     std::vector<std::int32_t> removed;
-    std::unordered_map<Key4, Tet, Hash4> added;
-    for (auto& [v, s] : stars_) {
-      if (!s.changed) continue;
-      ++st_.stars_touched;
-      std::vector<Tri> ot;
-      std::vector<std::int32_t> os;
-      mesh_star(v, &ot, &os);
-      std::unordered_set<Key3, Hash3> now;
-      for (const Tri& t : s.tris) now.insert(key3(t.a, t.b, t.c));
-      for (std::size_t i = 0; i < ot.size(); ++i) {
-        old_keys.insert(key4(v, ot[i].a, ot[i].b, ot[i].c));
-        if (!now.count(key3(ot[i].a, ot[i].b, ot[i].c))) removed.push_back(os[i]);
-      }
+    std::vector<New> all;
+    for (std::size_t i = 0; i < work.size(); ++i) {
+      removed.insert(removed.end(), gone[i].begin(), gone[i].end());
+      all.insert(all.end(), made[i].begin(), made[i].end());
     }
-    for (auto& [v, s] : stars_) {
-      if (!s.changed) continue;
-      for (const Tri& t : s.tris) {
-        const Key4 k = key4(v, t.a, t.b, t.c);
-        if (old_keys.count(k) || added.count(k)) continue;
-        added[k] = Tet{{v, t.a, t.b, t.c}, {-1, -1, -1, -1}};
-      }
-    }
+    std::sort(all.begin(), all.end(), [](const New& x, const New& y) {
+      return x.key != y.key ? x.key < y.key : x.v < y.v;
+    });
     std::vector<Tet> tets;
-    for (auto& kv : added) {
-      tets.push_back(kv.second);
-      if (flat(kv.second)) ++st_.flat_added;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      if (i > 0 && all[i].key == all[i - 1].key) continue;
+      tets.push_back(all[i].tet);
+      if (flat(all[i].tet)) ++st_.flat_added;
     }
+    std::sort(removed.begin(), removed.end());
+    removed.erase(std::unique(removed.begin(), removed.end()), removed.end());
     st_.removed = std::int64_t(removed.size());
     st_.added = std::int64_t(tets.size());
     replace_tets(H_, removed, tets, "patch");
@@ -488,7 +610,7 @@ class Splayer {
   Geo g_;
   std::vector<double> scratch_;
   std::int32_t busy_ = 0;
-  std::map<std::int32_t, Star> stars_;
+  std::unordered_map<std::int32_t, Star> stars_;  // (references stay valid as it grows)
   std::deque<Item> queue_;
   SplayStats st_;
 };
@@ -574,9 +696,10 @@ std::int64_t peel(HostMesh& H) {
 
 }  // namespace
 
-SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed) {
+SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed,
+                 const std::vector<std::int32_t>& faces, int threads) {
   Splayer s(mesh);
-  return s.run(failed);
+  return s.run(failed, faces, threads);
 }
 
 std::int64_t peel_flat(HostMesh& mesh) {

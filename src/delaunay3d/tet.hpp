@@ -31,15 +31,20 @@ struct SplayStats {
   std::int64_t insertions = 0;          // vertices inserted into stars while splaying
   std::int64_t removed = 0, added = 0;  // tetrahedra patched
   std::int64_t flat_added = 0;          // flat tetrahedra among the added ones (see peel_flat)
+  std::int64_t us_stars = 0, us_queue = 0, us_patch = 0;  // time: rebuilding, splaying, patching
 };
 
-// Adaptive star splaying (thesis 5.3.2): failed[v] != 0 marks the vertices to start from.
+// Adaptive star splaying (thesis 5.3.2): faces lists the faces that are not locally Delaunay
+// (three vertices each), whose vertices it starts from; where that list is empty, failed[v] != 0
+// marks them instead (and their stars are tested whole). Up to `threads` host threads (0: the
+// OpenMP default) rebuild the failed stars.
 // Rewrites mesh.tets into the Delaunay tetrahedralisation (slots of removed tetrahedra are
 // reused or left dead; new ones may be appended; every slot it writes is added to
 // mesh.written). Reads stars through mesh.vt, which must hold a live slot of every vertex;
 // its cost is in the failed vertices' neighbourhoods, never in the whole store. Throws
 // Error(Internal) when a step that cannot fail on a valid input fails.
-SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed);
+SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed,
+                 const std::vector<std::int32_t>& faces, int threads);
 
 // Flat tetrahedra: four points exactly on one plane that the perturbation orders positively.
 // They can only lie on the hull (as in 2D, a perturbed point moved just inside a hull facet);

@@ -133,7 +133,12 @@ GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::
       w[i] = sub_rn(c[i], a[i]);
       d[i] = sub_rn(pq[i], a[i]);
     }
-    cross(u, w, nrm);  // (points into the infinite side: the face is oriented outward)
+    // The face is listed outward from this tetrahedron, so (b - a) x (c - a) points back into
+    // the hull; its reverse points to the infinite side, where the points are. (Taking the
+    // face's own normal here once chose the point nearest the face: the hull then grew by a
+    // sliver per batch, and uniform 10^5 took 75 batches and 2 300 flip rounds instead of 10
+    // and 190.)
+    cross(w, u, nrm);
     const double n2 = dot(nrm, nrm), o = dot(nrm, d);
     if (o > 0 && mul_rn(o, o) > mul_rn(1e-12, mul_rn(n2, dot(d, d))))
       return ordered_bits(float(-o / n2));

@@ -30,7 +30,9 @@ struct Counters {
   std::int64_t used;      // slots handed out
   std::int64_t free_head, free_tail, popped, pushed;  // the queue of freed slots
   std::int64_t flips23, flips32, rounds, unflippable, failed_faces, flat, lost, errors;
-  std::int64_t nstuck, retests;  // the list of stuck tetrahedra, and how often it was retested
+  std::int64_t nstuck, retests;   // the list of stuck tetrahedra, and how often it was retested
+  std::int64_t halt, halt_round;  // a round found no room: it and the rest of its chunk wait
+  std::int64_t team_end;          // the round a team stopped at (did not run)
 };
 
 // The store as the kernels see it.
@@ -97,6 +99,211 @@ struct FaceStore {
     }
     atomic_add(&M.ctr->errors, std::int64_t(1));
     return outer;
+  }
+};
+
+// One flip round's steps, each a function of one list entry (or flip), so that the same code
+// runs as kernels or inside a team: begin (one thread), test, flip, fix (over the round's
+// flips), relist.
+struct FlipRound {
+  Geo g;
+  Mesh M;
+  mesh::WorkLists L;
+  std::int8_t* dec;       // per list entry: the proposal (face | kind << 2), or -1
+  std::int32_t* third;    // per list entry: a 3-2 flip's third tetrahedron
+  std::int32_t* flipped;  // the round's flip records
+  std::int32_t round, epoch;
+  std::int64_t log_cap;
+
+  GG_HD const std::int64_t* count() const { return L.count(round); }
+  GG_HD const std::int64_t* flips() const { return &M.ctr->nflip[round & 1]; }
+  GG_HD bool halted() const { return M.ctr->halt != 0; }
+
+  // The round's counters: the freed slots of the last round join the queue. A round that could
+  // need more slots or records than there are halts (nothing of it runs) until the host grows
+  // the store or starts a new epoch of records.
+  GG_HD void begin() const {
+    Counters* ctr = M.ctr;
+    if (ctr->halt) return;
+    const std::int64_t n = *count();
+    *L.next_count(round) = 0;
+    ctr->nflip[round & 1] = 0;
+    if (n == 0) return;  // (a round past the last one: nothing to do)
+    if (ctr->used + n > M.cap || ctr->log + n > log_cap) {
+      ctr->halt = 1;
+      ctr->halt_round = round;
+      return;
+    }
+    const std::int64_t avail = ctr->free_tail - ctr->free_head;
+    ctr->free_head += ctr->popped < avail ? ctr->popped : avail;
+    ctr->free_tail += ctr->pushed;
+    ctr->popped = ctr->pushed = 0;
+    ctr->rounds += 1;
+  }
+
+  // Tests and proposals: at its first face that is not locally Delaunay and can be flipped, a
+  // tetrahedron votes for the flip on every tetrahedron the flip rewrites.
+  GG_HD void test(std::int64_t i) const {
+    if (halted()) return;
+    Counters* ctr = M.ctr;
+    const std::int32_t t = L.current(round)[i];
+    const Tet T = M.tet[t];
+    int res = -1;
+    std::int32_t t3 = -1;
+    bool stuck = false;
+    if (T.v[0] >= 0) {
+      for (int k = 0; k < 4 && res < 0; ++k) {
+        const std::int32_t nb = simplex_of(T.n[k]);
+        const std::int32_t d = M.tet[nb].v[loc_of(T.n[k])];
+        if (!in_sphere_ext(g, T.v, d)) continue;
+        std::int32_t x[3];
+        face_of(T.v, k, x);
+        const std::int32_t u = T.v[k];
+        int neg = -1, nneg = 0;
+        for (int e = 0; e < 3; ++e)
+          if (orient_ext(g, x[e], x[(e + 1) % 3], u, d) < 0) neg = e, ++nneg;
+        if (nneg == 0) {
+          res = k;
+        } else if (nneg == 1) {  // 3-2 if the edge x_neg x_neg+1 has degree 3
+          const std::int32_t c = x[(neg + 2) % 3];
+          const int kk = T.v[0] == c ? 0 : T.v[1] == c ? 1 : T.v[2] == c ? 2 : 3;
+          const std::int32_t z = simplex_of(T.n[kk]);
+          if (M.tet[z].v[loc_of(T.n[kk])] == d) {
+            res = k | ((neg + 1) << 2);
+            t3 = z;
+          } else {
+            stuck = true;
+          }
+        } else {
+          stuck = true;
+        }
+        if (res >= 0) {
+          const u64 key = mesh::vote_key(round, t);
+          atomic_max(M.vote + t, key);
+          atomic_max(M.vote + nb, key);
+          if (t3 >= 0) atomic_max(M.vote + t3, key);
+        }
+      }
+    }
+    if (stuck && res < 0) {  // (listed once per epoch, for the retest)
+      atomic_add(&ctr->unflippable, std::int64_t(1));
+      if (atomic_exchange(M.mark + t, epoch) != epoch)
+        M.stuck[atomic_add(&ctr->nstuck, std::int64_t(1))] = t;
+    }
+    dec[i] = std::int8_t(res);
+    third[i] = t3;
+  }
+
+  // Flips: a proposal that holds the vote on every tetrahedron it rewrites.
+  GG_HD void flip(std::int64_t i) const {
+    if (halted()) return;
+    const int r = dec[i];
+    if (r < 0) return;
+    const std::int32_t t = L.current(round)[i];
+    const u64 key = mesh::vote_key(round, t);
+    if (M.vote[t] != key) return;
+    const Tet T = M.tet[t];
+    const int k = r & 3, kind = r >> 2;
+    const std::int32_t nb = simplex_of(T.n[k]);
+    if (M.vote[nb] != key) return;
+    const std::int32_t z = third[i];
+    if (kind && M.vote[z] != key) return;
+    Tet old[3];
+    old[0] = T;
+    old[1] = M.tet[nb];
+    std::int32_t x[3];
+    face_of(T.v, k, x);
+    const std::int32_t u = T.v[k], w = old[1].v[loc_of(T.n[k])];
+    Tet y[3];
+    std::int32_t slots[3];
+    std::int32_t payload[6];
+    int nold, nnew;
+    if (kind == 0) {  // 2-3: (x_e, x_e+1, u, w)
+      nold = 2, nnew = 3;
+      slots[0] = t, slots[1] = nb, slots[2] = take_slot(M);
+      for (int e = 0; e < 3; ++e) {
+        y[e].v[0] = x[e], y[e].v[1] = x[(e + 1) % 3], y[e].v[2] = u, y[e].v[3] = w;
+      }
+      payload[0] = 0, payload[1] = x[0], payload[2] = x[1], payload[3] = x[2];
+      payload[4] = u, payload[5] = w;
+    } else {  // 3-2 around edge (a, b): (c, u, w, a) and (c, w, u, b)
+      nold = 3, nnew = 2;
+      old[2] = M.tet[z];
+      const int e = kind - 1;
+      const std::int32_t a = x[e], b = x[(e + 1) % 3], c = x[(e + 2) % 3];
+      slots[0] = t, slots[1] = nb, slots[2] = z;
+      y[0].v[0] = c, y[0].v[1] = u, y[0].v[2] = w, y[0].v[3] = a;
+      y[1].v[0] = c, y[1].v[1] = w, y[1].v[2] = u, y[1].v[3] = b;
+      payload[0] = 1, payload[1] = c, payload[2] = u, payload[3] = w;
+      payload[4] = a, payload[5] = b;
+    }
+    // Neighbours: faces among the new tetrahedra, else the old outer pointer as it was (the
+    // fix step settles the outer ones).
+    for (int s = 0; s < nnew; ++s)
+      for (int l = 0; l < 4; ++l) {
+        std::int32_t f[3];
+        face_of(y[s].v, l, f);
+        std::int32_t e = -1;
+        for (int s2 = 0; s2 < nnew && e < 0; ++s2) {
+          const int l2 = s2 == s ? -1 : opposite_of_face(y[s2].v, f[0], f[1], f[2]);
+          if (l2 >= 0) e = enc(slots[s2], l2);
+        }
+        for (int o = 0; o < nold && e < 0; ++o) {
+          const int lo = opposite_of_face(old[o].v, f[0], f[1], f[2]);
+          if (lo >= 0) e = old[o].n[lo];
+        }
+        y[s].n[l] = e;
+      }
+    for (int s = 0; s < nnew; ++s) {
+      M.tet[slots[s]] = y[s];
+      M.stamp[slots[s]] = round;
+    }
+    if (kind) {
+      Tet dead;
+      dead.v[0] = dead.v[1] = dead.v[2] = dead.v[3] = -1;
+      dead.n[0] = dead.n[1] = dead.n[2] = dead.n[3] = -1;
+      M.tet[z] = dead;
+      M.stamp[z] = round;
+      free_slot(M, z);
+      atomic_add(&M.ctr->flips32, std::int64_t(1));
+    } else {
+      atomic_add(&M.ctr->flips23, std::int64_t(1));
+    }
+    Hist h[3];
+    M.log.load(slots, h);
+    const std::int64_t rec = atomic_add(&M.ctr->log, std::int64_t(1));
+    M.log.append(M.log.base + std::int32_t(rec), slots, payload, h);
+    flipped[atomic_add(&M.ctr->nflip[round & 1], std::int64_t(1))] = M.log.base + std::int32_t(rec);
+    std::int32_t* next = L.next(round);
+    const std::int64_t at = atomic_add(L.next_count(round), std::int64_t(nnew));
+    for (int s = 0; s < nnew; ++s) next[at + s] = slots[s];
+  }
+
+  // Phase 2 of the flips: outer faces point to where their neighbours' faces went.
+  GG_HD void fix(std::int64_t i) const {
+    if (halted()) return;
+    const std::int32_t* x = M.log.record(flipped[i]);
+    const int nnew = x[3] == 1 ? 2 : 3;
+    for (int s = 0; s < nnew; ++s) {
+      const std::int32_t ys = x[s];
+      const Tet Y = M.tet[ys];
+      for (int l = 0; l < 4; ++l) {
+        const std::int32_t o = simplex_of(Y.n[l]);
+        if (o == x[0] || o == x[1] || o == x[2]) continue;  // inner
+        FaceStore S{M, {0, 0, 0}};
+        face_of(Y.v, l, S.f);
+        mesh::fix_face(S, ys, l, Y.n[l], M.stamp[o] == round);
+      }
+    }
+  }
+
+  // Outvoted proposers test again (a proposer rewritten by another flip is listed by it).
+  GG_HD void relist(std::int64_t i) const {
+    if (halted()) return;
+    if (dec[i] < 0) return;
+    const std::int32_t t = L.current(round)[i];
+    if (M.stamp[t] == round) return;
+    L.next(round)[atomic_add(L.next_count(round), std::int64_t(1))] = t;
   }
 };
 
@@ -285,6 +492,7 @@ class Triangulator {
 
   // One batch: relocate and choose, split, flip.
   void batch() {
+    const auto t0 = Clock::now();
     ++batches_;
     relocate(true);
     u64* best = best_.data();
@@ -359,11 +567,20 @@ class Triangulator {
       dead_ = 0;
     }
     nact_ = 4 * nins;
+    ms_choose_ += ms_since(t0);
     flip_until_stuck();
   }
 
+  // Rounds run in chunks with no wait in between: every kernel reads its list length on the
+  // executor, and a round that could outgrow the store or the flip log halts itself and the
+  // rest of the chunk, for the host to make room; the host reads the counters once per chunk.
+  // Once the list is short (the long tail of each batch), one team runs the rounds in a single
+  // launch with barriers between the steps.
+  static constexpr int kChunk = 4;
+
   void flip_until_stuck() {
     std::int64_t rounds_here = 0;
+    const std::int64_t team_max = 2 * std::int64_t(ex_.team_size());
     while (nact_ > 0) {
       if (max_rounds_ >= 0 && rounds_here >= max_rounds_) {  // (test mode: leave it to phase 2)
         const mesh::WorkLists L = work_lists();
@@ -372,11 +589,28 @@ class Triangulator {
             1, GG_LAMBDA(std::int64_t) { *len = 0; });
         break;
       }
-      ++rounds_here;
       reserve(used_ + nact_);  // (the slots handed out as of the last read of the counters)
       if (logged_ + nact_ > log_cap_) relocate(false);
-      flip_round(nact_);
-      const Counters c = counters();  // one read per round
+      const std::int32_t first = round_ + 1;
+      std::int64_t chunk = kChunk;
+      if (max_rounds_ >= 0) chunk = std::min<std::int64_t>(chunk, max_rounds_ - rounds_here);
+      const bool team = nact_ <= team_max;
+      const auto t0 = Clock::now();
+      if (team)
+        team_rounds(first, team_max, max_rounds_ >= 0 ? chunk : std::int64_t(1) << 30);
+      else
+        for (std::int64_t k = 0; k < chunk; ++k) launch_round(first + std::int32_t(k), 4 * nact_);
+      Counters c = counters();  // one read per chunk
+      (team ? ms_team_ : ms_wide_) += ms_since(t0);
+      ++(team ? team_calls_ : chunks_);
+      std::int32_t last = team ? std::int32_t(c.team_end) - 1 : first + std::int32_t(chunk) - 1;
+      if (c.halt) {  // (the halted round did nothing: it runs again after the room is made)
+        last = std::int32_t(c.halt_round) - 1;
+        c.halt = 0;
+        ex_.from_host(&c, 1, ctr_.data());
+      }
+      rounds_here += last - round_;
+      round_ = last;
       used_ = c.used;
       logged_ = c.log;
       nact_ = c.len[(round_ + 1) & 1];
@@ -409,193 +643,66 @@ class Triangulator {
     }
   }
 
-  // One round over its work list (at most bound long); the next round's list is appended.
-  void flip_round(std::int64_t bound) {
-    ++round_;
-    const Geo g = g_;
-    const Mesh M = M_;
-    const std::int32_t round = round_;
-    const mesh::WorkLists L = work_lists();
-    const std::int32_t* act = L.current(round);
-    const std::int64_t* count = L.count(round);
-    std::int32_t* next = L.next(round);
-    std::int64_t* next_len = L.next_count(round);
-    std::int8_t* dec = dec_.data();
-    std::int32_t* third = third_.data();
-    std::int32_t* flipped = flipped_.data();
-    const int p = round & 1;
-    Counters* ctr = ctr_.data();
-    // The round's counters: the freed slots of the last round join the queue.
+  FlipRound make_round(std::int32_t round) {
+    FlipRound R;
+    R.g = g_;
+    R.M = M_;
+    R.L = work_lists();
+    R.dec = dec_.data();
+    R.third = third_.data();
+    R.flipped = flipped_.data();
+    R.round = round;
+    R.epoch = stuck_epoch_;
+    R.log_cap = log_cap_;
+    return R;
+  }
+
+  // One round as five kernels, each over the list length read on the executor (bound sizes
+  // the grids; every kernel covers the whole list whatever its length).
+  void launch_round(std::int32_t round, std::int64_t bound) {
+    const FlipRound R = make_round(round);
+    const std::int64_t* count = R.count();
     ex_.for_each_index(
-        1, GG_LAMBDA(std::int64_t) {
-          const std::int64_t avail = ctr->free_tail - ctr->free_head;
-          ctr->free_head += ctr->popped < avail ? ctr->popped : avail;
-          ctr->free_tail += ctr->pushed;
-          ctr->popped = ctr->pushed = 0;
-          *next_len = 0;
-          ctr->nflip[p] = 0;
-          ctr->rounds += 1;
-        });
-    // Tests and proposals.
-    const std::int32_t epoch = stuck_epoch_;
+        1, GG_LAMBDA(std::int64_t) { R.begin(); });
     ex_.for_each_counted(
-        count, bound, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t t = act[i];
-          const Tet T = M.tet[t];
-          int res = -1;
-          std::int32_t t3 = -1;
-          bool stuck = false;
-          if (T.v[0] >= 0) {
-            for (int k = 0; k < 4 && res < 0; ++k) {
-              const std::int32_t nb = simplex_of(T.n[k]);
-              const std::int32_t d = M.tet[nb].v[loc_of(T.n[k])];
-              if (!in_sphere_ext(g, T.v, d)) continue;
-              std::int32_t x[3];
-              face_of(T.v, k, x);
-              const std::int32_t u = T.v[k];
-              int neg = -1, nneg = 0;
-              for (int e = 0; e < 3; ++e)
-                if (orient_ext(g, x[e], x[(e + 1) % 3], u, d) < 0) neg = e, ++nneg;
-              if (nneg == 0) {
-                res = k;
-              } else if (nneg == 1) {  // 3-2 if the edge x_neg x_neg+1 has degree 3
-                const std::int32_t c = x[(neg + 2) % 3];
-                const int kk = T.v[0] == c ? 0 : T.v[1] == c ? 1 : T.v[2] == c ? 2 : 3;
-                const std::int32_t z = simplex_of(T.n[kk]);
-                if (M.tet[z].v[loc_of(T.n[kk])] == d) {
-                  res = k | ((neg + 1) << 2);
-                  t3 = z;
-                } else {
-                  stuck = true;
-                }
-              } else {
-                stuck = true;
-              }
-              if (res >= 0) {
-                const u64 key = mesh::vote_key(round, t);
-                atomic_max(M.vote + t, key);
-                atomic_max(M.vote + nb, key);
-                if (t3 >= 0) atomic_max(M.vote + t3, key);
-              }
-            }
-          }
-          if (stuck && res < 0) {  // (listed once per epoch, for the retest)
-            atomic_add(&ctr->unflippable, std::int64_t(1));
-            if (atomic_exchange(M.mark + t, epoch) != epoch)
-              M.stuck[atomic_add(&ctr->nstuck, std::int64_t(1))] = t;
-          }
-          dec[i] = std::int8_t(res);
-          third[i] = t3;
-        });
-    // Flips: a proposal that holds the vote on every tetrahedron it rewrites.
-    const std::int32_t log_base = M.log.base;
+        count, bound, GG_LAMBDA(std::int64_t i) { R.test(i); });
     ex_.for_each_counted(
-        count, bound, GG_LAMBDA(std::int64_t i) {
-          const int r = dec[i];
-          if (r < 0) return;
-          const std::int32_t t = act[i];
-          const u64 key = mesh::vote_key(round, t);
-          if (M.vote[t] != key) return;
-          const Tet T = M.tet[t];
-          const int k = r & 3, kind = r >> 2;
-          const std::int32_t nb = simplex_of(T.n[k]);
-          if (M.vote[nb] != key) return;
-          const std::int32_t z = third[i];
-          if (kind && M.vote[z] != key) return;
-          Tet old[3];
-          old[0] = T;
-          old[1] = M.tet[nb];
-          std::int32_t x[3];
-          face_of(T.v, k, x);
-          const std::int32_t u = T.v[k], w = old[1].v[loc_of(T.n[k])];
-          Tet y[3];
-          std::int32_t slots[3];
-          std::int32_t payload[6];
-          int nold, nnew;
-          if (kind == 0) {  // 2-3: (x_e, x_e+1, u, w)
-            nold = 2, nnew = 3;
-            slots[0] = t, slots[1] = nb, slots[2] = take_slot(M);
-            for (int e = 0; e < 3; ++e) {
-              y[e].v[0] = x[e], y[e].v[1] = x[(e + 1) % 3], y[e].v[2] = u, y[e].v[3] = w;
-            }
-            payload[0] = 0, payload[1] = x[0], payload[2] = x[1], payload[3] = x[2];
-            payload[4] = u, payload[5] = w;
-          } else {  // 3-2 around edge (a, b): (c, u, w, a) and (c, w, u, b)
-            nold = 3, nnew = 2;
-            old[2] = M.tet[z];
-            const int e = kind - 1;
-            const std::int32_t a = x[e], b = x[(e + 1) % 3], c = x[(e + 2) % 3];
-            slots[0] = t, slots[1] = nb, slots[2] = z;
-            y[0].v[0] = c, y[0].v[1] = u, y[0].v[2] = w, y[0].v[3] = a;
-            y[1].v[0] = c, y[1].v[1] = w, y[1].v[2] = u, y[1].v[3] = b;
-            payload[0] = 1, payload[1] = c, payload[2] = u, payload[3] = w;
-            payload[4] = a, payload[5] = b;
-          }
-          // Neighbours: faces among the new tetrahedra, else the old outer pointer as it was
-          // (the fix pass below settles the outer ones).
-          for (int s = 0; s < nnew; ++s)
-            for (int l = 0; l < 4; ++l) {
-              std::int32_t f[3];
-              face_of(y[s].v, l, f);
-              std::int32_t e = -1;
-              for (int s2 = 0; s2 < nnew && e < 0; ++s2) {
-                const int l2 = s2 == s ? -1 : opposite_of_face(y[s2].v, f[0], f[1], f[2]);
-                if (l2 >= 0) e = enc(slots[s2], l2);
-              }
-              for (int o = 0; o < nold && e < 0; ++o) {
-                const int lo = opposite_of_face(old[o].v, f[0], f[1], f[2]);
-                if (lo >= 0) e = old[o].n[lo];
-              }
-              y[s].n[l] = e;
-            }
-          for (int s = 0; s < nnew; ++s) {
-            M.tet[slots[s]] = y[s];
-            M.stamp[slots[s]] = round;
-          }
-          if (kind) {
-            Tet dead;
-            dead.v[0] = dead.v[1] = dead.v[2] = dead.v[3] = -1;
-            dead.n[0] = dead.n[1] = dead.n[2] = dead.n[3] = -1;
-            M.tet[z] = dead;
-            M.stamp[z] = round;
-            free_slot(M, z);
-            atomic_add(&M.ctr->flips32, std::int64_t(1));
-          } else {
-            atomic_add(&M.ctr->flips23, std::int64_t(1));
-          }
-          Hist h[3];
-          M.log.load(slots, h);
-          const std::int64_t rec = atomic_add(&M.ctr->log, std::int64_t(1));
-          M.log.append(log_base + std::int32_t(rec), slots, payload, h);
-          flipped[atomic_add(&M.ctr->nflip[p], std::int64_t(1))] = log_base + std::int32_t(rec);
-          const std::int64_t at = atomic_add(next_len, std::int64_t(nnew));
-          for (int s = 0; s < nnew; ++s) next[at + s] = slots[s];
-        });
-    // Phase 2 of the flips: outer faces point to where their neighbours' faces went.
+        count, bound, GG_LAMBDA(std::int64_t i) { R.flip(i); });
     ex_.for_each_counted(
-        &ctr->nflip[p], bound, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t* x = M.log.record(flipped[i]);
-          const int nnew = x[3] == 1 ? 2 : 3;
-          for (int s = 0; s < nnew; ++s) {
-            const std::int32_t ys = x[s];
-            const Tet Y = M.tet[ys];
-            for (int l = 0; l < 4; ++l) {
-              const std::int32_t o = simplex_of(Y.n[l]);
-              if (o == x[0] || o == x[1] || o == x[2]) continue;  // inner
-              FaceStore S{M, {0, 0, 0}};
-              face_of(Y.v, l, S.f);
-              mesh::fix_face(S, ys, l, Y.n[l], M.stamp[o] == round);
-            }
-          }
-        });
-    // Outvoted proposers test again (a proposer rewritten by another flip is listed by it).
+        R.flips(), bound, GG_LAMBDA(std::int64_t i) { R.fix(i); });
     ex_.for_each_counted(
-        count, bound, GG_LAMBDA(std::int64_t i) {
-          if (dec[i] < 0) return;
-          const std::int32_t t = act[i];
-          if (M.stamp[t] == round) return;
-          next[atomic_add(next_len, std::int64_t(1))] = t;
-        });
+        count, bound, GG_LAMBDA(std::int64_t i) { R.relist(i); });
+  }
+
+  // Rounds from `round` on in one team, while the list is non-empty and at most `max` long,
+  // nothing halts and fewer than `limit` have run; leaves the round it stopped at in the
+  // counters (team_end).
+  void team_rounds(std::int32_t round, std::int64_t max, std::int64_t limit) {
+    const FlipRound R0 = make_round(round);
+    Counters* ctr = ctr_.data();
+    const std::int32_t stop = std::int32_t(std::min<std::int64_t>(round + limit, INT32_MAX));
+    ex_.team(GG_LAMBDA(const Exec::Team& t) {
+      FlipRound R = R0;
+      std::int32_t r = round;
+      for (;;) {
+        const std::int64_t n = *R.count();
+        if (n == 0 || n > max || r >= stop || ctr->halt) break;
+        t.barrier();  // (every thread has read the length before the round's first write)
+        if (t.rank == 0) R.begin();
+        t.barrier();
+        for (std::int64_t i = t.rank; i < n; i += t.size) R.test(i);
+        t.barrier();
+        for (std::int64_t i = t.rank; i < n; i += t.size) R.flip(i);
+        t.barrier();
+        const std::int64_t nf = *R.flips();
+        for (std::int64_t i = t.rank; i < nf; i += t.size) R.fix(i);
+        t.barrier();
+        for (std::int64_t i = t.rank; i < n; i += t.size) R.relist(i);
+        t.barrier();
+        R.round = ++r;
+      }
+      if (t.rank == 0) ctr->team_end = r;
+    });
   }
 
   // Points not yet inserted follow their tetrahedron through this epoch's splits and recorded
@@ -655,13 +762,16 @@ class Triangulator {
   }
 
   // Every face of the tetrahedralisation tested; the vertices of faces that are not locally
-  // Delaunay are marked (failed: m + 1 entries). Also counts the flat finite tetrahedra next
-  // to the outside (see peel_flat). Returns the number of failed faces.
+  // Delaunay are marked (failed: m + 1 entries) and the faces listed (faces: room for
+  // face_cap, three vertices each; the list is left incomplete beyond). Also counts the flat
+  // finite tetrahedra next to the outside (see peel_flat). Returns the number of failed faces.
   std::int64_t find_failed(typename Exec::template Buffer<std::int8_t>& failed,
-                           std::int64_t& flat) {
+                           typename Exec::template Buffer<std::int32_t>& faces,
+                           std::int64_t face_cap, std::int64_t& flat) {
     const Geo g = g_;
     const Mesh M = M_;
     std::int8_t* f = failed.data();
+    std::int32_t* fl = faces.data();
     ex_.fill(f, std::int64_t(m_) + 1, std::int8_t(0));
     Counters* ctr = ctr_.data();
     const Counters c = counters();
@@ -677,9 +787,12 @@ class Triangulator {
             hull = hull || d == m;
             if (nb < t) continue;  // (each face once, from its higher slot)
             if (!in_sphere_ext(g, T.v, d)) continue;
-            atomic_add(&ctr->failed_faces, std::int64_t(1));
-            for (int j = 0; j < 4; ++j) f[T.v[j]] = 1;
-            f[d] = 1;
+            const std::int64_t at = atomic_add(&ctr->failed_faces, std::int64_t(1));
+            std::int32_t x[3];
+            face_of(T.v, k, x);
+            for (int j = 0; j < 3; ++j) f[x[j]] = 1;
+            if (at < face_cap)
+              for (int j = 0; j < 3; ++j) fl[3 * at + j] = x[j];
           }
           if (!hull || T.v[0] == m || T.v[1] == m || T.v[2] == m || T.v[3] == m) return;
           const double *a = g.at(T.v[0]), *b = g.at(T.v[1]), *cc = g.at(T.v[2]), *d = g.at(T.v[3]);
@@ -768,6 +881,13 @@ class Triangulator {
     st_.counters["flips32"] = c.flips32;
     st_.counters["unflippable_tests"] = c.unflippable;
     st_.counters["stuck_retests"] = c.retests;
+    // Where phase 1's time goes (host clock; each part ends with a read of the counters):
+    // choosing and splitting, rounds as kernels, rounds in a team.
+    st_.counters["us_choose_split"] = std::int64_t(1000 * ms_choose_);
+    st_.counters["us_rounds_wide"] = std::int64_t(1000 * ms_wide_);
+    st_.counters["us_rounds_team"] = std::int64_t(1000 * ms_team_);
+    st_.counters["round_chunks"] = chunks_;
+    st_.counters["team_launches"] = team_calls_;
     st_.counters["failed_faces"] = c.failed_faces;
   }
 
@@ -786,6 +906,8 @@ class Triangulator {
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;
   std::int32_t epoch_first_new_ = 0;
   std::int32_t stuck_epoch_ = 0;
+  double ms_choose_ = 0, ms_wide_ = 0, ms_team_ = 0;
+  std::int64_t chunks_ = 0, team_calls_ = 0;
   std::int64_t flips_at_retest_ = 0;
   LeasePool<Exec> pool_;
   typename Exec::template Buffer<Tet> tet_;
@@ -802,7 +924,7 @@ class Triangulator {
 // left failed faces, then the finite tetrahedra in input indices (f) with S's duplicate map.
 template <class Body>
 inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on_device,
-                             std::int64_t max_rounds, Stats& st, Body body) {
+                             std::int64_t max_rounds, int threads, Stats& st, Body body) {
   auto t0 = Clock::now();
   auto raw = ex.template alloc<double>(std::size_t(3 * n));
   if (on_device)
@@ -830,27 +952,42 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   st.phase_ms.push_back({"insert_flip", ms_since(t0)});
   t0 = Clock::now();
   auto failed = ex.template alloc<std::int8_t>(std::size_t(S.m + 1));
+  const std::int64_t face_cap = std::max<std::int64_t>(1 << 16, S.m / 16);
+  auto faces = ex.template alloc<std::int32_t>(std::size_t(3 * face_cap));
   std::int64_t nflat = 0;
-  const std::int64_t nfailed = T.find_failed(failed, nflat);
+  const std::int64_t nfailed = T.find_failed(failed, faces, face_cap, nflat);
   st.phase_ms.push_back({"find_failed", ms_since(t0)});
   t0 = Clock::now();
   SplayStats sp;
   std::int64_t peeled = 0;
   if (nfailed > 0 || nflat > 0) {  // phase 2 and the flat tetrahedra, on the host
     HostMesh H;
+    auto t1 = Clock::now();
     T.download(H);
+    st.counters["us_splay_download"] = std::int64_t(1000 * ms_since(t1));
     std::vector<double> pts(std::size_t(3 * S.m));
     ex.to_host(S.pts.data(), 3 * S.m, pts.data());
     H.pts = pts.data();
     H.m = std::int32_t(S.m);
     for (int k = 0; k < 3; ++k) H.s[k] = first.s[k];
     if (nfailed > 0) {
-      std::vector<std::int8_t> f(std::size_t(S.m + 1));
-      ex.to_host(failed.data(), S.m + 1, f.data());
-      sp = splay(H, f);
+      std::vector<std::int8_t> f;
+      std::vector<std::int32_t> fl;
+      if (nfailed <= face_cap) {
+        fl.resize(std::size_t(3 * nfailed));
+        ex.to_host(faces.data(), 3 * nfailed, fl.data());
+      } else {
+        f.resize(std::size_t(S.m + 1));
+        ex.to_host(failed.data(), S.m + 1, f.data());
+      }
+      t1 = Clock::now();
+      sp = splay(H, f, fl, threads);
+      st.counters["us_splay_host"] = std::int64_t(1000 * ms_since(t1));
     }
     if (nflat > 0 || sp.flat_added > 0) peeled = peel_flat(H);
+    t1 = Clock::now();
     T.upload(H);
+    st.counters["us_splay_upload"] = std::int64_t(1000 * ms_since(t1));
   }
   st.phase_ms.push_back({"splay", ms_since(t0)});
   st.counters["flat_tetrahedra"] = peeled;
@@ -860,6 +997,9 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   st.counters["star_insertions"] = sp.insertions;
   st.counters["splay_removed"] = sp.removed;
   st.counters["splay_added"] = sp.added;
+  st.counters["us_splay_stars"] = sp.us_stars;
+  st.counters["us_splay_queue"] = sp.us_queue;
+  st.counters["us_splay_patch"] = sp.us_patch;
   t0 = Clock::now();
   auto f = T.finish(S.orig.data());
   T.report();
@@ -867,17 +1007,55 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   st.phase_ms.push_back({"output", ms_since(t0)});
 }
 
+// The finished tetrahedralisation to the caller's host arrays, with the vertex map (the last
+// tetrahedron of each vertex, copies taking their original's) and the hull facets (faces with
+// no neighbour, outward, in tetrahedron order), both made on the executor.
+inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec>& f,
+                      std::int64_t n, Output& out) {
+  out.num_duplicates = S.duplicates;
+  out.tetrahedra.resize(std::size_t(4 * f.count));
+  out.neighbors.resize(std::size_t(4 * f.count));
+  ex.to_host(f.simplices.data(), 4 * f.count, out.tetrahedra.data());
+  ex.to_host(f.neighbors.data(), 4 * f.count, out.neighbors.data());
+  out.duplicate_of.assign(std::size_t(n), -1);
+  if (S.duplicates) ex.to_host(S.dup.data(), n, out.duplicate_of.data());
+  auto vt = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* v = vt.data();
+  const std::int32_t* tv = f.simplices.data();
+  const std::int32_t* nb = f.neighbors.data();
+  ex.fill(v, n, std::int32_t(-1));
+  ex.for_each_index(
+      4 * f.count, GG_LAMBDA(std::int64_t i) { atomic_max(v + tv[i], std::int32_t(i / 4)); });
+  if (S.duplicates) {
+    const std::int32_t* dup = S.dup.data();
+    ex.for_each_index(
+        n, GG_LAMBDA(std::int64_t i) {
+          if (dup[i] >= 0) v[i] = v[dup[i]];
+        });
+  }
+  out.vertex_to_simplex.resize(std::size_t(n));
+  ex.to_host(v, n, out.vertex_to_simplex.data());
+  auto at = ex.template alloc<std::int32_t>(std::size_t(4 * f.count));
+  const std::int64_t nh = ex.compact_indices(
+      4 * f.count, GG_LAMBDA(std::int64_t i) { return nb[i] < 0; }, at.data());
+  auto hf = ex.template alloc<std::int32_t>(std::size_t(3 * nh + 1));
+  std::int32_t* h = hf.data();
+  const std::int32_t* a = at.data();
+  ex.for_each_index(
+      nh, GG_LAMBDA(std::int64_t j) {
+        const std::int64_t t = a[j] / 4;
+        const int k = int(a[j] % 4);
+        for (int i = 0; i < 3; ++i) h[3 * j + i] = tv[4 * t + face_vertex(k, i)];
+      });
+  out.hull_facets.resize(std::size_t(3 * nh));
+  ex.to_host(h, 3 * nh, out.hull_facets.data());
+}
+
 inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                              Output& out, Stats& st) {
   Exec ex(opt);
-  triangulate_core(ex, xyz, n, false, opt.max_flip_rounds, st,
+  triangulate_core(ex, xyz, n, false, opt.max_flip_rounds, opt.threads, st,
                    [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
-                     out.num_duplicates = S.duplicates;
-                     out.tetrahedra.resize(std::size_t(4 * f.count));
-                     out.neighbors.resize(std::size_t(4 * f.count));
-                     ex.to_host(f.simplices.data(), 4 * f.count, out.tetrahedra.data());
-                     ex.to_host(f.neighbors.data(), 4 * f.count, out.neighbors.data());
-                     out.duplicate_of.assign(std::size_t(n), -1);
-                     if (S.duplicates) ex.to_host(S.dup.data(), n, out.duplicate_of.data());
+                     to_output(ex, S, f, n, out);
                    });
 }
