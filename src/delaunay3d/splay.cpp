@@ -91,7 +91,7 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
   std::sort(removed.begin(), removed.end());
   removed.erase(std::unique(removed.begin(), removed.end()), removed.end());
   std::vector<Tet> old;
-  for (std::int32_t t : removed) old.push_back(H.tets[std::size_t(t)]);
+  for (std::int32_t t : removed) old.push_back(H.get(t));
   std::unordered_set<std::int32_t> gone(removed.begin(), removed.end());
   std::vector<std::int32_t> slots;
   std::size_t r = 0;
@@ -99,18 +99,17 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
     std::int32_t slot;
     if (r < removed.size()) {
       slot = removed[r++];
+      H.set(slot) = T;
     } else {
-      slot = std::int32_t(H.tets.size());
-      H.tets.push_back(Tet{});
+      slot = H.append(T);
     }
-    H.tets[std::size_t(slot)] = T;
     slots.push_back(slot);
     H.written.push_back(slot);
   }
   for (; r < removed.size(); ++r) {
     Tet dead;
     for (int k = 0; k < 4; ++k) dead.v[k] = dead.n[k] = -1;
-    H.tets[std::size_t(removed[r])] = dead;
+    H.set(removed[r]) = dead;
     H.written.push_back(removed[r]);
   }
   std::unordered_map<Key3, std::int32_t, Hash3> open;  // face -> enc(slot, local)
@@ -119,14 +118,14 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
   };
   for (std::int32_t y : slots)
     for (int l = 0; l < 4; ++l) {
-      const Key3 k = face_key(H.tets[std::size_t(y)], l);
+      const Key3 k = face_key(H.get(y), l);
       auto it = open.find(k);
       if (it == open.end()) {
         open.emplace(k, enc(y, l));
       } else {
         const std::int32_t e = it->second;
-        H.tets[std::size_t(y)].n[l] = e;
-        H.tets[std::size_t(simplex_of(e))].n[loc_of(e)] = enc(y, l);
+        H.set(y).n[l] = e;
+        H.set(simplex_of(e)).n[loc_of(e)] = enc(y, l);
         open.erase(it);
       }
     }
@@ -144,8 +143,8 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
                  std::to_string(nb) + ") has no new tetrahedron");
       }
       const std::int32_t e = it->second;
-      H.tets[std::size_t(simplex_of(e))].n[loc_of(e)] = D.n[k];
-      H.tets[std::size_t(nb)].n[loc_of(D.n[k])] = e;
+      H.set(simplex_of(e)).n[loc_of(e)] = D.n[k];
+      H.set(nb).n[loc_of(D.n[k])] = e;
       H.written.push_back(nb);
       open.erase(it);
     }
@@ -155,17 +154,20 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
 
 // The written live slots' neighbours share their faces and point back (a guard on the host
 // paths, local: the rest of the store is as phase 1 left it).
-void check_adjacency(const HostMesh& H, const char* step) {
+void check_adjacency(HostMesh& H, const char* step) {
   for (const std::int32_t t : H.written) {
-    const Tet& T = H.tets[std::size_t(t)];
+    const Tet T = H.get(t);
     if (T.v[0] < 0) continue;
     for (int k = 0; k < 4; ++k) {
       const std::int32_t e = T.n[k], o = simplex_of(e);
+      if (e < 0 || o >= H.used)
+        internal(std::string(step) + ": slot " + std::to_string(t) + " face " + std::to_string(k) +
+                 " has no neighbour");
+      const Tet O = H.get(o);
       const bool ok =
-          e >= 0 && std::size_t(o) < H.tets.size() && H.tets[std::size_t(o)].v[0] >= 0 &&
-          H.tets[std::size_t(o)].n[loc_of(e)] == enc(t, k) &&
-          host_impl::opposite_of_face(H.tets[std::size_t(o)].v, T.v[face_vertex(k, 0)],
-                                      T.v[face_vertex(k, 1)], T.v[face_vertex(k, 2)]) == loc_of(e);
+          O.v[0] >= 0 && O.n[loc_of(e)] == enc(t, k) &&
+          host_impl::opposite_of_face(O.v, T.v[face_vertex(k, 0)], T.v[face_vertex(k, 1)],
+                                      T.v[face_vertex(k, 2)]) == loc_of(e);
       if (!ok)
         internal(std::string(step) + ": slot " + std::to_string(t) + " face " + std::to_string(k) +
                  " has a wrong neighbour");
@@ -229,6 +231,7 @@ class Splayer {
     }
     // Each failed star read and made convex on its own (in parallel: they share nothing but
     // the mesh, which they only read), then entered in order.
+    H_.load_stars(fv);
     std::vector<Star> built(fv.size());
     std::vector<std::vector<Tri>> before(fv.size());
     std::exception_ptr err;
@@ -259,6 +262,12 @@ class Splayer {
       }
     }
     if (err) std::rethrow_exception(err);
+    {  // the stars splaying will read first: those of the failed vertices' neighbours
+      std::vector<std::int32_t> near;
+      for (const auto& b : before)
+        for (const Tri& t : b) near.insert(near.end(), {t.a, t.b, t.c});
+      H_.load_stars(near);
+    }
     st_.us_stars = std::int64_t(1000 * ms_since(t0));
     for (std::size_t i = 0; i < fv.size(); ++i) {
       const std::int32_t v = fv[i];
@@ -291,7 +300,9 @@ class Splayer {
     while (!stack.empty()) {
       const std::int32_t t = stack.back();
       stack.pop_back();
-      const Tet& T = H_.tets[std::size_t(t)];
+      const Tet* P = H_.peek(t);
+      if (!P) internal("a star read before it was loaded");
+      const Tet& T = *P;
       int k = 0;
       while (k < 4 && T.v[k] != v) ++k;
       if (k == 4) internal("vertex map out of date");
@@ -308,6 +319,7 @@ class Splayer {
   Star& star(std::int32_t v) {
     auto it = stars_.find(v);
     if (it != stars_.end()) return it->second;
+    H_.load_stars({v});
     Star& s = stars_[v];
     mesh_star(v, &s.tris, nullptr);
     for (const Tri& t : s.tris) s.offer(t.a), s.offer(t.b), s.offer(t.c);
@@ -641,19 +653,22 @@ std::int64_t peel(HostMesh& H) {
       for (int j = i + 1; j < 4; ++j)
         if (T.v[i] != H.m && T.v[j] != H.m) hull_edges[edge_key(T.v[i], T.v[j])] += delta;
   };
-  for (const Tet& T : H.tets)
+  H.load_all();
+  for (std::int32_t t = 0; t < H.used; ++t) {
+    const Tet& T = H.get(t);
     if (T.v[0] >= 0 && infinite(T)) count_edges(T, 1);
+  }
   std::int64_t peeled = 0;
   for (;;) {
     bool progress = false, left = false;
-    for (std::size_t t = 0; t < H.tets.size(); ++t) {
-      const Tet T = H.tets[t];
+    for (std::int32_t t = 0; t < H.used; ++t) {
+      const Tet T = H.get(t);
       if (!flat(T)) continue;
-      std::vector<std::int32_t> removed{std::int32_t(t)};
+      std::vector<std::int32_t> removed{t};
       std::vector<Tet> added;
       for (int k = 0; k < 4; ++k) {
         const std::int32_t nb = simplex_of(T.n[k]);
-        if (infinite(H.tets[std::size_t(nb)])) {
+        if (infinite(H.get(nb))) {
           removed.push_back(nb);
         } else {  // the face, oriented outward from the neighbour, with the infinity point
           added.push_back(
@@ -665,8 +680,7 @@ std::int64_t peel(HostMesh& H) {
       left = true;
       // The hull edges after the peel: those of the removed infinite tetrahedra go, those of
       // the new ones come; an edge counted more than twice would be a fold.
-      for (std::size_t r = 1; r < removed.size(); ++r)
-        count_edges(H.tets[std::size_t(removed[r])], -1);
+      for (std::size_t r = 1; r < removed.size(); ++r) count_edges(H.get(removed[r]), -1);
       for (const Tet& A : added) count_edges(A, 1);
       bool ok = true;
       for (const Tet& A : added)
@@ -674,8 +688,7 @@ std::int64_t peel(HostMesh& H) {
           for (int j = i + 1; j < 3 && ok; ++j) ok = hull_edges[edge_key(A.v[i], A.v[j])] <= 2;
       if (!ok) {  // not now: undo the count
         for (const Tet& A : added) count_edges(A, -1);
-        for (std::size_t r = 1; r < removed.size(); ++r)
-          count_edges(H.tets[std::size_t(removed[r])], 1);
+        for (std::size_t r = 1; r < removed.size(); ++r) count_edges(H.get(removed[r]), 1);
         continue;
       }
       replace_tets(H, removed, added, "peel");

@@ -14,14 +14,56 @@ struct alignas(32) Tet {
   std::int32_t n[4];
 };
 
-// What phase 2 works on: the extended tetrahedralisation after phase 1, on the host.
-struct HostMesh {
-  std::vector<Tet> tets;              // slots, dead ones included
-  std::vector<std::int32_t> vt;       // a slot holding each vertex (m + 1 entries), as downloaded
-  std::vector<std::int32_t> written;  // slots phase 2 rewrote (only these go back up)
+// Where phase 2 reads slots it does not hold yet (the executor's store).
+class SlotSource {
+ public:
+  virtual ~SlotSource() = default;
+  // Every slot holding one of verts (their stars; a slot may come more than once), with its
+  // tetrahedron. Returns false, fetching nothing, if a star is too large to gather or the
+  // stars hold more than limit slots (the caller then takes all).
+  virtual bool stars(const std::vector<std::int32_t>& verts, std::int64_t limit,
+                     std::vector<std::int32_t>& slots, std::vector<Tet>& tets) = 0;
+  virtual void slots(const std::vector<std::int32_t>& slots, std::vector<Tet>& tets) = 0;
+  virtual void all(std::vector<Tet>& tets) = 0;  // every slot in use
+};
+
+// What phase 2 works on: the extended tetrahedralisation after phase 1, on the host, as far as
+// phase 2 has read it: slots are fetched from the executor on first use, whole stars at a
+// time, so that the cost follows the failed vertices' neighbourhoods and not the store's size;
+// once that would be more than an eighth of the store, it takes the whole store in one copy
+// (a plain array then: hashing millions of slots costs more than the copy).
+// (Not thread-safe: parallel readers use peek on what was loaded before.)
+class HostMesh {
+ public:
   const double* pts = nullptr;        // m points, 3 each, curve order (host memory)
   std::int32_t m = 0;                 // the infinity vertex
   double s[3] = {0, 0, 0};            // the kernel point
+  std::vector<std::int32_t> vt;       // a slot holding each vertex (m + 1 entries)
+  std::vector<std::int32_t> written;  // slots phase 2 rewrote (only these go back up)
+  std::int64_t used = 0;              // slots in the store (new ones are appended)
+
+  void attach(SlotSource* src, std::int64_t used_slots);
+  const Tet& get(std::int32_t t) { return *slot(t); }
+  Tet& set(std::int32_t t) { return *slot(t); }             // (the caller also lists t in written)
+  const Tet* peek(std::int32_t t) const;                    // nullptr if not loaded
+  std::int32_t append(const Tet& T);                        // a new slot at the end
+  void load_stars(const std::vector<std::int32_t>& verts);  // those not loaded yet
+  bool star_loaded(std::int32_t v) const { return v < std::int32_t(here_.size()) && here_[v]; }
+  void load_all();
+  std::int64_t loaded() const { return all_ ? std::int64_t(dense_.size()) : std::int64_t(n_); }
+
+ private:
+  Tet* slot(std::int32_t t);
+  Tet* insert(std::int32_t t, const Tet& T);
+  void rehash(std::size_t cap);
+  // Open addressing, slot numbers as keys (-1: empty).
+  std::vector<std::int32_t> keys_;
+  std::vector<Tet> vals_;
+  std::size_t n_ = 0;
+  std::vector<std::int8_t> here_;  // per vertex: its whole star is loaded
+  std::vector<Tet> dense_;         // every slot, once load_all ran
+  bool all_ = false;
+  SlotSource* src_ = nullptr;
 };
 
 struct SplayStats {

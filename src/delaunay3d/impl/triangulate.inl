@@ -30,7 +30,6 @@ struct Counters {
   std::int64_t used;      // slots handed out
   std::int64_t free_head, free_tail, popped, pushed;  // the queue of freed slots
   std::int64_t flips23, flips32, rounds, unflippable, failed_faces, flat, lost, errors;
-  std::int64_t nstuck, retests;   // the list of stuck tetrahedra, and how often it was retested
   std::int64_t halt, halt_round;  // a round found no room: it and the rest of its chunk wait
   std::int64_t team_end;          // the round a team stopped at (did not run)
 };
@@ -42,8 +41,6 @@ struct Mesh {
   std::int32_t* stamp;  // the round a slot was last rewritten by a flip
   FlipLog log;
   std::int32_t* freeq;  // freed slots, a ring of cap entries
-  std::int32_t* mark;   // the stuck epoch in which a slot was last listed as stuck
-  std::int32_t* stuck;  // tetrahedra left with a face not locally Delaunay but not flippable
   std::int64_t cap;
   Counters* ctr;
 };
@@ -112,7 +109,7 @@ struct FlipRound {
   std::int8_t* dec;       // per list entry: the proposal (face | kind << 2), or -1
   std::int32_t* third;    // per list entry: a 3-2 flip's third tetrahedron
   std::int32_t* flipped;  // the round's flip records
-  std::int32_t round, epoch;
+  std::int32_t round;
   std::int64_t log_cap;
 
   GG_HD const std::int64_t* count() const { return L.count(round); }
@@ -185,11 +182,7 @@ struct FlipRound {
         }
       }
     }
-    if (stuck && res < 0) {  // (listed once per epoch, for the retest)
-      atomic_add(&ctr->unflippable, std::int64_t(1));
-      if (atomic_exchange(M.mark + t, epoch) != epoch)
-        M.stuck[atomic_add(&ctr->nstuck, std::int64_t(1))] = t;
-    }
+    if (stuck && res < 0) atomic_add(&ctr->unflippable, std::int64_t(1));
     dec[i] = std::int8_t(res);
     third[i] = t3;
   }
@@ -313,6 +306,7 @@ class Triangulator {
   Triangulator(Exec& ex, const double* pts, std::int32_t m, const mesh::Tetra& first,
                std::int64_t max_rounds, Stats& st)
       : ex_(ex), st_(st), max_rounds_(max_rounds) {
+    source_.t = this;
     m_ = m;
     g_.p = pts;
     for (int k = 0; k < 3; ++k) g_.s[k] = first.s[k];
@@ -353,8 +347,6 @@ class Triangulator {
     auto best = ex_.template alloc<u64>(std::size_t(cap));
     auto srank = ex_.template alloc<std::int32_t>(std::size_t(cap));
     auto freeq = ex_.template alloc<std::int32_t>(std::size_t(cap));
-    auto mark = ex_.template alloc<std::int32_t>(std::size_t(cap));
-    auto stuck = ex_.template alloc<std::int32_t>(std::size_t(cap));
     const std::int64_t keep = old ? std::min<std::int64_t>(c.used, old) : 0;
     if (keep) {
       ex_.copy(tet_.data(), keep, tet.data());
@@ -363,10 +355,7 @@ class Triangulator {
       ex_.copy(hist_.data(), keep, hist.data());
       ex_.copy(best_.data(), keep, best.data());
       ex_.copy(srank_.data(), keep, srank.data());
-      ex_.copy(mark_.data(), keep, mark.data());
-      ex_.copy(stuck_.data(), std::min(c.nstuck, old), stuck.data());
     }
-    ex_.fill(mark.data() + keep, cap - keep, std::int32_t(-1));
     ex_.fill(vote.data() + keep, cap - keep, u64(0));
     ex_.fill(stamp.data() + keep, cap - keep, std::int32_t(-1));
     ex_.fill(hist.data() + keep, cap - keep, Hist{-1, -1});
@@ -398,8 +387,6 @@ class Triangulator {
     best_ = std::move(best);
     srank_ = std::move(srank);
     freeq_ = std::move(freeq);
-    mark_ = std::move(mark);
-    stuck_ = std::move(stuck);
     dec_ = ex_.template alloc<std::int8_t>(std::size_t(cap));
     third_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
     flipped_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
@@ -413,8 +400,7 @@ class Triangulator {
     if (old) ex_.from_host(&c, 1, ctr_.data());
     M_ = Mesh{
         tet_.data(),   vote_.data(), stamp_.data(), FlipLog{rec_.data(), hist_.data(), M_.log.base},
-        freeq_.data(), mark_.data(), stuck_.data(), cap_,
-        ctr_.data()};
+        freeq_.data(), cap_,         ctr_.data()};
   }
   void reserve(std::int64_t slots) {
     if (slots > cap_) grow(std::max(slots, cap_ + cap_ / 2));
@@ -615,31 +601,6 @@ class Triangulator {
       logged_ = c.log;
       nact_ = c.len[(round_ + 1) & 1];
       if (c.errors) check_errors();
-      if (nact_ == 0 && remaining_ == 0 && c.nstuck > 0 &&
-          c.flips23 + c.flips32 > flips_at_retest_) {
-        // Stuck faces wait for their edge to reach degree 3 or the segment between their
-        // apexes to cross them; flips elsewhere may have done that. After the last batch the
-        // tetrahedra listed stuck (in any batch) test again, while flips since the last retest
-        // make that possible. (Measured on uniform 10^5: 600 failed faces without, 522 with;
-        // retesting after every batch instead left 813: an early flip of a stuck face can
-        // cost more than it mends.)
-        flips_at_retest_ = c.flips23 + c.flips32;
-        ++stuck_epoch_;
-        const mesh::WorkLists L = work_lists();
-        std::int32_t* act = L.current(round_ + 1);
-        std::int64_t* len = L.count(round_ + 1);
-        const std::int32_t* st = stuck_.data();
-        Counters* ctr = ctr_.data();
-        ex_.for_each_index(
-            c.nstuck, GG_LAMBDA(std::int64_t i) { act[i] = st[i]; });
-        ex_.for_each_index(
-            1, GG_LAMBDA(std::int64_t) {
-              *len = ctr->nstuck;
-              ctr->nstuck = 0;
-              ctr->retests += 1;
-            });
-        nact_ = c.nstuck;
-      }
     }
   }
 
@@ -652,7 +613,6 @@ class Triangulator {
     R.third = third_.data();
     R.flipped = flipped_.data();
     R.round = round;
-    R.epoch = stuck_epoch_;
     R.log_cap = log_cap_;
     return R;
   }
@@ -807,13 +767,13 @@ class Triangulator {
     return after.failed_faces;
   }
 
-  // The store to the host, with a live slot of every vertex (phase 2 runs there) ...
-  void download(HostMesh& H) {
+  // Phase 2 reads the store through H (tet.hpp): the vertex map comes to the host whole, the
+  // slots a star at a time as they are needed (Source below) ...
+  static constexpr int kMaxStar = 512;  // a larger star makes phase 2 take the whole store
+  void attach(HostMesh& H) {
     const Counters c = counters();
-    H.tets.resize(std::size_t(c.used));
-    ex_.to_host(tet_.data(), c.used, H.tets.data());
-    auto vt = ex_.template alloc<std::int32_t>(std::size_t(m_) + 1);
-    std::int32_t* v = vt.data();
+    vt_ = ex_.template alloc<std::int32_t>(std::size_t(m_) + 1);
+    std::int32_t* v = vt_.data();
     ex_.fill(v, std::int64_t(m_) + 1, std::int32_t(-1));
     const Tet* tet = tet_.data();
     ex_.for_each_index(
@@ -824,17 +784,102 @@ class Triangulator {
         });
     H.vt.resize(std::size_t(m_) + 1);
     ex_.to_host(v, std::int64_t(m_) + 1, H.vt.data());
+    H.attach(&source_, c.used);
   }
-  // ... and back: only the slots it wrote.
+  // Every slot of the stars of verts: one thread walks each star from the vertex map.
+  bool fetch_stars(const std::vector<std::int32_t>& verts, std::int64_t limit,
+                   std::vector<std::int32_t>& slots, std::vector<Tet>& tets) {
+    const std::int64_t nv = std::int64_t(verts.size());
+    auto vb = ex_.template alloc<std::int32_t>(std::size_t(nv));
+    ex_.from_host(verts.data(), nv, vb.data());
+    std::int64_t cap = 64 * nv + 1024;
+    for (;;) {
+      auto out = ex_.template alloc<std::int32_t>(std::size_t(cap));
+      auto cnt = ex_.template alloc<std::int64_t>(2);  // slots written, stars too large
+      std::int64_t* k = cnt.data();
+      ex_.fill(k, 2, std::int64_t(0));
+      std::int32_t* o = out.data();
+      const std::int32_t* vs = vb.data();
+      const std::int32_t* vt = vt_.data();
+      const Tet* tet = tet_.data();
+      ex_.for_each_index(
+          nv, GG_LAMBDA(std::int64_t i) {
+            const std::int32_t v = vs[i];
+            std::int32_t st[kMaxStar];
+            int n = 1;
+            st[0] = vt[v];
+            for (int h = 0; h < n; ++h) {
+              const Tet T = tet[st[h]];
+              for (int j = 0; j < 4; ++j) {
+                if (T.v[j] == v) continue;
+                const std::int32_t nb = simplex_of(T.n[j]);
+                bool seen = false;
+                for (int x = 0; x < n && !seen; ++x) seen = st[x] == nb;
+                if (seen) continue;
+                if (n == kMaxStar) {
+                  atomic_add(k + 1, std::int64_t(1));
+                  return;
+                }
+                st[n++] = nb;
+              }
+            }
+            const std::int64_t at = atomic_add(k, std::int64_t(n));
+            for (int x = 0; x < n && at + x < cap; ++x) o[at + x] = st[x];
+          });
+      std::int64_t h[2];
+      ex_.to_host(k, 2, h);
+      if (h[1] > 0 || h[0] > limit) return false;
+      if (h[0] > cap) {
+        cap = h[0];
+        continue;
+      }
+      slots.resize(std::size_t(h[0]));
+      ex_.to_host(o, h[0], slots.data());
+      gather(out.data(), h[0], tets);
+      return true;
+    }
+  }
+  void fetch_slots(const std::vector<std::int32_t>& slots, std::vector<Tet>& tets) {
+    const std::int64_t n = std::int64_t(slots.size());
+    auto sb = ex_.template alloc<std::int32_t>(std::size_t(n));
+    ex_.from_host(slots.data(), n, sb.data());
+    gather(sb.data(), n, tets);
+  }
+  void gather(const std::int32_t* slots, std::int64_t n, std::vector<Tet>& tets) {
+    auto rows = ex_.template alloc<Tet>(std::size_t(n) + 1);
+    Tet* r = rows.data();
+    const Tet* tet = tet_.data();
+    ex_.for_each_index(
+        n, GG_LAMBDA(std::int64_t i) { r[i] = tet[slots[i]]; });
+    tets.resize(std::size_t(n));
+    ex_.to_host(r, n, tets.data());
+  }
+  void fetch_all(std::vector<Tet>& tets) {
+    const Counters c = counters();
+    tets.resize(std::size_t(c.used));
+    ex_.to_host(tet_.data(), c.used, tets.data());
+  }
+  struct Source final : SlotSource {
+    Triangulator* t = nullptr;
+    bool stars(const std::vector<std::int32_t>& verts, std::int64_t limit,
+               std::vector<std::int32_t>& slots, std::vector<Tet>& tets) override {
+      return t->fetch_stars(verts, limit, slots, tets);
+    }
+    void slots(const std::vector<std::int32_t>& s, std::vector<Tet>& tets) override {
+      t->fetch_slots(s, tets);
+    }
+    void all(std::vector<Tet>& tets) override { t->fetch_all(tets); }
+  };
+  // ... and what it wrote goes back.
   void upload(HostMesh& H) {
     std::vector<std::int32_t>& w = H.written;
     std::sort(w.begin(), w.end());
     w.erase(std::unique(w.begin(), w.end()), w.end());
-    const std::int64_t used = std::int64_t(H.tets.size()), nw = std::int64_t(w.size());
+    const std::int64_t used = H.used, nw = std::int64_t(w.size());
     reserve(used);
     if (nw) {
       std::vector<Tet> rows(w.size());
-      for (std::size_t i = 0; i < w.size(); ++i) rows[i] = H.tets[std::size_t(w[i])];
+      for (std::size_t i = 0; i < w.size(); ++i) rows[i] = H.get(w[i]);
       auto slots = ex_.template alloc<std::int32_t>(std::size_t(nw));
       auto vals = ex_.template alloc<Tet>(std::size_t(nw));
       ex_.from_host(w.data(), nw, slots.data());
@@ -880,7 +925,6 @@ class Triangulator {
     st_.counters["flips23"] = c.flips23;
     st_.counters["flips32"] = c.flips32;
     st_.counters["unflippable_tests"] = c.unflippable;
-    st_.counters["stuck_retests"] = c.retests;
     // Where phase 1's time goes (host clock; each part ends with a read of the counters):
     // choosing and splitting, rounds as kernels, rounds in a team.
     st_.counters["us_choose_split"] = std::int64_t(1000 * ms_choose_);
@@ -905,19 +949,19 @@ class Triangulator {
   std::int64_t log_cap_ = 0, logged_ = 0;
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;
   std::int32_t epoch_first_new_ = 0;
-  std::int32_t stuck_epoch_ = 0;
   double ms_choose_ = 0, ms_wide_ = 0, ms_team_ = 0;
   std::int64_t chunks_ = 0, team_calls_ = 0;
-  std::int64_t flips_at_retest_ = 0;
   LeasePool<Exec> pool_;
   typename Exec::template Buffer<Tet> tet_;
   typename Exec::template Buffer<Hist> hist_;
-  typename Exec::template Buffer<std::int32_t> stamp_, srank_, rec_, split_, freeq_, mark_, stuck_;
+  typename Exec::template Buffer<std::int32_t> stamp_, srank_, rec_, split_, freeq_;
   typename Exec::template Buffer<u64> vote_, best_;
   typename Exec::template Buffer<std::int32_t> lists_[2];
   typename Exec::template Buffer<std::int32_t> third_, flipped_, loc_, un_, un2_, ins_;
   typename Exec::template Buffer<std::int8_t> dec_;
   typename Exec::template Buffer<Counters> ctr_;
+  typename Exec::template Buffer<std::int32_t> vt_;  // phase 2's vertex map
+  Source source_;
 };
 
 // The whole pipeline on the executor: prepare, phase 1, phase 2 on the host where phase 1
@@ -963,13 +1007,13 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   if (nfailed > 0 || nflat > 0) {  // phase 2 and the flat tetrahedra, on the host
     HostMesh H;
     auto t1 = Clock::now();
-    T.download(H);
-    st.counters["us_splay_download"] = std::int64_t(1000 * ms_since(t1));
     std::vector<double> pts(std::size_t(3 * S.m));
     ex.to_host(S.pts.data(), 3 * S.m, pts.data());
     H.pts = pts.data();
     H.m = std::int32_t(S.m);
     for (int k = 0; k < 3; ++k) H.s[k] = first.s[k];
+    T.attach(H);
+    st.counters["us_splay_download"] = std::int64_t(1000 * ms_since(t1));
     if (nfailed > 0) {
       std::vector<std::int8_t> f;
       std::vector<std::int32_t> fl;
@@ -988,6 +1032,7 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
     t1 = Clock::now();
     T.upload(H);
     st.counters["us_splay_upload"] = std::int64_t(1000 * ms_since(t1));
+    st.counters["splay_slots_read"] = H.loaded();
   }
   st.phase_ms.push_back({"splay", ms_since(t0)});
   st.counters["flat_tetrahedra"] = peeled;
