@@ -133,6 +133,22 @@ expect 2 "-o takes" -- "$G" hull3d "$W/ball.npy" -o "$W/hf.stl"
 expect 0 "5000 points -> " -- "$G" hull3d "$W/ball.npy" -o "$W/h.vtu" --compress
 expect 0 "valid hull3d" -- "$G" check "$W/h.vtu"
 expect 0 "usage: gpugeom hull3d" -- "$G" hull3d --help
+# delaunay3d: tetrahedral mesh formats (TetGen's pair too), the checker, errors, no file left
+for ext in vtu ele ply npy; do
+  expect 0 "5000 points -> " -- "$G" delaunay3d "$W/ball.npy" -o "$W/t.$ext"
+  [ -s "$W/t.$ext" ] || { echo "FAIL: delaunay3d wrote no .$ext"; fail=1; }
+done
+[ -s "$W/t.node" ] || { echo "FAIL: delaunay3d wrote .ele without .node"; fail=1; }
+expect 0 "check: valid Delaunay tetrahedralisation" -- "$G" delaunay3d "$W/ball.npy" --check
+expect 0 "valid delaunay3d" -- "$G" check "$W/t.ele"
+expect 0 "valid delaunay3d" -- "$G" check "$W/t.vtu"
+expect 0 "flips23" -- "$G" --verbose delaunay3d "$W/ball.npy" --check
+expect 3 "one plane" -- "$G" delaunay3d "$W/flat.xyz" -o "$W/tf.vtu"
+expect 3 "infinite" -- "$G" delaunay3d "$W/inf.xyz" -o "$W/tf.vtu"
+expect 3 "2D points" -- "$G" delaunay3d "$W/c.csv" -o "$W/tf.vtu"
+[ -e "$W/tf.vtu" ] && { echo "FAIL: a failed delaunay3d left an output file"; fail=1; }
+expect 2 "-o takes" -- "$G" delaunay3d "$W/ball.npy" -o "$W/tf.stl"
+expect 0 "usage: gpugeom delaunay3d" -- "$G" delaunay3d --help
 # a failed write leaves no file behind
 expect 3 "cannot create" -- "$G" gen uniform2d -n 10 -o "$W/nodir/x.xyz"
 [ -e "$W/nodir" ] && { echo "FAIL: output folder appeared"; fail=1; }

@@ -63,6 +63,10 @@ int cmd_cvd(const Global& g, Args& a);
 int cmd_stipple(const Global& g, Args& a);
 int cmd_delaunay2d(const Global& g, Args& a);
 int cmd_hull3d(const Global& g, Args& a);
+int cmd_delaunay3d(const Global& g, Args& a);
+
+// A computation's phase times and counters on stderr (--verbose).
+void print_stats(const Stats& s);
 
 // The mesh writers' options --compress (.vtu) and --ascii (.vtu, .ply), checked against the
 // output path `out` (UsageError where they do not apply).

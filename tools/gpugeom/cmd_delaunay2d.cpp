@@ -138,12 +138,7 @@ int cmd_delaunay2d(const Global& g, Args& a) {
     if (tri.num_duplicates) std::cout << " (" << tri.num_duplicates << " duplicates kept once)";
     std::cout << " -> " << tri.num_triangles() << " triangles on "
               << backend_name(tri.stats.backend) << "\n";
-    if (g.verbose) {
-      for (auto& ph : tri.stats.phase_ms)
-        std::fprintf(stderr, "[phase] %-12s %10.2f ms\n", ph.first.c_str(), ph.second);
-      for (auto& c : tri.stats.counters)
-        std::fprintf(stderr, "[count] %-18s %lld\n", c.first.c_str(), (long long)c.second);
-    }
+    if (g.verbose) print_stats(tri.stats);
   }
   int status = kOk;
   if (check) {

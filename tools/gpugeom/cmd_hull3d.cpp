@@ -58,12 +58,7 @@ int cmd_hull3d(const Global& g, Args& a) {
   if (!g.quiet) {
     std::cout << n << " points -> " << h.vertices.size() << " extreme points, " << h.num_facets()
               << " facets on " << backend_name(h.stats.backend) << "\n";
-    if (g.verbose) {
-      for (auto& ph : h.stats.phase_ms)
-        std::fprintf(stderr, "[phase] %-12s %10.2f ms\n", ph.first.c_str(), ph.second);
-      for (auto& c : h.stats.counters)
-        std::fprintf(stderr, "[count] %-28s %lld\n", c.first.c_str(), (long long)c.second);
-    }
+    if (g.verbose) print_stats(h.stats);
   }
   int status = kOk;
   if (check) {

@@ -1,8 +1,9 @@
 // gpugeom: exact computational geometry on the GPU, from the command line.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <algorithm>
 #include <iostream>
 #include <thread>
 
@@ -34,6 +35,13 @@ bool Args::value(const std::string& name, std::string& out) {
     }
   }
   return false;
+}
+
+void print_stats(const Stats& s) {
+  for (auto& ph : s.phase_ms)
+    std::fprintf(stderr, "[phase] %-18s %10.2f ms\n", ph.first.c_str(), ph.second);
+  for (auto& c : s.counters)
+    std::fprintf(stderr, "[count] %-28s %lld\n", c.first.c_str(), (long long)c.second);
 }
 
 io::WriteOptions mesh_write_options(Args& a, const std::string& out) {
@@ -86,6 +94,7 @@ static const char* kUsageText =
     "  stipple IMG -o OUT.svg  stipple drawing of a photograph (also --png)\n"
     "  delaunay2d P -o MESH    exact 2D Delaunay triangulation (--voronoi, --draw, --check)\n"
     "  hull3d P -o MESH        exact 3D convex hull (--check)\n"
+    "  delaunay3d P -o MESH    exact 3D Delaunay tetrahedralisation (--check)\n"
     "\n"
     "global options:\n"
     "  --backend B   executor: auto (CUDA if a GPU is usable, else CPU), cpu, cuda;\n"
@@ -136,8 +145,8 @@ int main(int argc, char** argv) {
     const bool help = std::find(rest.begin(), rest.end(), "--help") != rest.end() ||
                       std::find(rest.begin(), rest.end(), "-h") != rest.end();
     if (g.backend != Backend::Cpu && !help &&
-        (cmd == "delaunay2d" || cmd == "hull3d" || cmd == "edt" || cmd == "cvd" ||
-         cmd == "stipple"))
+        (cmd == "delaunay2d" || cmd == "hull3d" || cmd == "delaunay3d" || cmd == "edt" ||
+         cmd == "cvd" || cmd == "stipple"))
       warm.t = std::thread([] { prepare_device(); });
     Args a(rest);
     if (cmd == "gen") return cmd_gen(g, a);
@@ -148,6 +157,7 @@ int main(int argc, char** argv) {
     if (cmd == "stipple") return cmd_stipple(g, a);
     if (cmd == "delaunay2d") return cmd_delaunay2d(g, a);
     if (cmd == "hull3d") return cmd_hull3d(g, a);
+    if (cmd == "delaunay3d") return cmd_delaunay3d(g, a);
     throw UsageError("unknown command '" + cmd + "' (try 'gpugeom --help')");
   } catch (const UsageError& e) {
     std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << e.what() << "\n";
