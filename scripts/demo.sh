@@ -2,8 +2,8 @@
 # Quick start 1: install what is needed, build (CUDA when nvcc is present), run the demo job:
 # generate a million points, summarise them, show the device, draw a stipple of a photograph
 # (matplotlib's sample portrait of Grace Hopper), triangulate a terrain's contour lines (the
-# Jacksboro fault DEM shipped with matplotlib) and a million points exactly, run the
-# benchmarks small.
+# Jacksboro fault DEM shipped with matplotlib) and a million points exactly, tetrahedralise
+# a point cloud in a ball for ParaView, run the benchmarks small.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
@@ -26,4 +26,6 @@ python3 bench/terrain_contours.py -n 1e4 --levels 6 -o "$OUT/contours.npy"
 "$G" delaunay2d "$OUT/contours.npy" -o "$OUT/terrain_tin.ply" --check --draw "$OUT/terrain_tin.png"
 "$G" gen uniform2d -n 1000000 -o "$OUT/plane.npy"
 "$G" --verbose delaunay2d "$OUT/plane.npy" -o "$OUT/plane_tri.npy" --check
+"$G" gen ball3d -n 100000 -o "$OUT/ball.npy"
+"$G" --verbose delaunay3d "$OUT/ball.npy" -o "$OUT/ball_tets.vtu" --check
 bash bench/run_bench.sh --quick --build "$BUILD" --out "$OUT/bench"
