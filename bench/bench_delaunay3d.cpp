@@ -1,7 +1,8 @@
 // gpugeom_bench_del3d: 3D Delaunay end to end (host points in, host arrays out) on each backend,
 // with CGAL's Delaunay_triangulation_3 (sequential) on the same points in the same run when
 // the build found CGAL. Prints the GPU's name, the phase times, flips, failed vertices and
-// splaying time next to the totals; --check runs the exact checker on every result.
+// splaying time next to the totals, and on the GPU the device-resident time (points uploaded
+// once, result left on the device: on_dev); --check runs the exact checker on every result.
 // Usage: gpugeom_bench_del3d [--check] [--cpu] [--verbose] [--reps R] dist:n [dist:n ...]
 // (--cpu: the CPU executor too where there is a GPU; --verbose: every phase and counter)
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "device_timing.hpp"
 #include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/generate.hpp"
 #include "verify.hpp"
@@ -75,8 +77,8 @@ int main(int argc, char** argv) {
   }
   const DeviceInfo dev = query_device();
   std::printf("# device: %s\n", dev.available ? dev.name.c_str() : "none");
-  std::printf("%-12s %9s %-5s %10s %8s %8s %8s %9s %8s %7s %10s %9s %6s\n", "dist", "n", "back",
-              "total_ms", "prep", "ins+flip", "splay", "flips", "failed", "stars", "tets",
+  std::printf("%-12s %9s %-5s %10s %8s %8s %8s %8s %9s %8s %7s %10s %9s %6s\n", "dist", "n", "back",
+              "total_ms", "on_dev", "prep", "ins+flip", "splay", "flips", "failed", "stars", "tets",
               "cgal_ms", "check");
   for (const std::string& job : jobs) {
     const auto colon = job.find(':');
@@ -98,6 +100,12 @@ int main(int argc, char** argv) {
         ms.push_back(ms_since(t0));
       }
       std::sort(ms.begin(), ms.end());
+      // Device-resident: points uploaded once, the result left on the GPU.
+      const double on_dev =
+          b == Backend::Cuda
+              ? bench::device_resident_ms(
+                    pts, reps, [](const double* d, std::int64_t k) { delaunay3d_device(d, k); })
+              : -1;
       std::string ok = "-";
       if (check) {
         auto rep =
@@ -106,13 +114,13 @@ int main(int argc, char** argv) {
         ok = rep.ok ? "ok" : "FAIL";
         if (!rep.ok) std::printf("# %s\n", rep.message.c_str());
       }
-      std::printf("%-12s %9lld %-5s %10.1f %8.1f %8.1f %8.1f %9lld %8lld %7lld %10zu %9.1f %6s\n",
-                  dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu",
-                  ms[ms.size() / 2], phase(t.stats, "prepare"), phase(t.stats, "insert_flip"),
-                  phase(t.stats, "splay"),
-                  (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
-                  (long long)counter(t.stats, "failed_vertices"),
-                  (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(), cg, ok.c_str());
+      std::printf(
+          "%-12s %9lld %-5s %10.1f %8.1f %8.1f %8.1f %8.1f %9lld %8lld %7lld %10zu %9.1f %6s\n",
+          dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu", ms[ms.size() / 2],
+          on_dev, phase(t.stats, "prepare"), phase(t.stats, "insert_flip"), phase(t.stats, "splay"),
+          (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
+          (long long)counter(t.stats, "failed_vertices"),
+          (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(), cg, ok.c_str());
       if (verbose) {
         std::printf("#   phases:");
         for (auto& p : t.stats.phase_ms) std::printf(" %s %.1f", p.first.c_str(), p.second);

@@ -10,6 +10,7 @@
 // curve and the perturbation follows that order, so the result depends on the point set only.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "gpugeom/common.hpp"
@@ -38,10 +39,13 @@ struct Triangulation3d {
   // point it duplicates).
   std::vector<std::int32_t> vertex_to_simplex;
   // Stats: phases "prepare", "insert_flip", "find_failed", "splay" (phase 2, on the host),
-  // "output", "host_arrays"; counters "points", "distinct_points", "duplicates", "batches",
-  // "flip_rounds", "flips23", "flips32", "unflippable_tests", "failed_faces",
-  // "failed_vertices", "flat_tetrahedra" (removed from the hull), "stars_rebuilt", "stars_touched",
-  // "star_insertions", "splay_removed", "splay_added".
+  // "output"; counters "points", "distinct_points", "duplicates", "batches", "flip_rounds",
+  // "flips23", "flips32", "unflippable_tests", "failed_faces", "failed_vertices",
+  // "flat_tetrahedra" (removed from the hull), "stars_rebuilt", "stars_touched",
+  // "star_insertions", "splay_removed", "splay_added", "splay_slots_read" (store slots phase 2
+  // copied to the host), and times in microseconds "us_*" (phase 1: choosing and splitting,
+  // flip rounds as kernels and in one block; phase 2: copies, star rebuilds, splaying queue,
+  // patch).
   Stats stats;
   std::size_t num_tetrahedra() const { return tetrahedra.size() / 4; }
 };
@@ -52,5 +56,23 @@ struct Triangulation3d {
 // naming the case for fewer than 4 distinct points or all points on one line or one plane.
 Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt = {});
 Triangulation3d delaunay3d(const std::vector<Point3>& pts, const Delaunay3dOptions& opt = {});
+
+// The same tetrahedralisation with the points already on the GPU and the result left there
+// (CUDA builds): device_xyz is device memory holding n points, x, y and z interleaved, on
+// run's device. The work runs on run.stream (see RunOptions), so the points must be ready in
+// that stream's order; the call returns once the result is ready. Phase 2 still runs on host
+// threads (run.threads) over the few neighbourhoods it needs. The arrays are device memory
+// freed when the last copy of their pointer goes; they can be wrapped without copying, e.g. by
+// CuPy. run.backend is ignored. Throws Error(Unsupported) where the build or the machine has
+// no CUDA device, and as delaunay3d otherwise.
+struct DeviceTriangulation3d {
+  std::int64_t num_points = 0, num_tetrahedra = 0, num_duplicates = 0;
+  std::shared_ptr<std::int32_t> tetrahedra;    // 4 * num_tetrahedra, as Triangulation3d's
+  std::shared_ptr<std::int32_t> neighbors;     // 4 * num_tetrahedra
+  std::shared_ptr<std::int32_t> duplicate_of;  // num_points
+  Stats stats;
+};
+DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n,
+                                        const RunOptions& run = {});
 
 }  // namespace gpugeom

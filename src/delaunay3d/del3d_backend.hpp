@@ -1,6 +1,7 @@
 // What the public 3D Delaunay entry gets back from a backend (internal).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "gpugeom/common.hpp"
@@ -17,6 +18,12 @@ struct Output {
   std::vector<std::int32_t> vertex_to_simplex;  // n entries (a copy takes its original's)
 };
 
+// The result left on the device; the pointers own device memory.
+struct DeviceOutput {
+  std::shared_ptr<std::int32_t> tetrahedra, neighbors, duplicate_of;
+  std::int64_t num_tetrahedra = 0, num_duplicates = 0;
+};
+
 // xyz: n points on the host. Validates the coordinates on the executor (throws Error).
 namespace cpu_impl {
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
@@ -25,6 +32,9 @@ void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt
 namespace cuda_impl {
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
                  Stats& stats);
-}
+// xyz: n points in device memory.
+void triangulate_device(const double* xyz, std::int64_t n, const RunOptions& run, DeviceOutput& out,
+                        Stats& stats);
+}  // namespace cuda_impl
 
 }  // namespace gpugeom::del3d

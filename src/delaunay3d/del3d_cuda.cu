@@ -31,4 +31,21 @@ void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt
                  Stats& stats) {
   triangulate_impl(xyz, n, opt, out, stats);
 }
+void triangulate_device(const double* xyz, std::int64_t n, const RunOptions& run, DeviceOutput& out,
+                        Stats& stats) {
+  Exec ex(run);
+  triangulate_core(ex, xyz, n, true, -1, run.threads, stats,
+                   [&](mesh::SortedPoints<Exec>& S, Triangulator::Finished& f) {
+                     if (!S.duplicates) {  // no duplicates: the map is all -1
+                       S.dup = ex.alloc<std::int32_t>(std::size_t(n));
+                       ex.fill(S.dup.data(), n, std::int32_t(-1));
+                     }
+                     ex.sync();  // (stream-ordered allocations; a later cudaFree is not)
+                     out.num_tetrahedra = f.count;
+                     out.num_duplicates = S.duplicates;
+                     out.tetrahedra = f.simplices.hand_over();
+                     out.neighbors = f.neighbors.hand_over();
+                     out.duplicate_of = S.dup.hand_over();
+                   });
+}
 }  // namespace gpugeom::del3d::cuda_impl

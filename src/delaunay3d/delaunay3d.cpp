@@ -48,6 +48,27 @@ Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOp
   return r;
 }
 
+DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n,
+                                        const RunOptions& run) {
+  check_count(n);
+  DeviceTriangulation3d r;
+  r.stats.backend = resolve_backend(Backend::Cuda, run.device);  // throws where there is none
+  r.num_points = n;
+#ifdef GPUGEOM_HAVE_CUDA
+  del3d::DeviceOutput out;
+  del3d::cuda_impl::triangulate_device(device_xyz, n, run, out, r.stats);
+  r.num_tetrahedra = out.num_tetrahedra;
+  r.num_duplicates = out.num_duplicates;
+  r.tetrahedra = std::move(out.tetrahedra);
+  r.neighbors = std::move(out.neighbors);
+  r.duplicate_of = std::move(out.duplicate_of);
+#else
+  (void)device_xyz;
+  (void)run;
+#endif
+  return r;
+}
+
 Triangulation3d delaunay3d(const std::vector<Point3>& pts, const Delaunay3dOptions& opt) {
   return delaunay3d(pts.empty() ? nullptr : &pts.data()->x, std::int64_t(pts.size()), opt);
 }

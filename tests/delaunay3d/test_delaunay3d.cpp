@@ -118,6 +118,15 @@ TEST(Delaunay3d, Errors) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("one plane"), std::string::npos) << e.what();
   }
+  if (!query_device().available) {  // the device entry needs a GPU, and says so
+    const double p[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    try {
+      delaunay3d_device(p, 4);
+      ADD_FAILURE() << "delaunay3d_device ran without a GPU";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::Unsupported) << e.what();
+    }
+  }
 }
 
 // UTM-like coordinates: large offsets with millimetre detail.

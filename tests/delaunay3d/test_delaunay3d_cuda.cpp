@@ -2,6 +2,8 @@
 // distribution and degenerate input it takes, and the same tetrahedra as the CPU executor's
 // (the Delaunay tetrahedralisation of the perturbed points is unique; slot numbers and so the
 // order of the output may differ).
+#include <cuda_runtime.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <string>
@@ -71,4 +73,39 @@ TEST(CudaDelaunay3d, Repeatable) {  // a race would show as a different result
   o.backend = Backend::Cuda;
   const auto ref = gg_del3d::tet_set(delaunay3d(pts, o).tetrahedra);
   for (int r = 0; r < 3; ++r) EXPECT_EQ(gg_del3d::tet_set(delaunay3d(pts, o).tetrahedra), ref);
+}
+
+TEST(CudaDelaunay3d, DeviceResident) {  // points on the GPU in, result left there
+  auto p = gpugeom::generate3d("ball", sizes({50000, 3000}).front(), 8);
+  p.push_back(p[7]);  // a duplicate
+  const std::size_t bytes = p.size() * sizeof(Point3);
+  double* dp = nullptr;
+  ASSERT_EQ(cudaMalloc(&dp, bytes), cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(dp, p.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+  const auto r = delaunay3d_device(dp, std::int64_t(p.size()));
+  cudaFree(dp);
+  Delaunay3dOptions o;
+  o.backend = Backend::Cuda;
+  const auto h = delaunay3d(p, o);
+  ASSERT_EQ(r.num_tetrahedra, std::int64_t(h.num_tetrahedra()));
+  EXPECT_EQ(r.num_duplicates, 1);
+  const std::int64_t nt = r.num_tetrahedra;
+  std::vector<std::int32_t> tets(std::size_t(4 * nt)), nbrs(tets.size()), dup(p.size());
+  ASSERT_EQ(cudaMemcpy(tets.data(), r.tetrahedra.get(), tets.size() * 4, cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(nbrs.data(), r.neighbors.get(), nbrs.size() * 4, cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(dup.data(), r.duplicate_of.get(), dup.size() * 4, cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  EXPECT_EQ(gg_del3d::tet_set(tets), gg_del3d::tet_set(h.tetrahedra));
+  EXPECT_EQ(dup, h.duplicate_of);
+  for (std::int64_t c = 0; c < nt; ++c)  // neighbours point back (slot order may differ)
+    for (int k = 0; k < 4; ++k) {
+      const std::int32_t q = nbrs[std::size_t(4 * c + k)];
+      if (q < 0) continue;
+      ASSERT_LT(q, nt);
+      int back = 0;
+      for (int j = 0; j < 4; ++j) back += nbrs[std::size_t(4 * q + j)] == c;
+      ASSERT_EQ(back, 1) << "tetrahedron " << c << " face " << k;
+    }
 }
