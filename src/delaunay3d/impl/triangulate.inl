@@ -918,8 +918,21 @@ class Triangulator {
     return mesh::compact_live<4>(ex_, c.used, FiniteTets{tet_.data(), orig, m_});
   }
 
+  // Bytes phase 1 holds on the executor at its largest: the slot store with its per-slot
+  // arrays, the flip log, the per-point arrays and the exact stages' scratch.
+  std::int64_t store_bytes() const {
+    // (per slot: the tetrahedron, vote and choice keys, history, 7 int32 arrays, a decision;
+    // per point: 9 int32 here, and the sorted coordinates and input indices of prepare)
+    const std::int64_t per_slot = sizeof(Tet) + sizeof(u64) * 2 + sizeof(Hist) +
+                                  sizeof(std::int32_t) * 7 + sizeof(std::int8_t);
+    const std::int64_t per_point = sizeof(std::int32_t) * 10 + sizeof(double) * 3;
+    return cap_ * per_slot + std::int64_t(rec_.size()) * 4 + std::int64_t(m_) * per_point +
+           std::int64_t(pool_.scratch.size()) * 8;
+  }
+
   void report() {
     const Counters c = counters();
+    st_.counters["device_bytes_phase1"] = store_bytes();
     st_.counters["batches"] = batches_;
     st_.counters["flip_rounds"] = c.rounds;
     st_.counters["flips23"] = c.flips23;
