@@ -21,7 +21,8 @@
 //     stars are those of the Delaunay tetrahedralisation (Shewchuk).
 //  3. the tetrahedra of the old stars that the new ones lack are removed, the new ones added,
 //     and the faces between them and the rest linked.
-// Stars not read from the tetrahedralisation are never built.
+// Stars not read from the tetrahedralisation are never built. Steps 1 and 3 run on host threads
+// (each star on its own); step 2 is one queue.
 #include <algorithm>
 #include <array>
 #include <cstring>

@@ -79,11 +79,11 @@ struct SplayStats {
 // Adaptive star splaying (thesis 5.3.2): faces lists the faces that are not locally Delaunay
 // (three vertices each), whose vertices it starts from; where that list is empty, failed[v] != 0
 // marks them instead (and their stars are tested whole). Up to `threads` host threads (0: the
-// OpenMP default) rebuild the failed stars.
-// Rewrites mesh.tets into the Delaunay tetrahedralisation (slots of removed tetrahedra are
-// reused or left dead; new ones may be appended; every slot it writes is added to
-// mesh.written). Reads stars through mesh.vt, which must hold a live slot of every vertex;
-// its cost is in the failed vertices' neighbourhoods, never in the whole store. Throws
+// OpenMP default) rebuild the failed stars and compute the patch.
+// Rewrites the store (through mesh) into the Delaunay tetrahedralisation (slots of removed
+// tetrahedra are reused or left dead; new ones may be appended; every slot it writes is added
+// to mesh.written). Reads stars from mesh.vt, which must hold a live slot of every vertex; its
+// cost follows the failed vertices' neighbourhoods (mesh loads what it reads). Throws
 // Error(Internal) when a step that cannot fail on a valid input fails.
 SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed,
                  const std::vector<std::int32_t>& faces, int threads);
