@@ -20,6 +20,12 @@
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #endif
+#ifdef GG_BENCH_CGAL_PAR
+#include <CGAL/Delaunay_triangulation_cell_base_3.h>
+#include <CGAL/Spatial_lock_grid_3.h>
+#include <CGAL/Triangulation_data_structure_3.h>
+#include <CGAL/Triangulation_vertex_base_3.h>
+#endif
 
 using namespace gpugeom;
 
@@ -55,6 +61,28 @@ double cgal_ms(const std::vector<Point3>& p, std::int64_t& cells) {
   return -1;
 #endif
 }
+// CGAL's parallel construction (TBB, every host core; its documented set-up: a parallel data
+// structure and a grid of locks over the points' box), -1 where the build has no TBB.
+double cgal_par_ms(const std::vector<Point3>& p) {
+#ifdef GG_BENCH_CGAL_PAR
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Tds = CGAL::Triangulation_data_structure_3<CGAL::Triangulation_vertex_base_3<K>,
+                                                   CGAL::Delaunay_triangulation_cell_base_3<K>,
+                                                   CGAL::Parallel_tag>;
+  using PDT = CGAL::Delaunay_triangulation_3<K, Tds>;
+  std::vector<K::Point_3> in;
+  in.reserve(p.size());
+  for (auto& q : p) in.emplace_back(q.x, q.y, q.z);
+  const auto t0 = clk::now();
+  PDT::Lock_data_structure locks(CGAL::bbox_3(in.begin(), in.end()), 50);
+  PDT dt(in.begin(), in.end(), &locks);
+  const double ms = ms_since(t0);
+  return ms;
+#else
+  (void)p;
+  return -1;
+#endif
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -77,9 +105,9 @@ int main(int argc, char** argv) {
   }
   const DeviceInfo dev = query_device();
   std::printf("# device: %s\n", dev.available ? dev.name.c_str() : "none");
-  std::printf("%-12s %9s %-5s %10s %8s %8s %8s %8s %9s %8s %7s %10s %9s %6s\n", "dist", "n", "back",
-              "total_ms", "on_dev", "prep", "ins+flip", "splay", "flips", "failed", "stars", "tets",
-              "cgal_ms", "check");
+  std::printf("%-12s %9s %-5s %10s %8s %8s %8s %8s %9s %8s %7s %10s %9s %9s %6s\n", "dist", "n",
+              "back", "total_ms", "on_dev", "prep", "ins+flip", "splay", "flips", "failed", "stars",
+              "tets", "cgal_ms", "cgal_par", "check");
   for (const std::string& job : jobs) {
     const auto colon = job.find(':');
     const std::string dist = job.substr(0, colon);
@@ -87,6 +115,7 @@ int main(int argc, char** argv) {
     const auto pts = generate3d(dist, n, 7);
     std::int64_t cells = 0;
     const double cg = cgal_ms(pts, cells);
+    const double cgp = cgal_par_ms(pts);
     for (Backend b : {Backend::Cuda, Backend::Cpu}) {
       if (b == Backend::Cuda && !dev.available) continue;
       if (b == Backend::Cpu && !with_cpu && dev.available) continue;
@@ -115,12 +144,13 @@ int main(int argc, char** argv) {
         if (!rep.ok) std::printf("# %s\n", rep.message.c_str());
       }
       std::printf(
-          "%-12s %9lld %-5s %10.1f %8.1f %8.1f %8.1f %8.1f %9lld %8lld %7lld %10zu %9.1f %6s\n",
+          "%-12s %9lld %-5s %10.1f %8.1f %8.1f %8.1f %8.1f %9lld %8lld %7lld %10zu %9.1f %9.1f "
+          "%6s\n",
           dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu", ms[ms.size() / 2],
           on_dev, phase(t.stats, "prepare"), phase(t.stats, "insert_flip"), phase(t.stats, "splay"),
           (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
           (long long)counter(t.stats, "failed_vertices"),
-          (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(), cg, ok.c_str());
+          (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(), cg, cgp, ok.c_str());
       if (verbose) {
         std::printf("#   phases:");
         for (auto& p : t.stats.phase_ms) std::printf(" %s %.1f", p.first.c_str(), p.second);

@@ -3,7 +3,7 @@
 # Idempotent: packages already present are skipped quickly.
 set -euo pipefail
 APT_PKGS=(cmake g++ make ninja-build ccache clang libomp-dev libgtest-dev googletest
-          libpng-dev zlib1g-dev libcgal-dev libgmp-dev libmpfr-dev libbenchmark-dev
+          libpng-dev zlib1g-dev libcgal-dev libgmp-dev libmpfr-dev libbenchmark-dev libtbb-dev
           clang-format pkg-config)
 missing=()
 for p in "${APT_PKGS[@]}"; do

@@ -11,7 +11,7 @@ cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt 
 for x in ${EXCLUDE:-}; do rm -f ".devbin/$x"; done
 for f in .devbin/*; do
   [ -f "$f" ] || continue
-  ldd "$f" | awk '/=> \//{print $3}' | grep -E 'libcudart|libgomp|libpng|libgmp|libmpfr|libz\.' | xargs -r -I{} cp -L {} .devbin/lib/
+  ldd "$f" | awk '/=> \//{print $3}' | grep -E 'libcudart|libgomp|libpng|libgmp|libmpfr|libz\.|libtbb' | xargs -r -I{} cp -L {} .devbin/lib/
 done
 # A CTest file, so that the GPU machine can run 'ctest --test-dir .devbin -L gpu'.
 {
