@@ -31,9 +31,7 @@ using namespace gpugeom;
 
 namespace {
 using clk = std::chrono::steady_clock;
-double ms_since(clk::time_point t0) {
-  return std::chrono::duration<double, std::milli>(clk::now() - t0).count();
-}
+using bench::ms_since;
 double phase(const Stats& s, const char* name) {
   for (auto& p : s.phase_ms)
     if (p.first == name) return p.second;
@@ -44,12 +42,19 @@ std::int64_t counter(const Stats& s, const char* name) {
   return it == s.counters.end() ? 0 : it->second;
 }
 
-double cgal_ms(const std::vector<Point3>& p, std::int64_t& cells) {
 #ifdef GG_BENCH_CGAL
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+std::vector<K::Point_3> to_cgal(const std::vector<Point3>& p) {
   std::vector<K::Point_3> in;
   in.reserve(p.size());
   for (auto& q : p) in.emplace_back(q.x, q.y, q.z);
+  return in;
+}
+#endif
+
+double cgal_ms(const std::vector<Point3>& p, std::int64_t& cells) {
+#ifdef GG_BENCH_CGAL
+  const std::vector<K::Point_3> in = to_cgal(p);
   const auto t0 = clk::now();
   CGAL::Delaunay_triangulation_3<K> dt(in.begin(), in.end());
   const double ms = ms_since(t0);
@@ -65,19 +70,15 @@ double cgal_ms(const std::vector<Point3>& p, std::int64_t& cells) {
 // structure and a grid of locks over the points' box), -1 where the build has no TBB.
 double cgal_par_ms(const std::vector<Point3>& p) {
 #ifdef GG_BENCH_CGAL_PAR
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Tds = CGAL::Triangulation_data_structure_3<CGAL::Triangulation_vertex_base_3<K>,
                                                    CGAL::Delaunay_triangulation_cell_base_3<K>,
                                                    CGAL::Parallel_tag>;
   using PDT = CGAL::Delaunay_triangulation_3<K, Tds>;
-  std::vector<K::Point_3> in;
-  in.reserve(p.size());
-  for (auto& q : p) in.emplace_back(q.x, q.y, q.z);
+  const std::vector<K::Point_3> in = to_cgal(p);
   const auto t0 = clk::now();
   PDT::Lock_data_structure locks(CGAL::bbox_3(in.begin(), in.end()), 50);
   PDT dt(in.begin(), in.end(), &locks);
-  const double ms = ms_since(t0);
-  return ms;
+  return ms_since(t0);
 #else
   (void)p;
   return -1;

@@ -95,6 +95,19 @@ void HostMesh::load_stars(const std::vector<std::int32_t>& verts) {
   for (std::int32_t v : want) here_[std::size_t(v)] = 1;
 }
 
+void HostMesh::load_slots(const std::vector<std::int32_t>& slots) {
+  if (all_) return;
+  std::vector<std::int32_t> want;
+  for (std::int32_t t : slots)
+    if (t >= 0 && t < used && !peek(t)) want.push_back(t);
+  std::sort(want.begin(), want.end());
+  want.erase(std::unique(want.begin(), want.end()), want.end());
+  if (want.empty()) return;
+  std::vector<Tet> tets;
+  src_->slots(want, tets);
+  for (std::size_t i = 0; i < want.size(); ++i) insert(want[i], tets[i]);
+}
+
 void HostMesh::load_all() {
   if (all_) return;
   src_->all(dense_);  // (the slots appended here come after the store's)

@@ -93,6 +93,12 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
   removed.erase(std::unique(removed.begin(), removed.end()), removed.end());
   std::vector<Tet> old;
   for (std::int32_t t : removed) old.push_back(H.get(t));
+  {  // the tetrahedra across the region's outer faces, in one copy rather than one each
+    std::vector<std::int32_t> outer;
+    for (const Tet& D : old)
+      for (int k = 0; k < 4; ++k) outer.push_back(simplex_of(D.n[k]));
+    H.load_slots(outer);
+  }
   std::unordered_set<std::int32_t> gone(removed.begin(), removed.end());
   std::vector<std::int32_t> slots;
   std::size_t r = 0;
@@ -153,9 +159,25 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
     internal(std::string(step) + ": " + std::to_string(open.size()) + " face(s) left unmatched");
 }
 
+// Four finite points exactly on one plane (see peel_flat). scratch: kOrient3dScratch doubles.
+bool flat_tet(const HostMesh& H, const Tet& T, double* scratch) {
+  if (T.v[0] < 0) return false;
+  for (int k = 0; k < 4; ++k)
+    if (T.v[k] == H.m) return false;
+  auto at = [&](std::int32_t i) { return H.pts + 3 * std::int64_t(i); };
+  const double *a = at(T.v[0]), *b = at(T.v[1]), *c = at(T.v[2]), *d = at(T.v[3]);
+  return pred::orient3d_fast(a, b, c, d) == 0 && pred::orient3d(a, b, c, d, scratch) == 0;
+}
+
 // The written live slots' neighbours share their faces and point back (a guard on the host
 // paths, local: the rest of the store is as phase 1 left it).
 void check_adjacency(HostMesh& H, const char* step) {
+  {  // (neighbours not read yet come in one copy)
+    std::vector<std::int32_t> nb;
+    for (const std::int32_t t : H.written)
+      for (int k = 0; k < 4; ++k) nb.push_back(simplex_of(H.get(t).n[k]));
+    H.load_slots(nb);
+  }
   for (const std::int32_t t : H.written) {
     const Tet T = H.get(t);
     if (T.v[0] < 0) continue;
@@ -602,21 +624,13 @@ class Splayer {
     for (std::size_t i = 0; i < all.size(); ++i) {
       if (i > 0 && all[i].key == all[i - 1].key) continue;
       tets.push_back(all[i].tet);
-      if (flat(all[i].tet)) ++st_.flat_added;
+      if (flat_tet(H_, all[i].tet, scratch_.data())) ++st_.flat_added;
     }
     std::sort(removed.begin(), removed.end());
     removed.erase(std::unique(removed.begin(), removed.end()), removed.end());
     st_.removed = std::int64_t(removed.size());
     st_.added = std::int64_t(tets.size());
     replace_tets(H_, removed, tets, "patch");
-  }
-
-  // Four finite points exactly on one plane (see peel_flat).
-  bool flat(const Tet& T) {
-    for (int k = 0; k < 4; ++k)
-      if (T.v[k] == H_.m) return false;
-    const double *a = g_.at(T.v[0]), *b = g_.at(T.v[1]), *c = g_.at(T.v[2]), *d = g_.at(T.v[3]);
-    return pred::orient3d_fast(a, b, c, d) == 0 && pred::orient3d(a, b, c, d, scratch_.data()) == 0;
   }
 
   HostMesh& H_;
@@ -633,13 +647,7 @@ class Splayer {
 // plane of the hull facets they replace, so the hull keeps its shape), until none is left.
 std::int64_t peel(HostMesh& H) {
   std::vector<double> scratch(std::size_t(pred::kOrient3dScratch));
-  auto at = [&](std::int32_t i) { return H.pts + 3 * std::int64_t(i); };
-  auto flat = [&](const Tet& T) {
-    if (T.v[0] < 0) return false;
-    for (int k = 0; k < 4; ++k)
-      if (T.v[k] == H.m) return false;
-    return pred::orient3d(at(T.v[0]), at(T.v[1]), at(T.v[2]), at(T.v[3]), scratch.data()) == 0;
-  };
+  auto flat = [&](const Tet& T) { return flat_tet(H, T, scratch.data()); };
   auto infinite = [&](const Tet& T) {
     return T.v[0] == H.m || T.v[1] == H.m || T.v[2] == H.m || T.v[3] == H.m;
   };

@@ -68,6 +68,19 @@ int cmd_delaunay3d(const Global& g, Args& a);
 // A computation's phase times and counters on stderr (--verbose).
 void print_stats(const Stats& s);
 
+// What the 3D mesh commands (hull3d, delaunay3d) share: one point file read as 3D points, -o
+// MESH with one of `exts` (what: "for a hull", ...) and/or --check, the writers' options.
+// hint follows the message for a 2D file.
+struct PointsToMesh {
+  std::string src, out, ext;  // ext: out's extension, "" when there is no -o
+  bool check = false;
+  io::WriteOptions wo;
+  io::PointSet p;
+};
+PointsToMesh points_to_mesh(const Global& g, Args& a, const char* cmd,
+                            const std::vector<std::string>& exts, const char* what,
+                            const char* hint = "");
+
 // The mesh writers' options --compress (.vtu) and --ascii (.vtu, .ply), checked against the
 // output path `out` (UsageError where they do not apply).
 io::WriteOptions mesh_write_options(Args& a, const std::string& out);

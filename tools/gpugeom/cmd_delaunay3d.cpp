@@ -29,24 +29,12 @@ int cmd_delaunay3d(const Global& g, Args& a) {
     std::cout << kHelp;
     return kOk;
   }
-  std::string out;
-  a.value("-o", out) || a.value("--output", out);
-  const bool check = a.flag("--check");
-  const io::WriteOptions wo = mesh_write_options(a, out);
-  auto pos = a.positionals();
-  if (pos.size() != 1) throw UsageError("expected one point file (see --help)");
-  if (out.empty() && !check) throw UsageError("nothing to do: give -o MESH or --check");
-  const std::string ext = out.empty() ? "" : io::extension(out);
-  if (!out.empty() && ext != ".vtu" && ext != ".ele" && ext != ".ply" && ext != ".npy")
-    throw UsageError("-o takes .vtu, .ele, .ply or .npy for tetrahedra (got '" + out + "')");
-  io::PointSet p;
-  {
-    Timer t(g, "read");
-    p = io::read_points(pos[0]);
-  }
-  if (p.dim != 3)
-    throw Error(ErrorCode::InvalidInput,
-                pos[0] + " holds 2D points: delaunay3d needs 3D points (see delaunay2d)");
+  PointsToMesh job = points_to_mesh(g, a, "delaunay3d", {".vtu", ".ele", ".ply", ".npy"},
+                                    "for tetrahedra", " (see delaunay2d)");
+  io::PointSet& p = job.p;
+  const std::string& out = job.out;
+  const std::string& ext = job.ext;
+  const bool check = job.check;
   const std::int64_t n = std::int64_t(p.size());
   Delaunay3dOptions opt;
   opt.backend = g.backend;
@@ -82,7 +70,7 @@ int cmd_delaunay3d(const Global& g, Args& a) {
     m.cell_size = 4;
     if (ext != ".npy") m.coords = std::move(p.coords);  // (copies are unused vertices)
     m.cells = std::move(t3.tetrahedra);
-    io::write_mesh(out, m, wo);
+    io::write_mesh(out, m, job.wo);
   }
   return status;
 }

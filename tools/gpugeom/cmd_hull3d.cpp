@@ -29,24 +29,12 @@ int cmd_hull3d(const Global& g, Args& a) {
     std::cout << kHelp;
     return kOk;
   }
-  std::string out;
-  a.value("-o", out) || a.value("--output", out);
-  const bool check = a.flag("--check");
-  const io::WriteOptions wo = mesh_write_options(a, out);
-  auto pos = a.positionals();
-  if (pos.size() != 1) throw UsageError("expected one point file (see --help)");
-  if (out.empty() && !check) throw UsageError("nothing to do: give -o MESH or --check");
-  const std::string ext = out.empty() ? "" : io::extension(out);
-  if (!out.empty() && ext != ".ply" && ext != ".off" && ext != ".obj" && ext != ".vtu" &&
-      ext != ".npy")
-    throw UsageError("-o takes .ply, .off, .obj, .vtu or .npy for a hull (got '" + out + "')");
-  io::PointSet p;
-  {
-    Timer t(g, "read");
-    p = io::read_points(pos[0]);
-  }
-  if (p.dim != 3)
-    throw Error(ErrorCode::InvalidInput, pos[0] + " holds 2D points: hull3d needs 3D points");
+  PointsToMesh job =
+      points_to_mesh(g, a, "hull3d", {".ply", ".off", ".obj", ".vtu", ".npy"}, "for a hull");
+  const io::PointSet& p = job.p;
+  const std::string& out = job.out;
+  const std::string& ext = job.ext;
+  const bool check = job.check;
   const std::int64_t n = std::int64_t(p.size());
   Hull3dOptions opt;
   opt.backend = g.backend;
@@ -92,7 +80,7 @@ int cmd_hull3d(const Global& g, Args& a) {
       m.cells.reserve(h.triangles.size());
       for (auto v : h.triangles) m.cells.push_back(index[v]);
     }
-    io::write_mesh(out, m, wo);
+    io::write_mesh(out, m, job.wo);
   }
   return status;
 }

@@ -44,6 +44,34 @@ void print_stats(const Stats& s) {
     std::fprintf(stderr, "[count] %-28s %lld\n", c.first.c_str(), (long long)c.second);
 }
 
+PointsToMesh points_to_mesh(const Global& g, Args& a, const char* cmd,
+                            const std::vector<std::string>& exts, const char* what,
+                            const char* hint) {
+  PointsToMesh r;
+  a.value("-o", r.out) || a.value("--output", r.out);
+  r.check = a.flag("--check");
+  r.wo = mesh_write_options(a, r.out);
+  auto pos = a.positionals();
+  if (pos.size() != 1) throw UsageError("expected one point file (see --help)");
+  if (r.out.empty() && !r.check) throw UsageError("nothing to do: give -o MESH or --check");
+  r.ext = r.out.empty() ? "" : io::extension(r.out);
+  if (!r.out.empty() && std::find(exts.begin(), exts.end(), r.ext) == exts.end()) {
+    std::string list;
+    for (std::size_t i = 0; i < exts.size(); ++i)
+      list += (i == 0 ? "" : i + 1 == exts.size() ? " or " : ", ") + exts[i];
+    throw UsageError("-o takes " + list + " " + what + " (got '" + r.out + "')");
+  }
+  r.src = pos[0];
+  {
+    Timer t(g, "read");
+    r.p = io::read_points(r.src);
+  }
+  if (r.p.dim != 3)
+    throw Error(ErrorCode::InvalidInput,
+                r.src + " holds 2D points: " + cmd + " needs 3D points" + hint);
+  return r;
+}
+
 io::WriteOptions mesh_write_options(Args& a, const std::string& out) {
   io::WriteOptions wo;
   wo.compress = a.flag("--compress");
