@@ -10,6 +10,7 @@
 // curve and the perturbation follows that order, so the result depends on the point set only.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -17,7 +18,19 @@
 
 namespace gpugeom {
 
+// Where a run is (see Delaunay3dOptions::progress).
+struct Delaunay3dProgress {
+  const char* phase = "";     // "insert_flip" (after each batch), "splay", "output" (as they begin)
+  std::int64_t inserted = 0;  // distinct points in the tetrahedralisation so far
+  std::int64_t total = 0;     // distinct points
+  std::int64_t batch = 0;     // insertion batches so far
+};
+
 struct Delaunay3dOptions : RunOptions {
+  // Called on the calling thread after each insertion batch and as phase 2 and the output
+  // begin (a few dozen calls). An exception it throws ends the run and reaches the caller
+  // (a way to cancel), with nothing leaked.
+  std::function<void(const Delaunay3dProgress&)> progress;
   // Test switch: at most this many flip rounds after each batch (-1: until no flip is left),
   // so that star splaying must repair a tetrahedralisation far from Delaunay (0: none).
   std::int64_t max_flip_rounds = -1;

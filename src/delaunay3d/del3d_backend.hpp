@@ -1,6 +1,7 @@
 // What the public 3D Delaunay entry gets back from a backend (internal).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -8,6 +9,8 @@
 #include "gpugeom/delaunay3d.hpp"
 
 namespace gpugeom::del3d {
+
+using ProgressFn = std::function<void(const Delaunay3dProgress&)>;
 
 struct Output {
   std::vector<std::int32_t> tetrahedra;    // 4 per tetrahedron, input indices, positive

@@ -34,7 +34,8 @@ void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt
 void triangulate_device(const double* xyz, std::int64_t n, const RunOptions& run, DeviceOutput& out,
                         Stats& stats) {
   Exec ex(run);
-  triangulate_core(ex, xyz, n, true, -1, run.threads, stats,
+  const ProgressFn none;
+  triangulate_core(ex, xyz, n, true, -1, run.threads, none, stats,
                    [&](mesh::SortedPoints<Exec>& S, Triangulator::Finished& f) {
                      if (!S.duplicates) {  // no duplicates: the map is all -1
                        S.dup = ex.alloc<std::int32_t>(std::size_t(n));

@@ -642,80 +642,84 @@ class Splayer {
   SplayStats st_;
 };
 
-// Flat tetrahedra on the hull (see tet.hpp): each one next to an infinite tetrahedron is handed
-// to the outside, its faces toward finite neighbours becoming hull facets (they lie in the
-// plane of the hull facets they replace, so the hull keeps its shape), until none is left.
-std::int64_t peel(HostMesh& H) {
-  std::vector<double> scratch(std::size_t(pred::kOrient3dScratch));
-  auto flat = [&](const Tet& T) { return flat_tet(H, T, scratch.data()); };
+// Flat tetrahedra on the hull (see tet.hpp), all at once. A flat tetrahedron's four points lie
+// in one plane, and it can be Delaunay under the perturbation only where that plane supports
+// the hull (anywhere else its sphere, nearly that plane, holds the points on one side), so the
+// flat tetrahedra are thin layers over hull facets' planes. The tetrahedra with positive
+// volume tile the hull by themselves; the boundary of their union is the hull's surface, made
+// of the hull facets of positive tetrahedra that stay, and of the faces between positive and
+// flat tetrahedra. So every flat tetrahedron goes, with the infinite tetrahedra over its faces,
+// and each face between a positive and a flat tetrahedron gets an infinite tetrahedron:
+// replace_tets links them along the hull's edges. The other tetrahedra stay as they were, so
+// the result is still Delaunay. (Peeling one flat tetrahedron at a time, as this once did,
+// could stall: over a plane with many points the layers overlap, and no single peel kept the
+// hull a surface.)
+std::int64_t peel(HostMesh& H, std::vector<std::int32_t> cand, bool all_slots) {
+  if (all_slots) {
+    H.load_all();
+    cand.resize(std::size_t(H.used));
+    for (std::int32_t t = 0; t < std::int32_t(H.used); ++t) cand[std::size_t(t)] = t;
+  } else {  // phase 1's flat slots and what phase 2 wrote, with their neighbours, in one copy
+    cand.insert(cand.end(), H.written.begin(), H.written.end());
+    std::sort(cand.begin(), cand.end());
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+    H.load_slots(cand);
+    std::vector<std::int32_t> nb;
+    for (const std::int32_t t : cand)
+      for (int k = 0; k < 4; ++k)
+        if (H.peek(t)->v[0] >= 0) nb.push_back(simplex_of(H.peek(t)->n[k]));
+    H.load_slots(nb);
+  }
   auto infinite = [&](const Tet& T) {
     return T.v[0] == H.m || T.v[1] == H.m || T.v[2] == H.m || T.v[3] == H.m;
   };
-  // Hull edges (the faces at the infinity point): a peel must not make one twice.
-  std::unordered_map<std::uint64_t, int> hull_edges;
-  auto edge_key = [](std::int32_t a, std::int32_t b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-  };
-  auto count_edges = [&](const Tet& T, int delta) {
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-        if (T.v[i] != H.m && T.v[j] != H.m) hull_edges[edge_key(T.v[i], T.v[j])] += delta;
-  };
-  H.load_all();
-  for (std::int32_t t = 0; t < H.used; ++t) {
-    const Tet& T = H.get(t);
-    if (T.v[0] >= 0 && infinite(T)) count_edges(T, 1);
+  std::vector<std::int8_t> is_flat(cand.size(), 0);
+#pragma omp parallel
+  {
+    std::vector<double> scratch(std::size_t(pred::kOrient3dScratch));
+#pragma omp for schedule(static, 4096)
+    for (std::int64_t i = 0; i < std::int64_t(cand.size()); ++i)
+      is_flat[std::size_t(i)] = flat_tet(H, *H.peek(cand[std::size_t(i)]), scratch.data());
   }
+  std::vector<double> scratch(std::size_t(pred::kOrient3dScratch));
+  std::unordered_set<std::int32_t> seen;
+  std::vector<std::int32_t> removed, stack;
+  std::vector<Tet> added;
   std::int64_t peeled = 0;
-  for (;;) {
-    bool progress = false, left = false;
-    for (std::int32_t t = 0; t < H.used; ++t) {
+  for (std::size_t i = 0; i < cand.size(); ++i) {
+    if (!is_flat[i] || seen.count(cand[i])) continue;
+    // One connected layer: it must reach the outside (else it would lie inside the hull).
+    bool outside = false;
+    stack.assign(1, cand[i]);
+    seen.insert(cand[i]);
+    while (!stack.empty()) {
+      const std::int32_t t = stack.back();
+      stack.pop_back();
+      removed.push_back(t);
+      ++peeled;
       const Tet T = H.get(t);
-      if (!flat(T)) continue;
-      std::vector<std::int32_t> removed{t};
-      std::vector<Tet> added;
       for (int k = 0; k < 4; ++k) {
         const std::int32_t nb = simplex_of(T.n[k]);
-        if (infinite(H.get(nb))) {
+        const Tet& N = H.get(nb);
+        if (infinite(N)) {
           removed.push_back(nb);
-        } else {  // the face, oriented outward from the neighbour, with the infinity point
+          outside = true;
+        } else if (flat_tet(H, N, scratch.data())) {
+          if (seen.insert(nb).second) stack.push_back(nb);
+        } else {  // T's face k, oriented outward from the neighbour, with the infinity point
           added.push_back(
               Tet{{T.v[face_vertex(k, 0)], T.v[face_vertex(k, 2)], T.v[face_vertex(k, 1)], H.m},
                   {-1, -1, -1, -1}});
         }
       }
-      if (removed.size() == 1) continue;  // not on the hull (yet)
-      left = true;
-      // The hull edges after the peel: those of the removed infinite tetrahedra go, those of
-      // the new ones come; an edge counted more than twice would be a fold.
-      for (std::size_t r = 1; r < removed.size(); ++r) count_edges(H.get(removed[r]), -1);
-      for (const Tet& A : added) count_edges(A, 1);
-      bool ok = true;
-      for (const Tet& A : added)
-        for (int i = 0; i < 3 && ok; ++i)
-          for (int j = i + 1; j < 3 && ok; ++j) ok = hull_edges[edge_key(A.v[i], A.v[j])] <= 2;
-      if (!ok) {  // not now: undo the count
-        for (const Tet& A : added) count_edges(A, -1);
-        for (std::size_t r = 1; r < removed.size(); ++r) count_edges(H.get(removed[r]), 1);
-        continue;
-      }
-      replace_tets(H, removed, added, "peel");
-      ++peeled;
-      progress = true;
     }
-    if (!left) break;
-    if (!progress)  // (stacks of flat tetrahedra over large coplanar hull regions)
-      throw Error(ErrorCode::Unsupported,
-                  "this version cannot yet remove every flat tetrahedron that simulation of "
-                  "simplicity puts on the hull when many input points lie exactly on one hull "
-                  "plane (e.g. the faces of an integer grid); perturb such points or use the "
-                  "convex hull module for the hull alone");
+    if (!outside)
+      internal("flat tetrahedra inside the hull, around slot " + std::to_string(cand[i]));
   }
+  if (peeled > 0) replace_tets(H, removed, added, "peel");
   check_adjacency(H, "after peeling");
   return peeled;
 }
-
 }  // namespace
 
 SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed,
@@ -724,8 +728,8 @@ SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed,
   return s.run(failed, faces, threads);
 }
 
-std::int64_t peel_flat(HostMesh& mesh) {
-  return peel(mesh);
+std::int64_t peel_flat(HostMesh& mesh, const std::vector<std::int32_t>& flats, bool all_slots) {
+  return peel(mesh, flats, all_slots);
 }
 
 }  // namespace gpugeom::del3d

@@ -89,10 +89,12 @@ SplayStats splay(HostMesh& mesh, const std::vector<std::int8_t>& failed,
                  const std::vector<std::int32_t>& faces, int threads);
 
 // Flat tetrahedra: four points exactly on one plane that the perturbation orders positively.
-// They can only lie on the hull (as in 2D, a perturbed point moved just inside a hull facet);
-// each next to the outside is given to it, which leaves every other tetrahedron as it was, so
-// the result is still Delaunay, and the hull facets cover the same planes. Returns how many.
-// (Scans the whole store: called only when phase 1 or the splaying left flat tetrahedra.)
-std::int64_t peel_flat(HostMesh& mesh);
+// They can only lie on the hull, in layers over the planes of hull facets with many points;
+// all of them go to the outside at once, the faces between them and the tetrahedra of positive
+// volume becoming hull facets, which leaves every other tetrahedron as it was: the result is
+// still Delaunay, and the hull facets cover the same planes. `flats` lists the flat slots phase
+// 1 left (the slots phase 2 wrote are looked at too), or all_slots says the list did not fit
+// and every slot is looked at. Returns how many went.
+std::int64_t peel_flat(HostMesh& mesh, const std::vector<std::int32_t>& flats, bool all_slots);
 
 }  // namespace gpugeom::del3d

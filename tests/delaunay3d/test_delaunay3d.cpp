@@ -28,15 +28,6 @@ Delaunay3dOptions cpu() {
 TEST(Delaunay3d, Distributions) {
   for (const auto& c : gg_hull3d::distribution_cases({5, 10, 100, 1000, 10000}, 3)) {
     SCOPED_TRACE(c.name);
-    if (c.name.rfind("grid", 0) == 0) {  // coplanar hull faces: refused in this version
-      try {
-        delaunay3d(c.pts, cpu());
-        ADD_FAILURE() << "no longer refused: make this a validity test";
-      } catch (const Error& e) {
-        EXPECT_EQ(e.code(), ErrorCode::Unsupported) << e.what();
-      }
-      continue;
-    }
     // Two skew lines have a quadratic number of tetrahedra (and flips): 100 points here,
     // larger ones in the benchmark.
     if (c.name.rfind("two_lines", 0) == 0 && c.pts.size() > 100) continue;
@@ -45,33 +36,20 @@ TEST(Delaunay3d, Distributions) {
   }
 }
 
-// Every degenerate set is triangulated exactly, except those with many points exactly on one
-// hull plane, which this version refuses with Error(Unsupported) (see delaunay3d.hpp): the list
-// of those is fixed here, so that neither a wrong result nor a new refusal goes unnoticed.
+// Every degenerate set is triangulated exactly: grids and polytopes with many points on each
+// hull plane (flat tetrahedra over those planes), points on edges, cospherical sets, copies.
 TEST(Delaunay3d, Degenerate) {
-  std::vector<std::string> refused;
   for (const auto& c : gg_hull3d::degenerate_cases()) {
     SCOPED_TRACE(c.name);
-    try {
-      expect_valid(c.pts, delaunay3d(c.pts, cpu()));
-    } catch (const Error& e) {
-      ASSERT_EQ(e.code(), ErrorCode::Unsupported) << e.what();
-      refused.push_back(c.name);
-    }
+    expect_valid(c.pts, delaunay3d(c.pts, cpu()));
   }
-  // (whether the simple peel gets through a small grid depends on the slot order, which the
-  // executor's atomics decide: a refusal must be one of these)
-  const std::vector<std::string> known{"grid3",      "grid4",       "grid6",           "grid9",
-                                       "cube_faces", "tetra_faces", "octahedron_edges"};
-  for (const auto& r : refused)
-    EXPECT_NE(std::find(known.begin(), known.end(), r), known.end()) << r << " refused";
 }
 
 // Phase 2 alone: no flips after the insertions (a tetrahedralisation far from Delaunay), or only
 // a few rounds; star splaying must repair it.
 TEST(Delaunay3d, StarSplayingRepairs) {
   for (std::int64_t rounds : {0, 1, 3}) {
-    for (const char* d : {"uniform", "sphere", "gaussian", "thin_sphere"}) {
+    for (const char* d : {"uniform", "sphere", "gaussian", "thin_sphere", "grid"}) {
       SCOPED_TRACE(std::string(d) + ", rounds " + std::to_string(rounds));
       const auto pts = generate3d(d, 600, 5);
       Delaunay3dOptions o = cpu();
@@ -84,7 +62,7 @@ TEST(Delaunay3d, StarSplayingRepairs) {
 }
 
 TEST(Delaunay3d, SameForEveryThreadCount) {
-  for (const char* d : {"uniform", "sphere", "thin_sphere"}) {
+  for (const char* d : {"uniform", "sphere", "thin_sphere", "grid"}) {
     const auto pts = generate3d(d, 5000, 4);
     Delaunay3dOptions o = cpu();
     o.threads = 1;
@@ -94,6 +72,47 @@ TEST(Delaunay3d, SameForEveryThreadCount) {
       EXPECT_EQ(gg_del3d::tet_set(delaunay3d(pts, o).tetrahedra), ref) << d << ", " << th;
     }
   }
+}
+
+// Progress comes after every batch with a growing count, then for phase 2 and the output; an
+// exception from the callback ends the run and reaches the caller, and the next run is whole.
+TEST(Delaunay3d, ProgressAndCancel) {
+  const auto pts = generate3d("uniform", 20000, 6);
+  Delaunay3dOptions o = cpu();
+  std::vector<Delaunay3dProgress> seen;
+  o.progress = [&](const Delaunay3dProgress& p) { seen.push_back(p); };
+  const auto t = delaunay3d(pts, o);
+  ASSERT_GE(seen.size(), 3u);
+  std::int64_t batches = 0, last = 0;
+  for (const auto& p : seen) {
+    EXPECT_EQ(p.total, 20000);
+    EXPECT_GE(p.inserted, last);
+    last = p.inserted;
+    if (std::string(p.phase) == "insert_flip") ++batches;
+  }
+  EXPECT_EQ(batches, t.stats.counters.at("batches"));
+  EXPECT_EQ(std::string(seen.back().phase), "output");
+  EXPECT_EQ(seen.back().inserted, 20000);
+  struct Stop {};
+  o.progress = [](const Delaunay3dProgress& p) {
+    if (p.batch == 2) throw Stop{};
+  };
+  EXPECT_THROW(delaunay3d(pts, o), Stop);
+  o.progress = nullptr;
+  EXPECT_EQ(gg_del3d::tet_set(delaunay3d(pts, o).tetrahedra), gg_del3d::tet_set(t.tetrahedra));
+}
+
+// A full integer grid: every hull facet's plane holds a square of points, every cube eight
+// cospherical ones.
+TEST(Delaunay3d, FullGrid) {
+  std::vector<Point3> pts;
+  for (int x = 0; x < 24; ++x)
+    for (int y = 0; y < 24; ++y)
+      for (int z = 0; z < 24; ++z) pts.push_back({double(x), double(y), double(z)});
+  const auto t = delaunay3d(pts, cpu());
+  expect_valid(pts, t);
+  EXPECT_GT(t.stats.counters.at("flat_tetrahedra"), 0);
+  EXPECT_EQ(t.hull_facets.size() / 3, std::size_t(6 * 2 * 23 * 23));  // two per unit square
 }
 
 TEST(Delaunay3d, Errors) {

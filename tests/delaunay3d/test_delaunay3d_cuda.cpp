@@ -37,24 +37,13 @@ void same_on_both(const gg_hull3d::Case& c, bool compare = true) {
 
 TEST(CudaDelaunay3d, Distributions) {
   for (const auto& c : gg_hull3d::distribution_cases(sizes({5, 100, 5000, 200000}), 17)) {
-    if (c.name.rfind("grid", 0) == 0) continue;  // refused in this version (see the CPU test)
     if (c.name.rfind("two_lines", 0) == 0 && c.pts.size() > 100) continue;  // (quadratic)
     same_on_both(c, c.pts.size() <= 5000);
   }
 }
 
 TEST(CudaDelaunay3d, Degenerate) {
-  // (as the CPU test: many points on one hull plane may be refused, and only those)
-  const std::vector<std::string> known{"grid3",      "grid4",       "grid6",           "grid9",
-                                       "cube_faces", "tetra_faces", "octahedron_edges"};
-  for (const auto& c : gg_hull3d::degenerate_cases()) {
-    try {
-      same_on_both(c);
-    } catch (const Error& e) {
-      EXPECT_EQ(e.code(), ErrorCode::Unsupported) << c.name << ": " << e.what();
-      EXPECT_NE(std::find(known.begin(), known.end(), c.name), known.end()) << c.name;
-    }
-  }
+  for (const auto& c : gg_hull3d::degenerate_cases()) same_on_both(c);
 }
 
 TEST(CudaDelaunay3d, StarSplayingRepairs) {

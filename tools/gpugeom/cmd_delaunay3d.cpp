@@ -1,5 +1,7 @@
 // gpugeom delaunay3d: the exact Delaunay tetrahedralisation of a 3D point file, written as a
 // tetrahedral mesh (ParaView, TetGen's .node/.ele, NumPy), with an optional exact check.
+#include <chrono>
+#include <cstdio>
 #include <iostream>
 
 #include "cli.hpp"
@@ -21,7 +23,29 @@ const char* kHelp =
     "  --compress  .vtu: zlib-compressed blocks\n"
     "  --ascii     .vtu and .ply as text instead of binary\n"
     "  --check     verify the result with the independent exact checker\n"
-    "With --verbose, the phase table and counters (flips, failed vertices, ...) on stderr.\n";
+    "With --verbose, the phase table and counters (flips, failed vertices, ...) on stderr.\n"
+    "Runs longer than a second show their progress on stderr (not with --quiet).\n";
+
+// A progress line on stderr, redrawn in place, once the run has taken a second (short runs
+// print nothing). Returns whether it printed, so the caller can end the line.
+void attach_progress(const Global& g, Delaunay3dOptions& o, bool& printed) {
+  if (g.quiet) return;
+  const auto start = std::chrono::steady_clock::now();
+  o.progress = [start, &printed](const Delaunay3dProgress& p) {
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (s < 1.0) return;
+    const int width = 30;
+    const int done = p.total > 0 ? int(double(width) * double(p.inserted) / double(p.total)) : 0;
+    char bar[64];
+    for (int i = 0; i < width; ++i) bar[i] = i < done ? '#' : '.';
+    bar[width] = 0;
+    std::fprintf(stderr, "\r[%s] %-11s %lld / %lld points, batch %lld, %.1f s   ", bar, p.phase,
+                 (long long)p.inserted, (long long)p.total, (long long)p.batch, s);
+    std::fflush(stderr);
+    printed = true;
+  };
+}
 }  // namespace
 
 int cmd_delaunay3d(const Global& g, Args& a) {
@@ -38,11 +62,19 @@ int cmd_delaunay3d(const Global& g, Args& a) {
   const std::int64_t n = std::int64_t(p.size());
   Delaunay3dOptions opt;
   opt.backend = g.backend;
+  bool printed = false;
+  attach_progress(g, opt, printed);
   Triangulation3d t3;
   {
     Timer t(g, "delaunay3d");
-    t3 = delaunay3d(p.coords.data(), n, opt);
+    try {
+      t3 = delaunay3d(p.coords.data(), n, opt);
+    } catch (...) {
+      if (printed) std::fputs("\n", stderr);  // (the error's message on a line of its own)
+      throw;
+    }
   }
+  if (printed) std::fputs("\n", stderr);
   if (!g.quiet) {
     std::cout << n << " points";
     if (t3.num_duplicates) std::cout << " (" << t3.num_duplicates << " duplicates kept once)";

@@ -304,8 +304,8 @@ struct FlipRound {
 class Triangulator {
  public:
   Triangulator(Exec& ex, const double* pts, std::int32_t m, const mesh::Tetra& first,
-               std::int64_t max_rounds, Stats& st)
-      : ex_(ex), st_(st), max_rounds_(max_rounds) {
+               std::int64_t max_rounds, const ProgressFn& progress, Stats& st)
+      : ex_(ex), st_(st), max_rounds_(max_rounds), progress_(progress) {
     source_.t = this;
     m_ = m;
     g_.p = pts;
@@ -327,83 +327,94 @@ class Triangulator {
     ctr_ = ex.template alloc<Counters>(1);
     Counters zero{};
     ex.from_host(&zero, 1, ctr_.data());
-    grow(std::max<std::int64_t>(8 * std::int64_t(m) + 64, 1024));
+    grow(std::min(std::max<std::int64_t>(8 * std::int64_t(m) + 64, 1024), kMaxSlots));
   }
 
   // Capacity for cap slots: every per-slot array (and the lists, whose entries are distinct
-  // slots) grows, keeping what it holds.
+  // slots) grows, keeping what it holds. One array at a time, so that at most one array is
+  // held twice (the largest inputs fill the device: a whole second store would not fit).
   void grow(std::int64_t cap) {
-    if (cap > (std::int64_t(1) << 29))
-      throw Error(ErrorCode::OutOfMemory,
-                  "the tetrahedralisation needs more than 2^29 tetrahedra, more than this "
-                  "version's 32-bit neighbour encoding can address");
     const std::int64_t old = cap_;
     Counters c{};
     if (old) c = counters();
-    auto tet = ex_.template alloc<Tet>(std::size_t(cap));
-    auto vote = ex_.template alloc<u64>(std::size_t(cap));
-    auto stamp = ex_.template alloc<std::int32_t>(std::size_t(cap));
-    auto hist = ex_.template alloc<Hist>(std::size_t(cap));
-    auto best = ex_.template alloc<u64>(std::size_t(cap));
-    auto srank = ex_.template alloc<std::int32_t>(std::size_t(cap));
-    auto freeq = ex_.template alloc<std::int32_t>(std::size_t(cap));
     const std::int64_t keep = old ? std::min<std::int64_t>(c.used, old) : 0;
-    if (keep) {
-      ex_.copy(tet_.data(), keep, tet.data());
-      ex_.copy(vote_.data(), keep, vote.data());
-      ex_.copy(stamp_.data(), keep, stamp.data());
-      ex_.copy(hist_.data(), keep, hist.data());
-      ex_.copy(best_.data(), keep, best.data());
-      ex_.copy(srank_.data(), keep, srank.data());
-    }
-    ex_.fill(vote.data() + keep, cap - keep, u64(0));
-    ex_.fill(stamp.data() + keep, cap - keep, std::int32_t(-1));
-    ex_.fill(hist.data() + keep, cap - keep, Hist{-1, -1});
-    ex_.fill(best.data() + keep, cap - keep, ~u64(0));
-    ex_.fill(srank.data() + keep, cap - keep, std::int32_t(-1));
+    regrow<Tet>(tet_, cap, keep, nullptr);
+    const u64 zero = 0, none = ~u64(0);
+    const std::int32_t minus1 = -1;
+    const Hist nohist{-1, -1};
+    regrow(vote_, cap, keep, &zero);
+    regrow(stamp_, cap, keep, &minus1);
+    regrow(hist_, cap, keep, &nohist);
+    regrow(best_, cap, keep, &none);
+    regrow(srank_, cap, keep, &minus1);
     if (old) {  // the ring of freed slots, the last round's takes and frees applied, unrolled
       const std::int64_t avail = c.free_tail - c.free_head;
       c.free_head += std::min(c.popped, avail);
       c.free_tail += c.pushed;
       c.popped = c.pushed = 0;
       const std::int64_t nfree = c.free_tail - c.free_head;
+      auto freeq = ex_.template alloc<std::int32_t>(std::size_t(cap));
       const std::int32_t* q = freeq_.data();
       std::int32_t* nq = freeq.data();
       const std::int64_t head = c.free_head, ocap = old;
       ex_.for_each_index(
           nfree, GG_LAMBDA(std::int64_t i) { nq[i] = q[(head + i) % ocap]; });
+      freeq_ = std::move(freeq);
       c.free_head = 0;
       c.free_tail = nfree;
+    } else {
+      freeq_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
     }
-    for (int l = 0; l < 2; ++l) {
-      auto list = ex_.template alloc<std::int32_t>(std::size_t(cap));
-      if (old) ex_.copy(lists_[l].data(), std::min(c.len[l], old), list.data());
-      lists_[l] = std::move(list);
-    }
-    tet_ = std::move(tet);
-    vote_ = std::move(vote);
-    stamp_ = std::move(stamp);
-    hist_ = std::move(hist);
-    best_ = std::move(best);
-    srank_ = std::move(srank);
-    freeq_ = std::move(freeq);
+    for (int l = 0; l < 2; ++l)
+      regrow<std::int32_t>(lists_[l], cap, old ? std::min(c.len[l], old) : 0, nullptr);
+    // (scratch of one step: nothing to keep)
+    dec_ = typename Exec::template Buffer<std::int8_t>();
+    third_ = typename Exec::template Buffer<std::int32_t>();
+    flipped_ = typename Exec::template Buffer<std::int32_t>();
     dec_ = ex_.template alloc<std::int8_t>(std::size_t(cap));
     third_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
     flipped_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
     log_cap_ = std::max<std::int64_t>(cap / 2, 1 << 16);
-    if (!rec_.size() || std::int64_t(rec_.size()) < FlipLog::kStride * log_cap_) {
-      auto rec = ex_.template alloc<std::int32_t>(std::size_t(FlipLog::kStride * log_cap_));
-      if (old && c.log) ex_.copy(rec_.data(), FlipLog::kStride * c.log, rec.data());
-      rec_ = std::move(rec);
-    }
+    if (!rec_.size() || std::int64_t(rec_.size()) < FlipLog::kStride * log_cap_)
+      regrow<std::int32_t>(rec_, FlipLog::kStride * log_cap_, old ? FlipLog::kStride * c.log : 0,
+                           nullptr);
     cap_ = cap;
     if (old) ex_.from_host(&c, 1, ctr_.data());
     M_ = Mesh{
         tet_.data(),   vote_.data(), stamp_.data(), FlipLog{rec_.data(), hist_.data(), M_.log.base},
         freeq_.data(), cap_,         ctr_.data()};
   }
+  template <class T>
+  void regrow(typename Exec::template Buffer<T>& b, std::int64_t cap, std::int64_t keep,
+              const T* fill) {
+    auto nb = ex_.template alloc<T>(std::size_t(cap));
+    if (keep) ex_.copy(b.data(), keep, nb.data());
+    if (fill) ex_.fill(nb.data() + keep, cap - keep, *fill);
+    b = std::move(nb);
+  }
+  // Room for `slots`: a quarter more than now at least (each growth copies the store), but
+  // never past the 2^29 slots the neighbour encoding (4 per slot in 31 bits) can address.
+  static constexpr std::int64_t kMaxSlots = std::int64_t(1) << 29;
   void reserve(std::int64_t slots) {
-    if (slots > cap_) grow(std::max(slots, cap_ + cap_ / 2));
+    if (slots <= cap_) return;
+    if (slots > kMaxSlots)
+      throw Error(ErrorCode::OutOfMemory,
+                  "the tetrahedralisation needs more than 2^29 tetrahedra, more than this "
+                  "version's 32-bit neighbour encoding can address");
+    grow(std::min(std::max(slots, cap_ + cap_ / 4), kMaxSlots));
+  }
+
+  // Phase 1's working arrays, once it is done: what follows (failed faces, phase 2, the
+  // output) reads only the store, the counters and the points.
+  void release_phase1() {
+    for (auto* b : {&stamp_, &srank_, &freeq_, &lists_[0], &lists_[1], &third_, &flipped_, &rec_,
+                    &loc_, &un_, &un2_, &ins_, &split_})
+      *b = typename Exec::template Buffer<std::int32_t>();
+    vote_ = typename Exec::template Buffer<u64>();
+    best_ = typename Exec::template Buffer<u64>();
+    hist_ = typename Exec::template Buffer<Hist>();
+    dec_ = typename Exec::template Buffer<std::int8_t>();
+    M_ = Mesh{tet_.data(), nullptr, nullptr, FlipLog{}, nullptr, cap_, ctr_.data()};
   }
 
   void run() {
@@ -411,6 +422,8 @@ class Triangulator {
     remaining_ = nun_;
     while (remaining_ > 0) batch();
     ex_.sync();
+    peak_bytes_ = store_bytes();
+    release_phase1();
   }
 
   Counters counters() {
@@ -555,6 +568,7 @@ class Triangulator {
     nact_ = 4 * nins;
     ms_choose_ += ms_since(t0);
     flip_until_stuck();
+    if (progress_) progress_(Delaunay3dProgress{"insert_flip", m_ - remaining_, m_, batches_});
   }
 
   // Rounds run in chunks with no wait in between: every kernel reads its list length on the
@@ -723,15 +737,18 @@ class Triangulator {
 
   // Every face of the tetrahedralisation tested; the vertices of faces that are not locally
   // Delaunay are marked (failed: m + 1 entries) and the faces listed (faces: room for
-  // face_cap, three vertices each; the list is left incomplete beyond). Also counts the flat
-  // finite tetrahedra next to the outside (see peel_flat). Returns the number of failed faces.
+  // face_cap, three vertices each; the list is left incomplete beyond). Also lists the flat
+  // finite tetrahedra (flats: room for face_cap slots; see peel_flat) and counts them in flat.
+  // Returns the number of failed faces.
   std::int64_t find_failed(typename Exec::template Buffer<std::int8_t>& failed,
                            typename Exec::template Buffer<std::int32_t>& faces,
+                           typename Exec::template Buffer<std::int32_t>& flats,
                            std::int64_t face_cap, std::int64_t& flat) {
     const Geo g = g_;
     const Mesh M = M_;
     std::int8_t* f = failed.data();
     std::int32_t* fl = faces.data();
+    std::int32_t* ft = flats.data();
     ex_.fill(f, std::int64_t(m_) + 1, std::int8_t(0));
     Counters* ctr = ctr_.data();
     const Counters c = counters();
@@ -740,12 +757,10 @@ class Triangulator {
         c.used, GG_LAMBDA(std::int64_t t) {
           const Tet T = M.tet[t];
           if (T.v[0] < 0) return;
-          bool hull = false;
           for (int k = 0; k < 4; ++k) {
             const std::int32_t nb = simplex_of(T.n[k]);
-            const std::int32_t d = M.tet[nb].v[loc_of(T.n[k])];
-            hull = hull || d == m;
             if (nb < t) continue;  // (each face once, from its higher slot)
+            const std::int32_t d = M.tet[nb].v[loc_of(T.n[k])];
             if (!in_sphere_ext(g, T.v, d)) continue;
             const std::int64_t at = atomic_add(&ctr->failed_faces, std::int64_t(1));
             std::int32_t x[3];
@@ -754,13 +769,15 @@ class Triangulator {
             if (at < face_cap)
               for (int j = 0; j < 3; ++j) fl[3 * at + j] = x[j];
           }
-          if (!hull || T.v[0] == m || T.v[1] == m || T.v[2] == m || T.v[3] == m) return;
+          if (T.v[0] == m || T.v[1] == m || T.v[2] == m || T.v[3] == m) return;
           const double *a = g.at(T.v[0]), *b = g.at(T.v[1]), *cc = g.at(T.v[2]), *d = g.at(T.v[3]);
           if (pred::orient3d_fast(a, b, cc, d) != 0) return;
           double* s = g.lease.acquire(lease_hint(T.v[0], T.v[3]));
           const int o = pred::orient3d(a, b, cc, d, s);
           g.lease.release(s);
-          if (o == 0) atomic_add(&ctr->flat, std::int64_t(1));
+          if (o != 0) return;
+          const std::int64_t at = atomic_add(&ctr->flat, std::int64_t(1));
+          if (at < face_cap) ft[at] = std::int32_t(t);
         });
     const Counters after = counters();
     flat = after.flat;
@@ -932,7 +949,9 @@ class Triangulator {
 
   void report() {
     const Counters c = counters();
-    st_.counters["device_bytes_phase1"] = store_bytes();
+    st_.counters["device_bytes_phase1"] = peak_bytes_;
+    st_.counters["slots_used"] = c.used;
+    st_.counters["slots_capacity"] = cap_;
     st_.counters["batches"] = batches_;
     st_.counters["flip_rounds"] = c.rounds;
     st_.counters["flips23"] = c.flips23;
@@ -952,6 +971,8 @@ class Triangulator {
   Exec& ex_;
   Stats& st_;
   std::int64_t max_rounds_ = -1;
+  const ProgressFn& progress_;
+  std::int64_t peak_bytes_ = 0;
   Geo g_;
   Mesh M_{};
   mesh::Tetra first_;
@@ -981,7 +1002,8 @@ class Triangulator {
 // left failed faces, then the finite tetrahedra in input indices (f) with S's duplicate map.
 template <class Body>
 inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on_device,
-                             std::int64_t max_rounds, int threads, Stats& st, Body body) {
+                             std::int64_t max_rounds, int threads, const ProgressFn& progress,
+                             Stats& st, Body body) {
   auto t0 = Clock::now();
   auto raw = ex.template alloc<double>(std::size_t(3 * n));
   if (on_device)
@@ -1004,20 +1026,22 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   t0 = Clock::now();
-  Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, max_rounds, st);
+  Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, max_rounds, progress, st);
   T.run();
   st.phase_ms.push_back({"insert_flip", ms_since(t0)});
   t0 = Clock::now();
   auto failed = ex.template alloc<std::int8_t>(std::size_t(S.m + 1));
   const std::int64_t face_cap = std::max<std::int64_t>(1 << 16, S.m / 16);
   auto faces = ex.template alloc<std::int32_t>(std::size_t(3 * face_cap));
+  auto flats = ex.template alloc<std::int32_t>(std::size_t(face_cap));
   std::int64_t nflat = 0;
-  const std::int64_t nfailed = T.find_failed(failed, faces, face_cap, nflat);
+  const std::int64_t nfailed = T.find_failed(failed, faces, flats, face_cap, nflat);
   st.phase_ms.push_back({"find_failed", ms_since(t0)});
   t0 = Clock::now();
   SplayStats sp;
   std::int64_t peeled = 0;
   if (nfailed > 0 || nflat > 0) {  // phase 2 and the flat tetrahedra, on the host
+    if (progress) progress(Delaunay3dProgress{"splay", S.m, S.m, 0});
     HostMesh H;
     auto t1 = Clock::now();
     std::vector<double> pts(std::size_t(3 * S.m));
@@ -1041,7 +1065,14 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
       sp = splay(H, f, fl, threads);
       st.counters["us_splay_host"] = std::int64_t(1000 * ms_since(t1));
     }
-    if (nflat > 0 || sp.flat_added > 0) peeled = peel_flat(H);
+    if (nflat > 0 || sp.flat_added > 0) {
+      std::vector<std::int32_t> ft;  // (empty when the list did not fit: peel scans all)
+      if (nflat <= face_cap) {
+        ft.resize(std::size_t(nflat));
+        ex.to_host(flats.data(), nflat, ft.data());
+      }
+      peeled = peel_flat(H, ft, nflat > face_cap);
+    }
     t1 = Clock::now();
     T.upload(H);
     st.counters["us_splay_upload"] = std::int64_t(1000 * ms_since(t1));
@@ -1059,6 +1090,7 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   st.counters["us_splay_queue"] = sp.us_queue;
   st.counters["us_splay_patch"] = sp.us_patch;
   t0 = Clock::now();
+  if (progress) progress(Delaunay3dProgress{"output", S.m, S.m, 0});
   auto f = T.finish(S.orig.data());
   T.report();
   body(S, f);
@@ -1112,7 +1144,7 @@ inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exe
 inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                              Output& out, Stats& st) {
   Exec ex(opt);
-  triangulate_core(ex, xyz, n, false, opt.max_flip_rounds, opt.threads, st,
+  triangulate_core(ex, xyz, n, false, opt.max_flip_rounds, opt.threads, opt.progress, st,
                    [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
                      to_output(ex, S, f, n, out);
                    });
