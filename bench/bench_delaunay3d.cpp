@@ -3,8 +3,10 @@
 // the build found CGAL. Prints the GPU's name, the phase times, flips, failed vertices and
 // splaying time next to the totals, and on the GPU the device-resident time (points uploaded
 // once, result left on the device: on_dev); --check runs the exact checker on every result.
-// Usage: gpugeom_bench_del3d [--check] [--cpu] [--verbose] [--reps R] dist:n [dist:n ...]
-// (--cpu: the CPU executor too where there is a GPU; --verbose: every phase and counter)
+// Usage: gpugeom_bench_del3d [--check] [--cpu] [--verbose] [--reps R] [--cgal-max N]
+//                            dist:n [dist:n ...]
+// (--cpu: the CPU executor too where there is a GPU; --verbose: every phase and counter;
+// --cgal-max: CGAL only up to N points, default 10^7; B/pt: phase 1's device bytes per point)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -90,6 +92,7 @@ int main(int argc, char** argv) {
   bool check = false, with_cpu = false;
   int reps = 3;
   bool verbose = false;  // every phase and counter of the last run, after its row
+  std::int64_t cgal_max = 10'000'000;
   std::vector<std::string> jobs;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -101,22 +104,24 @@ int main(int argc, char** argv) {
       verbose = true;
     else if (a == "--reps" && i + 1 < argc)
       reps = std::atoi(argv[++i]);
+    else if (a == "--cgal-max" && i + 1 < argc)
+      cgal_max = std::int64_t(std::atof(argv[++i]));
     else
       jobs.push_back(a);
   }
   const DeviceInfo dev = query_device();
   std::printf("# device: %s\n", dev.available ? dev.name.c_str() : "none");
-  std::printf("%-12s %9s %-5s %10s %8s %8s %8s %8s %9s %8s %7s %10s %9s %9s %6s\n", "dist", "n",
+  std::printf("%-12s %9s %-5s %10s %8s %8s %8s %8s %9s %8s %7s %10s %6s %9s %9s %6s\n", "dist", "n",
               "back", "total_ms", "on_dev", "prep", "ins+flip", "splay", "flips", "failed", "stars",
-              "tets", "cgal_ms", "cgal_par", "check");
+              "tets", "B/pt", "cgal_ms", "cgal_par", "check");
   for (const std::string& job : jobs) {
     const auto colon = job.find(':');
     const std::string dist = job.substr(0, colon);
-    const std::int64_t n = std::atoll(job.c_str() + colon + 1);
+    const std::int64_t n = std::int64_t(std::atof(job.c_str() + colon + 1));
     const auto pts = generate3d(dist, n, 7);
     std::int64_t cells = 0;
-    const double cg = cgal_ms(pts, cells);
-    const double cgp = cgal_par_ms(pts);
+    const double cg = n <= cgal_max ? cgal_ms(pts, cells) : -1;
+    const double cgp = n <= cgal_max ? cgal_par_ms(pts) : -1;
     for (Backend b : {Backend::Cuda, Backend::Cpu}) {
       if (b == Backend::Cuda && !dev.available) continue;
       if (b == Backend::Cpu && !with_cpu && dev.available) continue;
@@ -145,13 +150,15 @@ int main(int argc, char** argv) {
         if (!rep.ok) std::printf("# %s\n", rep.message.c_str());
       }
       std::printf(
-          "%-12s %9lld %-5s %10.1f %8.1f %8.1f %8.1f %8.1f %9lld %8lld %7lld %10zu %9.1f %9.1f "
-          "%6s\n",
+          "%-12s %9lld %-5s %10.1f %8.1f %8.1f %8.1f %8.1f %9lld %8lld %7lld %10zu %6lld %9.1f "
+          "%9.1f %6s\n",
           dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu", ms[ms.size() / 2],
           on_dev, phase(t.stats, "prepare"), phase(t.stats, "insert_flip"), phase(t.stats, "splay"),
           (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
           (long long)counter(t.stats, "failed_vertices"),
-          (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(), cg, cgp, ok.c_str());
+          (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(),
+          (long long)(counter(t.stats, "device_bytes_phase1") / std::max<std::int64_t>(n, 1)), cg,
+          cgp, ok.c_str());
       if (verbose) {
         std::printf("#   phases:");
         for (auto& p : t.stats.phase_ms) std::printf(" %s %.1f", p.first.c_str(), p.second);

@@ -89,4 +89,36 @@ GG_HD inline bool insphere_int(const double* a, const double* b, const double* c
   return true;
 }
 
+// The minors simulation of simplicity needs (sos.hpp's ExpansionMinors, same meaning), for rows
+// of whole numbers: p the coordinates, w = |p|^2 (nullptr where there is no lift column). Within
+// insphere_int's bound (|coordinate| <= 2^23): differences < 2^24, lift differences < 2^48, so
+// a 3x3 minor with the lift column last has int64 2x2 minors and an int128 sum (< 2^99); the
+// orientation minors of orient3d_int's bound (2^28) have at most 2 columns (< 2^59).
+struct IntMinors {
+  const long long (*p)[3];
+  const long long* w;
+  static GG_HD __int128 det(const long long (*m)[3], int n) {
+    if (n == 1) return m[0][0];
+    if (n == 2) return __int128(m[0][0]) * m[1][1] - __int128(m[0][1]) * m[1][0];
+    return det3_i128(m[0], m[1], m[2]);
+  }
+  // det [p[cols] 1] over the q + 1 rows rl: the q x q differences to the last row.
+  GG_HD int orient(int q, const int* rl, const int* cols) const {
+    if (q == 0) return 1;
+    long long m[3][3] = {};
+    for (int i = 0; i < q; ++i)
+      for (int j = 0; j < q; ++j) m[i][j] = p[rl[i]][cols[j]] - p[rl[q]][cols[j]];
+    return sign_i128(det(m, q));
+  }
+  // det [p[cols] w 1] over the q + 2 rows rl.
+  GG_HD int lifted(int q, const int* rl, const int* cols) const {
+    long long m[3][3] = {};
+    for (int i = 0; i <= q; ++i) {
+      for (int j = 0; j < q; ++j) m[i][j] = p[rl[i]][cols[j]] - p[rl[q + 1]][cols[j]];
+      m[i][q] = w[rl[i]] - w[rl[q + 1]];
+    }
+    return sign_i128(det(m, q + 1));
+  }
+};
+
 }  // namespace gpugeom::exact

@@ -381,12 +381,42 @@ GG_HD inline int orient2d_sos(const double* a, int ia, const double* b, int ib, 
   return parity * sos_resolve<2, 0>(r, nullptr, nullptr, s);
 }
 
+// The ties of whole-number points (integer.hpp's bounds) are resolved in integers: the same
+// terms as the expansions give, with no scratch (tiers 1-2 with SoS: *_sos_quick below).
+template <int N>
+GG_HD inline int sos_int(const double* const* pts, const int* ids, bool lift, int sign_factor) {
+  const double* r[N];
+  int idx[N];
+  for (int i = 0; i < N; ++i) r[i] = pts[i], idx[i] = ids[i];
+  const int parity = sort_rows<N>(r, idx, nullptr, nullptr);
+  long long p[N][3], w[N];
+  for (int i = 0; i < N; ++i) {
+    for (int k = 0; k < 3; ++k) p[i][k] = (long long)(r[i][k]);
+    w[i] = p[i][0] * p[i][0] + p[i][1] * p[i][1] + p[i][2] * p[i][2];
+  }
+  if (lift) return sign_factor * parity * sos_resolve_by<3, 6>(IntMinors{p, w});
+  return sign_factor * parity * sos_resolve_by<3, 0>(IntMinors{p, nullptr});
+}
+
 GG_HD inline int orient3d_tie(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, double* s) {
   const double* r[4] = {a, b, c, d};
   int idx[4] = {ia, ib, ic, id};
+  if (all_small_integers<4, 3>(r, kIntLimitOrient3d)) return sos_int<4>(r, idx, false, -1);
   int parity = sort_rows<4>(r, idx, nullptr, nullptr);
   return -parity * sos_resolve<3, 0>(r, nullptr, nullptr, s);
+}
+// orient3d with SoS without scratch: the sign, or kUndecided where the filter cannot tell and
+// the points are not small whole numbers (then orient3d_sos, with scratch, must).
+GG_HD inline int orient3d_sos_quick(const double* a, int ia, const double* b, int ib,
+                                    const double* c, int ic, const double* d, int id) {
+  if (int r = orient3d_fast(a, b, c, d)) return r;
+  int si;
+  if (!orient3d_int(a, b, c, d, si)) return kUndecided;
+  if (si) return si;
+  const double* r[4] = {a, b, c, d};
+  const int idx[4] = {ia, ib, ic, id};
+  return sos_int<4>(r, idx, false, -1);
 }
 GG_HD inline int orient3d_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
                                   int ic, const double* d, int id, double* s) {
@@ -432,9 +462,22 @@ GG_HD inline int insphere_tie(const double* a, int ia, const double* b, int ib, 
                               int ic, const double* d, int id, const double* e, int ie, double* s) {
   const double* r[5] = {a, b, c, d, e};
   int idx[5] = {ia, ib, ic, id, ie};
+  if (all_small_integers<5, 3>(r, kIntLimitInsphere)) return sos_int<5>(r, idx, true, -1);
   SquareLifts<5, 3> l(r);
   int parity = sort_rows<5>(r, idx, l.p, l.len);
   return -parity * sos_resolve<3, 6>(r, l.p, l.len, s);
+}
+// insphere with SoS without scratch, as orient3d_sos_quick.
+GG_HD inline int insphere_sos_quick(const double* a, int ia, const double* b, int ib,
+                                    const double* c, int ic, const double* d, int id,
+                                    const double* e, int ie) {
+  if (int r = insphere_fast(a, b, c, d, e)) return r;
+  int si;
+  if (!insphere_int(a, b, c, d, e, si)) return kUndecided;
+  if (si) return si;
+  const double* r[5] = {a, b, c, d, e};
+  const int idx[5] = {ia, ib, ic, id, ie};
+  return sos_int<5>(r, idx, true, -1);
 }
 GG_HD inline int insphere_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
                                   int ic, const double* d, int id, const double* e, int ie,

@@ -78,11 +78,53 @@ GG_HD int sort_rows(const double** rows, int* idx, const double** lift, int* lif
   return parity;
 }
 
-// Sign of the perturbed determinant of the matrix with rows [p[0..D-1], (w), 1], given that the
-// unperturbed determinant is zero. Rows must be sorted by global index. LW = 0: no lift column.
+// The minors the perturbation's terms need, as expansions of the raw coordinates (any doubles in
+// the exact range). rl: local row numbers; cols: coordinate columns.
 template <int D, int LW>
-GG_HD int sos_resolve(const double* const* rows, const double* const* lift, const int* liftlen,
-                      double* s) {
+struct ExpansionMinors {
+  const double* const* rows;
+  const double* const* lift;
+  const int* liftlen;
+  double* s;
+  // det [p[cols] 1] over the q + 1 rows rl.
+  GG_HD int orient(int q, const int* rl, const int* cols) const {
+    const double* rr[D + 2];
+    for (int i = 0; i <= q; ++i) rr[i] = rows[rl[i]];
+    if (q == 0) return 1;
+    if (q == 1) return orient_minor_sign<1, D>(rr, cols, s);
+    if constexpr (D >= 2)
+      if (q == 2) return orient_minor_sign<2, D>(rr, cols, s);
+    if constexpr (D >= 3)
+      if (q == 3) return orient_minor_sign<3, D>(rr, cols, s);
+    return 0;
+  }
+  // det [p[cols] w 1] over the q + 2 rows rl.
+  GG_HD int lifted(int q, const int* rl, const int* cols) const {
+    if constexpr (LW > 0) {
+      const double* rr[D + 2];
+      const double* ll[D + 2];
+      int lll[D + 2];
+      for (int i = 0; i < q + 2; ++i) {
+        rr[i] = rows[rl[i]];
+        ll[i] = lift[rl[i]];
+        lll[i] = liftlen[rl[i]];
+      }
+      if (q == 0) return lifted_minor_sign<0, LW>(rr, cols, ll, lll, s);
+      if constexpr (D >= 2)
+        if (q == 1) return lifted_minor_sign<1, LW>(rr, cols, ll, lll, s);
+      if constexpr (D >= 3)
+        if (q == 2) return lifted_minor_sign<2, LW>(rr, cols, ll, lll, s);
+    }
+    return 0;
+  }
+};
+
+// Sign of the perturbed determinant of the matrix with rows [p[0..D-1], (w), 1], given that the
+// unperturbed determinant is zero, with the minors from mn (above, or integer.hpp's for whole
+// numbers: the same terms in the same order, so the same answer). Rows must be sorted by
+// global index. LW = 0: no lift column.
+template <int D, int LW, class Minors>
+GG_HD int sos_resolve_by(const Minors& mn) {
   constexpr bool kLift = LW > 0;
   constexpr int k = D + 1 + (kLift ? 1 : 0);  // rows, = columns
   constexpr int wbits = kLift ? k : 0;
@@ -131,16 +173,6 @@ GG_HD int sos_resolve(const double* const* rows, const double* const* lift, cons
       --rn;
       --cn;
     }
-    const double* rr[k];
-    const double* ll[k];
-    int lll[k];
-    for (int i = 0; i < rn; ++i) {
-      rr[i] = rows[rl[i]];
-      if (kLift) {
-        ll[i] = lift[rl[i]];
-        lll[i] = liftlen[rl[i]];
-      }
-    }
     int coords[D + 1], q = 0;
     bool has_w = false;
     for (int i = 0; i < cn - 1; ++i) {
@@ -149,26 +181,16 @@ GG_HD int sos_resolve(const double* const* rows, const double* const* lift, cons
       else
         coords[q++] = cl[i];
     }
-    int v = 0;
-    if (has_w) {
-      if constexpr (kLift) {
-        if (q == 0) v = lifted_minor_sign<0, LW>(rr, coords, ll, lll, s);
-        if constexpr (D >= 2)
-          if (q == 1) v = lifted_minor_sign<1, LW>(rr, coords, ll, lll, s);
-        if constexpr (D >= 3)
-          if (q == 2) v = lifted_minor_sign<2, LW>(rr, coords, ll, lll, s);
-      }
-    } else {
-      if (q == 0) v = 1;
-      if (q == 1) v = orient_minor_sign<1, D>(rr, coords, s);
-      if constexpr (D >= 2)
-        if (q == 2) v = orient_minor_sign<2, D>(rr, coords, s);
-      if constexpr (D >= 3)
-        if (q == 3) v = orient_minor_sign<3, D>(rr, coords, s);
-    }
+    const int v = has_w ? mn.lifted(q, rl, coords) : mn.orient(q, rl, coords);
     if (v != 0) return sign * v;
   }
   return 0;  // unreachable: the mask perturbing every coordinate column gives +-1
+}
+
+template <int D, int LW>
+GG_HD int sos_resolve(const double* const* rows, const double* const* lift, const int* liftlen,
+                      double* s) {
+  return sos_resolve_by<D, LW>(ExpansionMinors<D, LW>{rows, lift, liftlen, s});
 }
 
 }  // namespace gpugeom::exact

@@ -324,6 +324,53 @@ TEST(IntegerStages, MatchRationals) {
   EXPECT_GT(zeros, 500) << "small grids should give many exact degeneracies";
 }
 
+// The integer ties take the same perturbation terms as the expansions, so they give the same
+// answers: compared term sequence against term sequence on small grids (almost every five
+// points degenerate, so later terms are reached) and at the largest magnitudes accepted; the
+// scratch-free predicates agree with the full ones and decline fractions.
+TEST(IntegerStages, SosTiesMatchExpansions) {
+  std::mt19937_64 rng(11);
+  for (double range : {1.0, 2.0, 1000.0, exact::kIntLimitInsphere, exact::kIntLimitOrient3d}) {
+    const bool lifted = range <= exact::kIntLimitInsphere;
+    std::uniform_int_distribution<long long> u(-(long long)range, (long long)range);
+    for (int i = 0; i < 3000; ++i) {
+      double q[5][3];
+      for (auto& p : q)
+        for (double& c : p) c = double(u(rng));
+      if (i % 5 == 0)
+        for (auto& p : q)
+          for (double& c : p) c = (rng() & 1) ? range : -range;
+      const double* r[5] = {q[0], q[1], q[2], q[3], q[4]};
+      long long p[5][3], w[5];
+      for (int k = 0; k < 5; ++k) {
+        for (int c = 0; c < 3; ++c) p[k][c] = (long long)q[k][c];
+        w[k] = p[k][0] * p[k][0] + p[k][1] * p[k][1] + p[k][2] * p[k][2];
+      }
+      ASSERT_EQ((exact::sos_resolve_by<3, 0>(exact::IntMinors{p, nullptr})),
+                (exact::sos_resolve<3, 0>(r, nullptr, nullptr, s())))
+          << "range " << range;
+      const int ids[5] = {3, 0, 4, 1, 2};
+      const int o =
+          pred::orient3d_sos_quick(r[0], ids[0], r[1], ids[1], r[2], ids[2], r[3], ids[3]);
+      ASSERT_NE(o, pred::kUndecided);
+      ASSERT_EQ(o, pred::orient3d_sos(r[0], ids[0], r[1], ids[1], r[2], ids[2], r[3], ids[3], s()));
+      if (!lifted) continue;
+      exact::SquareLifts<5, 3> l(r);
+      ASSERT_EQ((exact::sos_resolve_by<3, 6>(exact::IntMinors{p, w})),
+                (exact::sos_resolve<3, 6>(r, l.p, l.len, s())))
+          << "range " << range;
+      const int is = pred::insphere_sos_quick(r[0], ids[0], r[1], ids[1], r[2], ids[2], r[3],
+                                              ids[3], r[4], ids[4]);
+      ASSERT_NE(is, pred::kUndecided);
+      ASSERT_EQ(is, pred::insphere_sos(r[0], ids[0], r[1], ids[1], r[2], ids[2], r[3], ids[3], r[4],
+                                       ids[4], s()));
+    }
+  }
+  const double o[3] = {0, 0, 0}, x[3] = {1, 0, 0}, y[3] = {0, 1, 0}, h[3] = {0.5, 0.5, 0};
+  EXPECT_EQ(pred::orient3d_sos_quick(o, 0, x, 1, y, 2, h, 3), pred::kUndecided);
+  EXPECT_EQ(pred::insphere_sos_quick(o, 0, x, 1, y, 2, h, 3, o, 4), pred::kUndecided);
+}
+
 // Tier 3 (exact translated determinant, or the bounded one) is never wrong: it answers the
 // rational sign or kUndecided; it decides the exactly translatable cases and most of the rest.
 // The split *_sos_mid / *_sos_last functions agree with the one-call SoS predicates.

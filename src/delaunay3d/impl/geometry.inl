@@ -9,8 +9,9 @@
 // tetrahedron (a, b, c, inf) has as its sphere the open half-space beyond its finite face (the
 // limit of the spheres through a, b, c), i.e. a point q is inside when the tetrahedron with q
 // in place of the infinity point is positively oriented. s takes SoS index m, so every test is
-// perturbed consistently and never ties. Where the filter cannot tell, the exact stage runs on
-// scratch borrowed from the pool (exec/scratch_lease.hpp).
+// perturbed consistently and never ties. Where the filter cannot tell, whole-number points
+// (grids) are decided in integers, and anything else runs the exact stages on scratch
+// borrowed from the pool (exec/scratch_lease.hpp), which threads may have to wait for.
 
 struct Geo {
   const double* p;  // 3 per point
@@ -30,8 +31,8 @@ GG_HD inline int orient_ext(const Geo& g, std::int32_t a, std::int32_t b, std::i
                             std::int32_t d) {
   const int flip = (a == g.m || b == g.m || c == g.m || d == g.m) ? -1 : 1;
   const double *pa = g.at(a), *pb = g.at(b), *pc = g.at(c), *pd = g.at(d);
-  int r = pred::orient3d_fast(pa, pb, pc, pd);
-  if (!r) {
+  int r = pred::orient3d_sos_quick(pa, a, pb, b, pc, c, pd, d);
+  if (r == pred::kUndecided) {
     double* s = g.lease.acquire(lease_hint(a, d));
     r = pred::orient3d_sos(pa, a, pb, b, pc, c, pd, d, s);
     g.lease.release(s);
@@ -60,8 +61,8 @@ GG_HD inline bool in_sphere_ext(const Geo& g, const std::int32_t* v, std::int32_
   for (int k = 0; k < 4; ++k)
     if (v[k] == g.m) return orient_with(g, v, k, q) > 0;
   const double *a = g.at(v[0]), *b = g.at(v[1]), *c = g.at(v[2]), *d = g.at(v[3]), *e = g.at(q);
-  int r = pred::insphere_fast(a, b, c, d, e);
-  if (!r) {
+  int r = pred::insphere_sos_quick(a, v[0], b, v[1], c, v[2], d, v[3], e, q);
+  if (r == pred::kUndecided) {
     double* s = g.lease.acquire(lease_hint(v[0], q));
     r = pred::insphere_sos(a, v[0], b, v[1], c, v[2], d, v[3], e, q, s);
     g.lease.release(s);

@@ -738,12 +738,12 @@ class Triangulator {
   // Every face of the tetrahedralisation tested; the vertices of faces that are not locally
   // Delaunay are marked (failed: m + 1 entries) and the faces listed (faces: room for
   // face_cap, three vertices each; the list is left incomplete beyond). Also lists the flat
-  // finite tetrahedra (flats: room for face_cap slots; see peel_flat) and counts them in flat.
+  // finite tetrahedra (flats: room for flat_cap slots; see peel_flat) and counts them in flat.
   // Returns the number of failed faces.
   std::int64_t find_failed(typename Exec::template Buffer<std::int8_t>& failed,
                            typename Exec::template Buffer<std::int32_t>& faces,
                            typename Exec::template Buffer<std::int32_t>& flats,
-                           std::int64_t face_cap, std::int64_t& flat) {
+                           std::int64_t face_cap, std::int64_t flat_cap, std::int64_t& flat) {
     const Geo g = g_;
     const Mesh M = M_;
     std::int8_t* f = failed.data();
@@ -772,12 +772,15 @@ class Triangulator {
           if (T.v[0] == m || T.v[1] == m || T.v[2] == m || T.v[3] == m) return;
           const double *a = g.at(T.v[0]), *b = g.at(T.v[1]), *cc = g.at(T.v[2]), *d = g.at(T.v[3]);
           if (pred::orient3d_fast(a, b, cc, d) != 0) return;
-          double* s = g.lease.acquire(lease_hint(T.v[0], T.v[3]));
-          const int o = pred::orient3d(a, b, cc, d, s);
-          g.lease.release(s);
+          int o;
+          if (!exact::orient3d_int(a, b, cc, d, o)) {
+            double* s = g.lease.acquire(lease_hint(T.v[0], T.v[3]));
+            o = pred::orient3d(a, b, cc, d, s);
+            g.lease.release(s);
+          }
           if (o != 0) return;
           const std::int64_t at = atomic_add(&ctr->flat, std::int64_t(1));
-          if (at < face_cap) ft[at] = std::int32_t(t);
+          if (at < flat_cap) ft[at] = std::int32_t(t);
         });
     const Counters after = counters();
     flat = after.flat;
@@ -1033,9 +1036,11 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   auto failed = ex.template alloc<std::int8_t>(std::size_t(S.m + 1));
   const std::int64_t face_cap = std::max<std::int64_t>(1 << 16, S.m / 16);
   auto faces = ex.template alloc<std::int32_t>(std::size_t(3 * face_cap));
-  auto flats = ex.template alloc<std::int32_t>(std::size_t(face_cap));
+  // (flat tetrahedra lie over hull planes: a few per point there, at most m/4 in all on a grid)
+  const std::int64_t flat_cap = std::max<std::int64_t>(1 << 16, S.m / 4);
+  auto flats = ex.template alloc<std::int32_t>(std::size_t(flat_cap));
   std::int64_t nflat = 0;
-  const std::int64_t nfailed = T.find_failed(failed, faces, flats, face_cap, nflat);
+  const std::int64_t nfailed = T.find_failed(failed, faces, flats, face_cap, flat_cap, nflat);
   st.phase_ms.push_back({"find_failed", ms_since(t0)});
   t0 = Clock::now();
   SplayStats sp;
@@ -1067,11 +1072,11 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
     }
     if (nflat > 0 || sp.flat_added > 0) {
       std::vector<std::int32_t> ft;  // (empty when the list did not fit: peel scans all)
-      if (nflat <= face_cap) {
+      if (nflat <= flat_cap) {
         ft.resize(std::size_t(nflat));
         ex.to_host(flats.data(), nflat, ft.data());
       }
-      peeled = peel_flat(H, ft, nflat > face_cap);
+      peeled = peel_flat(H, ft, nflat > flat_cap);
     }
     t1 = Clock::now();
     T.upload(H);
