@@ -130,11 +130,15 @@ GG_HD int sos_resolve_by(const Minors& mn) {
   constexpr int wbits = kLift ? k : 0;
   constexpr int nbits = k * D + wbits;
   constexpr int W = D;  // column id of the lift; coordinate columns are 0..D-1
-  for (std::uint32_t mask = 1; mask < (1u << nbits); ++mask) {
+  // The masks in increasing order, skipping those that cannot be terms: the bits are read from
+  // the highest down, and where bit b clashes with the bits above it (same row or column, or
+  // one too many), no mask with those bits from b up is a term, so the next candidate is the
+  // next multiple of 2^b (for 5 coplanar points' in-sphere test, 51 candidates instead of 130).
+  for (std::uint32_t mask = 1; mask < (1u << nbits);) {
     int er[k], ec[k], m = 0;
     unsigned rused = 0, cused = 0;
-    bool ok = true;
-    for (int b = 0; b < nbits && ok; ++b) {
+    int clash = -1;
+    for (int b = nbits - 1; b >= 0; --b) {
       if (!(mask >> b & 1u)) continue;
       int r, c;
       if (b < wbits) {
@@ -145,7 +149,7 @@ GG_HD int sos_resolve_by(const Minors& mn) {
         c = (b - wbits) % D;
       }
       if ((rused >> r & 1u) || (cused >> c & 1u) || m == k - 1) {
-        ok = false;
+        clash = b;
         break;
       }
       rused |= 1u << r;
@@ -154,7 +158,17 @@ GG_HD int sos_resolve_by(const Minors& mn) {
       ec[m] = c;
       ++m;
     }
-    if (!ok) continue;
+    if (clash >= 0) {
+      mask = (mask | ((1u << clash) - 1u)) + 1u;
+      continue;
+    }
+    ++mask;
+    // (the entries from the lowest bit up, as the Laplace signs below were derived)
+    for (int i = 0, j = m - 1; i < j; ++i, --j) {
+      const int tr = er[i], tc = ec[i];
+      er[i] = er[j], ec[i] = ec[j];
+      er[j] = tr, ec[j] = tc;
+    }
     // Remove each perturbed row/column (a unit row): Laplace along that row.
     int rl[k], rn = k;
     int cl[D + 2], cn = 0;

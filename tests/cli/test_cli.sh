@@ -143,6 +143,7 @@ expect 0 "check: valid Delaunay tetrahedralisation" -- "$G" delaunay3d "$W/ball.
 expect 0 "valid delaunay3d" -- "$G" check "$W/t.ele"
 expect 0 "valid delaunay3d" -- "$G" check "$W/t.vtu"
 expect 0 "flips23" -- "$G" --verbose delaunay3d "$W/ball.npy" --check
+expect 0 "check: valid Delaunay tetrahedralisation" -- "$G" delaunay3d "$W/g3.npy" --check
 expect 3 "one plane" -- "$G" delaunay3d "$W/flat.xyz" -o "$W/tf.vtu"
 expect 3 "infinite" -- "$G" delaunay3d "$W/inf.xyz" -o "$W/tf.vtu"
 expect 3 "2D points" -- "$G" delaunay3d "$W/c.csv" -o "$W/tf.vtu"
