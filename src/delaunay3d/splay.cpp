@@ -99,7 +99,6 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
       for (int k = 0; k < 4; ++k) outer.push_back(simplex_of(D.n[k]));
     H.load_slots(outer);
   }
-  std::unordered_set<std::int32_t> gone(removed.begin(), removed.end());
   std::vector<std::int32_t> slots;
   std::size_t r = 0;
   for (const Tet& T : added) {
@@ -119,44 +118,54 @@ void replace_tets(HostMesh& H, std::vector<std::int32_t> removed, const std::vec
     H.set(removed[r]) = dead;
     H.written.push_back(removed[r]);
   }
-  std::unordered_map<Key3, std::int32_t, Hash3> open;  // face -> enc(slot, local)
+  // The faces to pair up by their vertices: each new tetrahedron's four, and the removed
+  // region's outer faces (with the pointer of the tetrahedron that stays). Sorted, equal keys
+  // come in pairs: a new face with a new one, or with an outer one, which sorts after it. (A
+  // hash map of faces cost about a microsecond a face on large peels.)
+  struct Side {
+    Key3 key;
+    std::int32_t e;      // new: enc(slot, local); outer: the staying tetrahedron's face
+    std::int32_t outer;  // 0 new, 1 outer
+    std::int32_t from;   // outer: the removed tetrahedron (index in old), for the message
+  };
   auto face_key = [](const Tet& T, int k) {
     return key3(T.v[face_vertex(k, 0)], T.v[face_vertex(k, 1)], T.v[face_vertex(k, 2)]);
   };
+  std::vector<Side> sides;
+  sides.reserve(4 * (slots.size() + old.size()));
   for (std::int32_t y : slots)
-    for (int l = 0; l < 4; ++l) {
-      const Key3 k = face_key(H.get(y), l);
-      auto it = open.find(k);
-      if (it == open.end()) {
-        open.emplace(k, enc(y, l));
-      } else {
-        const std::int32_t e = it->second;
-        H.set(y).n[l] = e;
-        H.set(simplex_of(e)).n[loc_of(e)] = enc(y, l);
-        open.erase(it);
-      }
-    }
-  for (const Tet& D : old)
+    for (int l = 0; l < 4; ++l) sides.push_back({face_key(H.get(y), l), enc(y, l), 0, -1});
+  for (std::size_t j = 0; j < old.size(); ++j)
     for (int k = 0; k < 4; ++k) {
-      const std::int32_t nb = simplex_of(D.n[k]);
-      if (gone.count(nb)) continue;  // inside the removed region
-      auto it = open.find(face_key(D, k));
-      if (it == open.end()) {
-        const Key3 fk = face_key(D, k);
-        internal(std::string(step) + ": surviving face " + std::to_string(fk[0]) + " " +
-                 std::to_string(fk[1]) + " " + std::to_string(fk[2]) + " (of " +
-                 std::to_string(D.v[0]) + " " + std::to_string(D.v[1]) + " " +
-                 std::to_string(D.v[2]) + " " + std::to_string(D.v[3]) + ", neighbour slot " +
-                 std::to_string(nb) + ") has no new tetrahedron");
-      }
-      const std::int32_t e = it->second;
-      H.set(simplex_of(e)).n[loc_of(e)] = D.n[k];
-      H.set(nb).n[loc_of(D.n[k])] = e;
-      H.written.push_back(nb);
-      open.erase(it);
+      const std::int32_t nb = simplex_of(old[j].n[k]);
+      if (std::binary_search(removed.begin(), removed.end(), nb)) continue;  // inside
+      sides.push_back({face_key(old[j], k), old[j].n[k], 1, std::int32_t(j)});
     }
-  if (!open.empty())
-    internal(std::string(step) + ": " + std::to_string(open.size()) + " face(s) left unmatched");
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
+    return x.key != y.key ? x.key < y.key : x.outer < y.outer;
+  });
+  for (std::size_t i = 0; i < sides.size(); i += 2) {
+    const bool pair = i + 1 < sides.size() && sides[i + 1].key == sides[i].key &&
+                      !(i + 2 < sides.size() && sides[i + 2].key == sides[i].key);
+    if (!pair || sides[i].outer) {
+      const Side& x = sides[i].outer || !pair || !sides[i + 1].outer ? sides[i] : sides[i + 1];
+      if (!x.outer)
+        internal(std::string(step) + ": face " + std::to_string(x.key[0]) + " " +
+                 std::to_string(x.key[1]) + " " + std::to_string(x.key[2]) +
+                 " of the new tetrahedra is left unmatched");
+      const Tet& D = old[std::size_t(x.from)];
+      internal(std::string(step) + ": surviving face " + std::to_string(x.key[0]) + " " +
+               std::to_string(x.key[1]) + " " + std::to_string(x.key[2]) + " (of " +
+               std::to_string(D.v[0]) + " " + std::to_string(D.v[1]) + " " +
+               std::to_string(D.v[2]) + " " + std::to_string(D.v[3]) + ", neighbour slot " +
+               std::to_string(simplex_of(x.e)) + ") has no new tetrahedron");
+    }
+    const Side& a = sides[i];
+    const Side& b = sides[i + 1];
+    H.set(simplex_of(a.e)).n[loc_of(a.e)] = b.e;
+    H.set(simplex_of(b.e)).n[loc_of(b.e)] = a.e;
+    if (b.outer) H.written.push_back(simplex_of(b.e));
+  }
 }
 
 // Four finite points exactly on one plane (see peel_flat). scratch: kOrient3dScratch doubles.
@@ -172,30 +181,58 @@ bool flat_tet(const HostMesh& H, const Tet& T, double* scratch) {
 // The written live slots' neighbours share their faces and point back (a guard on the host
 // paths, local: the rest of the store is as phase 1 left it).
 void check_adjacency(HostMesh& H, const char* step) {
+  // (a slot is listed once per write; each is checked once)
+  std::vector<std::int32_t> slots(H.written);
+  std::sort(slots.begin(), slots.end());
+  slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
   {  // (neighbours not read yet come in one copy)
     std::vector<std::int32_t> nb;
-    for (const std::int32_t t : H.written)
+    for (const std::int32_t t : slots)
       for (int k = 0; k < 4; ++k) nb.push_back(simplex_of(H.get(t).n[k]));
     H.load_slots(nb);
   }
-  for (const std::int32_t t : H.written) {
-    const Tet T = H.get(t);
-    if (T.v[0] < 0) continue;
+  // (read-only from here, on all threads: every slot needed is loaded; the first bad one in
+  // slot order is reported)
+  std::int64_t bad = std::int64_t(slots.size());
+  int bad_k = 0;
+  bool missing = false;
+#pragma omp parallel for schedule(static, 1024) reduction(min : bad)
+  for (std::int64_t i = 0; i < std::int64_t(slots.size()); ++i) {
+    const Tet* T = H.peek(slots[std::size_t(i)]);
+    if (!T || T->v[0] < 0) continue;
     for (int k = 0; k < 4; ++k) {
-      const std::int32_t e = T.n[k], o = simplex_of(e);
-      if (e < 0 || o >= H.used)
-        internal(std::string(step) + ": slot " + std::to_string(t) + " face " + std::to_string(k) +
-                 " has no neighbour");
-      const Tet O = H.get(o);
+      const std::int32_t e = T->n[k], o = simplex_of(e);
+      const Tet* O = e < 0 || o >= H.used ? nullptr : H.peek(o);
       const bool ok =
-          O.v[0] >= 0 && O.n[loc_of(e)] == enc(t, k) &&
-          host_impl::opposite_of_face(O.v, T.v[face_vertex(k, 0)], T.v[face_vertex(k, 1)],
-                                      T.v[face_vertex(k, 2)]) == loc_of(e);
-      if (!ok)
-        internal(std::string(step) + ": slot " + std::to_string(t) + " face " + std::to_string(k) +
-                 " has a wrong neighbour");
+          O && O->v[0] >= 0 && O->n[loc_of(e)] == enc(slots[std::size_t(i)], k) &&
+          host_impl::opposite_of_face(O->v, T->v[face_vertex(k, 0)], T->v[face_vertex(k, 1)],
+                                      T->v[face_vertex(k, 2)]) == loc_of(e);
+      if (!ok && i < bad) {
+        bad = i;
+        break;
+      }
     }
   }
+  if (bad == std::int64_t(slots.size())) return;
+  const std::int32_t t = slots[std::size_t(bad)];
+  const Tet T = H.get(t);
+  for (int k = 0; k < 4; ++k) {
+    const std::int32_t e = T.n[k], o = simplex_of(e);
+    if (e < 0 || o >= H.used) {
+      bad_k = k;
+      missing = true;
+      break;
+    }
+    const Tet O = H.get(o);
+    if (!(O.v[0] >= 0 && O.n[loc_of(e)] == enc(t, k) &&
+          host_impl::opposite_of_face(O.v, T.v[face_vertex(k, 0)], T.v[face_vertex(k, 1)],
+                                      T.v[face_vertex(k, 2)]) == loc_of(e))) {
+      bad_k = k;
+      break;
+    }
+  }
+  internal(std::string(step) + ": slot " + std::to_string(t) + " face " + std::to_string(bad_k) +
+           (missing ? " has no neighbour" : " has a wrong neighbour"));
 }
 
 struct Tri {
@@ -682,16 +719,16 @@ std::int64_t peel(HostMesh& H, std::vector<std::int32_t> cand, bool all_slots) {
       is_flat[std::size_t(i)] = flat_tet(H, *H.peek(cand[std::size_t(i)]), scratch.data());
   }
   std::vector<double> scratch(std::size_t(pred::kOrient3dScratch));
-  std::unordered_set<std::int32_t> seen;
+  std::vector<std::uint8_t> seen(std::size_t(H.used), 0);  // (a byte per slot: cheaper than a set)
   std::vector<std::int32_t> removed, stack;
   std::vector<Tet> added;
   std::int64_t peeled = 0;
   for (std::size_t i = 0; i < cand.size(); ++i) {
-    if (!is_flat[i] || seen.count(cand[i])) continue;
+    if (!is_flat[i] || seen[std::size_t(cand[i])]) continue;
     // One connected layer: it must reach the outside (else it would lie inside the hull).
     bool outside = false;
     stack.assign(1, cand[i]);
-    seen.insert(cand[i]);
+    seen[std::size_t(cand[i])] = 1;
     while (!stack.empty()) {
       const std::int32_t t = stack.back();
       stack.pop_back();
@@ -705,7 +742,7 @@ std::int64_t peel(HostMesh& H, std::vector<std::int32_t> cand, bool all_slots) {
           removed.push_back(nb);
           outside = true;
         } else if (flat_tet(H, N, scratch.data())) {
-          if (seen.insert(nb).second) stack.push_back(nb);
+          if (!seen[std::size_t(nb)]) seen[std::size_t(nb)] = 1, stack.push_back(nb);
         } else {  // T's face k, oriented outward from the neighbour, with the infinity point
           added.push_back(
               Tet{{T.v[face_vertex(k, 0)], T.v[face_vertex(k, 2)], T.v[face_vertex(k, 1)], H.m},

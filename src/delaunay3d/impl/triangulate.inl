@@ -1071,8 +1071,8 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   auto failed = ex.template alloc<std::int8_t>(std::size_t(S.m + 1));
   const std::int64_t face_cap = std::max<std::int64_t>(1 << 16, S.m / 16);
   auto faces = ex.template alloc<std::int32_t>(std::size_t(3 * face_cap));
-  // (flat tetrahedra lie over hull planes: a few per point there, at most m/4 in all on a grid)
-  const std::int64_t flat_cap = std::max<std::int64_t>(1 << 16, S.m / 4);
+  // (flat tetrahedra lie over hull planes: a few per point there, about 0.3 m on a grid)
+  const std::int64_t flat_cap = std::max<std::int64_t>(1 << 16, S.m / 2);
   auto flats = ex.template alloc<std::int32_t>(std::size_t(flat_cap));
   std::int64_t nflat = 0;
   const std::int64_t nfailed = T.find_failed(failed, faces, flats, face_cap, flat_cap, nflat);
