@@ -73,8 +73,8 @@ int cmd_delaunay3d(const Global& g, Args& a) {
       if (printed) std::fputs("\n", stderr);  // (the error's message on a line of its own)
       throw;
     }
+    if (printed) std::fputs("\n", stderr);  // (before the timer's line)
   }
-  if (printed) std::fputs("\n", stderr);
   if (!g.quiet) {
     std::cout << n << " points";
     if (t3.num_duplicates) std::cout << " (" << t3.num_duplicates << " duplicates kept once)";
