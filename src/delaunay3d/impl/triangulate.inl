@@ -519,16 +519,6 @@ class Triangulator {
     const mesh::WorkLists L = work_lists();
     std::int32_t* act = L.current(round_ + 1);  // the first flip round's list
     std::int64_t* len = L.count(round_ + 1);
-    // The last batch's unfinished tail (see flip_until_stuck) goes on in this batch's rounds,
-    // but for the tetrahedra split now, whose children are listed anyway (third_ is free
-    // between rounds).
-    std::int64_t nkeep = 0;
-    if (carry_ > 0) {
-      const std::int32_t* sr = srank_.data();
-      nkeep = ex_.copy_if(
-          act, carry_, third_.data(), GG_LAMBDA(std::int32_t t) { return sr[t] < 0; });
-      carry_ = 0;
-    }
     std::int32_t* sp = split_.data();
     std::int32_t* loc = loc_.data();
     ex_.for_each_index(
@@ -565,12 +555,6 @@ class Triangulator {
           best[t] = ~u64(0);
           loc[q] = -1;
         });
-    if (nkeep > 0) {
-      ex_.copy(third_.data(), nkeep, act + 4 * nins);
-      const std::int64_t total = 4 * nins + nkeep;
-      ex_.for_each_index(
-          1, GG_LAMBDA(std::int64_t) { *len = total; });
-    }
     epoch_splits_ = nins;
     epoch_first_new_ = first_new;
     remaining_ -= nins;
@@ -581,7 +565,7 @@ class Triangulator {
       std::swap(un_, un2_);
       dead_ = 0;
     }
-    nact_ = 4 * nins + nkeep;
+    nact_ = 4 * nins;
     ms_choose_ += ms_since(t0);
     flip_until_stuck();
     if (progress_) progress_(Delaunay3dProgress{"insert_flip", m_ - remaining_, m_, batches_});
@@ -592,24 +576,12 @@ class Triangulator {
   // rest of the chunk, for the host to make room; the host reads the counters once per chunk.
   // Once the list is short (the long tail of each batch), one team runs the rounds in a single
   // launch with barriers between the steps.
-  // A batch's tail in one block ends after kTailRounds rounds unless it is the last batch: on
-  // degenerate input (integer grids) the perturbation makes flips run through the mesh as a
-  // wave, a few hundred per round for as many rounds as the grid is wide, and the block would
-  // run it alone after every batch (51 batches of 95 rounds at 10^6 grid points). The list is
-  // carried into the next batch instead, whose rounds run it beside the new flips; the last
-  // batch flips until nothing is left.
   static constexpr int kChunk = 4;
-  static constexpr std::int64_t kTailRounds = 16;
 
   void flip_until_stuck() {
-    std::int64_t rounds_here = 0, tail_here = 0;
+    std::int64_t rounds_here = 0;
     const std::int64_t team_max = 2 * std::int64_t(ex_.team_size());
-    const bool carry = remaining_ > 0 && max_rounds_ < 0;
     while (nact_ > 0) {
-      if (carry && nact_ <= team_max && tail_here >= kTailRounds) {
-        carry_ = nact_;
-        break;
-      }
       if (max_rounds_ >= 0 && rounds_here >= max_rounds_) {  // (test mode: leave it to phase 2)
         const mesh::WorkLists L = work_lists();
         std::int64_t* len = L.count(round_ + 1);
@@ -624,13 +596,8 @@ class Triangulator {
       if (max_rounds_ >= 0) chunk = std::min<std::int64_t>(chunk, max_rounds_ - rounds_here);
       const bool team = nact_ <= team_max;
       const auto t0 = Clock::now();
-      std::int64_t limit = std::int64_t(1) << 30;
-      if (max_rounds_ >= 0)
-        limit = chunk;
-      else if (carry)
-        limit = kTailRounds - tail_here;
       if (team)
-        team_rounds(first, team_max, limit);
+        team_rounds(first, team_max, max_rounds_ >= 0 ? chunk : std::int64_t(1) << 30);
       else
         for (std::int64_t k = 0; k < chunk; ++k) launch_round(first + std::int32_t(k), 4 * nact_);
       Counters c = counters();  // one read per chunk
@@ -643,7 +610,6 @@ class Triangulator {
         ex_.from_host(&c, 1, ctr_.data());
       }
       rounds_here += last - round_;
-      if (team) tail_here += last - round_;
       round_ = last;
       used_ = c.used;
       logged_ = c.log;
@@ -1019,7 +985,6 @@ class Triangulator {
   std::int64_t batches_ = 0;
   std::int64_t log_cap_ = 0, logged_ = 0;
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;
-  std::int64_t carry_ = 0;  // entries of the list left for the next batch
   std::int32_t epoch_first_new_ = 0;
   double ms_choose_ = 0, ms_wide_ = 0, ms_team_ = 0;
   std::int64_t chunks_ = 0, team_calls_ = 0;
