@@ -191,48 +191,33 @@ void check_adjacency(HostMesh& H, const char* step) {
       for (int k = 0; k < 4; ++k) nb.push_back(simplex_of(H.get(t).n[k]));
     H.load_slots(nb);
   }
-  // (read-only from here, on all threads: every slot needed is loaded; the first bad one in
-  // slot order is reported)
+  // Face k of slot t: 0 fine, 1 no neighbour, 2 a wrong one. (Read-only: every slot needed
+  // is loaded, so all threads check; the first bad slot in slot order is reported.)
+  auto face_state = [&H](std::int32_t t, const Tet& T, int k) {
+    const std::int32_t e = T.n[k], o = simplex_of(e);
+    const Tet* O = e < 0 || o >= H.used ? nullptr : H.peek(o);
+    if (!O) return 1;
+    const bool ok =
+        O->v[0] >= 0 && O->n[loc_of(e)] == enc(t, k) &&
+        host_impl::opposite_of_face(O->v, T.v[face_vertex(k, 0)], T.v[face_vertex(k, 1)],
+                                    T.v[face_vertex(k, 2)]) == loc_of(e);
+    return ok ? 0 : 2;
+  };
   std::int64_t bad = std::int64_t(slots.size());
-  int bad_k = 0;
-  bool missing = false;
 #pragma omp parallel for schedule(static, 1024) reduction(min : bad)
   for (std::int64_t i = 0; i < std::int64_t(slots.size()); ++i) {
     const Tet* T = H.peek(slots[std::size_t(i)]);
     if (!T || T->v[0] < 0) continue;
-    for (int k = 0; k < 4; ++k) {
-      const std::int32_t e = T->n[k], o = simplex_of(e);
-      const Tet* O = e < 0 || o >= H.used ? nullptr : H.peek(o);
-      const bool ok =
-          O && O->v[0] >= 0 && O->n[loc_of(e)] == enc(slots[std::size_t(i)], k) &&
-          host_impl::opposite_of_face(O->v, T->v[face_vertex(k, 0)], T->v[face_vertex(k, 1)],
-                                      T->v[face_vertex(k, 2)]) == loc_of(e);
-      if (!ok && i < bad) {
-        bad = i;
-        break;
-      }
-    }
+    for (int k = 0; k < 4 && i < bad; ++k)
+      if (face_state(slots[std::size_t(i)], *T, k)) bad = i;
   }
   if (bad == std::int64_t(slots.size())) return;
   const std::int32_t t = slots[std::size_t(bad)];
-  const Tet T = H.get(t);
-  for (int k = 0; k < 4; ++k) {
-    const std::int32_t e = T.n[k], o = simplex_of(e);
-    if (e < 0 || o >= H.used) {
-      bad_k = k;
-      missing = true;
-      break;
-    }
-    const Tet O = H.get(o);
-    if (!(O.v[0] >= 0 && O.n[loc_of(e)] == enc(t, k) &&
-          host_impl::opposite_of_face(O.v, T.v[face_vertex(k, 0)], T.v[face_vertex(k, 1)],
-                                      T.v[face_vertex(k, 2)]) == loc_of(e))) {
-      bad_k = k;
-      break;
-    }
-  }
-  internal(std::string(step) + ": slot " + std::to_string(t) + " face " + std::to_string(bad_k) +
-           (missing ? " has no neighbour" : " has a wrong neighbour"));
+  const Tet& T = *H.peek(t);
+  for (int k = 0; k < 4; ++k)
+    if (const int st = face_state(t, T, k))
+      internal(std::string(step) + ": slot " + std::to_string(t) + " face " + std::to_string(k) +
+               (st == 1 ? " has no neighbour" : " has a wrong neighbour"));
 }
 
 struct Tri {
