@@ -4,9 +4,13 @@
 #if defined(__CUDACC__)
 #define GG_HD __host__ __device__
 #define GG_INLINE __host__ __device__ __forceinline__
+// A rarely taken, long path: kept out of line on the device so that it does not raise the
+// register count of the kernels that call it.
+#define GG_COLD __host__ __device__ __noinline__ inline
 #else
 #define GG_HD
 #define GG_INLINE inline
+#define GG_COLD inline
 #endif
 
 // A lambda usable by both executors: `GG_LAMBDA(int64_t i) { ... }`. Under nvcc this needs

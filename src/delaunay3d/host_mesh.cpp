@@ -84,9 +84,12 @@ void HostMesh::load_stars(const std::vector<std::int32_t>& verts) {
   std::sort(want.begin(), want.end());
   want.erase(std::unique(want.begin(), want.end()), want.end());
   if (want.empty() || all_) return;
+  // (a star has about 27 tetrahedra, rarely fewer than 16: where the stars will not fit the
+  // limit, walking them first would be wasted)
+  const std::int64_t limit = used / 8 - std::int64_t(n_);
   std::vector<std::int32_t> slots;
   std::vector<Tet> tets;
-  if (!src_->stars(want, used / 8 - std::int64_t(n_), slots, tets)) {
+  if (16 * std::int64_t(want.size()) > limit || !src_->stars(want, limit, slots, tets)) {
     load_all();
     return;
   }

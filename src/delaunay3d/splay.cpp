@@ -553,8 +553,25 @@ class Splayer {
       if (j != i) o[n++] = t[std::size_t(j)];
   }
 
+  // Can the item be checked with the stars loaded so far?
+  bool ready(const Item& it) const {
+    for (std::int32_t w : it.t)
+      if (w != H_.m && !stars_.count(w) && !H_.star_loaded(w)) return false;
+    return true;
+  }
+  // The stars that the queued items may read, in one copy from the executor (one at a time,
+  // each would cost a round trip to the device).
+  void prefetch() {
+    std::vector<std::int32_t> want;
+    for (const Item& it : queue_)
+      for (std::int32_t w : it.t)
+        if (w != H_.m && !stars_.count(w) && !H_.star_loaded(w)) want.push_back(w);
+    H_.load_stars(want);
+  }
+
   void splay() {
     while (!queue_.empty()) {
+      if (!ready(queue_.front())) prefetch();
       const Item it = queue_.front();
       queue_.pop_front();
       const std::array<std::int32_t, 4>& q = it.t;

@@ -2,7 +2,10 @@
 //
 // Each predicate is adaptive, in tiers, each run only when the one before cannot tell:
 //   1. a floating-point filter with a proven error bound (*_fast; 0 means "cannot tell");
-//   2. for whole-number coordinates, 128-bit integer arithmetic (*_int; integer.hpp);
+//   2. for whole-number coordinates, 128-bit integer arithmetic (*_int; integer.hpp); for
+//      in-sphere, otherwise, double-word arithmetic with a proven bound (insphere_dw), which
+//      decides points that are nearly but not exactly cospherical (points rounded from a
+//      sphere) without scratch;
 //   3. exact arithmetic on the differences to the last point (*_translated; translated.hpp),
 //      exact when the differences are, else bounded; kUndecided when it cannot tell;
 //   4. the full expansion of the raw coordinates (*_exact).
@@ -35,6 +38,7 @@
 #include <initializer_list>
 #include <cmath>
 
+#include "predicates/double_word.hpp"
 #include "predicates/integer.hpp"
 #include "predicates/sos.hpp"
 #include "predicates/translated.hpp"
@@ -200,6 +204,57 @@ GG_INLINE int insphere_fast(const double* a, const double* b, const double* c, c
   return -decide(det, perm, kInsphereBound);  // det = det(M); insphere = -det(M)
 }
 
+// In-sphere in double-word arithmetic (double_word.hpp): the determinant of the filter, on the
+// exact differences, every operation a double-word one; 0 where its bound cannot tell (or the
+// magnitudes are outside those the bound holds for).
+//
+// The bound: write P(v) for the permanent of a subexpression v (its terms in absolute value)
+// and E(v) for its error. Differences are exact (E = 0). A sum adds at most 3u^2 (|x| + |y|)
+// and a product 5u^2 |x| |y| to its operands' errors, so that E(v) <= k(v) u^2 P(v) with
+// k(x + y) = max(k(x), k(y)) + 3 and k(x y) = k(x) + k(y) + 5 (up to terms in u^4): 2x2 minors
+// 8, 3x3 minors 19, lifts 11, lift times minor 35, the determinant 41. The filter's permanent,
+// from rounded differences and rounded operations, is at least (1 - 17u) times the exact one;
+// the bound below is twice 41 u^2 of it, and a head above it fixes the sign (|lo| <= u |hi|).
+// Magnitudes: nonzero differences in [2^-180, 2^190] keep every partial permanent in
+// [2^-900, 2^960], so an underflow adds at most 2^-170 of it, no operation overflows, and
+// the published bounds (which assume neither) hold up to that.
+constexpr double kInsphereBoundDW = 2 * (41.0 + 64.0 * kEps) * kEps * kEps;
+GG_INLINE bool dw_in_range(double h) {
+  const double a = std::fabs(h);
+  return a == 0.0 || (a >= 0x1p-180 && a <= 0x1p190);
+}
+GG_COLD int insphere_dw(const double* a, const double* b, const double* c, const double* d,
+                        const double* e) {
+  const double* p[4] = {a, b, c, d};
+  DW y[4][3];  // the differences to e
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      y[i][k] = dw_diff(p[i][k], e[k]);
+      if (!dw_in_range(y[i][k].hi)) return 0;
+    }
+  DW l[4];
+  for (int i = 0; i < 4; ++i)
+    l[i] = dw_add(dw_add(dw_mul(y[i][0], y[i][0]), dw_mul(y[i][1], y[i][1])),
+                  dw_mul(y[i][2], y[i][2]));
+  // 2x2 minors of the first two columns (as det4_translated's ab, bc, ...)
+  auto m = [&](int i, int j) {
+    return dw_sub(dw_mul(y[i][0], y[j][1]), dw_mul(y[j][0], y[i][1]));
+  };
+  const DW ab = m(0, 1), bc = m(1, 2), cd = m(2, 3), da = m(3, 0), ac = m(0, 2), bd = m(1, 3);
+  const DW abc = dw_add(dw_sub(dw_mul(y[0][2], bc), dw_mul(y[1][2], ac)), dw_mul(y[2][2], ab));
+  const DW bcd = dw_add(dw_sub(dw_mul(y[1][2], cd), dw_mul(y[2][2], bd)), dw_mul(y[3][2], bc));
+  const DW cda = dw_add(dw_add(dw_mul(y[2][2], da), dw_mul(y[3][2], ac)), dw_mul(y[0][2], cd));
+  const DW dab = dw_add(dw_add(dw_mul(y[3][2], ab), dw_mul(y[0][2], bd)), dw_mul(y[1][2], da));
+  const DW det = dw_add(dw_sub(dw_mul(l[3], abc), dw_mul(l[2], dab)),
+                        dw_sub(dw_mul(l[1], cda), dw_mul(l[0], bcd)));
+  double fd, perm;
+  det4_translated(a, b, c, d, e, lift3(a, e), lift3(b, e), lift3(c, e), lift3(d, e), fd, perm);
+  const double err = kInsphereBoundDW * perm;
+  if (det.hi > err) return -1;  // insphere = -det(M)
+  if (det.hi < -err) return 1;
+  return 0;
+}
+
 GG_INLINE int orient4d_fast(const double* a, const double* b, const double* c, const double* d,
                             const double* e) {
   double det, perm;
@@ -331,6 +386,7 @@ GG_HD inline int insphere_mid(const double* a, const double* b, const double* c,
   if (int r = insphere_fast(a, b, c, d, e)) return r;
   int si;
   if (insphere_int(a, b, c, d, e, si)) return si;
+  if (int r = insphere_dw(a, b, c, d, e)) return r;
   return insphere_translated(a, b, c, d, e, s);
 }
 GG_HD inline int orient4d_mid(const double* a, const double* b, const double* c, const double* d,
@@ -473,7 +529,10 @@ GG_HD inline int insphere_sos_quick(const double* a, int ia, const double* b, in
                                     const double* e, int ie) {
   if (int r = insphere_fast(a, b, c, d, e)) return r;
   int si;
-  if (!insphere_int(a, b, c, d, e, si)) return kUndecided;
+  if (!insphere_int(a, b, c, d, e, si)) {
+    const int r = insphere_dw(a, b, c, d, e);
+    return r ? r : kUndecided;
+  }
   if (si) return si;
   const double* r[5] = {a, b, c, d, e};
   const int idx[5] = {ia, ib, ic, id, ie};

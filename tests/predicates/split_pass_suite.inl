@@ -164,12 +164,28 @@ int tuples_per_batch() {
   return e ? std::max(100, std::atoi(e)) : 20000;
 }
 
+// In-sphere tuples that only the last tier decides: five points on the plane z = x (so the
+// determinant is exactly 0), four of them near 2^40 and the fifth near 0, so that no difference
+// is exact. (Nearly cospherical points no longer reach the last tier: insphere_dw decides them.)
+void add_coplanar_mixed(gg_test::Tuples& t, double scale) {
+  std::mt19937_64 g(7);
+  for (std::size_t c = 0; c < t.size(); c += 10)
+    for (int j = 0; j < t.k; ++j) {
+      double* p = t.v.data() + (c * t.k + j) * t.stride;
+      const double m = double(g() % 4096), r = double(g() % 4096) - 2048;
+      p[0] = j < 4 ? (0x1p40 + m) * scale : m * 0x1p-20 * scale;
+      p[1] = (j < 4 ? r : r * 0x1p-20) * scale;
+      p[2] = p[0];
+    }
+}
+
 template <int kind, bool sos, int tiers = 2>
 void compare(int dim, int k, bool sphere, int stride = 0) {
   EXEC ex;
   const int count = tuples_per_batch();
   for (double scale : {1.0, 0x1p-90, 0x1p90, 3e25}) {
     auto t = gg_test::make_tuples(dim, k, count, 100 + kind, scale, sphere, stride);
+    if (kind == 3) add_coplanar_mixed(t, scale);
     Run r = evaluate<kind, sos, tiers>(ex, t);
     auto ref = host_reference<kind, sos>(t);
     EXPECT_GT(r.exact, count / 20) << "the exact pass was hardly exercised";

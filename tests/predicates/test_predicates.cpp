@@ -134,6 +134,53 @@ TEST_P(Scales, InsphereMatchesRationals) {
     EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
 }
 
+// The double-word in-sphere tier is never wrong (it answers the rational sign or 0) and decides
+// nearly all of the points a few ulps off a sphere that the filter cannot (the case it exists
+// for: points rounded from a sphere), at every scale where its magnitudes hold.
+TEST_P(Scales, InsphereDoubleWordNeverWrong) {
+  int hard = 0, decided = 0, zeros = 0;
+  auto t = make_tuples(3, 5, 3000, 16, GetParam(), true);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double *a = t.at(i, 0), *b = t.at(i, 1), *c = t.at(i, 2), *d = t.at(i, 3),
+                 *e = t.at(i, 4);
+    const int ref = -ref_orient({a, b, c, d, e}, 3, 1);
+    const int dw = pred::insphere_dw(a, b, c, d, e);
+    if (dw != 0) ASSERT_EQ(dw, ref) << "case " << i;
+    zeros += ref == 0 && dw == 0;
+    if (i % 3 == 0 && pred::insphere_fast(a, b, c, d, e) == 0) hard++, decided += dw != 0;
+  }
+  EXPECT_GT(hard, 500) << "the nearly cospherical cases should defeat the filter";
+  if (GetParam() != 0x1p-100)  // (there the differences fall below the tier's range)
+    EXPECT_GE(decided, hard - hard / 100) << "of " << hard;
+  if (pow2(GetParam())) EXPECT_GT(zeros, 10);
+}
+
+// Points rounded from a sphere far from the origin (UTM-like offsets, mm detail) and from tiny
+// and huge spheres: the double-word tier agrees with the rationals wherever it answers.
+TEST(Predicates, InsphereDoubleWordOnRoundedSpheres) {
+  std::mt19937_64 g(21);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int decided = 0, tried = 0;
+  for (double offset : {0.0, 5.0e5, 4.2e6}) {
+    for (double radius : {1e-3, 1.0, 1e3}) {
+      for (int i = 0; i < 300; ++i) {
+        double q[5][3];
+        for (auto& p : q) {
+          double v[3] = {U(g), U(g), U(g)};
+          const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+          for (int k = 0; k < 3; ++k) p[k] = offset + radius * v[k] / l;
+        }
+        const int ref = -ref_orient({q[0], q[1], q[2], q[3], q[4]}, 3, 1);
+        const int dw = pred::insphere_dw(q[0], q[1], q[2], q[3], q[4]);
+        if (dw != 0) ASSERT_EQ(dw, ref) << offset << " " << radius << " " << i;
+        tried++, decided += dw != 0;
+        ASSERT_EQ(pred::insphere(q[0], q[1], q[2], q[3], q[4], s()), ref);
+      }
+    }
+  }
+  EXPECT_GT(decided, tried / 2);
+}
+
 TEST_P(Scales, Orient4dMatchesRationals) {
   Count c;
   auto t = make_tuples(3, 5, 2000, 11, GetParam(), false, 4);
