@@ -26,7 +26,6 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <deque>
 #include <exception>
 #include <string>
 #include <unordered_map>
@@ -243,6 +242,12 @@ struct Star {
 
 class Splayer {
  public:
+  // A tetrahedron to check, positively oriented, from the star of t[owner]: if that star has
+  // it, the stars of its other vertices must have it too.
+  struct Item {
+    std::array<std::int32_t, 4> t;
+    int owner;
+  };
   Splayer(HostMesh& H) : H_(H) {
     g_.p = H.pts;
     for (int k = 0; k < 3; ++k) g_.s[k] = H.s[k];
@@ -326,7 +331,7 @@ class Splayer {
       changed(v, before[i], s.tris);
     }
     t0 = Clock::now();
-    splay();
+    splay(threads > 0 ? threads : omp_get_max_threads());
     st_.us_queue = std::int64_t(1000 * ms_since(t0));
     t0 = Clock::now();
     patch(threads);
@@ -361,14 +366,56 @@ class Splayer {
       }
     }
   }
-  Star& star(std::int32_t v) {
-    auto it = stars_.find(v);
-    if (it != stars_.end()) return it->second;
-    H_.load_stars({v});
-    Star& s = stars_[v];
-    mesh_star(v, &s.tris, nullptr);
-    for (const Tri& t : s.tris) s.offer(t.a), s.offer(t.b), s.offer(t.c);
-    return s;
+  // The star of v, built (read-only: parallel rounds look stars up, build_stars makes them).
+  const Star& star(std::int32_t v) const {
+    const auto it = stars_.find(v);
+    if (it == stars_.end()) internal("a star used before it was built");
+    return it->second;
+  }
+  Star& star_to_change(std::int32_t v) { return const_cast<Star&>(star(v)); }
+  // The stars of the items' vertices that are not built yet, from the tetrahedralisation
+  // (loaded in one copy, walked on all threads).
+  void build_stars(const std::vector<Item>& items, int threads) {
+    std::vector<std::int32_t> want;
+    for (const Item& it : items)
+      for (std::int32_t w : it.t)
+        if (w != H_.m && !stars_.count(w)) want.push_back(w);
+    std::sort(want.begin(), want.end());
+    want.erase(std::unique(want.begin(), want.end()), want.end());
+    if (want.empty()) return;
+    H_.load_stars(want);
+    std::vector<std::vector<Tri>> tris(want.size());
+    parallel_for(std::int64_t(want.size()), threads, [&](std::int64_t i, const Geo&) {
+      mesh_star(want[std::size_t(i)], &tris[std::size_t(i)], nullptr);
+    });
+    for (std::size_t i = 0; i < want.size(); ++i) {
+      Star& s = stars_[want[i]];
+      s.tris = std::move(tris[i]);
+      for (const Tri& t : s.tris) s.offer(t.a), s.offer(t.b), s.offer(t.c);
+    }
+  }
+  // f(i, geo) for i in [0, n) on host threads, each with its own exact scratch; the first
+  // exception (in index order of the threads that threw, any one of them) is rethrown.
+  template <class F>
+  void parallel_for(std::int64_t n, int threads, F&& f) {
+    std::exception_ptr err;
+#pragma omp parallel num_threads(threads)
+    {
+      std::vector<double> scratch(scratch_.size());
+      std::int32_t busy = 0;
+      Geo g = g_;
+      g.lease = ScratchLease{scratch.data(), &busy, 1, pred::kInsphereScratch};
+#pragma omp for schedule(dynamic, 16)
+      for (std::int64_t i = 0; i < n; ++i) {
+        try {
+          f(i, g);
+        } catch (...) {
+#pragma omp critical
+          if (!err) err = std::current_exception();
+        }
+      }
+    }
+    if (err) std::rethrow_exception(err);
   }
 
   static int find_edge(const Star& s, std::int32_t a, std::int32_t b) {  // directed a -> b
@@ -389,9 +436,6 @@ class Splayer {
   static bool reflex(const Geo& g, std::int32_t v, const Tri& t, std::int32_t d) {
     const std::int32_t q[4] = {v, t.a, t.b, t.c};
     return in_sphere_ext(g, q, d);
-  }
-  bool reflex(std::int32_t v, const Tri& t, std::int32_t d) {
-    return reflex(g_, v, t, d);
   }
 
   // Link edge a -> b of triangles (a, b, c) and (b, a, d) replaced by (c, d): triangles
@@ -489,13 +533,15 @@ class Splayer {
     }
   }
 
-  // Bowyer-Watson in a convex star: x enters when some triangle's sphere contains it.
-  bool insert(std::int32_t v, Star& s, std::int32_t x) {
+  // Bowyer-Watson in a convex star: x enters when some triangle's sphere contains it. The
+  // items to check afterwards go to out. (Touches only s: stars take vertices in parallel.)
+  static bool insert(const Geo& g, std::int32_t v, Star& s, std::int32_t x,
+                     std::vector<Item>& out) {
     if (x == v || !s.offer(x)) return false;
     std::vector<char> conflict(s.tris.size(), 0);
     bool any = false;
     for (std::size_t i = 0; i < s.tris.size(); ++i)
-      if (reflex(v, s.tris[i], x)) conflict[i] = 1, any = true;
+      if (reflex(g, v, s.tris[i], x)) conflict[i] = 1, any = true;
     if (!any) return false;
     std::vector<Tri> keep, added;
     for (std::size_t i = 0; i < s.tris.size(); ++i) {
@@ -512,29 +558,22 @@ class Splayer {
       }
     }
     for (const Tri& t : added)
-      if (orient_ext(g_, v, t.a, t.b, t.c) <= 0) internal("a star insertion region is not a disk");
+      if (orient_ext(g, v, t.a, t.b, t.c) <= 0) internal("a star insertion region is not a disk");
     for (std::size_t i = 0; i < s.tris.size(); ++i)
-      if (conflict[i]) gone(v, s.tris[i]);
+      if (conflict[i]) gone(v, s.tris[i], out);
     for (const Tri& t : added) {
       keep.push_back(t);
-      queue_.push_back({{v, t.a, t.b, t.c}, 0});
+      out.push_back({{v, t.a, t.b, t.c}, 0});
     }
     s.tris.swap(keep);
     s.changed = true;
-    ++st_.insertions;
     return true;
   }
 
   // ---- splaying ----
-  // A tetrahedron to check, positively oriented, from the star of t[owner]: if that star has
-  // it, the stars of its other vertices must have it too.
-  struct Item {
-    std::array<std::int32_t, 4> t;
-    int owner;
-  };
   // Triangle (a, b, c) left the star of v: the stars of a, b and c may still have (v, a, b, c).
-  void gone(std::int32_t v, const Tri& t) {
-    for (int o = 1; o < 4; ++o) queue_.push_back({{v, t.a, t.b, t.c}, o});
+  static void gone(std::int32_t v, const Tri& t, std::vector<Item>& out) {
+    for (int o = 1; o < 4; ++o) out.push_back({{v, t.a, t.b, t.c}, o});
   }
   // The star of v went from `before` to `after`: check what left it and what came.
   void changed(std::int32_t v, const std::vector<Tri>& before, const std::vector<Tri>& after) {
@@ -542,7 +581,7 @@ class Splayer {
     for (const Tri& t : after) now.insert(key3(t.a, t.b, t.c));
     for (const Tri& t : before) {
       was.insert(key3(t.a, t.b, t.c));
-      if (!now.count(key3(t.a, t.b, t.c))) gone(v, t);
+      if (!now.count(key3(t.a, t.b, t.c))) gone(v, t, queue_);
     }
     for (const Tri& t : after)
       if (!was.count(key3(t.a, t.b, t.c))) queue_.push_back({{v, t.a, t.b, t.c}, 0});
@@ -553,53 +592,98 @@ class Splayer {
       if (j != i) o[n++] = t[std::size_t(j)];
   }
 
-  // Can the item be checked with the stars loaded so far?
-  bool ready(const Item& it) const {
-    for (std::int32_t w : it.t)
-      if (w != H_.m && !stars_.count(w) && !H_.star_loaded(w)) return false;
-    return true;
+  static bool offered(const Star& s, std::int32_t x) {
+    return std::find(s.offered.begin(), s.offered.end(), x) != s.offered.end();
   }
-  // The stars that the queued items may read, in one copy from the executor (one at a time,
-  // each would cost a round trip to the device).
-  void prefetch() {
-    std::vector<std::int32_t> want;
-    for (const Item& it : queue_)
-      for (std::int32_t w : it.t)
-        if (w != H_.m && !stars_.count(w) && !H_.star_loaded(w)) want.push_back(w);
-    H_.load_stars(want);
+  // A vertex that a star must take (a request of one round's check).
+  struct Take {
+    std::int32_t star, vertex;
+    bool operator<(const Take& o) const {
+      return star != o.star ? star < o.star : vertex < o.vertex;
+    }
+    bool operator==(const Take& o) const { return star == o.star && vertex == o.vertex; }
+  };
+  // One item against the stars as they are (read-only): what they must take, and whether
+  // the item must be checked again after that.
+  bool check(const Geo& g, const Item& it, std::vector<Take>& take) const {
+    const std::array<std::int32_t, 4>& q = it.t;
+    const std::int32_t x = q[std::size_t(it.owner)];
+    if (x == H_.m) return false;
+    std::int32_t ox[3];
+    others(q, it.owner, ox);
+    const Star& sx = star(x);
+    if (!contains(sx, ox[0], ox[1], ox[2])) return false;  // not (or no longer) in star(x)
+    bool again = false;
+    for (int i = 0; i < 4; ++i) {
+      const std::int32_t w = q[std::size_t(i)];
+      if (i == it.owner || w == H_.m) continue;
+      std::int32_t o[3];
+      others(q, i, o);
+      const Star& sw = star(w);
+      if (contains(sw, o[0], o[1], o[2])) continue;
+      again = true;
+      bool fresh = false;  // star(w) takes the vertices of the tetrahedron it lacks
+      for (int j = 0; j < 3; ++j)
+        if (!offered(sw, o[j])) take.push_back({w, o[j]}), fresh = true;
+      if (fresh) continue;
+      // It took them and still lacks it: star(w) keeps a vertex inside the sphere of q, which
+      // star(x) takes (it was never offered to x: x's star would not hold the face of q).
+      std::vector<std::int32_t> cand;
+      for (const Tri& t : sw.tris)
+        for (std::int32_t y : {t.a, t.b, t.c})
+          if (y != q[0] && y != q[1] && y != q[2] && y != q[3]) cand.push_back(y);
+      std::sort(cand.begin(), cand.end());
+      cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+      bool moved = false;
+      for (std::int32_t y : cand)
+        if (in_sphere_ext(g, q.data(), y)) take.push_back({x, y}), moved = true;
+      if (!moved) internal("inconsistent stars that no insertion separates");
+    }
+    return again;
   }
 
-  void splay() {
+  // Splaying in rounds: every queued item is checked against the stars as they are (in
+  // parallel, read-only), then each star takes the vertices asked of it (in parallel, a star
+  // to a thread, in vertex order), which queues the next round's items. A star is the convex
+  // star of the vertices it was offered, whatever their order, and stars only take vertices,
+  // so this ends, in the same stars as one queue would (Shewchuk), on any number of threads.
+  void splay(int threads) {
+    std::vector<Item> items;
     while (!queue_.empty()) {
-      if (!ready(queue_.front())) prefetch();
-      const Item it = queue_.front();
-      queue_.pop_front();
-      const std::array<std::int32_t, 4>& q = it.t;
-      const std::int32_t x = q[std::size_t(it.owner)];
-      if (x == H_.m) continue;
-      std::int32_t ox[3];
-      others(q, it.owner, ox);
-      if (!contains(star(x), ox[0], ox[1], ox[2])) continue;  // not (or no longer) in star(x)
-      for (int i = 0; i < 4; ++i) {
-        const std::int32_t w = q[std::size_t(i)];
-        if (i == it.owner || w == H_.m) continue;
-        std::int32_t o[3];
-        others(q, i, o);
-        if (contains(star(w), o[0], o[1], o[2])) continue;
-        for (int j = 0; j < 3; ++j) insert(w, star(w), o[j]);
-        if (contains(star(w), o[0], o[1], o[2])) continue;
-        // star(w) keeps a vertex inside the sphere of q: x's star takes it
-        std::vector<std::int32_t> cand;
-        for (const Tri& t : star(w).tris)
-          for (std::int32_t y : {t.a, t.b, t.c})
-            if (y != q[0] && y != q[1] && y != q[2] && y != q[3]) cand.push_back(y);
-        std::sort(cand.begin(), cand.end());
-        cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-        bool moved = false;
-        for (std::int32_t y : cand)
-          if (in_sphere_ext(g_, q.data(), y)) moved = insert(x, star(x), y) || moved;
-        if (!contains(star(x), ox[0], ox[1], ox[2])) break;  // removed: nothing left to check
-        if (!moved) internal("inconsistent stars that no insertion separates");
+      items.swap(queue_);
+      queue_.clear();
+      ++st_.rounds;
+      build_stars(items, threads);
+      std::vector<std::vector<Take>> takes(static_cast<std::size_t>(threads));
+      std::vector<std::vector<Item>> again(static_cast<std::size_t>(threads));
+      parallel_for(std::int64_t(items.size()), threads, [&](std::int64_t i, const Geo& g) {
+        const int me = omp_get_thread_num();
+        if (check(g, items[std::size_t(i)], takes[std::size_t(me)]))
+          again[std::size_t(me)].push_back(items[std::size_t(i)]);
+      });
+      std::vector<Take> all;
+      for (int t = 0; t < threads; ++t) {
+        all.insert(all.end(), takes[std::size_t(t)].begin(), takes[std::size_t(t)].end());
+        queue_.insert(queue_.end(), again[std::size_t(t)].begin(), again[std::size_t(t)].end());
+      }
+      std::sort(all.begin(), all.end());
+      all.erase(std::unique(all.begin(), all.end()), all.end());
+      std::vector<std::size_t> first;  // where each star's requests begin
+      for (std::size_t k = 0; k < all.size(); ++k)
+        if (k == 0 || all[k].star != all[k - 1].star) first.push_back(k);
+      first.push_back(all.size());
+      const std::size_t groups = first.size() - 1;
+      std::vector<std::vector<Item>> made(groups);
+      std::vector<std::int64_t> taken(groups, 0);
+      parallel_for(std::int64_t(groups), threads, [&](std::int64_t k, const Geo& g) {
+        const std::size_t b = first[std::size_t(k)], e = first[std::size_t(k) + 1];
+        Star& s = star_to_change(all[b].star);
+        for (std::size_t r = b; r < e; ++r)
+          taken[std::size_t(k)] += insert(g, all[b].star, s, all[r].vertex, made[std::size_t(k)]);
+      });
+      for (std::size_t k = 0; k < groups; ++k) {
+        st_.insertions += taken[k];
+        queue_.insert(queue_.end(), made[k].begin(), made[k].end());
       }
     }
   }
@@ -677,7 +761,7 @@ class Splayer {
   std::vector<double> scratch_;
   std::int32_t busy_ = 0;
   std::unordered_map<std::int32_t, Star> stars_;  // (references stay valid as it grows)
-  std::deque<Item> queue_;
+  std::vector<Item> queue_;
   SplayStats st_;
 };
 

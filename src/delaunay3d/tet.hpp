@@ -72,6 +72,7 @@ struct SplayStats {
   std::int64_t stars_rebuilt = 0;       // made convex by Flip-Flop
   std::int64_t stars_touched = 0;       // every star that changed, those included
   std::int64_t insertions = 0;          // vertices inserted into stars while splaying
+  std::int64_t rounds = 0;              // splaying rounds (each checks its items in parallel)
   std::int64_t removed = 0, added = 0;  // tetrahedra patched
   std::int64_t flat_added = 0;          // flat tetrahedra among the added ones (see peel_flat)
   std::int64_t us_stars = 0, us_queue = 0, us_patch = 0;  // time: rebuilding, splaying, patching

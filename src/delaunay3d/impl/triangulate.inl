@@ -1091,6 +1091,7 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   st.counters["stars_rebuilt"] = sp.stars_rebuilt;
   st.counters["stars_touched"] = sp.stars_touched;
   st.counters["star_insertions"] = sp.insertions;
+  st.counters["splay_rounds"] = sp.rounds;
   st.counters["splay_removed"] = sp.removed;
   st.counters["splay_added"] = sp.added;
   st.counters["us_splay_stars"] = sp.us_stars;
