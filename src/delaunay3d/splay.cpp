@@ -281,42 +281,27 @@ class Splayer {
     }
     // Each failed star read and made convex on its own (in parallel: they share nothing but
     // the mesh, which they only read), then entered in order.
-    H_.load_stars(fv);
+    const int nt = threads > 0 ? threads : omp_get_max_threads();
+    load_stars(fv);
     std::vector<Star> built(fv.size());
     std::vector<std::vector<Tri>> before(fv.size());
-    std::exception_ptr err;
-#pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
-    {
-      std::vector<double> scratch(scratch_.size());
-      std::int32_t busy = 0;
-      Geo g = g_;
-      g.lease = ScratchLease{scratch.data(), &busy, 1, pred::kInsphereScratch};
-#pragma omp for schedule(dynamic, 8)
-      for (std::int64_t i = 0; i < std::int64_t(fv.size()); ++i) {
-        try {
-          const std::int32_t v = fv[std::size_t(i)];
-          Star& st = built[std::size_t(i)];
-          mesh_star(v, &st.tris, nullptr);
-          before[std::size_t(i)] = st.tris;
-          std::vector<Edge> work;
-          if (faces.empty()) {
-            all_edges(st, work);
-          } else {
-            work = seeds.at(v);
-          }
-          convexify(g, v, st, work);
-        } catch (...) {
-#pragma omp critical
-          if (!err) err = std::current_exception();
-        }
-      }
-    }
-    if (err) std::rethrow_exception(err);
+    parallel_for(std::int64_t(fv.size()), nt, [&](std::int64_t i, const Geo& g) {
+      const std::int32_t v = fv[std::size_t(i)];
+      Star& st = built[std::size_t(i)];
+      mesh_star(v, &st.tris, nullptr);
+      before[std::size_t(i)] = st.tris;
+      std::vector<Edge> work;
+      if (faces.empty())
+        all_edges(st, work);
+      else
+        work = seeds.at(v);
+      convexify(g, v, st, work);
+    });
     {  // the stars splaying will read first: those of the failed vertices' neighbours
       std::vector<std::int32_t> near;
       for (const auto& b : before)
         for (const Tri& t : b) near.insert(near.end(), {t.a, t.b, t.c});
-      H_.load_stars(near);
+      load_stars(near);
     }
     st_.us_stars = std::int64_t(1000 * ms_since(t0));
     for (std::size_t i = 0; i < fv.size(); ++i) {
@@ -331,7 +316,7 @@ class Splayer {
       changed(v, before[i], s.tris);
     }
     t0 = Clock::now();
-    splay(threads > 0 ? threads : omp_get_max_threads());
+    splay(nt);
     st_.us_queue = std::int64_t(1000 * ms_since(t0));
     t0 = Clock::now();
     patch(threads);
@@ -383,7 +368,7 @@ class Splayer {
     std::sort(want.begin(), want.end());
     want.erase(std::unique(want.begin(), want.end()), want.end());
     if (want.empty()) return;
-    H_.load_stars(want);
+    load_stars(want);
     std::vector<std::vector<Tri>> tris(want.size());
     parallel_for(std::int64_t(want.size()), threads, [&](std::int64_t i, const Geo&) {
       mesh_star(want[std::size_t(i)], &tris[std::size_t(i)], nullptr);
@@ -393,6 +378,12 @@ class Splayer {
       s.tris = std::move(tris[i]);
       for (const Tri& t : s.tris) s.offer(t.a), s.offer(t.b), s.offer(t.c);
     }
+  }
+  // Stars from the executor (timed: the copies and the walks there).
+  void load_stars(const std::vector<std::int32_t>& verts) {
+    const auto t0 = Clock::now();
+    H_.load_stars(verts);
+    st_.us_load += std::int64_t(1000 * ms_since(t0));
   }
   // f(i, geo) for i in [0, n) on host threads, each with its own exact scratch; the first
   // exception (in index order of the threads that threw, any one of them) is rethrown.

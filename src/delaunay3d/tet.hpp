@@ -76,6 +76,7 @@ struct SplayStats {
   std::int64_t removed = 0, added = 0;  // tetrahedra patched
   std::int64_t flat_added = 0;          // flat tetrahedra among the added ones (see peel_flat)
   std::int64_t us_stars = 0, us_queue = 0, us_patch = 0;  // time: rebuilding, splaying, patching
+  std::int64_t us_load = 0;  // of which loading stars from the executor
 };
 
 // Adaptive star splaying (thesis 5.3.2): faces lists the faces that are not locally Delaunay

@@ -1097,6 +1097,7 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   st.counters["us_splay_stars"] = sp.us_stars;
   st.counters["us_splay_queue"] = sp.us_queue;
   st.counters["us_splay_patch"] = sp.us_patch;
+  st.counters["us_splay_load"] = sp.us_load;
   t0 = Clock::now();
   if (progress) progress(Delaunay3dProgress{"output", S.m, S.m, 0});
   auto f = T.finish(S.orig.data());
