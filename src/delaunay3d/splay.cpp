@@ -444,8 +444,10 @@ class Splayer {
   }
 
   // Removes x (not extreme in v's star) from the star: flips of its link edges until it has
-  // three neighbours, then its three triangles become one.
-  static void remove_vertex(const Geo& g, std::int32_t v, Star& s, std::int32_t x) {
+  // three neighbours, then its three triangles become one. Every edge of a triangle it makes
+  // goes to work (only those can have become reflex).
+  static void remove_vertex(const Geo& g, std::int32_t v, Star& s, std::int32_t x,
+                            std::vector<Edge>& work) {
     for (int guard = 0;; ++guard) {
       if (guard > 100000) internal("a vertex could not be removed from a star");
       std::vector<std::int32_t> nbrs;
@@ -468,14 +470,19 @@ class Splayer {
           if (!t.has(x)) keep.push_back(t);
         keep.push_back({y0, y1, y2});
         s.tris.swap(keep);
+        work.insert(work.end(), {Edge{y0, y1}, Edge{y1, y2}, Edge{y2, y0}});
         return;
       }
       bool flipped = false;
-      for (std::int32_t y : nbrs)
-        if (try_flip(g, v, s, x, y)) {
+      for (std::int32_t y : nbrs) {
+        const std::int32_t c = third(s.tris[std::size_t(find_edge(s, x, y))], x, y);
+        const std::int32_t d = third(s.tris[std::size_t(find_edge(s, y, x))], x, y);
+        if (try_flip(g, v, s, x, y)) {  // (x, y) -> (c, d): the two new triangles' edges
+          work.insert(work.end(), {Edge{x, d}, Edge{d, y}, Edge{y, c}, Edge{c, x}, Edge{c, d}});
           flipped = true;
           break;
         }
+      }
       if (!flipped) internal("no flip reduces a non-extreme vertex of a star");
     }
   }
@@ -490,8 +497,9 @@ class Splayer {
   }
 
   // Flip-Flop on the lifted star of v (see the top of the file), from the link edges in work:
-  // a flipped edge's four neighbours are tested next; a vertex taken out changes the link
-  // around it too much to follow, so every edge is tested again (rare).
+  // a flipped edge's four neighbours are tested next, and a vertex taken out lists the edges
+  // of every triangle it made. (It once listed every edge of the star again, which on the
+  // large stars over integer grids' hull planes took up to a second.)
   static void convexify(const Geo& g, std::int32_t v, Star& s, std::vector<Edge>& work) {
     for (std::int64_t guard = 0; !work.empty(); ++guard) {
       if (guard > 10000000) internal("Flip-Flop on a star did not converge");
@@ -518,9 +526,7 @@ class Splayer {
       }
       // Not flippable: the corner inside the cone of the other three is not extreme.
       const std::int32_t x = orient_ext(g, v, a, d, c) < 0 ? a : b;
-      remove_vertex(g, v, s, x);
-      work.clear();
-      all_edges(s, work);
+      remove_vertex(g, v, s, x, work);
     }
   }
 
