@@ -230,10 +230,21 @@ struct Edge {
 
 struct Star {
   std::vector<Tri> tris;
-  std::vector<std::int32_t> offered;  // every vertex this star has been given (a few dozen)
-  bool offer(std::int32_t x) {        // false if x was given before
-    if (std::find(offered.begin(), offered.end(), x) != offered.end()) return false;
-    offered.push_back(x);
+  // Every vertex this star has been given, sorted (a few dozen; thousands on the hull planes
+  // of integer grids, where a linear search made entering stars quadratic).
+  std::vector<std::int32_t> offered;
+  bool was_offered(std::int32_t x) const {
+    return std::binary_search(offered.begin(), offered.end(), x);
+  }
+  void offer_all(const std::vector<Tri>& ts) {
+    for (const Tri& t : ts) offered.insert(offered.end(), {t.a, t.b, t.c});
+    std::sort(offered.begin(), offered.end());
+    offered.erase(std::unique(offered.begin(), offered.end()), offered.end());
+  }
+  bool offer(std::int32_t x) {  // false if x was given before
+    const auto it = std::lower_bound(offered.begin(), offered.end(), x);
+    if (it != offered.end() && *it == x) return false;
+    offered.insert(it, x);
     return true;
   }
   bool changed = false;
@@ -303,18 +314,18 @@ class Splayer {
         for (const Tri& t : b) near.insert(near.end(), {t.a, t.b, t.c});
       load_stars(near);
     }
-    st_.us_stars = std::int64_t(1000 * ms_since(t0));
     for (std::size_t i = 0; i < fv.size(); ++i) {
       const std::int32_t v = fv[i];
       ++st_.failed_vertices;
       Star& s = stars_[v];
       s = std::move(built[i]);
-      for (const Tri& t : s.tris) s.offer(t.a), s.offer(t.b), s.offer(t.c);
-      for (const Tri& t : before[i]) s.offer(t.a), s.offer(t.b), s.offer(t.c);
+      s.offer_all(s.tris);
+      s.offer_all(before[i]);
       s.rebuilt = s.changed = true;
       ++st_.stars_rebuilt;
       changed(v, before[i], s.tris);
     }
+    st_.us_stars = std::int64_t(1000 * ms_since(t0));
     t0 = Clock::now();
     splay(nt);
     st_.us_queue = std::int64_t(1000 * ms_since(t0));
@@ -376,7 +387,7 @@ class Splayer {
     for (std::size_t i = 0; i < want.size(); ++i) {
       Star& s = stars_[want[i]];
       s.tris = std::move(tris[i]);
-      for (const Tri& t : s.tris) s.offer(t.a), s.offer(t.b), s.offer(t.c);
+      s.offer_all(s.tris);
     }
   }
   // Stars from the executor (timed: the copies and the walks there).
@@ -589,9 +600,6 @@ class Splayer {
       if (j != i) o[n++] = t[std::size_t(j)];
   }
 
-  static bool offered(const Star& s, std::int32_t x) {
-    return std::find(s.offered.begin(), s.offered.end(), x) != s.offered.end();
-  }
   // A vertex that a star must take (a request of one round's check).
   struct Take {
     std::int32_t star, vertex;
@@ -621,7 +629,7 @@ class Splayer {
       again = true;
       bool fresh = false;  // star(w) takes the vertices of the tetrahedron it lacks
       for (int j = 0; j < 3; ++j)
-        if (!offered(sw, o[j])) take.push_back({w, o[j]}), fresh = true;
+        if (!sw.was_offered(o[j])) take.push_back({w, o[j]}), fresh = true;
       if (fresh) continue;
       // It took them and still lacks it: star(w) keeps a vertex inside the sphere of q, which
       // star(x) takes (it was never offered to x: x's star would not hold the face of q).

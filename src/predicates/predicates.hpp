@@ -237,9 +237,7 @@ GG_COLD int insphere_dw(const double* a, const double* b, const double* c, const
     l[i] = dw_add(dw_add(dw_mul(y[i][0], y[i][0]), dw_mul(y[i][1], y[i][1])),
                   dw_mul(y[i][2], y[i][2]));
   // 2x2 minors of the first two columns (as det4_translated's ab, bc, ...)
-  auto m = [&](int i, int j) {
-    return dw_sub(dw_mul(y[i][0], y[j][1]), dw_mul(y[j][0], y[i][1]));
-  };
+  auto m = [&](int i, int j) { return dw_sub(dw_mul(y[i][0], y[j][1]), dw_mul(y[j][0], y[i][1])); };
   const DW ab = m(0, 1), bc = m(1, 2), cd = m(2, 3), da = m(3, 0), ac = m(0, 2), bd = m(1, 3);
   const DW abc = dw_add(dw_sub(dw_mul(y[0][2], bc), dw_mul(y[1][2], ac)), dw_mul(y[2][2], ab));
   const DW bcd = dw_add(dw_sub(dw_mul(y[1][2], cd), dw_mul(y[2][2], bd)), dw_mul(y[3][2], bc));
