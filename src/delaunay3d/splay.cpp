@@ -21,8 +21,8 @@
 //     stars are those of the Delaunay tetrahedralisation (Shewchuk).
 //  3. the tetrahedra of the old stars that the new ones lack are removed, the new ones added,
 //     and the faces between them and the rest linked.
-// Stars not read from the tetrahedralisation are never built. Steps 1 and 3 run on host threads
-// (each star on its own); step 2 is one queue.
+// Stars not read from the tetrahedralisation are never built. Every step runs on host threads:
+// 1 and 3 a star to a thread, 2 in rounds (see splay()).
 #include <algorithm>
 #include <array>
 #include <cstring>
@@ -368,7 +368,11 @@ class Splayer {
     if (it == stars_.end()) internal("a star used before it was built");
     return it->second;
   }
-  Star& star_to_change(std::int32_t v) { return const_cast<Star&>(star(v)); }
+  Star& star_to_change(std::int32_t v) {  // (find only: safe beside other threads' finds)
+    const auto it = stars_.find(v);
+    if (it == stars_.end()) internal("a star changed before it was built");
+    return it->second;
+  }
   // The stars of the items' vertices that are not built yet, from the tetrahedralisation
   // (loaded in one copy, walked on all threads).
   void build_stars(const std::vector<Item>& items, int threads) {
