@@ -55,11 +55,14 @@ struct Triangulation3d {
   // "output"; counters "points", "distinct_points", "duplicates", "batches", "flip_rounds",
   // "flips23", "flips32", "unflippable_tests", "failed_faces", "failed_vertices",
   // "flat_tetrahedra" (removed from the hull), "stars_rebuilt", "stars_touched",
-  // "star_insertions", "splay_removed", "splay_added", "splay_slots_read" (store slots phase 2
-  // copied to the host), "device_bytes_phase1" (phase 1's device memory at its largest),
-  // "slots_used", "slots_capacity" (of the tetrahedron store), and times in microseconds "us_*"
-  // (phase 1: choosing and splitting, flip rounds as kernels and in one block; phase 2: copies,
-  // star rebuilds, splaying queue, patch, peeling flat tetrahedra).
+  // "star_insertions", "splay_rounds" (splaying rounds, each on all host threads),
+  // "splay_removed", "splay_added", "splay_slots_read" (store slots phase 2 copied to the
+  // host), "device_bytes_phase1" (phase 1's device memory at its largest), "slots_used",
+  // "slots_capacity" (of the tetrahedron store), and times in microseconds "us_*" (phase 1:
+  // choosing and splitting, flip rounds as kernels and in one block; phase 2: copies, star
+  // rebuilds, splaying rounds, patch, loading stars from the executor, peeling flat tetrahedra).
+  // Phase 1's counters may differ a little from run to run on the GPU (which flips win a round
+  // depends on slot numbers taken in parallel); the tetrahedralisation does not.
   Stats stats;
   std::size_t num_tetrahedra() const { return tetrahedra.size() / 4; }
 };

@@ -330,7 +330,7 @@ class Splayer {
     splay(nt);
     st_.us_queue = std::int64_t(1000 * ms_since(t0));
     t0 = Clock::now();
-    patch(threads);
+    patch(nt);
     check_adjacency(H_, "after splaying");
     st_.us_patch = std::int64_t(1000 * ms_since(t0));
     return st_;
@@ -445,8 +445,10 @@ class Splayer {
   }
 
   // Link edge a -> b of triangles (a, b, c) and (b, a, d) replaced by (c, d): triangles
-  // (a, d, c) and (d, b, c), when both stay positively oriented around v.
-  static bool try_flip(const Geo& g, std::int32_t v, Star& s, std::int32_t a, std::int32_t b) {
+  // (a, d, c) and (d, b, c), when both stay positively oriented around v. cd, if given, gets
+  // the new edge.
+  static bool try_flip(const Geo& g, std::int32_t v, Star& s, std::int32_t a, std::int32_t b,
+                       Edge* cd = nullptr) {
     const int i1 = find_edge(s, a, b), i2 = find_edge(s, b, a);
     if (i1 < 0 || i2 < 0) internal("link edge without two triangles");
     const std::int32_t c = third(s.tris[std::size_t(i1)], a, b);
@@ -455,6 +457,7 @@ class Splayer {
     if (orient_ext(g, v, a, d, c) <= 0 || orient_ext(g, v, d, b, c) <= 0) return false;
     s.tris[std::size_t(i1)] = {a, d, c};
     s.tris[std::size_t(i2)] = {d, b, c};
+    if (cd) *cd = {c, d};
     return true;
   }
 
@@ -490,9 +493,9 @@ class Splayer {
       }
       bool flipped = false;
       for (std::int32_t y : nbrs) {
-        const std::int32_t c = third(s.tris[std::size_t(find_edge(s, x, y))], x, y);
-        const std::int32_t d = third(s.tris[std::size_t(find_edge(s, y, x))], x, y);
-        if (try_flip(g, v, s, x, y)) {  // (x, y) -> (c, d): the two new triangles' edges
+        Edge n;
+        if (try_flip(g, v, s, x, y, &n)) {  // (x, y) -> (c, d): the two new triangles' edges
+          const std::int32_t c = n.a, d = n.b;
           work.insert(work.end(), {Edge{x, d}, Edge{d, y}, Edge{y, c}, Edge{c, x}, Edge{c, d}});
           flipped = true;
           break;
@@ -715,34 +718,25 @@ class Splayer {
     };
     std::vector<std::vector<std::int32_t>> gone(work.size());
     std::vector<std::vector<New>> made(work.size());
-    std::exception_ptr err;
-#pragma omp parallel for schedule(dynamic, 8) \
-    num_threads(threads > 0 ? threads : omp_get_max_threads())
-    for (std::int64_t i = 0; i < std::int64_t(work.size()); ++i) {
-      try {
-        const std::int32_t v = work[std::size_t(i)].first;
-        const Star& s = *work[std::size_t(i)].second;
-        std::vector<Tri> ot;
-        std::vector<std::int32_t> os;
-        mesh_star(v, &ot, &os);
-        std::vector<Key3> now, was;
-        for (const Tri& t : s.tris) now.push_back(key3(t.a, t.b, t.c));
-        for (const Tri& t : ot) was.push_back(key3(t.a, t.b, t.c));
-        std::sort(now.begin(), now.end());
-        std::sort(was.begin(), was.end());
-        for (std::size_t j = 0; j < ot.size(); ++j)
-          if (!std::binary_search(now.begin(), now.end(), key3(ot[j].a, ot[j].b, ot[j].c)))
-            gone[std::size_t(i)].push_back(os[j]);
-        for (const Tri& t : s.tris)
-          if (!std::binary_search(was.begin(), was.end(), key3(t.a, t.b, t.c)))
-            made[std::size_t(i)].push_back(
-                {key4(v, t.a, t.b, t.c), v, Tet{{v, t.a, t.b, t.c}, {-1, -1, -1, -1}}});
-      } catch (...) {
-#pragma omp critical
-        if (!err) err = std::current_exception();
-      }
-    }
-    if (err) std::rethrow_exception(err);
+    parallel_for(std::int64_t(work.size()), threads, [&](std::int64_t i, const Geo&) {
+      const std::int32_t v = work[std::size_t(i)].first;
+      const Star& s = *work[std::size_t(i)].second;
+      std::vector<Tri> ot;
+      std::vector<std::int32_t> os;
+      mesh_star(v, &ot, &os);
+      std::vector<Key3> now, was;
+      for (const Tri& t : s.tris) now.push_back(key3(t.a, t.b, t.c));
+      for (const Tri& t : ot) was.push_back(key3(t.a, t.b, t.c));
+      std::sort(now.begin(), now.end());
+      std::sort(was.begin(), was.end());
+      for (std::size_t j = 0; j < ot.size(); ++j)
+        if (!std::binary_search(now.begin(), now.end(), key3(ot[j].a, ot[j].b, ot[j].c)))
+          gone[std::size_t(i)].push_back(os[j]);
+      for (const Tri& t : s.tris)
+        if (!std::binary_search(was.begin(), was.end(), key3(t.a, t.b, t.c)))
+          made[std::size_t(i)].push_back(
+              {key4(v, t.a, t.b, t.c), v, Tet{{v, t.a, t.b, t.c}, {-1, -1, -1, -1}}});
+    });
     std::vector<std::int32_t> removed;
     std::vector<New> all;
     for (std::size_t i = 0; i < work.size(); ++i) {

@@ -48,7 +48,6 @@ class HostMesh {
   const Tet* peek(std::int32_t t) const;                    // nullptr if not loaded
   std::int32_t append(const Tet& T);                        // a new slot at the end
   void load_stars(const std::vector<std::int32_t>& verts);  // those not loaded yet
-  bool star_loaded(std::int32_t v) const { return all_ || here_[std::size_t(v)]; }
   void load_slots(const std::vector<std::int32_t>& slots);  // in one copy, those missing
   void load_all();
   std::int64_t loaded() const { return all_ ? std::int64_t(dense_.size()) : std::int64_t(n_); }
