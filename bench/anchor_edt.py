@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Distance-transform anchors on random site grids: CuPy's cupyx.scipy.ndimage
-distance_transform_edt on the GPU (float32 distances, device-resident, CUDA-event timing),
+distance_transform_edt on the GPU (float32 distances, device-resident, CUDA-event timing, and
+host array in / host array out as a NumPy caller sees it: cupy_host),
 SciPy and OpenCV (DIST_L2, precise mask) on the CPU, and the `edt` package where installed.
 Appends CSV rows in the bench format; prints a line per measurement."""
 import argparse, statistics, sys, time
@@ -10,7 +11,7 @@ def main():
     ap.add_argument("--dim", type=int, default=2)
     ap.add_argument("--sides", default="1024")
     ap.add_argument("--density", default="0.1")
-    ap.add_argument("--tools", default="cupy,scipy,opencv,edt")
+    ap.add_argument("--tools", default="cupy,cupy_host,scipy,opencv,edt")
     ap.add_argument("--reps", type=int, default=5)
     ap.add_argument("--csv")
     a = ap.parse_args()
@@ -40,6 +41,21 @@ def main():
                             s, e = cp.cuda.Event(), cp.cuda.Event()
                             s.record(); run(); e.record(); e.synchronize()
                             ts.append(cp.cuda.get_elapsed_time(s, e))
+                        t = statistics.median(ts); dev = cp.cuda.runtime.getDeviceProperties(0)["name"].decode()
+                    elif tool == "cupy_host":  # as a NumPy user calls it: host array in, host array out
+                        import cupy as cp
+                        from cupyx.scipy import ndimage as cnd
+                        def run():
+                            g = cp.asarray(img)
+                            try:
+                                d = cnd.distance_transform_edt(g, float64_distances=False)
+                            except TypeError:
+                                d = cnd.distance_transform_edt(g)
+                            return cp.asnumpy(d)
+                        run()
+                        ts = []
+                        for _ in range(a.reps):
+                            t0 = time.perf_counter(); run(); ts.append(1e3 * (time.perf_counter() - t0))
                         t = statistics.median(ts); dev = cp.cuda.runtime.getDeviceProperties(0)["name"].decode()
                     elif tool == "scipy":
                         if n > 4096 * 4096 or (a.dim == 3 and side > 256): continue

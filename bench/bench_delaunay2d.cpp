@@ -143,9 +143,7 @@ int main(int argc, char** argv) {
                   (long long)r.stats.counters["batches"],
                   (long long)r.stats.counters["flip_rounds"], cg, verdict.c_str());
       if (b == Backend::Cuda)
-        std::printf("    upload %.1f ms, waiting for host arrays %.1f ms, copy back %.1f ms\n",
-                    bench::phase_ms(r.stats, "upload"),
-                    bench::phase_ms(r.stats, "wait_host_arrays"),
+        std::printf("    upload %.1f ms, copy back %.1f ms\n", bench::phase_ms(r.stats, "upload"),
                     bench::phase_ms(r.stats, "copy_back"));
       for (auto& ph : r.stats.phase_ms)
         if (ph.first.rfind("insert/", 0) == 0)

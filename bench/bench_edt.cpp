@@ -1,8 +1,12 @@
 // gpugeom_bench_edt: the distance transform over grid sizes and site densities on each
 // backend. Reports the device-resident feature transform ("transform"), the same with the
 // float32 distance and int32 label arrays computed on the device ("w/outputs"), and the whole
-// call with host<->device copies ("w/copies"); optionally
-// JFA beside PBA with its error rate (voxels whose distance is wrong).
+// call with host<->device copies ("w/copies": the caller's host grid in, host arrays out), the
+// device entry point with the grid and the outputs on the device ("on_dev", CUDA), and the bus
+// floor of the bytes that must cross (input bytes + output bytes at 54 GB/s, the pinned rate
+// measured on the H100 machine by gpugeom_bench_bus); optionally JFA beside PBA with its error
+// rate (voxels whose distance is wrong). --dist-only: float32 distances only (SciPy's
+// distance_transform_edt), else distances and int32 labels.
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -12,6 +16,9 @@
 #include <sstream>
 
 #include "bench_csv.hpp"
+#ifdef GPUGEOM_HAVE_CUDA
+#include <cuda_runtime.h>
+#endif
 #include "gpugeom/edt.hpp"
 #include "gpugeom/io.hpp"
 
@@ -37,7 +44,7 @@ io::Grid random_sites(const std::vector<std::int64_t>& shape, double density, st
 int main(int argc, char** argv) {
   std::string sides = "1024,2048", dens = "0.1", backends = "all", csv, shapes;
   int dim = 2, reps = 5;
-  bool jfa = false;
+  bool jfa = false, dist_only = false;
   std::int64_t bands[3] = {0, 0, 0};
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
@@ -56,6 +63,8 @@ int main(int argc, char** argv) {
       csv = next();
     else if (a == "--jfa")
       jfa = true;
+    else if (a == "--dist-only")
+      dist_only = true;
     else if (a == "--bands") {  // kx,ky[,kz]: PBA band counts (0: the automatic rule)
       std::stringstream bs(next());
       int k = 0;
@@ -64,15 +73,16 @@ int main(int argc, char** argv) {
       shapes = next();  // e.g. 4096x16384,8000x8400 (C order)
     else {
       std::cout << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
-                   "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--csv FILE]\n";
+                   "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--dist-only] [--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
   }
   const std::vector<Backend> bks = bench::backends(backends);
   const std::string gpu = query_device().available ? query_device().name : "none";
   std::ofstream f = bench::open_bench_csv(csv);
-  std::printf("%-6s %-14s %8s %-5s %-4s %11s %11s %12s %10s\n", "edt", "grid", "density", "bk",
-              "meth", "transform", "w/outputs", "w/copies", "wrong%");
+  std::printf("# device: %s\n", gpu.c_str());
+  std::printf("%-6s %-14s %8s %-5s %-4s %11s %11s %12s %10s %10s %10s\n", "edt", "grid", "density",
+              "bk", "meth", "transform", "w/outputs", "w/copies", "on_dev", "bus_floor", "wrong%");
   std::vector<std::vector<std::int64_t>> all_shapes;
   if (!shapes.empty()) {
     std::stringstream ss(shapes);
@@ -97,7 +107,7 @@ int main(int argc, char** argv) {
           // GPUGEOM_EDT_PROFILE=1: per-pass times (the library synchronises after each pass).
           o.profile = std::getenv("GPUGEOM_EDT_PROFILE") != nullptr;
           o.distance = 32;
-          o.labels = true;
+          o.labels = !dist_only;
           o.method = m ? EdtMethod::Jfa : EdtMethod::Pba;
           for (int k = 0; k < 3; ++k) o.bands[k] = bands[k];
           std::vector<double> tt, to, tw;
@@ -116,6 +126,32 @@ int main(int argc, char** argv) {
           std::sort(tt.begin(), tt.end());
           std::sort(to.begin(), to.end());
           std::sort(tw.begin(), tw.end());
+          // Device-resident: the grid uploaded once, the outputs left on the device.
+          double on_dev = -1;
+#ifdef GPUGEOM_HAVE_CUDA
+          if (b == Backend::Cuda && m == 0) {
+            void* dg = nullptr;
+            if (cudaMalloc(&dg, g.data.size()) == cudaSuccess &&
+                cudaMemcpy(dg, g.data.data(), g.data.size(), cudaMemcpyHostToDevice) ==
+                    cudaSuccess) {
+              GridView v;
+              v.data = dg;
+              v.type = g.type;
+              v.shape = g.shape;
+              std::vector<double> td;
+              for (int k = 0; k <= reps; ++k) {
+                auto t0 = std::chrono::steady_clock::now();
+                { const auto dr = distance_transform_device(v, SiteRule::NonZero, o); }
+                if (k) td.push_back(bench::ms_since(t0));
+              }
+              std::sort(td.begin(), td.end());
+              on_dev = td[td.size() / 2];
+            }
+            cudaFree(dg);
+          }
+#endif
+          const double out_bytes = double(g.count()) * (4.0 + (dist_only ? 0 : 4));
+          const double floor_ms = (double(g.data.size()) + out_bytes) / 54e9 * 1e3;
           double wrong = 0;
           if (m) {  // JFA error rate against PBA on the same backend
             EdtOptions e = o;
@@ -131,9 +167,9 @@ int main(int argc, char** argv) {
               std::printf("    %-10s %10.3f ms\n", p.first.c_str(), p.second);
           std::string grid;
           for (auto e : shape) grid += (grid.empty() ? "" : "x") + std::to_string(e);
-          std::printf("%-6s %-14s %8.4f %-5s %-4s %11.3f %11.3f %12.3f %10.4f\n", "edt",
-                      grid.c_str(), d, backend_name(b), m ? "jfa" : "pba", tt[tt.size() / 2],
-                      to[to.size() / 2], tw[tw.size() / 2], 100 * wrong);
+          std::printf("%-6s %-14s %8.4f %-5s %-4s %11.3f %11.3f %12.3f %10.3f %10.3f %10.4f\n",
+                      "edt", grid.c_str(), d, backend_name(b), m ? "jfa" : "pba", tt[tt.size() / 2],
+                      to[to.size() / 2], tw[tw.size() / 2], on_dev, floor_ms, 100 * wrong);
           if (f)
             f << (m ? "edt_jfa" : "edt") << dim << "d,density" << d << "," << g.count() << ","
               << backend_name(b) << "," << (b == Backend::Cuda ? gpu : "cpu") << ",0,"

@@ -47,6 +47,17 @@ struct RunOptions {
   bool profile = false;
 };
 
+// An array the caller provides for an output (SciPy's `distances=` / `indices=` pattern): data
+// and its length in elements. Where a function says so, the output is written there instead of
+// into memory of the library's; a wrong length is refused (Error(InvalidArgument), naming the
+// output and both lengths) before any work.
+template <class T>
+struct OutBuffer {
+  T* data = nullptr;
+  std::int64_t size = 0;
+  explicit operator bool() const { return data != nullptr; }
+};
+
 struct DeviceInfo {
   bool available = false;  // a CUDA device can be used by this build
   int device = -1;         // its ordinal

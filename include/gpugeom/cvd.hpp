@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/host_vector.hpp"
 
 namespace gpugeom {
 
@@ -47,11 +48,11 @@ struct CvdOptions : RunOptions {
 
 struct CvdResult {
   int dim = 2;
-  std::vector<double> sites;   // dim per site, density pixels
-  std::vector<double> mass;    // sum of the density over each site's last cell (pixel area
-                               // units); 0 for a site that shares its grid point with an
-                               // earlier one
-  std::vector<double> energy;  // per iteration: sum_p density(p) |p - site(p)|^2 (pixels^2)
+  HostVector<double> sites;   // dim per site, density pixels
+  HostVector<double> mass;    // sum of the density over each site's last cell (pixel area
+                              // units); 0 for a site that shares its grid point with an
+                              // earlier one
+  HostVector<double> energy;  // per iteration: sum_p density(p) |p - site(p)|^2 (pixels^2)
   int iterations = 0;
   bool converged = false;  // the move (or energy) tolerance was met
   Stats stats;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/host_vector.hpp"
 
 namespace gpugeom {
 
@@ -18,13 +19,13 @@ struct Delaunay2dOptions : RunOptions {};
 
 struct Triangulation2d {
   // Counter-clockwise triangles, 3 input-point indices each.
-  std::vector<std::int32_t> triangles;
+  HostVector<std::int32_t> triangles;
   // neighbors[3*i + k]: the triangle opposite vertex k of triangle i, -1 on the hull (SciPy's
   // convention).
-  std::vector<std::int32_t> neighbors;
+  HostVector<std::int32_t> neighbors;
   // One entry per input point: -1 when the point is a vertex, else the index of the earlier
   // point with the same coordinates, which is the one used.
-  std::vector<std::int32_t> duplicate_of;
+  HostVector<std::int32_t> duplicate_of;
   std::int64_t num_duplicates = 0;
   // Stats: phases "prepare", "insert" (with its flips), "finish" and "copies"; counters
   // "batches", "flips", "flip_rounds", "exact_predicates", "points", "distinct_points".
@@ -57,26 +58,26 @@ DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
 
 // The Voronoi diagram dual to a Delaunay triangulation, in SciPy's `Voronoi` conventions.
 struct Voronoi2d {
-  std::vector<double> vertices;  // circumcentres, x and y interleaved (one per triangle)
+  HostVector<double> vertices;  // circumcentres, x and y interleaved (one per triangle)
   // Ridges: the pair of input points each ridge separates, and its two Voronoi vertices
   // (-1 for a ridge that goes to infinity).
-  std::vector<std::int32_t> ridge_points;
-  std::vector<std::int32_t> ridge_vertices;
+  HostVector<std::int32_t> ridge_points;
+  HostVector<std::int32_t> ridge_vertices;
   // Cells: for each input point, its Voronoi vertices in counter-clockwise order; an unbounded
   // cell starts with -1 (its two unbounded ridges leave from its first and last vertex).
   // Duplicate points share the cell of the point they duplicate.
-  std::vector<std::int64_t> cell_offsets;  // n + 1 offsets into cell_vertices
-  std::vector<std::int32_t> cell_vertices;
+  HostVector<std::int64_t> cell_offsets;  // n + 1 offsets into cell_vertices
+  HostVector<std::int32_t> cell_vertices;
   // For an unbounded ridge, the outward direction (unit vector) of its ray, else (0, 0).
-  std::vector<double> ridge_directions;
+  HostVector<double> ridge_directions;
 };
 Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri);
 
 // Voronoi cells clipped to a box [xmin, xmax] x [ymin, ymax] that contains every input point:
 // each cell as a closed counter-clockwise polygon (x, y interleaved).
 struct ClippedCells {
-  std::vector<std::int64_t> offsets;  // n + 1 offsets (in points) into xy
-  std::vector<double> xy;
+  HostVector<std::int64_t> offsets;  // n + 1 offsets (in points) into xy
+  HostVector<double> xy;
 };
 ClippedCells clip_voronoi_cells(const double* xy, std::int64_t n, const Triangulation2d& tri,
                                 const Voronoi2d& vor, double xmin, double ymin, double xmax,

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/host_vector.hpp"
 
 namespace gpugeom {
 
@@ -38,19 +39,19 @@ struct Delaunay3dOptions : RunOptions {
 
 struct Triangulation3d {
   // Positively oriented tetrahedra (orient3d > 0), 4 input-point indices each.
-  std::vector<std::int32_t> tetrahedra;
+  HostVector<std::int32_t> tetrahedra;
   // neighbors[4*i + k]: the tetrahedron opposite vertex k of tetrahedron i, -1 on the hull
   // (SciPy's convention).
-  std::vector<std::int32_t> neighbors;
+  HostVector<std::int32_t> neighbors;
   // One entry per input point: -1 when the point is a vertex, else the index of the earlier
   // point with the same coordinates, which is the one used.
-  std::vector<std::int32_t> duplicate_of;
+  HostVector<std::int32_t> duplicate_of;
   std::int64_t num_duplicates = 0;
   // The hull facets: 3 input indices each, counter-clockwise seen from outside.
-  std::vector<std::int32_t> hull_facets;
+  HostVector<std::int32_t> hull_facets;
   // One entry per input point: a tetrahedron having it as a vertex (a duplicate: that of the
   // point it duplicates).
-  std::vector<std::int32_t> vertex_to_simplex;
+  HostVector<std::int32_t> vertex_to_simplex;
   // Stats: phases "prepare", "insert_flip", "find_failed", "splay" (phase 2, on the host),
   // "output"; counters "points", "distinct_points", "duplicates", "batches", "flip_rounds",
   // "flips23", "flips32", "unflippable_tests", "failed_faces", "failed_vertices",

@@ -9,15 +9,14 @@
 // d^2 = sum_k (sampling_k * delta_k)^2; all comparisons are exact, ties included.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/host_vector.hpp"
+#include "gpugeom/io.hpp"
 
 namespace gpugeom {
-
-namespace io {
-struct Grid;
-}
 
 enum class EdtMethod {
   Pba,  // exact
@@ -27,6 +26,29 @@ enum class EdtMethod {
 // Which grid values are sites: NonZero (the Voronoi / feature-transform convention) or Zero
 // (SciPy's distance_transform_edt: distance of every element to the nearest zero).
 enum class SiteRule { NonZero, Zero };
+
+// A grid the caller holds, in C order and native byte order: `data` points to the product of
+// `shape` elements of `type`. Host memory for distance_transform, device memory for
+// distance_transform_device; never copied on the host.
+struct GridView {
+  const void* data = nullptr;
+  io::ScalarType type = io::ScalarType::U8;
+  std::vector<std::int64_t> shape;
+};
+
+// Output arrays the caller provides (EdtOptions::into): each, when given, must hold exactly the
+// output's element count (count() of the result; features: ndim times that) and be memory of the
+// kind the entry point returns (host for distance_transform, device for
+// distance_transform_device). An output written into a caller's array is absent (empty / null)
+// in the result. A buffer for an output not asked for is refused.
+struct EdtBuffers {
+  OutBuffer<std::int64_t> sqdist_int;  // squared, isotropic
+  OutBuffer<double> sqdist_real;       // squared, anisotropic
+  OutBuffer<float> distance32;
+  OutBuffer<double> distance64;
+  OutBuffer<std::int32_t> features;
+  OutBuffer<std::int32_t> labels;
+};
 
 struct EdtOptions : RunOptions {
   EdtMethod method = EdtMethod::Pba;
@@ -47,26 +69,53 @@ struct EdtOptions : RunOptions {
   std::int64_t window_reach = -1;
   int tiles = -1;
   std::vector<std::int64_t> slices;  // 3D only: compute just these z slices (slice-by-slice)
+  EdtBuffers into;                   // caller-provided output arrays (optional)
 };
 
 struct EdtResult {
-  std::vector<std::int64_t> shape;       // of the output (slices replace the first extent)
-  std::vector<std::int64_t> sqdist_int;  // squared distances, isotropic
-  std::vector<double> sqdist_real;       // squared distances, anisotropic
-  std::vector<float> distance32;
-  std::vector<double> distance64;
-  std::vector<std::int32_t> features;  // ndim arrays of count() each (axis 0 first)
-  std::vector<std::int32_t> labels;
+  std::vector<std::int64_t> shape;      // of the output (slices replace the first extent)
+  HostVector<std::int64_t> sqdist_int;  // squared distances, isotropic
+  HostVector<double> sqdist_real;       // squared distances, anisotropic
+  HostVector<float> distance32;
+  HostVector<double> distance64;
+  HostVector<std::int32_t> features;  // ndim arrays of count() each (axis 0 first)
+  HostVector<std::int32_t> labels;
   Stats stats;
   std::int64_t count() const;
 };
 
-// Sites where the mask says so. Throws Error(InvalidInput) for a grid without sites, shapes
-// that are not 2D/3D, or sizes whose coordinates do not fit 32 bits together.
+// Sites where the grid's values say so (rule). Throws Error(InvalidInput) for a grid without
+// sites or with NaN values, shapes that are not 2D/3D, or sizes whose coordinates do not fit 32
+// bits together. The grid is read where it is: on the CUDA executor its bytes go to the device
+// as they are (the rule is applied there), so a uint8 or bool grid costs its size over the bus.
+EdtResult distance_transform(const GridView& grid, SiteRule rule, const EdtOptions& opt = {});
 EdtResult distance_transform(const io::Grid& grid, SiteRule rule, const EdtOptions& opt = {});
 // Sites given by coordinates (ndim per site, C order). Duplicates keep the lower index.
 EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
                                    const std::vector<std::int64_t>& sites,
                                    const EdtOptions& opt = {});
+
+// The same transform with the grid in device memory and the outputs left there (or written
+// into the caller's device arrays, EdtOptions::into), on opt.stream of opt.device: the grid must
+// be ready in that stream's order, and the call returns once the outputs are. The library's
+// arrays are freed when the last copy of their pointer goes; they can be wrapped without a copy
+// (CuPy, PyTorch through DLPack). With opt.backend == Backend::Cpu "device" memory is host
+// memory and the CPU executor runs (the same results). Slices (opt.slices) compute only those z
+// slices from the whole grid on the device. Throws Error(Unsupported) where the build or the
+// machine has no CUDA device (and the CPU was not asked for), and as distance_transform.
+struct DeviceEdtResult {
+  std::vector<std::int64_t> shape;  // of each output (slices replace the first extent)
+  std::shared_ptr<std::int64_t> sqdist_int;
+  std::shared_ptr<double> sqdist_real;
+  std::shared_ptr<float> distance32;
+  std::shared_ptr<double> distance64;
+  std::shared_ptr<std::int32_t> features;  // ndim arrays of count() each (axis 0 first)
+  std::shared_ptr<std::int32_t> labels;
+  Backend backend = Backend::Cuda;  // where the arrays are: Cuda = device memory, Cpu = host
+  Stats stats;
+  std::int64_t count() const;
+};
+DeviceEdtResult distance_transform_device(const GridView& device_grid, SiteRule rule,
+                                          const EdtOptions& opt = {});
 
 }  // namespace gpugeom

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/host_vector.hpp"
 
 namespace gpugeom {
 
@@ -20,16 +21,16 @@ struct Hull3dOptions : RunOptions {};
 
 struct ConvexHull3d {
   // Facets: 3 input-point indices each, counter-clockwise seen from outside.
-  std::vector<std::int32_t> triangles;
+  HostVector<std::int32_t> triangles;
   // neighbors[3*i + k]: the facet across the edge opposite vertex k of facet i (the surface is
   // closed: never -1).
-  std::vector<std::int32_t> neighbors;
+  HostVector<std::int32_t> neighbors;
   // The extreme points, as sorted input indices.
-  std::vector<std::int32_t> vertices;
+  HostVector<std::int32_t> vertices;
   // Plane of each facet as in Qhull / SciPy's `equations`: unit outward normal (a, b, c) and
   // offset d, with a x + b y + c z + d <= 0 for every input point up to rounding (the planes
   // are computed in floating point; the hull itself is exact).
-  std::vector<double> equations;
+  HostVector<double> equations;
   // Stats: phases "upload" (CUDA), "sort" (validation, curve order, copies merged),
   // "prepare", "construct", "flip", "extreme_test", "input_indices", "host_arrays",
   // "copy_back" (CUDA), "planes"; counters "duplicates", "insert_rounds", "flip_rounds",

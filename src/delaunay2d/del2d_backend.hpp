@@ -5,13 +5,14 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/host_vector.hpp"
 
 namespace gpugeom::del2d {
 
 struct Output {
-  std::vector<std::int32_t> triangles;     // 3 per triangle, input indices, counter-clockwise
-  std::vector<std::int32_t> neighbors;     // 3 per triangle, -1 on the hull
-  std::vector<std::int32_t> duplicate_of;  // n entries
+  HostVector<std::int32_t> triangles;     // 3 per triangle, input indices, counter-clockwise
+  HostVector<std::int32_t> neighbors;     // 3 per triangle, -1 on the hull
+  HostVector<std::int32_t> duplicate_of;  // n entries
   std::int64_t num_duplicates = 0;
 };
 

@@ -17,7 +17,6 @@
 #include "delaunay2d/del2d_backend.hpp"
 #include "base/clock.hpp"
 #include "exec/atomics.hpp"
-#include "exec/host_sizer.hpp"
 #include "exec/cpu_exec.hpp"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/host_vector.hpp"
 #include "gpugeom/delaunay3d.hpp"
 
 namespace gpugeom::del3d {
@@ -13,12 +14,12 @@ namespace gpugeom::del3d {
 using ProgressFn = std::function<void(const Delaunay3dProgress&)>;
 
 struct Output {
-  std::vector<std::int32_t> tetrahedra;    // 4 per tetrahedron, input indices, positive
-  std::vector<std::int32_t> neighbors;     // 4 per tetrahedron, -1 on the hull
-  std::vector<std::int32_t> duplicate_of;  // n entries
+  HostVector<std::int32_t> tetrahedra;    // 4 per tetrahedron, input indices, positive
+  HostVector<std::int32_t> neighbors;     // 4 per tetrahedron, -1 on the hull
+  HostVector<std::int32_t> duplicate_of;  // n entries
   std::int64_t num_duplicates = 0;
-  std::vector<std::int32_t> hull_facets;        // 3 per hull facet, outward, input indices
-  std::vector<std::int32_t> vertex_to_simplex;  // n entries (a copy takes its original's)
+  HostVector<std::int32_t> hull_facets;        // 3 per hull facet, outward, input indices
+  HostVector<std::int32_t> vertex_to_simplex;  // n entries (a copy takes its original's)
 };
 
 // The result left on the device; the pointers own device memory.

@@ -1,6 +1,7 @@
 // Public entry of the distance transform: checks the request, packs the sites, picks the
 // backend, and returns outputs in C axis order.
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "edt/edt_backend.hpp"
@@ -83,20 +84,42 @@ edt::Metric make_metric(const std::vector<double>& sampling, int nd) {
   return m;
 }
 
-EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std::int64_t>& shape) {
+// The request's output choices from the options; the caller's arrays checked against the
+// output size (`total` voxels of `nd` axes).
+void set_outputs(edt::Request& rq, const EdtOptions& opt, std::int64_t total, int nd) {
   if (opt.distance != 0 && opt.distance != 32 && opt.distance != 64)
     throw Error(ErrorCode::InvalidArgument, "distance must be 0, 32 or 64 (bits)");
-  rq.method = opt.method;
-  for (int a = 0; a < 3; ++a) rq.tune.bands[a] = opt.bands[a];
-  rq.tune.window_reach = opt.window_reach;
-  rq.tune.tiles = opt.tiles;
-  rq.run = static_cast<const RunOptions&>(opt);
   rq.want_sqdist = opt.squared;
   rq.want_distance = opt.distance;
   rq.want_features = opt.features;
   rq.want_labels = opt.labels;
-  EdtResult r;
-  r.shape = shape;
+  rq.into = opt.into;
+  auto check = [&](const auto& b, bool asked, const char* name, const char* ask,
+                   std::int64_t need) {
+    if (!b) return;
+    if (!asked)
+      throw Error(ErrorCode::InvalidArgument, std::string("an array for the ") + name +
+                                                  " was given (into." + name + "), but " + ask);
+    if (b.size != need)
+      throw Error(ErrorCode::InvalidArgument,
+                  std::string("into.") + name + " holds " + std::to_string(b.size) +
+                      " elements; this output needs " + std::to_string(need));
+  };
+  check(opt.into.sqdist_int, opt.squared && rq.metric.iso, "sqdist_int",
+        "squared isotropic distances were not asked for (squared, no sampling other than 1)",
+        total);
+  check(opt.into.sqdist_real, opt.squared && !rq.metric.iso, "sqdist_real",
+        "squared anisotropic distances were not asked for (squared, with sampling)", total);
+  check(opt.into.distance32, opt.distance == 32, "distance32", "distance is not 32", total);
+  check(opt.into.distance64, opt.distance == 64, "distance64", "distance is not 64", total);
+  check(opt.into.features, opt.features, "features", "features is false", total * nd);
+  check(opt.into.labels, opt.labels, "labels", "labels is false", total);
+}
+
+// Checks the slices and returns the output shape.
+std::vector<std::int64_t> output_shape(edt::Request& rq, const EdtOptions& opt,
+                                       const std::vector<std::int64_t>& shape) {
+  std::vector<std::int64_t> out = shape;
   if (!opt.slices.empty()) {
     if (shape.size() != 3) throw Error(ErrorCode::InvalidArgument, "slices apply to 3D grids only");
     if (opt.method != EdtMethod::Pba)
@@ -106,19 +129,42 @@ EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std:
         throw Error(ErrorCode::InvalidArgument, "slice " + std::to_string(z) + " is outside 0.." +
                                                     std::to_string(shape[0] - 1));
     rq.slices = opt.slices;
-    r.shape[0] = std::int64_t(opt.slices.size());
+    out[0] = std::int64_t(opt.slices.size());
   }
-  const Backend b = resolve_backend(opt.backend, opt.device);
-  r.stats.backend = b;
-  edt::Output out;
+  return out;
+}
+
+void prepare(edt::Request& rq, const EdtOptions& opt, const std::vector<std::int64_t>& shape,
+             std::vector<std::int64_t>& out_shape) {
+  rq.method = opt.method;
+  for (int a = 0; a < 3; ++a) rq.tune.bands[a] = opt.bands[a];
+  rq.tune.window_reach = opt.window_reach;
+  rq.tune.tiles = opt.tiles;
+  rq.run = static_cast<const RunOptions&>(opt);
+  out_shape = output_shape(rq, opt, shape);
+  std::int64_t total = 1;
+  for (auto e : out_shape) total *= e;
+  set_outputs(rq, opt, total, int(shape.size()));
+}
+
+void run_backend(Backend b, const edt::Request& rq, edt::Output& out, Stats& stats) {
+  stats.backend = b;
 #ifdef GPUGEOM_HAVE_CUDA
   if (b == Backend::Cuda)
-    edt::cuda_impl::run(rq, out, r.stats);
+    edt::cuda_impl::run(rq, out, stats);
   else
-    edt::cpu_impl::run(rq, out, r.stats);
+    edt::cpu_impl::run(rq, out, stats);
 #else
-  edt::cpu_impl::run(rq, out, r.stats);
+  (void)b;
+  edt::cpu_impl::run(rq, out, stats);
 #endif
+}
+
+EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std::int64_t>& shape) {
+  EdtResult r;
+  prepare(rq, opt, shape, r.shape);
+  edt::Output out;
+  run_backend(resolve_backend(opt.backend, opt.device), rq, out, r.stats);
   r.sqdist_int = std::move(out.sqdist_int);
   r.sqdist_real = std::move(out.sqdist_real);
   r.distance32 = std::move(out.dist32);
@@ -128,41 +174,113 @@ EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std:
   return r;
 }
 
+// Element i of a host grid as a double.
+double element(const void* data, io::ScalarType t, std::int64_t i) {
+  const auto* p = static_cast<const unsigned char*>(data) + std::size_t(i) * io::scalar_size(t);
+  auto get = [p](auto v) {
+    std::memcpy(&v, p, sizeof v);
+    return double(v);
+  };
+  switch (t) {
+    case io::ScalarType::Bool:
+    case io::ScalarType::U8:
+      return p[0];
+    case io::ScalarType::U16:
+      return get(std::uint16_t());
+    case io::ScalarType::I32:
+      return get(std::int32_t());
+    case io::ScalarType::I64:
+      return get(std::int64_t());
+    case io::ScalarType::F32:
+      return get(float());
+    default:
+      return get(double());
+  }
+}
+
+void check_view(const GridView& g) {
+  if (!g.data) throw Error(ErrorCode::InvalidArgument, "the grid's data pointer is null");
+}
+
 }  // namespace
 
-EdtResult distance_transform(const io::Grid& g, SiteRule rule, const EdtOptions& opt) {
+EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions& opt) {
+  check_view(g);
   edt::Request rq;
   rq.layout = edt::make_layout(g.shape, !opt.slices.empty());
   rq.metric = make_metric(opt.sampling, rq.layout.nd);
-  const std::int64_t n = g.count();
-  std::vector<std::uint8_t> mask(n);
-  std::int64_t sites = 0;
+  if (opt.slices.empty()) {  // the executor reads the grid as it is
+    rq.grid = g.data;
+    rq.type = g.type;
+    rq.rule = rule;
+    return finish(rq, opt, g.shape);
+  }
+  // Slice by slice: the device holds the site list and one slice, never the volume, so the
+  // sites are listed here (raster order: labels are raster ranks as usual).
+  const std::int64_t n = rq.layout.count();
+  const edt::Layout& L = rq.layout;
   bool finite = true;
-  const bool bytes = g.type == io::ScalarType::U8 || g.type == io::ScalarType::Bool;
-#pragma omp parallel for reduction(+ : sites) reduction(&& : finite)
   for (std::int64_t i = 0; i < n; ++i) {
-    const double v = bytes ? double(g.data[i]) : g.value(i);  // bytes: the common, fast case
+    const double v = element(g.data, g.type, i);
     finite = finite && !std::isnan(v);
-    const bool s = rule == SiteRule::NonZero ? v != 0 : v == 0;
-    mask[i] = s;
-    sites += s;
+    if (rule == SiteRule::NonZero ? v != 0 : v == 0)
+      rq.sites.push_back(L.pack(i % L.n[0], (i / L.n[0]) % L.n[1], i / (L.n[0] * L.n[1])));
   }
   if (!finite) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
-  if (sites == 0)
+  if (rq.sites.empty())
     throw Error(ErrorCode::InvalidInput, std::string("the grid has no site (no ") +
                                              (rule == SiteRule::NonZero ? "nonzero" : "zero") +
                                              " element): every distance would be infinite");
-  rq.site_count = sites;
-  if (opt.slices.empty()) {
-    rq.mask = mask.data();
-  } else {  // slice by slice: the device holds the site list and one slice, never the volume
-    rq.sites.reserve(std::size_t(sites));
-    const edt::Layout& L = rq.layout;
-    for (std::int64_t i = 0; i < n; ++i)  // raster order: labels are raster ranks as usual
-      if (mask[i])
-        rq.sites.push_back(L.pack(i % L.n[0], (i / L.n[0]) % L.n[1], i / (L.n[0] * L.n[1])));
-  }
+  rq.site_count = std::int64_t(rq.sites.size());
   return finish(rq, opt, g.shape);
+}
+
+EdtResult distance_transform(const io::Grid& g, SiteRule rule, const EdtOptions& opt) {
+  if (std::int64_t(g.data.size()) != g.count() * std::int64_t(io::scalar_size(g.type)))
+    throw Error(ErrorCode::InvalidArgument,
+                "the grid holds " + std::to_string(g.data.size()) +
+                    " bytes; its shape and type need " +
+                    std::to_string(g.count() * std::int64_t(io::scalar_size(g.type))));
+  GridView v;
+  v.data = g.data.data();
+  v.type = g.type;
+  v.shape = g.shape;
+  return distance_transform(v, rule, opt);
+}
+
+std::int64_t DeviceEdtResult::count() const {
+  std::int64_t n = 1;
+  for (auto s : shape) n *= s;
+  return shape.empty() ? 0 : n;
+}
+
+DeviceEdtResult distance_transform_device(const GridView& g, SiteRule rule, const EdtOptions& opt) {
+  check_view(g);
+  Backend b = resolve_backend(opt.backend, opt.device);
+  if (b == Backend::Cpu && opt.backend != Backend::Cpu)
+    throw Error(ErrorCode::Unsupported,
+                "distance_transform_device: no CUDA device can be used here (ask for "
+                "Backend::Cpu to run it on host memory)");
+  edt::Request rq;
+  rq.layout = edt::make_layout(g.shape, false);
+  rq.metric = make_metric(opt.sampling, rq.layout.nd);
+  rq.grid = g.data;
+  rq.type = g.type;
+  rq.rule = rule;
+  rq.grid_on_device = true;
+  rq.device_out = true;
+  DeviceEdtResult r;
+  r.backend = b;
+  prepare(rq, opt, g.shape, r.shape);
+  edt::Output out;
+  run_backend(b, rq, out, r.stats);
+  r.sqdist_int = std::move(out.dev_sqdist_int);
+  r.sqdist_real = std::move(out.dev_sqdist_real);
+  r.distance32 = std::move(out.dev_dist32);
+  r.distance64 = std::move(out.dev_dist64);
+  r.features = std::move(out.dev_features);
+  r.labels = std::move(out.dev_labels);
+  return r;
 }
 
 EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,

@@ -1,6 +1,7 @@
 // What the public EDT entry hands to a backend, and what it gets back (internal).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "edt/edt_common.hpp"
@@ -14,23 +15,38 @@ struct Request {
   EdtMethod method = EdtMethod::Pba;
   Tuning tune;
   RunOptions run;
-  // Sites: a mask with one byte per voxel (nonzero = site), or a list of packed sites.
-  const std::uint8_t* mask = nullptr;
+  // Sites: a grid whose values say which voxels are sites (rule), where the executor can read
+  // it (grid_on_device) or on the host, or else a list of packed sites.
+  const void* grid = nullptr;
+  io::ScalarType type = io::ScalarType::U8;
+  SiteRule rule = SiteRule::NonZero;
+  bool grid_on_device = false;
   std::vector<std::uint32_t> sites;
-  std::int64_t site_count = 0;  // sites in the mask or the list (chooses the windowed passes)
+  std::int64_t site_count = 0;  // sites in the list (a grid's are counted by the executor)
   // Slice-by-slice: the z values to compute (3D only); empty = the whole volume.
   std::vector<std::int64_t> slices;
   bool want_sqdist = false, want_features = false, want_labels = false;
   int want_distance = 0;  // 0 none, 32 float32, 64 float64
+  // Outputs: into the caller's arrays where given, else the library's; device_out leaves them
+  // on the executor (Output's shared pointers), else they come to the host arrays.
+  EdtBuffers into;
+  bool device_out = false;
 };
 
 struct Output {
-  std::vector<std::int64_t> sqdist_int;  // isotropic
-  std::vector<double> sqdist_real;       // anisotropic
-  std::vector<float> dist32;
-  std::vector<double> dist64;
-  std::vector<std::int32_t> features;  // nd arrays of voxel count, C axis order
-  std::vector<std::int32_t> labels;
+  HostVector<std::int64_t> sqdist_int;  // isotropic
+  HostVector<double> sqdist_real;       // anisotropic
+  HostVector<float> dist32;
+  HostVector<double> dist64;
+  HostVector<std::int32_t> features;  // nd arrays of voxel count, C axis order
+  HostVector<std::int32_t> labels;
+  // device_out: the library's arrays on the executor (null where the caller's were used).
+  std::shared_ptr<std::int64_t> dev_sqdist_int;
+  std::shared_ptr<double> dev_sqdist_real;
+  std::shared_ptr<float> dev_dist32;
+  std::shared_ptr<double> dev_dist64;
+  std::shared_ptr<std::int32_t> dev_features;
+  std::shared_ptr<std::int32_t> dev_labels;
   double transform_ms = 0;       // device-resident feature transform only
   double device_outputs_at = 0;  // clock when the distance / label arrays were on the device
 };

@@ -10,7 +10,6 @@
 #include "base/clock.hpp"
 #include "edt/edt_backend.hpp"
 #include "edt/edt_device.hpp"
-#include "exec/host_sizer.hpp"
 #include "exec/cpu_exec.hpp"
 
 namespace gpugeom::edt::cpu_impl {

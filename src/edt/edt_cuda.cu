@@ -10,7 +10,6 @@
 #include "base/clock.hpp"
 #include "edt/edt_backend.hpp"
 #include "edt/edt_device.hpp"
-#include "exec/host_sizer.hpp"
 #include "exec/cuda_exec.cuh"
 
 namespace gpugeom::edt::cuda_impl {

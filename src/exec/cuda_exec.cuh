@@ -268,6 +268,15 @@ class CudaExec {
     copy(src, n, host);
     sync();
   }
+  // [synchronises] A host array of n copies of v: filled on the device and copied back, so
+  // that its pages are touched at the copy's rate, not by one host thread.
+  template <class T>
+  void fill_host(T* host, std::int64_t n, T v) {
+    if (n <= 0) return;
+    auto b = alloc<T>(std::size_t(n));
+    fill(b.data(), n, v);
+    to_host(b.data(), n, host);
+  }
   // [synchronises] as to_host.
   template <class T>
   void from_host(const T* host, std::int64_t n, T* dst) {

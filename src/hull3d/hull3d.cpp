@@ -29,7 +29,7 @@ void check_count(std::int64_t n) {
 // very different magnitudes, e.g. a facet with one huge and two tiny vertices, whose rounded
 // normal is zero) it leaves NaN, and the normal is summed again here as a x b + b x c + c x a
 // in long double.
-void redo_planes(const double* p, const std::vector<std::int32_t>& t, std::vector<double>& eq) {
+void redo_planes(const double* p, const HostVector<std::int32_t>& t, HostVector<double>& eq) {
   const std::int64_t nf = std::int64_t(t.size() / 3);
   for (std::int64_t f = 0; f < nf; ++f) {
     if (!std::isnan(eq[4 * f])) continue;

@@ -5,16 +5,17 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/host_vector.hpp"
 
 namespace gpugeom::hull3d {
 
 struct Output {
-  std::vector<std::int32_t> triangles;  // 3 per facet, input indices, counter-clockwise outside
-  std::vector<std::int32_t> neighbors;  // 3 per facet
-  std::vector<std::int32_t> vertices;   // sorted input indices of the extreme points
+  HostVector<std::int32_t> triangles;  // 3 per facet, input indices, counter-clockwise outside
+  HostVector<std::int32_t> neighbors;  // 3 per facet
+  HostVector<std::int32_t> vertices;   // sorted input indices of the extreme points
   // 4 per facet (unit outward normal, offset); NaN for a facet whose rounded normal vanished,
   // to be redone in long double on the host (planes_redo of them).
-  std::vector<double> equations;
+  HostVector<double> equations;
   std::int64_t planes_redo = 0;
 };
 

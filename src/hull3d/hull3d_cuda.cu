@@ -11,7 +11,6 @@
 
 #include "base/clock.hpp"
 #include "exec/atomics.hpp"
-#include "exec/host_sizer.hpp"
 #include "exec/cuda_exec.cuh"
 #include "hull3d/hull3d_backend.hpp"
 #include "exec/scratch_slots.hpp"

@@ -133,7 +133,7 @@ TEST(Cvd, UniformDensityConvergesToEqualMasses) {
   o.move_tolerance = 0;
   o.supersample = 4;
   o.seed = 3;
-  auto cv = [](const std::vector<double>& mass) {
+  auto cv = [](const auto& mass) {
     const double mean = std::accumulate(mass.begin(), mass.end(), 0.0) / mass.size();
     double var = 0;
     for (double m : mass) var += (m - mean) * (m - mean);

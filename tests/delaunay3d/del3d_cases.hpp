@@ -69,7 +69,8 @@ inline void expect_valid(const std::vector<Point3>& pts, const gpugeom::Triangul
 }
 
 // Tetrahedra as a canonical set (sorted vertices), to compare executors and runs.
-inline std::set<std::array<std::int32_t, 4>> tet_set(const std::vector<std::int32_t>& t) {
+template <class V>
+inline std::set<std::array<std::int32_t, 4>> tet_set(const V& t) {
   std::set<std::array<std::int32_t, 4>> s;
   for (std::size_t c = 0; c < t.size() / 4; ++c) {
     std::array<std::int32_t, 4> a{t[4 * c], t[4 * c + 1], t[4 * c + 2], t[4 * c + 3]};

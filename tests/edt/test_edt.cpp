@@ -211,3 +211,145 @@ TEST(Edt, ClearErrors) {
     EXPECT_NE(std::string(e.what()).find("no site"), std::string::npos);
   }
 }
+
+namespace {
+// The grid g (0/1 bytes) in another element type: sites hold `one`, the rest zero.
+template <class T>
+std::vector<T> typed(const io::Grid& g, T one) {
+  std::vector<T> v(g.data.size());
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = g.data[i] ? one : T(0);
+  return v;
+}
+template <class T>
+GridView view_of(const std::vector<T>& v, io::ScalarType t, const std::vector<std::int64_t>& s) {
+  GridView w;
+  w.data = v.data();
+  w.type = t;
+  w.shape = s;
+  return w;
+}
+}  // namespace
+
+// Every element type is read where it is, with either rule, whole and slice by slice, and gives
+// the uint8 grid's transform; a NaN anywhere is refused.
+TEST(Edt, TypedGridsAndNaN) {
+  for (const auto& shape :
+       {std::vector<std::int64_t>{37, 41}, std::vector<std::int64_t>{9, 13, 11}})
+    for (int sl = 0; sl < (shape.size() == 3 ? 2 : 1); ++sl) {
+      const io::Grid g = random_grid(shape, 0.05, 5);
+      io::Grid inv = g;
+      for (auto& b : inv.data) b = !b;
+      EdtOptions o = all_outputs();
+      if (sl) o.slices = {0, 4, 8};
+      const auto ref = distance_transform(g, SiteRule::NonZero, o);
+      auto same = [&](const EdtResult& r, const char* what) {
+        EXPECT_EQ(r.sqdist_int, ref.sqdist_int) << what;
+        EXPECT_EQ(r.labels, ref.labels) << what;
+        EXPECT_EQ(r.features, ref.features) << what;
+        EXPECT_EQ(r.shape, ref.shape) << what;
+      };
+      const auto u16 = typed<std::uint16_t>(g, 300);
+      const auto i32 = typed<std::int32_t>(g, -7);
+      const auto i64 = typed<std::int64_t>(g, std::int64_t(1) << 40);
+      const auto f32 = typed<float>(g, -0.25f);
+      const auto f64 = typed<double>(g, 1e-300);
+      same(distance_transform(view_of(u16, io::ScalarType::U16, shape), SiteRule::NonZero, o),
+           "u16");
+      same(distance_transform(view_of(i32, io::ScalarType::I32, shape), SiteRule::NonZero, o),
+           "i32");
+      same(distance_transform(view_of(i64, io::ScalarType::I64, shape), SiteRule::NonZero, o),
+           "i64");
+      same(distance_transform(view_of(f32, io::ScalarType::F32, shape), SiteRule::NonZero, o),
+           "f32");
+      same(distance_transform(view_of(f64, io::ScalarType::F64, shape), SiteRule::NonZero, o),
+           "f64");
+      same(distance_transform(view_of(g.data, io::ScalarType::Bool, shape), SiteRule::NonZero, o),
+           "bool");
+      same(distance_transform(inv, SiteRule::Zero, o), "u8, zero rule");
+      const auto f32inv = typed<float>(inv, 2.5f);
+      same(distance_transform(view_of(f32inv, io::ScalarType::F32, shape), SiteRule::Zero, o),
+           "f32, zero rule");
+      auto nan = f32;
+      nan[nan.size() / 2] = std::nanf("");
+      try {
+        distance_transform(view_of(nan, io::ScalarType::F32, shape), SiteRule::NonZero, o);
+        ADD_FAILURE() << "a NaN was accepted";
+      } catch (const Error& e) {
+        EXPECT_EQ(int(e.code()), int(ErrorCode::InvalidInput));
+        EXPECT_NE(std::string(e.what()).find("NaN"), std::string::npos) << e.what();
+      }
+    }
+}
+
+// Outputs written into the caller's arrays (SciPy's distances= / indices=): the same values,
+// the result's own arrays empty; wrong lengths and arrays for outputs not asked for refused.
+TEST(Edt, CallerBuffers) {
+  const std::vector<std::int64_t> shape{10, 12, 14};
+  const io::Grid g = random_grid(shape, 0.02, 3);
+  EdtOptions o = all_outputs();
+  o.distance = 32;
+  for (int sl = 0; sl < 2; ++sl) {
+    if (sl) o.slices = {2, 9};
+    const auto ref = distance_transform(g, SiteRule::NonZero, o);
+    const std::int64_t n = ref.count();
+    std::vector<float> d(n, -1);
+    std::vector<std::int32_t> f(3 * n, -1), l(n, -1);
+    EdtOptions w = o;
+    w.into.distance32 = {d.data(), n};
+    w.into.features = {f.data(), 3 * n};
+    w.into.labels = {l.data(), n};
+    const auto r = distance_transform(g, SiteRule::NonZero, w);
+    EXPECT_TRUE(r.distance32.empty() && r.features.empty() && r.labels.empty());
+    EXPECT_EQ(r.sqdist_int, ref.sqdist_int);  // (not given: the library's array)
+    EXPECT_EQ(d, ref.distance32);
+    EXPECT_EQ(f, ref.features);
+    EXPECT_EQ(l, ref.labels);
+  }
+  EdtOptions bad = o;
+  std::vector<float> d(5);
+  bad.into.distance32 = {d.data(), 5};
+  try {
+    distance_transform(g, SiteRule::NonZero, bad);
+    ADD_FAILURE() << "a short array was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(int(e.code()), int(ErrorCode::InvalidArgument));
+    EXPECT_NE(std::string(e.what()).find("into.distance32 holds 5 elements"), std::string::npos)
+        << e.what();
+  }
+  bad = o;
+  std::vector<double> d64(std::size_t(g.count()));
+  bad.into.distance64 = {d64.data(), g.count()};  // distance is 32
+  EXPECT_THROW(distance_transform(g, SiteRule::NonZero, bad), Error);
+}
+
+// The device entry point on the CPU executor ("device" memory is host memory): the same outputs
+// as the host entry, into the library's arrays or the caller's.
+TEST(Edt, DeviceEntryOnCpuExecutor) {
+  const std::vector<std::int64_t> shape{21, 17, 19};
+  const io::Grid g = random_grid(shape, 0.03, 8);
+  EdtOptions o = all_outputs();
+  const auto ref = distance_transform(g, SiteRule::NonZero, o);
+  const std::int64_t n = ref.count();
+  GridView v;
+  v.data = g.data.data();
+  v.shape = shape;
+  const auto r = distance_transform_device(v, SiteRule::NonZero, o);
+  EXPECT_EQ(r.backend, Backend::Cpu);
+  EXPECT_EQ(r.shape, ref.shape);
+  ASSERT_TRUE(r.sqdist_int && r.distance64 && r.features && r.labels);
+  EXPECT_EQ(std::vector<std::int64_t>(r.sqdist_int.get(), r.sqdist_int.get() + n), ref.sqdist_int);
+  EXPECT_EQ(std::vector<double>(r.distance64.get(), r.distance64.get() + n), ref.distance64);
+  EXPECT_EQ(std::vector<std::int32_t>(r.features.get(), r.features.get() + 3 * n), ref.features);
+  EXPECT_EQ(std::vector<std::int32_t>(r.labels.get(), r.labels.get() + n), ref.labels);
+  std::vector<std::int32_t> l(n);
+  o.into.labels = {l.data(), n};
+  o.slices = {};
+  const auto r2 = distance_transform_device(v, SiteRule::NonZero, o);
+  EXPECT_FALSE(r2.labels);
+  EXPECT_EQ(l, ref.labels);
+  o.into = {};
+  o.slices = {3, 18};
+  const auto s = distance_transform_device(v, SiteRule::NonZero, o);
+  const auto sref = distance_transform(g, SiteRule::NonZero, o);
+  EXPECT_EQ(std::vector<std::int32_t>(s.labels.get(), s.labels.get() + s.count()), sref.labels);
+}

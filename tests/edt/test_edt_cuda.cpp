@@ -2,7 +2,12 @@
 // on grids large enough to use many bands, in 2D and 3D, whole and slice by slice.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdlib>
+#include <thread>
+
+#include <cuda_runtime.h>
 #include <string>
 
 #include "edt_cases.hpp"
@@ -196,4 +201,125 @@ TEST(CudaEdt, SiteListsSameAsCpu) {
       EXPECT_EQ(gpu.labels, cpu.labels);
       EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int);
     }
+}
+
+namespace {
+#define GG_CK(x) ASSERT_EQ((x), cudaSuccess) << #x
+template <class T>
+std::vector<T> back(const T* d, std::int64_t n) {
+  std::vector<T> h(std::size_t(n));
+  EXPECT_EQ(cudaMemcpy(h.data(), d, sizeof(T) * std::size_t(n), cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  return h;
+}
+}  // namespace
+
+// The device entry point: a float32 grid on the device (SciPy's zero rule) on a stream of the
+// caller's, outputs in the library's device arrays and in the caller's; the same values as the
+// host entry on the CPU executor, whole and slice by slice.
+TEST(CudaEdt, DeviceEntrySameAsHost) {
+  for (auto shape : {std::vector<std::int64_t>{300, 257}, std::vector<std::int64_t>{40, 50, 66}}) {
+    const io::Grid g = gg_edt::random_grid(shape, 0.03, 77);
+    std::vector<float> f(g.data.size());
+    for (std::size_t i = 0; i < f.size(); ++i) f[i] = g.data[i] ? 0.f : 1.5f;  // zeros are sites
+    EdtOptions o;
+    o.squared = true;
+    o.distance = 32;
+    o.features = true;
+    o.labels = true;
+    o.backend = Backend::Cpu;
+    const auto ref = distance_transform(g, SiteRule::NonZero, o);
+    const std::int64_t n = ref.count(), nd = std::int64_t(shape.size());
+    cudaStream_t s;
+    GG_CK(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking));
+    float* dg = nullptr;
+    GG_CK(cudaMalloc(&dg, f.size() * sizeof(float)));
+    GG_CK(cudaMemcpyAsync(dg, f.data(), f.size() * sizeof(float), cudaMemcpyHostToDevice, s));
+    GridView v;
+    v.data = dg;
+    v.type = io::ScalarType::F32;
+    v.shape = shape;
+    o.backend = Backend::Cuda;
+    o.stream = s;
+    const auto r = distance_transform_device(v, SiteRule::Zero, o);
+    EXPECT_EQ(r.backend, Backend::Cuda);
+    EXPECT_EQ(back(r.sqdist_int.get(), n), ref.sqdist_int);
+    EXPECT_EQ(back(r.distance32.get(), n), ref.distance32);
+    EXPECT_EQ(back(r.features.get(), nd * n), ref.features);
+    EXPECT_EQ(back(r.labels.get(), n), ref.labels);
+    // Into the caller's device arrays.
+    std::int32_t* dl = nullptr;
+    GG_CK(cudaMalloc(&dl, sizeof(std::int32_t) * n));
+    EdtOptions w = o;
+    w.into.labels = {dl, n};
+    const auto r2 = distance_transform_device(v, SiteRule::Zero, w);
+    EXPECT_FALSE(r2.labels);
+    EXPECT_EQ(back(dl, n), ref.labels);
+    if (nd == 3) {
+      o.slices = {1, 39};
+      const auto sl = distance_transform_device(v, SiteRule::Zero, o);
+      o.backend = Backend::Cpu;
+      o.stream = nullptr;
+      const auto sref = distance_transform(g, SiteRule::NonZero, o);
+      EXPECT_EQ(back(sl.labels.get(), sl.count()), sref.labels);
+      EXPECT_EQ(back(sl.distance32.get(), sl.count()), sref.distance32);
+    }
+    // Host entry with the caller's pinned array: written there by the copy itself.
+    float* pinned = nullptr;
+    GG_CK(cudaMallocHost(&pinned, sizeof(float) * n));
+    EdtOptions h;
+    h.distance = 32;
+    h.backend = Backend::Cuda;
+    h.into.distance32 = {pinned, n};
+    const auto r3 = distance_transform(g, SiteRule::NonZero, h);
+    EXPECT_TRUE(r3.distance32.empty());
+    EXPECT_EQ(std::vector<float>(pinned, pinned + n), ref.distance32);
+    GG_CK(cudaFreeHost(pinned));
+    GG_CK(cudaFree(dl));
+    GG_CK(cudaFree(dg));
+    GG_CK(cudaStreamDestroy(s));
+  }
+}
+
+namespace {
+std::atomic<int> g_release{0};
+// Holds its stream until the test releases it (or 20 s pass, so a failure cannot hang).
+void CUDART_CB hold(void*) {
+  for (int i = 0; i < 20000 && !g_release.load(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+}  // namespace
+
+// The caller's stream is honoured: work held on another stream is not waited for (no device-wide
+// synchronisation inside the call).
+TEST(CudaEdt, DeviceEntryWaitsForItsStreamOnly) {
+  const io::Grid g = gg_edt::random_grid({512, 512}, 0.01, 5);
+  std::uint8_t* dg = nullptr;
+  GG_CK(cudaMalloc(&dg, g.data.size()));
+  GG_CK(cudaMemcpy(dg, g.data.data(), g.data.size(), cudaMemcpyHostToDevice));
+  cudaStream_t mine, other;
+  GG_CK(cudaStreamCreateWithFlags(&mine, cudaStreamNonBlocking));
+  GG_CK(cudaStreamCreateWithFlags(&other, cudaStreamNonBlocking));
+  EdtOptions o;
+  o.distance = 32;
+  o.backend = Backend::Cuda;
+  o.stream = mine;
+  GridView v;
+  v.data = dg;
+  v.shape = g.shape;
+  (void)distance_transform_device(v, SiteRule::NonZero, o);  // warm: pools, staging
+  g_release = 0;
+  GG_CK(cudaLaunchHostFunc(other, hold, nullptr));
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto r = distance_transform_device(v, SiteRule::NonZero, o);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const bool other_pending = cudaStreamQuery(other) == cudaErrorNotReady;
+  g_release = 1;
+  GG_CK(cudaStreamSynchronize(other));
+  EXPECT_TRUE(other_pending) << "the call waited for another stream's work";
+  EXPECT_LT(s, 10.0);
+  ASSERT_TRUE(r.distance32);
+  GG_CK(cudaFree(dg));
+  GG_CK(cudaStreamDestroy(mine));
+  GG_CK(cudaStreamDestroy(other));
 }

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -21,10 +22,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// One folder per test process, removed when the process ends (a run left one behind before).
 std::string tmpdir() {
   static std::string d = [] {
     auto p = fs::temp_directory_path() / ("gg_io_" + std::to_string(::getpid()));
     fs::create_directories(p);
+    std::atexit([] {
+      std::error_code ec;
+      fs::remove_all(fs::temp_directory_path() / ("gg_io_" + std::to_string(::getpid())), ec);
+    });
     return p.string();
   }();
   return d;

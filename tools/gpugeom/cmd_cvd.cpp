@@ -103,7 +103,7 @@ int cmd_cvd(const Global& g, Args& a) {
     Timer t(g, "write");
     io::PointSet p;
     p.dim = r.dim;
-    p.coords = r.sites;
+    p.coords.assign(r.sites.begin(), r.sites.end());
     io::write_points(out, p);
     if (!mass.empty()) {
       io::Grid m;

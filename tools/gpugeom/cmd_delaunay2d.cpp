@@ -31,7 +31,8 @@ const char* kHelp =
     "                 or PNG (also --svg F)\n"
     "  --check        verify the result with the independent exact checker\n";
 
-std::string json_array(const std::vector<double>& v, int per) {
+template <class V>
+std::string json_array(const V& v, int per) {
   std::string s = "[";
   char buf[64];
   for (std::size_t i = 0; i < v.size(); i += per) {
@@ -45,7 +46,7 @@ std::string json_array(const std::vector<double>& v, int per) {
   return s + "]";
 }
 template <class T>
-std::string json_pairs(const std::vector<T>& v) {
+std::string json_pairs(const HostVector<T>& v) {
   std::string s = "[";
   for (std::size_t i = 0; i < v.size(); i += 2)
     s += (i ? ",[" : "[") + std::to_string(v[i]) + "," + std::to_string(v[i + 1]) + "]";
@@ -159,7 +160,7 @@ int cmd_delaunay2d(const Global& g, Args& a) {
     m.dim = 2;
     m.coords = p.coords;
     m.cell_size = 3;
-    m.cells = tri.triangles;
+    m.cells.assign(tri.triangles.begin(), tri.triangles.end());
     io::write_mesh(out, m, wo);
   }
   Voronoi2d vor;

@@ -101,7 +101,7 @@ int cmd_delaunay3d(const Global& g, Args& a) {
     m.dim = 3;
     m.cell_size = 4;
     if (ext != ".npy") m.coords = std::move(p.coords);  // (copies are unused vertices)
-    m.cells = std::move(t3.tetrahedra);
+    m.cells.assign(t3.tetrahedra.begin(), t3.tetrahedra.end());
     io::write_mesh(out, m, job.wo);
   }
   return status;

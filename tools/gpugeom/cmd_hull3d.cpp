@@ -69,7 +69,7 @@ int cmd_hull3d(const Global& g, Args& a) {
     m.dim = 3;
     m.cell_size = 3;
     if (ext == ".npy") {
-      m.cells = h.triangles;
+      m.cells.assign(h.triangles.begin(), h.triangles.end());
     } else {  // a compact mesh of the hull's vertices
       std::vector<std::int32_t> index(std::size_t(n), -1);
       for (std::size_t i = 0; i < h.vertices.size(); ++i) {

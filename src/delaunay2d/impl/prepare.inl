@@ -17,10 +17,7 @@ struct Prepared {
 };
 
 // xy: on the host, or on the executor when on_device.
-// (after_upload is a std::function: nvcc refuses a lambda type as a template argument of a
-// function holding device lambdas.)
-inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_device,
-                        const std::function<void()>& after_upload) {
+inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_device) {
   Prepared P;
   const auto t0 = Clock::now();
   auto raw = ex.template alloc<double>(std::size_t(2 * n));
@@ -29,7 +26,6 @@ inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_devi
   else
     ex.from_host(xy, 2 * n, raw.data());
   P.upload_ms = ms_since(t0);
-  after_upload();
   double* r = raw.data();
 
   // Validation and the bounding box in one reduction; -0 becomes +0 (so equal points have

@@ -622,13 +622,11 @@ class Triangulator {
 };
 
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
-// after_upload runs once the points are on the executor.
 template <class Body>
 inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device,
-                             bool profile, Stats& st, const std::function<void()>& after_upload,
-                             Body body) {
+                             bool profile, Stats& st, Body body) {
   auto t0 = std::chrono::steady_clock::now();
-  Prepared P = prepare(ex, xy, n, on_device, after_upload);
+  Prepared P = prepare(ex, xy, n, on_device);
   st.counters["points"] = n;
   st.counters["distinct_points"] = P.m;
   st.counters["duplicates"] = P.duplicates;
@@ -647,26 +645,19 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
 inline void triangulate_impl(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
                              Stats& st) {
   Exec ex(run);
-  HostSizer sizer;  // after the upload, so that it does not compete with it
-  triangulate_core(
-      ex, xy, n, false, run.profile, st,
-      [&] {  // at most 2n - 2 triangles (the extended triangulation's): cut to size below
-        sizer.add(out.triangles, 6 * n, std::int32_t(0), "triangulation");
-        sizer.add(out.neighbors, 6 * n, std::int32_t(0), "triangulation");
-        sizer.add(out.duplicate_of, n, std::int32_t(-1), "triangulation");
-      },
-      [&](Prepared& P, typename Triangulator::Finished& f) {
-        ex.sync();
-        auto t0 = std::chrono::steady_clock::now();
-        sizer.join();
-        st.phase_ms.push_back({"wait_host_arrays", ms_since(t0)});
-        t0 = std::chrono::steady_clock::now();
-        out.num_duplicates = P.duplicates;
-        ex.to_host(f.simplices.data(), 3 * f.count, out.triangles.data());
-        ex.to_host(f.neighbors.data(), 3 * f.count, out.neighbors.data());
-        out.triangles.resize(std::size_t(3 * f.count));
-        out.neighbors.resize(std::size_t(3 * f.count));
-        if (P.duplicates) ex.to_host(P.dup.data(), n, out.duplicate_of.data());
-        st.phase_ms.push_back({"copy_back", ms_since(t0)});
-      });
+  triangulate_core(ex, xy, n, false, run.profile, st,
+                   [&](Prepared& P, typename Triangulator::Finished& f) {
+                     const auto t0 = std::chrono::steady_clock::now();
+                     out.num_duplicates = P.duplicates;
+                     out.triangles.resize(std::size_t(3 * f.count));  // (HostVector: no fill)
+                     out.neighbors.resize(std::size_t(3 * f.count));
+                     out.duplicate_of.resize(std::size_t(n));
+                     ex.to_host(f.simplices.data(), 3 * f.count, out.triangles.data());
+                     ex.to_host(f.neighbors.data(), 3 * f.count, out.neighbors.data());
+                     if (P.duplicates)
+                       ex.to_host(P.dup.data(), n, out.duplicate_of.data());
+                     else
+                       ex.fill_host(out.duplicate_of.data(), n, std::int32_t(-1));
+                     st.phase_ms.push_back({"copy_back", ms_since(t0)});
+                   });
 }

@@ -1116,8 +1116,11 @@ inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exe
   out.neighbors.resize(std::size_t(4 * f.count));
   ex.to_host(f.simplices.data(), 4 * f.count, out.tetrahedra.data());
   ex.to_host(f.neighbors.data(), 4 * f.count, out.neighbors.data());
-  out.duplicate_of.assign(std::size_t(n), -1);
-  if (S.duplicates) ex.to_host(S.dup.data(), n, out.duplicate_of.data());
+  out.duplicate_of.resize(std::size_t(n));  // (HostVector: no fill)
+  if (S.duplicates)
+    ex.to_host(S.dup.data(), n, out.duplicate_of.data());
+  else
+    ex.fill_host(out.duplicate_of.data(), n, std::int32_t(-1));
   auto vt = ex.template alloc<std::int32_t>(std::size_t(n));
   std::int32_t* v = vt.data();
   const std::int32_t* tv = f.simplices.data();

@@ -1,29 +1,80 @@
 // The backend entry: upload, feature transform (whole grid or slice by slice), outputs,
 // download. Included after pba.inl and jfa.inl.
 
-// Per-voxel outputs of one computed block (whole grid or one slice) appended at `at`, into
-// host arrays that `sizer` is sizing.
+// Where one output goes: the caller's array (into), else the library's: on the executor
+// (device_out, kept in `lib`), or the host array `host`. `at` voxels in.
+template <class T>
+struct Dest {
+  T* final = nullptr;   // where the values end up (host or executor memory)
+  bool direct = false;  // final is executor memory: kernels write it in place
+};
+template <class T>
+inline Dest<T> dest_of(Exec& ex, const Request& rq, const OutBuffer<T>& into, bool want,
+                       std::int64_t total, std::int64_t at, typename Exec::template Buffer<T>& lib,
+                       HostVector<T>& host) {
+  Dest<T> d;
+  if (!want) return d;
+  // On the CPU executor host memory is executor memory: every output is written in place.
+  const bool on_exec = rq.device_out || Exec::backend == Backend::Cpu;
+  if (into) {
+    d.final = into.data + at;
+  } else if (rq.device_out) {
+    if (!lib.size()) lib = ex.template alloc<T>(std::size_t(total));
+    d.final = lib.data() + at;
+  } else {
+    host.resize(std::size_t(total));  // (HostVector: no fill; the copy back touches the pages)
+    d.final = host.data() + at;
+  }
+  d.direct = on_exec;
+  return d;
+}
+
+// The library's arrays of a device_out run, kept until every block is written.
+struct DeviceArrays {
+  typename Exec::template Buffer<std::int64_t> sqi;
+  typename Exec::template Buffer<double> sqr, d64;
+  typename Exec::template Buffer<float> d32;
+  typename Exec::template Buffer<std::int32_t> feat, lab;
+};
+
+// Per-voxel outputs of one computed block (whole grid or one slice), written `at` voxels into
+// arrays of `total` voxels: in place where the destination is the executor's memory, else
+// through a block-sized array on the executor and one copy back each.
 inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std::uint32_t* feat,
                          const std::uint32_t* sorted_sites, const std::int32_t* sorted_idx,
                          std::int64_t nsites, const std::int32_t* rank_grid, Output& out,
-                         std::int64_t at, std::int64_t total, HostSizer& sizer) {
+                         DeviceArrays& lib, std::int64_t at, std::int64_t total) {
   const std::int64_t n = L.count();
   const Layout Ly = L;
   const Metric Mt = rq.metric;
-  // One kernel writes exactly the distance arrays asked for: nothing computed or copied in vain.
   const bool iso = rq.metric.iso;
-  const bool dist = rq.want_sqdist || rq.want_distance;
-  auto sqi = ex.template alloc<std::int64_t>(rq.want_sqdist && iso ? std::size_t(n) : 0);
-  auto sqr = ex.template alloc<double>(rq.want_sqdist && !iso ? std::size_t(n) : 0);
-  auto d64 = ex.template alloc<double>(rq.want_distance == 64 ? std::size_t(n) : 0);
-  auto d32 = ex.template alloc<float>(rq.want_distance == 32 ? std::size_t(n) : 0);
-  std::int64_t* si = sqi.data();
-  double* sr = sqr.data();
-  double* dd = d64.data();
-  float* df = d32.data();
-  auto lab = ex.template alloc<std::int32_t>(rq.want_labels ? std::size_t(n) : 0);
-  std::int32_t* lp = lab.data();
-  if (dist || rq.want_labels) {  // one pass over the features writes every array asked for
+  const auto dsi = dest_of(ex, rq, rq.into.sqdist_int, rq.want_sqdist && iso, total, at, lib.sqi,
+                           out.sqdist_int);
+  const auto dsr = dest_of(ex, rq, rq.into.sqdist_real, rq.want_sqdist && !iso, total, at, lib.sqr,
+                           out.sqdist_real);
+  const auto d64 =
+      dest_of(ex, rq, rq.into.distance64, rq.want_distance == 64, total, at, lib.d64, out.dist64);
+  const auto d32 =
+      dest_of(ex, rq, rq.into.distance32, rq.want_distance == 32, total, at, lib.d32, out.dist32);
+  const auto dlb = dest_of(ex, rq, rq.into.labels, rq.want_labels, total, at, lib.lab, out.labels);
+  // Staging arrays on the executor for the outputs that go to host memory.
+  auto stage = [&](const auto& d) {
+    using T = std::remove_pointer_t<decltype(d.final)>;
+    return ex.template alloc<T>(d.final && !d.direct ? std::size_t(n) : 0);
+  };
+  auto ssi = stage(dsi);
+  auto ssr = stage(dsr);
+  auto s64 = stage(d64);
+  auto s32 = stage(d32);
+  auto slb = stage(dlb);
+  auto where = [](const auto& d, auto& st) { return d.direct ? d.final : st.data(); };
+  std::int64_t* si = where(dsi, ssi);
+  double* sr = where(dsr, ssr);
+  double* dd = where(d64, s64);
+  float* df = where(d32, s32);
+  std::int32_t* lp = where(dlb, slb);
+  const bool dist = si || sr || dd || df;
+  if (dist || lp) {  // one pass over the features writes every array asked for
     const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
     const std::int64_t ns = nsites;
     ex.for_each_index(
@@ -64,66 +115,140 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Layout& L, const std
   }
   ex.sync();  // distances and labels are on the device: the device-resident result
   out.device_outputs_at = now_ms();
-  sizer.join();  // the host arrays (size_outputs) are ready for the copies
-  if (si) {
-    out.sqdist_int.resize(total);
-    ex.to_host(si, n, out.sqdist_int.data() + at);
-  }
-  if (sr) {
-    out.sqdist_real.resize(total);
-    ex.to_host(sr, n, out.sqdist_real.data() + at);
-  }
-  if (dd) {
-    out.dist64.resize(total);
-    ex.to_host(dd, n, out.dist64.data() + at);
-  }
-  if (df) {
-    out.dist32.resize(total);
-    ex.to_host(df, n, out.dist32.data() + at);
-  }
-  if (rq.want_labels) {
-    out.labels.resize(total);
-    ex.to_host(lp, n, out.labels.data() + at);
-  }
+  auto back = [&](const auto& d, const auto& st) {
+    if (d.final && !d.direct) ex.to_host(st.data(), n, d.final);
+  };
+  back(dsi, ssi);
+  back(dsr, ssr);
+  back(d64, s64);
+  back(d32, s32);
+  back(dlb, slb);
   if (rq.want_features) {
-    auto c = ex.template alloc<std::int32_t>(std::size_t(n));
-    std::int32_t* cp = c.data();
-    out.features.resize(std::size_t(total) * L.nd);
-    for (int j = 0; j < L.nd; ++j) {  // C axis j is internal axis nd-1-j
+    // Features: nd arrays of `total` each, C axis j being internal axis nd-1-j.
+    std::int32_t* fin = nullptr;
+    if (rq.into.features) {
+      fin = rq.into.features.data;
+    } else if (rq.device_out) {
+      if (!lib.feat.size()) lib.feat = ex.template alloc<std::int32_t>(std::size_t(total) * L.nd);
+      fin = lib.feat.data();
+    } else {
+      out.features.resize(std::size_t(total) * L.nd);
+      fin = out.features.data();
+    }
+    const bool direct = rq.device_out || Exec::backend == Backend::Cpu;
+    auto c = ex.template alloc<std::int32_t>(direct ? 0 : std::size_t(n));
+    for (int j = 0; j < L.nd; ++j) {
       const int a = L.nd - 1 - j;
+      std::int32_t* cp = direct ? fin + std::size_t(j) * total + at : c.data();
       ex.for_each_index(
           n, GG_LAMBDA(std::int64_t i) { cp[i] = std::int32_t(Ly.coord(feat[i], a)); });
-      ex.to_host(cp, n, out.features.data() + std::size_t(j) * total + at);
+      if (!direct) ex.to_host(cp, n, fin + std::size_t(j) * total + at);
     }
   }
 }
 
-// Starts zero-filling the result arrays the request asks for (total voxels each) on host
-// threads, to overlap the device work: filled on the calling thread as each copy back began,
-// their page faults were most of an end-to-end call.
-inline void size_outputs(HostSizer& sizer, const Request& rq, Output& out, std::int64_t total) {
-  const bool iso = rq.metric.iso;
-  if (rq.want_sqdist && iso) sizer.add(out.sqdist_int, total, std::int64_t(0), "squared distances");
-  if (rq.want_sqdist && !iso) sizer.add(out.sqdist_real, total, 0.0, "squared distances");
-  if (rq.want_distance == 64) sizer.add(out.dist64, total, 0.0, "distances");
-  if (rq.want_distance == 32) sizer.add(out.dist32, total, 0.0f, "distances");
-  if (rq.want_labels) sizer.add(out.labels, total, std::int32_t(0), "labels");
-  if (rq.want_features)
-    sizer.add(out.features, total * rq.layout.nd, std::int32_t(0), "nearest-site coordinates");
+// A grid's sites marked on the executor: mask[i] = 1 for a site, 2 for a NaN, else 0.
+template <class T>
+inline void rule_mask(Exec& ex, const void* grid, std::int64_t n, bool zero, std::uint8_t* mask) {
+  const T* g = static_cast<const T*>(grid);
+  ex.for_each_index(
+      n, GG_LAMBDA(std::int64_t i) {
+        const T v = g[i];
+        mask[i] = v != v ? 2 : ((v == T(0)) == zero ? 1 : 0);
+      });
+}
+
+// The grid as the transform reads it (a byte per voxel, nonzero = site) on the executor, and
+// its site count; throws for NaN values or no site. The host grid's bytes cross the bus as they
+// are; a uint8 / bool grid with the non-zero rule is its own mask.
+inline const std::uint8_t* grid_mask(Exec& ex, const Request& rq, std::int64_t nvox,
+                                     typename Exec::template Buffer<unsigned char>& raw,
+                                     typename Exec::template Buffer<std::uint8_t>& mbuf,
+                                     std::int64_t& sites) {
+  const std::size_t bytes = std::size_t(nvox) * io::scalar_size(rq.type);
+  const void* src = rq.grid;
+  if (Exec::backend == Backend::Cuda && !rq.grid_on_device) {
+    raw = ex.template alloc<unsigned char>(bytes);
+    ex.from_host(static_cast<const unsigned char*>(rq.grid), std::int64_t(bytes), raw.data());
+    src = raw.data();
+  }
+  const bool zero = rq.rule == SiteRule::Zero;
+  const bool bytes_mask =
+      !zero && (rq.type == io::ScalarType::U8 || rq.type == io::ScalarType::Bool);
+  const std::uint8_t* mask = static_cast<const std::uint8_t*>(src);
+  if (!bytes_mask) {
+    mbuf = ex.template alloc<std::uint8_t>(std::size_t(nvox));
+    std::uint8_t* m = mbuf.data();
+    switch (rq.type) {
+      case io::ScalarType::Bool:
+      case io::ScalarType::U8:
+        rule_mask<std::uint8_t>(ex, src, nvox, zero, m);
+        break;
+      case io::ScalarType::U16:
+        rule_mask<std::uint16_t>(ex, src, nvox, zero, m);
+        break;
+      case io::ScalarType::I32:
+        rule_mask<std::int32_t>(ex, src, nvox, zero, m);
+        break;
+      case io::ScalarType::I64:
+        rule_mask<std::int64_t>(ex, src, nvox, zero, m);
+        break;
+      case io::ScalarType::F32:
+        rule_mask<float>(ex, src, nvox, zero, m);
+        break;
+      case io::ScalarType::F64:
+        rule_mask<double>(ex, src, nvox, zero, m);
+        break;
+    }
+    mask = m;
+  }
+  // Sites in the low 40 bits, NaN voxels above (a grid holds fewer than 2^31 voxels).
+  auto sum = ex.template alloc<std::int64_t>(1);
+  ex.transform_reduce_into(
+      nvox,
+      GG_LAMBDA(std::int64_t i)->std::int64_t {
+        const std::uint8_t v = mask[i];
+        return v == 0 ? 0 : (bytes_mask || v == 1) ? 1 : std::int64_t(1) << 40;
+      },
+      std::int64_t(0), thrust::plus<std::int64_t>(), sum.data());
+  std::int64_t h = 0;
+  ex.to_host(sum.data(), 1, &h);
+  if (h >> 40) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
+  sites = h;
+  if (sites == 0)
+    throw Error(ErrorCode::InvalidInput, std::string("the grid has no site (no ") +
+                                             (zero ? "zero" : "nonzero") +
+                                             " element): every distance would be infinite");
+  return mask;
+}
+
+// The library's arrays of a device_out run to the caller (after the last block is written).
+inline void hand_over(Exec& ex, DeviceArrays& lib, Output& out) {
+  ex.sync();
+  if (lib.sqi.size()) out.dev_sqdist_int = lib.sqi.hand_over();
+  if (lib.sqr.size()) out.dev_sqdist_real = lib.sqr.hand_over();
+  if (lib.d64.size()) out.dev_dist64 = lib.d64.hand_over();
+  if (lib.d32.size()) out.dev_dist32 = lib.d32.hand_over();
+  if (lib.feat.size()) out.dev_features = lib.feat.hand_over();
+  if (lib.lab.size()) out.dev_labels = lib.lab.hand_over();
 }
 
 inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   Exec ex(rq.run);
   const Layout L = rq.layout;
   const std::int64_t nvox = L.count();
+  DeviceArrays lib;
   // The sorted site list: for labels, and for the slice-by-slice mode.
   std::int64_t ns = 0;
-  auto sites = ex.template alloc<std::uint32_t>(rq.mask ? 0 : rq.sites.size());
-  auto sidx = ex.template alloc<std::int32_t>(rq.mask ? 0 : rq.sites.size());
-  auto mask = ex.template alloc<std::uint8_t>(rq.mask ? std::size_t(nvox) : 0);
+  auto sites = ex.template alloc<std::uint32_t>(rq.grid ? 0 : rq.sites.size());
+  auto sidx = ex.template alloc<std::int32_t>(rq.grid ? 0 : rq.sites.size());
+  typename Exec::template Buffer<unsigned char> raw;
+  typename Exec::template Buffer<std::uint8_t> mbuf;
+  const std::uint8_t* mask_p = nullptr;
+  std::int64_t site_count = rq.site_count;
   const double t0 = now_ms();
-  if (rq.mask) {
-    ex.from_host(rq.mask, nvox, mask.data());
+  if (rq.grid) {
+    mask_p = grid_mask(ex, rq, nvox, raw, mbuf, site_count);
   } else {
     ns = std::int64_t(rq.sites.size());
     ex.from_host(rq.sites.data(), ns, sites.data());
@@ -133,10 +258,10 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     ex.sort_by_key(sites.data(), sidx.data(), ns);  // stable: duplicates keep the lower index
   }
   std::uint32_t* sorted = sites.data();
-  const std::int32_t* sorted_idx = rq.mask ? nullptr : sidx.data();
-  if (rq.mask && !rq.slices.empty()) {  // raster order = packed order
+  const std::int32_t* sorted_idx = rq.grid ? nullptr : sidx.data();
+  if (rq.grid && !rq.slices.empty()) {  // raster order = packed order
     auto vox = ex.template alloc<std::int32_t>(std::size_t(nvox));
-    const std::uint8_t* mp = mask.data();
+    const std::uint8_t* mp = mask_p;
     ns = ex.compact_indices(
         nvox, GG_LAMBDA(std::int64_t i) { return mp[i] != 0; }, vox.data());
     sites = ex.template alloc<std::uint32_t>(std::size_t(ns));
@@ -152,22 +277,16 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   }
   ex.sync();
   stats.phase_ms.push_back({"upload", now_ms() - t0});
-  // After the upload, so that it does not compete with it; from a million voxels (below, a
-  // thread per array costs more than the fill it would overlap).
-  HostSizer sizer;
-  const std::int64_t total =
-      rq.slices.empty() ? nvox : std::int64_t(rq.slices.size()) * L.n[0] * L.n[1];
-  if (total >= (std::int64_t(1) << 20)) size_outputs(sizer, rq, out, total);
 
   if (rq.slices.empty()) {
     auto feat = ex.template alloc<std::uint32_t>(std::size_t(nvox));
     std::uint32_t* fp = feat.data();
     // A mask goes to the transform as it is: its x pass reads a byte per voxel (JFA starts
     // from the packed features).
-    const std::uint8_t* site_mask = rq.mask ? mask.data() : nullptr;
-    if (rq.mask && rq.method == EdtMethod::Jfa) {
+    const std::uint8_t* site_mask = mask_p;
+    if (rq.grid && rq.method == EdtMethod::Jfa) {
       init_features(ex, L, site_mask, fp);
-    } else if (!rq.mask) {
+    } else if (!rq.grid) {
       ex.fill(fp, nvox, kNone);
       const std::uint32_t* sp = sorted;
       const Layout Ly = L;
@@ -187,10 +306,9 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     if (rq.method == EdtMethod::Jfa)
       jump_flood(ex, L, rq.metric, fp);
     else if (rq.run.profile)
-      feature_transform(ex, L, rq.metric, fp, site_mask, rq.tune, L.nd, rq.site_count, &stats,
-                        step);
+      feature_transform(ex, L, rq.metric, fp, site_mask, rq.tune, L.nd, site_count, &stats, step);
     else
-      feature_transform(ex, L, rq.metric, fp, site_mask, rq.tune, L.nd, rq.site_count, &stats);
+      feature_transform(ex, L, rq.metric, fp, site_mask, rq.tune, L.nd, site_count, &stats);
     ex.sync();
     out.transform_ms = now_ms() - t1;
     stats.phase_ms.push_back({"transform", out.transform_ms});
@@ -199,8 +317,8 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     // lowest index among a list's duplicates), so each voxel's label is one lookup.
     auto rank = ex.template alloc<std::int32_t>(rq.want_labels ? std::size_t(nvox) : 0);
     std::int32_t* rp = rank.data();
-    if (rq.want_labels && rq.mask) {
-      const std::uint8_t* mp = mask.data();
+    if (rq.want_labels && rq.grid) {
+      const std::uint8_t* mp = mask_p;
       ex.exclusive_scan_of(
           nvox, GG_LAMBDA(std::int64_t i)->std::int32_t { return mp[i] ? 1 : 0; }, rp);
     } else if (rq.want_labels) {
@@ -214,9 +332,10 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
             r.fetch_min(ip[j], cuda::memory_order_relaxed);
           });
     }
-    emit_outputs(ex, rq, L, fp, sorted, sorted_idx, ns, rp, out, 0, nvox, sizer);
+    emit_outputs(ex, rq, L, fp, sorted, sorted_idx, ns, rp, out, lib, 0, nvox);
     // Labels' grid, distance and label kernels, before any copy back (features excluded).
     stats.phase_ms.push_back({"outputs_device", out.device_outputs_at - t2});
+    if (rq.device_out) hand_over(ex, lib, out);
     stats.phase_ms.push_back({"outputs", now_ms() - t2});
     return;
   }
@@ -278,8 +397,9 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
     feature_transform(ex, Ls, rq.metric, fp, nullptr, rq.tune, 2, 0, &stats);
     ex.sync();
     transform += now_ms() - t1;
-    emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, nullptr, out, k * nxy, nsl * nxy, sizer);
+    emit_outputs(ex, rq, Ls, fp, sorted, sorted_idx, ns, nullptr, out, lib, k * nxy, nsl * nxy);
   }
+  if (rq.device_out) hand_over(ex, lib, out);
   out.transform_ms = transform;
   stats.phase_ms.push_back({"transform", transform});
 }

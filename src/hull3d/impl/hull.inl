@@ -29,10 +29,9 @@ inline Facets compact(PassState& S) {
   return mesh::compact_live<3>(S.ex, S.used, LiveFacets{S.tv.data(), S.to.data()});
 }
 
-// constructed (if given) learns the facet count after the construction, a bound on the final
-// count (Flip-Flop only removes facets). n_input: the caller's point count, for messages.
-inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st, std::int64_t n_input,
-                       const std::function<void(std::int64_t)>& constructed = {}) {
+// n_input: the caller's point count, for messages.
+inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st,
+                       std::int64_t n_input) {
   auto t0 = Clock::now();
   const Tetra t = first_tetrahedron(ex, pts, n, n_input);
   st.phase_ms.emplace_back("prepare", ms_since(t0));
@@ -44,7 +43,6 @@ inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st, s
   }
   ex.sync();
   st.phase_ms.emplace_back("construct", ms_since(t0));
-  if (constructed) constructed(S.used);  // (construction never frees a slot)
   t0 = Clock::now();
   {
     FlipFlop F(S);
@@ -177,13 +175,10 @@ struct Result {
 };
 
 // The hull of n distinct points (of n_input given) on the executor, in their indices.
-// constructed: as one_pass's,
-// for the first pass (whose bound holds for the second too, a hull of fewer points).
 inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Stats& st,
-                            std::int64_t n_input,
-                            const std::function<void(std::int64_t)>& constructed) {
+                            std::int64_t n_input) {
   Result R;
-  R.facets = one_pass(ex, pts, n, st, n_input, constructed);
+  R.facets = one_pass(ex, pts, n, st, n_input);
   auto t0 = Clock::now();
   // The vertices, each with one corner, in index order.
   auto corner = ex.template alloc<std::int32_t>(std::size_t(n));
@@ -247,8 +242,7 @@ inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Stats& 
 // makes the construction's point reads local (the sphere 10^7 on the H100: 16 % faster); the
 // perturbation then follows curve position, as in delaunay2d, so the output does not depend on
 // the order of the input. A point with copies is represented by its first index.
-inline Result hull_core(Exec& ex, const double* in, std::int64_t n, Stats& st,
-                        const std::function<void(std::int64_t)>& constructed = {}) {
+inline Result hull_core(Exec& ex, const double* in, std::int64_t n, Stats& st) {
   auto t0 = Clock::now();
   const mesh::Bounds<3> box = mesh::bounds<3>(ex, in, n);
   if (box.bad) throw_bad(box.bad);
@@ -256,7 +250,7 @@ inline Result hull_core(Exec& ex, const double* in, std::int64_t n, Stats& st,
   st.counters["duplicates"] = S.duplicates;
   ex.sync();
   st.phase_ms.emplace_back("sort", ms_since(t0));
-  Result R = distinct_hull(ex, S.pts.data(), S.m, st, n, constructed);
+  Result R = distinct_hull(ex, S.pts.data(), S.m, st, n);
   // Back to input indices: the facets' corners, and the vertices in increasing input order.
   t0 = Clock::now();
   const std::int32_t* orig = S.orig.data();
@@ -313,9 +307,6 @@ struct PlaneOf {
   }
 };
 
-// From this many facets (about 0.5 MB of triangles) the result arrays are sized ahead.
-constexpr std::int64_t kSizeAheadFacets = 40000;
-
 // Host points in, host arrays out.
 inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& run, Output& out,
                          Stats& st) {
@@ -330,17 +321,7 @@ inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& ru
     ex.sync();
     st.phase_ms.emplace_back("upload", ms_since(t0));
   }
-  // With the GPU working, the result arrays are sized on host threads during Flip-Flop, for the
-  // facet count after the construction (F facets, (F + 4) / 2 vertices), where they are large
-  // enough for the first touch of their pages to matter. (The CPU executor has no idle cores.)
-  HostSizer sizer;
-  Result R = hull_core(ex, p, n, st, [&](std::int64_t facets) {
-    if (Exec::backend != Backend::Cuda || facets < kSizeAheadFacets) return;
-    sizer.add(out.triangles, 3 * facets, std::int32_t(0), "convex hull");
-    sizer.add(out.neighbors, 3 * facets, std::int32_t(0), "convex hull");
-    sizer.add(out.vertices, (facets + 4) / 2, std::int32_t(0), "convex hull");
-    sizer.add(out.equations, 4 * facets, 0.0, "convex hull");
-  });
+  Result R = hull_core(ex, p, n, st);
   auto t0 = Clock::now();
   const std::int64_t nf = R.facets.count;
   auto eq = ex.template alloc<double>(std::size_t(4 * nf));
@@ -350,7 +331,6 @@ inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& ru
   ex.to_host(redo.data(), 1, &out.planes_redo);
   st.phase_ms.emplace_back("planes", ms_since(t0));
   t0 = Clock::now();
-  sizer.join();  // (nothing to wait for when it was not started)
   out.equations.resize(std::size_t(4 * nf));
   out.triangles.resize(std::size_t(3 * R.facets.count));
   out.neighbors.resize(std::size_t(3 * R.facets.count));
