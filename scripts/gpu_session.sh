@@ -22,7 +22,7 @@ if [ "${SKIP_SANITIZER:-0}" != 1 ]; then
   echo "== compute-sanitizer memcheck"
   CS=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
   for t in .devbin/$TESTS; do
-    GG_DEL2D_MAX_N=5000 GG_HULL3D_MAX_N=5000 GG_DEL3D_MAX_N=3000 GG_TEST_TUPLES=1500 timeout 420 "$CS" --tool memcheck --leak-check full --error-exitcode 9 "$t" --gtest_brief=1 \
+    GG_UNDER_SANITIZER=1 GG_DEL2D_MAX_N=5000 GG_HULL3D_MAX_N=5000 GG_DEL3D_MAX_N=3000 GG_TEST_TUPLES=1500 timeout 420 "$CS" --tool memcheck --leak-check full --error-exitcode 9 "$t" --gtest_brief=1 \
       >"$OUT/memcheck_$(basename "$t").log" 2>&1
     echo "memcheck $(basename "$t"): rc=$? $(grep -E 'ERROR SUMMARY' "$OUT/memcheck_$(basename "$t").log" | tail -1)"
   done
