@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "bench_csv.hpp"
+#include "device_timing.hpp"
 #include "gpugeom/cvd.hpp"
 #include "gpugeom/io.hpp"
 
@@ -59,8 +60,9 @@ int main(int argc, char** argv) {
   const std::vector<Backend> bks = bench::backends(backends);
   const std::string gpu = query_device().available ? query_device().name : "none";
   std::ofstream f = bench::open_bench_csv(csv);
-  std::printf("%-4s %-16s %9s %-5s %8s %12s %10s %12s\n", "cvd", "grid", "sites", "bk", "iters",
-              "ms/iter", "setup", "energy drop");
+  std::printf("%-4s %-16s %9s %-5s %8s %12s %10s %12s %10s %10s %9s\n", "cvd", "grid", "sites",
+              "bk", "iters", "ms/iter", "setup", "energy drop", "total ms", "on_dev ms",
+              "bus_floor");
   for (double side : bench::numbers(sides)) {
     const std::vector<std::int64_t> shape(dim, std::int64_t(side));
     const io::Grid g = density(shape);
@@ -74,14 +76,28 @@ int main(int argc, char** argv) {
         o.move_tolerance = 0;
         centroidal_voronoi(g, o);
         o.max_iterations = iters;
+        const auto t0 = std::chrono::steady_clock::now();
         const CvdResult r = centroidal_voronoi(g, o);
+        const double total = bench::ms_since(t0);
+        // The same call with the density already on the device (the sites left there).
+        const double on_dev = b == Backend::Cuda
+                                  ? bench::device_resident_ms(g.data.data(), g.data.size(), 3,
+                                                              [&](const void* d) {
+                                                                GridView v;
+                                                                v.data = d;
+                                                                v.type = g.type;
+                                                                v.shape = g.shape;
+                                                                centroidal_voronoi_device(v, o);
+                                                              })
+                                  : -1;
+        const double floor_ms = bench::bus_floor_ms(double(g.data.size()) + 8.0 * (dim + 1) * ns);
         const double per = bench::phase_ms(r.stats, "iterations") / r.iterations;
         const std::string grid =
             dim == 2 ? std::to_string(shape[0]) + "^2" : std::to_string(shape[0]) + "^3";
-        std::printf("%-4s %-16s %9lld %-5s %8d %12.3f %10.1f %11.1f%%\n", "cvd", grid.c_str(),
-                    (long long)ns, backend_name(b), r.iterations, per,
+        std::printf("%-4s %-16s %9lld %-5s %8d %12.3f %10.1f %11.1f%% %10.1f %10.1f %9.2f\n", "cvd",
+                    grid.c_str(), (long long)ns, backend_name(b), r.iterations, per,
                     bench::phase_ms(r.stats, "setup"),
-                    100 * (1 - r.energy.back() / r.energy.front()));
+                    100 * (1 - r.energy.back() / r.energy.front()), total, on_dev, floor_ms);
         if (f)
           f << "cvd_iteration," << grid << "_" << (long long)ns << "sites," << (long long)ns << ","
             << backend_name(b) << "," << (b == Backend::Cuda ? gpu : "cpu") << ",0," << per << ",0,"

@@ -143,8 +143,9 @@ int main(int argc, char** argv) {
                   (long long)r.stats.counters["batches"],
                   (long long)r.stats.counters["flip_rounds"], cg, verdict.c_str());
       if (b == Backend::Cuda)
-        std::printf("    upload %.1f ms, copy back %.1f ms\n", bench::phase_ms(r.stats, "upload"),
-                    bench::phase_ms(r.stats, "copy_back"));
+        std::printf("    upload %.1f ms, copy back %.1f ms, bus floor %.1f ms\n",
+                    bench::phase_ms(r.stats, "upload"), bench::phase_ms(r.stats, "copy_back"),
+                    bench::bus_floor_ms(16.0 * n + 4.0 * (6.0 * r.triangle_count + n)));
       for (auto& ph : r.stats.phase_ms)
         if (ph.first.rfind("insert/", 0) == 0)
           std::printf("    %-28s %8.2f ms\n", ph.first.c_str(), ph.second);

@@ -159,6 +159,10 @@ int main(int argc, char** argv) {
           (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(),
           (long long)(counter(t.stats, "device_bytes_phase1") / std::max<std::int64_t>(n, 1)), cg,
           cgp, ok.c_str());
+      if (b == Backend::Cuda)  // points in; the five arrays out
+        std::printf("#   bus floor %.1f ms\n",
+                    bench::bus_floor_ms(24.0 * n + 4.0 * (8.0 * t.tetrahedron_count + 2.0 * n +
+                                                          3.0 * t.hull_facet_count)));
       if (verbose) {
         std::printf("#   phases:");
         for (auto& p : t.stats.phase_ms) std::printf(" %s %.1f", p.first.c_str(), p.second);

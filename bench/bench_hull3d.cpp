@@ -192,6 +192,9 @@ int main(int argc, char** argv) {
           std::printf(" %s %lld", c.first.c_str(), (long long)c.second);
         std::printf("; end-to-end runs:");
         for (double x : t) std::printf(" %.1f", x);
+        if (b == Backend::Cuda)  // points in; facets, neighbours, vertices and planes out
+          std::printf("; bus floor %.2f ms",
+                      bench::bus_floor_ms(24.0 * n + 56.0 * r.facet_count + 4.0 * r.vertex_count));
         std::printf("\n");
         std::fflush(stdout);
         if (f)

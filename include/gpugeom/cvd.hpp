@@ -15,16 +15,14 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/grid_view.hpp"
 #include "gpugeom/host_vector.hpp"
 
 namespace gpugeom {
-
-namespace io {
-struct Grid;
-}
 
 struct CvdProgress {
   int iteration = 0;       // 1-based
@@ -59,8 +57,33 @@ struct CvdResult {
   std::int64_t size() const { return dim ? std::int64_t(sites.size()) / dim : 0; }
 };
 
-// density: 2D or 3D, finite and non-negative values, not all zero. Throws Error(InvalidInput)
-// for bad densities or sites, Error(InvalidArgument) for bad options.
+// density: 2D or 3D, finite and non-negative values, not all zero, of any element type
+// (GridView: host memory, read where it is; on the CUDA executor its bytes cross the bus as they
+// are and are checked and quantised on the device). Throws Error(InvalidInput) for bad densities
+// or sites, Error(InvalidArgument) for bad options.
+CvdResult centroidal_voronoi(const GridView& density, const CvdOptions& opt = {});
 CvdResult centroidal_voronoi(const io::Grid& density, const CvdOptions& opt = {});
+
+// The same iteration with the density in device memory and the sites left there, on opt.stream of
+// opt.device: the density must be ready in that stream's order, and the call returns once the
+// result is. Only the iteration's three convergence figures (and the initial draws' pixel
+// numbers) cross the bus. The arrays are the library's device memory, freed when the last copy of
+// their pointer goes (they can be wrapped without a copy by CuPy or PyTorch). With opt.backend ==
+// Backend::Cpu the CPU executor runs it on host memory (the same result); otherwise CUDA runs it,
+// whatever GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA device can be used (and
+// the CPU was not asked for), and as centroidal_voronoi otherwise.
+struct DeviceCvdResult {
+  int dim = 2;
+  std::int64_t num_sites = 0;
+  std::shared_ptr<double> sites;  // dim per site, density pixels (as CvdResult's)
+  std::shared_ptr<double> mass;   // per site (as CvdResult's)
+  HostVector<double> energy;      // per iteration, on the host
+  int iterations = 0;
+  bool converged = false;
+  Backend backend = Backend::Cuda;  // where the arrays are: Cuda = device memory, Cpu = host
+  Stats stats;
+};
+DeviceCvdResult centroidal_voronoi_device(const GridView& device_density,
+                                          const CvdOptions& opt = {});
 
 }  // namespace gpugeom

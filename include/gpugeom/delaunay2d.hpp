@@ -15,7 +15,23 @@
 
 namespace gpugeom {
 
-struct Delaunay2dOptions : RunOptions {};
+// Arrays the caller provides for the results (OutBuffer, common.hpp; SciPy's `out=` pattern):
+// host memory for delaunay2d, device memory for delaunay2d_device (host memory where it runs on
+// the CPU executor). triangles and neighbors must hold at least 3 times the triangle count, which
+// depends on the result (3 * delaunay2d_max_triangles(n) always suffices); duplicate_of at least
+// n. They are checked once the count is known and before anything is written (Error(
+// InvalidArgument) naming the array and both lengths). An output written into a caller's array
+// is empty (null) in the result; num_triangles says how much of it was written.
+struct Triangulation2dBuffers {
+  OutBuffer<std::int32_t> triangles, neighbors, duplicate_of;
+};
+
+struct Delaunay2dOptions : RunOptions {
+  Triangulation2dBuffers into;  // optional
+};
+
+// The most triangles a triangulation of n points has (2n - 5, for n >= 3): sizes `into` ahead.
+std::int64_t delaunay2d_max_triangles(std::int64_t n);
 
 struct Triangulation2d {
   // Counter-clockwise triangles, 3 input-point indices each.
@@ -30,7 +46,9 @@ struct Triangulation2d {
   // Stats: phases "prepare", "insert" (with its flips), "finish" and "copies"; counters
   // "batches", "flips", "flip_rounds", "exact_predicates", "points", "distinct_points".
   Stats stats;
-  std::size_t num_triangles() const { return triangles.size() / 3; }
+  // Triangles written (also where they went into the caller's arrays, Delaunay2dOptions::into).
+  std::int64_t triangle_count = 0;
+  std::size_t num_triangles() const { return std::size_t(triangle_count); }
 };
 
 // xy: n points, x and y interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
@@ -39,22 +57,26 @@ struct Triangulation2d {
 Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt = {});
 Triangulation2d delaunay2d(const std::vector<Point2>& pts, const Delaunay2dOptions& opt = {});
 
-// The same triangulation with the points already on the GPU and the result left there (CUDA
-// builds): device_xy is device memory holding n points, x and y interleaved, on run's device.
-// The work runs on run.stream (see RunOptions), so the points must be ready in that stream's
-// order (work on the legacy default stream always is); the call returns once the result is
-// ready. The arrays are device memory freed when the last copy of their pointer goes; they can
-// be wrapped without copying, e.g. by CuPy. run.backend is ignored.
+// The same triangulation with the points already on the GPU and the result left there: device_xy
+// is device memory holding n points, x and y interleaved, on opt.device. The work runs on
+// opt.stream (see RunOptions), so the points must be ready in that stream's order (work on the
+// legacy default stream always is); the call returns once the result is ready, and waits for
+// nothing else on the device. The arrays are the library's device memory, freed when the last copy
+// of their pointer goes (they can be wrapped without copying, e.g. by CuPy), or the caller's
+// (opt.into). With opt.backend == Backend::Cpu the CPU executor runs it on host memory (the same
+// result); otherwise CUDA runs it, whatever GPUGEOM_BACKEND says.
 struct DeviceTriangulation2d {
   std::int64_t num_points = 0, num_triangles = 0, num_duplicates = 0;
   std::shared_ptr<std::int32_t> triangles;     // 3 * num_triangles, as Triangulation2d's
   std::shared_ptr<std::int32_t> neighbors;     // 3 * num_triangles
   std::shared_ptr<std::int32_t> duplicate_of;  // num_points
+  Backend backend = Backend::Cuda;             // where the arrays are: Cuda = device memory
   Stats stats;
 };
-// Throws Error(Unsupported) where the build or the machine has no CUDA device.
+// Throws Error(Unsupported) where no CUDA device can be used (and the CPU was not asked for), and
+// as delaunay2d otherwise.
 DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
-                                        const RunOptions& run = {});
+                                        const Delaunay2dOptions& opt = {});
 
 // The Voronoi diagram dual to a Delaunay triangulation, in SciPy's `Voronoi` conventions.
 struct Voronoi2d {

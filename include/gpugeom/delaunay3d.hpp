@@ -27,7 +27,20 @@ struct Delaunay3dProgress {
   std::int64_t batch = 0;     // insertion batches so far
 };
 
+// Arrays the caller provides for the results (OutBuffer, common.hpp; SciPy's `out=` pattern):
+// host memory for delaunay3d, device memory for delaunay3d_device (host memory where it runs on
+// the CPU executor). tetrahedra and neighbors must hold at least 4 times the tetrahedron count,
+// hull_facets at least 3 times the hull facet count (both depend on the result, and no bound
+// linear in n exists in 3D: give what you expect and be told what was needed),
+// duplicate_of and vertex_to_simplex at least n. They are checked once the counts are known and
+// before anything is written (Error(InvalidArgument) naming the array and both lengths). An
+// output written into a caller's array is empty (null) in the result.
+struct Triangulation3dBuffers {
+  OutBuffer<std::int32_t> tetrahedra, neighbors, duplicate_of, vertex_to_simplex, hull_facets;
+};
+
 struct Delaunay3dOptions : RunOptions {
+  Triangulation3dBuffers into;  // optional
   // Called on the calling thread after each insertion batch and as phase 2 and the output
   // begin (a few dozen calls). An exception it throws ends the run and reaches the caller
   // (a way to cancel), with nothing leaked.
@@ -65,7 +78,9 @@ struct Triangulation3d {
   // Phase 1's counters may differ a little from run to run on the GPU (which flips win a round
   // depends on slot numbers taken in parallel); the tetrahedralisation does not.
   Stats stats;
-  std::size_t num_tetrahedra() const { return tetrahedra.size() / 4; }
+  // Tetrahedra and hull facets written (also where they went into the caller's arrays).
+  std::int64_t tetrahedron_count = 0, hull_facet_count = 0;
+  std::size_t num_tetrahedra() const { return std::size_t(tetrahedron_count); }
 };
 
 // xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
@@ -75,22 +90,27 @@ struct Triangulation3d {
 Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt = {});
 Triangulation3d delaunay3d(const std::vector<Point3>& pts, const Delaunay3dOptions& opt = {});
 
-// The same tetrahedralisation with the points already on the GPU and the result left there
-// (CUDA builds): device_xyz is device memory holding n points, x, y and z interleaved, on
-// run's device. The work runs on run.stream (see RunOptions), so the points must be ready in
-// that stream's order; the call returns once the result is ready. Phase 2 still runs on host
-// threads (run.threads) over the few neighbourhoods it needs. The arrays are device memory
-// freed when the last copy of their pointer goes; they can be wrapped without copying, e.g. by
-// CuPy. run.backend is ignored. Throws Error(Unsupported) where the build or the machine has
-// no CUDA device, and as delaunay3d otherwise.
+// The same tetrahedralisation with the points already on the GPU and the result left there:
+// device_xyz is device memory holding n points, x, y and z interleaved, on opt.device. The work
+// runs on opt.stream (see RunOptions), so the points must be ready in that stream's order; the
+// call returns once the result is ready. Phase 2 still runs on host threads (opt.threads) over
+// the few neighbourhoods it needs. The arrays are the library's device memory, freed when the
+// last copy of their pointer goes (they can be wrapped without copying, e.g. by CuPy), or the
+// caller's (opt.into). With opt.backend == Backend::Cpu the CPU executor runs it on host memory
+// (the same result); otherwise CUDA runs it, whatever GPUGEOM_BACKEND says. Throws
+// Error(Unsupported) where no CUDA device can be used (and the CPU was not asked for), and as
+// delaunay3d otherwise.
 struct DeviceTriangulation3d {
-  std::int64_t num_points = 0, num_tetrahedra = 0, num_duplicates = 0;
-  std::shared_ptr<std::int32_t> tetrahedra;    // 4 * num_tetrahedra, as Triangulation3d's
-  std::shared_ptr<std::int32_t> neighbors;     // 4 * num_tetrahedra
-  std::shared_ptr<std::int32_t> duplicate_of;  // num_points
+  std::int64_t num_points = 0, num_tetrahedra = 0, num_duplicates = 0, num_hull_facets = 0;
+  std::shared_ptr<std::int32_t> tetrahedra;         // 4 * num_tetrahedra, as Triangulation3d's
+  std::shared_ptr<std::int32_t> neighbors;          // 4 * num_tetrahedra
+  std::shared_ptr<std::int32_t> duplicate_of;       // num_points
+  std::shared_ptr<std::int32_t> vertex_to_simplex;  // num_points
+  std::shared_ptr<std::int32_t> hull_facets;        // 3 * num_hull_facets
+  Backend backend = Backend::Cuda;  // where the arrays are: Cuda = device memory, Cpu = host
   Stats stats;
 };
 DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n,
-                                        const RunOptions& run = {});
+                                        const Delaunay3dOptions& opt = {});
 
 }  // namespace gpugeom

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/grid_view.hpp"
 #include "gpugeom/host_vector.hpp"
 #include "gpugeom/io.hpp"
 
@@ -26,15 +27,6 @@ enum class EdtMethod {
 // Which grid values are sites: NonZero (the Voronoi / feature-transform convention) or Zero
 // (SciPy's distance_transform_edt: distance of every element to the nearest zero).
 enum class SiteRule { NonZero, Zero };
-
-// A grid the caller holds, in C order and native byte order: `data` points to the product of
-// `shape` elements of `type`. Host memory for distance_transform, device memory for
-// distance_transform_device; never copied on the host.
-struct GridView {
-  const void* data = nullptr;
-  io::ScalarType type = io::ScalarType::U8;
-  std::vector<std::int64_t> shape;
-};
 
 // Output arrays the caller provides (EdtOptions::into): each, when given, must hold exactly the
 // output's element count (count() of the result; features: ndim times that) and be memory of the

@@ -6,6 +6,7 @@
 #include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/generate.hpp"
+#include "gpugeom/grid_view.hpp"
 #include "gpugeom/hull3d.hpp"
 #include "gpugeom/io.hpp"
 #include "gpugeom/predicates.hpp"

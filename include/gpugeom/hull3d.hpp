@@ -17,7 +17,24 @@
 
 namespace gpugeom {
 
-struct Hull3dOptions : RunOptions {};
+// Arrays the caller provides for the results (OutBuffer, common.hpp; SciPy's `out=` pattern):
+// host memory for convex_hull3d, device memory for convex_hull3d_device (host memory where it
+// runs on the CPU executor). Their lengths depend on the result: triangles and neighbors at least
+// 3 times the facet count, equations 4 times, vertices at least the vertex count;
+// convex_hull3d_max_facets(n) facets and n vertices always suffice. They are checked once the
+// counts are known and before anything is written (Error(InvalidArgument) naming the array and
+// both lengths). An output written into a caller's array is empty (null) in the result.
+struct Hull3dBuffers {
+  OutBuffer<std::int32_t> triangles, neighbors, vertices;
+  OutBuffer<double> equations;
+};
+
+struct Hull3dOptions : RunOptions {
+  Hull3dBuffers into;  // optional
+};
+
+// The most facets the hull of n points has (2n - 4, for n >= 4): sizes `into` ahead.
+std::int64_t convex_hull3d_max_facets(std::int64_t n);
 
 struct ConvexHull3d {
   // Facets: 3 input-point indices each, counter-clockwise seen from outside.
@@ -32,13 +49,15 @@ struct ConvexHull3d {
   // are computed in floating point; the hull itself is exact).
   HostVector<double> equations;
   // Stats: phases "upload" (CUDA), "sort" (validation, curve order, copies merged),
-  // "prepare", "construct", "flip", "extreme_test", "input_indices", "host_arrays",
+  // "prepare", "construct", "flip", "extreme_test", "input_indices",
   // "copy_back" (CUDA), "planes"; counters "duplicates", "insert_rounds", "flip_rounds",
   // "flips22", "flips31", "labelled_nonextreme", "exact_predicates", "first_pass_vertices",
   // "nonextreme_vertices_dropped", "passes" (2 when the extreme points needed a hull of their
   // own).
   Stats stats;
-  std::size_t num_facets() const { return triangles.size() / 3; }
+  // Facets and extreme points written (also where they went into the caller's arrays).
+  std::int64_t facet_count = 0, vertex_count = 0;
+  std::size_t num_facets() const { return std::size_t(facet_count); }
 };
 
 // xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
@@ -48,19 +67,24 @@ struct ConvexHull3d {
 ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOptions& opt = {});
 ConvexHull3d convex_hull3d(const std::vector<Point3>& pts, const Hull3dOptions& opt = {});
 
-// The same hull with the points already on the GPU and the result left there (CUDA builds):
-// device_xyz is device memory holding n points on run's device, ready in run.stream's order (see
-// RunOptions; work on the legacy default stream always is). The arrays are device memory freed when
-// the last copy of their pointer goes. Throws Error(Unsupported) where the build or the machine has
-// no CUDA device.
+// The same hull with the points already on the GPU and the result left there: device_xyz is
+// device memory holding n points on opt.device, ready in opt.stream's order (see RunOptions; work
+// on the legacy default stream always is); the call returns once the result is ready, and waits
+// for nothing else on the device. The arrays are the library's device memory, freed when the last
+// copy of their pointer goes, or the caller's (opt.into). With opt.backend == Backend::Cpu the CPU
+// executor runs it on host memory (the same result); otherwise CUDA runs it, whatever
+// GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA device can be used (and the CPU
+// was not asked for), and as convex_hull3d otherwise.
 struct DeviceHull3d {
   std::int64_t num_points = 0, num_facets = 0, num_vertices = 0;
   std::shared_ptr<std::int32_t> triangles;  // 3 * num_facets, as ConvexHull3d's
   std::shared_ptr<std::int32_t> neighbors;  // 3 * num_facets
   std::shared_ptr<std::int32_t> vertices;   // num_vertices
+  std::shared_ptr<double> equations;        // 4 * num_facets
+  Backend backend = Backend::Cuda;          // where the arrays are: Cuda = device memory
   Stats stats;
 };
 DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
-                                  const RunOptions& run = {});
+                                  const Hull3dOptions& opt = {});
 
 }  // namespace gpugeom

@@ -1,5 +1,10 @@
 // Weighted Lloyd iteration compiled for the CPU executor.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <random>
+#include <string>
+#include <unordered_set>
 #include <cuda/atomic>
 #include <cstdint>
 #include <thrust/functional.h>
@@ -9,11 +14,13 @@
 #include "cvd/cvd_backend.hpp"
 #include "edt/edt_device.hpp"
 #include "exec/atomics.hpp"
+#include "exec/grid_input.hpp"
 #include "exec/cpu_exec.hpp"
 
 namespace gpugeom::cvd::cpu_impl {
 using Exec = CpuExec;
 namespace edt_impl = gpugeom::edt::cpu_impl;
+#include "cvd/impl/density.inl"
 #include "cvd/impl/lloyd.inl"
 void lloyd(const Request& rq, Output& out, Stats& stats) {
   lloyd_impl(rq, out, stats);

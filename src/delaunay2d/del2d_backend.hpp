@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/host_vector.hpp"
 
 namespace gpugeom::del2d {
@@ -14,25 +15,29 @@ struct Output {
   HostVector<std::int32_t> neighbors;     // 3 per triangle, -1 on the hull
   HostVector<std::int32_t> duplicate_of;  // n entries
   std::int64_t num_duplicates = 0;
+  std::int64_t num_triangles = 0;
 };
 
-// The result left on the device; the pointers own cudaMalloc'd memory.
+// The result of the device entry: the library's arrays (executor memory; null where the caller's
+// arrays, opt.into, took the output).
 struct DeviceOutput {
   std::shared_ptr<std::int32_t> triangles, neighbors, duplicate_of;
   std::int64_t num_triangles = 0, num_duplicates = 0;
 };
 
-// xy: n points on the host. Validates the coordinates on the executor (throws Error).
+// triangulate: xy holds n points on the host; triangulate_device: n points in the executor's
+// memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
 namespace cpu_impl {
-void triangulate(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
+void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats);
-}
+void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                        DeviceOutput& out, Stats& stats);
+}  // namespace cpu_impl
 namespace cuda_impl {
-void triangulate(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
+void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats);
-// xy: n points in device memory.
-void triangulate_device(const double* xy, std::int64_t n, const RunOptions& run, DeviceOutput& out,
-                        Stats& stats);
+void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                        DeviceOutput& out, Stats& stats);
 }  // namespace cuda_impl
 
 }  // namespace gpugeom::del2d

@@ -17,6 +17,7 @@
 #include "delaunay2d/del2d_backend.hpp"
 #include "base/clock.hpp"
 #include "exec/atomics.hpp"
+#include "exec/deliver.hpp"
 #include "exec/cpu_exec.hpp"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
@@ -36,8 +37,12 @@ using Exec = CpuExec;
 #include "delaunay2d/impl/prepare.inl"
 #include "delaunay2d/impl/mesh.inl"
 #include "delaunay2d/impl/triangulate.inl"
-void triangulate(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
+void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats) {
-  triangulate_impl(xy, n, run, out, stats);
+  triangulate_impl(xy, n, opt, out, stats);
+}
+void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                        DeviceOutput& out, Stats& stats) {
+  triangulate_device_impl(xy, n, opt, out, stats);
 }
 }  // namespace gpugeom::del2d::cpu_impl

@@ -18,6 +18,7 @@
 #include "delaunay2d/del2d_backend.hpp"
 #include "base/clock.hpp"
 #include "exec/atomics.hpp"
+#include "exec/deliver.hpp"
 #include "exec/cuda_exec.cuh"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
@@ -37,25 +38,12 @@ using Exec = CudaExec;
 #include "delaunay2d/impl/prepare.inl"
 #include "delaunay2d/impl/mesh.inl"
 #include "delaunay2d/impl/triangulate.inl"
-void triangulate(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
+void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats) {
-  triangulate_impl(xy, n, run, out, stats);
+  triangulate_impl(xy, n, opt, out, stats);
 }
-void triangulate_device(const double* xy, std::int64_t n, const RunOptions& run, DeviceOutput& out,
-                        Stats& stats) {
-  Exec ex(run);
-  triangulate_core(ex, xy, n, true, run.profile, stats,
-                   [&](Prepared& P, Triangulator::Finished& f) {
-                     if (!P.dup.size()) {  // no duplicates: the map is all -1
-                       P.dup = ex.alloc<std::int32_t>(std::size_t(n));
-                       ex.fill(P.dup.data(), n, std::int32_t(-1));
-                     }
-                     ex.sync();  // the buffers were allocated stream-ordered; cudaFree later is not
-                     out.num_triangles = f.count;
-                     out.num_duplicates = P.duplicates;
-                     out.triangles = f.simplices.hand_over();
-                     out.neighbors = f.neighbors.hand_over();
-                     out.duplicate_of = P.dup.hand_over();
-                   });
+void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                        DeviceOutput& out, Stats& stats) {
+  triangulate_device_impl(xy, n, opt, out, stats);
 }
 }  // namespace gpugeom::del2d::cuda_impl

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "delaunay2d/del2d_backend.hpp"
+#include "exec/deliver.hpp"
 
 namespace gpugeom {
 
@@ -23,6 +24,10 @@ void check_count(std::int64_t n) {
 }
 }  // namespace
 
+std::int64_t delaunay2d_max_triangles(std::int64_t n) {
+  return n < 3 ? 0 : 2 * n - 5;
+}
+
 Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt) {
   check_count(n);
   Triangulation2d r;
@@ -41,27 +46,31 @@ Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOpt
   r.neighbors = std::move(out.neighbors);
   r.duplicate_of = std::move(out.duplicate_of);
   r.num_duplicates = out.num_duplicates;
+  r.triangle_count = out.num_triangles;
   return r;
 }
 
 DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
-                                        const RunOptions& run) {
+                                        const Delaunay2dOptions& opt) {
   check_count(n);
   DeviceTriangulation2d r;
-  r.stats.backend = resolve_backend(Backend::Cuda, run.device);  // throws where there is none
+  const Backend b = device_entry_backend(opt.backend, opt.device, "delaunay2d_device");
+  r.backend = r.stats.backend = b;
   r.num_points = n;
-#ifdef GPUGEOM_HAVE_CUDA
   del2d::DeviceOutput out;
-  del2d::cuda_impl::triangulate_device(device_xy, n, run, out, r.stats);
+#ifdef GPUGEOM_HAVE_CUDA
+  if (b == Backend::Cuda)
+    del2d::cuda_impl::triangulate_device(device_xy, n, opt, out, r.stats);
+  else
+    del2d::cpu_impl::triangulate_device(device_xy, n, opt, out, r.stats);
+#else
+  del2d::cpu_impl::triangulate_device(device_xy, n, opt, out, r.stats);
+#endif
   r.num_triangles = out.num_triangles;
   r.num_duplicates = out.num_duplicates;
   r.triangles = std::move(out.triangles);
   r.neighbors = std::move(out.neighbors);
   r.duplicate_of = std::move(out.duplicate_of);
-#else
-  (void)device_xy;
-  (void)run;
-#endif
   return r;
 }
 

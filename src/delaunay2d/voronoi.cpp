@@ -12,6 +12,12 @@ namespace gpugeom {
 namespace {
 
 void check_sizes(std::int64_t n, const Triangulation2d& tri) {
+  if (tri.triangles.size() != std::size_t(3 * tri.triangle_count) ||
+      tri.neighbors.size() != tri.triangles.size())
+    throw Error(ErrorCode::InvalidArgument,
+                "the triangulation's triangles or neighbours are not in its result (were they "
+                "written into the caller's arrays, Delaunay2dOptions::into?): the Voronoi "
+                "diagram needs them there");
   if (std::int64_t(tri.duplicate_of.size()) != n || tri.neighbors.size() != tri.triangles.size())
     throw Error(ErrorCode::InvalidArgument,
                 "the triangulation does not belong to these " + std::to_string(n) + " points");

@@ -20,25 +20,29 @@ struct Output {
   std::int64_t num_duplicates = 0;
   HostVector<std::int32_t> hull_facets;        // 3 per hull facet, outward, input indices
   HostVector<std::int32_t> vertex_to_simplex;  // n entries (a copy takes its original's)
+  std::int64_t num_tetrahedra = 0, num_hull_facets = 0;
 };
 
-// The result left on the device; the pointers own device memory.
+// The result of the device entry: the library's arrays (executor memory; null where the caller's
+// arrays, opt.into, took the output).
 struct DeviceOutput {
-  std::shared_ptr<std::int32_t> tetrahedra, neighbors, duplicate_of;
-  std::int64_t num_tetrahedra = 0, num_duplicates = 0;
+  std::shared_ptr<std::int32_t> tetrahedra, neighbors, duplicate_of, vertex_to_simplex, hull_facets;
+  std::int64_t num_tetrahedra = 0, num_duplicates = 0, num_hull_facets = 0;
 };
 
-// xyz: n points on the host. Validates the coordinates on the executor (throws Error).
+// triangulate: xyz holds n points on the host; triangulate_device: n points in the executor's
+// memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
 namespace cpu_impl {
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
                  Stats& stats);
-}
+void triangulate_device(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+                        DeviceOutput& out, Stats& stats);
+}  // namespace cpu_impl
 namespace cuda_impl {
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
                  Stats& stats);
-// xyz: n points in device memory.
-void triangulate_device(const double* xyz, std::int64_t n, const RunOptions& run, DeviceOutput& out,
-                        Stats& stats);
+void triangulate_device(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+                        DeviceOutput& out, Stats& stats);
 }  // namespace cuda_impl
 
 }  // namespace gpugeom::del3d

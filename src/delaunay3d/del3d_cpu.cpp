@@ -11,6 +11,7 @@
 #include "delaunay3d/del3d_backend.hpp"
 #include "delaunay3d/tet.hpp"
 #include "exec/atomics.hpp"
+#include "exec/deliver.hpp"
 #include "exec/cpu_exec.hpp"
 #include "exec/scratch_lease.hpp"
 #include "mesh/adjacency.hpp"
@@ -30,5 +31,9 @@ using Exec = CpuExec;
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
                  Stats& stats) {
   triangulate_impl(xyz, n, opt, out, stats);
+}
+void triangulate_device(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+                        DeviceOutput& out, Stats& stats) {
+  triangulate_device_impl(xyz, n, opt, out, stats);
 }
 }  // namespace gpugeom::del3d::cpu_impl

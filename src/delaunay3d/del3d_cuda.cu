@@ -11,6 +11,7 @@
 #include "delaunay3d/del3d_backend.hpp"
 #include "delaunay3d/tet.hpp"
 #include "exec/atomics.hpp"
+#include "exec/deliver.hpp"
 #include "exec/cuda_exec.cuh"
 #include "exec/scratch_lease.hpp"
 #include "mesh/adjacency.hpp"
@@ -31,22 +32,8 @@ void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt
                  Stats& stats) {
   triangulate_impl(xyz, n, opt, out, stats);
 }
-void triangulate_device(const double* xyz, std::int64_t n, const RunOptions& run, DeviceOutput& out,
-                        Stats& stats) {
-  Exec ex(run);
-  const ProgressFn none;
-  triangulate_core(ex, xyz, n, true, -1, run.threads, none, stats,
-                   [&](mesh::SortedPoints<Exec>& S, Triangulator::Finished& f) {
-                     if (!S.duplicates) {  // no duplicates: the map is all -1
-                       S.dup = ex.alloc<std::int32_t>(std::size_t(n));
-                       ex.fill(S.dup.data(), n, std::int32_t(-1));
-                     }
-                     ex.sync();  // (stream-ordered allocations; a later cudaFree is not)
-                     out.num_tetrahedra = f.count;
-                     out.num_duplicates = S.duplicates;
-                     out.tetrahedra = f.simplices.hand_over();
-                     out.neighbors = f.neighbors.hand_over();
-                     out.duplicate_of = S.dup.hand_over();
-                   });
+void triangulate_device(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+                        DeviceOutput& out, Stats& stats) {
+  triangulate_device_impl(xyz, n, opt, out, stats);
 }
 }  // namespace gpugeom::del3d::cuda_impl

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "delaunay3d/del3d_backend.hpp"
+#include "exec/deliver.hpp"
 
 namespace gpugeom {
 
@@ -45,27 +46,35 @@ Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOp
   r.num_duplicates = out.num_duplicates;
   r.hull_facets = std::move(out.hull_facets);
   r.vertex_to_simplex = std::move(out.vertex_to_simplex);
+  r.tetrahedron_count = out.num_tetrahedra;
+  r.hull_facet_count = out.num_hull_facets;
   return r;
 }
 
 DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n,
-                                        const RunOptions& run) {
+                                        const Delaunay3dOptions& opt) {
   check_count(n);
   DeviceTriangulation3d r;
-  r.stats.backend = resolve_backend(Backend::Cuda, run.device);  // throws where there is none
+  const Backend b = device_entry_backend(opt.backend, opt.device, "delaunay3d_device");
+  r.backend = r.stats.backend = b;
   r.num_points = n;
-#ifdef GPUGEOM_HAVE_CUDA
   del3d::DeviceOutput out;
-  del3d::cuda_impl::triangulate_device(device_xyz, n, run, out, r.stats);
+#ifdef GPUGEOM_HAVE_CUDA
+  if (b == Backend::Cuda)
+    del3d::cuda_impl::triangulate_device(device_xyz, n, opt, out, r.stats);
+  else
+    del3d::cpu_impl::triangulate_device(device_xyz, n, opt, out, r.stats);
+#else
+  del3d::cpu_impl::triangulate_device(device_xyz, n, opt, out, r.stats);
+#endif
   r.num_tetrahedra = out.num_tetrahedra;
   r.num_duplicates = out.num_duplicates;
+  r.num_hull_facets = out.num_hull_facets;
   r.tetrahedra = std::move(out.tetrahedra);
   r.neighbors = std::move(out.neighbors);
   r.duplicate_of = std::move(out.duplicate_of);
-#else
-  (void)device_xyz;
-  (void)run;
-#endif
+  r.vertex_to_simplex = std::move(out.vertex_to_simplex);
+  r.hull_facets = std::move(out.hull_facets);
   return r;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "edt/edt_backend.hpp"
+#include "exec/deliver.hpp"
 #include "base/hd.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/io.hpp"
@@ -236,16 +237,7 @@ EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions&
 }
 
 EdtResult distance_transform(const io::Grid& g, SiteRule rule, const EdtOptions& opt) {
-  if (std::int64_t(g.data.size()) != g.count() * std::int64_t(io::scalar_size(g.type)))
-    throw Error(ErrorCode::InvalidArgument,
-                "the grid holds " + std::to_string(g.data.size()) +
-                    " bytes; its shape and type need " +
-                    std::to_string(g.count() * std::int64_t(io::scalar_size(g.type))));
-  GridView v;
-  v.data = g.data.data();
-  v.type = g.type;
-  v.shape = g.shape;
-  return distance_transform(v, rule, opt);
+  return distance_transform(view_of(g), rule, opt);
 }
 
 std::int64_t DeviceEdtResult::count() const {
@@ -256,11 +248,7 @@ std::int64_t DeviceEdtResult::count() const {
 
 DeviceEdtResult distance_transform_device(const GridView& g, SiteRule rule, const EdtOptions& opt) {
   check_view(g);
-  Backend b = resolve_backend(opt.backend, opt.device);
-  if (b == Backend::Cpu && opt.backend != Backend::Cpu)
-    throw Error(ErrorCode::Unsupported,
-                "distance_transform_device: no CUDA device can be used here (ask for "
-                "Backend::Cpu to run it on host memory)");
+  const Backend b = device_entry_backend(opt.backend, opt.device, "distance_transform_device");
   edt::Request rq;
   rq.layout = edt::make_layout(g.shape, false);
   rq.metric = make_metric(opt.sampling, rq.layout.nd);

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "exec/deliver.hpp"
 #include "gpugeom/common.hpp"
 
 namespace gpugeom {
@@ -50,6 +51,16 @@ Backend resolve_backend(Backend requested, int device) {
     return Backend::Cuda;
   }
   return d.available ? Backend::Cuda : Backend::Cpu;
+}
+
+Backend device_entry_backend(Backend requested, int device, const char* entry) {
+  if (requested == Backend::Cpu) return Backend::Cpu;
+  const DeviceInfo d = query_device(device);
+  if (!d.available)
+    throw Error(ErrorCode::Unsupported, std::string(entry) + ": no CUDA device can be used here (" +
+                                            d.reason +
+                                            "); ask for Backend::Cpu to run it on host memory");
+  return Backend::Cuda;
 }
 
 const char* error_code_name(ErrorCode c) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "exec/deliver.hpp"
 #include "hull3d/hull3d_backend.hpp"
 
 namespace gpugeom {
@@ -24,13 +25,15 @@ void check_count(std::int64_t n) {
                     "): a convex hull in 3D needs 4 points not on one plane");
 }
 
+}  // namespace
+
+namespace hull3d {
 // The executor gives each facet's unit outward normal and offset from (b - a) x (c - a) in
 // double (PlaneOf in impl/hull.inl). Where the differences lose a point entirely (coordinates of
 // very different magnitudes, e.g. a facet with one huge and two tiny vertices, whose rounded
 // normal is zero) it leaves NaN, and the normal is summed again here as a x b + b x c + c x a
 // in long double.
-void redo_planes(const double* p, const HostVector<std::int32_t>& t, HostVector<double>& eq) {
-  const std::int64_t nf = std::int64_t(t.size() / 3);
+void redo_planes(const double* p, const std::int32_t* t, std::int64_t nf, double* eq) {
   for (std::int64_t f = 0; f < nf; ++f) {
     if (!std::isnan(eq[4 * f])) continue;
     const double *a = p + 3 * std::int64_t(t[3 * f]), *b = p + 3 * std::int64_t(t[3 * f + 1]),
@@ -49,7 +52,11 @@ void redo_planes(const double* p, const HostVector<std::int32_t>& t, HostVector<
     eq[4 * f + 3] = -(eq[4 * f] * a[0] + eq[4 * f + 1] * a[1] + eq[4 * f + 2] * a[2]);
   }
 }
-}  // namespace
+}  // namespace hull3d
+
+std::int64_t convex_hull3d_max_facets(std::int64_t n) {
+  return n < 4 ? 0 : 2 * n - 4;
+}
 
 ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOptions& opt) {
   check_count(n);
@@ -69,7 +76,8 @@ ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOption
   r.neighbors = std::move(out.neighbors);
   r.vertices = std::move(out.vertices);
   r.equations = std::move(out.equations);
-  if (out.planes_redo > 0) redo_planes(xyz, r.triangles, r.equations);
+  r.facet_count = out.num_facets;
+  r.vertex_count = out.num_vertices;
   return r;
 }
 
@@ -77,23 +85,28 @@ ConvexHull3d convex_hull3d(const std::vector<Point3>& pts, const Hull3dOptions& 
   return convex_hull3d(pts.empty() ? nullptr : &pts.data()->x, std::int64_t(pts.size()), opt);
 }
 
-DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n, const RunOptions& run) {
+DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
+                                  const Hull3dOptions& opt) {
   check_count(n);
   DeviceHull3d r;
-  r.stats.backend = resolve_backend(Backend::Cuda, run.device);  // throws where there is none
+  const Backend b = device_entry_backend(opt.backend, opt.device, "convex_hull3d_device");
+  r.backend = r.stats.backend = b;
   r.num_points = n;
-#ifdef GPUGEOM_HAVE_CUDA
   hull3d::DeviceOutput out;
-  hull3d::cuda_impl::compute_device(device_xyz, n, run, out, r.stats);
+#ifdef GPUGEOM_HAVE_CUDA
+  if (b == Backend::Cuda)
+    hull3d::cuda_impl::compute_device(device_xyz, n, opt, out, r.stats);
+  else
+    hull3d::cpu_impl::compute_device(device_xyz, n, opt, out, r.stats);
+#else
+  hull3d::cpu_impl::compute_device(device_xyz, n, opt, out, r.stats);
+#endif
   r.num_facets = out.num_facets;
   r.num_vertices = out.num_vertices;
   r.triangles = std::move(out.triangles);
   r.neighbors = std::move(out.neighbors);
   r.vertices = std::move(out.vertices);
-#else
-  (void)device_xyz;
-  (void)run;
-#endif
+  r.equations = std::move(out.equations);
   return r;
 }
 

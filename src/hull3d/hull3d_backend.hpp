@@ -6,6 +6,7 @@
 
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
+#include "gpugeom/hull3d.hpp"
 
 namespace gpugeom::hull3d {
 
@@ -13,26 +14,34 @@ struct Output {
   HostVector<std::int32_t> triangles;  // 3 per facet, input indices, counter-clockwise outside
   HostVector<std::int32_t> neighbors;  // 3 per facet
   HostVector<std::int32_t> vertices;   // sorted input indices of the extreme points
-  // 4 per facet (unit outward normal, offset); NaN for a facet whose rounded normal vanished,
-  // to be redone in long double on the host (planes_redo of them).
-  HostVector<double> equations;
-  std::int64_t planes_redo = 0;
-};
-
-// The result left on the device; the pointers own cudaMalloc'd memory.
-struct DeviceOutput {
-  std::shared_ptr<std::int32_t> triangles, neighbors, vertices;
+  HostVector<double> equations;        // 4 per facet (unit outward normal, offset)
   std::int64_t num_facets = 0, num_vertices = 0;
 };
 
-// xyz: n points on the host; validated on the executor (throws Error).
+// The result of the device entry: the library's arrays (executor memory; null where the caller's
+// arrays, opt.into, took the output).
+struct DeviceOutput {
+  std::shared_ptr<std::int32_t> triangles, neighbors, vertices;
+  std::shared_ptr<double> equations;
+  std::int64_t num_facets = 0, num_vertices = 0;
+};
+
+// The planes the executor could not give in double (NaN), redone in long double on the host: p
+// holds the points, t the nf facets, eq their planes (host memory). Defined in hull3d.cpp.
+void redo_planes(const double* p, const std::int32_t* t, std::int64_t nf, double* eq);
+
+// compute: xyz holds n points on the host; compute_device: n points in the executor's memory.
+// Both validate the points on the executor (throw Error) and honour opt.into.
 namespace cpu_impl {
-void compute(const double* xyz, std::int64_t n, const RunOptions& run, Output& out, Stats& stats);
-}
+void compute(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
+             Stats& stats);
+void compute_device(const double* xyz, std::int64_t n, const Hull3dOptions& opt, DeviceOutput& out,
+                    Stats& stats);
+}  // namespace cpu_impl
 namespace cuda_impl {
-void compute(const double* xyz, std::int64_t n, const RunOptions& run, Output& out, Stats& stats);
-// xyz: n points in device memory.
-void compute_device(const double* xyz, std::int64_t n, const RunOptions& run, DeviceOutput& out,
+void compute(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
+             Stats& stats);
+void compute_device(const double* xyz, std::int64_t n, const Hull3dOptions& opt, DeviceOutput& out,
                     Stats& stats);
 }  // namespace cuda_impl
 

@@ -11,6 +11,7 @@
 
 #include "base/clock.hpp"
 #include "exec/atomics.hpp"
+#include "exec/deliver.hpp"
 #include "exec/cpu_exec.hpp"
 #include "hull3d/hull3d_backend.hpp"
 #include "exec/scratch_slots.hpp"
@@ -32,7 +33,12 @@ using Exec = CpuExec;
 #include "hull3d/impl/construct.inl"
 #include "hull3d/impl/flipflop.inl"
 #include "hull3d/impl/hull.inl"
-void compute(const double* xyz, std::int64_t n, const RunOptions& run, Output& out, Stats& stats) {
-  compute_impl(xyz, n, run, out, stats);
+void compute(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
+             Stats& stats) {
+  compute_impl(xyz, n, opt, out, stats);
+}
+void compute_device(const double* xyz, std::int64_t n, const Hull3dOptions& opt, DeviceOutput& out,
+                    Stats& stats) {
+  compute_device_impl(xyz, n, opt, out, stats);
 }
 }  // namespace gpugeom::hull3d::cpu_impl

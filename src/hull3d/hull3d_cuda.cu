@@ -11,6 +11,7 @@
 
 #include "base/clock.hpp"
 #include "exec/atomics.hpp"
+#include "exec/deliver.hpp"
 #include "exec/cuda_exec.cuh"
 #include "hull3d/hull3d_backend.hpp"
 #include "exec/scratch_slots.hpp"
@@ -32,18 +33,12 @@ using Exec = CudaExec;
 #include "hull3d/impl/construct.inl"
 #include "hull3d/impl/flipflop.inl"
 #include "hull3d/impl/hull.inl"
-void compute(const double* xyz, std::int64_t n, const RunOptions& run, Output& out, Stats& stats) {
-  compute_impl(xyz, n, run, out, stats);
+void compute(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
+             Stats& stats) {
+  compute_impl(xyz, n, opt, out, stats);
 }
-void compute_device(const double* xyz, std::int64_t n, const RunOptions& run, DeviceOutput& out,
+void compute_device(const double* xyz, std::int64_t n, const Hull3dOptions& opt, DeviceOutput& out,
                     Stats& stats) {
-  Exec ex(run);
-  Result R = hull_core(ex, xyz, n, stats);
-  ex.sync();  // the buffers were allocated stream-ordered; cudaFree later is not
-  out.num_facets = R.facets.count;
-  out.num_vertices = R.num_vertices;
-  out.triangles = R.facets.simplices.hand_over();
-  out.neighbors = R.facets.neighbors.hand_over();
-  out.vertices = R.vertices.hand_over();
+  compute_device_impl(xyz, n, opt, out, stats);
 }
 }  // namespace gpugeom::hull3d::cuda_impl

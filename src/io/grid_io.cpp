@@ -4,6 +4,7 @@
 #include <csetjmp>
 #include <cstring>
 
+#include "gpugeom/grid_view.hpp"
 #include "gpugeom/io.hpp"
 #include "io/io_util.hpp"
 
@@ -424,3 +425,20 @@ void write_grid(const std::string& path, const Grid& g) {
 }
 
 }  // namespace gpugeom::io
+
+namespace gpugeom {
+
+GridView view_of(const io::Grid& g) {
+  const std::int64_t need = g.count() * std::int64_t(io::scalar_size(g.type));
+  if (std::int64_t(g.data.size()) != need)
+    throw Error(ErrorCode::InvalidArgument, "the grid holds " + std::to_string(g.data.size()) +
+                                                " bytes; its shape and type need " +
+                                                std::to_string(need));
+  GridView v;
+  v.data = g.data.data();
+  v.type = g.type;
+  v.shape = g.shape;
+  return v;
+}
+
+}  // namespace gpugeom

@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <string>
+#include <utility>
 #include <numeric>
 
 #include "cvd_cases.hpp"
@@ -266,4 +269,62 @@ TEST(Cvd, BadInputIsATypedError) {
   bad = o;
   bad.num_sites = 101;
   EXPECT_EQ(code([&] { centroidal_voronoi(g, bad); }), ErrorCode::InvalidInput);
+}
+
+// A density of any element type, read where it is, gives the same diagram as the same values in
+// another type; the device entry on the CPU executor (its "device" memory is host memory) gives
+// the host entry's result; a bad density is refused the same way through both.
+TEST(Cvd, TypedDensitiesAndDeviceEntry) {
+  const io::Grid g16 = gg_cvd::random_density({60, 45}, 0.3, 9);  // uint16, values kept exactly
+  const std::int64_t n = g16.count();
+  std::vector<float> f(static_cast<std::size_t>(n));
+  std::vector<double> d(static_cast<std::size_t>(n));
+  for (std::int64_t i = 0; i < n; ++i) f[i] = float(g16.value(i)), d[i] = g16.value(i);
+  CvdOptions o;
+  o.backend = Backend::Cpu;
+  o.num_sites = 70;
+  o.max_iterations = 15;
+  o.seed = 5;
+  const auto ref = centroidal_voronoi(g16, o);
+  ASSERT_EQ(ref.size(), 70);
+  for (auto [data, type] : {std::pair<const void*, io::ScalarType>{f.data(), io::ScalarType::F32},
+                            {d.data(), io::ScalarType::F64}}) {
+    GridView v;
+    v.data = data;
+    v.type = type;
+    v.shape = g16.shape;
+    const auto r = centroidal_voronoi(v, o);
+    EXPECT_EQ(r.sites, ref.sites);
+    EXPECT_EQ(r.mass, ref.mass);
+    EXPECT_EQ(r.energy, ref.energy);
+    const auto dv = centroidal_voronoi_device(v, o);
+    EXPECT_EQ(dv.backend, Backend::Cpu);
+    ASSERT_EQ(dv.num_sites, ref.size());
+    EXPECT_EQ(dv.dim, 2);
+    EXPECT_EQ(std::vector<double>(dv.sites.get(), dv.sites.get() + 2 * dv.num_sites),
+              std::vector<double>(ref.sites.begin(), ref.sites.end()));
+    EXPECT_EQ(std::vector<double>(dv.mass.get(), dv.mass.get() + dv.num_sites),
+              std::vector<double>(ref.mass.begin(), ref.mass.end()));
+    EXPECT_EQ(dv.energy, ref.energy);
+    EXPECT_EQ(dv.iterations, ref.iterations);
+    EXPECT_EQ(dv.converged, ref.converged);
+  }
+  // NaN and negative values: refused, counted, on both entries.
+  f[7] = std::numeric_limits<float>::quiet_NaN();
+  f[9] = -1;
+  GridView v;
+  v.data = f.data();
+  v.type = io::ScalarType::F32;
+  v.shape = g16.shape;
+  for (bool device : {false, true}) {
+    try {
+      device ? (void)centroidal_voronoi_device(v, o) : (void)centroidal_voronoi(v, o);
+      ADD_FAILURE() << "a density with NaN was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::InvalidInput);
+      EXPECT_NE(std::string(e.what()).find("2 values"), std::string::npos) << e.what();
+    }
+  }
+  v.data = nullptr;
+  EXPECT_THROW(centroidal_voronoi(v, o), Error);
 }

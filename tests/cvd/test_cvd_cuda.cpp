@@ -1,5 +1,6 @@
 // The CUDA executor's Lloyd iterations equal the CPU executor's exactly: sites, masses and
 // energies, on 2D and 3D densities large enough for many bands and many chunks per column.
+#include <cuda_runtime.h>
 #include <gtest/gtest.h>
 
 #include "cvd_cases.hpp"
@@ -59,4 +60,44 @@ TEST(CudaCvd, StepEqualsBruteForce) {
     ASSERT_EQ(r.energy[0], ref.energy);
     sites = ref.sites;
   }
+}
+
+// The density in device memory (float32, on a caller's non-blocking stream), the sites left
+// there: the same diagram as the host entry's.
+TEST(CudaCvd, DeviceEntrySameAsHost) {
+  const io::Grid g16 = gg_cvd::random_density({300, 420}, 0.2, 4);
+  const std::int64_t n = g16.count();
+  std::vector<float> f(static_cast<std::size_t>(n));
+  for (std::int64_t i = 0; i < n; ++i) f[i] = float(g16.value(i));
+  CvdOptions o;
+  o.num_sites = 3000;
+  o.max_iterations = 10;
+  o.move_tolerance = 0;
+  o.backend = Backend::Cuda;
+  const auto ref = centroidal_voronoi(g16, o);
+  cudaStream_t s = nullptr;
+  ASSERT_EQ(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking), cudaSuccess);
+  float* df = nullptr;
+  ASSERT_EQ(cudaMallocAsync(reinterpret_cast<void**>(&df), n * sizeof(float), s), cudaSuccess);
+  ASSERT_EQ(cudaMemcpyAsync(df, f.data(), n * sizeof(float), cudaMemcpyHostToDevice, s),
+            cudaSuccess);
+  GridView v;
+  v.data = df;
+  v.type = io::ScalarType::F32;
+  v.shape = g16.shape;
+  o.stream = s;  // the copy above is ordered before the call's work on s
+  const auto r = centroidal_voronoi_device(v, o);
+  EXPECT_EQ(r.backend, Backend::Cuda);
+  ASSERT_EQ(r.num_sites, ref.size());
+  std::vector<double> sites(std::size_t(2 * r.num_sites)), mass(std::size_t(r.num_sites));
+  ASSERT_EQ(cudaMemcpy(sites.data(), r.sites.get(), sites.size() * 8, cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(mass.data(), r.mass.get(), mass.size() * 8, cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  EXPECT_EQ(sites, std::vector<double>(ref.sites.begin(), ref.sites.end()));
+  EXPECT_EQ(mass, std::vector<double>(ref.mass.begin(), ref.mass.end()));
+  EXPECT_EQ(r.energy, ref.energy);
+  cudaFreeAsync(df, s);
+  cudaStreamSynchronize(s);
+  cudaStreamDestroy(s);
 }

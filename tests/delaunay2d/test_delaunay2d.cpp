@@ -2,6 +2,7 @@
 // errors, and the Voronoi diagram.
 #include <array>
 
+#include "../common/caller_arrays.hpp"
 #include "../common/on_host_threads.hpp"
 #include "del2d_cases.hpp"
 
@@ -229,3 +230,68 @@ TEST(Delaunay2d, SameAsCgal) {
     }
 }
 #endif
+
+// The device entry on the CPU executor (its "device" memory is host memory) gives the host
+// entry's result; the caller's arrays take the outputs on both entries; arrays too short for the
+// result are refused before anything is written.
+TEST(Delaunay2d, DeviceEntryAndCallerArrays) {
+  using gg_test::CallerArray;
+  using gg_test::host_prefix;
+  for (const char* d : {"uniform", "grid"}) {
+    SCOPED_TRACE(d);
+    auto p = generate2d(d, 3000, 5);
+    for (int k = 0; k < 40; ++k) p.push_back(p[std::size_t(17 * k)]);  // duplicates
+    const std::int64_t n = std::int64_t(p.size());
+    const double* xy = &p.data()->x;
+    const auto ref = delaunay2d(p, cpu());
+    const std::int64_t nt = ref.triangle_count;
+    ASSERT_EQ(ref.triangles.size(), std::size_t(3 * nt));
+    ASSERT_LE(nt, delaunay2d_max_triangles(n));
+
+    const auto dv = delaunay2d_device(xy, n, cpu());
+    EXPECT_EQ(dv.backend, Backend::Cpu);
+    ASSERT_EQ(dv.num_triangles, nt);
+    EXPECT_EQ(dv.num_duplicates, ref.num_duplicates);
+    EXPECT_EQ(host_prefix(dv.triangles, 3 * nt), ref.triangles);
+    EXPECT_EQ(host_prefix(dv.neighbors, 3 * nt), ref.neighbors);
+    EXPECT_EQ(host_prefix(dv.duplicate_of, n), ref.duplicate_of);
+
+    const std::int64_t cap = 3 * delaunay2d_max_triangles(n);
+    for (bool device : {false, true}) {
+      SCOPED_TRACE(device ? "device entry" : "host entry");
+      CallerArray<std::int32_t> t(cap, 7), nb(cap, 7), dup(n, 7);
+      auto o = cpu();
+      o.into = {t.buf(), nb.buf(), dup.buf()};
+      std::int64_t count = 0;
+      if (device) {
+        const auto r = delaunay2d_device(xy, n, o);
+        EXPECT_FALSE(r.triangles || r.neighbors || r.duplicate_of);
+        count = r.num_triangles;
+      } else {
+        const auto r = delaunay2d(xy, n, o);
+        EXPECT_TRUE(r.triangles.empty() && r.neighbors.empty() && r.duplicate_of.empty());
+        count = r.triangle_count;
+      }
+      ASSERT_EQ(count, nt);
+      EXPECT_EQ(host_prefix(t.v.data(), 3 * nt), ref.triangles);
+      EXPECT_EQ(host_prefix(nb.v.data(), 3 * nt), ref.neighbors);
+      EXPECT_EQ(dup.v, ref.duplicate_of);
+      // One array too short: refused once the count is known, and nothing written anywhere.
+      CallerArray<std::int32_t> t2(3 * nt - 1, 7), nb2(cap, 7);
+      o.into = {t2.buf(), nb2.buf(), {}};
+      gg_test::expect_refused(
+          [&] { device ? (void)delaunay2d_device(xy, n, o) : (void)delaunay2d(xy, n, o); },
+          "into.triangles holds " + std::to_string(3 * nt - 1) +
+              " elements; this result needs "
+              "at least " +
+              std::to_string(3 * nt));
+      EXPECT_TRUE(t2.untouched(7) && nb2.untouched(7));
+    }
+    // The Voronoi diagram needs the arrays in the result, and says so.
+    auto o = cpu();
+    CallerArray<std::int32_t> t(cap, 0);
+    o.into.triangles = t.buf();
+    const auto r = delaunay2d(xy, n, o);
+    gg_test::expect_refused([&] { (void)voronoi2d(xy, n, r); }, "into");
+  }
+}

@@ -144,7 +144,7 @@ TEST(CudaDelaunay2d, DeviceEntryOnCallersStream) {
   const std::size_t bytes = p.size() * sizeof(Point2);
   ASSERT_EQ(cudaMallocAsync(reinterpret_cast<void**>(&dp), bytes, s), cudaSuccess);
   ASSERT_EQ(cudaMemcpyAsync(dp, p.data(), bytes, cudaMemcpyHostToDevice, s), cudaSuccess);
-  RunOptions run;
+  Delaunay2dOptions run;
   run.stream = s;  // the copy above is ordered before the call's work on s
   const auto r = delaunay2d_device(dp, std::int64_t(p.size()), run);
   Delaunay2dOptions o;
@@ -154,6 +154,25 @@ TEST(CudaDelaunay2d, DeviceEntryOnCallersStream) {
   ASSERT_EQ(cudaMemcpy(tris.data(), r.triangles.get(), tris.size() * 4, cudaMemcpyDeviceToHost),
             cudaSuccess);
   EXPECT_EQ(tris, h.triangles);
+  // Into the caller's device arrays, sized by the bound, on the same stream.
+  const std::int64_t n = std::int64_t(p.size()), cap = 3 * delaunay2d_max_triangles(n);
+  std::int32_t *t = nullptr, *d = nullptr;
+  ASSERT_EQ(cudaMallocAsync(reinterpret_cast<void**>(&t), cap * 4, s), cudaSuccess);
+  ASSERT_EQ(cudaMallocAsync(reinterpret_cast<void**>(&d), n * 4, s), cudaSuccess);
+  run.into.triangles = {t, cap};
+  run.into.duplicate_of = {d, n};
+  const auto r2 = delaunay2d_device(dp, n, run);
+  EXPECT_FALSE(r2.triangles || r2.duplicate_of);
+  ASSERT_TRUE(r2.neighbors);
+  ASSERT_EQ(r2.num_triangles, r.num_triangles);
+  std::vector<std::int32_t> t2(tris.size()), d2(p.size());
+  ASSERT_EQ(cudaMemcpy(t2.data(), t, t2.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(d2.data(), d, d2.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
+  EXPECT_EQ(t2, h.triangles);
+  EXPECT_EQ(d2, h.duplicate_of);
+  cudaFreeAsync(t, s);
+  cudaFreeAsync(d, s);
   cudaFreeAsync(dp, s);
+  cudaStreamSynchronize(s);
   cudaStreamDestroy(s);
 }

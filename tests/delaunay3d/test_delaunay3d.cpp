@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "../common/caller_arrays.hpp"
 #include "del3d_cases.hpp"
 
 #ifdef GG_HAVE_CGAL
@@ -180,3 +181,68 @@ TEST(Delaunay3d, SameAsCgal) {
   }
 }
 #endif
+
+// The device entry on the CPU executor (its "device" memory is host memory) gives the host
+// entry's tetrahedralisation with every array; the caller's arrays take the outputs on both
+// entries; arrays too short for the result are refused before anything is written.
+TEST(Delaunay3d, DeviceEntryAndCallerArrays) {
+  using gg_test::CallerArray;
+  using gg_test::host_prefix;
+  auto p = gpugeom::generate3d("ball", 3000, 4);
+  for (int k = 0; k < 25; ++k) p.push_back(p[std::size_t(41 * k)]);  // duplicates
+  const std::int64_t n = std::int64_t(p.size());
+  const double* xyz = &p.data()->x;
+  const auto ref = delaunay3d(p, cpu());
+  const std::int64_t nt = ref.tetrahedron_count, nh = ref.hull_facet_count;
+  ASSERT_EQ(ref.tetrahedra.size(), std::size_t(4 * nt));
+  ASSERT_EQ(ref.hull_facets.size(), std::size_t(3 * nh));
+  // Each result is checked whole (its tetrahedra may come in another order than ref's).
+  auto check = [&](const std::vector<std::int32_t>& tets, const std::vector<std::int32_t>& nbrs,
+                   const std::vector<std::int32_t>& dup, const std::vector<std::int32_t>& v2s,
+                   const std::vector<std::int32_t>& hull) {
+    EXPECT_EQ(gg_del3d::tet_set(tets), gg_del3d::tet_set(ref.tetrahedra));
+    EXPECT_EQ(dup, ref.duplicate_of);
+    Triangulation3d t;
+    t.tetrahedra.assign(tets.begin(), tets.end());
+    t.neighbors.assign(nbrs.begin(), nbrs.end());
+    t.duplicate_of.assign(dup.begin(), dup.end());
+    t.vertex_to_simplex.assign(v2s.begin(), v2s.end());
+    t.hull_facets.assign(hull.begin(), hull.end());
+    t.num_duplicates = ref.num_duplicates;
+    t.tetrahedron_count = nt;
+    t.hull_facet_count = nh;
+    expect_valid(p, t);
+  };
+  const auto dv = delaunay3d_device(xyz, n, cpu());
+  EXPECT_EQ(dv.backend, Backend::Cpu);
+  ASSERT_EQ(dv.num_tetrahedra, nt);
+  ASSERT_EQ(dv.num_hull_facets, nh);
+  check(host_prefix(dv.tetrahedra, 4 * nt), host_prefix(dv.neighbors, 4 * nt),
+        host_prefix(dv.duplicate_of, n), host_prefix(dv.vertex_to_simplex, n),
+        host_prefix(dv.hull_facets, 3 * nh));
+  for (bool device : {false, true}) {
+    SCOPED_TRACE(device ? "device entry" : "host entry");
+    CallerArray<std::int32_t> t(4 * nt, 7), nb(4 * nt, 7), dup(n, 7), vs(n, 7), hf(3 * nh + 5, 7);
+    auto o = cpu();
+    o.into = {t.buf(), nb.buf(), dup.buf(), vs.buf(), hf.buf()};
+    std::int64_t c = 0;
+    if (device) {
+      const auto r = delaunay3d_device(xyz, n, o);
+      EXPECT_FALSE(r.tetrahedra || r.neighbors || r.duplicate_of || r.vertex_to_simplex ||
+                   r.hull_facets);
+      c = r.num_tetrahedra;
+    } else {
+      const auto r = delaunay3d(xyz, n, o);
+      EXPECT_TRUE(r.tetrahedra.empty() && r.hull_facets.empty() && r.vertex_to_simplex.empty());
+      c = r.tetrahedron_count;
+    }
+    ASSERT_EQ(c, nt);
+    check(t.v, nb.v, dup.v, vs.v, host_prefix(hf.v.data(), 3 * nh));
+    CallerArray<std::int32_t> t2(4 * nt, 7), hf2(3 * nh - 3, 7);
+    o.into = {t2.buf(), {}, {}, {}, hf2.buf()};
+    gg_test::expect_refused(
+        [&] { device ? (void)delaunay3d_device(xyz, n, o) : (void)delaunay3d(xyz, n, o); },
+        "into.hull_facets holds " + std::to_string(3 * nh - 3));
+    EXPECT_TRUE(t2.untouched(7) && hf2.untouched(7));
+  }
+}

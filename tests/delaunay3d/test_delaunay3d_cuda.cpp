@@ -5,6 +5,8 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <array>
+#include <set>
 #include <cstdlib>
 #include <string>
 
@@ -88,6 +90,31 @@ TEST(CudaDelaunay3d, DeviceResident) {  // points on the GPU in, result left the
             cudaSuccess);
   EXPECT_EQ(gg_del3d::tet_set(tets), gg_del3d::tet_set(h.tetrahedra));
   EXPECT_EQ(dup, h.duplicate_of);
+  // The vertex map and the hull facets: every vertex's tetrahedron has it; the same hull.
+  ASSERT_EQ(r.num_hull_facets, h.hull_facet_count);
+  std::vector<std::int32_t> v2s(p.size()), hull(std::size_t(3 * r.num_hull_facets));
+  ASSERT_EQ(
+      cudaMemcpy(v2s.data(), r.vertex_to_simplex.get(), v2s.size() * 4, cudaMemcpyDeviceToHost),
+      cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(hull.data(), r.hull_facets.get(), hull.size() * 4, cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::int32_t c = v2s[i], v = dup[i] >= 0 ? dup[i] : std::int32_t(i);
+    ASSERT_GE(c, 0);
+    ASSERT_TRUE(tets[4 * c] == v || tets[4 * c + 1] == v || tets[4 * c + 2] == v ||
+                tets[4 * c + 3] == v)
+        << "point " << i;
+  }
+  auto facet_set = [](const auto& f) {
+    std::set<std::array<std::int32_t, 3>> s;
+    for (std::size_t i = 0; i + 2 < f.size(); i += 3) {
+      std::array<std::int32_t, 3> a{f[i], f[i + 1], f[i + 2]};
+      std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());  // keeps orientation
+      s.insert(a);
+    }
+    return s;
+  };
+  EXPECT_EQ(facet_set(hull), facet_set(h.hull_facets));
   for (std::int64_t c = 0; c < nt; ++c)  // neighbours point back (slot order may differ)
     for (int k = 0; k < 4; ++k) {
       const std::int32_t q = nbrs[std::size_t(4 * c + k)];

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "../common/caller_arrays.hpp"
 #include "../common/on_host_threads.hpp"
 #include "hull3d_cases.hpp"
 
@@ -179,3 +180,63 @@ TEST(Hull3d, EqualsCgal) {
     }
 }
 #endif
+
+// The device entry on the CPU executor (its "device" memory is host memory) gives the host
+// entry's result, planes included; the caller's arrays take the outputs on both entries; arrays
+// too short for the result are refused before anything is written.
+TEST(Hull3d, DeviceEntryAndCallerArrays) {
+  using gg_test::CallerArray;
+  using gg_test::host_prefix;
+  for (const char* d : {"ball", "sphere", "grid"}) {
+    SCOPED_TRACE(d);
+    auto p = generate3d(d, 4000, 6);
+    for (int k = 0; k < 30; ++k) p.push_back(p[std::size_t(31 * k)]);  // copies
+    const std::int64_t n = std::int64_t(p.size());
+    const double* xyz = &p.data()->x;
+    const auto ref = convex_hull3d(p, cpu());
+    const std::int64_t nf = ref.facet_count, nv = ref.vertex_count;
+    ASSERT_EQ(ref.triangles.size(), std::size_t(3 * nf));
+    ASSERT_EQ(ref.vertices.size(), std::size_t(nv));
+    ASSERT_LE(nf, convex_hull3d_max_facets(n));
+
+    const auto dv = convex_hull3d_device(xyz, n, cpu());
+    EXPECT_EQ(dv.backend, Backend::Cpu);
+    ASSERT_EQ(dv.num_facets, nf);
+    ASSERT_EQ(dv.num_vertices, nv);
+    EXPECT_EQ(host_prefix(dv.triangles, 3 * nf), ref.triangles);
+    EXPECT_EQ(host_prefix(dv.neighbors, 3 * nf), ref.neighbors);
+    EXPECT_EQ(host_prefix(dv.vertices, nv), ref.vertices);
+    EXPECT_EQ(host_prefix(dv.equations, 4 * nf), ref.equations);
+
+    const std::int64_t cap = convex_hull3d_max_facets(n);
+    for (bool device : {false, true}) {
+      SCOPED_TRACE(device ? "device entry" : "host entry");
+      CallerArray<std::int32_t> t(3 * cap, 7), nb(3 * cap, 7), vx(n, 7);
+      CallerArray<double> eq(4 * cap, 7);
+      auto o = cpu();
+      o.into = {t.buf(), nb.buf(), vx.buf(), eq.buf()};
+      std::int64_t f = 0, v = 0;
+      if (device) {
+        const auto r = convex_hull3d_device(xyz, n, o);
+        EXPECT_FALSE(r.triangles || r.neighbors || r.vertices || r.equations);
+        f = r.num_facets, v = r.num_vertices;
+      } else {
+        const auto r = convex_hull3d(xyz, n, o);
+        EXPECT_TRUE(r.triangles.empty() && r.vertices.empty() && r.equations.empty());
+        f = r.facet_count, v = r.vertex_count;
+      }
+      ASSERT_EQ(f, nf);
+      ASSERT_EQ(v, nv);
+      EXPECT_EQ(host_prefix(t.v.data(), 3 * nf), ref.triangles);
+      EXPECT_EQ(host_prefix(nb.v.data(), 3 * nf), ref.neighbors);
+      EXPECT_EQ(host_prefix(vx.v.data(), nv), ref.vertices);
+      EXPECT_EQ(host_prefix(eq.v.data(), 4 * nf), ref.equations);
+      CallerArray<std::int32_t> t2(3 * cap, 7), v2(nv - 1, 7);
+      o.into = {t2.buf(), {}, v2.buf(), {}};
+      gg_test::expect_refused(
+          [&] { device ? (void)convex_hull3d_device(xyz, n, o) : (void)convex_hull3d(xyz, n, o); },
+          "into.vertices holds " + std::to_string(nv - 1));
+      EXPECT_TRUE(t2.untouched(7) && v2.untouched(7));
+    }
+  }
+}

@@ -77,5 +77,52 @@ TEST(CudaHull3d, DeviceResident) {  // points on the GPU in, result left there
     EXPECT_EQ(tris, h.triangles);
     EXPECT_EQ(nbrs, h.neighbors);
     EXPECT_EQ(verts, h.vertices);
+    std::vector<double> eq(4 * r.num_facets);
+    cudaMemcpy(eq.data(), r.equations.get(), eq.size() * 8, cudaMemcpyDeviceToHost);
+    EXPECT_EQ(eq, h.equations);
   }
+}
+
+// The caller's device arrays take the outputs; one too short is refused before any is written.
+TEST(CudaHull3d, DeviceEntryIntoCallerArrays) {
+  const auto p = generate3d("ball", 30000, 5);
+  const std::int64_t n = std::int64_t(p.size());
+  Hull3dOptions o;
+  o.backend = Backend::Cuda;
+  const auto h = convex_hull3d(p, o);
+  const std::int64_t nf = h.facet_count, nv = h.vertex_count;
+  double* dp = nullptr;
+  std::int32_t *t = nullptr, *v = nullptr;
+  double* eq = nullptr;
+  ASSERT_EQ(cudaMalloc(&dp, p.size() * sizeof(Point3)), cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(dp, p.data(), p.size() * sizeof(Point3), cudaMemcpyHostToDevice),
+            cudaSuccess);
+  ASSERT_EQ(cudaMalloc(&t, 3 * nf * 4), cudaSuccess);
+  ASSERT_EQ(cudaMalloc(&v, n * 4), cudaSuccess);
+  ASSERT_EQ(cudaMalloc(&eq, 4 * nf * 8), cudaSuccess);
+  o.into.triangles = {t, 3 * nf};
+  o.into.vertices = {v, n};
+  o.into.equations = {eq, 4 * nf};
+  const auto r = convex_hull3d_device(dp, n, o);
+  EXPECT_FALSE(r.triangles || r.vertices || r.equations);
+  ASSERT_TRUE(r.neighbors);
+  std::vector<std::int32_t> ht(3 * nf), hv(nv);
+  std::vector<double> he(4 * nf);
+  cudaMemcpy(ht.data(), t, ht.size() * 4, cudaMemcpyDeviceToHost);
+  cudaMemcpy(hv.data(), v, hv.size() * 4, cudaMemcpyDeviceToHost);
+  cudaMemcpy(he.data(), eq, he.size() * 8, cudaMemcpyDeviceToHost);
+  EXPECT_EQ(ht, h.triangles);
+  EXPECT_EQ(hv, h.vertices);
+  EXPECT_EQ(he, h.equations);
+  o.into.equations = {eq, 4 * nf - 1};
+  try {
+    convex_hull3d_device(dp, n, o);
+    ADD_FAILURE() << "a short array was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidArgument) << e.what();
+  }
+  cudaFree(dp);
+  cudaFree(t);
+  cudaFree(v);
+  cudaFree(eq);
 }

@@ -20,7 +20,6 @@
 
 using u64 = std::uint64_t;
 using edt::kNone;
-using edt::Layout;
 
 constexpr std::int64_t kWalk = 64;  // entries per band of a segmented reduction
 
@@ -151,14 +150,29 @@ inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
   Exec ex(rq.run);
   const Layout L = rq.layout;
   const int nd = L.nd;
-  const std::int64_t n = L.count(), ns = std::int64_t(rq.sites.size()) / nd;
+  const std::int64_t n = L.count(), np = rq.pext[0] * rq.pext[1] * rq.pext[2];
   const auto t_setup = Clock::now();
+  // The density to weights on the grid, and the initial sites (drawn from it unless given).
   auto w = ex.template alloc<std::uint32_t>(std::size_t(n));
-  ex.from_host(rq.weights.data(), n, w.data());
+  double vmax = 0;
+  std::vector<std::int32_t> sites;
+  {
+    Quantised Q = quantised_density(ex, rq, np);
+    vmax = Q.vmax;
+    spread(ex, L, rq.pext, rq.s, Q.q.data(), w.data());
+    sites = rq.sites.empty()
+                ? draw_sites(ex, L, Q.q.data(), np, rq.pext, rq.s, rq.num_sites, rq.seed)
+                : rq.sites;
+  }
+  const std::int64_t ns = std::int64_t(sites.size()) / nd;
+  stats.counters["sites"] = ns;
+  // Units of the results: the progress callback needs the energy's from the first iteration.
+  const double unit_mass = vmax / kLevels / std::pow(double(rq.s), nd);
+  out.unit_energy = unit_mass / (double(rq.s) * rq.s);
   // Site coordinates as one plane per axis.
   std::vector<std::int32_t> planes(std::size_t(ns) * nd);
   for (std::int64_t i = 0; i < ns; ++i)
-    for (int q = 0; q < nd; ++q) planes[std::size_t(q) * ns + i] = rq.sites[i * nd + q];
+    for (int q = 0; q < nd; ++q) planes[std::size_t(q) * ns + i] = sites[i * nd + q];
   auto pos = ex.template alloc<std::int32_t>(planes.size());
   ex.from_host(planes.data(), std::int64_t(planes.size()), pos.data());
 
@@ -292,10 +306,27 @@ inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
   }
   stats.phase_ms.push_back({"iterations", ms_since(t_iter)});
   stats.counters["iterations"] = out.iterations;
-  ex.to_host(P, std::int64_t(planes.size()), planes.data());
-  out.sites.resize(planes.size());
-  for (std::int64_t i = 0; i < ns; ++i)
-    for (int q = 0; q < nd; ++q) out.sites[i * nd + q] = planes[std::size_t(q) * ns + i];
-  out.mass.resize(std::size_t(ns));
-  ex.to_host(mp, ns, out.mass.data());
+  // The sites in density pixels and the cells' mass in density times pixel area, made on the
+  // executor (the same doubles the host made before), then where the caller wants them.
+  out.num_sites = ns;
+  auto so = ex.template alloc<double>(std::size_t(ns) * nd);
+  auto mo = ex.template alloc<double>(std::size_t(ns));
+  double* sd = so.data();
+  double* md = mo.data();
+  const double sf = rq.s;
+  ex.for_each_index(
+      ns, GG_LAMBDA(std::int64_t i) {
+        for (int q = 0; q < nd; ++q) sd[i * nd + q] = (double(P[q * ns + i]) + 0.5) / sf - 0.5;
+        md[i] = double(mp[i]) * unit_mass;
+      });
+  if (rq.device_out) {
+    ex.sync();  // the caller may read them now (and free them on any stream)
+    out.dev_sites = so.hand_over();
+    out.dev_mass = mo.hand_over();
+  } else {
+    out.sites.resize(std::size_t(ns) * nd);
+    out.mass.resize(std::size_t(ns));
+    ex.to_host(sd, ns * nd, out.sites.data());
+    ex.to_host(md, ns, out.mass.data());
+  }
 }

@@ -642,22 +642,53 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
   st.phase_ms.push_back({"output", ms_since(t0)});
 }
 
-inline void triangulate_impl(const double* xy, std::int64_t n, const RunOptions& run, Output& out,
-                             Stats& st) {
-  Exec ex(run);
-  triangulate_core(ex, xy, n, false, run.profile, st,
+// The three outputs' lengths, checked against the caller's arrays before any is written.
+inline void check_into(const Triangulation2dBuffers& into, std::int64_t count, std::int64_t n) {
+  deliver::check(into.triangles, 3 * count, "triangles");
+  deliver::check(into.neighbors, 3 * count, "neighbors");
+  deliver::check(into.duplicate_of, n, "duplicate_of");
+}
+
+inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                             Output& out, Stats& st) {
+  Exec ex(opt);
+  triangulate_core(
+      ex, xy, n, false, opt.profile, st, [&](Prepared& P, typename Triangulator::Finished& f) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const Triangulation2dBuffers& into = opt.into;
+        check_into(into, f.count, n);
+        out.num_duplicates = P.duplicates;
+        out.num_triangles = f.count;
+        deliver::to_host(ex, f.simplices.data(), 3 * f.count, into.triangles, out.triangles);
+        deliver::to_host(ex, f.neighbors.data(), 3 * f.count, into.neighbors, out.neighbors);
+        if (P.duplicates)
+          deliver::to_host(ex, P.dup.data(), n, into.duplicate_of, out.duplicate_of);
+        else
+          deliver::fill_host(ex, n, std::int32_t(-1), into.duplicate_of, out.duplicate_of);
+        st.phase_ms.push_back({"copy_back", ms_since(t0)});
+      });
+}
+
+// Points in executor memory, result left there (or in the caller's arrays of that memory).
+inline void triangulate_device_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                                    DeviceOutput& out, Stats& st) {
+  Exec ex(opt);
+  triangulate_core(ex, xy, n, true, opt.profile, st,
                    [&](Prepared& P, typename Triangulator::Finished& f) {
-                     const auto t0 = std::chrono::steady_clock::now();
+                     const Triangulation2dBuffers& into = opt.into;
+                     check_into(into, f.count, n);
+                     if (!P.dup.size() && !into.duplicate_of)  // no duplicates: all -1
+                       P.dup = ex.template alloc<std::int32_t>(std::size_t(n));
+                     std::int32_t* dup = P.dup.size() ? P.dup.data() : into.duplicate_of.data;
+                     if (!P.duplicates) ex.fill(dup, n, std::int32_t(-1));
+                     auto tri = deliver::place(ex, f.simplices, 3 * f.count, into.triangles);
+                     auto nb = deliver::place(ex, f.neighbors, 3 * f.count, into.neighbors);
+                     auto dp = deliver::place(ex, P.dup, P.dup.size() ? n : 0, into.duplicate_of);
+                     ex.sync();  // the caller may read them now (and free them on any stream)
+                     out.num_triangles = f.count;
                      out.num_duplicates = P.duplicates;
-                     out.triangles.resize(std::size_t(3 * f.count));  // (HostVector: no fill)
-                     out.neighbors.resize(std::size_t(3 * f.count));
-                     out.duplicate_of.resize(std::size_t(n));
-                     ex.to_host(f.simplices.data(), 3 * f.count, out.triangles.data());
-                     ex.to_host(f.neighbors.data(), 3 * f.count, out.neighbors.data());
-                     if (P.duplicates)
-                       ex.to_host(P.dup.data(), n, out.duplicate_of.data());
-                     else
-                       ex.fill_host(out.duplicate_of.data(), n, std::int32_t(-1));
-                     st.phase_ms.push_back({"copy_back", ms_since(t0)});
+                     out.triangles = tri.own();
+                     out.neighbors = nb.own();
+                     out.duplicate_of = dp.own();
                    });
 }

@@ -1106,23 +1106,18 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   st.phase_ms.push_back({"output", ms_since(t0)});
 }
 
-// The finished tetrahedralisation to the caller's host arrays, with the vertex map (the last
-// tetrahedron of each vertex, copies taking their original's) and the hull facets (faces with
-// no neighbour, outward, in tetrahedron order), both made on the executor.
-inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec>& f,
-                      std::int64_t n, Output& out) {
-  out.num_duplicates = S.duplicates;
-  out.tetrahedra.resize(std::size_t(4 * f.count));
-  out.neighbors.resize(std::size_t(4 * f.count));
-  ex.to_host(f.simplices.data(), 4 * f.count, out.tetrahedra.data());
-  ex.to_host(f.neighbors.data(), 4 * f.count, out.neighbors.data());
-  out.duplicate_of.resize(std::size_t(n));  // (HostVector: no fill)
-  if (S.duplicates)
-    ex.to_host(S.dup.data(), n, out.duplicate_of.data());
-  else
-    ex.fill_host(out.duplicate_of.data(), n, std::int32_t(-1));
-  auto vt = ex.template alloc<std::int32_t>(std::size_t(n));
-  std::int32_t* v = vt.data();
+// What the output holds beyond the tetrahedra, made on the executor: the vertex map (the last
+// tetrahedron of each vertex, copies taking their original's) and the hull facets (faces with no
+// neighbour, outward, in tetrahedron order).
+struct Extras {
+  typename Exec::template Buffer<std::int32_t> vertex_to_simplex, hull_facets;
+  std::int64_t num_hull_facets = 0;
+};
+inline Extras extras(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec>& f,
+                     std::int64_t n) {
+  Extras E;
+  E.vertex_to_simplex = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* v = E.vertex_to_simplex.data();
   const std::int32_t* tv = f.simplices.data();
   const std::int32_t* nb = f.neighbors.data();
   ex.fill(v, n, std::int32_t(-1));
@@ -1135,13 +1130,12 @@ inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exe
           if (dup[i] >= 0) v[i] = v[dup[i]];
         });
   }
-  out.vertex_to_simplex.resize(std::size_t(n));
-  ex.to_host(v, n, out.vertex_to_simplex.data());
   auto at = ex.template alloc<std::int32_t>(std::size_t(4 * f.count));
   const std::int64_t nh = ex.compact_indices(
       4 * f.count, GG_LAMBDA(std::int64_t i) { return nb[i] < 0; }, at.data());
-  auto hf = ex.template alloc<std::int32_t>(std::size_t(3 * nh + 1));
-  std::int32_t* h = hf.data();
+  E.num_hull_facets = nh;
+  E.hull_facets = ex.template alloc<std::int32_t>(std::size_t(3 * nh + 1));
+  std::int32_t* h = E.hull_facets.data();
   const std::int32_t* a = at.data();
   ex.for_each_index(
       nh, GG_LAMBDA(std::int64_t j) {
@@ -1149,8 +1143,64 @@ inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exe
         const int k = int(a[j] % 4);
         for (int i = 0; i < 3; ++i) h[3 * j + i] = tv[4 * t + face_vertex(k, i)];
       });
-  out.hull_facets.resize(std::size_t(3 * nh));
-  ex.to_host(h, 3 * nh, out.hull_facets.data());
+  return E;
+}
+
+// The outputs' lengths, checked against the caller's arrays before any is written.
+inline void check_into(const Triangulation3dBuffers& into, std::int64_t count, std::int64_t nh,
+                       std::int64_t n) {
+  deliver::check(into.tetrahedra, 4 * count, "tetrahedra");
+  deliver::check(into.neighbors, 4 * count, "neighbors");
+  deliver::check(into.duplicate_of, n, "duplicate_of");
+  deliver::check(into.vertex_to_simplex, n, "vertex_to_simplex");
+  deliver::check(into.hull_facets, 3 * nh, "hull_facets");
+}
+
+// The finished tetrahedralisation to host arrays: the caller's (into) or the result's.
+inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec>& f,
+                      std::int64_t n, const Triangulation3dBuffers& into, Output& out) {
+  Extras E = extras(ex, S, f, n);
+  check_into(into, f.count, E.num_hull_facets, n);
+  out.num_duplicates = S.duplicates;
+  out.num_tetrahedra = f.count;
+  out.num_hull_facets = E.num_hull_facets;
+  deliver::to_host(ex, f.simplices.data(), 4 * f.count, into.tetrahedra, out.tetrahedra);
+  deliver::to_host(ex, f.neighbors.data(), 4 * f.count, into.neighbors, out.neighbors);
+  if (S.duplicates)
+    deliver::to_host(ex, S.dup.data(), n, into.duplicate_of, out.duplicate_of);
+  else
+    deliver::fill_host(ex, n, std::int32_t(-1), into.duplicate_of, out.duplicate_of);
+  deliver::to_host(ex, E.vertex_to_simplex.data(), n, into.vertex_to_simplex,
+                   out.vertex_to_simplex);
+  deliver::to_host(ex, E.hull_facets.data(), 3 * E.num_hull_facets, into.hull_facets,
+                   out.hull_facets);
+}
+
+// ... left in executor memory: the caller's arrays (into) or the library's, handed over.
+inline void to_device_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec>& f,
+                             std::int64_t n, const Triangulation3dBuffers& into,
+                             DeviceOutput& out) {
+  Extras E = extras(ex, S, f, n);
+  const std::int64_t nh = E.num_hull_facets;
+  check_into(into, f.count, nh, n);
+  if (!S.duplicates && !into.duplicate_of)  // no duplicates: the map is all -1
+    S.dup = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* dup = S.dup.size() ? S.dup.data() : into.duplicate_of.data;
+  if (!S.duplicates) ex.fill(dup, n, std::int32_t(-1));
+  auto te = deliver::place(ex, f.simplices, 4 * f.count, into.tetrahedra);
+  auto nb = deliver::place(ex, f.neighbors, 4 * f.count, into.neighbors);
+  auto dp = deliver::place(ex, S.dup, S.dup.size() ? n : 0, into.duplicate_of);
+  auto vs = deliver::place(ex, E.vertex_to_simplex, n, into.vertex_to_simplex);
+  auto hf = deliver::place(ex, E.hull_facets, 3 * nh, into.hull_facets);
+  ex.sync();  // the caller may read them now (and free them on any stream)
+  out.num_tetrahedra = f.count;
+  out.num_duplicates = S.duplicates;
+  out.num_hull_facets = nh;
+  out.tetrahedra = te.own();
+  out.neighbors = nb.own();
+  out.duplicate_of = dp.own();
+  out.vertex_to_simplex = vs.own();
+  out.hull_facets = hf.own();
 }
 
 inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
@@ -1158,6 +1208,15 @@ inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3d
   Exec ex(opt);
   triangulate_core(ex, xyz, n, false, opt.max_flip_rounds, opt.threads, opt.progress, st,
                    [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
-                     to_output(ex, S, f, n, out);
+                     to_output(ex, S, f, n, opt.into, out);
+                   });
+}
+
+inline void triangulate_device_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+                                    DeviceOutput& out, Stats& st) {
+  Exec ex(opt);
+  triangulate_core(ex, xyz, n, true, opt.max_flip_rounds, opt.threads, opt.progress, st,
+                   [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
+                     to_device_output(ex, S, f, n, opt.into, out);
                    });
 }

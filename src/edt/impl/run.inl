@@ -165,13 +165,7 @@ inline const std::uint8_t* grid_mask(Exec& ex, const Request& rq, std::int64_t n
                                      typename Exec::template Buffer<unsigned char>& raw,
                                      typename Exec::template Buffer<std::uint8_t>& mbuf,
                                      std::int64_t& sites) {
-  const std::size_t bytes = std::size_t(nvox) * io::scalar_size(rq.type);
-  const void* src = rq.grid;
-  if (Exec::backend == Backend::Cuda && !rq.grid_on_device) {
-    raw = ex.template alloc<unsigned char>(bytes);
-    ex.from_host(static_cast<const unsigned char*>(rq.grid), std::int64_t(bytes), raw.data());
-    src = raw.data();
-  }
+  const void* src = grid_input::on_executor(ex, rq.grid, nvox, rq.type, rq.grid_on_device, raw);
   const bool zero = rq.rule == SiteRule::Zero;
   const bool bytes_mask =
       !zero && (rq.type == io::ScalarType::U8 || rq.type == io::ScalarType::Bool);
@@ -179,27 +173,7 @@ inline const std::uint8_t* grid_mask(Exec& ex, const Request& rq, std::int64_t n
   if (!bytes_mask) {
     mbuf = ex.template alloc<std::uint8_t>(std::size_t(nvox));
     std::uint8_t* m = mbuf.data();
-    switch (rq.type) {
-      case io::ScalarType::Bool:
-      case io::ScalarType::U8:
-        rule_mask<std::uint8_t>(ex, src, nvox, zero, m);
-        break;
-      case io::ScalarType::U16:
-        rule_mask<std::uint16_t>(ex, src, nvox, zero, m);
-        break;
-      case io::ScalarType::I32:
-        rule_mask<std::int32_t>(ex, src, nvox, zero, m);
-        break;
-      case io::ScalarType::I64:
-        rule_mask<std::int64_t>(ex, src, nvox, zero, m);
-        break;
-      case io::ScalarType::F32:
-        rule_mask<float>(ex, src, nvox, zero, m);
-        break;
-      case io::ScalarType::F64:
-        rule_mask<double>(ex, src, nvox, zero, m);
-        break;
-    }
+    grid_input::visit(rq.type, [&](auto tag) { rule_mask<decltype(tag)>(ex, src, nvox, zero, m); });
     mask = m;
   }
   // Sites in the low 40 bits, NaN voxels above (a grid holds fewer than 2^31 voxels).

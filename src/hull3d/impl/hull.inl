@@ -307,10 +307,45 @@ struct PlaneOf {
   }
 };
 
-// Host points in, host arrays out.
-inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& run, Output& out,
+// The planes of the facets on the executor; the few whose rounded normal vanished (NaN, counted)
+// are redone in long double on the host (redo_planes): in place when the executor's memory is
+// the host's, else through host copies of the points, the facets and the planes.
+inline void planes(Exec& ex, const double* p, std::int64_t n, const std::int32_t* tri,
+                   std::int64_t nf, double* eq) {
+  auto redo = ex.template alloc<std::int64_t>(1);
+  ex.fill(redo.data(), 1, std::int64_t(0));
+  ex.for_each_index(nf, PlaneOf{p, tri, eq, redo.data()});
+  std::int64_t nredo = 0;
+  ex.to_host(redo.data(), 1, &nredo);
+  if (!nredo) return;
+  if constexpr (Exec::backend == Backend::Cpu) {
+    redo_planes(p, tri, nf, eq);
+  } else {
+    HostVector<double> hp, he;
+    HostVector<std::int32_t> ht;
+    hp.resize(std::size_t(3 * n));
+    he.resize(std::size_t(4 * nf));
+    ht.resize(std::size_t(3 * nf));
+    ex.to_host(p, 3 * n, hp.data());
+    ex.to_host(tri, 3 * nf, ht.data());
+    ex.to_host(eq, 4 * nf, he.data());
+    redo_planes(hp.data(), ht.data(), nf, he.data());
+    ex.from_host(he.data(), 4 * nf, eq);
+  }
+}
+
+// The outputs' lengths, checked against the caller's arrays before any is written.
+inline void check_into(const Hull3dBuffers& into, const Result& R) {
+  deliver::check(into.triangles, 3 * R.facets.count, "triangles");
+  deliver::check(into.neighbors, 3 * R.facets.count, "neighbors");
+  deliver::check(into.vertices, R.num_vertices, "vertices");
+  deliver::check(into.equations, 4 * R.facets.count, "equations");
+}
+
+// Host points in, host arrays (the caller's or the result's) out.
+inline void compute_impl(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
                          Stats& st) {
-  Exec ex(run);
+  Exec ex(opt);
   const double* p = xyz;
   typename Exec::template Buffer<double> dev;
   if constexpr (Exec::backend == Backend::Cuda) {
@@ -322,24 +357,44 @@ inline void compute_impl(const double* xyz, std::int64_t n, const RunOptions& ru
     st.phase_ms.emplace_back("upload", ms_since(t0));
   }
   Result R = hull_core(ex, p, n, st);
+  check_into(opt.into, R);
   auto t0 = Clock::now();
   const std::int64_t nf = R.facets.count;
   auto eq = ex.template alloc<double>(std::size_t(4 * nf));
-  auto redo = ex.template alloc<std::int64_t>(1);
-  ex.fill(redo.data(), 1, std::int64_t(0));
-  ex.for_each_index(nf, PlaneOf{p, R.facets.simplices.data(), eq.data(), redo.data()});
-  ex.to_host(redo.data(), 1, &out.planes_redo);
+  planes(ex, p, n, R.facets.simplices.data(), nf, eq.data());
   st.phase_ms.emplace_back("planes", ms_since(t0));
   t0 = Clock::now();
-  out.equations.resize(std::size_t(4 * nf));
-  out.triangles.resize(std::size_t(3 * R.facets.count));
-  out.neighbors.resize(std::size_t(3 * R.facets.count));
-  out.vertices.resize(std::size_t(R.num_vertices));
-  st.phase_ms.emplace_back("host_arrays", ms_since(t0));
-  t0 = Clock::now();
-  ex.to_host(R.facets.simplices.data(), 3 * R.facets.count, out.triangles.data());
-  ex.to_host(R.facets.neighbors.data(), 3 * R.facets.count, out.neighbors.data());
-  ex.to_host(R.vertices.data(), R.num_vertices, out.vertices.data());
-  ex.to_host(eq.data(), 4 * nf, out.equations.data());
+  const Hull3dBuffers& into = opt.into;
+  out.num_facets = nf;
+  out.num_vertices = R.num_vertices;
+  deliver::to_host(ex, R.facets.simplices.data(), 3 * nf, into.triangles, out.triangles);
+  deliver::to_host(ex, R.facets.neighbors.data(), 3 * nf, into.neighbors, out.neighbors);
+  deliver::to_host(ex, R.vertices.data(), R.num_vertices, into.vertices, out.vertices);
+  deliver::to_host(ex, eq.data(), 4 * nf, into.equations, out.equations);
   if constexpr (Exec::backend == Backend::Cuda) st.phase_ms.emplace_back("copy_back", ms_since(t0));
+}
+
+// Points in executor memory, result left there (or in the caller's arrays of that memory).
+inline void compute_device_impl(const double* xyz, std::int64_t n, const Hull3dOptions& opt,
+                                DeviceOutput& out, Stats& st) {
+  Exec ex(opt);
+  Result R = hull_core(ex, xyz, n, st);
+  check_into(opt.into, R);
+  const auto t0 = Clock::now();
+  const std::int64_t nf = R.facets.count;
+  auto eq = ex.template alloc<double>(std::size_t(4 * nf));
+  planes(ex, xyz, n, R.facets.simplices.data(), nf, eq.data());
+  const Hull3dBuffers& into = opt.into;
+  auto tri = deliver::place(ex, R.facets.simplices, 3 * nf, into.triangles);
+  auto nb = deliver::place(ex, R.facets.neighbors, 3 * nf, into.neighbors);
+  auto vx = deliver::place(ex, R.vertices, R.num_vertices, into.vertices);
+  auto pl = deliver::place(ex, eq, 4 * nf, into.equations);
+  ex.sync();  // the caller may read them now (and free them on any stream)
+  st.phase_ms.emplace_back("planes", ms_since(t0));
+  out.num_facets = nf;
+  out.num_vertices = R.num_vertices;
+  out.triangles = tri.own();
+  out.neighbors = nb.own();
+  out.vertices = vx.own();
+  out.equations = pl.own();
 }
