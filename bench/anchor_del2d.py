@@ -1,9 +1,12 @@
 #!/usr/bin/env python3
-"""CPU anchors for the 2D Delaunay benchmark, on the very points gpugeom_bench_del2d uses
+"""Anchors for the 2D Delaunay benchmark, on the very points gpugeom_bench_del2d uses
 (`gpugeom gen` with the same seed, or the same .npy files): Triangle (the `triangle` package,
-Shewchuk's code) and SciPy's Delaunay (Qhull), one core each. Prints a table, appends CSV rows.
+Shewchuk's code) and SciPy's Delaunay (Qhull), one core each; CuPy's `cupyx.scipy.spatial.Delaunay`
+(a GPU code) with the points already on the device (`cupy`: simplices left there) and as a
+NumPy caller calls it (`cupy_host`: host points in, host simplices out). Median of 3 after a
+warm-up for the CuPy tools. Prints a table, appends CSV rows.
 """
-import argparse, os, subprocess, sys, tempfile
+import argparse, os, statistics, subprocess, sys, tempfile, time
 
 from anchor_common import append_row, timed_ms
 
@@ -29,6 +32,35 @@ def main():
         tools["scipy-qhull"] = lambda p: len(Delaunay(p).simplices)
     except ImportError as e:
         print(f"note: SciPy anchor skipped ({e})")
+    if "cupy" in a.tools or "cupy_host" in a.tools:
+        try:
+            import cupy as cp
+            from cupyx.scipy.spatial import Delaunay as CuDelaunay
+
+            def median3(f, setup=lambda p: p):
+                def run(p):
+                    x = setup(p)  # (not timed: e.g. the upload of a device-resident run)
+                    f(x)  # warm-up
+                    ts = []
+                    for _ in range(3):
+                        t0 = time.perf_counter()
+                        nt = f(x)
+                        ts.append(1e3 * (time.perf_counter() - t0))
+                    return nt, statistics.median(ts)
+                return run
+
+            def on_device(d):
+                t = CuDelaunay(d).simplices
+                cp.cuda.Device().synchronize()
+                return int(t.shape[0])
+
+            def host(p):
+                return int(cp.asnumpy(CuDelaunay(cp.asarray(p)).simplices).shape[0])
+
+            tools["cupy"] = median3(on_device, cp.asarray)
+            tools["cupy_host"] = median3(host)
+        except Exception as e:  # ImportError, or a CuPy without spatial.Delaunay
+            print(f"note: CuPy anchor skipped ({e})")
     tools = {k: v for k, v in tools.items() if k in a.tools.split(",")}
     inputs = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -47,7 +79,10 @@ def main():
             for tool, run in tools.items():
                 if tool == "scipy-qhull" and len(p) > a.scipy_max:
                     continue
-                nt, ms = timed_ms(run, p)
+                if tool.startswith("cupy"):
+                    nt, ms = run(p)
+                else:
+                    nt, ms = timed_ms(run, p)
                 print(f"{name:22s} {len(p):10d} {tool:12s} {ms:10.1f} {nt:10d}", flush=True)
                 append_row(a.csv, "delaunay2d", name, len(p), tool, ms)
     return 0

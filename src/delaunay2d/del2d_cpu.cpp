@@ -18,6 +18,7 @@
 #include "base/clock.hpp"
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
+#include "exec/prefault.hpp"
 #include "exec/cpu_exec.hpp"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"

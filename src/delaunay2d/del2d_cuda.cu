@@ -19,6 +19,7 @@
 #include "base/clock.hpp"
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
+#include "exec/prefault.hpp"
 #include "exec/cuda_exec.cuh"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"

@@ -2,12 +2,21 @@
 // pages, huge pages asked for. Measured on the lent H100 host (bench/bench_bus.cu): touching
 // 256 MB of fresh 4 kB pages costs 155 ms on one thread and 31 ms on 16; with huge pages 77 and
 // 12 ms. The library's copies into these blocks run on all threads, so they get the last rate.
+#include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <new>
 #include <sys/mman.h>
+#include <thread>
+#include <vector>
 
+#include "exec/prefault.hpp"
 #include "gpugeom/host_vector.hpp"
+
+#ifndef MADV_POPULATE_WRITE
+#define MADV_POPULATE_WRITE 23  // Linux 5.14; older kernels refuse it (the touch loop runs)
+#endif
 
 namespace gpugeom::detail {
 
@@ -37,6 +46,48 @@ void* host_map(std::size_t bytes) {
 
 void host_unmap(void* p, std::size_t bytes) noexcept {
   if (p) (void)munmap(p, whole_pages(bytes));
+}
+
+void Prefault::start() {
+  std::size_t total = 0;
+  for (auto& s : spans_) total += s.second;
+  if (total < (std::size_t(8) << 20) || t_.joinable()) return;
+  try {
+    t_ = std::thread([spans = spans_] {
+      // 8 MB pieces taken from a shared counter by all host threads but two.
+      constexpr std::size_t kPiece = std::size_t(8) << 20;
+      std::vector<std::pair<char*, std::size_t>> pieces;
+      for (auto& s : spans)
+        for (std::size_t at = 0; at < s.second; at += kPiece)
+          pieces.emplace_back(s.first + at, std::min(kPiece, s.second - at));
+      std::atomic<std::size_t> next{0};
+      auto work = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < pieces.size();) {
+          char* p = pieces[i].first;
+          const std::size_t len = pieces[i].second;
+          // The kernel faults the whole range in at once, where it can (page-aligned start).
+          const std::uintptr_t a = reinterpret_cast<std::uintptr_t>(p);
+          const std::uintptr_t b = (a + kPage - 1) & ~(kPage - 1);
+          bool done = false;
+          if (b < a + len)
+            done = madvise(reinterpret_cast<void*>(b), (a + len - b) & ~(kPage - 1),
+                           MADV_POPULATE_WRITE) == 0;
+          if (!done)
+            for (std::size_t k = 0; k < len; k += kPage) reinterpret_cast<volatile char*>(p)[k] = 0;
+        }
+      };
+      const unsigned hw = std::max(3u, std::thread::hardware_concurrency());
+      const std::size_t helpers = std::min<std::size_t>(hw - 3, pieces.size());
+      std::vector<std::thread> th;
+      try {
+        for (std::size_t k = 0; k < helpers; ++k) th.emplace_back(work);
+      } catch (...) {  // no more threads: fewer hands, same work (an optimisation only)
+      }
+      work();
+      for (auto& t : th) t.join();
+    });
+  } catch (...) {  // no thread to be had: the copy back faults the pages in itself
+  }
 }
 
 }  // namespace gpugeom::detail

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <cstdlib>
@@ -203,6 +204,7 @@ class CopyPool {
       std::lock_guard<std::mutex> lk(m_);
       job_ = &j;
       ++gen_;
+      posted_.store(gen_, std::memory_order_release);
     }
     cv_.notify_all();
   }
@@ -239,6 +241,13 @@ class CopyPool {
   void loop() {
     std::uint64_t seen = 0;
     for (;;) {
+      // The next job (the next chunk of the same transfer) usually comes within microseconds:
+      // wait for it awake for a while before sleeping, since a sleeping helper can take
+      // milliseconds to wake on a virtual machine.
+      const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(2);
+      while (posted_.load(std::memory_order_acquire) == seen &&
+             std::chrono::steady_clock::now() < until)
+        std::this_thread::yield();
       Job* j = nullptr;
       {
         std::unique_lock<std::mutex> lk(m_);
@@ -260,6 +269,7 @@ class CopyPool {
   std::condition_variable cv_, idle_;
   Job* job_ = nullptr;
   std::uint64_t gen_ = 0;
+  std::atomic<std::uint64_t> posted_{0};  // gen_, for helpers waiting awake
   int active_ = 0;
   bool stop_ = false;
 };

@@ -622,11 +622,13 @@ class Triangulator {
 };
 
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
-template <class Body>
+// before(P) runs once the distinct points are known, before the device work.
+template <class Before, class Body>
 inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device,
-                             bool profile, Stats& st, Body body) {
+                             bool profile, Stats& st, Before before, Body body) {
   auto t0 = std::chrono::steady_clock::now();
   Prepared P = prepare(ex, xy, n, on_device);
+  before(P);
   st.counters["points"] = n;
   st.counters["distinct_points"] = P.m;
   st.counters["duplicates"] = P.duplicates;
@@ -652,10 +654,29 @@ inline void check_into(const Triangulation2dBuffers& into, std::int64_t count, s
 inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                              Output& out, Stats& st) {
   Exec ex(opt);
+  const Triangulation2dBuffers& into = opt.into;
+  // On the GPU the host is idle while the device triangulates: the result arrays are sized for
+  // the most triangles m distinct points can have (2m - 5; cut to the count later, keeping the
+  // pages) and faulted in meanwhile, so the copy back runs at the transfer's rate.
+  detail::Prefault pf;
+  auto size_ahead = [&](Prepared& P) {
+    if constexpr (Exec::backend == Backend::Cuda) {
+      const std::int64_t bound = 3 * delaunay2d_max_triangles(P.m);
+      if (!into.triangles) out.triangles.resize(std::size_t(bound));
+      if (!into.neighbors) out.neighbors.resize(std::size_t(bound));
+      if (!into.duplicate_of) out.duplicate_of.resize(std::size_t(n));
+      pf.add(out.triangles.data(), out.triangles.size() * sizeof(std::int32_t));
+      pf.add(out.neighbors.data(), out.neighbors.size() * sizeof(std::int32_t));
+      pf.add(out.duplicate_of.data(), out.duplicate_of.size() * sizeof(std::int32_t));
+      pf.start();
+    }
+  };
   triangulate_core(
-      ex, xy, n, false, opt.profile, st, [&](Prepared& P, typename Triangulator::Finished& f) {
+      ex, xy, n, false, opt.profile, st, size_ahead,
+      [&](Prepared& P, typename Triangulator::Finished& f) {
         const auto t0 = std::chrono::steady_clock::now();
-        const Triangulation2dBuffers& into = opt.into;
+        pf.wait();
+        st.phase_ms.push_back({"prefault_wait", ms_since(t0)});
         check_into(into, f.count, n);
         out.num_duplicates = P.duplicates;
         out.num_triangles = f.count;
@@ -673,22 +694,23 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dO
 inline void triangulate_device_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                                     DeviceOutput& out, Stats& st) {
   Exec ex(opt);
-  triangulate_core(ex, xy, n, true, opt.profile, st,
-                   [&](Prepared& P, typename Triangulator::Finished& f) {
-                     const Triangulation2dBuffers& into = opt.into;
-                     check_into(into, f.count, n);
-                     if (!P.dup.size() && !into.duplicate_of)  // no duplicates: all -1
-                       P.dup = ex.template alloc<std::int32_t>(std::size_t(n));
-                     std::int32_t* dup = P.dup.size() ? P.dup.data() : into.duplicate_of.data;
-                     if (!P.duplicates) ex.fill(dup, n, std::int32_t(-1));
-                     auto tri = deliver::place(ex, f.simplices, 3 * f.count, into.triangles);
-                     auto nb = deliver::place(ex, f.neighbors, 3 * f.count, into.neighbors);
-                     auto dp = deliver::place(ex, P.dup, P.dup.size() ? n : 0, into.duplicate_of);
-                     ex.sync();  // the caller may read them now (and free them on any stream)
-                     out.num_triangles = f.count;
-                     out.num_duplicates = P.duplicates;
-                     out.triangles = tri.own();
-                     out.neighbors = nb.own();
-                     out.duplicate_of = dp.own();
-                   });
+  triangulate_core(
+      ex, xy, n, true, opt.profile, st, [](Prepared&) {},
+      [&](Prepared& P, typename Triangulator::Finished& f) {
+        const Triangulation2dBuffers& into = opt.into;
+        check_into(into, f.count, n);
+        if (!P.dup.size() && !into.duplicate_of)  // no duplicates: all -1
+          P.dup = ex.template alloc<std::int32_t>(std::size_t(n));
+        std::int32_t* dup = P.dup.size() ? P.dup.data() : into.duplicate_of.data;
+        if (!P.duplicates) ex.fill(dup, n, std::int32_t(-1));
+        auto tri = deliver::place(ex, f.simplices, 3 * f.count, into.triangles);
+        auto nb = deliver::place(ex, f.neighbors, 3 * f.count, into.neighbors);
+        auto dp = deliver::place(ex, P.dup, P.dup.size() ? n : 0, into.duplicate_of);
+        ex.sync();  // the caller may read them now (and free them on any stream)
+        out.num_triangles = f.count;
+        out.num_duplicates = P.duplicates;
+        out.triangles = tri.own();
+        out.neighbors = nb.own();
+        out.duplicate_of = dp.own();
+      });
 }
