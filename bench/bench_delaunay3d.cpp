@@ -88,7 +88,7 @@ double cgal_par_ms(const std::vector<Point3>& p) {
 }
 }  // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   bool check = false, with_cpu = false;
   int reps = 3;
   bool verbose = false;  // every phase and counter of the last run, after its row
@@ -175,4 +175,14 @@ int main(int argc, char** argv) {
     }
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const gpugeom::Error& e) {  // a bad job (unknown distribution, bad size) or input
+    std::fprintf(stderr, "gpugeom_bench_del3d: %s: %s\n", gpugeom::error_code_name(e.code()),
+                 e.what());
+    return 2;
+  }
 }

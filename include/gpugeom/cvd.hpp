@@ -31,6 +31,15 @@ struct CvdProgress {
   std::int64_t moved = 0;  // sites that moved
 };
 
+// Arrays the caller provides for the results (OutBuffer, common.hpp): host memory for
+// centroidal_voronoi, device memory for centroidal_voronoi_device (host memory where it runs on
+// the CPU executor); sites at least dim times the site count, mass at least the site count
+// (checked before they are written; Error(InvalidArgument) naming the array and both lengths).
+// An output written into a caller's array is empty (null) in the result.
+struct CvdBuffers {
+  OutBuffer<double> sites, mass;
+};
+
 struct CvdOptions : RunOptions {
   std::int64_t num_sites = 1000;      // when initial_sites is empty: drawn with probability
                                       // proportional to the density, never twice in one place
@@ -42,6 +51,7 @@ struct CvdOptions : RunOptions {
   std::uint64_t seed = 1;       // for the initial sites
   // Called after every iteration on the host; returning false stops the iteration.
   std::function<bool(const CvdProgress&)> progress;
+  CvdBuffers into;  // optional
 };
 
 struct CvdResult {
@@ -54,7 +64,8 @@ struct CvdResult {
   int iterations = 0;
   bool converged = false;  // the move (or energy) tolerance was met
   Stats stats;
-  std::int64_t size() const { return dim ? std::int64_t(sites.size()) / dim : 0; }
+  std::int64_t site_count = 0;  // sites (also where they went into the caller's arrays)
+  std::int64_t size() const { return site_count; }
 };
 
 // density: 2D or 3D, finite and non-negative values, not all zero, of any element type

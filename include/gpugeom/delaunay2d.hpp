@@ -95,6 +95,26 @@ struct Voronoi2d {
 };
 Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri);
 
+// The same diagram for a triangulation left on the device (delaunay2d_device), computed there:
+// device_xy its n points (device memory; host memory where tri.backend is Backend::Cpu), on
+// run.stream of run.device; the arrays as Voronoi2d's, in the library's device memory (freed when
+// the last copy of their pointer goes). The executor is tri's (tri.backend). Throws
+// Error(InvalidArgument) when tri's arrays went into the caller's arrays (into) or do not belong
+// to these points.
+struct DeviceVoronoi2d {
+  std::int64_t num_points = 0, num_vertices = 0, num_ridges = 0, num_cell_vertices = 0;
+  std::shared_ptr<double> vertices;              // 2 * num_vertices
+  std::shared_ptr<std::int32_t> ridge_points;    // 2 * num_ridges
+  std::shared_ptr<std::int32_t> ridge_vertices;  // 2 * num_ridges
+  std::shared_ptr<double> ridge_directions;      // 2 * num_ridges
+  std::shared_ptr<std::int64_t> cell_offsets;    // num_points + 1
+  std::shared_ptr<std::int32_t> cell_vertices;   // num_cell_vertices
+  Backend backend = Backend::Cuda;               // where the arrays are: Cuda = device memory
+  Stats stats;
+};
+DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
+                                 const DeviceTriangulation2d& tri, const RunOptions& run = {});
+
 // Voronoi cells clipped to a box [xmin, xmax] x [ymin, ymax] that contains every input point:
 // each cell as a closed counter-clockwise polygon (x, y interleaved).
 struct ClippedCells {

@@ -82,7 +82,13 @@ cvd::Request make_request(const GridView& g, const CvdOptions& opt, bool on_devi
         rq.sites[i * nd + a] = std::int32_t(gp);
       }
   }
+  rq.into = opt.into;
   rq.num_sites = opt.num_sites;
+  // The site count is known before any work (drawn: exactly num_sites, or an error).
+  const std::int64_t ns =
+      opt.initial_sites.empty() ? opt.num_sites : std::int64_t(opt.initial_sites.size()) / nd;
+  deliver::check(opt.into.sites, ns * nd, "sites");
+  deliver::check(opt.into.mass, ns, "mass");
   rq.seed = opt.seed;
   rq.max_iterations = opt.max_iterations;
   rq.run = static_cast<const RunOptions&>(opt);
@@ -135,6 +141,7 @@ CvdResult centroidal_voronoi(const GridView& g, const CvdOptions& opt) {
   run(resolve_backend(opt.backend, opt.device), rq, opt, out, r.stats);
   r.sites = std::move(out.sites);
   r.mass = std::move(out.mass);
+  r.site_count = out.num_sites;
   finish(out, r);
   return r;
 }

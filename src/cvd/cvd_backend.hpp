@@ -7,6 +7,7 @@
 
 #include "edt/edt_common.hpp"
 #include "gpugeom/common.hpp"
+#include "gpugeom/cvd.hpp"
 #include "gpugeom/host_vector.hpp"
 #include "gpugeom/io.hpp"
 
@@ -42,6 +43,7 @@ struct Request {
   // After each iteration; false stops.
   std::function<bool(int iteration, const Scalars&)> progress;
   bool device_out = false;  // results left in the executor's memory (dev_*)
+  CvdBuffers into;          // the caller's arrays, where given
 };
 
 struct Output {

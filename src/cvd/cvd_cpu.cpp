@@ -14,6 +14,7 @@
 #include "cvd/cvd_backend.hpp"
 #include "edt/edt_device.hpp"
 #include "exec/atomics.hpp"
+#include "exec/deliver.hpp"
 #include "exec/grid_input.hpp"
 #include "exec/cpu_exec.hpp"
 

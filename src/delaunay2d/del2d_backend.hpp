@@ -25,6 +25,14 @@ struct DeviceOutput {
   std::int64_t num_triangles = 0, num_duplicates = 0;
 };
 
+// The Voronoi diagram of the device entry, in the executor's memory.
+struct DeviceVoronoiOutput {
+  std::shared_ptr<double> vertices, ridge_directions;
+  std::shared_ptr<std::int32_t> ridge_points, ridge_vertices, cell_vertices;
+  std::shared_ptr<std::int64_t> cell_offsets;
+  std::int64_t num_vertices = 0, num_ridges = 0, num_cell_vertices = 0;
+};
+
 // triangulate: xy holds n points on the host; triangulate_device: n points in the executor's
 // memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
 namespace cpu_impl {
@@ -32,12 +40,20 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                  Stats& stats);
 void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                         DeviceOutput& out, Stats& stats);
+// The Voronoi diagram of nt triangles (tri, nb; dup may be null: no duplicates) of n points xy,
+// all in the executor's memory.
+void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
+             const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
+             DeviceVoronoiOutput& out, Stats& stats);
 }  // namespace cpu_impl
 namespace cuda_impl {
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats);
 void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                         DeviceOutput& out, Stats& stats);
+void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
+             const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
+             DeviceVoronoiOutput& out, Stats& stats);
 }  // namespace cuda_impl
 
 }  // namespace gpugeom::del2d

@@ -1,10 +1,13 @@
 // The Voronoi diagram dual to a 2D Delaunay triangulation (host code: linear in the size of
 // the triangulation, a small fraction of the triangulation's own time).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "delaunay2d/del2d_backend.hpp"
+#include "delaunay2d/voronoi_core.hpp"
 #include "gpugeom/delaunay2d.hpp"
 
 namespace gpugeom {
@@ -23,37 +26,24 @@ void check_sizes(std::int64_t n, const Triangulation2d& tri) {
                 "the triangulation does not belong to these " + std::to_string(n) + " points");
 }
 
-// One incident corner (triangle, local index) per vertex; on the hull the most clockwise one,
-// so that walking counter-clockwise from it visits the whole star.
+// One incident corner per vertex (vor::start_key: on the hull the most clockwise one), -1 for a
+// point that is not a vertex.
 std::vector<std::int64_t> star_starts(std::int64_t n, const Triangulation2d& tri) {
-  std::vector<std::int64_t> start(std::size_t(n), -1);
+  std::vector<std::int64_t> key(std::size_t(n), -1);
   const std::int64_t nt = std::int64_t(tri.num_triangles());
   for (std::int64_t c = 0; c < 3 * nt; ++c) {
-    const std::int32_t v = tri.triangles[c];
-    const std::int64_t t = c / 3;
-    const int k = int(c % 3);
-    const bool cw_open = tri.neighbors[3 * t + (k + 2) % 3] < 0;
-    if (start[v] < 0 || cw_open) start[v] = c;
+    std::int64_t& k = key[std::size_t(tri.triangles[c])];
+    k = std::max(k, del2d::vor::start_key(tri.neighbors.data(), c));
   }
-  return start;
+  for (auto& k : key) k = del2d::vor::start_corner(k);
+  return key;
 }
 
-// Triangles around vertex tri[c] counter-clockwise from corner c, and whether the star is open
-// (the vertex on the hull).
+// Triangles around vertex tri[c] counter-clockwise from corner c, and whether the star is open.
 template <class F>
 bool walk_star(const Triangulation2d& tri, std::int64_t c, F visit) {
-  const std::int32_t v = tri.triangles[c];
-  std::int64_t t = c / 3;
-  int k = int(c % 3);
-  const std::int64_t first = t;
-  for (;;) {
-    visit(t, k);
-    const std::int32_t nx = tri.neighbors[3 * t + (k + 1) % 3];
-    if (nx < 0) return true;
-    if (nx == first) return false;
-    t = nx;
-    k = tri.triangles[3 * t] == v ? 0 : tri.triangles[3 * t + 1] == v ? 1 : 2;
-  }
+  return del2d::vor::walk_star(tri.triangles.data(), tri.neighbors.data(), c,
+                               std::int64_t(tri.num_triangles()), visit);
 }
 
 }  // namespace
@@ -63,37 +53,18 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
   Voronoi2d v;
   const std::int64_t nt = std::int64_t(tri.num_triangles());
   v.vertices.resize(std::size_t(2 * nt));
-  for (std::int64_t t = 0; t < nt; ++t) {
-    const double* a = xy + 2 * tri.triangles[3 * t];
-    const double* b = xy + 2 * tri.triangles[3 * t + 1];
-    const double* c = xy + 2 * tri.triangles[3 * t + 2];
-    // relative to a, which keeps the rounding to the triangle's own scale
-    const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
-    const double d = 2 * (bx * cy - by * cx);
-    const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-    v.vertices[2 * t] = a[0] + (cy * b2 - by * c2) / d;
-    v.vertices[2 * t + 1] = a[1] + (bx * c2 - cx * b2) / d;
-  }
-  // ridges: each Delaunay edge once (from the triangle with the smaller index, or the hull)
+  const std::int32_t* T = tri.triangles.data();
+  const std::int32_t* N = tri.neighbors.data();
+  for (std::int64_t t = 0; t < nt; ++t) del2d::vor::circumcentre(xy, T, t, &v.vertices[2 * t]);
   for (std::int64_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
-      const std::int32_t o = tri.neighbors[3 * t + k];
-      if (o >= 0 && o < t) continue;
-      const std::int32_t u = tri.triangles[3 * t + (k + 1) % 3];
-      const std::int32_t w = tri.triangles[3 * t + (k + 2) % 3];
-      v.ridge_points.push_back(u);
-      v.ridge_points.push_back(w);
-      v.ridge_vertices.push_back(std::int32_t(t));
-      v.ridge_vertices.push_back(o);
-      double dx = 0, dy = 0;
-      if (o < 0) {  // outward normal of the hull edge u->w (the triangle lies to its left)
-        const double ex = xy[2 * w] - xy[2 * u], ey = xy[2 * w + 1] - xy[2 * u + 1];
-        const double len = std::hypot(ex, ey);
-        dx = ey / len;
-        dy = -ex / len;
-      }
-      v.ridge_directions.push_back(dx);
-      v.ridge_directions.push_back(dy);
+      if (!del2d::vor::has_ridge(N, t, k)) continue;
+      std::int32_t p[2], q[2];
+      double d[2];
+      del2d::vor::ridge(xy, T, N, t, k, p, q, d);
+      v.ridge_points.insert(v.ridge_points.end(), p, p + 2);
+      v.ridge_vertices.insert(v.ridge_vertices.end(), q, q + 2);
+      v.ridge_directions.insert(v.ridge_directions.end(), d, d + 2);
     }
   // cells
   const auto start = star_starts(n, tri);
@@ -110,6 +81,41 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
     if (open) v.cell_vertices.insert(v.cell_vertices.begin() + std::ptrdiff_t(at), -1);
     v.cell_offsets[i + 1] = std::int64_t(v.cell_vertices.size());
   }
+  return v;
+}
+
+DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
+                                 const DeviceTriangulation2d& tri, const RunOptions& run) {
+  if (tri.num_points != n)
+    throw Error(ErrorCode::InvalidArgument,
+                "the triangulation does not belong to these " + std::to_string(n) + " points");
+  if (!tri.triangles || !tri.neighbors || (!tri.duplicate_of && tri.num_duplicates))
+    throw Error(ErrorCode::InvalidArgument,
+                "the triangulation's triangles, neighbours or duplicate map are not in it (were "
+                "they written into the caller's arrays, Delaunay2dOptions::into?): the Voronoi "
+                "diagram needs them there");
+  DeviceVoronoi2d v;
+  v.num_points = n;
+  v.backend = v.stats.backend = tri.backend;
+  del2d::DeviceVoronoiOutput out;
+  const std::int32_t* dup = tri.num_duplicates ? tri.duplicate_of.get() : nullptr;
+#ifdef GPUGEOM_HAVE_CUDA
+  if (tri.backend == Backend::Cuda)
+    del2d::cuda_impl::voronoi(device_xy, n, tri.triangles.get(), tri.neighbors.get(), dup,
+                              tri.num_triangles, run, out, v.stats);
+  else
+#endif
+    del2d::cpu_impl::voronoi(device_xy, n, tri.triangles.get(), tri.neighbors.get(), dup,
+                             tri.num_triangles, run, out, v.stats);
+  v.num_vertices = out.num_vertices;
+  v.num_ridges = out.num_ridges;
+  v.num_cell_vertices = out.num_cell_vertices;
+  v.vertices = std::move(out.vertices);
+  v.ridge_points = std::move(out.ridge_points);
+  v.ridge_vertices = std::move(out.ridge_vertices);
+  v.ridge_directions = std::move(out.ridge_directions);
+  v.cell_offsets = std::move(out.cell_offsets);
+  v.cell_vertices = std::move(out.cell_vertices);
   return v;
 }
 
@@ -130,6 +136,9 @@ ClippedCells clip_voronoi_cells(const double* xy, std::int64_t n, const Triangul
     // The cell is the intersection of the half-planes nearer p than each Delaunay neighbour q:
     // clip the box by their bisectors (no rays or far points needed for unbounded cells).
     poly = {xmin, ymin, xmax, ymin, xmax, ymax, xmin, ymax};
+    if (start[src] < 0)
+      throw Error(ErrorCode::InvalidArgument,
+                  "point " + std::to_string(src) + " is not a vertex of the triangulation");
     walk_star(tri, start[src], [&](std::int64_t t, int k) {
       for (int side = 1; side <= 2; ++side) {
         const std::int32_t q = tri.triangles[3 * t + (k + side) % 3];

@@ -73,18 +73,6 @@ std::string b64_decode(std::string_view c, const std::string& name) {
   return out;
 }
 
-void b64_append(std::string& out, const unsigned char* p, std::size_t n) {
-  for (std::size_t i = 0; i < n; i += 3) {
-    const std::uint32_t w = (std::uint32_t(p[i]) << 16) |
-                            (i + 1 < n ? std::uint32_t(p[i + 1]) << 8 : 0) |
-                            (i + 2 < n ? std::uint32_t(p[i + 2]) : 0);
-    out += kB64[w >> 18];
-    out += kB64[(w >> 12) & 63];
-    out += i + 1 < n ? kB64[(w >> 6) & 63] : '=';
-    out += i + 2 < n ? kB64[w & 63] : '=';
-  }
-}
-
 // ---- a small XML scanner: tags and their attributes (no entities, no nesting rules) ----
 
 struct Tag {

@@ -328,3 +328,40 @@ TEST(Cvd, TypedDensitiesAndDeviceEntry) {
   v.data = nullptr;
   EXPECT_THROW(centroidal_voronoi(v, o), Error);
 }
+
+// The caller's arrays take the sites and masses on both entries; short ones are refused before
+// anything is written.
+TEST(Cvd, CallerArrays) {
+  const io::Grid g = gg_cvd::random_density({40, 50}, 0.2, 3);
+  CvdOptions o;
+  o.backend = Backend::Cpu;
+  o.num_sites = 25;
+  o.max_iterations = 8;
+  const auto ref = centroidal_voronoi(g, o);
+  for (bool device : {false, true}) {
+    std::vector<double> s(50, -7), m(25, -7);
+    o.into = {{s.data(), 50}, {m.data(), 25}};
+    if (device) {
+      const auto r = centroidal_voronoi_device(view_of(g), o);
+      EXPECT_FALSE(r.sites || r.mass);
+      EXPECT_EQ(r.num_sites, 25);
+    } else {
+      const auto r = centroidal_voronoi(g, o);
+      EXPECT_TRUE(r.sites.empty() && r.mass.empty());
+      EXPECT_EQ(r.size(), 25);
+    }
+    EXPECT_EQ(s, std::vector<double>(ref.sites.begin(), ref.sites.end()));
+    EXPECT_EQ(m, std::vector<double>(ref.mass.begin(), ref.mass.end()));
+    std::vector<double> s2(49, -7);
+    o.into = {{s2.data(), 49}, {}};
+    try {
+      device ? (void)centroidal_voronoi_device(view_of(g), o) : (void)centroidal_voronoi(g, o);
+      ADD_FAILURE() << "a short array was accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
+      EXPECT_NE(std::string(e.what()).find("into.sites holds 49"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(s2, std::vector<double>(49, -7));
+    o.into = {};
+  }
+}

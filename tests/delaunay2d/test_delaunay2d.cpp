@@ -295,3 +295,32 @@ TEST(Delaunay2d, DeviceEntryAndCallerArrays) {
     gg_test::expect_refused([&] { (void)voronoi2d(xy, n, r); }, "into");
   }
 }
+
+// The Voronoi diagram computed on the executor from a device triangulation (CPU executor: host
+// memory) equals the host's, array for array, duplicates and hull cells included.
+TEST(Delaunay2d, VoronoiDeviceEntry) {
+  using gg_test::host_prefix;
+  for (const char* d : {"uniform", "grid", "circle"}) {
+    SCOPED_TRACE(d);
+    auto p = generate2d(d, 2000, 3);
+    for (int k = 0; k < 20; ++k) p.push_back(p[std::size_t(13 * k)]);  // duplicates
+    const std::int64_t n = std::int64_t(p.size());
+    const double* xy = &p.data()->x;
+    const auto tri = delaunay2d(p, cpu());
+    const auto ref = voronoi2d(xy, n, tri);
+    const auto dt = delaunay2d_device(xy, n, cpu());
+    const auto v = voronoi2d_device(xy, n, dt);
+    EXPECT_EQ(v.backend, Backend::Cpu);
+    ASSERT_EQ(v.num_vertices, std::int64_t(ref.vertices.size() / 2));
+    ASSERT_EQ(v.num_ridges, std::int64_t(ref.ridge_points.size() / 2));
+    ASSERT_EQ(v.num_cell_vertices, std::int64_t(ref.cell_vertices.size()));
+    EXPECT_EQ(host_prefix(v.vertices, 2 * v.num_vertices), ref.vertices);
+    EXPECT_EQ(host_prefix(v.ridge_points, 2 * v.num_ridges), ref.ridge_points);
+    EXPECT_EQ(host_prefix(v.ridge_vertices, 2 * v.num_ridges), ref.ridge_vertices);
+    EXPECT_EQ(host_prefix(v.ridge_directions, 2 * v.num_ridges), ref.ridge_directions);
+    EXPECT_EQ(host_prefix(v.cell_offsets, n + 1), ref.cell_offsets);
+    EXPECT_EQ(host_prefix(v.cell_vertices, v.num_cell_vertices), ref.cell_vertices);
+    // A triangulation of other points is refused.
+    gg_test::expect_refused([&] { (void)voronoi2d_device(xy, n - 1, dt); }, "belong");
+  }
+}

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <type_traits>
+#include <vector>
 
 #include "del2d_cases.hpp"
 
@@ -175,4 +177,43 @@ TEST(CudaDelaunay2d, DeviceEntryOnCallersStream) {
   cudaFreeAsync(dp, s);
   cudaStreamSynchronize(s);
   cudaStreamDestroy(s);
+}
+
+// The Voronoi diagram on the GPU from a device triangulation equals the host's from the same
+// triangulation, array for array.
+TEST(CudaDelaunay2d, VoronoiDeviceEntry) {
+  auto p = generate2d("uniform", 200000, 21);
+  p.push_back(p[5]);  // a duplicate
+  const std::int64_t n = std::int64_t(p.size());
+  double* dp = nullptr;
+  ASSERT_EQ(cudaMalloc(&dp, n * sizeof(Point2)), cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(dp, p.data(), n * sizeof(Point2), cudaMemcpyHostToDevice), cudaSuccess);
+  const auto dt = delaunay2d_device(dp, n);
+  const auto v = voronoi2d_device(dp, n, dt);
+  Delaunay2dOptions o;
+  o.backend = Backend::Cuda;
+  const auto h = delaunay2d(p, o);
+  const auto ref = voronoi2d(&p.data()->x, n, h);
+  ASSERT_EQ(v.num_ridges, std::int64_t(ref.ridge_points.size() / 2));
+  ASSERT_EQ(v.num_cell_vertices, std::int64_t(ref.cell_vertices.size()));
+  auto get = [](const auto& ptr, std::int64_t count) {
+    using T = typename std::decay_t<decltype(ptr)>::element_type;
+    std::vector<T> x(static_cast<std::size_t>(count));
+    EXPECT_EQ(cudaMemcpy(x.data(), ptr.get(), count * sizeof(T), cudaMemcpyDeviceToHost),
+              cudaSuccess);
+    return x;
+  };
+  EXPECT_EQ(get(v.vertices, 2 * v.num_vertices),
+            std::vector<double>(ref.vertices.begin(), ref.vertices.end()));
+  EXPECT_EQ(get(v.ridge_points, 2 * v.num_ridges),
+            std::vector<std::int32_t>(ref.ridge_points.begin(), ref.ridge_points.end()));
+  EXPECT_EQ(get(v.ridge_vertices, 2 * v.num_ridges),
+            std::vector<std::int32_t>(ref.ridge_vertices.begin(), ref.ridge_vertices.end()));
+  EXPECT_EQ(get(v.ridge_directions, 2 * v.num_ridges),
+            std::vector<double>(ref.ridge_directions.begin(), ref.ridge_directions.end()));
+  EXPECT_EQ(get(v.cell_offsets, n + 1),
+            std::vector<std::int64_t>(ref.cell_offsets.begin(), ref.cell_offsets.end()));
+  EXPECT_EQ(get(v.cell_vertices, v.num_cell_vertices),
+            std::vector<std::int32_t>(ref.cell_vertices.begin(), ref.cell_vertices.end()));
+  cudaFree(dp);
 }

@@ -319,14 +319,15 @@ inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
         for (int q = 0; q < nd; ++q) sd[i * nd + q] = (double(P[q * ns + i]) + 0.5) / sf - 0.5;
         md[i] = double(mp[i]) * unit_mass;
       });
+  // (The caller's arrays were checked against the site count before any work: cvd.cpp.)
   if (rq.device_out) {
+    auto a = deliver::place(ex, so, ns * nd, rq.into.sites);
+    auto b = deliver::place(ex, mo, ns, rq.into.mass);
     ex.sync();  // the caller may read them now (and free them on any stream)
-    out.dev_sites = so.hand_over();
-    out.dev_mass = mo.hand_over();
+    out.dev_sites = a.own();
+    out.dev_mass = b.own();
   } else {
-    out.sites.resize(std::size_t(ns) * nd);
-    out.mass.resize(std::size_t(ns));
-    ex.to_host(sd, ns * nd, out.sites.data());
-    ex.to_host(md, ns, out.mass.data());
+    deliver::to_host(ex, sd, ns * nd, rq.into.sites, out.sites);
+    deliver::to_host(ex, md, ns, rq.into.mass, out.mass);
   }
 }
