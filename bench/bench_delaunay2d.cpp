@@ -46,10 +46,44 @@ double cgal_ms(const std::vector<Point2>& p) {
 }
 }  // namespace
 
+// Median time of voronoi2d_device over a triangulation left on the executor by
+// delaunay2d_device (points uploaded once; the triangulation not timed). -1 without CUDA.
+double voronoi_device_ms(const std::vector<Point2>& p, Backend b, int reps) {
+  const std::int64_t n = std::int64_t(p.size());
+  Delaunay2dOptions o;
+  o.backend = b;
+  if (b == Backend::Cpu) {
+    const auto dt = delaunay2d_device(&p.data()->x, n, o);
+    std::vector<double> t;
+    for (int k = 0; k < reps; ++k) {
+      const auto t0 = clk::now();
+      voronoi2d_device(&p.data()->x, n, dt, o);
+      t.push_back(bench::ms_since(t0));
+    }
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+  }
+  double out = -1;
+  bench::device_resident_ms(p, 1, [&](const double* d, std::int64_t m) {
+    if (out >= 0) return;  // (the warm-up call does the work)
+    const auto dt = delaunay2d_device(d, m, o);
+    voronoi2d_device(d, m, dt, o);  // warm-up
+    std::vector<double> t;
+    for (int k = 0; k < reps; ++k) {
+      const auto t0 = clk::now();
+      voronoi2d_device(d, m, dt, o);
+      t.push_back(bench::ms_since(t0));
+    }
+    std::sort(t.begin(), t.end());
+    out = t[t.size() / 2];
+  });
+  return out;
+}
+
 int main(int argc, char** argv) {
   std::string dists = "uniform", sizes = "1e5,1e6", backends = "all", csv, files;
   int reps = 3;
-  bool cgal = false, check = false;
+  bool cgal = false, check = false, voronoi = false;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -67,12 +101,14 @@ int main(int argc, char** argv) {
       cgal = true;
     else if (a == "--check")
       check = true;
+    else if (a == "--voronoi")
+      voronoi = true;
     else if (a == "--csv")
       csv = next();
     else {
       std::cout << "usage: gpugeom_bench_del2d [--dists uniform,circle] [--sizes 1e5,1e6] "
                    "[--files a.npy,b.npy] [--backend cpu|cuda|all] [--reps 3] [--cgal] [--check] "
-                   "[--csv FILE]\n";
+                   "[--voronoi] [--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
   }
@@ -142,6 +178,19 @@ int main(int argc, char** argv) {
                   bench::phase_ms(r.stats, "output"), n / med / 1e3,
                   (long long)r.stats.counters["batches"],
                   (long long)r.stats.counters["flip_rounds"], cg, verdict.c_str());
+      if (voronoi) {  // the Voronoi diagram of the result: host loop, and on the executor
+        std::vector<double> th;
+        for (int k = 0; k < reps; ++k) {
+          const auto t0 = clk::now();
+          const Voronoi2d v = voronoi2d(&in.pts.data()->x, n, r);
+          th.push_back(bench::ms_since(t0));
+        }
+        std::sort(th.begin(), th.end());
+        const double vd = voronoi_device_ms(in.pts, b, reps);
+        std::printf(
+            "    voronoi: host %.1f ms, device entry %.1f ms (from a device triangulation)\n",
+            th[th.size() / 2], vd);
+      }
       if (b == Backend::Cuda)
         std::printf("    upload %.1f ms, copy back %.1f ms, bus floor %.1f ms\n",
                     bench::phase_ms(r.stats, "upload"), bench::phase_ms(r.stats, "copy_back"),

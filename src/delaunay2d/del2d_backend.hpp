@@ -41,10 +41,10 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
 void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                         DeviceOutput& out, Stats& stats);
 // The Voronoi diagram of nt triangles (tri, nb; dup may be null: no duplicates) of n points xy,
-// all in the executor's memory.
+// all in the executor's memory; into `host` where given (the host entry), else left in `out`.
 void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
              const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
-             DeviceVoronoiOutput& out, Stats& stats);
+             DeviceVoronoiOutput& out, Stats& stats, Voronoi2d* host = nullptr);
 }  // namespace cpu_impl
 namespace cuda_impl {
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
@@ -53,7 +53,7 @@ void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOption
                         DeviceOutput& out, Stats& stats);
 void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
              const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
-             DeviceVoronoiOutput& out, Stats& stats);
+             DeviceVoronoiOutput& out, Stats& stats, Voronoi2d* host = nullptr);
 }  // namespace cuda_impl
 
 }  // namespace gpugeom::del2d

@@ -48,39 +48,18 @@ bool walk_star(const Triangulation2d& tri, std::int64_t c, F visit) {
 
 }  // namespace
 
+// The host entry runs the executor's algorithm on the CPU executor over the caller's arrays
+// (all host threads; the same arrays as the device entry's, bit for bit).
 Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri) {
   check_sizes(n, tri);
   Voronoi2d v;
-  const std::int64_t nt = std::int64_t(tri.num_triangles());
-  v.vertices.resize(std::size_t(2 * nt));
-  const std::int32_t* T = tri.triangles.data();
-  const std::int32_t* N = tri.neighbors.data();
-  for (std::int64_t t = 0; t < nt; ++t) del2d::vor::circumcentre(xy, T, t, &v.vertices[2 * t]);
-  for (std::int64_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) {
-      if (!del2d::vor::has_ridge(N, t, k)) continue;
-      std::int32_t p[2], q[2];
-      double d[2];
-      del2d::vor::ridge(xy, T, N, t, k, p, q, d);
-      v.ridge_points.insert(v.ridge_points.end(), p, p + 2);
-      v.ridge_vertices.insert(v.ridge_vertices.end(), q, q + 2);
-      v.ridge_directions.insert(v.ridge_directions.end(), d, d + 2);
-    }
-  // cells
-  const auto start = star_starts(n, tri);
-  v.cell_offsets.assign(std::size_t(n + 1), 0);
-  for (std::int64_t i = 0; i < n; ++i) {
-    const std::int32_t src = tri.duplicate_of[i] >= 0 ? tri.duplicate_of[i] : std::int32_t(i);
-    const std::int64_t c = start[src];
-    if (c < 0)
-      throw Error(ErrorCode::InvalidArgument,
-                  "point " + std::to_string(src) + " is not a vertex of the triangulation");
-    const std::size_t at = v.cell_vertices.size();
-    const bool open =
-        walk_star(tri, c, [&](std::int64_t t, int) { v.cell_vertices.push_back(std::int32_t(t)); });
-    if (open) v.cell_vertices.insert(v.cell_vertices.begin() + std::ptrdiff_t(at), -1);
-    v.cell_offsets[i + 1] = std::int64_t(v.cell_vertices.size());
-  }
+  del2d::DeviceVoronoiOutput unused;
+  Stats st;
+  RunOptions run;
+  run.backend = Backend::Cpu;
+  del2d::cpu_impl::voronoi(xy, n, tri.triangles.data(), tri.neighbors.data(),
+                           tri.num_duplicates ? tri.duplicate_of.data() : nullptr,
+                           std::int64_t(tri.num_triangles()), run, unused, st, &v);
   return v;
 }
 

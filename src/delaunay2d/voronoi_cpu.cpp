@@ -8,6 +8,7 @@
 #include "delaunay2d/del2d_backend.hpp"
 #include "delaunay2d/voronoi_core.hpp"
 #include "exec/atomics.hpp"
+#include "exec/deliver.hpp"
 #include "exec/cpu_exec.hpp"
 
 namespace gpugeom::del2d::cpu_impl {
@@ -15,7 +16,7 @@ using Exec = CpuExec;
 #include "delaunay2d/impl/voronoi.inl"
 void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
              const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
-             DeviceVoronoiOutput& out, Stats& stats) {
-  voronoi_impl(xy, n, tri, nb, dup, nt, run, out, stats);
+             DeviceVoronoiOutput& out, Stats& stats, Voronoi2d* host) {
+  voronoi_impl(xy, n, tri, nb, dup, nt, run, out, stats, host);
 }
 }  // namespace gpugeom::del2d::cpu_impl

@@ -14,7 +14,8 @@ GG_HD inline bool vor_open(const std::int32_t* nb, std::int64_t c) {
 
 inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* tri,
                          const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                         const RunOptions& run, DeviceVoronoiOutput& out, Stats& st) {
+                         const RunOptions& run, DeviceVoronoiOutput& out, Stats& st,
+                         Voronoi2d* host) {
   const auto t0 = std::chrono::steady_clock::now();
   Exec ex(run);
   using I32 = std::int32_t;
@@ -89,6 +90,19 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
         if (vor_open(nb, c)) o[at++] = -1;
         vor::walk_star(tri, nb, c, nt, [&](I64 t, int) { o[at++] = I32(t); });
       });
+  if (host) {  // the host entry: into its HostVectors (on the CPU executor a parallel copy)
+    const OutBuffer<double> nd{};
+    const OutBuffer<I32> ni{};
+    const OutBuffer<I64> nl{};
+    deliver::to_host(ex, v, 2 * nt, nd, host->vertices);
+    deliver::to_host(ex, rp, 2 * nr, ni, host->ridge_points);
+    deliver::to_host(ex, rv, 2 * nr, ni, host->ridge_vertices);
+    deliver::to_host(ex, rd, 2 * nr, nd, host->ridge_directions);
+    deliver::to_host(ex, off, n + 1, nl, host->cell_offsets);
+    deliver::to_host(ex, cv, ncv, ni, host->cell_vertices);
+    st.phase_ms.push_back({"voronoi", ms_since(t0)});
+    return;
+  }
   ex.sync();  // the caller may read them now (and free them on any stream)
   out.num_vertices = nt;
   out.num_ridges = nr;
