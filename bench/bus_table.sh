@@ -16,7 +16,7 @@ B=.devbin
   python3 bench/anchor_edt.py --sides 4096,8192 --density 0.1 --tools cupy,cupy_host --reps 3
   python3 bench/anchor_edt.py --dim 3 --sides 512 --density 0.1 --tools cupy,cupy_host --reps 3
   echo "== 2D Delaunay, uniform"
-  $B/gpugeom_bench_del2d --backend cuda --dists uniform --sizes 1e6,1e7 --reps 3
+  $B/gpugeom_bench_del2d --backend cuda --dists uniform --sizes 1e6,1e7 --reps 3 --voronoi
   $B/gpugeom_bench_del2d --backend cuda --dists uniform --sizes ${HUGE:-1e8} --reps 1 | tail -n +3
   python3 bench/anchor_del2d.py --gpugeom $B/gpugeom --dists uniform --sizes 1e6,1e7 --tools cupy,cupy_host
   echo "== 3D convex hull"

@@ -10,6 +10,7 @@
 #include "cvd/cvd_backend.hpp"
 #include "edt/edt_backend.hpp"
 #include "exec/deliver.hpp"
+#include "exec/dispatch.hpp"
 #include "gpugeom/cvd.hpp"
 #include "gpugeom/io.hpp"
 
@@ -112,14 +113,7 @@ void run(Backend b, cvd::Request& rq, const CvdOptions& opt, cvd::Output& out, S
     };
   st.backend = b;
   st.counters["grid_points"] = rq.layout.count();
-#ifdef GPUGEOM_HAVE_CUDA
-  if (b == Backend::Cuda)
-    cvd::cuda_impl::lloyd(rq, out, st);
-  else
-    cvd::cpu_impl::lloyd(rq, out, st);
-#else
-  cvd::cpu_impl::lloyd(rq, out, st);
-#endif
+  GG_ON_EXECUTOR(b, cvd, lloyd, rq, out, st);
 }
 
 // What both results share: the energies in density units, the iteration count and the verdict.

@@ -5,6 +5,7 @@
 
 #include "delaunay2d/del2d_backend.hpp"
 #include "exec/deliver.hpp"
+#include "exec/dispatch.hpp"
 
 namespace gpugeom {
 
@@ -34,14 +35,7 @@ Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOpt
   const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
   del2d::Output out;
-#ifdef GPUGEOM_HAVE_CUDA
-  if (b == Backend::Cuda)
-    del2d::cuda_impl::triangulate(xy, n, opt, out, r.stats);
-  else
-    del2d::cpu_impl::triangulate(xy, n, opt, out, r.stats);
-#else
-  del2d::cpu_impl::triangulate(xy, n, opt, out, r.stats);
-#endif
+  GG_ON_EXECUTOR(b, del2d, triangulate, xy, n, opt, out, r.stats);
   r.triangles = std::move(out.triangles);
   r.neighbors = std::move(out.neighbors);
   r.duplicate_of = std::move(out.duplicate_of);
@@ -58,14 +52,7 @@ DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
   r.backend = r.stats.backend = b;
   r.num_points = n;
   del2d::DeviceOutput out;
-#ifdef GPUGEOM_HAVE_CUDA
-  if (b == Backend::Cuda)
-    del2d::cuda_impl::triangulate_device(device_xy, n, opt, out, r.stats);
-  else
-    del2d::cpu_impl::triangulate_device(device_xy, n, opt, out, r.stats);
-#else
-  del2d::cpu_impl::triangulate_device(device_xy, n, opt, out, r.stats);
-#endif
+  GG_ON_EXECUTOR(b, del2d, triangulate_device, device_xy, n, opt, out, r.stats);
   r.num_triangles = out.num_triangles;
   r.num_duplicates = out.num_duplicates;
   r.triangles = std::move(out.triangles);

@@ -8,6 +8,7 @@
 
 #include "delaunay2d/del2d_backend.hpp"
 #include "delaunay2d/voronoi_core.hpp"
+#include "exec/dispatch.hpp"
 #include "gpugeom/delaunay2d.hpp"
 
 namespace gpugeom {
@@ -78,14 +79,8 @@ DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
   v.backend = v.stats.backend = tri.backend;
   del2d::DeviceVoronoiOutput out;
   const std::int32_t* dup = tri.num_duplicates ? tri.duplicate_of.get() : nullptr;
-#ifdef GPUGEOM_HAVE_CUDA
-  if (tri.backend == Backend::Cuda)
-    del2d::cuda_impl::voronoi(device_xy, n, tri.triangles.get(), tri.neighbors.get(), dup,
-                              tri.num_triangles, run, out, v.stats);
-  else
-#endif
-    del2d::cpu_impl::voronoi(device_xy, n, tri.triangles.get(), tri.neighbors.get(), dup,
-                             tri.num_triangles, run, out, v.stats);
+  GG_ON_EXECUTOR(tri.backend, del2d, voronoi, device_xy, n, tri.triangles.get(),
+                 tri.neighbors.get(), dup, tri.num_triangles, run, out, v.stats);
   v.num_vertices = out.num_vertices;
   v.num_ridges = out.num_ridges;
   v.num_cell_vertices = out.num_cell_vertices;

@@ -5,6 +5,7 @@
 
 #include "delaunay3d/del3d_backend.hpp"
 #include "exec/deliver.hpp"
+#include "exec/dispatch.hpp"
 
 namespace gpugeom {
 
@@ -32,14 +33,7 @@ Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOp
   const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
   del3d::Output out;
-#ifdef GPUGEOM_HAVE_CUDA
-  if (b == Backend::Cuda)
-    del3d::cuda_impl::triangulate(xyz, n, opt, out, r.stats);
-  else
-    del3d::cpu_impl::triangulate(xyz, n, opt, out, r.stats);
-#else
-  del3d::cpu_impl::triangulate(xyz, n, opt, out, r.stats);
-#endif
+  GG_ON_EXECUTOR(b, del3d, triangulate, xyz, n, opt, out, r.stats);
   r.tetrahedra = std::move(out.tetrahedra);
   r.neighbors = std::move(out.neighbors);
   r.duplicate_of = std::move(out.duplicate_of);
@@ -59,14 +53,7 @@ DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n
   r.backend = r.stats.backend = b;
   r.num_points = n;
   del3d::DeviceOutput out;
-#ifdef GPUGEOM_HAVE_CUDA
-  if (b == Backend::Cuda)
-    del3d::cuda_impl::triangulate_device(device_xyz, n, opt, out, r.stats);
-  else
-    del3d::cpu_impl::triangulate_device(device_xyz, n, opt, out, r.stats);
-#else
-  del3d::cpu_impl::triangulate_device(device_xyz, n, opt, out, r.stats);
-#endif
+  GG_ON_EXECUTOR(b, del3d, triangulate_device, device_xyz, n, opt, out, r.stats);
   r.num_tetrahedra = out.num_tetrahedra;
   r.num_duplicates = out.num_duplicates;
   r.num_hull_facets = out.num_hull_facets;

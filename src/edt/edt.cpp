@@ -6,6 +6,7 @@
 
 #include "edt/edt_backend.hpp"
 #include "exec/deliver.hpp"
+#include "exec/dispatch.hpp"
 #include "base/hd.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/io.hpp"
@@ -150,15 +151,7 @@ void prepare(edt::Request& rq, const EdtOptions& opt, const std::vector<std::int
 
 void run_backend(Backend b, const edt::Request& rq, edt::Output& out, Stats& stats) {
   stats.backend = b;
-#ifdef GPUGEOM_HAVE_CUDA
-  if (b == Backend::Cuda)
-    edt::cuda_impl::run(rq, out, stats);
-  else
-    edt::cpu_impl::run(rq, out, stats);
-#else
-  (void)b;
-  edt::cpu_impl::run(rq, out, stats);
-#endif
+  GG_ON_EXECUTOR(b, edt, run, rq, out, stats);
 }
 
 EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std::int64_t>& shape) {

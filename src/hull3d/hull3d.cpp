@@ -6,6 +6,7 @@
 #include <string>
 
 #include "exec/deliver.hpp"
+#include "exec/dispatch.hpp"
 #include "hull3d/hull3d_backend.hpp"
 
 namespace gpugeom {
@@ -64,14 +65,7 @@ ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOption
   const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
   hull3d::Output out;
-#ifdef GPUGEOM_HAVE_CUDA
-  if (b == Backend::Cuda)
-    hull3d::cuda_impl::compute(xyz, n, opt, out, r.stats);
-  else
-    hull3d::cpu_impl::compute(xyz, n, opt, out, r.stats);
-#else
-  hull3d::cpu_impl::compute(xyz, n, opt, out, r.stats);
-#endif
+  GG_ON_EXECUTOR(b, hull3d, compute, xyz, n, opt, out, r.stats);
   r.triangles = std::move(out.triangles);
   r.neighbors = std::move(out.neighbors);
   r.vertices = std::move(out.vertices);
@@ -93,14 +87,7 @@ DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
   r.backend = r.stats.backend = b;
   r.num_points = n;
   hull3d::DeviceOutput out;
-#ifdef GPUGEOM_HAVE_CUDA
-  if (b == Backend::Cuda)
-    hull3d::cuda_impl::compute_device(device_xyz, n, opt, out, r.stats);
-  else
-    hull3d::cpu_impl::compute_device(device_xyz, n, opt, out, r.stats);
-#else
-  hull3d::cpu_impl::compute_device(device_xyz, n, opt, out, r.stats);
-#endif
+  GG_ON_EXECUTOR(b, hull3d, compute_device, device_xyz, n, opt, out, r.stats);
   r.num_facets = out.num_facets;
   r.num_vertices = out.num_vertices;
   r.triangles = std::move(out.triangles);
