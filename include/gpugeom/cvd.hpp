@@ -97,4 +97,28 @@ struct DeviceCvdResult {
 DeviceCvdResult centroidal_voronoi_device(const GridView& device_density,
                                           const CvdOptions& opt = {});
 
+// Stipple drawings of an image: dots at the sites of the weighted centroidal Voronoi diagram of
+// the image's darkness, each dot's area proportional to the darkness of its cell, so the drawing
+// keeps the tone. What `gpugeom stipple` and the Python `gpugeom.stipple` draw.
+struct StippleOptions : CvdOptions {
+  bool invert = false;  // dots where the image is bright
+  double contrast = 1;  // darkness stretched about mid-grey (> 0)
+  double gamma = 1;     // darkness^gamma (> 0; above 1 lightens mid-tones)
+  double ink = 0.6;     // dot area = ink x the darkness summed over its cell (> 0)
+};
+struct Stipple {
+  CvdResult cvd;              // sites (x = column, y = row, pixel centres at integers), mass
+  HostVector<double> radius;  // per site, in image pixels: sqrt(ink * mass / pi)
+  std::int64_t rows = 0, cols = 0;
+};
+// The darkness in [0, 1] of a 2D image (float64, the image's shape): integer images by their
+// type's range (uint8 255, uint16 65535, bool 1), other types as given (scaled by their maximum
+// when it exceeds 1), clamped to [0, 1], inverted unless `invert`, stretched by `contrast` about
+// 0.5, raised to `gamma`. NaN stays NaN (the iteration refuses it).
+HostVector<double> stipple_darkness(const GridView& image, bool invert, double contrast,
+                                    double gamma);
+// image: 2D, host memory, any element type. Throws Error(InvalidArgument) for a 3D image or
+// options out of range, and as centroidal_voronoi.
+Stipple stipple(const GridView& image, const StippleOptions& opt = {});
+
 }  // namespace gpugeom

@@ -9,5 +9,6 @@
 #include "gpugeom/grid_view.hpp"
 #include "gpugeom/hull3d.hpp"
 #include "gpugeom/io.hpp"
+#include "gpugeom/locate.hpp"
 #include "gpugeom/predicates.hpp"
 #include "gpugeom/spatial.hpp"

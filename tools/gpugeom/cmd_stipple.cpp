@@ -14,41 +14,8 @@ namespace gpugeom::cli {
 
 namespace {
 
-// Darkness in [0, 1] of every pixel: integer images by their type's range, floats as given
-// (values above 1 scaled by the maximum), then contrast about mid-grey and gamma.
-io::Grid darkness(const io::Grid& img, bool invert, double contrast, double gamma) {
-  if (img.shape.size() != 2) throw UsageError("stipple takes a 2D image");
-  double range = 1;
-  switch (img.type) {
-    case io::ScalarType::U8:
-      range = 255;
-      break;
-    case io::ScalarType::U16:
-      range = 65535;
-      break;
-    case io::ScalarType::Bool:
-      range = 1;
-      break;
-    default:
-      for (std::int64_t i = 0; i < img.count(); ++i) range = std::max(range, img.value(i));
-  }
-  io::Grid d;
-  d.shape = img.shape;
-  d.type = io::ScalarType::F64;
-  d.data.resize(std::size_t(img.count()) * 8);
-  for (std::int64_t i = 0; i < img.count(); ++i) {
-    const double v =
-        std::clamp(img.value(i) / range, 0.0, 1.0);  // NaN stays NaN: the CVD refuses it
-    double k = invert ? v : 1 - v;
-    k = std::clamp((k - 0.5) * contrast + 0.5, 0.0, 1.0);
-    k = std::pow(k, gamma);
-    std::memcpy(&d.data[std::size_t(i) * 8], &k, 8);
-  }
-  return d;
-}
-
 void write_svg(const std::string& path, std::int64_t rows, std::int64_t cols, const CvdResult& r,
-               const std::vector<double>& radius) {
+               const HostVector<double>& radius) {
   std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   s += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(cols) +
        "\" height=\"" + std::to_string(rows) + "\" viewBox=\"0 0 " + std::to_string(cols) + " " +
@@ -68,7 +35,7 @@ void write_svg(const std::string& path, std::int64_t rows, std::int64_t cols, co
 
 // Anti-aliased discs on white, `scale` output pixels per image pixel.
 void write_png(const std::string& path, std::int64_t rows, std::int64_t cols, int scale,
-               const CvdResult& r, const std::vector<double>& radius) {
+               const CvdResult& r, const HostVector<double>& radius) {
   const std::int64_t H = rows * scale, W = cols * scale;
   std::vector<float> white(std::size_t(H * W), 1.0f);
   for (std::int64_t i = 0; i < r.size(); ++i) {
@@ -118,18 +85,20 @@ int cmd_stipple(const Global& g, Args& a) {
   a.value("--gamma", gamma);
   a.value("--contrast", contrast);
   a.value("--ink", ink);
-  const bool invert = a.flag("--invert");
-  CvdOptions o;
+  StippleOptions o;
+  o.invert = a.flag("--invert");
   o.backend = g.backend;
   read_lloyd_options(a, o);
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one image");
   if (out.empty() || io::extension(out) != ".svg") throw UsageError("give -o OUT.svg");
   if (!png.empty() && io::extension(png) != ".png") throw UsageError("--png writes a .png file");
-  const double gm = to_real(gamma, "--gamma"), ct = to_real(contrast, "--contrast"),
-               inkf = to_real(ink, "--ink");
+  o.gamma = to_real(gamma, "--gamma");
+  o.contrast = to_real(contrast, "--contrast");
+  o.ink = to_real(ink, "--ink");
   const int sc = int(to_count(scale, "--png-scale"));
-  if (!(gm > 0) || !(ct > 0) || !(inkf > 0)) throw UsageError("gamma, contrast, ink must be > 0");
+  if (!(o.gamma > 0) || !(o.contrast > 0) || !(o.ink > 0))
+    throw UsageError("gamma, contrast, ink must be > 0");
   if (sc < 1 || sc > 16) throw UsageError("--png-scale must be in 1..16");
   o.num_sites = to_count(n, "-n");
   io::Grid img;
@@ -137,16 +106,16 @@ int cmd_stipple(const Global& g, Args& a) {
     Timer t(g, "read");
     img = io::read_grid(pos[0]);
   }
-  const io::Grid dens = darkness(img, invert, ct, gm);
+  if (img.shape.size() != 2) throw UsageError("stipple takes a 2D image");
   attach_progress(g, o);
-  CvdResult r;
+  Stipple st;
   {
     Timer t(g, "lloyd");
-    r = centroidal_voronoi(dens, o);
+    st = stipple(view_of(img), o);
   }
+  const CvdResult& r = st.cvd;
+  const HostVector<double>& radius = st.radius;
   finish_progress(g, r);
-  std::vector<double> radius(r.mass.size());
-  for (std::size_t i = 0; i < r.mass.size(); ++i) radius[i] = std::sqrt(inkf * r.mass[i] / M_PI);
   {
     Timer t(g, "write");
     write_svg(out, img.shape[0], img.shape[1], r, radius);

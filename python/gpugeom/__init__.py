@@ -1,0 +1,37 @@
+"""gpugeom: exact computational geometry on the GPU, with SciPy's names.
+
+* ``Delaunay`` (2D, 3D), ``Voronoi`` (2D), ``ConvexHull`` (3D) as in ``scipy.spatial``;
+* ``distance_transform_edt`` as in ``scipy.ndimage``, and ``voronoi_labels``;
+* ``centroidal_voronoi`` and ``stipple``;
+* ``device_info()``, ``verify`` (the exact checkers).
+
+Every function takes NumPy arrays (computed on the GPU when there is one, through the library's
+fast host path) or CuPy / PyTorch CUDA arrays (computed where they are, on the caller's current
+stream, results on the GPU), and ``backend="auto" | "cuda" | "cpu"``. Bad input raises
+ValueError or TypeError with what to change; degenerate input (too few distinct points, all on
+one line or plane) raises DegenerateInputError, a ValueError.
+"""
+from ._core import CudaError, DegenerateInputError, UnsupportedError, __version__
+from ._arrays import device_info
+from . import verify
+from .cvd import CentroidalVoronoi, Progress, Stipple, centroidal_voronoi, stipple
+from .ndimage import distance_transform_edt, voronoi_labels
+from .spatial import ConvexHull, Delaunay, Voronoi
+
+
+def built_with_cuda() -> bool:
+    """True when this build has the CUDA executor (a GPU is then used where one is present)."""
+    return _core.built_with_cuda()
+
+
+def release_cached_device_memory() -> None:
+    """Hands the GPU memory the library keeps for reuse back to the driver."""
+    _core.release_cached_device_memory()
+
+
+__all__ = [
+    "Delaunay", "Voronoi", "ConvexHull", "distance_transform_edt", "voronoi_labels",
+    "centroidal_voronoi", "stipple", "CentroidalVoronoi", "Stipple", "Progress", "device_info",
+    "built_with_cuda", "release_cached_device_memory", "verify", "DegenerateInputError",
+    "UnsupportedError", "CudaError", "__version__",
+]

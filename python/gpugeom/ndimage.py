@@ -1,0 +1,163 @@
+"""Exact Euclidean distance and feature transforms (``scipy.ndimage.distance_transform_edt``)
+and digital Voronoi labels of 2D and 3D grids (1D grids are taken as one row).
+
+Ties between equally near sites go to the site first in C order, so results are deterministic
+and the same on the CPU and the GPU. CuPy / PyTorch CUDA arrays stay on the GPU.
+"""
+from __future__ import annotations
+
+import numbers
+from typing import Optional, Sequence, Union
+
+import numpy as np
+
+from . import _arrays, _core
+
+__all__ = ["distance_transform_edt", "voronoi_labels"]
+
+# Element types the library reads as they are (anything else becomes bool first).
+_DIRECT = {np.dtype(t) for t in (np.bool_, np.uint8, np.uint16, np.int32, np.int64)}
+
+
+def _grid(input, name="input"):
+    kind = _arrays.classify(input)
+    arr, kind = _arrays.as_input(input, None, name, kind)
+    dt = np.dtype(str(arr.dtype).replace("torch.", ""))
+    if dt not in _DIRECT:
+        # Floats and other integers: only zero / non-zero matters (NaN counts as non-zero, as in
+        # SciPy); one byte per element also crosses the bus faster.
+        arr = arr != 0
+    nd = arr.ndim
+    if nd not in (1, 2, 3):
+        raise ValueError(f"{name} must be 1D, 2D or 3D, got {nd} dimensions")
+    if any(int(e) == 0 for e in arr.shape):
+        raise ValueError(f"{name} is empty (shape {tuple(arr.shape)})")
+    return arr, kind, nd
+
+
+def _sampling(sampling, nd) -> list:
+    if sampling is None:
+        return []
+    if isinstance(sampling, numbers.Real):
+        s = [float(sampling)] * nd
+    else:
+        s = [float(v) for v in sampling]
+        if len(s) != nd:
+            raise RuntimeError("sequence argument must have length equal to input rank")
+    for v in s:
+        if not (np.isfinite(v) and v > 0):
+            raise ValueError(f"sampling must be finite and positive, got {sampling!r}")
+    return s
+
+
+def _as_2d(arr, nd):
+    """1D grids run as one row."""
+    return arr.reshape(1, -1) if nd == 1 else arr
+
+
+def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] = None,
+                           return_distances: bool = True, return_indices: bool = False,
+                           distances=None, indices=None, *, float64_distances: bool = True,
+                           backend: str = "auto", threads: int = 0):
+    """Exact Euclidean distance transform, as ``scipy.ndimage.distance_transform_edt``.
+
+    For every non-zero element of ``input``, the distance to the nearest zero element (zeros get
+    0), with ``sampling`` the spacing along each axis. ``return_indices`` gives the nearest
+    zero's coordinates, shape ``(input.ndim,) + input.shape``, int32. ``distances`` / ``indices``
+    are output arrays to write into instead (same kind and memory as ``input``; float64, or
+    float32 distances, and int32 indices); as in SciPy, the outputs written there are not
+    returned. ``float64_distances=False`` returns float32 distances (as CuPy's option).
+
+    Raises ValueError when ``input`` has no zero element (no nearest zero exists).
+    """
+    if not return_distances and not return_indices:
+        raise RuntimeError("at least one of return_distances/return_indices must be True")
+    if distances is not None and not return_distances:
+        raise RuntimeError("distances given but return_distances is False")
+    if indices is not None and not return_indices:
+        raise RuntimeError("indices given but return_indices is False")
+    _arrays.check_backend(backend)
+    arr, kind, nd = _grid(input)
+    shape = tuple(int(e) for e in arr.shape)
+    samp = _sampling(sampling, nd)
+    bits = 0
+    if return_distances:
+        bits = 64 if float64_distances else 32
+        if distances is not None:
+            dd = np.dtype(str(distances.dtype).replace("torch.", ""))
+            if dd not in (np.dtype(np.float64), np.dtype(np.float32)):
+                raise RuntimeError("distances array must be float64 or float32")
+            if tuple(distances.shape) != shape:
+                raise RuntimeError(f"distances array has shape {tuple(distances.shape)}, "
+                                   f"input has {shape}")
+            bits = 64 if dd == np.dtype(np.float64) else 32
+    if indices is not None:
+        if tuple(indices.shape) != (nd,) + shape:
+            raise RuntimeError(f"indices array has shape {tuple(indices.shape)}, needs "
+                               f"{(nd,) + shape}")
+        if np.dtype(str(indices.dtype).replace("torch.", "")) != np.dtype(np.int32):
+            raise RuntimeError("indices array must be int32")
+    g = _as_2d(arr, nd)
+    samp2 = ([1.0] + samp) if (nd == 1 and samp) else samp
+    feat_out = indices
+    if nd == 1 and indices is not None:
+        feat_out = None  # written below from the (2, 1, n) result
+    r = _core.distance_transform(
+        g, zero_sites=True, sampling=samp2, distance=bits, squared=False,
+        features=bool(return_indices), labels=False,
+        distances_out=None if distances is None else distances.reshape(g.shape),
+        features_out=feat_out, backend=backend, stream=kind.stream, threads=threads)
+    result = []
+    if return_distances and distances is None:
+        result.append(kind.back(r["distances"]).reshape(shape))
+    if return_indices:
+        if nd == 1:
+            ft = kind.back(r["indices"])[1].reshape((1,) + shape)
+            if indices is not None:
+                indices[...] = ft
+            else:
+                result.append(ft)
+        elif indices is None:
+            result.append(kind.back(r["indices"]))
+    if len(result) == 2:
+        return tuple(result)
+    if len(result) == 1:
+        return result[0]
+    return None
+
+
+def voronoi_labels(input, sampling: Union[float, Sequence[float], None] = None, *,
+                   return_distances: bool = False, return_sites: bool = False,
+                   backend: str = "auto", threads: int = 0):
+    """The digital Voronoi diagram of the non-zero elements of ``input``: every element gets the
+    value of the nearest non-zero element (ties to the first in C order), so a label image grows
+    each label over the region nearest to it (like ``skimage.segmentation.expand_labels``
+    without a distance limit).
+
+    Returns the labels (``input``'s dtype and shape); with ``return_distances`` also the float64
+    distance to that element; with ``return_sites`` also its flat (C-order) index, int64.
+    Raises ValueError when ``input`` has no non-zero element.
+    """
+    _arrays.check_backend(backend)
+    kind = _arrays.classify(input)
+    values, kind = _arrays.as_input(input, None, "input", kind)
+    arr, _, nd = _grid(values)
+    shape = tuple(int(e) for e in arr.shape)
+    g = _as_2d(arr, nd)
+    samp = _sampling(sampling, nd)
+    samp2 = ([1.0] + samp) if (nd == 1 and samp) else samp
+    r = _core.distance_transform(g, zero_sites=False, sampling=samp2,
+                                 distance=64 if return_distances else 0, squared=False,
+                                 features=False, labels=True, backend=backend,
+                                 stream=kind.stream, threads=threads)
+    xp = kind.xp()
+    rank = kind.to_xp(kind.back(r["labels"])).reshape(shape)
+    flat_values = kind.to_xp(values).reshape(-1)
+    sites = xp.flatnonzero(flat_values != 0)
+    site_index = sites[rank]
+    out = [kind.from_xp(flat_values[site_index])]
+    if return_distances:
+        out.append(kind.back(r["distances"]).reshape(shape))
+    if return_sites:
+        out.append(kind.from_xp(site_index.astype(xp.int64)))
+    return out[0] if len(out) == 1 else tuple(out)

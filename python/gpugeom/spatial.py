@@ -1,0 +1,265 @@
+"""Delaunay triangulations, Voronoi diagrams and convex hulls with ``scipy.spatial``'s names,
+shapes and dtypes, computed exactly (exact predicates with simulation of simplicity: degenerate
+input gets a valid answer, never a failure or a wrong one).
+
+Arrays come back as the kind that went in: NumPy for NumPy (and array-likes), CuPy for CuPy,
+PyTorch tensors for PyTorch tensors; GPU inputs stay on the GPU and run on the caller's current
+stream.
+"""
+from __future__ import annotations
+
+from functools import cached_property
+from typing import Any, Callable, Optional
+
+import numpy as np
+
+from . import _arrays, _core
+
+__all__ = ["Delaunay", "Voronoi", "ConvexHull"]
+
+
+def _not_supported(name, value, default):
+    if value != default:
+        raise ValueError(f"{name}={value!r} is not supported by gpugeom (SciPy's default only)")
+
+
+class Delaunay:
+    """Exact Delaunay triangulation of points in 2D or 3D (``scipy.spatial.Delaunay``).
+
+    Parameters
+    ----------
+    points : (npoints, 2) or (npoints, 3) array of float
+        NumPy, CuPy or PyTorch (CPU or CUDA); converted to float64.
+    backend : {"auto", "cuda", "cpu"}
+        Where it runs; "auto" takes the GPU when there is one. GPU arrays always run on the GPU.
+    threads : int
+        CPU threads (0: all).
+    progress : callable, optional
+        3D only: called as ``progress(phase, inserted, total, batch)`` after each insertion
+        batch (a tqdm bar works too); raising ends the run.
+
+    Attributes
+    ----------
+    points, simplices, neighbors, vertex_to_simplex, convex_hull, coplanar, ndim, npoints,
+    nsimplex, stats.  Duplicate points are not vertices; they are listed in ``coplanar`` as
+    SciPy lists the points Qhull left out: ``[point, simplex, vertex it coincides with]``.
+    """
+
+    def __init__(self, points, furthest_site: bool = False, incremental: bool = False,
+                 qhull_options: Optional[str] = None, *, backend: str = "auto",
+                 threads: int = 0, progress: Optional[Callable] = None):
+        _not_supported("furthest_site", furthest_site, False)
+        _not_supported("incremental", incremental, False)
+        arr, kind = _arrays.points_input(points, (2, 3), backend)
+        self._kind = kind
+        self.points = kind.back(arr) if kind.name == "torch-cpu" else arr
+        self.ndim = int(arr.shape[1])
+        self.npoints = int(arr.shape[0])
+        if self.ndim == 2:
+            r = _core.delaunay2d(arr, backend=backend, stream=kind.stream, threads=threads)
+        else:
+            r = _core.delaunay3d(arr, backend=backend, stream=kind.stream, threads=threads,
+                                 progress=_arrays.progress_callback(progress))
+        self.simplices = kind.back(r["simplices"])
+        self.neighbors = kind.back(r["neighbors"])
+        self._duplicate_of = kind.back(r["duplicate_of"])
+        self._vts = kind.back(r["vertex_to_simplex"]) if "vertex_to_simplex" in r else None
+        self._hull = kind.back(r["hull_facets"]) if "hull_facets" in r else None
+        self.stats = r["stats"]
+
+    @property
+    def nsimplex(self) -> int:
+        return int(self.simplices.shape[0])
+
+    @property
+    def duplicate_of(self):
+        """Per input point: -1 for a vertex, else the earlier point with the same coordinates."""
+        return self._duplicate_of
+
+    def _xp(self):
+        return self._kind.xp()
+
+    @cached_property
+    def vertex_to_simplex(self):
+        """For each point, a simplex that has it as a vertex (a duplicate: that of its twin)."""
+        if self._vts is not None:
+            return self._vts
+        xp = self._xp()
+        s = self._as_xp(self.simplices)
+        dup = self._as_xp(self._duplicate_of)
+        vts = xp.full(self.npoints, -1, dtype=xp.int32)
+        vts[s.ravel()] = xp.repeat(xp.arange(s.shape[0], dtype=xp.int32), s.shape[1])
+        d = xp.nonzero(dup >= 0)[0]
+        vts[d] = vts[dup[d]]
+        return self._back(vts)
+
+    @cached_property
+    def convex_hull(self):
+        """Hull facets: (nfacet, ndim) vertex indices (edges in 2D, triangles in 3D)."""
+        if self._hull is not None:
+            return self._hull
+        xp = self._xp()
+        s = self._as_xp(self.simplices)
+        nb = self._as_xp(self.neighbors)
+        tri, k = xp.nonzero(nb < 0)  # 2D: the edge opposite vertex k of a hull triangle
+        a = s[tri, (k + 1) % 3]
+        b = s[tri, (k + 2) % 3]
+        return self._back(xp.stack([a, b], axis=1).astype(xp.int32))
+
+    @cached_property
+    def coplanar(self):
+        """Duplicates, as SciPy lists the points Qhull did not use: (n, 3) int32 rows of
+        [point index, a simplex holding its twin, the twin's index]."""
+        xp = self._xp()
+        dup = self._as_xp(self._duplicate_of)
+        i = xp.nonzero(dup >= 0)[0].astype(xp.int32)
+        vts = self._as_xp(self.vertex_to_simplex)
+        return self._back(xp.stack([i, vts[dup[i]], dup[i]], axis=1).astype(xp.int32))
+
+    def find_simplex(self, xi, bruteforce: bool = False, tol: Optional[float] = None):
+        """The simplex holding each point of xi (shape (..., ndim)), -1 outside the hull.
+
+        Exact: a point on a shared edge or face gets one of the simplices holding it; there is no
+        tolerance (``tol`` must be None). Runs on the host threads; GPU triangulations are copied
+        to the host for it.
+        """
+        if tol is not None:
+            raise ValueError("find_simplex is exact: tol must be None")
+        q, qkind = _arrays.as_input(xi, np.float64, "xi")
+        qh = _arrays.to_host(q)
+        if qh.shape[-1] != self.ndim:
+            raise ValueError(f"xi must have shape (..., {self.ndim}), got {qh.shape}")
+        lead = qh.shape[:-1]
+        flat = np.ascontiguousarray(qh.reshape(-1, self.ndim))
+        r = _core.find_simplex(np.ascontiguousarray(_arrays.to_host(self.points), np.float64),
+                               np.ascontiguousarray(_arrays.to_host(self.simplices), np.int32),
+                               np.ascontiguousarray(_arrays.to_host(self.neighbors), np.int32),
+                               flat)
+        r = np.asarray(r).reshape(lead)
+        xp = qkind.xp()
+        return qkind.from_xp(r if xp is np else xp.asarray(r))
+
+    def _as_xp(self, a):
+        return self._kind.to_xp(a)
+
+    def _back(self, a):
+        return self._kind.from_xp(a)
+
+    def __repr__(self):
+        return (f"<gpugeom.Delaunay: {self.npoints} points in {self.ndim}D, "
+                f"{self.nsimplex} simplices>")
+
+
+class Voronoi:
+    """Exact Voronoi diagram of 2D points (``scipy.spatial.Voronoi``), dual to the exact
+    Delaunay triangulation: one vertex per Delaunay triangle (its circumcentre).
+
+    Attributes
+    ----------
+    points, vertices, ridge_points, ridge_vertices, regions, point_region, ndim, npoints, and
+    beyond SciPy: ``ridge_directions`` (the outward unit direction of each unbounded ridge),
+    ``ridge_vertices_array`` (the ridges as an (nridges, 2) array), ``delaunay_simplices``.
+    Regions list their vertices counter-clockwise; an unbounded one starts with -1. Duplicate
+    points share the region of their twin.
+    """
+
+    def __init__(self, points, furthest_site: bool = False, incremental: bool = False,
+                 qhull_options: Optional[str] = None, *, backend: str = "auto",
+                 threads: int = 0):
+        _not_supported("furthest_site", furthest_site, False)
+        _not_supported("incremental", incremental, False)
+        arr, kind = _arrays.points_input(points, (2,), backend)
+        self._kind = kind
+        self.points = kind.back(arr) if kind.name == "torch-cpu" else arr
+        self.ndim = 2
+        self.npoints = int(arr.shape[0])
+        r = _core.voronoi2d(arr, backend=backend, stream=kind.stream, threads=threads)
+        self.vertices = kind.back(r["vertices"])
+        self.ridge_points = kind.back(r["ridge_points"])
+        self.ridge_vertices_array = kind.back(r["ridge_vertices"])
+        self.ridge_directions = kind.back(r["ridge_directions"])
+        self.delaunay_simplices = kind.back(r["simplices"])
+        self._offsets = r["cell_offsets"]
+        self._cells = r["cell_vertices"]
+        self.stats = r["stats"]
+
+    @cached_property
+    def ridge_vertices(self) -> list:
+        """As SciPy: a list of [v1, v2] per ridge, -1 for the vertex at infinity."""
+        return _arrays.to_host(self._kind.back(self.ridge_vertices_array)).tolist()
+
+    @cached_property
+    def regions(self) -> list:
+        """Per point (see point_region): its Voronoi vertices, counter-clockwise; -1 first for an
+        unbounded region."""
+        off = _arrays.to_host(self._kind.back(self._offsets))
+        cells = _arrays.to_host(self._kind.back(self._cells)).tolist()
+        return [cells[off[i]:off[i + 1]] for i in range(self.npoints)]
+
+    @cached_property
+    def point_region(self):
+        """Index into regions of each point's region (here: its own index)."""
+        return np.arange(self.npoints, dtype=np.intp)
+
+    @cached_property
+    def ridge_dict(self) -> dict:
+        rp = _arrays.to_host(self.ridge_points).tolist()
+        return {tuple(p): v for p, v in zip(rp, self.ridge_vertices)}
+
+    def __repr__(self):
+        return f"<gpugeom.Voronoi: {self.npoints} points, {len(self.vertices)} vertices>"
+
+
+class ConvexHull:
+    """Exact convex hull of 3D points (``scipy.spatial.ConvexHull``): only extreme points are
+    vertices (points inside a face or on an edge are not), facets counter-clockwise seen from
+    outside, flat faces triangulated.
+
+    Attributes
+    ----------
+    points, simplices, neighbors, vertices (sorted), equations (unit outward normal and offset,
+    as Qhull's), area, volume, ndim, npoints, nsimplex, coplanar (always empty: no point is
+    dropped for precision), stats.
+    """
+
+    def __init__(self, points, incremental: bool = False, qhull_options: Optional[str] = None, *,
+                 backend: str = "auto", threads: int = 0):
+        _not_supported("incremental", incremental, False)
+        arr, kind = _arrays.points_input(points, (2, 3), backend)
+        if arr.shape[1] != 3:
+            raise ValueError("gpugeom.ConvexHull computes 3D hulls; for 2D points the hull is "
+                             "gpugeom.Delaunay(points).convex_hull")
+        self._kind = kind
+        self.points = kind.back(arr) if kind.name == "torch-cpu" else arr
+        self.ndim = 3
+        self.npoints = int(arr.shape[0])
+        r = _core.convex_hull3d(arr, backend=backend, stream=kind.stream, threads=threads)
+        self.simplices = kind.back(r["simplices"])
+        self.neighbors = kind.back(r["neighbors"])
+        self.vertices = kind.back(r["vertices"])
+        self.equations = kind.back(r["equations"])
+        self.coplanar = np.zeros((0, 3), dtype=np.int32)
+        self.stats = r["stats"]
+
+    @property
+    def nsimplex(self) -> int:
+        return int(self.simplices.shape[0])
+
+    def _facets(self):
+        p = np.asarray(_arrays.to_host(self.points), dtype=np.float64)
+        s = np.asarray(_arrays.to_host(self.simplices))
+        c = p[np.asarray(_arrays.to_host(self.vertices))].mean(axis=0)
+        return p[s[:, 0]] - c, p[s[:, 1]] - c, p[s[:, 2]] - c
+
+    @cached_property
+    def area(self) -> float:
+        a, b, c = self._facets()
+        return float(0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
+
+    @cached_property
+    def volume(self) -> float:
+        a, b, c = self._facets()
+        return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+
+    def __repr__(self):
+        return f"<gpugeom.ConvexHull: {self.npoints} points, {len(self.vertices)} vertices>"

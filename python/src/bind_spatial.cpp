@@ -1,0 +1,305 @@
+// Bindings of the point-set capabilities: 2D / 3D Delaunay, 2D Voronoi, 3D hull, point location
+// and the exact checkers. Each takes the points where they are (host or CUDA device) and returns
+// a dict of arrays in the same place.
+#include <nanobind/stl/function.h>
+#include <nanobind/stl/pair.h>
+#include <nanobind/stl/string.h>
+
+#include "arrays.hpp"
+#include "gpugeom/delaunay2d.hpp"
+#include "gpugeom/delaunay3d.hpp"
+#include "gpugeom/hull3d.hpp"
+#include "gpugeom/locate.hpp"
+#include "verify.hpp"
+
+namespace gpugeom::py {
+
+namespace {
+
+using sz = std::size_t;
+
+// points: float64 (n, dim), C order.
+Input points_input(const AnyArray& a, int dim) {
+  Input in = inspect(a, "points");
+  if (in.shape.size() != 2 || in.shape[1] != dim)
+    throw nb::value_error(("points must have shape (n, " + std::to_string(dim) + ")").c_str());
+  if (!holds<double>(in)) throw nb::type_error("points must be float64");
+  return in;
+}
+
+const double* pts(const Input& in) {
+  return static_cast<const double*>(in.data);
+}
+
+nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+                         int threads) {
+  const Input in = points_input(points, 2);
+  Delaunay2dOptions o;
+  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  const std::int64_t n = in.shape[0];
+  nb::dict r;
+  if (in.on_device) {
+    DeviceTriangulation2d t;
+    {
+      nb::gil_scoped_release unlocked;
+      t = delaunay2d_device(pts(in), n, o);
+    }
+    const int dev = device_of(o);
+    r["simplices"] = device_array(t.triangles, {sz(t.num_triangles), 3}, t.backend, dev);
+    r["neighbors"] = device_array(t.neighbors, {sz(t.num_triangles), 3}, t.backend, dev);
+    r["duplicate_of"] = device_array(t.duplicate_of, {sz(n)}, t.backend, dev);
+    r["stats"] = stats_dict(t.stats);
+    return r;
+  }
+  Triangulation2d t;
+  {
+    nb::gil_scoped_release unlocked;
+    t = delaunay2d(pts(in), n, o);
+  }
+  const sz nt = t.num_triangles();
+  t.triangles.resize(3 * nt);  // the host path may size them for the most triangles
+  t.neighbors.resize(3 * nt);
+  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
+  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+
+void put_voronoi_host(nb::dict& r, Voronoi2d& v, std::int64_t n) {
+  const sz nv = v.vertices.size() / 2, nr = v.ridge_points.size() / 2;
+  const sz ncv = v.cell_vertices.size();
+  r["vertices"] = host_array(std::move(v.vertices), {nv, 2});
+  r["ridge_points"] = host_array(std::move(v.ridge_points), {nr, 2});
+  r["ridge_vertices"] = host_array(std::move(v.ridge_vertices), {nr, 2});
+  r["ridge_directions"] = host_array(std::move(v.ridge_directions), {nr, 2});
+  r["cell_offsets"] = host_array(std::move(v.cell_offsets), {sz(n) + 1});
+  r["cell_vertices"] = host_array(std::move(v.cell_vertices), {ncv});
+}
+
+nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+                        int threads) {
+  const Input in = points_input(points, 2);
+  Delaunay2dOptions o;
+  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  const std::int64_t n = in.shape[0];
+  nb::dict r;
+  if (in.on_device) {
+    DeviceTriangulation2d t;
+    DeviceVoronoi2d v;
+    {
+      nb::gil_scoped_release unlocked;
+      t = delaunay2d_device(pts(in), n, o);
+      v = voronoi2d_device(pts(in), n, t, o);
+    }
+    const int dev = device_of(o);
+    const Backend b = v.backend;
+    r["simplices"] = device_array(t.triangles, {sz(t.num_triangles), 3}, b, dev);
+    r["duplicate_of"] = device_array(t.duplicate_of, {sz(n)}, b, dev);
+    r["vertices"] = device_array(v.vertices, {sz(v.num_vertices), 2}, b, dev);
+    r["ridge_points"] = device_array(v.ridge_points, {sz(v.num_ridges), 2}, b, dev);
+    r["ridge_vertices"] = device_array(v.ridge_vertices, {sz(v.num_ridges), 2}, b, dev);
+    r["ridge_directions"] = device_array(v.ridge_directions, {sz(v.num_ridges), 2}, b, dev);
+    r["cell_offsets"] = device_array(v.cell_offsets, {sz(n) + 1}, b, dev);
+    r["cell_vertices"] = device_array(v.cell_vertices, {sz(v.num_cell_vertices)}, b, dev);
+    r["stats"] = stats_dict(t.stats);
+    return r;
+  }
+  Triangulation2d t;
+  Voronoi2d v;
+  {
+    nb::gil_scoped_release unlocked;
+    t = delaunay2d(pts(in), n, o);
+    v = voronoi2d(pts(in), n, t);
+  }
+  const sz nt = t.num_triangles();
+  t.triangles.resize(3 * nt);
+  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
+  put_voronoi_host(r, v, n);
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+
+nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+                     int threads) {
+  const Input in = points_input(points, 3);
+  Hull3dOptions o;
+  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  const std::int64_t n = in.shape[0];
+  nb::dict r;
+  if (in.on_device) {
+    DeviceHull3d h;
+    {
+      nb::gil_scoped_release unlocked;
+      h = convex_hull3d_device(pts(in), n, o);
+    }
+    const int dev = device_of(o);
+    r["simplices"] = device_array(h.triangles, {sz(h.num_facets), 3}, h.backend, dev);
+    r["neighbors"] = device_array(h.neighbors, {sz(h.num_facets), 3}, h.backend, dev);
+    r["vertices"] = device_array(h.vertices, {sz(h.num_vertices)}, h.backend, dev);
+    r["equations"] = device_array(h.equations, {sz(h.num_facets), 4}, h.backend, dev);
+    r["stats"] = stats_dict(h.stats);
+    return r;
+  }
+  ConvexHull3d h;
+  {
+    nb::gil_scoped_release unlocked;
+    h = convex_hull3d(pts(in), n, o);
+  }
+  const sz nf = h.num_facets();
+  h.triangles.resize(3 * nf);
+  h.neighbors.resize(3 * nf);
+  h.equations.resize(4 * nf);
+  h.vertices.resize(sz(h.vertex_count));
+  r["simplices"] = host_array(std::move(h.triangles), {nf, 3});
+  r["neighbors"] = host_array(std::move(h.neighbors), {nf, 3});
+  r["vertices"] = host_array(std::move(h.vertices), {sz(h.vertex_count)});
+  r["equations"] = host_array(std::move(h.equations), {nf, 4});
+  r["stats"] = stats_dict(h.stats);
+  return r;
+}
+
+nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+                         int threads, nb::object progress) {
+  const Input in = points_input(points, 3);
+  Delaunay3dOptions o;
+  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  // The progress callback runs on this thread with the interpreter locked again; it also lets a
+  // Ctrl-C end the run (KeyboardInterrupt reaches the caller, nothing leaks).
+  // (A borrowed handle: the caller holds the callable for the whole call, and the options may be
+  // copied while the interpreter is unlocked, where no reference count may change.)
+  PyObject* cb = progress.is_none() ? nullptr : progress.ptr();
+  o.progress = [cb](const Delaunay3dProgress& p) {
+    nb::gil_scoped_acquire locked;
+    if (PyErr_CheckSignals() != 0) throw nb::python_error();
+    if (cb) {
+      nb::handle f(cb);
+      f(nb::str(p.phase), p.inserted, p.total, p.batch);
+    }
+  };
+  const std::int64_t n = in.shape[0];
+  nb::dict r;
+  if (in.on_device) {
+    DeviceTriangulation3d t;
+    {
+      nb::gil_scoped_release unlocked;
+      t = delaunay3d_device(pts(in), n, o);
+    }
+    const int dev = device_of(o);
+    r["simplices"] = device_array(t.tetrahedra, {sz(t.num_tetrahedra), 4}, t.backend, dev);
+    r["neighbors"] = device_array(t.neighbors, {sz(t.num_tetrahedra), 4}, t.backend, dev);
+    r["duplicate_of"] = device_array(t.duplicate_of, {sz(n)}, t.backend, dev);
+    r["vertex_to_simplex"] = device_array(t.vertex_to_simplex, {sz(n)}, t.backend, dev);
+    r["hull_facets"] = device_array(t.hull_facets, {sz(t.num_hull_facets), 3}, t.backend, dev);
+    r["stats"] = stats_dict(t.stats);
+    return r;
+  }
+  Triangulation3d t;
+  {
+    nb::gil_scoped_release unlocked;
+    t = delaunay3d(pts(in), n, o);
+  }
+  const sz nt = t.num_tetrahedra(), nh = sz(t.hull_facet_count);
+  t.tetrahedra.resize(4 * nt);
+  t.neighbors.resize(4 * nt);
+  t.hull_facets.resize(3 * nh);
+  r["simplices"] = host_array(std::move(t.tetrahedra), {nt, 4});
+  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 4});
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
+  r["vertex_to_simplex"] = host_array(std::move(t.vertex_to_simplex), {sz(n)});
+  r["hull_facets"] = host_array(std::move(t.hull_facets), {nh, 3});
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+
+// Host int32 (rows, k) array, C order.
+const std::int32_t* cells_of(const AnyArray& a, const char* name, int k, std::int64_t* rows) {
+  Input in = inspect(a, name);
+  if (in.on_device) throw nb::value_error((std::string(name) + " must be in host memory").c_str());
+  if (!holds<std::int32_t>(in))
+    throw nb::type_error((std::string(name) + " must be int32").c_str());
+  if (in.shape.size() != 2 || in.shape[1] != k)
+    throw nb::value_error(
+        (std::string(name) + " must have shape (m, " + std::to_string(k) + ")").c_str());
+  *rows = in.shape[0];
+  return static_cast<const std::int32_t*>(in.data);
+}
+
+nb::object find_simplex_bind(const AnyArray& points, const AnyArray& simplices,
+                             const AnyArray& neighbors, const AnyArray& queries, int threads) {
+  Input p = inspect(points, "points");
+  if (p.on_device || !holds<double>(p) || p.shape.size() != 2 ||
+      (p.shape[1] != 2 && p.shape[1] != 3))
+    throw nb::value_error("points must be a host float64 array of shape (n, 2) or (n, 3)");
+  const int dim = int(p.shape[1]);
+  std::int64_t ns = 0, nn = 0;
+  const std::int32_t* s = cells_of(simplices, "simplices", dim + 1, &ns);
+  const std::int32_t* nb_ = cells_of(neighbors, "neighbors", dim + 1, &nn);
+  if (ns != nn) throw nb::value_error("simplices and neighbors differ in length");
+  Input q = inspect(queries, "xi");
+  if (q.on_device || !holds<double>(q) || q.shape.size() != 2 || q.shape[1] != dim)
+    throw nb::value_error(
+        ("xi must be a host float64 array of shape (m, " + std::to_string(dim) + ")").c_str());
+  HostVector<std::int32_t> r;
+  {
+    nb::gil_scoped_release unlocked;
+    r = dim == 2 ? find_simplex2d(pts(p), p.shape[0], s, nb_, ns, pts(q), q.shape[0], threads)
+                 : find_simplex3d(pts(p), p.shape[0], s, nb_, ns, pts(q), q.shape[0], threads);
+  }
+  return host_array(std::move(r), {sz(q.shape[0])});
+}
+
+// The independent exact checkers (src/verify), for tests and for users who want proof.
+std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray& points,
+                                        const AnyArray& cells, nb::object duplicate_of) {
+  Input p = inspect(points, "points");
+  if (p.on_device || !holds<double>(p) || p.shape.size() != 2)
+    throw nb::value_error("points must be a host float64 array of shape (n, dim)");
+  const std::int64_t n = p.shape[0];
+  const int k = what == "delaunay3d" ? 4 : 3;
+  std::int64_t nc = 0;
+  const std::int32_t* c = cells_of(cells, "simplices", k, &nc);
+  const std::int32_t* dup = nullptr;
+  std::unique_ptr<AnyArray> keep;
+  if (!duplicate_of.is_none()) {
+    keep = std::make_unique<AnyArray>(nb::cast<AnyArray>(duplicate_of));
+    Input d = inspect(*keep, "duplicate_of");
+    if (d.on_device || !holds<std::int32_t>(d) || d.shape.size() != 1 || d.shape[0] != n)
+      throw nb::value_error("duplicate_of must be a host int32 array of length n");
+    dup = static_cast<const std::int32_t*>(d.data);
+  }
+  verify::Report rep;
+  {
+    nb::gil_scoped_release unlocked;
+    if (what == "delaunay2d" && p.shape[1] == 2)
+      rep = verify::check_delaunay2d(pts(p), n, c, nc, dup);
+    else if (what == "delaunay3d" && p.shape[1] == 3)
+      rep = verify::check_delaunay3d(pts(p), n, c, nc, dup);
+    else if (what == "hull3d" && p.shape[1] == 3)
+      rep = verify::check_hull3d(pts(p), n, c, nc);
+    else
+      throw Error(ErrorCode::InvalidArgument,
+                  "check: unknown structure '" + what + "' for points of this dimension");
+  }
+  return {rep.ok, rep.message};
+}
+
+}  // namespace
+
+void bind_spatial(nb::module_& m) {
+  using namespace nb::literals;
+  m.def("delaunay2d", &delaunay2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
+        "threads"_a = 0);
+  m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
+        "threads"_a = 0);
+  m.def("convex_hull3d", &hull3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
+        "threads"_a = 0);
+  m.def("delaunay3d", &delaunay3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
+        "threads"_a = 0, "progress"_a = nb::none());
+  m.def("find_simplex", &find_simplex_bind, "points"_a, "simplices"_a, "neighbors"_a, "xi"_a,
+        "threads"_a = 0);
+  m.def("check", &check_bind, "what"_a, "points"_a, "simplices"_a, "duplicate_of"_a = nb::none());
+}
+
+}  // namespace gpugeom::py

@@ -1,0 +1,88 @@
+"""CUDA arrays in, CUDA arrays out (CuPy and PyTorch): computed on the GPU on the caller's
+stream, the same results as from NumPy. Skipped without a usable GPU and the array library."""
+import numpy as np
+import pytest
+
+import gpugeom
+
+if not (gpugeom.built_with_cuda() and gpugeom.device_info()["available"]):
+    pytest.skip("no usable CUDA device", allow_module_level=True)
+
+cupy = pytest.importorskip("cupy")
+
+
+def simplex_set(s):
+    return {tuple(sorted(t)) for t in np.asarray(s).tolist()}
+
+
+def test_delaunay_cupy(rng):
+    p = rng.random((50000, 2))
+    d = gpugeom.Delaunay(cupy.asarray(p))
+    assert isinstance(d.simplices, cupy.ndarray) and d.simplices.dtype == cupy.int32
+    h = gpugeom.Delaunay(p)
+    assert simplex_set(cupy.asnumpy(d.simplices)) == simplex_set(h.simplices)
+    assert isinstance(d.convex_hull, cupy.ndarray)
+    assert isinstance(d.vertex_to_simplex, cupy.ndarray)
+    np.testing.assert_array_equal(cupy.asnumpy(d.find_simplex(cupy.asarray(p[:100]))) >= 0, True)
+
+
+def test_delaunay3d_hull_voronoi_cupy(rng):
+    p = rng.random((20000, 3))
+    d = gpugeom.Delaunay(cupy.asarray(p))
+    assert isinstance(d.simplices, cupy.ndarray)
+    assert simplex_set(cupy.asnumpy(d.simplices)) == simplex_set(gpugeom.Delaunay(p).simplices)
+    h = gpugeom.ConvexHull(cupy.asarray(p))
+    assert isinstance(h.vertices, cupy.ndarray)
+    np.testing.assert_array_equal(cupy.asnumpy(h.vertices), gpugeom.ConvexHull(p).vertices)
+    assert h.volume == pytest.approx(gpugeom.ConvexHull(p).volume, rel=1e-12)
+    v = gpugeom.Voronoi(cupy.asarray(p[:, :2]))
+    vh = gpugeom.Voronoi(p[:, :2])
+    assert isinstance(v.vertices, cupy.ndarray)
+    np.testing.assert_array_equal(cupy.asnumpy(v.vertices), vh.vertices)
+    assert v.regions == vh.regions
+
+
+def test_edt_cupy_on_a_stream(rng):
+    a = rng.random((300, 200)) > 0.1
+    a[0, 0] = False
+    ref_d, ref_i = gpugeom.distance_transform_edt(a, return_indices=True, backend="cpu")
+    s = cupy.cuda.Stream(non_blocking=True)
+    with s:
+        ga = cupy.asarray(a)
+        d, i = gpugeom.distance_transform_edt(ga, return_indices=True)
+        assert isinstance(d, cupy.ndarray) and isinstance(i, cupy.ndarray)
+        np.testing.assert_array_equal(cupy.asnumpy(d), ref_d)
+        np.testing.assert_array_equal(cupy.asnumpy(i), ref_i)
+        out = cupy.empty(a.shape, dtype=cupy.float64)
+        assert gpugeom.distance_transform_edt(ga, distances=out) is None
+        np.testing.assert_array_equal(cupy.asnumpy(out), ref_d)
+    lab = gpugeom.voronoi_labels(cupy.asarray(a.astype(np.int32)))
+    assert isinstance(lab, cupy.ndarray)
+
+
+def test_cvd_cupy(rng):
+    y, x = np.mgrid[0:64, 0:80]
+    dens = np.exp(-((x - 40) ** 2 + (y - 30) ** 2) / 400.0) + 0.05
+    r = gpugeom.centroidal_voronoi(cupy.asarray(dens), 100, max_iterations=20)
+    assert isinstance(r.sites, cupy.ndarray)
+    h = gpugeom.centroidal_voronoi(dens, 100, max_iterations=20, backend="cpu")
+    np.testing.assert_array_equal(cupy.asnumpy(r.sites), h.sites)
+
+
+def test_torch_cuda(rng):
+    torch = pytest.importorskip("torch")
+    p = rng.random((30000, 2))
+    t = torch.as_tensor(p, device="cuda")
+    d = gpugeom.Delaunay(t)
+    assert isinstance(d.simplices, torch.Tensor) and d.simplices.is_cuda
+    assert simplex_set(d.simplices.cpu().numpy()) == simplex_set(gpugeom.Delaunay(p).simplices)
+    assert isinstance(d.convex_hull, torch.Tensor) and d.convex_hull.is_cuda
+    a = torch.as_tensor(rng.random((128, 96)) > 0.1, device="cuda")
+    a[0, 0] = False
+    dist = gpugeom.distance_transform_edt(a)
+    assert isinstance(dist, torch.Tensor) and dist.is_cuda
+    np.testing.assert_array_equal(dist.cpu().numpy(),
+                                  gpugeom.distance_transform_edt(a.cpu().numpy(), backend="cpu"))
+    # a CPU tensor comes back as a CPU tensor
+    dc = gpugeom.Delaunay(torch.as_tensor(p[:1000]))
+    assert isinstance(dc.simplices, torch.Tensor) and not dc.simplices.is_cuda

@@ -1,0 +1,81 @@
+"""Bad input: typed Python errors with messages a user can act on, never a crash."""
+import numpy as np
+import pytest
+
+import gpugeom
+
+
+def test_shape_and_dtype_errors():
+    with pytest.raises(ValueError, match=r"shape \(n, 2\) or \(n, 3\)"):
+        gpugeom.Delaunay(np.zeros((10, 4)))
+    with pytest.raises(ValueError, match="shape"):
+        gpugeom.Delaunay(np.zeros(10))
+    with pytest.raises(TypeError):
+        gpugeom.Delaunay(np.array([["a", "b"]] * 5))
+    with pytest.raises(TypeError):
+        gpugeom.Delaunay(np.zeros((5, 2), dtype=complex))
+    with pytest.raises(ValueError, match="backend"):
+        gpugeom.Delaunay(np.random.random((10, 2)), backend="gpu")
+    with pytest.raises(ValueError, match="3D hulls"):
+        gpugeom.ConvexHull(np.random.random((10, 2)))
+    with pytest.raises(ValueError, match="furthest_site"):
+        gpugeom.Delaunay(np.random.random((10, 2)), furthest_site=True)
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite(bad, backend):
+    p = np.random.default_rng(0).random((50, 3))
+    p[7, 1] = bad
+    with pytest.raises(ValueError, match="NaN|infinite|Inf"):
+        gpugeom.Delaunay(p[:, :2], backend=backend)
+    with pytest.raises(ValueError, match="NaN|infinite|Inf"):
+        gpugeom.ConvexHull(p, backend=backend)
+
+
+def test_degenerate_input(backend):
+    with pytest.raises(gpugeom.DegenerateInputError):
+        gpugeom.Delaunay(np.array([[0.0, 0], [1, 1], [2, 2], [3, 3]]), backend=backend)
+    with pytest.raises(ValueError):  # it is a ValueError too
+        gpugeom.Delaunay(np.zeros((2, 2)), backend=backend)
+    with pytest.raises(gpugeom.DegenerateInputError, match="plane|coplanar"):
+        gpugeom.ConvexHull(np.column_stack([np.random.random((50, 2)), np.zeros(50)]),
+                           backend=backend)
+
+
+def test_edt_errors(backend):
+    with pytest.raises(ValueError):
+        gpugeom.distance_transform_edt(np.ones((8, 8)), backend=backend)  # no zero element
+    with pytest.raises(RuntimeError):
+        gpugeom.distance_transform_edt(np.ones((8, 8)), return_distances=False)
+    with pytest.raises(ValueError, match="1D, 2D or 3D"):
+        gpugeom.distance_transform_edt(np.ones((2, 2, 2, 2)))
+    with pytest.raises(RuntimeError, match="shape"):
+        gpugeom.distance_transform_edt(np.ones((8, 8)), distances=np.zeros((8, 9)))
+    with pytest.raises(ValueError, match="sampling"):
+        gpugeom.distance_transform_edt(np.ones((8, 8)), sampling=-1)
+
+
+def test_cvd_errors(backend):
+    with pytest.raises(ValueError):
+        gpugeom.centroidal_voronoi(np.zeros((16, 16)), 10, backend=backend)  # all zero
+    d = np.ones((16, 16))
+    d[3, 3] = np.nan
+    with pytest.raises(ValueError):
+        gpugeom.centroidal_voronoi(d, 10, backend=backend)
+    with pytest.raises(ValueError, match="n_sites"):
+        gpugeom.centroidal_voronoi(np.ones((16, 16)), 0)
+
+
+def test_unsupported_backend_message():
+    if gpugeom.built_with_cuda() and gpugeom.device_info()["available"]:
+        pytest.skip("a GPU is present")
+    with pytest.raises(gpugeom.UnsupportedError):
+        gpugeom.Delaunay(np.random.random((10, 2)), backend="cuda")
+
+
+def test_device_info_and_version():
+    d = gpugeom.device_info()
+    assert {"available", "name", "reason", "architectures"} <= set(d)
+    if not d["available"]:
+        assert d["reason"]
+    assert gpugeom.__version__.count(".") == 2

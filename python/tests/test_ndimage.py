@@ -1,0 +1,88 @@
+"""distance_transform_edt against scipy.ndimage (exact: equal values and indices, ties aside),
+voronoi_labels against a brute-force nearest site."""
+import numpy as np
+import pytest
+import scipy.ndimage as ndi
+
+import gpugeom
+
+
+def tie_free_indices_equal(mine, ref, dist, shape, sampling=None):
+    """SciPy may break ties differently: where the indices differ, both must be at the same
+    distance."""
+    if np.array_equal(mine, ref):
+        return True
+    s = np.ones(len(shape)) if sampling is None else np.asarray(sampling, float)
+    grid = np.indices(shape)
+    dm = np.sqrt(sum(((mine[k] - grid[k]) * s[k]) ** 2 for k in range(len(shape))))
+    dr = np.sqrt(sum(((ref[k] - grid[k]) * s[k]) ** 2 for k in range(len(shape))))
+    return np.allclose(dm, dr, rtol=1e-12, atol=0)
+
+
+@pytest.mark.parametrize("shape", [(1,), (37,), (64, 48), (17, 23, 29)])
+@pytest.mark.parametrize("sampling", [None, "aniso"])
+def test_edt_equals_scipy(shape, sampling, backend, rng):
+    a = rng.random(shape) > 0.1
+    a.flat[0] = False
+    samp = None if sampling is None else [0.5 + 0.7 * k for k in range(len(shape))]
+    d, i = gpugeom.distance_transform_edt(a, sampling=samp, return_indices=True, backend=backend)
+    rd, ri = ndi.distance_transform_edt(a, sampling=samp, return_indices=True)
+    assert d.dtype == np.float64 and d.shape == a.shape
+    assert i.dtype == np.int32 and i.shape == (len(shape),) + a.shape
+    np.testing.assert_allclose(d, rd, rtol=1e-13, atol=0)
+    assert tie_free_indices_equal(i, ri, d, shape, samp)
+
+
+@pytest.mark.parametrize("dtype", [np.uint8, np.int16, np.float32, np.float64, np.int64])
+def test_edt_dtypes(dtype, backend, rng):
+    a = (rng.random((40, 30)) > 0.2).astype(dtype) * 3
+    np.testing.assert_allclose(gpugeom.distance_transform_edt(a, backend=backend),
+                               ndi.distance_transform_edt(a), rtol=1e-13)
+
+
+def test_edt_output_arrays(backend, rng):
+    a = rng.random((50, 40)) > 0.05
+    a[0, 0] = False
+    dist = np.empty(a.shape)
+    ind = np.empty((2,) + a.shape, dtype=np.int32)
+    r = gpugeom.distance_transform_edt(a, return_indices=True, distances=dist, indices=ind,
+                                       backend=backend)
+    assert r is None
+    np.testing.assert_allclose(dist, ndi.distance_transform_edt(a), rtol=1e-13)
+    only_d = gpugeom.distance_transform_edt(a, return_indices=True, distances=dist,
+                                            backend=backend)
+    assert only_d.shape == (2,) + a.shape  # the indices, as SciPy returns them
+    f32 = np.empty(a.shape, dtype=np.float32)
+    gpugeom.distance_transform_edt(a, distances=f32, backend=backend)
+    np.testing.assert_allclose(f32, dist, rtol=1e-6)
+    with pytest.raises(RuntimeError, match="int32"):  # SciPy's exception type for this
+        gpugeom.distance_transform_edt(a, return_indices=True,
+                                       indices=np.empty((2,) + a.shape, dtype=np.int64),
+                                       backend=backend)
+
+
+def test_edt_only_indices_and_float32(backend, rng):
+    a = rng.random((33, 21)) > 0.3
+    a[5, 5] = False
+    i = gpugeom.distance_transform_edt(a, return_distances=False, return_indices=True,
+                                       backend=backend)
+    assert i.shape == (2, 33, 21)
+    d32 = gpugeom.distance_transform_edt(a, float64_distances=False, backend=backend)
+    assert d32.dtype == np.float32
+
+
+def test_voronoi_labels(backend, rng):
+    lab = np.zeros((40, 50), dtype=np.int32)
+    pts = rng.integers(0, [40, 50], size=(30, 2))
+    lab[pts[:, 0], pts[:, 1]] = np.arange(1, 31)
+    out, dist, site = gpugeom.voronoi_labels(lab, return_distances=True, return_sites=True,
+                                             backend=backend)
+    assert out.dtype == lab.dtype and out.shape == lab.shape
+    nz = np.flatnonzero(lab)
+    coords = np.column_stack(np.unravel_index(nz, lab.shape))
+    grid = np.indices(lab.shape).reshape(2, -1).T
+    d2 = ((grid[:, None, :] - coords[None, :, :]) ** 2).sum(-1)
+    best = d2.argmin(axis=1)  # the first of equally near sites in C order, as gpugeom's rule
+    np.testing.assert_array_equal(site.reshape(-1), nz[best])
+    np.testing.assert_array_equal(out.reshape(-1), lab.reshape(-1)[nz[best]])
+    np.testing.assert_allclose(dist.reshape(-1), np.sqrt(d2.min(axis=1)))

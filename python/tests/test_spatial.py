@@ -1,0 +1,178 @@
+"""Delaunay, Voronoi, ConvexHull against SciPy (general position: the same structures) and the
+exact checkers (degenerate input: valid structures)."""
+import numpy as np
+import pytest
+import scipy.spatial as ss
+
+import gpugeom
+from gpugeom import verify
+
+
+def simplex_set(s):
+    return {tuple(sorted(t)) for t in np.asarray(s).tolist()}
+
+
+@pytest.mark.parametrize("n", [3, 10, 1000, 20000])
+def test_delaunay2d_equals_scipy(n, backend, rng):
+    p = rng.random((n, 2))
+    g = gpugeom.Delaunay(p, backend=backend)
+    s = ss.Delaunay(p)
+    assert g.simplices.dtype == np.int32 and g.simplices.shape == s.simplices.shape
+    assert simplex_set(g.simplices) == simplex_set(s.simplices)
+    assert g.neighbors.shape == s.neighbors.shape and g.neighbors.dtype == np.int32
+    assert g.npoints == n and g.ndim == 2 and g.nsimplex == len(s.simplices)
+    np.testing.assert_array_equal(g.points, p)
+    # neighbors: the simplex opposite vertex k shares the other two vertices
+    for t in range(min(g.nsimplex, 200)):
+        for k in range(3):
+            o = g.neighbors[t, k]
+            if o >= 0:
+                shared = set(g.simplices[t]) - {g.simplices[t, k]}
+                assert shared <= set(g.simplices[o])
+    # convex hull edges and vertex_to_simplex
+    assert {tuple(sorted(e)) for e in g.convex_hull.tolist()} == \
+        {tuple(sorted(e)) for e in s.convex_hull.tolist()}
+    vts = g.vertex_to_simplex
+    assert all(i in g.simplices[vts[i]] for i in range(n))
+    assert g.coplanar.shape == (0, 3)
+
+
+def test_delaunay3d_equals_scipy(backend, rng):
+    p = rng.random((3000, 3))
+    g = gpugeom.Delaunay(p, backend=backend)
+    s = ss.Delaunay(p)
+    assert g.simplices.shape == s.simplices.shape
+    assert simplex_set(g.simplices) == simplex_set(s.simplices)
+    assert {tuple(sorted(f)) for f in g.convex_hull.tolist()} == \
+        {tuple(sorted(f)) for f in s.convex_hull.tolist()}
+    ok, msg = verify.check_delaunay(p, g.simplices)
+    assert ok, msg
+    vts = g.vertex_to_simplex
+    assert all(i in g.simplices[vts[i]] for i in range(len(p)))
+
+
+def test_find_simplex_2d_and_3d(backend, rng):
+    for d in (2, 3):
+        p = rng.random((500, d))
+        g = gpugeom.Delaunay(p, backend=backend)
+        s = ss.Delaunay(p)
+        q = rng.random((2000, d)) * 1.2 - 0.1
+        mine = g.find_simplex(q)
+        ref = s.find_simplex(q)
+        assert mine.shape == (2000,)
+        # SciPy may answer near boundaries with a tolerance; the exact answer must contain q
+        assert np.array_equal(mine >= 0, ref >= 0)
+        for i in np.nonzero(mine >= 0)[0][:300]:
+            t = p[g.simplices[mine[i]]]
+            bary = np.linalg.solve(np.vstack([t.T, np.ones(d + 1)]), np.append(q[i], 1.0))
+            assert bary.min() > -1e-9
+        # vertices are located exactly, shape (..., d) kept
+        assert np.all(g.find_simplex(p[:10].reshape(2, 5, d)).reshape(-1) >= 0)
+
+
+def test_degenerate_grid_and_duplicates(backend):
+    # An integer grid (every square cocircular) plus duplicates: valid and exact.
+    x, y = np.meshgrid(np.arange(40.0), np.arange(30.0))
+    p = np.column_stack([x.ravel(), y.ravel()])
+    p = np.vstack([p, p[:50]])
+    g = gpugeom.Delaunay(p, backend=backend)
+    ok, msg = verify.check_delaunay(p, g.simplices, g.duplicate_of)
+    assert ok, msg
+    assert g.nsimplex == 2 * 39 * 29
+    assert g.coplanar.shape == (50, 3)
+    np.testing.assert_array_equal(g.coplanar[:, 0], np.arange(1200, 1250))
+    np.testing.assert_array_equal(g.coplanar[:, 2], np.arange(50))
+    # points on a circle
+    t = np.linspace(0, 2 * np.pi, 500, endpoint=False)
+    c = np.column_stack([np.cos(t), np.sin(t)])
+    ok, msg = verify.check_delaunay(c, gpugeom.Delaunay(c, backend=backend).simplices)
+    assert ok, msg
+
+
+def test_degenerate_3d_grid(backend):
+    g3 = np.stack(np.meshgrid(*[np.arange(8.0)] * 3), -1).reshape(-1, 3)
+    d = gpugeom.Delaunay(g3, backend=backend)
+    ok, msg = verify.check_delaunay(g3, d.simplices)
+    assert ok, msg
+    assert d.stats["counters"]["distinct_points"] == 512
+
+
+def test_voronoi_equals_scipy(backend, rng):
+    p = rng.random((2000, 2))
+    g = gpugeom.Voronoi(p, backend=backend)
+    s = ss.Voronoi(p)
+    assert g.vertices.shape == s.vertices.shape and g.vertices.dtype == np.float64
+    assert g.ridge_points.shape == s.ridge_points.shape
+    # the same vertices (up to Qhull's rounding): map ours to SciPy's by nearest neighbour
+    d, m = ss.cKDTree(s.vertices).query(g.vertices)
+    assert np.all(d <= 1e-9 * np.maximum(1, np.abs(g.vertices).max(axis=1)))
+    assert len(set(m.tolist())) == len(m)
+
+    def ends(rv, mapping):
+        return tuple(sorted(mapping(v) if v >= 0 else -1 for v in rv))
+
+    # the same ridges between the same points, with the same ends
+    gv = {tuple(sorted(rp)): ends(rv, lambda v: int(m[v]))
+          for rp, rv in zip(g.ridge_points.tolist(), g.ridge_vertices)}
+    sv = {tuple(sorted(rp)): ends(rv, int)
+          for rp, rv in zip(s.ridge_points.tolist(), s.ridge_vertices)}
+    assert gv == sv
+    # regions: the same vertex sets per point
+    for i in range(0, 2000, 37):
+        assert ends(g.regions[g.point_region[i]], lambda v: int(m[v])) == \
+            ends(s.regions[s.point_region[i]], int)
+
+
+@pytest.mark.parametrize("shape", ["ball", "cube"])
+def test_convex_hull_equals_scipy(shape, backend, rng):
+    p = rng.normal(size=(20000, 3))
+    if shape == "ball":
+        p /= np.linalg.norm(p, axis=1)[:, None] ** 0.7
+    else:
+        p = rng.random((20000, 3))
+    g = gpugeom.ConvexHull(p, backend=backend)
+    s = ss.ConvexHull(p)
+    np.testing.assert_array_equal(g.vertices, np.sort(s.vertices))
+    assert simplex_set(g.simplices) == simplex_set(s.simplices)
+    assert g.equations.shape == s.equations.shape
+    np.testing.assert_allclose(g.area, s.area, rtol=1e-12)
+    np.testing.assert_allclose(g.volume, s.volume, rtol=1e-12)
+    # equations: unit outward normals, every point inside up to rounding
+    np.testing.assert_allclose(np.linalg.norm(g.equations[:, :3], axis=1), 1, rtol=1e-12)
+    assert (p @ g.equations[:, :3].T + g.equations[:, 3]).max() < 1e-12
+    ok, msg = verify.check_convex_hull(p, g.simplices)
+    assert ok, msg
+
+
+def test_convex_hull_degenerate_cube_grid(backend):
+    g3 = np.stack(np.meshgrid(*[np.arange(6.0)] * 3), -1).reshape(-1, 3)
+    h = gpugeom.ConvexHull(g3, backend=backend)
+    # only the 8 corners are extreme; the flat faces are triangulated (12 triangles)
+    assert len(h.vertices) == 8 and h.nsimplex == 12
+    assert h.volume == pytest.approx(125.0)
+    ok, msg = verify.check_convex_hull(g3, h.simplices)
+    assert ok, msg
+
+
+def test_float32_and_lists_are_accepted(backend):
+    p = np.random.default_rng(1).random((100, 2)).astype(np.float32)
+    g = gpugeom.Delaunay(p, backend=backend)
+    assert g.points.dtype == np.float64
+    g2 = gpugeom.Delaunay(p.tolist(), backend=backend)
+    assert simplex_set(g.simplices) == simplex_set(g2.simplices)
+
+
+def test_progress_callback_3d(backend, rng):
+    seen = []
+    gpugeom.Delaunay(rng.random((5000, 3)), backend=backend,
+                     progress=lambda phase, inserted, total, batch: seen.append(phase))
+    assert "insert_flip" in seen and seen[-1] == "output"
+
+    class Stop(Exception):
+        pass
+
+    def stop(*a):
+        raise Stop()
+
+    with pytest.raises(Stop):
+        gpugeom.Delaunay(rng.random((5000, 3)), backend=backend, progress=stop)
