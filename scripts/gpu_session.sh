@@ -34,6 +34,18 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = edt ]; then
   echo "== SciPy oracle through the CLI on the CUDA backend"
   GPUGEOM_BACKEND=cuda python3 tests/edt/test_scipy_oracle.py .devbin/gpugeom 2>&1 | tail -1
 fi
+if [ -d .devbin/py/gpugeom ] && [ "${PYTHON_SET:-1}" != 0 ]; then
+  echo "== Python package: pytest (CPU and CUDA backends, CuPy / PyTorch device arrays)"
+  PYTHONPATH=$PWD/.devbin/py python3 -m pytest -q -p no:cacheprovider -rs python/tests 2>&1 |
+    tee "$OUT/pytest.txt" | tail -6
+  [ "${PIPESTATUS[0]}" -ne 0 ] && status=1
+  if [ "${PYTHON_BENCH:-1}" = 1 ]; then
+    echo "== Python package benchmark (SciPy and CuPy in the same run)"
+    PYTHONPATH=$PWD/.devbin/py python3 bench/python_api.py --reps 3 --csv "$OUT/python_api.csv" 2>&1 |
+      tee "$OUT/python_api.txt"
+  fi
+fi
+[ "${ONLY_PY:-0}" = 1 ] && exit $status
 CSV="$OUT/bench.csv"
 rm -f "$CSV"
 if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del2d ]; then

@@ -5,6 +5,16 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build-cuda}
 rm -rf .devbin && mkdir -p .devbin/lib
+# PYBUILD: a build of the Python package for the GPU machine's interpreter (3.12 there, e.g.
+# cmake -B build-py312 -DPython_EXECUTABLE=python3.12 -DGPUGEOM_STATIC_CUDART=ON
+# -DGPUGEOM_PYTHON_STUBS=OFF): copied to .devbin/py/gpugeom, stripped. ONLY_PY=1: nothing else.
+if [ -n "${PYBUILD:-}" ]; then
+  mkdir -p .devbin/py && cp -r "$PYBUILD/python/gpugeom" .devbin/py/
+  strip --strip-unneeded .devbin/py/gpugeom/_core*.so
+  ldd .devbin/py/gpugeom/_core*.so | awk '/=> \//{print $3}' | grep -E 'libgomp|libpng|libz\.' |
+    xargs -r -I{} cp -L {} .devbin/lib/
+fi
+if [ "${ONLY_PY:-0}" = 1 ]; then du -sh .devbin; exit 0; fi
 cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt "$B"/bench/gpugeom_bench_cvd "$B"/bench/gpugeom_bench_del2d "$B"/bench/gpugeom_bench_hull3d "$B"/bench/gpugeom_bench_del3d "$B"/tools/gpugeom/gpugeom .devbin/
 [ -x "$B/bench/anchor_cgal" ] && cp "$B/bench/anchor_cgal" .devbin/
 # The carry limit is 64 MiB: EXCLUDE="gpugeom_bench_cvd gpugeom" leaves out what a run needs not.
