@@ -7,5 +7,7 @@ bash scripts/install_deps.sh
 BUILD=${BUILD_DIR:-build}
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DGPUGEOM_CUDA=${GPUGEOM_CUDA:-AUTO}
 cmake --build "$BUILD"
+# The Python package, installed from this build (nothing compiled again): pip install .
+bash scripts/install_python.sh "$BUILD"
 cd "$BUILD"
 ctest --output-on-failure -L "cpu|gpu"
