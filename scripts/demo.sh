@@ -3,13 +3,17 @@
 # generate a million points, summarise them, show the device, draw a stipple of a photograph
 # (matplotlib's sample portrait of Grace Hopper), triangulate a terrain's contour lines (the
 # Jacksboro fault DEM shipped with matplotlib) and a million points exactly, tetrahedralise
-# a point cloud in a ball for ParaView, run the benchmarks small.
+# a point cloud in a ball for ParaView, run the Python package's examples (installed with pip from
+# this build), run the benchmarks small.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 BUILD=${BUILD_DIR:-build}
-cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DGPUGEOM_CUDA=${GPUGEOM_CUDA:-AUTO}
-cmake --build "$BUILD"  # everything: the CLI, the benchmark drivers and the anchors
+cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DGPUGEOM_CUDA=${GPUGEOM_CUDA:-AUTO} \
+  -DGPUGEOM_TESTS=OFF
+# What the demo runs (no tests): the CLI, the Python package, the benchmark drivers and anchors.
+cmake --build "$BUILD"
+GPUGEOM_TESTS=OFF bash scripts/install_python.sh "$BUILD"
 G="$BUILD/tools/gpugeom/gpugeom"
 OUT=${DEMO_OUT:-$BUILD/demo}
 mkdir -p "$OUT"
@@ -28,4 +32,8 @@ python3 bench/terrain_contours.py -n 1e4 --levels 6 -o "$OUT/contours.npy"
 "$G" --verbose delaunay2d "$OUT/plane.npy" -o "$OUT/plane_tri.npy" --check
 "$G" gen ball3d -n 100000 -o "$OUT/ball.npy"
 "$G" --verbose delaunay3d "$OUT/ball.npy" -o "$OUT/ball_tets.vtu" --check
+echo "== the Python package's examples (pictures in $OUT)"
+for ex in terrain_voronoi edt_labels stipple_photo hull_scan; do
+  python3 python/examples/$ex.py -o "$OUT/py_$ex.png"
+done
 bash bench/run_bench.sh --quick --build "$BUILD" --out "$OUT/bench"

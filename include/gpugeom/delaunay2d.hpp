@@ -94,6 +94,13 @@ struct Voronoi2d {
   HostVector<double> ridge_directions;
 };
 Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri);
+// The triangulation of host points and its Voronoi diagram in one call, both made on the
+// executor opt picks: on CUDA the points cross the bus once and only the results come back
+// (voronoi2d(xy, n, tri) computes the diagram on the host threads, from a triangulation already
+// there). tri, when given, receives the triangulation (as delaunay2d returns it; opt.into is not
+// used); stats, when given, the phases and counters of both. Throws as delaunay2d.
+Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                    Triangulation2d* tri = nullptr, Stats* stats = nullptr);
 
 // The same diagram for a triangulation left on the device (delaunay2d_device), computed there:
 // device_xy its n points (device memory; host memory where tri.backend is Backend::Cpu), on

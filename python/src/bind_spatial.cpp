@@ -109,8 +109,7 @@ nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std:
   Voronoi2d v;
   {
     nb::gil_scoped_release unlocked;
-    t = delaunay2d(pts(in), n, o);
-    v = voronoi2d(pts(in), n, t);
+    v = voronoi2d(pts(in), n, o, &t, &t.stats);  // both on the executor, results back once
   }
   const sz nt = t.num_triangles();
   t.triangles.resize(3 * nt);

@@ -35,6 +35,9 @@ struct DeviceVoronoiOutput {
 
 // triangulate: xy holds n points on the host; triangulate_device: n points in the executor's
 // memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
+// Refuses counts no triangulation can be made of (Error, as the public entries say).
+void check_count(std::int64_t n);
+
 namespace cpu_impl {
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats);
@@ -54,6 +57,8 @@ void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOption
 void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
              const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
              DeviceVoronoiOutput& out, Stats& stats, Voronoi2d* host = nullptr);
+void voronoi_from_host(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Voronoi2d& v,
+                       Triangulation2d* tri, Stats& stats);
 }  // namespace cuda_impl
 
 }  // namespace gpugeom::del2d

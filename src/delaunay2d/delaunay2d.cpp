@@ -9,7 +9,7 @@
 
 namespace gpugeom {
 
-namespace {
+namespace del2d {
 // Slots of the extended triangulation (2m - 2) times 4 must fit the int32 neighbour encoding.
 constexpr std::int64_t kMaxPoints = std::int64_t(1) << 28;
 
@@ -23,7 +23,8 @@ void check_count(std::int64_t n) {
                 "fewer than 3 points (" + std::to_string(n) +
                     "): a triangulation needs at least 3 points not on one line");
 }
-}  // namespace
+}  // namespace del2d
+using del2d::check_count;
 
 std::int64_t delaunay2d_max_triangles(std::int64_t n) {
   return n < 3 ? 0 : 2 * n - 5;

@@ -64,6 +64,27 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
   return v;
 }
 
+Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                    Triangulation2d* tri, Stats* stats) {
+  const Backend b = resolve_backend(opt.backend, opt.device);
+  Stats local;
+  Stats& st = stats ? *stats : local;
+  st.backend = b;
+#ifdef GPUGEOM_HAVE_CUDA
+  if (b == Backend::Cuda) {
+    del2d::check_count(n);
+    Voronoi2d v;
+    del2d::cuda_impl::voronoi_from_host(xy, n, opt, v, tri, st);
+    return v;
+  }
+#endif
+  Triangulation2d t = delaunay2d(xy, n, opt);
+  Voronoi2d v = voronoi2d(xy, n, t);
+  st = t.stats;
+  if (tri) *tri = std::move(t);
+  return v;
+}
+
 DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
                                  const DeviceTriangulation2d& tri, const RunOptions& run) {
   if (tri.num_points != n)

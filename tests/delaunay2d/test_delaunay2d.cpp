@@ -322,5 +322,13 @@ TEST(Delaunay2d, VoronoiDeviceEntry) {
     EXPECT_EQ(host_prefix(v.cell_vertices, v.num_cell_vertices), ref.cell_vertices);
     // A triangulation of other points is refused.
     gg_test::expect_refused([&] { (void)voronoi2d_device(xy, n - 1, dt); }, "belong");
+    // The one-call host entry: the same triangulation and diagram.
+    Triangulation2d t2;
+    const auto both = voronoi2d(xy, n, cpu(), &t2);
+    EXPECT_EQ(t2.triangles, tri.triangles);
+    EXPECT_EQ(both.vertices, ref.vertices);
+    EXPECT_EQ(both.ridge_vertices, ref.ridge_vertices);
+    EXPECT_EQ(both.cell_vertices, ref.cell_vertices);
   }
+  EXPECT_THROW((void)voronoi2d(nullptr, 2, cpu()), Error);
 }

@@ -216,4 +216,21 @@ TEST(CudaDelaunay2d, VoronoiDeviceEntry) {
   EXPECT_EQ(get(v.cell_vertices, v.num_cell_vertices),
             std::vector<std::int32_t>(ref.cell_vertices.begin(), ref.cell_vertices.end()));
   cudaFree(dp);
+  // The host entry that makes both on the device: the same triangulation and diagram.
+  Triangulation2d t2;
+  Stats st;
+  const auto both = voronoi2d(&p.data()->x, n, o, &t2, &st);
+  EXPECT_EQ(st.backend, Backend::Cuda);
+  EXPECT_EQ(t2.triangle_count, h.triangle_count);
+  EXPECT_EQ(t2.triangles, std::vector<std::int32_t>(h.triangles.begin(),
+                                                    h.triangles.begin() + 3 * h.triangle_count));
+  EXPECT_EQ(t2.duplicate_of,
+            std::vector<std::int32_t>(h.duplicate_of.begin(), h.duplicate_of.end()));
+  EXPECT_EQ(both.vertices, std::vector<double>(ref.vertices.begin(), ref.vertices.end()));
+  EXPECT_EQ(both.ridge_points,
+            std::vector<std::int32_t>(ref.ridge_points.begin(), ref.ridge_points.end()));
+  EXPECT_EQ(both.cell_offsets,
+            std::vector<std::int64_t>(ref.cell_offsets.begin(), ref.cell_offsets.end()));
+  EXPECT_EQ(both.cell_vertices,
+            std::vector<std::int32_t>(ref.cell_vertices.begin(), ref.cell_vertices.end()));
 }
