@@ -40,8 +40,8 @@ class Delaunay:
 
     Attributes
     ----------
-    points, simplices, neighbors, vertex_to_simplex, convex_hull, coplanar, ndim, npoints,
-    nsimplex, stats.  Duplicate points are not vertices; they are listed in ``coplanar`` as
+    points, simplices, neighbors, vertex_to_simplex, vertex_neighbor_vertices, convex_hull,
+    coplanar, ndim, npoints, nsimplex, stats, duplicate_of.  Duplicate points are not vertices; they are listed in ``coplanar`` as
     SciPy lists the points Qhull left out: ``[point, simplex, vertex it coincides with]``.
     """
 
@@ -105,6 +105,21 @@ class Delaunay:
         a = s[tri, (k + 1) % 3]
         b = s[tri, (k + 2) % 3]
         return self._back(xp.stack([a, b], axis=1).astype(xp.int32))
+
+    @cached_property
+    def vertex_neighbor_vertices(self):
+        """(indptr, indices) as SciPy's: the Delaunay neighbours of vertex k are
+        ``indices[indptr[k]:indptr[k + 1]]`` (sorted; none for a duplicate)."""
+        xp = self._xp()
+        s = self._as_xp(self.simplices).astype(xp.int64)
+        d = s.shape[1]
+        a = xp.concatenate([s[:, i] for i in range(d) for j in range(d) if i != j])
+        b = xp.concatenate([s[:, j] for i in range(d) for j in range(d) if i != j])
+        key = xp.unique(a * self.npoints + b)  # each directed edge once, sorted by (a, b)
+        src, dst = key // self.npoints, key % self.npoints
+        indptr = xp.zeros(self.npoints + 1, dtype=xp.int32)
+        indptr[1:] = xp.cumsum(xp.bincount(src, minlength=self.npoints))
+        return self._back(indptr), self._back(dst.astype(xp.int32))
 
     @cached_property
     def coplanar(self):

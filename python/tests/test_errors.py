@@ -79,3 +79,34 @@ def test_device_info_and_version():
     if not d["available"]:
         assert d["reason"]
     assert gpugeom.__version__.count(".") == 2
+
+
+def test_ctrl_c_ends_a_long_run_and_leaves_the_interpreter_usable(backend):
+    """A SIGINT during a run with a progress callback ends it with KeyboardInterrupt at the next
+    callback; the next call works."""
+    import signal
+
+    def interrupt(p):
+        if p.iteration == 2:
+            signal.raise_signal(signal.SIGINT)
+
+    dens = np.ones((64, 64))
+    with pytest.raises(KeyboardInterrupt):
+        gpugeom.centroidal_voronoi(dens, 50, progress=interrupt, tol=0, max_iterations=50,
+                                   backend=backend)
+    r = gpugeom.centroidal_voronoi(dens, 50, max_iterations=3, backend=backend)
+    assert r.iterations == 3
+
+
+def test_calls_from_threads_run_at_once(backend):
+    """The interpreter lock is released while the library works: calls from several threads
+    give the same answers as one after another."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    rng = np.random.default_rng(5)
+    sets = [rng.random((20000, 2)) for _ in range(4)]
+    alone = [gpugeom.Delaunay(p, backend=backend).simplices for p in sets]
+    with ThreadPoolExecutor(4) as ex:
+        together = list(ex.map(lambda p: gpugeom.Delaunay(p, backend=backend).simplices, sets))
+    for a, b in zip(alone, together):
+        np.testing.assert_array_equal(a, b)

@@ -35,6 +35,11 @@ def test_delaunay2d_equals_scipy(n, backend, rng):
     vts = g.vertex_to_simplex
     assert all(i in g.simplices[vts[i]] for i in range(n))
     assert g.coplanar.shape == (0, 3)
+    ip, ind = g.vertex_neighbor_vertices
+    rip, rind = s.vertex_neighbor_vertices
+    np.testing.assert_array_equal(ip, rip)
+    for k in range(0, n, max(1, n // 50)):
+        assert sorted(ind[ip[k]:ip[k + 1]]) == sorted(rind[rip[k]:rip[k + 1]])
 
 
 def test_delaunay3d_equals_scipy(backend, rng):
