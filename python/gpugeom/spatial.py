@@ -23,7 +23,19 @@ def _not_supported(name, value, default):
         raise ValueError(f"{name}={value!r} is not supported by gpugeom (SciPy's default only)")
 
 
-class Delaunay:
+class _OfPoints:
+    """What the three structures share: the points as the caller's kind of array."""
+
+    def _take_points(self, points, dims, backend):
+        arr, kind = _arrays.points_input(points, dims, backend)
+        self._kind = kind
+        self.points = kind.back(arr) if kind.name == "torch-cpu" else arr
+        self.ndim = int(arr.shape[1])
+        self.npoints = int(arr.shape[0])
+        return arr, kind
+
+
+class Delaunay(_OfPoints):
     """Exact Delaunay triangulation of points in 2D or 3D (``scipy.spatial.Delaunay``).
 
     Parameters
@@ -50,11 +62,7 @@ class Delaunay:
                  threads: int = 0, progress: Optional[Callable] = None):
         _not_supported("furthest_site", furthest_site, False)
         _not_supported("incremental", incremental, False)
-        arr, kind = _arrays.points_input(points, (2, 3), backend)
-        self._kind = kind
-        self.points = kind.back(arr) if kind.name == "torch-cpu" else arr
-        self.ndim = int(arr.shape[1])
-        self.npoints = int(arr.shape[0])
+        arr, kind = self._take_points(points, (2, 3), backend)
         if self.ndim == 2:
             r = _core.delaunay2d(arr, backend=backend, stream=kind.stream, threads=threads)
         else:
@@ -165,7 +173,7 @@ class Delaunay:
                 f"{self.nsimplex} simplices>")
 
 
-class Voronoi:
+class Voronoi(_OfPoints):
     """Exact Voronoi diagram of 2D points (``scipy.spatial.Voronoi``), dual to the exact
     Delaunay triangulation: one vertex per Delaunay triangle (its circumcentre).
 
@@ -183,11 +191,7 @@ class Voronoi:
                  threads: int = 0):
         _not_supported("furthest_site", furthest_site, False)
         _not_supported("incremental", incremental, False)
-        arr, kind = _arrays.points_input(points, (2,), backend)
-        self._kind = kind
-        self.points = kind.back(arr) if kind.name == "torch-cpu" else arr
-        self.ndim = 2
-        self.npoints = int(arr.shape[0])
+        arr, kind = self._take_points(points, (2,), backend)
         r = _core.voronoi2d(arr, backend=backend, stream=kind.stream, threads=threads)
         self.vertices = kind.back(r["vertices"])
         self.ridge_points = kind.back(r["ridge_points"])
@@ -225,7 +229,7 @@ class Voronoi:
         return f"<gpugeom.Voronoi: {self.npoints} points, {len(self.vertices)} vertices>"
 
 
-class ConvexHull:
+class ConvexHull(_OfPoints):
     """Exact convex hull of 3D points (``scipy.spatial.ConvexHull``): only extreme points are
     vertices (points inside a face or on an edge are not), facets counter-clockwise seen from
     outside, flat faces triangulated.
@@ -240,14 +244,10 @@ class ConvexHull:
     def __init__(self, points, incremental: bool = False, qhull_options: Optional[str] = None, *,
                  backend: str = "auto", threads: int = 0):
         _not_supported("incremental", incremental, False)
-        arr, kind = _arrays.points_input(points, (2, 3), backend)
+        arr, kind = self._take_points(points, (2, 3), backend)
         if arr.shape[1] != 3:
             raise ValueError("gpugeom.ConvexHull computes 3D hulls; for 2D points the hull is "
                              "gpugeom.Delaunay(points).convex_hull")
-        self._kind = kind
-        self.points = kind.back(arr) if kind.name == "torch-cpu" else arr
-        self.ndim = 3
-        self.npoints = int(arr.shape[0])
         r = _core.convex_hull3d(arr, backend=backend, stream=kind.stream, threads=threads)
         self.simplices = kind.back(r["simplices"])
         self.neighbors = kind.back(r["neighbors"])

@@ -73,6 +73,31 @@ nb::object device_array(std::shared_ptr<T> p, std::vector<std::size_t> shape, Ba
                                                 device_id < 0 ? 0 : device_id));
 }
 
+// Options of type Opt (a RunOptions) from the Python keywords and the input.
+template <class Opt>
+Opt options_for(const std::string& backend, std::uintptr_t stream, int threads, const Input& in) {
+  Opt o;
+  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  return o;
+}
+
+// f() with the interpreter unlocked (the library's work never touches Python objects).
+template <class F>
+auto unlocked(F&& f) -> decltype(f()) {
+  nb::gil_scoped_release released;
+  return f();
+}
+
+// Device results of one run: where they are (device_array) fixed once.
+struct DeviceOut {
+  Backend where;
+  int device;
+  template <class T>
+  nb::object operator()(std::shared_ptr<T> p, std::vector<std::size_t> shape) const {
+    return device_array(std::move(p), std::move(shape), where, device);
+  }
+};
+
 nb::dict stats_dict(const Stats& s);
 
 // The device a CUDA run used (the input's, else the calling thread's current one).

@@ -67,8 +67,7 @@ nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sa
                   const std::string& backend, std::uintptr_t stream, int threads) {
   const Input in = inspect(input, "input");
   if (in.shape.size() != 2 && in.shape.size() != 3) throw nb::value_error("input must be 2D or 3D");
-  EdtOptions o;
-  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  auto o = options_for<EdtOptions>(backend, stream, threads, in);
   o.sampling = std::move(sampling);
   o.distance = distance;
   o.squared = squared;
@@ -85,27 +84,19 @@ nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sa
   const int nd = int(in.shape.size());
   nb::dict r;
   if (in.on_device) {
-    DeviceEdtResult e;
-    {
-      nb::gil_scoped_release unlocked;
-      e = distance_transform_device(view(in), rule, o);
-    }
-    const int dev = device_of(o);
-    const Backend b = e.backend;
-    if (e.distance64) r["distances"] = device_array(e.distance64, dims(e.shape), b, dev);
-    if (e.distance32) r["distances"] = device_array(e.distance32, dims(e.shape), b, dev);
-    if (e.sqdist_int) r["sqdist"] = device_array(e.sqdist_int, dims(e.shape), b, dev);
-    if (e.sqdist_real) r["sqdist"] = device_array(e.sqdist_real, dims(e.shape), b, dev);
-    if (e.features) r["indices"] = device_array(e.features, dims(e.shape, nd), b, dev);
-    if (e.labels) r["labels"] = device_array(e.labels, dims(e.shape), b, dev);
+    const DeviceEdtResult e =
+        unlocked([&] { return distance_transform_device(view(in), rule, o); });
+    const DeviceOut out{e.backend, device_of(o)};
+    if (e.distance64) r["distances"] = out(e.distance64, dims(e.shape));
+    if (e.distance32) r["distances"] = out(e.distance32, dims(e.shape));
+    if (e.sqdist_int) r["sqdist"] = out(e.sqdist_int, dims(e.shape));
+    if (e.sqdist_real) r["sqdist"] = out(e.sqdist_real, dims(e.shape));
+    if (e.features) r["indices"] = out(e.features, dims(e.shape, nd));
+    if (e.labels) r["labels"] = out(e.labels, dims(e.shape));
     r["stats"] = stats_dict(e.stats);
     return r;
   }
-  EdtResult e;
-  {
-    nb::gil_scoped_release unlocked;
-    e = distance_transform(view(in), rule, o);
-  }
+  EdtResult e = unlocked([&] { return distance_transform(view(in), rule, o); });
   if (!e.distance64.empty()) r["distances"] = host_array(std::move(e.distance64), dims(e.shape));
   if (!e.distance32.empty()) r["distances"] = host_array(std::move(e.distance32), dims(e.shape));
   if (!e.sqdist_int.empty()) r["sqdist"] = host_array(std::move(e.sqdist_int), dims(e.shape));
@@ -162,32 +153,23 @@ nb::dict cvd_bind(const AnyArray& density, std::int64_t num_sites, std::optional
                   int supersample, std::uint64_t seed, nb::object progress,
                   const std::string& backend, std::uintptr_t stream, int threads) {
   const Input in = inspect(density, "density");
-  CvdOptions o;
-  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  auto o = options_for<CvdOptions>(backend, stream, threads, in);
   lloyd_options(o, num_sites, initial, max_iterations, move_tolerance, energy_tolerance,
                 supersample, seed, progress);
   nb::dict r;
   if (in.on_device) {
-    DeviceCvdResult c;
-    {
-      nb::gil_scoped_release unlocked;
-      c = centroidal_voronoi_device(view(in), o);
-    }
-    const int dev = device_of(o);
+    DeviceCvdResult c = unlocked([&] { return centroidal_voronoi_device(view(in), o); });
+    const DeviceOut out{c.backend, device_of(o)};
     const sz k = sz(c.num_sites), it = c.energy.size();
-    r["sites"] = device_array(c.sites, {k, sz(c.dim)}, c.backend, dev);
-    r["mass"] = device_array(c.mass, {k}, c.backend, dev);
+    r["sites"] = out(c.sites, {k, sz(c.dim)});
+    r["mass"] = out(c.mass, {k});
     r["energy"] = host_array(std::move(c.energy), {it});
     r["iterations"] = c.iterations;
     r["converged"] = c.converged;
     r["stats"] = stats_dict(c.stats);
     return r;
   }
-  CvdResult c;
-  {
-    nb::gil_scoped_release unlocked;
-    c = centroidal_voronoi(view(in), o);
-  }
+  CvdResult c = unlocked([&] { return centroidal_voronoi(view(in), o); });
   put_cvd_host(r, c);
   return r;
 }
@@ -198,19 +180,14 @@ nb::dict stipple_bind(const AnyArray& image, std::int64_t num_sites, bool invert
                       nb::object progress, const std::string& backend, int threads) {
   const Input in = inspect(image, "image");
   if (in.on_device) throw nb::value_error("stipple reads the image from host memory");
-  StippleOptions o;
-  static_cast<RunOptions&>(o) = run_options(backend, 0, threads, in);
+  auto o = options_for<StippleOptions>(backend, 0, threads, in);
   lloyd_options(o, num_sites, std::nullopt, max_iterations, move_tolerance, energy_tolerance,
                 supersample, seed, progress);
   o.invert = invert;
   o.contrast = contrast;
   o.gamma = gamma;
   o.ink = ink;
-  Stipple s;
-  {
-    nb::gil_scoped_release unlocked;
-    s = stipple(view(in), o);
-  }
+  Stipple s = unlocked([&] { return stipple(view(in), o); });
   nb::dict r;
   const sz k = sz(s.cvd.site_count);
   r["radius"] = host_array(std::move(s.radius), {k});

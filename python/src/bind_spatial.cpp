@@ -34,28 +34,19 @@ const double* pts(const Input& in) {
 nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
                          int threads) {
   const Input in = points_input(points, 2);
-  Delaunay2dOptions o;
-  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  auto o = options_for<Delaunay2dOptions>(backend, stream, threads, in);
   const std::int64_t n = in.shape[0];
   nb::dict r;
   if (in.on_device) {
-    DeviceTriangulation2d t;
-    {
-      nb::gil_scoped_release unlocked;
-      t = delaunay2d_device(pts(in), n, o);
-    }
-    const int dev = device_of(o);
-    r["simplices"] = device_array(t.triangles, {sz(t.num_triangles), 3}, t.backend, dev);
-    r["neighbors"] = device_array(t.neighbors, {sz(t.num_triangles), 3}, t.backend, dev);
-    r["duplicate_of"] = device_array(t.duplicate_of, {sz(n)}, t.backend, dev);
+    DeviceTriangulation2d t = unlocked([&] { return delaunay2d_device(pts(in), n, o); });
+    const DeviceOut out{t.backend, device_of(o)};
+    r["simplices"] = out(t.triangles, {sz(t.num_triangles), 3});
+    r["neighbors"] = out(t.neighbors, {sz(t.num_triangles), 3});
+    r["duplicate_of"] = out(t.duplicate_of, {sz(n)});
     r["stats"] = stats_dict(t.stats);
     return r;
   }
-  Triangulation2d t;
-  {
-    nb::gil_scoped_release unlocked;
-    t = delaunay2d(pts(in), n, o);
-  }
+  Triangulation2d t = unlocked([&] { return delaunay2d(pts(in), n, o); });
   const sz nt = t.num_triangles();
   t.triangles.resize(3 * nt);  // the host path may size them for the most triangles
   t.neighbors.resize(3 * nt);
@@ -80,35 +71,33 @@ void put_voronoi_host(nb::dict& r, Voronoi2d& v, std::int64_t n) {
 nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
                         int threads) {
   const Input in = points_input(points, 2);
-  Delaunay2dOptions o;
-  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  auto o = options_for<Delaunay2dOptions>(backend, stream, threads, in);
   const std::int64_t n = in.shape[0];
   nb::dict r;
   if (in.on_device) {
     DeviceTriangulation2d t;
     DeviceVoronoi2d v;
     {
-      nb::gil_scoped_release unlocked;
+      nb::gil_scoped_release released;
       t = delaunay2d_device(pts(in), n, o);
       v = voronoi2d_device(pts(in), n, t, o);
     }
-    const int dev = device_of(o);
-    const Backend b = v.backend;
-    r["simplices"] = device_array(t.triangles, {sz(t.num_triangles), 3}, b, dev);
-    r["duplicate_of"] = device_array(t.duplicate_of, {sz(n)}, b, dev);
-    r["vertices"] = device_array(v.vertices, {sz(v.num_vertices), 2}, b, dev);
-    r["ridge_points"] = device_array(v.ridge_points, {sz(v.num_ridges), 2}, b, dev);
-    r["ridge_vertices"] = device_array(v.ridge_vertices, {sz(v.num_ridges), 2}, b, dev);
-    r["ridge_directions"] = device_array(v.ridge_directions, {sz(v.num_ridges), 2}, b, dev);
-    r["cell_offsets"] = device_array(v.cell_offsets, {sz(n) + 1}, b, dev);
-    r["cell_vertices"] = device_array(v.cell_vertices, {sz(v.num_cell_vertices)}, b, dev);
+    const DeviceOut out{v.backend, device_of(o)};
+    r["simplices"] = out(t.triangles, {sz(t.num_triangles), 3});
+    r["duplicate_of"] = out(t.duplicate_of, {sz(n)});
+    r["vertices"] = out(v.vertices, {sz(v.num_vertices), 2});
+    r["ridge_points"] = out(v.ridge_points, {sz(v.num_ridges), 2});
+    r["ridge_vertices"] = out(v.ridge_vertices, {sz(v.num_ridges), 2});
+    r["ridge_directions"] = out(v.ridge_directions, {sz(v.num_ridges), 2});
+    r["cell_offsets"] = out(v.cell_offsets, {sz(n) + 1});
+    r["cell_vertices"] = out(v.cell_vertices, {sz(v.num_cell_vertices)});
     r["stats"] = stats_dict(t.stats);
     return r;
   }
   Triangulation2d t;
   Voronoi2d v;
   {
-    nb::gil_scoped_release unlocked;
+    nb::gil_scoped_release released;
     v = voronoi2d(pts(in), n, o, &t, &t.stats);  // both on the executor, results back once
   }
   const sz nt = t.num_triangles();
@@ -123,29 +112,20 @@ nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std:
 nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
                      int threads) {
   const Input in = points_input(points, 3);
-  Hull3dOptions o;
-  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  auto o = options_for<Hull3dOptions>(backend, stream, threads, in);
   const std::int64_t n = in.shape[0];
   nb::dict r;
   if (in.on_device) {
-    DeviceHull3d h;
-    {
-      nb::gil_scoped_release unlocked;
-      h = convex_hull3d_device(pts(in), n, o);
-    }
-    const int dev = device_of(o);
-    r["simplices"] = device_array(h.triangles, {sz(h.num_facets), 3}, h.backend, dev);
-    r["neighbors"] = device_array(h.neighbors, {sz(h.num_facets), 3}, h.backend, dev);
-    r["vertices"] = device_array(h.vertices, {sz(h.num_vertices)}, h.backend, dev);
-    r["equations"] = device_array(h.equations, {sz(h.num_facets), 4}, h.backend, dev);
+    DeviceHull3d h = unlocked([&] { return convex_hull3d_device(pts(in), n, o); });
+    const DeviceOut out{h.backend, device_of(o)};
+    r["simplices"] = out(h.triangles, {sz(h.num_facets), 3});
+    r["neighbors"] = out(h.neighbors, {sz(h.num_facets), 3});
+    r["vertices"] = out(h.vertices, {sz(h.num_vertices)});
+    r["equations"] = out(h.equations, {sz(h.num_facets), 4});
     r["stats"] = stats_dict(h.stats);
     return r;
   }
-  ConvexHull3d h;
-  {
-    nb::gil_scoped_release unlocked;
-    h = convex_hull3d(pts(in), n, o);
-  }
+  ConvexHull3d h = unlocked([&] { return convex_hull3d(pts(in), n, o); });
   const sz nf = h.num_facets();
   h.triangles.resize(3 * nf);
   h.neighbors.resize(3 * nf);
@@ -162,8 +142,7 @@ nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, std::ui
 nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
                          int threads, nb::object progress) {
   const Input in = points_input(points, 3);
-  Delaunay3dOptions o;
-  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
+  auto o = options_for<Delaunay3dOptions>(backend, stream, threads, in);
   // The progress callback runs on this thread with the interpreter locked again; it also lets a
   // Ctrl-C end the run (KeyboardInterrupt reaches the caller, nothing leaks).
   // (A borrowed handle: the caller holds the callable for the whole call, and the options may be
@@ -180,25 +159,17 @@ nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, std
   const std::int64_t n = in.shape[0];
   nb::dict r;
   if (in.on_device) {
-    DeviceTriangulation3d t;
-    {
-      nb::gil_scoped_release unlocked;
-      t = delaunay3d_device(pts(in), n, o);
-    }
-    const int dev = device_of(o);
-    r["simplices"] = device_array(t.tetrahedra, {sz(t.num_tetrahedra), 4}, t.backend, dev);
-    r["neighbors"] = device_array(t.neighbors, {sz(t.num_tetrahedra), 4}, t.backend, dev);
-    r["duplicate_of"] = device_array(t.duplicate_of, {sz(n)}, t.backend, dev);
-    r["vertex_to_simplex"] = device_array(t.vertex_to_simplex, {sz(n)}, t.backend, dev);
-    r["hull_facets"] = device_array(t.hull_facets, {sz(t.num_hull_facets), 3}, t.backend, dev);
+    DeviceTriangulation3d t = unlocked([&] { return delaunay3d_device(pts(in), n, o); });
+    const DeviceOut out{t.backend, device_of(o)};
+    r["simplices"] = out(t.tetrahedra, {sz(t.num_tetrahedra), 4});
+    r["neighbors"] = out(t.neighbors, {sz(t.num_tetrahedra), 4});
+    r["duplicate_of"] = out(t.duplicate_of, {sz(n)});
+    r["vertex_to_simplex"] = out(t.vertex_to_simplex, {sz(n)});
+    r["hull_facets"] = out(t.hull_facets, {sz(t.num_hull_facets), 3});
     r["stats"] = stats_dict(t.stats);
     return r;
   }
-  Triangulation3d t;
-  {
-    nb::gil_scoped_release unlocked;
-    t = delaunay3d(pts(in), n, o);
-  }
+  Triangulation3d t = unlocked([&] { return delaunay3d(pts(in), n, o); });
   const sz nt = t.num_tetrahedra(), nh = sz(t.hull_facet_count);
   t.tetrahedra.resize(4 * nt);
   t.neighbors.resize(4 * nt);
@@ -242,7 +213,7 @@ nb::object find_simplex_bind(const AnyArray& points, const AnyArray& simplices,
         ("xi must be a host float64 array of shape (m, " + std::to_string(dim) + ")").c_str());
   HostVector<std::int32_t> r;
   {
-    nb::gil_scoped_release unlocked;
+    nb::gil_scoped_release released;
     r = dim == 2 ? find_simplex2d(pts(p), p.shape[0], s, nb_, ns, pts(q), q.shape[0], threads)
                  : find_simplex3d(pts(p), p.shape[0], s, nb_, ns, pts(q), q.shape[0], threads);
   }
@@ -270,7 +241,7 @@ std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray&
   }
   verify::Report rep;
   {
-    nb::gil_scoped_release unlocked;
+    nb::gil_scoped_release released;
     if (what == "delaunay2d" && p.shape[1] == 2)
       rep = verify::check_delaunay2d(pts(p), n, c, nc, dup);
     else if (what == "delaunay3d" && p.shape[1] == 3)
