@@ -50,6 +50,12 @@ def _sampling(sampling, nd) -> list:
     return s
 
 
+def _c_contiguous(a) -> bool:
+    if hasattr(a, "is_contiguous"):  # torch
+        return bool(a.is_contiguous())
+    return bool(a.flags.c_contiguous)
+
+
 def _as_2d(arr, nd):
     """1D grids run as one row."""
     return arr.reshape(1, -1) if nd == 1 else arr
@@ -99,26 +105,30 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
             raise RuntimeError("indices array must be int32")
     g = _as_2d(arr, nd)
     samp2 = ([1.0] + samp) if (nd == 1 and samp) else samp
-    feat_out = indices
-    if nd == 1 and indices is not None:
-        feat_out = None  # written below from the (2, 1, n) result
+    # Output arrays the library can write into directly: C order (a 1D grid's indices come from
+    # its (2, 1, n) result instead); others get the result copied in.
+    d_direct = distances is not None and _c_contiguous(distances)
+    f_direct = indices is not None and nd > 1 and _c_contiguous(indices)
     r = _core.distance_transform(
         g, zero_sites=True, sampling=samp2, distance=bits, squared=False,
         features=bool(return_indices), labels=False,
-        distances_out=None if distances is None else distances.reshape(g.shape),
-        features_out=feat_out, backend=backend, stream=kind.stream, threads=threads)
+        distances_out=distances.reshape(g.shape) if d_direct else None,
+        features_out=indices if f_direct else None, backend=backend, stream=kind.stream,
+        threads=threads)
     result = []
-    if return_distances and distances is None:
-        result.append(kind.back(r["distances"]).reshape(shape))
+    if return_distances:
+        if distances is None:
+            result.append(kind.back(r["distances"]).reshape(shape))
+        elif not d_direct:
+            distances[...] = kind.back(r["distances"]).reshape(shape)
     if return_indices:
-        if nd == 1:
-            ft = kind.back(r["indices"])[1].reshape((1,) + shape)
-            if indices is not None:
-                indices[...] = ft
-            else:
-                result.append(ft)
-        elif indices is None:
-            result.append(kind.back(r["indices"]))
+        ft = kind.back(r["indices"]) if not f_direct else None
+        if ft is not None and nd == 1:
+            ft = ft[1].reshape((1,) + shape)
+        if indices is None:
+            result.append(ft)
+        elif not f_direct:
+            indices[...] = ft
     if len(result) == 2:
         return tuple(result)
     if len(result) == 1:

@@ -52,6 +52,14 @@ def test_edt_output_arrays(backend, rng):
     only_d = gpugeom.distance_transform_edt(a, return_indices=True, distances=dist,
                                             backend=backend)
     assert only_d.shape == (2,) + a.shape  # the indices, as SciPy returns them
+    # output arrays that are views with strides get the result too
+    big = np.zeros((2, 50, 80))
+    bigi = np.zeros((2, 2, 50, 40), dtype=np.int32)
+    gpugeom.distance_transform_edt(a, return_indices=True, distances=big[1, :, ::2],
+                                   indices=bigi[:, 1], backend=backend)
+    np.testing.assert_array_equal(big[1, :, ::2], dist)
+    np.testing.assert_array_equal(bigi[:, 1], ind)
+    assert not big[0].any() and not big[1, :, 1::2].any()
     f32 = np.empty(a.shape, dtype=np.float32)
     gpugeom.distance_transform_edt(a, distances=f32, backend=backend)
     np.testing.assert_allclose(f32, dist, rtol=1e-6)
