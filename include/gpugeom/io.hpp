@@ -7,7 +7,9 @@
 //             appended binary, optionally zlib-compressed, or ascii), .npy (the cell array
 //             only, int32 N x 3 or N x 4). The same formats read back; .vtu in every encoding
 //             VTK writes (ascii, inline base64, appended raw or base64; zlib or not; 32- or
-//             64-bit headers; either byte order).
+//             64-bit headers; either byte order), with the point and cell data arrays a
+//             mesh carries (Mesh::point_data, cell_data; the delaunay commands attach the
+//             duplicate map).
 // Grids:      .pgm/.pbm (P1/P2/P4/P5, 8/16-bit), .png (8/16-bit grey; colour is converted to
 //             luminance), .npy (2D/3D, bool/uint8/uint16/int32/int64/float32/float64), raw
 //             (shape and type given by the caller).
@@ -30,19 +32,38 @@ struct PointSet {
   std::size_t size() const { return dim ? coords.size() / dim : 0; }
 };
 
+enum class ScalarType { Bool, U8, U16, I32, I64, F32, F64 };
+std::size_t scalar_size(ScalarType t);
+const char* scalar_name(ScalarType t);
+ScalarType parse_scalar(const std::string& name);  // "uint8", "float32", ...
+
+// Values attached to a mesh's vertices (point data) or cells (cell data), as VTK files carry
+// them: `components` values per vertex or cell, of `type`, native byte order. .vtu writes and
+// reads them in every encoding (ParaView shows them by name); the other formats have no place
+// for them and leave them out. Read back, an array keeps its VTK type where a ScalarType has it
+// (Int8/Int16/UInt32 widen to int32/int64; UInt64 is read as int64).
+struct DataArray {
+  std::string name;
+  ScalarType type = ScalarType::F64;
+  int components = 1;
+  std::vector<unsigned char> bytes;
+  std::size_t count() const;  // values: bytes / scalar_size(type)
+};
+// A data array holding `values` elements of `type` copied from `data`.
+DataArray make_data_array(const std::string& name, ScalarType type, int components,
+                          const void* data, std::size_t values);
+
 struct Mesh {
   int dim = 3;                 // coordinates per vertex (2 or 3)
   std::vector<double> coords;  // dim per vertex; may be empty for a cells-only .npy
   int cell_size = 3;           // 3: triangles, 4: tetrahedra
   std::vector<std::int32_t> cells;
+  // Optional arrays (.vtu): point_data of num_vertices() x components values each, cell_data of
+  // num_cells() x components; other lengths are refused when written (Error(InvalidArgument)).
+  std::vector<DataArray> point_data, cell_data;
   std::size_t num_vertices() const { return dim ? coords.size() / dim : 0; }
   std::size_t num_cells() const { return cell_size ? cells.size() / cell_size : 0; }
 };
-
-enum class ScalarType { Bool, U8, U16, I32, I64, F32, F64 };
-std::size_t scalar_size(ScalarType t);
-const char* scalar_name(ScalarType t);
-ScalarType parse_scalar(const std::string& name);  // "uint8", "float32", ...
 
 struct Grid {
   std::vector<std::int64_t> shape;  // C order: (rows, cols) or (slices, rows, cols)

@@ -6,6 +6,21 @@
 #include "io/io_util.hpp"
 
 namespace gpugeom::io {
+
+std::size_t DataArray::count() const {
+  return bytes.size() / scalar_size(type);
+}
+
+DataArray make_data_array(const std::string& name, ScalarType type, int components,
+                          const void* data, std::size_t values) {
+  DataArray a;
+  a.name = name;
+  a.type = type;
+  a.components = components;
+  const auto* p = static_cast<const unsigned char*>(data);
+  a.bytes.assign(p, p + values * scalar_size(type));
+  return a;
+}
 namespace detail {
 PointSet parse_off_mesh(const std::string& b, const std::string& name, Mesh* m);
 PointSet parse_obj_mesh(const std::string& b, const std::string& name, Mesh* m);

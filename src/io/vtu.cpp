@@ -4,8 +4,9 @@
 // 1 MiB (compressed on all host threads, blocks being independent), or ascii on request.
 // Read: every DataArray encoding VTK defines: ascii, inline base64 ("binary"), appended raw
 // or base64; uncompressed or vtkZLibDataCompressor; header_type UInt32 or UInt64; little or
-// big endian; any numeric element type. Only what a triangle or tetrahedron mesh needs is
-// interpreted (Points, connectivity, offsets, types); other arrays are skipped.
+// big endian; any numeric element type. Interpreted: what a triangle or tetrahedron mesh needs
+// (Points, connectivity, offsets, types) and the PointData / CellData arrays (kept with their
+// names and types, written the same ways); other sections are skipped.
 //
 // Every size read from a file is checked against the bytes that are there before it is used,
 // so a malformed or hostile file is a Parse error, never a huge allocation or a read past the
@@ -347,25 +348,51 @@ std::vector<double> read_array(const Encoding& E, std::string_view b, const Tag&
   return v;
 }
 
-// The first DataArray inside the element that starts at `from` (its section), optionally the
-// one with Name=name.
-std::vector<double> section_array(const Encoding& E, std::string_view b, std::string_view section,
-                                  std::string_view array_name) {
-  Tag s;
-  if (!find_tag(b, section, 0, s))
-    parse_fail(E.name, 0, "no <" + std::string(section) + "> section");
-  const std::string close = "</" + std::string(section) + ">";
-  const std::size_t end = b.find(close, s.end);
-  Tag t;
-  for (std::size_t at = s.end;
-       find_tag(b, "DataArray", at, t) && (end == std::string_view::npos || t.begin < end);
-       at = t.end) {
-    if (array_name.empty() || attr(t, "Name") == array_name) return read_array(E, b, t);
+// The ScalarType a VTK type is read as, and the values stored in it.
+DataArray data_array_of(const std::string& name, std::string_view vtk_type, int comps,
+                        const std::vector<double>& v) {
+  ScalarType t = ScalarType::F64;
+  if (vtk_type == "UInt8")
+    t = ScalarType::U8;
+  else if (vtk_type == "UInt16")
+    t = ScalarType::U16;
+  else if (vtk_type == "Int8" || vtk_type == "Int16" || vtk_type == "Int32")
+    t = ScalarType::I32;
+  else if (vtk_type == "UInt32" || vtk_type == "Int64" || vtk_type == "UInt64")
+    t = ScalarType::I64;
+  else if (vtk_type == "Float32")
+    t = ScalarType::F32;
+  DataArray a;
+  a.name = name;
+  a.type = t;
+  a.components = comps;
+  a.bytes.resize(v.size() * scalar_size(t));
+  unsigned char* p = a.bytes.data();
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    auto put = [&](auto x) { std::memcpy(p + i * sizeof x, &x, sizeof x); };
+    switch (t) {
+      case ScalarType::Bool:
+      case ScalarType::U8:
+        put(std::uint8_t(v[i]));
+        break;
+      case ScalarType::U16:
+        put(std::uint16_t(v[i]));
+        break;
+      case ScalarType::I32:
+        put(std::int32_t(v[i]));
+        break;
+      case ScalarType::I64:
+        put(std::int64_t(v[i]));
+        break;
+      case ScalarType::F32:
+        put(float(v[i]));
+        break;
+      case ScalarType::F64:
+        put(v[i]);
+        break;
+    }
   }
-  parse_fail(E.name, 0,
-             "no DataArray " +
-                 (array_name.empty() ? std::string() : "'" + std::string(array_name) + "' ") +
-                 "in <" + std::string(section) + ">");
+  return a;
 }
 
 }  // namespace
@@ -412,34 +439,52 @@ Mesh parse_vtu(const std::string& bytes, const std::string& name) {
       parse_fail(name, 0, "unknown AppendedData encoding '" + std::string(enc) + "'");
     }
   }
-  // Appended base64: each array's block is its own base64 text from its offset (in
-  // characters); decoding from there on gives its bytes first.
-  auto array = [&](std::string_view section, std::string_view arr) {
-    if (!E.appended_base64) return section_array(E, xml, section, arr);
-    // base64 appended: decode from the array's character offset to the end, as inline data.
-    Tag s, t;
-    if (!find_tag(xml, section, 0, s))
-      parse_fail(name, 0, "no <" + std::string(section) + "> section");
-    const std::size_t end = xml.find("</" + std::string(section) + ">", s.end);
-    for (std::size_t at = s.end; find_tag(xml, "DataArray", at, t) && t.begin < end; at = t.end) {
-      if (!arr.empty() && attr(t, "Name") != arr) continue;
-      if (attr(t, "format") != "appended") return read_array(E, xml, t);
-      std::int64_t off = 0;
-      if (!to_int64(attr(t, "offset"), off) || off < 0 || std::uint64_t(off) > E.appended.size())
-        parse_fail(name, 0, "an appended DataArray's offset is missing or out of range");
-      const std::string_view rest = E.appended.substr(std::size_t(off));
-      const std::string data = inline_data(E, rest.substr(0, rest.size() / 4 * 4));
-      const Elem e = elem_of(attr(t, "type"), name);
-      if (data.size() % std::size_t(e.bytes))
-        parse_fail(name, 0, "binary DataArray length is not a whole number of elements");
-      std::vector<double> v(data.size() / std::size_t(e.bytes));
-      for (std::size_t i = 0; i < v.size(); ++i)
-        v[i] =
-            elem_value(reinterpret_cast<const unsigned char*>(data.data()) + i * e.bytes, e, E.big);
-      return v;
+  // One DataArray's values. Appended base64: each array's block is its own base64 text from
+  // its offset (in characters); decoding from there on gives its bytes first.
+  auto read_one = [&](const Tag& t) -> std::vector<double> {
+    if (!E.appended_base64 || attr(t, "format") != "appended") return read_array(E, xml, t);
+    std::int64_t off = 0;
+    if (!to_int64(attr(t, "offset"), off) || off < 0 || std::uint64_t(off) > E.appended.size())
+      parse_fail(name, 0, "an appended DataArray's offset is missing or out of range");
+    const std::string_view rest = E.appended.substr(std::size_t(off));
+    const std::string data = inline_data(E, rest.substr(0, rest.size() / 4 * 4));
+    const Elem e = elem_of(attr(t, "type"), name);
+    if (data.size() % std::size_t(e.bytes))
+      parse_fail(name, 0, "binary DataArray length is not a whole number of elements");
+    std::vector<double> v(data.size() / std::size_t(e.bytes));
+    for (std::size_t i = 0; i < v.size(); ++i)
+      v[i] =
+          elem_value(reinterpret_cast<const unsigned char*>(data.data()) + i * e.bytes, e, E.big);
+    return v;
+  };
+  // Calls f(tag) for each DataArray of the section (none when the section is absent and
+  // optional).
+  auto each_array = [&](std::string_view section, bool required, auto f) {
+    Tag sec, t;
+    if (!find_tag(xml, section, 0, sec)) {
+      if (required) parse_fail(name, 0, "no <" + std::string(section) + "> section");
+      return;
     }
-    parse_fail(name, 0,
-               "no DataArray '" + std::string(arr) + "' in <" + std::string(section) + ">");
+    if (sec.closed) return;
+    const std::size_t end = xml.find("</" + std::string(section) + ">", sec.end);
+    for (std::size_t at = sec.end;
+         find_tag(xml, "DataArray", at, t) && (end == std::string_view::npos || t.begin < end);
+         at = t.end)
+      f(t);
+  };
+  auto array = [&](std::string_view section, std::string_view arr) {
+    std::vector<double> v;
+    bool found = false;
+    each_array(section, true, [&](const Tag& t) {
+      if (found || (!arr.empty() && attr(t, "Name") != arr)) return;
+      v = read_one(t);
+      found = true;
+    });
+    if (!found)
+      parse_fail(name, 0,
+                 "no DataArray " + (arr.empty() ? std::string() : "'" + std::string(arr) + "' ") +
+                     "in <" + std::string(section) + ">");
+    return v;
   };
   const std::vector<double> xyz = array("Points", "");
   const std::vector<double> conn = array("Cells", "connectivity");
@@ -469,6 +514,25 @@ Mesh parse_vtu(const std::string& bytes, const std::string& name) {
   m.coords.reserve(nv * std::size_t(m.dim));
   for (std::size_t i = 0; i < nv; ++i)
     for (int d = 0; d < m.dim; ++d) m.coords.push_back(xyz[i * 3 + d]);
+  // Point and cell data, each array in the type it was written in (where a ScalarType has it).
+  auto data_section = [&](std::string_view section, std::size_t items,
+                          std::vector<DataArray>& out) {
+    each_array(section, false, [&](const Tag& t) {
+      std::int64_t comps = 1;
+      const std::string_view nc = attr(t, "NumberOfComponents");
+      if (!nc.empty() && (!to_int64(nc, comps) || comps < 1 || comps > 1024))
+        parse_fail(name, 0, "bad NumberOfComponents in <" + std::string(section) + ">");
+      const std::vector<double> v = read_one(t);
+      if (v.size() != items * std::size_t(comps))
+        parse_fail(name, 0,
+                   "<" + std::string(section) + "> array '" + std::string(attr(t, "Name")) +
+                       "' holds " + std::to_string(v.size()) + " values, expected " +
+                       std::to_string(items * std::size_t(comps)));
+      out.push_back(data_array_of(std::string(attr(t, "Name")), attr(t, "type"), int(comps), v));
+    });
+  };
+  data_section("PointData", nv, m.point_data);
+  data_section("CellData", offs.size(), m.cell_data);
   return m;
 }
 
@@ -527,15 +591,45 @@ class VtuArrays {
         nv_(m.num_vertices()),
         nc_(m.num_cells()),
         k_(std::size_t(m.cell_size)),
-        wide_(nc_ * k_ > std::size_t(INT32_MAX)) {}
+        wide_(nc_ * k_ > std::size_t(INT32_MAX)) {
+    auto take = [&](const std::vector<DataArray>& v, std::size_t items, const char* what) {
+      for (const DataArray& d : v) {
+        if (d.components < 1 || d.count() != items * std::size_t(d.components) ||
+            d.bytes.size() % scalar_size(d.type))
+          throw Error(ErrorCode::InvalidArgument,
+                      std::string(what) + " array '" + d.name + "' holds " +
+                          std::to_string(d.count()) + " values; the mesh needs " +
+                          std::to_string(items) + " x " + std::to_string(d.components));
+        extra_.push_back(&d);
+      }
+    };
+    take(m.point_data, nv_, "point data");
+    num_point_data_ = extra_.size();
+    take(m.cell_data, nc_, "cell data");
+  }
   bool wide() const { return wide_; }  // offsets need 64 bits
-  std::size_t items(int a) const { return a == 0 ? nv_ : a == 1 ? nc_ * k_ : nc_; }
+  // Arrays: 0 Points, 1 connectivity, 2 offsets, 3 types, then point data, then cell data.
+  int count() const { return 4 + int(extra_.size()); }
+  const DataArray* extra(int a) const { return a < 4 ? nullptr : extra_[std::size_t(a - 4)]; }
+  bool is_point_data(int a) const { return a >= 4 && std::size_t(a - 4) < num_point_data_; }
+  std::size_t items(int a) const {
+    return a == 0 ? nv_ : a == 1 ? nc_ * k_ : a < 4 ? nc_ : extra(a)->count();
+  }
   std::size_t item_bytes(int a) const {
-    return a == 0 ? 24 : a == 1 ? 4 : a == 2 ? (wide_ ? 8 : 4) : 1;
+    return a == 0   ? 24
+           : a == 1 ? 4
+           : a == 2 ? (wide_ ? 8 : 4)
+           : a == 3 ? 1
+                    : scalar_size(extra(a)->type);
   }
   std::size_t bytes(int a) const { return items(a) * item_bytes(a); }
   // Items [first, first + count) of array a into d.
   void fill(int a, char* d, std::size_t first, std::size_t count) const {
+    if (a >= 4) {
+      const std::size_t w = item_bytes(a);
+      std::memcpy(d, extra(a)->bytes.data() + first * w, count * w);
+      return;
+    }
     if (a == 0) {
       if (m_.dim == 3) {
         std::memcpy(d, m_.coords.data() + 3 * first, 24 * count);
@@ -567,20 +661,57 @@ class VtuArrays {
   const Mesh& m_;
   std::size_t nv_, nc_, k_;
   bool wide_;
+  std::vector<const DataArray*> extra_;
+  std::size_t num_point_data_ = 0;
 };
+
+const char* vtk_type(ScalarType t) {
+  switch (t) {
+    case ScalarType::Bool:
+    case ScalarType::U8:
+      return "UInt8";
+    case ScalarType::U16:
+      return "UInt16";
+    case ScalarType::I32:
+      return "Int32";
+    case ScalarType::I64:
+      return "Int64";
+    case ScalarType::F32:
+      return "Float32";
+    case ScalarType::F64:
+      return "Float64";
+  }
+  return "Float64";
+}
+
+// The opening tag of a data array's DataArray element (no closing '>').
+std::string data_array_tag(const DataArray& d) {
+  return "<DataArray type=\"" + std::string(vtk_type(d.type)) + "\" Name=\"" + d.name +
+         "\" NumberOfComponents=\"" + std::to_string(d.components) + "\"";
+}
 
 constexpr char kVtuTail[] = "\n</AppendedData>\n</VTKFile>\n";
 
-// The DataArray elements of the four appended arrays at byte offsets at[0..3], up to the '_'
-// that starts the appended data.
-std::string appended_xml(const std::size_t (&at)[5], bool wide) {
-  std::string o =
-      "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" "
-      "offset=\"" +
-      std::to_string(at[0]) + "\"/>\n</Points>\n<Cells>\n";
+// The DataArray elements of the appended arrays at byte offsets at[0..], up to the '_' that
+// starts the appended data.
+std::string appended_xml(const VtuArrays& A, const std::vector<std::size_t>& at) {
+  std::string o;
+  for (int sec = 0; sec < 2; ++sec) {  // PointData, CellData (before Points, as VTK has them)
+    std::string arrays;
+    for (int a = 4; a < A.count(); ++a)
+      if (A.is_point_data(a) == (sec == 0))
+        arrays += data_array_tag(*A.extra(a)) + " format=\"appended\" offset=\"" +
+                  std::to_string(at[std::size_t(a)]) + "\"/>\n";
+    if (!arrays.empty())
+      o += (sec == 0 ? "<PointData>\n" : "<CellData>\n") + arrays +
+           (sec == 0 ? "</PointData>\n" : "</CellData>\n");
+  }
+  o += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" "
+       "offset=\"" +
+       std::to_string(at[0]) + "\"/>\n</Points>\n<Cells>\n";
   o += "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"appended\" offset=\"" +
        std::to_string(at[1]) + "\"/>\n";
-  o += std::string("<DataArray type=\"") + (wide ? "Int64" : "Int32") +
+  o += std::string("<DataArray type=\"") + (A.wide() ? "Int64" : "Int32") +
        "\" Name=\"offsets\" format=\"appended\" offset=\"" + std::to_string(at[2]) + "\"/>\n";
   o += "<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"" +
        std::to_string(at[3]) + "\"/>\n";
@@ -611,12 +742,13 @@ void write_vtu(const std::string& path, const Mesh& m, bool binary, bool compres
     return;
   }
   const VtuArrays arrays(m);
-  std::size_t at[5] = {0, 0, 0, 0, 0};
-  for (int i = 0; i < 4; ++i) at[i + 1] = at[i] + 8 + arrays.bytes(i);
+  std::vector<std::size_t> at(std::size_t(arrays.count()) + 1, 0);
+  for (int i = 0; i < arrays.count(); ++i)
+    at[std::size_t(i) + 1] = at[std::size_t(i)] + 8 + arrays.bytes(i);
   AtomicFile f(path);
-  f.write(vtu_head(m, true, false) + appended_xml(at, arrays.wide()));
+  f.write(vtu_head(m, true, false) + appended_xml(arrays, at));
   std::vector<char> buf(std::size_t(1) << 20);
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < arrays.count(); ++i) {
     const std::uint64_t n = arrays.bytes(i);
     f.write(&n, 8);  // (little-endian hosts only: the file says LittleEndian)
     const std::size_t per = buf.size() / arrays.item_bytes(i), items = arrays.items(i);
@@ -636,7 +768,48 @@ std::string format_vtu(const Mesh& m, bool binary, bool compress) {
   const std::string head = vtu_head(m, binary, compress);
   const bool wide = nc * std::size_t(k) > std::size_t(INT32_MAX);  // offsets need 64 bits
   if (!binary) {
+    const VtuArrays arrays(m);  // (checks the data arrays' lengths)
     std::string o = head;
+    for (int sec = 0; sec < 2; ++sec) {
+      const auto& list = sec == 0 ? m.point_data : m.cell_data;
+      if (list.empty()) continue;
+      o += sec == 0 ? "<PointData>\n" : "<CellData>\n";
+      for (const DataArray& d : list) {
+        o += data_array_tag(d) + " format=\"ascii\">\n";
+        const std::size_t n = d.count(), w = scalar_size(d.type);
+        for (std::size_t i = 0; i < n; ++i) {
+          const unsigned char* p = d.bytes.data() + i * w;
+          auto get = [&](auto x) {
+            std::memcpy(&x, p, sizeof x);
+            return x;
+          };
+          switch (d.type) {
+            case ScalarType::Bool:
+            case ScalarType::U8:
+              o += std::to_string(get(std::uint8_t{}));
+              break;
+            case ScalarType::U16:
+              o += std::to_string(get(std::uint16_t{}));
+              break;
+            case ScalarType::I32:
+              o += std::to_string(get(std::int32_t{}));
+              break;
+            case ScalarType::I64:
+              o += std::to_string(get(std::int64_t{}));
+              break;
+            case ScalarType::F32:
+              append_double(o, double(get(float{})));
+              break;
+            case ScalarType::F64:
+              append_double(o, get(double{}));
+              break;
+          }
+          o += (i + 1) % std::size_t(d.components) ? ' ' : '\n';
+        }
+        o += "</DataArray>\n";
+      }
+      o += sec == 0 ? "</PointData>\n" : "</CellData>\n";
+    }
     o += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (std::size_t i = 0; i < nv; ++i) {
       for (int d = 0; d < 3; ++d) {
@@ -661,15 +834,15 @@ std::string format_vtu(const Mesh& m, bool binary, bool compress) {
     return o;
   }
   const VtuArrays arrays(m);
-  std::string blocks[4];  // (compressed only)
-  std::size_t at[5] = {0, 0, 0, 0, 0};
-  for (int i = 0; i < 4; ++i) {
-    std::string raw(arrays.bytes(i), '\0');
-    arrays.fill(i, &raw[0], 0, arrays.items(i));
+  std::vector<std::string> blocks(std::size_t(arrays.count()));  // (compressed only)
+  std::vector<std::size_t> at(blocks.size() + 1, 0);
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    std::string raw(arrays.bytes(int(i)), '\0');
+    arrays.fill(int(i), &raw[0], 0, arrays.items(int(i)));
     append_block(blocks[i], raw.data(), raw.size(), compress);
     at[i + 1] = at[i] + blocks[i].size();
   }
-  std::string o = head + appended_xml(at, arrays.wide());
+  std::string o = head + appended_xml(arrays, at);
   for (const auto& b : blocks) o += b;
   o += kVtuTail;
   return o;

@@ -90,6 +90,10 @@ grep -q 'vtkZLibDataCompressor' "$W/z.vtu" || { echo "FAIL: --compress wrote no 
 expect 0 "valid delaunay2d" -- "$G" check "$W/z.vtu"
 expect 0 "2000 points -> 1998 triangles" -- "$G" delaunay2d "$W/c.csv" -o "$W/a.vtu" --ascii
 grep -q 'format="ascii"' "$W/a.vtu" || { echo "FAIL: --ascii wrote no text"; fail=1; }
+for f in t z a; do  # the duplicate map rides along as point data, and check still reads it
+  grep -aq '<PointData>' "$W/$f.vtu" && grep -aq 'Name="duplicate_of"' "$W/$f.vtu" ||
+    { echo "FAIL: $f.vtu has no duplicate_of point data"; fail=1; }
+done
 expect 0 "valid delaunay2d" -- "$G" check "$W/a.vtu"
 expect 2 "--compress applies to -o FILE.vtu" -- "$G" delaunay2d "$W/c.csv" -o "$W/z.ply" --compress
 expect 0 "2000 points -> " -- "$G" delaunay2d "$W/c.csv" --voronoi "$W/v.json" --clip -1,-1,2,2 --draw "$W/t.svg"

@@ -3,6 +3,8 @@
 implementation independent of gpugeom's), in every encoding VTK files come in: ascii, inline
 base64 with the header encoded apart (VTK) or together (meshio), appended raw and base64, zlib
 in several blocks, 32- and 64-bit headers, big endian, 32-bit floats and 64-bit integers.
+Each file also carries point data (Float64) and cell data (Int32, and Float32 with 3
+components), as the arrays programs attach to meshes.
 Run from this folder: python3 make_vtu_fixtures.py (writes data/*.vtu)."""
 import base64
 import struct
@@ -39,11 +41,16 @@ def block(data, header, big, zblock):
 def write(path, points, cells, fmt, header=4, big=False, zblock=None, joint=False,
           ptype="Float64", itype="Int64"):
     k = len(cells[0])
-    arrays = [
-        ("", ptype, 3, [c for p in points for c in p]),
-        ("connectivity", itype, 1, [v for c in cells for v in c]),
-        ("offsets", itype, 1, [k * (i + 1) for i in range(len(cells))]),
-        ("types", "UInt8", 1, [5 if k == 3 else 10] * len(cells)),
+    # Point data (a height per point) and cell data (a region number and a 3-component
+    # float32 vector per cell), as the arrays a program attaches.
+    sections = [
+        ("PointData", [("height", "Float64", 1, [0.5 * i - 1.25 for i in range(len(points))])]),
+        ("CellData", [("region", "Int32", 1, [7 * i - 3 for i in range(len(cells))]),
+                      ("normal", "Float32", 3, [0.5, -1.0, 2.0] * len(cells))]),
+        ("Points", [("", ptype, 3, [c for p in points for c in p])]),
+        ("Cells", [("connectivity", itype, 1, [v for c in cells for v in c]),
+                   ("offsets", itype, 1, [k * (i + 1) for i in range(len(cells))]),
+                   ("types", "UInt8", 1, [5 if k == 3 else 10] * len(cells))]),
     ]
     attrs = 'type="UnstructuredGrid" version="1.0" byte_order="%s"' % (
         "BigEndian" if big else "LittleEndian")
@@ -51,14 +58,31 @@ def write(path, points, cells, fmt, header=4, big=False, zblock=None, joint=Fals
         attrs += ' header_type="%s"' % ("UInt32" if header == 4 else "UInt64")
     if zblock is not None:
         attrs += ' compressor="vtkZLibDataCompressor"'
+    OFFSET[0] = 0
     out = ['<?xml version="1.0"?>\n<VTKFile %s>\n<UnstructuredGrid>\n' % attrs,
            '<Piece NumberOfPoints="%d" NumberOfCells="%d">\n' % (len(points), len(cells))]
     appended = b""
-    for i, (name, typ, comps, values) in enumerate(arrays):
-        if i == 0:
-            out.append("<Points>\n")
-        if i == 1:
-            out.append("</Points>\n<Cells>\n")
+    for sec, arrays in sections:
+        parts = []
+        out.append("<%s>\n" % sec)
+        append_arrays(out, arrays, fmt, header, big, zblock, joint, parts)
+        out.append("</%s>\n" % sec)
+        appended += b"".join(parts)
+    out.append("</Piece>\n</UnstructuredGrid>\n")
+    body = "".join(out).encode()
+    if fmt in ("raw", "base64"):
+        body += b'<AppendedData encoding="%s">\n_' % fmt.encode() + appended
+        body += b"\n</AppendedData>\n"
+    body += b"</VTKFile>\n"
+    with open(path, "wb") as f:
+        f.write(body)
+
+
+OFFSET = [0]  # where the next appended array starts (in bytes or base64 characters)
+
+
+def append_arrays(out, arrays, fmt, header, big, zblock, joint, appended_parts):
+    for name, typ, comps, values in arrays:
         tag = '<DataArray type="%s"%s NumberOfComponents="%d" ' % (
             typ, ' Name="%s"' % name if name else "", comps)
         if fmt == "ascii":
@@ -75,16 +99,9 @@ def write(path, points, cells, fmt, header=4, big=False, zblock=None, joint=Fals
                 chunk = base64.b64encode(head) + base64.b64encode(data)
             else:
                 chunk = head + data
-            out.append(tag + 'format="appended" offset="%d"/>\n' % len(appended))
-            appended += chunk
-    out.append("</Cells>\n</Piece>\n</UnstructuredGrid>\n")
-    body = "".join(out).encode()
-    if fmt in ("raw", "base64"):
-        body += b'<AppendedData encoding="%s">\n_' % fmt.encode() + appended
-        body += b"\n</AppendedData>\n"
-    body += b"</VTKFile>\n"
-    with open(path, "wb") as f:
-        f.write(body)
+            out.append(tag + 'format="appended" offset="%d"/>\n' % OFFSET[0])
+            appended_parts.append(chunk)
+            OFFSET[0] += len(chunk)
 
 
 T, TC, P, PC = TRI_POINTS, TRI_CELLS, TET_POINTS, TET_CELLS

@@ -353,6 +353,72 @@ TEST(Io, VtuEncodingsRoundTrip) {
   EXPECT_TRUE(no_temp_files());
 }
 
+// Point and cell data arrays of every type go out and come back bit for bit in each encoding;
+// arrays of the wrong length are refused before anything is written.
+TEST(Io, VtuDataArraysRoundTrip) {
+  io::Mesh m;
+  m.dim = 3;
+  const std::size_t nv = 5000, nc = 3000;
+  for (std::size_t i = 0; i < 3 * nv; ++i) m.coords.push_back(std::sin(double(i)) * 1e3);
+  m.cell_size = 4;
+  for (std::size_t c = 0; c < nc; ++c)
+    for (int j = 0; j < 4; ++j) m.cells.push_back(std::int32_t((c + std::size_t(j)) % nv));
+  std::vector<std::int32_t> dup(nv);
+  std::vector<double> dist(nv);
+  std::vector<float> vec(3 * nc);
+  std::vector<std::uint8_t> flag(nc);
+  std::vector<std::int64_t> big(nc);
+  for (std::size_t i = 0; i < nv; ++i) {
+    dup[i] = i % 7 ? -1 : std::int32_t(i / 7);
+    dist[i] = 1.0 / (1.0 + double(i)) - 1e-300;
+  }
+  for (std::size_t c = 0; c < nc; ++c) {
+    vec[3 * c] = float(c) * 0.1f;
+    vec[3 * c + 1] = -float(c);
+    vec[3 * c + 2] = 1e-30f;
+    flag[c] = std::uint8_t(c % 251);
+    big[c] = std::int64_t(c) * 1'000'000'007LL - 5;
+  }
+  m.point_data = {io::make_data_array("duplicate_of", io::ScalarType::I32, 1, dup.data(), nv),
+                  io::make_data_array("distance", io::ScalarType::F64, 1, dist.data(), nv)};
+  m.cell_data = {io::make_data_array("vector", io::ScalarType::F32, 3, vec.data(), 3 * nc),
+                 io::make_data_array("flag", io::ScalarType::U8, 1, flag.data(), nc),
+                 io::make_data_array("id", io::ScalarType::I64, 1, big.data(), nc)};
+  for (int mode = 0; mode < 3; ++mode) {
+    SCOPED_TRACE(mode);
+    io::WriteOptions o;
+    o.binary = mode != 2;
+    o.compress = mode == 1;
+    const std::string f = path("data" + std::to_string(mode) + ".vtu");
+    io::write_mesh(f, m, o);
+    const auto r = io::read_mesh(f);
+    EXPECT_EQ(r.cells, m.cells);
+    ASSERT_EQ(r.point_data.size(), 2u);
+    ASSERT_EQ(r.cell_data.size(), 3u);
+    for (int sec = 0; sec < 2; ++sec) {
+      const auto& want = sec ? m.cell_data : m.point_data;
+      const auto& got = sec ? r.cell_data : r.point_data;
+      for (std::size_t k = 0; k < want.size(); ++k) {
+        EXPECT_EQ(got[k].name, want[k].name);
+        EXPECT_EQ(got[k].type, want[k].type);
+        EXPECT_EQ(got[k].components, want[k].components);
+        EXPECT_EQ(got[k].bytes, want[k].bytes) << want[k].name;
+      }
+    }
+  }
+  io::Mesh bad = m;
+  bad.cell_data[1].bytes.pop_back();
+  try {
+    io::write_mesh(path("bad.vtu"), bad);
+    ADD_FAILURE() << "accepted a cell data array of the wrong length";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
+    EXPECT_NE(std::string(e.what()).find("flag"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(path("bad.vtu")));
+  EXPECT_TRUE(no_temp_files());
+}
+
 // Files written by another implementation (Python's struct, base64 and zlib:
 // tests/io/make_vtu_fixtures.py), one per encoding VTU files come in.
 TEST(Io, VtuReadsEveryEncoding) {
@@ -381,6 +447,35 @@ TEST(Io, VtuReadsEveryEncoding) {
       EXPECT_EQ(m.cells, tet_cells);
       EXPECT_EQ(m.coords, tet);
     }
+    // The point and cell data every fixture carries, in their own types.
+    ASSERT_EQ(m.point_data.size(), 1u);
+    ASSERT_EQ(m.cell_data.size(), 2u);
+    const io::DataArray &h = m.point_data[0], &reg = m.cell_data[0], &nrm = m.cell_data[1];
+    EXPECT_EQ(h.name, "height");
+    EXPECT_EQ(h.type, io::ScalarType::F64);
+    ASSERT_EQ(h.count(), m.num_vertices());
+    for (std::size_t i = 0; i < h.count(); ++i) {
+      double v;
+      std::memcpy(&v, h.bytes.data() + 8 * i, 8);
+      EXPECT_EQ(v, 0.5 * double(i) - 1.25);
+    }
+    EXPECT_EQ(reg.name, "region");
+    EXPECT_EQ(reg.type, io::ScalarType::I32);
+    ASSERT_EQ(reg.count(), m.num_cells());
+    for (std::size_t i = 0; i < reg.count(); ++i) {
+      std::int32_t v;
+      std::memcpy(&v, reg.bytes.data() + 4 * i, 4);
+      EXPECT_EQ(v, 7 * std::int32_t(i) - 3);
+    }
+    EXPECT_EQ(nrm.name, "normal");
+    EXPECT_EQ(nrm.type, io::ScalarType::F32);
+    EXPECT_EQ(nrm.components, 3);
+    ASSERT_EQ(nrm.count(), 3 * m.num_cells());
+    float nv[3];
+    std::memcpy(nv, nrm.bytes.data(), 12);
+    EXPECT_EQ(nv[0], 0.5f);
+    EXPECT_EQ(nv[1], -1.0f);
+    EXPECT_EQ(nv[2], 2.0f);
   }
   EXPECT_EQ(seen, 12);
 }

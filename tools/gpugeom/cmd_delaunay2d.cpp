@@ -160,7 +160,10 @@ int cmd_delaunay2d(const Global& g, Args& a) {
     m.dim = 2;
     m.coords = p.coords;
     m.cell_size = 3;
-    m.cells.assign(tri.triangles.begin(), tri.triangles.end());
+    m.cells.assign(tri.triangles.begin(), tri.triangles.begin() + 3 * tri.triangle_count);
+    // .vtu carries the duplicate map along (ParaView shows it as a point array).
+    m.point_data.push_back(io::make_data_array("duplicate_of", io::ScalarType::I32, 1,
+                                               tri.duplicate_of.data(), tri.duplicate_of.size()));
     io::write_mesh(out, m, wo);
   }
   Voronoi2d vor;

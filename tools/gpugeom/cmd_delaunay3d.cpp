@@ -102,6 +102,9 @@ int cmd_delaunay3d(const Global& g, Args& a) {
     m.cell_size = 4;
     if (ext != ".npy") m.coords = std::move(p.coords);  // (copies are unused vertices)
     m.cells.assign(t3.tetrahedra.begin(), t3.tetrahedra.end());
+    if (ext == ".vtu")  // the duplicate map along, as a point array
+      m.point_data.push_back(io::make_data_array("duplicate_of", io::ScalarType::I32, 1,
+                                                 t3.duplicate_of.data(), t3.duplicate_of.size()));
     io::write_mesh(out, m, job.wo);
   }
   return status;
