@@ -188,6 +188,40 @@ std::int64_t need_int(const Lines& l, std::string_view s, const char* what) {
   return v;
 }
 
+std::string format_vertex_lines(const double* coords, int dim, std::size_t n, const char* prefix) {
+  const std::size_t dm = std::size_t(dim);
+  return format_lines(n, 80, [&](std::size_t i, std::string& o) {
+    o += prefix;
+    for (std::size_t d = 0; d < 3; ++d) {
+      if (d) o += ' ';
+      append_double(o, d < dm ? coords[i * dm + d] : 0.0);
+    }
+    o += '\n';
+  });
+}
+
+std::string format_cell_lines(const std::int32_t* cells, int k, std::size_t n, const char* lead,
+                              bool number_cells, int base) {
+  const std::size_t kk = std::size_t(k);
+  return format_lines(n, 12 * kk + 12, [&](std::size_t c, std::string& o) {
+    if (number_cells)
+      append_int(o, std::int64_t(c));
+    else
+      o += lead;
+    for (std::size_t j = 0; j < kk; ++j) {
+      o += ' ';
+      append_int(o, std::int64_t(cells[c * kk + j]) + base);
+    }
+    o += '\n';
+  });
+}
+
+void append_int(std::string& out, std::int64_t v) {
+  char buf[24];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
 void append_double(std::string& out, double v) {
   char buf[32];
   auto r = std::to_chars(buf, buf + sizeof buf, v);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -189,5 +190,36 @@ std::string format_ply(const double* coords, int dim, std::size_t nv, const std:
                        int cell_size, std::size_t nc, bool binary);
 
 void append_double(std::string& out, double v);  // shortest round-trip text
+void append_int(std::string& out, std::int64_t v);
+// Lines of 3 coordinates (2D points padded with z = 0), each after `prefix` (OFF, OBJ "v ").
+std::string format_vertex_lines(const double* coords, int dim, std::size_t n, const char* prefix);
+// Lines of cells: `lead` (a count, "f", or the cell's number when number_cells), then the
+// indices plus `base`.
+std::string format_cell_lines(const std::int32_t* cells, int k, std::size_t n, const char* lead,
+                              bool number_cells, int base);
+
+// Text of n lines, line(i, out) appending line i (with its '\n'), formatted on all host threads
+// in ranges of lines, each into its own buffer, then joined in order: the same bytes as one
+// thread writes. `bytes_per_line` sizes the buffers.
+template <class F>
+std::string format_lines(std::size_t n, std::size_t bytes_per_line, F line) {
+  const std::size_t nparts =
+      std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(host_threads()), n / 65536));
+  std::vector<std::string> part(nparts);
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
+    const std::size_t lo = std::size_t(k) * n / nparts, hi = (std::size_t(k) + 1) * n / nparts;
+    std::string& o = part[std::size_t(k)];
+    o.reserve((hi - lo) * bytes_per_line);
+    for (std::size_t i = lo; i < hi; ++i) line(i, o);
+  }
+  std::vector<std::size_t> at(nparts + 1, 0);
+  for (std::size_t k = 0; k < nparts; ++k) at[k + 1] = at[k] + part[k].size();
+  std::string out(at[nparts], '\0');
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k)
+    std::memcpy(&out[at[std::size_t(k)]], part[std::size_t(k)].data(), part[std::size_t(k)].size());
+  return out;
+}
 
 }  // namespace gpugeom::io::detail

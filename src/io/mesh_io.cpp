@@ -144,33 +144,17 @@ void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {
     if (m.cell_size != 3)
       throw Error(ErrorCode::InvalidArgument,
                   ext + " holds surfaces only: write tetrahedra as .vtu, .ele or .ply");
-    if (ext == ".off") out = "OFF\n" + std::to_string(nv) + " " + std::to_string(nc) + " 0\n";
-    for (std::size_t i = 0; i < nv; ++i) {
-      if (ext == ".obj") out += "v ";
-      for (int d = 0; d < 3; ++d) {
-        if (d) out += ' ';
-        append_double(out, d < m.dim ? m.coords[i * m.dim + d] : 0.0);
-      }
-      out += '\n';
-    }
-    for (std::size_t c = 0; c < nc; ++c) {
-      const int base = ext == ".obj" ? 1 : 0;
-      out += ext == ".obj" ? "f" : "3";
-      for (int k = 0; k < 3; ++k) out += ' ' + std::to_string(m.cells[c * 3 + k] + base);
-      out += '\n';
-    }
+    const bool obj = ext == ".obj";
+    if (!obj) out = "OFF\n" + std::to_string(nv) + " " + std::to_string(nc) + " 0\n";
+    out += format_vertex_lines(m.coords.data(), m.dim, nv, obj ? "v " : "");
+    out += format_cell_lines(m.cells.data(), 3, nc, obj ? "f" : "3", false, obj ? 1 : 0);
   } else if (ext == ".ele") {
     PointSet p;
     p.dim = m.dim;
     p.coords = m.coords;
     write_points(sibling(path, ".node"), p);
     out = std::to_string(nc) + " " + std::to_string(m.cell_size) + " 0\n";
-    for (std::size_t c = 0; c < nc; ++c) {
-      out += std::to_string(c);
-      for (int k = 0; k < m.cell_size; ++k)
-        out += ' ' + std::to_string(m.cells[c * m.cell_size + k]);
-      out += '\n';
-    }
+    out += format_cell_lines(m.cells.data(), m.cell_size, nc, "", true, 0);
   } else if (ext == ".vtu") {
     write_vtu(path, m, o.binary, o.compress);  // (streamed to the file)
     return;

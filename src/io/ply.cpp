@@ -276,18 +276,15 @@ std::string format_ply(const double* coords, int dim, std::size_t nv, const std:
       out.append(reinterpret_cast<const char*>(cells + c * cell_size), cell_size * 4);
     }
   } else {
-    for (std::size_t v = 0; v < nv; ++v) {
-      for (int d = 0; d < dim; ++d) {
-        if (d) out += ' ';
-        append_double(out, coords[v * dim + d]);
+    const std::size_t dm = std::size_t(dim);
+    out += format_lines(nv, dm * 24, [&](std::size_t v, std::string& o) {
+      for (std::size_t d = 0; d < dm; ++d) {
+        if (d) o += ' ';
+        append_double(o, coords[v * dm + d]);
       }
-      out += '\n';
-    }
-    for (std::size_t c = 0; c < nc; ++c) {
-      out += std::to_string(cell_size);
-      for (int k = 0; k < cell_size; ++k) out += ' ' + std::to_string(cells[c * cell_size + k]);
-      out += '\n';
-    }
+      o += '\n';
+    });
+    out += format_cell_lines(cells, cell_size, nc, cell_size == 4 ? "4" : "3", false, 0);
   }
   return out;
 }

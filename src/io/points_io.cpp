@@ -62,34 +62,16 @@ PointSet parse_table(std::string_view b, const std::string& name, bool csv) {
   return p;
 }
 
-// A point table as text, one line per point, formatted in parallel: each thread writes the
-// lines of its range of points into its own buffer, and the buffers are joined in order (the
-// same bytes as one thread writes).
+// A point table as text, one line per point (formatted on all host threads).
 std::string format_table(const PointSet& p, char sep) {
-  const std::size_t n = p.size();
-  const std::size_t nparts =
-      std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(host_threads()), n / 65536));
-  std::vector<std::string> part(nparts);
-#pragma omp parallel for schedule(static, 1)
-  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
-    const std::size_t lo = std::size_t(k) * n / nparts, hi = (std::size_t(k) + 1) * n / nparts;
-    std::string& o = part[std::size_t(k)];
-    o.reserve((hi - lo) * std::size_t(p.dim) * 24);
-    for (std::size_t i = lo; i < hi; ++i) {
-      for (int d = 0; d < p.dim; ++d) {
-        if (d) o += sep;
-        append_double(o, p.coords[i * std::size_t(p.dim) + std::size_t(d)]);
-      }
-      o += '\n';
+  const std::size_t dim = std::size_t(p.dim);
+  return format_lines(p.size(), dim * 24, [&](std::size_t i, std::string& o) {
+    for (std::size_t d = 0; d < dim; ++d) {
+      if (d) o += sep;
+      append_double(o, p.coords[i * dim + d]);
     }
-  }
-  std::vector<std::size_t> at(nparts + 1, 0);
-  for (std::size_t k = 0; k < nparts; ++k) at[k + 1] = at[k] + part[k].size();
-  std::string out(at[nparts], '\0');
-#pragma omp parallel for schedule(static, 1)
-  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k)
-    std::memcpy(&out[at[std::size_t(k)]], part[std::size_t(k)].data(), part[std::size_t(k)].size());
-  return out;
+    o += '\n';
+  });
 }
 
 PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* mesh) {
@@ -263,24 +245,17 @@ void write_points(const std::string& path, const PointSet& p, const WriteOptions
     out = format_ply(p.coords.data(), p.dim, n, nullptr, 3, 0, o.binary);
   } else if (ext == ".off" || ext == ".obj") {
     if (ext == ".off") out = "OFF\n" + std::to_string(n) + " 0 0\n";
-    for (std::size_t i = 0; i < n; ++i) {
-      if (ext == ".obj") out += "v ";
-      for (int d = 0; d < 3; ++d) {
-        if (d) out += ' ';
-        append_double(out, d < p.dim ? p.coords[i * p.dim + d] : 0.0);
-      }
-      out += '\n';
-    }
+    out += format_vertex_lines(p.coords.data(), p.dim, n, ext == ".obj" ? "v " : "");
   } else if (ext == ".node") {
     out = std::to_string(n) + " " + std::to_string(p.dim) + " 0 0\n";
-    for (std::size_t i = 0; i < n; ++i) {
-      out += std::to_string(i);
+    out += format_lines(n, std::size_t(p.dim) * 24 + 8, [&](std::size_t i, std::string& o) {
+      append_int(o, std::int64_t(i));
       for (int d = 0; d < p.dim; ++d) {
-        out += ' ';
-        append_double(out, p.coords[i * p.dim + d]);
+        o += ' ';
+        append_double(o, p.coords[i * std::size_t(p.dim) + std::size_t(d)]);
       }
-      out += '\n';
-    }
+      o += '\n';
+    });
   } else if (ext == ".npy") {
     out = format_npy("<f8", {std::int64_t(n), p.dim}, p.coords.data(), p.coords.size() * 8);
   } else {
