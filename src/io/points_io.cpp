@@ -196,7 +196,7 @@ PointSet parse_npy_points(const std::string& b, const std::string& name) {
   PointSet p;
   p.dim = int(a.shape[1]);
   const std::int64_t n = a.shape[0] * a.shape[1];
-  if (a.descr == "<f8" && a.payload.size() >= std::size_t(n) * 8) {  // NumPy's own: a copy
+  if (a.descr == "<f8" && n > 0 && a.payload.size() >= std::size_t(n) * 8) {  // a copy
     p.coords.resize(std::size_t(n));
     std::memcpy(p.coords.data(), a.payload.data(), std::size_t(n) * 8);
     return p;
