@@ -89,12 +89,11 @@ int host_threads();  // the threads a parallel reader may use
 // the section. Errors are those of a serial loop, the first in file order; too few records fail
 // with short(i) for the i found, on the line a serial loop would name. count < 0: every record
 // to the end of the text (a table without a count).
-template <class T, class Record, class Short>
-void read_records(Lines& l, std::string_view text, std::int64_t count, int per, std::vector<T>& out,
-                  Record record, Short short_message) {
+// Where text is cut into parts for the parallel readers: one per host thread, at least 1 MiB
+// each, each starting at a line start; start[k] .. start[k + 1] is part k (start.back() is the
+// end).
+inline std::vector<std::size_t> line_parts(std::string_view rest) {
   constexpr std::size_t kMinPart = std::size_t(1) << 20;
-  const std::size_t base = std::min(l.offset(), text.size());
-  const std::string_view rest = text.substr(base);
   const std::size_t nparts = std::max<std::size_t>(
       1, std::min<std::size_t>(std::size_t(host_threads()), rest.size() / kMinPart));
   std::vector<std::size_t> start(nparts + 1, rest.size());
@@ -103,6 +102,16 @@ void read_records(Lines& l, std::string_view text, std::int64_t count, int per, 
     const std::size_t nl = rest.find('\n', k * rest.size() / nparts);
     start[k] = nl == std::string_view::npos ? rest.size() : std::max(start[k - 1], nl + 1);
   }
+  return start;
+}
+
+template <class T, class Record, class Short>
+void read_records(Lines& l, std::string_view text, std::int64_t count, int per, std::vector<T>& out,
+                  Record record, Short short_message) {
+  const std::size_t base = std::min(l.offset(), text.size());
+  const std::string_view rest = text.substr(base);
+  const std::vector<std::size_t> start = line_parts(rest);
+  const std::size_t nparts = start.size() - 1;
   std::vector<std::int64_t> lines(nparts + 1, 0), recs(nparts + 1, 0);
 #pragma omp parallel for schedule(static, 1)
   for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <exception>
 #include <new>
 #include <string_view>
 #include <vector>
@@ -124,29 +125,77 @@ PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* m
   return p;
 }
 
+// True when a line (as Lines::next gives it: no leading blanks) starts with the one-letter
+// keyword c as its own token.
+bool obj_keyword(std::string_view line, char c) {
+  return line[0] == c && (line.size() == 1 || line[1] == ' ' || line[1] == '\t' ||
+                          line[1] == '\r' || line[1] == '\n');
+}
+
+// OBJ: 'v' and 'f' lines among anything else. Read in parallel parts: each part's line ends
+// and 'v' / 'f' lines are counted first (so each knows its first line number, first vertex and
+// first face: a face's relative indices count back from the vertices defined before it), then
+// the parts are parsed on their own threads into their slices. The first error in file order
+// is the one reported, as a serial loop would.
 PointSet parse_obj(const std::string& b, const std::string& name, Mesh* mesh) {
-  Lines l(b, name);
-  std::string_view line;
-  PointSet p;
-  p.dim = 3;
-  while (l.next(line)) {
-    auto t = split(line);
-    if (t[0] == "v") {
-      if (t.size() < 4) l.fail("expected 'v x y z'");
-      for (int k = 1; k <= 3; ++k) p.coords.push_back(need_double(l, t[k], "a coordinate"));
-    } else if (t[0] == "f" && mesh) {
-      if (t.size() != 4) l.fail("only triangular faces ('f a b c') are supported");
-      const std::int64_t nv = std::int64_t(p.coords.size() / 3);
-      for (int k = 1; k <= 3; ++k) {
-        std::string_view s = t[k].substr(0, t[k].find('/'));
-        std::int64_t v = need_int(l, s, "a vertex index");
-        v = v < 0 ? nv + v : v - 1;  // OBJ is 1-based; negative counts back from the end
-        if (v < 0 || v >= nv)
-          l.fail("face refers to vertex " + std::string(s) + " which is not defined yet");
-        mesh->cells.push_back(std::int32_t(v));
-      }
+  const std::string_view text(b);
+  const std::vector<std::size_t> start = line_parts(text);
+  const std::size_t nparts = start.size() - 1;
+  auto part = [&](std::size_t k) { return text.substr(start[k], start[k + 1] - start[k]); };
+  std::vector<std::int64_t> lines(nparts + 1, 0), verts(nparts + 1, 0), faces(nparts + 1, 0);
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
+    const std::size_t i = std::size_t(k);
+    const std::string_view t = part(i);
+    lines[i + 1] = std::int64_t(std::count(t.begin(), t.end(), '\n'));
+    Lines l(t, name);
+    std::string_view line;
+    while (l.next(line)) {
+      verts[i + 1] += obj_keyword(line, 'v');
+      faces[i + 1] += mesh && obj_keyword(line, 'f');
     }
   }
+  for (std::size_t k = 0; k < nparts; ++k)
+    lines[k + 1] += lines[k], verts[k + 1] += verts[k], faces[k + 1] += faces[k];
+  PointSet p;
+  p.dim = 3;
+  p.coords.resize(std::size_t(3 * verts[nparts]));
+  if (mesh) mesh->cells.resize(std::size_t(3 * faces[nparts]));
+  std::vector<std::exception_ptr> error(nparts);
+#pragma omp parallel for schedule(static, 1)
+  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k) {
+    const std::size_t i = std::size_t(k);
+    try {
+      Lines l(part(i), name, lines[i]);
+      std::string_view line;
+      std::int64_t nv = verts[i], nf = faces[i];
+      while (l.next(line)) {
+        if (obj_keyword(line, 'v')) {
+          auto t = split(line);
+          if (t.size() < 4) l.fail("expected 'v x y z'");
+          for (int c = 1; c <= 3; ++c)
+            p.coords[std::size_t(3 * nv + c - 1)] = need_double(l, t[c], "a coordinate");
+          ++nv;
+        } else if (mesh && obj_keyword(line, 'f')) {
+          auto t = split(line);
+          if (t.size() != 4) l.fail("only triangular faces ('f a b c') are supported");
+          for (int c = 1; c <= 3; ++c) {
+            std::string_view s = t[c].substr(0, t[c].find('/'));
+            std::int64_t v = need_int(l, s, "a vertex index");
+            v = v < 0 ? nv + v : v - 1;  // OBJ is 1-based; negative counts back from the end
+            if (v < 0 || v >= nv)
+              l.fail("face refers to vertex " + std::string(s) + " which is not defined yet");
+            mesh->cells[std::size_t(3 * nf + c - 1)] = std::int32_t(v);
+          }
+          ++nf;
+        }
+      }
+    } catch (...) {
+      error[i] = std::current_exception();
+    }
+  }
+  for (const auto& e : error)
+    if (e) std::rethrow_exception(e);
   if (p.coords.empty()) parse_fail(name, 0, "no 'v' lines found");
   if (mesh) mesh->cell_size = 3;
   return p;

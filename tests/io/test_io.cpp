@@ -163,6 +163,65 @@ TEST(Io, TextTablesInPartsAsOneReadWould) {
   EXPECT_TRUE(no_temp_files());
 }
 
+// OBJ in parallel parts: vertices and faces (relative indices counting back from the vertices
+// defined so far, across parts), and the first error in file order with its line, on any
+// number of threads.
+TEST(Io, ObjInPartsAsOneReadWould) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-10, 10);
+  std::string text = "# an OBJ file\nmtllib x.mtl\n";
+  std::vector<double> coords;
+  std::vector<std::int32_t> cells;
+  std::vector<std::int64_t> face_line;
+  std::int64_t line = 2, nv = 0;
+  for (int i = 0; i < 200000; ++i) {  // about 8 MB: several 1 MiB parts
+    char buf[96];
+    double v[3] = {u(rng), u(rng), u(rng)};
+    std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g\n", v[0], v[1], v[2]);
+    text += buf, ++line, ++nv;
+    coords.insert(coords.end(), v, v + 3);
+    if (i % 11 == 0) text += "vn 0 0 1\n", ++line;
+    if (nv >= 3 && i % 2 == 0) {
+      if (i % 4 == 0) {  // absolute, with texture / normal parts
+        std::snprintf(buf, sizeof buf, "f %lld/1 %lld//2 %lld\n", (long long)nv - 2,
+                      (long long)nv - 1, (long long)nv);
+      } else {  // relative
+        std::snprintf(buf, sizeof buf, "f -3 -2 -1\n");
+      }
+      text += buf, ++line;
+      face_line.push_back(line);
+      cells.insert(cells.end(), {std::int32_t(nv - 3), std::int32_t(nv - 2), std::int32_t(nv - 1)});
+    }
+  }
+  const std::string f = path("big.obj");
+  write_text(f, text);
+  const int threads0 = omp_get_max_threads();
+  for (int threads : {1, 2, 3, 7}) {
+    omp_set_num_threads(threads);
+    const auto m = io::read_mesh(f);
+    EXPECT_EQ(m.coords, coords) << threads;
+    EXPECT_EQ(m.cells, cells) << threads;
+    // a face that refers past the vertices defined before it, late and early in the file
+    for (std::size_t bad : {face_line.size() - 5, face_line.size() / 2, std::size_t(3)}) {
+      std::string t = text;
+      std::size_t at = 0;
+      for (std::int64_t l = 1; l < face_line[bad]; ++l) at = t.find('\n', at) + 1;
+      t.replace(at, t.find('\n', at) + 1 - at, "f 1 2 99999999\n");
+      write_text(path("bad.obj"), t);
+      try {
+        io::read_mesh(path("bad.obj"));
+        ADD_FAILURE() << "accepted a bad face";
+      } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  path("bad.obj") + ":" + std::to_string(face_line[bad]) +
+                      ": face refers to vertex 99999999 which is not defined yet")
+            << threads << " threads";
+      }
+    }
+  }
+  omp_set_num_threads(threads0);
+}
+
 // Counted sections (.node points, .ele cells, .off vertices and faces) are read in parallel
 // parts too: values, the section ends, and errors (message, line) as a serial read gives them.
 TEST(Io, CountedSectionsInPartsAsOneReadWould) {
