@@ -86,6 +86,12 @@ class Body {
     }
   }
   std::size_t remaining() const { return b_.size() - pos_; }
+  // Binary bodies: the bytes from here on, and a skip over bytes a fast path read itself.
+  const unsigned char* here() const {
+    return reinterpret_cast<const unsigned char*>(b_.data()) + pos_;
+  }
+  void skip(std::size_t n) { pos_ += n; }
+  int encoding() const { return enc_; }
 
  private:
   double ascii() {
@@ -111,6 +117,104 @@ class Body {
   std::size_t pos_ = 0;
   std::int64_t line_ = 0;
 };
+
+// A little-endian value of type t at p, as a double.
+double value_at(const unsigned char* p, T t) {
+  auto as = [&](auto v) {
+    std::memcpy(&v, p, sizeof v);
+    return double(v);
+  };
+  switch (t) {
+    case T::I8:
+      return as(std::int8_t());
+    case T::U8:
+      return as(std::uint8_t());
+    case T::I16:
+      return as(std::int16_t());
+    case T::U16:
+      return as(std::uint16_t());
+    case T::I32:
+      return as(std::int32_t());
+    case T::U32:
+      return as(std::uint32_t());
+    case T::F32:
+      return as(float());
+    default:
+      return as(double());
+  }
+}
+
+// Fast paths for little-endian binary bodies (what gpugeom and most tools write), on all host
+// threads; each returns false, having read nothing, where the element is not of its simple
+// shape (the general loop then reads it, with its messages).
+// Vertices with scalar properties only: x, y (and z) picked from fixed-size records.
+bool read_vertices_fast(Body& body, const Elem& e, int ix, int iy, int iz, PlyData& out,
+                        const Lines& l) {
+  if (body.encoding() != 1) return false;
+  std::size_t stride = 0, off[3] = {0, 0, 0};
+  T type[3] = {T::F64, T::F64, T::F64};
+  const int want[3] = {ix, iy, iz};
+  for (int k = 0; k < int(e.props.size()); ++k) {
+    if (e.props[std::size_t(k)].list) return false;
+    for (int a = 0; a < 3; ++a)
+      if (want[a] == k) off[a] = stride, type[a] = e.props[std::size_t(k)].t;
+    stride += size_of(e.props[std::size_t(k)].t);
+  }
+  const std::size_t n = std::size_t(e.count);
+  if (stride == 0 || body.remaining() / stride < n)
+    l.fail("binary body is truncated (expected more vertex or face data)");
+  const int d = out.dim;
+  const std::size_t base = out.coords.size();
+  out.coords.resize(base + n * std::size_t(d));
+  const unsigned char* p = body.here();
+  double* c = out.coords.data() + base;
+#pragma omp parallel for schedule(static) if (n > 65536)
+  for (std::int64_t i = 0; i < std::int64_t(n); ++i)
+    for (int a = 0; a < d; ++a)
+      c[std::size_t(i) * std::size_t(d) + std::size_t(a)] =
+          value_at(p + std::size_t(i) * stride + off[a], type[a]);
+  body.skip(n * stride);
+  return true;
+}
+
+// Cells whose only property is the index list, every list of the same length k (3 or 4, as the
+// element wants) with a 1-byte count and 4-byte indices.
+bool read_cells_fast(Body& body, const Elem& e, PlyData& out, const Lines& l) {
+  if (body.encoding() != 1 || e.props.size() != 1 || !e.props[0].list) return false;
+  const Prop& p = e.props[0];
+  if ((p.count_t != T::U8 && p.count_t != T::I8) || (p.t != T::I32 && p.t != T::U32)) return false;
+  const std::size_t n = std::size_t(e.count);
+  if (n == 0 || body.remaining() < 1) return false;
+  const int k = e.name == "tetra" ? 4 : 3;
+  if (out.cell_size != 0 && out.cell_size != k) return false;
+  const std::size_t stride = 1 + 4 * std::size_t(k);
+  if (body.remaining() / stride < n) return false;  // (the general loop names the shortfall)
+  const unsigned char* b = body.here();
+  std::int64_t odd = std::int64_t(n), bad = std::int64_t(n);
+#pragma omp parallel for schedule(static) reduction(min : odd, bad) if (n > 65536)
+  for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
+    const unsigned char* q = b + std::size_t(i) * stride;
+    if (*q != k) odd = std::min(odd, i);
+    for (int j = 0; j < k; ++j) {
+      const double v = value_at(q + 1 + 4 * j, p.t);
+      if (v < 0 || v > 2147483647.0) bad = std::min(bad, i);
+    }
+  }
+  if (odd < std::int64_t(n) && odd <= bad) return false;  // other lengths: the general loop
+  if (bad < std::int64_t(n))
+    l.fail(e.name + " " + std::to_string(bad) + " has an invalid vertex index");
+  out.cell_size = k;
+  const std::size_t base = out.cells.size();
+  out.cells.resize(base + n * std::size_t(k));
+  std::int32_t* c = out.cells.data() + base;
+#pragma omp parallel for schedule(static) if (n > 65536)
+  for (std::int64_t i = 0; i < std::int64_t(n); ++i)
+    for (int j = 0; j < k; ++j)
+      c[std::size_t(i) * std::size_t(k) + std::size_t(j)] =
+          std::int32_t(value_at(b + std::size_t(i) * stride + 1 + 4 * std::size_t(j), p.t));
+  body.skip(n * stride);
+  return true;
+}
 
 }  // namespace
 
@@ -198,6 +302,8 @@ PlyData parse_ply(const std::string& bytes, const std::string& name) {
     // An element without properties has nothing in the body, however many items it claims
     // (the count check above cannot bound it, and looping over them would hang).
     if (e.props.empty()) continue;
+    if (vertex && read_vertices_fast(body, e, ix, iy, iz, out, l)) continue;  // (x, y, z order)
+    if (cells && il == 0 && read_cells_fast(body, e, out, l)) continue;
     for (std::int64_t i = 0; i < e.count; ++i) {
       for (int k = 0; k < int(e.props.size()); ++k) {
         const Prop& p = e.props[k];

@@ -313,6 +313,54 @@ TEST(Io, CountedSectionsInPartsAsOneReadWould) {
   omp_set_num_threads(threads0);
 }
 
+// Little-endian binary PLY as other tools write it: properties in any order and of mixed types
+// (the fast path picks x, y, z out of each record), face lists of unsigned ints; a bad index and
+// mixed list lengths keep their messages.
+TEST(Io, PlyLittleEndianMixedLayouts) {
+  const std::size_t n = 100000;  // (parallel above 65536 records)
+  std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(n) +
+                  "\nproperty float z\nproperty double x\nproperty uchar red\nproperty int y\n"
+                  "element face " +
+                  std::to_string(n - 2) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+  const std::size_t body = s.size();
+  auto raw = [&](auto v) { s.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  std::vector<double> want;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float z = float(i) * 0.5f;
+    const double x = double(i) / 3.0;
+    const std::int32_t y = -std::int32_t(i);
+    raw(z), raw(x), raw(std::uint8_t(i)), raw(y);
+    want.insert(want.end(), {x, double(y), double(z)});
+  }
+  std::vector<std::int32_t> cells;
+  for (std::uint32_t i = 0; i + 2 < n; ++i) {
+    raw(std::uint8_t(3)), raw(i), raw(i + 1), raw(i + 2);
+    cells.insert(cells.end(), {std::int32_t(i), std::int32_t(i + 1), std::int32_t(i + 2)});
+  }
+  const auto m = io::parse_mesh(s, ".ply", "le.ply");
+  EXPECT_EQ(m.coords, want);
+  EXPECT_EQ(m.cells, cells);
+  const std::size_t faces = body + n * 17;  // the first face record
+  std::string bad = s;
+  const std::uint32_t huge = 0x80000000u;
+  std::memcpy(&bad[faces + 5 * 13 + 1 + 4], &huge, 4);  // face 5, second index
+  try {
+    io::parse_mesh(bad, ".ply", "le.ply");
+    ADD_FAILURE() << "accepted a bad index";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("face 5 has an invalid vertex index"), std::string::npos)
+        << e.what();
+  }
+  std::string four = s;
+  four[faces + 7 * 13] = 4;  // face 7 claims 4 indices
+  try {
+    io::parse_mesh(four, ".ply", "le.ply");
+    ADD_FAILURE() << "accepted a quad";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("face 7 has 4 indices"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Io, PlyBigEndianAndFloat) {
   // Hand-made binary big-endian PLY with float x,y,z and an extra property.
   std::string s =
