@@ -479,26 +479,41 @@ Mesh parse_vtu(const std::string& bytes, const std::string& name) {
   if (offs.size() != types.size()) parse_fail(name, 0, "offsets and types differ in length");
   Mesh m;
   m.cell_size = types.empty() || types[0] == 5 ? 3 : 4;
-  for (double t : types)
-    if (t != (m.cell_size == 3 ? 5 : 10))
-      parse_fail(name, 0, "mixed or unsupported VTK cell types (expected all 5 or all 10)");
-  if (conn.size() != offs.size() * std::size_t(m.cell_size))
+  const std::size_t nv = xyz.size() / 3, nc = offs.size();
+  const std::int64_t k = m.cell_size, want_type = k == 3 ? 5 : 10;
+  // The checks and copies below run on all host threads, in the order (and with the messages)
+  // of the serial loops they replace; each reports whether any item fails it.
+  int bad_type = 0, bad_offset = 0, bad_vertex = 0, not_flat = 0;
+#pragma omp parallel for schedule(static) reduction(max : bad_type) if (nc > 65536)
+  for (std::int64_t i = 0; i < std::int64_t(nc); ++i)
+    bad_type = std::max(bad_type, int(types[std::size_t(i)] != double(want_type)));
+  if (bad_type)
+    parse_fail(name, 0, "mixed or unsupported VTK cell types (expected all 5 or all 10)");
+  if (conn.size() != nc * std::size_t(k))
     parse_fail(name, 0, "connectivity length does not match the cells");
-  const std::size_t nv = xyz.size() / 3;
-  for (std::size_t i = 0; i < offs.size(); ++i)
-    if (offs[i] != double((i + 1) * std::size_t(m.cell_size)))
-      parse_fail(name, 0, "unexpected offsets");
-  m.cells.reserve(conn.size());
-  for (double c : conn) {
-    if (!(c >= 0 && c < double(nv))) parse_fail(name, 0, "connectivity refers to a missing point");
-    m.cells.push_back(std::int32_t(c));
+#pragma omp parallel for schedule(static) reduction(max : bad_offset) if (nc > 65536)
+  for (std::int64_t i = 0; i < std::int64_t(nc); ++i)
+    bad_offset = std::max(bad_offset, int(offs[std::size_t(i)] != double((i + 1) * k)));
+  if (bad_offset) parse_fail(name, 0, "unexpected offsets");
+  m.cells.resize(conn.size());
+#pragma omp parallel for schedule(static) reduction(max : bad_vertex) if (conn.size() > 65536)
+  for (std::int64_t i = 0; i < std::int64_t(conn.size()); ++i) {
+    const double c = conn[std::size_t(i)];
+    const bool ok = c >= 0 && c < double(nv);
+    bad_vertex = std::max(bad_vertex, int(!ok));
+    m.cells[std::size_t(i)] = ok ? std::int32_t(c) : 0;
   }
-  bool flat = true;
-  for (std::size_t i = 2; i < xyz.size(); i += 3) flat = flat && xyz[i] == 0.0;
-  m.dim = (flat && m.cell_size == 3) ? 2 : 3;
-  m.coords.reserve(nv * std::size_t(m.dim));
-  for (std::size_t i = 0; i < nv; ++i)
-    for (int d = 0; d < m.dim; ++d) m.coords.push_back(xyz[i * 3 + d]);
+  if (bad_vertex) parse_fail(name, 0, "connectivity refers to a missing point");
+#pragma omp parallel for schedule(static) reduction(max : not_flat) if (nv > 65536)
+  for (std::int64_t i = 0; i < std::int64_t(nv); ++i)
+    not_flat = std::max(not_flat, int(xyz[3 * std::size_t(i) + 2] != 0.0));
+  m.dim = (!not_flat && m.cell_size == 3) ? 2 : 3;
+  m.coords.resize(nv * std::size_t(m.dim));
+  const std::size_t dm = std::size_t(m.dim);
+#pragma omp parallel for schedule(static) if (nv > 65536)
+  for (std::int64_t i = 0; i < std::int64_t(nv); ++i)
+    for (std::size_t d = 0; d < dm; ++d)
+      m.coords[std::size_t(i) * dm + d] = xyz[3 * std::size_t(i) + d];
   // Point and cell data, each array in the type it was written in (where a ScalarType has it).
   auto data_section = [&](std::string_view section, std::size_t items,
                           std::vector<DataArray>& out) {
