@@ -45,7 +45,8 @@ void row(const std::string& fmt, const char* op, std::int64_t n, double mb, doub
 int main(int argc, char** argv) {
   std::string sizes = "1e6", dir = fs::temp_directory_path().string(),
               formats =
-                  "xyz,csv,ply,ply-ascii,off,obj,node,npy,vtu,vtu-zlib,vtu-ascii,ele,mesh-ply";
+                  "xyz,csv,ply,ply-ascii,off,obj,node,npy,vtu,vtu-zlib,vtu-ascii,vtk,vtk-ascii,ele,"
+                  "mesh-ply";
   int reps = 3;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];
@@ -79,7 +80,8 @@ int main(int argc, char** argv) {
     io::Mesh mesh;
     bool have_mesh = false;
     for (const std::string& f : fmts) {
-      const bool is_mesh = f.rfind("vtu", 0) == 0 || f == "ele" || f == "mesh-ply";
+      const bool is_mesh =
+          f.rfind("vtu", 0) == 0 || f.rfind("vtk", 0) == 0 || f == "ele" || f == "mesh-ply";
       if (is_mesh && !have_mesh) {  // a 2D triangulation of n points, made once
         std::vector<Point2> p2 = generate2d("uniform", n, 2);
         Delaunay2dOptions o;

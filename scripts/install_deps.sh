@@ -16,11 +16,12 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 # Python side: the package's build tools (nanobind, scikit-build-core), its tests (pytest) and
-# the oracles and plotting used by tests, examples and benchmarks.
+# the oracles and plotting used by tests, examples and benchmarks, and meshio (files of another
+# tool, for the I/O tests).
 PY=${PYTHON:-python3}
-if ! "$PY" -c "import numpy, scipy, matplotlib, nanobind, scikit_build_core, pytest" >/dev/null 2>&1; then
-  echo "[install_deps] pip install numpy scipy matplotlib nanobind scikit-build-core pytest"
-  "$PY" -m pip install -q numpy scipy matplotlib "nanobind>=2.0" "scikit-build-core>=0.10" pytest
+if ! "$PY" -c "import numpy, scipy, matplotlib, nanobind, scikit_build_core, pytest, meshio" >/dev/null 2>&1; then
+  echo "[install_deps] pip install numpy scipy matplotlib nanobind scikit-build-core pytest meshio"
+  "$PY" -m pip install -q numpy scipy matplotlib "nanobind>=2.0" "scikit-build-core>=0.10" pytest meshio
 fi
 # Benchmark-only anchor (Shewchuk's Triangle): optional, the tests never need it.
 if ! "$PY" -c "import triangle" >/dev/null 2>&1; then

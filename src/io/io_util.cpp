@@ -216,6 +216,62 @@ std::string format_cell_lines(const std::int32_t* cells, int k, std::size_t n, c
   });
 }
 
+bool data_array_from(const std::string& name, ScalarType type, int components,
+                     const std::vector<double>& v, DataArray& a) {
+  double lo = 0, hi = 0;
+  switch (type) {
+    case ScalarType::Bool:
+    case ScalarType::U8:
+      lo = 0, hi = 255;
+      break;
+    case ScalarType::U16:
+      lo = 0, hi = 65535;
+      break;
+    case ScalarType::I32:
+      lo = -2147483648.0, hi = 2147483647.0;
+      break;
+    case ScalarType::I64:  // (doubles from 2^63 up do not fit)
+      lo = -9223372036854775808.0, hi = 9223372036854774784.0;
+      break;
+    default:
+      break;
+  }
+  const bool integer = type != ScalarType::F32 && type != ScalarType::F64;
+  if (integer)
+    for (double x : v)
+      if (!(x >= lo && x <= hi)) return false;  // (NaN included)
+  a.name = name;
+  a.type = type;
+  a.components = components;
+  a.bytes.resize(v.size() * scalar_size(type));
+  unsigned char* p = a.bytes.data();
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    auto put = [&](auto x) { std::memcpy(p + i * sizeof x, &x, sizeof x); };
+    switch (type) {
+      case ScalarType::Bool:
+      case ScalarType::U8:
+        put(std::uint8_t(v[i]));
+        break;
+      case ScalarType::U16:
+        put(std::uint16_t(v[i]));
+        break;
+      case ScalarType::I32:
+        put(std::int32_t(v[i]));
+        break;
+      case ScalarType::I64:
+        put(std::int64_t(v[i]));
+        break;
+      case ScalarType::F32:
+        put(float(v[i]));  // (out of float's range: inf, as a cast of a double does)
+        break;
+      case ScalarType::F64:
+        put(v[i]);
+        break;
+    }
+  }
+  return true;
+}
+
 void append_int(std::string& out, std::int64_t v) {
   char buf[24];
   auto r = std::to_chars(buf, buf + sizeof buf, v);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/io.hpp"
 
 namespace gpugeom::io::detail {
 
@@ -200,6 +201,11 @@ std::string format_ply(const double* coords, int dim, std::size_t nv, const std:
 
 void append_double(std::string& out, double v);  // shortest round-trip text
 void append_int(std::string& out, std::int64_t v);
+// A data array of `type` from values read as doubles (the readers' common form); false, with
+// nothing converted, when a value does not fit the type (the file's values are then not what
+// its type says: the reader's Parse error).
+bool data_array_from(const std::string& name, ScalarType type, int components,
+                     const std::vector<double>& values, DataArray& out);
 // Lines of 3 coordinates (2D points padded with z = 0), each after `prefix` (OFF, OBJ "v ").
 std::string format_vertex_lines(const double* coords, int dim, std::size_t n, const char* prefix);
 // Lines of cells: `lead` (a count, "f", or the cell's number when number_cells), then the

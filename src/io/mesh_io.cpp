@@ -1,4 +1,4 @@
-// Triangle and tetrahedron meshes: .ply .off .obj .ele/.node .vtu .npy.
+// Triangle and tetrahedron meshes: .ply .off .obj .ele/.node .vtu .vtk .npy.
 #include <algorithm>
 #include <iterator>
 
@@ -28,6 +28,8 @@ PointSet parse_node_file(const std::string& b, const std::string& name, int* bas
 Mesh parse_vtu(const std::string& bytes, const std::string& name);  // (vtu.cpp)
 std::string format_vtu(const Mesh& m, bool binary, bool compress);
 void write_vtu(const std::string& path, const Mesh& m, bool binary, bool compress);
+Mesh parse_vtk(const std::string& bytes, const std::string& name);  // (vtk.cpp)
+std::string format_vtk(const Mesh& m, bool binary);
 }  // namespace detail
 using namespace detail;
 
@@ -102,13 +104,16 @@ Mesh parse_mesh(const std::string& b, const std::string& ext, const std::string&
     m.coords = std::move(p.coords);
   } else if (ext == ".vtu") {
     m = parse_vtu(b, name);
+  } else if (ext == ".vtk") {
+    m = parse_vtk(b, name);
   } else if (ext == ".npy") {
     m = parse_npy_cells(b, name);
   } else if (ext == ".ele") {
     m = parse_ele(b, name, 0, -1);
   } else {
-    throw Error(ErrorCode::InvalidArgument, name + ": unknown mesh format '" + ext +
-                                                "': expected .ply .off .obj .ele .vtu or .npy");
+    throw Error(ErrorCode::InvalidArgument,
+                name + ": unknown mesh format '" + ext +
+                    "': expected .ply .off .obj .ele .vtu .vtk or .npy");
   }
   return m;
 }
@@ -123,7 +128,7 @@ Mesh read_mesh(const std::string& path) {
     m.coords = std::move(p.coords);
     return m;
   }
-  static const char* known[] = {".ply", ".off", ".obj", ".vtu", ".npy"};
+  static const char* known[] = {".ply", ".off", ".obj", ".vtu", ".vtk", ".npy"};
   if (std::find(std::begin(known), std::end(known), ext) == std::end(known))
     return parse_mesh("", ext, path);  // reports the unknown format before touching the file
   return parse_mesh(read_file(path), ext, path);
@@ -158,11 +163,14 @@ void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {
   } else if (ext == ".vtu") {
     write_vtu(path, m, o.binary, o.compress);  // (streamed to the file)
     return;
+  } else if (ext == ".vtk") {
+    out = format_vtk(m, o.binary);
   } else if (ext == ".npy") {
     out = format_npy("<i4", {std::int64_t(nc), m.cell_size}, m.cells.data(), m.cells.size() * 4);
   } else {
-    throw Error(ErrorCode::InvalidArgument, path + ": unknown mesh format '" + ext +
-                                                "': expected .ply .off .obj .ele .vtu or .npy");
+    throw Error(ErrorCode::InvalidArgument,
+                path + ": unknown mesh format '" + ext +
+                    "': expected .ply .off .obj .ele .vtu .vtk or .npy");
   }
   write_file_atomic(path, out);
 }

@@ -336,8 +336,8 @@ std::vector<double> read_array(const Encoding& E, std::string_view b, const Tag&
 }
 
 // The ScalarType a VTK type is read as, and the values stored in it.
-DataArray data_array_of(const std::string& name, std::string_view vtk_type, int comps,
-                        const std::vector<double>& v) {
+DataArray data_array_of(const std::string& name, const std::string& file, std::string_view vtk_type,
+                        int comps, const std::vector<double>& v) {
   ScalarType t = ScalarType::F64;
   if (vtk_type == "UInt8")
     t = ScalarType::U8;
@@ -350,35 +350,8 @@ DataArray data_array_of(const std::string& name, std::string_view vtk_type, int 
   else if (vtk_type == "Float32")
     t = ScalarType::F32;
   DataArray a;
-  a.name = name;
-  a.type = t;
-  a.components = comps;
-  a.bytes.resize(v.size() * scalar_size(t));
-  unsigned char* p = a.bytes.data();
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    auto put = [&](auto x) { std::memcpy(p + i * sizeof x, &x, sizeof x); };
-    switch (t) {
-      case ScalarType::Bool:
-      case ScalarType::U8:
-        put(std::uint8_t(v[i]));
-        break;
-      case ScalarType::U16:
-        put(std::uint16_t(v[i]));
-        break;
-      case ScalarType::I32:
-        put(std::int32_t(v[i]));
-        break;
-      case ScalarType::I64:
-        put(std::int64_t(v[i]));
-        break;
-      case ScalarType::F32:
-        put(float(v[i]));
-        break;
-      case ScalarType::F64:
-        put(v[i]);
-        break;
-    }
-  }
+  if (!data_array_from(name, t, comps, v, a))
+    parse_fail(file, 0, "array '" + name + "' holds a value outside the range of its type");
   return a;
 }
 
@@ -528,7 +501,8 @@ Mesh parse_vtu(const std::string& bytes, const std::string& name) {
                    "<" + std::string(section) + "> array '" + std::string(attr(t, "Name")) +
                        "' holds " + std::to_string(v.size()) + " values, expected " +
                        std::to_string(items * std::size_t(comps)));
-      out.push_back(data_array_of(std::string(attr(t, "Name")), attr(t, "type"), int(comps), v));
+      out.push_back(
+          data_array_of(std::string(attr(t, "Name")), name, attr(t, "type"), int(comps), v));
     });
   };
   data_section("PointData", nv, m.point_data);

@@ -401,7 +401,7 @@ TEST(Io, MeshRoundTrips) {
   tet.coords = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
   tet.cell_size = 4;
   tet.cells = {0, 1, 2, 3, 1, 2, 3, 4};
-  for (std::string ext : {".ply", ".off", ".obj", ".ele", ".vtu", ".npy"})
+  for (std::string ext : {".ply", ".off", ".obj", ".ele", ".vtu", ".vtk", ".npy"})
     for (const io::Mesh* m : {&tri, &tet}) {
       const std::string f = path("m" + std::to_string(m->cell_size) + ext);
       if ((ext == ".off" || ext == ".obj") && m->cell_size == 4) {
@@ -523,6 +523,111 @@ TEST(Io, VtuDataArraysRoundTrip) {
     EXPECT_NE(std::string(e.what()).find("flag"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(path("bad.vtu")));
+  EXPECT_TRUE(no_temp_files());
+}
+
+// VTK legacy files: ours round-trip (BINARY and ASCII, with point and cell data); files in the
+// layouts other writers use are read (5.1 OFFSETS / CONNECTIVITY, VECTORS, FIELD, METADATA,
+// LOOKUP_TABLE); malformed ones are Parse errors with a line.
+TEST(Io, VtkLegacy) {
+  io::Mesh m;
+  m.dim = 3;
+  m.coords = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1.0 / 3, 1e-300, -5e300};
+  m.cell_size = 4;
+  m.cells = {0, 1, 2, 3, 1, 2, 3, 4};
+  const std::int32_t dup[5] = {-1, -1, 0, -1, 2};
+  const float vec[6] = {0.5f, -1, 2, 1e-30f, 3, 4};
+  const double h[5] = {0.1, 0.2, 1.0 / 3, -7, 1e300};
+  m.point_data = {io::make_data_array("duplicate_of", io::ScalarType::I32, 1, dup, 5),
+                  io::make_data_array("height", io::ScalarType::F64, 1, h, 5)};
+  m.cell_data = {io::make_data_array("vec", io::ScalarType::F32, 3, vec, 6)};
+  for (bool binary : {true, false}) {
+    io::WriteOptions o;
+    o.binary = binary;
+    io::write_mesh(path("m.vtk"), m, o);
+    const auto r = io::read_mesh(path("m.vtk"));
+    EXPECT_EQ(r.coords, m.coords) << binary;
+    EXPECT_EQ(r.cells, m.cells) << binary;
+    ASSERT_EQ(r.point_data.size(), 2u);
+    ASSERT_EQ(r.cell_data.size(), 1u);
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_EQ(r.point_data[k].name, m.point_data[k].name);
+      EXPECT_EQ(r.point_data[k].bytes, m.point_data[k].bytes) << binary << k;
+    }
+    EXPECT_EQ(r.cell_data[0].components, 3);
+    EXPECT_EQ(r.cell_data[0].bytes, m.cell_data[0].bytes) << binary;
+  }
+  // Version 5.1 as VTK 9 writes it (ASCII), triangles, with the attribute kinds others write.
+  const std::string v51 =
+      "# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+      "POINTS 4 float\n0 0 0 1 0 0\n0 1 0 1 1 0\n\n"
+      "METADATA\nINFORMATION 0\n\n"
+      "CELLS 3 6\nOFFSETS vtktypeint64\n0 3 6\nCONNECTIVITY vtktypeint64\n0 1 2 1 3 2\n"
+      "CELL_TYPES 2\n5\n5\n\n"
+      "POINT_DATA 4\nSCALARS temp double\nLOOKUP_TABLE default\n1.5 2.5 3.5 4.5\n"
+      "VECTORS velocity float\n1 0 0 0 1 0 0 0 1 1 1 1\n"
+      "CELL_DATA 2\nFIELD FieldData 2\nregion 1 2 int\n7 9\nflag 2 2 unsigned_char\n1 0 0 1\n";
+  const auto a = io::parse_mesh(v51, ".vtk", "v51.vtk");
+  EXPECT_EQ(a.dim, 2);
+  EXPECT_EQ(a.cells, (std::vector<std::int32_t>{0, 1, 2, 1, 3, 2}));
+  EXPECT_EQ(a.coords, (std::vector<double>{0, 0, 1, 0, 0, 1, 1, 1}));
+  ASSERT_EQ(a.point_data.size(), 2u);
+  EXPECT_EQ(a.point_data[1].name, "velocity");
+  EXPECT_EQ(a.point_data[1].components, 3);
+  ASSERT_EQ(a.cell_data.size(), 2u);
+  EXPECT_EQ(a.cell_data[0].type, io::ScalarType::I32);
+  EXPECT_EQ(a.cell_data[1].type, io::ScalarType::U8);
+  EXPECT_EQ(a.cell_data[1].count(), 4u);
+  // Version 5.1 BINARY (big-endian), built here byte by byte.
+  std::string b51 =
+      "# vtk DataFile Version 5.1\nx\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n";
+  auto be = [&](auto v) {
+    unsigned char raw[sizeof v];
+    std::memcpy(raw, &v, sizeof v);
+    for (std::size_t i = sizeof v; i-- > 0;) b51 += char(raw[i]);
+  };
+  for (double v : {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0}) be(v);
+  b51 += "\nCELLS 3 6\nOFFSETS vtktypeint64\n";
+  for (std::int64_t v : {0, 3, 6}) be(v);
+  b51 += "\nCONNECTIVITY vtktypeint64\n";
+  for (std::int64_t v : {0, 1, 2, 1, 3, 2}) be(v);
+  b51 += "\nCELL_TYPES 2\n";
+  for (std::int32_t v : {5, 5}) be(v);
+  b51 += "\n";
+  const auto bb = io::parse_mesh(b51, ".vtk", "b51.vtk");
+  EXPECT_EQ(bb.cells, a.cells);
+  EXPECT_EQ(bb.coords, a.coords);
+  // Malformed: each a Parse error naming the file.
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"# vtk DataFile Version 4.2\nx\nASCII\nDATASET POLYDATA\n", "UNSTRUCTURED_GRID"},
+      {"hello\n", "not a VTK legacy file"},
+      {"# vtk DataFile Version 4.2\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 99999999999 "
+       "double\n1 2 3\n",
+       "ends before"},
+      {"# vtk DataFile Version 4.2\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n0 0 "
+       "0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 7\nCELL_TYPES 1\n5\n",
+       "missing point"},
+      {"# vtk DataFile Version 4.2\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n0 0 "
+       "0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n9\n",
+       "cell types"},
+      {"# vtk DataFile Version 4.2\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n0 0 "
+       "0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\nPOINT_DATA 4\n",
+       "the mesh has 3"},
+      {"# vtk DataFile Version 4.2\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 bit\n",
+       "unsupported data type"},
+      {"# vtk DataFile Version 4.2\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n0 0 "
+       "0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\nCELL_DATA 1\nSCALARS n int\n3e18\n",
+       "outside the range of its type"}};
+  for (const auto& [text, what] : bad) {
+    try {
+      io::parse_mesh(text, ".vtk", "bad.vtk");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::Parse) << e.what();
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind("bad.vtk:", 0), 0u) << e.what();
+    }
+  }
   EXPECT_TRUE(no_temp_files());
 }
 

@@ -20,9 +20,9 @@ const char* kHelp =
     "                          [--draw FILE.svg|FILE.png] [--check] [--compress] [--ascii]\n\n"
     "Exact Delaunay triangulation of the 2D points in POINTS (.xyz .txt .csv .ply .off .obj\n"
     ".node .npy; 3D files are accepted when every z is 0). Duplicate points are kept once.\n"
-    "  -o MESH        .ply .off .obj .ele(+.node) .vtu, or .npy (the int32 triangle array)\n"
+    "  -o MESH        .ply .off .obj .ele(+.node) .vtu .vtk, or .npy (the int32 triangle array)\n"
     "  --compress     .vtu: zlib-compressed blocks (ParaView reads them)\n"
-    "  --ascii        .vtu and .ply as text instead of binary\n"
+    "  --ascii        .vtu, .vtk and .ply as text instead of binary\n"
     "  --voronoi F    the Voronoi diagram as JSON in SciPy's terms: vertices, ridge_points,\n"
     "                 ridge_vertices, regions (one per input point, -1 first when unbounded)\n"
     "  --clip BOX     also the cells clipped to BOX, as polygons (\"clipped\" in the JSON);\n"
@@ -161,7 +161,7 @@ int cmd_delaunay2d(const Global& g, Args& a) {
     m.coords = p.coords;
     m.cell_size = 3;
     m.cells.assign(tri.triangles.begin(), tri.triangles.begin() + 3 * tri.triangle_count);
-    // .vtu carries the duplicate map along (ParaView shows it as a point array).
+    // .vtu and .vtk carry the duplicate map along (ParaView shows it as a point array).
     m.point_data.push_back(io::make_data_array("duplicate_of", io::ScalarType::I32, 1,
                                                tri.duplicate_of.data(), tri.duplicate_of.size()));
     io::write_mesh(out, m, wo);

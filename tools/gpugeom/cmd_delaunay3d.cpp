@@ -17,11 +17,12 @@ const char* kHelp =
     "Exact Delaunay tetrahedralisation of the 3D points in POINTS (.xyz .txt .csv .ply .off\n"
     ".obj .node .npy). Degenerate input (cospherical, coplanar on the hull, duplicates) is\n"
     "resolved by simulation of simplicity; of several copies of a point one is used.\n"
-    "  -o MESH     .vtu (ParaView), .ele (with its .node, as TetGen writes them), .ply: the\n"
-    "              input points and the tetrahedra; .npy: the int32 tetrahedron array (T x 4)\n"
+    "  -o MESH     .vtu (ParaView), .vtk (legacy VTK), .ele (with its .node, as TetGen writes\n"
+    "              them), .ply: the input points and the tetrahedra; .npy: the int32\n"
+    "              tetrahedron array (T x 4)\n"
     "              indexing the input points, like SciPy's Delaunay.simplices\n"
     "  --compress  .vtu: zlib-compressed blocks\n"
-    "  --ascii     .vtu and .ply as text instead of binary\n"
+    "  --ascii     .vtu, .vtk and .ply as text instead of binary\n"
     "  --check     verify the result with the independent exact checker\n"
     "With --verbose, the phase table and counters (flips, failed vertices, ...) on stderr.\n"
     "Runs longer than a second show their progress on stderr (not with --quiet).\n";
@@ -53,7 +54,7 @@ int cmd_delaunay3d(const Global& g, Args& a) {
     std::cout << kHelp;
     return kOk;
   }
-  PointsToMesh job = points_to_mesh(g, a, "delaunay3d", {".vtu", ".ele", ".ply", ".npy"},
+  PointsToMesh job = points_to_mesh(g, a, "delaunay3d", {".vtu", ".vtk", ".ele", ".ply", ".npy"},
                                     "for tetrahedra", " (see delaunay2d)");
   io::PointSet& p = job.p;
   const std::string& out = job.out;
@@ -102,7 +103,7 @@ int cmd_delaunay3d(const Global& g, Args& a) {
     m.cell_size = 4;
     if (ext != ".npy") m.coords = std::move(p.coords);  // (copies are unused vertices)
     m.cells.assign(t3.tetrahedra.begin(), t3.tetrahedra.end());
-    if (ext == ".vtu")  // the duplicate map along, as a point array
+    if (ext == ".vtu" || ext == ".vtk")  // the duplicate map along, as a point array
       m.point_data.push_back(io::make_data_array("duplicate_of", io::ScalarType::I32, 1,
                                                  t3.duplicate_of.data(), t3.duplicate_of.size()));
     io::write_mesh(out, m, job.wo);

@@ -30,7 +30,7 @@ int cmd_hull3d(const Global& g, Args& a) {
     return kOk;
   }
   PointsToMesh job =
-      points_to_mesh(g, a, "hull3d", {".ply", ".off", ".obj", ".vtu", ".npy"}, "for a hull");
+      points_to_mesh(g, a, "hull3d", {".ply", ".off", ".obj", ".vtu", ".vtk", ".npy"}, "for a hull");
   const io::PointSet& p = job.p;
   const std::string& out = job.out;
   const std::string& ext = job.ext;
