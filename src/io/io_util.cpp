@@ -272,6 +272,29 @@ bool data_array_from(const std::string& name, ScalarType type, int components,
   return true;
 }
 
+void append_value(std::string& o, const DataArray& d, std::size_t i) {
+  const unsigned char* p = d.bytes.data() + i * scalar_size(d.type);
+  auto get = [&](auto x) {
+    std::memcpy(&x, p, sizeof x);
+    return x;
+  };
+  switch (d.type) {
+    case ScalarType::Bool:
+    case ScalarType::U8:
+      return append_int(o, get(std::uint8_t{}));
+    case ScalarType::U16:
+      return append_int(o, get(std::uint16_t{}));
+    case ScalarType::I32:
+      return append_int(o, get(std::int32_t{}));
+    case ScalarType::I64:
+      return append_int(o, get(std::int64_t{}));
+    case ScalarType::F32:
+      return append_double(o, double(get(float{})));
+    case ScalarType::F64:
+      return append_double(o, get(double{}));
+  }
+}
+
 void append_int(std::string& out, std::int64_t v) {
   char buf[24];
   auto r = std::to_chars(buf, buf + sizeof buf, v);

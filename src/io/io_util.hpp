@@ -206,6 +206,8 @@ void append_int(std::string& out, std::int64_t v);
 // its type says: the reader's Parse error).
 bool data_array_from(const std::string& name, ScalarType type, int components,
                      const std::vector<double>& values, DataArray& out);
+// Value i of a data array as text (integers exactly, floats as their shortest round trip).
+void append_value(std::string& out, const DataArray& d, std::size_t i);
 // Lines of 3 coordinates (2D points padded with z = 0), each after `prefix` (OFF, OBJ "v ").
 std::string format_vertex_lines(const double* coords, int dim, std::size_t n, const char* prefix);
 // Lines of cells: `lead` (a count, "f", or the cell's number when number_cells), then the

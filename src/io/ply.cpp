@@ -48,6 +48,32 @@ struct Elem {
   std::vector<Prop> props;
 };
 
+// A little-endian value of type t at p, as a double.
+double value_at(const unsigned char* p, T t) {
+  auto as = [&](auto v) {
+    std::memcpy(&v, p, sizeof v);
+    return double(v);
+  };
+  switch (t) {
+    case T::I8:
+      return as(std::int8_t());
+    case T::U8:
+      return as(std::uint8_t());
+    case T::I16:
+      return as(std::int16_t());
+    case T::U16:
+      return as(std::uint16_t());
+    case T::I32:
+      return as(std::int32_t());
+    case T::U32:
+      return as(std::uint32_t());
+    case T::F32:
+      return as(float());
+    default:
+      return as(double());
+  }
+}
+
 // Reads values from the body, in whichever encoding the header declared.
 class Body {
  public:
@@ -62,28 +88,7 @@ class Body {
     pos_ += n;
     if (enc_ == 2)
       for (std::size_t k = 0; k < n / 2; ++k) std::swap(raw[k], raw[n - 1 - k]);
-    auto as = [&](auto v) {
-      std::memcpy(&v, raw, sizeof v);
-      return double(v);
-    };
-    switch (t) {
-      case T::I8:
-        return as(std::int8_t());
-      case T::U8:
-        return as(std::uint8_t());
-      case T::I16:
-        return as(std::int16_t());
-      case T::U16:
-        return as(std::uint16_t());
-      case T::I32:
-        return as(std::int32_t());
-      case T::U32:
-        return as(std::uint32_t());
-      case T::F32:
-        return as(float());
-      default:
-        return as(double());
-    }
+    return value_at(raw, t);
   }
   std::size_t remaining() const { return b_.size() - pos_; }
   // Binary bodies: the bytes from here on, and a skip over bytes a fast path read itself.
@@ -117,32 +122,6 @@ class Body {
   std::size_t pos_ = 0;
   std::int64_t line_ = 0;
 };
-
-// A little-endian value of type t at p, as a double.
-double value_at(const unsigned char* p, T t) {
-  auto as = [&](auto v) {
-    std::memcpy(&v, p, sizeof v);
-    return double(v);
-  };
-  switch (t) {
-    case T::I8:
-      return as(std::int8_t());
-    case T::U8:
-      return as(std::uint8_t());
-    case T::I16:
-      return as(std::int16_t());
-    case T::U16:
-      return as(std::uint16_t());
-    case T::I32:
-      return as(std::int32_t());
-    case T::U32:
-      return as(std::uint32_t());
-    case T::F32:
-      return as(float());
-    default:
-      return as(double());
-  }
-}
 
 // Fast paths for little-endian binary bodies (what gpugeom and most tools write), on all host
 // threads; each returns false, having read nothing, where the element is not of its simple

@@ -377,36 +377,11 @@ void put_big_endian(std::string& out, const void* data, std::size_t n, std::size
 
 // The values of a data array as text, `per` to a line.
 void put_text(std::string& out, const DataArray& d, std::size_t per) {
-  const std::size_t n = d.count(), w = scalar_size(d.type);
+  const std::size_t n = d.count();
   out += format_lines((n + per - 1) / per, per * 24, [&](std::size_t line, std::string& o) {
     for (std::size_t i = line * per; i < std::min(n, (line + 1) * per); ++i) {
       if (i > line * per) o += ' ';
-      const unsigned char* p = d.bytes.data() + i * w;
-      auto get = [&](auto x) {
-        std::memcpy(&x, p, sizeof x);
-        return x;
-      };
-      switch (d.type) {
-        case ScalarType::Bool:
-        case ScalarType::U8:
-          append_int(o, get(std::uint8_t{}));
-          break;
-        case ScalarType::U16:
-          append_int(o, get(std::uint16_t{}));
-          break;
-        case ScalarType::I32:
-          append_int(o, get(std::int32_t{}));
-          break;
-        case ScalarType::I64:
-          append_int(o, get(std::int64_t{}));
-          break;
-        case ScalarType::F32:
-          append_double(o, double(get(float{})));
-          break;
-        case ScalarType::F64:
-          append_double(o, get(double{}));
-          break;
-      }
+      append_value(o, d, i);
     }
     o += '\n';
   });

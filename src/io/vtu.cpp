@@ -750,34 +750,9 @@ std::string format_vtu(const Mesh& m, bool binary, bool compress) {
       o += sec == 0 ? "<PointData>\n" : "<CellData>\n";
       for (const DataArray& d : list) {
         o += data_array_tag(d) + " format=\"ascii\">\n";
-        const std::size_t n = d.count(), w = scalar_size(d.type);
+        const std::size_t n = d.count();
         for (std::size_t i = 0; i < n; ++i) {
-          const unsigned char* p = d.bytes.data() + i * w;
-          auto get = [&](auto x) {
-            std::memcpy(&x, p, sizeof x);
-            return x;
-          };
-          switch (d.type) {
-            case ScalarType::Bool:
-            case ScalarType::U8:
-              o += std::to_string(get(std::uint8_t{}));
-              break;
-            case ScalarType::U16:
-              o += std::to_string(get(std::uint16_t{}));
-              break;
-            case ScalarType::I32:
-              o += std::to_string(get(std::int32_t{}));
-              break;
-            case ScalarType::I64:
-              o += std::to_string(get(std::int64_t{}));
-              break;
-            case ScalarType::F32:
-              append_double(o, double(get(float{})));
-              break;
-            case ScalarType::F64:
-              append_double(o, get(double{}));
-              break;
-          }
+          append_value(o, d, i);
           o += (i + 1) % std::size_t(d.components) ? ' ' : '\n';
         }
         o += "</DataArray>\n";
