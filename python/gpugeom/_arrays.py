@@ -90,6 +90,12 @@ class Kind:
         return a
 
 
+def check_threads(threads) -> int:
+    if not is_integer(threads) or threads < 0:
+        raise ValueError(f"threads must be an integer >= 0 (0: all host threads), got {threads!r}")
+    return int(threads)
+
+
 def check_backend(backend: str) -> str:
     if not isinstance(backend, str) or backend.lower() not in _BACKENDS:
         raise ValueError(f"backend must be one of {_BACKENDS}, got {backend!r}")
@@ -146,8 +152,10 @@ def as_input(a, dtype, name: str, kind: Optional[Kind] = None):
         except ImportError:
             return a, kind
         return cupy.ascontiguousarray(cupy.asarray(a), dtype=dtype), kind
-    if isinstance(a, (str, bytes)) or (hasattr(a, "dtype") and np.dtype(a.dtype).kind in "OSUV"):
+    if isinstance(a, (str, bytes)):
         raise TypeError(f"{name} must be numeric, got {type(a).__name__}")
+    if hasattr(a, "dtype") and np.dtype(a.dtype).kind in "OSUV":
+        raise TypeError(f"{name} must hold real numbers, not {np.dtype(a.dtype)}")
     try:
         arr = np.asarray(a)
     except (TypeError, ValueError) as e:
@@ -157,9 +165,13 @@ def as_input(a, dtype, name: str, kind: Optional[Kind] = None):
     return np.ascontiguousarray(arr, dtype=dtype), kind
 
 
-def points_input(points, dims, backend: str):
+def points_input(points, dims, backend: str, threads: int = 0):
     """Validated point coordinates: float64 (n, d) with d in dims."""
     check_backend(backend)
+    check_threads(threads)
+    if getattr(points, "ndim", 2) != 2:  # (before a 0-d array becomes 1-d below)
+        want = " or ".join(f"(n, {d})" for d in dims)
+        raise ValueError(f"points must have shape {want}, got {tuple(points.shape)}")
     arr, kind = as_input(points, np.float64, "points")
     shape = tuple(arr.shape)
     if len(shape) != 2 or shape[1] not in dims:

@@ -89,6 +89,7 @@ def centroidal_voronoi(density, n_sites: int = 1000, *, initial_sites=None,
     (return False to stop), or is a tqdm bar (advanced by one per iteration).
     """
     _arrays.check_backend(backend)
+    _arrays.check_threads(threads)
     if not _arrays.is_integer(n_sites) or n_sites < 1:
         raise ValueError(f"n_sites must be a positive integer, got {n_sites!r}")
     kind = _arrays.classify(density)
@@ -121,6 +122,7 @@ def stipple(image, n: int = 20000, *, invert: bool = False, contrast: float = 1.
     :func:`centroidal_voronoi`; ``invert`` puts dots where the image is bright, ``contrast``
     stretches darkness about mid-grey, ``gamma`` raises it to that power."""
     _arrays.check_backend(backend)
+    _arrays.check_threads(threads)
     if not _arrays.is_integer(n) or n < 1:
         raise ValueError(f"n must be a positive integer, got {n!r}")
     img = np.ascontiguousarray(_arrays.to_host(image))

@@ -83,6 +83,7 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     if indices is not None and not return_indices:
         raise RuntimeError("indices given but return_indices is False")
     _arrays.check_backend(backend)
+    _arrays.check_threads(threads)
     arr, kind, nd = _grid(input)
     shape = tuple(int(e) for e in arr.shape)
     samp = _sampling(sampling, nd)
@@ -149,6 +150,7 @@ def voronoi_labels(input, sampling: Union[float, Sequence[float], None] = None, 
     Raises ValueError when ``input`` has no non-zero element.
     """
     _arrays.check_backend(backend)
+    _arrays.check_threads(threads)
     kind = _arrays.classify(input)
     values, kind = _arrays.as_input(input, None, "input", kind)
     arr, _, nd = _grid(values)

@@ -26,8 +26,8 @@ def _not_supported(name, value, default):
 class _OfPoints:
     """What the three structures share: the points as the caller's kind of array."""
 
-    def _take_points(self, points, dims, backend):
-        arr, kind = _arrays.points_input(points, dims, backend)
+    def _take_points(self, points, dims, backend, threads=0):
+        arr, kind = _arrays.points_input(points, dims, backend, threads)
         self._kind = kind
         self.points = kind.back(arr) if kind.name == "torch-cpu" else arr
         self.ndim = int(arr.shape[1])
@@ -62,7 +62,7 @@ class Delaunay(_OfPoints):
                  threads: int = 0, progress: Optional[Callable] = None):
         _not_supported("furthest_site", furthest_site, False)
         _not_supported("incremental", incremental, False)
-        arr, kind = self._take_points(points, (2, 3), backend)
+        arr, kind = self._take_points(points, (2, 3), backend, threads)
         if self.ndim == 2:
             r = _core.delaunay2d(arr, backend=backend, stream=kind.stream, threads=threads)
         else:
@@ -191,7 +191,7 @@ class Voronoi(_OfPoints):
                  threads: int = 0):
         _not_supported("furthest_site", furthest_site, False)
         _not_supported("incremental", incremental, False)
-        arr, kind = self._take_points(points, (2,), backend)
+        arr, kind = self._take_points(points, (2,), backend, threads)
         r = _core.voronoi2d(arr, backend=backend, stream=kind.stream, threads=threads)
         self.vertices = kind.back(r["vertices"])
         self.ridge_points = kind.back(r["ridge_points"])
@@ -244,7 +244,7 @@ class ConvexHull(_OfPoints):
     def __init__(self, points, incremental: bool = False, qhull_options: Optional[str] = None, *,
                  backend: str = "auto", threads: int = 0):
         _not_supported("incremental", incremental, False)
-        arr, kind = self._take_points(points, (2, 3), backend)
+        arr, kind = self._take_points(points, (2, 3), backend, threads)
         if arr.shape[1] != 3:
             raise ValueError("gpugeom.ConvexHull computes 3D hulls; for 2D points the hull is "
                              "gpugeom.Delaunay(points).convex_hull")

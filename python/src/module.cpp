@@ -17,9 +17,11 @@ Input inspect(const AnyArray& a, const char* name) {
   in.dtype = a.dtype();
   in.shape.resize(a.ndim());
   std::int64_t expect = 1;
+  bool empty = false;
+  for (std::size_t k = 0; k < a.ndim(); ++k) empty = empty || a.shape(k) == 0;
   for (std::size_t k = a.ndim(); k-- > 0;) {
     in.shape[k] = std::int64_t(a.shape(k));
-    if (a.shape(k) > 1 && a.stride(k) != expect)
+    if (!empty && a.shape(k) > 1 && a.stride(k) != expect)  // (an empty array has no layout)
       throw nb::value_error((std::string(name) +
                              " must be C-contiguous (np.ascontiguousarray / cupy.ascontiguousarray "
                              "/ tensor.contiguous() make it so)")

@@ -18,6 +18,14 @@ def test_shape_and_dtype_errors():
         gpugeom.Delaunay(np.random.random((10, 2)), backend="gpu")
     with pytest.raises(ValueError, match="3D hulls"):
         gpugeom.ConvexHull(np.random.random((10, 2)))
+    with pytest.raises(ValueError, match=r"got \(\)"):
+        gpugeom.Delaunay(np.float64(3))
+    with pytest.raises(gpugeom.DegenerateInputError, match="fewer than 3"):
+        gpugeom.Delaunay(np.zeros((0, 2)))  # (an empty array is no layout error)
+    with pytest.raises(TypeError, match="object"):
+        gpugeom.distance_transform_edt(np.array([[None, 1]]))
+    with pytest.raises(ValueError, match="threads"):
+        gpugeom.Delaunay(np.random.random((10, 2)), threads=-3)
     with pytest.raises(ValueError, match="furthest_site"):
         gpugeom.Delaunay(np.random.random((10, 2)), furthest_site=True)
 

@@ -96,6 +96,9 @@ class Body {
     return reinterpret_cast<const unsigned char*>(b_.data()) + pos_;
   }
   void skip(std::size_t n) { pos_ += n; }
+  // ASCII bodies: the text from here on, and a skip over text (and its lines) read elsewhere.
+  std::string_view rest() const { return b_.substr(std::min(pos_, b_.size())); }
+  void skip(std::size_t n, std::int64_t lines) { pos_ += n, line_ += lines; }
   int encoding() const { return enc_; }
 
  private:
@@ -195,6 +198,70 @@ bool read_cells_fast(Body& body, const Elem& e, PlyData& out, const Lines& l) {
   return true;
 }
 
+// ASCII bodies with one item per line, as every writer puts them: the element's lines read in
+// parallel parts (read_records). Returns false, having read nothing, where the text is not of
+// that simple shape (a line with other than one item's tokens, a token that is not a number, a
+// '#' anywhere after this point, an index out of range): the general token loop then reads it,
+// with its own messages and line numbers, so the fast path never changes what is accepted.
+bool read_ascii_fast(Body& body, const Elem& e, int ix, int iy, int iz, int il, bool vertex,
+                     bool cells, PlyData& out, const std::string& name) {
+  if (body.encoding() != 0 || e.count <= 0) return false;
+  const std::string_view text = body.rest();
+  if (text.find('#') != std::string_view::npos) return false;  // (lines the reader would skip)
+  const std::size_t np = e.props.size();
+  for (const Prop& p : e.props)
+    if (p.list != (cells && &p == &e.props[0])) return false;
+  if (cells && (np != 1 || il != 0)) return false;
+  if (!vertex && !cells) return false;
+  const int k = e.name == "tetra" ? 4 : 3;
+  if (cells && out.cell_size != 0 && out.cell_size != k) return false;
+  Lines l(text, name);
+  try {
+    if (vertex) {
+      const int d = out.dim;
+      std::vector<double> xyz;
+      read_records(
+          l, text, e.count, d, xyz,
+          [&](const Lines& part, std::string_view line, std::int64_t, double* o) {
+            const auto t = split(line);
+            if (t.size() != np) part.fail("");
+            for (std::size_t q = 0; q < np; ++q) {
+              double v;
+              if (!to_double(t[q], v)) part.fail("");
+              if (int(q) == ix) o[0] = v;
+              if (int(q) == iy) o[1] = v;
+              if (int(q) == iz) o[2] = v;
+            }
+          },
+          [](std::int64_t) { return std::string(); });
+      out.coords.insert(out.coords.end(), xyz.begin(), xyz.end());
+    } else {
+      std::vector<std::int32_t> idx;
+      read_records(
+          l, text, e.count, k, idx,
+          [&](const Lines& part, std::string_view line, std::int64_t, std::int32_t* o) {
+            const auto t = split(line);
+            double c;
+            if (t.size() != std::size_t(k) + 1 || !to_double(t[0], c) || c != k) part.fail("");
+            for (int j = 0; j < k; ++j) {
+              double v;
+              if (!to_double(t[std::size_t(j) + 1], v) || v < 0 || v > 2147483647.0 ||
+                  v != double(std::int64_t(v)))
+                part.fail("");
+              o[j] = std::int32_t(v);
+            }
+          },
+          [](std::int64_t) { return std::string(); });
+      out.cell_size = k;
+      out.cells.insert(out.cells.end(), idx.begin(), idx.end());
+    }
+  } catch (const Error&) {
+    return false;
+  }
+  body.skip(l.offset(), l.line_no());
+  return true;
+}
+
 }  // namespace
 
 PlyData parse_ply(const std::string& bytes, const std::string& name) {
@@ -283,6 +350,7 @@ PlyData parse_ply(const std::string& bytes, const std::string& name) {
     if (e.props.empty()) continue;
     if (vertex && read_vertices_fast(body, e, ix, iy, iz, out, l)) continue;  // (x, y, z order)
     if (cells && il == 0 && read_cells_fast(body, e, out, l)) continue;
+    if (read_ascii_fast(body, e, ix, iy, iz, il, vertex, cells, out, name)) continue;
     for (std::int64_t i = 0; i < e.count; ++i) {
       for (int k = 0; k < int(e.props.size()); ++k) {
         const Prop& p = e.props[k];

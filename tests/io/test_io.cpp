@@ -361,6 +361,60 @@ TEST(Io, PlyLittleEndianMixedLayouts) {
   }
 }
 
+// ASCII PLY, one item per line (read in parallel parts) and the same items laid out otherwise
+// (two vertices to a line: the token reader), give the same mesh; errors keep the serial
+// reader's message and line.
+TEST(Io, PlyAsciiInPartsAsTheTokenReader) {
+  const std::size_t n = 120000;  // several 1 MiB parts
+  std::string head = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(n) +
+                     "\nproperty float z\nproperty double x\nproperty uchar red\nproperty int y\n"
+                     "element face " +
+                     std::to_string(n - 2) +
+                     "\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string lines = head, paired = head;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-100, 100);
+  std::vector<double> want;
+  for (std::size_t i = 0; i < n; ++i) {
+    char buf[128];
+    const double x = u(rng), z = double(float(u(rng)));
+    const int y = int(i) - 7;
+    std::snprintf(buf, sizeof buf, "%.17g %.17g %d %d", z, x, int(i % 256), y);
+    lines += std::string(buf) + "\n";
+    paired += std::string(buf) + (i % 2 ? "\n" : " ");
+    want.insert(want.end(), {x, double(y), z});
+  }
+  if (n % 2) paired += "\n";
+  for (std::size_t i = 0; i + 2 < n; ++i) {
+    const std::string f =
+        "3 " + std::to_string(i) + " " + std::to_string(i + 1) + " " + std::to_string(i + 2) + "\n";
+    lines += f;
+    paired += f;
+  }
+  const auto a = io::parse_mesh(lines, ".ply", "a.ply");
+  const auto b = io::parse_mesh(paired, ".ply", "b.ply");
+  EXPECT_EQ(a.coords, want);
+  EXPECT_EQ(a.coords, b.coords);
+  EXPECT_EQ(a.cells, b.cells);
+  EXPECT_EQ(a.cells.size(), 3 * (n - 2));
+  // a bad token on line L of the file: the same message, line L
+  const std::int64_t header_lines = 10;
+  for (std::size_t bad : {std::size_t(5), n / 2, n - 1}) {
+    std::string t = lines;
+    std::size_t at = 0;
+    for (std::int64_t l = 1; l < header_lines + std::int64_t(bad) + 1; ++l)
+      at = t.find('\n', at) + 1;
+    t.replace(at, t.find(' ', at) - at, "oops");
+    try {
+      io::parse_mesh(t, ".ply", "c.ply");
+      ADD_FAILURE() << "accepted a bad token";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), "c.ply:" + std::to_string(header_lines + bad + 1) +
+                                           ": expected a number, found 'oops'");
+    }
+  }
+}
+
 TEST(Io, PlyBigEndianAndFloat) {
   // Hand-made binary big-endian PLY with float x,y,z and an extra property.
   std::string s =
