@@ -294,24 +294,13 @@ std::string inline_data(const Encoding& E, std::string_view text) {
 }
 
 // One DataArray's values as doubles (exact for every integer below 2^53 and every float).
-std::vector<double> read_array(const Encoding& E, std::string_view b, const Tag& t) {
+// The decoded bytes (file byte order) and element type of a binary DataArray (inline base64 or
+// appended raw; appended base64 is the caller's); false, with nothing read, for ascii.
+bool array_bytes(const Encoding& E, std::string_view b, const Tag& t, std::string& bytes, Elem& e) {
   const std::string& name = E.name;
-  const Elem e = elem_of(attr(t, "type"), name);
+  e = elem_of(attr(t, "type"), name);
   const std::string_view format = attr(t, "format");
-  std::vector<double> v;
-  if (format == "ascii") {
-    if (t.closed) return v;
-    const std::size_t close = b.find("</DataArray>", t.end);
-    if (close == std::string_view::npos) parse_fail(name, 0, "a DataArray is not closed");
-    for (auto s : split(b.substr(t.end, close - t.end))) {
-      double x;
-      if (!to_double(s, x))
-        parse_fail(name, 0, "bad number '" + std::string(s) + "' in a DataArray");
-      v.push_back(x);
-    }
-    return v;
-  }
-  std::string bytes;
+  if (format == "ascii") return false;
   if (format == "binary") {
     if (t.closed) parse_fail(name, 0, "an inline binary DataArray without data");
     const std::size_t close = b.find("</DataArray>", t.end);
@@ -329,9 +318,28 @@ std::vector<double> read_array(const Encoding& E, std::string_view b, const Tag&
   }
   if (bytes.size() % std::size_t(e.bytes))
     parse_fail(name, 0, "binary DataArray length is not a whole number of elements");
-  const std::size_t n = bytes.size() / std::size_t(e.bytes);
-  v.resize(n);
-  elem_values(reinterpret_cast<const unsigned char*>(bytes.data()), n, e, E.big, v.data());
+  return true;
+}
+
+// One DataArray's values as doubles (exact for every integer below 2^53 and every float).
+std::vector<double> read_array(const Encoding& E, std::string_view b, const Tag& t) {
+  std::vector<double> v;
+  std::string bytes;
+  Elem e;
+  if (array_bytes(E, b, t, bytes, e)) {
+    v.resize(bytes.size() / std::size_t(e.bytes));
+    elem_values(reinterpret_cast<const unsigned char*>(bytes.data()), v.size(), e, E.big, v.data());
+    return v;
+  }
+  if (t.closed) return v;
+  const std::size_t close = b.find("</DataArray>", t.end);
+  if (close == std::string_view::npos) parse_fail(E.name, 0, "a DataArray is not closed");
+  for (auto s : split(b.substr(t.end, close - t.end))) {
+    double x;
+    if (!to_double(s, x))
+      parse_fail(E.name, 0, "bad number '" + std::string(s) + "' in a DataArray");
+    v.push_back(x);
+  }
   return v;
 }
 
@@ -430,22 +438,36 @@ Mesh parse_vtu(const std::string& bytes, const std::string& name) {
          at = t.end)
       f(t);
   };
-  auto array = [&](std::string_view section, std::string_view arr) {
-    std::vector<double> v;
-    bool found = false;
+  // The DataArray named arr (the first, when arr is empty) of a section.
+  auto find_array = [&](std::string_view section, std::string_view arr) {
+    Tag found;
+    bool any = false;
     each_array(section, true, [&](const Tag& t) {
-      if (found || (!arr.empty() && attr(t, "Name") != arr)) return;
-      v = read_one(t);
-      found = true;
+      if (any || (!arr.empty() && attr(t, "Name") != arr)) return;
+      found = t;
+      any = true;
     });
-    if (!found)
+    if (!any)
       parse_fail(name, 0,
                  "no DataArray " + (arr.empty() ? std::string() : "'" + std::string(arr) + "' ") +
                      "in <" + std::string(section) + ">");
-    return v;
+    return found;
+  };
+  auto array = [&](std::string_view section, std::string_view arr) {
+    return read_one(find_array(section, arr));
   };
   const std::vector<double> xyz = array("Points", "");
-  const std::vector<double> conn = array("Cells", "connectivity");
+  // Connectivity in an integer type is converted straight to the cells (the bulk of a mesh
+  // file); anything else goes through doubles like the other arrays.
+  const Tag conn_tag = find_array("Cells", "connectivity");
+  std::string conn_bytes;
+  Elem conn_elem;
+  const bool conn_raw = !(E.appended_base64 && attr(conn_tag, "format") == "appended") &&
+                        array_bytes(E, xml, conn_tag, conn_bytes, conn_elem) &&
+                        conn_elem.kind != 'f';
+  const std::vector<double> conn = conn_raw ? std::vector<double>() : read_one(conn_tag);
+  const std::size_t nconn =
+      conn_raw ? conn_bytes.size() / std::size_t(conn_elem.bytes) : conn.size();
   const std::vector<double> offs = array("Cells", "offsets");
   const std::vector<double> types = array("Cells", "types");
   if (xyz.size() % 3) parse_fail(name, 0, "Points must have 3 components");
@@ -462,19 +484,66 @@ Mesh parse_vtu(const std::string& bytes, const std::string& name) {
     bad_type = std::max(bad_type, int(types[std::size_t(i)] != double(want_type)));
   if (bad_type)
     parse_fail(name, 0, "mixed or unsupported VTK cell types (expected all 5 or all 10)");
-  if (conn.size() != nc * std::size_t(k))
+  if (nconn != nc * std::size_t(k))
     parse_fail(name, 0, "connectivity length does not match the cells");
 #pragma omp parallel for schedule(static) reduction(max : bad_offset) if (nc > 65536)
   for (std::int64_t i = 0; i < std::int64_t(nc); ++i)
     bad_offset = std::max(bad_offset, int(offs[std::size_t(i)] != double((i + 1) * k)));
   if (bad_offset) parse_fail(name, 0, "unexpected offsets");
-  m.cells.resize(conn.size());
-#pragma omp parallel for schedule(static) reduction(max : bad_vertex) if (conn.size() > 65536)
-  for (std::int64_t i = 0; i < std::int64_t(conn.size()); ++i) {
-    const double c = conn[std::size_t(i)];
-    const bool ok = c >= 0 && c < double(nv);
-    bad_vertex = std::max(bad_vertex, int(!ok));
-    m.cells[std::size_t(i)] = ok ? std::int32_t(c) : 0;
+  m.cells.resize(nconn);
+  if (conn_raw) {
+    const auto* p = reinterpret_cast<const unsigned char*>(conn_bytes.data());
+    const Elem ce = conn_elem;
+    const bool big = E.big;
+    auto convert = [&](auto zero) {
+      using T = decltype(zero);
+      constexpr std::size_t w = sizeof(T);
+#pragma omp parallel for schedule(static) reduction(max : bad_vertex) if (nconn > 65536)
+      for (std::int64_t i = 0; i < std::int64_t(nconn); ++i) {
+        unsigned char b[w];
+        const unsigned char* q = p + std::size_t(i) * w;
+        for (std::size_t j = 0; j < w; ++j) b[j] = big ? q[w - 1 - j] : q[j];
+        T v;
+        std::memcpy(&v, b, w);
+        const bool ok = v >= T(0) && std::uint64_t(v) < std::uint64_t(nv);
+        bad_vertex = std::max(bad_vertex, int(!ok));
+        m.cells[std::size_t(i)] = ok ? std::int32_t(v) : 0;
+      }
+    };
+    switch (ce.kind * 16 + ce.bytes) {
+      case 'i' * 16 + 1:
+        convert(std::int8_t{});
+        break;
+      case 'u' * 16 + 1:
+        convert(std::uint8_t{});
+        break;
+      case 'i' * 16 + 2:
+        convert(std::int16_t{});
+        break;
+      case 'u' * 16 + 2:
+        convert(std::uint16_t{});
+        break;
+      case 'i' * 16 + 4:
+        convert(std::int32_t{});
+        break;
+      case 'u' * 16 + 4:
+        convert(std::uint32_t{});
+        break;
+      case 'i' * 16 + 8:
+        convert(std::int64_t{});
+        break;
+      default:
+        convert(std::uint64_t{});
+        break;
+    }
+  } else {
+#pragma omp parallel for schedule(static) reduction(max : bad_vertex) if (nconn > 65536)
+    for (std::int64_t i = 0; i < std::int64_t(nconn); ++i) {
+      const double c = conn[std::size_t(i)];
+      const bool ok = c >= 0 && c < double(nv);
+      bad_vertex = std::max(bad_vertex, int(!ok));
+      m.cells[std::size_t(i)] = ok ? std::int32_t(c) : 0;
+    }
   }
   if (bad_vertex) parse_fail(name, 0, "connectivity refers to a missing point");
 #pragma omp parallel for schedule(static) reduction(max : not_flat) if (nv > 65536)
