@@ -53,7 +53,7 @@ class Delaunay(_OfPoints):
     Attributes
     ----------
     points, simplices, neighbors, vertex_to_simplex, vertex_neighbor_vertices, convex_hull,
-    coplanar, ndim, npoints, nsimplex, stats, duplicate_of.  Duplicate points are not vertices; they are listed in ``coplanar`` as
+    coplanar, transform, ndim, npoints, nsimplex, stats, duplicate_of.  Duplicate points are not vertices; they are listed in ``coplanar`` as
     SciPy lists the points Qhull left out: ``[point, simplex, vertex it coincides with]``.
     """
 
@@ -113,6 +113,23 @@ class Delaunay(_OfPoints):
         a = s[tri, (k + 1) % 3]
         b = s[tri, (k + 2) % 3]
         return self._back(xp.stack([a, b], axis=1).astype(xp.int32))
+
+    @cached_property
+    def transform(self):
+        """Affine transforms to barycentric coordinates, as SciPy's: for simplex i,
+        ``c = transform[i, :ndim] @ (x - transform[i, ndim])`` gives the first ndim barycentric
+        coordinates of x (the last is 1 - sum(c)); shape (nsimplex, ndim + 1, ndim), float64.
+        Every simplex has positive volume, so none is singular."""
+        xp = self._xp()
+        p = self._as_xp(self.points)
+        s = self._as_xp(self.simplices)
+        d = self.ndim
+        last = p[s[:, d]]
+        t = xp.stack([p[s[:, k]] - last for k in range(d)], axis=2)  # columns v_k - v_d
+        out = xp.empty((s.shape[0], d + 1, d), dtype=xp.float64)
+        out[:, :d, :] = xp.linalg.inv(t)
+        out[:, d, :] = last
+        return self._back(out)
 
     @cached_property
     def vertex_neighbor_vertices(self):

@@ -56,6 +56,27 @@ def test_delaunay3d_equals_scipy(backend, rng):
     assert all(i in g.simplices[vts[i]] for i in range(len(p)))
 
 
+def test_transform_as_scipy(backend, rng):
+    for d in (2, 3):
+        p = rng.random((300, d))
+        g = gpugeom.Delaunay(p, backend=backend)
+        s = ss.Delaunay(p)
+        # the same simplex (as a vertex set) gets the same barycentric map, up to the order of
+        # its vertices: compare the barycentric coordinates of random points per vertex
+        order = {tuple(sorted(t)): i for i, t in enumerate(s.simplices.tolist())}
+        q = rng.random((50, d))
+        for i in range(0, g.nsimplex, 17):
+            j = order[tuple(sorted(g.simplices[i].tolist()))]
+            def bary(T, x):
+                c = T[:d] @ (x - T[d])
+                return np.append(c, 1 - c.sum())
+            for x in q[:5]:
+                a = dict(zip(g.simplices[i].tolist(), bary(g.transform[i], x)))
+                b = dict(zip(s.simplices[j].tolist(), bary(s.transform[j], x)))
+                for v in a:
+                    assert a[v] == pytest.approx(b[v], rel=1e-9, abs=1e-9)
+
+
 def test_find_simplex_2d_and_3d(backend, rng):
     for d in (2, 3):
         p = rng.random((500, d))
