@@ -122,6 +122,16 @@ struct DeviceVoronoi2d {
 DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
                                  const DeviceTriangulation2d& tri, const RunOptions& run = {});
 
+// The extreme points of a 2D triangulation's point set in counter-clockwise order, read from its
+// boundary (neighbors -1): points on a hull edge between its ends are left out (exact
+// orientation), as only extreme points are hull vertices. triangles / neighbors: 3 per triangle,
+// counter-clockwise, as delaunay2d returns them. Throws Error(InvalidArgument) when the boundary
+// is not one cycle.
+HostVector<std::int32_t> convex_hull2d_vertices(const double* xy, std::int64_t n,
+                                                const std::int32_t* triangles,
+                                                const std::int32_t* neighbors,
+                                                std::int64_t num_triangles);
+
 // Voronoi cells clipped to a box [xmin, xmax] x [ymin, ymax] that contains every input point:
 // each cell as a closed counter-clockwise polygon (x, y interleaved).
 struct ClippedCells {

@@ -247,30 +247,55 @@ class Voronoi(_OfPoints):
 
 
 class ConvexHull(_OfPoints):
-    """Exact convex hull of 3D points (``scipy.spatial.ConvexHull``): only extreme points are
-    vertices (points inside a face or on an edge are not), facets counter-clockwise seen from
-    outside, flat faces triangulated.
+    """Exact convex hull of 2D or 3D points (``scipy.spatial.ConvexHull``): only extreme points
+    are vertices (points inside a face or on an edge are not).
+
+    3D: facets counter-clockwise seen from outside, flat faces triangulated. 2D: the hull of the
+    exact Delaunay triangulation's boundary; ``vertices`` counter-clockwise (as SciPy's),
+    ``simplices`` its edges, ``area`` the perimeter and ``volume`` the enclosed area (SciPy's
+    convention in 2D).
 
     Attributes
     ----------
-    points, simplices, neighbors, vertices (sorted), equations (unit outward normal and offset,
-    as Qhull's), area, volume, ndim, npoints, nsimplex, coplanar (always empty: no point is
-    dropped for precision), stats.
+    points, simplices, neighbors, vertices, equations (unit outward normal and offset, as
+    Qhull's), area, volume, ndim, npoints, nsimplex, coplanar (always empty: no point is dropped
+    for precision), stats.
     """
 
     def __init__(self, points, incremental: bool = False, qhull_options: Optional[str] = None, *,
                  backend: str = "auto", threads: int = 0):
         _not_supported("incremental", incremental, False)
         arr, kind = self._take_points(points, (2, 3), backend, threads)
-        if arr.shape[1] != 3:
-            raise ValueError("gpugeom.ConvexHull computes 3D hulls; for 2D points the hull is "
-                             "gpugeom.Delaunay(points).convex_hull")
+        self.coplanar = np.zeros((0, 3), dtype=np.int32)
+        if self.ndim == 2:
+            self._hull2d(arr, kind, backend, threads)
+            return
         r = _core.convex_hull3d(arr, backend=backend, stream=kind.stream, threads=threads)
         self.simplices = kind.back(r["simplices"])
         self.neighbors = kind.back(r["neighbors"])
         self.vertices = kind.back(r["vertices"])
         self.equations = kind.back(r["equations"])
-        self.coplanar = np.zeros((0, 3), dtype=np.int32)
+        self.stats = r["stats"]
+
+    def _hull2d(self, arr, kind, backend, threads):
+        r = _core.delaunay2d(arr, backend=backend, stream=kind.stream, threads=threads)
+        host = np.ascontiguousarray(_arrays.to_host(arr), dtype=np.float64)
+        v = np.asarray(_core.hull2d_vertices(host, np.asarray(_arrays.to_host(kind.back(r["simplices"]))),
+                                             np.asarray(_arrays.to_host(kind.back(r["neighbors"])))))
+        h = len(v)
+        edges = np.stack([v, np.roll(v, -1)], axis=1).astype(np.int32)
+        a, b = host[edges[:, 0]], host[edges[:, 1]]
+        d = b - a
+        length = np.hypot(d[:, 0], d[:, 1])
+        normal = np.stack([d[:, 1], -d[:, 0]], axis=1) / length[:, None]  # outward: CCW hull
+        eq = np.column_stack([normal, -(normal * a).sum(axis=1)])
+        nbr = np.stack([(np.arange(h) + 1) % h, (np.arange(h) - 1) % h], axis=1).astype(np.int32)
+        xp = kind.xp()
+        put = (lambda x: kind.from_xp(xp.asarray(x))) if kind.device else kind.from_xp
+        self.simplices, self.neighbors = put(edges), put(nbr)
+        self.vertices, self.equations = put(v.astype(np.int32)), put(eq)
+        self._perimeter = float(length.sum())
+        self._area2d = float(0.5 * (a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]).sum())
         self.stats = r["stats"]
 
     @property
@@ -285,11 +310,15 @@ class ConvexHull(_OfPoints):
 
     @cached_property
     def area(self) -> float:
+        if self.ndim == 2:
+            return self._perimeter
         a, b, c = self._facets()
         return float(0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
 
     @cached_property
     def volume(self) -> float:
+        if self.ndim == 2:
+            return self._area2d
         a, b, c = self._facets()
         return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 

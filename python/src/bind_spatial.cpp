@@ -220,6 +220,22 @@ nb::object find_simplex_bind(const AnyArray& points, const AnyArray& simplices,
   return host_array(std::move(r), {sz(q.shape[0])});
 }
 
+// The extreme points of a 2D Delaunay triangulation's points, counter-clockwise (host arrays).
+nb::object hull2d_bind(const AnyArray& points, const AnyArray& simplices,
+                       const AnyArray& neighbors) {
+  Input p = inspect(points, "points");
+  if (p.on_device || !holds<double>(p) || p.shape.size() != 2 || p.shape[1] != 2)
+    throw nb::value_error("points must be a host float64 array of shape (n, 2)");
+  std::int64_t ns = 0, nn = 0;
+  const std::int32_t* s = cells_of(simplices, "simplices", 3, &ns);
+  const std::int32_t* nb_ = cells_of(neighbors, "neighbors", 3, &nn);
+  if (ns != nn) throw nb::value_error("simplices and neighbors differ in length");
+  HostVector<std::int32_t> v =
+      unlocked([&] { return convex_hull2d_vertices(pts(p), p.shape[0], s, nb_, ns); });
+  const sz h = v.size();
+  return host_array(std::move(v), {h});
+}
+
 // The independent exact checkers (src/verify), for tests and for users who want proof.
 std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray& points,
                                         const AnyArray& cells, nb::object duplicate_of) {
@@ -269,6 +285,7 @@ void bind_spatial(nb::module_& m) {
         "threads"_a = 0, "progress"_a = nb::none());
   m.def("find_simplex", &find_simplex_bind, "points"_a, "simplices"_a, "neighbors"_a, "xi"_a,
         "threads"_a = 0);
+  m.def("hull2d_vertices", &hull2d_bind, "points"_a, "simplices"_a, "neighbors"_a);
   m.def("check", &check_bind, "what"_a, "points"_a, "simplices"_a, "duplicate_of"_a = nb::none());
 }
 

@@ -16,8 +16,6 @@ def test_shape_and_dtype_errors():
         gpugeom.Delaunay(np.zeros((5, 2), dtype=complex))
     with pytest.raises(ValueError, match="backend"):
         gpugeom.Delaunay(np.random.random((10, 2)), backend="gpu")
-    with pytest.raises(ValueError, match="3D hulls"):
-        gpugeom.ConvexHull(np.random.random((10, 2)))
     with pytest.raises(ValueError, match=r"got \(\)"):
         gpugeom.Delaunay(np.float64(3))
     with pytest.raises(gpugeom.DegenerateInputError, match="fewer than 3"):

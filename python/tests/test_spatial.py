@@ -170,6 +170,30 @@ def test_convex_hull_equals_scipy(shape, backend, rng):
     assert ok, msg
 
 
+def test_convex_hull_2d_equals_scipy(backend, rng):
+    for p in (rng.random((5000, 2)), rng.normal(size=(20000, 2))):
+        g = gpugeom.ConvexHull(p, backend=backend)
+        s = ss.ConvexHull(p)
+        # the same vertices, counter-clockwise, up to where the cycle starts
+        v = list(g.vertices)
+        k = v.index(s.vertices[0])
+        assert v[k:] + v[:k] == list(s.vertices)
+        assert {tuple(sorted(e)) for e in g.simplices.tolist()} == \
+            {tuple(sorted(e)) for e in s.simplices.tolist()}
+        np.testing.assert_allclose(g.area, s.area, rtol=1e-12)
+        np.testing.assert_allclose(g.volume, s.volume, rtol=1e-12)
+        assert (p @ g.equations[:, :2].T + g.equations[:, 2]).max() < 1e-12
+        for i in range(g.nsimplex):  # neighbors: the facet opposite vertex k shares the other
+            for k in range(2):
+                other = g.simplices[i, 1 - k]
+                assert other in g.simplices[g.neighbors[i, k]]
+    # collinear points on hull edges are not vertices (exact), a square grid has 4
+    x, y = np.meshgrid(np.arange(10.0), np.arange(7.0))
+    sq = gpugeom.ConvexHull(np.column_stack([x.ravel(), y.ravel()]), backend=backend)
+    assert sorted(sq.vertices.tolist()) == [0, 9, 60, 69]
+    assert sq.volume == 54.0 and sq.area == 30.0
+
+
 def test_convex_hull_degenerate_cube_grid(backend):
     g3 = np.stack(np.meshgrid(*[np.arange(6.0)] * 3), -1).reshape(-1, 3)
     h = gpugeom.ConvexHull(g3, backend=backend)

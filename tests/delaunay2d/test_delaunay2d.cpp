@@ -3,6 +3,7 @@
 #include <array>
 
 #include "../common/caller_arrays.hpp"
+#include "gpugeom/predicates.hpp"
 #include "../common/on_host_threads.hpp"
 #include "del2d_cases.hpp"
 
@@ -331,4 +332,27 @@ TEST(Delaunay2d, VoronoiDeviceEntry) {
     EXPECT_EQ(both.cell_vertices, ref.cell_vertices);
   }
   EXPECT_THROW((void)voronoi2d(nullptr, 2, cpu()), Error);
+}
+
+// The hull from the triangulation's boundary: counter-clockwise, only extreme points (the
+// collinear boundary points of a grid are vertices of the triangulation, not of the hull), every
+// point inside or on it (exact orientation).
+TEST(Delaunay2d, ConvexHullVertices) {
+  for (const char* d : {"grid", "circle", "uniform"}) {
+    SCOPED_TRACE(d);
+    const auto p = generate2d(d, 3000, 8);
+    const double* xy = &p.data()->x;
+    const auto t = delaunay2d(p, cpu());
+    const auto v = convex_hull2d_vertices(xy, std::int64_t(p.size()), t.triangles.data(),
+                                          t.neighbors.data(), t.triangle_count);
+    const std::size_t h = v.size();
+    ASSERT_GE(h, 3u);
+    if (std::string(d) == "grid") EXPECT_EQ(h, 4u);
+    for (std::size_t i = 0; i < h; ++i) {
+      const Point2 a = p[std::size_t(v[i])], b = p[std::size_t(v[(i + 1) % h])],
+                   c = p[std::size_t(v[(i + 2) % h])];
+      EXPECT_GT(orient2d(a, b, c), 0) << "vertex not extreme or not counter-clockwise";
+      for (std::size_t j = 0; j < p.size(); j += 7) EXPECT_GE(orient2d(a, b, p[j]), 0);
+    }
+  }
 }
