@@ -144,44 +144,53 @@ Elem elem_of(std::string_view type, const std::string& name) {
   parse_fail(name, 0, "unsupported DataArray type '" + std::string(type) + "'");
 }
 
-// n elements of raw bytes as doubles: the type decided once, not per element; big-endian files
-// swapped; on all host threads for large arrays.
-void elem_values(const unsigned char* p, std::size_t n, const Elem& e, bool big, double* out) {
-  auto run = [&](auto zero) {
-    using T = decltype(zero);
-    constexpr std::size_t w = sizeof(T);
-#pragma omp parallel for schedule(static) if (n > (std::size_t(1) << 16))
-    for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
-      unsigned char b[w];
-      const unsigned char* q = p + std::size_t(i) * w;
-      for (std::size_t k = 0; k < w; ++k) b[k] = big ? q[w - 1 - k] : q[k];
-      T v;
-      std::memcpy(&v, b, w);
-      out[i] = double(v);
-    }
-  };
+// f(T{}) with T the C++ type of a VTK element type (the type decided once, not per element).
+template <class F>
+void visit_elem(const Elem& e, F&& f) {
   switch (e.kind * 16 + e.bytes) {
     case 'i' * 16 + 1:
-      return run(std::int8_t{});
+      return f(std::int8_t{});
     case 'u' * 16 + 1:
-      return run(std::uint8_t{});
+      return f(std::uint8_t{});
     case 'i' * 16 + 2:
-      return run(std::int16_t{});
+      return f(std::int16_t{});
     case 'u' * 16 + 2:
-      return run(std::uint16_t{});
+      return f(std::uint16_t{});
     case 'i' * 16 + 4:
-      return run(std::int32_t{});
+      return f(std::int32_t{});
     case 'u' * 16 + 4:
-      return run(std::uint32_t{});
+      return f(std::uint32_t{});
     case 'i' * 16 + 8:
-      return run(std::int64_t{});
+      return f(std::int64_t{});
     case 'u' * 16 + 8:
-      return run(std::uint64_t{});
+      return f(std::uint64_t{});
     case 'f' * 16 + 4:
-      return run(float{});
+      return f(float{});
     default:
-      return run(double{});
+      return f(double{});
   }
+}
+
+// Element i of type T from raw bytes, big-endian files swapped.
+template <class T>
+T elem_at(const unsigned char* p, std::size_t i, bool big) {
+  constexpr std::size_t w = sizeof(T);
+  unsigned char b[w];
+  const unsigned char* q = p + i * w;
+  for (std::size_t k = 0; k < w; ++k) b[k] = big ? q[w - 1 - k] : q[k];
+  T v;
+  std::memcpy(&v, b, w);
+  return v;
+}
+
+// n elements of raw bytes as doubles, on all host threads for large arrays.
+void elem_values(const unsigned char* p, std::size_t n, const Elem& e, bool big, double* out) {
+  visit_elem(e, [&](auto zero) {
+    using T = decltype(zero);
+#pragma omp parallel for schedule(static) if (n > (std::size_t(1) << 16))
+    for (std::int64_t i = 0; i < std::int64_t(n); ++i)
+      out[i] = double(elem_at<T>(p, std::size_t(i), big));
+  });
 }
 
 // ---- the file's encoding settings ----
@@ -493,49 +502,17 @@ Mesh parse_vtu(const std::string& bytes, const std::string& name) {
   m.cells.resize(nconn);
   if (conn_raw) {
     const auto* p = reinterpret_cast<const unsigned char*>(conn_bytes.data());
-    const Elem ce = conn_elem;
     const bool big = E.big;
-    auto convert = [&](auto zero) {
+    visit_elem(conn_elem, [&](auto zero) {  // (an integer type: floats take the other branch)
       using T = decltype(zero);
-      constexpr std::size_t w = sizeof(T);
 #pragma omp parallel for schedule(static) reduction(max : bad_vertex) if (nconn > 65536)
       for (std::int64_t i = 0; i < std::int64_t(nconn); ++i) {
-        unsigned char b[w];
-        const unsigned char* q = p + std::size_t(i) * w;
-        for (std::size_t j = 0; j < w; ++j) b[j] = big ? q[w - 1 - j] : q[j];
-        T v;
-        std::memcpy(&v, b, w);
-        const bool ok = v >= T(0) && std::uint64_t(v) < std::uint64_t(nv);
+        const T v = elem_at<T>(p, std::size_t(i), big);
+        const bool ok = v >= T(0) && double(v) < double(nv);
         bad_vertex = std::max(bad_vertex, int(!ok));
         m.cells[std::size_t(i)] = ok ? std::int32_t(v) : 0;
       }
-    };
-    switch (ce.kind * 16 + ce.bytes) {
-      case 'i' * 16 + 1:
-        convert(std::int8_t{});
-        break;
-      case 'u' * 16 + 1:
-        convert(std::uint8_t{});
-        break;
-      case 'i' * 16 + 2:
-        convert(std::int16_t{});
-        break;
-      case 'u' * 16 + 2:
-        convert(std::uint16_t{});
-        break;
-      case 'i' * 16 + 4:
-        convert(std::int32_t{});
-        break;
-      case 'u' * 16 + 4:
-        convert(std::uint32_t{});
-        break;
-      case 'i' * 16 + 8:
-        convert(std::int64_t{});
-        break;
-      default:
-        convert(std::uint64_t{});
-        break;
-    }
+    });
   } else {
 #pragma omp parallel for schedule(static) reduction(max : bad_vertex) if (nconn > 65536)
     for (std::int64_t i = 0; i < std::int64_t(nconn); ++i) {
