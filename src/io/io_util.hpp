@@ -239,4 +239,50 @@ std::string format_lines(std::size_t n, std::size_t bytes_per_line, F line) {
   return out;
 }
 
+// A binary element type as the mesh formats declare them (VTU's Int32, VTK's int, ...): its size
+// and kind ('i' signed, 'u' unsigned, 'f' float).
+struct NumType {
+  int bytes = 0;
+  char kind = 0;
+};
+
+// f(T{}) with T the C++ type of a binary element type (the type decided once, not per element).
+template <class F>
+void visit_num(const NumType& e, F&& f) {
+  switch (e.kind * 16 + e.bytes) {
+    case 'i' * 16 + 1:
+      return f(std::int8_t{});
+    case 'u' * 16 + 1:
+      return f(std::uint8_t{});
+    case 'i' * 16 + 2:
+      return f(std::int16_t{});
+    case 'u' * 16 + 2:
+      return f(std::uint16_t{});
+    case 'i' * 16 + 4:
+      return f(std::int32_t{});
+    case 'u' * 16 + 4:
+      return f(std::uint32_t{});
+    case 'i' * 16 + 8:
+      return f(std::int64_t{});
+    case 'u' * 16 + 8:
+      return f(std::uint64_t{});
+    case 'f' * 16 + 4:
+      return f(float{});
+    default:
+      return f(double{});
+  }
+}
+
+// Element i of type T from raw bytes, big-endian files swapped.
+template <class T>
+T num_at(const unsigned char* p, std::size_t i, bool big) {
+  constexpr std::size_t w = sizeof(T);
+  unsigned char b[w];
+  const unsigned char* q = p + i * w;
+  for (std::size_t k = 0; k < w; ++k) b[k] = big ? q[w - 1 - k] : q[k];
+  T v;
+  std::memcpy(&v, b, w);
+  return v;
+}
+
 }  // namespace gpugeom::io::detail

@@ -26,6 +26,7 @@ struct VtkType {
   ScalarType as;  // how Mesh keeps it
   int bytes;
   char kind;  // 'i' signed, 'u' unsigned, 'f' float
+  NumType num() const { return {bytes, kind}; }
 };
 
 bool vtk_type(std::string_view s, VtkType& t) {
@@ -95,13 +96,12 @@ class Cursor {
     std::vector<double> v(static_cast<std::size_t>(n));
     if (binary) {
       const auto* p = reinterpret_cast<const unsigned char*>(b_.data()) + pos_;
+      visit_num(t.num(), [&](auto zero) {  // (BINARY legacy files are big-endian)
+        using T = decltype(zero);
 #pragma omp parallel for schedule(static) if (n > 65536)
-      for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
-        unsigned char be[8], le[8];
-        std::memcpy(be, p + std::size_t(i) * std::size_t(t.bytes), std::size_t(t.bytes));
-        for (int k = 0; k < t.bytes; ++k) le[k] = be[t.bytes - 1 - k];
-        v[std::size_t(i)] = decode(le, t);
-      }
+        for (std::int64_t i = 0; i < std::int64_t(n); ++i)
+          v[std::size_t(i)] = double(num_at<T>(p, std::size_t(i), true));
+      });
       pos_ += std::size_t(n) * std::size_t(t.bytes);
       return v;
     }
@@ -128,34 +128,6 @@ class Cursor {
   }
 
  private:
-  static double decode(const unsigned char* p, const VtkType& t) {
-    auto as = [&](auto x) {
-      std::memcpy(&x, p, sizeof x);
-      return double(x);
-    };
-    switch (t.kind * 16 + t.bytes) {
-      case 'i' * 16 + 1:
-        return as(std::int8_t());
-      case 'u' * 16 + 1:
-        return as(std::uint8_t());
-      case 'i' * 16 + 2:
-        return as(std::int16_t());
-      case 'u' * 16 + 2:
-        return as(std::uint16_t());
-      case 'i' * 16 + 4:
-        return as(std::int32_t());
-      case 'u' * 16 + 4:
-        return as(std::uint32_t());
-      case 'i' * 16 + 8:
-        return as(std::int64_t());
-      case 'u' * 16 + 8:
-        return as(std::uint64_t());
-      case 'f' * 16 + 4:
-        return as(float());
-      default:
-        return as(double());
-    }
-  }
   std::string_view b_;
   const std::string* name_;
   std::size_t pos_ = 0;

@@ -125,10 +125,7 @@ std::string_view attr(const Tag& t, std::string_view key) {
 
 // ---- element types ----
 
-struct Elem {
-  int bytes = 0;
-  char kind = 0;  // 'i' signed, 'u' unsigned, 'f' float
-};
+using Elem = NumType;
 Elem elem_of(std::string_view type, const std::string& name) {
   static const struct {
     const char* n;
@@ -144,52 +141,13 @@ Elem elem_of(std::string_view type, const std::string& name) {
   parse_fail(name, 0, "unsupported DataArray type '" + std::string(type) + "'");
 }
 
-// f(T{}) with T the C++ type of a VTK element type (the type decided once, not per element).
-template <class F>
-void visit_elem(const Elem& e, F&& f) {
-  switch (e.kind * 16 + e.bytes) {
-    case 'i' * 16 + 1:
-      return f(std::int8_t{});
-    case 'u' * 16 + 1:
-      return f(std::uint8_t{});
-    case 'i' * 16 + 2:
-      return f(std::int16_t{});
-    case 'u' * 16 + 2:
-      return f(std::uint16_t{});
-    case 'i' * 16 + 4:
-      return f(std::int32_t{});
-    case 'u' * 16 + 4:
-      return f(std::uint32_t{});
-    case 'i' * 16 + 8:
-      return f(std::int64_t{});
-    case 'u' * 16 + 8:
-      return f(std::uint64_t{});
-    case 'f' * 16 + 4:
-      return f(float{});
-    default:
-      return f(double{});
-  }
-}
-
-// Element i of type T from raw bytes, big-endian files swapped.
-template <class T>
-T elem_at(const unsigned char* p, std::size_t i, bool big) {
-  constexpr std::size_t w = sizeof(T);
-  unsigned char b[w];
-  const unsigned char* q = p + i * w;
-  for (std::size_t k = 0; k < w; ++k) b[k] = big ? q[w - 1 - k] : q[k];
-  T v;
-  std::memcpy(&v, b, w);
-  return v;
-}
-
 // n elements of raw bytes as doubles, on all host threads for large arrays.
 void elem_values(const unsigned char* p, std::size_t n, const Elem& e, bool big, double* out) {
-  visit_elem(e, [&](auto zero) {
+  visit_num(e, [&](auto zero) {
     using T = decltype(zero);
 #pragma omp parallel for schedule(static) if (n > (std::size_t(1) << 16))
     for (std::int64_t i = 0; i < std::int64_t(n); ++i)
-      out[i] = double(elem_at<T>(p, std::size_t(i), big));
+      out[i] = double(num_at<T>(p, std::size_t(i), big));
   });
 }
 
@@ -503,11 +461,11 @@ Mesh parse_vtu(const std::string& bytes, const std::string& name) {
   if (conn_raw) {
     const auto* p = reinterpret_cast<const unsigned char*>(conn_bytes.data());
     const bool big = E.big;
-    visit_elem(conn_elem, [&](auto zero) {  // (an integer type: floats take the other branch)
+    visit_num(conn_elem, [&](auto zero) {  // (an integer type: floats take the other branch)
       using T = decltype(zero);
 #pragma omp parallel for schedule(static) reduction(max : bad_vertex) if (nconn > 65536)
       for (std::int64_t i = 0; i < std::int64_t(nconn); ++i) {
-        const T v = elem_at<T>(p, std::size_t(i), big);
+        const T v = num_at<T>(p, std::size_t(i), big);
         const bool ok = v >= T(0) && double(v) < double(nv);
         bad_vertex = std::max(bad_vertex, int(!ok));
         m.cells[std::size_t(i)] = ok ? std::int32_t(v) : 0;

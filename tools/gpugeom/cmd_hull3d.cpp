@@ -29,8 +29,8 @@ int cmd_hull3d(const Global& g, Args& a) {
     std::cout << kHelp;
     return kOk;
   }
-  PointsToMesh job =
-      points_to_mesh(g, a, "hull3d", {".ply", ".off", ".obj", ".vtu", ".vtk", ".npy"}, "for a hull");
+  PointsToMesh job = points_to_mesh(g, a, "hull3d",
+                                    {".ply", ".off", ".obj", ".vtu", ".vtk", ".npy"}, "for a hull");
   const io::PointSet& p = job.p;
   const std::string& out = job.out;
   const std::string& ext = job.ext;
