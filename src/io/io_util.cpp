@@ -97,6 +97,11 @@ void write_file_atomic(const std::string& path, const std::string& bytes) {
   f.write(bytes.data(), bytes.size());
   f.commit();
 }
+void write_file_atomic(const std::string& path, const Text& text) {
+  AtomicFile f(path);
+  for (const std::string& s : text.pieces()) f.write(s.data(), s.size());
+  f.commit();
+}
 
 int host_threads() {
 #ifdef _OPENMP
@@ -149,20 +154,22 @@ bool Lines::next(std::string_view& line, bool skip_comments) {
   return false;
 }
 
-std::vector<std::string_view> split(std::string_view line, bool commas) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  auto sep = [&](char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || (commas && c == ',');
-  };
-  while (i < line.size()) {
-    while (i < line.size() && sep(line[i])) ++i;
-    std::size_t j = i;
-    while (j < line.size() && !sep(line[j])) ++j;
-    if (j > i) out.push_back(line.substr(i, j - i));
-    i = j;
-  }
+Tokens split(std::string_view line, bool commas) {
+  Tokens out;
+  std::string_view t;
+  for (std::size_t pos = 0; next_token(line, pos, t, commas);) out.push(t);
   return out;
+}
+
+void Tokens::drop_front() {
+  if (n_ == 0) return;
+  if (n_ <= kInline) {
+    std::copy(in_ + 1, in_ + n_, in_);
+  } else {
+    more_.erase(more_.begin());
+    if (n_ - 1 == kInline) std::copy(more_.begin(), more_.end(), in_);  // back in place
+  }
+  --n_;
 }
 
 bool to_double(std::string_view s, double& v) {
@@ -188,7 +195,7 @@ std::int64_t need_int(const Lines& l, std::string_view s, const char* what) {
   return v;
 }
 
-std::string format_vertex_lines(const double* coords, int dim, std::size_t n, const char* prefix) {
+Text format_vertex_lines(const double* coords, int dim, std::size_t n, const char* prefix) {
   const std::size_t dm = std::size_t(dim);
   return format_lines(n, 80, [&](std::size_t i, std::string& o) {
     o += prefix;
@@ -200,8 +207,8 @@ std::string format_vertex_lines(const double* coords, int dim, std::size_t n, co
   });
 }
 
-std::string format_cell_lines(const std::int32_t* cells, int k, std::size_t n, const char* lead,
-                              bool number_cells, int base) {
+Text format_cell_lines(const std::int32_t* cells, int k, std::size_t n, const char* lead,
+                       bool number_cells, int base) {
   const std::size_t kk = std::size_t(k);
   return format_lines(n, 12 * kk + 12, [&](std::size_t c, std::string& o) {
     if (number_cells)

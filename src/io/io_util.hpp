@@ -2,6 +2,7 @@
 // that knows where it is for error messages, and number parsing.
 #pragma once
 #include <algorithm>
+#include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -50,8 +51,50 @@ class AtomicFile {
   std::string path_, tmp_;
   std::FILE* f_ = nullptr;
 };
+// Text in pieces, kept in order: what the text writers produce, written to the file piece by
+// piece, so a large file is never joined into one string (a serial zero-fill and copy of its
+// whole size before the first byte is written). Short appends go onto the last piece while it
+// is short; long pieces (a section formatted on all threads) are moved in whole.
+class Text {
+ public:
+  Text() = default;
+  Text(std::string s) { *this += std::move(s); }  // NOLINT: a string is one piece of text
+  Text(const char* s) : Text(std::string(s)) {}   // NOLINT
+  Text& operator+=(std::string s) {
+    constexpr std::size_t kShort = std::size_t(1) << 16;
+    if (s.empty()) return *this;
+    if (!p_.empty() && p_.back().size() < kShort && s.size() < kShort)
+      p_.back() += s;
+    else
+      p_.push_back(std::move(s));
+    return *this;
+  }
+  Text& operator+=(const char* s) { return *this += std::string(s); }
+  Text& operator+=(char c) { return *this += std::string(1, c); }
+  Text& operator+=(Text t) {
+    for (std::string& s : t.p_) *this += std::move(s);
+    return *this;
+  }
+  std::size_t size() const {
+    std::size_t n = 0;
+    for (const std::string& s : p_) n += s.size();
+    return n;
+  }
+  std::string str() const {  // joined, for callers that need one string
+    std::string o;
+    o.reserve(size());
+    for (const std::string& s : p_) o += s;
+    return o;
+  }
+  const std::vector<std::string>& pieces() const { return p_; }
+
+ private:
+  std::vector<std::string> p_;
+};
+
 // Writes bytes to path through an AtomicFile.
 void write_file_atomic(const std::string& path, const std::string& bytes);
+void write_file_atomic(const std::string& path, const Text& text);
 
 [[noreturn]] void parse_fail(const std::string& name, std::int64_t line, const std::string& what);
 
@@ -166,8 +209,96 @@ void read_records(Lines& l, std::string_view text, std::int64_t count, int per, 
   if (found < count) l.fail(short_message(found));
 }
 
+// The tokens of a line: the first kInline stored in place, so the parsers' hot loops (one
+// split per line, on every host thread) do not allocate; longer lines spill to a vector.
+class Tokens {
+ public:
+  std::size_t size() const { return n_; }
+  bool empty() const { return n_ == 0; }
+  std::string_view operator[](std::size_t i) const { return data()[i]; }
+  const std::string_view* begin() const { return data(); }
+  const std::string_view* end() const { return data() + n_; }
+  void push(std::string_view s) {
+    if (n_ < kInline) {
+      in_[n_++] = s;
+      return;
+    }
+    if (n_ == kInline) more_.assign(in_, in_ + kInline);
+    more_.push_back(s);
+    ++n_;
+  }
+  void drop_front();
+
+ private:
+  static constexpr std::size_t kInline = 12;
+  const std::string_view* data() const { return n_ <= kInline ? in_ : more_.data(); }
+  std::string_view in_[kInline];
+  std::vector<std::string_view> more_;  // all tokens, once there are more than kInline
+  std::size_t n_ = 0;
+};
+
+// The next token of s from pos on (separators: spaces, tabs, line ends and, when commas is
+// true, commas); false when none is left. pos moves past it.
+inline bool next_token(std::string_view s, std::size_t& pos, std::string_view& tok,
+                       bool commas = false) {
+  auto sep = [&](char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || (commas && c == ',');
+  };
+  std::size_t i = pos;
+  while (i < s.size() && sep(s[i])) ++i;
+  std::size_t j = i;
+  while (j < s.size() && !sep(s[j])) ++j;
+  pos = j;
+  if (j == i) return false;
+  tok = s.substr(i, j - i);
+  return true;
+}
+
+// The parsers' fast path: numbers read straight from a line, token by token, with no token
+// list in between. Each call takes the next token only when it is a whole number as
+// to_double / to_int64 read it; otherwise it returns false and the caller takes its split()
+// path, which produces the exact error message (so the messages do not depend on the path).
+class Scan {
+ public:
+  explicit Scan(std::string_view s, bool commas = false) : s_(s), commas_(commas) {}
+  template <class T>
+  bool next(T& v) {
+    skip();
+    const char* p = s_.data() + pos_;
+    const char* e = s_.data() + s_.size();
+    if (p == e) return false;
+    if (*p == '+') ++p;
+    const auto r = std::from_chars(p, e, v);
+    if (r.ec != std::errc() || (r.ptr != e && !sep(*r.ptr))) return false;
+    pos_ = std::size_t(r.ptr - s_.data());
+    return true;
+  }
+  bool done() {  // nothing but separators left
+    skip();
+    return pos_ == s_.size();
+  }
+
+ private:
+  bool sep(char c) const {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || (commas_ && c == ',');
+  }
+  void skip() {
+    while (pos_ < s_.size() && sep(s_[pos_])) ++pos_;
+  }
+  std::string_view s_;
+  bool commas_;
+  std::size_t pos_ = 0;
+};
+
+// True when every v[0 .. n) is in [lo, hi).
+inline bool in_range(const std::int64_t* v, int n, std::int64_t lo, std::int64_t hi) {
+  for (int i = 0; i < n; ++i)
+    if (v[i] < lo || v[i] >= hi) return false;
+  return true;
+}
+
 // Splits on spaces, tabs and (when commas is true) commas.
-std::vector<std::string_view> split(std::string_view line, bool commas = false);
+Tokens split(std::string_view line, bool commas = false);
 bool to_double(std::string_view s, double& v);
 bool to_int64(std::string_view s, std::int64_t& v);
 double need_double(const Lines& l, std::string_view s, const char* what);
@@ -196,8 +327,8 @@ struct PlyData {
   std::vector<std::int32_t> cells;
 };
 PlyData parse_ply(const std::string& bytes, const std::string& name);
-std::string format_ply(const double* coords, int dim, std::size_t nv, const std::int32_t* cells,
-                       int cell_size, std::size_t nc, bool binary);
+Text format_ply(const double* coords, int dim, std::size_t nv, const std::int32_t* cells,
+                int cell_size, std::size_t nc, bool binary);
 
 void append_double(std::string& out, double v);  // shortest round-trip text
 void append_int(std::string& out, std::int64_t v);
@@ -209,17 +340,17 @@ bool data_array_from(const std::string& name, ScalarType type, int components,
 // Value i of a data array as text (integers exactly, floats as their shortest round trip).
 void append_value(std::string& out, const DataArray& d, std::size_t i);
 // Lines of 3 coordinates (2D points padded with z = 0), each after `prefix` (OFF, OBJ "v ").
-std::string format_vertex_lines(const double* coords, int dim, std::size_t n, const char* prefix);
+Text format_vertex_lines(const double* coords, int dim, std::size_t n, const char* prefix);
 // Lines of cells: `lead` (a count, "f", or the cell's number when number_cells), then the
 // indices plus `base`.
-std::string format_cell_lines(const std::int32_t* cells, int k, std::size_t n, const char* lead,
-                              bool number_cells, int base);
+Text format_cell_lines(const std::int32_t* cells, int k, std::size_t n, const char* lead,
+                       bool number_cells, int base);
 
 // Text of n lines, line(i, out) appending line i (with its '\n'), formatted on all host threads
-// in ranges of lines, each into its own buffer, then joined in order: the same bytes as one
-// thread writes. `bytes_per_line` sizes the buffers.
+// in ranges of lines, each into its own buffer, kept in order as the pieces of one Text: the
+// same bytes as one thread writes. `bytes_per_line` sizes the buffers.
 template <class F>
-std::string format_lines(std::size_t n, std::size_t bytes_per_line, F line) {
+Text format_lines(std::size_t n, std::size_t bytes_per_line, F line) {
   const std::size_t nparts =
       std::max<std::size_t>(1, std::min<std::size_t>(std::size_t(host_threads()), n / 65536));
   std::vector<std::string> part(nparts);
@@ -230,12 +361,8 @@ std::string format_lines(std::size_t n, std::size_t bytes_per_line, F line) {
     o.reserve((hi - lo) * bytes_per_line);
     for (std::size_t i = lo; i < hi; ++i) line(i, o);
   }
-  std::vector<std::size_t> at(nparts + 1, 0);
-  for (std::size_t k = 0; k < nparts; ++k) at[k + 1] = at[k] + part[k].size();
-  std::string out(at[nparts], '\0');
-#pragma omp parallel for schedule(static, 1)
-  for (std::int64_t k = 0; k < std::int64_t(nparts); ++k)
-    std::memcpy(&out[at[std::size_t(k)]], part[std::size_t(k)].data(), part[std::size_t(k)].size());
+  Text out;
+  for (std::string& s : part) out += std::move(s);
   return out;
 }
 

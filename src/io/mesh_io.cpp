@@ -26,10 +26,10 @@ PointSet parse_off_mesh(const std::string& b, const std::string& name, Mesh* m);
 PointSet parse_obj_mesh(const std::string& b, const std::string& name, Mesh* m);
 PointSet parse_node_file(const std::string& b, const std::string& name, int* base);
 Mesh parse_vtu(const std::string& bytes, const std::string& name);  // (vtu.cpp)
-std::string format_vtu(const Mesh& m, bool binary, bool compress);
+Text format_vtu(const Mesh& m, bool binary, bool compress);
 void write_vtu(const std::string& path, const Mesh& m, bool binary, bool compress);
 Mesh parse_vtk(const std::string& bytes, const std::string& name);  // (vtk.cpp)
-std::string format_vtk(const Mesh& m, bool binary);
+Text format_vtk(const Mesh& m, bool binary);
 }  // namespace detail
 using namespace detail;
 
@@ -55,12 +55,21 @@ Mesh parse_ele(const std::string& b, const std::string& name, int base, std::int
   read_records(
       l, b, nc, m.cell_size, m.cells,
       [&](const Lines& part, std::string_view line, std::int64_t, std::int32_t* out) {
+        Scan sc(line);
+        std::int64_t idx, x[4];
+        int j = 0;
+        if (sc.next(idx))
+          while (j < k && sc.next(x[j])) x[j] -= base, ++j;
+        if (j == k && in_range(x, j, 0, nv < 0 ? INT32_MAX + std::int64_t(1) : nv)) {
+          for (int q = 0; q < j; ++q) out[q] = std::int32_t(x[q]);
+          return;
+        }
         auto v = split(line);
         if (std::int64_t(v.size()) < 1 + k)
           part.fail("expected '<index>' and " + std::to_string(k) + " vertex indices");
         for (int j = 1; j <= k; ++j) {
           std::int64_t x = need_int(part, v[j], "a vertex index") - base;
-          if (x < 0 || (nv >= 0 && x >= nv))
+          if (x < 0 || x > INT32_MAX || (nv >= 0 && x >= nv))
             part.fail("vertex index " + std::string(v[j]) + " is out of range");
           out[j - 1] = std::int32_t(x);
         }
@@ -142,7 +151,7 @@ void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {
   for (auto c : m.cells)
     if (c < 0 || (nv && std::size_t(c) >= nv))
       throw Error(ErrorCode::InvalidArgument, "a cell refers to a vertex that does not exist");
-  std::string out;
+  Text out;
   if (ext == ".ply") {
     out = format_ply(m.coords.data(), m.dim, nv, m.cells.data(), m.cell_size, nc, o.binary);
   } else if (ext == ".off" || ext == ".obj") {

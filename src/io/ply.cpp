@@ -223,6 +223,14 @@ bool read_ascii_fast(Body& body, const Elem& e, int ix, int iy, int iz, int il, 
       read_records(
           l, text, e.count, d, xyz,
           [&](const Lines& part, std::string_view line, std::int64_t, double* o) {
+            Scan sc(line);
+            std::size_t q = 0;
+            for (double v; q < np && sc.next(v); ++q) {
+              if (int(q) == ix) o[0] = v;
+              if (int(q) == iy) o[1] = v;
+              if (int(q) == iz) o[2] = v;
+            }
+            if (q == np && sc.done()) return;
             const auto t = split(line);
             if (t.size() != np) part.fail("");
             for (std::size_t q = 0; q < np; ++q) {
@@ -406,8 +414,8 @@ PlyData parse_ply(const std::string& bytes, const std::string& name) {
   return out;
 }
 
-std::string format_ply(const double* coords, int dim, std::size_t nv, const std::int32_t* cells,
-                       int cell_size, std::size_t nc, bool binary) {
+Text format_ply(const double* coords, int dim, std::size_t nv, const std::int32_t* cells,
+                int cell_size, std::size_t nc, bool binary) {
   std::string h = "ply\nformat ";
   h += binary ? "binary_little_endian 1.0\n" : "ascii 1.0\n";
   h += "comment written by gpugeom\n";
@@ -420,14 +428,19 @@ std::string format_ply(const double* coords, int dim, std::size_t nv, const std:
     h += "property list uchar int vertex_indices\n";
   }
   h += "end_header\n";
-  std::string out = h;
+  Text out = h;
   if (binary) {
-    out.reserve(h.size() + nv * dim * 8 + nc * (1 + 4 * cell_size));
-    out.append(reinterpret_cast<const char*>(coords), nv * dim * sizeof(double));
-    for (std::size_t c = 0; c < nc; ++c) {
-      out += char(cell_size);
-      out.append(reinterpret_cast<const char*>(cells + c * cell_size), cell_size * 4);
+    out += std::string(reinterpret_cast<const char*>(coords), nv * dim * sizeof(double));
+    // Each cell a count byte and its indices (little-endian, as this machine stores them).
+    const std::size_t rec = 1 + 4 * std::size_t(cell_size);
+    std::string b(nc * rec, '\0');
+#pragma omp parallel for schedule(static) if (nc > 65536)
+    for (std::int64_t c = 0; c < std::int64_t(nc); ++c) {
+      char* o = b.data() + std::size_t(c) * rec;
+      o[0] = char(cell_size);
+      std::memcpy(o + 1, cells + std::size_t(c) * std::size_t(cell_size), rec - 1);
     }
+    out += std::move(b);
   } else {
     const std::size_t dm = std::size_t(dim);
     out += format_lines(nv, dm * 24, [&](std::size_t v, std::string& o) {

@@ -52,6 +52,12 @@ PointSet parse_table(std::string_view b, const std::string& name, bool csv) {
   read_records(
       l, b, -1, p.dim, p.coords,
       [&](const Lines& part, std::string_view line, std::int64_t, double* out) {
+        // (commas as separators are the same as split's choice below: with no comma on the
+        // line they change nothing)
+        Scan sc(line, true);
+        int d = 0;
+        while (d < p.dim && sc.next(out[d])) ++d;
+        if (d == p.dim && sc.done()) return;
         auto tok = split(line, csv || line.find(',') != std::string_view::npos);
         if (int(tok.size()) != p.dim)
           part.fail("expected " + std::to_string(p.dim) +
@@ -64,7 +70,7 @@ PointSet parse_table(std::string_view b, const std::string& name, bool csv) {
 }
 
 // A point table as text, one line per point (formatted on all host threads).
-std::string format_table(const PointSet& p, char sep) {
+Text format_table(const PointSet& p, char sep) {
   const std::size_t dim = std::size_t(p.dim);
   return format_lines(p.size(), dim * 24, [&](std::size_t i, std::string& o) {
     for (std::size_t d = 0; d < dim; ++d) {
@@ -81,7 +87,7 @@ PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* m
   if (!l.next(line)) l.fail("empty file: expected 'OFF'");
   auto tok = split(line);
   if (tok.empty() || tok[0] != "OFF") l.fail("not an OFF file: the first line must be 'OFF'");
-  tok.erase(tok.begin());
+  tok.drop_front();
   if (tok.empty()) {
     if (!l.next(line)) l.fail("expected the counts 'vertices faces edges'");
     tok = split(line);
@@ -96,6 +102,8 @@ PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* m
   read_records(
       l, b, nv, 3, p.coords,
       [&](const Lines& part, std::string_view line, std::int64_t i, double* out) {
+        Scan sc(line);
+        if (sc.next(out[0]) && sc.next(out[1]) && sc.next(out[2])) return;
         auto t = split(line);
         if (t.size() < 3) part.fail("expected 'x y z' for vertex " + std::to_string(i));
         for (int k = 0; k < 3; ++k) out[k] = need_double(part, t[k], "a coordinate");
@@ -108,6 +116,13 @@ PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* m
     read_records(
         l, b, nf, 3, mesh->cells,
         [&](const Lines& part, std::string_view line, std::int64_t f, std::int32_t* out) {
+          Scan sc(line);
+          std::int64_t c = 0, v[3];
+          if (sc.next(c) && c == 3 && sc.next(v[0]) && sc.next(v[1]) && sc.next(v[2]) &&
+              in_range(v, 3, 0, nv)) {
+            for (int k = 0; k < 3; ++k) out[k] = std::int32_t(v[k]);
+            return;
+          }
           auto t = split(line);
           if (t.empty() || need_int(part, t[0], "the face size") != 3 || t.size() < 4)
             part.fail("face " + std::to_string(f) + " is not a triangle ('3 a b c')");
@@ -171,6 +186,12 @@ PointSet parse_obj(const std::string& b, const std::string& name, Mesh* mesh) {
       std::int64_t nv = verts[i], nf = faces[i];
       while (l.next(line)) {
         if (obj_keyword(line, 'v')) {
+          Scan sc(line.substr(1));
+          double* o = p.coords.data() + 3 * nv;
+          if (sc.next(o[0]) && sc.next(o[1]) && sc.next(o[2])) {
+            ++nv;
+            continue;
+          }
           auto t = split(line);
           if (t.size() < 4) l.fail("expected 'v x y z'");
           for (int c = 1; c <= 3; ++c)
@@ -220,6 +241,14 @@ PointSet parse_node(const std::string& b, const std::string& name, int* base) {
   read_records(
       l, b, n, p.dim, p.coords,
       [&](const Lines& part, std::string_view line, std::int64_t i, double* out) {
+        if (i > 0) {  // (the first point's index is checked below)
+          Scan sc(line);
+          std::int64_t idx;
+          int k = 0;
+          if (sc.next(idx))
+            while (k < dim && sc.next(out[k])) ++k;
+          if (k == dim) return;
+        }
         auto v = split(line);
         if (std::int64_t(v.size()) < 1 + dim)
           part.fail("expected '<index> x y" + std::string(dim == 3 ? " z'" : "'"));
@@ -291,7 +320,7 @@ PointSet read_points(const std::string& path) {
 void write_points(const std::string& path, const PointSet& p, const WriteOptions& o) {
   const std::string ext = extension(path);
   const std::size_t n = p.size();
-  std::string out;
+  Text out;
   if (p.dim != 2 && p.dim != 3) throw Error(ErrorCode::InvalidArgument, "points must be 2D or 3D");
   if (ext == ".xyz" || ext == ".txt" || ext == ".csv") {
     out = format_table(p, ext == ".csv" ? ',' : ' ');

@@ -67,7 +67,7 @@ class Cursor {
   Cursor(std::string_view b, const std::string& name) : b_(b), name_(&name) {}
   [[noreturn]] void fail(const std::string& what) const { parse_fail(*name_, line_, what); }
   // The next non-blank line's tokens; false at the end of the file.
-  bool line(std::vector<std::string_view>& tok) {
+  bool line(Tokens& tok) {
     while (pos_ < b_.size()) {
       std::size_t e = b_.find('\n', pos_);
       if (e == std::string_view::npos) e = b_.size();
@@ -160,7 +160,7 @@ DataArray as_array(Cursor& c, std::string name, const VtkType& t, int comps,
 
 Mesh parse_vtk(const std::string& bytes, const std::string& name) {
   Cursor c(bytes, name);
-  std::vector<std::string_view> t;
+  Tokens t;
   if (!c.line(t) || t.size() < 4 || t[0] != "#" || t[1] != "vtk" || t[2] != "DataFile")
     c.fail("not a VTK legacy file: the first line must be '# vtk DataFile Version x.y'");
   (void)c.raw_line();  // the title
@@ -189,7 +189,7 @@ Mesh parse_vtk(const std::string& bytes, const std::string& name) {
       if (t.size() != 3) c.fail("expected 'CELLS n size'");
       const std::uint64_t n = count_of(c, t[1], "the cell count"),
                           size = count_of(c, t[2], "the cell list size");
-      std::vector<std::string_view> u;
+      Tokens u;
       // Version 5.1: OFFSETS (n values, the first 0) and CONNECTIVITY (size values) follow.
       Cursor probe = c;
       if (probe.line(u) && u[0] == "OFFSETS") {
@@ -253,7 +253,7 @@ Mesh parse_vtk(const std::string& bytes, const std::string& name) {
       const VtkType ty = type_of(c, t[2]);
       if (k == "SCALARS") {  // a LOOKUP_TABLE line may follow
         Cursor probe = c;
-        std::vector<std::string_view> u;
+        Tokens u;
         if (probe.line(u) && u[0] == "LOOKUP_TABLE") c = probe;
       }
       target->push_back(as_array(c, std::string(t[1]), ty, comps,
@@ -263,7 +263,7 @@ Mesh parse_vtk(const std::string& bytes, const std::string& name) {
       if (t.size() != 3) c.fail("expected 'FIELD name n'");
       const std::uint64_t arrays = count_of(c, t[2], "the array count");
       for (std::uint64_t a = 0; a < arrays; ++a) {
-        std::vector<std::string_view> u;
+        Tokens u;
         if (!c.line(u) || u.size() != 4) c.fail("expected 'name components tuples type'");
         const std::uint64_t comps = count_of(c, u[1], "the component count"),
                             tuples = count_of(c, u[2], "the tuple count");
@@ -335,20 +335,20 @@ const char* vtk_name(ScalarType t) {
 }
 
 // n little-endian values of w bytes each, as big-endian bytes (BINARY legacy files).
-void put_big_endian(std::string& out, const void* data, std::size_t n, std::size_t w) {
-  const std::size_t at = out.size();
-  out.resize(at + n * w);
+void put_big_endian(Text& out, const void* data, std::size_t n, std::size_t w) {
+  std::string b(n * w, '\0');
   const auto* p = static_cast<const unsigned char*>(data);
-  char* o = &out[at];
+  char* o = b.data();
 #pragma omp parallel for schedule(static) if (n > 65536)
   for (std::int64_t i = 0; i < std::int64_t(n); ++i)
     for (std::size_t k = 0; k < w; ++k)
       o[std::size_t(i) * w + k] = char(p[std::size_t(i) * w + w - 1 - k]);
+  out += std::move(b);
   out += '\n';
 }
 
 // The values of a data array as text, `per` to a line.
-void put_text(std::string& out, const DataArray& d, std::size_t per) {
+void put_text(Text& out, const DataArray& d, std::size_t per) {
   const std::size_t n = d.count();
   out += format_lines((n + per - 1) / per, per * 24, [&](std::size_t line, std::string& o) {
     for (std::size_t i = line * per; i < std::min(n, (line + 1) * per); ++i) {
@@ -361,7 +361,7 @@ void put_text(std::string& out, const DataArray& d, std::size_t per) {
 
 }  // namespace
 
-std::string format_vtk(const Mesh& m, bool binary) {
+Text format_vtk(const Mesh& m, bool binary) {
   const std::size_t nv = m.num_vertices(), nc = m.num_cells(), k = std::size_t(m.cell_size);
   auto check = [&](const std::vector<DataArray>& v, std::size_t items, const char* what) {
     for (const DataArray& d : v)
@@ -374,7 +374,7 @@ std::string format_vtk(const Mesh& m, bool binary) {
   };
   check(m.point_data, nv, "point data");
   check(m.cell_data, nc, "cell data");
-  std::string o = "# vtk DataFile Version 4.2\ngpugeom\n";
+  Text o = "# vtk DataFile Version 4.2\ngpugeom\n";
   o += binary ? "BINARY\n" : "ASCII\n";
   o += "DATASET UNSTRUCTURED_GRID\nPOINTS " + std::to_string(nv) + " double\n";
   std::vector<double> xyz(3 * nv, 0.0);

@@ -215,19 +215,25 @@ std::string block_data(const Encoding& E, const unsigned char* p, std::size_t av
     parse_fail(name, 0, "compressed block sizes out of range");
   const std::uint64_t total_u = nb == 0 ? 0 : (nb - 1) * bs + (last ? last : bs);
   if (total_u > cap) parse_fail(name, 0, "compressed block sizes out of range");
+  // The blocks are independent: each decompressed on its own thread, from its offset in the
+  // compressed data into its place in the output.
+  std::vector<std::size_t> from(std::size_t(nb) + 1, hb);
+  for (std::uint64_t i = 0; i < nb; ++i)
+    from[std::size_t(i) + 1] = from[std::size_t(i)] + header_word(E, p + (3 + i) * E.header);
   std::string out(std::size_t(total_u), '\0');
-  std::size_t at = hb, put = 0;
-  for (std::uint64_t i = 0; i < nb; ++i) {
-    const std::uint64_t c = header_word(E, p + (3 + i) * E.header);
-    uLongf want = uLongf(i + 1 < nb || last == 0 ? bs : last);
-    const uLongf expect = want;
-    if (uncompress(reinterpret_cast<Bytef*>(&out[put]), &want, p + at, uLong(c)) != Z_OK ||
+  std::int64_t bad = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : bad) if (nb > 1)
+  for (std::int64_t i = 0; i < std::int64_t(nb); ++i) {
+    const std::size_t b = std::size_t(i);
+    const uLongf expect = uLongf(b + 1 < nb || last == 0 ? bs : last);
+    uLongf want = expect;
+    if (uncompress(reinterpret_cast<Bytef*>(&out[b * std::size_t(bs)]), &want, p + from[b],
+                   uLong(from[b + 1] - from[b])) != Z_OK ||
         want != expect)
-      parse_fail(name, 0, "a zlib block does not decompress to its stated size");
-    at += std::size_t(c);
-    put += std::size_t(expect);
+      ++bad;
   }
-  used = at;
+  if (bad) parse_fail(name, 0, "a zlib block does not decompress to its stated size");
+  used = from[std::size_t(nb)];
   return out;
 }
 
@@ -301,7 +307,9 @@ std::vector<double> read_array(const Encoding& E, std::string_view b, const Tag&
   if (t.closed) return v;
   const std::size_t close = b.find("</DataArray>", t.end);
   if (close == std::string_view::npos) parse_fail(E.name, 0, "a DataArray is not closed");
-  for (auto s : split(b.substr(t.end, close - t.end))) {
+  const std::string_view text = b.substr(t.end, close - t.end);
+  std::string_view s;
+  for (std::size_t pos = 0; next_token(text, pos, s);) {
     double x;
     if (!to_double(s, x))
       parse_fail(E.name, 0, "bad number '" + std::string(s) + "' in a DataArray");
@@ -710,7 +718,7 @@ std::string vtu_head(const Mesh& m, bool binary, bool compress) {
 
 }  // namespace
 
-std::string format_vtu(const Mesh& m, bool binary, bool compress);
+Text format_vtu(const Mesh& m, bool binary, bool compress);
 
 // Raw appended binary, streamed to the file in pieces of at most 1 MiB: no copy of the mesh
 // in memory, the arrays go from the caller's vectors to the file.
@@ -740,49 +748,58 @@ void write_vtu(const std::string& path, const Mesh& m, bool binary, bool compres
   f.commit();
 }
 
-std::string format_vtu(const Mesh& m, bool binary, bool compress) {
+Text format_vtu(const Mesh& m, bool binary, bool compress) {
   const std::size_t nv = m.num_vertices(), nc = m.num_cells();
-  const int k = m.cell_size;
+  const std::size_t k = std::size_t(m.cell_size), dim = std::size_t(m.dim);
   const std::string head = vtu_head(m, binary, compress);
-  const bool wide = nc * std::size_t(k) > std::size_t(INT32_MAX);  // offsets need 64 bits
-  if (!binary) {
+  const bool wide = nc * k > std::size_t(INT32_MAX);  // offsets need 64 bits
+  if (!binary) {                // (every section formatted on all host threads)
     const VtuArrays arrays(m);  // (checks the data arrays' lengths)
-    std::string o = head;
+    Text o = head;
     for (int sec = 0; sec < 2; ++sec) {
       const auto& list = sec == 0 ? m.point_data : m.cell_data;
       if (list.empty()) continue;
       o += sec == 0 ? "<PointData>\n" : "<CellData>\n";
       for (const DataArray& d : list) {
         o += data_array_tag(d) + " format=\"ascii\">\n";
-        const std::size_t n = d.count();
-        for (std::size_t i = 0; i < n; ++i) {
-          append_value(o, d, i);
-          o += (i + 1) % std::size_t(d.components) ? ' ' : '\n';
-        }
+        const std::size_t per = std::size_t(d.components);
+        o += format_lines(d.count() / per, per * 24, [&](std::size_t r, std::string& s) {
+          for (std::size_t j = 0; j < per; ++j) {
+            if (j) s += ' ';
+            append_value(s, d, r * per + j);
+          }
+          s += '\n';
+        });
         o += "</DataArray>\n";
       }
       o += sec == 0 ? "</PointData>\n" : "</CellData>\n";
     }
     o += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    for (std::size_t i = 0; i < nv; ++i) {
-      for (int d = 0; d < 3; ++d) {
-        if (d) o += ' ';
-        append_double(o, d < m.dim ? m.coords[i * m.dim + d] : 0.0);
+    o += format_lines(nv, 72, [&](std::size_t i, std::string& s) {
+      for (std::size_t d = 0; d < 3; ++d) {
+        if (d) s += ' ';
+        append_double(s, d < dim ? m.coords[i * dim + d] : 0.0);
       }
-      o += '\n';
-    }
+      s += '\n';
+    });
     o += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" "
          "format=\"ascii\">\n";
-    for (std::size_t c = 0; c < nc; ++c) {
-      for (int j = 0; j < k; ++j) o += (j ? " " : "") + std::to_string(m.cells[c * k + j]);
-      o += '\n';
-    }
+    o += format_lines(nc, 12 * k, [&](std::size_t c, std::string& s) {
+      for (std::size_t j = 0; j < k; ++j) {
+        if (j) s += ' ';
+        append_int(s, m.cells[c * k + j]);
+      }
+      s += '\n';
+    });
     o += std::string("</DataArray>\n<DataArray type=\"") + (wide ? "Int64" : "Int32") +
          "\" Name=\"offsets\" format=\"ascii\">\n";
-    for (std::size_t c = 0; c < nc; ++c) o += std::to_string((c + 1) * std::size_t(k)) + '\n';
+    o += format_lines(nc, 12, [&](std::size_t c, std::string& s) {
+      append_int(s, std::int64_t((c + 1) * k));
+      s += '\n';
+    });
     o += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-    const std::string type = k == 3 ? "5\n" : "10\n";
-    for (std::size_t c = 0; c < nc; ++c) o += type;
+    const char* type = k == 3 ? "5\n" : "10\n";
+    o += format_lines(nc, 3, [&](std::size_t, std::string& s) { s += type; });
     o += "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
     return o;
   }
@@ -795,10 +812,9 @@ std::string format_vtu(const Mesh& m, bool binary, bool compress) {
     append_block(blocks[i], raw.data(), raw.size(), compress);
     at[i + 1] = at[i] + blocks[i].size();
   }
-  std::string o = head + appended_xml(arrays, at);
-  for (const auto& b : blocks) o += b;
+  Text o = head + appended_xml(arrays, at);
+  for (auto& b : blocks) o += std::move(b);
   o += kVtuTail;
   return o;
 }
-
 }  // namespace gpugeom::io::detail
