@@ -5,7 +5,7 @@
 # context and files included): `gpugeom hull3d` on a 2·10^6-point .xyz and `gpugeom delaunay2d`
 # of 10^6 points to a binary .vtu.
 #
-#   bench/cli_io.sh GPUGEOM BENCH_IO [DIR]      (DIR: where the files go; default /tmp)
+#   bench/cli_io.sh GPUGEOM BENCH_IO|- [DIR]      (DIR: where the files go; default /tmp)
 set -euo pipefail
 G=$1
 B=$2
@@ -17,8 +17,10 @@ echo "== page cache floor (dd, 58 MB in 1 MiB blocks)"
 dd if=/dev/zero of="$D/dd.bin" bs=1M count=58 2>&1 | tail -1
 dd if="$D/dd.bin" of=/dev/null bs=1M 2>&1 | tail -1
 rm -f "$D/dd.bin"
-echo "== gpugeom_bench_io"
-"$B" --sizes "${SIZES:-1e6,1e7}" --reps "${REPS:-3}" --dir "$D"
+if [ "$B" != - ]; then  # (- : the readers and writers are timed elsewhere, e.g. by io_table.py)
+  echo "== gpugeom_bench_io"
+  "$B" --sizes "${SIZES:-1e6,1e7}" --reps "${REPS:-3}" --dir "$D"
+fi
 echo "== whole commands"
 "$G" gen uniform3d -n 2000000 -o "$D/p.xyz"
 "$G" gen uniform2d -n 1000000 -o "$D/u.npy"

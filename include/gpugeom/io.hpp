@@ -24,12 +24,15 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/host_vector.hpp"
 
 namespace gpugeom::io {
 
+// Coordinates and cells come in HostVectors (host_vector.hpp), as the library's results do: a
+// reader sizes them without a fill and its threads write (and so fault in) their own parts.
 struct PointSet {
-  int dim = 3;                 // 2 or 3
-  std::vector<double> coords;  // dim values per point
+  int dim = 3;                // 2 or 3
+  HostVector<double> coords;  // dim values per point
   std::size_t size() const { return dim ? coords.size() / dim : 0; }
 };
 
@@ -55,10 +58,10 @@ DataArray make_data_array(const std::string& name, ScalarType type, int componen
                           const void* data, std::size_t values);
 
 struct Mesh {
-  int dim = 3;                 // coordinates per vertex (2 or 3)
-  std::vector<double> coords;  // dim per vertex; may be empty for a cells-only .npy
-  int cell_size = 3;           // 3: triangles, 4: tetrahedra
-  std::vector<std::int32_t> cells;
+  int dim = 3;                // coordinates per vertex (2 or 3)
+  HostVector<double> coords;  // dim per vertex; may be empty for a cells-only .npy
+  int cell_size = 3;          // 3: triangles, 4: tetrahedra
+  HostVector<std::int32_t> cells;
   // Optional arrays (.vtu): point_data of num_vertices() x components values each, cell_data of
   // num_cells() x components; other lengths are refused when written (Error(InvalidArgument)).
   std::vector<DataArray> point_data, cell_data;

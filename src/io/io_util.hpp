@@ -149,9 +149,10 @@ inline std::vector<std::size_t> line_parts(std::string_view rest) {
   return start;
 }
 
-template <class T, class Record, class Short>
-void read_records(Lines& l, std::string_view text, std::int64_t count, int per, std::vector<T>& out,
+template <class V, class Record, class Short>
+void read_records(Lines& l, std::string_view text, std::int64_t count, int per, V& out,
                   Record record, Short short_message) {
+  using T = typename V::value_type;
   const std::size_t base = std::min(l.offset(), text.size());
   const std::string_view rest = text.substr(base);
   const std::vector<std::size_t> start = line_parts(rest);
@@ -322,9 +323,9 @@ std::size_t npy_item_size(const std::string& descr, const std::string& name);
 // PLY: vertices and one list element of faces or tetrahedra.
 struct PlyData {
   int dim = 3;
-  std::vector<double> coords;
+  HostVector<double> coords;
   int cell_size = 0;
-  std::vector<std::int32_t> cells;
+  HostVector<std::int32_t> cells;
 };
 PlyData parse_ply(const std::string& bytes, const std::string& name);
 Text format_ply(const double* coords, int dim, std::size_t nv, const std::int32_t* cells,

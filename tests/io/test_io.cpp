@@ -145,7 +145,7 @@ TEST(Io, TextTablesInPartsAsOneReadWould) {
   // written in parallel parts: the same bytes as point by point
   io::PointSet ps;
   ps.dim = 3;
-  ps.coords = want;
+  ps.coords.assign(want.begin(), want.end());
   io::write_points(path("out.xyz"), ps);
   std::string serial;
   for (std::size_t i = 0; i < n; ++i) {
@@ -467,7 +467,7 @@ TEST(Io, MeshRoundTrips) {
       EXPECT_EQ(r.cells, m->cells) << ext;
       EXPECT_EQ(r.cell_size, m->cell_size) << ext;
       if (ext == ".npy") continue;  // cells only
-      std::vector<double> want = m->coords;
+      std::vector<double> want(m->coords.begin(), m->coords.end());
       if ((ext == ".off" || ext == ".obj") && m->dim == 2) {  // 3D formats pad z = 0
         want.clear();
         for (std::size_t i = 0; i < m->coords.size(); i += 2)

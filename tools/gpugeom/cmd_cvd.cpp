@@ -90,7 +90,7 @@ int cmd_cvd(const Global& g, Args& a) {
     if (p.dim != nd)
       throw UsageError("--initial has " + std::to_string(p.dim) + "D points for a " +
                        std::to_string(nd) + "D density");
-    o.initial_sites = p.coords;
+    o.initial_sites.assign(p.coords.begin(), p.coords.end());
   }
   attach_progress(g, o);
   CvdResult r;

@@ -120,7 +120,7 @@ int cmd_delaunay2d(const Global& g, Args& a) {
         throw Error(ErrorCode::InvalidInput, pos[0] + " holds 3D points (point " +
                                                  std::to_string(i) +
                                                  " has z != 0): delaunay2d needs 2D points");
-    std::vector<double> xy(2 * p.size());
+    HostVector<double> xy(2 * p.size());
     for (std::size_t i = 0; i < p.size(); ++i)
       xy[2 * i] = p.coords[3 * i], xy[2 * i + 1] = p.coords[3 * i + 1];
     p.coords.swap(xy);

@@ -10,7 +10,7 @@
 namespace gpugeom::cli {
 
 namespace {
-void print_bbox(const std::vector<double>& c, int dim) {
+void print_bbox(const HostVector<double>& c, int dim) {
   const char* ax = "xyz";
   std::size_t n = c.size() / dim, bad = 0;
   for (int d = 0; d < dim; ++d) {

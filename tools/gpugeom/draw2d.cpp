@@ -11,7 +11,7 @@
 
 namespace gpugeom::cli {
 
-std::vector<double> grown_box(const std::vector<double>& xy, double frac) {
+std::vector<double> grown_box(const HostVector<double>& xy, double frac) {
   double b[4] = {xy[0], xy[1], xy[0], xy[1]};
   for (std::size_t i = 0; i < xy.size(); i += 2) {
     b[0] = std::min(b[0], xy[i]), b[2] = std::max(b[2], xy[i]);
@@ -51,7 +51,7 @@ void each_edge(const Triangulation2d& tri, F f) {  // every edge once
     }
 }
 
-void svg(const std::string& path, const std::vector<double>& xy, const Triangulation2d& tri,
+void svg(const std::string& path, const HostVector<double>& xy, const Triangulation2d& tri,
          const ClippedCells* cells, const View& v) {
   std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   char buf[160];
@@ -126,7 +126,7 @@ struct Canvas {
   }
 };
 
-void png(const std::string& path, const std::vector<double>& xy, const Triangulation2d& tri,
+void png(const std::string& path, const HostVector<double>& xy, const Triangulation2d& tri,
          const ClippedCells* cells, const View& v) {
   Canvas cv(v.width, v.height);
   const float grey[3] = {0.55f, 0.55f, 0.55f}, red[3] = {0.85f, 0.12f, 0.12f}, black[3] = {0, 0, 0};
@@ -155,7 +155,7 @@ void png(const std::string& path, const std::vector<double>& xy, const Triangula
 
 }  // namespace
 
-void draw_triangulation(const std::string& path, const std::vector<double>& xy,
+void draw_triangulation(const std::string& path, const HostVector<double>& xy,
                         const Triangulation2d& tri, const ClippedCells* cells) {
   const std::string ext = io::extension(path);
   if (ext != ".svg" && ext != ".png")
