@@ -28,6 +28,10 @@ for r in 1 2 3 4 5; do
   /usr/bin/time -f "hull3d p.xyz -> h.ply whole command %e s" "$G" --quiet hull3d "$D/p.xyz" -o "$D/h.ply"
 done
 "$G" --verbose hull3d "$D/p.xyz" -o "$D/h.ply" 2>&1 | grep '^\[time\]'
+for r in 1 2 3; do  # the floors under it: a process that only starts the GPU; no GPU at all
+  /usr/bin/time -f "info --device whole command %e s" "$G" info --device >/dev/null
+  /usr/bin/time -f "hull3d --backend cpu whole command %e s" "$G" --quiet --backend cpu hull3d "$D/p.xyz" -o "$D/h.ply"
+done
 for r in 1 2 3; do
   "$G" --verbose delaunay2d "$D/u.npy" -o "$D/t.vtu" 2>&1 | grep '^\[time\] write' | sed 's/^/delaunay2d -> t.vtu /'
 done

@@ -125,10 +125,35 @@ DeviceInfo query_device(int device) {
   return d;
 }
 
+namespace {
+// The devices found usable, checked once per device and process (the answer cannot change
+// while it runs): by prepare_device on its thread or by the first call that runs on one, so a
+// command that started the device ahead does not query it again (a second
+// cudaGetDeviceProperties and probe on its critical path).
+struct Usable {
+  std::mutex m;
+  std::vector<int> ok;  // 0 unknown, 1 usable
+  bool known(int dev) {
+    std::lock_guard<std::mutex> lk(m);
+    return std::size_t(dev) < ok.size() && ok[std::size_t(dev)];
+  }
+  void mark(int dev) {
+    std::lock_guard<std::mutex> lk(m);
+    if (ok.size() <= std::size_t(dev)) ok.resize(std::size_t(dev) + 1, 0);
+    ok[std::size_t(dev)] = 1;
+  }
+};
+Usable& usable() {
+  static Usable u;
+  return u;
+}
+}  // namespace
+
 void prepare_device(int device) noexcept {
   try {
     const DeviceInfo d = query_device(device);
     if (!d.available) return;
+    usable().mark(d.device);
     cuda_device::Scope on(d.device);
     (void)cudaFree(nullptr);  // creates the device's primary context
     (void)cuda_device::pool(d.device);
@@ -165,18 +190,13 @@ int resolve(const RunOptions& run) {
   int dev = run.device;
   if (dev < 0 && run.stream) GG_CUDA_CHECK(cudaStreamGetDevice(cudaStream_t(run.stream), &dev));
   if (dev < 0) GG_CUDA_CHECK(cudaGetDevice(&dev));
-  // Checked once per device and process: the answer cannot change while it runs.
-  static std::mutex m;
-  static std::vector<int> ok;  // 0 unknown, 1 usable
-  std::lock_guard<std::mutex> lk(m);
-  if (std::size_t(dev) < ok.size() && ok[std::size_t(dev)]) return dev;
+  if (usable().known(dev)) return dev;
   DeviceInfo d = query_device(dev);
   if (!d.available) {
     throw Error(dev >= d.device_count ? ErrorCode::InvalidArgument : ErrorCode::Unsupported,
                 "CUDA device " + std::to_string(dev) + " cannot be used: " + d.reason);
   }
-  if (ok.size() <= std::size_t(dev)) ok.resize(std::size_t(dev) + 1, 0);
-  ok[std::size_t(dev)] = 1;
+  usable().mark(dev);
   return dev;
 }
 

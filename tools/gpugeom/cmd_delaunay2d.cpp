@@ -156,11 +156,26 @@ int cmd_delaunay2d(const Global& g, Args& a) {
   }
   if (!out.empty()) {
     Timer t(g, "write");
+    // The points and triangles lent to the mesh for the write (swapped in and back: no copy).
     io::Mesh m;
     m.dim = 2;
-    m.coords = p.coords;
     m.cell_size = 3;
-    m.cells.assign(tri.triangles.begin(), tri.triangles.begin() + 3 * tri.triangle_count);
+    const bool whole = tri.triangles.size() == 3 * tri.num_triangles();
+    m.coords.swap(p.coords);
+    if (whole)
+      m.cells.swap(tri.triangles);
+    else
+      m.cells.assign(tri.triangles.begin(), tri.triangles.begin() + 3 * tri.triangle_count);
+    struct Back {  // (also when the write throws)
+      io::Mesh& m;
+      io::PointSet& p;
+      Triangulation2d& t;
+      bool whole;
+      ~Back() {
+        m.coords.swap(p.coords);
+        if (whole) m.cells.swap(t.triangles);
+      }
+    } back{m, p, tri, whole};
     // .vtu and .vtk carry the duplicate map along (ParaView shows it as a point array).
     m.point_data.push_back(io::make_data_array("duplicate_of", io::ScalarType::I32, 1,
                                                tri.duplicate_of.data(), tri.duplicate_of.size()));
