@@ -853,6 +853,56 @@ TEST(Io, GridRoundTrips) {
   EXPECT_TRUE(no_temp_files());
 }
 
+// The readers' fast path (numbers scanned straight from a line) and their token path (which
+// makes the error messages) agree: lines of every form either path takes give the values
+// strtod gives, and lines the fast path refuses fail with the token path's message.
+TEST(Io, FastScanAndTokenPathAgree) {
+  const std::vector<std::string> good = {
+      "1 2 3",   "+1.5 -2e3 3",        "\t1\t2\t3\r", "1,2,3",        "1, 2 ,3",
+      "1,,2,,3", "1e-300 -0 4.9e-324", "inf -inf 5",  "  7   8   9  "};
+  std::string xyz;
+  for (const auto& l : good) xyz += l + "\n";
+  std::vector<double> want;
+  for (const auto& l : good) {
+    std::string t = l;
+    for (char& c : t)
+      if (c == ',' || c == '\t' || c == '\r') c = ' ';
+    std::istringstream in(t);
+    for (std::string w; in >> w;) want.push_back(std::strtod(w.c_str(), nullptr));
+  }
+  for (const char* ext : {".xyz", ".csv"}) {
+    const io::PointSet p = io::parse_points(xyz, ext, "g.xyz");
+    ASSERT_EQ(p.dim, 3) << ext;
+    ASSERT_EQ(p.coords.size(), want.size()) << ext;
+    for (std::size_t i = 0; i < want.size(); ++i)
+      EXPECT_EQ(std::memcmp(&p.coords[i], &want[i], 8), 0) << ext << " value " << i;
+  }
+  // Refused by the fast path: the token path's messages, on the right line.
+  const std::pair<const char*, const char*> bad[] = {
+      {"1 2 3\n4 5 0x\n", "b.xyz:2: expected a number for a coordinate, found '0x'"},
+      {"1 2 3\n4 5 6 # c\n", "b.xyz:2: expected 3 coordinates (as on the first line), found 5"},
+      {"1 2 3\n4 5\n", "b.xyz:2: expected 3 coordinates (as on the first line), found 2"},
+      {"1 2 3\n4 5 6e\n", "b.xyz:2: expected a number for a coordinate, found '6e'"},
+      {"1 2 3\n4 ++5 6\n", "b.xyz:2: expected a number for a coordinate, found '++5'"}};
+  for (const auto& [text, msg] : bad)
+    EXPECT_EQ(expect_parse_error([&] { io::parse_points(text, ".xyz", "b.xyz"); }), msg);
+  // .node (extra attribute columns allowed), .off faces with colours, .ele ranges.
+  const io::PointSet n =
+      io::parse_points("3 2 1 0\n0 0.5 1.5 7\n1 +2 -3 8\n2 1e3 4 9\n", ".node", "a.node");
+  EXPECT_EQ(n.coords, (std::vector<double>{0.5, 1.5, 2, -3, 1e3, 4}));
+  EXPECT_EQ(
+      expect_parse_error([] { io::parse_points("2 2 0 0\n0 1 1\n1 1 x\n", ".node", "a.node"); }),
+      "a.node:3: expected a number for a coordinate, found 'x'");
+  const io::Mesh off =
+      io::parse_mesh("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 0\n", ".off", "c.off");
+  EXPECT_EQ(off.cells, (std::vector<std::int32_t>{0, 1, 2}));
+  EXPECT_NE(expect_parse_error([] {
+              io::parse_mesh("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n4 0 1 2 3\n", ".off",
+                             "q.off");
+            }).find("q.off:7: face 0 is not a triangle"),
+            std::string::npos);
+}
+
 TEST(Io, MalformedInputsNameFileLineAndWhat) {
   std::string m;
   m = expect_parse_error([] { io::parse_points("1 2 3\n4 5\n", ".xyz", "a.xyz"); });
