@@ -21,6 +21,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gpugeom/common.hpp"
@@ -101,8 +102,8 @@ void write_png_rgb(const std::string& path, std::int64_t rows, std::int64_t cols
 void write_text(const std::string& path, const std::string& text);
 
 // Parsers over memory, for fuzzing and tests: name is used in messages, ext picks the format.
-PointSet parse_points(const std::string& bytes, const std::string& ext, const std::string& name);
-Mesh parse_mesh(const std::string& bytes, const std::string& ext, const std::string& name);
+PointSet parse_points(std::string_view bytes, const std::string& ext, const std::string& name);
+Mesh parse_mesh(std::string_view bytes, const std::string& ext, const std::string& name);
 Grid parse_grid(const std::string& bytes, const std::string& ext, const std::string& name);
 
 // Lower-case extension with the dot, e.g. ".ply".

@@ -311,7 +311,7 @@ struct NpyArray {
   std::vector<std::int64_t> shape;
   std::string_view payload;
 };
-NpyArray parse_npy(const std::string& bytes, const std::string& name);
+NpyArray parse_npy(std::string_view bytes, const std::string& name);
 std::string format_npy(const std::string& descr, const std::vector<std::int64_t>& shape,
                        const void* data, std::size_t bytes);
 // Element i of an npy payload as a double; supports the descr codes listed in io.hpp.
@@ -327,7 +327,7 @@ struct PlyData {
   int cell_size = 0;
   HostVector<std::int32_t> cells;
 };
-PlyData parse_ply(const std::string& bytes, const std::string& name);
+PlyData parse_ply(std::string_view bytes, const std::string& name);
 Text format_ply(const double* coords, int dim, std::size_t nv, const std::int32_t* cells,
                 int cell_size, std::size_t nc, bool binary);
 

@@ -22,13 +22,13 @@ DataArray make_data_array(const std::string& name, ScalarType type, int componen
   return a;
 }
 namespace detail {
-PointSet parse_off_mesh(const std::string& b, const std::string& name, Mesh* m);
-PointSet parse_obj_mesh(const std::string& b, const std::string& name, Mesh* m);
-PointSet parse_node_file(const std::string& b, const std::string& name, int* base);
-Mesh parse_vtu(const std::string& bytes, const std::string& name);  // (vtu.cpp)
+PointSet parse_off_mesh(std::string_view b, const std::string& name, Mesh* m);
+PointSet parse_obj_mesh(std::string_view b, const std::string& name, Mesh* m);
+PointSet parse_node_file(std::string_view b, const std::string& name, int* base);
+Mesh parse_vtu(std::string_view bytes, const std::string& name);  // (vtu.cpp)
 Text format_vtu(const Mesh& m, bool binary, bool compress);
 void write_vtu(const std::string& path, const Mesh& m, bool binary, bool compress);
-Mesh parse_vtk(const std::string& bytes, const std::string& name);  // (vtk.cpp)
+Mesh parse_vtk(std::string_view bytes, const std::string& name);  // (vtk.cpp)
 Text format_vtk(const Mesh& m, bool binary);
 }  // namespace detail
 using namespace detail;
@@ -40,7 +40,7 @@ std::string sibling(const std::string& path, const std::string& ext) {
   return path.substr(0, dot) + ext;
 }
 
-Mesh parse_ele(const std::string& b, const std::string& name, int base, std::int64_t nv) {
+Mesh parse_ele(std::string_view b, const std::string& name, int base, std::int64_t nv) {
   Lines l(b, name);
   std::string_view line;
   if (!l.next(line)) l.fail("empty file: expected '<#cells> <nodes per cell> <#attributes>'");
@@ -80,7 +80,7 @@ Mesh parse_ele(const std::string& b, const std::string& name, int base, std::int
   return m;
 }
 
-Mesh parse_npy_cells(const std::string& b, const std::string& name) {
+Mesh parse_npy_cells(std::string_view b, const std::string& name) {
   NpyArray a = parse_npy(b, name);
   if (a.shape.size() != 2 || (a.shape[1] != 3 && a.shape[1] != 4) ||
       (a.descr[1] != 'i' && a.descr[1] != 'u'))
@@ -99,7 +99,7 @@ Mesh parse_npy_cells(const std::string& b, const std::string& name) {
 
 }  // namespace
 
-Mesh parse_mesh(const std::string& b, const std::string& ext, const std::string& name) {
+Mesh parse_mesh(std::string_view b, const std::string& ext, const std::string& name) {
   Mesh m;
   if (ext == ".ply") {
     PlyData d = parse_ply(b, name);
@@ -131,8 +131,9 @@ Mesh read_mesh(const std::string& path) {
   const std::string ext = extension(path);
   if (ext == ".ele") {
     int base = 0;
-    PointSet p = parse_node_file(read_file(sibling(path, ".node")), sibling(path, ".node"), &base);
-    Mesh m = parse_ele(read_file(path), path, base, std::int64_t(p.size()));
+    const std::string node = sibling(path, ".node");
+    PointSet p = parse_node_file(FileView(node).view(), node, &base);
+    Mesh m = parse_ele(FileView(path).view(), path, base, std::int64_t(p.size()));
     m.dim = p.dim;
     m.coords = std::move(p.coords);
     return m;
@@ -140,7 +141,8 @@ Mesh read_mesh(const std::string& path) {
   static const char* known[] = {".ply", ".off", ".obj", ".vtu", ".vtk", ".npy"};
   if (std::find(std::begin(known), std::end(known), ext) == std::end(known))
     return parse_mesh("", ext, path);  // reports the unknown format before touching the file
-  return parse_mesh(read_file(path), ext, path);
+  const FileView f(path);              // (mapped: parsed where the page cache holds it, no copy)
+  return parse_mesh(f.view(), ext, path);
 }
 
 void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {

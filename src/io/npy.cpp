@@ -41,7 +41,7 @@ std::size_t npy_item_size(const std::string& d, const std::string& name) {
   return std::size_t(sz);
 }
 
-NpyArray parse_npy(const std::string& b, const std::string& name) {
+NpyArray parse_npy(std::string_view b, const std::string& name) {
   if (b.size() < 10 || std::memcmp(b.data(), "\x93NUMPY", 6) != 0)
     parse_fail(name, 0, "not an .npy file (missing the \\x93NUMPY magic)");
   const int major = (unsigned char)b[6];
@@ -58,7 +58,7 @@ NpyArray parse_npy(const std::string& b, const std::string& name) {
     parse_fail(name, 0, "unsupported .npy format version " + std::to_string(major));
   }
   if (hlen > b.size() - start) parse_fail(name, 0, "truncated .npy header");
-  const std::string h = b.substr(start, hlen);
+  const std::string h(b.substr(start, hlen));
   NpyArray a;
   std::string d = field(h, "descr", name);
   std::size_t q1 = d.find('\''), q2 = q1 == std::string::npos ? q1 : d.find('\'', q1 + 1);

@@ -272,7 +272,7 @@ bool read_ascii_fast(Body& body, const Elem& e, int ix, int iy, int iz, int il, 
 
 }  // namespace
 
-PlyData parse_ply(const std::string& bytes, const std::string& name) {
+PlyData parse_ply(std::string_view bytes, const std::string& name) {
   Lines l(bytes, name);
   std::string_view line;
   if (!l.next(line, false) || line != "ply") l.fail("not a PLY file: the first line must be 'ply'");

@@ -81,7 +81,7 @@ Text format_table(const PointSet& p, char sep) {
   });
 }
 
-PointSet parse_off_points(const std::string& b, const std::string& name, Mesh* mesh) {
+PointSet parse_off_points(std::string_view b, const std::string& name, Mesh* mesh) {
   Lines l(b, name);
   std::string_view line;
   if (!l.next(line)) l.fail("empty file: expected 'OFF'");
@@ -152,7 +152,7 @@ bool obj_keyword(std::string_view line, char c) {
 // first face: a face's relative indices count back from the vertices defined before it), then
 // the parts are parsed on their own threads into their slices. The first error in file order
 // is the one reported, as a serial loop would.
-PointSet parse_obj(const std::string& b, const std::string& name, Mesh* mesh) {
+PointSet parse_obj(std::string_view b, const std::string& name, Mesh* mesh) {
   const std::string_view text(b);
   const std::vector<std::size_t> start = line_parts(text);
   const std::size_t nparts = start.size() - 1;
@@ -223,7 +223,7 @@ PointSet parse_obj(const std::string& b, const std::string& name, Mesh* mesh) {
 }
 
 // Triangle/TetGen .node; base receives the first index (0 or 1) for a matching .ele.
-PointSet parse_node(const std::string& b, const std::string& name, int* base) {
+PointSet parse_node(std::string_view b, const std::string& name, int* base) {
   Lines l(b, name);
   std::string_view line;
   if (!l.next(line))
@@ -265,7 +265,7 @@ PointSet parse_node(const std::string& b, const std::string& name, int* base) {
   return p;
 }
 
-PointSet parse_npy_points(const std::string& b, const std::string& name) {
+PointSet parse_npy_points(std::string_view b, const std::string& name) {
   NpyArray a = parse_npy(b, name);
   if (a.shape.size() != 2 || (a.shape[1] != 2 && a.shape[1] != 3))
     parse_fail(name, 0, "expected a point array of shape (N, 2) or (N, 3)");
@@ -286,7 +286,7 @@ PointSet parse_npy_points(const std::string& b, const std::string& name) {
 
 }  // namespace
 
-PointSet parse_points(const std::string& b, const std::string& ext, const std::string& name) {
+PointSet parse_points(std::string_view b, const std::string& ext, const std::string& name) {
   if (ext == ".xyz" || ext == ".txt") return parse_table(b, name, false);
   if (ext == ".csv") return parse_table(b, name, true);
   if (ext == ".off") return parse_off_points(b, name, nullptr);
@@ -310,11 +310,8 @@ PointSet read_points(const std::string& path) {
   static const char* known[] = {".xyz", ".txt", ".csv", ".off", ".obj", ".node", ".npy", ".ply"};
   if (std::find(std::begin(known), std::end(known), ext) == std::end(known))
     return parse_points("", ext, path);  // reports the unknown format before touching the file
-  if (ext == ".xyz" || ext == ".txt" || ext == ".csv") {  // the large text files: no copy
-    const FileView f(path);
-    return parse_table(f.view(), path, ext == ".csv");
-  }
-  return parse_points(read_file(path), extension(path), path);
+  const FileView f(path);                // (mapped: parsed where the page cache holds it, no copy)
+  return parse_points(f.view(), ext, path);
 }
 
 void write_points(const std::string& path, const PointSet& p, const WriteOptions& o) {
@@ -351,13 +348,13 @@ void write_points(const std::string& path, const PointSet& p, const WriteOptions
 
 // Mesh helpers that share the point parsers live here too.
 namespace detail {
-PointSet parse_off_mesh(const std::string& b, const std::string& name, Mesh* m) {
+PointSet parse_off_mesh(std::string_view b, const std::string& name, Mesh* m) {
   return parse_off_points(b, name, m);
 }
-PointSet parse_obj_mesh(const std::string& b, const std::string& name, Mesh* m) {
+PointSet parse_obj_mesh(std::string_view b, const std::string& name, Mesh* m) {
   return parse_obj(b, name, m);
 }
-PointSet parse_node_file(const std::string& b, const std::string& name, int* base) {
+PointSet parse_node_file(std::string_view b, const std::string& name, int* base) {
   return parse_node(b, name, base);
 }
 }  // namespace detail

@@ -158,7 +158,7 @@ DataArray as_array(Cursor& c, std::string name, const VtkType& t, int comps,
 
 }  // namespace
 
-Mesh parse_vtk(const std::string& bytes, const std::string& name) {
+Mesh parse_vtk(std::string_view bytes, const std::string& name) {
   Cursor c(bytes, name);
   Tokens t;
   if (!c.line(t) || t.size() < 4 || t[0] != "#" || t[1] != "vtk" || t[2] != "DataFile")

@@ -340,7 +340,7 @@ DataArray data_array_of(const std::string& name, const std::string& file, std::s
 
 }  // namespace
 
-Mesh parse_vtu(const std::string& bytes, const std::string& name) {
+Mesh parse_vtu(std::string_view bytes, const std::string& name) {
   // The XML part ends where appended data begins (raw bytes may hold anything after it).
   std::string_view all(bytes);
   Tag file, grid, app;
