@@ -61,7 +61,9 @@ struct ConvexHull3d {
 };
 
 // xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
-// outside the exactly representable range, or more than 2^28 - 8 points;
+// outside the exactly representable range, more than 2^31 - 2 points, or a hull of more than
+// 2^28 extreme points (the facets' neighbour encoding; found while the hull grows);
+// Error(OutOfMemory) with the bytes needed and free where the GPU's memory runs out;
 // Error(DegenerateInput) naming the case when all points coincide, lie on one line or on one
 // plane (which includes fewer than 4 distinct points).
 ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOptions& opt = {});

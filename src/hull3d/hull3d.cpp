@@ -2,6 +2,9 @@
 // executor could not give in double.
 #include "gpugeom/hull3d.hpp"
 
+#include <algorithm>
+#include <atomic>
+#include <climits>
 #include <cmath>
 #include <string>
 
@@ -12,8 +15,9 @@
 namespace gpugeom {
 
 namespace {
-// Facet slots (2n) times 4 must fit the int32 neighbour encoding.
-constexpr std::int64_t kMaxPoints = (std::int64_t(1) << 28) - 8;
+// Points are int32 indices and index n names the kernel point. The facets have a limit of their
+// own (hull3d::kMaxFacetSlots: 2^28 extreme points), checked as the hull grows.
+constexpr std::int64_t kMaxPoints = std::int64_t(INT32_MAX) - 1;
 
 void check_count(std::int64_t n) {
   if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
@@ -29,6 +33,22 @@ void check_count(std::int64_t n) {
 }  // namespace
 
 namespace hull3d {
+namespace {
+std::atomic<std::int64_t> g_first_slots{0};
+}
+// A tenth of the slots of a hull on every point (2n), and at least 2^16: uniform balls and
+// cubes keep a few thousand facets of 10^8 points; points on a sphere grow the store by
+// doubling, a few copies of its used part.
+std::int64_t first_facet_slots(std::int64_t n) {
+  const std::int64_t forced = g_first_slots.load();
+  const std::int64_t want =
+      forced > 0 ? forced : std::max<std::int64_t>(std::int64_t(1) << 16, n / 5);
+  return std::max<std::int64_t>(8, std::min({want, 2 * n, kMaxFacetSlots}));
+}
+void set_first_facet_slots_for_testing(std::int64_t slots) {
+  g_first_slots.store(slots);
+}
+
 // The executor gives each facet's unit outward normal and offset from (b - a) x (c - a) in
 // double (PlaneOf in impl/hull.inl). Where the differences lose a point entirely (coordinates of
 // very different magnitudes, e.g. a facet with one huge and two tiny vertices, whose rounded

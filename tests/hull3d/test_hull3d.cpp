@@ -6,6 +6,7 @@
 #include <set>
 
 #include "../common/caller_arrays.hpp"
+#include "hull3d/hull3d_backend.hpp"
 #include "../common/on_host_threads.hpp"
 #include "hull3d_cases.hpp"
 
@@ -43,6 +44,27 @@ TEST(Hull3d, Degenerate) {
     if (c.name == "tetra_faces") EXPECT_EQ(h.vertices.size(), 4u);
     if (c.name == "octahedron_edges") EXPECT_EQ(h.vertices.size(), 6u);
     if (c.name == "cospherical") EXPECT_EQ(h.vertices.size(), c.pts.size());
+  }
+}
+
+// The facet store grows with the hull (issue 23: the slots are no longer 2n up front). Forced to
+// start at 8 slots it grows many times on every input, and the arrays are the same as with the
+// default start (the growth keeps the slots, so the rounds run slot for slot alike).
+TEST(Hull3d, GrowingFacetStoreGivesTheSameHull) {
+  std::vector<gg_hull3d::Case> cases = gg_hull3d::degenerate_cases();
+  for (auto& c : gg_hull3d::distribution_cases({100, 20000}, 5)) cases.push_back(std::move(c));
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    hull3d::set_first_facet_slots_for_testing(0);
+    const auto ref = convex_hull3d(c.pts, cpu());
+    hull3d::set_first_facet_slots_for_testing(8);
+    const auto r = convex_hull3d(c.pts, cpu());
+    hull3d::set_first_facet_slots_for_testing(0);
+    expect_valid(c.pts, r);
+    EXPECT_EQ(r.triangles, ref.triangles);
+    EXPECT_EQ(r.neighbors, ref.neighbors);
+    EXPECT_EQ(r.vertices, ref.vertices);
+    if (c.pts.size() > 100) EXPECT_GT(r.stats.counters.at("facet_store_grown"), 0);
   }
 }
 
@@ -128,6 +150,16 @@ TEST(Hull3d, Errors) {
   const double nan = std::nan(""), inf = HUGE_VAL;
   EXPECT_EQ(code({}), ErrorCode::DegenerateInput);
   EXPECT_EQ(code({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}), ErrorCode::DegenerateInput);
+  // The count is refused before the points are read (int32 indices and the kernel point's);
+  // 2^31 - 2 points are accepted (issue 23: the old limit was 2^28 - 8).
+  try {
+    const double one[3] = {0, 0, 0};
+    convex_hull3d(one, std::int64_t(1) << 31, cpu());
+    ADD_FAILURE() << "2^31 points accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidInput);
+    EXPECT_NE(std::string(e.what()).find("at most 2147483646"), std::string::npos) << e.what();
+  }
   EXPECT_EQ(code({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}, {1, 2, 3}}), ErrorCode::DegenerateInput);
   EXPECT_EQ(code({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}, {1, 1, 1}}),
             ErrorCode::DegenerateInput);

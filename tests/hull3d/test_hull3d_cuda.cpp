@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 
+#include "hull3d/hull3d_backend.hpp"
 #include "hull3d_cases.hpp"
 
 using namespace gpugeom;
@@ -42,6 +43,23 @@ TEST(CudaHull3d, Distributions) {
 
 TEST(CudaHull3d, Degenerate) {
   for (const auto& c : gg_hull3d::degenerate_cases()) same_on_both(c);
+}
+
+// A facet store forced to start at 8 slots grows on the device too: the same arrays.
+TEST(CudaHull3d, GrowingFacetStoreGivesTheSameHull) {
+  for (const char* d : {"sphere", "ball", "thin_sphere", "grid"}) {
+    const auto p = generate3d(d, sizes({200000, 20000}).front(), 6);
+    Hull3dOptions o;
+    o.backend = Backend::Cuda;
+    hull3d::set_first_facet_slots_for_testing(0);
+    const auto ref = convex_hull3d(p, o);
+    hull3d::set_first_facet_slots_for_testing(8);
+    const auto r = convex_hull3d(p, o);
+    hull3d::set_first_facet_slots_for_testing(0);
+    EXPECT_EQ(r.triangles, ref.triangles) << d;
+    EXPECT_EQ(r.neighbors, ref.neighbors) << d;
+    EXPECT_GT(r.stats.counters.at("facet_store_grown"), 0) << d;
+  }
 }
 
 TEST(CudaHull3d, Repeatable) {  // a race would show as a different result

@@ -47,7 +47,9 @@ struct PassState {
     g.p = pts;
     g.s = kernel_point.data();
     g.n = std::int32_t(np);
-    cap = 2 * np;  // a closed triangulated sphere on V <= n vertices has 2V - 4 facets
+    // A closed triangulated sphere on V <= n vertices has 2V - 4 facets, but V is mostly far
+    // below n: the store starts smaller and grows (reserve) as the rounds need.
+    cap = first_facet_slots(np);
     tv = ex.template alloc<std::int32_t>(std::size_t(3 * cap));
     to = ex.template alloc<std::int32_t>(std::size_t(3 * cap));
     stamp = ex.template alloc<std::int32_t>(std::size_t(cap));
@@ -62,6 +64,30 @@ struct PassState {
   }
   Surface surface() {
     return Surface{tv.data(), to.data(), stamp.data(), remap.data(), deg.data()};
+  }
+  // Room for `need` facet slots: the store grows to at least twice its size (at most 2n, the
+  // most a hull of n points has, and kMaxFacetSlots), keeping slots [0, used). Surfaces taken
+  // before a call are stale after it.
+  void reserve(std::int64_t need) {
+    if (need <= cap) return;
+    if (need > kMaxFacetSlots)
+      throw Error(ErrorCode::InvalidInput,
+                  "convex hull: more than " + std::to_string(kMaxFacetSlots / 2) +
+                      " extreme points (the facets' int32 encoding holds 2^29 slots)");
+    const std::int64_t grown = std::min({std::max(need, 2 * cap), 2 * n, kMaxFacetSlots});
+    auto grow = [&](auto& buf, std::int64_t per, std::int64_t keep, bool fill_rest) {
+      using T = std::remove_reference_t<decltype(*buf.data())>;
+      auto nb = ex.template alloc<T>(std::size_t(per * grown));
+      ex.copy(buf.data(), per * keep, nb.data());
+      if (fill_rest) ex.fill(nb.data() + per * keep, per * (grown - keep), T(-1));
+      buf = std::move(nb);
+    };
+    grow(tv, 3, used, false);
+    grow(to, 3, used, false);
+    grow(stamp, 1, used, true);
+    grow(remap, 3, used, false);
+    cap = grown;
+    st.counters["facet_store_grown"] += 1;
   }
   // Zeroes the per-round counters of an insertion round on the executor (no host round trip),
   // adding them into the totals.
@@ -206,13 +232,14 @@ class Constructor {
         });
     S_.used = 4;
     cap_ = S_.cap;
+    list_cap_ = cap_ / 3 + 4;
     loc_ = ex.template alloc<std::int32_t>(std::size_t(n));
     live_ = ex.template alloc<std::int32_t>(std::size_t(n));
     live2_ = ex.template alloc<std::int32_t>(std::size_t(n));
     best_ = ex.template alloc<u64>(std::size_t(cap_));
     rank_ = ex.template alloc<std::int32_t>(std::size_t(cap_));
-    list_ = ex.template alloc<std::int32_t>(std::size_t(cap_ / 3 + 4));
-    spl_ = ex.template alloc<std::int32_t>(std::size_t(4 * (cap_ / 3 + 4)));
+    list_ = ex.template alloc<std::int32_t>(std::size_t(list_cap_));
+    spl_ = ex.template alloc<std::int32_t>(std::size_t(4 * list_cap_));
     ex.fill(best_.data(), cap_, u64(0));
     ex.fill(rank_.data(), cap_, std::int32_t(-1));
     // Locate every point among the four cones (filter, then the exact stage on the rest).
@@ -244,7 +271,27 @@ class Constructor {
         n, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, live_.data());
   }
 
+  // Room for a round that may split every facet holding a point: at most min(used, points
+  // left) facets split, two new slots each; scratch for that many splits.
+  void make_room(std::int64_t used, std::int64_t live) {
+    const std::int64_t splits = std::min(used, live);
+    if (used + 2 * splits > cap_) {
+      S_.reserve(std::min(used + 2 * splits, kMaxFacetSlots));
+      cap_ = S_.cap;
+      best_ = S_.ex.template alloc<u64>(std::size_t(cap_));  // (all 0 / -1 between rounds)
+      rank_ = S_.ex.template alloc<std::int32_t>(std::size_t(cap_));
+      S_.ex.fill(best_.data(), cap_, u64(0));
+      S_.ex.fill(rank_.data(), cap_, std::int32_t(-1));
+    }
+    if (splits + 4 > list_cap_) {
+      list_cap_ = std::max(splits + 4, 2 * list_cap_);
+      list_ = S_.ex.template alloc<std::int32_t>(std::size_t(list_cap_));
+      spl_ = S_.ex.template alloc<std::int32_t>(std::size_t(4 * list_cap_));
+    }
+  }
+
   void round() {
+    make_room(S_.used, live_n_);
     Exec& ex = S_.ex;
     const Geo geo = S_.g;
     const std::int32_t s = geo.n;
@@ -262,14 +309,19 @@ class Constructor {
                              distance_key(geo, tv[3 * f], tv[3 * f + 1], tv[3 * f + 2], q));
         });
     // The facets that split, in slot order; two new slots each. Their count stays on the
-    // executor until the end of the round. (No overflow: each point is inserted at most once,
-    // so at most 4 + 2 (n - 4) < cap slots are ever handed out.)
+    // executor until the end of the round. (No overflow: make_room made room for a split of
+    // every facet holding a point.)
     const std::int64_t used = S_.used;
     std::int32_t* list = list_.data();
     Counters* ctr = S_.ctr.data();
     const std::int64_t* m = &ctr->split;
     ex.compact_indices_to(
         used, GG_LAMBDA(std::int64_t f) { return best[f] != 0; }, list, &ctr->split);
+    if (used + 2 * std::min(used, nl) > cap_) {  // (only at kMaxFacetSlots: count the splits)
+      std::int64_t splits = 0;
+      ex.to_host(&ctr->split, 1, &splits);
+      if (used + 2 * splits > cap_) S_.reserve(used + 2 * splits);  // (throws: too many)
+    }
     std::int32_t* rank = rank_.data();
     std::int32_t* spl = spl_.data();
     const Surface Sf = S_.surface();
@@ -314,6 +366,8 @@ class Constructor {
   // threads' contiguous ranges), so the surface is the same slot for slot. Returns the rounds
   // run.
   std::int64_t team_rounds(std::int64_t max_live, std::int64_t max_used) {
+    // Rounds run while used <= max_used, each adding at most 2 * max_live slots.
+    make_room(max_used + max_live, max_live);
     Exec& ex = S_.ex;
     const Geo geo = S_.g;
     const std::int32_t s = geo.n;
@@ -393,7 +447,7 @@ class Constructor {
 
   PassState& S_;
   Tetra t_;
-  std::int64_t cap_ = 0, live_n_ = 0;
+  std::int64_t cap_ = 0, live_n_ = 0, list_cap_ = 0;
   typename Exec::template Buffer<std::int32_t> loc_, live_, live2_, rank_, list_, spl_;
   typename Exec::template Buffer<u64> best_;
 };
