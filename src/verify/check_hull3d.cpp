@@ -37,7 +37,7 @@ Report check_hull3d(const double* p, std::int64_t n, const std::int32_t* t, std:
         return r.fail(cell_name(3, f, t) + " refers to a missing point"), r;
     if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
       return r.fail(cell_name(3, f, t) + " repeats a vertex"), r;
-    if (collinear3(p + 3 * v[0], p + 3 * v[1], p + 3 * v[2]))
+    if (collinear3(at<3>(p, v[0]), at<3>(p, v[1]), at<3>(p, v[2])))
       return r.fail(cell_name(3, f, t) + " is degenerate (its vertices are collinear)"), r;
   }
   auto key = [](std::uint32_t u, std::uint32_t v) { return (std::uint64_t(u) << 32) | v; };
@@ -61,7 +61,7 @@ Report check_hull3d(const double* p, std::int64_t n, const std::int32_t* t, std:
              r;
     const std::int32_t* f = t + 3 * e.second.first;
     const std::int32_t far = it->second.second;
-    if (pred::orient3d(p + 3 * f[0], p + 3 * f[1], p + 3 * f[2], p + 3 * far, scratch()) > 0)
+    if (pred::orient3d(at<3>(p, f[0]), at<3>(p, f[1]), at<3>(p, f[2]), at<3>(p, far), scratch()) > 0)
       return r.fail("edge " + std::to_string(u) + "-" + std::to_string(v) + " is reflex: vertex " +
                     std::to_string(far) + " lies outside " + cell_name(3, e.second.first, t)),
              r;
@@ -85,20 +85,20 @@ Report check_hull3d(const double* p, std::int64_t n, const std::int32_t* t, std:
   }
   // Extreme vertices: not inside a flat fan, not strictly inside a segment of two neighbours.
   for (auto& [v, nb] : nbrs) {
-    const double* pv = p + 3 * v;
+    const double* pv = at<3>(p, v);
     bool flat = true;
-    const double *a = p + 3 * nb[0], *b = nullptr;
+    const double *a = at<3>(p, nb[0]), *b = nullptr;
     for (std::size_t i = 1; i < nb.size() && !b; ++i)
-      if (!collinear3(pv, a, p + 3 * nb[i])) b = p + 3 * nb[i];
+      if (!collinear3(pv, a, at<3>(p, nb[i]))) b = at<3>(p, nb[i]);
     if (b)
-      for (auto w : nb) flat = flat && pred::orient3d(pv, a, b, p + 3 * w, scratch()) == 0;
+      for (auto w : nb) flat = flat && pred::orient3d(pv, a, b, at<3>(p, w), scratch()) == 0;
     if (flat)
       return r.fail("hull vertex " + std::to_string(v) +
                     " is not extreme: it lies inside a flat face"),
              r;
     for (std::size_t i = 0; i < nb.size(); ++i)
       for (std::size_t j = i + 1; j < nb.size(); ++j) {
-        const double *x = p + 3 * nb[i], *y = p + 3 * nb[j];
+        const double *x = at<3>(p, nb[i]), *y = at<3>(p, nb[j]);
         if (collinear3(x, pv, y) && between(x, pv, y))
           return r.fail("hull vertex " + std::to_string(v) +
                         " is not extreme: it lies on the segment " + std::to_string(nb[i]) + "-" +
@@ -115,7 +115,7 @@ Report check_hull3d(const double* p, std::int64_t n, const std::int32_t* t, std:
     if (bad >= 0) continue;
     for (std::int64_t f = 0; f < nt; ++f) {
       const std::int32_t* v = t + 3 * f;
-      if (pred::orient3d(p + 3 * v[0], p + 3 * v[1], p + 3 * v[2], p + 3 * i, scratch()) > 0) {
+      if (pred::orient3d(at<3>(p, v[0]), at<3>(p, v[1]), at<3>(p, v[2]), at<3>(p, i), scratch()) > 0) {
 #pragma omp critical
         bad = bad < 0 ? i : std::min(bad, i);
         break;

@@ -29,7 +29,7 @@ Report check_triangulation2d(const double* p, std::int64_t n, const std::int32_t
   }
   if (!check_cells(r, n, t, nt, 3, dup_of, p, 2)) return r;
   for (std::int64_t c = 0; c < nt; ++c) {
-    const double *a = p + 2 * t[3 * c], *b = p + 2 * t[3 * c + 1], *d = p + 2 * t[3 * c + 2];
+    const double *a = at<2>(p, t[3 * c]), *b = at<2>(p, t[3 * c + 1]), *d = at<2>(p, t[3 * c + 2]);
     int o = pred::orient2d(a, b, d, scratch());
     if (o <= 0)
       return r.fail(cell_name(3, c, t) + (o == 0 ? " is degenerate (collinear)" : " is clockwise")),
@@ -68,7 +68,7 @@ Report check_triangulation2d(const double* p, std::int64_t n, const std::int32_t
     if (jt == next.end())
       return r.fail("the boundary is not closed at vertex " + std::to_string(v)), r;
     std::uint32_t w = jt->second;
-    const double *a = p + 2 * u, *b = p + 2 * v, *c = p + 2 * w;
+    const double *a = at<2>(p, u), *b = at<2>(p, v), *c = at<2>(p, w);
     if (pred::orient2d(a, b, c, scratch()) < 0)
       return r.fail("the boundary turns right at vertex " + std::to_string(v) +
                     ": the triangulated region is not convex"),
@@ -106,7 +106,7 @@ Report check_delaunay2d(const double* p, std::int64_t n, const std::int32_t* t, 
       std::int64_t o = it->second;
       std::int64_t far = std::int64_t(t[3 * o]) + t[3 * o + 1] + t[3 * o + 2] - u - v;
       const std::int32_t* a = t + 3 * c;
-      if (pred::incircle(p + 2 * a[0], p + 2 * a[1], p + 2 * a[2], p + 2 * far, scratch()) > 0)
+      if (pred::incircle(at<2>(p, a[0]), at<2>(p, a[1]), at<2>(p, a[2]), at<2>(p, far), scratch()) > 0)
         return r.fail("edge " + std::to_string(u) + "-" + std::to_string(v) +
                       " is not locally Delaunay: vertex " + std::to_string(far) +
                       " lies inside the circumcircle of " + cell_name(3, c, t)),

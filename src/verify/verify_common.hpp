@@ -9,6 +9,13 @@
 
 namespace gpugeom::verify::detail {
 
+// Point v of an array of D coordinates per point, indexed in 64 bits (3 * v overflows an int32
+// index from v = 715 827 883 on: hulls of 10^9 points reach it).
+template <int D>
+inline const double* at(const double* p, std::int64_t v) {
+  return p + D * v;
+}
+
 inline double* scratch() {
   thread_local std::vector<double> s(pred::kInsphereScratch + pred::kOrient4dScratch);
   return s.data();
