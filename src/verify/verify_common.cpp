@@ -26,7 +26,7 @@ bool check_cells(Report& r, std::int64_t n, const std::int32_t* cells, std::int6
     }
   for (std::int64_t i = 0; i < n; ++i) {
     if (dup_of && dup_of[i] >= 0) {
-      std::int32_t j = dup_of[i];
+      const std::int64_t j = dup_of[i];
       if (j >= n || (dup_of[j] >= 0))
         return r.fail("point " + std::to_string(i) + " is mapped to " + std::to_string(j) +
                       ", which is not a kept point");
