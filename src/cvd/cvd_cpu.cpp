@@ -17,6 +17,7 @@
 #include "exec/deliver.hpp"
 #include "exec/grid_input.hpp"
 #include "exec/cpu_exec.hpp"
+#include "exec/peak.hpp"
 
 namespace gpugeom::cvd::cpu_impl {
 using Exec = CpuExec;

@@ -17,6 +17,7 @@
 #include "exec/deliver.hpp"
 #include "exec/grid_input.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/peak.hpp"
 
 namespace gpugeom::cvd::cuda_impl {
 using Exec = CudaExec;

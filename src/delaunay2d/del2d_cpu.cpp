@@ -20,6 +20,7 @@
 #include "exec/deliver.hpp"
 #include "exec/prefault.hpp"
 #include "exec/cpu_exec.hpp"
+#include "exec/peak.hpp"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
 #include "mesh/compact.hpp"

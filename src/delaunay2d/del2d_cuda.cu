@@ -21,6 +21,7 @@
 #include "exec/deliver.hpp"
 #include "exec/prefault.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/peak.hpp"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
 #include "mesh/compact.hpp"

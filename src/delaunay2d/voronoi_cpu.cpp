@@ -10,6 +10,7 @@
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
 #include "exec/cpu_exec.hpp"
+#include "exec/peak.hpp"
 
 namespace gpugeom::del2d::cpu_impl {
 using Exec = CpuExec;

@@ -10,6 +10,7 @@
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/peak.hpp"
 
 namespace gpugeom::del2d::cuda_impl {
 using Exec = CudaExec;
@@ -26,6 +27,7 @@ void voronoi_from_host(const double* xy, std::int64_t n, const Delaunay2dOptions
                        Triangulation2d* tri, Stats& stats) {
   const auto t0 = std::chrono::steady_clock::now();
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
   auto up = ex.template alloc<double>(std::size_t(2 * n));
   ex.from_host(xy, 2 * n, up.data());
   stats.phase_ms.push_back({"upload", ms_since(t0)});

@@ -13,6 +13,7 @@
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
 #include "exec/cpu_exec.hpp"
+#include "exec/peak.hpp"
 #include "exec/scratch_lease.hpp"
 #include "mesh/adjacency.hpp"
 #include "mesh/compact.hpp"

@@ -11,6 +11,7 @@
 #include "edt/edt_backend.hpp"
 #include "edt/edt_device.hpp"
 #include "exec/cpu_exec.hpp"
+#include "exec/peak.hpp"
 #include "exec/grid_input.hpp"
 
 namespace gpugeom::edt::cpu_impl {

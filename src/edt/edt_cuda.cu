@@ -11,6 +11,7 @@
 #include "edt/edt_backend.hpp"
 #include "edt/edt_device.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/peak.hpp"
 #include "exec/grid_input.hpp"
 
 namespace gpugeom::edt::cuda_impl {

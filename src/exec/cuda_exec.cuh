@@ -199,6 +199,17 @@ class CudaExec {
   CudaExec(const CudaExec&) = delete;
   CudaExec& operator=(const CudaExec&) = delete;
   cudaStream_t stream() const { return s_; }
+  // The device pool's peak use from reset_peak() on (exec/peak.hpp): what a call needed, plus
+  // whatever other live buffers of the pool (a concurrent call's, a kept device result) held.
+  void reset_peak() {
+    unsigned long long zero = 0;  // (the attribute is a cuuint64_t)
+    GG_CUDA_CHECK(cudaMemPoolSetAttribute(pool_, cudaMemPoolAttrUsedMemHigh, &zero));
+  }
+  std::int64_t peak_bytes() const {
+    unsigned long long high = 0;
+    GG_CUDA_CHECK(cudaMemPoolGetAttribute(pool_, cudaMemPoolAttrUsedMemHigh, &high));
+    return std::int64_t(high);
+  }
   int device() const { return dev_; }
 
   template <class T>

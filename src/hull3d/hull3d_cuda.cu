@@ -14,6 +14,7 @@
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/peak.hpp"
 #include "hull3d/hull3d_backend.hpp"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"

@@ -148,6 +148,7 @@ inline void collapse(Exec& ex, const Layout& L, int a, const u64* in_m, Planes i
 
 inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
   Exec ex(rq.run);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
   const Layout L = rq.layout;
   const int nd = L.nd;
   const std::int64_t n = L.count(), np = rq.pext[0] * rq.pext[1] * rq.pext[2];

@@ -654,6 +654,7 @@ inline void check_into(const Triangulation2dBuffers& into, std::int64_t count, s
 inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                              Output& out, Stats& st) {
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   const Triangulation2dBuffers& into = opt.into;
   // On the GPU the host is idle while the device triangulates: the result arrays are sized for
   // the most triangles m distinct points can have (2m - 5; cut to the count later, keeping the
@@ -694,6 +695,7 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dO
 inline void triangulate_device_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                                     DeviceOutput& out, Stats& st) {
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   triangulate_core(
       ex, xy, n, true, opt.profile, st, [](Prepared&) {},
       [&](Prepared& P, typename Triangulator::Finished& f) {

@@ -18,6 +18,7 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
                          Voronoi2d* host) {
   const auto t0 = std::chrono::steady_clock::now();
   Exec ex(run);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   using I32 = std::int32_t;
   using I64 = std::int64_t;
   // Voronoi vertices: the circumcentres.

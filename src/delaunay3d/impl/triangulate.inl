@@ -1206,6 +1206,7 @@ inline void to_device_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compac
 inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                              Output& out, Stats& st) {
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   triangulate_core(ex, xyz, n, false, opt.max_flip_rounds, opt.threads, opt.progress, st,
                    [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
                      to_output(ex, S, f, n, opt.into, out);
@@ -1215,6 +1216,7 @@ inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3d
 inline void triangulate_device_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                                     DeviceOutput& out, Stats& st) {
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   triangulate_core(ex, xyz, n, true, opt.max_flip_rounds, opt.threads, opt.progress, st,
                    [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
                      to_device_output(ex, S, f, n, opt.into, out);

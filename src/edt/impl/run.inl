@@ -209,6 +209,7 @@ inline void hand_over(Exec& ex, DeviceArrays& lib, Output& out) {
 
 inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   Exec ex(rq.run);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
   const Layout L = rq.layout;
   const std::int64_t nvox = L.count();
   DeviceArrays lib;

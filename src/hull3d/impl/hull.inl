@@ -346,6 +346,7 @@ inline void check_into(const Hull3dBuffers& into, const Result& R) {
 inline void compute_impl(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
                          Stats& st) {
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   const double* p = xyz;
   typename Exec::template Buffer<double> dev;
   if constexpr (Exec::backend == Backend::Cuda) {
@@ -378,6 +379,7 @@ inline void compute_impl(const double* xyz, std::int64_t n, const Hull3dOptions&
 inline void compute_device_impl(const double* xyz, std::int64_t n, const Hull3dOptions& opt,
                                 DeviceOutput& out, Stats& st) {
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   Result R = hull_core(ex, xyz, n, st);
   check_into(opt.into, R);
   const auto t0 = Clock::now();
