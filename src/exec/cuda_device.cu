@@ -1,6 +1,7 @@
 // Device resolution, the library's memory pools, and the query of what this build can run.
 #include "exec/cuda_device.hpp"
 
+#include <cstdio>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -219,6 +220,28 @@ cudaMemPool_t pool(int device) {
 
 void trim(int device) {
   GG_CUDA_CHECK(cudaMemPoolTrimTo(pool(device), 0));
+}
+
+void require_memory(int device, std::uint64_t bytes, const std::string& what) {
+  Scope on(device);
+  std::size_t fr = 0, tot = 0;
+  GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));
+  unsigned long long reserved = 0, used = 0;  // (cuuint64_t attributes)
+  cudaMemPool_t p = pool(device);
+  GG_CUDA_CHECK(cudaMemPoolGetAttribute(p, cudaMemPoolAttrReservedMemCurrent, &reserved));
+  GG_CUDA_CHECK(cudaMemPoolGetAttribute(p, cudaMemPoolAttrUsedMemCurrent, &used));
+  const std::uint64_t avail = std::uint64_t(fr) + (reserved > used ? reserved - used : 0);
+  if (bytes <= avail) return;
+  auto gb = [](std::uint64_t b) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%.1f GB", double(b) / 1e9);
+    return std::string(s);
+  };
+  throw Error(ErrorCode::OutOfMemory,
+              what + " needs at least " + gb(bytes) + " (" + std::to_string(bytes) +
+                  " bytes) of GPU memory and " + gb(avail) + " (" + std::to_string(avail) +
+                  " bytes) are free on device " + std::to_string(device) + " (of " + gb(tot) +
+                  "): use a smaller input, or the CPU backend (--backend cpu)");
 }
 
 void throw_out_of_memory(std::size_t bytes, const char* what) {

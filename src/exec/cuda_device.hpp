@@ -4,6 +4,8 @@
 // beyond the call that set it).
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <string>
 
 #include <cuda_runtime.h>
 
@@ -39,5 +41,12 @@ class Scope {
 
 // The message of an allocation failure: the bytes wanted and those free on the device.
 [[noreturn]] void throw_out_of_memory(std::size_t bytes, const char* what);
+
+// Refuses, before any launch, a problem whose least memory exceeds what the device has left
+// (free memory plus what the pool holds unused): Error(OutOfMemory) naming the problem, the bytes
+// needed and the bytes free. `bytes` is a lower bound (the arrays a run certainly holds at once,
+// docs/performance.md's bytes per element), so a refusal is certain; a problem that passes may
+// still run out later (the typed error of the allocation that fails).
+void require_memory(int device, std::uint64_t bytes, const std::string& what);
 
 }  // namespace gpugeom::cuda_device

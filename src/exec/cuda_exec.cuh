@@ -199,6 +199,10 @@ class CudaExec {
   CudaExec(const CudaExec&) = delete;
   CudaExec& operator=(const CudaExec&) = delete;
   cudaStream_t stream() const { return s_; }
+  // See cuda_device::require_memory: refuses, before any launch, a problem that cannot fit.
+  void require_memory(std::uint64_t bytes, const std::string& what) {
+    cuda_device::require_memory(dev_, bytes, what);
+  }
   // The device pool's peak use from reset_peak() on (exec/peak.hpp): what a call needed, plus
   // whatever other live buffers of the pool (a concurrent call's, a kept device result) held.
   void reset_peak() {

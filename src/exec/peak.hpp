@@ -1,9 +1,11 @@
-// The device memory a call needed, for its Stats (internal; issue 23's memory per element).
+// The device memory a call needs: measured for its Stats, and checked before it starts
+// (internal; issue 23).
 // Declared right after a module's executor, it resets the device pool's high-water mark and,
 // when the call ends (returns or throws), records the pool's peak use in the counter
 // "device_peak_bytes". Nothing on the CPU executor.
 #pragma once
 #include <cstdint>
+#include <string>
 
 #include "gpugeom/common.hpp"
 
@@ -30,5 +32,15 @@ class DevicePeak {
   Exec& ex_;
   Stats& st_;
 };
+
+// The least device memory a problem of `count` elements needs, `per` bytes each (a lower bound:
+// docs/performance.md has the measured peaks), checked before any launch on the CUDA executor.
+template <class Exec>
+void require_device_memory(Exec& ex, std::int64_t count, double per, const char* problem,
+                           const char* unit) {
+  if constexpr (Exec::backend == Backend::Cuda)
+    ex.require_memory(std::uint64_t(double(count) * per),
+                      std::string(problem) + " of " + std::to_string(count) + " " + unit);
+}
 
 }  // namespace gpugeom::detail

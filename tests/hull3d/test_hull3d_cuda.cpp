@@ -62,6 +62,27 @@ TEST(CudaHull3d, GrowingFacetStoreGivesTheSameHull) {
   }
 }
 
+// A problem that cannot fit the device is refused before any launch (issue 23), with the bytes
+// needed and free: here 2^31 - 2 points, whose least memory (48 B a point) passes the 80 GB of
+// an H100; the points are never read (the buffer holds one).
+TEST(CudaHull3d, TooLargeForTheDeviceIsRefusedFirst) {
+  const std::int64_t n = 2147483646;
+  if (48.0 * double(n) <= double(query_device().total_memory))
+    GTEST_SKIP() << "this device could hold the points";
+  const double one[3] = {0, 0, 0};
+  Hull3dOptions o;
+  o.backend = Backend::Cuda;
+  try {
+    convex_hull3d(one, n, o);
+    ADD_FAILURE() << "not refused";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(e.code(), ErrorCode::OutOfMemory) << m;
+    EXPECT_NE(m.find("a convex hull of 2147483646 points needs at least"), std::string::npos) << m;
+    EXPECT_NE(m.find("are free on device"), std::string::npos) << m;
+  }
+}
+
 TEST(CudaHull3d, Repeatable) {  // a race would show as a different result
   const auto p = generate3d("thin_sphere", sizes({300000, 20000}).front(), 4);
   Hull3dOptions o;

@@ -651,10 +651,16 @@ inline void check_into(const Triangulation2dBuffers& into, std::int64_t count, s
   deliver::check(into.duplicate_of, n, "duplicate_of");
 }
 
+// The device memory a triangulation certainly needs per point (docs/performance.md: 345 B
+// measured at 10^7 uniform points, 545 B at 10^6).
+constexpr double kLeastBytesPerPoint = 200;
+
 inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                              Output& out, Stats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
+                                           "a 2D Delaunay triangulation", "points");
   const Triangulation2dBuffers& into = opt.into;
   // On the GPU the host is idle while the device triangulates: the result arrays are sized for
   // the most triangles m distinct points can have (2m - 5; cut to the count later, keeping the
@@ -696,6 +702,8 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const Dela
                                     DeviceOutput& out, Stats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint - 16,
+                                           "a 2D Delaunay triangulation", "points");
   triangulate_core(
       ex, xy, n, true, opt.profile, st, [](Prepared&) {},
       [&](Prepared& P, typename Triangulator::Finished& f) {

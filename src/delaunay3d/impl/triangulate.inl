@@ -1203,10 +1203,16 @@ inline void to_device_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compac
   out.hull_facets = hf.own();
 }
 
+// The device memory a tetrahedralisation certainly needs per point (docs/performance.md:
+// 1 358 B measured at 10^7 uniform points).
+constexpr double kLeastBytesPerPoint = 800;
+
 inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                              Output& out, Stats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
+                                           "a 3D Delaunay tetrahedralisation", "points");
   triangulate_core(ex, xyz, n, false, opt.max_flip_rounds, opt.threads, opt.progress, st,
                    [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
                      to_output(ex, S, f, n, opt.into, out);
@@ -1217,6 +1223,8 @@ inline void triangulate_device_impl(const double* xyz, std::int64_t n, const Del
                                     DeviceOutput& out, Stats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint - 24,
+                                           "a 3D Delaunay tetrahedralisation", "points");
   triangulate_core(ex, xyz, n, true, opt.max_flip_rounds, opt.threads, opt.progress, st,
                    [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
                      to_device_output(ex, S, f, n, opt.into, out);

@@ -210,6 +210,19 @@ inline void hand_over(Exec& ex, DeviceArrays& lib, Output& out) {
 inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   Exec ex(rq.run);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
+  if (rq.slices.empty()) {  // (slice-by-slice holds a part; it is the mode for large volumes)
+    // At least the packed sites, the grid where it is uploaded, and the outputs the library
+    // allocates (9 B a voxel measured with a float32 distance).
+    const auto& in = rq.into;
+    double per = 4 + (rq.grid && !rq.grid_on_device ? double(io::scalar_size(rq.type)) : 0.0);
+    if (rq.want_sqdist && !in.sqdist_int && !in.sqdist_real) per += 8;
+    if (rq.want_distance == 32 && !in.distance32) per += 4;
+    if (rq.want_distance == 64 && !in.distance64) per += 8;
+    if (rq.want_features && !in.features) per += 4.0 * rq.layout.nd;
+    if (rq.want_labels && !in.labels) per += 4;
+    ::gpugeom::detail::require_device_memory(ex, rq.layout.count(), per, "a distance transform",
+                                             "voxels");
+  }
   const Layout L = rq.layout;
   const std::int64_t nvox = L.count();
   DeviceArrays lib;

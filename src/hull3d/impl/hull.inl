@@ -342,11 +342,17 @@ inline void check_into(const Hull3dBuffers& into, const Result& R) {
   deliver::check(into.equations, 4 * R.facets.count, "equations");
 }
 
+// The device memory a hull certainly needs per point (docs/performance.md: 90 B measured on a
+// ball of 10^7, 84 B at most on 10^9 since it ran in 80 GB).
+constexpr double kLeastBytesPerPoint = 48;
+
 // Host points in, host arrays (the caller's or the result's) out.
 inline void compute_impl(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
                          Stats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+  // (at least the points, their sort keys and the live lists: 90 B a point measured on a ball)
+  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint, "a convex hull", "points");
   const double* p = xyz;
   typename Exec::template Buffer<double> dev;
   if constexpr (Exec::backend == Backend::Cuda) {
@@ -380,6 +386,8 @@ inline void compute_device_impl(const double* xyz, std::int64_t n, const Hull3dO
                                 DeviceOutput& out, Stats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint - 24, "a convex hull",
+                                           "points");  // (the points are there already)
   Result R = hull_core(ex, xyz, n, st);
   check_into(opt.into, R);
   const auto t0 = Clock::now();
