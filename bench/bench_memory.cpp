@@ -3,6 +3,7 @@
 // arrays in and out. Rows: capability, input, n (points or voxels), peak MB, bytes per element.
 //
 //   gpugeom_bench_memory [--sizes 1e6,1e7] [--grids 2048,8192] [--volumes 256,512]
+//                        [--only delaunay2d,hull3d,delaunay3d,edt]
 #include <cstdio>
 #include <random>
 #include <sstream>
@@ -42,7 +43,8 @@ std::vector<std::uint8_t> sparse_sites(std::int64_t count) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string sizes = "1e6,1e7", grids = "2048,8192", volumes = "256,512";
+  std::string sizes = "1e6,1e7", grids = "2048,8192", volumes = "256,512",
+              only = "delaunay2d,hull3d,delaunay3d,edt";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];
     if (k == "--sizes")
@@ -51,6 +53,8 @@ int main(int argc, char** argv) {
       grids = v;
     else if (k == "--volumes")
       volumes = v;
+    else if (k == "--only")
+      only = v;
   }
   const DeviceInfo d = query_device();
   if (!d.available) {
@@ -58,23 +62,30 @@ int main(int argc, char** argv) {
     return 77;
   }
   std::printf("GPU: %s\n", d.name.c_str());
+  auto want = [&](const char* w) {
+    return ("," + only + ",").find("," + std::string(w) + ",") != std::string::npos;
+  };
   for (double nn : numbers(sizes)) {
     const auto n = std::int64_t(nn);
     Delaunay2dOptions o2;
     o2.backend = Backend::Cuda;
-    row("delaunay2d", "uniform", n, delaunay2d(generate2d("uniform", n, 1), o2).stats);
+    if (want("delaunay2d"))
+      row("delaunay2d", "uniform", n, delaunay2d(generate2d("uniform", n, 1), o2).stats);
     Hull3dOptions oh;
     oh.backend = Backend::Cuda;
-    row("hull3d", "ball", n, convex_hull3d(generate3d("ball", n, 1), oh).stats);
-    row("hull3d", "sphere", n, convex_hull3d(generate3d("sphere", n, 1), oh).stats);
+    if (want("hull3d")) {
+      row("hull3d", "ball", n, convex_hull3d(generate3d("ball", n, 1), oh).stats);
+      row("hull3d", "sphere", n, convex_hull3d(generate3d("sphere", n, 1), oh).stats);
+    }
     Delaunay3dOptions o3;
     o3.backend = Backend::Cuda;
-    row("delaunay3d", "uniform", n, delaunay3d(generate3d("uniform", n, 1), o3).stats);
+    if (want("delaunay3d"))
+      row("delaunay3d", "uniform", n, delaunay3d(generate3d("uniform", n, 1), o3).stats);
   }
   EdtOptions oe;
   oe.backend = Backend::Cuda;
   oe.distance = 32;
-  for (double g : numbers(grids)) {
+  for (double g : want("edt") ? numbers(grids) : std::vector<double>{}) {
     const auto s = std::int64_t(g);
     const auto img = sparse_sites(s * s);
     GridView v{img.data(), io::ScalarType::U8, {s, s}};
@@ -83,7 +94,7 @@ int main(int argc, char** argv) {
     of.features = true;
     row("edt", "2D, + features", s * s, distance_transform(v, SiteRule::NonZero, of).stats);
   }
-  for (double g : numbers(volumes)) {
+  for (double g : want("edt") ? numbers(volumes) : std::vector<double>{}) {
     const auto s = std::int64_t(g);
     const auto vol = sparse_sites(s * s * s);
     GridView v{vol.data(), io::ScalarType::U8, {s, s, s}};

@@ -95,6 +95,16 @@ class Triangulator {
       return r;
     }
   };
+  // Frees what only the insertion and flip rounds use (everything but the triangle store and
+  // the counters), so the output arrays that finish() makes reuse that memory instead of adding
+  // to it: the device peak of a triangulation is then the rounds', not rounds' plus output's
+  // (issue 23). Call after run() and report()'s counters are safe (they live on in ctr_).
+  void release_work() {
+    auto drop = [](auto& b) { b = std::remove_reference_t<decltype(b)>(); };
+    drop(hist_), drop(split_rank_), drop(rec_), drop(split_), drop(vote_), drop(best_);
+    drop(lists_[0]), drop(lists_[1]), drop(exl_), drop(exc_), drop(loc_), drop(un_), drop(un2_);
+    drop(ins_), drop(dec_), drop(exd_), drop(slots_);
+  }
   Finished finish() {
     // (the extended triangulation has 2m - 2 slots, all in use)
     return mesh::compact_live<3>(ex_, tmax_, FiniteTriangles{tri_.data(), P_.orig.data(), m_});
@@ -638,8 +648,9 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
   Triangulator T(ex, P, st, profile);
   T.run();
   t0 = std::chrono::steady_clock::now();
-  auto f = T.finish();
   T.report();
+  T.release_work();
+  auto f = T.finish();
   body(P, f);
   st.phase_ms.push_back({"output", ms_since(t0)});
 }
