@@ -61,7 +61,8 @@ Report check_hull3d(const double* p, std::int64_t n, const std::int32_t* t, std:
              r;
     const std::int32_t* f = t + 3 * e.second.first;
     const std::int32_t far = it->second.second;
-    if (pred::orient3d(at<3>(p, f[0]), at<3>(p, f[1]), at<3>(p, f[2]), at<3>(p, far), scratch()) > 0)
+    if (pred::orient3d(at<3>(p, f[0]), at<3>(p, f[1]), at<3>(p, f[2]), at<3>(p, far), scratch()) >
+        0)
       return r.fail("edge " + std::to_string(u) + "-" + std::to_string(v) + " is reflex: vertex " +
                     std::to_string(far) + " lies outside " + cell_name(3, e.second.first, t)),
              r;
@@ -115,7 +116,8 @@ Report check_hull3d(const double* p, std::int64_t n, const std::int32_t* t, std:
     if (bad >= 0) continue;
     for (std::int64_t f = 0; f < nt; ++f) {
       const std::int32_t* v = t + 3 * f;
-      if (pred::orient3d(at<3>(p, v[0]), at<3>(p, v[1]), at<3>(p, v[2]), at<3>(p, i), scratch()) > 0) {
+      if (pred::orient3d(at<3>(p, v[0]), at<3>(p, v[1]), at<3>(p, v[2]), at<3>(p, i), scratch()) >
+          0) {
 #pragma omp critical
         bad = bad < 0 ? i : std::min(bad, i);
         break;

@@ -106,7 +106,8 @@ Report check_delaunay2d(const double* p, std::int64_t n, const std::int32_t* t, 
       std::int64_t o = it->second;
       std::int64_t far = std::int64_t(t[3 * o]) + t[3 * o + 1] + t[3 * o + 2] - u - v;
       const std::int32_t* a = t + 3 * c;
-      if (pred::incircle(at<2>(p, a[0]), at<2>(p, a[1]), at<2>(p, a[2]), at<2>(p, far), scratch()) > 0)
+      if (pred::incircle(at<2>(p, a[0]), at<2>(p, a[1]), at<2>(p, a[2]), at<2>(p, far), scratch()) >
+          0)
         return r.fail("edge " + std::to_string(u) + "-" + std::to_string(v) +
                       " is not locally Delaunay: vertex " + std::to_string(far) +
                       " lies inside the circumcircle of " + cell_name(3, c, t)),

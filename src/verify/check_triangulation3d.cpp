@@ -56,7 +56,8 @@ static Report triangulation3d(const double* p, std::int64_t n, const std::int32_
   if (!check_cells(r, n, t, nt, 4, dup_of, p, 3)) return r;
   for (std::int64_t c = 0; c < nt; ++c) {
     const std::int32_t* v = t + 4 * c;
-    int o = pred::orient3d(at<3>(p, v[0]), at<3>(p, v[1]), at<3>(p, v[2]), at<3>(p, v[3]), scratch());
+    int o =
+        pred::orient3d(at<3>(p, v[0]), at<3>(p, v[1]), at<3>(p, v[2]), at<3>(p, v[3]), scratch());
     if (o <= 0)
       return r.fail(cell_name(4, c, t) +
                     (o == 0 ? " is flat (coplanar)" : " is negatively oriented")),
@@ -106,7 +107,8 @@ static Report triangulation3d(const double* p, std::int64_t n, const std::int32_
              r;
     const auto& f = bnd[e.second.first];
     int far = it->second.second;
-    if (pred::orient3d(at<3>(p, f[0]), at<3>(p, f[1]), at<3>(p, f[2]), at<3>(p, far), scratch()) > 0)
+    if (pred::orient3d(at<3>(p, f[0]), at<3>(p, f[1]), at<3>(p, f[2]), at<3>(p, far), scratch()) >
+        0)
       return r.fail("the boundary is reflex at edge " + std::to_string(u) + "-" +
                     std::to_string(v) + ": the region is not convex"),
              r;
@@ -166,8 +168,8 @@ Report check_delaunay3d(const double* p, std::int64_t n, const std::int32_t* t, 
     const int ko = int(f.second[1] % 4);
     const std::int32_t* v = t + 4 * c;
     const std::int32_t far = t[4 * o + ko];
-    if (pred::insphere(at<3>(p, v[0]), at<3>(p, v[1]), at<3>(p, v[2]), at<3>(p, v[3]), at<3>(p, far),
-                       scratch()) > 0)
+    if (pred::insphere(at<3>(p, v[0]), at<3>(p, v[1]), at<3>(p, v[2]), at<3>(p, v[3]),
+                       at<3>(p, far), scratch()) > 0)
       return r.fail("triangle " + std::to_string(f.first.v[0]) + " " +
                     std::to_string(f.first.v[1]) + " " + std::to_string(f.first.v[2]) +
                     " is not locally Delaunay: vertex " + std::to_string(far) +
