@@ -238,13 +238,17 @@ class Tokens {
   std::size_t n_ = 0;
 };
 
+// A token separator as the text readers see it: spaces, tabs, line ends and, when commas is
+// true, commas (split, next_token and Scan share it, so both paths cut lines alike).
+inline bool is_separator(char c, bool commas) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || (commas && c == ',');
+}
+
 // The next token of s from pos on (separators: spaces, tabs, line ends and, when commas is
 // true, commas); false when none is left. pos moves past it.
 inline bool next_token(std::string_view s, std::size_t& pos, std::string_view& tok,
                        bool commas = false) {
-  auto sep = [&](char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || (commas && c == ',');
-  };
+  auto sep = [&](char c) { return is_separator(c, commas); };
   std::size_t i = pos;
   while (i < s.size() && sep(s[i])) ++i;
   std::size_t j = i;
@@ -280,9 +284,7 @@ class Scan {
   }
 
  private:
-  bool sep(char c) const {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || (commas_ && c == ',');
-  }
+  bool sep(char c) const { return is_separator(c, commas_); }
   void skip() {
     while (pos_ < s_.size() && sep(s_[pos_])) ++pos_;
   }
