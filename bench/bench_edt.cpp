@@ -9,6 +9,7 @@
 // distance_transform_edt), else distances and int32 labels.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <fstream>
@@ -39,12 +40,75 @@ io::Grid random_sites(const std::vector<std::int64_t>& shape, double density, st
   g.data[0] = 1;
   return g;
 }
+
+// --check K: K voxels drawn by hash are checked exactly against the grid itself: the label
+// names a site (the label-th site in raster order), the float32 distance is that site's, and
+// no site in the cube of that radius around the voxel is nearer, or as near and first in
+// raster order. A complete check of those voxels, cheap at any grid size. Returns the failures.
+std::int64_t check_sample(const io::Grid& g, const EdtResult& r, std::int64_t k) {
+  const int nd = int(g.shape.size());
+  std::int64_t n[3] = {1, 1, 1};  // internal x, y, z
+  for (int a = 0; a < nd; ++a) n[a] = g.shape[nd - 1 - a];
+  const std::int64_t rows = g.count() / n[0];
+  std::vector<std::int64_t> before(std::size_t(rows) + 1, 0);  // sites before each row
+#pragma omp parallel for
+  for (std::int64_t row = 0; row < rows; ++row) {
+    std::int64_t c = 0;
+    for (std::int64_t x = 0; x < n[0]; ++x) c += g.data[std::size_t(row * n[0] + x)] != 0;
+    before[std::size_t(row) + 1] = c;
+  }
+  for (std::int64_t row = 0; row < rows; ++row) before[row + 1] += before[row];
+  std::int64_t bad = 0;
+#pragma omp parallel for reduction(+ : bad)
+  for (std::int64_t j = 0; j < k; ++j) {
+    const std::int64_t i =
+        std::int64_t(bench::hash64(std::uint64_t(j), 777) % std::uint64_t(g.count()));
+    const std::int64_t label = r.labels[std::size_t(i)];
+    const std::int64_t row =
+        std::int64_t(std::upper_bound(before.begin(), before.end(), label) - before.begin()) - 1;
+    std::int64_t s = -1;
+    for (std::int64_t x = 0, m = before[row]; row >= 0 && row < rows && x < n[0]; ++x)
+      if (g.data[std::size_t(row * n[0] + x)] && m++ == label) s = row * n[0] + x;
+    if (s < 0) {
+      ++bad;
+      continue;
+    }
+    auto coords = [&](std::int64_t v, std::int64_t c[3]) {
+      c[0] = v % n[0], c[1] = (v / n[0]) % n[1], c[2] = v / (n[0] * n[1]);
+    };
+    std::int64_t cv[3], cs[3];
+    coords(i, cv);
+    coords(s, cs);
+    std::int64_t d2 = 0;
+    for (int a = 0; a < 3; ++a) d2 += (cs[a] - cv[a]) * (cs[a] - cv[a]);
+    bool ok = r.distance32[std::size_t(i)] == float(std::sqrt(double(d2)));
+    const std::int64_t R = std::int64_t(std::sqrt(double(d2))) + 1;
+    std::int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+      lo[a] = std::max<std::int64_t>(0, cv[a] - R), hi[a] = std::min(n[a] - 1, cv[a] + R);
+    for (std::int64_t z = lo[2]; ok && z <= hi[2]; ++z)
+      for (std::int64_t y = lo[1]; ok && y <= hi[1]; ++y)
+        for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
+          const std::int64_t w = x + n[0] * (y + n[1] * z);
+          if (!g.data[std::size_t(w)]) continue;
+          const std::int64_t e =
+              (x - cv[0]) * (x - cv[0]) + (y - cv[1]) * (y - cv[1]) + (z - cv[2]) * (z - cv[2]);
+          if (e < d2 || (e == d2 && w < s)) {
+            ok = false;
+            break;
+          }
+        }
+    bad += !ok;
+  }
+  return bad;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string sides = "1024,2048", dens = "0.1", backends = "all", csv, shapes;
   int dim = 2, reps = 5;
   bool jfa = false, dist_only = false;
+  std::int64_t check = 0;
   std::int64_t bands[3] = {0, 0, 0};
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
@@ -65,6 +129,8 @@ int main(int argc, char** argv) {
       jfa = true;
     else if (a == "--dist-only")
       dist_only = true;
+    else if (a == "--check")  // K sampled voxels checked exactly (needs labels)
+      check = std::stoll(next());
     else if (a == "--bands") {  // kx,ky[,kz]: PBA band counts (0: the automatic rule)
       std::stringstream bs(next());
       int k = 0;
@@ -73,7 +139,8 @@ int main(int argc, char** argv) {
       shapes = next();  // e.g. 4096x16384,8000x8400 (C order)
     else {
       std::cout << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
-                   "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--dist-only] [--csv FILE]\n";
+                   "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--dist-only] [--check K] "
+                   "[--shapes 4096x16384,...] [--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
   }
@@ -161,6 +228,12 @@ int main(int argc, char** argv) {
             for (std::size_t i = 0; i < ex.distance32.size(); ++i)
               bad += ex.distance32[i] != r.distance32[i];
             wrong = double(bad) / double(ex.distance32.size());
+          }
+          if (check > 0 && !dist_only && m == 0) {
+            const std::int64_t bad = check_sample(g, r, check);
+            std::printf("# check: %lld sampled voxels, %lld wrong\n", (long long)check,
+                        (long long)bad);
+            if (bad) return 1;
           }
           if (std::getenv("GPUGEOM_EDT_PROFILE"))
             for (auto& p : r.stats.phase_ms)

@@ -56,7 +56,7 @@ cvd::Request make_request(const GridView& g, const CvdOptions& opt, bool on_devi
     bad_input("the Voronoi grid would have " + std::to_string(gcount) +
               " points (at most 2^31-2): use a smaller supersample or density");
   cvd::Request rq;
-  rq.layout = edt::make_layout(gshape);
+  rq.layout = edt::make_layout(gshape, false, edt::Packing::Bits);
   const edt::Layout& L = rq.layout;
   // Every sum is exact in 64 bits when 65535 * points * extent < 2^63.
   const double bound = cvd::kLevels * double(gcount) * double(std::max({L.n[0], L.n[1], L.n[2]}));

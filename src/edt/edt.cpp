@@ -29,8 +29,15 @@ int bits_for(std::int64_t n) {
 }
 }  // namespace
 
+namespace {
+bool g_force_linear = false;
+}
+void set_linear_packing_for_testing(bool on) {
+  g_force_linear = on;
+}
+
 // sliced: only slices of nx * ny voxels are held at once, so only they must fit int32 indexing.
-Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced) {
+Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing packing) {
   if (shape.size() != 2 && shape.size() != 3)
     throw Error(ErrorCode::InvalidInput, "the distance transform needs a 2D or 3D grid, got " +
                                              std::to_string(shape.size()) + " dimensions");
@@ -39,6 +46,14 @@ Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced) {
   for (int a = 0; a < L.nd; ++a) {
     const std::int64_t e = shape[L.nd - 1 - a];  // internal axis a = C axis nd-1-a
     if (e <= 0) throw Error(ErrorCode::InvalidInput, "grid extents must be positive");
+    // The GPU passes decide in doubles (pba.inl, cand_dominated): exact while its three terms,
+    // each below extent^3 in 2D and 2 extent^3 in 3D, sum below 2^53.
+    const std::int64_t most = L.nd == 2 ? 131072 : 65536;
+    if (e > most)
+      throw Error(ErrorCode::InvalidInput, "grid extent " + std::to_string(e) +
+                                               " too large: at most " + std::to_string(most) +
+                                               " along an axis of a " + std::to_string(L.nd) +
+                                               "D grid");
     L.n[a] = e;
   }
   int shift = 0;
@@ -48,16 +63,27 @@ Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced) {
     L.mask[a] = b ? std::uint32_t((std::uint64_t(1) << b) - 1) : 0;
     shift += b;
   }
-  if (shift > 32)
+  // Bit fields where they fit 32 bits (the faster decode), else raster indices, which hold
+  // every grid of fewer than 2^32 - 1 voxels (kNone is the last 32-bit value).
+  const std::int64_t n = L.count();
+  if (n >= (std::int64_t(1) << 32) - 1)
     throw Error(ErrorCode::InvalidInput,
-                "grid extents too large: the coordinates of a voxel must fit 32 bits together "
-                "(e.g. 1024 x 1024 x 4096, 65536 x 65536), these need " +
-                    std::to_string(shift));
-  const std::int64_t held = sliced ? L.n[0] * L.n[1] : L.count();
-  if (held >= (std::int64_t(1) << 31) - 1)
-    throw Error(ErrorCode::InvalidInput,
-                "grid too large for one pass (" + std::to_string(L.count()) +
-                    " voxels, at most 2^31-2): use the slice-by-slice mode (slices) for volumes");
+                "grid too large: " + std::to_string(n) +
+                    " voxels, at most 2^32-2 (4294967294) in one transform, whole or by slices "
+                    "(e.g. 1625^3, 2048 x 2048 x 1023)");
+  if (shift > 32 || (g_force_linear && packing == Packing::Any)) {
+    if (packing == Packing::Bits)
+      throw Error(ErrorCode::InvalidInput,
+                  "grid extents too large: the coordinates of a grid point must fit 32 bits "
+                  "together (e.g. 1024 x 1024 x 2048, 32768 x 65536), these need " +
+                      std::to_string(shift));
+    L.linear = true;
+    L.by_x = Divider::of(std::uint32_t(L.n[0]));
+    L.by_xy = Divider::of(std::uint32_t(L.n[0] * L.n[1]));
+  }
+  if (sliced && L.n[0] * L.n[1] >= (std::int64_t(1) << 31) - 1)
+    throw Error(ErrorCode::InvalidInput, "a slice of " + std::to_string(L.n[0] * L.n[1]) +
+                                             " voxels is too large: at most 2^31-2");
   return L;
 }
 
@@ -218,7 +244,7 @@ EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions&
     const double v = element(g.data, g.type, i);
     finite = finite && !std::isnan(v);
     if (rule == SiteRule::NonZero ? v != 0 : v == 0)
-      rq.sites.push_back(L.pack(i % L.n[0], (i / L.n[0]) % L.n[1], i / (L.n[0] * L.n[1])));
+      rq.sites.push_back(L.pack_any(i % L.n[0], (i / L.n[0]) % L.n[1], i / (L.n[0] * L.n[1])));
   }
   if (!finite) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
   if (rq.sites.empty())
@@ -289,7 +315,7 @@ EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
                         std::to_string(v) + " on axis " + std::to_string(j) + ")");
       c[nd - 1 - j] = v;
     }
-    rq.sites[i] = rq.layout.pack(c[0], c[1], c[2]);
+    rq.sites[i] = rq.layout.pack_any(c[0], c[1], c[2]);
   }
   return finish(rq, opt, shape);
 }

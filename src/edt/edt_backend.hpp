@@ -52,8 +52,16 @@ struct Output {
 };
 
 // The packing of a C-order shape (2D/3D); throws Error(InvalidInput) for shapes the transform
-// cannot hold (sliced: only one z slice must fit int32 indexing).
-Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced = false);
+// cannot hold (sliced: only one z slice must fit int32 indexing). Packing::Bits: bit fields
+// only (modules that decode the sites themselves, cvd/); Any: raster indices where the bit
+// fields need more than 32 bits.
+enum class Packing { Any, Bits };
+Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced = false,
+                   Packing packing = Packing::Any);
+
+// Tests: raster-index packing for every grid (the bit-field grids then take the linear passes,
+// which must give identical results). Not thread-safe; set it before the calls it is for.
+void set_linear_packing_for_testing(bool on);
 
 namespace cpu_impl {
 void run(const Request& req, Output& out, Stats& stats);

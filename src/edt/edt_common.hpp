@@ -1,11 +1,16 @@
 // Shared device/host pieces of the distance transform: how a site is packed into 32 bits, and
 // the exact comparisons every pass makes.
 //
-// A site is stored as its coordinates packed into one uint32 (x in the low bits, then y, then
-// z), so comparing packed values compares sites lexicographically by (z, y, x): the raster
-// order. Ties between equally near sites always go to the smaller packed value, in every pass,
-// which makes the result independent of the order of the passes (whole volume, or slice by
-// slice) and equal to "the nearest site with the smallest raster index".
+// A site is stored as its coordinates packed into one uint32 so that comparing packed values
+// compares sites lexicographically by (z, y, x): the raster order. Ties between equally near
+// sites always go to the smaller packed value, in every pass, which makes the result
+// independent of the order of the passes (whole volume, or slice by slice) and equal to "the
+// nearest site with the smallest raster index". Two packings keep that order:
+//   Layout        bit fields (x in the low bits, then y, then z): two instructions to decode,
+//                 where the extents' bit widths sum to 32 or less (1024^3, 65536 x 65536);
+//   LinearLayout  the voxel's raster index x + nx (y + ny z): a multiply-high division to
+//                 decode, for every grid of fewer than 2^32 - 1 voxels (1600^3, 1625^3).
+// The passes (impl/*.inl) are compiled once for each (see edt_cuda.cu / edt_cpu.cpp).
 //
 // Distances are sum_k w_k * d_k^2 with w_k = sampling_k^2 (1 when isotropic). Every decision is
 // the sign of sum_k w_k * I_k for integers I_k: exact in int64 when isotropic, otherwise by a
@@ -30,12 +35,41 @@ struct Tuning {
   int tiles = -1;
 };
 
+// n / d for every 32-bit n, by one multiply-high (Granlund & Montgomery, "Division by invariant
+// integers using multiplication", 1994, fig. 4.1): m and the shifts are set once per divisor.
+struct Divider {
+  std::uint32_t m = 1;
+  int s1 = 0, s2 = 0;
+  static Divider of(std::uint32_t d) {  // d >= 1
+    int l = 0;
+    while ((std::uint64_t(1) << l) < d) ++l;
+    Divider v;
+    v.m = std::uint32_t(((std::uint64_t(1) << 32) * ((std::uint64_t(1) << l) - d)) / d + 1);
+    v.s1 = l < 1 ? l : 1;
+    v.s2 = l > 1 ? l - 1 : 0;
+    return v;
+  }
+  GG_INLINE std::uint32_t div(std::uint32_t n) const {
+#if defined(__CUDA_ARCH__)
+    const std::uint32_t t = __umulhi(m, n);
+#else
+    const std::uint32_t t = std::uint32_t((std::uint64_t(m) * n) >> 32);
+#endif
+    return (t + ((n - t) >> s1)) >> s2;
+  }
+};
+
+// The grid's shape and the bit-field packing (the default; see LinearLayout).
 struct Layout {
   int nd = 2;
   std::int64_t n[3] = {1, 1, 1};  // extent along x, y, z (z = 1 in 2D)
   int shift[3] = {0, 0, 0};       // bit position of x, y, z in a packed site
   std::uint32_t mask[3] = {0, 0, 0};
   std::int64_t z0 = 0;  // z of the first slice held (slice-by-slice mode), 0 otherwise
+  // Sites are packed as raster indices (LinearLayout), for grids whose bit fields need more
+  // than 32 bits; the divisors by nx and nx * ny decode them.
+  bool linear = false;
+  Divider by_x, by_xy;
   std::int64_t count() const { return n[0] * n[1] * n[2]; }
   GG_INLINE std::int64_t stride(int a) const { return a == 0 ? 1 : (a == 1 ? n[0] : n[0] * n[1]); }
   GG_INLINE std::uint32_t pack(std::int64_t x, std::int64_t y, std::int64_t z) const {
@@ -46,6 +80,27 @@ struct Layout {
   GG_INLINE std::int64_t voxel_of(std::uint32_t s) const {
     return coord(s, 0) + n[0] * (coord(s, 1) + n[1] * coord(s, 2));
   }
+  // Either packing, chosen at run time (host-side packing of site lists).
+  std::uint32_t pack_any(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return linear ? std::uint32_t(x + n[0] * (y + n[1] * z)) : pack(x, y, z);
+  }
+};
+
+// The same shape with sites packed as raster indices x + nx (y + ny z) (absolute z: a slice's
+// layout keeps the volume's nx and ny). Packed order is raster order, as with the bit fields.
+struct LinearLayout : Layout {
+  LinearLayout() = default;
+  LinearLayout(const Layout& L) : Layout(L) {}  // NOLINT: the passes convert implicitly
+  GG_INLINE std::uint32_t pack(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return std::uint32_t(x) +
+           std::uint32_t(n[0]) * (std::uint32_t(y) + std::uint32_t(n[1]) * std::uint32_t(z));
+  }
+  GG_INLINE std::int64_t coord(std::uint32_t s, int a) const {
+    if (a == 0) return s - std::uint32_t(n[0]) * by_x.div(s);
+    if (a == 1) return by_x.div(s) - std::uint32_t(n[1]) * by_xy.div(s);
+    return by_xy.div(s);
+  }
+  GG_INLINE std::int64_t voxel_of(std::uint32_t s) const { return s; }
 };
 
 struct Metric {
@@ -88,8 +143,8 @@ GG_INLINE int weighted_sign(const Metric& m, const T I[3]) {
 
 // Does site q beat site p at voxel position (v[0], v[1], v[2])? Nearer, or as near and first
 // in raster order.
-template <class T>
-GG_INLINE bool beats(const Layout& L, const Metric& m, std::uint32_t q, std::uint32_t p,
+template <class T, class Lay>
+GG_INLINE bool beats(const Lay& L, const Metric& m, std::uint32_t q, std::uint32_t p,
                      const std::int64_t v[3]) {
   T I[3] = {0, 0, 0};
   for (int k = 0; k < L.nd; ++k) {
@@ -103,8 +158,8 @@ GG_INLINE bool beats(const Layout& L, const Metric& m, std::uint32_t q, std::uin
 // Along axis a of a line whose other coordinates are v[], can site b be dropped given its
 // neighbours a_ (before) and c (after) in the candidate list? Yes when the A|B bisector lies at
 // or beyond the B|C bisector, unless the three tie exactly at a grid point that B wins.
-template <class T>
-GG_INLINE bool dominated(const Layout& L, const Metric& m, int a, std::uint32_t A, std::uint32_t B,
+template <class T, class Lay>
+GG_INLINE bool dominated(const Lay& L, const Metric& m, int a, std::uint32_t A, std::uint32_t B,
                          std::uint32_t C, const std::int64_t v[3]) {
   const T ta = T(L.coord(A, a)), tb = T(L.coord(B, a)), tc = T(L.coord(C, a));
   T I[3] = {0, 0, 0};

@@ -17,27 +17,19 @@
 namespace gpugeom::edt::cpu_impl {
 using Exec = CpuExec;
 using std::sqrt;
+// The passes for each site packing (edt_common.hpp): bit fields, and raster indices.
+namespace bits {
 #include "edt/impl/pba.inl"
 #include "edt/impl/jfa.inl"
-// The CPU twin of the GPU's x pass: the general line pass, one thread walking each row.
-void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
-                 const std::uint8_t* mask, const std::uint32_t* in, std::uint32_t* out,
-                 std::uint32_t* scratch, std::int32_t* lo, std::int32_t* hi) {
-  if (mask)
-    init_features(ex, L, mask, out);
-  else if (in != out)
-    ex.copy(in, L.count(), out);
-  line_pass(ex, L, M, g, out, scratch, lo, hi);
-}
-// The windowed pass's generic loop already walks a CPU thread's voxels in raster order.
-bool window_pass_kernel(Exec&, const Layout&, int, std::int64_t, const std::uint32_t*,
-                        std::uint32_t*, std::uint8_t*, bool) {
-  return false;
-}
-// Tiles in on-chip memory are a GPU device: a CPU thread's cache already holds its line.
-bool line_pass_tiled(Exec&, const Layout&, const Metric&, int, std::int64_t, int, std::uint32_t*,
-                     std::uint32_t*, const std::uint8_t*) {
-  return false;
-}
+#include "edt/impl/cpu_passes.inl"
 #include "edt/impl/run.inl"
+}  // namespace bits
+namespace linear {
+using Layout = LinearLayout;
+#include "edt/impl/pba.inl"
+#include "edt/impl/jfa.inl"
+#include "edt/impl/cpu_passes.inl"
+#include "edt/impl/run.inl"
+}  // namespace linear
+#include "edt/impl/entry.inl"
 }  // namespace gpugeom::edt::cpu_impl

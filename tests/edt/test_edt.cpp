@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "edt/edt_backend.hpp"
 #include "edt_cases.hpp"
 #include "verify.hpp"
 
@@ -352,4 +353,126 @@ TEST(Edt, DeviceEntryOnCpuExecutor) {
   const auto s = distance_transform_device(v, SiteRule::NonZero, o);
   const auto sref = distance_transform(g, SiteRule::NonZero, o);
   EXPECT_EQ(std::vector<std::int32_t>(s.labels.get(), s.labels.get() + s.count()), sref.labels);
+}
+
+namespace {
+// Raster-index packing (edt::LinearLayout) for every grid while alive.
+struct LinearPacking {
+  LinearPacking() { edt::set_linear_packing_for_testing(true); }
+  ~LinearPacking() { edt::set_linear_packing_for_testing(false); }
+};
+void expect_same(const EdtResult& a, const EdtResult& b, const std::string& what) {
+  EXPECT_EQ(a.shape, b.shape) << what;
+  EXPECT_EQ(a.sqdist_int, b.sqdist_int) << what;
+  EXPECT_EQ(a.sqdist_real, b.sqdist_real) << what;
+  EXPECT_EQ(a.distance64, b.distance64) << what;
+  EXPECT_EQ(a.features, b.features) << what;
+  EXPECT_EQ(a.labels, b.labels) << what;
+}
+}  // namespace
+
+// Grids whose coordinates need more than 32 bits of bit fields (1600^3) pack a site as its
+// raster index. Forced on small grids, that packing gives the bit fields' results exactly, on
+// every path: 2D and 3D, every density, anisotropic metrics, band counts, windowed or not,
+// slices, site lists, the zero rule, JFA; and the exact reference where it is cheap.
+TEST(Edt, RasterIndexPackingSameResults) {
+  struct Case {
+    std::vector<std::int64_t> shape;
+    double density;
+    std::vector<double> sampling;
+    int reach;
+  };
+  const std::vector<Case> cases{
+      {{1, 1}, 1.0, {}, -1},       {{7, 13}, 0.1, {}, -1},
+      {{33, 65}, 0.02, {}, -1},    {{64, 17}, 0.5, {1.5, 0.5}, -1},
+      {{90, 1}, 0.05, {}, 3},      {{1, 90}, 0.002, {}, 0},
+      {{30, 41}, 0.6, {}, 16},     {{3, 7, 5}, 0.3, {}, -1},
+      {{9, 8, 17}, 0.05, {}, 1},   {{13, 17, 19}, 0.002, {}, 1000},
+      {{16, 16, 16}, 0.9, {}, -1}, {{9, 14, 11}, 0.05, {0.7, 1.3, 2.0}, -1},
+      {{21, 18, 25}, 0.02, {}, 0}};
+  unsigned seed = 500;
+  for (const auto& c : cases) {
+    const io::Grid g = random_grid(c.shape, c.density, seed++);
+    EdtOptions o = all_outputs();
+    o.sampling = c.sampling;
+    o.window_reach = c.reach;
+    const std::string what = "shape " + std::to_string(c.shape.size()) + "D density " +
+                             std::to_string(c.density) + " reach " + std::to_string(c.reach);
+    const auto bits = distance_transform(g, SiteRule::NonZero, o);
+    const bool zeros = std::count(g.data.begin(), g.data.end(), 0) > 0;
+    const auto zero_bits = zeros ? distance_transform(g, SiteRule::Zero, o) : EdtResult{};
+    EdtOptions jo;
+    jo.backend = Backend::Cpu;
+    jo.squared = true;
+    jo.method = EdtMethod::Jfa;
+    const auto jfa_bits = distance_transform(g, SiteRule::NonZero, jo);
+    std::vector<std::int64_t> list;  // the sites as coordinates, last first (labels differ)
+    for (std::int64_t i = g.count() - 1; i >= 0; --i)
+      if (g.data[i]) {
+        std::int64_t r = i, cs[3];
+        for (int j = int(c.shape.size()) - 1; j >= 0; --j) cs[j] = r % c.shape[j], r /= c.shape[j];
+        for (std::size_t j = 0; j < c.shape.size(); ++j) list.push_back(cs[j]);
+      }
+    const auto list_bits = distance_transform_sites(c.shape, list, o);
+    EdtOptions so = o;
+    if (c.shape.size() == 3) so.slices = {c.shape[0] - 1, 0, c.shape[0] / 2};
+    const auto slices_bits =
+        c.shape.size() == 3 ? distance_transform(g, SiteRule::NonZero, so) : EdtResult{};
+    LinearPacking on;
+    expect_same(distance_transform(g, SiteRule::NonZero, o), bits, what);
+    if (zeros)
+      expect_same(distance_transform(g, SiteRule::Zero, o), zero_bits, what + " zero rule");
+    expect_same(distance_transform(g, SiteRule::NonZero, jo), jfa_bits, what + " jfa");
+    expect_same(distance_transform_sites(c.shape, list, o), list_bits, what + " list");
+    if (c.shape.size() == 3)
+      expect_same(distance_transform(g, SiteRule::NonZero, so), slices_bits, what + " slices");
+    if (g.count() <= 4096) expect_exact(g, o, what + " linear, exact");
+  }
+}
+
+// The divisions that decode a raster index (Granlund-Montgomery multiply-high) are exact for
+// every 32-bit numerator: divisors of every size, numerators at and around their multiples.
+TEST(Edt, RasterIndexDivisionIsExact) {
+  std::mt19937_64 r(3);
+  std::vector<std::uint32_t> divisors{1,    2,       3,       5,     7,     10,    641,        1600,
+                                      1625, 2560000, 2640625, 65535, 65536, 65537, 4294967295u};
+  for (int k = 0; k < 200; ++k) divisors.push_back(std::uint32_t(r() >> (32 + r() % 32)) | 1u);
+  for (std::uint32_t d : divisors) {
+    const auto v = edt::Divider::of(d);
+    std::vector<std::uint32_t> ns{0, 1, d - 1, d, 4294967295u, 4294967294u};
+    for (int k = 0; k < 300; ++k) {
+      const std::uint64_t m = (r() % (4294967295ull / d + 1)) * d;
+      for (std::int64_t e = -1; e <= 1; ++e)
+        if (std::int64_t(m) + e >= 0 && std::int64_t(m) + e <= 4294967295ll)
+          ns.push_back(std::uint32_t(m + e));
+      ns.push_back(std::uint32_t(r()));
+    }
+    for (std::uint32_t n : ns) ASSERT_EQ(v.div(n), n / d) << n << " / " << d;
+  }
+}
+
+// The true limits, refused before any work with the numbers.
+TEST(Edt, SizeLimitsAreStated) {
+  auto message = [](const std::vector<std::int64_t>& shape) {
+    try {
+      distance_transform_sites(shape, std::vector<std::int64_t>(shape.size(), 0));
+    } catch (const Error& e) {
+      EXPECT_EQ(int(e.code()), int(ErrorCode::InvalidInput));
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message({1700, 1700, 1700}).find("4913000000 voxels, at most 2^32-2"),
+            std::string::npos);
+  EXPECT_NE(message({65536, 65536}).find("at most 2^32-2"), std::string::npos);
+  EXPECT_NE(message({2, 2, 70000}).find("at most 65536 along an axis of a 3D grid"),
+            std::string::npos);
+  EXPECT_NE(message({2, 140000}).find("at most 131072"), std::string::npos);
+  // The largest shapes are taken (the layout only: no grid of that size is allocated here).
+  EXPECT_TRUE(edt::make_layout({1600, 1600, 1600}).linear);
+  EXPECT_TRUE(edt::make_layout({1625, 1625, 1625}).linear);
+  EXPECT_FALSE(edt::make_layout({1024, 1024, 2048}).linear);
+  EXPECT_FALSE(edt::make_layout({1025, 1024, 2048}).linear);  // 11 + 10 + 11 bits
+  EXPECT_TRUE(edt::make_layout({1025, 1025, 2048}).linear);
+  EXPECT_THROW(edt::make_layout({1600, 1600, 1600}, false, edt::Packing::Bits), Error);
 }

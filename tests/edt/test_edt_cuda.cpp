@@ -10,6 +10,7 @@
 #include <cuda_runtime.h>
 #include <string>
 
+#include "edt/edt_backend.hpp"
 #include "edt_cases.hpp"
 
 using namespace gpugeom;
@@ -325,4 +326,82 @@ TEST(CudaEdt, DeviceEntryWaitsForItsStreamOnly) {
   GG_CK(cudaFree(dg));
   GG_CK(cudaStreamDestroy(mine));
   GG_CK(cudaStreamDestroy(other));
+}
+
+// Raster-index packing (grids past 32 bits of bit fields, 1600^3) forced on small grids: the
+// CUDA executor's linear passes (x pass over ballots, windowed, tiled and banded passes, slices,
+// site lists, a device grid by slices) give the CPU executor's bit-field results exactly.
+TEST(CudaEdt, RasterIndexPackingSameAsCpu) {
+  struct Case {
+    std::vector<std::int64_t> shape;
+    double density;
+    std::vector<double> sampling;
+    int reach, tiles;
+  };
+  const std::vector<Case> cases{
+      {{1000, 1000}, 0.001, {}, -1, -1},       {{1023, 777}, 0.1, {}, -1, -1},
+      {{600, 500}, 0.01, {0.5, 1.25}, -1, -1}, {{40, 530}, 0.01, {}, 4, 0},
+      {{80, 70001}, 0.2, {}, 32, -1},          {{64, 70, 90}, 0.01, {}, -1, 1},
+      {{100, 60, 40}, 0.2, {}, -1, -1},        {{33, 65, 17}, 0.05, {2.0, 1.0, 0.5}, -1, 1},
+      {{20, 300, 40}, 0.001, {}, 1, 0},        {{25, 20, 600}, 0.003, {}, 16, 1}};
+  struct Flag {
+    Flag() { edt::set_linear_packing_for_testing(true); }
+    ~Flag() { edt::set_linear_packing_for_testing(false); }
+  };
+  unsigned seed = 1200;
+  for (const auto& c : cases) {
+    const io::Grid g = gg_edt::random_grid(c.shape, c.density, seed++);
+    const std::string what = std::to_string(c.shape[0]) + "x" + std::to_string(c.shape[1]) +
+                             (c.shape.size() == 3 ? "x" + std::to_string(c.shape[2]) : "");
+    EdtOptions o;
+    o.squared = true;
+    o.distance = 32;
+    o.features = true;
+    o.labels = true;
+    o.sampling = c.sampling;
+    o.window_reach = c.reach;
+    o.tiles = c.tiles;
+    o.backend = Backend::Cpu;
+    const auto cpu = distance_transform(g, SiteRule::NonZero, o);
+    EdtOptions so = o;
+    if (c.shape.size() == 3) so.slices = {0, c.shape[0] / 2, c.shape[0] - 1};
+    const auto cpu_sl = c.shape.size() == 3 ? distance_transform(g, SiteRule::NonZero, so) : cpu;
+    std::vector<std::int64_t> list;  // every third site, as coordinates
+    for (std::int64_t i = 0, k = 0; i < g.count(); ++i)
+      if (g.data[i] && k++ % 3 == 0) {
+        std::int64_t rest = i;
+        std::vector<std::int64_t> p(c.shape.size());
+        for (std::size_t j = c.shape.size(); j-- > 0;) p[j] = rest % c.shape[j], rest /= c.shape[j];
+        list.insert(list.end(), p.begin(), p.end());
+      }
+    const auto cpu_list = distance_transform_sites(c.shape, list, o);
+    Flag linear;
+    o.backend = so.backend = Backend::Cuda;
+    const auto gpu = distance_transform(g, SiteRule::NonZero, o);
+    EXPECT_EQ(gpu.labels, cpu.labels) << what;
+    EXPECT_EQ(gpu.features, cpu.features) << what;
+    EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int) << what;
+    EXPECT_EQ(gpu.sqdist_real, cpu.sqdist_real) << what;
+    EXPECT_EQ(gpu.distance32, cpu.distance32) << what;
+    const auto gpu_list = distance_transform_sites(c.shape, list, o);
+    EXPECT_EQ(gpu_list.labels, cpu_list.labels) << what << " list";
+    EXPECT_EQ(gpu_list.sqdist_int, cpu_list.sqdist_int) << what << " list";
+    if (c.shape.size() != 3) continue;
+    const auto gpu_sl = distance_transform(g, SiteRule::NonZero, so);
+    EXPECT_EQ(gpu_sl.labels, cpu_sl.labels) << what << " slices";
+    EXPECT_EQ(gpu_sl.features, cpu_sl.features) << what << " slices";
+    // The grid on the device, by slices: its sites are listed there.
+    void* dg = nullptr;
+    ASSERT_EQ(cudaMalloc(&dg, g.data.size()), cudaSuccess);
+    ASSERT_EQ(cudaMemcpy(dg, g.data.data(), g.data.size(), cudaMemcpyHostToDevice), cudaSuccess);
+    GridView v;
+    v.data = dg;
+    v.shape = c.shape;
+    const auto dev = distance_transform_device(v, SiteRule::NonZero, so);
+    std::vector<std::int32_t> dl(std::size_t(dev.count()));
+    ASSERT_EQ(cudaMemcpy(dl.data(), dev.labels.get(), dl.size() * 4, cudaMemcpyDeviceToHost),
+              cudaSuccess);
+    EXPECT_EQ(dl, cpu_sl.labels) << what << " device grid, slices";
+    cudaFree(dg);
+  }
 }

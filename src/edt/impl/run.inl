@@ -176,19 +176,20 @@ inline const std::uint8_t* grid_mask(Exec& ex, const Request& rq, std::int64_t n
     grid_input::visit(rq.type, [&](auto tag) { rule_mask<decltype(tag)>(ex, src, nvox, zero, m); });
     mask = m;
   }
-  // Sites in the low 40 bits, NaN voxels above (a grid holds fewer than 2^31 voxels).
-  auto sum = ex.template alloc<std::int64_t>(1);
+  // Sites in the low 32 bits, NaN voxels above: a grid holds fewer than 2^32 - 1 voxels, so
+  // neither part overflows.
+  auto sum = ex.template alloc<std::uint64_t>(1);
   ex.transform_reduce_into(
       nvox,
-      GG_LAMBDA(std::int64_t i)->std::int64_t {
+      GG_LAMBDA(std::int64_t i)->std::uint64_t {
         const std::uint8_t v = mask[i];
-        return v == 0 ? 0 : (bytes_mask || v == 1) ? 1 : std::int64_t(1) << 40;
+        return v == 0 ? 0 : (bytes_mask || v == 1) ? 1 : std::uint64_t(1) << 32;
       },
-      std::int64_t(0), thrust::plus<std::int64_t>(), sum.data());
-  std::int64_t h = 0;
+      std::uint64_t(0), thrust::plus<std::uint64_t>(), sum.data());
+  std::uint64_t h = 0;
   ex.to_host(sum.data(), 1, &h);
-  if (h >> 40) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
-  sites = h;
+  if (h >> 32) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
+  sites = std::int64_t(h);
   if (sites == 0)
     throw Error(ErrorCode::InvalidInput, std::string("the grid has no site (no ") +
                                              (zero ? "zero" : "nonzero") +
@@ -211,15 +212,23 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   Exec ex(rq.run);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
   if (rq.slices.empty()) {  // (slice-by-slice holds a part; it is the mode for large volumes)
-    // At least the packed sites, the grid where it is uploaded, and the outputs the library
-    // allocates (9 B a voxel measured with a float32 distance).
+    // The grid where it is uploaded (its mask: 1 B a voxel where the grid is not one) and the
+    // packed sites, then the larger of the passes' second array (4 B) and what the outputs add:
+    // the labels' rank grid and the arrays the library allocates (measured: 9 B a voxel with a
+    // float32 distance, 17 with labels too).
     const auto& in = rq.into;
-    double per = 4 + (rq.grid && !rq.grid_on_device ? double(io::scalar_size(rq.type)) : 0.0);
-    if (rq.want_sqdist && !in.sqdist_int && !in.sqdist_real) per += 8;
-    if (rq.want_distance == 32 && !in.distance32) per += 4;
-    if (rq.want_distance == 64 && !in.distance64) per += 8;
-    if (rq.want_features && !in.features) per += 4.0 * rq.layout.nd;
-    if (rq.want_labels && !in.labels) per += 4;
+    const bool bytes = rq.rule == SiteRule::NonZero &&
+                       (rq.type == io::ScalarType::U8 || rq.type == io::ScalarType::Bool);
+    double per = 4;
+    if (rq.grid && !rq.grid_on_device) per += double(io::scalar_size(rq.type));
+    if (rq.grid && !bytes) per += 1;
+    double outs = 0;
+    if (rq.want_sqdist && !in.sqdist_int && !in.sqdist_real) outs += 8;
+    if (rq.want_distance == 32 && !in.distance32) outs += 4;
+    if (rq.want_distance == 64 && !in.distance64) outs += 8;
+    if (rq.want_features && !in.features) outs += 4.0 * rq.layout.nd;
+    if (rq.want_labels) outs += in.labels ? 4 : 8;
+    per += outs > 4 ? outs : 4;
     ::gpugeom::detail::require_device_memory(ex, rq.layout.count(), per, "a distance transform",
                                              "voxels");
   }
@@ -237,6 +246,10 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   const double t0 = now_ms();
   if (rq.grid) {
     mask_p = grid_mask(ex, rq, nvox, raw, mbuf, site_count);
+    if (rq.want_labels && site_count > 0x7fffffff)
+      throw Error(ErrorCode::InvalidInput,
+                  "labels are int32 site indices: the grid has " + std::to_string(site_count) +
+                      " sites, at most 2^31-1 can be labelled (ask for features instead)");
   } else {
     ns = std::int64_t(rq.sites.size());
     ex.from_host(rq.sites.data(), ns, sites.data());
@@ -248,20 +261,28 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   std::uint32_t* sorted = sites.data();
   const std::int32_t* sorted_idx = rq.grid ? nullptr : sidx.data();
   if (rq.grid && !rq.slices.empty()) {  // raster order = packed order
-    auto vox = ex.template alloc<std::int32_t>(std::size_t(nvox));
-    const std::uint8_t* mp = mask_p;
-    ns = ex.compact_indices(
-        nvox, GG_LAMBDA(std::int64_t i) { return mp[i] != 0; }, vox.data());
-    sites = ex.template alloc<std::uint32_t>(std::size_t(ns));
+    // In chunks of at most 2^30 voxels: compact_indices writes int32 positions.
+    constexpr std::int64_t kChunk = std::int64_t(1) << 30;
+    auto vox = ex.template alloc<std::int32_t>(std::size_t(std::min(nvox, kChunk)));
+    sites = ex.template alloc<std::uint32_t>(std::size_t(site_count));
     sorted = sites.data();
-    const std::int32_t* vp = vox.data();
-    const Layout Ly = L;
-    std::uint32_t* sp = sorted;
-    ex.for_each_index(
-        ns, GG_LAMBDA(std::int64_t i) {
-          const std::int64_t v = vp[i];
-          sp[i] = Ly.pack(v % Ly.n[0], (v / Ly.n[0]) % Ly.n[1], v / (Ly.n[0] * Ly.n[1]));
-        });
+    ns = 0;
+    for (std::int64_t c0 = 0; c0 < nvox; c0 += kChunk) {
+      const std::uint8_t* mp = mask_p + c0;
+      const std::int64_t k = ex.compact_indices(
+          std::min(kChunk, nvox - c0), GG_LAMBDA(std::int64_t i) { return mp[i] != 0; },
+          vox.data());
+      const std::int32_t* vp = vox.data();
+      const Layout Ly = L;
+      std::uint32_t* sp = sorted + ns;
+      const std::int64_t first = c0;
+      ex.for_each_index(
+          k, GG_LAMBDA(std::int64_t i) {
+            const std::int64_t v = first + vp[i];
+            sp[i] = Ly.pack(v % Ly.n[0], (v / Ly.n[0]) % Ly.n[1], v / (Ly.n[0] * Ly.n[1]));
+          });
+      ns += k;
+    }
   }
   ex.sync();
   stats.phase_ms.push_back({"upload", now_ms() - t0});
@@ -390,13 +411,4 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
   if (rq.device_out) hand_over(ex, lib, out);
   out.transform_ms = transform;
   stats.phase_ms.push_back({"transform", transform});
-}
-
-// The entry points edt_backend.hpp and edt_device.hpp declare, the same for both executors.
-void run(const Request& req, Output& out, Stats& stats) {
-  run_impl(req, out, stats);
-}
-void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
-                            std::int64_t sites) {
-  feature_transform(ex, L, M, feat, nullptr, Tuning{}, L.nd, sites, nullptr);
 }
