@@ -99,6 +99,9 @@ int main(int argc, char** argv) {
     const auto vol = sparse_sites(s * s * s);
     GridView v{vol.data(), io::ScalarType::U8, {s, s, s}};
     row("edt", "3D, float32 out", s * s * s, distance_transform(v, SiteRule::NonZero, oe).stats);
+    EdtOptions ol = oe;
+    ol.labels = true;
+    row("edt", "3D, + labels", s * s * s, distance_transform(v, SiteRule::NonZero, ol).stats);
   }
   return 0;
 }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "edt/edt_backend.hpp"
+#include "exec/cuda_device.hpp"
 #include "edt_cases.hpp"
 
 using namespace gpugeom;
@@ -404,4 +405,34 @@ TEST(CudaEdt, RasterIndexPackingSameAsCpu) {
     EXPECT_EQ(dl, cpu_sl.labels) << what << " device grid, slices";
     cudaFree(dg);
   }
+}
+
+// A device result dropped by the caller gives its memory back to the library's pool at once,
+// so the next call's memory check and allocations can use it (a 1600^3 transform needs most of
+// an 80 GB device, and one dropped result must not make the next one refused).
+TEST(CudaEdt, DroppedDeviceResultsAreFreed) {
+  const std::vector<std::int64_t> shape{64, 128, 256};
+  const io::Grid g = gg_edt::random_grid(shape, 0.01, 77);
+  void* dg = nullptr;
+  ASSERT_EQ(cudaMalloc(&dg, g.data.size()), cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(dg, g.data.data(), g.data.size(), cudaMemcpyHostToDevice), cudaSuccess);
+  GridView v;
+  v.data = dg;
+  v.shape = shape;
+  EdtOptions o;
+  o.distance = 32;
+  o.labels = true;
+  auto used = [] {
+    unsigned long long u = 0;
+    EXPECT_EQ(cudaMemPoolGetAttribute(cuda_device::pool(0), cudaMemPoolAttrUsedMemCurrent, &u),
+              cudaSuccess);
+    return u;
+  };
+  const auto before = used();
+  {
+    const auto r = distance_transform_device(v, SiteRule::NonZero, o);
+    EXPECT_GE(used() - before, 2ull * 4 * std::uint64_t(g.count()));
+  }
+  EXPECT_EQ(used(), before);
+  cudaFree(dg);
 }
