@@ -17,6 +17,7 @@
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/generate.hpp"
 #include "gpugeom/io.hpp"
+#include "gpugeom/predicates.hpp"
 #include "verify.hpp"
 
 #ifdef GG_BENCH_CGAL
@@ -43,6 +44,43 @@ double cgal_ms(const std::vector<Point2>& p) {
   (void)p;
   return -1;
 #endif
+}
+// --sample K: for sizes the full checker cannot take (it keeps every edge in a hash map), K
+// triangles drawn by hash are checked exactly, each with its three neighbours: counter-
+// clockwise with positive area, every neighbour pointer mutual with the shared edge reversed,
+// no vertex of a neighbour strictly inside the triangle's circumcircle (local Delaunay); and,
+// over the whole output, the count 2m - 2 - h for m distinct points and h hull edges. With
+// every point a vertex (checked always), these are the checker's tests on a sample.
+std::string sample_check(const std::vector<Point2>& p, const Triangulation2d& r, std::int64_t k) {
+  const std::int64_t nt = r.triangle_count;
+  const std::int32_t* t = r.triangles.data();
+  const std::int32_t* nb = r.neighbors.data();
+  std::int64_t hull = 0, distinct = 0;
+#pragma omp parallel for reduction(+ : hull)
+  for (std::int64_t i = 0; i < 3 * nt; ++i) hull += nb[i] < 0;
+  for (std::int32_t d : r.duplicate_of) distinct += d < 0;
+  std::int64_t bad = 0;
+#pragma omp parallel for reduction(+ : bad)
+  for (std::int64_t j = 0; j < k; ++j) {
+    const std::int64_t c = std::int64_t(bench::hash64(std::uint64_t(j), 99) % std::uint64_t(nt));
+    const std::int32_t* v = t + 3 * c;
+    bool ok = orient2d(p[v[0]], p[v[1]], p[v[2]]) > 0;
+    for (int e = 0; e < 3 && ok; ++e) {
+      const std::int32_t o = nb[3 * c + e];  // across the edge opposite v[e]
+      if (o < 0) continue;
+      const std::int32_t a = v[(e + 1) % 3], b = v[(e + 2) % 3];
+      int back = -1;
+      for (int f = 0; f < 3; ++f)
+        if (nb[3 * std::int64_t(o) + f] == c) back = f;
+      const std::int32_t* w = t + 3 * std::int64_t(o);
+      ok = back >= 0 && w[(back + 1) % 3] == b && w[(back + 2) % 3] == a &&
+           incircle(p[v[0]], p[v[1]], p[v[2]], p[w[back]]) <= 0;
+    }
+    bad += !ok;
+  }
+  std::string s = std::to_string(k) + " sampled: " + std::to_string(bad) + " wrong";
+  if (nt != 2 * distinct - 2 - hull) s += ", WRONG COUNT";
+  return s;
 }
 }  // namespace
 
@@ -84,6 +122,7 @@ int main(int argc, char** argv) {
   std::string dists = "uniform", sizes = "1e5,1e6", backends = "all", csv, files;
   int reps = 3;
   bool cgal = false, check = false, voronoi = false;
+  std::int64_t sample = 0;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -101,6 +140,8 @@ int main(int argc, char** argv) {
       cgal = true;
     else if (a == "--check")
       check = true;
+    else if (a == "--sample")  // K triangles checked exactly (any size)
+      sample = std::stoll(next());
     else if (a == "--voronoi")
       voronoi = true;
     else if (a == "--csv")
@@ -108,7 +149,7 @@ int main(int argc, char** argv) {
     else {
       std::cout << "usage: gpugeom_bench_del2d [--dists uniform,circle] [--sizes 1e5,1e6] "
                    "[--files a.npy,b.npy] [--backend cpu|cuda|all] [--reps 3] [--cgal] [--check] "
-                   "[--voronoi] [--csv FILE]\n";
+                   "[--sample K] [--voronoi] [--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
   }
@@ -167,6 +208,7 @@ int main(int argc, char** argv) {
                                      std::int64_t(r.num_triangles()), r.duplicate_of.data());
         verdict += rep.ok ? ", valid" : ", INVALID: " + rep.message;
       }
+      if (sample > 0) verdict += ", " + sample_check(in.pts, r, sample);
       const double dev =
           b == Backend::Cuda
               ? bench::device_resident_ms(

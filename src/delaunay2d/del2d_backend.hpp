@@ -37,6 +37,10 @@ struct DeviceVoronoiOutput {
 // memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
 // Refuses counts no triangulation can be made of (Error, as the public entries say).
 void check_count(std::int64_t n);
+// Tests: the first triangle slot's number (clamped so that the last slot is 2^30 - 1), so that
+// small inputs run through the top of the wide slot encoding. Not thread-safe; 0 restores.
+void set_slot_base_for_testing(std::int64_t base);
+std::int64_t slot_base_for_testing();
 
 namespace cpu_impl {
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,

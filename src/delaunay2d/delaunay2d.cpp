@@ -10,8 +10,20 @@
 namespace gpugeom {
 
 namespace del2d {
-// Slots of the extended triangulation (2m - 2) times 4 must fit the int32 neighbour encoding.
-constexpr std::int64_t kMaxPoints = std::int64_t(1) << 28;
+// Slots of the extended triangulation (2m - 2) must stay below 2^30, the wide neighbour
+// encoding's range (mesh/adjacency.hpp); memory comes first on today's GPUs (about 240 B a
+// point: 3.3·10^8 points on 80 GB), and is checked before any launch.
+constexpr std::int64_t kMaxPoints = (std::int64_t(1) << 29) - 2;
+
+namespace {
+std::int64_t g_slot_base = 0;
+}
+void set_slot_base_for_testing(std::int64_t base) {
+  g_slot_base = base;
+}
+std::int64_t slot_base_for_testing() {
+  return g_slot_base;
+}
 
 void check_count(std::int64_t n) {
   if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");

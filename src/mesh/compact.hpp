@@ -15,7 +15,8 @@
 
 namespace gpugeom::mesh {
 
-// One simplex as the store hands it to the output: vertices and encoded neighbours.
+// One simplex as the store hands it to the output: vertices and neighbour slots (decoded by
+// the store, which knows its encoding's reading: adjacency.hpp).
 template <int K>
 struct SimplexRecord {
   std::int32_t v[K];
@@ -47,7 +48,7 @@ struct Emit {
     const SimplexRecord<K> x = s.get(t);
     for (int k = 0; k < K; ++k) {
       simplices[K * r + k] = x.v[k];
-      const std::int32_t nb = simplex_of(x.n[k]);
+      const std::int32_t nb = x.n[k];
       const std::int32_t rn = rank[nb];
       neighbors[K * r + k] = rank[nb + 1] != rn ? rn : -1;
     }
@@ -55,8 +56,8 @@ struct Emit {
 };
 }  // namespace compact_detail
 
-// Store: GG_HD bool live(t); GG_HD SimplexRecord<K> get(t) (output vertex names, neighbours
-// encoded as adjacency.hpp's enc). used: the slots handed out. [synchronises] (reads the count)
+// Store: GG_HD bool live(t); GG_HD SimplexRecord<K> get(t) (output vertex names, neighbour
+// slots). used: the slots handed out. [synchronises] (reads the count)
 template <int K, class Exec, class Store>
 Compacted<Exec> compact_live(Exec& ex, std::int64_t used, const Store& store) {
   auto rank = ex.template alloc<std::int32_t>(std::size_t(used) + 1);

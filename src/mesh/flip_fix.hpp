@@ -27,17 +27,17 @@ namespace gpugeom::mesh {
 //   GG_HD void set(std::int32_t slot, int face, std::int32_t e): a neighbour pointer;
 //   GG_HD std::int32_t moved(std::int32_t outer): where face loc_of(outer) of the changed slot
 //     simplex_of(outer) went, encoded.
-// Returns the final neighbour's slot.
-template <class Store>
+// Returns the final neighbour's slot. Adj: the encoding's reading (adjacency.hpp).
+template <class Adj = Adjacency, class Store>
 GG_HD std::int32_t fix_face(const Store& S, std::int32_t x, int l, std::int32_t outer,
                             bool flipped) {
   if (!flipped) {
-    S.set(simplex_of(outer), loc_of(outer), enc(x, l));
-    return simplex_of(outer);
+    S.set(Adj::simplex_of(outer), Adj::loc_of(outer), Adj::enc(x, l));
+    return Adj::simplex_of(outer);
   }
   const std::int32_t to = S.moved(outer);
   S.set(x, l, to);
-  return simplex_of(to);
+  return Adj::simplex_of(to);
 }
 
 }  // namespace gpugeom::mesh

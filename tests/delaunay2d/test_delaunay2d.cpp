@@ -6,6 +6,7 @@
 #include "gpugeom/predicates.hpp"
 #include "../common/on_host_threads.hpp"
 #include "del2d_cases.hpp"
+#include "delaunay2d/del2d_backend.hpp"
 
 using namespace gpugeom;
 using gg_del2d::expect_valid;
@@ -354,5 +355,36 @@ TEST(Delaunay2d, ConvexHullVertices) {
       EXPECT_GT(orient2d(a, b, c), 0) << "vertex not extreme or not counter-clockwise";
       for (std::size_t j = 0; j < p.size(); j += 7) EXPECT_GE(orient2d(a, b, p[j]), 0);
     }
+  }
+}
+
+// Beyond 2^29 slots (2^28 points) neighbour pointers and work-list entries use bit 31 (the
+// wide encoding, read as unsigned). The test switch numbers the slots from the top of that
+// range down, so that small inputs go through it: every distribution and degenerate case then
+// gives the arrays of slots numbered from 0, exactly (the output renumbers triangles).
+TEST(Delaunay2d, TopOfTheWideSlotRange) {
+  std::vector<gg_del2d::Case> cases = gg_del2d::degenerate_cases();
+  for (auto& c : gg_del2d::distribution_cases({100, 20000}, 5)) cases.push_back(std::move(c));
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const auto ref = delaunay2d(c.pts, cpu());
+    del2d::set_slot_base_for_testing(std::int64_t(1) << 30);  // clamped: last slot 2^30 - 1
+    const auto r = delaunay2d(c.pts, cpu());
+    del2d::set_slot_base_for_testing(0);
+    expect_valid(c.pts, r);
+    EXPECT_EQ(r.triangles, ref.triangles);
+    EXPECT_EQ(r.neighbors, ref.neighbors);
+    EXPECT_EQ(r.stats.counters.at("flips"), ref.stats.counters.at("flips"));
+  }
+}
+
+// The limit the header states: refused before any work, with the number.
+TEST(Delaunay2d, PointLimitIsStated) {
+  try {
+    delaunay2d(static_cast<const double*>(nullptr), (std::int64_t(1) << 29) - 1, cpu());
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(int(e.code()), int(ErrorCode::InvalidInput));
+    EXPECT_NE(std::string(e.what()).find("at most 536870910"), std::string::npos) << e.what();
   }
 }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "del2d_cases.hpp"
+#include "delaunay2d/del2d_backend.hpp"
 
 using namespace gpugeom;
 
@@ -233,4 +234,25 @@ TEST(CudaDelaunay2d, VoronoiDeviceEntry) {
             std::vector<std::int64_t>(ref.cell_offsets.begin(), ref.cell_offsets.end()));
   EXPECT_EQ(both.cell_vertices,
             std::vector<std::int32_t>(ref.cell_vertices.begin(), ref.cell_vertices.end()));
+}
+
+// The top of the wide slot range (bit 31 of neighbour pointers and list entries) on the GPU:
+// the CPU executor's arrays with slots numbered from 0 (see the CPU test).
+TEST(CudaDelaunay2d, TopOfTheWideSlotRange) {
+  std::vector<gg_del2d::Case> cases = gg_del2d::degenerate_cases();
+  for (auto& c : gg_del2d::distribution_cases(sizes({5000, 200000}), 7))
+    cases.push_back(std::move(c));
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    Delaunay2dOptions o;
+    o.backend = Backend::Cpu;
+    const auto cpu = delaunay2d(c.pts, o);
+    o.backend = Backend::Cuda;
+    del2d::set_slot_base_for_testing(std::int64_t(1) << 30);
+    const auto gpu = delaunay2d(c.pts, o);
+    del2d::set_slot_base_for_testing(0);
+    gg_del2d::expect_valid(c.pts, gpu);
+    EXPECT_EQ(gpu.triangles, cpu.triangles);
+    EXPECT_EQ(gpu.neighbors, cpu.neighbors);
+  }
 }

@@ -133,18 +133,35 @@ TEST(MeshFlipLog, FollowMatchesAReplayAcrossEpochs) {
   EXPECT_EQ(log.base, 0);
 }
 
-// A store of five slots, two of them not live, as compact_live reads it.
+// A store of five slots, two of them not live, as compact_live reads it (neighbour slots, as
+// each store decodes its own encoding).
 struct ToyStore {
   GG_HD bool live(std::int64_t t) const { return t != 1 && t != 3; }
   GG_HD mesh::SimplexRecord<3> get(std::int64_t t) const {
     mesh::SimplexRecord<3> r;
     for (int k = 0; k < 3; ++k) {
       r.v[k] = std::int32_t(10 * t + k);
-      r.n[k] = mesh::enc(std::int32_t((t + k + 1) % 5), k);  // slots t+1, t+2, t+3
+      r.n[k] = std::int32_t((t + k + 1) % 5);  // slots t+1, t+2, t+3
     }
     return r;
   }
 };
+// The wide reading of the encoding (delaunay2d) round-trips every slot below 2^30 and every
+// local index, the top slots included, where the signed reading would turn negative.
+TEST(MeshAdjacency, WideEncodingRoundTrips) {
+  using W = mesh::WideAdjacency;
+  for (std::int64_t s : {std::int64_t(0), std::int64_t(1), (std::int64_t(1) << 29) - 1,
+                         std::int64_t(1) << 29, W::kMaxSlots - 2, W::kMaxSlots - 1})
+    for (int k = 0; k < 4; ++k) {
+      const std::int32_t e = W::enc(std::int32_t(s), k);
+      EXPECT_EQ(W::simplex_of(e), s);
+      EXPECT_EQ(W::loc_of(e), k);
+      if (s < (std::int64_t(1) << 29)) {
+        EXPECT_EQ(e, mesh::enc(std::int32_t(s), k));  // the same bits where both apply
+      }
+    }
+}
+
 TEST(MeshCompact, LiveSimplicesRenumberedWithTheirNeighbours) {
   CpuExec ex;
   const auto c = mesh::compact_live<3>(ex, 5, ToyStore{});

@@ -8,9 +8,18 @@
 // extended triangulation of m + 1 vertices ends with exactly 2m - 2 slots, all in use.
 
 // (The neighbour encoding and the vote keys come from mesh/adjacency.hpp and mesh/priority.hpp.)
-using mesh::enc;
-using mesh::loc_of;
-using mesh::simplex_of;
+// Every triangle has three neighbours, so the encoding is read as unsigned: slots up to 2^30,
+// 2^29 points (WideAdjacency).
+using Adj = mesh::WideAdjacency;
+GG_INLINE std::int32_t enc(std::int32_t s, int k) {
+  return Adj::enc(s, k);
+}
+GG_INLINE std::int32_t simplex_of(std::int32_t e) {
+  return Adj::simplex_of(e);
+}
+GG_INLINE int loc_of(std::int32_t e) {
+  return Adj::loc_of(e);
+}
 using mesh::vote_key;
 using mesh::voter_of;
 
@@ -48,18 +57,30 @@ struct Mesh {
   Tri* tri;
   u64* vote;
   FlipLog log;
+  std::int32_t base;  // the first slot's number (0 but in tests: Triangulator::base_)
 };
 
+// A proposal's key in round `round` from slot t, and the slot a key names. Priorities scramble
+// the slot's rank from the first slot, so that the schedule (and the output's order) does not
+// depend on where slot numbering starts.
+GG_INLINE u64 key_of(const Mesh& M, std::int32_t round, std::int32_t t) {
+  return vote_key(round, t - M.base);
+}
+GG_INLINE std::int32_t voter(const Mesh& M, u64 key) {
+  return voter_of(key) + M.base;
+}
+
 // A work-list entry: the slot, and the local index of an edge known to be locally Delaunay
-// (the diagonal its flip just made) in bits 29-30 as index + 1 (slots stay below 2^29).
+// (the diagonal its flip just made) in bits 30-31 as index + 1 (slots stay below 2^30; the
+// entry is read as unsigned, like the neighbour encoding).
 GG_INLINE std::int32_t list_entry(std::int32_t slot, int legal) {
-  return slot | ((legal + 1) << 29);
+  return std::int32_t(std::uint32_t(slot) | (std::uint32_t(legal + 1) << 30));
 }
 GG_INLINE std::int32_t slot_of(std::int32_t entry) {
-  return entry & 0x1FFFFFFF;
+  return entry & 0x3FFFFFFF;
 }
 GG_INLINE int legal_edge_of(std::int32_t entry) {
-  return ((entry >> 29) & 3) - 1;
+  return int(std::uint32_t(entry) >> 30) - 1;
 }
 
 // A work-list entry's decision: the first illegal edge (0..2), none (-1), or
@@ -94,7 +115,7 @@ GG_INLINE void append_flip(std::int64_t* next, std::int64_t* log, std::int64_t& 
 }
 // Proposer t asks to flip with nb: its key goes to both triangles, the largest key wins each.
 GG_INLINE void propose(const Mesh& M, std::int32_t round, std::int32_t t, std::int32_t nb) {
-  const u64 key = vote_key(round, t);
+  const u64 key = key_of(M, round, t);
   vote_max(M.vote + t, key);
   vote_max(M.vote + nb, key);
 }
@@ -184,7 +205,8 @@ struct PairStore {
 };
 GG_HD inline void fix_edge(const Mesh& M, std::int32_t x, const Tri& X, int l, std::int32_t round,
                            std::int32_t stamp) {
-  mesh::fix_face(PairStore{M, X.v[(l + 2) % 3], X.v[(l + 1) % 3]}, x, l, X.n[l], stamp == round);
+  mesh::fix_face<Adj>(PairStore{M, X.v[(l + 2) % 3], X.v[(l + 1) % 3]}, x, l, X.n[l],
+                      stamp == round);
 }
 
 // Phase 2 for flipped pair t (the proposer's slot) and nb: its four outer edges. The four

@@ -31,6 +31,11 @@ class Triangulator {
       : ex_(ex), P_(P), st_(st), profile_(profile) {
     m_ = std::int32_t(P.m);
     tmax_ = 2 * std::int64_t(m_) - 2;
+    // Tests only (del2d::set_slot_base_for_testing): slots numbered from base_ rather than 0,
+    // up to the encoding's last slot, so that small inputs run through the top of the wide
+    // encoding (bit 31 set in neighbour pointers and list entries). The slot-indexed arrays
+    // are then addressed through pointers offset by -base_ (tri(), best(), srank(), M_).
+    base_ = std::clamp<std::int64_t>(slot_base_for_testing(), 0, Adj::kMaxSlots - tmax_);
     g_.p = P.pts.data();
     g_.s[0] = P.kernel[0];
     g_.s[1] = P.kernel[1];
@@ -58,7 +63,8 @@ class Triangulator {
     hist_ = ex.template alloc<Hist>(T);
     slots_ = ScratchSlots<Exec>(
         ex, std::clamp<std::int64_t>(tmax_ / 64, kExactSlotsMin, kExactSlotsMax), kIncircleScratch);
-    M_ = Mesh{tri_.data(), vote_.data(), FlipLog{rec_.data(), hist_.data(), 0}};
+    M_ = Mesh{tri(), vote_.data() - base_, FlipLog{rec_.data(), hist_.data() - base_, 0},
+              std::int32_t(base_)};
     ex.fill(hist_.data(), tmax_, Hist{-1, -1});
     ex.fill(vote_.data(), tmax_, u64(0));
     ex.fill(best_.data(), tmax_, ~u64(0));
@@ -81,9 +87,10 @@ class Triangulator {
   // Finite triangles in input indices, neighbours among them, left on the executor.
   using Finished = mesh::Compacted<Exec>;
   struct FiniteTriangles {  // (the store as the output step reads it)
-    const Tri* tri;
+    const Tri* tri;         // from slot base: position t is slot base + t
     const std::int32_t* orig;
     std::int32_t m;  // the infinity point
+    std::int32_t base;
     GG_HD bool live(std::int64_t t) const {
       const std::int32_t* v = tri[t].v;
       return v[0] != m && v[1] != m && v[2] != m;
@@ -91,7 +98,7 @@ class Triangulator {
     GG_HD mesh::SimplexRecord<3> get(std::int64_t t) const {
       const Tri T = tri[t];
       mesh::SimplexRecord<3> r;
-      for (int k = 0; k < 3; ++k) r.v[k] = orig[T.v[k]], r.n[k] = T.n[k];
+      for (int k = 0; k < 3; ++k) r.v[k] = orig[T.v[k]], r.n[k] = simplex_of(T.n[k]) - base;
       return r;
     }
   };
@@ -107,7 +114,8 @@ class Triangulator {
   }
   Finished finish() {
     // (the extended triangulation has 2m - 2 slots, all in use)
-    return mesh::compact_live<3>(ex_, tmax_, FiniteTriangles{tri_.data(), P_.orig.data(), m_});
+    return mesh::compact_live<3>(
+        ex_, tmax_, FiniteTriangles{tri_.data(), P_.orig.data(), m_, std::int32_t(base_)});
   }
 
   using clock = std::chrono::steady_clock;
@@ -127,12 +135,13 @@ class Triangulator {
   // The first triangle and its three infinite neighbours; every other point is located.
   void start() {
     const std::int32_t a = P_.first[0], b = P_.first[1], c = P_.first[2], I = m_;
+    const std::int32_t B = std::int32_t(base_);
+    auto e = [B](std::int32_t s, int k) { return enc(B + s, k); };
     // slot 0 (a,b,c); slot 1 (c,b,I) across bc; slot 2 (a,c,I) across ca; slot 3 (b,a,I).
-    const Tri first[4] = {
-        {{a, b, c}, {enc(1, 2), enc(2, 2), enc(3, 2)}, -1, 0},
-        {{c, b, I}, {enc(3, 1), enc(2, 0), enc(0, 0)}, -1, 0},   // (b,I) (I,c) (c,b)
-        {{a, c, I}, {enc(1, 1), enc(3, 0), enc(0, 1)}, -1, 0},   // (c,I) (I,a) (a,c)
-        {{b, a, I}, {enc(2, 1), enc(1, 0), enc(0, 2)}, -1, 0}};  // (a,I) (I,b) (b,a)
+    const Tri first[4] = {{{a, b, c}, {e(1, 2), e(2, 2), e(3, 2)}, -1, 0},
+                          {{c, b, I}, {e(3, 1), e(2, 0), e(0, 0)}, -1, 0},   // (b,I) (I,c) (c,b)
+                          {{a, c, I}, {e(1, 1), e(3, 0), e(0, 1)}, -1, 0},   // (c,I) (I,a) (a,c)
+                          {{b, a, I}, {e(2, 1), e(1, 0), e(0, 2)}, -1, 0}};  // (a,I) (I,b) (b,a)
     ex_.from_host(first, 4, tri_.data());
     ntri_ = 4;
     const Geo g = g_;
@@ -148,7 +157,7 @@ class Triangulator {
           }
           std::int32_t found = -1;
           for (std::int32_t t = 0; t < 4 && found < 0; ++t)
-            if (inside_ext(g, tri[t].v, q)) found = t;
+            if (inside_ext(g, tri[t].v, q)) found = B + t;
           loc[q] = found;
           if (found < 0) atomic_add(&ctr->lost, std::int64_t(1));
         });
@@ -175,12 +184,12 @@ class Triangulator {
     // The chosen points in curve order, so that the new slots (and the work lists, which
     // follow them) go through the plane along the curve: neighbouring slots then share memory
     // sectors of the points and of each other, where triangle order scattered every access.
-    u64* best = best_.data();
+    u64* best = this->best();
     std::int32_t* ins = ins_.data();
     std::int32_t* chosen = un2_.data();  // (free until the point list is compacted below)
     const std::int64_t nins = ex_.copy_if(un_.data(), nun_, chosen, Chosen{loc_.data(), best});
     mark("compact chosen");
-    std::int32_t* srank = split_rank_.data();
+    std::int32_t* srank = this->srank();
     const std::int32_t* locc = loc_.data();
     ex_.for_each_index(
         nins, GG_LAMBDA(std::int64_t r) {
@@ -189,7 +198,7 @@ class Triangulator {
           srank[t] = std::int32_t(r);
         });
     const Mesh M = M_;
-    const std::int32_t first_new = std::int32_t(ntri_);
+    const std::int32_t first_new = std::int32_t(base_ + ntri_);
     const mesh::WorkLists L = work_lists();
     std::int32_t* act = L.current(round_ + 1);  // the next round's list
     std::int64_t* len = L.count(round_ + 1);
@@ -336,7 +345,7 @@ class Triangulator {
           const int k = dec[i];
           if (k < 0) return;
           const std::int32_t t = slot_of(act[i]);
-          const u64 key = vote_key(round, t);
+          const u64 key = key_of(M, round, t);
           const u64 won = M.vote[t];
           // On the GPU the records are read at once, not after the votes that make them this
           // thread's (a record read that way may be changing; it is then left unused): the
@@ -359,7 +368,7 @@ class Triangulator {
               next[at + 1] = list_entry(nb, 2);
               return;
             }
-          } else if (M.vote[voter_of(won)] == won) {
+          } else if (M.vote[voter(M, won)] == won) {
             return;  // the proposal that took t won its own triangle too: it flips t, lists it
           }
           next[append_slot(next_len)] = list_entry(t, -1);  // lost: tests again
@@ -452,10 +461,10 @@ class Triangulator {
     const Mesh M = M_;
     const std::int32_t* un = un_.data();
     std::int32_t* loc = loc_.data();
-    const std::int32_t* srank = split_rank_.data();
+    const std::int32_t* srank = this->srank();
     const std::int32_t* sp = split_.data();
     const std::int32_t first_new = epoch_first_new_;
-    u64* best = best_.data();
+    u64* best = this->best();
     const bool moved = epoch_splits_ > 0 || logged_ > 0;
     if (!moved && !choose) return;
     ex_.for_each_index(
@@ -481,7 +490,7 @@ class Triangulator {
             atomic_min(best + L, key);
           }
         });
-    std::int32_t* sr = split_rank_.data();
+    std::int32_t* sr = this->srank();
     const std::int32_t* ins = ins_.data();
     ex_.for_each_index(
         epoch_splits_, GG_LAMBDA(std::int64_t r) { sr[ins[r]] = -1; });
@@ -501,7 +510,8 @@ class Triangulator {
   void peel() {
     const std::int32_t m = m_;
     const Geo g = g_;
-    const Tri* tri = tri_.data();
+    const Tri* tri = this->tri();
+    const std::int32_t B = std::int32_t(base_);
     // Flat triangles come in runs along a hull line, and each run has one next to the outside
     // (the hull edge over the run lies on that line too): first look only there, reading the
     // points of the few triangles on the hull rather than those of every triangle.
@@ -515,7 +525,7 @@ class Triangulator {
     const std::int64_t on_hull = ex_.compact_indices(
         tmax_,
         GG_LAMBDA(std::int64_t t) {
-          const Tri T = tri[t];
+          const Tri T = tri[B + t];
           const int gi = T.v[0] == m ? 0 : T.v[1] == m ? 1 : T.v[2] == m ? 2 : -1;
           return gi >= 0 && flat(tri[simplex_of(T.n[gi])]);
         },
@@ -524,9 +534,14 @@ class Triangulator {
         on_hull == 0
             ? 0
             : ex_.compact_indices(
-                  tmax_, GG_LAMBDA(std::int64_t t) { return flat(tri[t]); }, lists_[0].data());
+                  tmax_, GG_LAMBDA(std::int64_t t) { return flat(tri[B + t]); }, lists_[0].data());
     st_.counters["flat_triangles"] = nflat;
     if (nflat == 0) return;
+    if (B != 0) {  // positions to slots
+      std::int32_t* l0 = lists_[0].data();
+      ex_.for_each_index(
+          nflat, GG_LAMBDA(std::int64_t i) { l0[i] += B; });
+    }
     const Mesh M = M_;
     const std::int32_t* act = lists_[0].data();  // (the rounds are over: any list will do)
     std::int8_t* dec = dec_.data();
@@ -559,7 +574,7 @@ class Triangulator {
             const int k = dec[i];
             if (k < 0) return;
             const std::int32_t t = act[i];
-            const u64 key = vote_key(round, t);
+            const u64 key = key_of(M, round, t);
             if (M.vote[t] != key) return;
             if (M.vote[simplex_of(M.tri[t].n[k])] == key) {
               flip_phase1(M, t, k, round, -1);  // no point is left to follow it
@@ -604,6 +619,10 @@ class Triangulator {
     st_.counters["small_flip_rounds"] = c.small_rounds;
   }
 
+  Tri* tri() { return tri_.data() - base_; }
+  u64* best() { return best_.data() - base_; }
+  std::int32_t* srank() { return split_rank_.data() - base_; }
+
   // state
   Exec& ex_;
   Prepared& P_;
@@ -613,6 +632,7 @@ class Triangulator {
   Mesh M_;
   std::int32_t m_ = 0;
   std::int64_t tmax_ = 0, ntri_ = 0, nun_ = 0, nact_ = 0;
+  std::int64_t base_ = 0;  // the first slot's number (0 but in tests)
   std::int32_t round_ = 0;
   std::int64_t batches_ = 0, flips_ = 0;
   std::int64_t log_cap_ = 0, logged_ = 0;

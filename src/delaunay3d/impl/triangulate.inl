@@ -929,7 +929,7 @@ class Triangulator {
     GG_HD mesh::SimplexRecord<4> get(std::int64_t t) const {
       const Tet T = tet[t];
       mesh::SimplexRecord<4> r;
-      for (int k = 0; k < 4; ++k) r.v[k] = orig[T.v[k]], r.n[k] = T.n[k];
+      for (int k = 0; k < 4; ++k) r.v[k] = orig[T.v[k]], r.n[k] = mesh::simplex_of(T.n[k]);
       return r;
     }
   };

@@ -19,7 +19,7 @@ struct LiveFacets {
   GG_HD bool live(std::int64_t f) const { return tv[3 * f] >= 0; }
   GG_HD mesh::SimplexRecord<3> get(std::int64_t f) const {
     mesh::SimplexRecord<3> r;
-    for (int k = 0; k < 3; ++k) r.v[k] = tv[3 * f + k], r.n[k] = to[3 * f + k];
+    for (int k = 0; k < 3; ++k) r.v[k] = tv[3 * f + k], r.n[k] = mesh::simplex_of(to[3 * f + k]);
     return r;
   }
 };
