@@ -682,9 +682,11 @@ inline void check_into(const Triangulation2dBuffers& into, std::int64_t count, s
   deliver::check(into.duplicate_of, n, "duplicate_of");
 }
 
-// The device memory a triangulation certainly needs per point (docs/performance.md: 345 B
-// measured at 10^7 uniform points, 545 B at 10^6).
-constexpr double kLeastBytesPerPoint = 200;
+// The device memory a triangulation needs per point, checked before any launch
+// (docs/performance.md, H100 80 GB: the peak is 241 B a point at 10^8, 238 at 3·10^8, more at
+// smaller sizes; 3.3·10^8 points ran and 3.4·10^8 ran out of the card's 85.0 GB, the pool's
+// blocks adding to the arrays): 250 B refuses the latter before it starts.
+constexpr double kLeastBytesPerPoint = 250;
 
 inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                              Output& out, Stats& st) {
