@@ -62,6 +62,19 @@ TEST(Delaunay3d, StarSplayingRepairs) {
   }
 }
 
+// The degenerate sets with star splaying repairing much: on some of them splaying adds more
+// tetrahedra than the store holds after phase 1, and the store grows while phase 1's arrays
+// are already freed (it copied out of them and crashed).
+TEST(Delaunay3d, StarSplayingGrowsTheStore) {
+  for (const auto& c : gg_hull3d::degenerate_cases())
+    for (std::int64_t rounds : {1, 2, 3, 5, 8}) {
+      SCOPED_TRACE(c.name + ", rounds " + std::to_string(rounds));
+      Delaunay3dOptions o = cpu();
+      o.max_flip_rounds = rounds;
+      expect_valid(c.pts, delaunay3d(c.pts, o));
+    }
+}
+
 TEST(Delaunay3d, SameForEveryThreadCount) {
   for (const char* d : {"uniform", "sphere", "thin_sphere", "grid"}) {
     const auto pts = generate3d(d, 5000, 4);

@@ -334,6 +334,13 @@ class Triangulator {
   // slots) grows, keeping what it holds. One array at a time, so that at most one array is
   // held twice (the largest inputs fill the device: a whole second store would not fit).
   void grow(std::int64_t cap) {
+    if (phase1_released_) {  // phase 2 and the output read the store only (release_phase1)
+      const Counters c = counters();
+      regrow<Tet>(tet_, cap, std::min<std::int64_t>(c.used, cap_), nullptr);
+      cap_ = cap;
+      M_ = Mesh{tet_.data(), nullptr, nullptr, FlipLog{}, nullptr, cap_, ctr_.data()};
+      return;
+    }
     const std::int64_t old = cap_;
     Counters c{};
     if (old) c = counters();
@@ -415,6 +422,10 @@ class Triangulator {
     hist_ = typename Exec::template Buffer<Hist>();
     dec_ = typename Exec::template Buffer<std::int8_t>();
     M_ = Mesh{tet_.data(), nullptr, nullptr, FlipLog{}, nullptr, cap_, ctr_.data()};
+    // A later growth (star splaying may add more tetrahedra than the store holds) must not
+    // copy out of the arrays just freed (it did: a crash on the CPU, an invalid output or an
+    // error on the GPU, where splaying repaired many vertices).
+    phase1_released_ = true;
   }
 
   void run() {
@@ -981,6 +992,7 @@ class Triangulator {
   mesh::Tetra first_;
   std::int32_t m_ = 0;
   std::int64_t cap_ = 0, nun_ = 0, nact_ = 0, used_ = 0;
+  bool phase1_released_ = false;  // release_phase1 ran: grow keeps the store only
   std::int32_t round_ = 0;
   std::int64_t batches_ = 0;
   std::int64_t log_cap_ = 0, logged_ = 0;
