@@ -236,17 +236,39 @@ EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions&
     return finish(rq, opt, g.shape);
   }
   // Slice by slice: the device holds the site list and one slice, never the volume, so the
-  // sites are listed here (raster order: labels are raster ranks as usual).
+  // sites are listed here (raster order: labels are raster ranks as usual), on all host
+  // threads: each chunk counts its sites, then writes them at its offset.
   const std::int64_t n = rq.layout.count();
   const edt::Layout& L = rq.layout;
+  constexpr std::int64_t kChunk = std::int64_t(1) << 20;
+  const std::int64_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<std::int64_t> at(std::size_t(chunks) + 1, 0);
   bool finite = true;
-  for (std::int64_t i = 0; i < n; ++i) {
+  const bool nonzero = rule == SiteRule::NonZero;
+  auto is_site = [&](std::int64_t i, bool& fin) {
     const double v = element(g.data, g.type, i);
-    finite = finite && !std::isnan(v);
-    if (rule == SiteRule::NonZero ? v != 0 : v == 0)
-      rq.sites.push_back(L.pack_any(i % L.n[0], (i / L.n[0]) % L.n[1], i / (L.n[0] * L.n[1])));
+    fin = fin && !std::isnan(v);
+    return nonzero ? v != 0 : v == 0;
+  };
+#pragma omp parallel for schedule(dynamic, 1) reduction(&& : finite)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    std::int64_t k = 0;
+    for (std::int64_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
+      k += is_site(i, finite);
+    at[std::size_t(c) + 1] = k;
   }
   if (!finite) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
+  for (std::int64_t c = 0; c < chunks; ++c) at[std::size_t(c) + 1] += at[std::size_t(c)];
+  rq.sites.resize(std::size_t(at.back()));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    std::int64_t k = at[std::size_t(c)];
+    bool unused = true;
+    for (std::int64_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
+      if (is_site(i, unused))
+        rq.sites[std::size_t(k++)] =
+            L.pack_any(i % L.n[0], (i / L.n[0]) % L.n[1], i / (L.n[0] * L.n[1]));
+  }
   if (rq.sites.empty())
     throw Error(ErrorCode::InvalidInput, std::string("the grid has no site (no ") +
                                              (rule == SiteRule::NonZero ? "nonzero" : "zero") +
