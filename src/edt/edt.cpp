@@ -78,8 +78,6 @@ Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing 
                   "together (e.g. 1024 x 1024 x 2048, 32768 x 65536), these need " +
                       std::to_string(shift));
     L.linear = true;
-    L.by_x = Divider::of(std::uint32_t(L.n[0]));
-    L.by_xy = Divider::of(std::uint32_t(L.n[0] * L.n[1]));
   }
   if (sliced && L.n[0] * L.n[1] >= (std::int64_t(1) << 31) - 1)
     throw Error(ErrorCode::InvalidInput, "a slice of " + std::to_string(L.n[0] * L.n[1]) +

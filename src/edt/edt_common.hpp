@@ -67,9 +67,9 @@ struct Layout {
   std::uint32_t mask[3] = {0, 0, 0};
   std::int64_t z0 = 0;  // z of the first slice held (slice-by-slice mode), 0 otherwise
   // Sites are packed as raster indices (LinearLayout), for grids whose bit fields need more
-  // than 32 bits; the divisors by nx and nx * ny decode them.
+  // than 32 bits. (The divisors that decode them live in LinearLayout only: the bit-field
+  // kernels keep their parameter block as it was.)
   bool linear = false;
-  Divider by_x, by_xy;
   std::int64_t count() const { return n[0] * n[1] * n[2]; }
   GG_INLINE std::int64_t stride(int a) const { return a == 0 ? 1 : (a == 1 ? n[0] : n[0] * n[1]); }
   GG_INLINE std::uint32_t pack(std::int64_t x, std::int64_t y, std::int64_t z) const {
@@ -89,8 +89,12 @@ struct Layout {
 // The same shape with sites packed as raster indices x + nx (y + ny z) (absolute z: a slice's
 // layout keeps the volume's nx and ny). Packed order is raster order, as with the bit fields.
 struct LinearLayout : Layout {
+  Divider by_x, by_xy;  // by nx and by nx * ny
   LinearLayout() = default;
-  LinearLayout(const Layout& L) : Layout(L) {}  // NOLINT: the passes convert implicitly
+  LinearLayout(const Layout& L)  // NOLINT: the passes convert implicitly (host side)
+      : Layout(L),
+        by_x(Divider::of(std::uint32_t(L.n[0]))),
+        by_xy(Divider::of(std::uint32_t(L.n[0] * L.n[1]))) {}
   GG_INLINE std::uint32_t pack(std::int64_t x, std::int64_t y, std::int64_t z) const {
     return std::uint32_t(x) +
            std::uint32_t(n[0]) * (std::uint32_t(y) + std::uint32_t(n[1]) * std::uint32_t(z));
