@@ -80,6 +80,10 @@ struct Layout {
   GG_INLINE std::int64_t voxel_of(std::uint32_t s) const {
     return coord(s, 0) + n[0] * (coord(s, 1) + n[1] * coord(s, 2));
   }
+  // The site at voxel v (raster index of a whole grid).
+  GG_INLINE std::uint32_t pack_voxel(std::int64_t v) const {
+    return pack(v % n[0], (v / n[0]) % n[1], v / (n[0] * n[1]));
+  }
   // Either packing, chosen at run time (host-side packing of site lists).
   std::uint32_t pack_any(std::int64_t x, std::int64_t y, std::int64_t z) const {
     return linear ? std::uint32_t(x + n[0] * (y + n[1] * z)) : pack(x, y, z);
@@ -105,6 +109,7 @@ struct LinearLayout : Layout {
     return by_xy.div(s);
   }
   GG_INLINE std::int64_t voxel_of(std::uint32_t s) const { return s; }
+  GG_INLINE std::uint32_t pack_voxel(std::int64_t v) const { return std::uint32_t(v); }
 };
 
 struct Metric {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gpugeom/edt.hpp"
+#include "edt/edt_backend.hpp"
 #include "gpugeom/io.hpp"
 
 namespace gg_edt {
@@ -23,6 +24,15 @@ inline gpugeom::io::Grid random_grid(const std::vector<std::int64_t>& shape, dou
   if (std::count(g.data.begin(), g.data.end(), 1) == 0) g.data[r() % g.data.size()] = 1;
   return g;
 }
+
+// Raster-index packing (edt::LinearLayout) for every grid while alive (the library's test
+// switch).
+struct LinearPacking {
+  LinearPacking() { gpugeom::edt::set_linear_packing_for_testing(true); }
+  ~LinearPacking() { gpugeom::edt::set_linear_packing_for_testing(false); }
+  LinearPacking(const LinearPacking&) = delete;
+  LinearPacking& operator=(const LinearPacking&) = delete;
+};
 
 struct Reference {
   std::vector<mpq_class> sq;  // exact weighted squared distance

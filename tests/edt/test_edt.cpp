@@ -356,11 +356,6 @@ TEST(Edt, DeviceEntryOnCpuExecutor) {
 }
 
 namespace {
-// Raster-index packing (edt::LinearLayout) for every grid while alive.
-struct LinearPacking {
-  LinearPacking() { edt::set_linear_packing_for_testing(true); }
-  ~LinearPacking() { edt::set_linear_packing_for_testing(false); }
-};
 void expect_same(const EdtResult& a, const EdtResult& b, const std::string& what) {
   EXPECT_EQ(a.shape, b.shape) << what;
   EXPECT_EQ(a.sqdist_int, b.sqdist_int) << what;
@@ -418,7 +413,7 @@ TEST(Edt, RasterIndexPackingSameResults) {
     if (c.shape.size() == 3) so.slices = {c.shape[0] - 1, 0, c.shape[0] / 2};
     const auto slices_bits =
         c.shape.size() == 3 ? distance_transform(g, SiteRule::NonZero, so) : EdtResult{};
-    LinearPacking on;
+    gg_edt::LinearPacking on;
     expect_same(distance_transform(g, SiteRule::NonZero, o), bits, what);
     if (zeros)
       expect_same(distance_transform(g, SiteRule::Zero, o), zero_bits, what + " zero rule");

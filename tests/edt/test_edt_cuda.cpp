@@ -16,6 +16,21 @@
 
 using namespace gpugeom;
 
+namespace {
+// Every output the bit-for-bit comparisons look at: squared distances, float32 distances,
+// features and labels.
+EdtOptions every_output(const std::vector<double>& sampling, Backend b) {
+  EdtOptions o;
+  o.squared = true;
+  o.distance = 32;
+  o.features = true;
+  o.labels = true;
+  o.sampling = sampling;
+  o.backend = b;
+  return o;
+}
+}  // namespace
+
 TEST(CudaEdt, SameAsCpuBitForBit) {
   struct Case {
     std::vector<std::int64_t> shape;
@@ -38,13 +53,7 @@ TEST(CudaEdt, SameAsCpuBitForBit) {
   unsigned seed = 1;
   for (auto& c : cases) {
     io::Grid g = gg_edt::random_grid(c.shape, c.density, seed++);
-    EdtOptions o;
-    o.squared = true;
-    o.distance = 32;
-    o.features = true;
-    o.labels = true;
-    o.sampling = c.sampling;
-    o.backend = Backend::Cpu;
+    EdtOptions o = every_output(c.sampling, Backend::Cpu);
     const auto cpu = distance_transform(g, SiteRule::NonZero, o);
     o.backend = Backend::Cuda;
     const auto gpu = distance_transform(g, SiteRule::NonZero, o);
@@ -345,24 +354,14 @@ TEST(CudaEdt, RasterIndexPackingSameAsCpu) {
       {{80, 70001}, 0.2, {}, 32, -1},          {{64, 70, 90}, 0.01, {}, -1, 1},
       {{100, 60, 40}, 0.2, {}, -1, -1},        {{33, 65, 17}, 0.05, {2.0, 1.0, 0.5}, -1, 1},
       {{20, 300, 40}, 0.001, {}, 1, 0},        {{25, 20, 600}, 0.003, {}, 16, 1}};
-  struct Flag {
-    Flag() { edt::set_linear_packing_for_testing(true); }
-    ~Flag() { edt::set_linear_packing_for_testing(false); }
-  };
   unsigned seed = 1200;
   for (const auto& c : cases) {
     const io::Grid g = gg_edt::random_grid(c.shape, c.density, seed++);
     const std::string what = std::to_string(c.shape[0]) + "x" + std::to_string(c.shape[1]) +
                              (c.shape.size() == 3 ? "x" + std::to_string(c.shape[2]) : "");
-    EdtOptions o;
-    o.squared = true;
-    o.distance = 32;
-    o.features = true;
-    o.labels = true;
-    o.sampling = c.sampling;
+    EdtOptions o = every_output(c.sampling, Backend::Cpu);
     o.window_reach = c.reach;
     o.tiles = c.tiles;
-    o.backend = Backend::Cpu;
     const auto cpu = distance_transform(g, SiteRule::NonZero, o);
     EdtOptions so = o;
     if (c.shape.size() == 3) so.slices = {0, c.shape[0] / 2, c.shape[0] - 1};
@@ -376,7 +375,7 @@ TEST(CudaEdt, RasterIndexPackingSameAsCpu) {
         list.insert(list.end(), p.begin(), p.end());
       }
     const auto cpu_list = distance_transform_sites(c.shape, list, o);
-    Flag linear;
+    gg_edt::LinearPacking linear;
     o.backend = so.backend = Backend::Cuda;
     const auto gpu = distance_transform(g, SiteRule::NonZero, o);
     EXPECT_EQ(gpu.labels, cpu.labels) << what;

@@ -277,10 +277,7 @@ inline void run_impl(const Request& rq, Output& out, Stats& stats) {
       std::uint32_t* sp = sorted + ns;
       const std::int64_t first = c0;
       ex.for_each_index(
-          k, GG_LAMBDA(std::int64_t i) {
-            const std::int64_t v = first + vp[i];
-            sp[i] = Ly.pack(v % Ly.n[0], (v / Ly.n[0]) % Ly.n[1], v / (Ly.n[0] * Ly.n[1]));
-          });
+          k, GG_LAMBDA(std::int64_t i) { sp[i] = Ly.pack_voxel(first + vp[i]); });
       ns += k;
     }
   }
