@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench_csv.hpp"
+#include "delaunay2d/del2d_backend.hpp"
 #include "device_timing.hpp"
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/generate.hpp"
@@ -142,14 +143,22 @@ int main(int argc, char** argv) {
       check = true;
     else if (a == "--sample")  // K triangles checked exactly (any size)
       sample = std::stoll(next());
-    else if (a == "--voronoi")
+    else if (a == "--capacities") {  // B,L,X: the flip rounds' capacities (0 = the default)
+      del2d::Capacities c;
+      if (std::sscanf(next().c_str(), "%lld,%lld,%lld", (long long*)&c.batch_points,
+                      (long long*)&c.log_records, (long long*)&c.exact_entries) != 3) {
+        std::cout << "--capacities takes three counts: batch points, log records, exact entries\n";
+        return 2;
+      }
+      del2d::set_capacities_for_testing(c);
+    } else if (a == "--voronoi")
       voronoi = true;
     else if (a == "--csv")
       csv = next();
     else {
       std::cout << "usage: gpugeom_bench_del2d [--dists uniform,circle] [--sizes 1e5,1e6] "
                    "[--files a.npy,b.npy] [--backend cpu|cuda|all] [--reps 3] [--cgal] [--check] "
-                   "[--sample K] [--voronoi] [--csv FILE]\n";
+                   "[--sample K] [--capacities B,L,X] [--voronoi] [--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
   }
@@ -220,6 +229,13 @@ int main(int argc, char** argv) {
                   bench::phase_ms(r.stats, "output"), n / med / 1e3,
                   (long long)r.stats.counters["batches"],
                   (long long)r.stats.counters["flip_rounds"], cg, verdict.c_str());
+      std::printf("    flips %lld, exact-list rest passes %lld, relocations for a full log %lld, "
+                  "rounds flipped in parts %lld, device peak %.1f B a point\n",
+                  (long long)r.stats.counters["flips"],
+                  (long long)r.stats.counters["exact_rest_passes"],
+                  (long long)r.stats.counters["log_relocations"],
+                  (long long)r.stats.counters["split_flip_rounds"],
+                  double(r.stats.counters["device_peak_bytes"]) / double(n));
       if (voronoi) {  // the Voronoi diagram of the result: host loop, and on the executor
         std::vector<double> th;
         for (int k = 0; k < reps; ++k) {

@@ -41,6 +41,14 @@ void check_count(std::int64_t n);
 // small inputs run through the top of the wide slot encoding. Not thread-safe; 0 restores.
 void set_slot_base_for_testing(std::int64_t base);
 std::int64_t slot_base_for_testing();
+// Tests: the flip rounds' capacities, in place of those sized from the point count (0 keeps
+// that one): points one batch inserts, flip-log records, exact-list entries. Small values
+// send small inputs through the paths large inputs take past each capacity. Not thread-safe.
+struct Capacities {
+  std::int64_t batch_points = 0, log_records = 0, exact_entries = 0;
+};
+void set_capacities_for_testing(const Capacities& c);
+Capacities capacities_for_testing();
 
 namespace cpu_impl {
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,

@@ -17,6 +17,13 @@ constexpr std::int64_t kMaxPoints = (std::int64_t(1) << 29) - 2;
 
 namespace {
 std::int64_t g_slot_base = 0;
+Capacities g_capacities;
+}  // namespace
+void set_capacities_for_testing(const Capacities& c) {
+  g_capacities = c;
+}
+Capacities capacities_for_testing() {
+  return g_capacities;
 }
 void set_slot_base_for_testing(std::int64_t base) {
   g_slot_base = base;

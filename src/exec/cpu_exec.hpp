@@ -287,6 +287,8 @@ struct CpuExec {
   std::int64_t concurrency() const {
     return std::int64_t(omp_get_max_threads()) * 4;
   }
+  // Host memory is not budgeted: sizes that adapt to what is left take their largest.
+  std::uint64_t available_memory() const { return ~std::uint64_t(0); }
 
  private:
   int prev_threads_ = 0;

@@ -222,7 +222,7 @@ void trim(int device) {
   GG_CUDA_CHECK(cudaMemPoolTrimTo(pool(device), 0));
 }
 
-void require_memory(int device, std::uint64_t bytes, const std::string& what) {
+std::uint64_t available_memory(int device) {
   Scope on(device);
   std::size_t fr = 0, tot = 0;
   GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));
@@ -230,8 +230,17 @@ void require_memory(int device, std::uint64_t bytes, const std::string& what) {
   cudaMemPool_t p = pool(device);
   GG_CUDA_CHECK(cudaMemPoolGetAttribute(p, cudaMemPoolAttrReservedMemCurrent, &reserved));
   GG_CUDA_CHECK(cudaMemPoolGetAttribute(p, cudaMemPoolAttrUsedMemCurrent, &used));
-  const std::uint64_t avail = std::uint64_t(fr) + (reserved > used ? reserved - used : 0);
+  return std::uint64_t(fr) + (reserved > used ? reserved - used : 0);
+}
+
+void require_memory(int device, std::uint64_t bytes, const std::string& what) {
+  const std::uint64_t avail = available_memory(device);
   if (bytes <= avail) return;
+  std::size_t fr = 0, tot = 0;
+  {
+    Scope on(device);
+    GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));
+  }
   auto gb = [](std::uint64_t b) {
     char s[32];
     std::snprintf(s, sizeof s, "%.1f GB", double(b) / 1e9);

@@ -48,5 +48,7 @@ class Scope {
 // docs/performance.md's bytes per element), so a refusal is certain; a problem that passes may
 // still run out later (the typed error of the allocation that fails).
 void require_memory(int device, std::uint64_t bytes, const std::string& what);
+// What the device has left for a call: free memory plus what the pool holds unused.
+std::uint64_t available_memory(int device);
 
 }  // namespace gpugeom::cuda_device

@@ -218,6 +218,8 @@ class CudaExec {
   void require_memory(std::uint64_t bytes, const std::string& what) {
     cuda_device::require_memory(dev_, bytes, what);
   }
+  // Memory a call may still take (cuda_device::available_memory).
+  std::uint64_t available_memory() const { return cuda_device::available_memory(dev_); }
   // The device pool's peak use from reset_peak() on (exec/peak.hpp): what a call needed, plus
   // whatever other live buffers of the pool (a concurrent call's, a kept device result) held.
   void reset_peak() {

@@ -23,11 +23,12 @@ struct SlotView {
   GG_HD double* operator[](std::int64_t t) const { return base + t * doubles; }
 };
 
-// A pass length read on the executor: per * *at.
+// A pass length read on the executor: per * min(*at, cap).
 struct CountAt {
   const std::int64_t* at;
   std::int64_t per = 1;
-  GG_HD std::int64_t operator()() const { return per * *at; }
+  std::int64_t cap = INT64_MAX;
+  GG_HD std::int64_t operator()() const { return per * (*at < cap ? *at : cap); }
 };
 
 // (kernel argument types must be at namespace scope, not private members)

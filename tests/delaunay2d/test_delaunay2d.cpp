@@ -378,6 +378,42 @@ TEST(Delaunay2d, TopOfTheWideSlotRange) {
   }
 }
 
+// The flip rounds past their capacities (the points a batch inserts, the flip log, the exact
+// pass's list), forced small on small inputs as large inputs reach them. The log and the exact
+// list never change the result: the same arrays. A smaller batch changes the order of the
+// insertions: the same triangles, and with the log and the exact list forced too, the same
+// arrays as with the batch alone. Each path must be taken somewhere.
+TEST(Delaunay2d, PastTheRoundsCapacities) {
+  std::vector<gg_del2d::Case> cases = gg_del2d::degenerate_cases();
+  for (auto& c : gg_del2d::distribution_cases({100, 20000}, 5)) cases.push_back(std::move(c));
+  std::map<std::string, std::int64_t> seen;
+  auto run = [&](const gg_del2d::Case& c, const del2d::Capacities& f) {
+    del2d::set_capacities_for_testing(f);
+    auto r = delaunay2d(c.pts, cpu());
+    del2d::set_capacities_for_testing({});
+    expect_valid(c.pts, r);
+    for (const char* k : {"exact_rest_passes", "log_relocations", "split_flip_rounds"})
+      seen[k] += r.stats.counters.at(k);
+    return r;
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const auto ref = delaunay2d(c.pts, cpu());
+    for (const del2d::Capacities f : {del2d::Capacities{0, 16, 0}, {0, 0, 3}, {0, 16, 2}}) {
+      const auto r = run(c, f);
+      EXPECT_EQ(r.triangles, ref.triangles) << f.log_records << "/" << f.exact_entries;
+      EXPECT_EQ(r.neighbors, ref.neighbors) << f.log_records << "/" << f.exact_entries;
+      EXPECT_EQ(r.stats.counters.at("flips"), ref.stats.counters.at("flips"));
+    }
+    const auto batch = run(c, {29, 0, 0});
+    EXPECT_EQ(gg_del2d::triangle_set(batch), gg_del2d::triangle_set(ref));
+    const auto all = run(c, {29, 16, 2});
+    EXPECT_EQ(all.triangles, batch.triangles);
+    EXPECT_EQ(all.neighbors, batch.neighbors);
+  }
+  for (const auto& [k, v] : seen) EXPECT_GT(v, 0) << k;
+}
+
 // The limit the header states: refused before any work, with the number.
 TEST(Delaunay2d, PointLimitIsStated) {
   try {

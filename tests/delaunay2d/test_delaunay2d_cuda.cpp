@@ -238,6 +238,35 @@ TEST(CudaDelaunay2d, VoronoiDeviceEntry) {
 
 // The top of the wide slot range (bit 31 of neighbour pointers and list entries) on the GPU:
 // the CPU executor's arrays with slots numbered from 0 (see the CPU test).
+// The flip rounds past their capacities, forced small (as in the CPU test): the CUDA
+// executor's arrays equal the CPU executor's under the same capacities.
+TEST(CudaDelaunay2d, PastTheRoundsCapacities) {
+  std::vector<gg_del2d::Case> cases = gg_del2d::degenerate_cases();
+  for (auto& c : gg_del2d::distribution_cases(sizes({5000, 50000}), 7))
+    cases.push_back(std::move(c));
+  const del2d::Capacities forced[] = {{97, 0, 0}, {0, 16, 0}, {0, 0, 3}, {97, 16, 2}};
+  std::int64_t rest = 0, parts = 0;
+  for (const auto& c : cases)
+    for (const auto& f : forced) {
+      SCOPED_TRACE(c.name + " " + std::to_string(f.batch_points) + "/" +
+                   std::to_string(f.log_records) + "/" + std::to_string(f.exact_entries));
+      del2d::set_capacities_for_testing(f);
+      Delaunay2dOptions o;
+      o.backend = Backend::Cpu;
+      const auto cpu = delaunay2d(c.pts, o);
+      o.backend = Backend::Cuda;
+      const auto gpu = delaunay2d(c.pts, o);
+      del2d::set_capacities_for_testing({});
+      gg_del2d::expect_valid(c.pts, gpu);
+      EXPECT_EQ(gpu.triangles, cpu.triangles);
+      EXPECT_EQ(gpu.neighbors, cpu.neighbors);
+      rest += gpu.stats.counters.at("exact_rest_passes");
+      parts += gpu.stats.counters.at("split_flip_rounds");
+    }
+  EXPECT_GT(rest, 0);
+  EXPECT_GT(parts, 0);
+}
+
 TEST(CudaDelaunay2d, TopOfTheWideSlotRange) {
   std::vector<gg_del2d::Case> cases = gg_del2d::degenerate_cases();
   for (auto& c : gg_del2d::distribution_cases(sizes({5000, 200000}), 7))

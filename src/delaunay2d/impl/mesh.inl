@@ -33,6 +33,7 @@ struct Counters {
   std::int64_t log;        // flip records since the last relocation
   std::int64_t lost;       // points no triangle claimed (a bug guard: reported, never silent)
   std::int64_t peel_list;  // length of the peel's list
+  std::int64_t exact_rest;  // entries listed by a further exact pass (check_round)
   // totals over the flip rounds, for Stats: rounds with a non-empty list, those shorter than
   // kSmallRound, list entries, entries sent to the exact pass
   std::int64_t rounds, small_rounds, listed, exact_total;

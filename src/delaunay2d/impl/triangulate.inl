@@ -23,6 +23,7 @@ constexpr std::int64_t kSmallRound = 8192;  // (counted: rounds whose launches a
 // Lists this short run this many rounds between two reads of the counters.
 constexpr std::int64_t kChunkList = 65536;
 constexpr int kChunkRounds = 4;
+constexpr std::int64_t kWinBuckets = 4096;  // (check_round)
 
 // (Every member is public: nvcc's extended lambdas may not live in private members.)
 class Triangulator {
@@ -42,32 +43,44 @@ class Triangulator {
     g_.m = m_;
     const std::size_t T = std::size_t(tmax_), n = std::size_t(m_);
     tri_ = ex.template alloc<Tri>(T);
-    vote_ = ex.template alloc<u64>(T);
-    best_ = ex.template alloc<u64>(T);
+    vote_ = ex.template alloc<u64>(T);  // (also the batches' claims: see claim_of)
     split_rank_ = ex.template alloc<std::int32_t>(T);
     lists_[0] = ex.template alloc<std::int32_t>(T);
     lists_[1] = ex.template alloc<std::int32_t>(T);
     dec_ = ex.template alloc<std::int8_t>(T);
-    exl_ = ex.template alloc<std::int32_t>(T);
-    exd_ = ex.template alloc<std::int8_t>(3 * T);
-    exc_ = ex.template alloc<std::int32_t>(T);
-    ex.fill(exc_.data(), tmax_, std::int32_t(0));
+    // The exact pass's list holds a sixteenth of the slots (at least 2^20, so the rounds that
+    // run unchecked never overflow it): the filter decides nearly every test on most input,
+    // and a round with more undecided entries decides them in further passes.
+    const Capacities forced = capacities_for_testing();
+    exact_cap_ = std::min(tmax_, forced.exact_entries > 0
+                                     ? forced.exact_entries
+                                     : std::max<std::int64_t>(tmax_ / 16, 1 << 20));
+    const std::size_t X = std::size_t(exact_cap_);
+    exl_ = ex.template alloc<std::int32_t>(X);
+    exd_ = ex.template alloc<std::int8_t>(3 * X);
+    exc_ = ex.template alloc<std::int32_t>(X);
+    ex.fill(exc_.data(), exact_cap_, std::int32_t(0));
     loc_ = ex.template alloc<std::int32_t>(n);
     un_ = ex.template alloc<std::int32_t>(n);
-    un2_ = ex.template alloc<std::int32_t>(n);
-    ins_ = ex.template alloc<std::int32_t>(n);
-    split_ = ex.template alloc<std::int32_t>(4 * n);
+    ins_cap_ = forced.batch_points > 0 ? forced.batch_points
+                                       : std::max<std::int64_t>(1024, 3 * (m_ / 8) + 1);
+    ins_ = ex.template alloc<std::int32_t>(std::size_t(ins_cap_));
+    split_ = ex.template alloc<std::int32_t>(std::size_t(4 * ins_cap_));
     ctr_ = ex.template alloc<Counters>(1);
-    log_cap_ = std::max<std::int64_t>(tmax_ / 2, 1 << 16);
-    rec_ = ex.template alloc<std::int32_t>(std::size_t(FlipLog::kStride * log_cap_));
     hist_ = ex.template alloc<Hist>(T);
     slots_ = ScratchSlots<Exec>(
         ex, std::clamp<std::int64_t>(tmax_ / 64, kExactSlotsMin, kExactSlotsMax), kIncircleScratch);
+    // The winning proposals of a checked round are counted in buckets of slots, each no
+    // larger than the log.
+    win_shift_ = 0;
+    while ((tmax_ >> win_shift_) >= kWinBuckets) ++win_shift_;
+    wins_ = ex.template alloc<std::int64_t>(std::size_t((tmax_ >> win_shift_) + 1));
+    log_cap_ = std::max(log_capacity(ex, forced.log_records, tmax_), std::int64_t(1) << win_shift_);
+    rec_ = ex.template alloc<std::int32_t>(std::size_t(FlipLog::kStride * log_cap_));
     M_ = Mesh{tri(), vote_.data() - base_, FlipLog{rec_.data(), hist_.data() - base_, 0},
               std::int32_t(base_)};
     ex.fill(hist_.data(), tmax_, Hist{-1, -1});
     ex.fill(vote_.data(), tmax_, u64(0));
-    ex.fill(best_.data(), tmax_, ~u64(0));
     ex.fill(split_rank_.data(), tmax_, std::int32_t(-1));
     Counters zero{};
     ex.from_host(&zero, 1, ctr_.data());
@@ -108,9 +121,9 @@ class Triangulator {
   // (issue 23). Call after run() and report()'s counters are safe (they live on in ctr_).
   void release_work() {
     auto drop = [](auto& b) { b = std::remove_reference_t<decltype(b)>(); };
-    drop(hist_), drop(split_rank_), drop(rec_), drop(split_), drop(vote_), drop(best_);
-    drop(lists_[0]), drop(lists_[1]), drop(exl_), drop(exc_), drop(loc_), drop(un_), drop(un2_);
-    drop(ins_), drop(dec_), drop(exd_), drop(slots_);
+    drop(hist_), drop(split_rank_), drop(rec_), drop(split_), drop(vote_);
+    drop(lists_[0]), drop(lists_[1]), drop(exl_), drop(exc_), drop(loc_), drop(un_);
+    drop(ins_), drop(dec_), drop(exd_), drop(slots_), drop(wins_);
   }
   Finished finish() {
     // (the extended triangulation has 2m - 2 slots, all in use)
@@ -179,21 +192,33 @@ class Triangulator {
   void batch() {
     ++batches_;
     mark("other");
+    // The claims go to the vote array, which the last batch's rounds left with their keys.
+    ex_.fill(vote_.data(), ntri_, u64(0));
     relocate(true);
     mark("relocate+choose");
     // The chosen points in curve order, so that the new slots (and the work lists, which
     // follow them) go through the plane along the curve: neighbouring slots then share memory
     // sectors of the points and of each other, where triangle order scattered every access.
-    u64* best = this->best();
+    // (The work lists are free between batches: one holds them, the other the new list.)
+    u64* claim = this->claims();
     std::int32_t* ins = ins_.data();
-    std::int32_t* chosen = un2_.data();  // (free until the point list is compacted below)
-    const std::int64_t nins = ex_.copy_if(un_.data(), nun_, chosen, Chosen{loc_.data(), best});
+    std::int32_t* chosen = spare_list();
+    const std::int64_t nchosen =
+        ex_.copy_if(un_.data(), nun_, chosen, Chosen{loc_.data(), claim});
+    // A batch inserts at most ins_cap_ points (its split records are sized for that): the
+    // first ones along the curve; the other triangles keep their points for the next batch.
+    const std::int64_t nins = std::min(nchosen, ins_cap_);
     mark("compact chosen");
     std::int32_t* srank = this->srank();
     const std::int32_t* locc = loc_.data();
+    const std::int64_t cap = ins_cap_;
     ex_.for_each_index(
-        nins, GG_LAMBDA(std::int64_t r) {
+        nchosen, GG_LAMBDA(std::int64_t r) {
           const std::int32_t t = locc[chosen[r]];
+          if (r >= cap) {
+            claim[t] = 0;  // (the vote array is all 0 after the split, as the rounds need)
+            return;
+          }
           ins[r] = t;
           srank[t] = std::int32_t(r);
         });
@@ -207,12 +232,12 @@ class Triangulator {
     ex_.for_each_index(
         nins, GG_LAMBDA(std::int64_t r) {
           if (r == 0) *len = 3 * nins;
-          const std::int32_t t = ins[r], q = std::int32_t(std::uint32_t(best[t]));
+          const std::int32_t t = ins[r], q = claimant_of(claim[t]);
           const std::int32_t base = first_new + 2 * std::int32_t(r);
           sp[4 * r] = q;  // what the points of t need to find their child later
           for (int k = 0; k < 3; ++k) sp[4 * r + 1 + k] = M.tri[t].v[k];
           split_triangle(M, t, q, base, srank, first_new);
-          best[t] = ~u64(0);
+          claim[t] = 0;
           loc[q] = -1;
           act[3 * r] = t;
           act[3 * r + 1] = base;
@@ -225,8 +250,9 @@ class Triangulator {
     remaining_ -= nins;
     dead_ += nins;
     if (dead_ * 4 > nun_) {  // drop inserted points from the list once they are a quarter
-      nun_ = ex_.copy_if(un_.data(), nun_, un2_.data(), NotInserted{loc});
-      std::swap(un_, un2_);
+      std::int32_t* kept = spare_list();  // (the other list holds the rounds' first list)
+      nun_ = ex_.copy_if(un_.data(), nun_, kept, NotInserted{loc});
+      ex_.copy(kept, nun_, un_.data());
       dead_ = 0;
     }
     mark("compact points");
@@ -234,15 +260,47 @@ class Triangulator {
     flip_until_delaunay(true);  // the list holds the children of the splits, new point first
   }
 
-  // q is the point its triangle chose (the choice key's low half names the point).
+  // A batch's choice shares the vote array with the flip rounds (they never overlap): each
+  // point claims its triangle with its choice key and index, complemented so that the largest
+  // claim is the best point (the rounds' keys also win by atomic max) and 0 means none (a
+  // claim is never 0: point indices are below 2^29).
+  GG_HD static u64 claim_of(std::uint32_t choice, std::int32_t q) {
+    return ~((u64(choice) << 32) | u64(std::uint32_t(q)));
+  }
+  GG_HD static std::int32_t claimant_of(u64 claim) { return std::int32_t(~std::uint32_t(claim)); }
+  // q is the point its triangle chose.
   struct Chosen {
     const std::int32_t* loc;
-    const u64* best;
+    const u64* claim;
     GG_HD bool operator()(std::int32_t q) const {
       const std::int32_t L = loc[q];
-      return L >= 0 && std::uint32_t(best[L]) == std::uint32_t(q);
+      return L >= 0 && claimant_of(claim[L]) == q;
     }
   };
+  // Flip records the log holds. Past its capacity the points are relocated (a pass over all
+  // points not yet inserted), so it takes what memory is left, from a quarter as many records
+  // as points (6 B a point; the memory check before launch counts this) to as many as the
+  // most flips of any round (24 B). It never changes the result (flip_round). Measured on
+  // uniform input at 10^6: a batch logs up to about 0.7 m flips, one round up to 0.45 m.
+  // (At least 2^20 records: the rounds that run unchecked, several between two reads of the
+  // counters, stay below that.)
+  static std::int64_t log_capacity(Exec& ex, std::int64_t forced_records, std::int64_t tmax) {
+    if (forced_records > 0) return forced_records;
+    const std::int64_t least = std::max<std::int64_t>(tmax / 8, 1 << 20);
+    const std::int64_t most = std::max<std::int64_t>(tmax / 2, least);
+    // (a margin for the pool's blocks and the temporary storage of compactions)
+    const std::uint64_t avail = ex.available_memory();
+    const std::uint64_t margin = (std::uint64_t(1) << 29) + avail / 64;
+    const std::int64_t fit =
+        avail > margin ? std::int64_t(std::min<std::uint64_t>(
+                             (avail - margin) / (FlipLog::kStride * sizeof(std::int32_t)),
+                             std::uint64_t(most)))
+                       : 0;
+    return std::clamp(fit, least, most);
+  }
+  // The work list that the next round does not read (free between rounds and batches).
+  std::int32_t* spare_list() { return work_lists().current(round_); }
+
   struct NotInserted {
     const std::int32_t* loc;
     GG_HD bool operator()(std::int32_t q) const { return loc[q] >= 0; }
@@ -267,22 +325,30 @@ class Triangulator {
     std::int64_t rounds_here = 0;
     while (nact_ > 0) {
       // A list at most doubles per round, and a round flips at most one pair per entry and
-      // tmax / 2 <= log_cap_ pairs in all: a chunk whose records could overflow the log even
-      // after the points move is cut to one round.
+      // tmax / 2 pairs in all. Rounds run unchecked (several between two reads of the
+      // counters) while their records fit the log and their undecided entries the exact
+      // list; a round that could overflow either is checked (flip_round's `checked`).
       int chunk = nact_ <= kChunkList ? kChunkRounds : 1;
       auto records = [&](int rounds) {
         std::int64_t b = nact_, r = 0;
         for (int c = 0; c < rounds; ++c, b = std::min(2 * b, tmax_)) r += std::min(b, tmax_ / 2);
         return r;
       };
-      if (records(chunk) > log_cap_) chunk = 1;
-      if (logged_ + records(chunk) > log_cap_) relocate(false);
+      auto longest = [&](int rounds) {
+        std::int64_t b = nact_;
+        for (int c = 1; c < rounds; ++c) b = std::min(2 * b, tmax_);
+        return b;
+      };
+      // (A check costs the host a round trip; relocating all points that are left, many
+      // more: the log is only emptied when a check finds it would overflow.)
+      if (logged_ + records(chunk) > log_cap_ || longest(chunk) > exact_cap_) chunk = 1;
+      const bool checked = logged_ + records(1) > log_cap_ || nact_ > exact_cap_;
       if ((rounds_here += chunk) > kMaxRounds)
         throw Error(ErrorCode::Internal,
                     "internal error: flipping did not converge; please report this input");
       std::int64_t bound = nact_;
       for (int c = 0; c < chunk; ++c, bound = std::min(2 * bound, tmax_)) {
-        flip_round(bound, first_round);
+        flip_round(bound, first_round, checked);
         first_round = false;
       }
       const Counters c = counters();
@@ -294,7 +360,13 @@ class Triangulator {
   }
 
   // One round over its work list (at most bound long); the next round's list is appended.
-  void flip_round(std::int64_t bound, bool first_round) {
+  // checked: the host reads the round's counts before its flips: undecided entries past the
+  // exact list's capacity go through further exact passes, and when the winning proposals
+  // would overflow the flip log, the points are relocated first (the log is then empty), and
+  // if they still overflow it, the flips are made in parts by slot, the points relocated
+  // between two parts. Every proposal that won still flips in this round, so the schedule,
+  // and the result, do not depend on either capacity.
+  void flip_round(std::int64_t bound, bool first_round, bool checked) {
     ++round_;
     const Geo g = g_;
     const Mesh M = M_;
@@ -306,6 +378,7 @@ class Triangulator {
     Counters* ctr = ctr_.data();
     const int p = round & 1;  // this round's tests append to exact[p]
     const std::int64_t* count = L.count(round);
+    const std::int64_t exact_cap = exact_cap_;
     // In a batch's first round the list holds the children of the splits, and only their
     // edges opposite the new point need a test: the edges at the new point are locally
     // Delaunay (the point lies inside the old triangle's circumcircle, so the circle through
@@ -329,14 +402,108 @@ class Triangulator {
             if (r >= 0) break;
           }
           dec[i] = std::int8_t(res);
-          if (mesh::is_undecided(res))
-            exl[append_slot(&ctr->exact[p])] = std::int32_t(i);
-          else if (res >= 0)
+          if (mesh::is_undecided(res)) {
+            const std::int64_t at = append_slot(&ctr->exact[p]);
+            if (at < exact_cap) exl[at] = std::int32_t(i);  // (the rest: see exact_rest)
+          } else if (res >= 0) {
             propose(M, round, t, simplex_of(T.n[res]));
+          }
         });
     mark("flip: test");
-    exact_pass(bound, edges);
+    exact_pass(bound, edges, &ctr->exact[p], true);
     mark("flip: exact");
+    std::vector<std::int64_t> cuts;
+    if (checked) cuts = check_round(bound, edges);
+    cuts.push_back(std::numeric_limits<std::int32_t>::max());
+    vote_and_flip(act, count, bound, 0, cuts[0], true);
+    for (std::size_t k = 1; k < cuts.size(); ++k) {  // the log full: the points move on first
+      ++split_rounds_;
+      const Counters c = counters();
+      flips_ += c.log - logged_;
+      logged_ = c.log;
+      relocate(false);
+      ++relocations_;
+      vote_and_flip(act, count, bound, cuts[k - 1], cuts[k], false);
+    }
+    mark("flip: vote+flip");
+    fix_round(act, count, bound);
+    mark("flip: fix");
+  }
+
+  // The host's part of a checked round (see flip_round): returns where the round's flips are
+  // cut into parts (slots from the slot base; none: one part).
+  std::vector<std::int64_t> check_round(std::int64_t bound, int edges) {
+    const int p = round_ & 1;
+    Counters c = counters();
+    const std::int32_t round = round_;
+    const mesh::WorkLists L = work_lists();
+    const std::int32_t* act = L.current(round);
+    const std::int64_t* count = L.count(round);
+    std::int8_t* dec = dec_.data();
+    std::int32_t* exl = exl_.data();
+    Counters* ctr = ctr_.data();
+    const std::int64_t exact_cap = exact_cap_;
+    // Entries left undecided (past the list's capacity) are collected and decided in turn.
+    for (std::int64_t left = c.exact[p] - exact_cap_; left > 0;) {
+      ++exact_rest_passes_;
+      ex_.for_each_index(
+          1, GG_LAMBDA(std::int64_t) { ctr->exact_rest = 0; });
+      listed(
+          count, bound, GG_LAMBDA(std::int64_t i) {
+            if (!mesh::is_undecided(dec[i])) return;
+            const std::int64_t at = append_slot(&ctr->exact_rest);
+            if (at < exact_cap) exl[at] = std::int32_t(i);
+          });
+      exact_pass(bound, edges, &ctr->exact_rest, false);
+      left = counters().exact_rest - exact_cap_;
+    }
+    // The winning proposals per range of slots: each flip writes one record.
+    const Mesh M = M_;
+    const int shift = win_shift_;
+    std::int64_t* wins = wins_.data();
+    const std::int64_t buckets = wins_.size();
+    ex_.fill(wins, buckets, std::int64_t(0));
+    listed(
+        count, bound, GG_LAMBDA(std::int64_t i) {
+          const int k = dec[i];
+          if (k < 0) return;
+          const std::int32_t t = slot_of(act[i]);
+          const u64 key = key_of(M, round, t);
+          if (M.vote[t] == key && M.vote[simplex_of(M.tri[t].n[k])] == key)
+            atomic_add(wins + ((t - M.base) >> shift), std::int64_t(1));
+        });
+    std::vector<std::int64_t> w(std::size_t(buckets), 0);
+    ex_.to_host(wins, buckets, w.data());
+    std::int64_t total = 0;
+    for (const std::int64_t x : w) total += x;
+    std::vector<std::int64_t> cuts;
+    if (logged_ + total <= log_cap_) return cuts;
+    relocate(false);
+    ++relocations_;
+    if (total <= log_cap_) return cuts;
+    // (a bucket holds at most 2^shift <= log_cap_ proposers: every part flips)
+    std::int64_t sum = 0;
+    for (std::int64_t b = 0; b < buckets; ++b) {
+      if (sum + w[std::size_t(b)] > log_cap_) {
+        cuts.push_back(b << shift);
+        sum = 0;
+      }
+      sum += w[std::size_t(b)];
+    }
+    return cuts;
+  }
+
+  // The votes counted and the winning proposals from slots in [lo, hi) (counted from the slot
+  // base) flipped; on the first part, every entry that does not flip is listed for the next
+  // round.
+  void vote_and_flip(const std::int32_t* act, const std::int64_t* count, std::int64_t bound,
+                     std::int64_t lo_in, std::int64_t hi_in, bool first_part) {
+    const Mesh M = M_;  // (after a relocation: the log's new numbering)
+    const std::int32_t round = round_;
+    const mesh::WorkLists L = work_lists();
+    const std::int8_t* dec = dec_.data();
+    Counters* ctr = ctr_.data();
+    const std::int32_t lo = std::int32_t(lo_in), hi = std::int32_t(hi_in);
     std::int32_t* next = L.next(round);
     std::int64_t* next_len = L.next_count(round);
     const std::int32_t log_base = M.log.base;
@@ -351,13 +518,14 @@ class Triangulator {
           // thread's (a record read that way may be changing; it is then left unused): the
           // kernel waits on memory, and this takes two round trips off each flip.
           Tri T;
-          if (kReadAhead) T = M.tri[t];
+          if (kReadAhead && first_part) T = M.tri[t];
           if (won == key) {  // t is this proposal's: no other thread writes it this round
-            if (!kReadAhead) T = M.tri[t];
+            if (!kReadAhead || !first_part) T = M.tri[t];
             const std::int32_t nb = simplex_of(T.n[k]);
             Tri N;
             if (kReadAhead) N = M.tri[nb];
             if (M.vote[nb] == key) {
+              if (t - M.base < lo || t - M.base >= hi) return;  // another part's
               if (!kReadAhead) N = M.tri[nb];
               std::int64_t at, rec;
               append_flip(next_len, &ctr->log, at, rec);
@@ -371,19 +539,17 @@ class Triangulator {
           } else if (M.vote[voter(M, won)] == won) {
             return;  // the proposal that took t won its own triangle too: it flips t, lists it
           }
-          next[append_slot(next_len)] = list_entry(t, -1);  // lost: tests again
+          if (first_part) next[append_slot(next_len)] = list_entry(t, -1);  // lost: tests again
         });
-    mark("flip: vote+flip");
-    fix_round(act, count, bound);
-    mark("flip: fix");
   }
 
   // Exact decisions for the entries the filter left open, from the undecided edge on, one
   // thread per edge (an exact test is long: the round waits for the slowest thread); then each
   // entry proposes its first illegal edge (exc counts an entry's finished edges). A bounded
   // number of threads, each with its own scratch, strides over the list (its length stays on
-  // the executor).
-  void exact_pass(std::int64_t bound, int edges) {
+  // the executor). It decides the first exact_cap_ entries of the list whose length is at
+  // *listed; the round's first pass (first) also does the round's bookkeeping.
+  void exact_pass(std::int64_t bound, int edges, const std::int64_t* listed, bool first) {
     const Geo g = g_;
     const Mesh M = M_;
     const std::int32_t round = round_;
@@ -395,9 +561,9 @@ class Triangulator {
     const std::int32_t* exl = exl_.data();
     Counters* ctr = ctr_.data();
     const int p = round & 1;
-    slots_.run_counted(
-        ex_, 3 * bound, CountAt{&ctr->exact[p], 3},
-        GG_LAMBDA(std::int64_t j, double* scr) {
+    const CountAt count{listed, 3, exact_cap_};
+    bound = std::min(bound, exact_cap_);
+    auto decide = GG_LAMBDA(std::int64_t j, double* scr) {
           const std::int32_t i = exl[j / 3];
           const int k = int(j % 3);
           int r = -1;
@@ -415,12 +581,18 @@ class Triangulator {
           if (done.fetch_add(1, cuda::memory_order_acq_rel) != 2) return;
           done.store(0, cuda::memory_order_relaxed);  // ready for the next round
           const std::int64_t e = j - j % 3;
-          const int first = exd[e] > 0 ? 0 : exd[e + 1] > 0 ? 1 : exd[e + 2] > 0 ? 2 : -1;
-          dec[i] = std::int8_t(first);
-          if (first < 0) return;
+          const int illegal = exd[e] > 0 ? 0 : exd[e + 1] > 0 ? 1 : exd[e + 2] > 0 ? 2 : -1;
+          dec[i] = std::int8_t(illegal);
+          if (illegal < 0) return;
           const std::int32_t t = slot_of(act[i]);
-          propose(M, round, t, simplex_of(M.tri[t].n[first]));
-        },
+          propose(M, round, t, simplex_of(M.tri[t].n[illegal]));
+        };
+    if (!first) {
+      slots_.run_counted(ex_, 3 * bound, count, decide);
+      return;
+    }
+    slots_.run_counted(
+        ex_, 3 * bound, count, decide,
         GG_LAMBDA() {  // between the round's two uses of these counters
           const std::int64_t len = ctr->len[p];
           ctr->rounds += len > 0;
@@ -464,7 +636,7 @@ class Triangulator {
     const std::int32_t* srank = this->srank();
     const std::int32_t* sp = split_.data();
     const std::int32_t first_new = epoch_first_new_;
-    u64* best = this->best();
+    u64* claim = this->claims();
     const bool moved = epoch_splits_ > 0 || logged_ > 0;
     if (!moved && !choose) return;
     ex_.for_each_index(
@@ -486,8 +658,7 @@ class Triangulator {
             loc[q] = L;
           }
           if (choose) {
-            const u64 key = (u64(choice_key(g, M.tri[L].v, q)) << 32) | u64(std::uint32_t(q));
-            atomic_min(best + L, key);
+            atomic_max(claim + L, claim_of(choice_key(g, M.tri[L].v, q), q));
           }
         });
     std::int32_t* sr = this->srank();
@@ -617,10 +788,13 @@ class Triangulator {
     st_.counters["exact_predicates"] = c.exact_total;  // work-list entries the filter left open
     st_.counters["work_list_entries"] = c.listed;
     st_.counters["small_flip_rounds"] = c.small_rounds;
+    st_.counters["exact_rest_passes"] = exact_rest_passes_;  // past the exact list's capacity
+    st_.counters["log_relocations"] = relocations_;  // within a batch, for a full log
+    st_.counters["split_flip_rounds"] = split_rounds_;  // flip parts past the first
   }
 
   Tri* tri() { return tri_.data() - base_; }
-  u64* best() { return best_.data() - base_; }
+  u64* claims() { return vote_.data() - base_; }
   std::int32_t* srank() { return split_rank_.data() - base_; }
 
   // state
@@ -637,17 +811,24 @@ class Triangulator {
   std::int64_t batches_ = 0, flips_ = 0;
   std::int64_t log_cap_ = 0, logged_ = 0;
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;  // points; list entries; splits
+  // capacities: the most points a batch inserts (a uniform batch inserts at most about a
+  // third of the points: measured 0.33 m at 10^6; the rest wait for the next batch), flip
+  // records, exact-list entries; the shift of the winners' buckets (check_round)
+  std::int64_t ins_cap_ = 0, exact_cap_ = 0;
+  int win_shift_ = 0;
+  std::int64_t exact_rest_passes_ = 0, relocations_ = 0, split_rounds_ = 0;
   std::int32_t epoch_first_new_ = 0;
   std::map<std::string, double> prof_;
   clock::time_point last_ = clock::now();
   typename Exec::template Buffer<Tri> tri_;
   typename Exec::template Buffer<Hist> hist_;
   typename Exec::template Buffer<std::int32_t> split_rank_, rec_, split_;
-  typename Exec::template Buffer<u64> vote_, best_;
+  typename Exec::template Buffer<u64> vote_;
   typename Exec::template Buffer<std::int32_t> lists_[2];  // the rounds' work lists
-  typename Exec::template Buffer<std::int32_t> exl_, exc_, loc_, un_, un2_, ins_;
+  typename Exec::template Buffer<std::int32_t> exl_, exc_, loc_, un_, ins_;
   typename Exec::template Buffer<std::int8_t> dec_, exd_;  // per entry; per exact-list edge
   typename Exec::template Buffer<Counters> ctr_;
+  typename Exec::template Buffer<std::int64_t> wins_;  // winning proposals per slot bucket
   ScratchSlots<Exec> slots_;  // of the exact pass
 };
 
@@ -686,7 +867,7 @@ inline void check_into(const Triangulation2dBuffers& into, std::int64_t count, s
 // (docs/performance.md, H100 80 GB: the peak is 241 B a point at 10^8, 238 at 3·10^8, more at
 // smaller sizes; 3.3·10^8 points ran and 3.4·10^8 ran out of the card's 85.0 GB, the pool's
 // blocks adding to the arrays): 250 B refuses the latter before it starts.
-constexpr double kLeastBytesPerPoint = 250;
+constexpr double kLeastBytesPerPoint = 168;
 
 inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                              Output& out, Stats& st) {
