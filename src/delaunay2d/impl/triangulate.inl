@@ -192,8 +192,6 @@ class Triangulator {
   void batch() {
     ++batches_;
     mark("other");
-    // The claims go to the vote array, which the last batch's rounds left with their keys.
-    ex_.fill(vote_.data(), ntri_, u64(0));
     relocate(true);
     mark("relocate+choose");
     // The chosen points in curve order, so that the new slots (and the work lists, which
@@ -216,7 +214,7 @@ class Triangulator {
         nchosen, GG_LAMBDA(std::int64_t r) {
           const std::int32_t t = locc[chosen[r]];
           if (r >= cap) {
-            claim[t] = 0;  // (the vote array is all 0 after the split, as the rounds need)
+            claim[t] = 0;  // (no claim may outlive the split: the rounds' votes would lose to it)
             return;
           }
           ins[r] = t;
@@ -261,11 +259,12 @@ class Triangulator {
   }
 
   // A batch's choice shares the vote array with the flip rounds (they never overlap): each
-  // point claims its triangle with its choice key and index, complemented so that the largest
-  // claim is the best point (the rounds' keys also win by atomic max) and 0 means none (a
-  // claim is never 0: point indices are below 2^29).
+  // point claims its triangle with its choice key (its top 31 bits) and index, complemented so
+  // that the largest claim is the best point (the rounds' keys also win by atomic max). A
+  // claim's high word is then at least 2^31, above every round number in a vote key, so the
+  // votes the rounds left need no clearing; the split sets its triangles' entries to 0 (none).
   GG_HD static u64 claim_of(std::uint32_t choice, std::int32_t q) {
-    return ~((u64(choice) << 32) | u64(std::uint32_t(q)));
+    return ~((u64(choice >> 1) << 32) | u64(std::uint32_t(q)));
   }
   GG_HD static std::int32_t claimant_of(u64 claim) { return std::int32_t(~std::uint32_t(claim)); }
   // q is the point its triangle chose.
@@ -298,6 +297,9 @@ class Triangulator {
                        : 0;
     return std::clamp(fit, least, most);
   }
+  struct Sum {
+    GG_HD std::int64_t operator()(std::int64_t a, std::int64_t b) const { return a + b; }
+  };
   // The work list that the next round does not read (free between rounds and batches).
   std::int32_t* spare_list() { return work_lists().current(round_); }
 
@@ -413,7 +415,10 @@ class Triangulator {
     exact_pass(bound, edges, &ctr->exact[p], true);
     mark("flip: exact");
     std::vector<std::int64_t> cuts;
-    if (checked) cuts = check_round(bound, edges);
+    if (checked) {
+      cuts = check_round(bound, edges);
+      mark("flip: check");
+    }
     cuts.push_back(std::numeric_limits<std::int32_t>::max());
     vote_and_flip(act, count, bound, 0, cuts[0], true);
     for (std::size_t k = 1; k < cuts.size(); ++k) {  // the log full: the points move on first
@@ -455,8 +460,20 @@ class Triangulator {
             if (at < exact_cap) exl[at] = std::int32_t(i);
           });
       exact_pass(bound, edges, &ctr->exact_rest, false);
-      left = counters().exact_rest - exact_cap_;
+      c = counters();
+      left = c.exact_rest - exact_cap_;
     }
+    // Each proposal flips at most once: counted (a byte an entry), they bound the round's
+    // records; the winners are counted (a pass as long as the flips' own) only when the
+    // proposals alone would overflow the log.
+    ex_.transform_reduce_into(
+        c.len[p], GG_LAMBDA(std::int64_t i)->std::int64_t { return dec[i] >= 0; },
+        std::int64_t(0), Sum{}, &ctr->proposals);
+    c = counters();
+    if (logged_ + c.proposals <= log_cap_) return {};
+    relocate(false);
+    ++relocations_;
+    if (c.proposals <= log_cap_) return {};
     // The winning proposals per range of slots: each flip writes one record.
     const Mesh M = M_;
     const int shift = win_shift_;
@@ -477,9 +494,6 @@ class Triangulator {
     std::int64_t total = 0;
     for (const std::int64_t x : w) total += x;
     std::vector<std::int64_t> cuts;
-    if (logged_ + total <= log_cap_) return cuts;
-    relocate(false);
-    ++relocations_;
     if (total <= log_cap_) return cuts;
     // (a bucket holds at most 2^shift <= log_cap_ proposers: every part flips)
     std::int64_t sum = 0;
