@@ -196,7 +196,18 @@ int main(int argc, char** argv) {
       o.backend = b;
       // GPUGEOM_PROFILE=1: per-step times (the library synchronises after each step).
       o.profile = std::getenv("GPUGEOM_PROFILE") != nullptr;
-      Triangulation2d r = delaunay2d(in.pts, o);  // warm-up
+      const double free0 = b == Backend::Cuda ? double(query_device().free_memory) / 1e9 : 0;
+      Triangulation2d r;
+      try {
+        r = delaunay2d(in.pts, o);  // warm-up
+      } catch (const Error& e) {  // (a size past memory: reported, and the next one tried)
+        std::printf("%-22s %10lld %-5s refused: %s\n", in.name.c_str(), (long long)n,
+                    backend_name(b), e.what());
+        continue;
+      }
+      if (b == Backend::Cuda)
+        std::printf("    GPU memory free before the first call %.1f GB, after it %.1f GB\n", free0,
+                    double(query_device().free_memory) / 1e9);
       std::vector<double> t;
       for (int k = 0; k < reps; ++k) {
         const auto t0 = clk::now();
@@ -218,11 +229,15 @@ int main(int argc, char** argv) {
         verdict += rep.ok ? ", valid" : ", INVALID: " + rep.message;
       }
       if (sample > 0) verdict += ", " + sample_check(in.pts, r, sample);
-      const double dev =
-          b == Backend::Cuda
-              ? bench::device_resident_ms(
-                    in.pts, reps, [](const double* d, std::int64_t n) { delaunay2d_device(d, n); })
-              : -1;
+      double dev = -1;
+      if (b == Backend::Cuda) {
+        try {  // (the points on the device besides the library's arrays: may not fit)
+          dev = bench::device_resident_ms(
+              in.pts, reps, [](const double* d, std::int64_t n) { delaunay2d_device(d, n); });
+        } catch (const Error& e) {
+          std::printf("    device-resident entry refused: %s\n", e.what());
+        }
+      }
       std::printf("%-22s %10lld %-5s %10.1f %9.1f %9.1f %9.1f %9.1f %9.1f %7lld %7lld %9.1f %s\n",
                   in.name.c_str(), (long long)n, backend_name(b), med, dev,
                   bench::phase_ms(r.stats, "prepare"), bench::phase_ms(r.stats, "insert"),

@@ -30,6 +30,11 @@ double device_resident_ms(const void* host, std::size_t bytes, int reps, Run run
     cudaFree(d);
     return -1;
   }
+  // (freed also when a run throws: a refusal for memory leaves the device as it found it)
+  struct Free {
+    void* d;
+    ~Free() { cudaFree(d); }
+  } keep{d};
   run(static_cast<const void*>(d));  // warm-up
   std::vector<double> t;
   for (int k = 0; k < reps; ++k) {
@@ -37,7 +42,6 @@ double device_resident_ms(const void* host, std::size_t bytes, int reps, Run run
     run(static_cast<const void*>(d));
     t.push_back(ms_since(t0));
   }
-  cudaFree(d);
   std::sort(t.begin(), t.end());
   return t[t.size() / 2];
 #else

@@ -234,12 +234,29 @@ std::uint64_t available_memory(int device) {
 }
 
 void require_memory(int device, std::uint64_t bytes, const std::string& what) {
+  {
+    // A problem larger than the driver's free memory would run in the pool's blocks of
+    // earlier calls (or of this call's earlier steps), which were cut for other sizes and
+    // need not fit its largest arrays. The unused blocks go back to the driver first, so
+    // that the arrays are cut afresh.
+    Scope on(device);
+    std::size_t fr = 0, tot = 0;
+    GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));
+    if (bytes > fr) {
+      GG_CUDA_CHECK(cudaDeviceSynchronize());  // (frees still queued on streams land first)
+      trim(device);
+    }
+  }
   const std::uint64_t avail = available_memory(device);
   if (bytes <= avail) return;
   std::size_t fr = 0, tot = 0;
+  unsigned long long reserved = 0, used = 0;
   {
     Scope on(device);
     GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));
+    GG_CUDA_CHECK(
+        cudaMemPoolGetAttribute(pool(device), cudaMemPoolAttrReservedMemCurrent, &reserved));
+    GG_CUDA_CHECK(cudaMemPoolGetAttribute(pool(device), cudaMemPoolAttrUsedMemCurrent, &used));
   }
   auto gb = [](std::uint64_t b) {
     char s[32];
@@ -250,7 +267,8 @@ void require_memory(int device, std::uint64_t bytes, const std::string& what) {
               what + " needs at least " + gb(bytes) + " (" + std::to_string(bytes) +
                   " bytes) of GPU memory and " + gb(avail) + " (" + std::to_string(avail) +
                   " bytes) are free on device " + std::to_string(device) + " (of " + gb(tot) +
-                  "): use a smaller input, or the CPU backend (--backend cpu)");
+                  "; this process holds " + gb(used) + " in arrays, " + gb(reserved - used) +
+                  " more in its pool): use a smaller input, or the CPU backend (--backend cpu)");
 }
 
 void throw_out_of_memory(std::size_t bytes, const char* what) {

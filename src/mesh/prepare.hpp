@@ -211,6 +211,14 @@ SortedPoints<Exec> sort_distinct(Exec& ex, const double* r, std::int64_t n, cons
   spatial::Box sbox;
   for (int d = 0; d < 3; ++d) sbox.lo[d] = sbox.hi[d] = 0;
   for (int d = 0; d < D; ++d) sbox.lo[d] = box.lo[d], sbox.hi[d] = box.hi[d];
+  // The results first, sized for n (m <= n is known later): they then take memory of their
+  // own, not pieces of the temporaries' freed blocks, which the caller can hand back to the
+  // driver whole when its next arrays need the room (at 5·10^8 2D points the pool holds 20 GB
+  // of freed sort buffers after this, none larger than 8 GB: the 32 GB triangle store could
+  // not be cut from them).
+  SortedPoints<Exec> S;
+  S.pts = ex.template alloc<double>(std::size_t(D * n));
+  S.orig = ex.template alloc<std::int32_t>(std::size_t(n));
   auto keys = ex.template alloc<u64>(std::size_t(n));
   auto order = ex.template alloc<std::int32_t>(std::size_t(n));
   u64* k = keys.data();
@@ -256,12 +264,9 @@ SortedPoints<Exec> sort_distinct(Exec& ex, const double* r, std::int64_t n, cons
     return true;
   };
   auto kept = ex.template alloc<std::int32_t>(std::size_t(n));
-  SortedPoints<Exec> S;
   const std::int64_t m = S.m = ex.compact_indices(
       n, GG_LAMBDA(std::int64_t i) { return !is_dup(i); }, kept.data());
   S.duplicates = n - m;
-  S.pts = ex.template alloc<double>(std::size_t(D * m));
-  S.orig = ex.template alloc<std::int32_t>(std::size_t(m));
   double* pts = S.pts.data();
   std::int32_t* orig = S.orig.data();
   const std::int32_t* kp = kept.data();

@@ -846,6 +846,12 @@ class Triangulator {
   ScratchSlots<Exec> slots_;  // of the exact pass
 };
 
+// The device memory a triangulation needs per point, checked before any launch
+// (docs/performance.md, H100 80 GB: the peak is 241 B a point at 10^8, 238 at 3·10^8, more at
+// smaller sizes; 3.3·10^8 points ran and 3.4·10^8 ran out of the card's 85.0 GB, the pool's
+// blocks adding to the arrays): 250 B refuses the latter before it starts.
+constexpr double kLeastBytesPerPoint = 168;
+
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
 // before(P) runs once the distinct points are known, before the device work.
 template <class Before, class Body>
@@ -860,6 +866,11 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   st.phase_ms.push_back({"upload", P.upload_ms});  // (part of prepare)
+  // The rounds' arrays, checked again now that the points are prepared: where they exceed the
+  // driver's free memory, the preparation's freed blocks go back to the driver first
+  // (require_memory), so that the largest arrays are not cut from the pool's pieces of them.
+  ::gpugeom::detail::require_device_memory(ex, P.m, kLeastBytesPerPoint - 20,
+                                           "a 2D Delaunay triangulation", "points");
   Triangulator T(ex, P, st, profile);
   T.run();
   t0 = std::chrono::steady_clock::now();
@@ -877,11 +888,6 @@ inline void check_into(const Triangulation2dBuffers& into, std::int64_t count, s
   deliver::check(into.duplicate_of, n, "duplicate_of");
 }
 
-// The device memory a triangulation needs per point, checked before any launch
-// (docs/performance.md, H100 80 GB: the peak is 241 B a point at 10^8, 238 at 3·10^8, more at
-// smaller sizes; 3.3·10^8 points ran and 3.4·10^8 ran out of the card's 85.0 GB, the pool's
-// blocks adding to the arrays): 250 B refuses the latter before it starts.
-constexpr double kLeastBytesPerPoint = 168;
 
 inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                              Output& out, Stats& st) {
