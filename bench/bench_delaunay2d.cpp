@@ -200,7 +200,7 @@ int main(int argc, char** argv) {
       Triangulation2d r;
       try {
         r = delaunay2d(in.pts, o);  // warm-up
-      } catch (const Error& e) {  // (a size past memory: reported, and the next one tried)
+      } catch (const Error& e) {    // (a size past memory: reported, and the next one tried)
         std::printf("%-22s %10lld %-5s refused: %s\n", in.name.c_str(), (long long)n,
                     backend_name(b), e.what());
         continue;
@@ -244,13 +244,13 @@ int main(int argc, char** argv) {
                   bench::phase_ms(r.stats, "output"), n / med / 1e3,
                   (long long)r.stats.counters["batches"],
                   (long long)r.stats.counters["flip_rounds"], cg, verdict.c_str());
-      std::printf("    flips %lld, exact-list rest passes %lld, relocations for a full log %lld, "
-                  "rounds flipped in parts %lld, device peak %.1f B a point\n",
-                  (long long)r.stats.counters["flips"],
-                  (long long)r.stats.counters["exact_rest_passes"],
-                  (long long)r.stats.counters["log_relocations"],
-                  (long long)r.stats.counters["split_flip_rounds"],
-                  double(r.stats.counters["device_peak_bytes"]) / double(n));
+      std::printf(
+          "    flips %lld, exact-list rest passes %lld, relocations for a full log %lld, "
+          "rounds flipped in parts %lld, device peak %.1f B a point\n",
+          (long long)r.stats.counters["flips"], (long long)r.stats.counters["exact_rest_passes"],
+          (long long)r.stats.counters["log_relocations"],
+          (long long)r.stats.counters["split_flip_rounds"],
+          double(r.stats.counters["device_peak_bytes"]) / double(n));
       if (voronoi) {  // the Voronoi diagram of the result: host loop, and on the executor
         std::vector<double> th;
         for (int k = 0; k < reps; ++k) {

@@ -53,8 +53,8 @@ struct Triangulation2d {
 
 // xy: n points, x and y interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
 // outside the exactly representable range, more than 2^29 - 2 points (536 870 910);
-// Error(OutOfMemory) before any launch where the device cannot hold the work (about 240 B a
-// point: 3.3·10^8 points on an 80 GB GPU); Error(DegenerateInput) for fewer than 3 distinct
+// Error(OutOfMemory) before any launch where the device cannot hold the work (168 B a point at
+// least: 5·10^8 points on an 80 GB GPU); Error(DegenerateInput) for fewer than 3 distinct
 // points or all points on one line.
 Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt = {});
 Triangulation2d delaunay2d(const std::vector<Point2>& pts, const Delaunay2dOptions& opt = {});

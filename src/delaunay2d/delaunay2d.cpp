@@ -11,8 +11,8 @@ namespace gpugeom {
 
 namespace del2d {
 // Slots of the extended triangulation (2m - 2) must stay below 2^30, the wide neighbour
-// encoding's range (mesh/adjacency.hpp); memory comes first on today's GPUs (about 240 B a
-// point: 3.3·10^8 points on 80 GB), and is checked before any launch.
+// encoding's range (mesh/adjacency.hpp); memory comes first on today's GPUs (168 B a point
+// at least: 5·10^8 points on 80 GB), and is checked before any launch.
 constexpr std::int64_t kMaxPoints = (std::int64_t(1) << 29) - 2;
 
 namespace {

@@ -288,7 +288,9 @@ struct CpuExec {
     return std::int64_t(omp_get_max_threads()) * 4;
   }
   // Host memory is not budgeted: sizes that adapt to what is left take their largest.
-  std::uint64_t available_memory() const { return ~std::uint64_t(0); }
+  std::uint64_t available_memory() const {
+    return ~std::uint64_t(0);
+  }
 
  private:
   int prev_threads_ = 0;

@@ -27,13 +27,13 @@ using mesh::voter_of;
 
 // The figures the rounds keep on the executor; the host reads them once per few rounds.
 struct Counters {
-  std::int64_t flips;      // in the peel rounds (insertion flips are counted by their records)
-  std::int64_t len[2];     // work-list lengths: round r reads len[r & 1] (mesh/work_list.hpp)
-  std::int64_t exact[2];   // entries the filter left to round r's exact pass: exact[r & 1]
-  std::int64_t proposals;  // a checked round's proposals (each flips at most once)
-  std::int64_t log;        // flip records since the last relocation
-  std::int64_t lost;       // points no triangle claimed (a bug guard: reported, never silent)
-  std::int64_t peel_list;  // length of the peel's list
+  std::int64_t flips;       // in the peel rounds (insertion flips are counted by their records)
+  std::int64_t len[2];      // work-list lengths: round r reads len[r & 1] (mesh/work_list.hpp)
+  std::int64_t exact[2];    // entries the filter left to round r's exact pass: exact[r & 1]
+  std::int64_t proposals;   // a checked round's proposals (each flips at most once)
+  std::int64_t log;         // flip records since the last relocation
+  std::int64_t lost;        // points no triangle claimed (a bug guard: reported, never silent)
+  std::int64_t peel_list;   // length of the peel's list
   std::int64_t exact_rest;  // entries listed by a further exact pass (check_round)
   // totals over the flip rounds, for Stats: rounds with a non-empty list, those shorter than
   // kSmallRound, list entries, entries sent to the exact pass

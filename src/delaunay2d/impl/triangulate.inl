@@ -52,9 +52,9 @@ class Triangulator {
     // run unchecked never overflow it): the filter decides nearly every test on most input,
     // and a round with more undecided entries decides them in further passes.
     const Capacities forced = capacities_for_testing();
-    exact_cap_ = std::min(tmax_, forced.exact_entries > 0
-                                     ? forced.exact_entries
-                                     : std::max<std::int64_t>(tmax_ / 16, 1 << 20));
+    exact_cap_ =
+        std::min(tmax_, forced.exact_entries > 0 ? forced.exact_entries
+                                                 : std::max<std::int64_t>(tmax_ / 16, 1 << 20));
     const std::size_t X = std::size_t(exact_cap_);
     exl_ = ex.template alloc<std::int32_t>(X);
     exd_ = ex.template alloc<std::int8_t>(3 * X);
@@ -201,8 +201,7 @@ class Triangulator {
     u64* claim = this->claims();
     std::int32_t* ins = ins_.data();
     std::int32_t* chosen = spare_list();
-    const std::int64_t nchosen =
-        ex_.copy_if(un_.data(), nun_, chosen, Chosen{loc_.data(), claim});
+    const std::int64_t nchosen = ex_.copy_if(un_.data(), nun_, chosen, Chosen{loc_.data(), claim});
     // A batch inserts at most ins_cap_ points (its split records are sized for that): the
     // first ones along the curve; the other triangles keep their points for the next batch.
     const std::int64_t nins = std::min(nchosen, ins_cap_);
@@ -290,11 +289,11 @@ class Triangulator {
     // (a margin for the pool's blocks and the temporary storage of compactions)
     const std::uint64_t avail = ex.available_memory();
     const std::uint64_t margin = (std::uint64_t(1) << 29) + avail / 64;
-    const std::int64_t fit =
-        avail > margin ? std::int64_t(std::min<std::uint64_t>(
-                             (avail - margin) / (FlipLog::kStride * sizeof(std::int32_t)),
-                             std::uint64_t(most)))
-                       : 0;
+    const std::int64_t fit = avail > margin
+                                 ? std::int64_t(std::min<std::uint64_t>(
+                                       (avail - margin) / (FlipLog::kStride * sizeof(std::int32_t)),
+                                       std::uint64_t(most)))
+                                 : 0;
     return std::clamp(fit, least, most);
   }
   struct Sum {
@@ -467,8 +466,8 @@ class Triangulator {
     // records; the winners are counted (a pass as long as the flips' own) only when the
     // proposals alone would overflow the log.
     ex_.transform_reduce_into(
-        c.len[p], GG_LAMBDA(std::int64_t i)->std::int64_t { return dec[i] >= 0; },
-        std::int64_t(0), Sum{}, &ctr->proposals);
+        c.len[p], GG_LAMBDA(std::int64_t i)->std::int64_t { return dec[i] >= 0; }, std::int64_t(0),
+        Sum{}, &ctr->proposals);
     c = counters();
     if (logged_ + c.proposals <= log_cap_) return {};
     relocate(false);
@@ -578,29 +577,29 @@ class Triangulator {
     const CountAt count{listed, 3, exact_cap_};
     bound = std::min(bound, exact_cap_);
     auto decide = GG_LAMBDA(std::int64_t j, double* scr) {
-          const std::int32_t i = exl[j / 3];
-          const int k = int(j % 3);
-          int r = -1;
-          if (k >= mesh::undecided_face(dec[i]) && k < edges && k != legal_edge_of(act[i])) {
-            const Tri T = M.tri[slot_of(act[i])];
-            const std::int32_t d = M.tri[simplex_of(T.n[k])].v[loc_of(T.n[k])];
-            r = illegal_fast(g, T.v, d);
-            if (r == 0) r = illegal_exact(g, T.v, d, scr);
-          }
-          exd[j] = std::int8_t(r);
-          // the last of the entry's three edges proposes (its acquire sees the others'
-          // decisions): no second kernel, which would be a launch per round even when the
-          // filter decided everything
-          cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> done(exc[j / 3]);
-          if (done.fetch_add(1, cuda::memory_order_acq_rel) != 2) return;
-          done.store(0, cuda::memory_order_relaxed);  // ready for the next round
-          const std::int64_t e = j - j % 3;
-          const int illegal = exd[e] > 0 ? 0 : exd[e + 1] > 0 ? 1 : exd[e + 2] > 0 ? 2 : -1;
-          dec[i] = std::int8_t(illegal);
-          if (illegal < 0) return;
-          const std::int32_t t = slot_of(act[i]);
-          propose(M, round, t, simplex_of(M.tri[t].n[illegal]));
-        };
+      const std::int32_t i = exl[j / 3];
+      const int k = int(j % 3);
+      int r = -1;
+      if (k >= mesh::undecided_face(dec[i]) && k < edges && k != legal_edge_of(act[i])) {
+        const Tri T = M.tri[slot_of(act[i])];
+        const std::int32_t d = M.tri[simplex_of(T.n[k])].v[loc_of(T.n[k])];
+        r = illegal_fast(g, T.v, d);
+        if (r == 0) r = illegal_exact(g, T.v, d, scr);
+      }
+      exd[j] = std::int8_t(r);
+      // the last of the entry's three edges proposes (its acquire sees the others'
+      // decisions): no second kernel, which would be a launch per round even when the
+      // filter decided everything
+      cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> done(exc[j / 3]);
+      if (done.fetch_add(1, cuda::memory_order_acq_rel) != 2) return;
+      done.store(0, cuda::memory_order_relaxed);  // ready for the next round
+      const std::int64_t e = j - j % 3;
+      const int illegal = exd[e] > 0 ? 0 : exd[e + 1] > 0 ? 1 : exd[e + 2] > 0 ? 2 : -1;
+      dec[i] = std::int8_t(illegal);
+      if (illegal < 0) return;
+      const std::int32_t t = slot_of(act[i]);
+      propose(M, round, t, simplex_of(M.tri[t].n[illegal]));
+    };
     if (!first) {
       slots_.run_counted(ex_, 3 * bound, count, decide);
       return;
@@ -803,8 +802,8 @@ class Triangulator {
     st_.counters["work_list_entries"] = c.listed;
     st_.counters["small_flip_rounds"] = c.small_rounds;
     st_.counters["exact_rest_passes"] = exact_rest_passes_;  // past the exact list's capacity
-    st_.counters["log_relocations"] = relocations_;  // within a batch, for a full log
-    st_.counters["split_flip_rounds"] = split_rounds_;  // flip parts past the first
+    st_.counters["log_relocations"] = relocations_;          // within a batch, for a full log
+    st_.counters["split_flip_rounds"] = split_rounds_;       // flip parts past the first
   }
 
   Tri* tri() { return tri_.data() - base_; }
@@ -843,13 +842,12 @@ class Triangulator {
   typename Exec::template Buffer<std::int8_t> dec_, exd_;  // per entry; per exact-list edge
   typename Exec::template Buffer<Counters> ctr_;
   typename Exec::template Buffer<std::int64_t> wins_;  // winning proposals per slot bucket
-  ScratchSlots<Exec> slots_;  // of the exact pass
+  ScratchSlots<Exec> slots_;                           // of the exact pass
 };
 
-// The device memory a triangulation needs per point, checked before any launch
-// (docs/performance.md, H100 80 GB: the peak is 241 B a point at 10^8, 238 at 3·10^8, more at
-// smaller sizes; 3.3·10^8 points ran and 3.4·10^8 ran out of the card's 85.0 GB, the pool's
-// blocks adding to the arrays): 250 B refuses the latter before it starts.
+// The device memory a triangulation needs per point at least, checked before any launch: the
+// rounds' arrays with the flip log at its least (docs/performance.md, H100 80 GB: 167.7 B a
+// point measured at 5·10^8; where memory is left the log takes more, up to 236 B a point).
 constexpr double kLeastBytesPerPoint = 168;
 
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
@@ -887,7 +885,6 @@ inline void check_into(const Triangulation2dBuffers& into, std::int64_t count, s
   deliver::check(into.neighbors, 3 * count, "neighbors");
   deliver::check(into.duplicate_of, n, "duplicate_of");
 }
-
 
 inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                              Output& out, Stats& st) {
