@@ -378,6 +378,23 @@ TEST(Delaunay2d, TopOfTheWideSlotRange) {
   }
 }
 
+// The device entry reads the caller's points where they are (no copy to normalise -0): on the
+// degenerate inputs (-0 and +0 duplicates among them) the same arrays as the host entry.
+TEST(Delaunay2d, DeviceEntryOnDegenerateInput) {
+  for (const auto& c : gg_del2d::degenerate_cases()) {
+    SCOPED_TRACE(c.name);
+    const std::int64_t n = std::int64_t(c.pts.size());
+    const auto ref = delaunay2d(c.pts, cpu());
+    const auto dv = delaunay2d_device(&c.pts.data()->x, n, cpu());
+    const std::int64_t nt = ref.triangle_count;
+    ASSERT_EQ(dv.num_triangles, nt);
+    EXPECT_EQ(dv.num_duplicates, ref.num_duplicates);
+    EXPECT_EQ(gg_test::host_prefix(dv.triangles, 3 * nt), ref.triangles);
+    EXPECT_EQ(gg_test::host_prefix(dv.neighbors, 3 * nt), ref.neighbors);
+    EXPECT_EQ(gg_test::host_prefix(dv.duplicate_of, n), ref.duplicate_of);
+  }
+}
+
 // The flip rounds past their capacities (the points a batch inserts, the flip log, the exact
 // pass's list), forced small on small inputs as large inputs reach them. The log and the exact
 // list never change the result: the same arrays. A smaller batch changes the order of the

@@ -62,6 +62,35 @@ TEST(CudaDelaunay2d, Repeatable) {  // a race would show as a different result
   }
 }
 
+// Points on the GPU are read where they are (no copy to normalise -0): on the degenerate
+// inputs (-0 and +0 duplicates among them) the same arrays as the host entry.
+TEST(CudaDelaunay2d, DeviceEntryOnDegenerateInput) {
+  for (const auto& c : gg_del2d::degenerate_cases()) {
+    SCOPED_TRACE(c.name);
+    const std::size_t bytes = c.pts.size() * sizeof(Point2);
+    double* dp = nullptr;
+    ASSERT_EQ(cudaMalloc(&dp, bytes), cudaSuccess);
+    ASSERT_EQ(cudaMemcpy(dp, c.pts.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
+    const auto r = delaunay2d_device(dp, std::int64_t(c.pts.size()));
+    cudaFree(dp);
+    Delaunay2dOptions o;
+    o.backend = Backend::Cuda;
+    const auto h = delaunay2d(c.pts, o);
+    ASSERT_EQ(r.num_triangles, std::int64_t(h.num_triangles()));
+    EXPECT_EQ(r.num_duplicates, h.num_duplicates);
+    std::vector<std::int32_t> tris(3 * r.num_triangles), nbrs(tris.size()), dup(c.pts.size());
+    ASSERT_EQ(cudaMemcpy(tris.data(), r.triangles.get(), tris.size() * 4, cudaMemcpyDeviceToHost),
+              cudaSuccess);
+    ASSERT_EQ(cudaMemcpy(nbrs.data(), r.neighbors.get(), nbrs.size() * 4, cudaMemcpyDeviceToHost),
+              cudaSuccess);
+    ASSERT_EQ(cudaMemcpy(dup.data(), r.duplicate_of.get(), dup.size() * 4, cudaMemcpyDeviceToHost),
+              cudaSuccess);
+    EXPECT_EQ(tris, h.triangles);
+    EXPECT_EQ(nbrs, h.neighbors);
+    EXPECT_EQ(dup, h.duplicate_of);
+  }
+}
+
 TEST(CudaDelaunay2d, DeviceResident) {  // points on the GPU in, result left there
   for (const char* d : {"uniform", "grid"}) {
     auto p = generate2d(d, 50000, 8);

@@ -20,17 +20,20 @@ struct Prepared {
 inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_device) {
   Prepared P;
   const auto t0 = Clock::now();
-  auto raw = ex.template alloc<double>(std::size_t(2 * n));
-  if (on_device)
-    ex.copy(xy, 2 * n, raw.data());
-  else
+  // Points already on the executor are read where they are (no copy: 16 B a point less in
+  // the preparation); host points are uploaded.
+  typename Exec::template Buffer<double> raw;
+  const double* r = xy;
+  if (!on_device) {
+    raw = ex.template alloc<double>(std::size_t(2 * n));
     ex.from_host(xy, 2 * n, raw.data());
+    r = raw.data();
+  }
   P.upload_ms = ms_since(t0);
-  double* r = raw.data();
 
-  // Validation and the bounding box in one reduction; -0 becomes +0 (so equal points have
-  // equal bits).
-  const mesh::Bounds<2> box = mesh::bounds_in_place<2>(ex, r, n);
+  // Validation and the bounding box in one reduction. (-0 and +0 are one value in what
+  // follows: sort_distinct's keys and comparisons, and its copies of the points have +0.)
+  const mesh::Bounds<2> box = mesh::bounds<2>(ex, r, n);
   if (box.bad)
     throw Error(ErrorCode::InvalidInput,
                 std::to_string(box.bad) +
