@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "../common/device_arrays.hpp"
 #include "del2d_cases.hpp"
 #include "delaunay2d/del2d_backend.hpp"
 
@@ -62,32 +63,27 @@ TEST(CudaDelaunay2d, Repeatable) {  // a race would show as a different result
   }
 }
 
+namespace {
+// A device entry's result read back equals the host entry's (CUDA both).
+void expect_device_entry_as_host(const std::vector<Point2>& p, const DeviceTriangulation2d& r) {
+  Delaunay2dOptions o;
+  o.backend = Backend::Cuda;
+  const auto h = delaunay2d(p, o);
+  ASSERT_EQ(r.num_triangles, std::int64_t(h.num_triangles()));
+  EXPECT_EQ(r.num_duplicates, h.num_duplicates);
+  EXPECT_EQ(gg_test::from_device(r.triangles, 3 * r.num_triangles), h.triangles);
+  EXPECT_EQ(gg_test::from_device(r.neighbors, 3 * r.num_triangles), h.neighbors);
+  EXPECT_EQ(gg_test::from_device(r.duplicate_of, std::int64_t(p.size())), h.duplicate_of);
+}
+}  // namespace
+
 // Points on the GPU are read where they are (no copy to normalise -0): on the degenerate
 // inputs (-0 and +0 duplicates among them) the same arrays as the host entry.
 TEST(CudaDelaunay2d, DeviceEntryOnDegenerateInput) {
   for (const auto& c : gg_del2d::degenerate_cases()) {
     SCOPED_TRACE(c.name);
-    const std::size_t bytes = c.pts.size() * sizeof(Point2);
-    double* dp = nullptr;
-    ASSERT_EQ(cudaMalloc(&dp, bytes), cudaSuccess);
-    ASSERT_EQ(cudaMemcpy(dp, c.pts.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
-    const auto r = delaunay2d_device(dp, std::int64_t(c.pts.size()));
-    cudaFree(dp);
-    Delaunay2dOptions o;
-    o.backend = Backend::Cuda;
-    const auto h = delaunay2d(c.pts, o);
-    ASSERT_EQ(r.num_triangles, std::int64_t(h.num_triangles()));
-    EXPECT_EQ(r.num_duplicates, h.num_duplicates);
-    std::vector<std::int32_t> tris(3 * r.num_triangles), nbrs(tris.size()), dup(c.pts.size());
-    ASSERT_EQ(cudaMemcpy(tris.data(), r.triangles.get(), tris.size() * 4, cudaMemcpyDeviceToHost),
-              cudaSuccess);
-    ASSERT_EQ(cudaMemcpy(nbrs.data(), r.neighbors.get(), nbrs.size() * 4, cudaMemcpyDeviceToHost),
-              cudaSuccess);
-    ASSERT_EQ(cudaMemcpy(dup.data(), r.duplicate_of.get(), dup.size() * 4, cudaMemcpyDeviceToHost),
-              cudaSuccess);
-    EXPECT_EQ(tris, h.triangles);
-    EXPECT_EQ(nbrs, h.neighbors);
-    EXPECT_EQ(dup, h.duplicate_of);
+    const gg_test::DeviceCopy d(c.pts);
+    expect_device_entry_as_host(c.pts, delaunay2d_device(d.doubles(), std::int64_t(c.pts.size())));
   }
 }
 
@@ -95,24 +91,10 @@ TEST(CudaDelaunay2d, DeviceResident) {  // points on the GPU in, result left the
   for (const char* d : {"uniform", "grid"}) {
     auto p = generate2d(d, 50000, 8);
     p.push_back(p[7]);  // a duplicate
-    const std::size_t bytes = p.size() * sizeof(Point2);
-    double* dp = nullptr;
-    ASSERT_EQ(cudaMalloc(&dp, bytes), cudaSuccess);
-    ASSERT_EQ(cudaMemcpy(dp, p.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
-    const auto r = delaunay2d_device(dp, std::int64_t(p.size()));
-    cudaFree(dp);
-    Delaunay2dOptions o;
-    o.backend = Backend::Cuda;
-    const auto h = delaunay2d(p, o);
-    ASSERT_EQ(r.num_triangles, std::int64_t(h.num_triangles()));
+    const gg_test::DeviceCopy dp(p);
+    const auto r = delaunay2d_device(dp.doubles(), std::int64_t(p.size()));
     EXPECT_EQ(r.num_duplicates, 1);
-    std::vector<std::int32_t> tris(3 * r.num_triangles), nbrs(tris.size()), dup(p.size());
-    cudaMemcpy(tris.data(), r.triangles.get(), tris.size() * 4, cudaMemcpyDeviceToHost);
-    cudaMemcpy(nbrs.data(), r.neighbors.get(), nbrs.size() * 4, cudaMemcpyDeviceToHost);
-    cudaMemcpy(dup.data(), r.duplicate_of.get(), dup.size() * 4, cudaMemcpyDeviceToHost);
-    EXPECT_EQ(tris, h.triangles);
-    EXPECT_EQ(nbrs, h.neighbors);
-    EXPECT_EQ(dup, h.duplicate_of);
+    expect_device_entry_as_host(p, r);
   }
 }
 

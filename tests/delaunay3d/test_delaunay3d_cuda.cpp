@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "../common/device_arrays.hpp"
 #include "del3d_cases.hpp"
 
 using namespace gpugeom;
@@ -69,35 +70,26 @@ TEST(CudaDelaunay3d, Repeatable) {  // a race would show as a different result
 TEST(CudaDelaunay3d, DeviceResident) {  // points on the GPU in, result left there
   auto p = gpugeom::generate3d("ball", sizes({50000, 3000}).front(), 8);
   p.push_back(p[7]);  // a duplicate
-  const std::size_t bytes = p.size() * sizeof(Point3);
-  double* dp = nullptr;
-  ASSERT_EQ(cudaMalloc(&dp, bytes), cudaSuccess);
-  ASSERT_EQ(cudaMemcpy(dp, p.data(), bytes, cudaMemcpyHostToDevice), cudaSuccess);
-  const auto r = delaunay3d_device(dp, std::int64_t(p.size()));
-  cudaFree(dp);
+  const auto r = [&] {
+    const gg_test::DeviceCopy dp(p);
+    return delaunay3d_device(dp.doubles(), std::int64_t(p.size()));
+  }();
   Delaunay3dOptions o;
   o.backend = Backend::Cuda;
   const auto h = delaunay3d(p, o);
   ASSERT_EQ(r.num_tetrahedra, std::int64_t(h.num_tetrahedra()));
   EXPECT_EQ(r.num_duplicates, 1);
   const std::int64_t nt = r.num_tetrahedra;
-  std::vector<std::int32_t> tets(std::size_t(4 * nt)), nbrs(tets.size()), dup(p.size());
-  ASSERT_EQ(cudaMemcpy(tets.data(), r.tetrahedra.get(), tets.size() * 4, cudaMemcpyDeviceToHost),
-            cudaSuccess);
-  ASSERT_EQ(cudaMemcpy(nbrs.data(), r.neighbors.get(), nbrs.size() * 4, cudaMemcpyDeviceToHost),
-            cudaSuccess);
-  ASSERT_EQ(cudaMemcpy(dup.data(), r.duplicate_of.get(), dup.size() * 4, cudaMemcpyDeviceToHost),
-            cudaSuccess);
+  const std::int64_t np = std::int64_t(p.size());
+  const auto tets = gg_test::from_device(r.tetrahedra, 4 * nt);
+  const auto nbrs = gg_test::from_device(r.neighbors, 4 * nt);
+  const auto dup = gg_test::from_device(r.duplicate_of, np);
   EXPECT_EQ(gg_del3d::tet_set(tets), gg_del3d::tet_set(h.tetrahedra));
   EXPECT_EQ(dup, h.duplicate_of);
   // The vertex map and the hull facets: every vertex's tetrahedron has it; the same hull.
   ASSERT_EQ(r.num_hull_facets, h.hull_facet_count);
-  std::vector<std::int32_t> v2s(p.size()), hull(std::size_t(3 * r.num_hull_facets));
-  ASSERT_EQ(
-      cudaMemcpy(v2s.data(), r.vertex_to_simplex.get(), v2s.size() * 4, cudaMemcpyDeviceToHost),
-      cudaSuccess);
-  ASSERT_EQ(cudaMemcpy(hull.data(), r.hull_facets.get(), hull.size() * 4, cudaMemcpyDeviceToHost),
-            cudaSuccess);
+  const auto v2s = gg_test::from_device(r.vertex_to_simplex, np);
+  const auto hull = gg_test::from_device(r.hull_facets, 3 * r.num_hull_facets);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const std::int32_t c = v2s[i], v = dup[i] >= 0 ? dup[i] : std::int32_t(i);
     ASSERT_GE(c, 0);

@@ -296,9 +296,6 @@ class Triangulator {
                                  : 0;
     return std::clamp(fit, least, most);
   }
-  struct Sum {
-    GG_HD std::int64_t operator()(std::int64_t a, std::int64_t b) const { return a + b; }
-  };
   // The work list that the next round does not read (free between rounds and batches).
   std::int32_t* spare_list() { return work_lists().current(round_); }
 
@@ -434,11 +431,18 @@ class Triangulator {
     mark("flip: fix");
   }
 
+  // The round's proposals into the counters (entries that decided on an illegal edge).
+  void count_proposals(std::int64_t bound) {
+    const std::int64_t* count = work_lists().count(round_);
+    const std::int8_t* dec = dec_.data();
+    ex_.transform_reduce_into(
+        bound, GG_LAMBDA(std::int64_t i)->std::int64_t { return i < *count && dec[i] >= 0; },
+        std::int64_t(0), thrust::plus<std::int64_t>(), &ctr_.data()->proposals);
+  }
   // The host's part of a checked round (see flip_round): returns where the round's flips are
   // cut into parts (slots from the slot base; none: one part).
   std::vector<std::int64_t> check_round(std::int64_t bound, int edges) {
     const int p = round_ & 1;
-    Counters c = counters();
     const std::int32_t round = round_;
     const mesh::WorkLists L = work_lists();
     const std::int32_t* act = L.current(round);
@@ -447,28 +451,31 @@ class Triangulator {
     std::int32_t* exl = exl_.data();
     Counters* ctr = ctr_.data();
     const std::int64_t exact_cap = exact_cap_;
+    // Each proposal flips at most once: counted (a byte an entry, on the executor), they bound
+    // the round's records. Counted before the read of the exact count, so that a round whose
+    // exact list did not overflow costs one round trip.
+    count_proposals(bound);
+    Counters c = counters();
     // Entries left undecided (past the list's capacity) are collected and decided in turn.
-    for (std::int64_t left = c.exact[p] - exact_cap_; left > 0;) {
-      ++exact_rest_passes_;
-      ex_.for_each_index(
-          1, GG_LAMBDA(std::int64_t) { ctr->exact_rest = 0; });
-      listed(
-          count, bound, GG_LAMBDA(std::int64_t i) {
-            if (!mesh::is_undecided(dec[i])) return;
-            const std::int64_t at = append_slot(&ctr->exact_rest);
-            if (at < exact_cap) exl[at] = std::int32_t(i);
-          });
-      exact_pass(bound, edges, &ctr->exact_rest, false);
+    if (c.exact[p] > exact_cap_) {
+      for (std::int64_t left = c.exact[p] - exact_cap_; left > 0;) {
+        ++exact_rest_passes_;
+        ex_.for_each_index(
+            1, GG_LAMBDA(std::int64_t) { ctr->exact_rest = 0; });
+        listed(
+            count, bound, GG_LAMBDA(std::int64_t i) {
+              if (!mesh::is_undecided(dec[i])) return;
+              const std::int64_t at = append_slot(&ctr->exact_rest);
+              if (at < exact_cap) exl[at] = std::int32_t(i);
+            });
+        exact_pass(bound, edges, &ctr->exact_rest, false);
+        left = counters().exact_rest - exact_cap_;
+      }
+      count_proposals(bound);  // (the further passes proposed too)
       c = counters();
-      left = c.exact_rest - exact_cap_;
     }
-    // Each proposal flips at most once: counted (a byte an entry), they bound the round's
-    // records; the winners are counted (a pass as long as the flips' own) only when the
-    // proposals alone would overflow the log.
-    ex_.transform_reduce_into(
-        c.len[p], GG_LAMBDA(std::int64_t i)->std::int64_t { return dec[i] >= 0; }, std::int64_t(0),
-        Sum{}, &ctr->proposals);
-    c = counters();
+    // The winners are counted (a pass as long as the flips' own) only when the proposals
+    // alone would overflow the log.
     if (logged_ + c.proposals <= log_cap_) return {};
     relocate(false);
     ++relocations_;

@@ -1,0 +1,41 @@
+// Helpers for the GPU tests of device entry points: a caller's points in device memory, and a
+// device result read back. (CUDA tests only: they link the CUDA runtime.)
+#pragma once
+#include <cuda_runtime.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace gg_test {
+
+// A host vector's bytes in a device allocation of their own, freed with this object.
+class DeviceCopy {
+ public:
+  template <class P>
+  explicit DeviceCopy(const std::vector<P>& v) : bytes_(v.size() * sizeof(P)) {
+    EXPECT_EQ(cudaMalloc(&p_, bytes_), cudaSuccess);
+    EXPECT_EQ(cudaMemcpy(p_, v.data(), bytes_, cudaMemcpyHostToDevice), cudaSuccess);
+  }
+  ~DeviceCopy() { cudaFree(p_); }
+  DeviceCopy(const DeviceCopy&) = delete;
+  DeviceCopy& operator=(const DeviceCopy&) = delete;
+  const double* doubles() const { return static_cast<const double*>(p_); }
+
+ private:
+  void* p_ = nullptr;
+  std::size_t bytes_ = 0;
+};
+
+// n elements of a device array, on the host.
+template <class T>
+std::vector<T> from_device(const std::shared_ptr<T>& p, std::int64_t n) {
+  std::vector<T> v(static_cast<std::size_t>(n));
+  EXPECT_EQ(cudaMemcpy(v.data(), p.get(), v.size() * sizeof(T), cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  return v;
+}
+
+}  // namespace gg_test
