@@ -6,7 +6,9 @@
 // floor of the bytes that must cross (input bytes + output bytes at 54 GB/s, the pinned rate
 // measured on the H100 machine by gpugeom_bench_bus); optionally JFA beside PBA with its error
 // rate (voxels whose distance is wrong). --dist-only: float32 distances only (SciPy's
-// distance_transform_edt), else distances and int32 labels.
+// distance_transform_edt), else distances and int32 labels. --slice-step K: 3D grids in
+// slice-by-slice mode, every K-th z slice (1: all of them), the per-voxel figures then per
+// computed voxel; the mode for volumes too large to hold whole.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -45,7 +47,9 @@ io::Grid random_sites(const std::vector<std::int64_t>& shape, double density, st
 // names a site (the label-th site in raster order), the float32 distance is that site's, and
 // no site in the cube of that radius around the voxel is nearer, or as near and first in
 // raster order. A complete check of those voxels, cheap at any grid size. Returns the failures.
-std::int64_t check_sample(const io::Grid& g, const EdtResult& r, std::int64_t k) {
+// slices: the z slices r holds (empty: the whole grid).
+std::int64_t check_sample(const io::Grid& g, const EdtResult& r, std::int64_t k,
+                          const std::vector<std::int64_t>& slices) {
   const int nd = int(g.shape.size());
   std::int64_t n[3] = {1, 1, 1};  // internal x, y, z
   for (int a = 0; a < nd; ++a) n[a] = g.shape[nd - 1 - a];
@@ -61,9 +65,14 @@ std::int64_t check_sample(const io::Grid& g, const EdtResult& r, std::int64_t k)
   std::int64_t bad = 0;
 #pragma omp parallel for reduction(+ : bad)
   for (std::int64_t j = 0; j < k; ++j) {
-    const std::int64_t i =
-        std::int64_t(bench::hash64(std::uint64_t(j), 777) % std::uint64_t(g.count()));
-    const std::int64_t label = r.labels[std::size_t(i)];
+    const std::uint64_t h = bench::hash64(std::uint64_t(j), 777);
+    std::int64_t i = std::int64_t(h % std::uint64_t(g.count())), at = i;
+    if (!slices.empty()) {  // a voxel of a computed slice; at: its place in the output
+      const std::int64_t plane = n[0] * n[1], k = std::int64_t((h >> 40) % slices.size());
+      const std::int64_t p = std::int64_t(h % std::uint64_t(plane));
+      i = slices[std::size_t(k)] * plane + p, at = k * plane + p;
+    }
+    const std::int64_t label = r.labels[std::size_t(at)];
     const std::int64_t row =
         std::int64_t(std::upper_bound(before.begin(), before.end(), label) - before.begin()) - 1;
     std::int64_t s = -1;
@@ -81,7 +90,7 @@ std::int64_t check_sample(const io::Grid& g, const EdtResult& r, std::int64_t k)
     coords(s, cs);
     std::int64_t d2 = 0;
     for (int a = 0; a < 3; ++a) d2 += (cs[a] - cv[a]) * (cs[a] - cv[a]);
-    bool ok = r.distance32[std::size_t(i)] == float(std::sqrt(double(d2)));
+    bool ok = r.distance32[std::size_t(at)] == float(std::sqrt(double(d2)));
     const std::int64_t R = std::int64_t(std::sqrt(double(d2))) + 1;
     std::int64_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a)
@@ -108,7 +117,7 @@ int main(int argc, char** argv) {
   std::string sides = "1024,2048", dens = "0.1", backends = "all", csv, shapes;
   int dim = 2, reps = 5;
   bool jfa = false, dist_only = false;
-  std::int64_t check = 0;
+  std::int64_t check = 0, slice_step = 0;
   std::int64_t bands[3] = {0, 0, 0};
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
@@ -131,6 +140,8 @@ int main(int argc, char** argv) {
       dist_only = true;
     else if (a == "--check")  // K sampled voxels checked exactly (needs labels)
       check = std::stoll(next());
+    else if (a == "--slice-step")  // 3D: slice by slice, every K-th slice
+      slice_step = std::stoll(next());
     else if (a == "--bands") {  // kx,ky[,kz]: PBA band counts (0: the automatic rule)
       std::stringstream bs(next());
       int k = 0;
@@ -140,7 +151,7 @@ int main(int argc, char** argv) {
     else {
       std::cout << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
                    "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--dist-only] [--check K] "
-                   "[--shapes 4096x16384,...] [--csv FILE]\n";
+                   "[--shapes 4096x16384,...] [--slice-step K] [--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
   }
@@ -177,6 +188,8 @@ int main(int argc, char** argv) {
           o.labels = !dist_only;
           o.method = m ? EdtMethod::Jfa : EdtMethod::Pba;
           for (int k = 0; k < 3; ++k) o.bands[k] = bands[k];
+          if (slice_step > 0 && dim == 3 && m == 0)
+            for (std::int64_t z = 0; z < shape[0]; z += slice_step) o.slices.push_back(z);
           std::vector<double> tt, to, tw;
           EdtResult r;
           for (int k = 0; k <= reps; ++k) {  // the first run warms up
@@ -217,7 +230,10 @@ int main(int argc, char** argv) {
             cudaFree(dg);
           }
 #endif
-          const double out_bytes = double(g.count()) * (4.0 + (dist_only ? 0 : 4));
+          // Output bytes of the voxels computed (all of them, or the slices').
+          const double out_vox =
+              o.slices.empty() ? double(g.count()) : double(o.slices.size() * shape[1] * shape[2]);
+          const double out_bytes = out_vox * (4.0 + (dist_only ? 0 : 4));
           const double floor_ms = (double(g.data.size()) + out_bytes) / 54e9 * 1e3;
           double wrong = 0;
           if (m) {  // JFA error rate against PBA on the same backend
@@ -230,7 +246,7 @@ int main(int argc, char** argv) {
             wrong = double(bad) / double(ex.distance32.size());
           }
           if (check > 0 && !dist_only && m == 0) {
-            const std::int64_t bad = check_sample(g, r, check);
+            const std::int64_t bad = check_sample(g, r, check, o.slices);
             std::printf("# check: %lld sampled voxels, %lld wrong\n", (long long)check,
                         (long long)bad);
             if (bad) return 1;
@@ -240,6 +256,7 @@ int main(int argc, char** argv) {
               std::printf("    %-10s %10.3f ms\n", p.first.c_str(), p.second);
           std::string grid;
           for (auto e : shape) grid += (grid.empty() ? "" : "x") + std::to_string(e);
+          if (!o.slices.empty()) grid += "/" + std::to_string(slice_step);
           std::printf("%-6s %-14s %8.4f %-5s %-4s %11.3f %11.3f %12.3f %10.3f %10.3f %10.4f\n",
                       "edt", grid.c_str(), d, backend_name(b), m ? "jfa" : "pba", tt[tt.size() / 2],
                       to[to.size() / 2], tw[tw.size() / 2], on_dev, floor_ms, 100 * wrong);
