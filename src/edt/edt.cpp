@@ -36,7 +36,8 @@ void set_linear_packing_for_testing(bool on) {
   g_force_linear = on;
 }
 
-// sliced: only slices of nx * ny voxels are held at once, so only they must fit int32 indexing.
+// sliced: only slices of nx * ny voxels are held at once, so only they must fit int32 indexing
+// (the slices' own site packing, SliceLayout, needs no more).
 Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing packing) {
   if (shape.size() != 2 && shape.size() != 3)
     throw Error(ErrorCode::InvalidInput, "the distance transform needs a 2D or 3D grid, got " +
@@ -63,14 +64,21 @@ Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing 
     L.mask[a] = b ? std::uint32_t((std::uint64_t(1) << b) - 1) : 0;
     shift += b;
   }
+  if (sliced) {  // sites packed by column (SliceLayout): only a slice must fit 32 bits
+    if (L.n[0] * L.n[1] >= (std::int64_t(1) << 31) - 1)
+      throw Error(ErrorCode::InvalidInput,
+                  "a slice of " + std::to_string(L.n[0] * L.n[1]) +
+                      " voxels is too large: at most 2^31-2 (e.g. 46340 x 46340)");
+    return L;
+  }
   // Bit fields where they fit 32 bits (the faster decode), else raster indices, which hold
   // every grid of fewer than 2^32 - 1 voxels (kNone is the last 32-bit value).
   const std::int64_t n = L.count();
   if (n >= (std::int64_t(1) << 32) - 1)
     throw Error(ErrorCode::InvalidInput,
-                "grid too large: " + std::to_string(n) +
-                    " voxels, at most 2^32-2 (4294967294) in one transform, whole or by slices "
-                    "(e.g. 1625^3, 2048 x 2048 x 1023)");
+                "grid too large for a whole transform: " + std::to_string(n) +
+                    " voxels, at most 2^32-2 (4294967294; e.g. 1625^3, 2048 x 2048 x 1023); "
+                    "compute it by slices (EdtOptions::slices), which takes any number");
   if (shift > 32 || (g_force_linear && packing == Packing::Any)) {
     if (packing == Packing::Bits)
       throw Error(ErrorCode::InvalidInput,
@@ -79,9 +87,6 @@ Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing 
                       std::to_string(shift));
     L.linear = true;
   }
-  if (sliced && L.n[0] * L.n[1] >= (std::int64_t(1) << 31) - 1)
-    throw Error(ErrorCode::InvalidInput, "a slice of " + std::to_string(L.n[0] * L.n[1]) +
-                                             " voxels is too large: at most 2^31-2");
   return L;
 }
 
@@ -234,10 +239,11 @@ EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions&
     return finish(rq, opt, g.shape);
   }
   // Slice by slice: the device holds the site list and one slice, never the volume, so the
-  // sites are listed here (raster order: labels are raster ranks as usual), on all host
-  // threads: each chunk counts its sites, then writes them at its offset.
+  // sites are listed here as column keys (raster order: labels are raster ranks as usual), on
+  // all host threads: each chunk counts its sites, then writes them at its offset.
   const std::int64_t n = rq.layout.count();
   const edt::Layout& L = rq.layout;
+  const std::int64_t plane = L.n[0] * L.n[1];
   constexpr std::int64_t kChunk = std::int64_t(1) << 20;
   const std::int64_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<std::int64_t> at(std::size_t(chunks) + 1, 0);
@@ -257,21 +263,20 @@ EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions&
   }
   if (!finite) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
   for (std::int64_t c = 0; c < chunks; ++c) at[std::size_t(c) + 1] += at[std::size_t(c)];
-  rq.sites.resize(std::size_t(at.back()));
+  rq.column_sites.resize(std::size_t(at.back()));
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     std::int64_t k = at[std::size_t(c)];
     bool unused = true;
     for (std::int64_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
       if (is_site(i, unused))
-        rq.sites[std::size_t(k++)] =
-            L.pack_any(i % L.n[0], (i / L.n[0]) % L.n[1], i / (L.n[0] * L.n[1]));
+        rq.column_sites[std::size_t(k++)] = edt::column_key(i % plane, i / plane);
   }
-  if (rq.sites.empty())
+  if (rq.column_sites.empty())
     throw Error(ErrorCode::InvalidInput, std::string("the grid has no site (no ") +
                                              (rule == SiteRule::NonZero ? "nonzero" : "zero") +
                                              " element): every distance would be infinite");
-  rq.site_count = std::int64_t(rq.sites.size());
+  rq.site_count = std::int64_t(rq.column_sites.size());
   return finish(rq, opt, g.shape);
 }
 
@@ -289,7 +294,7 @@ DeviceEdtResult distance_transform_device(const GridView& g, SiteRule rule, cons
   check_view(g);
   const Backend b = device_entry_backend(opt.backend, opt.device, "distance_transform_device");
   edt::Request rq;
-  rq.layout = edt::make_layout(g.shape, false);
+  rq.layout = edt::make_layout(g.shape, !opt.slices.empty());
   rq.metric = make_metric(opt.sampling, rq.layout.nd);
   rq.grid = g.data;
   rq.type = g.type;
@@ -323,7 +328,11 @@ EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
   const std::int64_t ns = std::int64_t(sites.size()) / nd;
   if (ns >= (std::int64_t(1) << 31))
     throw Error(ErrorCode::InvalidInput, "too many sites (at most 2^31-1)");
-  rq.sites.resize(ns);
+  const bool sliced = !opt.slices.empty();
+  if (sliced)
+    rq.column_sites.resize(std::size_t(ns));
+  else
+    rq.sites.resize(std::size_t(ns));
   rq.site_count = ns;
   for (std::int64_t i = 0; i < ns; ++i) {
     std::int64_t c[3] = {0, 0, 0};
@@ -335,7 +344,10 @@ EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
                         std::to_string(v) + " on axis " + std::to_string(j) + ")");
       c[nd - 1 - j] = v;
     }
-    rq.sites[i] = rq.layout.pack_any(c[0], c[1], c[2]);
+    if (sliced)
+      rq.column_sites[i] = edt::column_key(c[0] + rq.layout.n[0] * c[1], c[2]);
+    else
+      rq.sites[i] = rq.layout.pack_any(c[0], c[1], c[2]);
   }
   return finish(rq, opt, shape);
 }

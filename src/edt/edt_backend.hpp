@@ -16,12 +16,14 @@ struct Request {
   Tuning tune;
   RunOptions run;
   // Sites: a grid whose values say which voxels are sites (rule), where the executor can read
-  // it (grid_on_device) or on the host, or else a list of packed sites.
+  // it (grid_on_device) or on the host, or else a list: packed sites for a whole grid, column
+  // keys (column_key) in slice-by-slice mode.
   const void* grid = nullptr;
   io::ScalarType type = io::ScalarType::U8;
   SiteRule rule = SiteRule::NonZero;
   bool grid_on_device = false;
   std::vector<std::uint32_t> sites;
+  std::vector<std::uint64_t> column_sites;
   std::int64_t site_count = 0;  // sites in the list (a grid's are counted by the executor)
   // Slice-by-slice: the z values to compute (3D only); empty = the whole volume.
   std::vector<std::int64_t> slices;

@@ -10,6 +10,9 @@
 //                 where the extents' bit widths sum to 32 or less (1024^3, 65536 x 65536);
 //   LinearLayout  the voxel's raster index x + nx (y + ny z): a multiply-high division to
 //                 decode, for every grid of fewer than 2^32 - 1 voxels (1600^3, 1625^3).
+// The slice-by-slice mode packs no z at all (SliceLayout): a slice's candidates are one site per
+// column (x, y) at most, whose z the slice's column table holds, so volumes of any voxel count
+// go by slices. Ties then compare (z, packed) through Layout::before.
 // The passes (impl/*.inl) are compiled once for each (see edt_cuda.cu / edt_cpu.cpp).
 //
 // Distances are sum_k w_k * d_k^2 with w_k = sampling_k^2 (1 when isotropic). Every decision is
@@ -84,6 +87,8 @@ struct Layout {
   GG_INLINE std::uint32_t pack_voxel(std::int64_t v) const {
     return pack(v % n[0], (v / n[0]) % n[1], v / (n[0] * n[1]));
   }
+  // Is site q first in raster order before site p? (Packed order is raster order here.)
+  GG_INLINE bool before(std::uint32_t q, std::uint32_t p) const { return q < p; }
   // Either packing, chosen at run time (host-side packing of site lists).
   std::uint32_t pack_any(std::int64_t x, std::int64_t y, std::int64_t z) const {
     return linear ? std::uint32_t(x + n[0] * (y + n[1] * z)) : pack(x, y, z);
@@ -111,6 +116,42 @@ struct LinearLayout : Layout {
   GG_INLINE std::int64_t voxel_of(std::uint32_t s) const { return s; }
   GG_INLINE std::uint32_t pack_voxel(std::int64_t v) const { return std::uint32_t(v); }
 };
+
+// A slice of the slice-by-slice mode (n[2] = 1, z0 the slice's z). Its candidates are the
+// nearest sites along z of its columns, at most one per column (x, y), and every site the x
+// and y passes meet is one of them: so a site is packed as its column's bit fields (x low, then
+// y; they fit 32 bits, a slice holding fewer than 2^31 - 1 voxels) and its z is looked up in
+// the slice's table of the candidates' z (zcol[x + nx y]). No voxel index of the volume is
+// formed, so the volume may hold any number of voxels. Packed order is the columns' order, not
+// raster order: ties compare z first (before()).
+struct SliceLayout : Layout {
+  const std::uint16_t* zcol = nullptr;  // executor memory, n[0] * n[1] entries
+  SliceLayout() = default;
+  SliceLayout(const Layout& L, const std::uint16_t* z) : Layout(L), zcol(z) {}  // NOLINT
+  GG_INLINE std::uint32_t pack(std::int64_t x, std::int64_t y, std::int64_t) const {
+    return std::uint32_t(x) << shift[0] | std::uint32_t(y) << shift[1];
+  }
+  GG_INLINE std::uint32_t column(std::uint32_t s) const {
+    return Layout::coord(s, 0) + std::uint32_t(n[0]) * Layout::coord(s, 1);
+  }
+  // (kNone has no column: its z reads as 0, and no decision uses it.)
+  GG_INLINE std::int64_t coord(std::uint32_t s, int a) const {
+    if (a < 2) return Layout::coord(s, a);
+    return s == kNone ? 0 : zcol[column(s)];
+  }
+  GG_INLINE bool before(std::uint32_t q, std::uint32_t p) const {
+    const std::int64_t zq = coord(q, 2), zp = coord(p, 2);
+    return zq < zp || (zq == zp && q < p);
+  }
+};
+
+// A site of the slice-by-slice mode: its column x + nx y above its z (z < 2^16: extents are at
+// most 65536), so sorted keys list each column's sites in z order.
+constexpr int kColumnZBits = 16;
+constexpr std::uint64_t kColumnZMask = (std::uint64_t(1) << kColumnZBits) - 1;
+GG_INLINE std::uint64_t column_key(std::int64_t column, std::int64_t z) {
+  return std::uint64_t(column) << kColumnZBits | std::uint64_t(z);
+}
 
 struct Metric {
   bool iso = true;
@@ -161,7 +202,7 @@ GG_INLINE bool beats(const Lay& L, const Metric& m, std::uint32_t q, std::uint32
     I[k] = dq * dq - dp * dp;
   }
   const int s = weighted_sign(m, I);
-  return s < 0 || (s == 0 && q < p);
+  return s < 0 || (s == 0 && L.before(q, p));
 }
 
 // Along axis a of a line whose other coordinates are v[], can site b be dropped given its
@@ -185,7 +226,7 @@ GG_INLINE bool dominated(const Lay& L, const Metric& m, int a, std::uint32_t A, 
   if (s != 0) return s > 0;
   // u == v: B's cell on this line is one point. Keep B only if that point is a grid point
   // where B is first in raster order among the three.
-  if (!(B < A && B < C)) return true;
+  if (!(L.before(B, A) && L.before(B, C))) return true;
   double num = m.w[a] * double(tb * tb - ta * ta);
   for (int p = 0; p < L.nd; ++p) {
     if (p == a) continue;

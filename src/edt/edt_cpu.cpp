@@ -17,9 +17,13 @@
 namespace gpugeom::edt::cpu_impl {
 using Exec = CpuExec;
 using std::sqrt;
-// The passes for each site packing (edt_common.hpp): bit fields, and raster indices.
+// What both modes share, then the passes for each site packing (edt_common.hpp): bit fields
+// and raster indices for whole grids, columns for slices.
+#include "edt/impl/outputs.inl"
 namespace bits {
 #include "edt/impl/pba.inl"
+#include "edt/impl/cpu_tiles.inl"
+#include "edt/impl/grid_transform.inl"
 #include "edt/impl/jfa.inl"
 #include "edt/impl/cpu_passes.inl"
 #include "edt/impl/run.inl"
@@ -27,9 +31,17 @@ namespace bits {
 namespace linear {
 using Layout = LinearLayout;
 #include "edt/impl/pba.inl"
+#include "edt/impl/cpu_tiles.inl"
+#include "edt/impl/grid_transform.inl"
 #include "edt/impl/jfa.inl"
 #include "edt/impl/cpu_passes.inl"
 #include "edt/impl/run.inl"
 }  // namespace linear
+namespace sliced {
+using Layout = SliceLayout;
+#include "edt/impl/pba.inl"
+#include "edt/impl/cpu_tiles.inl"
+#include "edt/impl/slices.inl"
+}  // namespace sliced
 #include "edt/impl/entry.inl"
 }  // namespace gpugeom::edt::cpu_impl

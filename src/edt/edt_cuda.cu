@@ -16,9 +16,13 @@
 
 namespace gpugeom::edt::cuda_impl {
 using Exec = CudaExec;
-// The passes for each site packing (edt_common.hpp): bit fields, and raster indices.
+// What both modes share, then the passes for each site packing (edt_common.hpp): bit fields
+// and raster indices for whole grids, columns for slices.
+#include "edt/impl/outputs.inl"
 namespace bits {
 #include "edt/impl/pba.inl"
+#include "edt/impl/cuda_tiles.inl"
+#include "edt/impl/grid_transform.inl"
 #include "edt/impl/jfa.inl"
 #include "edt/impl/cuda_passes.inl"
 #include "edt/impl/run.inl"
@@ -26,9 +30,17 @@ namespace bits {
 namespace linear {
 using Layout = LinearLayout;
 #include "edt/impl/pba.inl"
+#include "edt/impl/cuda_tiles.inl"
+#include "edt/impl/grid_transform.inl"
 #include "edt/impl/jfa.inl"
 #include "edt/impl/cuda_passes.inl"
 #include "edt/impl/run.inl"
 }  // namespace linear
+namespace sliced {
+using Layout = SliceLayout;
+#include "edt/impl/pba.inl"
+#include "edt/impl/cuda_tiles.inl"
+#include "edt/impl/slices.inl"
+}  // namespace sliced
 #include "edt/impl/entry.inl"
 }  // namespace gpugeom::edt::cuda_impl

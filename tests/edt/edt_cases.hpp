@@ -2,6 +2,7 @@
 #pragma once
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -80,6 +81,74 @@ inline Reference brute_force(const gpugeom::io::Grid& g, const std::vector<doubl
       if (first || d < ref.sq[i]) ref.sq[i] = d, ref.nearest[i] = site, first = false;
     }
   }
+  return ref;
+}
+
+// A volume of more than 2^32 voxels (65536 x 257 x 263, C order) known by a few hundred listed
+// sites, and slices to compute by the slice-by-slice mode: the first and last slices, slices
+// among clusters of sites, and slices with exact ties between sites of different columns on
+// either side (the site below lies in the later column: the tie goes to it, first in raster
+// order, only if z is compared before the column). The list repeats a site (its label is its
+// first index) that slices meet both above and below.
+struct TallVolume {
+  std::vector<std::int64_t> shape{65536, 257, 263};
+  std::vector<std::int64_t> sites;  // (z, y, x) per site
+  std::vector<std::int64_t> slices;
+};
+inline TallVolume tall_volume(unsigned seed) {
+  TallVolume t;
+  std::mt19937 r(seed);
+  auto site = [&](std::int64_t z, std::int64_t y, std::int64_t x) {
+    t.sites.insert(t.sites.end(), {z, y, x});
+  };
+  site(30, 5, 5);  // repeated last: slice 0 meets it above, slice 39 below
+  for (std::int64_t centre : {0, 40, 32767, 40000, 65535})
+    for (int k = 0; k < 50; ++k) {
+      const std::int64_t z = centre + std::int64_t(r() % 81) - 40;
+      site(std::min<std::int64_t>(65535, std::max<std::int64_t>(0, z)), r() % 257, r() % 263);
+    }
+  for (std::int64_t z0 : {20000, 50000}) {  // ties at (z0, 100, 108): 9 + 1 from both sites
+    site(z0 - 3, 100, 109);
+    site(z0 + 3, 100, 107);
+    t.slices.push_back(z0);
+  }
+  site(30, 5, 5);
+  for (std::int64_t z : {0, 1, 39, 40, 32767, 32768, 40000, 65535}) t.slices.push_back(z);
+  return t;
+}
+
+// The slice mode's exact outputs by brute force: for each voxel of the slices (in order), the
+// weighted squared distance to its nearest site (w: integer weights, sampling^2), the site's
+// coordinates (ties: first in raster order) and label (its first index in the list).
+struct SliceReference {
+  std::vector<std::int64_t> sq;
+  std::vector<std::int64_t> coords;  // 3 per voxel (z, y, x)
+  std::vector<std::int32_t> label;
+};
+inline SliceReference slice_reference(const TallVolume& t, const std::int64_t w[3]) {
+  const std::int64_t ny = t.shape[1], nx = t.shape[2], plane = ny * nx;
+  const std::int64_t ns = std::int64_t(t.sites.size()) / 3;
+  SliceReference ref;
+  const std::size_t n = t.slices.size() * std::size_t(plane);
+  ref.sq.resize(n);
+  ref.coords.resize(3 * n);
+  ref.label.resize(n);
+  for (std::size_t k = 0; k < t.slices.size(); ++k)
+    for (std::int64_t p = 0; p < plane; ++p) {
+      const std::int64_t c[3] = {t.slices[k], p / nx, p % nx};
+      std::int64_t best = -1, raster = 0, at = 0;
+      for (std::int64_t j = 0; j < ns; ++j) {
+        const std::int64_t* s = &t.sites[std::size_t(3 * j)];
+        std::int64_t d = 0;
+        for (int a = 0; a < 3; ++a) d += w[a] * (s[a] - c[a]) * (s[a] - c[a]);
+        const std::int64_t ri = (s[0] * ny + s[1]) * nx + s[2];
+        if (best < 0 || d < best || (d == best && ri < raster)) best = d, raster = ri, at = j;
+      }
+      const std::size_t i = k * std::size_t(plane) + std::size_t(p);
+      ref.sq[i] = best;
+      for (int a = 0; a < 3; ++a) ref.coords[3 * i + a] = t.sites[std::size_t(3 * at + a)];
+      ref.label[i] = std::int32_t(at);
+    }
   return ref;
 }
 

@@ -470,4 +470,50 @@ TEST(Edt, SizeLimitsAreStated) {
   EXPECT_FALSE(edt::make_layout({1025, 1024, 2048}).linear);  // 11 + 10 + 11 bits
   EXPECT_TRUE(edt::make_layout({1025, 1025, 2048}).linear);
   EXPECT_THROW(edt::make_layout({1600, 1600, 1600}, false, edt::Packing::Bits), Error);
+  // By slices only a slice must fit: any voxel count, slices below 2^31 - 1 voxels.
+  EXPECT_NO_THROW(edt::make_layout({65536, 46340, 46340}, true));
+  try {
+    edt::make_layout({2, 46341, 46341}, true);
+    ADD_FAILURE() << "a slice of 2^31 voxels or more was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("2147488281 voxels is too large: at most 2^31-2"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// Slice by slice, a volume of more than 2^32 voxels (4.4e9) known by its listed sites: every
+// output of every computed slice is the brute force's, ties across columns included, with and
+// without sampling; a whole transform of it is refused with the way out.
+TEST(Edt, SlicesOfVolumesPastTwoToThe32Voxels) {
+  const gg_edt::TallVolume t = gg_edt::tall_volume(7);
+  const std::int64_t plane = t.shape[1] * t.shape[2];
+  for (bool aniso : {false, true}) {
+    EdtOptions o = all_outputs();
+    o.slices = t.slices;
+    std::int64_t w[3] = {1, 1, 1};
+    if (aniso) o.sampling = {3, 1, 2}, w[0] = 9, w[2] = 4;
+    const auto r = distance_transform_sites(t.shape, t.sites, o);
+    const auto ref = gg_edt::slice_reference(t, w);
+    const std::int64_t n = std::int64_t(t.slices.size()) * plane;
+    ASSERT_EQ(r.count(), n);
+    for (std::int64_t i = 0; i < n; ++i) {
+      const std::string at = std::string(aniso ? "sampled" : "isotropic") + ", slice " +
+                             std::to_string(t.slices[i / plane]) + " voxel " +
+                             std::to_string(i % plane);
+      if (aniso)
+        ASSERT_EQ(r.sqdist_real[i], double(ref.sq[i])) << at;  // integers: exact in doubles
+      else
+        ASSERT_EQ(r.sqdist_int[i], ref.sq[i]) << at;
+      for (int a = 0; a < 3; ++a)
+        ASSERT_EQ(r.features[a * n + i], ref.coords[3 * i + a]) << at << " axis " << a;
+      ASSERT_EQ(r.labels[i], ref.label[i]) << at;
+    }
+  }
+  try {
+    distance_transform_sites(t.shape, t.sites, all_outputs());
+    ADD_FAILURE() << "a whole transform of 2^32 voxels or more was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("compute it by slices"), std::string::npos) << e.what();
+  }
 }

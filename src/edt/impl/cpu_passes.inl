@@ -1,5 +1,5 @@
-// The CPU executor's versions of the passes pba.inl leaves to each backend; included by
-// edt_cpu.cpp after pba.inl, once for each site packing.
+// The CPU executor's versions of the whole-grid passes grid_transform.inl leaves to each
+// backend; included by edt_cpu.cpp after it, once for each site packing.
 
 // The CPU twin of the GPU's x pass: the general line pass, one thread walking each row.
 void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
@@ -14,10 +14,5 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
 // The windowed pass's generic loop already walks a CPU thread's voxels in raster order.
 bool window_pass_kernel(Exec&, const Layout&, int, std::int64_t, const std::uint32_t*,
                         std::uint32_t*, std::uint8_t*, bool) {
-  return false;
-}
-// Tiles in on-chip memory are a GPU device: a CPU thread's cache already holds its line.
-bool line_pass_tiled(Exec&, const Layout&, const Metric&, int, std::int64_t, int, std::uint32_t*,
-                     std::uint32_t*, const std::uint8_t*) {
   return false;
 }

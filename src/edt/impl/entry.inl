@@ -1,16 +1,18 @@
-// The entry points edt_backend.hpp and edt_device.hpp declare, the same for both executors:
-// each runs the passes compiled for the request's site packing (run.inl, included once for
-// each in namespaces bits and linear).
+// The entry points edt_backend.hpp and edt_device.hpp declare, the same for both executors: a
+// whole grid runs the passes compiled for the request's site packing (run.inl, included once
+// for each in namespaces bits and linear), slices their own (slices.inl, namespace sliced).
 
 void run(const Request& req, Output& out, Stats& stats) {
-  if (req.layout.linear)
-    linear::run_impl(req, out, stats);
+  if (!req.slices.empty())
+    sliced::run_slices(req, out, stats);
+  else if (req.layout.linear)
+    linear::run_whole(req, out, stats);
   else
-    bits::run_impl(req, out, stats);
+    bits::run_whole(req, out, stats);
 }
 // Modules built on the transform (cvd/) hold bit-packed sites (make_layout with
 // Packing::Bits): their own code decodes them.
 void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
                             std::int64_t sites) {
-  bits::feature_transform(ex, L, M, feat, nullptr, Tuning{}, L.nd, sites, nullptr);
+  bits::feature_transform(ex, L, M, feat, nullptr, Tuning{}, sites, nullptr);
 }
