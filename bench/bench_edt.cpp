@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
   std::string sides = "1024,2048", dens = "0.1", backends = "all", csv, shapes;
   int dim = 2, reps = 5;
   bool jfa = false, dist_only = false;
-  std::int64_t check = 0, slice_step = 0;
+  std::int64_t check = 0, slice_step = 0, slice_block = 0;
   std::int64_t bands[3] = {0, 0, 0};
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
@@ -142,6 +142,8 @@ int main(int argc, char** argv) {
       check = std::stoll(next());
     else if (a == "--slice-step")  // 3D: slice by slice, every K-th slice
       slice_step = std::stoll(next());
+    else if (a == "--slice-block")  // voxels of slices computed together (0: the library's)
+      slice_block = std::stoll(next());
     else if (a == "--bands") {  // kx,ky[,kz]: PBA band counts (0: the automatic rule)
       std::stringstream bs(next());
       int k = 0;
@@ -149,9 +151,10 @@ int main(int argc, char** argv) {
     } else if (a == "--shapes")
       shapes = next();  // e.g. 4096x16384,8000x8400 (C order)
     else {
-      std::cout << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
-                   "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--dist-only] [--check K] "
-                   "[--shapes 4096x16384,...] [--slice-step K] [--csv FILE]\n";
+      std::cout
+          << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
+             "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--dist-only] [--check K] "
+             "[--shapes 4096x16384,...] [--slice-step K] [--slice-block VOXELS] [--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
   }
@@ -188,6 +191,7 @@ int main(int argc, char** argv) {
           o.labels = !dist_only;
           o.method = m ? EdtMethod::Jfa : EdtMethod::Pba;
           for (int k = 0; k < 3; ++k) o.bands[k] = bands[k];
+          o.slice_block = slice_block;
           if (slice_step > 0 && dim == 3 && m == 0)
             for (std::int64_t z = 0; z < shape[0]; z += slice_step) o.slices.push_back(z);
           std::vector<double> tt, to, tw;
@@ -250,6 +254,15 @@ int main(int argc, char** argv) {
             std::printf("# check: %lld sampled voxels, %lld wrong\n", (long long)check,
                         (long long)bad);
             if (bad) return 1;
+          }
+          if (b == Backend::Cuda && r.stats.counters.count("device_peak_bytes")) {
+            const double peak = double(r.stats.counters.at("device_peak_bytes"));
+            std::printf("# device peak %.2f GB (%.2f B a computed voxel)", peak / 1e9,
+                        peak / out_vox);
+            if (r.stats.counters.count("slices_per_block"))
+              std::printf(", %lld slices a block",
+                          (long long)r.stats.counters.at("slices_per_block"));
+            std::printf("\n");
           }
           if (std::getenv("GPUGEOM_EDT_PROFILE"))
             for (auto& p : r.stats.phase_ms)

@@ -60,6 +60,9 @@ struct EdtOptions : RunOptions {
   // they pay, 0: never, 1: wherever they fit).
   std::int64_t window_reach = -1;
   int tiles = -1;
+  // Slice-by-slice mode: about how many voxels of slices are computed together (0: 2^24;
+  // fewer take less device memory, more launches). Tuning too: never changes the result.
+  std::int64_t slice_block = 0;
   std::vector<std::int64_t> slices;  // 3D only: compute just these z slices (slice-by-slice)
   EdtBuffers into;                   // caller-provided output arrays (optional)
 };

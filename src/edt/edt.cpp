@@ -31,9 +31,13 @@ int bits_for(std::int64_t n) {
 
 namespace {
 bool g_force_linear = false;
-}
+bool g_force_columns = false;
+}  // namespace
 void set_linear_packing_for_testing(bool on) {
   g_force_linear = on;
+}
+void set_column_packing_for_testing(bool on) {
+  g_force_columns = on;
 }
 
 // sliced: only slices of nx * ny voxels are held at once, so only they must fit int32 indexing
@@ -64,16 +68,20 @@ Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing 
     L.mask[a] = b ? std::uint32_t((std::uint64_t(1) << b) - 1) : 0;
     shift += b;
   }
-  if (sliced) {  // sites packed by column (SliceLayout): only a slice must fit 32 bits
+  // Bit fields where they fit 32 bits (the faster decode), else raster indices, which hold
+  // every grid of fewer than 2^32 - 1 voxels (kNone is the last 32-bit value); by slices, past
+  // that, sites packed by column (ColumnLayout), where only a slice must fit.
+  const std::int64_t n = L.count();
+  if (sliced) {
     if (L.n[0] * L.n[1] >= (std::int64_t(1) << 31) - 1)
       throw Error(ErrorCode::InvalidInput,
                   "a slice of " + std::to_string(L.n[0] * L.n[1]) +
                       " voxels is too large: at most 2^31-2 (e.g. 46340 x 46340)");
-    return L;
+    if (n >= (std::int64_t(1) << 32) - 1 || g_force_columns) {
+      L.columns = true;
+      return L;
+    }
   }
-  // Bit fields where they fit 32 bits (the faster decode), else raster indices, which hold
-  // every grid of fewer than 2^32 - 1 voxels (kNone is the last 32-bit value).
-  const std::int64_t n = L.count();
   if (n >= (std::int64_t(1) << 32) - 1)
     throw Error(ErrorCode::InvalidInput,
                 "grid too large for a whole transform: " + std::to_string(n) +
@@ -171,6 +179,9 @@ void prepare(edt::Request& rq, const EdtOptions& opt, const std::vector<std::int
   for (int a = 0; a < 3; ++a) rq.tune.bands[a] = opt.bands[a];
   rq.tune.window_reach = opt.window_reach;
   rq.tune.tiles = opt.tiles;
+  if (opt.slice_block < 0)
+    throw Error(ErrorCode::InvalidArgument, "slice_block must be 0 (automatic) or positive");
+  rq.tune.slice_block = opt.slice_block;
   rq.run = static_cast<const RunOptions&>(opt);
   out_shape = output_shape(rq, opt, shape);
   std::int64_t total = 1;

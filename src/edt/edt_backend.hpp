@@ -64,6 +64,9 @@ Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced = false,
 // Tests: raster-index packing for every grid (the bit-field grids then take the linear passes,
 // which must give identical results). Not thread-safe; set it before the calls it is for.
 void set_linear_packing_for_testing(bool on);
+// Tests: column packing (ColumnLayout) for every slice-by-slice request (it is taken only past
+// 2^32 - 2 voxels otherwise). Not thread-safe either.
+void set_column_packing_for_testing(bool on);
 
 namespace cpu_impl {
 void run(const Request& req, Output& out, Stats& stats);

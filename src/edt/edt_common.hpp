@@ -10,9 +10,9 @@
 //                 where the extents' bit widths sum to 32 or less (1024^3, 65536 x 65536);
 //   LinearLayout  the voxel's raster index x + nx (y + ny z): a multiply-high division to
 //                 decode, for every grid of fewer than 2^32 - 1 voxels (1600^3, 1625^3).
-// The slice-by-slice mode packs no z at all (SliceLayout): a slice's candidates are one site per
-// column (x, y) at most, whose z the slice's column table holds, so volumes of any voxel count
-// go by slices. Ties then compare (z, packed) through Layout::before.
+// The slice-by-slice mode keeps them where they fit, and past 2^32 - 1 voxels packs a site by
+// its column and looks its z up (ColumnLayout), so volumes of any voxel count go by slices.
+// Ties then compare (z, packed) through Layout::before.
 // The passes (impl/*.inl) are compiled once for each (see edt_cuda.cu / edt_cpu.cpp).
 //
 // Distances are sum_k w_k * d_k^2 with w_k = sampling_k^2 (1 when isotropic). Every decision is
@@ -31,11 +31,12 @@ constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 // Choices that change the speed of the passes, never their result (EdtOptions has them for
 // benchmarks and tests): PBA band counts per axis (0: by size), the windowed passes' reach
 // (-1: by site density, 0: never), the GPU's shared-memory tiles (-1: where they pay, 0: never,
-// 1: wherever they fit).
+// 1: wherever they fit), how many voxels of slices are computed together.
 struct Tuning {
   std::int64_t bands[3] = {0, 0, 0};
   std::int64_t window_reach = -1;
   int tiles = -1;
+  std::int64_t slice_block = 0;  // slice-by-slice mode: voxels per block of slices (0: 2^24)
 };
 
 // n / d for every 32-bit n, by one multiply-high (Granlund & Montgomery, "Division by invariant
@@ -68,11 +69,13 @@ struct Layout {
   std::int64_t n[3] = {1, 1, 1};  // extent along x, y, z (z = 1 in 2D)
   int shift[3] = {0, 0, 0};       // bit position of x, y, z in a packed site
   std::uint32_t mask[3] = {0, 0, 0};
-  std::int64_t z0 = 0;  // z of the first slice held (slice-by-slice mode), 0 otherwise
   // Sites are packed as raster indices (LinearLayout), for grids whose bit fields need more
   // than 32 bits. (The divisors that decode them live in LinearLayout only: the bit-field
   // kernels keep their parameter block as it was.)
   bool linear = false;
+  // Slice-by-slice mode only: sites packed by column (ColumnLayout), for volumes of 2^32 - 1
+  // voxels or more.
+  bool columns = false;
   std::int64_t count() const { return n[0] * n[1] * n[2]; }
   GG_INLINE std::int64_t stride(int a) const { return a == 0 ? 1 : (a == 1 ? n[0] : n[0] * n[1]); }
   GG_INLINE std::uint32_t pack(std::int64_t x, std::int64_t y, std::int64_t z) const {
@@ -87,6 +90,9 @@ struct Layout {
   GG_INLINE std::uint32_t pack_voxel(std::int64_t v) const {
     return pack(v % n[0], (v / n[0]) % n[1], v / (n[0] * n[1]));
   }
+  // The z of plane k of the block held: k itself for a whole grid (the slice layouts hold
+  // planes of chosen z).
+  GG_INLINE std::int64_t plane_z(std::int64_t k) const { return k; }
   // Is site q first in raster order before site p? (Packed order is raster order here.)
   GG_INLINE bool before(std::uint32_t q, std::uint32_t p) const { return q < p; }
   // Either packing, chosen at run time (host-side packing of site lists).
@@ -117,27 +123,57 @@ struct LinearLayout : Layout {
   GG_INLINE std::uint32_t pack_voxel(std::int64_t v) const { return std::uint32_t(v); }
 };
 
-// A slice of the slice-by-slice mode (n[2] = 1, z0 the slice's z). Its candidates are the
-// nearest sites along z of its columns, at most one per column (x, y), and every site the x
-// and y passes meet is one of them: so a site is packed as its column's bit fields (x low, then
-// y; they fit 32 bits, a slice holding fewer than 2^31 - 1 voxels) and its z is looked up in
-// the slice's table of the candidates' z (zcol[x + nx y]). No voxel index of the volume is
-// formed, so the volume may hold any number of voxels. Packed order is the columns' order, not
-// raster order: ties compare z first (before()).
-struct SliceLayout : Layout {
-  const std::uint16_t* zcol = nullptr;  // executor memory, n[0] * n[1] entries
-  SliceLayout() = default;
-  SliceLayout(const Layout& L, const std::uint16_t* z) : Layout(L), zcol(z) {}  // NOLINT
-  GG_INLINE std::uint32_t pack(std::int64_t x, std::int64_t y, std::int64_t) const {
-    return std::uint32_t(x) << shift[0] | std::uint32_t(y) << shift[1];
+// The slice-by-slice mode computes a block of slices at a time, as the planes of a grid of
+// n[2] planes whose plane k is the volume's slice zs[k]; only the x and y passes run, and a
+// plane's candidates are the nearest sites along z of its columns (x, y). Where the volume's
+// own packing holds its sites (fewer than 2^32 - 1 voxels), they keep it (absolute z).
+template <class Base>
+struct SlicePlanes : Base {
+  static constexpr bool kColumns = false;
+  const std::uint16_t* zs = nullptr;  // executor memory, n[2] entries
+  SlicePlanes() = default;
+  SlicePlanes(const Base& L, const std::uint16_t* z, const std::uint16_t*) : Base(L), zs(z) {}
+  GG_INLINE std::int64_t plane_z(std::int64_t k) const { return zs[k]; }
+  // The candidate of column (x, y) of plane k: the site at z.
+  GG_INLINE std::uint32_t candidate(std::int64_t x, std::int64_t y, std::int64_t,
+                                    std::int64_t z) const {
+    return Base::pack(x, y, z);
   }
-  GG_INLINE std::uint32_t column(std::uint32_t s) const {
-    return Layout::coord(s, 0) + std::uint32_t(n[0]) * Layout::coord(s, 1);
+};
+
+// Sites packed by column, for volumes of any voxel count: a plane's candidates are one site per
+// column at most, and every site the x and y passes of a plane meet is one of its candidates.
+// So a site is packed as (x, y, plane k) in bit fields (x low; they fit 32 bits: a slice holds
+// fewer than 2^31 - 1 voxels, and the block takes as many planes as fit the rest), and its z is
+// looked up in the block's table of the candidates' z (zcol[k nx ny + x + nx y]). Packed order
+// is not raster order: ties compare z first (before(); the two sites a pass compares always lie
+// in one plane).
+struct ColumnLayout : Layout {
+  static constexpr bool kColumns = true;
+  const std::uint16_t* zs = nullptr;    // executor memory, n[2] entries
+  const std::uint16_t* zcol = nullptr;  // executor memory, n[0] n[1] n[2] entries
+  ColumnLayout() = default;
+  // The plane field takes the bits of n[2] planes, above x and y.
+  ColumnLayout(const Layout& L, const std::uint16_t* z, const std::uint16_t* zc)
+      : Layout(L), zs(z), zcol(zc) {
+    int b = 0;
+    while ((std::int64_t(1) << b) < n[2]) ++b;
+    mask[2] = b ? std::uint32_t((std::uint64_t(1) << b) - 1) : 0;
   }
-  // (kNone has no column: its z reads as 0, and no decision uses it.)
+  GG_INLINE std::int64_t plane_z(std::int64_t k) const { return zs[k]; }
+  GG_INLINE std::uint32_t candidate(std::int64_t x, std::int64_t y, std::int64_t k,
+                                    std::int64_t) const {
+    return Layout::pack(x, y, k);
+  }
+  // The candidate's slot in the block: k nx ny + x + nx y.
+  GG_INLINE std::int64_t slot(std::uint32_t s) const {
+    return (std::int64_t(Layout::coord(s, 2)) * n[1] + Layout::coord(s, 1)) * n[0] +
+           Layout::coord(s, 0);
+  }
+  // (kNone has no slot: its z reads as 0, and no decision uses it.)
   GG_INLINE std::int64_t coord(std::uint32_t s, int a) const {
     if (a < 2) return Layout::coord(s, a);
-    return s == kNone ? 0 : zcol[column(s)];
+    return s == kNone ? 0 : zcol[slot(s)];
   }
   GG_INLINE bool before(std::uint32_t q, std::uint32_t p) const {
     const std::int64_t zq = coord(q, 2), zp = coord(p, 2);

@@ -33,6 +33,13 @@ class DevicePeak {
   Stats& st_;
 };
 
+// The least device memory a problem needs, in bytes, checked before any launch on the CUDA
+// executor; what names the problem in the refusal.
+template <class Exec>
+void require_device_bytes(Exec& ex, std::uint64_t bytes, const std::string& what) {
+  if constexpr (Exec::backend == Backend::Cuda) ex.require_memory(bytes, what);
+}
+
 // The least device memory a problem of `count` elements needs, `per` bytes each (a lower bound:
 // docs/performance.md has the measured peaks), checked before any launch on the CUDA executor.
 template <class Exec>

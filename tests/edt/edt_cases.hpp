@@ -35,6 +35,39 @@ struct LinearPacking {
   LinearPacking& operator=(const LinearPacking&) = delete;
 };
 
+// Column packing (edt::ColumnLayout) for every slice-by-slice request while alive.
+struct ColumnPacking {
+  ColumnPacking() { gpugeom::edt::set_column_packing_for_testing(true); }
+  ~ColumnPacking() { gpugeom::edt::set_column_packing_for_testing(false); }
+  ColumnPacking(const ColumnPacking&) = delete;
+  ColumnPacking& operator=(const ColumnPacking&) = delete;
+};
+
+// The slices (z values) of a whole-volume result, as the slice-by-slice mode returns them.
+inline gpugeom::EdtResult slices_of(const gpugeom::EdtResult& whole,
+                                    const std::vector<std::int64_t>& slices) {
+  gpugeom::EdtResult r;
+  r.shape = whole.shape;
+  r.shape[0] = std::int64_t(slices.size());
+  const std::int64_t plane = whole.shape[1] * whole.shape[2], n = whole.count(), m = r.count();
+  auto take = [&](const auto& from, auto& to, int arrays) {
+    if (from.empty()) return;
+    to.resize(std::size_t(arrays * m));
+    for (int a = 0; a < arrays; ++a)
+      for (std::size_t k = 0; k < slices.size(); ++k)
+        for (std::int64_t i = 0; i < plane; ++i)
+          to[std::size_t(a * m + std::int64_t(k) * plane + i)] =
+              from[std::size_t(a * n + slices[k] * plane + i)];
+  };
+  take(whole.sqdist_int, r.sqdist_int, 1);
+  take(whole.sqdist_real, r.sqdist_real, 1);
+  take(whole.distance32, r.distance32, 1);
+  take(whole.distance64, r.distance64, 1);
+  take(whole.features, r.features, 3);
+  take(whole.labels, r.labels, 1);
+  return r;
+}
+
 struct Reference {
   std::vector<mpq_class> sq;  // exact weighted squared distance
   std::vector<std::int64_t>
@@ -99,7 +132,9 @@ inline TallVolume tall_volume(unsigned seed) {
   TallVolume t;
   std::mt19937 r(seed);
   auto site = [&](std::int64_t z, std::int64_t y, std::int64_t x) {
-    t.sites.insert(t.sites.end(), {z, y, x});
+    t.sites.push_back(z);
+    t.sites.push_back(y);
+    t.sites.push_back(x);
   };
   site(30, 5, 5);  // repeated last: slice 0 meets it above, slice 39 below
   for (std::int64_t centre : {0, 40, 32767, 40000, 65535})

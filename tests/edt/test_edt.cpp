@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "edt/edt_backend.hpp"
 #include "edt_cases.hpp"
@@ -422,6 +423,65 @@ TEST(Edt, RasterIndexPackingSameResults) {
     if (c.shape.size() == 3)
       expect_same(distance_transform(g, SiteRule::NonZero, so), slices_bits, what + " slices");
     if (g.count() <= 4096) expect_exact(g, o, what + " linear, exact");
+  }
+}
+
+// The slice-by-slice mode computes blocks of slices, with the volume's own packing or packed by
+// column (ColumnLayout: taken past 2^32 - 2 voxels, forced here): every block size and both
+// packings give the whole volume's slices exactly, from a grid, a site list (repeated sites
+// among them) and the zero rule, isotropic or not, slices in any order and repeated.
+TEST(Edt, SliceBlocksAndColumnPackingSameResults) {
+  struct Case {
+    std::vector<std::int64_t> shape;
+    double density;
+    std::vector<double> sampling;
+  };
+  const std::vector<Case> cases{{{3, 7, 5}, 0.3, {}},
+                                {{9, 8, 17}, 0.05, {}},
+                                {{13, 17, 19}, 0.002, {}},
+                                {{16, 16, 16}, 0.9, {}},
+                                {{9, 14, 11}, 0.05, {0.7, 1.3, 2.0}},
+                                {{40, 1, 23}, 0.03, {}},
+                                {{30, 12, 1}, 0.01, {2.0, 1.0, 1.0}}};
+  unsigned seed = 900;
+  for (const auto& c : cases) {
+    const io::Grid g = random_grid(c.shape, c.density, seed++);
+    const std::int64_t nz = c.shape[0], plane = c.shape[1] * c.shape[2];
+    EdtOptions o = all_outputs();
+    o.sampling = c.sampling;
+    std::vector<std::int64_t> list;  // the sites as coordinates, and the first one again
+    for (std::int64_t i = 0; i < g.count(); ++i)
+      if (g.data[i])
+        list.insert(list.end(), {i / plane, (i / c.shape[2]) % c.shape[1], i % c.shape[2]});
+    list.insert(list.end(), list.begin(), list.begin() + 3);
+    const auto whole = distance_transform(g, SiteRule::NonZero, o);
+    const auto whole_list = distance_transform_sites(c.shape, list, o);
+    const bool zeros = std::count(g.data.begin(), g.data.end(), 0) > 0;
+    const auto whole_zero = zeros ? distance_transform(g, SiteRule::Zero, o) : EdtResult{};
+    EdtOptions so = o;
+    so.slices = {nz - 1, 0, nz / 2, nz / 2, nz - 1};
+    for (std::int64_t z = 1; z < nz; z += 3) so.slices.push_back(z);
+    for (bool columns : {false, true}) {
+      std::unique_ptr<gg_edt::ColumnPacking> on;
+      if (columns) on = std::make_unique<gg_edt::ColumnPacking>();
+      for (std::int64_t block : {std::int64_t(0), std::int64_t(1), 2 * plane, 3 * plane + 1}) {
+        so.slice_block = block;
+        const std::string what = "shape " + std::to_string(c.shape[0]) + "x" +
+                                 std::to_string(c.shape[1]) + "x" + std::to_string(c.shape[2]) +
+                                 (columns ? " columns" : "") + " block " + std::to_string(block);
+        const auto r = distance_transform(g, SiteRule::NonZero, so);
+        expect_same(r, gg_edt::slices_of(whole, so.slices), what);
+        const std::int64_t per = r.stats.counters.at("slices_per_block");
+        EXPECT_EQ(per, block == 0 ? std::int64_t(so.slices.size())
+                                  : std::max<std::int64_t>(1, block / plane))
+            << what;
+        expect_same(distance_transform_sites(c.shape, list, so),
+                    gg_edt::slices_of(whole_list, so.slices), what + " list");
+        if (zeros)
+          expect_same(distance_transform(g, SiteRule::Zero, so),
+                      gg_edt::slices_of(whole_zero, so.slices), what + " zero rule");
+      }
+    }
   }
 }
 

@@ -2,8 +2,10 @@
 // on grids large enough to use many bands, in 2D and 3D, whole and slice by slice.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <cstdlib>
 #include <thread>
 
@@ -406,6 +408,69 @@ TEST(CudaEdt, RasterIndexPackingSameAsCpu) {
   }
 }
 
+// Blocks of slices on the CUDA executor, with the volume's packing, raster indices or columns,
+// tiled y passes or not, every block size: the CPU executor's whole volume, slice for slice;
+// also from a device grid (its sites listed there).
+TEST(CudaEdt, SliceBlocksSameAsCpu) {
+  struct Case {
+    std::vector<std::int64_t> shape;
+    double density;
+    std::vector<double> sampling;
+  };
+  const std::vector<Case> cases{{{64, 70, 90}, 0.01, {}},
+                                {{100, 60, 40}, 0.2, {}},
+                                {{33, 65, 17}, 0.05, {2.0, 1.0, 0.5}},
+                                {{20, 300, 40}, 0.001, {}},
+                                {{50, 33, 700}, 0.003, {}}};
+  unsigned seed = 2400;
+  for (const auto& c : cases) {
+    const io::Grid g = gg_edt::random_grid(c.shape, c.density, seed++);
+    const std::int64_t nz = c.shape[0], plane = c.shape[1] * c.shape[2];
+    EdtOptions o = every_output(c.sampling, Backend::Cpu);
+    const auto whole = distance_transform(g, SiteRule::NonZero, o);
+    EdtOptions so = o;
+    so.backend = Backend::Cuda;
+    so.slices = {nz - 1, 0, nz / 2, nz / 2};
+    for (std::int64_t z = 1; z < nz; z += 2) so.slices.push_back(z);
+    const auto want = gg_edt::slices_of(whole, so.slices);
+    for (int packing = 0; packing < 3; ++packing) {
+      std::unique_ptr<gg_edt::LinearPacking> linear;
+      std::unique_ptr<gg_edt::ColumnPacking> columns;
+      if (packing == 1) linear = std::make_unique<gg_edt::LinearPacking>();
+      if (packing == 2) columns = std::make_unique<gg_edt::ColumnPacking>();
+      for (int tiles : {-1, 1})
+        for (std::int64_t block : {std::int64_t(0), plane, 5 * plane}) {
+          so.tiles = tiles;
+          so.slice_block = block;
+          const std::string what = std::to_string(c.shape[0]) + "x" + std::to_string(c.shape[1]) +
+                                   "x" + std::to_string(c.shape[2]) + " packing " +
+                                   std::to_string(packing) + " tiles " + std::to_string(tiles) +
+                                   " block " + std::to_string(block);
+          const auto r = distance_transform(g, SiteRule::NonZero, so);
+          EXPECT_EQ(r.labels, want.labels) << what;
+          EXPECT_EQ(r.features, want.features) << what;
+          EXPECT_EQ(r.sqdist_int, want.sqdist_int) << what;
+          EXPECT_EQ(r.sqdist_real, want.sqdist_real) << what;
+          EXPECT_EQ(r.distance32, want.distance32) << what;
+        }
+      so.tiles = -1;
+      so.slice_block = 0;
+      void* dg = nullptr;
+      ASSERT_EQ(cudaMalloc(&dg, g.data.size()), cudaSuccess);
+      ASSERT_EQ(cudaMemcpy(dg, g.data.data(), g.data.size(), cudaMemcpyHostToDevice), cudaSuccess);
+      GridView v;
+      v.data = dg;
+      v.shape = c.shape;
+      const auto dev = distance_transform_device(v, SiteRule::NonZero, so);
+      std::vector<std::int32_t> dl(static_cast<std::size_t>(dev.count()));
+      ASSERT_EQ(cudaMemcpy(dl.data(), dev.labels.get(), dl.size() * 4, cudaMemcpyDeviceToHost),
+                cudaSuccess);
+      EXPECT_EQ(dl, want.labels) << "device grid, packing " << packing;
+      ASSERT_EQ(cudaFree(dg), cudaSuccess);
+    }
+  }
+}
+
 // A device result dropped by the caller gives its memory back to the library's pool at once,
 // so the next call's memory check and allocations can use it (a 1600^3 transform needs most of
 // an 80 GB device, and one dropped result must not make the next one refused).
@@ -434,4 +499,75 @@ TEST(CudaEdt, DroppedDeviceResultsAreFreed) {
   }
   EXPECT_EQ(used(), before);
   cudaFree(dg);
+}
+
+// Slice by slice, a volume of more than 2^32 voxels (4.4e9) known by its listed sites, on the
+// device: every output the brute force's (ties across columns included), with and without
+// sampling, with the tiled pass forced and not; then the same volume as a 4.4 GB grid on the
+// device (its sites listed there): the same distances and sites, labels as raster ranks.
+TEST(CudaEdt, SlicesOfVolumesPastTwoToThe32Voxels) {
+  const gg_edt::TallVolume t = gg_edt::tall_volume(7);
+  const std::int64_t plane = t.shape[1] * t.shape[2];
+  const std::int64_t n = std::int64_t(t.slices.size()) * plane;
+  for (bool aniso : {false, true})
+    for (int tiles : {-1, 1}) {
+      EdtOptions o =
+          every_output(aniso ? std::vector<double>{3, 1, 2} : std::vector<double>{}, Backend::Cuda);
+      o.slices = t.slices;
+      o.tiles = tiles;
+      std::int64_t w[3] = {1, 1, 1};
+      if (aniso) w[0] = 9, w[2] = 4;
+      const auto r = distance_transform_sites(t.shape, t.sites, o);
+      const auto ref = gg_edt::slice_reference(t, w);
+      ASSERT_EQ(r.count(), n);
+      for (std::int64_t i = 0; i < n; ++i) {
+        const std::string at = std::string(aniso ? "sampled" : "isotropic") + ", tiles " +
+                               std::to_string(tiles) + ", slice " +
+                               std::to_string(t.slices[i / plane]) + " voxel " +
+                               std::to_string(i % plane);
+        ASSERT_EQ(aniso ? r.sqdist_real[i] : double(r.sqdist_int[i]), double(ref.sq[i])) << at;
+        for (int a = 0; a < 3; ++a)
+          ASSERT_EQ(r.features[a * n + i], ref.coords[3 * i + a]) << at << " axis " << a;
+        ASSERT_EQ(r.labels[i], ref.label[i]) << at;
+      }
+    }
+  if (std::getenv("GG_UNDER_SANITIZER")) return;  // (4.4 GB scanned under the sanitizer: slow)
+  const std::int64_t nvox = t.shape[0] * plane;
+  std::vector<std::int64_t> raster;  // the sites' voxels, increasing: a grid's labels are ranks
+  for (std::size_t j = 0; j < t.sites.size(); j += 3)
+    raster.push_back((t.sites[j] * t.shape[1] + t.sites[j + 1]) * t.shape[2] + t.sites[j + 2]);
+  std::sort(raster.begin(), raster.end());
+  raster.erase(std::unique(raster.begin(), raster.end()), raster.end());
+  void* dg = nullptr;
+  ASSERT_EQ(cudaMalloc(&dg, std::size_t(nvox)), cudaSuccess);
+  ASSERT_EQ(cudaMemset(dg, 0, std::size_t(nvox)), cudaSuccess);
+  const unsigned char one = 1;
+  for (std::int64_t v : raster)
+    ASSERT_EQ(cudaMemcpy(static_cast<unsigned char*>(dg) + v, &one, 1, cudaMemcpyHostToDevice),
+              cudaSuccess);
+  GridView g;
+  g.data = dg;
+  g.shape = t.shape;
+  EdtOptions o = every_output({}, Backend::Cuda);
+  o.slices = t.slices;
+  const auto d = distance_transform_device(g, SiteRule::NonZero, o);
+  ASSERT_EQ(cudaFree(dg), cudaSuccess);
+  std::vector<std::int64_t> sq(static_cast<std::size_t>(n));
+  std::vector<std::int32_t> feat(static_cast<std::size_t>(3 * n)), lab(static_cast<std::size_t>(n));
+  ASSERT_EQ(cudaMemcpy(sq.data(), d.sqdist_int.get(), sq.size() * 8, cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(feat.data(), d.features.get(), feat.size() * 4, cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(lab.data(), d.labels.get(), lab.size() * 4, cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  const std::int64_t w[3] = {1, 1, 1};
+  const auto ref = gg_edt::slice_reference(t, w);
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::string at = "device grid, voxel " + std::to_string(i);
+    ASSERT_EQ(sq[i], ref.sq[i]) << at;
+    for (int a = 0; a < 3; ++a) ASSERT_EQ(feat[a * n + i], ref.coords[3 * i + a]) << at;
+    const std::int64_t v = (ref.coords[3 * i] * t.shape[1] + ref.coords[3 * i + 1]) * t.shape[2] +
+                           ref.coords[3 * i + 2];
+    ASSERT_EQ(lab[i], std::lower_bound(raster.begin(), raster.end(), v) - raster.begin()) << at;
+  }
 }

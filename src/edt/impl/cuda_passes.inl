@@ -321,7 +321,7 @@ __global__ void __launch_bounds__(256, Key::kBlocks)
   const std::uint32_t y = A == 1 ? g * T : u, z = A == 1 ? b2 : g * T;
   const std::int32_t len = std::int32_t(L.n[A]);
   if (x >= nx || (A == 1 ? y : z) >= std::uint32_t(len) || (A == 2 && y >= ny)) return;
-  const std::int32_t v[3] = {std::int32_t(x), std::int32_t(y), std::int32_t(z + L.z0)};
+  const std::int32_t v[3] = {std::int32_t(x), std::int32_t(y), std::int32_t(z)};
   const std::int32_t t0 = std::int32_t(A == 1 ? y : z);
   const std::int64_t stride = A == 1 ? std::int64_t(nx) : std::int64_t(nx) * ny;
   const std::uint32_t* c0 = cand + (std::int64_t(z) * ny + y) * nx + x;  // position t0

@@ -1,10 +1,15 @@
 // The entry points edt_backend.hpp and edt_device.hpp declare, the same for both executors: a
 // whole grid runs the passes compiled for the request's site packing (run.inl, included once
-// for each in namespaces bits and linear), slices their own (slices.inl, namespace sliced).
+// for each in namespaces bits and linear), slices theirs by blocks (slices.inl, once for each
+// block layout).
 
 void run(const Request& req, Output& out, Stats& stats) {
-  if (!req.slices.empty())
-    sliced::run_slices(req, out, stats);
+  if (!req.slices.empty() && req.layout.columns)
+    column_slices::run_slices(req, out, stats);
+  else if (!req.slices.empty() && req.layout.linear)
+    linear_slices::run_slices(req, out, stats);
+  else if (!req.slices.empty())
+    bits_slices::run_slices(req, out, stats);
   else if (req.layout.linear)
     linear::run_whole(req, out, stats);
   else

@@ -24,7 +24,7 @@ void window_pass_t(Exec& ex, const Layout& L, int a, std::int64_t R, const std::
       L.count(), GG_LAMBDA(std::int64_t i64) {
         const std::uint32_t i = std::uint32_t(i64), rest = i / nx;
         const std::int32_t v[3] = {std::int32_t(i - rest * nx), std::int32_t(rest % ny),
-                                   std::int32_t(rest / ny + Ly.z0)};
+                                   std::int32_t(rest / ny)};
         const std::int32_t t0 = v[a];
         // Squared distance along the line (d) and to it (the other axes), exactly in C.
         auto cost = [&](std::uint32_t s, std::int32_t d) {
@@ -61,8 +61,7 @@ void window_pass_t(Exec& ex, const Layout& L, int a, std::int64_t R, const std::
           out[i] = best;
           return;
         }
-        const std::int64_t l =
-            a == 1 ? (v[2] - Ly.z0) * Ly.n[0] + v[0] : std::int64_t(v[1]) * Ly.n[0] + v[0];
+        const std::int64_t l = a == 1 ? v[2] * Ly.n[0] + v[0] : std::int64_t(v[1]) * Ly.n[0] + v[0];
         flags[l] = 1;  // every writer writes 1
       });
 }

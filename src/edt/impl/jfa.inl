@@ -16,15 +16,13 @@ inline void jump_flood(Exec& ex, const Layout& L, const Metric& M, std::uint32_t
     std::uint32_t* o = dst;
     ex.for_each_index(
         L.count(), GG_LAMBDA(std::int64_t i) {
-          std::int64_t v[3] = {i % Ly.n[0], (i / Ly.n[0]) % Ly.n[1],
-                               i / (Ly.n[0] * Ly.n[1]) + Ly.z0};
+          std::int64_t v[3] = {i % Ly.n[0], (i / Ly.n[0]) % Ly.n[1], i / (Ly.n[0] * Ly.n[1])};
           std::uint32_t best = in[i];
           const int dz = Ly.nd == 3 ? 1 : 0;
           for (int oz = -dz; oz <= dz; ++oz)
             for (int oy = -1; oy <= 1; ++oy)
               for (int ox = -1; ox <= 1; ++ox) {
-                const std::int64_t x = v[0] + ox * st, y = v[1] + oy * st,
-                                   z = v[2] - Ly.z0 + oz * st;
+                const std::int64_t x = v[0] + ox * st, y = v[1] + oy * st, z = v[2] + oz * st;
                 if (x < 0 || y < 0 || z < 0 || x >= Ly.n[0] || y >= Ly.n[1] || z >= Ly.n[2])
                   continue;
                 const std::uint32_t c = in[x + Ly.n[0] * (y + Ly.n[1] * z)];

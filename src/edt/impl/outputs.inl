@@ -43,7 +43,9 @@ template <class Lay>
 struct RankLabels {
   const std::int32_t* rank;
   Lay L;
-  GG_INLINE std::int32_t operator()(std::uint32_t f) const { return rank[L.voxel_of(f)]; }
+  GG_INLINE std::int32_t operator()(std::uint32_t f, std::int64_t) const {
+    return rank[L.voxel_of(f)];
+  }
 };
 
 // Labels are int32: a grid's sites are counted before anything is computed.
@@ -57,8 +59,8 @@ inline void check_label_count(const Request& rq, std::int64_t sites) {
 // Per-voxel outputs of one computed block (whole grid or one slice), written `at` voxels into
 // arrays of `total` voxels: in place where the destination is the executor's memory, else
 // through a block-sized array on the executor and one copy back each. Lay: the block's site
-// packing; label_of(site): the label of a site the block's voxels hold (called only when
-// labels are asked for).
+// packing; label_of(site, i): the label of the site voxel i holds (called only when labels are
+// asked for).
 template <class Lay, class LabelOf>
 inline void emit_outputs(Exec& ex, const Request& rq, const Lay& L, const std::uint32_t* feat,
                          LabelOf label_of, Output& out, DeviceArrays& lib, std::int64_t at,
@@ -98,11 +100,11 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Lay& L, const std::u
     ex.for_each_index(
         n, GG_LAMBDA(std::int64_t i) {
           const std::uint32_t f = feat[i];
-          if (lp) lp[i] = label_of(f);
+          if (lp) lp[i] = label_of(f, i);
           if (!dist) return;
           const std::uint32_t rest = std::uint32_t(i) / nx;
           const std::int64_t v[3] = {std::int64_t(std::uint32_t(i) - rest * nx),
-                                     std::int64_t(rest % ny), std::int64_t(rest / ny) + Ly.z0};
+                                     std::int64_t(rest % ny), Ly.plane_z(rest / ny)};
           std::int64_t q = 0;
           double r = 0;
           for (int k = 0; k < Ly.nd; ++k) {

@@ -31,13 +31,12 @@ GG_INLINE std::int64_t line_base(const Layout& L, int a, std::int64_t l) {
 }
 GG_INLINE void line_coords(const Layout& L, int a, std::int64_t l, std::int64_t v[3]) {
   if (a == 0) {
-    v[0] = 0, v[1] = l % L.n[1], v[2] = l / L.n[1];
+    v[0] = 0, v[1] = l % L.n[1], v[2] = L.plane_z(l / L.n[1]);
   } else if (a == 1) {
-    v[0] = l % L.n[0], v[1] = 0, v[2] = l / L.n[0];
+    v[0] = l % L.n[0], v[1] = 0, v[2] = L.plane_z(l / L.n[0]);
   } else {
     v[0] = l % L.n[0], v[1] = l / L.n[0], v[2] = 0;
   }
-  v[2] += L.z0;
 }
 
 inline PassGeom make_geom(const Layout& L, int a, std::int64_t want_items, std::int64_t bands) {

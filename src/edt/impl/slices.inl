@@ -1,33 +1,37 @@
 // The slice-by-slice mode: only the requested z slices are computed, from the list of the
 // volume's sites, never from the volume itself; so a volume may be larger than the device, and
-// hold any number of voxels (extents up to 65536, a slice fewer than 2^31 - 1 voxels).
+// (with ColumnLayout) hold any number of voxels: extents up to 65536, a slice fewer than
+// 2^31 - 1 voxels.
 //
 // The sites are column keys (column_key: the column x + nx y above the z), sorted once, so each
-// column's sites form one run ordered by z. A slice z0 then takes, for every column, the
-// nearest of its sites along z (a binary search in the column's run; ties to the smaller z, as
-// raster order has it), and runs the x and y passes on the slice alone. Every site those
-// passes meet is one column's candidate, so sites are packed by column and their z looked up
-// in the slice's table (SliceLayout); the tie rule compares (z, column), which is raster order.
-// Included once per executor in namespace `sliced`, after pba.inl (Layout = SliceLayout).
+// column's sites form one run ordered by z. Slices are computed in blocks of about 2^24 voxels
+// (one slice of 1024^2 alone left the device mostly idle between launches): each plane of a
+// block takes, for every column, the nearest of its sites along z (a binary search in the
+// column's run; ties to the smaller z, as raster order has it), and the x and y passes run on
+// the block. Included after pba.inl in one namespace per block layout (Layout: SlicePlanes of
+// the volume's own packing, or ColumnLayout).
 
-// A column's candidate for slice z0 (kNone where the column has no site), its z and label.
+// Where a block's columns put their candidates: the packed site (kNone where the column has no
+// site), its z (ColumnLayout) and its label (labels asked for), per plane and column.
 struct SliceColumns {
   std::uint32_t* cand;
   std::uint16_t* zcol;
   std::int32_t* lab;  // null: no labels asked for
 };
 
-// For every column c of slice z0: the nearest site along z among keys[start[c], start[c+1]).
-inline void column_candidates(Exec& ex, const Layout& Ls, const std::uint64_t* keys,
-                              const std::int32_t* vals, const std::int64_t* start, std::int64_t z0,
+// For every column c of every plane k of the block: the nearest site along z among
+// keys[start[c], start[c+1]).
+inline void column_candidates(Exec& ex, const Layout& Lb, const std::uint64_t* keys,
+                              const std::int32_t* vals, const std::int64_t* start,
                               const SliceColumns& out) {
-  const Layout Ly = Ls;
+  const Layout Ly = Lb;
   const SliceColumns o = out;
-  const std::uint32_t nx = std::uint32_t(Ls.n[0]);
+  const std::uint32_t nx = std::uint32_t(Lb.n[0]);
+  const std::int64_t nxy = Lb.n[0] * Lb.n[1];
   ex.for_each_index(
-      Ls.n[0] * Ls.n[1], GG_LAMBDA(std::int64_t c) {
+      Lb.count(), GG_LAMBDA(std::int64_t i) {
+        const std::int64_t k = i / nxy, c = i - k * nxy, z0 = Ly.plane_z(k);
         const std::int64_t s = start[c], e = start[c + 1];
-        // first key of the column at or above z0
         auto first_at_least = [&](std::int64_t lo, std::int64_t hi, std::uint64_t want) {
           while (lo < hi) {
             const std::int64_t mid = (lo + hi) / 2;
@@ -38,7 +42,7 @@ inline void column_candidates(Exec& ex, const Layout& Ls, const std::uint64_t* k
           }
           return lo;
         };
-        const std::int64_t lo = first_at_least(s, e, column_key(c, z0));
+        const std::int64_t lo = first_at_least(s, e, column_key(c, z0));  // at or above z0
         std::int64_t best = -1, bd = 0;
         if (lo < e) best = lo, bd = std::int64_t(keys[lo] & kColumnZMask) - z0;
         if (lo > s) {  // the site below wins ties (smaller z: first in raster order)
@@ -46,23 +50,38 @@ inline void column_candidates(Exec& ex, const Layout& Ls, const std::uint64_t* k
           if (best < 0 || d <= bd) best = lo - 1;
         }
         if (best < 0) {
-          o.cand[c] = kNone;
+          o.cand[i] = kNone;
           return;
         }
         const std::uint32_t y = std::uint32_t(c) / nx, x = std::uint32_t(c) - y * nx;
-        o.cand[c] = Ly.pack(x, y, 0);
-        o.zcol[c] = std::uint16_t(keys[best] & kColumnZMask);
+        const std::int64_t z = std::int64_t(keys[best] & kColumnZMask);
+        o.cand[i] = Ly.candidate(x, y, k, z);
+        if constexpr (Layout::kColumns) o.zcol[i] = std::uint16_t(z);
         // The label of a repeated site is its first copy's (a stable sort kept the list order).
-        if (o.lab) o.lab[c] = vals[first_at_least(s, best, keys[best])];
+        if (o.lab) o.lab[i] = vals[first_at_least(s, best, keys[best])];
       });
 }
 
-// Labels of a slice: those of its columns' candidates.
+// Labels of a block: those of its planes' candidates (voxel i's site is a candidate of i's
+// plane).
 struct ColumnLabels {
   const std::int32_t* lab;
   Layout L;
-  GG_INLINE std::int32_t operator()(std::uint32_t f) const { return lab[L.column(f)]; }
+  GG_INLINE std::int32_t operator()(std::uint32_t f, std::int64_t i) const {
+    const std::int64_t nxy = L.n[0] * L.n[1];
+    return lab[(i / nxy) * nxy + L.coord(f, 1) * L.n[0] + L.coord(f, 0)];
+  }
 };
+
+// Planes per block: about `voxels` (0: 2^24), at least one; packed by column, as many as the
+// plane field's bits above x and y allow.
+inline std::int64_t planes_per_block(const edt::Layout& L, std::int64_t voxels,
+                                     std::int64_t slices) {
+  const std::int64_t nxy = L.n[0] * L.n[1];
+  std::int64_t k = std::max<std::int64_t>(1, (voxels > 0 ? voxels : std::int64_t(1) << 24) / nxy);
+  if (Layout::kColumns) k = std::min<std::int64_t>(k, std::int64_t(1) << (32 - L.shift[2]));
+  return std::min(k, slices);
+}
 
 // The sites of a grid on the executor as column keys (raster order; a site's label is its
 // place), in chunks of 2^30 voxels (compact_indices writes int32 positions).
@@ -96,56 +115,55 @@ inline void run_slices(const Request& rq, Output& out, Stats& stats) {
   const std::int64_t nxy = L.n[0] * L.n[1], nvox = L.count();
   const std::int64_t nsl = std::int64_t(rq.slices.size());
   const bool labels = rq.want_labels;
-  // Device memory: per column, the candidates, the passes' second array, the z table, the
-  // column starts (8 B), labels, and the outputs' staging or the library's arrays (at most
-  // 8 + 8 + 4 per computed voxel); per site, the key and the label, twice for the sort; the
-  // grid on the device adds its mask (a byte per voxel) unless the grid is one.
+  const std::int64_t per_block = planes_per_block(L, rq.tune.slice_block, nsl);
+  // Device memory, checked before any launch and again once a device grid's sites are counted:
+  // the sites' keys (and labels), twice while they are sorted; then a block's arrays (its
+  // candidates, the passes' second array, the z table by column, labels, and the outputs'
+  // staging) with the columns' starts; the library's arrays for every computed slice
+  // (device_out); a device grid's mask while its sites are listed (unless the grid is one).
+  const double block = double(per_block) * double(nxy);
   const auto& in = rq.into;
-  double per_voxel = 0;  // of the output
-  if (rq.want_sqdist) per_voxel += 8;
-  if (rq.want_distance) per_voxel += rq.want_distance / 8;
-  if (labels) per_voxel += 4;
-  if (rq.want_features) per_voxel += 4;
-  double outputs = double(nxy) * per_voxel;
-  if (rq.device_out) {  // the library's arrays hold every computed slice
-    double lib_bytes = 0;
-    if (rq.want_sqdist && !in.sqdist_int && !in.sqdist_real) lib_bytes += 8;
-    if (rq.want_distance == 32 && !in.distance32) lib_bytes += 4;
-    if (rq.want_distance == 64 && !in.distance64) lib_bytes += 8;
-    if (labels && !in.labels) lib_bytes += 4;
-    if (rq.want_features && !in.features) lib_bytes += 12;
-    outputs = double(nsl) * double(nxy) * lib_bytes;
+  const bool direct = rq.device_out || Exec::backend == Backend::Cpu;
+  double per_voxel = 4 + 4 + (Layout::kColumns ? 2 : 0) + (labels ? 4 : 0);
+  if (!direct) per_voxel += (rq.want_sqdist ? 8 : 0) + rq.want_distance / 8 + (labels ? 4 : 0);
+  double lib = 0;  // a byte count per computed voxel
+  if (rq.device_out) {
+    if (rq.want_sqdist && !in.sqdist_int && !in.sqdist_real) lib += 8;
+    if (rq.want_distance == 32 && !in.distance32) lib += 4;
+    if (rq.want_distance == 64 && !in.distance64) lib += 8;
+    if (labels && !in.labels) lib += 4;
+    if (rq.want_features && !in.features) lib += 12;
   }
-  const double per_site = 2 * (8 + (labels ? 4 : 0));
-  const double columns = double(nxy) * (4 + 4 + 2 + 8 + (labels ? 4 : 0)) + outputs;
   const bool bytes_mask = rq.rule == SiteRule::NonZero &&
                           (rq.type == io::ScalarType::U8 || rq.type == io::ScalarType::Bool);
-  const double mask_bytes = rq.grid && !bytes_mask ? double(nvox) : 0;
-  auto require = [&](std::int64_t sites) {
-    ::gpugeom::detail::require_device_memory(
-        ex, std::max<std::int64_t>(sites, 1),
-        (double(std::max<std::int64_t>(sites, 1)) * per_site + columns + mask_bytes) /
-            double(std::max<std::int64_t>(sites, 1)),
-        "a distance transform by slices with", "sites");
+  auto require = [&](std::int64_t sites, bool listing) {
+    const double keys = double(sites) * (8 + (labels ? 4 : 0));
+    const double bytes = keys + std::max(keys, block * per_voxel + double(nxy) * 8) +
+                         double(nsl) * double(nxy) * lib +
+                         (listing && !bytes_mask ? double(nvox) : 0);
+    ::gpugeom::detail::require_device_bytes(
+        ex, std::uint64_t(bytes),
+        "a distance transform of " + std::to_string(nsl) + " slices of " + std::to_string(L.n[0]) +
+            " x " + std::to_string(L.n[1]) + " voxels with " + std::to_string(sites) + " sites");
   };
   const double t0 = now_ms();
   typename Exec::template Buffer<std::uint64_t> keys;
   typename Exec::template Buffer<std::int32_t> vals;
   std::int64_t ns = 0;
   if (rq.grid) {  // the grid on the executor: its sites listed there
-    require(0);
+    require(0, true);
     typename Exec::template Buffer<unsigned char> raw;
     typename Exec::template Buffer<std::uint8_t> mbuf;
     std::int64_t count = 0;
     const std::uint8_t* mask = grid_mask(ex, rq, nvox, raw, mbuf, count);
     check_label_count(rq, count);
-    require(count);
+    require(count, true);
     keys = ex.template alloc<std::uint64_t>(std::size_t(count));
     ns = list_column_keys(ex, L, mask, keys.data());
   } else {
     ns = std::int64_t(rq.column_sites.size());
     check_label_count(rq, ns);
-    require(ns);
+    require(ns, false);
     keys = ex.template alloc<std::uint64_t>(std::size_t(ns));
     ex.from_host(rq.column_sites.data(), ns, keys.data());
   }
@@ -182,29 +200,39 @@ inline void run_slices(const Request& rq, Output& out, Stats& stats) {
   ex.sync();
   stats.phase_ms.push_back({"upload", now_ms() - t0});
 
-  auto cand = ex.template alloc<std::uint32_t>(std::size_t(nxy));
-  auto zcol = ex.template alloc<std::uint16_t>(std::size_t(nxy));
-  auto lab = ex.template alloc<std::int32_t>(labels ? std::size_t(nxy) : 0);
-  edt::Layout plane = L;
-  plane.n[2] = 1;
-  Layout Ls(plane, zcol.data());
-  PassWork w(ex, Ls, rq.tune, 2);
-  DeviceArrays lib;
+  // The slices' z on the executor (plane_z of each block), and a block's arrays.
+  auto zs = ex.template alloc<std::uint16_t>(std::size_t(nsl));
+  {
+    std::vector<std::uint16_t> z(rq.slices.begin(), rq.slices.end());
+    ex.from_host(z.data(), nsl, zs.data());
+  }
+  const std::size_t bv = std::size_t(per_block * nxy);
+  auto cand = ex.template alloc<std::uint32_t>(bv);
+  auto zcol = ex.template alloc<std::uint16_t>(Layout::kColumns ? bv : 0);
+  auto lab = ex.template alloc<std::int32_t>(labels ? bv : 0);
+  DeviceArrays arrays;
   double transform = 0;
-  for (std::int64_t k = 0; k < nsl; ++k) {
-    Ls.z0 = rq.slices[std::size_t(k)];
+  std::int64_t bands[2] = {0, 0};
+  for (std::int64_t k0 = 0; k0 < nsl; k0 += per_block) {
+    edt::Layout planes = L;
+    planes.n[2] = std::min(per_block, nsl - k0);
+    const Layout Lb(planes, zs.data() + k0, zcol.data());
     const double t1 = now_ms();
-    column_candidates(ex, Ls, keys.data(), vals.data(), start.data(), Ls.z0,
+    column_candidates(ex, Lb, keys.data(), vals.data(), start.data(),
                       SliceColumns{cand.data(), zcol.data(), labels ? lab.data() : nullptr});
-    for (int a = 0; a < 2; ++a)
-      banded_pass(ex, Ls, rq.metric, rq.tune, w, a, cand.data(), w.stk.data());
+    PassWork w(ex, Lb, rq.tune, 2);
+    for (int a = 0; a < 2; ++a) {
+      banded_pass(ex, Lb, rq.metric, rq.tune, w, a, cand.data(), w.stk.data());
+      bands[a] = w.gs[a].bands;
+    }
     ex.sync();
     transform += now_ms() - t1;
-    emit_outputs(ex, rq, Ls, cand.data(), ColumnLabels{lab.data(), Ls}, out, lib, k * nxy,
+    emit_outputs(ex, rq, Lb, cand.data(), ColumnLabels{lab.data(), Lb}, out, arrays, k0 * nxy,
                  nsl * nxy);
   }
-  for (int a = 0; a < 2; ++a) stats.counters[std::string("bands_") + "xy"[a]] = w.gs[a].bands;
-  if (rq.device_out) hand_over(ex, lib, out);
+  for (int a = 0; a < 2; ++a) stats.counters[std::string("bands_") + "xy"[a]] = bands[a];
+  stats.counters["slices_per_block"] = per_block;
+  if (rq.device_out) hand_over(ex, arrays, out);
   out.transform_ms = transform;
   stats.phase_ms.push_back({"transform", transform});
 }
