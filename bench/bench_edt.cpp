@@ -8,7 +8,8 @@
 // rate (voxels whose distance is wrong). --dist-only: float32 distances only (SciPy's
 // distance_transform_edt), else distances and int32 labels. --slice-step K: 3D grids in
 // slice-by-slice mode, every K-th z slice (1: all of them), the per-voxel figures then per
-// computed voxel; the mode for volumes too large to hold whole.
+// computed voxel; the mode for volumes too large to hold whole. --columns packs the slices' sites
+// by column (the packing of volumes past 2^32 - 2 voxels) whatever the volume's size.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,6 +23,7 @@
 #ifdef GPUGEOM_HAVE_CUDA
 #include <cuda_runtime.h>
 #endif
+#include "edt/edt_backend.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/io.hpp"
 
@@ -144,6 +146,8 @@ int main(int argc, char** argv) {
       slice_step = std::stoll(next());
     else if (a == "--slice-block")  // voxels of slices computed together (0: the library's)
       slice_block = std::stoll(next());
+    else if (a == "--columns")  // slices packed by column whatever the volume's size
+      edt::set_column_packing_for_testing(true);
     else if (a == "--bands") {  // kx,ky[,kz]: PBA band counts (0: the automatic rule)
       std::stringstream bs(next());
       int k = 0;
@@ -151,10 +155,10 @@ int main(int argc, char** argv) {
     } else if (a == "--shapes")
       shapes = next();  // e.g. 4096x16384,8000x8400 (C order)
     else {
-      std::cout
-          << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
-             "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--dist-only] [--check K] "
-             "[--shapes 4096x16384,...] [--slice-step K] [--slice-block VOXELS] [--csv FILE]\n";
+      std::cout << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
+                   "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--dist-only] [--check K] "
+                   "[--shapes 4096x16384,...] [--slice-step K] [--slice-block VOXELS] [--columns] "
+                   "[--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
   }

@@ -80,10 +80,12 @@ struct EdtResult {
 };
 
 // Sites where the grid's values say so (rule). Throws Error(InvalidInput) for a grid without
-// sites or with NaN values, shapes that are not 2D/3D, grids of 2^32-1 voxels or more (1625^3
-// is the largest cube), extents above 65536 (3D) or 131072 (2D), or labels asked for more than
-// 2^31-1 sites; Error(OutOfMemory) before any launch for a whole volume whose arrays cannot fit
-// the device (use slices). The grid is read where it is: on the CUDA executor its bytes go to the
+// sites or with NaN values, shapes that are not 2D/3D, whole grids of 2^32-1 voxels or more
+// (1625^3 is the largest cube; by slices a volume may hold any number, each slice fewer than
+// 2^31-1), extents above 65536 (3D) or 131072 (2D), or labels asked for more than 2^31-1
+// sites; Error(OutOfMemory) before any launch for a whole volume whose arrays cannot fit the
+// device (use slices: they hold the sites' list, 8 B a site, 12 with labels, and blocks of
+// slices), or for slices whose sites' list cannot. The grid is read where it is: on the CUDA executor its bytes go to the
 // device as they are (the rule is applied there), so a uint8 or bool grid costs its size over the
 // bus.
 EdtResult distance_transform(const GridView& grid, SiteRule rule, const EdtOptions& opt = {});
