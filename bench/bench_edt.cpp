@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
   int dim = 2, reps = 5;
   bool jfa = false, dist_only = false;
   std::int64_t check = 0, slice_step = 0, slice_block = 0;
+  int tiles = -1;
   std::int64_t bands[3] = {0, 0, 0};
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
@@ -146,6 +147,8 @@ int main(int argc, char** argv) {
       slice_step = std::stoll(next());
     else if (a == "--slice-block")  // voxels of slices computed together (0: the library's)
       slice_block = std::stoll(next());
+    else if (a == "--tiles")  // -1: where they pay, 0: never, 1: wherever they fit
+      tiles = std::stoi(next());
     else if (a == "--columns")  // slices packed by column whatever the volume's size
       edt::set_column_packing_for_testing(true);
     else if (a == "--bands") {  // kx,ky[,kz]: PBA band counts (0: the automatic rule)
@@ -157,7 +160,8 @@ int main(int argc, char** argv) {
     else {
       std::cout << "usage: gpugeom_bench_edt [--dim 2|3] [--sides 1024,2048] [--density 0.1] "
                    "[--backend cpu|cuda|all] [--reps 5] [--jfa] [--dist-only] [--check K] "
-                   "[--shapes 4096x16384,...] [--slice-step K] [--slice-block VOXELS] [--columns] "
+                   "[--shapes 4096x16384,...] [--slice-step K] [--slice-block VOXELS] [--tiles "
+                   "-1|0|1] [--columns] "
                    "[--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
@@ -196,6 +200,7 @@ int main(int argc, char** argv) {
           o.method = m ? EdtMethod::Jfa : EdtMethod::Pba;
           for (int k = 0; k < 3; ++k) o.bands[k] = bands[k];
           o.slice_block = slice_block;
+          o.tiles = tiles;
           if (slice_step > 0 && dim == 3 && m == 0)
             for (std::int64_t z = 0; z < shape[0]; z += slice_step) o.slices.push_back(z);
           std::vector<double> tt, to, tw;

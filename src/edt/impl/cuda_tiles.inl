@@ -1,24 +1,28 @@
 // The CUDA executor's banded pass on tiles in shared memory (pba.inl's line_pass_tiled), for
 // whole grids and slices alike; included by edt_cuda.cu after pba.inl, once per site packing.
 
-// Passes along y and z on tiles: a block takes 32 neighbouring lines (consecutive x, so every
-// global access is coalesced), loads them whole into shared memory with all loads in flight,
-// and runs the banded algorithm there (bands stacks in place, merges, colouring) with a warp
-// per band; only the colouring writes back to global memory. The stacks never leave the chip:
-// the pass reads and writes each voxel once.
+// Passes on tiles: a block takes 32 neighbouring lines (along y and z: consecutive x, so every
+// global access is coalesced; along x, the x pass of slices: 32 rows, whose loads the L1 cache
+// gathers), loads them whole into shared memory with all loads in flight, and runs the banded
+// algorithm there (bands stacks in place, merges, colouring) with a warp per band; only the
+// colouring writes back to global memory. The stacks never leave the chip: the pass reads and
+// writes each voxel once.
 template <bool Iso>
 __global__ void line_pass_tile_kernel(Layout L, Metric M, int a, std::int32_t len,
                                       std::int32_t bands, std::int32_t band_len,
-                                      std::int64_t stride, const std::uint32_t* cand,
-                                      std::uint32_t* out, const std::uint8_t* flags) {
+                                      std::int64_t stride, std::int64_t group,
+                                      const std::uint32_t* cand, std::uint32_t* out,
+                                      const std::uint8_t* flags) {
   extern __shared__ std::uint32_t tile[];  // [position][lane], then lo[band][lane], hi[band][lane]
   std::int32_t* lo = reinterpret_cast<std::int32_t*>(tile + std::int64_t(len) * 32);
   std::int32_t* hi = lo + bands * 32;
   const int lane = threadIdx.x & 31, band = threadIdx.x >> 5;
-  const std::int64_t nx = L.n[0], xblocks = (nx + 31) / 32;
+  // A block's 32 lines are consecutive within a group of `group` lines: a row of x for the y
+  // and z passes (so loads are coalesced), every row for the x pass (each line its own row).
+  const std::int64_t xblocks = (group + 31) / 32;
   const std::int64_t x = (blockIdx.x % xblocks) * 32 + lane;
-  const bool live = x < nx;
-  const std::int64_t l = (blockIdx.x / xblocks) * nx + x;  // lines are numbered x fastest
+  const bool live = x < group;
+  const std::int64_t l = (blockIdx.x / xblocks) * group + x;
   const std::int64_t base = live ? line_base(L, a, l) : 0;
   if (flags && !__syncthreads_or(live && flags[l])) return;  // none of the 32 lines is asked for
 #pragma unroll 8
@@ -45,8 +49,9 @@ constexpr std::int64_t kTileSmemMax = 160 * 1024;  // leaves room for a second b
 bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int64_t bands,
                      int tiles, std::uint32_t* cand, std::uint32_t* out,
                      const std::uint8_t* flags) {
-  const std::int64_t len = L.n[a], nx = L.n[0];
-  const std::int64_t lines = L.count() / len, blocks = lines / nx * ((nx + 31) / 32);
+  const std::int64_t len = L.n[a];
+  const std::int64_t lines = L.count() / len, group = a == 0 ? lines : L.n[0];
+  const std::int64_t blocks = lines / group * ((group + 31) / 32);
   const int dev = ex.device();
   int sms = 0;
   GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, dev));
@@ -54,8 +59,8 @@ bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int
   // enough for every SM (a 2D grid's few long columns take the global banded pass).
   // tiles = 0 never uses tiles, 1 whenever they fit (tests cover small grids so).
   const int mode = tiles;
-  if (a == 0 || mode == 0) return false;
-  if (mode != 1 && (nx < 32 || blocks < 4 * sms)) return false;
+  if (mode == 0) return false;
+  if (mode != 1 && (group < 32 || blocks < 4 * sms)) return false;
   if (bands <= 0) {  // bands of about 64 positions, at most 16 (512 threads)
     bands = 1;
     while (bands < 16 && bands * 64 < len) bands *= 2;
@@ -78,8 +83,8 @@ bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int
     GG_CUDA_CHECK(
         cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize, int(smem)));
     kernel<<<unsigned(blocks), unsigned(32 * bands), std::size_t(smem), ex.stream()>>>(
-        L, M, a, std::int32_t(len), std::int32_t(bands), std::int32_t(band_len), stride, cand, out,
-        flags);
+        L, M, a, std::int32_t(len), std::int32_t(bands), std::int32_t(band_len), stride, group,
+        cand, out, flags);
     GG_CUDA_CHECK_LAUNCH("line_pass_tile_kernel");
     return true;
   };

@@ -343,8 +343,8 @@ void line_pass_t(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g, 
       });
 }
 
-// A pass along y or z on tiles in on-chip memory, where the backend has them (edt_cuda.cu);
-// returns false when it does not apply (then the general pass runs).
+// A pass on tiles in on-chip memory, where the backend has them (edt_cuda.cu); returns false
+// when it does not apply (then the general pass runs).
 bool line_pass_tiled(Exec& ex, const Layout& L, const Metric& M, int a, std::int64_t bands,
                      int tiles, std::uint32_t* cand, std::uint32_t* out, const std::uint8_t* flags);
 
@@ -376,9 +376,9 @@ struct PassWork {
 };
 
 // The banded pass along axis a over every line, in place in cand (stacks in scratch): on tiles
-// where the backend has them (never along x), else in global memory.
+// where the backend has them, else in global memory.
 inline void banded_pass(Exec& ex, const Layout& L, const Metric& M, const Tuning& tune, PassWork& w,
                         int a, std::uint32_t* cand, std::uint32_t* scratch) {
-  if (a == 0 || !line_pass_tiled(ex, L, M, a, tune.bands[a], tune.tiles, cand, cand, nullptr))
+  if (!line_pass_tiled(ex, L, M, a, tune.bands[a], tune.tiles, cand, cand, nullptr))
     line_pass(ex, L, M, w.gs[a], cand, scratch, w.lo.data(), w.hi.data());
 }

@@ -47,31 +47,54 @@ inline void column_candidates(Exec& ex, const Layout& Lb, const std::uint64_t* k
         };
         const std::uint32_t y = std::uint32_t(c) / nx, x = std::uint32_t(c) - y * nx;
         std::int64_t lo = prev_z < 0 ? s : at[c], prev = prev_z;  // keys before lo: below prev
+        // The keys around lo (and their labels, once asked for) stay in registers while lo
+        // stays: most planes then read nothing.
+        constexpr std::uint64_t kNoKey = ~std::uint64_t(0);
+        std::uint64_t above = kNoKey, below = kNoKey;
+        std::int32_t lab_above = -1, lab_below = -1;
+        auto refresh = [&]() {
+          above = lo < e ? keys[lo] : kNoKey;
+          below = lo > s ? keys[lo - 1] : kNoKey;
+          lab_above = lab_below = -1;
+        };
+        refresh();
         for (std::int64_t k = 0; k < planes; ++k) {
           const std::int64_t z0 = Ly.plane_z(k), i = k * nxy + c;
           const std::uint64_t want = column_key(c, z0);
-          if (z0 < prev) lo = s;  // planes out of order: search the whole run again
-          prev = z0;
-          // the first key at or above z0: the next one or two (slices in order), else a search
-          if (lo < e && keys[lo] < want) {
+          if (z0 < prev) {  // planes out of order: search the whole run again
+            lo = first_at_least(s, e, want);
+            refresh();
+          } else if (above < want) {  // (kNoKey is above every key)
+            // the first key at or above z0: the next one (slices in order), else a search
             ++lo;
             if (lo < e && keys[lo] < want) lo = first_at_least(lo + 1, e, want);
+            refresh();
           }
-          std::int64_t best = -1, bd = 0;
-          if (lo < e) best = lo, bd = std::int64_t(keys[lo] & kColumnZMask) - z0;
-          if (lo > s) {  // the site below wins ties (smaller z: first in raster order)
-            const std::int64_t d = z0 - std::int64_t(keys[lo - 1] & kColumnZMask);
-            if (best < 0 || d <= bd) best = lo - 1;
-          }
-          if (best < 0) {
+          prev = z0;
+          // The nearer of the sites above and below; ties to the one below (smaller z: first
+          // in raster order).
+          bool use_below = below != kNoKey;
+          if (use_below && above != kNoKey)
+            use_below =
+                z0 - std::int64_t(below & kColumnZMask) <= std::int64_t(above & kColumnZMask) - z0;
+          if (!use_below && above == kNoKey) {
             o.cand[i] = kNone;
             continue;
           }
-          const std::int64_t z = std::int64_t(keys[best] & kColumnZMask);
+          const std::int64_t z = std::int64_t((use_below ? below : above) & kColumnZMask);
           o.cand[i] = Ly.candidate(x, y, k, z);
           if constexpr (Layout::kColumns) o.zcol[i] = std::uint16_t(z);
-          // A repeated site's label is its first copy's (a stable sort kept the list order).
-          if (o.lab) o.lab[i] = vals[first_at_least(s, best, keys[best])];
+          if (!o.lab) continue;
+          // A repeated site's label is its first copy's (a stable sort kept the list order):
+          // the site above is its first copy (lo is the first key at or above z0), the one below
+          // may have copies before it.
+          if (use_below) {
+            if (lab_below < 0) lab_below = vals[first_at_least(s, lo - 1, below)];
+            o.lab[i] = lab_below;
+          } else {
+            if (lab_above < 0) lab_above = vals[lo];
+            o.lab[i] = lab_above;
+          }
         }
         at[c] = lo;
       });
