@@ -50,6 +50,23 @@ def _sampling(sampling, nd) -> list:
     return s
 
 
+def _slices(slices, shape):
+    """The z slices asked for (None: the whole volume), negative ones counted from the end."""
+    if slices is None:
+        return None
+    if len(shape) != 3:
+        raise ValueError(f"slices apply to 3D input only, got {len(shape)} dimensions")
+    zs = [int(z) for z in np.asarray(slices, dtype=np.int64).reshape(-1)]
+    if not zs:
+        raise ValueError("slices is empty: give at least one index along axis 0")
+    out = []
+    for z in zs:
+        if not -shape[0] <= z < shape[0]:
+            raise IndexError(f"slice {z} is out of bounds for axis 0 with size {shape[0]}")
+        out.append(z + shape[0] if z < 0 else z)
+    return out
+
+
 def _c_contiguous(a) -> bool:
     if hasattr(a, "is_contiguous"):  # torch
         return bool(a.is_contiguous())
@@ -64,7 +81,8 @@ def _as_2d(arr, nd):
 def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] = None,
                            return_distances: bool = True, return_indices: bool = False,
                            distances=None, indices=None, *, float64_distances: bool = True,
-                           backend: str = "auto", threads: int = 0):
+                           slices: Optional[Sequence[int]] = None, backend: str = "auto",
+                           threads: int = 0):
     """Exact Euclidean distance transform, as ``scipy.ndimage.distance_transform_edt``.
 
     For every non-zero element of ``input``, the distance to the nearest zero element (zeros get
@@ -73,6 +91,12 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     are output arrays to write into instead (same kind and memory as ``input``; float64, or
     float32 distances, and int32 indices); as in SciPy, the outputs written there are not
     returned. ``float64_distances=False`` returns float32 distances (as CuPy's option).
+
+    ``slices`` (3D input only; not in SciPy): compute only these indices along axis 0, each
+    exactly as the whole volume would have it; the outputs' first axis is then
+    ``len(slices)``. The device then holds the list of the zero elements and a few slices at a
+    time, never the volume's outputs, so a volume of any size that fits the host (more than
+    2**32 elements too) can be taken slice by slice.
 
     Raises ValueError when ``input`` has no zero element (no nearest zero exists).
     """
@@ -86,6 +110,9 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     _arrays.check_threads(threads)
     arr, kind, nd = _grid(input)
     shape = tuple(int(e) for e in arr.shape)
+    zs = _slices(slices, shape)
+    if zs is not None:  # the outputs' shape
+        shape = (len(zs),) + shape[1:]
     samp = _sampling(sampling, nd)
     bits = 0
     if return_distances:
@@ -96,7 +123,7 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
                 raise RuntimeError("distances array must be float64 or float32")
             if tuple(distances.shape) != shape:
                 raise RuntimeError(f"distances array has shape {tuple(distances.shape)}, "
-                                   f"input has {shape}")
+                                   f"needs {shape}")
             bits = 64 if dd == np.dtype(np.float64) else 32
     if indices is not None:
         if tuple(indices.shape) != (nd,) + shape:
@@ -113,9 +140,10 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     r = _core.distance_transform(
         g, zero_sites=True, sampling=samp2, distance=bits, squared=False,
         features=bool(return_indices), labels=False,
-        distances_out=distances.reshape(g.shape) if d_direct else None,
+        distances_out=distances.reshape(shape if zs is not None else g.shape) if d_direct
+        else None,
         features_out=indices if f_direct else None, backend=backend, stream=kind.stream,
-        threads=threads)
+        threads=threads, slices=zs if zs is not None else [])
     result = []
     if return_distances:
         if distances is None:

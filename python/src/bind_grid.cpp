@@ -64,10 +64,12 @@ OutBuffer<T> out_buffer(const std::optional<OutArray>& a, const Input& grid, con
 nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sampling,
                   int distance, bool squared, bool features, bool labels,
                   std::optional<OutArray> distances_out, std::optional<OutArray> features_out,
-                  const std::string& backend, std::uintptr_t stream, int threads) {
+                  const std::string& backend, std::uintptr_t stream, int threads,
+                  std::vector<std::int64_t> slices) {
   const Input in = inspect(input, "input");
   if (in.shape.size() != 2 && in.shape.size() != 3) throw nb::value_error("input must be 2D or 3D");
   auto o = options_for<EdtOptions>(backend, stream, threads, in);
+  o.slices = std::move(slices);
   o.sampling = std::move(sampling);
   o.distance = distance;
   o.squared = squared;
@@ -201,7 +203,8 @@ void bind_grid(nb::module_& m) {
   using namespace nb::literals;
   m.def("distance_transform", &edt_bind, "input"_a, "zero_sites"_a, "sampling"_a, "distance"_a,
         "squared"_a, "features"_a, "labels"_a, "distances_out"_a = nb::none(),
-        "features_out"_a = nb::none(), "backend"_a = "auto", "stream"_a = 0, "threads"_a = 0);
+        "features_out"_a = nb::none(), "backend"_a = "auto", "stream"_a = 0, "threads"_a = 0,
+        "slices"_a = std::vector<std::int64_t>{});
   m.def("centroidal_voronoi", &cvd_bind, "density"_a, "num_sites"_a, "initial_sites"_a = nb::none(),
         "max_iterations"_a = 200, "move_tolerance"_a = 0.1, "energy_tolerance"_a = 0.0,
         "supersample"_a = 1, "seed"_a = 1, "progress"_a = nb::none(), "backend"_a = "auto",

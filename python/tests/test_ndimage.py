@@ -69,6 +69,31 @@ def test_edt_output_arrays(backend, rng):
                                        backend=backend)
 
 
+@pytest.mark.parametrize("sampling", [None, (2.0, 1.0, 0.5)])
+def test_edt_slices_equal_whole_volume(sampling, backend, rng):
+    a = rng.random((23, 31, 19)) > 0.03
+    a[0, 0, 0] = False
+    zs = [22, 0, 11, 11, -1]
+    d, i = gpugeom.distance_transform_edt(a, sampling=sampling, return_indices=True,
+                                          backend=backend)
+    ds, is_ = gpugeom.distance_transform_edt(a, sampling=sampling, return_indices=True,
+                                             slices=zs, backend=backend)
+    assert ds.shape == (5, 31, 19) and is_.shape == (3, 5, 31, 19)
+    np.testing.assert_array_equal(ds, d[zs])
+    np.testing.assert_array_equal(is_, i[:, zs])
+    dist = np.empty((2, 31, 19), dtype=np.float32)
+    assert gpugeom.distance_transform_edt(a, sampling=sampling, distances=dist, slices=[3, 4],
+                                          backend=backend) is None
+    np.testing.assert_array_equal(dist, d[3:5].astype(np.float32))
+    with pytest.raises(ValueError, match="3D"):
+        gpugeom.distance_transform_edt(a[0], slices=[0], backend=backend)
+    with pytest.raises(IndexError, match="out of bounds"):
+        gpugeom.distance_transform_edt(a, slices=[23], backend=backend)
+    with pytest.raises(RuntimeError, match="needs"):
+        gpugeom.distance_transform_edt(a, distances=np.empty(a.shape), slices=[1],
+                                       backend=backend)
+
+
 def test_edt_only_indices_and_float32(backend, rng):
     a = rng.random((33, 21)) > 0.3
     a[5, 5] = False
