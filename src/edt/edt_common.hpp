@@ -161,14 +161,19 @@ struct ColumnLayout : Layout {
     mask[2] = b ? std::uint32_t((std::uint64_t(1) << b) - 1) : 0;
   }
   GG_INLINE std::int64_t plane_z(std::int64_t k) const { return zs[k]; }
+  // (A slice whose x and y take all 32 bits has blocks of one plane and no plane field: no
+  // shift by 32.)
   GG_INLINE std::uint32_t candidate(std::int64_t x, std::int64_t y, std::int64_t k,
                                     std::int64_t) const {
-    return Layout::pack(x, y, k);
+    return std::uint32_t(x) << shift[0] | std::uint32_t(y) << shift[1] |
+           (mask[2] ? std::uint32_t(k) << shift[2] : 0u);
+  }
+  GG_INLINE std::int64_t plane(std::uint32_t s) const {
+    return mask[2] ? (s >> shift[2]) & mask[2] : 0;
   }
   // The candidate's slot in the block: k nx ny + x + nx y.
   GG_INLINE std::int64_t slot(std::uint32_t s) const {
-    return (std::int64_t(Layout::coord(s, 2)) * n[1] + Layout::coord(s, 1)) * n[0] +
-           Layout::coord(s, 0);
+    return (plane(s) * n[1] + Layout::coord(s, 1)) * n[0] + Layout::coord(s, 0);
   }
   // (kNone has no slot: its z reads as 0, and no decision uses it.)
   GG_INLINE std::int64_t coord(std::uint32_t s, int a) const {
