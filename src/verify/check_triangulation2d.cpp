@@ -1,4 +1,5 @@
-// 2D: a valid triangulation of the convex hull of the input, and the Delaunay property.
+// 2D: a valid triangulation of the convex hull of the input, the Delaunay property, and the
+// constrained Delaunay property.
 //
 // Why these checks suffice: every triangle positively oriented and every edge shared by at most
 // two triangles with opposite directions make the triangles a locally injective oriented map;
@@ -6,7 +7,9 @@
 // boundary of a convex polygon with degree one, so the triangles tile that polygon exactly
 // once. With every input point a vertex, the polygon is the convex hull.
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "verify_common.hpp"
 
@@ -89,31 +92,103 @@ Report check_triangulation2d(const double* p, std::int64_t n, const std::int32_t
   return r;
 }
 
-Report check_delaunay2d(const double* p, std::int64_t n, const std::int32_t* t, std::int64_t nt,
-                        const std::int32_t* dup_of) {
-  Report r = check_triangulation2d(p, n, t, nt, dup_of);
-  if (!r.ok) return r;
+namespace {
+std::uint64_t directed(std::uint32_t u, std::uint32_t v) {
+  return (std::uint64_t(u) << 32) | v;
+}
+std::uint64_t undirected(std::uint32_t u, std::uint32_t v) {
+  return u < v ? directed(u, v) : directed(v, u);
+}
+
+// Every interior edge of a valid triangulation locally Delaunay (exact in-circle; cocircular
+// allowed), except the edges in `exempt` (undirected keys).
+bool locally_delaunay(Report& r, const double* p, const std::int32_t* t, std::int64_t nt,
+                      const std::unordered_set<std::uint64_t>& exempt) {
   std::unordered_map<std::uint64_t, std::int64_t> dir;
   dir.reserve(std::size_t(nt) * 6);
-  auto key = [](std::uint32_t u, std::uint32_t v) { return (std::uint64_t(u) << 32) | v; };
   for (std::int64_t c = 0; c < nt; ++c)
-    for (int j = 0; j < 3; ++j) dir.emplace(key(t[3 * c + j], t[3 * c + (j + 1) % 3]), c);
+    for (int j = 0; j < 3; ++j) dir.emplace(directed(t[3 * c + j], t[3 * c + (j + 1) % 3]), c);
   for (std::int64_t c = 0; c < nt; ++c)
     for (int j = 0; j < 3; ++j) {
       std::uint32_t u = t[3 * c + j], v = t[3 * c + (j + 1) % 3];
-      auto it = dir.find(key(v, u));
-      if (it == dir.end()) continue;
+      auto it = dir.find(directed(v, u));
+      if (it == dir.end() || exempt.count(undirected(u, v))) continue;
       std::int64_t o = it->second;
       std::int64_t far = std::int64_t(t[3 * o]) + t[3 * o + 1] + t[3 * o + 2] - u - v;
       const std::int32_t* a = t + 3 * c;
       if (pred::incircle(at<2>(p, a[0]), at<2>(p, a[1]), at<2>(p, a[2]), at<2>(p, far), scratch()) >
           0)
         return r.fail("edge " + std::to_string(u) + "-" + std::to_string(v) +
+                      (exempt.empty() ? "" : " (on no segment)") +
                       " is not locally Delaunay: vertex " + std::to_string(far) +
-                      " lies inside the circumcircle of " + cell_name(3, c, t)),
-               r;
+                      " lies inside the circumcircle of " + cell_name(3, c, t));
     }
+  return true;
+}
+}  // namespace
+
+Report check_delaunay2d(const double* p, std::int64_t n, const std::int32_t* t, std::int64_t nt,
+                        const std::int32_t* dup_of) {
+  Report r = check_triangulation2d(p, n, t, nt, dup_of);
+  if (!r.ok || !locally_delaunay(r, p, t, nt, {})) return r;
   r.notes.push_back("every interior edge is locally Delaunay (exact in-circle)");
+  return r;
+}
+
+// Why these checks suffice: a triangulation in which every edge not on a constraint is locally
+// Delaunay is the constrained Delaunay triangulation of its constraints (Lee and Lin 1986,
+// Chew 1989), and each segment being a chain of edges makes the segments constraints.
+Report check_constrained_delaunay2d(const double* p, std::int64_t n, const std::int32_t* t,
+                                    std::int64_t nt, const std::int32_t* segs, std::int64_t nseg,
+                                    const std::int32_t* dup_of) {
+  Report r = check_triangulation2d(p, n, t, nt, dup_of);
+  if (!r.ok) return r;
+  // Each vertex's neighbours, from the triangles' edges.
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> nbr;
+  for (std::int64_t c = 0; c < nt; ++c)
+    for (int j = 0; j < 3; ++j) {  // both ways: a boundary edge is in one triangle only
+      const std::uint32_t u = t[3 * c + j], v = t[3 * c + (j + 1) % 3];
+      nbr[u].push_back(v);
+      nbr[v].push_back(u);
+    }
+  std::unordered_set<std::uint64_t> on_segment;
+  for (std::int64_t k = 0; k < nseg; ++k) {
+    const std::int32_t a = segs[2 * k], b = segs[2 * k + 1];
+    const std::string name =
+        "segment " + std::to_string(k) + " (" + std::to_string(a) + "-" + std::to_string(b) + ")";
+    if (a < 0 || b < 0 || a >= n || b >= n)
+      return r.fail(name + " names a point outside 0.." + std::to_string(n - 1)), r;
+    if ((dup_of && (dup_of[a] >= 0 || dup_of[b] >= 0)) || a == b)
+      return r.fail(name + (a == b ? " has zero length" : " ends at a duplicate point")), r;
+    const double *pa = at<2>(p, a), *pb = at<2>(p, b);
+    if (pa[0] == pb[0] && pa[1] == pb[1]) return r.fail(name + " has zero length"), r;
+    // Along the axis where the segment is longer, positions on it are ordered exactly.
+    const int d = std::abs(pb[0] - pa[0]) >= std::abs(pb[1] - pa[1]) ? 0 : 1;
+    const double sgn = pb[d] > pa[d] ? 1.0 : -1.0;
+    std::uint32_t u = std::uint32_t(a);
+    for (std::int64_t steps = 0; u != std::uint32_t(b); ++steps) {
+      // The edge from u along the segment: a neighbour on the line through a and b, past u
+      // and not past b. Two such would be overlapping edges, which the triangulation check
+      // excludes.
+      const double* pu = at<2>(p, u);
+      std::int64_t next = -1;
+      for (std::uint32_t w : nbr[u]) {
+        const double* pw = at<2>(p, w);
+        if (pred::orient2d(pa, pb, pw, scratch()) != 0) continue;
+        if ((pw[d] - pu[d]) * sgn > 0 && (pb[d] - pw[d]) * sgn >= 0) next = w;
+      }
+      if (next < 0 || steps > n)
+        return r.fail(name + " is not a chain of edges: no edge leaves vertex " +
+                      std::to_string(u) + " along it (an edge crosses it)"),
+               r;
+      on_segment.insert(undirected(u, std::uint32_t(next)));
+      u = std::uint32_t(next);
+    }
+  }
+  if (!locally_delaunay(r, p, t, nt, on_segment)) return r;
+  r.notes.push_back(std::to_string(nseg) + " segments, " + std::to_string(on_segment.size()) +
+                    " edges on them; every other interior edge is locally Delaunay (exact "
+                    "in-circle): the constrained Delaunay triangulation");
   return r;
 }
 

@@ -27,6 +27,13 @@ Report check_triangulation2d(const double* pts, std::int64_t n, const std::int32
                              std::int64_t ntri, const std::int32_t* dup_of = nullptr);
 Report check_delaunay2d(const double* pts, std::int64_t n, const std::int32_t* tris,
                         std::int64_t ntri, const std::int32_t* dup_of = nullptr);
+// The constrained Delaunay triangulation of the convex hull: a valid triangulation in which
+// every segment (segs: nseg pairs of point indices) is a chain of edges (a segment through other
+// vertices runs along the edges between them), and every interior edge on no segment is
+// locally Delaunay (exact in-circle).
+Report check_constrained_delaunay2d(const double* pts, std::int64_t n, const std::int32_t* tris,
+                                    std::int64_t ntri, const std::int32_t* segs, std::int64_t nseg,
+                                    const std::int32_t* dup_of = nullptr);
 Report check_triangulation3d(const double* pts, std::int64_t n, const std::int32_t* tets,
                              std::int64_t ntet, const std::int32_t* dup_of = nullptr);
 Report check_delaunay3d(const double* pts, std::int64_t n, const std::int32_t* tets,

@@ -142,6 +142,69 @@ TEST(Verify, Delaunay2dAcceptsAndRejects) {
   }
 }
 
+// The constrained checker: an interior edge flipped away from Delaunay is accepted exactly when
+// it is a segment; a segment crossed by an edge, a segment through a vertex, and segments that
+// name no edge are judged as such.
+TEST(Verify, ConstrainedDelaunay2dAcceptsAndRejects) {
+  auto p = random_points(2, 40, 7);
+  auto t = brute_delaunay2d(p);
+  const std::int64_t n = 40, nt = std::int64_t(t.size() / 3);
+  // No segments, and every Delaunay edge as a segment: the Delaunay triangulation is the CDT.
+  EXPECT_TRUE(verify::check_constrained_delaunay2d(p.data(), n, t.data(), nt, nullptr, 0).ok);
+  std::vector<std::int32_t> all;
+  for (std::int64_t c = 0; c < nt; ++c)
+    for (int j = 0; j < 3; ++j) all.insert(all.end(), {t[3 * c + j], t[3 * c + (j + 1) % 3]});
+  auto every = verify::check_constrained_delaunay2d(p.data(), n, t.data(), nt, all.data(),
+                                                    std::int64_t(all.size() / 2));
+  EXPECT_TRUE(every.ok) << every.message;
+  int flips = 0;
+  for (std::int64_t i = 0; i < nt && flips < 3; ++i)
+    for (std::int64_t j = i + 1; j < nt && flips < 3; ++j)
+      for (int e = 0; e < 3; ++e) {
+        const int u = t[3 * i + e], v = t[3 * i + (e + 1) % 3], a = t[3 * i + (e + 2) % 3];
+        int f = 0;
+        while (f < 3 && !(t[3 * j + f] == v && t[3 * j + (f + 1) % 3] == u)) ++f;
+        if (f == 3) continue;
+        const int b = t[3 * j + (f + 2) % 3];
+        if (pred::orient2d(&p[2 * a], &p[2 * u], &p[2 * b], S.data()) <= 0 ||
+            pred::orient2d(&p[2 * b], &p[2 * v], &p[2 * a], S.data()) <= 0)
+          continue;  // flip only convex quadrilaterals: the result is a triangulation
+        auto q = t;
+        q[3 * i] = a, q[3 * i + 1] = u, q[3 * i + 2] = b;
+        q[3 * j] = b, q[3 * j + 1] = v, q[3 * j + 2] = a;
+        const std::int32_t ab[2] = {a, b}, uv[2] = {u, v}, ba_and_more[4] = {b, a, a, u};
+        auto good = verify::check_constrained_delaunay2d(p.data(), n, q.data(), nt, ab, 1);
+        EXPECT_TRUE(good.ok) << good.message;
+        EXPECT_TRUE(
+            verify::check_constrained_delaunay2d(p.data(), n, q.data(), nt, ba_and_more, 2).ok);
+        auto free_edge =
+            verify::check_constrained_delaunay2d(p.data(), n, q.data(), nt, nullptr, 0);
+        EXPECT_FALSE(free_edge.ok);
+        EXPECT_NE(free_edge.message.find("not locally Delaunay"), std::string::npos)
+            << free_edge.message;
+        auto crossed = verify::check_constrained_delaunay2d(p.data(), n, q.data(), nt, uv, 1);
+        EXPECT_FALSE(crossed.ok);
+        EXPECT_NE(crossed.message.find("not a chain of edges"), std::string::npos)
+            << crossed.message;
+        ++flips;
+        break;
+      }
+  ASSERT_EQ(flips, 3);
+  // A segment through a vertex runs along the two edges beside it; bad segments are named.
+  const std::vector<double> line{0, 0, 1, 0, 2, 0, 1, 1};
+  const std::vector<std::int32_t> tl{0, 1, 3, 1, 2, 3};
+  const std::int32_t through[2] = {2, 0}, zero[2] = {3, 3}, outside[2] = {0, 9};
+  auto r = verify::check_constrained_delaunay2d(line.data(), 4, tl.data(), 2, through, 1);
+  EXPECT_TRUE(r.ok) << r.message;
+  EXPECT_NE(r.notes.back().find("2 edges on them"), std::string::npos) << r.notes.back();
+  EXPECT_NE(verify::check_constrained_delaunay2d(line.data(), 4, tl.data(), 2, zero, 1)
+                .message.find("zero length"),
+            std::string::npos);
+  EXPECT_NE(verify::check_constrained_delaunay2d(line.data(), 4, tl.data(), 2, outside, 1)
+                .message.find("outside"),
+            std::string::npos);
+}
+
 TEST(Verify, Delaunay3dAcceptsAndRejects) {
   auto p = random_points(3, 18, 2);
   auto t = brute_delaunay3d(p);
