@@ -1,12 +1,14 @@
 // Public entry of the distance transform: checks the request, packs the sites, picks the
 // backend, and returns outputs in C axis order.
+#include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <string>
+#include <type_traits>
 
 #include "edt/edt_backend.hpp"
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
+#include "exec/grid_input.hpp"
 #include "base/hd.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/io.hpp"
@@ -208,28 +210,40 @@ EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std:
   return r;
 }
 
-// Element i of a host grid as a double.
-double element(const void* data, io::ScalarType t, std::int64_t i) {
-  const auto* p = static_cast<const unsigned char*>(data) + std::size_t(i) * io::scalar_size(t);
-  auto get = [p](auto v) {
-    std::memcpy(&v, p, sizeof v);
-    return double(v);
-  };
-  switch (t) {
-    case io::ScalarType::Bool:
-    case io::ScalarType::U8:
-      return p[0];
-    case io::ScalarType::U16:
-      return get(std::uint16_t());
-    case io::ScalarType::I32:
-      return get(std::int32_t());
-    case io::ScalarType::I64:
-      return get(std::int64_t());
-    case io::ScalarType::F32:
-      return get(float());
-    default:
-      return get(double());
+// The sites of a host grid as column keys, in raster order, on all host threads: each chunk
+// counts its sites, then writes them at its offset. Elements are read as their own type (a
+// conversion to double per element took 3.7 ns an element a thread). False if a NaN is met.
+template <class T>
+bool list_column_sites(const T* data, const edt::Layout& L, bool nonzero,
+                       std::vector<std::uint64_t>& out) {
+  const std::int64_t n = L.count(), plane = L.n[0] * L.n[1];
+  constexpr std::int64_t kChunk = std::int64_t(1) << 20;
+  const std::int64_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<std::int64_t> at(std::size_t(chunks) + 1, 0);
+  bool finite = true;
+#pragma omp parallel for schedule(dynamic, 1) reduction(&& : finite)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    std::int64_t k = 0;
+    bool nan = false;
+    for (std::int64_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
+      const T v = data[i];
+      if constexpr (std::is_floating_point_v<T>) nan |= v != v;
+      k += nonzero ? v != T(0) : v == T(0);
+    }
+    at[std::size_t(c) + 1] = k;
+    finite = finite && !nan;
   }
+  if (!finite) return false;
+  for (std::int64_t c = 0; c < chunks; ++c) at[std::size_t(c) + 1] += at[std::size_t(c)];
+  out.resize(std::size_t(at.back()));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    std::int64_t k = at[std::size_t(c)];
+    for (std::int64_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
+      if (nonzero ? data[i] != T(0) : data[i] == T(0))
+        out[std::size_t(k++)] = edt::column_key(i % plane, i / plane);
+  }
+  return true;
 }
 
 void check_view(const GridView& g) {
@@ -249,40 +263,14 @@ EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions&
     rq.rule = rule;
     return finish(rq, opt, g.shape);
   }
-  // Slice by slice: the device holds the site list and one slice, never the volume, so the
-  // sites are listed here as column keys (raster order: labels are raster ranks as usual), on
-  // all host threads: each chunk counts its sites, then writes them at its offset.
-  const std::int64_t n = rq.layout.count();
-  const edt::Layout& L = rq.layout;
-  const std::int64_t plane = L.n[0] * L.n[1];
-  constexpr std::int64_t kChunk = std::int64_t(1) << 20;
-  const std::int64_t chunks = (n + kChunk - 1) / kChunk;
-  std::vector<std::int64_t> at(std::size_t(chunks) + 1, 0);
+  // Slice by slice: the device holds the site list and a block of slices, never the volume, so
+  // the sites are listed here as column keys (raster order: labels are raster ranks as usual).
   bool finite = true;
-  const bool nonzero = rule == SiteRule::NonZero;
-  auto is_site = [&](std::int64_t i, bool& fin) {
-    const double v = element(g.data, g.type, i);
-    fin = fin && !std::isnan(v);
-    return nonzero ? v != 0 : v == 0;
-  };
-#pragma omp parallel for schedule(dynamic, 1) reduction(&& : finite)
-  for (std::int64_t c = 0; c < chunks; ++c) {
-    std::int64_t k = 0;
-    for (std::int64_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
-      k += is_site(i, finite);
-    at[std::size_t(c) + 1] = k;
-  }
+  grid_input::visit(g.type, [&](auto tag) {
+    finite = list_column_sites(static_cast<const decltype(tag)*>(g.data), rq.layout,
+                               rule == SiteRule::NonZero, rq.column_sites);
+  });
   if (!finite) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
-  for (std::int64_t c = 0; c < chunks; ++c) at[std::size_t(c) + 1] += at[std::size_t(c)];
-  rq.column_sites.resize(std::size_t(at.back()));
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::int64_t c = 0; c < chunks; ++c) {
-    std::int64_t k = at[std::size_t(c)];
-    bool unused = true;
-    for (std::int64_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
-      if (is_site(i, unused))
-        rq.column_sites[std::size_t(k++)] = edt::column_key(i % plane, i / plane);
-  }
   if (rq.column_sites.empty())
     throw Error(ErrorCode::InvalidInput, std::string("the grid has no site (no ") +
                                              (rule == SiteRule::NonZero ? "nonzero" : "zero") +
