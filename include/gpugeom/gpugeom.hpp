@@ -1,5 +1,6 @@
 // Umbrella header: everything public in gpugeom.
 #pragma once
+#include "gpugeom/cdt2d.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/cvd.hpp"
 #include "gpugeom/delaunay2d.hpp"

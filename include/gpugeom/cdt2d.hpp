@@ -1,0 +1,54 @@
+// Exact 2D constrained Delaunay triangulation of points and segments (issue 21).
+//
+// The triangulation starts from the exact Delaunay triangulation (delaunay2d.hpp, on the
+// executor opt picks); every segment is then made a chain of edges by flipping the edges it
+// crosses, and the edges on no segment are flipped until each is locally Delaunay (exact
+// in-circle; cocircular points allowed either way). The result is the constrained Delaunay
+// triangulation of the convex hull: every segment is a union of edges, and every other edge is
+// locally Delaunay. A segment through other input points is the chain of edges between them.
+//
+// This first version recovers the segments on the host threads, one after another (the
+// parallel recovery by rounds of flips is the next step); segments that cross each other are
+// refused, naming both (splitting them at their intersection is the next step too); holes and
+// regions are not removed yet.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "gpugeom/common.hpp"
+#include "gpugeom/host_vector.hpp"
+
+namespace gpugeom {
+
+struct Cdt2dOptions : RunOptions {};
+
+struct ConstrainedTriangulation2d {
+  // Counter-clockwise triangles, 3 input-point indices each, and the triangle opposite vertex k
+  // of triangle i (-1 on the hull), as Triangulation2d's.
+  HostVector<std::int32_t> triangles;
+  HostVector<std::int32_t> neighbors;
+  // segment_of[3*i + k]: the input segment the edge opposite vertex k of triangle i lies on
+  // (the first one, where several given segments overlap it), -1 for an edge on none.
+  HostVector<std::int32_t> segment_of;
+  // One entry per input point: -1 when the point is a vertex, else the index of the earlier
+  // point with the same coordinates, which is the one used (segments' ends included).
+  HostVector<std::int32_t> duplicate_of;
+  std::int64_t num_duplicates = 0;
+  // Segments given with both ends at one point (or at duplicates of it), and segments that
+  // repeat an earlier one (either direction): dropped, counted here.
+  std::int64_t zero_length_segments = 0, repeated_segments = 0;
+  // Phases "delaunay" and "constraints"; counters "segments", "segments_present" (edges of the
+  // Delaunay triangulation already), "segments_recovered" (by flips), "segment_pieces" (edges
+  // on segments), "recovery_flips", "delaunay_flips", with delaunay2d's counters.
+  Stats stats;
+  std::size_t num_triangles() const { return triangles.size() / 3; }
+};
+
+// xy: n points, x and y interleaved; segments: nseg pairs of point indices. Throws
+// Error(InvalidInput) for a segment naming a point outside 0..n-1, and for two segments that
+// cross each other at a point inside both, naming both (segments that meet at an input point,
+// or overlap along one line, are fine); and as delaunay2d does for the points.
+ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
+                                 std::int64_t nseg, const Cdt2dOptions& opt = {});
+
+}  // namespace gpugeom

@@ -1,0 +1,141 @@
+// Inputs for the constrained Delaunay tests: random planar straight-line graphs (segments that
+// do not cross, some through other points), degenerate layouts, and the checks every result
+// must pass.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "gpugeom/cdt2d.hpp"
+#include "predicates/predicates.hpp"
+#include "verify.hpp"
+
+namespace gg_cdt {
+
+struct Pslg {
+  std::string name;
+  std::vector<double> xy;
+  std::vector<std::int32_t> segs;
+};
+
+inline int orient(const std::vector<double>& p, std::int32_t a, std::int32_t b, std::int32_t c) {
+  static thread_local std::vector<double> s(gpugeom::pred::kOrient2dScratch);
+  return gpugeom::pred::orient2d(&p[2 * a], &p[2 * b], &p[2 * c], s.data());
+}
+// Do segments (a, b) and (c, d) meet at a point inside both that is not an input point? Exact.
+inline bool proper_cross(const std::vector<double>& p, std::int32_t a, std::int32_t b,
+                         std::int32_t c, std::int32_t d) {
+  // (Collinear overlapping segments are fine: the library takes them as one chain.)
+  return orient(p, a, b, c) * orient(p, a, b, d) < 0 && orient(p, c, d, a) * orient(p, c, d, b) < 0;
+}
+
+// Random segments between near points, kept when they cross no segment kept before.
+inline Pslg random_pslg(std::int64_t n, std::int64_t tries, unsigned seed) {
+  Pslg g{"random pslg " + std::to_string(n), {}, {}};
+  std::mt19937_64 r(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (std::int64_t i = 0; i < n; ++i) g.xy.insert(g.xy.end(), {U(r), U(r)});
+  for (std::int64_t k = 0; k < tries; ++k) {
+    const std::int32_t a = std::int32_t(r() % n);
+    // a partner among a few random points: the nearest, so segments stay short
+    std::int32_t b = -1;
+    double best = 1e300;
+    for (int j = 0; j < 8; ++j) {
+      const std::int32_t c = std::int32_t(r() % n);
+      const double dx = g.xy[2 * c] - g.xy[2 * a], dy = g.xy[2 * c + 1] - g.xy[2 * a + 1];
+      if (c != a && dx * dx + dy * dy < best) best = dx * dx + dy * dy, b = c;
+    }
+    if (b < 0) continue;
+    bool ok = true;
+    for (std::size_t s = 0; s < g.segs.size() && ok; s += 2)
+      ok = !proper_cross(g.xy, a, b, g.segs[s], g.segs[s + 1]);
+    if (ok) g.segs.insert(g.segs.end(), {a, b});
+  }
+  return g;
+}
+
+// Integer grid points (many cocircular) with segments along rows, diagonals and knight moves
+// that cross nothing, some through grid points.
+inline Pslg grid_pslg(int side) {
+  Pslg g{"grid " + std::to_string(side), {}, {}};
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) g.xy.insert(g.xy.end(), {double(x), double(y)});
+  auto id = [&](int x, int y) { return std::int32_t(y * side + x); };
+  std::vector<std::int32_t> cand{id(0, 0),        id(side - 1, side - 1),  // the diagonal
+                                 id(0, 1),        id(side - 1, 1),         // a row
+                                 id(1, 3),        id(3, 4),
+                                 id(5, 2),        id(7, 3),  // knight moves
+                                 id(side - 1, 0), id(side - 3, 5)};
+  for (std::size_t s = 0; s < cand.size(); s += 2) {
+    bool ok = true;
+    for (std::size_t t = 0; t < g.segs.size() && ok; t += 2)
+      ok = !proper_cross(g.xy, cand[s], cand[s + 1], g.segs[t], g.segs[t + 1]);
+    if (ok) g.segs.insert(g.segs.end(), {cand[s], cand[s + 1]});
+  }
+  return g;
+}
+
+// A thin polygon: two long rows of collinear points 1e-3 apart, its boundary as segments, and
+// a segment along each whole row (through every point of it).
+inline Pslg thin_polygon(int m) {
+  Pslg g{"thin polygon " + std::to_string(m), {}, {}};
+  for (int i = 0; i < m; ++i) g.xy.insert(g.xy.end(), {double(i), 0.0});
+  for (int i = 0; i < m; ++i) g.xy.insert(g.xy.end(), {double(i), 1e-3});
+  for (int i = 0; i + 1 < m; ++i) g.segs.insert(g.segs.end(), {i, i + 1, m + i + 1, m + i});
+  g.segs.insert(g.segs.end(), {m - 1, 2 * m - 1, m, 0});
+  g.segs.insert(g.segs.end(), {0, m - 1, m, 2 * m - 1});  // whole rows again (repeats pieces)
+  g.segs.insert(g.segs.end(), {0, 2 * m - 1});            // the long diagonal
+  return g;
+}
+
+// Points on a circle (all cocircular) with a star polygon of chords that do not cross, and
+// points inside.
+inline Pslg circle_pslg(int m, unsigned seed) {
+  Pslg g{"circle " + std::to_string(m), {}, {}};
+  for (int i = 0; i < m; ++i) {
+    const double a = 2 * 3.141592653589793 * i / m;
+    g.xy.insert(g.xy.end(), {std::cos(a), std::sin(a)});
+  }
+  std::mt19937 r(seed);
+  std::uniform_real_distribution<double> U(-0.5, 0.5);
+  for (int i = 0; i < m; ++i) g.xy.insert(g.xy.end(), {U(r), U(r)});
+  for (int i = 0; i + 2 < m; i += 2) g.segs.insert(g.segs.end(), {i, i + 2});  // chords
+  g.segs.insert(g.segs.end(), {0, m / 2});  // a diameter: m / 2 even, so it crosses no chord
+  return g;
+}
+
+// The checks every result passes: the exact checker on the triangles and the segments given
+// (after duplicates and drops), and every marked edge lies on the segment it names.
+inline void expect_cdt(const Pslg& g, const gpugeom::ConstrainedTriangulation2d& r) {
+  const std::int64_t n = std::int64_t(g.xy.size() / 2);
+  std::vector<std::int32_t> segs;  // the segments as the triangulation sees them
+  for (std::size_t s = 0; s < g.segs.size(); s += 2) {
+    std::int32_t a = g.segs[s], b = g.segs[s + 1];
+    if (r.duplicate_of[a] >= 0) a = r.duplicate_of[a];
+    if (r.duplicate_of[b] >= 0) b = r.duplicate_of[b];
+    if (a != b) segs.insert(segs.end(), {a, b});
+  }
+  auto rep = gpugeom::verify::check_constrained_delaunay2d(
+      g.xy.data(), n, r.triangles.data(), std::int64_t(r.num_triangles()), segs.data(),
+      std::int64_t(segs.size() / 2), r.duplicate_of.data());
+  ASSERT_TRUE(rep.ok) << g.name << ": " << rep.message;
+  for (std::size_t i = 0; i < r.segment_of.size(); ++i) {
+    const std::int32_t s = r.segment_of[i];
+    if (s < 0) continue;
+    const std::int32_t u = r.triangles[i - i % 3 + (i % 3 + 1) % 3],
+                       v = r.triangles[i - i % 3 + (i % 3 + 2) % 3];
+    std::int32_t a = g.segs[2 * s], b = g.segs[2 * s + 1];
+    if (r.duplicate_of[a] >= 0) a = r.duplicate_of[a];
+    if (r.duplicate_of[b] >= 0) b = r.duplicate_of[b];
+    ASSERT_TRUE(orient(g.xy, a, b, u) == 0 && orient(g.xy, a, b, v) == 0)
+        << g.name << ": edge " << u << "-" << v << " is marked with segment " << s
+        << " but does not lie on it";
+  }
+}
+
+}  // namespace gg_cdt

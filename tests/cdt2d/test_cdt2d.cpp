@@ -1,0 +1,143 @@
+// The constrained Delaunay triangulation on the CPU executor: random planar straight-line graphs,
+// grids, thin polygons and cocircular points against the exact checker; segments through
+// points, repeated and zero-length segments, duplicates; crossing segments refused by name.
+#include <gtest/gtest.h>
+
+#include "cdt2d_cases.hpp"
+#include "gpugeom/delaunay2d.hpp"
+
+using namespace gpugeom;
+
+namespace {
+ConstrainedTriangulation2d run(const gg_cdt::Pslg& g, Backend b = Backend::Cpu) {
+  Cdt2dOptions o;
+  o.backend = b;
+  return cdt2d(g.xy.data(), std::int64_t(g.xy.size() / 2), g.segs.data(),
+               std::int64_t(g.segs.size() / 2), o);
+}
+}  // namespace
+
+TEST(Cdt2d, RandomPslgs) {
+  for (unsigned seed : {1u, 2u, 3u})
+    for (std::int64_t n : {50, 2000}) {
+      const auto g = gg_cdt::random_pslg(n, n / 2, seed);
+      const auto r = run(g);
+      gg_cdt::expect_cdt(g, r);
+      EXPECT_GT(r.stats.counters.at("segments_recovered"), 0) << g.name;
+      EXPECT_EQ(r.stats.counters.at("segments_present") +
+                    r.stats.counters.at("segments_recovered") + r.repeated_segments +
+                    r.zero_length_segments,
+                std::int64_t(g.segs.size() / 2))
+          << g.name;
+    }
+}
+
+TEST(Cdt2d, DegenerateLayouts) {
+  for (const auto& g : {gg_cdt::grid_pslg(9), gg_cdt::grid_pslg(16), gg_cdt::thin_polygon(40),
+                        gg_cdt::circle_pslg(64, 5)}) {
+    const auto r = run(g);
+    gg_cdt::expect_cdt(g, r);
+  }
+  // A segment through collinear points is the chain of edges between them.
+  const auto t = gg_cdt::thin_polygon(40);
+  const auto r = run(t);
+  EXPECT_GT(r.repeated_segments + r.stats.counters.at("segment_pieces"), 0);
+}
+
+// Every Delaunay edge given as a segment: nothing to flip.
+TEST(Cdt2d, DelaunayEdgesNeedNoFlips) {
+  gg_cdt::Pslg g = gg_cdt::random_pslg(500, 0, 9);
+  const auto dt = delaunay2d(g.xy.data(), 500);
+  for (std::size_t i = 0; i < dt.triangles.size(); ++i)
+    if (dt.neighbors[i] < std::int32_t(i / 3))  // each edge once (hull edges too)
+      g.segs.insert(g.segs.end(), {dt.triangles[i - i % 3 + (i % 3 + 1) % 3],
+                                   dt.triangles[i - i % 3 + (i % 3 + 2) % 3]});
+  const auto r = run(g);
+  gg_cdt::expect_cdt(g, r);
+  EXPECT_EQ(r.stats.counters.at("recovery_flips"), 0);
+  EXPECT_EQ(r.stats.counters.at("delaunay_flips"), 0);
+  EXPECT_EQ(r.triangles, dt.triangles);
+}
+
+TEST(Cdt2d, RepeatedZeroLengthAndDuplicatePoints) {
+  gg_cdt::Pslg g = gg_cdt::random_pslg(300, 100, 4);
+  const std::int32_t n = 300;
+  g.xy.insert(g.xy.end(), {g.xy[0], g.xy[1]});  // point n repeats point 0
+  const std::size_t kept = g.segs.size() / 2;
+  g.segs.insert(g.segs.end(), {5, 5, n, 0, g.segs[1], g.segs[0], n, 7});
+  const auto r = run(g);
+  gg_cdt::expect_cdt(g, r);
+  EXPECT_EQ(r.zero_length_segments, 2);  // 5-5 and n-0 (n repeats 0)
+  EXPECT_EQ(r.num_duplicates, 1);
+  EXPECT_EQ(r.duplicate_of[n], 0);
+  // the reversed first segment repeats it; n-7 is 0-7 (a repeat if 0-7 was given)
+  EXPECT_GE(r.repeated_segments, 1);
+  EXPECT_EQ(r.stats.counters.at("segments"), std::int64_t(kept) + 4);
+}
+
+TEST(Cdt2d, CrossingSegmentsAreNamed) {
+  const std::vector<double> xy{0, 0, 2, 2, 0, 2, 2, 0, 1, 3, 3, 1};
+  const std::vector<std::int32_t> segs{4, 5, 0, 1, 2, 3};  // 1 and 2 cross at (1, 1)
+  try {
+    cdt2d(xy.data(), 6, segs.data(), 3);
+    ADD_FAILURE() << "crossing segments were accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(int(e.code()), int(ErrorCode::InvalidInput));
+    EXPECT_NE(std::string(e.what()).find("segments 1 and 2 cross"), std::string::npos) << e.what();
+  }
+  const std::vector<std::int32_t> bad{0, 6};
+  EXPECT_THROW(cdt2d(xy.data(), 6, bad.data(), 1), Error);
+  // Crossing at an input point is fine: both run through it.
+  const std::vector<double> xy2{0, 0, 2, 2, 0, 2, 2, 0, 1, 1};
+  const std::vector<std::int32_t> segs2{0, 1, 2, 3};
+  const gg_cdt::Pslg g{"cross at a point", xy2, segs2};
+  const auto r = run(g);
+  gg_cdt::expect_cdt(g, r);
+  EXPECT_EQ(r.stats.counters.at("segment_pieces"), 4);
+}
+
+#ifdef GG_HAVE_CGAL
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <array>
+
+// Points in general position: the constrained Delaunay triangulation is unique, so the triangle
+// sets must equal CGAL's Constrained_Delaunay_triangulation_2 (random PSLGs, exact predicates).
+TEST(Cdt2d, SameAsCgal) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::int32_t, K>;
+  using Fb = CGAL::Constrained_triangulation_face_base_2<K>;
+  using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+  using CDT = CGAL::Constrained_Delaunay_triangulation_2<
+      K, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+  auto canon = [](std::int32_t a, std::int32_t b, std::int32_t c) {
+    if (b < a && b < c) return std::array<std::int32_t, 3>{b, c, a};
+    if (c < a && c < b) return std::array<std::int32_t, 3>{c, a, b};
+    return std::array<std::int32_t, 3>{a, b, c};
+  };
+  for (unsigned seed : {11u, 12u})
+    for (std::int64_t n : {100, 5000}) {
+      const auto g = gg_cdt::random_pslg(n, n / 3, seed);
+      SCOPED_TRACE(g.name);
+      CDT cdt;
+      std::vector<CDT::Vertex_handle> vh(static_cast<std::size_t>(n));
+      for (std::int64_t i = 0; i < n; ++i) {
+        vh[std::size_t(i)] = cdt.insert(K::Point_2(g.xy[2 * i], g.xy[2 * i + 1]));
+        vh[std::size_t(i)]->info() = std::int32_t(i);
+      }
+      for (std::size_t s = 0; s < g.segs.size(); s += 2)
+        cdt.insert_constraint(vh[std::size_t(g.segs[s])], vh[std::size_t(g.segs[s + 1])]);
+      std::vector<std::array<std::int32_t, 3>> ref, got;
+      for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+        ref.push_back(canon(f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()));
+      const auto r = run(g);
+      for (std::size_t i = 0; i < r.num_triangles(); ++i)
+        got.push_back(canon(r.triangles[3 * i], r.triangles[3 * i + 1], r.triangles[3 * i + 2]));
+      std::sort(ref.begin(), ref.end());
+      std::sort(got.begin(), got.end());
+      EXPECT_EQ(got, ref);
+    }
+}
+#endif

@@ -1,0 +1,35 @@
+// The constrained Delaunay triangulation with the Delaunay step on the CUDA executor: the same
+// arrays as the CPU executor's, every result passing the exact checker.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "cdt2d_cases.hpp"
+
+using namespace gpugeom;
+
+TEST(CudaCdt2d, SameAsCpu) {
+  std::vector<gg_cdt::Pslg> cases{gg_cdt::grid_pslg(16), gg_cdt::thin_polygon(200),
+                                  gg_cdt::circle_pslg(256, 3)};
+  for (unsigned seed : {1u, 2u}) cases.push_back(gg_cdt::random_pslg(100000, 30000, seed));
+  for (const auto& g : cases) {
+    Cdt2dOptions o;
+    o.backend = Backend::Cpu;
+    const std::int64_t n = std::int64_t(g.xy.size() / 2), m = std::int64_t(g.segs.size() / 2);
+    const auto cpu = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
+    o.backend = Backend::Cuda;
+    const auto gpu = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
+    gg_cdt::expect_cdt(g, gpu);
+    EXPECT_EQ(gpu.triangles, cpu.triangles) << g.name;
+    EXPECT_EQ(gpu.neighbors, cpu.neighbors) << g.name;
+    EXPECT_EQ(gpu.segment_of, cpu.segment_of) << g.name;
+    EXPECT_EQ(gpu.stats.backend, Backend::Cuda) << g.name;
+    std::printf("%s: %zu triangles, %lld segments (%lld recovered, %lld flips)", g.name.c_str(),
+                gpu.num_triangles(), (long long)m,
+                (long long)gpu.stats.counters.at("segments_recovered"),
+                (long long)gpu.stats.counters.at("recovery_flips"));
+    for (const auto& ph : gpu.stats.phase_ms)
+      std::printf(", %s %.1f ms", ph.first.c_str(), ph.second);
+    std::printf("\n");
+  }
+}
