@@ -7,10 +7,14 @@
 // triangulation of the convex hull: every segment is a union of edges, and every other edge is
 // locally Delaunay. A segment through other input points is the chain of edges between them.
 //
+// Holes and the domain's outside are removed as Triangle does for a .poly file: the triangles
+// reachable from a hole's point without crossing a segment go, and with Domain::Enclosed also
+// those reachable from outside the convex hull; region points carry an attribute to the
+// triangles they reach.
+//
 // This first version recovers the segments on the host threads, one after another (the
 // parallel recovery by rounds of flips is the next step); segments that cross each other are
-// refused, naming both (splitting them at their intersection is the next step too); holes and
-// regions are not removed yet.
+// refused, naming both (splitting them at their intersection is the next step too).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -20,7 +24,25 @@
 
 namespace gpugeom {
 
-struct Cdt2dOptions : RunOptions {};
+// A region point: every triangle reachable from its triangle without crossing a segment gets the
+// attribute (Triangle's regional attributes; where regions are not separated by segments the
+// first one given wins). A point on an edge takes one of the triangles beside it.
+struct Cdt2dRegion {
+  double x = 0, y = 0;
+  double attribute = 0;
+};
+
+struct Cdt2dOptions : RunOptions {
+  enum class Domain {
+    ConvexHull,  // every triangle of the convex hull (less the holes)
+    Enclosed,    // Triangle's -p: the triangles outside the segments are removed too
+  };
+  Domain domain = Domain::ConvexHull;
+  // Hole points (x, y): the triangle holding each and all reachable from it without crossing a
+  // segment are removed. A point outside the convex hull removes nothing.
+  std::vector<Point2> holes;
+  std::vector<Cdt2dRegion> regions;
+};
 
 struct ConstrainedTriangulation2d {
   // Counter-clockwise triangles, 3 input-point indices each, and the triangle opposite vertex k
@@ -37,6 +59,12 @@ struct ConstrainedTriangulation2d {
   // Segments given with both ends at one point (or at duplicates of it), and segments that
   // repeat an earlier one (either direction): dropped, counted here.
   std::int64_t zero_length_segments = 0, repeated_segments = 0;
+  // One per triangle when regions are given: the attribute of the region that reached it (0
+  // where none did).
+  HostVector<double> attribute;
+  // Triangles removed as holes or outside the domain (they are not in the arrays above, whose
+  // neighbours across a removed triangle are -1).
+  std::int64_t removed_triangles = 0;
   // Phases "delaunay" and "constraints"; counters "segments", "segments_present" (edges of the
   // Delaunay triangulation already), "segments_recovered" (by flips), "segment_pieces" (edges
   // on segments), "recovery_flips", "delaunay_flips", with delaunay2d's counters.

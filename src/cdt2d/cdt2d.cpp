@@ -1,13 +1,15 @@
 // Public entry of the 2D constrained Delaunay triangulation: the Delaunay triangulation on the
 // executor opt picks, then the segments recovered and the Delaunay property restored on the
-// host (cdt_mesh.hpp).
+// host (cdt_mesh.hpp), then holes, the outside and regions (domain.hpp).
 #include "gpugeom/cdt2d.hpp"
 
+#include <cmath>
 #include <string>
 #include <unordered_set>
 
 #include "base/clock.hpp"
 #include "cdt2d/cdt_mesh.hpp"
+#include "cdt2d/domain.hpp"
 #include "gpugeom/delaunay2d.hpp"
 
 namespace gpugeom {
@@ -18,6 +20,12 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
     throw Error(ErrorCode::InvalidArgument,
                 "segments: " + std::to_string(nseg) + " pairs given" +
                     (nseg > 0 ? " but the pointer is null" : ": the count must not be negative"));
+  for (const auto& h : opt.holes)
+    if (!std::isfinite(h.x) || !std::isfinite(h.y))
+      throw Error(ErrorCode::InvalidInput, "a hole point is not finite");
+  for (const auto& g : opt.regions)
+    if (!std::isfinite(g.x) || !std::isfinite(g.y))
+      throw Error(ErrorCode::InvalidInput, "a region point is not finite");
   for (std::int64_t k = 0; k < 2 * nseg; ++k)
     if (segments[k] < 0 || segments[k] >= n)
       throw Error(ErrorCode::InvalidInput, "segment " + std::to_string(k / 2) + " names point " +
@@ -57,9 +65,7 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
       ++present;
   }
   mesh.restore_delaunay();
-  r.triangles.assign(mesh.triangles().begin(), mesh.triangles().end());
-  r.neighbors.assign(mesh.neighbors().begin(), mesh.neighbors().end());
-  r.segment_of.assign(mesh.segment_of().begin(), mesh.segment_of().end());
+  cdt::apply_domain(xy, n, mesh.triangles(), mesh.neighbors(), mesh.segment_of(), opt, r);
   r.duplicate_of = std::move(dt.duplicate_of);
   r.num_duplicates = dt.num_duplicates;
   r.stats.phase_ms.push_back({"constraints", ms_since(t0)});

@@ -96,6 +96,88 @@ TEST(Cdt2d, CrossingSegmentsAreNamed) {
   EXPECT_EQ(r.stats.counters.at("segment_pieces"), 4);
 }
 
+// An L-shaped domain (its hull a pentagon of area 87.5, the L 75) with a 2x2 square hole and a
+// divider, on every integer point of the L but the hole's centre: the kept triangles' areas
+// (exact: half-integers) for each domain rule, holes and regions; the boundary of an enclosed
+// domain is made of segments; neighbours stay symmetric.
+TEST(Cdt2d, HolesOutsideAndRegions) {
+  std::vector<double> xy;
+  auto id = [&](double x, double y) {
+    for (std::size_t i = 0; i < xy.size(); i += 2)
+      if (xy[i] == x && xy[i + 1] == y) return std::int32_t(i / 2);
+    ADD_FAILURE() << "no point " << x << "," << y;
+    return std::int32_t(0);
+  };
+  for (int y = 0; y <= 10; ++y)
+    for (int x = 0; x <= 10; ++x)
+      if ((y <= 5 || x <= 5) && !(x == 3 && y == 2)) xy.insert(xy.end(), {double(x), double(y)});
+  const double L[] = {0, 0, 10, 0, 10, 5, 5, 5, 5, 10, 0, 10}, H[] = {2, 1, 4, 1, 4, 3, 2, 3};
+  std::vector<std::int32_t> segs;
+  for (int k = 0; k < 6; ++k)
+    segs.insert(segs.end(),
+                {id(L[2 * k], L[2 * k + 1]), id(L[(2 * k + 2) % 12], L[(2 * k + 3) % 12])});
+  for (int k = 0; k < 4; ++k)
+    segs.insert(segs.end(),
+                {id(H[2 * k], H[2 * k + 1]), id(H[(2 * k + 2) % 8], H[(2 * k + 3) % 8])});
+  segs.insert(segs.end(), {id(5, 0), id(5, 5)});  // the divider
+  const std::int64_t n = std::int64_t(xy.size() / 2), m = std::int64_t(segs.size() / 2);
+  auto area = [&](const ConstrainedTriangulation2d& r, double attr, bool any) {
+    double a = 0;
+    for (std::size_t t = 0; t < r.num_triangles(); ++t) {
+      if (!any && r.attribute[t] != attr) continue;
+      const double* p = &xy[2 * r.triangles[3 * t]];
+      const double* q = &xy[2 * r.triangles[3 * t + 1]];
+      const double* s = &xy[2 * r.triangles[3 * t + 2]];
+      a += ((q[0] - p[0]) * (s[1] - p[1]) - (q[1] - p[1]) * (s[0] - p[0])) / 2;
+    }
+    return a;
+  };
+  auto check = [&](const ConstrainedTriangulation2d& r, bool enclosed, const std::string& what) {
+    for (std::size_t i = 0; i < r.neighbors.size(); ++i) {
+      const std::int32_t o = r.neighbors[i];
+      if (o < 0) {
+        if (enclosed) EXPECT_GE(r.segment_of[i], 0) << what << ": a boundary edge on no segment";
+        continue;
+      }
+      int back = 0;
+      for (int k = 0; k < 3; ++k)
+        back += r.neighbors[3 * std::size_t(o) + k] == std::int32_t(i / 3);
+      EXPECT_EQ(back, 1) << what << ": neighbours not symmetric at triangle " << i / 3;
+    }
+  };
+  using Domain = Cdt2dOptions::Domain;
+  struct Case {
+    Domain domain;
+    bool hole;
+    double area;
+  };
+  for (const Case& c : {Case{Domain::ConvexHull, false, 87.5}, Case{Domain::Enclosed, false, 75},
+                        Case{Domain::Enclosed, true, 71}, Case{Domain::ConvexHull, true, 83.5}}) {
+    Cdt2dOptions o;
+    o.backend = Backend::Cpu;
+    o.domain = c.domain;
+    if (c.hole) o.holes = {{3, 2}, {-5, -5}};  // (a point outside the hull removes nothing)
+    const auto r = cdt2d(xy.data(), n, segs.data(), m, o);
+    const std::string what = std::string(c.domain == Domain::Enclosed ? "enclosed" : "hull") +
+                             (c.hole ? " with hole" : "");
+    EXPECT_EQ(area(r, 0, true), c.area) << what;
+    EXPECT_EQ(r.removed_triangles > 0, c.area < 87.5) << what;
+    EXPECT_TRUE(r.attribute.empty());
+    check(r, c.domain == Domain::Enclosed, what);
+  }
+  Cdt2dOptions o;
+  o.backend = Backend::Cpu;
+  o.domain = Domain::Enclosed;
+  o.holes = {{3, 2}};
+  o.regions = {{1, 8, 7.0}, {8, 2, 9.0}, {1.5, 9.5, 4.0}};  // the third lies in the first's part
+  const auto r = cdt2d(xy.data(), n, segs.data(), m, o);
+  ASSERT_EQ(r.attribute.size(), r.num_triangles());
+  EXPECT_EQ(area(r, 7.0, false), 46);
+  EXPECT_EQ(area(r, 9.0, false), 25);
+  EXPECT_EQ(area(r, 4.0, false), 0);
+  check(r, true, "regions");
+}
+
 #ifdef GG_HAVE_CGAL
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
