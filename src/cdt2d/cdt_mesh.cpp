@@ -191,6 +191,10 @@ bool CdtMesh::insert_segment(std::int32_t a, std::int32_t b, std::int32_t id) {
       idle = 0;
       flip(e);
       ++recovery_flips_;
+      // The quadrilateral's edges are the only ones whose triangles changed: they alone may
+      // have stopped being locally Delaunay.
+      for (const auto& q : {std::pair{ap, bp}, {bp, dp}, {dp, cp}, {cp, ap}, {ap, dp}})
+        touched_.push_back(q);
       flipped = true;
       if (orient(u, w, ap) * orient(u, w, dp) < 0) queue.push_back({ap, dp});
     }
@@ -202,11 +206,11 @@ bool CdtMesh::insert_segment(std::int32_t a, std::int32_t b, std::int32_t id) {
 }
 
 void CdtMesh::restore_delaunay() {
-  // Every edge once, then the outer edges of each flipped quadrilateral again.
-  std::vector<std::pair<std::int32_t, std::int32_t>> stack;
-  stack.reserve(tri_.size());
-  for (std::size_t i = 0; i < tri_.size(); ++i)
-    stack.push_back({tri_[i], tri_[i - i % 3 + (i % 3 + 1) % 3]});
+  // The edges of the quadrilaterals the recovery flipped (every other edge still has the two
+  // triangles it had in the Delaunay triangulation), then those of each quadrilateral flipped
+  // here.
+  std::vector<std::pair<std::int32_t, std::int32_t>> stack = std::move(touched_);
+  touched_.clear();
   double* s = scratch_.data();
   while (!stack.empty()) {
     const auto [x, y] = stack.back();

@@ -21,8 +21,8 @@ class CdtMesh {
   // needed. Throws Error(InvalidInput) naming `id` and the other segment when an edge of that
   // segment crosses it.
   bool insert_segment(std::int32_t a, std::int32_t b, std::int32_t id);
-  // Flips edges on no segment, starting from those the insertions made, until every one is
-  // locally Delaunay.
+  // Flips edges on no segment, starting from those of the quadrilaterals the insertions
+  // flipped (the triangulation given must be Delaunay), until every one is locally Delaunay.
   void restore_delaunay();
 
   const std::vector<std::int32_t>& triangles() const { return tri_; }
@@ -55,7 +55,7 @@ class CdtMesh {
   std::int64_t n_;
   std::vector<std::int32_t> tri_, nbr_, seg_;
   std::vector<std::int32_t> vt_;                                // a triangle of each vertex
-  std::vector<std::pair<std::int32_t, std::int32_t>> touched_;  // edges for restore_delaunay
+  std::vector<std::pair<std::int32_t, std::int32_t>> touched_;  // for restore_delaunay
   std::vector<double> scratch_;
   std::int64_t recovery_flips_ = 0, delaunay_flips_ = 0, pieces_ = 0;
 };
