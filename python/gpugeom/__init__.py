@@ -16,7 +16,7 @@ from ._arrays import device_info
 from . import verify
 from .cvd import CentroidalVoronoi, Progress, Stipple, centroidal_voronoi, stipple
 from .ndimage import distance_transform_edt, voronoi_labels
-from .spatial import ConvexHull, Delaunay, Voronoi
+from .spatial import ConstrainedDelaunay, ConvexHull, Delaunay, Voronoi
 
 
 def built_with_cuda() -> bool:
@@ -30,7 +30,7 @@ def release_cached_device_memory() -> None:
 
 
 __all__ = [
-    "Delaunay", "Voronoi", "ConvexHull", "distance_transform_edt", "voronoi_labels",
+    "Delaunay", "Voronoi", "ConvexHull", "ConstrainedDelaunay", "distance_transform_edt", "voronoi_labels",
     "centroidal_voronoi", "stipple", "CentroidalVoronoi", "Stipple", "Progress", "device_info",
     "built_with_cuda", "release_cached_device_memory", "verify", "DegenerateInputError",
     "UnsupportedError", "CudaError", "__version__",

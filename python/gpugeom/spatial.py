@@ -15,7 +15,7 @@ import numpy as np
 
 from . import _arrays, _core
 
-__all__ = ["Delaunay", "Voronoi", "ConvexHull"]
+__all__ = ["Delaunay", "Voronoi", "ConvexHull", "ConstrainedDelaunay"]
 
 
 def _not_supported(name, value, default):
@@ -324,3 +324,69 @@ class ConvexHull(_OfPoints):
 
     def __repr__(self):
         return f"<gpugeom.ConvexHull: {self.npoints} points, {len(self.vertices)} vertices>"
+
+
+class ConstrainedDelaunay:
+    """Exact constrained Delaunay triangulation of 2D points and segments (as Triangle's ``-p``
+    and CGAL's ``Constrained_Delaunay_triangulation_2``).
+
+    Every segment is a chain of triangle edges (a segment through other points runs along the
+    edges between them), and every other edge is locally Delaunay (exact in-circle).
+
+    Parameters
+    ----------
+    points : (npoints, 2) array of float
+    segments : (nsegments, 2) array of int
+        Point indices. Zero-length and repeated segments are dropped (counted in ``stats``);
+        segments that cross inside both raise ``ValueError`` naming them.
+    holes : (nholes, 2) array of float, optional
+        The triangles reachable from each point without crossing a segment are removed.
+    regions : (nregions, 3) array of float, optional
+        ``(x, y, attribute)``: the triangles reachable from each point get ``attribute``
+        (``attributes``; the first region wins where regions meet).
+    domain : {"hull", "enclosed"}
+        "hull" keeps the convex hull's triangles (less holes); "enclosed" also removes those
+        outside the segments, reachable from the hull (Triangle's default for ``.poly`` files).
+    backend : {"auto", "cuda", "cpu"}
+        Where the Delaunay triangulation runs (the segments are then recovered on the host).
+
+    Attributes
+    ----------
+    points, segments, simplices (ntri, 3, counter-clockwise), neighbors (-1 across the
+    boundary), segment_of (ntri, 3: the segment edge k, opposite vertex k, lies on, or -1),
+    attributes (ntri, or None), duplicate_of, stats (its counters: segments_present,
+    segments_recovered, recovery_flips, delaunay_flips, zero_length_segments,
+    repeated_segments, removed_triangles, ...).
+    """
+
+    def __init__(self, points, segments, *, holes=None, regions=None, domain: str = "hull",
+                 backend: str = "auto", threads: int = 0):
+        _arrays.check_backend(backend)
+        _arrays.check_threads(threads)
+        if domain not in ("hull", "enclosed"):
+            raise ValueError(f"domain must be 'hull' or 'enclosed', got {domain!r}")
+        self.points = np.ascontiguousarray(_arrays.to_host(points), dtype=np.float64)
+        if self.points.ndim != 2 or self.points.shape[1] != 2:
+            raise ValueError(f"points must have shape (n, 2), got {self.points.shape}")
+        seg = np.asarray(_arrays.to_host(segments))
+        if seg.size and not np.issubdtype(seg.dtype, np.integer):
+            raise TypeError("segments must be integer point indices")
+        self.segments = np.ascontiguousarray(seg, dtype=np.int32).reshape(-1, 2)
+        h = np.ascontiguousarray(np.zeros((0, 2)) if holes is None else _arrays.to_host(holes),
+                                 dtype=np.float64).reshape(-1, 2)
+        g = np.ascontiguousarray(np.zeros((0, 3)) if regions is None
+                                 else _arrays.to_host(regions), dtype=np.float64).reshape(-1, 3)
+        r = _core.cdt2d(self.points, self.segments, h, g, enclosed=domain == "enclosed",
+                        backend=backend, threads=threads)
+        self.simplices = r["simplices"]
+        self.neighbors = r["neighbors"]
+        self.segment_of = r["segment_of"]
+        self.duplicate_of = r["duplicate_of"]
+        self.attributes = r.get("attribute")
+        self.stats = r["stats"]
+        for k in ("zero_length_segments", "repeated_segments", "removed_triangles"):
+            self.stats["counters"][k] = int(r[k])
+        self.ndim = 2
+        self.npoints = int(self.points.shape[0])
+        self.nsimplex = int(self.simplices.shape[0])
+

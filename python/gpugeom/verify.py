@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _arrays, _core
 
-__all__ = ["check_delaunay", "check_convex_hull"]
+__all__ = ["check_delaunay", "check_convex_hull", "check_constrained_delaunay"]
 
 
 def _host(a, dtype):
@@ -31,3 +31,15 @@ def check_convex_hull(points, simplices) -> Tuple[bool, str]:
     """(ok, first violation): a closed, convex, outward-oriented surface with every point
     inside or on it and every vertex extreme (exact)."""
     return _core.check("hull3d", _host(points, np.float64), _host(simplices, np.int32))
+
+
+def check_constrained_delaunay(points, simplices, segments,
+                               duplicate_of=None) -> Tuple[bool, str]:
+    """(ok, first violation): the triangles triangulate the convex hull of the distinct 2D
+    points, every segment (pairs of point indices) is a chain of edges, and every other edge is
+    locally Delaunay (exact in-circle)."""
+    p = _host(points, np.float64)
+    dup = None if duplicate_of is None else _host(duplicate_of, np.int32)
+    seg = _host(segments, np.int32).reshape(-1, 2)
+    return _core.check("cdt2d", p, _host(simplices, np.int32), dup, seg)
+

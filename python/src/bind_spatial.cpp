@@ -6,6 +6,7 @@
 #include <nanobind/stl/string.h>
 
 #include "arrays.hpp"
+#include "gpugeom/cdt2d.hpp"
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/hull3d.hpp"
@@ -220,6 +221,46 @@ nb::object find_simplex_bind(const AnyArray& points, const AnyArray& simplices,
   return host_array(std::move(r), {sz(q.shape[0])});
 }
 
+// Host float64 (rows, k) array, C order.
+const double* reals_of(const AnyArray& a, const char* name, int k, std::int64_t* rows) {
+  Input in = inspect(a, name);
+  if (in.on_device || !holds<double>(in) || in.shape.size() != 2 || in.shape[1] != k)
+    throw nb::value_error((std::string(name) + " must be a host float64 array of shape (m, " +
+                           std::to_string(k) + ")")
+                              .c_str());
+  *rows = in.shape[0];
+  return static_cast<const double*>(in.data);
+}
+
+// The constrained Delaunay triangulation of host points and segments (cdt2d.hpp); holes (h, 2)
+// and regions (r, 3: x, y, attribute) as float64 arrays.
+nb::dict cdt2d_bind(const AnyArray& points, const AnyArray& segments, const AnyArray& holes,
+                    const AnyArray& regions, bool enclosed, const std::string& backend,
+                    int threads) {
+  std::int64_t n = 0, m = 0, nh = 0, nr = 0;
+  const double* p = reals_of(points, "points", 2, &n);
+  const std::int32_t* s = cells_of(segments, "segments", 2, &m);
+  const double* h = reals_of(holes, "holes", 2, &nh);
+  const double* g = reals_of(regions, "regions", 3, &nr);
+  auto o = options_for<Cdt2dOptions>(backend, 0, threads, inspect(points, "points"));
+  o.domain = enclosed ? Cdt2dOptions::Domain::Enclosed : Cdt2dOptions::Domain::ConvexHull;
+  for (std::int64_t i = 0; i < nh; ++i) o.holes.push_back({h[2 * i], h[2 * i + 1]});
+  for (std::int64_t i = 0; i < nr; ++i) o.regions.push_back({g[3 * i], g[3 * i + 1], g[3 * i + 2]});
+  ConstrainedTriangulation2d t = unlocked([&] { return cdt2d(p, n, s, m, o); });
+  const sz nt = t.num_triangles();
+  nb::dict r;
+  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
+  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});
+  r["segment_of"] = host_array(std::move(t.segment_of), {nt, 3});
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
+  if (!t.attribute.empty()) r["attribute"] = host_array(std::move(t.attribute), {nt});
+  r["zero_length_segments"] = t.zero_length_segments;
+  r["repeated_segments"] = t.repeated_segments;
+  r["removed_triangles"] = t.removed_triangles;
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+
 // The extreme points of a 2D Delaunay triangulation's points, counter-clockwise (host arrays).
 nb::object hull2d_bind(const AnyArray& points, const AnyArray& simplices,
                        const AnyArray& neighbors) {
@@ -238,7 +279,8 @@ nb::object hull2d_bind(const AnyArray& points, const AnyArray& simplices,
 
 // The independent exact checkers (src/verify), for tests and for users who want proof.
 std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray& points,
-                                        const AnyArray& cells, nb::object duplicate_of) {
+                                        const AnyArray& cells, nb::object duplicate_of,
+                                        nb::object segments) {
   Input p = inspect(points, "points");
   if (p.on_device || !holds<double>(p) || p.shape.size() != 2)
     throw nb::value_error("points must be a host float64 array of shape (n, dim)");
@@ -256,9 +298,14 @@ std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray&
     dup = static_cast<const std::int32_t*>(d.data);
   }
   verify::Report rep;
+  const std::int32_t* sg = nullptr;
+  std::int64_t ns = 0;
+  if (!segments.is_none()) sg = cells_of(nb::cast<AnyArray>(segments), "segments", 2, &ns);
   {
     nb::gil_scoped_release released;
-    if (what == "delaunay2d" && p.shape[1] == 2)
+    if (what == "cdt2d" && p.shape[1] == 2)
+      rep = verify::check_constrained_delaunay2d(pts(p), n, c, nc, sg, ns, dup);
+    else if (what == "delaunay2d" && p.shape[1] == 2)
       rep = verify::check_delaunay2d(pts(p), n, c, nc, dup);
     else if (what == "delaunay3d" && p.shape[1] == 3)
       rep = verify::check_delaunay3d(pts(p), n, c, nc, dup);
@@ -286,7 +333,10 @@ void bind_spatial(nb::module_& m) {
   m.def("find_simplex", &find_simplex_bind, "points"_a, "simplices"_a, "neighbors"_a, "xi"_a,
         "threads"_a = 0);
   m.def("hull2d_vertices", &hull2d_bind, "points"_a, "simplices"_a, "neighbors"_a);
-  m.def("check", &check_bind, "what"_a, "points"_a, "simplices"_a, "duplicate_of"_a = nb::none());
+  m.def("check", &check_bind, "what"_a, "points"_a, "simplices"_a, "duplicate_of"_a = nb::none(),
+        "segments"_a = nb::none());
+  m.def("cdt2d", &cdt2d_bind, "points"_a, "segments"_a, "holes"_a, "regions"_a,
+        "enclosed"_a = false, "backend"_a = "auto", "threads"_a = 0);
 }
 
 }  // namespace gpugeom::py

@@ -226,3 +226,48 @@ def test_progress_callback_3d(backend, rng):
 
     with pytest.raises(Stop):
         gpugeom.Delaunay(rng.random((5000, 3)), backend=backend, progress=stop)
+
+
+def _star_polygon(rng, m):
+    """m points sorted by angle around the centre: a simple polygon (its edges cross nothing)."""
+    ang = np.sort(rng.random(m) * 2 * np.pi)
+    rad = 0.5 + 0.4 * rng.random(m)
+    return np.column_stack([0.5 + rad * np.cos(ang) / 2, 0.5 + rad * np.sin(ang) / 2])
+
+
+def _area(points, simplices):
+    p = points[simplices]
+    return float(np.sum(((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
+                         - (p[:, 1, 1] - p[:, 0, 1]) * (p[:, 2, 0] - p[:, 0, 0])) / 2))
+
+
+def test_constrained_delaunay(backend, rng):
+    m = 60
+    poly = _star_polygon(rng, m)
+    inner = 0.5 + (rng.random((400, 2)) - 0.5) * 0.9
+    pts = np.vstack([poly, inner])
+    segs = np.column_stack([np.arange(m), (np.arange(m) + 1) % m])
+    c = gpugeom.ConstrainedDelaunay(pts, segs, backend=backend)
+    ok, msg = gpugeom.verify.check_constrained_delaunay(pts, c.simplices, segs, c.duplicate_of)
+    assert ok, msg
+    assert c.stats["counters"]["segments_recovered"] > 0
+    assert ((c.segment_of >= -1) & (c.segment_of < m)).all()
+    # the plain Delaunay triangulation is no CDT of these segments
+    d = gpugeom.Delaunay(pts, backend=backend)
+    assert not gpugeom.verify.check_constrained_delaunay(pts, d.simplices, segs)[0]
+    # enclosed: the polygon's area (shoelace); a hole at its centre leaves the hull minus it
+    x, y = poly[:, 0], poly[:, 1]
+    poly_area = 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    hull_area = _area(pts, c.simplices)
+    e = gpugeom.ConstrainedDelaunay(pts, segs, domain="enclosed", backend=backend)
+    assert np.isclose(_area(pts, e.simplices), poly_area, rtol=1e-12)
+    h = gpugeom.ConstrainedDelaunay(pts, segs, holes=[[0.5, 0.5]], backend=backend)
+    assert np.isclose(_area(pts, h.simplices), hull_area - poly_area, rtol=1e-12)
+    assert h.stats["counters"]["removed_triangles"] == c.nsimplex - h.nsimplex
+    r = gpugeom.ConstrainedDelaunay(pts, segs, regions=[[0.5, 0.5, 3.0]], backend=backend)
+    assert np.isclose(_area(pts, r.simplices[r.attributes == 3.0]), poly_area, rtol=1e-12)
+    with pytest.raises(ValueError, match="cross"):
+        gpugeom.ConstrainedDelaunay([[0, 0], [1, 1], [0, 1], [1, 0]], [[0, 1], [2, 3]],
+                                    backend=backend)
+    with pytest.raises(ValueError, match="domain"):
+        gpugeom.ConstrainedDelaunay(pts, segs, domain="inside")
