@@ -175,6 +175,9 @@ bool CdtMesh::insert_segment(std::int32_t a, std::int32_t b, std::int32_t id) {
       queue.pop_front();
       Edge e = find_edge(x, y);
       if (e.t < 0) e = find_edge(y, x);
+      if (e.t < 0 || nbr_[3 * std::size_t(e.t) + std::size_t(e.k)] < 0)
+        throw Error(ErrorCode::Internal,
+                    "cdt2d: a crossed edge of segment " + std::to_string(id) + " is gone");
       const std::size_t t = std::size_t(e.t), k = std::size_t(e.k);
       const std::int32_t o = nbr_[3 * t + k];
       std::size_t ko = 0;
