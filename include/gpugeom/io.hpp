@@ -89,6 +89,20 @@ void write_points(const std::string& path, const PointSet& pts, const WriteOptio
 Mesh read_mesh(const std::string& path);
 void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& o = {});
 
+// A planar straight-line graph as Triangle's .poly file holds it (2D): the points (from the
+// .node file of the same name where the .poly lists none), segments as pairs of point indices
+// counted from 0 whatever the file's first index, hole points (x, y) and regional attributes
+// (x, y, attribute; a maximum area is read and ignored). Boundary markers and point attributes
+// are read and ignored.
+struct Pslg {
+  PointSet points;
+  std::vector<std::int32_t> segments;
+  std::vector<double> holes, regions;
+};
+Pslg read_poly(const std::string& path);
+// Segments as an int (m, 2) .npy of point indices (from 0).
+std::vector<std::int32_t> read_segments(const std::string& path);
+
 Grid read_grid(const std::string& path);
 // Raw files carry no header: the caller says the shape and the element type.
 Grid read_raw_grid(const std::string& path, const std::vector<std::int64_t>& shape,

@@ -16,6 +16,11 @@
 
 namespace gpugeom::io::detail {
 
+std::string sibling(const std::string& path, const std::string& ext) {
+  std::size_t dot = path.find_last_of('.');
+  return path.substr(0, dot) + ext;
+}
+
 std::string read_file(const std::string& path) {
   // One read into a string of the file's size (no stream buffer copy in between).
   std::FILE* f = std::fopen(path.c_str(), "rb");

@@ -16,6 +16,8 @@
 namespace gpugeom::io::detail {
 
 std::string read_file(const std::string& path);
+// The file beside path with the extension ext instead of its own (a .ele's .node).
+std::string sibling(const std::string& path, const std::string& ext);
 
 // A read-only view of a whole file without a copy: mapped where the system allows (its pages
 // come in as the parsers touch them, on the parsers' threads), else read into memory. Opening

@@ -35,11 +35,6 @@ using namespace detail;
 
 namespace {
 
-std::string sibling(const std::string& path, const std::string& ext) {
-  std::size_t dot = path.find_last_of('.');
-  return path.substr(0, dot) + ext;
-}
-
 Mesh parse_ele(std::string_view b, const std::string& name, int base, std::int64_t nv) {
   Lines l(b, name);
   std::string_view line;

@@ -117,6 +117,73 @@ expect 3 "3D points" -- "$G" delaunay2d "$W/p3.xyz" -o "$W/l.ply"
 expect 2 "nothing to do" -- "$G" delaunay2d "$W/c.csv"
 expect 2 "writes .svg or .png" -- "$G" delaunay2d "$W/c.csv" --draw "$W/t.pdf"
 expect 0 "usage: gpugeom delaunay2d" -- "$G" delaunay2d --help
+# cdt2d: Triangle's .poly (an L with a square hole, a divider and two regions), its outside
+# removed or kept, areas of what is written, the checker, a point file with .npy segments, errors
+cat >"$W/l.poly" <<'POLY'
+# an L (area 75, hull 87.5) with a 2x2 hole at (3, 2)
+12 2 0 1
+1 0 0
+2 10 0
+3 10 5
+4 5 5
+5 5 10
+6 0 10
+7 2 1
+8 4 1
+9 4 3
+10 2 3
+11 5 0
+12 1 8
+12 1
+1 1 11 1
+2 11 2 1
+3 2 3 1
+4 3 4 1
+5 4 5 1
+6 5 6 1
+7 6 1 1
+8 7 8 0
+9 8 9 0
+10 9 10 0
+11 10 7 0
+12 11 4 0
+1
+1 3 2
+2
+1 1 8 7.0 -1
+2 8 2 9.0 -1
+POLY
+expect 0 "check: valid constrained Delaunay" -- "$G" cdt2d "$W/l.poly" -o "$W/l.ele" --check
+expect 0 "removed" -- "$G" cdt2d "$W/l.poly" -o "$W/lh.ele" --hull
+expect 0 "12 segments" -- "$G" cdt2d "$W/l.poly" -o "$W/l.vtu"
+python3 - "$W" <<'PY' || { echo "FAIL: cdt2d areas"; fail=1; }
+import sys
+w = sys.argv[1]
+def area(stem):
+    node = [l.split() for l in open(f"{w}/{stem}.node") if l.strip() and not l.startswith("#")]
+    ele = [l.split() for l in open(f"{w}/{stem}.ele") if l.strip() and not l.startswith("#")]
+    base = int(node[1][0])
+    p = {int(r[0]): (float(r[1]), float(r[2])) for r in node[1:]}
+    a = 0.0
+    for r in ele[1:]:
+        (x0, y0), (x1, y1), (x2, y2) = (p[int(v)] for v in r[1:4])
+        a += ((x1 - x0) * (y2 - y0) - (y1 - y0) * (x2 - x0)) / 2
+    return a
+assert area("l") == 71.0, area("l")
+assert area("lh") == 83.5, area("lh")
+PY
+grep -q 'Name="attribute"' "$W/l.vtu" || { echo "FAIL: cdt2d .vtu has no attribute cell data"; fail=1; }
+python3 -c "import numpy as np; np.save('$W/s.npy', np.array([[0, 1], [1, 2], [2, 0]], dtype=np.int32))"
+printf '0 0\n4 0\n2 3\n2 1\n1 2\n' >"$W/tri.xyz"
+expect 0 "check: valid constrained Delaunay" -- "$G" cdt2d "$W/tri.xyz" --segments "$W/s.npy" --check
+python3 -c "import numpy as np; np.save('$W/x.npy', np.array([[0, 1], [2, 3]], dtype=np.int32))"
+printf '0 0\n2 2\n0 2\n2 0\n' >"$W/x.xyz"
+expect 3 "segments 0 and 1 cross" -- "$G" cdt2d "$W/x.xyz" --segments "$W/x.npy" -o "$W/x.ele"
+[ -e "$W/x.ele" ] && { echo "FAIL: a failed cdt2d left an output file"; fail=1; }
+printf '2 2 0 0\n1 0 0\n2 1 1\n1 0\n1 1 3\n0\n' >"$W/bad.poly"
+expect 3 "bad.poly:5: segment endpoint 3 names no vertex" -- "$G" cdt2d "$W/bad.poly" --check
+expect 2 "needs --segments" -- "$G" cdt2d "$W/tri.xyz" -o "$W/t.ele"
+expect 0 "usage: gpugeom cdt2d" -- "$G" cdt2d --help
 # hull3d: mesh formats, the checker, Qhull-style .npy, errors, no file left on failure
 expect 0 "wrote 5000 ball3d" -- "$G" gen ball3d -n 5000 -o "$W/ball.npy"
 for ext in ply off obj vtu npy; do

@@ -62,6 +62,7 @@ int cmd_edt(const Global& g, Args& a);
 int cmd_cvd(const Global& g, Args& a);
 int cmd_stipple(const Global& g, Args& a);
 int cmd_delaunay2d(const Global& g, Args& a);
+int cmd_cdt2d(const Global& g, Args& a);
 int cmd_hull3d(const Global& g, Args& a);
 int cmd_delaunay3d(const Global& g, Args& a);
 

@@ -122,6 +122,7 @@ static const char* kUsageText =
     "  cvd DENSITY -n N -o P   weighted centroidal Voronoi diagram (Lloyd) of a density\n"
     "  stipple IMG -o OUT.svg  stipple drawing of a photograph (also --png)\n"
     "  delaunay2d P -o MESH    exact 2D Delaunay triangulation (--voronoi, --draw, --check)\n"
+    "  cdt2d IN.poly -o MESH   exact constrained Delaunay (segments, holes, regions; --check)\n"
     "  hull3d P -o MESH        exact 3D convex hull (--check)\n"
     "  delaunay3d P -o MESH    exact 3D Delaunay tetrahedralisation (--check)\n"
     "\n"
@@ -180,8 +181,8 @@ static int run(int argc, char** argv) {
     const bool help = std::find(rest.begin(), rest.end(), "--help") != rest.end() ||
                       std::find(rest.begin(), rest.end(), "-h") != rest.end();
     if (g.backend != Backend::Cpu && !help &&
-        (cmd == "delaunay2d" || cmd == "hull3d" || cmd == "delaunay3d" || cmd == "edt" ||
-         cmd == "cvd" || cmd == "stipple"))
+        (cmd == "delaunay2d" || cmd == "cdt2d" || cmd == "hull3d" || cmd == "delaunay3d" ||
+         cmd == "edt" || cmd == "cvd" || cmd == "stipple"))
       warm.t = std::thread([&warm] {
         const auto t0 = std::chrono::steady_clock::now();
         prepare_device();
@@ -196,6 +197,7 @@ static int run(int argc, char** argv) {
     if (cmd == "cvd") return cmd_cvd(g, a);
     if (cmd == "stipple") return cmd_stipple(g, a);
     if (cmd == "delaunay2d") return cmd_delaunay2d(g, a);
+    if (cmd == "cdt2d") return cmd_cdt2d(g, a);
     if (cmd == "hull3d") return cmd_hull3d(g, a);
     if (cmd == "delaunay3d") return cmd_delaunay3d(g, a);
     throw UsageError("unknown command '" + cmd + "' (try 'gpugeom --help')");

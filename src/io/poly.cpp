@@ -1,0 +1,115 @@
+// Triangle's .poly files: a planar straight-line graph (points, segments, holes, regional
+// attributes). Read serially, line by line; the points may instead come from the .node file of
+// the same name (a vertex count of 0). And segments alone as an int (m, 2) .npy.
+#include <string>
+
+#include "gpugeom/io.hpp"
+#include "io/io_util.hpp"
+
+namespace gpugeom::io {
+namespace detail {
+PointSet parse_node_file(std::string_view b, const std::string& name, int* base);
+}
+using namespace detail;
+
+namespace {
+std::vector<std::string_view> fields(const Lines& l, std::string_view line, std::size_t least,
+                                     const char* expect) {
+  const auto t = split(line);
+  if (t.size() < least) l.fail(std::string("expected '") + expect + "'");
+  return {t.begin(), t.end()};
+}
+}  // namespace
+
+Pslg read_poly(const std::string& path) {
+  FileView file(path);
+  Lines l(file.view(), path);
+  std::string_view line;
+  Pslg g;
+  if (!l.next(line))
+    l.fail("empty file: expected '<#vertices> <dimension> <#attributes> <#markers>'");
+  auto h = fields(l, line, 2, "<#vertices> <dimension> <#attributes> <#markers>");
+  const std::int64_t nv = need_int(l, h[0], "the vertex count");
+  if (need_int(l, h[1], "the dimension") != 2) l.fail("the dimension must be 2");
+  if (nv < 0 || std::uint64_t(nv) > file.view().size()) l.fail("the vertex count is out of range");
+  int base = 0;
+  g.points.dim = 2;
+  if (nv == 0) {  // the points are in the .node file beside it
+    const std::string node = sibling(path, ".node");
+    g.points = detail::parse_node_file(FileView(node).view(), node, &base);
+    if (g.points.dim != 2) parse_fail(node, 1, "the points must be 2D for a .poly file");
+  } else {
+    g.points.coords.resize(2 * std::size_t(nv));
+    for (std::int64_t i = 0; i < nv; ++i) {
+      if (!l.next(line))
+        l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(nv) +
+               " vertices");
+      auto v = fields(l, line, 3, "<index> x y");
+      const std::int64_t idx = need_int(l, v[0], "the vertex index");
+      if (i == 0) {
+        if (idx != 0 && idx != 1) l.fail("the first vertex index must be 0 or 1");
+        base = int(idx);
+      }
+      g.points.coords[2 * std::size_t(i)] = need_double(l, v[1], "a coordinate");
+      g.points.coords[2 * std::size_t(i) + 1] = need_double(l, v[2], "a coordinate");
+    }
+  }
+  const std::int64_t n = std::int64_t(g.points.size());
+  if (!l.next(line)) l.fail("the file ends before the segment count");
+  auto s = fields(l, line, 1, "<#segments> <#markers>");
+  const std::int64_t ns = need_int(l, s[0], "the segment count");
+  if (ns < 0 || std::uint64_t(ns) > file.view().size()) l.fail("the segment count is out of range");
+  g.segments.resize(2 * std::size_t(ns));
+  for (std::int64_t i = 0; i < ns; ++i) {
+    if (!l.next(line))
+      l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(ns) +
+             " segments");
+    auto v = fields(l, line, 3, "<index> <endpoint> <endpoint>");
+    for (int k = 0; k < 2; ++k) {
+      const std::int64_t e = need_int(l, v[1 + k], "an endpoint") - base;
+      if (e < 0 || e >= n)
+        l.fail("segment endpoint " + std::string(v[1 + k]) + " names no vertex (" +
+               std::to_string(base) + ".." + std::to_string(n - 1 + base) + ")");
+      g.segments[2 * std::size_t(i) + k] = std::int32_t(e);
+    }
+  }
+  if (!l.next(line)) l.fail("the file ends before the hole count");
+  const std::int64_t nh = need_int(l, fields(l, line, 1, "<#holes>")[0], "the hole count");
+  if (nh < 0 || std::uint64_t(nh) > file.view().size()) l.fail("the hole count is out of range");
+  for (std::int64_t i = 0; i < nh; ++i) {
+    if (!l.next(line))
+      l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(nh) + " holes");
+    auto v = fields(l, line, 3, "<index> x y");
+    g.holes.push_back(need_double(l, v[1], "a coordinate"));
+    g.holes.push_back(need_double(l, v[2], "a coordinate"));
+  }
+  if (!l.next(line)) return g;  // (regional attributes are optional)
+  const std::int64_t nr = need_int(l, fields(l, line, 1, "<#regions>")[0], "the region count");
+  if (nr < 0 || std::uint64_t(nr) > file.view().size()) l.fail("the region count is out of range");
+  for (std::int64_t i = 0; i < nr; ++i) {
+    if (!l.next(line))
+      l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(nr) + " regions");
+    auto v = fields(l, line, 4, "<index> x y <attribute> [<maximum area>]");
+    for (int k = 1; k <= 3; ++k) g.regions.push_back(need_double(l, v[std::size_t(k)], "a number"));
+  }
+  return g;
+}
+
+std::vector<std::int32_t> read_segments(const std::string& path) {
+  if (path.size() < 4 || path.substr(path.size() - 4) != ".npy")
+    throw Error(ErrorCode::InvalidInput,
+                "cannot read segments from '" + path + "': expected an int (m, 2) .npy");
+  FileView file(path);
+  const NpyArray a = parse_npy(file.view(), path);
+  if (a.shape.size() != 2 || a.shape[1] != 2 || (a.descr[1] != 'i' && a.descr[1] != 'u'))
+    parse_fail(path, 0, "expected an integer array of point index pairs, shape (m, 2)");
+  std::vector<std::int32_t> s(std::size_t(a.shape[0] * 2));
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const std::int64_t v = npy_integer(a, std::int64_t(i), path);
+    if (v < 0 || v > 2147483647) parse_fail(path, 0, "a point index is out of range");
+    s[i] = std::int32_t(v);
+  }
+  return s;
+}
+
+}  // namespace gpugeom::io

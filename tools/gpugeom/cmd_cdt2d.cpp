@@ -1,0 +1,127 @@
+// gpugeom cdt2d: the exact constrained Delaunay triangulation of Triangle's .poly file (points,
+// segments, holes, regional attributes), or of a point file and a segment file.
+#include <iostream>
+
+#include "cli.hpp"
+#include "gpugeom/cdt2d.hpp"
+#include "gpugeom/io.hpp"
+#include "verify.hpp"
+
+namespace gpugeom::cli {
+
+namespace {
+
+const char* kHelp =
+    "usage: gpugeom cdt2d IN.poly -o MESH [--hull] [--check] [--compress] [--ascii]\n"
+    "       gpugeom cdt2d POINTS --segments S.npy -o MESH [--enclosed] [--check]\n\n"
+    "Exact constrained Delaunay triangulation: every segment a chain of edges, every other edge\n"
+    "locally Delaunay. IN.poly is Triangle's format (points, or a .node beside it; segments;\n"
+    "holes; regional attributes); POINTS any 2D point file with --segments an int (m, 2) .npy\n"
+    "of point indices (from 0). Segments through points become chains; two segments crossing\n"
+    "inside both are refused, naming them.\n"
+    "  -o MESH        .ele(+.node) .vtu .vtk .ply .off .obj, or .npy (the int32 triangles);\n"
+    "                 .vtu/.vtk carry the regions' attribute per triangle\n"
+    "  --hull         keep the convex hull's triangles (a .poly's outside is removed by default,\n"
+    "                 as Triangle -p does; -c there)\n"
+    "  --enclosed     remove the outside of the segments for a point file too\n"
+    "  --check        verify the constrained Delaunay triangulation of the hull the output is cut\n"
+    "                 from, with the independent exact checker\n";
+
+}  // namespace
+
+int cmd_cdt2d(const Global& g, Args& a) {
+  if (a.help()) {
+    std::cout << kHelp;
+    return kOk;
+  }
+  std::string out, seg_path;
+  a.value("-o", out) || a.value("--output", out);
+  a.value("--segments", seg_path);
+  const bool hull = a.flag("--hull"), enclosed = a.flag("--enclosed"), check = a.flag("--check");
+  const io::WriteOptions wo = mesh_write_options(a, out);
+  auto pos = a.positionals();
+  if (pos.size() != 1) throw UsageError("expected one .poly or point file (see --help)");
+  if (out.empty() && !check) throw UsageError("nothing to do: give -o MESH or --check");
+  if (hull && enclosed) throw UsageError("--hull and --enclosed exclude each other");
+  io::Pslg in;
+  const bool poly = pos[0].size() > 5 && pos[0].substr(pos[0].size() - 5) == ".poly";
+  {
+    Timer t(g, "read");
+    if (poly) {
+      if (!seg_path.empty()) throw UsageError("a .poly file holds its segments: no --segments");
+      in = io::read_poly(pos[0]);
+    } else {
+      if (seg_path.empty()) throw UsageError("a point file needs --segments S.npy (or give .poly)");
+      in.points = io::read_points(pos[0]);
+      if (in.points.dim != 2)
+        throw Error(ErrorCode::InvalidInput, pos[0] + " holds 3D points: cdt2d needs 2D points");
+      in.segments = io::read_segments(seg_path);
+    }
+  }
+  const std::int64_t n = std::int64_t(in.points.size()), m = std::int64_t(in.segments.size() / 2);
+  Cdt2dOptions opt;
+  opt.backend = g.backend;
+  opt.domain = (poly && !hull) || enclosed ? Cdt2dOptions::Domain::Enclosed
+                                           : Cdt2dOptions::Domain::ConvexHull;
+  for (std::size_t i = 0; i + 1 < in.holes.size(); i += 2)
+    opt.holes.push_back({in.holes[i], in.holes[i + 1]});
+  for (std::size_t i = 0; i + 2 < in.regions.size(); i += 3)
+    opt.regions.push_back({in.regions[i], in.regions[i + 1], in.regions[i + 2]});
+  ConstrainedTriangulation2d r;
+  {
+    Timer t(g, "triangulate");
+    r = cdt2d(in.points.coords.data(), n, in.segments.data(), m, opt);
+  }
+  if (!g.quiet) {
+    std::cout << n << " points, " << m << " segments";
+    if (r.zero_length_segments + r.repeated_segments)
+      std::cout << " (" << r.zero_length_segments << " zero-length, " << r.repeated_segments
+                << " repeated: dropped)";
+    std::cout << " -> " << r.num_triangles() << " triangles";
+    if (r.removed_triangles) std::cout << " (" << r.removed_triangles << " removed)";
+    std::cout << " on " << backend_name(r.stats.backend) << "\n";
+    if (g.verbose) print_stats(r.stats);
+  }
+  int status = kOk;
+  if (check) {
+    Timer t(g, "check");
+    Cdt2dOptions whole = opt;  // the triangulation of the hull the output is cut from
+    whole.domain = Cdt2dOptions::Domain::ConvexHull;
+    whole.holes.clear();
+    whole.regions.clear();
+    const auto w = cdt2d(in.points.coords.data(), n, in.segments.data(), m, whole);
+    std::vector<std::int32_t> segs;
+    for (std::size_t s = 0; s < in.segments.size(); s += 2) {
+      std::int32_t u = in.segments[s], v = in.segments[s + 1];
+      if (w.duplicate_of[u] >= 0) u = w.duplicate_of[u];
+      if (w.duplicate_of[v] >= 0) v = w.duplicate_of[v];
+      if (u != v) segs.insert(segs.end(), {u, v});
+    }
+    const auto rep = verify::check_constrained_delaunay2d(
+        in.points.coords.data(), n, w.triangles.data(), std::int64_t(w.num_triangles()),
+        segs.data(), std::int64_t(segs.size() / 2), w.duplicate_of.data());
+    if (!rep.ok) {
+      std::cerr << "INVALID cdt2d: " << rep.message << "\n";
+      status = kCheckFailed;
+    } else if (!g.quiet) {
+      std::cout << "check: valid constrained Delaunay triangulation\n";
+    }
+  }
+  if (!out.empty()) {
+    Timer t(g, "write");
+    io::Mesh mesh;
+    mesh.dim = 2;
+    mesh.cell_size = 3;
+    mesh.coords = std::move(in.points.coords);
+    mesh.cells = std::move(r.triangles);
+    mesh.point_data.push_back(io::make_data_array("duplicate_of", io::ScalarType::I32, 1,
+                                                  r.duplicate_of.data(), r.duplicate_of.size()));
+    if (!r.attribute.empty())
+      mesh.cell_data.push_back(io::make_data_array("attribute", io::ScalarType::F64, 1,
+                                                   r.attribute.data(), r.attribute.size()));
+    io::write_mesh(out, mesh, wo);
+  }
+  return status;
+}
+
+}  // namespace gpugeom::cli
