@@ -119,6 +119,8 @@ void write_text(const std::string& path, const std::string& text);
 PointSet parse_points(std::string_view bytes, const std::string& ext, const std::string& name);
 Mesh parse_mesh(std::string_view bytes, const std::string& ext, const std::string& name);
 Grid parse_grid(const std::string& bytes, const std::string& ext, const std::string& name);
+// A .poly file's text; name is its path (a .node beside it is read where it lists no points).
+Pslg parse_poly(std::string_view text, const std::string& name);
 
 // Lower-case extension with the dot, e.g. ".ply".
 std::string extension(const std::string& path);

@@ -23,7 +23,11 @@ std::vector<std::string_view> fields(const Lines& l, std::string_view line, std:
 
 Pslg read_poly(const std::string& path) {
   FileView file(path);
-  Lines l(file.view(), path);
+  return parse_poly(file.view(), path);
+}
+
+Pslg parse_poly(std::string_view text, const std::string& path) {
+  Lines l(text, path);
   std::string_view line;
   Pslg g;
   if (!l.next(line))
@@ -31,7 +35,7 @@ Pslg read_poly(const std::string& path) {
   auto h = fields(l, line, 2, "<#vertices> <dimension> <#attributes> <#markers>");
   const std::int64_t nv = need_int(l, h[0], "the vertex count");
   if (need_int(l, h[1], "the dimension") != 2) l.fail("the dimension must be 2");
-  if (nv < 0 || std::uint64_t(nv) > file.view().size()) l.fail("the vertex count is out of range");
+  if (nv < 0 || std::uint64_t(nv) > text.size()) l.fail("the vertex count is out of range");
   int base = 0;
   g.points.dim = 2;
   if (nv == 0) {  // the points are in the .node file beside it
@@ -58,7 +62,7 @@ Pslg read_poly(const std::string& path) {
   if (!l.next(line)) l.fail("the file ends before the segment count");
   auto s = fields(l, line, 1, "<#segments> <#markers>");
   const std::int64_t ns = need_int(l, s[0], "the segment count");
-  if (ns < 0 || std::uint64_t(ns) > file.view().size()) l.fail("the segment count is out of range");
+  if (ns < 0 || std::uint64_t(ns) > text.size()) l.fail("the segment count is out of range");
   g.segments.resize(2 * std::size_t(ns));
   for (std::int64_t i = 0; i < ns; ++i) {
     if (!l.next(line))
@@ -75,7 +79,7 @@ Pslg read_poly(const std::string& path) {
   }
   if (!l.next(line)) l.fail("the file ends before the hole count");
   const std::int64_t nh = need_int(l, fields(l, line, 1, "<#holes>")[0], "the hole count");
-  if (nh < 0 || std::uint64_t(nh) > file.view().size()) l.fail("the hole count is out of range");
+  if (nh < 0 || std::uint64_t(nh) > text.size()) l.fail("the hole count is out of range");
   for (std::int64_t i = 0; i < nh; ++i) {
     if (!l.next(line))
       l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(nh) + " holes");
@@ -85,7 +89,7 @@ Pslg read_poly(const std::string& path) {
   }
   if (!l.next(line)) return g;  // (regional attributes are optional)
   const std::int64_t nr = need_int(l, fields(l, line, 1, "<#regions>")[0], "the region count");
-  if (nr < 0 || std::uint64_t(nr) > file.view().size()) l.fail("the region count is out of range");
+  if (nr < 0 || std::uint64_t(nr) > text.size()) l.fail("the region count is out of range");
   for (std::int64_t i = 0; i < nr; ++i) {
     if (!l.next(line))
       l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(nr) + " regions");
