@@ -173,6 +173,10 @@ assert area("l") == 71.0, area("l")
 assert area("lh") == 83.5, area("lh")
 PY
 grep -q 'Name="attribute"' "$W/l.vtu" || { echo "FAIL: cdt2d .vtu has no attribute cell data"; fail=1; }
+expect 0 "12 segments" -- "$G" cdt2d "$W/l.poly" --draw "$W/l.svg"
+grep -q 'stroke="#15c"' "$W/l.svg" || { echo "FAIL: cdt2d drawing has no segments"; fail=1; }
+expect 0 "12 segments" -- "$G" cdt2d "$W/l.poly" --draw "$W/l.png"
+[ -s "$W/l.png" ] || { echo "FAIL: cdt2d PNG"; fail=1; }
 python3 -c "import numpy as np; np.save('$W/s.npy', np.array([[0, 1], [1, 2], [2, 0]], dtype=np.int32))"
 printf '0 0\n4 0\n2 3\n2 1\n1 2\n' >"$W/tri.xyz"
 expect 0 "check: valid constrained Delaunay" -- "$G" cdt2d "$W/tri.xyz" --segments "$W/s.npy" --check

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli.hpp"
+#include "draw2d.hpp"
 #include "gpugeom/cdt2d.hpp"
 #include "gpugeom/io.hpp"
 #include "verify.hpp"
@@ -12,7 +13,7 @@ namespace gpugeom::cli {
 namespace {
 
 const char* kHelp =
-    "usage: gpugeom cdt2d IN.poly -o MESH [--hull] [--check] [--compress] [--ascii]\n"
+    "usage: gpugeom cdt2d IN.poly -o MESH [--hull] [--check] [--draw F] [--compress] [--ascii]\n"
     "       gpugeom cdt2d POINTS --segments S.npy -o MESH [--enclosed] [--check]\n\n"
     "Exact constrained Delaunay triangulation: every segment a chain of edges, every other edge\n"
     "locally Delaunay. IN.poly is Triangle's format (points, or a .node beside it; segments;\n"
@@ -24,6 +25,7 @@ const char* kHelp =
     "  --hull         keep the convex hull's triangles (a .poly's outside is removed by default,\n"
     "                 as Triangle -p does; -c there)\n"
     "  --enclosed     remove the outside of the segments for a point file too\n"
+    "  --draw F       draw it as SVG or PNG, the segments' edges in blue\n"
     "  --check        verify the constrained Delaunay triangulation of the hull the output is cut\n"
     "                 from, with the independent exact checker\n";
 
@@ -34,14 +36,16 @@ int cmd_cdt2d(const Global& g, Args& a) {
     std::cout << kHelp;
     return kOk;
   }
-  std::string out, seg_path;
+  std::string out, seg_path, draw;
   a.value("-o", out) || a.value("--output", out);
+  a.value("--draw", draw);
   a.value("--segments", seg_path);
   const bool hull = a.flag("--hull"), enclosed = a.flag("--enclosed"), check = a.flag("--check");
   const io::WriteOptions wo = mesh_write_options(a, out);
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one .poly or point file (see --help)");
-  if (out.empty() && !check) throw UsageError("nothing to do: give -o MESH or --check");
+  if (out.empty() && !check && draw.empty())
+    throw UsageError("nothing to do: give -o MESH, --draw F or --check");
   if (hull && enclosed) throw UsageError("--hull and --enclosed exclude each other");
   io::Pslg in;
   const bool poly = pos[0].size() > 5 && pos[0].substr(pos[0].size() - 5) == ".poly";
@@ -106,6 +110,14 @@ int cmd_cdt2d(const Global& g, Args& a) {
     } else if (!g.quiet) {
       std::cout << "check: valid constrained Delaunay triangulation\n";
     }
+  }
+  if (!draw.empty()) {
+    Timer t(g, "draw");
+    Triangulation2d tri;  // the drawing's view of the result
+    tri.triangles.assign(r.triangles.begin(), r.triangles.end());
+    tri.neighbors.assign(r.neighbors.begin(), r.neighbors.end());
+    tri.triangle_count = std::int64_t(r.num_triangles());
+    draw_triangulation(draw, in.points.coords, tri, nullptr, r.segment_of.data());
   }
   if (!out.empty()) {
     Timer t(g, "write");

@@ -51,8 +51,20 @@ void each_edge(const Triangulation2d& tri, F f) {  // every edge once
     }
 }
 
+template <class F>
+void each_marked_edge(const Triangulation2d& tri, const std::int32_t* marks, F f) {
+  if (!marks) return;
+  const std::size_t nt = tri.num_triangles();
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t o = tri.neighbors[3 * t + k];
+      if (marks[3 * t + k] < 0 || (o >= 0 && std::size_t(o) < t)) continue;
+      f(tri.triangles[3 * t + (k + 1) % 3], tri.triangles[3 * t + (k + 2) % 3]);
+    }
+}
+
 void svg(const std::string& path, const HostVector<double>& xy, const Triangulation2d& tri,
-         const ClippedCells* cells, const View& v) {
+         const ClippedCells* cells, const std::int32_t* marks, const View& v) {
   std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   char buf[160];
   std::snprintf(buf, sizeof buf,
@@ -67,6 +79,15 @@ void svg(const std::string& path, const HostVector<double>& xy, const Triangulat
     s += buf;
   });
   s += "</g>\n";
+  if (marks) {
+    s += "<g stroke=\"#15c\" stroke-width=\"1.6\" fill=\"none\">\n";
+    each_marked_edge(tri, marks, [&](std::int32_t a, std::int32_t b) {
+      std::snprintf(buf, sizeof buf, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
+                    v.px(xy[2 * a]), v.py(xy[2 * a + 1]), v.px(xy[2 * b]), v.py(xy[2 * b + 1]));
+      s += buf;
+    });
+    s += "</g>\n";
+  }
   if (cells) {
     s += "<g stroke=\"#d22\" stroke-width=\"0.8\" fill=\"none\">\n";
     for (std::size_t i = 0; i + 1 < cells->offsets.size(); ++i) {
@@ -127,11 +148,17 @@ struct Canvas {
 };
 
 void png(const std::string& path, const HostVector<double>& xy, const Triangulation2d& tri,
-         const ClippedCells* cells, const View& v) {
+         const ClippedCells* cells, const std::int32_t* marks, const View& v) {
   Canvas cv(v.width, v.height);
-  const float grey[3] = {0.55f, 0.55f, 0.55f}, red[3] = {0.85f, 0.12f, 0.12f}, black[3] = {0, 0, 0};
+  const float grey[3] = {0.55f, 0.55f, 0.55f}, red[3] = {0.85f, 0.12f, 0.12f}, black[3] = {0, 0, 0},
+              blue[3] = {0.08f, 0.33f, 0.8f};
   each_edge(tri, [&](std::int32_t a, std::int32_t b) {
     cv.line(v.px(xy[2 * a]), v.py(xy[2 * a + 1]), v.px(xy[2 * b]), v.py(xy[2 * b + 1]), grey);
+  });
+  each_marked_edge(tri, marks, [&](std::int32_t a, std::int32_t b) {
+    for (double off : {-0.5, 0.0, 0.5})  // three lines: about 1.5 pixels wide
+      cv.line(v.px(xy[2 * a]) + off, v.py(xy[2 * a + 1]) + off, v.px(xy[2 * b]) + off,
+              v.py(xy[2 * b + 1]) + off, blue);
   });
   if (cells)
     for (std::size_t i = 0; i + 1 < cells->offsets.size(); ++i) {
@@ -156,15 +183,16 @@ void png(const std::string& path, const HostVector<double>& xy, const Triangulat
 }  // namespace
 
 void draw_triangulation(const std::string& path, const HostVector<double>& xy,
-                        const Triangulation2d& tri, const ClippedCells* cells) {
+                        const Triangulation2d& tri, const ClippedCells* cells,
+                        const std::int32_t* marks) {
   const std::string ext = io::extension(path);
   if (ext != ".svg" && ext != ".png")
     throw UsageError("--draw writes .svg or .png, not '" + ext + "'");
   const View v(grown_box(xy, 0.05), 1600);
   if (ext == ".svg")
-    svg(path, xy, tri, cells, v);
+    svg(path, xy, tri, cells, marks, v);
   else
-    png(path, xy, tri, cells, v);
+    png(path, xy, tri, cells, marks, v);
 }
 
 }  // namespace gpugeom::cli

@@ -11,9 +11,12 @@ namespace gpugeom::cli {
 // {xmin, ymin, xmax, ymax}.
 std::vector<double> grown_box(const HostVector<double>& xy, double frac);
 
-// Triangles in grey, points in black, clipped Voronoi cells (optional) in red. The format
-// follows the extension: .svg or .png (1600 pixels on the longer side).
+// Triangles in grey, points in black, clipped Voronoi cells (optional) in red, and the edges
+// whose mark is not negative (marks: 3 per triangle, the edge opposite vertex k; optional:
+// the constraints of a constrained triangulation) in blue. The format follows the extension:
+// .svg or .png (1600 pixels on the longer side).
 void draw_triangulation(const std::string& path, const HostVector<double>& xy,
-                        const Triangulation2d& tri, const ClippedCells* cells);
+                        const Triangulation2d& tri, const ClippedCells* cells,
+                        const std::int32_t* marks = nullptr);
 
 }  // namespace gpugeom::cli
