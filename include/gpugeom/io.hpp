@@ -100,6 +100,9 @@ struct Pslg {
   std::vector<double> holes, regions;
 };
 Pslg read_poly(const std::string& path);
+// Writes g as a .poly file (points inline, indices from 0); markers, when given, one boundary
+// marker per segment.
+void write_poly(const std::string& path, const Pslg& g, const std::int32_t* markers = nullptr);
 // Segments as an int (m, 2) .npy of point indices (from 0).
 std::vector<std::int32_t> read_segments(const std::string& path);
 

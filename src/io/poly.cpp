@@ -99,6 +99,48 @@ Pslg parse_poly(std::string_view text, const std::string& path) {
   return g;
 }
 
+void write_poly(const std::string& path, const Pslg& g, const std::int32_t* markers) {
+  const std::size_t n = g.points.size(), m = g.segments.size() / 2;
+  if (g.points.dim != 2) throw Error(ErrorCode::InvalidArgument, "a .poly file holds 2D points");
+  std::string out = "# written by gpugeom; indices from 0\n";
+  out += std::to_string(n) + " 2 0 0\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    append_int(out, std::int64_t(i));
+    for (int d = 0; d < 2; ++d) {
+      out += ' ';
+      append_double(out, g.points.coords[2 * i + std::size_t(d)]);
+    }
+    out += '\n';
+  }
+  out += std::to_string(m) + (markers ? " 1\n" : " 0\n");
+  for (std::size_t i = 0; i < m; ++i) {
+    out += std::to_string(i) + " " + std::to_string(g.segments[2 * i]) + " " +
+           std::to_string(g.segments[2 * i + 1]);
+    if (markers) out += " " + std::to_string(markers[i]);
+    out += '\n';
+  }
+  out += std::to_string(g.holes.size() / 2) + "\n";
+  for (std::size_t i = 0; i + 1 < g.holes.size(); i += 2) {
+    out += std::to_string(i / 2) + " ";
+    append_double(out, g.holes[i]);
+    out += ' ';
+    append_double(out, g.holes[i + 1]);
+    out += '\n';
+  }
+  if (!g.regions.empty()) {
+    out += std::to_string(g.regions.size() / 3) + "\n";
+    for (std::size_t i = 0; i + 2 < g.regions.size(); i += 3) {
+      out += std::to_string(i / 3);
+      for (int k = 0; k < 3; ++k) {
+        out += ' ';
+        append_double(out, g.regions[i + std::size_t(k)]);
+      }
+      out += " -1\n";
+    }
+  }
+  write_text(path, out);
+}
+
 std::vector<std::int32_t> read_segments(const std::string& path) {
   if (path.size() < 4 || path.substr(path.size() - 4) != ".npy")
     throw Error(ErrorCode::InvalidInput,

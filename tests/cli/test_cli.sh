@@ -177,6 +177,10 @@ expect 0 "12 segments" -- "$G" cdt2d "$W/l.poly" --draw "$W/l.svg"
 grep -q 'stroke="#15c"' "$W/l.svg" || { echo "FAIL: cdt2d drawing has no segments"; fail=1; }
 expect 0 "12 segments" -- "$G" cdt2d "$W/l.poly" --draw "$W/l.png"
 [ -s "$W/l.png" ] || { echo "FAIL: cdt2d PNG"; fail=1; }
+# its segment edges as a .poly, triangulated again: the same triangles
+expect 0 "12 segments" -- "$G" cdt2d "$W/l.poly" -o "$W/l2.ele" --poly "$W/edges.poly"
+expect 0 "13 triangles" -- "$G" cdt2d "$W/edges.poly" -o "$W/l3.ele" --check
+cmp -s "$W/l2.ele" "$W/l3.ele" || { echo "FAIL: cdt2d of its own .poly differs"; fail=1; }
 python3 -c "import numpy as np; np.save('$W/s.npy', np.array([[0, 1], [1, 2], [2, 0]], dtype=np.int32))"
 printf '0 0\n4 0\n2 3\n2 1\n1 2\n' >"$W/tri.xyz"
 expect 0 "check: valid constrained Delaunay" -- "$G" cdt2d "$W/tri.xyz" --segments "$W/s.npy" --check

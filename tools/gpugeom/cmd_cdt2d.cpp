@@ -13,7 +13,8 @@ namespace gpugeom::cli {
 namespace {
 
 const char* kHelp =
-    "usage: gpugeom cdt2d IN.poly -o MESH [--hull] [--check] [--draw F] [--compress] [--ascii]\n"
+    "usage: gpugeom cdt2d IN.poly -o MESH [--hull] [--check] [--draw F] [--poly OUT.poly]\n"
+    "                     [--compress] [--ascii]\n"
     "       gpugeom cdt2d POINTS --segments S.npy -o MESH [--enclosed] [--check]\n\n"
     "Exact constrained Delaunay triangulation: every segment a chain of edges, every other edge\n"
     "locally Delaunay. IN.poly is Triangle's format (points, or a .node beside it; segments;\n"
@@ -26,6 +27,8 @@ const char* kHelp =
     "                 as Triangle -p does; -c there)\n"
     "  --enclosed     remove the outside of the segments for a point file too\n"
     "  --draw F       draw it as SVG or PNG, the segments' edges in blue\n"
+    "  --poly F       the result's segment edges as a .poly file (marker: input segment + 1),\n"
+    "                 with the points, holes and regions\n"
     "  --check        verify the constrained Delaunay triangulation of the hull the output is cut\n"
     "                 from, with the independent exact checker\n";
 
@@ -36,16 +39,17 @@ int cmd_cdt2d(const Global& g, Args& a) {
     std::cout << kHelp;
     return kOk;
   }
-  std::string out, seg_path, draw;
+  std::string out, seg_path, draw, poly_out;
   a.value("-o", out) || a.value("--output", out);
   a.value("--draw", draw);
+  a.value("--poly", poly_out);
   a.value("--segments", seg_path);
   const bool hull = a.flag("--hull"), enclosed = a.flag("--enclosed"), check = a.flag("--check");
   const io::WriteOptions wo = mesh_write_options(a, out);
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one .poly or point file (see --help)");
-  if (out.empty() && !check && draw.empty())
-    throw UsageError("nothing to do: give -o MESH, --draw F or --check");
+  if (out.empty() && !check && draw.empty() && poly_out.empty())
+    throw UsageError("nothing to do: give -o MESH, --draw F, --poly F or --check");
   if (hull && enclosed) throw UsageError("--hull and --enclosed exclude each other");
   io::Pslg in;
   const bool poly = pos[0].size() > 5 && pos[0].substr(pos[0].size() - 5) == ".poly";
@@ -118,6 +122,22 @@ int cmd_cdt2d(const Global& g, Args& a) {
     tri.neighbors.assign(r.neighbors.begin(), r.neighbors.end());
     tri.triangle_count = std::int64_t(r.num_triangles());
     draw_triangulation(draw, in.points.coords, tri, nullptr, r.segment_of.data());
+  }
+  if (!poly_out.empty()) {
+    Timer t(g, "write");
+    io::Pslg edges;  // each segment edge once, marked with its input segment + 1
+    edges.points = in.points;
+    edges.holes = in.holes;
+    edges.regions = in.regions;
+    std::vector<std::int32_t> marks;
+    for (std::size_t i = 0; i < r.segment_of.size(); ++i) {
+      const std::int32_t o = r.neighbors[i];
+      if (r.segment_of[i] < 0 || (o >= 0 && std::size_t(o) < i / 3)) continue;
+      edges.segments.push_back(r.triangles[i - i % 3 + (i % 3 + 1) % 3]);
+      edges.segments.push_back(r.triangles[i - i % 3 + (i % 3 + 2) % 3]);
+      marks.push_back(r.segment_of[i] + 1);
+    }
+    io::write_poly(poly_out, edges, marks.data());
   }
   if (!out.empty()) {
     Timer t(g, "write");
