@@ -85,9 +85,9 @@ struct EdtResult {
 // 2^31-1), extents above 65536 (3D) or 131072 (2D), or labels asked for more than 2^31-1
 // sites; Error(OutOfMemory) before any launch for a whole volume whose arrays cannot fit the
 // device (use slices: they hold the sites' list, 8 B a site, 12 with labels, and blocks of
-// slices), or for slices whose sites' list cannot. The grid is read where it is: on the CUDA executor its bytes go to the
-// device as they are (the rule is applied there), so a uint8 or bool grid costs its size over the
-// bus.
+// slices), or for slices whose sites' list cannot. The grid is read where it is: on the CUDA
+// executor its bytes go to the device as they are (the rule is applied there), so a uint8 or bool
+// grid costs its size over the bus.
 EdtResult distance_transform(const GridView& grid, SiteRule rule, const EdtOptions& opt = {});
 EdtResult distance_transform(const io::Grid& grid, SiteRule rule, const EdtOptions& opt = {});
 // Sites given by coordinates (ndim per site, C order). Duplicates keep the lower index.

@@ -185,6 +185,8 @@ TEST(Cdt2d, HolesOutsideAndRegions) {
 
 #include <array>
 
+#include "../delaunay2d/del2d_cases.hpp"
+
 // Points in general position: the constrained Delaunay triangulation is unique, so the triangle
 // sets must equal CGAL's Constrained_Delaunay_triangulation_2 (random PSLGs, exact predicates).
 TEST(Cdt2d, SameAsCgal) {
@@ -194,11 +196,6 @@ TEST(Cdt2d, SameAsCgal) {
   using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
   using CDT = CGAL::Constrained_Delaunay_triangulation_2<
       K, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
-  auto canon = [](std::int32_t a, std::int32_t b, std::int32_t c) {
-    if (b < a && b < c) return std::array<std::int32_t, 3>{b, c, a};
-    if (c < a && c < b) return std::array<std::int32_t, 3>{c, a, b};
-    return std::array<std::int32_t, 3>{a, b, c};
-  };
   for (unsigned seed : {11u, 12u})
     for (std::int64_t n : {100, 5000}) {
       const auto g = gg_cdt::random_pslg(n, n / 3, seed);
@@ -211,14 +208,12 @@ TEST(Cdt2d, SameAsCgal) {
       }
       for (std::size_t s = 0; s < g.segs.size(); s += 2)
         cdt.insert_constraint(vh[std::size_t(g.segs[s])], vh[std::size_t(g.segs[s + 1])]);
-      std::vector<std::array<std::int32_t, 3>> ref, got;
+      std::vector<std::int32_t> faces;
       for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
-        ref.push_back(canon(f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()));
+        for (int k = 0; k < 3; ++k) faces.push_back(f->vertex(k)->info());
       const auto r = run(g);
-      for (std::size_t i = 0; i < r.num_triangles(); ++i)
-        got.push_back(canon(r.triangles[3 * i], r.triangles[3 * i + 1], r.triangles[3 * i + 2]));
-      std::sort(ref.begin(), ref.end());
-      std::sort(got.begin(), got.end());
+      const auto ref = gg_del2d::triangle_set(faces.data(), faces.size() / 3);
+      const auto got = gg_del2d::triangle_set(r.triangles.data(), r.num_triangles());
       EXPECT_EQ(got, ref);
     }
 }

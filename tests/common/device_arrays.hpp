@@ -23,6 +23,7 @@ class DeviceCopy {
   DeviceCopy(const DeviceCopy&) = delete;
   DeviceCopy& operator=(const DeviceCopy&) = delete;
   const double* doubles() const { return static_cast<const double*>(p_); }
+  void* data() const { return p_; }
 
  private:
   void* p_ = nullptr;

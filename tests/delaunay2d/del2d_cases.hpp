@@ -155,15 +155,19 @@ inline void expect_valid(const std::vector<Point2>& pts, const Triangulation2d& 
 
 // Triangles as a canonical set (each rotated to start at its smallest index), to compare
 // triangulations whose order differs.
-inline std::vector<std::array<std::int32_t, 3>> triangle_set(const Triangulation2d& t) {
-  std::vector<std::array<std::int32_t, 3>> s(std::size_t(t.num_triangles()));
+inline std::vector<std::array<std::int32_t, 3>> triangle_set(const std::int32_t* tris,
+                                                             std::size_t nt) {
+  std::vector<std::array<std::int32_t, 3>> s(nt);
   for (std::size_t c = 0; c < s.size(); ++c) {
-    const std::int32_t* v = t.triangles.data() + 3 * c;
+    const std::int32_t* v = tris + 3 * c;
     const int k = v[0] < v[1] ? (v[0] < v[2] ? 0 : 2) : (v[1] < v[2] ? 1 : 2);
     s[c] = {v[k], v[(k + 1) % 3], v[(k + 2) % 3]};
   }
   std::sort(s.begin(), s.end());
   return s;
+}
+inline std::vector<std::array<std::int32_t, 3>> triangle_set(const Triangulation2d& t) {
+  return triangle_set(t.triangles.data(), std::size_t(t.num_triangles()));
 }
 
 }  // namespace gg_del2d

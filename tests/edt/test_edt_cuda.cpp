@@ -14,6 +14,7 @@
 
 #include "edt/edt_backend.hpp"
 #include "exec/cuda_device.hpp"
+#include "../common/device_arrays.hpp"
 #include "edt_cases.hpp"
 
 using namespace gpugeom;
@@ -455,18 +456,13 @@ TEST(CudaEdt, SliceBlocksSameAsCpu) {
         }
       so.tiles = -1;
       so.slice_block = 0;
-      void* dg = nullptr;
-      ASSERT_EQ(cudaMalloc(&dg, g.data.size()), cudaSuccess);
-      ASSERT_EQ(cudaMemcpy(dg, g.data.data(), g.data.size(), cudaMemcpyHostToDevice), cudaSuccess);
+      const gg_test::DeviceCopy dg(g.data);
       GridView v;
-      v.data = dg;
+      v.data = dg.data();
       v.shape = c.shape;
       const auto dev = distance_transform_device(v, SiteRule::NonZero, so);
-      std::vector<std::int32_t> dl(static_cast<std::size_t>(dev.count()));
-      ASSERT_EQ(cudaMemcpy(dl.data(), dev.labels.get(), dl.size() * 4, cudaMemcpyDeviceToHost),
-                cudaSuccess);
-      EXPECT_EQ(dl, want.labels) << "device grid, packing " << packing;
-      ASSERT_EQ(cudaFree(dg), cudaSuccess);
+      EXPECT_EQ(gg_test::from_device(dev.labels, dev.count()), want.labels)
+          << "device grid, packing " << packing;
     }
   }
 }
