@@ -1,20 +1,22 @@
 // Exact 2D constrained Delaunay triangulation of points and segments (issue 21).
 //
-// The triangulation starts from the exact Delaunay triangulation (delaunay2d.hpp, on the
-// executor opt picks); every segment is then made a chain of edges by flipping the edges it
-// crosses, and the edges on no segment are flipped until each is locally Delaunay (exact
-// in-circle; cocircular points allowed either way). The result is the constrained Delaunay
-// triangulation of the convex hull: every segment is a union of edges, and every other edge is
-// locally Delaunay. A segment through other input points is the chain of edges between them.
+// The triangulation starts from the exact Delaunay triangulation (delaunay2d.hpp), on the
+// executor opt picks, where the segments are then recovered in parallel rounds: each missing
+// piece of a segment (up to the next input point on it) removes the triangles it crosses, and
+// the two polygons left on its sides are triangulated again by the empty-circle rule (exact
+// in-circle); pieces whose cavities share no triangle, nor a triangle beside one, are rebuilt in
+// the same round. The result is the constrained Delaunay triangulation of the convex hull: every
+// segment is a union of edges, and every other edge is locally Delaunay (cocircular points
+// allowed either way). A segment through other input points is the chain of edges between them.
+// The result is the same on every executor and thread count.
 //
 // Holes and the domain's outside are removed as Triangle does for a .poly file: the triangles
 // reachable from a hole's point without crossing a segment go, and with Domain::Enclosed also
 // those reachable from outside the convex hull; region points carry an attribute to the
 // triangles they reach.
 //
-// This first version recovers the segments on the host threads, one after another (the
-// parallel recovery by rounds of flips is the next step); segments that cross each other are
-// refused, naming both (splitting them at their intersection is the next step too).
+// Segments that cross each other at a point inside both are refused, naming both (splitting
+// them at their intersection is not done yet).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -65,9 +67,11 @@ struct ConstrainedTriangulation2d {
   // Triangles removed as holes or outside the domain (they are not in the arrays above, whose
   // neighbours across a removed triangle are -1).
   std::int64_t removed_triangles = 0;
-  // Phases "delaunay" and "constraints"; counters "segments", "segments_present" (edges of the
-  // Delaunay triangulation already), "segments_recovered" (by flips), "segment_pieces" (edges
-  // on segments), "recovery_flips", "delaunay_flips", with delaunay2d's counters.
+  // Phases "delaunay", "segments", "to_host" (and "domain" with holes, regions or Enclosed);
+  // counters "segments", "segments_present" (chains of Delaunay edges already),
+  // "segments_recovered" (by rebuilding cavities), "segment_pieces" (edges on segments),
+  // "cavity_triangles" (triangles rebuilt), "cavity_antennas" (edges off a segment with both
+  // triangles in its cavity), "recovery_rounds", with delaunay2d's counters.
   Stats stats;
   std::size_t num_triangles() const { return triangles.size() / 3; }
 };

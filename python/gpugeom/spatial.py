@@ -348,14 +348,14 @@ class ConstrainedDelaunay:
         "hull" keeps the convex hull's triangles (less holes); "enclosed" also removes those
         outside the segments, reachable from the hull (Triangle's default for ``.poly`` files).
     backend : {"auto", "cuda", "cpu"}
-        Where the Delaunay triangulation runs (the segments are then recovered on the host).
+        Where the triangulation and the segments' recovery run.
 
     Attributes
     ----------
     points, segments, simplices (ntri, 3, counter-clockwise), neighbors (-1 across the
     boundary), segment_of (ntri, 3: the segment edge k, opposite vertex k, lies on, or -1),
     attributes (ntri, or None), duplicate_of, stats (its counters: segments_present,
-    segments_recovered, recovery_flips, delaunay_flips, zero_length_segments,
+    segments_recovered, cavity_triangles, recovery_rounds, zero_length_segments,
     repeated_segments, removed_triangles, ...).
     """
 

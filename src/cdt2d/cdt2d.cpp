@@ -1,25 +1,30 @@
-// Public entry of the 2D constrained Delaunay triangulation: the Delaunay triangulation on the
-// executor opt picks, then the segments recovered and the Delaunay property restored on the
-// host (cdt_mesh.hpp), then holes, the outside and regions (domain.hpp).
+// Public entry of the 2D constrained Delaunay triangulation: checks the input, runs the Delaunay
+// triangulation and the segment recovery on the executor opt picks (cdt2d_backend.hpp), then
+// removes holes and the outside and spreads regions on the host (domain.hpp).
 #include "gpugeom/cdt2d.hpp"
 
 #include <cmath>
 #include <string>
-#include <unordered_set>
+#include <utility>
 
 #include "base/clock.hpp"
-#include "cdt2d/cdt_mesh.hpp"
+#include "cdt2d/cdt2d_backend.hpp"
 #include "cdt2d/domain.hpp"
-#include "gpugeom/delaunay2d.hpp"
+#include "delaunay2d/del2d_backend.hpp"
+#include "exec/dispatch.hpp"
 
 namespace gpugeom {
 
 ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
                                  std::int64_t nseg, const Cdt2dOptions& opt) {
+  del2d::check_count(n);
   if (nseg < 0 || (nseg > 0 && !segments))
     throw Error(ErrorCode::InvalidArgument,
                 "segments: " + std::to_string(nseg) + " pairs given" +
                     (nseg > 0 ? " but the pointer is null" : ": the count must not be negative"));
+  if (nseg > (std::int64_t(1) << 31) - 2)
+    throw Error(ErrorCode::InvalidInput, "too many segments (" + std::to_string(nseg) +
+                                             "): at most 2^31 - 2 per triangulation");
   for (const auto& h : opt.holes)
     if (!std::isfinite(h.x) || !std::isfinite(h.y))
       throw Error(ErrorCode::InvalidInput, "a hole point is not finite");
@@ -32,49 +37,28 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
                                                std::to_string(segments[k]) + ", outside 0.." +
                                                std::to_string(n - 1));
   ConstrainedTriangulation2d r;
-  Delaunay2dOptions dopt;
-  static_cast<RunOptions&>(dopt) = opt;
-  Triangulation2d dt = delaunay2d(xy, n, dopt);
-  r.stats = dt.stats;
-  double total = 0;
-  for (const auto& ph : dt.stats.phase_ms) total += ph.second;
-  r.stats.phase_ms = {{"delaunay", total}};
-  const auto t0 = Clock::now();
-  const std::int32_t* dup = dt.duplicate_of.data();
-  cdt::CdtMesh mesh(xy, n, std::vector<std::int32_t>(dt.triangles.begin(), dt.triangles.end()),
-                    std::vector<std::int32_t>(dt.neighbors.begin(), dt.neighbors.end()));
-  std::unordered_set<std::uint64_t> seen;
-  std::int64_t present = 0, recovered = 0;
-  for (std::int64_t k = 0; k < nseg; ++k) {
-    std::int32_t a = segments[2 * k], b = segments[2 * k + 1];
-    if (dup[a] >= 0) a = dup[a];  // the point used for a repeated one
-    if (dup[b] >= 0) b = dup[b];
-    if (a == b) {
-      ++r.zero_length_segments;
-      continue;
-    }
-    const std::uint64_t key = a < b ? (std::uint64_t(a) << 32 | std::uint32_t(b))
-                                    : (std::uint64_t(b) << 32 | std::uint32_t(a));
-    if (!seen.insert(key).second) {
-      ++r.repeated_segments;
-      continue;
-    }
-    if (mesh.insert_segment(a, b, std::int32_t(k)))
-      ++recovered;
-    else
-      ++present;
+  const Backend b = resolve_backend(opt.backend, opt.device);
+  cdt::RecoveryCounts rc;
+  GG_ON_EXECUTOR(b, cdt, triangulate, xy, n, segments, nseg, opt, r, rc);
+  r.stats.backend = b;
+  r.zero_length_segments = rc.zero_length;
+  r.repeated_segments = rc.repeated;
+  if (opt.domain != Cdt2dOptions::Domain::ConvexHull || !opt.holes.empty() ||
+      !opt.regions.empty()) {
+    const auto t0 = Clock::now();
+    const HostVector<std::int32_t> tris = std::move(r.triangles), nbrs = std::move(r.neighbors),
+                                   segs = std::move(r.segment_of);
+    cdt::apply_domain(xy, n, tris.data(), nbrs.data(), segs.data(), std::int64_t(tris.size() / 3),
+                      opt, r);
+    r.stats.phase_ms.push_back({"domain", ms_since(t0)});
   }
-  mesh.restore_delaunay();
-  cdt::apply_domain(xy, n, mesh.triangles(), mesh.neighbors(), mesh.segment_of(), opt, r);
-  r.duplicate_of = std::move(dt.duplicate_of);
-  r.num_duplicates = dt.num_duplicates;
-  r.stats.phase_ms.push_back({"constraints", ms_since(t0)});
   r.stats.counters["segments"] = nseg;
-  r.stats.counters["segments_present"] = present;
-  r.stats.counters["segments_recovered"] = recovered;
-  r.stats.counters["segment_pieces"] = mesh.pieces();
-  r.stats.counters["recovery_flips"] = mesh.recovery_flips();
-  r.stats.counters["delaunay_flips"] = mesh.delaunay_flips();
+  r.stats.counters["segments_present"] = rc.kept - rc.recovered;
+  r.stats.counters["segments_recovered"] = rc.recovered;
+  r.stats.counters["segment_pieces"] = rc.pieces;
+  r.stats.counters["cavity_triangles"] = rc.cavity_triangles;
+  r.stats.counters["cavity_antennas"] = rc.antennas;
+  r.stats.counters["recovery_rounds"] = rc.rounds;
   return r;
 }
 

@@ -8,21 +8,19 @@ namespace gpugeom::cdt {
 
 namespace {
 // The triangles holding each point (x, y) of pts, -1 outside the hull (exact location).
-std::vector<std::int32_t> locate(const double* xy, std::int64_t n,
-                                 const std::vector<std::int32_t>& tris,
-                                 const std::vector<std::int32_t>& nbrs,
+std::vector<std::int32_t> locate(const double* xy, std::int64_t n, const std::int32_t* tris,
+                                 const std::int32_t* nbrs, std::int64_t nt,
                                  const std::vector<double>& pts, int threads) {
   if (pts.empty()) return {};
-  const auto loc = find_simplex2d(xy, n, tris.data(), nbrs.data(), std::int64_t(tris.size() / 3),
-                                  pts.data(), std::int64_t(pts.size() / 2), threads);
+  const auto loc =
+      find_simplex2d(xy, n, tris, nbrs, nt, pts.data(), std::int64_t(pts.size() / 2), threads);
   return std::vector<std::int32_t>(loc.begin(), loc.end());
 }
 }  // namespace
 
-void apply_domain(const double* xy, std::int64_t n, const std::vector<std::int32_t>& tris,
-                  const std::vector<std::int32_t>& nbrs, const std::vector<std::int32_t>& segs,
+void apply_domain(const double* xy, std::int64_t n, const std::int32_t* tris,
+                  const std::int32_t* nbrs, const std::int32_t* segs, std::int64_t nt,
                   const Cdt2dOptions& opt, ConstrainedTriangulation2d& r) {
-  const std::int64_t nt = std::int64_t(tris.size() / 3);
   // Everything reachable from the seeds without crossing a segment: out[t] = value.
   auto flood = [&](const std::vector<std::int32_t>& seeds, std::vector<std::int32_t>& out,
                    std::int32_t value, const std::vector<char>* skip) {
@@ -51,7 +49,7 @@ void apply_domain(const double* xy, std::int64_t n, const std::vector<std::int32
           seeds.push_back(std::int32_t(t));
   std::vector<double> pts;
   for (const auto& h : opt.holes) pts.insert(pts.end(), {h.x, h.y});
-  for (std::int32_t t : locate(xy, n, tris, nbrs, pts, opt.threads)) seeds.push_back(t);
+  for (std::int32_t t : locate(xy, n, tris, nbrs, nt, pts, opt.threads)) seeds.push_back(t);
   flood(seeds, gone, 1, nullptr);
   std::vector<char> removed(static_cast<std::size_t>(nt));
   for (std::int64_t t = 0; t < nt; ++t) removed[std::size_t(t)] = gone[std::size_t(t)] >= 0;
@@ -59,7 +57,7 @@ void apply_domain(const double* xy, std::int64_t n, const std::vector<std::int32
   std::vector<std::int32_t> region(std::size_t(nt), -1);
   pts.clear();
   for (const auto& g : opt.regions) pts.insert(pts.end(), {g.x, g.y});
-  const auto at = locate(xy, n, tris, nbrs, pts, opt.threads);
+  const auto at = locate(xy, n, tris, nbrs, nt, pts, opt.threads);
   for (std::size_t g = 0; g < at.size(); ++g) flood({at[g]}, region, std::int32_t(g), &removed);
   // Compact.
   std::vector<std::int32_t> index(std::size_t(nt), -1);

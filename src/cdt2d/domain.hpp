@@ -9,10 +9,11 @@
 
 namespace gpugeom::cdt {
 
-// tris / nbrs / segs: the triangulation of the convex hull (3 per triangle each); r receives the
-// kept triangles, their neighbours (-1 across a removed one), segment marks and attributes.
-void apply_domain(const double* xy, std::int64_t n, const std::vector<std::int32_t>& tris,
-                  const std::vector<std::int32_t>& nbrs, const std::vector<std::int32_t>& segs,
+// tris / nbrs / segs: the nt triangles of the convex hull's triangulation (3 entries per triangle
+// each); r receives the kept triangles, their neighbours (-1 across a removed one), segment marks
+// and attributes.
+void apply_domain(const double* xy, std::int64_t n, const std::int32_t* tris,
+                  const std::int32_t* nbrs, const std::int32_t* segs, std::int64_t nt,
                   const Cdt2dOptions& opt, ConstrainedTriangulation2d& r);
 
 }  // namespace gpugeom::cdt

@@ -34,9 +34,14 @@ inline bool proper_cross(const std::vector<double>& p, std::int32_t a, std::int3
   return orient(p, a, b, c) * orient(p, a, b, d) < 0 && orient(p, c, d, a) * orient(p, c, d, b) < 0;
 }
 
-// Random segments between near points, kept when they cross no segment kept before.
-inline Pslg random_pslg(std::int64_t n, std::int64_t tries, unsigned seed) {
-  Pslg g{"random pslg " + std::to_string(n), {}, {}};
+// Random segments between near points, kept when they cross no segment kept before: each from a
+// random point to the nearest of `partners` random others (fewer: longer segments, crossing more
+// triangles).
+inline Pslg random_pslg(std::int64_t n, std::int64_t tries, unsigned seed, int partners = 8) {
+  Pslg g{"random pslg " + std::to_string(n) + " seed " + std::to_string(seed) + " partners " +
+             std::to_string(partners),
+         {},
+         {}};
   std::mt19937_64 r(seed);
   std::uniform_real_distribution<double> U(0, 1);
   for (std::int64_t i = 0; i < n; ++i) g.xy.insert(g.xy.end(), {U(r), U(r)});
@@ -45,7 +50,7 @@ inline Pslg random_pslg(std::int64_t n, std::int64_t tries, unsigned seed) {
     // a partner among a few random points: the nearest, so segments stay short
     std::int32_t b = -1;
     double best = 1e300;
-    for (int j = 0; j < 8; ++j) {
+    for (int j = 0; j < partners; ++j) {
       const std::int32_t c = std::int32_t(r() % n);
       const double dx = g.xy[2 * c] - g.xy[2 * a], dy = g.xy[2 * c + 1] - g.xy[2 * a + 1];
       if (c != a && dx * dx + dy * dy < best) best = dx * dx + dy * dy, b = c;
@@ -90,6 +95,26 @@ inline Pslg thin_polygon(int m) {
   g.segs.insert(g.segs.end(), {m - 1, 2 * m - 1, m, 0});
   g.segs.insert(g.segs.end(), {0, m - 1, m, 2 * m - 1});  // whole rows again (repeats pieces)
   g.segs.insert(g.segs.end(), {0, 2 * m - 1});            // the long diagonal
+  return g;
+}
+
+// Contour lines: closed polylines around a centre (wavy rings of many points, every edge a
+// segment), with points scattered between them, as terrain contours are.
+inline Pslg contour_pslg(int rings, int per_ring, std::int64_t scattered, unsigned seed) {
+  Pslg g{"contours " + std::to_string(rings) + "x" + std::to_string(per_ring), {}, {}};
+  std::mt19937_64 r(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (int k = 0; k < rings; ++k) {
+    const double radius = 0.1 + 0.85 * (k + 1) / rings;
+    const std::int32_t first = std::int32_t(g.xy.size() / 2);
+    for (int i = 0; i < per_ring; ++i) {
+      const double a = 2 * 3.141592653589793 * i / per_ring;
+      const double rr = radius * (1 + 0.3 / rings * std::sin(5 * a + k));  // rings never touch
+      g.xy.insert(g.xy.end(), {rr * std::cos(a), rr * std::sin(a)});
+      g.segs.insert(g.segs.end(), {first + i, first + (i + 1) % per_ring});
+    }
+  }
+  for (std::int64_t i = 0; i < scattered; ++i) g.xy.insert(g.xy.end(), {U(r), U(r)});
   return g;
 }
 

@@ -12,6 +12,8 @@ TEST(CudaCdt2d, SameAsCpu) {
   std::vector<gg_cdt::Pslg> cases{gg_cdt::grid_pslg(16), gg_cdt::thin_polygon(200),
                                   gg_cdt::circle_pslg(256, 3)};
   for (unsigned seed : {1u, 2u}) cases.push_back(gg_cdt::random_pslg(100000, 30000, seed));
+  for (unsigned seed : {3u, 4u}) cases.push_back(gg_cdt::random_pslg(20000, 3000, seed, 1));
+  cases.push_back(gg_cdt::contour_pslg(40, 5000, 100000, 5));
   for (const auto& g : cases) {
     Cdt2dOptions o;
     o.backend = Backend::Cpu;
@@ -24,10 +26,12 @@ TEST(CudaCdt2d, SameAsCpu) {
     EXPECT_EQ(gpu.neighbors, cpu.neighbors) << g.name;
     EXPECT_EQ(gpu.segment_of, cpu.segment_of) << g.name;
     EXPECT_EQ(gpu.stats.backend, Backend::Cuda) << g.name;
-    std::printf("%s: %zu triangles, %lld segments (%lld recovered, %lld flips)", g.name.c_str(),
-                gpu.num_triangles(), (long long)m,
-                (long long)gpu.stats.counters.at("segments_recovered"),
-                (long long)gpu.stats.counters.at("recovery_flips"));
+    std::printf(
+        "%s: %zu triangles, %lld segments (%lld recovered, %lld cavity triangles, %lld rounds)",
+        g.name.c_str(), gpu.num_triangles(), (long long)m,
+        (long long)gpu.stats.counters.at("segments_recovered"),
+        (long long)gpu.stats.counters.at("cavity_triangles"),
+        (long long)gpu.stats.counters.at("recovery_rounds"));
     for (const auto& ph : gpu.stats.phase_ms)
       std::printf(", %s %.1f ms", ph.first.c_str(), ph.second);
     std::printf("\n");

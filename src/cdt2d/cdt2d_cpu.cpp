@@ -1,0 +1,25 @@
+// 2D constrained Delaunay triangulation compiled for the CPU executor.
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <thrust/functional.h>
+
+#include "base/clock.hpp"
+#include "cdt2d/cavity.hpp"
+#include "cdt2d/cdt2d_backend.hpp"
+#include "delaunay2d/del2d_backend.hpp"
+#include "exec/atomics.hpp"
+#include "exec/cpu_exec.hpp"
+#include "exec/deliver.hpp"
+#include "exec/scratch_slots.hpp"
+
+namespace gpugeom::cdt::cpu_impl {
+using Exec = CpuExec;
+namespace dt_impl = ::gpugeom::del2d::cpu_impl;
+#include "cdt2d/impl/recover.inl"
+#include "cdt2d/impl/triangulate.inl"
+void triangulate(const double* xy, std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
+                 const Cdt2dOptions& opt, ConstrainedTriangulation2d& r, RecoveryCounts& rc) {
+  triangulate_impl(xy, n, segments, nseg, opt, r, rc);
+}
+}  // namespace gpugeom::cdt::cpu_impl

@@ -1,0 +1,47 @@
+// The constrained Delaunay triangulation of the convex hull on one executor; included inside
+// gpugeom::cdt::{cpu,cuda}_impl after recover.inl, with `dt_impl` naming delaunay2d's backend
+// for the same executor.
+inline void triangulate_impl(const double* xy, std::int64_t n, const std::int32_t* segments,
+                             std::int64_t nseg, const Cdt2dOptions& opt,
+                             ConstrainedTriangulation2d& r, RecoveryCounts& rc) {
+  Exec ex(opt);
+  const auto t0 = Clock::now();
+  // The points where the executor reads them (the CPU executor reads the caller's).
+  typename Exec::template Buffer<double> dxy;
+  const double* pts = xy;
+  if constexpr (Exec::backend != Backend::Cpu) {
+    dxy = ex.template alloc<double>(2 * std::size_t(n));
+    ex.from_host(xy, 2 * n, dxy.data());
+    pts = dxy.data();
+  }
+  Delaunay2dOptions dopt;
+  static_cast<RunOptions&>(dopt) = opt;
+  del2d::DeviceOutput dt;
+  Stats dst;
+  dt_impl::triangulate_device(pts, n, dopt, dt, dst);
+  r.stats = dst;
+  r.stats.phase_ms = {{"delaunay", ms_since(t0)}};
+  const auto t1 = Clock::now();
+  const std::int64_t nt = dt.num_triangles;
+  auto seg = ex.template alloc<std::int32_t>(3 * std::size_t(nt));
+  ex.fill(seg.data(), 3 * nt, std::int32_t(-1));
+  auto vt = ex.template alloc<std::int32_t>(std::size_t(n));
+  typename Exec::template Buffer<std::int32_t> dsegs;
+  const std::int32_t* sp = segments;
+  if constexpr (Exec::backend != Backend::Cpu) {
+    dsegs = ex.template alloc<std::int32_t>(std::size_t(2 * std::max<std::int64_t>(nseg, 1)));
+    ex.from_host(segments, 2 * nseg, dsegs.data());
+    sp = dsegs.data();
+  }
+  const MeshView m{pts, dt.triangles.get(), dt.neighbors.get(), seg.data(), vt.data()};
+  recover_segments(ex, m, nt, sp, nseg, dt.duplicate_of.get(), rc);
+  ex.sync();
+  r.stats.phase_ms.push_back({"segments", ms_since(t1)});
+  const auto t2 = Clock::now();
+  deliver::to_host(ex, m.tri, 3 * nt, OutBuffer<std::int32_t>{}, r.triangles);
+  deliver::to_host(ex, m.nbr, 3 * nt, OutBuffer<std::int32_t>{}, r.neighbors);
+  deliver::to_host(ex, m.seg, 3 * nt, OutBuffer<std::int32_t>{}, r.segment_of);
+  deliver::to_host(ex, dt.duplicate_of.get(), n, OutBuffer<std::int32_t>{}, r.duplicate_of);
+  r.num_duplicates = dt.num_duplicates;
+  r.stats.phase_ms.push_back({"to_host", ms_since(t2)});
+}
