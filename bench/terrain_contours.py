@@ -15,6 +15,8 @@ def main():
     ap.add_argument("-n", type=float, default=1e6, help="about how many points")
     ap.add_argument("--levels", type=int, default=120)
     ap.add_argument("-o", required=True)
+    ap.add_argument("--segments", help="also write the contour lines' edges as an int32 (m, 2) "
+                    ".npy of point indices (every edge a segment: the constrained benchmark)")
     a = ap.parse_args()
     import numpy as np
     import contourpy
@@ -30,14 +32,39 @@ def main():
         ys = np.arange(zz.shape[0]) * dy / zoom
         xs = np.arange(zz.shape[1]) * dx / zoom
         gen = contourpy.contour_generator(xs, ys, zz, line_type="Separate")
-        parts = [np.asarray(seg) for lev in levels for seg in gen.lines(lev)]
-        return np.concatenate(parts) if parts else np.zeros((0, 2))
+        parts = []
+        for lev in levels:
+            for line in gen.lines(lev):
+                line = np.asarray(line)
+                closed = len(line) > 2 and np.array_equal(line[0], line[-1])
+                parts.append((line[:-1] if closed else line, closed))
+        return parts
+
+    def points(parts):
+        return np.concatenate([p for p, _ in parts]) if parts else np.zeros((0, 2))
+
+    def edges(parts):
+        out, first = [], 0
+        for p, closed in parts:
+            k = len(p)
+            i = np.arange(first, first + k - 1, dtype=np.int32)
+            e = np.stack([i, i + 1], axis=1)
+            if closed and k > 2:
+                e = np.concatenate([e, np.array([[first + k - 1, first]], dtype=np.int32)])
+            out.append(e)
+            first += k
+        return np.concatenate(out) if out else np.zeros((0, 2), dtype=np.int32)
 
     probe = trace(1.0)
-    zoom = max(1.0, a.n / max(1, len(probe)))
-    pts = trace(zoom) if zoom > 1.0 else probe
+    zoom = max(1.0, a.n / max(1, len(points(probe))))
+    parts = trace(zoom) if zoom > 1.0 else probe
+    pts = points(parts)
     np.save(a.o, np.ascontiguousarray(pts, dtype=np.float64))
     print(f"{len(pts)} contour points ({a.levels} levels, zoom {zoom:.2f}) -> {a.o}")
+    if a.segments:
+        e = edges(parts)
+        np.save(a.segments, np.ascontiguousarray(e, dtype=np.int32))
+        print(f"{len(e)} contour edges as segments -> {a.segments}")
     return 0
 
 if __name__ == "__main__":

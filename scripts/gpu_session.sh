@@ -69,6 +69,23 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del2d ]; then
     [ "${DEL2D_HUGE:-1e8}" != skip ] && $D --backend cuda --dists uniform --sizes ${DEL2D_HUGE:-1e8} --reps 1 --csv "$CSV" | tail -n +3
   } 2>&1 | tee "$OUT/bench_del2d.txt"
 fi
+if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = cdt2d ]; then
+  echo "== 2D constrained Delaunay (end to end; the plain Delaunay of the same points; CGAL CDT_2 and Triangle -p on one core)"
+  python3 -c "import triangle" 2>/dev/null || python3 -m pip install -q --no-index --find-links .whl triangle 2>&1 | tail -1
+  CI=/tmp/cdt_inputs
+  rm -rf $CI && mkdir -p $CI
+  IN=""
+  for n in $(echo ${CDT_CONTOURS:-4e5,1e6,1e7} | tr , ' '); do
+    python3 bench/terrain_contours.py -n $n -o /tmp/contours_$n.npy --segments /tmp/contours_${n}_segments.npy | tail -1
+    IN="$IN,/tmp/contours_$n.npy:/tmp/contours_${n}_segments.npy"
+  done
+  PS=$(echo ${CDT_PSLG:-1e5,1e6,1e7} | tr , '\n' | sed 's/^/pslg:/' | paste -sd,)
+  {
+    .devbin/gpugeom_bench_cdt2d --backend cuda --inputs "$PS$IN" --reps 3 --check --check-max ${CDT_CHECK_MAX:-2e6} \
+      --cgal ${CDT_CGAL_MAX:-1e7} --save $CI --csv "$CSV"
+    python3 bench/anchor_cdt2d.py --dir $CI --max-n ${CDT_TRIANGLE_MAX:-1e7} --csv "$CSV"
+  } 2>&1 | tee "$OUT/bench_cdt2d.txt"
+fi
 if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del3d ]; then
   echo "== 3D Delaunay benchmarks (end to end; CGAL Delaunay_triangulation_3 on one core)"
   .devbin/gpugeom_bench_del3d --reps ${DEL3D_REPS:-3} ${DEL3D_JOBS:-uniform:100000 uniform:1000000 ball:1000000 gaussian:1000000 thin_sphere:1000000 sphere:1000000} \
