@@ -167,8 +167,8 @@ int main(int argc, char** argv) {
   const DeviceInfo dev = query_device();
   std::printf("device: %s\n", b == Backend::Cuda ? dev.name.c_str() : "CPU executor");
   std::printf("%-12s %9s %8s | %9s %9s | %8s %8s %8s | %6s %9s %5s %4s | %9s %6s | %s\n", "input",
-              "n", "segs", "delaunay", "cdt", "dt part", "segments", "to_host", "recov",
-              "cavity_t", "rnds", "ant", "cgal", "x cgal", "check");
+              "n", "segs", "delaunay", "cdt", "dt part", "segments", "to_host", "recov", "cavity_t",
+              "rnds", "ant", "cgal", "x cgal", "check");
   std::ofstream f = bench::open_bench_csv(csv);
   std::stringstream ss(inputs);
   for (std::string item; std::getline(ss, item, ',');) {

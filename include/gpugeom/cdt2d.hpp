@@ -15,8 +15,9 @@
 // those reachable from outside the convex hull; region points carry an attribute to the
 // triangles they reach.
 //
-// Segments that cross each other at a point inside both are refused, naming both (splitting
-// them at their intersection is not done yet).
+// Segments that cross each other at a point inside both are refused, naming both, or split at
+// their intersection (Cdt2dOptions::crossings): a new vertex at the intersection rounded to
+// doubles, reported with the two segments that made it.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -40,6 +41,11 @@ struct Cdt2dOptions : RunOptions {
     Enclosed,    // Triangle's -p: the triangles outside the segments are removed too
   };
   Domain domain = Domain::ConvexHull;
+  enum class Crossings {
+    Refuse,  // Error(InvalidInput) naming two segments that cross
+    Split,   // a new vertex where they cross; each segment the chain through its new vertices
+  };
+  Crossings crossings = Crossings::Refuse;
   // Hole points (x, y): the triangle holding each and all reachable from it without crossing a
   // segment are removed. A point outside the convex hull removes nothing.
   std::vector<Point2> holes;
@@ -54,9 +60,15 @@ struct ConstrainedTriangulation2d {
   // segment_of[3*i + k]: the input segment the edge opposite vertex k of triangle i lies on
   // (the first one, where several given segments overlap it), -1 for an edge on none.
   HostVector<std::int32_t> segment_of;
-  // One entry per input point: -1 when the point is a vertex, else the index of the earlier
-  // point with the same coordinates, which is the one used (segments' ends included).
+  // One entry per point (the input points, then the new ones): -1 when the point is a vertex,
+  // else the index of the earlier point with the same coordinates, which is the one used
+  // (segments' ends included).
   HostVector<std::int32_t> duplicate_of;
+  // Crossings::Split: the vertices added where segments cross, x and y (point indices n, n+1,
+  // ... in triangles), and for each the two input segments that cross there (where more than
+  // two meet at one point, two of them). An intersection exactly at an input point adds none.
+  HostVector<double> new_points;
+  HostVector<std::int32_t> new_point_segments;
   std::int64_t num_duplicates = 0;
   // Segments given with both ends at one point (or at duplicates of it), and segments that
   // repeat an earlier one (either direction): dropped, counted here.
@@ -71,15 +83,17 @@ struct ConstrainedTriangulation2d {
   // counters "segments", "segments_present" (chains of Delaunay edges already),
   // "segments_recovered" (by rebuilding cavities), "segment_pieces" (edges on segments),
   // "cavity_triangles" (triangles rebuilt), "cavity_antennas" (edges off a segment with both
-  // triangles in its cavity), "recovery_rounds", with delaunay2d's counters.
+  // triangles in its cavity), "recovery_rounds", "crossings" (new vertices) and
+  // "segments_split" (input segments cut at them), with delaunay2d's counters; segment counts
+  // are of the pieces where segments were split.
   Stats stats;
   std::size_t num_triangles() const { return triangles.size() / 3; }
 };
 
 // xy: n points, x and y interleaved; segments: nseg pairs of point indices. Throws
-// Error(InvalidInput) for a segment naming a point outside 0..n-1, and for two segments that
-// cross each other at a point inside both, naming both (segments that meet at an input point,
-// or overlap along one line, are fine); and as delaunay2d does for the points.
+// Error(InvalidInput) for a segment naming a point outside 0..n-1, and (Crossings::Refuse) for
+// two segments that cross each other at a point inside both, naming both (segments that meet at
+// an input point, or overlap along one line, are fine); and as delaunay2d does for the points.
 ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
                                  std::int64_t nseg, const Cdt2dOptions& opt = {});
 

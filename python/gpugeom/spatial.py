@@ -338,7 +338,8 @@ class ConstrainedDelaunay:
     points : (npoints, 2) array of float
     segments : (nsegments, 2) array of int
         Point indices. Zero-length and repeated segments are dropped (counted in ``stats``);
-        segments that cross inside both raise ``ValueError`` naming them.
+        segments that cross inside both raise ``ValueError`` naming them, unless
+        ``crossings="split"``.
     holes : (nholes, 2) array of float, optional
         The triangles reachable from each point without crossing a segment are removed.
     regions : (nregions, 3) array of float, optional
@@ -347,24 +348,31 @@ class ConstrainedDelaunay:
     domain : {"hull", "enclosed"}
         "hull" keeps the convex hull's triangles (less holes); "enclosed" also removes those
         outside the segments, reachable from the hull (Triangle's default for ``.poly`` files).
+    crossings : {"refuse", "split"}
+        "split" adds a vertex where two segments cross (their intersection rounded to doubles)
+        and makes each segment the chain through its new vertices (as Triangle does).
     backend : {"auto", "cuda", "cpu"}
         Where the triangulation and the segments' recovery run.
 
     Attributes
     ----------
-    points, segments, simplices (ntri, 3, counter-clockwise), neighbors (-1 across the
-    boundary), segment_of (ntri, 3: the segment edge k, opposite vertex k, lies on, or -1),
-    attributes (ntri, or None), duplicate_of, stats (its counters: segments_present,
-    segments_recovered, cavity_triangles, recovery_rounds, zero_length_segments,
-    repeated_segments, removed_triangles, ...).
+    points (the input points, then ``new_points``), segments, simplices (ntri, 3,
+    counter-clockwise), neighbors (-1 across the boundary), segment_of (ntri, 3: the input
+    segment edge k, opposite vertex k, lies on, or -1), attributes (ntri, or None),
+    duplicate_of, new_points (k, 2: the vertices added where segments cross), new_point_segments
+    (k, 2: the two segments crossing at each), stats (its counters: segments_present,
+    segments_recovered, cavity_triangles, recovery_rounds, crossings, segments_split,
+    zero_length_segments, repeated_segments, removed_triangles, ...).
     """
 
     def __init__(self, points, segments, *, holes=None, regions=None, domain: str = "hull",
-                 backend: str = "auto", threads: int = 0):
+                 crossings: str = "refuse", backend: str = "auto", threads: int = 0):
         _arrays.check_backend(backend)
         _arrays.check_threads(threads)
         if domain not in ("hull", "enclosed"):
             raise ValueError(f"domain must be 'hull' or 'enclosed', got {domain!r}")
+        if crossings not in ("refuse", "split"):
+            raise ValueError(f"crossings must be 'refuse' or 'split', got {crossings!r}")
         self.points = np.ascontiguousarray(_arrays.to_host(points), dtype=np.float64)
         if self.points.ndim != 2 or self.points.shape[1] != 2:
             raise ValueError(f"points must have shape (n, 2), got {self.points.shape}")
@@ -377,7 +385,11 @@ class ConstrainedDelaunay:
         g = np.ascontiguousarray(np.zeros((0, 3)) if regions is None
                                  else _arrays.to_host(regions), dtype=np.float64).reshape(-1, 3)
         r = _core.cdt2d(self.points, self.segments, h, g, enclosed=domain == "enclosed",
-                        backend=backend, threads=threads)
+                        split=crossings == "split", backend=backend, threads=threads)
+        self.new_points = r["new_points"]
+        self.new_point_segments = r["new_point_segments"]
+        if len(self.new_points):
+            self.points = np.concatenate([self.points, self.new_points])
         self.simplices = r["simplices"]
         self.neighbors = r["neighbors"]
         self.segment_of = r["segment_of"]

@@ -235,7 +235,7 @@ const double* reals_of(const AnyArray& a, const char* name, int k, std::int64_t*
 // The constrained Delaunay triangulation of host points and segments (cdt2d.hpp); holes (h, 2)
 // and regions (r, 3: x, y, attribute) as float64 arrays.
 nb::dict cdt2d_bind(const AnyArray& points, const AnyArray& segments, const AnyArray& holes,
-                    const AnyArray& regions, bool enclosed, const std::string& backend,
+                    const AnyArray& regions, bool enclosed, bool split, const std::string& backend,
                     int threads) {
   std::int64_t n = 0, m = 0, nh = 0, nr = 0;
   const double* p = reals_of(points, "points", 2, &n);
@@ -244,6 +244,7 @@ nb::dict cdt2d_bind(const AnyArray& points, const AnyArray& segments, const AnyA
   const double* g = reals_of(regions, "regions", 3, &nr);
   auto o = options_for<Cdt2dOptions>(backend, 0, threads, inspect(points, "points"));
   o.domain = enclosed ? Cdt2dOptions::Domain::Enclosed : Cdt2dOptions::Domain::ConvexHull;
+  o.crossings = split ? Cdt2dOptions::Crossings::Split : Cdt2dOptions::Crossings::Refuse;
   for (std::int64_t i = 0; i < nh; ++i) o.holes.push_back({h[2 * i], h[2 * i + 1]});
   for (std::int64_t i = 0; i < nr; ++i) o.regions.push_back({g[3 * i], g[3 * i + 1], g[3 * i + 2]});
   ConstrainedTriangulation2d t = unlocked([&] { return cdt2d(p, n, s, m, o); });
@@ -252,7 +253,10 @@ nb::dict cdt2d_bind(const AnyArray& points, const AnyArray& segments, const AnyA
   r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
   r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});
   r["segment_of"] = host_array(std::move(t.segment_of), {nt, 3});
-  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
+  const sz nd = t.duplicate_of.size(), nn = t.new_points.size() / 2;  // (n + new points)
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {nd});
+  r["new_points"] = host_array(std::move(t.new_points), {nn, 2});
+  r["new_point_segments"] = host_array(std::move(t.new_point_segments), {nn, 2});
   if (!t.attribute.empty()) r["attribute"] = host_array(std::move(t.attribute), {nt});
   r["zero_length_segments"] = t.zero_length_segments;
   r["repeated_segments"] = t.repeated_segments;
@@ -336,7 +340,7 @@ void bind_spatial(nb::module_& m) {
   m.def("check", &check_bind, "what"_a, "points"_a, "simplices"_a, "duplicate_of"_a = nb::none(),
         "segments"_a = nb::none());
   m.def("cdt2d", &cdt2d_bind, "points"_a, "segments"_a, "holes"_a, "regions"_a,
-        "enclosed"_a = false, "backend"_a = "auto", "threads"_a = 0);
+        "enclosed"_a = false, "split"_a = false, "backend"_a = "auto", "threads"_a = 0);
 }
 
 }  // namespace gpugeom::py

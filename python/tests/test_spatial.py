@@ -271,3 +271,12 @@ def test_constrained_delaunay(backend, rng):
                                     backend=backend)
     with pytest.raises(ValueError, match="domain"):
         gpugeom.ConstrainedDelaunay(pts, segs, domain="inside")
+    # crossings="split": a vertex where the two diagonals cross, each the chain through it
+    s = gpugeom.ConstrainedDelaunay([[0, 0], [1, 1], [0, 1], [1, 0]], [[0, 1], [2, 3]],
+                                    crossings="split", backend=backend)
+    assert s.new_points.tolist() == [[0.5, 0.5]] and s.new_point_segments.tolist() == [[0, 1]]
+    assert s.points.shape == (5, 2) and s.nsimplex == 4 and (s.simplices == 4).any(axis=1).all()
+    assert s.stats["counters"]["crossings"] == 1
+    assert sorted(s.segment_of[s.segment_of >= 0].tolist()) == [0, 0, 0, 0, 1, 1, 1, 1]
+    with pytest.raises(ValueError, match="crossings"):
+        gpugeom.ConstrainedDelaunay(pts, segs, crossings="maybe")

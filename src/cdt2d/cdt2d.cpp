@@ -3,17 +3,42 @@
 // removes holes and the outside and spreads regions on the host (domain.hpp).
 #include "gpugeom/cdt2d.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
 
 #include "base/clock.hpp"
 #include "cdt2d/cdt2d_backend.hpp"
+#include "cdt2d/crossings.hpp"
 #include "cdt2d/domain.hpp"
 #include "delaunay2d/del2d_backend.hpp"
 #include "exec/dispatch.hpp"
 
 namespace gpugeom {
+
+namespace {
+// The input segments that are zero-length or repeat an earlier one (ends through dup), as the
+// recovery counts them when it sees the input's own segments.
+void count_dropped(const std::int32_t* segs, std::int64_t m, const std::int32_t* dup,
+                   ConstrainedTriangulation2d& r) {
+  std::vector<std::uint64_t> keys;
+  keys.reserve(std::size_t(m));
+  r.zero_length_segments = 0;
+  for (std::int64_t k = 0; k < m; ++k) {
+    std::int32_t a = segs[2 * k], b = segs[2 * k + 1];
+    if (dup[a] >= 0) a = dup[a];
+    if (dup[b] >= 0) b = dup[b];
+    if (a == b)
+      ++r.zero_length_segments;
+    else
+      keys.push_back(std::uint64_t(std::min(a, b)) << 32 | std::uint32_t(std::max(a, b)));
+  }
+  std::sort(keys.begin(), keys.end());
+  r.repeated_segments =
+      std::int64_t(keys.size()) - (std::unique(keys.begin(), keys.end()) - keys.begin());
+}
+}  // namespace
 
 ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
                                  std::int64_t nseg, const Cdt2dOptions& opt) {
@@ -38,17 +63,62 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
                                                std::to_string(n - 1));
   ConstrainedTriangulation2d r;
   const Backend b = resolve_backend(opt.backend, opt.device);
+  const bool split = opt.crossings == Cdt2dOptions::Crossings::Split;
   cdt::RecoveryCounts rc;
-  GG_ON_EXECUTOR(b, cdt, triangulate, xy, n, segments, nseg, opt, r, rc);
+  cdt::SplitSegments sp;
+  std::vector<double> pts;  // the input points and the new ones, when segments were split
+  std::vector<std::pair<std::int32_t, std::int32_t>> known;  // crossings the recovery met
+  const double* P = xy;
+  std::int64_t np = n;
+  for (int attempt = 0;; ++attempt) {
+    const std::int32_t* S = segments;
+    std::int64_t ns = nseg;
+    if (split) {
+      const auto t0 = Clock::now();
+      sp = cdt::split_crossings(xy, n, segments, nseg, known, opt.threads);
+      if (!sp.pieces.empty()) {
+        pts.assign(xy, xy + 2 * n);
+        pts.insert(pts.end(), sp.points.begin(), sp.points.end());
+        P = pts.data(), np = std::int64_t(pts.size() / 2);
+        S = sp.pieces.data(), ns = std::int64_t(sp.pieces.size() / 2);
+      }
+      r.stats.phase_ms.push_back({"crossings", ms_since(t0)});
+    }
+    const auto split_ms = r.stats.phase_ms;
+    rc = {};
+    GG_ON_EXECUTOR(b, cdt, triangulate, P, np, S, ns, opt, r, rc);
+    if (split) r.stats.phase_ms.insert(r.stats.phase_ms.begin(), split_ms.back());
+    if (rc.cross_a < 0) break;
+    const bool pieces = !sp.pieces.empty();
+    const std::int32_t s1 = pieces ? sp.piece_segment[std::size_t(rc.cross_a)] : rc.cross_a,
+                       s2 = pieces ? sp.piece_segment[std::size_t(rc.cross_b)] : rc.cross_b;
+    if (!split || attempt >= 3)
+      throw Error(ErrorCode::InvalidInput,
+                  "segments " + std::to_string(std::min(s1, s2)) + " and " +
+                      std::to_string(std::max(s1, s2)) +
+                      (split ? " still cross after splitting them at their rounded intersection"
+                             : " cross each other at a point that is not an input point: split "
+                               "them there (add the crossing as a point and end both segments "
+                               "at it), or ask for Crossings::Split"));
+    known.push_back({s1, s2});  // (the grid missed it: named from here on)
+  }
   r.stats.backend = b;
   r.zero_length_segments = rc.zero_length;
   r.repeated_segments = rc.repeated;
+  if (!sp.pieces.empty()) {
+    // Marks name input segments; the counts of dropped segments are of the input's.
+    for (auto& g : r.segment_of)
+      if (g >= 0) g = sp.piece_segment[std::size_t(g)];
+    r.new_points.assign(sp.points.begin(), sp.points.end());
+    r.new_point_segments.assign(sp.point_segments.begin(), sp.point_segments.end());
+    count_dropped(segments, nseg, r.duplicate_of.data(), r);
+  }
   if (opt.domain != Cdt2dOptions::Domain::ConvexHull || !opt.holes.empty() ||
       !opt.regions.empty()) {
     const auto t0 = Clock::now();
     const HostVector<std::int32_t> tris = std::move(r.triangles), nbrs = std::move(r.neighbors),
                                    segs = std::move(r.segment_of);
-    cdt::apply_domain(xy, n, tris.data(), nbrs.data(), segs.data(), std::int64_t(tris.size() / 3),
+    cdt::apply_domain(P, np, tris.data(), nbrs.data(), segs.data(), std::int64_t(tris.size() / 3),
                       opt, r);
     r.stats.phase_ms.push_back({"domain", ms_since(t0)});
   }
@@ -59,6 +129,8 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
   r.stats.counters["cavity_triangles"] = rc.cavity_triangles;
   r.stats.counters["cavity_antennas"] = rc.antennas;
   r.stats.counters["recovery_rounds"] = rc.rounds;
+  r.stats.counters["crossings"] = std::int64_t(sp.points.size() / 2);
+  r.stats.counters["segments_split"] = sp.split_segments;
   return r;
 }
 

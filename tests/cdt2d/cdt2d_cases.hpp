@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -132,6 +133,96 @@ inline Pslg circle_pslg(int m, unsigned seed) {
   for (int i = 0; i + 2 < m; i += 2) g.segs.insert(g.segs.end(), {i, i + 2});  // chords
   g.segs.insert(g.segs.end(), {0, m / 2});  // a diameter: m / 2 even, so it crosses no chord
   return g;
+}
+
+// Random segments that may cross each other (no filter), long and short.
+inline Pslg crossing_pslg(std::int64_t n, std::int64_t m, unsigned seed) {
+  Pslg g{"crossing pslg " + std::to_string(n) + "/" + std::to_string(m) + " seed " +
+             std::to_string(seed),
+         {},
+         {}};
+  std::mt19937_64 r(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (std::int64_t i = 0; i < n; ++i) g.xy.insert(g.xy.end(), {U(r), U(r)});
+  for (std::int64_t k = 0; k < m; ++k)
+    g.segs.insert(g.segs.end(), {std::int32_t(r() % n), std::int32_t(r() % n)});
+  return g;
+}
+
+// The checks a result of Crossings::Split passes: the whole point set (input and new points) is
+// constrained-Delaunay triangulated with the marked edges as its segments (exact checker), and
+// the edges marked with each input segment form one path from its first end to its last, through
+// input points exactly on it and new points within rounding of it (a new point is never more
+// than a few units in the last place from both segments that made it).
+inline void expect_split_cdt(const Pslg& g, const gpugeom::ConstrainedTriangulation2d& r) {
+  const std::int64_t n = std::int64_t(g.xy.size() / 2);
+  std::vector<double> xy = g.xy;
+  xy.insert(xy.end(), r.new_points.begin(), r.new_points.end());
+  const std::int64_t np = std::int64_t(xy.size() / 2);
+  ASSERT_EQ(std::int64_t(r.duplicate_of.size()), np) << g.name;
+  ASSERT_EQ(r.new_point_segments.size(), r.new_points.size()) << g.name;
+  std::vector<std::int32_t> marked;
+  std::vector<std::vector<std::int32_t>> edges_of(g.segs.size() / 2);
+  for (std::size_t i = 0; i < r.segment_of.size(); ++i) {
+    const std::int32_t s = r.segment_of[i];
+    const std::int32_t u = r.triangles[i - i % 3 + (i % 3 + 1) % 3],
+                       v = r.triangles[i - i % 3 + (i % 3 + 2) % 3];
+    if (s < 0 || (r.neighbors[i] >= 0 && u > v)) continue;  // each marked edge once
+    marked.insert(marked.end(), {u, v});
+    edges_of[std::size_t(s)].insert(edges_of[std::size_t(s)].end(), {u, v});
+  }
+  auto rep = gpugeom::verify::check_constrained_delaunay2d(
+      xy.data(), np, r.triangles.data(), std::int64_t(r.num_triangles()), marked.data(),
+      std::int64_t(marked.size() / 2), r.duplicate_of.data());
+  ASSERT_TRUE(rep.ok) << g.name << ": " << rep.message;
+  for (std::size_t s = 0; s < g.segs.size() / 2; ++s) {
+    std::int32_t a = g.segs[2 * s], b = g.segs[2 * s + 1];
+    if (r.duplicate_of[a] >= 0) a = r.duplicate_of[a];
+    if (r.duplicate_of[b] >= 0) b = r.duplicate_of[b];
+    const auto& e = edges_of[s];
+    if (a == b) {
+      EXPECT_TRUE(e.empty()) << g.name << ": zero-length segment " << s << " marked";
+      continue;
+    }
+    // (A repeated segment's edges carry the first one's mark: check the first of each.)
+    bool first = true;
+    for (std::size_t t = 0; t < s && first; ++t) {
+      std::int32_t c = g.segs[2 * t], d = g.segs[2 * t + 1];
+      if (r.duplicate_of[c] >= 0) c = r.duplicate_of[c];
+      if (r.duplicate_of[d] >= 0) d = r.duplicate_of[d];
+      first = !((c == a && d == b) || (c == b && d == a));
+    }
+    if (!first) continue;
+    // Walk the path from a: every vertex has degree 2 in it but the ends.
+    std::map<std::int32_t, std::vector<std::int32_t>> nb;
+    for (std::size_t k = 0; k < e.size(); k += 2)
+      nb[e[k]].push_back(e[k + 1]), nb[e[k + 1]].push_back(e[k]);
+    std::int32_t at = a, prev = -1;
+    std::size_t steps = 0;
+    const double *pa = &xy[2 * std::size_t(a)], *pb = &xy[2 * std::size_t(b)];
+    const double len = std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
+    while (at != b && steps <= e.size()) {
+      const auto& o = nb[at];
+      std::int32_t next = -1;
+      for (std::int32_t w : o)
+        if (w != prev) next = w;
+      ASSERT_TRUE(next >= 0 && o.size() <= 2 && (at == a ? o.size() == 1 : o.size() == 2))
+          << g.name << ": segment " << s << " is no path at vertex " << at;
+      prev = at, at = next, ++steps;
+      if (at == b) break;
+      const double* q = &xy[2 * std::size_t(at)];
+      const double dist =
+          std::abs((pb[0] - pa[0]) * (q[1] - pa[1]) - (pb[1] - pa[1]) * (q[0] - pa[0])) / len;
+      if (at < n)
+        EXPECT_EQ(orient(xy, a, b, at), 0)
+            << g.name << ": input point " << at << " on segment " << s << "'s path is off it";
+      else
+        EXPECT_LT(dist, 1e-12 * (1 + len))
+            << g.name << ": new point " << at << " far from segment " << s;
+    }
+    EXPECT_EQ(at, b) << g.name << ": segment " << s << "'s path does not reach its end";
+    EXPECT_EQ(steps, e.size() / 2) << g.name << ": segment " << s << " marks edges off its path";
+  }
 }
 
 // The checks every result passes: the exact checker on the triangles and the segments given

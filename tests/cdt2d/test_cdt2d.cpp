@@ -135,6 +135,65 @@ TEST(Cdt2d, CrossingSegmentsAreNamed) {
   EXPECT_EQ(r.stats.counters.at("segment_pieces"), 4);
 }
 
+ConstrainedTriangulation2d run_split(const gg_cdt::Pslg& g, Backend b = Backend::Cpu) {
+  Cdt2dOptions o;
+  o.backend = b;
+  o.crossings = Cdt2dOptions::Crossings::Split;
+  return cdt2d(g.xy.data(), std::int64_t(g.xy.size() / 2), g.segs.data(),
+               std::int64_t(g.segs.size() / 2), o);
+}
+
+// Crossings::Split: a new vertex where two segments cross, reported with both; a grid of long
+// lines (crossings exactly representable: one vertex each, three lines through one point give
+// one vertex); random segments that cross anywhere (rounded intersections, segments crossing
+// many others); crossings exactly at input points add nothing.
+TEST(Cdt2d, CrossingSegmentsSplit) {
+  {
+    const gg_cdt::Pslg g{"x", {0, 0, 2, 2, 0, 2, 2, 0, 1, 3, 3, 1}, {4, 5, 0, 1, 2, 3}};
+    const auto r = run_split(g);
+    gg_cdt::expect_split_cdt(g, r);
+    ASSERT_EQ(r.new_points.size(), 2u);
+    EXPECT_EQ(r.new_points[0], 1.0);
+    EXPECT_EQ(r.new_points[1], 1.0);
+    EXPECT_EQ(r.new_point_segments, (std::vector<std::int32_t>{1, 2}));
+    EXPECT_EQ(r.stats.counters.at("crossings"), 1);
+    EXPECT_EQ(r.stats.counters.at("segments_split"), 2);
+  }
+  {
+    gg_cdt::Pslg g{"line grid", {}, {}};
+    auto add = [&](double x, double y) {
+      g.xy.insert(g.xy.end(), {x, y});
+      return std::int32_t(g.xy.size() / 2 - 1);
+    };
+    for (int i = 0; i < 10; ++i) {
+      g.segs.insert(g.segs.end(), {add(-1, i + 0.5), add(11, i + 0.5)});  // rows
+      g.segs.insert(g.segs.end(), {add(i + 0.5, -1), add(i + 0.5, 11)});  // columns
+    }
+    g.segs.insert(g.segs.end(), {add(-1.5, -1.5), add(11.5, 11.5)});  // through (k.5, k.5)
+    for (int i = 0; i < 200; ++i) add(0.37 + 0.049 * i, 0.11 + 0.0517 * (i % 190));
+    const auto r = run_split(g);
+    gg_cdt::expect_split_cdt(g, r);
+    EXPECT_EQ(r.stats.counters.at("crossings"), 100);  // the diagonal's 10 are among them
+    EXPECT_EQ(r.stats.counters.at("segments_split"), 21);
+    // Refused without the option, naming two of the lines.
+    EXPECT_THROW(run(g), Error);
+  }
+  for (unsigned seed : {1u, 2u, 3u})
+    for (std::int64_t n : {30, 600, 3000}) {
+      const auto g = gg_cdt::crossing_pslg(n, n / 6, seed);
+      const auto r = run_split(g);
+      gg_cdt::expect_split_cdt(g, r);
+      EXPECT_GT(r.stats.counters.at("crossings"), 0) << g.name;
+    }
+  {
+    // Two segments crossing exactly at an input point: nothing to add.
+    const gg_cdt::Pslg g{"at a point", {0, 0, 2, 2, 0, 2, 2, 0, 1, 1}, {0, 1, 2, 3}};
+    const auto r = run_split(g);
+    gg_cdt::expect_split_cdt(g, r);
+    EXPECT_TRUE(r.new_points.empty());
+  }
+}
+
 // An L-shaped domain (its hull a pentagon of area 87.5, the L 75) with a 2x2 square hole and a
 // divider, on every integer point of the L but the hole's centre: the kept triangles' areas
 // (exact: half-integers) for each domain rule, holes and regions; the boundary of an enclosed

@@ -37,3 +37,25 @@ TEST(CudaCdt2d, SameAsCpu) {
     std::printf("\n");
   }
 }
+
+// Crossings::Split on the CUDA executor: the same new points and arrays as the CPU executor's.
+TEST(CudaCdt2d, SplitSameAsCpu) {
+  for (unsigned seed : {5u, 6u}) {
+    const auto g = gg_cdt::crossing_pslg(20000, 400, seed);
+    Cdt2dOptions o;
+    o.crossings = Cdt2dOptions::Crossings::Split;
+    o.backend = Backend::Cpu;
+    const std::int64_t n = std::int64_t(g.xy.size() / 2), m = std::int64_t(g.segs.size() / 2);
+    const auto cpu = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
+    o.backend = Backend::Cuda;
+    const auto gpu = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
+    gg_cdt::expect_split_cdt(g, gpu);
+    EXPECT_EQ(gpu.new_points, cpu.new_points) << g.name;
+    EXPECT_EQ(gpu.triangles, cpu.triangles) << g.name;
+    EXPECT_EQ(gpu.neighbors, cpu.neighbors) << g.name;
+    EXPECT_EQ(gpu.segment_of, cpu.segment_of) << g.name;
+    std::printf("%s: %lld crossings split, %lld segments cut\n", g.name.c_str(),
+                (long long)gpu.stats.counters.at("crossings"),
+                (long long)gpu.stats.counters.at("segments_split"));
+  }
+}

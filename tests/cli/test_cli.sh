@@ -188,6 +188,9 @@ python3 -c "import numpy as np; np.save('$W/x.npy', np.array([[0, 1], [2, 3]], d
 printf '0 0\n2 2\n0 2\n2 0\n' >"$W/x.xyz"
 expect 3 "segments 0 and 1 cross" -- "$G" cdt2d "$W/x.xyz" --segments "$W/x.npy" -o "$W/x.ele"
 [ -e "$W/x.ele" ] && { echo "FAIL: a failed cdt2d left an output file"; fail=1; }
+# --split: a vertex at (1, 1), four triangles, checked; the .node lists the new point
+expect 0 "1 crossings split -> 4 triangles" -- "$G" cdt2d "$W/x.xyz" --segments "$W/x.npy" -o "$W/x.ele" --split --check
+grep -Eq '^ *4 +1 +1' "$W/x.node" || { echo "FAIL: cdt2d --split .node lacks the new point"; fail=1; }
 printf '2 2 0 0\n1 0 0\n2 1 1\n1 0\n1 1 3\n0\n' >"$W/bad.poly"
 expect 3 "bad.poly:5: segment endpoint 3 names no vertex" -- "$G" cdt2d "$W/bad.poly" --check
 expect 2 "needs --segments" -- "$G" cdt2d "$W/tri.xyz" -o "$W/t.ele"

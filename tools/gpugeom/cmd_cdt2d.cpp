@@ -13,19 +13,21 @@ namespace gpugeom::cli {
 namespace {
 
 const char* kHelp =
-    "usage: gpugeom cdt2d IN.poly -o MESH [--hull] [--check] [--draw F] [--poly OUT.poly]\n"
-    "                     [--compress] [--ascii]\n"
+    "usage: gpugeom cdt2d IN.poly -o MESH [--hull] [--split] [--check] [--draw F]\n"
+    "                     [--poly OUT.poly] [--compress] [--ascii]\n"
     "       gpugeom cdt2d POINTS --segments S.npy -o MESH [--enclosed] [--check]\n\n"
     "Exact constrained Delaunay triangulation: every segment a chain of edges, every other edge\n"
     "locally Delaunay. IN.poly is Triangle's format (points, or a .node beside it; segments;\n"
     "holes; regional attributes); POINTS any 2D point file with --segments an int (m, 2) .npy\n"
     "of point indices (from 0). Segments through points become chains; two segments crossing\n"
-    "inside both are refused, naming them.\n"
+    "inside both are refused, naming them, unless --split.\n"
     "  -o MESH        .ele(+.node) .vtu .vtk .ply .off .obj, or .npy (the int32 triangles);\n"
     "                 .vtu/.vtk carry the regions' attribute per triangle\n"
     "  --hull         keep the convex hull's triangles (a .poly's outside is removed by default,\n"
     "                 as Triangle -p does; -c there)\n"
     "  --enclosed     remove the outside of the segments for a point file too\n"
+    "  --split        add a vertex where two segments cross (their intersection rounded to\n"
+    "                 doubles; the new points follow the input's in the outputs)\n"
     "  --draw F       draw it as SVG or PNG, the segments' edges in blue\n"
     "  --poly F       the result's segment edges as a .poly file (marker: input segment + 1),\n"
     "                 with the points, holes and regions\n"
@@ -44,7 +46,8 @@ int cmd_cdt2d(const Global& g, Args& a) {
   a.value("--draw", draw);
   a.value("--poly", poly_out);
   a.value("--segments", seg_path);
-  const bool hull = a.flag("--hull"), enclosed = a.flag("--enclosed"), check = a.flag("--check");
+  const bool hull = a.flag("--hull"), enclosed = a.flag("--enclosed"), check = a.flag("--check"),
+             split = a.flag("--split");
   const io::WriteOptions wo = mesh_write_options(a, out);
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one .poly or point file (see --help)");
@@ -71,6 +74,7 @@ int cmd_cdt2d(const Global& g, Args& a) {
   opt.backend = g.backend;
   opt.domain = (poly && !hull) || enclosed ? Cdt2dOptions::Domain::Enclosed
                                            : Cdt2dOptions::Domain::ConvexHull;
+  if (split) opt.crossings = Cdt2dOptions::Crossings::Split;
   for (std::size_t i = 0; i + 1 < in.holes.size(); i += 2)
     opt.holes.push_back({in.holes[i], in.holes[i + 1]});
   for (std::size_t i = 0; i + 2 < in.regions.size(); i += 3)
@@ -85,6 +89,7 @@ int cmd_cdt2d(const Global& g, Args& a) {
     if (r.zero_length_segments + r.repeated_segments)
       std::cout << " (" << r.zero_length_segments << " zero-length, " << r.repeated_segments
                 << " repeated: dropped)";
+    if (!r.new_points.empty()) std::cout << ", " << r.new_points.size() / 2 << " crossings split";
     std::cout << " -> " << r.num_triangles() << " triangles";
     if (r.removed_triangles) std::cout << " (" << r.removed_triangles << " removed)";
     std::cout << " on " << backend_name(r.stats.backend) << "\n";
@@ -99,14 +104,23 @@ int cmd_cdt2d(const Global& g, Args& a) {
     whole.regions.clear();
     const auto w = cdt2d(in.points.coords.data(), n, in.segments.data(), m, whole);
     std::vector<std::int32_t> segs;
-    for (std::size_t s = 0; s < in.segments.size(); s += 2) {
-      std::int32_t u = in.segments[s], v = in.segments[s + 1];
-      if (w.duplicate_of[u] >= 0) u = w.duplicate_of[u];
-      if (w.duplicate_of[v] >= 0) v = w.duplicate_of[v];
-      if (u != v) segs.insert(segs.end(), {u, v});
+    std::vector<double> xy(in.points.coords.begin(), in.points.coords.end());
+    if (w.new_points.empty()) {
+      for (std::size_t s = 0; s < in.segments.size(); s += 2) {
+        std::int32_t u = in.segments[s], v = in.segments[s + 1];
+        if (w.duplicate_of[u] >= 0) u = w.duplicate_of[u];
+        if (w.duplicate_of[v] >= 0) v = w.duplicate_of[v];
+        if (u != v) segs.insert(segs.end(), {u, v});
+      }
+    } else {  // split: the pieces are the segments' marked edges, among all the points
+      xy.insert(xy.end(), w.new_points.begin(), w.new_points.end());
+      for (std::size_t i = 0; i < w.segment_of.size(); ++i)
+        if (w.segment_of[i] >= 0)
+          segs.insert(segs.end(), {w.triangles[i - i % 3 + (i % 3 + 1) % 3],
+                                   w.triangles[i - i % 3 + (i % 3 + 2) % 3]});
     }
     const auto rep = verify::check_constrained_delaunay2d(
-        in.points.coords.data(), n, w.triangles.data(), std::int64_t(w.num_triangles()),
+        xy.data(), std::int64_t(xy.size() / 2), w.triangles.data(), std::int64_t(w.num_triangles()),
         segs.data(), std::int64_t(segs.size() / 2), w.duplicate_of.data());
     if (!rep.ok) {
       std::cerr << "INVALID cdt2d: " << rep.message << "\n";
@@ -115,6 +129,8 @@ int cmd_cdt2d(const Global& g, Args& a) {
       std::cout << "check: valid constrained Delaunay triangulation\n";
     }
   }
+  // The new points follow the input's in every output.
+  in.points.coords.insert(in.points.coords.end(), r.new_points.begin(), r.new_points.end());
   if (!draw.empty()) {
     Timer t(g, "draw");
     Triangulation2d tri;  // the drawing's view of the result

@@ -133,19 +133,17 @@ inline void recover_segments(Exec& ex, const MeshView& m, std::int64_t nt, const
   typename Exec::template Buffer<std::int32_t> ints;
   std::int64_t nact = kept, rebuilt = 0;
   RoundCounters h{};
+  // Reads the round's counters; false when a walk met a segment's edge (two segments cross:
+  // reported in rc, the recovery stops).
   auto read_counters = [&]() {
     ex.to_host(C, 1, &h);
-    if (h.cross != kNone) {
-      const std::uint32_t s1 = std::uint32_t(h.cross), s2 = std::uint32_t(h.cross >> 32);
-      throw Error(ErrorCode::InvalidInput,
-                  "segments " + std::to_string(std::min(s1, s2)) + " and " +
-                      std::to_string(std::max(s1, s2)) +
-                      " cross each other at a point that is not an input point: split them "
-                      "there (add the crossing as a point and end both segments at it)");
-    }
     if (h.broken)
       throw Error(ErrorCode::Internal, "cdt2d: " + std::to_string(h.broken) +
                                            " segment walks found the triangulation broken");
+    if (h.cross == kNone) return true;
+    const std::int32_t s1 = std::int32_t(h.cross >> 32), s2 = std::int32_t(std::uint32_t(h.cross));
+    rc.cross_a = std::min(s1, s2), rc.cross_b = std::max(s1, s2);
+    return false;
   };
   for (std::int64_t round = 0; nact > 0; ++round) {
     std::int32_t* L = act.data();
@@ -205,7 +203,7 @@ inline void recover_segments(Exec& ex, const MeshView& m, std::int64_t nt, const
           WIN[atomic_add(&C->winners, std::int64_t(1))] = r;
           atomic_add(&C->ints, cavity_ints(CNT[r]));
         });
-    read_counters();
+    if (!read_counters()) return;
     if (h.winners == 0)  // (the highest priority always wins: a broken triangulation)
       throw Error(ErrorCode::Internal, "cdt2d: no segment cavity could be claimed");
     rebuilt += h.winners;
@@ -231,7 +229,7 @@ inline void recover_segments(Exec& ex, const MeshView& m, std::int64_t nt, const
           if (antennas) atomic_add(&C->antennas, std::int64_t(antennas));
         });
   }
-  read_counters();
+  if (!read_counters()) return;
   rc.pieces = h.pieces + rebuilt;  // (each rebuild made one piece an edge)
   rc.cavity_triangles = h.cavity_triangles;
   rc.antennas = h.antennas;

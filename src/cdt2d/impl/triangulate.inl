@@ -36,6 +36,7 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const std::int32_
   const MeshView m{pts, dt.triangles.get(), dt.neighbors.get(), seg.data(), vt.data()};
   recover_segments(ex, m, nt, sp, nseg, dt.duplicate_of.get(), rc);
   ex.sync();
+  if (rc.cross_a >= 0) return;
   r.stats.phase_ms.push_back({"segments", ms_since(t1)});
   const auto t2 = Clock::now();
   deliver::to_host(ex, m.tri, 3 * nt, OutBuffer<std::int32_t>{}, r.triangles);
