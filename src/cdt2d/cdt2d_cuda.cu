@@ -8,9 +8,11 @@
 #include "cdt2d/cavity.hpp"
 #include "cdt2d/cdt2d_backend.hpp"
 #include "delaunay2d/del2d_backend.hpp"
+#include "gpugeom/delaunay2d.hpp"
 #include "exec/atomics.hpp"
 #include "exec/cuda_exec.cuh"
 #include "exec/deliver.hpp"
+#include "exec/prefault.hpp"
 #include "exec/scratch_slots.hpp"
 
 namespace gpugeom::cdt::cuda_impl {

@@ -119,6 +119,25 @@ inline Pslg contour_pslg(int rings, int per_ring, std::int64_t scattered, unsign
   return g;
 }
 
+// A coastline-like closed polyline of m vertices (a star-shaped outline with detail at many
+// scales and random jitter, so it never crosses itself), every edge a segment, and m / 10
+// points scattered around it.
+inline Pslg coastline_pslg(std::int64_t m, unsigned seed) {
+  Pslg g{"coastline " + std::to_string(m), {}, {}};
+  std::mt19937_64 r(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const double pi = 3.141592653589793;
+  for (std::int64_t i = 0; i < m; ++i) {
+    const double a = 2 * pi * double(i) / double(m);
+    const double rr = 1 + 0.25 * std::sin(7 * a) + 0.1 * std::sin(53 * a + 1) +
+                      0.03 * std::sin(911 * a + 2) + 0.004 * U(r);
+    g.xy.insert(g.xy.end(), {rr * std::cos(a), rr * std::sin(a)});
+    g.segs.insert(g.segs.end(), {std::int32_t(i), std::int32_t((i + 1) % m)});
+  }
+  for (std::int64_t i = 0; i < m / 10; ++i) g.xy.insert(g.xy.end(), {1.5 * U(r), 1.5 * U(r)});
+  return g;
+}
+
 // Points on a circle (all cocircular) with a star polygon of chords that do not cross, and
 // points inside.
 inline Pslg circle_pslg(int m, unsigned seed) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "cdt2d_cases.hpp"
 
@@ -14,6 +15,8 @@ TEST(CudaCdt2d, SameAsCpu) {
   for (unsigned seed : {1u, 2u}) cases.push_back(gg_cdt::random_pslg(100000, 30000, seed));
   for (unsigned seed : {3u, 4u}) cases.push_back(gg_cdt::random_pslg(20000, 3000, seed, 1));
   cases.push_back(gg_cdt::contour_pslg(40, 5000, 100000, 5));
+  if (!std::getenv("GG_UNDER_SANITIZER"))  // (10^6 points under the sanitizer: slow)
+    cases.push_back(gg_cdt::coastline_pslg(1000000, 6));
   for (const auto& g : cases) {
     Cdt2dOptions o;
     o.backend = Backend::Cpu;

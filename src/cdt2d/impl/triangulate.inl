@@ -6,6 +6,20 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const std::int32_
                              ConstrainedTriangulation2d& r, RecoveryCounts& rc) {
   Exec ex(opt);
   const auto t0 = Clock::now();
+  // On the GPU the host is idle meanwhile: the result arrays are sized for the most triangles n
+  // points can have (cut to the count later, keeping the pages) and faulted in by host threads,
+  // so that the copy back runs at the transfer's rate (as delaunay2d's host entry does).
+  detail::Prefault pf;
+  if constexpr (Exec::backend == Backend::Cuda) {
+    const std::size_t bound = 3 * std::size_t(delaunay2d_max_triangles(n));
+    for (HostVector<std::int32_t>* v : {&r.triangles, &r.neighbors, &r.segment_of}) {
+      v->resize(bound);
+      pf.add(v->data(), bound * sizeof(std::int32_t));
+    }
+    r.duplicate_of.resize(std::size_t(n));
+    pf.add(r.duplicate_of.data(), std::size_t(n) * sizeof(std::int32_t));
+    pf.start();
+  }
   // The points where the executor reads them (the CPU executor reads the caller's).
   typename Exec::template Buffer<double> dxy;
   const double* pts = xy;
@@ -39,6 +53,8 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const std::int32_
   if (rc.cross_a >= 0) return;
   r.stats.phase_ms.push_back({"segments", ms_since(t1)});
   const auto t2 = Clock::now();
+  pf.wait();
+  r.stats.phase_ms.push_back({"prefault_wait", ms_since(t2)});
   deliver::to_host(ex, m.tri, 3 * nt, OutBuffer<std::int32_t>{}, r.triangles);
   deliver::to_host(ex, m.nbr, 3 * nt, OutBuffer<std::int32_t>{}, r.neighbors);
   deliver::to_host(ex, m.seg, 3 * nt, OutBuffer<std::int32_t>{}, r.segment_of);
