@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
   std::string inputs = "pslg:100000", backend = "cuda", csv, save_dir;
   int reps = 3;
   double cgal_max = 0, check_max = 2e6;
-  bool check = false;
+  bool check = false, enclosed = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -150,6 +150,8 @@ int main(int argc, char** argv) {
       cgal_max = std::stod(next());
     else if (a == "--check")
       check = true;
+    else if (a == "--enclosed")
+      enclosed = true;
     else if (a == "--check-max")
       check_max = std::stod(next());
     else if (a == "--save")
@@ -159,16 +161,16 @@ int main(int argc, char** argv) {
     else {
       std::cerr << "usage: gpugeom_bench_cdt2d [--inputs pslg:N,P.npy:S.npy,...] [--backend "
                    "cuda|cpu] [--reps 3] [--cgal MAX_N] [--check] [--check-max N] [--save DIR] "
-                   "[--csv F]\n";
+                   "[--csv F] [--enclosed]\n";
       return 2;
     }
   }
   const Backend b = backend == "cpu" ? Backend::Cpu : Backend::Cuda;
   const DeviceInfo dev = query_device();
   std::printf("device: %s\n", b == Backend::Cuda ? dev.name.c_str() : "CPU executor");
-  std::printf("%-12s %9s %8s | %9s %9s | %8s %8s %8s | %6s %9s %5s %4s | %9s %6s | %s\n", "input",
-              "n", "segs", "delaunay", "cdt", "dt part", "segments", "to_host", "recov", "cavity_t",
-              "rnds", "ant", "cgal", "x cgal", "check");
+  std::printf("%-12s %9s %8s | %9s %9s | %8s %8s %8s %8s | %6s %9s %5s %4s | %9s %6s | %s\n",
+              "input", "n", "segs", "delaunay", "cdt", "dt part", "segments", "to_host", "domain",
+              "recov", "cavity_t", "rnds", "ant", "cgal", "x cgal", "check");
   std::ofstream f = bench::open_bench_csv(csv);
   std::stringstream ss(inputs);
   for (std::string item; std::getline(ss, item, ',');) {
@@ -186,8 +188,9 @@ int main(int argc, char** argv) {
     dopt.backend = b;
     Cdt2dOptions copt;
     copt.backend = b;
-    delaunay2d(in.xy.data(), in.n(), dopt);  // warm-up (context, pools)
-    std::vector<double> tdt, tcdt, tpart, tseg, thost;
+    if (enclosed) copt.domain = Cdt2dOptions::Domain::Enclosed;  // (the check then skipped)
+    delaunay2d(in.xy.data(), in.n(), dopt);                      // warm-up (context, pools)
+    std::vector<double> tdt, tcdt, tpart, tseg, thost, tdom;
     ConstrainedTriangulation2d r;
     for (int k = 0; k < reps; ++k) {
       auto t0 = clk::now();
@@ -199,9 +202,10 @@ int main(int argc, char** argv) {
       tpart.push_back(bench::phase_ms(r.stats, "delaunay"));
       tseg.push_back(bench::phase_ms(r.stats, "segments"));
       thost.push_back(bench::phase_ms(r.stats, "to_host"));
+      tdom.push_back(bench::phase_ms(r.stats, "domain"));
     }
     std::string verdict = "-";
-    if (check && in.n() <= check_max) {
+    if (check && !enclosed && in.n() <= check_max) {
       std::vector<std::int32_t> segs;
       for (std::int64_t s = 0; s < in.m(); ++s) {
         std::int32_t a = in.segs[2 * s], c = in.segs[2 * s + 1];
@@ -217,10 +221,11 @@ int main(int argc, char** argv) {
     const double cg = in.n() <= cgal_max ? cgal_ms(in) : -1;
     const double cdt_ms = median(tcdt);
     std::printf(
-        "%-12s %9lld %8lld | %9.1f %9.1f | %8.1f %8.1f %8.1f | %6lld %9lld %5lld %4lld | %9.0f "
-        "%6.0f | %s\n",
+        "%-12s %9lld %8lld | %9.1f %9.1f | %8.1f %8.1f %8.1f %8.1f | %6lld %9lld %5lld %4lld | "
+        "%9.0f %6.0f | %s\n",
         in.name.c_str(), (long long)in.n(), (long long)in.m(), median(tdt), cdt_ms, median(tpart),
-        median(tseg), median(thost), (long long)r.stats.counters.at("segments_recovered"),
+        median(tseg), median(thost), median(tdom),
+        (long long)r.stats.counters.at("segments_recovered"),
         (long long)r.stats.counters.at("cavity_triangles"),
         (long long)r.stats.counters.at("recovery_rounds"),
         (long long)r.stats.counters.at("cavity_antennas"), cg, cg > 0 ? cg / cdt_ms : 0.0,

@@ -1,6 +1,7 @@
-// Public entry of the 2D constrained Delaunay triangulation: checks the input, runs the Delaunay
-// triangulation and the segment recovery on the executor opt picks (cdt2d_backend.hpp), then
-// removes holes and the outside and spreads regions on the host (domain.hpp).
+// Public entry of the 2D constrained Delaunay triangulation: checks the input, splits crossing
+// segments where asked (crossings.hpp), then runs the Delaunay triangulation, the segment
+// recovery and the domain (holes, the outside, regions) on the executor opt picks
+// (cdt2d_backend.hpp).
 #include "gpugeom/cdt2d.hpp"
 
 #include <algorithm>
@@ -11,7 +12,6 @@
 #include "base/clock.hpp"
 #include "cdt2d/cdt2d_backend.hpp"
 #include "cdt2d/crossings.hpp"
-#include "cdt2d/domain.hpp"
 #include "delaunay2d/del2d_backend.hpp"
 #include "exec/dispatch.hpp"
 
@@ -112,15 +112,6 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
     r.new_points.assign(sp.points.begin(), sp.points.end());
     r.new_point_segments.assign(sp.point_segments.begin(), sp.point_segments.end());
     count_dropped(segments, nseg, r.duplicate_of.data(), r);
-  }
-  if (opt.domain != Cdt2dOptions::Domain::ConvexHull || !opt.holes.empty() ||
-      !opt.regions.empty()) {
-    const auto t0 = Clock::now();
-    const HostVector<std::int32_t> tris = std::move(r.triangles), nbrs = std::move(r.neighbors),
-                                   segs = std::move(r.segment_of);
-    cdt::apply_domain(P, np, tris.data(), nbrs.data(), segs.data(), std::int64_t(tris.size() / 3),
-                      opt, r);
-    r.stats.phase_ms.push_back({"domain", ms_since(t0)});
   }
   r.stats.counters["segments"] = nseg;
   r.stats.counters["segments_present"] = rc.kept - rc.recovered;

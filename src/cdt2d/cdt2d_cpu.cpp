@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <vector>
 #include <thrust/functional.h>
 
 #include "base/clock.hpp"
@@ -14,11 +15,14 @@
 #include "exec/deliver.hpp"
 #include "exec/prefault.hpp"
 #include "exec/scratch_slots.hpp"
+#include "locate/walk.hpp"
+#include "mesh/union_find.hpp"
 
 namespace gpugeom::cdt::cpu_impl {
 using Exec = CpuExec;
 namespace dt_impl = ::gpugeom::del2d::cpu_impl;
 #include "cdt2d/impl/recover.inl"
+#include "cdt2d/impl/domain.inl"
 #include "cdt2d/impl/triangulate.inl"
 void triangulate(const double* xy, std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
                  const Cdt2dOptions& opt, ConstrainedTriangulation2d& r, RecoveryCounts& rc) {

@@ -52,12 +52,27 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const std::int32_
   ex.sync();
   if (rc.cross_a >= 0) return;
   r.stats.phase_ms.push_back({"segments", ms_since(t1)});
+  // Holes, the outside and regions, where asked for: the kept triangles compacted.
+  DomainResult dom;
+  const std::int32_t *tri = m.tri, *nbr = m.nbr, *sg = m.seg;
+  std::int64_t count = nt;
+  if (opt.domain != Cdt2dOptions::Domain::ConvexHull || !opt.holes.empty() ||
+      !opt.regions.empty()) {
+    const auto t3 = Clock::now();
+    dom = apply_domain(ex, m, nt, opt);
+    tri = dom.tri.data(), nbr = dom.nbr.data(), sg = dom.seg.data(), count = dom.kept;
+    r.removed_triangles = nt - dom.kept;
+    ex.sync();
+    r.stats.phase_ms.push_back({"domain", ms_since(t3)});
+  }
   const auto t2 = Clock::now();
   pf.wait();
   r.stats.phase_ms.push_back({"prefault_wait", ms_since(t2)});
-  deliver::to_host(ex, m.tri, 3 * nt, OutBuffer<std::int32_t>{}, r.triangles);
-  deliver::to_host(ex, m.nbr, 3 * nt, OutBuffer<std::int32_t>{}, r.neighbors);
-  deliver::to_host(ex, m.seg, 3 * nt, OutBuffer<std::int32_t>{}, r.segment_of);
+  deliver::to_host(ex, tri, 3 * count, OutBuffer<std::int32_t>{}, r.triangles);
+  deliver::to_host(ex, nbr, 3 * count, OutBuffer<std::int32_t>{}, r.neighbors);
+  deliver::to_host(ex, sg, 3 * count, OutBuffer<std::int32_t>{}, r.segment_of);
+  if (!opt.regions.empty())
+    deliver::to_host(ex, dom.attribute.data(), count, OutBuffer<double>{}, r.attribute);
   deliver::to_host(ex, dt.duplicate_of.get(), n, OutBuffer<std::int32_t>{}, r.duplicate_of);
   r.num_duplicates = dt.num_duplicates;
   r.stats.phase_ms.push_back({"to_host", ms_since(t2)});
