@@ -62,3 +62,29 @@ TEST(CudaCdt2d, SplitSameAsCpu) {
                 (long long)gpu.stats.counters.at("segments_split"));
   }
 }
+
+// Holes, the outside and regions on the CUDA executor: the same kept triangles, neighbours,
+// marks and attributes as the CPU executor's (contour rings: the outside of the outermost
+// removed, a hole between two rings, regions in others).
+TEST(CudaCdt2d, DomainSameAsCpu) {
+  const auto g = gg_cdt::contour_pslg(12, 3000, 50000, 7);
+  Cdt2dOptions o;
+  o.domain = Cdt2dOptions::Domain::Enclosed;
+  o.holes = {{0.0, 0.33}};
+  o.regions = {{0.0, 0.6, 2.0}, {0.0, 0.05, 5.0}, {0.5, 0.5, 7.0}};
+  o.backend = Backend::Cpu;
+  const std::int64_t n = std::int64_t(g.xy.size() / 2), m = std::int64_t(g.segs.size() / 2);
+  const auto cpu = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
+  o.backend = Backend::Cuda;
+  const auto gpu = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
+  EXPECT_GT(gpu.removed_triangles, 0);
+  EXPECT_EQ(gpu.removed_triangles, cpu.removed_triangles);
+  EXPECT_EQ(gpu.triangles, cpu.triangles);
+  EXPECT_EQ(gpu.neighbors, cpu.neighbors);
+  EXPECT_EQ(gpu.segment_of, cpu.segment_of);
+  EXPECT_EQ(gpu.attribute, cpu.attribute);
+  std::printf("contour domain: %zu kept, %lld removed, phases:", gpu.num_triangles(),
+              (long long)gpu.removed_triangles);
+  for (const auto& ph : gpu.stats.phase_ms) std::printf(" %s %.1f ms", ph.first.c_str(), ph.second);
+  std::printf("\n");
+}
