@@ -20,6 +20,7 @@
 // doubles, reported with the two segments that made it.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "gpugeom/common.hpp"
@@ -96,5 +97,23 @@ struct ConstrainedTriangulation2d {
 // an input point, or overlap along one line, are fine); and as delaunay2d does for the points.
 ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
                                  std::int64_t nseg, const Cdt2dOptions& opt = {});
+
+// The device entry: points (n, x and y interleaved) and segments (nseg index pairs) in the
+// memory of the executor opt picks (CUDA device memory, or host memory for Backend::Cpu), the
+// result left there (arrays the caller then owns; freed with the last copy of the pointer).
+// The same triangles, marks and counts as cdt2d. Crossings::Split is refused here
+// (Error(InvalidArgument)): splitting reads the segments on the host, so call cdt2d.
+struct DeviceConstrainedTriangulation2d {
+  std::int64_t num_points = 0, num_triangles = 0, num_duplicates = 0;
+  std::shared_ptr<std::int32_t> triangles, neighbors, segment_of;  // 3 * num_triangles each
+  std::shared_ptr<std::int32_t> duplicate_of;                      // num_points
+  std::shared_ptr<double> attribute;  // num_triangles, when regions are given
+  std::int64_t zero_length_segments = 0, repeated_segments = 0, removed_triangles = 0;
+  Backend backend = Backend::Cuda;  // where the arrays are: Cuda = device memory
+  Stats stats;
+};
+DeviceConstrainedTriangulation2d cdt2d_device(const double* device_xy, std::int64_t n,
+                                              const std::int32_t* device_segments,
+                                              std::int64_t nseg, const Cdt2dOptions& opt = {});
 
 }  // namespace gpugeom

@@ -373,28 +373,63 @@ class ConstrainedDelaunay:
             raise ValueError(f"domain must be 'hull' or 'enclosed', got {domain!r}")
         if crossings not in ("refuse", "split"):
             raise ValueError(f"crossings must be 'refuse' or 'split', got {crossings!r}")
-        self.points = np.ascontiguousarray(_arrays.to_host(points), dtype=np.float64)
-        if self.points.ndim != 2 or self.points.shape[1] != 2:
-            raise ValueError(f"points must have shape (n, 2), got {self.points.shape}")
-        seg = np.asarray(_arrays.to_host(segments))
-        if seg.size and not np.issubdtype(seg.dtype, np.integer):
-            raise TypeError("segments must be integer point indices")
-        self.segments = np.ascontiguousarray(seg, dtype=np.int32).reshape(-1, 2)
         h = np.ascontiguousarray(np.zeros((0, 2)) if holes is None else _arrays.to_host(holes),
                                  dtype=np.float64).reshape(-1, 2)
         g = np.ascontiguousarray(np.zeros((0, 3)) if regions is None
                                  else _arrays.to_host(regions), dtype=np.float64).reshape(-1, 3)
-        r = _core.cdt2d(self.points, self.segments, h, g, enclosed=domain == "enclosed",
-                        split=crossings == "split", backend=backend, threads=threads)
-        self.new_points = r["new_points"]
-        self.new_point_segments = r["new_point_segments"]
-        if len(self.new_points):
-            self.points = np.concatenate([self.points, self.new_points])
-        self.simplices = r["simplices"]
-        self.neighbors = r["neighbors"]
-        self.segment_of = r["segment_of"]
-        self.duplicate_of = r["duplicate_of"]
-        self.attributes = r.get("attribute")
+        kind = _arrays.classify(points)
+        if kind.device:
+            # CuPy / PyTorch CUDA points: the segments join them on the device, and the result
+            # stays there (cdt2d_device).
+            if crossings == "split":
+                raise ValueError("crossings='split' reads the segments on the host: give host "
+                                 "(NumPy) arrays for it")
+            arr, kind = _arrays.points_input(points, (2,), backend, threads)
+            seg = segments
+            if not _arrays.classify(seg).device:
+                seg = np.asarray(seg)
+                if seg.size and not np.issubdtype(seg.dtype, np.integer):
+                    raise TypeError("segments must be integer point indices")
+                seg = np.ascontiguousarray(seg, dtype=np.int32).reshape(-1, 2)
+                if kind.name == "torch":
+                    import torch
+
+                    seg = torch.as_tensor(seg, device=kind.torch_device)
+                else:
+                    import cupy
+
+                    seg = cupy.asarray(seg)
+            sarr, _ = _arrays.as_input(seg, np.int32, "segments", kind)
+            sarr = sarr.reshape(-1, 2)
+            r = _core.cdt2d_device(arr, sarr, h, g, enclosed=domain == "enclosed",
+                                   backend=backend, stream=kind.stream, threads=threads)
+            self.points, self.segments = arr, sarr
+            self.simplices = kind.back(r["simplices"])
+            self.neighbors = kind.back(r["neighbors"])
+            self.segment_of = kind.back(r["segment_of"])
+            self.duplicate_of = kind.back(r["duplicate_of"])
+            self.attributes = kind.back(r.get("attribute"))
+            self.new_points = np.zeros((0, 2))
+            self.new_point_segments = np.zeros((0, 2), dtype=np.int32)
+        else:
+            self.points = np.ascontiguousarray(_arrays.to_host(points), dtype=np.float64)
+            if self.points.ndim != 2 or self.points.shape[1] != 2:
+                raise ValueError(f"points must have shape (n, 2), got {self.points.shape}")
+            seg = np.asarray(_arrays.to_host(segments))
+            if seg.size and not np.issubdtype(seg.dtype, np.integer):
+                raise TypeError("segments must be integer point indices")
+            self.segments = np.ascontiguousarray(seg, dtype=np.int32).reshape(-1, 2)
+            r = _core.cdt2d(self.points, self.segments, h, g, enclosed=domain == "enclosed",
+                            split=crossings == "split", backend=backend, threads=threads)
+            self.new_points = r["new_points"]
+            self.new_point_segments = r["new_point_segments"]
+            if len(self.new_points):
+                self.points = np.concatenate([self.points, self.new_points])
+            self.simplices = r["simplices"]
+            self.neighbors = r["neighbors"]
+            self.segment_of = r["segment_of"]
+            self.duplicate_of = r["duplicate_of"]
+            self.attributes = r.get("attribute")
         self.stats = r["stats"]
         for k in ("zero_length_segments", "repeated_segments", "removed_triangles"):
             self.stats["counters"][k] = int(r[k])

@@ -265,6 +265,41 @@ nb::dict cdt2d_bind(const AnyArray& points, const AnyArray& segments, const AnyA
   return r;
 }
 
+// The same from points and segments in CUDA device memory (or host memory with backend "cpu"),
+// the results left there (cdt2d_device).
+nb::dict cdt2d_device_bind(const AnyArray& points, const AnyArray& segments, const AnyArray& holes,
+                           const AnyArray& regions, bool enclosed, const std::string& backend,
+                           std::uintptr_t stream, int threads) {
+  const Input p = points_input(points, 2), sg = inspect(segments, "segments");
+  if (!holds<std::int32_t>(sg) || sg.shape.size() != 2 || sg.shape[1] != 2)
+    throw nb::value_error("segments must be an int32 array of shape (m, 2)");
+  if (sg.on_device != p.on_device)
+    throw nb::value_error("points and segments must be in the same memory (both on the device)");
+  std::int64_t nh = 0, nr = 0;
+  const double* h = reals_of(holes, "holes", 2, &nh);
+  const double* g = reals_of(regions, "regions", 3, &nr);
+  auto o = options_for<Cdt2dOptions>(backend, stream, threads, p);
+  o.domain = enclosed ? Cdt2dOptions::Domain::Enclosed : Cdt2dOptions::Domain::ConvexHull;
+  for (std::int64_t i = 0; i < nh; ++i) o.holes.push_back({h[2 * i], h[2 * i + 1]});
+  for (std::int64_t i = 0; i < nr; ++i) o.regions.push_back({g[3 * i], g[3 * i + 1], g[3 * i + 2]});
+  const std::int64_t n = p.shape[0], m = sg.shape[0];
+  DeviceConstrainedTriangulation2d t = unlocked(
+      [&] { return cdt2d_device(pts(p), n, static_cast<const std::int32_t*>(sg.data), m, o); });
+  const DeviceOut out{t.backend, device_of(o)};
+  const sz nt = sz(t.num_triangles);
+  nb::dict r;
+  r["simplices"] = out(t.triangles, {nt, 3});
+  r["neighbors"] = out(t.neighbors, {nt, 3});
+  r["segment_of"] = out(t.segment_of, {nt, 3});
+  r["duplicate_of"] = out(t.duplicate_of, {sz(n)});
+  if (t.attribute) r["attribute"] = out(t.attribute, {nt});
+  r["zero_length_segments"] = t.zero_length_segments;
+  r["repeated_segments"] = t.repeated_segments;
+  r["removed_triangles"] = t.removed_triangles;
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+
 // The extreme points of a 2D Delaunay triangulation's points, counter-clockwise (host arrays).
 nb::object hull2d_bind(const AnyArray& points, const AnyArray& simplices,
                        const AnyArray& neighbors) {
@@ -341,6 +376,8 @@ void bind_spatial(nb::module_& m) {
         "segments"_a = nb::none());
   m.def("cdt2d", &cdt2d_bind, "points"_a, "segments"_a, "holes"_a, "regions"_a,
         "enclosed"_a = false, "split"_a = false, "backend"_a = "auto", "threads"_a = 0);
+  m.def("cdt2d_device", &cdt2d_device_bind, "points"_a, "segments"_a, "holes"_a, "regions"_a,
+        "enclosed"_a = false, "backend"_a = "auto", "stream"_a = 0, "threads"_a = 0);
 }
 
 }  // namespace gpugeom::py

@@ -89,3 +89,23 @@ def test_torch_cuda(rng):
     # a CPU tensor comes back as a CPU tensor
     dc = gpugeom.Delaunay(torch.as_tensor(p[:1000]))
     assert isinstance(dc.simplices, torch.Tensor) and not dc.simplices.is_cuda
+
+
+def test_constrained_delaunay_cupy(rng):
+    # points and segments on the device: the result stays there, equal to the host run's
+    n = 20000
+    p = rng.random((n, 2))
+    poly = np.array([[0.2, 0.2], [0.8, 0.2], [0.8, 0.8], [0.2, 0.8]])
+    p[:4] = poly
+    segs = np.array([[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]], dtype=np.int32)
+    h = gpugeom.ConstrainedDelaunay(p, segs, domain="enclosed")
+    d = gpugeom.ConstrainedDelaunay(cupy.asarray(p), cupy.asarray(segs), domain="enclosed")
+    assert isinstance(d.simplices, cupy.ndarray) and isinstance(d.segment_of, cupy.ndarray)
+    assert (cupy.asnumpy(d.simplices) == h.simplices).all()
+    assert (cupy.asnumpy(d.segment_of) == h.segment_of).all()
+    assert d.stats["counters"]["removed_triangles"] == h.stats["counters"]["removed_triangles"] > 0
+    # segments from the host join device points; split needs host arrays
+    e = gpugeom.ConstrainedDelaunay(cupy.asarray(p), segs)
+    assert isinstance(e.simplices, cupy.ndarray)
+    with pytest.raises(ValueError, match="host"):
+        gpugeom.ConstrainedDelaunay(cupy.asarray(p), segs, crossings="split")

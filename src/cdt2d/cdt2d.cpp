@@ -13,6 +13,7 @@
 #include "cdt2d/cdt2d_backend.hpp"
 #include "cdt2d/crossings.hpp"
 #include "delaunay2d/del2d_backend.hpp"
+#include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
 
 namespace gpugeom {
@@ -38,10 +39,10 @@ void count_dropped(const std::int32_t* segs, std::int64_t m, const std::int32_t*
   r.repeated_segments =
       std::int64_t(keys.size()) - (std::unique(keys.begin(), keys.end()) - keys.begin());
 }
-}  // namespace
 
-ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
-                                 std::int64_t nseg, const Cdt2dOptions& opt) {
+// The checks both entries make before any work (the device entry checks indices on the device).
+void check_input(std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
+                 const Cdt2dOptions& opt) {
   del2d::check_count(n);
   if (nseg < 0 || (nseg > 0 && !segments))
     throw Error(ErrorCode::InvalidArgument,
@@ -56,6 +57,34 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
   for (const auto& g : opt.regions)
     if (!std::isfinite(g.x) || !std::isfinite(g.y))
       throw Error(ErrorCode::InvalidInput, "a region point is not finite");
+}
+
+std::string crossing_message(std::int32_t s1, std::int32_t s2, bool split) {
+  return "segments " + std::to_string(std::min(s1, s2)) + " and " +
+         std::to_string(std::max(s1, s2)) +
+         (split ? " still cross after splitting them at their rounded intersection"
+                : " cross each other at a point that is not an input point: split them there "
+                  "(add the crossing as a point and end both segments at it), or ask for "
+                  "Crossings::Split");
+}
+
+void set_counters(Stats& st, std::int64_t nseg, const cdt::RecoveryCounts& rc,
+                  const cdt::SplitSegments& sp) {
+  st.counters["segments"] = nseg;
+  st.counters["segments_present"] = rc.kept - rc.recovered;
+  st.counters["segments_recovered"] = rc.recovered;
+  st.counters["segment_pieces"] = rc.pieces;
+  st.counters["cavity_triangles"] = rc.cavity_triangles;
+  st.counters["cavity_antennas"] = rc.antennas;
+  st.counters["recovery_rounds"] = rc.rounds;
+  st.counters["crossings"] = std::int64_t(sp.points.size() / 2);
+  st.counters["segments_split"] = sp.split_segments;
+}
+}  // namespace
+
+ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
+                                 std::int64_t nseg, const Cdt2dOptions& opt) {
+  check_input(n, segments, nseg, opt);
   for (std::int64_t k = 0; k < 2 * nseg; ++k)
     if (segments[k] < 0 || segments[k] >= n)
       throw Error(ErrorCode::InvalidInput, "segment " + std::to_string(k / 2) + " names point " +
@@ -93,13 +122,7 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
     const std::int32_t s1 = pieces ? sp.piece_segment[std::size_t(rc.cross_a)] : rc.cross_a,
                        s2 = pieces ? sp.piece_segment[std::size_t(rc.cross_b)] : rc.cross_b;
     if (!split || attempt >= 3)
-      throw Error(ErrorCode::InvalidInput,
-                  "segments " + std::to_string(std::min(s1, s2)) + " and " +
-                      std::to_string(std::max(s1, s2)) +
-                      (split ? " still cross after splitting them at their rounded intersection"
-                             : " cross each other at a point that is not an input point: split "
-                               "them there (add the crossing as a point and end both segments "
-                               "at it), or ask for Crossings::Split"));
+      throw Error(ErrorCode::InvalidInput, crossing_message(s1, s2, split));
     known.push_back({s1, s2});  // (the grid missed it: named from here on)
   }
   r.stats.backend = b;
@@ -113,15 +136,39 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
     r.new_point_segments.assign(sp.point_segments.begin(), sp.point_segments.end());
     count_dropped(segments, nseg, r.duplicate_of.data(), r);
   }
-  r.stats.counters["segments"] = nseg;
-  r.stats.counters["segments_present"] = rc.kept - rc.recovered;
-  r.stats.counters["segments_recovered"] = rc.recovered;
-  r.stats.counters["segment_pieces"] = rc.pieces;
-  r.stats.counters["cavity_triangles"] = rc.cavity_triangles;
-  r.stats.counters["cavity_antennas"] = rc.antennas;
-  r.stats.counters["recovery_rounds"] = rc.rounds;
-  r.stats.counters["crossings"] = std::int64_t(sp.points.size() / 2);
-  r.stats.counters["segments_split"] = sp.split_segments;
+  set_counters(r.stats, nseg, rc, sp);
+  return r;
+}
+
+DeviceConstrainedTriangulation2d cdt2d_device(const double* device_xy, std::int64_t n,
+                                              const std::int32_t* device_segments,
+                                              std::int64_t nseg, const Cdt2dOptions& opt) {
+  check_input(n, device_segments, nseg, opt);
+  if (opt.crossings == Cdt2dOptions::Crossings::Split)
+    throw Error(ErrorCode::InvalidArgument,
+                "cdt2d_device: Crossings::Split reads the segments on the host: call cdt2d with "
+                "host arrays for it");
+  DeviceConstrainedTriangulation2d r;
+  const Backend b = device_entry_backend(opt.backend, opt.device, "cdt2d_device");
+  cdt::RecoveryCounts rc;
+  cdt::DeviceResult d;
+  GG_ON_EXECUTOR(b, cdt, triangulate_device, device_xy, n, device_segments, nseg, opt, d, r.stats,
+                 rc);
+  if (rc.cross_a >= 0)
+    throw Error(ErrorCode::InvalidInput, crossing_message(rc.cross_a, rc.cross_b, false));
+  r.backend = r.stats.backend = b;
+  r.num_points = n;
+  r.num_triangles = d.count;
+  r.num_duplicates = d.num_duplicates;
+  r.triangles = std::move(d.triangles);
+  r.neighbors = std::move(d.neighbors);
+  r.segment_of = std::move(d.segment_of);
+  r.duplicate_of = std::move(d.duplicate_of);
+  r.attribute = std::move(d.attribute);
+  r.zero_length_segments = rc.zero_length;
+  r.repeated_segments = rc.repeated;
+  r.removed_triangles = d.removed;
+  set_counters(r.stats, nseg, rc, cdt::SplitSegments{});
   return r;
 }
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+#include <climits>
 #include <thrust/functional.h>
 
 #include "base/clock.hpp"
@@ -27,5 +28,10 @@ namespace dt_impl = ::gpugeom::del2d::cpu_impl;
 void triangulate(const double* xy, std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
                  const Cdt2dOptions& opt, ConstrainedTriangulation2d& r, RecoveryCounts& rc) {
   triangulate_impl(xy, n, segments, nseg, opt, r, rc);
+}
+void triangulate_device(const double* xy, std::int64_t n, const std::int32_t* segments,
+                        std::int64_t nseg, const Cdt2dOptions& opt, DeviceResult& d, Stats& st,
+                        RecoveryCounts& rc) {
+  triangulate_device_impl(xy, n, segments, nseg, opt, d, st, rc);
 }
 }  // namespace gpugeom::cdt::cpu_impl

@@ -194,6 +194,54 @@ TEST(Cdt2d, CrossingSegmentsSplit) {
   }
 }
 
+// The device entry on the CPU executor (its "device" memory is host memory): the same arrays as
+// the host entry, with and without a domain; bad indices, crossings and Split refused.
+TEST(Cdt2d, DeviceEntryOnTheCpu) {
+  const auto g = gg_cdt::contour_pslg(8, 500, 2000, 3);
+  const std::int64_t n = std::int64_t(g.xy.size() / 2), m = std::int64_t(g.segs.size() / 2);
+  for (bool enclosed : {false, true}) {
+    Cdt2dOptions o;
+    o.backend = Backend::Cpu;
+    if (enclosed) {
+      o.domain = Cdt2dOptions::Domain::Enclosed;
+      o.regions = {{0.0, 0.5, 3.0}};
+    }
+    const auto h = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
+    const auto d = cdt2d_device(g.xy.data(), n, g.segs.data(), m, o);
+    ASSERT_EQ(d.num_triangles, std::int64_t(h.num_triangles()));
+    EXPECT_EQ(d.backend, Backend::Cpu);
+    const std::size_t k = 3 * std::size_t(d.num_triangles);
+    EXPECT_EQ(std::vector<std::int32_t>(d.triangles.get(), d.triangles.get() + k), h.triangles);
+    EXPECT_EQ(std::vector<std::int32_t>(d.neighbors.get(), d.neighbors.get() + k), h.neighbors);
+    EXPECT_EQ(std::vector<std::int32_t>(d.segment_of.get(), d.segment_of.get() + k), h.segment_of);
+    EXPECT_EQ(std::vector<std::int32_t>(d.duplicate_of.get(), d.duplicate_of.get() + n),
+              h.duplicate_of);
+    EXPECT_EQ(d.removed_triangles, h.removed_triangles);
+    if (enclosed) {
+      ASSERT_TRUE(d.attribute);
+      EXPECT_EQ(std::vector<double>(d.attribute.get(), d.attribute.get() + d.num_triangles),
+                h.attribute);
+    }
+    EXPECT_EQ(d.stats.counters.at("segments_recovered"), h.stats.counters.at("segments_recovered"));
+  }
+  Cdt2dOptions o;
+  o.backend = Backend::Cpu;
+  std::vector<std::int32_t> bad = g.segs;
+  bad[7] = std::int32_t(n);
+  try {
+    cdt2d_device(g.xy.data(), n, bad.data(), m, o);
+    ADD_FAILURE() << "a bad index was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(int(e.code()), int(ErrorCode::InvalidInput));
+    EXPECT_NE(std::string(e.what()).find("segment 3 names point"), std::string::npos) << e.what();
+  }
+  const std::vector<double> xy{0, 0, 2, 2, 0, 2, 2, 0};
+  const std::vector<std::int32_t> x{0, 1, 2, 3};
+  EXPECT_THROW(cdt2d_device(xy.data(), 4, x.data(), 2, o), Error);
+  o.crossings = Cdt2dOptions::Crossings::Split;
+  EXPECT_THROW(cdt2d_device(xy.data(), 4, x.data(), 2, o), Error);
+}
+
 // An L-shaped domain (its hull a pentagon of area 87.5, the L 75) with a 2x2 square hole and a
 // divider, on every integer point of the L but the hole's centre: the kept triangles' areas
 // (exact: half-integers) for each domain rule, holes and regions; the boundary of an enclosed

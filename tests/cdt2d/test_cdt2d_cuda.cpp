@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "../common/device_arrays.hpp"
 #include "cdt2d_cases.hpp"
 
 using namespace gpugeom;
@@ -87,4 +88,31 @@ TEST(CudaCdt2d, DomainSameAsCpu) {
               (long long)gpu.removed_triangles);
   for (const auto& ph : gpu.stats.phase_ms) std::printf(" %s %.1f ms", ph.first.c_str(), ph.second);
   std::printf("\n");
+}
+
+// The device entry on CUDA: points and segments in device memory, the result left there; the
+// same arrays as the host entry's.
+TEST(CudaCdt2d, DeviceEntry) {
+  const auto g = gg_cdt::random_pslg(200000, 60000, 9);
+  const std::int64_t n = std::int64_t(g.xy.size() / 2), m = std::int64_t(g.segs.size() / 2);
+  Cdt2dOptions o;
+  o.backend = Backend::Cuda;
+  o.domain = Cdt2dOptions::Domain::Enclosed;
+  const auto h = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
+  const gg_test::DeviceCopy dxy(g.xy), dsegs(g.segs);
+  const auto d = cdt2d_device(static_cast<const double*>(dxy.data()), n,
+                              static_cast<const std::int32_t*>(dsegs.data()), m, o);
+  ASSERT_EQ(d.num_triangles, std::int64_t(h.num_triangles()));
+  EXPECT_EQ(d.backend, Backend::Cuda);
+  EXPECT_EQ(gg_test::from_device(d.triangles, 3 * d.num_triangles), h.triangles);
+  EXPECT_EQ(gg_test::from_device(d.neighbors, 3 * d.num_triangles), h.neighbors);
+  EXPECT_EQ(gg_test::from_device(d.segment_of, 3 * d.num_triangles), h.segment_of);
+  EXPECT_EQ(gg_test::from_device(d.duplicate_of, n), h.duplicate_of);
+  EXPECT_EQ(d.removed_triangles, h.removed_triangles);
+  std::vector<std::int32_t> bad = g.segs;
+  bad[11] = -1;
+  const gg_test::DeviceCopy dbad(bad);
+  EXPECT_THROW(cdt2d_device(static_cast<const double*>(dxy.data()), n,
+                            static_cast<const std::int32_t*>(dbad.data()), m, o),
+               Error);
 }
