@@ -83,6 +83,8 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = cdt2d ]; then
   {
     .devbin/gpugeom_bench_cdt2d --backend cuda --inputs "$PS$IN" --reps 3 --check --check-max ${CDT_CHECK_MAX:-2e6} \
       --cgal ${CDT_CGAL_MAX:-1e7} --save $CI --csv "$CSV"
+    # the outside of the segments removed, as Triangle -p does
+    .devbin/gpugeom_bench_cdt2d --backend cuda --inputs "$PS$IN" --reps 3 --enclosed --csv "$CSV" | tail -n +3
     python3 bench/anchor_cdt2d.py --dir $CI --max-n ${CDT_TRIANGLE_MAX:-1e7} --csv "$CSV"
   } 2>&1 | tee "$OUT/bench_cdt2d.txt"
 fi
