@@ -2,7 +2,8 @@
 # Quick start 1: install what is needed, build (CUDA when nvcc is present), run the demo job:
 # generate a million points, summarise them, show the device, draw a stipple of a photograph
 # (matplotlib's sample portrait of Grace Hopper), triangulate a terrain's contour lines (the
-# Jacksboro fault DEM shipped with matplotlib) and a million points exactly, tetrahedralise
+# Jacksboro fault DEM shipped with matplotlib; also with the lines as constraints) and a million
+# points exactly, tetrahedralise
 # a point cloud in a ball for ParaView, run the Python package's examples (installed with pip from
 # this build), run the benchmarks small.
 set -euo pipefail
@@ -26,8 +27,11 @@ python3 -c "import sys, numpy as n, matplotlib.image as m, matplotlib.cbook as c
 a = m.imread(c.get_sample_data('grace_hopper.jpg', asfileobj=False)).astype(float); \
 n.save(sys.argv[1], ((a[..., 0] * .299 + a[..., 1] * .587 + a[..., 2] * .114) / 255).astype(n.float32))" "$OUT/hopper.npy"
 "$G" stipple "$OUT/hopper.npy" -n 20000 -o "$OUT/hopper_stipple.svg" --png "$OUT/hopper_stipple.png"
-python3 bench/terrain_contours.py -n 1e4 --levels 6 -o "$OUT/contours.npy"
+python3 bench/terrain_contours.py -n 1e4 --levels 6 -o "$OUT/contours.npy" --segments "$OUT/contour_edges.npy"
 "$G" delaunay2d "$OUT/contours.npy" -o "$OUT/terrain_tin.ply" --check --draw "$OUT/terrain_tin.png"
+# the contour lines as breaklines: every contour edge an edge of the terrain model
+"$G" --verbose cdt2d "$OUT/contours.npy" --segments "$OUT/contour_edges.npy" -o "$OUT/terrain_cdt.vtu" \
+  --check --draw "$OUT/terrain_cdt.png"
 "$G" gen uniform2d -n 1000000 -o "$OUT/plane.npy"
 "$G" --verbose delaunay2d "$OUT/plane.npy" -o "$OUT/plane_tri.npy" --check
 "$G" gen ball3d -n 100000 -o "$OUT/ball.npy"
