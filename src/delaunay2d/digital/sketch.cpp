@@ -1,0 +1,188 @@
+// The digital sketch (sketch.hpp): grid mapping, PBA's digital Voronoi diagram, debris
+// recoloured (Alg. 4.3), and the dual triangles.
+#include "delaunay2d/digital/sketch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <string>
+#include <tuple>
+
+#include "gpugeom/edt.hpp"
+
+namespace gpugeom::del2d::digital {
+
+namespace {
+
+// (squared distance, site raster index, pixel raster index): the order ≺.
+using Key = std::tuple<std::int64_t, std::int32_t, std::int32_t>;
+
+struct Grid {
+  std::int64_t side;
+  std::int64_t x(std::int32_t p) const { return p % side; }
+  std::int64_t y(std::int32_t p) const { return p / side; }
+  std::int64_t d2(std::int32_t p, std::int32_t site) const {
+    const std::int64_t dx = x(p) - x(site), dy = y(p) - y(site);
+    return dx * dx + dy * dy;
+  }
+  Key key(std::int32_t p, std::int32_t site) const { return {d2(p, site), site, p}; }
+  // The up to eight neighbours of p, f(q).
+  template <class F>
+  void neighbours(std::int32_t p, F&& f) const {
+    const std::int64_t px = x(p), py = y(p);
+    for (std::int64_t dy = -1; dy <= 1; ++dy)
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        if (!dx && !dy) continue;
+        const std::int64_t qx = px + dx, qy = py + dy;
+        if (qx >= 0 && qy >= 0 && qx < side && qy < side) f(std::int32_t(qy * side + qx));
+      }
+  }
+};
+
+// A min-queue of (key, site) pairs.
+using Entry = std::pair<Key, std::int32_t>;  // (key of (pixel, site), site's pixel)
+using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>>;
+
+}  // namespace
+
+std::vector<std::int32_t> standard_flooding(std::int64_t side,
+                                            const std::vector<std::int32_t>& site_pixel) {
+  const Grid g{side};
+  std::vector<std::int32_t> owner(std::size_t(side * side), -1);  // site index per site pixel
+  for (std::size_t s = 0; s < site_pixel.size(); ++s)
+    owner[std::size_t(site_pixel[s])] = std::int32_t(s);
+  std::vector<std::int32_t> colour(std::size_t(side * side), -1);  // site pixel per pixel
+  MinQueue q;
+  for (std::int32_t p : site_pixel) q.push({g.key(p, p), p});
+  while (!q.empty()) {
+    const auto [k, site] = q.top();
+    q.pop();
+    const std::int32_t a = std::get<2>(k);
+    if (colour[std::size_t(a)] >= 0) continue;
+    colour[std::size_t(a)] = site;
+    g.neighbours(a, [&](std::int32_t b) {
+      if (colour[std::size_t(b)] < 0) q.push({g.key(b, site), site});
+    });
+  }
+  for (auto& c : colour) c = owner[std::size_t(c)];
+  return colour;
+}
+
+Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run) {
+  if (side < 2 || side > 46340)
+    throw Error(ErrorCode::InvalidArgument,
+                "digital sketch: the grid side must be 2..46340, got " + std::to_string(side));
+  Sketch s;
+  s.side = side;
+  const Grid g{side};
+  // Phase 1a: the points to the nearest lower-left grid point of the scaled bounding box.
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (std::int64_t i = 0; i < n; ++i) {
+    x0 = std::min(x0, xy[2 * i]), x1 = std::max(x1, xy[2 * i]);
+    y0 = std::min(y0, xy[2 * i + 1]), y1 = std::max(y1, xy[2 * i + 1]);
+  }
+  const double extent = std::max(x1 - x0, y1 - y0);
+  const double scale = extent > 0 ? double(side - 1) / extent : 0;
+  auto cell = [&](double v, double lo) {
+    return std::clamp<std::int64_t>(std::int64_t(std::floor((v - lo) * scale)), 0, side - 1);
+  };
+  s.pixel.resize(std::size_t(n));
+  std::vector<std::int32_t> owner(std::size_t(side * side), -1);  // point per site pixel
+  std::vector<std::int32_t> kept;                                 // points that are sites
+  std::vector<std::int64_t> coords;                               // (y, x) per site
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int32_t p = std::int32_t(cell(xy[2 * i + 1], y0) * side + cell(xy[2 * i], x0));
+    s.pixel[std::size_t(i)] = p;
+    if (owner[std::size_t(p)] >= 0) {
+      s.missing.push_back(std::int32_t(i));
+      continue;
+    }
+    owner[std::size_t(p)] = std::int32_t(i);
+    kept.push_back(std::int32_t(i));
+    coords.insert(coords.end(), {g.y(p), g.x(p)});
+  }
+  // The digital Voronoi diagram: each pixel's nearest site (ties: the site first in raster
+  // order, as ≺).
+  EdtOptions eo;
+  static_cast<RunOptions&>(eo) = run;
+  eo.labels = true;
+  const EdtResult v = distance_transform_sites({side, side}, coords, eo);
+  s.colour.resize(std::size_t(side * side));
+  for (std::size_t p = 0; p < s.colour.size(); ++p) s.colour[p] = kept[std::size_t(v.labels[p])];
+  // Debris: the pixels not 8-connected to their own site through their colour.
+  std::vector<char> bulk(s.colour.size(), 0);
+  {
+    std::vector<std::int32_t> stack;
+    for (std::int32_t i : kept) {
+      const std::int32_t p = s.pixel[std::size_t(i)];
+      bulk[std::size_t(p)] = 1;
+      stack.push_back(p);
+      while (!stack.empty()) {
+        const std::int32_t a = stack.back();
+        stack.pop_back();
+        g.neighbours(a, [&](std::int32_t b) {
+          if (!bulk[std::size_t(b)] && s.colour[std::size_t(b)] == i)
+            bulk[std::size_t(b)] = 1, stack.push_back(b);
+        });
+      }
+    }
+  }
+  // Alg. 4.3: debris grows from the coloured neighbours nearer their site, in the order ≺.
+  MinQueue q;
+  for (std::size_t a = 0; a < bulk.size(); ++a) {
+    if (bulk[a]) continue;
+    ++s.debris;
+    g.neighbours(std::int32_t(a), [&](std::int32_t b) {
+      if (!bulk[std::size_t(b)]) return;
+      const std::int32_t site = s.pixel[std::size_t(s.colour[std::size_t(b)])];
+      if (g.key(b, site) < g.key(std::int32_t(a), site))
+        q.push({g.key(std::int32_t(a), site), site});
+    });
+  }
+  while (!q.empty()) {
+    const auto [k, site] = q.top();
+    q.pop();
+    const std::int32_t a = std::get<2>(k);
+    if (bulk[std::size_t(a)]) continue;
+    bulk[std::size_t(a)] = 1;
+    s.colour[std::size_t(a)] = owner[std::size_t(site)];
+    g.neighbours(a, [&](std::int32_t c) {
+      if (!bulk[std::size_t(c)] && g.key(a, site) < g.key(c, site)) q.push({g.key(c, site), site});
+    });
+  }
+  // Phase 1b: the dual of each corner where three or four colours meet, in the counter-clockwise
+  // order of its cells (x, y), (x + 1, y), (x + 1, y + 1), (x, y + 1).
+  for (std::int64_t y = 0; y + 1 < side; ++y)
+    for (std::int64_t x = 0; x + 1 < side; ++x) {
+      const std::int32_t c[4] = {
+          s.colour[std::size_t(y * side + x)], s.colour[std::size_t(y * side + x + 1)],
+          s.colour[std::size_t((y + 1) * side + x + 1)], s.colour[std::size_t((y + 1) * side + x)]};
+      std::int32_t d[4];
+      int k = 0;
+      for (int j = 0; j < 4; ++j)
+        if (std::find(d, d + k, c[j]) == d + k) d[k++] = c[j];
+      if (k == 3 && (c[0] == c[2] || c[1] == c[3])) {
+        // A cell through the corner diagonally: the two other colours do not meet here.
+        ++s.pinched;
+        continue;
+      }
+      if (k == 3) s.triangles.insert(s.triangles.end(), {d[0], d[1], d[2]});
+      if (k == 4) {
+        // Two triangles, split along the diagonal that leaves both counter-clockwise (the
+        // four sites around a corner need not be in convex position).
+        auto orient = [&](std::int32_t a, std::int32_t b, std::int32_t c) {
+          const std::int32_t pa = s.pixel[std::size_t(a)], pb = s.pixel[std::size_t(b)],
+                             pc = s.pixel[std::size_t(c)];
+          return (g.x(pb) - g.x(pa)) * (g.y(pc) - g.y(pa)) -
+                 (g.y(pb) - g.y(pa)) * (g.x(pc) - g.x(pa));
+        };
+        if (orient(d[0], d[1], d[2]) > 0 && orient(d[0], d[2], d[3]) > 0)
+          s.triangles.insert(s.triangles.end(), {d[0], d[1], d[2], d[0], d[2], d[3]});
+        else
+          s.triangles.insert(s.triangles.end(), {d[1], d[2], d[3], d[1], d[3], d[0]});
+      }
+    }
+  return s;
+}
+
+}  // namespace gpugeom::del2d::digital

@@ -1,0 +1,40 @@
+// The digital sketch of a 2D Delaunay triangulation (issue 20, thesis 4.3 Phases 1a and 1b;
+// internal): the points mapped to a grid, the digital Voronoi diagram by PBA (the EDT module's,
+// on the executor asked for), its debris recoloured so that every cell is path-connected to its
+// site (Alg. 4.3: the result equals the standard flooding algorithm's, Alg. 4.2), and its dual:
+// a triangle for each grid corner where three colours meet, two where four do. Points sharing a
+// pixel with an earlier point are missing points (inserted by a later phase).
+//
+// The order ≺ of (pixel, site) pairs everywhere: squared distance, then the site's raster
+// index (y * side + x), then the pixel's raster index (PBA breaks ties between sites the same
+// way, so its labels and the flooding agree wherever a cell is connected).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "gpugeom/common.hpp"
+
+namespace gpugeom::del2d::digital {
+
+struct Sketch {
+  std::int64_t side = 0;              // the grid is side x side pixels
+  std::vector<std::int32_t> pixel;    // per point: its pixel's raster index (y * side + x)
+  std::vector<std::int32_t> missing;  // points whose pixel an earlier point took
+  std::vector<std::int32_t> colour;   // per pixel: the point whose cell holds it
+  std::int64_t debris = 0;            // pixels recoloured
+  std::int64_t pinched = 0;           // corners a cell crosses diagonally (no triangle)
+  // Dual triangles as point indices, counter-clockwise in the grid (the corner's cells in
+  // counter-clockwise order).
+  std::vector<std::int32_t> triangles;
+};
+
+// side: the grid's extent (at least 2); the points' bounding box is scaled to fit it.
+Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run);
+
+// The grid position of each pixel's site, for tests: x = p % side, y = p / side.
+// The colouring of the standard flooding algorithm (Alg. 4.2) for sites at the given pixels
+// (one per site, distinct), by the order above: the reference for the recoloured diagram.
+std::vector<std::int32_t> standard_flooding(std::int64_t side,
+                                            const std::vector<std::int32_t>& site_pixel);
+
+}  // namespace gpugeom::del2d::digital
