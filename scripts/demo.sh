@@ -37,7 +37,7 @@ python3 bench/terrain_contours.py -n 1e4 --levels 6 -o "$OUT/contours.npy" --seg
 "$G" gen ball3d -n 100000 -o "$OUT/ball.npy"
 "$G" --verbose delaunay3d "$OUT/ball.npy" -o "$OUT/ball_tets.vtu" --check
 echo "== the Python package's examples (pictures in $OUT)"
-for ex in terrain_voronoi edt_labels stipple_photo hull_scan; do
+for ex in terrain_voronoi terrain_breaklines edt_labels stipple_photo hull_scan; do
   python3 python/examples/$ex.py -o "$OUT/py_$ex.png"
 done
 bash bench/run_bench.sh --quick --build "$BUILD" --out "$OUT/bench"

@@ -64,8 +64,9 @@ std::string crossing_message(std::int32_t s1, std::int32_t s2, bool split) {
          std::to_string(std::max(s1, s2)) +
          (split ? " still cross after splitting them at their rounded intersection"
                 : " cross each other at a point that is not an input point: split them there "
-                  "(add the crossing as a point and end both segments at it), or ask for "
-                  "Crossings::Split");
+                  "(add the crossing as a point and end both segments at it), or have them "
+                  "split: Cdt2dOptions::Crossings::Split, crossings=\"split\" in Python, "
+                  "--split on the command line");
 }
 
 void set_counters(Stats& st, std::int64_t nseg, const cdt::RecoveryCounts& rc,
