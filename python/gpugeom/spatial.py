@@ -336,6 +336,8 @@ class ConstrainedDelaunay:
     Parameters
     ----------
     points : (npoints, 2) array of float
+        NumPy, or CuPy / PyTorch CUDA arrays: then the segments join them on the device and the
+        results stay there (CuPy arrays, or tensors on the points' device).
     segments : (nsegments, 2) array of int
         Point indices. Zero-length and repeated segments are dropped (counted in ``stats``);
         segments that cross inside both raise ``ValueError`` naming them, unless
