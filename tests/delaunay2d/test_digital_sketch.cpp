@@ -63,7 +63,7 @@ std::vector<Case> cases() {
 }  // namespace
 
 TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangulation) {
-  std::int64_t debris = 0, pinched = 0;
+  std::int64_t debris = 0, pinched = 0, hull_added = 0;
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
     const std::int64_t n = std::int64_t(c.xy.size() / 2), side = c.side;
@@ -72,6 +72,7 @@ TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangula
     const dg::Sketch s = dg::digital_sketch(c.xy.data(), n, side, run);
     debris += s.debris;
     pinched += s.pinched;
+    hull_added += s.hull_triangles;
     // Sites: the first point of each pixel; the others missing.
     std::map<std::int32_t, std::int32_t> site_of_pixel;
     std::vector<std::int32_t> site_pixels, site_points;
@@ -103,8 +104,18 @@ TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangula
         EXPECT_TRUE(directed.insert(e).second) << "edge " << e.first << "-" << e.second << " twice";
       used.insert({a, b, d});
     }
-    // The triangles cover a disk: no hole, one piece (V - E + F = 1).
+    // The triangles cover a disk: no hole, one piece (V - E + F = 1), with a convex boundary
+    // (each boundary vertex turns left or goes straight).
     if (!s.triangles.empty()) {
+      std::map<std::int32_t, std::int32_t> next;
+      for (const auto& e : directed)
+        if (!directed.count({e.second, e.first})) next[e.first] = e.second;
+      for (const auto& [a, b] : next) {
+        const std::int32_t c = next.at(b);
+        const std::int64_t o =
+            (gx(b) - gx(a)) * (gy(c) - gy(a)) - (gy(b) - gy(a)) * (gx(c) - gx(a));
+        EXPECT_GE(o, 0) << "the boundary turns right at " << b;
+      }
       std::set<std::pair<std::int32_t, std::int32_t>> undirected;
       for (const auto& e : directed)
         undirected.insert({std::min(e.first, e.second), std::max(e.first, e.second)});
@@ -123,6 +134,10 @@ TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangula
         EXPECT_TRUE(on_border.count(i)) << "site " << i << " is in no triangle, inside the grid";
   }
   EXPECT_GT(debris, 0);  // (the cases exercise the recolouring)
-  std::printf("over the cases: %lld debris pixels recoloured, %lld pinched corners\n",
-              static_cast<long long>(debris), static_cast<long long>(pinched));
+  EXPECT_GT(hull_added, 0);
+  std::printf(
+      "over the cases: %lld debris pixels recoloured, %lld pinched corners, %lld hull "
+      "triangles\n",
+      static_cast<long long>(debris), static_cast<long long>(pinched),
+      static_cast<long long>(hull_added));
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <tuple>
 
+#include "delaunay2d/digital/hull_fill.hpp"
 #include "gpugeom/edt.hpp"
 
 namespace gpugeom::del2d::digital {
@@ -182,6 +183,12 @@ Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const
           s.triangles.insert(s.triangles.end(), {d[1], d[2], d[3], d[1], d[3], d[0]});
       }
     }
+  // The truncated diagram's dual made a triangulation of its vertices' convex hull.
+  std::vector<std::int64_t> gx(static_cast<std::size_t>(n)), gy(static_cast<std::size_t>(n));
+  for (std::int64_t i = 0; i < n; ++i)
+    gx[std::size_t(i)] = g.x(s.pixel[std::size_t(i)]),
+    gy[std::size_t(i)] = g.y(s.pixel[std::size_t(i)]);
+  s.hull_triangles = fill_to_hull(gx, gy, s.triangles);
   return s;
 }
 

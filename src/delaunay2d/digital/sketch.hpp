@@ -2,7 +2,8 @@
 // internal): the points mapped to a grid, the digital Voronoi diagram by PBA (the EDT module's,
 // on the executor asked for), its debris recoloured so that every cell is path-connected to its
 // site (Alg. 4.3: the result equals the standard flooding algorithm's, Alg. 4.2), and its dual:
-// a triangle for each grid corner where three colours meet, two where four do. Points sharing a
+// a triangle for each grid corner where three colours meet, two where four do, completed to the
+// convex hull of its vertices. Points sharing a
 // pixel with an earlier point are missing points (inserted by a later phase).
 //
 // The order ≺ of (pixel, site) pairs everywhere: squared distance, then the site's raster
@@ -23,8 +24,10 @@ struct Sketch {
   std::vector<std::int32_t> colour;   // per pixel: the point whose cell holds it
   std::int64_t debris = 0;            // pixels recoloured
   std::int64_t pinched = 0;           // corners a cell crosses diagonally (no triangle)
+  std::int64_t hull_triangles = 0;    // added between the dual's boundary and its convex hull
   // Dual triangles as point indices, counter-clockwise in the grid (the corner's cells in
-  // counter-clockwise order).
+  // counter-clockwise order), then those filling the pockets up to the convex hull of their
+  // vertices (hull_fill.hpp): a triangulation of that hull.
   std::vector<std::int32_t> triangles;
 };
 

@@ -1,0 +1,127 @@
+// Pockets between the sketch's boundary and its convex hull, triangulated (hull_fill.hpp).
+#include "delaunay2d/digital/hull_fill.hpp"
+
+#include <algorithm>
+#include <string>
+#include <unordered_map>
+
+#include "gpugeom/common.hpp"
+
+namespace gpugeom::del2d::digital {
+
+namespace {
+using Id = std::int32_t;
+
+struct Geo {
+  const std::vector<std::int64_t>& x;
+  const std::vector<std::int64_t>& y;
+  // > 0: a, b, c counter-clockwise (exact: grid coordinates below 2^16 each)
+  std::int64_t orient(Id a, Id b, Id c) const {
+    return (x[std::size_t(b)] - x[std::size_t(a)]) * (y[std::size_t(c)] - y[std::size_t(a)]) -
+           (y[std::size_t(b)] - y[std::size_t(a)]) * (x[std::size_t(c)] - x[std::size_t(a)]);
+  }
+};
+
+std::uint64_t key(Id a, Id b) {
+  return std::uint64_t(std::uint32_t(a)) << 32 | std::uint32_t(b);
+}
+
+// Ear clipping of the counter-clockwise polygon p (simple; collinear runs allowed): appends its
+// triangles; what is left when no strictly convex empty ear remains has no area.
+std::int64_t clip_ears(const Geo& g, std::vector<Id> p, std::vector<Id>& out) {
+  std::int64_t added = 0;
+  for (bool cut = true; cut && p.size() >= 3;) {
+    cut = false;
+    const std::size_t k = p.size();
+    for (std::size_t i = 0; i < k && !cut; ++i) {
+      const Id a = p[(i + k - 1) % k], b = p[i], c = p[(i + 1) % k];
+      if (g.orient(a, b, c) <= 0) continue;
+      bool empty = true;  // no other vertex inside the ear or on its edges
+      for (std::size_t j = 0; j < k && empty; ++j) {
+        const Id v = p[j];
+        if (v == a || v == b || v == c) continue;
+        empty = !(g.orient(a, b, v) >= 0 && g.orient(b, c, v) >= 0 && g.orient(c, a, v) >= 0);
+      }
+      if (!empty) continue;
+      out.insert(out.end(), {a, b, c});
+      ++added;
+      p.erase(p.begin() + std::ptrdiff_t(i));
+      cut = true;
+    }
+  }
+  return added;
+}
+}  // namespace
+
+std::int64_t fill_to_hull(const std::vector<std::int64_t>& x, const std::vector<std::int64_t>& y,
+                          std::vector<std::int32_t>& triangles) {
+  if (triangles.empty()) return 0;
+  const Geo g{x, y};
+  std::unordered_map<std::uint64_t, char> directed;
+  directed.reserve(triangles.size() * 2);
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+    for (int e = 0; e < 3; ++e) directed[key(triangles[t + e], triangles[t + (e + 1) % 3])] = 1;
+  // The boundary: directed edges whose reverse no triangle has, the disk on their left.
+  std::unordered_map<Id, Id> next;
+  for (const auto& [k, one] : directed) {
+    const Id a = Id(k >> 32), b = Id(std::uint32_t(k));
+    if (directed.count(key(b, a))) continue;
+    if (!next.emplace(a, b).second)
+      throw Error(ErrorCode::Internal,
+                  "digital sketch: the boundary passes vertex " + std::to_string(a) + " twice");
+  }
+  // The boundary as one cycle, from its lowest vertex (lowest y, then x: on the hull).
+  Id start = next.begin()->first;
+  for (const auto& [a, b] : next)
+    if (std::make_pair(y[std::size_t(a)], x[std::size_t(a)]) <
+        std::make_pair(y[std::size_t(start)], x[std::size_t(start)]))
+      start = a;
+  std::vector<Id> cycle{start};
+  for (Id v = next.at(start); v != start; v = next.at(v)) {
+    cycle.push_back(v);
+    if (cycle.size() > next.size())
+      throw Error(ErrorCode::Internal, "digital sketch: the boundary is not one cycle");
+  }
+  if (cycle.size() != next.size())
+    throw Error(ErrorCode::Internal, "digital sketch: the boundary is more than one cycle");
+  // The hull of the boundary's vertices (Andrew's monotone chain, strict turns), as positions
+  // in the cycle: a simple counter-clockwise polygon meets its hull vertices in the hull's order,
+  // and each boundary stretch between two of them that is not one edge closes a pocket.
+  std::vector<std::size_t> order(cycle.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto less = [&](std::size_t i, std::size_t j) {
+    const Id a = cycle[i], c = cycle[j];
+    return std::make_pair(x[std::size_t(a)], y[std::size_t(a)]) <
+           std::make_pair(x[std::size_t(c)], y[std::size_t(c)]);
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<std::size_t> chain;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = chain.size();
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const std::size_t i = pass == 0 ? order[k] : order[order.size() - 1 - k];
+      while (chain.size() >= base + 2 &&
+             g.orient(cycle[chain[chain.size() - 2]], cycle[chain.back()], cycle[i]) <= 0)
+        chain.pop_back();
+      chain.push_back(i);
+    }
+    chain.pop_back();  // (each pass's last point starts the other)
+  }
+  std::vector<std::size_t> hull(chain.begin(), chain.end());
+  std::sort(hull.begin(), hull.end());  // cycle order (the cycle starts at a hull vertex)
+  hull.push_back(cycle.size());         // back to the start
+  std::int64_t added = 0;
+  for (std::size_t h = 0; h + 1 < hull.size(); ++h) {
+    std::size_t from = hull[h], to = hull[h + 1];
+    if (to == 0) to = cycle.size();
+    if (to - from < 2) continue;  // the boundary edge is the hull edge
+    // The pocket: the stretch from cycle[from] to cycle[to] with the disk on its left, closed by
+    // the hull edge; walked the other way round it is counter-clockwise.
+    std::vector<Id> pocket;
+    for (std::size_t i = to; i + 1 > from; --i) pocket.push_back(cycle[i % cycle.size()]);
+    added += clip_ears(g, pocket, triangles);
+  }
+  return added;
+}
+
+}  // namespace gpugeom::del2d::digital
