@@ -14,6 +14,7 @@
 #include "../common/device_arrays.hpp"
 #include "del2d_cases.hpp"
 #include "delaunay2d/del2d_backend.hpp"
+#include "delaunay2d/digital/sketch.hpp"
 
 using namespace gpugeom;
 
@@ -294,5 +295,44 @@ TEST(CudaDelaunay2d, TopOfTheWideSlotRange) {
     gg_del2d::expect_valid(c.pts, gpu);
     EXPECT_EQ(gpu.triangles, cpu.triangles);
     EXPECT_EQ(gpu.neighbors, cpu.neighbors);
+  }
+}
+
+// The digital sketch (issue 20) with PBA on the GPU: the same colouring, missing points and dual
+// triangles as with PBA on the CPU executor (uniform points and clusters, grids up to 2048²).
+TEST(CudaDelaunay2d, DigitalSketchSameAsCpu) {
+  namespace dg = gpugeom::del2d::digital;
+  std::mt19937_64 r(5);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::normal_distribution<double> N(0, 1);
+  struct Case {
+    std::vector<double> xy;
+    std::int64_t side;
+  };
+  std::vector<Case> cases;
+  for (std::int64_t side : {256, 2048}) {
+    Case c{{}, side};
+    for (int i = 0; i < 20000; ++i) c.xy.insert(c.xy.end(), {U(r), U(r)});
+    for (int k = 0; k < 20; ++k) {  // clusters: shared pixels and debris
+      const double cx = U(r), cy = U(r), sd = 0.001 + 0.01 * U(r);
+      for (int i = 0; i < 500; ++i) c.xy.insert(c.xy.end(), {cx + sd * N(r), cy + sd * N(r)});
+    }
+    cases.push_back(c);
+  }
+  for (const Case& c : cases) {
+    RunOptions cpu, gpu;
+    cpu.backend = Backend::Cpu;
+    gpu.backend = Backend::Cuda;
+    const std::int64_t n = std::int64_t(c.xy.size() / 2);
+    const dg::Sketch a = dg::digital_sketch(c.xy.data(), n, c.side, cpu);
+    const dg::Sketch b = dg::digital_sketch(c.xy.data(), n, c.side, gpu);
+    EXPECT_EQ(a.colour, b.colour) << "side " << c.side;
+    EXPECT_EQ(a.missing, b.missing) << "side " << c.side;
+    EXPECT_EQ(a.triangles, b.triangles) << "side " << c.side;
+    std::printf(
+        "digital sketch %lld points on %lld²: %zu missing, %lld debris, %lld pinched, "
+        "%zu triangles (%lld filling the hull)\n",
+        (long long)n, (long long)c.side, b.missing.size(), (long long)b.debris,
+        (long long)b.pinched, b.triangles.size() / 3, (long long)b.hull_triangles);
   }
 }
