@@ -7,8 +7,9 @@
 //   1. every segment advances its frontier along edges that lie on it, marking them;
 //   2. each unfinished one walks its next piece's cavity (cavity.hpp) and claims its triangles
 //      and the triangles beside them with its priority (a fixed scramble of its number; an
-//      atomic maximum per triangle); a walk that meets an edge already on a segment stops the
-//      call: the two segments cross;
+//      atomic maximum per triangle); a walk that meets an edge already on a segment means the
+//      two segments cross: the recovery stops and reports the pair (the smallest, for a
+//      deterministic message; the caller refuses or splits them);
 //   3. a segment that holds every claim it made wins;
 //   4. winners rebuild their cavities at once (no two share a triangle or its neighbour).
 // The segment with the highest priority among the unfinished always wins, so every round makes
