@@ -35,6 +35,11 @@ struct DeviceVoronoiOutput {
 
 // triangulate: xy holds n points on the host; triangulate_device: n points in the executor's
 // memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
+// triangulate_from: the same from a start (the digital method's sketch, issue 20): nstart
+// counter-clockwise triangles of input indices (3 each, host memory) that cover the convex hull
+// of their vertices, each directed edge once; the other points are inserted into it and the
+// whole is flipped until Delaunay by the same batches and rounds. The result equals
+// triangulate's.
 // Refuses counts no triangulation can be made of (Error, as the public entries say).
 void check_count(std::int64_t n);
 // Tests: the first triangle slot's number (clamped so that the last slot is 2^30 - 1), so that
@@ -53,6 +58,8 @@ Capacities capacities_for_testing();
 namespace cpu_impl {
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats);
+void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
+                      std::int64_t nstart, const Delaunay2dOptions& opt, Output& out, Stats& stats);
 void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                         DeviceOutput& out, Stats& stats);
 // The Voronoi diagram of nt triangles (tri, nb; dup may be null: no duplicates) of n points xy,
@@ -64,6 +71,8 @@ void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const st
 namespace cuda_impl {
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats);
+void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
+                      std::int64_t nstart, const Delaunay2dOptions& opt, Output& out, Stats& stats);
 void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                         DeviceOutput& out, Stats& stats);
 void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,

@@ -12,6 +12,7 @@
 #include <cuda/atomic>
 #include <string>
 #include <thread>
+#include <unordered_map>
 #include <thrust/functional.h>
 #include <vector>
 
@@ -47,5 +48,10 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
 void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                         DeviceOutput& out, Stats& stats) {
   triangulate_device_impl(xy, n, opt, out, stats);
+}
+void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
+                      std::int64_t nstart, const Delaunay2dOptions& opt, Output& out,
+                      Stats& stats) {
+  triangulate_from_impl(xy, n, start, nstart, opt, out, stats);
 }
 }  // namespace gpugeom::del2d::cpu_impl

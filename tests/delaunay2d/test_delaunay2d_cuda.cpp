@@ -336,3 +336,28 @@ TEST(CudaDelaunay2d, DigitalSketchSameAsCpu) {
         (long long)b.pinched, b.triangles.size() / 3, (long long)b.hull_triangles);
   }
 }
+
+// The Triangulator started from a given triangulation on the GPU (issue 20's entry into the
+// shared batches and rounds): the Delaunay triangulation of an eighth of the points as the
+// start, the rest inserted: the same triangles as the incremental method.
+TEST(CudaDelaunay2d, TriangulatorFromAStart) {
+  const std::int64_t n = 200000, k = n / 8;
+  std::mt19937_64 r(13);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::vector<double> xy;
+  for (std::int64_t i = 0; i < n; ++i) xy.insert(xy.end(), {U(r), U(r)});
+  Delaunay2dOptions o;
+  o.backend = Backend::Cuda;
+  const auto whole = delaunay2d(xy.data(), n, o);
+  const auto part = delaunay2d(xy.data(), k, o);
+  del2d::Output out;
+  Stats st;
+  del2d::cuda_impl::triangulate_from(xy.data(), n, part.triangles.data(), part.triangle_count, o,
+                                     out, st);
+  EXPECT_EQ(gg_del2d::triangle_set(out.triangles.data(), std::size_t(out.num_triangles)),
+            gg_del2d::triangle_set(whole.triangles.data(), std::size_t(whole.triangle_count)));
+  std::printf("from a start of %lld points: %lld batches, %lld flips (incremental: %lld, %lld)\n",
+              (long long)k, (long long)st.counters["batches"], (long long)st.counters["flips"],
+              (long long)whole.stats.counters.at("batches"),
+              (long long)whole.stats.counters.at("flips"));
+}

@@ -11,7 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "del2d_cases.hpp"
+#include "delaunay2d/del2d_backend.hpp"
 #include "delaunay2d/digital/sketch.hpp"
+#include "gpugeom/cdt2d.hpp"
+#include "gpugeom/delaunay2d.hpp"
+#include "gpugeom/predicates.hpp"
 
 using namespace gpugeom;
 namespace dg = gpugeom::del2d::digital;
@@ -58,6 +63,16 @@ std::vector<Case> cases() {
     out.push_back(c);
   }
   return out;
+}
+
+// Do segments a-b and c-d cross at a point inside both? (exact)
+bool gg_test_cross(const std::vector<double>& p, std::int32_t a, std::int32_t b, std::int32_t c,
+                   std::int32_t d) {
+  auto o = [&](std::int32_t i, std::int32_t j, std::int32_t k) {
+    return orient2d(Point2{p[2 * i], p[2 * i + 1]}, Point2{p[2 * j], p[2 * j + 1]},
+                    Point2{p[2 * k], p[2 * k + 1]});
+  };
+  return o(a, b, c) * o(a, b, d) < 0 && o(c, d, a) * o(c, d, b) < 0;
 }
 
 }  // namespace
@@ -140,4 +155,54 @@ TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangula
       "triangles\n",
       static_cast<long long>(debris), static_cast<long long>(pinched),
       static_cast<long long>(hull_added));
+}
+
+// The 2D Triangulator started from a given triangulation (the digital method's entry into the
+// shared batches and flip rounds): a Delaunay or a constrained (non-Delaunay) triangulation of
+// some of the points; the others inserted and the whole flipped: the same triangles as the
+// incremental method's, on random points with duplicates and on an integer lattice.
+TEST(DigitalSketch, TriangulatorFromAStartEqualsIncremental) {
+  std::mt19937_64 r(11);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::vector<std::vector<double>> inputs(2);
+  for (int i = 0; i < 3000; ++i) inputs[0].insert(inputs[0].end(), {U(r), U(r)});
+  for (int i = 0; i < 40; ++i)
+    inputs[0].insert(inputs[0].end(), {inputs[0][2 * i], inputs[0][2 * i + 1]});
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x)
+      inputs[1].insert(inputs[1].end(), {double((x * 17) % 40), double(y)});
+  for (const auto& xy : inputs) {
+    const std::int64_t n = std::int64_t(xy.size() / 2), k = n / 8;
+    Delaunay2dOptions o;
+    o.backend = Backend::Cpu;
+    const auto whole = delaunay2d(xy.data(), n, o);
+    const auto ref =
+        gg_del2d::triangle_set(whole.triangles.data(), std::size_t(whole.triangle_count));
+    // Starts: the Delaunay triangulation of the first k points, and a constrained one of them
+    // (segments between far points: many of its edges are not Delaunay).
+    std::vector<std::vector<std::int32_t>> starts;
+    const auto part = delaunay2d(xy.data(), k, o);
+    starts.emplace_back(part.triangles.begin(), part.triangles.end());
+    std::vector<std::int32_t> segs;
+    for (std::int32_t i = 0; i + 1 < std::int32_t(k) && segs.size() < 40; i += 7) {
+      const std::int32_t a = i, b = std::int32_t((i * 31 + 5) % k);
+      bool ok = a != b;
+      for (std::size_t s = 0; s < segs.size() && ok; s += 2)
+        ok = !gg_test_cross(xy, a, b, segs[s], segs[s + 1]);
+      if (ok) segs.insert(segs.end(), {a, b});
+    }
+    Cdt2dOptions co;
+    co.backend = Backend::Cpu;
+    const auto c = cdt2d(xy.data(), k, segs.data(), std::int64_t(segs.size() / 2), co);
+    EXPECT_GT(c.stats.counters.at("segments_recovered"), 0);
+    starts.emplace_back(c.triangles.begin(), c.triangles.end());
+    for (const auto& s : starts) {
+      del2d::Output out;
+      Stats st;
+      del2d::cpu_impl::triangulate_from(xy.data(), n, s.data(), std::int64_t(s.size() / 3), o, out,
+                                        st);
+      EXPECT_EQ(gg_del2d::triangle_set(out.triangles.data(), std::size_t(out.num_triangles)), ref);
+      EXPECT_EQ(out.duplicate_of, whole.duplicate_of);
+    }
+  }
 }

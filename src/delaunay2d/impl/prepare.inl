@@ -16,6 +16,30 @@ struct Prepared {
   double upload_ms = 0;
 };
 
+// The kernel point s: strictly inside the counter-clockwise triangle (v[0], v[1], v[2]) of
+// point indices id under the perturbation, with SoS index m (the infinity vertex's). The
+// centroid almost always is; weighted means cover rounding in slivers. False if none is.
+inline bool kernel_point(const double* const v[3], const std::int32_t id[3], std::int32_t m,
+                         double s[2]) {
+  std::vector<double> scratch(std::size_t(pred::kOrient2dScratch));
+  const int w[4][3] = {{1, 1, 1}, {1, 1, 2}, {1, 2, 1}, {2, 1, 1}};
+  for (int t = 0; t < 4; ++t) {
+    double c[2];
+    for (int d = 0; d < 2; ++d)
+      c[d] = (w[t][0] * v[0][d] + w[t][1] * v[1][d] + w[t][2] * v[2][d]) /
+             double(w[t][0] + w[t][1] + w[t][2]);
+    bool in = true;
+    for (int j = 0; j < 3; ++j)
+      in = in && pred::orient2d_sos(v[j], id[j], v[(j + 1) % 3], id[(j + 1) % 3], c, m,
+                                    scratch.data()) > 0;
+    if (in) {
+      s[0] = c[0], s[1] = c[1];
+      return true;
+    }
+  }
+  return false;
+}
+
 // xy: on the host, or on the executor when on_device.
 inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_device) {
   Prepared P;
@@ -92,27 +116,8 @@ inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_devi
   P.first[1] = ab.hi.i;
   P.first[2] = c.i;
   if (oc < 0) std::swap(P.first[0], P.first[1]);
-  // The kernel point: strictly inside the first triangle under the perturbation, with SoS
-  // index m. The centroid almost always is; weighted means cover rounding in slivers.
   const double* v[3] = {P.first[0] == ab.lo.i ? pa : pb, P.first[0] == ab.lo.i ? pb : pa, pc};
-  const int w[4][3] = {{1, 1, 1}, {1, 1, 2}, {1, 2, 1}, {2, 1, 1}};
-  bool found = false;
-  for (int t = 0; t < 4 && !found; ++t) {
-    double s[2];
-    for (int d = 0; d < 2; ++d)
-      s[d] = (w[t][0] * v[0][d] + w[t][1] * v[1][d] + w[t][2] * v[2][d]) /
-             double(w[t][0] + w[t][1] + w[t][2]);
-    bool in = true;
-    for (int j = 0; j < 3; ++j)
-      in = in && pred::orient2d_sos(v[j], P.first[j], v[(j + 1) % 3], P.first[(j + 1) % 3], s,
-                                    std::int32_t(m), scratch.data()) > 0;
-    if (in) {
-      P.kernel[0] = s[0];
-      P.kernel[1] = s[1];
-      found = true;
-    }
-  }
-  if (!found)
+  if (!kernel_point(v, P.first, std::int32_t(m), P.kernel))
     throw Error(ErrorCode::DegenerateInput,
                 "the points are too close to collinear for a kernel point to be placed inside "
                 "their first triangle in double precision");

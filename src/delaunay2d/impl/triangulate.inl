@@ -179,6 +179,139 @@ class Triangulator {
     check_lost();
   }
 
+  // The same from a given triangulation (the digital method's sketch, issue 20) instead of the
+  // first triangle: tris, counter-clockwise triangles of prepared indices covering the convex
+  // hull of their vertices with each directed edge once, gets its hull edges joined to the
+  // infinity vertex (2k - 2 slots for its k vertices, as the insertions would have left); the
+  // other points are located by walks; then the whole of it is flipped until Delaunay, and the
+  // batches insert the rest as they do after start(). P.kernel must lie inside it.
+  void run_from(const std::vector<std::int32_t>& tris) {
+    auto t0 = clock::now();
+    start_from(tris);
+    phase("start", t0);
+    t0 = clock::now();
+    remaining_ = nun_;
+    while (remaining_ > 0) batch();
+    phase("insert", t0);
+    t0 = clock::now();
+    peel();
+    phase("peel", t0);
+  }
+
+  void start_from(const std::vector<std::int32_t>& tris) {
+    const std::int32_t I = m_, B = std::int32_t(base_);
+    const std::int64_t f = std::int64_t(tris.size() / 3);
+    auto key = [](std::int32_t a, std::int32_t b) {
+      return u64(std::uint32_t(a)) << 32 | std::uint32_t(b);
+    };
+    std::unordered_map<u64, std::int64_t> edge;  // directed edge -> 3 t + (the vertex opposite)
+    edge.reserve(std::size_t(3 * f));
+    for (std::int64_t t = 0; t < f; ++t)
+      for (int k = 0; k < 3; ++k)
+        edge[key(tris[std::size_t(3 * t + (k + 1) % 3)], tris[std::size_t(3 * t + (k + 2) % 3)])] =
+            3 * t + k;
+    std::vector<Tri> rec(static_cast<std::size_t>(f));
+    std::vector<std::int64_t> boundary;  // 3 t + k of each hull edge, in slot order
+    std::unordered_map<std::int32_t, std::int32_t> out_slot, in_slot;  // hull edges at a vertex
+    std::vector<char> used(static_cast<std::size_t>(m_), 0);
+    for (std::int64_t t = 0; t < f; ++t) {
+      Tri& T = rec[std::size_t(t)];
+      for (int k = 0; k < 3; ++k)
+        T.v[k] = tris[std::size_t(3 * t + k)], used[std::size_t(T.v[k])] = 1;
+      T.stamp = -1, T.pair = 0;
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t a = T.v[(k + 1) % 3], b = T.v[(k + 2) % 3];
+        const auto o = edge.find(key(b, a));
+        if (o != edge.end()) {
+          T.n[k] = enc(B + std::int32_t(o->second / 3), int(o->second % 3));
+        } else {  // a hull edge a->b: the infinite triangle (b, a, I) across
+          const std::int32_t slot = std::int32_t(f + std::int64_t(boundary.size()));
+          boundary.push_back(3 * t + k);
+          T.n[k] = enc(B + slot, 2);
+          if (!out_slot.emplace(a, slot).second || !in_slot.emplace(b, slot).second)
+            throw Error(ErrorCode::Internal,
+                        "start triangulation: its boundary passes a vertex twice");
+        }
+      }
+    }
+    for (std::size_t j = 0; j < boundary.size(); ++j) {
+      const std::int64_t t = boundary[j] / 3;
+      const int k = int(boundary[j] % 3);
+      const std::int32_t a = rec[std::size_t(t)].v[(k + 1) % 3],
+                         b = rec[std::size_t(t)].v[(k + 2) % 3];
+      Tri X;
+      X.v[0] = b, X.v[1] = a, X.v[2] = I;
+      X.n[2] = enc(B + std::int32_t(t), k);
+      X.n[0] = enc(B + in_slot.at(a), 1);   // across (a, I): the hull edge ending at a
+      X.n[1] = enc(B + out_slot.at(b), 0);  // across (I, b): the hull edge starting at b
+      X.stamp = -1, X.pair = 0;
+      rec.push_back(X);
+    }
+    std::int64_t k = 0;
+    for (char u : used) k += u;
+    if (std::int64_t(rec.size()) != 2 * k - 2 || std::int64_t(rec.size()) > tmax_)
+      throw Error(ErrorCode::Internal, "start triangulation: " + std::to_string(rec.size()) +
+                                           " slots for " + std::to_string(k) +
+                                           " vertices (a triangulation of a disk has 2k - 2)");
+    ex_.from_host(rec.data(), std::int64_t(rec.size()), tri_.data());
+    ntri_ = std::int64_t(rec.size());
+    // The other points, each located by a walk (the leaving edge chosen in turn, so that no
+    // fixed pattern cycles; a scan of every slot bounds it).
+    auto in = ex_.template alloc<std::int8_t>(std::size_t(m_));
+    std::vector<std::int8_t> u8(used.begin(), used.end());
+    ex_.from_host(u8.data(), m_, in.data());
+    const Geo g = g_;
+    std::int32_t* loc = loc_.data();
+    const Tri* tri = tri_.data();
+    const std::int8_t* inside = in.data();
+    Counters* ctr = ctr_.data();
+    const std::int64_t nt = ntri_;
+    ex_.for_each_index(
+        m_, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t q = std::int32_t(i);
+          if (inside[q]) {
+            loc[q] = -1;
+            return;
+          }
+          std::int64_t t = 0;
+          for (std::int64_t step = 0; step <= nt; ++step) {
+            const Tri T = tri[t];
+            int leave = -1;
+            for (int j = 0; j < 3 && leave < 0; ++j) {
+              const int kk = int((step + j) % 3);
+              if (orient_ext(g, T.v[(kk + 1) % 3], T.v[(kk + 2) % 3], q) < 0) leave = kk;
+            }
+            if (leave < 0) {
+              loc[q] = B + std::int32_t(t);
+              return;
+            }
+            t = simplex_of(T.n[leave]) - B;
+          }
+          for (t = 0; t < nt; ++t)
+            if (inside_ext(g, tri[t].v, q)) {
+              loc[q] = B + std::int32_t(t);
+              return;
+            }
+          loc[q] = -1;
+          atomic_add(&ctr->lost, std::int64_t(1));
+        });
+    nun_ = ex_.compact_indices(
+        m_, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, un_.data());
+    check_lost();
+    // Every slot's edges tested, and flipped until Delaunay; the flips are logged, so the points
+    // follow their triangles when the first batch relocates them.
+    const mesh::WorkLists L = work_lists();
+    std::int32_t* act = L.current(round_ + 1);
+    std::int64_t* len = L.count(round_ + 1);
+    ex_.for_each_index(
+        nt, GG_LAMBDA(std::int64_t i) {
+          if (i == 0) *len = nt;
+          act[i] = list_entry(B + std::int32_t(i), -1);
+        });
+    nact_ = nt;
+    flip_until_delaunay(false);
+  }
+
   void check_lost() {
     Counters c = counters();
     if (c.lost)
@@ -961,4 +1094,57 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const Dela
         out.neighbors = nb.own();
         out.duplicate_of = dp.own();
       });
+}
+
+// From a start triangulation (del2d_backend.hpp), host points in, host arrays out.
+inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::int32_t* start,
+                                  std::int64_t nstart, const Delaunay2dOptions& opt, Output& out,
+                                  Stats& st) {
+  Exec ex(opt);
+  auto t0 = std::chrono::steady_clock::now();
+  Prepared P = prepare(ex, xy, n, false);
+  // The start in prepared indices (a duplicate's index: the point kept for it).
+  std::vector<std::int32_t> orig(static_cast<std::size_t>(P.m)),
+      dup(static_cast<std::size_t>(n), -1), inv(static_cast<std::size_t>(n));
+  ex.to_host(P.orig.data(), P.m, orig.data());
+  if (P.duplicates) ex.to_host(P.dup.data(), n, dup.data());
+  for (std::int64_t j = 0; j < P.m; ++j) inv[std::size_t(orig[std::size_t(j)])] = std::int32_t(j);
+  for (std::int64_t i = 0; i < n; ++i)
+    if (dup[std::size_t(i)] >= 0) inv[std::size_t(i)] = inv[std::size_t(dup[std::size_t(i)])];
+  std::vector<std::int32_t> tris(static_cast<std::size_t>(3 * nstart));
+  for (std::int64_t i = 0; i < 3 * nstart; ++i) {
+    if (start[i] < 0 || start[i] >= n)
+      throw Error(ErrorCode::InvalidArgument, "start triangulation: vertex out of range");
+    tris[std::size_t(i)] = inv[std::size_t(start[i])];
+  }
+  if (nstart < 1) throw Error(ErrorCode::InvalidArgument, "start triangulation: no triangle");
+  // The kernel point inside the start's first triangle.
+  double p[3][2];
+  for (int k = 0; k < 3; ++k)
+    ex.to_host(P.pts.data() + 2 * std::int64_t(tris[std::size_t(k)]), 2, p[k]);
+  const double* v[3] = {p[0], p[1], p[2]};
+  const std::int32_t id[3] = {tris[0], tris[1], tris[2]};
+  if (!kernel_point(v, id, std::int32_t(P.m), P.kernel))
+    throw Error(ErrorCode::InvalidArgument,
+                "start triangulation: no kernel point inside its first triangle");
+  st.counters["points"] = n;
+  st.counters["distinct_points"] = P.m;
+  st.counters["duplicates"] = P.duplicates;
+  ex.sync();
+  st.phase_ms.push_back({"prepare", ms_since(t0)});
+  Triangulator T(ex, P, st, opt.profile);
+  T.run_from(tris);
+  t0 = std::chrono::steady_clock::now();
+  T.report();
+  T.release_work();
+  auto f = T.finish();
+  out.num_duplicates = P.duplicates;
+  out.num_triangles = f.count;
+  deliver::to_host(ex, f.simplices.data(), 3 * f.count, OutBuffer<std::int32_t>{}, out.triangles);
+  deliver::to_host(ex, f.neighbors.data(), 3 * f.count, OutBuffer<std::int32_t>{}, out.neighbors);
+  if (P.duplicates)
+    deliver::to_host(ex, P.dup.data(), n, OutBuffer<std::int32_t>{}, out.duplicate_of);
+  else
+    deliver::fill_host(ex, n, std::int32_t(-1), OutBuffer<std::int32_t>{}, out.duplicate_of);
+  st.phase_ms.push_back({"output", ms_since(t0)});
 }
