@@ -15,38 +15,29 @@ import time
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.cbook as cbook
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.collections import LineCollection
 
 import gpugeom
+from _terrain import contour_lines
 
 
-def contour_lines(levels):
+def contour_segments(levels):
     """Points of every contour line and the index pairs of its consecutive points."""
-    dem = cbook.get_sample_data("jacksboro_fault_dem.npz")
-    z = dem["elevation"].astype(np.float64)
-    lat = np.radians(0.5 * (float(dem["ymin"]) + float(dem["ymax"])))
-    dy = float(dem["dy"]) * 111320.0
-    dx = float(dem["dx"]) * 111320.0 * np.cos(lat)
-    xs, ys = np.arange(z.shape[1]) * dx, np.arange(z.shape[0]) * dy
-    cs = plt.figure().add_subplot().contour(xs, ys, z, levels=levels)
     pts, elev, segs, first = [], [], [], 0
-    for lev, lines in zip(cs.levels, cs.allsegs):
-        for s in lines:
-            closed = len(s) > 2 and np.array_equal(s[0], s[-1])
-            s = s[:-1] if closed else s
-            k = len(s)
-            i = np.arange(first, first + k - 1)
-            e = np.stack([i, i + 1], axis=1)
-            if closed:
-                e = np.concatenate([e, [[first + k - 1, first]]])
-            pts.append(s)
-            elev.append(np.full(k, lev))
-            segs.append(e)
-            first += k
-    plt.close("all")
+    for s, lev in contour_lines(levels):
+        closed = len(s) > 2 and np.array_equal(s[0], s[-1])
+        s = s[:-1] if closed else s
+        k = len(s)
+        i = np.arange(first, first + k - 1)
+        e = np.stack([i, i + 1], axis=1)
+        if closed:
+            e = np.concatenate([e, [[first + k - 1, first]]])
+        pts.append(s)
+        elev.append(np.full(k, lev))
+        segs.append(e)
+        first += k
     return np.concatenate(pts), np.concatenate(elev), np.concatenate(segs).astype(np.int32)
 
 
@@ -60,7 +51,7 @@ def main():
     ap.add_argument("-o", default="terrain_breaklines.png")
     ap.add_argument("--levels", type=int, default=60)
     a = ap.parse_args()
-    p, z, segs = contour_lines(a.levels)
+    p, z, segs = contour_segments(a.levels)
     t0 = time.perf_counter()
     # (traced contour lines can cross where they pass a saddle: such crossings get a vertex)
     cdt = gpugeom.ConstrainedDelaunay(p, segs, crossings="split")

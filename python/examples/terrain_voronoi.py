@@ -14,30 +14,18 @@ import time
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.cbook as cbook
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.collections import LineCollection
 
 import gpugeom
+from _terrain import contour_lines
 
 
 def contour_points(levels):
-    dem = cbook.get_sample_data("jacksboro_fault_dem.npz")
-    z = dem["elevation"].astype(np.float64)
-    # The grid is in degrees (3 arc-seconds); metres at the tile's latitude.
-    lat = np.radians(0.5 * (float(dem["ymin"]) + float(dem["ymax"])))
-    dy = float(dem["dy"]) * 111320.0
-    dx = float(dem["dx"]) * 111320.0 * np.cos(lat)
-    xs, ys = np.arange(z.shape[1]) * dx, np.arange(z.shape[0]) * dy
-    cs = plt.figure().add_subplot().contour(xs, ys, z, levels=levels)
-    pts, elev = [], []
-    for lev, segs in zip(cs.levels, cs.allsegs):
-        for s in segs:
-            pts.append(s)
-            elev.append(np.full(len(s), lev))
-    plt.close("all")
-    return np.concatenate(pts), np.concatenate(elev)
+    lines = contour_lines(levels)
+    return (np.concatenate([s for s, _ in lines]),
+            np.concatenate([np.full(len(s), lev) for s, lev in lines]))
 
 
 def main():

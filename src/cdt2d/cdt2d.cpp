@@ -105,7 +105,7 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
     std::int64_t ns = nseg;
     if (split) {
       const auto t0 = Clock::now();
-      sp = cdt::split_crossings(xy, n, segments, nseg, known, opt.threads);
+      sp = cdt::split_crossings(xy, n, segments, nseg, known);
       if (!sp.pieces.empty()) {
         pts.assign(xy, xy + 2 * n);
         pts.insert(pts.end(), sp.points.begin(), sp.points.end());

@@ -113,7 +113,7 @@ struct CoordHash {
 }  // namespace
 
 SplitSegments split_crossings(const double* xy, std::int64_t n, const std::int32_t* segs,
-                              std::int64_t m, const std::vector<Pair>& extra, int /*threads*/) {
+                              std::int64_t m, const std::vector<Pair>& extra) {
   SplitSegments out;
   std::vector<Piece> P;
   P.reserve(std::size_t(m));

@@ -29,7 +29,6 @@ struct SplitSegments {
 // pieces still cross after the rounds (never seen: only near-coincident crossings could).
 SplitSegments split_crossings(const double* xy, std::int64_t n, const std::int32_t* segs,
                               std::int64_t m,
-                              const std::vector<std::pair<std::int32_t, std::int32_t>>& extra,
-                              int threads);
+                              const std::vector<std::pair<std::int32_t, std::int32_t>>& extra);
 
 }  // namespace gpugeom::cdt

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <map>
+#include <queue>
+#include <tuple>
 #include <random>
 #include <set>
 #include <string>
@@ -65,6 +67,39 @@ std::vector<Case> cases() {
   return out;
 }
 
+// The standard flooding algorithm (thesis Alg. 4.2), the oracle: every site's region grows
+// from its pixel over 8-neighbours, pixels taken in the order (squared distance to the site,
+// the site's raster index, the pixel's raster index). Returns the site index per pixel.
+std::vector<std::int32_t> standard_flooding(std::int64_t side,
+                                            const std::vector<std::int32_t>& site_pixel) {
+  // (squared distance, the site's pixel, the pixel, the site)
+  using Item = std::tuple<std::int64_t, std::int32_t, std::int32_t, std::int32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+  auto d2 = [&](std::int32_t p, std::int32_t s) {
+    const std::int64_t dx = p % side - s % side, dy = p / side - s / side;
+    return dx * dx + dy * dy;
+  };
+  for (std::size_t s = 0; s < site_pixel.size(); ++s)
+    q.push({0, site_pixel[s], site_pixel[s], std::int32_t(s)});
+  std::vector<std::int32_t> colour(std::size_t(side * side), -1);
+  while (!q.empty()) {
+    const auto [d, sp, p, s] = q.top();
+    q.pop();
+    if (colour[std::size_t(p)] >= 0) continue;
+    colour[std::size_t(p)] = s;
+    for (std::int64_t dy = -1; dy <= 1; ++dy)
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        const std::int64_t x = p % side + dx, y = p / side + dy;
+        if ((dx || dy) && x >= 0 && y >= 0 && x < side && y < side &&
+            colour[std::size_t(y * side + x)] < 0) {
+          const std::int32_t b = std::int32_t(y * side + x);
+          q.push({d2(b, sp), sp, b, s});
+        }
+      }
+  }
+  return colour;
+}
+
 // Do segments a-b and c-d cross at a point inside both? (exact)
 bool gg_test_cross(const std::vector<double>& p, std::int32_t a, std::int32_t b, std::int32_t c,
                    std::int32_t d) {
@@ -100,7 +135,7 @@ TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangula
       if (first) site_pixels.push_back(p), site_points.push_back(i);
     }
     // The colouring equals the standard flooding's.
-    const auto ref = dg::standard_flooding(side, site_pixels);
+    const auto ref = standard_flooding(side, site_pixels);
     std::int64_t differ = 0;
     for (std::size_t p = 0; p < ref.size(); ++p)
       differ += s.colour[p] != site_points[std::size_t(ref[p])];

@@ -112,8 +112,7 @@ std::int64_t fill_to_hull(const std::vector<std::int64_t>& x, const std::vector<
   hull.push_back(cycle.size());         // back to the start
   std::int64_t added = 0;
   for (std::size_t h = 0; h + 1 < hull.size(); ++h) {
-    std::size_t from = hull[h], to = hull[h + 1];
-    if (to == 0) to = cycle.size();
+    const std::size_t from = hull[h], to = hull[h + 1];
     if (to - from < 2) continue;  // the boundary edge is the hull edge
     // The pocket: the stretch from cycle[from] to cycle[to] with the disk on its left, closed by
     // the hull edge; walked the other way round it is counter-clockwise.

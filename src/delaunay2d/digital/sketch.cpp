@@ -46,29 +46,6 @@ using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Ent
 
 }  // namespace
 
-std::vector<std::int32_t> standard_flooding(std::int64_t side,
-                                            const std::vector<std::int32_t>& site_pixel) {
-  const Grid g{side};
-  std::vector<std::int32_t> owner(std::size_t(side * side), -1);  // site index per site pixel
-  for (std::size_t s = 0; s < site_pixel.size(); ++s)
-    owner[std::size_t(site_pixel[s])] = std::int32_t(s);
-  std::vector<std::int32_t> colour(std::size_t(side * side), -1);  // site pixel per pixel
-  MinQueue q;
-  for (std::int32_t p : site_pixel) q.push({g.key(p, p), p});
-  while (!q.empty()) {
-    const auto [k, site] = q.top();
-    q.pop();
-    const std::int32_t a = std::get<2>(k);
-    if (colour[std::size_t(a)] >= 0) continue;
-    colour[std::size_t(a)] = site;
-    g.neighbours(a, [&](std::int32_t b) {
-      if (colour[std::size_t(b)] < 0) q.push({g.key(b, site), site});
-    });
-  }
-  for (auto& c : colour) c = owner[std::size_t(c)];
-  return colour;
-}
-
 Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run) {
   if (side < 2 || side > 46340)
     throw Error(ErrorCode::InvalidArgument,

@@ -34,10 +34,4 @@ struct Sketch {
 // side: the grid's extent (at least 2); the points' bounding box is scaled to fit it.
 Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run);
 
-// The grid position of each pixel's site, for tests: x = p % side, y = p / side.
-// The colouring of the standard flooding algorithm (Alg. 4.2) for sites at the given pixels
-// (one per site, distinct), by the order above: the reference for the recoloured diagram.
-std::vector<std::int32_t> standard_flooding(std::int64_t side,
-                                            const std::vector<std::int32_t>& site_pixel);
-
 }  // namespace gpugeom::del2d::digital
