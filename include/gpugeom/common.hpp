@@ -47,6 +47,17 @@ struct RunOptions {
   bool profile = false;
 };
 
+// How a triangulation is computed (issue 20; Delaunay2dOptions::method). Both give exactly
+// the same result (the same triangles for the same points: one simulation of simplicity).
+//   Incremental: batches of points inserted, each followed by rounds of parallel flips.
+//   Digital: thesis chapter 4's digital method: the digital Voronoi diagram of the points on a
+//     grid (PBA), its dual as a sketch, shifted to the points' own coordinates, the points the
+//     grid could not place inserted, then flipped until Delaunay.
+enum class Method { Incremental, Digital };
+const char* method_name(Method m);
+// Parses "incremental", "digital" (case-insensitive); throws Error(InvalidArgument) otherwise.
+Method parse_method(const std::string& s);
+
 // An array the caller provides for an output (SciPy's `distances=` / `indices=` pattern): data
 // and its length in elements. Where a function says so, the output is written there instead of
 // into memory of the library's; a wrong length is refused (Error(InvalidArgument), naming the

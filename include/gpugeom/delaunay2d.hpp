@@ -28,6 +28,13 @@ struct Triangulation2dBuffers {
 
 struct Delaunay2dOptions : RunOptions {
   Triangulation2dBuffers into;  // optional
+  // The method (common.hpp): the result does not depend on it. Method::Digital runs from host
+  // points (delaunay2d; delaunay2d_device refuses it).
+  Method method = Method::Incremental;
+  // Method::Digital: the grid's longer side in pixels (the points' bounding box is scaled by a
+  // power of two into grid x grid, so the grid's longer side is between grid / 2 and grid);
+  // 0 chooses it from the point count. 4 to 46340.
+  std::int64_t grid = 0;
 };
 
 // The most triangles a triangulation of n points has (2n - 5, for n >= 3): sizes `into` ahead.

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "delaunay2d/del2d_backend.hpp"
+#include "delaunay2d/digital/digital.hpp"
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
 
@@ -55,7 +56,10 @@ Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOpt
   const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
   del2d::Output out;
-  GG_ON_EXECUTOR(b, del2d, triangulate, xy, n, opt, out, r.stats);
+  if (opt.method == Method::Digital)
+    del2d::digital::triangulate(xy, n, opt, b, out, r.stats);
+  else
+    GG_ON_EXECUTOR(b, del2d, triangulate, xy, n, opt, out, r.stats);
   r.triangles = std::move(out.triangles);
   r.neighbors = std::move(out.neighbors);
   r.duplicate_of = std::move(out.duplicate_of);
@@ -67,6 +71,10 @@ Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOpt
 DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
                                         const Delaunay2dOptions& opt) {
   check_count(n);
+  if (opt.method == Method::Digital)
+    throw Error(ErrorCode::Unsupported,
+                "delaunay2d_device: Method::Digital runs from host points (call delaunay2d); "
+                "the device entry computes Method::Incremental (the same triangulation)");
   DeviceTriangulation2d r;
   const Backend b = device_entry_backend(opt.backend, opt.device, "delaunay2d_device");
   r.backend = r.stats.backend = b;

@@ -71,7 +71,7 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Delaunay2dOptions& o
   Stats& st = stats ? *stats : local;
   st.backend = b;
 #ifdef GPUGEOM_HAVE_CUDA
-  if (b == Backend::Cuda) {
+  if (b == Backend::Cuda && opt.method == Method::Incremental) {
     del2d::check_count(n);
     Voronoi2d v;
     del2d::cuda_impl::voronoi_from_host(xy, n, opt, v, tri, st);

@@ -1,4 +1,5 @@
-// Backend names, parsing and resolution (Auto, GPUGEOM_BACKEND), shared by every module.
+// Backend and method names, parsing and resolution (Auto, GPUGEOM_BACKEND), shared by every
+// module.
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -29,6 +30,19 @@ Backend parse_backend(const std::string& s) {
   if (l == "cuda" || l == "gpu") return Backend::Cuda;
   throw Error(ErrorCode::InvalidArgument,
               "unknown backend '" + s + "': expected one of auto, cpu, cuda");
+}
+
+const char* method_name(Method m) {
+  return m == Method::Digital ? "digital" : "incremental";
+}
+
+Method parse_method(const std::string& s) {
+  std::string l(s);
+  std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (l == "incremental") return Method::Incremental;
+  if (l == "digital") return Method::Digital;
+  throw Error(ErrorCode::InvalidArgument,
+              "unknown method '" + s + "': expected one of incremental, digital");
 }
 
 Backend resolve_backend(Backend requested, int device) {

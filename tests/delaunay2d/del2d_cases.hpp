@@ -108,6 +108,54 @@ inline std::vector<Case> distribution_cases(const std::vector<std::int64_t>& siz
   return cs;
 }
 
+// Inputs for the digital method (issue 20), each with its grid side (0: chosen from n): every
+// distribution on the automatic grid and on a coarse one (many points share a pixel, many sites
+// move across their neighbours' edges), the degenerate cases, clusters, a lattice with points a
+// hair off it (below the grid's resolution) and exactly cocircular integer points.
+struct DigitalCase {
+  std::string name;
+  std::vector<Point2> pts;
+  std::int64_t grid = 0;
+};
+
+inline std::vector<DigitalCase> digital_cases(std::int64_t n, std::uint64_t seed) {
+  std::vector<DigitalCase> cs;
+  for (const auto& d : distributions2d()) {
+    cs.push_back({d + " " + std::to_string(n), generate2d(d, n, seed), 0});
+    cs.push_back({d + " " + std::to_string(n) + " on 64", generate2d(d, n, seed + 1), 64});
+  }
+  for (const Case& c : degenerate_cases()) {
+    cs.push_back({c.name, c.pts, 0});
+    cs.push_back({c.name + " on 8", c.pts, 8});
+  }
+  std::mt19937_64 r(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::normal_distribution<double> N(0, 1);
+  {
+    DigitalCase c{"clusters", {}, 0};
+    for (int k = 0; k < 20; ++k) {
+      const double cx = U(r), cy = U(r), sd = 0.0005 + 0.01 * U(r);
+      for (std::int64_t i = 0; i < n / 20; ++i) c.pts.push_back({cx + sd * N(r), cy + sd * N(r)});
+    }
+    cs.push_back(c);
+  }
+  {
+    DigitalCase c{"lattice a hair off", {}, 256};
+    for (int y = 0; y < 70; ++y)
+      for (int x = 0; x < 70; ++x)
+        c.pts.push_back({x + 1e-9 * (U(r) - 0.5), y + ((x + y) % 3 ? 0.0 : 1e-12)});
+    cs.push_back(c);
+  }
+  {
+    DigitalCase c{"integer lattice with duplicates", {}, 0};
+    for (int y = 0; y < 50; ++y)
+      for (int x = 0; x < 50; ++x) c.pts.push_back({double(x), double(y)});
+    for (int i = 0; i < 300; ++i) c.pts.push_back(c.pts[std::size_t(i * 7)]);
+    cs.push_back(c);
+  }
+  return cs;
+}
+
 // The checker's verdict plus what the checker does not look at: neighbours and the duplicate
 // map.
 inline void expect_valid(const std::vector<Point2>& pts, const Triangulation2d& t) {

@@ -70,18 +70,18 @@ std::vector<Case> cases() {
 // The standard flooding algorithm (thesis Alg. 4.2), the oracle: every site's region grows
 // from its pixel over 8-neighbours, pixels taken in the order (squared distance to the site,
 // the site's raster index, the pixel's raster index). Returns the site index per pixel.
-std::vector<std::int32_t> standard_flooding(std::int64_t side,
+std::vector<std::int32_t> standard_flooding(std::int64_t w, std::int64_t h,
                                             const std::vector<std::int32_t>& site_pixel) {
   // (squared distance, the site's pixel, the pixel, the site)
   using Item = std::tuple<std::int64_t, std::int32_t, std::int32_t, std::int32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
   auto d2 = [&](std::int32_t p, std::int32_t s) {
-    const std::int64_t dx = p % side - s % side, dy = p / side - s / side;
+    const std::int64_t dx = p % w - s % w, dy = p / w - s / w;
     return dx * dx + dy * dy;
   };
   for (std::size_t s = 0; s < site_pixel.size(); ++s)
     q.push({0, site_pixel[s], site_pixel[s], std::int32_t(s)});
-  std::vector<std::int32_t> colour(std::size_t(side * side), -1);
+  std::vector<std::int32_t> colour(std::size_t(w * h), -1);
   while (!q.empty()) {
     const auto [d, sp, p, s] = q.top();
     q.pop();
@@ -89,10 +89,10 @@ std::vector<std::int32_t> standard_flooding(std::int64_t side,
     colour[std::size_t(p)] = s;
     for (std::int64_t dy = -1; dy <= 1; ++dy)
       for (std::int64_t dx = -1; dx <= 1; ++dx) {
-        const std::int64_t x = p % side + dx, y = p / side + dy;
-        if ((dx || dy) && x >= 0 && y >= 0 && x < side && y < side &&
-            colour[std::size_t(y * side + x)] < 0) {
-          const std::int32_t b = std::int32_t(y * side + x);
+        const std::int64_t x = p % w + dx, y = p / w + dy;
+        if ((dx || dy) && x >= 0 && y >= 0 && x < w && y < h &&
+            colour[std::size_t(y * w + x)] < 0) {
+          const std::int32_t b = std::int32_t(y * w + x);
           q.push({d2(b, sp), sp, b, s});
         }
       }
@@ -116,10 +116,22 @@ TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangula
   std::int64_t debris = 0, pinched = 0, hull_added = 0;
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
-    const std::int64_t n = std::int64_t(c.xy.size() / 2), side = c.side;
+    const std::int64_t n = std::int64_t(c.xy.size() / 2);
     RunOptions run;
     run.backend = Backend::Cpu;
-    const dg::Sketch s = dg::digital_sketch(c.xy.data(), n, side, run);
+    const dg::Sketch s = dg::digital_sketch(c.xy.data(), n, c.side, run);
+    const std::int64_t w = s.width, h = s.height;
+    EXPECT_TRUE(s.exact);
+    EXPECT_LE(std::max(w, h), c.side);
+    EXPECT_GE(2 * std::max(w, h), c.side) << "the grid uses less than half the side";
+    // Every point lies in its pixel: ox + gx h <= x < ox + (gx + 1) h (h a power of two, the
+    // origin a multiple of it: all exact).
+    for (std::int64_t i = 0; i < n; ++i) {
+      const double gx = double(s.pixel[std::size_t(i)] % w),
+                   gy = double(s.pixel[std::size_t(i)] / w);
+      EXPECT_TRUE(s.ox + gx * s.h <= c.xy[2 * i] && c.xy[2 * i] < s.ox + (gx + 1) * s.h) << i;
+      EXPECT_TRUE(s.oy + gy * s.h <= c.xy[2 * i + 1] && c.xy[2 * i + 1] < s.oy + (gy + 1) * s.h);
+    }
     debris += s.debris;
     pinched += s.pinched;
     hull_added += s.hull_triangles;
@@ -135,15 +147,15 @@ TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangula
       if (first) site_pixels.push_back(p), site_points.push_back(i);
     }
     // The colouring equals the standard flooding's.
-    const auto ref = standard_flooding(side, site_pixels);
+    const auto ref = standard_flooding(w, h, site_pixels);
     std::int64_t differ = 0;
     for (std::size_t p = 0; p < ref.size(); ++p)
       differ += s.colour[p] != site_points[std::size_t(ref[p])];
     EXPECT_EQ(differ, 0) << "pixels coloured unlike the standard flooding";
     // The dual: counter-clockwise triangles of sites at their grid points, each directed edge
     // once, every site a vertex when there are three sites or more.
-    auto gx = [&](std::int32_t i) { return std::int64_t(s.pixel[std::size_t(i)] % side); };
-    auto gy = [&](std::int32_t i) { return std::int64_t(s.pixel[std::size_t(i)] / side); };
+    auto gx = [&](std::int32_t i) { return std::int64_t(s.pixel[std::size_t(i)] % w); };
+    auto gy = [&](std::int32_t i) { return std::int64_t(s.pixel[std::size_t(i)] / w); };
     std::set<std::pair<std::int32_t, std::int32_t>> directed;
     std::set<std::int32_t> used;
     for (std::size_t t = 0; t < s.triangles.size(); t += 3) {
@@ -176,9 +188,10 @@ TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangula
     // A site in no triangle has a cell on the grid's border: the dual of a truncated diagram
     // misses only such sites (the hull completion and the missing points' insertion take them).
     std::set<std::int32_t> on_border;
-    for (std::int64_t k = 0; k < side; ++k)
-      for (std::int64_t p : {k, (side - 1) * side + k, k * side, k * side + side - 1})
-        on_border.insert(s.colour[std::size_t(p)]);
+    for (std::int64_t k = 0; k < w; ++k)
+      for (std::int64_t p : {k, (h - 1) * w + k}) on_border.insert(s.colour[std::size_t(p)]);
+    for (std::int64_t k = 0; k < h; ++k)
+      for (std::int64_t p : {k * w, k * w + w - 1}) on_border.insert(s.colour[std::size_t(p)]);
     for (std::int32_t i : site_points)
       if (!used.count(i) && site_points.size() >= 3)
         EXPECT_TRUE(on_border.count(i)) << "site " << i << " is in no triangle, inside the grid";

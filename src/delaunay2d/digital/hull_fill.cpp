@@ -5,6 +5,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "delaunay2d/digital/ear_clip.hpp"
 #include "gpugeom/common.hpp"
 
 namespace gpugeom::del2d::digital {
@@ -26,31 +27,6 @@ std::uint64_t key(Id a, Id b) {
   return std::uint64_t(std::uint32_t(a)) << 32 | std::uint32_t(b);
 }
 
-// Ear clipping of the counter-clockwise polygon p (simple; collinear runs allowed): appends its
-// triangles; what is left when no strictly convex empty ear remains has no area.
-std::int64_t clip_ears(const Geo& g, std::vector<Id> p, std::vector<Id>& out) {
-  std::int64_t added = 0;
-  for (bool cut = true; cut && p.size() >= 3;) {
-    cut = false;
-    const std::size_t k = p.size();
-    for (std::size_t i = 0; i < k && !cut; ++i) {
-      const Id a = p[(i + k - 1) % k], b = p[i], c = p[(i + 1) % k];
-      if (g.orient(a, b, c) <= 0) continue;
-      bool empty = true;  // no other vertex inside the ear or on its edges
-      for (std::size_t j = 0; j < k && empty; ++j) {
-        const Id v = p[j];
-        if (v == a || v == b || v == c) continue;
-        empty = !(g.orient(a, b, v) >= 0 && g.orient(b, c, v) >= 0 && g.orient(c, a, v) >= 0);
-      }
-      if (!empty) continue;
-      out.insert(out.end(), {a, b, c});
-      ++added;
-      p.erase(p.begin() + std::ptrdiff_t(i));
-      cut = true;
-    }
-  }
-  return added;
-}
 }  // namespace
 
 std::int64_t fill_to_hull(const std::vector<std::int64_t>& x, const std::vector<std::int64_t>& y,
@@ -118,7 +94,12 @@ std::int64_t fill_to_hull(const std::vector<std::int64_t>& x, const std::vector<
     // the hull edge; walked the other way round it is counter-clockwise.
     std::vector<Id> pocket;
     for (std::size_t i = to; i + 1 > from; --i) pocket.push_back(cycle[i % cycle.size()]);
-    added += clip_ears(g, pocket, triangles);
+    clip_ears(
+        pocket, [&](Id a, Id b, Id c) { return g.orient(a, b, c); },
+        [&](Id a, Id b, Id c) {
+          triangles.insert(triangles.end(), {a, b, c});
+          ++added;
+        });
   }
   return added;
 }

@@ -3,6 +3,7 @@
 #include "delaunay2d/digital/sketch.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <queue>
 #include <string>
@@ -19,9 +20,9 @@ namespace {
 using Key = std::tuple<std::int64_t, std::int32_t, std::int32_t>;
 
 struct Grid {
-  std::int64_t side;
-  std::int64_t x(std::int32_t p) const { return p % side; }
-  std::int64_t y(std::int32_t p) const { return p / side; }
+  std::int64_t w, h;
+  std::int64_t x(std::int32_t p) const { return p % w; }
+  std::int64_t y(std::int32_t p) const { return p / w; }
   std::int64_t d2(std::int32_t p, std::int32_t site) const {
     const std::int64_t dx = x(p) - x(site), dy = y(p) - y(site);
     return dx * dx + dy * dy;
@@ -35,7 +36,7 @@ struct Grid {
       for (std::int64_t dx = -1; dx <= 1; ++dx) {
         if (!dx && !dy) continue;
         const std::int64_t qx = px + dx, qy = py + dy;
-        if (qx >= 0 && qy >= 0 && qx < side && qy < side) f(std::int32_t(qy * side + qx));
+        if (qx >= 0 && qy >= 0 && qx < w && qy < h) f(std::int32_t(qy * w + qx));
       }
   }
 };
@@ -47,29 +48,54 @@ using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Ent
 }  // namespace
 
 Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run) {
-  if (side < 2 || side > 46340)
+  if (side < 4 || side > 46340)
     throw Error(ErrorCode::InvalidArgument,
-                "digital sketch: the grid side must be 2..46340, got " + std::to_string(side));
+                "digital sketch: the grid side must be 4..46340, got " + std::to_string(side));
   Sketch s;
-  s.side = side;
-  const Grid g{side};
-  // Phase 1a: the points to the nearest lower-left grid point of the scaled bounding box.
+  auto t0 = std::chrono::steady_clock::now();
+  auto phase = [&](const char* name) {
+    const auto t1 = std::chrono::steady_clock::now();
+    s.phase_ms.push_back({name, std::chrono::duration<double, std::milli>(t1 - t0).count()});
+    t0 = t1;
+  };
+  // Phase 1a: the points to the nearest lower-left grid point. The pixel size h is a power of
+  // two and the origin a multiple of it (thesis 6.2's care for the scaling): the grid points are
+  // then exact doubles, and the sketch, valid at them, can be compared exactly with the points.
   double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
   for (std::int64_t i = 0; i < n; ++i) {
     x0 = std::min(x0, xy[2 * i]), x1 = std::max(x1, xy[2 * i]);
     y0 = std::min(y0, xy[2 * i + 1]), y1 = std::max(y1, xy[2 * i + 1]);
   }
   const double extent = std::max(x1 - x0, y1 - y0);
-  const double scale = extent > 0 ? double(side - 1) / extent : 0;
-  auto cell = [&](double v, double lo) {
-    return std::clamp<std::int64_t>(std::int64_t(std::floor((v - lo) * scale)), 0, side - 1);
+  double h = extent > 0 && std::isfinite(extent)
+                 ? std::ldexp(1.0, std::ilogb(extent / double(side - 2)))
+                 : 1.0;
+  while (extent / h > double(side - 2)) h *= 2;
+  s.h = h;
+  s.ox = std::floor(x0 / h) * h, s.oy = std::floor(y0 / h) * h;
+  auto cells = [&](double lo, double hi) {
+    return std::clamp<std::int64_t>(std::int64_t(std::floor((hi - lo) / h)) + 1, 2, side);
+  };
+  s.width = cells(s.ox, x1), s.height = cells(s.oy, y1);
+  // ox + gx h is exact while |ox / h| + width stays within the doubles' 53 bits.
+  // They must also stay in the range where the exact predicates are exact (predicates.hpp).
+  const double lim = 0x1p52;
+  s.exact = std::isfinite(s.ox) && std::isfinite(s.oy) && h >= 0x1p-142 &&
+            std::abs(s.ox / h) + double(s.width) < lim &&
+            std::abs(s.oy / h) + double(s.height) < lim &&
+            std::abs(s.ox) + double(s.width) * h < 0x1p179 &&
+            std::abs(s.oy) + double(s.height) * h < 0x1p179;
+  const Grid g{s.width, s.height};
+  auto cell = [&](double v, double lo, std::int64_t m) {
+    return std::clamp<std::int64_t>(std::int64_t(std::floor((v - lo) / h)), 0, m - 1);
   };
   s.pixel.resize(std::size_t(n));
-  std::vector<std::int32_t> owner(std::size_t(side * side), -1);  // point per site pixel
-  std::vector<std::int32_t> kept;                                 // points that are sites
-  std::vector<std::int64_t> coords;                               // (y, x) per site
+  std::vector<std::int32_t> owner(std::size_t(g.w * g.h), -1);  // point per site pixel
+  std::vector<std::int32_t> kept;                               // points that are sites
+  std::vector<std::int64_t> coords;                             // (y, x) per site
   for (std::int64_t i = 0; i < n; ++i) {
-    const std::int32_t p = std::int32_t(cell(xy[2 * i + 1], y0) * side + cell(xy[2 * i], x0));
+    const std::int32_t p =
+        std::int32_t(cell(xy[2 * i + 1], s.oy, g.h) * g.w + cell(xy[2 * i], s.ox, g.w));
     s.pixel[std::size_t(i)] = p;
     if (owner[std::size_t(p)] >= 0) {
       s.missing.push_back(std::int32_t(i));
@@ -79,14 +105,16 @@ Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const
     kept.push_back(std::int32_t(i));
     coords.insert(coords.end(), {g.y(p), g.x(p)});
   }
+  phase("grid");
   // The digital Voronoi diagram: each pixel's nearest site (ties: the site first in raster
   // order, as ≺).
   EdtOptions eo;
   static_cast<RunOptions&>(eo) = run;
   eo.labels = true;
-  const EdtResult v = distance_transform_sites({side, side}, coords, eo);
-  s.colour.resize(std::size_t(side * side));
+  const EdtResult v = distance_transform_sites({g.h, g.w}, coords, eo);
+  s.colour.resize(std::size_t(g.w * g.h));
   for (std::size_t p = 0; p < s.colour.size(); ++p) s.colour[p] = kept[std::size_t(v.labels[p])];
+  phase("pba");
   // Debris: the pixels not 8-connected to their own site through their colour.
   std::vector<char> bulk(s.colour.size(), 0);
   {
@@ -128,13 +156,15 @@ Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const
       if (!bulk[std::size_t(c)] && g.key(a, site) < g.key(c, site)) q.push({g.key(c, site), site});
     });
   }
+  phase("debris");
   // Phase 1b: the dual of each corner where three or four colours meet, in the counter-clockwise
   // order of its cells (x, y), (x + 1, y), (x + 1, y + 1), (x, y + 1).
-  for (std::int64_t y = 0; y + 1 < side; ++y)
-    for (std::int64_t x = 0; x + 1 < side; ++x) {
+  const std::int64_t w = g.w;
+  for (std::int64_t y = 0; y + 1 < g.h; ++y)
+    for (std::int64_t x = 0; x + 1 < w; ++x) {
       const std::int32_t c[4] = {
-          s.colour[std::size_t(y * side + x)], s.colour[std::size_t(y * side + x + 1)],
-          s.colour[std::size_t((y + 1) * side + x + 1)], s.colour[std::size_t((y + 1) * side + x)]};
+          s.colour[std::size_t(y * w + x)], s.colour[std::size_t(y * w + x + 1)],
+          s.colour[std::size_t((y + 1) * w + x + 1)], s.colour[std::size_t((y + 1) * w + x)]};
       std::int32_t d[4];
       int k = 0;
       for (int j = 0; j < 4; ++j)
@@ -160,12 +190,14 @@ Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const
           s.triangles.insert(s.triangles.end(), {d[1], d[2], d[3], d[1], d[3], d[0]});
       }
     }
+  phase("dual");
   // The truncated diagram's dual made a triangulation of its vertices' convex hull.
   std::vector<std::int64_t> gx(static_cast<std::size_t>(n)), gy(static_cast<std::size_t>(n));
   for (std::int64_t i = 0; i < n; ++i)
     gx[std::size_t(i)] = g.x(s.pixel[std::size_t(i)]),
     gy[std::size_t(i)] = g.y(s.pixel[std::size_t(i)]);
   s.hull_triangles = fill_to_hull(gx, gy, s.triangles);
+  phase("hull_fill");
   return s;
 }
 

@@ -7,10 +7,12 @@
 // pixel with an earlier point are missing points (inserted by a later phase).
 //
 // The order ≺ of (pixel, site) pairs everywhere: squared distance, then the site's raster
-// index (y * side + x), then the pixel's raster index (PBA breaks ties between sites the same
+// index (y * width + x), then the pixel's raster index (PBA breaks ties between sites the same
 // way, so its labels and the flooding agree wherever a cell is connected).
 #pragma once
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "gpugeom/common.hpp"
@@ -18,8 +20,13 @@
 namespace gpugeom::del2d::digital {
 
 struct Sketch {
-  std::int64_t side = 0;              // the grid is side x side pixels
-  std::vector<std::int32_t> pixel;    // per point: its pixel's raster index (y * side + x)
+  // The grid: width x height pixels; grid point (gx, gy) stands for (ox + gx h, oy + gy h), h a
+  // power of two and ox, oy multiples of it, so that these are exact doubles wherever `exact`
+  // (the shifting phase compares them with the points' own coordinates, shift.hpp).
+  std::int64_t width = 0, height = 0;
+  double ox = 0, oy = 0, h = 1;
+  bool exact = false;
+  std::vector<std::int32_t> pixel;    // per point: its pixel's raster index (y * width + x)
   std::vector<std::int32_t> missing;  // points whose pixel an earlier point took
   std::vector<std::int32_t> colour;   // per pixel: the point whose cell holds it
   std::int64_t debris = 0;            // pixels recoloured
@@ -29,9 +36,13 @@ struct Sketch {
   // counter-clockwise order), then those filling the pockets up to the convex hull of their
   // vertices (hull_fill.hpp): a triangulation of that hull.
   std::vector<std::int32_t> triangles;
+  // Milliseconds of each step: "grid" (mapping), "pba", "debris", "dual", "hull_fill".
+  std::vector<std::pair<std::string, double>> phase_ms;
 };
 
-// side: the grid's extent (at least 2); the points' bounding box is scaled to fit it.
+// side: the grid's largest extent (at least 4): the points' bounding box is scaled by a power of
+// two to fit side x side, and the grid trimmed to the box (between side / 2 and side pixels
+// along the box's longer side).
 Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run);
 
 }  // namespace gpugeom::del2d::digital

@@ -1026,45 +1026,54 @@ inline void check_into(const Triangulation2dBuffers& into, std::int64_t count, s
   deliver::check(into.duplicate_of, n, "duplicate_of");
 }
 
+// The host entries' result arrays. On the GPU the host is idle while the device triangulates:
+// they are sized for the most triangles m distinct points can have (2m - 5; cut to the count
+// later, keeping the pages) and faulted in meanwhile, so the copy back runs at the transfer's
+// rate.
+inline void size_host_results(const Triangulation2dBuffers& into, std::int64_t n, const Prepared& P,
+                              Output& out, detail::Prefault& pf) {
+  if constexpr (Exec::backend == Backend::Cuda) {
+    const std::int64_t bound = 3 * delaunay2d_max_triangles(P.m);
+    if (!into.triangles) out.triangles.resize(std::size_t(bound));
+    if (!into.neighbors) out.neighbors.resize(std::size_t(bound));
+    if (!into.duplicate_of) out.duplicate_of.resize(std::size_t(n));
+    pf.add(out.triangles.data(), out.triangles.size() * sizeof(std::int32_t));
+    pf.add(out.neighbors.data(), out.neighbors.size() * sizeof(std::int32_t));
+    pf.add(out.duplicate_of.data(), out.duplicate_of.size() * sizeof(std::int32_t));
+    pf.start();
+  }
+}
+
+inline void deliver_host_results(Exec& ex, const Triangulation2dBuffers& into, std::int64_t n,
+                                 Prepared& P, typename Triangulator::Finished& f, Output& out,
+                                 Stats& st, detail::Prefault& pf) {
+  const auto t0 = std::chrono::steady_clock::now();
+  pf.wait();
+  st.phase_ms.push_back({"prefault_wait", ms_since(t0)});
+  check_into(into, f.count, n);
+  out.num_duplicates = P.duplicates;
+  out.num_triangles = f.count;
+  deliver::to_host(ex, f.simplices.data(), 3 * f.count, into.triangles, out.triangles);
+  deliver::to_host(ex, f.neighbors.data(), 3 * f.count, into.neighbors, out.neighbors);
+  if (P.duplicates)
+    deliver::to_host(ex, P.dup.data(), n, into.duplicate_of, out.duplicate_of);
+  else
+    deliver::fill_host(ex, n, std::int32_t(-1), into.duplicate_of, out.duplicate_of);
+  st.phase_ms.push_back({"copy_back", ms_since(t0)});
+}
+
 inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                              Output& out, Stats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
                                            "a 2D Delaunay triangulation", "points");
-  const Triangulation2dBuffers& into = opt.into;
-  // On the GPU the host is idle while the device triangulates: the result arrays are sized for
-  // the most triangles m distinct points can have (2m - 5; cut to the count later, keeping the
-  // pages) and faulted in meanwhile, so the copy back runs at the transfer's rate.
   detail::Prefault pf;
-  auto size_ahead = [&](Prepared& P) {
-    if constexpr (Exec::backend == Backend::Cuda) {
-      const std::int64_t bound = 3 * delaunay2d_max_triangles(P.m);
-      if (!into.triangles) out.triangles.resize(std::size_t(bound));
-      if (!into.neighbors) out.neighbors.resize(std::size_t(bound));
-      if (!into.duplicate_of) out.duplicate_of.resize(std::size_t(n));
-      pf.add(out.triangles.data(), out.triangles.size() * sizeof(std::int32_t));
-      pf.add(out.neighbors.data(), out.neighbors.size() * sizeof(std::int32_t));
-      pf.add(out.duplicate_of.data(), out.duplicate_of.size() * sizeof(std::int32_t));
-      pf.start();
-    }
-  };
   triangulate_core(
-      ex, xy, n, false, opt.profile, st, size_ahead,
+      ex, xy, n, false, opt.profile, st,
+      [&](Prepared& P) { size_host_results(opt.into, n, P, out, pf); },
       [&](Prepared& P, typename Triangulator::Finished& f) {
-        const auto t0 = std::chrono::steady_clock::now();
-        pf.wait();
-        st.phase_ms.push_back({"prefault_wait", ms_since(t0)});
-        check_into(into, f.count, n);
-        out.num_duplicates = P.duplicates;
-        out.num_triangles = f.count;
-        deliver::to_host(ex, f.simplices.data(), 3 * f.count, into.triangles, out.triangles);
-        deliver::to_host(ex, f.neighbors.data(), 3 * f.count, into.neighbors, out.neighbors);
-        if (P.duplicates)
-          deliver::to_host(ex, P.dup.data(), n, into.duplicate_of, out.duplicate_of);
-        else
-          deliver::fill_host(ex, n, std::int32_t(-1), into.duplicate_of, out.duplicate_of);
-        st.phase_ms.push_back({"copy_back", ms_since(t0)});
+        deliver_host_results(ex, opt.into, n, P, f, out, st, pf);
       });
 }
 
@@ -1101,8 +1110,13 @@ inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::i
                                   std::int64_t nstart, const Delaunay2dOptions& opt, Output& out,
                                   Stats& st) {
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
+                                           "a 2D Delaunay triangulation", "points");
   auto t0 = std::chrono::steady_clock::now();
   Prepared P = prepare(ex, xy, n, false);
+  detail::Prefault pf;
+  size_host_results(opt.into, n, P, out, pf);
   // The start in prepared indices (a duplicate's index: the point kept for it).
   std::vector<std::int32_t> orig(static_cast<std::size_t>(P.m)),
       dup(static_cast<std::size_t>(n), -1), inv(static_cast<std::size_t>(n));
@@ -1138,13 +1152,6 @@ inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::i
   T.report();
   T.release_work();
   auto f = T.finish();
-  out.num_duplicates = P.duplicates;
-  out.num_triangles = f.count;
-  deliver::to_host(ex, f.simplices.data(), 3 * f.count, OutBuffer<std::int32_t>{}, out.triangles);
-  deliver::to_host(ex, f.neighbors.data(), 3 * f.count, OutBuffer<std::int32_t>{}, out.neighbors);
-  if (P.duplicates)
-    deliver::to_host(ex, P.dup.data(), n, OutBuffer<std::int32_t>{}, out.duplicate_of);
-  else
-    deliver::fill_host(ex, n, std::int32_t(-1), OutBuffer<std::int32_t>{}, out.duplicate_of);
-  st.phase_ms.push_back({"output", ms_since(t0)});
+  st.phase_ms.push_back({"finish", ms_since(t0)});
+  deliver_host_results(ex, opt.into, n, P, f, out, st, pf);
 }
