@@ -3,6 +3,7 @@
 // same points in the same run when the build found CGAL. Points come from the generators, or
 // from .npy files (x, y columns) for the terrain contour set (bench/terrain_contours.py).
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -119,8 +120,67 @@ double voronoi_device_ms(const std::vector<Point2>& p, Backend b, int reps) {
   return out;
 }
 
+// --digital: the digital method (issue 20) on the same points and executor, for each grid side
+// (0: chosen from n), beside the incremental result `inc`: end to end time, its phases, the
+// points the sketch left to insertion, flips against the incremental method's, and whether the
+// triangles are the incremental method's (as sets).
+void digital_rows(const std::string& name, const std::vector<Point2>& pts, Backend b, int reps,
+                  const std::string& grids, const Triangulation2d& inc) {
+  const std::int64_t n = std::int64_t(pts.size());
+  std::vector<std::array<std::int32_t, 3>> ref;
+  auto tri_set = [](const Triangulation2d& t) {
+    std::vector<std::array<std::int32_t, 3>> v(std::size_t(t.triangle_count));
+#pragma omp parallel for
+    for (std::int64_t i = 0; i < t.triangle_count; ++i) {
+      const std::int32_t* q = t.triangles.data() + 3 * i;
+      const int k = q[0] < q[1] ? (q[0] < q[2] ? 0 : 2) : (q[1] < q[2] ? 1 : 2);
+      v[std::size_t(i)] = {q[k], q[(k + 1) % 3], q[(k + 2) % 3]};
+    }
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  ref = tri_set(inc);
+  for (double g : bench::numbers(grids)) {
+    Delaunay2dOptions o;
+    o.backend = b;
+    o.method = Method::Digital;
+    o.grid = std::int64_t(g);
+    Triangulation2d r;
+    std::vector<double> t;
+    try {
+      r = delaunay2d(pts, o);  // warm-up
+      for (int k = 0; k < reps; ++k) {
+        const auto t0 = clk::now();
+        r = delaunay2d(pts, o);
+        t.push_back(bench::ms_since(t0));
+      }
+    } catch (const Error& e) {
+      std::printf("    digital grid %lld refused: %s\n", (long long)g, e.what());
+      continue;
+    }
+    std::sort(t.begin(), t.end());
+    auto& c = r.stats.counters;
+    const bool same = tri_set(r) == ref;
+    std::printf(
+        "  %-20s %10lld %-5s %10.1f  digital %lldx%lld: left to insert %lld (%.1f %%: %lld "
+        "sharing a pixel, %lld deleted), flips %lld (incremental %lld), batches %lld, %s%s\n",
+        name.c_str(), (long long)n, backend_name(b), t[t.size() / 2], (long long)c["grid_width"],
+        (long long)c["grid_height"], (long long)(n - c["start_vertices"]),
+        100.0 * double(n - c["start_vertices"]) / double(n), (long long)c["sketch_missing"],
+        (long long)(c["bad_inner"] + c["bad_boundary"]), (long long)c["flips"],
+        (long long)inc.stats.counters.at("flips"), (long long)c["batches"],
+        same ? "identical" : "DIFFERENT TRIANGLES",
+        c["digital_fallback"] ? " (FELL BACK to incremental)" : "");
+    std::printf("   ");
+    for (auto& ph : r.stats.phase_ms)
+      if (ph.first.rfind("insert/", 0) != 0) std::printf(" %s %.1f", ph.first.c_str(), ph.second);
+    std::printf("\n");
+    std::fflush(stdout);
+  }
+}
+
 int main(int argc, char** argv) {
-  std::string dists = "uniform", sizes = "1e5,1e6", backends = "all", csv, files;
+  std::string dists = "uniform", sizes = "1e5,1e6", backends = "all", csv, files, digital;
   int reps = 3;
   bool cgal = false, check = false, voronoi = false;
   std::int64_t sample = 0;
@@ -151,14 +211,17 @@ int main(int argc, char** argv) {
         return 2;
       }
       del2d::set_capacities_for_testing(c);
+    } else if (a == "--digital") {  // grid sides for the digital method (0: automatic)
+      digital = next();
     } else if (a == "--voronoi")
       voronoi = true;
     else if (a == "--csv")
       csv = next();
     else {
-      std::cout << "usage: gpugeom_bench_del2d [--dists uniform,circle] [--sizes 1e5,1e6] "
-                   "[--files a.npy,b.npy] [--backend cpu|cuda|all] [--reps 3] [--cgal] [--check] "
-                   "[--sample K] [--capacities B,L,X] [--voronoi] [--csv FILE]\n";
+      std::cout
+          << "usage: gpugeom_bench_del2d [--dists uniform,circle] [--sizes 1e5,1e6] "
+             "[--files a.npy,b.npy] [--backend cpu|cuda|all] [--reps 3] [--cgal] [--check] "
+             "[--sample K] [--capacities B,L,X] [--voronoi] [--digital 0,8192] [--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
   }
@@ -251,6 +314,7 @@ int main(int argc, char** argv) {
           (long long)r.stats.counters["log_relocations"],
           (long long)r.stats.counters["split_flip_rounds"],
           double(r.stats.counters["device_peak_bytes"]) / double(n));
+      if (!digital.empty()) digital_rows(in.name, in.pts, b, reps, digital, r);
       if (voronoi) {  // the Voronoi diagram of the result: host loop, and on the executor
         std::vector<double> th;
         for (int k = 0; k < reps; ++k) {

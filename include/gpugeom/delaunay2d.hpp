@@ -31,9 +31,9 @@ struct Delaunay2dOptions : RunOptions {
   // The method (common.hpp): the result does not depend on it. Method::Digital runs from host
   // points (delaunay2d; delaunay2d_device refuses it).
   Method method = Method::Incremental;
-  // Method::Digital: the grid's longer side in pixels (the points' bounding box is scaled by a
-  // power of two into grid x grid, so the grid's longer side is between grid / 2 and grid);
-  // 0 chooses it from the point count. 4 to 46340.
+  // Method::Digital: the grid's size: the pixel is the least power of two with which the
+  // points' bounding box spans at most `grid` pixels (between grid / 2 and grid); 0 chooses it
+  // from the point count. 4 to 46338.
   std::int64_t grid = 0;
 };
 

@@ -51,8 +51,8 @@ void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOption
   triangulate_device_impl(xy, n, opt, out, stats);
 }
 void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
-                      std::int64_t nstart, const Delaunay2dOptions& opt, Output& out,
-                      Stats& stats) {
-  triangulate_from_impl(xy, n, start, nstart, opt, out, stats);
+                      std::int64_t nstart, const std::int32_t* hint, const Delaunay2dOptions& opt,
+                      Output& out, Stats& stats) {
+  triangulate_from_impl(xy, n, start, nstart, hint, opt, out, stats);
 }
 }  // namespace gpugeom::del2d::cuda_impl

@@ -17,7 +17,8 @@ namespace {
 
 const char* kHelp =
     "usage: gpugeom delaunay2d POINTS -o MESH [--voronoi VOR.json] [--clip xmin,ymin,xmax,ymax]\n"
-    "                          [--draw FILE.svg|FILE.png] [--check] [--compress] [--ascii]\n\n"
+    "                          [--draw FILE.svg|FILE.png] [--check] [--compress] [--ascii]\n"
+    "                          [--method incremental|digital] [--grid SIDE]\n\n"
     "Exact Delaunay triangulation of the 2D points in POINTS (.xyz .txt .csv .ply .off .obj\n"
     ".node .npy; 3D files are accepted when every z is 0). Duplicate points are kept once.\n"
     "  -o MESH        .ply .off .obj .ele(+.node) .vtu .vtk, or .npy (the int32 triangle array)\n"
@@ -29,7 +30,13 @@ const char* kHelp =
     "                 the default box is the points' bounding box grown by 10 %\n"
     "  --draw F       draw the triangulation (and the Voronoi diagram with --voronoi) as SVG\n"
     "                 or PNG (also --svg F)\n"
-    "  --check        verify the result with the independent exact checker\n";
+    "  --check        verify the result with the independent exact checker\n"
+    "  --method M     incremental (default): batches of insertions and parallel flips; digital:\n"
+    "                 the thesis' digital method (a digital Voronoi diagram on a grid, its dual\n"
+    "                 shifted to the points, the rest inserted and flipped). The same result;\n"
+    "                 --verbose shows each method's phases and counters\n"
+    "  --grid SIDE    digital: the grid's longer side in pixels (4..46338; default: about 4\n"
+    "                 pixels a point, at most 16384)\n";
 
 template <class V>
 std::string json_array(const V& v, int per) {
@@ -104,6 +111,16 @@ int cmd_delaunay2d(const Global& g, Args& a) {
   a.value("--clip", clip_s);
   a.value("--draw", draw) || a.value("--svg", draw);
   const bool check = a.flag("--check");
+  std::string method_s, grid_s;
+  a.value("--method", method_s);
+  a.value("--grid", grid_s);
+  Delaunay2dOptions opt;
+  opt.backend = g.backend;
+  if (!method_s.empty()) opt.method = parse_method(method_s);
+  if (!grid_s.empty()) {
+    if (opt.method != Method::Digital) throw UsageError("--grid needs --method digital");
+    opt.grid = to_count(grid_s, "--grid");
+  }
   const io::WriteOptions wo = mesh_write_options(a, out);
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one point file (see --help)");
@@ -127,8 +144,6 @@ int cmd_delaunay2d(const Global& g, Args& a) {
     p.dim = 2;
   }
   const std::int64_t n = std::int64_t(p.size());
-  Delaunay2dOptions opt;
-  opt.backend = g.backend;
   Triangulation2d tri;
   {
     Timer t(g, "triangulate");
@@ -138,7 +153,8 @@ int cmd_delaunay2d(const Global& g, Args& a) {
     std::cout << n << " points";
     if (tri.num_duplicates) std::cout << " (" << tri.num_duplicates << " duplicates kept once)";
     std::cout << " -> " << tri.num_triangles() << " triangles on "
-              << backend_name(tri.stats.backend) << "\n";
+              << backend_name(tri.stats.backend)
+              << (opt.method == Method::Digital ? " (digital method)" : "") << "\n";
     if (g.verbose) print_stats(tri.stats);
   }
   int status = kOk;

@@ -27,15 +27,15 @@ std::int64_t auto_side(const double* xy, std::int64_t n) {
   const double area = longer * std::max(std::min(wx, wy), longer / 64);
   const double h = std::sqrt(area / (4.0 * double(std::max<std::int64_t>(n, 1))));
   const double h2 = std::exp2(std::round(std::log2(h)));
-  const double side = std::ceil(longer / h2) + 2;
+  const double side = std::ceil(longer / h2);
   return std::int64_t(std::clamp(side, 64.0, 16384.0));
 }
 
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Backend b,
                  Output& out, Stats& st) {
-  if (opt.grid != 0 && (opt.grid < 4 || opt.grid > 46340))
+  if (opt.grid != 0 && (opt.grid < 4 || opt.grid > 46338))
     throw Error(ErrorCode::InvalidArgument,
-                "grid: the digital method's grid side must be 4..46340 (or 0: chosen from the "
+                "grid: the digital method's grid side must be 4..46338 (or 0: chosen from the "
                 "point count), got " +
                     std::to_string(opt.grid));
   // Coordinates the incremental method refuses are refused by it (the same errors).
@@ -72,7 +72,7 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
   st.counters["digital_fallback"] = 0;
   s = Sketch{};  // (the grid's memory back before the Triangulator's)
   GG_ON_EXECUTOR(b, del2d, triangulate_from, xy, n, start.triangles.data(),
-                 std::int64_t(start.triangles.size() / 3), opt, out, st);
+                 std::int64_t(start.triangles.size() / 3), start.hint.data(), opt, out, st);
 }
 
 }  // namespace gpugeom::del2d::digital

@@ -226,8 +226,13 @@ Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s) {
     }
   }
   // Alg. 4.5: the bad cases deleted (each at its grid point, the triangulation valid around it).
+  // A point's hint: its pixel's site (itself for a site), then, once deleted, a neighbour.
+  std::vector<std::int32_t> near(static_cast<std::size_t>(n));
+  for (std::int64_t i = 0; i < n; ++i)
+    near[std::size_t(i)] = s.colour[std::size_t(s.pixel[std::size_t(i)])];
   for (std::int32_t v : bad) {
     const Fan f = fan_of(m, v);
+    near[std::size_t(v)] = f.link.front();
     for (std::int32_t t : f.tris) m.remove(t);
     m.some[std::size_t(v)] = -1;
     if (!f.boundary) {
@@ -254,6 +259,15 @@ Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s) {
   for (std::size_t t = 0; t < m.tri.size(); ++t)
     if (m.alive[t]) out.triangles.insert(out.triangles.end(), m.tri[t].begin(), m.tri[t].end());
   for (std::int64_t i = 0; i < n; ++i) out.vertices += m.some[std::size_t(i)] >= 0;
+  // Hints followed to a vertex of the start (a deleted neighbour's own hint, and so on).
+  out.hint.assign(static_cast<std::size_t>(n), -1);
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (m.some[std::size_t(i)] >= 0) continue;
+    std::int32_t v = near[std::size_t(i)];
+    for (int step = 0; step < 64 && v >= 0 && m.some[std::size_t(v)] < 0; ++step)
+      v = v == near[std::size_t(v)] ? -1 : near[std::size_t(v)];
+    out.hint[std::size_t(i)] = v >= 0 && m.some[std::size_t(v)] >= 0 ? v : -1;
+  }
   out.valid = true;
   return out;
 }

@@ -22,7 +22,10 @@
 namespace gpugeom::del2d::digital {
 
 struct Start {
-  std::vector<std::int32_t> triangles;           // counter-clockwise at the points' own coordinates
+  std::vector<std::int32_t> triangles;  // counter-clockwise at the points' own coordinates
+  // Per point not in the start: a start vertex near it (its pixel's site, or a neighbour it had
+  // when it was deleted), where the insertion's walk begins (thesis 4.3.4); -1: none found.
+  std::vector<std::int32_t> hint;
   std::int64_t vertices = 0;                     // points the triangles use
   std::int64_t shifted = 0;                      // sites moved to their coordinates (good cases)
   std::int64_t bad_inner = 0, bad_boundary = 0;  // sites deleted (bad cases)

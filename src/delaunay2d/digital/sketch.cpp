@@ -48,9 +48,9 @@ using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Ent
 }  // namespace
 
 Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run) {
-  if (side < 4 || side > 46340)
+  if (side < 4 || side > 46338)
     throw Error(ErrorCode::InvalidArgument,
-                "digital sketch: the grid side must be 4..46340, got " + std::to_string(side));
+                "digital sketch: the grid side must be 4..46338, got " + std::to_string(side));
   Sketch s;
   auto t0 = std::chrono::steady_clock::now();
   auto phase = [&](const char* name) {
@@ -67,14 +67,16 @@ Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const
     y0 = std::min(y0, xy[2 * i + 1]), y1 = std::max(y1, xy[2 * i + 1]);
   }
   const double extent = std::max(x1 - x0, y1 - y0);
+  // The box spans at most `side` pixels (so [0, 1) on 1024 gets h = 2^-10); the grid keeps up
+  // to two more for the origin's rounding down and the last point's pixel.
   double h = extent > 0 && std::isfinite(extent)
-                 ? std::ldexp(1.0, std::ilogb(extent / double(side - 2)))
+                 ? std::ldexp(1.0, std::ilogb(extent / double(side)))
                  : 1.0;
-  while (extent / h > double(side - 2)) h *= 2;
+  while (extent / h > double(side)) h *= 2;
   s.h = h;
   s.ox = std::floor(x0 / h) * h, s.oy = std::floor(y0 / h) * h;
   auto cells = [&](double lo, double hi) {
-    return std::clamp<std::int64_t>(std::int64_t(std::floor((hi - lo) / h)) + 1, 2, side);
+    return std::clamp<std::int64_t>(std::int64_t(std::floor((hi - lo) / h)) + 1, 2, side + 2);
   };
   s.width = cells(s.ox, x1), s.height = cells(s.oy, y1);
   // ox + gx h is exact while |ox / h| + width stays within the doubles' 53 bits.

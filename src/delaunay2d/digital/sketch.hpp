@@ -40,9 +40,9 @@ struct Sketch {
   std::vector<std::pair<std::string, double>> phase_ms;
 };
 
-// side: the grid's largest extent (at least 4): the points' bounding box is scaled by a power of
-// two to fit side x side, and the grid trimmed to the box (between side / 2 and side pixels
-// along the box's longer side).
+// side: the grid's largest extent (4..46338): the pixel size is the least power of two with which
+// the points' bounding box spans at most side pixels (between side / 2 and side), and the grid
+// is trimmed to the box (two pixels more at most: the origin rounded down, the last pixel).
 Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run);
 
 }  // namespace gpugeom::del2d::digital

@@ -185,9 +185,9 @@ class Triangulator {
   // infinity vertex (2k - 2 slots for its k vertices, as the insertions would have left); the
   // other points are located by walks; then the whole of it is flipped until Delaunay, and the
   // batches insert the rest as they do after start(). P.kernel must lie inside it.
-  void run_from(const std::vector<std::int32_t>& tris) {
+  void run_from(const std::vector<std::int32_t>& tris, const std::vector<std::int32_t>& hint) {
     auto t0 = clock::now();
-    start_from(tris);
+    start_from(tris, hint);
     phase("start", t0);
     t0 = clock::now();
     remaining_ = nun_;
@@ -198,7 +198,8 @@ class Triangulator {
     phase("peel", t0);
   }
 
-  void start_from(const std::vector<std::int32_t>& tris) {
+  // hint: per prepared point, a start vertex near it (-1: none), where its walk begins.
+  void start_from(const std::vector<std::int32_t>& tris, const std::vector<std::int32_t>& hint) {
     const std::int32_t I = m_, B = std::int32_t(base_);
     const std::int64_t f = std::int64_t(tris.size() / 3);
     auto key = [](std::int32_t a, std::int32_t b) {
@@ -214,10 +215,13 @@ class Triangulator {
     std::vector<std::int64_t> boundary;  // 3 t + k of each hull edge, in slot order
     std::unordered_map<std::int32_t, std::int32_t> out_slot, in_slot;  // hull edges at a vertex
     std::vector<char> used(static_cast<std::size_t>(m_), 0);
+    std::vector<std::int32_t> slot_of(hint.empty() ? 0 : static_cast<std::size_t>(m_), 0);
     for (std::int64_t t = 0; t < f; ++t) {
       Tri& T = rec[std::size_t(t)];
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < 3; ++k) {
         T.v[k] = tris[std::size_t(3 * t + k)], used[std::size_t(T.v[k])] = 1;
+        if (!hint.empty()) slot_of[std::size_t(T.v[k])] = std::int32_t(t);
+      }
       T.stamp = -1, T.pair = 0;
       for (int k = 0; k < 3; ++k) {
         const std::int32_t a = T.v[(k + 1) % 3], b = T.v[(k + 2) % 3];
@@ -260,6 +264,17 @@ class Triangulator {
     auto in = ex_.template alloc<std::int8_t>(std::size_t(m_));
     std::vector<std::int8_t> u8(used.begin(), used.end());
     ex_.from_host(u8.data(), m_, in.data());
+    // Each walk from a triangle of its hint's (a slot of the start), else from the first.
+    auto from = ex_.template alloc<std::int32_t>(hint.empty() ? 0 : std::size_t(m_));
+    if (!hint.empty()) {
+      std::vector<std::int32_t> w(static_cast<std::size_t>(m_), 0);
+      for (std::int64_t q = 0; q < m_; ++q) {
+        const std::int32_t v = hint[std::size_t(q)];
+        if (v >= 0 && v < m_ && used[std::size_t(v)]) w[std::size_t(q)] = slot_of[std::size_t(v)];
+      }
+      ex_.from_host(w.data(), m_, from.data());
+    }
+    const std::int32_t* from_slot = hint.empty() ? nullptr : from.data();
     const Geo g = g_;
     std::int32_t* loc = loc_.data();
     const Tri* tri = tri_.data();
@@ -273,7 +288,7 @@ class Triangulator {
             loc[q] = -1;
             return;
           }
-          std::int64_t t = 0;
+          std::int64_t t = from_slot ? from_slot[q] : 0;
           for (std::int64_t step = 0; step <= nt; ++step) {
             const Tri T = tri[t];
             int leave = -1;
@@ -1107,8 +1122,8 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const Dela
 
 // From a start triangulation (del2d_backend.hpp), host points in, host arrays out.
 inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::int32_t* start,
-                                  std::int64_t nstart, const Delaunay2dOptions& opt, Output& out,
-                                  Stats& st) {
+                                  std::int64_t nstart, const std::int32_t* hint,
+                                  const Delaunay2dOptions& opt, Output& out, Stats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
@@ -1146,8 +1161,16 @@ inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::i
   st.counters["duplicates"] = P.duplicates;
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
+  // The hints in prepared indices too (a point's own entry at its prepared index).
+  std::vector<std::int32_t> near;
+  if (hint) {
+    near.assign(static_cast<std::size_t>(P.m), -1);
+    for (std::int64_t i = 0; i < n; ++i)
+      if (dup[std::size_t(i)] < 0 && hint[i] >= 0 && hint[i] < n)
+        near[std::size_t(inv[std::size_t(i)])] = inv[std::size_t(hint[i])];
+  }
   Triangulator T(ex, P, st, opt.profile);
-  T.run_from(tris);
+  T.run_from(tris, near);
   t0 = std::chrono::steady_clock::now();
   T.report();
   T.release_work();
