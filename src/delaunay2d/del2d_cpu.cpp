@@ -17,6 +17,9 @@
 #include <vector>
 
 #include "delaunay2d/del2d_backend.hpp"
+#include "delaunay2d/digital/sketch_backend.hpp"
+#include "edt/edt_backend.hpp"
+#include "edt/edt_device.hpp"
 #include "base/clock.hpp"
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
@@ -41,6 +44,12 @@ using Exec = CpuExec;
 #include "delaunay2d/impl/prepare.inl"
 #include "delaunay2d/impl/mesh.inl"
 #include "delaunay2d/impl/triangulate.inl"
+namespace edt_impl = gpugeom::edt::cpu_impl;
+#include "delaunay2d/digital/impl/sketch.inl"
+void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run,
+                         bool keep_colour, digital::Sketch& s) {
+  digital_sketch_dual_impl(xy, n, run, keep_colour, s);
+}
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats) {
   triangulate_impl(xy, n, opt, out, stats);

@@ -324,8 +324,8 @@ TEST(CudaDelaunay2d, DigitalSketchSameAsCpu) {
     cpu.backend = Backend::Cpu;
     gpu.backend = Backend::Cuda;
     const std::int64_t n = std::int64_t(c.xy.size() / 2);
-    const dg::Sketch a = dg::digital_sketch(c.xy.data(), n, c.side, cpu);
-    const dg::Sketch b = dg::digital_sketch(c.xy.data(), n, c.side, gpu);
+    const dg::Sketch a = dg::digital_sketch(c.xy.data(), n, c.side, cpu, true);
+    const dg::Sketch b = dg::digital_sketch(c.xy.data(), n, c.side, gpu, true);
     EXPECT_EQ(a.colour, b.colour) << "side " << c.side;
     EXPECT_EQ(a.missing, b.missing) << "side " << c.side;
     EXPECT_EQ(a.triangles, b.triangles) << "side " << c.side;
@@ -360,4 +360,40 @@ TEST(CudaDelaunay2d, TriangulatorFromAStart) {
               (long long)k, (long long)st.counters["batches"], (long long)st.counters["flips"],
               (long long)whole.stats.counters.at("batches"),
               (long long)whole.stats.counters.at("flips"));
+}
+
+// The digital method (issue 20) with its sketch on the GPU: the same triangles as the incremental
+// method, on the distributions (automatic and coarse grids), the degenerate cases, clusters and
+// lattices, and on 10^6 uniform and gaussian points.
+TEST(CudaDelaunay2d, DigitalMethodSameAsIncremental) {
+  auto cases = gg_del2d::digital_cases(20000, 31);
+  for (const char* d : {"uniform", "gaussian"})
+    cases.push_back({std::string(d) + " 1e6", generate2d(d, 1000000, 5), 0});
+  std::int64_t fallbacks = 0, left = 0, flips_dig = 0, flips_inc = 0;
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    Delaunay2dOptions o;
+    o.backend = Backend::Cuda;
+    const auto inc = delaunay2d(c.pts, o);
+    o.method = Method::Digital;
+    o.grid = c.grid;
+    const auto dig = delaunay2d(c.pts, o);
+    EXPECT_EQ(gg_del2d::triangle_set(dig), gg_del2d::triangle_set(inc));
+    EXPECT_EQ(std::vector<std::int32_t>(dig.duplicate_of.begin(), dig.duplicate_of.end()),
+              std::vector<std::int32_t>(inc.duplicate_of.begin(), inc.duplicate_of.end()));
+    const auto& k = dig.stats.counters;
+    fallbacks += k.at("digital_fallback");
+    if (c.pts.size() >= 1000000) {
+      gg_del2d::expect_valid(c.pts, dig);
+      EXPECT_EQ(k.at("digital_fallback"), 0);
+      left += std::int64_t(c.pts.size()) - k.at("start_vertices");
+      flips_dig += k.at("flips"), flips_inc += inc.stats.counters.at("flips");
+      std::printf("%s: grid %lldx%lld, %lld left to insert, flips %lld (incremental %lld)\n",
+                  c.name.c_str(), (long long)k.at("grid_width"), (long long)k.at("grid_height"),
+                  (long long)(std::int64_t(c.pts.size()) - k.at("start_vertices")),
+                  (long long)k.at("flips"), (long long)inc.stats.counters.at("flips"));
+    }
+  }
+  std::printf("digital on the GPU: %zu inputs, %lld fall backs (tiny inputs)\n", cases.size(),
+              (long long)fallbacks);
 }

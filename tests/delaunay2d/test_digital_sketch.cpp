@@ -119,7 +119,7 @@ TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangula
     const std::int64_t n = std::int64_t(c.xy.size() / 2);
     RunOptions run;
     run.backend = Backend::Cpu;
-    const dg::Sketch s = dg::digital_sketch(c.xy.data(), n, c.side, run);
+    const dg::Sketch s = dg::digital_sketch(c.xy.data(), n, c.side, run, true);
     const std::int64_t w = s.width, h = s.height;
     EXPECT_TRUE(s.exact);
     EXPECT_LE(std::max(w, h), c.side + 2);

@@ -229,7 +229,7 @@ Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s) {
   // A point's hint: its pixel's site (itself for a site), then, once deleted, a neighbour.
   std::vector<std::int32_t> near(static_cast<std::size_t>(n));
   for (std::int64_t i = 0; i < n; ++i)
-    near[std::size_t(i)] = s.colour[std::size_t(s.pixel[std::size_t(i)])];
+    near[std::size_t(i)] = s.site_of[std::size_t(i)];
   for (std::int32_t v : bad) {
     const Fan f = fan_of(m, v);
     near[std::size_t(v)] = f.link.front();

@@ -10,7 +10,8 @@
 #include <tuple>
 
 #include "delaunay2d/digital/hull_fill.hpp"
-#include "gpugeom/edt.hpp"
+#include "delaunay2d/digital/sketch_backend.hpp"
+#include "exec/dispatch.hpp"
 
 namespace gpugeom::del2d::digital {
 
@@ -47,20 +48,65 @@ using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Ent
 
 }  // namespace
 
-Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run) {
+std::int64_t recolour_debris(std::int64_t w, std::int64_t h, const std::vector<std::int32_t>& pixel,
+                             std::vector<std::int32_t>& colour) {
+  const Grid g{w, h};
+  // Debris: the pixels not 8-connected to their own site through their colour.
+  std::vector<char> bulk(colour.size(), 0);
+  {
+    std::vector<std::int32_t> stack;
+    for (std::size_t i = 0; i < pixel.size(); ++i) {
+      const std::int32_t p = pixel[i];
+      if (colour[std::size_t(p)] != std::int32_t(i)) continue;  // not a site
+      bulk[std::size_t(p)] = 1;
+      stack.push_back(p);
+      while (!stack.empty()) {
+        const std::int32_t a = stack.back();
+        stack.pop_back();
+        g.neighbours(a, [&](std::int32_t b) {
+          if (!bulk[std::size_t(b)] && colour[std::size_t(b)] == std::int32_t(i))
+            bulk[std::size_t(b)] = 1, stack.push_back(b);
+        });
+      }
+    }
+  }
+  // Alg. 4.3: debris grows from the coloured neighbours nearer their site, in the order ≺.
+  std::int64_t debris = 0;
+  MinQueue q;
+  for (std::size_t a = 0; a < bulk.size(); ++a) {
+    if (bulk[a]) continue;
+    ++debris;
+    g.neighbours(std::int32_t(a), [&](std::int32_t b) {
+      if (!bulk[std::size_t(b)]) return;
+      const std::int32_t site = pixel[std::size_t(colour[std::size_t(b)])];
+      if (g.key(b, site) < g.key(std::int32_t(a), site))
+        q.push({g.key(std::int32_t(a), site), site});
+    });
+  }
+  while (!q.empty()) {
+    const auto [k, site] = q.top();
+    q.pop();
+    const std::int32_t a = std::get<2>(k);
+    if (bulk[std::size_t(a)]) continue;
+    bulk[std::size_t(a)] = 1;
+    colour[std::size_t(a)] = colour[std::size_t(site)];
+    g.neighbours(a, [&](std::int32_t c) {
+      if (!bulk[std::size_t(c)] && g.key(a, site) < g.key(c, site)) q.push({g.key(c, site), site});
+    });
+  }
+  return debris;
+}
+
+Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run,
+                      bool keep_colour) {
   if (side < 4 || side > 46338)
     throw Error(ErrorCode::InvalidArgument,
                 "digital sketch: the grid side must be 4..46338, got " + std::to_string(side));
   Sketch s;
-  auto t0 = std::chrono::steady_clock::now();
-  auto phase = [&](const char* name) {
-    const auto t1 = std::chrono::steady_clock::now();
-    s.phase_ms.push_back({name, std::chrono::duration<double, std::milli>(t1 - t0).count()});
-    t0 = t1;
-  };
-  // Phase 1a: the points to the nearest lower-left grid point. The pixel size h is a power of
-  // two and the origin a multiple of it (thesis 6.2's care for the scaling): the grid points are
-  // then exact doubles, and the sketch, valid at them, can be compared exactly with the points.
+  // Phase 1a's frame: the points go to the nearest lower-left grid point. The pixel size h is a
+  // power of two and the origin a multiple of it (thesis 6.2's care for the scaling): the grid
+  // points are then exact doubles, and the sketch, valid at them, can be compared exactly with
+  // the points.
   double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
   for (std::int64_t i = 0; i < n; ++i) {
     x0 = std::min(x0, xy[2 * i]), x1 = std::max(x1, xy[2 * i]);
@@ -87,119 +133,18 @@ Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const
             std::abs(s.oy / h) + double(s.height) < lim &&
             std::abs(s.ox) + double(s.width) * h < 0x1p179 &&
             std::abs(s.oy) + double(s.height) * h < 0x1p179;
-  const Grid g{s.width, s.height};
-  auto cell = [&](double v, double lo, std::int64_t m) {
-    return std::clamp<std::int64_t>(std::int64_t(std::floor((v - lo) / h)), 0, m - 1);
-  };
-  s.pixel.resize(std::size_t(n));
-  std::vector<std::int32_t> owner(std::size_t(g.w * g.h), -1);  // point per site pixel
-  std::vector<std::int32_t> kept;                               // points that are sites
-  std::vector<std::int64_t> coords;                             // (y, x) per site
-  for (std::int64_t i = 0; i < n; ++i) {
-    const std::int32_t p =
-        std::int32_t(cell(xy[2 * i + 1], s.oy, g.h) * g.w + cell(xy[2 * i], s.ox, g.w));
-    s.pixel[std::size_t(i)] = p;
-    if (owner[std::size_t(p)] >= 0) {
-      s.missing.push_back(std::int32_t(i));
-      continue;
-    }
-    owner[std::size_t(p)] = std::int32_t(i);
-    kept.push_back(std::int32_t(i));
-    coords.insert(coords.end(), {g.y(p), g.x(p)});
-  }
-  phase("grid");
-  // The digital Voronoi diagram: each pixel's nearest site (ties: the site first in raster
-  // order, as ≺).
-  EdtOptions eo;
-  static_cast<RunOptions&>(eo) = run;
-  eo.labels = true;
-  const EdtResult v = distance_transform_sites({g.h, g.w}, coords, eo);
-  s.colour.resize(std::size_t(g.w * g.h));
-  for (std::size_t p = 0; p < s.colour.size(); ++p) s.colour[p] = kept[std::size_t(v.labels[p])];
-  phase("pba");
-  // Debris: the pixels not 8-connected to their own site through their colour.
-  std::vector<char> bulk(s.colour.size(), 0);
-  {
-    std::vector<std::int32_t> stack;
-    for (std::int32_t i : kept) {
-      const std::int32_t p = s.pixel[std::size_t(i)];
-      bulk[std::size_t(p)] = 1;
-      stack.push_back(p);
-      while (!stack.empty()) {
-        const std::int32_t a = stack.back();
-        stack.pop_back();
-        g.neighbours(a, [&](std::int32_t b) {
-          if (!bulk[std::size_t(b)] && s.colour[std::size_t(b)] == i)
-            bulk[std::size_t(b)] = 1, stack.push_back(b);
-        });
-      }
-    }
-  }
-  // Alg. 4.3: debris grows from the coloured neighbours nearer their site, in the order ≺.
-  MinQueue q;
-  for (std::size_t a = 0; a < bulk.size(); ++a) {
-    if (bulk[a]) continue;
-    ++s.debris;
-    g.neighbours(std::int32_t(a), [&](std::int32_t b) {
-      if (!bulk[std::size_t(b)]) return;
-      const std::int32_t site = s.pixel[std::size_t(s.colour[std::size_t(b)])];
-      if (g.key(b, site) < g.key(std::int32_t(a), site))
-        q.push({g.key(std::int32_t(a), site), site});
-    });
-  }
-  while (!q.empty()) {
-    const auto [k, site] = q.top();
-    q.pop();
-    const std::int32_t a = std::get<2>(k);
-    if (bulk[std::size_t(a)]) continue;
-    bulk[std::size_t(a)] = 1;
-    s.colour[std::size_t(a)] = owner[std::size_t(site)];
-    g.neighbours(a, [&](std::int32_t c) {
-      if (!bulk[std::size_t(c)] && g.key(a, site) < g.key(c, site)) q.push({g.key(c, site), site});
-    });
-  }
-  phase("debris");
-  // Phase 1b: the dual of each corner where three or four colours meet, in the counter-clockwise
-  // order of its cells (x, y), (x + 1, y), (x + 1, y + 1), (x, y + 1).
-  const std::int64_t w = g.w;
-  for (std::int64_t y = 0; y + 1 < g.h; ++y)
-    for (std::int64_t x = 0; x + 1 < w; ++x) {
-      const std::int32_t c[4] = {
-          s.colour[std::size_t(y * w + x)], s.colour[std::size_t(y * w + x + 1)],
-          s.colour[std::size_t((y + 1) * w + x + 1)], s.colour[std::size_t((y + 1) * w + x)]};
-      std::int32_t d[4];
-      int k = 0;
-      for (int j = 0; j < 4; ++j)
-        if (std::find(d, d + k, c[j]) == d + k) d[k++] = c[j];
-      if (k == 3 && (c[0] == c[2] || c[1] == c[3])) {
-        // A cell through the corner diagonally: the two other colours do not meet here.
-        ++s.pinched;
-        continue;
-      }
-      if (k == 3) s.triangles.insert(s.triangles.end(), {d[0], d[1], d[2]});
-      if (k == 4) {
-        // Two triangles, split along the diagonal that leaves both counter-clockwise (the
-        // four sites around a corner need not be in convex position).
-        auto orient = [&](std::int32_t a, std::int32_t b, std::int32_t c) {
-          const std::int32_t pa = s.pixel[std::size_t(a)], pb = s.pixel[std::size_t(b)],
-                             pc = s.pixel[std::size_t(c)];
-          return (g.x(pb) - g.x(pa)) * (g.y(pc) - g.y(pa)) -
-                 (g.y(pb) - g.y(pa)) * (g.x(pc) - g.x(pa));
-        };
-        if (orient(d[0], d[1], d[2]) > 0 && orient(d[0], d[2], d[3]) > 0)
-          s.triangles.insert(s.triangles.end(), {d[0], d[1], d[2], d[0], d[2], d[3]});
-        else
-          s.triangles.insert(s.triangles.end(), {d[1], d[2], d[3], d[1], d[3], d[0]});
-      }
-    }
-  phase("dual");
+  const Backend b = resolve_backend(run.backend, run.device);
+  GG_ON_EXECUTOR(b, del2d, digital_sketch_dual, xy, n, run, keep_colour, s);
   // The truncated diagram's dual made a triangulation of its vertices' convex hull.
+  const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::int64_t> gx(static_cast<std::size_t>(n)), gy(static_cast<std::size_t>(n));
   for (std::int64_t i = 0; i < n; ++i)
-    gx[std::size_t(i)] = g.x(s.pixel[std::size_t(i)]),
-    gy[std::size_t(i)] = g.y(s.pixel[std::size_t(i)]);
+    gx[std::size_t(i)] = s.pixel[std::size_t(i)] % s.width,
+    gy[std::size_t(i)] = s.pixel[std::size_t(i)] / s.width;
   s.hull_triangles = fill_to_hull(gx, gy, s.triangles);
-  phase("hull_fill");
+  s.phase_ms.push_back(
+      {"hull_fill",
+       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
   return s;
 }
 

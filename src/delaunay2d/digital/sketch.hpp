@@ -28,7 +28,8 @@ struct Sketch {
   bool exact = false;
   std::vector<std::int32_t> pixel;    // per point: its pixel's raster index (y * width + x)
   std::vector<std::int32_t> missing;  // points whose pixel an earlier point took
-  std::vector<std::int32_t> colour;   // per pixel: the point whose cell holds it
+  std::vector<std::int32_t> site_of;  // per point: the site of its pixel (itself for a site)
+  std::vector<std::int32_t> colour;   // per pixel: the point whose cell holds it (keep_colour)
   std::int64_t debris = 0;            // pixels recoloured
   std::int64_t pinched = 0;           // corners a cell crosses diagonally (no triangle)
   std::int64_t hull_triangles = 0;    // added between the dual's boundary and its convex hull
@@ -43,6 +44,8 @@ struct Sketch {
 // side: the grid's largest extent (4..46338): the pixel size is the least power of two with which
 // the points' bounding box spans at most side pixels (between side / 2 and side), and the grid
 // is trimmed to the box (two pixels more at most: the origin rounded down, the last pixel).
-Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run);
+// keep_colour: also bring the whole colouring to the host (tests).
+Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run,
+                      bool keep_colour = false);
 
 }  // namespace gpugeom::del2d::digital
