@@ -47,8 +47,8 @@ using Exec = CudaExec;
 #include "delaunay2d/impl/triangulate.inl"
 namespace edt_impl = gpugeom::edt::cuda_impl;
 #include "delaunay2d/digital/impl/sketch.inl"
-void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run,
-                         bool keep_colour, digital::Sketch& s) {
+void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run, bool keep_colour,
+                         digital::Sketch& s) {
   digital_sketch_dual_impl(xy, n, run, keep_colour, s);
 }
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
@@ -60,8 +60,8 @@ void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOption
   triangulate_device_impl(xy, n, opt, out, stats);
 }
 void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
-                      std::int64_t nstart, const std::int32_t* hint, const Delaunay2dOptions& opt,
-                      Output& out, Stats& stats) {
-  triangulate_from_impl(xy, n, start, nstart, hint, opt, out, stats);
+                      std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,
+                      const Delaunay2dOptions& opt, Output& out, Stats& stats) {
+  triangulate_from_impl(xy, n, start, nstart, twin, hint, opt, out, stats);
 }
 }  // namespace gpugeom::del2d::cuda_impl

@@ -353,7 +353,7 @@ TEST(CudaDelaunay2d, TriangulatorFromAStart) {
   del2d::Output out;
   Stats st;
   del2d::cuda_impl::triangulate_from(xy.data(), n, part.triangles.data(), part.triangle_count,
-                                     nullptr, o, out, st);
+                                     nullptr, nullptr, o, out, st);
   EXPECT_EQ(gg_del2d::triangle_set(out.triangles.data(), std::size_t(out.num_triangles)),
             gg_del2d::triangle_set(whole.triangles.data(), std::size_t(whole.triangle_count)));
   std::printf("from a start of %lld points: %lld batches, %lld flips (incremental: %lld, %lld)\n",

@@ -251,8 +251,8 @@ TEST(DigitalSketch, TriangulatorFromAStartEqualsIncremental) {
       for (const std::int32_t* h : std::vector<const std::int32_t*>{nullptr, hint.data()}) {
         del2d::Output out;
         Stats st;
-        del2d::cpu_impl::triangulate_from(xy.data(), n, s.data(), std::int64_t(s.size() / 3), h, o,
-                                          out, st);
+        del2d::cpu_impl::triangulate_from(xy.data(), n, s.data(), std::int64_t(s.size() / 3),
+                                          nullptr, h, o, out, st);
         EXPECT_EQ(gg_del2d::triangle_set(out.triangles.data(), std::size_t(out.num_triangles)),
                   ref);
         EXPECT_EQ(out.duplicate_of, whole.duplicate_of);

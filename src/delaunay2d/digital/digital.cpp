@@ -72,7 +72,8 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
   st.counters["digital_fallback"] = 0;
   s = Sketch{};  // (the grid's memory back before the Triangulator's)
   GG_ON_EXECUTOR(b, del2d, triangulate_from, xy, n, start.triangles.data(),
-                 std::int64_t(start.triangles.size() / 3), start.hint.data(), opt, out, st);
+                 std::int64_t(start.triangles.size() / 3), start.twin.data(), start.hint.data(),
+                 opt, out, st);
 }
 
 }  // namespace gpugeom::del2d::digital

@@ -29,23 +29,48 @@ std::uint64_t key(Id a, Id b) {
 
 }  // namespace
 
+void pair_new_half_edges(const std::vector<std::int32_t>& triangles,
+                         std::vector<std::int32_t>& twin, std::int64_t first,
+                         const std::vector<std::int32_t>& open) {
+  auto ends = [&](std::int64_t e) {
+    return std::pair{triangles[std::size_t(e)],
+                     triangles[std::size_t(e - e % 3 + (e % 3 + 1) % 3)]};
+  };
+  std::unordered_map<std::uint64_t, std::int32_t> wait;  // (a -> b) unpaired, by (a, b)
+  for (std::int32_t e : open) {
+    const auto [a, b] = ends(e);
+    wait[key(a, b)] = e;
+  }
+  twin.resize(triangles.size(), -1);
+  for (std::int64_t e = 3 * first; e < std::int64_t(triangles.size()); ++e) {
+    const auto [a, b] = ends(e);
+    const auto it = wait.find(key(b, a));
+    if (it != wait.end()) {
+      twin[std::size_t(e)] = it->second, twin[std::size_t(it->second)] = std::int32_t(e);
+      wait.erase(it);
+    } else {
+      twin[std::size_t(e)] = -1;
+      wait[key(a, b)] = std::int32_t(e);
+    }
+  }
+}
+
 std::int64_t fill_to_hull(const std::vector<std::int64_t>& x, const std::vector<std::int64_t>& y,
-                          std::vector<std::int32_t>& triangles) {
+                          std::vector<std::int32_t>& triangles, std::vector<std::int32_t>& twin) {
   if (triangles.empty()) return 0;
   const Geo g{x, y};
-  std::unordered_map<std::uint64_t, char> directed;
-  directed.reserve(triangles.size() * 2);
-  for (std::size_t t = 0; t < triangles.size(); t += 3)
-    for (int e = 0; e < 3; ++e) directed[key(triangles[t + e], triangles[t + (e + 1) % 3])] = 1;
-  // The boundary: directed edges whose reverse no triangle has, the disk on their left.
+  // The boundary: half-edges without a twin, the disk on their left.
   std::unordered_map<Id, Id> next;
-  for (const auto& [k, one] : directed) {
-    const Id a = Id(k >> 32), b = Id(std::uint32_t(k));
-    if (directed.count(key(b, a))) continue;
+  std::vector<std::int32_t> open;
+  for (std::size_t e = 0; e < triangles.size(); ++e) {
+    if (twin[e] >= 0) continue;
+    const Id a = triangles[e], b = triangles[e - e % 3 + (e % 3 + 1) % 3];
+    open.push_back(std::int32_t(e));
     if (!next.emplace(a, b).second)
       throw Error(ErrorCode::Internal,
                   "digital sketch: the boundary passes vertex " + std::to_string(a) + " twice");
   }
+  const std::int64_t first = std::int64_t(triangles.size() / 3);
   // The boundary as one cycle, from its lowest vertex (lowest y, then x: on the hull).
   Id start = next.begin()->first;
   for (const auto& [a, b] : next)
@@ -101,6 +126,7 @@ std::int64_t fill_to_hull(const std::vector<std::int64_t>& x, const std::vector<
           ++added;
         });
   }
+  pair_new_half_edges(triangles, twin, first, open);
   return added;
 }
 

@@ -6,48 +6,40 @@
 #include <unordered_map>
 
 #include "delaunay2d/digital/ear_clip.hpp"
+#include "delaunay2d/digital/hull_fill.hpp"
 #include "gpugeom/predicates.hpp"
 
 namespace gpugeom::del2d::digital {
 
 namespace {
 
-using u64 = std::uint64_t;
-
-u64 edge_key(std::int32_t a, std::int32_t b) {
-  return u64(std::uint32_t(a)) << 32 | std::uint32_t(b);
-}
-
-// Triangles with their directed edges hashed: a site's fan is walked edge to edge, and a
-// deletion replaces a fan in place.
+// Triangles with their half-edges' twins (sketch.hpp): a site's fan is walked across them, and
+// a deletion replaces a fan, its new triangles paired with what was around it.
 struct Mesh {
-  std::vector<std::array<std::int32_t, 3>> tri;
+  std::vector<std::int32_t> tri, twin;  // 3 per triangle; half-edge 3t + k: vertex k to k + 1
   std::vector<char> alive;
-  std::unordered_map<u64, std::int32_t> edge;  // directed edge -> its triangle
-  std::vector<std::int32_t> some;              // per point: one of its triangles, or -1
+  std::vector<std::int32_t> some;  // per point: one of its triangles, or -1
 
-  void add(std::int32_t a, std::int32_t b, std::int32_t c) {
-    const std::int32_t t = std::int32_t(tri.size());
-    tri.push_back({a, b, c});
+  std::int32_t add(std::int32_t a, std::int32_t b, std::int32_t c) {
+    const std::int32_t t = std::int32_t(alive.size());
+    tri.insert(tri.end(), {a, b, c});
+    twin.insert(twin.end(), {-1, -1, -1});
     alive.push_back(1);
-    edge[edge_key(a, b)] = t, edge[edge_key(b, c)] = t, edge[edge_key(c, a)] = t;
     some[std::size_t(a)] = some[std::size_t(b)] = some[std::size_t(c)] = t;
+    return t;
   }
   void remove(std::int32_t t) {
     alive[std::size_t(t)] = 0;
-    const auto& v = tri[std::size_t(t)];
-    for (int k = 0; k < 3; ++k)
-      edge.erase(edge_key(v[std::size_t(k)], v[std::size_t((k + 1) % 3)]));
+    for (int k = 0; k < 3; ++k) {
+      std::int32_t& e = twin[std::size_t(3 * t + k)];
+      if (e >= 0) twin[std::size_t(e)] = -1;
+      e = -1;
+    }
   }
-  std::int32_t with(std::int32_t a, std::int32_t b) const {
-    const auto it = edge.find(edge_key(a, b));
-    return it == edge.end() ? -1 : it->second;
+  int corner(std::int32_t t, std::int32_t v) const {
+    return tri[std::size_t(3 * t)] == v ? 0 : (tri[std::size_t(3 * t + 1)] == v ? 1 : 2);
   }
-  // The vertex after a in triangle t (counter-clockwise).
-  std::int32_t after(std::int32_t t, std::int32_t a) const {
-    const auto& v = tri[std::size_t(t)];
-    return v[0] == a ? v[1] : v[1] == a ? v[2] : v[0];
-  }
+  std::int32_t at(std::int32_t t, int k) const { return tri[std::size_t(3 * t + k % 3)]; }
 };
 
 // A vertex's fan, counter-clockwise: link[j], link[j + 1] span triangle tris[j]. An inner
@@ -61,28 +53,28 @@ struct Fan {
 Fan fan_of(const Mesh& m, std::int32_t s) {
   Fan f;
   std::int32_t t = m.some[std::size_t(s)];
-  // Clockwise to the first triangle, or all the way round.
+  int k = m.corner(t, s);
+  // Clockwise to the first triangle (across s's outgoing edge), or all the way round.
   const std::int32_t t0 = t;
   for (;;) {
-    const std::int32_t b = m.after(t, s);
-    const std::int32_t u = m.with(b, s);
-    if (u < 0) {
+    const std::int32_t e = m.twin[std::size_t(3 * t + k)];
+    if (e < 0) {
       f.boundary = true;
       break;
     }
-    t = u;
+    t = e / 3, k = m.corner(t, s);
     if (t == t0) break;
   }
   const std::int32_t first = t;
-  f.link.push_back(m.after(t, s));
+  f.link.push_back(m.at(t, k + 1));
   for (;;) {
     f.tris.push_back(t);
-    const std::int32_t c = m.after(t, m.after(t, s));
+    const std::int32_t c = m.at(t, k + 2);
     if (f.boundary) f.link.push_back(c);
-    const std::int32_t u = m.with(s, c);
-    if (u < 0 || u == first) break;
+    const std::int32_t e = m.twin[std::size_t(3 * t + (k + 2) % 3)];  // across c -> s
+    if (e < 0 || e / 3 == first) break;
     if (!f.boundary) f.link.push_back(c);
-    t = u;
+    t = e / 3, k = m.corner(t, s);
   }
   return f;
 }
@@ -136,17 +128,15 @@ std::string check(const Mesh& m, const Positions& P) {
   std::unordered_map<std::int32_t, std::int32_t> next;
   std::int64_t faces = 0, half = 0;
   std::vector<char> used(m.some.size(), 0);
-  for (std::size_t t = 0; t < m.tri.size(); ++t) {
-    if (!m.alive[t]) continue;
-    const auto& v = m.tri[t];
+  for (std::int32_t t = 0; t < std::int32_t(m.alive.size()); ++t) {
+    if (!m.alive[std::size_t(t)]) continue;
     ++faces;
-    if (orient2d(P.at(v[0]), P.at(v[1]), P.at(v[2])) <= 0)
+    if (orient2d(P.at(m.at(t, 0)), P.at(m.at(t, 1)), P.at(m.at(t, 2))) <= 0)
       return "a triangle is not counter-clockwise";
     for (int k = 0; k < 3; ++k) {
-      used[std::size_t(v[std::size_t(k)])] = 1;
+      used[std::size_t(m.at(t, k))] = 1;
       ++half;
-      const std::int32_t a = v[std::size_t(k)], b = v[std::size_t((k + 1) % 3)];
-      if (m.with(b, a) < 0 && !next.emplace(a, b).second)
+      if (m.twin[std::size_t(3 * t + k)] < 0 && !next.emplace(m.at(t, k), m.at(t, k + 1)).second)
         return "the boundary passes a vertex twice";
     }
   }
@@ -186,9 +176,11 @@ Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s) {
   }
   Mesh m;
   m.some.assign(std::size_t(n), -1);
-  m.edge.reserve(s.triangles.size());
-  for (std::size_t t = 0; t < s.triangles.size(); t += 3)
-    m.add(s.triangles[t], s.triangles[t + 1], s.triangles[t + 2]);
+  m.tri = s.triangles;
+  m.twin = s.twin;
+  m.alive.assign(m.tri.size() / 3, 1);
+  for (std::size_t e = 0; e < m.tri.size(); ++e)
+    m.some[std::size_t(m.tri[e])] = std::int32_t(e / 3);
   if (m.tri.empty()) {
     out.reason = "the sketch has no triangle";
     return out;
@@ -228,13 +220,20 @@ Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s) {
   // Alg. 4.5: the bad cases deleted (each at its grid point, the triangulation valid around it).
   // A point's hint: its pixel's site (itself for a site), then, once deleted, a neighbour.
   std::vector<std::int32_t> near(static_cast<std::size_t>(n));
-  for (std::int64_t i = 0; i < n; ++i)
-    near[std::size_t(i)] = s.site_of[std::size_t(i)];
+  for (std::int64_t i = 0; i < n; ++i) near[std::size_t(i)] = s.site_of[std::size_t(i)];
   for (std::int32_t v : bad) {
     const Fan f = fan_of(m, v);
     near[std::size_t(v)] = f.link.front();
+    // The half-edges around the fan, open once it goes: the new triangles pair with them.
+    std::vector<std::int32_t> open;
+    for (std::int32_t t : f.tris) {
+      const int k = m.corner(t, v);
+      const std::int32_t o = m.twin[std::size_t(3 * t + (k + 1) % 3)];  // across the link edge
+      if (o >= 0) open.push_back(o);
+    }
     for (std::int32_t t : f.tris) m.remove(t);
     m.some[std::size_t(v)] = -1;
+    const std::int64_t first = std::int64_t(m.alive.size());
     if (!f.boundary) {
       fill_hole(m, P, f.link);
       ++out.bad_inner;
@@ -243,21 +242,35 @@ Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s) {
       out.filled += fill_chain(m, P, chain);
       ++out.bad_boundary;
     }
+    pair_new_half_edges(m.tri, m.twin, first, open);
     // The link's vertices keep a triangle of theirs (or none: they become missing points).
-    const std::size_t k = f.link.size();
-    for (std::size_t j = 0; j < k; ++j) {
-      const std::int32_t a = f.link[j];
+    for (std::int32_t o : open)
+      for (int j = 0; j < 3; ++j) {
+        std::int32_t& t = m.some[std::size_t(m.at(o / 3, j))];
+        if (t < 0 || !m.alive[std::size_t(t)]) t = o / 3;
+      }
+    for (std::int32_t a : f.link) {
       std::int32_t& t = m.some[std::size_t(a)];
-      if (t >= 0 && m.alive[std::size_t(t)]) continue;
-      t = -1;
-      if (j > 0 || !f.boundary) t = m.with(a, f.link[(j + k - 1) % k]);
-      if (t < 0 && (j + 1 < k || !f.boundary)) t = m.with(f.link[(j + 1) % k], a);
+      if (t >= 0 && !m.alive[std::size_t(t)]) t = -1;
     }
   }
   out.reason = check(m, P);
   if (!out.reason.empty()) return out;
-  for (std::size_t t = 0; t < m.tri.size(); ++t)
-    if (m.alive[t]) out.triangles.insert(out.triangles.end(), m.tri[t].begin(), m.tri[t].end());
+  // The live triangles, renumbered, with their twins.
+  std::vector<std::int32_t> slot(m.alive.size(), -1);
+  std::int32_t live = 0;
+  for (std::size_t t = 0; t < m.alive.size(); ++t)
+    if (m.alive[t]) slot[t] = live++;
+  out.triangles.resize(3 * std::size_t(live));
+  out.twin.resize(3 * std::size_t(live));
+  for (std::size_t t = 0; t < m.alive.size(); ++t) {
+    if (slot[t] < 0) continue;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::int32_t o = m.twin[3 * t + k];
+      out.triangles[3 * std::size_t(slot[t]) + k] = m.tri[3 * t + k];
+      out.twin[3 * std::size_t(slot[t]) + k] = o < 0 ? -1 : 3 * slot[std::size_t(o / 3)] + o % 3;
+    }
+  }
   for (std::int64_t i = 0; i < n; ++i) out.vertices += m.some[std::size_t(i)] >= 0;
   // Hints followed to a vertex of the start (a deleted neighbour's own hint, and so on).
   out.hint.assign(static_cast<std::size_t>(n), -1);

@@ -26,8 +26,9 @@ struct Start {
   // Per point not in the start: a start vertex near it (its pixel's site, or a neighbour it had
   // when it was deleted), where the insertion's walk begins (thesis 4.3.4); -1: none found.
   std::vector<std::int32_t> hint;
-  std::int64_t vertices = 0;                     // points the triangles use
-  std::int64_t shifted = 0;                      // sites moved to their coordinates (good cases)
+  std::vector<std::int32_t> twin;  // per half-edge of triangles (sketch.hpp's convention)
+  std::int64_t vertices = 0;       // points the triangles use
+  std::int64_t shifted = 0;        // sites moved to their coordinates (good cases)
   std::int64_t bad_inner = 0, bad_boundary = 0;  // sites deleted (bad cases)
   std::int64_t filled = 0;                       // triangles added where a boundary vertex went
   bool valid = false;                            // false: not a start (reason says why)

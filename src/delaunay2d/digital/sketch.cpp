@@ -141,7 +141,7 @@ Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const
   for (std::int64_t i = 0; i < n; ++i)
     gx[std::size_t(i)] = s.pixel[std::size_t(i)] % s.width,
     gy[std::size_t(i)] = s.pixel[std::size_t(i)] / s.width;
-  s.hull_triangles = fill_to_hull(gx, gy, s.triangles);
+  s.hull_triangles = fill_to_hull(gx, gy, s.triangles, s.twin);
   s.phase_ms.push_back(
       {"hull_fill",
        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});

@@ -37,7 +37,11 @@ struct Sketch {
   // counter-clockwise order), then those filling the pockets up to the convex hull of their
   // vertices (hull_fill.hpp): a triangulation of that hull.
   std::vector<std::int32_t> triangles;
-  // Milliseconds of each step: "grid" (mapping), "pba", "debris", "dual", "hull_fill".
+  // Per half-edge 3t + k (from vertex k of triangle t to vertex k + 1): its reverse, -1 on the
+  // boundary.
+  std::vector<std::int32_t> twin;
+  // Milliseconds of each step: "grid" (mapping), "pba", "debris", "dual", "adjacency",
+  // "hull_fill".
   std::vector<std::pair<std::string, double>> phase_ms;
 };
 

@@ -21,11 +21,11 @@ namespace gpugeom::del2d {
 // s holds the frame (width, height, ox, oy, h); fills pixel, missing, site_of, debris, pinched,
 // triangles (the dual, before the hull fill), colour where keep_colour, and phase times.
 namespace cpu_impl {
-void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run,
-                         bool keep_colour, digital::Sketch& s);
+void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run, bool keep_colour,
+                         digital::Sketch& s);
 }
 namespace cuda_impl {
-void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run,
-                         bool keep_colour, digital::Sketch& s);
+void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run, bool keep_colour,
+                         digital::Sketch& s);
 }
 }  // namespace gpugeom::del2d

@@ -185,9 +185,10 @@ class Triangulator {
   // infinity vertex (2k - 2 slots for its k vertices, as the insertions would have left); the
   // other points are located by walks; then the whole of it is flipped until Delaunay, and the
   // batches insert the rest as they do after start(). P.kernel must lie inside it.
-  void run_from(const std::vector<std::int32_t>& tris, const std::vector<std::int32_t>& hint) {
+  void run_from(const std::vector<std::int32_t>& tris, const std::vector<std::int32_t>& twin,
+                const std::vector<std::int32_t>& hint) {
     auto t0 = clock::now();
-    start_from(tris, hint);
+    start_from(tris, twin, hint);
     phase("start", t0);
     t0 = clock::now();
     remaining_ = nun_;
@@ -198,19 +199,32 @@ class Triangulator {
     phase("peel", t0);
   }
 
-  // hint: per prepared point, a start vertex near it (-1: none), where its walk begins.
-  void start_from(const std::vector<std::int32_t>& tris, const std::vector<std::int32_t>& hint) {
+  // twin: per half-edge 3t + k (vertex k to k + 1), its reverse or -1 (empty: found here by
+  // hashing). hint: per prepared point, a start vertex near it (-1: none), where its walk begins.
+  void start_from(const std::vector<std::int32_t>& tris, const std::vector<std::int32_t>& twin,
+                  const std::vector<std::int32_t>& hint) {
     const std::int32_t I = m_, B = std::int32_t(base_);
     const std::int64_t f = std::int64_t(tris.size() / 3);
     auto key = [](std::int32_t a, std::int32_t b) {
       return u64(std::uint32_t(a)) << 32 | std::uint32_t(b);
     };
     std::unordered_map<u64, std::int64_t> edge;  // directed edge -> 3 t + (the vertex opposite)
-    edge.reserve(std::size_t(3 * f));
-    for (std::int64_t t = 0; t < f; ++t)
-      for (int k = 0; k < 3; ++k)
-        edge[key(tris[std::size_t(3 * t + (k + 1) % 3)], tris[std::size_t(3 * t + (k + 2) % 3)])] =
-            3 * t + k;
+    if (twin.empty()) {
+      edge.reserve(std::size_t(3 * f));
+      for (std::int64_t t = 0; t < f; ++t)
+        for (int k = 0; k < 3; ++k)
+          edge[key(tris[std::size_t(3 * t + (k + 1) % 3)],
+                   tris[std::size_t(3 * t + (k + 2) % 3)])] = 3 * t + k;
+    }
+    // The neighbour across the edge opposite vertex k of t: 3 t' + (its vertex opposite), or -1.
+    auto across = [&](std::int64_t t, int k, std::int32_t a, std::int32_t b) -> std::int64_t {
+      if (!twin.empty()) {
+        const std::int32_t o = twin[std::size_t(3 * t + (k + 1) % 3)];
+        return o < 0 ? -1 : 3 * std::int64_t(o / 3) + (o % 3 + 2) % 3;
+      }
+      const auto o = edge.find(key(b, a));
+      return o == edge.end() ? -1 : o->second;
+    };
     std::vector<Tri> rec(static_cast<std::size_t>(f));
     std::vector<std::int64_t> boundary;  // 3 t + k of each hull edge, in slot order
     std::unordered_map<std::int32_t, std::int32_t> out_slot, in_slot;  // hull edges at a vertex
@@ -225,9 +239,9 @@ class Triangulator {
       T.stamp = -1, T.pair = 0;
       for (int k = 0; k < 3; ++k) {
         const std::int32_t a = T.v[(k + 1) % 3], b = T.v[(k + 2) % 3];
-        const auto o = edge.find(key(b, a));
-        if (o != edge.end()) {
-          T.n[k] = enc(B + std::int32_t(o->second / 3), int(o->second % 3));
+        const std::int64_t o = across(t, k, a, b);
+        if (o >= 0) {
+          T.n[k] = enc(B + std::int32_t(o / 3), int(o % 3));
         } else {  // a hull edge a->b: the infinite triangle (b, a, I) across
           const std::int32_t slot = std::int32_t(f + std::int64_t(boundary.size()));
           boundary.push_back(3 * t + k);
@@ -1122,8 +1136,9 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const Dela
 
 // From a start triangulation (del2d_backend.hpp), host points in, host arrays out.
 inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::int32_t* start,
-                                  std::int64_t nstart, const std::int32_t* hint,
-                                  const Delaunay2dOptions& opt, Output& out, Stats& st) {
+                                  std::int64_t nstart, const std::int32_t* twin,
+                                  const std::int32_t* hint, const Delaunay2dOptions& opt,
+                                  Output& out, Stats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
@@ -1170,7 +1185,9 @@ inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::i
         near[std::size_t(inv[std::size_t(i)])] = inv[std::size_t(hint[i])];
   }
   Triangulator T(ex, P, st, opt.profile);
-  T.run_from(tris, near);
+  std::vector<std::int32_t> tw;
+  if (twin) tw.assign(twin, twin + 3 * nstart);
+  T.run_from(tris, tw, near);
   t0 = std::chrono::steady_clock::now();
   T.report();
   T.release_work();

@@ -197,4 +197,45 @@ inline void digital_sketch_dual_impl(const double* xy, std::int64_t n, const Run
   s.triangles.resize(std::size_t(3 * nt));
   ex.to_host(T, 3 * nt, s.triangles.data());
   phase("dual");
+  // Adjacency: half-edge 3t + k runs from vertex k of triangle t to vertex k + 1; each is paired
+  // with its reverse by sorting the undirected edges (twin -1: on the boundary). An edge in
+  // three triangles or more would be no triangulation's: refused as an internal error.
+  {
+    const std::int64_t nh = 3 * nt;
+    auto keys = ex.template alloc<std::uint64_t>(std::size_t(nh));
+    auto ids = ex.template alloc<std::int32_t>(std::size_t(nh));
+    auto tw = ex.template alloc<std::int32_t>(std::size_t(nh));
+    std::uint64_t* K = keys.data();
+    std::int32_t* I = ids.data();
+    std::int32_t* W = tw.data();
+    ex.for_each_index(
+        nh, GG_LAMBDA(std::int64_t e) {
+          const std::uint32_t a = std::uint32_t(T[e]),
+                              b = std::uint32_t(T[e - e % 3 + (e % 3 + 1) % 3]);
+          K[e] = a < b ? std::uint64_t(a) << 32 | b : std::uint64_t(b) << 32 | a;
+          I[e] = std::int32_t(e);
+          W[e] = -1;
+        });
+    ex.sort_by_key(K, I, nh);
+    auto bad = ex.template alloc<std::int64_t>(1);
+    ex.transform_reduce_into(
+        nh,
+        GG_LAMBDA(std::int64_t i)->std::int64_t {
+          const bool starts = i == 0 || K[i - 1] != K[i];
+          if (starts && i + 1 < nh && K[i + 1] == K[i]) {
+            W[I[i]] = I[i + 1], W[I[i + 1]] = I[i];
+            return i + 2 < nh && K[i + 2] == K[i];
+          }
+          return 0;
+        },
+        std::int64_t(0), thrust::plus<std::int64_t>(), bad.data());
+    std::int64_t nbad = 0;
+    ex.to_host(bad.data(), 1, &nbad);
+    if (nbad)
+      throw Error(ErrorCode::Internal,
+                  "digital sketch: " + std::to_string(nbad) + " edge(s) in three triangles");
+    s.twin.resize(std::size_t(nh));
+    ex.to_host(W, nh, s.twin.data());
+  }
+  phase("adjacency");
 }
