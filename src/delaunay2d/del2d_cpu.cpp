@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "delaunay2d/del2d_backend.hpp"
+#include "delaunay2d/digital/shift.hpp"
 #include "delaunay2d/digital/sketch_backend.hpp"
 #include "edt/edt_backend.hpp"
 #include "edt/edt_device.hpp"
@@ -46,6 +47,11 @@ using Exec = CpuExec;
 #include "delaunay2d/impl/triangulate.inl"
 namespace edt_impl = gpugeom::edt::cpu_impl;
 #include "delaunay2d/digital/impl/sketch.inl"
+#include "delaunay2d/digital/impl/shift.inl"
+void digital_shift(const double* xy, std::int64_t n, const digital::Sketch& s,
+                   const RunOptions& run, digital::Start& out) {
+  digital_shift_impl(xy, n, s, run, out);
+}
 void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run, bool keep_colour,
                          digital::Sketch& s) {
   digital_sketch_dual_impl(xy, n, run, keep_colour, s);

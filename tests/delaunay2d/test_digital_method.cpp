@@ -64,7 +64,7 @@ TEST(DigitalMethod, SameTrianglesAsIncrementalOnEveryInput) {
     // The sketch is used wherever it has a triangle (three sites not on one line).
     const dg::Sketch sk = dg::digital_sketch(
         &c.pts.data()->x, n, c.grid ? c.grid : dg::auto_side(&c.pts.data()->x, n), o);
-    const dg::Start st = dg::shift_sketch(&c.pts.data()->x, n, sk);
+    const dg::Start st = dg::shift_sketch(&c.pts.data()->x, n, sk, o);
     EXPECT_EQ(st.valid, !sk.triangles.empty()) << st.reason;
     EXPECT_EQ(k.at("digital_fallback"), st.valid ? 0 : 1);
     if (st.valid) {

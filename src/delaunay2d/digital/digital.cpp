@@ -58,14 +58,13 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
   st.counters["debris_pixels"] = s.debris;
   st.counters["pinched_corners"] = s.pinched;
   st.counters["hull_triangles"] = s.hull_triangles;
-  const auto t1 = std::chrono::steady_clock::now();
-  const Start start = shift_sketch(xy, n, s);
-  st.phase_ms.push_back(
-      {"digital_shift",
-       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count()});
+  const Start start = shift_sketch(xy, n, s, run);
+  for (const auto& [name, ms] : start.phase_ms) st.phase_ms.push_back({"digital_" + name, ms});
   st.counters["shifted"] = start.shifted;
   st.counters["bad_inner"] = start.bad_inner;
   st.counters["bad_boundary"] = start.bad_boundary;
+  st.counters["shift_rounds"] = start.shift_rounds;
+  st.counters["delete_rounds"] = start.delete_rounds;
   st.counters["start_vertices"] = start.vertices;
   st.counters["start_triangles"] = std::int64_t(start.triangles.size() / 3);
   if (!start.valid) return incremental();

@@ -1,7 +1,8 @@
 // The digital method's shifting phase (issue 20, thesis 4.3.3, Algs. 4.4 and 4.5; internal):
 // the sketch is a valid triangulation of its sites at their grid points; this moves each site to
 // its own coordinates where that keeps the triangulation valid (a "good case": its fan stays
-// counter-clockwise and, on the boundary, the boundary stays convex), in index order, and
+// counter-clockwise and, on the boundary, the boundary stays convex), in rounds of a fixed
+// scattered order (impl/shift.inl), and
 // deletes the others ("bad cases", which become missing points): an inner vertex's hole is
 // re-triangulated by ear clipping, a boundary vertex's by the convex chain its neighbours leave
 // (the pockets between it and them filled). Every test is an exact orientation; the grid points
@@ -15,6 +16,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "delaunay2d/digital/sketch.hpp"
@@ -23,19 +25,33 @@ namespace gpugeom::del2d::digital {
 
 struct Start {
   std::vector<std::int32_t> triangles;  // counter-clockwise at the points' own coordinates
+  std::vector<std::int32_t> twin;       // per half-edge of triangles (sketch.hpp's convention)
   // Per point not in the start: a start vertex near it (its pixel's site, or a neighbour it had
   // when it was deleted), where the insertion's walk begins (thesis 4.3.4); -1: none found.
   std::vector<std::int32_t> hint;
-  std::vector<std::int32_t> twin;  // per half-edge of triangles (sketch.hpp's convention)
-  std::int64_t vertices = 0;       // points the triangles use
-  std::int64_t shifted = 0;        // sites moved to their coordinates (good cases)
+  std::int64_t vertices = 0;                     // points the triangles use
+  std::int64_t shifted = 0;                      // sites moved to their coordinates (good cases)
   std::int64_t bad_inner = 0, bad_boundary = 0;  // sites deleted (bad cases)
-  std::int64_t filled = 0;                       // triangles added where a boundary vertex went
-  bool valid = false;                            // false: not a start (reason says why)
+  std::int64_t shift_rounds = 0, delete_rounds = 0;
+  std::int64_t not_ccw = 0;  // triangles left not counter-clockwise (the check refuses them)
+  bool valid = false;        // false: not a start (reason says why)
   std::string reason;
+  std::vector<std::pair<std::string, double>> phase_ms;
 };
 
-// xy: the n points the sketch was made of.
-Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s);
+// xy: the n points the sketch was made of; the work runs on run's executor.
+Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s, const RunOptions& run);
 
 }  // namespace gpugeom::del2d::digital
+
+namespace gpugeom::del2d {
+// The rounds on an executor (impl/shift.inl): fills out's triangles, twins, hints and counts.
+namespace cpu_impl {
+void digital_shift(const double* xy, std::int64_t n, const digital::Sketch& s,
+                   const RunOptions& run, digital::Start& out);
+}
+namespace cuda_impl {
+void digital_shift(const double* xy, std::int64_t n, const digital::Sketch& s,
+                   const RunOptions& run, digital::Start& out);
+}
+}  // namespace gpugeom::del2d

@@ -1,0 +1,433 @@
+// The shifting phase on an executor (shift.hpp), included inside gpugeom::del2d::{cpu,cuda}_impl
+// with Exec defined. Alg. 4.4 in rounds: a site is tested once every neighbour before it in a
+// fixed scattered order (mesh::scatter of its index: no long chains on sorted input) has been,
+// with the neighbours after it waiting for it, so no two neighbours move in one round and each
+// test sees its neighbours where they are; on the boundary the two next boundary vertices on each
+// side are neighbours too (the turns at p and q involve them). Alg. 4.5 in rounds: a bad site is
+// deleted once no bad site before it within two edges is left, so the deletions of one round
+// touch disjoint triangles; each re-triangulates its hole into its own fan's slots (ear clipping
+// inside, the chain made convex on the boundary) and pairs the new half-edges with the ones
+// around. The result is the same on every executor.
+
+namespace digital_shifting {
+
+constexpr int kGuard = 1 << 20;  // bounds every fan walk (a valid mesh never reaches it)
+
+struct FanMesh {
+  std::int32_t* tri;
+  std::int32_t* twin;
+  std::int8_t* alive;
+  std::int32_t* some;
+  GG_INLINE int corner(std::int32_t t, std::int32_t v) const {
+    const std::int32_t* q = tri + 3 * std::int64_t(t);
+    return q[0] == v ? 0 : (q[1] == v ? 1 : 2);
+  }
+  GG_INLINE std::int32_t at(std::int32_t t, int k) const {
+    return tri[3 * std::int64_t(t) + k % 3];
+  }
+  // s's first triangle counter-clockwise (across its outgoing boundary edge; any where s is
+  // inner): slot t, s at corner k. Returns whether s is on the boundary.
+  GG_INLINE bool first(std::int32_t s, std::int32_t& t, int& k) const {
+    t = some[s], k = corner(t, s);
+    const std::int32_t t0 = t;
+    for (int g = 0; g < kGuard; ++g) {
+      const std::int32_t e = twin[3 * std::int64_t(t) + k];
+      if (e < 0) return true;
+      t = e / 3, k = corner(t, s);
+      if (t == t0) return false;
+    }
+    return false;
+  }
+  // f(a, b, t, k) for each triangle (s, a, b) of s's fan, counter-clockwise, until it returns
+  // false. Returns whether s is on the boundary.
+  template <class F>
+  GG_INLINE bool fan(std::int32_t s, F&& f) const {
+    std::int32_t t;
+    int k;
+    const bool boundary = first(s, t, k);
+    const std::int32_t t0 = t;
+    for (int g = 0; g < kGuard; ++g) {
+      if (!f(at(t, k + 1), at(t, k + 2), t, k)) break;
+      const std::int32_t e = twin[3 * std::int64_t(t) + (k + 2) % 3];  // across (b -> s)
+      if (e < 0 || e / 3 == t0) break;
+      t = e / 3, k = corner(t, s);
+    }
+    return boundary;
+  }
+};
+
+GG_INLINE bool before(std::int32_t u, std::int32_t v) {
+  return mesh::scatter(std::uint32_t(u)) < mesh::scatter(std::uint32_t(v));
+}
+
+GG_HD inline int orient(const double* a, const double* b, const double* c) {
+  double s[pred::kOrient2dScratch];
+  return pred::orient2d(a, b, c, s);
+}
+
+// Does the boundary turn left or go straight on at b (a -> b -> c)? (exact)
+GG_HD inline bool convex_turn(const double* a, const double* b, const double* c) {
+  const int o = orient(a, b, c);
+  if (o != 0) return o > 0;
+  auto between = [](double u, double v, double w) { return (u < v && v < w) || (u > v && v > w); };
+  return between(a[0], b[0], c[0]) || (a[0] == b[0] && b[0] == c[0] && between(a[1], b[1], c[1]));
+}
+
+constexpr std::int32_t kPending = std::numeric_limits<std::int32_t>::max();
+constexpr std::int8_t kShifted = 1, kBad = 2;
+
+}  // namespace digital_shifting
+
+inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::Sketch& sk,
+                               const RunOptions& run, digital::Start& out) {
+  auto& phases = out.phase_ms;
+  using namespace digital_shifting;
+  Exec ex(run);
+  auto t0 = std::chrono::steady_clock::now();
+  auto phase = [&](const char* name) {
+    ex.sync();
+    const auto t1 = std::chrono::steady_clock::now();
+    phases.push_back({name, std::chrono::duration<double, std::milli>(t1 - t0).count()});
+    t0 = t1;
+  };
+  const std::int64_t nt = std::int64_t(sk.triangles.size() / 3);
+  auto d_tri = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
+  auto d_twin = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
+  auto d_alive = ex.template alloc<std::int8_t>(std::size_t(nt));
+  auto d_some = ex.template alloc<std::int32_t>(std::size_t(n));
+  auto d_pts = ex.template alloc<double>(std::size_t(2 * n));
+  auto d_pos = ex.template alloc<double>(std::size_t(2 * n));
+  auto d_pix = ex.template alloc<std::int32_t>(std::size_t(n));
+  auto d_near = ex.template alloc<std::int32_t>(std::size_t(n));
+  auto d_done = ex.template alloc<std::int32_t>(std::size_t(n));
+  auto d_state = ex.template alloc<std::int8_t>(std::size_t(n));
+  ex.from_host(sk.triangles.data(), 3 * nt, d_tri.data());
+  ex.from_host(sk.twin.data(), 3 * nt, d_twin.data());
+  ex.from_host(xy, 2 * n, d_pts.data());
+  ex.from_host(sk.pixel.data(), n, d_pix.data());
+  ex.from_host(sk.site_of.data(), n, d_near.data());
+  const FanMesh M{d_tri.data(), d_twin.data(), d_alive.data(), d_some.data()};
+  const double* P = d_pts.data();
+  double* pos = d_pos.data();
+  const std::int32_t* pixel = d_pix.data();
+  std::int32_t* near = d_near.data();
+  std::int32_t* done = d_done.data();
+  std::int8_t* state = d_state.data();
+  ex.fill(M.alive, nt, std::int8_t(1));
+  ex.fill(M.some, n, std::int32_t(-1));
+  ex.for_each_index(
+      3 * nt, GG_LAMBDA(std::int64_t e) { M.some[M.tri[e]] = std::int32_t(e / 3); });
+  // Every site starts at its grid point (exact: sketch.hpp); every point not in the sketch is
+  // no one's neighbour and counts as done.
+  const double ox = sk.ox, oy = sk.oy, h = sk.h;
+  const std::int64_t w = sk.width;
+  ex.for_each_index(
+      n, GG_LAMBDA(std::int64_t i) {
+        const std::int64_t p = pixel[i];
+        pos[2 * i] = ox + double(p % w) * h, pos[2 * i + 1] = oy + double(p / w) * h;
+        done[i] = M.some[i] >= 0 ? kPending : -1;
+        state[i] = 0;
+      });
+  auto list_a = ex.template alloc<std::int32_t>(std::size_t(n));
+  auto list_b = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* la = list_a.data();
+  std::int32_t* lb = list_b.data();
+  std::int64_t npend = ex.compact_indices(
+      n, GG_LAMBDA(std::int64_t i) { return done[i] == kPending; }, la);
+  phase("shift_setup");
+  // Alg. 4.4.
+  std::int32_t round = 0;
+  while (npend > 0) {
+    const std::int32_t r = round;
+    const std::int32_t* L = la;
+    ex.for_each_index(
+        npend, GG_LAMBDA(std::int64_t j) {
+          const std::int32_t v = L[j];
+          bool wait = false;
+          auto dep = [&](std::int32_t u) {
+            if (before(u, v) && done[u] >= r) wait = true;
+          };
+          std::int32_t q = -1, p = -1;
+          const bool boundary = M.fan(v, [&](std::int32_t a, std::int32_t b, std::int32_t, int) {
+            dep(a), dep(b);
+            if (q < 0) q = a;
+            p = b;
+            return !wait;
+          });
+          if (wait) return;
+          std::int32_t pp = -1, qq = -1;
+          if (boundary) {
+            M.fan(p, [&](std::int32_t, std::int32_t b, std::int32_t, int) {
+              pp = b;
+              return true;
+            });
+            std::int32_t t;
+            int k;
+            M.first(q, t, k);
+            qq = M.at(t, k + 1);
+            dep(pp), dep(qq);
+            if (wait) return;
+          }
+          const double* own = P + 2 * std::int64_t(v);
+          bool good = true;
+          M.fan(v, [&](std::int32_t a, std::int32_t b, std::int32_t, int) {
+            good = orient(own, pos + 2 * std::int64_t(a), pos + 2 * std::int64_t(b)) > 0;
+            return good;
+          });
+          if (good && boundary) {
+            const double *Pp = pos + 2 * std::int64_t(p), *Pq = pos + 2 * std::int64_t(q);
+            good = convex_turn(pos + 2 * std::int64_t(pp), Pp, own) && convex_turn(Pp, own, Pq) &&
+                   convex_turn(own, Pq, pos + 2 * std::int64_t(qq));
+          }
+          if (good) pos[2 * std::int64_t(v)] = own[0], pos[2 * std::int64_t(v) + 1] = own[1];
+          state[v] = good ? kShifted : kBad;
+          done[v] = r;
+        });
+    npend = ex.copy_if(
+        la, npend, lb, GG_LAMBDA(std::int32_t v) { return done[v] == kPending; });
+    std::swap(la, lb);
+    if (++round > 100000) throw Error(ErrorCode::Internal, "shifting: the rounds do not end");
+  }
+  out.shift_rounds = round;
+  phase("shift_good");
+  // Alg. 4.5: the bad sites, deleted in rounds (done[] now: the round of the deletion).
+  std::int64_t nbad = ex.compact_indices(
+      n, GG_LAMBDA(std::int64_t i) { return state[i] == kBad; }, la);
+  ex.for_each_index(
+      nbad, GG_LAMBDA(std::int64_t j) { done[la[j]] = kPending; });
+  auto d_len = ex.template alloc<std::int64_t>(std::size_t(n + 1));
+  auto d_off = ex.template alloc<std::int64_t>(std::size_t(n + 1));
+  std::int64_t* len = d_len.data();
+  std::int64_t* off = d_off.data();
+  auto d_cnt = ex.template alloc<std::int64_t>(3);
+  std::int64_t* cnt = d_cnt.data();
+  ex.fill(cnt, 3, std::int64_t(0));
+  typename Exec::template Buffer<std::int32_t> scratch;  // (per round: link, slots, outer, work)
+  round = 0;
+  while (nbad > 0) {
+    const std::int32_t r = round;
+    const std::int32_t* L = la;
+    // Which go this round, and how long their links are.
+    ex.for_each_index(
+        nbad, GG_LAMBDA(std::int64_t j) {
+          const std::int32_t b = L[j];
+          bool wait = false;
+          auto dep = [&](std::int32_t u) {
+            if (u != b && state[u] == kBad && done[u] >= r && before(u, b)) wait = true;
+          };
+          std::int64_t links = 0;
+          const bool boundary = M.fan(b, [&](std::int32_t a, std::int32_t, std::int32_t, int) {
+            ++links;
+            dep(a);
+            if (!wait)
+              M.fan(a, [&](std::int32_t c, std::int32_t d, std::int32_t, int) {
+                dep(c), dep(d);
+                return !wait;
+              });
+            return !wait;
+          });
+          if (boundary && !wait) {  // (the last link vertex, and its fan)
+            std::int32_t p = -1;
+            M.fan(b, [&](std::int32_t, std::int32_t c, std::int32_t, int) {
+              p = c;
+              return true;
+            });
+            dep(p);
+            M.fan(p, [&](std::int32_t c, std::int32_t d, std::int32_t, int) {
+              dep(c), dep(d);
+              return !wait;
+            });
+            ++links;
+          }
+          len[j] = wait ? 0 : links;
+        });
+    ex.fill(len + nbad, 1, std::int64_t(0));
+    ex.exclusive_scan(len, off, nbad + 1);
+    std::int64_t total = 0;
+    ex.to_host(off + nbad, 1, &total);
+    if (std::int64_t(scratch.size()) < 4 * total)
+      scratch = ex.template alloc<std::int32_t>(std::size_t(4 * total + 1024));
+    std::int32_t* S0 = scratch.data();
+    ex.for_each_index(
+        nbad, GG_LAMBDA(std::int64_t j) {
+          const std::int64_t k = off[j + 1] - off[j];
+          if (!k) return;
+          const std::int32_t b = L[j];
+          std::int32_t* link = S0 + 4 * off[j];  // link vertices
+          std::int32_t* slot = link + k;         // fan slots
+          std::int32_t* outer = slot + k;        // half-edge across each link edge (or -1)
+          std::int32_t* work = outer + k;        // the polygon being clipped / the stack
+          std::int64_t d = 0;
+          std::int32_t last = -1;
+          const bool boundary =
+              M.fan(b, [&](std::int32_t a, std::int32_t c, std::int32_t t, int kk) {
+                link[d] = a, slot[d] = t, outer[d] = M.twin[3 * std::int64_t(t) + (kk + 1) % 3];
+                last = c;
+                ++d;
+                return true;
+              });
+          const std::int64_t nl = boundary ? d + 1 : d;  // == k
+          if (boundary) link[d] = last;
+          near[b] = link[0];
+          // The fan goes: the half-edges around it are open (re-paired below where a new
+          // triangle has the edge; on the boundary a link edge may stay open).
+          for (std::int64_t i = 0; i < d; ++i) {
+            M.alive[slot[i]] = 0;
+            if (outer[i] >= 0) M.twin[outer[i]] = -1;
+          }
+          std::int64_t used = 0;
+          auto emit = [&](std::int32_t x, std::int32_t y, std::int32_t z) {
+            const std::int32_t t = slot[used++];
+            M.tri[3 * std::int64_t(t)] = x, M.tri[3 * std::int64_t(t) + 1] = y;
+            M.tri[3 * std::int64_t(t) + 2] = z;
+            M.alive[t] = 1;
+          };
+          auto at = [&](std::int32_t v) { return pos + 2 * std::int64_t(v); };
+          if (!boundary) {
+            // Ear clipping of the link (a simple counter-clockwise polygon).
+            std::int64_t m = nl, i = 0, tried = 0;
+            for (std::int64_t u = 0; u < m; ++u) work[u] = link[u];
+            while (m > 3 && tried < m) {
+              i %= m;
+              const std::int32_t a = work[(i + m - 1) % m], c = work[i], e = work[(i + 1) % m];
+              bool ear = orient(at(a), at(c), at(e)) > 0;
+              for (std::int64_t u = 0; u < m && ear; ++u) {
+                const std::int32_t v = work[u];
+                if (v == a || v == c || v == e) continue;
+                ear = !(orient(at(a), at(c), at(v)) >= 0 && orient(at(c), at(e), at(v)) >= 0 &&
+                        orient(at(e), at(a), at(v)) >= 0);
+              }
+              if (ear) {
+                emit(a, c, e);
+                for (std::int64_t u = i; u + 1 < m; ++u) work[u] = work[u + 1];
+                --m, tried = 0;
+              } else {
+                ++i, ++tried;
+              }
+            }
+            if (m == 3)
+              emit(work[0], work[1], work[2]);
+            else
+              atomic_add(&cnt[2], std::int64_t(1));  // (a hole left: the check refuses)
+            atomic_add(&cnt[0], std::int64_t(1));
+          } else {
+            // The chain the vertex leaves, from the start of its incoming boundary edge to the
+            // end of its outgoing one, made convex (angularly monotone around the deleted
+            // vertex: the monotone-chain hull, each popped vertex's triangle beneath it).
+            std::int64_t top = 0;
+            for (std::int64_t u = nl - 1; u >= 0; --u) {
+              const std::int32_t v = link[u];
+              while (top >= 2 && orient(at(work[top - 2]), at(work[top - 1]), at(v)) < 0) {
+                emit(work[top - 2], v, work[top - 1]);
+                --top;
+              }
+              work[top++] = v;
+            }
+            atomic_add(&cnt[1], std::int64_t(1));
+          }
+          // Pair the new half-edges: a link edge's with the half-edge that was across it, the
+          // others with each other.
+          for (std::int64_t u = 0; u < used; ++u)
+            for (int kk = 0; kk < 3; ++kk) {
+              const std::int32_t t = slot[u];
+              const std::int64_t e = 3 * std::int64_t(t) + kk;
+              const std::int32_t x = M.tri[e], y = M.at(t, kk + 1);
+              std::int32_t tw = -1;
+              for (std::int64_t i = 0; i < d && tw < 0; ++i)
+                if (link[i] == x && link[(i + 1) % nl] == y) {
+                  tw = outer[i];
+                  if (tw >= 0) M.twin[tw] = std::int32_t(e);
+                  if (tw < 0) tw = -2;  // (a link edge on the boundary: stays so)
+                }
+              for (std::int64_t v = 0; v < used && tw == -1; ++v)
+                for (int k2 = 0; k2 < 3; ++k2) {
+                  const std::int32_t t2 = slot[v];
+                  if (M.at(t2, k2) == y && M.at(t2, k2 + 1) == x) tw = 3 * t2 + k2;
+                }
+              M.twin[e] = tw < 0 ? -1 : tw;
+            }
+          // The link's vertices keep a live triangle of theirs (or none: missing points).
+          M.some[b] = -1;
+          for (std::int64_t i = 0; i < nl; ++i) {
+            const std::int32_t a = link[i];
+            std::int32_t t = -1;
+            for (std::int64_t u = 0; u < used && t < 0; ++u)
+              if (M.at(slot[u], 0) == a || M.at(slot[u], 1) == a || M.at(slot[u], 2) == a)
+                t = slot[u];
+            if (t < 0 && i < d && outer[i] >= 0) t = outer[i] / 3;
+            if (t < 0 && i > 0 && outer[i - 1] >= 0) t = outer[i - 1] / 3;
+            if (t < 0 && i == 0 && !boundary && outer[d - 1] >= 0) t = outer[d - 1] / 3;
+            M.some[a] = t;
+          }
+          done[b] = r;
+        });
+    nbad = ex.copy_if(
+        la, nbad, lb, GG_LAMBDA(std::int32_t v) { return done[v] == kPending; });
+    std::swap(la, lb);
+    if (++round > 100000) throw Error(ErrorCode::Internal, "shifting: the deletions do not end");
+  }
+  std::int64_t c[3];
+  ex.to_host(cnt, 3, c);
+  out.bad_inner = c[0], out.bad_boundary = c[1];
+  out.delete_rounds = round;
+  phase("shift_bad");
+  // The start: live triangles renumbered, their twins, and the checks' inputs.
+  auto d_slot = ex.template alloc<std::int32_t>(std::size_t(nt + 1));
+  std::int32_t* slot = d_slot.data();
+  ex.exclusive_scan_of(
+      nt + 1, GG_LAMBDA(std::int64_t t)->std::int32_t { return t < nt ? M.alive[t] : 0; }, slot);
+  std::int32_t live = 0;
+  ex.to_host(slot + nt, 1, &live);
+  auto o_tri = ex.template alloc<std::int32_t>(std::size_t(3 * live));
+  auto o_twin = ex.template alloc<std::int32_t>(std::size_t(3 * live));
+  std::int32_t* OT = o_tri.data();
+  std::int32_t* OW = o_twin.data();
+  auto d_flat = ex.template alloc<std::int64_t>(1);
+  ex.transform_reduce_into(
+      nt,
+      GG_LAMBDA(std::int64_t t)->std::int64_t {
+        if (!M.alive[t]) return 0;
+        const std::int64_t s = slot[t];
+        for (int k = 0; k < 3; ++k) {
+          const std::int32_t o = M.twin[3 * t + k];
+          OT[3 * s + k] = M.tri[3 * t + k];
+          OW[3 * s + k] = o < 0 ? -1 : 3 * slot[o / 3] + o % 3;
+        }
+        return orient(pos + 2 * std::int64_t(M.tri[3 * t]),
+                      pos + 2 * std::int64_t(M.tri[3 * t + 1]),
+                      pos + 2 * std::int64_t(M.tri[3 * t + 2])) <= 0;
+      },
+      std::int64_t(0), thrust::plus<std::int64_t>(), d_flat.data());
+  std::int64_t flat = 0;
+  ex.to_host(d_flat.data(), 1, &flat);
+  out.not_ccw = flat + c[2];
+  out.triangles.resize(std::size_t(3 * live));
+  out.twin.resize(std::size_t(3 * live));
+  ex.to_host(OT, 3 * std::int64_t(live), out.triangles.data());
+  ex.to_host(OW, 3 * std::int64_t(live), out.twin.data());
+  // Hints: a missing point's pixel site, a deleted site's first neighbour, followed to a vertex
+  // of the start.
+  auto d_hint = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* hint = d_hint.data();
+  ex.for_each_index(
+      n, GG_LAMBDA(std::int64_t i) {
+        if (M.some[i] >= 0) {
+          hint[i] = -1;
+          return;
+        }
+        std::int32_t v = near[i];
+        for (int s = 0; s < 64 && v >= 0 && M.some[v] < 0; ++s) v = near[v] == v ? -1 : near[v];
+        hint[i] = v >= 0 && M.some[v] >= 0 ? v : -1;
+      });
+  out.hint.resize(std::size_t(n));
+  ex.to_host(hint, n, out.hint.data());
+  std::vector<std::int32_t> some(static_cast<std::size_t>(n));
+  ex.to_host(M.some, n, some.data());
+  out.vertices = 0;
+  for (std::int32_t t : some) out.vertices += t >= 0;
+  std::vector<std::int8_t> st(static_cast<std::size_t>(n));
+  ex.to_host(state, n, st.data());
+  out.shifted = 0;
+  for (std::int8_t s : st) out.shifted += s == kShifted;
+  phase("shift_output");
+}
