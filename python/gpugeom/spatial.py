@@ -49,6 +49,13 @@ class Delaunay(_OfPoints):
     progress : callable, optional
         3D only: called as ``progress(phase, inserted, total, batch)`` after each insertion
         batch (a tqdm bar works too); raising ends the run.
+    method : {"incremental", "digital"}
+        2D only: how it is computed; the triangles are the same. "digital" is the thesis'
+        digital method (a digital Voronoi diagram on a grid, its dual shifted to the points),
+        from host (NumPy) points; it is not the faster one yet.
+    grid : int
+        method="digital": the grid's size in pixels along the points' longer extent (0: chosen
+        from the number of points).
 
     Attributes
     ----------
@@ -59,12 +66,19 @@ class Delaunay(_OfPoints):
 
     def __init__(self, points, furthest_site: bool = False, incremental: bool = False,
                  qhull_options: Optional[str] = None, *, backend: str = "auto",
-                 threads: int = 0, progress: Optional[Callable] = None):
+                 threads: int = 0, progress: Optional[Callable] = None,
+                 method: str = "incremental", grid: int = 0):
         _not_supported("furthest_site", furthest_site, False)
         _not_supported("incremental", incremental, False)
         arr, kind = self._take_points(points, (2, 3), backend, threads)
+        if method not in ("incremental", "digital"):
+            raise ValueError(f"method must be 'incremental' or 'digital', got {method!r}")
+        if method == "digital" and self.ndim != 2:
+            raise ValueError("method='digital' is for 2D points (the 3D digital methods are "
+                             "not there yet)")
         if self.ndim == 2:
-            r = _core.delaunay2d(arr, backend=backend, stream=kind.stream, threads=threads)
+            r = _core.delaunay2d(arr, backend=backend, stream=kind.stream, threads=threads,
+                                 method=method, grid=grid)
         else:
             r = _core.delaunay3d(arr, backend=backend, stream=kind.stream, threads=threads,
                                  progress=_arrays.progress_callback(progress))

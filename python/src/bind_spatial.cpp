@@ -33,9 +33,11 @@ const double* pts(const Input& in) {
 }
 
 nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
-                         int threads) {
+                         int threads, const std::string& method, std::int64_t grid) {
   const Input in = points_input(points, 2);
   auto o = options_for<Delaunay2dOptions>(backend, stream, threads, in);
+  o.method = parse_method(method);
+  o.grid = grid;
   const std::int64_t n = in.shape[0];
   nb::dict r;
   if (in.on_device) {
@@ -362,7 +364,7 @@ std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray&
 void bind_spatial(nb::module_& m) {
   using namespace nb::literals;
   m.def("delaunay2d", &delaunay2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
-        "threads"_a = 0);
+        "threads"_a = 0, "method"_a = "incremental", "grid"_a = 0);
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);
   m.def("convex_hull3d", &hull3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,

@@ -280,3 +280,17 @@ def test_constrained_delaunay(backend, rng):
     assert sorted(s.segment_of[s.segment_of >= 0].tolist()) == [0, 0, 0, 0, 1, 1, 1, 1]
     with pytest.raises(ValueError, match="crossings"):
         gpugeom.ConstrainedDelaunay(pts, segs, crossings="maybe")
+
+
+def test_delaunay2d_digital_method_equals_incremental(backend, rng):
+    pts = np.concatenate([rng.random((3000, 2)), np.repeat(rng.random((5, 2)), 40, axis=0)])
+    a = gpugeom.Delaunay(pts, backend=backend)
+    for grid in (0, 64):
+        b = gpugeom.Delaunay(pts, backend=backend, method="digital", grid=grid)
+        assert b.stats["counters"]["digital_fallback"] == 0
+        assert simplex_set(a.simplices) == simplex_set(b.simplices)
+        assert np.array_equal(a.duplicate_of, b.duplicate_of)
+    with pytest.raises(ValueError, match="method"):
+        gpugeom.Delaunay(pts, method="magic")
+    with pytest.raises(ValueError, match="2D"):
+        gpugeom.Delaunay(rng.random((50, 3)), method="digital")

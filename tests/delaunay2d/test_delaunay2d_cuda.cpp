@@ -365,10 +365,7 @@ TEST(CudaDelaunay2d, TriangulatorFromAStart) {
 // The digital method (issue 20) with its sketch on the GPU: the same triangles as the incremental
 // method, on the distributions (automatic and coarse grids), the degenerate cases, clusters and
 // lattices, and on 10^6 uniform and gaussian points.
-TEST(CudaDelaunay2d, DigitalMethodSameAsIncremental) {
-  auto cases = gg_del2d::digital_cases(20000, 31);
-  for (const char* d : {"uniform", "gaussian"})
-    cases.push_back({std::string(d) + " 1e6", generate2d(d, 1000000, 5), 0});
+void digital_same_as_incremental(const std::vector<gg_del2d::DigitalCase>& cases) {
   std::int64_t fallbacks = 0, left = 0, flips_dig = 0, flips_inc = 0;
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
@@ -396,4 +393,15 @@ TEST(CudaDelaunay2d, DigitalMethodSameAsIncremental) {
   }
   std::printf("digital on the GPU: %zu inputs, %lld fall backs (tiny inputs)\n", cases.size(),
               (long long)fallbacks);
+}
+
+TEST(CudaDelaunay2d, DigitalMethodSameAsIncremental) {
+  digital_same_as_incremental(gg_del2d::digital_cases(20000, 31));
+}
+
+TEST(CudaDelaunay2d, DigitalMethodSameAsIncrementalLarge) {
+  std::vector<gg_del2d::DigitalCase> cases;
+  for (const char* d : {"uniform", "gaussian", "thin_circle"})
+    cases.push_back({std::string(d) + " 1e6", generate2d(d, 1000000, 5), 0});
+  digital_same_as_incremental(cases);
 }
