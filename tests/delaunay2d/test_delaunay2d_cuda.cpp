@@ -14,6 +14,7 @@
 #include "../common/device_arrays.hpp"
 #include "del2d_cases.hpp"
 #include "delaunay2d/del2d_backend.hpp"
+#include "delaunay2d/digital/shift.hpp"
 #include "delaunay2d/digital/sketch.hpp"
 
 using namespace gpugeom;
@@ -397,6 +398,28 @@ void digital_same_as_incremental(const std::vector<gg_del2d::DigitalCase>& cases
 
 TEST(CudaDelaunay2d, DigitalMethodSameAsIncremental) {
   digital_same_as_incremental(gg_del2d::digital_cases(20000, 31));
+}
+
+// The shifting phase's start does not depend on timing: the same triangles, twins and hints in
+// two runs on the GPU and on the CPU executor (the fans' first triangles by atomic minimum).
+TEST(CudaDelaunay2d, DigitalStartIsRepeatable) {
+  namespace dg = gpugeom::del2d::digital;
+  const auto pts = generate2d("uniform", 300000, 9);
+  const std::int64_t n = std::int64_t(pts.size());
+  RunOptions gpu, cpu;
+  gpu.backend = Backend::Cuda;
+  cpu.backend = Backend::Cpu;
+  const dg::Sketch s = dg::digital_sketch(&pts.data()->x, n, 1024, gpu);
+  const dg::Start a = dg::shift_sketch(&pts.data()->x, n, s, gpu);
+  const dg::Start b = dg::shift_sketch(&pts.data()->x, n, s, gpu);
+  const dg::Start c = dg::shift_sketch(&pts.data()->x, n, s, cpu);
+  ASSERT_TRUE(a.valid) << a.reason;
+  EXPECT_GT(a.bad_inner + a.bad_boundary, 0);
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.twin, b.twin);
+  EXPECT_EQ(a.hint, b.hint);
+  EXPECT_EQ(a.triangles, c.triangles);
+  EXPECT_EQ(a.hint, c.hint);
 }
 
 TEST(CudaDelaunay2d, DigitalMethodSameAsIncrementalLarge) {

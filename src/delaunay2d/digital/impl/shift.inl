@@ -114,9 +114,15 @@ inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::
   std::int32_t* done = d_done.data();
   std::int8_t* state = d_state.data();
   ex.fill(M.alive, nt, std::int8_t(1));
-  ex.fill(M.some, n, std::int32_t(-1));
+  // A point's first triangle: the least slot that has it (by atomic minimum: a fan's walks and
+  // so the holes' triangulations must not depend on which thread wrote last).
+  ex.fill(M.some, n, kPending);
   ex.for_each_index(
-      3 * nt, GG_LAMBDA(std::int64_t e) { M.some[M.tri[e]] = std::int32_t(e / 3); });
+      3 * nt, GG_LAMBDA(std::int64_t e) { atomic_min(&M.some[M.tri[e]], std::int32_t(e / 3)); });
+  ex.for_each_index(
+      n, GG_LAMBDA(std::int64_t i) {
+        if (M.some[i] == kPending) M.some[i] = -1;
+      });
   // Every site starts at its grid point (exact: sketch.hpp); every point not in the sketch is
   // no one's neighbour and counts as done.
   const double ox = sk.ox, oy = sk.oy, h = sk.h;
