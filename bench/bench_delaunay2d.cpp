@@ -225,6 +225,10 @@ int main(int argc, char** argv) {
       return a == "--help" ? 0 : 2;
     }
   }
+  if (reps < 1) {
+    std::cout << "--reps takes a count of at least 1 (each row is the median of that many runs)\n";
+    return 2;
+  }
   struct Input {
     std::string name;
     std::vector<Point2> pts;

@@ -39,10 +39,12 @@ struct DeviceVoronoiOutput {
 // counter-clockwise triangles of input indices (3 each, host memory) that cover the convex hull
 // of their vertices, each directed edge once; the other points are inserted into it and the
 // whole is flipped until Delaunay by the same batches and rounds. twin (host, 3 nstart, or
-// null: found by hashing): per half-edge 3t + k (vertex k to k + 1) its reverse, -1 on the
+// null: found by sorting the edges): per half-edge 3t + k (vertex k to k + 1) its reverse, -1 on the
 // hull. hint (host, n entries, or null): for each point not in the start, a start vertex near it
 // where its walk begins (-1: anywhere). The result equals triangulate's. Refuses counts no
 // triangulation can be made of (Error, as the public entries say).
+// triangulate_digital: Method::Digital from host points (digital/digital.hpp says what it
+// reports); the points go to the executor once and every phase's arrays stay there.
 void check_count(std::int64_t n);
 // Tests: the first triangle slot's number (clamped so that the last slot is 2^30 - 1), so that
 // small inputs run through the top of the wide slot encoding. Not thread-safe; 0 restores.
@@ -60,6 +62,8 @@ Capacities capacities_for_testing();
 namespace cpu_impl {
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats);
+void triangulate_digital(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                         Output& out, Stats& stats);
 void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
                       std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,
                       const Delaunay2dOptions& opt, Output& out, Stats& stats);
@@ -74,6 +78,8 @@ void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const st
 namespace cuda_impl {
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats);
+void triangulate_digital(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                         Output& out, Stats& stats);
 void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
                       std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,
                       const Delaunay2dOptions& opt, Output& out, Stats& stats);

@@ -17,6 +17,10 @@
 #include <vector>
 
 #include "delaunay2d/del2d_backend.hpp"
+#include "delaunay2d/digital/convex_turn.hpp"
+#include "delaunay2d/digital/digital.hpp"
+#include "delaunay2d/digital/ear_clip.hpp"
+#include "delaunay2d/digital/hull_fill.hpp"
 #include "delaunay2d/digital/shift.hpp"
 #include "delaunay2d/digital/sketch_backend.hpp"
 #include "edt/edt_backend.hpp"
@@ -32,6 +36,7 @@
 #include "mesh/compact.hpp"
 #include "mesh/decision.hpp"
 #include "mesh/flip_fix.hpp"
+#include "mesh/half_edges.hpp"
 #include "mesh/history.hpp"
 #include "mesh/prepare.hpp"
 #include "mesh/priority.hpp"
@@ -48,6 +53,11 @@ using Exec = CpuExec;
 namespace edt_impl = gpugeom::edt::cpu_impl;
 #include "delaunay2d/digital/impl/sketch.inl"
 #include "delaunay2d/digital/impl/shift.inl"
+#include "delaunay2d/digital/impl/pipeline.inl"
+void triangulate_digital(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                         Output& out, Stats& stats) {
+  triangulate_digital_impl(xy, n, opt, out, stats);
+}
 void digital_shift(const double* xy, std::int64_t n, const digital::Sketch& s,
                    const RunOptions& run, digital::Start& out) {
   digital_shift_impl(xy, n, s, run, out);

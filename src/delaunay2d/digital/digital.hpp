@@ -11,10 +11,13 @@
 namespace gpugeom::del2d::digital {
 
 // The grid's longer side chosen from the point count and their bounding box
-// (Delaunay2dOptions::grid = 0): about 4 pixels a point, at most 16384.
+// (Delaunay2dOptions::grid = 0): about 4 pixels a point, at most 16384. The box [lo, hi], or
+// the points' own.
+std::int64_t auto_side(const double lo[2], const double hi[2], std::int64_t n);
 std::int64_t auto_side(const double* xy, std::int64_t n);
 
-// The public host entry's work for Method::Digital on executor b. Stats: the sketch's and the
+// The public host entry's work for Method::Digital on executor b (del2d_backend.hpp,
+// triangulate_digital, after the grid side is checked). Stats: the sketch's and the
 // shift's phases, then the Triangulator's; counters "grid_width", "grid_height", "sites",
 // "sketch_missing", "debris_pixels", "pinched_corners", "hull_triangles", "shifted",
 // "bad_inner", "bad_boundary", "start_vertices", "start_triangles", "digital_fallback" (1 where

@@ -1,39 +1,50 @@
-// Ear clipping, shared by the digital method's steps that fill a hole or a pocket (hull_fill,
-// shift; internal). The flips that follow make the result Delaunay, so any triangulation of the
-// polygon will do; this one needs only orientations, exact in both callers.
+// Ear clipping, shared by the digital method's steps that fill a hole or a pocket (the hull fill
+// on the host, the shifting phase's deletions on the executor; internal). The flips that follow
+// make the result Delaunay, so any triangulation of the polygon will do; this one needs only
+// orientations, exact in both callers.
 #pragma once
 #include <cstdint>
-#include <vector>
+
+#include "base/hd.hpp"
 
 namespace gpugeom::del2d::digital {
 
-// p: a simple counter-clockwise polygon (collinear runs allowed); orient(a, b, c): the sign of
-// the orientation of its vertices a, b, c; emit(a, b, c): each counter-clockwise triangle cut.
-// An ear is a strictly convex corner with no other vertex inside it or on its edges. Returns
-// what is left when no ear remains: fewer than 3 vertices, or collinear ones (no area).
-template <class Orient, class Emit>
-std::vector<std::int32_t> clip_ears(std::vector<std::int32_t> p, const Orient& orient,
-                                    const Emit& emit) {
-  std::size_t i = 0, tried = 0;
-  while (p.size() >= 3 && tried < p.size()) {
-    const std::size_t k = p.size();
-    i %= k;
-    const std::int32_t a = p[(i + k - 1) % k], b = p[i], c = p[(i + 1) % k];
+// p[0..m): a simple counter-clockwise polygon (collinear runs allowed), clipped in place;
+// orient(a, b, c): the sign of the orientation of its vertices a, b, c; emit(a, b, c): each
+// counter-clockwise triangle cut. An ear is a strictly convex corner with no other vertex inside
+// it or on its edges. Returns how many vertices are left when no ear remains: fewer than 3 where
+// the polygon was triangulated, else collinear ones (no area) or a polygon that was not simple.
+// far(a, b, c, v): true only where v is certainly outside the closed triangle (a, b, c) (a cheap
+// filter before the orientations, e.g. bounding boxes; the overload below has none).
+template <class Orient, class Emit, class Far>
+GG_HD std::int64_t clip_ears(std::int32_t* p, std::int64_t m, const Orient& orient,
+                             const Emit& emit, const Far& far) {
+  std::int64_t i = 0, tried = 0;
+  while (m >= 3 && tried < m) {
+    i %= m;
+    const std::int32_t a = p[(i + m - 1) % m], b = p[i], c = p[(i + 1) % m];
     bool ear = orient(a, b, c) > 0;
-    for (std::size_t j = 0; j < k && ear; ++j) {
+    for (std::int64_t j = 0; j < m && ear; ++j) {
       const std::int32_t v = p[j];
-      if (v == a || v == b || v == c) continue;
+      if (v == a || v == b || v == c || far(a, b, c, v)) continue;
       ear = !(orient(a, b, v) >= 0 && orient(b, c, v) >= 0 && orient(c, a, v) >= 0);
     }
     if (ear) {
       emit(a, b, c);
-      p.erase(p.begin() + std::ptrdiff_t(i));
-      tried = 0;
+      for (std::int64_t j = i; j + 1 < m; ++j) p[j] = p[j + 1];
+      --m, tried = 0;
     } else {
       ++i, ++tried;
     }
   }
-  return p;
+  return m;
+}
+
+template <class Orient, class Emit>
+GG_HD std::int64_t clip_ears(std::int32_t* p, std::int64_t m, const Orient& orient,
+                             const Emit& emit) {
+  return clip_ears(p, m, orient, emit,
+                   [](std::int32_t, std::int32_t, std::int32_t, std::int32_t) { return false; });
 }
 
 }  // namespace gpugeom::del2d::digital

@@ -3,25 +3,30 @@
 // boundary need not be convex; each pocket between the boundary and the hull of the boundary's
 // vertices is a simple polygon, triangulated by ear clipping. The flips that follow make the
 // result Delaunay, so any triangulation of a pocket will do. Integer grid coordinates: every
-// orientation is exact.
+// orientation is exact. Only the boundary is read (it comes from the executor, compacted:
+// about the square root of the sketch's size), and only the new triangles are returned.
 #pragma once
 #include <cstdint>
 #include <vector>
 
 namespace gpugeom::del2d::digital {
 
-// x, y: each point's grid coordinates (the points the triangles name); triangles: a disk of
-// counter-clockwise triangles with their half-edges' twins (sketch.hpp; -1 on the boundary).
-// Appends the pockets' triangles, pairs their half-edges with the boundary's and each other's,
-// and returns how many; throws Error(Internal) where the boundary is not one simple cycle. Only
-// the boundary is read.
-std::int64_t fill_to_hull(const std::vector<std::int64_t>& x, const std::vector<std::int64_t>& y,
-                          std::vector<std::int32_t>& triangles, std::vector<std::int32_t>& twin);
+// A boundary half-edge of a disk of counter-clockwise triangles: its id e (3t + k), from vertex
+// a to vertex b, with (x, y) a's coordinates.
+struct RimEdge {
+  std::int32_t e, a, b;
+  double x, y;
+};
 
-// Pairs the half-edges of the triangles from slot `first` on with the unpaired half-edges open
-// (reverse direction; ids 3t + k) and with each other (twin -1 where nothing matches).
-void pair_new_half_edges(const std::vector<std::int32_t>& triangles,
-                         std::vector<std::int32_t>& twin, std::int64_t first,
-                         const std::vector<std::int32_t>& open);
+struct HullFill {
+  std::vector<std::int32_t> triangles;  // the pockets' triangles, counter-clockwise
+  // Per new half-edge (id 3 (first + j) + k for new triangle j): its twin, a rim half-edge's id
+  // or another new one's; -1 on the hull.
+  std::vector<std::int32_t> twin;
+};
+
+// rim: the disk's boundary half-edges (grid coordinates, integers below 2^31); first: the
+// disk's triangle count. Throws Error(Internal) where the boundary is not one simple cycle.
+HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first);
 
 }  // namespace gpugeom::del2d::digital

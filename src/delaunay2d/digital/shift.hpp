@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "delaunay2d/digital/hull_fill.hpp"
 #include "delaunay2d/digital/sketch.hpp"
 
 namespace gpugeom::del2d::digital {
@@ -29,6 +30,7 @@ struct Start {
   // Per point not in the start: a start vertex near it (its pixel's site, or a neighbour it had
   // when it was deleted), where the insertion's walk begins (thesis 4.3.4); -1: none found.
   std::vector<std::int32_t> hint;
+  std::int64_t triangle_count = 0;               // (also where the arrays stay on the executor)
   std::int64_t vertices = 0;                     // points the triangles use
   std::int64_t shifted = 0;                      // sites moved to their coordinates (good cases)
   std::int64_t bad_inner = 0, bad_boundary = 0;  // sites deleted (bad cases)
@@ -39,13 +41,18 @@ struct Start {
   std::vector<std::pair<std::string, double>> phase_ms;
 };
 
+// The start's whole check from its boundary half-edges (coordinates: the points' own) and s's
+// counts (triangle_count, vertices, not_ccw): empty where it is a start, else the reason.
+std::string check_start(const std::vector<RimEdge>& rim, const Start& s);
+
 // xy: the n points the sketch was made of; the work runs on run's executor.
 Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s, const RunOptions& run);
 
 }  // namespace gpugeom::del2d::digital
 
 namespace gpugeom::del2d {
-// The rounds on an executor (impl/shift.inl): fills out's triangles, twins, hints and counts.
+// The rounds on an executor (impl/shift.inl): fills out's triangles, twins, hints, counts and
+// the check's verdict.
 namespace cpu_impl {
 void digital_shift(const double* xy, std::int64_t n, const digital::Sketch& s,
                    const RunOptions& run, digital::Start& out);

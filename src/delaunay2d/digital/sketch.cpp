@@ -8,8 +8,8 @@
 #include <queue>
 #include <string>
 #include <tuple>
+#include <unordered_map>
 
-#include "delaunay2d/digital/hull_fill.hpp"
 #include "delaunay2d/digital/sketch_backend.hpp"
 #include "exec/dispatch.hpp"
 
@@ -48,70 +48,74 @@ using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Ent
 
 }  // namespace
 
-std::int64_t recolour_debris(std::int64_t w, std::int64_t h, const std::vector<std::int32_t>& pixel,
-                             std::vector<std::int32_t>& colour) {
+std::vector<std::int32_t> recolour_debris(std::int64_t w, std::int64_t h,
+                                          const std::vector<std::int32_t>& pixel,
+                                          std::vector<std::int32_t>& colour,
+                                          const std::vector<std::int32_t>& cand) {
   const Grid g{w, h};
-  // Debris: the pixels not 8-connected to their own site through their colour.
-  std::vector<char> bulk(colour.size(), 0);
+  // Among the candidates, those 8-connected through their colour to a pixel that is not one
+  // (connected to its site) are connected too; the rest are the debris.
+  std::unordered_map<std::int32_t, char> state;  // candidate -> connected?
+  state.reserve(cand.size() * 2);
+  for (std::int32_t a : cand) state[a] = 0;
+  auto connected = [&](std::int32_t p) {
+    const auto it = state.find(p);
+    return it == state.end() || it->second;
+  };
   {
     std::vector<std::int32_t> stack;
-    for (std::size_t i = 0; i < pixel.size(); ++i) {
-      const std::int32_t p = pixel[i];
-      if (colour[std::size_t(p)] != std::int32_t(i)) continue;  // not a site
-      bulk[std::size_t(p)] = 1;
-      stack.push_back(p);
+    for (std::int32_t a : cand) {
+      bool seed = false;
+      g.neighbours(a, [&](std::int32_t b) {
+        seed |= colour[std::size_t(b)] == colour[std::size_t(a)] && !state.count(b);
+      });
+      if (seed && !state[a]) state[a] = 1, stack.push_back(a);
       while (!stack.empty()) {
-        const std::int32_t a = stack.back();
+        const std::int32_t p = stack.back();
         stack.pop_back();
-        g.neighbours(a, [&](std::int32_t b) {
-          if (!bulk[std::size_t(b)] && colour[std::size_t(b)] == std::int32_t(i))
-            bulk[std::size_t(b)] = 1, stack.push_back(b);
+        g.neighbours(p, [&](std::int32_t b) {
+          const auto it = state.find(b);
+          if (it != state.end() && !it->second && colour[std::size_t(b)] == colour[std::size_t(p)])
+            it->second = 1, stack.push_back(b);
         });
       }
     }
   }
   // Alg. 4.3: debris grows from the coloured neighbours nearer their site, in the order ≺.
-  std::int64_t debris = 0;
   MinQueue q;
-  for (std::size_t a = 0; a < bulk.size(); ++a) {
-    if (bulk[a]) continue;
-    ++debris;
-    g.neighbours(std::int32_t(a), [&](std::int32_t b) {
-      if (!bulk[std::size_t(b)]) return;
+  for (std::int32_t a : cand) {
+    if (connected(a)) continue;
+    g.neighbours(a, [&](std::int32_t b) {
+      if (!connected(b)) return;
       const std::int32_t site = pixel[std::size_t(colour[std::size_t(b)])];
-      if (g.key(b, site) < g.key(std::int32_t(a), site))
-        q.push({g.key(std::int32_t(a), site), site});
+      if (g.key(b, site) < g.key(a, site)) q.push({g.key(a, site), site});
     });
   }
+  std::vector<std::int32_t> changed;
   while (!q.empty()) {
     const auto [k, site] = q.top();
     q.pop();
     const std::int32_t a = std::get<2>(k);
-    if (bulk[std::size_t(a)]) continue;
-    bulk[std::size_t(a)] = 1;
+    if (connected(a)) continue;
+    state[a] = 1;
     colour[std::size_t(a)] = colour[std::size_t(site)];
+    changed.insert(changed.end(), {a, colour[std::size_t(a)]});
     g.neighbours(a, [&](std::int32_t c) {
-      if (!bulk[std::size_t(c)] && g.key(a, site) < g.key(c, site)) q.push({g.key(c, site), site});
+      if (!connected(c) && g.key(a, site) < g.key(c, site)) q.push({g.key(c, site), site});
     });
   }
-  return debris;
+  return changed;
 }
 
-Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run,
-                      bool keep_colour) {
+void set_frame(Sketch& s, const double lo[2], const double hi[2], std::int64_t side) {
   if (side < 4 || side > 46338)
     throw Error(ErrorCode::InvalidArgument,
                 "digital sketch: the grid side must be 4..46338, got " + std::to_string(side));
-  Sketch s;
   // Phase 1a's frame: the points go to the nearest lower-left grid point. The pixel size h is a
   // power of two and the origin a multiple of it (thesis 6.2's care for the scaling): the grid
   // points are then exact doubles, and the sketch, valid at them, can be compared exactly with
   // the points.
-  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-  for (std::int64_t i = 0; i < n; ++i) {
-    x0 = std::min(x0, xy[2 * i]), x1 = std::max(x1, xy[2 * i]);
-    y0 = std::min(y0, xy[2 * i + 1]), y1 = std::max(y1, xy[2 * i + 1]);
-  }
+  const double x0 = lo[0], y0 = lo[1], x1 = hi[0], y1 = hi[1];
   const double extent = std::max(x1 - x0, y1 - y0);
   // The box spans at most `side` pixels (so [0, 1) on 1024 gets h = 2^-10); the grid keeps up
   // to two more for the origin's rounding down and the last point's pixel.
@@ -121,8 +125,8 @@ Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const
   while (extent / h > double(side)) h *= 2;
   s.h = h;
   s.ox = std::floor(x0 / h) * h, s.oy = std::floor(y0 / h) * h;
-  auto cells = [&](double lo, double hi) {
-    return std::clamp<std::int64_t>(std::int64_t(std::floor((hi - lo) / h)) + 1, 2, side + 2);
+  auto cells = [&](double from, double to) {
+    return std::clamp<std::int64_t>(std::int64_t(std::floor((to - from) / h)) + 1, 2, side + 2);
   };
   s.width = cells(s.ox, x1), s.height = cells(s.oy, y1);
   // ox + gx h is exact while |ox / h| + width stays within the doubles' 53 bits.
@@ -133,18 +137,18 @@ Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const
             std::abs(s.oy / h) + double(s.height) < lim &&
             std::abs(s.ox) + double(s.width) * h < 0x1p179 &&
             std::abs(s.oy) + double(s.height) * h < 0x1p179;
+}
+
+Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run,
+                      bool keep_colour) {
+  Sketch s;
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (std::int64_t i = 0; i < n; ++i)
+    for (int d = 0; d < 2; ++d)
+      lo[d] = std::min(lo[d], xy[2 * i + d]), hi[d] = std::max(hi[d], xy[2 * i + d]);
+  set_frame(s, lo, hi, side);
   const Backend b = resolve_backend(run.backend, run.device);
   GG_ON_EXECUTOR(b, del2d, digital_sketch_dual, xy, n, run, keep_colour, s);
-  // The truncated diagram's dual made a triangulation of its vertices' convex hull.
-  const auto t0 = std::chrono::steady_clock::now();
-  std::vector<std::int64_t> gx(static_cast<std::size_t>(n)), gy(static_cast<std::size_t>(n));
-  for (std::int64_t i = 0; i < n; ++i)
-    gx[std::size_t(i)] = s.pixel[std::size_t(i)] % s.width,
-    gy[std::size_t(i)] = s.pixel[std::size_t(i)] / s.width;
-  s.hull_triangles = fill_to_hull(gx, gy, s.triangles, s.twin);
-  s.phase_ms.push_back(
-      {"hull_fill",
-       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
   return s;
 }
 

@@ -45,6 +45,10 @@ struct Sketch {
   std::vector<std::pair<std::string, double>> phase_ms;
 };
 
+// The frame (width, height, ox, oy, h, exact) for points in the box [lo, hi] and a grid of
+// `side` (4..46338; else Error(InvalidArgument)).
+void set_frame(Sketch& s, const double lo[2], const double hi[2], std::int64_t side);
+
 // side: the grid's largest extent (4..46338): the pixel size is the least power of two with which
 // the points' bounding box spans at most side pixels (between side / 2 and side), and the grid
 // is trimmed to the box (two pixels more at most: the origin rounded down, the last pixel).

@@ -4,22 +4,26 @@
 #include <cstdint>
 #include <vector>
 
+#include "delaunay2d/digital/hull_fill.hpp"
 #include "delaunay2d/digital/sketch.hpp"
 
 namespace gpugeom::del2d::digital {
 
-// Alg. 4.3 on the host over a whole colouring (point per pixel; pixel per point): the debris
-// (pixels not 8-connected to their site through their colour) recoloured as the standard
-// flooding would. Returns the pixels recoloured. Used where the executor found a pixel with no
-// neighbour of its colour nearer its site (which debris needs): rare.
-std::int64_t recolour_debris(std::int64_t w, std::int64_t h, const std::vector<std::int32_t>& pixel,
-                             std::vector<std::int32_t>& colour);
+// Alg. 4.3 on the host (point per pixel; pixel per point): the debris (pixels not 8-connected
+// to their site through their colour) recoloured as the standard flooding would. cand: the
+// pixels that may be debris (every other pixel is known to be connected to its site); colour is
+// read around them and written where recoloured. Returns the recoloured pixels as (pixel,
+// colour) pairs, in the order they were recoloured.
+std::vector<std::int32_t> recolour_debris(std::int64_t w, std::int64_t h,
+                                          const std::vector<std::int32_t>& pixel,
+                                          std::vector<std::int32_t>& colour,
+                                          const std::vector<std::int32_t>& cand);
 
 }  // namespace gpugeom::del2d::digital
 
 namespace gpugeom::del2d {
 // s holds the frame (width, height, ox, oy, h); fills pixel, missing, site_of, debris, pinched,
-// triangles (the dual, before the hull fill), colour where keep_colour, and phase times.
+// triangles and twins (the dual and the hull fill), colour where keep_colour, and phase times.
 namespace cpu_impl {
 void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run, bool keep_colour,
                          digital::Sketch& s);

@@ -14,6 +14,7 @@ struct Prepared {
   std::int32_t first[3] = {0, 0, 0};  // the first triangle, counter-clockwise
   double kernel[2] = {0, 0};
   double upload_ms = 0;
+  mesh::Bounds<2> box{};  // the points' bounding box
 };
 
 // The kernel point s: strictly inside the counter-clockwise triangle (v[0], v[1], v[2]) of
@@ -57,7 +58,7 @@ inline Prepared prepare(Exec& ex, const double* xy, std::int64_t n, bool on_devi
 
   // Validation and the bounding box in one reduction. (-0 and +0 are one value in what
   // follows: sort_distinct's keys and comparisons, and its copies of the points have +0.)
-  const mesh::Bounds<2> box = mesh::bounds<2>(ex, r, n);
+  const mesh::Bounds<2> box = P.box = mesh::bounds<2>(ex, r, n);
   if (box.bad)
     throw Error(ErrorCode::InvalidInput,
                 std::to_string(box.bad) +

@@ -185,10 +185,10 @@ class Triangulator {
   // infinity vertex (2k - 2 slots for its k vertices, as the insertions would have left); the
   // other points are located by walks; then the whole of it is flipped until Delaunay, and the
   // batches insert the rest as they do after start(). P.kernel must lie inside it.
-  void run_from(const std::vector<std::int32_t>& tris, const std::vector<std::int32_t>& twin,
-                const std::vector<std::int32_t>& hint) {
+  void run_from(const std::int32_t* tris, const std::int32_t* twin, std::int64_t f,
+                const std::int32_t* near) {
     auto t0 = clock::now();
-    start_from(tris, twin, hint);
+    start_from(tris, twin, f, near);
     phase("start", t0);
     t0 = clock::now();
     remaining_ = nun_;
@@ -199,100 +199,106 @@ class Triangulator {
     phase("peel", t0);
   }
 
-  // twin: per half-edge 3t + k (vertex k to k + 1), its reverse or -1 (empty: found here by
-  // hashing). hint: per prepared point, a start vertex near it (-1: none), where its walk begins.
-  void start_from(const std::vector<std::int32_t>& tris, const std::vector<std::int32_t>& twin,
-                  const std::vector<std::int32_t>& hint) {
+  // All in executor memory: tris (3 f), twin (per half-edge 3t + k, vertex k to k + 1: its
+  // reverse or -1), near (per prepared point, a start vertex near it or -1, where its walk
+  // begins; or null). The records are built on the executor: the hull edges numbered by a scan
+  // in half-edge order, each vertex's outgoing and incoming hull edge found by scatter.
+  void start_from(const std::int32_t* tris, const std::int32_t* twin, std::int64_t f,
+                  const std::int32_t* near) {
     const std::int32_t I = m_, B = std::int32_t(base_);
-    const std::int64_t f = std::int64_t(tris.size() / 3);
-    auto key = [](std::int32_t a, std::int32_t b) {
-      return u64(std::uint32_t(a)) << 32 | std::uint32_t(b);
-    };
-    std::unordered_map<u64, std::int64_t> edge;  // directed edge -> 3 t + (the vertex opposite)
-    if (twin.empty()) {
-      edge.reserve(std::size_t(3 * f));
-      for (std::int64_t t = 0; t < f; ++t)
-        for (int k = 0; k < 3; ++k)
-          edge[key(tris[std::size_t(3 * t + (k + 1) % 3)],
-                   tris[std::size_t(3 * t + (k + 2) % 3)])] = 3 * t + k;
-    }
-    // The neighbour across the edge opposite vertex k of t: 3 t' + (its vertex opposite), or -1.
-    auto across = [&](std::int64_t t, int k, std::int32_t a, std::int32_t b) -> std::int64_t {
-      if (!twin.empty()) {
-        const std::int32_t o = twin[std::size_t(3 * t + (k + 1) % 3)];
-        return o < 0 ? -1 : 3 * std::int64_t(o / 3) + (o % 3 + 2) % 3;
-      }
-      const auto o = edge.find(key(b, a));
-      return o == edge.end() ? -1 : o->second;
-    };
-    std::vector<Tri> rec(static_cast<std::size_t>(f));
-    std::vector<std::int64_t> boundary;  // 3 t + k of each hull edge, in slot order
-    std::unordered_map<std::int32_t, std::int32_t> out_slot, in_slot;  // hull edges at a vertex
-    std::vector<char> used(static_cast<std::size_t>(m_), 0);
-    std::vector<std::int32_t> slot_of(hint.empty() ? 0 : static_cast<std::size_t>(m_), 0);
-    for (std::int64_t t = 0; t < f; ++t) {
-      Tri& T = rec[std::size_t(t)];
-      for (int k = 0; k < 3; ++k) {
-        T.v[k] = tris[std::size_t(3 * t + k)], used[std::size_t(T.v[k])] = 1;
-        if (!hint.empty()) slot_of[std::size_t(T.v[k])] = std::int32_t(t);
-      }
-      T.stamp = -1, T.pair = 0;
-      for (int k = 0; k < 3; ++k) {
-        const std::int32_t a = T.v[(k + 1) % 3], b = T.v[(k + 2) % 3];
-        const std::int64_t o = across(t, k, a, b);
-        if (o >= 0) {
-          T.n[k] = enc(B + std::int32_t(o / 3), int(o % 3));
-        } else {  // a hull edge a->b: the infinite triangle (b, a, I) across
-          const std::int32_t slot = std::int32_t(f + std::int64_t(boundary.size()));
-          boundary.push_back(3 * t + k);
-          T.n[k] = enc(B + slot, 2);
-          if (!out_slot.emplace(a, slot).second || !in_slot.emplace(b, slot).second)
-            throw Error(ErrorCode::Internal,
-                        "start triangulation: its boundary passes a vertex twice");
-        }
-      }
-    }
-    for (std::size_t j = 0; j < boundary.size(); ++j) {
-      const std::int64_t t = boundary[j] / 3;
-      const int k = int(boundary[j] % 3);
-      const std::int32_t a = rec[std::size_t(t)].v[(k + 1) % 3],
-                         b = rec[std::size_t(t)].v[(k + 2) % 3];
-      Tri X;
-      X.v[0] = b, X.v[1] = a, X.v[2] = I;
-      X.n[2] = enc(B + std::int32_t(t), k);
-      X.n[0] = enc(B + in_slot.at(a), 1);   // across (a, I): the hull edge ending at a
-      X.n[1] = enc(B + out_slot.at(b), 0);  // across (I, b): the hull edge starting at b
-      X.stamp = -1, X.pair = 0;
-      rec.push_back(X);
-    }
-    std::int64_t k = 0;
-    for (char u : used) k += u;
-    if (std::int64_t(rec.size()) != 2 * k - 2 || std::int64_t(rec.size()) > tmax_)
-      throw Error(ErrorCode::Internal, "start triangulation: " + std::to_string(rec.size()) +
+    const std::int64_t nh = 3 * f;
+    auto in = ex_.template alloc<std::int8_t>(std::size_t(m_));
+    auto outs = ex_.template alloc<std::int32_t>(std::size_t(m_));
+    auto ins = ex_.template alloc<std::int32_t>(std::size_t(m_));
+    auto from = ex_.template alloc<std::int32_t>(std::size_t(m_));
+    auto hpos = ex_.template alloc<std::int64_t>(std::size_t(nh + 1));
+    std::int8_t* used = in.data();
+    std::int32_t* out_slot = outs.data();
+    std::int32_t* in_slot = ins.data();
+    std::int32_t* slot_of = from.data();
+    std::int64_t* pos = hpos.data();
+    ex_.fill(used, m_, std::int8_t(0));
+    ex_.fill(out_slot, m_, std::int32_t(-1));
+    ex_.fill(in_slot, m_, std::int32_t(-1));
+    ex_.fill(slot_of, m_, std::numeric_limits<std::int32_t>::max());
+    ex_.exclusive_scan_of(
+        nh + 1, GG_LAMBDA(std::int64_t e)->std::int64_t { return e < nh && twin[e] < 0; }, pos);
+    std::int64_t nb = 0;
+    ex_.to_host(pos + nh, 1, &nb);
+    if (f + nb > tmax_)
+      throw Error(ErrorCode::Internal, "start triangulation: " + std::to_string(f + nb) +
+                                           " slots for at most " + std::to_string(tmax_));
+    Tri* tri = tri_.data();
+    ex_.for_each_index(
+        f, GG_LAMBDA(std::int64_t t) {
+          Tri T;
+          for (int k = 0; k < 3; ++k) {
+            T.v[k] = tris[3 * t + k];
+            used[T.v[k]] = 1;
+            atomic_min(&slot_of[T.v[k]], std::int32_t(t));
+          }
+          T.stamp = -1, T.pair = 0;
+          for (int k = 0; k < 3; ++k) {
+            const std::int64_t e = 3 * t + (k + 1) % 3;  // the edge opposite vertex k
+            const std::int32_t o = twin[e];
+            if (o >= 0) {
+              T.n[k] = enc(B + o / 3, (o % 3 + 2) % 3);
+            } else {  // a hull edge a->b: the infinite triangle (b, a, I) across
+              const std::int32_t slot = std::int32_t(f + pos[e]);
+              T.n[k] = enc(B + slot, 2);
+              out_slot[T.v[(k + 1) % 3]] = slot, in_slot[T.v[(k + 2) % 3]] = slot;
+            }
+          }
+          tri[t] = T;
+        });
+    // Each hull vertex has one outgoing and one incoming hull edge: as many of each as edges.
+    auto cnt = ex_.template alloc<std::int64_t>(3);
+    ex_.transform_reduce_into(
+        m_, GG_LAMBDA(std::int64_t v)->std::int64_t { return out_slot[v] >= 0; }, std::int64_t(0),
+        thrust::plus<std::int64_t>(), cnt.data());
+    ex_.transform_reduce_into(
+        m_, GG_LAMBDA(std::int64_t v)->std::int64_t { return in_slot[v] >= 0; }, std::int64_t(0),
+        thrust::plus<std::int64_t>(), cnt.data() + 1);
+    ex_.transform_reduce_into(
+        m_, GG_LAMBDA(std::int64_t v)->std::int64_t { return used[v]; }, std::int64_t(0),
+        thrust::plus<std::int64_t>(), cnt.data() + 2);
+    std::int64_t c[3];
+    ex_.to_host(cnt.data(), 3, c);
+    if (c[0] != nb || c[1] != nb)
+      throw Error(ErrorCode::Internal, "start triangulation: its boundary passes a vertex twice");
+    const std::int64_t k = c[2];
+    if (f + nb != 2 * k - 2)
+      throw Error(ErrorCode::Internal, "start triangulation: " + std::to_string(f + nb) +
                                            " slots for " + std::to_string(k) +
                                            " vertices (a triangulation of a disk has 2k - 2)");
-    ex_.from_host(rec.data(), std::int64_t(rec.size()), tri_.data());
-    ntri_ = std::int64_t(rec.size());
+    ex_.for_each_index(
+        nh, GG_LAMBDA(std::int64_t e) {
+          if (twin[e] >= 0) return;
+          const std::int64_t t = e / 3;
+          const int j = int(e % 3);  // a = v[j] -> b = v[j + 1]; opposite vertex j + 2
+          const std::int32_t a = tris[e], b = tris[3 * t + (j + 1) % 3];
+          Tri X;
+          X.v[0] = b, X.v[1] = a, X.v[2] = I;
+          X.n[2] = enc(B + std::int32_t(t), (j + 2) % 3);
+          X.n[0] = enc(B + in_slot[a], 1);   // across (a, I): the hull edge ending at a
+          X.n[1] = enc(B + out_slot[b], 0);  // across (I, b): the hull edge starting at b
+          X.stamp = -1, X.pair = 0;
+          tri[f + pos[e]] = X;
+        });
+    ntri_ = f + nb;
+    // Each walk from a triangle of its hint's (a slot of the start), else from the first.
+    auto walk_from = ex_.template alloc<std::int32_t>(std::size_t(m_));
+    std::int32_t* from_slot = walk_from.data();
+    ex_.for_each_index(
+        m_, GG_LAMBDA(std::int64_t q) {
+          const std::int32_t v = near ? near[q] : -1;
+          from_slot[q] = v >= 0 && used[v] ? slot_of[v] : 0;
+        });
     // The other points, each located by a walk (the leaving edge chosen in turn, so that no
     // fixed pattern cycles; a scan of every slot bounds it).
-    auto in = ex_.template alloc<std::int8_t>(std::size_t(m_));
-    std::vector<std::int8_t> u8(used.begin(), used.end());
-    ex_.from_host(u8.data(), m_, in.data());
-    // Each walk from a triangle of its hint's (a slot of the start), else from the first.
-    auto from = ex_.template alloc<std::int32_t>(hint.empty() ? 0 : std::size_t(m_));
-    if (!hint.empty()) {
-      std::vector<std::int32_t> w(static_cast<std::size_t>(m_), 0);
-      for (std::int64_t q = 0; q < m_; ++q) {
-        const std::int32_t v = hint[std::size_t(q)];
-        if (v >= 0 && v < m_ && used[std::size_t(v)]) w[std::size_t(q)] = slot_of[std::size_t(v)];
-      }
-      ex_.from_host(w.data(), m_, from.data());
-    }
-    const std::int32_t* from_slot = hint.empty() ? nullptr : from.data();
     const Geo g = g_;
     std::int32_t* loc = loc_.data();
-    const Tri* tri = tri_.data();
-    const std::int8_t* inside = in.data();
+    const std::int8_t* inside = used;
     Counters* ctr = ctr_.data();
     const std::int64_t nt = ntri_;
     ex_.for_each_index(
@@ -302,7 +308,7 @@ class Triangulator {
             loc[q] = -1;
             return;
           }
-          std::int64_t t = from_slot ? from_slot[q] : 0;
+          std::int64_t t = from_slot[q];
           for (std::int64_t step = 0; step <= nt; ++step) {
             const Tri T = tri[t];
             int leave = -1;
@@ -1134,11 +1140,70 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const Dela
       });
 }
 
+// The Triangulator from a start (executor memory: f triangles of input indices, mapped to
+// prepared indices in place, their twins, and per input point a start vertex near it or null),
+// after prepare(P); the result left on the executor for finish().
+inline typename Triangulator::Finished run_from_start(Exec& ex, Prepared& P, std::int64_t n,
+                                                      std::int32_t* tris, std::int64_t f,
+                                                      const std::int32_t* twin,
+                                                      const std::int32_t* hint, bool profile,
+                                                      Stats& st) {
+  auto t0 = std::chrono::steady_clock::now();
+  // Input index -> prepared index (a duplicate's: the point kept for it).
+  auto d_inv = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* inv = d_inv.data();
+  const std::int32_t* orig = P.orig.data();
+  const std::int32_t* dup = P.duplicates ? P.dup.data() : nullptr;
+  ex.for_each_index(
+      P.m, GG_LAMBDA(std::int64_t j) { inv[orig[j]] = std::int32_t(j); });
+  if (dup)
+    ex.for_each_index(
+        n, GG_LAMBDA(std::int64_t i) {
+          if (dup[i] >= 0) inv[i] = inv[dup[i]];
+        });
+  ex.for_each_index(
+      3 * f, GG_LAMBDA(std::int64_t e) { tris[e] = inv[tris[e]]; });
+  // The hints in prepared indices too (a point's own entry at its prepared index).
+  auto d_near = ex.template alloc<std::int32_t>(hint ? std::size_t(P.m) : 0);
+  std::int32_t* near = d_near.data();
+  if (hint) {
+    ex.fill(near, P.m, std::int32_t(-1));
+    ex.for_each_index(
+        n, GG_LAMBDA(std::int64_t i) {
+          if ((!dup || dup[i] < 0) && hint[i] >= 0 && hint[i] < n) near[inv[i]] = inv[hint[i]];
+        });
+  }
+  // The kernel point inside the start's first triangle.
+  std::int32_t id[3];
+  ex.to_host(tris, 3, id);
+  double p[3][2];
+  for (int k = 0; k < 3; ++k) ex.to_host(P.pts.data() + 2 * std::int64_t(id[k]), 2, p[k]);
+  const double* v[3] = {p[0], p[1], p[2]};
+  if (!kernel_point(v, id, std::int32_t(P.m), P.kernel))
+    throw Error(ErrorCode::InvalidArgument,
+                "start triangulation: no kernel point inside its first triangle");
+  d_inv = {};
+  ex.sync();
+  st.phase_ms.push_back({"start_map", ms_since(t0)});
+  Triangulator T(ex, P, st, profile);
+  T.run_from(tris, twin, f, hint ? near : nullptr);
+  t0 = std::chrono::steady_clock::now();
+  T.report();
+  T.release_work();
+  auto out = T.finish();
+  st.phase_ms.push_back({"finish", ms_since(t0)});
+  return out;
+}
+
 // From a start triangulation (del2d_backend.hpp), host points in, host arrays out.
 inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::int32_t* start,
                                   std::int64_t nstart, const std::int32_t* twin,
                                   const std::int32_t* hint, const Delaunay2dOptions& opt,
                                   Output& out, Stats& st) {
+  if (nstart < 1) throw Error(ErrorCode::InvalidArgument, "start triangulation: no triangle");
+  for (std::int64_t i = 0; i < 3 * nstart; ++i)
+    if (start[i] < 0 || start[i] >= n)
+      throw Error(ErrorCode::InvalidArgument, "start triangulation: vertex out of range");
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
@@ -1147,51 +1212,24 @@ inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::i
   Prepared P = prepare(ex, xy, n, false);
   detail::Prefault pf;
   size_host_results(opt.into, n, P, out, pf);
-  // The start in prepared indices (a duplicate's index: the point kept for it).
-  std::vector<std::int32_t> orig(static_cast<std::size_t>(P.m)),
-      dup(static_cast<std::size_t>(n), -1), inv(static_cast<std::size_t>(n));
-  ex.to_host(P.orig.data(), P.m, orig.data());
-  if (P.duplicates) ex.to_host(P.dup.data(), n, dup.data());
-  for (std::int64_t j = 0; j < P.m; ++j) inv[std::size_t(orig[std::size_t(j)])] = std::int32_t(j);
-  for (std::int64_t i = 0; i < n; ++i)
-    if (dup[std::size_t(i)] >= 0) inv[std::size_t(i)] = inv[std::size_t(dup[std::size_t(i)])];
-  std::vector<std::int32_t> tris(static_cast<std::size_t>(3 * nstart));
-  for (std::int64_t i = 0; i < 3 * nstart; ++i) {
-    if (start[i] < 0 || start[i] >= n)
-      throw Error(ErrorCode::InvalidArgument, "start triangulation: vertex out of range");
-    tris[std::size_t(i)] = inv[std::size_t(start[i])];
-  }
-  if (nstart < 1) throw Error(ErrorCode::InvalidArgument, "start triangulation: no triangle");
-  // The kernel point inside the start's first triangle.
-  double p[3][2];
-  for (int k = 0; k < 3; ++k)
-    ex.to_host(P.pts.data() + 2 * std::int64_t(tris[std::size_t(k)]), 2, p[k]);
-  const double* v[3] = {p[0], p[1], p[2]};
-  const std::int32_t id[3] = {tris[0], tris[1], tris[2]};
-  if (!kernel_point(v, id, std::int32_t(P.m), P.kernel))
-    throw Error(ErrorCode::InvalidArgument,
-                "start triangulation: no kernel point inside its first triangle");
   st.counters["points"] = n;
   st.counters["distinct_points"] = P.m;
   st.counters["duplicates"] = P.duplicates;
+  auto up = [&](const std::int32_t* h, std::int64_t len) {
+    auto b = ex.template alloc<std::int32_t>(h ? std::size_t(len) : 0);
+    if (h) ex.from_host(h, len, b.data());
+    return b;
+  };
+  auto d_tris = up(start, 3 * nstart), d_twin = up(twin, 3 * nstart), d_hint = up(hint, n);
+  if (!twin) {
+    d_twin = ex.template alloc<std::int32_t>(std::size_t(3 * nstart));
+    if (mesh::pair_half_edges(ex, d_tris.data(), nstart, d_twin.data()))
+      throw Error(ErrorCode::InvalidArgument,
+                  "start triangulation: an edge in three triangles or more");
+  }
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
-  // The hints in prepared indices too (a point's own entry at its prepared index).
-  std::vector<std::int32_t> near;
-  if (hint) {
-    near.assign(static_cast<std::size_t>(P.m), -1);
-    for (std::int64_t i = 0; i < n; ++i)
-      if (dup[std::size_t(i)] < 0 && hint[i] >= 0 && hint[i] < n)
-        near[std::size_t(inv[std::size_t(i)])] = inv[std::size_t(hint[i])];
-  }
-  Triangulator T(ex, P, st, opt.profile);
-  std::vector<std::int32_t> tw;
-  if (twin) tw.assign(twin, twin + 3 * nstart);
-  T.run_from(tris, tw, near);
-  t0 = std::chrono::steady_clock::now();
-  T.report();
-  T.release_work();
-  auto f = T.finish();
-  st.phase_ms.push_back({"finish", ms_since(t0)});
+  auto f = run_from_start(ex, P, n, d_tris.data(), nstart, d_twin.data(),
+                          hint ? d_hint.data() : nullptr, opt.profile, st);
   deliver_host_results(ex, opt.into, n, P, f, out, st, pf);
 }

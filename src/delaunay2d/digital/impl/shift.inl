@@ -60,29 +60,28 @@ GG_INLINE bool before(std::int32_t u, std::int32_t v) {
   return mesh::scatter(std::uint32_t(u)) < mesh::scatter(std::uint32_t(v));
 }
 
-GG_HD inline int orient(const double* a, const double* b, const double* c) {
-  double s[pred::kOrient2dScratch];
-  return pred::orient2d(a, b, c, s);
-}
-
-// Does the boundary turn left or go straight on at b (a -> b -> c)? (exact)
-GG_HD inline bool convex_turn(const double* a, const double* b, const double* c) {
-  const int o = orient(a, b, c);
-  if (o != 0) return o > 0;
-  auto between = [](double u, double v, double w) { return (u < v && v < w) || (u > v && v > w); };
-  return between(a[0], b[0], c[0]) || (a[0] == b[0] && b[0] == c[0] && between(a[1], b[1], c[1]));
-}
+using digital::convex_turn;
+using digital::orient;
 
 constexpr std::int32_t kPending = std::numeric_limits<std::int32_t>::max();
 constexpr std::int8_t kShifted = 1, kBad = 2;
 
 }  // namespace digital_shifting
 
-inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::Sketch& sk,
-                               const RunOptions& run, digital::Start& out) {
+// The start on the executor: live triangles renumbered, their twins, and per point a start
+// vertex near it (-1 for the start's own vertices and where none was found).
+struct HeldStart {
+  typename Exec::template Buffer<std::int32_t> tri, twin, hint;
+  std::int64_t nt = 0;
+};
+
+// P: the n points in executor memory; sk: the frame; H: the sketch's arrays, consumed (the
+// triangles are edited in place). Fills out's counts, phase times and reason (the start's
+// whole check, on its boundary: shift.hpp); out's arrays stay empty (download_start).
+inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digital::Sketch& sk,
+                          HeldSketch& H, digital::Start& out) {
   auto& phases = out.phase_ms;
   using namespace digital_shifting;
-  Exec ex(run);
   auto t0 = std::chrono::steady_clock::now();
   auto phase = [&](const char* name) {
     ex.sync();
@@ -90,27 +89,16 @@ inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::
     phases.push_back({name, std::chrono::duration<double, std::milli>(t1 - t0).count()});
     t0 = t1;
   };
-  const std::int64_t nt = std::int64_t(sk.triangles.size() / 3);
-  auto d_tri = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
-  auto d_twin = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
+  const std::int64_t nt = H.nt;
   auto d_alive = ex.template alloc<std::int8_t>(std::size_t(nt));
   auto d_some = ex.template alloc<std::int32_t>(std::size_t(n));
-  auto d_pts = ex.template alloc<double>(std::size_t(2 * n));
   auto d_pos = ex.template alloc<double>(std::size_t(2 * n));
-  auto d_pix = ex.template alloc<std::int32_t>(std::size_t(n));
-  auto d_near = ex.template alloc<std::int32_t>(std::size_t(n));
   auto d_done = ex.template alloc<std::int32_t>(std::size_t(n));
   auto d_state = ex.template alloc<std::int8_t>(std::size_t(n));
-  ex.from_host(sk.triangles.data(), 3 * nt, d_tri.data());
-  ex.from_host(sk.twin.data(), 3 * nt, d_twin.data());
-  ex.from_host(xy, 2 * n, d_pts.data());
-  ex.from_host(sk.pixel.data(), n, d_pix.data());
-  ex.from_host(sk.site_of.data(), n, d_near.data());
-  const FanMesh M{d_tri.data(), d_twin.data(), d_alive.data(), d_some.data()};
-  const double* P = d_pts.data();
+  const FanMesh M{H.tri.data(), H.twin.data(), d_alive.data(), d_some.data()};
   double* pos = d_pos.data();
-  const std::int32_t* pixel = d_pix.data();
-  std::int32_t* near = d_near.data();
+  const std::int32_t* pixel = H.pixel.data();
+  std::int32_t* near = H.site_of.data();  // (from here: where a point's walk starts)
   std::int32_t* done = d_done.data();
   std::int8_t* state = d_state.data();
   ex.fill(M.alive, nt, std::int8_t(1));
@@ -291,30 +279,14 @@ inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::
           auto at = [&](std::int32_t v) { return pos + 2 * std::int64_t(v); };
           if (!boundary) {
             // Ear clipping of the link (a simple counter-clockwise polygon).
-            std::int64_t m = nl, i = 0, tried = 0;
-            for (std::int64_t u = 0; u < m; ++u) work[u] = link[u];
-            while (m > 3 && tried < m) {
-              i %= m;
-              const std::int32_t a = work[(i + m - 1) % m], c = work[i], e = work[(i + 1) % m];
-              bool ear = orient(at(a), at(c), at(e)) > 0;
-              for (std::int64_t u = 0; u < m && ear; ++u) {
-                const std::int32_t v = work[u];
-                if (v == a || v == c || v == e) continue;
-                ear = !(orient(at(a), at(c), at(v)) >= 0 && orient(at(c), at(e), at(v)) >= 0 &&
-                        orient(at(e), at(a), at(v)) >= 0);
-              }
-              if (ear) {
-                emit(a, c, e);
-                for (std::int64_t u = i; u + 1 < m; ++u) work[u] = work[u + 1];
-                --m, tried = 0;
-              } else {
-                ++i, ++tried;
-              }
-            }
-            if (m == 3)
-              emit(work[0], work[1], work[2]);
-            else
-              atomic_add(&cnt[2], std::int64_t(1));  // (a hole left: the check refuses)
+            for (std::int64_t u = 0; u < nl; ++u) work[u] = link[u];
+            const std::int64_t left = digital::clip_ears(
+                work, nl,
+                [&](std::int32_t x, std::int32_t y, std::int32_t z) {
+                  return orient(at(x), at(y), at(z));
+                },
+                emit);
+            if (left >= 3) atomic_add(&cnt[2], std::int64_t(1));  // (a hole: the check refuses)
             atomic_add(&cnt[0], std::int64_t(1));
           } else {
             // The chain the vertex leaves, from the start of its incoming boundary edge to the
@@ -365,6 +337,14 @@ inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::
             if (t < 0 && i == 0 && !boundary && outer[d - 1] >= 0) t = outer[d - 1] / 3;
             M.some[a] = t;
           }
+          // One left without a triangle walks, when inserted, from a link vertex that has one.
+          for (std::int64_t i = 0; i < nl; ++i)
+            if (M.some[link[i]] < 0)
+              for (std::int64_t j = 1; j < nl; ++j)
+                if (M.some[link[(i + j) % nl]] >= 0) {
+                  near[link[i]] = link[(i + j) % nl];
+                  break;
+                }
           done[b] = r;
         });
     nbad = ex.copy_if(
@@ -407,14 +387,14 @@ inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::
   std::int64_t flat = 0;
   ex.to_host(d_flat.data(), 1, &flat);
   out.not_ccw = flat + c[2];
-  out.triangles.resize(std::size_t(3 * live));
-  out.twin.resize(std::size_t(3 * live));
-  ex.to_host(OT, 3 * std::int64_t(live), out.triangles.data());
-  ex.to_host(OW, 3 * std::int64_t(live), out.twin.data());
   // Hints: a missing point's pixel site, a deleted site's first neighbour, followed to a vertex
-  // of the start.
-  auto d_hint = ex.template alloc<std::int32_t>(std::size_t(n));
-  std::int32_t* hint = d_hint.data();
+  // of the start; where that fails (a site no triangle had, a link vertex a deletion left
+  // without triangles), the site of a pixel near its own that the start has.
+  HeldStart S;
+  S.hint = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* hint = S.hint.data();
+  const std::int32_t* colour = H.colour.size() ? H.colour.data() : nullptr;
+  const std::int64_t gh = sk.height;
   ex.for_each_index(
       n, GG_LAMBDA(std::int64_t i) {
         if (M.some[i] >= 0) {
@@ -423,17 +403,69 @@ inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::
         }
         std::int32_t v = near[i];
         for (int s = 0; s < 64 && v >= 0 && M.some[v] < 0; ++s) v = near[v] == v ? -1 : near[v];
-        hint[i] = v >= 0 && M.some[v] >= 0 ? v : -1;
+        if (v >= 0 && M.some[v] >= 0) {
+          hint[i] = v;
+          return;
+        }
+        v = -1;
+        const std::int64_t px = pixel[i] % w, py = pixel[i] / w;
+        for (std::int64_t r = 1; r <= 8 && v < 0 && colour; ++r)
+          for (std::int64_t dy = -r; dy <= r && v < 0; ++dy)
+            for (std::int64_t dx = -r; dx <= r && v < 0; ++dx) {
+              const std::int64_t qx = px + dx, qy = py + dy;
+              if (qx < 0 || qy < 0 || qx >= w || qy >= gh) continue;
+              const std::int32_t c = colour[qy * w + qx];
+              if (c >= 0 && M.some[c] >= 0) v = c;
+            }
+        hint[i] = v;
       });
-  out.hint.resize(std::size_t(n));
-  ex.to_host(hint, n, out.hint.data());
-  std::vector<std::int32_t> some(static_cast<std::size_t>(n));
-  ex.to_host(M.some, n, some.data());
-  out.vertices = 0;
-  for (std::int32_t t : some) out.vertices += t >= 0;
-  std::vector<std::int8_t> st(static_cast<std::size_t>(n));
-  ex.to_host(state, n, st.data());
-  out.shifted = 0;
-  for (std::int8_t s : st) out.shifted += s == kShifted;
+  std::int64_t counts[2] = {0, 0};
+  {
+    auto d_c = ex.template alloc<std::int64_t>(2);
+    ex.transform_reduce_into(
+        n, GG_LAMBDA(std::int64_t i)->std::int64_t { return M.some[i] >= 0; }, std::int64_t(0),
+        thrust::plus<std::int64_t>(), d_c.data());
+    ex.transform_reduce_into(
+        n, GG_LAMBDA(std::int64_t i)->std::int64_t { return state[i] == kShifted; },
+        std::int64_t(0), thrust::plus<std::int64_t>(), d_c.data() + 1);
+    ex.to_host(d_c.data(), 2, counts);
+  }
+  out.vertices = counts[0], out.shifted = counts[1];
+  S.tri = std::move(o_tri), S.twin = std::move(o_twin), S.nt = live;
+  out.triangle_count = live;
   phase("shift_output");
+  // The whole check, from the boundary at the points' own coordinates.
+  out.reason = digital::check_start(rim_records(ex, OT, OW, live, {P, nullptr, 0}), out);
+  out.valid = out.reason.empty();
+  phase("shift_check");
+  return S;
+}
+
+// The held start brought to the host (the tests' view, shift.hpp).
+inline void download_start(Exec& ex, const HeldStart& S, std::int64_t n, digital::Start& out) {
+  out.triangles.resize(std::size_t(3 * S.nt));
+  out.twin.resize(std::size_t(3 * S.nt));
+  out.hint.resize(std::size_t(n));
+  ex.to_host(S.tri.data(), 3 * S.nt, out.triangles.data());
+  ex.to_host(S.twin.data(), 3 * S.nt, out.twin.data());
+  ex.to_host(S.hint.data(), n, out.hint.data());
+}
+
+// The shifting phase from a host sketch (tests, shift.hpp).
+inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::Sketch& sk,
+                               const RunOptions& run, digital::Start& out) {
+  Exec ex(run);
+  auto pts = ex.template alloc<double>(std::size_t(2 * n));
+  ex.from_host(xy, 2 * n, pts.data());
+  HeldSketch H;
+  auto up = [&](const std::vector<std::int32_t>& v) {
+    auto b = ex.template alloc<std::int32_t>(v.size());
+    ex.from_host(v.data(), std::int64_t(v.size()), b.data());
+    return b;
+  };
+  H.pixel = up(sk.pixel), H.site_of = up(sk.site_of), H.colour = up(sk.colour);
+  H.tri = up(sk.triangles), H.twin = up(sk.twin);
+  H.nt = std::int64_t(sk.triangles.size() / 3);
+  const HeldStart S = shift_on(ex, pts.data(), n, sk, H, out);
+  download_start(ex, S, n, out);
 }

@@ -2,7 +2,8 @@
 // namespace with Exec and edt_impl defined. One thread a point for the mapping, one a pixel for
 // the colouring and the debris test, one a grid corner for the dual; the dual's triangles are
 // written in corner raster order (a scan of the per-corner counts), so the arrays are the same
-// on every executor.
+// on every executor. The arrays stay on the executor (HeldSketch) for the shifting phase and the
+// Triangulator; only the boundary (for the hull fill) and the counts come to the host.
 
 namespace digital_sketch_impl {
 
@@ -21,12 +22,57 @@ struct PixelGrid {
   }
 };
 
+// Where a rim vertex is: its grid point (pixel given) or its own coordinates.
+struct RimCoords {
+  const double* p;
+  const std::int32_t* pixel;
+  std::int64_t w;
+  GG_INLINE void at(std::int32_t v, double& x, double& y) const {
+    if (pixel) {
+      x = double(pixel[v] % w), y = double(pixel[v] / w);
+    } else {
+      x = p[2 * std::int64_t(v)], y = p[2 * std::int64_t(v) + 1];
+    }
+  }
+};
+
 }  // namespace digital_sketch_impl
 
-inline void digital_sketch_dual_impl(const double* xy, std::int64_t n, const RunOptions& run,
-                                     bool keep_colour, digital::Sketch& s) {
+// The boundary half-edges (twin -1) of nt triangles on the executor, brought to the host in id
+// order with their start vertices' coordinates.
+inline std::vector<digital::RimEdge> rim_records(Exec& ex, const std::int32_t* tri,
+                                                 const std::int32_t* twin, std::int64_t nt,
+                                                 digital_sketch_impl::RimCoords c) {
+  auto ids = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
+  const std::int64_t nr = ex.compact_indices(
+      3 * nt, GG_LAMBDA(std::int64_t e) { return twin[e] < 0; }, ids.data());
+  auto rec = ex.template alloc<digital::RimEdge>(std::size_t(nr));
+  digital::RimEdge* R = rec.data();
+  const std::int32_t* I = ids.data();
+  ex.for_each_index(
+      nr, GG_LAMBDA(std::int64_t j) {
+        const std::int32_t e = I[j];
+        digital::RimEdge r;
+        r.e = e, r.a = tri[e], r.b = tri[e - e % 3 + (e % 3 + 1) % 3];
+        c.at(r.a, r.x, r.y);
+        R[j] = r;
+      });
+  std::vector<digital::RimEdge> out(static_cast<std::size_t>(nr));
+  ex.to_host(R, nr, out.data());
+  return out;
+}
+
+// The sketch's arrays on the executor (sketch.hpp's Sketch names them).
+struct HeldSketch {
+  typename Exec::template Buffer<std::int32_t> pixel, colour, site_of, missing, tri, twin;
+  std::int64_t nmiss = 0, nt = 0;
+};
+
+// P: the n points in executor memory; s: the frame (width, height, ox, oy, h). Fills s's counts
+// (debris, pinched, hull_triangles) and phase times; its arrays stay empty (download_sketch).
+inline HeldSketch sketch_on(Exec& ex, const double* P, std::int64_t n, digital::Sketch& s) {
   using digital_sketch_impl::PixelGrid;
-  Exec ex(run);
+  HeldSketch H;
   auto t0 = std::chrono::steady_clock::now();
   auto phase = [&](const char* name) {
     ex.sync();
@@ -38,13 +84,10 @@ inline void digital_sketch_dual_impl(const double* xy, std::int64_t n, const Run
   const std::int64_t np = G.w * G.h;
   const double ox = s.ox, oy = s.oy, h = s.h;
   // Phase 1a: each point to its pixel; the first point of a pixel (atomic minimum) is its site.
-  auto pts = ex.template alloc<double>(std::size_t(2 * n));
-  ex.from_host(xy, 2 * n, pts.data());
-  auto pix = ex.template alloc<std::int32_t>(std::size_t(n));
-  auto col = ex.template alloc<std::int32_t>(std::size_t(np));
-  std::int32_t* pixel = pix.data();
-  std::int32_t* colour = col.data();
-  const double* P = pts.data();
+  H.pixel = ex.template alloc<std::int32_t>(std::size_t(n));
+  H.colour = ex.template alloc<std::int32_t>(std::size_t(np));
+  std::int32_t* pixel = H.pixel.data();
+  std::int32_t* colour = H.colour.data();
   ex.fill(colour, np, std::numeric_limits<std::int32_t>::max());
   ex.for_each_index(
       n, GG_LAMBDA(std::int64_t i) {
@@ -56,9 +99,10 @@ inline void digital_sketch_dual_impl(const double* xy, std::int64_t n, const Run
         pixel[i] = std::int32_t(p);
         atomic_min(&colour[p], std::int32_t(i));
       });
-  auto miss = ex.template alloc<std::int32_t>(std::size_t(n));
-  const std::int64_t nmiss = ex.compact_indices(
-      n, GG_LAMBDA(std::int64_t i) { return colour[pixel[i]] != std::int32_t(i); }, miss.data());
+  H.missing = ex.template alloc<std::int32_t>(std::size_t(n));
+  const std::int64_t nmiss = H.nmiss = ex.compact_indices(
+      n, GG_LAMBDA(std::int64_t i) { return colour[pixel[i]] != std::int32_t(i); },
+      H.missing.data());
   const std::int64_t nsites = n - nmiss;
   // The digital Voronoi diagram: PBA's feature transform over the sites' packed positions
   // (ties: the site first in raster order, as ≺); then each pixel takes its site's point (a
@@ -82,18 +126,26 @@ inline void digital_sketch_dual_impl(const double* xy, std::int64_t n, const Run
         });
     phase("pba");
   }
-  // Debris needs a pixel with no neighbour of its colour nearer its site (a strictly smaller
-  // (squared distance, raster index): every other pixel has a path of its colour down to the
-  // site). None anywhere: no debris. Else Alg. 4.3 on the host over the whole colouring.
+  // Debris (pixels not 8-connected to their site through their colour). Each pixel steps to its
+  // neighbour of its colour with the least (squared distance to its site, raster index) below
+  // its own, if any: from every pixel these steps descend to its site or to a root (a pixel with
+  // no such neighbour). Where no root exists there is no debris. Else the descents are followed
+  // to their ends by pointer jumping, and only the pixels that end at a root (candidates: every
+  // debris pixel is one, most are not debris) go to the host, with the colouring, for Alg. 4.3
+  // (sketch_backend.hpp); the pixels it recolours come back.
   {
+    auto up_a = ex.template alloc<std::int32_t>(std::size_t(np));
+    std::int32_t* up = up_a.data();
     auto cnt = ex.template alloc<std::int64_t>(1);
     ex.transform_reduce_into(
         np,
         GG_LAMBDA(std::int64_t p)->std::int64_t {
           const std::int32_t c = colour[p];
           const std::int64_t site = pixel[c];
+          up[p] = std::int32_t(p);
           if (site == p) return 0;
-          const std::int64_t d = G.d2(p, site), px = G.x(p), py = G.y(p);
+          std::int64_t bd = G.d2(p, site), bq = p;
+          const std::int64_t px = G.x(p), py = G.y(p);
           for (std::int64_t dy = -1; dy <= 1; ++dy)
             for (std::int64_t dx = -1; dx <= 1; ++dx) {
               const std::int64_t qx = px + dx, qy = py + dy;
@@ -101,34 +153,63 @@ inline void digital_sketch_dual_impl(const double* xy, std::int64_t n, const Run
               const std::int64_t q = qy * G.w + qx;
               if (colour[q] != c) continue;
               const std::int64_t e = G.d2(q, site);
-              if (e < d || (e == d && q < p)) return 0;
+              if (e < bd || (e == bd && q < bq)) bd = e, bq = q;
             }
-          return 1;
+          up[p] = std::int32_t(bq);
+          return bq == p;
         },
         std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
     std::int64_t roots = 0;
     ex.to_host(cnt.data(), 1, &roots);
-    s.pixel.resize(std::size_t(n));
-    ex.to_host(pixel, n, s.pixel.data());
-    if (roots > 0 || keep_colour) {
-      s.colour.resize(std::size_t(np));
-      ex.to_host(colour, np, s.colour.data());
-    }
     if (roots > 0) {
-      s.debris = digital::recolour_debris(G.w, G.h, s.pixel, s.colour);
-      ex.from_host(s.colour.data(), np, colour);
+      auto up_b = ex.template alloc<std::int32_t>(std::size_t(np));
+      for (int jump = 0; jump < 64; ++jump) {
+        const std::int32_t* from = up;
+        std::int32_t* to = up_b.data();
+        ex.transform_reduce_into(
+            np,
+            GG_LAMBDA(std::int64_t p)->std::int64_t {
+              const std::int32_t u = from[from[p]];
+              to[p] = u;
+              return u != from[p];
+            },
+            std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
+        std::swap(up_a, up_b);
+        up = up_a.data();
+        std::int64_t moved = 0;
+        ex.to_host(cnt.data(), 1, &moved);
+        if (!moved) break;
+      }
+      const std::int32_t* end = up;
+      auto cand_d = ex.template alloc<std::int32_t>(std::size_t(np));
+      const std::int64_t nc = ex.compact_indices(
+          np, GG_LAMBDA(std::int64_t p) { return end[p] != pixel[colour[p]]; }, cand_d.data());
+      if (nc > 0) {
+        std::vector<std::int32_t> hp(static_cast<std::size_t>(n)),
+            hc(static_cast<std::size_t>(np)), cand(static_cast<std::size_t>(nc));
+        ex.to_host(pixel, n, hp.data());
+        ex.to_host(colour, np, hc.data());
+        ex.to_host(cand_d.data(), nc, cand.data());
+        const std::vector<std::int32_t> changed =
+            digital::recolour_debris(G.w, G.h, hp, hc, cand);
+        const std::int64_t nd = std::int64_t(changed.size() / 2);
+        s.debris = nd;
+        if (nd) {
+          auto ch_d = ex.template alloc<std::int32_t>(std::size_t(2 * nd));
+          ex.from_host(changed.data(), 2 * nd, ch_d.data());
+          const std::int32_t* ch = ch_d.data();
+          ex.for_each_index(
+              nd, GG_LAMBDA(std::int64_t j) { colour[ch[2 * j]] = ch[2 * j + 1]; });
+        }
+      }
     }
-    if (!keep_colour) s.colour = {};
     phase("debris");
   }
-  s.missing.resize(std::size_t(nmiss));
-  ex.to_host(miss.data(), nmiss, s.missing.data());
-  s.site_of.resize(std::size_t(n));
+  H.site_of = ex.template alloc<std::int32_t>(std::size_t(n));
   {
-    std::int32_t* so = miss.data();  // (reused: n entries)
+    std::int32_t* so = H.site_of.data();
     ex.for_each_index(
         n, GG_LAMBDA(std::int64_t i) { so[i] = colour[pixel[i]]; });
-    ex.to_host(so, n, s.site_of.data());
   }
   // Phase 1b: per grid corner, its cells (x, y), (x + 1, y), (x + 1, y + 1), (x, y + 1) in
   // counter-clockwise order: three colours give a triangle (none where one cell crosses the
@@ -173,8 +254,9 @@ inline void digital_sketch_dual_impl(const double* xy, std::int64_t n, const Run
   std::int64_t nt = 0;
   ex.to_host(off + nc, 1, &nt);
   ex.to_host(pcount.data(), 1, &s.pinched);
-  auto tri = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
-  std::int32_t* T = tri.data();
+  H.tri = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
+  H.nt = nt;
+  std::int32_t* T = H.tri.data();
   ex.for_each_index(
       nc, GG_LAMBDA(std::int64_t k) {
         std::int32_t d[4];
@@ -194,48 +276,67 @@ inline void digital_sketch_dual_impl(const double* xy, std::int64_t n, const Run
         o[0] = d[a], o[1] = d[a + 1], o[2] = d[a + 2];
         o[3] = d[a], o[4] = d[a + 2], o[5] = d[(a + 3) % 4];
       });
-  s.triangles.resize(std::size_t(3 * nt));
-  ex.to_host(T, 3 * nt, s.triangles.data());
   phase("dual");
-  // Adjacency: half-edge 3t + k runs from vertex k of triangle t to vertex k + 1; each is paired
-  // with its reverse by sorting the undirected edges (twin -1: on the boundary). An edge in
-  // three triangles or more would be no triangulation's: refused as an internal error.
-  {
-    const std::int64_t nh = 3 * nt;
-    auto keys = ex.template alloc<std::uint64_t>(std::size_t(nh));
-    auto ids = ex.template alloc<std::int32_t>(std::size_t(nh));
-    auto tw = ex.template alloc<std::int32_t>(std::size_t(nh));
-    std::uint64_t* K = keys.data();
-    std::int32_t* I = ids.data();
-    std::int32_t* W = tw.data();
-    ex.for_each_index(
-        nh, GG_LAMBDA(std::int64_t e) {
-          const std::uint32_t a = std::uint32_t(T[e]),
-                              b = std::uint32_t(T[e - e % 3 + (e % 3 + 1) % 3]);
-          K[e] = a < b ? std::uint64_t(a) << 32 | b : std::uint64_t(b) << 32 | a;
-          I[e] = std::int32_t(e);
-          W[e] = -1;
-        });
-    ex.sort_by_key(K, I, nh);
-    auto bad = ex.template alloc<std::int64_t>(1);
-    ex.transform_reduce_into(
-        nh,
-        GG_LAMBDA(std::int64_t i)->std::int64_t {
-          const bool starts = i == 0 || K[i - 1] != K[i];
-          if (starts && i + 1 < nh && K[i + 1] == K[i]) {
-            W[I[i]] = I[i + 1], W[I[i + 1]] = I[i];
-            return i + 2 < nh && K[i + 2] == K[i];
-          }
-          return 0;
-        },
-        std::int64_t(0), thrust::plus<std::int64_t>(), bad.data());
-    std::int64_t nbad = 0;
-    ex.to_host(bad.data(), 1, &nbad);
-    if (nbad)
-      throw Error(ErrorCode::Internal,
-                  "digital sketch: " + std::to_string(nbad) + " edge(s) in three triangles");
-    s.twin.resize(std::size_t(nh));
-    ex.to_host(W, nh, s.twin.data());
-  }
+  // Adjacency (mesh/half_edges.hpp). An edge in three triangles or more would be no
+  // triangulation's: refused as an internal error.
+  H.twin = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
+  const std::int64_t nbad = mesh::pair_half_edges(ex, T, nt, H.twin.data());
+  if (nbad)
+    throw Error(ErrorCode::Internal,
+                "digital sketch: " + std::to_string(nbad) + " edge(s) in three triangles");
   phase("adjacency");
+  // The truncated diagram's dual made a triangulation of its vertices' convex hull: the pockets'
+  // triangles appended, their half-edges paired with the boundary's.
+  const std::vector<digital::RimEdge> rim =
+      rim_records(ex, T, H.twin.data(), nt, {nullptr, pixel, G.w});
+  const digital::HullFill fill = digital::fill_to_hull(rim, nt);
+  const std::int64_t added = std::int64_t(fill.triangles.size() / 3);
+  s.hull_triangles = added;
+  if (added) {
+    const std::int64_t all = nt + added;
+    auto t2 = ex.template alloc<std::int32_t>(std::size_t(3 * all));
+    auto w2 = ex.template alloc<std::int32_t>(std::size_t(3 * all));
+    ex.copy(H.tri.data(), 3 * nt, t2.data());
+    ex.copy(H.twin.data(), 3 * nt, w2.data());
+    ex.from_host(fill.triangles.data(), 3 * added, t2.data() + 3 * nt);
+    ex.from_host(fill.twin.data(), 3 * added, w2.data() + 3 * nt);
+    std::int32_t* W = w2.data();
+    const std::int64_t old = 3 * nt;
+    ex.for_each_index(
+        3 * added, GG_LAMBDA(std::int64_t j) {
+          const std::int32_t o = W[old + j];
+          if (o >= 0 && o < old) W[o] = std::int32_t(old + j);
+        });
+    H.tri = std::move(t2), H.twin = std::move(w2), H.nt = all;
+  }
+  phase("hull_fill");
+  return H;
+}
+
+// The held arrays brought to the host (the tests' view, sketch.hpp).
+inline void download_sketch(Exec& ex, const HeldSketch& H, std::int64_t n, bool keep_colour,
+                            digital::Sketch& s) {
+  s.pixel.resize(std::size_t(n));
+  ex.to_host(H.pixel.data(), n, s.pixel.data());
+  s.missing.resize(std::size_t(H.nmiss));
+  ex.to_host(H.missing.data(), H.nmiss, s.missing.data());
+  s.site_of.resize(std::size_t(n));
+  ex.to_host(H.site_of.data(), n, s.site_of.data());
+  if (keep_colour) {
+    s.colour.resize(std::size_t(s.width * s.height));
+    ex.to_host(H.colour.data(), s.width * s.height, s.colour.data());
+  }
+  s.triangles.resize(std::size_t(3 * H.nt));
+  ex.to_host(H.tri.data(), 3 * H.nt, s.triangles.data());
+  s.twin.resize(std::size_t(3 * H.nt));
+  ex.to_host(H.twin.data(), 3 * H.nt, s.twin.data());
+}
+
+inline void digital_sketch_dual_impl(const double* xy, std::int64_t n, const RunOptions& run,
+                                     bool keep_colour, digital::Sketch& s) {
+  Exec ex(run);
+  auto pts = ex.template alloc<double>(std::size_t(2 * n));
+  ex.from_host(xy, 2 * n, pts.data());
+  const HeldSketch H = sketch_on(ex, pts.data(), n, s);
+  download_sketch(ex, H, n, keep_colour, s);
 }
