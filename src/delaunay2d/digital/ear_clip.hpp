@@ -11,24 +11,26 @@ namespace gpugeom::del2d::digital {
 
 // p[0..m): a simple counter-clockwise polygon (collinear runs allowed), clipped in place;
 // orient(a, b, c): the sign of the orientation of its vertices a, b, c; emit(a, b, c): each
-// counter-clockwise triangle cut. An ear is a strictly convex corner with no other vertex inside
-// it or on its edges. Returns how many vertices are left when no ear remains: fewer than 3 where
-// the polygon was triangulated, else collinear ones (no area) or a polygon that was not simple.
-// far(a, b, c, v): true only where v is certainly outside the closed triangle (a, b, c) (a cheap
-// filter before the orientations, e.g. bounding boxes; the overload below has none).
-template <class Orient, class Emit, class Far>
+// counter-clockwise triangle cut (b leaves the polygon). An ear is a strictly convex corner with
+// no other vertex inside it or on its edges. Returns how many vertices are left when no ear
+// remains: fewer than 3 where the polygon was triangulated, else collinear ones (no area) or a
+// polygon that was not simple. near(a, b, c, p, m, visit): calls visit(v) for every vertex of
+// the polygon p[0..m) that may lie in the closed triangle (a, b, c) (and may call it for
+// others), until visit returns false; the overload without it visits them all.
+template <class Orient, class Emit, class Near>
 GG_HD std::int64_t clip_ears(std::int32_t* p, std::int64_t m, const Orient& orient,
-                             const Emit& emit, const Far& far) {
+                             const Emit& emit, const Near& near) {
   std::int64_t i = 0, tried = 0;
   while (m >= 3 && tried < m) {
     i %= m;
     const std::int32_t a = p[(i + m - 1) % m], b = p[i], c = p[(i + 1) % m];
     bool ear = orient(a, b, c) > 0;
-    for (std::int64_t j = 0; j < m && ear; ++j) {
-      const std::int32_t v = p[j];
-      if (v == a || v == b || v == c || far(a, b, c, v)) continue;
-      ear = !(orient(a, b, v) >= 0 && orient(b, c, v) >= 0 && orient(c, a, v) >= 0);
-    }
+    if (ear)
+      near(a, b, c, p, m, [&](std::int32_t v) {
+        if (v != a && v != b && v != c)
+          ear = !(orient(a, b, v) >= 0 && orient(b, c, v) >= 0 && orient(c, a, v) >= 0);
+        return ear;
+      });
     if (ear) {
       emit(a, b, c);
       for (std::int64_t j = i; j + 1 < m; ++j) p[j] = p[j + 1];
@@ -44,7 +46,11 @@ template <class Orient, class Emit>
 GG_HD std::int64_t clip_ears(std::int32_t* p, std::int64_t m, const Orient& orient,
                              const Emit& emit) {
   return clip_ears(p, m, orient, emit,
-                   [](std::int32_t, std::int32_t, std::int32_t, std::int32_t) { return false; });
+                   [](std::int32_t, std::int32_t, std::int32_t, const std::int32_t* q,
+                      std::int64_t k, const auto& visit) {
+                     for (std::int64_t j = 0; j < k; ++j)
+                       if (!visit(q[j])) return;
+                   });
 }
 
 }  // namespace gpugeom::del2d::digital

@@ -2,6 +2,7 @@
 #include "delaunay2d/digital/hull_fill.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -90,15 +91,47 @@ HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first) {
     // the hull edge; walked the other way round it is counter-clockwise.
     std::vector<Id> pocket;
     for (std::size_t i = to; i + 1 > from; --i) pocket.push_back(cycle[i % cycle.size()]);
+    // Its vertices in buckets of a coarse grid (about one a bucket), so that an ear's test reads
+    // the few near it: a pocket along a side of the grid has thousands of vertices.
+    std::int64_t x0 = x(pocket[0]), x1 = x0, y0 = y(pocket[0]), y1 = y0;
+    for (Id v : pocket)
+      x0 = std::min(x0, x(v)), x1 = std::max(x1, x(v)), y0 = std::min(y0, y(v)),
+      y1 = std::max(y1, y(v));
+    const std::int64_t side = std::max<std::int64_t>(
+        1, std::int64_t(std::sqrt(double(x1 - x0 + 1) * double(y1 - y0 + 1) /
+                                  double(pocket.size()))));
+    const std::int64_t bw = (x1 - x0) / side + 1, bh = (y1 - y0) / side + 1;
+    std::vector<std::int32_t> start_of(static_cast<std::size_t>(bw * bh + 1), 0), in_bucket;
+    auto bucket = [&](Id v) { return ((y(v) - y0) / side) * bw + (x(v) - x0) / side; };
+    for (Id v : pocket) ++start_of[std::size_t(bucket(v) + 1)];
+    for (std::size_t j = 1; j < start_of.size(); ++j) start_of[j] += start_of[j - 1];
+    in_bucket.resize(pocket.size());
+    {
+      std::vector<std::int32_t> fill(start_of.begin(), start_of.end() - 1);
+      for (Id v : pocket) in_bucket[std::size_t(fill[std::size_t(bucket(v))]++)] = v;
+    }
+    std::unordered_map<Id, char> gone;  // clipped (a hull vertex of two pockets stays in both)
     clip_ears(
         pocket.data(), std::int64_t(pocket.size()), orient,
         [&](Id a, Id b, Id c) {
+          gone[b] = 1;
           out.triangles.insert(out.triangles.end(), {name[std::size_t(a)], name[std::size_t(b)],
                                                      name[std::size_t(c)]});
         },
-        [&](Id a, Id b, Id c, Id v) {  // outside the triangle's bounding box
-          return x(v) < std::min({x(a), x(b), x(c)}) || x(v) > std::max({x(a), x(b), x(c)}) ||
-                 y(v) < std::min({y(a), y(b), y(c)}) || y(v) > std::max({y(a), y(b), y(c)});
+        [&](Id a, Id b, Id c, const Id*, std::int64_t, const auto& visit) {
+          const std::int64_t bx0 = (std::min({x(a), x(b), x(c)}) - x0) / side,
+                             bx1 = (std::max({x(a), x(b), x(c)}) - x0) / side,
+                             by0 = (std::min({y(a), y(b), y(c)}) - y0) / side,
+                             by1 = (std::max({y(a), y(b), y(c)}) - y0) / side;
+          for (std::int64_t by = by0; by <= by1; ++by)
+            for (std::int64_t bx = bx0; bx <= bx1; ++bx) {
+              const std::int64_t q = by * bw + bx;
+              for (std::int32_t j = start_of[std::size_t(q)]; j < start_of[std::size_t(q + 1)];
+                   ++j) {
+                const Id v = in_bucket[std::size_t(j)];
+                if (!gone.count(v) && !visit(v)) return;
+              }
+            }
         });
   }
   // Pair the new half-edges with the rim's (reverse direction) and with each other.
