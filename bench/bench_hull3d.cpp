@@ -4,6 +4,8 @@
 // thesis' scalability test: n fixed, k points on a sphere and the rest strictly inside
 // ("scal:K" as a distribution). --save DIR writes every input as .npy for the Qhull anchor
 // (bench/anchor_hull3d.py).
+#include <set>
+#include <array>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -67,8 +69,21 @@ double cgal_ms(const std::vector<Point3>& p, std::int64_t& vertices) {
 }
 }  // namespace
 
+// The facets as a set, each turned to start at its least index (methods differ in slot order).
+std::set<std::array<std::int32_t, 3>> facets(const ConvexHull3d& h) {
+  std::set<std::array<std::int32_t, 3>> s;
+  for (std::size_t f = 0; f < h.num_facets(); ++f) {
+    std::array<std::int32_t, 3> t{h.triangles[3 * f], h.triangles[3 * f + 1],
+                                  h.triangles[3 * f + 2]};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    s.insert(t);
+  }
+  return s;
+}
+
 int main(int argc, char** argv) {
-  std::string dists = "ball", sizes = "1e5,1e6", backends = "all", csv, save;
+  std::string dists = "ball", sizes = "1e5,1e6", backends = "all", csv, save,
+              methods = "incremental";
   int reps = 3;
   std::int64_t cgal_max = 0;
   bool check = false, presort = false;
@@ -91,16 +106,28 @@ int main(int argc, char** argv) {
       csv = next();
     else if (a == "--save")
       save = next();
+    else if (a == "--methods")  // incremental,digital: a row each (digital: same facets?)
+      methods = next();
     else if (a == "--presort" && next() == "hilbert")
       presort = true;
     else {
       std::cout << "usage: gpugeom_bench_hull3d [--dists ball,uniform,thin_box,thin_sphere,sphere,"
                    "scal:10000] [--sizes 1e6,1e7] [--backend cpu|cuda|all] [--reps 3] [--cgal "
-                   "MAX_N] [--check] [--csv FILE] [--save DIR] [--presort hilbert]\n";
+                   "MAX_N] [--check] [--csv FILE] [--save DIR] [--presort hilbert] [--methods "
+                   "incremental,digital]\n";
       return a == "--help" ? 0 : 2;
     }
   }
-  const std::vector<Backend> bks = bench::backends(backends);
+  struct Config {
+    Backend b;
+    Method m;
+  };
+  std::vector<Config> cfgs;
+  for (Backend b : bench::backends(backends)) {
+    std::stringstream ms(methods);
+    for (std::string m; std::getline(ms, m, ',');)
+      if (!m.empty()) cfgs.push_back({b, parse_method(m)});
+  }
   const std::string gpu = query_device().available ? query_device().name : "none";
   std::printf("GPU: %s\n", gpu.c_str());
   std::ofstream f = bench::open_bench_csv(csv);
@@ -144,9 +171,11 @@ int main(int argc, char** argv) {
         double dev = -1;
       };
       std::vector<Timed> timed;
-      for (Backend b : bks) {
+      for (const Config& cfg : cfgs) {
+        const Backend b = cfg.b;
         Hull3dOptions o;
         o.backend = b;
+        o.method = cfg.m;
         Timed x;
         x.r = convex_hull3d(pts, o);  // warm-up
         for (int k = 0; k < reps; ++k) {
@@ -156,14 +185,17 @@ int main(int argc, char** argv) {
         }
         std::sort(x.t.begin(), x.t.end());
         if (b == Backend::Cuda)
-          x.dev = bench::device_resident_ms(
-              pts, reps, [](const double* d, std::int64_t n) { convex_hull3d_device(d, n); });
+          x.dev = bench::device_resident_ms(pts, reps, [o](const double* d, std::int64_t n) {
+            Hull3dOptions od = o;
+            od.into = {};
+            convex_hull3d_device(d, n, od);
+          });
         timed.push_back(std::move(x));
       }
       std::int64_t cgal_v = -1;
       const double cg = n <= cgal_max ? cgal_ms(pts, cgal_v) : -1;
-      for (std::size_t bi = 0; bi < bks.size(); ++bi) {
-        const Backend b = bks[bi];
+      for (std::size_t bi = 0; bi < cfgs.size(); ++bi) {
+        const Backend b = cfgs[bi].b;
         ConvexHull3d& r = timed[bi].r;
         const std::vector<double>& t = timed[bi].t;
         const double med = t[t.size() / 2];
@@ -171,6 +203,11 @@ int main(int argc, char** argv) {
                                                  ? "vertices as CGAL"
                                                  : "VERTEX COUNT DIFFERS FROM CGAL")
                                           : "";
+        if (cfgs[bi].m == Method::Digital)
+          for (std::size_t bj = 0; bj < cfgs.size(); ++bj)
+            if (cfgs[bj].b == b && cfgs[bj].m == Method::Incremental)
+              verdict += facets(r) == facets(timed[bj].r) ? " same facets as incremental"
+                                                          : " FACETS DIFFER FROM INCREMENTAL";
         if (check) {
           const auto rep = verify::check_hull3d(&pts.data()->x, n, r.triangles.data(),
                                                 std::int64_t(r.num_facets()), 2'000'000'000LL);
@@ -178,8 +215,9 @@ int main(int argc, char** argv) {
         }
         const double dev = timed[bi].dev;
         std::printf(
-            "%-18s %10lld %-5s %9.1f %9.1f %8.1f %9.1f %7.1f %9zu %8lld %9.1f %s\n", name.c_str(),
-            (long long)n, backend_name(b), med, dev,
+            "%-18s %10lld %-5s %9.1f %9.1f %8.1f %9.1f %7.1f %9zu %8lld %9.1f %s\n",
+            (cfgs[bi].m == Method::Digital ? name + " digital" : name).c_str(), (long long)n,
+            backend_name(b), med, dev,
             bench::phase_ms(r.stats, "upload") + bench::phase_ms(r.stats, "copy_back"),
             bench::phase_ms(r.stats, "construct"), bench::phase_ms(r.stats, "flip"),
             r.vertices.size(),

@@ -1,4 +1,5 @@
-// Exact 3D convex hull (thesis 5.2: star-shaped construction, then Flip-Flop).
+// Exact 3D convex hull (thesis 5.2: star-shaped construction, then Flip-Flop; or thesis 4.4's
+// digital method, Hull3dOptions::method).
 //
 // Exactness: every decision is an exact predicate with simulation of simplicity, and the
 // vertices returned are exactly the extreme points: a point inside a hull face or on a hull
@@ -31,6 +32,15 @@ struct Hull3dBuffers {
 
 struct Hull3dOptions : RunOptions {
   Hull3dBuffers into;  // optional
+  // The method (common.hpp): the result does not depend on it. Method::Digital is the thesis'
+  // DigiHull3D (4.4): the points with a cell on the six faces of a grid around them (a slice of
+  // their digital Voronoi diagram on each face) give a first hull; a digital depth test against
+  // it (six depth images, one pixel of tolerance, Lemma 4.10) keeps every point that may lie
+  // outside or on it; the hull of those is the hull. Both entries take it.
+  Method method = Method::Incremental;
+  // Method::Digital: the faces' grid side (16..8192; 0 chooses from the point count, at most
+  // 1024); the depth images have half as many pixels a side.
+  std::int64_t grid = 0;
 };
 
 // The most facets the hull of n points has (2n - 4, for n >= 4): sizes `into` ahead.
@@ -53,7 +63,10 @@ struct ConvexHull3d {
   // "copy_back" (CUDA), "planes"; counters "duplicates", "insert_rounds", "flip_rounds",
   // "flips22", "flips31", "labelled_nonextreme", "exact_predicates", "first_pass_vertices",
   // "nonextreme_vertices_dropped", "passes" (2 when the extreme points needed a hull of their
-  // own).
+  // own). Method::Digital adds phases "digital_slices", "digital_sketch_hull",
+  // "digital_depth_test" and counters "digital_grid", "digital_render", "sketch_points",
+  // "sketch_facets", "depth_kept", "hull_input" (the points the last hull was computed from),
+  // "digital_fallback" (1 where the sketch had no hull: the incremental method ran).
   Stats stats;
   // Facets and extreme points written (also where they went into the caller's arrays).
   std::int64_t facet_count = 0, vertex_count = 0;

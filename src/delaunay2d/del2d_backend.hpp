@@ -39,9 +39,9 @@ struct DeviceVoronoiOutput {
 // counter-clockwise triangles of input indices (3 each, host memory) that cover the convex hull
 // of their vertices, each directed edge once; the other points are inserted into it and the
 // whole is flipped until Delaunay by the same batches and rounds. twin (host, 3 nstart, or
-// null: found by sorting the edges): per half-edge 3t + k (vertex k to k + 1) its reverse, -1 on the
-// hull. hint (host, n entries, or null): for each point not in the start, a start vertex near it
-// where its walk begins (-1: anywhere). The result equals triangulate's. Refuses counts no
+// null: found by sorting the edges): per half-edge 3t + k (vertex k to k + 1) its reverse, -1 on
+// the hull. hint (host, n entries, or null): for each point not in the start, a start vertex near
+// it where its walk begins (-1: anywhere). The result equals triangulate's. Refuses counts no
 // triangulation can be made of (Error, as the public entries say).
 // triangulate_digital: Method::Digital from host points (digital/digital.hpp says what it
 // reports); the points go to the executor once and every phase's arrays stay there.

@@ -75,12 +75,25 @@ void redo_planes(const double* p, const std::int32_t* t, std::int64_t nf, double
 }
 }  // namespace hull3d
 
+namespace {
+void check_method(const Hull3dOptions& opt) {
+  if (opt.grid != 0 && (opt.grid < 16 || opt.grid > 8192))
+    throw Error(ErrorCode::InvalidArgument,
+                "grid: the digital hull's grid side must be 16..8192 (or 0: chosen from the "
+                "point count), got " +
+                    std::to_string(opt.grid));
+  if (opt.grid != 0 && opt.method != Method::Digital)
+    throw Error(ErrorCode::InvalidArgument, "grid: only Method::Digital uses a grid");
+}
+}  // namespace
+
 std::int64_t convex_hull3d_max_facets(std::int64_t n) {
   return n < 4 ? 0 : 2 * n - 4;
 }
 
 ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOptions& opt) {
   check_count(n);
+  check_method(opt);
   ConvexHull3d r;
   const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
@@ -102,6 +115,7 @@ ConvexHull3d convex_hull3d(const std::vector<Point3>& pts, const Hull3dOptions& 
 DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
                                   const Hull3dOptions& opt) {
   check_count(n);
+  check_method(opt);
   DeviceHull3d r;
   const Backend b = device_entry_backend(opt.backend, opt.device, "convex_hull3d_device");
   r.backend = r.stats.backend = b;

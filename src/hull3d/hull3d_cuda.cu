@@ -1,5 +1,6 @@
 // 3D convex hull compiled for the CUDA executor.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdint>
 #include <type_traits>
@@ -35,6 +36,7 @@ using Exec = CudaExec;
 #include "hull3d/impl/construct.inl"
 #include "hull3d/impl/flipflop.inl"
 #include "hull3d/impl/hull.inl"
+#include "hull3d/digital/impl/digital.inl"
 void compute(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
              Stats& stats) {
   compute_impl(xyz, n, opt, out, stats);

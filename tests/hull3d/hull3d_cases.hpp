@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <set>
@@ -213,6 +214,40 @@ inline std::set<std::array<std::int32_t, 3>> facet_set(const std::vector<std::in
     s.insert(a);
   }
   return s;
+}
+
+// The facets as a set of triangles, each turned to start at its least index (the methods
+// build the same hull in different slot orders).
+inline std::set<std::array<std::int32_t, 3>> facet_set(const gpugeom::ConvexHull3d& h) {
+  std::set<std::array<std::int32_t, 3>> s;
+  for (std::size_t f = 0; f < h.num_facets(); ++f) {
+    std::array<std::int32_t, 3> t{h.triangles[3 * f], h.triangles[3 * f + 1],
+                                  h.triangles[3 * f + 2]};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    s.insert(t);
+  }
+  return s;
+}
+
+// The digital method's hull is valid and is the incremental method's, facet for facet, on the
+// same executor. Returns the digital result.
+inline gpugeom::ConvexHull3d expect_digital_same(const Case& c, gpugeom::Hull3dOptions o,
+                                                 std::int64_t grid) {
+  SCOPED_TRACE(c.name + " grid " + std::to_string(grid));
+  o.method = gpugeom::Method::Incremental;
+  o.grid = 0;
+  const auto inc = gpugeom::convex_hull3d(c.pts, o);
+  o.method = gpugeom::Method::Digital;
+  o.grid = grid;
+  const auto dig = gpugeom::convex_hull3d(c.pts, o);
+  expect_valid(c.pts, dig);
+  EXPECT_EQ(facet_set(dig), facet_set(inc));
+  EXPECT_EQ(dig.vertices, inc.vertices);
+  // Every point the last hull saw: the sketch's and those the depth test kept.
+  const auto& k = dig.stats.counters;
+  if (!k.at("digital_fallback"))
+    EXPECT_EQ(k.at("hull_input"), k.at("sketch_points") + k.at("depth_kept"));
+  return dig;
 }
 
 }  // namespace gg_hull3d

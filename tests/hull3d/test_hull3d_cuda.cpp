@@ -165,3 +165,37 @@ TEST(CudaHull3d, DeviceEntryIntoCallerArrays) {
   cudaFree(v);
   cudaFree(eq);
 }
+
+// The digital method (issue 20): on the GPU the same facets and vertices as the incremental
+// method, and the same arrays and counts as the digital method on the CPU executor (its grid
+// minima, jump flooding and depth images do not depend on timing).
+TEST(CudaHull3d, DigitalSameAsIncrementalAndAsCpu) {
+  std::vector<gg_hull3d::Case> cases = gg_hull3d::degenerate_cases();
+  for (auto& c : gg_hull3d::distribution_cases(sizes({100, 5000, 200000}), 23))
+    cases.push_back(std::move(c));
+  for (const auto& c : cases)
+    for (std::int64_t grid : {0, 16}) {
+      Hull3dOptions o;
+      o.backend = Backend::Cuda;
+      const auto gpu = gg_hull3d::expect_digital_same(c, o, grid);
+      o.backend = Backend::Cpu;
+      o.method = Method::Digital;
+      o.grid = grid;
+      const auto cpu = convex_hull3d(c.pts, o);
+      EXPECT_EQ(gpu.triangles, cpu.triangles) << c.name;
+      EXPECT_EQ(gpu.vertices, cpu.vertices) << c.name;
+      EXPECT_EQ(gpu.stats.counters.at("hull_input"), cpu.stats.counters.at("hull_input"));
+    }
+}
+
+TEST(CudaHull3d, DigitalSameAsIncrementalLarge) {
+  for (const char* d : {"ball", "sphere", "thin_sphere", "thin_box", "uniform"})
+    for (std::int64_t n : sizes({2000000})) {
+      const gg_hull3d::Case c{std::string(d) + "/" + std::to_string(n), generate3d(d, n, 9)};
+      Hull3dOptions o;
+      o.backend = Backend::Cuda;
+      const auto h = gg_hull3d::expect_digital_same(c, o, 0);
+      std::cout << c.name << ": hull of " << h.stats.counters.at("hull_input") << " points ("
+                << h.stats.counters.at("sketch_points") << " from the sketch)\n";
+    }
+}

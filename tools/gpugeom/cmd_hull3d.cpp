@@ -12,7 +12,8 @@ namespace gpugeom::cli {
 
 namespace {
 const char* kHelp =
-    "usage: gpugeom hull3d POINTS -o MESH [--check] [--compress] [--ascii]\n\n"
+    "usage: gpugeom hull3d POINTS -o MESH [--check] [--compress] [--ascii]\n"
+    "                      [--method incremental|digital] [--grid SIDE]\n\n"
     "Exact convex hull of the 3D points in POINTS (.xyz .txt .csv .ply .off .obj .node .npy).\n"
     "Only extreme points become vertices: points inside a face or on an edge do not, and of\n"
     "several copies of a point one does.\n"
@@ -21,13 +22,30 @@ const char* kHelp =
     "              indexing the input points, like SciPy's ConvexHull.simplices\n"
     "  --compress  .vtu: zlib-compressed blocks\n"
     "  --ascii     .vtu and .ply as text instead of binary\n"
-    "  --check     verify the result with the independent exact checker\n";
+    "  --check     verify the result with the independent exact checker\n"
+    "  --method M  incremental (default): star-shaped construction and Flip-Flop; digital:\n"
+    "              the thesis' DigiHull3D (a slice of the digital Voronoi diagram on each face\n"
+    "              of a grid gives a first hull, a digital depth test keeps the points that may\n"
+    "              lie outside it, the hull of those is the hull). The same result; --verbose\n"
+    "              shows each method's phases and counters\n"
+    "  --grid SIDE digital: the faces' grid side (16..8192; default from the point count, at\n"
+    "              most 1024)\n";
 }  // namespace
 
 int cmd_hull3d(const Global& g, Args& a) {
   if (a.help()) {
     std::cout << kHelp;
     return kOk;
+  }
+  std::string method_s, grid_s;
+  a.value("--method", method_s);
+  a.value("--grid", grid_s);
+  Hull3dOptions opt;
+  opt.backend = g.backend;
+  if (!method_s.empty()) opt.method = parse_method(method_s);
+  if (!grid_s.empty()) {
+    if (opt.method != Method::Digital) throw UsageError("--grid needs --method digital");
+    opt.grid = to_count(grid_s, "--grid");
   }
   PointsToMesh job = points_to_mesh(g, a, "hull3d",
                                     {".ply", ".off", ".obj", ".vtu", ".vtk", ".npy"}, "for a hull");
@@ -36,8 +54,6 @@ int cmd_hull3d(const Global& g, Args& a) {
   const std::string& ext = job.ext;
   const bool check = job.check;
   const std::int64_t n = std::int64_t(p.size());
-  Hull3dOptions opt;
-  opt.backend = g.backend;
   ConvexHull3d h;
   {
     Timer t(g, "hull");
@@ -45,7 +61,8 @@ int cmd_hull3d(const Global& g, Args& a) {
   }
   if (!g.quiet) {
     std::cout << n << " points -> " << h.vertices.size() << " extreme points, " << h.num_facets()
-              << " facets on " << backend_name(h.stats.backend) << "\n";
+              << " facets on " << backend_name(h.stats.backend)
+              << (opt.method == Method::Digital ? " (digital method)" : "") << "\n";
     if (g.verbose) print_stats(h.stats);
   }
   int status = kOk;

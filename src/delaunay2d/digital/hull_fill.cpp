@@ -98,8 +98,8 @@ HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first) {
       x0 = std::min(x0, x(v)), x1 = std::max(x1, x(v)), y0 = std::min(y0, y(v)),
       y1 = std::max(y1, y(v));
     const std::int64_t side = std::max<std::int64_t>(
-        1, std::int64_t(std::sqrt(double(x1 - x0 + 1) * double(y1 - y0 + 1) /
-                                  double(pocket.size()))));
+        1,
+        std::int64_t(std::sqrt(double(x1 - x0 + 1) * double(y1 - y0 + 1) / double(pocket.size()))));
     const std::int64_t bw = (x1 - x0) / side + 1, bh = (y1 - y0) / side + 1;
     std::vector<std::int32_t> start_of(static_cast<std::size_t>(bw * bh + 1), 0), in_bucket;
     auto bucket = [&](Id v) { return ((y(v) - y0) / side) * bw + (x(v) - x0) / side; };
@@ -115,8 +115,8 @@ HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first) {
         pocket.data(), std::int64_t(pocket.size()), orient,
         [&](Id a, Id b, Id c) {
           gone[b] = 1;
-          out.triangles.insert(out.triangles.end(), {name[std::size_t(a)], name[std::size_t(b)],
-                                                     name[std::size_t(c)]});
+          out.triangles.insert(out.triangles.end(),
+                               {name[std::size_t(a)], name[std::size_t(b)], name[std::size_t(c)]});
         },
         [&](Id a, Id b, Id c, const Id*, std::int64_t, const auto& visit) {
           const std::int64_t bx0 = (std::min({x(a), x(b), x(c)}) - x0) / side,

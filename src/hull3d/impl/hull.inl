@@ -242,7 +242,12 @@ inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Stats& 
 // makes the construction's point reads local (the sphere 10^7 on the H100: 16 % faster); the
 // perturbation then follows curve position, as in delaunay2d, so the output does not depend on
 // the order of the input. A point with copies is represented by its first index.
-inline Result hull_core(Exec& ex, const double* in, std::int64_t n, Stats& st) {
+inline Result digital_distinct_hull(Exec& ex, const double* pts, std::int64_t m,
+                                    const mesh::Bounds<3>& box, std::int64_t grid, Stats& st,
+                                    std::int64_t n_input);  // (digital/impl/digital.inl)
+
+inline Result hull_core(Exec& ex, const double* in, std::int64_t n, const Hull3dOptions& opt,
+                        Stats& st) {
   auto t0 = Clock::now();
   const mesh::Bounds<3> box = mesh::bounds<3>(ex, in, n);
   if (box.bad) throw_bad(box.bad);
@@ -250,7 +255,9 @@ inline Result hull_core(Exec& ex, const double* in, std::int64_t n, Stats& st) {
   st.counters["duplicates"] = S.duplicates;
   ex.sync();
   st.phase_ms.emplace_back("sort", ms_since(t0));
-  Result R = distinct_hull(ex, S.pts.data(), S.m, st, n);
+  Result R = opt.method == Method::Digital
+                 ? digital_distinct_hull(ex, S.pts.data(), S.m, box, opt.grid, st, n)
+                 : distinct_hull(ex, S.pts.data(), S.m, st, n);
   // Back to input indices: the facets' corners, and the vertices in increasing input order.
   t0 = Clock::now();
   const std::int32_t* orig = S.orig.data();
@@ -363,7 +370,7 @@ inline void compute_impl(const double* xyz, std::int64_t n, const Hull3dOptions&
     ex.sync();
     st.phase_ms.emplace_back("upload", ms_since(t0));
   }
-  Result R = hull_core(ex, p, n, st);
+  Result R = hull_core(ex, p, n, opt, st);
   check_into(opt.into, R);
   auto t0 = Clock::now();
   const std::int64_t nf = R.facets.count;
@@ -388,7 +395,7 @@ inline void compute_device_impl(const double* xyz, std::int64_t n, const Hull3dO
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint - 24, "a convex hull",
                                            "points");  // (the points are there already)
-  Result R = hull_core(ex, xyz, n, st);
+  Result R = hull_core(ex, xyz, n, opt, st);
   check_into(opt.into, R);
   const auto t0 = Clock::now();
   const std::int64_t nf = R.facets.count;

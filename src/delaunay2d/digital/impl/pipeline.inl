@@ -4,8 +4,8 @@
 // from one another; only counts, the sketch's boundary (the hull fill) and the start's boundary
 // (its check) come to the host until the result does.
 
-inline void triangulate_digital_impl(const double* xy, std::int64_t n,
-                                     const Delaunay2dOptions& opt, Output& out, Stats& st) {
+inline void triangulate_digital_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                                     Output& out, Stats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
@@ -68,7 +68,7 @@ inline void triangulate_digital_impl(const double* xy, std::int64_t n,
   }  // (the grid's and the sketch's memory back before the Triangulator's)
   st.counters["digital_fallback"] = 0;
   pts = {};
-  auto f = run_from_start(ex, P, n, S.tri.data(), S.nt, S.twin.data(), S.hint.data(),
-                          opt.profile, st);
+  auto f =
+      run_from_start(ex, P, n, S.tri.data(), S.nt, S.twin.data(), S.hint.data(), opt.profile, st);
   deliver(f);
 }

@@ -185,13 +185,12 @@ inline HeldSketch sketch_on(Exec& ex, const double* P, std::int64_t n, digital::
       const std::int64_t nc = ex.compact_indices(
           np, GG_LAMBDA(std::int64_t p) { return end[p] != pixel[colour[p]]; }, cand_d.data());
       if (nc > 0) {
-        std::vector<std::int32_t> hp(static_cast<std::size_t>(n)),
-            hc(static_cast<std::size_t>(np)), cand(static_cast<std::size_t>(nc));
+        std::vector<std::int32_t> hp(static_cast<std::size_t>(n)), hc(static_cast<std::size_t>(np)),
+            cand(static_cast<std::size_t>(nc));
         ex.to_host(pixel, n, hp.data());
         ex.to_host(colour, np, hc.data());
         ex.to_host(cand_d.data(), nc, cand.data());
-        const std::vector<std::int32_t> changed =
-            digital::recolour_debris(G.w, G.h, hp, hc, cand);
+        const std::vector<std::int32_t> changed = digital::recolour_debris(G.w, G.h, hp, hc, cand);
         const std::int64_t nd = std::int64_t(changed.size() / 2);
         s.debris = nd;
         if (nd) {
