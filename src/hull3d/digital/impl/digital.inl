@@ -70,6 +70,12 @@ constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
 // One pixel (the drawn depths carry their own rounding margin).
 constexpr double kTau = 1.0;
 
+// Every product below is rounded on its own (pred::mul_rn and friends: no fused multiply-add),
+// so that both executors choose the same sketch points and keep the same points.
+using pred::add_rn;
+using pred::mul_rn;
+using pred::sub_rn;
+
 // The frame: grid coordinates G = (p - o) / h, the points in [0.1 g, 0.9 g].
 struct Frame {
   double o[3];
@@ -156,7 +162,7 @@ inline bool digital_candidates(Exec& ex, const double* pts, std::int64_t m,
                   if (s < 0) continue;
                   const double* p = pts + 3 * std::int64_t(s);
                   const double eu = F.at(p, u) - cx, ev = F.at(p, v) - cy, ez = depth(p);
-                  const double d2 = eu * eu + ev * ev + ez * ez;
+                  const double d2 = add_rn(add_rn(mul_rn(eu, eu), mul_rn(ev, ev)), mul_rn(ez, ez));
                   if (best < 0 || d2 < bd || (d2 == bd && s < best)) best = s, bd = d2;
                 }
               to[q] = best;
@@ -234,10 +240,10 @@ inline bool digital_candidates(Exec& ex, const double* pts, std::int64_t m,
       double e1[3], e2[3];
       for (int d = 0; d < 3; ++d)
         e1[d] = X.at(P1, d) - X.at(P0, d), e2[d] = X.at(P2, d) - X.at(P0, d);
-      const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                           e1[0] * e2[1] - e1[1] * e2[0]};
-      const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if (!(-sg * n[a] > 0) || !(len > 0)) return false;
+      const double n[3] = {sub_rn(mul_rn(e1[1], e2[2]), mul_rn(e1[2], e2[1])),
+                           sub_rn(mul_rn(e1[2], e2[0]), mul_rn(e1[0], e2[2])),
+                           sub_rn(mul_rn(e1[0], e2[1]), mul_rn(e1[1], e2[0]))};
+      if (!(-sg * n[a] > 0)) return false;  // (facing away, or seen edge on)
       double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
       const double* Ps[3] = {P0, P1, P2};
       for (const double* P : Ps) {
@@ -291,13 +297,15 @@ inline bool digital_candidates(Exec& ex, const double* pts, std::int64_t m,
           // The plane: X_a = pa0 + alpha (U - pu0) + beta (V - pv0).
           const double du1 = pu[1] - pu[0], dv1 = pv[1] - pv[0], da1 = pa[1] - pa[0];
           const double du2 = pu[2] - pu[0], dv2 = pv[2] - pv[0], da2 = pa[2] - pa[0];
-          const double det = du1 * dv2 - du2 * dv1;
+          const double det = sub_rn(mul_rn(du1, dv2), mul_rn(du2, dv1));
           if (det == 0) return;
-          const double alpha = (da1 * dv2 - da2 * dv1) / det, beta = (du1 * da2 - du2 * da1) / det;
+          const double alpha = sub_rn(mul_rn(da1, dv2), mul_rn(da2, dv1)) / det,
+                       beta = sub_rn(mul_rn(du1, da2), mul_rn(du2, da1)) / det;
           // The drawn depth raised by a bound on its rounding and on the coverage test's (a
           // pixel centre a rounding outside the facet): depths may only err towards the back,
           // which keeps more points, never fewer.
-          const double margin = 1e-9 * double(R) * (1 + fabs(alpha) + fabs(beta));
+          const double margin =
+              mul_rn(1e-9 * double(R), add_rn(add_rn(1.0, fabs(alpha)), fabs(beta)));
           const std::int64_t tx0 = b.x0 + (k % b.tx) * kTile, ty0 = b.y0 + (k / b.tx) * kTile;
           std::uint64_t* im = img + dir * npix;
           for (std::int64_t y = ty0; y < ty0 + kTile && y < R; ++y)
@@ -307,12 +315,14 @@ inline bool digital_candidates(Exec& ex, const double* pts, std::int64_t m,
               double e[3];
               for (int c = 0; c < 3; ++c) {
                 const int c2 = (c + 1) % 3;
-                e[c] = (pu[c2] - pu[c]) * (cv - pv[c]) - (pv[c2] - pv[c]) * (cu - pu[c]);
+                e[c] =
+                    sub_rn(mul_rn(pu[c2] - pu[c], cv - pv[c]), mul_rn(pv[c2] - pv[c], cu - pu[c]));
               }
               const bool in =
                   (e[0] >= 0 && e[1] >= 0 && e[2] >= 0) || (e[0] <= 0 && e[1] <= 0 && e[2] <= 0);
               if (!in) continue;
-              const double z = sg * (pa[0] + alpha * (cu - pu[0]) + beta * (cv - pv[0]));
+              const double z =
+                  sg * add_rn(add_rn(pa[0], mul_rn(alpha, cu - pu[0])), mul_rn(beta, cv - pv[0]));
               atomic_min(&im[y * R + x], order_key(z + margin));
             }
         });
