@@ -190,7 +190,7 @@ TEST(CudaHull3d, DigitalSameAsIncrementalAndAsCpu) {
 
 TEST(CudaHull3d, DigitalSameAsIncrementalLarge) {
   for (const char* d : {"ball", "sphere", "thin_sphere", "thin_box", "uniform"})
-    for (std::int64_t n : sizes({2000000})) {
+    for (std::int64_t n : sizes({500000})) {
       const gg_hull3d::Case c{std::string(d) + "/" + std::to_string(n), generate3d(d, n, 9)};
       Hull3dOptions o;
       o.backend = Backend::Cuda;
