@@ -74,8 +74,8 @@ class Delaunay(_OfPoints):
         if method not in ("incremental", "digital"):
             raise ValueError(f"method must be 'incremental' or 'digital', got {method!r}")
         if method == "digital" and self.ndim != 2:
-            raise ValueError("method='digital' is for 2D points (the 3D digital methods are "
-                             "not there yet)")
+            raise ValueError("method='digital' is for 2D points (digital 3D Delaunay is not "
+                             "there yet; ConvexHull(method='digital') takes 3D points)")
         if self.ndim == 2:
             r = _core.delaunay2d(arr, backend=backend, stream=kind.stream, threads=threads,
                                  method=method, grid=grid)
@@ -274,17 +274,33 @@ class ConvexHull(_OfPoints):
     points, simplices, neighbors, vertices, equations (unit outward normal and offset, as
     Qhull's), area, volume, ndim, npoints, nsimplex, coplanar (always empty: no point is dropped
     for precision), stats.
+
+    Parameters beyond SciPy's
+    -------------------------
+    method : {"incremental", "digital"}
+        3D only. "digital": the thesis' DigiHull3D (a slice of the points' digital Voronoi
+        diagram on each face of a grid gives a first hull; a digital depth test keeps the points
+        that may lie outside it; their hull is the hull). The same facets either way.
+    grid : int
+        method="digital": the faces' grid side (16..8192; 0: chosen from the point count).
     """
 
     def __init__(self, points, incremental: bool = False, qhull_options: Optional[str] = None, *,
-                 backend: str = "auto", threads: int = 0):
+                 backend: str = "auto", threads: int = 0, method: str = "incremental",
+                 grid: int = 0):
         _not_supported("incremental", incremental, False)
+        if method not in ("incremental", "digital"):
+            raise ValueError(f"method must be 'incremental' or 'digital', got {method!r}")
         arr, kind = self._take_points(points, (2, 3), backend, threads)
         self.coplanar = np.zeros((0, 3), dtype=np.int32)
         if self.ndim == 2:
+            if method != "incremental":
+                raise ValueError("method='digital' is for 3D hulls (a 2D hull comes from the "
+                                 "Delaunay triangulation; use Delaunay(method='digital'))")
             self._hull2d(arr, kind, backend, threads)
             return
-        r = _core.convex_hull3d(arr, backend=backend, stream=kind.stream, threads=threads)
+        r = _core.convex_hull3d(arr, backend=backend, stream=kind.stream, threads=threads,
+                                method=method, grid=grid)
         self.simplices = kind.back(r["simplices"])
         self.neighbors = kind.back(r["neighbors"])
         self.vertices = kind.back(r["vertices"])

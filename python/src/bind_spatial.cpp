@@ -113,9 +113,11 @@ nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std:
 }
 
 nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
-                     int threads) {
+                     int threads, const std::string& method, std::int64_t grid) {
   const Input in = points_input(points, 3);
   auto o = options_for<Hull3dOptions>(backend, stream, threads, in);
+  o.method = parse_method(method);
+  o.grid = grid;
   const std::int64_t n = in.shape[0];
   nb::dict r;
   if (in.on_device) {
@@ -368,7 +370,7 @@ void bind_spatial(nb::module_& m) {
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);
   m.def("convex_hull3d", &hull3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
-        "threads"_a = 0);
+        "threads"_a = 0, "method"_a = "incremental", "grid"_a = 0);
   m.def("delaunay3d", &delaunay3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0, "progress"_a = nb::none());
   m.def("find_simplex", &find_simplex_bind, "points"_a, "simplices"_a, "neighbors"_a, "xi"_a,

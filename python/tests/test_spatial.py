@@ -294,3 +294,23 @@ def test_delaunay2d_digital_method_equals_incremental(backend, rng):
         gpugeom.Delaunay(pts, method="magic")
     with pytest.raises(ValueError, match="2D"):
         gpugeom.Delaunay(rng.random((50, 3)), method="digital")
+
+
+def test_convex_hull_digital_method_equals_incremental(backend, rng):
+    ball = rng.standard_normal((20000, 3))
+    ball /= np.linalg.norm(ball, axis=1, keepdims=True)
+    ball *= rng.random((20000, 1)) ** (1 / 3)
+    cube = np.array([[x, y, z] for x in range(5) for y in range(5) for z in range(5)], float)
+    for pts in (ball, cube):
+        a = gpugeom.ConvexHull(pts, backend=backend)
+        for grid in (0, 16):
+            b = gpugeom.ConvexHull(pts, backend=backend, method="digital", grid=grid)
+            assert b.stats["counters"]["digital_fallback"] == 0
+            assert simplex_set(a.simplices) == simplex_set(b.simplices)
+            assert np.array_equal(a.vertices, b.vertices)
+    b = gpugeom.ConvexHull(ball, backend=backend, method="digital")
+    assert b.stats["counters"]["hull_input"] < len(ball) // 2  # the depth test dropped points
+    with pytest.raises(ValueError, match="grid"):
+        gpugeom.ConvexHull(ball, method="digital", grid=8)
+    with pytest.raises(ValueError, match="3D"):
+        gpugeom.ConvexHull(rng.random((50, 2)), method="digital")
