@@ -294,13 +294,16 @@ class Triangulator {
           const std::int32_t v = near ? near[q] : -1;
           from_slot[q] = v >= 0 && used[v] ? slot_of[v] : 0;
         });
-    // The other points, each located by a walk (the leaving edge chosen in turn, so that no
-    // fixed pattern cycles; a scan of every slot bounds it).
+    // The other points, each located by a walk (stochastic: the leaving edge drawn; a scan of
+    // every slot bounds it). Counted: steps, walks that ended in the scan, the longest walk.
     const Geo g = g_;
     std::int32_t* loc = loc_.data();
     const std::int8_t* inside = used;
     Counters* ctr = ctr_.data();
     const std::int64_t nt = ntri_;
+    auto walk_stats = ex_.template alloc<std::int64_t>(3);  // steps, scans, longest walk
+    std::int64_t* ws = walk_stats.data();
+    ex_.fill(ws, 3, std::int64_t(0));
     ex_.for_each_index(
         m_, GG_LAMBDA(std::int64_t i) {
           const std::int32_t q = std::int32_t(i);
@@ -312,16 +315,25 @@ class Triangulator {
           for (std::int64_t step = 0; step <= nt; ++step) {
             const Tri T = tri[t];
             int leave = -1;
+            // The edges in an order drawn by hashing (point, step): a walk that always prefers
+            // the same edge can cycle in a triangulation that is not Delaunay (the start's: a few
+            // such points each cost a walk of every slot, then a scan of them all, seconds at
+            // 10^7); drawn, it ends with probability one (the stochastic walk).
+            const int r =
+                int(mesh::scatter(std::uint32_t(q) * 2654435761u + std::uint32_t(step)) % 3);
             for (int j = 0; j < 3 && leave < 0; ++j) {
-              const int kk = int((step + j) % 3);
+              const int kk = (r + j) % 3;
               if (orient_ext(g, T.v[(kk + 1) % 3], T.v[(kk + 2) % 3], q) < 0) leave = kk;
             }
             if (leave < 0) {
               loc[q] = B + std::int32_t(t);
+              atomic_add(&ws[0], step);
+              atomic_max(&ws[2], step);
               return;
             }
             t = simplex_of(T.n[leave]) - B;
           }
+          atomic_add(&ws[1], std::int64_t(1));
           for (t = 0; t < nt; ++t)
             if (inside_ext(g, tri[t].v, q)) {
               loc[q] = B + std::int32_t(t);
@@ -330,6 +342,13 @@ class Triangulator {
           loc[q] = -1;
           atomic_add(&ctr->lost, std::int64_t(1));
         });
+    {
+      std::int64_t w[3];
+      ex_.to_host(ws, 3, w);
+      st_.counters["start_walk_steps"] = w[0];
+      st_.counters["start_walk_scans"] = w[1];
+      st_.counters["start_walk_longest"] = w[2];
+    }
     nun_ = ex_.compact_indices(
         m_, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, un_.data());
     check_lost();
