@@ -124,8 +124,10 @@ double voronoi_device_ms(const std::vector<Point2>& p, Backend b, int reps) {
 // (0: chosen from n), beside the incremental result `inc`: end to end time, its phases, the
 // points the sketch left to insertion, flips against the incremental method's, and whether the
 // triangles are the incremental method's (as sets).
+// csv: where given, a row per grid ("NAME+digital" or "NAME+digitalSIDE"; end to end only).
 void digital_rows(const std::string& name, const std::vector<Point2>& pts, Backend b, int reps,
-                  const std::string& grids, const Triangulation2d& inc) {
+                  const std::string& grids, const Triangulation2d& inc, std::ofstream* csv,
+                  const std::string& device) {
   const std::int64_t n = std::int64_t(pts.size());
   std::vector<std::array<std::int32_t, 3>> ref;
   auto tri_set = [](const Triangulation2d& t) {
@@ -176,6 +178,12 @@ void digital_rows(const std::string& name, const std::vector<Point2>& pts, Backe
       if (ph.first.rfind("insert/", 0) != 0) std::printf(" %s %.1f", ph.first.c_str(), ph.second);
     std::printf("\n");
     std::fflush(stdout);
+    if (csv && *csv) {
+      const double med = t[t.size() / 2];
+      *csv << "delaunay2d," << name << "+digital" << (g > 0 ? std::to_string(std::int64_t(g)) : "")
+           << "," << n << "," << backend_name(b) << "," << device << ",0," << med << ",0,0," << med
+           << ",0\n";
+    }
   }
 }
 
@@ -318,7 +326,8 @@ int main(int argc, char** argv) {
           (long long)r.stats.counters["log_relocations"],
           (long long)r.stats.counters["split_flip_rounds"],
           double(r.stats.counters["device_peak_bytes"]) / double(n));
-      if (!digital.empty()) digital_rows(in.name, in.pts, b, reps, digital, r);
+      if (!digital.empty())
+        digital_rows(in.name, in.pts, b, reps, digital, r, &f, b == Backend::Cuda ? gpu : "cpu");
       if (voronoi) {  // the Voronoi diagram of the result: host loop, and on the executor
         std::vector<double> th;
         for (int k = 0; k < reps; ++k) {

@@ -236,9 +236,9 @@ int main(int argc, char** argv) {
         std::printf("\n");
         std::fflush(stdout);
         if (f)
-          f << "hull3d," << name << "," << n << "," << backend_name(b) << ","
-            << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med << ",0," << (dev > 0 ? dev : 0)
-            << "," << med << ","
+          f << "hull3d," << (cfgs[bi].m == Method::Digital ? name + "+digital" : name) << "," << n
+            << "," << backend_name(b) << "," << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med
+            << ",0," << (dev > 0 ? dev : 0) << "," << med << ","
             << double(r.stats.counters["exact_predicates"]) / std::max<double>(1, n) << "\n";
       }
       if (f && cg >= 0)

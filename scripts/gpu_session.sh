@@ -109,6 +109,22 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = hull3d ]; then
     python3 bench/anchor_hull3d.py --dir $HD --max-n ${HULL3D_QHULL_MAX:-1e6} --csv "$CSV"
   } 2>&1 | tee "$OUT/bench_hull3d.txt"
 fi
+if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = digital ]; then
+  echo "== The digital methods (issue 20) beside the incremental ones and CGAL, in the same run"
+  D=.devbin/gpugeom_bench_del2d
+  for n in 1e6 1e7; do [ -f /tmp/terrain_$n.npy ] || python3 bench/terrain_contours.py -n $n -o /tmp/terrain_$n.npy; done
+  {
+    $D --backend cuda --dists uniform,gaussian,thin_circle --sizes ${DIGITAL_SIZES:-1e5,1e6,1e7} --reps 3 \
+      --digital ${DIGITAL_GRIDS:-0,2048,4096,16384} --cgal --csv "$CSV"
+    $D --backend cuda --files /tmp/terrain_1e6.npy,/tmp/terrain_1e7.npy --reps 3 --digital 0 --cgal \
+      --csv "$CSV" | tail -n +3
+    .devbin/gpugeom_bench_hull3d --backend cuda --dists ball,uniform,thin_box,thin_sphere,sphere \
+      --sizes ${DIGITAL_HULL_SIZES:-1e6,1e7} --reps 3 --methods incremental,digital \
+      --cgal ${DIGITAL_HULL_CGAL_MAX:-1e6} --csv "$CSV" | tail -n +2
+    .devbin/gpugeom_bench_hull3d --backend cuda --dists scal:1000,scal:100000,scal:1000000 --sizes 1e7 \
+      --reps 3 --methods incremental,digital --csv "$CSV" | tail -n +3
+  } 2>&1 | tee "$OUT/bench_digital.txt"
+fi
 if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = edt ]; then
   echo "== EDT benchmarks (PBA on both backends, JFA, CuPy/SciPy/OpenCV anchors)"
   E=.devbin/gpugeom_bench_edt
