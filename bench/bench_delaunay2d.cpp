@@ -131,15 +131,7 @@ void digital_rows(const std::string& name, const std::vector<Point2>& pts, Backe
   const std::int64_t n = std::int64_t(pts.size());
   std::vector<std::array<std::int32_t, 3>> ref;
   auto tri_set = [](const Triangulation2d& t) {
-    std::vector<std::array<std::int32_t, 3>> v(std::size_t(t.triangle_count));
-#pragma omp parallel for
-    for (std::int64_t i = 0; i < t.triangle_count; ++i) {
-      const std::int32_t* q = t.triangles.data() + 3 * i;
-      const int k = q[0] < q[1] ? (q[0] < q[2] ? 0 : 2) : (q[1] < q[2] ? 1 : 2);
-      v[std::size_t(i)] = {q[k], q[(k + 1) % 3], q[(k + 2) % 3]};
-    }
-    std::sort(v.begin(), v.end());
-    return v;
+    return verify::canonical_triangles(t.triangles.data(), t.triangle_count);
   };
   ref = tri_set(inc);
   for (double g : bench::numbers(grids)) {

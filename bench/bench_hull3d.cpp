@@ -4,7 +4,6 @@
 // thesis' scalability test: n fixed, k points on a sphere and the rest strictly inside
 // ("scal:K" as a distribution). --save DIR writes every input as .npy for the Qhull anchor
 // (bench/anchor_hull3d.py).
-#include <set>
 #include <array>
 #include <algorithm>
 #include <chrono>
@@ -69,16 +68,8 @@ double cgal_ms(const std::vector<Point3>& p, std::int64_t& vertices) {
 }
 }  // namespace
 
-// The facets as a set, each turned to start at its least index (methods differ in slot order).
-std::set<std::array<std::int32_t, 3>> facets(const ConvexHull3d& h) {
-  std::set<std::array<std::int32_t, 3>> s;
-  for (std::size_t f = 0; f < h.num_facets(); ++f) {
-    std::array<std::int32_t, 3> t{h.triangles[3 * f], h.triangles[3 * f + 1],
-                                  h.triangles[3 * f + 2]};
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    s.insert(t);
-  }
-  return s;
+std::vector<std::array<std::int32_t, 3>> facets(const ConvexHull3d& h) {
+  return verify::canonical_triangles(h.triangles.data(), h.facet_count);
 }
 
 int main(int argc, char** argv) {

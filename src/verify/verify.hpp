@@ -3,6 +3,7 @@
 // `gpugeom check`. Each returns a Report; ok == false comes with a message naming the first
 // violation found (which simplex, which vertex, what is wrong).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -44,6 +45,11 @@ Report check_delaunay3d(const double* pts, std::int64_t n, const std::int32_t* t
 // n * faces <= max_pairs, else an evenly spaced sample, said in the notes), every vertex extreme.
 Report check_hull3d(const double* pts, std::int64_t n, const std::int32_t* tris, std::int64_t ntri,
                     std::int64_t max_pairs = 4'000'000'000LL);
+
+// Triangles as a canonical sorted list (each turned to start at its least index), to compare
+// triangulations or hulls whose triangle order differs (the methods and executors may).
+std::vector<std::array<std::int32_t, 3>> canonical_triangles(const std::int32_t* tris,
+                                                             std::int64_t nt);
 
 // Exact EDT by brute force: shape (rows, cols) or (slices, rows, cols); sites as integer
 // coordinates in the same order; sqdist[i] is the claimed squared distance of voxel i to its

@@ -1,5 +1,9 @@
 #include "verify_common.hpp"
 
+#include <algorithm>
+
+#include "verify.hpp"
+
 namespace gpugeom::verify::detail {
 
 std::string cell_name(int k, std::int64_t c, const std::int32_t* cells) {
@@ -43,3 +47,19 @@ bool check_cells(Report& r, std::int64_t n, const std::int32_t* cells, std::int6
 }
 
 }  // namespace gpugeom::verify::detail
+
+namespace gpugeom::verify {
+
+std::vector<std::array<std::int32_t, 3>> canonical_triangles(const std::int32_t* tris,
+                                                             std::int64_t nt) {
+  std::vector<std::array<std::int32_t, 3>> s(static_cast<std::size_t>(nt));
+  for (std::size_t c = 0; c < s.size(); ++c) {
+    const std::int32_t* v = tris + 3 * c;
+    const int k = v[0] < v[1] ? (v[0] < v[2] ? 0 : 2) : (v[1] < v[2] ? 1 : 2);
+    s[c] = {v[k], v[(k + 1) % 3], v[(k + 2) % 3]};
+  }
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+}  // namespace gpugeom::verify

@@ -205,14 +205,7 @@ inline void expect_valid(const std::vector<Point2>& pts, const Triangulation2d& 
 // triangulations whose order differs.
 inline std::vector<std::array<std::int32_t, 3>> triangle_set(const std::int32_t* tris,
                                                              std::size_t nt) {
-  std::vector<std::array<std::int32_t, 3>> s(nt);
-  for (std::size_t c = 0; c < s.size(); ++c) {
-    const std::int32_t* v = tris + 3 * c;
-    const int k = v[0] < v[1] ? (v[0] < v[2] ? 0 : 2) : (v[1] < v[2] ? 1 : 2);
-    s[c] = {v[k], v[(k + 1) % 3], v[(k + 2) % 3]};
-  }
-  std::sort(s.begin(), s.end());
-  return s;
+  return gpugeom::verify::canonical_triangles(tris, std::int64_t(nt));
 }
 inline std::vector<std::array<std::int32_t, 3>> triangle_set(const Triangulation2d& t) {
   return triangle_set(t.triangles.data(), std::size_t(t.num_triangles()));

@@ -216,17 +216,9 @@ inline std::set<std::array<std::int32_t, 3>> facet_set(const std::vector<std::in
   return s;
 }
 
-// The facets as a set of triangles, each turned to start at its least index (the methods
-// build the same hull in different slot orders).
-inline std::set<std::array<std::int32_t, 3>> facet_set(const gpugeom::ConvexHull3d& h) {
-  std::set<std::array<std::int32_t, 3>> s;
-  for (std::size_t f = 0; f < h.num_facets(); ++f) {
-    std::array<std::int32_t, 3> t{h.triangles[3 * f], h.triangles[3 * f + 1],
-                                  h.triangles[3 * f + 2]};
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    s.insert(t);
-  }
-  return s;
+// The facets in canonical order (the methods build the same hull in different slot orders).
+inline std::vector<std::array<std::int32_t, 3>> facet_set(const gpugeom::ConvexHull3d& h) {
+  return gpugeom::verify::canonical_triangles(h.triangles.data(), h.facet_count);
 }
 
 // The digital method's hull is valid and is the incremental method's, facet for facet, on the

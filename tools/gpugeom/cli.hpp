@@ -38,6 +38,19 @@ class Args {
 long long to_count(const std::string& s, const char* what);  // accepts 1e6, 1000000
 double to_real(const std::string& s, const char* what);      // a finite number
 
+// --method incremental|digital and --grid SIDE (digital only) into opt's method and grid.
+template <class Options>
+void read_method(Args& a, Options& opt) {
+  std::string method, grid;
+  a.value("--method", method);
+  a.value("--grid", grid);
+  if (!method.empty()) opt.method = parse_method(method);
+  if (!grid.empty()) {
+    if (opt.method != Method::Digital) throw UsageError("--grid needs --method digital");
+    opt.grid = to_count(grid, "--grid");
+  }
+}
+
 class Timer {
  public:
   Timer(const Global& g, const char* phase)

@@ -111,16 +111,9 @@ int cmd_delaunay2d(const Global& g, Args& a) {
   a.value("--clip", clip_s);
   a.value("--draw", draw) || a.value("--svg", draw);
   const bool check = a.flag("--check");
-  std::string method_s, grid_s;
-  a.value("--method", method_s);
-  a.value("--grid", grid_s);
   Delaunay2dOptions opt;
   opt.backend = g.backend;
-  if (!method_s.empty()) opt.method = parse_method(method_s);
-  if (!grid_s.empty()) {
-    if (opt.method != Method::Digital) throw UsageError("--grid needs --method digital");
-    opt.grid = to_count(grid_s, "--grid");
-  }
+  read_method(a, opt);
   const io::WriteOptions wo = mesh_write_options(a, out);
   auto pos = a.positionals();
   if (pos.size() != 1) throw UsageError("expected one point file (see --help)");

@@ -37,16 +37,9 @@ int cmd_hull3d(const Global& g, Args& a) {
     std::cout << kHelp;
     return kOk;
   }
-  std::string method_s, grid_s;
-  a.value("--method", method_s);
-  a.value("--grid", grid_s);
   Hull3dOptions opt;
   opt.backend = g.backend;
-  if (!method_s.empty()) opt.method = parse_method(method_s);
-  if (!grid_s.empty()) {
-    if (opt.method != Method::Digital) throw UsageError("--grid needs --method digital");
-    opt.grid = to_count(grid_s, "--grid");
-  }
+  read_method(a, opt);
   PointsToMesh job = points_to_mesh(g, a, "hull3d",
                                     {".ply", ".off", ".obj", ".vtu", ".vtk", ".npy"}, "for a hull");
   const io::PointSet& p = job.p;

@@ -82,6 +82,7 @@ HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first) {
     chain.pop_back();  // (each pass's last point starts the other)
   }
   std::vector<std::size_t> hull(chain.begin(), chain.end());
+  std::vector<char> gone(k, 0);         // the current pocket's clipped vertices
   std::sort(hull.begin(), hull.end());  // cycle order (the cycle starts at a hull vertex)
   hull.push_back(cycle.size());         // back to the start
   for (std::size_t h = 0; h + 1 < hull.size(); ++h) {
@@ -110,11 +111,11 @@ HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first) {
       std::vector<std::int32_t> fill(start_of.begin(), start_of.end() - 1);
       for (Id v : pocket) in_bucket[std::size_t(fill[std::size_t(bucket(v))]++)] = v;
     }
-    std::unordered_map<Id, char> gone;  // clipped (a hull vertex of two pockets stays in both)
+    // (clipped: a vertex leaves only its own pocket; hull vertices end two pockets and stay)
     clip_ears(
         pocket.data(), std::int64_t(pocket.size()), orient,
         [&](Id a, Id b, Id c) {
-          gone[b] = 1;
+          gone[std::size_t(b)] = 1;
           out.triangles.insert(out.triangles.end(),
                                {name[std::size_t(a)], name[std::size_t(b)], name[std::size_t(c)]});
         },
@@ -129,10 +130,11 @@ HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first) {
               for (std::int32_t j = start_of[std::size_t(q)]; j < start_of[std::size_t(q + 1)];
                    ++j) {
                 const Id v = in_bucket[std::size_t(j)];
-                if (!gone.count(v) && !visit(v)) return;
+                if (!gone[std::size_t(v)] && !visit(v)) return;
               }
             }
         });
+    for (Id v : in_bucket) gone[std::size_t(v)] = 0;  // (the pocket's end points end another)
   }
   // Pair the new half-edges with the rim's (reverse direction) and with each other.
   std::unordered_map<std::uint64_t, std::int32_t> wait;  // (a -> b) unpaired, by (a, b)
