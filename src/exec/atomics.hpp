@@ -46,6 +46,12 @@ GG_INLINE void atomic_max_grouped(T* p, T v) {
   atomic_max(p, v);
 #endif
 }
+// A plain read of a word other threads may be writing (their writes atomic too).
+template <class T>
+GG_INLINE T atomic_load(const T* p) {
+  cuda::atomic_ref<T, cuda::thread_scope_device> r(*const_cast<T*>(p));
+  return r.load(cuda::memory_order_relaxed);
+}
 template <class T>
 GG_INLINE T atomic_exchange(T* p, T v) {
   cuda::atomic_ref<T, cuda::thread_scope_device> r(*p);

@@ -42,66 +42,49 @@ struct Grid {
   }
 };
 
-// A min-queue of (key, site) pairs.
-using Entry = std::pair<Key, std::int32_t>;  // (key of (pixel, site), site's pixel)
+// A min-queue of (key, colour) pairs.
+using Entry = std::pair<Key, std::int32_t>;  // (key of (pixel, site), the site's colour)
 using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>>;
 
 }  // namespace
 
 std::vector<std::int32_t> recolour_debris(std::int64_t w, std::int64_t h,
-                                          const std::vector<std::int32_t>& pixel,
-                                          std::vector<std::int32_t>& colour,
-                                          const std::vector<std::int32_t>& cand) {
+                                          const std::vector<std::int32_t>& debris,
+                                          const std::vector<std::int32_t>& block) {
   const Grid g{w, h};
-  // Among the candidates, those 8-connected through their colour to a pixel that is not one
-  // (connected to its site) are connected too; the rest are the debris.
-  std::unordered_map<std::int32_t, char> state;  // candidate -> connected?
-  state.reserve(cand.size() * 2);
-  for (std::int32_t a : cand) state[a] = 0;
-  auto connected = [&](std::int32_t p) {
-    const auto it = state.find(p);
-    return it == state.end() || it->second;
-  };
-  {
-    std::vector<std::int32_t> stack;
-    for (std::int32_t a : cand) {
-      bool seed = false;
-      g.neighbours(a, [&](std::int32_t b) {
-        seed |= colour[std::size_t(b)] == colour[std::size_t(a)] && !state.count(b);
-      });
-      if (seed && !state[a]) state[a] = 1, stack.push_back(a);
-      while (!stack.empty()) {
-        const std::int32_t p = stack.back();
-        stack.pop_back();
-        g.neighbours(p, [&](std::int32_t b) {
-          const auto it = state.find(b);
-          if (it != state.end() && !it->second && colour[std::size_t(b)] == colour[std::size_t(p)])
-            it->second = 1, stack.push_back(b);
-        });
-      }
+  // The colours around the debris and their sites' pixels, from the blocks.
+  std::unordered_map<std::int32_t, std::int32_t> colour, site;  // pixel -> colour, colour -> pixel
+  colour.reserve(debris.size() * 4), site.reserve(debris.size() * 2);
+  for (std::size_t j = 0; j < debris.size(); ++j)
+    for (int k = 0; k < 9; ++k) {
+      const std::int32_t c = block[18 * j + std::size_t(k)];
+      if (c < 0) continue;
+      const std::int64_t x = g.x(debris[j]) + k % 3 - 1, y = g.y(debris[j]) + k / 3 - 1;
+      colour[std::int32_t(y * w + x)] = c;
+      site[c] = block[18 * j + 9 + std::size_t(k)];
     }
-  }
-  // Alg. 4.3: debris grows from the coloured neighbours nearer their site, in the order ≺.
+  std::unordered_map<std::int32_t, char> left;  // debris not yet recoloured
+  left.reserve(debris.size() * 2);
+  for (std::int32_t a : debris) left[a] = 1;
+  auto connected = [&](std::int32_t p) { return !left.count(p); };
+  // Debris grows from the coloured neighbours nearer their site, in the order ≺.
   MinQueue q;
-  for (std::int32_t a : cand) {
-    if (connected(a)) continue;
+  for (std::int32_t a : debris)
     g.neighbours(a, [&](std::int32_t b) {
       if (!connected(b)) return;
-      const std::int32_t site = pixel[std::size_t(colour[std::size_t(b)])];
-      if (g.key(b, site) < g.key(a, site)) q.push({g.key(a, site), site});
+      const std::int32_t c = colour.at(b), s = site.at(c);
+      if (g.key(b, s) < g.key(a, s)) q.push({g.key(a, s), c});
     });
-  }
   std::vector<std::int32_t> changed;
   while (!q.empty()) {
-    const auto [k, site] = q.top();
+    const auto [k, c] = q.top();
     q.pop();
-    const std::int32_t a = std::get<2>(k);
+    const std::int32_t a = std::get<2>(k), s = std::get<1>(k);
     if (connected(a)) continue;
-    state[a] = 1;
-    colour[std::size_t(a)] = colour[std::size_t(site)];
-    changed.insert(changed.end(), {a, colour[std::size_t(a)]});
-    g.neighbours(a, [&](std::int32_t c) {
-      if (!connected(c) && g.key(a, site) < g.key(c, site)) q.push({g.key(c, site), site});
+    left.erase(a);
+    changed.insert(changed.end(), {a, c});
+    g.neighbours(a, [&](std::int32_t n) {
+      if (!connected(n) && g.key(a, s) < g.key(n, s)) q.push({g.key(n, s), c});
     });
   }
   return changed;

@@ -26,13 +26,14 @@ struct Sketch {
   std::int64_t width = 0, height = 0;
   double ox = 0, oy = 0, h = 1;
   bool exact = false;
-  std::vector<std::int32_t> pixel;    // per point: its pixel's raster index (y * width + x)
-  std::vector<std::int32_t> missing;  // points whose pixel an earlier point took
-  std::vector<std::int32_t> site_of;  // per point: the site of its pixel (itself for a site)
-  std::vector<std::int32_t> colour;   // per pixel: the point whose cell holds it (keep_colour)
-  std::int64_t debris = 0;            // pixels recoloured
-  std::int64_t pinched = 0;           // corners a cell crosses diagonally (no triangle)
-  std::int64_t hull_triangles = 0;    // added between the dual's boundary and its convex hull
+  std::vector<std::int32_t> pixel;     // per point: its pixel's raster index (y * width + x)
+  std::vector<std::int32_t> missing;   // points whose pixel an earlier point took
+  std::vector<std::int32_t> site_of;   // per point: the site of its pixel (itself for a site)
+  std::vector<std::int32_t> colour;    // per pixel: the point whose cell holds it (keep_colour)
+  std::int64_t debris = 0;             // pixels recoloured
+  std::int64_t debris_candidates = 0;  // pixels whose descent missed their site (tested further)
+  std::int64_t pinched = 0;            // corners a cell crosses diagonally (no triangle)
+  std::int64_t hull_triangles = 0;     // added between the dual's boundary and its convex hull
   // Dual triangles as point indices, counter-clockwise in the grid (the corner's cells in
   // counter-clockwise order), then those filling the pockets up to the convex hull of their
   // vertices (hull_fill.hpp): a triangulation of that hull.

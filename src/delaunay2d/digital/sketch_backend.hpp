@@ -9,15 +9,14 @@
 
 namespace gpugeom::del2d::digital {
 
-// Alg. 4.3 on the host (point per pixel; pixel per point): the debris (pixels not 8-connected
-// to their site through their colour) recoloured as the standard flooding would. cand: the
-// pixels that may be debris (every other pixel is known to be connected to its site); colour is
-// read around them and written where recoloured. Returns the recoloured pixels as (pixel,
-// colour) pairs, in the order they were recoloured.
+// Alg. 4.3 on the host: the debris (pixels not 8-connected to their site through their colour;
+// found on the executor) recoloured as the standard flooding would. debris: those pixels;
+// block[18 j + k], k < 9: the colour of the k-th pixel of the 3x3 block around debris[j] (row
+// by row, -1 outside the grid), block[18 j + 9 + k]: that colour's site pixel. Returns the
+// recoloured pixels as (pixel, colour) pairs, in the order they were recoloured.
 std::vector<std::int32_t> recolour_debris(std::int64_t w, std::int64_t h,
-                                          const std::vector<std::int32_t>& pixel,
-                                          std::vector<std::int32_t>& colour,
-                                          const std::vector<std::int32_t>& cand);
+                                          const std::vector<std::int32_t>& debris,
+                                          const std::vector<std::int32_t>& block);
 
 }  // namespace gpugeom::del2d::digital
 

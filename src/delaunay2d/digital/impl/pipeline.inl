@@ -51,6 +51,7 @@ inline void triangulate_digital_impl(const double* xy, std::int64_t n, const Del
     st.counters["sites"] = n - H.nmiss;
     st.counters["sketch_missing"] = H.nmiss;
     st.counters["debris_pixels"] = s.debris;
+    st.counters["debris_candidates"] = s.debris_candidates;
     st.counters["pinched_corners"] = s.pinched;
     st.counters["hull_triangles"] = s.hull_triangles;
     if (H.nt == 0) return incremental();

@@ -56,6 +56,43 @@ struct FanMesh {
   }
 };
 
+// f(u) for each vertex u whose position s's shifting test reads (the neighbours of s and, on
+// the boundary, the next two boundary vertices on each side: the turns at its boundary
+// neighbours involve them), each once and never s. The relation is symmetric (pred(pred(v)) = u
+// exactly where succ(succ(u)) = v), so it is also the set whose test reads s.
+template <class F>
+GG_INLINE void each_dep(const FanMesh& M, std::int32_t s, F&& f) {
+  std::int32_t q = -1, p = -1;
+  const bool boundary = M.fan(s, [&](std::int32_t a, std::int32_t b, std::int32_t, int) {
+    f(a);
+    if (q < 0) q = a;
+    p = b;
+    return true;
+  });
+  if (!boundary) return;
+  f(p);  // (the last b of a boundary fan is no a)
+  std::int32_t pp = -1, qq = -1;
+  M.fan(p, [&](std::int32_t, std::int32_t b, std::int32_t, int) {
+    pp = b;
+    return true;
+  });
+  std::int32_t t;
+  int k;
+  M.first(q, t, k);
+  qq = M.at(t, k + 1);
+  // (on a hull of three or four vertices they are s or its neighbours)
+  auto seen = [&](std::int32_t u) {
+    bool hit = u == s;
+    M.fan(s, [&](std::int32_t a, std::int32_t b, std::int32_t, int) {
+      hit |= a == u || b == u;
+      return !hit;
+    });
+    return hit;
+  };
+  if (!seen(pp)) f(pp);
+  if (qq != pp && !seen(qq)) f(qq);
+}
+
 GG_INLINE bool before(std::int32_t u, std::int32_t v) {
   return mesh::scatter(std::uint32_t(u)) < mesh::scatter(std::uint32_t(v));
 }
@@ -126,29 +163,52 @@ inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digit
   auto list_b = ex.template alloc<std::int32_t>(std::size_t(n));
   std::int32_t* la = list_a.data();
   std::int32_t* lb = list_b.data();
-  std::int64_t npend = ex.compact_indices(
-      n, GG_LAMBDA(std::int64_t i) { return done[i] == kPending; }, la);
   phase("shift_setup");
-  // Alg. 4.4.
-  std::int32_t round = 0;
-  while (npend > 0) {
+  // Alg. 4.4 as a wavefront: a site is tested once every site whose position its test reads
+  // (each_dep) and that comes before it in the order has been, and those after it wait for it.
+  // Each site counts its earlier dependencies; a tested site counts its later ones down, and a
+  // site whose count reaches zero joins the next round's list (mesh::WorkLists: the rounds run
+  // without the host, which reads the lengths once every few rounds). Within a round no two
+  // sites depend on each other, so every test sees its dependencies where they end.
+  auto d_wait = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* wait = d_wait.data();
+  auto d_wl = ex.template alloc<std::int64_t>(4);  // both lists' lengths, rounds, tested
+  std::int64_t* wl = d_wl.data();
+  ex.fill(wl, 4, std::int64_t(0));
+  ex.transform_reduce_into(
+      n,
+      GG_LAMBDA(std::int64_t i)->std::int64_t {
+        const std::int32_t v = std::int32_t(i);
+        std::int32_t c = 0;
+        if (M.some[v] >= 0) each_dep(M, v, [&](std::int32_t u) { c += before(u, v); });
+        wait[v] = c;
+        return M.some[v] >= 0;
+      },
+      std::int64_t(0), thrust::plus<std::int64_t>(), wl + 3);
+  std::int64_t npend = 0;
+  ex.to_host(wl + 3, 1, &npend);
+  const std::int64_t ready = ex.compact_indices(
+      n, GG_LAMBDA(std::int64_t i) { return M.some[i] >= 0 && wait[i] == 0; }, la);
+  ex.fill(wl, 1, ready);
+  ex.fill(wl + 3, 1, std::int64_t(0));
+  const mesh::WorkLists W{{la, lb}, wl};
+  for (std::int32_t round = 0; npend > 0; ++round) {
     const std::int32_t r = round;
-    const std::int32_t* L = la;
-    ex.for_each_index(
-        npend, GG_LAMBDA(std::int64_t j) {
+    std::int64_t* next_count = W.next_count(r);
+    ex.fill(next_count, 1, std::int64_t(0));
+    const std::int32_t* L = W.current(r);
+    std::int32_t* next = W.next(r);
+    ex.for_each_counted(
+        W.count(r), npend, GG_LAMBDA(std::int64_t j) {
           const std::int32_t v = L[j];
-          bool wait = false;
-          auto dep = [&](std::int32_t u) {
-            if (before(u, v) && done[u] >= r) wait = true;
-          };
+          if (j == 0) atomic_max(wl + 2, std::int64_t(r) + 1);
+          atomic_add(wl + 3, std::int64_t(1));
           std::int32_t q = -1, p = -1;
           const bool boundary = M.fan(v, [&](std::int32_t a, std::int32_t b, std::int32_t, int) {
-            dep(a), dep(b);
             if (q < 0) q = a;
             p = b;
-            return !wait;
+            return true;
           });
-          if (wait) return;
           std::int32_t pp = -1, qq = -1;
           if (boundary) {
             M.fan(p, [&](std::int32_t, std::int32_t b, std::int32_t, int) {
@@ -159,8 +219,6 @@ inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digit
             int k;
             M.first(q, t, k);
             qq = M.at(t, k + 1);
-            dep(pp), dep(qq);
-            if (wait) return;
           }
           const double* own = P + 2 * std::int64_t(v);
           bool good = true;
@@ -176,13 +234,26 @@ inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digit
           if (good) pos[2 * std::int64_t(v)] = own[0], pos[2 * std::int64_t(v) + 1] = own[1];
           state[v] = good ? kShifted : kBad;
           done[v] = r;
+          each_dep(M, v, [&](std::int32_t u) {
+            if (before(v, u) && atomic_add(wait + u, std::int32_t(-1)) == 1)
+              next[append_slot(next_count)] = u;
+          });
         });
-    npend = ex.copy_if(
-        la, npend, lb, GG_LAMBDA(std::int32_t v) { return done[v] == kPending; });
-    std::swap(la, lb);
-    if (++round > 100000) throw Error(ErrorCode::Internal, "shifting: the rounds do not end");
+    if (r % 4 == 3) {  // (the host looks every four rounds; a round past the last does nothing)
+      std::int64_t len = 0;
+      ex.to_host(W.count(r + 1), 1, &len);
+      if (!len) break;
+    }
+    if (round > 100000) throw Error(ErrorCode::Internal, "shifting: the rounds do not end");
   }
-  out.shift_rounds = round;
+  {
+    std::int64_t c[2];
+    ex.to_host(wl + 2, 2, c);
+    if (c[1] != npend)
+      throw Error(ErrorCode::Internal, "shifting: " + std::to_string(npend - c[1]) +
+                                           " site(s) never tested (dependencies not symmetric)");
+    out.shift_rounds = c[0];
+  }
   phase("shift_good");
   // Alg. 4.5: the bad sites, deleted in rounds (done[] now: the round of the deletion).
   std::int64_t nbad = ex.compact_indices(
@@ -197,7 +268,7 @@ inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digit
   std::int64_t* cnt = d_cnt.data();
   ex.fill(cnt, 3, std::int64_t(0));
   typename Exec::template Buffer<std::int32_t> scratch;  // (per round: link, slots, outer, work)
-  round = 0;
+  std::int32_t round = 0;
   while (nbad > 0) {
     const std::int32_t r = round;
     const std::int32_t* L = la;

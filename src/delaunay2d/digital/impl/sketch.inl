@@ -130,9 +130,10 @@ inline HeldSketch sketch_on(Exec& ex, const double* P, std::int64_t n, digital::
   // neighbour of its colour with the least (squared distance to its site, raster index) below
   // its own, if any: from every pixel these steps descend to its site or to a root (a pixel with
   // no such neighbour). Where no root exists there is no debris. Else the descents are followed
-  // to their ends by pointer jumping, and only the pixels that end at a root (candidates: every
-  // debris pixel is one, most are not debris) go to the host, with the colouring, for Alg. 4.3
-  // (sketch_backend.hpp); the pixels it recolours come back.
+  // to their ends by pointer jumping; the pixels that end at a root (candidates: every debris
+  // pixel is one, most are not debris) are tested for a connection through other pixels of
+  // their colour on the executor, and only the debris goes to the host, with the colouring, for
+  // Alg. 4.3 (sketch_backend.hpp); the pixels it recolours come back.
   {
     auto up_a = ex.template alloc<std::int32_t>(std::size_t(np));
     std::int32_t* up = up_a.data();
@@ -182,15 +183,71 @@ inline HeldSketch sketch_on(Exec& ex, const double* P, std::int64_t n, digital::
       }
       const std::int32_t* end = up;
       auto cand_d = ex.template alloc<std::int32_t>(std::size_t(np));
-      const std::int64_t nc = ex.compact_indices(
-          np, GG_LAMBDA(std::int64_t p) { return end[p] != pixel[colour[p]]; }, cand_d.data());
+      std::int32_t* cand = cand_d.data();
+      std::int64_t nc = ex.compact_indices(
+          np, GG_LAMBDA(std::int64_t p) { return end[p] != pixel[colour[p]]; }, cand);
+      s.debris_candidates = nc;
+      // Among the candidates, those 8-connected through their colour to a pixel that is not one
+      // (so to their site) are connected too: marks (0 not a candidate, 1 a candidate, 2 one
+      // found connected) spread until they stop. Only what is left, the debris, goes on.
       if (nc > 0) {
-        std::vector<std::int32_t> hp(static_cast<std::size_t>(n)), hc(static_cast<std::size_t>(np)),
-            cand(static_cast<std::size_t>(nc));
-        ex.to_host(pixel, n, hp.data());
-        ex.to_host(colour, np, hc.data());
-        ex.to_host(cand_d.data(), nc, cand.data());
-        const std::vector<std::int32_t> changed = digital::recolour_debris(G.w, G.h, hp, hc, cand);
+        std::int32_t* mark = up_b.data();  // (free again: the descents' ends are in up_a)
+        ex.fill(mark, np, std::int32_t(0));
+        ex.for_each_index(
+            nc, GG_LAMBDA(std::int64_t j) { mark[cand[j]] = 1; });
+        // (four sweeps a look: the last one's count of new marks says whether they stopped)
+        for (int sweep = 0;; ++sweep) {
+          for (int k = 0; k < 4; ++k)
+            ex.transform_reduce_into(
+                nc,
+                GG_LAMBDA(std::int64_t j)->std::int64_t {
+                  const std::int32_t a = cand[j];
+                  if (atomic_load(mark + a) != 1) return 0;
+                  const std::int64_t ax = G.x(a), ay = G.y(a);
+                  for (std::int64_t dy = -1; dy <= 1; ++dy)
+                    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+                      const std::int64_t qx = ax + dx, qy = ay + dy;
+                      if ((!dx && !dy) || qx < 0 || qy < 0 || qx >= G.w || qy >= G.h) continue;
+                      const std::int64_t q = qy * G.w + qx;
+                      if (colour[q] == colour[a] && atomic_load(mark + q) != 1) {
+                        atomic_max(mark + a, std::int32_t(2));
+                        return 1;
+                      }
+                    }
+                  return 0;
+                },
+                std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
+          std::int64_t moved = 0;
+          ex.to_host(cnt.data(), 1, &moved);
+          if (!moved) break;
+          if (sweep > 1000000) throw Error(ErrorCode::Internal, "digital sketch: debris marks");
+        }
+        std::int32_t* debris = up_a.data();
+        nc = ex.copy_if(
+            cand, nc, debris, GG_LAMBDA(std::int32_t a) { return mark[a] == 1; });
+        cand = debris;
+      }
+      if (nc > 0) {
+        // Alg. 4.3 reads only the 3x3 blocks around the debris: their colours and those
+        // colours' site pixels go to the host, not the whole grid.
+        auto blk = ex.template alloc<std::int32_t>(std::size_t(18 * nc));
+        std::int32_t* B = blk.data();
+        const std::int32_t* D = cand;
+        ex.for_each_index(
+            nc, GG_LAMBDA(std::int64_t j) {
+              const std::int64_t ax = G.x(D[j]), ay = G.y(D[j]);
+              for (int k = 0; k < 9; ++k) {
+                const std::int64_t qx = ax + k % 3 - 1, qy = ay + k / 3 - 1;
+                const bool in = qx >= 0 && qy >= 0 && qx < G.w && qy < G.h;
+                const std::int32_t c = in ? colour[qy * G.w + qx] : -1;
+                B[18 * j + k] = c, B[18 * j + 9 + k] = in ? pixel[c] : -1;
+              }
+            });
+        std::vector<std::int32_t> hd(static_cast<std::size_t>(nc)),
+            hb(static_cast<std::size_t>(18 * nc));
+        ex.to_host(cand, nc, hd.data());
+        ex.to_host(B, 18 * nc, hb.data());
+        const std::vector<std::int32_t> changed = digital::recolour_debris(G.w, G.h, hd, hb);
         const std::int64_t nd = std::int64_t(changed.size() / 2);
         s.debris = nd;
         if (nd) {
