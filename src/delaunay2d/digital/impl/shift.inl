@@ -56,30 +56,35 @@ struct FanMesh {
   }
 };
 
-// f(u) for each vertex u whose position s's shifting test reads (the neighbours of s and, on
-// the boundary, the next two boundary vertices on each side: the turns at its boundary
-// neighbours involve them), each once and never s. The relation is symmetric (pred(pred(v)) = u
-// exactly where succ(succ(u)) = v), so it is also the set whose test reads s.
-template <class F>
-GG_INLINE void each_dep(const FanMesh& M, std::int32_t s, F&& f) {
-  std::int32_t q = -1, p = -1;
+// One walk of s's star for the shifting test: tri(a, b) for each triangle (s, a, b) of its fan,
+// and dep(u) for each vertex u whose position the test reads (the neighbours of s and, on the
+// boundary, the next two boundary vertices on each side: the turns at its boundary neighbours
+// involve them), each once and never s. The relation is symmetric (pred(pred(v)) = u exactly
+// where succ(succ(u)) = v), so dep also lists the vertices whose tests read s. Returns whether
+// s is on the boundary, and there p, q (its boundary neighbours: the last b, the first a) and
+// pp, qq (theirs).
+struct Ring {
+  std::int32_t p = -1, q = -1, pp = -1, qq = -1;
+};
+template <class Tri, class Dep>
+GG_INLINE bool star(const FanMesh& M, std::int32_t s, Tri&& tri, Dep&& dep, Ring& r) {
   const bool boundary = M.fan(s, [&](std::int32_t a, std::int32_t b, std::int32_t, int) {
-    f(a);
-    if (q < 0) q = a;
-    p = b;
+    tri(a, b);
+    dep(a);
+    if (r.q < 0) r.q = a;
+    r.p = b;
     return true;
   });
-  if (!boundary) return;
-  f(p);  // (the last b of a boundary fan is no a)
-  std::int32_t pp = -1, qq = -1;
-  M.fan(p, [&](std::int32_t, std::int32_t b, std::int32_t, int) {
-    pp = b;
+  if (!boundary) return false;
+  dep(r.p);  // (the last b of a boundary fan is no a)
+  M.fan(r.p, [&](std::int32_t, std::int32_t b, std::int32_t, int) {
+    r.pp = b;
     return true;
   });
   std::int32_t t;
   int k;
-  M.first(q, t, k);
-  qq = M.at(t, k + 1);
+  M.first(r.q, t, k);
+  r.qq = M.at(t, k + 1);
   // (on a hull of three or four vertices they are s or its neighbours)
   auto seen = [&](std::int32_t u) {
     bool hit = u == s;
@@ -89,8 +94,9 @@ GG_INLINE void each_dep(const FanMesh& M, std::int32_t s, F&& f) {
     });
     return hit;
   };
-  if (!seen(pp)) f(pp);
-  if (qq != pp && !seen(qq)) f(qq);
+  if (!seen(r.pp)) dep(r.pp);
+  if (r.qq != r.pp && !seen(r.qq)) dep(r.qq);
+  return true;
 }
 
 GG_INLINE bool before(std::int32_t u, std::int32_t v) {
@@ -165,7 +171,7 @@ inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digit
   std::int32_t* lb = list_b.data();
   phase("shift_setup");
   // Alg. 4.4 as a wavefront: a site is tested once every site whose position its test reads
-  // (each_dep) and that comes before it in the order has been, and those after it wait for it.
+  // (star) and that comes before it in the order has been, and those after it wait for it.
   // Each site counts its earlier dependencies; a tested site counts its later ones down, and a
   // site whose count reaches zero joins the next round's list (mesh::WorkLists: the rounds run
   // without the host, which reads the lengths once every few rounds). Within a round no two
@@ -180,7 +186,11 @@ inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digit
       GG_LAMBDA(std::int64_t i)->std::int64_t {
         const std::int32_t v = std::int32_t(i);
         std::int32_t c = 0;
-        if (M.some[v] >= 0) each_dep(M, v, [&](std::int32_t u) { c += before(u, v); });
+        Ring ring;
+        if (M.some[v] >= 0)
+          star(
+              M, v, [](std::int32_t, std::int32_t) {}, [&](std::int32_t u) { c += before(u, v); },
+              ring);
         wait[v] = c;
         return M.some[v] >= 0;
       },
@@ -202,42 +212,31 @@ inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digit
         W.count(r), npend, GG_LAMBDA(std::int64_t j) {
           const std::int32_t v = L[j];
           if (j == 0) atomic_max(wl + 2, std::int64_t(r) + 1);
-          atomic_add(wl + 3, std::int64_t(1));
-          std::int32_t q = -1, p = -1;
-          const bool boundary = M.fan(v, [&](std::int32_t a, std::int32_t b, std::int32_t, int) {
-            if (q < 0) q = a;
-            p = b;
-            return true;
-          });
-          std::int32_t pp = -1, qq = -1;
-          if (boundary) {
-            M.fan(p, [&](std::int32_t, std::int32_t b, std::int32_t, int) {
-              pp = b;
-              return true;
-            });
-            std::int32_t t;
-            int k;
-            M.first(q, t, k);
-            qq = M.at(t, k + 1);
-          }
+          // (one walk: the test, and the later dependencies counted down, whose tests run in
+          // a later round and read this one's position then)
           const double* own = P + 2 * std::int64_t(v);
           bool good = true;
-          M.fan(v, [&](std::int32_t a, std::int32_t b, std::int32_t, int) {
-            good = orient(own, pos + 2 * std::int64_t(a), pos + 2 * std::int64_t(b)) > 0;
-            return good;
-          });
+          Ring ring;
+          const bool boundary = star(
+              M, v,
+              [&](std::int32_t a, std::int32_t b) {
+                good =
+                    good && orient(own, pos + 2 * std::int64_t(a), pos + 2 * std::int64_t(b)) > 0;
+              },
+              [&](std::int32_t u) {
+                if (before(v, u) && atomic_add(wait + u, std::int32_t(-1)) == 1)
+                  next[append_slot(next_count)] = u;
+              },
+              ring);
           if (good && boundary) {
-            const double *Pp = pos + 2 * std::int64_t(p), *Pq = pos + 2 * std::int64_t(q);
-            good = convex_turn(pos + 2 * std::int64_t(pp), Pp, own) && convex_turn(Pp, own, Pq) &&
-                   convex_turn(own, Pq, pos + 2 * std::int64_t(qq));
+            const double *Pp = pos + 2 * std::int64_t(ring.p), *Pq = pos + 2 * std::int64_t(ring.q);
+            good = convex_turn(pos + 2 * std::int64_t(ring.pp), Pp, own) &&
+                   convex_turn(Pp, own, Pq) &&
+                   convex_turn(own, Pq, pos + 2 * std::int64_t(ring.qq));
           }
           if (good) pos[2 * std::int64_t(v)] = own[0], pos[2 * std::int64_t(v) + 1] = own[1];
           state[v] = good ? kShifted : kBad;
           done[v] = r;
-          each_dep(M, v, [&](std::int32_t u) {
-            if (before(v, u) && atomic_add(wait + u, std::int32_t(-1)) == 1)
-              next[append_slot(next_count)] = u;
-          });
         });
     if (r % 4 == 3) {  // (the host looks every four rounds; a round past the last does nothing)
       std::int64_t len = 0;
@@ -247,6 +246,9 @@ inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digit
     if (round > 100000) throw Error(ErrorCode::Internal, "shifting: the rounds do not end");
   }
   {
+    ex.transform_reduce_into(
+        n, GG_LAMBDA(std::int64_t i)->std::int64_t { return M.some[i] >= 0 && state[i] != 0; },
+        std::int64_t(0), thrust::plus<std::int64_t>(), wl + 3);
     std::int64_t c[2];
     ex.to_host(wl + 2, 2, c);
     if (c[1] != npend)
@@ -268,43 +270,47 @@ inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digit
   std::int64_t* cnt = d_cnt.data();
   ex.fill(cnt, 3, std::int64_t(0));
   typename Exec::template Buffer<std::int32_t> scratch;  // (per round: link, slots, outer, work)
+  auto d_mark = ex.template alloc<std::uint64_t>(std::size_t(n));
+  std::uint64_t* mark = d_mark.data();
+  ex.fill(mark, n, std::uint64_t(0));
   std::int32_t round = 0;
   while (nbad > 0) {
     const std::int32_t r = round;
     const std::int32_t* L = la;
-    // Which go this round, and how long their links are.
+    // Which go this round, and how long their links are. A bad site goes once no pending bad
+    // site before it is within two edges: each pending one marks itself and its link vertices
+    // with its key (the greatest wins: the round, so that older marks lose, then the complement
+    // of its place in the order), and one whose own and link vertices' marks are all its own
+    // key goes. (Two walks of its own fan instead of one of every link vertex's.)
+    const std::uint64_t tag = std::uint64_t(r + 1) << 32;
     ex.for_each_index(
         nbad, GG_LAMBDA(std::int64_t j) {
           const std::int32_t b = L[j];
-          bool wait = false;
-          auto dep = [&](std::int32_t u) {
-            if (u != b && state[u] == kBad && done[u] >= r && before(u, b)) wait = true;
-          };
+          const std::uint64_t key = tag | ~mesh::scatter(std::uint32_t(b));
+          atomic_max(mark + b, key);
+          std::int32_t last = -1;
+          if (M.fan(b, [&](std::int32_t a, std::int32_t c, std::int32_t, int) {
+                atomic_max(mark + a, key);
+                last = c;
+                return true;
+              }))
+            atomic_max(mark + last, key);
+        });
+    ex.for_each_index(
+        nbad, GG_LAMBDA(std::int64_t j) {
+          const std::int32_t b = L[j];
+          const std::uint64_t key = tag | ~mesh::scatter(std::uint32_t(b));
+          bool go = mark[b] == key;
           std::int64_t links = 0;
-          const bool boundary = M.fan(b, [&](std::int32_t a, std::int32_t, std::int32_t, int) {
+          std::int32_t last = -1;
+          const bool boundary = M.fan(b, [&](std::int32_t a, std::int32_t c, std::int32_t, int) {
             ++links;
-            dep(a);
-            if (!wait)
-              M.fan(a, [&](std::int32_t c, std::int32_t d, std::int32_t, int) {
-                dep(c), dep(d);
-                return !wait;
-              });
-            return !wait;
+            go = go && mark[a] == key;
+            last = c;
+            return go;
           });
-          if (boundary && !wait) {  // (the last link vertex, and its fan)
-            std::int32_t p = -1;
-            M.fan(b, [&](std::int32_t, std::int32_t c, std::int32_t, int) {
-              p = c;
-              return true;
-            });
-            dep(p);
-            M.fan(p, [&](std::int32_t c, std::int32_t d, std::int32_t, int) {
-              dep(c), dep(d);
-              return !wait;
-            });
-            ++links;
-          }
-          len[j] = wait ? 0 : links;
+          if (boundary && go) go = mark[last] == key, ++links;
+          len[j] = go ? links : 0;
         });
     ex.fill(len + nbad, 1, std::int64_t(0));
     ex.exclusive_scan(len, off, nbad + 1);
