@@ -188,62 +188,43 @@ inline HeldSketch sketch_on(Exec& ex, const double* P, std::int64_t n, digital::
           np, GG_LAMBDA(std::int64_t p) { return end[p] != pixel[colour[p]]; }, cand);
       s.debris_candidates = nc;
       // Among the candidates, those 8-connected through their colour to a pixel that is not one
-      // (so to their site) are connected too. Components by hooking and pointer jumping: every
-      // pixel has a parent no greater than itself (candidates start as their own, the rest at
-      // -1: connected), each same-colour neighbour with a lesser root hooks a candidate's root
-      // under it (atomic minimum), and parents jump to their roots, until no hook changes
-      // anything; a candidate whose root is -1 is connected, the others are the debris. (A
-      // flood that spreads one pixel a sweep took thousands of sweeps in the long slivers of
-      // large cells: thin circles.)
+      // (so to their site) are connected too: marks (0 not a candidate, 1 a candidate, 2 one
+      // found connected) spread until they stop. Only what is left, the debris, goes on.
       if (nc > 0) {
-        std::int32_t* par = up_b.data();  // (free again: the descents' ends are in up_a)
-        ex.fill(par, np, std::int32_t(-1));
+        std::int32_t* mark = up_b.data();  // (free again: the descents' ends are in up_a)
+        ex.fill(mark, np, std::int32_t(0));
         ex.for_each_index(
-            nc, GG_LAMBDA(std::int64_t j) { par[cand[j]] = cand[j]; });
-        auto root = [=] GG_HD(std::int32_t a) {
-          while (a >= 0) {
-            const std::int32_t u = atomic_load(par + a);
-            if (u == a) break;
-            a = u;
-          }
-          return a;
-        };
-        for (int round = 0;; ++round) {
-          ex.transform_reduce_into(
-              nc,
-              GG_LAMBDA(std::int64_t j)->std::int64_t {
-                const std::int32_t a = cand[j];
-                const std::int32_t ra = root(a);
-                if (ra < 0) return 0;
-                std::int32_t least = ra;
-                const std::int64_t ax = G.x(a), ay = G.y(a);
-                for (std::int64_t dy = -1; dy <= 1; ++dy)
-                  for (std::int64_t dx = -1; dx <= 1; ++dx) {
-                    const std::int64_t qx = ax + dx, qy = ay + dy;
-                    if ((!dx && !dy) || qx < 0 || qy < 0 || qx >= G.w || qy >= G.h) continue;
-                    const std::int64_t q = qy * G.w + qx;
-                    if (colour[q] != colour[a]) continue;
-                    const std::int32_t rq = root(std::int32_t(q));
-                    if (rq < least) least = rq;
-                  }
-                if (least >= ra) return 0;
-                atomic_min(par + ra, least);
-                return 1;
-              },
-              std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
-          ex.for_each_index(
-              nc, GG_LAMBDA(std::int64_t j) {
-                const std::int32_t a = cand[j];
-                atomic_min(par + a, root(a));
-              });
-          std::int64_t hooked = 0;
-          ex.to_host(cnt.data(), 1, &hooked);
-          if (!hooked) break;
-          if (round > 100000) throw Error(ErrorCode::Internal, "digital sketch: debris components");
+            nc, GG_LAMBDA(std::int64_t j) { mark[cand[j]] = 1; });
+        // (four sweeps a look: the last one's count of new marks says whether they stopped)
+        for (int sweep = 0;; ++sweep) {
+          for (int k = 0; k < 4; ++k)
+            ex.transform_reduce_into(
+                nc,
+                GG_LAMBDA(std::int64_t j)->std::int64_t {
+                  const std::int32_t a = cand[j];
+                  if (atomic_load(mark + a) != 1) return 0;
+                  const std::int64_t ax = G.x(a), ay = G.y(a);
+                  for (std::int64_t dy = -1; dy <= 1; ++dy)
+                    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+                      const std::int64_t qx = ax + dx, qy = ay + dy;
+                      if ((!dx && !dy) || qx < 0 || qy < 0 || qx >= G.w || qy >= G.h) continue;
+                      const std::int64_t q = qy * G.w + qx;
+                      if (colour[q] == colour[a] && atomic_load(mark + q) != 1) {
+                        atomic_max(mark + a, std::int32_t(2));
+                        return 1;
+                      }
+                    }
+                  return 0;
+                },
+                std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
+          std::int64_t moved = 0;
+          ex.to_host(cnt.data(), 1, &moved);
+          if (!moved) break;
+          if (sweep > 1000000) throw Error(ErrorCode::Internal, "digital sketch: debris marks");
         }
         std::int32_t* debris = up_a.data();
         nc = ex.copy_if(
-            cand, nc, debris, GG_LAMBDA(std::int32_t a) { return par[a] >= 0; });
+            cand, nc, debris, GG_LAMBDA(std::int32_t a) { return mark[a] == 1; });
         cand = debris;
       }
       if (nc > 0) {
