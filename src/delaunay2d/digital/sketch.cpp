@@ -8,7 +8,6 @@
 #include <queue>
 #include <string>
 #include <tuple>
-#include <unordered_map>
 
 #include "delaunay2d/digital/sketch_backend.hpp"
 #include "exec/dispatch.hpp"
@@ -42,8 +41,13 @@ struct Grid {
   }
 };
 
-// A min-queue of (key, colour) pairs.
-using Entry = std::pair<Key, std::int32_t>;  // (key of (pixel, site), the site's colour)
+// A queue entry: the key of (pixel, site), the site's colour, and the pixel's place among the
+// debris; the least key first.
+struct Entry {
+  Key key;
+  std::int32_t colour, at;
+  bool operator>(const Entry& o) const { return key > o.key; }
+};
 using MinQueue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>>;
 
 }  // namespace
@@ -52,40 +56,69 @@ std::vector<std::int32_t> recolour_debris(std::int64_t w, std::int64_t h,
                                           const std::vector<std::int32_t>& debris,
                                           const std::vector<std::int32_t>& block) {
   const Grid g{w, h};
-  // The colours around the debris and their sites' pixels, from the blocks.
-  std::unordered_map<std::int32_t, std::int32_t> colour, site;  // pixel -> colour, colour -> pixel
-  colour.reserve(debris.size() * 4), site.reserve(debris.size() * 2);
-  for (std::size_t j = 0; j < debris.size(); ++j)
-    for (int k = 0; k < 9; ++k) {
-      const std::int32_t c = block[18 * j + std::size_t(k)];
-      if (c < 0) continue;
-      const std::int64_t x = g.x(debris[j]) + k % 3 - 1, y = g.y(debris[j]) + k / 3 - 1;
-      colour[std::int32_t(y * w + x)] = c;
-      site[c] = block[18 * j + 9 + std::size_t(k)];
+  const std::int64_t nd = std::int64_t(debris.size());
+  // The debris in raster order (as the executor's compaction gives it, else sorted), and per
+  // debris pixel the places of its debris neighbours (-1: not debris, so connected to its
+  // site), found row by row with one search each: arrays, not hash maps (thin circles have
+  // hundreds of thousands of debris pixels).
+  std::vector<std::int32_t> by(static_cast<std::size_t>(nd));
+  for (std::int64_t j = 0; j < nd; ++j) by[std::size_t(j)] = std::int32_t(j);
+  if (!std::is_sorted(debris.begin(), debris.end()))
+    std::sort(by.begin(), by.end(), [&](std::int32_t a, std::int32_t b) {
+      return debris[std::size_t(a)] < debris[std::size_t(b)];
+    });
+  std::vector<std::int32_t> px(static_cast<std::size_t>(nd));
+  for (std::int64_t t = 0; t < nd; ++t)
+    px[std::size_t(t)] = debris[std::size_t(by[std::size_t(t)])];
+  std::vector<std::int32_t> nb(static_cast<std::size_t>(9 * nd), -1);  // (k as in the blocks)
+  for (std::int64_t t = 0; t < nd; ++t) {
+    const std::int64_t ax = g.x(px[std::size_t(t)]), ay = g.y(px[std::size_t(t)]);
+    for (std::int64_t dy = -1; dy <= 1; ++dy) {
+      const std::int64_t y = ay + dy, x0 = std::max<std::int64_t>(ax - 1, 0),
+                         x1 = std::min<std::int64_t>(ax + 1, w - 1);
+      if (y < 0 || y >= h) continue;
+      auto it = std::lower_bound(px.begin(), px.end(), std::int32_t(y * w + x0));
+      for (; it != px.end() && *it <= y * w + x1; ++it) {
+        const std::int64_t dx = g.x(*it) - ax;
+        if (dx || dy)
+          nb[std::size_t(9 * t + (dy + 1) * 3 + dx + 1)] = std::int32_t(it - px.begin());
+      }
     }
-  std::unordered_map<std::int32_t, char> left;  // debris not yet recoloured
-  left.reserve(debris.size() * 2);
-  for (std::int32_t a : debris) left[a] = 1;
-  auto connected = [&](std::int32_t p) { return !left.count(p); };
+  }
+  // The colour and site pixel of the k-th block pixel around the t-th debris pixel.
+  auto colour = [&](std::int64_t t, int k) {
+    return block[std::size_t(18 * by[std::size_t(t)] + k)];
+  };
+  auto site = [&](std::int64_t t, int k) {
+    return block[std::size_t(18 * by[std::size_t(t)] + 9 + k)];
+  };
+  auto pixel_at = [&](std::int64_t t, int k) {
+    return std::int32_t((g.y(px[std::size_t(t)]) + k / 3 - 1) * w + g.x(px[std::size_t(t)]) +
+                        k % 3 - 1);
+  };
+  std::vector<char> done(static_cast<std::size_t>(nd), 0);
   // Debris grows from the coloured neighbours nearer their site, in the order ≺.
   MinQueue q;
-  for (std::int32_t a : debris)
-    g.neighbours(a, [&](std::int32_t b) {
-      if (!connected(b)) return;
-      const std::int32_t c = colour.at(b), s = site.at(c);
-      if (g.key(b, s) < g.key(a, s)) q.push({g.key(a, s), c});
-    });
+  for (std::int64_t t = 0; t < nd; ++t)
+    for (int k = 0; k < 9; ++k) {
+      if (k == 4 || colour(t, k) < 0 || nb[std::size_t(9 * t + k)] >= 0) continue;
+      const std::int32_t b = pixel_at(t, k), s = site(t, k), a = px[std::size_t(t)];
+      if (g.key(b, s) < g.key(a, s)) q.push({g.key(a, s), colour(t, k), std::int32_t(t)});
+    }
   std::vector<std::int32_t> changed;
   while (!q.empty()) {
-    const auto [k, c] = q.top();
+    const Entry e = q.top();
     q.pop();
-    const std::int32_t a = std::get<2>(k), s = std::get<1>(k);
-    if (connected(a)) continue;
-    left.erase(a);
-    changed.insert(changed.end(), {a, c});
-    g.neighbours(a, [&](std::int32_t n) {
-      if (!connected(n) && g.key(a, s) < g.key(n, s)) q.push({g.key(n, s), c});
-    });
+    if (done[std::size_t(e.at)]) continue;
+    done[std::size_t(e.at)] = 1;
+    const std::int32_t a = std::get<2>(e.key), s = std::get<1>(e.key);
+    changed.insert(changed.end(), {a, e.colour});
+    for (int k = 0; k < 9; ++k) {
+      const std::int32_t u = nb[std::size_t(9 * e.at + k)];
+      if (u < 0 || done[std::size_t(u)]) continue;
+      const std::int32_t n = px[std::size_t(u)];
+      if (g.key(a, s) < g.key(n, s)) q.push({g.key(n, s), e.colour, u});
+    }
   }
   return changed;
 }
