@@ -3,12 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 #include <unordered_map>
 #include <utility>
 
 #include "delaunay2d/digital/ear_clip.hpp"
-#include "gpugeom/common.hpp"
 
 namespace gpugeom::del2d::digital {
 
@@ -24,6 +22,10 @@ std::uint64_t key(Id a, Id b) {
 HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first) {
   HullFill out;
   if (rim.empty()) return out;
+  auto no_disk = [&] {
+    out.disk = false;
+    return out;
+  };
   // The boundary's vertices numbered 0..k-1 in rim order (so every test below reads arrays),
   // their grid points, and the boundary as a successor array.
   const std::size_t k = rim.size();
@@ -32,15 +34,12 @@ HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first) {
   std::vector<Id> name(k), succ(k, -1);
   std::vector<std::int64_t> X(k), Y(k);
   for (std::size_t i = 0; i < k; ++i) {
-    if (!local.emplace(rim[i].a, Id(i)).second)
-      throw Error(ErrorCode::Internal, "digital sketch: the boundary passes vertex " +
-                                           std::to_string(rim[i].a) + " twice");
+    if (!local.emplace(rim[i].a, Id(i)).second) return no_disk();
     name[i] = rim[i].a, X[i] = std::int64_t(rim[i].x), Y[i] = std::int64_t(rim[i].y);
   }
   for (std::size_t i = 0; i < k; ++i) {
     const auto it = local.find(rim[i].b);
-    if (it == local.end())
-      throw Error(ErrorCode::Internal, "digital sketch: the boundary is not a cycle");
+    if (it == local.end()) return no_disk();
     succ[i] = it->second;
   }
   auto x = [&](Id v) { return X[std::size_t(v)]; };
@@ -56,11 +55,9 @@ HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first) {
   std::vector<Id> cycle{start};
   for (Id v = succ[std::size_t(start)]; v != start; v = succ[std::size_t(v)]) {
     cycle.push_back(v);
-    if (cycle.size() > k)
-      throw Error(ErrorCode::Internal, "digital sketch: the boundary is not one cycle");
+    if (cycle.size() > k) return no_disk();
   }
-  if (cycle.size() != k)
-    throw Error(ErrorCode::Internal, "digital sketch: the boundary is more than one cycle");
+  if (cycle.size() != k) return no_disk();
   // The hull of the boundary's vertices (Andrew's monotone chain, strict turns), as positions
   // in the cycle: a simple counter-clockwise polygon meets its hull vertices in the hull's order,
   // and each boundary stretch between two of them that is not one edge closes a pocket.

@@ -19,6 +19,9 @@ struct RimEdge {
 };
 
 struct HullFill {
+  // false where the boundary is not one simple cycle (the dual is no disk: on coarse grids with
+  // few sites, a vertex can be passed twice); then nothing is filled.
+  bool disk = true;
   std::vector<std::int32_t> triangles;  // the pockets' triangles, counter-clockwise
   // Per new half-edge (id 3 (first + j) + k for new triangle j): its twin, a rim half-edge's id
   // or another new one's; -1 on the hull.
@@ -26,7 +29,7 @@ struct HullFill {
 };
 
 // rim: the disk's boundary half-edges (grid coordinates, integers below 2^31); first: the
-// disk's triangle count. Throws Error(Internal) where the boundary is not one simple cycle.
+// disk's triangle count.
 HullFill fill_to_hull(const std::vector<RimEdge>& rim, std::int64_t first);
 
 }  // namespace gpugeom::del2d::digital

@@ -34,6 +34,7 @@ struct Sketch {
   std::int64_t debris_candidates = 0;  // pixels whose descent missed their site (tested further)
   std::int64_t pinched = 0;            // corners a cell crosses diagonally (no triangle)
   std::int64_t hull_triangles = 0;     // added between the dual's boundary and its convex hull
+  std::int64_t not_disk = 0;  // 1: the dual's boundary passes a vertex twice (no triangles kept)
   // Dual triangles as point indices, counter-clockwise in the grid (the corner's cells in
   // counter-clockwise order), then those filling the pockets up to the convex hull of their
   // vertices (hull_fill.hpp): a triangulation of that hull.

@@ -54,6 +54,7 @@ inline void triangulate_digital_impl(const double* xy, std::int64_t n, const Del
     st.counters["debris_candidates"] = s.debris_candidates;
     st.counters["pinched_corners"] = s.pinched;
     st.counters["hull_triangles"] = s.hull_triangles;
+    st.counters["sketch_not_disk"] = s.not_disk;
     if (H.nt == 0) return incremental();
     digital::Start start;
     S = shift_on(ex, pts.data(), n, s, H, start);

@@ -346,6 +346,11 @@ inline HeldSketch sketch_on(Exec& ex, const double* P, std::int64_t n, digital::
   const std::vector<digital::RimEdge> rim =
       rim_records(ex, T, H.twin.data(), nt, {nullptr, pixel, G.w});
   const digital::HullFill fill = digital::fill_to_hull(rim, nt);
+  if (!fill.disk) {  // (no disk: the sketch has no triangulation to offer; callers fall back)
+    s.not_disk = 1, H.nt = 0;
+    phase("hull_fill");
+    return H;
+  }
   const std::int64_t added = std::int64_t(fill.triangles.size() / 3);
   s.hull_triangles = added;
   if (added) {
