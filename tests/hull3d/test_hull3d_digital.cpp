@@ -2,6 +2,10 @@
 // vertices as the incremental method on every distribution and degenerate input, on coarse and
 // automatic grids (a coarse grid's sketch misses most hull vertices, so the depth test must
 // find them all); the depth test discards points (it is not a pass-through); errors.
+#include <cmath>
+#include <random>
+#include <string>
+
 #include "hull3d_cases.hpp"
 
 using namespace gpugeom;
@@ -29,6 +33,28 @@ TEST(DigitalHull3d, SameHullAsIncrementalOnDistributions) {
 TEST(DigitalHull3d, SameHullAsIncrementalOnDegenerateInput) {
   for (const auto& c : gg_hull3d::degenerate_cases())
     for (std::int64_t grid : {0, 16, 64}) gg_hull3d::expect_digital_same(c, cpu(), grid);
+}
+
+// Shapes a grid frames badly: a slab 10^-7 thick, a thin bar far from the origin, two clusters
+// far apart (the grid between them empty), a coarse lattice with many copies; grids of odd and
+// automatic sides.
+TEST(DigitalHull3d, SameHullOnShapesAGridFramesBadly) {
+  for (int kind = 0; kind < 4; ++kind)
+    for (int n : {9, 60, 2000}) {
+      std::mt19937_64 r(std::uint64_t(100 * kind + n));
+      std::uniform_real_distribution<double> U(-1, 1);
+      gg_hull3d::Case c{"shape" + std::to_string(kind) + "/" + std::to_string(n), {}};
+      for (int i = 0; i < n; ++i) {
+        double x = U(r), y = U(r), z = U(r);
+        if (kind == 0) z *= 1e-7;
+        if (kind == 1) x = 1e6 + 1e-3 * x;
+        if (kind == 2 && i % 2) x += 1000;
+        if (kind == 3)
+          x = std::round(4 * x) / 4, y = std::round(4 * y) / 4, z = std::round(4 * z) / 4;
+        c.pts.push_back({x, y, z});
+      }
+      for (std::int64_t grid : {0, 16, 17}) gg_hull3d::expect_digital_same(c, cpu(), grid);
+    }
 }
 
 // On a ball most points are deep inside the sketch's hull: the depth test drops them, and the
