@@ -24,6 +24,13 @@ struct Case {
   std::vector<Point3> pts;
 };
 
+// Options that run on the CPU executor (the CPU tests' default).
+inline gpugeom::Hull3dOptions cpu() {
+  gpugeom::Hull3dOptions o;
+  o.backend = gpugeom::Backend::Cpu;
+  return o;
+}
+
 inline std::vector<Case> distribution_cases(const std::vector<std::int64_t>& sizes,
                                             std::uint64_t seed) {
   std::vector<Case> out;

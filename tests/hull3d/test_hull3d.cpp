@@ -19,13 +19,7 @@
 using namespace gpugeom;
 using gg_hull3d::expect_valid;
 
-namespace {
-Hull3dOptions cpu() {
-  Hull3dOptions o;
-  o.backend = Backend::Cpu;
-  return o;
-}
-}  // namespace
+using gg_hull3d::cpu;
 
 TEST(Hull3d, Distributions) {
   for (const auto& c : gg_hull3d::distribution_cases({4, 5, 10, 100, 1000, 20000}, 11)) {

@@ -10,13 +10,7 @@
 
 using namespace gpugeom;
 
-namespace {
-Hull3dOptions cpu() {
-  Hull3dOptions o;
-  o.backend = Backend::Cpu;
-  return o;
-}
-}  // namespace
+using gg_hull3d::cpu;
 
 TEST(DigitalHull3d, SameHullAsIncrementalOnDistributions) {
   std::int64_t fallbacks = 0, cases = 0;
