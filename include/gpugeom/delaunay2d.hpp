@@ -52,6 +52,12 @@ struct Triangulation2d {
   std::int64_t num_duplicates = 0;
   // Stats: phases "prepare", "insert" (with its flips), "finish" and "copies"; counters
   // "batches", "flips", "flip_rounds", "exact_predicates", "points", "distinct_points".
+  // Method::Digital adds phases "digital_*" (grid, pba, debris, dual, adjacency, hull_fill,
+  // shift_*) and "start", and counters "grid_width", "grid_height", "sites", "sketch_missing",
+  // "debris_pixels", "debris_candidates", "pinched_corners", "hull_triangles",
+  // "sketch_not_disk", "shifted", "bad_inner", "bad_boundary", "shift_rounds",
+  // "delete_rounds", "start_vertices", "start_triangles" and "digital_fallback" (1: the sketch
+  // could not be used, and the incremental method ran on the same preparation).
   Stats stats;
   // Triangles written (also where they went into the caller's arrays, Delaunay2dOptions::into).
   std::int64_t triangle_count = 0;
