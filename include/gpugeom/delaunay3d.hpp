@@ -48,6 +48,17 @@ struct Delaunay3dOptions : RunOptions {
   // Test switch: at most this many flip rounds after each batch (-1: until no flip is left),
   // so that star splaying must repair a tetrahedralisation far from Delaunay (0: none).
   std::int64_t max_flip_rounds = -1;
+  // The method (common.hpp): the result does not depend on it. Method::Digital is the thesis'
+  // DigiDel3D (4.5.2): a digital Voronoi diagram of the points on a grid (3D PBA), a working
+  // set of neighbours for every point from the grid corners where its cell meets others (read
+  // as a perturbed grid), a convex star for every point from its working set (beneath-beyond),
+  // then star splaying until every star agrees with its neighbours' (Shewchuk), all on the
+  // executor. Adds phases "digital_*" and counters "digital_grid", "sites", "sketch_missing",
+  // "working_pairs", "star_triangles", "splay_rounds", "star_insertions", "star_growths".
+  Method method = Method::Incremental;
+  // Method::Digital: the grid's side along the points' longest extent (16..1024; 0 chooses
+  // it from the point count: about 32 grid cells a point).
+  std::int64_t grid = 0;
 };
 
 struct Triangulation3d {

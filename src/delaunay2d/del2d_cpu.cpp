@@ -51,6 +51,7 @@ using Exec = CpuExec;
 #include "delaunay2d/impl/mesh.inl"
 #include "delaunay2d/impl/triangulate.inl"
 namespace edt_impl = gpugeom::edt::cpu_impl;
+#include "edt/impl/point_voronoi.inl"
 #include "delaunay2d/digital/impl/sketch.inl"
 #include "delaunay2d/digital/impl/shift.inl"
 #include "delaunay2d/digital/impl/pipeline.inl"

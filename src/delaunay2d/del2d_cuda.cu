@@ -52,6 +52,7 @@ using Exec = CudaExec;
 #include "delaunay2d/impl/mesh.inl"
 #include "delaunay2d/impl/triangulate.inl"
 namespace edt_impl = gpugeom::edt::cuda_impl;
+#include "edt/impl/point_voronoi.inl"
 #include "delaunay2d/digital/impl/sketch.inl"
 #include "delaunay2d/digital/impl/shift.inl"
 #include "delaunay2d/digital/impl/pipeline.inl"

@@ -1,5 +1,7 @@
 // 3D Delaunay tetrahedralisation compiled for the CPU executor.
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
@@ -10,6 +12,8 @@
 #include "base/clock.hpp"
 #include "delaunay3d/del3d_backend.hpp"
 #include "delaunay3d/tet.hpp"
+#include "edt/edt_backend.hpp"
+#include "edt/edt_device.hpp"
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
 #include "exec/cpu_exec.hpp"
@@ -27,7 +31,13 @@
 
 namespace gpugeom::del3d::cpu_impl {
 using Exec = CpuExec;
+namespace edt_impl = gpugeom::edt::cpu_impl;
 #include "delaunay3d/impl/geometry.inl"
+#include "delaunay3d/impl/link.inl"
+#include "edt/impl/point_voronoi.inl"
+#include "delaunay3d/digital/impl/working_sets.inl"
+#include "delaunay3d/digital/impl/stars.inl"
+#include "delaunay3d/digital/impl/pipeline.inl"
 #include "delaunay3d/impl/triangulate.inl"
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
                  Stats& stats) {

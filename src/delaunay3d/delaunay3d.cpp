@@ -25,10 +25,24 @@ void check_count(std::int64_t n) {
                 "fewer than 4 points (" + std::to_string(n) +
                     "): a 3D Delaunay triangulation needs 4 points not on one plane");
 }
+void check_method(const Delaunay3dOptions& opt) {
+  if (opt.grid != 0 && (opt.grid < 16 || opt.grid > 1024))
+    throw Error(ErrorCode::InvalidArgument,
+                "grid: the digital method's grid side must be 16..1024 (or 0: chosen from the "
+                "point count), got " +
+                    std::to_string(opt.grid));
+  if (opt.grid != 0 && opt.method != Method::Digital)
+    throw Error(ErrorCode::InvalidArgument, "grid: only Method::Digital uses a grid");
+  if (opt.method == Method::Digital && opt.max_flip_rounds >= 0)
+    throw Error(ErrorCode::InvalidArgument,
+                "max_flip_rounds: a switch of the incremental method; Method::Digital has no "
+                "flip rounds");
+}
 }  // namespace
 
 Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt) {
   check_count(n);
+  check_method(opt);
   Triangulation3d r;
   const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
@@ -48,6 +62,7 @@ Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOp
 DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n,
                                         const Delaunay3dOptions& opt) {
   check_count(n);
+  check_method(opt);
   DeviceTriangulation3d r;
   const Backend b = device_entry_backend(opt.backend, opt.device, "delaunay3d_device");
   r.backend = r.stats.backend = b;

@@ -44,12 +44,17 @@
 namespace gpugeom::del3d {
 namespace host_impl {
 #include "delaunay3d/impl/geometry.inl"
+#include "delaunay3d/impl/link.inl"
 }  // namespace host_impl
 
 namespace {
 using host_impl::face_vertex;
 using host_impl::Geo;
 using host_impl::in_sphere_ext;
+using host_impl::link_find;
+using host_impl::link_find_edge;
+using host_impl::link_third;
+using host_impl::LinkTri;
 using host_impl::orient_ext;
 using mesh::enc;
 using mesh::loc_of;
@@ -219,10 +224,7 @@ void check_adjacency(HostMesh& H, const char* step) {
                (st == 1 ? " has no neighbour" : " has a wrong neighbour"));
 }
 
-struct Tri {
-  std::int32_t a, b, c;
-  bool has(std::int32_t x) const { return a == x || b == x || c == x; }
-};
+using Tri = LinkTri;  // (delaunay3d/impl/link.inl)
 
 struct Edge {
   std::int32_t a, b;
@@ -424,24 +426,18 @@ class Splayer {
     if (err) std::rethrow_exception(err);
   }
 
+  // (The link operations are delaunay3d/impl/link.inl's, shared with the digital method.)
   static int find_edge(const Star& s, std::int32_t a, std::int32_t b) {  // directed a -> b
-    for (std::size_t i = 0; i < s.tris.size(); ++i) {
-      const Tri& t = s.tris[i];
-      if ((t.a == a && t.b == b) || (t.b == a && t.c == b) || (t.c == a && t.a == b)) return int(i);
-    }
-    return -1;
+    return link_find_edge(s.tris.data(), int(s.tris.size()), a, b);
   }
   static std::int32_t third(const Tri& t, std::int32_t a, std::int32_t b) {
-    return t.a != a && t.a != b ? t.a : t.b != a && t.b != b ? t.b : t.c;
+    return link_third(t, a, b);
   }
   static bool contains(const Star& s, std::int32_t a, std::int32_t b, std::int32_t c) {
-    for (const Tri& t : s.tris)
-      if (t.has(a) && t.has(b) && t.has(c)) return true;
-    return false;
+    return link_find(s.tris.data(), int(s.tris.size()), a, b, c) >= 0;
   }
   static bool reflex(const Geo& g, std::int32_t v, const Tri& t, std::int32_t d) {
-    const std::int32_t q[4] = {v, t.a, t.b, t.c};
-    return in_sphere_ext(g, q, d);
+    return host_impl::link_reflex(g, v, t, d);
   }
 
   // Link edge a -> b of triangles (a, b, c) and (b, a, d) replaced by (c, d): triangles
@@ -553,34 +549,24 @@ class Splayer {
   static bool insert(const Geo& g, std::int32_t v, Star& s, std::int32_t x,
                      std::vector<Item>& out) {
     if (x == v || !s.offer(x)) return false;
-    std::vector<char> conflict(s.tris.size(), 0);
-    bool any = false;
-    for (std::size_t i = 0; i < s.tris.size(); ++i)
-      if (reflex(g, v, s.tris[i], x)) conflict[i] = 1, any = true;
-    if (!any) return false;
-    std::vector<Tri> keep, added;
-    for (std::size_t i = 0; i < s.tris.size(); ++i) {
-      const Tri& t = s.tris[i];
-      if (!conflict[i]) {
-        keep.push_back(t);
-        continue;
-      }
-      const std::int32_t e[3][2] = {{t.a, t.b}, {t.b, t.c}, {t.c, t.a}};
-      for (auto& ed : e) {
-        const int j = find_edge(s, ed[1], ed[0]);
-        if (j < 0) internal("open star");
-        if (!conflict[std::size_t(j)]) added.push_back({ed[0], ed[1], x});
-      }
+    // (A disk of c triangles has at most c + 2 boundary edges: room for 2 n + 2 suffices.)
+    const int n = int(s.tris.size());
+    s.tris.resize(std::size_t(2 * n + 8));
+    int removed = 0;
+    const int r = host_impl::link_insert(g, v, s.tris.data(), n, int(s.tris.size()), x,
+                                         [&](const Tri& t) { gone(v, t, out), ++removed; });
+    if (r < 0) {
+      s.tris.resize(std::size_t(n));
+      internal(r == host_impl::kLinkBroken ? "a star insertion region is not a disk"
+                                           : "a star insertion without room");
     }
-    for (const Tri& t : added)
-      if (orient_ext(g, v, t.a, t.b, t.c) <= 0) internal("a star insertion region is not a disk");
-    for (std::size_t i = 0; i < s.tris.size(); ++i)
-      if (conflict[i]) gone(v, s.tris[i], out);
-    for (const Tri& t : added) {
-      keep.push_back(t);
+    s.tris.resize(std::size_t(r));
+    if (removed == 0) return false;
+    // The new triangles are the last ones: those with x.
+    for (int i = r - 1; i >= 0 && s.tris[std::size_t(i)].has(x); --i) {
+      const Tri& t = s.tris[std::size_t(i)];
       out.push_back({{v, t.a, t.b, t.c}, 0});
     }
-    s.tris.swap(keep);
     s.changed = true;
     return true;
   }

@@ -1017,8 +1017,10 @@ class Triangulator {
 // left failed faces, then the finite tetrahedra in input indices (f) with S's duplicate map.
 template <class Body>
 inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on_device,
-                             std::int64_t max_rounds, int threads, const ProgressFn& progress,
-                             Stats& st, Body body) {
+                             const Delaunay3dOptions& opt, Stats& st, Body body) {
+  const std::int64_t max_rounds = opt.max_flip_rounds;
+  const int threads = opt.threads;
+  const ProgressFn& progress = opt.progress;
   auto t0 = Clock::now();
   auto raw = ex.template alloc<double>(std::size_t(3 * n));
   if (on_device)
@@ -1040,6 +1042,13 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
       mesh::first_tetrahedron(ex, S.pts.data(), S.m, n, "a 3D Delaunay triangulation", true);
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
+  if (opt.method == Method::Digital) {  // DigiDel3D (digital/impl/pipeline.inl)
+    auto f = digital_tets(ex, S, box, first, opt.grid, progress, st);
+    t0 = Clock::now();
+    body(S, f);
+    st.phase_ms.push_back({"output", ms_since(t0)});
+    return;
+  }
   t0 = Clock::now();
   Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, max_rounds, progress, st);
   T.run();
@@ -1225,7 +1234,7 @@ inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3d
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
                                            "a 3D Delaunay tetrahedralisation", "points");
-  triangulate_core(ex, xyz, n, false, opt.max_flip_rounds, opt.threads, opt.progress, st,
+  triangulate_core(ex, xyz, n, false, opt, st,
                    [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
                      to_output(ex, S, f, n, opt.into, out);
                    });
@@ -1237,7 +1246,7 @@ inline void triangulate_device_impl(const double* xyz, std::int64_t n, const Del
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint - 24,
                                            "a 3D Delaunay tetrahedralisation", "points");
-  triangulate_core(ex, xyz, n, true, opt.max_flip_rounds, opt.threads, opt.progress, st,
+  triangulate_core(ex, xyz, n, true, opt, st,
                    [&](mesh::SortedPoints<Exec>& S, typename Triangulator::Finished& f) {
                      to_device_output(ex, S, f, n, opt.into, out);
                    });

@@ -82,50 +82,20 @@ inline HeldSketch sketch_on(Exec& ex, const double* P, std::int64_t n, digital::
   };
   const PixelGrid G{s.width, s.height};
   const std::int64_t np = G.w * G.h;
-  const double ox = s.ox, oy = s.oy, h = s.h;
-  // Phase 1a: each point to its pixel; the first point of a pixel (atomic minimum) is its site.
-  H.pixel = ex.template alloc<std::int32_t>(std::size_t(n));
-  H.colour = ex.template alloc<std::int32_t>(std::size_t(np));
+  // Phase 1a (edt/impl/point_voronoi.inl): each point to its pixel, the first point of a pixel
+  // its site, then PBA's feature transform gives each pixel its nearest site's point.
+  point_voronoi_impl::CellFrame F;
+  F.nd = 2, F.n[0] = G.w, F.n[1] = G.h, F.o[0] = s.ox, F.o[1] = s.oy, F.h = s.h;
+  PointVoronoi V = map_point_sites(ex, P, n, F);
+  phase("grid");
+  colour_cells(ex, n, F, V);
+  H.nmiss = V.nmiss;
+  H.pixel = std::move(V.cell);
+  H.colour = std::move(V.colour);
+  H.missing = std::move(V.missing);
   std::int32_t* pixel = H.pixel.data();
   std::int32_t* colour = H.colour.data();
-  ex.fill(colour, np, std::numeric_limits<std::int32_t>::max());
-  ex.for_each_index(
-      n, GG_LAMBDA(std::int64_t i) {
-        auto cell = [](double v, double lo, double hh, std::int64_t m) {
-          const std::int64_t c = std::int64_t(floor((v - lo) / hh));
-          return c < 0 ? std::int64_t(0) : (c > m - 1 ? m - 1 : c);
-        };
-        const std::int64_t p = cell(P[2 * i + 1], oy, h, G.h) * G.w + cell(P[2 * i], ox, h, G.w);
-        pixel[i] = std::int32_t(p);
-        atomic_min(&colour[p], std::int32_t(i));
-      });
-  H.missing = ex.template alloc<std::int32_t>(std::size_t(n));
-  const std::int64_t nmiss = H.nmiss = ex.compact_indices(
-      n, GG_LAMBDA(std::int64_t i) { return colour[pixel[i]] != std::int32_t(i); },
-      H.missing.data());
-  const std::int64_t nsites = n - nmiss;
-  // The digital Voronoi diagram: PBA's feature transform over the sites' packed positions
-  // (ties: the site first in raster order, as ≺); then each pixel takes its site's point (a
-  // site pixel's own colour is its point already, and only site pixels are read).
-  const edt::Layout L = edt::make_layout({G.h, G.w}, false, edt::Packing::Bits);
-  {
-    auto feat = ex.template alloc<std::uint32_t>(std::size_t(np));
-    std::uint32_t* F = feat.data();
-    ex.fill(F, np, edt::kNone);
-    ex.for_each_index(
-        n, GG_LAMBDA(std::int64_t i) {
-          const std::int64_t p = pixel[i];
-          if (colour[p] == std::int32_t(i)) F[p] = L.pack(G.x(p), G.y(p), 0);
-        });
-    phase("grid");
-    edt_impl::feature_transform_held(ex, L, edt::Metric{}, F, nsites);
-    ex.for_each_index(
-        np, GG_LAMBDA(std::int64_t p) {
-          const std::int64_t site = L.voxel_of(F[p]);
-          if (site != p) colour[p] = colour[site];
-        });
-    phase("pba");
-  }
+  phase("pba");
   // Debris (pixels not 8-connected to their site through their colour). Each pixel steps to its
   // neighbour of its colour with the least (squared distance to its site, raster index) below
   // its own, if any: from every pixel these steps descend to its site or to a root (a pixel with

@@ -1,0 +1,67 @@
+// DigiDel3D (thesis 4.5.2) on one executor: the digital Voronoi diagram and working sets
+// (working_sets.inl), a convex star per point and star splaying (stars.inl), then the
+// tetrahedra in the incremental method's output form. Included inside an executor's namespace
+// after those files; triangulate.inl calls it after the shared preparation (the same distinct
+// points in the same curve order and the same kernel point, so the same perturbation and the
+// same tetrahedra).
+
+// The grid side chosen from the point count: about 32 cells a point.
+inline std::int64_t digital_side(std::int64_t m) {
+  return std::clamp<std::int64_t>(std::int64_t(std::llround(std::cbrt(32.0 * double(m)))), 16,
+                                  1024);
+}
+
+inline mesh::Compacted<Exec> digital_tets(Exec& ex, mesh::SortedPoints<Exec>& S,
+                                          const mesh::Bounds<3>& box, const mesh::Tetra& first,
+                                          std::int64_t grid, const ProgressFn& progress,
+                                          Stats& st) {
+  auto t0 = Clock::now();
+  auto phase = [&](const char* name) {
+    ex.sync();
+    st.phase_ms.push_back({name, ms_since(t0)});
+    t0 = Clock::now();
+  };
+  const std::int64_t m = S.m;
+  const std::int64_t side = grid > 0 ? grid : digital_side(m);
+  const point_voronoi_impl::CellFrame F = digital_frame(box, side);
+  PointVoronoi V = map_point_sites(ex, S.pts.data(), m, F);
+  phase("digital_grid");
+  colour_cells(ex, m, F, V);
+  phase("digital_pba");
+  st.counters["digital_grid"] = side;
+  st.counters["sites"] = V.nsites;
+  st.counters["sketch_missing"] = V.nmiss;
+  WorkingSets W = working_sets(ex, m, F, V);
+  V = PointVoronoi();
+  st.counters["working_pairs"] = W.pairs;
+  st.counters["working_set_points"] = W.total;
+  st.counters["working_sets_augmented"] = W.augmented;
+  phase("digital_working_sets");
+  Geo g;
+  g.p = S.pts.data();
+  for (int k = 0; k < 3; ++k) g.s[k] = first.s[k];
+  g.m = std::int32_t(m);
+  LeasePool<Exec> pool(
+      ex, std::clamp<std::int64_t>(std::min<std::int64_t>(ex.concurrency(), m / 8), 64, 1024),
+      pred::kInsphereScratch);
+  g.lease = pool.view;
+  auto ctr = ex.template alloc<digital3d_impl::StarCounters>(1);
+  StarStore T = create_stars(ex, g, m, W.start.data(), W.size.data(), W.pts.data(), ctr);
+  W = WorkingSets();
+  st.counters["star_slots_created"] = T.slots;
+  phase("digital_stars");
+  if (progress) progress(Delaunay3dProgress{"splay", m, m, 0});
+  const SplayCount sc = splay_stars(ex, g, T, ctr);
+  st.counters["splay_rounds"] = sc.rounds;
+  st.counters["star_insertions"] = sc.insertions;
+  st.counters["star_requests"] = sc.requests;
+  st.counters["star_growths"] = T.growths;
+  st.counters["star_slots"] = T.slots;
+  phase("digital_splay");
+  if (progress) progress(Delaunay3dProgress{"output", m, m, 0});
+  std::int64_t flats = 0;
+  mesh::Compacted<Exec> f = star_tets(ex, g, T, S.orig.data(), flats);
+  st.counters["flat_tetrahedra"] = flats;
+  phase("digital_tetrahedra");
+  return f;
+}

@@ -1,0 +1,420 @@
+// Stars for every point on the executor (thesis 4.5.2, phases 2 and 3): a convex star per point
+// from its working set by beneath-beyond, then star splaying in rounds until every star agrees
+// with its neighbours' (Shewchuk), then the tetrahedra. Included inside an executor's namespace
+// after geometry.inl and link.inl.
+//
+// Storage (the thesis' two-part storage, in one array): each star owns a run of triangle slots
+// (off, cap) of which cnt are used. A star that outgrows its run stops where it is and says so;
+// between rounds the runs of those stars are doubled in one re-layout (a scan of the new sizes
+// and one copy), and the star goes on from where it stopped. The sizes after creation are
+// nearly right, so this is rare.
+//
+// Splaying: a round checks the dirty stars' tetrahedra (a tetrahedron of star(v) must be in the
+// stars of its other finite vertices). Where star(w) lacks one, star(w) takes those of its
+// vertices that would change it; where none would, star(w) holds a vertex inside the
+// tetrahedron's sphere, which star(v) takes. The requests (star, vertex) are sorted; each star
+// takes its vertices in vertex order on one thread. A star is the convex star of the vertices
+// offered to it whatever their order, and stars only take vertices, so the rounds end in the
+// same stars on every executor and thread count, which are the stars of the Delaunay
+// tetrahedralisation once they all agree. Dirty for the next round: a star that took a vertex,
+// and the vertices of every triangle it lost (their stars may still hold the tetrahedron).
+
+namespace digital3d_impl {
+
+struct StarCounters {
+  std::int64_t requests, overflow, broken, stuck, taken;
+};
+
+}  // namespace digital3d_impl
+
+struct StarStore {
+  typename Exec::template Buffer<LinkTri> tri;
+  typename Exec::template Buffer<std::int64_t> off;
+  typename Exec::template Buffer<std::int32_t> cap, cnt;
+  std::int64_t m = 0, slots = 0, growths = 0;
+};
+
+// New runs: a star with grow[v] != 0 gets twice its room plus 8; the used triangles move along.
+inline void regrow_stars(Exec& ex, StarStore& S, const std::int8_t* grow) {
+  const std::int64_t m = S.m;
+  auto cap2 = ex.template alloc<std::int32_t>(std::size_t(m));
+  auto off2 = ex.template alloc<std::int64_t>(std::size_t(m + 1));
+  std::int32_t* c2 = cap2.data();
+  const std::int32_t* c1 = S.cap.data();
+  ex.for_each_index(
+      m, GG_LAMBDA(std::int64_t v) { c2[v] = grow && grow[v] ? 2 * c1[v] + 8 : c1[v]; });
+  ex.exclusive_scan_of(
+      m + 1, GG_LAMBDA(std::int64_t v)->std::int64_t { return v < m ? c2[v] : 0; }, off2.data());
+  std::int64_t total = 0;
+  ex.to_host(off2.data() + m, 1, &total);
+  auto tri2 = ex.template alloc<LinkTri>(std::size_t(total));
+  LinkTri* t2 = tri2.data();
+  const LinkTri* t1 = S.tri.data();
+  const std::int64_t* o1 = S.off.data();
+  const std::int64_t* o2 = off2.data();
+  const std::int32_t* cnt = S.cnt.data();
+  ex.for_each_index(
+      m, GG_LAMBDA(std::int64_t v) {
+        for (std::int32_t i = 0; i < cnt[v]; ++i) t2[o2[v] + i] = t1[o1[v] + i];
+      });
+  S.tri = std::move(tri2);
+  S.off = std::move(off2);
+  S.cap = std::move(cap2);
+  S.slots = total;
+  ++S.growths;
+}
+
+// Phase 2: the convex star of every point v from its working set ws[wo[v], wo[v] + wn[v]) (at
+// least three points): the link of v among the first three and the infinity point, then every
+// other point taken in turn.
+inline StarStore create_stars(Exec& ex, const Geo& g, std::int64_t m, const std::int64_t* wo,
+                              const std::int32_t* wn, const std::int32_t* ws,
+                              typename Exec::template Buffer<digital3d_impl::StarCounters>& ctr) {
+  using digital3d_impl::StarCounters;
+  StarStore S;
+  S.m = m;
+  S.cnt = ex.template alloc<std::int32_t>(std::size_t(m));
+  S.cap = ex.template alloc<std::int32_t>(std::size_t(m));
+  S.off = ex.template alloc<std::int64_t>(std::size_t(m + 1));
+  {  // (a star over k link vertices has 2 k - 4 triangles; k is at most the set plus infinity)
+    std::int32_t* cap = S.cap.data();
+    std::int32_t* cnt = S.cnt.data();
+    ex.for_each_index(
+        m, GG_LAMBDA(std::int64_t v) {
+          cap[v] = 2 * wn[v] + 8;
+          cnt[v] = 0;
+        });
+    regrow_stars(ex, S, nullptr);
+    S.growths = 0;
+  }
+  auto redo_d = ex.template alloc<std::int8_t>(std::size_t(m));
+  std::int8_t* redo = redo_d.data();
+  ex.fill(redo, m, std::int8_t(1));
+  StarCounters* C = ctr.data();
+  for (int pass = 0;; ++pass) {
+    if (pass > 40) throw Error(ErrorCode::Internal, "digital 3D Delaunay: stars kept outgrowing");
+    const StarCounters zero{};
+    ex.from_host(&zero, 1, C);
+    LinkTri* tri = S.tri.data();
+    const std::int64_t* off = S.off.data();
+    const std::int32_t* cap = S.cap.data();
+    std::int32_t* cnt = S.cnt.data();
+    ex.for_each_index(
+        m, GG_LAMBDA(std::int64_t i) {
+          if (!redo[i]) return;
+          const std::int32_t v = std::int32_t(i);
+          LinkTri* t = tri + off[v];
+          const std::int64_t b = wo[v], e = wo[v] + wn[v];
+          link_start(g, v, ws[b], ws[b + 1], ws[b + 2], t);
+          int n = 4;
+          for (std::int64_t j = b + 3; j < e; ++j) {
+            const int r = link_insert(g, v, t, n, cap[v], ws[j], [](const LinkTri&) {});
+            if (r == kLinkNoRoom) {
+              atomic_add(&C->overflow, std::int64_t(1));
+              cnt[v] = n;
+              return;
+            }
+            if (r == kLinkBroken) {
+              atomic_add(&C->broken, std::int64_t(1));
+              break;
+            }
+            n = r;
+          }
+          cnt[v] = n;
+          redo[i] = 0;
+        });
+    StarCounters c;
+    ex.to_host(C, 1, &c);
+    if (c.broken)
+      throw Error(ErrorCode::Internal,
+                  "internal error in the digital 3D Delaunay method: a star creation step found "
+                  "a star that was not convex; please report this input");
+    if (!c.overflow) break;
+    regrow_stars(ex, S, redo);  // (the stars that stopped start again with twice the room)
+  }
+  return S;
+}
+
+// Phase 3: star splaying until every star agrees (see the top). Returns the rounds.
+struct SplayCount {
+  std::int64_t rounds = 0, insertions = 0, requests = 0;
+};
+inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
+                              typename Exec::template Buffer<digital3d_impl::StarCounters>& ctr) {
+  using digital3d_impl::StarCounters;
+  using u64 = unsigned long long;
+  const std::int64_t m = S.m;
+  const std::int32_t I = g.m;
+  SplayCount out;
+  auto dirty_a = ex.template alloc<std::int8_t>(std::size_t(m));
+  auto dirty_b = ex.template alloc<std::int8_t>(std::size_t(m));
+  ex.fill(dirty_a.data(), m, std::int8_t(1));
+  auto list_d = ex.template alloc<std::int32_t>(std::size_t(m));
+  std::int64_t req_cap = std::max<std::int64_t>(1 << 16, m);
+  auto req = ex.template alloc<u64>(std::size_t(req_cap));
+  StarCounters* C = ctr.data();
+  bool full_check = false;  // the last round checks every star: the proof of consistency
+  for (;;) {
+    std::int8_t* dirty = dirty_a.data();
+    std::int32_t* list = list_d.data();
+    const std::int64_t nl = full_check
+                                ? ex.compact_indices(
+                                      m, GG_LAMBDA(std::int64_t) { return true; }, list)
+                                : ex.compact_indices(
+                                      m, GG_LAMBDA(std::int64_t v) { return dirty[v] != 0; }, list);
+    if (nl == 0) {
+      full_check = true;
+      continue;
+    }
+    ++out.rounds;
+    if (out.rounds > 100000) throw Error(ErrorCode::Internal, "digital 3D Delaunay: splaying");
+    // Check (read-only on the stars): requests into req.
+    std::int64_t nreq = 0;
+    for (;;) {
+      const StarCounters zero{};
+      ex.from_host(&zero, 1, C);
+      const LinkTri* tri = S.tri.data();
+      const std::int64_t* off = S.off.data();
+      const std::int32_t* cnt = S.cnt.data();
+      u64* R = req.data();
+      const std::int64_t rc = req_cap;
+      ex.for_each_index(
+          nl, GG_LAMBDA(std::int64_t j) {
+            const std::int32_t v = list[j];
+            const LinkTri* tv = tri + off[v];
+            const int nv = cnt[v];
+            auto ask = [&](std::int32_t star, std::int32_t vertex) {
+              const std::int64_t at = atomic_add(&C->requests, std::int64_t(1));
+              if (at < rc) R[at] = u64(std::uint32_t(star)) << 32 | std::uint32_t(vertex);
+            };
+            for (int i = 0; i < nv; ++i) {
+              const std::int32_t q[4] = {v, tv[i].a, tv[i].b, tv[i].c};
+              for (int k = 1; k < 4; ++k) {
+                const std::int32_t w = q[k];
+                if (w == I) continue;
+                std::int32_t o[3];
+                for (int a = 0, z = 0; a < 4; ++a)
+                  if (a != k) o[z++] = q[a];
+                const LinkTri* tw = tri + off[w];
+                const int nw = cnt[w];
+                if (link_find(tw, nw, o[0], o[1], o[2]) >= 0) continue;
+                bool asked = false;
+                for (int a = 0; a < 3; ++a)
+                  if (!link_has_vertex(tw, nw, o[a]) && link_conflicts(g, w, tw, nw, o[a])) {
+                    ask(w, o[a]);
+                    asked = true;
+                  }
+                if (asked) continue;
+                // star(w) is convex over those vertices and still lacks the tetrahedron: one of
+                // its vertices lies inside the tetrahedron's sphere; star(v) takes it.
+                for (int x = 0; x < nw; ++x) {
+                  const std::int32_t y3[3] = {tw[x].a, tw[x].b, tw[x].c};
+                  for (int a = 0; a < 3; ++a) {
+                    const std::int32_t y = y3[a];
+                    if (y == q[0] || y == q[1] || y == q[2] || y == q[3]) continue;
+                    if (in_sphere_ext(g, q, y)) {
+                      ask(v, y);
+                      asked = true;
+                    }
+                  }
+                }
+                if (!asked) atomic_add(&C->stuck, std::int64_t(1));
+              }
+            }
+          });
+      StarCounters c;
+      ex.to_host(C, 1, &c);
+      if (c.stuck)
+        throw Error(ErrorCode::Internal,
+                    "internal error in the digital 3D Delaunay method: inconsistent stars that "
+                    "no insertion separates; please report this input");
+      nreq = c.requests;
+      if (nreq <= req_cap) break;
+      req_cap = nreq + nreq / 4;
+      req = ex.template alloc<u64>(std::size_t(req_cap));
+    }
+    out.requests += nreq;
+    if (nreq == 0) {
+      if (full_check) break;  // every star agrees with every other
+      full_check = true;
+      continue;
+    }
+    full_check = false;
+    // Take: sorted requests, one thread per star in vertex order.
+    u64* R = req.data();
+    ex.sort(R, nreq);
+    auto first_d = ex.template alloc<std::int32_t>(std::size_t(nreq + 1));
+    std::int32_t* first = first_d.data();
+    const std::int64_t ng = ex.compact_indices(
+        nreq, GG_LAMBDA(std::int64_t i) { return i == 0 || (R[i] >> 32) != (R[i - 1] >> 32); },
+        first);
+    {
+      const std::int32_t end = std::int32_t(nreq);
+      ex.from_host(&end, 1, first + ng);
+    }
+    auto pos_d = ex.template alloc<std::int32_t>(std::size_t(ng));
+    std::int32_t* pos = pos_d.data();
+    ex.copy(first, ng, pos);
+    std::int8_t* next = dirty_b.data();
+    ex.fill(next, m, std::int8_t(0));
+    auto grow_d = ex.template alloc<std::int8_t>(std::size_t(m));
+    std::int8_t* grow = grow_d.data();
+    for (int pass = 0;; ++pass) {
+      if (pass > 40) throw Error(ErrorCode::Internal, "digital 3D Delaunay: stars kept outgrowing");
+      const StarCounters zero{};
+      ex.from_host(&zero, 1, C);
+      ex.fill(grow, m, std::int8_t(0));
+      LinkTri* tri = S.tri.data();
+      const std::int64_t* off = S.off.data();
+      const std::int32_t* cap = S.cap.data();
+      std::int32_t* cnt = S.cnt.data();
+      ex.for_each_index(
+          ng, GG_LAMBDA(std::int64_t k) {
+            const std::int32_t e = first[k + 1];
+            std::int32_t p = pos[k];
+            if (p >= e) return;
+            const std::int32_t v = std::int32_t(R[p] >> 32);
+            LinkTri* t = tri + off[v];
+            int n = cnt[v];
+            for (; p < e; ++p) {
+              const std::int32_t x = std::int32_t(R[p] & 0xFFFFFFFFu);
+              if (p > first[k] && R[p] == R[p - 1]) continue;
+              bool changed = false;
+              const int r = link_insert(g, v, t, n, cap[v], x, [&](const LinkTri& gone) {
+                const std::int32_t y3[3] = {gone.a, gone.b, gone.c};
+                for (int a = 0; a < 3; ++a)
+                  if (y3[a] != I) next[y3[a]] = 1;
+                changed = true;
+              });
+              if (r == kLinkNoRoom) {
+                grow[v] = 1;
+                atomic_add(&C->overflow, std::int64_t(1));
+                break;
+              }
+              if (r == kLinkBroken) {
+                atomic_add(&C->broken, std::int64_t(1));
+                break;
+              }
+              if (changed) next[v] = 1, atomic_add(&C->taken, std::int64_t(1));
+              n = r;
+            }
+            cnt[v] = n;
+            pos[k] = p;
+          });
+      StarCounters c;
+      ex.to_host(C, 1, &c);
+      out.insertions += c.taken;
+      if (c.broken)
+        throw Error(ErrorCode::Internal,
+                    "internal error in the digital 3D Delaunay method: a star that was not "
+                    "convex took a vertex; please report this input");
+      if (!c.overflow) break;
+      regrow_stars(ex, S, grow);
+    }
+    std::swap(dirty_a, dirty_b);
+  }
+  return out;
+}
+
+// The tetrahedra of consistent stars (splay_stars done), in prepared point indices: each finite
+// one from the star of its lowest vertex, in star order, positively oriented; flat ones (four
+// points on one plane: the perturbation puts such layers over hull facets' planes) are left out,
+// as the incremental method's peel leaves them (tet.hpp). Neighbours across faces come from the
+// stars' links; -1 on the hull and next to a flat tetrahedron. orig maps the prepared indices to
+// the caller's.
+inline mesh::Compacted<Exec> star_tets(Exec& ex, const Geo& g, StarStore& S,
+                                       const std::int32_t* orig, std::int64_t& flats) {
+  const std::int64_t m = S.m;
+  const std::int32_t I = g.m;
+  const LinkTri* tri = S.tri.data();
+  const std::int64_t* off = S.off.data();
+  const std::int32_t* cnt = S.cnt.data();
+  // Per triangle slot: its tetrahedron's output index, -1 where it gives none here.
+  auto idx_d = ex.template alloc<std::int32_t>(std::size_t(S.slots));
+  std::int32_t* idx = idx_d.data();
+  auto per = ex.template alloc<std::int64_t>(std::size_t(m + 1));
+  std::int64_t* np = per.data();
+  auto nflat = ex.template alloc<std::int64_t>(1);
+  std::int64_t* nf = nflat.data();
+  ex.fill(nf, 1, std::int64_t(0));
+  ex.for_each_index(
+      m, GG_LAMBDA(std::int64_t i) {
+        const std::int32_t v = std::int32_t(i);
+        const LinkTri* t = tri + off[v];
+        std::int32_t k = 0;
+        for (int j = 0; j < cnt[v]; ++j) {
+          const LinkTri& x = t[j];
+          std::int32_t mark = -1;
+          if (x.a != I && x.b != I && x.c != I && v < x.a && v < x.b && v < x.c) {
+            const double *a = g.at(v), *b = g.at(x.a), *c = g.at(x.b), *d = g.at(x.c);
+            int o = pred::orient3d_fast(a, b, c, d);
+            if (o == 0 && !exact::orient3d_int(a, b, c, d, o)) {
+              double* s = g.lease.acquire(lease_hint(v, x.c));
+              o = pred::orient3d(a, b, c, d, s);
+              g.lease.release(s);
+            }
+            if (o != 0)
+              mark = k++;
+            else
+              atomic_add(nf, std::int64_t(1));
+          }
+          idx[off[v] + j] = mark;
+        }
+        np[v] = k;
+      });
+  ex.exclusive_scan(np, np, m + 1);  // (np[m] was never written: the scan's last term)
+  ex.to_host(nf, 1, &flats);
+  std::int64_t count = 0;
+  ex.to_host(np + m, 1, &count);
+  ex.for_each_index(
+      m, GG_LAMBDA(std::int64_t i) {
+        const std::int64_t base = np[i];
+        for (int j = 0; j < cnt[i]; ++j)
+          if (idx[off[i] + j] >= 0) idx[off[i] + j] += std::int32_t(base);
+      });
+  mesh::Compacted<Exec> f;
+  f.count = count;
+  f.simplices = ex.template alloc<std::int32_t>(std::size_t(4 * count));
+  f.neighbors = ex.template alloc<std::int32_t>(std::size_t(4 * count));
+  std::int32_t* sv = f.simplices.data();
+  std::int32_t* sn = f.neighbors.data();
+  ex.for_each_index(
+      m, GG_LAMBDA(std::int64_t i) {
+        const std::int32_t v = std::int32_t(i);
+        const LinkTri* t = tri + off[v];
+        for (int j = 0; j < cnt[v]; ++j) {
+          const std::int32_t at = idx[off[v] + j];
+          if (at < 0) continue;
+          const std::int32_t q[4] = {v, t[j].a, t[j].b, t[j].c};
+          for (int k = 0; k < 4; ++k) {
+            sv[4 * at + k] = orig[q[k]];
+            // The face opposite q[k], seen from its vertex f: in star(f) this tetrahedron is the
+            // triangle of the other three, and across the link edge (p, r) of the face lies the
+            // neighbour's triangle, whose third vertex d is the neighbour's fourth vertex.
+            const std::int32_t f = q[k == 0 ? 1 : 0];
+            std::int32_t pr[2], z = 0;
+            for (int a = 0; a < 4; ++a)
+              if (a != k && q[a] != f) pr[z++] = q[a];
+            const LinkTri* tf = tri + off[f];
+            const int nf2 = cnt[f];
+            std::int32_t d = -1;
+            for (int a = 0; a < nf2 && d < 0; ++a)
+              if (tf[a].has(pr[0]) && tf[a].has(pr[1]) && !tf[a].has(q[k]))
+                d = link_third(tf[a], pr[0], pr[1]);
+            std::int32_t nb = -1;
+            if (d >= 0 && d != I) {
+              const std::int32_t w[4] = {f, pr[0], pr[1], d};
+              std::int32_t lo = w[0];
+              for (int a = 1; a < 4; ++a) lo = w[a] < lo ? w[a] : lo;
+              std::int32_t o3[3], y = 0;
+              for (int a = 0; a < 4; ++a)
+                if (w[a] != lo) o3[y++] = w[a];
+              const int at2 = link_find(tri + off[lo], cnt[lo], o3[0], o3[1], o3[2]);
+              if (at2 >= 0) nb = idx[off[lo] + at2];
+            }
+            sn[4 * at + k] = nb;
+          }
+        }
+      });
+  return f;
+}

@@ -1,0 +1,156 @@
+// Stars as links (thesis 3.2.3 and 5.3.2; Shewchuk's star splaying), one version for the host's
+// phase 2 (splay.cpp) and the executors' digital method (digital/impl/stars.inl); included after
+// geometry.inl.
+//
+// The star of a vertex v is its link: triangles (a, b, c) such that (v, a, b, c) is a positively
+// oriented tetrahedron, a triangulated sphere around v (the infinity point is a vertex of the
+// links of hull vertices). Lifted to 4D, a star is convex when every link edge is: for link
+// triangles (a, b, c) and (b, a, d), d lies outside the sphere of (v, a, b, c). A convex star is
+// the star of v in the Delaunay tetrahedralisation of v and its link's vertices, and it takes a
+// vertex x as Bowyer-Watson would: the triangles whose spheres contain x go, and x is joined to
+// the boundary of the region they covered.
+
+struct LinkTri {
+  std::int32_t a, b, c;
+  GG_INLINE bool has(std::int32_t x) const { return a == x || b == x || c == x; }
+};
+
+// (A triangle a conflict mark is on keeps ~a in a: vertices are never negative.)
+GG_INLINE std::int32_t link_unmark(std::int32_t a) {
+  return a < 0 ? ~a : a;
+}
+
+// The triangle with the directed edge a -> b among t[0, n), or -1 (marks ignored).
+GG_HD inline int link_find_edge(const LinkTri* t, int n, std::int32_t a, std::int32_t b) {
+  for (int i = 0; i < n; ++i) {
+    const std::int32_t x = link_unmark(t[i].a);
+    if ((x == a && t[i].b == b) || (t[i].b == a && t[i].c == b) || (t[i].c == a && x == b))
+      return i;
+  }
+  return -1;
+}
+
+// The vertex of t that is neither a nor b.
+GG_INLINE std::int32_t link_third(const LinkTri& t, std::int32_t a, std::int32_t b) {
+  return t.a != a && t.a != b ? t.a : t.b != a && t.b != b ? t.b : t.c;
+}
+
+// The index of the triangle on vertices {a, b, c} (any order), or -1.
+GG_HD inline int link_find(const LinkTri* t, int n, std::int32_t a, std::int32_t b,
+                           std::int32_t c) {
+  for (int i = 0; i < n; ++i)
+    if (t[i].has(a) && t[i].has(b) && t[i].has(c)) return i;
+  return -1;
+}
+
+GG_HD inline bool link_has_vertex(const LinkTri* t, int n, std::int32_t x) {
+  for (int i = 0; i < n; ++i)
+    if (t[i].has(x)) return true;
+  return false;
+}
+
+// Is d inside the sphere of the tetrahedron (v, t)? (For a link edge shared with the triangle
+// whose third vertex is d: the edge is reflex.)
+GG_INLINE bool link_reflex(const Geo& g, std::int32_t v, const LinkTri& t, std::int32_t d) {
+  const std::int32_t q[4] = {v, t.a, t.b, t.c};
+  return in_sphere_ext(g, q, d);
+}
+
+// Would the convex star t[0, n) of v change by taking x (some triangle's sphere holds x)?
+GG_HD inline bool link_conflicts(const Geo& g, std::int32_t v, const LinkTri* t, int n,
+                                 std::int32_t x) {
+  if (x == v || x == g.m) return false;  // (the infinity point is inside no sphere)
+  for (int i = 0; i < n; ++i)
+    if (link_reflex(g, v, t[i], x)) return true;
+  return false;
+}
+
+// The first convex star of v: the link of v among {v, a, b, c, infinity}, the face (a, b, c) and
+// three triangles with the infinity point, each turned to be positively oriented around v. t
+// needs room for 4. (A star built from a few points need not hold the kernel point s for which
+// orient_ext reads the infinity point, so the infinite triangles are turned by the star's own
+// points: (v, x, y, infinity) is positive when the rest of the star lies on the negative side of
+// (v, x, y), as a hull facet's tetrahedron with the infinity point has the hull's inside there.)
+GG_HD inline void link_start(const Geo& g, std::int32_t v, std::int32_t a, std::int32_t b,
+                             std::int32_t c, LinkTri* t) {
+  const std::int32_t I = g.m;
+  const bool pos = orient_ext(g, v, a, b, c) > 0;
+  t[0] = pos ? LinkTri{a, b, c} : LinkTri{a, c, b};
+  // (with (a, b, c) positive around v, each edge taken backwards has the star on its negative
+  // side)
+  const LinkTri& f = t[0];
+  t[1] = LinkTri{f.b, f.a, I};
+  t[2] = LinkTri{f.c, f.b, I};
+  t[3] = LinkTri{f.a, f.c, I};
+}
+
+// Link insertion's outcomes besides the new count.
+constexpr int kLinkNoRoom = -1;  // it would not fit in cap (t unchanged)
+constexpr int kLinkBroken = -2;  // the region was no disk: the star was not convex (t unchanged)
+
+// The convex star t[0, n) of v (room for cap) takes x: the triangles whose spheres contain x
+// go (gone(tri) is called for each, before it goes) and x is joined to the edges around them.
+// Returns the new count, or kLinkNoRoom / kLinkBroken with t as it was. (The count alone does
+// not tell a change: a region with one vertex inside has as many edges around as triangles.)
+// The new triangles come last, in the order of the edges found.
+template <class Gone>
+GG_HD int link_insert(const Geo& g, std::int32_t v, LinkTri* t, int n, int cap, std::int32_t x,
+                      Gone gone) {
+  if (x == v || x == g.m) return n;
+  int c = 0;
+  for (int i = 0; i < n; ++i)
+    if (link_reflex(g, v, t[i], x)) t[i].a = ~t[i].a, ++c;
+  if (c == 0) return n;
+  auto unmark_all = [&] {
+    for (int i = 0; i < n; ++i) t[i].a = link_unmark(t[i].a);
+  };
+  // The region's boundary: the edges of marked triangles whose other triangle is unmarked.
+  int b = 0;
+  bool broken = false;
+  for (int i = 0; i < n && !broken; ++i) {
+    if (t[i].a >= 0) continue;
+    const std::int32_t e[3] = {~t[i].a, t[i].b, t[i].c};
+    for (int k = 0; k < 3; ++k) {
+      const int j = link_find_edge(t, n, e[(k + 1) % 3], e[k]);
+      if (j < 0) {
+        broken = true;
+        break;
+      }
+      if (t[j].a >= 0) ++b;
+    }
+  }
+  if (broken) {
+    unmark_all();
+    return kLinkBroken;
+  }
+  if (n + b > cap) {
+    unmark_all();
+    return kLinkNoRoom;
+  }
+  int w = n;
+  for (int i = 0; i < n; ++i) {
+    if (t[i].a >= 0) continue;
+    const std::int32_t e[3] = {~t[i].a, t[i].b, t[i].c};
+    for (int k = 0; k < 3; ++k) {
+      const int j = link_find_edge(t, n, e[(k + 1) % 3], e[k]);
+      if (t[j].a >= 0) t[w++] = LinkTri{e[k], e[(k + 1) % 3], x};
+    }
+  }
+  // (a guard: a convex star's new triangles are positive by construction; those with the
+  // infinity point are left out, see link_start)
+  for (int i = n; i < w; ++i)
+    if (!t[i].has(g.m) && orient_ext(g, v, t[i].a, t[i].b, t[i].c) <= 0) {
+      unmark_all();
+      return kLinkBroken;
+    }
+  // Keep the unmarked, then the new ones, in order.
+  int k = 0;
+  for (int i = 0; i < w; ++i) {
+    if (i < n && t[i].a < 0) {
+      gone(LinkTri{~t[i].a, t[i].b, t[i].c});
+      continue;
+    }
+    t[k++] = t[i];
+  }
+  return k;
+}
