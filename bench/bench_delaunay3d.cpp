@@ -4,10 +4,14 @@
 // splaying time next to the totals, and on the GPU the device-resident time (points uploaded
 // once, result left on the device: on_dev); --check runs the exact checker on every result.
 // Usage: gpugeom_bench_del3d [--check] [--cpu] [--verbose] [--reps R] [--cgal-max N]
+//        [--digital G,G,...]
 //                            dist:n [dist:n ...]
 // (--cpu: the CPU executor too where there is a GPU; --verbose: every phase and counter;
-// --cgal-max: CGAL only up to N points, default 10^7; B/pt: phase 1's device bytes per point)
+// --cgal-max: CGAL only up to N points, default 10^7; B/pt: phase 1's device bytes per point;
+// --digital: a row of the digital method (DigiDel3D) per grid side after each incremental row,
+// 0 the automatic side, with its phases and whether its tetrahedra are the incremental ones)
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -86,6 +90,16 @@ double cgal_par_ms(const std::vector<Point3>& p) {
   return -1;
 #endif
 }
+// The tetrahedra as sorted rows, sorted: to compare two methods' results.
+std::vector<std::array<std::int32_t, 4>> tet_rows(const Triangulation3d& t) {
+  std::vector<std::array<std::int32_t, 4>> r(t.tetrahedra.size() / 4);
+  for (std::size_t c = 0; c < r.size(); ++c) {
+    for (int k = 0; k < 4; ++k) r[c][std::size_t(k)] = t.tetrahedra[4 * c + std::size_t(k)];
+    std::sort(r[c].begin(), r[c].end());
+  }
+  std::sort(r.begin(), r.end());
+  return r;
+}
 }  // namespace
 
 int run(int argc, char** argv) {
@@ -94,6 +108,7 @@ int run(int argc, char** argv) {
   bool verbose = false;  // every phase and counter of the last run, after its row
   std::int64_t cgal_max = 10'000'000;
   std::vector<std::string> jobs;
+  std::vector<std::int64_t> digital;  // grid sides of the digital rows (0: automatic)
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--check")
@@ -106,6 +121,12 @@ int run(int argc, char** argv) {
       reps = std::atoi(argv[++i]);
     else if (a == "--cgal-max" && i + 1 < argc)
       cgal_max = std::int64_t(std::atof(argv[++i]));
+    else if (a == "--digital" && i + 1 < argc)
+      for (std::string rest = argv[++i]; !rest.empty();) {
+        const auto comma = rest.find(',');
+        digital.push_back(std::atoll(rest.substr(0, comma).c_str()));
+        rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+      }
     else
       jobs.push_back(a);
   }
@@ -172,6 +193,49 @@ int run(int argc, char** argv) {
         std::printf("\n");
       }
       std::fflush(stdout);
+      for (const std::int64_t g : digital) {
+        Delaunay3dOptions od = o;
+        od.method = Method::Digital;
+        od.grid = g;
+        std::vector<double> dms;
+        Triangulation3d d;
+        for (int r = 0; r < reps; ++r) {
+          const auto t0 = clk::now();
+          d = delaunay3d(pts, od);
+          dms.push_back(ms_since(t0));
+        }
+        std::sort(dms.begin(), dms.end());
+        const double d_on_dev =
+            b == Backend::Cuda ? bench::device_resident_ms(pts, reps,
+                                                           [&](const double* x, std::int64_t k) {
+                                                             delaunay3d_device(x, k, od);
+                                                           })
+                               : -1;
+        const bool same = tet_rows(d) == tet_rows(t);
+        const double dt = dms[dms.size() / 2];
+        std::printf(
+            "%-12s %9lld %-5s %10.1f %8.1f   digital grid %4lld: voronoi %.1f sets %.1f stars "
+            "%.1f splay %.1f (%lld rounds, %lld insertions, %lld growths) tets %.1f; "
+            "dig/incr %.2fx, cgal/dig %.1fx, %s\n",
+            dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu", dt, d_on_dev,
+            (long long)counter(d.stats, "digital_grid"),
+            phase(d.stats, "digital_grid") + phase(d.stats, "digital_pba"),
+            phase(d.stats, "digital_working_sets"), phase(d.stats, "digital_stars"),
+            phase(d.stats, "digital_splay"), (long long)counter(d.stats, "digital_splay_rounds"),
+            (long long)counter(d.stats, "digital_star_insertions"),
+            (long long)counter(d.stats, "digital_star_growths"),
+            phase(d.stats, "digital_tetrahedra"), dt / ms[ms.size() / 2], cg > 0 ? cg / dt : -1.0,
+            same ? "identical" : "DIFFERENT");
+        if (verbose) {
+          std::printf("#   phases:");
+          for (auto& p : d.stats.phase_ms) std::printf(" %s %.1f", p.first.c_str(), p.second);
+          std::printf("\n#   counters:");
+          for (auto& c : d.stats.counters)
+            std::printf(" %s %lld", c.first.c_str(), (long long)c.second);
+          std::printf("\n");
+        }
+        std::fflush(stdout);
+      }
     }
   }
   return 0;

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <chrono>
 #include <cstdint>
 #include <cstring>

@@ -117,3 +117,46 @@ TEST(CudaDelaunay3d, DeviceResident) {  // points on the GPU in, result left the
       ASSERT_EQ(back, 1) << "tetrahedron " << c << " face " << k;
     }
 }
+
+// DigiDel3D on the GPU: valid, the same tetrahedra as the incremental method on the GPU, and as
+// the digital method on the CPU executor where that is quick.
+namespace {
+void digital_same(const gg_hull3d::Case& c, std::int64_t grid, bool with_cpu) {
+  SCOPED_TRACE(c.name + ", grid " + std::to_string(grid));
+  Delaunay3dOptions o;
+  o.backend = Backend::Cuda;
+  const auto inc = delaunay3d(c.pts, o);
+  o.method = Method::Digital;
+  o.grid = grid;
+  const auto dig = delaunay3d(c.pts, o);
+  gg_del3d::expect_valid(c.pts, dig);
+  EXPECT_EQ(gg_del3d::tet_set(dig.tetrahedra), gg_del3d::tet_set(inc.tetrahedra));
+  if (!with_cpu) return;
+  o.backend = Backend::Cpu;
+  const auto cpu = delaunay3d(c.pts, o);
+  EXPECT_EQ(gg_del3d::tet_set(dig.tetrahedra), gg_del3d::tet_set(cpu.tetrahedra));
+  EXPECT_EQ(dig.stats.counters.at("digital_splay_rounds"),
+            cpu.stats.counters.at("digital_splay_rounds"));
+  EXPECT_EQ(dig.stats.counters.at("digital_star_insertions"),
+            cpu.stats.counters.at("digital_star_insertions"));
+}
+}  // namespace
+
+TEST(CudaDigitalDelaunay3d, SameAsIncrementalOnDistributions) {
+  for (const auto& c : gg_hull3d::distribution_cases(sizes({5, 100, 5000, 50000}), 17)) {
+    if (c.name.rfind("two_lines", 0) == 0 && c.pts.size() > 100) continue;  // (quadratic)
+    digital_same(c, 0, c.pts.size() <= 5000);
+  }
+}
+
+TEST(CudaDigitalDelaunay3d, SameAsIncrementalOnDegenerateInput) {
+  for (const auto& c : gg_hull3d::degenerate_cases()) digital_same(c, 0, true);
+}
+
+TEST(CudaDigitalDelaunay3d, SameOnCoarseAndFineGrids) {
+  for (const char* d : {"uniform", "gaussian", "thin_sphere", "grid"}) {
+    const gg_hull3d::Case c{std::string(d),
+                            gpugeom::generate3d(d, sizes({20000, 3000}).front(), 11)};
+    for (std::int64_t g : {16, 48, 256}) digital_same(c, g, false);
+  }
+}

@@ -13,7 +13,8 @@ namespace gpugeom::cli {
 
 namespace {
 const char* kHelp =
-    "usage: gpugeom delaunay3d POINTS -o MESH [--check] [--compress] [--ascii]\n\n"
+    "usage: gpugeom delaunay3d POINTS -o MESH [--check] [--compress] [--ascii]\n"
+    "                          [--method incremental|digital] [--grid SIDE]\n\n"
     "Exact Delaunay tetrahedralisation of the 3D points in POINTS (.xyz .txt .csv .ply .off\n"
     ".obj .node .npy). Degenerate input (cospherical, coplanar on the hull, duplicates) is\n"
     "resolved by simulation of simplicity; of several copies of a point one is used.\n"
@@ -24,6 +25,14 @@ const char* kHelp =
     "  --compress  .vtu: zlib-compressed blocks\n"
     "  --ascii     .vtu, .vtk and .ply as text instead of binary\n"
     "  --check     verify the result with the independent exact checker\n"
+    "  --method M  incremental (default): batches of insertions with parallel flips, then\n"
+    "              star splaying where flipping got stuck; digital: the thesis' DigiDel3D (a\n"
+    "              digital Voronoi diagram on a grid gives each point a working set of\n"
+    "              neighbours, each point's star is built from it and the stars are splayed\n"
+    "              until they agree). The same tetrahedra; --verbose shows each method's\n"
+    "              phases and counters\n"
+    "  --grid SIDE digital: the grid's side along the longest extent (16..1024; default from\n"
+    "              the point count, about 32 cells a point)\n"
     "With --verbose, the phase table and counters (flips, failed vertices, ...) on stderr.\n"
     "Runs longer than a second show their progress on stderr (not with --quiet).\n";
 
@@ -54,6 +63,9 @@ int cmd_delaunay3d(const Global& g, Args& a) {
     std::cout << kHelp;
     return kOk;
   }
+  Delaunay3dOptions opt;
+  opt.backend = g.backend;
+  read_method(a, opt);
   PointsToMesh job = points_to_mesh(g, a, "delaunay3d", {".vtu", ".vtk", ".ele", ".ply", ".npy"},
                                     "for tetrahedra", " (see delaunay2d)");
   io::PointSet& p = job.p;
@@ -61,8 +73,6 @@ int cmd_delaunay3d(const Global& g, Args& a) {
   const std::string& ext = job.ext;
   const bool check = job.check;
   const std::int64_t n = std::int64_t(p.size());
-  Delaunay3dOptions opt;
-  opt.backend = g.backend;
   bool printed = false;
   attach_progress(g, opt, printed);
   Triangulation3d t3;
@@ -80,7 +90,8 @@ int cmd_delaunay3d(const Global& g, Args& a) {
     std::cout << n << " points";
     if (t3.num_duplicates) std::cout << " (" << t3.num_duplicates << " duplicates kept once)";
     std::cout << " -> " << t3.num_tetrahedra() << " tetrahedra, " << t3.hull_facets.size() / 3
-              << " hull facets on " << backend_name(t3.stats.backend) << "\n";
+              << " hull facets on " << backend_name(t3.stats.backend)
+              << (opt.method == Method::Digital ? " (digital method)" : "") << "\n";
     if (g.verbose) print_stats(t3.stats);
   }
   int status = kOk;

@@ -1044,10 +1044,13 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   if (opt.method == Method::Digital) {  // DigiDel3D (digital/impl/pipeline.inl)
     auto f = digital_tets(ex, S, box, first, opt.grid, progress, st);
-    t0 = Clock::now();
-    body(S, f);
-    st.phase_ms.push_back({"output", ms_since(t0)});
-    return;
+    if (f) {
+      t0 = Clock::now();
+      body(S, *f);
+      st.phase_ms.push_back({"output", ms_since(t0)});
+      return;
+    }
+    // (stars too large to splay here: the incremental method, counter digital_fallback)
   }
   t0 = Clock::now();
   Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, max_rounds, progress, st);

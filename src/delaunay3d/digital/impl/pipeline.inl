@@ -11,10 +11,13 @@ inline std::int64_t digital_side(std::int64_t m) {
                                   1024);
 }
 
-inline mesh::Compacted<Exec> digital_tets(Exec& ex, mesh::SortedPoints<Exec>& S,
-                                          const mesh::Bounds<3>& box, const mesh::Tetra& first,
-                                          std::int64_t grid, const ProgressFn& progress,
-                                          Stats& st) {
+// Returns no result where the stars grew too large to splay on the executor (stars.inl,
+// kHugeStar): the caller then runs the incremental method.
+inline std::optional<mesh::Compacted<Exec>> digital_tets(Exec& ex, mesh::SortedPoints<Exec>& S,
+                                                         const mesh::Bounds<3>& box,
+                                                         const mesh::Tetra& first,
+                                                         std::int64_t grid,
+                                                         const ProgressFn& progress, Stats& st) {
   auto t0 = Clock::now();
   auto phase = [&](const char* name) {
     ex.sync();
@@ -33,9 +36,9 @@ inline mesh::Compacted<Exec> digital_tets(Exec& ex, mesh::SortedPoints<Exec>& S,
   st.counters["sketch_missing"] = V.nmiss;
   WorkingSets W = working_sets(ex, m, F, V);
   V = PointVoronoi();
-  st.counters["working_pairs"] = W.pairs;
-  st.counters["working_set_points"] = W.total;
-  st.counters["working_sets_augmented"] = W.augmented;
+  st.counters["digital_working_pairs"] = W.pairs;
+  st.counters["digital_working_set_points"] = W.total;
+  st.counters["digital_working_sets_augmented"] = W.augmented;
   phase("digital_working_sets");
   Geo g;
   g.p = S.pts.data();
@@ -48,16 +51,18 @@ inline mesh::Compacted<Exec> digital_tets(Exec& ex, mesh::SortedPoints<Exec>& S,
   auto ctr = ex.template alloc<digital3d_impl::StarCounters>(1);
   StarStore T = create_stars(ex, g, m, W.start.data(), W.size.data(), W.pts.data(), ctr);
   W = WorkingSets();
-  st.counters["star_slots_created"] = T.slots;
+  st.counters["digital_star_slots_created"] = T.slots;
   phase("digital_stars");
   if (progress) progress(Delaunay3dProgress{"splay", m, m, 0});
   const SplayCount sc = splay_stars(ex, g, T, ctr);
-  st.counters["splay_rounds"] = sc.rounds;
-  st.counters["star_insertions"] = sc.insertions;
-  st.counters["star_requests"] = sc.requests;
-  st.counters["star_growths"] = T.growths;
-  st.counters["star_slots"] = T.slots;
+  st.counters["digital_fallback"] = sc.gave_up ? 1 : 0;
+  st.counters["digital_splay_rounds"] = sc.rounds;
+  st.counters["digital_star_insertions"] = sc.insertions;
+  st.counters["digital_star_requests"] = sc.requests;
+  st.counters["digital_star_growths"] = T.growths;
+  st.counters["digital_star_slots"] = T.slots;
   phase("digital_splay");
+  if (sc.gave_up) return std::nullopt;
   if (progress) progress(Delaunay3dProgress{"output", m, m, 0});
   std::int64_t flats = 0;
   mesh::Compacted<Exec> f = star_tets(ex, g, T, S.orig.data(), flats);
