@@ -25,6 +25,30 @@ inline std::optional<mesh::Compacted<Exec>> digital_tets(Exec& ex, mesh::SortedP
     t0 = Clock::now();
   };
   const std::int64_t m = S.m;
+  {
+    // Many points on the planes of the box (the hull planes of integer grids, of boxes) give
+    // stars too large to splay here (stars.inl, kHugeStar): the incremental method at once,
+    // rather than after rounds of growing them. (Other planes are left to kHugeStar.)
+    const double* p = S.pts.data();
+    auto cnt = ex.template alloc<std::int64_t>(1);
+    const mesh::Bounds<3> b = box;
+    ex.transform_reduce_into(
+        m,
+        GG_LAMBDA(std::int64_t i)->std::int64_t {
+          for (int a = 0; a < 3; ++a)
+            if (p[3 * i + a] == b.lo[a] || p[3 * i + a] == b.hi[a]) return 1;
+          return 0;
+        },
+        std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
+    std::int64_t on_box = 0;
+    ex.to_host(cnt.data(), 1, &on_box);
+    st.counters["digital_points_on_box"] = on_box;
+    if (on_box > std::max<std::int64_t>(4096, m / 100)) {
+      st.counters["digital_fallback"] = 1;
+      phase("digital_box_planes");
+      return std::nullopt;
+    }
+  }
   const std::int64_t side = grid > 0 ? grid : digital_side(m);
   const point_voronoi_impl::CellFrame F = digital_frame(box, side);
   PointVoronoi V = map_point_sites(ex, S.pts.data(), m, F);
