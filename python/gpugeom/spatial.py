@@ -50,12 +50,14 @@ class Delaunay(_OfPoints):
         3D only: called as ``progress(phase, inserted, total, batch)`` after each insertion
         batch (a tqdm bar works too); raising ends the run.
     method : {"incremental", "digital"}
-        2D only: how it is computed; the triangles are the same. "digital" is the thesis'
-        digital method (a digital Voronoi diagram on a grid, its dual shifted to the points),
-        from host (NumPy) points; it is not the faster one yet.
+        How it is computed; the simplices are the same. "digital" is the thesis' digital
+        method: in 2D a digital Voronoi diagram on a grid, its dual shifted to the points (from
+        host points); in 3D (DigiDel3D) working sets of neighbours from the digital diagram, a
+        star per point from its set, star splaying until the stars agree. Neither is the faster
+        one yet.
     grid : int
-        method="digital": the grid's size in pixels along the points' longer extent (0: chosen
-        from the number of points).
+        method="digital": the grid's size along the points' longest extent (2D: 4..46338
+        pixels, 3D: 16..1024 cells; 0: chosen from the number of points).
 
     Attributes
     ----------
@@ -73,15 +75,13 @@ class Delaunay(_OfPoints):
         arr, kind = self._take_points(points, (2, 3), backend, threads)
         if method not in ("incremental", "digital"):
             raise ValueError(f"method must be 'incremental' or 'digital', got {method!r}")
-        if method == "digital" and self.ndim != 2:
-            raise ValueError("method='digital' is for 2D points (digital 3D Delaunay is not "
-                             "there yet; ConvexHull(method='digital') takes 3D points)")
         if self.ndim == 2:
             r = _core.delaunay2d(arr, backend=backend, stream=kind.stream, threads=threads,
                                  method=method, grid=grid)
         else:
             r = _core.delaunay3d(arr, backend=backend, stream=kind.stream, threads=threads,
-                                 progress=_arrays.progress_callback(progress))
+                                 progress=_arrays.progress_callback(progress), method=method,
+                                 grid=grid)
         self.simplices = kind.back(r["simplices"])
         self.neighbors = kind.back(r["neighbors"])
         self._duplicate_of = kind.back(r["duplicate_of"])

@@ -145,9 +145,12 @@ nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, std::ui
 }
 
 nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
-                         int threads, nb::object progress) {
+                         int threads, nb::object progress, const std::string& method,
+                         std::int64_t grid) {
   const Input in = points_input(points, 3);
   auto o = options_for<Delaunay3dOptions>(backend, stream, threads, in);
+  o.method = parse_method(method);
+  o.grid = grid;
   // The progress callback runs on this thread with the interpreter locked again; it also lets a
   // Ctrl-C end the run (KeyboardInterrupt reaches the caller, nothing leaks).
   // (A borrowed handle: the caller holds the callable for the whole call, and the options may be
@@ -372,7 +375,7 @@ void bind_spatial(nb::module_& m) {
   m.def("convex_hull3d", &hull3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0, "method"_a = "incremental", "grid"_a = 0);
   m.def("delaunay3d", &delaunay3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
-        "threads"_a = 0, "progress"_a = nb::none());
+        "threads"_a = 0, "progress"_a = nb::none(), "method"_a = "incremental", "grid"_a = 0);
   m.def("find_simplex", &find_simplex_bind, "points"_a, "simplices"_a, "neighbors"_a, "xi"_a,
         "threads"_a = 0);
   m.def("hull2d_vertices", &hull2d_bind, "points"_a, "simplices"_a, "neighbors"_a);

@@ -292,8 +292,19 @@ def test_delaunay2d_digital_method_equals_incremental(backend, rng):
         assert np.array_equal(a.duplicate_of, b.duplicate_of)
     with pytest.raises(ValueError, match="method"):
         gpugeom.Delaunay(pts, method="magic")
-    with pytest.raises(ValueError, match="2D"):
-        gpugeom.Delaunay(rng.random((50, 3)), method="digital")
+
+
+def test_delaunay3d_digital_method_equals_incremental(backend, rng):
+    pts = np.concatenate([rng.random((3000, 3)), np.repeat(rng.random((5, 3)), 40, axis=0)])
+    a = gpugeom.Delaunay(pts, backend=backend)
+    for grid in (0, 32):
+        b = gpugeom.Delaunay(pts, backend=backend, method="digital", grid=grid)
+        assert b.stats["counters"]["digital_fallback"] == 0
+        assert b.stats["counters"]["digital_splay_rounds"] > 0
+        assert simplex_set(a.simplices) == simplex_set(b.simplices)
+        assert np.array_equal(a.duplicate_of, b.duplicate_of)
+    with pytest.raises(ValueError, match="16..1024"):
+        gpugeom.Delaunay(pts, method="digital", grid=8)
 
 
 def test_convex_hull_digital_method_equals_incremental(backend, rng):
