@@ -44,6 +44,43 @@ void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt
                  Stats& stats) {
   triangulate_impl(xyz, n, opt, out, stats);
 }
+// Tests (del3d_backend.hpp): the stars after creation, or after splaying, on the host.
+void digital_stars_for_testing(const double* xyz, std::int64_t n, std::int64_t grid, bool splayed,
+                               StarsForTesting& out) {
+  Delaunay3dOptions opt;
+  opt.backend = Backend::Cpu;
+  Exec ex(opt);
+  Stats st;
+  auto raw = ex.template alloc<double>(std::size_t(3 * n));
+  ex.from_host(xyz, 3 * n, raw.data());
+  const mesh::Bounds<3> box = mesh::bounds_in_place<3>(ex, raw.data(), n);
+  if (box.bad) mesh::throw_bad_coordinates(box.bad);
+  mesh::SortedPoints<Exec> S = mesh::sort_distinct<3>(ex, raw.data(), n, box);
+  const mesh::Tetra first =
+      mesh::first_tetrahedron(ex, S.pts.data(), S.m, n, "a 3D Delaunay triangulation", true);
+  DigitalStars D;
+  out.built =
+      digital_stars(ex, S, box, first, grid, st, D) && (!splayed || digital_splay(ex, D, st));
+  if (!out.built) return;
+  const std::int64_t m = S.m;
+  out.pts.resize(std::size_t(3 * m));
+  ex.to_host(S.pts.data(), 3 * m, out.pts.data());
+  std::vector<std::int64_t> off(static_cast<std::size_t>(m));
+  std::vector<std::int32_t> cnt(static_cast<std::size_t>(m));
+  std::vector<LinkTri> tri(static_cast<std::size_t>(D.T.slots));
+  ex.to_host(D.T.off.data(), m, off.data());
+  ex.to_host(D.T.cnt.data(), m, cnt.data());
+  ex.to_host(D.T.tri.data(), D.T.slots, tri.data());
+  out.start.assign(1, 0);
+  for (std::int64_t v = 0; v < m; ++v) {
+    for (std::int32_t i = 0; i < cnt[std::size_t(v)]; ++i) {
+      const LinkTri& t = tri[std::size_t(off[std::size_t(v)] + i)];
+      out.tri.insert(out.tri.end(), {t.a, t.b, t.c});
+    }
+    out.start.push_back(std::int64_t(out.tri.size() / 3));
+  }
+}
+
 void triangulate_device(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                         DeviceOutput& out, Stats& stats) {
   triangulate_device_impl(xyz, n, opt, out, stats);

@@ -2,10 +2,16 @@
 // tetrahedra as the incremental method on every distribution and degenerate input, on the
 // automatic grid and on grids too coarse and too fine for the input, valid by the exact checker,
 // and its errors.
+#include <algorithm>
+#include <array>
 #include <cstdio>
+#include <map>
+#include <set>
 #include <string>
 
 #include "del3d_cases.hpp"
+#include "delaunay3d/del3d_backend.hpp"
+#include "gpugeom/predicates.hpp"
 
 using namespace gpugeom;
 using gg_del3d::expect_valid;
@@ -132,4 +138,124 @@ TEST(DigitalDelaunay3d, Errors) {
   // Too few distinct points: the same error as the incremental method's.
   const std::vector<Point3> flat = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 2, 0}};
   EXPECT_THROW(delaunay3d(flat, cpu(Method::Digital)), Error);
+}
+
+// The stars on their own, checked here with the public exact predicates (simulation of
+// simplicity by the perturbation's order): after creation each star is a closed, oriented,
+// convex link around its point; after splaying every tetrahedron of a star is in the stars of
+// its other points, and the finite ones with positive volume are the incremental method's.
+namespace {
+using gpugeom::del3d::StarsForTesting;
+
+struct StarView {
+  const StarsForTesting& s;
+  std::int32_t m;
+  Point3 at(std::int32_t i) const {
+    return {s.pts[3 * std::size_t(i)], s.pts[3 * std::size_t(i) + 1],
+            s.pts[3 * std::size_t(i) + 2]};
+  }
+  std::vector<std::array<std::int32_t, 3>> star(std::int32_t v) const {
+    std::vector<std::array<std::int32_t, 3>> r;
+    for (std::int64_t t = s.start[std::size_t(v)]; t < s.start[std::size_t(v) + 1]; ++t)
+      r.push_back({s.tri[3 * std::size_t(t)], s.tri[3 * std::size_t(t) + 1],
+                   s.tri[3 * std::size_t(t) + 2]});
+    return r;
+  }
+  // Is d inside the sphere of the positive tetrahedron (v, a, b, c)? (With the infinity point
+  // among them, the half-space beyond the finite face; the infinity point is inside none.)
+  bool inside(std::int32_t v, std::array<std::int32_t, 3> t, std::int32_t d) const {
+    if (d == m) return false;
+    std::array<std::int32_t, 4> q{v, t[0], t[1], t[2]};
+    for (auto& x : q)
+      if (x == m) {
+        x = d;
+        return orient3d_sos(at(q[0]), q[0], at(q[1]), q[1], at(q[2]), q[2], at(q[3]), q[3]) > 0;
+      }
+    return insphere_sos(at(q[0]), q[0], at(q[1]), q[1], at(q[2]), q[2], at(q[3]), q[3], at(d), d) >
+           0;
+  }
+};
+
+void expect_closed_convex_stars(const StarsForTesting& s) {
+  const StarView V{s, std::int32_t(s.pts.size() / 3)};
+  for (std::int32_t v = 0; v < V.m; ++v) {
+    const auto st = V.star(v);
+    ASSERT_GE(st.size(), 4u) << "star " << v;
+    std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> opposite;  // edge -> third
+    for (const auto& t : st)
+      for (int k = 0; k < 3; ++k) {
+        const auto e = std::make_pair(t[std::size_t(k)], t[std::size_t(k + 1) % 3]);
+        ASSERT_EQ(opposite.count(e), 0u) << "star " << v << ": a link edge twice";
+        opposite[e] = t[std::size_t(k + 2) % 3];
+        if (t[0] != V.m && t[1] != V.m && t[2] != V.m)
+          ASSERT_GT(orient3d_sos(V.at(v), v, V.at(t[0]), t[0], V.at(t[1]), t[1], V.at(t[2]), t[2]),
+                    0)
+              << "star " << v << ": a triangle not positive";
+      }
+    for (const auto& t : st)
+      for (int k = 0; k < 3; ++k) {
+        const auto back = std::make_pair(t[std::size_t(k + 1) % 3], t[std::size_t(k)]);
+        ASSERT_EQ(opposite.count(back), 1u) << "star " << v << ": the link is not closed";
+        ASSERT_FALSE(V.inside(v, t, opposite[back])) << "star " << v << ": a reflex link edge";
+      }
+  }
+}
+}  // namespace
+
+TEST(DigitalDelaunay3d, StarsOnTheirOwn) {
+  for (const char* d : {"uniform", "gaussian", "thin_sphere"}) {
+    SCOPED_TRACE(d);
+    const auto pts = generate3d(d, 2000, 9);
+    for (bool splayed : {false, true}) {
+      StarsForTesting s;
+      gpugeom::del3d::cpu_impl::digital_stars_for_testing(&pts.data()->x, 2000, 0, splayed, s);
+      ASSERT_TRUE(s.built);
+      expect_closed_convex_stars(s);
+      const StarView V{s, std::int32_t(s.pts.size() / 3)};
+      std::int64_t lacking = 0;  // tetrahedra some other star lacks
+      for (std::int32_t v = 0; v < V.m; ++v)
+        for (const auto& t : V.star(v))
+          for (int k = 0; k < 3; ++k) {
+            const std::int32_t w = t[std::size_t(k)];
+            if (w == V.m) continue;
+            std::array<std::int32_t, 3> o{v, t[std::size_t(k + 1) % 3], t[std::size_t(k + 2) % 3]};
+            std::sort(o.begin(), o.end());
+            bool found = false;
+            for (auto u : V.star(w)) {
+              std::sort(u.begin(), u.end());
+              found = found || u == o;
+            }
+            lacking += !found;
+          }
+      if (!splayed) {  // the working sets miss neighbours: the first stars disagree
+        EXPECT_GT(lacking, 0);
+        continue;
+      }
+      EXPECT_EQ(lacking, 0);
+      std::set<std::array<std::int32_t, 4>> finite;
+      for (std::int32_t v = 0; v < V.m; ++v)
+        for (const auto& t : V.star(v)) {
+          if (t[0] == V.m || t[1] == V.m || t[2] == V.m) continue;
+          if (orient3d(V.at(v), V.at(t[0]), V.at(t[1]), V.at(t[2])) == 0) continue;  // flat
+          std::array<std::int32_t, 4> q{v, t[0], t[1], t[2]};
+          std::sort(q.begin(), q.end());
+          finite.insert(q);
+        }
+      // The incremental method's tetrahedra, in the same (curve) order: through the points.
+      const auto inc = delaunay3d(pts, cpu());
+      std::map<std::array<double, 3>, std::int32_t> index;
+      for (std::int32_t i = 0; i < V.m; ++i) index[{V.at(i).x, V.at(i).y, V.at(i).z}] = i;
+      std::set<std::array<std::int32_t, 4>> want;
+      for (std::size_t c = 0; c < inc.tetrahedra.size() / 4; ++c) {
+        std::array<std::int32_t, 4> q;
+        for (int k = 0; k < 4; ++k) {
+          const Point3& p = pts[std::size_t(inc.tetrahedra[4 * c + std::size_t(k)])];
+          q[std::size_t(k)] = index.at({p.x, p.y, p.z});
+        }
+        std::sort(q.begin(), q.end());
+        want.insert(q);
+      }
+      EXPECT_EQ(finite, want);
+    }
+  }
 }

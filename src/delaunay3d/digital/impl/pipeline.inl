@@ -11,13 +11,18 @@ inline std::int64_t digital_side(std::int64_t m) {
                                   1024);
 }
 
-// Returns no result where the stars grew too large to splay on the executor (stars.inl,
-// kHugeStar): the caller then runs the incremental method.
-inline std::optional<mesh::Compacted<Exec>> digital_tets(Exec& ex, mesh::SortedPoints<Exec>& S,
-                                                         const mesh::Bounds<3>& box,
-                                                         const mesh::Tetra& first,
-                                                         std::int64_t grid,
-                                                         const ProgressFn& progress, Stats& st) {
+// The stars of phase 2 and what they need (the geometry, its exact scratch, the counters).
+struct DigitalStars {
+  Geo g;
+  LeasePool<Exec> pool;
+  typename Exec::template Buffer<digital3d_impl::StarCounters> ctr;
+  StarStore T;
+};
+
+// Phases 1 and 2: the diagram, the working sets and every point's first star. Returns false,
+// building nothing, where many points lie on the box's planes (the incremental method then).
+inline bool digital_stars(Exec& ex, mesh::SortedPoints<Exec>& S, const mesh::Bounds<3>& box,
+                          const mesh::Tetra& first, std::int64_t grid, Stats& st, DigitalStars& D) {
   auto t0 = Clock::now();
   auto phase = [&](const char* name) {
     ex.sync();
@@ -46,7 +51,7 @@ inline std::optional<mesh::Compacted<Exec>> digital_tets(Exec& ex, mesh::SortedP
     if (on_box > std::max<std::int64_t>(4096, m / 100)) {
       st.counters["digital_fallback"] = 1;
       phase("digital_box_planes");
-      return std::nullopt;
+      return false;
     }
   }
   const std::int64_t side = grid > 0 ? grid : digital_side(m);
@@ -64,33 +69,53 @@ inline std::optional<mesh::Compacted<Exec>> digital_tets(Exec& ex, mesh::SortedP
   st.counters["digital_working_set_points"] = W.total;
   st.counters["digital_working_sets_augmented"] = W.augmented;
   phase("digital_working_sets");
-  Geo g;
-  g.p = S.pts.data();
-  for (int k = 0; k < 3; ++k) g.s[k] = first.s[k];
-  g.m = std::int32_t(m);
-  LeasePool<Exec> pool(
+  D.g.p = S.pts.data();
+  for (int k = 0; k < 3; ++k) D.g.s[k] = first.s[k];
+  D.g.m = std::int32_t(m);
+  D.pool = LeasePool<Exec>(
       ex, std::clamp<std::int64_t>(std::min<std::int64_t>(ex.concurrency(), m / 8), 64, 1024),
       pred::kInsphereScratch);
-  g.lease = pool.view;
-  auto ctr = ex.template alloc<digital3d_impl::StarCounters>(1);
-  StarStore T = create_stars(ex, g, m, W.start.data(), W.size.data(), W.pts.data(), ctr);
-  W = WorkingSets();
-  st.counters["digital_star_slots_created"] = T.slots;
+  D.g.lease = D.pool.view;
+  D.ctr = ex.template alloc<digital3d_impl::StarCounters>(1);
+  D.T = create_stars(ex, D.g, m, W.start.data(), W.size.data(), W.pts.data(), D.ctr);
+  st.counters["digital_star_slots_created"] = D.T.slots;
   phase("digital_stars");
-  if (progress) progress(Delaunay3dProgress{"splay", m, m, 0});
-  const SplayCount sc = splay_stars(ex, g, T, ctr);
+  return true;
+}
+
+// Phase 3 on the stars: splaying; false where a star grew too large (kHugeStar).
+inline bool digital_splay(Exec& ex, DigitalStars& D, Stats& st) {
+  const auto t0 = Clock::now();
+  const SplayCount sc = splay_stars(ex, D.g, D.T, D.ctr);
   st.counters["digital_fallback"] = sc.gave_up ? 1 : 0;
   st.counters["digital_splay_rounds"] = sc.rounds;
   st.counters["digital_star_insertions"] = sc.insertions;
   st.counters["digital_star_requests"] = sc.requests;
-  st.counters["digital_star_growths"] = T.growths;
-  st.counters["digital_star_slots"] = T.slots;
-  phase("digital_splay");
-  if (sc.gave_up) return std::nullopt;
+  st.counters["digital_star_growths"] = D.T.growths;
+  st.counters["digital_star_slots"] = D.T.slots;
+  ex.sync();
+  st.phase_ms.push_back({"digital_splay", ms_since(t0)});
+  return !sc.gave_up;
+}
+
+// The whole method. Returns no result where it fell back (see above): the caller then runs
+// the incremental method.
+inline std::optional<mesh::Compacted<Exec>> digital_tets(Exec& ex, mesh::SortedPoints<Exec>& S,
+                                                         const mesh::Bounds<3>& box,
+                                                         const mesh::Tetra& first,
+                                                         std::int64_t grid,
+                                                         const ProgressFn& progress, Stats& st) {
+  const std::int64_t m = S.m;
+  DigitalStars D;
+  if (!digital_stars(ex, S, box, first, grid, st, D)) return std::nullopt;
+  if (progress) progress(Delaunay3dProgress{"splay", m, m, 0});
+  if (!digital_splay(ex, D, st)) return std::nullopt;
   if (progress) progress(Delaunay3dProgress{"output", m, m, 0});
+  const auto t0 = Clock::now();
   std::int64_t flats = 0;
-  mesh::Compacted<Exec> f = star_tets(ex, g, T, S.orig.data(), flats);
+  mesh::Compacted<Exec> f = star_tets(ex, D.g, D.T, S.orig.data(), flats);
   st.counters["flat_tetrahedra"] = flats;
-  phase("digital_tetrahedra");
+  ex.sync();
+  st.phase_ms.push_back({"digital_tetrahedra", ms_since(t0)});
   return f;
 }
