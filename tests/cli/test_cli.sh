@@ -228,13 +228,13 @@ expect 0 "flips23" -- "$G" --verbose delaunay3d "$W/ball.npy" --check
 expect 0 "check: valid Delaunay tetrahedralisation" -- "$G" delaunay3d "$W/g3.npy" --check
 # the digital method: the same tetrahedra (as a set: the order may differ), its phases
 expect 0 "\(digital method\)" -- "$G" delaunay3d "$W/ball.npy" --method digital --check -o "$W/td.npy"
-expect 0 "digital_splay" -- "$G" --verbose delaunay3d "$W/ball.npy" --method digital --grid 32
+expect 0 "digital_splay" -- "$G" --verbose delaunay3d "$W/ball.npy" --method digital --grid 32 --check
 python3 - "$W/t.npy" "$W/td.npy" <<'PY' || { echo "FAIL: delaunay3d --method digital gave other tetrahedra"; fail=1; }
 import sys, numpy as np
 a, b = (np.sort(np.load(f), axis=1) for f in sys.argv[1:3])
 sys.exit(0 if a.shape == b.shape and (np.unique(a, axis=0) == np.unique(b, axis=0)).all() else 1)
 PY
-expect 2 "16..1024" -- "$G" delaunay3d "$W/ball.npy" --method digital --grid 8
+expect 2 "16..1024" -- "$G" delaunay3d "$W/ball.npy" --method digital --grid 8 --check
 expect 2 "needs --method digital" -- "$G" delaunay3d "$W/ball.npy" --grid 64
 expect 3 "one plane" -- "$G" delaunay3d "$W/flat.xyz" -o "$W/tf.vtu"
 expect 3 "infinite" -- "$G" delaunay3d "$W/inf.xyz" -o "$W/tf.vtu"
