@@ -9,10 +9,17 @@
 // and one copy), and the star goes on from where it stopped. The sizes after creation are
 // nearly right, so this is rare.
 //
-// Splaying: a round checks the dirty stars' tetrahedra (a tetrahedron of star(v) must be in the
-// stars of its other finite vertices). Where star(w) lacks one, star(w) takes those of its
-// vertices that would change it; where none would, star(w) holds a vertex inside the
-// tetrahedron's sphere, which star(v) takes. The requests (star, vertex) are sorted; each star
+// Splaying: rounds of two kinds over the dirty stars, a thread per triangle. Link-vertex rounds
+// first: for each link vertex u of star(v), a star(u) lacking v takes it where v would change
+// it (else star(v) takes a vertex of star(u) inside one of its spheres at u), and around an
+// edge both have, each takes the other's ring vertices inside its spheres there (edge_rings).
+// Once those are quiet, tetrahedra rounds: a tetrahedron of star(v) must be in the stars of its
+// other finite vertices; where star(w) lacks one, star(w) takes those of its vertices that
+// would change it, and where none would, star(w) holds a vertex inside the tetrahedron's
+// sphere, which star(v) takes. Every request changes its star ("would it change" is the exact
+// test), so the rounds end; the last checks every star's tetrahedra, the proof that all agree
+// (design-notes.md measures why the vertex rounds come first). The requests (star, vertex) are
+// sorted; each star
 // takes its vertices in vertex order on one thread. A star is the convex star of the vertices
 // offered to it whatever their order, and stars only take vertices, so the rounds end in the
 // same stars on every executor and thread count, which are the stars of the Delaunay
