@@ -2,6 +2,7 @@
 // helpers the drivers share.
 #pragma once
 #include <chrono>
+#include <cstdio>
 #include <cstdint>
 #include <fstream>
 #include <sstream>
@@ -47,6 +48,21 @@ inline double phase_ms(const Stats& s, const char* name) {
   for (auto& p : s.phase_ms)
     if (p.first == name) return p.second;
   return 0;
+}
+
+// A counter of a run's Stats, 0 when the run had no such counter.
+inline std::int64_t counter(const Stats& s, const char* name) {
+  auto it = s.counters.find(name);
+  return it == s.counters.end() ? 0 : it->second;
+}
+
+// Every phase and counter of a run, as two comment lines (the benchmarks' --verbose).
+inline void print_stats_lines(const Stats& s) {
+  std::printf("#   phases:");
+  for (auto& p : s.phase_ms) std::printf(" %s %.1f", p.first.c_str(), p.second);
+  std::printf("\n#   counters:");
+  for (auto& c : s.counters) std::printf(" %s %lld", c.first.c_str(), (long long)c.second);
+  std::printf("\n");
 }
 
 // Opens path for appending; writes the header when the file is new.

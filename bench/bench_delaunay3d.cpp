@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_csv.hpp"
 #include "device_timing.hpp"
 #include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/generate.hpp"
@@ -37,15 +38,23 @@ using namespace gpugeom;
 
 namespace {
 using clk = std::chrono::steady_clock;
+using bench::counter;
 using bench::ms_since;
 double phase(const Stats& s, const char* name) {
-  for (auto& p : s.phase_ms)
-    if (p.first == name) return p.second;
-  return 0;
+  return bench::phase_ms(s, name);
 }
-std::int64_t counter(const Stats& s, const char* name) {
-  auto it = s.counters.find(name);
-  return it == s.counters.end() ? 0 : it->second;
+
+// The median of reps end-to-end runs with options o, and the last run's result.
+double median_run(const std::vector<Point3>& pts, const Delaunay3dOptions& o, int reps,
+                  Triangulation3d& t) {
+  std::vector<double> ms;
+  for (int r = 0; r < reps; ++r) {
+    const auto t0 = clk::now();
+    t = delaunay3d(pts, o);
+    ms.push_back(ms_since(t0));
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
 }
 
 #ifdef GG_BENCH_CGAL
@@ -148,14 +157,8 @@ int run(int argc, char** argv) {
       if (b == Backend::Cpu && !with_cpu && dev.available) continue;
       Delaunay3dOptions o;
       o.backend = b;
-      std::vector<double> ms;
       Triangulation3d t;
-      for (int r = 0; r < reps; ++r) {
-        const auto t0 = clk::now();
-        t = delaunay3d(pts, o);
-        ms.push_back(ms_since(t0));
-      }
-      std::sort(ms.begin(), ms.end());
+      const double total = median_run(pts, o, reps, t);
       // Device-resident: points uploaded once, the result left on the GPU.
       const double on_dev =
           b == Backend::Cuda
@@ -173,8 +176,8 @@ int run(int argc, char** argv) {
       std::printf(
           "%-12s %9lld %-5s %10.1f %8.1f %8.1f %8.1f %8.1f %9lld %8lld %7lld %10zu %6lld %9.1f "
           "%9.1f %6s\n",
-          dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu", ms[ms.size() / 2],
-          on_dev, phase(t.stats, "prepare"), phase(t.stats, "insert_flip"), phase(t.stats, "splay"),
+          dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu", total, on_dev,
+          phase(t.stats, "prepare"), phase(t.stats, "insert_flip"), phase(t.stats, "splay"),
           (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
           (long long)counter(t.stats, "failed_vertices"),
           (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(),
@@ -184,27 +187,14 @@ int run(int argc, char** argv) {
         std::printf("#   bus floor %.1f ms\n",
                     bench::bus_floor_ms(24.0 * n + 4.0 * (8.0 * t.tetrahedron_count + 2.0 * n +
                                                           3.0 * t.hull_facet_count)));
-      if (verbose) {
-        std::printf("#   phases:");
-        for (auto& p : t.stats.phase_ms) std::printf(" %s %.1f", p.first.c_str(), p.second);
-        std::printf("\n#   counters:");
-        for (auto& c : t.stats.counters)
-          std::printf(" %s %lld", c.first.c_str(), (long long)c.second);
-        std::printf("\n");
-      }
+      if (verbose) bench::print_stats_lines(t.stats);
       std::fflush(stdout);
       for (const std::int64_t g : digital) {
         Delaunay3dOptions od = o;
         od.method = Method::Digital;
         od.grid = g;
-        std::vector<double> dms;
         Triangulation3d d;
-        for (int r = 0; r < reps; ++r) {
-          const auto t0 = clk::now();
-          d = delaunay3d(pts, od);
-          dms.push_back(ms_since(t0));
-        }
-        std::sort(dms.begin(), dms.end());
+        const double dt = median_run(pts, od, reps, d);
         const double d_on_dev =
             b == Backend::Cuda ? bench::device_resident_ms(pts, reps,
                                                            [&](const double* x, std::int64_t k) {
@@ -212,7 +202,6 @@ int run(int argc, char** argv) {
                                                            })
                                : -1;
         const bool same = tet_rows(d) == tet_rows(t);
-        const double dt = dms[dms.size() / 2];
         std::printf(
             "%-12s %9lld %-5s %10.1f %8.1f   digital grid %4lld: voronoi %.1f sets %.1f stars "
             "%.1f splay %.1f (%lld rounds, %lld insertions, %lld growths) tets %.1f; "
@@ -224,16 +213,9 @@ int run(int argc, char** argv) {
             phase(d.stats, "digital_splay"), (long long)counter(d.stats, "digital_splay_rounds"),
             (long long)counter(d.stats, "digital_star_insertions"),
             (long long)counter(d.stats, "digital_star_growths"),
-            phase(d.stats, "digital_tetrahedra"), dt / ms[ms.size() / 2], cg > 0 ? cg / dt : -1.0,
+            phase(d.stats, "digital_tetrahedra"), dt / total, cg > 0 ? cg / dt : -1.0,
             same ? "identical" : "DIFFERENT");
-        if (verbose) {
-          std::printf("#   phases:");
-          for (auto& p : d.stats.phase_ms) std::printf(" %s %.1f", p.first.c_str(), p.second);
-          std::printf("\n#   counters:");
-          for (auto& c : d.stats.counters)
-            std::printf(" %s %lld", c.first.c_str(), (long long)c.second);
-          std::printf("\n");
-        }
+        if (verbose) bench::print_stats_lines(d.stats);
         std::fflush(stdout);
       }
     }

@@ -51,13 +51,10 @@ void digital_stars_for_testing(const double* xyz, std::int64_t n, std::int64_t g
   opt.backend = Backend::Cpu;
   Exec ex(opt);
   Stats st;
-  auto raw = ex.template alloc<double>(std::size_t(3 * n));
-  ex.from_host(xyz, 3 * n, raw.data());
-  const mesh::Bounds<3> box = mesh::bounds_in_place<3>(ex, raw.data(), n);
-  if (box.bad) mesh::throw_bad_coordinates(box.bad);
-  mesh::SortedPoints<Exec> S = mesh::sort_distinct<3>(ex, raw.data(), n, box);
-  const mesh::Tetra first =
-      mesh::first_tetrahedron(ex, S.pts.data(), S.m, n, "a 3D Delaunay triangulation", true);
+  Prepared P = prepare_points(ex, xyz, n, false, st);
+  mesh::SortedPoints<Exec>& S = P.S;
+  const mesh::Bounds<3>& box = P.box;
+  const mesh::Tetra& first = P.first;
   DigitalStars D;
   out.built =
       digital_stars(ex, S, box, first, grid, st, D) && (!splayed || digital_splay(ex, D, st));

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "base/method_grid.hpp"
 #include "delaunay3d/del3d_backend.hpp"
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
@@ -26,13 +27,7 @@ void check_count(std::int64_t n) {
                     "): a 3D Delaunay triangulation needs 4 points not on one plane");
 }
 void check_method(const Delaunay3dOptions& opt) {
-  if (opt.grid != 0 && (opt.grid < 16 || opt.grid > 1024))
-    throw Error(ErrorCode::InvalidArgument,
-                "grid: the digital method's grid side must be 16..1024 (or 0: chosen from the "
-                "point count), got " +
-                    std::to_string(opt.grid));
-  if (opt.grid != 0 && opt.method != Method::Digital)
-    throw Error(ErrorCode::InvalidArgument, "grid: only Method::Digital uses a grid");
+  detail::check_method_grid(opt.method, opt.grid, 16, 1024, "the digital method's grid side");
   if (opt.method == Method::Digital && opt.max_flip_rounds >= 0)
     throw Error(ErrorCode::InvalidArgument,
                 "max_flip_rounds: a switch of the incremental method; Method::Digital has no "

@@ -10,6 +10,7 @@
 
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
+#include "base/method_grid.hpp"
 #include "hull3d/hull3d_backend.hpp"
 
 namespace gpugeom {
@@ -77,13 +78,7 @@ void redo_planes(const double* p, const std::int32_t* t, std::int64_t nf, double
 
 namespace {
 void check_method(const Hull3dOptions& opt) {
-  if (opt.grid != 0 && (opt.grid < 16 || opt.grid > 8192))
-    throw Error(ErrorCode::InvalidArgument,
-                "grid: the digital hull's grid side must be 16..8192 (or 0: chosen from the "
-                "point count), got " +
-                    std::to_string(opt.grid));
-  if (opt.grid != 0 && opt.method != Method::Digital)
-    throw Error(ErrorCode::InvalidArgument, "grid: only Method::Digital uses a grid");
+  detail::check_method_grid(opt.method, opt.grid, 16, 8192, "the digital hull's grid side");
 }
 }  // namespace
 

@@ -1013,15 +1013,16 @@ class Triangulator {
   Source source_;
 };
 
-// The whole pipeline on the executor: prepare, phase 1, phase 2 on the host where phase 1
-// left failed faces, then the finite tetrahedra in input indices (f) with S's duplicate map.
-template <class Body>
-inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on_device,
-                             const Delaunay3dOptions& opt, Stats& st, Body body) {
-  const std::int64_t max_rounds = opt.max_flip_rounds;
-  const int threads = opt.threads;
-  const ProgressFn& progress = opt.progress;
-  auto t0 = Clock::now();
+// What both methods start from: the distinct points in curve order (the perturbation's
+// order), their box and the first tetrahedron (its centroid is the kernel point).
+struct Prepared {
+  mesh::SortedPoints<Exec> S;
+  mesh::Bounds<3> box;
+  mesh::Tetra first;
+};
+inline Prepared prepare_points(Exec& ex, const double* in, std::int64_t n, bool on_device,
+                               Stats& st) {
+  const auto t0 = Clock::now();
   auto raw = ex.template alloc<double>(std::size_t(3 * n));
   if (on_device)
     ex.copy(in, 3 * n, raw.data());
@@ -1042,6 +1043,22 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
       mesh::first_tetrahedron(ex, S.pts.data(), S.m, n, "a 3D Delaunay triangulation", true);
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
+  return Prepared{std::move(S), box, first};
+}
+
+// The whole pipeline on the executor: prepare, phase 1, phase 2 on the host where phase 1
+// left failed faces, then the finite tetrahedra in input indices (f) with S's duplicate map.
+template <class Body>
+inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on_device,
+                             const Delaunay3dOptions& opt, Stats& st, Body body) {
+  const std::int64_t max_rounds = opt.max_flip_rounds;
+  const int threads = opt.threads;
+  const ProgressFn& progress = opt.progress;
+  Prepared P = prepare_points(ex, in, n, on_device, st);
+  mesh::SortedPoints<Exec>& S = P.S;
+  const mesh::Bounds<3>& box = P.box;
+  const mesh::Tetra& first = P.first;
+  auto t0 = Clock::now();
   if (opt.method == Method::Digital) {  // DigiDel3D (digital/impl/pipeline.inl)
     auto f = digital_tets(ex, S, box, first, opt.grid, progress, st);
     if (f) {
