@@ -89,12 +89,17 @@ inline bool digital_splay(Exec& ex, DigitalStars& D, Stats& st) {
   const SplayCount sc = splay_stars(ex, D.g, D.T, D.ctr);
   st.counters["digital_fallback"] = sc.gave_up ? 1 : 0;
   st.counters["digital_splay_rounds"] = sc.rounds;
+  st.counters["digital_splay_vertex_rounds"] = sc.vertex_rounds;
   st.counters["digital_star_insertions"] = sc.insertions;
   st.counters["digital_star_requests"] = sc.requests;
   st.counters["digital_star_growths"] = D.T.growths;
   st.counters["digital_star_slots"] = D.T.slots;
   ex.sync();
   st.phase_ms.push_back({"digital_splay", ms_since(t0)});
+  // (the splay's parts, within digital_splay: the checks, the requests' sort, the takes)
+  st.phase_ms.push_back({"digital_splay.check", sc.check_ms});
+  st.phase_ms.push_back({"digital_splay.sort", sc.sort_ms});
+  st.phase_ms.push_back({"digital_splay.take", sc.take_ms});
   return !sc.gave_up;
 }
 

@@ -142,35 +142,37 @@ inline StarStore create_stars(Exec& ex, const Geo& g, std::int64_t m, const std:
   return S;
 }
 
+// The ring of x in the link t[0, n): the link vertices next to x, each once, into r (room for
+// kRing). k = 0: the link lacks x. Returns false where the ring is longer than kRing.
+constexpr int kRing = 48;
+GG_HD inline bool link_ring(const LinkTri* t, int n, std::int32_t x, std::int32_t* r, int& k) {
+  k = 0;
+  for (int i = 0; i < n; ++i) {
+    if (!t[i].has(x)) continue;
+    const std::int32_t y3[3] = {t[i].a, t[i].b, t[i].c};
+    for (int a = 0; a < 3; ++a) {
+      const std::int32_t y = y3[a];
+      if (y == x) continue;
+      bool seen = false;
+      for (int h = 0; h < k && !seen; ++h) seen = r[h] == y;
+      if (seen) continue;
+      if (k == kRing) return false;
+      r[k++] = y;
+    }
+  }
+  return true;
+}
+
 // The tetrahedra around the edge (v, u) as star(v) and star(u) have them (both have the edge):
 // rings A (the link vertices next to u in star(v)) and B (next to v in star(u)). Where they
 // differ, a vertex of B that lies in the sphere of one of star(v)'s tetrahedra at u is asked
 // of star(v), and the other way round. (Most missing neighbours show here first: a point y the
 // working sets missed between v and its neighbours is in the ring of v in star(u), and inside
-// a sphere of star(v).) Rings longer than 48 are left to the tetrahedra's check.
+// a sphere of star(v).)
 template <class Ask>
 GG_HD inline void edge_rings(const Geo& g, std::int32_t v, const LinkTri* tv, int nv,
-                             std::int32_t u, const LinkTri* tu, int nu, Ask ask) {
-  constexpr int kRing = 48;
-  std::int32_t A[kRing], B[kRing];
-  int na = 0, nb = 0;
-  auto gather = [](const LinkTri* t, int n, std::int32_t x, std::int32_t* r, int& k) {
-    for (int i = 0; i < n; ++i) {
-      if (!t[i].has(x)) continue;
-      const std::int32_t y3[3] = {t[i].a, t[i].b, t[i].c};
-      for (int a = 0; a < 3; ++a) {
-        const std::int32_t y = y3[a];
-        if (y == x) continue;
-        bool seen = false;
-        for (int h = 0; h < k && !seen; ++h) seen = r[h] == y;
-        if (seen) continue;
-        if (k == kRing) return false;
-        r[k++] = y;
-      }
-    }
-    return true;
-  };
-  if (!gather(tv, nv, u, A, na) || !gather(tu, nu, v, B, nb)) return;
+                             const std::int32_t* A, int na, std::int32_t u, const LinkTri* tu,
+                             int nu, const std::int32_t* B, int nb, Ask ask) {
   auto pull = [&](std::int32_t s, const LinkTri* ts, int ns, std::int32_t at,
                   const std::int32_t* mine, int nm, const std::int32_t* theirs, int nt) {
     for (int j = 0; j < nt; ++j) {
@@ -190,10 +192,157 @@ GG_HD inline void edge_rings(const Geo& g, std::int32_t v, const LinkTri* tv, in
   pull(u, tu, nu, v, B, nb, A, na);
 }
 
+// The vertex round's check of the link vertex u of star(v). Where star(u) has v too, the rings
+// around the edge (edge_rings), once for the pair: by the lower of the two where both stars are
+// checked this round (u_listed). Where star(u) lacks v, star(u) takes v where v would change it;
+// where it would not, star(u) is convex over v and lacks it, so the tetrahedra of star(v) at u
+// are not in star(u): star(u) has a vertex inside the sphere of one of them (see the
+// tetrahedra's check), which star(v) takes. Returns false where no such vertex was found (an
+// error). Rings longer than kRing are left to the tetrahedra's check.
+template <class Ask>
+GG_HD inline bool check_link_vertex(const Geo& g, std::int32_t v, const LinkTri* tv, int nv,
+                                    std::int32_t u, const LinkTri* tu, int nu, bool u_listed,
+                                    Ask ask) {
+  std::int32_t B[kRing];
+  int nb = 0;
+  const bool fits = link_ring(tu, nu, v, B, nb);
+  if (nb > 0) {
+    if (u < v && u_listed) return true;
+    std::int32_t A[kRing];
+    int na = 0;
+    if (fits && link_ring(tv, nv, u, A, na)) edge_rings(g, v, tv, nv, A, na, u, tu, nu, B, nb, ask);
+    return true;
+  }
+  if (link_conflicts(g, u, tu, nu, v)) {
+    ask(u, v);
+    return true;
+  }
+  const std::int32_t I = g.m;
+  for (int x = 0; x < nu; ++x) {
+    const std::int32_t y3[3] = {tu[x].a, tu[x].b, tu[x].c};
+    for (int b = 0; b < 3; ++b) {
+      const std::int32_t y = y3[b];
+      if (y == v || y == I) continue;
+      bool seen = false;  // (each vertex of star(u) once)
+      for (int h = 0; h < x && !seen; ++h) seen = tu[h].has(y);
+      if (seen) continue;
+      for (int h = 0; h < nv; ++h)
+        if (tv[h].has(u) && !tv[h].has(y) && link_reflex(g, v, tv[h], y)) {
+          ask(v, y);
+          return true;
+        }
+    }
+  }
+  return false;
+}
+
+// The vertex round's check of star(v): each distinct finite link vertex once (check_link_vertex).
+// listed(u): star(u) is checked this round too. Returns the count of failed checks.
+template <class Listed, class Ask>
+GG_HD inline int check_star_vertices(const Geo& g, std::int32_t v, const LinkTri* tri,
+                                     const std::int64_t* off, const std::int32_t* cnt,
+                                     Listed listed, Ask ask) {
+  constexpr int kSeen = 64;  // (the distinct vertices so far; past that, the earlier triangles)
+  std::int32_t seen[kSeen];
+  int ns = 0, stuck = 0;
+  const LinkTri* tv = tri + off[v];
+  const int nv = cnt[v];
+  for (int i = 0; i < nv; ++i) {
+    const std::int32_t u3[3] = {tv[i].a, tv[i].b, tv[i].c};
+    for (int a = 0; a < 3; ++a) {
+      const std::int32_t u = u3[a];
+      if (u == g.m) continue;
+      bool dup = false;
+      if (ns < kSeen)
+        for (int h = 0; h < ns && !dup; ++h) dup = seen[h] == u;
+      else
+        for (int h = 0; h < i && !dup; ++h) dup = tv[h].has(u);
+      if (dup) continue;
+      if (ns < kSeen) seen[ns++] = u;
+      if (!check_link_vertex(g, v, tv, nv, u, tri + off[u], cnt[u], listed(u), ask)) ++stuck;
+    }
+  }
+  return stuck;
+}
+
+// The tetrahedra's check of the triangle i of star(v): the tetrahedron must be in the stars of
+// its other finite vertices; where star(w) lacks it, star(w) takes those of its vertices that
+// would change it, and where none would, star(w) holds a vertex inside the tetrahedron's sphere,
+// which star(v) takes. Returns the count of failed checks.
+template <class Ask>
+GG_HD inline int check_tetrahedron(const Geo& g, std::int32_t v, const LinkTri& t,
+                                   const LinkTri* tri, const std::int64_t* off,
+                                   const std::int32_t* cnt, Ask ask) {
+  const std::int32_t I = g.m;
+  const std::int32_t q[4] = {v, t.a, t.b, t.c};
+  int stuck = 0;
+  for (int k = 1; k < 4; ++k) {
+    const std::int32_t w = q[k];
+    if (w == I) continue;
+    std::int32_t o[3];
+    for (int a = 0, z = 0; a < 4; ++a)
+      if (a != k) o[z++] = q[a];
+    const LinkTri* tw = tri + off[w];
+    const int nw = cnt[w];
+    if (link_find(tw, nw, o[0], o[1], o[2]) >= 0) continue;
+    bool asked = false;
+    for (int a = 0; a < 3; ++a)
+      if (!link_has_vertex(tw, nw, o[a]) && link_conflicts(g, w, tw, nw, o[a])) {
+        ask(w, o[a]);
+        asked = true;
+      }
+    for (int x = 0; x < nw && !asked; ++x) {
+      const std::int32_t y3[3] = {tw[x].a, tw[x].b, tw[x].c};
+      for (int a = 0; a < 3 && !asked; ++a) {
+        const std::int32_t y = y3[a];
+        if (y == q[0] || y == q[1] || y == q[2] || y == q[3]) continue;
+        if (in_sphere_ext(g, q, y)) {
+          ask(v, y);
+          asked = true;
+        }
+      }
+    }
+    if (!asked) ++stuck;
+  }
+  return stuck;
+}
+
+// The proof that the stars agree, from each tetrahedron's lowest finite vertex only: star(v)'s
+// tetrahedra whose lowest finite vertex is v, each looked up in the stars of its other finite
+// vertices. Returns false where one is missing; adds the slots so accounted for (its finite
+// vertices) to *slots. Every star holds a tetrahedron once, so when every lookup succeeds, the
+// stars agree exactly when the slots accounted for are all the slots: a tetrahedron that some
+// star held but its lowest vertex's star did not would be a slot left over.
+GG_HD inline bool prove_star(const Geo& g, std::int32_t v, const LinkTri* tri,
+                             const std::int64_t* off, const std::int32_t* cnt,
+                             std::int64_t* slots) {
+  const std::int32_t I = g.m;
+  const LinkTri* tv = tri + off[v];
+  std::int64_t mine = 0;
+  for (int j = 0; j < cnt[v]; ++j) {
+    const std::int32_t q[4] = {v, tv[j].a, tv[j].b, tv[j].c};
+    bool lowest = true;
+    for (int k = 1; k < 4; ++k) lowest = lowest && (q[k] == I || q[k] > v);
+    if (!lowest) continue;
+    for (int k = 1; k < 4; ++k) {
+      if (q[k] == I) continue;
+      std::int32_t o[3];
+      for (int a = 0, z = 0; a < 4; ++a)
+        if (a != k) o[z++] = q[a];
+      if (link_find(tri + off[q[k]], cnt[q[k]], o[0], o[1], o[2]) < 0) return false;
+      ++mine;
+    }
+    ++mine;
+  }
+  *slots += mine;
+  return true;
+}
+
 // Phase 3: star splaying until every star agrees (see the top). Returns the rounds.
 struct SplayCount {
-  std::int64_t rounds = 0, insertions = 0, requests = 0;
-  bool gave_up = false;  // a star outgrew kHugeStar (see there)
+  std::int64_t rounds = 0, insertions = 0, requests = 0, vertex_rounds = 0;
+  double check_ms = 0, sort_ms = 0, take_ms = 0;  // (where the rounds' time goes)
+  bool gave_up = false;                           // a star outgrew kHugeStar (see there)
 };
 // Stars of points on planes with many points (the hull planes of integer grids) grow to
 // thousands of triangles while splaying, a wave a round, and one thread takes each vertex
@@ -214,6 +363,10 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
   std::int8_t* dirty = dirty_d.data();
   ex.fill(dirty, m, std::int8_t(3));
   auto list_d = ex.template alloc<std::int32_t>(std::size_t(m));
+  // The round in which a star was last listed for its vertices (check_link_vertex's u_listed).
+  auto mark_d = ex.template alloc<std::int32_t>(std::size_t(m));
+  std::int32_t* mark = mark_d.data();
+  ex.fill(mark, m, std::int32_t(0));
   // (the rounds' buffers, allocated once: a round of a few requests must not pay allocations)
   std::int64_t req_cap = std::max<std::int64_t>(1 << 16, m);
   auto req = ex.template alloc<u64>(std::size_t(req_cap));
@@ -221,152 +374,103 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
   auto pos_d = ex.template alloc<std::int32_t>(std::size_t(req_cap));
   auto grow_d = ex.template alloc<std::int8_t>(std::size_t(m));
   StarCounters* C = ctr.data();
-  bool full_check = false;  // the last round checks every star: the proof of consistency
+  // The tetrahedra's rounds run only once a proof failed (tets_mode), on the stars changed since
+  // (dirty bit 2); a proof that fails with no request since the last one is an error.
+  bool tets_mode = false, asked = true;
   for (;;) {
-    // The round's kind: the vertex rounds first (cheap, and most of what is missing), then the
-    // tetrahedra, then every star's tetrahedra once.
+    // The round's kind: the vertex rounds first (cheap, and most of what is missing); once
+    // quiet, the proof (prove_star), which ends the splaying where it holds; in tets_mode the
+    // tetrahedra's rounds before it.
     std::int32_t* list = list_d.data();
     std::int8_t bit = 1;
     std::int64_t nl = ex.compact_indices(
         m, GG_LAMBDA(std::int64_t v) { return (dirty[v] & 1) != 0; }, list);
-    if (nl == 0) {
+    if (nl == 0 && tets_mode) {
       bit = 2;
       nl = ex.compact_indices(
           m, GG_LAMBDA(std::int64_t v) { return (dirty[v] & 2) != 0; }, list);
     }
-    if (bit == 2 && nl == m) full_check = true;  // (every star listed: this is the full one)
-    if (nl == 0) {
-      if (full_check) break;  // every star was checked and agrees with every other
-      full_check = true;
-      bit = 2;
-      nl = ex.compact_indices(
-          m, GG_LAMBDA(std::int64_t) { return true; }, list);
-    }
-    const bool vertices = bit == 1;
-    ex.for_each_index(
-        nl, GG_LAMBDA(std::int64_t j) { dirty[list[j]] &= std::int8_t(~bit); });
     ++out.rounds;
     if (out.rounds > 100000) throw Error(ErrorCode::Internal, "digital 3D Delaunay: splaying");
-    // Check (read-only on the stars): requests into req, a thread per triangle of the listed
-    // stars (a thread per star left the long stars' threads working alone).
-    auto toff_d = ex.template alloc<std::int64_t>(std::size_t(nl + 1));
-    std::int64_t* toff = toff_d.data();
+    auto tc = Clock::now();
+    const LinkTri* tri = S.tri.data();
+    const std::int64_t* off = S.off.data();
+    const std::int32_t* cnt = S.cnt.data();
+    if (nl == 0) {
+      const StarCounters zero{};
+      ex.from_host(&zero, 1, C);
+      ex.for_each_index(
+          m, GG_LAMBDA(std::int64_t i) {
+            std::int64_t slots = 0;
+            if (!prove_star(g, std::int32_t(i), tri, off, cnt, &slots))
+              atomic_add(&C->stuck, std::int64_t(1));
+            atomic_add(&C->requests, slots);
+            atomic_add(&C->taken, std::int64_t(cnt[i]));
+          });
+      StarCounters c;
+      ex.to_host(C, 1, &c);
+      out.check_ms += ms_since(tc);
+      if (c.stuck == 0 && c.requests == c.taken) break;  // every star agrees with every other
+      if (tets_mode && !asked)
+        throw Error(ErrorCode::Internal,
+                    "internal error in the digital 3D Delaunay method: the stars disagree but "
+                    "checking them asked for nothing; please report this input");
+      tets_mode = true;
+      asked = false;
+      ex.fill(dirty, m, std::int8_t(2));
+      continue;
+    }
+    const bool vertices = bit == 1;
+    out.vertex_rounds += vertices ? 1 : 0;
     {
-      const std::int32_t* cnt = S.cnt.data();
+      const std::int32_t r = std::int32_t(out.rounds);
+      ex.for_each_index(
+          nl, GG_LAMBDA(std::int64_t j) {
+            dirty[list[j]] &= std::int8_t(~bit);
+            mark[list[j]] = r;
+          });
+    }
+    // Check (read-only on the stars): requests into req. Vertex rounds: a thread per listed
+    // star. Tetrahedra rounds: a thread per triangle of the listed stars (the offsets toff).
+    std::int64_t ntri = nl;
+    auto toff_d = ex.template alloc<std::int64_t>(std::size_t(vertices ? 1 : nl + 1));
+    std::int64_t* toff = toff_d.data();
+    if (!vertices) {
       ex.exclusive_scan_of(
           nl + 1, GG_LAMBDA(std::int64_t j)->std::int64_t { return j < nl ? cnt[list[j]] : 0; },
           toff);
+      ex.to_host(toff + nl, 1, &ntri);
     }
-    std::int64_t ntri = 0;
-    ex.to_host(toff + nl, 1, &ntri);
     std::int64_t nreq = 0;
     for (;;) {
       const StarCounters zero{};
       ex.from_host(&zero, 1, C);
-      const LinkTri* tri = S.tri.data();
-      const std::int64_t* off = S.off.data();
-      const std::int32_t* cnt = S.cnt.data();
       u64* R = req.data();
       const std::int64_t rc = req_cap;
+      const std::int32_t r = std::int32_t(out.rounds);
       ex.for_each_index(
           ntri, GG_LAMBDA(std::int64_t e) {
-            std::int64_t lo = 0, hi = nl - 1;  // (the star: the last j with toff[j] <= e)
-            while (lo < hi) {
-              const std::int64_t mid = (lo + hi + 1) / 2;
-              if (toff[mid] <= e)
-                lo = mid;
-              else
-                hi = mid - 1;
-            }
-            const std::int32_t v = list[lo];
-            const int i0 = int(e - toff[lo]);
-            const LinkTri* tv = tri + off[v];
-            const int nv = cnt[v];
             auto ask = [&](std::int32_t star, std::int32_t vertex) {
               const std::int64_t at = atomic_add(&C->requests, std::int64_t(1));
               if (at < rc) R[at] = u64(std::uint32_t(star)) << 32 | std::uint32_t(vertex);
             };
+            int stuck = 0;
             if (vertices) {
-              // Each link vertex u of star(v) once: star(u) takes v where v would change it.
-              // (Where it would not, the tetrahedra's check finds what star(v) must take.)
-              for (int i = i0; i <= i0; ++i) {
-                const std::int32_t u3[3] = {tv[i].a, tv[i].b, tv[i].c};
-                for (int a = 0; a < 3; ++a) {
-                  const std::int32_t u = u3[a];
-                  if (u == I) continue;
-                  bool earlier = false;
-                  for (int h = 0; h < i && !earlier; ++h) earlier = tv[h].has(u);
-                  if (earlier) continue;
-                  const LinkTri* tu = tri + off[u];
-                  const int nu = cnt[u];
-                  if (link_has_vertex(tu, nu, v)) {
-                    edge_rings(g, v, tv, nv, u, tu, nu, ask);
-                    continue;
-                  }
-                  if (link_conflicts(g, u, tu, nu, v)) {
-                    ask(u, v);
-                    continue;
-                  }
-                  // star(u) is convex over v and lacks it, so the tetrahedra of star(v) at u are
-                  // not in star(u): star(u) has a vertex inside the sphere of one of them (see
-                  // the tetrahedra's check), which star(v) takes.
-                  bool asked = false;
-                  for (int x = 0; x < nu && !asked; ++x) {
-                    const std::int32_t y3[3] = {tu[x].a, tu[x].b, tu[x].c};
-                    for (int b = 0; b < 3 && !asked; ++b) {
-                      const std::int32_t y = y3[b];
-                      if (y == v || y == I) continue;
-                      bool seen = false;  // (each vertex of star(u) once)
-                      for (int h = 0; h < x && !seen; ++h) seen = tu[h].has(y);
-                      for (int h = 0; h < b && !seen; ++h) seen = y3[h] == y;
-                      if (seen) continue;
-                      for (int h = 0; h < nv; ++h)
-                        if (tv[h].has(u) && !tv[h].has(y) && link_reflex(g, v, tv[h], y)) {
-                          ask(v, y);
-                          asked = true;
-                          break;
-                        }
-                    }
-                  }
-                  if (!asked) atomic_add(&C->stuck, std::int64_t(1));
-                }
+              stuck = check_star_vertices(
+                  g, list[e], tri, off, cnt, [&](std::int32_t u) { return mark[u] == r; }, ask);
+            } else {
+              std::int64_t lo = 0, hi = nl - 1;  // (the star: the last j with toff[j] <= e)
+              while (lo < hi) {
+                const std::int64_t mid = (lo + hi + 1) / 2;
+                if (toff[mid] <= e)
+                  lo = mid;
+                else
+                  hi = mid - 1;
               }
-              return;
+              const std::int32_t v = list[lo];
+              stuck = check_tetrahedron(g, v, tri[off[v] + (e - toff[lo])], tri, off, cnt, ask);
             }
-            for (int i = i0; i <= i0; ++i) {
-              const std::int32_t q[4] = {v, tv[i].a, tv[i].b, tv[i].c};
-              for (int k = 1; k < 4; ++k) {
-                const std::int32_t w = q[k];
-                if (w == I) continue;
-                std::int32_t o[3];
-                for (int a = 0, z = 0; a < 4; ++a)
-                  if (a != k) o[z++] = q[a];
-                const LinkTri* tw = tri + off[w];
-                const int nw = cnt[w];
-                if (link_find(tw, nw, o[0], o[1], o[2]) >= 0) continue;
-                bool asked = false;
-                for (int a = 0; a < 3; ++a)
-                  if (!link_has_vertex(tw, nw, o[a]) && link_conflicts(g, w, tw, nw, o[a])) {
-                    ask(w, o[a]);
-                    asked = true;
-                  }
-                if (asked) continue;
-                // star(w) is convex over those vertices and still lacks the tetrahedron: one of
-                // its vertices lies inside the tetrahedron's sphere; star(v) takes it.
-                for (int x = 0; x < nw && !asked; ++x) {
-                  const std::int32_t y3[3] = {tw[x].a, tw[x].b, tw[x].c};
-                  for (int a = 0; a < 3 && !asked; ++a) {
-                    const std::int32_t y = y3[a];
-                    if (y == q[0] || y == q[1] || y == q[2] || y == q[3]) continue;
-                    if (in_sphere_ext(g, q, y)) {
-                      ask(v, y);
-                      asked = true;
-                    }
-                  }
-                }
-                if (!asked) atomic_add(&C->stuck, std::int64_t(1));
-              }
-            }
+            if (stuck) atomic_add(&C->stuck, std::int64_t(stuck));
           });
       StarCounters c;
       ex.to_host(C, 1, &c);
@@ -381,9 +485,16 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
       first_d = ex.template alloc<std::int32_t>(std::size_t(req_cap + 1));
       pos_d = ex.template alloc<std::int32_t>(std::size_t(req_cap));
     }
+    out.check_ms += ms_since(tc);
+#ifdef GG_DIGITAL_TRACE
+    std::fprintf(stderr, "round %lld %s stars %lld tris %lld requests %lld check %.1f ms\n",
+                 (long long)out.rounds, vertices ? "vert" : "tets", (long long)nl, (long long)ntri,
+                 (long long)nreq, ms_since(tc));
+#endif
     out.requests += nreq;
     if (nreq == 0) continue;
-    full_check = false;
+    tc = Clock::now();
+    asked = true;
     // Take: sorted requests, one thread per star in vertex order.
     u64* R = req.data();
     ex.sort(R, nreq);
@@ -397,6 +508,9 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
     }
     std::int32_t* pos = pos_d.data();
     ex.copy(first, ng, pos);
+    ex.sync();
+    out.sort_ms += ms_since(tc);
+    tc = Clock::now();
     std::int8_t* next = dirty;
     std::int8_t* grow = grow_d.data();
     for (int pass = 0;; ++pass) {
@@ -460,6 +574,11 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
       if (!c.overflow) break;
       regrow_stars(ex, S, grow);
     }
+    out.take_ms += ms_since(tc);
+#ifdef GG_DIGITAL_TRACE
+    std::fprintf(stderr, "   take %.1f ms, taken so far %lld\n", ms_since(tc),
+                 (long long)out.insertions);
+#endif
   }
   return out;
 }
