@@ -557,7 +557,7 @@ class Splayer {
                                          [&](const Tri& t) { gone(v, t, out), ++removed; });
     if (r < 0) {
       s.tris.resize(std::size_t(n));
-      internal(r == host_impl::kLinkBroken ? "a star insertion region is not a disk"
+      internal(r == host_impl::kLinkBroken ? "a star insertion made a negative triangle"
                                            : "a star insertion without room");
     }
     s.tris.resize(std::size_t(r));

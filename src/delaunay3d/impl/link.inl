@@ -86,56 +86,64 @@ GG_HD inline void link_start(const Geo& g, std::int32_t v, std::int32_t a, std::
 
 // Link insertion's outcomes besides the new count.
 constexpr int kLinkNoRoom = -1;  // it would not fit in cap (t unchanged)
-constexpr int kLinkBroken = -2;  // the region was no disk: the star was not convex (t unchanged)
+constexpr int kLinkBroken = -2;  // a new triangle was not positive: the star was not convex (t
+                                 // unchanged)
 
 // The convex star t[0, n) of v (room for cap) takes x: the triangles whose spheres contain x
 // go (gone(tri) is called for each, before it goes) and x is joined to the edges around them.
 // Returns the new count, or kLinkNoRoom / kLinkBroken with t as it was. (The count alone does
 // not tell a change: a region with one vertex inside has as many edges around as triangles.)
 // The new triangles come last, in the order of the edges found.
+//
+// The region's boundary: the edges of marked triangles whose reverse is in no marked triangle
+// (a link is closed, so the triangle across is an unmarked one). Regions are small beside
+// large stars, so the marked triangles are listed (up to kMarked) and the reverses looked up
+// among them alone: time linear in the star for the spheres, quadratic in the region only.
 template <class Gone>
 GG_HD int link_insert(const Geo& g, std::int32_t v, LinkTri* t, int n, int cap, std::int32_t x,
                       Gone gone) {
   if (x == v || x == g.m) return n;
+  constexpr int kMarked = 32;
+  int mk[kMarked];
   int c = 0;
   for (int i = 0; i < n; ++i)
-    if (link_reflex(g, v, t[i], x)) t[i].a = ~t[i].a, ++c;
+    if (link_reflex(g, v, t[i], x)) {
+      if (c < kMarked) mk[c] = i;
+      t[i].a = ~t[i].a, ++c;
+    }
   if (c == 0) return n;
   auto unmark_all = [&] {
     for (int i = 0; i < n; ++i) t[i].a = link_unmark(t[i].a);
   };
-  // The region's boundary: the edges of marked triangles whose other triangle is unmarked.
-  int b = 0;
-  bool broken = false;
-  for (int i = 0; i < n && !broken; ++i) {
-    if (t[i].a >= 0) continue;
-    const std::int32_t e[3] = {~t[i].a, t[i].b, t[i].c};
-    for (int k = 0; k < 3; ++k) {
-      const int j = link_find_edge(t, n, e[(k + 1) % 3], e[k]);
-      if (j < 0) {
-        broken = true;
-        break;
-      }
-      if (t[j].a >= 0) ++b;
+  // Is the directed edge a -> b in a marked triangle?
+  auto in_marked = [&](std::int32_t a, std::int32_t b) {
+    const int k = c <= kMarked ? c : n;
+    for (int h = 0; h < k; ++h) {
+      const LinkTri& q = t[c <= kMarked ? mk[h] : h];
+      if (q.a >= 0) continue;
+      const std::int32_t qa = ~q.a;
+      if ((qa == a && q.b == b) || (q.b == a && q.c == b) || (q.c == a && qa == b)) return true;
     }
-  }
-  if (broken) {
-    unmark_all();
-    return kLinkBroken;
-  }
+    return false;
+  };
+  auto boundary = [&](auto emit) {
+    const int k = c <= kMarked ? c : n;
+    for (int h = 0; h < k; ++h) {
+      const LinkTri& q = t[c <= kMarked ? mk[h] : h];
+      if (q.a >= 0) continue;
+      const std::int32_t e[3] = {~q.a, q.b, q.c};
+      for (int j = 0; j < 3; ++j)
+        if (!in_marked(e[(j + 1) % 3], e[j])) emit(e[j], e[(j + 1) % 3]);
+    }
+  };
+  int b = 0;
+  boundary([&](std::int32_t, std::int32_t) { ++b; });
   if (n + b > cap) {
     unmark_all();
     return kLinkNoRoom;
   }
   int w = n;
-  for (int i = 0; i < n; ++i) {
-    if (t[i].a >= 0) continue;
-    const std::int32_t e[3] = {~t[i].a, t[i].b, t[i].c};
-    for (int k = 0; k < 3; ++k) {
-      const int j = link_find_edge(t, n, e[(k + 1) % 3], e[k]);
-      if (t[j].a >= 0) t[w++] = LinkTri{e[k], e[(k + 1) % 3], x};
-    }
-  }
+  boundary([&](std::int32_t p, std::int32_t q) { t[w++] = LinkTri{p, q, x}; });
   // (a guard: a convex star's new triangles are positive by construction; those with the
   // infinity point are left out, see link_start)
   for (int i = n; i < w; ++i)

@@ -38,36 +38,68 @@ struct StarStore {
   typename Exec::template Buffer<LinkTri> tri;
   typename Exec::template Buffer<std::int64_t> off;
   typename Exec::template Buffer<std::int32_t> cap, cnt;
-  std::int64_t m = 0, slots = 0, growths = 0;
+  std::int64_t m = 0, slots = 0, used = 0, growths = 0;  // (slots: tri's size; used: runs laid)
 };
 
-// New runs: a star with grow[v] != 0 gets twice its room plus 8; the used triangles move along.
+// New runs for the stars with grow[v] != 0 (all, where grow is null): twice their room plus 8,
+// the used triangles moved along. Where the slots past the last run hold them, the new runs go
+// there and nothing else moves (the stars that outgrow their runs are a few, late in the
+// splaying, and a re-layout of every star for them cost as much as a round); else every star is
+// laid out again in a new array, with a quarter more room at its end for later growth.
 inline void regrow_stars(Exec& ex, StarStore& S, const std::int8_t* grow) {
   const std::int64_t m = S.m;
-  auto cap2 = ex.template alloc<std::int32_t>(std::size_t(m));
-  auto off2 = ex.template alloc<std::int64_t>(std::size_t(m + 1));
-  std::int32_t* c2 = cap2.data();
   const std::int32_t* c1 = S.cap.data();
+  auto add_d = ex.template alloc<std::int64_t>(std::size_t(m + 1));
+  std::int64_t* add = add_d.data();
+  if (grow) {
+    ex.exclusive_scan_of(
+        m + 1,
+        GG_LAMBDA(std::int64_t v)->std::int64_t { return v < m && grow[v] ? 2 * c1[v] + 8 : 0; },
+        add);
+    std::int64_t need = 0;
+    ex.to_host(add + m, 1, &need);
+    if (S.used + need <= S.slots) {
+      LinkTri* t = S.tri.data();
+      std::int64_t* off = S.off.data();
+      std::int32_t* cap = S.cap.data();
+      const std::int32_t* cnt = S.cnt.data();
+      const std::int64_t base = S.used;
+      ex.for_each_index(
+          m, GG_LAMBDA(std::int64_t v) {
+            if (!grow[v]) return;
+            const std::int64_t to = base + add[v];
+            for (std::int32_t i = 0; i < cnt[v]; ++i) t[to + i] = t[off[v] + i];
+            off[v] = to;
+            cap[v] = 2 * cap[v] + 8;
+          });
+      S.used += need;
+      ++S.growths;
+      return;
+    }
+  }
+  auto cap2 = ex.template alloc<std::int32_t>(std::size_t(m));
+  std::int32_t* c2 = cap2.data();
   ex.for_each_index(
       m, GG_LAMBDA(std::int64_t v) { c2[v] = grow && grow[v] ? 2 * c1[v] + 8 : c1[v]; });
   ex.exclusive_scan_of(
-      m + 1, GG_LAMBDA(std::int64_t v)->std::int64_t { return v < m ? c2[v] : 0; }, off2.data());
+      m + 1, GG_LAMBDA(std::int64_t v)->std::int64_t { return v < m ? c2[v] : 0; }, add);
   std::int64_t total = 0;
-  ex.to_host(off2.data() + m, 1, &total);
-  auto tri2 = ex.template alloc<LinkTri>(std::size_t(total));
+  ex.to_host(add + m, 1, &total);
+  const std::int64_t slots = total + total / 4;
+  auto tri2 = ex.template alloc<LinkTri>(std::size_t(slots));
   LinkTri* t2 = tri2.data();
   const LinkTri* t1 = S.tri.data();
   const std::int64_t* o1 = S.off.data();
-  const std::int64_t* o2 = off2.data();
   const std::int32_t* cnt = S.cnt.data();
   ex.for_each_index(
       m, GG_LAMBDA(std::int64_t v) {
-        for (std::int32_t i = 0; i < cnt[v]; ++i) t2[o2[v] + i] = t1[o1[v] + i];
+        for (std::int32_t i = 0; i < cnt[v]; ++i) t2[add[v] + i] = t1[o1[v] + i];
       });
   S.tri = std::move(tri2);
-  S.off = std::move(off2);
+  S.off = std::move(add_d);
   S.cap = std::move(cap2);
-  S.slots = total;
+  S.slots = slots;
+  S.used = total;
   ++S.growths;
 }
 
@@ -236,18 +268,21 @@ GG_HD inline bool check_link_vertex(const Geo& g, std::int32_t v, const LinkTri*
   return false;
 }
 
-// The vertex round's check of star(v): each distinct finite link vertex once (check_link_vertex).
-// listed(u): star(u) is checked this round too. Returns the count of failed checks.
+// The vertex round's check of star(v), for the link vertices whose first triangle is among
+// [i0, i1) (check_link_vertex; a large star is checked in such pieces by several threads, else
+// one thread spent as long on it as the rest of the round). listed(u): star(u) is checked this
+// round too. Returns the count of failed checks.
+constexpr int kCheckPiece = 32;  // (triangles a thread; the stars after creation have 20-60)
 template <class Listed, class Ask>
-GG_HD inline int check_star_vertices(const Geo& g, std::int32_t v, const LinkTri* tri,
-                                     const std::int64_t* off, const std::int32_t* cnt,
-                                     Listed listed, Ask ask) {
+GG_HD inline int check_star_vertices(const Geo& g, std::int32_t v, int i0, int i1,
+                                     const LinkTri* tri, const std::int64_t* off,
+                                     const std::int32_t* cnt, Listed listed, Ask ask) {
   constexpr int kSeen = 64;  // (the distinct vertices so far; past that, the earlier triangles)
   std::int32_t seen[kSeen];
   int ns = 0, stuck = 0;
   const LinkTri* tv = tri + off[v];
   const int nv = cnt[v];
-  for (int i = 0; i < nv; ++i) {
+  for (int i = i0; i < i1; ++i) {
     const std::int32_t u3[3] = {tv[i].a, tv[i].b, tv[i].c};
     for (int a = 0; a < 3; ++a) {
       const std::int32_t u = u3[a];
@@ -256,7 +291,8 @@ GG_HD inline int check_star_vertices(const Geo& g, std::int32_t v, const LinkTri
       if (ns < kSeen)
         for (int h = 0; h < ns && !dup; ++h) dup = seen[h] == u;
       else
-        for (int h = 0; h < i && !dup; ++h) dup = tv[h].has(u);
+        for (int h = i0; h < i && !dup; ++h) dup = tv[h].has(u);
+      for (int h = 0; h < i0 && !dup; ++h) dup = tv[h].has(u);
       if (dup) continue;
       if (ns < kSeen) seen[ns++] = u;
       if (!check_link_vertex(g, v, tv, nv, u, tri + off[u], cnt[u], listed(u), ask)) ++stuck;
@@ -430,17 +466,20 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
             mark[list[j]] = r;
           });
     }
-    // Check (read-only on the stars): requests into req. Vertex rounds: a thread per listed
-    // star. Tetrahedra rounds: a thread per triangle of the listed stars (the offsets toff).
-    std::int64_t ntri = nl;
-    auto toff_d = ex.template alloc<std::int64_t>(std::size_t(vertices ? 1 : nl + 1));
+    // Check (read-only on the stars): requests into req. Vertex rounds: a thread per piece of
+    // kCheckPiece triangles of the listed stars; tetrahedra rounds: a thread per triangle. toff:
+    // the first thread of each listed star.
+    const int per = vertices ? kCheckPiece : 1;
+    auto toff_d = ex.template alloc<std::int64_t>(std::size_t(nl + 1));
     std::int64_t* toff = toff_d.data();
-    if (!vertices) {
-      ex.exclusive_scan_of(
-          nl + 1, GG_LAMBDA(std::int64_t j)->std::int64_t { return j < nl ? cnt[list[j]] : 0; },
-          toff);
-      ex.to_host(toff + nl, 1, &ntri);
-    }
+    ex.exclusive_scan_of(
+        nl + 1,
+        GG_LAMBDA(std::int64_t j)->std::int64_t {
+          return j < nl ? (cnt[list[j]] + per - 1) / per : 0;
+        },
+        toff);
+    std::int64_t ntri = 0;
+    ex.to_host(toff + nl, 1, &ntri);
     std::int64_t nreq = 0;
     for (;;) {
       const StarCounters zero{};
@@ -454,21 +493,23 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
               const std::int64_t at = atomic_add(&C->requests, std::int64_t(1));
               if (at < rc) R[at] = u64(std::uint32_t(star)) << 32 | std::uint32_t(vertex);
             };
+            std::int64_t lo = 0, hi = nl - 1;  // (the star: the last j with toff[j] <= e)
+            while (lo < hi) {
+              const std::int64_t mid = (lo + hi + 1) / 2;
+              if (toff[mid] <= e)
+                lo = mid;
+              else
+                hi = mid - 1;
+            }
+            const std::int32_t v = list[lo];
+            const int i0 = int(e - toff[lo]) * per;
             int stuck = 0;
             if (vertices) {
+              const int i1 = i0 + per < cnt[v] ? i0 + per : cnt[v];
               stuck = check_star_vertices(
-                  g, list[e], tri, off, cnt, [&](std::int32_t u) { return mark[u] == r; }, ask);
+                  g, v, i0, i1, tri, off, cnt, [&](std::int32_t u) { return mark[u] == r; }, ask);
             } else {
-              std::int64_t lo = 0, hi = nl - 1;  // (the star: the last j with toff[j] <= e)
-              while (lo < hi) {
-                const std::int64_t mid = (lo + hi + 1) / 2;
-                if (toff[mid] <= e)
-                  lo = mid;
-                else
-                  hi = mid - 1;
-              }
-              const std::int32_t v = list[lo];
-              stuck = check_tetrahedron(g, v, tri[off[v] + (e - toff[lo])], tri, off, cnt, ask);
+              stuck = check_tetrahedron(g, v, tri[off[v] + i0], tri, off, cnt, ask);
             }
             if (stuck) atomic_add(&C->stuck, std::int64_t(stuck));
           });
@@ -487,9 +528,19 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
     }
     out.check_ms += ms_since(tc);
 #ifdef GG_DIGITAL_TRACE
-    std::fprintf(stderr, "round %lld %s stars %lld tris %lld requests %lld check %.1f ms\n",
-                 (long long)out.rounds, vertices ? "vert" : "tets", (long long)nl, (long long)ntri,
-                 (long long)nreq, ms_since(tc));
+    {
+      std::vector<std::int32_t> hc(m), hl(nl);
+      ex.to_host(S.cnt.data(), m, hc.data());
+      ex.to_host(list, nl, hl.data());
+      int mx = 0, mxl = 0;
+      for (auto x : hc) mx = std::max(mx, x);
+      for (auto x : hl) mxl = std::max(mxl, hc[x]);
+      std::fprintf(stderr,
+                   "round %lld %s stars %lld tris %lld requests %lld check %.1f ms maxstar %d "
+                   "listed max %d\n",
+                   (long long)out.rounds, vertices ? "vert" : "tets", (long long)nl,
+                   (long long)ntri, (long long)nreq, ms_since(tc), mx, mxl);
+    }
 #endif
     out.requests += nreq;
     if (nreq == 0) continue;

@@ -126,23 +126,51 @@ inline WorkingSets working_sets(Exec& ex, std::int64_t m, const point_voronoi_im
         atomic_add(&nbn[a], std::int32_t(1));
         if (i == 0 || std::int32_t(U[i - 1] >> 32) != a) nbs[a] = i;
       });
-  // The working sets: sizes (an upper bound first), then the points, de-duplicated.
+  // Each site's cell-mates (the missing points of its cell): mates[ms[s], ms[s] + mn[s]). Where
+  // several points share a cell (the dense parts of clustered input), they are one another's
+  // neighbours and their neighbours' too, which the diagram cannot show: each set takes the
+  // cell-mates of its base site and of that site's neighbours.
   const std::int32_t* cell = V.cell.data();
+  auto ms_d = ex.template alloc<std::int64_t>(std::size_t(m));
+  auto mn_d = ex.template alloc<std::int32_t>(std::size_t(m));
+  auto mates_d = ex.template alloc<u64>(std::size_t(std::max<std::int64_t>(V.nmiss, 1)));
+  std::int64_t* ms = ms_d.data();
+  std::int32_t* mn = mn_d.data();
+  u64* mates = mates_d.data();
+  ex.fill(mn, m, std::int32_t(0));
+  if (V.nmiss > 0) {
+    const std::int32_t* miss = V.missing.data();
+    ex.for_each_index(
+        V.nmiss, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t p = miss[i];
+          mates[i] = u64(std::uint32_t(colour[cell[p]])) << 32 | std::uint32_t(p);
+        });
+    ex.sort(mates, V.nmiss);
+    ex.for_each_index(
+        V.nmiss, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t s = std::int32_t(mates[i] >> 32);
+          atomic_add(&mn[s], std::int32_t(1));
+          if (i == 0 || std::int32_t(mates[i - 1] >> 32) != s) ms[s] = i;
+        });
+  }
+  // The working sets: sizes (an upper bound first), then the points, de-duplicated.
   W.start = ex.template alloc<std::int64_t>(std::size_t(m + 1));
   W.size = ex.template alloc<std::int32_t>(std::size_t(m));
   std::int64_t* ws = W.start.data();
   std::int32_t* wn = W.size.data();
   const std::int32_t mm = std::int32_t(m);
-  // (bound: the base set, the site, the neighbours' sets where short, three first points)
+  // (bound: the base set, the site, the cell-mates, the neighbours' sets where short, three
+  // first points)
   ex.exclusive_scan_of(
       m + 1,
       GG_LAMBDA(std::int64_t p)->std::int64_t {
         if (p == m) return 0;
         const std::int32_t base = colour[cell[p]];
-        std::int64_t k = nbn[base] + 1;
-        if (nbn[base] < 4)
-          for (std::int32_t j = 0; j < nbn[base]; ++j)
-            k += nbn[std::int32_t(U[nbs[base] + j] & 0xFFFFFFFFu)];
+        std::int64_t k = nbn[base] + 1 + mn[base];
+        for (std::int32_t j = 0; j < nbn[base]; ++j) {
+          const std::int32_t u = std::int32_t(U[nbs[base] + j] & 0xFFFFFFFFu);
+          k += mn[u] + (nbn[base] < 4 ? nbn[u] : 0);
+        }
         return k + 4;
       },
       ws);
@@ -164,9 +192,17 @@ inline WorkingSets working_sets(Exec& ex, std::int64_t m, const point_voronoi_im
           out[k++] = x;
         };
         const std::int32_t base = colour[cell[p]];
+        auto add_mates = [&](std::int32_t s) {
+          for (std::int32_t j = 0; j < mn[s]; ++j)
+            add(std::int32_t(mates[ms[s] + j] & 0xFFFFFFFFu));
+        };
         add(base);
-        for (std::int32_t j = 0; j < nbn[base]; ++j)
-          add(std::int32_t(U[nbs[base] + j] & 0xFFFFFFFFu));
+        add_mates(base);
+        for (std::int32_t j = 0; j < nbn[base]; ++j) {
+          const std::int32_t u = std::int32_t(U[nbs[base] + j] & 0xFFFFFFFFu);
+          add(u);
+          add_mates(u);
+        }
         if (k < 3) {
           atomic_add(aug, std::int64_t(1));
           for (std::int32_t j = 0; j < nbn[base] && nbn[base] < 4; ++j) {
