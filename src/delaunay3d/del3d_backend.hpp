@@ -32,10 +32,11 @@ struct DeviceOutput {
 
 // triangulate: xyz holds n points on the host; triangulate_device: n points in the executor's
 // memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
-// Tests: the digital method's stars on the CPU executor, after creation (splayed = false) or
-// after splaying. pts: the distinct points in the order the perturbation follows (3 each);
-// star v is tri[3 start[v], 3 start[v + 1]) (link triangles, 3 point indices each; index
-// pts.size() / 3 is the infinity point). built is false where the method fell back.
+// Tests: the digital method's stars on the CPU executor, after creation (splay 0), after
+// splaying (1), or after splaying by the tetrahedra's rounds and the proof alone (2). pts: the
+// distinct points in the order the perturbation follows (3 each); star v is tri[3 start[v], 3
+// start[v + 1]) (link triangles, 3 point indices each; index pts.size() / 3 is the infinity point).
+// built is false where the method fell back.
 struct StarsForTesting {
   bool built = false;
   std::vector<double> pts;
@@ -44,7 +45,7 @@ struct StarsForTesting {
 };
 
 namespace cpu_impl {
-void digital_stars_for_testing(const double* xyz, std::int64_t n, std::int64_t grid, bool splayed,
+void digital_stars_for_testing(const double* xyz, std::int64_t n, std::int64_t grid, int splay,
                                StarsForTesting& out);
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
                  Stats& stats);

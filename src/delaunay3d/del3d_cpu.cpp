@@ -44,8 +44,8 @@ void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt
                  Stats& stats) {
   triangulate_impl(xyz, n, opt, out, stats);
 }
-// Tests (del3d_backend.hpp): the stars after creation, or after splaying, on the host.
-void digital_stars_for_testing(const double* xyz, std::int64_t n, std::int64_t grid, bool splayed,
+// Tests (del3d_backend.hpp): the stars after creation, or after splaying (two ways), on the host.
+void digital_stars_for_testing(const double* xyz, std::int64_t n, std::int64_t grid, int splay,
                                StarsForTesting& out) {
   Delaunay3dOptions opt;
   opt.backend = Backend::Cpu;
@@ -56,8 +56,8 @@ void digital_stars_for_testing(const double* xyz, std::int64_t n, std::int64_t g
   const mesh::Bounds<3>& box = P.box;
   const mesh::Tetra& first = P.first;
   DigitalStars D;
-  out.built =
-      digital_stars(ex, S, box, first, grid, st, D) && (!splayed || digital_splay(ex, D, st));
+  out.built = digital_stars(ex, S, box, first, grid, st, D) &&
+              (splay == 0 || digital_splay(ex, D, st, splay == 1));
   if (!out.built) return;
   const std::int64_t m = S.m;
   out.pts.resize(std::size_t(3 * m));

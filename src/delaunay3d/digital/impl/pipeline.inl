@@ -84,9 +84,10 @@ inline bool digital_stars(Exec& ex, mesh::SortedPoints<Exec>& S, const mesh::Bou
 }
 
 // Phase 3 on the stars: splaying; false where a star grew too large (kHugeStar).
-inline bool digital_splay(Exec& ex, DigitalStars& D, Stats& st) {
+// (vertex_rounds: see splay_stars)
+inline bool digital_splay(Exec& ex, DigitalStars& D, Stats& st, bool vertex_rounds = true) {
   const auto t0 = Clock::now();
-  const SplayCount sc = splay_stars(ex, D.g, D.T, D.ctr);
+  const SplayCount sc = splay_stars(ex, D.g, D.T, D.ctr, vertex_rounds);
   st.counters["digital_fallback"] = sc.gave_up ? 1 : 0;
   st.counters["digital_splay_rounds"] = sc.rounds;
   st.counters["digital_splay_vertex_rounds"] = sc.vertex_rounds;

@@ -271,17 +271,23 @@ GG_HD inline bool check_link_vertex(const Geo& g, std::int32_t v, const LinkTri*
 // The vertex round's check of star(v), for the link vertices whose first triangle is among
 // [i0, i1) (check_link_vertex; a large star is checked in such pieces by several threads, else
 // one thread spent as long on it as the rest of the round). listed(u): star(u) is checked this
-// round too. Returns the count of failed checks.
-constexpr int kCheckPiece = 32;  // (triangles a thread; the stars after creation have 20-60)
-template <class Listed, class Ask>
+// round too. fresh(u): star(u) changed in the last take; a pair of stars neither of which did
+// was checked after both last changed (every star that changes is listed in the next round,
+// which comes before any other take), and would ask for the same again. Returns the count of
+// failed checks.
+GG_INLINE int check_piece(int cnt) {
+  return cnt > 64 ? 8 : 32;  // (triangles a thread; the stars after creation have 20-60)
+}
+template <class Listed, class Fresh, class Ask>
 GG_HD inline int check_star_vertices(const Geo& g, std::int32_t v, int i0, int i1,
                                      const LinkTri* tri, const std::int64_t* off,
-                                     const std::int32_t* cnt, Listed listed, Ask ask) {
+                                     const std::int32_t* cnt, Listed listed, Fresh fresh, Ask ask) {
   constexpr int kSeen = 64;  // (the distinct vertices so far; past that, the earlier triangles)
   std::int32_t seen[kSeen];
   int ns = 0, stuck = 0;
   const LinkTri* tv = tri + off[v];
   const int nv = cnt[v];
+  const bool fresh_v = fresh(v);
   for (int i = i0; i < i1; ++i) {
     const std::int32_t u3[3] = {tv[i].a, tv[i].b, tv[i].c};
     for (int a = 0; a < 3; ++a) {
@@ -295,6 +301,7 @@ GG_HD inline int check_star_vertices(const Geo& g, std::int32_t v, int i0, int i
       for (int h = 0; h < i0 && !dup; ++h) dup = tv[h].has(u);
       if (dup) continue;
       if (ns < kSeen) seen[ns++] = u;
+      if (!fresh_v && !fresh(u)) continue;
       if (!check_link_vertex(g, v, tv, nv, u, tri + off[u], cnt[u], listed(u), ask)) ++stuck;
     }
   }
@@ -387,8 +394,10 @@ struct SplayCount {
 // incremental method (the same result). Measured largest stars: 62-178 triangles on uniform,
 // gaussian, ball, sphere, thin sphere and thin box inputs; 4 278 on a grid of 10^5 points.
 constexpr std::int32_t kHugeStar = 512;
+// (vertex_rounds false: the tetrahedra's rounds and the proof alone, for the tests of those)
 inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
-                              typename Exec::template Buffer<digital3d_impl::StarCounters>& ctr) {
+                              typename Exec::template Buffer<digital3d_impl::StarCounters>& ctr,
+                              bool vertex_rounds = true) {
   using digital3d_impl::StarCounters;
   using u64 = unsigned long long;
   const std::int64_t m = S.m;
@@ -403,6 +412,12 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
   auto mark_d = ex.template alloc<std::int32_t>(std::size_t(m));
   std::int32_t* mark = mark_d.data();
   ex.fill(mark, m, std::int32_t(0));
+  // The take in which a star last changed (the takes counted from 1; 0: created so, and the
+  // first round checks every pair).
+  auto chg_d = ex.template alloc<std::int32_t>(std::size_t(m));
+  std::int32_t* chg = chg_d.data();
+  ex.fill(chg, m, std::int32_t(0));
+  std::int32_t takes = 0;
   // (the rounds' buffers, allocated once: a round of a few requests must not pay allocations)
   std::int64_t req_cap = std::max<std::int64_t>(1 << 16, m);
   auto req = ex.template alloc<u64>(std::size_t(req_cap));
@@ -412,15 +427,17 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
   StarCounters* C = ctr.data();
   // The tetrahedra's rounds run only once a proof failed (tets_mode), on the stars changed since
   // (dirty bit 2); a proof that fails with no request since the last one is an error.
-  bool tets_mode = false, asked = true;
+  bool tets_mode = !vertex_rounds, asked = true;
   for (;;) {
     // The round's kind: the vertex rounds first (cheap, and most of what is missing); once
     // quiet, the proof (prove_star), which ends the splaying where it holds; in tets_mode the
     // tetrahedra's rounds before it.
     std::int32_t* list = list_d.data();
     std::int8_t bit = 1;
-    std::int64_t nl = ex.compact_indices(
-        m, GG_LAMBDA(std::int64_t v) { return (dirty[v] & 1) != 0; }, list);
+    std::int64_t nl = !vertex_rounds
+                          ? 0
+                          : ex.compact_indices(
+                                m, GG_LAMBDA(std::int64_t v) { return (dirty[v] & 1) != 0; }, list);
     if (nl == 0 && tets_mode) {
       bit = 2;
       nl = ex.compact_indices(
@@ -467,15 +484,16 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
           });
     }
     // Check (read-only on the stars): requests into req. Vertex rounds: a thread per piece of
-    // kCheckPiece triangles of the listed stars; tetrahedra rounds: a thread per triangle. toff:
+    // check_piece triangles of the listed stars; tetrahedra rounds: a thread per triangle. toff:
     // the first thread of each listed star.
-    const int per = vertices ? kCheckPiece : 1;
     auto toff_d = ex.template alloc<std::int64_t>(std::size_t(nl + 1));
     std::int64_t* toff = toff_d.data();
     ex.exclusive_scan_of(
         nl + 1,
         GG_LAMBDA(std::int64_t j)->std::int64_t {
-          return j < nl ? (cnt[list[j]] + per - 1) / per : 0;
+          if (j == nl) return 0;
+          const int per = vertices ? check_piece(cnt[list[j]]) : 1;
+          return (cnt[list[j]] + per - 1) / per;
         },
         toff);
     std::int64_t ntri = 0;
@@ -502,12 +520,14 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                 hi = mid - 1;
             }
             const std::int32_t v = list[lo];
+            const int per = vertices ? check_piece(cnt[v]) : 1;
             const int i0 = int(e - toff[lo]) * per;
             int stuck = 0;
             if (vertices) {
               const int i1 = i0 + per < cnt[v] ? i0 + per : cnt[v];
               stuck = check_star_vertices(
-                  g, v, i0, i1, tri, off, cnt, [&](std::int32_t u) { return mark[u] == r; }, ask);
+                  g, v, i0, i1, tri, off, cnt, [&](std::int32_t u) { return mark[u] == r; },
+                  [&](std::int32_t u) { return chg[u] == takes; }, ask);
             } else {
               stuck = check_tetrahedron(g, v, tri[off[v] + i0], tri, off, cnt, ask);
             }
@@ -527,26 +547,12 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
       pos_d = ex.template alloc<std::int32_t>(std::size_t(req_cap));
     }
     out.check_ms += ms_since(tc);
-#ifdef GG_DIGITAL_TRACE
-    {
-      std::vector<std::int32_t> hc(m), hl(nl);
-      ex.to_host(S.cnt.data(), m, hc.data());
-      ex.to_host(list, nl, hl.data());
-      int mx = 0, mxl = 0;
-      for (auto x : hc) mx = std::max(mx, x);
-      for (auto x : hl) mxl = std::max(mxl, hc[x]);
-      std::fprintf(stderr,
-                   "round %lld %s stars %lld tris %lld requests %lld check %.1f ms maxstar %d "
-                   "listed max %d\n",
-                   (long long)out.rounds, vertices ? "vert" : "tets", (long long)nl,
-                   (long long)ntri, (long long)nreq, ms_since(tc), mx, mxl);
-    }
-#endif
     out.requests += nreq;
     if (nreq == 0) continue;
     tc = Clock::now();
     asked = true;
     // Take: sorted requests, one thread per star in vertex order.
+    const std::int32_t tk = ++takes;
     u64* R = req.data();
     ex.sort(R, nreq);
     std::int32_t* first = first_d.data();
@@ -600,7 +606,7 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                 atomic_add(&C->broken, std::int64_t(1));
                 break;
               }
-              if (changed) next[v] = 3, atomic_add(&C->taken, std::int64_t(1));
+              if (changed) next[v] = 3, chg[v] = tk, atomic_add(&C->taken, std::int64_t(1));
               n = r;
               if (n > kHugeStar) {
                 atomic_add(&C->huge, std::int64_t(1));
@@ -626,10 +632,6 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
       regrow_stars(ex, S, grow);
     }
     out.take_ms += ms_since(tc);
-#ifdef GG_DIGITAL_TRACE
-    std::fprintf(stderr, "   take %.1f ms, taken so far %lld\n", ms_since(tc),
-                 (long long)out.insertions);
-#endif
   }
   return out;
 }
