@@ -54,9 +54,25 @@ inline bool digital_stars(Exec& ex, mesh::SortedPoints<Exec>& S, const mesh::Bou
       return false;
     }
   }
-  const std::int64_t side = grid > 0 ? grid : digital_side(m);
-  const point_voronoi_impl::CellFrame F = digital_frame(box, side);
+  std::int64_t side = grid > 0 ? grid : digital_side(m);
+  point_voronoi_impl::CellFrame F = digital_frame(box, side);
   PointVoronoi V = map_point_sites(ex, S.pts.data(), m, F);
+  // The automatic side looks at the occupancy too: where more than a tenth of the points share
+  // a cell (clustered input, points on surfaces), a point without a cell of its own starts from
+  // its cell's site's set and costs insertions later, so the side doubles once, up to
+  // kFinestCells cells (the diagram's memory) and 1024.
+  constexpr double kFinestCells = double(1 << 28);
+  if (grid == 0 && V.nmiss > m / 10) {
+    const double cells = double(F.n[0]) * double(F.n[1]) * double(F.n[2]);
+    const double grow = std::min(2.0, std::cbrt(kFinestCells / cells));
+    const std::int64_t finer = std::min<std::int64_t>(1024, std::int64_t(double(side) * grow));
+    if (finer > side) {
+      side = finer;
+      F = digital_frame(box, side);
+      V = map_point_sites(ex, S.pts.data(), m, F);
+      st.counters["digital_grid_refined"] = 1;
+    }
+  }
   phase("digital_grid");
   colour_cells(ex, m, F, V);
   phase("digital_pba");

@@ -235,6 +235,8 @@ template <class Ask>
 GG_HD inline bool check_link_vertex(const Geo& g, std::int32_t v, const LinkTri* tv, int nv,
                                     std::int32_t u, const LinkTri* tu, int nu, bool u_listed,
                                     Ask ask) {
+  // (star(u)'s check does the pair where star(u) has v: then a scan to the first hit will do)
+  if (u < v && u_listed && link_has_vertex(tu, nu, v)) return true;
   std::int32_t B[kRing];
   int nb = 0;
   const bool fits = link_ring(tu, nu, v, B, nb);
@@ -507,9 +509,19 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
       const std::int32_t r = std::int32_t(out.rounds);
       ex.for_each_index(
           ntri, GG_LAMBDA(std::int64_t e) {
+            // (requests leave a thread kBatch at a time: one atomic for several)
+            constexpr int kBatch = 8;
+            u64 batch[kBatch];
+            int nbatch = 0;
+            auto flush = [&] {
+              const std::int64_t at = atomic_add(&C->requests, std::int64_t(nbatch));
+              for (int k = 0; k < nbatch; ++k)
+                if (at + k < rc) R[at + k] = batch[k];
+              nbatch = 0;
+            };
             auto ask = [&](std::int32_t star, std::int32_t vertex) {
-              const std::int64_t at = atomic_add(&C->requests, std::int64_t(1));
-              if (at < rc) R[at] = u64(std::uint32_t(star)) << 32 | std::uint32_t(vertex);
+              batch[nbatch++] = u64(std::uint32_t(star)) << 32 | std::uint32_t(vertex);
+              if (nbatch == kBatch) flush();
             };
             std::int64_t lo = 0, hi = nl - 1;  // (the star: the last j with toff[j] <= e)
             while (lo < hi) {
@@ -531,6 +543,7 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
             } else {
               stuck = check_tetrahedron(g, v, tri[off[v] + i0], tri, off, cnt, ask);
             }
+            if (nbatch) flush();
             if (stuck) atomic_add(&C->stuck, std::int64_t(stuck));
           });
       StarCounters c;
