@@ -53,14 +53,16 @@ struct Delaunay3dOptions : RunOptions {
   // set of neighbours for every point from the grid corners where its cell meets others (read
   // as a perturbed grid), a convex star for every point from its working set (beneath-beyond),
   // then star splaying until every star agrees with its neighbours' (Shewchuk), all on the
-  // executor. Adds phases "digital_*" (grid, pba, working_sets, stars, splay, tetrahedra) and
-  // counters "digital_grid", "sites", "sketch_missing", "digital_working_pairs",
-  // "digital_splay_rounds", "digital_star_insertions", "digital_star_growths" and
-  // "digital_fallback" (1 where stars grew too large to splay on the executor, as on the hull
-  // planes of integer grids: the incremental method then ran, and its phases follow).
+  // executor. Adds phases "digital_*" (grid, pba, working_sets, stars, splay, tetrahedra; the
+  // splay's parts as "digital_splay.check", ".sort", ".take") and counters "digital_grid",
+  // "sites", "sketch_missing", "digital_working_pairs", "digital_splay_rounds",
+  // "digital_star_insertions", "digital_star_growths" and "digital_fallback" (1 where stars
+  // grew too large to splay on the executor, as on the hull planes of integer grids: the
+  // incremental method then ran, and its phases follow).
   Method method = Method::Incremental;
   // Method::Digital: the grid's side along the points' longest extent (16..1024; 0 chooses
-  // it from the point count: about 32 grid cells a point).
+  // it from the point count, about 32 grid cells a point, and doubles it once where more than
+  // a tenth of the points share a cell: counter "digital_grid_refined").
   std::int64_t grid = 0;
 };
 

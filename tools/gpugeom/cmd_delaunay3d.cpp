@@ -32,7 +32,8 @@ const char* kHelp =
     "              until they agree). The same tetrahedra; --verbose shows each method's\n"
     "              phases and counters\n"
     "  --grid SIDE digital: the grid's side along the longest extent (16..1024; default from\n"
-    "              the point count, about 32 cells a point)\n"
+    "              the point count, about 32 cells a point, doubled once where more than a\n"
+    "              tenth of the points share a cell)\n"
     "With --verbose, the phase table and counters (flips, failed vertices, ...) on stderr.\n"
     "Runs longer than a second show their progress on stderr (not with --quiet).\n";
 
