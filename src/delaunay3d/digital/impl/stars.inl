@@ -695,7 +695,8 @@ inline mesh::Compacted<Exec> star_tets(Exec& ex, const Geo& g, StarStore& S,
         }
         np[v] = k;
       });
-  ex.exclusive_scan(np, np, m + 1);  // (np[m] was never written: the scan's last term)
+  ex.fill(np + m, 1, std::int64_t(0));  // (the scan's last term, which no star writes)
+  ex.exclusive_scan(np, np, m + 1);
   ex.to_host(nf, 1, &flats);
   std::int64_t count = 0;
   ex.to_host(np + m, 1, &count);
