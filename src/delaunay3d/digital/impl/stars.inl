@@ -572,15 +572,14 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
     const std::int64_t ng = ex.compact_indices(
         nreq, GG_LAMBDA(std::int64_t i) { return i == 0 || (R[i] >> 32) != (R[i - 1] >> 32); },
         first);
+    out.sort_ms += ms_since(tc);  // (the compaction's count came back: the sort is done)
+    tc = Clock::now();
     {
       const std::int32_t end = std::int32_t(nreq);
       ex.from_host(&end, 1, first + ng);
     }
     std::int32_t* pos = pos_d.data();
     ex.copy(first, ng, pos);
-    ex.sync();
-    out.sort_ms += ms_since(tc);
-    tc = Clock::now();
     std::int8_t* next = dirty;
     std::int8_t* grow = grow_d.data();
     for (int pass = 0;; ++pass) {
