@@ -4,40 +4,94 @@
 // after geometry.inl and link.inl.
 //
 // Storage (the thesis' two-part storage, in one array): each star owns a run of triangle slots
-// (off, cap) of which cnt are used. A star that outgrows its run stops where it is and says so;
-// between rounds the runs of those stars are doubled in one re-layout (a scan of the new sizes
-// and one copy), and the star goes on from where it stopped. The sizes after creation are
-// nearly right, so this is rare.
+// (off, cap) of which cnt are used, and in the same places of a second array its vertex table
+// (each link vertex with a hash of its ring; see LinkVert). A star that outgrows its run while
+// taking vertices gets a new run of twice the room past the last one, from the slots kept free
+// there; where none are left it stops, and between passes every run is laid out again.
 //
-// Splaying: rounds of two kinds over the dirty stars, a thread per triangle. Link-vertex rounds
-// first: for each link vertex u of star(v), a star(u) lacking v takes it where v would change
-// it (else star(v) takes a vertex of star(u) inside one of its spheres at u), and around an
-// edge both have, each takes the other's ring vertices inside its spheres there (edge_rings).
-// Once those are quiet, tetrahedra rounds: a tetrahedron of star(v) must be in the stars of its
-// other finite vertices; where star(w) lacks one, star(w) takes those of its vertices that
-// would change it, and where none would, star(w) holds a vertex inside the tetrahedron's
-// sphere, which star(v) takes. Every request changes its star ("would it change" is the exact
-// test), so the rounds end; the last checks every star's tetrahedra, the proof that all agree
-// (design-notes.md measures why the vertex rounds come first). The requests (star, vertex) are
-// sorted; each star
-// takes its vertices in vertex order on one thread. A star is the convex star of the vertices
-// offered to it whatever their order, and stars only take vertices, so the rounds end in the
-// same stars on every executor and thread count, which are the stars of the Delaunay
+// Splaying: rounds of two kinds over the dirty stars. Link-vertex rounds first (a thread per
+// few entries of a star's vertex table): for each link vertex u of star(v), a star(u) lacking v
+// takes it where v would change it (else star(v) takes a vertex of star(u) inside one of its
+// spheres at u), and around an edge both have, each takes the other's ring vertices inside its
+// spheres there (edge_rings). Once those are quiet, tetrahedra rounds: a tetrahedron of star(v)
+// must be in the stars of its other finite vertices; where star(w) lacks one, star(w) takes those
+// of its vertices that would change it, and where none would, star(w) holds a vertex inside the
+// tetrahedron's sphere, which star(v) takes. Every request changes its star ("would it change" is
+// the exact test), so the rounds end; the last checks every star's tetrahedra, the proof that all
+// agree (design-notes.md measures why the vertex rounds come first). The requests (star, vertex)
+// are sorted; each star takes its vertices in vertex order on one thread. A star is the convex star
+// of the vertices offered to it whatever their order, and stars only take vertices, so the rounds
+// end in the same stars on every executor and thread count, which are the stars of the Delaunay
 // tetrahedralisation once they all agree. Dirty for the next round: a star that took a vertex,
 // and the vertices of every triangle it lost (their stars may still hold the tetrahedron).
 
 namespace digital3d_impl {
 
 struct StarCounters {
-  std::int64_t requests, overflow, broken, stuck, taken, huge;
+  std::int64_t requests, overflow, broken, stuck, taken, huge, spilled;
+  std::int64_t bump;  // (the take's next free slot past the last run)
 };
 
 }  // namespace digital3d_impl
 
+// A star's vertex table: each link vertex once, with a hash of its ring (the link vertices
+// next to it). Two stars that both have the edge (v, u) have the same tetrahedra around it when
+// the ring of u in star(v) and the ring of v in star(u) are the same set (the splaying's edge
+// test, edge_rings, compares exactly that), so equal hashes let the vertex rounds pass the pair
+// after one short scan of star(u)'s table instead of its triangles (twice) and star(v)'s: most
+// pairs after the first round agree (97 % at 10^5). A collision can only pass a pair that
+// differs; the proof that ends the splaying looks up every tetrahedron, so the tetrahedra's
+// rounds then find it, and the result is the same.
+struct LinkVert {
+  std::int32_t x;
+  std::uint32_t h;  // the ring's hash: ring_mix summed over the ring, each vertex twice
+};
+
+GG_INLINE std::uint32_t ring_mix(std::int32_t y) {
+  std::uint32_t z = std::uint32_t(y) * 0x9E3779B1u;  // (a 32-bit finaliser: any good mix will do)
+  z ^= z >> 15;
+  z *= 0x85EBCA77u;
+  z ^= z >> 13;
+  z *= 0xC2B2AE3Du;
+  return z ^ (z >> 16);
+}
+
+// The vertex table of the link t[0, n) into vt (room for n: a closed link over k >= 4 vertices
+// has 2 k - 4 >= k triangles). Each triangle adds its other two vertices to the hash of each of
+// its vertices; a ring vertex is in the two triangles at its ring edge, so counts twice on
+// either side. Returns the count.
+GG_HD inline int link_table_into(const LinkTri* t, int n, LinkVert* vt) {
+  int k = 0;
+  for (int i = 0; i < n; ++i) {
+    const std::int32_t y3[3] = {t[i].a, t[i].b, t[i].c};
+    const std::uint32_t h3[3] = {ring_mix(y3[0]), ring_mix(y3[1]), ring_mix(y3[2])};
+    for (int a = 0; a < 3; ++a) {
+      int j = 0;
+      while (j < k && vt[j].x != y3[a]) ++j;
+      if (j == k) vt[k++] = LinkVert{y3[a], 0u};
+      vt[j].h += h3[(a + 1) % 3] + h3[(a + 2) % 3];
+    }
+  }
+  return k;
+}
+GG_HD inline int link_table(const LinkTri* t, int n, LinkVert* vt) {
+  // (built in the thread's own memory where it fits, which is most stars: the scans for each
+  // vertex then stay near, and the array is written once)
+  constexpr int kNear = 64;
+  if (n > 2 * kNear - 4) return link_table_into(t, n, vt);
+  LinkVert near[kNear];
+  const int k = link_table_into(t, n, near);
+  for (int j = 0; j < k; ++j) vt[j] = near[j];
+  return k;
+}
+
+// The stars: triangle runs (off, cap; cnt used) and, in the same places of vt, their vertex
+// tables (nvt entries each), kept up to date by whatever changes a star.
 struct StarStore {
   typename Exec::template Buffer<LinkTri> tri;
+  typename Exec::template Buffer<LinkVert> vt;
   typename Exec::template Buffer<std::int64_t> off;
-  typename Exec::template Buffer<std::int32_t> cap, cnt;
+  typename Exec::template Buffer<std::int32_t> cap, cnt, nvt;
   std::int64_t m = 0, slots = 0, used = 0, growths = 0;  // (slots: tri's size; used: runs laid)
 };
 
@@ -60,15 +114,18 @@ inline void regrow_stars(Exec& ex, StarStore& S, const std::int8_t* grow) {
     ex.to_host(add + m, 1, &need);
     if (S.used + need <= S.slots) {
       LinkTri* t = S.tri.data();
+      LinkVert* vt = S.vt.data();
       std::int64_t* off = S.off.data();
       std::int32_t* cap = S.cap.data();
       const std::int32_t* cnt = S.cnt.data();
+      const std::int32_t* nvt = S.nvt.data();
       const std::int64_t base = S.used;
       ex.for_each_index(
           m, GG_LAMBDA(std::int64_t v) {
             if (!grow[v]) return;
             const std::int64_t to = base + add[v];
             for (std::int32_t i = 0; i < cnt[v]; ++i) t[to + i] = t[off[v] + i];
+            for (std::int32_t i = 0; i < nvt[v]; ++i) vt[to + i] = vt[off[v] + i];
             off[v] = to;
             cap[v] = 2 * cap[v] + 8;
           });
@@ -87,15 +144,21 @@ inline void regrow_stars(Exec& ex, StarStore& S, const std::int8_t* grow) {
   ex.to_host(add + m, 1, &total);
   const std::int64_t slots = total + total / 4;
   auto tri2 = ex.template alloc<LinkTri>(std::size_t(slots));
+  auto vt2_d = ex.template alloc<LinkVert>(std::size_t(slots));
   LinkTri* t2 = tri2.data();
+  LinkVert* vt2 = vt2_d.data();
   const LinkTri* t1 = S.tri.data();
+  const LinkVert* vt1 = S.vt.data();
   const std::int64_t* o1 = S.off.data();
   const std::int32_t* cnt = S.cnt.data();
+  const std::int32_t* nvt = S.nvt.data();
   ex.for_each_index(
       m, GG_LAMBDA(std::int64_t v) {
         for (std::int32_t i = 0; i < cnt[v]; ++i) t2[add[v] + i] = t1[o1[v] + i];
+        for (std::int32_t i = 0; i < nvt[v]; ++i) vt2[add[v] + i] = vt1[o1[v] + i];
       });
   S.tri = std::move(tri2);
+  S.vt = std::move(vt2_d);
   S.off = std::move(add_d);
   S.cap = std::move(cap2);
   S.slots = slots;
@@ -114,14 +177,17 @@ inline StarStore create_stars(Exec& ex, const Geo& g, std::int64_t m, const std:
   S.m = m;
   S.cnt = ex.template alloc<std::int32_t>(std::size_t(m));
   S.cap = ex.template alloc<std::int32_t>(std::size_t(m));
+  S.nvt = ex.template alloc<std::int32_t>(std::size_t(m));
   S.off = ex.template alloc<std::int64_t>(std::size_t(m + 1));
   {  // (a star over k link vertices has 2 k - 4 triangles; k is at most the set plus infinity)
     std::int32_t* cap = S.cap.data();
     std::int32_t* cnt = S.cnt.data();
+    std::int32_t* nvt = S.nvt.data();
     ex.for_each_index(
         m, GG_LAMBDA(std::int64_t v) {
           cap[v] = 2 * wn[v] + 8;
           cnt[v] = 0;
+          nvt[v] = 0;
         });
     regrow_stars(ex, S, nullptr);
     S.growths = 0;
@@ -135,9 +201,11 @@ inline StarStore create_stars(Exec& ex, const Geo& g, std::int64_t m, const std:
     const StarCounters zero{};
     ex.from_host(&zero, 1, C);
     LinkTri* tri = S.tri.data();
+    LinkVert* vt = S.vt.data();
     const std::int64_t* off = S.off.data();
     const std::int32_t* cap = S.cap.data();
     std::int32_t* cnt = S.cnt.data();
+    std::int32_t* nvt = S.nvt.data();
     ex.for_each_index(
         m, GG_LAMBDA(std::int64_t i) {
           if (!redo[i]) return;
@@ -160,6 +228,7 @@ inline StarStore create_stars(Exec& ex, const Geo& g, std::int64_t m, const std:
             n = r;
           }
           cnt[v] = n;
+          nvt[v] = link_table(t, n, vt + off[v]);
           redo[i] = 0;
         });
     StarCounters c;
@@ -224,27 +293,27 @@ GG_HD inline void edge_rings(const Geo& g, std::int32_t v, const LinkTri* tv, in
   pull(u, tu, nu, v, B, nb, A, na);
 }
 
-// The vertex round's check of the link vertex u of star(v). Where star(u) has v too, the rings
-// around the edge (edge_rings), once for the pair: by the lower of the two where both stars are
-// checked this round (u_listed). Where star(u) lacks v, star(u) takes v where v would change it;
-// where it would not, star(u) is convex over v and lacks it, so the tetrahedra of star(v) at u
-// are not in star(u): star(u) has a vertex inside the sphere of one of them (see the
-// tetrahedra's check), which star(v) takes. Returns false where no such vertex was found (an
-// error). Rings longer than kRing are left to the tetrahedra's check.
+// The vertex round's check of the link vertex u of star(v); hv: the hash of u's ring in star(v)
+// (its vertex table's entry). Where star(u) has v too (in its vertex table, vu[0, ku)), equal
+// ring hashes pass the pair; else the rings around the edge are compared (edge_rings), once
+// for the pair: by the lower of the two where both stars are checked this round (u_listed).
+// Where star(u) lacks v, star(u) takes v where v would change it; where it would not, star(u) is
+// convex over v and lacks it, so the tetrahedra of star(v) at u are not in star(u): star(u) has
+// a vertex inside the sphere of one of them (see the tetrahedra's check), which star(v) takes.
+// Returns false where no such vertex was found (an error). Rings longer than kRing are left to
+// the tetrahedra's check.
 template <class Ask>
 GG_HD inline bool check_link_vertex(const Geo& g, std::int32_t v, const LinkTri* tv, int nv,
-                                    std::int32_t u, const LinkTri* tu, int nu, bool u_listed,
-                                    Ask ask) {
-  // (star(u)'s check does the pair where star(u) has v: then a scan to the first hit will do)
-  if (u < v && u_listed && link_has_vertex(tu, nu, v)) return true;
-  std::int32_t B[kRing];
-  int nb = 0;
-  const bool fits = link_ring(tu, nu, v, B, nb);
-  if (nb > 0) {
-    if (u < v && u_listed) return true;
-    std::int32_t A[kRing];
-    int na = 0;
-    if (fits && link_ring(tv, nv, u, A, na)) edge_rings(g, v, tv, nv, A, na, u, tu, nu, B, nb, ask);
+                                    std::uint32_t hv, std::int32_t u, const LinkTri* tu, int nu,
+                                    const LinkVert* vu, int ku, bool u_listed, Ask ask) {
+  int j = 0;
+  while (j < ku && vu[j].x != v) ++j;
+  if (j < ku) {
+    if (vu[j].h == hv || (u < v && u_listed)) return true;
+    std::int32_t A[kRing], B[kRing];
+    int na = 0, nb = 0;
+    if (link_ring(tu, nu, v, B, nb) && link_ring(tv, nv, u, A, na))
+      edge_rings(g, v, tv, nv, A, na, u, tu, nu, B, nb, ask);
     return true;
   }
   if (link_conflicts(g, u, tu, nu, v)) {
@@ -252,60 +321,42 @@ GG_HD inline bool check_link_vertex(const Geo& g, std::int32_t v, const LinkTri*
     return true;
   }
   const std::int32_t I = g.m;
-  for (int x = 0; x < nu; ++x) {
-    const std::int32_t y3[3] = {tu[x].a, tu[x].b, tu[x].c};
-    for (int b = 0; b < 3; ++b) {
-      const std::int32_t y = y3[b];
-      if (y == v || y == I) continue;
-      bool seen = false;  // (each vertex of star(u) once)
-      for (int h = 0; h < x && !seen; ++h) seen = tu[h].has(y);
-      if (seen) continue;
-      for (int h = 0; h < nv; ++h)
-        if (tv[h].has(u) && !tv[h].has(y) && link_reflex(g, v, tv[h], y)) {
-          ask(v, y);
-          return true;
-        }
-    }
+  for (int x = 0; x < ku; ++x) {  // (each vertex of star(u) once)
+    const std::int32_t y = vu[x].x;
+    if (y == v || y == I) continue;
+    for (int h = 0; h < nv; ++h)
+      if (tv[h].has(u) && !tv[h].has(y) && link_reflex(g, v, tv[h], y)) {
+        ask(v, y);
+        return true;
+      }
   }
   return false;
 }
 
-// The vertex round's check of star(v), for the link vertices whose first triangle is among
-// [i0, i1) (check_link_vertex; a large star is checked in such pieces by several threads, else
-// one thread spent as long on it as the rest of the round). listed(u): star(u) is checked this
-// round too. fresh(u): star(u) changed in the last take; a pair of stars neither of which did
-// was checked after both last changed (every star that changes is listed in the next round,
-// which comes before any other take), and would ask for the same again. Returns the count of
-// failed checks.
-GG_INLINE int check_piece(int cnt) {
-  return cnt > 64 ? 8 : 32;  // (triangles a thread; the stars after creation have 20-60)
-}
+// The vertex round's check of star(v), for the entries [j0, j1) of its vertex table
+// (check_link_vertex; a star's entries are checked in pieces by several threads, else one
+// thread spent as long on a large star as the rest of the round). listed(u): star(u) is
+// checked this round too. fresh(u): star(u) changed in the last take; a pair of stars neither
+// of which did was checked after both last changed (every star that changes is listed in the
+// next round, which comes before any other take), and would ask for the same again. Returns
+// the count of failed checks.
+constexpr int kCheckPiece = 4;  // (vertex table entries a thread; a star has about 15)
 template <class Listed, class Fresh, class Ask>
-GG_HD inline int check_star_vertices(const Geo& g, std::int32_t v, int i0, int i1,
-                                     const LinkTri* tri, const std::int64_t* off,
-                                     const std::int32_t* cnt, Listed listed, Fresh fresh, Ask ask) {
-  constexpr int kSeen = 64;  // (the distinct vertices so far; past that, the earlier triangles)
-  std::int32_t seen[kSeen];
-  int ns = 0, stuck = 0;
-  const LinkTri* tv = tri + off[v];
-  const int nv = cnt[v];
+GG_HD inline int check_star_vertices(const Geo& g, std::int32_t v, int j0, int j1,
+                                     const LinkTri* tri, const LinkVert* vt,
+                                     const std::int64_t* off, const std::int32_t* cnt,
+                                     const std::int32_t* nvt, Listed listed, Fresh fresh, Ask ask) {
+  int stuck = 0;
+  const std::int64_t o = off[v];
   const bool fresh_v = fresh(v);
-  for (int i = i0; i < i1; ++i) {
-    const std::int32_t u3[3] = {tv[i].a, tv[i].b, tv[i].c};
-    for (int a = 0; a < 3; ++a) {
-      const std::int32_t u = u3[a];
-      if (u == g.m) continue;
-      bool dup = false;
-      if (ns < kSeen)
-        for (int h = 0; h < ns && !dup; ++h) dup = seen[h] == u;
-      else
-        for (int h = i0; h < i && !dup; ++h) dup = tv[h].has(u);
-      for (int h = 0; h < i0 && !dup; ++h) dup = tv[h].has(u);
-      if (dup) continue;
-      if (ns < kSeen) seen[ns++] = u;
-      if (!fresh_v && !fresh(u)) continue;
-      if (!check_link_vertex(g, v, tv, nv, u, tri + off[u], cnt[u], listed(u), ask)) ++stuck;
-    }
+  for (int j = j0; j < j1; ++j) {
+    const LinkVert e = vt[o + j];
+    const std::int32_t u = e.x;
+    if (u == g.m || (!fresh_v && !fresh(u))) continue;
+    const std::int64_t ou = off[u];
+    if (!check_link_vertex(g, v, tri + o, cnt[v], e.h, u, tri + ou, cnt[u], vt + ou, nvt[u],
+                           listed(u), ask))
+      ++stuck;
   }
   return stuck;
 }
@@ -420,11 +471,12 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
   std::int32_t* chg = chg_d.data();
   ex.fill(chg, m, std::int32_t(0));
   std::int32_t takes = 0;
-  // (the rounds' buffers, allocated once: a round of a few requests must not pay allocations)
-  std::int64_t req_cap = std::max<std::int64_t>(1 << 16, m);
+  // (the rounds' buffers, allocated once: a round of a few requests must not pay allocations;
+  // the first round asks about 7 a star, later ones far fewer, and a star is one group)
+  std::int64_t req_cap = std::max<std::int64_t>(1 << 16, 8 * m);
   auto req = ex.template alloc<u64>(std::size_t(req_cap));
-  auto first_d = ex.template alloc<std::int32_t>(std::size_t(req_cap + 1));
-  auto pos_d = ex.template alloc<std::int32_t>(std::size_t(req_cap));
+  auto first_d = ex.template alloc<std::int32_t>(std::size_t(m + 1));
+  auto pos_d = ex.template alloc<std::int32_t>(std::size_t(m));
   auto grow_d = ex.template alloc<std::int8_t>(std::size_t(m));
   StarCounters* C = ctr.data();
   // The tetrahedra's rounds run only once a proof failed (tets_mode), on the stars changed since
@@ -485,38 +537,52 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
             mark[list[j]] = r;
           });
     }
-    // Check (read-only on the stars): requests into req. Vertex rounds: a thread per piece of
-    // check_piece triangles of the listed stars; tetrahedra rounds: a thread per triangle. toff:
-    // the first thread of each listed star.
+    // Check (read-only on the stars): requests into req. Vertex rounds: a thread per
+    // kCheckPiece entries of the listed stars' vertex tables; tetrahedra rounds: a thread per
+    // triangle. toff: the first thread of each listed star.
+    const std::int32_t* nvt = S.nvt.data();
+    const LinkVert* vt = S.vt.data();
     auto toff_d = ex.template alloc<std::int64_t>(std::size_t(nl + 1));
     std::int64_t* toff = toff_d.data();
     ex.exclusive_scan_of(
         nl + 1,
         GG_LAMBDA(std::int64_t j)->std::int64_t {
           if (j == nl) return 0;
-          const int per = vertices ? check_piece(cnt[list[j]]) : 1;
-          return (cnt[list[j]] + per - 1) / per;
+          return vertices ? (nvt[list[j]] + kCheckPiece - 1) / kCheckPiece : cnt[list[j]];
         },
         toff);
     std::int64_t ntri = 0;
     ex.to_host(toff + nl, 1, &ntri);
-    std::int64_t nreq = 0;
+    // Where the requests outgrow req, those that fit stay, and the threads that had one that
+    // did not are listed (spill) and run again once req is larger (a request asked twice is
+    // taken once), rather than the whole round again.
+    auto spill_d = ex.template alloc<std::int64_t>(std::size_t(std::max<std::int64_t>(ntri, 1)));
+    typename Exec::template Buffer<std::int64_t> again_d;
+    const std::int64_t* again = nullptr;  // (the threads to run again; null: all)
+    std::int64_t nrun = ntri, kept = 0, nreq = 0;
     for (;;) {
-      const StarCounters zero{};
-      ex.from_host(&zero, 1, C);
+      StarCounters start{};
+      start.requests = kept;
+      ex.from_host(&start, 1, C);
       u64* R = req.data();
+      std::int64_t* spill = spill_d.data();
       const std::int64_t rc = req_cap;
       const std::int32_t r = std::int32_t(out.rounds);
       ex.for_each_index(
-          ntri, GG_LAMBDA(std::int64_t e) {
+          nrun, GG_LAMBDA(std::int64_t t) {
+            const std::int64_t e = again ? again[t] : t;
             // (requests leave a thread kBatch at a time: one atomic for several)
             constexpr int kBatch = 8;
             u64 batch[kBatch];
             int nbatch = 0;
+            bool lost = false;
             auto flush = [&] {
               const std::int64_t at = atomic_add(&C->requests, std::int64_t(nbatch));
               for (int k = 0; k < nbatch; ++k)
-                if (at + k < rc) R[at + k] = batch[k];
+                if (at + k < rc)
+                  R[at + k] = batch[k];
+                else
+                  lost = true;
               nbatch = 0;
             };
             auto ask = [&](std::int32_t star, std::int32_t vertex) {
@@ -532,18 +598,19 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                 hi = mid - 1;
             }
             const std::int32_t v = list[lo];
-            const int per = vertices ? check_piece(cnt[v]) : 1;
-            const int i0 = int(e - toff[lo]) * per;
             int stuck = 0;
             if (vertices) {
-              const int i1 = i0 + per < cnt[v] ? i0 + per : cnt[v];
+              const int j0 = int(e - toff[lo]) * kCheckPiece;
+              const int j1 = j0 + kCheckPiece < nvt[v] ? j0 + kCheckPiece : nvt[v];
               stuck = check_star_vertices(
-                  g, v, i0, i1, tri, off, cnt, [&](std::int32_t u) { return mark[u] == r; },
+                  g, v, j0, j1, tri, vt, off, cnt, nvt,
+                  [&](std::int32_t u) { return mark[u] == r; },
                   [&](std::int32_t u) { return chg[u] == takes; }, ask);
             } else {
-              stuck = check_tetrahedron(g, v, tri[off[v] + i0], tri, off, cnt, ask);
+              stuck = check_tetrahedron(g, v, tri[off[v] + (e - toff[lo])], tri, off, cnt, ask);
             }
             if (nbatch) flush();
+            if (lost) spill[atomic_add(&C->spilled, std::int64_t(1))] = e;
             if (stuck) atomic_add(&C->stuck, std::int64_t(stuck));
           });
       StarCounters c;
@@ -554,10 +621,15 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                     "no insertion separates; please report this input");
       nreq = c.requests;
       if (nreq <= req_cap) break;
+      kept = req_cap;  // (every slot below it was written)
       req_cap = nreq + nreq / 4;
-      req = ex.template alloc<u64>(std::size_t(req_cap));
-      first_d = ex.template alloc<std::int32_t>(std::size_t(req_cap + 1));
-      pos_d = ex.template alloc<std::int32_t>(std::size_t(req_cap));
+      auto req2 = ex.template alloc<u64>(std::size_t(req_cap));
+      ex.copy(req.data(), kept, req2.data());
+      req = std::move(req2);
+      again_d = ex.template alloc<std::int64_t>(std::size_t(c.spilled));
+      ex.copy(spill_d.data(), c.spilled, again_d.data());
+      again = again_d.data();
+      nrun = c.spilled;
     }
     out.check_ms += ms_since(tc);
     out.requests += nreq;
@@ -584,13 +656,17 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
     std::int8_t* grow = grow_d.data();
     for (int pass = 0;; ++pass) {
       if (pass > 40) throw Error(ErrorCode::Internal, "digital 3D Delaunay: stars kept outgrowing");
-      const StarCounters zero{};
-      ex.from_host(&zero, 1, C);
+      StarCounters start{};
+      start.bump = S.used;
+      ex.from_host(&start, 1, C);
       ex.fill(grow, m, std::int8_t(0));
       LinkTri* tri = S.tri.data();
-      const std::int64_t* off = S.off.data();
-      const std::int32_t* cap = S.cap.data();
+      LinkVert* vt = S.vt.data();
+      std::int64_t* off = S.off.data();
+      std::int32_t* cap = S.cap.data();
       std::int32_t* cnt = S.cnt.data();
+      std::int32_t* nvt = S.nvt.data();
+      const std::int64_t slots = S.slots;
       ex.for_each_index(
           ng, GG_LAMBDA(std::int64_t k) {
             const std::int32_t e = first[k + 1];
@@ -599,6 +675,7 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
             const std::int32_t v = std::int32_t(R[p] >> 32);
             LinkTri* t = tri + off[v];
             int n = cnt[v];
+            std::int64_t took = 0;
             for (; p < e; ++p) {
               const std::int32_t x = std::int32_t(R[p] & 0xFFFFFFFFu);
               if (p > first[k] && R[p] == R[p - 1]) continue;
@@ -610,6 +687,20 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                 changed = true;
               });
               if (r == kLinkNoRoom) {
+                // A new run past the last one, taken here where the slots there allow (a
+                // pass more for the few stars that outgrow theirs cost as much as the round's
+                // take), else the star stops and grows between passes (regrow_stars).
+                const std::int32_t want = 2 * cap[v] + 8;
+                const std::int64_t at = atomic_add(&C->bump, std::int64_t(want));
+                if (at + want <= slots) {
+                  for (int i = 0; i < n; ++i) tri[at + i] = t[i];
+                  t = tri + at;
+                  off[v] = at;
+                  cap[v] = want;
+                  chg[v] = tk;  // (its vertex table is written again below, in the new run)
+                  --p;          // (the same vertex again)
+                  continue;
+                }
                 grow[v] = 1;
                 atomic_add(&C->overflow, std::int64_t(1));
                 break;
@@ -618,7 +709,7 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                 atomic_add(&C->broken, std::int64_t(1));
                 break;
               }
-              if (changed) next[v] = 3, chg[v] = tk, atomic_add(&C->taken, std::int64_t(1));
+              if (changed) next[v] = 3, chg[v] = tk, ++took;
               n = r;
               if (n > kHugeStar) {
                 atomic_add(&C->huge, std::int64_t(1));
@@ -628,9 +719,12 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
             }
             cnt[v] = n;
             pos[k] = p;
+            if (chg[v] == tk) nvt[v] = link_table(t, n, vt + off[v]);
+            if (took) atomic_add(&C->taken, took);
           });
       StarCounters c;
       ex.to_host(C, 1, &c);
+      S.used = std::min(c.bump, S.slots);  // (past the slots: a run was refused, none is left)
       out.insertions += c.taken;
       if (c.broken)
         throw Error(ErrorCode::Internal,
@@ -731,11 +825,16 @@ inline mesh::Compacted<Exec> star_tets(Exec& ex, const Geo& g, StarStore& S,
             const LinkTri* tf = tri + off[f];
             const int nf2 = cnt[f];
             std::int32_t d = -1;
+            int across = -1;
             for (int a = 0; a < nf2 && d < 0; ++a)
-              if (tf[a].has(pr[0]) && tf[a].has(pr[1]) && !tf[a].has(q[k]))
+              if (tf[a].has(pr[0]) && tf[a].has(pr[1]) && !tf[a].has(q[k])) {
                 d = link_third(tf[a], pr[0], pr[1]);
+                across = a;
+              }
             std::int32_t nb = -1;
-            if (d >= 0 && d != I) {
+            if (d >= 0 && d != I && f < d && f < pr[0] && f < pr[1]) {
+              nb = idx[off[f] + across];  // (f is the neighbour's lowest vertex: that triangle)
+            } else if (d >= 0 && d != I) {
               const std::int32_t w[4] = {f, pr[0], pr[1], d};
               std::int32_t lo = w[0];
               for (int a = 1; a < 4; ++a) lo = w[a] < lo ? w[a] : lo;
