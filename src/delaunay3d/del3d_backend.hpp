@@ -35,18 +35,25 @@ struct DeviceOutput {
 // Tests: the digital method's stars on the CPU executor, after creation (splay 0), after
 // splaying (1), or after splaying by the tetrahedra's rounds and the proof alone (2). pts: the
 // distinct points in the order the perturbation follows (3 each); star v is tri[3 start[v], 3
-// start[v + 1]) (link triangles, 3 point indices each; index pts.size() / 3 is the infinity point).
-// built is false where the method fell back.
+// start[v + 1]) (link triangles, 3 point indices each; index pts.size() / 3 is the infinity point),
+// its vertex table table_vertex / table_hash [table_start[v], table_start[v + 1]) (the link
+// vertices, each with its ring's hash). built is false where the method fell back.
+// first_requests > 0 sizes the splaying's request buffer (so that requests overflow it);
+// request_spills counts the checks run again for those.
 struct StarsForTesting {
   bool built = false;
   std::vector<double> pts;
   std::vector<std::int64_t> start;
   std::vector<std::int32_t> tri;
+  std::vector<std::int64_t> table_start;
+  std::vector<std::int32_t> table_vertex;
+  std::vector<std::uint32_t> table_hash;
+  std::int64_t request_spills = 0;
 };
 
 namespace cpu_impl {
 void digital_stars_for_testing(const double* xyz, std::int64_t n, std::int64_t grid, int splay,
-                               StarsForTesting& out);
+                               StarsForTesting& out, std::int64_t first_requests = 0);
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
                  Stats& stats);
 void triangulate_device(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,

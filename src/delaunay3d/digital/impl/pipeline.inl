@@ -100,15 +100,17 @@ inline bool digital_stars(Exec& ex, mesh::SortedPoints<Exec>& S, const mesh::Bou
 }
 
 // Phase 3 on the stars: splaying; false where a star grew too large (kHugeStar).
-// (vertex_rounds: see splay_stars)
-inline bool digital_splay(Exec& ex, DigitalStars& D, Stats& st, bool vertex_rounds = true) {
+// (vertex_rounds, first_requests: see splay_stars)
+inline bool digital_splay(Exec& ex, DigitalStars& D, Stats& st, bool vertex_rounds = true,
+                          std::int64_t first_requests = 0) {
   const auto t0 = Clock::now();
-  const SplayCount sc = splay_stars(ex, D.g, D.T, D.ctr, vertex_rounds);
+  const SplayCount sc = splay_stars(ex, D.g, D.T, D.ctr, vertex_rounds, first_requests);
   st.counters["digital_fallback"] = sc.gave_up ? 1 : 0;
   st.counters["digital_splay_rounds"] = sc.rounds;
   st.counters["digital_splay_vertex_rounds"] = sc.vertex_rounds;
   st.counters["digital_star_insertions"] = sc.insertions;
   st.counters["digital_star_requests"] = sc.requests;
+  st.counters["digital_splay_request_spills"] = sc.spills;
   st.counters["digital_star_growths"] = D.T.growths;
   st.counters["digital_star_slots"] = D.T.slots;
   ex.sync();

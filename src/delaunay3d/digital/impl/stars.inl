@@ -437,6 +437,7 @@ GG_HD inline bool prove_star(const Geo& g, std::int32_t v, const LinkTri* tri,
 // Phase 3: star splaying until every star agrees (see the top). Returns the rounds.
 struct SplayCount {
   std::int64_t rounds = 0, insertions = 0, requests = 0, vertex_rounds = 0;
+  std::int64_t spills = 0;  // (checks run again for the requests that outgrew the buffer)
   double check_ms = 0, sort_ms = 0, take_ms = 0;  // (where the rounds' time goes)
   bool gave_up = false;                           // a star outgrew kHugeStar (see there)
 };
@@ -450,7 +451,7 @@ constexpr std::int32_t kHugeStar = 512;
 // (vertex_rounds false: the tetrahedra's rounds and the proof alone, for the tests of those)
 inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                               typename Exec::template Buffer<digital3d_impl::StarCounters>& ctr,
-                              bool vertex_rounds = true) {
+                              bool vertex_rounds = true, std::int64_t first_requests = 0) {
   using digital3d_impl::StarCounters;
   using u64 = unsigned long long;
   const std::int64_t m = S.m;
@@ -473,7 +474,9 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
   std::int32_t takes = 0;
   // (the rounds' buffers, allocated once: a round of a few requests must not pay allocations;
   // the first round asks about 7 a star, later ones far fewer, and a star is one group)
-  std::int64_t req_cap = std::max<std::int64_t>(1 << 16, 8 * m);
+  // (first_requests > 0, for the tests: a smaller buffer, so that requests overflow it)
+  std::int64_t req_cap =
+      first_requests > 0 ? first_requests : std::max<std::int64_t>(1 << 16, 8 * m);
   auto req = ex.template alloc<u64>(std::size_t(req_cap));
   auto first_d = ex.template alloc<std::int32_t>(std::size_t(m + 1));
   auto pos_d = ex.template alloc<std::int32_t>(std::size_t(m));
@@ -621,6 +624,7 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                     "no insertion separates; please report this input");
       nreq = c.requests;
       if (nreq <= req_cap) break;
+      ++out.spills;
       kept = req_cap;  // (every slot below it was written)
       req_cap = nreq + nreq / 4;
       auto req2 = ex.template alloc<u64>(std::size_t(req_cap));
