@@ -56,7 +56,10 @@ struct Delaunay3dOptions : RunOptions {
   // executor. Adds phases "digital_*" (grid, pba, working_sets, stars, splay, tetrahedra; the
   // splay's parts as "digital_splay.check", ".sort", ".take") and counters "digital_grid",
   // "sites", "sketch_missing", "digital_working_pairs", "digital_splay_rounds",
-  // "digital_star_insertions", "digital_star_growths" and "digital_fallback" (1 where stars
+  // "digital_star_insertions", "digital_star_growths" (passes that gave new runs to stars
+  // that outgrew theirs; a take gives them in its kernel while the room past the last run
+  // lasts), "digital_splay_request_spills" (checks run again for
+  // requests past the round's buffer) and "digital_fallback" (1 where stars
   // grew too large to splay on the executor, as on the hull planes of integer grids: the
   // incremental method then ran, and its phases follow).
   Method method = Method::Incremental;

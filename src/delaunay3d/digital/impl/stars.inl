@@ -95,6 +95,12 @@ struct StarStore {
   std::int64_t m = 0, slots = 0, used = 0, growths = 0;  // (slots: tri's size; used: runs laid)
 };
 
+// The room of a star's new run when it outgrows cap: twice, plus 8 (between passes here, and
+// in the take's kernel where the slots past the last run allow).
+GG_INLINE std::int32_t grown_cap(std::int32_t cap) {
+  return 2 * cap + 8;
+}
+
 // New runs for the stars with grow[v] != 0 (all, where grow is null): twice their room plus 8,
 // the used triangles moved along. Where the slots past the last run hold them, the new runs go
 // there and nothing else moves (the stars that outgrow their runs are a few, late in the
@@ -108,7 +114,7 @@ inline void regrow_stars(Exec& ex, StarStore& S, const std::int8_t* grow) {
   if (grow) {
     ex.exclusive_scan_of(
         m + 1,
-        GG_LAMBDA(std::int64_t v)->std::int64_t { return v < m && grow[v] ? 2 * c1[v] + 8 : 0; },
+        GG_LAMBDA(std::int64_t v)->std::int64_t { return v < m && grow[v] ? grown_cap(c1[v]) : 0; },
         add);
     std::int64_t need = 0;
     ex.to_host(add + m, 1, &need);
@@ -127,7 +133,7 @@ inline void regrow_stars(Exec& ex, StarStore& S, const std::int8_t* grow) {
             for (std::int32_t i = 0; i < cnt[v]; ++i) t[to + i] = t[off[v] + i];
             for (std::int32_t i = 0; i < nvt[v]; ++i) vt[to + i] = vt[off[v] + i];
             off[v] = to;
-            cap[v] = 2 * cap[v] + 8;
+            cap[v] = grown_cap(cap[v]);
           });
       S.used += need;
       ++S.growths;
@@ -137,7 +143,7 @@ inline void regrow_stars(Exec& ex, StarStore& S, const std::int8_t* grow) {
   auto cap2 = ex.template alloc<std::int32_t>(std::size_t(m));
   std::int32_t* c2 = cap2.data();
   ex.for_each_index(
-      m, GG_LAMBDA(std::int64_t v) { c2[v] = grow && grow[v] ? 2 * c1[v] + 8 : c1[v]; });
+      m, GG_LAMBDA(std::int64_t v) { c2[v] = grow && grow[v] ? grown_cap(c1[v]) : c1[v]; });
   ex.exclusive_scan_of(
       m + 1, GG_LAMBDA(std::int64_t v)->std::int64_t { return v < m ? c2[v] : 0; }, add);
   std::int64_t total = 0;
@@ -694,7 +700,7 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                 // A new run past the last one, taken here where the slots there allow (a
                 // pass more for the few stars that outgrow theirs cost as much as the round's
                 // take), else the star stops and grows between passes (regrow_stars).
-                const std::int32_t want = 2 * cap[v] + 8;
+                const std::int32_t want = grown_cap(cap[v]);
                 const std::int64_t at = atomic_add(&C->bump, std::int64_t(want));
                 if (at + want <= slots) {
                   for (int i = 0; i < n; ++i) tri[at + i] = t[i];
