@@ -94,8 +94,8 @@ struct Triangulation3d {
   // "slots_capacity" (of the tetrahedron store), and times in microseconds "us_*" (phase 1:
   // choosing and splitting, flip rounds as kernels and in one block; phase 2: copies, star
   // rebuilds, splaying rounds, patch, loading stars from the executor, peeling flat tetrahedra).
-  // Phase 1's counters may differ a little from run to run on the GPU (which flips win a round
-  // depends on slot numbers taken in parallel); the tetrahedralisation does not.
+  // Every array, and phase 1's counters, are the same run after run, on any thread count and on
+  // both executors (the same tetrahedra in the same order, with the same neighbours).
   Stats stats;
   // Tetrahedra and hull facets written (also where they went into the caller's arrays).
   std::int64_t tetrahedron_count = 0, hull_facet_count = 0;

@@ -1,5 +1,6 @@
 // 3D Delaunay tetrahedralisation compiled for the CPU executor.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>

@@ -719,9 +719,14 @@ class Splayer {
         if (!std::binary_search(now.begin(), now.end(), key3(ot[j].a, ot[j].b, ot[j].c)))
           gone[std::size_t(i)].push_back(os[j]);
       for (const Tri& t : s.tris)
-        if (!std::binary_search(was.begin(), was.end(), key3(t.a, t.b, t.c)))
-          made[std::size_t(i)].push_back(
-              {key4(v, t.a, t.b, t.c), v, Tet{{v, t.a, t.b, t.c}, {-1, -1, -1, -1}}});
+        if (!std::binary_search(was.begin(), was.end(), key3(t.a, t.b, t.c))) {
+          // (the link triangle turned to start at its lowest vertex, an even permutation: how
+          // a star was loaded or rebuilt must not show in the output's vertex order)
+          std::int32_t x[3] = {t.a, t.b, t.c};
+          const int lo = x[1] < x[0] && x[1] < x[2] ? 1 : x[2] < x[0] && x[2] < x[1] ? 2 : 0;
+          const Tet T{{v, x[lo], x[(lo + 1) % 3], x[(lo + 2) % 3]}, {-1, -1, -1, -1}};
+          made[std::size_t(i)].push_back({key4(v, t.a, t.b, t.c), v, T});
+        }
     });
     std::vector<std::int32_t> removed;
     std::vector<New> all;

@@ -174,7 +174,7 @@ struct CpuExec {
   void exclusive_scan_of(std::int64_t n, F f, T* out) {
     thrust::counting_iterator<std::int64_t> first(0);
     thrust::exclusive_scan(thrust::omp::par, thrust::make_transform_iterator(first, f),
-                           thrust::make_transform_iterator(first + n, f), out, T(0));
+                           thrust::make_transform_iterator(first + n, f), out, T{});
   }
   template <class T>
   void inclusive_scan(const T* in, T* out, std::int64_t n) {

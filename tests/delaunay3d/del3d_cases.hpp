@@ -6,6 +6,7 @@
 #include <array>
 #include <map>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "../hull3d/hull3d_cases.hpp"
@@ -78,6 +79,23 @@ inline std::set<std::array<std::int32_t, 4>> tet_set(const V& t) {
     s.insert(a);
   }
   return s;
+}
+
+// The same arrays, entry for entry: tetrahedra in the same order with the same vertex order,
+// neighbours, the vertex map, the hull facets and the duplicate map (determinism is about the
+// bytes, not only the set of tetrahedra).
+inline void expect_same_arrays(const gpugeom::Triangulation3d& a, const gpugeom::Triangulation3d& b,
+                               const std::string& what) {
+  auto same = [&](const auto& x, const auto& y, const char* name) {
+    ASSERT_EQ(x.size(), y.size()) << what << ": " << name;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      ASSERT_EQ(x[i], y[i]) << what << ": " << name << " differ first at " << i;
+  };
+  same(a.tetrahedra, b.tetrahedra, "tetrahedra");
+  same(a.neighbors, b.neighbors, "neighbors");
+  same(a.vertex_to_simplex, b.vertex_to_simplex, "vertex_to_simplex");
+  same(a.hull_facets, b.hull_facets, "hull_facets");
+  same(a.duplicate_of, b.duplicate_of, "duplicate_of");
 }
 
 }  // namespace gg_del3d

@@ -1,7 +1,7 @@
 // The CUDA executor's 3D Delaunay tetrahedralisation: valid by the exact checker on every
-// distribution and degenerate input it takes, and the same tetrahedra as the CPU executor's
-// (the Delaunay tetrahedralisation of the perturbed points is unique; slot numbers and so the
-// order of the output may differ).
+// distribution and degenerate input it takes, and the CPU executor's arrays entry for entry
+// (the same tetrahedra in the same order with the same neighbours: slot numbers, records and
+// list orders follow ranks in list order on both executors).
 #include <cuda_runtime.h>
 
 #include <algorithm>
@@ -35,6 +35,7 @@ void same_on_both(const gg_hull3d::Case& c, bool compare = true) {
   o.backend = Backend::Cpu;
   const auto cpu = delaunay3d(c.pts, o);
   EXPECT_EQ(gg_del3d::tet_set(gpu.tetrahedra), gg_del3d::tet_set(cpu.tetrahedra));
+  gg_del3d::expect_same_arrays(cpu, gpu, c.name + ": CPU and CUDA");
 }
 }  // namespace
 
@@ -59,12 +60,20 @@ TEST(CudaDelaunay3d, StarSplayingRepairs) {
   }
 }
 
-TEST(CudaDelaunay3d, Repeatable) {  // a race would show as a different result
-  const auto pts = gpugeom::generate3d("ball", sizes({100000, 5000}).front(), 3);
-  Delaunay3dOptions o;
-  o.backend = Backend::Cuda;
-  const auto ref = gg_del3d::tet_set(delaunay3d(pts, o).tetrahedra);
-  for (int r = 0; r < 3; ++r) EXPECT_EQ(gg_del3d::tet_set(delaunay3d(pts, o).tetrahedra), ref);
+// A race would show as different arrays: run after run, the same bytes (phase 2 repairs stars
+// on the thin sphere; both methods).
+TEST(CudaDelaunay3d, Repeatable) {
+  for (const Method method : {Method::Incremental, Method::Digital})
+    for (const char* d : {"ball", "thin_sphere"}) {
+      const auto pts = gpugeom::generate3d(d, sizes({100000, 5000}).front(), 3);
+      Delaunay3dOptions o;
+      o.backend = Backend::Cuda;
+      o.method = method;
+      const auto ref = delaunay3d(pts, o);
+      for (int r = 0; r < 3; ++r)
+        gg_del3d::expect_same_arrays(ref, delaunay3d(pts, o),
+                                     std::string(d) + (r ? "" : " (first repeat)"));
+    }
 }
 
 TEST(CudaDelaunay3d, DeviceResident) {  // points on the GPU in, result left there
@@ -135,6 +144,7 @@ void digital_same(const gg_hull3d::Case& c, std::int64_t grid, bool with_cpu) {
   o.backend = Backend::Cpu;
   const auto cpu = delaunay3d(c.pts, o);
   EXPECT_EQ(gg_del3d::tet_set(dig.tetrahedra), gg_del3d::tet_set(cpu.tetrahedra));
+  gg_del3d::expect_same_arrays(cpu, dig, c.name + ": digital, CPU and CUDA");
   EXPECT_EQ(dig.stats.counters.at("digital_splay_rounds"),
             cpu.stats.counters.at("digital_splay_rounds"));
   EXPECT_EQ(dig.stats.counters.at("digital_star_insertions"),

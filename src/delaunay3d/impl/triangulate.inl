@@ -7,9 +7,11 @@
 // flip that removes it, 2-3 when the segment between the two apexes crosses the face, 3-2
 // when it passes outside across one edge of the face and that edge has degree 3 (otherwise
 // the face cannot be flipped now). A flip goes ahead when its proposer holds the highest
-// vote key (mesh/priority.hpp) on every tetrahedron it rewrites, so every round flips and the
-// result never depends on timing. The flipped tetrahedra and the outvoted proposers form the
-// next list. Flips are recorded (mesh/history.hpp); before the next choice each point not yet
+// vote key (mesh/priority.hpp) on every tetrahedron it rewrites, so every round flips. What
+// the winners are handed (a 2-3 flip's third slot, a record, places in the next list) follows
+// their ranks in list order (Tally), so the whole run, slot numbers and list orders included,
+// never depends on timing. The flipped tetrahedra and the outvoted proposers form the next
+// list. Flips are recorded (mesh/history.hpp); before the next choice each point not yet
 // inserted follows its tetrahedron through the split and the records.
 //
 // In 3D flipping can get stuck (Joe): faces that are not locally Delaunay but cannot be flipped.
@@ -24,11 +26,13 @@ using FlipLog = mesh::FlipLog<3, 6>;  // slots; payload: kind, then the five ver
 using Hist = mesh::FlipHist;
 
 struct Counters {
-  std::int64_t len[2];    // work list lengths (mesh::WorkLists)
-  std::int64_t nflip[2];  // the round's flips (records), by round parity
-  std::int64_t log;       // records of the epoch
-  std::int64_t used;      // slots handed out
-  std::int64_t free_head, free_tail, popped, pushed;  // the queue of freed slots
+  std::int64_t len[2];                // work list lengths (mesh::WorkLists)
+  std::int64_t nflip[2];              // the round's flips (records), by round parity
+  std::int64_t log;                   // records of the epoch
+  std::int64_t used;                  // slots handed out
+  std::int64_t free_head, free_tail;  // the ring of freed slots
+  // Where the round's flips draw from (settle): the counters as the round found them.
+  std::int64_t at_used, at_log, at_head, at_tail;
   std::int64_t flips23, flips32, rounds, unflippable, failed_faces, flat, lost, errors;
   std::int64_t halt, halt_round;  // a round found no room: it and the rest of its chunk wait
   std::int64_t team_end;          // the round a team stopped at (did not run)
@@ -45,16 +49,26 @@ struct Mesh {
   Counters* ctr;
 };
 
-// A slot for a 2-3 flip's third tetrahedron: a slot freed in an earlier round, else a new one.
-GG_HD inline std::int32_t take_slot(const Mesh& M) {
-  const std::int64_t avail = M.ctr->free_tail - M.ctr->free_head;
-  const std::int64_t k = atomic_add(&M.ctr->popped, std::int64_t(1));
-  if (k < avail) return M.freeq[(M.ctr->free_head + k) % M.cap];
-  return std::int32_t(atomic_add(&M.ctr->used, std::int64_t(1)));
-}
-GG_HD inline void free_slot(const Mesh& M, std::int32_t z) {
-  const std::int64_t j = atomic_add(&M.ctr->pushed, std::int64_t(1));
-  M.freeq[(M.ctr->free_tail + j) % M.cap] = z;
+// A round's flips, counted in list order up to an entry (an exclusive prefix over the list):
+// the winning 2-3 and 3-2 proposals and the outvoted ones. Everything a flip is handed (its
+// third slot, the slot it frees into the ring, its record, its place in the next list) is a
+// function of these ranks, so that no slot number, record or list position depends on which
+// thread came first: the whole run, not only its result, is the same on every run, thread
+// count and executor.
+struct Tally {
+  std::int32_t w23, w32, lost;
+  GG_HD Tally operator+(const Tally& o) const {
+    return Tally{w23 + o.w23, w32 + o.w32, lost + o.lost};
+  }
+};
+
+// A list entry's decision (FlipRound::dec): -1 none, else face | kind << 2, plus one of these
+// once the votes are read.
+constexpr int kWon = 16, kLost = 32;
+GG_HD inline Tally tally_of(std::int8_t d) {
+  if (d < 0) return Tally{0, 0, 0};
+  if (d & kWon) return ((d >> 2) & 3) ? Tally{0, 1, 0} : Tally{1, 0, 0};
+  return Tally{0, 0, (d & kLost) ? 1 : 0};
 }
 
 // The face of v opposite k, oriented outward.
@@ -100,25 +114,28 @@ struct FaceStore {
 };
 
 // One flip round's steps, each a function of one list entry (or flip), so that the same code
-// runs as kernels or inside a team: begin (one thread), test, flip, fix (over the round's
-// flips), relist.
+// runs as kernels or inside a team: begin (one thread), test, decide, then the exclusive prefix
+// of the decisions' tallies over the list (tally), settle (one thread), flip, fix (over the
+// round's flips), relist. A list entry may be -1 (an outvoted proposer that another flip
+// rewrote: its place was reserved before the flips ran); it does nothing.
 struct FlipRound {
   Geo g;
   Mesh M;
   mesh::WorkLists L;
-  std::int8_t* dec;       // per list entry: the proposal (face | kind << 2), or -1
-  std::int32_t* third;    // per list entry: a 3-2 flip's third tetrahedron
-  std::int32_t* flipped;  // the round's flip records
+  std::int8_t* dec;     // per list entry: the proposal (face | kind << 2), or -1
+  std::int32_t* third;  // per list entry: a 3-2 flip's third tetrahedron
+  Tally* tally;         // per list entry: the decisions before it; at the list's end, all
   std::int32_t round;
   std::int64_t log_cap;
+  std::int64_t span;  // the longest list the decisions' scan covers (a longer one halts)
 
   GG_HD const std::int64_t* count() const { return L.count(round); }
   GG_HD const std::int64_t* flips() const { return &M.ctr->nflip[round & 1]; }
   GG_HD bool halted() const { return M.ctr->halt != 0; }
 
-  // The round's counters: the freed slots of the last round join the queue. A round that could
-  // need more slots or records than there are halts (nothing of it runs) until the host grows
-  // the store or starts a new epoch of records.
+  // The round's counters. A round that could need more slots or records than there are, or
+  // whose list is longer than the decisions' scan covers, halts (nothing of it runs) until the
+  // host grows the store, starts a new epoch of records or runs it with a larger bound.
   GG_HD void begin() const {
     Counters* ctr = M.ctr;
     if (ctr->halt) return;
@@ -126,15 +143,11 @@ struct FlipRound {
     *L.next_count(round) = 0;
     ctr->nflip[round & 1] = 0;
     if (n == 0) return;  // (a round past the last one: nothing to do)
-    if (ctr->used + n > M.cap || ctr->log + n > log_cap) {
+    if (ctr->used + n > M.cap || ctr->log + n > log_cap || n > span) {
       ctr->halt = 1;
       ctr->halt_round = round;
       return;
     }
-    const std::int64_t avail = ctr->free_tail - ctr->free_head;
-    ctr->free_head += ctr->popped < avail ? ctr->popped : avail;
-    ctr->free_tail += ctr->pushed;
-    ctr->popped = ctr->pushed = 0;
     ctr->rounds += 1;
   }
 
@@ -144,10 +157,10 @@ struct FlipRound {
     if (halted()) return;
     Counters* ctr = M.ctr;
     const std::int32_t t = L.current(round)[i];
-    const Tet T = M.tet[t];
     int res = -1;
     std::int32_t t3 = -1;
     bool stuck = false;
+    const Tet T = t >= 0 ? M.tet[t] : Tet{{-1, -1, -1, -1}, {-1, -1, -1, -1}};
     if (T.v[0] >= 0) {
       for (int k = 0; k < 4 && res < 0; ++k) {
         const std::int32_t nb = simplex_of(T.n[k]);
@@ -187,20 +200,57 @@ struct FlipRound {
     third[i] = t3;
   }
 
-  // Flips: a proposal that holds the vote on every tetrahedron it rewrites.
-  GG_HD void flip(std::int64_t i) const {
+  // Decisions: a proposal that holds the vote on every tetrahedron it rewrites wins; the
+  // others are outvoted (the votes are all in: test has run over the whole list).
+  GG_HD void decide(std::int64_t i) const {
     if (halted()) return;
     const int r = dec[i];
     if (r < 0) return;
     const std::int32_t t = L.current(round)[i];
     const u64 key = mesh::vote_key(round, t);
-    if (M.vote[t] != key) return;
+    const std::int32_t nb = simplex_of(M.tet[t].n[r & 3]);
+    const bool won =
+        M.vote[t] == key && M.vote[nb] == key && (!(r >> 2) || M.vote[third[i]] == key);
+    dec[i] = std::int8_t(r | (won ? kWon : kLost));
+  }
+  GG_HD Tally tally_at(std::int64_t i) const { return tally_of(dec[i]); }
+
+  // One thread, once tally holds the prefix over the list (its entry n: the totals): the round
+  // takes its slots, records and next list from the counters as they are, in list order.
+  GG_HD void settle() const {
+    Counters* ctr = M.ctr;
+    if (ctr->halt) return;
+    const std::int64_t n = *count();
+    if (n == 0) return;
+    const Tally all = tally[n];
+    ctr->at_used = ctr->used;
+    ctr->at_log = ctr->log;
+    ctr->at_head = ctr->free_head;
+    ctr->at_tail = ctr->free_tail;
+    const std::int64_t avail = ctr->free_tail - ctr->free_head;
+    const std::int64_t popped = all.w23 < avail ? all.w23 : avail;
+    ctr->free_head += popped;
+    ctr->free_tail += all.w32;
+    ctr->used += all.w23 - popped;
+    ctr->log += all.w23 + all.w32;
+    ctr->nflip[round & 1] = all.w23 + all.w32;
+    ctr->flips23 += all.w23;
+    ctr->flips32 += all.w32;
+    *L.next_count(round) = 3 * std::int64_t(all.w23) + 2 * std::int64_t(all.w32) + all.lost;
+  }
+
+  // Flips: the winners, each with what its ranks hand it (settle).
+  GG_HD void flip(std::int64_t i) const {
+    if (halted()) return;
+    const int r = dec[i];
+    if (r < 0 || !(r & kWon)) return;
+    const Counters* ctr = M.ctr;
+    const Tally at = tally[i];
+    const std::int32_t t = L.current(round)[i];
     const Tet T = M.tet[t];
-    const int k = r & 3, kind = r >> 2;
+    const int k = r & 3, kind = (r >> 2) & 3;
     const std::int32_t nb = simplex_of(T.n[k]);
-    if (M.vote[nb] != key) return;
     const std::int32_t z = third[i];
-    if (kind && M.vote[z] != key) return;
     Tet old[3];
     old[0] = T;
     old[1] = M.tet[nb];
@@ -213,7 +263,11 @@ struct FlipRound {
     int nold, nnew;
     if (kind == 0) {  // 2-3: (x_e, x_e+1, u, w)
       nold = 2, nnew = 3;
-      slots[0] = t, slots[1] = nb, slots[2] = take_slot(M);
+      // (the third slot: a slot freed in an earlier round, else a new one)
+      const std::int64_t avail = ctr->at_tail - ctr->at_head;
+      slots[0] = t, slots[1] = nb;
+      slots[2] = at.w23 < avail ? M.freeq[(ctr->at_head + at.w23) % M.cap]
+                                : std::int32_t(ctr->at_used + (at.w23 - avail));
       for (int e = 0; e < 3; ++e) {
         y[e].v[0] = x[e], y[e].v[1] = x[(e + 1) % 3], y[e].v[2] = u, y[e].v[3] = w;
       }
@@ -257,25 +311,24 @@ struct FlipRound {
       dead.n[0] = dead.n[1] = dead.n[2] = dead.n[3] = -1;
       M.tet[z] = dead;
       M.stamp[z] = round;
-      free_slot(M, z);
-      atomic_add(&M.ctr->flips32, std::int64_t(1));
-    } else {
-      atomic_add(&M.ctr->flips23, std::int64_t(1));
+      M.freeq[(ctr->at_tail + at.w32) % M.cap] = z;
     }
     Hist h[3];
     M.log.load(slots, h);
-    const std::int64_t rec = atomic_add(&M.ctr->log, std::int64_t(1));
-    M.log.append(M.log.base + std::int32_t(rec), slots, payload, h);
-    flipped[atomic_add(&M.ctr->nflip[round & 1], std::int64_t(1))] = M.log.base + std::int32_t(rec);
+    M.log.append(record(at.w23 + at.w32), slots, payload, h);
     std::int32_t* next = L.next(round);
-    const std::int64_t at = atomic_add(L.next_count(round), std::int64_t(nnew));
-    for (int s = 0; s < nnew; ++s) next[at + s] = slots[s];
+    const std::int64_t to = 3 * std::int64_t(at.w23) + 2 * std::int64_t(at.w32);
+    for (int s = 0; s < nnew; ++s) next[to + s] = slots[s];
+  }
+  // The round's j-th flip's record (flips are numbered in list order).
+  GG_HD std::int32_t record(std::int64_t j) const {
+    return M.log.base + std::int32_t(M.ctr->at_log + j);
   }
 
   // Phase 2 of the flips: outer faces point to where their neighbours' faces went.
   GG_HD void fix(std::int64_t i) const {
     if (halted()) return;
-    const std::int32_t* x = M.log.record(flipped[i]);
+    const std::int32_t* x = M.log.record(record(i));
     const int nnew = x[3] == 1 ? 2 : 3;
     for (int s = 0; s < nnew; ++s) {
       const std::int32_t ys = x[s];
@@ -290,13 +343,16 @@ struct FlipRound {
     }
   }
 
-  // Outvoted proposers test again (a proposer rewritten by another flip is listed by it).
+  // Outvoted proposers test again, in the places settle reserved after the flips' slots (a
+  // proposer rewritten by another flip is listed by it: its place gets -1).
   GG_HD void relist(std::int64_t i) const {
     if (halted()) return;
-    if (dec[i] < 0) return;
+    const int r = dec[i];
+    if (r < 0 || !(r & kLost)) return;
     const std::int32_t t = L.current(round)[i];
-    if (M.stamp[t] == round) return;
-    L.next(round)[atomic_add(L.next_count(round), std::int64_t(1))] = t;
+    const Tally all = tally[*count()];
+    const std::int64_t to = 3 * std::int64_t(all.w23) + 2 * std::int64_t(all.w32) + tally[i].lost;
+    L.next(round)[to] = M.stamp[t] == round ? -1 : t;
   }
 };
 
@@ -354,11 +410,7 @@ class Triangulator {
     regrow(hist_, cap, keep, &nohist);
     regrow(best_, cap, keep, &none);
     regrow(srank_, cap, keep, &minus1);
-    if (old) {  // the ring of freed slots, the last round's takes and frees applied, unrolled
-      const std::int64_t avail = c.free_tail - c.free_head;
-      c.free_head += std::min(c.popped, avail);
-      c.free_tail += c.pushed;
-      c.popped = c.pushed = 0;
+    if (old) {  // the ring of freed slots, unrolled
       const std::int64_t nfree = c.free_tail - c.free_head;
       auto freeq = ex_.template alloc<std::int32_t>(std::size_t(cap));
       const std::int32_t* q = freeq_.data();
@@ -377,10 +429,10 @@ class Triangulator {
     // (scratch of one step: nothing to keep)
     dec_ = typename Exec::template Buffer<std::int8_t>();
     third_ = typename Exec::template Buffer<std::int32_t>();
-    flipped_ = typename Exec::template Buffer<std::int32_t>();
+    tally_ = typename Exec::template Buffer<Tally>();
     dec_ = ex_.template alloc<std::int8_t>(std::size_t(cap));
     third_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
-    flipped_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
+    tally_ = ex_.template alloc<Tally>(std::size_t(cap) + 1);
     log_cap_ = std::max<std::int64_t>(cap / 2, 1 << 16);
     if (!rec_.size() || std::int64_t(rec_.size()) < FlipLog::kStride * log_cap_)
       regrow<std::int32_t>(rec_, FlipLog::kStride * log_cap_, old ? FlipLog::kStride * c.log : 0,
@@ -414,13 +466,14 @@ class Triangulator {
   // Phase 1's working arrays, once it is done: what follows (failed faces, phase 2, the
   // output) reads only the store, the counters and the points.
   void release_phase1() {
-    for (auto* b : {&stamp_, &srank_, &freeq_, &lists_[0], &lists_[1], &third_, &flipped_, &rec_,
-                    &loc_, &un_, &un2_, &ins_, &split_})
+    for (auto* b : {&stamp_, &srank_, &freeq_, &lists_[0], &lists_[1], &third_, &rec_, &loc_, &un_,
+                    &un2_, &ins_, &split_})
       *b = typename Exec::template Buffer<std::int32_t>();
     vote_ = typename Exec::template Buffer<u64>();
     best_ = typename Exec::template Buffer<u64>();
     hist_ = typename Exec::template Buffer<Hist>();
     dec_ = typename Exec::template Buffer<std::int8_t>();
+    tally_ = typename Exec::template Buffer<Tally>();
     M_ = Mesh{tet_.data(), nullptr, nullptr, FlipLog{}, nullptr, cap_, ctr_.data()};
     // A later growth (star splaying may add more tetrahedra than the store holds) must not
     // copy out of the arrays just freed (it did: a crash on the CPU, an invalid output or an
@@ -636,21 +689,34 @@ class Triangulator {
     R.L = work_lists();
     R.dec = dec_.data();
     R.third = third_.data();
-    R.flipped = flipped_.data();
+    R.tally = tally_.data();
     R.round = round;
     R.log_cap = log_cap_;
+    R.span = cap_;
     return R;
   }
 
-  // One round as five kernels, each over the list length read on the executor (bound sizes
-  // the grids; every kernel covers the whole list whatever its length).
+  // One round as kernels, each over the list length read on the executor (bound sizes the
+  // grids; every kernel covers the whole list whatever its length), and a scan of the
+  // decisions over bound entries (those past the length count nothing).
   void launch_round(std::int32_t round, std::int64_t bound) {
-    const FlipRound R = make_round(round);
+    FlipRound R = make_round(round);
+    R.span = std::min<std::int64_t>(bound, cap_);  // (a list holds distinct slots)
     const std::int64_t* count = R.count();
     ex_.for_each_index(
         1, GG_LAMBDA(std::int64_t) { R.begin(); });
     ex_.for_each_counted(
         count, bound, GG_LAMBDA(std::int64_t i) { R.test(i); });
+    ex_.for_each_counted(
+        count, bound, GG_LAMBDA(std::int64_t i) { R.decide(i); });
+    ex_.exclusive_scan_of(
+        R.span + 1,
+        GG_LAMBDA(std::int64_t i)->Tally {
+          return i < *count ? R.tally_at(i) : Tally{0, 0, 0};
+        },
+        R.tally);
+    ex_.for_each_index(
+        1, GG_LAMBDA(std::int64_t) { R.settle(); });
     ex_.for_each_counted(
         count, bound, GG_LAMBDA(std::int64_t i) { R.flip(i); });
     ex_.for_each_counted(
@@ -677,6 +743,11 @@ class Triangulator {
         t.barrier();
         for (std::int64_t i = t.rank; i < n; i += t.size) R.test(i);
         t.barrier();
+        for (std::int64_t i = t.rank; i < n; i += t.size) R.decide(i);
+        t.barrier();
+        team_tally(t, R, n);
+        if (t.rank == 0) R.settle();
+        t.barrier();
         for (std::int64_t i = t.rank; i < n; i += t.size) R.flip(i);
         t.barrier();
         const std::int64_t nf = *R.flips();
@@ -688,6 +759,35 @@ class Triangulator {
       }
       if (t.rank == 0) ctr->team_end = r;
     });
+  }
+
+  // The prefix of the decisions over the list inside a team (ends with a barrier): each thread
+  // sums a contiguous piece, the team scans the sums, and each thread writes its piece's
+  // prefixes, so that the order is the list's whatever the team's size. (A team's list is at
+  // most two entries a thread, far below the 2^21 each packed count may reach.)
+  template <class Team>
+  static GG_HD void team_tally(const Team& t, const FlipRound& R, std::int64_t n) {
+    const std::int64_t piece = (n + t.size - 1) / t.size;
+    const std::int64_t lo = std::min<std::int64_t>(n, t.rank * piece);
+    const std::int64_t hi = std::min<std::int64_t>(n, lo + piece);
+    auto pack = [](const Tally& x) {
+      return std::int64_t(x.w23) | (std::int64_t(x.w32) << 21) | (std::int64_t(x.lost) << 42);
+    };
+    auto unpack = [](std::int64_t v) {
+      constexpr std::int64_t mask = (std::int64_t(1) << 21) - 1;
+      return Tally{std::int32_t(v & mask), std::int32_t((v >> 21) & mask), std::int32_t(v >> 42)};
+    };
+    Tally mine{0, 0, 0};
+    for (std::int64_t i = lo; i < hi; ++i) mine = mine + R.tally_at(i);
+    std::int64_t total = 0;
+    Tally run = unpack(t.exclusive_scan(pack(mine), &total));
+    for (std::int64_t i = lo; i < hi; ++i) {
+      const Tally x = R.tally_at(i);
+      R.tally[i] = run;
+      run = run + x;
+    }
+    if (t.rank == 0) R.tally[n] = unpack(total);
+    t.barrier();
   }
 
   // Points not yet inserted follow their tetrahedron through this epoch's splits and recorded
@@ -1006,7 +1106,8 @@ class Triangulator {
   typename Exec::template Buffer<std::int32_t> stamp_, srank_, rec_, split_, freeq_;
   typename Exec::template Buffer<u64> vote_, best_;
   typename Exec::template Buffer<std::int32_t> lists_[2];
-  typename Exec::template Buffer<std::int32_t> third_, flipped_, loc_, un_, un2_, ins_;
+  typename Exec::template Buffer<std::int32_t> third_, loc_, un_, un2_, ins_;
+  typename Exec::template Buffer<Tally> tally_;
   typename Exec::template Buffer<std::int8_t> dec_;
   typename Exec::template Buffer<Counters> ctr_;
   typename Exec::template Buffer<std::int32_t> vt_;  // phase 2's vertex map
@@ -1044,6 +1145,15 @@ inline Prepared prepare_points(Exec& ex, const double* in, std::int64_t n, bool 
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   return Prepared{std::move(S), box, first};
+}
+
+// Triples (faces, three vertices each) in increasing order.
+inline void sort_triples(std::vector<std::int32_t>& f) {
+  std::vector<std::array<std::int32_t, 3>> t(f.size() / 3);
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+  std::sort(t.begin(), t.end());
+  for (std::size_t i = 0; i < t.size(); ++i)
+    for (int j = 0; j < 3; ++j) f[3 * i + std::size_t(j)] = t[i][std::size_t(j)];
 }
 
 // The whole pipeline on the executor: prepare, phase 1, phase 2 on the host where phase 1
@@ -1103,6 +1213,7 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
       if (nfailed <= face_cap) {
         fl.resize(std::size_t(3 * nfailed));
         ex.to_host(faces.data(), 3 * nfailed, fl.data());
+        sort_triples(fl);  // (listed by atomic appends: their order is the threads')
       } else {
         f.resize(std::size_t(S.m + 1));
         ex.to_host(failed.data(), S.m + 1, f.data());
@@ -1116,6 +1227,7 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
       if (nflat <= flat_cap) {
         ft.resize(std::size_t(nflat));
         ex.to_host(flats.data(), nflat, ft.data());
+        std::sort(ft.begin(), ft.end());
       }
       const auto tp = Clock::now();
       peeled = peel_flat(H, ft, nflat > flat_cap);
