@@ -17,8 +17,19 @@ fi
 if [ "${ONLY_PY:-0}" = 1 ]; then du -sh .devbin; exit 0; fi
 cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt "$B"/bench/gpugeom_bench_cvd "$B"/bench/gpugeom_bench_del2d "$B"/bench/gpugeom_bench_cdt2d "$B"/bench/gpugeom_bench_hull3d "$B"/bench/gpugeom_bench_del3d "$B"/tools/gpugeom/gpugeom .devbin/
 [ -x "$B/bench/anchor_cgal" ] && cp "$B/bench/anchor_cgal" .devbin/
-# The carry limit is 64 MiB: EXCLUDE="gpugeom_bench_cvd gpugeom" leaves out what a run needs not.
+# The carry limit is 64 MiB (every binary together is about 200 MB): EXCLUDE="gpugeom_bench_cvd
+# gpugeom" leaves out what a run needs not; ONLY="delaunay3d del3d" keeps only the binaries whose
+# names contain one of the words (e.g. one capability's test and bench).
 for x in ${EXCLUDE:-}; do rm -f ".devbin/$x"; done
+if [ -n "${ONLY:-}" ]; then
+  for f in .devbin/*; do
+    [ -f "$f" ] || continue
+    case "$f" in *.cmake) continue ;; esac
+    keep=0
+    for w in $ONLY; do case "$(basename "$f")" in *"$w"*) keep=1 ;; esac; done
+    [ $keep = 1 ] || rm -f "$f"
+  done
+fi
 for f in .devbin/*; do
   [ -f "$f" ] || continue
   ldd "$f" | awk '/=> \//{print $3}' | grep -E 'libcudart|libgomp|libpng|libgmp|libmpfr|libz\.|libtbb' | xargs -r -I{} cp -L {} .devbin/lib/

@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "../common/capped_sizes.hpp"
 #include "../common/device_arrays.hpp"
 #include "del2d_cases.hpp"
 #include "delaunay2d/del2d_backend.hpp"
@@ -22,11 +23,7 @@ using namespace gpugeom;
 namespace {
 // Under compute-sanitizer the large cases take too long: GG_DEL2D_MAX_N caps the sizes.
 std::vector<std::int64_t> sizes(std::vector<std::int64_t> s) {
-  if (const char* e = std::getenv("GG_DEL2D_MAX_N")) {
-    const std::int64_t cap = std::atoll(e);
-    s.erase(std::remove_if(s.begin(), s.end(), [&](std::int64_t n) { return n > cap; }), s.end());
-  }
-  return s;
+  return gg_test::capped_sizes("GG_DEL2D_MAX_N", std::move(s));
 }
 
 void same_on_both(const gg_del2d::Case& c) {

@@ -10,21 +10,16 @@
 #include <cstdlib>
 #include <string>
 
+#include "../common/capped_sizes.hpp"
 #include "../common/device_arrays.hpp"
 #include "del3d_cases.hpp"
 
 using namespace gpugeom;
 
 namespace {
-// Under compute-sanitizer the large cases take too long: GG_DEL3D_MAX_N caps the sizes (where
-// it leaves none, the cap itself: every test still runs, every path still taken).
+// Under compute-sanitizer the large cases take too long: GG_DEL3D_MAX_N caps the sizes.
 std::vector<std::int64_t> sizes(std::vector<std::int64_t> s) {
-  if (const char* e = std::getenv("GG_DEL3D_MAX_N")) {
-    const std::int64_t cap = std::atoll(e);
-    s.erase(std::remove_if(s.begin(), s.end(), [&](std::int64_t n) { return n > cap; }), s.end());
-    if (s.empty()) s.push_back(cap);
-  }
-  return s;
+  return gg_test::capped_sizes("GG_DEL3D_MAX_N", std::move(s));
 }
 
 void same_on_both(const gg_hull3d::Case& c, bool compare = true) {

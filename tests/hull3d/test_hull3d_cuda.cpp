@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 
+#include "../common/capped_sizes.hpp"
 #include "hull3d/hull3d_backend.hpp"
 #include "hull3d_cases.hpp"
 
@@ -13,11 +14,7 @@ using namespace gpugeom;
 namespace {
 // Under compute-sanitizer the large cases take too long: GG_HULL3D_MAX_N caps the sizes.
 std::vector<std::int64_t> sizes(std::vector<std::int64_t> s) {
-  if (const char* e = std::getenv("GG_HULL3D_MAX_N")) {
-    const std::int64_t cap = std::atoll(e);
-    s.erase(std::remove_if(s.begin(), s.end(), [&](std::int64_t n) { return n > cap; }), s.end());
-  }
-  return s;
+  return gg_test::capped_sizes("GG_HULL3D_MAX_N", std::move(s));
 }
 
 void same_on_both(const gg_hull3d::Case& c) {
