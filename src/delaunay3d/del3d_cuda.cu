@@ -38,7 +38,8 @@ namespace edt_impl = gpugeom::edt::cuda_impl;
 #include "delaunay3d/impl/link.inl"
 #include "edt/impl/point_voronoi.inl"
 #include "delaunay3d/digital/impl/working_sets.inl"
-#include "delaunay3d/digital/impl/stars.inl"
+#include "delaunay3d/impl/stars.inl"
+#include "delaunay3d/impl/repair.inl"
 #include "delaunay3d/digital/impl/pipeline.inl"
 #include "delaunay3d/impl/triangulate.inl"
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,

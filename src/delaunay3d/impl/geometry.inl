@@ -70,6 +70,23 @@ GG_HD inline bool in_sphere_ext(const Geo& g, const std::int32_t* v, std::int32_
   return r > 0;
 }
 
+// Is the finite tetrahedron v flat: its four points exactly on one plane (the perturbation
+// orders them; such layers lie over hull facets' planes, and the output leaves them out)? An
+// infinite tetrahedron is not.
+GG_HD inline bool flat_ext(const Geo& g, const std::int32_t* v) {
+  for (int k = 0; k < 4; ++k)
+    if (v[k] == g.m) return false;
+  const double *a = g.at(v[0]), *b = g.at(v[1]), *c = g.at(v[2]), *d = g.at(v[3]);
+  if (pred::orient3d_fast(a, b, c, d) != 0) return false;
+  int o;
+  if (!exact::orient3d_int(a, b, c, d, o)) {
+    double* s = g.lease.acquire(lease_hint(v[0], v[3]));
+    o = pred::orient3d(a, b, c, d, s);
+    g.lease.release(s);
+  }
+  return o == 0;
+}
+
 // Faces of a tetrahedron (v0, v1, v2, v3): the face opposite vertex k, listed so that it is
 // oriented outward (the tetrahedron lies on its negative side); the tetrahedron (v_k, face)
 // is then positively oriented.

@@ -1,6 +1,5 @@
-// Stars as links (thesis 3.2.3 and 5.3.2; Shewchuk's star splaying), one version for the host's
-// phase 2 (splay.cpp) and the executors' digital method (digital/impl/stars.inl); included after
-// geometry.inl.
+// Stars as links (thesis 3.2.3 and 5.3.2; Shewchuk's star splaying), for the one splayer
+// (stars.inl) that both methods use; included after geometry.inl.
 //
 // The star of a vertex v is its link: triangles (a, b, c) such that (v, a, b, c) is a positively
 // oriented tetrahedron, a triangulated sphere around v (the infinity point is a vertex of the

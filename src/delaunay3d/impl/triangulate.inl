@@ -16,7 +16,7 @@
 //
 // In 3D flipping can get stuck (Joe): faces that are not locally Delaunay but cannot be flipped.
 // After the last batch every face is tested, and the vertices of the failed ones go to phase 2
-// (splay.cpp), which repairs the tetrahedralisation by star splaying.
+// (repair.inl), which repairs the tetrahedralisation by star splaying on the executor.
 
 using u64 = std::uint64_t;
 using mesh::enc;
@@ -362,7 +362,6 @@ class Triangulator {
   Triangulator(Exec& ex, const double* pts, std::int32_t m, const mesh::Tetra& first,
                std::int64_t max_rounds, const ProgressFn& progress, Stats& st)
       : ex_(ex), st_(st), max_rounds_(max_rounds), progress_(progress) {
-    source_.t = this;
     m_ = m;
     g_.p = pts;
     for (int k = 0; k < 3; ++k) g_.s[k] = first.s[k];
@@ -847,23 +846,16 @@ class Triangulator {
   }
 
   // Every face of the tetrahedralisation tested; the vertices of faces that are not locally
-  // Delaunay are marked (failed: m + 1 entries) and the faces listed (faces: room for
-  // face_cap, three vertices each; the list is left incomplete beyond). Also lists the flat
-  // finite tetrahedra (flats: room for flat_cap slots; see peel_flat) and counts them in flat.
-  // Returns the number of failed faces.
+  // Delaunay are marked (failed: m + 1 entries). Counts the flat finite tetrahedra (flat_ext)
+  // in flat. Returns the number of failed faces.
   std::int64_t find_failed(typename Exec::template Buffer<std::int8_t>& failed,
-                           typename Exec::template Buffer<std::int32_t>& faces,
-                           typename Exec::template Buffer<std::int32_t>& flats,
-                           std::int64_t face_cap, std::int64_t flat_cap, std::int64_t& flat) {
+                           std::int64_t& flat) {
     const Geo g = g_;
     const Mesh M = M_;
     std::int8_t* f = failed.data();
-    std::int32_t* fl = faces.data();
-    std::int32_t* ft = flats.data();
     ex_.fill(f, std::int64_t(m_) + 1, std::int8_t(0));
     Counters* ctr = ctr_.data();
     const Counters c = counters();
-    const std::int32_t m = m_;
     ex_.for_each_index(
         c.used, GG_LAMBDA(std::int64_t t) {
           const Tet T = M.tet[t];
@@ -873,155 +865,24 @@ class Triangulator {
             if (nb < t) continue;  // (each face once, from its higher slot)
             const std::int32_t d = M.tet[nb].v[loc_of(T.n[k])];
             if (!in_sphere_ext(g, T.v, d)) continue;
-            const std::int64_t at = atomic_add(&ctr->failed_faces, std::int64_t(1));
+            atomic_add(&ctr->failed_faces, std::int64_t(1));
             std::int32_t x[3];
             face_of(T.v, k, x);
             for (int j = 0; j < 3; ++j) f[x[j]] = 1;
-            if (at < face_cap)
-              for (int j = 0; j < 3; ++j) fl[3 * at + j] = x[j];
           }
-          if (T.v[0] == m || T.v[1] == m || T.v[2] == m || T.v[3] == m) return;
-          const double *a = g.at(T.v[0]), *b = g.at(T.v[1]), *cc = g.at(T.v[2]), *d = g.at(T.v[3]);
-          if (pred::orient3d_fast(a, b, cc, d) != 0) return;
-          int o;
-          if (!exact::orient3d_int(a, b, cc, d, o)) {
-            double* s = g.lease.acquire(lease_hint(T.v[0], T.v[3]));
-            o = pred::orient3d(a, b, cc, d, s);
-            g.lease.release(s);
-          }
-          if (o != 0) return;
-          const std::int64_t at = atomic_add(&ctr->flat, std::int64_t(1));
-          if (at < flat_cap) ft[at] = std::int32_t(t);
+          if (flat_ext(g, T.v)) atomic_add(&ctr->flat, std::int64_t(1));
         });
     const Counters after = counters();
     flat = after.flat;
     return after.failed_faces;
   }
 
-  // Phase 2 reads the store through H (tet.hpp): the vertex map comes to the host whole, the
-  // slots a star at a time as they are needed (Source below) ...
-  static constexpr int kMaxStar = 512;  // a larger star makes phase 2 take the whole store
-  void attach(HostMesh& H) {
-    const Counters c = counters();
-    vt_ = ex_.template alloc<std::int32_t>(std::size_t(m_) + 1);
-    std::int32_t* v = vt_.data();
-    ex_.fill(v, std::int64_t(m_) + 1, std::int32_t(-1));
-    const Tet* tet = tet_.data();
-    ex_.for_each_index(
-        c.used, GG_LAMBDA(std::int64_t t) {
-          const Tet T = tet[t];
-          if (T.v[0] < 0) return;
-          for (int k = 0; k < 4; ++k) atomic_max(v + T.v[k], std::int32_t(t));
-        });
-    H.vt.resize(std::size_t(m_) + 1);
-    ex_.to_host(v, std::int64_t(m_) + 1, H.vt.data());
-    H.attach(&source_, c.used);
+  // Phase 2 (repair.inl) rewrites the store: room for `slots`, then the slots in use.
+  Tet* store_for(std::int64_t slots) {
+    reserve(slots);
+    return tet_.data();
   }
-  // Every slot of the stars of verts: one thread walks each star from the vertex map.
-  bool fetch_stars(const std::vector<std::int32_t>& verts, std::int64_t limit,
-                   std::vector<std::int32_t>& slots, std::vector<Tet>& tets) {
-    const std::int64_t nv = std::int64_t(verts.size());
-    auto vb = ex_.template alloc<std::int32_t>(std::size_t(nv));
-    ex_.from_host(verts.data(), nv, vb.data());
-    std::int64_t cap = 64 * nv + 1024;
-    for (;;) {
-      auto out = ex_.template alloc<std::int32_t>(std::size_t(cap));
-      auto cnt = ex_.template alloc<std::int64_t>(2);  // slots written, stars too large
-      std::int64_t* k = cnt.data();
-      ex_.fill(k, 2, std::int64_t(0));
-      std::int32_t* o = out.data();
-      const std::int32_t* vs = vb.data();
-      const std::int32_t* vt = vt_.data();
-      const Tet* tet = tet_.data();
-      ex_.for_each_index(
-          nv, GG_LAMBDA(std::int64_t i) {
-            const std::int32_t v = vs[i];
-            std::int32_t st[kMaxStar];
-            int n = 1;
-            st[0] = vt[v];
-            for (int h = 0; h < n; ++h) {
-              const Tet T = tet[st[h]];
-              for (int j = 0; j < 4; ++j) {
-                if (T.v[j] == v) continue;
-                const std::int32_t nb = simplex_of(T.n[j]);
-                bool seen = false;
-                for (int x = 0; x < n && !seen; ++x) seen = st[x] == nb;
-                if (seen) continue;
-                if (n == kMaxStar) {
-                  atomic_add(k + 1, std::int64_t(1));
-                  return;
-                }
-                st[n++] = nb;
-              }
-            }
-            const std::int64_t at = atomic_add(k, std::int64_t(n));
-            for (int x = 0; x < n && at + x < cap; ++x) o[at + x] = st[x];
-          });
-      std::int64_t h[2];
-      ex_.to_host(k, 2, h);
-      if (h[1] > 0 || h[0] > limit) return false;
-      if (h[0] > cap) {
-        cap = h[0];
-        continue;
-      }
-      slots.resize(std::size_t(h[0]));
-      ex_.to_host(o, h[0], slots.data());
-      gather(out.data(), h[0], tets);
-      return true;
-    }
-  }
-  void fetch_slots(const std::vector<std::int32_t>& slots, std::vector<Tet>& tets) {
-    const std::int64_t n = std::int64_t(slots.size());
-    auto sb = ex_.template alloc<std::int32_t>(std::size_t(n));
-    ex_.from_host(slots.data(), n, sb.data());
-    gather(sb.data(), n, tets);
-  }
-  void gather(const std::int32_t* slots, std::int64_t n, std::vector<Tet>& tets) {
-    auto rows = ex_.template alloc<Tet>(std::size_t(n) + 1);
-    Tet* r = rows.data();
-    const Tet* tet = tet_.data();
-    ex_.for_each_index(
-        n, GG_LAMBDA(std::int64_t i) { r[i] = tet[slots[i]]; });
-    tets.resize(std::size_t(n));
-    ex_.to_host(r, n, tets.data());
-  }
-  void fetch_all(std::vector<Tet>& tets) {
-    const Counters c = counters();
-    tets.resize(std::size_t(c.used));
-    ex_.to_host(tet_.data(), c.used, tets.data());
-  }
-  struct Source final : SlotSource {
-    Triangulator* t = nullptr;
-    bool stars(const std::vector<std::int32_t>& verts, std::int64_t limit,
-               std::vector<std::int32_t>& slots, std::vector<Tet>& tets) override {
-      return t->fetch_stars(verts, limit, slots, tets);
-    }
-    void slots(const std::vector<std::int32_t>& s, std::vector<Tet>& tets) override {
-      t->fetch_slots(s, tets);
-    }
-    void all(std::vector<Tet>& tets) override { t->fetch_all(tets); }
-  };
-  // ... and what it wrote goes back.
-  void upload(HostMesh& H) {
-    std::vector<std::int32_t>& w = H.written;
-    std::sort(w.begin(), w.end());
-    w.erase(std::unique(w.begin(), w.end()), w.end());
-    const std::int64_t used = H.used, nw = std::int64_t(w.size());
-    reserve(used);
-    if (nw) {
-      std::vector<Tet> rows(w.size());
-      for (std::size_t i = 0; i < w.size(); ++i) rows[i] = H.get(w[i]);
-      auto slots = ex_.template alloc<std::int32_t>(std::size_t(nw));
-      auto vals = ex_.template alloc<Tet>(std::size_t(nw));
-      ex_.from_host(w.data(), nw, slots.data());
-      ex_.from_host(rows.data(), nw, vals.data());
-      const std::int32_t* sl = slots.data();
-      const Tet* va = vals.data();
-      Tet* tet = tet_.data();
-      ex_.for_each_index(
-          nw, GG_LAMBDA(std::int64_t i) { tet[sl[i]] = va[i]; });
-      ex_.sync();
-    }
+  void set_used(std::int64_t used) {
     Counters c = counters();
     c.used = used;
     ex_.from_host(&c, 1, ctr_.data());
@@ -1110,8 +971,6 @@ class Triangulator {
   typename Exec::template Buffer<Tally> tally_;
   typename Exec::template Buffer<std::int8_t> dec_;
   typename Exec::template Buffer<Counters> ctr_;
-  typename Exec::template Buffer<std::int32_t> vt_;  // phase 2's vertex map
-  Source source_;
 };
 
 // What both methods start from: the distinct points in curve order (the perturbation's
@@ -1147,22 +1006,13 @@ inline Prepared prepare_points(Exec& ex, const double* in, std::int64_t n, bool 
   return Prepared{std::move(S), box, first};
 }
 
-// Triples (faces, three vertices each) in increasing order.
-inline void sort_triples(std::vector<std::int32_t>& f) {
-  std::vector<std::array<std::int32_t, 3>> t(f.size() / 3);
-  for (std::size_t i = 0; i < t.size(); ++i) t[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
-  std::sort(t.begin(), t.end());
-  for (std::size_t i = 0; i < t.size(); ++i)
-    for (int j = 0; j < 3; ++j) f[3 * i + std::size_t(j)] = t[i][std::size_t(j)];
-}
-
-// The whole pipeline on the executor: prepare, phase 1, phase 2 on the host where phase 1
-// left failed faces, then the finite tetrahedra in input indices (f) with S's duplicate map.
+// The whole pipeline on the executor: prepare, phase 1, phase 2 where phase 1 left failed
+// faces, the flat tetrahedra left out, then the finite tetrahedra in input indices (f) with S's
+// duplicate map.
 template <class Body>
 inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on_device,
                              const Delaunay3dOptions& opt, Stats& st, Body body) {
   const std::int64_t max_rounds = opt.max_flip_rounds;
-  const int threads = opt.threads;
   const ProgressFn& progress = opt.progress;
   Prepared P = prepare_points(ex, in, n, on_device, st);
   mesh::SortedPoints<Exec>& S = P.S;
@@ -1185,72 +1035,38 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   st.phase_ms.push_back({"insert_flip", ms_since(t0)});
   t0 = Clock::now();
   auto failed = ex.template alloc<std::int8_t>(std::size_t(S.m + 1));
-  const std::int64_t face_cap = std::max<std::int64_t>(1 << 16, S.m / 16);
-  auto faces = ex.template alloc<std::int32_t>(std::size_t(3 * face_cap));
-  // (flat tetrahedra lie over hull planes: a few per point there, about 0.3 m on a grid)
-  const std::int64_t flat_cap = std::max<std::int64_t>(1 << 16, S.m / 2);
-  auto flats = ex.template alloc<std::int32_t>(std::size_t(flat_cap));
   std::int64_t nflat = 0;
-  const std::int64_t nfailed = T.find_failed(failed, faces, flats, face_cap, flat_cap, nflat);
+  const std::int64_t nfailed = T.find_failed(failed, nflat);
   st.phase_ms.push_back({"find_failed", ms_since(t0)});
   t0 = Clock::now();
-  SplayStats sp;
-  std::int64_t peeled = 0;
-  if (nfailed > 0 || nflat > 0) {  // phase 2 and the flat tetrahedra, on the host
+  RepairCount rc;
+  std::int64_t flats = 0;
+  if (nfailed > 0 || nflat > 0) {  // phase 2 (repair.inl), then the flat tetrahedra leave
     if (progress) progress(Delaunay3dProgress{"splay", S.m, S.m, 0});
-    HostMesh H;
-    auto t1 = Clock::now();
-    std::vector<double> pts(std::size_t(3 * S.m));
-    ex.to_host(S.pts.data(), 3 * S.m, pts.data());
-    H.pts = pts.data();
-    H.m = std::int32_t(S.m);
-    for (int k = 0; k < 3; ++k) H.s[k] = first.s[k];
-    T.attach(H);
-    st.counters["us_splay_download"] = std::int64_t(1000 * ms_since(t1));
+    std::int64_t used = T.counters().used;
+    Tet* tet = T.tet_.data();
     if (nfailed > 0) {
-      std::vector<std::int8_t> f;
-      std::vector<std::int32_t> fl;
-      if (nfailed <= face_cap) {
-        fl.resize(std::size_t(3 * nfailed));
-        ex.to_host(faces.data(), 3 * nfailed, fl.data());
-        sort_triples(fl);  // (listed by atomic appends: their order is the threads')
-      } else {
-        f.resize(std::size_t(S.m + 1));
-        ex.to_host(failed.data(), S.m + 1, f.data());
-      }
-      t1 = Clock::now();
-      sp = splay(H, f, fl, threads);
-      st.counters["us_splay_host"] = std::int64_t(1000 * ms_since(t1));
+      used = repair_tets(
+          ex, T.g_, tet, used, failed.data(),
+          [&T](std::int64_t slots) { return T.store_for(slots); }, rc);
+      T.set_used(used);
+      tet = T.tet_.data();
     }
-    if (nflat > 0 || sp.flat_added > 0) {
-      std::vector<std::int32_t> ft;  // (empty when the list did not fit: peel scans all)
-      if (nflat <= flat_cap) {
-        ft.resize(std::size_t(nflat));
-        ex.to_host(flats.data(), nflat, ft.data());
-        std::sort(ft.begin(), ft.end());
-      }
-      const auto tp = Clock::now();
-      peeled = peel_flat(H, ft, nflat > flat_cap);
-      st.counters["us_peel"] = std::int64_t(1000 * ms_since(tp));
-    }
-    t1 = Clock::now();
-    T.upload(H);
-    st.counters["us_splay_upload"] = std::int64_t(1000 * ms_since(t1));
-    st.counters["splay_slots_read"] = H.loaded();
+    flats = drop_flats(ex, T.g_, tet, used);
   }
+  failed = typename Exec::template Buffer<std::int8_t>();
   st.phase_ms.push_back({"splay", ms_since(t0)});
-  st.counters["flat_tetrahedra"] = peeled;
-  st.counters["failed_vertices"] = sp.failed_vertices;
-  st.counters["stars_rebuilt"] = sp.stars_rebuilt;
-  st.counters["stars_touched"] = sp.stars_touched;
-  st.counters["star_insertions"] = sp.insertions;
-  st.counters["splay_rounds"] = sp.rounds;
-  st.counters["splay_removed"] = sp.removed;
-  st.counters["splay_added"] = sp.added;
-  st.counters["us_splay_stars"] = sp.us_stars;
-  st.counters["us_splay_queue"] = sp.us_queue;
-  st.counters["us_splay_patch"] = sp.us_patch;
-  st.counters["us_splay_load"] = sp.us_load;
+  st.counters["flat_tetrahedra"] = flats;
+  st.counters["failed_vertices"] = rc.failed_vertices;
+  st.counters["stars_built"] = rc.stars_built;
+  st.counters["stars_changed"] = rc.stars_changed;
+  st.counters["star_insertions"] = rc.insertions;
+  st.counters["splay_rounds"] = rc.rounds;
+  st.counters["splay_removed"] = rc.removed;
+  st.counters["splay_added"] = rc.added;
+  st.counters["us_splay_build"] = std::int64_t(1000 * rc.build_ms);
+  st.counters["us_splay_rounds"] = std::int64_t(1000 * rc.splay_ms);
+  st.counters["us_splay_patch"] = std::int64_t(1000 * rc.patch_ms);
   t0 = Clock::now();
   if (progress) progress(Delaunay3dProgress{"output", S.m, S.m, 0});
   auto f = T.finish(S.orig.data());

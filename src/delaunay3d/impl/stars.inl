@@ -101,54 +101,56 @@ GG_INLINE std::int32_t grown_cap(std::int32_t cap) {
   return 2 * cap + 8;
 }
 
-// New runs for the stars with grow[v] != 0 (all, where grow is null): twice their room plus 8,
-// the used triangles moved along. Where the slots past the last run hold them, the new runs go
-// there and nothing else moves (the stars that outgrow their runs are a few, late in the
-// splaying, and a re-layout of every star for them cost as much as a round); else every star is
-// laid out again in a new array, with a quarter more room at its end for later growth.
-inline void regrow_stars(Exec& ex, StarStore& S, const std::int8_t* grow) {
+// New runs for the stars with room(v) > 0, of that room, the used triangles and vertex tables
+// moved along. Where the slots past the last run hold them, the new runs go there and nothing
+// else moves (the stars that outgrow their runs are a few, late in the splaying, and a
+// re-layout of every star for them cost as much as a round); else every star is laid out
+// again in a new array, with a quarter more room at its end for later growth.
+template <class Room>
+inline void lay_runs(Exec& ex, StarStore& S, Room room) {
   const std::int64_t m = S.m;
   const std::int32_t* c1 = S.cap.data();
   auto add_d = ex.template alloc<std::int64_t>(std::size_t(m + 1));
   std::int64_t* add = add_d.data();
-  if (grow) {
-    ex.exclusive_scan_of(
-        m + 1,
-        GG_LAMBDA(std::int64_t v)->std::int64_t { return v < m && grow[v] ? grown_cap(c1[v]) : 0; },
-        add);
-    std::int64_t need = 0;
-    ex.to_host(add + m, 1, &need);
-    if (S.used + need <= S.slots) {
-      LinkTri* t = S.tri.data();
-      LinkVert* vt = S.vt.data();
-      std::int64_t* off = S.off.data();
-      std::int32_t* cap = S.cap.data();
-      const std::int32_t* cnt = S.cnt.data();
-      const std::int32_t* nvt = S.nvt.data();
-      const std::int64_t base = S.used;
-      ex.for_each_index(
-          m, GG_LAMBDA(std::int64_t v) {
-            if (!grow[v]) return;
-            const std::int64_t to = base + add[v];
-            for (std::int32_t i = 0; i < cnt[v]; ++i) t[to + i] = t[off[v] + i];
-            for (std::int32_t i = 0; i < nvt[v]; ++i) vt[to + i] = vt[off[v] + i];
-            off[v] = to;
-            cap[v] = grown_cap(cap[v]);
-          });
-      S.used += need;
-      ++S.growths;
-      return;
-    }
+  ex.exclusive_scan_of(
+      m + 1, GG_LAMBDA(std::int64_t v)->std::int64_t { return v < m ? room(v) : 0; }, add);
+  std::int64_t need = 0;
+  ex.to_host(add + m, 1, &need);
+  if (need == 0) return;
+  if (S.used + need <= S.slots) {
+    LinkTri* t = S.tri.data();
+    LinkVert* vt = S.vt.data();
+    std::int64_t* off = S.off.data();
+    std::int32_t* cap = S.cap.data();
+    const std::int32_t* cnt = S.cnt.data();
+    const std::int32_t* nvt = S.nvt.data();
+    const std::int64_t base = S.used;
+    ex.for_each_index(
+        m, GG_LAMBDA(std::int64_t v) {
+          const std::int32_t r = room(v);
+          if (r == 0) return;
+          const std::int64_t to = base + add[v];
+          for (std::int32_t i = 0; i < cnt[v]; ++i) t[to + i] = t[off[v] + i];
+          for (std::int32_t i = 0; i < nvt[v]; ++i) vt[to + i] = vt[off[v] + i];
+          off[v] = to;
+          cap[v] = r;
+        });
+    S.used += need;
+    ++S.growths;
+    return;
   }
   auto cap2 = ex.template alloc<std::int32_t>(std::size_t(m));
   std::int32_t* c2 = cap2.data();
   ex.for_each_index(
-      m, GG_LAMBDA(std::int64_t v) { c2[v] = grow && grow[v] ? grown_cap(c1[v]) : c1[v]; });
+      m, GG_LAMBDA(std::int64_t v) {
+        const std::int32_t r = room(v);
+        c2[v] = r > 0 ? r : c1[v];
+      });
   ex.exclusive_scan_of(
       m + 1, GG_LAMBDA(std::int64_t v)->std::int64_t { return v < m ? c2[v] : 0; }, add);
   std::int64_t total = 0;
   ex.to_host(add + m, 1, &total);
-  const std::int64_t slots = total + total / 4;
+  const std::int64_t slots = std::max<std::int64_t>(total + total / 4, 1);
   auto tri2 = ex.template alloc<LinkTri>(std::size_t(slots));
   auto vt2_d = ex.template alloc<LinkVert>(std::size_t(slots));
   LinkTri* t2 = tri2.data();
@@ -172,6 +174,13 @@ inline void regrow_stars(Exec& ex, StarStore& S, const std::int8_t* grow) {
   ++S.growths;
 }
 
+// New runs of twice the room plus 8 for the stars with grow[v] != 0.
+inline void regrow_stars(Exec& ex, StarStore& S, const std::int8_t* grow) {
+  const std::int32_t* c1 = S.cap.data();
+  lay_runs(
+      ex, S, GG_LAMBDA(std::int64_t v)->std::int32_t { return grow[v] ? grown_cap(c1[v]) : 0; });
+}
+
 // Phase 2: the convex star of every point v from its working set ws[wo[v], wo[v] + wn[v]) (at
 // least three points): the link of v among the first three and the infinity point, then every
 // other point taken in turn.
@@ -191,11 +200,12 @@ inline StarStore create_stars(Exec& ex, const Geo& g, std::int64_t m, const std:
     std::int32_t* nvt = S.nvt.data();
     ex.for_each_index(
         m, GG_LAMBDA(std::int64_t v) {
-          cap[v] = 2 * wn[v] + 8;
+          cap[v] = 0;
           cnt[v] = 0;
           nvt[v] = 0;
         });
-    regrow_stars(ex, S, nullptr);
+    lay_runs(
+        ex, S, GG_LAMBDA(std::int64_t v)->std::int32_t { return 2 * wn[v] + 8; });
     S.growths = 0;
   }
   auto redo_d = ex.template alloc<std::int8_t>(std::size_t(m));
@@ -409,25 +419,37 @@ GG_HD inline int check_tetrahedron(const Geo& g, std::int32_t v, const LinkTri& 
   return stuck;
 }
 
-// The proof that the stars agree, from each tetrahedron's lowest finite vertex only: star(v)'s
-// tetrahedra whose lowest finite vertex is v, each looked up in the stars of its other finite
-// vertices. Returns false where one is missing; adds the slots so accounted for (its finite
-// vertices) to *slots. Every star holds a tetrahedron once, so when every lookup succeeds, the
-// stars agree exactly when the slots accounted for are all the slots: a tetrahedron that some
-// star held but its lowest vertex's star did not would be a slot left over.
+// The proof that the stars agree, from each tetrahedron's lowest finite built vertex only:
+// star(v)'s tetrahedra whose lowest finite built vertex is v, each looked up in the stars of its
+// other finite built vertices. Returns false where one is missing; adds the slots so accounted
+// for (its finite built vertices) to *slots. Every star holds a tetrahedron once, so when every
+// lookup succeeds, the stars agree exactly when the slots accounted for are all the built
+// stars' slots: a tetrahedron that some star held but its lowest vertex's star did not would be
+// a slot left over. built(w): 0 where star(w) is not built (SplayScope: the tetrahedralisation's
+// star, which agrees with every star built from it and never changed; a changed star with such
+// a vertex fails), 1 built, 2 changed.
+template <class Built>
 GG_HD inline bool prove_star(const Geo& g, std::int32_t v, const LinkTri* tri,
-                             const std::int64_t* off, const std::int32_t* cnt,
-                             std::int64_t* slots) {
+                             const std::int64_t* off, const std::int32_t* cnt, std::int64_t* slots,
+                             Built built) {
   const std::int32_t I = g.m;
   const LinkTri* tv = tri + off[v];
+  const bool changed = built(v) == 2;
   std::int64_t mine = 0;
   for (int j = 0; j < cnt[v]; ++j) {
     const std::int32_t q[4] = {v, tv[j].a, tv[j].b, tv[j].c};
     bool lowest = true;
-    for (int k = 1; k < 4; ++k) lowest = lowest && (q[k] == I || q[k] > v);
-    if (!lowest) continue;
     for (int k = 1; k < 4; ++k) {
       if (q[k] == I) continue;
+      if (!built(q[k])) {
+        if (changed) return false;
+        continue;
+      }
+      lowest = lowest && q[k] > v;
+    }
+    if (!lowest) continue;
+    for (int k = 1; k < 4; ++k) {
+      if (q[k] == I || !built(q[k])) continue;
       std::int32_t o[3];
       for (int a = 0, z = 0; a < 4; ++a)
         if (a != k) o[z++] = q[a];
@@ -455,9 +477,24 @@ struct SplayCount {
 // gaussian, ball, sphere, thin sphere and thin box inputs; 4 278 on a grid of 10^5 points.
 constexpr std::int32_t kHugeStar = 512;
 // (vertex_rounds false: the tetrahedra's rounds and the proof alone, for the tests of those)
+// What a splaying covers. By default every star, built before it starts (the digital method).
+// With built set (phase 2 of the incremental method, repair.inl), only the stars near the
+// failed vertices: built[v] is 0 where star(v) is not built (it is the tetrahedralisation's),
+// 1 where it was built from the tetrahedralisation, 2 where it changed (made anew, or took a
+// vertex). The stars built when it starts are checked first, and before each round fill(list, n)
+// builds the listed stars that are not built yet and then the stars of the listed stars' link
+// vertices, so that a round reads built stars only; a star the splaying never reaches keeps the
+// tetrahedralisation's, which agrees with every star built from it (the proof, prove_star).
+// huge: the size past which the splaying gives up (kHugeStar; none where nothing falls back).
+struct SplayScope {
+  std::int8_t* built = nullptr;
+  std::function<void(const std::int32_t*, std::int64_t)> fill;
+  std::int32_t huge = kHugeStar;
+};
 inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                               typename Exec::template Buffer<digital3d_impl::StarCounters>& ctr,
-                              bool vertex_rounds = true, std::int64_t first_requests = 0) {
+                              bool vertex_rounds = true, std::int64_t first_requests = 0,
+                              const SplayScope& scope = SplayScope{}) {
   using digital3d_impl::StarCounters;
   using u64 = unsigned long long;
   const std::int64_t m = S.m;
@@ -466,7 +503,12 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
   // Two dirty bits a star: 1 its link vertices, 2 its tetrahedra are to be checked.
   auto dirty_d = ex.template alloc<std::int8_t>(std::size_t(m));
   std::int8_t* dirty = dirty_d.data();
-  ex.fill(dirty, m, std::int8_t(3));
+  std::int8_t* built = scope.built;
+  if (built)
+    ex.for_each_index(
+        m, GG_LAMBDA(std::int64_t v) { dirty[v] = built[v] ? 3 : 0; });
+  else
+    ex.fill(dirty, m, std::int8_t(3));
   auto list_d = ex.template alloc<std::int32_t>(std::size_t(m));
   // The round in which a star was last listed for its vertices (check_link_vertex's u_listed).
   auto mark_d = ex.template alloc<std::int32_t>(std::size_t(m));
@@ -507,6 +549,7 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
           m, GG_LAMBDA(std::int64_t v) { return (dirty[v] & 2) != 0; }, list);
     }
     ++out.rounds;
+    if (nl > 0 && scope.fill) scope.fill(list, nl);
     if (out.rounds > 100000) throw Error(ErrorCode::Internal, "digital 3D Delaunay: splaying");
     auto tc = Clock::now();
     const LinkTri* tri = S.tri.data();
@@ -518,7 +561,9 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
       ex.for_each_index(
           m, GG_LAMBDA(std::int64_t i) {
             std::int64_t slots = 0;
-            if (!prove_star(g, std::int32_t(i), tri, off, cnt, &slots))
+            if (built && !built[i]) return;
+            const auto built_at = [&](std::int32_t w) -> int { return built ? built[w] : 1; };
+            if (!prove_star(g, std::int32_t(i), tri, off, cnt, &slots, built_at))
               atomic_add(&C->stuck, std::int64_t(1));
             atomic_add(&C->requests, slots);
             atomic_add(&C->taken, std::int64_t(cnt[i]));
@@ -533,7 +578,11 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                     "checking them asked for nothing; please report this input");
       tets_mode = true;
       asked = false;
-      ex.fill(dirty, m, std::int8_t(2));
+      if (built)
+        ex.for_each_index(
+            m, GG_LAMBDA(std::int64_t v) { dirty[v] = built[v] ? 2 : 0; });
+      else
+        ex.fill(dirty, m, std::int8_t(2));
       continue;
     }
     const bool vertices = bit == 1;
@@ -677,6 +726,7 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
       std::int32_t* cnt = S.cnt.data();
       std::int32_t* nvt = S.nvt.data();
       const std::int64_t slots = S.slots;
+      const std::int32_t huge = scope.huge;
       ex.for_each_index(
           ng, GG_LAMBDA(std::int64_t k) {
             const std::int32_t e = first[k + 1];
@@ -719,9 +769,12 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                 atomic_add(&C->broken, std::int64_t(1));
                 break;
               }
-              if (changed) next[v] = 3, chg[v] = tk, ++took;
+              if (changed) {
+                next[v] = 3, chg[v] = tk, ++took;
+                if (built) built[v] = 2;
+              }
               n = r;
-              if (n > kHugeStar) {
+              if (n > huge) {
                 atomic_add(&C->huge, std::int64_t(1));
                 ++p;
                 break;
@@ -755,9 +808,9 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
 // The tetrahedra of consistent stars (splay_stars done), in prepared point indices: each finite
 // one from the star of its lowest vertex, in star order, positively oriented; flat ones (four
 // points on one plane: the perturbation puts such layers over hull facets' planes) are left out,
-// as the incremental method's peel leaves them (tet.hpp). Neighbours across faces come from the
-// stars' links; -1 on the hull and next to a flat tetrahedron. orig maps the prepared indices to
-// the caller's.
+// as the incremental method leaves them (repair.inl, drop_flats). Neighbours across faces come from
+// the stars' links; -1 on the hull and next to a flat tetrahedron. orig maps the prepared indices
+// to the caller's.
 inline mesh::Compacted<Exec> star_tets(Exec& ex, const Geo& g, StarStore& S,
                                        const std::int32_t* orig, std::int64_t& flats) {
   const std::int64_t m = S.m;
@@ -782,14 +835,8 @@ inline mesh::Compacted<Exec> star_tets(Exec& ex, const Geo& g, StarStore& S,
           const LinkTri& x = t[j];
           std::int32_t mark = -1;
           if (x.a != I && x.b != I && x.c != I && v < x.a && v < x.b && v < x.c) {
-            const double *a = g.at(v), *b = g.at(x.a), *c = g.at(x.b), *d = g.at(x.c);
-            int o = pred::orient3d_fast(a, b, c, d);
-            if (o == 0 && !exact::orient3d_int(a, b, c, d, o)) {
-              double* s = g.lease.acquire(lease_hint(v, x.c));
-              o = pred::orient3d(a, b, c, d, s);
-              g.lease.release(s);
-            }
-            if (o != 0)
+            const std::int32_t q[4] = {v, x.a, x.b, x.c};
+            if (!flat_ext(g, q))
               mark = k++;
             else
               atomic_add(nf, std::int64_t(1));
