@@ -47,14 +47,22 @@ TEST(CudaDelaunay3d, Degenerate) {
   for (const auto& c : gg_hull3d::degenerate_cases()) same_on_both(c);
 }
 
+// Phase 2 alone on the device: no flips after the insertions (a tetrahedralisation far from
+// Delaunay) or one round; star splaying repairs it there, into the CPU executor's arrays.
 TEST(CudaDelaunay3d, StarSplayingRepairs) {
-  for (const char* d : {"uniform", "sphere", "thin_sphere"}) {
-    const auto pts = gpugeom::generate3d(d, sizes({3000})[0], 5);
-    Delaunay3dOptions o;
-    o.backend = Backend::Cuda;
-    o.max_flip_rounds = 1;
-    gg_del3d::expect_valid(pts, delaunay3d(pts, o));
-  }
+  for (const std::int64_t rounds : {0, 1})
+    for (const char* d : {"uniform", "sphere", "thin_sphere", "gaussian", "grid"}) {
+      SCOPED_TRACE(std::string(d) + ", rounds " + std::to_string(rounds));
+      const auto pts = gpugeom::generate3d(d, sizes({3000})[0], 5);
+      Delaunay3dOptions o;
+      o.backend = Backend::Cuda;
+      o.max_flip_rounds = rounds;
+      const auto gpu = delaunay3d(pts, o);
+      gg_del3d::expect_valid(pts, gpu);
+      EXPECT_GT(gpu.stats.counters.at("failed_vertices"), 0);
+      o.backend = Backend::Cpu;
+      gg_del3d::expect_same_arrays(delaunay3d(pts, o), gpu, "CPU and CUDA");
+    }
 }
 
 // A race would show as different arrays: run after run, the same bytes (phase 2 repairs stars

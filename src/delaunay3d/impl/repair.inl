@@ -5,8 +5,8 @@
 //
 // A vertex whose faces are all locally Delaunay has a convex star in the tetrahedralisation
 // (the link edge (a, b) of star(v) is reflex exactly where the face (v, a, b) is not locally
-// Delaunay), so only the failed vertices' stars are made anew: each the convex star of its
-// link's vertices (what Flip-Flop on the lifted star gives). The splayer then works on those
+// Delaunay), so only the failed vertices' stars are made anew, by Flip-Flop on the lifted star
+// (flip_flop). The splayer then works on those
 // and builds the others from the tetrahedralisation when a round first reads them
 // (SplayScope), so the work follows the failed vertices' neighbourhoods, not the store.
 //
@@ -28,6 +28,127 @@ struct RepairCount {
   std::int64_t removed = 0, added = 0, rounds = 0, insertions = 0;
   double build_ms = 0, splay_ms = 0, patch_ms = 0;
 };
+
+// ---- Flip-Flop on a lifted star (thesis 5.2.2 one dimension up) ----
+// A failed vertex's star as the tetrahedralisation has it is convex at every link edge but
+// those of its failed faces. Flip-Flop makes it convex where it is: a reflex link edge is
+// flipped where the two new triangles stay positive around v; where it cannot be, the corner
+// inside the cone of the other three is not extreme, and its link edges are flipped until it has
+// three, whose triangles become one. (Making the star anew from its link's vertices, as the
+// digital method makes a star from its working set, took seconds a star on the thousands of
+// triangles around an integer grid's hull-plane points: each vertex scans the whole star.)
+struct StarEdge {
+  std::int32_t a, b;
+};
+
+// Link edge a -> b of triangles (a, b, c) and (b, a, d) replaced by (c, d): triangles (a, d, c)
+// and (d, b, c), when both stay positively oriented around v. c, d: the new edge's ends.
+GG_HD inline bool star_flip(const Geo& g, std::int32_t v, LinkTri* t, int n, std::int32_t a,
+                            std::int32_t b, std::int32_t& c, std::int32_t& d) {
+  const int i1 = link_find_edge(t, n, a, b), i2 = link_find_edge(t, n, b, a);
+  if (i1 < 0 || i2 < 0) return false;
+  c = link_third(t[i1], a, b);
+  d = link_third(t[i2], a, b);
+  if (c == d) return false;
+  if (orient_ext(g, v, a, d, c) <= 0 || orient_ext(g, v, d, b, c) <= 0) return false;
+  t[i1] = LinkTri{a, d, c};
+  t[i2] = LinkTri{d, b, c};
+  return true;
+}
+
+// Flip-Flop on the star t[0, n) of v, from the link edges between failed vertices (failed: the
+// vertices of failed faces, the infinity point included; only those edges can be reflex); work:
+// room for wcap edges (the link edges still to test; where it fills, the edges that did not fit
+// are found by testing every edge again once it empties). Returns the new count, or -1 where a
+// step that cannot fail on a star did.
+GG_HD inline int flip_flop(const Geo& g, std::int32_t v, LinkTri* t, int n,
+                           const std::int8_t* failed, StarEdge* work, int wcap) {
+  int nw = 0;
+  bool lost = false;
+  auto push = [&](std::int32_t a, std::int32_t b) {
+    if (nw < wcap)
+      work[nw++] = StarEdge{a, b};
+    else
+      lost = true;
+  };
+  for (int i = 0; i < n; ++i) {
+    const std::int32_t e[3] = {t[i].a, t[i].b, t[i].c};
+    for (int j = 0; j < 3; ++j) {
+      const std::int32_t a = e[j], b = e[(j + 1) % 3];
+      if (a < b && failed[a] && failed[b]) push(a, b);
+    }
+  }
+  for (std::int64_t guard = 0;; ++guard) {
+    if (guard > 100000000) return -1;
+    if (nw == 0) {
+      if (!lost) return n;
+      lost = false;
+      for (int i = 0; i < n; ++i) {
+        const std::int32_t e[3] = {t[i].a, t[i].b, t[i].c};
+        for (int j = 0; j < 3; ++j)
+          if (e[j] < e[(j + 1) % 3]) push(e[j], e[(j + 1) % 3]);
+      }
+      if (nw == 0) return n;
+    }
+    StarEdge ed = work[--nw];
+    int i1 = link_find_edge(t, n, ed.a, ed.b);
+    if (i1 < 0) {
+      const std::int32_t x = ed.a;
+      ed.a = ed.b, ed.b = x;
+      i1 = link_find_edge(t, n, ed.a, ed.b);
+      if (i1 < 0) continue;  // flipped away since it was listed
+    }
+    const std::int32_t a = ed.a, b = ed.b;
+    const int j = link_find_edge(t, n, b, a);
+    if (j < 0) return -1;  // (an open star)
+    const std::int32_t c = link_third(t[i1], a, b), d = link_third(t[j], a, b);
+    if (!link_reflex(g, v, LinkTri{a, b, c}, d)) continue;
+    std::int32_t nc, nd;
+    if (star_flip(g, v, t, n, a, b, nc, nd)) {
+      push(a, d), push(d, b), push(b, c), push(c, a);
+      continue;
+    }
+    // Not flippable: the corner inside the cone of the other three is not extreme; its link
+    // edges are flipped until it has three neighbours, then its three triangles become one.
+    const std::int32_t x = orient_ext(g, v, a, d, c) < 0 ? a : b;
+    for (int step = 0;; ++step) {
+      if (step > 4 * n + 16) return -1;
+      int deg = 0, first = -1;
+      for (int i = 0; i < n; ++i)
+        if (t[i].has(x)) ++deg, first = first < 0 ? i : first;
+      if (deg == 0) break;
+      if (deg == 3) {
+        const LinkTri& f = t[first];
+        const std::int32_t y0 = f.a == x ? f.b : f.b == x ? f.c : f.a;
+        const int i0 = link_find_edge(t, n, x, y0);
+        if (i0 < 0) return -1;
+        const std::int32_t y1 = link_third(t[i0], x, y0);
+        const int i2 = link_find_edge(t, n, x, y1);
+        if (i2 < 0) return -1;
+        const std::int32_t y2 = link_third(t[i2], x, y1);
+        if (orient_ext(g, v, y0, y1, y2) <= 0) return -1;
+        int k = 0;  // (the others keep their order; the new one comes last)
+        for (int i = 0; i < n; ++i)
+          if (!t[i].has(x)) t[k++] = t[i];
+        t[k++] = LinkTri{y0, y1, y2};
+        n = k;
+        push(y0, y1), push(y1, y2), push(y2, y0);
+        break;
+      }
+      bool flipped = false;
+      for (int i = 0; i < n && !flipped; ++i) {
+        if (!t[i].has(x)) continue;
+        const std::int32_t y = t[i].a == x ? t[i].b : t[i].b == x ? t[i].c : t[i].a;
+        std::int32_t fc, fd;  // (x, y) -> (fc, fd): the two new triangles' edges
+        if (star_flip(g, v, t, n, x, y, fc, fd)) {
+          push(x, fd), push(fd, y), push(y, fc), push(fc, x), push(fc, fd);
+          flipped = true;
+        }
+      }
+      if (!flipped) return -1;
+    }
+  }
+}
 
 // The tetrahedralisation's stars, built into the splayer's store as they are wanted.
 class MeshStars {
@@ -74,9 +195,8 @@ class MeshStars {
   }
 
   // The stars of the vertices with flag[v] != 0 (those not built yet), from the
-  // tetrahedralisation: copied (built 1), or made anew as the convex star of their link's
-  // vertices (create: built 2). flag may be want_ itself, which is left clear. Returns how many
-  // were built.
+  // tetrahedralisation: copied (built 1), or made convex by Flip-Flop (create: built 2). flag may
+  // be want_ itself, which is left clear. Returns how many were built.
   std::int64_t build_flagged(const std::int8_t* flag, bool create) {
     std::int8_t* want = want_.data();
     const std::int8_t* b = built.data();
@@ -84,7 +204,7 @@ class MeshStars {
         m_, GG_LAMBDA(std::int64_t v) { want[v] = flag[v] && !b[v] ? 1 : 0; });
     const std::int64_t nv = ex_.compact_indices(
         m_, GG_LAMBDA(std::int64_t v) { return want[v] != 0; }, verts_.data());
-    if (nv > 0) build(nv, create);
+    if (nv > 0) build(nv, create ? flag : nullptr);
     return nv;
   }
 
@@ -134,8 +254,10 @@ class MeshStars {
     build_flagged(want, false);
   }
 
-  // Builds the stars of verts_[0, nv) (increasing; want_ marks them).
-  void build(std::int64_t nv, bool create) {
+  // Builds the stars of verts_[0, nv) (increasing; want_ marks them): copies, or where failed is
+  // given (the failed vertices, m + 1 flags), made convex by Flip-Flop.
+  void build(std::int64_t nv, const std::int8_t* flag) {
+    const bool create = flag != nullptr;
     const auto t0 = Clock::now();
     stars_built += nv;
     const std::int32_t* vs = verts_.data();
@@ -210,31 +332,14 @@ class MeshStars {
           LinkTri* t = tri + off[v];
           const LinkTri* o = ot + oo[v];
           int n = oc[v];
-          if (!create) {
-            for (int i = 0; i < n; ++i) t[i] = o[i];
-          } else {
-            // The link's finite vertices (the vertex table's room holds them), then the convex
-            // star of v over them, as the digital method makes a star from its working set.
-            LinkVert* x = vt + off[v];
-            const int k = link_table_into(o, n, x);
-            std::int32_t w[3];
-            int nw = 0, first = 0;
-            for (int i = 0; i < k && nw < 3; ++i)
-              if (x[i].x != I) w[nw++] = x[i].x, first = i + 1;
-            if (nw < 3) {  // (a vertex of a tetrahedralisation has three finite neighbours)
+          for (int i = 0; i < n; ++i) t[i] = o[i];
+          // (the vertex table's room holds Flip-Flop's work list: cap entries of 8 bytes)
+          if (create) {
+            static_assert(sizeof(LinkVert) == sizeof(StarEdge), "the work list's room");
+            n = flip_flop(g, v, t, n, flag, reinterpret_cast<StarEdge*>(vt + off[v]), cap[v]);
+            if (n < 0) {
               atomic_add(ctr + 1, std::int64_t(1));
               return;
-            }
-            link_start(g, v, w[0], w[1], w[2], t);
-            n = 4;
-            for (int i = first; i < k; ++i) {
-              if (x[i].x == I) continue;
-              const int r = link_insert(g, v, t, n, cap[v], x[i].x, [](const LinkTri&) {});
-              if (r < 0) {
-                atomic_add(ctr + 1, std::int64_t(1));
-                return;
-              }
-              n = r;
             }
           }
           cnt[v] = n;
@@ -291,9 +396,11 @@ class MeshStars {
 // Phase 2 on the store tet[0, used) that phase 1 left, where failed[v] != 0 marks the vertices
 // of its failed faces. grow(slots) makes room for that many slots and returns the store (which
 // may move). Returns the slots in use after; new tetrahedra take the freed slots first.
-template <class Grow>
+// (grow is a std::function: nvcc's extended lambdas may not sit in a function templated on a
+// local lambda's type)
 inline std::int64_t repair_tets(Exec& ex, const Geo& g, Tet* tet, std::int64_t used,
-                                const std::int8_t* failed, Grow grow, RepairCount& rc) {
+                                const std::int8_t* failed,
+                                const std::function<Tet*(std::int64_t)>& grow, RepairCount& rc) {
   const std::int32_t m = g.m, I = m;
   MeshStars M(ex, g, tet, used);
   M.start();
@@ -327,16 +434,71 @@ inline std::int64_t repair_tets(Exec& ex, const Geo& g, Tet* tet, std::int64_t u
   const std::int32_t* os = M.oslot_.data();
   const std::int64_t* oo = M.ooff.data();
   const std::int32_t* oc = M.ocnt.data();
-  auto dead_d = ex.template alloc<std::int8_t>(std::size_t(used));
-  std::int8_t* dead = dead_d.data();
-  ex.fill(dead, used, std::int8_t(0));
+  // Old against new, per changed star, by one sort of both lists' triangles (a star of
+  // thousands of triangles over a grid's hull plane made a search per triangle quadratic):
+  // records (star, triangle's sorted vertices), sorted by the last two then, stably, by the
+  // first two; a record without an equal neighbour is an old triangle the star lost (its slot is
+  // freed) or a new one.
+  using u64 = unsigned long long;
+  auto rb_d = ex.template alloc<std::int64_t>(std::size_t(nc + 1));
+  std::int64_t* rb = rb_d.data();
+  ex.exclusive_scan_of(
+      nc + 1,
+      GG_LAMBDA(std::int64_t j)->std::int64_t { return j < nc ? oc[cv[j]] + cnt[cv[j]] : 0; }, rb);
+  std::int64_t nrec = 0;
+  ex.to_host(rb + nc, 1, &nrec);
+  const std::size_t nr = std::size_t(std::max<std::int64_t>(nrec, 1));
+  auto k0_d = ex.template alloc<u64>(nr), k1_d = ex.template alloc<u64>(nr);
+  auto s0_d = ex.template alloc<u64>(nr), s1_d = ex.template alloc<u64>(nr);
+  auto ref_d = ex.template alloc<std::int64_t>(nr), ord_d = ex.template alloc<std::int64_t>(nr);
+  u64 *k0 = k0_d.data(), *k1 = k1_d.data(), *s0 = s0_d.data(), *s1 = s1_d.data();
+  std::int64_t* ref = ref_d.data();  // 2 (place in the old stars) or 2 (place in the runs) + 1
+  std::int64_t* ord = ord_d.data();
   ex.for_each_index(
       nc, GG_LAMBDA(std::int64_t j) {
         const std::int32_t v = cv[j];
-        for (std::int32_t i = 0; i < oc[v]; ++i) {
-          const LinkTri o = ot[oo[v] + i];
-          if (link_find(tri + off[v], cnt[v], o.a, o.b, o.c) < 0) dead[os[oo[v] + i]] = 1;
+        for (std::int32_t i = 0; i < oc[v] + cnt[v]; ++i) {
+          const bool old = i < oc[v];
+          const LinkTri x = old ? ot[oo[v] + i] : tri[off[v] + i - oc[v]];
+          std::int32_t y[3] = {x.a, x.b, x.c};
+          for (int p = 0; p < 2; ++p)
+            for (int q = 0; q < 2 - p; ++q)
+              if (y[q] > y[q + 1]) {
+                const std::int32_t z = y[q];
+                y[q] = y[q + 1], y[q + 1] = z;
+              }
+          const std::int64_t r = rb[j] + i;
+          k0[r] = u64(std::uint32_t(v)) << 32 | std::uint32_t(y[0]);
+          k1[r] = u64(std::uint32_t(y[1])) << 32 | std::uint32_t(y[2]);
+          ref[r] = old ? 2 * (oo[v] + i) : 2 * (off[v] + i - oc[v]) + 1;
         }
+      });
+  ex.for_each_index(
+      nrec, GG_LAMBDA(std::int64_t r) {
+        s1[r] = k1[r];
+        ord[r] = r;
+      });
+  ex.sort_by_key(s1, ord, nrec);
+  ex.for_each_index(
+      nrec, GG_LAMBDA(std::int64_t i) { s0[i] = k0[ord[i]]; });
+  ex.sort_by_key(s0, ord, nrec);
+  auto dead_d = ex.template alloc<std::int8_t>(std::size_t(used));
+  std::int8_t* dead = dead_d.data();
+  ex.fill(dead, used, std::int8_t(0));
+  auto fresh_d = ex.template alloc<std::int8_t>(std::size_t(std::max<std::int64_t>(M.S.slots, 1)));
+  std::int8_t* fresh = fresh_d.data();  // (per run place: a triangle its star did not have)
+  ex.fill(fresh, std::max<std::int64_t>(M.S.slots, 1), std::int8_t(0));
+  ex.for_each_index(
+      nrec, GG_LAMBDA(std::int64_t i) {
+        const std::int64_t r = ord[i];
+        auto same = [&](std::int64_t h) {
+          return h >= 0 && h < nrec && k0[ord[h]] == k0[r] && k1[ord[h]] == k1[r];
+        };
+        if (same(i - 1) || same(i + 1)) return;
+        if (ref[r] % 2 == 0)
+          dead[os[ref[r] / 2]] = 1;
+        else
+          fresh[ref[r] / 2] = 1;
       });
   // The new tetrahedra: each from its lowest finite vertex's star, where that star held it not
   // before; idx: its index among them (-1 for the other triangles of the changed stars' runs).
@@ -353,7 +515,7 @@ inline std::int64_t repair_tets(Exec& ex, const Geo& g, Tet* tet, std::int64_t u
           const LinkTri x = t[i];
           const bool lowest =
               (x.a == I || x.a > v) && (x.b == I || x.b > v) && (x.c == I || x.c > v);
-          idx[off[v] + i] = lowest && link_find(ot + oo[v], oc[v], x.a, x.b, x.c) < 0 ? k++ : -1;
+          idx[off[v] + i] = lowest && fresh[off[v] + i] ? k++ : -1;
         }
         per[j] = k;
       });
