@@ -208,14 +208,21 @@ class MeshStars {
     return nv;
   }
 
-  // The stars of the made stars' old link vertices: a vertex that a made star left out (it was
-  // not extreme there) still holds the tetrahedra with it, and the first round must see that.
-  void build_old_neighbours() {
-    std::int8_t* want = want_.data();
+  // The stars the first round checks (first_): the made ones, and the old link vertices that a
+  // made star lost (Flip-Flop found them not extreme there): those still hold the tetrahedra
+  // with it, which no check from the made star sees.
+  void mark_first() {
+    first_ = ex_.template alloc<std::int8_t>(std::size_t(m_));
+    std::int8_t* first = first_.data();
     const std::int8_t* b = built.data();
+    ex_.for_each_index(
+        m_, GG_LAMBDA(std::int64_t v) { first[v] = b[v] == 2 ? 1 : 0; });
     const LinkTri* ot = otri_.data();
     const std::int64_t* oo = ooff.data();
     const std::int32_t* oc = ocnt.data();
+    const LinkVert* vt = S.vt.data();
+    const std::int64_t* off = S.off.data();
+    const std::int32_t* nvt = S.nvt.data();
     const std::int32_t I = m_;
     ex_.for_each_index(
         m_, GG_LAMBDA(std::int64_t v) {
@@ -223,15 +230,19 @@ class MeshStars {
           for (std::int32_t i = 0; i < oc[v]; ++i) {
             const LinkTri t = ot[oo[v] + i];
             const std::int32_t y3[3] = {t.a, t.b, t.c};
-            for (int a = 0; a < 3; ++a)
-              if (y3[a] != I && !b[y3[a]]) want[y3[a]] = 1;
+            for (int a = 0; a < 3; ++a) {
+              if (y3[a] == I) continue;
+              bool kept = false;
+              for (std::int32_t j = 0; j < nvt[v] && !kept; ++j) kept = vt[off[v] + j].x == y3[a];
+              if (!kept) first[y3[a]] = 1;
+            }
           }
         });
-    build_flagged(want, false);
   }
 
-  // Before a splaying round (SplayScope::fill): the listed stars, then their link vertices'.
-  void fill(const std::int32_t* list, std::int64_t nl) {
+  // Before a splaying round (SplayScope::fill): the listed stars, then their link vertices'
+  // (all: every listed star's; else the changed ones').
+  void fill(const std::int32_t* list, std::int64_t nl, bool all) {
     std::int8_t* want = want_.data();
     const std::int8_t* b = built.data();
     ex_.for_each_index(
@@ -246,6 +257,7 @@ class MeshStars {
     ex_.for_each_index(
         nl, GG_LAMBDA(std::int64_t j) {
           const std::int32_t v = list[j];
+          if (!all && b[v] != 2) return;
           for (std::int32_t i = 0; i < nvt[v]; ++i) {
             const std::int32_t u = vt[off[v] + i].x;
             if (u != I && !b[u]) want[u] = 1;
@@ -380,7 +392,7 @@ class MeshStars {
   std::int64_t used_;
   std::int32_t m_;
   StarStore S;
-  typename Exec::template Buffer<std::int8_t> built, want_;
+  typename Exec::template Buffer<std::int8_t> built, want_, first_;
   typename Exec::template Buffer<std::int32_t> deg_, verts_;
   typename Exec::template Buffer<std::int64_t> ctr_;
   // The stars as built: star(v)'s triangles otri_[ooff[v], + ocnt[v]), each from slot oslot_.
@@ -405,12 +417,13 @@ inline std::int64_t repair_tets(Exec& ex, const Geo& g, Tet* tet, std::int64_t u
   MeshStars M(ex, g, tet, used);
   M.start();
   rc.failed_vertices = M.build_flagged(failed, true);
-  M.build_old_neighbours();
+  M.mark_first();
   auto t0 = Clock::now();
   auto ctr = ex.template alloc<digital3d_impl::StarCounters>(1);
   SplayScope scope;
   scope.built = M.built.data();
-  scope.fill = [&M](const std::int32_t* list, std::int64_t nl) { M.fill(list, nl); };
+  scope.first = M.first_.data();
+  scope.fill = [&M](const std::int32_t* list, std::int64_t nl, bool all) { M.fill(list, nl, all); };
   scope.huge = std::numeric_limits<std::int32_t>::max();
   const double built_before = M.build_ms;
   const SplayCount sc = splay_stars(

@@ -74,11 +74,40 @@ GG_HD inline int link_table_into(const LinkTri* t, int n, LinkVert* vt) {
   }
   return k;
 }
+// Large stars (the thousands of triangles around an integer grid's hull-plane points, where the
+// scans above cost a million steps a star): an open-addressing table over the n places (a
+// closed link over k vertices has 2 k - 4 = n triangles, so about half of them fill), then
+// compacted in table order, which depends on the vertices alone. Returns -1 where the link is
+// not closed (the table filled).
+GG_HD inline int link_table_hashed(const LinkTri* t, int n, LinkVert* vt) {
+  for (int i = 0; i < n; ++i) vt[i] = LinkVert{-1, 0u};
+  int k = 0;
+  for (int i = 0; i < n; ++i) {
+    const std::int32_t y3[3] = {t[i].a, t[i].b, t[i].c};
+    const std::uint32_t h3[3] = {ring_mix(y3[0]), ring_mix(y3[1]), ring_mix(y3[2])};
+    for (int a = 0; a < 3; ++a) {
+      int j = int(h3[a] % std::uint32_t(n));
+      while (vt[j].x != -1 && vt[j].x != y3[a]) j = j + 1 == n ? 0 : j + 1;
+      if (vt[j].x == -1) {
+        if (++k == n) return -1;
+        vt[j].x = y3[a];
+      }
+      vt[j].h += h3[(a + 1) % 3] + h3[(a + 2) % 3];
+    }
+  }
+  int w = 0;
+  for (int j = 0; j < n; ++j)
+    if (vt[j].x != -1) vt[w++] = vt[j];
+  return w;
+}
 GG_HD inline int link_table(const LinkTri* t, int n, LinkVert* vt) {
   // (built in the thread's own memory where it fits, which is most stars: the scans for each
   // vertex then stay near, and the array is written once)
   constexpr int kNear = 64;
-  if (n > 2 * kNear - 4) return link_table_into(t, n, vt);
+  if (n > 2 * kNear - 4) {
+    const int k = link_table_hashed(t, n, vt);
+    return k >= 0 ? k : link_table_into(t, n, vt);
+  }
   LinkVert near[kNear];
   const int k = link_table_into(t, n, near);
   for (int j = 0; j < k; ++j) vt[j] = near[j];
@@ -419,47 +448,49 @@ GG_HD inline int check_tetrahedron(const Geo& g, std::int32_t v, const LinkTri& 
   return stuck;
 }
 
-// The proof that the stars agree, from each tetrahedron's lowest finite built vertex only:
-// star(v)'s tetrahedra whose lowest finite built vertex is v, each looked up in the stars of its
-// other finite built vertices. Returns false where one is missing; adds the slots so accounted
-// for (its finite built vertices) to *slots. Every star holds a tetrahedron once, so when every
-// lookup succeeds, the stars agree exactly when the slots accounted for are all the built
-// stars' slots: a tetrahedron that some star held but its lowest vertex's star did not would be
-// a slot left over. built(w): 0 where star(w) is not built (SplayScope: the tetrahedralisation's
-// star, which agrees with every star built from it and never changed; a changed star with such
-// a vertex fails), 1 built, 2 changed.
+// The proof that the stars agree, a triangle at a time: each tetrahedron is counted from its
+// lowest finite built vertex's star, looked up in the stars of its other finite built vertices.
+// prove_triangle gives, for the triangle t of star(v), 0 where v is not that vertex, else 1 plus
+// the lookups that succeed, or a failure where one fails. Every star holds a tetrahedron
+// once, so the stars agree exactly when nothing fails and the sum over every built star's
+// triangles is their count: a tetrahedron that some star held but its lowest vertex's star did not
+// would be a triangle left over. built(w): 0 where star(w) is not built (SplayScope: the
+// tetrahedralisation's star, which agrees with every star built from it and never changed; a
+// changed star with such a vertex fails), 1 built, 2 changed. (A thread per triangle: a thread
+// per star spent seconds on the stars of thousands of triangles over grids' hull planes.)
+struct ProofSum {
+  std::int64_t counted, failed;
+};
+struct ProofAdd {
+  GG_HD ProofSum operator()(const ProofSum& x, const ProofSum& y) const {
+    return ProofSum{x.counted + y.counted, x.failed + y.failed};
+  }
+};
 template <class Built>
-GG_HD inline bool prove_star(const Geo& g, std::int32_t v, const LinkTri* tri,
-                             const std::int64_t* off, const std::int32_t* cnt, std::int64_t* slots,
-                             Built built) {
+GG_HD inline ProofSum prove_triangle(const Geo& g, std::int32_t v, const LinkTri& t,
+                                     const LinkTri* tri, const std::int64_t* off,
+                                     const std::int32_t* cnt, Built built) {
   const std::int32_t I = g.m;
-  const LinkTri* tv = tri + off[v];
+  const std::int32_t q[4] = {v, t.a, t.b, t.c};
   const bool changed = built(v) == 2;
-  std::int64_t mine = 0;
-  for (int j = 0; j < cnt[v]; ++j) {
-    const std::int32_t q[4] = {v, tv[j].a, tv[j].b, tv[j].c};
-    bool lowest = true;
-    for (int k = 1; k < 4; ++k) {
-      if (q[k] == I) continue;
-      if (!built(q[k])) {
-        if (changed) return false;
-        continue;
-      }
-      lowest = lowest && q[k] > v;
+  for (int k = 1; k < 4; ++k) {
+    if (q[k] == I) continue;
+    if (!built(q[k])) {
+      if (changed) return ProofSum{0, 1};
+      continue;
     }
-    if (!lowest) continue;
-    for (int k = 1; k < 4; ++k) {
-      if (q[k] == I || !built(q[k])) continue;
-      std::int32_t o[3];
-      for (int a = 0, z = 0; a < 4; ++a)
-        if (a != k) o[z++] = q[a];
-      if (link_find(tri + off[q[k]], cnt[q[k]], o[0], o[1], o[2]) < 0) return false;
-      ++mine;
-    }
+    if (q[k] < v) return ProofSum{0, 0};
+  }
+  std::int64_t mine = 1;
+  for (int k = 1; k < 4; ++k) {
+    if (q[k] == I || !built(q[k])) continue;
+    std::int32_t o[3];
+    for (int a = 0, z = 0; a < 4; ++a)
+      if (a != k) o[z++] = q[a];
+    if (link_find(tri + off[q[k]], cnt[q[k]], o[0], o[1], o[2]) < 0) return ProofSum{0, 1};
     ++mine;
   }
-  *slots += mine;
-  return true;
+  return ProofSum{mine, 0};
 }
 
 // Phase 3: star splaying until every star agrees (see the top). Returns the rounds.
@@ -484,11 +515,16 @@ constexpr std::int32_t kHugeStar = 512;
 // vertex). The stars built when it starts are checked first, and before each round fill(list, n)
 // builds the listed stars that are not built yet and then the stars of the listed stars' link
 // vertices, so that a round reads built stars only; a star the splaying never reaches keeps the
-// tetrahedralisation's, which agrees with every star built from it (the proof, prove_star).
+// tetrahedralisation's, which agrees with every star built from it (the proof, prove_triangle).
 // huge: the size past which the splaying gives up (kHugeStar; none where nothing falls back).
+// first: the stars the first round checks (null: the built ones). fill's third argument says
+// whether every listed star's link vertices are read this round (the first round, where every
+// pair is fresh, and the tetrahedra's rounds); else only the changed ones' are (a pair of
+// unchanged stars is not checked again: check_star_vertices).
 struct SplayScope {
   std::int8_t* built = nullptr;
-  std::function<void(const std::int32_t*, std::int64_t)> fill;
+  const std::int8_t* first = nullptr;
+  std::function<void(const std::int32_t*, std::int64_t, bool)> fill;
   std::int32_t huge = kHugeStar;
 };
 inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
@@ -504,9 +540,10 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
   auto dirty_d = ex.template alloc<std::int8_t>(std::size_t(m));
   std::int8_t* dirty = dirty_d.data();
   std::int8_t* built = scope.built;
+  const std::int8_t* first_check = scope.first ? scope.first : built;
   if (built)
     ex.for_each_index(
-        m, GG_LAMBDA(std::int64_t v) { dirty[v] = built[v] ? 3 : 0; });
+        m, GG_LAMBDA(std::int64_t v) { dirty[v] = first_check[v] ? 3 : 0; });
   else
     ex.fill(dirty, m, std::int8_t(3));
   auto list_d = ex.template alloc<std::int32_t>(std::size_t(m));
@@ -535,7 +572,7 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
   bool tets_mode = !vertex_rounds, asked = true;
   for (;;) {
     // The round's kind: the vertex rounds first (cheap, and most of what is missing); once
-    // quiet, the proof (prove_star), which ends the splaying where it holds; in tets_mode the
+    // quiet, the proof (prove_triangle), which ends the splaying where it holds; in tets_mode the
     // tetrahedra's rounds before it.
     std::int32_t* list = list_d.data();
     std::int8_t bit = 1;
@@ -549,29 +586,45 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
           m, GG_LAMBDA(std::int64_t v) { return (dirty[v] & 2) != 0; }, list);
     }
     ++out.rounds;
-    if (nl > 0 && scope.fill) scope.fill(list, nl);
+    if (nl > 0 && scope.fill) scope.fill(list, nl, bit == 2 || takes == 0);
     if (out.rounds > 100000) throw Error(ErrorCode::Internal, "digital 3D Delaunay: splaying");
     auto tc = Clock::now();
     const LinkTri* tri = S.tri.data();
     const std::int64_t* off = S.off.data();
     const std::int32_t* cnt = S.cnt.data();
     if (nl == 0) {
-      const StarCounters zero{};
-      ex.from_host(&zero, 1, C);
-      ex.for_each_index(
-          m, GG_LAMBDA(std::int64_t i) {
-            std::int64_t slots = 0;
-            if (built && !built[i]) return;
+      // (toff: each built star's first triangle among all built stars' triangles)
+      auto toff_d = ex.template alloc<std::int64_t>(std::size_t(m + 1));
+      std::int64_t* toff = toff_d.data();
+      ex.exclusive_scan_of(
+          m + 1,
+          GG_LAMBDA(std::int64_t v)->std::int64_t {
+            return v < m && (!built || built[v]) ? cnt[v] : 0;
+          },
+          toff);
+      std::int64_t ntri = 0;
+      ex.to_host(toff + m, 1, &ntri);
+      auto sum_d = ex.template alloc<ProofSum>(1);
+      ex.transform_reduce_into(
+          ntri,
+          GG_LAMBDA(std::int64_t e)->ProofSum {
+            std::int64_t lo = 0, hi = m - 1;  // (the star: the last v with toff[v] <= e)
+            while (lo < hi) {
+              const std::int64_t mid = (lo + hi + 1) / 2;
+              if (toff[mid] <= e)
+                lo = mid;
+              else
+                hi = mid - 1;
+            }
             const auto built_at = [&](std::int32_t w) -> int { return built ? built[w] : 1; };
-            if (!prove_star(g, std::int32_t(i), tri, off, cnt, &slots, built_at))
-              atomic_add(&C->stuck, std::int64_t(1));
-            atomic_add(&C->requests, slots);
-            atomic_add(&C->taken, std::int64_t(cnt[i]));
-          });
-      StarCounters c;
-      ex.to_host(C, 1, &c);
+            return prove_triangle(g, std::int32_t(lo), tri[off[lo] + (e - toff[lo])], tri, off, cnt,
+                                  built_at);
+          },
+          ProofSum{0, 0}, ProofAdd{}, sum_d.data());
+      ProofSum sum{};
+      ex.to_host(sum_d.data(), 1, &sum);
       out.check_ms += ms_since(tc);
-      if (c.stuck == 0 && c.requests == c.taken) break;  // every star agrees with every other
+      if (sum.failed == 0 && sum.counted == ntri) break;  // every star agrees with every other
       if (tets_mode && !asked)
         throw Error(ErrorCode::Internal,
                     "internal error in the digital 3D Delaunay method: the stars disagree but "
