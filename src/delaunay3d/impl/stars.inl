@@ -604,25 +604,32 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
           toff);
       std::int64_t ntri = 0;
       ex.to_host(toff + m, 1, &ntri);
-      auto sum_d = ex.template alloc<ProofSum>(1);
-      ex.transform_reduce_into(
-          ntri,
-          GG_LAMBDA(std::int64_t e)->ProofSum {
-            std::int64_t lo = 0, hi = m - 1;  // (the star: the last v with toff[v] <= e)
-            while (lo < hi) {
-              const std::int64_t mid = (lo + hi + 1) / 2;
-              if (toff[mid] <= e)
-                lo = mid;
-              else
-                hi = mid - 1;
-            }
-            const auto built_at = [&](std::int32_t w) -> int { return built ? built[w] : 1; };
-            return prove_triangle(g, std::int32_t(lo), tri[off[lo] + (e - toff[lo])], tri, off, cnt,
-                                  built_at);
-          },
-          ProofSum{0, 0}, ProofAdd{}, sum_d.data());
-      ProofSum sum{};
-      ex.to_host(sum_d.data(), 1, &sum);
+      // (kProofPiece triangles a thread, one atomic each for the sums)
+      constexpr std::int64_t kProofPiece = 32;
+      const StarCounters zero{};
+      ex.from_host(&zero, 1, C);
+      ex.for_each_index((ntri + kProofPiece - 1) / kProofPiece, GG_LAMBDA(std::int64_t p) {
+        const auto built_at = [&](std::int32_t w) -> int { return built ? built[w] : 1; };
+        ProofSum sum{0, 0};
+        const std::int64_t e1 = (p + 1) * kProofPiece < ntri ? (p + 1) * kProofPiece : ntri;
+        for (std::int64_t e = p * kProofPiece; e < e1; ++e) {
+          std::int64_t lo = 0, hi = m - 1;  // (the star: the last v with toff[v] <= e)
+          while (lo < hi) {
+            const std::int64_t mid = (lo + hi + 1) / 2;
+            if (toff[mid] <= e)
+              lo = mid;
+            else
+              hi = mid - 1;
+          }
+          sum = ProofAdd{}(sum, prove_triangle(g, std::int32_t(lo), tri[off[lo] + (e - toff[lo])],
+                                               tri, off, cnt, built_at));
+        }
+        if (sum.counted) atomic_add(&C->requests, sum.counted);
+        if (sum.failed) atomic_add(&C->stuck, sum.failed);
+      });
+      StarCounters c;
+      ex.to_host(C, 1, &c);
+      const ProofSum sum{c.requests, c.stuck};
       out.check_ms += ms_since(tc);
       if (sum.failed == 0 && sum.counted == ntri) break;  // every star agrees with every other
       if (tets_mode && !asked)
