@@ -200,11 +200,15 @@ class MeshStars {
   std::int64_t build_flagged(const std::int8_t* flag, bool create) {
     std::int8_t* want = want_.data();
     const std::int8_t* b = built.data();
-    ex_.for_each_index(
-        m_, GG_LAMBDA(std::int64_t v) { want[v] = flag[v] && !b[v] ? 1 : 0; });
     const std::int64_t nv = ex_.compact_indices(
-        m_, GG_LAMBDA(std::int64_t v) { return want[v] != 0; }, verts_.data());
-    if (nv > 0) build(nv, create ? flag : nullptr);
+        m_, GG_LAMBDA(std::int64_t v) { return flag[v] && !b[v]; }, verts_.data());
+    if (nv == 0) return 0;
+    if (flag != want) {  // (want_ marks the stars being built; fill marks only unbuilt ones)
+      const std::int32_t* vs = verts_.data();
+      ex_.for_each_index(
+          nv, GG_LAMBDA(std::int64_t j) { want[vs[j]] = 1; });
+    }
+    build(nv, create ? flag : nullptr);
     return nv;
   }
 
@@ -240,16 +244,16 @@ class MeshStars {
         });
   }
 
-  // Before a splaying round (SplayScope::fill): the listed stars, then their link vertices'
-  // (all: every listed star's; else the changed ones').
+  // Before a splaying round (SplayScope::fill): the listed stars not built yet, and the link
+  // vertices' stars of the listed ones that are built (all) or changed (else), in one build
+  // (each costs a pass over the store); where all, the link vertices of the listed stars that
+  // build made come in a second.
   void fill(const std::int32_t* list, std::int64_t nl, bool all) {
+    if (mark_listed(list, nl, all) > 0 && all) mark_listed(list, nl, all);
+  }
+  std::int64_t mark_listed(const std::int32_t* list, std::int64_t nl, bool all) {
     std::int8_t* want = want_.data();
     const std::int8_t* b = built.data();
-    ex_.for_each_index(
-        nl, GG_LAMBDA(std::int64_t j) {
-          if (!b[list[j]]) want[list[j]] = 1;
-        });
-    build_flagged(want, false);
     const LinkVert* vt = S.vt.data();
     const std::int64_t* off = S.off.data();
     const std::int32_t* nvt = S.nvt.data();
@@ -257,13 +261,17 @@ class MeshStars {
     ex_.for_each_index(
         nl, GG_LAMBDA(std::int64_t j) {
           const std::int32_t v = list[j];
+          if (!b[v]) {
+            want[v] = 1;
+            return;
+          }
           if (!all && b[v] != 2) return;
           for (std::int32_t i = 0; i < nvt[v]; ++i) {
             const std::int32_t u = vt[off[v] + i].x;
             if (u != I && !b[u]) want[u] = 1;
           }
         });
-    build_flagged(want, false);
+    return build_flagged(want, false);
   }
 
   // Builds the stars of verts_[0, nv) (increasing; want_ marks them): copies, or where failed is
