@@ -20,6 +20,7 @@
 
 #include "gpugeom/common.hpp"
 #include "base/hd.hpp"
+#include "exec/lanes.hpp"
 
 namespace gpugeom {
 
@@ -113,6 +114,13 @@ struct CpuExec {
   void for_each_counted(const std::int64_t* count, std::int64_t /*bound*/, F f,
                         std::int64_t per = 1) {
     for_each_index(per * *count, f);
+  }
+
+  // f(i, lanes) for i < n (see exec/lanes.hpp): here an item is one thread's.
+  using Lanes = SoloLanes;
+  template <class F>
+  void for_each_lanes(std::int64_t n, F f) {
+    for_each_index(n, [&](std::int64_t i) { f(i, SoloLanes{}); });
   }
 
   // Threads that share barriers (see CudaExec::team).

@@ -20,6 +20,7 @@
 #include "exec/cuda_check.cuh"
 #include "exec/cuda_device.hpp"
 #include "exec/host_staging.hpp"
+#include "exec/lanes.hpp"
 #include "base/hd.hpp"
 
 namespace gpugeom {
@@ -162,6 +163,71 @@ struct Team {
 #endif
   }
 };
+// A warp as Lanes (exec/lanes.hpp). (Host members only so that GG_LAMBDA can call them.)
+struct WarpLanes {
+  int rank;
+  static constexpr int size = 32;
+  __host__ __device__ void sync() const {
+#ifdef __CUDA_ARCH__
+    __syncwarp();
+#endif
+  }
+  __host__ __device__ std::uint32_t ballot(bool b) const {
+#ifdef __CUDA_ARCH__
+    return __ballot_sync(0xffffffffu, b);
+#else
+    return b ? 1u : 0u;
+#endif
+  }
+  __host__ __device__ bool any(bool b) const {
+    return ballot(b) != 0;
+  }
+  __host__ __device__ int below(std::uint32_t mask) const {
+#ifdef __CUDA_ARCH__
+    return __popc(mask & ((1u << rank) - 1u));
+#else
+    return 0;
+#endif
+  }
+  __host__ __device__ static int count(std::uint32_t mask) {
+#ifdef __CUDA_ARCH__
+    return __popc(mask);
+#else
+    return int(mask & 1u);
+#endif
+  }
+  __host__ __device__ int exclusive_scan(int v, int* total) const {
+#ifdef __CUDA_ARCH__
+    int x = v;
+    for (int d = 1; d < 32; d <<= 1) {
+      const int y = __shfl_up_sync(0xffffffffu, x, d);
+      if (rank >= d) x += y;
+    }
+    *total = __shfl_sync(0xffffffffu, x, 31);
+    return x - v;
+#else
+    *total = v;
+    return 0;
+#endif
+  }
+  template <class T>
+  __host__ __device__ T broadcast(T v) const {
+#ifdef __CUDA_ARCH__
+    return __shfl_sync(0xffffffffu, v, 0);
+#else
+    return v;
+#endif
+  }
+};
+// f(i, lanes) with a warp per i (every lane of it calls f with the same i).
+template <class F>
+__global__ void for_each_lanes_kernel(std::int64_t n, F f) {
+  const std::int64_t warps = std::int64_t(gridDim.x) * (blockDim.x / 32);
+  const WarpLanes L{int(threadIdx.x & 31)};
+  for (std::int64_t i = std::int64_t(blockIdx.x) * (blockDim.x / 32) + threadIdx.x / 32; i < n;
+       i += warps)
+    f(i, L);
+}
 template <int Threads, class F>
 __global__ void __launch_bounds__(Threads) team_kernel(F f) {
   f(Team{int(threadIdx.x), int(blockDim.x)});
@@ -258,6 +324,18 @@ class CudaExec {
     const std::int64_t blocks = grid<cuda_detail::for_each_counted_kernel<F>>(kBlock, bound);
     cuda_detail::for_each_counted_kernel<F><<<unsigned(blocks), kBlock, 0, s_>>>(count, per, f);
     GG_CUDA_CHECK_LAUNCH_OF("for_each_counted_kernel", F);
+  }
+
+  // f(i, lanes) for i < n, a group of lanes (a warp) per i: see exec/lanes.hpp.
+  using Lanes = cuda_detail::WarpLanes;
+  template <class F>
+  void for_each_lanes(std::int64_t n, F f) {
+    if (n <= 0) return;
+    constexpr int kBlock = 256;
+    const std::int64_t blocks =
+        grid<cuda_detail::for_each_lanes_kernel<F>>(kBlock, n * Lanes::size);
+    cuda_detail::for_each_lanes_kernel<F><<<unsigned(blocks), kBlock, 0, s_>>>(n, f);
+    GG_CUDA_CHECK_LAUNCH_OF("for_each_lanes_kernel", F);
   }
 
   // A team: threads that share barriers (one thread block here), for iterations so short that a

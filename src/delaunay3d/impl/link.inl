@@ -96,68 +96,119 @@ constexpr int kLinkBroken = -2;  // a new triangle was not positive: the star wa
 //
 // The region's boundary: the edges of marked triangles whose reverse is in no marked triangle
 // (a link is closed, so the triangle across is an unmarked one). Regions are small beside
-// large stars, so the marked triangles are listed (up to kMarked) and the reverses looked up
-// among them alone: time linear in the star for the spheres, quadratic in the region only.
-template <class Gone>
-GG_HD int link_insert(const Geo& g, std::int32_t v, LinkTri* t, int n, int cap, std::int32_t x,
-                      Gone gone) {
+// large stars, so the marked triangles are listed in mk (room for mk_cap; past it every
+// triangle is scanned) and the reverses looked up among them alone: time linear in the star for
+// the spheres, quadratic in the region only.
+//
+// The lanes L (exec/lanes.hpp) share the work: the spheres, the boundary and the compaction
+// stride over the lanes, each step ordered by index as one lane would order it, so any number
+// of lanes gives the same star. mk is then shared by the lanes; gone runs on the lane that holds
+// the triangle.
+template <class Lanes, class Gone>
+GG_HD int link_insert(const Lanes& L, const Geo& g, std::int32_t v, LinkTri* t, int n, int cap,
+                      std::int32_t x, std::int32_t* mk, int mk_cap, Gone gone) {
   if (x == v || x == g.m) return n;
-  constexpr int kMarked = 32;
-  int mk[kMarked];
+  const int W = L.size;
   int c = 0;
-  for (int i = 0; i < n; ++i)
-    if (link_reflex(g, v, t[i], x)) {
-      if (c < kMarked) mk[c] = i;
-      t[i].a = ~t[i].a, ++c;
+  for (int base = 0; base < n; base += W) {
+    const int i = base + L.rank;
+    const bool in = i < n && link_reflex(g, v, t[i], x);
+    const std::uint32_t mask = L.ballot(in);
+    if (in) {
+      const int at = c + L.below(mask);
+      if (at < mk_cap) mk[at] = i;
+      t[i].a = ~t[i].a;
     }
+    c += L.count(mask);
+  }
   if (c == 0) return n;
+  L.sync();  // (the marks and mk, to every lane)
+  const bool listed = c <= mk_cap;
+  const int k = listed ? c : n;
   auto unmark_all = [&] {
-    for (int i = 0; i < n; ++i) t[i].a = link_unmark(t[i].a);
+    for (int i = L.rank; i < n; i += W) t[i].a = link_unmark(t[i].a);
+    L.sync();
   };
   // Is the directed edge a -> b in a marked triangle?
   auto in_marked = [&](std::int32_t a, std::int32_t b) {
-    const int k = c <= kMarked ? c : n;
     for (int h = 0; h < k; ++h) {
-      const LinkTri& q = t[c <= kMarked ? mk[h] : h];
+      const LinkTri& q = t[listed ? mk[h] : h];
       if (q.a >= 0) continue;
       const std::int32_t qa = ~q.a;
       if ((qa == a && q.b == b) || (q.b == a && q.c == b) || (q.c == a && qa == b)) return true;
     }
     return false;
   };
-  auto boundary = [&](auto emit) {
-    const int k = c <= kMarked ? c : n;
-    for (int h = 0; h < k; ++h) {
-      const LinkTri& q = t[c <= kMarked ? mk[h] : h];
-      if (q.a >= 0) continue;
-      const std::int32_t e[3] = {~q.a, q.b, q.c};
-      for (int j = 0; j < 3; ++j)
-        if (!in_marked(e[(j + 1) % 3], e[j])) emit(e[j], e[(j + 1) % 3]);
-    }
+  // The boundary edges of the marked triangle at h (mk's h-th, or t[h]): emit(j, a, b) for
+  // each, j counting them; returns the count.
+  auto edges_at = [&](int h, auto emit) {
+    const LinkTri q = t[listed ? mk[h] : h];
+    if (q.a >= 0) return 0;
+    const std::int32_t e[3] = {~q.a, q.b, q.c};
+    int j = 0;
+    for (int z = 0; z < 3; ++z)
+      if (!in_marked(e[(z + 1) % 3], e[z])) emit(j++, e[z], e[(z + 1) % 3]);
+    return j;
   };
+  // The boundary: its size b, then its triangles with x from n on (the edges in h order).
   int b = 0;
-  boundary([&](std::int32_t, std::int32_t) { ++b; });
+  for (int base = 0; base < k; base += W) {
+    const int h = base + L.rank;
+    const int mine = h < k ? edges_at(h, [](int, std::int32_t, std::int32_t) {}) : 0;
+    int all = 0;
+    L.exclusive_scan(mine, &all);
+    b += all;
+  }
   if (n + b > cap) {
     unmark_all();
     return kLinkNoRoom;
   }
-  int w = n;
-  boundary([&](std::int32_t p, std::int32_t q) { t[w++] = LinkTri{p, q, x}; });
+  for (int base = 0, w = n; base < k; base += W) {
+    const int h = base + L.rank;
+    const int mine = h < k ? edges_at(h, [](int, std::int32_t, std::int32_t) {}) : 0;
+    int all = 0;
+    const int at = w + L.exclusive_scan(mine, &all);
+    if (mine)
+      edges_at(h, [&](int j, std::int32_t p, std::int32_t q) { t[at + j] = LinkTri{p, q, x}; });
+    w += all;
+  }
+  L.sync();
   // (a guard: a convex star's new triangles are positive by construction; those with the
   // infinity point are left out, see link_start)
-  for (int i = n; i < w; ++i)
-    if (!t[i].has(g.m) && orient_ext(g, v, t[i].a, t[i].b, t[i].c) <= 0) {
-      unmark_all();
-      return kLinkBroken;
-    }
-  // Keep the unmarked, then the new ones, in order.
-  int k = 0;
-  for (int i = 0; i < w; ++i) {
-    if (i < n && t[i].a < 0) {
-      gone(LinkTri{~t[i].a, t[i].b, t[i].c});
-      continue;
-    }
-    t[k++] = t[i];
+  bool bad = false;
+  for (int i = n + L.rank; i < n + b; i += W)
+    bad = bad || (!t[i].has(g.m) && orient_ext(g, v, t[i].a, t[i].b, t[i].c) <= 0);
+  if (L.any(bad)) {
+    unmark_all();
+    return kLinkBroken;
   }
-  return k;
+  // Keep the unmarked, then the new ones, in order (read a stride, then write it: the kept go
+  // to places at or below where they were read).
+  int kept = 0;
+  for (int base = 0; base < n + b; base += W) {
+    const int i = base + L.rank;
+    LinkTri q{};
+    bool keep = false;
+    if (i < n + b) {
+      q = t[i];
+      if (i < n && q.a < 0)
+        gone(LinkTri{~q.a, q.b, q.c});
+      else
+        keep = true;
+    }
+    const std::uint32_t mask = L.ballot(keep);
+    L.sync();
+    if (keep) t[kept + L.below(mask)] = q;
+    kept += L.count(mask);
+  }
+  L.sync();
+  return kept;
+}
+// One lane, the marked triangles listed in the thread's own memory.
+template <class Gone>
+GG_HD int link_insert(const Geo& g, std::int32_t v, LinkTri* t, int n, int cap, std::int32_t x,
+                      Gone gone) {
+  constexpr int kMarked = 32;
+  std::int32_t mk[kMarked];
+  return link_insert(SoloLanes{}, g, v, t, n, cap, x, mk, kMarked, gone);
 }

@@ -27,6 +27,7 @@ struct RepairCount {
   std::int64_t failed_vertices = 0, stars_built = 0, stars_changed = 0;
   std::int64_t removed = 0, added = 0, rounds = 0, insertions = 0;
   double build_ms = 0, splay_ms = 0, patch_ms = 0;
+  double check_ms = 0, take_ms = 0;  // (of splay_ms, with the sorts between them in neither)
 };
 
 // ---- Flip-Flop on a lifted star (thesis 5.2.2 one dimension up) ----
@@ -214,33 +215,62 @@ class MeshStars {
 
   // The stars the first round checks (first_): the made ones, and the old link vertices that a
   // made star lost (Flip-Flop found them not extreme there): those still hold the tetrahedra
-  // with it, which no check from the made star sees.
+  // with it, which no check from the made star sees. Lost: an old link vertex with no entry in
+  // the new vertex table, found by one sort of records (star, vertex, new?) over the made stars
+  // (a scan of the new table per old triangle was quadratic: seconds on the thousands of
+  // triangles of grids' hull-plane stars, on one GPU thread each).
   void mark_first() {
     first_ = ex_.template alloc<std::int8_t>(std::size_t(m_));
     std::int8_t* first = first_.data();
     const std::int8_t* b = built.data();
     ex_.for_each_index(
         m_, GG_LAMBDA(std::int64_t v) { first[v] = b[v] == 2 ? 1 : 0; });
-    const LinkTri* ot = otri_.data();
+    std::int32_t* vs = verts_.data();
+    const std::int64_t nm = ex_.compact_indices(
+        m_, GG_LAMBDA(std::int64_t v) { return b[v] == 2; }, vs);
+    if (nm == 0) return;
     const std::int64_t* oo = ooff.data();
     const std::int32_t* oc = ocnt.data();
     const LinkVert* vt = S.vt.data();
     const std::int64_t* off = S.off.data();
     const std::int32_t* nvt = S.nvt.data();
+    auto roff_d = ex_.template alloc<std::int64_t>(std::size_t(nm + 1));
+    std::int64_t* roff = roff_d.data();
+    ex_.exclusive_scan_of(
+        nm + 1,
+        GG_LAMBDA(std::int64_t j)->std::int64_t {
+          return j < nm ? 3 * std::int64_t(oc[vs[j]]) + nvt[vs[j]] : 0;
+        },
+        roff);
+    std::int64_t total = 0;
+    ex_.to_host(roff + nm, 1, &total);
+    // (star << 33 | vertex << 1 | new: a vertex's old records sort before its new one)
+    auto rec_d = ex_.template alloc<u64>(std::size_t(std::max<std::int64_t>(total, 1)));
+    u64* rec = rec_d.data();
+    const LinkTri* ot = otri_.data();
     const std::int32_t I = m_;
     ex_.for_each_index(
-        m_, GG_LAMBDA(std::int64_t v) {
-          if (b[v] != 2) return;
+        nm, GG_LAMBDA(std::int64_t j) {
+          const std::int32_t v = vs[j];
+          const u64 hi = u64(std::uint32_t(v)) << 33;
+          u64* r = rec + roff[j];
           for (std::int32_t i = 0; i < oc[v]; ++i) {
             const LinkTri t = ot[oo[v] + i];
-            const std::int32_t y3[3] = {t.a, t.b, t.c};
-            for (int a = 0; a < 3; ++a) {
-              if (y3[a] == I) continue;
-              bool kept = false;
-              for (std::int32_t j = 0; j < nvt[v] && !kept; ++j) kept = vt[off[v] + j].x == y3[a];
-              if (!kept) first[y3[a]] = 1;
-            }
+            *r++ = hi | u64(std::uint32_t(t.a)) << 1;
+            *r++ = hi | u64(std::uint32_t(t.b)) << 1;
+            *r++ = hi | u64(std::uint32_t(t.c)) << 1;
           }
+          for (std::int32_t i = 0; i < nvt[v]; ++i)
+            *r++ = hi | u64(std::uint32_t(vt[off[v] + i].x)) << 1 | 1u;
+        });
+    ex_.sort(rec, total);
+    // The last record of each (star, vertex) is old exactly when the new table lacks the vertex.
+    ex_.for_each_index(
+        total, GG_LAMBDA(std::int64_t i) {
+          const u64 r = rec[i];
+          if ((r & 1u) || (i + 1 < total && rec[i + 1] >> 1 == r >> 1)) return;
+          const std::int32_t y = std::int32_t((r >> 1) & 0xFFFFFFFFu);
+          if (y != I) first[y] = 1;
         });
   }
 
@@ -438,6 +468,8 @@ inline std::int64_t repair_tets(Exec& ex, const Geo& g, Tet* tet, std::int64_t u
       ex, g, M.S, ctr, true, std::max<std::int64_t>(1 << 16, 64 * rc.failed_vertices), scope);
   rc.splay_ms = ms_since(t0) - (M.build_ms - built_before);
   rc.rounds = sc.rounds;
+  rc.check_ms = sc.check_ms;
+  rc.take_ms = sc.take_ms;
   rc.insertions = sc.insertions;
   t0 = Clock::now();
 

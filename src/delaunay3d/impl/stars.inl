@@ -527,6 +527,109 @@ struct SplayScope {
   std::function<void(const std::int32_t*, std::int64_t, bool)> fill;
   std::int32_t huge = kHugeStar;
 };
+// The take's arrays (splay_stars): the sorted requests R, each star's first request (first)
+// and next (pos), the stars, and what a take marks: next (dirty bits of the stars to check
+// again), chg (the take in which a star changed: tk), built (2: changed), grow (no room left).
+struct TakeArgs {
+  Geo g;
+  const unsigned long long* R;
+  const std::int32_t* first;
+  std::int32_t* pos;
+  LinkTri* tri;
+  LinkVert* vt;
+  std::int64_t* off;
+  std::int32_t *cap, *cnt, *nvt;
+  std::int8_t* next;
+  std::int32_t* chg;
+  std::int8_t *built, *grow;
+  digital3d_impl::StarCounters* C;
+  std::int64_t slots;
+  std::int32_t huge, tk, I;
+};
+// Stars of this many triangles take their vertices on a warp (a thread's sphere tests over the
+// thousands of triangles of a grid's hull-plane star, a vertex after another, were most of the
+// splaying's time on the GPU); most stars have 20 to 60.
+constexpr std::int32_t kWideStar = 256;
+// The star of request group k takes its vertices in order, with the lanes L. Wide stars list
+// their marked triangles (link_insert's mk) in their own vertex-table area, which is written
+// anew once the star changed (a star that marks triangles changes, now or in the next pass).
+template <class Lanes>
+GG_HD void take_star(const Lanes& L, std::int64_t k, const TakeArgs& a) {
+  const std::int32_t e = a.first[k + 1];
+  std::int32_t p = a.pos[k];
+  const std::int32_t v = std::int32_t(a.R[p] >> 32);
+  std::int64_t o = a.off[v];
+  std::int32_t cp = a.cap[v];
+  int n = a.cnt[v];
+  std::int64_t took = 0;
+  bool moved = false;
+  constexpr int kMarked = 32;
+  std::int32_t own[kMarked];
+  for (; p < e; ++p) {
+    const std::int32_t x = std::int32_t(a.R[p] & 0xFFFFFFFFu);
+    if (p > a.first[k] && a.R[p] == a.R[p - 1]) continue;
+    bool changed = false;
+    LinkTri* t = a.tri + o;
+    const bool wide = Lanes::size > 1;
+    std::int32_t* mk = wide ? reinterpret_cast<std::int32_t*>(a.vt + o) : own;
+    const int r =
+        link_insert(L, a.g, v, t, n, cp, x, mk, wide ? 2 * cp : kMarked, [&](const LinkTri& gone) {
+          const std::int32_t y3[3] = {gone.a, gone.b, gone.c};
+          for (int z = 0; z < 3; ++z)
+            if (y3[z] != a.I) a.next[y3[z]] = 3;
+          changed = true;
+        });
+    changed = L.any(changed);
+    if (r == kLinkNoRoom) {
+      // A new run past the last one, taken here where the slots there allow (a pass more for
+      // the few stars that outgrow theirs cost as much as the round's take), else the star
+      // stops and grows between passes (regrow_stars).
+      const std::int32_t want = grown_cap(cp);
+      std::int64_t at = 0;
+      if (L.rank == 0) at = atomic_add(&a.C->bump, std::int64_t(want));
+      at = L.broadcast(at);
+      if (at + want <= a.slots) {
+        for (int i = L.rank; i < n; i += L.size) a.tri[at + i] = t[i];
+        L.sync();
+        o = at;
+        cp = want;
+        moved = true;  // (its vertex table is written again below, in the new run)
+        --p;           // (the same vertex again)
+        continue;
+      }
+      if (L.rank == 0) {
+        a.grow[v] = 1;
+        atomic_add(&a.C->overflow, std::int64_t(1));
+      }
+      break;
+    }
+    if (r == kLinkBroken) {
+      if (L.rank == 0) atomic_add(&a.C->broken, std::int64_t(1));
+      break;
+    }
+    if (changed) {
+      ++took;
+      if (L.rank == 0) {
+        a.next[v] = 3, a.chg[v] = a.tk;
+        if (a.built) a.built[v] = 2;
+      }
+    }
+    n = r;
+    if (n > a.huge) {
+      if (L.rank == 0) atomic_add(&a.C->huge, std::int64_t(1));
+      ++p;
+      break;
+    }
+  }
+  L.sync();
+  if (L.rank != 0) return;
+  if (moved) a.off[v] = o, a.cap[v] = cp, a.chg[v] = a.tk;
+  a.cnt[v] = n;
+  a.pos[k] = p;
+  if (a.chg[v] == a.tk) a.nvt[v] = link_table(a.tri + o, n, a.vt + o);
+  if (took) atomic_add(&a.C->taken, took);
+}
+
 inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
                               typename Exec::template Buffer<digital3d_impl::StarCounters>& ctr,
                               bool vertex_rounds = true, std::int64_t first_requests = 0,
@@ -787,63 +890,20 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
       std::int32_t* nvt = S.nvt.data();
       const std::int64_t slots = S.slots;
       const std::int32_t huge = scope.huge;
+      const TakeArgs a{g,    R,   first, pos,  tri, vt,    off,  cap, cnt, nvt,
+                       next, chg, built, grow, C,   slots, huge, tk,  I};
+      // Stars of kWideStar triangles or more take on a warp each (take_star), after the rest
+      // have taken a thread each; a star that grew past it in the first kernel and stopped
+      // (no room) is picked up by the second as the next pass would, the same steps in order.
       ex.for_each_index(
           ng, GG_LAMBDA(std::int64_t k) {
-            const std::int32_t e = first[k + 1];
-            std::int32_t p = pos[k];
-            if (p >= e) return;
-            const std::int32_t v = std::int32_t(R[p] >> 32);
-            LinkTri* t = tri + off[v];
-            int n = cnt[v];
-            std::int64_t took = 0;
-            for (; p < e; ++p) {
-              const std::int32_t x = std::int32_t(R[p] & 0xFFFFFFFFu);
-              if (p > first[k] && R[p] == R[p - 1]) continue;
-              bool changed = false;
-              const int r = link_insert(g, v, t, n, cap[v], x, [&](const LinkTri& gone) {
-                const std::int32_t y3[3] = {gone.a, gone.b, gone.c};
-                for (int a = 0; a < 3; ++a)
-                  if (y3[a] != I) next[y3[a]] = 3;
-                changed = true;
-              });
-              if (r == kLinkNoRoom) {
-                // A new run past the last one, taken here where the slots there allow (a
-                // pass more for the few stars that outgrow theirs cost as much as the round's
-                // take), else the star stops and grows between passes (regrow_stars).
-                const std::int32_t want = grown_cap(cap[v]);
-                const std::int64_t at = atomic_add(&C->bump, std::int64_t(want));
-                if (at + want <= slots) {
-                  for (int i = 0; i < n; ++i) tri[at + i] = t[i];
-                  t = tri + at;
-                  off[v] = at;
-                  cap[v] = want;
-                  chg[v] = tk;  // (its vertex table is written again below, in the new run)
-                  --p;          // (the same vertex again)
-                  continue;
-                }
-                grow[v] = 1;
-                atomic_add(&C->overflow, std::int64_t(1));
-                break;
-              }
-              if (r == kLinkBroken) {
-                atomic_add(&C->broken, std::int64_t(1));
-                break;
-              }
-              if (changed) {
-                next[v] = 3, chg[v] = tk, ++took;
-                if (built) built[v] = 2;
-              }
-              n = r;
-              if (n > huge) {
-                atomic_add(&C->huge, std::int64_t(1));
-                ++p;
-                break;
-              }
-            }
-            cnt[v] = n;
-            pos[k] = p;
-            if (chg[v] == tk) nvt[v] = link_table(t, n, vt + off[v]);
-            if (took) atomic_add(&C->taken, took);
+            if (pos[k] < first[k + 1] && cnt[std::int32_t(R[pos[k]] >> 32)] < kWideStar)
+              take_star(SoloLanes{}, k, a);
+          });
+      ex.for_each_lanes(
+          ng, GG_LAMBDA(std::int64_t k, const Exec::Lanes& L) {
+            if (pos[k] < first[k + 1] && cnt[std::int32_t(R[pos[k]] >> 32)] >= kWideStar)
+              take_star(L, k, a);
           });
       StarCounters c;
       ex.to_host(C, 1, &c);

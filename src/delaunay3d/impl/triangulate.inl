@@ -1067,6 +1067,8 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   st.counters["us_splay_build"] = std::int64_t(1000 * rc.build_ms);
   st.counters["us_splay_rounds"] = std::int64_t(1000 * rc.splay_ms);
   st.counters["us_splay_patch"] = std::int64_t(1000 * rc.patch_ms);
+  st.counters["us_splay_check"] = std::int64_t(1000 * rc.check_ms);
+  st.counters["us_splay_take"] = std::int64_t(1000 * rc.take_ms);
   t0 = Clock::now();
   if (progress) progress(Delaunay3dProgress{"output", S.m, S.m, 0});
   auto f = T.finish(S.orig.data());
