@@ -110,7 +110,7 @@ struct CpuExec {
 
   // f(i) for every i < per * *count (CudaExec reads the count on the device; here it is just
   // memory).
-  template <class F>
+  template <int MinBlocks = 1, class F>  // (MinBlocks: CudaExec's register budget)
   void for_each_counted(const std::int64_t* count, std::int64_t /*bound*/, F f,
                         std::int64_t per = 1) {
     for_each_index(per * *count, f);

@@ -113,9 +113,12 @@ __global__ void for_each_kernel(std::int64_t n, F f) {
   for (std::int64_t i = std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride)
     f(i);
 }
-// f(i) for i < *count, the count read when the kernel runs.
-template <class F>
-__global__ void for_each_counted_kernel(const std::int64_t* count, std::int64_t per, F f) {
+// f(i) for i < *count, the count read when the kernel runs. MinBlocks > 1 asks the compiler for
+// that many resident blocks of 256 a multiprocessor (at most 65 536 / (256 MinBlocks)
+// registers a thread; see CudaExec::for_each_counted).
+template <class F, int MinBlocks>
+__global__ void __launch_bounds__(256, MinBlocks)
+    for_each_counted_kernel(const std::int64_t* count, std::int64_t per, F f) {
   const std::int64_t n = per * *count;
   const std::int64_t stride = std::int64_t(gridDim.x) * blockDim.x;
   for (std::int64_t i = std::int64_t(blockIdx.x) * blockDim.x + threadIdx.x; i < n; i += stride)
@@ -317,12 +320,17 @@ class CudaExec {
   // f(i) for every i < per * *count, where count lives on the device and is read when the kernel
   // runs, so the host need not wait for the work that produces it; bound >= per * *count sizes
   // the grid as for_each_index(bound) would (blocks past the count return at once).
-  template <class F>
+  // MinBlocks: resident blocks of 256 threads a multiprocessor to compile for (1: as many
+  // registers as the code wants). For latency-bound kernels whose rare paths are out of line
+  // (the exact predicates' tiers), so those spill rather than the common path's occupancy.
+  template <int MinBlocks = 1, class F>
   void for_each_counted(const std::int64_t* count, std::int64_t bound, F f, std::int64_t per = 1) {
     if (bound <= 0) return;
     constexpr int kBlock = 256;
-    const std::int64_t blocks = grid<cuda_detail::for_each_counted_kernel<F>>(kBlock, bound);
-    cuda_detail::for_each_counted_kernel<F><<<unsigned(blocks), kBlock, 0, s_>>>(count, per, f);
+    const std::int64_t blocks =
+        grid<cuda_detail::for_each_counted_kernel<F, MinBlocks>>(kBlock, bound);
+    cuda_detail::for_each_counted_kernel<F, MinBlocks>
+        <<<unsigned(blocks), kBlock, 0, s_>>>(count, per, f);
     GG_CUDA_CHECK_LAUNCH_OF("for_each_counted_kernel", F);
   }
 

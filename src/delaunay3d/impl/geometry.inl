@@ -25,19 +25,41 @@ GG_INLINE std::uint32_t lease_hint(std::int32_t a, std::int32_t b) {
   return std::uint32_t(a) * 2654435761u ^ std::uint32_t(b) * 40503u;
 }
 
+// The tiers past the floating-point filters (integers, double-word, SoS, the exact stages on
+// leased scratch), out of line: rare on most inputs, and inlined into every kernel that tests
+// they held those kernels at 240-255 registers and 1.5-2 KB of stack (8 warps a
+// multiprocessor for the flip rounds' test). Each repeats its filter, which is cheap beside it.
+GG_COLD int orient_rest(const double* pa, std::int32_t a, const double* pb, std::int32_t b,
+                        const double* pc, std::int32_t c, const double* pd, std::int32_t d,
+                        ScratchLease lease) {
+  int r = pred::orient3d_sos_quick(pa, a, pb, b, pc, c, pd, d);
+  if (r == pred::kUndecided) {
+    double* s = lease.acquire(lease_hint(a, d));
+    r = pred::orient3d_sos(pa, a, pb, b, pc, c, pd, d, s);
+    lease.release(s);
+  }
+  return r;
+}
+GG_COLD int in_sphere_rest(const double* a, std::int32_t ia, const double* b, std::int32_t ib,
+                           const double* c, std::int32_t ic, const double* d, std::int32_t id,
+                           const double* e, std::int32_t q, ScratchLease lease) {
+  int r = pred::insphere_sos_quick(a, ia, b, ib, c, ic, d, id, e, q);
+  if (r == pred::kUndecided) {
+    double* s = lease.acquire(lease_hint(ia, q));
+    r = pred::insphere_sos(a, ia, b, ib, c, ic, d, id, e, q, s);
+    lease.release(s);
+  }
+  return r;
+}
+
 // Orientation with the infinity vertex standing for s, sign reversed (at most one of the four
 // is the infinity vertex).
 GG_HD inline int orient_ext(const Geo& g, std::int32_t a, std::int32_t b, std::int32_t c,
                             std::int32_t d) {
   const int flip = (a == g.m || b == g.m || c == g.m || d == g.m) ? -1 : 1;
   const double *pa = g.at(a), *pb = g.at(b), *pc = g.at(c), *pd = g.at(d);
-  int r = pred::orient3d_sos_quick(pa, a, pb, b, pc, c, pd, d);
-  if (r == pred::kUndecided) {
-    double* s = g.lease.acquire(lease_hint(a, d));
-    r = pred::orient3d_sos(pa, a, pb, b, pc, c, pd, d, s);
-    g.lease.release(s);
-  }
-  return flip * r;
+  if (const int r = pred::orient3d_fast(pa, pb, pc, pd)) return flip * r;
+  return flip * orient_rest(pa, a, pb, b, pc, c, pd, d, g.lease);
 }
 
 // The tetrahedron v with its vertex k replaced by q.
@@ -61,13 +83,8 @@ GG_HD inline bool in_sphere_ext(const Geo& g, const std::int32_t* v, std::int32_
   for (int k = 0; k < 4; ++k)
     if (v[k] == g.m) return orient_with(g, v, k, q) > 0;
   const double *a = g.at(v[0]), *b = g.at(v[1]), *c = g.at(v[2]), *d = g.at(v[3]), *e = g.at(q);
-  int r = pred::insphere_sos_quick(a, v[0], b, v[1], c, v[2], d, v[3], e, q);
-  if (r == pred::kUndecided) {
-    double* s = g.lease.acquire(lease_hint(v[0], q));
-    r = pred::insphere_sos(a, v[0], b, v[1], c, v[2], d, v[3], e, q, s);
-    g.lease.release(s);
-  }
-  return r > 0;
+  if (const int r = pred::insphere_fast(a, b, c, d, e)) return r > 0;
+  return in_sphere_rest(a, v[0], b, v[1], c, v[2], d, v[3], e, q, g.lease) > 0;
 }
 
 // Is the finite tetrahedron v flat: its four points exactly on one plane (the perturbation

@@ -550,6 +550,7 @@ struct TakeArgs {
 // thousands of triangles of a grid's hull-plane star, a vertex after another, were most of the
 // splaying's time on the GPU); most stars have 20 to 60.
 constexpr std::int32_t kWideStar = 256;
+constexpr std::int64_t kAllWide = std::int64_t(1) << 16;  // (stars in a take: 2^21 lanes)
 // The star of request group k takes its vertices in order, with the lanes L. Wide stars list
 // their marked triangles (link_insert's mk) in their own vertex-table area, which is written
 // anew once the star changed (a star that marks triangles changes, now or in the next pass).
@@ -895,14 +896,19 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
       // Stars of kWideStar triangles or more take on a warp each (take_star), after the rest
       // have taken a thread each; a star that grew past it in the first kernel and stopped
       // (no room) is picked up by the second as the next pass would, the same steps in order.
-      ex.for_each_index(
-          ng, GG_LAMBDA(std::int64_t k) {
-            if (pos[k] < first[k + 1] && cnt[std::int32_t(R[pos[k]] >> 32)] < kWideStar)
-              take_star(SoloLanes{}, k, a);
-          });
+      // A take of few stars runs every star on a warp: the launch is as long as its longest
+      // star's chain of insertions, and the GPU has lanes to spare (phase 2's takes: a
+      // failed star takes tens of vertices in its first round).
+      const std::int32_t wide = ng <= kAllWide ? 0 : kWideStar;
+      if (wide > 0)
+        ex.for_each_index(
+            ng, GG_LAMBDA(std::int64_t k) {
+              if (pos[k] < first[k + 1] && cnt[std::int32_t(R[pos[k]] >> 32)] < wide)
+                take_star(SoloLanes{}, k, a);
+            });
       ex.for_each_lanes(
           ng, GG_LAMBDA(std::int64_t k, const Exec::Lanes& L) {
-            if (pos[k] < first[k + 1] && cnt[std::int32_t(R[pos[k]] >> 32)] >= kWideStar)
+            if (pos[k] < first[k + 1] && cnt[std::int32_t(R[pos[k]] >> 32)] >= wide)
               take_star(L, k, a);
           });
       StarCounters c;
