@@ -19,14 +19,48 @@ GG_INLINE std::int32_t link_unmark(std::int32_t a) {
   return a < 0 ? ~a : a;
 }
 
-// The triangle with the directed edge a -> b among t[0, n), or -1 (marks ignored).
-GG_HD inline int link_find_edge(const LinkTri* t, int n, std::int32_t a, std::int32_t b) {
-  for (int i = 0; i < n; ++i) {
-    const std::int32_t x = link_unmark(t[i].a);
-    if ((x == a && t[i].b == b) || (t[i].b == a && t[i].c == b) || (t[i].c == a && x == b))
-      return i;
+// The lowest set lane of a ballot's mask (not 0).
+GG_INLINE int lowest_lane(std::uint32_t mask) {
+#ifdef __CUDA_ARCH__
+  return __ffs(int(mask)) - 1;
+#else
+  return __builtin_ctz(mask);
+#endif
+}
+// f() on lane 0 alone, its int result to every lane (a predicate that may borrow scratch for
+// its exact stages is then asked once, not once a lane).
+template <class Lanes, class F>
+GG_HD int on_lane0(const Lanes& L, F f) {
+  int r = 0;
+  if (L.rank == 0) r = f();
+  return L.broadcast(r);
+}
+
+// The first triangle with the directed edge a -> b among t[0, n), or -1 (marks ignored); the
+// lanes L scan it together.
+template <class Lanes>
+GG_HD int link_find_edge(const Lanes& L, const LinkTri* t, int n, std::int32_t a, std::int32_t b) {
+  for (int base = 0; base < n; base += L.size) {
+    const int i = base + L.rank;
+    bool hit = false;
+    if (i < n) {
+      const std::int32_t x = link_unmark(t[i].a);
+      hit = (x == a && t[i].b == b) || (t[i].b == a && t[i].c == b) || (t[i].c == a && x == b);
+    }
+    const std::uint32_t mask = L.ballot(hit);
+    if (mask) return base + lowest_lane(mask);
   }
   return -1;
+}
+// The first triangle at index from or later that has the vertex x, or n.
+template <class Lanes>
+GG_HD int link_next_with(const Lanes& L, const LinkTri* t, int n, int from, std::int32_t x) {
+  for (int base = from; base < n; base += L.size) {
+    const int i = base + L.rank;
+    const std::uint32_t mask = L.ballot(i < n && t[i].has(x));
+    if (mask) return base + lowest_lane(mask);
+  }
+  return n;
 }
 
 // The vertex of t that is neither a nor b.

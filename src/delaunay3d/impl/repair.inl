@@ -43,17 +43,27 @@ struct StarEdge {
 };
 
 // Link edge a -> b of triangles (a, b, c) and (b, a, d) replaced by (c, d): triangles (a, d, c)
-// and (d, b, c), when both stay positively oriented around v. c, d: the new edge's ends.
-GG_HD inline bool star_flip(const Geo& g, std::int32_t v, LinkTri* t, int n, std::int32_t a,
-                            std::int32_t b, std::int32_t& c, std::int32_t& d) {
-  const int i1 = link_find_edge(t, n, a, b), i2 = link_find_edge(t, n, b, a);
+// and (d, b, c), when both stay positively oriented around v. c, d: the new edge's ends. The
+// lanes L search together; lane 0 asks the predicates and writes.
+template <class Lanes>
+GG_HD inline bool star_flip(const Lanes& L, const Geo& g, std::int32_t v, LinkTri* t, int n,
+                            std::int32_t a, std::int32_t b, std::int32_t& c, std::int32_t& d) {
+  const int i1 = link_find_edge(L, t, n, a, b), i2 = link_find_edge(L, t, n, b, a);
   if (i1 < 0 || i2 < 0) return false;
   c = link_third(t[i1], a, b);
   d = link_third(t[i2], a, b);
   if (c == d) return false;
-  if (orient_ext(g, v, a, d, c) <= 0 || orient_ext(g, v, d, b, c) <= 0) return false;
-  t[i1] = LinkTri{a, d, c};
-  t[i2] = LinkTri{d, b, c};
+  const std::int32_t cc = c, dd = d;
+  if (!on_lane0(L, [&] {
+        return orient_ext(g, v, a, dd, cc) > 0 && orient_ext(g, v, dd, b, cc) > 0 ? 1 : 0;
+      }))
+    return false;
+  L.sync();  // (every lane has read both triangles)
+  if (L.rank == 0) {
+    t[i1] = LinkTri{a, d, c};
+    t[i2] = LinkTri{d, b, c};
+  }
+  L.sync();
   return true;
 }
 
@@ -61,87 +71,117 @@ GG_HD inline bool star_flip(const Geo& g, std::int32_t v, LinkTri* t, int n, std
 // vertices of failed faces, the infinity point included; only those edges can be reflex); work:
 // room for wcap edges (the link edges still to test; where it fills, the edges that did not fit
 // are found by testing every edge again once it empties). Returns the new count, or -1 where a
-// step that cannot fail on a star did.
-GG_HD inline int flip_flop(const Geo& g, std::int32_t v, LinkTri* t, int n,
+// step that cannot fail on a star did. The lanes L share the scans (a failed star's edges each
+// search the star, and a corner that is not extreme searches it per flip: on one thread the
+// longest star was the whole launch, 9 ms of uniform 10^6's phase 2); every step is decided the
+// same on every lane, and the work list and the star change as one lane would change them.
+template <class Lanes>
+GG_HD inline int flip_flop(const Lanes& L, const Geo& g, std::int32_t v, LinkTri* t, int n,
                            const std::int8_t* failed, StarEdge* work, int wcap) {
   int nw = 0;
   bool lost = false;
   auto push = [&](std::int32_t a, std::int32_t b) {
-    if (nw < wcap)
-      work[nw++] = StarEdge{a, b};
-    else
+    if (nw < wcap) {
+      if (L.rank == 0) work[nw] = StarEdge{a, b};
+      ++nw;
+    } else {
       lost = true;
-  };
-  for (int i = 0; i < n; ++i) {
-    const std::int32_t e[3] = {t[i].a, t[i].b, t[i].c};
-    for (int j = 0; j < 3; ++j) {
-      const std::int32_t a = e[j], b = e[(j + 1) % 3];
-      if (a < b && failed[a] && failed[b]) push(a, b);
     }
-  }
+  };
+  // Every link edge a -> b with keep(a, b), in triangle then edge order.
+  auto push_all = [&](auto keep) {
+    for (int base = 0; base < n; base += L.size) {
+      const int i = base + L.rank;
+      StarEdge mine[3];
+      int k = 0;
+      if (i < n) {
+        const std::int32_t e[3] = {t[i].a, t[i].b, t[i].c};
+        for (int j = 0; j < 3; ++j)
+          if (keep(e[j], e[(j + 1) % 3])) mine[k++] = StarEdge{e[j], e[(j + 1) % 3]};
+      }
+      int all = 0;
+      const int at = nw + L.exclusive_scan(k, &all);
+      for (int z = 0; z < k; ++z)
+        if (at + z < wcap) work[at + z] = mine[z];
+      if (nw + all > wcap) lost = true;
+      nw = nw + all < wcap ? nw + all : wcap;
+    }
+  };
+  push_all([&](std::int32_t a, std::int32_t b) { return a < b && failed[a] && failed[b]; });
   for (std::int64_t guard = 0;; ++guard) {
     if (guard > 100000000) return -1;
     if (nw == 0) {
       if (!lost) return n;
       lost = false;
-      for (int i = 0; i < n; ++i) {
-        const std::int32_t e[3] = {t[i].a, t[i].b, t[i].c};
-        for (int j = 0; j < 3; ++j)
-          if (e[j] < e[(j + 1) % 3]) push(e[j], e[(j + 1) % 3]);
-      }
+      push_all([](std::int32_t a, std::int32_t b) { return a < b; });
       if (nw == 0) return n;
     }
+    L.sync();  // (the pushes, to every lane)
     StarEdge ed = work[--nw];
-    int i1 = link_find_edge(t, n, ed.a, ed.b);
+    int i1 = link_find_edge(L, t, n, ed.a, ed.b);
     if (i1 < 0) {
       const std::int32_t x = ed.a;
       ed.a = ed.b, ed.b = x;
-      i1 = link_find_edge(t, n, ed.a, ed.b);
+      i1 = link_find_edge(L, t, n, ed.a, ed.b);
       if (i1 < 0) continue;  // flipped away since it was listed
     }
     const std::int32_t a = ed.a, b = ed.b;
-    const int j = link_find_edge(t, n, b, a);
+    const int j = link_find_edge(L, t, n, b, a);
     if (j < 0) return -1;  // (an open star)
     const std::int32_t c = link_third(t[i1], a, b), d = link_third(t[j], a, b);
-    if (!link_reflex(g, v, LinkTri{a, b, c}, d)) continue;
+    if (!on_lane0(L, [&] { return link_reflex(g, v, LinkTri{a, b, c}, d) ? 1 : 0; })) continue;
     std::int32_t nc, nd;
-    if (star_flip(g, v, t, n, a, b, nc, nd)) {
+    if (star_flip(L, g, v, t, n, a, b, nc, nd)) {
       push(a, d), push(d, b), push(b, c), push(c, a);
       continue;
     }
     // Not flippable: the corner inside the cone of the other three is not extreme; its link
     // edges are flipped until it has three neighbours, then its three triangles become one.
-    const std::int32_t x = orient_ext(g, v, a, d, c) < 0 ? a : b;
+    const std::int32_t x = on_lane0(L, [&] { return orient_ext(g, v, a, d, c) < 0 ? a : b; });
     for (int step = 0;; ++step) {
       if (step > 4 * n + 16) return -1;
       int deg = 0, first = -1;
-      for (int i = 0; i < n; ++i)
-        if (t[i].has(x)) ++deg, first = first < 0 ? i : first;
+      for (int base = 0; base < n; base += L.size) {
+        const int i = base + L.rank;
+        const std::uint32_t mask = L.ballot(i < n && t[i].has(x));
+        if (mask && first < 0) first = base + lowest_lane(mask);
+        deg += L.count(mask);
+      }
       if (deg == 0) break;
       if (deg == 3) {
-        const LinkTri& f = t[first];
+        const LinkTri f = t[first];
         const std::int32_t y0 = f.a == x ? f.b : f.b == x ? f.c : f.a;
-        const int i0 = link_find_edge(t, n, x, y0);
+        const int i0 = link_find_edge(L, t, n, x, y0);
         if (i0 < 0) return -1;
         const std::int32_t y1 = link_third(t[i0], x, y0);
-        const int i2 = link_find_edge(t, n, x, y1);
+        const int i2 = link_find_edge(L, t, n, x, y1);
         if (i2 < 0) return -1;
         const std::int32_t y2 = link_third(t[i2], x, y1);
-        if (orient_ext(g, v, y0, y1, y2) <= 0) return -1;
-        int k = 0;  // (the others keep their order; the new one comes last)
-        for (int i = 0; i < n; ++i)
-          if (!t[i].has(x)) t[k++] = t[i];
-        t[k++] = LinkTri{y0, y1, y2};
-        n = k;
+        if (on_lane0(L, [&] { return orient_ext(g, v, y0, y1, y2) <= 0 ? 1 : 0; })) return -1;
+        // (the others keep their order, read a stride then written at or below it; the new
+        // one comes last)
+        int k = 0;
+        for (int base = 0; base < n; base += L.size) {
+          const int i = base + L.rank;
+          const bool keep = i < n && !t[i].has(x);
+          const LinkTri q = keep ? t[i] : LinkTri{};
+          const std::uint32_t mask = L.ballot(keep);
+          L.sync();
+          if (keep) t[k + L.below(mask)] = q;
+          k += L.count(mask);
+        }
+        if (L.rank == 0) t[k] = LinkTri{y0, y1, y2};
+        L.sync();
+        n = k + 1;
         push(y0, y1), push(y1, y2), push(y2, y0);
         break;
       }
       bool flipped = false;
-      for (int i = 0; i < n && !flipped; ++i) {
-        if (!t[i].has(x)) continue;
+      for (int i = link_next_with(L, t, n, 0, x); i < n && !flipped;
+           i = link_next_with(L, t, n, i + 1, x)) {
         const std::int32_t y = t[i].a == x ? t[i].b : t[i].b == x ? t[i].c : t[i].a;
         std::int32_t fc, fd;  // (x, y) -> (fc, fd): the two new triangles' edges
-        if (star_flip(g, v, t, n, x, y, fc, fd)) {
+        if (star_flip(L, g, v, t, n, x, y, fc, fd)) {
           push(x, fd), push(fd, y), push(y, fc), push(fc, x), push(fc, fd);
           flipped = true;
         }
@@ -149,6 +189,50 @@ GG_HD inline int flip_flop(const Geo& g, std::int32_t v, LinkTri* t, int n,
       if (!flipped) return -1;
     }
   }
+}
+
+// What MeshStars::build writes a star with: the stars of vs (runs laid), the old stars (the
+// tetrahedralisation's, copied), failed (null: copies only; else made convex by Flip-Flop from
+// the failed vertices' edges), and bad (a count of stars that could not be made).
+struct BuildArgs {
+  Geo g;
+  const std::int32_t* vs;
+  LinkTri* tri;
+  LinkVert* vt;
+  const std::int64_t* off;
+  const std::int32_t* cap;
+  std::int32_t *cnt, *nvt;
+  std::int8_t* built;
+  const LinkTri* ot;
+  const std::int64_t* oo;
+  const std::int32_t* oc;
+  const std::int8_t* failed;
+  std::int64_t* bad;
+};
+// The star of vs[j], with the lanes L: copied from its old star, made convex where failed is
+// given (the vertex table's room holds Flip-Flop's work list: cap entries of 8 bytes), then
+// its vertex table.
+template <class Lanes>
+GG_HD void build_star(const Lanes& L, std::int64_t j, const BuildArgs& a) {
+  const std::int32_t v = a.vs[j];
+  LinkTri* t = a.tri + a.off[v];
+  const LinkTri* o = a.ot + a.oo[v];
+  int n = a.oc[v];
+  for (int i = L.rank; i < n; i += L.size) t[i] = o[i];
+  L.sync();
+  if (a.failed) {
+    static_assert(sizeof(LinkVert) == sizeof(StarEdge), "the work list's room");
+    n = flip_flop(L, a.g, v, t, n, a.failed, reinterpret_cast<StarEdge*>(a.vt + a.off[v]),
+                  a.cap[v]);
+    if (n < 0) {
+      if (L.rank == 0) atomic_add(a.bad, std::int64_t(1));
+      return;
+    }
+  }
+  if (L.rank != 0) return;
+  a.cnt[v] = n;
+  a.nvt[v] = link_table(t, n, a.vt + a.off[v]);
+  a.built[v] = a.failed ? 2 : 1;
 }
 
 // The tetrahedralisation's stars, built into the splayer's store as they are wanted.
@@ -365,37 +449,16 @@ class MeshStars {
     // size and 8 leaves room to grow), then the stars.
     lay_runs(
         ex_, S, GG_LAMBDA(std::int64_t v)->std::int32_t { return want[v] ? 2 * deg[v] + 8 : 0; });
-    LinkTri* tri = S.tri.data();
-    LinkVert* vt = S.vt.data();
-    const std::int64_t* off = S.off.data();
-    const std::int32_t* cap = S.cap.data();
-    std::int32_t* cnt = S.cnt.data();
-    std::int32_t* nvt = S.nvt.data();
-    std::int8_t* bl = built.data();
-    const LinkTri* ot = otri_.data();
-    const std::int64_t* oo = ooff.data();
-    const std::int32_t* oc = ocnt.data();
-    const Geo g = g_;
-    ex_.for_each_index(
-        nv, GG_LAMBDA(std::int64_t j) {
-          const std::int32_t v = vs[j];
-          LinkTri* t = tri + off[v];
-          const LinkTri* o = ot + oo[v];
-          int n = oc[v];
-          for (int i = 0; i < n; ++i) t[i] = o[i];
-          // (the vertex table's room holds Flip-Flop's work list: cap entries of 8 bytes)
-          if (create) {
-            static_assert(sizeof(LinkVert) == sizeof(StarEdge), "the work list's room");
-            n = flip_flop(g, v, t, n, flag, reinterpret_cast<StarEdge*>(vt + off[v]), cap[v]);
-            if (n < 0) {
-              atomic_add(ctr + 1, std::int64_t(1));
-              return;
-            }
-          }
-          cnt[v] = n;
-          nvt[v] = link_table(t, n, vt + off[v]);
-          bl[v] = create ? 2 : 1;
-        });
+    const BuildArgs a{g_,           vs,           S.tri.data(), S.vt.data(),  S.off.data(),
+                      S.cap.data(), S.cnt.data(), S.nvt.data(), built.data(), otri_.data(),
+                      ooff.data(),  ocnt.data(),  flag,         ctr + 1};
+    // (made stars on a warp each: see flip_flop; copies on a thread each)
+    if (create)
+      ex_.for_each_lanes(
+          nv, GG_LAMBDA(std::int64_t j, const Exec::Lanes& L) { build_star(L, j, a); });
+    else
+      ex_.for_each_index(
+          nv, GG_LAMBDA(std::int64_t j) { build_star(SoloLanes{}, j, a); });
     std::int64_t bad = 0;
     ex_.to_host(ctr + 1, 1, &bad);
     if (bad)
