@@ -760,8 +760,11 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
           });
     }
     // Check (read-only on the stars): requests into req. Vertex rounds: a thread per
-    // kCheckPiece entries of the listed stars' vertex tables; tetrahedra rounds: a thread per
-    // triangle. toff: the first thread of each listed star.
+    // kCheckPiece entries of the listed stars' vertex tables, or per entry where the stars are
+    // few (kAllWide: the launch then lasts as long as its longest thread, and the GPU has
+    // threads to spare); tetrahedra rounds: a thread per triangle. toff: the first thread of
+    // each listed star.
+    const int piece = nl <= kAllWide ? 1 : kCheckPiece;
     const std::int32_t* nvt = S.nvt.data();
     const LinkVert* vt = S.vt.data();
     auto toff_d = ex.template alloc<std::int64_t>(std::size_t(nl + 1));
@@ -770,7 +773,7 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
         nl + 1,
         GG_LAMBDA(std::int64_t j)->std::int64_t {
           if (j == nl) return 0;
-          return vertices ? (nvt[list[j]] + kCheckPiece - 1) / kCheckPiece : cnt[list[j]];
+          return vertices ? (nvt[list[j]] + piece - 1) / piece : cnt[list[j]];
         },
         toff);
     std::int64_t ntri = 0;
@@ -822,8 +825,8 @@ inline SplayCount splay_stars(Exec& ex, const Geo& g, StarStore& S,
             const std::int32_t v = list[lo];
             int stuck = 0;
             if (vertices) {
-              const int j0 = int(e - toff[lo]) * kCheckPiece;
-              const int j1 = j0 + kCheckPiece < nvt[v] ? j0 + kCheckPiece : nvt[v];
+              const int j0 = int(e - toff[lo]) * piece;
+              const int j1 = j0 + piece < nvt[v] ? j0 + piece : nvt[v];
               stuck = check_star_vertices(
                   g, v, j0, j1, tri, vt, off, cnt, nvt,
                   [&](std::int32_t u) { return mark[u] == r; },
