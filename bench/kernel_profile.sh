@@ -2,8 +2,9 @@
 # Runs on the lent GPU machine (repository root, .devbin/ carried): where the GPU time of a
 # bench run goes, kernel by kernel. Nsight Compute (ncu) times every launch of the command
 # (gpu__time_duration only, so the run stays close to its own speed) and the summary groups
-# the launches by the lambda they run (the enclosing function and the lambda's number there,
-# read from nvcc's closure names) or by the kernel's name. The sum of the kernels against the
+# the launches by the lambda they run (the enclosing function and the lambda's instance there,
+# read from the demangled closure names: the n-th lambda of that signature in the function) or
+# by the kernel's name. The sum of the kernels against the
 # command's own wall time shows how much of it is launches and host waits rather than work.
 #   bash bench/kernel_profile.sh .devbin/gpugeom_bench_del3d --reps 1 --cgal-max 0 uniform:1000000
 # Writes $OUT/kernels.csv (every launch) and prints the 40 largest groups.
@@ -18,30 +19,44 @@ python3 - "$OUT/kernels.csv" <<'PY'
 import csv, re, sys
 from collections import defaultdict
 rows = [r for r in csv.reader(l for l in open(sys.argv[1]) if l.startswith('"'))]
-if len(rows) < 3:
-    sys.exit("no kernels profiled")
-head, units = rows[0], rows[1]
+head = rows[0]
 name_at, t_at = head.index("Kernel Name"), head.index("gpu__time_duration.sum")
-scale = {"nsecond": 1e-6, "usecond": 1e-3, "msecond": 1.0, "second": 1e3}.get(units[t_at], 1e-6)
-tag = re.compile(r", &([\w:~]+), (\d+)u?>")
-groups = defaultdict(lambda: [0, 0.0])
-total = 0.0
+units = rows[1][t_at] or "nsecond"
+scale = {"nsecond": 1e-6, "usecond": 1e-3, "msecond": 1.0, "second": 1e3}.get(units, 1e-6)
+def key_of(name):
+    kernel = re.match(r"(?:void )?([\w:]+)", name).group(1).split("::")[-1]
+    i = name.find("::[lambda")
+    if i < 0:
+        return re.sub(r"<.*", "", name)[:90]
+    inst = re.search(r"\(instance (\d+)\)", name[i:]).group(1)
+    s = name[:i]
+    # the enclosing function: the last identifier followed by its parameter list
+    depth = 0; j = len(s) - 1
+    if s.endswith(" const"): s = s[:-6]; j = len(s) - 1
+    if s.endswith(")"):
+        while j >= 0:
+            if s[j] == ")": depth += 1
+            elif s[j] == "(":
+                depth -= 1
+                if depth == 0: break
+            j -= 1
+        s = s[:j]
+    while s.endswith(">"):
+        d = 0; k = len(s) - 1
+        while k >= 0:
+            if s[k] == ">": d += 1
+            elif s[k] == "<":
+                d -= 1
+                if d == 0: break
+            k -= 1
+        s = s[:k]
+    fn = re.search(r"([\w~]+(?:::[\w~]+)?)$", s)
+    return f"{kernel} {fn.group(1) if fn else s[-40:]} #{inst}"
+groups = defaultdict(lambda: [0, 0.0]); total = 0.0
 for r in rows[2:]:
-    name = r[name_at]
-    m = tag.search(name)
-    if m:
-        key = m.group(1).split("::")[-2:] + ["#" + m.group(2)]
-        key = "::".join(key[:-1]) + key[-1]
-        kernel = re.match(r"(?:void )?([\w:]+)", name).group(1).split("::")[-1]
-        key = f"{kernel} {key}"
-    else:
-        key = re.sub(r"<.*", "", name)[:90]
-    ms = float(r[t_at].replace(",", "")) * scale
-    groups[key][0] += 1
-    groups[key][1] += ms
-    total += ms
+    k = key_of(r[name_at]); ms = float(r[t_at].replace(",", "")) * scale
+    groups[k][0] += 1; groups[k][1] += ms; total += ms
 print(f"{len(rows) - 2} launches, {total:.1f} ms of kernels")
-print(f"{'ms':>9} {'launches':>8}  kernel / lambda")
 for k, (n, ms) in sorted(groups.items(), key=lambda kv: -kv[1][1])[:40]:
     print(f"{ms:9.2f} {n:8d}  {k}")
 PY
