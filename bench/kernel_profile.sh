@@ -23,6 +23,17 @@ head = rows[0]
 name_at, t_at = head.index("Kernel Name"), head.index("gpu__time_duration.sum")
 units = rows[1][t_at] or "nsecond"
 scale = {"nsecond": 1e-6, "usecond": 1e-3, "msecond": 1.0, "second": 1e3}.get(units, 1e-6)
+def cut_group(s, open_, close):
+    """s less its last balanced open_ ... close group (s ends with close)."""
+    depth = 0
+    for j in range(len(s) - 1, -1, -1):
+        if s[j] == close:
+            depth += 1
+        elif s[j] == open_:
+            depth -= 1
+            if depth == 0:
+                return s[:j]
+    return ""
 def key_of(name):
     kernel = re.match(r"(?:void )?([\w:]+)", name).group(1).split("::")[-1]
     i = name.find("::[lambda")
@@ -30,26 +41,14 @@ def key_of(name):
         return re.sub(r"<.*", "", name)[:90]
     inst = re.search(r"\(instance (\d+)\)", name[i:]).group(1)
     s = name[:i]
-    # the enclosing function: the last identifier followed by its parameter list
-    depth = 0; j = len(s) - 1
-    if s.endswith(" const"): s = s[:-6]; j = len(s) - 1
+    # the enclosing function: the last identifier before its parameter list and template
+    # arguments, which are cut from the end as balanced groups
+    if s.endswith(" const"):
+        s = s[:-6]
     if s.endswith(")"):
-        while j >= 0:
-            if s[j] == ")": depth += 1
-            elif s[j] == "(":
-                depth -= 1
-                if depth == 0: break
-            j -= 1
-        s = s[:j]
+        s = cut_group(s, "(", ")")
     while s.endswith(">"):
-        d = 0; k = len(s) - 1
-        while k >= 0:
-            if s[k] == ">": d += 1
-            elif s[k] == "<":
-                d -= 1
-                if d == 0: break
-            k -= 1
-        s = s[:k]
+        s = cut_group(s, "<", ">")
     fn = re.search(r"([\w~]+(?:::[\w~]+)?)$", s)
     return f"{kernel} {fn.group(1) if fn else s[-40:]} #{inst}"
 groups = defaultdict(lambda: [0, 0.0]); total = 0.0
