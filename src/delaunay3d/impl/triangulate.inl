@@ -36,16 +36,21 @@ struct Counters {
   std::int64_t flips23, flips32, rounds, unflippable, failed_faces, flat, lost, errors;
   std::int64_t halt, halt_round;  // a round found no room: it and the rest of its chunk wait
   std::int64_t team_end;          // the round a team stopped at (did not run)
+  // What the halted round needs (settle): slots, flip records, next-list entries, ring entries.
+  std::int64_t need_slots, need_log, need_list, need_ring;
+  std::int64_t halts;  // rounds halted for room (each runs again)
+  // High-water marks (sizing): the longest list, the most records of an epoch, the most freed
+  // slots waiting in the ring.
+  std::int64_t max_len, max_log, max_free;
 };
 
 // The store as the kernels see it.
 struct Mesh {
   Tet* tet;
   u64* vote;
-  std::int32_t* stamp;  // the round a slot was last rewritten by a flip
   FlipLog log;
-  std::int32_t* freeq;  // freed slots, a ring of cap entries
-  std::int64_t cap;
+  std::int32_t* freeq;  // freed slots, a ring of `ring` entries
+  std::int64_t cap, ring;
   Counters* ctr;
 };
 
@@ -113,6 +118,17 @@ struct FaceStore {
   }
 };
 
+// A 3-2 proposal's third tetrahedron (decision r = face | kind << 2, kind = 1 + the edge's
+// place on the face): across the face opposite c, the face's vertex off the edge. (Found
+// again from the proposer rather than kept: one int32 less per list entry.)
+GG_HD inline std::int32_t third_of(const Tet& T, int r) {
+  std::int32_t x[3];
+  face_of(T.v, r & 3, x);
+  const std::int32_t c = x[(((r >> 2) & 3) + 1) % 3];
+  const int kk = T.v[0] == c ? 0 : T.v[1] == c ? 1 : T.v[2] == c ? 2 : 3;
+  return simplex_of(T.n[kk]);
+}
+
 // One flip round's steps, each a function of one list entry (or flip), so that the same code
 // runs as kernels or inside a team: begin (one thread), test, decide, then the exclusive prefix
 // of the decisions' tallies over the list (tally), settle (one thread), flip, fix (over the
@@ -122,12 +138,12 @@ struct FlipRound {
   Geo g;
   Mesh M;
   mesh::WorkLists L;
-  std::int8_t* dec;     // per list entry: the proposal (face | kind << 2), or -1
-  std::int32_t* third;  // per list entry: a 3-2 flip's third tetrahedron
-  Tally* tally;         // per list entry: the decisions before it; at the list's end, all
+  std::int8_t* dec;  // per list entry: the proposal (face | kind << 2), or -1
+  Tally* tally;      // per list entry: the decisions before it; at the list's end, all
   std::int32_t round;
   std::int64_t log_cap;
-  std::int64_t span;  // the longest list the decisions' scan covers (a longer one halts)
+  std::int64_t list_cap;  // entries each list holds
+  std::int64_t span;      // the longest list the decisions' scan covers (a longer one halts)
 
   GG_HD const std::int64_t* count() const { return L.count(round); }
   GG_HD const std::int64_t* flips() const { return &M.ctr->nflip[round & 1]; }
@@ -143,9 +159,11 @@ struct FlipRound {
     *L.next_count(round) = 0;
     ctr->nflip[round & 1] = 0;
     if (n == 0) return;  // (a round past the last one: nothing to do)
-    if (ctr->used + n > M.cap || ctr->log + n > log_cap || n > span) {
+    if (n > span) {
       ctr->halt = 1;
       ctr->halt_round = round;
+      ctr->need_list = n;
+      ctr->halts += 1;
       return;
     }
     ctr->rounds += 1;
@@ -187,17 +205,16 @@ struct FlipRound {
         } else {
           stuck = true;
         }
-        if (res >= 0) {
-          const u64 key = mesh::vote_key(round, t);
-          atomic_max(M.vote + t, key);
-          atomic_max(M.vote + nb, key);
-          if (t3 >= 0) atomic_max(M.vote + t3, key);
+        if (res >= 0) {  // (inverted keys: the smallest wins, so ~0 is no vote)
+          const u64 key = ~mesh::vote_key(round, t);
+          atomic_min(M.vote + t, key);
+          atomic_min(M.vote + nb, key);
+          if (t3 >= 0) atomic_min(M.vote + t3, key);
         }
       }
     }
     if (stuck && res < 0) atomic_add(&ctr->unflippable, std::int64_t(1));
     dec[i] = std::int8_t(res);
-    third[i] = t3;
   }
 
   // Decisions: a proposal that holds the vote on every tetrahedron it rewrites wins; the
@@ -207,10 +224,11 @@ struct FlipRound {
     const int r = dec[i];
     if (r < 0) return;
     const std::int32_t t = L.current(round)[i];
-    const u64 key = mesh::vote_key(round, t);
-    const std::int32_t nb = simplex_of(M.tet[t].n[r & 3]);
+    const u64 key = ~mesh::vote_key(round, t);
+    const Tet T = M.tet[t];
+    const std::int32_t nb = simplex_of(T.n[r & 3]);
     const bool won =
-        M.vote[t] == key && M.vote[nb] == key && (!(r >> 2) || M.vote[third[i]] == key);
+        M.vote[t] == key && M.vote[nb] == key && (!(r >> 2) || M.vote[third_of(T, r)] == key);
     dec[i] = std::int8_t(r | (won ? kWon : kLost));
   }
   GG_HD Tally tally_at(std::int64_t i) const { return tally_of(dec[i]); }
@@ -223,6 +241,25 @@ struct FlipRound {
     const std::int64_t n = *count();
     if (n == 0) return;
     const Tally all = tally[n];
+    {  // room for what the flips take; else the round halts before any of them runs
+      const std::int64_t avail = ctr->free_tail - ctr->free_head;
+      const std::int64_t popped = all.w23 < avail ? all.w23 : avail;
+      const std::int64_t slots = ctr->used + all.w23 - popped;
+      const std::int64_t records = std::int64_t(all.w23) + all.w32;
+      const std::int64_t next = 3 * std::int64_t(all.w23) + 2 * std::int64_t(all.w32) + all.lost;
+      // (the flips pop and push in the same step: the ring holds both at once)
+      const std::int64_t ring = avail + all.w32;
+      if (slots > M.cap || ctr->log + records > log_cap || next > list_cap || ring > M.ring) {
+        ctr->halt = 1;
+        ctr->halt_round = round;
+        ctr->need_slots = slots;
+        ctr->need_log = records;
+        ctr->need_list = next;
+        ctr->need_ring = ring;
+        ctr->halts += 1;
+        return;
+      }
+    }
     ctr->at_used = ctr->used;
     ctr->at_log = ctr->log;
     ctr->at_head = ctr->free_head;
@@ -237,6 +274,10 @@ struct FlipRound {
     ctr->flips23 += all.w23;
     ctr->flips32 += all.w32;
     *L.next_count(round) = 3 * std::int64_t(all.w23) + 2 * std::int64_t(all.w32) + all.lost;
+    if (n > ctr->max_len) ctr->max_len = n;
+    if (ctr->log > ctr->max_log) ctr->max_log = ctr->log;
+    if (ctr->free_tail - ctr->free_head > ctr->max_free)
+      ctr->max_free = ctr->free_tail - ctr->free_head;
   }
 
   // Flips: the winners, each with what its ranks hand it (settle).
@@ -250,7 +291,7 @@ struct FlipRound {
     const Tet T = M.tet[t];
     const int k = r & 3, kind = (r >> 2) & 3;
     const std::int32_t nb = simplex_of(T.n[k]);
-    const std::int32_t z = third[i];
+    const std::int32_t z = kind ? third_of(T, r) : -1;
     Tet old[3];
     old[0] = T;
     old[1] = M.tet[nb];
@@ -266,7 +307,7 @@ struct FlipRound {
       // (the third slot: a slot freed in an earlier round, else a new one)
       const std::int64_t avail = ctr->at_tail - ctr->at_head;
       slots[0] = t, slots[1] = nb;
-      slots[2] = at.w23 < avail ? M.freeq[(ctr->at_head + at.w23) % M.cap]
+      slots[2] = at.w23 < avail ? M.freeq[(ctr->at_head + at.w23) % M.ring]
                                 : std::int32_t(ctr->at_used + (at.w23 - avail));
       for (int e = 0; e < 3; ++e) {
         y[e].v[0] = x[e], y[e].v[1] = x[(e + 1) % 3], y[e].v[2] = u, y[e].v[3] = w;
@@ -301,17 +342,13 @@ struct FlipRound {
         }
         y[s].n[l] = e;
       }
-    for (int s = 0; s < nnew; ++s) {
-      M.tet[slots[s]] = y[s];
-      M.stamp[slots[s]] = round;
-    }
+    for (int s = 0; s < nnew; ++s) M.tet[slots[s]] = y[s];
     if (kind) {
       Tet dead;
       dead.v[0] = dead.v[1] = dead.v[2] = dead.v[3] = -1;
       dead.n[0] = dead.n[1] = dead.n[2] = dead.n[3] = -1;
       M.tet[z] = dead;
-      M.stamp[z] = round;
-      M.freeq[(ctr->at_tail + at.w32) % M.cap] = z;
+      M.freeq[(ctr->at_tail + at.w32) % M.ring] = z;
     }
     Hist h[3];
     M.log.load(slots, h);
@@ -319,6 +356,11 @@ struct FlipRound {
     std::int32_t* next = L.next(round);
     const std::int64_t to = 3 * std::int64_t(at.w23) + 2 * std::int64_t(at.w32);
     for (int s = 0; s < nnew; ++s) next[to + s] = slots[s];
+  }
+  // Whether a flip of this round rewrote slot s (its latest record is one of the round's: a
+  // flip records every slot it rewrites, the freed one included).
+  GG_HD bool flipped_now(std::int32_t s) const {
+    return (M.log.hist[s].last >> FlipLog::kSideBits) >= record(0);
   }
   // The round's j-th flip's record (flips are numbered in list order).
   GG_HD std::int32_t record(std::int64_t j) const {
@@ -338,7 +380,7 @@ struct FlipRound {
         if (o == x[0] || o == x[1] || o == x[2]) continue;  // inner
         FaceStore S{M, {0, 0, 0}};
         face_of(Y.v, l, S.f);
-        mesh::fix_face(S, ys, l, Y.n[l], M.stamp[o] == round);
+        mesh::fix_face(S, ys, l, Y.n[l], flipped_now(o));
       }
     }
   }
@@ -352,7 +394,7 @@ struct FlipRound {
     const std::int32_t t = L.current(round)[i];
     const Tally all = tally[*count()];
     const std::int64_t to = 3 * std::int64_t(all.w23) + 2 * std::int64_t(all.w32) + tally[i].lost;
-    L.next(round)[to] = M.stamp[t] == round ? -1 : t;
+    L.next(round)[to] = flipped_now(t) ? -1 : t;
   }
 };
 
@@ -377,70 +419,90 @@ class Triangulator {
     loc_ = ex.template alloc<std::int32_t>(n);
     un_ = ex.template alloc<std::int32_t>(n);
     un2_ = ex.template alloc<std::int32_t>(n);
-    ins_ = ex.template alloc<std::int32_t>(n);
-    split_ = ex.template alloc<std::int32_t>(5 * n);
     ctr_ = ex.template alloc<Counters>(1);
     Counters zero{};
     ex.from_host(&zero, 1, ctr_.data());
-    grow(std::min(std::max<std::int64_t>(8 * std::int64_t(m) + 64, 1024), kMaxSlots));
+    // First sizes, from what uniform points use (design notes, "Phase 1's memory"): slots in
+    // use reach about 7.3 a point, lists 2.4 (batches of at most a quarter of the points),
+    // records of an epoch 1.9, freed slots waiting 0.8. Each grows where a round needs more
+    // (settle halts the round, make_room grows).
+    const std::int64_t m64 = m;
+    grow(std::min(std::max<std::int64_t>(m64 * 15 / 2 + 64, 1024), kMaxSlots));
+    grow_lists(std::max<std::int64_t>(m64 * 5 / 2, 1024));
+    grow_ring(std::max<std::int64_t>(m64, 1024));
+    grow_log(std::max<std::int64_t>(2 * m64, 1 << 16));
   }
 
-  // Capacity for cap slots: every per-slot array (and the lists, whose entries are distinct
-  // slots) grows, keeping what it holds. One array at a time, so that at most one array is
-  // held twice (the largest inputs fill the device: a whole second store would not fit).
+  // The kernels' view of the store.
+  void set_mesh() {
+    M_ = Mesh{tet_.data(),   key_.data(), FlipLog{rec_.data(), hist_.data(), M_.log.base},
+              freeq_.data(), cap_,        ring_cap_,
+              ctr_.data()};
+  }
+
+  // Capacity for cap slots: every per-slot array grows, keeping what it holds. One array at a
+  // time, so that at most one array is held twice (the largest inputs fill the device: a
+  // whole second store would not fit).
   void grow(std::int64_t cap) {
     if (phase1_released_) {  // phase 2 and the output read the store only (release_phase1)
       const Counters c = counters();
       regrow<Tet>(tet_, cap, std::min<std::int64_t>(c.used, cap_), nullptr);
       cap_ = cap;
-      M_ = Mesh{tet_.data(), nullptr, nullptr, FlipLog{}, nullptr, cap_, ctr_.data()};
+      M_ = Mesh{tet_.data(), nullptr, FlipLog{}, nullptr, cap_, 0, ctr_.data()};
       return;
     }
-    const std::int64_t old = cap_;
-    Counters c{};
-    if (old) c = counters();
-    const std::int64_t keep = old ? std::min<std::int64_t>(c.used, old) : 0;
+    const std::int64_t keep = cap_ ? std::min<std::int64_t>(counters().used, cap_) : 0;
     regrow<Tet>(tet_, cap, keep, nullptr);
-    const u64 zero = 0, none = ~u64(0);
+    const u64 none = ~u64(0);
     const std::int32_t minus1 = -1;
     const Hist nohist{-1, -1};
-    regrow(vote_, cap, keep, &zero);
-    regrow(stamp_, cap, keep, &minus1);
+    regrow(key_, cap, keep, &none);
     regrow(hist_, cap, keep, &nohist);
-    regrow(best_, cap, keep, &none);
     regrow(srank_, cap, keep, &minus1);
-    if (old) {  // the ring of freed slots, unrolled
+    cap_ = cap;
+    set_mesh();
+    note_bytes();
+  }
+  // The two work lists (keeping their entries) and the decisions' scratch, for lists of up to
+  // `entries` (a list holds distinct slots: never more than the slots in use).
+  void grow_lists(std::int64_t entries) {
+    const Counters c = counters();
+    for (int l = 0; l < 2; ++l)
+      regrow<std::int32_t>(lists_[l], entries, std::min(c.len[l], list_cap_), nullptr);
+    dec_ = typename Exec::template Buffer<std::int8_t>();
+    tally_ = typename Exec::template Buffer<Tally>();
+    dec_ = ex_.template alloc<std::int8_t>(std::size_t(entries));
+    tally_ = ex_.template alloc<Tally>(std::size_t(entries) + 1);
+    list_cap_ = entries;
+    note_bytes();
+  }
+  // The ring of freed slots, unrolled into `entries`.
+  void grow_ring(std::int64_t entries) {
+    Counters c = counters();
+    auto freeq = ex_.template alloc<std::int32_t>(std::size_t(entries));
+    if (ring_cap_) {
       const std::int64_t nfree = c.free_tail - c.free_head;
-      auto freeq = ex_.template alloc<std::int32_t>(std::size_t(cap));
       const std::int32_t* q = freeq_.data();
       std::int32_t* nq = freeq.data();
-      const std::int64_t head = c.free_head, ocap = old;
+      const std::int64_t head = c.free_head, ocap = ring_cap_;
       ex_.for_each_index(
           nfree, GG_LAMBDA(std::int64_t i) { nq[i] = q[(head + i) % ocap]; });
-      freeq_ = std::move(freeq);
       c.free_head = 0;
       c.free_tail = nfree;
-    } else {
-      freeq_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
+      ex_.from_host(&c, 1, ctr_.data());
     }
-    for (int l = 0; l < 2; ++l)
-      regrow<std::int32_t>(lists_[l], cap, old ? std::min(c.len[l], old) : 0, nullptr);
-    // (scratch of one step: nothing to keep)
-    dec_ = typename Exec::template Buffer<std::int8_t>();
-    third_ = typename Exec::template Buffer<std::int32_t>();
-    tally_ = typename Exec::template Buffer<Tally>();
-    dec_ = ex_.template alloc<std::int8_t>(std::size_t(cap));
-    third_ = ex_.template alloc<std::int32_t>(std::size_t(cap));
-    tally_ = ex_.template alloc<Tally>(std::size_t(cap) + 1);
-    log_cap_ = std::max<std::int64_t>(cap / 2, 1 << 16);
-    if (!rec_.size() || std::int64_t(rec_.size()) < FlipLog::kStride * log_cap_)
-      regrow<std::int32_t>(rec_, FlipLog::kStride * log_cap_, old ? FlipLog::kStride * c.log : 0,
-                           nullptr);
-    cap_ = cap;
-    if (old) ex_.from_host(&c, 1, ctr_.data());
-    M_ = Mesh{
-        tet_.data(),   vote_.data(), stamp_.data(), FlipLog{rec_.data(), hist_.data(), M_.log.base},
-        freeq_.data(), cap_,         ctr_.data()};
+    freeq_ = std::move(freeq);
+    ring_cap_ = entries;
+    set_mesh();
+    note_bytes();
+  }
+  // The flip log, for epochs of up to `records` (keeping the epoch's records).
+  void grow_log(std::int64_t records) {
+    const std::int64_t keep = log_cap_ ? FlipLog::kStride * counters().log : 0;
+    regrow<std::int32_t>(rec_, FlipLog::kStride * records, keep, nullptr);
+    log_cap_ = records;
+    set_mesh();
+    note_bytes();
   }
   template <class T>
   void regrow(typename Exec::template Buffer<T>& b, std::int64_t cap, std::int64_t keep,
@@ -450,7 +512,15 @@ class Triangulator {
     if (fill) ex_.fill(nb.data() + keep, cap - keep, *fill);
     b = std::move(nb);
   }
-  // Room for `slots`: a quarter more than now at least (each growth copies the store), but
+  // A per-batch array (nothing kept) of at least n entries.
+  template <class T>
+  void fit(typename Exec::template Buffer<T>& b, std::int64_t n) {
+    if (std::int64_t(b.size()) >= n) return;
+    b = typename Exec::template Buffer<T>();
+    b = ex_.template alloc<T>(std::size_t(std::max<std::int64_t>(n + n / 4, 1024)));
+    note_bytes();
+  }
+  // Room for `slots`: an eighth more than now at least (each growth copies the store), but
   // never past the 2^29 slots the neighbour encoding (4 per slot in 31 bits) can address.
   static constexpr std::int64_t kMaxSlots = std::int64_t(1) << 29;
   void reserve(std::int64_t slots) {
@@ -459,21 +529,45 @@ class Triangulator {
       throw Error(ErrorCode::OutOfMemory,
                   "the tetrahedralisation needs more than 2^29 tetrahedra, more than this "
                   "version's 32-bit neighbour encoding can address");
-    grow(std::min(std::max(slots, cap_ + cap_ / 4), kMaxSlots));
+    grow(std::min(std::max(slots, cap_ + cap_ / 8), kMaxSlots));
   }
+  // What a halted round needs (settle's counts), made: a larger store, list, ring or log,
+  // or a new epoch of records.
+  void make_room(const Counters& c) {
+    if (c.need_list > list_cap_) grow_lists(std::max(c.need_list, list_cap_ + list_cap_ / 4));
+    if (c.need_slots > cap_) reserve(c.need_slots);
+    if (c.need_ring > ring_cap_) grow_ring(std::max(c.need_ring, ring_cap_ + ring_cap_ / 4));
+    if (c.log + c.need_log > log_cap_) {
+      relocate(false);
+      if (c.need_log > log_cap_) grow_log(std::max(c.need_log, log_cap_ + log_cap_ / 4));
+    }
+  }
+
+  // Bytes phase 1 holds on the executor (its arrays and the exact stages' scratch), and the
+  // most it held.
+  std::int64_t held_bytes() const {
+    std::int64_t b = std::int64_t(tet_.size()) * sizeof(Tet) + std::int64_t(hist_.size()) * 8 +
+                     std::int64_t(key_.size()) * 8 + std::int64_t(dec_.size()) +
+                     std::int64_t(tally_.size()) * sizeof(Tally) +
+                     std::int64_t(pool_.scratch.size()) * 8;
+    for (const auto* x :
+         {&srank_, &rec_, &split_, &freeq_, &lists_[0], &lists_[1], &loc_, &un_, &un2_, &ins_})
+      b += std::int64_t(x->size()) * 4;
+    return b + std::int64_t(m_) * (sizeof(double) * 3 + sizeof(std::int32_t));  // (prepare's)
+  }
+  void note_bytes() { peak_bytes_ = std::max(peak_bytes_, held_bytes()); }
 
   // Phase 1's working arrays, once it is done: what follows (failed faces, phase 2, the
   // output) reads only the store, the counters and the points.
   void release_phase1() {
-    for (auto* b : {&stamp_, &srank_, &freeq_, &lists_[0], &lists_[1], &third_, &rec_, &loc_, &un_,
-                    &un2_, &ins_, &split_})
+    for (auto* b :
+         {&srank_, &freeq_, &lists_[0], &lists_[1], &rec_, &loc_, &un_, &un2_, &ins_, &split_})
       *b = typename Exec::template Buffer<std::int32_t>();
-    vote_ = typename Exec::template Buffer<u64>();
-    best_ = typename Exec::template Buffer<u64>();
+    key_ = typename Exec::template Buffer<u64>();
     hist_ = typename Exec::template Buffer<Hist>();
     dec_ = typename Exec::template Buffer<std::int8_t>();
     tally_ = typename Exec::template Buffer<Tally>();
-    M_ = Mesh{tet_.data(), nullptr, nullptr, FlipLog{}, nullptr, cap_, ctr_.data()};
+    M_ = Mesh{tet_.data(), nullptr, FlipLog{}, nullptr, cap_, 0, ctr_.data()};
     // A later growth (star splaying may add more tetrahedra than the store holds) must not
     // copy out of the arrays just freed (it did: a crash on the CPU, an invalid output or an
     // error on the GPU, where splaying repaired many vertices).
@@ -485,7 +579,6 @@ class Triangulator {
     remaining_ = nun_;
     while (remaining_ > 0) batch();
     ex_.sync();
-    peak_bytes_ = store_bytes();
     release_phase1();
   }
 
@@ -557,23 +650,38 @@ class Triangulator {
     const auto t0 = Clock::now();
     ++batches_;
     relocate(true);
-    u64* best = best_.data();
-    std::int32_t* ins = ins_.data();
+    u64* best = key_.data();
     std::int32_t* chosen = un2_.data();  // (free until the point list is compacted below)
     const std::int32_t* loc0 = loc_.data();
-    const std::int64_t nins = ex_.copy_if(
+    const std::int64_t nchosen = ex_.copy_if(
         un_.data(), nun_, chosen, GG_LAMBDA(std::int32_t q) {
           const std::int32_t L = loc0[q];
           return L >= 0 && std::uint32_t(best[L]) == std::uint32_t(q);
         });
+    // At most a quarter of the points a batch (every stride-th choice in curve order, spread
+    // over the whole set): the last batches would otherwise take half the points at once, and
+    // the rounds' lists (4 entries a split, then up to twice that) are the largest arrays
+    // after the store. The others give up their choice (their keys cleared for the votes).
+    const std::int64_t limit = std::max<std::int64_t>(m_ / 4, 1);
+    const std::int64_t stride = (nchosen + limit - 1) / limit;
+    const std::int64_t nins = stride > 1 ? (nchosen + stride - 1) / stride : nchosen;
+    if (stride > 1)
+      ex_.for_each_index(
+          nchosen, GG_LAMBDA(std::int64_t r) {
+            if (r % stride) best[loc0[chosen[r]]] = ~u64(0);
+          });
     Counters c = counters();
     reserve(c.used + 3 * nins);
+    if (4 * nins > list_cap_) grow_lists(4 * nins + nins);
+    fit(ins_, nins);
+    fit(split_, 5 * nins);
     used_ = c.used + 3 * nins;  // (the split below hands these out)
-    best = best_.data();
+    best = key_.data();
+    std::int32_t* ins = ins_.data();
     std::int32_t* srank = srank_.data();
     ex_.for_each_index(
         nins, GG_LAMBDA(std::int64_t r) {
-          const std::int32_t t = loc0[chosen[r]];
+          const std::int32_t t = loc0[chosen[r * stride]];
           ins[r] = t;
           srank[t] = std::int32_t(r);
         });
@@ -615,10 +723,11 @@ class Triangulator {
             M.tet[slot] = C;
             act[4 * r + k] = slot;
           }
-          best[t] = ~u64(0);
+          best[t] = ~u64(0);  // (no vote: the flip rounds' keys are inverted)
           loc[q] = -1;
         });
     epoch_splits_ = nins;
+    max_nins_ = std::max(max_nins_, nins);
     epoch_first_new_ = first_new;
     remaining_ -= nins;
     dead_ += nins;
@@ -652,10 +761,14 @@ class Triangulator {
             1, GG_LAMBDA(std::int64_t) { *len = 0; });
         break;
       }
-      reserve(used_ + nact_);  // (the slots handed out as of the last read of the counters)
-      if (logged_ + nact_ > log_cap_) relocate(false);
+      // The flip log: a round records at most one flip per list entry, in practice at most
+      // 0.7 (0.3 on average). A new epoch starts where the next round may not fit, and the
+      // chunk holds the rounds that should; a round that does not fit halts (make_room).
+      const std::int64_t per_round = nact_ - nact_ * 3 / 10;
+      if (logged_ + per_round > log_cap_) relocate(false);
       const std::int32_t first = round_ + 1;
-      std::int64_t chunk = kChunk;
+      std::int64_t chunk = std::clamp<std::int64_t>(
+          (log_cap_ - logged_) / std::max<std::int64_t>(per_round, 1), 1, kChunk);
       if (max_rounds_ >= 0) chunk = std::min<std::int64_t>(chunk, max_rounds_ - rounds_here);
       const bool team = nact_ <= team_max;
       const auto t0 = Clock::now();
@@ -669,8 +782,14 @@ class Triangulator {
       std::int32_t last = team ? std::int32_t(c.team_end) - 1 : first + std::int32_t(chunk) - 1;
       if (c.halt) {  // (the halted round did nothing: it runs again after the room is made)
         last = std::int32_t(c.halt_round) - 1;
+        used_ = c.used;
+        logged_ = c.log;
+        const Counters need = c;
         c.halt = 0;
+        c.need_slots = c.need_log = c.need_list = c.need_ring = 0;
         ex_.from_host(&c, 1, ctr_.data());
+        make_room(need);
+        c = counters();
       }
       rounds_here += last - round_;
       round_ = last;
@@ -687,11 +806,11 @@ class Triangulator {
     R.M = M_;
     R.L = work_lists();
     R.dec = dec_.data();
-    R.third = third_.data();
     R.tally = tally_.data();
     R.round = round;
     R.log_cap = log_cap_;
-    R.span = cap_;
+    R.list_cap = list_cap_;
+    R.span = list_cap_;
     return R;
   }
 
@@ -700,7 +819,7 @@ class Triangulator {
   // decisions over bound entries (those past the length count nothing).
   void launch_round(std::int32_t round, std::int64_t bound) {
     FlipRound R = make_round(round);
-    R.span = std::min<std::int64_t>(bound, cap_);  // (a list holds distinct slots)
+    R.span = std::min<std::int64_t>(bound, list_cap_);
     const std::int64_t* count = R.count();
     ex_.for_each_index(
         1, GG_LAMBDA(std::int64_t) { R.begin(); });
@@ -802,9 +921,11 @@ class Triangulator {
     const std::int32_t* srank = srank_.data();
     const std::int32_t* sp = split_.data();
     const std::int32_t first_new = epoch_first_new_;
-    u64* best = best_.data();
+    u64* best = key_.data();
     const bool moved = epoch_splits_ > 0 || logged_ > 0;
     if (!moved && !choose) return;
+    // (the keys hold the flip rounds' stale votes: cleared for the choice, an atomic minimum)
+    if (choose) ex_.fill(best, cap_, ~u64(0));
     ex_.for_each_index(
         nun_, GG_LAMBDA(std::int64_t i) {
           const std::int32_t q = un[i];
@@ -912,24 +1033,20 @@ class Triangulator {
     return mesh::compact_live<4>(ex_, c.used, FiniteTets{tet_.data(), orig, m_});
   }
 
-  // Bytes phase 1 holds on the executor at its largest: the slot store with its per-slot
-  // arrays, the flip log, the per-point arrays and the exact stages' scratch.
-  std::int64_t store_bytes() const {
-    // (per slot: the tetrahedron, vote and choice keys, history, 7 int32 arrays, a decision;
-    // per point: 9 int32 here, and the sorted coordinates and input indices of prepare)
-    const std::int64_t per_slot = sizeof(Tet) + sizeof(u64) * 2 + sizeof(Hist) +
-                                  sizeof(std::int32_t) * 7 + sizeof(std::int8_t);
-    const std::int64_t per_point = sizeof(std::int32_t) * 10 + sizeof(double) * 3;
-    return cap_ * per_slot + std::int64_t(rec_.size()) * 4 + std::int64_t(m_) * per_point +
-           std::int64_t(pool_.scratch.size()) * 8;
-  }
-
   void report() {
     const Counters c = counters();
     st_.counters["device_bytes_phase1"] = peak_bytes_;
     st_.counters["slots_used"] = c.used;
     st_.counters["slots_capacity"] = cap_;
     st_.counters["batches"] = batches_;
+    st_.counters["max_list"] = c.max_len;
+    st_.counters["max_epoch_records"] = c.max_log;
+    st_.counters["max_free_slots"] = c.max_free;
+    st_.counters["max_splits"] = max_nins_;
+    st_.counters["halts"] = c.halts;
+    st_.counters["log_capacity"] = log_cap_;
+    st_.counters["list_capacity"] = list_cap_;
+    st_.counters["ring_capacity"] = ring_cap_;
     st_.counters["flip_rounds"] = c.rounds;
     st_.counters["flips23"] = c.flips23;
     st_.counters["flips32"] = c.flips32;
@@ -957,8 +1074,8 @@ class Triangulator {
   std::int64_t cap_ = 0, nun_ = 0, nact_ = 0, used_ = 0;
   bool phase1_released_ = false;  // release_phase1 ran: grow keeps the store only
   std::int32_t round_ = 0;
-  std::int64_t batches_ = 0;
-  std::int64_t log_cap_ = 0, logged_ = 0;
+  std::int64_t batches_ = 0, max_nins_ = 0;
+  std::int64_t log_cap_ = 0, logged_ = 0, list_cap_ = 0, ring_cap_ = 0;
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;
   std::int32_t epoch_first_new_ = 0;
   double ms_choose_ = 0, ms_wide_ = 0, ms_team_ = 0;
@@ -966,10 +1083,11 @@ class Triangulator {
   LeasePool<Exec> pool_;
   typename Exec::template Buffer<Tet> tet_;
   typename Exec::template Buffer<Hist> hist_;
-  typename Exec::template Buffer<std::int32_t> stamp_, srank_, rec_, split_, freeq_;
-  typename Exec::template Buffer<u64> vote_, best_;
+  typename Exec::template Buffer<std::int32_t> srank_, rec_, split_, freeq_;
+  // Per slot: the flip rounds' votes, and the choice of a batch's points (cleared before it).
+  typename Exec::template Buffer<u64> key_;
   typename Exec::template Buffer<std::int32_t> lists_[2];
-  typename Exec::template Buffer<std::int32_t> third_, loc_, un_, un2_, ins_;
+  typename Exec::template Buffer<std::int32_t> loc_, un_, un2_, ins_;
   typename Exec::template Buffer<Tally> tally_;
   typename Exec::template Buffer<std::int8_t> dec_;
   typename Exec::template Buffer<Counters> ctr_;
