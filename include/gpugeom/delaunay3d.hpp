@@ -103,8 +103,11 @@ struct Triangulation3d {
 };
 
 // xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
-// outside the exactly representable range, or more than 2^26 points (this version's 32-bit
-// neighbour encoding; larger inputs are the size-limits issue's work); Error(DegenerateInput)
+// outside the exactly representable range, or more than 1.4·10^8 points (the store's 32-bit
+// neighbour encoding addresses 2^30 - 1 tetrahedra, about 7.3 a point with the dead and
+// infinite ones); Error(OutOfMemory), before any launch, where the device's free memory is
+// below what the points certainly need (the bytes needed and free in the message);
+// Error(DegenerateInput)
 // naming the case for fewer than 4 distinct points or all points on one line or one plane.
 Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt = {});
 Triangulation3d delaunay3d(const std::vector<Point3>& pts, const Delaunay3dOptions& opt = {});

@@ -11,16 +11,18 @@
 namespace gpugeom {
 
 namespace {
-// Up to about 7.5 tetrahedra per point with the dead and infinite slots must stay below the
-// 2^29 slots the neighbour encoding addresses.
-constexpr std::int64_t kMaxPoints = std::int64_t(1) << 26;
+// About 7.3 slots a point (tetrahedra with the dead and infinite ones; 7.5 reserved) must stay
+// below the 2^30 - 1 slots the neighbour encoding addresses (delaunay3d/tet.hpp).
+constexpr std::int64_t kMaxPoints = ((std::int64_t(1) << 30) - 1 - 64) * 2 / 15;
 
 void check_count(std::int64_t n) {
   if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
   if (n > kMaxPoints)
     throw Error(ErrorCode::InvalidInput, "too many points (" + std::to_string(n) + "): at most " +
                                              std::to_string(kMaxPoints) +
-                                             " per 3D triangulation in this version");
+                                             " per 3D triangulation (the 2^30 - 1 "
+                                             "tetrahedra its 32-bit neighbour encoding "
+                                             "addresses)");
   if (n < 4)
     throw Error(ErrorCode::DegenerateInput,
                 "fewer than 4 points (" + std::to_string(n) +

@@ -3,10 +3,11 @@
 // local vertex k is stored as enc(n, j) = 4n + j, with n the neighbour's slot and j the
 // neighbour's local index of its vertex opposite the same face, in 32 bits. Two readings:
 //   Adjacency (the free functions enc / simplex_of / loc_of): signed, slots below 2^29, so
-//     negative values stay free for "no neighbour" (hull3d's removed facets, delaunay3d's dead
-//     tetrahedra and its star splaying use -1);
+//     negative values stay free for "no neighbour" (hull3d's removed facets use -1);
 //   WideAdjacency: the same bits read as unsigned, slots below 2^30, every value a neighbour
-//     (delaunay2d, whose 2n triangles reach 2^30 at 2^29 points and are never without one).
+//     (delaunay2d, whose 2n triangles reach 2^30 at 2^29 points and are never without one;
+//     delaunay3d, whose 7.3 tetrahedra a point reach 2^29 at 7·10^7 points: its stores stop at
+//     2^30 - 1 slots, so that -1 stays free for its dead tetrahedra).
 #pragma once
 #include <cstdint>
 

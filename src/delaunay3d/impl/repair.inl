@@ -738,8 +738,8 @@ inline std::int64_t repair_tets(Exec& ex, const Geo& g, Tet* tet, std::int64_t u
               atomic_add(err, std::int64_t(1));
               continue;
             }
-            tet[s].n[k] = mesh::enc(nb, l);
-            if (kept) tet[nb].n[l] = mesh::enc(s, k);
+            tet[s].n[k] = enc(nb, l);
+            if (kept) tet[nb].n[l] = enc(s, k);
           }
         }
       });
@@ -749,8 +749,8 @@ inline std::int64_t repair_tets(Exec& ex, const Geo& g, Tet* tet, std::int64_t u
         const std::int32_t s = slot_of(k);
         for (int f = 0; f < 4; ++f) {
           const std::int32_t e = tet[s].n[f];
-          if (e < 0 || tet[mesh::simplex_of(e)].v[0] < 0 ||
-              tet[mesh::simplex_of(e)].n[mesh::loc_of(e)] != mesh::enc(s, f))
+          if (e == kNoNeighbour || tet[simplex_of(e)].v[0] < 0 ||
+              tet[simplex_of(e)].n[loc_of(e)] != enc(s, f))
             atomic_add(err, std::int64_t(1));
         }
       });

@@ -19,9 +19,6 @@
 // (repair.inl), which repairs the tetrahedralisation by star splaying on the executor.
 
 using u64 = std::uint64_t;
-using mesh::enc;
-using mesh::loc_of;
-using mesh::simplex_of;
 using FlipLog = mesh::FlipLog<3, 6>;  // slots; payload: kind, then the five vertices
 using Hist = mesh::FlipHist;
 
@@ -331,14 +328,15 @@ struct FlipRound {
       for (int l = 0; l < 4; ++l) {
         std::int32_t f[3];
         face_of(y[s].v, l, f);
-        std::int32_t e = -1;
-        for (int s2 = 0; s2 < nnew && e < 0; ++s2) {
+        std::int32_t e = kNoNeighbour;  // (an encoding may be negative: found, not e >= 0)
+        bool found = false;
+        for (int s2 = 0; s2 < nnew && !found; ++s2) {
           const int l2 = s2 == s ? -1 : opposite_of_face(y[s2].v, f[0], f[1], f[2]);
-          if (l2 >= 0) e = enc(slots[s2], l2);
+          if (l2 >= 0) e = enc(slots[s2], l2), found = true;
         }
-        for (int o = 0; o < nold && e < 0; ++o) {
+        for (int o = 0; o < nold && !found; ++o) {
           const int lo = opposite_of_face(old[o].v, f[0], f[1], f[2]);
-          if (lo >= 0) e = old[o].n[lo];
+          if (lo >= 0) e = old[o].n[lo], found = true;
         }
         y[s].n[l] = e;
       }
@@ -380,7 +378,7 @@ struct FlipRound {
         if (o == x[0] || o == x[1] || o == x[2]) continue;  // inner
         FaceStore S{M, {0, 0, 0}};
         face_of(Y.v, l, S.f);
-        mesh::fix_face(S, ys, l, Y.n[l], flipped_now(o));
+        mesh::fix_face<TetAdjacency>(S, ys, l, Y.n[l], flipped_now(o));
       }
     }
   }
@@ -521,14 +519,14 @@ class Triangulator {
     note_bytes();
   }
   // Room for `slots`: an eighth more than now at least (each growth copies the store), but
-  // never past the 2^29 slots the neighbour encoding (4 per slot in 31 bits) can address.
-  static constexpr std::int64_t kMaxSlots = std::int64_t(1) << 29;
+  // never past the 2^30 - 1 slots the neighbour encoding (tet.hpp) can address.
+  static constexpr std::int64_t kMaxSlots = kMaxTetSlots;
   void reserve(std::int64_t slots) {
     if (slots <= cap_) return;
     if (slots > kMaxSlots)
       throw Error(ErrorCode::OutOfMemory,
-                  "the tetrahedralisation needs more than 2^29 tetrahedra, more than this "
-                  "version's 32-bit neighbour encoding can address");
+                  "the tetrahedralisation needs more than 2^30 - 1 tetrahedra (about 1.4·10^8 "
+                  "points), more than the 32-bit neighbour encoding can address");
     grow(std::min(std::max(slots, cap_ + cap_ / 8), kMaxSlots));
   }
   // What a halted round needs (settle's counts), made: a larger store, list, ring or log,
@@ -1024,7 +1022,7 @@ class Triangulator {
     GG_HD mesh::SimplexRecord<4> get(std::int64_t t) const {
       const Tet T = tet[t];
       mesh::SimplexRecord<4> r;
-      for (int k = 0; k < 4; ++k) r.v[k] = orig[T.v[k]], r.n[k] = mesh::simplex_of(T.n[k]);
+      for (int k = 0; k < 4; ++k) r.v[k] = orig[T.v[k]], r.n[k] = simplex_of(T.n[k]);
       return r;
     }
   };
@@ -1294,9 +1292,10 @@ inline void to_device_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compac
   out.hull_facets = hf.own();
 }
 
-// The device memory a tetrahedralisation certainly needs per point (docs/performance.md:
-// 1 358 B measured at 10^7 uniform points).
-constexpr double kLeastBytesPerPoint = 800;
+// The device memory a tetrahedralisation certainly needs per point: phase 1's store alone
+// (7 slots a point at the least, 52 bytes each with the keys, history and split ranks) and the
+// points (docs/performance.md has the measured peaks).
+constexpr double kLeastBytesPerPoint = 7 * 52 + 40;
 
 inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                              Output& out, Stats& st) {
