@@ -199,6 +199,16 @@ TEST(Delaunay3d, Errors) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("one plane"), std::string::npos) << e.what();
   }
+  {  // more points than the store's encoding addresses: refused before the points are read
+    const double one[3] = {0, 0, 0};
+    try {
+      delaunay3d(one, 200000000, cpu());
+      ADD_FAILURE() << "2·10^8 points not refused";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::InvalidInput) << e.what();
+      EXPECT_NE(std::string(e.what()).find("2^30 - 1"), std::string::npos) << e.what();
+    }
+  }
   if (!query_device().available) {  // the device entry needs a GPU, and says so
     const double p[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
     try {

@@ -17,6 +17,7 @@
 #include "exec/cpu_exec.hpp"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
+#include "delaunay3d/tet.hpp"
 #include "mesh/compact.hpp"
 #include "mesh/decision.hpp"
 #include "mesh/history.hpp"
@@ -160,6 +161,17 @@ TEST(MeshAdjacency, WideEncodingRoundTrips) {
         EXPECT_EQ(e, mesh::enc(std::int32_t(s), k));  // the same bits where both apply
       }
     }
+}
+
+// delaunay3d's store reads the encoding wide, with -1 for "no neighbour": its last slot,
+// kMaxTetSlots - 1, never encodes to -1 (the slot above it would, at face 3).
+TEST(MeshAdjacency, TetStoreKeepsMinusOneFree) {
+  for (std::int64_t s : {std::int64_t(0), del3d::kMaxTetSlots - 1})
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_NE(del3d::enc(std::int32_t(s), k), del3d::kNoNeighbour);
+      EXPECT_EQ(del3d::simplex_of(del3d::enc(std::int32_t(s), k)), s);
+    }
+  EXPECT_EQ(del3d::enc(std::int32_t(del3d::kMaxTetSlots), 3), del3d::kNoNeighbour);
 }
 
 TEST(MeshCompact, LiveSimplicesRenumberedWithTheirNeighbours) {
