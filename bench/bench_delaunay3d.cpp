@@ -7,7 +7,8 @@
 //        [--digital G,G,...]
 //                            dist:n [dist:n ...]
 // (--cpu: the CPU executor too where there is a GPU; --verbose: every phase and counter;
-// --cgal-max: CGAL only up to N points, default 10^7; B/pt: phase 1's device bytes per point;
+// --cgal-max: CGAL only up to N points, default 10^7; B/pt: the device peak per point of the
+// end-to-end call (the pool's high-water mark; the CPU executor: what phase 1 holds);
 // --digital: a row of the digital method (DigiDel3D) per grid side after each incremental row,
 // 0 the automatic side, with its phases and whether its tetrahedra are the incremental ones)
 #include <algorithm>
@@ -40,6 +41,12 @@ namespace {
 using clk = std::chrono::steady_clock;
 using bench::counter;
 using bench::ms_since;
+
+// Bytes a point: the device peak where the call ran on the GPU, else phase 1's bytes.
+std::int64_t bytes_per_point(const gpugeom::Stats& st) {
+  const std::int64_t peak = bench::counter(st, "device_peak_bytes");
+  return peak > 0 ? peak : bench::counter(st, "device_bytes_phase1");
+}
 double phase(const Stats& s, const char* name) {
   return bench::phase_ms(s, name);
 }
@@ -181,8 +188,8 @@ int run(int argc, char** argv) {
           (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
           (long long)counter(t.stats, "failed_vertices"),
           (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(),
-          (long long)(counter(t.stats, "device_bytes_phase1") / std::max<std::int64_t>(n, 1)), cg,
-          cgp, ok.c_str());
+          (long long)(bytes_per_point(t.stats) / std::max<std::int64_t>(n, 1)), cg, cgp,
+          ok.c_str());
       if (b == Backend::Cuda)  // points in; the five arrays out
         std::printf("#   bus floor %.1f ms\n",
                     bench::bus_floor_ms(24.0 * n + 4.0 * (8.0 * t.tetrahedron_count + 2.0 * n +
