@@ -11,9 +11,9 @@
 namespace gpugeom {
 
 namespace {
-// About 7.3 slots a point (tetrahedra with the dead and infinite ones; 7.5 reserved) must stay
-// below the 2^30 - 1 slots the neighbour encoding addresses (delaunay3d/tet.hpp).
-constexpr std::int64_t kMaxPoints = ((std::int64_t(1) << 30) - 1 - 64) * 2 / 15;
+// About 7.3 slots a point (tetrahedra with the dead and infinite ones; 7.5 with a margin) must
+// stay below the 2^30 - 1 slots the neighbour encoding addresses (delaunay3d/tet.hpp).
+constexpr std::int64_t kMaxPoints = ((std::int64_t(1) << 30) - 1) * 2 / 15;
 
 void check_count(std::int64_t n) {
   if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");

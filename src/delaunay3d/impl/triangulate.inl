@@ -421,11 +421,12 @@ class Triangulator {
     Counters zero{};
     ex.from_host(&zero, 1, ctr_.data());
     // First sizes, from what uniform points use (design notes, "Phase 1's memory"): slots in
-    // use reach about 7.3 a point, lists 2.4 (batches of at most a quarter of the points),
-    // records of an epoch 1.9 (1.75 held: a new epoch starts early), freed slots waiting 0.8.
-    // Each grows where a round needs more (settle halts the round, make_room grows).
+    // use reach 7.2-7.3 a point (more on small sets: the constant), lists 2.4 (batches of at most a
+    // quarter of the points), records of an epoch 1.9 (1.75 held: a new epoch starts early), freed
+    // slots waiting 0.8. Each grows where a round needs more (settle halts the round, make_room
+    // grows).
     const std::int64_t m64 = m;
-    grow(std::min(std::max<std::int64_t>(m64 * 15 / 2 + 64, 1024), kMaxSlots));
+    grow(std::min(m64 * 73 / 10 + 4096, kMaxSlots));
     grow_lists(std::max<std::int64_t>(m64 * 5 / 2, 1024));
     grow_ring(std::max<std::int64_t>(m64, 1024));
     grow_log(std::max<std::int64_t>(m64 * 7 / 4, 1 << 16));
