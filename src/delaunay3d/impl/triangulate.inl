@@ -421,14 +421,14 @@ class Triangulator {
     Counters zero{};
     ex.from_host(&zero, 1, ctr_.data());
     // First sizes, from what uniform points use (design notes, "Phase 1's memory"): slots in
-    // use reach 7.2-7.3 a point (more on small sets: the constant), lists 2.4 (batches of at most a
-    // quarter of the points), records of an epoch 1.9 (1.75 held: a new epoch starts early), freed
-    // slots waiting 0.8. Each grows where a round needs more (settle halts the round, make_room
-    // grows).
+    // use reach 7.2-7.33 a point (7.35 held; more on small sets: the constant), lists 2.2 (batches
+    // of at most a quarter of the points; 2.4 at 10^6), records of an epoch 1.9 (1.75 held: a new
+    // epoch starts early), freed slots waiting 0.5-0.8. Each grows where a round needs more
+    // (settle halts the round, make_room grows).
     const std::int64_t m64 = m;
-    grow(std::min(m64 * 73 / 10 + 4096, kMaxSlots));
-    grow_lists(std::max<std::int64_t>(m64 * 5 / 2, 1024));
-    grow_ring(std::max<std::int64_t>(m64, 1024));
+    grow(std::min(m64 * 147 / 20 + 4096, kMaxSlots));
+    grow_lists(std::max<std::int64_t>(m64 * 9 / 4, 1024));
+    grow_ring(std::max<std::int64_t>(m64 * 3 / 4, 1024));
     grow_log(std::max<std::int64_t>(m64 * 7 / 4, 1 << 16));
   }
 
