@@ -23,6 +23,17 @@
 // (its index comes from its lowest vertex's star) or was kept, and then its slot is in that
 // vertex's old star, and its face towards the region is pointed at the new tetrahedron.
 
+// An executor array reallocated to cap entries, keeping its first `keep` and filling the rest
+// with *fill where given (phase 1's store and phase 2's old stars grow this way).
+template <class T>
+void regrow(Exec& ex, typename Exec::template Buffer<T>& b, std::int64_t cap, std::int64_t keep,
+            const T* fill = nullptr) {
+  auto nb = ex.template alloc<T>(std::size_t(cap));
+  if (keep) ex.copy(b.data(), keep, nb.data());
+  if (fill) ex.fill(nb.data() + keep, cap - keep, *fill);
+  b = std::move(nb);
+}
+
 struct RepairCount {
   std::int64_t failed_vertices = 0, stars_built = 0, stars_changed = 0;
   std::int64_t removed = 0, added = 0, rounds = 0, insertions = 0;
@@ -475,14 +486,8 @@ class MeshStars {
   void reserve_old(std::int64_t need) {
     if (need <= ocap_) return;
     const std::int64_t cap = std::max<std::int64_t>(need, 2 * ocap_ + 1024);
-    auto t2 = ex_.template alloc<LinkTri>(std::size_t(cap));
-    auto s2 = ex_.template alloc<std::int32_t>(std::size_t(cap));
-    if (oused_) {
-      ex_.copy(otri_.data(), oused_, t2.data());
-      ex_.copy(oslot_.data(), oused_, s2.data());
-    }
-    otri_ = std::move(t2);
-    oslot_ = std::move(s2);
+    regrow(ex_, otri_, cap, oused_);
+    regrow(ex_, oslot_, cap, oused_);
     ocap_ = cap;
   }
 

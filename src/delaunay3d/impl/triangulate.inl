@@ -445,19 +445,19 @@ class Triangulator {
   void grow(std::int64_t cap) {
     if (phase1_released_) {  // phase 2 and the output read the store only (release_phase1)
       const Counters c = counters();
-      regrow<Tet>(tet_, cap, std::min<std::int64_t>(c.used, cap_), nullptr);
+      regrow<Tet>(ex_, tet_, cap, std::min<std::int64_t>(c.used, cap_), nullptr);
       cap_ = cap;
       M_ = Mesh{tet_.data(), nullptr, FlipLog{}, nullptr, cap_, 0, ctr_.data()};
       return;
     }
     const std::int64_t keep = cap_ ? std::min<std::int64_t>(counters().used, cap_) : 0;
-    regrow<Tet>(tet_, cap, keep, nullptr);
+    regrow<Tet>(ex_, tet_, cap, keep, nullptr);
     const u64 none = ~u64(0);
     const std::int32_t minus1 = -1;
     const Hist nohist{-1, -1};
-    regrow(key_, cap, keep, &none);
-    regrow(hist_, cap, keep, &nohist);
-    regrow(srank_, cap, keep, &minus1);
+    regrow(ex_, key_, cap, keep, &none);
+    regrow(ex_, hist_, cap, keep, &nohist);
+    regrow(ex_, srank_, cap, keep, &minus1);
     cap_ = cap;
     set_mesh();
     note_bytes();
@@ -467,7 +467,7 @@ class Triangulator {
   void grow_lists(std::int64_t entries) {
     const Counters c = counters();
     for (int l = 0; l < 2; ++l)
-      regrow<std::int32_t>(lists_[l], entries, std::min(c.len[l], list_cap_), nullptr);
+      regrow<std::int32_t>(ex_, lists_[l], entries, std::min(c.len[l], list_cap_), nullptr);
     dec_ = typename Exec::template Buffer<std::int8_t>();
     tally_ = typename Exec::template Buffer<Tally>();
     dec_ = ex_.template alloc<std::int8_t>(std::size_t(entries));
@@ -498,18 +498,10 @@ class Triangulator {
   // The flip log, for epochs of up to `records` (keeping the epoch's records).
   void grow_log(std::int64_t records) {
     const std::int64_t keep = log_cap_ ? FlipLog::kStride * counters().log : 0;
-    regrow<std::int32_t>(rec_, FlipLog::kStride * records, keep, nullptr);
+    regrow<std::int32_t>(ex_, rec_, FlipLog::kStride * records, keep, nullptr);
     log_cap_ = records;
     set_mesh();
     note_bytes();
-  }
-  template <class T>
-  void regrow(typename Exec::template Buffer<T>& b, std::int64_t cap, std::int64_t keep,
-              const T* fill) {
-    auto nb = ex_.template alloc<T>(std::size_t(cap));
-    if (keep) ex_.copy(b.data(), keep, nb.data());
-    if (fill) ex_.fill(nb.data() + keep, cap - keep, *fill);
-    b = std::move(nb);
   }
   // A per-batch array (nothing kept) of at least n entries.
   template <class T>
@@ -542,16 +534,19 @@ class Triangulator {
     }
   }
 
+  // Phase 1's int32 arrays (what held_bytes counts and release_phase1 frees).
+  std::array<typename Exec::template Buffer<std::int32_t>*, 10> int32_arrays() {
+    return {&srank_, &freeq_, &lists_[0], &lists_[1], &rec_, &loc_, &un_, &un2_, &ins_, &split_};
+  }
+
   // Bytes phase 1 holds on the executor (its arrays and the exact stages' scratch), and the
   // most it held.
-  std::int64_t held_bytes() const {
+  std::int64_t held_bytes() {
     std::int64_t b = std::int64_t(tet_.size()) * sizeof(Tet) + std::int64_t(hist_.size()) * 8 +
                      std::int64_t(key_.size()) * 8 + std::int64_t(dec_.size()) +
                      std::int64_t(tally_.size()) * sizeof(Tally) +
                      std::int64_t(pool_.scratch.size()) * 8;
-    for (const auto* x :
-         {&srank_, &rec_, &split_, &freeq_, &lists_[0], &lists_[1], &loc_, &un_, &un2_, &ins_})
-      b += std::int64_t(x->size()) * 4;
+    for (const auto* x : int32_arrays()) b += std::int64_t(x->size()) * 4;
     return b + std::int64_t(m_) * (sizeof(double) * 3 + sizeof(std::int32_t));  // (prepare's)
   }
   void note_bytes() { peak_bytes_ = std::max(peak_bytes_, held_bytes()); }
@@ -559,9 +554,7 @@ class Triangulator {
   // Phase 1's working arrays, once it is done: what follows (failed faces, phase 2, the
   // output) reads only the store, the counters and the points.
   void release_phase1() {
-    for (auto* b :
-         {&srank_, &freeq_, &lists_[0], &lists_[1], &rec_, &loc_, &un_, &un2_, &ins_, &split_})
-      *b = typename Exec::template Buffer<std::int32_t>();
+    for (auto* b : int32_arrays()) *b = typename Exec::template Buffer<std::int32_t>();
     key_ = typename Exec::template Buffer<u64>();
     hist_ = typename Exec::template Buffer<Hist>();
     dec_ = typename Exec::template Buffer<std::int8_t>();
