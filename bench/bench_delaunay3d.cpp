@@ -187,7 +187,7 @@ int run(int argc, char** argv) {
           phase(t.stats, "prepare"), phase(t.stats, "insert_flip"), phase(t.stats, "splay"),
           (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
           (long long)counter(t.stats, "failed_vertices"),
-          (long long)counter(t.stats, "stars_touched"), t.num_tetrahedra(),
+          (long long)counter(t.stats, "stars_built"), t.num_tetrahedra(),
           (long long)(bytes_per_point(t.stats) / std::max<std::int64_t>(n, 1)), cg, cgp,
           ok.c_str());
       if (b == Backend::Cuda)  // points in; the five arrays out

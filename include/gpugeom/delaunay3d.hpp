@@ -84,16 +84,17 @@ struct Triangulation3d {
   // One entry per input point: a tetrahedron having it as a vertex (a duplicate: that of the
   // point it duplicates).
   HostVector<std::int32_t> vertex_to_simplex;
-  // Stats: phases "prepare", "insert_flip", "find_failed", "splay" (phase 2, on the host),
-  // "output"; counters "points", "distinct_points", "duplicates", "batches", "flip_rounds",
-  // "flips23", "flips32", "unflippable_tests", "failed_faces", "failed_vertices",
-  // "flat_tetrahedra" (removed from the hull), "stars_rebuilt", "stars_touched",
-  // "star_insertions", "splay_rounds" (splaying rounds, each on all host threads),
-  // "splay_removed", "splay_added", "splay_slots_read" (store slots phase 2 copied to the
-  // host), "device_bytes_phase1" (phase 1's device memory at its largest), "slots_used",
-  // "slots_capacity" (of the tetrahedron store), and times in microseconds "us_*" (phase 1:
-  // choosing and splitting, flip rounds as kernels and in one block; phase 2: copies, star
-  // rebuilds, splaying rounds, patch, loading stars from the executor, peeling flat tetrahedra).
+  // Stats: phases "prepare", "insert_flip", "find_failed", "splay" (phase 2, star splaying on
+  // the executor), "output"; counters "points", "distinct_points", "duplicates", "batches",
+  // "flip_rounds", "flips23", "flips32", "unflippable_tests", "failed_faces", "failed_vertices",
+  // "flat_tetrahedra" (removed from the hull), "stars_built", "stars_changed",
+  // "star_insertions", "splay_rounds", "splay_removed", "splay_added", "device_bytes_phase1"
+  // (phase 1's arrays at their largest), "device_peak_bytes" (CUDA: the call's device peak),
+  // "slots_used", "slots_capacity" (of the tetrahedron store), phase 1's sizing ("halts",
+  // "max_list", "max_epoch_records", "max_free_slots", "max_splits", "list_capacity",
+  // "log_capacity", "ring_capacity", "round_chunks", "team_launches"), and times in
+  // microseconds "us_*" (phase 1: choosing and splitting, flip rounds as kernels and in one
+  // block; phase 2: building stars, splaying rounds, checks, takes, patch).
   // Every array, and phase 1's counters, are the same run after run, on any thread count and on
   // both executors (the same tetrahedra in the same order, with the same neighbours).
   Stats stats;
@@ -115,13 +116,12 @@ Triangulation3d delaunay3d(const std::vector<Point3>& pts, const Delaunay3dOptio
 // The same tetrahedralisation with the points already on the GPU and the result left there:
 // device_xyz is device memory holding n points, x, y and z interleaved, on opt.device. The work
 // runs on opt.stream (see RunOptions), so the points must be ready in that stream's order; the
-// call returns once the result is ready. Phase 2 still runs on host threads (opt.threads) over
-// the few neighbourhoods it needs. The arrays are the library's device memory, freed when the
-// last copy of their pointer goes (they can be wrapped without copying, e.g. by CuPy), or the
-// caller's (opt.into). With opt.backend == Backend::Cpu the CPU executor runs it on host memory
-// (the same result); otherwise CUDA runs it, whatever GPUGEOM_BACKEND says. Throws
-// Error(Unsupported) where no CUDA device can be used (and the CPU was not asked for), and as
-// delaunay3d otherwise.
+// call returns once the result is ready; both phases run on the device. The arrays are the
+// library's device memory, freed when the last copy of their pointer goes (they can be wrapped
+// without copying, e.g. by CuPy), or the caller's (opt.into). With opt.backend == Backend::Cpu the
+// CPU executor runs it on host memory (the same result); otherwise CUDA runs it, whatever
+// GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA device can be used (and the CPU was
+// not asked for), and as delaunay3d otherwise.
 struct DeviceTriangulation3d {
   std::int64_t num_points = 0, num_tetrahedra = 0, num_duplicates = 0, num_hull_facets = 0;
   std::shared_ptr<std::int32_t> tetrahedra;         // 4 * num_tetrahedra, as Triangulation3d's
