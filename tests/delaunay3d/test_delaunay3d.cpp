@@ -175,6 +175,8 @@ TEST(Delaunay3d, FullGrid) {
   expect_valid(pts, t);
   EXPECT_GT(t.stats.counters.at("flat_tetrahedra"), 0);
   EXPECT_EQ(t.hull_facets.size() / 3, std::size_t(6 * 2 * 23 * 23));  // two per unit square
+  // (the hull planes' flips outlast their batch: their lists go on in the next batches' rounds)
+  EXPECT_GT(t.stats.counters.at("carried_batches"), 0);
 }
 
 TEST(Delaunay3d, Errors) {

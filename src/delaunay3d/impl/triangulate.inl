@@ -13,6 +13,10 @@
 // never depends on timing. The flipped tetrahedra and the outvoted proposers form the next
 // list. Flips are recorded (mesh/history.hpp); before the next choice each point not yet
 // inserted follows its tetrahedron through the split and the records.
+// A batch's rounds stop once their list is short (a few rounds in): what is left goes on
+// with the next batch's rounds (the last batch flips to the end), as gDel3D leaves small
+// lists to later rounds; integer grids' hull planes otherwise cost a long chain of rounds per
+// batch.
 //
 // In 3D flipping can get stuck (Joe): faces that are not locally Delaunay but cannot be flipped.
 // After the last batch every face is tested, and the vertices of the failed ones go to phase 2
@@ -36,6 +40,9 @@ struct Counters {
   // What the halted round needs (settle): slots, flip records, next-list entries, ring entries.
   std::int64_t need_slots, need_log, need_list, need_ring;
   std::int64_t halts;  // rounds halted for room (each runs again)
+  // The batch's rounds stopped with their list carried into the next batch (FlipRound::begin);
+  // how many batches did.
+  std::int64_t carry, carries;
   // High-water marks (sizing): the longest list, the most records of an epoch, the most freed
   // slots waiting in the ring.
   std::int64_t max_len, max_log, max_free;
@@ -141,6 +148,10 @@ struct FlipRound {
   std::int64_t log_cap;
   std::int64_t list_cap;  // entries each list holds
   std::int64_t span;      // the longest list the decisions' scan covers (a longer one halts)
+  // A round from carry_from on whose list is at most carry_max entries stops the batch's
+  // rounds: its list goes on in the next batch's rounds (Triangulator::batch).
+  std::int32_t carry_from;
+  std::int64_t carry_max;
 
   GG_HD const std::int64_t* count() const { return L.count(round); }
   GG_HD const std::int64_t* flips() const { return &M.ctr->nflip[round & 1]; }
@@ -156,6 +167,12 @@ struct FlipRound {
     *L.next_count(round) = 0;
     ctr->nflip[round & 1] = 0;
     if (n == 0) return;  // (a round past the last one: nothing to do)
+    if (round >= carry_from && n <= carry_max) {
+      ctr->halt = 1;
+      ctr->halt_round = round;
+      ctr->carry = 1;
+      return;
+    }
     if (n > span) {
       ctr->halt = 1;
       ctr->halt_round = round;
@@ -662,9 +679,12 @@ class Triangulator {
           nchosen, GG_LAMBDA(std::int64_t r) {
             if (r % stride) best[loc0[chosen[r]]] = ~u64(0);
           });
+    // The previous batch's unfinished list (carried: its entries follow the splits' in the
+    // first round's list).
+    const std::int64_t carried = nact_;
     Counters c = counters();
     reserve(c.used + 3 * nins);
-    if (4 * nins > list_cap_) grow_lists(4 * nins + nins);
+    if (4 * nins + carried > list_cap_) grow_lists(4 * nins + nins + carried);
     fit(ins_, nins);
     fit(split_, 5 * nins);
     used_ = c.used + 3 * nins;  // (the split below hands these out)
@@ -682,12 +702,21 @@ class Triangulator {
     const mesh::WorkLists L = work_lists();
     std::int32_t* act = L.current(round_ + 1);  // the first flip round's list
     std::int64_t* len = L.count(round_ + 1);
+    // The carried entries, set aside in the other list: not those this batch splits (their
+    // first child keeps the slot and is listed with the splits), nor the -1 places.
+    std::int32_t* kept_list = L.current(round_ + 2);
+    const std::int64_t kept = carried == 0
+                                  ? 0
+                                  : ex_.copy_if(
+                                        act, carried, kept_list, GG_LAMBDA(std::int32_t t) {
+                                          return t >= 0 && M.tet[t].v[0] >= 0 && srank[t] < 0;
+                                        });
     std::int32_t* sp = split_.data();
     std::int32_t* loc = loc_.data();
     ex_.for_each_index(
         nins, GG_LAMBDA(std::int64_t r) {
           if (r == 0) {
-            *len = 4 * nins;
+            *len = 4 * nins + kept;
             M.ctr->used = first_new + 3 * nins;
           }
           const std::int32_t t = ins[r], q = std::int32_t(std::uint32_t(best[t]));
@@ -718,6 +747,8 @@ class Triangulator {
           best[t] = ~u64(0);  // (no vote: the flip rounds' keys are inverted)
           loc[q] = -1;
         });
+    ex_.for_each_index(
+        kept, GG_LAMBDA(std::int64_t i) { act[4 * nins + i] = kept_list[i]; });
     epoch_splits_ = nins;
     max_nins_ = std::max(max_nins_, nins);
     epoch_first_new_ = first_new;
@@ -729,7 +760,11 @@ class Triangulator {
       std::swap(un_, un2_);
       dead_ = 0;
     }
-    nact_ = 4 * nins;
+    nact_ = 4 * nins + kept;
+    // Rounds stop once their list is short, after kCarryAfter of them, unless every point is
+    // in: the waves that cross integer grids' hull planes, a flip or a few a round for as many
+    // rounds as the grid is wide, go on beside the next batch's rounds instead of alone.
+    carry_from_ = remaining_ > 0 && max_rounds_ < 0 ? round_ + 1 + kCarryAfter : INT32_MAX;
     ms_choose_ += ms_since(t0);
     flip_until_stuck();
     if (progress_) progress_(Delaunay3dProgress{"insert_flip", m_ - remaining_, m_, batches_});
@@ -741,6 +776,12 @@ class Triangulator {
   // Once the list is short (the long tail of each batch), one team runs the rounds in a single
   // launch with barriers between the steps.
   static constexpr int kChunk = 4;
+  // When a batch's rounds hand their list to the next batch (FlipRound::begin): constants, the
+  // same on both executors, so that the run is. Measured on the H100 (performance.md,
+  // 2026-11-28, the carried lists): after 4 rounds at 2 048 entries or fewer, grid 100³ took
+  // 533 rounds instead of 4 955; after 16, or at 256 entries, it ran 1 000 and 900.
+  static constexpr std::int32_t kCarryAfter = 4;
+  static constexpr std::int64_t kCarryList = 2048;
 
   void flip_until_stuck() {
     std::int64_t rounds_here = 0;
@@ -751,6 +792,7 @@ class Triangulator {
         std::int64_t* len = L.count(round_ + 1);
         ex_.for_each_index(
             1, GG_LAMBDA(std::int64_t) { *len = 0; });
+        nact_ = 0;
         break;
       }
       // The flip log: a round records at most one flip per list entry, in practice at most
@@ -772,15 +814,18 @@ class Triangulator {
       (team ? ms_team_ : ms_wide_) += ms_since(t0);
       ++(team ? team_calls_ : chunks_);
       std::int32_t last = team ? std::int32_t(c.team_end) - 1 : first + std::int32_t(chunk) - 1;
-      if (c.halt) {  // (the halted round did nothing: it runs again after the room is made)
+      const bool carry = c.halt && c.carry;
+      if (c.halt) {  // (the halted round did nothing: it runs again after the room is made, or
+                     // in the next batch, carried)
         last = std::int32_t(c.halt_round) - 1;
         used_ = c.used;
         logged_ = c.log;
         const Counters need = c;
-        c.halt = 0;
+        c.halt = c.carry = 0;
+        c.carries += carry;
         c.need_slots = c.need_log = c.need_list = c.need_ring = 0;
         ex_.from_host(&c, 1, ctr_.data());
-        make_room(need);
+        if (!carry) make_room(need);
         c = counters();
       }
       rounds_here += last - round_;
@@ -789,6 +834,7 @@ class Triangulator {
       logged_ = c.log;
       nact_ = c.len[(round_ + 1) & 1];
       if (c.errors) check_errors();
+      if (carry) break;  // (nact_ entries wait in the list of round_ + 1)
     }
   }
 
@@ -803,6 +849,8 @@ class Triangulator {
     R.log_cap = log_cap_;
     R.list_cap = list_cap_;
     R.span = list_cap_;
+    R.carry_from = carry_from_;
+    R.carry_max = kCarryList;
     return R;
   }
 
@@ -1036,6 +1084,7 @@ class Triangulator {
     st_.counters["max_free_slots"] = c.max_free;
     st_.counters["max_splits"] = max_nins_;
     st_.counters["halts"] = c.halts;
+    st_.counters["carried_batches"] = c.carries;
     st_.counters["log_capacity"] = log_cap_;
     st_.counters["list_capacity"] = list_cap_;
     st_.counters["ring_capacity"] = ring_cap_;
@@ -1066,6 +1115,7 @@ class Triangulator {
   std::int64_t cap_ = 0, nun_ = 0, nact_ = 0, used_ = 0;
   bool phase1_released_ = false;  // release_phase1 ran: grow keeps the store only
   std::int32_t round_ = 0;
+  std::int32_t carry_from_ = INT32_MAX;  // (FlipRound::carry_from for the batch's rounds)
   std::int64_t batches_ = 0, max_nins_ = 0;
   std::int64_t log_cap_ = 0, logged_ = 0, list_cap_ = 0, ring_cap_ = 0;
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;
