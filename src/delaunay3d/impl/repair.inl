@@ -644,11 +644,22 @@ inline std::int64_t repair_tets(Exec& ex, const Geo& g, Tet* tet, std::int64_t u
   ex.exclusive_scan(per, per, nc + 1);
   std::int64_t nn = 0;
   ex.to_host(per + nc, 1, &nn);
+  // Each new tetrahedron's star and place in it, so that what follows runs a thread per new
+  // tetrahedron (a thread per star searched a large star's triangles once per face of each of
+  // its tetrahedra: the square of its size in one thread; grids' hull-plane stars).
+  auto own_d = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(nn, 1)));
+  auto pos_d = ex.template alloc<std::int64_t>(std::size_t(std::max<std::int64_t>(nn, 1)));
+  std::int32_t* own = own_d.data();
+  std::int64_t* pos = pos_d.data();
   ex.for_each_index(
       nc, GG_LAMBDA(std::int64_t j) {
         const std::int32_t v = cv[j];
         for (std::int32_t i = 0; i < cnt[v]; ++i)
-          if (idx[off[v] + i] >= 0) idx[off[v] + i] += std::int32_t(per[j]);
+          if (idx[off[v] + i] >= 0) {
+            const std::int32_t k = idx[off[v] + i] += std::int32_t(per[j]);
+            own[k] = v;
+            pos[k] = off[v] + i;
+          }
       });
   // Their slots: the freed ones in slot order, then new ones; freed slots left over die.
   auto fs_d = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(used, 1)));
@@ -671,81 +682,72 @@ inline std::int64_t repair_tets(Exec& ex, const Geo& g, Tet* tet, std::int64_t u
   // The new tetrahedra's vertices: the lowest vertex, then its link triangle turned to start at
   // its lowest vertex (an even permutation: how a star was built must not show in the output).
   ex.for_each_index(
-      nc, GG_LAMBDA(std::int64_t j) {
-        const std::int32_t v = cv[j];
-        for (std::int32_t i = 0; i < cnt[v]; ++i) {
-          const std::int32_t at = idx[off[v] + i];
-          if (at < 0) continue;
-          const LinkTri t = tri[off[v] + i];
-          const std::int32_t x[3] = {t.a, t.b, t.c};
-          const int lo = x[1] < x[0] && x[1] < x[2] ? 1 : x[2] < x[0] && x[2] < x[1] ? 2 : 0;
-          tet[slot_of(at)] = Tet{{v, x[lo], x[(lo + 1) % 3], x[(lo + 2) % 3]}, {-1, -1, -1, -1}};
-        }
+      nn, GG_LAMBDA(std::int64_t at) {
+        const LinkTri t = tri[pos[at]];
+        const std::int32_t x[3] = {t.a, t.b, t.c};
+        const int lo = x[1] < x[0] && x[1] < x[2] ? 1 : x[2] < x[0] && x[2] < x[1] ? 2 : 0;
+        tet[slot_of(at)] =
+            Tet{{own[at], x[lo], x[(lo + 1) % 3], x[(lo + 2) % 3]}, {-1, -1, -1, -1}};
       });
   // Their neighbours (see the top), and the kept tetrahedra's faces towards them.
   auto err_d = ex.template alloc<std::int64_t>(1);
   std::int64_t* err = err_d.data();
   ex.fill(err, 1, std::int64_t(0));
   ex.for_each_index(
-      nc, GG_LAMBDA(std::int64_t j) {
-        const std::int32_t v = cv[j];
-        for (std::int32_t i = 0; i < cnt[v]; ++i) {
-          const std::int32_t at = idx[off[v] + i];
-          if (at < 0) continue;
-          const std::int32_t s = slot_of(at);
-          std::int32_t q[4];
-          for (int k = 0; k < 4; ++k) q[k] = tet[s].v[k];
-          for (int k = 0; k < 4; ++k) {
-            std::int32_t fv[3], z = 0;
-            for (int a = 0; a < 4; ++a)
-              if (a != k) fv[z++] = q[a];
-            const int fi = fv[0] != I ? 0 : 1;  // (a face has at most one infinite vertex)
-            const std::int32_t f = fv[fi], p = fv[(fi + 1) % 3], r = fv[(fi + 2) % 3];
-            const LinkTri* tf = tri + off[f];
-            std::int32_t d = -1;
-            for (std::int32_t a = 0; a < cnt[f] && d < 0; ++a)
-              if (tf[a].has(p) && tf[a].has(r) && !tf[a].has(q[k])) d = link_third(tf[a], p, r);
-            if (d < 0) {
-              atomic_add(err, std::int64_t(1));
-              continue;
-            }
-            const std::int32_t w[4] = {f, p, r, d};
-            bool all_changed = true;
-            std::int32_t lo = -1;
-            for (int a = 0; a < 4; ++a) {
-              if (w[a] == I) continue;
-              all_changed = all_changed && bl[w[a]] == 2;
-              if (lo < 0 || w[a] < lo) lo = w[a];
-            }
-            std::int32_t nb = -1;
-            if (all_changed) {  // new, where its lowest vertex's star made it
-              std::int32_t o3[3], y = 0;
-              for (int a = 0; a < 4; ++a)
-                if (w[a] != lo) o3[y++] = w[a];
-              const int at2 = link_find(tri + off[lo], cnt[lo], o3[0], o3[1], o3[2]);
-              if (at2 >= 0 && idx[off[lo] + at2] >= 0) nb = slot_of(idx[off[lo] + at2]);
-            }
-            bool kept = false;
-            if (nb < 0) {  // kept: its slot from f's old star
-              for (std::int32_t a = 0; a < oc[f] && nb < 0; ++a) {
-                const LinkTri o = ot[oo[f] + a];
-                if (o.has(p) && o.has(r) && o.has(d)) nb = os[oo[f] + a];
-              }
-              kept = nb >= 0 && !dead[nb];
-              if (!kept) {
-                atomic_add(err, std::int64_t(1));
-                continue;
-              }
-            }
-            std::int32_t l = 0;
-            while (l < 4 && tet[nb].v[l] != d) ++l;
-            if (l == 4) {
-              atomic_add(err, std::int64_t(1));
-              continue;
-            }
-            tet[s].n[k] = enc(nb, l);
-            if (kept) tet[nb].n[l] = enc(s, k);
+      nn, GG_LAMBDA(std::int64_t at) {
+        const std::int32_t s = slot_of(at);
+        std::int32_t q[4];
+        for (int k = 0; k < 4; ++k) q[k] = tet[s].v[k];
+        for (int k = 0; k < 4; ++k) {
+          std::int32_t fv[3], z = 0;
+          for (int a = 0; a < 4; ++a)
+            if (a != k) fv[z++] = q[a];
+          const int fi = fv[0] != I ? 0 : 1;  // (a face has at most one infinite vertex)
+          const std::int32_t f = fv[fi], p = fv[(fi + 1) % 3], r = fv[(fi + 2) % 3];
+          const LinkTri* tf = tri + off[f];
+          std::int32_t d = -1;
+          for (std::int32_t a = 0; a < cnt[f] && d < 0; ++a)
+            if (tf[a].has(p) && tf[a].has(r) && !tf[a].has(q[k])) d = link_third(tf[a], p, r);
+          if (d < 0) {
+            atomic_add(err, std::int64_t(1));
+            continue;
           }
+          const std::int32_t w[4] = {f, p, r, d};
+          bool all_changed = true;
+          std::int32_t lo = -1;
+          for (int a = 0; a < 4; ++a) {
+            if (w[a] == I) continue;
+            all_changed = all_changed && bl[w[a]] == 2;
+            if (lo < 0 || w[a] < lo) lo = w[a];
+          }
+          std::int32_t nb = -1;
+          if (all_changed) {  // new, where its lowest vertex's star made it
+            std::int32_t o3[3], y = 0;
+            for (int a = 0; a < 4; ++a)
+              if (w[a] != lo) o3[y++] = w[a];
+            const int at2 = link_find(tri + off[lo], cnt[lo], o3[0], o3[1], o3[2]);
+            if (at2 >= 0 && idx[off[lo] + at2] >= 0) nb = slot_of(idx[off[lo] + at2]);
+          }
+          bool kept = false;
+          if (nb < 0) {  // kept: its slot from f's old star
+            for (std::int32_t a = 0; a < oc[f] && nb < 0; ++a) {
+              const LinkTri o = ot[oo[f] + a];
+              if (o.has(p) && o.has(r) && o.has(d)) nb = os[oo[f] + a];
+            }
+            kept = nb >= 0 && !dead[nb];
+            if (!kept) {
+              atomic_add(err, std::int64_t(1));
+              continue;
+            }
+          }
+          std::int32_t l = 0;
+          while (l < 4 && tet[nb].v[l] != d) ++l;
+          if (l == 4) {
+            atomic_add(err, std::int64_t(1));
+            continue;
+          }
+          tet[s].n[k] = enc(nb, l);
+          if (kept) tet[nb].n[l] = enc(s, k);
         }
       });
   // A guard: every new tetrahedron's neighbours point back at it.
