@@ -139,9 +139,7 @@ GG_INLINE std::uint32_t ordered_bits(float f) {
 // Which point a tetrahedron takes in the next batch: the one nearest its circumcentre (thesis
 // 5.3.3); for an infinite tetrahedron, whose circumcentre is at infinity beyond its face, the
 // one farthest beyond the face, or where that cannot separate the points (points in the
-// face's plane) the one nearest the midpoint of one of the face's edges; for slivers the one
-// nearest the midpoint of one of its edges (points on a hull edge, in runs: a run splits in
-// halves, where the face's centroid took its end, one point a batch).
+// face's plane) the one nearest the face's centroid; for slivers the one nearest the centroid.
 // Smaller is better; the choice only steers the work, never the result. (Every operation
 // rounded on its own, so that both executors choose the same points.)
 GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::int32_t q) {
@@ -179,18 +177,8 @@ GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::
     const double n2 = dot(nrm, nrm), o = dot(nrm, d);
     if (o > 0 && mul_rn(o, o) > mul_rn(1e-12, mul_rn(n2, dot(d, d))))
       return ordered_bits(float(-o / n2));
-    // In the face's plane: the point nearest the midpoint of one of the face's edges (points on
-    // a hull edge, two skew lines' for one, then split their run in halves: nearest the face's
-    // centroid took the run's end, one point a batch).
-    const double* ends[4] = {a, b, c, a};
-    double best = -1;
-    for (int e = 0; e < 3; ++e) {
-      for (int i = 0; i < 3; ++i)
-        mid[i] = sub_rn(pq[i], mul_rn(add_rn(ends[e][i], ends[e + 1][i]), 0.5));
-      const double m2 = dot(mid, mid);
-      if (best < 0 || m2 < best) best = m2;
-    }
-    return ordered_bits(float(best));
+    for (int i = 0; i < 3; ++i) mid[i] = sub_rn(pq[i], add_rn(add_rn(a[i], b[i]), c[i]) / 3);
+    return ordered_bits(float(dot(mid, mid)));
   }
   const double *a = g.at(v[0]), *b = g.at(v[1]), *c = g.at(v[2]), *d = g.at(v[3]);
   double u[3], w[3], x[3], qa[3], uw[3], wx[3], xu[3];
@@ -207,19 +195,8 @@ GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::
   const double u2 = dot(u, u), w2 = dot(w, w), x2 = dot(x, x);
   const double scale = mul_rn(mul_rn(u2, w2), x2);
   double cc[3];
-  if (!(mul_rn(det, det) > mul_rn(1e-12, scale))) {
-    // A sliver (flat tetrahedra hold the points on a hull edge or plane): the point nearest
-    // the midpoint of one of its edges, as for points in an infinite tetrahedron's face.
-    const double* p4[4] = {a, b, c, d};
-    double best = -1;
-    for (int e0 = 0; e0 < 3; ++e0)
-      for (int e1 = e0 + 1; e1 < 4; ++e1) {
-        double m[3];
-        for (int i = 0; i < 3; ++i) m[i] = sub_rn(pq[i], mul_rn(add_rn(p4[e0][i], p4[e1][i]), 0.5));
-        const double m2 = dot(m, m);
-        if (best < 0 || m2 < best) best = m2;
-      }
-    return ordered_bits(float(best));
+  if (!(mul_rn(det, det) > mul_rn(1e-12, scale))) {  // sliver: use the centroid
+    for (int i = 0; i < 3; ++i) cc[i] = add_rn(add_rn(u[i], w[i]), x[i]) / 4;
   } else {
     for (int i = 0; i < 3; ++i)
       cc[i] = add_rn(add_rn(mul_rn(u2, wx[i]), mul_rn(w2, xu[i])), mul_rn(x2, uw[i])) / det;
