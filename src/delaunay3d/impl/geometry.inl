@@ -139,8 +139,7 @@ GG_INLINE std::uint32_t ordered_bits(float f) {
 // Which point a tetrahedron takes in the next batch: the one nearest its circumcentre (thesis
 // 5.3.3); for an infinite tetrahedron, whose circumcentre is at infinity beyond its face, the
 // one farthest beyond the face, or where that cannot separate the points (points in the
-// face's plane) the one nearest the face's centroid; for slivers the one nearest the centroid;
-// in both, a point on the line of an edge takes that edge's midpoint instead of the centroid.
+// face's plane) the one nearest the face's centroid; for slivers the one nearest the centroid.
 // Smaller is better; the choice only steers the work, never the result. (Every operation
 // rounded on its own, so that both executors choose the same points.)
 GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::int32_t q) {
@@ -178,24 +177,6 @@ GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::
     const double n2 = dot(nrm, nrm), o = dot(nrm, d);
     if (o > 0 && mul_rn(o, o) > mul_rn(1e-12, mul_rn(n2, dot(d, d))))
       return ordered_bits(float(-o / n2));
-    // A point on the line of one of the face's edges (a run of points on a hull edge, as on
-    // two skew lines): the one nearest that edge's midpoint, so that the run splits in halves
-    // (the face's centroid took the run's end, one point a batch). Any other: nearest the
-    // face's centroid.
-    const double* ends[4] = {a, b, c, a};
-    for (int e = 0; e < 3; ++e) {
-      double t[3], r[3], x[3];
-      for (int i = 0; i < 3; ++i) {
-        t[i] = sub_rn(ends[e + 1][i], ends[e][i]);
-        r[i] = sub_rn(pq[i], ends[e][i]);
-      }
-      cross(t, r, x);
-      if (x[0] == 0 && x[1] == 0 && x[2] == 0) {
-        for (int i = 0; i < 3; ++i)
-          mid[i] = sub_rn(pq[i], mul_rn(add_rn(ends[e][i], ends[e + 1][i]), 0.5));
-        return ordered_bits(float(dot(mid, mid)));
-      }
-    }
     for (int i = 0; i < 3; ++i) mid[i] = sub_rn(pq[i], add_rn(add_rn(a[i], b[i]), c[i]) / 3);
     return ordered_bits(float(dot(mid, mid)));
   }
@@ -214,24 +195,7 @@ GG_HD inline std::uint32_t choice_key(const Geo& g, const std::int32_t* v, std::
   const double u2 = dot(u, u), w2 = dot(w, w), x2 = dot(x, x);
   const double scale = mul_rn(mul_rn(u2, w2), x2);
   double cc[3];
-  if (!(mul_rn(det, det) > mul_rn(1e-12, scale))) {  // sliver: use the centroid, but
-    // a point on the line of one of its edges (flat tetrahedra over a hull edge hold runs of
-    // collinear points): the one nearest that edge's midpoint, as for infinite ones above.
-    const double* p4[4] = {a, b, c, d};
-    for (int e0 = 0; e0 < 3; ++e0)
-      for (int e1 = e0 + 1; e1 < 4; ++e1) {
-        double t[3], r[3], y[3];
-        for (int i = 0; i < 3; ++i) {
-          t[i] = sub_rn(p4[e1][i], p4[e0][i]);
-          r[i] = sub_rn(pq[i], p4[e0][i]);
-        }
-        cross(t, r, y);
-        if (y[0] == 0 && y[1] == 0 && y[2] == 0) {
-          for (int i = 0; i < 3; ++i)
-            y[i] = sub_rn(pq[i], mul_rn(add_rn(p4[e0][i], p4[e1][i]), 0.5));
-          return ordered_bits(float(dot(y, y)));
-        }
-      }
+  if (!(mul_rn(det, det) > mul_rn(1e-12, scale))) {  // sliver: use the centroid
     for (int i = 0; i < 3; ++i) cc[i] = add_rn(add_rn(u[i], w[i]), x[i]) / 4;
   } else {
     for (int i = 0; i < 3; ++i)
