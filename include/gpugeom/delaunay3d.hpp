@@ -92,7 +92,8 @@ struct Triangulation3d {
   // (phase 1's arrays at their largest), "device_peak_bytes" (CUDA: the call's device peak),
   // "slots_used", "slots_capacity" (of the tetrahedron store), phase 1's sizing ("halts",
   // "max_list", "max_epoch_records", "max_free_slots", "max_splits", "list_capacity",
-  // "log_capacity", "ring_capacity", "round_chunks", "team_launches"), and times in
+  // "log_capacity", "ring_capacity", "round_chunks", "team_launches", "carried_batches": batches
+  // whose short flip list went on in the next batch's rounds), and times in
   // microseconds "us_*" (phase 1: choosing and splitting, flip rounds as kernels and in one
   // block; phase 2: building stars, splaying rounds, checks, takes, patch).
   // Every array, and phase 1's counters, are the same run after run, on any thread count and on
