@@ -6,8 +6,10 @@
 // of the distinct input points (every empty-sphere test is exact), every distinct point is a
 // vertex, and every tetrahedron has positive volume (the flat tetrahedra the perturbation may
 // put on the hull, over points exactly in a hull facet's plane, are removed, so such a facet's
-// plane may be covered by several hull facets). The points are processed along a Hilbert
-// curve and the perturbation follows that order, so the result depends on the point set only.
+// plane may be covered by several hull facets). The perturbation depends on each point's
+// coordinates alone (lifts in decreasing lexicographic order, as CGAL's symbolic perturbation,
+// so the tetrahedra equal CGAL's on cospherical input): the result depends on the point set
+// only, and a tetrahedron stays when points join whose spheres it does not contain.
 #pragma once
 #include <cstdint>
 #include <functional>

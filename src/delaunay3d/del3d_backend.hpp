@@ -34,7 +34,7 @@ struct DeviceOutput {
 // memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
 // Tests: the digital method's stars on the CPU executor, after creation (splay 0), after
 // splaying (1), or after splaying by the tetrahedra's rounds and the proof alone (2). pts: the
-// distinct points in the order the perturbation follows (3 each); star v is tri[3 start[v], 3
+// distinct points in curve order (3 each); star v is tri[3 start[v], 3
 // start[v + 1]) (link triangles, 3 point indices each; index pts.size() / 3 is the infinity point),
 // its vertex table table_vertex / table_hash [table_start[v], table_start[v + 1]) (the link
 // vertices, each with its ring's hash). built is false where the method fell back.

@@ -431,8 +431,9 @@ GG_HD inline int orient2d_sos(const double* a, int ia, const double* b, int ib, 
   if (int r = orient2d(a, b, c, s)) return r;
   const double* r[3] = {a, b, c};
   int idx[3] = {ia, ib, ic};
-  int parity = sort_rows<3>(r, idx, nullptr, nullptr);
-  return parity * sos_resolve<2, 0>(r, nullptr, nullptr, s);
+  int co[3];
+  int parity = sort_rows<3, 2>(r, idx, nullptr, nullptr, co);
+  return parity * sos_resolve<2, 0>(r, nullptr, nullptr, s, co);
 }
 
 // The ties of whole-number points (integer.hpp's bounds) are resolved in integers: the same
@@ -442,14 +443,15 @@ GG_HD inline int sos_int(const double* const* pts, const int* ids, bool lift, in
   const double* r[N];
   int idx[N];
   for (int i = 0; i < N; ++i) r[i] = pts[i], idx[i] = ids[i];
-  const int parity = sort_rows<N>(r, idx, nullptr, nullptr);
+  int co[N];
+  const int parity = sort_rows<N, 3>(r, idx, nullptr, nullptr, co);
   long long p[N][3], w[N];
   for (int i = 0; i < N; ++i) {
     for (int k = 0; k < 3; ++k) p[i][k] = (long long)(r[i][k]);
     w[i] = p[i][0] * p[i][0] + p[i][1] * p[i][1] + p[i][2] * p[i][2];
   }
-  if (lift) return sign_factor * parity * sos_resolve_by<3, 6>(IntMinors{p, w});
-  return sign_factor * parity * sos_resolve_by<3, 0>(IntMinors{p, nullptr});
+  if (lift) return sign_factor * parity * sos_resolve_by<3, 6>(IntMinors{p, w}, co);
+  return sign_factor * parity * sos_resolve_by<3, 0>(IntMinors{p, nullptr}, co);
 }
 
 GG_HD inline int orient3d_tie(const double* a, int ia, const double* b, int ib, const double* c,
@@ -457,8 +459,9 @@ GG_HD inline int orient3d_tie(const double* a, int ia, const double* b, int ib, 
   const double* r[4] = {a, b, c, d};
   int idx[4] = {ia, ib, ic, id};
   if (all_small_integers<4, 3>(r, kIntLimitOrient3d)) return sos_int<4>(r, idx, false, -1);
-  int parity = sort_rows<4>(r, idx, nullptr, nullptr);
-  return -parity * sos_resolve<3, 0>(r, nullptr, nullptr, s);
+  int co[4];
+  int parity = sort_rows<4, 3>(r, idx, nullptr, nullptr, co);
+  return -parity * sos_resolve<3, 0>(r, nullptr, nullptr, s, co);
 }
 // orient3d with SoS without scratch: the sign, or kUndecided where the filter cannot tell and
 // the points are not small whole numbers (then orient3d_sos, with scratch, must).
@@ -493,8 +496,9 @@ GG_HD inline int incircle_tie(const double* a, int ia, const double* b, int ib, 
   const double* r[4] = {a, b, c, d};
   int idx[4] = {ia, ib, ic, id};
   SquareLifts<4, 2> l(r);
-  int parity = sort_rows<4>(r, idx, l.p, l.len);
-  return parity * sos_resolve<2, 4>(r, l.p, l.len, s);
+  int co[4];
+  int parity = sort_rows<4, 2>(r, idx, l.p, l.len, co);
+  return parity * sos_resolve<2, 4>(r, l.p, l.len, s, co);
 }
 GG_HD inline int incircle_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
                                   int ic, const double* d, int id, double* s) {
@@ -518,8 +522,9 @@ GG_HD inline int insphere_tie(const double* a, int ia, const double* b, int ib, 
   int idx[5] = {ia, ib, ic, id, ie};
   if (all_small_integers<5, 3>(r, kIntLimitInsphere)) return sos_int<5>(r, idx, true, -1);
   SquareLifts<5, 3> l(r);
-  int parity = sort_rows<5>(r, idx, l.p, l.len);
-  return -parity * sos_resolve<3, 6>(r, l.p, l.len, s);
+  int co[5];
+  int parity = sort_rows<5, 3>(r, idx, l.p, l.len, co);
+  return -parity * sos_resolve<3, 6>(r, l.p, l.len, s, co);
 }
 // insphere with SoS without scratch, as orient3d_sos_quick.
 GG_HD inline int insphere_sos_quick(const double* a, int ia, const double* b, int ib,
@@ -564,8 +569,9 @@ GG_HD inline int orient4d_tie(const double* a, int ia, const double* b, int ib, 
     l[i] = r[i] + 3;
     ll[i] = r[i][3] != 0.0 ? 1 : 0;
   }
-  int parity = sort_rows<5>(r, idx, l, ll);
-  return parity * sos_resolve<3, 1>(r, l, ll, s);
+  int co[5];
+  int parity = sort_rows<5, 4>(r, idx, l, ll, co);
+  return parity * sos_resolve<3, 1>(r, l, ll, s, co);
 }
 GG_HD inline int orient4d_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
                                   int ic, const double* d, int id, const double* e, int ie,

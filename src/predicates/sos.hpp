@@ -1,21 +1,43 @@
 // Simulation of simplicity (Edelsbrunner & Muecke's scheme, derived here for our matrices).
 //
 // Every input entry gets an infinitesimal perturbation eps^(2^bit): entry (row r, column c) of
-// a predicate matrix, rows sorted by the points' global indices. A perturbed determinant is a
-// polynomial in eps whose terms, in increasing power, are indexed by the integers mask = 1, 2,
+// a predicate matrix, rows sorted in the perturbation order (below). A perturbed determinant is
+// a polynomial in eps whose terms, in increasing power, are indexed by the integers mask = 1, 2,
 // 3, ...: a mask is a set of perturbed entries (distinct rows, distinct columns) and its
 // coefficient is the determinant with those rows replaced by unit vectors, i.e. a signed minor
 // of the unperturbed matrix. The sign of the first nonzero coefficient is the answer. Because
 // a mask that perturbs every coordinate column leaves the all-ones column alone, some term is
-// always nonzero: the SoS predicates never return 0 (given distinct indices).
+// always nonzero: the SoS predicates never return 0 (given distinct points or indices).
+//
+// Two orders of the points, both from each point's coordinates alone (never its index, the
+// curve order or the other points), so a triangulation updated by inserting, moving or removing
+// points, or built in blocks, equals the one a fresh run on the same point set gives:
+//  - the lift order, for the lift column of in-circle, in-sphere and orient4d: coordinates
+//    lexicographically (x, then y, then z) and decreasing, the largest point perturbed most.
+//    This is CGAL's symbolic perturbation of Delaunay_triangulation_2/3 (Devillers & Teillaud):
+//    the first terms perturb the lifts from the lexicographically largest point down, as CGAL's
+//    do, so both give the same simplices on cocircular and cospherical input (tested);
+//  - the coordinate order, for the coordinate columns: Z (Morton) order of the coordinates'
+//    bits, in one frame for every input. It decides only orientation ties (points on a plane or
+//    a line). The lexicographic order would push every point of a grid's hull plane out the
+//    same way: the perturbed plane becomes a convex cap with every point a vertex, and the flat
+//    tetrahedra between the cap and the grid's cubes, which phase 1 builds and the output drops,
+//    grow sevenfold (grid 60^3: 530 761 against 75 958 in the curve order used before). A hash
+//    scatters them (67 846) but leaves five times the failed vertices (705 against 130); the Z
+//    order leaves 113 580 and 75 (docs/design-notes.md, "The perturbation depends on the points
+//    alone").
+// The index orders only equal points (duplicates, which the algorithms remove first, and
+// symbolic points that may coincide with an input point).
 //
 // Bit order: for lifted predicates (in-circle, in-sphere, orient4d) the lift column of every
-// point comes first (bits 0..k-1 by index), then the coordinates, point by point in index order.
-// Orientation predicates use the same coordinate order, so one global perturbation of the
-// points serves all predicates and they agree with each other. Only the relative order of the
-// bits matters, so bits can be numbered locally after sorting the rows by global index.
+// point comes first (bits 0..k-1 in the lift order), then the coordinates, point by point in the
+// coordinate order. Orientation predicates use the same coordinate order, so one global
+// perturbation of the points serves all predicates and they agree with each other. Only the
+// relative order of the bits matters, so bits can be numbered locally: the rows are sorted in
+// the lift order, and corow[k] is the row of the point k-th in the coordinate order.
 #pragma once
 #include <cstdint>
+#include <cstring>
 
 #include "predicates/determinant.hpp"
 
@@ -56,12 +78,42 @@ GG_HD int lifted_minor_sign(const double* const* rows, const int* cols, const do
   return expansion_sign(n, s);
 }
 
-// Sorts rows (and lifts) by index; returns the parity of the permutation (+1 or -1).
-template <int N>
-GG_HD int sort_rows(const double** rows, int* idx, const double** lift, int* liftlen) {
+// Does point a (index ia) come before point b (index ib) in the lift order: a's first D
+// coordinates lexicographically greater than b's, or equal and ia < ib.
+template <int D>
+GG_HD inline bool lift_before(const double* a, int ia, const double* b, int ib) {
+  for (int c = 0; c < D; ++c)
+    if (a[c] != b[c]) return a[c] > b[c];
+  return ia < ib;
+}
+
+// The coordinate order: Z (Morton) order of the coordinates' bits in one fixed frame, the
+// doubles read as unsigned integers in their own order (-0 as 0). Of two points, the one lower
+// in the coordinate whose bits differ highest comes first.
+GG_HD inline std::uint64_t ordered_bits(double v) {
+  std::uint64_t u = 0;
+  if (v != 0.0) memcpy(&u, &v, sizeof u);
+  return (u >> 63) ? ~u : (u | (1ull << 63));
+}
+template <int D>
+GG_HD inline bool morton_before(const double* a, const double* b) {
+  int dim = 0;
+  std::uint64_t x = 0;
+  for (int d = 0; d < D; ++d) {
+    const std::uint64_t y = ordered_bits(a[d]) ^ ordered_bits(b[d]);
+    if (x < y && x < (x ^ y)) dim = d, x = y;
+  }
+  return ordered_bits(a[dim]) < ordered_bits(b[dim]);
+}
+
+// Sorts rows (and lifts) into the lift order, comparing the first D coordinates of each row, and
+// returns the parity of the permutation (+1 or -1); corow (N entries) receives the rows in the
+// coordinate order (equal points: in the lift order).
+template <int N, int D>
+GG_HD int sort_rows(const double** rows, int* idx, const double** lift, int* liftlen, int* corow) {
   int parity = 1;
   for (int i = 1; i < N; ++i)
-    for (int j = i; j > 0 && idx[j - 1] > idx[j]; --j) {
+    for (int j = i; j > 0 && lift_before<D>(rows[j], idx[j], rows[j - 1], idx[j - 1]); --j) {
       auto sw = [](auto& a, auto& b) {
         auto t = a;
         a = b;
@@ -74,6 +126,13 @@ GG_HD int sort_rows(const double** rows, int* idx, const double** lift, int* lif
         sw(liftlen[j - 1], liftlen[j]);
       }
       parity = -parity;
+    }
+  for (int i = 0; i < N; ++i) corow[i] = i;
+  for (int i = 1; i < N; ++i)
+    for (int j = i; j > 0 && morton_before<D>(rows[corow[j]], rows[corow[j - 1]]); --j) {
+      const int t = corow[j];
+      corow[j] = corow[j - 1];
+      corow[j - 1] = t;
     }
   return parity;
 }
@@ -121,10 +180,11 @@ struct ExpansionMinors {
 
 // Sign of the perturbed determinant of the matrix with rows [p[0..D-1], (w), 1], given that the
 // unperturbed determinant is zero, with the minors from mn (above, or integer.hpp's for whole
-// numbers: the same terms in the same order, so the same answer). Rows must be sorted by
-// global index. LW = 0: no lift column.
+// numbers: the same terms in the same order, so the same answer). Rows must be in the lift
+// order, and corow gives the coordinate order (sort_rows); null: the same as the lift order.
+// LW = 0: no lift column.
 template <int D, int LW, class Minors>
-GG_HD int sos_resolve_by(const Minors& mn) {
+GG_HD int sos_resolve_by(const Minors& mn, const int* corow = nullptr) {
   constexpr bool kLift = LW > 0;
   constexpr int k = D + 1 + (kLift ? 1 : 0);  // rows, = columns
   constexpr int wbits = kLift ? k : 0;
@@ -146,6 +206,7 @@ GG_HD int sos_resolve_by(const Minors& mn) {
         c = W;
       } else {
         r = (b - wbits) / D;
+        if (corow) r = corow[r];
         c = (b - wbits) % D;
       }
       if ((rused >> r & 1u) || (cused >> c & 1u) || m == k - 1) {
@@ -203,8 +264,8 @@ GG_HD int sos_resolve_by(const Minors& mn) {
 
 template <int D, int LW>
 GG_HD int sos_resolve(const double* const* rows, const double* const* lift, const int* liftlen,
-                      double* s) {
-  return sos_resolve_by<D, LW>(ExpansionMinors<D, LW>{rows, lift, liftlen, s});
+                      double* s, const int* corow = nullptr) {
+  return sos_resolve_by<D, LW>(ExpansionMinors<D, LW>{rows, lift, liftlen, s}, corow);
 }
 
 }  // namespace gpugeom::exact

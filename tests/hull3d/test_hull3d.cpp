@@ -107,6 +107,43 @@ TEST(Hull3d, IndependentOfInputOrder) {
   }
 }
 
+// The perturbation depends on the points alone (src/predicates/sos.hpp): a prism over the 108
+// integer points of a circle has two 108-gon faces, which the perturbation triangulates. A point
+// added far below (and aside) changes the box and the curve order of every point, yet the top
+// face keeps its triangles.
+TEST(Hull3d, PerturbationDependsOnThePointsAlone) {
+  std::vector<Point3> pts;
+  const long r2 = 5L * 5 * 13 * 13 * 17 * 17;
+  for (int z : {0, 1})
+    for (long x = -1105; x <= 1105; ++x) {
+      const long y2 = r2 - x * x;
+      const long y = std::lround(std::sqrt(double(y2)));
+      if (y * y != y2) continue;
+      pts.push_back({double(x), double(y), double(z)});
+      if (y) pts.push_back({double(x), double(-y), double(z)});
+    }
+  auto more = pts;
+  more.push_back({-3e6, 2e6, -1e6});
+  const auto a = convex_hull3d(pts, cpu()), b = convex_hull3d(more, cpu());
+  auto key = [](const std::int32_t* v) {
+    std::array<std::int32_t, 3> k{v[0], v[1], v[2]};
+    std::rotate(k.begin(), std::min_element(k.begin(), k.end()), k.end());
+    return k;
+  };
+  std::set<std::array<std::int32_t, 3>> in_b;
+  for (std::size_t f = 0; f < b.num_facets(); ++f) in_b.insert(key(&b.triangles[3 * f]));
+  std::size_t checked = 0, kept = 0;
+  for (std::size_t f = 0; f < a.num_facets(); ++f) {
+    bool top = true;
+    for (int k = 0; k < 3; ++k) top = top && pts[std::size_t(a.triangles[3 * f + k])].z == 1;
+    if (!top) continue;
+    ++checked;
+    kept += in_b.count(key(&a.triangles[3 * f]));
+  }
+  EXPECT_EQ(checked, pts.size() / 2 - 2);  // a triangulated 108-gon
+  EXPECT_EQ(kept, checked);
+}
+
 // Of several copies of an extreme point, the first in input order is the vertex.
 TEST(Hull3d, FirstCopyIsTheVertex) {
   std::vector<Point3> p = {{0.2, 0.2, 0.2}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0},

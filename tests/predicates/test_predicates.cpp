@@ -281,27 +281,63 @@ TEST(Sos, PermutationConsistentAndNeverZero) {
   }
 }
 
-// The first perturbation terms, derived by hand from the bit order in sos.hpp, for inputs
-// sorted by index: they pin down the scheme itself, not only its self-consistency.
+// The first perturbation terms of the lifted tests, derived by hand from the bit order in
+// sos.hpp, for inputs given in the lift order (coordinates lexicographically decreasing): they
+// pin the scheme down, CGAL's rule included, not only its self-consistency. The indices do not
+// matter for distinct points.
 TEST(Sos, FirstTermsFollowTheDocumentedOrder) {
-  const double a[2] = {0, 0}, b[2] = {1, 1}, c[2] = {3, 3};  // collinear, not horizontal
-  // orient2d: term 1 is sign(y_b - y_c).
-  EXPECT_EQ(pred::orient2d_sos(a, 0, b, 1, c, 2, s()), -1);
-  const double h0[2] = {0, 0}, h1[2] = {2, 0},
-               h2[2] = {1, 0};  // horizontal: next term -sign(x_b - x_c)
-  EXPECT_EQ(pred::orient2d_sos(h0, 0, h1, 1, h2, 2, s()), -1);
-  // incircle of cocircular a<b<c<d: orient2d(b, c, d).
-  const double q[4][2] = {{5, 0}, {0, 5}, {-5, 0}, {3, -4}};
+  // incircle of cocircular a > b > c > d: orient2d(b, c, d); one swap negates it.
+  const double q[4][2] = {{5, 0}, {3, -4}, {0, 5}, {-5, 0}};
   EXPECT_EQ(pred::incircle(q[0], q[1], q[2], q[3], s()), 0);
   EXPECT_EQ(pred::incircle_sos(q[0], 0, q[1], 1, q[2], 2, q[3], 3, s()),
             pred::orient2d(q[1], q[2], q[3], s()));
+  EXPECT_EQ(pred::incircle_sos(q[0], 3, q[1], 2, q[2], 1, q[3], 0, s()),
+            pred::orient2d(q[1], q[2], q[3], s()));
   EXPECT_EQ(pred::incircle_sos(q[3], 0, q[1], 1, q[2], 2, q[0], 3, s()),
-            pred::orient2d(q[1], q[2], q[0], s()));
-  // insphere of cospherical a<b<c<d<e: -orient3d(b, c, d, e).
-  const double r[5][3] = {{5, 0, 0}, {0, 5, 0}, {0, 0, 5}, {3, 4, 0}, {0, -3, -4}};
+            -pred::orient2d(q[1], q[2], q[3], s()));
+  // insphere of cospherical a > b > c > d > e: -orient3d(b, c, d, e). This is CGAL's answer
+  // too: its perturbation looks at the lexicographically largest point first (a, the first
+  // here) and returns orientation(e, b, c, d) = -orient3d(b, c, d, e).
+  const double r[5][3] = {{5, 0, 0}, {3, 4, 0}, {0, 5, 0}, {0, 0, 5}, {0, -3, -4}};
   EXPECT_EQ(pred::insphere(r[0], r[1], r[2], r[3], r[4], s()), 0);
   EXPECT_EQ(pred::insphere_sos(r[0], 0, r[1], 1, r[2], 2, r[3], 3, r[4], 4, s()),
             -pred::orient3d(r[1], r[2], r[3], r[4], s()));
+  EXPECT_EQ(pred::insphere_sos(r[0], 4, r[1], 3, r[2], 2, r[3], 1, r[4], 0, s()),
+            -pred::orient3d(r[1], r[2], r[3], r[4], s()));
+}
+
+// The perturbation depends on the points alone: on small grids (almost every tuple degenerate),
+// giving the same distinct points other indices never changes an answer.
+TEST(Sos, IndicesDoNotMatterForDistinctPoints) {
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<int> u(-2, 2);
+  int tested = 0;
+  for (int i = 0; i < 4000; ++i) {
+    double p[5][4];
+    for (auto& x : p)
+      for (double& c : x) c = double(u(rng));
+    bool distinct = true;  // (in x and y, so also as 2D points)
+    for (int j = 0; j < 5; ++j)
+      for (int k = 0; k < j; ++k)
+        distinct = distinct && !(p[j][0] == p[k][0] && p[j][1] == p[k][1]);
+    if (!distinct) continue;
+    ++tested;
+    int ia[5], ib[5];
+    for (int j = 0; j < 5; ++j) ia[j] = j, ib[j] = int(rng() % 1000) * 5 + (4 - j);
+    ASSERT_EQ(pred::orient2d_sos(p[0], ia[0], p[1], ia[1], p[2], ia[2], s()),
+              pred::orient2d_sos(p[0], ib[0], p[1], ib[1], p[2], ib[2], s()));
+    ASSERT_EQ(pred::incircle_sos(p[0], ia[0], p[1], ia[1], p[2], ia[2], p[3], ia[3], s()),
+              pred::incircle_sos(p[0], ib[0], p[1], ib[1], p[2], ib[2], p[3], ib[3], s()));
+    ASSERT_EQ(pred::orient3d_sos(p[0], ia[0], p[1], ia[1], p[2], ia[2], p[3], ia[3], s()),
+              pred::orient3d_sos(p[0], ib[0], p[1], ib[1], p[2], ib[2], p[3], ib[3], s()));
+    ASSERT_EQ(
+        pred::insphere_sos(p[0], ia[0], p[1], ia[1], p[2], ia[2], p[3], ia[3], p[4], ia[4], s()),
+        pred::insphere_sos(p[0], ib[0], p[1], ib[1], p[2], ib[2], p[3], ib[3], p[4], ib[4], s()));
+    ASSERT_EQ(
+        pred::orient4d_sos(p[0], ia[0], p[1], ia[1], p[2], ia[2], p[3], ia[3], p[4], ia[4], s()),
+        pred::orient4d_sos(p[0], ib[0], p[1], ib[1], p[2], ib[2], p[3], ib[3], p[4], ib[4], s()));
+  }
+  EXPECT_GT(tested, 1000);
 }
 
 // Duplicated points (same coordinates, different indices) still get a consistent, nonzero answer.

@@ -7,7 +7,8 @@
 // triangulation star-shaped from s and splits the outside into the cones from s over the
 // boundary edges: an outside point lies in exactly one infinite triangle. In the Delaunay test
 // an infinite triangle (a, b, inf) has the open half-plane left of a->b as its circle, the
-// limit of the circles through a and b. s takes SoS index m, so every test is perturbed
+// limit of the circles through a and b. s takes index m (which orders it only after an input
+// point it equals: the perturbation follows coordinates), so every test is perturbed
 // consistently and never ties.
 
 using pred::kIncircleScratch;

@@ -18,7 +18,7 @@ struct Prepared {
 };
 
 // The kernel point s: strictly inside the counter-clockwise triangle (v[0], v[1], v[2]) of
-// point indices id under the perturbation, with SoS index m (the infinity vertex's). The
+// point indices id under the perturbation, with index m (the infinity vertex's). The
 // centroid almost always is; weighted means cover rounding in slivers. False if none is.
 inline bool kernel_point(const double* const v[3], const std::int32_t id[3], std::int32_t m,
                          double s[2]) {

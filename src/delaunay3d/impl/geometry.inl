@@ -8,10 +8,11 @@
 // outside point lies in exactly one infinite tetrahedron. In the Delaunay test an infinite
 // tetrahedron (a, b, c, inf) has as its sphere the open half-space beyond its finite face (the
 // limit of the spheres through a, b, c), i.e. a point q is inside when the tetrahedron with q
-// in place of the infinity point is positively oriented. s takes SoS index m, so every test is
-// perturbed consistently and never ties. Where the filter cannot tell, whole-number points
-// (grids) are decided in integers, and anything else runs the exact stages on scratch
-// borrowed from the pool (exec/scratch_lease.hpp), which threads may have to wait for.
+// in place of the infinity point is positively oriented. s takes index m and is perturbed by its
+// coordinates like any point, so every test is perturbed consistently and never ties. Where the
+// filter cannot tell, whole-number points (grids) are decided in integers, and anything else
+// runs the exact stages on scratch borrowed from the pool (exec/scratch_lease.hpp), which
+// threads may have to wait for.
 
 struct Geo {
   const double* p;  // 3 per point

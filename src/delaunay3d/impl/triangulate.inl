@@ -1135,8 +1135,9 @@ class Triangulator {
   typename Exec::template Buffer<Counters> ctr_;
 };
 
-// What both methods start from: the distinct points in curve order (the perturbation's
-// order), their box and the first tetrahedron (its centroid is the kernel point).
+// What both methods start from: the distinct points in curve order (the order of their
+// indices; the perturbation follows coordinates, predicates/sos.hpp), their box and the first
+// tetrahedron (its centroid is the kernel point).
 struct Prepared {
   mesh::SortedPoints<Exec> S;
   mesh::Bounds<3> box;

@@ -240,7 +240,7 @@ inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Stats& 
 // The hull of n input points on the executor (read only), in input indices: validated, put in
 // Hilbert order with duplicates merged (mesh/prepare.hpp), then distinct_hull. The curve order
 // makes the construction's point reads local (the sphere 10^7 on the H100: 16 % faster); the
-// perturbation then follows curve position, as in delaunay2d, so the output does not depend on
+// perturbation follows the coordinates (predicates/sos.hpp), so the output does not depend on
 // the order of the input. A point with copies is represented by its first index.
 inline Result digital_distinct_hull(Exec& ex, const double* pts, std::int64_t m,
                                     const mesh::Bounds<3>& box, std::int64_t grid, Stats& st,

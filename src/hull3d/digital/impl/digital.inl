@@ -19,9 +19,9 @@
 //  3b. The hull of S' and the points kept (the same machinery), in curve order.
 //
 // Why the result is the incremental method's, triangle for triangle: the perturbation depends
-// only on the order of the points' indices, and the points of the last pass keep their curve
-// order; they include every vertex of the perturbed hull of all points (a point strictly inside
-// the exact hull is no such vertex), so the perturbed hulls agree, and so do the extreme-point
+// only on the points' coordinates (predicates/sos.hpp); the points of the last pass include
+// every vertex of the perturbed hull of all points (a point strictly inside the exact hull is
+// no such vertex), so the perturbed hulls agree, and so do the extreme-point
 // tests and the second pass on the extreme points alone (impl/hull.inl). The sketch's quality
 // decides only the speed.
 
