@@ -2,10 +2,10 @@
 // errors, and the Voronoi diagram.
 #include <algorithm>
 #include <array>
-#include <map>
 #include <set>
 
 #include "../common/caller_arrays.hpp"
+#include "../common/first_copies.hpp"
 #include "gpugeom/predicates.hpp"
 #include "../common/on_host_threads.hpp"
 #include "del2d_cases.hpp"
@@ -286,15 +286,16 @@ TEST(Delaunay2d, SameAsCgalOnDegenerateInput) {
   using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
   for (const auto& c : gg_del2d::degenerate_cases()) {
     SCOPED_TRACE(c.name);
-    std::map<std::array<double, 2>, std::int32_t> first;
+    const auto first = gg_test::first_copies<2>(c.pts, [](const Point2& p) {
+      return std::array<double, 2>{p.x, p.y};
+    });
     std::vector<std::pair<K::Point_2, std::int32_t>> in;
+    std::size_t distinct = 0;
     for (std::size_t i = 0; i < c.pts.size(); ++i) {
-      const Point2& p = c.pts[i];
-      const std::int32_t f =
-          first.emplace(std::array<double, 2>{p.x, p.y}, std::int32_t(i)).first->second;
-      in.push_back({K::Point_2(p.x, p.y), f});
+      in.push_back({K::Point_2(c.pts[i].x, c.pts[i].y), first[i]});
+      distinct += first[i] == std::int32_t(i);
     }
-    if (first.size() < 3) continue;
+    if (distinct < 3) continue;
     DT dt(in.begin(), in.end());
     auto key = [](std::int32_t a, std::int32_t b, std::int32_t c3) {
       std::array<std::int32_t, 3> k{a, b, c3};

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <string>
 
 #include "../common/caller_arrays.hpp"
+#include "../common/first_copies.hpp"
 #include "del3d_cases.hpp"
 #include "gpugeom/predicates.hpp"
 
@@ -303,14 +303,12 @@ TEST(Delaunay3d, SameAsCgalOnDegenerateInput) {
   using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
   for (const auto& c : gg_hull3d::degenerate_cases()) {
     SCOPED_TRACE(c.name);
-    std::map<std::array<double, 3>, std::int32_t> first;
+    const auto first = gg_test::first_copies<3>(c.pts, [](const Point3& p) {
+      return std::array<double, 3>{p.x, p.y, p.z};
+    });
     std::vector<std::pair<K::Point_3, std::int32_t>> in;
-    for (std::size_t i = 0; i < c.pts.size(); ++i) {
-      const Point3& p = c.pts[i];
-      const std::int32_t f =
-          first.emplace(std::array<double, 3>{p.x, p.y, p.z}, std::int32_t(i)).first->second;
-      in.push_back({K::Point_3(p.x, p.y, p.z), f});
-    }
+    for (std::size_t i = 0; i < c.pts.size(); ++i)
+      in.push_back({K::Point_3(c.pts[i].x, c.pts[i].y, c.pts[i].z), first[i]});
     DT dt(in.begin(), in.end());
     std::vector<std::int32_t> ref;
     for (auto cell = dt.finite_cells_begin(); cell != dt.finite_cells_end(); ++cell)
