@@ -93,6 +93,58 @@ struct DeviceTriangulation2d {
 DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
                                         const Delaunay2dOptions& opt = {});
 
+// A 2D Delaunay triangulation that follows its points (issue 47): kept on the executor between
+// calls, it takes new points and is brought up to date from where it was, not rebuilt. After any
+// sequence of calls it is exactly the triangulation delaunay2d gives for all the points so far:
+// the same triangles with the same neighbours (their order in the arrays may differ),
+// degenerate input included, as the symbolic perturbation depends on the points alone
+// (docs/design-notes.md). Points keep the indices they were given: the first call's are
+// 0 .. n - 1, each insert's follow on. A point equal to an earlier one (given before or in the
+// same call) is not a vertex; duplicate_of names the earliest, as delaunay2d's does.
+//
+// The state lives where the executor runs: device memory of opt.device on CUDA (the device is
+// fixed at construction; the work runs on opt.stream, which must outlive the object), host
+// memory on the CPU executor. Calls on one object must not overlap; separate objects are
+// independent. A call that throws leaves the object as it was. Today an insertion still sorts
+// all points again (the one global step left; the triangulation itself is only repaired where
+// the new points fall): docs/performance.md has what it costs.
+class DynamicDelaunay2d {
+ public:
+  // Triangulates n host points (x and y interleaved) on the executor opt picks. Throws as
+  // delaunay2d; Error(Unsupported) for Method::Digital or opt.into (results are read with
+  // triangulation()).
+  DynamicDelaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt = {});
+  // The same from points in executor memory (device memory, as delaunay2d_device takes them;
+  // host memory with opt.backend == Backend::Cpu).
+  static DynamicDelaunay2d from_device(const double* device_xy, std::int64_t n,
+                                       const Delaunay2dOptions& opt = {});
+  DynamicDelaunay2d(DynamicDelaunay2d&&) noexcept;
+  DynamicDelaunay2d& operator=(DynamicDelaunay2d&&) noexcept;
+  ~DynamicDelaunay2d();
+
+  // Adds n points (host memory; insert_device: executor memory, as from_device), numbered
+  // num_points() on, and brings the triangulation up to date. Throws as delaunay2d for bad
+  // coordinates or too many points in all; the object is then unchanged.
+  void insert(const double* xy, std::int64_t n);
+  void insert_device(const double* device_xy, std::int64_t n);
+
+  std::int64_t num_points() const;
+  std::int64_t num_triangles() const;
+  std::int64_t num_duplicates() const;
+  Backend backend() const;  // the executor holding the state
+  // Copies of the current triangulation: host arrays as delaunay2d returns them, or new arrays
+  // in executor memory as delaunay2d_device returns them (freed when their last pointer goes).
+  Triangulation2d triangulation() const;
+  DeviceTriangulation2d device_triangulation() const;
+  // Phases and counters of the last construction or insertion.
+  const Stats& stats() const;
+
+ private:
+  struct Impl;
+  explicit DynamicDelaunay2d(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
 // The Voronoi diagram dual to a Delaunay triangulation, in SciPy's `Voronoi` conventions.
 struct Voronoi2d {
   HostVector<double> vertices;  // circumcentres, x and y interleaved (one per triangle)

@@ -180,6 +180,36 @@ def points_input(points, dims, backend: str, threads: int = 0):
     return arr, kind
 
 
+def like(kind: Kind, ref, a):
+    """Array `a` (as as_input returns it) moved to where `ref`, an array of `kind` as
+    as_input returned it, lives: the host, or ref's GPU."""
+    if not kind.device:
+        return np.ascontiguousarray(to_host(a), dtype=np.float64)
+    if kind.name == "torch":
+        import torch
+
+        if isinstance(a, torch.Tensor):
+            return a.to(device=ref.device, dtype=torch.float64).contiguous()
+        return torch.as_tensor(np.asarray(to_host(a)), dtype=torch.float64, device=ref.device)
+    import cupy
+
+    with cupy.cuda.Device(ref.device.id):
+        return cupy.ascontiguousarray(cupy.asarray(a), dtype=cupy.float64)
+
+
+def concatenate(kind: Kind, a, b):
+    """Rows of b after those of a, both arrays of `kind` as as_input returns them."""
+    if kind.name == "torch":
+        import torch
+
+        return torch.cat([a, b]).contiguous()
+    if kind.device:
+        import cupy
+
+        return cupy.concatenate([a, b])
+    return np.concatenate([a, b])
+
+
 def to_host(a) -> np.ndarray:
     """A NumPy copy of any array (device arrays are copied over the bus)."""
     mod = _module_of(a)

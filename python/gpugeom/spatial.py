@@ -24,15 +24,73 @@ def _not_supported(name, value, default):
 
 
 class _OfPoints:
-    """What the three structures share: the points as the caller's kind of array."""
+    """What the three structures share: the points as the caller's kind of array, and SciPy's
+    incremental mode (``incremental=True``, ``add_points``, ``close``).
+
+    A subclass computes with ``_compute(arr)`` (a dict of results for points ``arr``) and takes
+    them with ``_take(r)``; in incremental mode ``_insert(new)`` may bring a kept state up to date
+    instead (returning the results, or None to compute on all points). A call that raises leaves
+    the object as it was: everything is computed before anything is assigned.
+    """
+
+    _incremental = False
+    _cached = ()  # cached properties that depend on the results (cleared when they change)
 
     def _take_points(self, points, dims, backend, threads=0):
         arr, kind = _arrays.points_input(points, dims, backend, threads)
         self._kind = kind
-        self.points = kind.back(arr) if kind.name == "torch-cpu" else arr
+        self._run = dict(backend=backend, stream=kind.stream, threads=threads)
+        self._set_points(arr)
+        return arr, kind
+
+    def _set_points(self, arr):
+        self._arr = arr
+        self.points = self._kind.back(arr) if self._kind.name == "torch-cpu" else arr
         self.ndim = int(arr.shape[1])
         self.npoints = int(arr.shape[0])
-        return arr, kind
+
+    def add_points(self, points, restart: bool = False):
+        """Adds points (incremental mode, as SciPy's): they take the indices after the current
+        ones. ``restart=True`` computes the result from all points afresh; either way the result
+        is exactly that of a new object on all points (the order of simplices may differ).
+
+        2D ``Delaunay`` brings its kept triangulation up to date (``DynamicDelaunay2d``); the
+        other structures compute again from all points (their kept state is to come).
+
+        Raises RuntimeError after ``close()`` or without ``incremental=True``, ValueError for
+        points of another shape; a call that raises leaves the object unchanged.
+        """
+        if not self._incremental:
+            raise RuntimeError("incremental mode not enabled or already closed")
+        new = self._more_points(points)
+        both = _arrays.concatenate(self._kind, self._arr, new)
+        r = None if restart else self._insert(new)
+        if r is None:
+            r = self._compute(both, restart=True)
+        self._set_points(both)
+        for name in self._cached:
+            self.__dict__.pop(name, None)
+        self._take(r)
+
+    def close(self):
+        """Ends incremental mode, releasing its kept state (as SciPy's); add_points then
+        raises RuntimeError. The results stay readable."""
+        self._incremental = False
+        self._dyn = None
+
+    def _insert(self, new):
+        return None
+
+    def _more_points(self, points):
+        """New points as the same kind and place as the current ones, shape (n, ndim)."""
+        if getattr(points, "ndim", 2) != 2:
+            raise ValueError(f"points must have shape (n, {self.ndim}) like the points already "
+                             f"given, got {tuple(points.shape)}")
+        arr, kind = _arrays.as_input(points, np.float64, "points")
+        if len(arr.shape) != 2 or arr.shape[1] != self.ndim:
+            raise ValueError(f"points must have shape (n, {self.ndim}) like the points already "
+                             f"given, got {tuple(arr.shape)}")
+        return _arrays.like(self._kind, self._arr, arr)
 
 
 class Delaunay(_OfPoints):
@@ -58,6 +116,10 @@ class Delaunay(_OfPoints):
     grid : int
         method="digital": the grid's size along the points' longest extent (2D: 4..46338
         pixels, 3D: 16..1024 cells; 0: chosen from the number of points).
+    incremental : bool
+        SciPy's incremental mode: ``add_points`` and ``close``. In 2D the triangulation is kept
+        where the points are and brought up to date by each ``add_points``; in 3D it is computed
+        again from all points. Either way the simplices are those of a new object on all points.
 
     Attributes
     ----------
@@ -66,22 +128,42 @@ class Delaunay(_OfPoints):
     SciPy lists the points Qhull left out: ``[point, simplex, vertex it coincides with]``.
     """
 
+    _cached = ("vertex_to_simplex", "convex_hull", "transform", "vertex_neighbor_vertices",
+               "coplanar")
+
     def __init__(self, points, furthest_site: bool = False, incremental: bool = False,
                  qhull_options: Optional[str] = None, *, backend: str = "auto",
                  threads: int = 0, progress: Optional[Callable] = None,
                  method: str = "incremental", grid: int = 0):
         _not_supported("furthest_site", furthest_site, False)
-        _not_supported("incremental", incremental, False)
         arr, kind = self._take_points(points, (2, 3), backend, threads)
         if method not in ("incremental", "digital"):
             raise ValueError(f"method must be 'incremental' or 'digital', got {method!r}")
+        self._method, self._grid, self._progress = method, grid, progress
+        self._incremental = bool(incremental)
+        self._dyn = None
+        self._take(self._compute(arr))
+
+    def _compute(self, arr, restart=False):
+        if self.ndim == 2 and self._incremental:
+            # kept between calls (DynamicDelaunay2d): add_points repairs it
+            dyn = _core.DynamicDelaunay2d(arr, **self._run)
+            r = dyn.result()
+            self._dyn = dyn
+            return r
         if self.ndim == 2:
-            r = _core.delaunay2d(arr, backend=backend, stream=kind.stream, threads=threads,
-                                 method=method, grid=grid)
-        else:
-            r = _core.delaunay3d(arr, backend=backend, stream=kind.stream, threads=threads,
-                                 progress=_arrays.progress_callback(progress), method=method,
-                                 grid=grid)
+            return _core.delaunay2d(arr, method=self._method, grid=self._grid, **self._run)
+        return _core.delaunay3d(arr, progress=_arrays.progress_callback(self._progress),
+                                method=self._method, grid=self._grid, **self._run)
+
+    def _insert(self, new):
+        if self._dyn is None:
+            return None
+        self._dyn.insert(new)
+        return self._dyn.result()
+
+    def _take(self, r):
+        kind = self._kind
         self.simplices = kind.back(r["simplices"])
         self.neighbors = kind.back(r["neighbors"])
         self._duplicate_of = kind.back(r["duplicate_of"])
@@ -217,13 +299,21 @@ class Voronoi(_OfPoints):
     points share the region of their twin.
     """
 
+    _cached = ("ridge_vertices", "regions", "point_region", "ridge_dict")
+
     def __init__(self, points, furthest_site: bool = False, incremental: bool = False,
                  qhull_options: Optional[str] = None, *, backend: str = "auto",
                  threads: int = 0):
         _not_supported("furthest_site", furthest_site, False)
-        _not_supported("incremental", incremental, False)
         arr, kind = self._take_points(points, (2,), backend, threads)
-        r = _core.voronoi2d(arr, backend=backend, stream=kind.stream, threads=threads)
+        self._incremental = bool(incremental)
+        self._take(self._compute(arr))
+
+    def _compute(self, arr, restart=False):
+        return _core.voronoi2d(arr, **self._run)
+
+    def _take(self, r):
+        kind = self._kind
         self.vertices = kind.back(r["vertices"])
         self.ridge_points = kind.back(r["ridge_points"])
         self.ridge_vertices_array = kind.back(r["ridge_vertices"])
@@ -285,30 +375,36 @@ class ConvexHull(_OfPoints):
         method="digital": the faces' grid side (16..8192; 0: chosen from the point count).
     """
 
+    _cached = ("area", "volume")
+
     def __init__(self, points, incremental: bool = False, qhull_options: Optional[str] = None, *,
                  backend: str = "auto", threads: int = 0, method: str = "incremental",
                  grid: int = 0):
-        _not_supported("incremental", incremental, False)
         if method not in ("incremental", "digital"):
             raise ValueError(f"method must be 'incremental' or 'digital', got {method!r}")
         arr, kind = self._take_points(points, (2, 3), backend, threads)
+        if self.ndim == 2 and method != "incremental":
+            raise ValueError("method='digital' is for 3D hulls (a 2D hull comes from the "
+                             "Delaunay triangulation; use Delaunay(method='digital'))")
+        self._method, self._grid = method, grid
+        self._incremental = bool(incremental)
         self.coplanar = np.zeros((0, 3), dtype=np.int32)
+        self._take(self._compute(arr))
+
+    def _compute(self, arr, restart=False):
         if self.ndim == 2:
-            if method != "incremental":
-                raise ValueError("method='digital' is for 3D hulls (a 2D hull comes from the "
-                                 "Delaunay triangulation; use Delaunay(method='digital'))")
-            self._hull2d(arr, kind, backend, threads)
-            return
-        r = _core.convex_hull3d(arr, backend=backend, stream=kind.stream, threads=threads,
-                                method=method, grid=grid)
-        self.simplices = kind.back(r["simplices"])
-        self.neighbors = kind.back(r["neighbors"])
-        self.vertices = kind.back(r["vertices"])
-        self.equations = kind.back(r["equations"])
+            return self._hull2d(arr, self._kind)
+        return _core.convex_hull3d(arr, method=self._method, grid=self._grid, **self._run)
+
+    def _take(self, r):
+        for k in ("simplices", "neighbors", "vertices", "equations"):
+            setattr(self, k, r[k] if self.ndim == 2 else self._kind.back(r[k]))
+        if self.ndim == 2:
+            self._perimeter, self._area2d = r["perimeter"], r["area"]
         self.stats = r["stats"]
 
-    def _hull2d(self, arr, kind, backend, threads):
-        r = _core.delaunay2d(arr, backend=backend, stream=kind.stream, threads=threads)
+    def _hull2d(self, arr, kind):
+        r = _core.delaunay2d(arr, **self._run)
         host = np.ascontiguousarray(_arrays.to_host(arr), dtype=np.float64)
         v = np.asarray(_core.hull2d_vertices(host, np.asarray(_arrays.to_host(kind.back(r["simplices"]))),
                                              np.asarray(_arrays.to_host(kind.back(r["neighbors"])))))
@@ -322,11 +418,10 @@ class ConvexHull(_OfPoints):
         nbr = np.stack([(np.arange(h) + 1) % h, (np.arange(h) - 1) % h], axis=1).astype(np.int32)
         xp = kind.xp()
         put = (lambda x: kind.from_xp(xp.asarray(x))) if kind.device else kind.from_xp
-        self.simplices, self.neighbors = put(edges), put(nbr)
-        self.vertices, self.equations = put(v.astype(np.int32)), put(eq)
-        self._perimeter = float(length.sum())
-        self._area2d = float(0.5 * (a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]).sum())
-        self.stats = r["stats"]
+        return {"simplices": put(edges), "neighbors": put(nbr), "vertices": put(v.astype(np.int32)),
+                "equations": put(eq), "perimeter": float(length.sum()),
+                "area": float(0.5 * (a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]).sum()),
+                "stats": r["stats"]}
 
     @property
     def nsimplex(self) -> int:

@@ -60,6 +60,64 @@ nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, std
   return r;
 }
 
+// A 2D triangulation kept between calls (Delaunay(incremental=True) in 2D; issue 47). Its
+// arrays are where its first points were: new points must be there too (the Python layer
+// converts them), and results come back there.
+struct Dynamic2dState {
+  DynamicDelaunay2d t;
+  bool on_device;
+  int device;
+};
+
+void dynamic2d_init(Dynamic2dState* self, const AnyArray& points, const std::string& backend,
+                    std::uintptr_t stream, int threads) {
+  const Input in = points_input(points, 2);
+  auto o = options_for<Delaunay2dOptions>(backend, stream, threads, in);
+  const std::int64_t n = in.shape[0];
+  DynamicDelaunay2d t = unlocked([&] {
+    return in.on_device ? DynamicDelaunay2d::from_device(pts(in), n, o)
+                        : DynamicDelaunay2d(pts(in), n, o);
+  });
+  new (self) Dynamic2dState{std::move(t), in.on_device, in.on_device ? device_of(o) : -1};
+}
+
+void dynamic2d_insert(Dynamic2dState& self, const AnyArray& points) {
+  const Input in = points_input(points, 2);
+  if (in.on_device != self.on_device)
+    throw nb::value_error(
+        self.on_device ? "points must be on the GPU, as the triangulation's first points were"
+                       : "points must be in host memory, as the triangulation's first "
+                         "points were");
+  const std::int64_t n = in.shape[0];
+  unlocked([&] {
+    if (in.on_device)
+      self.t.insert_device(pts(in), n);
+    else
+      self.t.insert(pts(in), n);
+  });
+}
+
+nb::dict dynamic2d_result(const Dynamic2dState& self) {
+  nb::dict r;
+  const std::int64_t n = self.t.num_points();
+  if (self.on_device) {
+    DeviceTriangulation2d t = unlocked([&] { return self.t.device_triangulation(); });
+    const DeviceOut out{t.backend, self.device};
+    r["simplices"] = out(t.triangles, {sz(t.num_triangles), 3});
+    r["neighbors"] = out(t.neighbors, {sz(t.num_triangles), 3});
+    r["duplicate_of"] = out(t.duplicate_of, {sz(n)});
+    r["stats"] = stats_dict(t.stats);
+    return r;
+  }
+  Triangulation2d t = unlocked([&] { return self.t.triangulation(); });
+  const sz nt = t.num_triangles();
+  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
+  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+
 void put_voronoi_host(nb::dict& r, Voronoi2d& v, std::int64_t n) {
   const sz nv = v.vertices.size() / 2, nr = v.ridge_points.size() / 2;
   const sz ncv = v.cell_vertices.size();
@@ -370,6 +428,12 @@ void bind_spatial(nb::module_& m) {
   using namespace nb::literals;
   m.def("delaunay2d", &delaunay2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0, "method"_a = "incremental", "grid"_a = 0);
+  nb::class_<Dynamic2dState>(m, "DynamicDelaunay2d")
+      .def("__init__", &dynamic2d_init, "points"_a, "backend"_a = "auto", "stream"_a = 0,
+           "threads"_a = 0)
+      .def("insert", &dynamic2d_insert, "points"_a)
+      .def("result", &dynamic2d_result)
+      .def_prop_ro("npoints", [](const Dynamic2dState& s) { return s.t.num_points(); });
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);
   m.def("convex_hull3d", &hull3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,

@@ -109,3 +109,25 @@ def test_constrained_delaunay_cupy(rng):
     assert isinstance(e.simplices, cupy.ndarray)
     with pytest.raises(ValueError, match="host"):
         gpugeom.ConstrainedDelaunay(cupy.asarray(p), segs, crossings="split")
+
+
+def test_incremental_delaunay_stays_on_the_gpu(rng):
+    # issue 47: the kept 2D triangulation lives on the GPU; new points of another kind are moved
+    p = rng.random((40000, 2))
+    d = gpugeom.Delaunay(cupy.asarray(p[:20000]), incremental=True)
+    d.add_points(cupy.asarray(p[20000:30000]))
+    d.add_points(p[30000:])  # NumPy points join the GPU triangulation
+    assert isinstance(d.simplices, cupy.ndarray) and isinstance(d.points, cupy.ndarray)
+    assert d.npoints == 40000
+    assert simplex_set(cupy.asnumpy(d.simplices)) == simplex_set(gpugeom.Delaunay(p).simplices)
+    assert d.stats["counters"]["inserted_points"] == 10000
+
+
+def test_incremental_delaunay_torch_cuda(rng):
+    torch = pytest.importorskip("torch")
+    p = rng.random((40000, 2))
+    t = torch.as_tensor(p[:20000], device="cuda")
+    dt = gpugeom.Delaunay(t, incremental=True)
+    dt.add_points(torch.as_tensor(p[20000:], device="cuda"))
+    assert isinstance(dt.simplices, torch.Tensor) and dt.simplices.is_cuda
+    assert simplex_set(dt.simplices.cpu().numpy()) == simplex_set(gpugeom.Delaunay(p).simplices)

@@ -59,7 +59,25 @@ struct Capacities {
 void set_capacities_for_testing(const Capacities& c);
 Capacities capacities_for_testing();
 
+// DynamicDelaunay2d's state on one executor (impl/dynamic.inl): the points, the triangulation
+// and its duplicate map, kept in the executor's memory between calls.
+class Kept {
+ public:
+  virtual ~Kept() = default;
+  // Appends n points (executor memory when on_device, else host memory), numbered from points()
+  // on, and brings the triangulation up to date. Throws as triangulate; the state is then
+  // unchanged.
+  virtual void insert(const double* xy, std::int64_t n, bool on_device, Stats& st) = 0;
+  virtual std::int64_t points() const = 0;
+  virtual std::int64_t triangles() const = 0;
+  virtual std::int64_t duplicates() const = 0;
+  // Copies of the current arrays: to host vectors, or to new executor arrays handed over.
+  virtual void host_copy(Output& out) const = 0;
+  virtual void device_copy(DeviceOutput& out) const = 0;
+};
+
 namespace cpu_impl {
+std::unique_ptr<Kept> make_kept(const RunOptions& run);
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats);
 void triangulate_digital(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
@@ -76,6 +94,7 @@ void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const st
              DeviceVoronoiOutput& out, Stats& stats, Voronoi2d* host = nullptr);
 }  // namespace cpu_impl
 namespace cuda_impl {
+std::unique_ptr<Kept> make_kept(const RunOptions& run);
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
                  Stats& stats);
 void triangulate_digital(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,

@@ -50,6 +50,7 @@ using Exec = CpuExec;
 #include "delaunay2d/impl/prepare.inl"
 #include "delaunay2d/impl/mesh.inl"
 #include "delaunay2d/impl/triangulate.inl"
+#include "delaunay2d/impl/dynamic.inl"
 namespace edt_impl = gpugeom::edt::cpu_impl;
 #include "edt/impl/point_voronoi.inl"
 #include "delaunay2d/digital/impl/sketch.inl"
@@ -74,6 +75,9 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
 void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                         DeviceOutput& out, Stats& stats) {
   triangulate_device_impl(xy, n, opt, out, stats);
+}
+std::unique_ptr<Kept> make_kept(const RunOptions& run) {
+  return std::make_unique<KeptOn>(run);
 }
 void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
                       std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,

@@ -51,6 +51,7 @@ using Exec = CudaExec;
 #include "delaunay2d/impl/prepare.inl"
 #include "delaunay2d/impl/mesh.inl"
 #include "delaunay2d/impl/triangulate.inl"
+#include "delaunay2d/impl/dynamic.inl"
 namespace edt_impl = gpugeom::edt::cuda_impl;
 #include "edt/impl/point_voronoi.inl"
 #include "delaunay2d/digital/impl/sketch.inl"
@@ -75,6 +76,12 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
 void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                         DeviceOutput& out, Stats& stats) {
   triangulate_device_impl(xy, n, opt, out, stats);
+}
+std::unique_ptr<Kept> make_kept(const RunOptions& run) {
+  RunOptions r = run;
+  r.device = cuda_device::resolve(run);  // (kept: later calls run on this device, whatever the
+                                         // calling thread's current one is then)
+  return std::make_unique<KeptOn>(r);
 }
 void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
                       std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <random>
 #include <string>
 #include <utility>
@@ -209,6 +210,49 @@ inline std::vector<std::array<std::int32_t, 3>> triangle_set(const std::int32_t*
 }
 inline std::vector<std::array<std::int32_t, 3>> triangle_set(const Triangulation2d& t) {
   return triangle_set(t.triangles.data(), std::size_t(t.num_triangles()));
+}
+
+// A DynamicDelaunay2d fed a case's points in a random order and in chunks of random sizes (the
+// first chunk grows until it is not degenerate): after every call, valid by the checker and the
+// same triangles, neighbours' validity and duplicate map as a fresh delaunay2d of the points so
+// far. Returns the final triangulation (for comparisons across executors).
+inline Triangulation2d follow_in_chunks(const Case& c, const Delaunay2dOptions& opt,
+                                        std::uint64_t seed) {
+  std::vector<Point2> all = c.pts;
+  std::mt19937_64 rng(seed);
+  std::shuffle(all.begin(), all.end(), rng);
+  const std::size_t n = all.size();
+  std::size_t k = std::min<std::size_t>(n, 3 + rng() % std::max<std::size_t>(1, n / 4));
+  std::unique_ptr<DynamicDelaunay2d> dyn;
+  for (;;) {
+    try {
+      dyn = std::make_unique<DynamicDelaunay2d>(&all.data()->x, std::int64_t(k), opt);
+      break;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::DegenerateInput) << e.what();
+      if (k == n) ADD_FAILURE() << "no triangulation of all points";
+      if (k == n) return {};
+      k = std::min(n, 2 * k);
+    }
+  }
+  Delaunay2dOptions fresh_opt;
+  fresh_opt.backend = opt.backend;
+  for (;;) {
+    std::vector<Point2> sofar(all.begin(), all.begin() + std::ptrdiff_t(k));
+    SCOPED_TRACE(std::to_string(k) + " of " + std::to_string(n) + " points");
+    const Triangulation2d t = dyn->triangulation();
+    EXPECT_EQ(dyn->num_points(), std::int64_t(k));
+    expect_valid(sofar, t);
+    const Triangulation2d fresh = delaunay2d(sofar, fresh_opt);
+    EXPECT_EQ(triangle_set(t), triangle_set(fresh));
+    EXPECT_EQ(t.duplicate_of, fresh.duplicate_of);
+    if (k == n || ::testing::Test::HasFailure()) return t;
+    // chunks of 1 point up to half of what is left, sizes drawn
+    const std::size_t left = n - k;
+    const std::size_t add = 1 + rng() % std::max<std::size_t>(1, (left + 1) / 2);
+    dyn->insert(&all[k].x, std::int64_t(std::min(add, left)));
+    k += std::min(add, left);
+  }
 }
 
 }  // namespace gg_del2d

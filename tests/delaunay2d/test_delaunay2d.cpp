@@ -521,3 +521,101 @@ TEST(Delaunay2d, PointLimitIsStated) {
     EXPECT_NE(std::string(e.what()).find("at most 536870910"), std::string::npos) << e.what();
   }
 }
+
+// DynamicDelaunay2d (issue 47): points added in chunks give, after every call, exactly the
+// triangulation of a fresh call on the points so far; on every distribution and degenerate
+// case, in random orders and chunk sizes.
+TEST(DynamicDelaunay2d, SameAsFreshAfterEveryInsert) {
+  std::uint64_t seed = 1;
+  for (const auto& c : gg_del2d::degenerate_cases())
+    for (int r = 0; r < 3; ++r) {
+      SCOPED_TRACE(c.name + " order " + std::to_string(r));
+      gg_del2d::follow_in_chunks(c, cpu(), seed++);
+    }
+  for (const auto& c : gg_del2d::distribution_cases({10, 1000, 20000}, 23)) {
+    if (c.name.rfind("two_segments", 0) == 0 && c.pts.size() < 4) continue;
+    SCOPED_TRACE(c.name);
+    gg_del2d::follow_in_chunks(c, cpu(), seed++);
+  }
+}
+
+// The same sequence of calls gives the same arrays, on any thread count.
+TEST(DynamicDelaunay2d, SameArraysEveryRunAndThreadCount) {
+  const auto pts = generate2d("uniform", 30000, 8);
+  auto run = [&](int threads) {
+    Delaunay2dOptions o = cpu();
+    o.threads = threads;
+    DynamicDelaunay2d d(&pts.data()->x, 10000, o);
+    d.insert(&pts[10000].x, 5);
+    d.insert(&pts[10005].x, 19995);
+    return d.triangulation();
+  };
+  const auto a = run(1);
+  for (int threads : {2, 0}) {
+    const auto b = run(threads);
+    EXPECT_EQ(a.triangles, b.triangles);
+    EXPECT_EQ(a.neighbors, b.neighbors);
+  }
+}
+
+// Copies of points already in it are not vertices and name the earliest copy; so do copies
+// within one insertion.
+TEST(DynamicDelaunay2d, DuplicatesOfEarlierPoints) {
+  std::vector<Point2> pts = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+  DynamicDelaunay2d d(&pts.data()->x, 4, cpu());
+  const std::vector<Point2> more = {{1, 0}, {0.5, 0.5}, {-0.0, 0.0}, {0.5, 0.5}};
+  d.insert(&more.data()->x, 4);
+  pts.insert(pts.end(), more.begin(), more.end());
+  const auto t = d.triangulation();
+  expect_valid(pts, t);
+  EXPECT_EQ(d.num_points(), 8);
+  EXPECT_EQ(d.num_duplicates(), 3);
+  const std::vector<std::int32_t> want = {-1, -1, -1, -1, 1, -1, 0, 5};
+  EXPECT_EQ(std::vector<std::int32_t>(t.duplicate_of.begin(), t.duplicate_of.end()), want);
+  d.insert(&more.data()->x, 0);  // nothing to add: nothing changes
+  EXPECT_EQ(d.triangulation().triangles, t.triangles);
+}
+
+// A refused insertion (bad coordinates, too few points to start) leaves the object as it was,
+// and it goes on working.
+TEST(DynamicDelaunay2d, RefusedCallsLeaveItAsItWas) {
+  const auto pts = generate2d("uniform", 2000, 9);
+  DynamicDelaunay2d d(&pts.data()->x, 1000, cpu());
+  const auto before = d.triangulation();
+  std::vector<Point2> bad(pts.begin() + 1000, pts.begin() + 1010);
+  bad[7].y = std::nan("");
+  try {
+    d.insert(&bad.data()->x, std::int64_t(bad.size()));
+    ADD_FAILURE() << "NaN accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidInput);
+  }
+  EXPECT_THROW(d.insert(&bad.data()->x, -1), Error);
+  EXPECT_EQ(d.num_points(), 1000);
+  const auto after = d.triangulation();
+  EXPECT_EQ(after.triangles, before.triangles);
+  EXPECT_EQ(after.neighbors, before.neighbors);
+  d.insert(&pts[1000].x, 1000);
+  const std::vector<Point2> all(pts.begin(), pts.end());
+  expect_valid(all, d.triangulation());
+  // construction refusals
+  const std::vector<Point2> line = {{0, 0}, {1, 1}, {2, 2}};
+  EXPECT_THROW(DynamicDelaunay2d(&line.data()->x, 3, cpu()), Error);
+  Delaunay2dOptions dig = cpu();
+  dig.method = Method::Digital;
+  EXPECT_THROW(DynamicDelaunay2d(&pts.data()->x, 100, dig), Error);
+}
+
+// The device entries on the CPU executor take host memory, as delaunay2d_device does.
+TEST(DynamicDelaunay2d, DeviceEntriesOnTheCpuExecutor) {
+  const auto pts = generate2d("gaussian", 5000, 10);
+  auto d = DynamicDelaunay2d::from_device(&pts.data()->x, 3000, cpu());
+  d.insert_device(&pts[3000].x, 2000);
+  const auto dev = d.device_triangulation();
+  ASSERT_EQ(dev.backend, Backend::Cpu);
+  const auto host = d.triangulation();
+  ASSERT_EQ(dev.num_triangles, std::int64_t(host.num_triangles()));
+  EXPECT_TRUE(std::equal(host.triangles.begin(), host.triangles.end(), dev.triangles.get()));
+  EXPECT_TRUE(std::equal(host.neighbors.begin(), host.neighbors.end(), dev.neighbors.get()));
+  expect_valid(pts, host);
+}

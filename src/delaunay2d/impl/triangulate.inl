@@ -1161,12 +1161,14 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const Dela
 
 // The Triangulator from a start (executor memory: f triangles of input indices, mapped to
 // prepared indices in place, their twins, and per input point a start vertex near it or null),
-// after prepare(P); the result left on the executor for finish().
+// after prepare(P); the result left on the executor for finish(). kernel, when given, is the
+// kernel point to use (strictly inside the start's hull under the perturbation), else one is
+// placed inside the start's first triangle.
 inline typename Triangulator::Finished run_from_start(Exec& ex, Prepared& P, std::int64_t n,
                                                       std::int32_t* tris, std::int64_t f,
                                                       const std::int32_t* twin,
                                                       const std::int32_t* hint, bool profile,
-                                                      Stats& st) {
+                                                      Stats& st, const double* kernel = nullptr) {
   auto t0 = std::chrono::steady_clock::now();
   // Input index -> prepared index (a duplicate's: the point kept for it).
   auto d_inv = ex.template alloc<std::int32_t>(std::size_t(n));
@@ -1192,15 +1194,20 @@ inline typename Triangulator::Finished run_from_start(Exec& ex, Prepared& P, std
           if ((!dup || dup[i] < 0) && hint[i] >= 0 && hint[i] < n) near[inv[i]] = inv[hint[i]];
         });
   }
-  // The kernel point inside the start's first triangle.
-  std::int32_t id[3];
-  ex.to_host(tris, 3, id);
-  double p[3][2];
-  for (int k = 0; k < 3; ++k) ex.to_host(P.pts.data() + 2 * std::int64_t(id[k]), 2, p[k]);
-  const double* v[3] = {p[0], p[1], p[2]};
-  if (!kernel_point(v, id, std::int32_t(P.m), P.kernel))
-    throw Error(ErrorCode::InvalidArgument,
-                "start triangulation: no kernel point inside its first triangle");
+  // The kernel point: the one given (strictly inside the start's hull), else one inside the
+  // start's first triangle.
+  if (kernel) {
+    P.kernel[0] = kernel[0], P.kernel[1] = kernel[1];
+  } else {
+    std::int32_t id[3];
+    ex.to_host(tris, 3, id);
+    double p[3][2];
+    for (int k = 0; k < 3; ++k) ex.to_host(P.pts.data() + 2 * std::int64_t(id[k]), 2, p[k]);
+    const double* v[3] = {p[0], p[1], p[2]};
+    if (!kernel_point(v, id, std::int32_t(P.m), P.kernel))
+      throw Error(ErrorCode::InvalidArgument,
+                  "start triangulation: no kernel point inside its first triangle");
+  }
   d_inv = {};
   ex.sync();
   st.phase_ms.push_back({"start_map", ms_since(t0)});

@@ -1,0 +1,109 @@
+"""SciPy's incremental mode (issue 47): Delaunay, ConvexHull and Voronoi built with
+``incremental=True`` and fed ``add_points`` equal the same structure built on all points at once;
+errors as SciPy's; a refused call leaves the object as it was."""
+import numpy as np
+import pytest
+
+import gpugeom
+
+
+def simplex_set(s):
+    return {tuple(sorted(t)) for t in np.asarray(s).tolist()}
+
+
+def chunks(p, rng, first):
+    out, k = [p[:first]], first
+    while k < len(p):
+        step = int(rng.integers(1, max(2, (len(p) - k) // 2 + 1)))
+        out.append(p[k:k + step])
+        k += step
+    return out
+
+
+@pytest.mark.parametrize("dist", ["uniform", "grid", "circle", "duplicates"])
+def test_delaunay2d_add_points_equals_fresh(backend, rng, dist):
+    n = 3000
+    if dist == "uniform":
+        p = rng.random((n, 2))
+    elif dist == "grid":
+        g = np.arange(55.0)
+        p = np.stack(np.meshgrid(g, g), axis=-1).reshape(-1, 2)
+    elif dist == "circle":
+        a = rng.random(n) * 2 * np.pi
+        p = np.stack([np.cos(a), np.sin(a)], axis=1)
+    else:
+        p = np.round(rng.random((n, 2)) * 8) / 8
+    p = p[rng.permutation(len(p))]
+    d = gpugeom.Delaunay(p[:50], incremental=True, backend=backend)
+    for c in chunks(p, rng, 50)[1:]:
+        d.add_points(c)
+        f = gpugeom.Delaunay(np.asarray(d.points), backend=backend)
+        assert simplex_set(d.simplices) == simplex_set(f.simplices)
+        np.testing.assert_array_equal(d.duplicate_of, f.duplicate_of)
+        assert gpugeom.verify.check_delaunay(d.points, d.simplices, d.duplicate_of)[0]
+    assert d.npoints == len(p) and d.points.shape == p.shape
+    # the derived properties follow the new points
+    assert len(d.vertex_to_simplex) == len(p)
+    assert d.convex_hull.shape[1] == 2
+    r = gpugeom.Delaunay(p[:50], incremental=True, backend=backend)
+    r.add_points(p[50:], restart=True)
+    assert simplex_set(r.simplices) == simplex_set(d.simplices)
+
+
+def test_delaunay3d_hull_voronoi_add_points(backend, rng):
+    p = rng.random((2000, 3))
+    d = gpugeom.Delaunay(p[:30], incremental=True, backend=backend)
+    h = gpugeom.ConvexHull(p[:30], incremental=True, backend=backend)
+    h2 = gpugeom.ConvexHull(p[:30, :2], incremental=True, backend=backend)
+    v = gpugeom.Voronoi(p[:30, :2], incremental=True, backend=backend)
+    vol = h.volume  # a cached property: recomputed after add_points
+    for c in chunks(p, rng, 30)[1:]:
+        d.add_points(c)
+        h.add_points(c)
+        h2.add_points(c[:, :2])
+        v.add_points(c[:, :2])
+    assert simplex_set(d.simplices) == simplex_set(gpugeom.Delaunay(p, backend=backend).simplices)
+    fh = gpugeom.ConvexHull(p, backend=backend)
+    np.testing.assert_array_equal(np.sort(h.vertices), np.sort(fh.vertices))
+    assert h.volume == pytest.approx(fh.volume, rel=1e-12) and h.volume > vol
+    np.testing.assert_array_equal(h2.vertices, gpugeom.ConvexHull(p[:, :2], backend=backend).vertices)
+    fv = gpugeom.Voronoi(p[:, :2], backend=backend)
+    assert len(v.regions) == len(p) and len(v.vertices) == len(fv.vertices)
+    assert simplex_set(v.delaunay_simplices) == simplex_set(fv.delaunay_simplices)
+
+
+def test_errors_as_scipy(rng):
+    p = rng.random((100, 2))
+    for make in (gpugeom.Delaunay, gpugeom.ConvexHull, gpugeom.Voronoi):
+        plain = make(p)
+        with pytest.raises(RuntimeError, match="incremental mode not enabled or already closed"):
+            plain.add_points(p[:3])
+        obj = make(p, incremental=True)
+        with pytest.raises(ValueError, match=r"shape \(n, 2\)"):
+            obj.add_points(rng.random((4, 3)))
+        with pytest.raises(ValueError, match=r"shape \(n, 2\)"):
+            obj.add_points(rng.random(4))
+        obj.close()
+        with pytest.raises(RuntimeError, match="already closed"):
+            obj.add_points(p[:3])
+        assert obj.npoints == 100  # the results stay readable
+
+
+def test_a_refused_call_leaves_the_object_as_it_was(rng):
+    p = rng.random((500, 2))
+    for make in (gpugeom.Delaunay, gpugeom.ConvexHull, gpugeom.Voronoi):
+        obj = make(p[:300], incremental=True)
+        before = {k: (np.array(v, copy=True) if isinstance(v, np.ndarray) else v)
+                  for k, v in vars(obj).items() if k not in ("_dyn", "_run", "_kind")}
+        bad = p[300:].copy()
+        bad[17, 1] = np.inf
+        with pytest.raises(ValueError, match="NaN, infinite"):
+            obj.add_points(bad)
+        for k, v in before.items():
+            now = vars(obj)[k]
+            if isinstance(v, np.ndarray):
+                np.testing.assert_array_equal(now, v, err_msg=k)
+            else:
+                assert now == v or k == "stats", k
+        obj.add_points(p[300:])  # and it goes on working
+        assert obj.npoints == 500

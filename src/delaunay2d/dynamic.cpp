@@ -1,0 +1,125 @@
+// Public entry of DynamicDelaunay2d (issue 47): checks, the executor, the kept state's results.
+#include <chrono>
+#include <string>
+
+#include "delaunay2d/del2d_backend.hpp"
+#include "exec/deliver.hpp"
+#include "exec/dispatch.hpp"
+#include "gpugeom/delaunay2d.hpp"
+
+namespace gpugeom {
+
+struct DynamicDelaunay2d::Impl {
+  std::unique_ptr<del2d::Kept> kept;
+  Backend backend = Backend::Cpu;
+  Stats stats;
+
+  // Runs one insertion; the stats are the last call's only once it succeeded.
+  void insert(const double* xy, std::int64_t n, bool on_device) {
+    if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
+    const std::int64_t total = kept->points() + n;
+    del2d::check_count(total);
+    Stats st;
+    st.backend = backend;
+    const auto t0 = std::chrono::steady_clock::now();
+    kept->insert(xy, n, on_device, st);
+    st.phase_ms.push_back(
+        {"total",
+         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+    stats = std::move(st);
+  }
+};
+
+namespace {
+void refuse_options(const Delaunay2dOptions& opt) {
+  if (opt.method == Method::Digital)
+    throw Error(ErrorCode::Unsupported,
+                "DynamicDelaunay2d: Method::Digital is not offered (Method::Incremental gives "
+                "the same triangulation)");
+  if (opt.into.triangles || opt.into.neighbors || opt.into.duplicate_of)
+    throw Error(ErrorCode::Unsupported,
+                "DynamicDelaunay2d: opt.into is not used; read the results with triangulation() "
+                "or device_triangulation()");
+}
+}  // namespace
+
+DynamicDelaunay2d::DynamicDelaunay2d(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+DynamicDelaunay2d::DynamicDelaunay2d(const double* xy, std::int64_t n,
+                                     const Delaunay2dOptions& opt) {
+  refuse_options(opt);
+  del2d::check_count(n);
+  auto impl = std::make_unique<Impl>();
+  impl->backend = resolve_backend(opt.backend, opt.device);
+  impl->kept = GG_ON_EXECUTOR(impl->backend, del2d, make_kept, opt);
+  impl->insert(xy, n, false);
+  impl_ = std::move(impl);
+}
+
+DynamicDelaunay2d DynamicDelaunay2d::from_device(const double* device_xy, std::int64_t n,
+                                                 const Delaunay2dOptions& opt) {
+  refuse_options(opt);
+  del2d::check_count(n);
+  auto impl = std::make_unique<Impl>();
+  impl->backend = device_entry_backend(opt.backend, opt.device, "DynamicDelaunay2d::from_device");
+  impl->kept = GG_ON_EXECUTOR(impl->backend, del2d, make_kept, opt);
+  impl->insert(device_xy, n, true);
+  return DynamicDelaunay2d(std::move(impl));
+}
+
+DynamicDelaunay2d::DynamicDelaunay2d(DynamicDelaunay2d&&) noexcept = default;
+DynamicDelaunay2d& DynamicDelaunay2d::operator=(DynamicDelaunay2d&&) noexcept = default;
+DynamicDelaunay2d::~DynamicDelaunay2d() = default;
+
+void DynamicDelaunay2d::insert(const double* xy, std::int64_t n) {
+  impl_->insert(xy, n, false);
+}
+void DynamicDelaunay2d::insert_device(const double* device_xy, std::int64_t n) {
+  impl_->insert(device_xy, n, impl_->backend == Backend::Cuda);
+}
+
+std::int64_t DynamicDelaunay2d::num_points() const {
+  return impl_->kept->points();
+}
+std::int64_t DynamicDelaunay2d::num_triangles() const {
+  return impl_->kept->triangles();
+}
+std::int64_t DynamicDelaunay2d::num_duplicates() const {
+  return impl_->kept->duplicates();
+}
+Backend DynamicDelaunay2d::backend() const {
+  return impl_->backend;
+}
+const Stats& DynamicDelaunay2d::stats() const {
+  return impl_->stats;
+}
+
+Triangulation2d DynamicDelaunay2d::triangulation() const {
+  del2d::Output out;
+  impl_->kept->host_copy(out);
+  Triangulation2d r;
+  r.triangles = std::move(out.triangles);
+  r.neighbors = std::move(out.neighbors);
+  r.duplicate_of = std::move(out.duplicate_of);
+  r.num_duplicates = out.num_duplicates;
+  r.triangle_count = out.num_triangles;
+  r.stats = impl_->stats;
+  return r;
+}
+
+DeviceTriangulation2d DynamicDelaunay2d::device_triangulation() const {
+  del2d::DeviceOutput out;
+  impl_->kept->device_copy(out);
+  DeviceTriangulation2d r;
+  r.num_points = impl_->kept->points();
+  r.num_triangles = out.num_triangles;
+  r.num_duplicates = out.num_duplicates;
+  r.triangles = std::move(out.triangles);
+  r.neighbors = std::move(out.neighbors);
+  r.duplicate_of = std::move(out.duplicate_of);
+  r.backend = impl_->backend;
+  r.stats = impl_->stats;
+  return r;
+}
+
+}  // namespace gpugeom

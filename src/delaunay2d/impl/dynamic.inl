@@ -1,0 +1,170 @@
+// A 2D Delaunay triangulation kept on the executor between calls (DynamicDelaunay2d, issue 47).
+// Included inside gpugeom::del2d::{cpu,cuda}_impl after triangulate.inl.
+//
+// Kept: the input points in input order, the finite triangles in input indices with their
+// neighbours, and the duplicate map. An insertion appends the new points, prepares the whole set
+// again (validation, curve order, duplicates: one sort, the step that is still global), and runs
+// the Triangulator from the kept triangulation (run_from_start): each new point is located by a
+// walk from the old vertex before it on the curve, the kept triangles' edges are tested once
+// (they are all still Delaunay among the old points, so only the new points' neighbourhoods
+// flip), and the batches insert the new points. The result is a fresh triangulation's: the
+// perturbation depends on the points alone, and the Delaunay triangulation of perturbed points
+// is unique.
+
+// Per half-edge 3t + k (vertex k to vertex k + 1) of nt triangles: its reverse's half-edge in the
+// neighbour across (the triangle opposite vertex k + 2), -1 on the hull.
+inline void twins_of_neighbours(Exec& ex, const std::int32_t* tri, const std::int32_t* nb,
+                                std::int64_t nt, std::int32_t* twin) {
+  ex.for_each_index(
+      3 * nt, GG_LAMBDA(std::int64_t e) {
+        const std::int64_t t = e / 3;
+        const int k = int(e % 3);
+        const std::int32_t u = nb[3 * t + (k + 2) % 3];
+        std::int32_t r = -1;
+        if (u >= 0) {
+          const std::int32_t b = tri[3 * t + (k + 1) % 3];  // the reverse leaves from b
+          for (int j = 0; j < 3; ++j)
+            if (tri[3 * std::int64_t(u) + j] == b) r = std::int32_t(3 * std::int64_t(u) + j);
+        }
+        twin[e] = r;
+      });
+}
+
+// Where each new point's walk starts (input indices, n entries; -1 for the old points): the old
+// vertex before it on the curve (the first old vertex for new points before every old one). The
+// old points are the distinct points with input index below n_old, all vertices of the kept
+// triangulation.
+inline void curve_hints(Exec& ex, Prepared& P, std::int64_t n, std::int64_t n_old,
+                        std::int32_t* hint) {
+  const std::int64_t m = P.m;
+  const std::int32_t* orig = P.orig.data();
+  const std::int32_t old = std::int32_t(n_old);
+  auto d_rank = ex.template alloc<std::int64_t>(std::size_t(m + 1));
+  auto d_olds = ex.template alloc<std::int32_t>(std::size_t(m));
+  std::int64_t* rank = d_rank.data();
+  std::int32_t* olds = d_olds.data();
+  ex.exclusive_scan_of(
+      m + 1, GG_LAMBDA(std::int64_t j)->std::int64_t { return j < m && orig[j] < old; }, rank);
+  ex.compact_indices(
+      m, GG_LAMBDA(std::int64_t j) { return orig[j] < old; }, olds);
+  ex.fill(hint, n, std::int32_t(-1));
+  ex.for_each_index(
+      m, GG_LAMBDA(std::int64_t j) {
+        if (orig[j] < old) return;
+        const std::int64_t r = rank[j];
+        hint[orig[j]] = orig[olds[r > 0 ? r - 1 : 0]];
+      });
+}
+
+// The kept arrays (executor memory), and the kernel point of the first triangulation: strictly
+// inside its first triangle, so inside every later hull (hulls only grow), it serves every
+// later start (the kept triangulation's own first triangle may be too thin to place one in).
+struct KeptArrays {
+  typename Exec::template Buffer<double> xy;             // 2 n, input order
+  typename Exec::template Buffer<std::int32_t> tri, nb;  // 3 nt each
+  typename Exec::template Buffer<std::int32_t> dup;      // n, when ndup > 0
+  std::int64_t n = 0, nt = 0, ndup = 0;
+  double kernel[2] = {0, 0};
+};
+
+// The state after appending `add` points (host memory, or executor memory when on_device) to K,
+// built beside K: K is not touched, so a call that throws leaves it as it was.
+inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xy, std::int64_t add,
+                              bool on_device, bool profile, Stats& st) {
+  const std::int64_t n = K.n + add;
+  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
+                                           "a 2D Delaunay triangulation", "points");
+  auto t0 = std::chrono::steady_clock::now();
+  KeptArrays R;
+  R.xy = ex.template alloc<double>(std::size_t(2 * n));
+  if (K.n) ex.copy(K.xy.data(), 2 * K.n, R.xy.data());
+  if (on_device)
+    ex.copy(xy, 2 * add, R.xy.data() + 2 * K.n);
+  else
+    ex.from_host(xy, 2 * add, R.xy.data() + 2 * K.n);
+  st.phase_ms.push_back({"append", ms_since(t0)});
+  auto keep = [&](Prepared& P, typename Triangulator::Finished& f) {
+    R.n = n;
+    R.nt = f.count;
+    R.ndup = P.duplicates;
+    R.kernel[0] = P.kernel[0], R.kernel[1] = P.kernel[1];
+    R.tri = std::move(f.simplices);
+    R.nb = std::move(f.neighbors);
+    if (P.duplicates) R.dup = std::move(P.dup);
+  };
+  if (!K.n) {  // the first points: a fresh triangulation
+    triangulate_core(
+        ex, R.xy.data(), n, true, profile, st, [](Prepared&) {}, keep);
+    ex.sync();
+    return R;
+  }
+  t0 = std::chrono::steady_clock::now();
+  Prepared P = prepare(ex, R.xy.data(), n, true);
+  st.counters["points"] = n;
+  st.counters["distinct_points"] = P.m;
+  st.counters["duplicates"] = P.duplicates;
+  st.counters["inserted_points"] = P.m - (K.n - K.ndup);
+  auto d_hint = ex.template alloc<std::int32_t>(std::size_t(n));
+  curve_hints(ex, P, n, K.n, d_hint.data());
+  auto d_tri = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));  // (mapped in place)
+  auto d_twin = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));
+  ex.copy(K.tri.data(), 3 * K.nt, d_tri.data());
+  twins_of_neighbours(ex, K.tri.data(), K.nb.data(), K.nt, d_twin.data());
+  ex.sync();
+  st.phase_ms.push_back({"prepare", ms_since(t0)});
+  auto f = run_from_start(ex, P, n, d_tri.data(), K.nt, d_twin.data(), d_hint.data(), profile, st,
+                          K.kernel);
+  keep(P, f);
+  ex.sync();
+  return R;
+}
+
+class KeptOn final : public Kept {
+ public:
+  explicit KeptOn(const RunOptions& run) : run_(run) {}
+  void insert(const double* xy, std::int64_t n, bool on_device, Stats& st) override {
+    if (n == 0 && K_.n) return;
+    Exec ex(run_);
+    const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+    KeptArrays R = kept_insert(ex, K_, xy, n, on_device, run_.profile, st);
+    K_ = std::move(R);
+  }
+  std::int64_t points() const override { return K_.n; }
+  std::int64_t triangles() const override { return K_.nt; }
+  std::int64_t duplicates() const override { return K_.ndup; }
+  void host_copy(Output& out) const override {
+    Exec ex(run_);
+    out.num_triangles = K_.nt;
+    out.num_duplicates = K_.ndup;
+    out.triangles.resize(std::size_t(3 * K_.nt));
+    out.neighbors.resize(std::size_t(3 * K_.nt));
+    out.duplicate_of.resize(std::size_t(K_.n));
+    ex.to_host(K_.tri.data(), 3 * K_.nt, out.triangles.data());
+    ex.to_host(K_.nb.data(), 3 * K_.nt, out.neighbors.data());
+    if (K_.ndup)
+      ex.to_host(K_.dup.data(), K_.n, out.duplicate_of.data());
+    else
+      ex.fill_host(out.duplicate_of.data(), K_.n, std::int32_t(-1));
+  }
+  void device_copy(DeviceOutput& out) const override {
+    Exec ex(run_);
+    auto tri = ex.template alloc<std::int32_t>(std::size_t(3 * K_.nt));
+    auto nb = ex.template alloc<std::int32_t>(std::size_t(3 * K_.nt));
+    auto dup = ex.template alloc<std::int32_t>(std::size_t(K_.n));
+    ex.copy(K_.tri.data(), 3 * K_.nt, tri.data());
+    ex.copy(K_.nb.data(), 3 * K_.nt, nb.data());
+    if (K_.ndup)
+      ex.copy(K_.dup.data(), K_.n, dup.data());
+    else
+      ex.fill(dup.data(), K_.n, std::int32_t(-1));
+    ex.sync();  // (the caller may read them, and free them on any stream)
+    out.num_triangles = K_.nt;
+    out.num_duplicates = K_.ndup;
+    out.triangles = tri.hand_over();
+    out.neighbors = nb.hand_over();
+    out.duplicate_of = dup.hand_over();
+  }
+
+  RunOptions run_;
+  KeptArrays K_;
+};
