@@ -48,16 +48,16 @@ struct Emit {
     const SimplexRecord<K> x = s.get(t);
     for (int k = 0; k < K; ++k) {
       simplices[K * r + k] = x.v[k];
-      const std::int32_t nb = x.n[k];
-      const std::int32_t rn = rank[nb];
-      neighbors[K * r + k] = rank[nb + 1] != rn ? rn : -1;
+      const std::int32_t nb = x.n[k];  // (-1: none)
+      const std::int32_t rn = nb >= 0 ? rank[nb] : -1;
+      neighbors[K * r + k] = nb >= 0 && rank[nb + 1] != rn ? rn : -1;
     }
   }
 };
 }  // namespace compact_detail
 
 // Store: GG_HD bool live(t); GG_HD SimplexRecord<K> get(t) (output vertex names, neighbour
-// slots). used: the slots handed out. [synchronises] (reads the count)
+// slots, -1 for none). used: the slots handed out. [synchronises] (reads the count)
 template <int K, class Exec, class Store>
 Compacted<Exec> compact_live(Exec& ex, std::int64_t used, const Store& store) {
   auto rank = ex.template alloc<std::int32_t>(std::size_t(used) + 1);

@@ -2,14 +2,18 @@
 // Included inside gpugeom::del2d::{cpu,cuda}_impl after triangulate.inl.
 //
 // Kept: the input points in input order, the finite triangles in input indices with their
-// neighbours, and the duplicate map. An insertion appends the new points, prepares the whole set
-// again (validation, curve order, duplicates: one sort, the step that is still global), and runs
-// the Triangulator from the kept triangulation (run_from_start): each new point is located by a
-// walk from the old vertex before it on the curve, the kept triangles' edges are tested once
-// (they are all still Delaunay among the old points, so only the new points' neighbourhoods
-// flip), and the batches insert the new points. The result is a fresh triangulation's: the
-// perturbation depends on the points alone, and the Delaunay triangulation of perturbed points
-// is unique.
+// neighbours, and the duplicate map. The triangles are the Delaunay triangulation of the
+// perturbed points, flat triangles on the hull included (the Triangulator runs without its final
+// peel): started from a peeled one, the flips would build the flat triangles again, one per
+// round along each collinear hull edge (916 rounds for 1000 points into a 1000^2 grid). The
+// results leave them out, as the peel would (it only turns them into infinite triangles). An
+// insertion appends the new points, prepares the whole set again (validation, curve order,
+// duplicates: one sort, the step that is still global), and runs the Triangulator from the kept
+// triangulation (run_from_start): each new point is located by a walk from the old vertex before it
+// on the curve, and the batches insert the new points; the kept triangles are Delaunay among the
+// old points, so only the new points' neighbourhoods are tested and flipped. The result is a fresh
+// triangulation's: the perturbation depends on the points alone, and the Delaunay triangulation of
+// perturbed points is unique.
 
 // Per half-edge 3t + k (vertex k to vertex k + 1) of nt triangles: its reverse's half-edge in the
 // neighbour across (the triangle opposite vertex k + 2), -1 on the hull.
@@ -56,6 +60,26 @@ inline void curve_hints(Exec& ex, Prepared& P, std::int64_t n, std::int64_t n_ol
       });
 }
 
+// The kept triangles as results: the flat ones dropped (exactly collinear vertices), -1 across
+// an edge to one.
+struct NonFlat {
+  const std::int32_t* tri;
+  const std::int32_t* nb;
+  const double* xy;
+  GG_HD bool live(std::int64_t t) const {
+    const double* p[3];
+    for (int k = 0; k < 3; ++k) p[k] = xy + 2 * std::int64_t(tri[3 * t + k]);
+    if (pred::orient2d_fast(p[0], p[1], p[2])) return true;
+    double scratch[kOrient2dScratch];
+    return pred::orient2d(p[0], p[1], p[2], scratch) != 0;
+  }
+  GG_HD mesh::SimplexRecord<3> get(std::int64_t t) const {
+    mesh::SimplexRecord<3> r;
+    for (int k = 0; k < 3; ++k) r.v[k] = tri[3 * t + k], r.n[k] = nb[3 * t + k];
+    return r;
+  }
+};
+
 // The kept arrays (executor memory), and the kernel point of the first triangulation: strictly
 // inside its first triangle, so inside every later hull (hulls only grow), it serves every
 // later start (the kept triangulation's own first triangle may be too thin to place one in).
@@ -64,6 +88,7 @@ struct KeptArrays {
   typename Exec::template Buffer<std::int32_t> tri, nb;  // 3 nt each
   typename Exec::template Buffer<std::int32_t> dup;      // n, when ndup > 0
   std::int64_t n = 0, nt = 0, ndup = 0;
+  std::int64_t nout = 0;  // triangles in the results (nt less the flat ones)
   double kernel[2] = {0, 0};
 };
 
@@ -91,10 +116,16 @@ inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xy, s
     R.tri = std::move(f.simplices);
     R.nb = std::move(f.neighbors);
     if (P.duplicates) R.dup = std::move(P.dup);
+    const NonFlat s{R.tri.data(), R.nb.data(), R.xy.data()};
+    auto cnt = ex.template alloc<std::int64_t>(1);
+    ex.transform_reduce_into(
+        R.nt, GG_LAMBDA(std::int64_t t)->std::int64_t { return s.live(t); }, std::int64_t(0),
+        thrust::plus<std::int64_t>(), cnt.data());
+    ex.to_host(cnt.data(), 1, &R.nout);
   };
   if (!K.n) {  // the first points: a fresh triangulation
     triangulate_core(
-        ex, R.xy.data(), n, true, profile, st, [](Prepared&) {}, keep);
+        ex, R.xy.data(), n, true, profile, st, [](Prepared&) {}, keep, false);
     ex.sync();
     return R;
   }
@@ -113,7 +144,7 @@ inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xy, s
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   auto f = run_from_start(ex, P, n, d_tri.data(), K.nt, d_twin.data(), d_hint.data(), profile, st,
-                          K.kernel);
+                          K.kernel, false, true);
   keep(P, f);
   ex.sync();
   return R;
@@ -130,17 +161,22 @@ class KeptOn final : public Kept {
     K_ = std::move(R);
   }
   std::int64_t points() const override { return K_.n; }
-  std::int64_t triangles() const override { return K_.nt; }
+  std::int64_t triangles() const override { return K_.nout; }
+  // The results' triangles and neighbours (new executor arrays).
+  mesh::Compacted<Exec> results(Exec& ex) const {
+    return mesh::compact_live<3>(ex, K_.nt, NonFlat{K_.tri.data(), K_.nb.data(), K_.xy.data()});
+  }
   std::int64_t duplicates() const override { return K_.ndup; }
   void host_copy(Output& out) const override {
     Exec ex(run_);
-    out.num_triangles = K_.nt;
+    auto f = results(ex);
+    out.num_triangles = f.count;
     out.num_duplicates = K_.ndup;
-    out.triangles.resize(std::size_t(3 * K_.nt));
-    out.neighbors.resize(std::size_t(3 * K_.nt));
+    out.triangles.resize(std::size_t(3 * f.count));
+    out.neighbors.resize(std::size_t(3 * f.count));
     out.duplicate_of.resize(std::size_t(K_.n));
-    ex.to_host(K_.tri.data(), 3 * K_.nt, out.triangles.data());
-    ex.to_host(K_.nb.data(), 3 * K_.nt, out.neighbors.data());
+    ex.to_host(f.simplices.data(), 3 * f.count, out.triangles.data());
+    ex.to_host(f.neighbors.data(), 3 * f.count, out.neighbors.data());
     if (K_.ndup)
       ex.to_host(K_.dup.data(), K_.n, out.duplicate_of.data());
     else
@@ -148,20 +184,17 @@ class KeptOn final : public Kept {
   }
   void device_copy(DeviceOutput& out) const override {
     Exec ex(run_);
-    auto tri = ex.template alloc<std::int32_t>(std::size_t(3 * K_.nt));
-    auto nb = ex.template alloc<std::int32_t>(std::size_t(3 * K_.nt));
+    auto f = results(ex);
     auto dup = ex.template alloc<std::int32_t>(std::size_t(K_.n));
-    ex.copy(K_.tri.data(), 3 * K_.nt, tri.data());
-    ex.copy(K_.nb.data(), 3 * K_.nt, nb.data());
     if (K_.ndup)
       ex.copy(K_.dup.data(), K_.n, dup.data());
     else
       ex.fill(dup.data(), K_.n, std::int32_t(-1));
     ex.sync();  // (the caller may read them, and free them on any stream)
-    out.num_triangles = K_.nt;
+    out.num_triangles = f.count;
     out.num_duplicates = K_.ndup;
-    out.triangles = tri.hand_over();
-    out.neighbors = nb.hand_over();
+    out.triangles = f.simplices.hand_over();
+    out.neighbors = f.neighbors.hand_over();
     out.duplicate_of = dup.hand_over();
   }
 

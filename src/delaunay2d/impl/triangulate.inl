@@ -86,12 +86,15 @@ class Triangulator {
     ex.from_host(&zero, 1, ctr_.data());
   }
 
-  void run() {
+  // peel_flats false leaves the flat triangles on the hull (the Delaunay triangulation of the
+  // perturbed points, which a later start needs: DynamicDelaunay2d drops them from its output).
+  void run(bool peel_flats = true) {
     auto t0 = clock::now();
     start();
     remaining_ = nun_;
     while (remaining_ > 0) batch();
     phase("insert", t0);
+    if (!peel_flats) return;
     t0 = clock::now();
     peel();
     phase("peel", t0);
@@ -185,16 +188,20 @@ class Triangulator {
   // infinity vertex (2k - 2 slots for its k vertices, as the insertions would have left); the
   // other points are located by walks; then the whole of it is flipped until Delaunay, and the
   // batches insert the rest as they do after start(). P.kernel must lie inside it.
+  // start_delaunay: the start is already the Delaunay triangulation of its vertices under the
+  // perturbation, flat hull triangles included (DynamicDelaunay2d's kept one): its edges are not
+  // tested (on a grid every test is a cocircular one, decided by the exact stage).
   void run_from(const std::int32_t* tris, const std::int32_t* twin, std::int64_t f,
-                const std::int32_t* near) {
+                const std::int32_t* near, bool peel_flats = true, bool start_delaunay = false) {
     auto t0 = clock::now();
-    start_from(tris, twin, f, near);
+    start_from(tris, twin, f, near, start_delaunay);
     phase("start", t0);
     t0 = clock::now();
     remaining_ = nun_;
     while (remaining_ > 0) batch();
     phase("insert", t0);
     t0 = clock::now();
+    if (!peel_flats) return;
     peel();
     phase("peel", t0);
   }
@@ -204,7 +211,7 @@ class Triangulator {
   // begins; or null). The records are built on the executor: the hull edges numbered by a scan
   // in half-edge order, each vertex's outgoing and incoming hull edge found by scatter.
   void start_from(const std::int32_t* tris, const std::int32_t* twin, std::int64_t f,
-                  const std::int32_t* near) {
+                  const std::int32_t* near, bool start_delaunay) {
     const std::int32_t I = m_, B = std::int32_t(base_);
     const std::int64_t nh = 3 * f;
     auto in = ex_.template alloc<std::int8_t>(std::size_t(m_));
@@ -352,6 +359,7 @@ class Triangulator {
     nun_ = ex_.compact_indices(
         m_, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, un_.data());
     check_lost();
+    if (start_delaunay) return;
     // Every slot's edges tested, and flipped until Delaunay; the flips are logged, so the points
     // follow their triangles when the first batch relocates them.
     const mesh::WorkLists L = work_lists();
@@ -1048,7 +1056,8 @@ constexpr double kLeastBytesPerPoint = 168;
 // before(P) runs once the distinct points are known, before the device work.
 template <class Before, class Body>
 inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device,
-                             bool profile, Stats& st, Before before, Body body) {
+                             bool profile, Stats& st, Before before, Body body,
+                             bool peel_flats = true) {
   auto t0 = std::chrono::steady_clock::now();
   Prepared P = prepare(ex, xy, n, on_device);
   before(P);
@@ -1064,7 +1073,7 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
   ::gpugeom::detail::require_device_memory(ex, P.m, kLeastBytesPerPoint - 20,
                                            "a 2D Delaunay triangulation", "points");
   Triangulator T(ex, P, st, profile);
-  T.run();
+  T.run(peel_flats);
   t0 = std::chrono::steady_clock::now();
   T.report();
   T.release_work();
@@ -1164,11 +1173,10 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const Dela
 // after prepare(P); the result left on the executor for finish(). kernel, when given, is the
 // kernel point to use (strictly inside the start's hull under the perturbation), else one is
 // placed inside the start's first triangle.
-inline typename Triangulator::Finished run_from_start(Exec& ex, Prepared& P, std::int64_t n,
-                                                      std::int32_t* tris, std::int64_t f,
-                                                      const std::int32_t* twin,
-                                                      const std::int32_t* hint, bool profile,
-                                                      Stats& st, const double* kernel = nullptr) {
+inline typename Triangulator::Finished run_from_start(
+    Exec& ex, Prepared& P, std::int64_t n, std::int32_t* tris, std::int64_t f,
+    const std::int32_t* twin, const std::int32_t* hint, bool profile, Stats& st,
+    const double* kernel = nullptr, bool peel_flats = true, bool start_delaunay = false) {
   auto t0 = std::chrono::steady_clock::now();
   // Input index -> prepared index (a duplicate's: the point kept for it).
   auto d_inv = ex.template alloc<std::int32_t>(std::size_t(n));
@@ -1212,7 +1220,7 @@ inline typename Triangulator::Finished run_from_start(Exec& ex, Prepared& P, std
   ex.sync();
   st.phase_ms.push_back({"start_map", ms_since(t0)});
   Triangulator T(ex, P, st, profile);
-  T.run_from(tris, twin, f, hint ? near : nullptr);
+  T.run_from(tris, twin, f, hint ? near : nullptr, peel_flats, start_delaunay);
   t0 = std::chrono::steady_clock::now();
   T.report();
   T.release_work();
