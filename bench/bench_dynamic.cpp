@@ -1,6 +1,6 @@
 // gpugeom_bench_dynamic: triangulations that follow their points (issue 47). For each
-// dist:n:k, k of n points inserted into the triangulation of the other n - k, timed beside a
-// fresh triangulation of all n in the same run:
+// dist:n:k (2D; after --3d, 3D), k of n points inserted into the triangulation of the other
+// n - k, timed beside a fresh triangulation of all n in the same run:
 //   fresh e2e   delaunay2d on the n host points, host arrays out
 //   fresh dev   delaunay2d_device on the n points already on the device
 //   insert      DynamicDelaunay2d::insert of the k host points (the state brought up to date on
@@ -10,6 +10,7 @@
 // Medians of --reps runs; the last insert's phases are printed, and the result is checked
 // against the fresh one (the same triangles).
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -19,6 +20,7 @@
 
 #include "bench_csv.hpp"
 #include "gpugeom/delaunay2d.hpp"
+#include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/generate.hpp"
 #include "verify.hpp"
 #include <memory>
@@ -58,6 +60,7 @@ void print_phases(const Stats& s) {
 struct Row {
   std::string dist;
   std::int64_t n = 0, k = 0;
+  int dim = 2;
 };
 
 Row parse(const std::string& s) {
@@ -73,59 +76,102 @@ Row parse(const std::string& s) {
   return r;
 }
 
+// What differs between 2D and 3D.
+struct Two {
+  using Point = Point2;
+  using Options = Delaunay2dOptions;
+  using Dynamic = DynamicDelaunay2d;
+  static std::vector<Point2> points(const std::string& d, std::int64_t n) {
+    return generate2d(d, n, 7);
+  }
+  static auto fresh(const std::vector<Point2>& p, const Options& o) { return delaunay2d(p, o); }
+  static auto fresh_device(const double* d, std::int64_t n, const Options& o) {
+    return delaunay2d_device(d, n, o);
+  }
+  static auto result(const Dynamic& d) { return d.triangulation(); }
+  static auto simplices(const Triangulation2d& t) {
+    auto c = verify::canonical_triangles(t.triangles.data(), t.triangle_count);
+    return std::vector<std::int32_t>(&c.data()->front(), &c.data()->front() + 3 * c.size());
+  }
+};
+struct Three {
+  using Point = Point3;
+  using Options = Delaunay3dOptions;
+  using Dynamic = DynamicDelaunay3d;
+  static std::vector<Point3> points(const std::string& d, std::int64_t n) {
+    return generate3d(d, n, 7);
+  }
+  static auto fresh(const std::vector<Point3>& p, const Options& o) { return delaunay3d(p, o); }
+  static auto fresh_device(const double* d, std::int64_t n, const Options& o) {
+    return delaunay3d_device(d, n, o);
+  }
+  static auto result(const Dynamic& d) { return d.tetrahedralisation(); }
+  static auto simplices(const Triangulation3d& t) {
+    std::vector<std::array<std::int32_t, 4>> c(t.num_tetrahedra());
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      for (int k = 0; k < 4; ++k) c[i][std::size_t(k)] = t.tetrahedra[4 * i + std::size_t(k)];
+      std::sort(c[i].begin(), c[i].end());
+    }
+    std::sort(c.begin(), c.end());
+    std::vector<std::int32_t> v;
+    for (const auto& a : c) v.insert(v.end(), a.begin(), a.end());
+    return v;
+  }
+};
+
+template <class D>
 void run_row(const Row& row, Backend b, int reps) {
-  const auto p = generate2d(row.dist, row.n, 7);
-  const std::int64_t n = std::int64_t(p.size()), k = std::min(row.k, n - 3), base = n - k;
-  Delaunay2dOptions o;
+  constexpr int dim = sizeof(typename D::Point) / sizeof(double);
+  const auto p = D::points(row.dist, row.n);
+  const std::int64_t n = std::int64_t(p.size()), k = std::min(row.k, n - 4), base = n - k;
+  typename D::Options o;
   o.backend = b;
-  Triangulation2d fresh;
+  decltype(D::fresh(p, o)) fresh;
   const double fresh_e2e = median_ms(
-      reps, [] {}, [&] { fresh = delaunay2d(p, o); });
-  std::unique_ptr<DynamicDelaunay2d> d;
+      reps, [] {}, [&] { fresh = D::fresh(p, o); });
+  std::unique_ptr<typename D::Dynamic> d;
   const double ins = median_ms(
-      reps, [&] { d = std::make_unique<DynamicDelaunay2d>(&p.data()->x, base, o); },
+      reps, [&] { d = std::make_unique<typename D::Dynamic>(&p.data()->x, base, o); },
       [&] { d->insert(&p[std::size_t(base)].x, k); });
   print_phases(d->stats());
-  Triangulation2d got;
+  decltype(fresh) got;
   const double ins_e2e = median_ms(
-      reps, [&] { d = std::make_unique<DynamicDelaunay2d>(&p.data()->x, base, o); },
+      reps, [&] { d = std::make_unique<typename D::Dynamic>(&p.data()->x, base, o); },
       [&] {
         d->insert(&p[std::size_t(base)].x, k);
-        got = d->triangulation();
+        got = D::result(*d);
       });
-  const bool same = verify::canonical_triangles(got.triangles.data(), got.triangle_count) ==
-                    verify::canonical_triangles(fresh.triangles.data(), fresh.triangle_count);
+  const bool same = D::simplices(got) == D::simplices(fresh);
   double fresh_dev = -1, ins_dev = -1;
 #ifdef GPUGEOM_HAVE_CUDA
   if (b == Backend::Cuda) {
     double* dp = nullptr;
-    const std::size_t bytes = p.size() * sizeof(Point2);
+    const std::size_t bytes = p.size() * sizeof(typename D::Point);
     if (cudaMalloc(&dp, bytes) == cudaSuccess &&
         cudaMemcpy(dp, p.data(), bytes, cudaMemcpyHostToDevice) == cudaSuccess) {
       fresh_dev = median_ms(
-          reps, [] {}, [&] { delaunay2d_device(dp, n, o); });
+          reps, [] {}, [&] { D::fresh_device(dp, n, o); });
       ins_dev = median_ms(
           reps,
-          [&] {
-            d = std::make_unique<DynamicDelaunay2d>(DynamicDelaunay2d::from_device(dp, base, o));
-          },
-          [&] { d->insert_device(dp + 2 * base, k); });
+          [&] { d = std::make_unique<typename D::Dynamic>(D::Dynamic::from_device(dp, base, o)); },
+          [&] { d->insert_device(dp + dim * base, k); });
     }
     cudaFree(dp);
   }
 #endif
   std::printf(
-      "%-10s %-8s n=%-10lld k=%-9lld fresh e2e %9.2f  fresh dev %9.2f  insert %9.2f  insert "
-      "e2e %9.2f  insert dev %9.2f  (dev ratio %.3f)  %s\n",
-      row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, (long long)k, fresh_e2e,
-      fresh_dev, ins, ins_e2e, ins_dev, fresh_dev > 0 ? ins_dev / fresh_dev : ins / fresh_e2e,
-      same ? "same triangles" : "DIFFERENT TRIANGLES");
+      "%dD %-10s %-5s n=%-10lld k=%-9lld fresh e2e %9.2f  fresh dev %9.2f  insert %9.2f  "
+      "insert e2e %9.2f  insert dev %9.2f  (dev ratio %.3f)  %s\n",
+      dim, row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, (long long)k,
+      fresh_e2e, fresh_dev, ins, ins_e2e, ins_dev,
+      fresh_dev > 0 ? ins_dev / fresh_dev : ins / fresh_e2e,
+      same ? "same simplices" : "DIFFERENT SIMPLICES");
   std::fflush(stdout);
 }
 }  // namespace
 
 int main(int argc, char** argv) {
-  int reps = 3;
+  int reps = 3, dim = 2;
   std::string which = "all";
   std::vector<Row> rows;
   for (int i = 1; i < argc; ++i) {
@@ -134,14 +180,20 @@ int main(int argc, char** argv) {
       reps = std::max(1, std::atoi(argv[++i]));
     else if (a == "--backend" && i + 1 < argc)
       which = argv[++i];
-    else
+    else if (a == "--3d")
+      dim = 3;
+    else if (a == "--2d")
+      dim = 2;
+    else {
       rows.push_back(parse(a));
+      rows.back().dim = dim;
+    }
   }
   if (rows.empty()) rows = {{"uniform", 1000000, 1000}, {"uniform", 1000000, 100000}};
   const DeviceInfo dev = query_device();
-  std::printf("gpugeom_bench_dynamic: 2D Delaunay, k of n points inserted (ms, median of %d)%s%s\n",
+  std::printf("gpugeom_bench_dynamic: Delaunay, k of n points inserted (ms, median of %d)%s%s\n",
               reps, dev.available ? "; GPU: " : "", dev.available ? dev.name.c_str() : "");
   for (Backend b : bench::backends(which))
-    for (const Row& r : rows) run_row(r, b, reps);
+    for (const Row& r : rows) r.dim == 2 ? run_row<Two>(r, b, reps) : run_row<Three>(r, b, reps);
   return 0;
 }

@@ -87,9 +87,9 @@ struct Triangulation3d {
   // point it duplicates).
   HostVector<std::int32_t> vertex_to_simplex;
   // Stats: phases "prepare", "insert_flip", "find_failed", "splay" (phase 2, star splaying on
-  // the executor), "output"; counters "points", "distinct_points", "duplicates", "batches",
-  // "flip_rounds", "flips23", "flips32", "unflippable_tests", "failed_faces", "failed_vertices",
-  // "flat_tetrahedra" (removed from the hull), "stars_built", "stars_changed",
+  // the executor), "drop_flats", "output"; counters "points", "distinct_points", "duplicates",
+  // "batches", "flip_rounds", "flips23", "flips32", "unflippable_tests", "failed_faces",
+  // "failed_vertices", "flat_tetrahedra" (removed from the hull), "stars_built", "stars_changed",
   // "star_insertions", "splay_rounds", "splay_removed", "splay_added", "device_bytes_phase1"
   // (phase 1's arrays at their largest), "device_peak_bytes" (CUDA: the call's device peak),
   // "slots_used", "slots_capacity" (of the tetrahedron store), phase 1's sizing ("halts",
@@ -137,5 +137,58 @@ struct DeviceTriangulation3d {
 };
 DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n,
                                         const Delaunay3dOptions& opt = {});
+
+// A 3D Delaunay tetrahedralisation that follows its points (issue 47): kept on the executor
+// between calls, it takes new points and is brought up to date from where it was, not rebuilt.
+// After any sequence of calls it is exactly the tetrahedralisation delaunay3d gives for all the
+// points so far: the same tetrahedra with the same neighbours and hull facets (their order in
+// the arrays may differ), degenerate input included, as the symbolic perturbation depends on the
+// points alone (docs/design-notes.md). Points keep the indices they were given: the first
+// call's are 0 .. n - 1, each insert's follow on. A point equal to an earlier one (given before
+// or in the same call) is not a vertex; duplicate_of names the earliest, as delaunay3d's does.
+//
+// The state lives where the executor runs: device memory of opt.device on CUDA (the device is
+// fixed at construction; the work runs on opt.stream, which must outlive the object), host
+// memory on the CPU executor. Calls on one object must not overlap; separate objects are
+// independent. A call that throws leaves the object as it was (a moved-from object may only be
+// assigned or destroyed). Today an insertion still sorts all points again (the one global step
+// left; the tetrahedralisation itself is only repaired where the new points fall):
+// docs/performance.md has what it costs.
+class DynamicDelaunay3d {
+ public:
+  // Tetrahedralises n host points (x, y and z interleaved) on the executor opt picks. Throws as
+  // delaunay3d; Error(Unsupported) for Method::Digital or opt.into (results are read with
+  // tetrahedralisation()). opt.progress is called during every later insertion too.
+  DynamicDelaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt = {});
+  // The same from points in executor memory (device memory, as delaunay3d_device takes them;
+  // host memory with opt.backend == Backend::Cpu).
+  static DynamicDelaunay3d from_device(const double* device_xyz, std::int64_t n,
+                                       const Delaunay3dOptions& opt = {});
+  DynamicDelaunay3d(DynamicDelaunay3d&&) noexcept;
+  DynamicDelaunay3d& operator=(DynamicDelaunay3d&&) noexcept;
+  ~DynamicDelaunay3d();
+
+  // Adds n points (host memory; insert_device: executor memory, as from_device), numbered
+  // num_points() on, and brings the tetrahedralisation up to date. Throws as delaunay3d for bad
+  // coordinates or too many points in all; the object is then unchanged.
+  void insert(const double* xyz, std::int64_t n);
+  void insert_device(const double* device_xyz, std::int64_t n);
+
+  std::int64_t num_points() const;
+  std::int64_t num_tetrahedra() const;
+  std::int64_t num_duplicates() const;
+  Backend backend() const;  // the executor holding the state
+  // Copies of the current tetrahedralisation: host arrays as delaunay3d returns them, or new
+  // arrays in executor memory as delaunay3d_device returns them.
+  Triangulation3d tetrahedralisation() const;
+  DeviceTriangulation3d device_tetrahedralisation() const;
+  // Phases and counters of the last construction or insertion.
+  const Stats& stats() const;
+
+ private:
+  struct Impl;
+  explicit DynamicDelaunay3d(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace gpugeom

@@ -54,8 +54,9 @@ class _OfPoints:
         ones. ``restart=True`` computes the result from all points afresh; either way the result
         is exactly that of a new object on all points (the order of simplices may differ).
 
-        2D ``Delaunay`` brings its kept triangulation up to date (``DynamicDelaunay2d``); the
-        other structures compute again from all points (their kept state is to come).
+        ``Delaunay`` brings its kept triangulation up to date (C++ ``DynamicDelaunay2d`` and
+        ``DynamicDelaunay3d``); ``ConvexHull`` and ``Voronoi`` compute again from all points
+        (their kept state is to come).
 
         Raises RuntimeError after ``close()`` or without ``incremental=True``, ValueError for
         points of another shape; a call that raises leaves the object unchanged.
@@ -117,9 +118,10 @@ class Delaunay(_OfPoints):
         method="digital": the grid's size along the points' longest extent (2D: 4..46338
         pixels, 3D: 16..1024 cells; 0: chosen from the number of points).
     incremental : bool
-        SciPy's incremental mode: ``add_points`` and ``close``. In 2D the triangulation is kept
-        where the points are and brought up to date by each ``add_points``; in 3D it is computed
-        again from all points. Either way the simplices are those of a new object on all points.
+        SciPy's incremental mode: ``add_points`` and ``close``. The triangulation is kept where
+        the points are and brought up to date by each ``add_points`` (new points located by
+        walks, inserted by flips; ``progress`` is not called then). The simplices are those of a
+        new object on all points.
 
     Attributes
     ----------
@@ -145,9 +147,10 @@ class Delaunay(_OfPoints):
         self._take(self._compute(arr))
 
     def _compute(self, arr, restart=False):
-        if self.ndim == 2 and self._incremental:
-            # kept between calls (DynamicDelaunay2d): add_points repairs it
-            dyn = _core.DynamicDelaunay2d(arr, **self._run)
+        if self._incremental and self._method == "incremental":
+            # kept between calls (DynamicDelaunay2d / 3d): add_points brings it up to date
+            make = _core.DynamicDelaunay2d if self.ndim == 2 else _core.DynamicDelaunay3d
+            dyn = make(arr, **self._run)
             r = dyn.result()
             self._dyn = dyn
             return r

@@ -202,6 +202,80 @@ nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, std::ui
   return r;
 }
 
+// A tetrahedralisation as the Python layer takes it: arrays where they are.
+nb::dict tets_dict(DeviceTriangulation3d&& t, int device) {
+  nb::dict r;
+  const std::int64_t n = t.num_points;
+  const DeviceOut out{t.backend, device};
+  r["simplices"] = out(t.tetrahedra, {sz(t.num_tetrahedra), 4});
+  r["neighbors"] = out(t.neighbors, {sz(t.num_tetrahedra), 4});
+  r["duplicate_of"] = out(t.duplicate_of, {sz(n)});
+  r["vertex_to_simplex"] = out(t.vertex_to_simplex, {sz(n)});
+  r["hull_facets"] = out(t.hull_facets, {sz(t.num_hull_facets), 3});
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+nb::dict tets_dict(Triangulation3d&& t) {
+  nb::dict r;
+  const sz n = t.duplicate_of.size(), nt = t.num_tetrahedra(), nh = sz(t.hull_facet_count);
+  t.tetrahedra.resize(4 * nt);
+  t.neighbors.resize(4 * nt);
+  t.hull_facets.resize(3 * nh);
+  r["simplices"] = host_array(std::move(t.tetrahedra), {nt, 4});
+  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 4});
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {n});
+  r["vertex_to_simplex"] = host_array(std::move(t.vertex_to_simplex), {n});
+  r["hull_facets"] = host_array(std::move(t.hull_facets), {nh, 3});
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+
+// A 3D tetrahedralisation kept between calls (Delaunay(incremental=True) in 3D; issue 47), as
+// Dynamic2dState. Ctrl-C ends a long insertion (KeyboardInterrupt), the object left as it was.
+struct Dynamic3dState {
+  DynamicDelaunay3d t;
+  bool on_device;
+  int device;
+};
+
+void dynamic3d_init(Dynamic3dState* self, const AnyArray& points, const std::string& backend,
+                    std::uintptr_t stream, int threads) {
+  const Input in = points_input(points, 3);
+  auto o = options_for<Delaunay3dOptions>(backend, stream, threads, in);
+  o.progress = [](const Delaunay3dProgress&) {
+    nb::gil_scoped_acquire locked;
+    if (PyErr_CheckSignals() != 0) throw nb::python_error();
+  };
+  const std::int64_t n = in.shape[0];
+  DynamicDelaunay3d t = unlocked([&] {
+    return in.on_device ? DynamicDelaunay3d::from_device(pts(in), n, o)
+                        : DynamicDelaunay3d(pts(in), n, o);
+  });
+  new (self) Dynamic3dState{std::move(t), in.on_device, in.on_device ? device_of(o) : -1};
+}
+
+void dynamic3d_insert(Dynamic3dState& self, const AnyArray& points) {
+  const Input in = points_input(points, 3);
+  if (in.on_device != self.on_device)
+    throw nb::value_error(
+        self.on_device ? "points must be on the GPU, as the triangulation's first points were"
+                       : "points must be in host memory, as the triangulation's first "
+                         "points were");
+  const std::int64_t n = in.shape[0];
+  unlocked([&] {
+    if (in.on_device)
+      self.t.insert_device(pts(in), n);
+    else
+      self.t.insert(pts(in), n);
+  });
+}
+
+nb::dict dynamic3d_result(const Dynamic3dState& self) {
+  if (self.on_device)
+    return tets_dict(unlocked([&] { return self.t.device_tetrahedralisation(); }), self.device);
+  return tets_dict(unlocked([&] { return self.t.tetrahedralisation(); }));
+}
+
 nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
                          int threads, nb::object progress, const std::string& method,
                          std::int64_t grid) {
@@ -223,30 +297,9 @@ nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, std
     }
   };
   const std::int64_t n = in.shape[0];
-  nb::dict r;
-  if (in.on_device) {
-    DeviceTriangulation3d t = unlocked([&] { return delaunay3d_device(pts(in), n, o); });
-    const DeviceOut out{t.backend, device_of(o)};
-    r["simplices"] = out(t.tetrahedra, {sz(t.num_tetrahedra), 4});
-    r["neighbors"] = out(t.neighbors, {sz(t.num_tetrahedra), 4});
-    r["duplicate_of"] = out(t.duplicate_of, {sz(n)});
-    r["vertex_to_simplex"] = out(t.vertex_to_simplex, {sz(n)});
-    r["hull_facets"] = out(t.hull_facets, {sz(t.num_hull_facets), 3});
-    r["stats"] = stats_dict(t.stats);
-    return r;
-  }
-  Triangulation3d t = unlocked([&] { return delaunay3d(pts(in), n, o); });
-  const sz nt = t.num_tetrahedra(), nh = sz(t.hull_facet_count);
-  t.tetrahedra.resize(4 * nt);
-  t.neighbors.resize(4 * nt);
-  t.hull_facets.resize(3 * nh);
-  r["simplices"] = host_array(std::move(t.tetrahedra), {nt, 4});
-  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 4});
-  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
-  r["vertex_to_simplex"] = host_array(std::move(t.vertex_to_simplex), {sz(n)});
-  r["hull_facets"] = host_array(std::move(t.hull_facets), {nh, 3});
-  r["stats"] = stats_dict(t.stats);
-  return r;
+  if (in.on_device)
+    return tets_dict(unlocked([&] { return delaunay3d_device(pts(in), n, o); }), device_of(o));
+  return tets_dict(unlocked([&] { return delaunay3d(pts(in), n, o); }));
 }
 
 // Host int32 (rows, k) array, C order.
@@ -434,6 +487,12 @@ void bind_spatial(nb::module_& m) {
       .def("insert", &dynamic2d_insert, "points"_a)
       .def("result", &dynamic2d_result)
       .def_prop_ro("npoints", [](const Dynamic2dState& s) { return s.t.num_points(); });
+  nb::class_<Dynamic3dState>(m, "DynamicDelaunay3d")
+      .def("__init__", &dynamic3d_init, "points"_a, "backend"_a = "auto", "stream"_a = 0,
+           "threads"_a = 0)
+      .def("insert", &dynamic3d_insert, "points"_a)
+      .def("result", &dynamic3d_result)
+      .def_prop_ro("npoints", [](const Dynamic3dState& s) { return s.t.num_points(); });
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);
   m.def("convex_hull3d", &hull3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,

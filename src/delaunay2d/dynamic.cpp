@@ -1,32 +1,17 @@
 // Public entry of DynamicDelaunay2d (issue 47): checks, the executor, the kept state's results.
-#include <chrono>
 #include <string>
 
 #include "delaunay2d/del2d_backend.hpp"
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
+#include "exec/dynamic_state.hpp"
 #include "gpugeom/delaunay2d.hpp"
 
 namespace gpugeom {
 
-struct DynamicDelaunay2d::Impl {
-  std::unique_ptr<del2d::Kept> kept;
-  Backend backend = Backend::Cpu;
-  Stats stats;
-
-  // Runs one insertion; the stats are the last call's only once it succeeded.
+struct DynamicDelaunay2d::Impl : detail::DynamicState<del2d::Kept> {
   void insert(const double* xy, std::int64_t n, bool on_device) {
-    if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
-    const std::int64_t total = kept->points() + n;
-    del2d::check_count(total);
-    Stats st;
-    st.backend = backend;
-    const auto t0 = std::chrono::steady_clock::now();
-    kept->insert(xy, n, on_device, st);
-    st.phase_ms.push_back(
-        {"total",
-         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
-    stats = std::move(st);
+    DynamicState::insert(xy, n, on_device, [](std::int64_t total) { del2d::check_count(total); });
   }
 };
 

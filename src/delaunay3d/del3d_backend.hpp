@@ -51,7 +51,31 @@ struct StarsForTesting {
   std::int64_t request_spills = 0;
 };
 
+// Refuses counts no tetrahedralisation can be made of, or past the store's reach (Error).
+void check_count(std::int64_t n);
+// The backends' outputs as the public results.
+Triangulation3d to_public(Output&& out);
+DeviceTriangulation3d to_public(DeviceOutput&& out, std::int64_t n, Backend b);
+
+// DynamicDelaunay3d's state on one executor (impl/dynamic.inl): the points, the store and the
+// duplicate map, kept in the executor's memory between calls.
+class Kept {
+ public:
+  virtual ~Kept() = default;
+  // Appends n points (executor memory when on_device, else host memory), numbered from points()
+  // on, and brings the tetrahedralisation up to date. Throws as triangulate; the state is then
+  // unchanged.
+  virtual void insert(const double* xyz, std::int64_t n, bool on_device, Stats& st) = 0;
+  virtual std::int64_t points() const = 0;
+  virtual std::int64_t tetrahedra() const = 0;
+  virtual std::int64_t duplicates() const = 0;
+  // Copies of the current results: to host vectors, or to new executor arrays handed over.
+  virtual void host_copy(Output& out) const = 0;
+  virtual void device_copy(DeviceOutput& out) const = 0;
+};
+
 namespace cpu_impl {
+std::unique_ptr<Kept> make_kept(const Delaunay3dOptions& opt);
 void digital_stars_for_testing(const double* xyz, std::int64_t n, std::int64_t grid, int splay,
                                StarsForTesting& out, std::int64_t first_requests = 0);
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
@@ -60,6 +84,7 @@ void triangulate_device(const double* xyz, std::int64_t n, const Delaunay3dOptio
                         DeviceOutput& out, Stats& stats);
 }  // namespace cpu_impl
 namespace cuda_impl {
+std::unique_ptr<Kept> make_kept(const Delaunay3dOptions& opt);
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
                  Stats& stats);
 void triangulate_device(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,

@@ -23,6 +23,7 @@
 #include "exec/scratch_lease.hpp"
 #include "mesh/adjacency.hpp"
 #include "mesh/compact.hpp"
+#include "mesh/curve_hints.hpp"
 #include "mesh/first_tetrahedron.hpp"
 #include "mesh/flip_fix.hpp"
 #include "mesh/history.hpp"
@@ -42,6 +43,13 @@ namespace edt_impl = gpugeom::edt::cuda_impl;
 #include "delaunay3d/impl/repair.inl"
 #include "delaunay3d/digital/impl/pipeline.inl"
 #include "delaunay3d/impl/triangulate.inl"
+#include "delaunay3d/impl/dynamic.inl"
+std::unique_ptr<Kept> make_kept(const Delaunay3dOptions& opt) {
+  Delaunay3dOptions o = opt;
+  o.device = cuda_device::resolve(opt);  // (kept: later calls run on this device, whatever the
+                                         // calling thread's current one is then)
+  return std::make_unique<KeptOn>(o);
+}
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
                  Stats& stats) {
   triangulate_impl(xyz, n, opt, out, stats);

@@ -10,7 +10,7 @@
 
 namespace gpugeom {
 
-namespace {
+namespace del3d {
 // About 7.3 slots a point (tetrahedra with the dead and infinite ones; 7.5 with a margin) must
 // stay below the 2^30 - 1 slots the neighbour encoding addresses (delaunay3d/tet.hpp).
 constexpr std::int64_t kMaxPoints = ((std::int64_t(1) << 30) - 1) * 2 / 15;
@@ -28,6 +28,38 @@ void check_count(std::int64_t n) {
                 "fewer than 4 points (" + std::to_string(n) +
                     "): a 3D Delaunay triangulation needs 4 points not on one plane");
 }
+
+Triangulation3d to_public(Output&& out) {
+  Triangulation3d r;
+  r.tetrahedra = std::move(out.tetrahedra);
+  r.neighbors = std::move(out.neighbors);
+  r.duplicate_of = std::move(out.duplicate_of);
+  r.num_duplicates = out.num_duplicates;
+  r.hull_facets = std::move(out.hull_facets);
+  r.vertex_to_simplex = std::move(out.vertex_to_simplex);
+  r.tetrahedron_count = out.num_tetrahedra;
+  r.hull_facet_count = out.num_hull_facets;
+  return r;
+}
+
+DeviceTriangulation3d to_public(DeviceOutput&& out, std::int64_t n, Backend b) {
+  DeviceTriangulation3d r;
+  r.backend = r.stats.backend = b;
+  r.num_points = n;
+  r.num_tetrahedra = out.num_tetrahedra;
+  r.num_duplicates = out.num_duplicates;
+  r.num_hull_facets = out.num_hull_facets;
+  r.tetrahedra = std::move(out.tetrahedra);
+  r.neighbors = std::move(out.neighbors);
+  r.duplicate_of = std::move(out.duplicate_of);
+  r.vertex_to_simplex = std::move(out.vertex_to_simplex);
+  r.hull_facets = std::move(out.hull_facets);
+  return r;
+}
+}  // namespace del3d
+
+namespace {
+using del3d::check_count;
 void check_method(const Delaunay3dOptions& opt) {
   detail::check_method_grid(opt.method, opt.grid, 16, 1024, "the digital method's grid side");
   if (opt.method == Method::Digital && opt.max_flip_rounds >= 0)
@@ -40,19 +72,13 @@ void check_method(const Delaunay3dOptions& opt) {
 Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt) {
   check_count(n);
   check_method(opt);
-  Triangulation3d r;
   const Backend b = resolve_backend(opt.backend, opt.device);
-  r.stats.backend = b;
+  Stats st;
+  st.backend = b;
   del3d::Output out;
-  GG_ON_EXECUTOR(b, del3d, triangulate, xyz, n, opt, out, r.stats);
-  r.tetrahedra = std::move(out.tetrahedra);
-  r.neighbors = std::move(out.neighbors);
-  r.duplicate_of = std::move(out.duplicate_of);
-  r.num_duplicates = out.num_duplicates;
-  r.hull_facets = std::move(out.hull_facets);
-  r.vertex_to_simplex = std::move(out.vertex_to_simplex);
-  r.tetrahedron_count = out.num_tetrahedra;
-  r.hull_facet_count = out.num_hull_facets;
+  GG_ON_EXECUTOR(b, del3d, triangulate, xyz, n, opt, out, st);
+  Triangulation3d r = del3d::to_public(std::move(out));
+  r.stats = std::move(st);
   return r;
 }
 
@@ -60,20 +86,13 @@ DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n
                                         const Delaunay3dOptions& opt) {
   check_count(n);
   check_method(opt);
-  DeviceTriangulation3d r;
   const Backend b = device_entry_backend(opt.backend, opt.device, "delaunay3d_device");
-  r.backend = r.stats.backend = b;
-  r.num_points = n;
+  Stats st;
+  st.backend = b;
   del3d::DeviceOutput out;
-  GG_ON_EXECUTOR(b, del3d, triangulate_device, device_xyz, n, opt, out, r.stats);
-  r.num_tetrahedra = out.num_tetrahedra;
-  r.num_duplicates = out.num_duplicates;
-  r.num_hull_facets = out.num_hull_facets;
-  r.tetrahedra = std::move(out.tetrahedra);
-  r.neighbors = std::move(out.neighbors);
-  r.duplicate_of = std::move(out.duplicate_of);
-  r.vertex_to_simplex = std::move(out.vertex_to_simplex);
-  r.hull_facets = std::move(out.hull_facets);
+  GG_ON_EXECUTOR(b, del3d, triangulate_device, device_xyz, n, opt, out, st);
+  DeviceTriangulation3d r = del3d::to_public(std::move(out), n, b);
+  r.stats = std::move(st);
   return r;
 }
 

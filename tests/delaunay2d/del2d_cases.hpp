@@ -237,6 +237,7 @@ inline Triangulation2d follow_in_chunks(const Case& c, const Delaunay2dOptions& 
   }
   Delaunay2dOptions fresh_opt;
   fresh_opt.backend = opt.backend;
+  std::size_t step = 0;
   for (;;) {
     std::vector<Point2> sofar(all.begin(), all.begin() + std::ptrdiff_t(k));
     SCOPED_TRACE(std::to_string(k) + " of " + std::to_string(n) + " points");
@@ -247,9 +248,10 @@ inline Triangulation2d follow_in_chunks(const Case& c, const Delaunay2dOptions& 
     EXPECT_EQ(triangle_set(t), triangle_set(fresh));
     EXPECT_EQ(t.duplicate_of, fresh.duplicate_of);
     if (k == n || ::testing::Test::HasFailure()) return t;
-    // chunks of 1 point up to half of what is left, sizes drawn
     const std::size_t left = n - k;
-    const std::size_t add = 1 + rng() % std::max<std::size_t>(1, (left + 1) / 2);
+    // one point, then two, then a quarter to a half of what is left
+    const std::size_t add = step < 2 ? step + 1 : left / 4 + 1 + rng() % (left / 4 + 1);
+    ++step;
     dyn->insert(&all[k].x, std::int64_t(std::min(add, left)));
     k += std::min(add, left);
   }

@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <algorithm>
 #include <map>
+#include <memory>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -96,6 +99,55 @@ inline void expect_same_arrays(const gpugeom::Triangulation3d& a, const gpugeom:
   same(a.vertex_to_simplex, b.vertex_to_simplex, "vertex_to_simplex");
   same(a.hull_facets, b.hull_facets, "hull_facets");
   same(a.duplicate_of, b.duplicate_of, "duplicate_of");
+}
+
+// A DynamicDelaunay3d fed a case's points in a random order and in chunks of random sizes (the
+// first chunk grows until it is not degenerate): after every call, valid by the checker and the
+// same tetrahedra, hull facets and duplicate map as a fresh delaunay3d of the points so far.
+// Returns the final result (for comparisons across executors).
+inline gpugeom::Triangulation3d follow_in_chunks(const Case& c,
+                                                 const gpugeom::Delaunay3dOptions& opt,
+                                                 std::uint64_t seed) {
+  using namespace gpugeom;
+  std::vector<Point3> all = c.pts;
+  std::mt19937_64 rng(seed);
+  std::shuffle(all.begin(), all.end(), rng);
+  const std::size_t n = all.size();
+  std::size_t k = std::min<std::size_t>(n, 4 + rng() % std::max<std::size_t>(1, n / 4));
+  std::unique_ptr<DynamicDelaunay3d> dyn;
+  for (;;) {
+    try {
+      dyn = std::make_unique<DynamicDelaunay3d>(&all.data()->x, std::int64_t(k), opt);
+      break;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::DegenerateInput) << e.what();
+      if (k == n) ADD_FAILURE() << "no tetrahedralisation of all points";
+      if (k == n) return {};
+      k = std::min(n, 2 * k);
+    }
+  }
+  Delaunay3dOptions fresh_opt;
+  fresh_opt.backend = opt.backend;
+  std::size_t step = 0;
+  for (;;) {
+    std::vector<Point3> sofar(all.begin(), all.begin() + std::ptrdiff_t(k));
+    SCOPED_TRACE(std::to_string(k) + " of " + std::to_string(n) + " points");
+    const Triangulation3d t = dyn->tetrahedralisation();
+    EXPECT_EQ(dyn->num_points(), std::int64_t(k));
+    EXPECT_EQ(dyn->num_tetrahedra(), std::int64_t(t.num_tetrahedra()));
+    expect_valid(sofar, t);
+    const Triangulation3d fresh = delaunay3d(sofar, fresh_opt);
+    EXPECT_EQ(tet_set(t.tetrahedra), tet_set(fresh.tetrahedra));
+    EXPECT_EQ(t.hull_facet_count, fresh.hull_facet_count);
+    EXPECT_EQ(t.duplicate_of, fresh.duplicate_of);
+    if (k == n || ::testing::Test::HasFailure()) return t;
+    const std::size_t left = n - k;
+    // one point, then two, then a quarter to a half of what is left
+    const std::size_t add = step < 2 ? step + 1 : left / 4 + 1 + rng() % (left / 4 + 1);
+    ++step;
+    dyn->insert(&all[k].x, std::int64_t(std::min(add, left)));
+    k += std::min(add, left);
+  }
 }
 
 }  // namespace gg_del3d

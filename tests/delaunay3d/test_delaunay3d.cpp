@@ -383,3 +383,88 @@ TEST(Delaunay3d, DeviceEntryAndCallerArrays) {
     EXPECT_TRUE(t2.untouched(7) && hf2.untouched(7));
   }
 }
+
+// DynamicDelaunay3d (issue 47): points added in chunks give, after every call, exactly the
+// tetrahedralisation of a fresh call on the points so far; on every distribution and degenerate
+// case, in random orders and chunk sizes.
+TEST(DynamicDelaunay3d, SameAsFreshAfterEveryInsert) {
+  std::uint64_t seed = 1;
+  for (const auto& c : gg_hull3d::degenerate_cases()) {
+    SCOPED_TRACE(c.name);
+    gg_del3d::follow_in_chunks(c, cpu(), seed++);
+  }
+  for (const auto& c : gg_hull3d::distribution_cases({10, 1000, 3000}, 23)) {
+    if (c.name.rfind("two_lines", 0) == 0 && c.pts.size() > 100) continue;
+    SCOPED_TRACE(c.name);
+    gg_del3d::follow_in_chunks(c, cpu(), seed++);
+  }
+}
+
+// Phase 2 on a kept tetrahedralisation: with no flip rounds after the insertions, star
+// splaying repairs what the new points broke, and the result is still a fresh build's.
+TEST(DynamicDelaunay3d, StarSplayingRepairsInsertions) {
+  for (const char* d : {"uniform", "grid", "sphere"}) {
+    SCOPED_TRACE(d);
+    Delaunay3dOptions o = cpu();
+    o.max_flip_rounds = 0;
+    gg_del3d::follow_in_chunks({d, generate3d(d, 800, 6)}, o, 77);
+  }
+}
+
+// The same sequence of calls gives the same arrays, on any thread count.
+TEST(DynamicDelaunay3d, SameArraysEveryRunAndThreadCount) {
+  const auto pts = generate3d("uniform", 20000, 8);
+  auto run = [&](int threads) {
+    Delaunay3dOptions o = cpu();
+    o.threads = threads;
+    DynamicDelaunay3d d(&pts.data()->x, 10000, o);
+    d.insert(&pts[10000].x, 5);
+    d.insert(&pts[10005].x, 9995);
+    return d.tetrahedralisation();
+  };
+  const auto a = run(1);
+  for (int threads : {2, 0}) gg_del3d::expect_same_arrays(a, run(threads), "threads");
+}
+
+// Copies of earlier points are not vertices and name the earliest copy; a refused insertion
+// leaves the object as it was, and it goes on working.
+TEST(DynamicDelaunay3d, DuplicatesAndRefusals) {
+  std::vector<Point3> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  DynamicDelaunay3d d(&pts.data()->x, 5, cpu());
+  const std::vector<Point3> more = {{1, 0, 0}, {0.5, 0.5, 0.5}, {-0.0, 0.0, 0.0}, {0.5, 0.5, 0.5}};
+  d.insert(&more.data()->x, 4);
+  pts.insert(pts.end(), more.begin(), more.end());
+  const auto t = d.tetrahedralisation();
+  expect_valid(pts, t);
+  EXPECT_EQ(d.num_duplicates(), 3);
+  const std::vector<std::int32_t> want = {-1, -1, -1, -1, -1, 1, -1, 0, 6};
+  EXPECT_EQ(std::vector<std::int32_t>(t.duplicate_of.begin(), t.duplicate_of.end()), want);
+  std::vector<Point3> bad = {{2, 2, 2}, {std::nan(""), 0, 0}};
+  try {
+    d.insert(&bad.data()->x, 2);
+    ADD_FAILURE() << "NaN accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::InvalidInput);
+  }
+  EXPECT_EQ(d.num_points(), 9);
+  gg_del3d::expect_same_arrays(t, d.tetrahedralisation(), "after a refusal");
+  d.insert(&bad.data()->x, 1);
+  pts.push_back(bad[0]);
+  expect_valid(pts, d.tetrahedralisation());
+  const std::vector<Point3> plane = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  EXPECT_THROW(DynamicDelaunay3d(&plane.data()->x, 4, cpu()), Error);
+}
+
+// The device entries on the CPU executor take host memory, as delaunay3d_device does.
+TEST(DynamicDelaunay3d, DeviceEntriesOnTheCpuExecutor) {
+  const auto pts = generate3d("gaussian", 4000, 10);
+  auto d = DynamicDelaunay3d::from_device(&pts.data()->x, 3000, cpu());
+  d.insert_device(&pts[3000].x, 1000);
+  const auto dev = d.device_tetrahedralisation();
+  ASSERT_EQ(dev.backend, Backend::Cpu);
+  const auto host = d.tetrahedralisation();
+  ASSERT_EQ(dev.num_tetrahedra, std::int64_t(host.num_tetrahedra()));
+  EXPECT_TRUE(std::equal(host.tetrahedra.begin(), host.tetrahedra.end(), dev.tetrahedra.get()));
+  EXPECT_TRUE(std::equal(host.hull_facets.begin(), host.hull_facets.end(), dev.hull_facets.get()));
+  expect_valid(pts, host);
+}

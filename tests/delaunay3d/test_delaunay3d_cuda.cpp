@@ -157,6 +157,67 @@ void digital_same(const gg_hull3d::Case& c, std::int64_t grid, bool with_cpu) {
 }
 }  // namespace
 
+// DynamicDelaunay3d on the CUDA executor (issue 47): after every insertion the
+// tetrahedralisation of a fresh call, and at the end the same arrays as the CPU executor's after
+// the same calls.
+TEST(CudaDynamicDelaunay3d, SameAsFreshAndAsCpu) {
+  std::uint64_t seed = 200;
+  auto both = [&](const gg_hull3d::Case& c) {
+    SCOPED_TRACE(c.name);
+    Delaunay3dOptions o;
+    o.backend = Backend::Cuda;
+    const auto gpu = gg_del3d::follow_in_chunks(c, o, seed);
+    o.backend = Backend::Cpu;
+    const auto cpu = gg_del3d::follow_in_chunks(c, o, seed);
+    ++seed;
+    gg_del3d::expect_same_arrays(gpu, cpu, "CUDA and CPU executors");
+  };
+  for (const auto& c : gg_hull3d::degenerate_cases()) both(c);
+  for (const auto& c : gg_hull3d::distribution_cases(sizes({100, 5000, 100000}), 31)) {
+    if (c.name.rfind("two_lines", 0) == 0 && c.pts.size() > 100) continue;
+    both(c);
+  }
+}
+
+// Points on the GPU in (from_device, insert_device), the state and the results left there.
+TEST(CudaDynamicDelaunay3d, DeviceResident) {
+  auto p = gpugeom::generate3d("uniform", sizes({200000, 3000}).front(), 12);
+  const std::int64_t n = std::int64_t(p.size());
+  p.push_back(p[3]);  // a duplicate of a point inserted first
+  const gg_test::DeviceCopy dp(p);
+  auto d = DynamicDelaunay3d::from_device(dp.doubles(), n / 2);
+  ASSERT_EQ(d.backend(), Backend::Cuda);
+  d.insert_device(dp.doubles() + 3 * (n / 2), n - n / 2 + 1);
+  EXPECT_EQ(d.num_duplicates(), 1);
+  const auto r = d.device_tetrahedralisation();
+  ASSERT_EQ(r.backend, Backend::Cuda);
+  const auto host = d.tetrahedralisation();
+  gg_del3d::expect_valid(p, host);
+  ASSERT_EQ(r.num_tetrahedra, std::int64_t(host.num_tetrahedra()));
+  const auto tet = gg_test::from_device(r.tetrahedra, 4 * r.num_tetrahedra);
+  const auto dup = gg_test::from_device(r.duplicate_of, n + 1);
+  EXPECT_TRUE(std::equal(tet.begin(), tet.end(), host.tetrahedra.begin()));
+  EXPECT_EQ(dup[std::size_t(n)], 3);
+}
+
+// The same sequence of calls gives the same arrays run after run (a race would not).
+TEST(CudaDynamicDelaunay3d, Repeatable) {
+  for (const char* d : {"uniform", "grid"}) {
+    SCOPED_TRACE(d);
+    const auto p = gpugeom::generate3d(d, sizes({200000, 5000}).front(), 13);
+    const std::int64_t n = std::int64_t(p.size());
+    auto run = [&] {
+      Delaunay3dOptions o;
+      o.backend = Backend::Cuda;
+      DynamicDelaunay3d t(&p.data()->x, n - 1000, o);
+      t.insert(&p[std::size_t(n - 1000)].x, 1000);
+      return t.tetrahedralisation();
+    };
+    const auto a = run();
+    for (int r = 0; r < 2; ++r) gg_del3d::expect_same_arrays(a, run(), "runs");
+  }
+}
+
 TEST(CudaDigitalDelaunay3d, SameAsIncrementalOnDistributions) {
   for (const auto& c : gg_hull3d::distribution_cases(sizes({5, 100, 5000, 20000}), 17)) {
     if (c.name.rfind("two_lines", 0) == 0 && c.pts.size() > 100) continue;  // (quadratic)

@@ -34,32 +34,6 @@ inline void twins_of_neighbours(Exec& ex, const std::int32_t* tri, const std::in
       });
 }
 
-// Where each new point's walk starts (input indices, n entries; -1 for the old points): the old
-// vertex before it on the curve (the first old vertex for new points before every old one). The
-// old points are the distinct points with input index below n_old, all vertices of the kept
-// triangulation.
-inline void curve_hints(Exec& ex, Prepared& P, std::int64_t n, std::int64_t n_old,
-                        std::int32_t* hint) {
-  const std::int64_t m = P.m;
-  const std::int32_t* orig = P.orig.data();
-  const std::int32_t old = std::int32_t(n_old);
-  auto d_rank = ex.template alloc<std::int64_t>(std::size_t(m + 1));
-  auto d_olds = ex.template alloc<std::int32_t>(std::size_t(m));
-  std::int64_t* rank = d_rank.data();
-  std::int32_t* olds = d_olds.data();
-  ex.exclusive_scan_of(
-      m + 1, GG_LAMBDA(std::int64_t j)->std::int64_t { return j < m && orig[j] < old; }, rank);
-  ex.compact_indices(
-      m, GG_LAMBDA(std::int64_t j) { return orig[j] < old; }, olds);
-  ex.fill(hint, n, std::int32_t(-1));
-  ex.for_each_index(
-      m, GG_LAMBDA(std::int64_t j) {
-        if (orig[j] < old) return;
-        const std::int64_t r = rank[j];
-        hint[orig[j]] = orig[olds[r > 0 ? r - 1 : 0]];
-      });
-}
-
 // The kept triangles as results: the flat ones dropped (exactly collinear vertices), -1 across
 // an edge to one.
 struct NonFlat {
@@ -92,6 +66,18 @@ struct KeptArrays {
   double kernel[2] = {0, 0};
 };
 
+// The triangles of the results (an extended lambda may not sit in kept_insert's lambda).
+inline std::int64_t count_non_flat(Exec& ex, const KeptArrays& R) {
+  const NonFlat s{R.tri.data(), R.nb.data(), R.xy.data()};
+  auto cnt = ex.template alloc<std::int64_t>(1);
+  ex.transform_reduce_into(
+      R.nt, GG_LAMBDA(std::int64_t t)->std::int64_t { return s.live(t); }, std::int64_t(0),
+      thrust::plus<std::int64_t>(), cnt.data());
+  std::int64_t c = 0;
+  ex.to_host(cnt.data(), 1, &c);
+  return c;
+}
+
 // The state after appending `add` points (host memory, or executor memory when on_device) to K,
 // built beside K: K is not touched, so a call that throws leaves it as it was.
 inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xy, std::int64_t add,
@@ -116,12 +102,7 @@ inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xy, s
     R.tri = std::move(f.simplices);
     R.nb = std::move(f.neighbors);
     if (P.duplicates) R.dup = std::move(P.dup);
-    const NonFlat s{R.tri.data(), R.nb.data(), R.xy.data()};
-    auto cnt = ex.template alloc<std::int64_t>(1);
-    ex.transform_reduce_into(
-        R.nt, GG_LAMBDA(std::int64_t t)->std::int64_t { return s.live(t); }, std::int64_t(0),
-        thrust::plus<std::int64_t>(), cnt.data());
-    ex.to_host(cnt.data(), 1, &R.nout);
+    R.nout = count_non_flat(ex, R);
   };
   if (!K.n) {  // the first points: a fresh triangulation
     triangulate_core(
@@ -136,7 +117,7 @@ inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xy, s
   st.counters["duplicates"] = P.duplicates;
   st.counters["inserted_points"] = P.m - (K.n - K.ndup);
   auto d_hint = ex.template alloc<std::int32_t>(std::size_t(n));
-  curve_hints(ex, P, n, K.n, d_hint.data());
+  mesh::curve_hints(ex, P.orig.data(), P.m, n, K.n, d_hint.data());
   auto d_tri = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));  // (mapped in place)
   auto d_twin = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));
   ex.copy(K.tri.data(), 3 * K.nt, d_tri.data());

@@ -585,10 +585,104 @@ class Triangulator {
 
   void run() {
     start();
+    insert_all();
+  }
+  // The batches, until every located point is inserted; then phase 1's arrays go.
+  void insert_all() {
     remaining_ = nun_;
     while (remaining_ > 0) batch();
     ex_.sync();
     release_phase1();
+  }
+
+  // A kept tetrahedralisation (DynamicDelaunay3d, issue 47) in place of the first tetrahedron:
+  // kept (executor memory, `used` slots) is a store as phase 2 leaves it, the Delaunay
+  // tetrahedralisation of the perturbed points with its infinite tetrahedra and flat ones
+  // (vertices as input indices, kKeptInfinity for the infinity point; dead slots v[0] = -1;
+  // neighbours encoded as in the store, slot numbers kept). inv: input index -> prepared index;
+  // near: per prepared point not in it, a prepared vertex of it near it (-1: none). The other
+  // points are located by walks from a tetrahedron of their near vertex. g_.s must be the kept
+  // one's kernel point (strictly inside its hull).
+  static constexpr std::int32_t kKeptInfinity = -2;
+  void start_from(const Tet* kept, std::int64_t used, const std::int32_t* inv,
+                  const std::int32_t* near) {
+    reserve(used + 4096);
+    const std::int32_t I = m_;
+    Tet* tet = tet_.data();
+    auto d_in = ex_.template alloc<std::int8_t>(std::size_t(m_));
+    auto d_slot = ex_.template alloc<std::int32_t>(std::size_t(m_));
+    std::int8_t* in = d_in.data();
+    std::int32_t* slot_of = d_slot.data();
+    ex_.fill(in, m_, std::int8_t(0));
+    ex_.fill(slot_of, m_, std::numeric_limits<std::int32_t>::max());
+    ex_.for_each_index(
+        used, GG_LAMBDA(std::int64_t t) {
+          Tet T = kept[t];
+          if (T.v[0] != -1)  // (not dead: kKeptInfinity may come first)
+            for (int k = 0; k < 4; ++k) {
+              const std::int32_t v = T.v[k] == kKeptInfinity ? I : inv[T.v[k]];
+              T.v[k] = v;
+              if (v != I) {
+                in[v] = 1;
+                atomic_min(&slot_of[v], std::int32_t(t));
+              }
+            }
+          tet[t] = T;
+        });
+    Counters c{};
+    c.used = used;
+    ex_.from_host(&c, 1, ctr_.data());
+    // The other points, each located by a walk (stochastic: the leaving face drawn; a scan of
+    // every slot bounds it).
+    const Geo g = g_;
+    std::int32_t* loc = loc_.data();
+    Counters* ctr = ctr_.data();
+    auto walk_stats = ex_.template alloc<std::int64_t>(3);  // steps, scans, longest walk
+    std::int64_t* ws = walk_stats.data();
+    ex_.fill(ws, 3, std::int64_t(0));
+    ex_.for_each_index(
+        m_, GG_LAMBDA(std::int64_t i) {
+          const std::int32_t q = std::int32_t(i);
+          if (in[q]) {
+            loc[q] = -1;
+            return;
+          }
+          const std::int32_t h = near ? near[q] : -1;
+          std::int64_t t = h >= 0 && in[h] ? slot_of[h] : -1;
+          for (std::int64_t step = 0; t >= 0 && step <= used; ++step) {
+            const Tet T = tet[t];
+            int leave = -1;
+            const int r =
+                int(mesh::scatter(std::uint32_t(q) * 2654435761u + std::uint32_t(step)) % 4);
+            for (int j = 0; j < 4 && leave < 0; ++j) {
+              const int k = (r + j) % 4;
+              if (orient_with(g, T.v, k, q) < 0) leave = k;
+            }
+            if (leave < 0) {
+              loc[q] = std::int32_t(t);
+              atomic_add(&ws[0], step);
+              atomic_max(&ws[2], step);
+              return;
+            }
+            t = simplex_of(T.n[leave]);
+          }
+          atomic_add(&ws[1], std::int64_t(1));
+          for (t = 0; t < used; ++t)
+            if (tet[t].v[0] >= 0 && inside_ext(g, tet[t].v, q)) {
+              loc[q] = std::int32_t(t);
+              return;
+            }
+          loc[q] = -1;
+          atomic_add(&ctr->lost, std::int64_t(1));
+        });
+    std::int64_t w[3];
+    ex_.to_host(ws, 3, w);
+    st_.counters["start_walk_steps"] = w[0];
+    st_.counters["start_walk_scans"] = w[1];
+    st_.counters["start_walk_longest"] = w[2];
+    nun_ = ex_.compact_indices(
+        m_, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, un_.data());
+    check_errors();
   }
 
   Counters counters() {
@@ -1169,6 +1263,41 @@ inline Prepared prepare_points(Exec& ex, const double* in, std::int64_t n, bool 
   return Prepared{std::move(S), box, first};
 }
 
+// After phase 1: every face tested, and phase 2 (repair.inl) where some are not locally
+// Delaunay. The store is then the Delaunay tetrahedralisation of the perturbed points, flat
+// tetrahedra included; returns how many of those it holds. Counters and phases into st.
+inline std::int64_t repair_phase(Exec& ex, Triangulator& T, std::int64_t m,
+                                 const ProgressFn& progress, Stats& st) {
+  auto t0 = Clock::now();
+  auto failed = ex.template alloc<std::int8_t>(std::size_t(m + 1));
+  std::int64_t nflat = 0;
+  const std::int64_t nfailed = T.find_failed(failed, nflat);
+  st.phase_ms.push_back({"find_failed", ms_since(t0)});
+  t0 = Clock::now();
+  RepairCount rc;
+  if (nfailed > 0) {
+    if (progress) progress(Delaunay3dProgress{"splay", m, m, 0});
+    const std::int64_t used = repair_tets(
+        ex, T.g_, T.tet_.data(), T.counters().used, failed.data(),
+        [&T](std::int64_t slots) { return T.store_for(slots); }, rc);
+    T.set_used(used);
+  }
+  st.phase_ms.push_back({"splay", ms_since(t0)});
+  st.counters["failed_vertices"] = rc.failed_vertices;
+  st.counters["stars_built"] = rc.stars_built;
+  st.counters["stars_changed"] = rc.stars_changed;
+  st.counters["star_insertions"] = rc.insertions;
+  st.counters["splay_rounds"] = rc.rounds;
+  st.counters["splay_removed"] = rc.removed;
+  st.counters["splay_added"] = rc.added;
+  st.counters["us_splay_build"] = std::int64_t(1000 * rc.build_ms);
+  st.counters["us_splay_rounds"] = std::int64_t(1000 * rc.splay_ms);
+  st.counters["us_splay_patch"] = std::int64_t(1000 * rc.patch_ms);
+  st.counters["us_splay_check"] = std::int64_t(1000 * rc.check_ms);
+  st.counters["us_splay_take"] = std::int64_t(1000 * rc.take_ms);
+  return nflat;
+}
+
 // The whole pipeline on the executor: prepare, phase 1, phase 2 where phase 1 left failed
 // faces, the flat tetrahedra left out, then the finite tetrahedra in input indices (f) with S's
 // duplicate map.
@@ -1196,42 +1325,12 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, max_rounds, progress, st);
   T.run();
   st.phase_ms.push_back({"insert_flip", ms_since(t0)});
+  const std::int64_t nflat = repair_phase(ex, T, S.m, progress, st);
   t0 = Clock::now();
-  auto failed = ex.template alloc<std::int8_t>(std::size_t(S.m + 1));
-  std::int64_t nflat = 0;
-  const std::int64_t nfailed = T.find_failed(failed, nflat);
-  st.phase_ms.push_back({"find_failed", ms_since(t0)});
-  t0 = Clock::now();
-  RepairCount rc;
   std::int64_t flats = 0;
-  if (nfailed > 0 || nflat > 0) {  // phase 2 (repair.inl), then the flat tetrahedra leave
-    if (progress) progress(Delaunay3dProgress{"splay", S.m, S.m, 0});
-    std::int64_t used = T.counters().used;
-    Tet* tet = T.tet_.data();
-    if (nfailed > 0) {
-      used = repair_tets(
-          ex, T.g_, tet, used, failed.data(),
-          [&T](std::int64_t slots) { return T.store_for(slots); }, rc);
-      T.set_used(used);
-      tet = T.tet_.data();
-    }
-    flats = drop_flats(ex, T.g_, tet, used);
-  }
-  failed = typename Exec::template Buffer<std::int8_t>();
-  st.phase_ms.push_back({"splay", ms_since(t0)});
+  if (nflat > 0) flats = drop_flats(ex, T.g_, T.tet_.data(), T.counters().used);
   st.counters["flat_tetrahedra"] = flats;
-  st.counters["failed_vertices"] = rc.failed_vertices;
-  st.counters["stars_built"] = rc.stars_built;
-  st.counters["stars_changed"] = rc.stars_changed;
-  st.counters["star_insertions"] = rc.insertions;
-  st.counters["splay_rounds"] = rc.rounds;
-  st.counters["splay_removed"] = rc.removed;
-  st.counters["splay_added"] = rc.added;
-  st.counters["us_splay_build"] = std::int64_t(1000 * rc.build_ms);
-  st.counters["us_splay_rounds"] = std::int64_t(1000 * rc.splay_ms);
-  st.counters["us_splay_patch"] = std::int64_t(1000 * rc.patch_ms);
-  st.counters["us_splay_check"] = std::int64_t(1000 * rc.check_ms);
-  st.counters["us_splay_take"] = std::int64_t(1000 * rc.take_ms);
+  st.phase_ms.push_back({"drop_flats", ms_since(t0)});
   t0 = Clock::now();
   if (progress) progress(Delaunay3dProgress{"output", S.m, S.m, 0});
   auto f = T.finish(S.orig.data());
@@ -1247,8 +1346,8 @@ struct Extras {
   typename Exec::template Buffer<std::int32_t> vertex_to_simplex, hull_facets;
   std::int64_t num_hull_facets = 0;
 };
-inline Extras extras(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec>& f,
-                     std::int64_t n) {
+// dup: the duplicate map (n entries), or null where there is no duplicate.
+inline Extras extras(Exec& ex, const std::int32_t* dup, mesh::Compacted<Exec>& f, std::int64_t n) {
   Extras E;
   E.vertex_to_simplex = ex.template alloc<std::int32_t>(std::size_t(n));
   std::int32_t* v = E.vertex_to_simplex.data();
@@ -1257,8 +1356,7 @@ inline Extras extras(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec
   ex.fill(v, n, std::int32_t(-1));
   ex.for_each_index(
       4 * f.count, GG_LAMBDA(std::int64_t i) { atomic_max(v + tv[i], std::int32_t(i / 4)); });
-  if (S.duplicates) {
-    const std::int32_t* dup = S.dup.data();
+  if (dup) {
     ex.for_each_index(
         n, GG_LAMBDA(std::int64_t i) {
           if (dup[i] >= 0) v[i] = v[dup[i]];
@@ -1293,7 +1391,7 @@ inline void check_into(const Triangulation3dBuffers& into, std::int64_t count, s
 // The finished tetrahedralisation to host arrays: the caller's (into) or the result's.
 inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec>& f,
                       std::int64_t n, const Triangulation3dBuffers& into, Output& out) {
-  Extras E = extras(ex, S, f, n);
+  Extras E = extras(ex, S.duplicates ? S.dup.data() : nullptr, f, n);
   check_into(into, f.count, E.num_hull_facets, n);
   out.num_duplicates = S.duplicates;
   out.num_tetrahedra = f.count;
@@ -1314,7 +1412,7 @@ inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exe
 inline void to_device_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec>& f,
                              std::int64_t n, const Triangulation3dBuffers& into,
                              DeviceOutput& out) {
-  Extras E = extras(ex, S, f, n);
+  Extras E = extras(ex, S.duplicates ? S.dup.data() : nullptr, f, n);
   const std::int64_t nh = E.num_hull_facets;
   check_into(into, f.count, nh, n);
   if (!S.duplicates && !into.duplicate_of)  // no duplicates: the map is all -1

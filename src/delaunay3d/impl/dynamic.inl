@@ -1,0 +1,215 @@
+// A 3D Delaunay tetrahedralisation kept on the executor between calls (DynamicDelaunay3d, issue
+// 47). Included inside gpugeom::del3d::{cpu,cuda}_impl after triangulate.inl.
+//
+// Kept: the input points in input order, the store as phase 2 leaves it (the Delaunay
+// tetrahedralisation of the perturbed points with its infinite and flat tetrahedra, vertices as
+// input indices, slot numbers and neighbour encoding as they were), the duplicate map and the
+// first build's kernel point (inside its first tetrahedron, so inside every later hull). An
+// insertion appends the new points, prepares the whole set again (validation, curve order,
+// duplicates: one sort, the step that is still global), puts the kept store back in prepared
+// indices (Triangulator::start_from), locates each new point by a walk from the old vertex
+// before it on the curve, and runs the batches and phase 2 as a fresh build does. The kept
+// tetrahedra are Delaunay among the old points, so only the new points' neighbourhoods flip.
+// The result is a fresh build's: the perturbation depends on the points alone, and the
+// Delaunay tetrahedralisation of perturbed points is unique. The results leave out the
+// infinite and the flat tetrahedra, as a fresh build's output step does.
+
+// The kept store as results: finite tetrahedra that are not flat (exactly coplanar vertices),
+// -1 across a face to one that is not.
+struct KeptTets {
+  const Tet* tet;
+  const double* xyz;  // input points
+  ScratchLease lease;
+  GG_HD bool live(std::int64_t t) const {
+    const Tet T = tet[t];
+    for (int k = 0; k < 4; ++k)  // (dead slots: v[0] = -1)
+      if (T.v[k] < 0) return false;
+    Geo g{};
+    g.p = xyz;
+    g.m = -3;  // (no vertex is the infinity point here)
+    g.lease = lease;
+    return !flat_ext(g, T.v);
+  }
+  GG_HD mesh::SimplexRecord<4> get(std::int64_t t) const {
+    const Tet T = tet[t];
+    mesh::SimplexRecord<4> r;
+    for (int k = 0; k < 4; ++k)
+      r.v[k] = T.v[k], r.n[k] = T.n[k] == kNoNeighbour ? -1 : simplex_of(T.n[k]);
+    return r;
+  }
+};
+
+// Scratch for the exact flatness tests (as many slots as threads may hold at once, as phase 1
+// sizes its own).
+inline LeasePool<Exec> flat_test_pool(Exec& ex) {
+  return LeasePool<Exec>(ex, std::clamp<std::int64_t>(ex.concurrency(), 64, 1024),
+                         pred::kOrient3dScratch);
+}
+
+struct KeptArrays {
+  typename Exec::template Buffer<double> xyz;        // 3 n, input order
+  typename Exec::template Buffer<Tet> tet;           // used slots
+  typename Exec::template Buffer<std::int32_t> dup;  // n, when ndup > 0
+  std::int64_t n = 0, used = 0, ndup = 0;
+  std::int64_t nout = 0;  // tetrahedra in the results
+  double kernel[3] = {0, 0, 0};
+};
+
+// The kept store in input indices (the infinity point as kKeptInfinity), from T's store.
+inline typename Exec::template Buffer<Tet> keep_store(Exec& ex, Triangulator& T,
+                                                      const std::int32_t* orig) {
+  const std::int64_t used = T.counters().used;
+  auto out = ex.template alloc<Tet>(std::size_t(used));
+  Tet* o = out.data();
+  const Tet* tet = T.tet_.data();
+  const std::int32_t m = T.m_;
+  ex.for_each_index(
+      used, GG_LAMBDA(std::int64_t t) {
+        Tet X = tet[t];
+        if (X.v[0] >= 0)
+          for (int k = 0; k < 4; ++k)
+            X.v[k] = X.v[k] == m ? Triangulator::kKeptInfinity : orig[X.v[k]];
+        o[t] = X;
+      });
+  return out;
+}
+
+// The state after appending `add` points (host memory, or executor memory when on_device) to K,
+// built beside K: K is not touched, so a call that throws leaves it as it was.
+inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xyz, std::int64_t add,
+                              bool on_device, const Delaunay3dOptions& opt, Stats& st) {
+  const std::int64_t n = K.n + add;
+  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
+                                           "a 3D Delaunay tetrahedralisation", "points");
+  auto t0 = Clock::now();
+  KeptArrays R;
+  R.xyz = ex.template alloc<double>(std::size_t(3 * n));
+  if (K.n) ex.copy(K.xyz.data(), 3 * K.n, R.xyz.data());
+  if (on_device)
+    ex.copy(xyz, 3 * add, R.xyz.data() + 3 * K.n);
+  else
+    ex.from_host(xyz, 3 * add, R.xyz.data() + 3 * K.n);
+  st.phase_ms.push_back({"append", ms_since(t0)});
+  Prepared P = prepare_points(ex, R.xyz.data(), n, true, st);
+  mesh::SortedPoints<Exec>& S = P.S;
+  mesh::Tetra first = P.first;
+  if (K.n)
+    for (int k = 0; k < 3; ++k) first.s[k] = K.kernel[k];
+  t0 = Clock::now();
+  Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, opt.max_flip_rounds, opt.progress, st);
+  if (!K.n) {
+    T.run();
+  } else {
+    st.counters["inserted_points"] = S.m - (K.n - K.ndup);
+    // input index -> prepared index; each new point's walk start (prepared indices)
+    auto d_inv = ex.template alloc<std::int32_t>(std::size_t(n));
+    auto d_hint = ex.template alloc<std::int32_t>(std::size_t(n));
+    auto d_near = ex.template alloc<std::int32_t>(std::size_t(S.m));
+    std::int32_t* inv = d_inv.data();
+    std::int32_t* hint = d_hint.data();
+    std::int32_t* near = d_near.data();
+    const std::int32_t* orig = S.orig.data();
+    mesh::curve_hints(ex, orig, S.m, n, K.n, hint);
+    ex.for_each_index(
+        S.m, GG_LAMBDA(std::int64_t j) { inv[orig[j]] = std::int32_t(j); });
+    ex.for_each_index(
+        S.m, GG_LAMBDA(std::int64_t j) {
+          const std::int32_t h = hint[orig[j]];
+          near[j] = h >= 0 ? inv[h] : -1;
+        });
+    T.start_from(K.tet.data(), K.used, inv, near);
+    st.phase_ms.push_back({"start", ms_since(t0)});
+    T.insert_all();
+  }
+  st.phase_ms.push_back({"insert_flip", ms_since(t0)});
+  repair_phase(ex, T, S.m, opt.progress, st);
+  t0 = Clock::now();
+  T.report();
+  R.n = n;
+  R.ndup = S.duplicates;
+  if (S.duplicates) R.dup = std::move(S.dup);
+  for (int k = 0; k < 3; ++k) R.kernel[k] = first.s[k];
+  R.used = T.counters().used;
+  R.tet = keep_store(ex, T, S.orig.data());
+  {
+    LeasePool<Exec> pool = flat_test_pool(ex);
+    const KeptTets s{R.tet.data(), R.xyz.data(), pool.view};
+    auto cnt = ex.template alloc<std::int64_t>(1);
+    ex.transform_reduce_into(
+        R.used, GG_LAMBDA(std::int64_t t)->std::int64_t { return s.live(t); }, std::int64_t(0),
+        thrust::plus<std::int64_t>(), cnt.data());
+    ex.to_host(cnt.data(), 1, &R.nout);
+  }
+  st.phase_ms.push_back({"keep", ms_since(t0)});
+  return R;
+}
+
+class KeptOn final : public Kept {
+ public:
+  explicit KeptOn(const Delaunay3dOptions& opt) : opt_(opt) {}
+  void insert(const double* xyz, std::int64_t n, bool on_device, Stats& st) override {
+    if (n == 0 && K_.n) return;
+    Exec ex(opt_);
+    const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+    KeptArrays R = kept_insert(ex, K_, xyz, n, on_device, opt_, st);
+    K_ = std::move(R);
+  }
+  std::int64_t points() const override { return K_.n; }
+  std::int64_t tetrahedra() const override { return K_.nout; }
+  std::int64_t duplicates() const override { return K_.ndup; }
+  // The results: tetrahedra and neighbours, the vertex map and the hull facets.
+  struct Results {
+    mesh::Compacted<Exec> f;
+    Extras E;
+  };
+  Results results(Exec& ex) const {
+    LeasePool<Exec> pool = flat_test_pool(ex);
+    Results r;
+    r.f = mesh::compact_live<4>(ex, K_.used, KeptTets{K_.tet.data(), K_.xyz.data(), pool.view});
+    r.E = extras(ex, K_.ndup ? K_.dup.data() : nullptr, r.f, K_.n);
+    return r;
+  }
+  void host_copy(Output& out) const override {
+    Exec ex(opt_);
+    Results r = results(ex);
+    mesh::Compacted<Exec>& f = r.f;
+    const std::int64_t nh = r.E.num_hull_facets;
+    out.num_tetrahedra = f.count;
+    out.num_duplicates = K_.ndup;
+    out.num_hull_facets = nh;
+    auto put = [&](const std::int32_t* src, std::int64_t count, HostVector<std::int32_t>& dst) {
+      dst.resize(std::size_t(count));
+      ex.to_host(src, count, dst.data());
+    };
+    put(f.simplices.data(), 4 * f.count, out.tetrahedra);
+    put(f.neighbors.data(), 4 * f.count, out.neighbors);
+    put(r.E.vertex_to_simplex.data(), K_.n, out.vertex_to_simplex);
+    put(r.E.hull_facets.data(), 3 * nh, out.hull_facets);
+    out.duplicate_of.resize(std::size_t(K_.n));
+    if (K_.ndup)
+      ex.to_host(K_.dup.data(), K_.n, out.duplicate_of.data());
+    else
+      ex.fill_host(out.duplicate_of.data(), K_.n, std::int32_t(-1));
+  }
+  void device_copy(DeviceOutput& out) const override {
+    Exec ex(opt_);
+    Results r = results(ex);
+    auto dup = ex.template alloc<std::int32_t>(std::size_t(K_.n));
+    if (K_.ndup)
+      ex.copy(K_.dup.data(), K_.n, dup.data());
+    else
+      ex.fill(dup.data(), K_.n, std::int32_t(-1));
+    ex.sync();  // (the caller may read them, and free them on any stream)
+    out.num_tetrahedra = r.f.count;
+    out.num_duplicates = K_.ndup;
+    out.num_hull_facets = r.E.num_hull_facets;
+    out.tetrahedra = r.f.simplices.hand_over();
+    out.neighbors = r.f.neighbors.hand_over();
+    out.duplicate_of = dup.hand_over();
+    out.vertex_to_simplex = r.E.vertex_to_simplex.hand_over();
+    out.hull_facets = r.E.hull_facets.hand_over();
+  }
+
+  Delaunay3dOptions opt_;
+  KeptArrays K_;
+};
