@@ -7,11 +7,14 @@
 //               the executor; the object built beforehand, untimed)
 //   insert e2e  the same plus triangulation() (the caller's host arrays out)
 //   insert dev  insert_device of the k points already on the device (from_device beforehand)
+// With --move f (2D), every point of dist:n is moved by a normal step of f times the mean
+// spacing instead: move / move e2e / move dev, beside a fresh triangulation of the moved points.
 // Medians of --reps runs; the last insert's phases are printed, and the result is checked
 // against the fresh one (the same triangles).
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -61,6 +64,7 @@ struct Row {
   std::string dist;
   std::int64_t n = 0, k = 0;
   int dim = 2;
+  double move = 0;  // > 0: every point moved by this many mean spacings (2D)
 };
 
 Row parse(const std::string& s) {
@@ -168,10 +172,74 @@ void run_row(const Row& row, Backend b, int reps) {
       same ? "same simplices" : "DIFFERENT SIMPLICES");
   std::fflush(stdout);
 }
+// All n points of a 2D distribution moved by a normal step of f times the mean spacing.
+void run_move(const Row& row, double f, Backend b, int reps) {
+  const auto p = generate2d(row.dist, row.n, 7);
+  const std::int64_t n = std::int64_t(p.size());
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  for (const auto& x : p) {
+    lo[0] = std::min(lo[0], x.x), hi[0] = std::max(hi[0], x.x);
+    lo[1] = std::min(lo[1], x.y), hi[1] = std::max(hi[1], x.y);
+  }
+  const double spacing = std::sqrt((hi[0] - lo[0]) * (hi[1] - lo[1]) / double(n));
+  std::vector<Point2> q = p;
+  for (std::int64_t i = 0; i < n; ++i) {  // (a hashed normal step: the same on every run)
+    const double u1 = (double(bench::hash64(std::uint64_t(i), 1) >> 11) + 0.5) / 9007199254740992.0;
+    const double u2 = double(bench::hash64(std::uint64_t(i), 2) >> 11) / 9007199254740992.0;
+    const double r = f * spacing * std::sqrt(-2 * std::log(u1));
+    q[std::size_t(i)].x += r * std::cos(6.283185307179586 * u2);
+    q[std::size_t(i)].y += r * std::sin(6.283185307179586 * u2);
+  }
+  Delaunay2dOptions o;
+  o.backend = b;
+  Triangulation2d fresh;
+  const double fresh_e2e = median_ms(
+      reps, [] {}, [&] { fresh = delaunay2d(q, o); });
+  std::unique_ptr<DynamicDelaunay2d> d;
+  auto build = [&] { d = std::make_unique<DynamicDelaunay2d>(&p.data()->x, n, o); };
+  const double mv = median_ms(reps, build, [&] { d->move(&q.data()->x, n); });
+  print_phases(d->stats());
+  const bool rebuilt = d->stats().counters.at("move_rebuilt") != 0;
+  Triangulation2d got;
+  const double mv_e2e = median_ms(reps, build, [&] {
+    d->move(&q.data()->x, n);
+    got = d->triangulation();
+  });
+  const bool same = Two::simplices(got) == Two::simplices(fresh);
+  double fresh_dev = -1, mv_dev = -1;
+#ifdef GPUGEOM_HAVE_CUDA
+  if (b == Backend::Cuda) {
+    double *dp = nullptr, *dq = nullptr;
+    const std::size_t bytes = p.size() * sizeof(Point2);
+    if (cudaMalloc(&dp, bytes) == cudaSuccess && cudaMalloc(&dq, bytes) == cudaSuccess &&
+        cudaMemcpy(dp, p.data(), bytes, cudaMemcpyHostToDevice) == cudaSuccess &&
+        cudaMemcpy(dq, q.data(), bytes, cudaMemcpyHostToDevice) == cudaSuccess) {
+      fresh_dev = median_ms(
+          reps, [] {}, [&] { delaunay2d_device(dq, n, o); });
+      mv_dev = median_ms(
+          reps,
+          [&] {
+            d = std::make_unique<DynamicDelaunay2d>(DynamicDelaunay2d::from_device(dp, n, o));
+          },
+          [&] { d->move_device(dq, n); });
+    }
+    cudaFree(dp);
+    cudaFree(dq);
+  }
+#endif
+  std::printf(
+      "2D %-10s %-5s n=%-10lld moved %-6g fresh e2e %9.2f  fresh dev %9.2f  move %9.2f  move "
+      "e2e %9.2f  move dev %9.2f  (dev ratio %.3f)  %s, %s\n",
+      row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, f, fresh_e2e, fresh_dev,
+      mv, mv_e2e, mv_dev, fresh_dev > 0 ? mv_dev / fresh_dev : mv / fresh_e2e,
+      rebuilt ? "rebuilt" : "repaired", same ? "same simplices" : "DIFFERENT SIMPLICES");
+  std::fflush(stdout);
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   int reps = 3, dim = 2;
+  double move = 0;
   std::string which = "all";
   std::vector<Row> rows;
   for (int i = 1; i < argc; ++i) {
@@ -184,9 +252,12 @@ int main(int argc, char** argv) {
       dim = 3;
     else if (a == "--2d")
       dim = 2;
+    else if (a == "--move" && i + 1 < argc)
+      move = std::atof(argv[++i]);
     else {
       rows.push_back(parse(a));
       rows.back().dim = dim;
+      rows.back().move = move;
     }
   }
   if (rows.empty()) rows = {{"uniform", 1000000, 1000}, {"uniform", 1000000, 100000}};
@@ -194,6 +265,9 @@ int main(int argc, char** argv) {
   std::printf("gpugeom_bench_dynamic: Delaunay, k of n points inserted (ms, median of %d)%s%s\n",
               reps, dev.available ? "; GPU: " : "", dev.available ? dev.name.c_str() : "");
   for (Backend b : bench::backends(which))
-    for (const Row& r : rows) r.dim == 2 ? run_row<Two>(r, b, reps) : run_row<Three>(r, b, reps);
+    for (const Row& r : rows)
+      r.move > 0   ? run_move(r, r.move, b, reps)
+      : r.dim == 2 ? run_row<Two>(r, b, reps)
+                   : run_row<Three>(r, b, reps);
   return 0;
 }

@@ -127,6 +127,15 @@ class DynamicDelaunay2d {
   // coordinates or too many points in all; the object is then unchanged.
   void insert(const double* xy, std::int64_t n);
   void insert_device(const double* device_xy, std::int64_t n);
+  // New coordinates for every point (n == num_points(); host memory, or executor memory for
+  // move_device), and the triangulation brought up to date: where the kept one is still a
+  // triangulation of the moved points (every triangle still positively oriented, checked
+  // exactly) it is flipped until Delaunay, which costs what the points' moves disturbed;
+  // otherwise (or where points came to coincide or to part) it is made afresh (stats counter
+  // "move_rebuilt"). Any displacement gives the right triangulation. Throws as insert, and
+  // Error(InvalidArgument) for another count; the object is then unchanged.
+  void move(const double* xy, std::int64_t n);
+  void move_device(const double* device_xy, std::int64_t n);
 
   std::int64_t num_points() const;
   std::int64_t num_triangles() const;

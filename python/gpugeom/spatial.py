@@ -73,6 +73,30 @@ class _OfPoints:
             self.__dict__.pop(name, None)
         self._take(r)
 
+    def move(self, points):
+        """gpugeom's own (issue 47), in incremental mode: new coordinates for every point
+        (shape (npoints, ndim), the same kinds of arrays as add_points takes). The result is
+        exactly that of a new object on the moved points. A 2D ``Delaunay`` repairs its kept
+        triangulation where it is still one with the points moved (flips), else makes it
+        afresh (``stats["counters"]["move_rebuilt"]``); the other structures compute again.
+        Errors as add_points; a call that raises leaves the object unchanged."""
+        if not self._incremental:
+            raise RuntimeError("incremental mode not enabled or already closed")
+        new = self._more_points(points)
+        if new.shape[0] != self.npoints:
+            raise ValueError(f"points must have shape ({self.npoints}, {self.ndim}): new "
+                             f"coordinates for every point, got {tuple(new.shape)}")
+        r = self._moved(new)
+        if r is None:
+            r = self._compute(new, restart=True)
+        self._set_points(new)
+        for name in self._cached:
+            self.__dict__.pop(name, None)
+        self._take(r)
+
+    def _moved(self, new):
+        return None
+
     def close(self):
         """Ends incremental mode, releasing its kept state (as SciPy's); add_points then
         raises RuntimeError. The results stay readable."""
@@ -163,6 +187,12 @@ class Delaunay(_OfPoints):
         if self._dyn is None:
             return None
         self._dyn.insert(new)
+        return self._dyn.result()
+
+    def _moved(self, new):
+        if self._dyn is None or not hasattr(self._dyn, "move"):
+            return None
+        self._dyn.move(new)
         return self._dyn.result()
 
     def _take(self, r):

@@ -97,6 +97,22 @@ void dynamic2d_insert(Dynamic2dState& self, const AnyArray& points) {
   });
 }
 
+void dynamic2d_move(Dynamic2dState& self, const AnyArray& points) {
+  const Input in = points_input(points, 2);
+  if (in.on_device != self.on_device)
+    throw nb::value_error(
+        self.on_device ? "points must be on the GPU, as the triangulation's first points were"
+                       : "points must be in host memory, as the triangulation's first "
+                         "points were");
+  const std::int64_t n = in.shape[0];
+  unlocked([&] {
+    if (in.on_device)
+      self.t.move_device(pts(in), n);
+    else
+      self.t.move(pts(in), n);
+  });
+}
+
 nb::dict dynamic2d_result(const Dynamic2dState& self) {
   nb::dict r;
   const std::int64_t n = self.t.num_points();
@@ -485,6 +501,7 @@ void bind_spatial(nb::module_& m) {
       .def("__init__", &dynamic2d_init, "points"_a, "backend"_a = "auto", "stream"_a = 0,
            "threads"_a = 0)
       .def("insert", &dynamic2d_insert, "points"_a)
+      .def("move", &dynamic2d_move, "points"_a)
       .def("result", &dynamic2d_result)
       .def_prop_ro("npoints", [](const Dynamic2dState& s) { return s.t.num_points(); });
   nb::class_<Dynamic3dState>(m, "DynamicDelaunay3d")

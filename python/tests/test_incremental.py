@@ -107,3 +107,30 @@ def test_a_refused_call_leaves_the_object_as_it_was(rng):
                 assert now == v or k == "stats", k
         obj.add_points(p[300:])  # and it goes on working
         assert obj.npoints == 500
+
+
+def test_move_gives_the_fresh_result(backend, rng):
+    p = rng.random((4000, 2))
+    d = gpugeom.Delaunay(p, incremental=True, backend=backend)
+    q3 = rng.random((500, 3))
+    d3 = gpugeom.Delaunay(q3, incremental=True, backend=backend)
+    spacing = 1 / np.sqrt(len(p))
+    for scale in (1e-4, 0.3, 5.0):
+        q = p + rng.normal(0, scale * spacing, p.shape)
+        d.move(q)
+        f = gpugeom.Delaunay(q, backend=backend)
+        assert simplex_set(d.simplices) == simplex_set(f.simplices)
+        np.testing.assert_array_equal(d.points, q)
+        assert d.convex_hull.shape == f.convex_hull.shape
+        d3.move(q3 + rng.normal(0, scale * 0.1, q3.shape))
+        assert simplex_set(d3.simplices) == simplex_set(gpugeom.Delaunay(np.asarray(d3.points), backend=backend).simplices)
+    with pytest.raises(ValueError, match=r"shape \(4000, 2\)"):
+        d.move(p[:10])
+    bad = p.copy()
+    bad[3] = np.nan
+    before = d.simplices.copy()
+    with pytest.raises(ValueError):
+        d.move(bad)
+    np.testing.assert_array_equal(d.simplices, before)
+    with pytest.raises(RuntimeError):
+        gpugeom.Delaunay(p).move(p)

@@ -68,6 +68,10 @@ class Kept {
   // on, and brings the triangulation up to date. Throws as triangulate; the state is then
   // unchanged.
   virtual void insert(const double* xy, std::int64_t n, bool on_device, Stats& st) = 0;
+  // New coordinates for all points() points (as insert's), and the triangulation brought up to
+  // date: repaired from the kept one where that is still a triangulation of the moved points,
+  // else made afresh. Throws as insert; the state is then unchanged.
+  virtual void move(const double* xy, bool on_device, Stats& st) = 0;
   virtual std::int64_t points() const = 0;
   virtual std::int64_t triangles() const = 0;
   virtual std::int64_t duplicates() const = 0;

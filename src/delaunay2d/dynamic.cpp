@@ -62,6 +62,12 @@ void DynamicDelaunay2d::insert(const double* xy, std::int64_t n) {
 void DynamicDelaunay2d::insert_device(const double* device_xy, std::int64_t n) {
   impl_->insert(device_xy, n, impl_->backend == Backend::Cuda);
 }
+void DynamicDelaunay2d::move(const double* xy, std::int64_t n) {
+  impl_->move(xy, n, false);
+}
+void DynamicDelaunay2d::move_device(const double* device_xy, std::int64_t n) {
+  impl_->move(device_xy, n, impl_->backend == Backend::Cuda);
+}
 
 std::int64_t DynamicDelaunay2d::num_points() const {
   return impl_->kept->points();

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <utility>
 
 #include "gpugeom/common.hpp"
@@ -28,6 +29,21 @@ struct DynamicState {
     st.backend = backend;
     const auto t0 = std::chrono::steady_clock::now();
     kept->insert(p, n, on_device, st);
+    st.phase_ms.push_back(
+        {"total",
+         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
+    stats = std::move(st);
+  }
+  // New coordinates for all n points (n must be the count kept).
+  void move(const double* p, std::int64_t n, bool on_device) {
+    if (n != kept->points())
+      throw Error(ErrorCode::InvalidArgument,
+                  "move: " + std::to_string(n) + " points given for a triangulation of " +
+                      std::to_string(kept->points()) + " (give new coordinates for every point)");
+    Stats st;
+    st.backend = backend;
+    const auto t0 = std::chrono::steady_clock::now();
+    kept->move(p, on_device, st);
     st.phase_ms.push_back(
         {"total",
          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});

@@ -619,3 +619,67 @@ TEST(DynamicDelaunay2d, DeviceEntriesOnTheCpuExecutor) {
   EXPECT_TRUE(std::equal(host.neighbors.begin(), host.neighbors.end(), dev.neighbors.get()));
   expect_valid(pts, host);
 }
+
+// DynamicDelaunay2d::move (issue 47): after any displacement the triangulation of a fresh call
+// on the moved points. Small moves repair the kept triangulation (counter move_rebuilt 0); moves
+// that fold it, or make points coincide or part, build afresh; grids moved onto exact grids
+// (every square cocircular again) and points moved onto others are included.
+TEST(DynamicDelaunay2d, MoveGivesTheFreshTriangulation) {
+  std::mt19937_64 rng(31);
+  std::int64_t repaired = 0, rebuilt = 0;
+  auto check = [&](DynamicDelaunay2d& d, const std::vector<Point2>& q, const char* what) {
+    SCOPED_TRACE(what);
+    d.move(&q.data()->x, std::int64_t(q.size()));
+    const auto t = d.triangulation();
+    expect_valid(q, t);
+    const auto fresh = delaunay2d(q, cpu());
+    EXPECT_EQ(gg_del2d::triangle_set(t), gg_del2d::triangle_set(fresh));
+    EXPECT_EQ(t.duplicate_of, fresh.duplicate_of);
+    (d.stats().counters.at("move_rebuilt") ? rebuilt : repaired)++;
+  };
+  auto cases = gg_del2d::degenerate_cases();
+  for (const auto& c : gg_del2d::distribution_cases({1000, 20000}, 37)) cases.push_back(c);
+  for (const auto& c : cases) {
+    if (c.name.rfind("two_segments", 0) == 0) continue;
+    SCOPED_TRACE(c.name);
+    const std::vector<Point2>& p = c.pts;
+    DynamicDelaunay2d d(&p.data()->x, std::int64_t(p.size()), cpu());
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    for (const auto& x : p) {
+      lo[0] = std::min(lo[0], x.x), hi[0] = std::max(hi[0], x.x);
+      lo[1] = std::min(lo[1], x.y), hi[1] = std::max(hi[1], x.y);
+    }
+    const double spacing = std::sqrt((hi[0] - lo[0]) * (hi[1] - lo[1]) / double(p.size())) + 1e-300;
+    auto jitter = [&](double f) {
+      std::normal_distribution<double> N(0, f * spacing);
+      std::vector<Point2> q = p;
+      for (auto& x : q) x.x += N(rng), x.y += N(rng);
+      return q;
+    };
+    check(d, jitter(1e-3), "moved by 1e-3 of the spacing");
+    check(d, jitter(0.3), "moved by 0.3 of the spacing");
+    check(d, p, "moved back (degenerate again)");
+    std::vector<Point2> q = p;
+    q[q.size() / 2] = q[0];  // one point onto another
+    check(d, q, "a point onto another");
+    check(d, p, "and apart again");
+    q = p;
+    std::shuffle(q.begin(), q.end(), rng);  // everything scrambled
+    check(d, q, "scrambled");
+  }
+  // Both paths ran: the repair (tiny moves, and some of 0.3 of the spacing) and the rebuild (a
+  // single sliver turned over sends a move there today: local removal is to come).
+  EXPECT_GE(repaired, 5);
+  EXPECT_GT(rebuilt, 20);
+}
+
+// A move with another count, or bad coordinates, is refused and leaves the object as it was.
+TEST(DynamicDelaunay2d, RefusedMoveLeavesItAsItWas) {
+  auto p = generate2d("uniform", 3000, 4);
+  DynamicDelaunay2d d(&p.data()->x, 3000, cpu());
+  const auto before = d.triangulation();
+  EXPECT_THROW(d.move(&p.data()->x, 2999), Error);
+  p[5].x = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(d.move(&p.data()->x, 3000), Error);
+  EXPECT_EQ(d.triangulation().triangles, before.triangles);
+}

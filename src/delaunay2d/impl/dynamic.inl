@@ -78,22 +78,66 @@ inline std::int64_t count_non_flat(Exec& ex, const KeptArrays& R) {
   return c;
 }
 
-// The state after appending `add` points (host memory, or executor memory when on_device) to K,
-// built beside K: K is not touched, so a call that throws leaves it as it was.
-inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xy, std::int64_t add,
-                              bool on_device, bool profile, Stats& st) {
-  const std::int64_t n = K.n + add;
-  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
-                                           "a 2D Delaunay triangulation", "points");
-  auto t0 = std::chrono::steady_clock::now();
-  KeptArrays R;
-  R.xy = ex.template alloc<double>(std::size_t(2 * n));
-  if (K.n) ex.copy(K.xy.data(), 2 * K.n, R.xy.data());
-  if (on_device)
-    ex.copy(xy, 2 * add, R.xy.data() + 2 * K.n);
-  else
-    ex.from_host(xy, 2 * add, R.xy.data() + 2 * K.n);
-  st.phase_ms.push_back({"append", ms_since(t0)});
+// Is the kept triangulation still a triangulation with the points at xy (n points, the same
+// distinct points, the same duplicates)? Every triangle positively oriented (flat ones
+// included: the perturbation orders them), every hull edge with the kernel point s strictly on
+// its left (so the infinite triangles, cones from s, are positive too), and s inside exactly one
+// triangle: with every triangle positive the triangles then cover the plane once (the number of
+// triangles over a point is the same for every point; a boundary that wound twice round s would
+// cover s twice). All exact, with the perturbation (s as index n: after any point it equals).
+inline bool still_a_triangulation(Exec& ex, const KeptArrays& K, const double* xy, std::int64_t n) {
+  const std::int32_t* tri = K.tri.data();
+  const std::int32_t* nb = K.nb.data();
+  const double s0 = K.kernel[0], s1 = K.kernel[1];
+  const std::int32_t sid = std::int32_t(n);
+  auto cnt = ex.template alloc<std::int64_t>(2);  // bad tests, triangles holding s
+  std::int64_t* c = cnt.data();
+  ex.fill(c, 2, std::int64_t(0));
+  ex.for_each_index(
+      K.nt, GG_LAMBDA(std::int64_t t) {
+        double scratch[kOrient2dScratch];
+        const double s[2] = {s0, s1};
+        std::int32_t v[3];
+        const double* p[3];
+        for (int k = 0; k < 3; ++k) v[k] = tri[3 * t + k], p[k] = xy + 2 * std::int64_t(v[k]);
+        std::int64_t bad = pred::orient2d_sos(p[0], v[0], p[1], v[1], p[2], v[2], scratch) <= 0;
+        bool holds = true;
+        for (int k = 0; k < 3; ++k) {
+          const int a = (k + 1) % 3, b = (k + 2) % 3;
+          const bool left = pred::orient2d_sos(p[a], v[a], p[b], v[b], s, sid, scratch) > 0;
+          holds = holds && left;
+          if (nb[3 * t + k] < 0 && !left) ++bad;
+        }
+        if (bad) atomic_add(&c[0], bad);
+        if (holds) atomic_add(&c[1], std::int64_t(1));
+      });
+  std::int64_t h[2];
+  ex.to_host(c, 2, h);
+  return h[0] == 0 && h[1] == 1;
+}
+
+// How many entries of two duplicate maps (null: no duplicate) differ.
+inline std::int64_t dup_changes(Exec& ex, const std::int32_t* a, const std::int32_t* b,
+                                std::int64_t n) {
+  auto cnt = ex.template alloc<std::int64_t>(1);
+  ex.transform_reduce_into(
+      n, GG_LAMBDA(std::int64_t i)->std::int64_t { return (a ? a[i] : -1) != (b ? b[i] : -1); },
+      std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
+  std::int64_t c = 0;
+  ex.to_host(cnt.data(), 1, &c);
+  return c;
+}
+
+// How the new state is reached from the kept one.
+enum class Update { Insert, Move };
+
+// The state for the n points in R.xy (the kept points with `add` appended, or all of them
+// moved), built beside K: K is not touched, so a call that throws leaves it as it was.
+// Insert: the new points go into the kept triangulation. Move: the kept triangulation, where it
+// is still one with the points moved (still_a_triangulation), is flipped until Delaunay;
+// otherwise the points are triangulated afresh (counter "move_rebuilt").
+inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::int64_t n,
+                              Update how, bool profile, Stats& st) {
   auto keep = [&](Prepared& P, typename Triangulator::Finished& f) {
     R.n = n;
     R.nt = f.count;
@@ -104,30 +148,61 @@ inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xy, s
     if (P.duplicates) R.dup = std::move(P.dup);
     R.nout = count_non_flat(ex, R);
   };
-  if (!K.n) {  // the first points: a fresh triangulation
+  auto fresh = [&] {
     triangulate_core(
         ex, R.xy.data(), n, true, profile, st, [](Prepared&) {}, keep, false);
     ex.sync();
-    return R;
-  }
-  t0 = std::chrono::steady_clock::now();
+    return std::move(R);
+  };
+  if (!K.n) return fresh();  // the first points
+  auto t0 = std::chrono::steady_clock::now();
   Prepared P = prepare(ex, R.xy.data(), n, true);
   st.counters["points"] = n;
   st.counters["distinct_points"] = P.m;
   st.counters["duplicates"] = P.duplicates;
-  st.counters["inserted_points"] = P.m - (K.n - K.ndup);
-  auto d_hint = ex.template alloc<std::int32_t>(std::size_t(n));
-  mesh::curve_hints(ex, P.orig.data(), P.m, n, K.n, d_hint.data());
+  auto d_hint = ex.template alloc<std::int32_t>(how == Update::Insert ? std::size_t(n) : 0);
+  if (how == Update::Insert) {
+    st.counters["inserted_points"] = P.m - (K.n - K.ndup);
+    mesh::curve_hints(ex, P.orig.data(), P.m, n, K.n, d_hint.data());
+  } else {
+    const bool same_points =
+        P.duplicates == K.ndup && dup_changes(ex, K.ndup ? K.dup.data() : nullptr,
+                                              P.duplicates ? P.dup.data() : nullptr, n) == 0;
+    const bool kept = same_points && still_a_triangulation(ex, K, R.xy.data(), n);
+    st.counters["move_rebuilt"] = !kept;
+    if (!kept) {
+      st.phase_ms.push_back({"move_check", ms_since(t0)});
+      return fresh();
+    }
+  }
   auto d_tri = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));  // (mapped in place)
   auto d_twin = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));
   ex.copy(K.tri.data(), 3 * K.nt, d_tri.data());
   twins_of_neighbours(ex, K.tri.data(), K.nb.data(), K.nt, d_twin.data());
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
-  auto f = run_from_start(ex, P, n, d_tri.data(), K.nt, d_twin.data(), d_hint.data(), profile, st,
-                          K.kernel, false, true);
+  auto f = run_from_start(ex, P, n, d_tri.data(), K.nt, d_twin.data(),
+                          how == Update::Insert ? d_hint.data() : nullptr, profile, st, K.kernel,
+                          false, how == Update::Insert);
   keep(P, f);
   ex.sync();
+  return R;
+}
+
+// The kept points with `add` more appended (host memory, or executor memory when on_device), or
+// all n replaced (move).
+inline KeptArrays with_points(Exec& ex, const KeptArrays& K, const double* xy, std::int64_t add,
+                              bool on_device, bool replace, Stats& st) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::int64_t keep = replace ? 0 : K.n, n = keep + add;
+  KeptArrays R;
+  R.xy = ex.template alloc<double>(std::size_t(2 * n));
+  if (keep) ex.copy(K.xy.data(), 2 * keep, R.xy.data());
+  if (on_device)
+    ex.copy(xy, 2 * add, R.xy.data() + 2 * keep);
+  else
+    ex.from_host(xy, 2 * add, R.xy.data() + 2 * keep);
+  st.phase_ms.push_back({"append", ms_since(t0)});
   return R;
 }
 
@@ -138,8 +213,18 @@ class KeptOn final : public Kept {
     if (n == 0 && K_.n) return;
     Exec ex(run_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
-    KeptArrays R = kept_insert(ex, K_, xy, n, on_device, run_.profile, st);
-    K_ = std::move(R);
+    ::gpugeom::detail::require_device_memory(ex, K_.n + n, kLeastBytesPerPoint,
+                                             "a 2D Delaunay triangulation", "points");
+    KeptArrays R = with_points(ex, K_, xy, n, on_device, false, st);
+    K_ = kept_update(ex, K_, std::move(R), K_.n + n, Update::Insert, run_.profile, st);
+  }
+  void move(const double* xy, bool on_device, Stats& st) override {
+    Exec ex(run_);
+    const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+    ::gpugeom::detail::require_device_memory(ex, K_.n, kLeastBytesPerPoint,
+                                             "a 2D Delaunay triangulation", "points");
+    KeptArrays R = with_points(ex, K_, xy, K_.n, on_device, true, st);
+    K_ = kept_update(ex, K_, std::move(R), K_.n, Update::Move, run_.profile, st);
   }
   std::int64_t points() const override { return K_.n; }
   std::int64_t triangles() const override { return K_.nout; }
