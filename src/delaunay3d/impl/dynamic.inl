@@ -74,6 +74,37 @@ inline typename Exec::template Buffer<Tet> keep_store(Exec& ex, Triangulator& T,
   return out;
 }
 
+// Per slot of T's store: 1 where the insertion rewrote it (a slot past the kept ones, or one
+// whose tetrahedron or neighbours differ from the kept store's, put in prepared indices with
+// inv). The faces between two slots it did not rewrite are locally Delaunay, as they were.
+inline typename Exec::template Buffer<std::int8_t> touched_slots(Exec& ex, Triangulator& T,
+                                                                 const KeptArrays& K,
+                                                                 const std::int32_t* inv) {
+  const std::int64_t used = T.counters().used, kept_used = K.used;
+  auto out = ex.template alloc<std::int8_t>(std::size_t(used));
+  std::int8_t* o = out.data();
+  const Tet* tet = T.tet_.data();
+  const Tet* kept = K.tet.data();
+  const std::int32_t I = T.m_;
+  ex.for_each_index(
+      used, GG_LAMBDA(std::int64_t t) {
+        if (t >= kept_used) {
+          o[t] = 1;
+          return;
+        }
+        const Tet a = tet[t], b = kept[t];
+        bool same = true;
+        for (int k = 0; k < 4; ++k) {
+          const std::int32_t v = b.v[0] == -1                            ? b.v[k]
+                                 : b.v[k] == Triangulator::kKeptInfinity ? I
+                                                                         : inv[b.v[k]];
+          same = same && a.v[k] == v && a.n[k] == b.n[k];
+        }
+        o[t] = !same;
+      });
+  return out;
+}
+
 // The state after appending `add` points (host memory, or executor memory when on_device) to K,
 // built beside K: K is not touched, so a call that throws leaves it as it was.
 inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xyz, std::int64_t add,
@@ -99,6 +130,8 @@ inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xyz, 
   Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, opt.max_flip_rounds, opt.progress, st);
   if (!K.n) {
     T.run();
+    st.phase_ms.push_back({"insert_flip", ms_since(t0)});
+    repair_phase(ex, T, S.m, opt.progress, st);
   } else {
     st.counters["inserted_points"] = S.m - (K.n - K.ndup);
     // input index -> prepared index; each new point's walk start (prepared indices)
@@ -120,9 +153,11 @@ inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xyz, 
     T.start_from(K.tet.data(), K.used, inv, near);
     st.phase_ms.push_back({"start", ms_since(t0)});
     T.insert_all();
+    st.phase_ms.push_back({"insert_flip", ms_since(t0)});
+    // Only the slots the insertions rewrote can hold faces that are not locally Delaunay.
+    auto d_touched = touched_slots(ex, T, K, inv);
+    repair_phase(ex, T, S.m, opt.progress, st, d_touched.data());
   }
-  st.phase_ms.push_back({"insert_flip", ms_since(t0)});
-  repair_phase(ex, T, S.m, opt.progress, st);
   t0 = Clock::now();
   T.report();
   R.n = n;

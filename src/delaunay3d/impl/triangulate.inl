@@ -1104,9 +1104,11 @@ class Triangulator {
 
   // Every face of the tetrahedralisation tested; the vertices of faces that are not locally
   // Delaunay are marked (failed: m + 1 entries). Counts the flat finite tetrahedra (flat_ext)
-  // in flat. Returns the number of failed faces.
-  std::int64_t find_failed(typename Exec::template Buffer<std::int8_t>& failed,
-                           std::int64_t& flat) {
+  // in flat. Returns the number of failed faces. only (per slot, or null: all): the faces of
+  // these slots alone (the others' faces are known to be locally Delaunay: DynamicDelaunay3d's
+  // slots that no flip or split rewrote).
+  std::int64_t find_failed(typename Exec::template Buffer<std::int8_t>& failed, std::int64_t& flat,
+                           const std::int8_t* only = nullptr) {
     const Geo g = g_;
     const Mesh M = M_;
     std::int8_t* f = failed.data();
@@ -1116,10 +1118,10 @@ class Triangulator {
     ex_.for_each_index(
         c.used, GG_LAMBDA(std::int64_t t) {
           const Tet T = M.tet[t];
-          if (T.v[0] < 0) return;
+          if (T.v[0] < 0 || (only && !only[t])) return;
           for (int k = 0; k < 4; ++k) {
             const std::int32_t nb = simplex_of(T.n[k]);
-            if (nb < t) continue;  // (each face once, from its higher slot)
+            if (nb < t && (!only || only[nb])) continue;  // (each face once, from its higher slot)
             const std::int32_t d = M.tet[nb].v[loc_of(T.n[k])];
             if (!in_sphere_ext(g, T.v, d)) continue;
             atomic_add(&ctr->failed_faces, std::int64_t(1));
@@ -1266,12 +1268,14 @@ inline Prepared prepare_points(Exec& ex, const double* in, std::int64_t n, bool 
 // After phase 1: every face tested, and phase 2 (repair.inl) where some are not locally
 // Delaunay. The store is then the Delaunay tetrahedralisation of the perturbed points, flat
 // tetrahedra included; returns how many of those it holds. Counters and phases into st.
+// only: as find_failed's.
 inline std::int64_t repair_phase(Exec& ex, Triangulator& T, std::int64_t m,
-                                 const ProgressFn& progress, Stats& st) {
+                                 const ProgressFn& progress, Stats& st,
+                                 const std::int8_t* only = nullptr) {
   auto t0 = Clock::now();
   auto failed = ex.template alloc<std::int8_t>(std::size_t(m + 1));
   std::int64_t nflat = 0;
-  const std::int64_t nfailed = T.find_failed(failed, nflat);
+  const std::int64_t nfailed = T.find_failed(failed, nflat, only);
   st.phase_ms.push_back({"find_failed", ms_since(t0)});
   t0 = Clock::now();
   RepairCount rc;
