@@ -173,6 +173,15 @@ class DynamicDelaunay3d {
   // coordinates or too many points in all; the object is then unchanged.
   void insert(const double* xyz, std::int64_t n);
   void insert_device(const double* device_xyz, std::int64_t n);
+  // New coordinates for every point (n == num_points(); host memory, or executor memory for
+  // move_device), and the tetrahedralisation brought up to date: where the kept one is still a
+  // tetrahedralisation of the moved points (every tetrahedron still positively oriented,
+  // checked exactly) star splaying repairs it; otherwise (or where points came to coincide or
+  // to part) it is made afresh (stats counter "move_rebuilt"). Any displacement gives the right
+  // tetrahedralisation. Throws as insert, and Error(InvalidArgument) for another count; the
+  // object is then unchanged.
+  void move(const double* xyz, std::int64_t n);
+  void move_device(const double* device_xyz, std::int64_t n);
 
   std::int64_t num_points() const;
   std::int64_t num_tetrahedra() const;

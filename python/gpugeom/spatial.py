@@ -76,9 +76,10 @@ class _OfPoints:
     def move(self, points):
         """gpugeom's own (issue 47), in incremental mode: new coordinates for every point
         (shape (npoints, ndim), the same kinds of arrays as add_points takes). The result is
-        exactly that of a new object on the moved points. A 2D ``Delaunay`` repairs its kept
-        triangulation where it is still one with the points moved (flips), else makes it
-        afresh (``stats["counters"]["move_rebuilt"]``); the other structures compute again.
+        exactly that of a new object on the moved points. ``Delaunay`` repairs its kept
+        triangulation where it is still one with the points moved (2D: flips, 3D: star
+        splaying), else makes it afresh (``stats["counters"]["move_rebuilt"]``); the other
+        structures compute again.
         Errors as add_points; a call that raises leaves the object unchanged."""
         if not self._incremental:
             raise RuntimeError("incremental mode not enabled or already closed")

@@ -286,6 +286,22 @@ void dynamic3d_insert(Dynamic3dState& self, const AnyArray& points) {
   });
 }
 
+void dynamic3d_move(Dynamic3dState& self, const AnyArray& points) {
+  const Input in = points_input(points, 3);
+  if (in.on_device != self.on_device)
+    throw nb::value_error(
+        self.on_device ? "points must be on the GPU, as the triangulation's first points were"
+                       : "points must be in host memory, as the triangulation's first "
+                         "points were");
+  const std::int64_t n = in.shape[0];
+  unlocked([&] {
+    if (in.on_device)
+      self.t.move_device(pts(in), n);
+    else
+      self.t.move(pts(in), n);
+  });
+}
+
 nb::dict dynamic3d_result(const Dynamic3dState& self) {
   if (self.on_device)
     return tets_dict(unlocked([&] { return self.t.device_tetrahedralisation(); }), self.device);
@@ -508,6 +524,7 @@ void bind_spatial(nb::module_& m) {
       .def("__init__", &dynamic3d_init, "points"_a, "backend"_a = "auto", "stream"_a = 0,
            "threads"_a = 0)
       .def("insert", &dynamic3d_insert, "points"_a)
+      .def("move", &dynamic3d_move, "points"_a)
       .def("result", &dynamic3d_result)
       .def_prop_ro("npoints", [](const Dynamic3dState& s) { return s.t.num_points(); });
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,

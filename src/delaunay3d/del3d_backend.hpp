@@ -66,6 +66,10 @@ class Kept {
   // on, and brings the tetrahedralisation up to date. Throws as triangulate; the state is then
   // unchanged.
   virtual void insert(const double* xyz, std::int64_t n, bool on_device, Stats& st) = 0;
+  // New coordinates for all points() points (as insert's), and the tetrahedralisation brought
+  // up to date: repaired (phase 2) from the kept one where that is still a tetrahedralisation of
+  // the moved points, else made afresh. Throws as insert; the state is then unchanged.
+  virtual void move(const double* xyz, bool on_device, Stats& st) = 0;
   virtual std::int64_t points() const = 0;
   virtual std::int64_t tetrahedra() const = 0;
   virtual std::int64_t duplicates() const = 0;

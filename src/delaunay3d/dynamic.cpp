@@ -64,6 +64,12 @@ void DynamicDelaunay3d::insert(const double* xyz, std::int64_t n) {
 void DynamicDelaunay3d::insert_device(const double* device_xyz, std::int64_t n) {
   impl_->insert(device_xyz, n, impl_->backend == Backend::Cuda);
 }
+void DynamicDelaunay3d::move(const double* xyz, std::int64_t n) {
+  impl_->move(xyz, n, false);
+}
+void DynamicDelaunay3d::move_device(const double* device_xyz, std::int64_t n) {
+  impl_->move(device_xyz, n, impl_->backend == Backend::Cuda);
+}
 
 std::int64_t DynamicDelaunay3d::num_points() const {
   return impl_->kept->points();

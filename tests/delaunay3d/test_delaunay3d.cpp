@@ -468,3 +468,54 @@ TEST(DynamicDelaunay3d, DeviceEntriesOnTheCpuExecutor) {
   EXPECT_TRUE(std::equal(host.hull_facets.begin(), host.hull_facets.end(), dev.hull_facets.get()));
   expect_valid(pts, host);
 }
+
+// DynamicDelaunay3d::move (issue 47): after any displacement the tetrahedralisation of a fresh
+// call on the moved points; tiny moves of a set without slivers are repaired by star splaying
+// (move_rebuilt 0), moves that turn a tetrahedron over, or make points coincide, build afresh.
+TEST(DynamicDelaunay3d, MoveGivesTheFreshTetrahedralisation) {
+  std::mt19937_64 rng(41);
+  std::int64_t repaired = 0, rebuilt = 0;
+  auto check = [&](DynamicDelaunay3d& d, const std::vector<Point3>& q, const char* what) {
+    SCOPED_TRACE(what);
+    d.move(&q.data()->x, std::int64_t(q.size()));
+    const auto t = d.tetrahedralisation();
+    expect_valid(q, t);
+    const auto fresh = delaunay3d(q, cpu());
+    EXPECT_EQ(gg_del3d::tet_set(t.tetrahedra), gg_del3d::tet_set(fresh.tetrahedra));
+    EXPECT_EQ(t.duplicate_of, fresh.duplicate_of);
+    (d.stats().counters.at("move_rebuilt") ? rebuilt : repaired)++;
+  };
+  std::vector<gg_hull3d::Case> cases = gg_hull3d::degenerate_cases();
+  {  // a jittered lattice: no slivers, so tiny moves keep every tetrahedron positive
+    gg_hull3d::Case c{"jittered lattice", {}};
+    std::uniform_real_distribution<double> U(-0.1, 0.1);
+    for (int i = 0; i < 9; ++i)
+      for (int j = 0; j < 9; ++j)
+        for (int k = 0; k < 9; ++k) c.pts.push_back({i + U(rng), j + U(rng), k + U(rng)});
+    cases.push_back(c);
+  }
+  for (const auto& c : gg_hull3d::distribution_cases({2000}, 43))
+    if (c.name.rfind("two_lines", 0) != 0) cases.push_back(c);
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::vector<Point3>& p = c.pts;
+    DynamicDelaunay3d d(&p.data()->x, std::int64_t(p.size()), cpu());
+    auto jitter = [&](double f) {
+      std::normal_distribution<double> N(0, f);
+      std::vector<Point3> q = p;
+      for (auto& x : q) x.x += N(rng) * (1 + std::abs(x.x)), x.y += N(rng), x.z += N(rng);
+      return q;
+    };
+    check(d, jitter(1e-9), "moved by 1e-9");
+    check(d, jitter(1e-3), "moved by 1e-3");
+    check(d, p, "moved back");
+    std::vector<Point3> q = p;
+    q[q.size() / 2] = q[0];
+    check(d, q, "a point onto another");
+    q = p;
+    std::shuffle(q.begin(), q.end(), rng);
+    check(d, q, "scrambled");
+  }
+  EXPECT_GE(repaired, 2);  // both paths ran
+  EXPECT_GT(rebuilt, 10);
+}

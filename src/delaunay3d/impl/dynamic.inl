@@ -105,35 +105,113 @@ inline typename Exec::template Buffer<std::int8_t> touched_slots(Exec& ex, Trian
   return out;
 }
 
-// The state after appending `add` points (host memory, or executor memory when on_device) to K,
-// built beside K: K is not touched, so a call that throws leaves it as it was.
-inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xyz, std::int64_t add,
-                              bool on_device, const Delaunay3dOptions& opt, Stats& st) {
-  const std::int64_t n = K.n + add;
-  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
-                                           "a 3D Delaunay tetrahedralisation", "points");
-  auto t0 = Clock::now();
+// Is the kept store still a tetrahedralisation with the points at xyz (n points, the same
+// distinct points)? Every tetrahedron positive (infinite ones: cones from the kernel point s,
+// flat ones: ordered by the perturbation), and s inside exactly one finite tetrahedron: with
+// every tetrahedron positive, the number of them over a point is the same for every point, so
+// a hull that wrapped twice round s is caught. All exact, with the perturbation (s as index n:
+// after any point it equals).
+inline bool still_a_tetrahedralisation(Exec& ex, const KeptArrays& K, const double* xyz,
+                                       std::int64_t n) {
+  LeasePool<Exec> pool = flat_test_pool(ex);
+  Geo g{};
+  g.p = xyz;
+  g.m = std::int32_t(n);
+  for (int k = 0; k < 3; ++k) g.s[k] = K.kernel[k];
+  g.lease = pool.view;
+  const Tet* tet = K.tet.data();
+  auto cnt = ex.template alloc<std::int64_t>(2);  // bad tetrahedra, finite ones holding s
+  std::int64_t* c = cnt.data();
+  ex.fill(c, 2, std::int64_t(0));
+  ex.for_each_index(
+      K.used, GG_LAMBDA(std::int64_t t) {
+        const Tet T = tet[t];
+        if (T.v[0] == -1) return;  // dead
+        std::int32_t w[4];
+        bool finite = true;
+        for (int k = 0; k < 4; ++k) {
+          w[k] = T.v[k] == Triangulator::kKeptInfinity ? g.m : T.v[k];
+          finite = finite && w[k] != g.m;
+        }
+        if (orient_ext(g, w[0], w[1], w[2], w[3]) <= 0) atomic_add(&c[0], std::int64_t(1));
+        if (!finite) return;
+        bool holds = true;
+        for (int k = 0; k < 4 && holds; ++k) {  // (s replaced for vertex k, not as infinity)
+          const double* q[4];
+          std::int32_t id[4];
+          for (int j = 0; j < 4; ++j)
+            q[j] = j == k ? g.s : g.p + 3 * std::int64_t(w[j]), id[j] = j == k ? g.m : w[j];
+          int o = pred::orient3d_fast(q[0], q[1], q[2], q[3]);
+          if (!o) o = orient_rest(q[0], id[0], q[1], id[1], q[2], id[2], q[3], id[3], g.lease);
+          holds = o > 0;
+        }
+        if (holds) atomic_add(&c[1], std::int64_t(1));
+      });
+  std::int64_t h[2];
+  ex.to_host(c, 2, h);
+  return h[0] == 0 && h[1] == 1;
+}
+
+// How many entries of two duplicate maps (null: no duplicate) differ.
+inline std::int64_t dup_changes(Exec& ex, const std::int32_t* a, const std::int32_t* b,
+                                std::int64_t n) {
+  auto cnt = ex.template alloc<std::int64_t>(1);
+  ex.transform_reduce_into(
+      n, GG_LAMBDA(std::int64_t i)->std::int64_t { return (a ? a[i] : -1) != (b ? b[i] : -1); },
+      std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
+  std::int64_t c = 0;
+  ex.to_host(cnt.data(), 1, &c);
+  return c;
+}
+
+// The kept points with `add` more appended (host memory, or executor memory when on_device), or
+// all of them replaced (replace: move).
+inline KeptArrays with_points(Exec& ex, const KeptArrays& K, const double* xyz, std::int64_t add,
+                              bool on_device, bool replace, Stats& st) {
+  const auto t0 = Clock::now();
+  const std::int64_t keep = replace ? 0 : K.n, n = keep + add;
   KeptArrays R;
   R.xyz = ex.template alloc<double>(std::size_t(3 * n));
-  if (K.n) ex.copy(K.xyz.data(), 3 * K.n, R.xyz.data());
+  if (keep) ex.copy(K.xyz.data(), 3 * keep, R.xyz.data());
   if (on_device)
-    ex.copy(xyz, 3 * add, R.xyz.data() + 3 * K.n);
+    ex.copy(xyz, 3 * add, R.xyz.data() + 3 * keep);
   else
-    ex.from_host(xyz, 3 * add, R.xyz.data() + 3 * K.n);
+    ex.from_host(xyz, 3 * add, R.xyz.data() + 3 * keep);
   st.phase_ms.push_back({"append", ms_since(t0)});
+  return R;
+}
+
+enum class Update { Insert, Move };
+
+// The state for the n points in R.xyz (the kept points with more appended, or all of them
+// moved), built beside K: K is not touched, so a call that throws leaves it as it was. Insert:
+// the new points go into the kept store. Move: the kept store, where it is still a
+// tetrahedralisation of the moved points (still_a_tetrahedralisation), is repaired by phase 2
+// (star splaying) over every face; otherwise the points are tetrahedralised afresh (counter
+// "move_rebuilt").
+inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::int64_t n,
+                              Update how, const Delaunay3dOptions& opt, Stats& st) {
   Prepared P = prepare_points(ex, R.xyz.data(), n, true, st);
   mesh::SortedPoints<Exec>& S = P.S;
   mesh::Tetra first = P.first;
-  if (K.n)
+  bool fresh = !K.n;
+  if (!fresh && how == Update::Move) {
+    const bool same_points =
+        S.duplicates == K.ndup && dup_changes(ex, K.ndup ? K.dup.data() : nullptr,
+                                              S.duplicates ? S.dup.data() : nullptr, n) == 0;
+    fresh = !(same_points && still_a_tetrahedralisation(ex, K, R.xyz.data(), n));
+    st.counters["move_rebuilt"] = fresh;
+  }
+  if (!fresh)
     for (int k = 0; k < 3; ++k) first.s[k] = K.kernel[k];
-  t0 = Clock::now();
+  auto t0 = Clock::now();
   Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, opt.max_flip_rounds, opt.progress, st);
-  if (!K.n) {
+  if (fresh) {
     T.run();
     st.phase_ms.push_back({"insert_flip", ms_since(t0)});
     repair_phase(ex, T, S.m, opt.progress, st);
   } else {
-    st.counters["inserted_points"] = S.m - (K.n - K.ndup);
+    if (how == Update::Insert) st.counters["inserted_points"] = S.m - (K.n - K.ndup);
     // input index -> prepared index; each new point's walk start (prepared indices)
     auto d_inv = ex.template alloc<std::int32_t>(std::size_t(n));
     auto d_hint = ex.template alloc<std::int32_t>(std::size_t(n));
@@ -154,9 +232,10 @@ inline KeptArrays kept_insert(Exec& ex, const KeptArrays& K, const double* xyz, 
     st.phase_ms.push_back({"start", ms_since(t0)});
     T.insert_all();
     st.phase_ms.push_back({"insert_flip", ms_since(t0)});
-    // Only the slots the insertions rewrote can hold faces that are not locally Delaunay.
+    // Only the slots the insertions rewrote can hold faces that are not locally Delaunay (all
+    // of them may, where the points moved).
     auto d_touched = touched_slots(ex, T, K, inv);
-    repair_phase(ex, T, S.m, opt.progress, st, d_touched.data());
+    repair_phase(ex, T, S.m, opt.progress, st, how == Update::Insert ? d_touched.data() : nullptr);
   }
   t0 = Clock::now();
   T.report();
@@ -186,8 +265,18 @@ class KeptOn final : public Kept {
     if (n == 0 && K_.n) return;
     Exec ex(opt_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
-    KeptArrays R = kept_insert(ex, K_, xyz, n, on_device, opt_, st);
-    K_ = std::move(R);
+    ::gpugeom::detail::require_device_memory(ex, K_.n + n, kLeastBytesPerPoint,
+                                             "a 3D Delaunay tetrahedralisation", "points");
+    KeptArrays R = with_points(ex, K_, xyz, n, on_device, false, st);
+    K_ = kept_update(ex, K_, std::move(R), K_.n + n, Update::Insert, opt_, st);
+  }
+  void move(const double* xyz, bool on_device, Stats& st) override {
+    Exec ex(opt_);
+    const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+    ::gpugeom::detail::require_device_memory(ex, K_.n, kLeastBytesPerPoint,
+                                             "a 3D Delaunay tetrahedralisation", "points");
+    KeptArrays R = with_points(ex, K_, xyz, K_.n, on_device, true, st);
+    K_ = kept_update(ex, K_, std::move(R), K_.n, Update::Move, opt_, st);
   }
   std::int64_t points() const override { return K_.n; }
   std::int64_t tetrahedra() const override { return K_.nout; }
