@@ -15,7 +15,7 @@ if [ -n "${PYBUILD:-}" ]; then
     xargs -r -I{} cp -L {} .devbin/lib/
 fi
 if [ "${ONLY_PY:-0}" = 1 ]; then du -sh .devbin; exit 0; fi
-cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt "$B"/bench/gpugeom_bench_cvd "$B"/bench/gpugeom_bench_del2d "$B"/bench/gpugeom_bench_cdt2d "$B"/bench/gpugeom_bench_hull3d "$B"/bench/gpugeom_bench_del3d "$B"/tools/gpugeom/gpugeom .devbin/
+cp "$B"/tests/test_*_cuda "$B"/bench/gpugeom_bench "$B"/bench/gpugeom_bench_edt "$B"/bench/gpugeom_bench_cvd "$B"/bench/gpugeom_bench_del2d "$B"/bench/gpugeom_bench_cdt2d "$B"/bench/gpugeom_bench_hull3d "$B"/bench/gpugeom_bench_del3d "$B"/bench/gpugeom_bench_dynamic "$B"/tools/gpugeom/gpugeom .devbin/
 [ -x "$B/bench/anchor_cgal" ] && cp "$B/bench/anchor_cgal" .devbin/
 # The carry limit is 64 MiB (every binary together is about 200 MB): EXCLUDE="gpugeom_bench_cvd
 # gpugeom" leaves out what a run needs not; ONLY="delaunay3d del3d" keeps only the binaries whose

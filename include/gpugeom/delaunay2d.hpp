@@ -102,12 +102,13 @@ DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
 // 0 .. n - 1, each insert's follow on. A point equal to an earlier one (given before or in the
 // same call) is not a vertex; duplicate_of names the earliest, as delaunay2d's does.
 //
-// The state lives where the executor runs: device memory of opt.device on CUDA (the device is
-// fixed at construction; the work runs on opt.stream, which must outlive the object), host
-// memory on the CPU executor. Calls on one object must not overlap; separate objects are
-// independent. A call that throws leaves the object as it was. Today an insertion still sorts
-// all points again (the one global step left; the triangulation itself is only repaired where
-// the new points fall): docs/performance.md has what it costs.
+// The state lives on the CPU executor for now: Backend::Auto takes it, and Backend::Cuda and
+// device memory (from_device with another backend) are refused with Error(Unsupported), since
+// the CUDA executor's kept triangulation is still being fixed (DynamicDelaunay3d runs on both).
+// Calls on one object must not overlap; separate objects are independent. A call that throws leaves
+// the object as it was. Today an insertion still sorts all points again (the one global step left;
+// the triangulation itself is only repaired where the new points fall): docs/performance.md has
+// what it costs.
 class DynamicDelaunay2d {
  public:
   // Triangulates n host points (x and y interleaved) on the executor opt picks. Throws as

@@ -16,6 +16,18 @@ struct DynamicDelaunay2d::Impl : detail::DynamicState<del2d::Kept> {
 };
 
 namespace {
+// The CUDA executor's kept 2D triangulation gave wrong results on the H200 (an empty
+// triangulation of 3 points, other triangles than a fresh call's at 10^6; issue 47, session of
+// 2026-11-28): until that is found, the state stays on the CPU executor, where every test passes.
+// Backend::Auto takes the CPU executor; Backend::Cuda (and device memory) is refused.
+Backend dynamic2d_backend(const Delaunay2dOptions& opt) {
+  if (opt.backend == Backend::Cuda)
+    throw Error(ErrorCode::Unsupported,
+                "DynamicDelaunay2d: the CUDA executor is not offered yet (its kept triangulation "
+                "is being fixed); use Backend::Cpu or Backend::Auto (the CPU executor)");
+  return Backend::Cpu;
+}
+
 void refuse_options(const Delaunay2dOptions& opt) {
   if (opt.method == Method::Digital)
     throw Error(ErrorCode::Unsupported,
@@ -35,7 +47,7 @@ DynamicDelaunay2d::DynamicDelaunay2d(const double* xy, std::int64_t n,
   refuse_options(opt);
   del2d::check_count(n);
   auto impl = std::make_unique<Impl>();
-  impl->backend = resolve_backend(opt.backend, opt.device);
+  impl->backend = dynamic2d_backend(opt);
   impl->kept = GG_ON_EXECUTOR(impl->backend, del2d, make_kept, opt);
   impl->insert(xy, n, false);
   impl_ = std::move(impl);
@@ -46,7 +58,11 @@ DynamicDelaunay2d DynamicDelaunay2d::from_device(const double* device_xy, std::i
   refuse_options(opt);
   del2d::check_count(n);
   auto impl = std::make_unique<Impl>();
-  impl->backend = device_entry_backend(opt.backend, opt.device, "DynamicDelaunay2d::from_device");
+  if (opt.backend != Backend::Cpu)
+    throw Error(ErrorCode::Unsupported,
+                "DynamicDelaunay2d::from_device: the CUDA executor is not offered yet (its kept "
+                "triangulation is being fixed); give host points with Backend::Cpu");
+  impl->backend = Backend::Cpu;
   impl->kept = GG_ON_EXECUTOR(impl->backend, del2d, make_kept, opt);
   impl->insert(device_xy, n, true);
   return DynamicDelaunay2d(std::move(impl));

@@ -426,66 +426,23 @@ TEST(CudaDelaunay2d, DigitalMethodSameAsIncrementalLarge) {
   digital_same_as_incremental(cases);
 }
 
-// DynamicDelaunay2d on the CUDA executor (issue 47): after every insertion the triangulation of
-// a fresh call, and at the end the same arrays as the CPU executor's after the same calls.
-TEST(CudaDynamicDelaunay2d, SameAsFreshAndAsCpu) {
-  std::uint64_t seed = 100;
-  auto both = [&](const gg_del2d::Case& c) {
-    SCOPED_TRACE(c.name);
-    Delaunay2dOptions o;
-    o.backend = Backend::Cuda;
-    const auto gpu = gg_del2d::follow_in_chunks(c, o, seed);
-    o.backend = Backend::Cpu;
-    const auto cpu = gg_del2d::follow_in_chunks(c, o, seed);
-    ++seed;
-    EXPECT_EQ(gpu.triangles, cpu.triangles);
-    EXPECT_EQ(gpu.neighbors, cpu.neighbors);
-    EXPECT_EQ(gpu.duplicate_of, cpu.duplicate_of);
-  };
-  for (const auto& c : gg_del2d::degenerate_cases()) both(c);
-  for (const auto& c : gg_del2d::distribution_cases(sizes({100, 20000, 300000}), 29)) {
-    if (c.name.rfind("two_segments", 0) == 0 && c.pts.size() < 4) continue;
-    both(c);
+// DynamicDelaunay2d on a GPU machine (issue 47): Backend::Auto keeps the triangulation on the CPU
+// executor, and the CUDA executor is refused with a clear error, until its kept triangulation
+// (which gave an empty triangulation of 3 points on the H200) is fixed.
+TEST(CudaDynamicDelaunay2d, AutoRunsOnTheCpuAndCudaIsRefused) {
+  const auto p = generate2d("uniform", 5000, 12);
+  DynamicDelaunay2d d(&p.data()->x, 4000);
+  EXPECT_EQ(d.backend(), Backend::Cpu);
+  d.insert(&p[4000].x, 1000);
+  gg_del2d::expect_valid(p, d.triangulation());
+  Delaunay2dOptions o;
+  o.backend = Backend::Cuda;
+  try {
+    DynamicDelaunay2d c(&p.data()->x, 4000, o);
+    ADD_FAILURE() << "the CUDA executor was not refused";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::Unsupported);
   }
-}
-
-// Points on the GPU in (from_device, insert_device), the state and the results left there.
-TEST(CudaDynamicDelaunay2d, DeviceResident) {
-  auto p = generate2d("uniform", sizes({200000, 20000}).front(), 12);
-  const std::int64_t n = std::int64_t(p.size());
-  p.push_back(p[3]);  // a duplicate of a point inserted first
   const gg_test::DeviceCopy dp(p);
-  auto d = DynamicDelaunay2d::from_device(dp.doubles(), n / 2);
-  ASSERT_EQ(d.backend(), Backend::Cuda);
-  d.insert_device(dp.doubles() + 2 * (n / 2), n - n / 2 + 1);
-  EXPECT_EQ(d.num_duplicates(), 1);
-  const auto r = d.device_triangulation();
-  ASSERT_EQ(r.backend, Backend::Cuda);
-  const auto host = d.triangulation();
-  gg_del2d::expect_valid(p, host);
-  ASSERT_EQ(r.num_triangles, std::int64_t(host.num_triangles()));
-  const auto tri = gg_test::from_device(r.triangles, 3 * r.num_triangles);
-  const auto dup = gg_test::from_device(r.duplicate_of, n + 1);
-  EXPECT_TRUE(std::equal(tri.begin(), tri.end(), host.triangles.begin()));
-  EXPECT_TRUE(std::equal(dup.begin(), dup.end(), host.duplicate_of.begin()));
-  EXPECT_EQ(dup[std::size_t(n)], 3);
-}
-
-// The same sequence of calls gives the same arrays run after run (a race would not).
-TEST(CudaDynamicDelaunay2d, Repeatable) {
-  const auto p = generate2d("grid", sizes({400000, 20000}).front(), 13);
-  const std::int64_t n = std::int64_t(p.size());
-  auto run = [&] {
-    Delaunay2dOptions o;
-    o.backend = Backend::Cuda;
-    DynamicDelaunay2d d(&p.data()->x, n - 1000, o);
-    d.insert(&p[std::size_t(n - 1000)].x, 1000);
-    return d.triangulation();
-  };
-  const auto a = run();
-  for (int r = 0; r < 2; ++r) {
-    const auto b = run();
-    ASSERT_EQ(a.triangles, b.triangles);
-    ASSERT_EQ(a.neighbors, b.neighbors);
-  }
+  EXPECT_THROW(DynamicDelaunay2d::from_device(dp.doubles(), 4000), Error);
 }
