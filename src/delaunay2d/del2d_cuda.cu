@@ -35,7 +35,7 @@
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
 #include "mesh/compact.hpp"
-#include "mesh/curve_hints.hpp"
+#include "mesh/kept_points.hpp"
 #include "mesh/decision.hpp"
 #include "mesh/flip_fix.hpp"
 #include "mesh/half_edges.hpp"

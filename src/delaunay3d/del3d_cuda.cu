@@ -23,7 +23,7 @@
 #include "exec/scratch_lease.hpp"
 #include "mesh/adjacency.hpp"
 #include "mesh/compact.hpp"
-#include "mesh/curve_hints.hpp"
+#include "mesh/kept_points.hpp"
 #include "mesh/first_tetrahedron.hpp"
 #include "mesh/flip_fix.hpp"
 #include "mesh/history.hpp"

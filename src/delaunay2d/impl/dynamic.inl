@@ -116,18 +116,6 @@ inline bool still_a_triangulation(Exec& ex, const KeptArrays& K, const double* x
   return h[0] == 0 && h[1] == 1;
 }
 
-// How many entries of two duplicate maps (null: no duplicate) differ.
-inline std::int64_t dup_changes(Exec& ex, const std::int32_t* a, const std::int32_t* b,
-                                std::int64_t n) {
-  auto cnt = ex.template alloc<std::int64_t>(1);
-  ex.transform_reduce_into(
-      n, GG_LAMBDA(std::int64_t i)->std::int64_t { return (a ? a[i] : -1) != (b ? b[i] : -1); },
-      std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
-  std::int64_t c = 0;
-  ex.to_host(cnt.data(), 1, &c);
-  return c;
-}
-
 // How the new state is reached from the kept one.
 enum class Update { Insert, Move };
 
@@ -166,8 +154,8 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     mesh::curve_hints(ex, P.orig.data(), P.m, n, K.n, d_hint.data());
   } else {
     const bool same_points =
-        P.duplicates == K.ndup && dup_changes(ex, K.ndup ? K.dup.data() : nullptr,
-                                              P.duplicates ? P.dup.data() : nullptr, n) == 0;
+        P.duplicates == K.ndup && mesh::dup_changes(ex, K.ndup ? K.dup.data() : nullptr,
+                                                    P.duplicates ? P.dup.data() : nullptr, n) == 0;
     const bool kept = same_points && still_a_triangulation(ex, K, R.xy.data(), n);
     st.counters["move_rebuilt"] = !kept;
     if (!kept) {

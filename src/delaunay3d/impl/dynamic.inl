@@ -152,18 +152,6 @@ inline bool still_a_tetrahedralisation(Exec& ex, const KeptArrays& K, const doub
   return h[0] == 0 && h[1] == 1;
 }
 
-// How many entries of two duplicate maps (null: no duplicate) differ.
-inline std::int64_t dup_changes(Exec& ex, const std::int32_t* a, const std::int32_t* b,
-                                std::int64_t n) {
-  auto cnt = ex.template alloc<std::int64_t>(1);
-  ex.transform_reduce_into(
-      n, GG_LAMBDA(std::int64_t i)->std::int64_t { return (a ? a[i] : -1) != (b ? b[i] : -1); },
-      std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
-  std::int64_t c = 0;
-  ex.to_host(cnt.data(), 1, &c);
-  return c;
-}
-
 // The kept points with `add` more appended (host memory, or executor memory when on_device), or
 // all of them replaced (replace: move).
 inline KeptArrays with_points(Exec& ex, const KeptArrays& K, const double* xyz, std::int64_t add,
@@ -197,8 +185,8 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
   bool fresh = !K.n;
   if (!fresh && how == Update::Move) {
     const bool same_points =
-        S.duplicates == K.ndup && dup_changes(ex, K.ndup ? K.dup.data() : nullptr,
-                                              S.duplicates ? S.dup.data() : nullptr, n) == 0;
+        S.duplicates == K.ndup && mesh::dup_changes(ex, K.ndup ? K.dup.data() : nullptr,
+                                                    S.duplicates ? S.dup.data() : nullptr, n) == 0;
     fresh = !(same_points && still_a_tetrahedralisation(ex, K, R.xyz.data(), n));
     st.counters["move_rebuilt"] = fresh;
   }
