@@ -12,6 +12,7 @@
 
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
+#include "gpugeom/removed.hpp"
 
 namespace gpugeom {
 
@@ -102,13 +103,12 @@ DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
 // 0 .. n - 1, each insert's follow on. A point equal to an earlier one (given before or in the
 // same call) is not a vertex; duplicate_of names the earliest, as delaunay2d's does.
 //
-// The state lives on the CPU executor for now: Backend::Auto takes it, and Backend::Cuda and
-// device memory (from_device with another backend) are refused with Error(Unsupported), since
-// the CUDA executor's kept triangulation is still being fixed (DynamicDelaunay3d runs on both).
-// Calls on one object must not overlap; separate objects are independent. A call that throws leaves
-// the object as it was. Today an insertion still sorts all points again (the one global step left;
-// the triangulation itself is only repaired where the new points fall): docs/performance.md has
-// what it costs.
+// The state lives where the executor runs: device memory of opt.device on CUDA (the device is
+// fixed at construction; the work runs on opt.stream, which must outlive the object), host
+// memory on the CPU executor; both give the same arrays. Calls on one object must not overlap;
+// separate objects are independent. A call that throws leaves the object as it was. Today an
+// insertion still sorts all points again (the one global step left; the triangulation itself is
+// only repaired where the new points fall): docs/performance.md has what it costs.
 class DynamicDelaunay2d {
  public:
   // Triangulates n host points (x and y interleaved) on the executor opt picks. Throws as
@@ -137,8 +137,17 @@ class DynamicDelaunay2d {
   // Error(InvalidArgument) for another count; the object is then unchanged.
   void move(const double* xy, std::int64_t n);
   void move_device(const double* device_xy, std::int64_t n);
+  // Removes the points with the given indices (count of them, each once, none removed before;
+  // host memory, or executor memory for remove_device) and brings the triangulation up to
+  // date. A removed point is no vertex but keeps its index: duplicate_of reads kRemovedPoint
+  // there (an equal point given before or after is a vertex in its place). Throws
+  // Error(InvalidArgument) for a bad index list, and as the constructor where the points left
+  // have no triangulation; the object is then unchanged.
+  void remove(const std::int32_t* indices, std::int64_t count);
+  void remove_device(const std::int32_t* device_indices, std::int64_t count);
 
-  std::int64_t num_points() const;
+  std::int64_t num_points() const;  // every index given so far, removed ones included
+  std::int64_t num_removed() const;
   std::int64_t num_triangles() const;
   std::int64_t num_duplicates() const;
   Backend backend() const;  // the executor holding the state
@@ -146,7 +155,7 @@ class DynamicDelaunay2d {
   // in executor memory as delaunay2d_device returns them (freed when their last pointer goes).
   Triangulation2d triangulation() const;
   DeviceTriangulation2d device_triangulation() const;
-  // Phases and counters of the last construction or insertion.
+  // Phases and counters of the last call that changed the points.
   const Stats& stats() const;
 
  private:

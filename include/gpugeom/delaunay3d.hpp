@@ -18,6 +18,7 @@
 
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
+#include "gpugeom/removed.hpp"
 
 namespace gpugeom {
 
@@ -182,8 +183,17 @@ class DynamicDelaunay3d {
   // object is then unchanged.
   void move(const double* xyz, std::int64_t n);
   void move_device(const double* device_xyz, std::int64_t n);
+  // Removes the points with the given indices (count of them, each once, none removed before;
+  // host memory, or executor memory for remove_device) and brings the tetrahedralisation up to
+  // date. A removed point is no vertex but keeps its index: duplicate_of reads kRemovedPoint
+  // there (an equal point given before or after is a vertex in its place). Throws
+  // Error(InvalidArgument) for a bad index list, and as the constructor where the points left
+  // have no tetrahedralisation; the object is then unchanged.
+  void remove(const std::int32_t* indices, std::int64_t count);
+  void remove_device(const std::int32_t* device_indices, std::int64_t count);
 
-  std::int64_t num_points() const;
+  std::int64_t num_points() const;  // every index given so far, removed ones included
+  std::int64_t num_removed() const;
   std::int64_t num_tetrahedra() const;
   std::int64_t num_duplicates() const;
   Backend backend() const;  // the executor holding the state
@@ -191,7 +201,7 @@ class DynamicDelaunay3d {
   // arrays in executor memory as delaunay3d_device returns them.
   Triangulation3d tetrahedralisation() const;
   DeviceTriangulation3d device_tetrahedralisation() const;
-  // Phases and counters of the last construction or insertion.
+  // Phases and counters of the last call that changed the points.
   const Stats& stats() const;
 
  private:

@@ -172,10 +172,7 @@ class Delaunay(_OfPoints):
         self._take(self._compute(arr))
 
     def _compute(self, arr, restart=False):
-        # 2D: the kept triangulation runs on the CPU executor for now (DynamicDelaunay2d refuses
-        # CUDA until its GPU path is fixed): GPU arrays and backend="cuda" compute afresh.
-        keepable = self.ndim == 3 or (not self._kind.device and self._run["backend"] != "cuda")
-        if self._incremental and self._method == "incremental" and keepable:
+        if self._incremental and self._method == "incremental":
             # kept between calls (DynamicDelaunay2d / 3d): add_points brings it up to date
             make = _core.DynamicDelaunay2d if self.ndim == 2 else _core.DynamicDelaunay3d
             dyn = make(arr, **self._run)

@@ -112,15 +112,18 @@ def test_constrained_delaunay_cupy(rng):
 
 
 def test_incremental_delaunay_stays_on_the_gpu(rng):
-    # issue 47: new points of another kind are moved to the GPU (2D computes afresh there for now)
+    # issue 47: new points of another kind are moved to the GPU; the triangulation is kept there
     p = rng.random((40000, 2))
     d = gpugeom.Delaunay(cupy.asarray(p[:20000]), incremental=True)
     d.add_points(cupy.asarray(p[20000:30000]))
+    assert d.stats["counters"]["inserted_points"] == 10000  # kept, not computed afresh
     d.add_points(p[30000:])  # NumPy points join the GPU triangulation
     assert isinstance(d.simplices, cupy.ndarray) and isinstance(d.points, cupy.ndarray)
     assert d.npoints == 40000
     assert simplex_set(cupy.asnumpy(d.simplices)) == simplex_set(gpugeom.Delaunay(p).simplices)
-    assert d.npoints == 40000
+    q = p + rng.normal(0, 1e-6, p.shape)
+    d.move(cupy.asarray(q))
+    assert simplex_set(cupy.asnumpy(d.simplices)) == simplex_set(gpugeom.Delaunay(q).simplices)
 
 
 def test_incremental_delaunay_torch_cuda(rng):

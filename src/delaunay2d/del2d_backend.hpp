@@ -4,6 +4,7 @@
 #include <memory>
 #include <vector>
 
+#include "exec/dynamic_state.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/host_vector.hpp"
@@ -59,26 +60,8 @@ struct Capacities {
 void set_capacities_for_testing(const Capacities& c);
 Capacities capacities_for_testing();
 
-// DynamicDelaunay2d's state on one executor (impl/dynamic.inl): the points, the triangulation
-// and its duplicate map, kept in the executor's memory between calls.
-class Kept {
- public:
-  virtual ~Kept() = default;
-  // Appends n points (executor memory when on_device, else host memory), numbered from points()
-  // on, and brings the triangulation up to date. Throws as triangulate; the state is then
-  // unchanged.
-  virtual void insert(const double* xy, std::int64_t n, bool on_device, Stats& st) = 0;
-  // New coordinates for all points() points (as insert's), and the triangulation brought up to
-  // date: repaired from the kept one where that is still a triangulation of the moved points,
-  // else made afresh. Throws as insert; the state is then unchanged.
-  virtual void move(const double* xy, bool on_device, Stats& st) = 0;
-  virtual std::int64_t points() const = 0;
-  virtual std::int64_t triangles() const = 0;
-  virtual std::int64_t duplicates() const = 0;
-  // Copies of the current arrays: to host vectors, or to new executor arrays handed over.
-  virtual void host_copy(Output& out) const = 0;
-  virtual void device_copy(DeviceOutput& out) const = 0;
-};
+// DynamicDelaunay2d's state on one executor (impl/dynamic.inl).
+using Kept = detail::KeptState<Output, DeviceOutput>;
 
 namespace cpu_impl {
 std::unique_ptr<Kept> make_kept(const RunOptions& run);

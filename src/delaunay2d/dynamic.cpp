@@ -16,18 +16,6 @@ struct DynamicDelaunay2d::Impl : detail::DynamicState<del2d::Kept> {
 };
 
 namespace {
-// The CUDA executor's kept 2D triangulation gave wrong results on the H200 (an empty
-// triangulation of 3 points, other triangles than a fresh call's at 10^6; issue 47, session of
-// 2026-11-28): until that is found, the state stays on the CPU executor, where every test passes.
-// Backend::Auto takes the CPU executor; Backend::Cuda (and device memory) is refused.
-Backend dynamic2d_backend(const Delaunay2dOptions& opt) {
-  if (opt.backend == Backend::Cuda)
-    throw Error(ErrorCode::Unsupported,
-                "DynamicDelaunay2d: the CUDA executor is not offered yet (its kept triangulation "
-                "is being fixed); use Backend::Cpu or Backend::Auto (the CPU executor)");
-  return Backend::Cpu;
-}
-
 void refuse_options(const Delaunay2dOptions& opt) {
   if (opt.method == Method::Digital)
     throw Error(ErrorCode::Unsupported,
@@ -47,7 +35,7 @@ DynamicDelaunay2d::DynamicDelaunay2d(const double* xy, std::int64_t n,
   refuse_options(opt);
   del2d::check_count(n);
   auto impl = std::make_unique<Impl>();
-  impl->backend = dynamic2d_backend(opt);
+  impl->backend = resolve_backend(opt.backend, opt.device);
   impl->kept = GG_ON_EXECUTOR(impl->backend, del2d, make_kept, opt);
   impl->insert(xy, n, false);
   impl_ = std::move(impl);
@@ -58,11 +46,7 @@ DynamicDelaunay2d DynamicDelaunay2d::from_device(const double* device_xy, std::i
   refuse_options(opt);
   del2d::check_count(n);
   auto impl = std::make_unique<Impl>();
-  if (opt.backend != Backend::Cpu)
-    throw Error(ErrorCode::Unsupported,
-                "DynamicDelaunay2d::from_device: the CUDA executor is not offered yet (its kept "
-                "triangulation is being fixed); give host points with Backend::Cpu");
-  impl->backend = Backend::Cpu;
+  impl->backend = device_entry_backend(opt.backend, opt.device, "DynamicDelaunay2d::from_device");
   impl->kept = GG_ON_EXECUTOR(impl->backend, del2d, make_kept, opt);
   impl->insert(device_xy, n, true);
   return DynamicDelaunay2d(std::move(impl));
@@ -85,11 +69,21 @@ void DynamicDelaunay2d::move_device(const double* device_xy, std::int64_t n) {
   impl_->move(device_xy, n, impl_->backend == Backend::Cuda);
 }
 
+void DynamicDelaunay2d::remove(const std::int32_t* indices, std::int64_t count) {
+  impl_->remove(indices, count, false);
+}
+void DynamicDelaunay2d::remove_device(const std::int32_t* device_indices, std::int64_t count) {
+  impl_->remove(device_indices, count, impl_->backend == Backend::Cuda);
+}
+std::int64_t DynamicDelaunay2d::num_removed() const {
+  return impl_->kept->removed();
+}
+
 std::int64_t DynamicDelaunay2d::num_points() const {
   return impl_->kept->points();
 }
 std::int64_t DynamicDelaunay2d::num_triangles() const {
-  return impl_->kept->triangles();
+  return impl_->kept->simplices();
 }
 std::int64_t DynamicDelaunay2d::num_duplicates() const {
   return impl_->kept->duplicates();

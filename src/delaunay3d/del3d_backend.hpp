@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "exec/dynamic_state.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
 #include "gpugeom/delaunay3d.hpp"
@@ -57,26 +58,8 @@ void check_count(std::int64_t n);
 Triangulation3d to_public(Output&& out);
 DeviceTriangulation3d to_public(DeviceOutput&& out, std::int64_t n, Backend b);
 
-// DynamicDelaunay3d's state on one executor (impl/dynamic.inl): the points, the store and the
-// duplicate map, kept in the executor's memory between calls.
-class Kept {
- public:
-  virtual ~Kept() = default;
-  // Appends n points (executor memory when on_device, else host memory), numbered from points()
-  // on, and brings the tetrahedralisation up to date. Throws as triangulate; the state is then
-  // unchanged.
-  virtual void insert(const double* xyz, std::int64_t n, bool on_device, Stats& st) = 0;
-  // New coordinates for all points() points (as insert's), and the tetrahedralisation brought
-  // up to date: repaired (phase 2) from the kept one where that is still a tetrahedralisation of
-  // the moved points, else made afresh. Throws as insert; the state is then unchanged.
-  virtual void move(const double* xyz, bool on_device, Stats& st) = 0;
-  virtual std::int64_t points() const = 0;
-  virtual std::int64_t tetrahedra() const = 0;
-  virtual std::int64_t duplicates() const = 0;
-  // Copies of the current results: to host vectors, or to new executor arrays handed over.
-  virtual void host_copy(Output& out) const = 0;
-  virtual void device_copy(DeviceOutput& out) const = 0;
-};
+// DynamicDelaunay3d's state on one executor (impl/dynamic.inl).
+using Kept = detail::KeptState<Output, DeviceOutput>;
 
 namespace cpu_impl {
 std::unique_ptr<Kept> make_kept(const Delaunay3dOptions& opt);

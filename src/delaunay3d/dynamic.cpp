@@ -71,11 +71,21 @@ void DynamicDelaunay3d::move_device(const double* device_xyz, std::int64_t n) {
   impl_->move(device_xyz, n, impl_->backend == Backend::Cuda);
 }
 
+void DynamicDelaunay3d::remove(const std::int32_t* indices, std::int64_t count) {
+  impl_->remove(indices, count, false);
+}
+void DynamicDelaunay3d::remove_device(const std::int32_t* device_indices, std::int64_t count) {
+  impl_->remove(device_indices, count, impl_->backend == Backend::Cuda);
+}
+std::int64_t DynamicDelaunay3d::num_removed() const {
+  return impl_->kept->removed();
+}
+
 std::int64_t DynamicDelaunay3d::num_points() const {
   return impl_->kept->points();
 }
 std::int64_t DynamicDelaunay3d::num_tetrahedra() const {
-  return impl_->kept->tetrahedra();
+  return impl_->kept->simplices();
 }
 std::int64_t DynamicDelaunay3d::num_duplicates() const {
   return impl_->kept->duplicates();

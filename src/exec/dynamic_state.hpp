@@ -1,7 +1,6 @@
 // What the triangulations that follow their points share (internal; DynamicDelaunay2d and
-// DynamicDelaunay3d, issue 47): the kept state behind an executor-independent interface (Kept:
-// insert, points), its insertions checked and timed, and the stats of the last call that
-// succeeded.
+// DynamicDelaunay3d, issue 47): the kept state behind an executor-independent interface
+// (KeptState), its calls checked and timed, and the stats of the last call that succeeded.
 #pragma once
 #include <chrono>
 #include <cstdint>
@@ -12,6 +11,34 @@
 #include "gpugeom/common.hpp"
 
 namespace gpugeom::detail {
+
+// A triangulation's state on one executor (each module's impl/dynamic.inl): the points, the
+// simplices and the duplicate map, kept in the executor's memory between calls. Every call that
+// throws leaves the state unchanged.
+template <class Output, class DeviceOutput>
+class KeptState {
+ public:
+  virtual ~KeptState() = default;
+  // Appends n points (executor memory when on_device, else host memory), numbered from points()
+  // on, and brings the triangulation up to date. Throws as the module's triangulate.
+  virtual void insert(const double* p, std::int64_t n, bool on_device, Stats& st) = 0;
+  // New coordinates for all points() points (as insert's), and the triangulation brought up to
+  // date: repaired from the kept one where that is still a triangulation of the moved points,
+  // else made afresh. Throws as insert.
+  virtual void move(const double* p, bool on_device, Stats& st) = 0;
+  // Removes `count` points by index (executor memory when on_device): they are no vertices any
+  // more and keep their indices (duplicate_of kRemovedPoint). Throws Error(InvalidArgument) for
+  // an index out of range, given twice or removed before, and as insert where too few points
+  // would be left.
+  virtual void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Stats& st) = 0;
+  virtual std::int64_t points() const = 0;     // all indices given so far
+  virtual std::int64_t removed() const = 0;    // of them removed
+  virtual std::int64_t simplices() const = 0;  // in the results
+  virtual std::int64_t duplicates() const = 0;
+  // Copies of the current results: to host vectors, or to new executor arrays handed over.
+  virtual void host_copy(Output& out) const = 0;
+  virtual void device_copy(DeviceOutput& out) const = 0;
+};
 
 template <class Kept>
 struct DynamicState {
@@ -25,14 +52,7 @@ struct DynamicState {
   void insert(const double* p, std::int64_t n, bool on_device, Check check) {
     if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
     check(kept->points() + n);
-    Stats st;
-    st.backend = backend;
-    const auto t0 = std::chrono::steady_clock::now();
-    kept->insert(p, n, on_device, st);
-    st.phase_ms.push_back(
-        {"total",
-         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
-    stats = std::move(st);
+    timed([&](Stats& st) { kept->insert(p, n, on_device, st); });
   }
   // New coordinates for all n points (n must be the count kept).
   void move(const double* p, std::int64_t n, bool on_device) {
@@ -40,10 +60,26 @@ struct DynamicState {
       throw Error(ErrorCode::InvalidArgument,
                   "move: " + std::to_string(n) + " points given for a triangulation of " +
                       std::to_string(kept->points()) + " (give new coordinates for every point)");
+    timed([&](Stats& st) { kept->move(p, on_device, st); });
+  }
+  // Removes count points by index.
+  void remove(const std::int32_t* idx, std::int64_t count, bool on_device) {
+    if (count < 0) throw Error(ErrorCode::InvalidArgument, "remove: negative index count");
+    if (count > kept->points())
+      throw Error(ErrorCode::InvalidArgument, "remove: " + std::to_string(count) +
+                                                  " indices given for a triangulation of " +
+                                                  std::to_string(kept->points()) + " points");
+    timed([&](Stats& st) { kept->remove(idx, count, on_device, st); });
+  }
+
+ private:
+  // Runs call(st) with fresh stats, kept (with the total time) once it succeeded.
+  template <class Call>
+  void timed(Call call) {
     Stats st;
     st.backend = backend;
     const auto t0 = std::chrono::steady_clock::now();
-    kept->move(p, on_device, st);
+    call(st);
     st.phase_ms.push_back(
         {"total",
          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});

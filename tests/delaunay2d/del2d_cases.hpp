@@ -15,6 +15,7 @@
 
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/generate.hpp"
+#include "../common/kept_operations.hpp"
 #include "verify.hpp"
 
 namespace gg_del2d {
@@ -256,5 +257,31 @@ inline Triangulation2d follow_in_chunks(const Case& c, const Delaunay2dOptions& 
     k += std::min(add, left);
   }
 }
+
+// DynamicDelaunay2d for gg_test::KeptOperations.
+struct Kept2d {
+  using Point = Point2;
+  using Dyn = DynamicDelaunay2d;
+  using Result = Triangulation2d;
+  using Options = Delaunay2dOptions;
+  static constexpr int kVerts = 3;
+  static Result fresh(const std::vector<Point2>& p, const Options& o) {
+    Options f;
+    f.backend = o.backend;
+    return delaunay2d(p, f);
+  }
+  static Result current(const Dyn& d) { return d.triangulation(); }
+  static void valid(const std::vector<Point2>& p, const Result& t) { expect_valid(p, t); }
+  static const std::int32_t* simplices(const Result& t) { return t.triangles.data(); }
+  static const std::int32_t* neighbors(const Result& t) { return t.neighbors.data(); }
+  static std::int64_t count(const Result& t) { return std::int64_t(t.num_triangles()); }
+  static std::vector<std::int32_t> dup(const Result& t) {
+    return std::vector<std::int32_t>(t.duplicate_of.begin(), t.duplicate_of.end());
+  }
+  static void shift(Point2& p, double s, std::mt19937_64& rng) {
+    std::normal_distribution<double> N(0, s);
+    p.x += N(rng), p.y += N(rng);
+  }
+};
 
 }  // namespace gg_del2d

@@ -3,12 +3,15 @@
 // choices never depend on timing or on the executor).
 #include <cuda_runtime.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "../common/capped_sizes.hpp"
@@ -426,23 +429,92 @@ TEST(CudaDelaunay2d, DigitalMethodSameAsIncrementalLarge) {
   digital_same_as_incremental(cases);
 }
 
-// DynamicDelaunay2d on a GPU machine (issue 47): Backend::Auto keeps the triangulation on the CPU
-// executor, and the CUDA executor is refused with a clear error, until its kept triangulation
-// (which gave an empty triangulation of 3 points on the H200) is fixed.
-TEST(CudaDynamicDelaunay2d, AutoRunsOnTheCpuAndCudaIsRefused) {
-  const auto p = generate2d("uniform", 5000, 12);
-  DynamicDelaunay2d d(&p.data()->x, 4000);
-  EXPECT_EQ(d.backend(), Backend::Cpu);
-  d.insert(&p[4000].x, 1000);
-  gg_del2d::expect_valid(p, d.triangulation());
-  Delaunay2dOptions o;
-  o.backend = Backend::Cuda;
-  try {
-    DynamicDelaunay2d c(&p.data()->x, 4000, o);
-    ADD_FAILURE() << "the CUDA executor was not refused";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), ErrorCode::Unsupported);
+// DynamicDelaunay2d on the CUDA executor (issue 47): after every insertion the triangulation of
+// a fresh call (follow_in_chunks checks it), and the same arrays, in the same order, as the CPU
+// executor's kept triangulation after the same calls.
+void expect_same_arrays(const Triangulation2d& a, const Triangulation2d& b) {
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.neighbors, b.neighbors);
+  EXPECT_EQ(a.duplicate_of, b.duplicate_of);
+}
+
+TEST(CudaDynamicDelaunay2d, SameAsFreshAndAsCpu) {
+  std::uint64_t seed = 1;
+  auto both = [&](const gg_del2d::Case& c) {
+    SCOPED_TRACE(c.name);
+    Delaunay2dOptions o;
+    o.backend = Backend::Cuda;
+    const auto gpu = gg_del2d::follow_in_chunks(c, o, seed);
+    o.backend = Backend::Cpu;
+    const auto cpu = gg_del2d::follow_in_chunks(c, o, seed);
+    ++seed;
+    expect_same_arrays(gpu, cpu);
+  };
+  for (const auto& c : gg_del2d::degenerate_cases())
+    for (int r = 0; r < 8; ++r) both(c);  // (seed 95 of the first version's failure included)
+  for (const auto& c : gg_del2d::distribution_cases(sizes({10, 1000, 100000}), 23)) {
+    if (c.name.rfind("two_segments", 0) == 0 && c.pts.size() < 4) continue;
+    both(c);
   }
+}
+
+// Points on the GPU in (from_device, insert_device), the state and the results left there.
+TEST(CudaDynamicDelaunay2d, DeviceResident) {
+  auto p = generate2d("uniform", sizes({300000, 3000}).front(), 12);
+  const std::int64_t n = std::int64_t(p.size());
+  p.push_back(p[3]);  // a duplicate of a point inserted first
   const gg_test::DeviceCopy dp(p);
-  EXPECT_THROW(DynamicDelaunay2d::from_device(dp.doubles(), 4000), Error);
+  auto d = DynamicDelaunay2d::from_device(dp.doubles(), n / 2);
+  ASSERT_EQ(d.backend(), Backend::Cuda);
+  d.insert_device(dp.doubles() + 2 * (n / 2), n - n / 2 + 1);
+  EXPECT_EQ(d.num_duplicates(), 1);
+  const auto r = d.device_triangulation();
+  ASSERT_EQ(r.backend, Backend::Cuda);
+  const auto host = d.triangulation();
+  gg_del2d::expect_valid(p, host);
+  ASSERT_EQ(r.num_triangles, std::int64_t(host.num_triangles()));
+  const auto tri = gg_test::from_device(r.triangles, 3 * r.num_triangles);
+  const auto nb = gg_test::from_device(r.neighbors, 3 * r.num_triangles);
+  const auto dup = gg_test::from_device(r.duplicate_of, n + 1);
+  EXPECT_TRUE(std::equal(tri.begin(), tri.end(), host.triangles.begin()));
+  EXPECT_TRUE(std::equal(nb.begin(), nb.end(), host.neighbors.begin()));
+  EXPECT_EQ(dup[std::size_t(n)], 3);
+  const auto fresh = delaunay2d(p);
+  EXPECT_EQ(gg_del2d::triangle_set(host), gg_del2d::triangle_set(fresh));
+}
+
+// The same sequence of calls gives the same arrays run after run (a race would not), and moves
+// give the CPU executor's arrays.
+TEST(CudaDynamicDelaunay2d, RepeatableAndMovedAsOnTheCpu) {
+  for (const char* dist : {"uniform", "grid"}) {
+    SCOPED_TRACE(dist);
+    const auto p = generate2d(dist, sizes({300000, 5000}).front(), 13);
+    const std::int64_t n = std::int64_t(p.size());
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> N(0, 1e-3 / std::sqrt(double(n)));
+    std::vector<Point2> q = p;
+    for (auto& x : q) x.x += N(rng), x.y += N(rng);
+    auto run = [&](Backend b) {
+      Delaunay2dOptions o;
+      o.backend = b;
+      DynamicDelaunay2d t(&p.data()->x, n - 1000, o);
+      t.insert(&p[std::size_t(n - 1000)].x, 1000);
+      std::pair<Triangulation2d, Triangulation2d> r;
+      r.first = t.triangulation();
+      t.move(&q.data()->x, n);
+      r.second = t.triangulation();
+      return r;
+    };
+    const auto a = run(Backend::Cuda);
+    gg_del2d::expect_valid(p, a.first);
+    gg_del2d::expect_valid(q, a.second);
+    for (int r = 0; r < 2; ++r) {
+      const auto b = run(Backend::Cuda);
+      expect_same_arrays(a.first, b.first);
+      expect_same_arrays(a.second, b.second);
+    }
+    const auto c = run(Backend::Cpu);
+    expect_same_arrays(a.first, c.first);
+    expect_same_arrays(a.second, c.second);
+  }
 }

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/kept_operations.hpp"
 #include "../hull3d/hull3d_cases.hpp"
 #include "gpugeom/delaunay3d.hpp"
 #include "verify.hpp"
@@ -149,5 +150,31 @@ inline gpugeom::Triangulation3d follow_in_chunks(const Case& c,
     k += std::min(add, left);
   }
 }
+
+// DynamicDelaunay3d for gg_test::KeptOperations.
+struct Kept3d {
+  using Point = gpugeom::Point3;
+  using Dyn = gpugeom::DynamicDelaunay3d;
+  using Result = gpugeom::Triangulation3d;
+  using Options = gpugeom::Delaunay3dOptions;
+  static constexpr int kVerts = 4;
+  static Result fresh(const std::vector<Point>& p, const Options& o) {
+    Options f;
+    f.backend = o.backend;
+    return gpugeom::delaunay3d(p, f);
+  }
+  static Result current(const Dyn& d) { return d.tetrahedralisation(); }
+  static void valid(const std::vector<Point>& p, const Result& t) { expect_valid(p, t); }
+  static const std::int32_t* simplices(const Result& t) { return t.tetrahedra.data(); }
+  static const std::int32_t* neighbors(const Result& t) { return t.neighbors.data(); }
+  static std::int64_t count(const Result& t) { return std::int64_t(t.num_tetrahedra()); }
+  static std::vector<std::int32_t> dup(const Result& t) {
+    return std::vector<std::int32_t>(t.duplicate_of.begin(), t.duplicate_of.end());
+  }
+  static void shift(Point& p, double s, std::mt19937_64& rng) {
+    std::normal_distribution<double> N(0, s);
+    p.x += N(rng), p.y += N(rng), p.z += N(rng);
+  }
+};
 
 }  // namespace gg_del3d

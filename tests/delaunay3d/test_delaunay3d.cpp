@@ -519,3 +519,55 @@ TEST(DynamicDelaunay3d, MoveGivesTheFreshTetrahedralisation) {
   EXPECT_GE(repaired, 2);  // both paths ran
   EXPECT_GT(rebuilt, 10);
 }
+
+// insert, move and remove in random sequences (issue 47): after every call the tetrahedralisation
+// of a fresh call on the points left, on every distribution and degenerate case.
+TEST(DynamicDelaunay3d, RandomOperationsGiveTheFreshTetrahedralisation) {
+  auto cases = gg_hull3d::degenerate_cases();
+  for (const auto& c : gg_hull3d::distribution_cases({60, 3000}, 43))
+    if (c.name.rfind("two_lines", 0) != 0) cases.push_back(c);
+  gg_test::random_operations<gg_del3d::Kept3d>(cases, cpu(), 700, 1, 8);
+}
+
+// A removed point is no vertex and keeps its index (kRemovedPoint); a copy of it, given before
+// or after, is a vertex in its place. Bad index lists are refused and change nothing.
+TEST(DynamicDelaunay3d, RemovedPointsAndRefusals) {
+  auto p = generate3d("uniform", 2000, 44);
+  p.push_back(p[10]);  // 2000: a copy of point 10
+  DynamicDelaunay3d d(&p.data()->x, std::int64_t(p.size()), cpu());
+  EXPECT_EQ(d.num_duplicates(), 1);
+  const std::int32_t r[] = {10, 20};
+  d.remove(r, 2);
+  auto t = d.tetrahedralisation();
+  EXPECT_EQ(d.num_removed(), 2);
+  EXPECT_EQ(d.num_duplicates(), 0);
+  EXPECT_EQ(t.duplicate_of[10], kRemovedPoint);
+  EXPECT_EQ(t.duplicate_of[20], kRemovedPoint);
+  EXPECT_EQ(t.duplicate_of[2000], -1);  // the copy took point 10's place
+  for (std::int32_t v : t.tetrahedra) EXPECT_TRUE(v != 10 && v != 20);
+  d.insert(&p[20].x, 1);  // point 20's coordinates again: a new vertex, 2001
+  t = d.tetrahedralisation();
+  EXPECT_EQ(t.duplicate_of[2001], -1);
+  EXPECT_NE(std::find(t.tetrahedra.begin(), t.tetrahedra.end(), 2001), t.tetrahedra.end());
+  const auto before = d.tetrahedralisation();
+  auto refused = [&](std::vector<std::int32_t> idx, ErrorCode code) {
+    try {
+      d.remove(idx.data(), std::int64_t(idx.size()));
+      ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), code) << e.what();
+    }
+    EXPECT_EQ(d.num_removed(), 2);
+    EXPECT_EQ(d.tetrahedralisation().tetrahedra, before.tetrahedra);
+  };
+  refused({5, 2002}, ErrorCode::InvalidArgument);  // out of range
+  refused({5, -1}, ErrorCode::InvalidArgument);
+  refused({5, 6, 5}, ErrorCode::InvalidArgument);  // twice
+  refused({7, 10}, ErrorCode::InvalidArgument);    // removed before
+  std::vector<std::int32_t> all;
+  for (std::int32_t i = 0; i < 2002; ++i)
+    if (i != 10 && i != 20 && i != 0 && i != 1 && i != 2) all.push_back(i);
+  refused(all, ErrorCode::DegenerateInput);  // 3 points left
+  d.remove(nullptr, 0);                      // nothing
+  EXPECT_EQ(d.num_removed(), 2);
+}

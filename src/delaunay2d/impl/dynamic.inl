@@ -60,10 +60,14 @@ struct NonFlat {
 struct KeptArrays {
   typename Exec::template Buffer<double> xy;             // 2 n, input order
   typename Exec::template Buffer<std::int32_t> tri, nb;  // 3 nt each
-  typename Exec::template Buffer<std::int32_t> dup;      // n, when ndup > 0
-  std::int64_t n = 0, nt = 0, ndup = 0;
+  typename Exec::template Buffer<std::int32_t> dup;      // n, when ndup or nremoved > 0
+  typename Exec::template Buffer<std::int8_t> gone;      // n (1: removed), when nremoved > 0
+  std::int64_t n = 0, nt = 0, ndup = 0, nremoved = 0;
   std::int64_t nout = 0;  // triangles in the results (nt less the flat ones)
   double kernel[2] = {0, 0};
+  // The duplicate map (kRemoved at removed points), or null where every point is a vertex.
+  const std::int32_t* dup_map() const { return ndup || nremoved ? dup.data() : nullptr; }
+  const std::int8_t* gone_map() const { return nremoved ? gone.data() : nullptr; }
 };
 
 // The triangles of the results (an extended lambda may not sit in kept_insert's lambda).
@@ -117,7 +121,22 @@ inline bool still_a_triangulation(Exec& ex, const KeptArrays& K, const double* x
 }
 
 // How the new state is reached from the kept one.
-enum class Update { Insert, Move };
+enum class Update { Insert, Move, Remove };
+
+// Prepared points of the kept ones not removed (R.gone), in input indices with the duplicate
+// map widened to all n (mesh::to_input_indices): prepare(P) runs prepare on the gathered points.
+template <class Prep>
+inline void prepare_kept(Exec& ex, const KeptArrays& R, std::int64_t n, Prep prep) {
+  if (!R.nremoved) {
+    prep(R.xy.data(), n, [](Prepared&) {});
+    return;
+  }
+  const auto L = mesh::gather_live<2>(ex, R.xy.data(), n, R.gone.data());
+  prep(L.p.data(), L.count, [&](Prepared& P) {
+    P.dup =
+        mesh::to_input_indices(ex, L, P.orig.data(), P.m, P.duplicates ? P.dup.data() : nullptr, n);
+  });
+}
 
 // The state for the n points in R.xy (the kept points with `add` appended, or all of them
 // moved), built beside K: K is not touched, so a call that throws leaves it as it was.
@@ -133,29 +152,40 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     R.kernel[0] = P.kernel[0], R.kernel[1] = P.kernel[1];
     R.tri = std::move(f.simplices);
     R.nb = std::move(f.neighbors);
-    if (P.duplicates) R.dup = std::move(P.dup);
+    if (P.duplicates || R.nremoved) R.dup = std::move(P.dup);
     R.nout = count_non_flat(ex, R);
   };
   auto fresh = [&] {
-    triangulate_core(
-        ex, R.xy.data(), n, true, profile, st, [](Prepared&) {}, keep, false);
+    prepare_kept(ex, R, n, [&](const double* xy, std::int64_t m, auto widen) {
+      triangulate_core(ex, xy, m, true, profile, st, widen, keep, false);
+    });
+    if (R.nremoved) st.counters["points"] = n, st.counters["removed_points"] = R.nremoved;
     ex.sync();
     return std::move(R);
   };
   if (!K.n) return fresh();  // the first points
+  if (how == Update::Remove) {
+    st.counters["remove_rebuilt"] = 1;
+    return fresh();
+  }
   auto t0 = std::chrono::steady_clock::now();
-  Prepared P = prepare(ex, R.xy.data(), n, true);
+  Prepared P;
+  prepare_kept(ex, R, n, [&](const double* xy, std::int64_t m, auto widen) {
+    P = prepare(ex, xy, m, true);
+    widen(P);
+  });
+  const std::int32_t* dup_map = P.duplicates || R.nremoved ? P.dup.data() : nullptr;
   st.counters["points"] = n;
   st.counters["distinct_points"] = P.m;
   st.counters["duplicates"] = P.duplicates;
+  if (R.nremoved) st.counters["removed_points"] = R.nremoved;
   auto d_hint = ex.template alloc<std::int32_t>(how == Update::Insert ? std::size_t(n) : 0);
   if (how == Update::Insert) {
-    st.counters["inserted_points"] = P.m - (K.n - K.ndup);
+    st.counters["inserted_points"] = P.m - (K.n - K.ndup - K.nremoved);
     mesh::curve_hints(ex, P.orig.data(), P.m, n, K.n, d_hint.data());
   } else {
     const bool same_points =
-        P.duplicates == K.ndup && mesh::dup_changes(ex, K.ndup ? K.dup.data() : nullptr,
-                                                    P.duplicates ? P.dup.data() : nullptr, n) == 0;
+        P.duplicates == K.ndup && mesh::dup_changes(ex, K.dup_map(), dup_map, n) == 0;
     const bool kept = same_points && still_a_triangulation(ex, K, R.xy.data(), n);
     st.counters["move_rebuilt"] = !kept;
     if (!kept) {
@@ -186,10 +216,12 @@ inline KeptArrays with_points(Exec& ex, const KeptArrays& K, const double* xy, s
   KeptArrays R;
   R.xy = ex.template alloc<double>(std::size_t(2 * n));
   if (keep) ex.copy(K.xy.data(), 2 * keep, R.xy.data());
-  if (on_device)
+  if (add && on_device)
     ex.copy(xy, 2 * add, R.xy.data() + 2 * keep);
-  else
+  else if (add)
     ex.from_host(xy, 2 * add, R.xy.data() + 2 * keep);
+  R.gone = mesh::extend_flags(ex, K.gone_map(), K.n, n);
+  R.nremoved = K.nremoved;
   st.phase_ms.push_back({"append", ms_since(t0)});
   return R;
 }
@@ -214,8 +246,25 @@ class KeptOn final : public Kept {
     KeptArrays R = with_points(ex, K_, xy, K_.n, on_device, true, st);
     K_ = kept_update(ex, K_, std::move(R), K_.n, Update::Move, run_.profile, st);
   }
+  void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Stats& st) override {
+    if (count == 0) return;
+    Exec ex(run_);
+    const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+    typename Exec::template Buffer<std::int32_t> up;
+    if (!on_device) {
+      up = ex.template alloc<std::int32_t>(std::size_t(count));
+      ex.from_host(idx, count, up.data());
+      idx = up.data();
+    }
+    auto gone = mesh::removal_flags(ex, K_.gone_map(), K_.n, idx, count);
+    KeptArrays R = with_points(ex, K_, nullptr, 0, false, false, st);
+    R.gone = std::move(gone);
+    R.nremoved = K_.nremoved + count;
+    K_ = kept_update(ex, K_, std::move(R), K_.n, Update::Remove, run_.profile, st);
+  }
   std::int64_t points() const override { return K_.n; }
-  std::int64_t triangles() const override { return K_.nout; }
+  std::int64_t removed() const override { return K_.nremoved; }
+  std::int64_t simplices() const override { return K_.nout; }
   // The results' triangles and neighbours (new executor arrays).
   mesh::Compacted<Exec> results(Exec& ex) const {
     return mesh::compact_live<3>(ex, K_.nt, NonFlat{K_.tri.data(), K_.nb.data(), K_.xy.data()});
@@ -231,7 +280,7 @@ class KeptOn final : public Kept {
     out.duplicate_of.resize(std::size_t(K_.n));
     ex.to_host(f.simplices.data(), 3 * f.count, out.triangles.data());
     ex.to_host(f.neighbors.data(), 3 * f.count, out.neighbors.data());
-    if (K_.ndup)
+    if (K_.dup_map())
       ex.to_host(K_.dup.data(), K_.n, out.duplicate_of.data());
     else
       ex.fill_host(out.duplicate_of.data(), K_.n, std::int32_t(-1));
@@ -240,7 +289,7 @@ class KeptOn final : public Kept {
     Exec ex(run_);
     auto f = results(ex);
     auto dup = ex.template alloc<std::int32_t>(std::size_t(K_.n));
-    if (K_.ndup)
+    if (K_.dup_map())
       ex.copy(K_.dup.data(), K_.n, dup.data());
     else
       ex.fill(dup.data(), K_.n, std::int32_t(-1));

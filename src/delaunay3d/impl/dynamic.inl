@@ -49,10 +49,14 @@ inline LeasePool<Exec> flat_test_pool(Exec& ex) {
 struct KeptArrays {
   typename Exec::template Buffer<double> xyz;        // 3 n, input order
   typename Exec::template Buffer<Tet> tet;           // used slots
-  typename Exec::template Buffer<std::int32_t> dup;  // n, when ndup > 0
-  std::int64_t n = 0, used = 0, ndup = 0;
+  typename Exec::template Buffer<std::int32_t> dup;  // n, when ndup or nremoved > 0
+  typename Exec::template Buffer<std::int8_t> gone;  // n (1: removed), when nremoved > 0
+  std::int64_t n = 0, used = 0, ndup = 0, nremoved = 0;
   std::int64_t nout = 0;  // tetrahedra in the results
   double kernel[3] = {0, 0, 0};
+  // The duplicate map (kRemoved at removed points), or null where every point is a vertex.
+  const std::int32_t* dup_map() const { return ndup || nremoved ? dup.data() : nullptr; }
+  const std::int8_t* gone_map() const { return nremoved ? gone.data() : nullptr; }
 };
 
 // The kept store in input indices (the infinity point as kKeptInfinity), from T's store.
@@ -161,15 +165,31 @@ inline KeptArrays with_points(Exec& ex, const KeptArrays& K, const double* xyz, 
   KeptArrays R;
   R.xyz = ex.template alloc<double>(std::size_t(3 * n));
   if (keep) ex.copy(K.xyz.data(), 3 * keep, R.xyz.data());
-  if (on_device)
+  if (add && on_device)
     ex.copy(xyz, 3 * add, R.xyz.data() + 3 * keep);
-  else
+  else if (add)
     ex.from_host(xyz, 3 * add, R.xyz.data() + 3 * keep);
+  R.gone = mesh::extend_flags(ex, K.gone_map(), K.n, n);
+  R.nremoved = K.nremoved;
   st.phase_ms.push_back({"append", ms_since(t0)});
   return R;
 }
 
-enum class Update { Insert, Move };
+enum class Update { Insert, Move, Remove };
+
+// prepare_points over the points not removed (R.gone), its indices made input indices again
+// and its duplicate map widened to all n (mesh::to_input_indices).
+inline Prepared prepare_kept(Exec& ex, const KeptArrays& R, std::int64_t n, Stats& st) {
+  if (!R.nremoved) return prepare_points(ex, R.xyz.data(), n, true, st);
+  const auto L = mesh::gather_live<3>(ex, R.xyz.data(), n, R.gone.data());
+  Prepared P = prepare_points(ex, L.p.data(), L.count, true, st);
+  mesh::SortedPoints<Exec>& S = P.S;
+  S.dup =
+      mesh::to_input_indices(ex, L, S.orig.data(), S.m, S.duplicates ? S.dup.data() : nullptr, n);
+  st.counters["points"] = n;
+  st.counters["removed_points"] = R.nremoved;
+  return P;
+}
 
 // The state for the n points in R.xyz (the kept points with more appended, or all of them
 // moved), built beside K: K is not touched, so a call that throws leaves it as it was. Insert:
@@ -179,14 +199,15 @@ enum class Update { Insert, Move };
 // "move_rebuilt").
 inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::int64_t n,
                               Update how, const Delaunay3dOptions& opt, Stats& st) {
-  Prepared P = prepare_points(ex, R.xyz.data(), n, true, st);
+  Prepared P = prepare_kept(ex, R, n, st);
   mesh::SortedPoints<Exec>& S = P.S;
+  const std::int32_t* dup_map = S.duplicates || R.nremoved ? S.dup.data() : nullptr;
   mesh::Tetra first = P.first;
-  bool fresh = !K.n;
+  bool fresh = !K.n || how == Update::Remove;
+  if (how == Update::Remove) st.counters["remove_rebuilt"] = 1;
   if (!fresh && how == Update::Move) {
     const bool same_points =
-        S.duplicates == K.ndup && mesh::dup_changes(ex, K.ndup ? K.dup.data() : nullptr,
-                                                    S.duplicates ? S.dup.data() : nullptr, n) == 0;
+        S.duplicates == K.ndup && mesh::dup_changes(ex, K.dup_map(), dup_map, n) == 0;
     fresh = !(same_points && still_a_tetrahedralisation(ex, K, R.xyz.data(), n));
     st.counters["move_rebuilt"] = fresh;
   }
@@ -199,7 +220,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     st.phase_ms.push_back({"insert_flip", ms_since(t0)});
     repair_phase(ex, T, S.m, opt.progress, st);
   } else {
-    if (how == Update::Insert) st.counters["inserted_points"] = S.m - (K.n - K.ndup);
+    if (how == Update::Insert) st.counters["inserted_points"] = S.m - (K.n - K.ndup - K.nremoved);
     // input index -> prepared index; each new point's walk start (prepared indices)
     auto d_inv = ex.template alloc<std::int32_t>(std::size_t(n));
     auto d_hint = ex.template alloc<std::int32_t>(std::size_t(n));
@@ -229,7 +250,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
   T.report();
   R.n = n;
   R.ndup = S.duplicates;
-  if (S.duplicates) R.dup = std::move(S.dup);
+  if (dup_map) R.dup = std::move(S.dup);
   for (int k = 0; k < 3; ++k) R.kernel[k] = first.s[k];
   R.used = T.counters().used;
   R.tet = keep_store(ex, T, S.orig.data());
@@ -266,8 +287,25 @@ class KeptOn final : public Kept {
     KeptArrays R = with_points(ex, K_, xyz, K_.n, on_device, true, st);
     K_ = kept_update(ex, K_, std::move(R), K_.n, Update::Move, opt_, st);
   }
+  void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Stats& st) override {
+    if (count == 0) return;
+    Exec ex(opt_);
+    const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+    typename Exec::template Buffer<std::int32_t> up;
+    if (!on_device) {
+      up = ex.template alloc<std::int32_t>(std::size_t(count));
+      ex.from_host(idx, count, up.data());
+      idx = up.data();
+    }
+    auto gone = mesh::removal_flags(ex, K_.gone_map(), K_.n, idx, count);
+    KeptArrays R = with_points(ex, K_, nullptr, 0, false, false, st);
+    R.gone = std::move(gone);
+    R.nremoved = K_.nremoved + count;
+    K_ = kept_update(ex, K_, std::move(R), K_.n, Update::Remove, opt_, st);
+  }
   std::int64_t points() const override { return K_.n; }
-  std::int64_t tetrahedra() const override { return K_.nout; }
+  std::int64_t removed() const override { return K_.nremoved; }
+  std::int64_t simplices() const override { return K_.nout; }
   std::int64_t duplicates() const override { return K_.ndup; }
   // The results: tetrahedra and neighbours, the vertex map and the hull facets.
   struct Results {
@@ -278,7 +316,7 @@ class KeptOn final : public Kept {
     LeasePool<Exec> pool = flat_test_pool(ex);
     Results r;
     r.f = mesh::compact_live<4>(ex, K_.used, KeptTets{K_.tet.data(), K_.xyz.data(), pool.view});
-    r.E = extras(ex, K_.ndup ? K_.dup.data() : nullptr, r.f, K_.n);
+    r.E = extras(ex, K_.dup_map(), r.f, K_.n);
     return r;
   }
   void host_copy(Output& out) const override {
@@ -298,7 +336,7 @@ class KeptOn final : public Kept {
     put(r.E.vertex_to_simplex.data(), K_.n, out.vertex_to_simplex);
     put(r.E.hull_facets.data(), 3 * nh, out.hull_facets);
     out.duplicate_of.resize(std::size_t(K_.n));
-    if (K_.ndup)
+    if (K_.dup_map())
       ex.to_host(K_.dup.data(), K_.n, out.duplicate_of.data());
     else
       ex.fill_host(out.duplicate_of.data(), K_.n, std::int32_t(-1));
@@ -307,7 +345,7 @@ class KeptOn final : public Kept {
     Exec ex(opt_);
     Results r = results(ex);
     auto dup = ex.template alloc<std::int32_t>(std::size_t(K_.n));
-    if (K_.ndup)
+    if (K_.dup_map())
       ex.copy(K_.dup.data(), K_.n, dup.data());
     else
       ex.fill(dup.data(), K_.n, std::int32_t(-1));

@@ -1,0 +1,194 @@
+// Random sequences of insert, move and remove on a triangulation that follows its points
+// (DynamicDelaunay2d / DynamicDelaunay3d, issue 47), checked after every call against a fresh
+// triangulation of the points left, which the exact checker judges.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "gpugeom/common.hpp"
+#include "gpugeom/removed.hpp"
+
+namespace gg_test {
+
+// Traits: Point, Dyn (the dynamic class), Result (its host result), Options, kVerts (per simplex),
+// and
+//   Result fresh(const std::vector<Point>&, const Options&)   the from-scratch call
+//   Result current(const Dyn&)                                 the dynamic object's results
+//   void valid(const std::vector<Point>&, const Result&)       the exact checker and the rest
+//   const std::int32_t* simplices(const Result&), neighbors(const Result&)
+//   std::int64_t count(const Result&)
+//   std::vector<std::int32_t> dup(const Result&)
+//   void shift(Point&, double scale, std::mt19937_64&)          a random displacement
+template <class T>
+class KeptOperations {
+ public:
+  using Point = typename T::Point;
+  static constexpr int K = T::kVerts;
+  using Simplex = std::array<std::int32_t, K>;
+
+  KeptOperations(std::vector<Point> pts, typename T::Options opt, std::uint64_t seed)
+      : pool_(std::move(pts)), opt_(opt), rng_(seed) {
+    std::shuffle(pool_.begin(), pool_.end(), rng_);
+    // a first chunk that is not degenerate
+    std::size_t k = std::min(pool_.size(), std::size_t(K + 1 + rng_() % (pool_.size() / 4 + 1)));
+    for (;;) {
+      try {
+        dyn_ = std::make_unique<typename T::Dyn>(&pool_.data()->x, std::int64_t(k), opt_);
+        break;
+      } catch (const gpugeom::Error& e) {
+        EXPECT_EQ(e.code(), gpugeom::ErrorCode::DegenerateInput) << e.what();
+        if (k == pool_.size()) return;
+        k = std::min(pool_.size(), 2 * k);
+      }
+    }
+    pts_.assign(pool_.begin(), pool_.begin() + std::ptrdiff_t(k));
+    gone_.assign(k, 0);
+  }
+  bool started() const { return dyn_ != nullptr; }
+  // The calls made (and removals refused), so that a test can see every kind ran.
+  struct Calls {
+    int inserts = 0, moves = 0, removes = 0, refused = 0;
+  };
+  const Calls& calls() const { return calls_; }
+
+  // One random call (insert, move or remove), then the check.
+  void step() {
+    const std::size_t left = pool_.size() - pts_.size();
+    const int what = int(rng_() % 3);
+    if (what == 0 && left) {
+      const std::size_t add = std::min(left, 1 + rng_() % (left / 3 + 1));
+      SCOPED_TRACE("insert " + std::to_string(add));
+      dyn_->insert(&pool_[pts_.size()].x, std::int64_t(add));
+      for (std::size_t i = 0; i < add; ++i) pts_.push_back(pool_[pts_.size()]), gone_.push_back(0);
+      ++calls_.inserts;
+    } else if (what == 1) {
+      // small moves (repaired) and large ones (rebuilt), removed points' coordinates included
+      const double scale = (rng_() % 2 ? 1e-3 : 0.3) * spacing();
+      std::vector<Point> q = pts_;
+      for (auto& p : q) T::shift(p, scale, rng_);
+      SCOPED_TRACE("move by " + std::to_string(scale));
+      dyn_->move(&q.data()->x, std::int64_t(q.size()));
+      pts_ = q;
+      ++calls_.moves;
+    } else {
+      std::vector<std::int32_t> live;
+      for (std::size_t i = 0; i < pts_.size(); ++i)
+        if (!gone_[i]) live.push_back(std::int32_t(i));
+      std::shuffle(live.begin(), live.end(), rng_);
+      const std::size_t r = std::min(live.size(), 1 + rng_() % (live.size() / 4 + 1));
+      live.resize(r);
+      SCOPED_TRACE("remove " + std::to_string(r));
+      try {
+        dyn_->remove(live.data(), std::int64_t(r));
+        for (std::int32_t i : live) gone_[std::size_t(i)] = 1;
+        ++calls_.removes;
+      } catch (const gpugeom::Error& e) {
+        ++calls_.refused;
+        // too few points left, or none in general position: refused, nothing changed
+        EXPECT_EQ(e.code(), gpugeom::ErrorCode::DegenerateInput) << e.what();
+      }
+    }
+    check();
+  }
+
+  // After every call: the same simplices and duplicate map as a fresh call on the points left
+  // (renumbered), which the exact checker judges; neighbours consistent.
+  void check() {
+    std::vector<Point> live;
+    std::vector<std::int32_t> ids;
+    for (std::size_t i = 0; i < pts_.size(); ++i)
+      if (!gone_[i]) live.push_back(pts_[i]), ids.push_back(std::int32_t(i));
+    const auto got = T::current(*dyn_);
+    ASSERT_EQ(dyn_->num_points(), std::int64_t(pts_.size()));
+    ASSERT_EQ(dyn_->num_removed(), std::int64_t(pts_.size() - live.size()));
+    const auto fresh = T::fresh(live, opt_);
+    T::valid(live, fresh);
+    if (live.size() == pts_.size()) T::valid(pts_, got);
+    EXPECT_EQ(set_of(T::simplices(got), T::count(got), nullptr),
+              set_of(T::simplices(fresh), T::count(fresh), &ids));
+    std::vector<std::int32_t> want(pts_.size(), gpugeom::kRemovedPoint);
+    const auto fd = T::dup(fresh);
+    for (std::size_t j = 0; j < ids.size(); ++j)
+      want[std::size_t(ids[j])] = fd[j] >= 0 ? ids[std::size_t(fd[j])] : -1;
+    EXPECT_EQ(T::dup(got), want);
+    expect_neighbours(T::simplices(got), T::neighbors(got), T::count(got));
+  }
+
+ private:
+  static std::vector<Simplex> set_of(const std::int32_t* s, std::int64_t n,
+                                     const std::vector<std::int32_t>* ids) {
+    std::vector<Simplex> out(static_cast<std::size_t>(n));
+    for (std::int64_t c = 0; c < n; ++c) {
+      Simplex a;
+      for (int k = 0; k < K; ++k) a[k] = ids ? (*ids)[std::size_t(s[K * c + k])] : s[K * c + k];
+      std::sort(a.begin(), a.end());
+      out[std::size_t(c)] = a;
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+  // Each neighbour shares the face opposite vertex k and names this simplex back.
+  static void expect_neighbours(const std::int32_t* s, const std::int32_t* nb, std::int64_t n) {
+    for (std::int64_t c = 0; c < n; ++c)
+      for (int k = 0; k < K; ++k) {
+        const std::int32_t o = nb[K * c + k];
+        if (o < 0) continue;
+        ASSERT_LT(o, n);
+        int shared = 0, back = 0;
+        for (int j = 0; j < K; ++j)
+          for (int i = 0; i < K; ++i) {
+            if (i != k && s[K * o + j] == s[K * c + i]) ++shared;
+            if (i == 0 && nb[K * o + j] == c) ++back;
+          }
+        ASSERT_EQ(shared, K - 1) << "simplex " << c << " face " << k;
+        ASSERT_EQ(back, 1) << "simplex " << c << " face " << k;
+      }
+  }
+  double spacing() const {
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (const auto& p : pts_)
+      for (int d = 0; d < K - 1; ++d)
+        lo[d] = std::min(lo[d], (&p.x)[d]), hi[d] = std::max(hi[d], (&p.x)[d]);
+    double vol = 1;
+    for (int d = 0; d < K - 1; ++d) vol *= hi[d] - lo[d] + 1e-300;
+    return std::pow(vol / double(pts_.size()), 1.0 / (K - 1));
+  }
+
+  std::vector<Point> pool_;  // every point that may be given, in the order given
+  std::vector<Point> pts_;   // the points given so far (moved coordinates)
+  std::vector<char> gone_;   // removed
+  typename T::Options opt_;
+  std::mt19937_64 rng_;
+  std::unique_ptr<typename T::Dyn> dyn_;
+  Calls calls_;
+};
+
+// Random calls on each case (steps of them), checked after each; every kind of call ran.
+template <class T, class Cases>
+void random_operations(const Cases& cases, const typename T::Options& opt, std::uint64_t seed,
+                       int runs, int steps) {
+  typename KeptOperations<T>::Calls all;
+  for (const auto& c : cases)
+    for (int r = 0; r < runs; ++r) {
+      SCOPED_TRACE(c.name + " run " + std::to_string(r));
+      KeptOperations<T> k(c.pts, opt, seed++);
+      if (!k.started()) continue;
+      for (int i = 0; i < steps && !::testing::Test::HasFailure(); ++i) k.step();
+      all.inserts += k.calls().inserts, all.moves += k.calls().moves;
+      all.removes += k.calls().removes, all.refused += k.calls().refused;
+    }
+  EXPECT_GT(all.inserts, 0);
+  EXPECT_GT(all.moves, 0);
+  EXPECT_GT(all.removes, 0);
+  EXPECT_GT(all.refused, 0);  // some removal left too few points
+}
+
+}  // namespace gg_test
