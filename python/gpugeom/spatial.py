@@ -18,6 +18,26 @@ from . import _arrays, _core
 __all__ = ["Delaunay", "Voronoi", "ConvexHull", "ConstrainedDelaunay"]
 
 
+def _index_list(indices, n):
+    """A 1-D int32 array of point indices (host, or the GPU it is on), checked to be integers
+    that int32 holds (the range against n is checked by the library)."""
+    arr, kind = _arrays.as_input(indices, None, "indices")
+    if len(arr.shape) != 1:
+        raise ValueError(f"indices must be 1-D, got shape {tuple(arr.shape)}")
+    dt = str(arr.dtype)
+    if "int" not in dt and dt != "bool":
+        raise TypeError(f"indices must be integers, got {dt}")
+    if dt == "bool":
+        raise TypeError("indices must be integers (a boolean mask is not taken: use its nonzero())")
+    if arr.shape[0]:
+        lo, hi = int(arr.min()), int(arr.max())
+        if lo < 0 or hi >= n:
+            raise ValueError(f"indices must lie in 0 .. {n - 1}, got {lo if lo < 0 else hi}")
+    if kind.device:
+        return arr.to(dtype=__import__("torch").int32) if kind.name == "torch" else arr.astype("int32")
+    return np.ascontiguousarray(_arrays.to_host(arr), dtype=np.int32)
+
+
 def _not_supported(name, value, default):
     if value != default:
         raise ValueError(f"{name}={value!r} is not supported by gpugeom (SciPy's default only)")
@@ -195,6 +215,29 @@ class Delaunay(_OfPoints):
             return None
         self._dyn.move(new)
         return self._dyn.result()
+
+    def remove(self, indices):
+        """gpugeom's own (issue 47), in incremental mode: removes the points with the given
+        indices (1-D integers, each once, none removed before; NumPy, CuPy or PyTorch). The
+        triangulation is exactly that of a new object on the points left; the removed points
+        keep their rows of ``points`` and their indices but are no vertices: ``duplicate_of``
+        reads -2 there and ``vertex_to_simplex`` -1 (an equal point given before or after is a
+        vertex in its place).
+
+        Raises RuntimeError after ``close()`` or without ``incremental=True``, ValueError for a
+        bad index list (out of range, repeated, removed before) or where the points left have no
+        triangulation, TypeError for non-integer indices; a call that raises leaves the object
+        unchanged."""
+        if not self._incremental:
+            raise RuntimeError("incremental mode not enabled or already closed")
+        if self._dyn is None:
+            raise ValueError("remove needs the kept triangulation (method='incremental')")
+        idx = _index_list(indices, self.npoints)
+        self._dyn.remove(idx)
+        r = self._dyn.result()
+        for name in self._cached:
+            self.__dict__.pop(name, None)
+        self._take(r)
 
     def _take(self, r):
         kind = self._kind

@@ -113,6 +113,24 @@ void dynamic2d_move(Dynamic2dState& self, const AnyArray& points) {
   });
 }
 
+// Removes points by index (int32, 1-D; host memory, or the triangulation's GPU).
+template <class State>
+void dynamic_remove(State& self, const AnyArray& indices) {
+  const Input in = inspect(indices, "indices");
+  if (in.shape.size() != 1) throw nb::value_error("indices must be 1-D");
+  if (!holds<std::int32_t>(in)) throw nb::type_error("indices must be int32");
+  if (in.on_device && !self.on_device)
+    throw nb::value_error("indices must be in host memory, as the triangulation's points are");
+  const auto* p = static_cast<const std::int32_t*>(in.data);
+  const std::int64_t n = in.shape[0];
+  unlocked([&] {
+    if (in.on_device)
+      self.t.remove_device(p, n);
+    else
+      self.t.remove(p, n);
+  });
+}
+
 nb::dict dynamic2d_result(const Dynamic2dState& self) {
   nb::dict r;
   const std::int64_t n = self.t.num_points();
@@ -518,6 +536,7 @@ void bind_spatial(nb::module_& m) {
            "threads"_a = 0)
       .def("insert", &dynamic2d_insert, "points"_a)
       .def("move", &dynamic2d_move, "points"_a)
+      .def("remove", &dynamic_remove<Dynamic2dState>, "indices"_a)
       .def("result", &dynamic2d_result)
       .def_prop_ro("npoints", [](const Dynamic2dState& s) { return s.t.num_points(); });
   nb::class_<Dynamic3dState>(m, "DynamicDelaunay3d")
@@ -525,6 +544,7 @@ void bind_spatial(nb::module_& m) {
            "threads"_a = 0)
       .def("insert", &dynamic3d_insert, "points"_a)
       .def("move", &dynamic3d_move, "points"_a)
+      .def("remove", &dynamic_remove<Dynamic3dState>, "indices"_a)
       .def("result", &dynamic3d_result)
       .def_prop_ro("npoints", [](const Dynamic3dState& s) { return s.t.num_points(); });
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,

@@ -134,3 +134,52 @@ def test_move_gives_the_fresh_result(backend, rng):
     np.testing.assert_array_equal(d.simplices, before)
     with pytest.raises(RuntimeError):
         gpugeom.Delaunay(p).move(p)
+
+
+@pytest.mark.parametrize("ndim", [2, 3])
+def test_remove_gives_the_fresh_result(backend, rng, ndim):
+    # issue 47: removed points keep their rows and indices but are no vertices (duplicate_of -2)
+    p = np.round(rng.random((3000, ndim)) * 12) / 12  # a grid with copies
+    d = gpugeom.Delaunay(p, incremental=True, backend=backend)
+    gone = np.zeros(len(p), bool)
+    for k in range(3):
+        live = np.nonzero(~gone)[0]
+        r = rng.choice(live, size=len(live) // 5, replace=False)
+        d.remove(r if k else r.tolist())  # arrays and lists
+        gone[r] = True
+        live = np.nonzero(~gone)[0]
+        f = gpugeom.Delaunay(p[live], backend=backend)
+        assert d.npoints == len(p) and d.points.shape == p.shape
+        assert simplex_set(d.simplices) == simplex_set(live[f.simplices])
+        want = np.full(len(p), -2, np.int32)
+        want[live] = np.where(f.duplicate_of >= 0, live[np.maximum(f.duplicate_of, 0)], -1)
+        assert (np.asarray(d.duplicate_of) == want).all()
+        assert (np.asarray(d.vertex_to_simplex)[gone] == -1).all()
+        assert not np.isin(np.asarray(d.coplanar)[:, 0], np.nonzero(gone)[0]).any()
+    d.add_points(p[:10])  # equal to removed and to kept points
+    live = np.nonzero(np.concatenate([~gone, np.ones(10, bool)]))[0]
+    allp = np.concatenate([p, p[:10]])
+    f = gpugeom.Delaunay(allp[live], backend=backend)
+    assert simplex_set(d.simplices) == simplex_set(live[f.simplices])
+
+
+def test_remove_errors_leave_the_object_as_it_was(rng):
+    p = rng.random((500, 2))
+    d = gpugeom.Delaunay(p, incremental=True)
+    d.remove([3, 4])
+    before = np.array(d.simplices)
+    for bad, err in (([500], ValueError), ([-1], ValueError), ([5, 5], ValueError),
+                     ([3], ValueError), ([0.5], TypeError), (np.ones((2, 2), int), ValueError),
+                     (np.ones(3, bool), TypeError),
+                     (np.setdiff1d(np.arange(500), [0, 1, 3, 4]), ValueError)):
+        with pytest.raises(err):
+            d.remove(bad)
+        assert (np.array(d.simplices) == before).all()
+    assert (np.asarray(d.duplicate_of)[[3, 4]] == -2).all()
+    d.remove(np.array([], np.int64))  # nothing to remove
+    assert (np.array(d.simplices) == before).all()
+    d.close()
+    with pytest.raises(RuntimeError):
+        d.remove([7])
+    with pytest.raises(RuntimeError):
+        gpugeom.Delaunay(p).remove([7])
