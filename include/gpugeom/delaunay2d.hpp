@@ -140,9 +140,12 @@ class DynamicDelaunay2d {
   // Removes the points with the given indices (count of them, each once, none removed before;
   // host memory, or executor memory for remove_device) and brings the triangulation up to
   // date. A removed point is no vertex but keeps its index: duplicate_of reads kRemovedPoint
-  // there (an equal point given before or after is a vertex in its place). Throws
-  // Error(InvalidArgument) for a bad index list, and as the constructor where the points left
-  // have no triangulation; the object is then unchanged.
+  // there (an equal point given before or after is a vertex in its place). The holes are filled
+  // with the triangles of the triangulation of their own vertices that fit in them (the
+  // triangles of the kept one without a removed vertex stay); where that cannot be done (too few
+  // such vertices, all in one line) the points left are triangulated afresh (stats counter
+  // "remove_rebuilt"). Throws Error(InvalidArgument) for a bad index list, and as the
+  // constructor where the points left have no triangulation; the object is then unchanged.
   void remove(const std::int32_t* indices, std::int64_t count);
   void remove_device(const std::int32_t* device_indices, std::int64_t count);
 

@@ -34,6 +34,7 @@
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
 #include "mesh/compact.hpp"
+#include "mesh/hole_refill.hpp"
 #include "mesh/kept_points.hpp"
 #include "mesh/decision.hpp"
 #include "mesh/flip_fix.hpp"

@@ -23,6 +23,7 @@
 #include "exec/scratch_lease.hpp"
 #include "mesh/adjacency.hpp"
 #include "mesh/compact.hpp"
+#include "mesh/hole_refill.hpp"
 #include "mesh/kept_points.hpp"
 #include "mesh/first_tetrahedron.hpp"
 #include "mesh/flip_fix.hpp"

@@ -8,6 +8,7 @@
 // case when there is none, and Error(InvalidInput) for coordinates the exact predicates cannot
 // take.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -49,6 +50,46 @@ struct Tetra {
   std::int32_t v[4];
   double s[3];
 };
+// A point strictly inside the tetrahedron V (exactly): its centroid almost always. In a very
+// thin one (coordinates of very different magnitudes: one vertex at 1e40, three at 1e-31) the
+// rounded centroid can fall outside, and then the cones from it over the faces, which the
+// triangulations use to locate points beyond the hull, overlap and leave gaps; so weighted means
+// with some vertices made ever lighter (weights 1 : 2^j) are tried until one is inside. The
+// centroid where none is (not seen).
+inline void kernel_of(const double* const V[4], double s[3]) {
+  double sc[pred::kOrient3dScratch];
+  const int o = pred::orient3d(V[0], V[1], V[2], V[3], sc);
+  auto inside = [&](const double* c) {
+    for (int k = 0; k < 4; ++k) {
+      const double* W[4] = {V[0], V[1], V[2], V[3]};
+      W[k] = c;
+      if (pred::orient3d(W[0], W[1], W[2], W[3], sc) != o) return false;
+    }
+    return true;
+  };
+  for (int k = 0; k < 3; ++k) s[k] = (V[0][k] + V[1][k] + V[2][k] + V[3][k]) / 4;
+  if (inside(s)) return;
+  for (int light = 1; light < 15; ++light)  // the set of light vertices, as bits
+    for (int j = 1; j < 1000; j += 3) {
+      const int nl = __builtin_popcount(unsigned(light));
+      const double w = std::ldexp(1.0, j);  // the heavy ones' weight, the light ones' 1
+      const double tot = nl + (4 - nl) * w;
+      const double a = 1.0 / tot, b = w / tot;  // (no overflow)
+      double c[3];
+      bool exact_range = true;
+      for (int k = 0; k < 3; ++k) {
+        double l = 0, h = 0;
+        for (int i = 0; i < 4; ++i) (light >> i & 1 ? l : h) += V[i][k];
+        c[k] = a * l + b * h;
+        exact_range = exact_range && pred::in_exact_range(c[k]);
+      }
+      if (exact_range && inside(c)) {
+        for (int k = 0; k < 3; ++k) s[k] = c[k];
+        return;
+      }
+    }
+}
+
 // v: positively oriented when `positive` (delaunay3d), else negatively (hull3d: the fourth point
 // lies below the first three); s: the centroid. n_input: the caller's point count, for the
 // messages (p holds n distinct points of them); what: the structure asked for ("a convex
@@ -152,7 +193,8 @@ Tetra first_tetrahedron(Exec& ex, const double* p, std::int64_t n, std::int64_t 
   t.v[0] = ia, t.v[1] = ib, t.v[2] = ic, t.v[3] = d.i;
   double s[pred::kOrient3dScratch];
   if ((pred::orient3d(A, B, C, D, s) > 0) != positive) std::swap(t.v[1], t.v[2]);
-  for (int k = 0; k < 3; ++k) t.s[k] = (A[k] + B[k] + C[k] + D[k]) / 4;
+  const double* V[4] = {A, B, C, D};
+  kernel_of(V, t.s);
   return t;
 }
 

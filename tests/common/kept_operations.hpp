@@ -56,16 +56,28 @@ class KeptOperations {
   // The calls made (and removals refused), so that a test can see every kind ran.
   struct Calls {
     int inserts = 0, moves = 0, removes = 0, refused = 0;
+    int refilled = 0;  // removals that filled the holes (stats counter remove_rebuilt 0)
   };
   const Calls& calls() const { return calls_; }
 
-  // One random call (insert, move or remove), then the check.
+  // One random call (insert, move or remove), then the check. An exception fails the test with
+  // the call named.
   void step() {
+    try {
+      call();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << last_ << ": " << e.what();
+    }
+  }
+
+ private:
+  void call() {
     const std::size_t left = pool_.size() - pts_.size();
     const int what = int(rng_() % 3);
     if (what == 0 && left) {
       const std::size_t add = std::min(left, 1 + rng_() % (left / 3 + 1));
-      SCOPED_TRACE("insert " + std::to_string(add));
+      last_ = "insert " + std::to_string(add) + " into " + std::to_string(pts_.size());
+      SCOPED_TRACE(last_);
       dyn_->insert(&pool_[pts_.size()].x, std::int64_t(add));
       for (std::size_t i = 0; i < add; ++i) pts_.push_back(pool_[pts_.size()]), gone_.push_back(0);
       ++calls_.inserts;
@@ -74,7 +86,8 @@ class KeptOperations {
       const double scale = (rng_() % 2 ? 1e-3 : 0.3) * spacing();
       std::vector<Point> q = pts_;
       for (auto& p : q) T::shift(p, scale, rng_);
-      SCOPED_TRACE("move by " + std::to_string(scale));
+      last_ = "move by " + std::to_string(scale);
+      SCOPED_TRACE(last_);
       dyn_->move(&q.data()->x, std::int64_t(q.size()));
       pts_ = q;
       ++calls_.moves;
@@ -85,11 +98,13 @@ class KeptOperations {
       std::shuffle(live.begin(), live.end(), rng_);
       const std::size_t r = std::min(live.size(), 1 + rng_() % (live.size() / 4 + 1));
       live.resize(r);
-      SCOPED_TRACE("remove " + std::to_string(r));
+      last_ = "remove " + std::to_string(r) + " of " + std::to_string(pts_.size());
+      SCOPED_TRACE(last_);
       try {
         dyn_->remove(live.data(), std::int64_t(r));
         for (std::int32_t i : live) gone_[std::size_t(i)] = 1;
         ++calls_.removes;
+        calls_.refilled += dyn_->stats().counters.at("remove_rebuilt") == 0;
       } catch (const gpugeom::Error& e) {
         ++calls_.refused;
         // too few points left, or none in general position: refused, nothing changed
@@ -99,6 +114,7 @@ class KeptOperations {
     check();
   }
 
+ public:
   // After every call: the same simplices and duplicate map as a fresh call on the points left
   // (renumbered), which the exact checker judges; neighbours consistent.
   void check() {
@@ -169,6 +185,7 @@ class KeptOperations {
   std::mt19937_64 rng_;
   std::unique_ptr<typename T::Dyn> dyn_;
   Calls calls_;
+  std::string last_;
 };
 
 // Random calls on each case (steps of them), checked after each; every kind of call ran.
@@ -184,11 +201,13 @@ void random_operations(const Cases& cases, const typename T::Options& opt, std::
       for (int i = 0; i < steps && !::testing::Test::HasFailure(); ++i) k.step();
       all.inserts += k.calls().inserts, all.moves += k.calls().moves;
       all.removes += k.calls().removes, all.refused += k.calls().refused;
+      all.refilled += k.calls().refilled;
     }
   EXPECT_GT(all.inserts, 0);
   EXPECT_GT(all.moves, 0);
   EXPECT_GT(all.removes, 0);
   EXPECT_GT(all.refused, 0);  // some removal left too few points
+  EXPECT_GT(all.refilled, all.removes / 2) << all.removes << " removals";
 }
 
 }  // namespace gg_test

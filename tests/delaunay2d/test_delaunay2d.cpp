@@ -690,7 +690,7 @@ TEST(DynamicDelaunay2d, RandomOperationsGiveTheFreshTriangulation) {
   auto cases = gg_del2d::degenerate_cases();
   for (const auto& c : gg_del2d::distribution_cases({50, 5000}, 41))
     if (c.name.rfind("two_segments", 0) != 0) cases.push_back(c);
-  gg_test::random_operations<gg_del2d::Kept2d>(cases, cpu(), 300, 2, 8);
+  gg_test::random_operations<gg_del2d::Kept2d>(cases, cpu(), 300, 3, 10);
 }
 
 // A removed point is no vertex and keeps its index (kRemovedPoint); a copy of it, given before

@@ -526,7 +526,7 @@ TEST(DynamicDelaunay3d, RandomOperationsGiveTheFreshTetrahedralisation) {
   auto cases = gg_hull3d::degenerate_cases();
   for (const auto& c : gg_hull3d::distribution_cases({60, 3000}, 43))
     if (c.name.rfind("two_lines", 0) != 0) cases.push_back(c);
-  gg_test::random_operations<gg_del3d::Kept3d>(cases, cpu(), 700, 1, 8);
+  gg_test::random_operations<gg_del3d::Kept3d>(cases, cpu(), 700, 2, 10);
 }
 
 // A removed point is no vertex and keeps its index (kRemovedPoint); a copy of it, given before

@@ -138,6 +138,97 @@ inline void prepare_kept(Exec& ex, const KeptArrays& R, std::int64_t n, Prep pre
   });
 }
 
+// Removal (issue 47): the kept triangles with the holes of the removed vertices filled
+// (mesh/hole_refill.hpp) from D, the triangulation of the hole's vertices that stay and of the
+// copies that take a removed vertex's place (flat triangles kept, as in the kept one). ok false
+// where that cannot be done here (too few or collinear such vertices, pieces that do not fit,
+// or a count that breaks Euler's relation for the m points left): the caller builds afresh.
+struct Refill2d {
+  typename Exec::template Buffer<std::int32_t> tri, nb;
+  std::int64_t nt = 0;
+  bool ok = false;
+};
+
+// D's triangles and neighbours (input indices), from the nv points ids name. [synchronises]
+inline bool hole_triangulation(Exec& ex, const double* xy, const std::int32_t* ids, std::int64_t nv,
+                               typename Exec::template Buffer<std::int32_t>& tri,
+                               typename Exec::template Buffer<std::int32_t>& nb, std::int64_t& nt) {
+  auto d_p = ex.template alloc<double>(std::size_t(2 * nv));
+  double* p = d_p.data();
+  ex.for_each_index(
+      nv, GG_LAMBDA(std::int64_t j) {
+        p[2 * j] = xy[2 * std::int64_t(ids[j])], p[2 * j + 1] = xy[2 * std::int64_t(ids[j]) + 1];
+      });
+  bool got = false;
+  try {
+    Stats sd;
+    triangulate_core(
+        ex, p, nv, true, false, sd, [](Prepared&) {},
+        [&](Prepared& P, typename Triangulator::Finished& f) {
+          if (P.duplicates) return;  // (the hole's vertices are distinct points)
+          tri = std::move(f.simplices);
+          nb = std::move(f.neighbors);
+          nt = f.count;
+          got = true;
+        },
+        false);
+  } catch (const Error& e) {
+    if (e.code() == ErrorCode::DegenerateInput) return false;  // (collinear hole vertices)
+    throw;
+  }
+  if (!got) return false;
+  std::int32_t* t = tri.data();
+  ex.for_each_index(
+      3 * nt, GG_LAMBDA(std::int64_t e) { t[e] = ids[t[e]]; });
+  return true;
+}
+
+// Hull edges (no neighbour) of nt triangles. [synchronises]
+inline std::int64_t hull_edges(Exec& ex, const std::int32_t* nb, std::int64_t nt) {
+  auto cnt = ex.template alloc<std::int64_t>(1);
+  ex.transform_reduce_into(
+      3 * nt, GG_LAMBDA(std::int64_t e)->std::int64_t { return nb[e] < 0; }, std::int64_t(0),
+      thrust::plus<std::int64_t>(), cnt.data());
+  std::int64_t c = 0;
+  ex.to_host(cnt.data(), 1, &c);
+  return c;
+}
+
+inline Refill2d refill_2d(Exec& ex, const KeptArrays& K, const KeptArrays& R,
+                          const std::int32_t* new_dup, std::int64_t m, Stats& st) {
+  Refill2d out;
+  const std::int64_t n = K.n;  // (a removal keeps every index)
+  auto d_now = mesh::removed_now(ex, R.gone.data(), K.gone_map(), n);
+  auto d_hole = ex.template alloc<std::int8_t>(std::size_t(K.nt));
+  const std::int64_t nh = mesh::hole_flags<3>(ex, K.tri.data(), K.nt, d_now.data(), d_hole.data());
+  if (nh == 0) {  // only points that were no vertices: the triangles stay
+    out.tri = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));
+    out.nb = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));
+    ex.copy(K.tri.data(), 3 * K.nt, out.tri.data());
+    ex.copy(K.nb.data(), 3 * K.nt, out.nb.data());
+    out.nt = K.nt;
+    out.ok = true;
+    return out;
+  }
+  auto d_ids = ex.template alloc<std::int32_t>(std::size_t(n));
+  const std::int64_t nv = mesh::hole_vertices<3>(
+      ex, K.tri.data(), K.nt, d_hole.data(), d_now.data(), K.dup_map(), new_dup, n, d_ids.data());
+  st.counters["hole_vertices"] = nv;
+  typename Exec::template Buffer<std::int32_t> dtri, dnb;
+  std::int64_t dnt = 0;
+  if (nv < 3 || !hole_triangulation(ex, R.xy.data(), d_ids.data(), nv, dtri, dnb, dnt)) return out;
+  auto f = mesh::refill_holes<3>(ex, K.tri.data(), K.nb.data(), K.nt, d_hole.data(), dtri.data(),
+                                 dnb.data(), dnt, false);
+  st.counters["hole_triangles"] = f.inside;
+  // Euler: a triangulation of m points with h hull edges has 2m - 2 - h triangles
+  if (!f.ok || f.count != 2 * m - 2 - hull_edges(ex, f.n.data(), f.count)) return out;
+  out.tri = std::move(f.v);
+  out.nb = std::move(f.n);
+  out.nt = f.count;
+  out.ok = true;
+  return out;
+}
+
 // The state for the n points in R.xy (the kept points with `add` appended, or all of them
 // moved), built beside K: K is not touched, so a call that throws leaves it as it was.
 // Insert: the new points go into the kept triangulation. Move: the kept triangulation, where it
@@ -164,10 +255,6 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     return std::move(R);
   };
   if (!K.n) return fresh();  // the first points
-  if (how == Update::Remove) {
-    st.counters["remove_rebuilt"] = 1;
-    return fresh();
-  }
   auto t0 = std::chrono::steady_clock::now();
   Prepared P;
   prepare_kept(ex, R, n, [&](const double* xy, std::int64_t m, auto widen) {
@@ -179,8 +266,25 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
   st.counters["distinct_points"] = P.m;
   st.counters["duplicates"] = P.duplicates;
   if (R.nremoved) st.counters["removed_points"] = R.nremoved;
+  // the triangulation the Triangulator starts from: the kept one, or after a removal the refilled
+  const std::int32_t* start_tri = K.tri.data();
+  const std::int32_t* start_nb = K.nb.data();
+  std::int64_t start_nt = K.nt;
+  Refill2d filled;
+  double kernel[2] = {K.kernel[0], K.kernel[1]};
   auto d_hint = ex.template alloc<std::int32_t>(how == Update::Insert ? std::size_t(n) : 0);
-  if (how == Update::Insert) {
+  if (how == Update::Remove) {
+    const auto t1 = std::chrono::steady_clock::now();
+    filled = refill_2d(ex, K, R, dup_map, P.m, st);
+    st.phase_ms.push_back({"refill", ms_since(t1)});
+    st.counters["remove_rebuilt"] = !filled.ok;
+    if (!filled.ok) return fresh();
+    start_tri = filled.tri.data(), start_nb = filled.nb.data(), start_nt = filled.nt;
+    // The kernel point must lie inside the start's hull: the first build's is inside every
+    // later one while points are only added or moved; after a removal the new first
+    // triangle's is.
+    kernel[0] = P.kernel[0], kernel[1] = P.kernel[1];
+  } else if (how == Update::Insert) {
     st.counters["inserted_points"] = P.m - (K.n - K.ndup - K.nremoved);
     mesh::curve_hints(ex, P.orig.data(), P.m, n, K.n, d_hint.data());
   } else {
@@ -193,15 +297,16 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
       return fresh();
     }
   }
-  auto d_tri = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));  // (mapped in place)
-  auto d_twin = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));
-  ex.copy(K.tri.data(), 3 * K.nt, d_tri.data());
-  twins_of_neighbours(ex, K.tri.data(), K.nb.data(), K.nt, d_twin.data());
+  auto d_tri = ex.template alloc<std::int32_t>(std::size_t(3 * start_nt));  // (mapped in place)
+  auto d_twin = ex.template alloc<std::int32_t>(std::size_t(3 * start_nt));
+  ex.copy(start_tri, 3 * start_nt, d_tri.data());
+  twins_of_neighbours(ex, start_tri, start_nb, start_nt, d_twin.data());
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
-  auto f = run_from_start(ex, P, n, d_tri.data(), K.nt, d_twin.data(),
-                          how == Update::Insert ? d_hint.data() : nullptr, profile, st, K.kernel,
-                          false, how == Update::Insert);
+  // (a move's start is tested everywhere; an insertion's and a refill's are Delaunay)
+  auto f = run_from_start(ex, P, n, d_tri.data(), start_nt, d_twin.data(),
+                          how == Update::Insert ? d_hint.data() : nullptr, profile, st, kernel,
+                          false, how != Update::Move);
   keep(P, f);
   ex.sync();
   return R;

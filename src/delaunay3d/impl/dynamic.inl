@@ -191,6 +191,131 @@ inline Prepared prepare_kept(Exec& ex, const KeptArrays& R, std::int64_t n, Stat
   return P;
 }
 
+// Removal (issue 47): the kept store with the holes of the removed vertices filled
+// (mesh/hole_refill.hpp) from D, the tetrahedralisation of the hole's vertices that stay and of
+// the copies that take a removed vertex's place. ok false where that cannot be done here (too
+// few or coplanar such vertices, pieces that do not fit): the caller builds afresh.
+struct Refill3d {
+  typename Exec::template Buffer<Tet> tet;
+  typename Exec::template Buffer<std::int8_t> touched;  // per slot: where phase 2 looks
+  std::int64_t used = 0;
+  bool ok = false;
+};
+
+// A store as plain arrays (vertices, neighbours as slot numbers or -1), and back (neighbours
+// encoded with the face they meet: the one whose neighbour is this slot).
+inline void plain_of(Exec& ex, const Tet* tet, std::int64_t used, std::int32_t* v,
+                     std::int32_t* nb) {
+  ex.for_each_index(
+      used, GG_LAMBDA(std::int64_t t) {
+        const Tet T = tet[t];
+        for (int k = 0; k < 4; ++k) {
+          v[4 * t + k] = T.v[k];
+          nb[4 * t + k] = T.n[k] == kNoNeighbour ? -1 : simplex_of(T.n[k]);
+        }
+      });
+}
+inline void store_of(Exec& ex, const std::int32_t* v, const std::int32_t* nb, std::int64_t count,
+                     Tet* tet) {
+  ex.for_each_index(
+      count, GG_LAMBDA(std::int64_t t) {
+        Tet T;
+        for (int k = 0; k < 4; ++k) {
+          T.v[k] = v[4 * t + k];
+          const std::int32_t o = nb[4 * t + k];
+          int back = 0;
+          if (o >= 0)
+            for (int j = 0; j < 4; ++j)
+              if (nb[4 * std::int64_t(o) + j] == std::int32_t(t)) back = j;
+          T.n[k] = o < 0 ? kNoNeighbour : enc(o, back);
+        }
+        tet[t] = T;
+      });
+}
+
+inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const KeptArrays& R,
+                          const std::int32_t* new_dup, const Delaunay3dOptions& opt, Stats& st) {
+  Refill3d out;
+  const std::int64_t n = K.n;  // (a removal keeps every index)
+  auto d_now = mesh::removed_now(ex, R.gone.data(), K.gone_map(), n);
+  auto d_ov = ex.template alloc<std::int32_t>(std::size_t(4 * K.used));
+  auto d_on = ex.template alloc<std::int32_t>(std::size_t(4 * K.used));
+  plain_of(ex, K.tet.data(), K.used, d_ov.data(), d_on.data());
+  auto d_hole = ex.template alloc<std::int8_t>(std::size_t(K.used));
+  const std::int64_t nh = mesh::hole_flags<4>(ex, d_ov.data(), K.used, d_now.data(), d_hole.data());
+  if (nh == 0) {  // only points that were no vertices: the store stays
+    out.tet = ex.template alloc<Tet>(std::size_t(K.used));
+    ex.copy(K.tet.data(), K.used, out.tet.data());
+    out.used = K.used;
+    out.touched = ex.template alloc<std::int8_t>(std::size_t(K.used));
+    ex.fill(out.touched.data(), K.used, std::int8_t(0));
+    out.ok = true;
+    return out;
+  }
+  auto d_ids = ex.template alloc<std::int32_t>(std::size_t(n));
+  std::int32_t* ids = d_ids.data();
+  const std::int64_t nv = mesh::hole_vertices<4>(ex, d_ov.data(), K.used, d_hole.data(),
+                                                 d_now.data(), K.dup_map(), new_dup, n, ids);
+  st.counters["hole_vertices"] = nv;
+  if (nv < 4) return out;
+  // D: the hole vertices' tetrahedralisation, its store in input indices
+  auto d_p = ex.template alloc<double>(std::size_t(3 * nv));
+  double* p = d_p.data();
+  const double* xyz = R.xyz.data();
+  ex.for_each_index(
+      nv, GG_LAMBDA(std::int64_t j) {
+        for (int d = 0; d < 3; ++d) p[3 * j + d] = xyz[3 * std::int64_t(ids[j]) + d];
+      });
+  typename Exec::template Buffer<Tet> dstore;
+  std::int64_t dused = 0;
+  try {
+    Stats sd;
+    Prepared PD = prepare_points(ex, p, nv, true, sd);
+    if (PD.S.duplicates) return out;  // (the hole's vertices are distinct points)
+    Triangulator TD(ex, PD.S.pts.data(), std::int32_t(PD.S.m), PD.first, opt.max_flip_rounds,
+                    opt.progress, sd);
+    TD.run();
+    repair_phase(ex, TD, PD.S.m, opt.progress, sd);
+    dused = TD.counters().used;
+    dstore = keep_store(ex, TD, PD.S.orig.data());
+  } catch (const Error& e) {
+    if (e.code() == ErrorCode::DegenerateInput) return out;  // (coplanar hole vertices)
+    throw;
+  }
+  auto d_dv = ex.template alloc<std::int32_t>(std::size_t(4 * dused));
+  auto d_dn = ex.template alloc<std::int32_t>(std::size_t(4 * dused));
+  plain_of(ex, dstore.data(), dused, d_dv.data(), d_dn.data());
+  std::int32_t* dv = d_dv.data();
+  ex.for_each_index(
+      4 * dused, GG_LAMBDA(std::int64_t e) {
+        const std::int32_t v = dv[e];
+        if (v >= 0) dv[e] = ids[v];  // (dead -1 and infinity kKeptInfinity stay)
+      });
+  auto f = mesh::refill_holes<4>(ex, d_ov.data(), d_on.data(), K.used, d_hole.data(), dv,
+                                 d_dn.data(), dused, true);
+  st.counters["hole_tetrahedra"] = f.inside;
+  if (!f.ok) return out;
+  out.tet = ex.template alloc<Tet>(std::size_t(f.count));
+  store_of(ex, f.v.data(), f.n.data(), f.count, out.tet.data());
+  out.used = f.count;
+  out.touched = std::move(f.touched);
+  out.ok = true;
+  return out;
+}
+
+// After a removal: the refilled slots and their neighbours, and any slot past the refilled store
+// (a point the refill missed would be inserted there: a safety net, not expected).
+inline typename Exec::template Buffer<std::int8_t> refilled_slots(Exec& ex, Triangulator& T,
+                                                                  const Refill3d& f) {
+  const std::int64_t used = T.counters().used, kept = f.used;
+  auto out = ex.template alloc<std::int8_t>(std::size_t(used));
+  std::int8_t* o = out.data();
+  const std::int8_t* t = f.touched.data();
+  ex.for_each_index(
+      used, GG_LAMBDA(std::int64_t s) { o[s] = s >= kept || t[s]; });
+  return out;
+}
+
 // The state for the n points in R.xyz (the kept points with more appended, or all of them
 // moved), built beside K: K is not touched, so a call that throws leaves it as it was. Insert:
 // the new points go into the kept store. Move: the kept store, where it is still a
@@ -203,15 +328,28 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
   mesh::SortedPoints<Exec>& S = P.S;
   const std::int32_t* dup_map = S.duplicates || R.nremoved ? S.dup.data() : nullptr;
   mesh::Tetra first = P.first;
-  bool fresh = !K.n || how == Update::Remove;
-  if (how == Update::Remove) st.counters["remove_rebuilt"] = 1;
+  bool fresh = !K.n;
+  // the store phase 1 starts from, and the slots phase 2 tests (null: all)
+  const Tet* start = K.tet.data();
+  std::int64_t start_used = K.used;
+  Refill3d filled;
+  if (how == Update::Remove) {
+    const auto t1 = Clock::now();
+    filled = refill_3d(ex, K, R, dup_map, opt, st);
+    st.phase_ms.push_back({"refill", ms_since(t1)});
+    fresh = !filled.ok;
+    st.counters["remove_rebuilt"] = fresh;
+    start = filled.tet.data(), start_used = filled.used;
+  }
   if (!fresh && how == Update::Move) {
     const bool same_points =
         S.duplicates == K.ndup && mesh::dup_changes(ex, K.dup_map(), dup_map, n) == 0;
     fresh = !(same_points && still_a_tetrahedralisation(ex, K, R.xyz.data(), n));
     st.counters["move_rebuilt"] = fresh;
   }
-  if (!fresh)
+  // The kernel point must lie inside the start's hull: the first build's is inside every later
+  // one while points are only added or moved; after a removal the new first tetrahedron's is.
+  if (!fresh && how != Update::Remove)
     for (int k = 0; k < 3; ++k) first.s[k] = K.kernel[k];
   auto t0 = Clock::now();
   Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, opt.max_flip_rounds, opt.progress, st);
@@ -237,14 +375,16 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
           const std::int32_t h = hint[orig[j]];
           near[j] = h >= 0 ? inv[h] : -1;
         });
-    T.start_from(K.tet.data(), K.used, inv, near);
+    T.start_from(start, start_used, inv, how == Update::Insert ? near : nullptr);
     st.phase_ms.push_back({"start", ms_since(t0)});
     T.insert_all();
     st.phase_ms.push_back({"insert_flip", ms_since(t0)});
-    // Only the slots the insertions rewrote can hold faces that are not locally Delaunay (all
-    // of them may, where the points moved).
-    auto d_touched = touched_slots(ex, T, K, inv);
-    repair_phase(ex, T, S.m, opt.progress, st, how == Update::Insert ? d_touched.data() : nullptr);
+    // Only the slots the insertions rewrote (or the refill wrote, and their neighbours) can hold
+    // faces that are not locally Delaunay (all of them may, where the points moved).
+    typename Exec::template Buffer<std::int8_t> d_touched;
+    if (how == Update::Insert) d_touched = touched_slots(ex, T, K, inv);
+    if (how == Update::Remove) d_touched = refilled_slots(ex, T, filled);
+    repair_phase(ex, T, S.m, opt.progress, st, how == Update::Move ? nullptr : d_touched.data());
   }
   t0 = Clock::now();
   T.report();
