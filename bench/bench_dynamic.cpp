@@ -9,6 +9,9 @@
 //   insert dev  insert_device of the k points already on the device (from_device beforehand)
 // With --move f (2D), every point of dist:n is moved by a normal step of f times the mean
 // spacing instead: move / move e2e / move dev, beside a fresh triangulation of the moved points.
+// With --remove (for the rows after it), k of the n points are removed instead (a fixed random
+// choice): remove / remove e2e (plus the results), beside a fresh triangulation of the n - k
+// points left (fresh e2e, and fresh dev from device points).
 // Medians of --reps runs; the last insert's phases are printed, and the result is checked
 // against the fresh one (the same triangles).
 #include <algorithm>
@@ -18,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -65,6 +69,7 @@ struct Row {
   std::int64_t n = 0, k = 0;
   int dim = 2;
   double move = 0;  // > 0: every point moved by this many mean spacings (2D)
+  bool remove = false;
 };
 
 Row parse(const std::string& s) {
@@ -93,6 +98,11 @@ struct Two {
     return delaunay2d_device(d, n, o);
   }
   static auto result(const Dynamic& d) { return d.triangulation(); }
+  // Flat vertex lists of 3 put back in canonical form (each rotated to its least, rows sorted).
+  static std::vector<std::int32_t> canonical(const std::vector<std::int32_t>& v) {
+    auto c = verify::canonical_triangles(v.data(), std::int64_t(v.size() / 3));
+    return std::vector<std::int32_t>(&c.data()->front(), &c.data()->front() + 3 * c.size());
+  }
   static auto simplices(const Triangulation2d& t) {
     auto c = verify::canonical_triangles(t.triangles.data(), t.triangle_count);
     return std::vector<std::int32_t>(&c.data()->front(), &c.data()->front() + 3 * c.size());
@@ -110,6 +120,18 @@ struct Three {
     return delaunay3d_device(d, n, o);
   }
   static auto result(const Dynamic& d) { return d.tetrahedralisation(); }
+  // Flat vertex lists of 4 put back in canonical form (each sorted, rows sorted).
+  static std::vector<std::int32_t> canonical(const std::vector<std::int32_t>& v) {
+    std::vector<std::array<std::int32_t, 4>> c(v.size() / 4);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      for (int k = 0; k < 4; ++k) c[i][std::size_t(k)] = v[4 * i + std::size_t(k)];
+      std::sort(c[i].begin(), c[i].end());
+    }
+    std::sort(c.begin(), c.end());
+    std::vector<std::int32_t> out;
+    for (const auto& a : c) out.insert(out.end(), a.begin(), a.end());
+    return out;
+  }
   static auto simplices(const Triangulation3d& t) {
     std::vector<std::array<std::int32_t, 4>> c(t.num_tetrahedra());
     for (std::size_t i = 0; i < c.size(); ++i) {
@@ -172,6 +194,63 @@ void run_row(const Row& row, Backend b, int reps) {
       same ? "same simplices" : "DIFFERENT SIMPLICES");
   std::fflush(stdout);
 }
+// k of n points removed from the triangulation of all n, beside a fresh one of those left.
+template <class D>
+void run_remove(const Row& row, Backend b, int reps) {
+  constexpr int dim = sizeof(typename D::Point) / sizeof(double);
+  const auto p = D::points(row.dist, row.n);
+  const std::int64_t n = std::int64_t(p.size()), k = std::min(row.k, n - 4);
+  std::vector<std::int32_t> idx(static_cast<std::size_t>(n));
+  for (std::int64_t i = 0; i < n; ++i) idx[std::size_t(i)] = std::int32_t(i);
+  std::mt19937_64 rng(11);
+  std::shuffle(idx.begin(), idx.end(), rng);
+  idx.resize(std::size_t(k));
+  std::vector<char> gone(std::size_t(n), 0);
+  for (std::int32_t i : idx) gone[std::size_t(i)] = 1;
+  std::vector<typename D::Point> live;
+  std::vector<std::int32_t> ids;
+  for (std::int64_t i = 0; i < n; ++i)
+    if (!gone[std::size_t(i)]) live.push_back(p[std::size_t(i)]), ids.push_back(std::int32_t(i));
+  typename D::Options o;
+  o.backend = b;
+  decltype(D::fresh(p, o)) fresh;
+  const double fresh_e2e = median_ms(
+      reps, [] {}, [&] { fresh = D::fresh(live, o); });
+  std::unique_ptr<typename D::Dynamic> d;
+  auto build = [&] { d = std::make_unique<typename D::Dynamic>(&p.data()->x, n, o); };
+  const double rm = median_ms(reps, build, [&] { d->remove(idx.data(), k); });
+  print_phases(d->stats());
+  const bool rebuilt = d->stats().counters.at("remove_rebuilt") != 0;
+  decltype(fresh) got;
+  const double rm_e2e = median_ms(reps, build, [&] {
+    d->remove(idx.data(), k);
+    got = D::result(*d);
+  });
+  auto mapped = D::simplices(fresh);
+  for (auto& v : mapped) v = ids[std::size_t(v)];
+  auto want = D::simplices(got);  // (canonical: sorted rows; re-sort after the mapping)
+  const bool same = D::canonical(mapped) == want;
+  double fresh_dev = -1;
+#ifdef GPUGEOM_HAVE_CUDA
+  if (b == Backend::Cuda) {
+    double* dp = nullptr;
+    const std::size_t bytes = live.size() * sizeof(typename D::Point);
+    if (cudaMalloc(&dp, bytes) == cudaSuccess &&
+        cudaMemcpy(dp, live.data(), bytes, cudaMemcpyHostToDevice) == cudaSuccess)
+      fresh_dev = median_ms(
+          reps, [] {}, [&] { D::fresh_device(dp, std::int64_t(live.size()), o); });
+    cudaFree(dp);
+  }
+#endif
+  std::printf(
+      "%dD %-10s %-5s n=%-10lld removed=%-9lld fresh e2e %9.2f  fresh dev %9.2f  remove %9.2f  "
+      "remove e2e %9.2f  (ratio to fresh %.3f)  %s, %s\n",
+      dim, row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, (long long)k,
+      fresh_e2e, fresh_dev, rm, rm_e2e, fresh_dev > 0 ? rm / fresh_dev : rm / fresh_e2e,
+      rebuilt ? "rebuilt" : "holes filled", same ? "same simplices" : "DIFFERENT SIMPLICES");
+  std::fflush(stdout);
+}
+
 // All n points of a 2D distribution moved by a normal step of f times the mean spacing.
 void run_move(const Row& row, double f, Backend b, int reps) {
   const auto p = generate2d(row.dist, row.n, 7);
@@ -240,6 +319,7 @@ void run_move(const Row& row, double f, Backend b, int reps) {
 int main(int argc, char** argv) {
   int reps = 3, dim = 2;
   double move = 0;
+  bool removing = false;
   std::string which = "all";
   std::vector<Row> rows;
   for (int i = 1; i < argc; ++i) {
@@ -254,10 +334,13 @@ int main(int argc, char** argv) {
       dim = 2;
     else if (a == "--move" && i + 1 < argc)
       move = std::atof(argv[++i]);
+    else if (a == "--remove")
+      removing = true;
     else {
       rows.push_back(parse(a));
       rows.back().dim = dim;
       rows.back().move = move;
+      rows.back().remove = removing;
     }
   }
   if (rows.empty()) rows = {{"uniform", 1000000, 1000}, {"uniform", 1000000, 100000}};
@@ -266,8 +349,10 @@ int main(int argc, char** argv) {
               reps, dev.available ? "; GPU: " : "", dev.available ? dev.name.c_str() : "");
   for (Backend b : bench::backends(which))
     for (const Row& r : rows)
-      r.move > 0   ? run_move(r, r.move, b, reps)
-      : r.dim == 2 ? run_row<Two>(r, b, reps)
-                   : run_row<Three>(r, b, reps);
+      r.move > 0              ? run_move(r, r.move, b, reps)
+      : r.remove&& r.dim == 2 ? run_remove<Two>(r, b, reps)
+      : r.remove              ? run_remove<Three>(r, b, reps)
+      : r.dim == 2            ? run_row<Two>(r, b, reps)
+                              : run_row<Three>(r, b, reps);
   return 0;
 }

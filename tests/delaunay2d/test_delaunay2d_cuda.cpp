@@ -484,7 +484,7 @@ TEST(CudaDynamicDelaunay2d, DeviceResident) {
 }
 
 // The same sequence of calls gives the same arrays run after run (a race would not), and moves
-// give the CPU executor's arrays.
+// and removals give the CPU executor's arrays.
 TEST(CudaDynamicDelaunay2d, RepeatableAndMovedAsOnTheCpu) {
   for (const char* dist : {"uniform", "grid"}) {
     SCOPED_TRACE(dist);
@@ -502,12 +502,15 @@ TEST(CudaDynamicDelaunay2d, RepeatableAndMovedAsOnTheCpu) {
       std::pair<Triangulation2d, Triangulation2d> r;
       r.first = t.triangulation();
       t.move(&q.data()->x, n);
+      std::vector<std::int32_t> gone;
+      for (std::int32_t i = 7; i < n; i += 97) gone.push_back(i);
+      t.remove(gone.data(), std::int64_t(gone.size()));
       r.second = t.triangulation();
       return r;
     };
     const auto a = run(Backend::Cuda);
     gg_del2d::expect_valid(p, a.first);
-    gg_del2d::expect_valid(q, a.second);
+    EXPECT_EQ(a.second.duplicate_of[7], kRemovedPoint);
     for (int r = 0; r < 2; ++r) {
       const auto b = run(Backend::Cuda);
       expect_same_arrays(a.first, b.first);
@@ -517,4 +520,15 @@ TEST(CudaDynamicDelaunay2d, RepeatableAndMovedAsOnTheCpu) {
     expect_same_arrays(a.first, c.first);
     expect_same_arrays(a.second, c.second);
   }
+}
+
+// insert, move and remove in random sequences on the CUDA executor (issue 47): after every call
+// the triangulation of a fresh call on the points left.
+TEST(CudaDynamicDelaunay2d, RandomOperationsGiveTheFreshTriangulation) {
+  Delaunay2dOptions o;
+  o.backend = Backend::Cuda;
+  auto cases = gg_del2d::degenerate_cases();
+  for (const auto& c : gg_del2d::distribution_cases(sizes({50, 5000, 100000}), 41))
+    if (c.name.rfind("two_segments", 0) != 0) cases.push_back(c);
+  gg_test::random_operations<gg_del2d::Kept2d>(cases, o, 300, 2, 8);
 }

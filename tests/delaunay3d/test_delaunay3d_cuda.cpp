@@ -236,3 +236,40 @@ TEST(CudaDigitalDelaunay3d, SameOnCoarseAndFineGrids) {
     for (std::int64_t g : {16, 48, 256}) digital_same(c, g, false);
   }
 }
+
+// insert, move and remove in random sequences on the CUDA executor (issue 47): after every call
+// the tetrahedralisation of a fresh call on the points left.
+TEST(CudaDynamicDelaunay3d, RandomOperationsGiveTheFreshTetrahedralisation) {
+  Delaunay3dOptions o;
+  o.backend = Backend::Cuda;
+  auto cases = gg_hull3d::degenerate_cases();
+  for (const auto& c : gg_hull3d::distribution_cases(sizes({60, 3000, 50000}), 43))
+    if (c.name.rfind("two_lines", 0) != 0) cases.push_back(c);
+  gg_test::random_operations<gg_del3d::Kept3d>(cases, o, 700, 1, 8);
+}
+
+// A removal gives the CPU executor's arrays, and a fresh tetrahedralisation's of the points left.
+TEST(CudaDynamicDelaunay3d, RemoveAsOnTheCpu) {
+  const auto p = gpugeom::generate3d("uniform", sizes({200000, 5000}).front(), 14);
+  const std::int64_t n = std::int64_t(p.size());
+  std::vector<std::int32_t> gone;
+  for (std::int32_t i = 3; i < n; i += 101) gone.push_back(i);
+  auto run = [&](Backend b) {
+    Delaunay3dOptions o;
+    o.backend = b;
+    DynamicDelaunay3d t(&p.data()->x, n, o);
+    t.remove(gone.data(), std::int64_t(gone.size()));
+    EXPECT_EQ(t.stats().counters.at("remove_rebuilt"), 0);
+    return t.tetrahedralisation();
+  };
+  const auto a = run(Backend::Cuda);
+  gg_del3d::expect_same_arrays(a, run(Backend::Cpu), "CUDA and CPU executors");
+  std::vector<Point3> live;
+  std::vector<std::int32_t> ids;
+  for (std::int32_t i = 0; i < n; ++i)
+    if ((i - 3) % 101 != 0 || i < 3) live.push_back(p[std::size_t(i)]), ids.push_back(i);
+  const auto fresh = delaunay3d(live);
+  std::vector<std::int32_t> mapped(fresh.tetrahedra.size());
+  for (std::size_t e = 0; e < mapped.size(); ++e) mapped[e] = ids[std::size_t(fresh.tetrahedra[e])];
+  EXPECT_EQ(gg_del3d::tet_set(a.tetrahedra), gg_del3d::tet_set(mapped));
+}
