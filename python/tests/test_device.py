@@ -124,6 +124,11 @@ def test_incremental_delaunay_stays_on_the_gpu(rng):
     q = p + rng.normal(0, 1e-6, p.shape)
     d.move(cupy.asarray(q))
     assert simplex_set(cupy.asnumpy(d.simplices)) == simplex_set(gpugeom.Delaunay(q).simplices)
+    d.remove(cupy.asarray([5, 9, 30001]))  # indices on the GPU stay there
+    live = np.setdiff1d(np.arange(len(q)), [5, 9, 30001])
+    f = gpugeom.Delaunay(q[live])
+    assert simplex_set(cupy.asnumpy(d.simplices)) == simplex_set(live[f.simplices])
+    assert (cupy.asnumpy(d.duplicate_of)[[5, 9, 30001]] == -2).all()
 
 
 def test_incremental_delaunay_torch_cuda(rng):
