@@ -64,6 +64,7 @@ nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, std
 // arrays are where its first points were: new points must be there too (the Python layer
 // converts them), and results come back there.
 struct Dynamic2dState {
+  static constexpr int kDim = 2;
   DynamicDelaunay2d t;
   bool on_device;
   int device;
@@ -81,13 +82,22 @@ void dynamic2d_init(Dynamic2dState* self, const AnyArray& points, const std::str
   new (self) Dynamic2dState{std::move(t), in.on_device, in.on_device ? device_of(o) : -1};
 }
 
-void dynamic2d_insert(Dynamic2dState& self, const AnyArray& points) {
-  const Input in = points_input(points, 2);
+// New points (insert) or new coordinates (move) for a kept triangulation (Dynamic2dState or
+// Dynamic3dState): where its first points were, host memory or its GPU.
+template <class State>
+Input kept_points_input(const State& self, const AnyArray& points) {
+  const Input in = points_input(points, State::kDim);
   if (in.on_device != self.on_device)
     throw nb::value_error(
         self.on_device ? "points must be on the GPU, as the triangulation's first points were"
                        : "points must be in host memory, as the triangulation's first "
                          "points were");
+  return in;
+}
+
+template <class State>
+void dynamic_insert(State& self, const AnyArray& points) {
+  const Input in = kept_points_input(self, points);
   const std::int64_t n = in.shape[0];
   unlocked([&] {
     if (in.on_device)
@@ -97,13 +107,9 @@ void dynamic2d_insert(Dynamic2dState& self, const AnyArray& points) {
   });
 }
 
-void dynamic2d_move(Dynamic2dState& self, const AnyArray& points) {
-  const Input in = points_input(points, 2);
-  if (in.on_device != self.on_device)
-    throw nb::value_error(
-        self.on_device ? "points must be on the GPU, as the triangulation's first points were"
-                       : "points must be in host memory, as the triangulation's first "
-                         "points were");
+template <class State>
+void dynamic_move(State& self, const AnyArray& points) {
+  const Input in = kept_points_input(self, points);
   const std::int64_t n = in.shape[0];
   unlocked([&] {
     if (in.on_device)
@@ -267,6 +273,7 @@ nb::dict tets_dict(Triangulation3d&& t) {
 // A 3D tetrahedralisation kept between calls (Delaunay(incremental=True) in 3D; issue 47), as
 // Dynamic2dState. Ctrl-C ends a long insertion (KeyboardInterrupt), the object left as it was.
 struct Dynamic3dState {
+  static constexpr int kDim = 3;
   DynamicDelaunay3d t;
   bool on_device;
   int device;
@@ -286,38 +293,6 @@ void dynamic3d_init(Dynamic3dState* self, const AnyArray& points, const std::str
                         : DynamicDelaunay3d(pts(in), n, o);
   });
   new (self) Dynamic3dState{std::move(t), in.on_device, in.on_device ? device_of(o) : -1};
-}
-
-void dynamic3d_insert(Dynamic3dState& self, const AnyArray& points) {
-  const Input in = points_input(points, 3);
-  if (in.on_device != self.on_device)
-    throw nb::value_error(
-        self.on_device ? "points must be on the GPU, as the triangulation's first points were"
-                       : "points must be in host memory, as the triangulation's first "
-                         "points were");
-  const std::int64_t n = in.shape[0];
-  unlocked([&] {
-    if (in.on_device)
-      self.t.insert_device(pts(in), n);
-    else
-      self.t.insert(pts(in), n);
-  });
-}
-
-void dynamic3d_move(Dynamic3dState& self, const AnyArray& points) {
-  const Input in = points_input(points, 3);
-  if (in.on_device != self.on_device)
-    throw nb::value_error(
-        self.on_device ? "points must be on the GPU, as the triangulation's first points were"
-                       : "points must be in host memory, as the triangulation's first "
-                         "points were");
-  const std::int64_t n = in.shape[0];
-  unlocked([&] {
-    if (in.on_device)
-      self.t.move_device(pts(in), n);
-    else
-      self.t.move(pts(in), n);
-  });
 }
 
 nb::dict dynamic3d_result(const Dynamic3dState& self) {
@@ -534,16 +509,16 @@ void bind_spatial(nb::module_& m) {
   nb::class_<Dynamic2dState>(m, "DynamicDelaunay2d")
       .def("__init__", &dynamic2d_init, "points"_a, "backend"_a = "auto", "stream"_a = 0,
            "threads"_a = 0)
-      .def("insert", &dynamic2d_insert, "points"_a)
-      .def("move", &dynamic2d_move, "points"_a)
+      .def("insert", &dynamic_insert<Dynamic2dState>, "points"_a)
+      .def("move", &dynamic_move<Dynamic2dState>, "points"_a)
       .def("remove", &dynamic_remove<Dynamic2dState>, "indices"_a)
       .def("result", &dynamic2d_result)
       .def_prop_ro("npoints", [](const Dynamic2dState& s) { return s.t.num_points(); });
   nb::class_<Dynamic3dState>(m, "DynamicDelaunay3d")
       .def("__init__", &dynamic3d_init, "points"_a, "backend"_a = "auto", "stream"_a = 0,
            "threads"_a = 0)
-      .def("insert", &dynamic3d_insert, "points"_a)
-      .def("move", &dynamic3d_move, "points"_a)
+      .def("insert", &dynamic_insert<Dynamic3dState>, "points"_a)
+      .def("move", &dynamic_move<Dynamic3dState>, "points"_a)
       .def("remove", &dynamic_remove<Dynamic3dState>, "indices"_a)
       .def("result", &dynamic3d_result)
       .def_prop_ro("npoints", [](const Dynamic3dState& s) { return s.t.num_points(); });
