@@ -24,17 +24,22 @@ def _index_list(indices, n):
     arr, kind = _arrays.as_input(indices, None, "indices")
     if len(arr.shape) != 1:
         raise ValueError(f"indices must be 1-D, got shape {tuple(arr.shape)}")
+    if arr.shape[0] == 0:  # (an empty list has no integer dtype)
+        return np.zeros(0, np.int32)
     dt = str(arr.dtype)
-    if "int" not in dt and dt != "bool":
-        raise TypeError(f"indices must be integers, got {dt}")
-    if dt == "bool":
+    if "bool" in dt:
         raise TypeError("indices must be integers (a boolean mask is not taken: use its nonzero())")
-    if arr.shape[0]:
-        lo, hi = int(arr.min()), int(arr.max())
-        if lo < 0 or hi >= n:
-            raise ValueError(f"indices must lie in 0 .. {n - 1}, got {lo if lo < 0 else hi}")
+    if "int" not in dt:
+        raise TypeError(f"indices must be integers, got {dt}")
+    lo, hi = int(arr.min()), int(arr.max())  # (before int32: a wider index must not wrap)
+    if lo < 0 or hi >= n:
+        raise ValueError(f"indices must lie in 0 .. {n - 1}, got {lo if lo < 0 else hi}")
+    if kind.name == "torch":
+        import torch
+
+        return arr.to(dtype=torch.int32)
     if kind.device:
-        return arr.to(dtype=__import__("torch").int32) if kind.name == "torch" else arr.astype("int32")
+        return arr.astype("int32")
     return np.ascontiguousarray(_arrays.to_host(arr), dtype=np.int32)
 
 

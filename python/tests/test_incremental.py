@@ -177,6 +177,7 @@ def test_remove_errors_leave_the_object_as_it_was(rng):
         assert (np.array(d.simplices) == before).all()
     assert (np.asarray(d.duplicate_of)[[3, 4]] == -2).all()
     d.remove(np.array([], np.int64))  # nothing to remove
+    d.remove([])
     assert (np.array(d.simplices) == before).all()
     d.close()
     with pytest.raises(RuntimeError):
