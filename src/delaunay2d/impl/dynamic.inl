@@ -82,42 +82,78 @@ inline std::int64_t count_non_flat(Exec& ex, const KeptArrays& R) {
   return c;
 }
 
-// Is the kept triangulation still a triangulation with the points at xy (n points, the same
-// distinct points, the same duplicates)? Every triangle positively oriented (flat ones
-// included: the perturbation orders them), every hull edge with the kernel point s strictly on
-// its left (so the infinite triangles, cones from s, are positive too), and s inside exactly one
-// triangle: with every triangle positive the triangles then cover the plane once (the number of
-// triangles over a point is the same for every point; a boundary that wound twice round s would
-// cover s twice). All exact, with the perturbation (s as index n: after any point it equals).
-inline bool still_a_triangulation(Exec& ex, const KeptArrays& K, const double* xy, std::int64_t n) {
-  const std::int32_t* tri = K.tri.data();
-  const std::int32_t* nb = K.nb.data();
-  const double s0 = K.kernel[0], s1 = K.kernel[1];
-  const std::int32_t sid = std::int32_t(n);
+// Triangles (finite ones, flat ones included) tested with the points at xy (n points) for a
+// move: every triangle must be positive (flat ones: ordered by the perturbation), every hull
+// edge must have a kernel point s strictly on its left (so the infinite triangles, cones from s,
+// are positive too), and s must lie inside exactly one triangle: with every triangle positive
+// the triangles then cover the plane once (the number of triangles over a point is the same for
+// every point; a boundary that wound twice round s would cover s twice). s is placed inside the
+// first triangle that is positive and not flat. The vertices of what is not positive are
+// flagged in `out`. All exact, with the perturbation (s as index n: after any point it equals).
+struct MoveTest {
+  std::int64_t bad = 0;      // triangles and hull edges not positive
+  std::int64_t holding = 0;  // triangles holding s
+  bool placed = false;       // s placed
+  double s[2] = {0, 0};
+};
+inline MoveTest test_moved(Exec& ex, const std::int32_t* tri, const std::int32_t* nb,
+                           std::int64_t nt, const double* xy, std::int64_t n, std::int8_t* out) {
+  MoveTest r;
   auto cnt = ex.template alloc<std::int64_t>(2);  // bad tests, triangles holding s
+  auto d_best = ex.template alloc<std::int32_t>(1);
   std::int64_t* c = cnt.data();
+  std::int32_t* best = d_best.data();
   ex.fill(c, 2, std::int64_t(0));
+  ex.fill(best, 1, std::numeric_limits<std::int32_t>::max());
   ex.for_each_index(
-      K.nt, GG_LAMBDA(std::int64_t t) {
+      nt, GG_LAMBDA(std::int64_t t) {
+        double scratch[kOrient2dScratch];
+        std::int32_t v[3];
+        const double* p[3];
+        for (int k = 0; k < 3; ++k) v[k] = tri[3 * t + k], p[k] = xy + 2 * std::int64_t(v[k]);
+        if (pred::orient2d_sos(p[0], v[0], p[1], v[1], p[2], v[2], scratch) <= 0) {
+          for (int k = 0; k < 3; ++k) out[v[k]] = 1;
+          atomic_add(&c[0], std::int64_t(1));
+        } else if (pred::orient2d_fast(p[0], p[1], p[2]) ||
+                   pred::orient2d(p[0], p[1], p[2], scratch) != 0) {
+          atomic_min(&best[0], std::int32_t(t));
+        }
+      });
+  std::int32_t b = 0;
+  ex.to_host(best, 1, &b);
+  if (b == std::numeric_limits<std::int32_t>::max()) return r;
+  std::int32_t id[3];
+  double q[3][2];
+  ex.to_host(tri + 3 * std::int64_t(b), 3, id);
+  for (int k = 0; k < 3; ++k) ex.to_host(xy + 2 * std::int64_t(id[k]), 2, q[k]);
+  const double* V[3] = {q[0], q[1], q[2]};
+  if (!kernel_point(V, id, std::int32_t(n), r.s)) return r;
+  r.placed = true;
+  const double s0 = r.s[0], s1 = r.s[1];
+  const std::int32_t sid = std::int32_t(n);
+  ex.for_each_index(
+      nt, GG_LAMBDA(std::int64_t t) {
         double scratch[kOrient2dScratch];
         const double s[2] = {s0, s1};
         std::int32_t v[3];
         const double* p[3];
         for (int k = 0; k < 3; ++k) v[k] = tri[3 * t + k], p[k] = xy + 2 * std::int64_t(v[k]);
-        std::int64_t bad = pred::orient2d_sos(p[0], v[0], p[1], v[1], p[2], v[2], scratch) <= 0;
+        std::int64_t bad = 0;
         bool holds = true;
         for (int k = 0; k < 3; ++k) {
           const int a = (k + 1) % 3, b = (k + 2) % 3;
           const bool left = pred::orient2d_sos(p[a], v[a], p[b], v[b], s, sid, scratch) > 0;
           holds = holds && left;
-          if (nb[3 * t + k] < 0 && !left) ++bad;
+          if (nb[3 * t + k] < 0 && !left) ++bad, out[v[a]] = 1, out[v[b]] = 1;
         }
         if (bad) atomic_add(&c[0], bad);
         if (holds) atomic_add(&c[1], std::int64_t(1));
       });
   std::int64_t h[2];
   ex.to_host(c, 2, h);
-  return h[0] == 0 && h[1] == 1;
+  r.bad = h[0];
+  r.holding = h[1];
+  return r;
 }
 
 // How the new state is reached from the kept one.
@@ -194,13 +230,15 @@ inline std::int64_t hull_edges(Exec& ex, const std::int32_t* nb, std::int64_t nt
   return c;
 }
 
-inline Refill2d refill_2d(Exec& ex, const KeptArrays& K, const KeptArrays& R,
+// now: per point, 1 where it goes now; xy: the points' places (D is built there); new_dup: the
+// duplicate map after (a copy of a point that goes, -1 there, takes its place); m: the distinct
+// points left.
+inline Refill2d refill_2d(Exec& ex, const KeptArrays& K, const std::int8_t* now, const double* xy,
                           const std::int32_t* new_dup, std::int64_t m, Stats& st) {
   Refill2d out;
   const std::int64_t n = K.n;  // (a removal keeps every index)
-  auto d_now = mesh::removed_now(ex, R.gone.data(), K.gone_map(), n);
   auto d_hole = ex.template alloc<std::int8_t>(std::size_t(K.nt));
-  const std::int64_t nh = mesh::hole_flags<3>(ex, K.tri.data(), K.nt, d_now.data(), d_hole.data());
+  const std::int64_t nh = mesh::hole_flags<3>(ex, K.tri.data(), K.nt, now, d_hole.data());
   if (nh == 0) {  // only points that were no vertices: the triangles stay
     out.tri = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));
     out.nb = ex.template alloc<std::int32_t>(std::size_t(3 * K.nt));
@@ -211,12 +249,12 @@ inline Refill2d refill_2d(Exec& ex, const KeptArrays& K, const KeptArrays& R,
     return out;
   }
   auto d_ids = ex.template alloc<std::int32_t>(std::size_t(n));
-  const std::int64_t nv = mesh::hole_vertices<3>(
-      ex, K.tri.data(), K.nt, d_hole.data(), d_now.data(), K.dup_map(), new_dup, n, d_ids.data());
+  const std::int64_t nv = mesh::hole_vertices<3>(ex, K.tri.data(), K.nt, d_hole.data(), now,
+                                                 K.dup_map(), new_dup, n, d_ids.data());
   st.counters["hole_vertices"] = nv;
   typename Exec::template Buffer<std::int32_t> dtri, dnb;
   std::int64_t dnt = 0;
-  if (nv < 3 || !hole_triangulation(ex, R.xy.data(), d_ids.data(), nv, dtri, dnb, dnt)) return out;
+  if (nv < 3 || !hole_triangulation(ex, xy, d_ids.data(), nv, dtri, dnb, dnt)) return out;
   auto f = mesh::refill_holes<3>(ex, K.tri.data(), K.nb.data(), K.nt, d_hole.data(), dtri.data(),
                                  dnb.data(), dnt, false);
   st.counters["hole_triangles"] = f.inside;
@@ -227,6 +265,52 @@ inline Refill2d refill_2d(Exec& ex, const KeptArrays& K, const KeptArrays& R,
   out.nt = f.count;
   out.ok = true;
   return out;
+}
+
+// A move's start (issue 47): the kept triangles with the points at their new places. Where a
+// triangle turns over there (or a hull edge no longer has the kernel point on its left), its
+// vertices are taken out: removed from the kept triangulation at their old places, where it is
+// Delaunay (refill_2d: an exact removal), to be inserted again at their new places as new
+// points. The refilled triangles are tested again at the new places, and more vertices go out,
+// until every triangle is positive (a few rounds; beyond them, or when more than an eighth of the
+// points would go, the caller triangulates afresh: a large displacement is no cheaper to
+// repair). m: the distinct points (the kept triangulation's vertices).
+struct MovedStart2d {
+  typename Exec::template Buffer<std::int32_t> tri, nb;  // the refilled (empty: the kept ones)
+  std::int64_t nt = 0;
+  typename Exec::template Buffer<std::int8_t> out;  // n: 1 where taken out
+  std::int64_t nout = 0;
+  double kernel[2] = {0, 0};  // inside the start's hull at the new places
+  bool ok = false;
+};
+inline MovedStart2d moved_start(Exec& ex, const KeptArrays& K, const double* xy, std::int64_t n,
+                                std::int64_t m, Stats& st) {
+  MovedStart2d M;
+  M.out = ex.template alloc<std::int8_t>(std::size_t(n));
+  ex.fill(M.out.data(), n, std::int8_t(0));
+  Refill2d f;
+  const std::int32_t* tri = K.tri.data();
+  const std::int32_t* nb = K.nb.data();
+  std::int64_t nt = K.nt;
+  for (int round = 0; round < 4; ++round) {
+    const MoveTest t = test_moved(ex, tri, nb, nt, xy, n, M.out.data());
+    st.counters["move_rounds"] = round + 1;
+    if (!t.placed) return M;
+    if (t.bad == 0) {
+      M.ok = t.holding == 1;  // (else the boundary winds twice round s)
+      M.kernel[0] = t.s[0], M.kernel[1] = t.s[1];
+      M.tri = std::move(f.tri), M.nb = std::move(f.nb);
+      M.nt = nt;
+      return M;
+    }
+    M.nout = mesh::count_flags(ex, M.out.data(), n);
+    st.counters["move_taken_out"] = M.nout;
+    if (M.nout > n / 8 || m - M.nout < 3) return M;
+    f = refill_2d(ex, K, M.out.data(), K.xy.data(), K.dup_map(), m - M.nout, st);
+    if (!f.ok) return M;
+    tri = f.tri.data(), nb = f.nb.data(), nt = f.nt;
+  }
+  return M;
 }
 
 // The state for the n points in R.xy (the kept points with `add` appended, or all of them
@@ -272,10 +356,13 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
   std::int64_t start_nt = K.nt;
   Refill2d filled;
   double kernel[2] = {K.kernel[0], K.kernel[1]};
-  auto d_hint = ex.template alloc<std::int32_t>(how == Update::Insert ? std::size_t(n) : 0);
+  MovedStart2d moved;
+  bool walks = how == Update::Insert;  // (points to locate: inserted, or a move's taken out)
+  auto d_hint = ex.template alloc<std::int32_t>(how != Update::Remove ? std::size_t(n) : 0);
   if (how == Update::Remove) {
     const auto t1 = std::chrono::steady_clock::now();
-    filled = refill_2d(ex, K, R, dup_map, P.m, st);
+    auto d_now = mesh::removed_now(ex, R.gone.data(), K.gone_map(), n);
+    filled = refill_2d(ex, K, d_now.data(), R.xy.data(), dup_map, P.m, st);
     st.phase_ms.push_back({"refill", ms_since(t1)});
     st.counters["remove_rebuilt"] = !filled.ok;
     if (!filled.ok) return fresh();
@@ -286,15 +373,23 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     kernel[0] = P.kernel[0], kernel[1] = P.kernel[1];
   } else if (how == Update::Insert) {
     st.counters["inserted_points"] = P.m - (K.n - K.ndup - K.nremoved);
-    mesh::curve_hints(ex, P.orig.data(), P.m, n, K.n, d_hint.data());
+    mesh::curve_hints(ex, P.orig.data(), P.m, n, mesh::BelowIndex{std::int32_t(K.n)},
+                      d_hint.data());
   } else {
     const bool same_points =
         P.duplicates == K.ndup && mesh::dup_changes(ex, K.dup_map(), dup_map, n) == 0;
-    const bool kept = same_points && still_a_triangulation(ex, K, R.xy.data(), n);
-    st.counters["move_rebuilt"] = !kept;
-    if (!kept) {
-      st.phase_ms.push_back({"move_check", ms_since(t0)});
-      return fresh();
+    if (same_points) moved = moved_start(ex, K, R.xy.data(), n, P.m, st);
+    st.counters["move_rebuilt"] = !moved.ok;
+    st.phase_ms.push_back({"move_start", ms_since(t0)});
+    if (!moved.ok) return fresh();
+    if (moved.tri.size())
+      start_tri = moved.tri.data(), start_nb = moved.nb.data(), start_nt = moved.nt;
+    kernel[0] = moved.kernel[0], kernel[1] = moved.kernel[1];
+    if (moved.nout) {
+      walks = true;
+      st.counters["move_reinserted"] = moved.nout;
+      mesh::curve_hints(ex, P.orig.data(), P.m, n, mesh::NotFlagged{moved.out.data()},
+                        d_hint.data());
     }
   }
   auto d_tri = ex.template alloc<std::int32_t>(std::size_t(3 * start_nt));  // (mapped in place)
@@ -305,8 +400,8 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   // (a move's start is tested everywhere; an insertion's and a refill's are Delaunay)
   auto f = run_from_start(ex, P, n, d_tri.data(), start_nt, d_twin.data(),
-                          how == Update::Insert ? d_hint.data() : nullptr, profile, st, kernel,
-                          false, how != Update::Move);
+                          walks ? d_hint.data() : nullptr, profile, st, kernel, false,
+                          how != Update::Move);
   keep(P, f);
   ex.sync();
   return R;

@@ -109,51 +109,92 @@ inline typename Exec::template Buffer<std::int8_t> touched_slots(Exec& ex, Trian
   return out;
 }
 
-// Is the kept store still a tetrahedralisation with the points at xyz (n points, the same
-// distinct points)? Every tetrahedron positive (infinite ones: cones from the kernel point s,
-// flat ones: ordered by the perturbation), and s inside exactly one finite tetrahedron: with
-// every tetrahedron positive, the number of them over a point is the same for every point, so
-// a hull that wrapped twice round s is caught. All exact, with the perturbation (s as index n:
-// after any point it equals).
-inline bool still_a_tetrahedralisation(Exec& ex, const KeptArrays& K, const double* xyz,
-                                       std::int64_t n) {
+// A store tested with the points at xyz (n points) for a move: every tetrahedron must be
+// positive (infinite ones: cones from a kernel point s; flat ones: ordered by the perturbation),
+// and s inside exactly one finite tetrahedron: with every tetrahedron positive, the number of
+// them over a point is the same for every point, so a hull that wraps twice round s is caught.
+// s is placed inside the first finite tetrahedron that is positive and not flat. The vertices of
+// the tetrahedra that are not positive are flagged in `out`. All exact, with the perturbation (s
+// as index n: after any point it equals).
+struct MoveTest {
+  std::int64_t bad = 0;      // tetrahedra not positive
+  std::int64_t holding = 0;  // finite tetrahedra holding s
+  bool placed = false;       // s placed (a finite tetrahedron positive and not flat)
+  double s[3] = {0, 0, 0};
+};
+inline MoveTest test_moved(Exec& ex, const Tet* tet, std::int64_t used, const double* xyz,
+                           std::int64_t n, std::int8_t* out) {
+  MoveTest r;
   LeasePool<Exec> pool = flat_test_pool(ex);
   Geo g{};
   g.p = xyz;
   g.m = std::int32_t(n);
-  for (int k = 0; k < 3; ++k) g.s[k] = K.kernel[k];
   g.lease = pool.view;
-  const Tet* tet = K.tet.data();
   auto cnt = ex.template alloc<std::int64_t>(2);  // bad tetrahedra, finite ones holding s
+  auto d_best = ex.template alloc<std::int32_t>(1);
   std::int64_t* c = cnt.data();
+  std::int32_t* best = d_best.data();
   ex.fill(c, 2, std::int64_t(0));
-  ex.for_each_index(
-      K.used, GG_LAMBDA(std::int64_t t) {
+  ex.fill(best, 1, std::numeric_limits<std::int32_t>::max());
+  ex.for_each_index(  // the finite tetrahedra
+      used, GG_LAMBDA(std::int64_t t) {
         const Tet T = tet[t];
         if (T.v[0] == -1) return;  // dead
+        for (int k = 0; k < 4; ++k)
+          if (T.v[k] == Triangulator::kKeptInfinity) return;
+        if (orient_ext(g, T.v[0], T.v[1], T.v[2], T.v[3]) <= 0) {
+          for (int k = 0; k < 4; ++k) out[T.v[k]] = 1;
+          atomic_add(&c[0], std::int64_t(1));
+        } else if (!flat_ext(g, T.v)) {
+          atomic_min(&best[0], std::int32_t(t));
+        }
+      });
+  std::int32_t b = 0;
+  ex.to_host(best, 1, &b);
+  if (b == std::numeric_limits<std::int32_t>::max()) return r;
+  Tet B;
+  ex.to_host(tet + b, 1, &B);
+  double q[4][3];
+  for (int k = 0; k < 4; ++k) ex.to_host(xyz + 3 * std::int64_t(B.v[k]), 3, q[k]);
+  const double* V[4] = {q[0], q[1], q[2], q[3]};
+  mesh::kernel_of(V, r.s);
+  r.placed = true;
+  for (int k = 0; k < 3; ++k) g.s[k] = r.s[k];
+  ex.for_each_index(  // the infinite ones, and which finite ones hold s
+      used, GG_LAMBDA(std::int64_t t) {
+        const Tet T = tet[t];
+        if (T.v[0] == -1) return;
         std::int32_t w[4];
         bool finite = true;
         for (int k = 0; k < 4; ++k) {
           w[k] = T.v[k] == Triangulator::kKeptInfinity ? g.m : T.v[k];
           finite = finite && w[k] != g.m;
         }
-        if (orient_ext(g, w[0], w[1], w[2], w[3]) <= 0) atomic_add(&c[0], std::int64_t(1));
-        if (!finite) return;
+        if (!finite) {
+          if (orient_ext(g, w[0], w[1], w[2], w[3]) <= 0) {
+            for (int k = 0; k < 4; ++k)
+              if (w[k] != g.m) out[w[k]] = 1;
+            atomic_add(&c[0], std::int64_t(1));
+          }
+          return;
+        }
         bool holds = true;
         for (int k = 0; k < 4 && holds; ++k) {  // (s replaced for vertex k, not as infinity)
-          const double* q[4];
+          const double* p[4];
           std::int32_t id[4];
           for (int j = 0; j < 4; ++j)
-            q[j] = j == k ? g.s : g.p + 3 * std::int64_t(w[j]), id[j] = j == k ? g.m : w[j];
-          int o = pred::orient3d_fast(q[0], q[1], q[2], q[3]);
-          if (!o) o = orient_rest(q[0], id[0], q[1], id[1], q[2], id[2], q[3], id[3], g.lease);
+            p[j] = j == k ? g.s : g.p + 3 * std::int64_t(w[j]), id[j] = j == k ? g.m : w[j];
+          int o = pred::orient3d_fast(p[0], p[1], p[2], p[3]);
+          if (!o) o = orient_rest(p[0], id[0], p[1], id[1], p[2], id[2], p[3], id[3], g.lease);
           holds = o > 0;
         }
         if (holds) atomic_add(&c[1], std::int64_t(1));
       });
   std::int64_t h[2];
   ex.to_host(c, 2, h);
-  return h[0] == 0 && h[1] == 1;
+  r.bad = h[0];
+  r.holding = h[1];
+  return r;
 }
 
 // The kept points with `add` more appended (host memory, or executor memory when on_device), or
@@ -233,16 +274,17 @@ inline void store_of(Exec& ex, const std::int32_t* v, const std::int32_t* nb, st
       });
 }
 
-inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const KeptArrays& R,
+// now: per point, 1 where it goes now; xyz: the points' places (D is built there); new_dup: the
+// duplicate map after (a copy of a point that goes, -1 there, takes its place).
+inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const std::int8_t* now, const double* xyz,
                           const std::int32_t* new_dup, const Delaunay3dOptions& opt, Stats& st) {
   Refill3d out;
   const std::int64_t n = K.n;  // (a removal keeps every index)
-  auto d_now = mesh::removed_now(ex, R.gone.data(), K.gone_map(), n);
   auto d_ov = ex.template alloc<std::int32_t>(std::size_t(4 * K.used));
   auto d_on = ex.template alloc<std::int32_t>(std::size_t(4 * K.used));
   plain_of(ex, K.tet.data(), K.used, d_ov.data(), d_on.data());
   auto d_hole = ex.template alloc<std::int8_t>(std::size_t(K.used));
-  const std::int64_t nh = mesh::hole_flags<4>(ex, d_ov.data(), K.used, d_now.data(), d_hole.data());
+  const std::int64_t nh = mesh::hole_flags<4>(ex, d_ov.data(), K.used, now, d_hole.data());
   if (nh == 0) {  // only points that were no vertices: the store stays
     out.tet = ex.template alloc<Tet>(std::size_t(K.used));
     ex.copy(K.tet.data(), K.used, out.tet.data());
@@ -254,14 +296,13 @@ inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const KeptArrays& R,
   }
   auto d_ids = ex.template alloc<std::int32_t>(std::size_t(n));
   std::int32_t* ids = d_ids.data();
-  const std::int64_t nv = mesh::hole_vertices<4>(ex, d_ov.data(), K.used, d_hole.data(),
-                                                 d_now.data(), K.dup_map(), new_dup, n, ids);
+  const std::int64_t nv = mesh::hole_vertices<4>(ex, d_ov.data(), K.used, d_hole.data(), now,
+                                                 K.dup_map(), new_dup, n, ids);
   st.counters["hole_vertices"] = nv;
   if (nv < 4) return out;
   // D: the hole vertices' tetrahedralisation, its store in input indices
   auto d_p = ex.template alloc<double>(std::size_t(3 * nv));
   double* p = d_p.data();
-  const double* xyz = R.xyz.data();
   ex.for_each_index(
       nv, GG_LAMBDA(std::int64_t j) {
         for (int d = 0; d < 3; ++d) p[3 * j + d] = xyz[3 * std::int64_t(ids[j]) + d];
@@ -316,12 +357,56 @@ inline typename Exec::template Buffer<std::int8_t> refilled_slots(Exec& ex, Tria
   return out;
 }
 
+// A move's start (issue 47): the kept store with the points at their new places. Where a
+// tetrahedron turns over there (or a hull face no longer faces away from the kernel point), its
+// vertices are taken out: removed from the kept tetrahedralisation at their old places, where it
+// is Delaunay (refill_3d: an exact removal), to be inserted again at their new places as new
+// points. The refilled store is tested again at the new places, and more vertices go out, until
+// every tetrahedron is positive (a few rounds; beyond them, or when more than an eighth of the
+// points would go, the caller builds afresh: a large displacement is no cheaper to repair).
+struct MovedStart3d {
+  typename Exec::template Buffer<Tet> tet;  // the refilled store (empty: the kept one)
+  std::int64_t used = 0;
+  typename Exec::template Buffer<std::int8_t> out;  // n: 1 where taken out
+  std::int64_t nout = 0;
+  double kernel[3] = {0, 0, 0};  // inside the start's hull at the new places
+  bool ok = false;
+};
+inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz, std::int64_t n,
+                                const Delaunay3dOptions& opt, Stats& st) {
+  MovedStart3d M;
+  M.out = ex.template alloc<std::int8_t>(std::size_t(n));
+  ex.fill(M.out.data(), n, std::int8_t(0));
+  Refill3d f;
+  const Tet* cur = K.tet.data();
+  std::int64_t used = K.used;
+  for (int round = 0; round < 4; ++round) {
+    const MoveTest t = test_moved(ex, cur, used, xyz, n, M.out.data());
+    st.counters["move_rounds"] = round + 1;
+    if (!t.placed) return M;
+    if (t.bad == 0) {
+      M.ok = t.holding == 1;  // (else the store wraps round s)
+      for (int k = 0; k < 3; ++k) M.kernel[k] = t.s[k];
+      M.tet = std::move(f.tet);
+      M.used = used;
+      return M;
+    }
+    M.nout = mesh::count_flags(ex, M.out.data(), n);
+    st.counters["move_taken_out"] = M.nout;
+    if (M.nout > n / 8) return M;
+    f = refill_3d(ex, K, M.out.data(), K.xyz.data(), K.dup_map(), opt, st);
+    if (!f.ok) return M;
+    cur = f.tet.data(), used = f.used;
+  }
+  return M;
+}
+
 // The state for the n points in R.xyz (the kept points with more appended, or all of them
 // moved), built beside K: K is not touched, so a call that throws leaves it as it was. Insert:
-// the new points go into the kept store. Move: the kept store, where it is still a
-// tetrahedralisation of the moved points (still_a_tetrahedralisation), is repaired by phase 2
-// (star splaying) over every face; otherwise the points are tetrahedralised afresh (counter
-// "move_rebuilt").
+// the new points go into the kept store. Move: the kept store with the vertices of turned-over
+// tetrahedra taken out (moved_start) is repaired by phase 2 (star splaying) over every face,
+// and those vertices go back in as new points; where that cannot be done, the points are
+// tetrahedralised afresh (counter "move_rebuilt").
 inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::int64_t n,
                               Update how, const Delaunay3dOptions& opt, Stats& st) {
   Prepared P = prepare_kept(ex, R, n, st);
@@ -335,22 +420,31 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
   Refill3d filled;
   if (how == Update::Remove) {
     const auto t1 = Clock::now();
-    filled = refill_3d(ex, K, R, dup_map, opt, st);
+    auto d_now = mesh::removed_now(ex, R.gone.data(), K.gone_map(), n);
+    filled = refill_3d(ex, K, d_now.data(), R.xyz.data(), dup_map, opt, st);
     st.phase_ms.push_back({"refill", ms_since(t1)});
     fresh = !filled.ok;
     st.counters["remove_rebuilt"] = fresh;
     start = filled.tet.data(), start_used = filled.used;
   }
+  MovedStart3d moved;
   if (!fresh && how == Update::Move) {
+    const auto t1 = Clock::now();
     const bool same_points =
         S.duplicates == K.ndup && mesh::dup_changes(ex, K.dup_map(), dup_map, n) == 0;
-    fresh = !(same_points && still_a_tetrahedralisation(ex, K, R.xyz.data(), n));
+    if (same_points) moved = moved_start(ex, K, R.xyz.data(), n, opt, st);
+    fresh = !moved.ok;
     st.counters["move_rebuilt"] = fresh;
+    st.phase_ms.push_back({"move_start", ms_since(t1)});
+    if (moved.tet.size()) start = moved.tet.data(), start_used = moved.used;
   }
   // The kernel point must lie inside the start's hull: the first build's is inside every later
-  // one while points are only added or moved; after a removal the new first tetrahedron's is.
-  if (!fresh && how != Update::Remove)
+  // one while points are only added; after a removal the new first tetrahedron's is, after a
+  // move the one moved_start placed.
+  if (!fresh && how == Update::Insert)
     for (int k = 0; k < 3; ++k) first.s[k] = K.kernel[k];
+  if (!fresh && how == Update::Move)
+    for (int k = 0; k < 3; ++k) first.s[k] = moved.kernel[k];
   auto t0 = Clock::now();
   Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, opt.max_flip_rounds, opt.progress, st);
   if (fresh) {
@@ -359,23 +453,31 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     repair_phase(ex, T, S.m, opt.progress, st);
   } else {
     if (how == Update::Insert) st.counters["inserted_points"] = S.m - (K.n - K.ndup - K.nremoved);
-    // input index -> prepared index; each new point's walk start (prepared indices)
+    // input index -> prepared index; each new point's walk start (prepared indices; a move's
+    // points taken out go back in as new points)
+    const bool walks = how == Update::Insert || (how == Update::Move && moved.nout);
     auto d_inv = ex.template alloc<std::int32_t>(std::size_t(n));
-    auto d_hint = ex.template alloc<std::int32_t>(std::size_t(n));
-    auto d_near = ex.template alloc<std::int32_t>(std::size_t(S.m));
+    auto d_hint = ex.template alloc<std::int32_t>(walks ? std::size_t(n) : 0);
+    auto d_near = ex.template alloc<std::int32_t>(walks ? std::size_t(S.m) : 0);
     std::int32_t* inv = d_inv.data();
     std::int32_t* hint = d_hint.data();
     std::int32_t* near = d_near.data();
     const std::int32_t* orig = S.orig.data();
-    mesh::curve_hints(ex, orig, S.m, n, K.n, hint);
     ex.for_each_index(
         S.m, GG_LAMBDA(std::int64_t j) { inv[orig[j]] = std::int32_t(j); });
-    ex.for_each_index(
-        S.m, GG_LAMBDA(std::int64_t j) {
-          const std::int32_t h = hint[orig[j]];
-          near[j] = h >= 0 ? inv[h] : -1;
-        });
-    T.start_from(start, start_used, inv, how == Update::Insert ? near : nullptr);
+    if (how == Update::Insert)
+      mesh::curve_hints(ex, orig, S.m, n, mesh::BelowIndex{std::int32_t(K.n)}, hint);
+    if (how == Update::Move && moved.nout) {
+      st.counters["move_reinserted"] = moved.nout;
+      mesh::curve_hints(ex, orig, S.m, n, mesh::NotFlagged{moved.out.data()}, hint);
+    }
+    if (walks)
+      ex.for_each_index(
+          S.m, GG_LAMBDA(std::int64_t j) {
+            const std::int32_t h = hint[orig[j]];
+            near[j] = h >= 0 ? inv[h] : -1;
+          });
+    T.start_from(start, start_used, inv, walks ? near : nullptr);
     st.phase_ms.push_back({"start", ms_since(t0)});
     T.insert_all();
     st.phase_ms.push_back({"insert_flip", ms_since(t0)});
