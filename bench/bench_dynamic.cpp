@@ -7,7 +7,7 @@
 //               the executor; the object built beforehand, untimed)
 //   insert e2e  the same plus triangulation() (the caller's host arrays out)
 //   insert dev  insert_device of the k points already on the device (from_device beforehand)
-// With --move f (2D), every point of dist:n is moved by a normal step of f times the mean
+// With --move f, every point of dist:n is moved by a normal step of f times the mean
 // spacing instead: move / move e2e / move dev, beside a fresh triangulation of the moved points.
 // With --remove (for the rows after it), k of the n points are removed instead (a fixed random
 // choice): remove / remove e2e (plus the results), beside a fresh triangulation of the n - k
@@ -57,7 +57,8 @@ double median_ms(int reps, const std::function<void()>& prepare, const std::func
 void print_phases(const Stats& s) {
   std::printf("    insert phases:");
   for (const auto& [name, ms] : s.phase_ms) std::printf(" %s %.2f", name.c_str(), ms);
-  for (const char* c : {"inserted_points", "batches", "flips", "flip_rounds", "start_walk_steps"}) {
+  for (const char* c : {"inserted_points", "batches", "flips", "flip_rounds", "start_walk_steps",
+                        "move_rounds", "move_taken_out", "hole_vertices", "splayed_vertices"}) {
     const auto it = s.counters.find(c);
     if (it != s.counters.end()) std::printf(" | %s %lld", c, (long long)it->second);
   }
@@ -68,7 +69,7 @@ struct Row {
   std::string dist;
   std::int64_t n = 0, k = 0;
   int dim = 2;
-  double move = 0;  // > 0: every point moved by this many mean spacings (2D)
+  double move = 0;  // > 0: every point moved by this many mean spacings
   bool remove = false;
 };
 
@@ -251,55 +252,60 @@ void run_remove(const Row& row, Backend b, int reps) {
   std::fflush(stdout);
 }
 
-// All n points of a 2D distribution moved by a normal step of f times the mean spacing.
+// All n points of a distribution moved by a normal step of f times the mean spacing.
+template <class D>
 void run_move(const Row& row, double f, Backend b, int reps) {
-  const auto p = generate2d(row.dist, row.n, 7);
+  constexpr int dim = sizeof(typename D::Point) / sizeof(double);
+  const auto p = D::points(row.dist, row.n);
   const std::int64_t n = std::int64_t(p.size());
-  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
-  for (const auto& x : p) {
-    lo[0] = std::min(lo[0], x.x), hi[0] = std::max(hi[0], x.x);
-    lo[1] = std::min(lo[1], x.y), hi[1] = std::max(hi[1], x.y);
-  }
-  const double spacing = std::sqrt((hi[0] - lo[0]) * (hi[1] - lo[1]) / double(n));
-  std::vector<Point2> q = p;
-  for (std::int64_t i = 0; i < n; ++i) {  // (a hashed normal step: the same on every run)
-    const double u1 = (double(bench::hash64(std::uint64_t(i), 1) >> 11) + 0.5) / 9007199254740992.0;
-    const double u2 = double(bench::hash64(std::uint64_t(i), 2) >> 11) / 9007199254740992.0;
-    const double r = f * spacing * std::sqrt(-2 * std::log(u1));
-    q[std::size_t(i)].x += r * std::cos(6.283185307179586 * u2);
-    q[std::size_t(i)].y += r * std::sin(6.283185307179586 * u2);
-  }
-  Delaunay2dOptions o;
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (const auto& x : p)
+    for (int d = 0; d < dim; ++d) {
+      const double c = (&x.x)[d];
+      lo[d] = std::min(lo[d], c), hi[d] = std::max(hi[d], c);
+    }
+  double volume = 1;
+  for (int d = 0; d < dim; ++d) volume *= hi[d] - lo[d];
+  const double spacing = std::pow(volume / double(n), 1.0 / dim);
+  std::vector<typename D::Point> q = p;
+  for (std::int64_t i = 0; i < n; ++i)  // (hashed normal steps: the same on every run)
+    for (int d = 0; d < dim; ++d) {
+      const std::uint64_t s = std::uint64_t(2 * d + 1);
+      const double u1 =
+          (double(bench::hash64(std::uint64_t(i), s) >> 11) + 0.5) / 9007199254740992.0;
+      const double u2 = double(bench::hash64(std::uint64_t(i), s + 1) >> 11) / 9007199254740992.0;
+      (&q[std::size_t(i)].x)[d] +=
+          f * spacing * std::sqrt(-2 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+    }
+  typename D::Options o;
   o.backend = b;
-  Triangulation2d fresh;
+  decltype(D::fresh(p, o)) fresh;
   const double fresh_e2e = median_ms(
-      reps, [] {}, [&] { fresh = delaunay2d(q, o); });
-  std::unique_ptr<DynamicDelaunay2d> d;
-  auto build = [&] { d = std::make_unique<DynamicDelaunay2d>(&p.data()->x, n, o); };
+      reps, [] {}, [&] { fresh = D::fresh(q, o); });
+  std::unique_ptr<typename D::Dynamic> d;
+  auto build = [&] { d = std::make_unique<typename D::Dynamic>(&p.data()->x, n, o); };
   const double mv = median_ms(reps, build, [&] { d->move(&q.data()->x, n); });
   print_phases(d->stats());
   const bool rebuilt = d->stats().counters.at("move_rebuilt") != 0;
-  Triangulation2d got;
+  decltype(fresh) got;
   const double mv_e2e = median_ms(reps, build, [&] {
     d->move(&q.data()->x, n);
-    got = d->triangulation();
+    got = D::result(*d);
   });
-  const bool same = Two::simplices(got) == Two::simplices(fresh);
+  const bool same = D::simplices(got) == D::simplices(fresh);
   double fresh_dev = -1, mv_dev = -1;
 #ifdef GPUGEOM_HAVE_CUDA
   if (b == Backend::Cuda) {
     double *dp = nullptr, *dq = nullptr;
-    const std::size_t bytes = p.size() * sizeof(Point2);
+    const std::size_t bytes = p.size() * sizeof(typename D::Point);
     if (cudaMalloc(&dp, bytes) == cudaSuccess && cudaMalloc(&dq, bytes) == cudaSuccess &&
         cudaMemcpy(dp, p.data(), bytes, cudaMemcpyHostToDevice) == cudaSuccess &&
         cudaMemcpy(dq, q.data(), bytes, cudaMemcpyHostToDevice) == cudaSuccess) {
       fresh_dev = median_ms(
-          reps, [] {}, [&] { delaunay2d_device(dq, n, o); });
+          reps, [] {}, [&] { D::fresh_device(dq, n, o); });
       mv_dev = median_ms(
           reps,
-          [&] {
-            d = std::make_unique<DynamicDelaunay2d>(DynamicDelaunay2d::from_device(dp, n, o));
-          },
+          [&] { d = std::make_unique<typename D::Dynamic>(D::Dynamic::from_device(dp, n, o)); },
           [&] { d->move_device(dq, n); });
     }
     cudaFree(dp);
@@ -307,10 +313,10 @@ void run_move(const Row& row, double f, Backend b, int reps) {
   }
 #endif
   std::printf(
-      "2D %-10s %-5s n=%-10lld moved %-6g fresh e2e %9.2f  fresh dev %9.2f  move %9.2f  move "
+      "%dD %-10s %-5s n=%-10lld moved %-6g fresh e2e %9.2f  fresh dev %9.2f  move %9.2f  move "
       "e2e %9.2f  move dev %9.2f  (dev ratio %.3f)  %s, %s\n",
-      row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, f, fresh_e2e, fresh_dev,
-      mv, mv_e2e, mv_dev, fresh_dev > 0 ? mv_dev / fresh_dev : mv / fresh_e2e,
+      dim, row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, f, fresh_e2e,
+      fresh_dev, mv, mv_e2e, mv_dev, fresh_dev > 0 ? mv_dev / fresh_dev : mv / fresh_e2e,
       rebuilt ? "rebuilt" : "repaired", same ? "same simplices" : "DIFFERENT SIMPLICES");
   std::fflush(stdout);
 }
@@ -349,10 +355,11 @@ int main(int argc, char** argv) {
               reps, dev.available ? "; GPU: " : "", dev.available ? dev.name.c_str() : "");
   for (Backend b : bench::backends(which))
     for (const Row& r : rows)
-      r.move > 0              ? run_move(r, r.move, b, reps)
-      : r.remove&& r.dim == 2 ? run_remove<Two>(r, b, reps)
-      : r.remove              ? run_remove<Three>(r, b, reps)
-      : r.dim == 2            ? run_row<Two>(r, b, reps)
-                              : run_row<Three>(r, b, reps);
+      r.move > 0 && r.dim == 2 ? run_move<Two>(r, r.move, b, reps)
+      : r.move > 0             ? run_move<Three>(r, r.move, b, reps)
+      : r.remove&& r.dim == 2  ? run_remove<Two>(r, b, reps)
+      : r.remove               ? run_remove<Three>(r, b, reps)
+      : r.dim == 2             ? run_row<Two>(r, b, reps)
+                               : run_row<Three>(r, b, reps);
   return 0;
 }

@@ -315,9 +315,10 @@ inline MovedStart2d moved_start(Exec& ex, const KeptArrays& K, const double* xy,
 
 // The state for the n points in R.xy (the kept points with `add` appended, or all of them
 // moved), built beside K: K is not touched, so a call that throws leaves it as it was.
-// Insert: the new points go into the kept triangulation. Move: the kept triangulation, where it
-// is still one with the points moved (still_a_triangulation), is flipped until Delaunay;
-// otherwise the points are triangulated afresh (counter "move_rebuilt").
+// Insert: the new points go into the kept triangulation. Move: the kept triangulation with the
+// vertices of turned-over triangles taken out (moved_start) is flipped until Delaunay, and those
+// vertices go back in as new points; where that cannot be done, the points are triangulated
+// afresh (counter "move_rebuilt").
 inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::int64_t n,
                               Update how, bool profile, Stats& st) {
   auto keep = [&](Prepared& P, typename Triangulator::Finished& f) {
@@ -339,6 +340,12 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     return std::move(R);
   };
   if (!K.n) return fresh();  // the first points
+  // afresh from the points prepared here (a move or removal that cannot start from K)
+  auto afresh = [&](Prepared& P) {
+    triangulate_prepared(ex, P, profile, st, keep, false);
+    ex.sync();
+    return std::move(R);
+  };
   auto t0 = std::chrono::steady_clock::now();
   Prepared P;
   prepare_kept(ex, R, n, [&](const double* xy, std::int64_t m, auto widen) {
@@ -365,7 +372,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     filled = refill_2d(ex, K, d_now.data(), R.xy.data(), dup_map, P.m, st);
     st.phase_ms.push_back({"refill", ms_since(t1)});
     st.counters["remove_rebuilt"] = !filled.ok;
-    if (!filled.ok) return fresh();
+    if (!filled.ok) return afresh(P);
     start_tri = filled.tri.data(), start_nb = filled.nb.data(), start_nt = filled.nt;
     // The kernel point must lie inside the start's hull: the first build's is inside every
     // later one while points are only added or moved; after a removal the new first
@@ -381,7 +388,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     if (same_points) moved = moved_start(ex, K, R.xy.data(), n, P.m, st);
     st.counters["move_rebuilt"] = !moved.ok;
     st.phase_ms.push_back({"move_start", ms_since(t0)});
-    if (!moved.ok) return fresh();
+    if (!moved.ok) return afresh(P);
     if (moved.tri.size())
       start_tri = moved.tri.data(), start_nb = moved.nb.data(), start_nt = moved.nt;
     kernel[0] = moved.kernel[0], kernel[1] = moved.kernel[1];

@@ -1052,6 +1052,25 @@ class Triangulator {
 // point measured at 5·10^8; where memory is left the log takes more, up to 236 B a point).
 constexpr double kLeastBytesPerPoint = 168;
 
+// The pipeline after the preparation: body(P, f) takes the result.
+template <class Body>
+inline void triangulate_prepared(Exec& ex, Prepared& P, bool profile, Stats& st, Body body,
+                                 bool peel_flats = true) {
+  // The rounds' arrays, checked again now that the points are prepared: where they exceed the
+  // driver's free memory, the preparation's freed blocks go back to the driver first
+  // (require_memory), so that the largest arrays are not cut from the pool's pieces of them.
+  ::gpugeom::detail::require_device_memory(ex, P.m, kLeastBytesPerPoint - 20,
+                                           "a 2D Delaunay triangulation", "points");
+  Triangulator T(ex, P, st, profile);
+  T.run(peel_flats);
+  const auto t0 = std::chrono::steady_clock::now();
+  T.report();
+  T.release_work();
+  auto f = T.finish();
+  body(P, f);
+  st.phase_ms.push_back({"output", ms_since(t0)});
+}
+
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
 // before(P) runs once the distinct points are known, before the device work.
 template <class Before, class Body>
@@ -1067,19 +1086,7 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   st.phase_ms.push_back({"upload", P.upload_ms});  // (part of prepare)
-  // The rounds' arrays, checked again now that the points are prepared: where they exceed the
-  // driver's free memory, the preparation's freed blocks go back to the driver first
-  // (require_memory), so that the largest arrays are not cut from the pool's pieces of them.
-  ::gpugeom::detail::require_device_memory(ex, P.m, kLeastBytesPerPoint - 20,
-                                           "a 2D Delaunay triangulation", "points");
-  Triangulator T(ex, P, st, profile);
-  T.run(peel_flats);
-  t0 = std::chrono::steady_clock::now();
-  T.report();
-  T.release_work();
-  auto f = T.finish();
-  body(P, f);
-  st.phase_ms.push_back({"output", ms_since(t0)});
+  triangulate_prepared(ex, P, profile, st, body, peel_flats);
 }
 
 // The three outputs' lengths, checked against the caller's arrays before any is written.

@@ -478,6 +478,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
             near[j] = h >= 0 ? inv[h] : -1;
           });
     T.start_from(start, start_used, inv, walks ? near : nullptr);
+    if (how == Update::Move) T.flip_start();
     st.phase_ms.push_back({"start", ms_since(t0)});
     T.insert_all();
     st.phase_ms.push_back({"insert_flip", ms_since(t0)});

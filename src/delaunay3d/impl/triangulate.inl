@@ -685,6 +685,28 @@ class Triangulator {
     check_errors();
   }
 
+  // Every tetrahedron of the store listed and flipped until stuck (a move's start, whose faces
+  // need not be locally Delaunay: flips mend most of them at a round's cost, where phase 2
+  // would splay every star they touch; what they cannot mend, phase 2 does). The points not in
+  // the store follow the flips through the log, as in a batch.
+  void flip_start() {
+    const std::int64_t used = counters().used;
+    if (used > list_cap_) grow_lists(used);
+    const mesh::WorkLists L = work_lists();
+    std::int32_t* act = L.current(round_ + 1);
+    std::int64_t* len = L.count(round_ + 1);
+    const Tet* tet = tet_.data();
+    ex_.for_each_index(
+        used, GG_LAMBDA(std::int64_t i) {
+          if (i == 0) *len = used;
+          act[i] = tet[i].v[0] >= 0 ? std::int32_t(i) : -1;
+        });
+    nact_ = used;
+    carry_from_ = INT32_MAX;  // (no batch to carry the list into)
+    flip_until_stuck();
+    ex_.sync();
+  }
+
   Counters counters() {
     Counters c;
     ex_.to_host(ctr_.data(), 1, &c);
