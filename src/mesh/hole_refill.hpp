@@ -152,11 +152,14 @@ struct Refilled {
 
 // old: ov, on (ont simplices), hole (per old simplex: 1 where it goes). d: dv, dn (dnt).
 // closed: every face has a neighbour (3D with its infinite simplices): then each boundary face
-// must be in D; else (2D, finite triangles only) one D lacks is a new hull edge. [synchronises]
+// must be in D; else (2D, finite triangles only) one D lacks is a new hull edge. mark (or null):
+// per point, set to 1 at the vertices of the staying simplex across each boundary face D lacks
+// (a move's refill at the new places grows its hole there). [synchronises]
 template <int K, class Exec>
 Refilled<Exec> refill_holes(Exec& ex, const std::int32_t* ov, const std::int32_t* on,
                             std::int64_t ont, const std::int8_t* hole, const std::int32_t* dv,
-                            const std::int32_t* dn, std::int64_t dnt, bool closed) {
+                            const std::int32_t* dn, std::int64_t dnt, bool closed,
+                            std::int8_t* mark = nullptr) {
   using refill_detail::face_key;
   using refill_detail::same_face;
   Refilled<Exec> R;
@@ -226,6 +229,11 @@ Refilled<Exec> refill_holes(Exec& ex, const std::int32_t* ov, const std::int32_t
         match[i] = found;
         if (found < 0) {
           atomic_add(&cnt[0], std::int64_t(1));
+          if (mark) {
+            const std::int32_t t = on[K * std::int64_t(H[e / K]) + e % K];
+            for (int k = 0; k < K; ++k)
+              if (ov[K * std::int64_t(t) + k] >= 0) mark[ov[K * std::int64_t(t) + k]] = 1;
+          }
           return;
         }
         dbound[found] = i;

@@ -182,6 +182,7 @@ inline void prepare_kept(Exec& ex, const KeptArrays& R, std::int64_t n, Prep pre
 struct Refill2d {
   typename Exec::template Buffer<std::int32_t> tri, nb;
   std::int64_t nt = 0;
+  std::int64_t unmatched = 0;  // boundary edges D lacks (new hull edges, or a bad fit)
   bool ok = false;
 };
 
@@ -232,9 +233,11 @@ inline std::int64_t hull_edges(Exec& ex, const std::int32_t* nb, std::int64_t nt
 
 // now: per point, 1 where it goes now; xy: the points' places (D is built there); new_dup: the
 // duplicate map after (a copy of a point that goes, -1 there, takes its place); m: the distinct
-// points left.
+// points left; mark (or null): set at the vertices of the staying triangles across boundary
+// edges D lacks (mesh::refill_holes).
 inline Refill2d refill_2d(Exec& ex, const KeptArrays& K, const std::int8_t* now, const double* xy,
-                          const std::int32_t* new_dup, std::int64_t m, Stats& st) {
+                          const std::int32_t* new_dup, std::int64_t m, Stats& st,
+                          std::int8_t* mark = nullptr) {
   Refill2d out;
   const std::int64_t n = K.n;  // (a removal keeps every index)
   auto d_hole = ex.template alloc<std::int8_t>(std::size_t(K.nt));
@@ -256,8 +259,9 @@ inline Refill2d refill_2d(Exec& ex, const KeptArrays& K, const std::int8_t* now,
   std::int64_t dnt = 0;
   if (nv < 3 || !hole_triangulation(ex, xy, d_ids.data(), nv, dtri, dnb, dnt)) return out;
   auto f = mesh::refill_holes<3>(ex, K.tri.data(), K.nb.data(), K.nt, d_hole.data(), dtri.data(),
-                                 dnb.data(), dnt, false);
+                                 dnb.data(), dnt, false, mark);
   st.counters["hole_triangles"] = f.inside;
+  out.unmatched = f.unmatched;
   // Euler: a triangulation of m points with h hull edges has 2m - 2 - h triangles
   if (!f.ok || f.count != 2 * m - 2 - hull_edges(ex, f.n.data(), f.count)) return out;
   out.tri = std::move(f.v);
@@ -269,12 +273,18 @@ inline Refill2d refill_2d(Exec& ex, const KeptArrays& K, const std::int8_t* now,
 
 // A move's start (issue 47): the kept triangles with the points at their new places. Where a
 // triangle turns over there (or a hull edge no longer has the kernel point on its left), its
-// vertices are taken out: removed from the kept triangulation at their old places, where it is
-// Delaunay (refill_2d: an exact removal), to be inserted again at their new places as new
-// points. The refilled triangles are tested again at the new places, and more vertices go out,
-// until every triangle is positive (a few rounds; beyond them, or when more than an eighth of the
-// points would go, the caller triangulates afresh: a large displacement is no cheaper to
-// repair). m: the distinct points (the kept triangulation's vertices).
+// vertices are taken out, to be inserted again at their new places as new points: the holes
+// they leave are filled at the new places by the triangles of D, the Delaunay triangulation of
+// the hole's other vertices there, that fit in them (refill_2d, as a removal). D's triangles are
+// positive at the new places by construction; where a fill does not fit (Euler's count, or a
+// boundary edge D lacks that is no new hull edge), the staying triangles across the edges D
+// lacks are taken into the hole too and D is made again. The filled triangles are then tested
+// like the kept ones: every triangle positive and the kernel point covered once make them a
+// triangulation (the covering argument of test_moved). A few rounds settle it; beyond
+// kMoveRounds, or where more than an eighth of the points would go (a large displacement is no
+// cheaper to repair), the caller triangulates afresh. m: the distinct points (the kept
+// triangulation's vertices).
+constexpr int kMoveRounds = 8;
 struct MovedStart2d {
   typename Exec::template Buffer<std::int32_t> tri, nb;  // the refilled (empty: the kept ones)
   std::int64_t nt = 0;
@@ -287,28 +297,42 @@ inline MovedStart2d moved_start(Exec& ex, const KeptArrays& K, const double* xy,
                                 std::int64_t m, Stats& st) {
   MovedStart2d M;
   M.out = ex.template alloc<std::int8_t>(std::size_t(n));
-  ex.fill(M.out.data(), n, std::int8_t(0));
+  auto d_grow = ex.template alloc<std::int8_t>(std::size_t(n));
+  std::int8_t* out = M.out.data();
+  const std::int8_t* grow = d_grow.data();
+  ex.fill(out, n, std::int8_t(0));
   Refill2d f;
   const std::int32_t* tri = K.tri.data();
   const std::int32_t* nb = K.nb.data();
   std::int64_t nt = K.nt;
-  for (int round = 0; round < 4; ++round) {
-    const MoveTest t = test_moved(ex, tri, nb, nt, xy, n, M.out.data());
+  bool grown = false;  // the last fill did not fit: its hole grew, fill again
+  for (int round = 0; round < kMoveRounds; ++round) {
     st.counters["move_rounds"] = round + 1;
-    if (!t.placed) return M;
-    if (t.bad == 0) {
-      M.ok = t.holding == 1;  // (else the boundary winds twice round s)
-      M.kernel[0] = t.s[0], M.kernel[1] = t.s[1];
-      M.tri = std::move(f.tri), M.nb = std::move(f.nb);
-      M.nt = nt;
-      return M;
+    if (!grown) {
+      const MoveTest t = test_moved(ex, tri, nb, nt, xy, n, out);
+      if (!t.placed) return M;
+      if (t.bad == 0) {
+        M.ok = t.holding == 1;  // (else the boundary winds twice round s)
+        M.kernel[0] = t.s[0], M.kernel[1] = t.s[1];
+        M.tri = std::move(f.tri), M.nb = std::move(f.nb);
+        M.nt = nt;
+        return M;
+      }
     }
-    M.nout = mesh::count_flags(ex, M.out.data(), n);
+    M.nout = mesh::count_flags(ex, out, n);
     st.counters["move_taken_out"] = M.nout;
     if (M.nout > n / 8 || m - M.nout < 3) return M;
-    f = refill_2d(ex, K, M.out.data(), K.xy.data(), K.dup_map(), m - M.nout, st);
-    if (!f.ok) return M;
-    tri = f.tri.data(), nb = f.nb.data(), nt = f.nt;
+    ex.fill(d_grow.data(), n, std::int8_t(0));
+    f = refill_2d(ex, K, out, xy, K.dup_map(), m - M.nout, st, d_grow.data());
+    grown = !f.ok && f.unmatched > 0;
+    if (!f.ok && !grown) return M;
+    if (grown)
+      ex.for_each_index(
+          n, GG_LAMBDA(std::int64_t i) {
+            if (grow[i]) out[i] = 1;
+          });
+    else
+      tri = f.tri.data(), nb = f.nb.data(), nt = f.nt;
   }
   return M;
 }

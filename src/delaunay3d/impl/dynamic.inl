@@ -240,6 +240,7 @@ struct Refill3d {
   typename Exec::template Buffer<Tet> tet;
   typename Exec::template Buffer<std::int8_t> touched;  // per slot: where phase 2 looks
   std::int64_t used = 0;
+  std::int64_t unmatched = 0;  // boundary faces D lacks
   bool ok = false;
 };
 
@@ -275,9 +276,12 @@ inline void store_of(Exec& ex, const std::int32_t* v, const std::int32_t* nb, st
 }
 
 // now: per point, 1 where it goes now; xyz: the points' places (D is built there); new_dup: the
-// duplicate map after (a copy of a point that goes, -1 there, takes its place).
+// duplicate map after (a copy of a point that goes, -1 there, takes its place); mark (or null):
+// set at the vertices of the staying tetrahedra across boundary faces D lacks
+// (mesh::refill_holes).
 inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const std::int8_t* now, const double* xyz,
-                          const std::int32_t* new_dup, const Delaunay3dOptions& opt, Stats& st) {
+                          const std::int32_t* new_dup, const Delaunay3dOptions& opt, Stats& st,
+                          std::int8_t* mark = nullptr) {
   Refill3d out;
   const std::int64_t n = K.n;  // (a removal keeps every index)
   auto d_ov = ex.template alloc<std::int32_t>(std::size_t(4 * K.used));
@@ -333,8 +337,9 @@ inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const std::int8_t* now,
         if (v >= 0) dv[e] = ids[v];  // (dead -1 and infinity kKeptInfinity stay)
       });
   auto f = mesh::refill_holes<4>(ex, d_ov.data(), d_on.data(), K.used, d_hole.data(), dv,
-                                 d_dn.data(), dused, true);
+                                 d_dn.data(), dused, true, mark);
   st.counters["hole_tetrahedra"] = f.inside;
+  out.unmatched = f.unmatched;
   if (!f.ok) return out;
   out.tet = ex.template alloc<Tet>(std::size_t(f.count));
   store_of(ex, f.v.data(), f.n.data(), f.count, out.tet.data());
@@ -359,11 +364,16 @@ inline typename Exec::template Buffer<std::int8_t> refilled_slots(Exec& ex, Tria
 
 // A move's start (issue 47): the kept store with the points at their new places. Where a
 // tetrahedron turns over there (or a hull face no longer faces away from the kernel point), its
-// vertices are taken out: removed from the kept tetrahedralisation at their old places, where it
-// is Delaunay (refill_3d: an exact removal), to be inserted again at their new places as new
-// points. The refilled store is tested again at the new places, and more vertices go out, until
-// every tetrahedron is positive (a few rounds; beyond them, or when more than an eighth of the
-// points would go, the caller builds afresh: a large displacement is no cheaper to repair).
+// vertices are taken out, to be inserted again at their new places as new points: the holes they
+// leave in the kept store are filled at the new places by the tetrahedra of D, the Delaunay
+// tetrahedralisation of the hole's other vertices there, that fit in them (refill_3d, as a
+// removal). D's tetrahedra are positive at the new places by construction; where a face of the
+// hole is not one of D's (the kept tetrahedra around the hole are not Delaunay at the new
+// places), the staying tetrahedron across it is taken into the hole too and D is made again.
+// The filled store is then tested like the kept one (the kernel point placed in it again). A
+// few rounds settle it; beyond kMoveRounds, or where more than an eighth of the points would go
+// (a large displacement is no cheaper to repair), the caller builds afresh.
+constexpr int kMoveRounds = 8;
 struct MovedStart3d {
   typename Exec::template Buffer<Tet> tet;  // the refilled store (empty: the kept one)
   std::int64_t used = 0;
@@ -380,23 +390,27 @@ inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz
   Refill3d f;
   const Tet* cur = K.tet.data();
   std::int64_t used = K.used;
-  for (int round = 0; round < 4; ++round) {
-    const MoveTest t = test_moved(ex, cur, used, xyz, n, M.out.data());
+  bool grown = false;  // the last fill lacked boundary faces: its hole grew, fill again
+  for (int round = 0; round < kMoveRounds; ++round) {
     st.counters["move_rounds"] = round + 1;
-    if (!t.placed) return M;
-    if (t.bad == 0) {
-      M.ok = t.holding == 1;  // (else the store wraps round s)
-      for (int k = 0; k < 3; ++k) M.kernel[k] = t.s[k];
-      M.tet = std::move(f.tet);
-      M.used = used;
-      return M;
+    if (!grown) {
+      const MoveTest t = test_moved(ex, cur, used, xyz, n, M.out.data());
+      if (!t.placed) return M;
+      if (t.bad == 0) {
+        M.ok = t.holding == 1;  // (else the store wraps round s)
+        for (int k = 0; k < 3; ++k) M.kernel[k] = t.s[k];
+        M.tet = std::move(f.tet);
+        M.used = used;
+        return M;
+      }
     }
     M.nout = mesh::count_flags(ex, M.out.data(), n);
     st.counters["move_taken_out"] = M.nout;
     if (M.nout > n / 8) return M;
-    f = refill_3d(ex, K, M.out.data(), K.xyz.data(), K.dup_map(), opt, st);
-    if (!f.ok) return M;
-    cur = f.tet.data(), used = f.used;
+    f = refill_3d(ex, K, M.out.data(), xyz, K.dup_map(), opt, st, M.out.data());
+    grown = !f.ok && f.unmatched > 0;
+    if (!f.ok && !grown) return M;
+    if (f.ok) cur = f.tet.data(), used = f.used;
   }
   return M;
 }
