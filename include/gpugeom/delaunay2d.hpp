@@ -12,6 +12,7 @@
 
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
+#include "gpugeom/changes.hpp"
 #include "gpugeom/removed.hpp"
 
 namespace gpugeom {
@@ -129,11 +130,13 @@ class DynamicDelaunay2d {
   void insert(const double* xy, std::int64_t n);
   void insert_device(const double* device_xy, std::int64_t n);
   // New coordinates for every point (n == num_points(); host memory, or executor memory for
-  // move_device), and the triangulation brought up to date: where the kept one is still a
-  // triangulation of the moved points (every triangle still positively oriented, checked
-  // exactly) it is flipped until Delaunay, which costs what the points' moves disturbed;
-  // otherwise (or where points came to coincide or to part) it is made afresh (stats counter
-  // "move_rebuilt"). Any displacement gives the right triangulation. Throws as insert, and
+  // move_device), and the triangulation brought up to date from the kept one: the vertices of
+  // triangles that turned over (checked exactly) are taken out, their holes filled at the new
+  // places, the rest flipped until Delaunay and those vertices inserted again (stats counters
+  // "move_rounds", "move_taken_out", "move_reinserted"). Where that would take out more than an
+  // eighth of the points, or where points came to coincide or to part, the triangulation is
+  // made afresh (stats counter "move_rebuilt"). Any displacement gives the right
+  // triangulation; only the time depends on how far the points moved. Throws as insert, and
   // Error(InvalidArgument) for another count; the object is then unchanged.
   void move(const double* xy, std::int64_t n);
   void move_device(const double* device_xy, std::int64_t n);
@@ -158,6 +161,16 @@ class DynamicDelaunay2d {
   // in executor memory as delaunay2d_device returns them (freed when their last pointer goes).
   Triangulation2d triangulation() const;
   DeviceTriangulation2d device_triangulation() const;
+  // Which triangles the last update (insert, move or remove) changed (changes.hpp): per triangle of
+  // the current results its index in the results before that update, or -1 where it is new, and
+  // the indices of those that went. Off by default: with track_changes(true), each update keeps
+  // the state it replaces until the next one (a second copy of the state, in the executor's
+  // memory); track_changes(false) frees it. changes() / device_changes() (executor memory, as
+  // device_triangulation's) throw Error(InvalidArgument) where no update ran with
+  // tracking on.
+  void track_changes(bool on = true);
+  SimplexChanges changes() const;
+  DeviceSimplexChanges device_changes() const;
   // Phases and counters of the last call that changed the points.
   const Stats& stats() const;
 

@@ -18,6 +18,7 @@
 
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
+#include "gpugeom/changes.hpp"
 #include "gpugeom/removed.hpp"
 
 namespace gpugeom {
@@ -175,12 +176,15 @@ class DynamicDelaunay3d {
   void insert(const double* xyz, std::int64_t n);
   void insert_device(const double* device_xyz, std::int64_t n);
   // New coordinates for every point (n == num_points(); host memory, or executor memory for
-  // move_device), and the tetrahedralisation brought up to date: where the kept one is still a
-  // tetrahedralisation of the moved points (every tetrahedron still positively oriented,
-  // checked exactly) star splaying repairs it; otherwise (or where points came to coincide or
-  // to part) it is made afresh (stats counter "move_rebuilt"). Any displacement gives the right
-  // tetrahedralisation. Throws as insert, and Error(InvalidArgument) for another count; the
-  // object is then unchanged.
+  // move_device), and the tetrahedralisation brought up to date from the kept one: the vertices
+  // of tetrahedra that turned over (checked exactly) are taken out, their holes filled at the
+  // new places, the rest flipped (phase 1's rounds) and star-splayed until Delaunay, and those
+  // vertices inserted again (stats counters "move_rounds", "move_taken_out",
+  // "move_reinserted"). Where that would take out more than an eighth of the points, or where
+  // points came to coincide or to part, it is made afresh (stats counter "move_rebuilt"). Any
+  // displacement gives the right tetrahedralisation; only the time depends on how far the
+  // points moved. Throws as insert, and Error(InvalidArgument) for another count; the object is
+  // then unchanged.
   void move(const double* xyz, std::int64_t n);
   void move_device(const double* device_xyz, std::int64_t n);
   // Removes the points with the given indices (count of them, each once, none removed before;
@@ -205,6 +209,16 @@ class DynamicDelaunay3d {
   // arrays in executor memory as delaunay3d_device returns them.
   Triangulation3d tetrahedralisation() const;
   DeviceTriangulation3d device_tetrahedralisation() const;
+  // Which tetrahedra the last update (insert, move or remove) changed (changes.hpp): per tetrahedra
+  // of the current results its index in the results before that update, or -1 where it is new, and
+  // the indices of those that went. Off by default: with track_changes(true), each update keeps
+  // the state it replaces until the next one (a second copy of the state, in the executor's
+  // memory); track_changes(false) frees it. changes() / device_changes() (executor memory, as
+  // device_tetrahedralisation's) throw Error(InvalidArgument) where no update ran with
+  // tracking on.
+  void track_changes(bool on = true);
+  SimplexChanges changes() const;
+  DeviceSimplexChanges device_changes() const;
   // Phases and counters of the last call that changed the points.
   const Stats& stats() const;
 

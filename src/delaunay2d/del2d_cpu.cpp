@@ -35,6 +35,7 @@
 #include "mesh/adjacency.hpp"
 #include "mesh/compact.hpp"
 #include "mesh/hole_refill.hpp"
+#include "mesh/simplex_changes.hpp"
 #include "mesh/kept_points.hpp"
 #include "mesh/decision.hpp"
 #include "mesh/flip_fix.hpp"

@@ -91,6 +91,15 @@ std::int64_t DynamicDelaunay2d::num_duplicates() const {
 Backend DynamicDelaunay2d::backend() const {
   return impl_->backend;
 }
+void DynamicDelaunay2d::track_changes(bool on) {
+  impl_->kept->track_changes(on);
+}
+SimplexChanges DynamicDelaunay2d::changes() const {
+  return impl_->changes("DynamicDelaunay2d");
+}
+DeviceSimplexChanges DynamicDelaunay2d::device_changes() const {
+  return impl_->device_changes("DynamicDelaunay2d");
+}
 const Stats& DynamicDelaunay2d::stats() const {
   return impl_->stats;
 }

@@ -24,6 +24,7 @@
 #include "mesh/adjacency.hpp"
 #include "mesh/compact.hpp"
 #include "mesh/hole_refill.hpp"
+#include "mesh/simplex_changes.hpp"
 #include "mesh/kept_points.hpp"
 #include "mesh/first_tetrahedron.hpp"
 #include "mesh/flip_fix.hpp"

@@ -93,6 +93,15 @@ std::int64_t DynamicDelaunay3d::num_duplicates() const {
 Backend DynamicDelaunay3d::backend() const {
   return impl_->backend;
 }
+void DynamicDelaunay3d::track_changes(bool on) {
+  impl_->kept->track_changes(on);
+}
+SimplexChanges DynamicDelaunay3d::changes() const {
+  return impl_->changes("DynamicDelaunay3d");
+}
+DeviceSimplexChanges DynamicDelaunay3d::device_changes() const {
+  return impl_->device_changes("DynamicDelaunay3d");
+}
 const Stats& DynamicDelaunay3d::stats() const {
   return impl_->stats;
 }

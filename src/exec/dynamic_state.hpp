@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "gpugeom/changes.hpp"
 #include "gpugeom/common.hpp"
 
 namespace gpugeom::detail {
@@ -38,6 +39,29 @@ class KeptState {
   // Copies of the current results: to host vectors, or to new executor arrays handed over.
   virtual void host_copy(Output& out) const = 0;
   virtual void device_copy(DeviceOutput& out) const = 0;
+  // Which simplices the last update changed: with tracking on, each update keeps the state it
+  // replaces (a second copy of the state between calls), and the changes compare the results
+  // before and after it (mesh/simplex_changes.hpp). has_changes: an update ran with tracking on.
+  virtual void track_changes(bool on) = 0;
+  virtual bool has_changes() const = 0;
+  virtual void host_changes(SimplexChanges& out) const = 0;
+  virtual void device_changes(DeviceSimplexChanges& out) const = 0;
+};
+
+// The arrays before the last update, kept while changes are tracked (KeptState::track_changes).
+template <class Arrays>
+struct Before {
+  Arrays arrays;
+  bool track = false, held = false;
+  // now becomes next; the arrays it held are kept when tracking.
+  void commit(Arrays& now, Arrays&& next) {
+    if (track) arrays = std::move(now), held = true;
+    now = std::move(next);
+  }
+  void set(bool on) {
+    track = on;
+    if (!on) arrays = Arrays(), held = false;
+  }
 };
 
 template <class Kept>
@@ -62,6 +86,20 @@ struct DynamicState {
                       std::to_string(kept->points()) + " (give new coordinates for every point)");
     timed([&](Stats& st) { kept->move(p, on_device, st); });
   }
+  // The changes of the last update (cls names the class in the message).
+  SimplexChanges changes(const char* cls) const {
+    require_changes(cls);
+    SimplexChanges c;
+    kept->host_changes(c);
+    return c;
+  }
+  DeviceSimplexChanges device_changes(const char* cls) const {
+    require_changes(cls);
+    DeviceSimplexChanges c;
+    kept->device_changes(c);
+    c.backend = backend;
+    return c;
+  }
   // Removes count points by index.
   void remove(const std::int32_t* idx, std::int64_t count, bool on_device) {
     if (count < 0) throw Error(ErrorCode::InvalidArgument, "remove: negative index count");
@@ -73,6 +111,13 @@ struct DynamicState {
   }
 
  private:
+  void require_changes(const char* cls) const {
+    if (!kept->has_changes())
+      throw Error(ErrorCode::InvalidArgument,
+                  std::string(cls) +
+                      "::changes: no update since track_changes(true); turn tracking on before "
+                      "the update whose changes you want");
+  }
   // Runs call(st) with fresh stats, kept (with the total time) once it succeeded.
   template <class Call>
   void timed(Call call) {

@@ -51,6 +51,9 @@ class KeptOperations {
     }
     pts_.assign(pool_.begin(), pool_.begin() + std::ptrdiff_t(k));
     gone_.assign(k, 0);
+    dyn_->track_changes(true);
+    const auto r = T::current(*dyn_);
+    before_.assign(T::simplices(r), T::simplices(r) + K * T::count(r));
   }
   bool started() const { return dyn_ != nullptr; }
   // The calls made (and removals refused), so that a test can see every kind ran.
@@ -72,6 +75,7 @@ class KeptOperations {
 
  private:
   void call() {
+    updated_ = true;
     const std::size_t left = pool_.size() - pts_.size();
     const int what = int(rng_() % 3);
     if (what == 0 && left) {
@@ -107,6 +111,7 @@ class KeptOperations {
         calls_.refilled += dyn_->stats().counters.at("remove_rebuilt") == 0;
       } catch (const gpugeom::Error& e) {
         ++calls_.refused;
+        updated_ = false;
         // too few points left, or none in general position: refused, nothing changed
         EXPECT_EQ(e.code(), gpugeom::ErrorCode::DegenerateInput) << e.what();
       }
@@ -136,6 +141,7 @@ class KeptOperations {
       want[std::size_t(ids[j])] = fd[j] >= 0 ? ids[std::size_t(fd[j])] : -1;
     EXPECT_EQ(T::dup(got), want);
     expect_neighbours(T::simplices(got), T::neighbors(got), T::count(got));
+    if (updated_) expect_changes(T::simplices(got), T::count(got));
   }
 
  private:
@@ -150,6 +156,49 @@ class KeptOperations {
     }
     std::sort(out.begin(), out.end());
     return out;
+  }
+  // changes() of the update just made, against the results before it (before_) and now: a
+  // simplex with a previous index has that simplex's vertices, a new one is not among the old,
+  // and the removed list is the old ones no new simplex names. Then before_ moves on.
+  void expect_changes(const std::int32_t* s, std::int64_t n) {
+    const auto c = dyn_->changes();
+    const std::int64_t nb = std::int64_t(before_.size()) / K;
+    ASSERT_EQ(c.num_simplices, n);
+    ASSERT_EQ(c.num_previous, nb);
+    ASSERT_EQ(std::int64_t(c.previous_index.size()), n);
+    auto sorted = [](const std::int32_t* v) {
+      Simplex a;
+      for (int k = 0; k < K; ++k) a[k] = v[k];
+      std::sort(a.begin(), a.end());
+      return a;
+    };
+    std::vector<Simplex> old(static_cast<std::size_t>(nb));
+    for (std::int64_t i = 0; i < nb; ++i)
+      old[std::size_t(i)] = sorted(&before_[std::size_t(K * i)]);
+    std::vector<Simplex> old_set = old;
+    std::sort(old_set.begin(), old_set.end());
+    std::vector<char> named(static_cast<std::size_t>(nb), 0);
+    std::int64_t fresh = 0;
+    for (std::int64_t i = 0; i < n; ++i) {
+      const std::int32_t p = c.previous_index[std::size_t(i)];
+      const Simplex a = sorted(s + K * i);
+      if (p < 0) {
+        ++fresh;
+        EXPECT_FALSE(std::binary_search(old_set.begin(), old_set.end(), a)) << "simplex " << i;
+        continue;
+      }
+      ASSERT_LT(p, nb);
+      EXPECT_EQ(old[std::size_t(p)], a) << "simplex " << i;
+      EXPECT_EQ(named[std::size_t(p)], 0) << "previous " << p << " named twice";
+      named[std::size_t(p)] = 1;
+    }
+    std::vector<std::int32_t> gone;
+    for (std::int64_t i = 0; i < nb; ++i)
+      if (!named[std::size_t(i)]) gone.push_back(std::int32_t(i));
+    EXPECT_EQ(c.num_new, fresh);
+    EXPECT_EQ(c.num_removed, std::int64_t(gone.size()));
+    EXPECT_EQ(std::vector<std::int32_t>(c.removed.begin(), c.removed.end()), gone);
+    before_.assign(s, s + K * n);
   }
   // Each neighbour shares the face opposite vertex k and names this simplex back.
   static void expect_neighbours(const std::int32_t* s, const std::int32_t* nb, std::int64_t n) {
@@ -186,6 +235,8 @@ class KeptOperations {
   std::unique_ptr<typename T::Dyn> dyn_;
   Calls calls_;
   std::string last_;
+  std::vector<std::int32_t> before_;  // the results' simplices before the last update
+  bool updated_ = false;              // the last call changed the state
 };
 
 // Random calls on each case (steps of them), checked after each; every kind of call ran.

@@ -467,7 +467,8 @@ class KeptOn final : public Kept {
     ::gpugeom::detail::require_device_memory(ex, K_.n + n, kLeastBytesPerPoint,
                                              "a 2D Delaunay triangulation", "points");
     KeptArrays R = with_points(ex, K_, xy, n, on_device, false, st);
-    K_ = kept_update(ex, K_, std::move(R), K_.n + n, Update::Insert, run_.profile, st);
+    before_.commit(K_,
+                   kept_update(ex, K_, std::move(R), K_.n + n, Update::Insert, run_.profile, st));
   }
   void move(const double* xy, bool on_device, Stats& st) override {
     Exec ex(run_);
@@ -475,7 +476,7 @@ class KeptOn final : public Kept {
     ::gpugeom::detail::require_device_memory(ex, K_.n, kLeastBytesPerPoint,
                                              "a 2D Delaunay triangulation", "points");
     KeptArrays R = with_points(ex, K_, xy, K_.n, on_device, true, st);
-    K_ = kept_update(ex, K_, std::move(R), K_.n, Update::Move, run_.profile, st);
+    before_.commit(K_, kept_update(ex, K_, std::move(R), K_.n, Update::Move, run_.profile, st));
   }
   void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Stats& st) override {
     if (count == 0) return;
@@ -491,14 +492,25 @@ class KeptOn final : public Kept {
     KeptArrays R = with_points(ex, K_, nullptr, 0, false, false, st);
     R.gone = std::move(gone);
     R.nremoved = K_.nremoved + count;
-    K_ = kept_update(ex, K_, std::move(R), K_.n, Update::Remove, run_.profile, st);
+    before_.commit(K_, kept_update(ex, K_, std::move(R), K_.n, Update::Remove, run_.profile, st));
   }
   std::int64_t points() const override { return K_.n; }
   std::int64_t removed() const override { return K_.nremoved; }
   std::int64_t simplices() const override { return K_.nout; }
   // The results' triangles and neighbours (new executor arrays).
-  mesh::Compacted<Exec> results(Exec& ex) const {
-    return mesh::compact_live<3>(ex, K_.nt, NonFlat{K_.tri.data(), K_.nb.data(), K_.xy.data()});
+  static mesh::Compacted<Exec> compacted(Exec& ex, const KeptArrays& A) {
+    return mesh::compact_live<3>(ex, A.nt, NonFlat{A.tri.data(), A.nb.data(), A.xy.data()});
+  }
+  mesh::Compacted<Exec> results(Exec& ex) const { return compacted(ex, K_); }
+  void track_changes(bool on) override { before_.set(on); }
+  bool has_changes() const override { return before_.held; }
+  void host_changes(SimplexChanges& out) const override {
+    Exec ex(run_);
+    mesh::host_changes<3>(ex, compacted(ex, before_.arrays), compacted(ex, K_), out);
+  }
+  void device_changes(DeviceSimplexChanges& out) const override {
+    Exec ex(run_);
+    mesh::device_changes<3>(ex, compacted(ex, before_.arrays), compacted(ex, K_), out);
   }
   std::int64_t duplicates() const override { return K_.ndup; }
   void host_copy(Output& out) const override {
@@ -534,4 +546,5 @@ class KeptOn final : public Kept {
 
   RunOptions run_;
   KeptArrays K_;
+  ::gpugeom::detail::Before<KeptArrays> before_;
 };

@@ -534,7 +534,7 @@ class KeptOn final : public Kept {
     ::gpugeom::detail::require_device_memory(ex, K_.n + n, kLeastBytesPerPoint,
                                              "a 3D Delaunay tetrahedralisation", "points");
     KeptArrays R = with_points(ex, K_, xyz, n, on_device, false, st);
-    K_ = kept_update(ex, K_, std::move(R), K_.n + n, Update::Insert, opt_, st);
+    before_.commit(K_, kept_update(ex, K_, std::move(R), K_.n + n, Update::Insert, opt_, st));
   }
   void move(const double* xyz, bool on_device, Stats& st) override {
     Exec ex(opt_);
@@ -542,7 +542,7 @@ class KeptOn final : public Kept {
     ::gpugeom::detail::require_device_memory(ex, K_.n, kLeastBytesPerPoint,
                                              "a 3D Delaunay tetrahedralisation", "points");
     KeptArrays R = with_points(ex, K_, xyz, K_.n, on_device, true, st);
-    K_ = kept_update(ex, K_, std::move(R), K_.n, Update::Move, opt_, st);
+    before_.commit(K_, kept_update(ex, K_, std::move(R), K_.n, Update::Move, opt_, st));
   }
   void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Stats& st) override {
     if (count == 0) return;
@@ -558,7 +558,7 @@ class KeptOn final : public Kept {
     KeptArrays R = with_points(ex, K_, nullptr, 0, false, false, st);
     R.gone = std::move(gone);
     R.nremoved = K_.nremoved + count;
-    K_ = kept_update(ex, K_, std::move(R), K_.n, Update::Remove, opt_, st);
+    before_.commit(K_, kept_update(ex, K_, std::move(R), K_.n, Update::Remove, opt_, st));
   }
   std::int64_t points() const override { return K_.n; }
   std::int64_t removed() const override { return K_.nremoved; }
@@ -569,12 +569,25 @@ class KeptOn final : public Kept {
     mesh::Compacted<Exec> f;
     Extras E;
   };
-  Results results(Exec& ex) const {
+  static mesh::Compacted<Exec> compacted(Exec& ex, const KeptArrays& A) {
     LeasePool<Exec> pool = flat_test_pool(ex);
+    return mesh::compact_live<4>(ex, A.used, KeptTets{A.tet.data(), A.xyz.data(), pool.view});
+  }
+  Results results(Exec& ex) const {
     Results r;
-    r.f = mesh::compact_live<4>(ex, K_.used, KeptTets{K_.tet.data(), K_.xyz.data(), pool.view});
+    r.f = compacted(ex, K_);
     r.E = extras(ex, K_.dup_map(), r.f, K_.n);
     return r;
+  }
+  void track_changes(bool on) override { before_.set(on); }
+  bool has_changes() const override { return before_.held; }
+  void host_changes(SimplexChanges& out) const override {
+    Exec ex(opt_);
+    mesh::host_changes<4>(ex, compacted(ex, before_.arrays), compacted(ex, K_), out);
+  }
+  void device_changes(DeviceSimplexChanges& out) const override {
+    Exec ex(opt_);
+    mesh::device_changes<4>(ex, compacted(ex, before_.arrays), compacted(ex, K_), out);
   }
   void host_copy(Output& out) const override {
     Exec ex(opt_);
@@ -619,4 +632,5 @@ class KeptOn final : public Kept {
 
   Delaunay3dOptions opt_;
   KeptArrays K_;
+  ::gpugeom::detail::Before<KeptArrays> before_;
 };
