@@ -201,6 +201,8 @@ class Delaunay(_OfPoints):
             # kept between calls (DynamicDelaunay2d / 3d): add_points brings it up to date
             make = _core.DynamicDelaunay2d if self.ndim == 2 else _core.DynamicDelaunay3d
             dyn = make(arr, **self._run)
+            if getattr(self, "_tracking", False):
+                dyn.track_changes(True)
             r = dyn.result()
             self._dyn = dyn
             return r
@@ -243,6 +245,34 @@ class Delaunay(_OfPoints):
         for name in self._cached:
             self.__dict__.pop(name, None)
         self._take(r)
+
+    def track_changes(self, on: bool = True):
+        """gpugeom's own (issue 47), in incremental mode: from the next ``add_points``, ``move``
+        or ``remove`` on, keep what each replaces, so that ``changes()`` can say which simplices
+        it changed (a second copy of the triangulation is held between calls; ``on=False``
+        frees it). Raises RuntimeError after ``close()`` or without ``incremental=True``."""
+        if not self._incremental:
+            raise RuntimeError("incremental mode not enabled or already closed")
+        if self._dyn is None:
+            raise ValueError("changes need the kept triangulation (method='incremental')")
+        self._dyn.track_changes(bool(on))
+        self._tracking = bool(on)
+
+    def changes(self):
+        """gpugeom's own (issue 47): which simplices the last ``add_points``, ``move`` or
+        ``remove`` changed, as ``(previous_index, removed)`` (int32 arrays of the points' kind):
+        per row of ``simplices``, its row before that call or -1 where it is new; and the rows
+        before it that are gone. Data kept per simplex carries over as
+        ``new = where(previous_index >= 0, old[previous_index], recompute)``. A simplex is the
+        same where its vertices are. Raises ValueError where no update ran since
+        ``track_changes()`` (an ``add_points(restart=True)`` starts over: changes follow from
+        the next call)."""
+        if not self._incremental:
+            raise RuntimeError("incremental mode not enabled or already closed")
+        if self._dyn is None:
+            raise ValueError("changes need the kept triangulation (method='incremental')")
+        r = self._dyn.changes()
+        return self._kind.back(r["previous_index"]), self._kind.back(r["removed"])
 
     def _take(self, r):
         kind = self._kind

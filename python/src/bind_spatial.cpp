@@ -137,6 +137,24 @@ void dynamic_remove(State& self, const AnyArray& indices) {
   });
 }
 
+// Which simplices the last update changed (the kept triangulation's changes()), where its
+// arrays are.
+template <class State>
+nb::dict dynamic_changes(const State& self) {
+  nb::dict r;
+  if (self.on_device) {
+    DeviceSimplexChanges c = unlocked([&] { return self.t.device_changes(); });
+    const DeviceOut out{c.backend, self.device};
+    r["previous_index"] = out(c.previous_index, {sz(c.num_simplices)});
+    r["removed"] = out(c.removed, {sz(c.num_removed)});
+    return r;
+  }
+  SimplexChanges c = unlocked([&] { return self.t.changes(); });
+  r["previous_index"] = host_array(std::move(c.previous_index), {sz(c.num_simplices)});
+  r["removed"] = host_array(std::move(c.removed), {sz(c.num_removed)});
+  return r;
+}
+
 nb::dict dynamic2d_result(const Dynamic2dState& self) {
   nb::dict r;
   const std::int64_t n = self.t.num_points();
@@ -512,6 +530,8 @@ void bind_spatial(nb::module_& m) {
       .def("insert", &dynamic_insert<Dynamic2dState>, "points"_a)
       .def("move", &dynamic_move<Dynamic2dState>, "points"_a)
       .def("remove", &dynamic_remove<Dynamic2dState>, "indices"_a)
+      .def("track_changes", [](Dynamic2dState& s, bool on) { s.t.track_changes(on); }, "on"_a)
+      .def("changes", &dynamic_changes<Dynamic2dState>)
       .def("result", &dynamic2d_result)
       .def_prop_ro("npoints", [](const Dynamic2dState& s) { return s.t.num_points(); });
   nb::class_<Dynamic3dState>(m, "DynamicDelaunay3d")
@@ -520,6 +540,8 @@ void bind_spatial(nb::module_& m) {
       .def("insert", &dynamic_insert<Dynamic3dState>, "points"_a)
       .def("move", &dynamic_move<Dynamic3dState>, "points"_a)
       .def("remove", &dynamic_remove<Dynamic3dState>, "indices"_a)
+      .def("track_changes", [](Dynamic3dState& s, bool on) { s.t.track_changes(on); }, "on"_a)
+      .def("changes", &dynamic_changes<Dynamic3dState>)
       .def("result", &dynamic3d_result)
       .def_prop_ro("npoints", [](const Dynamic3dState& s) { return s.t.num_points(); });
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,

@@ -184,3 +184,31 @@ def test_remove_errors_leave_the_object_as_it_was(rng):
         d.remove([7])
     with pytest.raises(RuntimeError):
         gpugeom.Delaunay(p).remove([7])
+
+
+@pytest.mark.parametrize("ndim", [2, 3])
+def test_changes_say_which_simplices_changed(backend, rng, ndim):
+    # issue 47: after each update, previous_index maps every simplex that stayed onto its old row
+    # (the same vertices), -1 marks the new ones, and removed lists the old rows that went
+    p = rng.random((4000, ndim))
+    d = gpugeom.Delaunay(p[:3000], incremental=True, backend=backend)
+    with pytest.raises(ValueError):
+        d.changes()  # (no update with tracking on yet)
+    d.track_changes()
+    before = np.array(np.asarray(d.simplices))
+    steps = [lambda: d.add_points(p[3000:]), lambda: d.move(p + 1e-4 * rng.standard_normal(p.shape)),
+             lambda: d.remove(rng.choice(4000, 300, replace=False))]
+    for step in steps:
+        step()
+        prev, gone = (np.asarray(x) for x in d.changes())
+        now = np.asarray(d.simplices)
+        assert prev.shape == (len(now),) and prev.dtype == np.int32
+        kept = prev >= 0
+        assert (np.sort(now[kept], axis=1) == np.sort(before[prev[kept]], axis=1)).all()
+        assert not simplex_set(now[~kept]) & simplex_set(before)
+        assert (gone == np.setdiff1d(np.arange(len(before)), prev[kept])).all()
+        assert 0 < kept.sum() < len(now)
+        before = np.array(now)
+    d.track_changes(False)
+    with pytest.raises(ValueError):
+        d.changes()
