@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "bench_csv.hpp"
+#include "displace.hpp"
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/generate.hpp"
@@ -201,11 +202,7 @@ void run_remove(const Row& row, Backend b, int reps) {
   constexpr int dim = sizeof(typename D::Point) / sizeof(double);
   const auto p = D::points(row.dist, row.n);
   const std::int64_t n = std::int64_t(p.size()), k = std::min(row.k, n - 4);
-  std::vector<std::int32_t> idx(static_cast<std::size_t>(n));
-  for (std::int64_t i = 0; i < n; ++i) idx[std::size_t(i)] = std::int32_t(i);
-  std::mt19937_64 rng(11);
-  std::shuffle(idx.begin(), idx.end(), rng);
-  idx.resize(std::size_t(k));
+  const std::vector<std::int32_t> idx = bench::removal_choice(n, k);
   std::vector<char> gone(std::size_t(n), 0);
   for (std::int32_t i : idx) gone[std::size_t(i)] = 1;
   std::vector<typename D::Point> live;
@@ -258,25 +255,7 @@ void run_move(const Row& row, double f, Backend b, int reps) {
   constexpr int dim = sizeof(typename D::Point) / sizeof(double);
   const auto p = D::points(row.dist, row.n);
   const std::int64_t n = std::int64_t(p.size());
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (const auto& x : p)
-    for (int d = 0; d < dim; ++d) {
-      const double c = (&x.x)[d];
-      lo[d] = std::min(lo[d], c), hi[d] = std::max(hi[d], c);
-    }
-  double volume = 1;
-  for (int d = 0; d < dim; ++d) volume *= hi[d] - lo[d];
-  const double spacing = std::pow(volume / double(n), 1.0 / dim);
-  std::vector<typename D::Point> q = p;
-  for (std::int64_t i = 0; i < n; ++i)  // (hashed normal steps: the same on every run)
-    for (int d = 0; d < dim; ++d) {
-      const std::uint64_t s = std::uint64_t(2 * d + 1);
-      const double u1 =
-          (double(bench::hash64(std::uint64_t(i), s) >> 11) + 0.5) / 9007199254740992.0;
-      const double u2 = double(bench::hash64(std::uint64_t(i), s + 1) >> 11) / 9007199254740992.0;
-      (&q[std::size_t(i)].x)[d] +=
-          f * spacing * std::sqrt(-2 * std::log(u1)) * std::cos(6.283185307179586 * u2);
-    }
+  const std::vector<typename D::Point> q = bench::displaced<dim>(p, f);
   typename D::Options o;
   o.backend = b;
   decltype(D::fresh(p, o)) fresh;
