@@ -323,7 +323,9 @@ inline MovedStart2d moved_start(Exec& ex, const KeptArrays& K, const double* xy,
     st.counters["move_taken_out"] = M.nout;
     if (M.nout > n / 8 || m - M.nout < 3) return M;
     ex.fill(d_grow.data(), n, std::int8_t(0));
+    const auto t0 = std::chrono::steady_clock::now();
     f = refill_2d(ex, K, out, xy, K.dup_map(), m - M.nout, st, d_grow.data());
+    st.phase_ms.push_back({"move_refill", ms_since(t0)});
     grown = !f.ok && f.unmatched > 0;
     if (!f.ok && !grown) return M;
     if (grown)

@@ -407,7 +407,9 @@ inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz
     M.nout = mesh::count_flags(ex, M.out.data(), n);
     st.counters["move_taken_out"] = M.nout;
     if (M.nout > n / 8) return M;
+    const auto t0 = Clock::now();
     f = refill_3d(ex, K, M.out.data(), xyz, K.dup_map(), opt, st, M.out.data());
+    st.phase_ms.push_back({"move_refill", ms_since(t0)});
     grown = !f.ok && f.unmatched > 0;
     if (!f.ok && !grown) return M;
     if (f.ok) cur = f.tet.data(), used = f.used;
