@@ -229,15 +229,10 @@ Refilled<Exec> refill_holes(Exec& ex, const std::int32_t* ov, const std::int32_t
         match[i] = found;
         if (found < 0) {
           atomic_add(&cnt[0], std::int64_t(1));
-          if (mark) {  // (the staying simplex and its neighbours: a hole grown by one cell
-                       // a round settled in more rounds, each a new D)
+          if (mark) {
             const std::int32_t t = on[K * std::int64_t(H[e / K]) + e % K];
-            for (int j = -1; j < K; ++j) {
-              const std::int32_t u = j < 0 ? t : on[K * std::int64_t(t) + j];
-              if (u < 0) continue;
-              for (int k = 0; k < K; ++k)
-                if (ov[K * std::int64_t(u) + k] >= 0) mark[ov[K * std::int64_t(u) + k]] = 1;
-            }
+            for (int k = 0; k < K; ++k)
+              if (ov[K * std::int64_t(t) + k] >= 0) mark[ov[K * std::int64_t(t) + k]] = 1;
           }
           return;
         }
