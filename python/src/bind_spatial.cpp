@@ -530,7 +530,8 @@ void bind_spatial(nb::module_& m) {
       .def("insert", &dynamic_insert<Dynamic2dState>, "points"_a)
       .def("move", &dynamic_move<Dynamic2dState>, "points"_a)
       .def("remove", &dynamic_remove<Dynamic2dState>, "indices"_a)
-      .def("track_changes", [](Dynamic2dState& s, bool on) { s.t.track_changes(on); }, "on"_a)
+      .def(
+          "track_changes", [](Dynamic2dState& s, bool on) { s.t.track_changes(on); }, "on"_a)
       .def("changes", &dynamic_changes<Dynamic2dState>)
       .def("result", &dynamic2d_result)
       .def_prop_ro("npoints", [](const Dynamic2dState& s) { return s.t.num_points(); });
@@ -540,7 +541,8 @@ void bind_spatial(nb::module_& m) {
       .def("insert", &dynamic_insert<Dynamic3dState>, "points"_a)
       .def("move", &dynamic_move<Dynamic3dState>, "points"_a)
       .def("remove", &dynamic_remove<Dynamic3dState>, "indices"_a)
-      .def("track_changes", [](Dynamic3dState& s, bool on) { s.t.track_changes(on); }, "on"_a)
+      .def(
+          "track_changes", [](Dynamic3dState& s, bool on) { s.t.track_changes(on); }, "on"_a)
       .def("changes", &dynamic_changes<Dynamic3dState>)
       .def("result", &dynamic3d_result)
       .def_prop_ro("npoints", [](const Dynamic3dState& s) { return s.t.num_points(); });

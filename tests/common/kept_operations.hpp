@@ -261,4 +261,42 @@ void random_operations(const Cases& cases, const typename T::Options& opt, std::
   EXPECT_GT(all.refilled, all.removes / 2) << all.removes << " removals";
 }
 
+// changes() (issue 47): refused until an update ran with tracking on; then what the last update
+// changed, on the host and in executor memory alike (CPU executor: host memory);
+// track_changes(false) ends it. p: at least 2510 points, not degenerate. (What changes() says is
+// checked after every random operation: KeptOperations.)
+template <class T>
+void changes_need_tracking(const std::vector<typename T::Point>& p,
+                           const typename T::Options& opt) {
+  typename T::Dyn d(&p.data()->x, 2000, opt);
+  auto refused = [&] {
+    try {
+      (void)d.changes();
+    } catch (const gpugeom::Error& e) {
+      return e.code() == gpugeom::ErrorCode::InvalidArgument;
+    }
+    return false;
+  };
+  EXPECT_TRUE(refused());
+  d.insert(&p[2000].x, 10);
+  EXPECT_TRUE(refused());  // (tracking was off during that update)
+  d.track_changes(true);
+  EXPECT_TRUE(refused());
+  const auto before = T::current(d);
+  d.insert(&p[2010].x, 500);
+  const auto c = d.changes();
+  const auto dc = d.device_changes();
+  EXPECT_EQ(c.num_previous, T::count(before));
+  EXPECT_GT(c.num_new, 0);
+  EXPECT_GT(c.num_removed, 0);
+  EXPECT_LT(c.num_removed, c.num_previous);  // (most simplices stay)
+  ASSERT_EQ(dc.num_simplices, c.num_simplices);
+  ASSERT_EQ(dc.backend, gpugeom::Backend::Cpu);
+  EXPECT_TRUE(
+      std::equal(c.previous_index.begin(), c.previous_index.end(), dc.previous_index.get()));
+  EXPECT_TRUE(std::equal(c.removed.begin(), c.removed.end(), dc.removed.get()));
+  d.track_changes(false);
+  EXPECT_TRUE(refused());
+}
+
 }  // namespace gg_test

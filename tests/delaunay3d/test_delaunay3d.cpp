@@ -539,44 +539,13 @@ TEST(DynamicDelaunay3d, RandomOperationsGiveTheFreshTetrahedralisation) {
   gg_test::random_operations<gg_del3d::Kept3d>(cases, cpu(), 700, 2, 10);
 }
 
-// A removed point is no vertex and keeps its index (kRemovedPoint); a copy of it, given before
-// or after, is a vertex in its place. Bad index lists are refused and change nothing.
-// changes() (issue 47): refused until an update ran with tracking on; then what the last update
-// changed, on the host and in executor memory alike; track_changes(false) ends it. (What it says
-// is checked after every random operation: kept_operations.hpp.)
+// changes() (issue 47): gg_test::changes_need_tracking.
 TEST(DynamicDelaunay3d, ChangesNeedTracking) {
-  const auto p = generate3d("uniform", 3000, 45);
-  DynamicDelaunay3d d(&p.data()->x, 2000, cpu());
-  auto refused = [&] {
-    try {
-      (void)d.changes();
-    } catch (const Error& e) {
-      return e.code() == ErrorCode::InvalidArgument;
-    }
-    return false;
-  };
-  EXPECT_TRUE(refused());
-  d.insert(&p[2000].x, 10);
-  EXPECT_TRUE(refused());  // (tracking was off during that update)
-  d.track_changes(true);
-  EXPECT_TRUE(refused());
-  const auto before = d.tetrahedralisation();
-  d.insert(&p[2010].x, 500);
-  const auto c = d.changes();
-  const auto dc = d.device_changes();
-  EXPECT_EQ(c.num_previous, std::int64_t(before.num_tetrahedra()));
-  EXPECT_GT(c.num_new, 0);
-  EXPECT_GT(c.num_removed, 0);
-  EXPECT_LT(c.num_removed, c.num_previous);  // (most simplices stay)
-  ASSERT_EQ(dc.num_simplices, c.num_simplices);
-  ASSERT_EQ(dc.backend, Backend::Cpu);
-  EXPECT_TRUE(
-      std::equal(c.previous_index.begin(), c.previous_index.end(), dc.previous_index.get()));
-  EXPECT_TRUE(std::equal(c.removed.begin(), c.removed.end(), dc.removed.get()));
-  d.track_changes(false);
-  EXPECT_TRUE(refused());
+  gg_test::changes_need_tracking<gg_del3d::Kept3d>(generate3d("uniform", 3000, 45), cpu());
 }
 
+// A removed point is no vertex and keeps its index (kRemovedPoint); a copy of it, given before
+// or after, is a vertex in its place. Bad index lists are refused and change nothing.
 TEST(DynamicDelaunay3d, RemovedPointsAndRefusals) {
   auto p = generate3d("uniform", 2000, 44);
   p.push_back(p[10]);  // 2000: a copy of point 10
