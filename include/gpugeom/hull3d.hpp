@@ -14,6 +14,7 @@
 #include <memory>
 #include <vector>
 
+#include "gpugeom/changes.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
 
@@ -102,5 +103,80 @@ struct DeviceHull3d {
 };
 DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
                                   const Hull3dOptions& opt = {});
+
+// A 3D convex hull that follows its points (issue 47): kept on the executor between calls, it
+// takes new points, new coordinates and removals. After any sequence of calls it is exactly the
+// hull convex_hull3d gives for the points there are (removed ones left out): the same facets with
+// the same neighbours, extreme points and planes (the facets' order in the arrays may differ).
+// Points keep the indices they were given: the first call's are 0 .. n - 1, each insert's follow
+// on; a removed point keeps its index and is never a vertex.
+//
+// What each call costs: an insertion makes the hull of the old hull's vertices and the new points
+// only (a point that is not extreme stays so when points join), so it does not grow with the
+// points inside; a removal that takes no vertex changes nothing, one that does makes the hull of
+// all points left; a move makes the hull of all the moved points. Stats counter "hull_candidates"
+// says how many points the last hull was made from.
+//
+// The state lives where the executor runs: device memory of opt.device on CUDA (fixed at
+// construction; the work runs on opt.stream, which must outlive the object), host memory on the
+// CPU executor. Calls on one object must not overlap; separate objects are independent. A call
+// that throws leaves the object as it was (a moved-from object may only be assigned or
+// destroyed). opt.method is used for every hull made (the result does not depend on it).
+class DynamicHull3d {
+ public:
+  // The hull of n host points (x, y and z interleaved) on the executor opt picks. Throws as
+  // convex_hull3d; Error(Unsupported) for opt.into (results are read with hull()).
+  DynamicHull3d(const double* xyz, std::int64_t n, const Hull3dOptions& opt = {});
+  // The same from points in executor memory (device memory, as convex_hull3d_device takes them;
+  // host memory with opt.backend == Backend::Cpu).
+  static DynamicHull3d from_device(const double* device_xyz, std::int64_t n,
+                                   const Hull3dOptions& opt = {});
+  DynamicHull3d(DynamicHull3d&&) noexcept;
+  DynamicHull3d& operator=(DynamicHull3d&&) noexcept;
+  ~DynamicHull3d();
+
+  // Adds n points (host memory; insert_device: executor memory, as from_device), numbered
+  // num_points() on. Throws as convex_hull3d for bad coordinates or too many points in all; the
+  // object is then unchanged.
+  void insert(const double* xyz, std::int64_t n);
+  void insert_device(const double* device_xyz, std::int64_t n);
+  // New coordinates for every point (n == num_points(); host memory, or executor memory for
+  // move_device). Throws as insert, Error(InvalidArgument) for another count, and
+  // Error(DegenerateInput) where the points (removed ones left out) came to lie on one plane;
+  // the object is then unchanged.
+  void move(const double* xyz, std::int64_t n);
+  void move_device(const double* device_xyz, std::int64_t n);
+  // Removes the points with the given indices (count of them, each once, none removed before;
+  // host memory, or executor memory for remove_device). Stats counter "removed_vertices": how
+  // many of them were vertices. Throws Error(InvalidArgument) for a bad index list and
+  // Error(DegenerateInput) where the points left have no hull (fewer than 4, or all on one
+  // plane); the object is then unchanged.
+  void remove(const std::int32_t* indices, std::int64_t count);
+  void remove_device(const std::int32_t* device_indices, std::int64_t count);
+
+  std::int64_t num_points() const;  // every index given so far, removed ones included
+  std::int64_t num_removed() const;
+  std::int64_t num_facets() const;
+  std::int64_t num_vertices() const;
+  Backend backend() const;  // the executor holding the state
+  // Copies of the current hull: host arrays as convex_hull3d returns them, or new arrays in
+  // executor memory as convex_hull3d_device returns them.
+  ConvexHull3d hull() const;
+  DeviceHull3d device_hull() const;
+  // Which facets the last update (insert, move or remove) changed (changes.hpp), as
+  // DynamicDelaunay3d's: off by default; with track_changes(true) each update keeps the arrays it
+  // replaces until the next one. changes() / device_changes() throw Error(InvalidArgument) where
+  // no update ran with tracking on.
+  void track_changes(bool on = true);
+  SimplexChanges changes() const;
+  DeviceSimplexChanges device_changes() const;
+  // Phases and counters of the last call that changed the points.
+  const Stats& stats() const;
+
+ private:
+  struct Impl;
+  explicit DynamicHull3d(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace gpugeom

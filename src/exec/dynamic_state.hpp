@@ -1,6 +1,7 @@
-// What the triangulations that follow their points share (internal; DynamicDelaunay2d and
-// DynamicDelaunay3d, issue 47): the kept state behind an executor-independent interface
-// (KeptState), its calls checked and timed, and the stats of the last call that succeeded.
+// What the structures that follow their points share (internal; DynamicDelaunay2d,
+// DynamicDelaunay3d and DynamicHull3d, issue 47): the kept state behind an executor-independent
+// interface (KeptUpdates, KeptState), its calls checked and timed, and the stats of the last
+// call that succeeded.
 #pragma once
 #include <chrono>
 #include <cstdint>
@@ -13,13 +14,13 @@
 
 namespace gpugeom::detail {
 
-// A triangulation's state on one executor (each module's impl/dynamic.inl): the points, the
-// simplices and the duplicate map, kept in the executor's memory between calls. Every call that
-// throws leaves the state unchanged.
+// A structure's state on one executor (each module's impl/dynamic.inl): the points and the
+// simplices (triangles, tetrahedra, hull facets), kept in the executor's memory between calls.
+// Every call that throws leaves the state unchanged.
 template <class Output, class DeviceOutput>
-class KeptState {
+class KeptUpdates {
  public:
-  virtual ~KeptState() = default;
+  virtual ~KeptUpdates() = default;
   // Appends n points (executor memory when on_device, else host memory), numbered from points()
   // on, and brings the triangulation up to date. Throws as the module's triangulate.
   virtual void insert(const double* p, std::int64_t n, bool on_device, Stats& st) = 0;
@@ -35,7 +36,6 @@ class KeptState {
   virtual std::int64_t points() const = 0;     // all indices given so far
   virtual std::int64_t removed() const = 0;    // of them removed
   virtual std::int64_t simplices() const = 0;  // in the results
-  virtual std::int64_t duplicates() const = 0;
   // Copies of the current results: to host vectors, or to new executor arrays handed over.
   virtual void host_copy(Output& out) const = 0;
   virtual void device_copy(DeviceOutput& out) const = 0;
@@ -46,6 +46,13 @@ class KeptState {
   virtual bool has_changes() const = 0;
   virtual void host_changes(SimplexChanges& out) const = 0;
   virtual void device_changes(DeviceSimplexChanges& out) const = 0;
+};
+
+// A triangulation's state (DynamicDelaunay2d / 3d): also the duplicate map.
+template <class Output, class DeviceOutput>
+class KeptState : public KeptUpdates<Output, DeviceOutput> {
+ public:
+  virtual std::int64_t duplicates() const = 0;
 };
 
 // The arrays before the last update, kept while changes are tracked (KeptState::track_changes).

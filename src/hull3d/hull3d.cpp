@@ -20,6 +20,9 @@ namespace {
 // own (hull3d::kMaxFacetSlots: 2^28 extreme points), checked as the hull grows.
 constexpr std::int64_t kMaxPoints = std::int64_t(INT32_MAX) - 1;
 
+}  // namespace
+
+namespace hull3d {
 void check_count(std::int64_t n) {
   if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
   if (n > kMaxPoints)
@@ -31,9 +34,24 @@ void check_count(std::int64_t n) {
                     "): a convex hull in 3D needs 4 points not on one plane");
 }
 
-}  // namespace
 
-namespace hull3d {
+void to_public(Output&& out, ConvexHull3d& r) {
+  r.triangles = std::move(out.triangles);
+  r.neighbors = std::move(out.neighbors);
+  r.vertices = std::move(out.vertices);
+  r.equations = std::move(out.equations);
+  r.facet_count = out.num_facets;
+  r.vertex_count = out.num_vertices;
+}
+void to_public(DeviceOutput&& out, DeviceHull3d& r) {
+  r.num_facets = out.num_facets;
+  r.num_vertices = out.num_vertices;
+  r.triangles = std::move(out.triangles);
+  r.neighbors = std::move(out.neighbors);
+  r.vertices = std::move(out.vertices);
+  r.equations = std::move(out.equations);
+}
+
 namespace {
 std::atomic<std::int64_t> g_first_slots{0};
 }
@@ -87,19 +105,14 @@ std::int64_t convex_hull3d_max_facets(std::int64_t n) {
 }
 
 ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOptions& opt) {
-  check_count(n);
+  hull3d::check_count(n);
   check_method(opt);
   ConvexHull3d r;
   const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
   hull3d::Output out;
   GG_ON_EXECUTOR(b, hull3d, compute, xyz, n, opt, out, r.stats);
-  r.triangles = std::move(out.triangles);
-  r.neighbors = std::move(out.neighbors);
-  r.vertices = std::move(out.vertices);
-  r.equations = std::move(out.equations);
-  r.facet_count = out.num_facets;
-  r.vertex_count = out.num_vertices;
+  hull3d::to_public(std::move(out), r);
   return r;
 }
 
@@ -109,7 +122,7 @@ ConvexHull3d convex_hull3d(const std::vector<Point3>& pts, const Hull3dOptions& 
 
 DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
                                   const Hull3dOptions& opt) {
-  check_count(n);
+  hull3d::check_count(n);
   check_method(opt);
   DeviceHull3d r;
   const Backend b = device_entry_backend(opt.backend, opt.device, "convex_hull3d_device");
@@ -117,12 +130,7 @@ DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
   r.num_points = n;
   hull3d::DeviceOutput out;
   GG_ON_EXECUTOR(b, hull3d, compute_device, device_xyz, n, opt, out, r.stats);
-  r.num_facets = out.num_facets;
-  r.num_vertices = out.num_vertices;
-  r.triangles = std::move(out.triangles);
-  r.neighbors = std::move(out.neighbors);
-  r.vertices = std::move(out.vertices);
-  r.equations = std::move(out.equations);
+  hull3d::to_public(std::move(out), r);
   return r;
 }
 

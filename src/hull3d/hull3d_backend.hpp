@@ -4,6 +4,7 @@
 #include <memory>
 #include <vector>
 
+#include "exec/dynamic_state.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
 #include "gpugeom/hull3d.hpp"
@@ -37,15 +38,29 @@ void set_first_facet_slots_for_testing(std::int64_t slots);
 // holds the points, t the nf facets, eq their planes (host memory). Defined in hull3d.cpp.
 void redo_planes(const double* p, const std::int32_t* t, std::int64_t nf, double* eq);
 
+// DynamicHull3d's state on one executor (impl/dynamic.inl): also the extreme points' count.
+class Kept : public detail::KeptUpdates<Output, DeviceOutput> {
+ public:
+  virtual std::int64_t vertices() const = 0;
+};
+
+// Refuses counts no hull can be made of (Error); defined in hull3d.cpp.
+void check_count(std::int64_t n);
+// The backends' outputs moved into the public results (their other fields as they were).
+void to_public(Output&& out, ConvexHull3d& r);
+void to_public(DeviceOutput&& out, DeviceHull3d& r);
+
 // compute: xyz holds n points on the host; compute_device: n points in the executor's memory.
 // Both validate the points on the executor (throw Error) and honour opt.into.
 namespace cpu_impl {
+std::unique_ptr<Kept> make_kept(const Hull3dOptions& opt);
 void compute(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
              Stats& stats);
 void compute_device(const double* xyz, std::int64_t n, const Hull3dOptions& opt, DeviceOutput& out,
                     Stats& stats);
 }  // namespace cpu_impl
 namespace cuda_impl {
+std::unique_ptr<Kept> make_kept(const Hull3dOptions& opt);
 void compute(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
              Stats& stats);
 void compute_device(const double* xyz, std::int64_t n, const Hull3dOptions& opt, DeviceOutput& out,

@@ -23,8 +23,10 @@
 #include "mesh/decision.hpp"
 #include "mesh/flip_fix.hpp"
 #include "mesh/first_tetrahedron.hpp"
+#include "mesh/kept_points.hpp"
 #include "mesh/prepare.hpp"
 #include "mesh/priority.hpp"
+#include "mesh/simplex_changes.hpp"
 #include "mesh/work_list.hpp"
 #include "predicates/predicates.hpp"
 
@@ -37,6 +39,7 @@ using Exec = CudaExec;
 #include "hull3d/impl/flipflop.inl"
 #include "hull3d/impl/hull.inl"
 #include "hull3d/digital/impl/digital.inl"
+#include "hull3d/impl/dynamic.inl"
 void compute(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
              Stats& stats) {
   compute_impl(xyz, n, opt, out, stats);

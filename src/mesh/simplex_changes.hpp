@@ -107,34 +107,44 @@ SimplexMatch<Exec> match_simplices(Exec& ex, const std::int32_t* old, std::int64
   return M;
 }
 
-// The changes from the results `before` to `now` (compacted), as the public structs: host
-// vectors, or executor arrays handed over (ready when this returns).
+// The changes from the results `before` (na simplices of K vertices) to `now` (nb), as the
+// public structs: host vectors, or executor arrays handed over (ready when this returns).
 template <int K, class Exec>
-void host_changes(Exec& ex, const Compacted<Exec>& before, const Compacted<Exec>& now,
-                  SimplexChanges& out) {
-  auto M = match_simplices<K>(ex, before.simplices.data(), before.count, now.simplices.data(),
-                              now.count);
-  out.num_simplices = now.count;
-  out.num_previous = before.count;
+void host_changes(Exec& ex, const std::int32_t* before, std::int64_t na, const std::int32_t* now,
+                  std::int64_t nb, SimplexChanges& out) {
+  auto M = match_simplices<K>(ex, before, na, now, nb);
+  out.num_simplices = nb;
+  out.num_previous = na;
   out.num_new = M.num_new;
   out.num_removed = M.num_removed;
-  out.previous_index.resize(std::size_t(now.count));
+  out.previous_index.resize(std::size_t(nb));
   out.removed.resize(std::size_t(M.num_removed));
-  ex.to_host(M.prev.data(), now.count, out.previous_index.data());
+  ex.to_host(M.prev.data(), nb, out.previous_index.data());
   ex.to_host(M.removed.data(), M.num_removed, out.removed.data());
 }
 template <int K, class Exec>
-void device_changes(Exec& ex, const Compacted<Exec>& before, const Compacted<Exec>& now,
-                    DeviceSimplexChanges& out) {
-  auto M = match_simplices<K>(ex, before.simplices.data(), before.count, now.simplices.data(),
-                              now.count);
+void device_changes(Exec& ex, const std::int32_t* before, std::int64_t na, const std::int32_t* now,
+                    std::int64_t nb, DeviceSimplexChanges& out) {
+  auto M = match_simplices<K>(ex, before, na, now, nb);
   ex.sync();  // (the caller may read them, and free them on any stream)
-  out.num_simplices = now.count;
-  out.num_previous = before.count;
+  out.num_simplices = nb;
+  out.num_previous = na;
   out.num_new = M.num_new;
   out.num_removed = M.num_removed;
   out.previous_index = M.prev.hand_over();
   out.removed = M.removed.hand_over();
+}
+// The same for compacted results.
+template <int K, class Exec>
+void host_changes(Exec& ex, const Compacted<Exec>& before, const Compacted<Exec>& now,
+                  SimplexChanges& out) {
+  host_changes<K>(ex, before.simplices.data(), before.count, now.simplices.data(), now.count, out);
+}
+template <int K, class Exec>
+void device_changes(Exec& ex, const Compacted<Exec>& before, const Compacted<Exec>& now,
+                    DeviceSimplexChanges& out) {
+  device_changes<K>(ex, before.simplices.data(), before.count, now.simplices.data(), now.count,
+                    out);
 }
 
 }  // namespace gpugeom::mesh

@@ -259,12 +259,12 @@ inline Triangulation2d follow_in_chunks(const Case& c, const Delaunay2dOptions& 
 }
 
 // DynamicDelaunay2d for gg_test::KeptOperations.
-struct Kept2d {
+struct Kept2d : gg_test::KeptTriangulation<Kept2d> {
   using Point = Point2;
   using Dyn = DynamicDelaunay2d;
   using Result = Triangulation2d;
   using Options = Delaunay2dOptions;
-  static constexpr int kVerts = 3;
+  static constexpr int kVerts = 3, kDim = 2;
   static Result fresh(const std::vector<Point2>& p, const Options& o) {
     Options f;
     f.backend = o.backend;

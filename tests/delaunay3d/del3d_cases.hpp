@@ -152,12 +152,12 @@ inline gpugeom::Triangulation3d follow_in_chunks(const Case& c,
 }
 
 // DynamicDelaunay3d for gg_test::KeptOperations.
-struct Kept3d {
+struct Kept3d : gg_test::KeptTriangulation<Kept3d> {
   using Point = gpugeom::Point3;
   using Dyn = gpugeom::DynamicDelaunay3d;
   using Result = gpugeom::Triangulation3d;
   using Options = gpugeom::Delaunay3dOptions;
-  static constexpr int kVerts = 4;
+  static constexpr int kVerts = 4, kDim = 3;
   static Result fresh(const std::vector<Point>& p, const Options& o) {
     Options f;
     f.backend = o.backend;

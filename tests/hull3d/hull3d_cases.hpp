@@ -12,6 +12,7 @@
 #include <tuple>
 #include <vector>
 
+#include "../common/kept_operations.hpp"
 #include "gpugeom/generate.hpp"
 #include "gpugeom/hull3d.hpp"
 #include "verify.hpp"
@@ -248,5 +249,40 @@ inline gpugeom::ConvexHull3d expect_digital_same(const Case& c, gpugeom::Hull3dO
     EXPECT_EQ(k.at("hull_input"), k.at("sketch_points") + k.at("depth_kept"));
   return dig;
 }
+
+// DynamicHull3d for gg_test::KeptOperations: the facets, and the extreme points, as a fresh hull's
+// of the points left.
+struct KeptHull {
+  using Point = Point3;
+  using Dyn = gpugeom::DynamicHull3d;
+  using Result = gpugeom::ConvexHull3d;
+  using Options = gpugeom::Hull3dOptions;
+  static constexpr int kVerts = 3, kDim = 3;
+  static Result fresh(const std::vector<Point>& p, const Options& o) {
+    Options f;
+    f.backend = o.backend;
+    return gpugeom::convex_hull3d(p, f);
+  }
+  static Result current(const Dyn& d) { return d.hull(); }
+  static void valid(const std::vector<Point>& p, const Result& h) { expect_valid(p, h); }
+  static const std::int32_t* simplices(const Result& h) { return h.triangles.data(); }
+  static const std::int32_t* neighbors(const Result& h) { return h.neighbors.data(); }
+  static std::int64_t count(const Result& h) { return h.facet_count; }
+  static void expect_same(const Result& got, const Result& fresh,
+                          const std::vector<std::int32_t>& ids, std::size_t) {
+    std::vector<std::int32_t> want;
+    for (auto v : fresh.vertices) want.push_back(ids[std::size_t(v)]);
+    EXPECT_EQ(std::vector<std::int32_t>(got.vertices.begin(), got.vertices.end()), want);
+  }
+  // (no vertex removed: the hull stayed)
+  static bool local_removal(const gpugeom::Stats& st) {
+    return st.counters.at("removed_vertices") == 0;
+  }
+  static bool enough_local(int local, int) { return local > 0; }
+  static void shift(Point& p, double s, std::mt19937_64& rng) {
+    std::normal_distribution<double> N(0, s);
+    p.x += N(rng), p.y += N(rng), p.z += N(rng);
+  }
+};
 
 }  // namespace gg_hull3d
