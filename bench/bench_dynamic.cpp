@@ -12,6 +12,8 @@
 // With --remove (for the rows after it), k of the n points are removed instead (a fixed random
 // choice): remove / remove e2e (plus the results), beside a fresh triangulation of the n - k
 // points left (fresh e2e, and fresh dev from device points).
+// With --hull (for the rows after it), the same for DynamicHull3d beside convex_hull3d (3D
+// points: ball, sphere, uniform, ...).
 // Medians of --reps runs; the last insert's phases are printed, and the result is checked
 // against the fresh one (the same triangles).
 #include <algorithm>
@@ -23,6 +25,7 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "bench_csv.hpp"
@@ -30,6 +33,7 @@
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/generate.hpp"
+#include "gpugeom/hull3d.hpp"
 #include "verify.hpp"
 #include <memory>
 
@@ -59,7 +63,8 @@ void print_phases(const Stats& s) {
   std::printf("    insert phases:");
   for (const auto& [name, ms] : s.phase_ms) std::printf(" %s %.2f", name.c_str(), ms);
   for (const char* c : {"inserted_points", "batches", "flips", "flip_rounds", "start_walk_steps",
-                        "move_rounds", "move_taken_out", "hole_vertices", "splayed_vertices"}) {
+                        "move_rounds", "move_taken_out", "hole_vertices", "splayed_vertices",
+                        "hull_candidates", "removed_vertices"}) {
     const auto it = s.counters.find(c);
     if (it != s.counters.end()) std::printf(" | %s %lld", c, (long long)it->second);
   }
@@ -71,7 +76,7 @@ struct Row {
   std::int64_t n = 0, k = 0;
   int dim = 2;
   double move = 0;  // > 0: every point moved by this many mean spacings
-  bool remove = false;
+  bool remove = false, hull = false;
 };
 
 Row parse(const std::string& s) {
@@ -109,6 +114,13 @@ struct Two {
     auto c = verify::canonical_triangles(t.triangles.data(), t.triangle_count);
     return std::vector<std::int32_t>(&c.data()->front(), &c.data()->front() + 3 * c.size());
   }
+  // Which path a move or a removal took (the triangulations' stats counters).
+  static const char* moved(const Stats& s) {
+    return s.counters.at("move_rebuilt") ? "rebuilt" : "repaired";
+  }
+  static const char* removed(const Stats& s) {
+    return s.counters.at("remove_rebuilt") ? "rebuilt" : "holes filled";
+  }
 };
 struct Three {
   using Point = Point3;
@@ -145,7 +157,37 @@ struct Three {
     for (const auto& a : c) v.insert(v.end(), a.begin(), a.end());
     return v;
   }
+  static const char* moved(const Stats& s) { return Two::moved(s); }
+  static const char* removed(const Stats& s) { return Two::removed(s); }
 };
+struct Hull {
+  using Point = Point3;
+  using Options = Hull3dOptions;
+  using Dynamic = DynamicHull3d;
+  static std::vector<Point3> points(const std::string& d, std::int64_t n) {
+    return generate3d(d, n, 7);
+  }
+  static auto fresh(const std::vector<Point3>& p, const Options& o) { return convex_hull3d(p, o); }
+  static auto fresh_device(const double* d, std::int64_t n, const Options& o) {
+    return convex_hull3d_device(d, n, o);
+  }
+  static auto result(const Dynamic& d) { return d.hull(); }
+  static std::vector<std::int32_t> canonical(const std::vector<std::int32_t>& v) {
+    return Two::canonical(v);
+  }
+  static auto simplices(const ConvexHull3d& h) {
+    return Two::canonical(std::vector<std::int32_t>(h.triangles.begin(), h.triangles.end()));
+  }
+  static const char* moved(const Stats&) { return "hull of all"; }
+  static const char* removed(const Stats& s) {
+    return s.counters.at("removed_vertices") ? "hull of all left" : "no vertex: kept";
+  }
+};
+
+template <class D>
+const char* label() {
+  return std::is_same<D, Hull>::value ? "hull" : std::is_same<D, Two>::value ? "2D" : "3D";
+}
 
 template <class D>
 void run_row(const Row& row, Backend b, int reps) {
@@ -188,9 +230,9 @@ void run_row(const Row& row, Backend b, int reps) {
   }
 #endif
   std::printf(
-      "%dD %-10s %-5s n=%-10lld k=%-9lld fresh e2e %9.2f  fresh dev %9.2f  insert %9.2f  "
+      "%s %-10s %-5s n=%-10lld k=%-9lld fresh e2e %9.2f  fresh dev %9.2f  insert %9.2f  "
       "insert e2e %9.2f  insert dev %9.2f  (dev ratio %.3f)  %s\n",
-      dim, row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, (long long)k,
+      label<D>(), row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, (long long)k,
       fresh_e2e, fresh_dev, ins, ins_e2e, ins_dev,
       fresh_dev > 0 ? ins_dev / fresh_dev : ins / fresh_e2e,
       same ? "same simplices" : "DIFFERENT SIMPLICES");
@@ -218,7 +260,7 @@ void run_remove(const Row& row, Backend b, int reps) {
   auto build = [&] { d = std::make_unique<typename D::Dynamic>(&p.data()->x, n, o); };
   const double rm = median_ms(reps, build, [&] { d->remove(idx.data(), k); });
   print_phases(d->stats());
-  const bool rebuilt = d->stats().counters.at("remove_rebuilt") != 0;
+  const char* path = D::removed(d->stats());
   decltype(fresh) got;
   const double rm_e2e = median_ms(reps, build, [&] {
     d->remove(idx.data(), k);
@@ -241,11 +283,11 @@ void run_remove(const Row& row, Backend b, int reps) {
   }
 #endif
   std::printf(
-      "%dD %-10s %-5s n=%-10lld removed=%-9lld fresh e2e %9.2f  fresh dev %9.2f  remove %9.2f  "
+      "%s %-10s %-5s n=%-10lld removed=%-9lld fresh e2e %9.2f  fresh dev %9.2f  remove %9.2f  "
       "remove e2e %9.2f  (ratio to fresh %.3f)  %s, %s\n",
-      dim, row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, (long long)k,
-      fresh_e2e, fresh_dev, rm, rm_e2e, fresh_dev > 0 ? rm / fresh_dev : rm / fresh_e2e,
-      rebuilt ? "rebuilt" : "holes filled", same ? "same simplices" : "DIFFERENT SIMPLICES");
+      label<D>(), row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, (long long)k,
+      fresh_e2e, fresh_dev, rm, rm_e2e, fresh_dev > 0 ? rm / fresh_dev : rm / fresh_e2e, path,
+      same ? "same simplices" : "DIFFERENT SIMPLICES");
   std::fflush(stdout);
 }
 
@@ -265,7 +307,7 @@ void run_move(const Row& row, double f, Backend b, int reps) {
   auto build = [&] { d = std::make_unique<typename D::Dynamic>(&p.data()->x, n, o); };
   const double mv = median_ms(reps, build, [&] { d->move(&q.data()->x, n); });
   print_phases(d->stats());
-  const bool rebuilt = d->stats().counters.at("move_rebuilt") != 0;
+  const char* path = D::moved(d->stats());
   decltype(fresh) got;
   const double mv_e2e = median_ms(reps, build, [&] {
     d->move(&q.data()->x, n);
@@ -292,11 +334,11 @@ void run_move(const Row& row, double f, Backend b, int reps) {
   }
 #endif
   std::printf(
-      "%dD %-10s %-5s n=%-10lld moved %-6g fresh e2e %9.2f  fresh dev %9.2f  move %9.2f  move "
+      "%s %-10s %-5s n=%-10lld moved %-6g fresh e2e %9.2f  fresh dev %9.2f  move %9.2f  move "
       "e2e %9.2f  move dev %9.2f  (dev ratio %.3f)  %s, %s\n",
-      dim, row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, f, fresh_e2e,
-      fresh_dev, mv, mv_e2e, mv_dev, fresh_dev > 0 ? mv_dev / fresh_dev : mv / fresh_e2e,
-      rebuilt ? "rebuilt" : "repaired", same ? "same simplices" : "DIFFERENT SIMPLICES");
+      label<D>(), row.dist.c_str(), b == Backend::Cuda ? "cuda" : "cpu", (long long)n, f, fresh_e2e,
+      fresh_dev, mv, mv_e2e, mv_dev, fresh_dev > 0 ? mv_dev / fresh_dev : mv / fresh_e2e, path,
+      same ? "same simplices" : "DIFFERENT SIMPLICES");
   std::fflush(stdout);
 }
 }  // namespace
@@ -304,7 +346,7 @@ void run_move(const Row& row, double f, Backend b, int reps) {
 int main(int argc, char** argv) {
   int reps = 3, dim = 2;
   double move = 0;
-  bool removing = false;
+  bool removing = false, hull = false;
   std::string which = "all";
   std::vector<Row> rows;
   for (int i = 1; i < argc; ++i) {
@@ -321,24 +363,31 @@ int main(int argc, char** argv) {
       move = std::atof(argv[++i]);
     else if (a == "--remove")
       removing = true;
+    else if (a == "--hull")
+      hull = true;
     else {
       rows.push_back(parse(a));
       rows.back().dim = dim;
       rows.back().move = move;
       rows.back().remove = removing;
+      rows.back().hull = hull;
     }
   }
   if (rows.empty()) rows = {{"uniform", 1000000, 1000}, {"uniform", 1000000, 100000}};
   const DeviceInfo dev = query_device();
-  std::printf("gpugeom_bench_dynamic: Delaunay, k of n points inserted (ms, median of %d)%s%s\n",
-              reps, dev.available ? "; GPU: " : "", dev.available ? dev.name.c_str() : "");
+  std::printf(
+      "gpugeom_bench_dynamic: Delaunay and hulls, k of n points inserted (ms, median of %d)%s%s\n",
+      reps, dev.available ? "; GPU: " : "", dev.available ? dev.name.c_str() : "");
   for (Backend b : bench::backends(which))
     for (const Row& r : rows)
-      r.move > 0 && r.dim == 2 ? run_move<Two>(r, r.move, b, reps)
-      : r.move > 0             ? run_move<Three>(r, r.move, b, reps)
-      : r.remove&& r.dim == 2  ? run_remove<Two>(r, b, reps)
-      : r.remove               ? run_remove<Three>(r, b, reps)
-      : r.dim == 2             ? run_row<Two>(r, b, reps)
-                               : run_row<Three>(r, b, reps);
+      r.hull&& r.move > 0        ? run_move<Hull>(r, r.move, b, reps)
+      : r.hull&& r.remove        ? run_remove<Hull>(r, b, reps)
+      : r.hull                   ? run_row<Hull>(r, b, reps)
+      : r.move > 0 && r.dim == 2 ? run_move<Two>(r, r.move, b, reps)
+      : r.move > 0               ? run_move<Three>(r, r.move, b, reps)
+      : r.remove&& r.dim == 2    ? run_remove<Two>(r, b, reps)
+      : r.remove                 ? run_remove<Three>(r, b, reps)
+      : r.dim == 2               ? run_row<Two>(r, b, reps)
+                                 : run_row<Three>(r, b, reps);
   return 0;
 }

@@ -107,7 +107,8 @@ DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
 // A 3D convex hull that follows its points (issue 47): kept on the executor between calls, it
 // takes new points, new coordinates and removals. After any sequence of calls it is exactly the
 // hull convex_hull3d gives for the points there are (removed ones left out): the same facets with
-// the same neighbours, extreme points and planes (the facets' order in the arrays may differ).
+// the same neighbours and extreme points (the facets' order in the arrays may differ, and with it
+// where each facet starts, so its plane may differ by rounding).
 // Points keep the indices they were given: the first call's are 0 .. n - 1, each insert's follow
 // on; a removed point keeps its index and is never a vertex.
 //

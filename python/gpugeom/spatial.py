@@ -59,6 +59,7 @@ class _OfPoints:
     """
 
     _incremental = False
+    _dyn = None  # the kept state in incremental mode, where the structure has one
     _cached = ()  # cached properties that depend on the results (cleared when they change)
 
     def _take_points(self, points, dims, backend, threads=0):
@@ -80,8 +81,9 @@ class _OfPoints:
         is exactly that of a new object on all points (the order of simplices may differ).
 
         ``Delaunay`` brings its kept triangulation up to date (C++ ``DynamicDelaunay2d`` and
-        ``DynamicDelaunay3d``); ``ConvexHull`` and ``Voronoi`` compute again from all points
-        (their kept state is to come).
+        ``DynamicDelaunay3d``); ``ConvexHull`` makes the hull of its vertices and the new points
+        only in 3D (C++ ``DynamicHull3d``) and keeps a Delaunay triangulation in 2D; ``Voronoi``
+        computes again from all points.
 
         Raises RuntimeError after ``close()`` or without ``incremental=True``, ValueError for
         points of another shape; a call that raises leaves the object unchanged.
@@ -103,8 +105,9 @@ class _OfPoints:
         (shape (npoints, ndim), the same kinds of arrays as add_points takes). The result is
         exactly that of a new object on the moved points. ``Delaunay`` repairs its kept
         triangulation where it is still one with the points moved (2D: flips, 3D: star
-        splaying), else makes it afresh (``stats["counters"]["move_rebuilt"]``); the other
-        structures compute again.
+        splaying), else makes it afresh (``stats["counters"]["move_rebuilt"]``); ``ConvexHull``
+        makes the hull of the moved points (any may have become extreme); ``Voronoi`` computes
+        again.
         Errors as add_points; a call that raises leaves the object unchanged."""
         if not self._incremental:
             raise RuntimeError("incremental mode not enabled or already closed")
@@ -120,8 +123,74 @@ class _OfPoints:
             self.__dict__.pop(name, None)
         self._take(r)
 
+    def _start_kept(self, make, arr, **kw):
+        """The kept state on arr (a _core.Dynamic* class), with change tracking carried over."""
+        dyn = make(arr, **kw, **self._run)
+        if getattr(self, "_tracking", False):
+            dyn.track_changes(True)
+        r = dyn.result()
+        self._dyn = dyn
+        return r
+
     def _moved(self, new):
-        return None
+        if self._dyn is None:
+            return None
+        self._dyn.move(new)
+        return self._dyn.result()
+
+    def _need_kept(self):
+        if self._dyn is None:
+            raise ValueError(f"this {type(self).__name__} keeps no state between calls (remove, "
+                             "track_changes and changes need Delaunay with method='incremental', "
+                             "or ConvexHull of 3D points)")
+
+    def remove(self, indices):
+        """gpugeom's own (issue 47), in incremental mode: removes the points with the given
+        indices (1-D integers, each once, none removed before; NumPy, CuPy or PyTorch). The
+        result is exactly that of a new object on the points left; the removed points keep
+        their rows of ``points`` and their indices but are no vertices (``Delaunay``:
+        ``duplicate_of`` reads -2 there and ``vertex_to_simplex`` -1; an equal point given
+        before or after is a vertex in its place).
+
+        Raises RuntimeError after ``close()`` or without ``incremental=True``, ValueError for a
+        bad index list (out of range, repeated, removed before) or where the points left have no
+        triangulation or hull, TypeError for non-integer indices; a call that raises leaves the
+        object unchanged."""
+        if not self._incremental:
+            raise RuntimeError("incremental mode not enabled or already closed")
+        self._need_kept()
+        idx = _index_list(indices, self.npoints)
+        self._dyn.remove(idx)
+        r = self._dyn.result()
+        for name in self._cached:
+            self.__dict__.pop(name, None)
+        self._take(r)
+
+    def track_changes(self, on: bool = True):
+        """gpugeom's own (issue 47), in incremental mode: from the next ``add_points``, ``move``
+        or ``remove`` on, keep what each replaces, so that ``changes()`` can say which simplices
+        it changed (a second copy of the results is held between calls; ``on=False``
+        frees it). Raises RuntimeError after ``close()`` or without ``incremental=True``."""
+        if not self._incremental:
+            raise RuntimeError("incremental mode not enabled or already closed")
+        self._need_kept()
+        self._dyn.track_changes(bool(on))
+        self._tracking = bool(on)
+
+    def changes(self):
+        """gpugeom's own (issue 47): which simplices (``ConvexHull``: facets) the last
+        ``add_points``, ``move`` or ``remove`` changed, as ``(previous_index, removed)`` (int32
+        arrays of the points' kind): per row of ``simplices``, its row before that call or -1 where it is new; and the rows
+        before it that are gone. Data kept per simplex carries over as
+        ``new = where(previous_index >= 0, old[previous_index], recompute)``. A simplex is the
+        same where its vertices are. Raises ValueError where no update ran since
+        ``track_changes()`` (an ``add_points(restart=True)`` starts over: changes follow from
+        the next call)."""
+        if not self._incremental:
+            raise RuntimeError("incremental mode not enabled or already closed")
+        self._need_kept()
+        r = self._dyn.changes()
+        return self._kind.back(r["previous_index"]), self._kind.back(r["removed"])
 
     def close(self):
         """Ends incremental mode, releasing its kept state (as SciPy's); add_points then
@@ -130,7 +199,10 @@ class _OfPoints:
         self._dyn = None
 
     def _insert(self, new):
-        return None
+        if self._dyn is None:
+            return None
+        self._dyn.insert(new)
+        return self._dyn.result()
 
     def _more_points(self, points):
         """New points as the same kind and place as the current ones, shape (n, ndim)."""
@@ -200,79 +272,11 @@ class Delaunay(_OfPoints):
         if self._incremental and self._method == "incremental":
             # kept between calls (DynamicDelaunay2d / 3d): add_points brings it up to date
             make = _core.DynamicDelaunay2d if self.ndim == 2 else _core.DynamicDelaunay3d
-            dyn = make(arr, **self._run)
-            if getattr(self, "_tracking", False):
-                dyn.track_changes(True)
-            r = dyn.result()
-            self._dyn = dyn
-            return r
+            return self._start_kept(make, arr)
         if self.ndim == 2:
             return _core.delaunay2d(arr, method=self._method, grid=self._grid, **self._run)
         return _core.delaunay3d(arr, progress=_arrays.progress_callback(self._progress),
                                 method=self._method, grid=self._grid, **self._run)
-
-    def _insert(self, new):
-        if self._dyn is None:
-            return None
-        self._dyn.insert(new)
-        return self._dyn.result()
-
-    def _moved(self, new):
-        if self._dyn is None or not hasattr(self._dyn, "move"):
-            return None
-        self._dyn.move(new)
-        return self._dyn.result()
-
-    def remove(self, indices):
-        """gpugeom's own (issue 47), in incremental mode: removes the points with the given
-        indices (1-D integers, each once, none removed before; NumPy, CuPy or PyTorch). The
-        triangulation is exactly that of a new object on the points left; the removed points
-        keep their rows of ``points`` and their indices but are no vertices: ``duplicate_of``
-        reads -2 there and ``vertex_to_simplex`` -1 (an equal point given before or after is a
-        vertex in its place).
-
-        Raises RuntimeError after ``close()`` or without ``incremental=True``, ValueError for a
-        bad index list (out of range, repeated, removed before) or where the points left have no
-        triangulation, TypeError for non-integer indices; a call that raises leaves the object
-        unchanged."""
-        if not self._incremental:
-            raise RuntimeError("incremental mode not enabled or already closed")
-        if self._dyn is None:
-            raise ValueError("remove needs the kept triangulation (method='incremental')")
-        idx = _index_list(indices, self.npoints)
-        self._dyn.remove(idx)
-        r = self._dyn.result()
-        for name in self._cached:
-            self.__dict__.pop(name, None)
-        self._take(r)
-
-    def track_changes(self, on: bool = True):
-        """gpugeom's own (issue 47), in incremental mode: from the next ``add_points``, ``move``
-        or ``remove`` on, keep what each replaces, so that ``changes()`` can say which simplices
-        it changed (a second copy of the triangulation is held between calls; ``on=False``
-        frees it). Raises RuntimeError after ``close()`` or without ``incremental=True``."""
-        if not self._incremental:
-            raise RuntimeError("incremental mode not enabled or already closed")
-        if self._dyn is None:
-            raise ValueError("changes need the kept triangulation (method='incremental')")
-        self._dyn.track_changes(bool(on))
-        self._tracking = bool(on)
-
-    def changes(self):
-        """gpugeom's own (issue 47): which simplices the last ``add_points``, ``move`` or
-        ``remove`` changed, as ``(previous_index, removed)`` (int32 arrays of the points' kind):
-        per row of ``simplices``, its row before that call or -1 where it is new; and the rows
-        before it that are gone. Data kept per simplex carries over as
-        ``new = where(previous_index >= 0, old[previous_index], recompute)``. A simplex is the
-        same where its vertices are. Raises ValueError where no update ran since
-        ``track_changes()`` (an ``add_points(restart=True)`` starts over: changes follow from
-        the next call)."""
-        if not self._incremental:
-            raise RuntimeError("incremental mode not enabled or already closed")
-        if self._dyn is None:
-            raise ValueError("changes need the kept triangulation (method='incremental')")
-        r = self._dyn.changes()
-        return self._kind.back(r["previous_index"]), self._kind.back(r["removed"])
 
     def _take(self, r):
         kind = self._kind
@@ -485,6 +489,12 @@ class ConvexHull(_OfPoints):
         that may lie outside it; their hull is the hull). The same facets either way.
     grid : int
         method="digital": the faces' grid side (16..8192; 0: chosen from the point count).
+
+    Incremental mode (``incremental=True``): in 3D the hull is kept between calls (C++
+    ``DynamicHull3d``): ``add_points`` makes the hull of the current vertices and the new points
+    only (a point that is not extreme never becomes so when points join), ``remove`` keeps the
+    hull where no vertex goes, and ``move``, ``track_changes`` and ``changes`` work as
+    ``Delaunay``'s, on facets. In 2D each call computes again from all points.
     """
 
     _cached = ("area", "volume")
@@ -506,6 +516,10 @@ class ConvexHull(_OfPoints):
     def _compute(self, arr, restart=False):
         if self.ndim == 2:
             return self._hull2d(arr, self._kind)
+        if self._incremental:
+            # kept between calls (DynamicHull3d): add_points makes the hull of the vertices and
+            # the new points only
+            return self._start_kept(_core.DynamicHull3d, arr, method=self._method, grid=self._grid)
         return _core.convex_hull3d(arr, method=self._method, grid=self._grid, **self._run)
 
     def _take(self, r):

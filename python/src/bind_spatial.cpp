@@ -82,16 +82,15 @@ void dynamic2d_init(Dynamic2dState* self, const AnyArray& points, const std::str
   new (self) Dynamic2dState{std::move(t), in.on_device, in.on_device ? device_of(o) : -1};
 }
 
-// New points (insert) or new coordinates (move) for a kept triangulation (Dynamic2dState or
-// Dynamic3dState): where its first points were, host memory or its GPU.
+// New points (insert) or new coordinates (move) for a kept structure (Dynamic2dState,
+// Dynamic3dState, DynamicHullState): where its first points were, host memory or its GPU.
 template <class State>
 Input kept_points_input(const State& self, const AnyArray& points) {
   const Input in = points_input(points, State::kDim);
   if (in.on_device != self.on_device)
-    throw nb::value_error(
-        self.on_device ? "points must be on the GPU, as the triangulation's first points were"
-                       : "points must be in host memory, as the triangulation's first "
-                         "points were");
+    throw nb::value_error(self.on_device
+                              ? "points must be on the GPU, as the first points were"
+                              : "points must be in host memory, as the first points were");
   return in;
 }
 
@@ -126,7 +125,7 @@ void dynamic_remove(State& self, const AnyArray& indices) {
   if (in.shape.size() != 1) throw nb::value_error("indices must be 1-D");
   if (!holds<std::int32_t>(in)) throw nb::type_error("indices must be int32");
   if (in.on_device && !self.on_device)
-    throw nb::value_error("indices must be in host memory, as the triangulation's points are");
+    throw nb::value_error("indices must be in host memory, as the points are");
   const auto* p = static_cast<const std::int32_t*>(in.data);
   const std::int64_t n = in.shape[0];
   unlocked([&] {
@@ -228,25 +227,19 @@ nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std:
   return r;
 }
 
-nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
-                     int threads, const std::string& method, std::int64_t grid) {
-  const Input in = points_input(points, 3);
-  auto o = options_for<Hull3dOptions>(backend, stream, threads, in);
-  o.method = parse_method(method);
-  o.grid = grid;
-  const std::int64_t n = in.shape[0];
+// A 3D hull's arrays as a dict: where the device entry left them, or host arrays.
+nb::dict hull_dict(DeviceHull3d h, int device) {
   nb::dict r;
-  if (in.on_device) {
-    DeviceHull3d h = unlocked([&] { return convex_hull3d_device(pts(in), n, o); });
-    const DeviceOut out{h.backend, device_of(o)};
-    r["simplices"] = out(h.triangles, {sz(h.num_facets), 3});
-    r["neighbors"] = out(h.neighbors, {sz(h.num_facets), 3});
-    r["vertices"] = out(h.vertices, {sz(h.num_vertices)});
-    r["equations"] = out(h.equations, {sz(h.num_facets), 4});
-    r["stats"] = stats_dict(h.stats);
-    return r;
-  }
-  ConvexHull3d h = unlocked([&] { return convex_hull3d(pts(in), n, o); });
+  const DeviceOut out{h.backend, device};
+  r["simplices"] = out(h.triangles, {sz(h.num_facets), 3});
+  r["neighbors"] = out(h.neighbors, {sz(h.num_facets), 3});
+  r["vertices"] = out(h.vertices, {sz(h.num_vertices)});
+  r["equations"] = out(h.equations, {sz(h.num_facets), 4});
+  r["stats"] = stats_dict(h.stats);
+  return r;
+}
+nb::dict hull_dict(ConvexHull3d h) {
+  nb::dict r;
   const sz nf = h.num_facets();
   h.triangles.resize(3 * nf);
   h.neighbors.resize(3 * nf);
@@ -258,6 +251,46 @@ nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, std::ui
   r["equations"] = host_array(std::move(h.equations), {nf, 4});
   r["stats"] = stats_dict(h.stats);
   return r;
+}
+
+nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+                     int threads, const std::string& method, std::int64_t grid) {
+  const Input in = points_input(points, 3);
+  auto o = options_for<Hull3dOptions>(backend, stream, threads, in);
+  o.method = parse_method(method);
+  o.grid = grid;
+  const std::int64_t n = in.shape[0];
+  if (in.on_device)
+    return hull_dict(unlocked([&] { return convex_hull3d_device(pts(in), n, o); }), device_of(o));
+  return hull_dict(unlocked([&] { return convex_hull3d(pts(in), n, o); }));
+}
+
+// A 3D hull kept between calls (ConvexHull(incremental=True) in 3D; issue 47), as
+// Dynamic2dState.
+struct DynamicHullState {
+  static constexpr int kDim = 3;
+  DynamicHull3d t;
+  bool on_device;
+  int device;
+};
+
+void dynamic_hull_init(DynamicHullState* self, const AnyArray& points, const std::string& backend,
+                       std::uintptr_t stream, int threads, const std::string& method,
+                       std::int64_t grid) {
+  const Input in = points_input(points, 3);
+  auto o = options_for<Hull3dOptions>(backend, stream, threads, in);
+  o.method = parse_method(method);
+  o.grid = grid;
+  const std::int64_t n = in.shape[0];
+  DynamicHull3d t = unlocked([&] {
+    return in.on_device ? DynamicHull3d::from_device(pts(in), n, o) : DynamicHull3d(pts(in), n, o);
+  });
+  new (self) DynamicHullState{std::move(t), in.on_device, in.on_device ? device_of(o) : -1};
+}
+
+nb::dict dynamic_hull_result(const DynamicHullState& self) {
+  if (self.on_device) return hull_dict(unlocked([&] { return self.t.device_hull(); }), self.device);
+  return hull_dict(unlocked([&] { return self.t.hull(); }));
 }
 
 // A tetrahedralisation as the Python layer takes it: arrays where they are.
@@ -550,6 +583,17 @@ void bind_spatial(nb::module_& m) {
         "threads"_a = 0);
   m.def("convex_hull3d", &hull3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0, "method"_a = "incremental", "grid"_a = 0);
+  nb::class_<DynamicHullState>(m, "DynamicHull3d")
+      .def("__init__", &dynamic_hull_init, "points"_a, "backend"_a = "auto", "stream"_a = 0,
+           "threads"_a = 0, "method"_a = "incremental", "grid"_a = 0)
+      .def("insert", &dynamic_insert<DynamicHullState>, "points"_a)
+      .def("move", &dynamic_move<DynamicHullState>, "points"_a)
+      .def("remove", &dynamic_remove<DynamicHullState>, "indices"_a)
+      .def(
+          "track_changes", [](DynamicHullState& s, bool on) { s.t.track_changes(on); }, "on"_a)
+      .def("changes", &dynamic_changes<DynamicHullState>)
+      .def("result", &dynamic_hull_result)
+      .def_prop_ro("npoints", [](const DynamicHullState& s) { return s.t.num_points(); });
   m.def("delaunay3d", &delaunay3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0, "progress"_a = nb::none(), "method"_a = "incremental", "grid"_a = 0);
   m.def("find_simplex", &find_simplex_bind, "points"_a, "simplices"_a, "neighbors"_a, "xi"_a,

@@ -212,3 +212,70 @@ def test_changes_say_which_simplices_changed(backend, rng, ndim):
     d.track_changes(False)
     with pytest.raises(ValueError):
         d.changes()
+
+
+def facet_set(s):
+    return {tuple(sorted(t)) for t in np.asarray(s).tolist()}
+
+
+@pytest.mark.parametrize("dist", ["ball", "grid"])
+def test_hull3d_keeps_its_state(backend, rng, dist):
+    # issue 47: ConvexHull(incremental=True) in 3D keeps a DynamicHull3d. add_points makes the hull
+    # of the vertices and the new points only; remove keeps it where no vertex goes; every result
+    # is a fresh hull's of the points left (a grid with copies: flat faces, first copy a vertex)
+    if dist == "ball":
+        p = rng.standard_normal((5000, 3))
+    else:
+        p = np.round(rng.random((5000, 3)) * 6) / 6
+    h = gpugeom.ConvexHull(p[:2000], incremental=True, backend=backend)
+    h.track_changes()
+    gone = np.zeros(len(p), bool)
+
+    def same_as_fresh():
+        live = np.nonzero(~gone[:h.npoints])[0]
+        f = gpugeom.ConvexHull(np.asarray(h.points)[live], backend=backend)
+        assert facet_set(h.simplices) == facet_set(live[np.asarray(f.simplices)])
+        np.testing.assert_array_equal(h.vertices, live[np.asarray(f.vertices)])
+        assert h.volume == pytest.approx(f.volume, rel=1e-12)
+        prev, _ = (np.asarray(x) for x in h.changes())
+        assert prev.shape == (h.nsimplex,)
+
+    nv = len(h.vertices)
+    h.add_points(p[2000:])
+    assert h.stats["counters"]["hull_candidates"] == nv + 3000
+    same_as_fresh()
+    inside = np.setdiff1d(np.arange(len(p)), np.asarray(h.vertices))[:100]
+    simplices = np.array(h.simplices)
+    h.remove(inside)
+    gone[inside] = True
+    assert h.stats["counters"]["removed_vertices"] == 0
+    np.testing.assert_array_equal(h.simplices, simplices)
+    prev, removed = (np.asarray(x) for x in h.changes())
+    assert (prev == np.arange(len(prev))).all() and len(removed) == 0
+    vs = np.asarray(h.vertices)[::3]
+    h.remove(vs)
+    gone[vs] = True
+    assert h.stats["counters"]["removed_vertices"] == len(vs)
+    same_as_fresh()
+    h.move(np.asarray(h.points) * np.array([1.0, 0.5, 2.0]))  # (exact: flat faces stay flat)
+    same_as_fresh()
+
+
+def test_hull3d_kept_refusals(rng):
+    p = rng.random((400, 3))
+    h = gpugeom.ConvexHull(p, incremental=True)
+    before = np.array(h.simplices)
+    for bad, err in (([400], ValueError), ([5, 5], ValueError), (np.arange(398), ValueError)):
+        with pytest.raises(err):
+            h.remove(bad)
+        np.testing.assert_array_equal(h.simplices, before)
+    flat = p.copy()
+    flat[:, 2] = 0.5
+    with pytest.raises(ValueError, match="plane"):
+        h.move(flat)
+    np.testing.assert_array_equal(h.simplices, before)
+    np.testing.assert_array_equal(h.points, p)
+    for obj in (gpugeom.ConvexHull(p[:, :2], incremental=True),
+                gpugeom.Voronoi(p[:, :2], incremental=True)):
+        with pytest.raises(ValueError, match="keeps no state"):
+            obj.remove([1])

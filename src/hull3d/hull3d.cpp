@@ -34,7 +34,6 @@ void check_count(std::int64_t n) {
                     "): a convex hull in 3D needs 4 points not on one plane");
 }
 
-
 void to_public(Output&& out, ConvexHull3d& r) {
   r.triangles = std::move(out.triangles);
   r.neighbors = std::move(out.neighbors);

@@ -196,3 +196,50 @@ TEST(CudaHull3d, DigitalSameAsIncrementalLarge) {
                 << h.stats.counters.at("sketch_points") << " from the sketch)\n";
     }
 }
+
+// insert, move and remove in random sequences on the CUDA executor (DynamicHull3d, issue 47):
+// after every call the facets and extreme points of a fresh hull of the points left.
+TEST(CudaDynamicHull3d, RandomOperationsGiveTheFreshHull) {
+  Hull3dOptions o;
+  o.backend = Backend::Cuda;
+  auto cases = gg_hull3d::degenerate_cases();
+  for (const auto& c : gg_hull3d::distribution_cases(sizes({60, 3000, 100000}), 47))
+    cases.push_back(c);
+  gg_test::random_operations<gg_hull3d::KeptHull>(cases, o, 900, 1, 8);
+}
+
+// The same calls on both executors give the same arrays, planes included, and the device
+// entries leave them on the GPU.
+TEST(CudaDynamicHull3d, SameArraysAsTheCpuExecutor) {
+  const auto p = gpugeom::generate3d("ball", sizes({300000, 6000}).front(), 16);
+  const std::int64_t n = std::int64_t(p.size()), first = n / 2;
+  auto moved = p;
+  for (auto& q : moved) q.z *= 0.75;
+  std::vector<std::int32_t> gone;
+  for (std::int32_t i = 3; i < n; i += 37) gone.push_back(i);
+  auto run = [&](Backend b) {
+    Hull3dOptions o;
+    o.backend = b;
+    DynamicHull3d h(&p.data()->x, first, o);
+    h.insert(&p[std::size_t(first)].x, n - first);
+    // (the insertion looked at the first half's vertices and the second half)
+    EXPECT_LT(h.stats().counters.at("hull_candidates"), n);
+    h.remove(gone.data(), std::int64_t(gone.size()));
+    h.move(&moved.data()->x, n);
+    return h;
+  };
+  const auto g = run(Backend::Cuda), c = run(Backend::Cpu);
+  const auto hg = g.hull(), hc = c.hull();
+  EXPECT_EQ(hg.triangles, hc.triangles);
+  EXPECT_EQ(hg.neighbors, hc.neighbors);
+  EXPECT_EQ(hg.vertices, hc.vertices);
+  EXPECT_EQ(hg.equations, hc.equations);
+  const auto dh = g.device_hull();
+  ASSERT_EQ(dh.backend, Backend::Cuda);
+  ASSERT_EQ(dh.num_facets, hc.facet_count);
+  std::vector<std::int32_t> t(std::size_t(3 * dh.num_facets));
+  ASSERT_EQ(cudaMemcpy(t.data(), dh.triangles.get(), t.size() * sizeof(std::int32_t),
+                       cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  EXPECT_TRUE(std::equal(t.begin(), t.end(), hc.triangles.begin()));
+}

@@ -22,7 +22,7 @@ struct KeptHull {
   typename Exec::template Buffer<double> xyz;        // 3 n, input order
   typename Exec::template Buffer<std::int8_t> gone;  // n (1: removed), when nremoved > 0
   std::int64_t n = 0, nremoved = 0;
-  Facets facets;                                         // input indices
+  Facets facets;                                          // input indices
   typename Exec::template Buffer<std::int32_t> vertices;  // increasing input indices
   typename Exec::template Buffer<double> eq;              // 4 per facet
   std::int64_t nv = 0;
@@ -173,8 +173,8 @@ class KeptHullOn final : public Kept {
   void host_changes(SimplexChanges& out) const override {
     Exec ex(opt_);
     const KeptHull& B = before_.arrays;
-    mesh::host_changes<3>(ex, B.facets.simplices.data(), B.facets.count,
-                          K_.facets.simplices.data(), K_.facets.count, out);
+    mesh::host_changes<3>(ex, B.facets.simplices.data(), B.facets.count, K_.facets.simplices.data(),
+                          K_.facets.count, out);
   }
   void device_changes(DeviceSimplexChanges& out) const override {
     Exec ex(opt_);
