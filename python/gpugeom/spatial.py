@@ -53,8 +53,8 @@ class _OfPoints:
     incremental mode (``incremental=True``, ``add_points``, ``close``).
 
     A subclass computes with ``_compute(arr)`` (a dict of results for points ``arr``) and takes
-    them with ``_take(r)``; in incremental mode ``_insert(new)`` may bring a kept state up to date
-    instead (returning the results, or None to compute on all points). A call that raises leaves
+    them with ``_take(r)``; in incremental mode ``_insert(new, both)`` may bring a kept state up to
+    date instead (its results read by ``_kept_result``; None: compute on all points). A call that raises leaves
     the object as it was: everything is computed before anything is assigned.
     """
 
@@ -82,8 +82,8 @@ class _OfPoints:
 
         ``Delaunay`` brings its kept triangulation up to date (C++ ``DynamicDelaunay2d`` and
         ``DynamicDelaunay3d``); ``ConvexHull`` makes the hull of its vertices and the new points
-        only in 3D (C++ ``DynamicHull3d``) and keeps a Delaunay triangulation in 2D; ``Voronoi``
-        computes again from all points.
+        only in 3D (C++ ``DynamicHull3d``), and computes again in 2D; ``Voronoi`` keeps its
+        Delaunay triangulation and reads the diagram from it.
 
         Raises RuntimeError after ``close()`` or without ``incremental=True``, ValueError for
         points of another shape; a call that raises leaves the object unchanged.
@@ -92,7 +92,7 @@ class _OfPoints:
             raise RuntimeError("incremental mode not enabled or already closed")
         new = self._more_points(points)
         both = _arrays.concatenate(self._kind, self._arr, new)
-        r = None if restart else self._insert(new)
+        r = None if restart else self._insert(new, both)
         if r is None:
             r = self._compute(both, restart=True)
         self._set_points(both)
@@ -106,8 +106,8 @@ class _OfPoints:
         exactly that of a new object on the moved points. ``Delaunay`` repairs its kept
         triangulation where it is still one with the points moved (2D: flips, 3D: star
         splaying), else makes it afresh (``stats["counters"]["move_rebuilt"]``); ``ConvexHull``
-        makes the hull of the moved points (any may have become extreme); ``Voronoi`` computes
-        again.
+        makes the hull of the moved points (any may have become extreme); ``Voronoi`` moves its
+        kept triangulation as ``Delaunay`` does.
         Errors as add_points; a call that raises leaves the object unchanged."""
         if not self._incremental:
             raise RuntimeError("incremental mode not enabled or already closed")
@@ -128,21 +128,25 @@ class _OfPoints:
         dyn = make(arr, **kw, **self._run)
         if getattr(self, "_tracking", False):
             dyn.track_changes(True)
-        r = dyn.result()
+        r = self._kept_result(dyn, arr)
         self._dyn = dyn
         return r
+
+    def _kept_result(self, dyn, arr):
+        """The results of the kept state dyn, whose points are now arr."""
+        return dyn.result()
 
     def _moved(self, new):
         if self._dyn is None:
             return None
         self._dyn.move(new)
-        return self._dyn.result()
+        return self._kept_result(self._dyn, new)
 
     def _need_kept(self):
         if self._dyn is None:
             raise ValueError(f"this {type(self).__name__} keeps no state between calls (remove, "
-                             "track_changes and changes need Delaunay with method='incremental', "
-                             "or ConvexHull of 3D points)")
+                             "track_changes and changes need incremental=True, and for Delaunay "
+                             "method='incremental'; a ConvexHull of 2D points keeps none)")
 
     def remove(self, indices):
         """gpugeom's own (issue 47), in incremental mode: removes the points with the given
@@ -161,7 +165,7 @@ class _OfPoints:
         self._need_kept()
         idx = _index_list(indices, self.npoints)
         self._dyn.remove(idx)
-        r = self._dyn.result()
+        r = self._kept_result(self._dyn, self._arr)
         for name in self._cached:
             self.__dict__.pop(name, None)
         self._take(r)
@@ -198,11 +202,11 @@ class _OfPoints:
         self._incremental = False
         self._dyn = None
 
-    def _insert(self, new):
+    def _insert(self, new, both):
         if self._dyn is None:
             return None
         self._dyn.insert(new)
-        return self._dyn.result()
+        return self._kept_result(self._dyn, both)
 
     def _more_points(self, points):
         """New points as the same kind and place as the current ones, shape (n, ndim)."""
@@ -413,6 +417,12 @@ class Voronoi(_OfPoints):
     ``ridge_vertices_array`` (the ridges as an (nridges, 2) array), ``delaunay_simplices``.
     Regions list their vertices counter-clockwise; an unbounded one starts with -1. Duplicate
     points share the region of their twin.
+
+    Incremental mode (``incremental=True``): the Delaunay triangulation is kept between calls
+    (C++ ``DynamicDelaunay2d``) and brought up to date by ``add_points``, ``move`` and ``remove``
+    (a removed point keeps its index and has an empty region); the diagram is then read from it.
+    ``track_changes()`` / ``changes()`` say which Voronoi vertices changed: they are the
+    triangles' circumcentres, one per row of ``delaunay_simplices``.
     """
 
     _cached = ("ridge_vertices", "regions", "point_region", "ridge_dict")
@@ -426,7 +436,13 @@ class Voronoi(_OfPoints):
         self._take(self._compute(arr))
 
     def _compute(self, arr, restart=False):
+        if self._incremental:
+            # the triangulation kept between calls (DynamicDelaunay2d), the diagram made from it
+            return self._start_kept(_core.DynamicDelaunay2d, arr)
         return _core.voronoi2d(arr, **self._run)
+
+    def _kept_result(self, dyn, arr):
+        return dyn.voronoi(arr)
 
     def _take(self, r):
         kind = self._kind

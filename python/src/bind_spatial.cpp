@@ -68,6 +68,7 @@ struct Dynamic2dState {
   DynamicDelaunay2d t;
   bool on_device;
   int device;
+  RunOptions run;  // its device and stream (the Voronoi diagram of it runs there too)
 };
 
 void dynamic2d_init(Dynamic2dState* self, const AnyArray& points, const std::string& backend,
@@ -79,7 +80,7 @@ void dynamic2d_init(Dynamic2dState* self, const AnyArray& points, const std::str
     return in.on_device ? DynamicDelaunay2d::from_device(pts(in), n, o)
                         : DynamicDelaunay2d(pts(in), n, o);
   });
-  new (self) Dynamic2dState{std::move(t), in.on_device, in.on_device ? device_of(o) : -1};
+  new (self) Dynamic2dState{std::move(t), in.on_device, in.on_device ? device_of(o) : -1, o};
 }
 
 // New points (insert) or new coordinates (move) for a kept structure (Dynamic2dState,
@@ -186,12 +187,38 @@ void put_voronoi_host(nb::dict& r, Voronoi2d& v, std::int64_t n) {
   r["cell_vertices"] = host_array(std::move(v.cell_vertices), {ncv});
 }
 
+// A triangulation and its Voronoi diagram as a dict: where the device entries left them, or host
+// arrays.
+nb::dict voronoi_dict(DeviceTriangulation2d& t, DeviceVoronoi2d& v, std::int64_t n, int device) {
+  nb::dict r;
+  const DeviceOut out{v.backend, device};
+  r["simplices"] = out(t.triangles, {sz(t.num_triangles), 3});
+  r["duplicate_of"] = out(t.duplicate_of, {sz(n)});
+  r["vertices"] = out(v.vertices, {sz(v.num_vertices), 2});
+  r["ridge_points"] = out(v.ridge_points, {sz(v.num_ridges), 2});
+  r["ridge_vertices"] = out(v.ridge_vertices, {sz(v.num_ridges), 2});
+  r["ridge_directions"] = out(v.ridge_directions, {sz(v.num_ridges), 2});
+  r["cell_offsets"] = out(v.cell_offsets, {sz(n) + 1});
+  r["cell_vertices"] = out(v.cell_vertices, {sz(v.num_cell_vertices)});
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+nb::dict voronoi_dict(Triangulation2d& t, Voronoi2d& v, std::int64_t n) {
+  nb::dict r;
+  const sz nt = t.num_triangles();
+  t.triangles.resize(3 * nt);
+  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
+  put_voronoi_host(r, v, n);
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+
 nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
                         int threads) {
   const Input in = points_input(points, 2);
   auto o = options_for<Delaunay2dOptions>(backend, stream, threads, in);
   const std::int64_t n = in.shape[0];
-  nb::dict r;
   if (in.on_device) {
     DeviceTriangulation2d t;
     DeviceVoronoi2d v;
@@ -200,17 +227,7 @@ nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std:
       t = delaunay2d_device(pts(in), n, o);
       v = voronoi2d_device(pts(in), n, t, o);
     }
-    const DeviceOut out{v.backend, device_of(o)};
-    r["simplices"] = out(t.triangles, {sz(t.num_triangles), 3});
-    r["duplicate_of"] = out(t.duplicate_of, {sz(n)});
-    r["vertices"] = out(v.vertices, {sz(v.num_vertices), 2});
-    r["ridge_points"] = out(v.ridge_points, {sz(v.num_ridges), 2});
-    r["ridge_vertices"] = out(v.ridge_vertices, {sz(v.num_ridges), 2});
-    r["ridge_directions"] = out(v.ridge_directions, {sz(v.num_ridges), 2});
-    r["cell_offsets"] = out(v.cell_offsets, {sz(n) + 1});
-    r["cell_vertices"] = out(v.cell_vertices, {sz(v.num_cell_vertices)});
-    r["stats"] = stats_dict(t.stats);
-    return r;
+    return voronoi_dict(t, v, n, device_of(o));
   }
   Triangulation2d t;
   Voronoi2d v;
@@ -218,13 +235,36 @@ nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std:
     nb::gil_scoped_release released;
     v = voronoi2d(pts(in), n, o, &t, &t.stats);  // both on the executor, results back once
   }
-  const sz nt = t.num_triangles();
-  t.triangles.resize(3 * nt);
-  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
-  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
-  put_voronoi_host(r, v, n);
-  r["stats"] = stats_dict(t.stats);
-  return r;
+  return voronoi_dict(t, v, n);
+}
+
+// The Voronoi diagram of a kept 2D triangulation (Voronoi(incremental=True); issue 47), made from
+// its current triangles where they are. points: its current points, where its first points were
+// (the caller's copy; the diagram's vertices are their triangles' circumcentres). A removed point
+// has an empty cell.
+nb::dict dynamic_voronoi(const Dynamic2dState& self, const AnyArray& points) {
+  const Input in = kept_points_input(self, points);
+  const std::int64_t n = in.shape[0];
+  if (n != self.t.num_points())
+    throw nb::value_error("points must be the triangulation's current points");
+  if (self.on_device) {
+    DeviceTriangulation2d t;
+    DeviceVoronoi2d v;
+    {
+      nb::gil_scoped_release released;
+      t = self.t.device_triangulation();
+      v = voronoi2d_device(pts(in), n, t, self.run);
+    }
+    return voronoi_dict(t, v, n, self.device);
+  }
+  Triangulation2d t;
+  Voronoi2d v;
+  {
+    nb::gil_scoped_release released;
+    t = self.t.triangulation();
+    v = voronoi2d(pts(in), n, t);
+  }
+  return voronoi_dict(t, v, n);
 }
 
 // A 3D hull's arrays as a dict: where the device entry left them, or host arrays.
@@ -567,6 +607,7 @@ void bind_spatial(nb::module_& m) {
           "track_changes", [](Dynamic2dState& s, bool on) { s.t.track_changes(on); }, "on"_a)
       .def("changes", &dynamic_changes<Dynamic2dState>)
       .def("result", &dynamic2d_result)
+      .def("voronoi", &dynamic_voronoi, "points"_a)
       .def_prop_ro("npoints", [](const Dynamic2dState& s) { return s.t.num_points(); });
   nb::class_<Dynamic3dState>(m, "DynamicDelaunay3d")
       .def("__init__", &dynamic3d_init, "points"_a, "backend"_a = "auto", "stream"_a = 0,

@@ -275,7 +275,38 @@ def test_hull3d_kept_refusals(rng):
         h.move(flat)
     np.testing.assert_array_equal(h.simplices, before)
     np.testing.assert_array_equal(h.points, p)
-    for obj in (gpugeom.ConvexHull(p[:, :2], incremental=True),
-                gpugeom.Voronoi(p[:, :2], incremental=True)):
-        with pytest.raises(ValueError, match="keeps no state"):
-            obj.remove([1])
+    with pytest.raises(ValueError, match="keeps no state"):
+        gpugeom.ConvexHull(p[:, :2], incremental=True).remove([1])
+
+
+def test_voronoi_keeps_its_triangulation(backend, rng):
+    # issue 47: Voronoi(incremental=True) keeps a DynamicDelaunay2d; after add_points, move and
+    # remove the diagram is a fresh one's of the points left (a removed point: empty region), and
+    # changes() speaks of its vertices (one per Delaunay triangle)
+    p = np.round(rng.random((3000, 2)) * 40) / 40  # cocircular points and copies
+    v = gpugeom.Voronoi(p[:2000], incremental=True, backend=backend)
+    v.track_changes()
+    v.add_points(p[2000:])
+    gone = np.zeros(len(p), bool)
+
+    def same_as_fresh():
+        live = np.nonzero(~gone)[0]
+        f = gpugeom.Voronoi(np.asarray(v.points)[live], backend=backend)
+        assert simplex_set(v.delaunay_simplices) == simplex_set(live[np.asarray(f.delaunay_simplices)])
+        assert len(v.vertices) == len(f.vertices)
+        rp = {tuple(sorted(r)) for r in np.asarray(v.ridge_points).tolist()}
+        assert rp == {tuple(sorted(r)) for r in live[np.asarray(f.ridge_points)].tolist()}
+        for j, i in enumerate(live[:200]):
+            assert len(v.regions[i]) == len(f.regions[j])
+        assert all(v.regions[i] == [] for i in np.nonzero(gone)[0])
+        prev, _ = (np.asarray(x) for x in v.changes())
+        assert prev.shape == (len(v.vertices),)
+
+    same_as_fresh()
+    r = rng.choice(len(p), 300, replace=False)
+    v.remove(r)
+    gone[r] = True
+    same_as_fresh()
+    v.move(np.asarray(v.points) * 2.0)  # (exact: cocircular points stay so)
+    same_as_fresh()
+    assert v.npoints == len(p)

@@ -59,7 +59,7 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
   RunOptions run;
   run.backend = Backend::Cpu;
   del2d::cpu_impl::voronoi(xy, n, tri.triangles.data(), tri.neighbors.data(),
-                           tri.num_duplicates ? tri.duplicate_of.data() : nullptr,
+                           tri.duplicate_of.data(),  // (copies; removed points: empty cells)
                            std::int64_t(tri.num_triangles()), run, unused, st, &v);
   return v;
 }
@@ -99,7 +99,7 @@ DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
   v.num_points = n;
   v.backend = v.stats.backend = tri.backend;
   del2d::DeviceVoronoiOutput out;
-  const std::int32_t* dup = tri.num_duplicates ? tri.duplicate_of.get() : nullptr;
+  const std::int32_t* dup = tri.duplicate_of.get();  // (a kept one's may mark removed points)
   GG_ON_EXECUTOR(tri.backend, del2d, voronoi, device_xy, n, tri.triangles.get(),
                  tri.neighbors.get(), dup, tri.num_triangles, run, out, v.stats);
   v.num_vertices = out.num_vertices;

@@ -11,6 +11,7 @@
 #include "exec/deliver.hpp"
 #include "exec/cpu_exec.hpp"
 #include "exec/peak.hpp"
+#include "gpugeom/removed.hpp"
 
 namespace gpugeom::del2d::cpu_impl {
 using Exec = CpuExec;

@@ -11,6 +11,7 @@
 #include "exec/deliver.hpp"
 #include "exec/cuda_exec.cuh"
 #include "exec/peak.hpp"
+#include "gpugeom/removed.hpp"
 
 namespace gpugeom::del2d::cuda_impl {
 using Exec = CudaExec;

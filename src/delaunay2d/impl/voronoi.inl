@@ -6,6 +6,9 @@
 struct VorSource {  // the point whose cell a point has: itself, or the one it duplicates
   const std::int32_t* dup;
   GG_HD std::int64_t operator()(std::int64_t i) const { return dup && dup[i] >= 0 ? dup[i] : i; }
+  // A point removed from a kept triangulation (DynamicDelaunay2d: kRemovedPoint in the duplicate
+  // map) has no cell: its cell is empty.
+  GG_HD bool removed(std::int64_t i) const { return dup && dup[i] == kRemovedPoint; }
 };
 // Whether the walk from corner c (a start corner) goes round an unbounded cell.
 GG_HD inline bool vor_open(const std::int32_t* nb, std::int64_t c) {
@@ -56,8 +59,8 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
   const VorSource src_of{dup};
   auto missing = ex.template alloc<I64>(1);
   ex.transform_reduce_into(
-      n, GG_LAMBDA(I64 i)->I64 { return key[src_of(i)] < 0 ? 1 : 0; }, I64(0), thrust::plus<I64>(),
-      missing.data());
+      n, GG_LAMBDA(I64 i)->I64 { return !src_of.removed(i) && key[src_of(i)] < 0 ? 1 : 0; }, I64(0),
+      thrust::plus<I64>(), missing.data());
   I64 nmiss = 0;
   ex.to_host(missing.data(), 1, &nmiss);
   if (nmiss)
@@ -70,7 +73,7 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
   ex.exclusive_scan_of(
       n + 1,
       GG_LAMBDA(I64 i)->I64 {
-        if (i >= n) return 0;
+        if (i >= n || src_of.removed(i)) return 0;
         const I64 c = vor::start_corner(key[src_of(i)]);
         I64 len = vor_open(nb, c) ? 1 : 0;
         vor::walk_star(tri, nb, c, nt, [&](I64, int) { ++len; });
@@ -83,6 +86,7 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
   I32* cv = cvb.data();
   ex.for_each_index(
       n, GG_LAMBDA(I64 i) {
+        if (src_of.removed(i)) return;
         I32* o = cv + off[i];
         const I64 c = vor::start_corner(key[src_of(i)]);
         // An unbounded cell starts with -1: its walk starts at a corner whose clockwise side
