@@ -415,6 +415,37 @@ TEST(Delaunay2d, VoronoiDeviceEntry) {
   EXPECT_THROW((void)voronoi2d(nullptr, 2, cpu()), Error);
 }
 
+// The diagram of a kept triangulation after removals (issue 47): a removed point has an empty
+// cell, every other point the cell a fresh diagram of the points left gives it; both entries.
+TEST(Delaunay2d, VoronoiOfAKeptTriangulationWithRemovedPoints) {
+  auto p = generate2d("grid", 1500, 4);
+  const std::int64_t n = std::int64_t(p.size());
+  const double* xy = &p.data()->x;
+  DynamicDelaunay2d d(xy, n, cpu());
+  std::vector<std::int32_t> gone;
+  for (std::int32_t i = 5; i < n; i += 7) gone.push_back(i);
+  d.remove(gone.data(), std::int64_t(gone.size()));
+  const auto v = voronoi2d(xy, n, d.triangulation());
+  const auto dv = voronoi2d_device(xy, n, d.device_triangulation());
+  EXPECT_EQ(gg_test::host_prefix(dv.cell_offsets, n + 1), v.cell_offsets);
+  std::vector<Point2> live;
+  std::vector<std::int64_t> ids;
+  std::vector<char> removed(std::size_t(n), 0);
+  for (auto i : gone) removed[std::size_t(i)] = 1;
+  for (std::int64_t i = 0; i < n; ++i)
+    if (!removed[std::size_t(i)]) live.push_back(p[std::size_t(i)]), ids.push_back(i);
+  const auto f = voronoi2d(&live.data()->x, std::int64_t(live.size()), delaunay2d(live, cpu()));
+  EXPECT_EQ(v.vertices.size(), f.vertices.size());
+  EXPECT_EQ(v.ridge_points.size(), f.ridge_points.size());
+  for (std::int64_t i : std::vector<std::int64_t>{5, 12, 19})
+    EXPECT_EQ(v.cell_offsets[std::size_t(i) + 1], v.cell_offsets[std::size_t(i)]) << i;
+  for (std::size_t j = 0; j < ids.size(); ++j) {
+    const std::size_t i = std::size_t(ids[j]);
+    ASSERT_EQ(v.cell_offsets[i + 1] - v.cell_offsets[i], f.cell_offsets[j + 1] - f.cell_offsets[j])
+        << "point " << i;
+  }
+}
+
 // The hull from the triangulation's boundary: counter-clockwise, only extreme points (the
 // collinear boundary points of a grid are vertices of the triangulation, not of the hull), every
 // point inside or on it (exact orientation).
