@@ -77,20 +77,37 @@ TEST(DynamicHull3d, ChangesNeedTracking) {
   gg_test::changes_need_tracking<gg_hull3d::KeptHull>(generate3d("ball", 3000, 45), cpu());
 }
 
-// An insertion makes the hull of the old vertices and the new points only: the points inside
-// are never looked at again.
+// An insertion makes the hull of the old vertices and the new points not strictly inside the old
+// hull only: the points inside are never looked at again.
 TEST(DynamicHull3d, InsertionLooksAtTheVerticesAndTheNewPointsOnly) {
   auto p = generate3d("ball", 20000, 8);
   DynamicHull3d d(&p.data()->x, std::int64_t(p.size()), cpu());
   EXPECT_EQ(d.stats().counters.at("hull_candidates"), 20000);
   const std::int64_t nv = d.num_vertices();
   auto more = generate3d("ball", 300, 9);
-  for (auto& q : more) q.x *= 1.05, q.y *= 1.05, q.z *= 1.05;  // some outside
+  auto scale = [](std::vector<Point3>& v, double f) {  // about the ball's centre (0.5, 0.5, 0.5)
+    for (auto& q : v) q = {0.5 + f * (q.x - 0.5), 0.5 + f * (q.y - 0.5), 0.5 + f * (q.z - 0.5)};
+  };
+  scale(more, 1.05);  // some outside
   d.insert(&more.data()->x, std::int64_t(more.size()));
-  EXPECT_EQ(d.stats().counters.at("hull_candidates"), nv + 300);
+  const std::int64_t out = d.stats().counters.at("outside_points");
+  EXPECT_GT(out, 0);
+  EXPECT_LT(out, 300);  // (those strictly inside the old hull are not looked at)
+  EXPECT_EQ(d.stats().counters.at("hull_candidates"), nv + out);
   p.insert(p.end(), more.begin(), more.end());
   EXPECT_EQ(d.num_points(), std::int64_t(p.size()));
   expect_valid(p, d.hull());
+  expect_fresh(d, p, std::vector<char>(p.size(), 0));
+  // points strictly inside: the hull's arrays stay as they were
+  const Snapshot s(d);
+  auto inner = generate3d("ball", 500, 10);
+  scale(inner, 0.5);
+  d.insert(&inner.data()->x, std::int64_t(inner.size()));
+  EXPECT_EQ(d.stats().counters.at("outside_points"), 0);
+  Snapshot after(d);
+  after.n = s.n;
+  EXPECT_TRUE(after == s);
+  p.insert(p.end(), inner.begin(), inner.end());
   expect_fresh(d, p, std::vector<char>(p.size(), 0));
 }
 

@@ -10,8 +10,9 @@
 // is a function of E (each point of E named by its first copy's index). A point that is not
 // extreme in a set is not extreme in any larger set, so
 // - insert: the extreme points of the old and new points together are among E and the new
-//   points: the hull of those candidates is the hull of all (a few thousand points for 10^6
-//   in a ball, whatever n is);
+//   points, and of those only the ones not strictly inside the old hull: the hull of those
+//   candidates is the hull of all (a few thousand points for 10^6 in a ball, whatever n is),
+//   and where every new point is strictly inside, the old hull is the new one;
 // - remove: where no removed point is a vertex, E is unchanged and so is the hull; otherwise
 //   points inside may become extreme, and the hull is made from all points left;
 // - move: any point may become extreme; the hull is made from all the moved points.
@@ -69,17 +70,58 @@ inline mesh::LivePoints<Exec> all_live(Exec& ex, const KeptHull& K) {
   return C;
 }
 
-// The old hull's vertices and the points K appended to old's, as candidates.
-inline mesh::LivePoints<Exec> vertices_and_new(Exec& ex, const KeptHull& old, const KeptHull& K) {
+// Which of the points K appended to old's may lie outside old's hull or on it (input indices,
+// increasing): those that the floating-point orientation against some facet does not place
+// strictly inside (an undecided test counts as outside: a candidate too many is harmless, the
+// hull drops it), or all of them where testing each against every facet is more work than
+// kFilterWork (a hull of them costs less then). The points are validated first. [synchronises]
+constexpr std::int64_t kFilterWork =
+    Exec::backend == Backend::Cuda ? std::int64_t(1) << 28 : std::int64_t(1) << 22;
+inline typename Exec::template Buffer<std::int32_t> maybe_outside(Exec& ex, const KeptHull& old,
+                                                                  const KeptHull& K,
+                                                                  std::int64_t& count) {
+  const std::int64_t add = K.n - old.n, n_old = old.n, nf = old.facets.count;
+  const double* p = K.xyz.data();
+  const mesh::Bounds<3> box = mesh::bounds<3>(ex, p + 3 * n_old, add);
+  if (box.bad) throw_bad(box.bad);
+  auto ids = ex.template alloc<std::int32_t>(std::size_t(add));
+  if (add * nf > kFilterWork) {
+    std::int32_t* o = ids.data();
+    ex.for_each_index(
+        add, GG_LAMBDA(std::int64_t i) { o[i] = std::int32_t(n_old + i); });
+    count = add;
+    return ids;
+  }
+  const std::int32_t* t = old.facets.simplices.data();
+  count = ex.compact_indices(
+      add,
+      GG_LAMBDA(std::int64_t i) {
+        const double* q = p + 3 * (n_old + i);
+        for (std::int64_t f = 0; f < nf; ++f)  // facets counter-clockwise seen from outside
+          if (pred::orient3d_fast(p + 3 * std::int64_t(t[3 * f]),
+                                  p + 3 * std::int64_t(t[3 * f + 1]),
+                                  p + 3 * std::int64_t(t[3 * f + 2]), q) >= 0)
+            return true;
+        return false;
+      },
+      ids.data());
+  const std::int32_t base = std::int32_t(n_old);
+  std::int32_t* o = ids.data();
+  ex.for_each_index(
+      count, GG_LAMBDA(std::int64_t j) { o[j] += base; });
+  return ids;
+}
+
+// The old hull's vertices and the `count` points `ids` (input indices above them), as
+// candidates.
+inline mesh::LivePoints<Exec> vertices_and(Exec& ex, const KeptHull& old, const KeptHull& K,
+                                           const std::int32_t* more, std::int64_t count) {
   mesh::LivePoints<Exec> C;
-  const std::int64_t add = K.n - old.n;
-  C.count = old.nv + add;
+  C.count = old.nv + count;
   C.ids = ex.template alloc<std::int32_t>(std::size_t(C.count));
   std::int32_t* ids = C.ids.data();
   ex.copy(old.vertices.data(), old.nv, ids);
-  const std::int64_t nv = old.nv, n_old = old.n;
-  ex.for_each_index(
-      add, GG_LAMBDA(std::int64_t i) { ids[nv + i] = std::int32_t(n_old + i); });
+  ex.copy(more, count, ids + old.nv);
   C.p = ex.template alloc<double>(std::size_t(3 * C.count));
   double* q = C.p.data();
   const double* p = K.xyz.data();
@@ -130,7 +172,20 @@ class KeptHullOn final : public Kept {
     ::gpugeom::detail::require_device_memory(ex, K_.nv + n, kLeastBytesPerPoint, "a convex hull",
                                              "points");
     KeptHull R = with_points(ex, xyz, n, on_device, false, st);
-    hull_of(ex, R, K_.n ? vertices_and_new(ex, K_, R) : all_live(ex, R), opt_, st);
+    if (!K_.n) {
+      hull_of(ex, R, all_live(ex, R), opt_, st);
+    } else {
+      // Only the old vertices and the new points not strictly inside can be extreme now.
+      const auto t0 = Clock::now();
+      std::int64_t out = 0;
+      auto more = maybe_outside(ex, K_, R, out);
+      st.counters["outside_points"] = out;
+      st.phase_ms.emplace_back("inside_test", ms_since(t0));
+      if (out)
+        hull_of(ex, R, vertices_and(ex, K_, R, more.data(), out), opt_, st);
+      else
+        copy_hull(ex, K_, R);  // (every new point strictly inside: the same hull)
+    }
     commit(ex, std::move(R));
   }
   void move(const double* xyz, bool on_device, Stats& st) override {
