@@ -112,9 +112,10 @@ DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
 // Points keep the indices they were given: the first call's are 0 .. n - 1, each insert's follow
 // on; a removed point keeps its index and is never a vertex.
 //
-// What each call costs: an insertion makes the hull of the old hull's vertices and the new points
-// only (a point that is not extreme stays so when points join), so it does not grow with the
-// points inside; a removal that takes no vertex changes nothing, one that does makes the hull of
+// What each call costs: an insertion makes the hull of the old hull's vertices and those new points
+// not strictly inside the old hull only (a point that is not extreme stays so when points join),
+// so it does not grow with the points inside, and where every new point is inside no hull is
+// made (stats counter "outside_points"); a removal that takes no vertex changes nothing, one that does makes the hull of
 // all points left; a move makes the hull of all the moved points. Stats counter "hull_candidates"
 // says how many points the last hull was made from.
 //
