@@ -63,8 +63,8 @@ void print_phases(const Stats& s) {
   std::printf("    insert phases:");
   for (const auto& [name, ms] : s.phase_ms) std::printf(" %s %.2f", name.c_str(), ms);
   for (const char* c : {"inserted_points", "batches", "flips", "flip_rounds", "start_walk_steps",
-                        "move_rounds", "move_taken_out", "hole_vertices", "splayed_vertices",
-                        "hull_candidates", "removed_vertices"}) {
+                        "move_rounds", "move_taken_out", "move_grown", "hole_vertices",
+                        "splayed_vertices", "hull_candidates", "removed_vertices"}) {
     const auto it = s.counters.find(c);
     if (it != s.counters.end()) std::printf(" | %s %lld", c, (long long)it->second);
   }

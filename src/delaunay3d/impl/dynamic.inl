@@ -362,6 +362,65 @@ inline typename Exec::template Buffer<std::int8_t> refilled_slots(Exec& ex, Tria
   return out;
 }
 
+// Before a move's fill: the staying tetrahedra whose face with the hole will likely not be one of
+// D's (the apex of the hole tetrahedron across it lies inside their sphere at the new places, so
+// the face is not locally Delaunay among the hole's vertices) join the hole now, their vertices
+// flagged in `out`, rather than after a fill that lacks the face: each fill is a whole pipeline
+// on D. A prediction only: a face the fill still lacks grows the hole as before (refill_holes'
+// mark). Returns how many points it flagged. [synchronises]
+inline std::int64_t grow_predicted(Exec& ex, const Tet* tet, std::int64_t used, const double* xyz,
+                                   std::int64_t n, std::int8_t* out) {
+  // (scratch for exact in-sphere tests: larger than the flatness tests')
+  LeasePool<Exec> pool(ex, std::clamp<std::int64_t>(ex.concurrency(), 64, 1024),
+                       pred::kInsphereScratch);
+  Geo g{};
+  g.p = xyz;
+  g.m = std::int32_t(n);
+  g.lease = pool.view;
+  auto d_grow = ex.template alloc<std::int8_t>(std::size_t(n));
+  std::int8_t* grow = d_grow.data();
+  ex.fill(grow, n, std::int8_t(0));
+  ex.for_each_index(
+      used, GG_LAMBDA(std::int64_t t) {
+        const Tet T = tet[t];
+        if (T.v[0] == -1) return;    // dead
+        for (int k = 0; k < 4; ++k)  // finite and staying
+          if (T.v[k] == Triangulator::kKeptInfinity || out[T.v[k]]) return;
+        for (int k = 0; k < 4; ++k) {
+          if (T.n[k] == kNoNeighbour) continue;
+          // (the hole tetrahedron across face k: its apex is taken out, the face's vertices are
+          // not; the vertices of its neighbours that stay are the hole vertices nearest the face)
+          const Tet H = tet[simplex_of(T.n[k])];
+          const int back = loc_of(T.n[k]);
+          if (H.v[back] < 0 || !out[H.v[back]]) continue;  // (not a hole tetrahedron)
+          auto inside = [&](const Tet& N) {
+            for (int j = 0; j < 4; ++j) {
+              const std::int32_t w = N.v[j];
+              if (w < 0 || out[w] || w == T.v[0] || w == T.v[1] || w == T.v[2] || w == T.v[3])
+                continue;
+              if (in_sphere_ext(g, T.v, w)) return true;
+            }
+            return false;
+          };
+          for (int i = 0; i < 4; ++i) {
+            if (i == back || H.n[i] == kNoNeighbour) continue;
+            if (inside(tet[simplex_of(H.n[i])])) {
+              for (int q = 0; q < 4; ++q) grow[T.v[q]] = 1;
+              return;
+            }
+          }
+        }
+      });
+  ex.for_each_index(
+      n, GG_LAMBDA(std::int64_t i) { grow[i] = grow[i] && !out[i]; });
+  const std::int64_t more = mesh::count_flags(ex, grow, n);
+  ex.for_each_index(
+      n, GG_LAMBDA(std::int64_t i) {
+        if (grow[i]) out[i] = 1;
+      });
+  return more;
+}
+
 // A move's start (issue 47): the kept store with the points at their new places. Where a
 // tetrahedron turns over there (or a hull face no longer faces away from the kernel point), its
 // vertices are taken out, to be inserted again at their new places as new points: the holes they
@@ -404,6 +463,12 @@ inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz
         return M;
       }
     }
+    if (!grown)  // (until no more is predicted: the grown hole has new faces)
+      for (int g = 0; g < 4; ++g) {
+        const std::int64_t more = grow_predicted(ex, cur, used, xyz, n, M.out.data());
+        st.counters["move_grown"] += more;
+        if (!more) break;
+      }
     M.nout = mesh::count_flags(ex, M.out.data(), n);
     st.counters["move_taken_out"] = M.nout;
     if (M.nout > n / 8) return M;
