@@ -139,3 +139,30 @@ def test_incremental_delaunay_torch_cuda(rng):
     dt.add_points(torch.as_tensor(p[20000:], device="cuda"))
     assert isinstance(dt.simplices, torch.Tensor) and dt.simplices.is_cuda
     assert simplex_set(dt.simplices.cpu().numpy()) == simplex_set(gpugeom.Delaunay(p).simplices)
+
+
+def test_incremental_hull_and_voronoi_stay_on_the_gpu(rng):
+    # issue 47: a 3D ConvexHull and a Voronoi diagram kept on the GPU (DynamicHull3d,
+    # DynamicDelaunay2d): results stay CuPy arrays and equal a fresh host call's
+    p = rng.standard_normal((30000, 3))
+    h = gpugeom.ConvexHull(cupy.asarray(p[:20000]), incremental=True)
+    h.track_changes()
+    h.add_points(cupy.asarray(p[20000:]))
+    assert isinstance(h.simplices, cupy.ndarray) and isinstance(h.vertices, cupy.ndarray)
+    f = gpugeom.ConvexHull(p)
+    assert simplex_set(cupy.asnumpy(h.simplices)) == simplex_set(f.simplices)
+    prev, gone = h.changes()
+    assert isinstance(prev, cupy.ndarray) and prev.shape == (h.nsimplex,)
+    v = np.asarray(cupy.asnumpy(h.vertices))
+    h.remove(cupy.asarray(v[:5].astype(np.int32)))
+    live = np.setdiff1d(np.arange(len(p)), v[:5])
+    assert simplex_set(cupy.asnumpy(h.simplices)) == simplex_set(live[gpugeom.ConvexHull(p[live]).simplices])
+    q2 = rng.random((20000, 2))
+    vor = gpugeom.Voronoi(cupy.asarray(q2[:15000]), incremental=True)
+    vor.add_points(cupy.asarray(q2[15000:]))
+    vor.remove(cupy.asarray(np.array([3, 15001], np.int32)))
+    assert isinstance(vor.vertices, cupy.ndarray)
+    keep = np.setdiff1d(np.arange(len(q2)), [3, 15001])
+    fv = gpugeom.Voronoi(q2[keep])
+    assert simplex_set(cupy.asnumpy(vor.delaunay_simplices)) == simplex_set(keep[fv.delaunay_simplices])
+    assert vor.regions[3] == [] and len(vor.regions[4]) > 0
