@@ -463,13 +463,16 @@ inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz
         return M;
       }
     }
-    if (!grown)  // (until no more is predicted: the grown hole has new faces)
+    // (counted before the growth too: growing only adds, and a move that takes out too many
+    // points is given up before the growth's passes)
+    M.nout = mesh::count_flags(ex, M.out.data(), n);
+    if (!grown && M.nout <= n / 8)  // (until no more is predicted: the grown hole has new faces)
       for (int g = 0; g < 4; ++g) {
         const std::int64_t more = grow_predicted(ex, cur, used, xyz, n, M.out.data());
         st.counters["move_grown"] += more;
+        M.nout += more;
         if (!more) break;
       }
-    M.nout = mesh::count_flags(ex, M.out.data(), n);
     st.counters["move_taken_out"] = M.nout;
     if (M.nout > n / 8) return M;
     const auto t0 = Clock::now();
