@@ -115,9 +115,9 @@ DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
 // What each call costs: an insertion makes the hull of the old hull's vertices and those new points
 // not strictly inside the old hull only (a point that is not extreme stays so when points join),
 // so it does not grow with the points inside, and where every new point is inside no hull is
-// made (stats counter "outside_points"); a removal that takes no vertex changes nothing, one that does makes the hull of
-// all points left; a move makes the hull of all the moved points. Stats counter "hull_candidates"
-// says how many points the last hull was made from.
+// made (stats counter "outside_points"); a removal that takes no vertex changes nothing, one that
+// does makes the hull of all points left; a move makes the hull of all the moved points. Stats
+// counter "hull_candidates" says how many points the last hull was made from.
 //
 // The state lives where the executor runs: device memory of opt.device on CUDA (fixed at
 // construction; the work runs on opt.stream, which must outlive the object), host memory on the
