@@ -363,11 +363,12 @@ inline typename Exec::template Buffer<std::int8_t> refilled_slots(Exec& ex, Tria
 }
 
 // Before a move's fill: the staying tetrahedra whose face with the hole will likely not be one of
-// D's (the apex of the hole tetrahedron across it lies inside their sphere at the new places, so
-// the face is not locally Delaunay among the hole's vertices) join the hole now, their vertices
-// flagged in `out`, rather than after a fill that lacks the face: each fill is a whole pipeline
-// on D. A prediction only: a face the fill still lacks grows the hole as before (refill_holes'
-// mark). Returns how many points it flagged. [synchronises]
+// D's (a vertex that stays, of a neighbour of the hole tetrahedron across that face, lies inside
+// their sphere at the new places, so the face is not locally Delaunay among the hole's vertices;
+// the hole tetrahedron's own apex is always taken out, so it cannot tell) join the hole now, their
+// vertices flagged in `out`, rather than after a fill that lacks the face: each fill is a whole
+// pipeline on D. A prediction only: a face the fill still lacks grows the hole as before
+// (refill_holes' mark). Returns how many points it flagged. [synchronises]
 inline std::int64_t grow_predicted(Exec& ex, const Tet* tet, std::int64_t used, const double* xyz,
                                    std::int64_t n, std::int8_t* out) {
   // (scratch for exact in-sphere tests: larger than the flatness tests')
