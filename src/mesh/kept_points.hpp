@@ -91,13 +91,9 @@ struct LivePoints {
   typename Exec::template Buffer<std::int32_t> ids;
   std::int64_t count = 0;
 };
-// gone: n flags (1: removed). [synchronises]
+// L.p made the coordinates (dimension D, from p) of the L.count points L.ids names.
 template <int D, class Exec>
-LivePoints<Exec> gather_live(Exec& ex, const double* p, std::int64_t n, const std::int8_t* gone) {
-  LivePoints<Exec> L;
-  L.ids = ex.template alloc<std::int32_t>(std::size_t(n));
-  L.count = ex.compact_indices(
-      n, GG_LAMBDA(std::int64_t i) { return gone[i] == 0; }, L.ids.data());
+void gather(Exec& ex, const double* p, LivePoints<Exec>& L) {
   L.p = ex.template alloc<double>(std::size_t(D * L.count));
   double* q = L.p.data();
   const std::int32_t* ids = L.ids.data();
@@ -105,6 +101,15 @@ LivePoints<Exec> gather_live(Exec& ex, const double* p, std::int64_t n, const st
       L.count, GG_LAMBDA(std::int64_t j) {
         for (int d = 0; d < D; ++d) q[D * j + d] = p[D * std::int64_t(ids[j]) + d];
       });
+}
+// gone: n flags (1: removed). [synchronises]
+template <int D, class Exec>
+LivePoints<Exec> gather_live(Exec& ex, const double* p, std::int64_t n, const std::int8_t* gone) {
+  LivePoints<Exec> L;
+  L.ids = ex.template alloc<std::int32_t>(std::size_t(n));
+  L.count = ex.compact_indices(
+      n, GG_LAMBDA(std::int64_t i) { return gone[i] == 0; }, L.ids.data());
+  gather<D>(ex, p, L);
   return L;
 }
 

@@ -369,17 +369,22 @@ inline typename Exec::template Buffer<std::int8_t> refilled_slots(Exec& ex, Tria
 // vertices flagged in `out`, rather than after a fill that lacks the face: each fill is a whole
 // pipeline on D. A prediction only: a face the fill still lacks grows the hole as before
 // (refill_holes' mark). Returns how many points it flagged. [synchronises]
-inline std::int64_t grow_predicted(Exec& ex, const Tet* tet, std::int64_t used, const double* xyz,
-                                   std::int64_t n, std::int8_t* out) {
-  // (scratch for exact in-sphere tests: larger than the flatness tests')
-  LeasePool<Exec> pool(ex, std::clamp<std::int64_t>(ex.concurrency(), 64, 1024),
-                       pred::kInsphereScratch);
+// Its scratch, made once for a move's passes.
+struct GrowScratch {
+  LeasePool<Exec> pool;  // exact in-sphere tests (larger than the flatness tests')
+  typename Exec::template Buffer<std::int8_t> grow;  // n
+  GrowScratch(Exec& ex, std::int64_t n)
+      : pool(ex, std::clamp<std::int64_t>(ex.concurrency(), 64, 1024), pred::kInsphereScratch),
+        grow(ex.template alloc<std::int8_t>(std::size_t(n))) {}
+};
+inline std::int64_t grow_predicted(Exec& ex, GrowScratch& scratch, const Tet* tet,
+                                   std::int64_t used, const double* xyz, std::int64_t n,
+                                   std::int8_t* out) {
   Geo g{};
   g.p = xyz;
   g.m = std::int32_t(n);
-  g.lease = pool.view;
-  auto d_grow = ex.template alloc<std::int8_t>(std::size_t(n));
-  std::int8_t* grow = d_grow.data();
+  g.lease = scratch.pool.view;
+  std::int8_t* grow = scratch.grow.data();
   ex.fill(grow, n, std::int8_t(0));
   ex.for_each_index(
       used, GG_LAMBDA(std::int64_t t) {
@@ -412,8 +417,7 @@ inline std::int64_t grow_predicted(Exec& ex, const Tet* tet, std::int64_t used, 
           }
         }
       });
-  ex.for_each_index(
-      n, GG_LAMBDA(std::int64_t i) { grow[i] = grow[i] && !out[i]; });
+  // (only staying vertices were flagged: out is read, not written, above)
   const std::int64_t more = mesh::count_flags(ex, grow, n);
   ex.for_each_index(
       n, GG_LAMBDA(std::int64_t i) {
@@ -451,6 +455,7 @@ inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz
   const Tet* cur = K.tet.data();
   std::int64_t used = K.used;
   bool grown = false;  // the last fill lacked boundary faces: its hole grew, fill again
+  std::optional<GrowScratch> scratch;
   for (int round = 0; round < kMoveRounds; ++round) {
     st.counters["move_rounds"] = round + 1;
     if (!grown) {
@@ -467,13 +472,15 @@ inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz
     // (counted before the growth too: growing only adds, and a move that takes out too many
     // points is given up before the growth's passes)
     M.nout = mesh::count_flags(ex, M.out.data(), n);
-    if (!grown && M.nout <= n / 8)  // (until no more is predicted: the grown hole has new faces)
+    if (!grown && M.nout <= n / 8) {  // (until none is predicted: a grown hole has new faces)
+      if (!scratch) scratch.emplace(ex, n);
       for (int g = 0; g < 4; ++g) {
-        const std::int64_t more = grow_predicted(ex, cur, used, xyz, n, M.out.data());
+        const std::int64_t more = grow_predicted(ex, *scratch, cur, used, xyz, n, M.out.data());
         st.counters["move_grown"] += more;
         M.nout += more;
         if (!more) break;
       }
+    }
     st.counters["move_taken_out"] = M.nout;
     if (M.nout > n / 8) return M;
     const auto t0 = Clock::now();

@@ -30,44 +30,38 @@ struct KeptHull {
   const std::int8_t* gone_map() const { return nremoved ? gone.data() : nullptr; }
 };
 
-// The hull of the candidate points C (gathered coordinates, increasing input indices) into K,
-// whose points are already the new ones.
-inline void hull_of(Exec& ex, KeptHull& K, const mesh::LivePoints<Exec>& C,
-                    const Hull3dOptions& opt, Stats& st) {
-  if (C.count < 4)
+// The hull of `count` candidate points (coordinates p; input indices ids, increasing, or null
+// where they are all of K's points in order) into K, whose points are already the new ones.
+inline void hull_of(Exec& ex, KeptHull& K, const double* p, const std::int32_t* ids,
+                    std::int64_t count, const Hull3dOptions& opt, Stats& st) {
+  if (count < 4)
     throw Error(ErrorCode::DegenerateInput,
-                "fewer than 4 points (" + std::to_string(C.count) +
+                "fewer than 4 points (" + std::to_string(count) +
                     ") would be left: a convex hull in 3D needs 4 points not on one plane");
-  Result R = hull_core(ex, C.p.data(), C.count, opt, st);
+  Result R = hull_core(ex, p, count, opt, st);
   const auto t0 = Clock::now();
-  const std::int32_t* ids = C.ids.data();
   std::int32_t* t = R.facets.simplices.data();
   std::int32_t* v = R.vertices.data();
-  ex.for_each_index(
-      3 * R.facets.count, GG_LAMBDA(std::int64_t i) { t[i] = ids[t[i]]; });
-  ex.for_each_index(
-      R.num_vertices, GG_LAMBDA(std::int64_t j) { v[j] = ids[v[j]]; });  // (stays increasing)
+  if (ids) {
+    ex.for_each_index(
+        3 * R.facets.count, GG_LAMBDA(std::int64_t i) { t[i] = ids[t[i]]; });
+    ex.for_each_index(
+        R.num_vertices, GG_LAMBDA(std::int64_t j) { v[j] = ids[v[j]]; });  // (stays increasing)
+  }
   K.eq = ex.template alloc<double>(std::size_t(4 * R.facets.count));
   planes(ex, K.xyz.data(), K.n, t, R.facets.count, K.eq.data());
   K.facets = std::move(R.facets);
   K.vertices = std::move(R.vertices);
   K.nv = R.num_vertices;
-  st.counters["hull_candidates"] = C.count;
+  st.counters["hull_candidates"] = count;
   st.phase_ms.emplace_back("kept_indices", ms_since(t0));
 }
 
-// Every point not removed, as candidates.
-inline mesh::LivePoints<Exec> all_live(Exec& ex, const KeptHull& K) {
-  if (K.gone_map()) return mesh::gather_live<3>(ex, K.xyz.data(), K.n, K.gone_map());
-  mesh::LivePoints<Exec> C;
-  C.count = K.n;
-  C.ids = ex.template alloc<std::int32_t>(std::size_t(K.n));
-  std::int32_t* ids = C.ids.data();
-  ex.for_each_index(
-      K.n, GG_LAMBDA(std::int64_t i) { ids[i] = std::int32_t(i); });
-  C.p = ex.template alloc<double>(std::size_t(3 * K.n));
-  ex.copy(K.xyz.data(), 3 * K.n, C.p.data());
-  return C;
+// The hull of every point of K not removed (gathered only where some are).
+inline void hull_of_live(Exec& ex, KeptHull& K, const Hull3dOptions& opt, Stats& st) {
+  if (!K.gone_map()) return hull_of(ex, K, K.xyz.data(), nullptr, K.n, opt, st);
+  const auto L = mesh::gather_live<3>(ex, K.xyz.data(), K.n, K.gone_map());
+  hull_of(ex, K, L.p.data(), L.ids.data(), L.count, opt, st);
 }
 
 // Which of the points K appended to old's may lie outside old's hull or on it (input indices,
@@ -124,11 +118,7 @@ inline mesh::LivePoints<Exec> vertices_and(Exec& ex, const KeptHull& old, const 
   std::int32_t* ids = C.ids.data();
   ex.copy(old.vertices.data(), old.nv, ids);
   ex.copy(more, count, ids + old.nv);
-  C.p = ex.template alloc<double>(std::size_t(3 * C.count));
-  double* q = C.p.data();
-  const double* p = K.xyz.data();
-  ex.for_each_index(
-      3 * C.count, GG_LAMBDA(std::int64_t i) { q[i] = p[3 * std::int64_t(ids[i / 3]) + i % 3]; });
+  mesh::gather<3>(ex, K.xyz.data(), C);
   return C;
 }
 
@@ -175,7 +165,7 @@ class KeptHullOn final : public Kept {
                                              "points");
     KeptHull R = with_points(ex, xyz, n, on_device, false, st);
     if (!K_.n) {
-      hull_of(ex, R, all_live(ex, R), opt_, st);
+      hull_of_live(ex, R, opt_, st);
     } else {
       // Only the old vertices and the new points not strictly inside can be extreme now.
       const auto t0 = Clock::now();
@@ -183,10 +173,12 @@ class KeptHullOn final : public Kept {
       auto more = maybe_outside(ex, K_, R, out);
       st.counters["outside_points"] = out;
       st.phase_ms.emplace_back("inside_test", ms_since(t0));
-      if (out)
-        hull_of(ex, R, vertices_and(ex, K_, R, more.data(), out), opt_, st);
-      else
+      if (out) {
+        const auto C = vertices_and(ex, K_, R, more.data(), out);
+        hull_of(ex, R, C.p.data(), C.ids.data(), C.count, opt_, st);
+      } else {
         copy_hull(ex, K_, R);  // (every new point strictly inside: the same hull)
+      }
     }
     commit(ex, std::move(R));
   }
@@ -196,7 +188,7 @@ class KeptHullOn final : public Kept {
     ::gpugeom::detail::require_device_memory(ex, K_.n, kLeastBytesPerPoint, "a convex hull",
                                              "points");
     KeptHull R = with_points(ex, xyz, K_.n, on_device, true, st);
-    hull_of(ex, R, all_live(ex, R), opt_, st);
+    hull_of_live(ex, R, opt_, st);
     commit(ex, std::move(R));
   }
   void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Stats& st) override {
@@ -216,7 +208,7 @@ class KeptHullOn final : public Kept {
     const std::int64_t hit = removed_vertices(ex, K_, idx, count);
     st.counters["removed_vertices"] = hit;
     if (hit)
-      hull_of(ex, R, all_live(ex, R), opt_, st);
+      hull_of_live(ex, R, opt_, st);
     else
       copy_hull(ex, K_, R);  // (no extreme point went: the same hull)
     commit(ex, std::move(R));
