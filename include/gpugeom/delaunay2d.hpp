@@ -181,8 +181,12 @@ class DynamicDelaunay2d {
 };
 
 // The Voronoi diagram dual to a Delaunay triangulation, in SciPy's `Voronoi` conventions.
+// Its vertices are the circumcentres of the triangles, one per circle: triangles whose points lie
+// on one circle exactly (the exact in-circle test) share a vertex, so no ridge has length zero
+// (as SciPy's: a 3x3 grid has 4 vertices). They are numbered in the order of their first
+// triangles.
 struct Voronoi2d {
-  HostVector<double> vertices;  // circumcentres, x and y interleaved (one per triangle)
+  HostVector<double> vertices;  // circumcentres, x and y interleaved
   // Ridges: the pair of input points each ridge separates, and its two Voronoi vertices
   // (-1 for a ridge that goes to infinity).
   HostVector<std::int32_t> ridge_points;
@@ -194,6 +198,8 @@ struct Voronoi2d {
   HostVector<std::int32_t> cell_vertices;
   // For an unbounded ridge, the outward direction (unit vector) of its ray, else (0, 0).
   HostVector<double> ridge_directions;
+  // Per triangle of the triangulation, its Voronoi vertex.
+  HostVector<std::int32_t> simplex_vertex;
 };
 Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri);
 // The triangulation of host points and its Voronoi diagram in one call, both made on the
@@ -218,6 +224,7 @@ struct DeviceVoronoi2d {
   std::shared_ptr<double> ridge_directions;      // 2 * num_ridges
   std::shared_ptr<std::int64_t> cell_offsets;    // num_points + 1
   std::shared_ptr<std::int32_t> cell_vertices;   // num_cell_vertices
+  std::shared_ptr<std::int32_t> simplex_vertex;  // tri.num_triangles
   Backend backend = Backend::Cuda;               // where the arrays are: Cuda = device memory
   Stats stats;
 };

@@ -408,21 +408,24 @@ class Delaunay(_OfPoints):
 
 class Voronoi(_OfPoints):
     """Exact Voronoi diagram of 2D points (``scipy.spatial.Voronoi``), dual to the exact
-    Delaunay triangulation: one vertex per Delaunay triangle (its circumcentre).
+    Delaunay triangulation: one vertex per circle of its triangles (their circumcentre). Triangles
+    whose points lie on one circle exactly (the exact predicate decides) share one vertex, as
+    SciPy's, so no ridge has length zero (a 3x3 grid has 4 vertices).
 
     Attributes
     ----------
     points, vertices, ridge_points, ridge_vertices, regions, point_region, ndim, npoints, and
     beyond SciPy: ``ridge_directions`` (the outward unit direction of each unbounded ridge),
-    ``ridge_vertices_array`` (the ridges as an (nridges, 2) array), ``delaunay_simplices``.
+    ``ridge_vertices_array`` (the ridges as an (nridges, 2) array), ``delaunay_simplices``,
+    ``simplex_vertex`` (per row of ``delaunay_simplices``, its Voronoi vertex).
     Regions list their vertices counter-clockwise; an unbounded one starts with -1. Duplicate
     points share the region of their twin.
 
     Incremental mode (``incremental=True``): the Delaunay triangulation is kept between calls
     (C++ ``DynamicDelaunay2d``) and brought up to date by ``add_points``, ``move`` and ``remove``
     (a removed point keeps its index and has an empty region); the diagram is then read from it.
-    ``track_changes()`` / ``changes()`` say which Voronoi vertices changed: they are the
-    triangles' circumcentres, one per row of ``delaunay_simplices``.
+    ``track_changes()`` / ``changes()`` say which Delaunay triangles changed, per row of
+    ``delaunay_simplices`` (``simplex_vertex`` gives each one's Voronoi vertex).
     """
 
     _cached = ("ridge_vertices", "regions", "point_region", "ridge_dict")
@@ -433,6 +436,9 @@ class Voronoi(_OfPoints):
         _not_supported("furthest_site", furthest_site, False)
         arr, kind = self._take_points(points, (2,), backend, threads)
         self._incremental = bool(incremental)
+        # Qhull's Qz (in SciPy's default options) adds a point at infinity, whose region is an
+        # empty one that no point_region names: SciPy's regions then have one entry more
+        self._empty_region = qhull_options is None or "Qz" in qhull_options.split()
         self._take(self._compute(arr))
 
     def _compute(self, arr, restart=False):
@@ -451,6 +457,7 @@ class Voronoi(_OfPoints):
         self.ridge_vertices_array = kind.back(r["ridge_vertices"])
         self.ridge_directions = kind.back(r["ridge_directions"])
         self.delaunay_simplices = kind.back(r["simplices"])
+        self.simplex_vertex = kind.back(r["simplex_vertex"])
         self._offsets = r["cell_offsets"]
         self._cells = r["cell_vertices"]
         self.stats = r["stats"]
@@ -466,12 +473,14 @@ class Voronoi(_OfPoints):
         unbounded region."""
         off = _arrays.to_host(self._kind.back(self._offsets))
         cells = _arrays.to_host(self._kind.back(self._cells)).tolist()
-        return [cells[off[i]:off[i + 1]] for i in range(self.npoints)]
+        return [[]] * self._empty_region + [cells[off[i]:off[i + 1]] for i in range(self.npoints)]
 
     @cached_property
     def point_region(self):
-        """Index into regions of each point's region (here: its own index)."""
-        return np.arange(self.npoints, dtype=np.intp)
+        """Index into regions of each point's region: its own index, plus one where the regions
+        start with SciPy's empty region of the point at infinity (Qhull's ``Qz``, SciPy's
+        default)."""
+        return np.arange(self.npoints, dtype=np.intp) + int(self._empty_region)
 
     @cached_property
     def ridge_dict(self) -> dict:

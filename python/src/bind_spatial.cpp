@@ -178,13 +178,14 @@ nb::dict dynamic2d_result(const Dynamic2dState& self) {
 
 void put_voronoi_host(nb::dict& r, Voronoi2d& v, std::int64_t n) {
   const sz nv = v.vertices.size() / 2, nr = v.ridge_points.size() / 2;
-  const sz ncv = v.cell_vertices.size();
+  const sz ncv = v.cell_vertices.size(), nt = v.simplex_vertex.size();
   r["vertices"] = host_array(std::move(v.vertices), {nv, 2});
   r["ridge_points"] = host_array(std::move(v.ridge_points), {nr, 2});
   r["ridge_vertices"] = host_array(std::move(v.ridge_vertices), {nr, 2});
   r["ridge_directions"] = host_array(std::move(v.ridge_directions), {nr, 2});
   r["cell_offsets"] = host_array(std::move(v.cell_offsets), {sz(n) + 1});
   r["cell_vertices"] = host_array(std::move(v.cell_vertices), {ncv});
+  r["simplex_vertex"] = host_array(std::move(v.simplex_vertex), {nt});
 }
 
 // A triangulation and its Voronoi diagram as a dict: where the device entries left them, or host
@@ -200,6 +201,7 @@ nb::dict voronoi_dict(DeviceTriangulation2d& t, DeviceVoronoi2d& v, std::int64_t
   r["ridge_directions"] = out(v.ridge_directions, {sz(v.num_ridges), 2});
   r["cell_offsets"] = out(v.cell_offsets, {sz(n) + 1});
   r["cell_vertices"] = out(v.cell_vertices, {sz(v.num_cell_vertices)});
+  r["simplex_vertex"] = out(v.simplex_vertex, {sz(t.num_triangles)});
   r["stats"] = stats_dict(t.stats);
   return r;
 }

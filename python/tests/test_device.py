@@ -165,4 +165,4 @@ def test_incremental_hull_and_voronoi_stay_on_the_gpu(rng):
     keep = np.setdiff1d(np.arange(len(q2)), [3, 15001])
     fv = gpugeom.Voronoi(q2[keep])
     assert simplex_set(cupy.asnumpy(vor.delaunay_simplices)) == simplex_set(keep[fv.delaunay_simplices])
-    assert vor.regions[3] == [] and len(vor.regions[4]) > 0
+    assert vor.regions[vor.point_region[3]] == [] and len(vor.regions[vor.point_region[4]]) > 0

@@ -123,13 +123,11 @@ def test_degenerate_3d_grid(backend):
     assert d.stats["counters"]["distinct_points"] == 512
 
 
-def test_voronoi_equals_scipy(backend, rng):
-    p = rng.random((2000, 2))
-    g = gpugeom.Voronoi(p, backend=backend)
-    s = ss.Voronoi(p)
+def _same_voronoi_as_scipy(g, s, every=1):
+    """The same vertices (up to Qhull's rounding), ridges and regions as SciPy's diagram."""
     assert g.vertices.shape == s.vertices.shape and g.vertices.dtype == np.float64
     assert g.ridge_points.shape == s.ridge_points.shape
-    # the same vertices (up to Qhull's rounding): map ours to SciPy's by nearest neighbour
+    # map our vertices to SciPy's by nearest neighbour
     d, m = ss.cKDTree(s.vertices).query(g.vertices)
     assert np.all(d <= 1e-9 * np.maximum(1, np.abs(g.vertices).max(axis=1)))
     assert len(set(m.tolist())) == len(m)
@@ -144,9 +142,47 @@ def test_voronoi_equals_scipy(backend, rng):
           for rp, rv in zip(s.ridge_points.tolist(), s.ridge_vertices)}
     assert gv == sv
     # regions: the same vertex sets per point
-    for i in range(0, 2000, 37):
+    for i in range(0, len(g.points), every):
         assert ends(g.regions[g.point_region[i]], lambda v: int(m[v])) == \
             ends(s.regions[s.point_region[i]], int)
+
+
+def test_voronoi_equals_scipy(backend, rng):
+    p = rng.random((2000, 2))
+    _same_voronoi_as_scipy(gpugeom.Voronoi(p, backend=backend), ss.Voronoi(p), every=37)
+
+
+GRID = np.array([(i, j) for i in range(3) for j in range(3)], float)
+CIRCLE = np.array([(5, 0), (-5, 0), (0, 5), (0, -5), (3, 4), (-3, 4), (3, -4), (-3, -4), (4, 3),
+                   (-4, 3), (4, -3), (-4, -3)], float)  # (all on the circle of radius 5, exactly)
+
+
+@pytest.mark.parametrize("case", ["grid3", "grid", "circle", "circles", "lattice"])
+def test_voronoi_merges_cocircular_triangles_as_scipy(case, backend, rng):
+    # issue 49: triangles that share a circle exactly give one Voronoi vertex, so no ridge has
+    # length zero (a 3x3 grid: 4 vertices, as SciPy's, not 8)
+    p = {"grid3": GRID,
+         "grid": np.array([(i, j) for i in range(17) for j in range(11)], float),
+         "circle": CIRCLE,
+         "circles": np.concatenate([CIRCLE, 3 * CIRCLE + [40, 0], CIRCLE / 2 + [0, 30]]),
+         "lattice": np.unique(rng.integers(0, 30, (600, 2)), axis=0).astype(float)}[case]
+    g = gpugeom.Voronoi(p, backend=backend)
+    _same_voronoi_as_scipy(g, ss.Voronoi(p))
+    if case == "grid3":
+        assert len(g.vertices) == 4 and len(g.ridge_points) == 12
+        assert sorted(g.regions[g.point_region[4]]) == [0, 1, 2, 3]
+    if case == "circle":
+        assert len(g.vertices) == 1 and all(g.regions[g.point_region[i]] == [-1, 0]
+                                            for i in range(len(p)))
+    rv = np.asarray(g.ridge_vertices_array)
+    assert np.all(rv[:, 0] != rv[:, 1])  # no ridge of length zero
+    for r in g.regions:
+        assert all(a != b for a, b in zip(r, r[1:] + r[:1])) or len(r) < 2
+    # each Delaunay triangle's Voronoi vertex is its circumcentre
+    t = np.asarray(g.delaunay_simplices)
+    centre = np.asarray(g.vertices)[np.asarray(g.simplex_vertex)]
+    radius = np.linalg.norm(p[t] - centre[:, None, :], axis=2)
+    np.testing.assert_allclose(radius, radius[:, :1].repeat(3, axis=1), rtol=1e-12)
 
 
 @pytest.mark.parametrize("shape", ["ball", "cube"])

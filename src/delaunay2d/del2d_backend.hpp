@@ -29,7 +29,7 @@ struct DeviceOutput {
 // The Voronoi diagram of the device entry, in the executor's memory.
 struct DeviceVoronoiOutput {
   std::shared_ptr<double> vertices, ridge_directions;
-  std::shared_ptr<std::int32_t> ridge_points, ridge_vertices, cell_vertices;
+  std::shared_ptr<std::int32_t> ridge_points, ridge_vertices, cell_vertices, simplex_vertex;
   std::shared_ptr<std::int64_t> cell_offsets;
   std::int64_t num_vertices = 0, num_ridges = 0, num_cell_vertices = 0;
 };

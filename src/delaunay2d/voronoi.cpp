@@ -111,6 +111,7 @@ DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
   v.ridge_directions = std::move(out.ridge_directions);
   v.cell_offsets = std::move(out.cell_offsets);
   v.cell_vertices = std::move(out.cell_vertices);
+  v.simplex_vertex = std::move(out.simplex_vertex);
   return v;
 }
 

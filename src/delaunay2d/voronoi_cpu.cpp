@@ -1,4 +1,5 @@
 // The Voronoi diagram of a triangulation in executor memory, compiled for the CPU executor.
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -11,7 +12,10 @@
 #include "exec/deliver.hpp"
 #include "exec/cpu_exec.hpp"
 #include "exec/peak.hpp"
+#include "exec/scratch_lease.hpp"
 #include "gpugeom/removed.hpp"
+#include "mesh/union_find.hpp"
+#include "predicates/predicates.hpp"
 
 namespace gpugeom::del2d::cpu_impl {
 using Exec = CpuExec;

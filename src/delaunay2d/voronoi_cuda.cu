@@ -1,4 +1,5 @@
 // The Voronoi diagram of a triangulation in executor memory, compiled for the CUDA executor.
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -11,7 +12,10 @@
 #include "exec/deliver.hpp"
 #include "exec/cuda_exec.cuh"
 #include "exec/peak.hpp"
+#include "exec/scratch_lease.hpp"
 #include "gpugeom/removed.hpp"
+#include "mesh/union_find.hpp"
+#include "predicates/predicates.hpp"
 
 namespace gpugeom::del2d::cuda_impl {
 using Exec = CudaExec;

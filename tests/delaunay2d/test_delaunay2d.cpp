@@ -2,6 +2,8 @@
 // errors, and the Voronoi diagram.
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <map>
 #include <set>
 
 #include "../common/caller_arrays.hpp"
@@ -180,8 +182,10 @@ TEST(Delaunay2d, Voronoi) {
   const auto t = delaunay2d(p, cpu());
   const auto v = voronoi2d(&p.data()->x, 9, t);
   ASSERT_EQ(v.cell_offsets.size(), 10u);
-  // centre (index 4): bounded, its vertices the four cell corners (each square's two
-  // triangles share one circumcentre)
+  // each square's two triangles share one circle exactly: one vertex each (issue 49), 4 in all
+  ASSERT_EQ(v.vertices.size(), 8u);
+  ASSERT_EQ(v.simplex_vertex.size(), t.num_triangles());
+  // centre (index 4): bounded, its vertices the four cell corners, once each
   std::vector<std::pair<double, double>> corners;
   for (std::int64_t j = v.cell_offsets[4]; j < v.cell_offsets[5]; ++j) {
     const std::int32_t w = v.cell_vertices[j];
@@ -189,14 +193,21 @@ TEST(Delaunay2d, Voronoi) {
     corners.push_back({v.vertices[2 * w], v.vertices[2 * w + 1]});
   }
   std::sort(corners.begin(), corners.end());
-  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
   EXPECT_EQ(corners, (std::vector<std::pair<double, double>>{
                          {0.5, 0.5}, {0.5, 1.5}, {1.5, 0.5}, {1.5, 1.5}}));
-  // every other point is on the hull: unbounded
+  // every other point is on the hull: unbounded; a corner's cell has one vertex, an edge's two
   for (int i = 0; i < 9; ++i)
-    if (i != 4) EXPECT_EQ(v.cell_vertices[v.cell_offsets[i]], -1) << i;
-  // ridges: one per Delaunay edge, unbounded ones with a unit outward direction
-  EXPECT_EQ(v.ridge_points.size() / 2, (3 * t.num_triangles() + 8) / 2);
+    if (i != 4) {
+      EXPECT_EQ(v.cell_vertices[v.cell_offsets[i]], -1) << i;
+      EXPECT_EQ(v.cell_offsets[i + 1] - v.cell_offsets[i], i % 2 ? 3 : 2) << i;
+    }
+  // ridges: one per edge of the grid (the squares' diagonals have none), none of length zero
+  EXPECT_EQ(v.ridge_points.size() / 2, 12u);
+  for (std::size_t r = 0; r < v.ridge_vertices.size() / 2; ++r) {
+    EXPECT_NE(v.ridge_vertices[2 * r], v.ridge_vertices[2 * r + 1]);
+    const std::int32_t a = v.ridge_points[2 * r], b = v.ridge_points[2 * r + 1];
+    EXPECT_EQ(std::abs(p[a].x - p[b].x) + std::abs(p[a].y - p[b].y), 1.0);
+  }
   // clipped cells tile the box: areas sum to the box area
   const auto c = clip_voronoi_cells(&p.data()->x, 9, t, v, -1, -1, 3, 3);
   double total = 0;
@@ -214,6 +225,79 @@ TEST(Delaunay2d, Voronoi) {
   EXPECT_NEAR(total, 16.0, 1e-9);
 }
 
+// Triangles whose points lie on one circle exactly share one Voronoi vertex (issue 49): on every
+// degenerate case with integer coordinates, the vertices are the classes of triangles joined
+// across exactly cocircular edges (decided here in 128-bit integers), no ridge joins a vertex to
+// itself and no cell repeats a vertex.
+TEST(Delaunay2d, VoronoiMergesCocircularTriangles) {
+  using I = __int128;
+  int tested = 0;
+  for (const auto& c : gg_del2d::degenerate_cases()) {
+    const bool integer = std::all_of(c.pts.begin(), c.pts.end(), [](const Point2& q) {
+      return q.x == std::floor(q.x) && q.y == std::floor(q.y) && std::abs(q.x) < 1e6 &&
+             std::abs(q.y) < 1e6;
+    });
+    if (!integer || c.pts.size() < 3) continue;
+    SCOPED_TRACE(c.name);
+    ++tested;
+    const std::int64_t n = std::int64_t(c.pts.size());
+    const auto t = delaunay2d(c.pts, cpu());
+    const auto v = voronoi2d(&c.pts.data()->x, n, t);
+    const std::int64_t nt = std::int64_t(t.num_triangles());
+    ASSERT_EQ(std::int64_t(v.simplex_vertex.size()), nt);
+    auto cocircular = [&](std::int64_t a, std::int64_t b) {
+      std::int32_t d = -1;  // b's vertex that is not a's
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t w = t.triangles[3 * b + k];
+        if (w != t.triangles[3 * a] && w != t.triangles[3 * a + 1] && w != t.triangles[3 * a + 2])
+          d = w;
+      }
+      I m[3][3];
+      for (int k = 0; k < 3; ++k) {
+        const Point2& q = c.pts[t.triangles[3 * a + k]];
+        const I x = I(q.x) - I(c.pts[d].x), y = I(q.y) - I(c.pts[d].y);
+        m[k][0] = x, m[k][1] = y, m[k][2] = x * x + y * y;
+      }
+      return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                 m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]) ==
+             0;
+    };
+    std::vector<std::int64_t> root(static_cast<std::size_t>(nt));
+    for (std::int64_t i = 0; i < nt; ++i) root[i] = i;
+    auto find = [&](std::int64_t x) {
+      while (root[x] != x) x = root[x];
+      return x;
+    };
+    for (std::int64_t a = 0; a < nt; ++a)
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t b = t.neighbors[3 * a + k];
+        if (b > a && cocircular(a, b)) {
+          const std::int64_t ra = find(a), rb = find(b);
+          root[std::max(ra, rb)] = std::min(ra, rb);
+        }
+      }
+    std::map<std::int64_t, std::int32_t> vertex_of_class;
+    for (std::int64_t a = 0; a < nt; ++a) {
+      const auto [it, fresh] = vertex_of_class.emplace(find(a), v.simplex_vertex[a]);
+      EXPECT_EQ(it->second, v.simplex_vertex[a]) << "triangle " << a;
+      (void)fresh;
+    }
+    EXPECT_EQ(v.vertices.size(), 2 * vertex_of_class.size());
+    std::set<std::int32_t> named;
+    for (const auto& kv : vertex_of_class) named.insert(kv.second);
+    EXPECT_EQ(named.size(), vertex_of_class.size());  // one vertex per class
+    for (std::size_t r = 0; r < v.ridge_vertices.size() / 2; ++r)
+      EXPECT_NE(v.ridge_vertices[2 * r], v.ridge_vertices[2 * r + 1]) << "ridge " << r;
+    for (std::int64_t i = 0; i < n; ++i) {
+      const std::int64_t b = v.cell_offsets[i], e = v.cell_offsets[i + 1];
+      for (std::int64_t j = b; e - b > 1 && j < e; ++j)
+        EXPECT_NE(v.cell_vertices[j], v.cell_vertices[j + 1 < e ? j + 1 : b]) << "cell " << i;
+    }
+  }
+  EXPECT_GE(tested, 5);
+}
+
 TEST(Delaunay2d, VoronoiCellsTileTheBox) {
   const auto p = generate2d("uniform", 3000, 9);
   const auto t = delaunay2d(p, cpu());
@@ -229,9 +313,11 @@ TEST(Delaunay2d, VoronoiCellsTileTheBox) {
     }
     total += a / 2;
     // the site lies in its own cell: its bounded cell vertices are circumcentres of its star
+    // (in general position one per triangle)
     for (std::int64_t j = v.cell_offsets[i]; j < v.cell_offsets[i + 1]; ++j) {
       const std::int32_t w = v.cell_vertices[j];
       if (w < 0) continue;
+      ASSERT_EQ(v.simplex_vertex[std::size_t(w)], w);
       const std::int32_t* tri = &t.triangles[3 * std::size_t(w)];
       EXPECT_TRUE(tri[0] == i || tri[1] == i || tri[2] == i);
     }

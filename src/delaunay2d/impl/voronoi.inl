@@ -15,6 +15,103 @@ GG_HD inline bool vor_open(const std::int32_t* nb, std::int64_t c) {
   return nb[3 * (c / 3) + (c % 3 + 2) % 3] < 0;
 }
 
+// The Voronoi vertices of a triangulation: one per circle. Triangles across an edge whose four
+// points lie on one circle exactly (the exact in-circle test, no perturbation) have the same
+// circumcentre, so the diagram gives them one vertex: the classes of triangles joined through such
+// edges (union-find, whose roots are each class's smallest triangle, whatever the order of the
+// unions) are the vertices, numbered in the order of their smallest triangles. Without the merge
+// a 3x3 grid has 8 vertices where it has 4, and zero-length ridges between them (issue 49).
+struct VorVertices {
+  typename Exec::template Buffer<std::int32_t> of;     // per triangle, its vertex
+  typename Exec::template Buffer<std::int32_t> first;  // per vertex, its smallest triangle
+  std::int64_t count = 0;
+};
+inline VorVertices vor_vertices(Exec& ex, const double* xy, const std::int32_t* tri,
+                                const std::int32_t* nb, std::int64_t nt) {
+  using I32 = std::int32_t;
+  using I64 = std::int64_t;
+  VorVertices V;
+  V.of = ex.template alloc<I32>(std::size_t(nt));
+  auto d_parent = ex.template alloc<I32>(std::size_t(nt));
+  I32* parent = d_parent.data();
+  ex.for_each_index(
+      nt, GG_LAMBDA(I64 t) { parent[t] = I32(t); });
+  LeasePool<Exec> pool(ex, std::clamp<std::int64_t>(ex.concurrency(), 64, 1024),
+                       pred::kIncircleScratch);
+  const ScratchLease lease = pool.view;
+  auto d_joined = ex.template alloc<I64>(1);
+  I64* joined = d_joined.data();
+  ex.fill(joined, 1, I64(0));
+  ex.for_each_index(
+      3 * nt, GG_LAMBDA(I64 c) {
+        const I64 t = c / 3;
+        const I32 o = nb[c];
+        if (o <= t) return;  // (each edge once, from its smaller triangle; hull edges have none)
+        const int j = nb[3 * I64(o)] == t ? 0 : nb[3 * I64(o) + 1] == t ? 1 : 2;
+        const double* a = xy + 2 * I64(tri[3 * t]);
+        const double* b = xy + 2 * I64(tri[3 * t + 1]);
+        const double* e = xy + 2 * I64(tri[3 * t + 2]);
+        const double* d = xy + 2 * I64(tri[3 * I64(o) + j]);
+        int r = pred::incircle_fast(a, b, e, d);
+        if (r == 0) {
+          double* s = lease.acquire(std::uint32_t(t) * 2654435761u + std::uint32_t(o));
+          r = pred::incircle(a, b, e, d, s);
+          lease.release(s);
+        }
+        if (r != 0) return;
+        mesh::uf_unite(parent, I32(t), o);
+        atomic_add(joined, I64(1));
+      });
+  I64 nj = 0;
+  ex.to_host(joined, 1, &nj);
+  V.first = ex.template alloc<I32>(std::size_t(nt - nj));
+  I32* of = V.of.data();
+  I32* first = V.first.data();
+  V.count = nt - nj;
+  if (nj == 0) {  // (the general case: one vertex per triangle)
+    ex.for_each_index(
+        nt, GG_LAMBDA(I64 t) { of[t] = first[t] = I32(t); });
+    return V;
+  }
+  // (finding only halves paths now: the roots stay where they are)
+  ex.for_each_index(
+      nt, GG_LAMBDA(I64 t) { of[t] = mesh::uf_find(parent, I32(t)); });
+  auto d_rank = ex.template alloc<I64>(std::size_t(nt + 1));
+  I64* rank = d_rank.data();
+  ex.exclusive_scan_of(
+      nt + 1, GG_LAMBDA(I64 t)->I64 { return t < nt && of[t] == t; }, rank);
+  ex.compact_indices(
+      nt, GG_LAMBDA(I64 t) { return of[t] == t; }, first);
+  ex.for_each_index(
+      nt, GG_LAMBDA(I64 t) { of[t] = I32(rank[of[t]]); });
+  return V;
+}
+
+// Whether corner c's edge has a ridge: once per edge (vor::has_ridge), and not between two
+// triangles of one circle (their vertex is one).
+GG_HD inline bool vor_ridge(const std::int32_t* nb, const std::int32_t* vid, std::int64_t c) {
+  const std::int64_t t = c / 3;
+  const std::int32_t o = nb[c];
+  return vor::has_ridge(nb, t, int(c % 3)) && !(o >= 0 && vid[o] == vid[t]);
+}
+
+// A cell's vertices along the walk round its point: consecutive triangles of one circle give
+// one vertex, and so do the last and the first run of a closed cell when they are one circle.
+struct CellRun {
+  std::int32_t first = -1, last = -1;
+  std::int64_t runs = 0;
+  GG_HD bool step(std::int32_t w) {  // whether w starts a run (is written)
+    if (runs && w == last) return false;
+    if (!runs) first = w;
+    last = w;
+    ++runs;
+    return true;
+  }
+  GG_HD std::int64_t length(bool open) const {
+    return !open && runs > 1 && last == first ? runs - 1 : runs;
+  }
+};
+
 inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* tri,
                          const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
                          const RunOptions& run, DeviceVoronoiOutput& out, Stats& st,
@@ -24,17 +121,20 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   using I32 = std::int32_t;
   using I64 = std::int64_t;
-  // Voronoi vertices: the circumcentres.
-  auto vx = ex.template alloc<double>(std::size_t(2 * nt));
+  // Voronoi vertices: one per circle, the triangles that share it exactly merged.
+  VorVertices V = vor_vertices(ex, xy, tri, nb, nt);
+  const I32* vid = V.of.data();
+  const I64 nv = V.count;
+  auto vx = ex.template alloc<double>(std::size_t(2 * nv));
   double* v = vx.data();
+  const I32* first = V.first.data();
   ex.for_each_index(
-      nt, GG_LAMBDA(I64 t) { vor::circumcentre(xy, tri, t, v + 2 * t); });
+      nv, GG_LAMBDA(I64 j) { vor::circumcentre(xy, tri, first[j], v + 2 * j); });
   // Ridges: one per edge, numbered in (triangle, edge) order.
   auto rank = ex.template alloc<I64>(std::size_t(3 * nt + 1));
   I64* rk = rank.data();
   ex.exclusive_scan_of(
-      3 * nt + 1,
-      GG_LAMBDA(I64 c)->I64 { return c < 3 * nt && vor::has_ridge(nb, c / 3, int(c % 3)) ? 1 : 0; },
+      3 * nt + 1, GG_LAMBDA(I64 c)->I64 { return c < 3 * nt && vor_ridge(nb, vid, c) ? 1 : 0; },
       rk);
   I64 nr = 0;
   ex.to_host(rk + 3 * nt, 1, &nr);
@@ -49,6 +149,8 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
         const I64 r = rk[c];
         if (rk[c + 1] == r) return;
         vor::ridge(xy, tri, nb, c / 3, int(c % 3), rp + 2 * r, rv + 2 * r, rd + 2 * r);
+        for (int e = 0; e < 2; ++e)
+          if (rv[2 * r + e] >= 0) rv[2 * r + e] = vid[rv[2 * r + e]];
       });
   // Cells: each vertex's walk starts at its key's corner; duplicates walk their original's.
   auto keyb = ex.template alloc<I64>(std::size_t(n));
@@ -75,9 +177,10 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
       GG_LAMBDA(I64 i)->I64 {
         if (i >= n || src_of.removed(i)) return 0;
         const I64 c = vor::start_corner(key[src_of(i)]);
-        I64 len = vor_open(nb, c) ? 1 : 0;
-        vor::walk_star(tri, nb, c, nt, [&](I64, int) { ++len; });
-        return len;
+        const bool open = vor_open(nb, c);
+        CellRun run{};
+        vor::walk_star(tri, nb, c, nt, [&](I64 t, int) { run.step(vid[t]); });
+        return (open ? 1 : 0) + run.length(open);
       },
       off);
   I64 ncv = 0;
@@ -91,25 +194,32 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
         const I64 c = vor::start_corner(key[src_of(i)]);
         // An unbounded cell starts with -1: its walk starts at a corner whose clockwise side
         // is open (start_key prefers those).
+        const bool open = vor_open(nb, c);
         I64 at = 0;
-        if (vor_open(nb, c)) o[at++] = -1;
-        vor::walk_star(tri, nb, c, nt, [&](I64 t, int) { o[at++] = I32(t); });
+        if (open) o[at++] = -1;
+        CellRun run{};
+        // (a closed cell's last run, when it is the first one's circle, was not counted)
+        const I64 len = off[i + 1] - off[i];
+        vor::walk_star(tri, nb, c, nt, [&](I64 t, int) {
+          if (run.step(vid[t]) && at < len) o[at++] = vid[t];
+        });
       });
   if (host) {  // the host entry: into its HostVectors (on the CPU executor a parallel copy)
     const OutBuffer<double> nd{};
     const OutBuffer<I32> ni{};
     const OutBuffer<I64> nl{};
-    deliver::to_host(ex, v, 2 * nt, nd, host->vertices);
+    deliver::to_host(ex, v, 2 * nv, nd, host->vertices);
     deliver::to_host(ex, rp, 2 * nr, ni, host->ridge_points);
     deliver::to_host(ex, rv, 2 * nr, ni, host->ridge_vertices);
     deliver::to_host(ex, rd, 2 * nr, nd, host->ridge_directions);
     deliver::to_host(ex, off, n + 1, nl, host->cell_offsets);
     deliver::to_host(ex, cv, ncv, ni, host->cell_vertices);
+    deliver::to_host(ex, vid, nt, ni, host->simplex_vertex);
     st.phase_ms.push_back({"voronoi", ms_since(t0)});
     return;
   }
   ex.sync();  // the caller may read them now (and free them on any stream)
-  out.num_vertices = nt;
+  out.num_vertices = nv;
   out.num_ridges = nr;
   out.num_cell_vertices = ncv;
   out.vertices = vx.hand_over();
@@ -118,5 +228,6 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
   out.ridge_directions = rdb.hand_over();
   out.cell_offsets = offb.hand_over();
   out.cell_vertices = cvb.hand_over();
+  out.simplex_vertex = V.of.hand_over();
   st.phase_ms.push_back({"voronoi", ms_since(t0)});
 }
