@@ -165,13 +165,19 @@ def as_input(a, dtype, name: str, kind: Optional[Kind] = None):
     return np.ascontiguousarray(arr, dtype=dtype), kind
 
 
+class ShapeError(ValueError, IndexError):
+    """A query array of the wrong shape: a ValueError as gpugeom raises them, and an IndexError as
+    SciPy's ``find_simplex`` raises it."""
+
+
 def points_input(points, dims, backend: str, threads: int = 0):
     """Validated point coordinates: float64 (n, d) with d in dims."""
     check_backend(backend)
     check_threads(threads)
     if getattr(points, "ndim", 2) != 2:  # (before a 0-d array becomes 1-d below)
         want = " or ".join(f"(n, {d})" for d in dims)
-        raise ValueError(f"points must have shape {want}, got {tuple(points.shape)}")
+        raise ValueError(f"points must have shape {want} (2 dimensions), got "
+                         f"{tuple(points.shape)} ({points.ndim} dimensions)")
     arr, kind = as_input(points, np.float64, "points")
     shape = tuple(arr.shape)
     if len(shape) != 2 or shape[1] not in dims:

@@ -43,6 +43,55 @@ def _index_list(indices, n):
     return np.ascontiguousarray(_arrays.to_host(arr), dtype=np.int32)
 
 
+def _inverse(t):
+    """The inverses of a stack of 2x2 or 3x3 matrices by their adjugates (no error where one is
+    singular in floating point: its entries are then inf or NaN)."""
+    if t.shape[-1] == 2:
+        a, b, c, d = t[:, 0, 0], t[:, 0, 1], t[:, 1, 0], t[:, 1, 1]
+        det = a * d - b * c
+        rows = [[d, -b], [-c, a]]
+    else:
+        m = [[t[:, i, j] for j in range(3)] for i in range(3)]
+
+        def cof(i, j):  # the cofactor of entry (i, j)
+            r = [k for k in range(3) if k != i]
+            c = [k for k in range(3) if k != j]
+            v = m[r[0]][c[0]] * m[r[1]][c[1]] - m[r[0]][c[1]] * m[r[1]][c[0]]
+            return v if (i + j) % 2 == 0 else -v
+
+        det = m[0][0] * cof(0, 0) + m[0][1] * cof(0, 1) + m[0][2] * cof(0, 2)
+        rows = [[cof(j, i) for j in range(3)] for i in range(3)]  # (transposed)
+    inv = t.copy() if hasattr(t, "copy") else t.clone()
+    for i, row in enumerate(rows):
+        for j, v in enumerate(row):
+            inv[:, i, j] = v / det
+    return inv
+
+
+def _as_kind(kind, host):
+    """A host NumPy array as an array of `kind` (NumPy, CuPy, PyTorch)."""
+    xp = kind.xp()
+    return kind.from_xp(host if xp is np else xp.asarray(host))
+
+
+# Qhull's options are accepted where they leave the exact result as it is (they scale the input,
+# set Qhull's precision handling or its output); QG, which selects Qhull's "good" facets, is
+# refused. QJ (joggle: Qhull's way round its rounding) is accepted, as the predicates are exact,
+# except where it would also turn copies of a point into vertices (_refuse_joggled_copies).
+def _check_qhull_options(opts: Optional[str]):
+    for tok in (opts or "").split():
+        if tok.startswith("QG"):
+            raise ValueError(f"qhull_options {tok!r} is not offered by gpugeom (Qhull's 'good' "
+                             "facets and the attribute good)")
+
+
+def _refuse_joggled_copies(opts: Optional[str], duplicate_of):
+    if "QJ" in (opts or "").split() and bool((_arrays.to_host(duplicate_of) >= 0).any()):
+        raise ValueError("qhull_options 'QJ' would make every copy of a point a vertex (Qhull "
+                         "joggles them apart): gpugeom is exact and keeps one copy, listing the "
+                         "others in duplicate_of; remove the copies or the option")
+
+
 def _not_supported(name, value, default):
     if value != default:
         raise ValueError(f"{name}={value!r} is not supported by gpugeom (SciPy's default only)")
@@ -257,12 +306,13 @@ class Delaunay(_OfPoints):
     """
 
     _cached = ("vertex_to_simplex", "convex_hull", "transform", "vertex_neighbor_vertices",
-               "coplanar")
+               "coplanar", "_paraboloid", "equations")
 
     def __init__(self, points, furthest_site: bool = False, incremental: bool = False,
                  qhull_options: Optional[str] = None, *, backend: str = "auto",
                  threads: int = 0, progress: Optional[Callable] = None,
                  method: str = "incremental", grid: int = 0):
+        _check_qhull_options(qhull_options)
         _not_supported("furthest_site", furthest_site, False)
         arr, kind = self._take_points(points, (2, 3), backend, threads)
         if method not in ("incremental", "digital"):
@@ -270,7 +320,9 @@ class Delaunay(_OfPoints):
         self._method, self._grid, self._progress = method, grid, progress
         self._incremental = bool(incremental)
         self._dyn = None
-        self._take(self._compute(arr))
+        r = self._compute(arr)
+        _refuse_joggled_copies(qhull_options, self._kind.back(r["duplicate_of"]))
+        self._take(r)
 
     def _compute(self, arr, restart=False):
         if self._incremental and self._method == "incremental":
@@ -335,7 +387,9 @@ class Delaunay(_OfPoints):
         """Affine transforms to barycentric coordinates, as SciPy's: for simplex i,
         ``c = transform[i, :ndim] @ (x - transform[i, ndim])`` gives the first ndim barycentric
         coordinates of x (the last is 1 - sum(c)); shape (nsimplex, ndim + 1, ndim), float64.
-        Every simplex has positive volume, so none is singular."""
+        Every simplex has positive volume; as SciPy's, a simplex so thin that its matrix is
+        ill-conditioned in floating point (reciprocal 1-norm condition number below 1000 eps)
+        has NaN rows, since its transform could not be trusted."""
         xp = self._xp()
         p = self._as_xp(self.points)
         s = self._as_xp(self.simplices)
@@ -343,9 +397,75 @@ class Delaunay(_OfPoints):
         last = p[s[:, d]]
         t = xp.stack([p[s[:, k]] - last for k in range(d)], axis=2)  # columns v_k - v_d
         out = xp.empty((s.shape[0], d + 1, d), dtype=xp.float64)
-        out[:, :d, :] = xp.linalg.inv(t)
+        def norm1(m):  # the largest column sum of each matrix
+            return xp.abs(m).sum(axis=1).max(axis=1)
+
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            inv = _inverse(t)  # (inf or NaN where the rounded determinant is 0)
+            bad = ~(1.0 / (norm1(t) * norm1(inv)) >= 1000 * np.finfo(np.float64).eps)
+        inv[bad] = np.nan
+        out[:, :d, :] = inv
         out[:, d, :] = last
+        out[bad, d, :] = np.nan
         return self._back(out)
+
+    @cached_property
+    def _paraboloid(self):
+        # (as Qhull's Qbb, which SciPy's Delaunay uses: the lifted coordinate scaled to [0, m],
+        # m the largest absolute coordinate)
+        p = _arrays.to_host(self.points)
+        z = (p * p).sum(axis=1)
+        lo, hi = float(z.min()), float(z.max())
+        m = float(np.abs(p).max())
+        scale = m / (hi - lo) if hi > lo and m > 0 else 1.0
+        return scale, -lo * scale
+
+    @property
+    def paraboloid_scale(self) -> float:
+        """As SciPy's: the lifted coordinate is ``sum(x**2) * paraboloid_scale +
+        paraboloid_shift``."""
+        return self._paraboloid[0]
+
+    @property
+    def paraboloid_shift(self) -> float:
+        return self._paraboloid[1]
+
+    def lift_points(self, x):
+        """As SciPy's: the points x (shape (..., ndim)) lifted onto the paraboloid, shape
+        (..., ndim + 1)."""
+        q, qkind = _arrays.as_input(x, np.float64, "x")
+        x = _arrays.to_host(q)
+        z = (x * x).sum(axis=-1) * self.paraboloid_scale + self.paraboloid_shift
+        return _as_kind(qkind, np.concatenate([x, z[..., None]], axis=-1))
+
+    @cached_property
+    def equations(self):
+        """As SciPy's: per simplex, the hyperplane of its lifted vertices, ``[normal, offset]``
+        (unit normal with a negative last component; shape (nsimplex, ndim + 2)), so that
+        ``plane_distance`` is the signed distance to it. Floating point (the lift rounds)."""
+        p = self.lift_points(np.asarray(_arrays.to_host(self.points)))
+        s = _arrays.to_host(self.simplices)
+        d = self.ndim
+        v = p[s]  # (nsimplex, d + 1, d + 1)
+        e = v[:, :d, :] - v[:, d:, :]  # d edge vectors in d + 1 dimensions
+        cols = range(d + 1)
+        # the normal by cofactors: orthogonal to every edge
+        n = np.stack([(-1) ** j * np.linalg.det(e[:, :, [c for c in cols if c != j]])
+                      for j in cols], axis=1)
+        n /= np.linalg.norm(n, axis=1)[:, None]
+        n *= -np.sign(n[:, d:])
+        off = -(n * v[:, d, :]).sum(axis=1)
+        return _as_kind(self._kind, np.concatenate([n, off[:, None]], axis=1))
+
+    def plane_distance(self, xi):
+        """As SciPy's: the signed distance of each lifted point of xi (shape (..., ndim)) to every
+        simplex's hyperplane (``equations``), shape (..., nsimplex)."""
+        q, qkind = _arrays.as_input(xi, np.float64, "xi")
+        x = _arrays.to_host(q)
+        if x.ndim == 0 or x.shape[-1] != self.ndim:
+            raise ValueError(f"xi must have shape (..., {self.ndim}), got {x.shape}")
+        eq = _arrays.to_host(self.equations)
+        return _as_kind(qkind, self.lift_points(x) @ eq[:, :-1].T + eq[:, -1])
 
     @cached_property
     def vertex_neighbor_vertices(self):
@@ -381,19 +501,19 @@ class Delaunay(_OfPoints):
         """
         if tol is not None:
             raise ValueError("find_simplex is exact: tol must be None")
+        if np.shape(xi) == ():
+            raise _arrays.ShapeError(f"xi must have shape (..., {self.ndim}), got a scalar")
         q, qkind = _arrays.as_input(xi, np.float64, "xi")
         qh = _arrays.to_host(q)
-        if qh.shape[-1] != self.ndim:
-            raise ValueError(f"xi must have shape (..., {self.ndim}), got {qh.shape}")
+        if qh.ndim == 0 or qh.shape[-1] != self.ndim:
+            raise _arrays.ShapeError(f"xi must have shape (..., {self.ndim}), got {qh.shape}")
         lead = qh.shape[:-1]
         flat = np.ascontiguousarray(qh.reshape(-1, self.ndim))
         r = _core.find_simplex(np.ascontiguousarray(_arrays.to_host(self.points), np.float64),
                                np.ascontiguousarray(_arrays.to_host(self.simplices), np.int32),
                                np.ascontiguousarray(_arrays.to_host(self.neighbors), np.int32),
                                flat)
-        r = np.asarray(r).reshape(lead)
-        xp = qkind.xp()
-        return qkind.from_xp(r if xp is np else xp.asarray(r))
+        return _as_kind(qkind, np.asarray(r).reshape(lead))
 
     def _as_xp(self, a):
         return self._kind.to_xp(a)
@@ -433,13 +553,16 @@ class Voronoi(_OfPoints):
     def __init__(self, points, furthest_site: bool = False, incremental: bool = False,
                  qhull_options: Optional[str] = None, *, backend: str = "auto",
                  threads: int = 0):
+        _check_qhull_options(qhull_options)
         _not_supported("furthest_site", furthest_site, False)
         arr, kind = self._take_points(points, (2,), backend, threads)
         self._incremental = bool(incremental)
         # Qhull's Qz (in SciPy's default options) adds a point at infinity, whose region is an
         # empty one that no point_region names: SciPy's regions then have one entry more
         self._empty_region = qhull_options is None or "Qz" in qhull_options.split()
-        self._take(self._compute(arr))
+        r = self._compute(arr)
+        _refuse_joggled_copies(qhull_options, self._kind.back(r["duplicate_of"]))
+        self._take(r)
 
     def _compute(self, arr, restart=False):
         if self._incremental:
@@ -527,6 +650,7 @@ class ConvexHull(_OfPoints):
     def __init__(self, points, incremental: bool = False, qhull_options: Optional[str] = None, *,
                  backend: str = "auto", threads: int = 0, method: str = "incremental",
                  grid: int = 0):
+        _check_qhull_options(qhull_options)
         if method not in ("incremental", "digital"):
             raise ValueError(f"method must be 'incremental' or 'digital', got {method!r}")
         arr, kind = self._take_points(points, (2, 3), backend, threads)

@@ -28,6 +28,28 @@ def test_shape_and_dtype_errors():
         gpugeom.Delaunay(np.random.random((10, 2)), furthest_site=True)
 
 
+def test_qhull_options():
+    # issue 49: options that leave the exact result as it is are accepted, QG is refused, and QJ
+    # is refused only where Qhull would joggle copies of a point into vertices
+    p = np.random.default_rng(3).random((50, 2))
+    for make in (gpugeom.Delaunay, gpugeom.Voronoi, gpugeom.ConvexHull):
+        make(p, qhull_options="Qbb Qc Qz Qx Q12 Pp")
+        make(p, qhull_options="QJ Pp")
+        with pytest.raises(ValueError, match="'QG4'.*good"):
+            make(p, qhull_options="QG4")
+    for make in (gpugeom.Delaunay, gpugeom.Voronoi):
+        with pytest.raises(ValueError, match="'QJ'.*copy of a point.*duplicate_of"):
+            make(np.concatenate([p, p[:3]]), qhull_options="QJ")
+    # find_simplex on something that is not points: an error that is both gpugeom's ValueError
+    # and SciPy's IndexError
+    tri = gpugeom.Delaunay(p)
+    for bad in (1, tri, np.zeros((4, 3))):
+        with pytest.raises(ValueError, match="xi must have shape"):
+            tri.find_simplex(bad)
+        with pytest.raises(IndexError):
+            tri.find_simplex(bad)
+
+
 @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
 def test_non_finite(bad, backend):
     p = np.random.default_rng(0).random((50, 3))
