@@ -195,9 +195,7 @@ TEST(CudaDelaunay2d, DeviceEntryOnCallersStream) {
 
 // The Voronoi diagram on the GPU from a device triangulation equals the host's from the same
 // triangulation, array for array.
-TEST(CudaDelaunay2d, VoronoiDeviceEntry) {
-  auto p = generate2d("uniform", 200000, 21);
-  p.push_back(p[5]);  // a duplicate
+void expect_voronoi_as_on_the_host(const std::vector<Point2>& p) {
   const std::int64_t n = std::int64_t(p.size());
   double* dp = nullptr;
   ASSERT_EQ(cudaMalloc(&dp, n * sizeof(Point2)), cudaSuccess);
@@ -229,6 +227,8 @@ TEST(CudaDelaunay2d, VoronoiDeviceEntry) {
             std::vector<std::int64_t>(ref.cell_offsets.begin(), ref.cell_offsets.end()));
   EXPECT_EQ(get(v.cell_vertices, v.num_cell_vertices),
             std::vector<std::int32_t>(ref.cell_vertices.begin(), ref.cell_vertices.end()));
+  EXPECT_EQ(get(v.simplex_vertex, dt.num_triangles),
+            std::vector<std::int32_t>(ref.simplex_vertex.begin(), ref.simplex_vertex.end()));
   cudaFree(dp);
   // The host entry that makes both on the device: the same triangulation and diagram.
   Triangulation2d t2;
@@ -247,6 +247,31 @@ TEST(CudaDelaunay2d, VoronoiDeviceEntry) {
             std::vector<std::int64_t>(ref.cell_offsets.begin(), ref.cell_offsets.end()));
   EXPECT_EQ(both.cell_vertices,
             std::vector<std::int32_t>(ref.cell_vertices.begin(), ref.cell_vertices.end()));
+  EXPECT_EQ(both.simplex_vertex,
+            std::vector<std::int32_t>(ref.simplex_vertex.begin(), ref.simplex_vertex.end()));
+}
+TEST(CudaDelaunay2d, VoronoiDeviceEntry) {
+  auto p = generate2d("uniform", 200000, 21);
+  p.push_back(p[5]);  // a duplicate
+  expect_voronoi_as_on_the_host(p);
+}
+// Triangles on one circle share a vertex (issue 49): the same merged diagram on the GPU, on
+// grids (every square two triangles of one circle) and the degenerate cases.
+TEST(CudaDelaunay2d, VoronoiMergesAsOnTheHost) {
+  std::vector<Point2> grid;
+  for (int i = 0; i < 400; ++i)
+    for (int j = 0; j < 300; ++j) grid.push_back({double(i), double(j)});
+  grid.push_back(grid[77]);
+  expect_voronoi_as_on_the_host(grid);
+  for (const auto& c : gg_del2d::degenerate_cases()) {
+    if (c.pts.size() < 3) continue;
+    SCOPED_TRACE(c.name);
+    try {
+      expect_voronoi_as_on_the_host(c.pts);
+    } catch (const Error& e) {  // (the degenerate cases without a triangulation)
+      EXPECT_EQ(e.code(), ErrorCode::DegenerateInput) << e.what();
+    }
+  }
 }
 
 // The top of the wide slot range (bit 31 of neighbour pointers and list entries) on the GPU:
