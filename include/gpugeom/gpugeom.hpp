@@ -13,3 +13,4 @@
 #include "gpugeom/locate.hpp"
 #include "gpugeom/predicates.hpp"
 #include "gpugeom/spatial.hpp"
+#include "gpugeom/voronoi3d.hpp"

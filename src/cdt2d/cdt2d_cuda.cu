@@ -13,6 +13,7 @@
 #include "gpugeom/delaunay2d.hpp"
 #include "exec/atomics.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/tu_exec.hpp"
 #include "exec/deliver.hpp"
 #include "exec/prefault.hpp"
 #include "exec/scratch_slots.hpp"
@@ -20,7 +21,7 @@
 #include "mesh/union_find.hpp"
 
 namespace gpugeom::cdt::cuda_impl {
-using Exec = CudaExec;
+GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 namespace dt_impl = ::gpugeom::del2d::cuda_impl;
 #include "cdt2d/impl/recover.inl"
 #include "cdt2d/impl/domain.inl"

@@ -17,10 +17,11 @@
 #include "exec/deliver.hpp"
 #include "exec/grid_input.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/tu_exec.hpp"
 #include "exec/peak.hpp"
 
 namespace gpugeom::cvd::cuda_impl {
-using Exec = CudaExec;
+GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 namespace edt_impl = gpugeom::edt::cuda_impl;
 #include "cvd/impl/density.inl"
 #include "cvd/impl/lloyd.inl"

@@ -31,6 +31,7 @@
 #include "exec/deliver.hpp"
 #include "exec/prefault.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/tu_exec.hpp"
 #include "exec/peak.hpp"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
@@ -49,7 +50,7 @@
 #include "spatial/hilbert.hpp"
 
 namespace gpugeom::del2d::cuda_impl {
-using Exec = CudaExec;
+GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 #include "delaunay2d/impl/geometry.inl"
 #include "delaunay2d/impl/prepare.inl"
 #include "delaunay2d/impl/mesh.inl"

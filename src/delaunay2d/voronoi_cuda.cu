@@ -11,6 +11,7 @@
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/tu_exec.hpp"
 #include "exec/peak.hpp"
 #include "exec/scratch_lease.hpp"
 #include "gpugeom/removed.hpp"
@@ -18,7 +19,7 @@
 #include "predicates/predicates.hpp"
 
 namespace gpugeom::del2d::cuda_impl {
-using Exec = CudaExec;
+GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 #include "delaunay2d/impl/voronoi.inl"
 void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
              const std::int32_t* dup, std::int64_t nt, const RunOptions& run,

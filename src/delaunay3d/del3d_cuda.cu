@@ -19,6 +19,7 @@
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/tu_exec.hpp"
 #include "exec/peak.hpp"
 #include "exec/scratch_lease.hpp"
 #include "mesh/adjacency.hpp"
@@ -35,7 +36,7 @@
 #include "predicates/predicates.hpp"
 
 namespace gpugeom::del3d::cuda_impl {
-using Exec = CudaExec;
+GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 namespace edt_impl = gpugeom::edt::cuda_impl;
 #include "delaunay3d/impl/geometry.inl"
 #include "delaunay3d/impl/link.inl"

@@ -15,6 +15,7 @@
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
 #include "exec/cuda_exec.cuh"
+#include "exec/tu_exec.hpp"
 #include "exec/peak.hpp"
 #include "hull3d/hull3d_backend.hpp"
 #include "exec/scratch_slots.hpp"
@@ -31,7 +32,7 @@
 #include "predicates/predicates.hpp"
 
 namespace gpugeom::hull3d::cuda_impl {
-using Exec = CudaExec;
+GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 #include "hull3d/impl/geometry.inl"
 #include "hull3d/impl/prepare.inl"
 #include "hull3d/impl/surface.inl"

@@ -1,15 +1,16 @@
 // Hilbert sort compiled for the CUDA executor (host arrays in, host order out).
 #include "exec/cuda_exec.cuh"
+#include "exec/tu_exec.hpp"
 #include "spatial/hilbert.hpp"
 #include "spatial/spatial_sort_impl.hpp"
 
 namespace gpugeom::cuda_impl {
-using Exec = CudaExec;
+GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 #include "spatial/impl/hilbert_sort.inl"
 
 void hilbert_order(const double* pts, std::int64_t n, int dim, const spatial::Box& box,
                    std::int32_t* order) {
-  CudaExec ex;
+  Exec ex;
   auto dp = ex.alloc<double>(std::size_t(n) * dim);
   auto dord = ex.alloc<std::int32_t>(std::size_t(n));
   ex.from_host(pts, n * dim, dp.data());

@@ -1,0 +1,65 @@
+// The Voronoi diagram of 3D points from their Delaunay tetrahedralisation (issue 49): the entries
+// check what they are given and run the executor's algorithm (impl/voronoi.inl).
+#include <cstdint>
+#include <string>
+#include <utility>
+
+#include "delaunay3d/voronoi3d_backend.hpp"
+#include "exec/dispatch.hpp"
+#include "gpugeom/voronoi3d.hpp"
+
+namespace gpugeom {
+
+// The host entry runs the executor's algorithm on the CPU executor over the caller's arrays (all
+// host threads; the same arrays as the device entry's, bit for bit).
+Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tri) {
+  const std::int64_t nt = tri.tetrahedron_count;
+  if (tri.tetrahedra.size() != std::size_t(4 * nt) || tri.neighbors.size() != std::size_t(4 * nt))
+    throw Error(ErrorCode::InvalidArgument,
+                "the tetrahedralisation's tetrahedra or neighbours are not in its result (were "
+                "they written into the caller's arrays, Delaunay3dOptions::into?): the Voronoi "
+                "diagram needs them there");
+  if (std::int64_t(tri.duplicate_of.size()) != n)
+    throw Error(ErrorCode::InvalidArgument,
+                "the tetrahedralisation does not belong to these " + std::to_string(n) + " points");
+  Voronoi3d v;
+  del3d::DeviceVoronoi3dOutput unused;
+  RunOptions run;
+  run.backend = Backend::Cpu;
+  del3d::cpu_impl::voronoi(xyz, n, tri.tetrahedra.data(), tri.neighbors.data(),
+                           tri.duplicate_of.data(), nt, run, unused, v.stats, &v);
+  return v;
+}
+
+DeviceVoronoi3d voronoi3d_device(const double* device_xyz, std::int64_t n,
+                                 const DeviceTriangulation3d& tri, const RunOptions& run) {
+  if (tri.num_points != n)
+    throw Error(ErrorCode::InvalidArgument,
+                "the tetrahedralisation does not belong to these " + std::to_string(n) + " points");
+  if (!tri.tetrahedra || !tri.neighbors || (!tri.duplicate_of && tri.num_duplicates))
+    throw Error(ErrorCode::InvalidArgument,
+                "the tetrahedralisation's tetrahedra, neighbours or duplicate map are not in it "
+                "(were they written into the caller's arrays, Delaunay3dOptions::into?): the "
+                "Voronoi diagram needs them there");
+  DeviceVoronoi3d v;
+  v.num_points = n;
+  v.backend = v.stats.backend = tri.backend;
+  del3d::DeviceVoronoi3dOutput out;
+  const std::int32_t* dup = tri.duplicate_of.get();  // (a kept one's may mark removed points)
+  GG_ON_EXECUTOR(tri.backend, del3d, voronoi, device_xyz, n, tri.tetrahedra.get(),
+                 tri.neighbors.get(), dup, tri.num_tetrahedra, run, out, v.stats, nullptr);
+  v.num_vertices = out.num_vertices;
+  v.num_ridges = out.num_ridges;
+  v.num_ridge_vertices = out.num_ridge_vertices;
+  v.num_region_vertices = out.num_region_vertices;
+  v.vertices = std::move(out.vertices);
+  v.ridge_points = std::move(out.ridge_points);
+  v.ridge_offsets = std::move(out.ridge_offsets);
+  v.ridge_vertices = std::move(out.ridge_vertices);
+  v.region_offsets = std::move(out.region_offsets);
+  v.region_vertices = std::move(out.region_vertices);
+  v.simplex_vertex = std::move(out.simplex_vertex);
+  return v;
+}
+
+}  // namespace gpugeom
