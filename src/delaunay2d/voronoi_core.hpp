@@ -6,29 +6,54 @@
 #include <cstdint>
 
 #include "base/hd.hpp"
+#include "mesh/sum2.hpp"
 #include "predicates/expansion.hpp"
 
 namespace gpugeom::del2d::vor {
 
-// The circumcentre of triangle t, relative to its first corner (which keeps the rounding to the
-// triangle's own scale).
+// The circumcentre of triangle t: c = r + (|b|^2 c_perp - |c|^2 b_perp) / (2 b x c), with b, c
+// the other corners taken from the reference corner r, an end of the shortest edge (taken from a
+// corner far from two near ones, the edges to those round to parallel vectors and the formula to
+// 0/0: corners 10^40 away from others 10^-30 apart). The differences are scaled by a power of two
+// (exact) so that their squares and products neither overflow nor underflow. Every operation
+// rounded on its own (the device would otherwise fuse products into sums), so that both executors
+// give the same bits.
 GG_HD inline void circumcentre(const double* xy, const std::int32_t* tri, std::int64_t t,
                                double* out) {
-  const double* a = xy + 2 * std::int64_t(tri[3 * t]);
-  const double* b = xy + 2 * std::int64_t(tri[3 * t + 1]);
-  const double* c = xy + 2 * std::int64_t(tri[3 * t + 2]);
-  // Every operation rounded on its own (the device would otherwise fuse products into sums),
-  // so that both executors give the same bits.
   using exact::add_rn;
   using exact::mul_rn;
   using exact::sub_rn;
-  const double bx = sub_rn(b[0], a[0]), by = sub_rn(b[1], a[1]);
-  const double cx = sub_rn(c[0], a[0]), cy = sub_rn(c[1], a[1]);
-  const double d = 2 * sub_rn(mul_rn(bx, cy), mul_rn(by, cx));
+  const double* q[3];
+  for (int k = 0; k < 3; ++k) q[k] = xy + 2 * std::int64_t(tri[3 * t + k]);
+  int ref = 0;
+  double best = 0;
+  for (int i = 0; i < 3; ++i) {  // (edge i: corners i and i + 1)
+    const int j = (i + 1) % 3;
+    const double len = fmax(fabs(sub_rn(q[j][0], q[i][0])), fabs(sub_rn(q[j][1], q[i][1])));
+    if (i == 0 || len < best) best = len, ref = i;
+  }
+  const double* a = q[ref];
+  const double* b0 = q[(ref + 1) % 3];  // (counter-clockwise from the reference: keeps the sign)
+  const double* c0 = q[(ref + 2) % 3];
+  double far = 0;
+  for (int d = 0; d < 2; ++d)
+    far = fmax(far, fmax(fabs(sub_rn(b0[d], a[d])), fabs(sub_rn(c0[d], a[d]))));
+  const int ex = far > 0 ? ilogb(far) : 0;
+  const double bx = ldexp(sub_rn(b0[0], a[0]), -ex), by = ldexp(sub_rn(b0[1], a[1]), -ex);
+  const double cx = ldexp(sub_rn(c0[0], a[0]), -ex), cy = ldexp(sub_rn(c0[1], a[1]), -ex);
+  // (the determinant in twice the precision: a nearly flat triangle's rounds to 0 otherwise)
+  mesh::Sum2 det, nx, ny;
+  det.add_product(bx, cy);
+  det.add_product(-by, cx);
+  const double d = 2 * det.value();
   const double b2 = add_rn(mul_rn(bx, bx), mul_rn(by, by));
   const double c2 = add_rn(mul_rn(cx, cx), mul_rn(cy, cy));
-  out[0] = add_rn(a[0], sub_rn(mul_rn(cy, b2), mul_rn(by, c2)) / d);
-  out[1] = add_rn(a[1], sub_rn(mul_rn(bx, c2), mul_rn(cx, b2)) / d);
+  nx.add_product(cy, b2);
+  nx.add_product(-by, c2);
+  ny.add_product(bx, c2);
+  ny.add_product(-cx, b2);
+  out[0] = add_rn(a[0], ldexp(nx.value() / d, ex));
+  out[1] = add_rn(a[1], ldexp(ny.value() / d, ex));
 }
 
 // Each Delaunay edge is one ridge, taken from the triangle with the smaller index (or the hull).

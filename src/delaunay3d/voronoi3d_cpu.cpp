@@ -14,6 +14,7 @@
 #include "exec/peak.hpp"
 #include "exec/scratch_lease.hpp"
 #include "gpugeom/removed.hpp"
+#include "mesh/sum2.hpp"
 #include "mesh/union_find.hpp"
 #include "mesh/vertex_classes.hpp"
 #include "predicates/expansion.hpp"

@@ -298,6 +298,32 @@ TEST(Delaunay2d, VoronoiMergesCocircularTriangles) {
   EXPECT_GE(tested, 5);
 }
 
+// Every vertex is its triangles' circumcentre, finite, on every degenerate case, coordinates of
+// 10^-30 and 10^40 together included (taken from the far corner, the circumcentre of a triangle
+// with two near corners was 0/0).
+TEST(Delaunay2d, VoronoiVerticesAreCircumcentres) {
+  for (const auto& c : gg_del2d::degenerate_cases()) {
+    Triangulation2d t;
+    try {
+      t = delaunay2d(c.pts, cpu());
+    } catch (const Error&) {
+      continue;  // (no triangulation: tested elsewhere)
+    }
+    SCOPED_TRACE(c.name);
+    const auto v = voronoi2d(&c.pts.data()->x, std::int64_t(c.pts.size()), t);
+    for (std::size_t k = 0; k < t.num_triangles(); ++k) {
+      const double* x = &v.vertices[2 * std::size_t(v.simplex_vertex[k])];
+      double r[3];
+      for (int j = 0; j < 3; ++j) {
+        const Point2& q = c.pts[t.triangles[3 * k + j]];
+        r[j] = std::hypot(q.x - x[0], q.y - x[1]);
+      }
+      ASSERT_TRUE(std::isfinite(x[0]) && std::isfinite(x[1])) << "triangle " << k;
+      for (int j = 1; j < 3; ++j) EXPECT_NEAR(r[j], r[0], 1e-9 * r[0]) << "triangle " << k;
+    }
+  }
+}
+
 TEST(Delaunay2d, VoronoiCellsTileTheBox) {
   const auto p = generate2d("uniform", 3000, 9);
   const auto t = delaunay2d(p, cpu());

@@ -172,10 +172,20 @@ GG_HD inline void circumcentre3(const double* xyz, const std::int32_t* tet, std:
   cross(e[2], e[0], db);
   cross(e[0], e[1], bc);
   const double l0 = dot(e[0], e[0]), l1 = dot(e[1], e[1]), l2 = dot(e[2], e[2]);
-  const double den = 2 * dot(e[0], cd);
+  // (the determinant in twice the precision: a nearly flat tetrahedron's rounds to 0 otherwise)
+  mesh::Sum2 det;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    det.add_product(e[0][i], e[1][j], e[2][k]);
+    det.add_product(-e[0][i], e[1][k], e[2][j]);
+  }
+  const double den = 2 * det.value();
   for (int d = 0; d < 3; ++d) {
-    const double num = add_rn(add_rn(mul_rn(l0, cd[d]), mul_rn(l1, db[d])), mul_rn(l2, bc[d]));
-    out[d] = add_rn(a[d], ldexp(num / den, ex));
+    mesh::Sum2 num;
+    num.add_product(l0, cd[d]);
+    num.add_product(l1, db[d]);
+    num.add_product(l2, bc[d]);
+    out[d] = add_rn(a[d], ldexp(num.value() / den, ex));
   }
 }
 
