@@ -16,6 +16,7 @@
 #include "exec/scratch_lease.hpp"
 #include "gpugeom/removed.hpp"
 #include "mesh/union_find.hpp"
+#include "mesh/vertex_classes.hpp"
 #include "predicates/predicates.hpp"
 
 namespace gpugeom::del2d::cuda_impl {

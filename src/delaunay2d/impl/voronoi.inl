@@ -18,20 +18,12 @@ GG_HD inline bool vor_open(const std::int32_t* nb, std::int64_t c) {
 // The Voronoi vertices of a triangulation: one per circle. Triangles across an edge whose four
 // points lie on one circle exactly (the exact in-circle test, no perturbation) have the same
 // circumcentre, so the diagram gives them one vertex: the classes of triangles joined through such
-// edges (union-find, whose roots are each class's smallest triangle, whatever the order of the
-// unions) are the vertices, numbered in the order of their smallest triangles. Without the merge
-// a 3x3 grid has 8 vertices where it has 4, and zero-length ridges between them (issue 49).
-struct VorVertices {
-  typename Exec::template Buffer<std::int32_t> of;     // per triangle, its vertex
-  typename Exec::template Buffer<std::int32_t> first;  // per vertex, its smallest triangle
-  std::int64_t count = 0;
-};
-inline VorVertices vor_vertices(Exec& ex, const double* xy, const std::int32_t* tri,
-                                const std::int32_t* nb, std::int64_t nt) {
+// edges (mesh/vertex_classes.hpp). Without the merge a 3x3 grid has 8 vertices where it has 4,
+// and zero-length ridges between them (issue 49).
+inline mesh::Classes<Exec> vor_vertices(Exec& ex, const double* xy, const std::int32_t* tri,
+                                        const std::int32_t* nb, std::int64_t nt) {
   using I32 = std::int32_t;
   using I64 = std::int64_t;
-  VorVertices V;
-  V.of = ex.template alloc<I32>(std::size_t(nt));
   auto d_parent = ex.template alloc<I32>(std::size_t(nt));
   I32* parent = d_parent.data();
   ex.for_each_index(
@@ -64,27 +56,7 @@ inline VorVertices vor_vertices(Exec& ex, const double* xy, const std::int32_t* 
       });
   I64 nj = 0;
   ex.to_host(joined, 1, &nj);
-  V.first = ex.template alloc<I32>(std::size_t(nt - nj));
-  I32* of = V.of.data();
-  I32* first = V.first.data();
-  V.count = nt - nj;
-  if (nj == 0) {  // (the general case: one vertex per triangle)
-    ex.for_each_index(
-        nt, GG_LAMBDA(I64 t) { of[t] = first[t] = I32(t); });
-    return V;
-  }
-  // (finding only halves paths now: the roots stay where they are)
-  ex.for_each_index(
-      nt, GG_LAMBDA(I64 t) { of[t] = mesh::uf_find(parent, I32(t)); });
-  auto d_rank = ex.template alloc<I64>(std::size_t(nt + 1));
-  I64* rank = d_rank.data();
-  ex.exclusive_scan_of(
-      nt + 1, GG_LAMBDA(I64 t)->I64 { return t < nt && of[t] == t; }, rank);
-  ex.compact_indices(
-      nt, GG_LAMBDA(I64 t) { return of[t] == t; }, first);
-  ex.for_each_index(
-      nt, GG_LAMBDA(I64 t) { of[t] = I32(rank[of[t]]); });
-  return V;
+  return mesh::number_classes(ex, parent, nt, nj);
 }
 
 // Whether corner c's edge has a ridge: once per edge (vor::has_ridge), and not between two
@@ -122,7 +94,7 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
   using I32 = std::int32_t;
   using I64 = std::int64_t;
   // Voronoi vertices: one per circle, the triangles that share it exactly merged.
-  VorVertices V = vor_vertices(ex, xy, tri, nb, nt);
+  auto V = vor_vertices(ex, xy, tri, nb, nt);
   const I32* vid = V.of.data();
   const I64 nv = V.count;
   auto vx = ex.template alloc<double>(std::size_t(2 * nv));
