@@ -1,0 +1,69 @@
+// The 3D Voronoi diagram on the GPU (issue 49): from a device tetrahedralisation, the host
+// entry's arrays (CPU executor on the same tetrahedra) element for element, on general input,
+// a grid (cospherical cubes) with a copy, and the degenerate cases.
+#include <cuda_runtime.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "del3d_cases.hpp"
+#include "gpugeom/voronoi3d.hpp"
+
+using namespace gpugeom;
+
+namespace {
+template <class T>
+std::vector<T> get(const std::shared_ptr<T>& p, std::int64_t count) {
+  std::vector<T> x(static_cast<std::size_t>(count));
+  EXPECT_EQ(cudaMemcpy(x.data(), p.get(), count * sizeof(T), cudaMemcpyDeviceToHost), cudaSuccess);
+  return x;
+}
+template <class T>
+std::vector<T> vec(const HostVector<T>& v) {
+  return std::vector<T>(v.begin(), v.end());
+}
+
+void expect_as_on_the_host(const std::vector<Point3>& p) {
+  const std::int64_t n = std::int64_t(p.size());
+  double* dp = nullptr;
+  ASSERT_EQ(cudaMalloc(&dp, n * sizeof(Point3)), cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(dp, p.data(), n * sizeof(Point3), cudaMemcpyHostToDevice), cudaSuccess);
+  const auto dt = delaunay3d_device(dp, n);
+  const auto v = voronoi3d_device(dp, n, dt);
+  Delaunay3dOptions o;
+  o.backend = Backend::Cuda;
+  const auto h = delaunay3d(p, o);  // (the same tetrahedra, in the same order)
+  const auto ref = voronoi3d(&p.data()->x, n, h);
+  ASSERT_EQ(3 * v.num_vertices, std::int64_t(ref.vertices.size()));
+  const auto x = get(v.vertices, 3 * v.num_vertices);
+  for (std::size_t k = 0; k < x.size(); ++k)  // (equal, or NaN on both)
+    ASSERT_TRUE(x[k] == ref.vertices[k] || (x[k] != x[k] && ref.vertices[k] != ref.vertices[k]))
+        << k;
+  EXPECT_EQ(get(v.ridge_points, 2 * v.num_ridges), vec(ref.ridge_points));
+  EXPECT_EQ(get(v.ridge_offsets, v.num_ridges + 1), vec(ref.ridge_offsets));
+  EXPECT_EQ(get(v.ridge_vertices, v.num_ridge_vertices), vec(ref.ridge_vertices));
+  EXPECT_EQ(get(v.region_offsets, n + 1), vec(ref.region_offsets));
+  EXPECT_EQ(get(v.region_vertices, v.num_region_vertices), vec(ref.region_vertices));
+  EXPECT_EQ(get(v.simplex_vertex, dt.num_tetrahedra), vec(ref.simplex_vertex));
+  cudaFree(dp);
+}
+}  // namespace
+
+TEST(CudaVoronoi3d, AsOnTheHost) {
+  expect_as_on_the_host(generate3d("uniform", 100000, 3));
+  std::vector<Point3> grid;
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (int k = 0; k < 10; ++k) grid.push_back({double(i), double(j), double(k)});
+  grid.push_back(grid[123]);
+  expect_as_on_the_host(grid);
+  for (const auto& c : gg_hull3d::degenerate_cases()) {
+    SCOPED_TRACE(c.name);
+    try {
+      expect_as_on_the_host(c.pts);
+    } catch (const Error& e) {  // (the cases without a tetrahedralisation)
+      EXPECT_EQ(e.code(), ErrorCode::DegenerateInput) << e.what();
+    }
+  }
+}
