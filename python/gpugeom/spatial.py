@@ -68,6 +68,13 @@ def _inverse(t):
     return inv
 
 
+def _split(offsets, flat) -> list:
+    """CSR arrays (any kind) as a list of lists."""
+    off = _arrays.to_host(offsets).tolist()
+    vals = _arrays.to_host(flat).tolist()
+    return [vals[off[i]:off[i + 1]] for i in range(len(off) - 1)]
+
+
 def _as_kind(kind, host):
     """A host NumPy array as an array of `kind` (NumPy, CuPy, PyTorch)."""
     xp = kind.xp()
@@ -527,22 +534,26 @@ class Delaunay(_OfPoints):
 
 
 class Voronoi(_OfPoints):
-    """Exact Voronoi diagram of 2D points (``scipy.spatial.Voronoi``), dual to the exact
-    Delaunay triangulation: one vertex per circle of its triangles (their circumcentre). Triangles
-    whose points lie on one circle exactly (the exact predicate decides) share one vertex, as
-    SciPy's, so no ridge has length zero (a 3x3 grid has 4 vertices).
+    """Exact Voronoi diagram of 2D or 3D points (``scipy.spatial.Voronoi``), dual to the exact
+    Delaunay triangulation: one vertex per circle (sphere) of its simplices, their circumcentre.
+    Simplices whose points lie on one circle or sphere exactly (the exact predicate decides)
+    share one vertex, as SciPy's, so no ridge is degenerate (a 3x3 grid has 4 vertices, a 3x3x3
+    grid 8, and its ridges are the squares between neighbours along an axis).
 
     Attributes
     ----------
     points, vertices, ridge_points, ridge_vertices, regions, point_region, ndim, npoints, and
     beyond SciPy: ``ridge_directions`` (the outward unit direction of each unbounded ridge),
     ``ridge_vertices_array`` (the ridges as an (nridges, 2) array), ``delaunay_simplices``,
-    ``simplex_vertex`` (per row of ``delaunay_simplices``, its Voronoi vertex).
-    Regions list their vertices counter-clockwise; an unbounded one starts with -1. Duplicate
-    points share the region of their twin.
+    ``simplex_vertex`` (per row of ``delaunay_simplices``, its Voronoi vertex); in 3D
+    ``ridge_offsets`` and ``ridge_vertices_flat`` (the ridges' vertex lists as CSR arrays), and
+    in both ``region_offsets`` and ``region_vertices_flat`` (the regions, one per point, as CSR
+    arrays). In 2D regions list their vertices counter-clockwise, in 3D in increasing order; an
+    unbounded one starts with -1. A 3D ridge lists its vertices in cyclic order, an unbounded
+    one starting with -1. Duplicate points share the region of their twin.
 
     Incremental mode (``incremental=True``): the Delaunay triangulation is kept between calls
-    (C++ ``DynamicDelaunay2d``) and brought up to date by ``add_points``, ``move`` and ``remove``
+    (C++ ``DynamicDelaunay2d``, ``DynamicDelaunay3d``) and brought up to date by ``add_points``, ``move`` and ``remove``
     (a removed point keeps its index and has an empty region); the diagram is then read from it.
     ``track_changes()`` / ``changes()`` say which Delaunay triangles changed, per row of
     ``delaunay_simplices`` (``simplex_vertex`` gives each one's Voronoi vertex).
@@ -555,7 +566,7 @@ class Voronoi(_OfPoints):
                  threads: int = 0):
         _check_qhull_options(qhull_options)
         _not_supported("furthest_site", furthest_site, False)
-        arr, kind = self._take_points(points, (2,), backend, threads)
+        arr, kind = self._take_points(points, (2, 3), backend, threads)
         self._incremental = bool(incremental)
         # Qhull's Qz (in SciPy's default options) adds a point at infinity, whose region is an
         # empty one that no point_region names: SciPy's regions then have one entry more
@@ -566,9 +577,11 @@ class Voronoi(_OfPoints):
 
     def _compute(self, arr, restart=False):
         if self._incremental:
-            # the triangulation kept between calls (DynamicDelaunay2d), the diagram made from it
-            return self._start_kept(_core.DynamicDelaunay2d, arr)
-        return _core.voronoi2d(arr, **self._run)
+            # the triangulation kept between calls (DynamicDelaunay2d / 3d), the diagram made
+            # from it
+            make = _core.DynamicDelaunay2d if self.ndim == 2 else _core.DynamicDelaunay3d
+            return self._start_kept(make, arr)
+        return (_core.voronoi2d if self.ndim == 2 else _core.voronoi3d)(arr, **self._run)
 
     def _kept_result(self, dyn, arr):
         return dyn.voronoi(arr)
@@ -577,26 +590,31 @@ class Voronoi(_OfPoints):
         kind = self._kind
         self.vertices = kind.back(r["vertices"])
         self.ridge_points = kind.back(r["ridge_points"])
-        self.ridge_vertices_array = kind.back(r["ridge_vertices"])
-        self.ridge_directions = kind.back(r["ridge_directions"])
+        if self.ndim == 2:
+            self.ridge_vertices_array = kind.back(r["ridge_vertices"])
+            self.ridge_directions = kind.back(r["ridge_directions"])
+        else:
+            self.ridge_offsets = kind.back(r["ridge_offsets"])
+            self.ridge_vertices_flat = kind.back(r["ridge_vertices"])
         self.delaunay_simplices = kind.back(r["simplices"])
         self.simplex_vertex = kind.back(r["simplex_vertex"])
-        self._offsets = r["cell_offsets"]
-        self._cells = r["cell_vertices"]
+        self.region_offsets = kind.back(r["cell_offsets"])
+        self.region_vertices_flat = kind.back(r["cell_vertices"])
         self.stats = r["stats"]
 
     @cached_property
     def ridge_vertices(self) -> list:
-        """As SciPy: a list of [v1, v2] per ridge, -1 for the vertex at infinity."""
-        return _arrays.to_host(self._kind.back(self.ridge_vertices_array)).tolist()
+        """As SciPy: per ridge the list of its vertices (2D: two; 3D: its polygon in cyclic
+        order), -1 for the vertex at infinity."""
+        if self.ndim == 2:
+            return _arrays.to_host(self._kind.back(self.ridge_vertices_array)).tolist()
+        return _split(self.ridge_offsets, self.ridge_vertices_flat)
 
     @cached_property
     def regions(self) -> list:
-        """Per point (see point_region): its Voronoi vertices, counter-clockwise; -1 first for an
-        unbounded region."""
-        off = _arrays.to_host(self._kind.back(self._offsets))
-        cells = _arrays.to_host(self._kind.back(self._cells)).tolist()
-        return [[]] * self._empty_region + [cells[off[i]:off[i + 1]] for i in range(self.npoints)]
+        """Per point (see point_region): its Voronoi vertices (2D: counter-clockwise; 3D: in
+        increasing order); -1 first for an unbounded region."""
+        return [[]] * self._empty_region + _split(self.region_offsets, self.region_vertices_flat)
 
     @cached_property
     def point_region(self):

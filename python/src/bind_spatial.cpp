@@ -11,6 +11,7 @@
 #include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/hull3d.hpp"
 #include "gpugeom/locate.hpp"
+#include "gpugeom/voronoi3d.hpp"
 #include "verify.hpp"
 
 namespace gpugeom::py {
@@ -363,6 +364,72 @@ nb::dict tets_dict(Triangulation3d&& t) {
   return r;
 }
 
+// A tetrahedralisation's simplices and duplicate map and its Voronoi diagram (issue 49) as a
+// dict: where the device entries left them, or host arrays. "cell_*" are the regions.
+nb::dict voronoi3d_dict(DeviceTriangulation3d& t, DeviceVoronoi3d& v, std::int64_t n, int device) {
+  nb::dict r;
+  const DeviceOut out{v.backend, device};
+  r["simplices"] = out(t.tetrahedra, {sz(t.num_tetrahedra), 4});
+  r["duplicate_of"] = out(t.duplicate_of, {sz(n)});
+  r["vertices"] = out(v.vertices, {sz(v.num_vertices), 3});
+  r["ridge_points"] = out(v.ridge_points, {sz(v.num_ridges), 2});
+  r["ridge_offsets"] = out(v.ridge_offsets, {sz(v.num_ridges) + 1});
+  r["ridge_vertices"] = out(v.ridge_vertices, {sz(v.num_ridge_vertices)});
+  r["cell_offsets"] = out(v.region_offsets, {sz(n) + 1});
+  r["cell_vertices"] = out(v.region_vertices, {sz(v.num_region_vertices)});
+  r["simplex_vertex"] = out(v.simplex_vertex, {sz(t.num_tetrahedra)});
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+nb::dict voronoi3d_dict(Triangulation3d& t, Voronoi3d& v, std::int64_t n) {
+  nb::dict r;
+  const sz nt = t.num_tetrahedra();
+  t.tetrahedra.resize(4 * nt);
+  r["simplices"] = host_array(std::move(t.tetrahedra), {nt, 4});
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
+  const sz nv = v.vertices.size() / 3, nr = v.ridge_points.size() / 2;
+  const sz nrv = v.ridge_vertices.size(), ncv = v.region_vertices.size();
+  r["vertices"] = host_array(std::move(v.vertices), {nv, 3});
+  r["ridge_points"] = host_array(std::move(v.ridge_points), {nr, 2});
+  r["ridge_offsets"] = host_array(std::move(v.ridge_offsets), {nr + 1});
+  r["ridge_vertices"] = host_array(std::move(v.ridge_vertices), {nrv});
+  r["cell_offsets"] = host_array(std::move(v.region_offsets), {sz(n) + 1});
+  r["cell_vertices"] = host_array(std::move(v.region_vertices), {ncv});
+  r["simplex_vertex"] = host_array(std::move(v.simplex_vertex), {nt});
+  Stats st = t.stats;
+  for (const auto& kv : v.stats.counters) st.counters[kv.first] = kv.second;
+  st.phase_ms.insert(st.phase_ms.end(), v.stats.phase_ms.begin(), v.stats.phase_ms.end());
+  r["stats"] = stats_dict(st);
+  return r;
+}
+
+// Host points: the tetrahedralisation on the executor the options pick, the diagram on the host
+// threads from its arrays (host results); device points: both where the points are.
+nb::dict voronoi3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+                        int threads) {
+  const Input in = points_input(points, 3);
+  auto o = options_for<Delaunay3dOptions>(backend, stream, threads, in);
+  const std::int64_t n = in.shape[0];
+  if (in.on_device) {
+    DeviceTriangulation3d t;
+    DeviceVoronoi3d v;
+    {
+      nb::gil_scoped_release released;
+      t = delaunay3d_device(pts(in), n, o);
+      v = voronoi3d_device(pts(in), n, t, o);
+    }
+    return voronoi3d_dict(t, v, n, device_of(o));
+  }
+  Triangulation3d t;
+  Voronoi3d v;
+  {
+    nb::gil_scoped_release released;
+    t = delaunay3d(pts(in), n, o);
+    v = voronoi3d(pts(in), n, t);
+  }
+  return voronoi3d_dict(t, v, n);
+}
+
 // A 3D tetrahedralisation kept between calls (Delaunay(incremental=True) in 3D; issue 47), as
 // Dynamic2dState. Ctrl-C ends a long insertion (KeyboardInterrupt), the object left as it was.
 struct Dynamic3dState {
@@ -370,6 +437,7 @@ struct Dynamic3dState {
   DynamicDelaunay3d t;
   bool on_device;
   int device;
+  RunOptions run;  // (its device and stream: the Voronoi diagram runs there too)
 };
 
 void dynamic3d_init(Dynamic3dState* self, const AnyArray& points, const std::string& backend,
@@ -385,7 +453,34 @@ void dynamic3d_init(Dynamic3dState* self, const AnyArray& points, const std::str
     return in.on_device ? DynamicDelaunay3d::from_device(pts(in), n, o)
                         : DynamicDelaunay3d(pts(in), n, o);
   });
-  new (self) Dynamic3dState{std::move(t), in.on_device, in.on_device ? device_of(o) : -1};
+  new (self) Dynamic3dState{std::move(t), in.on_device, in.on_device ? device_of(o) : -1, o};
+}
+
+// The Voronoi diagram of a kept tetrahedralisation (Voronoi(incremental=True) in 3D), made from
+// its current tetrahedra where they are; points: its current points, where its first were.
+nb::dict dynamic_voronoi3d(const Dynamic3dState& self, const AnyArray& points) {
+  const Input in = kept_points_input(self, points);
+  const std::int64_t n = in.shape[0];
+  if (n != self.t.num_points())
+    throw nb::value_error("points must be the tetrahedralisation's current points");
+  if (self.on_device) {
+    DeviceTriangulation3d t;
+    DeviceVoronoi3d v;
+    {
+      nb::gil_scoped_release released;
+      t = self.t.device_tetrahedralisation();
+      v = voronoi3d_device(pts(in), n, t, self.run);
+    }
+    return voronoi3d_dict(t, v, n, self.device);
+  }
+  Triangulation3d t;
+  Voronoi3d v;
+  {
+    nb::gil_scoped_release released;
+    t = self.t.tetrahedralisation();
+    v = voronoi3d(pts(in), n, t);
+  }
+  return voronoi3d_dict(t, v, n);
 }
 
 nb::dict dynamic3d_result(const Dynamic3dState& self) {
@@ -621,8 +716,11 @@ void bind_spatial(nb::module_& m) {
           "track_changes", [](Dynamic3dState& s, bool on) { s.t.track_changes(on); }, "on"_a)
       .def("changes", &dynamic_changes<Dynamic3dState>)
       .def("result", &dynamic3d_result)
+      .def("voronoi", &dynamic_voronoi3d, "points"_a)
       .def_prop_ro("npoints", [](const Dynamic3dState& s) { return s.t.num_points(); });
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
+        "threads"_a = 0);
+  m.def("voronoi3d", &voronoi3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);
   m.def("convex_hull3d", &hull3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0, "method"_a = "incremental", "grid"_a = 0);

@@ -1,5 +1,7 @@
 """Delaunay, Voronoi, ConvexHull against SciPy (general position: the same structures) and the
 exact checkers (degenerate input: valid structures)."""
+import types
+
 import numpy as np
 import pytest
 import scipy.spatial as ss
@@ -124,8 +126,19 @@ def test_degenerate_3d_grid(backend):
 
 
 def _same_voronoi_as_scipy(g, s, every=1):
-    """The same vertices (up to Qhull's rounding), ridges and regions as SciPy's diagram."""
+    """The same vertices (up to Qhull's rounding), ridges and regions as SciPy's diagram. In 3D
+    Qhull leaves out the unbounded ridges with one finite vertex (a wedge between two rays, as
+    between two points on a hull edge), which gpugeom lists: they are compared apart."""
     assert g.vertices.shape == s.vertices.shape and g.vertices.dtype == np.float64
+    if g.ndim == 3:
+        wedge = [len(r) == 2 for r in g.ridge_vertices]
+        assert all(r[0] == -1 for r, w in zip(g.ridge_vertices, wedge) if w)
+        assert not any(len(r) == 2 for r in s.ridge_vertices)
+        keep = ~np.asarray(wedge, bool)
+        g = types.SimpleNamespace(
+            points=g.points, vertices=g.vertices, regions=g.regions, point_region=g.point_region,
+            ridge_points=np.asarray(g.ridge_points)[keep],
+            ridge_vertices=[r for r, w in zip(g.ridge_vertices, wedge) if not w])
     assert g.ridge_points.shape == s.ridge_points.shape
     # map our vertices to SciPy's by nearest neighbour
     d, m = ss.cKDTree(s.vertices).query(g.vertices)
@@ -150,6 +163,28 @@ def _same_voronoi_as_scipy(g, s, every=1):
 def test_voronoi_equals_scipy(backend, rng):
     p = rng.random((2000, 2))
     _same_voronoi_as_scipy(gpugeom.Voronoi(p, backend=backend), ss.Voronoi(p), every=37)
+
+
+def test_voronoi3d_equals_scipy(backend, rng):
+    # issue 49: the 3D diagram, SciPy's layout (ridges as vertex lists, regions as vertex sets)
+    p = rng.random((1500, 3))
+    g = gpugeom.Voronoi(p, backend=backend)
+    _same_voronoi_as_scipy(g, ss.Voronoi(p), every=7)
+    off = np.asarray(g.ridge_offsets)
+    assert off[0] == 0 and off[-1] == len(g.ridge_vertices_flat) and np.all(np.diff(off) >= 2)
+
+
+@pytest.mark.parametrize("shape", [(3, 3, 3), (5, 4, 3)])
+def test_voronoi3d_grid_is_cubes_as_scipy(shape, backend):
+    # the eight corners of each grid cube lie on one sphere: one vertex per cube, as SciPy's, and
+    # ridges only between neighbours along an axis
+    p = np.array(np.meshgrid(*[np.arange(k, dtype=float) for k in shape], indexing="ij"))
+    p = p.reshape(3, -1).T
+    g = gpugeom.Voronoi(p, backend=backend)
+    _same_voronoi_as_scipy(g, ss.Voronoi(p))
+    assert len(g.vertices) == np.prod([k - 1 for k in shape])
+    d = np.abs(p[np.asarray(g.ridge_points)[:, 0]] - p[np.asarray(g.ridge_points)[:, 1]]).sum(1)
+    assert np.all(d == 1)
 
 
 GRID = np.array([(i, j) for i in range(3) for j in range(3)], float)
