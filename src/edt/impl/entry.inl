@@ -15,9 +15,23 @@ void run(const Request& req, Output& out, Stats& stats) {
   else
     bits::run_whole(req, out, stats);
 }
-// Modules built on the transform (cvd/) hold bit-packed sites (make_layout with
-// Packing::Bits): their own code decodes them.
-void feature_transform_held(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
-                            std::int64_t sites) {
+// Modules built on the transform (cvd/, the Delaunay modules' digital methods) hold bit-packed
+// sites (make_layout with Packing::Bits): their own code decodes them. They call with their own
+// executor; the transform runs on one of this unit's type bound to the same device and stream
+// (each CUDA unit's executor type is its own: exec/tu_exec.hpp).
+using HeldExec = std::conditional_t<Exec::backend == Backend::Cuda, CudaExec, CpuExec>;
+template <class E>
+RunOptions held_place(const E& e) {
+  RunOptions r;
+  r.backend = E::backend;
+  if constexpr (E::backend == Backend::Cuda) {
+    r.device = e.device();
+    r.stream = e.stream();
+  }
+  return r;
+}
+void feature_transform_held(HeldExec& caller, const Layout& L, const Metric& M,
+                            std::uint32_t* feat, std::int64_t sites) {
+  Exec ex(held_place(caller));
   bits::feature_transform(ex, L, M, feat, nullptr, Tuning{}, sites, nullptr);
 }
