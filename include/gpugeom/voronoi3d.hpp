@@ -35,6 +35,12 @@ struct Voronoi3d {
 // From a tetrahedralisation on the host (delaunay3d's, its arrays in the result), computed on the
 // host threads. Throws Error(InvalidArgument) when tri does not belong to these n points.
 Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tri);
+// The tetrahedralisation of host points and its Voronoi diagram in one call, both made on the
+// executor opt picks: on CUDA the points cross the bus once and only the results come back
+// (voronoi3d(xyz, n, tri) computes the diagram on the host threads). tri, when given, receives
+// the tetrahedralisation (as delaunay3d returns it; opt.into is not used). Throws as delaunay3d.
+Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+                    Triangulation3d* tri = nullptr);
 
 // The same diagram for a tetrahedralisation left where delaunay3d_device or a kept one put it,
 // computed there (tri.backend's executor, run.stream of run.device): device_xyz its n points

@@ -403,8 +403,8 @@ nb::dict voronoi3d_dict(Triangulation3d& t, Voronoi3d& v, std::int64_t n) {
   return r;
 }
 
-// Host points: the tetrahedralisation on the executor the options pick, the diagram on the host
-// threads from its arrays (host results); device points: both where the points are.
+// Host points: both structures on the executor the options pick, host results; device points:
+// both where the points are.
 nb::dict voronoi3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
                         int threads) {
   const Input in = points_input(points, 3);
@@ -424,8 +424,7 @@ nb::dict voronoi3d_bind(const AnyArray& points, const std::string& backend, std:
   Voronoi3d v;
   {
     nb::gil_scoped_release released;
-    t = delaunay3d(pts(in), n, o);
-    v = voronoi3d(pts(in), n, t);
+    v = voronoi3d(pts(in), n, o, &t);  // both on the executor, results back once
   }
   return voronoi3d_dict(t, v, n);
 }

@@ -4,6 +4,7 @@
 #include <string>
 #include <utility>
 
+#include "delaunay3d/del3d_backend.hpp"
 #include "delaunay3d/voronoi3d_backend.hpp"
 #include "exec/dispatch.hpp"
 #include "gpugeom/voronoi3d.hpp"
@@ -28,6 +29,26 @@ Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tr
   run.backend = Backend::Cpu;
   del3d::cpu_impl::voronoi(xyz, n, tri.tetrahedra.data(), tri.neighbors.data(),
                            tri.duplicate_of.data(), nt, run, unused, v.stats, &v);
+  return v;
+}
+
+Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+                    Triangulation3d* tri) {
+#ifdef GPUGEOM_HAVE_CUDA
+  if (resolve_backend(opt.backend, opt.device) == Backend::Cuda &&
+      opt.method == Method::Incremental) {
+    del3d::check_count(n);
+    Voronoi3d v;
+    v.stats.backend = Backend::Cuda;
+    del3d::cuda_impl::voronoi_from_host(xyz, n, opt, v, tri);
+    return v;
+  }
+#endif
+  Delaunay3dOptions o = opt;
+  o.into = {};
+  Triangulation3d t = delaunay3d(xyz, n, o);
+  Voronoi3d v = voronoi3d(xyz, n, t);
+  if (tri) *tri = std::move(t);
   return v;
 }
 

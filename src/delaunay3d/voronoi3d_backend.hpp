@@ -24,6 +24,9 @@ void voronoi(const double* xyz, std::int64_t n, const std::int32_t* tet, const s
              DeviceVoronoi3dOutput& out, Stats& stats, Voronoi3d* host);
 }  // namespace cpu_impl
 namespace cuda_impl {
+// voronoi3d(xyz, n, opt, tri) on CUDA: host points up once, both structures made on the device.
+void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+                       Voronoi3d& v, Triangulation3d* tri);
 void voronoi(const double* xyz, std::int64_t n, const std::int32_t* tet, const std::int32_t* nb,
              const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
              DeviceVoronoi3dOutput& out, Stats& stats, Voronoi3d* host);

@@ -198,4 +198,10 @@ TEST(Voronoi3d, Errors) {
                                       d.ridge_vertices.get() + d.num_ridge_vertices),
             std::vector<std::int32_t>(v.ridge_vertices.begin(), v.ridge_vertices.end()));
   EXPECT_THROW((void)voronoi3d_device(&p.data()->x, 99, dt, cpu()), Error);
+  // both structures in one call: the same as one after the other
+  Triangulation3d t2;
+  const auto both = voronoi3d(&p.data()->x, 100, cpu(), &t2);
+  EXPECT_EQ(t2.tetrahedra, t.tetrahedra);
+  EXPECT_EQ(both.ridge_vertices, v.ridge_vertices);
+  EXPECT_EQ(both.region_vertices, v.region_vertices);
 }
