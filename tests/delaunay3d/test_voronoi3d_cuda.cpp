@@ -47,6 +47,17 @@ void expect_as_on_the_host(const std::vector<Point3>& p) {
   EXPECT_EQ(get(v.region_vertices, v.num_region_vertices), vec(ref.region_vertices));
   EXPECT_EQ(get(v.simplex_vertex, dt.num_tetrahedra), vec(ref.simplex_vertex));
   cudaFree(dp);
+  // host points, both structures made on the GPU in one call: the same arrays
+  Triangulation3d t2;
+  const auto both = voronoi3d(&p.data()->x, n, o, &t2);
+  ASSERT_EQ(t2.tetrahedron_count, h.tetrahedron_count);
+  EXPECT_EQ(vec(t2.tetrahedra),
+            std::vector<std::int32_t>(h.tetrahedra.begin(),
+                                      h.tetrahedra.begin() + 4 * h.tetrahedron_count));
+  EXPECT_EQ(both.ridge_points, ref.ridge_points);
+  EXPECT_EQ(both.ridge_vertices, ref.ridge_vertices);
+  EXPECT_EQ(both.region_vertices, ref.region_vertices);
+  EXPECT_EQ(both.simplex_vertex, ref.simplex_vertex);
 }
 }  // namespace
 
