@@ -30,8 +30,8 @@ RunOptions held_place(const E& e) {
   }
   return r;
 }
-void feature_transform_held(HeldExec& caller, const Layout& L, const Metric& M,
-                            std::uint32_t* feat, std::int64_t sites) {
+void feature_transform_held(HeldExec& caller, const Layout& L, const Metric& M, std::uint32_t* feat,
+                            std::int64_t sites) {
   Exec ex(held_place(caller));
   bits::feature_transform(ex, L, M, feat, nullptr, Tuning{}, sites, nullptr);
 }
