@@ -8,9 +8,36 @@
 #include <cstdint>
 
 #include "base/hd.hpp"
+#include "gpugeom/removed.hpp"
 #include "mesh/union_find.hpp"
 
 namespace gpugeom::mesh {
+
+// The vertices along a walk round a point (a cell) or an edge (a 3D ridge): consecutive simplices
+// of one class give one vertex, and a closed walk's last run is dropped where it is its first
+// run's class.
+struct ClassRun {
+  std::int32_t first = -1, last = -1;
+  std::int64_t runs = 0;
+  GG_HD bool step(std::int32_t c) {  // whether class c starts a run (is written)
+    if (runs && c == last) return false;
+    if (!runs) first = c;
+    last = c;
+    ++runs;
+    return true;
+  }
+  GG_HD std::int64_t length(bool closed) const {
+    return closed && runs > 1 && last == first ? runs - 1 : runs;
+  }
+};
+
+// The point whose Voronoi cell a point has: itself, or the one it duplicates. A point removed
+// from a kept triangulation (kRemovedPoint in the duplicate map) has an empty cell.
+struct CellSource {
+  const std::int32_t* dup;  // (null: every point is a vertex)
+  GG_HD std::int64_t operator()(std::int64_t i) const { return dup && dup[i] >= 0 ? dup[i] : i; }
+  GG_HD bool removed(std::int64_t i) const { return dup && dup[i] == kRemovedPoint; }
+};
 
 template <class Exec>
 struct Classes {

@@ -3,13 +3,6 @@
 // the host, from the same per-element pieces (voronoi_core.hpp). Included inside
 // gpugeom::del2d::{cpu,cuda}_impl.
 
-struct VorSource {  // the point whose cell a point has: itself, or the one it duplicates
-  const std::int32_t* dup;
-  GG_HD std::int64_t operator()(std::int64_t i) const { return dup && dup[i] >= 0 ? dup[i] : i; }
-  // A point removed from a kept triangulation (DynamicDelaunay2d: kRemovedPoint in the duplicate
-  // map) has no cell: its cell is empty.
-  GG_HD bool removed(std::int64_t i) const { return dup && dup[i] == kRemovedPoint; }
-};
 // Whether the walk from corner c (a start corner) goes round an unbounded cell.
 GG_HD inline bool vor_open(const std::int32_t* nb, std::int64_t c) {
   return nb[3 * (c / 3) + (c % 3 + 2) % 3] < 0;
@@ -67,23 +60,6 @@ GG_HD inline bool vor_ridge(const std::int32_t* nb, const std::int32_t* vid, std
   return vor::has_ridge(nb, t, int(c % 3)) && !(o >= 0 && vid[o] == vid[t]);
 }
 
-// A cell's vertices along the walk round its point: consecutive triangles of one circle give
-// one vertex, and so do the last and the first run of a closed cell when they are one circle.
-struct CellRun {
-  std::int32_t first = -1, last = -1;
-  std::int64_t runs = 0;
-  GG_HD bool step(std::int32_t w) {  // whether w starts a run (is written)
-    if (runs && w == last) return false;
-    if (!runs) first = w;
-    last = w;
-    ++runs;
-    return true;
-  }
-  GG_HD std::int64_t length(bool open) const {
-    return !open && runs > 1 && last == first ? runs - 1 : runs;
-  }
-};
-
 inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* tri,
                          const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
                          const RunOptions& run, DeviceVoronoiOutput& out, Stats& st,
@@ -130,7 +106,7 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
   ex.fill(key, n, I64(-1));
   ex.for_each_index(
       3 * nt, GG_LAMBDA(I64 c) { atomic_max(key + tri[c], vor::start_key(nb, c)); });
-  const VorSource src_of{dup};
+  const mesh::CellSource src_of{dup};
   auto missing = ex.template alloc<I64>(1);
   ex.transform_reduce_into(
       n, GG_LAMBDA(I64 i)->I64 { return !src_of.removed(i) && key[src_of(i)] < 0 ? 1 : 0; }, I64(0),
@@ -150,9 +126,9 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
         if (i >= n || src_of.removed(i)) return 0;
         const I64 c = vor::start_corner(key[src_of(i)]);
         const bool open = vor_open(nb, c);
-        CellRun run{};
+        mesh::ClassRun run{};
         vor::walk_star(tri, nb, c, nt, [&](I64 t, int) { run.step(vid[t]); });
-        return (open ? 1 : 0) + run.length(open);
+        return (open ? 1 : 0) + run.length(!open);
       },
       off);
   I64 ncv = 0;
@@ -169,7 +145,7 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
         const bool open = vor_open(nb, c);
         I64 at = 0;
         if (open) o[at++] = -1;
-        CellRun run{};
+        mesh::ClassRun run{};
         // (a closed cell's last run, when it is the first one's circle, was not counted)
         const I64 len = off[i + 1] - off[i];
         vor::walk_star(tri, nb, c, nt, [&](I64 t, int) {

@@ -55,23 +55,6 @@ struct EdgeWalk {
   }
 };
 
-// The vertices along a ring, consecutive tetrahedra of one class written once (and a closed
-// ring's last run dropped when it is its first one's class).
-struct VorRun {
-  std::int32_t first = -1, last = -1;
-  std::int64_t runs = 0;
-  GG_HD bool step(std::int32_t c) {
-    if (runs && c == last) return false;
-    if (!runs) first = c;
-    last = c;
-    ++runs;
-    return true;
-  }
-  GG_HD std::int64_t length(bool closed) const {
-    return closed && runs > 1 && last == first ? runs - 1 : runs;
-  }
-};
-
 // Ring of edge e of tetrahedron t: whether t is its smallest tetrahedron (so the ridge is
 // found once), whether it is closed, and where its open ring starts (the hull end that the walk
 // back from reaches every tetrahedron round the edge).
@@ -189,12 +172,6 @@ GG_HD inline void circumcentre3(const double* xyz, const std::int32_t* tet, std:
   }
 }
 
-struct VorSource3 {  // the point whose cell a point has: itself, or the one it duplicates
-  const std::int32_t* dup;
-  GG_HD std::int64_t operator()(std::int64_t i) const { return dup && dup[i] >= 0 ? dup[i] : i; }
-  GG_HD bool removed(std::int64_t i) const { return dup && dup[i] == kRemovedPoint; }
-};
-
 inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t* tet,
                            const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
                            const RunOptions& run, DeviceVoronoi3dOutput& out, Stats& st,
@@ -255,7 +232,7 @@ inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t
         if (c >= 6 * nt) return 0;
         const Ring R = vor3_ring(tet, nb, c / 6, int(c % 6), nt);
         if (!R.owner) return 0;
-        VorRun run{};
+        mesh::ClassRun run{};
         const EdgeWalk end = vor3_walk(tet, nb, R, nt, [&](I64 t) { run.step(vid[t]); });
         const I64 m = run.length(R.closed);
         if (R.closed) return m >= 3 ? m : 0;
@@ -301,7 +278,7 @@ inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t
         const I64 m = len[c + 1] - len[c];
         I64 at = 0;
         if (!R.closed) o[at++] = -1;
-        VorRun run{};
+        mesh::ClassRun run{};
         vor3_walk(tet, nb, R, nt, [&](I64 t) {
           if (run.step(vid[t]) && at < m) o[at++] = vid[t];
         });
@@ -349,7 +326,7 @@ inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t
         for (int k = 0; k < 4; ++k)
           if (4 * t + k != c) on_hull[tet[4 * t + k]] = 1;
       });
-  const VorSource3 src_of{dup};
+  const mesh::CellSource src_of{dup};
   auto offb = ex.template alloc<I64>(std::size_t(n + 1));
   I64* off = offb.data();
   ex.exclusive_scan_of(
