@@ -404,6 +404,7 @@ class Delaunay(_OfPoints):
         last = p[s[:, d]]
         t = xp.stack([p[s[:, k]] - last for k in range(d)], axis=2)  # columns v_k - v_d
         out = xp.empty((s.shape[0], d + 1, d), dtype=xp.float64)
+
         def norm1(m):  # the largest column sum of each matrix
             return xp.abs(m).sum(axis=1).max(axis=1)
 
