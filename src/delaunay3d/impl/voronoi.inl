@@ -57,7 +57,8 @@ struct EdgeWalk {
 
 // Ring of edge e of tetrahedron t: whether t is its smallest tetrahedron (so the ridge is
 // found once), whether it is closed, and where its open ring starts (the hull end that the walk
-// back from reaches every tetrahedron round the edge).
+// back from reaches every tetrahedron round the edge). closed and start are only set for the
+// smallest tetrahedron: the others stop at the first smaller one they meet.
 struct Ring {
   bool owner = true, closed = true;
   EdgeWalk start;
@@ -77,7 +78,10 @@ GG_HD inline Ring vor3_ring(const std::int32_t* tet, const std::int32_t* nb, std
       break;
     }
     if (a.t == t) break;
-    if (a.t < t) R.owner = false;
+    if (a.t < t) {  // (not the smallest: another tetrahedron finds the ridge; stop here)
+      R.owner = false;
+      return R;
+    }
   }
   if (R.closed) {
     R.start = EdgeWalk{t, u, w, tet[4 * t + k]};
@@ -86,7 +90,10 @@ GG_HD inline Ring vor3_ring(const std::int32_t* tet, const std::int32_t* nb, std
   // open: the other way round to the other hull end, from where the walk back passes them all
   EdgeWalk b{t, u, w, vor3_fourth(tet, t, u, w, tet[4 * t + k])};
   for (std::int64_t s = 0; s < limit && b.step(tet, nb); ++s)
-    if (b.t < t) R.owner = false;
+    if (b.t < t) {
+      R.owner = false;
+      return R;
+    }
   R.start = EdgeWalk{b.t, u, w, b.other(tet)};
   return R;
 }
