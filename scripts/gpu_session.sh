@@ -43,6 +43,8 @@ if [ -d .devbin/py/gpugeom ] && [ "${PYTHON_SET:-1}" != 0 ]; then
     echo "== Python package benchmark (SciPy and CuPy in the same run)"
     PYTHONPATH=$PWD/.devbin/py python3 bench/python_api.py --reps 3 --csv "$OUT/python_api.csv" 2>&1 |
       tee "$OUT/python_api.txt"
+    echo "== 3D Voronoi diagram against SciPy (issue 49)"
+    PYTHONPATH=$PWD/.devbin/py python3 bench/voronoi3d.py --reps 3 2>&1 | tee "$OUT/voronoi3d.txt"
   fi
 fi
 [ "${ONLY_PY:-0}" = 1 ] && exit $status
