@@ -24,7 +24,7 @@ Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tr
     throw Error(ErrorCode::InvalidArgument,
                 "the tetrahedralisation does not belong to these " + std::to_string(n) + " points");
   Voronoi3d v;
-  del3d::DeviceVoronoi3dOutput unused;
+  DeviceVoronoi3d unused;
   RunOptions run;
   run.backend = Backend::Cpu;
   del3d::cpu_impl::voronoi(xyz, n, tri.tetrahedra.data(), tri.neighbors.data(),
@@ -65,21 +65,9 @@ DeviceVoronoi3d voronoi3d_device(const double* device_xyz, std::int64_t n,
   DeviceVoronoi3d v;
   v.num_points = n;
   v.backend = v.stats.backend = tri.backend;
-  del3d::DeviceVoronoi3dOutput out;
   const std::int32_t* dup = tri.duplicate_of.get();  // (a kept one's may mark removed points)
   GG_ON_EXECUTOR(tri.backend, del3d, voronoi, device_xyz, n, tri.tetrahedra.get(),
-                 tri.neighbors.get(), dup, tri.num_tetrahedra, run, out, v.stats, nullptr);
-  v.num_vertices = out.num_vertices;
-  v.num_ridges = out.num_ridges;
-  v.num_ridge_vertices = out.num_ridge_vertices;
-  v.num_region_vertices = out.num_region_vertices;
-  v.vertices = std::move(out.vertices);
-  v.ridge_points = std::move(out.ridge_points);
-  v.ridge_offsets = std::move(out.ridge_offsets);
-  v.ridge_vertices = std::move(out.ridge_vertices);
-  v.region_offsets = std::move(out.region_offsets);
-  v.region_vertices = std::move(out.region_vertices);
-  v.simplex_vertex = std::move(out.simplex_vertex);
+                 tri.neighbors.get(), dup, tri.num_tetrahedra, run, v, v.stats, nullptr);
   return v;
 }
 

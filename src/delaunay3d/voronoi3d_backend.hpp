@@ -7,29 +7,22 @@
 
 namespace gpugeom::del3d {
 
-// The diagram's arrays in the executor's memory (voronoi3d_device).
-struct DeviceVoronoi3dOutput {
-  std::shared_ptr<double> vertices;
-  std::shared_ptr<std::int32_t> ridge_points, ridge_vertices, region_vertices, simplex_vertex;
-  std::shared_ptr<std::int64_t> ridge_offsets, region_offsets;
-  std::int64_t num_vertices = 0, num_ridges = 0, num_ridge_vertices = 0, num_region_vertices = 0;
-};
-
 // tet, nb: nt tetrahedra as Triangulation3d has them; dup: the duplicate map (null: none; a kept
-// tetrahedralisation's marks removed points), all in the executor's memory, as xyz. host: the
-// host entry's result (then `out` is left empty).
+// tetrahedralisation's marks removed points), all in the executor's memory, as xyz. out: the
+// arrays in the executor's memory (its counts and arrays; the caller sets the rest), or, with
+// host, the host entry's result instead (then `out` is left empty).
 namespace cpu_impl {
 void voronoi(const double* xyz, std::int64_t n, const std::int32_t* tet, const std::int32_t* nb,
-             const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
-             DeviceVoronoi3dOutput& out, Stats& stats, Voronoi3d* host);
+             const std::int32_t* dup, std::int64_t nt, const RunOptions& run, DeviceVoronoi3d& out,
+             Stats& stats, Voronoi3d* host);
 }  // namespace cpu_impl
 namespace cuda_impl {
 // voronoi3d(xyz, n, opt, tri) on CUDA: host points up once, both structures made on the device.
 void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                        Voronoi3d& v, Triangulation3d* tri);
 void voronoi(const double* xyz, std::int64_t n, const std::int32_t* tet, const std::int32_t* nb,
-             const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
-             DeviceVoronoi3dOutput& out, Stats& stats, Voronoi3d* host);
+             const std::int32_t* dup, std::int64_t nt, const RunOptions& run, DeviceVoronoi3d& out,
+             Stats& stats, Voronoi3d* host);
 }  // namespace cuda_impl
 
 }  // namespace gpugeom::del3d

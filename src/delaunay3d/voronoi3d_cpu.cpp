@@ -24,8 +24,8 @@ namespace gpugeom::del3d::cpu_impl {
 using Exec = CpuExec;
 #include "delaunay3d/impl/voronoi.inl"
 void voronoi(const double* xyz, std::int64_t n, const std::int32_t* tet, const std::int32_t* nb,
-             const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
-             DeviceVoronoi3dOutput& out, Stats& stats, Voronoi3d* host) {
+             const std::int32_t* dup, std::int64_t nt, const RunOptions& run, DeviceVoronoi3d& out,
+             Stats& stats, Voronoi3d* host) {
   voronoi3d_impl(xyz, n, tet, nb, dup, nt, run, out, stats, host);
 }
 }  // namespace gpugeom::del3d::cpu_impl

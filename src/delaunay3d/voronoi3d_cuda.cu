@@ -25,8 +25,8 @@ namespace gpugeom::del3d::cuda_impl {
 GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 #include "delaunay3d/impl/voronoi.inl"
 void voronoi(const double* xyz, std::int64_t n, const std::int32_t* tet, const std::int32_t* nb,
-             const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
-             DeviceVoronoi3dOutput& out, Stats& stats, Voronoi3d* host) {
+             const std::int32_t* dup, std::int64_t nt, const RunOptions& run, DeviceVoronoi3d& out,
+             Stats& stats, Voronoi3d* host) {
   voronoi3d_impl(xyz, n, tet, nb, dup, nt, run, out, stats, host);
 }
 // The host entry that computes both structures (voronoi3d(xyz, n, opt)): the points cross the bus
@@ -43,7 +43,7 @@ void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3dOption
   o.into = {};
   o.backend = Backend::Cuda;
   const DeviceTriangulation3d d = delaunay3d_device(up.data(), n, o);
-  DeviceVoronoi3dOutput unused;
+  DeviceVoronoi3d unused;
   voronoi3d_impl(up.data(), n, d.tetrahedra.get(), d.neighbors.get(),
                  d.num_duplicates ? d.duplicate_of.get() : nullptr, d.num_tetrahedra, opt, unused,
                  v.stats, &v);

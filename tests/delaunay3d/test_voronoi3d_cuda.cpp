@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/device_arrays.hpp"
 #include "del3d_cases.hpp"
 #include "gpugeom/voronoi3d.hpp"
 
@@ -14,21 +15,14 @@ using namespace gpugeom;
 
 namespace {
 template <class T>
-std::vector<T> get(const std::shared_ptr<T>& p, std::int64_t count) {
-  std::vector<T> x(static_cast<std::size_t>(count));
-  EXPECT_EQ(cudaMemcpy(x.data(), p.get(), count * sizeof(T), cudaMemcpyDeviceToHost), cudaSuccess);
-  return x;
-}
-template <class T>
 std::vector<T> vec(const HostVector<T>& v) {
   return std::vector<T>(v.begin(), v.end());
 }
 
 void expect_as_on_the_host(const std::vector<Point3>& p) {
   const std::int64_t n = std::int64_t(p.size());
-  double* dp = nullptr;
-  ASSERT_EQ(cudaMalloc(&dp, n * sizeof(Point3)), cudaSuccess);
-  ASSERT_EQ(cudaMemcpy(dp, p.data(), n * sizeof(Point3), cudaMemcpyHostToDevice), cudaSuccess);
+  const gg_test::DeviceCopy d_points(p);
+  const double* dp = d_points.doubles();
   const auto dt = delaunay3d_device(dp, n);
   const auto v = voronoi3d_device(dp, n, dt);
   Delaunay3dOptions o;
@@ -36,17 +30,17 @@ void expect_as_on_the_host(const std::vector<Point3>& p) {
   const auto h = delaunay3d(p, o);  // (the same tetrahedra, in the same order)
   const auto ref = voronoi3d(&p.data()->x, n, h);
   ASSERT_EQ(3 * v.num_vertices, std::int64_t(ref.vertices.size()));
-  const auto x = get(v.vertices, 3 * v.num_vertices);
+  const auto x = gg_test::from_device(v.vertices, 3 * v.num_vertices);
   for (std::size_t k = 0; k < x.size(); ++k)  // (equal, or NaN on both)
     ASSERT_TRUE(x[k] == ref.vertices[k] || (x[k] != x[k] && ref.vertices[k] != ref.vertices[k]))
         << k;
-  EXPECT_EQ(get(v.ridge_points, 2 * v.num_ridges), vec(ref.ridge_points));
-  EXPECT_EQ(get(v.ridge_offsets, v.num_ridges + 1), vec(ref.ridge_offsets));
-  EXPECT_EQ(get(v.ridge_vertices, v.num_ridge_vertices), vec(ref.ridge_vertices));
-  EXPECT_EQ(get(v.region_offsets, n + 1), vec(ref.region_offsets));
-  EXPECT_EQ(get(v.region_vertices, v.num_region_vertices), vec(ref.region_vertices));
-  EXPECT_EQ(get(v.simplex_vertex, dt.num_tetrahedra), vec(ref.simplex_vertex));
-  cudaFree(dp);
+  EXPECT_EQ(gg_test::from_device(v.ridge_points, 2 * v.num_ridges), vec(ref.ridge_points));
+  EXPECT_EQ(gg_test::from_device(v.ridge_offsets, v.num_ridges + 1), vec(ref.ridge_offsets));
+  EXPECT_EQ(gg_test::from_device(v.ridge_vertices, v.num_ridge_vertices), vec(ref.ridge_vertices));
+  EXPECT_EQ(gg_test::from_device(v.region_offsets, n + 1), vec(ref.region_offsets));
+  EXPECT_EQ(gg_test::from_device(v.region_vertices, v.num_region_vertices),
+            vec(ref.region_vertices));
+  EXPECT_EQ(gg_test::from_device(v.simplex_vertex, dt.num_tetrahedra), vec(ref.simplex_vertex));
   // host points, both structures made on the GPU in one call: the same arrays
   Triangulation3d t2;
   const auto both = voronoi3d(&p.data()->x, n, o, &t2);

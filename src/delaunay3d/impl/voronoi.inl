@@ -181,7 +181,7 @@ GG_HD inline void circumcentre3(const double* xyz, const std::int32_t* tet, std:
 
 inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t* tet,
                            const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                           const RunOptions& run, DeviceVoronoi3dOutput& out, Stats& st,
+                           const RunOptions& run, DeviceVoronoi3d& out, Stats& st,
                            Voronoi3d* host) {
   const auto t0 = std::chrono::steady_clock::now();
   Exec ex(run);
