@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "gpugeom/voronoi3d.hpp"
+#include "gpugeom/voronoi_cells.hpp"
 
 namespace gpugeom::del3d {
 
@@ -15,6 +16,10 @@ namespace cpu_impl {
 void voronoi(const double* xyz, std::int64_t n, const std::int32_t* tet, const std::int32_t* nb,
              const std::int32_t* dup, std::int64_t nt, const RunOptions& run, DeviceVoronoi3d& out,
              Stats& stats, Voronoi3d* host);
+// The Voronoi cells (impl/cells.inl) of n points in executor memory, or host memory where
+// on_host: into dev (executor memory) or, with host, into host's vectors.
+void cells(const double* xyz, std::int64_t n, bool on_host, const VoronoiCellsOptions& opt,
+           DeviceVoronoiCells* dev, VoronoiCells* host);
 }  // namespace cpu_impl
 namespace cuda_impl {
 // voronoi3d(xyz, n, opt, tri) on CUDA: host points up once, both structures made on the device.
@@ -23,6 +28,10 @@ void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3dOption
 void voronoi(const double* xyz, std::int64_t n, const std::int32_t* tet, const std::int32_t* nb,
              const std::int32_t* dup, std::int64_t nt, const RunOptions& run, DeviceVoronoi3d& out,
              Stats& stats, Voronoi3d* host);
+// The Voronoi cells (impl/cells.inl) of n points in executor memory, or host memory where
+// on_host: into dev (executor memory) or, with host, into host's vectors.
+void cells(const double* xyz, std::int64_t n, bool on_host, const VoronoiCellsOptions& opt,
+           DeviceVoronoiCells* dev, VoronoiCells* host);
 }  // namespace cuda_impl
 
 }  // namespace gpugeom::del3d

@@ -1,12 +1,16 @@
 // The 3D Voronoi diagram of a tetrahedralisation in executor memory (issue 49), compiled for the
 // CUDA executor.
 #include <algorithm>
+#include <cfloat>
+#include <cmath>
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <thrust/functional.h>
 
 #include "base/clock.hpp"
+#include "delaunay3d/convex_cell.hpp"
 #include "delaunay3d/voronoi3d_backend.hpp"
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
@@ -15,6 +19,7 @@
 #include "exec/peak.hpp"
 #include "exec/scratch_lease.hpp"
 #include "gpugeom/removed.hpp"
+#include "gpugeom/voronoi_cells.hpp"
 #include "mesh/sum2.hpp"
 #include "mesh/union_find.hpp"
 #include "mesh/vertex_classes.hpp"
@@ -24,6 +29,7 @@
 namespace gpugeom::del3d::cuda_impl {
 GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 #include "delaunay3d/impl/voronoi.inl"
+#include "delaunay3d/impl/cells.inl"
 void voronoi(const double* xyz, std::int64_t n, const std::int32_t* tet, const std::int32_t* nb,
              const std::int32_t* dup, std::int64_t nt, const RunOptions& run, DeviceVoronoi3d& out,
              Stats& stats, Voronoi3d* host) {
@@ -60,5 +66,9 @@ void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3dOption
   tri->num_duplicates = d.num_duplicates;
   tri->stats = d.stats;
   tri->stats.phase_ms.push_back({"copy_tetrahedralisation", ms_since(t1)});
+}
+void cells(const double* xyz, std::int64_t n, bool on_host, const VoronoiCellsOptions& opt,
+           DeviceVoronoiCells* dev, VoronoiCells* host) {
+  voronoi_cells_impl(xyz, n, on_host, opt, Backend::Cuda, dev, host);
 }
 }  // namespace gpugeom::del3d::cuda_impl

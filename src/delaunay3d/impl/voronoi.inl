@@ -179,19 +179,12 @@ GG_HD inline void circumcentre3(const double* xyz, const std::int32_t* tet, std:
   }
 }
 
-inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t* tet,
-                           const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                           const RunOptions& run, DeviceVoronoi3d& out, Stats& st,
-                           Voronoi3d* host) {
-  const auto t0 = std::chrono::steady_clock::now();
-  Exec ex(run);
-  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+// The Voronoi vertices: classes of tetrahedra joined across exactly cospherical faces
+// (mesh::number_classes: per tetrahedron its class, per class its first tetrahedron).
+inline auto vor3_classes(Exec& ex, const double* xyz, const std::int32_t* tet,
+                         const std::int32_t* nb, std::int64_t nt, const ScratchLease& lease) {
   using I32 = std::int32_t;
   using I64 = std::int64_t;
-  LeasePool<Exec> pool(ex, std::clamp<std::int64_t>(ex.concurrency(), 64, 1024),
-                       pred::kInsphereScratch);
-  const ScratchLease lease = pool.view;
-  // Vertices: tetrahedra joined across exactly cospherical faces.
   auto d_parent = ex.template alloc<I32>(std::size_t(nt));
   I32* parent = d_parent.data();
   ex.for_each_index(
@@ -220,19 +213,16 @@ inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t
       });
   I64 joined = 0;
   ex.to_host(cnt, 1, &joined);
-  auto V = mesh::number_classes(ex, parent, nt, joined);
-  const I32* vid = V.of.data();
-  const I32* first = V.first.data();
-  const I64 nv = V.count;
-  auto vx = ex.template alloc<double>(std::size_t(3 * nv));
-  double* v = vx.data();
-  ex.for_each_index(
-      nv, GG_LAMBDA(I64 j) { circumcentre3(xyz, tet, first[j], v + 3 * j); });
-  st.counters["voronoi_vertices"] = nv;
-  // Ridges: per (tetrahedron, edge), the length of its ridge's vertex list, 0 where it has none
-  // or another tetrahedron of its ring finds it.
-  auto d_len = ex.template alloc<I64>(std::size_t(6 * nt + 1));
-  I64* len = d_len.data();
+  return mesh::number_classes(ex, parent, nt, joined);
+}
+
+// Per (tetrahedron, edge) c < 6 nt, the exclusive scan (into len, 6 nt + 1 entries) of the
+// length of its ridge's vertex list: 0 where the edge has no ridge or another tetrahedron of its
+// ring finds it; vid: each tetrahedron's class (vor3_classes).
+inline void vor3_ridge_lengths(Exec& ex, const double* xyz, const std::int32_t* tet,
+                               const std::int32_t* nb, std::int64_t nt, const std::int32_t* vid,
+                               const ScratchLease& lease, std::int64_t* len) {
+  using I64 = std::int64_t;
   ex.exclusive_scan_of(
       6 * nt + 1,
       GG_LAMBDA(I64 c)->I64 {
@@ -259,6 +249,33 @@ inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t
         return o != 0 ? 2 : 0;
       },
       len);
+}
+
+inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t* tet,
+                           const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
+                           const RunOptions& run, DeviceVoronoi3d& out, Stats& st,
+                           Voronoi3d* host) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Exec ex(run);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+  using I32 = std::int32_t;
+  using I64 = std::int64_t;
+  LeasePool<Exec> pool(ex, std::clamp<std::int64_t>(ex.concurrency(), 64, 1024),
+                       pred::kInsphereScratch);
+  const ScratchLease lease = pool.view;
+  auto V = vor3_classes(ex, xyz, tet, nb, nt, lease);
+  const I32* vid = V.of.data();
+  const I32* first = V.first.data();
+  const I64 nv = V.count;
+  auto vx = ex.template alloc<double>(std::size_t(3 * nv));
+  double* v = vx.data();
+  ex.for_each_index(
+      nv, GG_LAMBDA(I64 j) { circumcentre3(xyz, tet, first[j], v + 3 * j); });
+  st.counters["voronoi_vertices"] = nv;
+  // Ridges: per (tetrahedron, edge), where its ridge's vertex list starts (vor3_ridge_lengths).
+  auto d_len = ex.template alloc<I64>(std::size_t(6 * nt + 1));
+  I64* len = d_len.data();
+  vor3_ridge_lengths(ex, xyz, tet, nb, nt, vid, lease, len);
   // ... ridge numbers: a second scan over the same flags (a ridge has a list of 2 or more)
   auto d_rank = ex.template alloc<I64>(std::size_t(6 * nt + 1));
   I64* rank = d_rank.data();

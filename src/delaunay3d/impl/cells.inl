@@ -1,0 +1,500 @@
+// Voronoi cells of 3D points in a box, bounded or periodic (issue 49), on the executor. Included
+// inside gpugeom::del3d::{cpu,cuda}_impl after voronoi.inl (its ridges give the neighbours).
+//
+// 1. The points, checked, and along periodic axes taken modulo the box. Along those axes the
+//    images of the points within a layer of width w outside the box are added (w starts at four
+//    mean spacings).
+// 2. Their Delaunay tetrahedralisation (delaunay3d_device on this executor) and its ridges
+//    (vor3_ridge_lengths): per point, its Voronoi neighbours, exactly; edges that only cut a
+//    cospherical cell have no ridge and give no plane.
+// 3. Per point, on one thread: the box (padded by w along periodic axes) cut by the bisector
+//    plane of each neighbour (convex_cell.hpp), then measured. Periodic: a cell is only right
+//    if every point that could cut it is there, that is if the ball round each of its vertices
+//    through the site lies within the padded box; where one does not, w doubles and all is
+//    done again.
+// 4. The faces counted per cell, offsets scanned, and every cell built again to write its faces
+//    and vertices (building twice costs less than keeping every cell's polyhedron).
+//
+// A thread keeps its cell in local arrays for 48 faces; a cell that outgrows them (a point
+// inside a sphere of many others) is built again in executor memory with room for all its
+// planes.
+
+namespace vcells {
+
+constexpr int kFaces = 48, kVertices = 96, kEntries = 288;
+
+struct CellJob {
+  const double* xyz;            // originals (taken into the box), then images
+  const std::int32_t* src;      // per point, the original it is an image of (-1: a far point)
+  const std::int32_t* dup;      // duplicate map of the originals (null: none)
+  const std::int64_t* nb_from;  // n + 1: each original's neighbours in nb_key
+  const std::uint64_t* nb_key;  // (original << 32 | neighbour), sorted
+  double plo[3], phi[3];        // the box, padded by w along periodic axes
+  bool periodic[3];
+  std::int64_t n;
+  // measures and counts (cell_count)
+  double *volume, *area, *centroid;
+  std::int32_t *nfaces, *nverts, *nents;
+  std::int8_t* flag;  // 1: reaches past the images, 2: outgrew the room it was given
+  // faces and vertices (cell_write)
+  const std::int64_t *face_off, *vert_off, *ent_off;
+  std::int32_t* neighbor;
+  double *face_area, *face_normal, *vertices;
+  std::int64_t* face_vert_off;
+  std::int32_t* face_verts;
+};
+
+GG_HD inline void cell_build(const CellJob& J, std::int64_t i, cells::ConvexCell& C) {
+  using exact::sub_rn;
+  const double* p = J.xyz + 3 * i;
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) lo[d] = sub_rn(J.plo[d], p[d]), hi[d] = sub_rn(J.phi[d], p[d]);
+  C.box(lo, hi);
+  const std::int64_t from = J.nb_from[i], to = J.nb_from[i + 1];
+  for (std::int64_t k = from; k < to && !C.overflow && !C.empty(); ++k) {
+    const std::int64_t q = std::int64_t(J.nb_key[k] & 0xffffffffu);
+    double nrm[3];
+    for (int d = 0; d < 3; ++d) nrm[d] = sub_rn(J.xyz[3 * q + d], p[d]);
+    C.cut(nrm, cells::dot3(nrm, nrm) / 2, std::int32_t(6 + (k - from)));
+  }
+}
+
+GG_HD inline bool cell_skipped(const CellJob& J, std::int64_t i) {
+  return J.dup && J.dup[i] >= 0 && J.dup[i] != std::int32_t(i);  // (a copy: its twin has it)
+}
+
+// Builds and measures cell i; counts its faces, vertices and face-vertex entries.
+GG_HD inline void cell_count(const CellJob& J, std::int64_t i, cells::ConvexCell& C) {
+  using exact::add_rn;
+  using exact::sub_rn;
+  J.flag[i] = 0;
+  J.volume[i] = J.area[i] = 0;
+  J.nfaces[i] = J.nverts[i] = J.nents[i] = 0;
+  const double* p = J.xyz + 3 * i;
+  for (int d = 0; d < 3; ++d) J.centroid[3 * i + d] = p[d];
+  if (cell_skipped(J, i)) return;
+  cell_build(J, i, C);
+  if (C.overflow) {
+    J.flag[i] = 2;
+    return;
+  }
+  double cen[3];
+  J.volume[i] = C.measure(cen);
+  for (int d = 0; d < 3; ++d) J.centroid[3 * i + d] = add_rn(p[d], cen[d]);
+  double area = 0;
+  std::int32_t ents = 0;
+  for (int f = 0; f < C.nf; ++f) area = add_rn(area, C.face_area(f)), ents += C.s.flen[f];
+  J.area[i] = area;
+  J.nfaces[i] = C.nf, J.nverts[i] = C.nv, J.nents[i] = ents;
+  for (int k = 0; k < C.nv; ++k) {  // (periodic: every point that could cut the cell is there?)
+    const double* v = C.vertex(k);
+    const double r = sqrt(cells::dot3(v, v));
+    for (int d = 0; d < 3; ++d) {
+      if (!J.periodic[d]) continue;
+      const double at = add_rn(p[d], v[d]);
+      if (sub_rn(at, r) < J.plo[d] || add_rn(at, r) > J.phi[d]) J.flag[i] = 1;
+    }
+  }
+}
+
+// Builds cell i again and writes its faces (in the order of their planes: walls, then
+// neighbours) and vertices where the scanned offsets put them.
+GG_HD inline void cell_write(const CellJob& J, std::int64_t i, cells::ConvexCell& C) {
+  using exact::add_rn;
+  using exact::sub_rn;
+  if (cell_skipped(J, i)) return;
+  cell_build(J, i, C);
+  if (C.overflow) return;  // (cannot happen: the same room as when it was counted)
+  const double* p = J.xyz + 3 * i;
+  const std::int64_t v0 = J.vert_off[i];
+  for (int k = 0; k < C.nv; ++k)
+    for (int d = 0; d < 3; ++d) J.vertices[3 * (v0 + k) + d] = add_rn(p[d], C.vertex(k)[d]);
+  const std::int32_t* e = C.faces_ent();
+  std::int64_t at = J.ent_off[i];
+  std::int32_t last = -1;
+  for (int j = 0; j < C.nf; ++j) {
+    int f = -1;  // (the face with the next plane: a cell has a few dozen)
+    for (int g = 0; g < C.nf; ++g)
+      if (C.s.fplane[g] > last && (f < 0 || C.s.fplane[g] < C.s.fplane[f])) f = g;
+    last = C.s.fplane[f];
+    const std::int64_t o = J.face_off[i] + j;
+    double* nrm = J.face_normal + 3 * o;
+    if (last < 6) {
+      J.neighbor[o] = -1 - last;
+      nrm[0] = nrm[1] = nrm[2] = 0;
+      nrm[last / 2] = (last & 1) ? 1 : -1;
+    } else {
+      const std::int64_t q = std::int64_t(J.nb_key[J.nb_from[i] + (last - 6)] & 0xffffffffu);
+      J.neighbor[o] = J.src[q];
+      for (int d = 0; d < 3; ++d) nrm[d] = sub_rn(J.xyz[3 * q + d], p[d]);
+      const double len = sqrt(cells::dot3(nrm, nrm));
+      for (int d = 0; d < 3; ++d) nrm[d] = nrm[d] / len;
+    }
+    J.face_area[o] = C.face_area(f);
+    J.face_vert_off[o] = at;
+    const std::int32_t* r = e + C.s.fstart[f];
+    for (int k = 0; k < C.s.flen[f]; ++k) J.face_verts[at++] = std::int32_t(v0 + r[k]);
+  }
+}
+
+// A cell's room in executor memory, for the cells that outgrow a thread's (one slot each).
+struct Room {
+  int faces, vertices, entries;
+  GG_HD std::int64_t doubles() const { return 3 * std::int64_t(vertices); }
+  GG_HD std::int64_t ints() const { return 2 * std::int64_t(entries) + 3 * faces + 3 * vertices; }
+  GG_HD cells::CellStore store(double* x, std::int32_t* ints, std::int8_t* side) const {
+    std::int32_t* e = ints;
+    std::int32_t* f = e + 2 * entries;
+    std::int32_t* v = f + 3 * faces;
+    return cells::CellStore{
+        x,        e,       f,    f + faces, f + 2 * faces, side, v, v + vertices, v + 2 * vertices,
+        vertices, entries, faces};
+  }
+};
+
+// Runs cell_count (or cell_write) over the cells that outgrew a thread's room, chunk by chunk,
+// each in its slice of executor memory with room for all its planes.
+inline void over_big(Exec& ex, const CellJob& J, const std::int32_t* big, std::int64_t nbig,
+                     const Room& room, std::int64_t chunk, bool write) {
+  if (!nbig) return;
+  auto d_x = ex.template alloc<double>(std::size_t(chunk * room.doubles()));
+  auto d_i = ex.template alloc<std::int32_t>(std::size_t(chunk * room.ints()));
+  auto d_s = ex.template alloc<std::int8_t>(std::size_t(chunk * room.vertices));
+  double* bx = d_x.data();
+  std::int32_t* bi = d_i.data();
+  std::int8_t* bs = d_s.data();
+  for (std::int64_t b = 0; b < nbig; b += chunk) {
+    ex.for_each_index(
+        std::min(chunk, nbig - b), GG_LAMBDA(std::int64_t j) {
+          cells::ConvexCell C{
+              room.store(bx + j * room.doubles(), bi + j * room.ints(), bs + j * room.vertices)};
+          if (write)
+            cell_write(J, big[b + j], C);
+          else
+            cell_count(J, big[b + j], C);
+        });
+  }
+}
+
+}  // namespace vcells
+
+inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_on_host,
+                               const VoronoiCellsOptions& opt, Backend backend,
+                               DeviceVoronoiCells* dev, VoronoiCells* host) {
+  using I8 = std::int8_t;
+  using I32 = std::int32_t;
+  using I64 = std::int64_t;
+  using U64 = std::uint64_t;
+  using vcells::CellJob;
+  Stats& st = host ? host->stats : dev->stats;
+  auto t0 = std::chrono::steady_clock::now();
+  Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
+  // 1. The points, checked and (periodic axes) taken into the box.
+  auto d_base = ex.template alloc<double>(std::size_t(3 * n));
+  double* base = d_base.data();
+  if (input_on_host)
+    ex.from_host(xyz_in, 3 * n, base);
+  else
+    ex.copy(xyz_in, 3 * n, base);
+  st.phase_ms.push_back({"upload", ms_since(t0)});
+  double lo[3], hi[3], len[3];
+  bool per[3];
+  double volume = 1;
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = opt.lo[d], hi[d] = opt.hi[d], per[d] = opt.periodic[d];
+    len[d] = hi[d] - lo[d];
+    volume *= len[d];
+  }
+  auto bad = ex.template alloc<I64>(1);
+  ex.transform_reduce_into(
+      n,
+      GG_LAMBDA(I64 i)->I64 {
+        I64 b = 0;
+        for (int d = 0; d < 3; ++d) {
+          double x = base[3 * i + d];
+          if (!(fabs(x) <= DBL_MAX)) {  // (NaN or infinite)
+            b = 1;
+            continue;
+          }
+          if (!per[d]) {
+            b |= x < lo[d] || x > hi[d];
+            continue;
+          }
+          if (x < lo[d] || x >= hi[d]) {  // (modulo the box; rounding may leave hi: then lo)
+            x = x - len[d] * floor((x - lo[d]) / len[d]);
+            if (x >= hi[d] || x < lo[d]) x = lo[d];
+            base[3 * i + d] = x;
+          }
+        }
+        return b;
+      },
+      I64(0), thrust::plus<I64>(), bad.data());
+  I64 nbad = 0;
+  ex.to_host(bad.data(), 1, &nbad);
+  if (nbad)
+    throw Error(ErrorCode::InvalidInput,
+                std::to_string(nbad) +
+                    " point(s) have a coordinate that is not finite or lies outside the box "
+                    "along an axis that does not wrap (VoronoiCellsOptions::lo, hi, periodic)");
+  const bool any_periodic = per[0] || per[1] || per[2];
+  double w = any_periodic ? 4 * std::cbrt(volume / double(std::max<I64>(n, 1))) : 0;
+  for (int attempt = 1;; ++attempt) {
+    // 1b. Images within w of the box along periodic axes, after the originals.
+    t0 = std::chrono::steady_clock::now();
+    int reach[3];
+    double plo[3], phi[3];
+    for (int d = 0; d < 3; ++d) {
+      reach[d] = per[d] ? int(std::ceil(w / len[d])) : 0;
+      plo[d] = per[d] ? lo[d] - w : lo[d];
+      phi[d] = per[d] ? hi[d] + w : hi[d];
+    }
+    auto d_img = ex.template alloc<I64>(std::size_t(n + 1));
+    I64* img = d_img.data();
+    ex.exclusive_scan_of(
+        n + 1,
+        GG_LAMBDA(I64 i)->I64 {
+          if (i >= n) return 0;
+          I64 m = 1;
+          for (int d = 0; d < 3; ++d) {
+            int c = 0;
+            for (int k = -reach[d]; k <= reach[d]; ++k) {
+              const double x = base[3 * i + d] + k * len[d];
+              c += k == 0 || (x >= plo[d] && x <= phi[d]);
+            }
+            m *= c;
+          }
+          return m - 1;
+        },
+        img);
+    I64 nimg = 0;
+    ex.to_host(img + n, 1, &nimg);
+    // ... and 8 far points, the corners of a cube 8 padded-box diagonals wide round it: none
+    // cuts a cell inside the box (each is further from every point of the box than the box is
+    // wide), but they make the tetrahedralisation three-dimensional for any input (1, 2, 3
+    // points, or all on one plane).
+    const I64 N = n + nimg + 8;
+    if (N > I64(INT32_MAX))
+      throw Error(ErrorCode::InvalidArgument, "the points and their periodic images number " +
+                                                  std::to_string(N) + ", more than 2^31 - 1");
+    auto d_aug = ex.template alloc<double>(std::size_t(3 * N));
+    auto d_src = ex.template alloc<I32>(std::size_t(N));
+    double* aug = d_aug.data();
+    I32* src = d_src.data();
+    ex.copy(base, 3 * n, aug);
+    double far[24];
+    {
+      double diag = 0, c[3];
+      for (int d = 0; d < 3; ++d)
+        diag += (phi[d] - plo[d]) * (phi[d] - plo[d]), c[d] = plo[d] / 2 + phi[d] / 2;
+      const double h = 4 * std::sqrt(diag);
+      for (int k = 0; k < 8; ++k)
+        for (int d = 0; d < 3; ++d) far[3 * k + d] = c[d] + ((k >> d) & 1 ? h : -h);
+    }
+    const I32 minus_one[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
+    ex.from_host(far, 24, aug + 3 * (n + nimg));
+    ex.from_host(minus_one, 8, src + n + nimg);
+    ex.for_each_index(
+        n, GG_LAMBDA(I64 i) {
+          src[i] = I32(i);
+          if (!nimg) return;
+          I64 at = n + img[i];
+          const double* p = base + 3 * i;
+          for (int a = -reach[0]; a <= reach[0]; ++a)
+            for (int b = -reach[1]; b <= reach[1]; ++b)
+              for (int c = -reach[2]; c <= reach[2]; ++c) {
+                if (a == 0 && b == 0 && c == 0) continue;
+                const int k[3] = {a, b, c};
+                double x[3];
+                bool in = true;
+                for (int d = 0; d < 3; ++d) {
+                  x[d] = p[d] + k[d] * len[d];
+                  in &= k[d] == 0 || (x[d] >= plo[d] && x[d] <= phi[d]);
+                }
+                if (!in) continue;
+                for (int d = 0; d < 3; ++d) aug[3 * at + d] = x[d];
+                src[at++] = I32(i);
+              }
+        });
+    st.phase_ms.push_back({"images", ms_since(t0)});
+    st.counters["images"] = nimg;
+    st.counters["attempts"] = attempt;
+    // 2. The tetrahedralisation and its ridges: each original's neighbours, sorted.
+    t0 = std::chrono::steady_clock::now();
+    Delaunay3dOptions o;
+    static_cast<RunOptions&>(o) = opt;
+    o.backend = backend;
+    const DeviceTriangulation3d tri = delaunay3d_device(aug, N, o);
+    st.phase_ms.push_back({"delaunay", ms_since(t0)});
+    t0 = std::chrono::steady_clock::now();
+    const I32* tet = tri.tetrahedra.get();
+    const I32* tnb = tri.neighbors.get();
+    const I32* dup = tri.num_duplicates ? tri.duplicate_of.get() : nullptr;
+    const I64 nt = tri.num_tetrahedra;
+    LeasePool<Exec> pool(ex, std::clamp<I64>(ex.concurrency(), 64, 1024), pred::kInsphereScratch);
+    const ScratchLease lease = pool.view;
+    auto V = vor3_classes(ex, aug, tet, tnb, nt, lease);
+    auto d_len = ex.template alloc<I64>(std::size_t(6 * nt + 1));
+    I64* rlen = d_len.data();
+    vor3_ridge_lengths(ex, aug, tet, tnb, nt, V.of.data(), lease, rlen);
+    auto d_rank = ex.template alloc<I64>(std::size_t(6 * nt + 1));
+    I64* rank = d_rank.data();
+    ex.exclusive_scan_of(
+        6 * nt + 1, GG_LAMBDA(I64 c)->I64 { return c < 6 * nt && rlen[c + 1] != rlen[c]; }, rank);
+    I64 nr = 0;
+    ex.to_host(rank + 6 * nt, 1, &nr);
+    auto d_keys = ex.template alloc<U64>(std::size_t(2 * nr));
+    U64* keys = d_keys.data();
+    auto d_from = ex.template alloc<I64>(std::size_t(n + 1));
+    I64* from = d_from.data();
+    ex.fill(from, n + 1, I64(0));
+    ex.for_each_index(
+        6 * nt, GG_LAMBDA(I64 c) {
+          if (rlen[c + 1] == rlen[c]) return;
+          int a, b;
+          vor3_edge(int(c % 6), a, b);
+          const I64 u = tet[4 * (c / 6) + a], v = tet[4 * (c / 6) + b];
+          const I64 r = rank[c];
+          keys[2 * r] = u < n ? (U64(u) << 32 | U64(v)) : ~U64(0);
+          keys[2 * r + 1] = v < n ? (U64(v) << 32 | U64(u)) : ~U64(0);
+          if (u < n) atomic_add(from + u, I64(1));
+          if (v < n) atomic_add(from + v, I64(1));
+        });
+    ex.sort(keys, 2 * nr);
+    auto d_from2 = ex.template alloc<I64>(std::size_t(n + 1));
+    ex.exclusive_scan(from, d_from2.data(), n + 1);
+    from = d_from2.data();
+    st.phase_ms.push_back({"ridges", ms_since(t0)});
+    // 3. Every cell, measured and counted.
+    t0 = std::chrono::steady_clock::now();
+    auto d_vol = ex.template alloc<double>(std::size_t(n));
+    auto d_area = ex.template alloc<double>(std::size_t(n));
+    auto d_cen = ex.template alloc<double>(std::size_t(3 * n));
+    auto d_counts = ex.template alloc<I32>(std::size_t(3 * n));
+    auto d_flag = ex.template alloc<I8>(std::size_t(n));
+    CellJob J{};
+    J.xyz = aug, J.src = src, J.dup = dup, J.nb_from = from, J.nb_key = keys, J.n = n;
+    for (int d = 0; d < 3; ++d) J.plo[d] = plo[d], J.phi[d] = phi[d], J.periodic[d] = per[d];
+    J.volume = d_vol.data(), J.area = d_area.data(), J.centroid = d_cen.data();
+    J.nfaces = d_counts.data(), J.nverts = J.nfaces + n, J.nents = J.nverts + n;
+    J.flag = d_flag.data();
+    const I8* flag = J.flag;
+    ex.for_each_index(
+        n, GG_LAMBDA(I64 i) {
+          using namespace vcells;
+          double x[3 * kVertices];
+          I32 ints[2 * kEntries + 3 * kFaces + 3 * kVertices];
+          I8 side[kVertices];
+          const vcells::Room room{kFaces, kVertices, kEntries};
+          cells::ConvexCell C{room.store(x, ints, side)};
+          cell_count(J, i, C);
+        });
+    // ... the cells that outgrew a thread's room, again with room for all their planes
+    auto d_big = ex.template alloc<I32>(std::size_t(n));
+    I32* big = d_big.data();
+    const I64 nbig = ex.compact_indices(
+        n, GG_LAMBDA(I64 i)->bool { return flag[i] == 2; }, big);
+    st.counters["cell_overflows"] = nbig;
+    auto d_kmax = ex.template alloc<I64>(1);
+    vcells::Room room{0, 0, 0};
+    I64 chunk = 0;
+    if (nbig) {
+      ex.transform_reduce_into(
+          nbig, GG_LAMBDA(I64 j)->I64 { return from[big[j] + 1] - from[big[j]]; }, I64(0),
+          thrust::maximum<I64>(), d_kmax.data());
+      I64 kmax = 0;
+      ex.to_host(d_kmax.data(), 1, &kmax);
+      const I64 faces = kmax + 7;
+      if (faces > (I64(1) << 24))
+        throw Error(ErrorCode::Internal, "a Voronoi cell has " + std::to_string(kmax) +
+                                             " neighbours, more than the cells can hold");
+      room = vcells::Room{int(faces), int(2 * faces + 16), int(6 * faces + 32)};
+      const I64 per_cell = 8 * room.doubles() + 4 * room.ints() + room.vertices;
+      chunk = std::clamp<I64>((I64(256) << 20) / per_cell, 1, nbig);
+    }
+    vcells::over_big(ex, J, big, nbig, room, chunk, false);
+    auto d_nflag = ex.template alloc<I64>(1);
+    ex.transform_reduce_into(
+        n, GG_LAMBDA(I64 i)->I64 { return flag[i] != 0; }, I64(0), thrust::plus<I64>(),
+        d_nflag.data());
+    I64 nflag = 0;
+    ex.to_host(d_nflag.data(), 1, &nflag);
+    st.phase_ms.push_back({"cells", ms_since(t0)});
+    if (nflag) {
+      if (!any_periodic)
+        throw Error(ErrorCode::Internal,
+                    std::to_string(nflag) + " Voronoi cell(s) could not be built");
+      w *= 2;  // (some cell reaches past the images: a wider layer, and all again)
+      continue;
+    }
+    // 4. Offsets, and every cell written.
+    t0 = std::chrono::steady_clock::now();
+    auto d_foff = ex.template alloc<I64>(std::size_t(n + 1));
+    auto d_voff = ex.template alloc<I64>(std::size_t(n + 1));
+    auto d_eoff = ex.template alloc<I64>(std::size_t(n + 1));
+    I64* foff = d_foff.data();
+    I64* voff = d_voff.data();
+    I64* eoff = d_eoff.data();
+    const I32* cnt = d_counts.data();
+    ex.exclusive_scan_of(
+        n + 1, GG_LAMBDA(I64 i)->I64 { return i < n ? I64(cnt[i]) : 0; }, foff);
+    ex.exclusive_scan_of(
+        n + 1, GG_LAMBDA(I64 i)->I64 { return i < n ? I64(cnt[n + i]) : 0; }, voff);
+    ex.exclusive_scan_of(
+        n + 1, GG_LAMBDA(I64 i)->I64 { return i < n ? I64(cnt[2 * n + i]) : 0; }, eoff);
+    I64 nf = 0, nv = 0, ne = 0;
+    ex.to_host(foff + n, 1, &nf);
+    ex.to_host(voff + n, 1, &nv);
+    ex.to_host(eoff + n, 1, &ne);
+    st.counters["faces"] = nf;
+    auto d_nbr = ex.template alloc<I32>(std::size_t(nf));
+    auto d_farea = ex.template alloc<double>(std::size_t(nf));
+    auto d_fnrm = ex.template alloc<double>(std::size_t(3 * nf));
+    auto d_fvo = ex.template alloc<I64>(std::size_t(nf + 1));
+    auto d_fv = ex.template alloc<I32>(std::size_t(ne));
+    auto d_vx = ex.template alloc<double>(std::size_t(3 * nv));
+    J.face_off = foff, J.vert_off = voff, J.ent_off = eoff;
+    J.neighbor = d_nbr.data(), J.face_area = d_farea.data(), J.face_normal = d_fnrm.data();
+    J.face_vert_off = d_fvo.data(), J.face_verts = d_fv.data(), J.vertices = d_vx.data();
+    ex.fill(J.face_vert_off + nf, 1, ne);
+    ex.for_each_index(
+        n, GG_LAMBDA(I64 i) {
+          using namespace vcells;
+          if (flag[i] == 2) return;  // (over_big writes it)
+          double x[3 * kVertices];
+          I32 ints[2 * kEntries + 3 * kFaces + 3 * kVertices];
+          I8 side[kVertices];
+          const vcells::Room rm{kFaces, kVertices, kEntries};
+          cells::ConvexCell C{rm.store(x, ints, side)};
+          cell_write(J, i, C);
+        });
+    vcells::over_big(ex, J, big, nbig, room, chunk, true);
+    st.phase_ms.push_back({"cells_write", ms_since(t0)});
+    if (host) {
+      const OutBuffer<double> nd{};
+      const OutBuffer<I32> ni{};
+      const OutBuffer<I64> nl{};
+      deliver::to_host(ex, d_vol.data(), n, nd, host->volumes);
+      deliver::to_host(ex, d_area.data(), n, nd, host->areas);
+      deliver::to_host(ex, d_cen.data(), 3 * n, nd, host->centroids);
+      deliver::to_host(ex, foff, n + 1, nl, host->face_offsets);
+      deliver::to_host(ex, d_nbr.data(), nf, ni, host->neighbors);
+      deliver::to_host(ex, d_farea.data(), nf, nd, host->face_areas);
+      deliver::to_host(ex, d_fnrm.data(), 3 * nf, nd, host->face_normals);
+      deliver::to_host(ex, d_fvo.data(), nf + 1, nl, host->face_vertex_offsets);
+      deliver::to_host(ex, d_fv.data(), ne, ni, host->face_vertices);
+      deliver::to_host(ex, voff, n + 1, nl, host->vertex_offsets);
+      deliver::to_host(ex, d_vx.data(), 3 * nv, nd, host->vertices);
+      return;
+    }
+    ex.sync();
+    dev->num_points = n, dev->num_faces = nf, dev->num_face_vertices = ne, dev->num_vertices = nv;
+    dev->volumes = d_vol.hand_over(), dev->areas = d_area.hand_over();
+    dev->centroids = d_cen.hand_over(), dev->face_offsets = d_foff.hand_over();
+    dev->neighbors = d_nbr.hand_over(), dev->face_areas = d_farea.hand_over();
+    dev->face_normals = d_fnrm.hand_over(), dev->face_vertex_offsets = d_fvo.hand_over();
+    dev->face_vertices = d_fv.hand_over(), dev->vertex_offsets = d_voff.hand_over();
+    dev->vertices = d_vx.hand_over();
+    return;
+  }
+}
