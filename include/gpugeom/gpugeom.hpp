@@ -14,3 +14,4 @@
 #include "gpugeom/predicates.hpp"
 #include "gpugeom/spatial.hpp"
 #include "gpugeom/voronoi3d.hpp"
+#include "gpugeom/voronoi_cells.hpp"

@@ -14,6 +14,7 @@ one line or plane) raises DegenerateInputError, a ValueError.
 from ._core import CudaError, DegenerateInputError, UnsupportedError, __version__
 from ._arrays import device_info
 from . import verify
+from .cells import VoronoiCells
 from .cvd import CentroidalVoronoi, Progress, Stipple, centroidal_voronoi, stipple
 from .ndimage import distance_transform_edt, voronoi_labels
 from .spatial import ConstrainedDelaunay, ConvexHull, Delaunay, Voronoi
@@ -30,7 +31,8 @@ def release_cached_device_memory() -> None:
 
 
 __all__ = [
-    "Delaunay", "Voronoi", "ConvexHull", "ConstrainedDelaunay", "distance_transform_edt", "voronoi_labels",
+    "Delaunay", "Voronoi", "ConvexHull", "ConstrainedDelaunay", "VoronoiCells",
+    "distance_transform_edt", "voronoi_labels",
     "centroidal_voronoi", "stipple", "CentroidalVoronoi", "Stipple", "Progress", "device_info",
     "built_with_cuda", "release_cached_device_memory", "verify", "DegenerateInputError",
     "UnsupportedError", "CudaError", "__version__",

@@ -20,19 +20,6 @@ namespace {
 
 using sz = std::size_t;
 
-// points: float64 (n, dim), C order.
-Input points_input(const AnyArray& a, int dim) {
-  Input in = inspect(a, "points");
-  if (in.shape.size() != 2 || in.shape[1] != dim)
-    throw nb::value_error(("points must have shape (n, " + std::to_string(dim) + ")").c_str());
-  if (!holds<double>(in)) throw nb::type_error("points must be float64");
-  return in;
-}
-
-const double* pts(const Input& in) {
-  return static_cast<const double*>(in.data);
-}
-
 nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
                          int threads, const std::string& method, std::int64_t grid) {
   const Input in = points_input(points, 2);

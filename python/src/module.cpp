@@ -11,6 +11,15 @@
 
 namespace gpugeom::py {
 
+// points: float64 (n, dim), C order.
+Input points_input(const AnyArray& a, int dim) {
+  Input in = inspect(a, "points");
+  if (in.shape.size() != 2 || in.shape[1] != dim)
+    throw nb::value_error(("points must have shape (n, " + std::to_string(dim) + ")").c_str());
+  if (!holds<double>(in)) throw nb::type_error("points must be float64");
+  return in;
+}
+
 Input inspect(const AnyArray& a, const char* name) {
   Input in;
   in.data = a.data();
@@ -154,5 +163,6 @@ NB_MODULE(_core, m) {
   m.def("prepare_device", &prepare_device, nb::arg("device") = -1);
 
   bind_spatial(m);
+  bind_cells(m);
   bind_grid(m);
 }

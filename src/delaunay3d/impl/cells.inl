@@ -222,7 +222,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
             continue;
           }
           if (x < lo[d] || x >= hi[d]) {  // (modulo the box; rounding may leave hi: then lo)
-            x = x - len[d] * floor((x - lo[d]) / len[d]);
+            x = exact::sub_rn(x, exact::mul_rn(len[d], floor(exact::sub_rn(x, lo[d]) / len[d])));
             if (x >= hi[d] || x < lo[d]) x = lo[d];
             base[3 * i + d] = x;
           }
@@ -259,7 +259,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
           for (int d = 0; d < 3; ++d) {
             int c = 0;
             for (int k = -reach[d]; k <= reach[d]; ++k) {
-              const double x = base[3 * i + d] + k * len[d];
+              const double x = exact::add_rn(base[3 * i + d], exact::mul_rn(k, len[d]));
               c += k == 0 || (x >= plo[d] && x <= phi[d]);
             }
             m *= c;
@@ -308,7 +308,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
                 double x[3];
                 bool in = true;
                 for (int d = 0; d < 3; ++d) {
-                  x[d] = p[d] + k[d] * len[d];
+                  x[d] = exact::add_rn(p[d], exact::mul_rn(k[d], len[d]));
                   in &= k[d] == 0 || (x[d] >= plo[d] && x[d] <= phi[d]);
                 }
                 if (!in) continue;

@@ -181,8 +181,9 @@ GG_HD inline void circumcentre3(const double* xyz, const std::int32_t* tet, std:
 
 // The Voronoi vertices: classes of tetrahedra joined across exactly cospherical faces
 // (mesh::number_classes: per tetrahedron its class, per class its first tetrahedron).
-inline auto vor3_classes(Exec& ex, const double* xyz, const std::int32_t* tet,
-                         const std::int32_t* nb, std::int64_t nt, const ScratchLease& lease) {
+inline mesh::Classes<Exec> vor3_classes(Exec& ex, const double* xyz, const std::int32_t* tet,
+                                        const std::int32_t* nb, std::int64_t nt,
+                                        const ScratchLease& lease) {
   using I32 = std::int32_t;
   using I64 = std::int64_t;
   auto d_parent = ex.template alloc<I32>(std::size_t(nt));
