@@ -37,6 +37,7 @@ def clustered(rng, n):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sizes", default="1e5,1e6,1e7")
+    ap.add_argument("--cases", default="uniform-bounded,uniform-periodic,clustered-periodic")
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--scipy-max", type=float, default=1e5)
     a = ap.parse_args()
@@ -63,20 +64,25 @@ def main():
 
     for n in (int(float(s)) for s in a.sizes.split(",")):
         reps = a.reps if n <= 1e6 else 1
-        for case, periodic in (("uniform", False), ("uniform", True), ("clustered", True)):
+        for name in a.cases.split(","):
+            case, periodic = name.split("-")[0], name.endswith("periodic")
             p = rng.random((n, 3)) if case == "uniform" else clustered(rng, n)
             d = cp.asarray(p)
             run = dict(box=[0, 1], periodic=periodic, backend="cuda")
             c = gpugeom.VoronoiCells(d, **run)  # (warm-up)
             e2e = med(lambda: gpugeom.VoronoiCells(p, **run), reps)
             dev = med(lambda: gpugeom.VoronoiCells(d, **run), reps)
+            nop = dict(run, polygons=False)
+            e2e_np = med(lambda: gpugeom.VoronoiCells(p, **nop), reps)
+            dev_np = med(lambda: gpugeom.VoronoiCells(d, **nop), reps)
             c = gpugeom.VoronoiCells(d, **run)
             vsum = float(c.volumes.sum())
             st = c.stats
             ph = ", ".join(f"{k} {v:.0f}" for k, v in st.get("phase_ms", {}).items())
             cnt = st.get("counters", {})
             line = (f"cells {case} {'periodic' if periodic else 'bounded'} {n}: gpugeom end to "
-                    f"end {e2e:.1f} ms, device-resident {dev:.1f} ms (volume sum {vsum:.12f}; "
+                    f"end {e2e:.1f} ms, device-resident {dev:.1f} ms; without polygons "
+                    f"{e2e_np:.1f} / {dev_np:.1f} ms (volume sum {vsum:.12f}; "
                     f"images {cnt.get('images')}, attempts {cnt.get('attempts')}; {ph})")
             if freud and periodic:
                 box = freud.box.Box.cube(1)
@@ -87,8 +93,8 @@ def main():
                 fr = (time.perf_counter() - t0) * 1e3
                 err = np.max(np.abs(np.asarray(fv.volumes) - cp.asnumpy(c.volumes)) /
                              np.asarray(fv.volumes))
-                line += (f"; freud {fr:.0f} ms ({fr / e2e:.1f}x end to end, {fr / dev:.1f}x "
-                         f"device; volumes agree to {err:.1e})")
+                line += (f"; freud {fr:.0f} ms ({fr / e2e_np:.1f}x end to end, {fr / dev_np:.1f}x "
+                         f"device, without polygons as freud; volumes agree to {err:.1e})")
             if n <= a.scipy_max and case == "uniform" and not periodic:
                 import scipy.spatial as ss
 

@@ -17,6 +17,10 @@ namespace gpugeom {
 struct VoronoiCellsOptions : RunOptions {
   double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
   bool periodic[3] = {false, false, false};
+  // The polygons: each cell's vertices and each face's vertex list. Without them (false) the
+  // measures, neighbours and face areas and normals come sooner (each cell is built once, not
+  // twice) and the polygon arrays are left empty.
+  bool polygons = true;
 };
 
 // Every point's Voronoi cell within the box. The cells are the Voronoi diagram's (its

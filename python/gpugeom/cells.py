@@ -46,6 +46,9 @@ class VoronoiCells:
         the results stay there.
     box : [lo, hi], each a number or a 3-vector.
     periodic : bool or (bool, bool, bool).
+    polygons : whether to compute the vertices and the faces' vertex lists (``False``: the
+        measures, neighbours, face areas and normals only, sooner; the polygon attributes are
+        None).
     backend, threads : as everywhere in gpugeom.
 
     Attributes
@@ -63,8 +66,8 @@ class VoronoiCells:
     """
 
     def __init__(self, points, box: Union[Sequence, np.ndarray, None] = None,
-                 periodic: Union[bool, Sequence[bool]] = False, *, backend: str = "auto",
-                 threads: int = 0):
+                 periodic: Union[bool, Sequence[bool]] = False, *, polygons: bool = True,
+                 backend: str = "auto", threads: int = 0):
         arr, kind = _arrays.points_input(points, (3,), backend, threads)
         lo, hi = _box(box, arr)
         per = _periodic(periodic)
@@ -72,8 +75,8 @@ class VoronoiCells:
         self.npoints = int(arr.shape[0])
         self.box = np.array([lo, hi])
         self.periodic = tuple(per)
-        r = _core.voronoi_cells(arr, lo, hi, per, backend=backend, stream=kind.stream,
-                                threads=threads)
+        r = _core.voronoi_cells(arr, lo, hi, per, bool(polygons), backend=backend,
+                                stream=kind.stream, threads=threads)
         back = kind.back
         self.volumes = back(r["volumes"])
         self.areas = back(r["areas"])
@@ -83,10 +86,12 @@ class VoronoiCells:
         self.neighbors = back(r["neighbors"])
         self.face_areas = back(r["face_areas"])
         self.face_normals = back(r["face_normals"])
-        self.face_vertex_offsets = back(r["face_vertex_offsets"])
-        self.faces = back(r["face_vertices"])
-        self.vertex_offsets = back(r["vertex_offsets"])
-        self.vertices = back(r["vertices"])
+        self.polygons = bool(polygons)
+        poly = (lambda k: back(r[k])) if polygons else (lambda k: None)
+        self.face_vertex_offsets = poly("face_vertex_offsets")
+        self.faces = poly("face_vertices")
+        self.vertex_offsets = poly("vertex_offsets")
+        self.vertices = poly("vertices")
         self.stats = r["stats"]
 
     def _slice(self, i: int):
@@ -103,6 +108,8 @@ class VoronoiCells:
     def cell_faces(self, i: int) -> list:
         """Cell i's faces, each an array of (k, 3) vertex coordinates, counter-clockwise seen
         from outside."""
+        if not self.polygons:
+            raise RuntimeError("the cells were computed with polygons=False")
         a, b = self._slice(i)
         fvo = _arrays.to_host(self.face_vertex_offsets)
         fv = _arrays.to_host(self.faces)

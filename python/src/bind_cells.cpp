@@ -15,11 +15,12 @@ using sz = std::size_t;
 // Host points: computed on the executor the options pick, host arrays back; device points:
 // computed on their device, the arrays left there.
 nb::dict voronoi_cells_bind(const AnyArray& points, std::array<double, 3> lo,
-                            std::array<double, 3> hi, std::array<bool, 3> periodic,
+                            std::array<double, 3> hi, std::array<bool, 3> periodic, bool polygons,
                             const std::string& backend, std::uintptr_t stream, int threads) {
   const Input in = points_input(points, 3);
   auto o = options_for<VoronoiCellsOptions>(backend, stream, threads, in);
   for (int d = 0; d < 3; ++d) o.lo[d] = lo[d], o.hi[d] = hi[d], o.periodic[d] = periodic[d];
+  o.polygons = polygons;
   const std::int64_t n = in.shape[0];
   nb::dict r;
   if (in.on_device) {
@@ -33,9 +34,9 @@ nb::dict voronoi_cells_bind(const AnyArray& points, std::array<double, 3> lo,
     r["neighbors"] = out(c.neighbors, {nf});
     r["face_areas"] = out(c.face_areas, {nf});
     r["face_normals"] = out(c.face_normals, {nf, 3});
-    r["face_vertex_offsets"] = out(c.face_vertex_offsets, {nf + 1});
+    r["face_vertex_offsets"] = out(c.face_vertex_offsets, {polygons ? nf + 1 : 0});
     r["face_vertices"] = out(c.face_vertices, {sz(c.num_face_vertices)});
-    r["vertex_offsets"] = out(c.vertex_offsets, {sz(n) + 1});
+    r["vertex_offsets"] = out(c.vertex_offsets, {polygons ? sz(n) + 1 : 0});
     r["vertices"] = out(c.vertices, {sz(c.num_vertices), 3});
     r["stats"] = stats_dict(c.stats);
     return r;
@@ -49,9 +50,10 @@ nb::dict voronoi_cells_bind(const AnyArray& points, std::array<double, 3> lo,
   r["neighbors"] = host_array(std::move(c.neighbors), {nf});
   r["face_areas"] = host_array(std::move(c.face_areas), {nf});
   r["face_normals"] = host_array(std::move(c.face_normals), {nf, 3});
-  r["face_vertex_offsets"] = host_array(std::move(c.face_vertex_offsets), {nf + 1});
+  const sz nfo = c.face_vertex_offsets.size(), nvo = c.vertex_offsets.size();  // (0: no polygons)
+  r["face_vertex_offsets"] = host_array(std::move(c.face_vertex_offsets), {nfo});
   r["face_vertices"] = host_array(std::move(c.face_vertices), {nfv});
-  r["vertex_offsets"] = host_array(std::move(c.vertex_offsets), {sz(n) + 1});
+  r["vertex_offsets"] = host_array(std::move(c.vertex_offsets), {nvo});
   r["vertices"] = host_array(std::move(c.vertices), {nv, 3});
   r["stats"] = stats_dict(c.stats);
   return r;
@@ -62,7 +64,7 @@ nb::dict voronoi_cells_bind(const AnyArray& points, std::array<double, 3> lo,
 void bind_cells(nb::module_& m) {
   using namespace nb::literals;
   m.def("voronoi_cells", &voronoi_cells_bind, "points"_a, "lo"_a, "hi"_a, "periodic"_a,
-        "backend"_a = "auto", "stream"_a = 0, "threads"_a = 0,
+        "polygons"_a = true, "backend"_a = "auto", "stream"_a = 0, "threads"_a = 0,
         "Voronoi cells of (n, 3) points in the box [lo, hi], periodic per axis: a dict of flat "
         "arrays (gpugeom.VoronoiCells gives them names)");
 }

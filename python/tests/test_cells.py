@@ -92,6 +92,12 @@ def test_cell_accessors_and_duplicates(backend, rng):
             d = np.linalg.norm(f - p[3], axis=1) - np.linalg.norm(f - p[q], axis=1)
             assert np.abs(d).max() < 1e-12
     assert "201 cells" in repr(c) and len(c) == 201
+    # without polygons: the same measures and faces
+    q = gpugeom.VoronoiCells(p, box=(0.0, 1.0), polygons=False, backend=backend)
+    assert np.array_equal(q.volumes, c.volumes) and np.array_equal(q.neighbors, c.neighbors)
+    assert np.array_equal(q.face_normals, c.face_normals) and q.vertices is None
+    with pytest.raises(RuntimeError, match="polygons"):
+        q.cell_faces(0)
 
 
 def test_errors(backend):

@@ -48,6 +48,8 @@ struct CellStore {
   std::int32_t* remap;   // vcap: old vertex -> new
   std::int32_t* ea;      // vcap: per new vertex, its edge (inside end, outside end)
   std::int32_t* eb;      // vcap
+  double* okey;          // fcap: the order of the cuts (cells.inl sorts the planes)
+  std::int32_t* oidx;    // fcap
   int vcap, ecap, fcap;
 };
 
@@ -55,6 +57,11 @@ struct ConvexCell {
   CellStore s;
   int nv = 0, nf = 0, half = 0;
   bool overflow = false;
+  double r2 = 0;  // the largest squared distance of a vertex from the site
+
+  // Whether the plane x.n = |n|^2 / 2 lies beyond every vertex (|n| / 2 > the farthest vertex's
+  // distance, with room for rounding): a cut by it changes nothing, nor by any plane further.
+  GG_HD bool beyond(const double* n) const { return dot3(n, n) / 4 > r2 * (1 + 1e-9); }
 
   GG_HD std::int32_t* faces_ent() const { return s.ent + half * s.ecap; }
   GG_HD const double* vertex(int i) const { return s.x + 3 * i; }
@@ -71,6 +78,8 @@ struct ConvexCell {
       s.x[3 * i + 2] = (i & 4) ? hi[2] : lo[2];
     }
     nv = 8;
+    r2 = 0;
+    for (int i = 0; i < 8; ++i) r2 = fmax(r2, dot3(vertex(i), vertex(i)));
     // (corner i has bit k set where it is at the high end of axis k; each ring runs
     // counter-clockwise seen from outside)
     constexpr int ring[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
@@ -104,6 +113,7 @@ struct ConvexCell {
     if (!any_out) return;  // (the plane misses the cell or touches it)
     if (!any_in) {         // (nothing strictly inside: the cell is gone)
       nv = nf = 0;
+      r2 = 0;
       return;
     }
     // New vertices, one per edge from inside to outside, found where it leaves a face.
@@ -186,11 +196,13 @@ struct ConvexCell {
     }
     // Vertices outside go; the rest are renumbered in order, the new ones last.
     int w = 0;
+    r2 = 0;
     for (int i = 0; i < nv + nn_new; ++i) {
       if (i < nv && s.side[i] > 0) continue;
       s.remap[i] = w;
       if (w != i)
         for (int d = 0; d < 3; ++d) s.x[3 * w + d] = s.x[3 * i + d];
+      r2 = fmax(r2, dot3(vertex(w), vertex(w)));
       ++w;
     }
     for (int k = 0; k < at; ++k) o[k] = s.remap[o[k]];

@@ -24,6 +24,7 @@
 #include "mesh/vertex_classes.hpp"
 #include "predicates/expansion.hpp"
 #include "predicates/predicates.hpp"
+#include "spatial/hilbert.hpp"
 
 namespace gpugeom::del3d::cpu_impl {
 using Exec = CpuExec;

@@ -25,6 +25,7 @@
 #include "mesh/vertex_classes.hpp"
 #include "predicates/expansion.hpp"
 #include "predicates/predicates.hpp"
+#include "spatial/hilbert.hpp"
 
 namespace gpugeom::del3d::cuda_impl {
 GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)

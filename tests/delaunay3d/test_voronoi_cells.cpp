@@ -286,6 +286,15 @@ TEST(VoronoiCells, SameBitsOnAnyThreadCount) {
   EXPECT_TRUE(x.face_normals == y.face_normals);
   EXPECT_TRUE(x.vertices == y.vertices);
   EXPECT_TRUE(x.face_vertices == y.face_vertices);
+  // without the polygons: the same measures and faces, no polygon arrays
+  b.polygons = false;
+  const VoronoiCells z = voronoi_cells(p.data(), n, b);
+  EXPECT_TRUE(z.volumes == x.volumes);
+  EXPECT_TRUE(z.centroids == x.centroids);
+  EXPECT_TRUE(z.neighbors == x.neighbors);
+  EXPECT_TRUE(z.face_areas == x.face_areas);
+  EXPECT_TRUE(z.face_normals == x.face_normals);
+  EXPECT_TRUE(z.vertices.empty() && z.face_vertices.empty() && z.face_vertex_offsets.empty());
 }
 
 TEST(VoronoiCells, BadInputGetsTypedErrors) {

@@ -43,6 +43,11 @@ void expect_as_on_the_host(const std::vector<double>& p, VoronoiCellsOptions o) 
   EXPECT_EQ(gg_test::from_device(dc.neighbors, dc.num_faces), vec(ref.neighbors));
   EXPECT_EQ(gg_test::from_device(dc.face_vertices, dc.num_face_vertices), vec(ref.face_vertices));
   EXPECT_EQ(gg_test::from_device(dc.vertices, 3 * dc.num_vertices), vec(ref.vertices));
+  o.polygons = false;
+  const DeviceVoronoiCells np = voronoi_cells_device(d.doubles(), n, o);
+  EXPECT_EQ(gg_test::from_device(np.volumes, n), vec(ref.volumes));
+  EXPECT_EQ(gg_test::from_device(np.face_areas, np.num_faces), vec(ref.face_areas));
+  EXPECT_FALSE(np.vertices || np.face_vertices || np.face_vertex_offsets);
 }
 
 VoronoiCellsOptions box(bool px, bool py, bool pz) {

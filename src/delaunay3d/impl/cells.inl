@@ -8,12 +8,14 @@
 //    (vor3_ridge_lengths): per point, its Voronoi neighbours, exactly; edges that only cut a
 //    cospherical cell have no ridge and give no plane.
 // 3. Per point, on one thread: the box (padded by w along periodic axes) cut by the bisector
-//    plane of each neighbour (convex_cell.hpp), then measured. Periodic: a cell is only right
-//    if every point that could cut it is there, that is if the ball round each of its vertices
-//    through the site lies within the padded box; where one does not, w doubles and all is
-//    done again.
-// 4. The faces counted per cell, offsets scanned, and every cell built again to write its faces
-//    and vertices (building twice costs less than keeping every cell's polyhedron).
+//    plane of each neighbour, nearest first (convex_cell.hpp), until the next plane lies beyond
+//    every vertex; then measured, its faces (neighbour, area) written into room for as many
+//    faces as it has planes. Periodic: a cell is only right if every point that could cut it is
+//    there, that is if the ball round each of its vertices through the site lies within the
+//    padded box; where one does not, w doubles and all is done again.
+// 4. The faces gathered by scanned offsets; with the polygons asked for, every cell is built
+//    again to write its vertices and its faces' vertex lists (building twice costs less than
+//    keeping every cell's polyhedron).
 //
 // A thread keeps its cell in local arrays for 48 faces; a cell that outgrows them (a point
 // inside a sphere of many others) is built again in executor memory with room for all its
@@ -32,30 +34,54 @@ struct CellJob {
   double plo[3], phi[3];        // the box, padded by w along periodic axes
   bool periodic[3];
   std::int64_t n;
-  // measures and counts (cell_count)
+  // measures, counts and faces (cell_count); cell i's faces at slot nb_from[i] + 6 i
   double *volume, *area, *centroid;
   std::int32_t *nfaces, *nverts, *nents;
   std::int8_t* flag;  // 1: reaches past the images, 2: outgrew the room it was given
-  // faces and vertices (cell_write)
-  const std::int64_t *face_off, *vert_off, *ent_off;
-  std::int32_t* neighbor;
-  double *face_area, *face_normal, *vertices;
+  std::int32_t* slot_plane;
+  double* slot_area;
+  // polygons (cell_write)
+  const std::int64_t *vert_off, *ent_off, *face_off;
+  double* vertices;
   std::int64_t* face_vert_off;
   std::int32_t* face_verts;
 };
 
+// The cell's planes are numbered 0..5 for the box's walls, 6 + k for its k-th neighbour.
 GG_HD inline void cell_build(const CellJob& J, std::int64_t i, cells::ConvexCell& C) {
   using exact::sub_rn;
   const double* p = J.xyz + 3 * i;
   double lo[3], hi[3];
   for (int d = 0; d < 3; ++d) lo[d] = sub_rn(J.plo[d], p[d]), hi[d] = sub_rn(J.phi[d], p[d]);
   C.box(lo, hi);
-  const std::int64_t from = J.nb_from[i], to = J.nb_from[i + 1];
-  for (std::int64_t k = from; k < to && !C.overflow && !C.empty(); ++k) {
-    const std::int64_t q = std::int64_t(J.nb_key[k] & 0xffffffffu);
-    double nrm[3];
+  const std::int64_t from = J.nb_from[i], k = J.nb_from[i + 1] - from;
+  if (C.overflow) return;
+  if (k + 7 > C.s.fcap) {  // (every neighbour may give a face: not enough room)
+    C.overflow = true;
+    return;
+  }
+  auto normal = [&](std::int64_t j, double* nrm) {
+    const std::int64_t q = std::int64_t(J.nb_key[from + j] & 0xffffffffu);
     for (int d = 0; d < 3; ++d) nrm[d] = sub_rn(J.xyz[3 * q + d], p[d]);
-    C.cut(nrm, cells::dot3(nrm, nrm) / 2, std::int32_t(6 + (k - from)));
+  };
+  // nearest first (insertion sort by squared distance, then by rank): the cell shrinks fast
+  // and the cut can stop at the first plane beyond it
+  for (std::int64_t j = 0; j < k; ++j) {
+    double nrm[3];
+    normal(j, nrm);
+    const double key = cells::dot3(nrm, nrm);
+    std::int64_t at = j;
+    while (at > 0 && C.s.okey[at - 1] > key) {
+      C.s.okey[at] = C.s.okey[at - 1], C.s.oidx[at] = C.s.oidx[at - 1];
+      --at;
+    }
+    C.s.okey[at] = key, C.s.oidx[at] = std::int32_t(j);
+  }
+  for (std::int64_t j = 0; j < k && !C.overflow && !C.empty(); ++j) {
+    double nrm[3];
+    normal(C.s.oidx[j], nrm);
+    if (C.beyond(nrm)) break;
+    C.cut(nrm, C.s.okey[j] / 2, std::int32_t(6 + C.s.oidx[j]));
   }
 }
 
@@ -63,7 +89,16 @@ GG_HD inline bool cell_skipped(const CellJob& J, std::int64_t i) {
   return J.dup && J.dup[i] >= 0 && J.dup[i] != std::int32_t(i);  // (a copy: its twin has it)
 }
 
-// Builds and measures cell i; counts its faces, vertices and face-vertex entries.
+// The face of cell C with the smallest plane above `last` (a cell has a few dozen faces).
+GG_HD inline int next_face(const cells::ConvexCell& C, std::int32_t last) {
+  int f = -1;
+  for (int g = 0; g < C.nf; ++g)
+    if (C.s.fplane[g] > last && (f < 0 || C.s.fplane[g] < C.s.fplane[f])) f = g;
+  return f;
+}
+
+// Builds and measures cell i, counts its faces, vertices and face-vertex entries, and writes
+// its faces' planes and areas, in the order of their planes, into its slots.
 GG_HD inline void cell_count(const CellJob& J, std::int64_t i, cells::ConvexCell& C) {
   using exact::add_rn;
   using exact::sub_rn;
@@ -82,8 +117,16 @@ GG_HD inline void cell_count(const CellJob& J, std::int64_t i, cells::ConvexCell
   J.volume[i] = C.measure(cen);
   for (int d = 0; d < 3; ++d) J.centroid[3 * i + d] = add_rn(p[d], cen[d]);
   double area = 0;
-  std::int32_t ents = 0;
-  for (int f = 0; f < C.nf; ++f) area = add_rn(area, C.face_area(f)), ents += C.s.flen[f];
+  std::int32_t ents = 0, last = -1;
+  const std::int64_t slot = J.nb_from[i] + 6 * i;
+  for (int j = 0; j < C.nf; ++j) {
+    const int f = next_face(C, last);
+    last = C.s.fplane[f];
+    const double a = C.face_area(f);
+    J.slot_plane[slot + j] = last, J.slot_area[slot + j] = a;
+    area = add_rn(area, a);
+    ents += C.s.flen[f];
+  }
   J.area[i] = area;
   J.nfaces[i] = C.nf, J.nverts[i] = C.nv, J.nents[i] = ents;
   for (int k = 0; k < C.nv; ++k) {  // (periodic: every point that could cut the cell is there?)
@@ -97,11 +140,10 @@ GG_HD inline void cell_count(const CellJob& J, std::int64_t i, cells::ConvexCell
   }
 }
 
-// Builds cell i again and writes its faces (in the order of their planes: walls, then
-// neighbours) and vertices where the scanned offsets put them.
+// Builds cell i again and writes its vertices and its faces' vertex lists (faces in the order
+// of their planes, as cell_count wrote them) where the scanned offsets put them.
 GG_HD inline void cell_write(const CellJob& J, std::int64_t i, cells::ConvexCell& C) {
   using exact::add_rn;
-  using exact::sub_rn;
   if (cell_skipped(J, i)) return;
   cell_build(J, i, C);
   if (C.overflow) return;  // (cannot happen: the same room as when it was counted)
@@ -113,42 +155,40 @@ GG_HD inline void cell_write(const CellJob& J, std::int64_t i, cells::ConvexCell
   std::int64_t at = J.ent_off[i];
   std::int32_t last = -1;
   for (int j = 0; j < C.nf; ++j) {
-    int f = -1;  // (the face with the next plane: a cell has a few dozen)
-    for (int g = 0; g < C.nf; ++g)
-      if (C.s.fplane[g] > last && (f < 0 || C.s.fplane[g] < C.s.fplane[f])) f = g;
+    const int f = next_face(C, last);
     last = C.s.fplane[f];
-    const std::int64_t o = J.face_off[i] + j;
-    double* nrm = J.face_normal + 3 * o;
-    if (last < 6) {
-      J.neighbor[o] = -1 - last;
-      nrm[0] = nrm[1] = nrm[2] = 0;
-      nrm[last / 2] = (last & 1) ? 1 : -1;
-    } else {
-      const std::int64_t q = std::int64_t(J.nb_key[J.nb_from[i] + (last - 6)] & 0xffffffffu);
-      J.neighbor[o] = J.src[q];
-      for (int d = 0; d < 3; ++d) nrm[d] = sub_rn(J.xyz[3 * q + d], p[d]);
-      const double len = sqrt(cells::dot3(nrm, nrm));
-      for (int d = 0; d < 3; ++d) nrm[d] = nrm[d] / len;
-    }
-    J.face_area[o] = C.face_area(f);
-    J.face_vert_off[o] = at;
+    J.face_vert_off[J.face_off[i] + j] = at;
     const std::int32_t* r = e + C.s.fstart[f];
     for (int k = 0; k < C.s.flen[f]; ++k) J.face_verts[at++] = std::int32_t(v0 + r[k]);
   }
 }
 
-// A cell's room in executor memory, for the cells that outgrow a thread's (one slot each).
+// A cell's room: a thread's local arrays, or a slice of executor memory for the cells that
+// outgrow them.
 struct Room {
   int faces, vertices, entries;
-  GG_HD std::int64_t doubles() const { return 3 * std::int64_t(vertices); }
-  GG_HD std::int64_t ints() const { return 2 * std::int64_t(entries) + 3 * faces + 3 * vertices; }
+  GG_HD std::int64_t doubles() const { return 3 * std::int64_t(vertices) + faces; }
+  GG_HD std::int64_t ints() const {
+    return 2 * std::int64_t(entries) + 4 * faces + 3 * std::int64_t(vertices);
+  }
   GG_HD cells::CellStore store(double* x, std::int32_t* ints, std::int8_t* side) const {
     std::int32_t* e = ints;
     std::int32_t* f = e + 2 * entries;
-    std::int32_t* v = f + 3 * faces;
-    return cells::CellStore{
-        x,        e,       f,    f + faces, f + 2 * faces, side, v, v + vertices, v + 2 * vertices,
-        vertices, entries, faces};
+    std::int32_t* v = f + 4 * faces;
+    return cells::CellStore{x,
+                            e,
+                            f,
+                            f + faces,
+                            f + 2 * faces,
+                            side,
+                            v,
+                            v + vertices,
+                            v + 2 * vertices,
+                            x + 3 * vertices,
+                            f + 3 * faces,
+                            vertices,
+                            entries,
+                            faces};
   }
 };
 
@@ -365,29 +405,48 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     ex.exclusive_scan(from, d_from2.data(), n + 1);
     from = d_from2.data();
     st.phase_ms.push_back({"ridges", ms_since(t0)});
-    // 3. Every cell, measured and counted.
+    // 3. Every cell, measured and counted, in the order of a Hilbert curve through the points
+    // (neighbouring threads read neighbouring points and build cells alike).
     t0 = std::chrono::steady_clock::now();
+    auto d_hkey = ex.template alloc<U64>(std::size_t(n));
+    auto d_order = ex.template alloc<I32>(std::size_t(n));
+    U64* hkey = d_hkey.data();
+    I32* order = d_order.data();
+    spatial::Box sbox;
+    for (int d = 0; d < 3; ++d) sbox.lo[d] = plo[d], sbox.hi[d] = phi[d];
+    ex.for_each_index(
+        n, GG_LAMBDA(I64 i) {
+          hkey[i] = spatial::hilbert_key<3>(aug + 3 * i, sbox);
+          order[i] = I32(i);
+        });
+    ex.sort_by_key(hkey, order, n);
     auto d_vol = ex.template alloc<double>(std::size_t(n));
     auto d_area = ex.template alloc<double>(std::size_t(n));
     auto d_cen = ex.template alloc<double>(std::size_t(3 * n));
     auto d_counts = ex.template alloc<I32>(std::size_t(3 * n));
     auto d_flag = ex.template alloc<I8>(std::size_t(n));
+    I64 nslots = 0;  // (each cell's faces: room for one per plane)
+    ex.to_host(from + n, 1, &nslots);
+    nslots += 6 * n;
+    auto d_splane = ex.template alloc<I32>(std::size_t(nslots));
+    auto d_sarea = ex.template alloc<double>(std::size_t(nslots));
     CellJob J{};
     J.xyz = aug, J.src = src, J.dup = dup, J.nb_from = from, J.nb_key = keys, J.n = n;
     for (int d = 0; d < 3; ++d) J.plo[d] = plo[d], J.phi[d] = phi[d], J.periodic[d] = per[d];
     J.volume = d_vol.data(), J.area = d_area.data(), J.centroid = d_cen.data();
     J.nfaces = d_counts.data(), J.nverts = J.nfaces + n, J.nents = J.nverts + n;
     J.flag = d_flag.data();
+    J.slot_plane = d_splane.data(), J.slot_area = d_sarea.data();
     const I8* flag = J.flag;
     ex.for_each_index(
         n, GG_LAMBDA(I64 i) {
           using namespace vcells;
-          double x[3 * kVertices];
-          I32 ints[2 * kEntries + 3 * kFaces + 3 * kVertices];
+          double x[3 * kVertices + kFaces];
+          I32 ints[2 * kEntries + 4 * kFaces + 3 * kVertices];
           I8 side[kVertices];
           const vcells::Room room{kFaces, kVertices, kEntries};
           cells::ConvexCell C{room.store(x, ints, side)};
-          cell_count(J, i, C);
+          cell_count(J, order[i], C);
         });
     // ... the cells that outgrew a thread's room, again with room for all their planes
     auto d_big = ex.template alloc<I32>(std::size_t(n));
@@ -427,7 +486,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
       w *= 2;  // (some cell reaches past the images: a wider layer, and all again)
       continue;
     }
-    // 4. Offsets, and every cell written.
+    // 4. Offsets; the faces gathered from their slots; the polygons, if asked for.
     t0 = std::chrono::steady_clock::now();
     auto d_foff = ex.template alloc<I64>(std::size_t(n + 1));
     auto d_voff = ex.template alloc<I64>(std::size_t(n + 1));
@@ -436,39 +495,71 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     I64* voff = d_voff.data();
     I64* eoff = d_eoff.data();
     const I32* cnt = d_counts.data();
+    const bool polygons = opt.polygons;
     ex.exclusive_scan_of(
         n + 1, GG_LAMBDA(I64 i)->I64 { return i < n ? I64(cnt[i]) : 0; }, foff);
-    ex.exclusive_scan_of(
-        n + 1, GG_LAMBDA(I64 i)->I64 { return i < n ? I64(cnt[n + i]) : 0; }, voff);
-    ex.exclusive_scan_of(
-        n + 1, GG_LAMBDA(I64 i)->I64 { return i < n ? I64(cnt[2 * n + i]) : 0; }, eoff);
     I64 nf = 0, nv = 0, ne = 0;
     ex.to_host(foff + n, 1, &nf);
-    ex.to_host(voff + n, 1, &nv);
-    ex.to_host(eoff + n, 1, &ne);
+    if (polygons) {
+      ex.exclusive_scan_of(
+          n + 1, GG_LAMBDA(I64 i)->I64 { return i < n ? I64(cnt[n + i]) : 0; }, voff);
+      ex.exclusive_scan_of(
+          n + 1, GG_LAMBDA(I64 i)->I64 { return i < n ? I64(cnt[2 * n + i]) : 0; }, eoff);
+      ex.to_host(voff + n, 1, &nv);
+      ex.to_host(eoff + n, 1, &ne);
+    }
     st.counters["faces"] = nf;
     auto d_nbr = ex.template alloc<I32>(std::size_t(nf));
     auto d_farea = ex.template alloc<double>(std::size_t(nf));
     auto d_fnrm = ex.template alloc<double>(std::size_t(3 * nf));
-    auto d_fvo = ex.template alloc<I64>(std::size_t(nf + 1));
-    auto d_fv = ex.template alloc<I32>(std::size_t(ne));
-    auto d_vx = ex.template alloc<double>(std::size_t(3 * nv));
-    J.face_off = foff, J.vert_off = voff, J.ent_off = eoff;
-    J.neighbor = d_nbr.data(), J.face_area = d_farea.data(), J.face_normal = d_fnrm.data();
-    J.face_vert_off = d_fvo.data(), J.face_verts = d_fv.data(), J.vertices = d_vx.data();
-    ex.fill(J.face_vert_off + nf, 1, ne);
+    I32* nbr = d_nbr.data();
+    double* farea = d_farea.data();
+    double* fnrm = d_fnrm.data();
+    const I32* splane = d_splane.data();
+    const double* sarea = d_sarea.data();
     ex.for_each_index(
         n, GG_LAMBDA(I64 i) {
-          using namespace vcells;
-          if (flag[i] == 2) return;  // (over_big writes it)
-          double x[3 * kVertices];
-          I32 ints[2 * kEntries + 3 * kFaces + 3 * kVertices];
-          I8 side[kVertices];
-          const vcells::Room rm{kFaces, kVertices, kEntries};
-          cells::ConvexCell C{rm.store(x, ints, side)};
-          cell_write(J, i, C);
+          const I64 slot = from[i] + 6 * i, m = foff[i + 1] - foff[i];
+          const double* p = aug + 3 * i;
+          for (I64 j = 0; j < m; ++j) {
+            const I64 o = foff[i] + j;
+            const I32 plane = splane[slot + j];
+            double* nr = fnrm + 3 * o;
+            farea[o] = sarea[slot + j];
+            if (plane < 6) {  // (a wall: -1 - its plane, Voro++'s numbering)
+              nbr[o] = -1 - plane;
+              nr[0] = nr[1] = nr[2] = 0;
+              nr[plane / 2] = (plane & 1) ? 1 : -1;
+              continue;
+            }
+            const I64 q = I64(keys[from[i] + (plane - 6)] & 0xffffffffu);
+            nbr[o] = src[q];
+            for (int d = 0; d < 3; ++d) nr[d] = exact::sub_rn(aug[3 * q + d], p[d]);
+            const double len = sqrt(cells::dot3(nr, nr));
+            for (int d = 0; d < 3; ++d) nr[d] = nr[d] / len;
+          }
         });
-    vcells::over_big(ex, J, big, nbig, room, chunk, true);
+    auto d_fvo = ex.template alloc<I64>(std::size_t(polygons ? nf + 1 : 0));
+    auto d_fv = ex.template alloc<I32>(std::size_t(ne));
+    auto d_vx = ex.template alloc<double>(std::size_t(3 * nv));
+    if (polygons) {
+      J.face_off = foff, J.vert_off = voff, J.ent_off = eoff;
+      J.face_vert_off = d_fvo.data(), J.face_verts = d_fv.data(), J.vertices = d_vx.data();
+      ex.fill(J.face_vert_off + nf, 1, ne);
+      ex.for_each_index(
+          n, GG_LAMBDA(I64 i) {
+            using namespace vcells;
+            i = order[i];
+            if (flag[i] == 2) return;  // (over_big writes it)
+            double x[3 * kVertices + kFaces];
+            I32 ints[2 * kEntries + 4 * kFaces + 3 * kVertices];
+            I8 side[kVertices];
+            const vcells::Room rm{kFaces, kVertices, kEntries};
+            cells::ConvexCell C{rm.store(x, ints, side)};
+            cell_write(J, i, C);
+          });
+      vcells::over_big(ex, J, big, nbig, room, chunk, true);
+    }
     st.phase_ms.push_back({"cells_write", ms_since(t0)});
     if (host) {
       const OutBuffer<double> nd{};
@@ -481,10 +572,12 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
       deliver::to_host(ex, d_nbr.data(), nf, ni, host->neighbors);
       deliver::to_host(ex, d_farea.data(), nf, nd, host->face_areas);
       deliver::to_host(ex, d_fnrm.data(), 3 * nf, nd, host->face_normals);
-      deliver::to_host(ex, d_fvo.data(), nf + 1, nl, host->face_vertex_offsets);
-      deliver::to_host(ex, d_fv.data(), ne, ni, host->face_vertices);
-      deliver::to_host(ex, voff, n + 1, nl, host->vertex_offsets);
-      deliver::to_host(ex, d_vx.data(), 3 * nv, nd, host->vertices);
+      if (polygons) {
+        deliver::to_host(ex, d_fvo.data(), nf + 1, nl, host->face_vertex_offsets);
+        deliver::to_host(ex, d_fv.data(), ne, ni, host->face_vertices);
+        deliver::to_host(ex, voff, n + 1, nl, host->vertex_offsets);
+        deliver::to_host(ex, d_vx.data(), 3 * nv, nd, host->vertices);
+      }
       return;
     }
     ex.sync();
@@ -492,9 +585,11 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     dev->volumes = d_vol.hand_over(), dev->areas = d_area.hand_over();
     dev->centroids = d_cen.hand_over(), dev->face_offsets = d_foff.hand_over();
     dev->neighbors = d_nbr.hand_over(), dev->face_areas = d_farea.hand_over();
-    dev->face_normals = d_fnrm.hand_over(), dev->face_vertex_offsets = d_fvo.hand_over();
-    dev->face_vertices = d_fv.hand_over(), dev->vertex_offsets = d_voff.hand_over();
-    dev->vertices = d_vx.hand_over();
+    dev->face_normals = d_fnrm.hand_over();
+    if (polygons) {
+      dev->face_vertex_offsets = d_fvo.hand_over(), dev->face_vertices = d_fv.hand_over();
+      dev->vertex_offsets = d_voff.hand_over(), dev->vertices = d_vx.hand_over();
+    }
     return;
   }
 }
