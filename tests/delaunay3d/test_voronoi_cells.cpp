@@ -91,6 +91,19 @@ void expect_cells(const std::vector<double>& p, const VoronoiCells& c, double bo
       EXPECT_GT(c.face_areas[f], 0);
       const int q = c.neighbors[f];
       if (q >= 0) pair_area[{int(i), q}] += c.face_areas[f];
+      // counter-clockwise seen from outside: the polygon's area vector along the normal
+      double newell[3] = {0, 0, 0};
+      const std::int64_t fa = c.face_vertex_offsets[f], fb = c.face_vertex_offsets[f + 1];
+      for (std::int64_t k = fa; k < fb; ++k) {
+        const double* x = &c.vertices[3 * c.face_vertices[k]];
+        const double* y = &c.vertices[3 * c.face_vertices[k + 1 < fb ? k + 1 : fa]];
+        newell[0] += (x[1] - y[1]) * (x[2] + y[2]);
+        newell[1] += (x[2] - y[2]) * (x[0] + y[0]);
+        newell[2] += (x[0] - y[0]) * (x[1] + y[1]);
+      }
+      double along = 0;
+      for (int d = 0; d < 3; ++d) along += newell[d] * c.face_normals[3 * f + d];
+      EXPECT_NEAR(along / 2, c.face_areas[f], 1e-9 * c.face_areas[f]);
       // the face's vertices lie on the side the normal points to, away from the point
       for (std::int64_t k = c.face_vertex_offsets[f]; k < c.face_vertex_offsets[f + 1]; ++k) {
         const std::int32_t v = c.face_vertices[k];
@@ -127,6 +140,9 @@ TEST(VoronoiCells, BoundedCellsFillTheBoxAndMatchTheDiagram) {
   const VoronoiCells c = voronoi_cells(p.data(), n, box(0, 1));
   expect_cells(p, c, 1.0, p);
   EXPECT_EQ(c.stats.counters.at("attempts"), 1);
+  // cells no wall cuts are read from the diagram; the others cut from the box
+  EXPECT_GT(c.stats.counters.at("cells_cut"), 0);
+  EXPECT_LT(c.stats.counters.at("cells_cut"), n / 2);
   // inner cells: the volume summed from the diagram's circumcentres
   Delaunay3dOptions o;
   o.backend = Backend::Cpu;
@@ -211,6 +227,7 @@ TEST(VoronoiCells, PeriodicCellsEqualTheInnerCopyOfReplicas) {
         }
       }
   expect_cells(w, c, 8.0, rep);
+  EXPECT_EQ(c.stats.counters.at("cells_cut"), 0);  // (no walls: every cell from the diagram)
   Delaunay3dOptions d;
   d.backend = Backend::Cpu;
   const Voronoi3d v = voronoi3d(rep.data(), std::int64_t(rep.size() / 3), d);

@@ -31,13 +31,19 @@ struct CellJob {
   const std::int32_t* dup;      // duplicate map of the originals (null: none)
   const std::int64_t* nb_from;  // n + 1: each original's neighbours in nb_key
   const std::uint64_t* nb_key;  // (original << 32 | neighbour), sorted
-  double plo[3], phi[3];        // the box, padded by w along periodic axes
+  const std::int64_t* nb_edge;  // per entry of nb_key, its ridge: 6 tetrahedron + edge
+  const std::int32_t *tet, *tnb, *vid;  // the tetrahedralisation, each tetrahedron's class
+  const double* cc;                     // per class, its circumcentre (the Voronoi vertex)
+  std::int64_t nt;
+  double plo[3], phi[3];  // the box, padded by w along periodic axes
   bool periodic[3];
   std::int64_t n;
   // measures, counts and faces (cell_count); cell i's faces at slot nb_from[i] + 6 i
   double *volume, *area, *centroid;
   std::int32_t *nfaces, *nverts, *nents;
-  std::int8_t* flag;  // 1: reaches past the images, 2: outgrew the room it was given
+  // 1: reaches past the images, 2: outgrew the room it was given, 3: to be cut from the box
+  std::int8_t* flag;
+  std::int8_t* how;  // 0: read from the diagram, 1: cut in a thread's room, 2: in executor memory
   std::int32_t* slot_plane;
   double* slot_area;
   // polygons (cell_write)
@@ -160,6 +166,167 @@ GG_HD inline void cell_write(const CellJob& J, std::int64_t i, cells::ConvexCell
     J.face_vert_off[J.face_off[i] + j] = at;
     const std::int32_t* r = e + C.s.fstart[f];
     for (int k = 0; k < C.s.flen[f]; ++k) J.face_verts[at++] = std::int32_t(v0 + r[k]);
+  }
+}
+
+// A cell read from the diagram (no wall cuts it): its faces are its ridges, each the ring of
+// circumcentres round a Delaunay edge, and its volume the pyramids from the point over them.
+// Returns false where the cell must be cut from the box instead: a vertex lies outside the box
+// along an axis that does not wrap, or a ring or the cell outgrows the room here.
+constexpr int kRing = 32;
+
+struct Face {  // one ridge of a cell, relative to the site
+  std::int32_t ring[kRing];
+  int m = 0;
+  bool reversed = false;  // (its ring runs clockwise seen from the neighbour)
+  double area = 0, centroid[3] = {0, 0, 0};
+};
+
+GG_HD inline bool read_face(const CellJob& J, std::int64_t i, std::int64_t entry, Face& F) {
+  using exact::add_rn;
+  using exact::mul_rn;
+  using exact::sub_rn;
+  const std::int64_t c = J.nb_edge[entry];
+  const Ring R = vor3_ring(J.tet, J.tnb, c / 6, int(c % 6), J.nt);
+  if (!R.closed) return false;  // (an unbounded cell: only the far points have them)
+  mesh::ClassRun run{};
+  int m = 0;
+  vor3_walk(J.tet, J.tnb, R, J.nt, [&](std::int64_t t) {
+    const std::int32_t k = J.vid[t];
+    if (run.step(k)) {
+      if (m < kRing) F.ring[m] = k;
+      ++m;
+    }
+  });
+  m = int(run.length(true));
+  if (m > kRing || m < 3) return false;
+  F.m = m;
+  const double* p = J.xyz + 3 * i;
+  const std::int64_t q = std::int64_t(J.nb_key[entry] & 0xffffffffu);
+  double v0[3], a[3] = {0, 0, 0}, g[3] = {0, 0, 0};
+  for (int d = 0; d < 3; ++d) v0[d] = sub_rn(J.cc[3 * F.ring[0] + d], p[d]);
+  double prev[3];
+  for (int d = 0; d < 3; ++d) prev[d] = sub_rn(sub_rn(J.cc[3 * F.ring[1] + d], p[d]), v0[d]);
+  double tri[kRing][3];  // (each fan triangle's doubled area vector)
+  for (int k = 2; k < m; ++k) {
+    double cur[3];
+    for (int d = 0; d < 3; ++d) cur[d] = sub_rn(sub_rn(J.cc[3 * F.ring[k] + d], p[d]), v0[d]);
+    cells::cross3(prev, cur, tri[k]);
+    for (int d = 0; d < 3; ++d) a[d] = add_rn(a[d], tri[k][d]);
+    for (int d = 0; d < 3; ++d) prev[d] = cur[d];
+  }
+  double nrm[3];
+  for (int d = 0; d < 3; ++d) nrm[d] = sub_rn(J.xyz[3 * q + d], p[d]);
+  F.reversed = cells::dot3(a, nrm) < 0;
+  const double aa = cells::dot3(a, a);
+  F.area = sqrt(aa) / 2;
+  // the face's centroid: its fan triangles' centroids weighted by their areas (projected on a)
+  double wsum = 0;
+  for (int d = 0; d < 3; ++d) prev[d] = sub_rn(sub_rn(J.cc[3 * F.ring[1] + d], p[d]), v0[d]);
+  for (int k = 2; k < m; ++k) {
+    double cur[3];
+    for (int d = 0; d < 3; ++d) cur[d] = sub_rn(sub_rn(J.cc[3 * F.ring[k] + d], p[d]), v0[d]);
+    const double w = cells::dot3(tri[k], a);
+    wsum = add_rn(wsum, w);
+    for (int d = 0; d < 3; ++d) g[d] = add_rn(g[d], mul_rn(w, add_rn(prev[d], cur[d])));
+    for (int d = 0; d < 3; ++d) prev[d] = cur[d];
+  }
+  for (int d = 0; d < 3; ++d) F.centroid[d] = add_rn(v0[d], wsum > 0 ? g[d] / (3 * wsum) : 0);
+  return true;
+}
+
+// Measures and counts cell i from the diagram, as cell_count does from the box; how[i] = 1
+// (and nothing written) where it must be cut instead.
+GG_HD inline void cell_direct_count(const CellJob& J, std::int64_t i) {
+  using exact::add_rn;
+  using exact::mul_rn;
+  using exact::sub_rn;
+  J.flag[i] = 0;
+  J.how[i] = 0;
+  J.volume[i] = J.area[i] = 0;
+  J.nfaces[i] = J.nverts[i] = J.nents[i] = 0;
+  const double* p = J.xyz + 3 * i;
+  for (int d = 0; d < 3; ++d) J.centroid[3 * i + d] = p[d];
+  if (cell_skipped(J, i)) return;
+  const std::int64_t from = J.nb_from[i], k = J.nb_from[i + 1] - from;
+  std::int32_t seen[kVertices];  // (the cell's vertices, to count them)
+  int nseen = 0;
+  double vol = 0, area = 0, m[3] = {0, 0, 0};
+  std::int32_t ents = 0;
+  bool reach = false;
+  const std::int64_t slot = from + 6 * i;
+  for (std::int64_t j = 0; j < k; ++j) {
+    Face F;
+    if (!read_face(J, i, from + j, F)) {
+      J.how[i] = 1;
+      return;
+    }
+    for (int r = 0; r < F.m; ++r) {
+      const std::int32_t v = F.ring[r];
+      bool known = false;
+      for (int s = 0; s < nseen && !known; ++s) known = seen[s] == v;
+      if (known) continue;
+      if (nseen == kVertices) {
+        J.how[i] = 1;
+        return;
+      }
+      seen[nseen++] = v;
+      const double* x = J.cc + 3 * v;
+      double rel[3];
+      for (int d = 0; d < 3; ++d) rel[d] = sub_rn(x[d], p[d]);
+      const double rad = sqrt(cells::dot3(rel, rel));
+      for (int d = 0; d < 3; ++d) {
+        if (!J.periodic[d]) {
+          if (x[d] < J.plo[d] || x[d] > J.phi[d]) {  // (a wall cuts the cell)
+            J.how[i] = 1;
+            return;
+          }
+        } else if (sub_rn(x[d], rad) < J.plo[d] || add_rn(x[d], rad) > J.phi[d]) {
+          reach = true;
+        }
+      }
+    }
+    const std::int64_t q = std::int64_t(J.nb_key[from + j] & 0xffffffffu);
+    double nrm[3];
+    for (int d = 0; d < 3; ++d) nrm[d] = sub_rn(J.xyz[3 * q + d], p[d]);
+    const double pv = F.area * sqrt(cells::dot3(nrm, nrm)) / 6;  // (the pyramid's volume)
+    vol = add_rn(vol, pv);
+    for (int d = 0; d < 3; ++d) m[d] = add_rn(m[d], mul_rn(pv, F.centroid[d]));
+    area = add_rn(area, F.area);
+    ents += F.m;
+    J.slot_plane[slot + j] = std::int32_t(6 + j), J.slot_area[slot + j] = F.area;
+  }
+  J.volume[i] = vol;
+  J.area[i] = area;
+  for (int d = 0; d < 3; ++d)  // (a pyramid's centroid: 3/4 of the way to its base's)
+    J.centroid[3 * i + d] = add_rn(p[d], vol > 0 ? mul_rn(0.75, m[d]) / vol : 0);
+  J.nfaces[i] = std::int32_t(k), J.nverts[i] = nseen, J.nents[i] = ents;
+  if (reach) J.flag[i] = 1;
+}
+
+// Writes cell i's vertices and faces' vertex lists from the diagram (a cell cell_direct_count
+// measured).
+GG_HD inline void cell_direct_write(const CellJob& J, std::int64_t i) {
+  if (cell_skipped(J, i)) return;
+  const std::int64_t from = J.nb_from[i], k = J.nb_from[i + 1] - from;
+  const std::int64_t v0 = J.vert_off[i];
+  std::int32_t seen[kVertices];
+  int nseen = 0;
+  std::int64_t at = J.ent_off[i];
+  for (std::int64_t j = 0; j < k; ++j) {
+    Face F;
+    read_face(J, i, from + j, F);
+    J.face_vert_off[J.face_off[i] + j] = at;
+    for (int r = 0; r < F.m; ++r) {
+      const std::int32_t v = F.ring[F.reversed ? F.m - 1 - r : r];
+      int s = 0;
+      while (s < nseen && seen[s] != v) ++s;
+      if (s == nseen) {
+        seen[nseen++] = v;
+        for (int d = 0; d < 3; ++d) J.vertices[3 * (v0 + s) + d] = J.cc[3 * v + d];
+      }
+      J.face_verts[at++] = std::int32_t(v0 + s);
+    }
   }
 }
 
@@ -384,7 +551,9 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     I64 nr = 0;
     ex.to_host(rank + 6 * nt, 1, &nr);
     auto d_keys = ex.template alloc<U64>(std::size_t(2 * nr));
+    auto d_edges = ex.template alloc<I64>(std::size_t(2 * nr));
     U64* keys = d_keys.data();
+    I64* edges = d_edges.data();
     auto d_from = ex.template alloc<I64>(std::size_t(n + 1));
     I64* from = d_from.data();
     ex.fill(from, n + 1, I64(0));
@@ -397,10 +566,18 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
           const I64 r = rank[c];
           keys[2 * r] = u < n ? (U64(u) << 32 | U64(v)) : ~U64(0);
           keys[2 * r + 1] = v < n ? (U64(v) << 32 | U64(u)) : ~U64(0);
+          edges[2 * r] = edges[2 * r + 1] = c;
           if (u < n) atomic_add(from + u, I64(1));
           if (v < n) atomic_add(from + v, I64(1));
         });
-    ex.sort(keys, 2 * nr);
+    ex.sort_by_key(keys, edges, 2 * nr);
+    // ... and the Voronoi vertices: one circumcentre per class
+    const I32* vid = V.of.data();
+    const I32* first = V.first.data();
+    auto d_cc = ex.template alloc<double>(std::size_t(3 * V.count));
+    double* cc = d_cc.data();
+    ex.for_each_index(
+        V.count, GG_LAMBDA(I64 j) { circumcentre3(aug, tet, first[j], cc + 3 * j); });
     auto d_from2 = ex.template alloc<I64>(std::size_t(n + 1));
     ex.exclusive_scan(from, d_from2.data(), n + 1);
     from = d_from2.data();
@@ -424,7 +601,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     auto d_area = ex.template alloc<double>(std::size_t(n));
     auto d_cen = ex.template alloc<double>(std::size_t(3 * n));
     auto d_counts = ex.template alloc<I32>(std::size_t(3 * n));
-    auto d_flag = ex.template alloc<I8>(std::size_t(n));
+    auto d_flag = ex.template alloc<I8>(std::size_t(2 * n));
     I64 nslots = 0;  // (each cell's faces: room for one per plane)
     ex.to_host(from + n, 1, &nslots);
     nslots += 6 * n;
@@ -435,18 +612,30 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     for (int d = 0; d < 3; ++d) J.plo[d] = plo[d], J.phi[d] = phi[d], J.periodic[d] = per[d];
     J.volume = d_vol.data(), J.area = d_area.data(), J.centroid = d_cen.data();
     J.nfaces = d_counts.data(), J.nverts = J.nfaces + n, J.nents = J.nverts + n;
-    J.flag = d_flag.data();
+    J.flag = d_flag.data(), J.how = J.flag + n;
     J.slot_plane = d_splane.data(), J.slot_area = d_sarea.data();
+    J.nb_edge = edges, J.tet = tet, J.tnb = tnb, J.vid = vid, J.cc = cc, J.nt = nt;
     const I8* flag = J.flag;
+    I8* how = J.how;
     ex.for_each_index(
-        n, GG_LAMBDA(I64 i) {
+        n, GG_LAMBDA(I64 i) { vcells::cell_direct_count(J, order[i]); });
+    // ... the cells a wall cuts, cut from the box
+    auto d_clip = ex.template alloc<I32>(std::size_t(n));
+    I32* clip = d_clip.data();
+    const I64 nclip = ex.compact_indices(
+        n, GG_LAMBDA(I64 i)->bool { return how[i] == 1; }, clip);
+    st.counters["cells_cut"] = nclip;
+    ex.for_each_index(
+        nclip, GG_LAMBDA(I64 j) {
           using namespace vcells;
           double x[3 * kVertices + kFaces];
           I32 ints[2 * kEntries + 4 * kFaces + 3 * kVertices];
           I8 side[kVertices];
           const vcells::Room room{kFaces, kVertices, kEntries};
           cells::ConvexCell C{room.store(x, ints, side)};
-          cell_count(J, order[i], C);
+          const I64 i = clip[j];
+          cell_count(J, i, C);
+          if (flag[i] == 2) how[i] = 2;
         });
     // ... the cells that outgrew a thread's room, again with room for all their planes
     auto d_big = ex.template alloc<I32>(std::size_t(n));
@@ -548,9 +737,14 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
       ex.fill(J.face_vert_off + nf, 1, ne);
       ex.for_each_index(
           n, GG_LAMBDA(I64 i) {
-            using namespace vcells;
             i = order[i];
-            if (flag[i] == 2) return;  // (over_big writes it)
+            if (how[i] == 0) vcells::cell_direct_write(J, i);
+          });
+      ex.for_each_index(
+          nclip, GG_LAMBDA(I64 j) {
+            using namespace vcells;
+            const I64 i = clip[j];
+            if (how[i] != 1) return;  // (over_big writes it)
             double x[3 * kVertices + kFaces];
             I32 ints[2 * kEntries + 4 * kFaces + 3 * kVertices];
             I8 side[kVertices];
