@@ -231,6 +231,18 @@ struct DeviceVoronoi2d {
 DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
                                  const DeviceTriangulation2d& tri, const RunOptions& run = {});
 
+// The furthest-site Delaunay triangulation (issue 49; SciPy's furthest_site=True): of the
+// extreme points of the hull, counter-clockwise triangles whose circumcircles each hold every
+// point (inside or on), decided by the exact in-circle test; points on one circle get one of the
+// valid triangulations, the same on every run. neighbors as delaunay2d's (-1 on the hull);
+// duplicate_of: -1 for a vertex, a copy's twin where that is a vertex, kRemovedPoint for the
+// other points (inside the hull: no vertex and no furthest-site cell; voronoi2d(xy, n, r) then
+// gives the furthest-site Voronoi diagram, whose rays point into the hull). Runs delaunay2d
+// with opt for the hull, the rest on the calling thread (O(h log h) expected for h hull
+// vertices). Throws as delaunay2d; Error(DegenerateInput) for fewer than 3 extreme points.
+Triangulation2d furthest_site_delaunay2d(const double* xy, std::int64_t n,
+                                         const Delaunay2dOptions& opt = {});
+
 // The extreme points of a 2D triangulation's point set in counter-clockwise order, read from its
 // boundary (neighbors -1): points on a hull edge between its ends are left out (exact
 // orientation), as only extreme points are hull vertices. triangles / neighbors: 3 per triangle,

@@ -99,6 +99,25 @@ def _refuse_joggled_copies(opts: Optional[str], duplicate_of):
                          "others in duplicate_of; remove the copies or the option")
 
 
+def _furthest_site(furthest_site, ndim, incremental) -> bool:
+    """Checks furthest_site=True (2D only, not incremental) and returns it as a bool."""
+    if not furthest_site:
+        return False
+    if ndim != 2:
+        raise ValueError("furthest_site=True is offered for 2D points only (the furthest-site "
+                         f"Delaunay triangulation and Voronoi diagram), got {ndim}D points")
+    if incremental:
+        raise ValueError("furthest_site=True cannot be combined with incremental=True")
+    return True
+
+
+def _furthest_result(arr, run, voronoi: bool) -> dict:
+    """The furthest-site structures, made on the host threads (the hull's extreme points are
+    few) from host copies of the points."""
+    return _core.furthest_site2d(np.ascontiguousarray(_arrays.to_host(arr), dtype=np.float64),
+                                 threads=run["threads"], voronoi=voronoi)
+
+
 def _not_supported(name, value, default):
     if value != default:
         raise ValueError(f"{name}={value!r} is not supported by gpugeom (SciPy's default only)")
@@ -320,8 +339,8 @@ class Delaunay(_OfPoints):
                  threads: int = 0, progress: Optional[Callable] = None,
                  method: str = "incremental", grid: int = 0):
         _check_qhull_options(qhull_options)
-        _not_supported("furthest_site", furthest_site, False)
         arr, kind = self._take_points(points, (2, 3), backend, threads)
+        self.furthest_site = _furthest_site(furthest_site, self.ndim, incremental)
         if method not in ("incremental", "digital"):
             raise ValueError(f"method must be 'incremental' or 'digital', got {method!r}")
         self._method, self._grid, self._progress = method, grid, progress
@@ -332,6 +351,8 @@ class Delaunay(_OfPoints):
         self._take(r)
 
     def _compute(self, arr, restart=False):
+        if self.furthest_site:
+            return _furthest_result(arr, self._run, voronoi=False)
         if self._incremental and self._method == "incremental":
             # kept between calls (DynamicDelaunay2d / 3d): add_points brings it up to date
             make = _core.DynamicDelaunay2d if self.ndim == 2 else _core.DynamicDelaunay3d
@@ -566,17 +587,21 @@ class Voronoi(_OfPoints):
                  qhull_options: Optional[str] = None, *, backend: str = "auto",
                  threads: int = 0):
         _check_qhull_options(qhull_options)
-        _not_supported("furthest_site", furthest_site, False)
         arr, kind = self._take_points(points, (2, 3), backend, threads)
+        self.furthest_site = _furthest_site(furthest_site, self.ndim, incremental)
         self._incremental = bool(incremental)
         # Qhull's Qz (in SciPy's default options) adds a point at infinity, whose region is an
         # empty one that no point_region names: SciPy's regions then have one entry more
-        self._empty_region = qhull_options is None or "Qz" in qhull_options.split()
+        # (SciPy's furthest-site default options have no Qz)
+        self._empty_region = ("Qz" in qhull_options.split() if qhull_options is not None
+                              else not self.furthest_site)
         r = self._compute(arr)
         _refuse_joggled_copies(qhull_options, self._kind.back(r["duplicate_of"]))
         self._take(r)
 
     def _compute(self, arr, restart=False):
+        if self.furthest_site:
+            return _furthest_result(arr, self._run, voronoi=True)
         if self._incremental:
             # the triangulation kept between calls (DynamicDelaunay2d / 3d), the diagram made
             # from it
@@ -593,7 +618,9 @@ class Voronoi(_OfPoints):
         self.ridge_points = kind.back(r["ridge_points"])
         if self.ndim == 2:
             self.ridge_vertices_array = kind.back(r["ridge_vertices"])
-            self.ridge_directions = kind.back(r["ridge_directions"])
+            d = r["ridge_directions"]
+            # (furthest-site rays run into the hull: away from the points they lie furthest from)
+            self.ridge_directions = kind.back(-d if self.furthest_site else d)
         else:
             self.ridge_offsets = kind.back(r["ridge_offsets"])
             self.ridge_vertices_flat = kind.back(r["ridge_vertices"])

@@ -228,6 +228,29 @@ nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std:
   return voronoi_dict(t, v, n);
 }
 
+// The furthest-site Delaunay triangulation of host points (issue 49) and, with voronoi, its
+// Voronoi diagram: host arrays (the Python layer moves them where the points were).
+nb::dict furthest_site2d_bind(const AnyArray& points, int threads, bool voronoi) {
+  const Input in = points_input(points, 2);
+  if (in.on_device) throw nb::value_error("furthest_site2d takes host points");
+  Delaunay2dOptions o;
+  o.backend = Backend::Cpu;
+  o.threads = threads;
+  const std::int64_t n = in.shape[0];
+  Triangulation2d t = unlocked([&] { return furthest_site_delaunay2d(pts(in), n, o); });
+  if (voronoi) {
+    Voronoi2d v = unlocked([&] { return voronoi2d(pts(in), n, t); });
+    return voronoi_dict(t, v, n);
+  }
+  nb::dict r;
+  const sz nt = t.num_triangles();
+  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
+  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+
 // The Voronoi diagram of a kept 2D triangulation (Voronoi(incremental=True); issue 47), made from
 // its current triangles where they are. points: its current points, where its first points were
 // (the caller's copy; the diagram's vertices are their triangles' circumcentres). A removed point
@@ -706,6 +729,7 @@ void bind_spatial(nb::module_& m) {
       .def_prop_ro("npoints", [](const Dynamic3dState& s) { return s.t.num_points(); });
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);
+  m.def("furthest_site2d", &furthest_site2d_bind, "points"_a, "threads"_a = 0, "voronoi"_a = false);
   m.def("voronoi3d", &voronoi3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);
   m.def("convex_hull3d", &hull3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,

@@ -396,3 +396,81 @@ def test_convex_hull_digital_method_equals_incremental(backend, rng):
         gpugeom.ConvexHull(ball, method="digital", grid=8)
     with pytest.raises(ValueError, match="3D"):
         gpugeom.ConvexHull(rng.random((50, 2)), method="digital")
+
+
+def _circle_holds_all(p, tri):
+    """Whether each triangle's circumcircle holds every point (to rounding)."""
+    a, b, c = p[tri[:, 0]], p[tri[:, 1]], p[tri[:, 2]]
+    d = 2 * ((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0])
+    bb, cc = ((b - a) ** 2).sum(1), ((c - a) ** 2).sum(1)
+    ux = ((c - a)[:, 1] * bb - (b - a)[:, 1] * cc) / d
+    uy = ((b - a)[:, 0] * cc - (c - a)[:, 0] * bb) / d
+    centre = a + np.stack([ux, uy], 1)
+    r2 = ((a - centre) ** 2).sum(1)
+    far = ((p[None, :, :] - centre[:, None, :]) ** 2).sum(2).max(1)
+    return np.all(far <= r2 * (1 + 1e-9))
+
+
+@pytest.mark.parametrize("case", ["uniform", "circle", "square"])
+def test_furthest_site_delaunay_equals_scipy(case, backend, rng):
+    # issue 49: the furthest-site triangulation of the extreme points, exact
+    if case == "uniform":
+        p = rng.random((400, 2))
+    elif case == "circle":  # (every point extreme and cocircular: any triangulation is valid)
+        p = CIRCLE
+    else:
+        p = np.array([(0, 0), (1, 0), (1, 1), (0, 1), (0.5, 0.5), (0.5, 0), (1, 1)], float)
+    g = gpugeom.Delaunay(p, furthest_site=True, backend=backend)
+    assert g.furthest_site
+    s = np.asarray(g.simplices)
+    assert _circle_holds_all(p, s)
+    hull = ss.ConvexHull(p)
+    # the triangles tile the hull: their areas add up to its area, all counter-clockwise
+    a = ((p[s[:, 1]] - p[s[:, 0]])[:, 0] * (p[s[:, 2]] - p[s[:, 0]])[:, 1]
+         - (p[s[:, 1]] - p[s[:, 0]])[:, 1] * (p[s[:, 2]] - p[s[:, 0]])[:, 0]) / 2
+    assert np.all(a > 0) and a.sum() == pytest.approx(hull.volume)
+    assert set(np.unique(s)) == set(hull.vertices)
+    if case == "uniform":  # (general position: the one triangulation, as SciPy's)
+        want = ss.Delaunay(p, furthest_site=True).simplices
+        assert sorted(map(tuple, np.sort(s, 1).tolist())) == \
+            sorted(map(tuple, np.sort(want, 1).tolist()))
+    # a point that is not an extreme point (or a copy of one) has no simplex
+    vts, dup = np.asarray(g.vertex_to_simplex), np.asarray(g.duplicate_of)
+    assert np.all((vts >= 0) == (np.isin(np.arange(len(p)), hull.vertices) | (dup >= 0)))
+
+
+def test_furthest_site_voronoi_equals_scipy(backend, rng):
+    p = rng.random((300, 2))
+    g = gpugeom.Voronoi(p, furthest_site=True, backend=backend)
+    s = ss.Voronoi(p, furthest_site=True)
+    assert g.furthest_site and len(g.regions) == len(s.regions)  # (no Qz region, as SciPy's)
+    gv, sv = np.asarray(g.vertices), s.vertices
+    assert len(gv) == len(sv)
+    order = np.lexsort(gv.T)
+    np.testing.assert_allclose(gv[order], sv[np.lexsort(sv.T)], rtol=1e-12)
+    assert sorted(map(tuple, np.sort(g.ridge_points, 1).tolist())) == \
+        sorted(map(tuple, np.sort(s.ridge_points, 1).tolist()))
+    # regions: every extreme point's is unbounded, the others' empty, as SciPy's
+    for i in range(len(p)):
+        gr, sr = g.regions[g.point_region[i]], s.regions[s.point_region[i]]
+        assert len(gr) == len(sr) and (-1 in gr) == (-1 in sr)
+    # the rays run into the hull: from each unbounded ridge's vertex, along its direction, the
+    # two points it separates stay the furthest
+    vx = np.asarray(g.vertices)
+    for (a, b), (u, w), d in zip(np.asarray(g.ridge_points), g.ridge_vertices,
+                                 np.asarray(g.ridge_directions)):
+        if u >= 0 and w >= 0:
+            continue
+        x = vx[max(u, w)] + 10 * d
+        far = np.sort(((p - x) ** 2).sum(1))[-2:]
+        assert ((p[[a, b]] - x) ** 2).sum(1) == pytest.approx(far[::-1], rel=1e-9) or \
+            ((p[[a, b]] - x) ** 2).sum(1) == pytest.approx(far, rel=1e-9)
+
+
+def test_furthest_site_refusals():
+    with pytest.raises(ValueError, match="2D"):
+        gpugeom.Delaunay(np.random.rand(10, 3), furthest_site=True)
+    with pytest.raises(ValueError, match="incremental"):
+        gpugeom.Voronoi(np.random.rand(10, 2), furthest_site=True, incremental=True)
+    with pytest.raises(gpugeom.DegenerateInputError):
+        gpugeom.Delaunay(np.array([(0, 0), (1, 1), (2, 2.0)]), furthest_site=True)
