@@ -105,7 +105,9 @@ int device_of(const RunOptions& o);
 
 // Points: float64 (n, dim), C order (ValueError, TypeError otherwise); their coordinates.
 Input points_input(const AnyArray& a, int dim);
-inline const double* pts(const Input& in) { return static_cast<const double*>(in.data); }
+inline const double* pts(const Input& in) {
+  return static_cast<const double*>(in.data);
+}
 
 void bind_spatial(nb::module_& m);
 void bind_cells(nb::module_& m);
