@@ -27,4 +27,9 @@ fi
 if ! "$PY" -c "import triangle" >/dev/null 2>&1; then
   "$PY" -m pip install -q triangle >/dev/null 2>&1 || echo "[install_deps] note: the 'triangle' package (a benchmark anchor) could not be installed"
 fi
+# Test and benchmark oracle for the Voronoi cells (freud, periodic cells on all host cores):
+# optional, the test that compares with it is skipped without it.
+if ! "$PY" -c "import freud" >/dev/null 2>&1; then
+  "$PY" -m pip install -q freud-analysis >/dev/null 2>&1 || echo "[install_deps] note: the 'freud-analysis' package (an oracle for the Voronoi cells) could not be installed"
+fi
 echo "[install_deps] done"
