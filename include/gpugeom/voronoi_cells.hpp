@@ -25,9 +25,11 @@ struct VoronoiCellsOptions : RunOptions {
 
 // Every point's Voronoi cell within the box. The cells are the Voronoi diagram's (its
 // neighbours are the exact ridges of the Delaunay tetrahedralisation, voronoi3d.hpp), cut by the
-// walls of the box where it does not wrap; their measures are computed in double precision from
-// the cut polyhedra (each vertex within 10^-12 of the cell's size from a plane counts as on it,
-// so that no face of area 10^-30 is left where four cells meet at a point).
+// walls of the box where it does not wrap. Their measures are computed in double precision: a
+// cell no wall cuts (in a periodic box, every cell) from the diagram's circumcentres round its
+// ridges; a cell a wall cuts from the box cut by its neighbours' bisector planes (a vertex within
+// 10^-12 of the cell's size from a plane counts as on it, so no face of area 10^-30 is left where
+// four cells meet at a point). Stats counter "cells_cut" says how many were cut.
 //
 // - Faces: per cell, in the order of their neighbours (walls first), counter-clockwise seen from
 //   outside. A face's neighbour is a point index, or a wall: -1 and -2 for the low and high x
@@ -53,9 +55,10 @@ struct VoronoiCells {
   HostVector<std::int64_t> vertex_offsets;  // n + 1: each cell's vertices in `vertices`
   HostVector<double> vertices;              // 3 per vertex
   // Phases "upload", "images" (the periodic images, each attempt), "delaunay", "ridges",
-  // "cells"; counters "images" (periodic images added, last attempt), "attempts" (a periodic box
-  // is tried with a wider layer of images while some cell reaches past it), "faces",
-  // "cell_overflows" (cells built again with more room than a thread keeps).
+  // "cells", "cells_write"; counters "images" (periodic images added, last attempt), "attempts"
+  // (a periodic box is tried with a wider layer of images while some cell reaches past it),
+  // "faces", "cells_cut" (cells a wall cuts, cut from the box), "cell_overflows" (of those, cells
+  // built again with more room than a thread keeps).
   Stats stats;
 };
 // Throws Error(InvalidArgument) for a box with hi <= lo or bounds that are not finite,

@@ -38,7 +38,8 @@ class VoronoiCells:
 
     The neighbours are exact: they are the ridges of the exact Delaunay tetrahedralisation, so
     points on a lattice (many on one sphere) give clean cells, without slivers. The measures are
-    computed in double precision from the cut polyhedra.
+    computed in double precision: from the diagram's circumcentres for a cell no wall cuts (in a
+    periodic box, all), from the box cut by the neighbours' bisector planes otherwise.
 
     Parameters
     ----------
