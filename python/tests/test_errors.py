@@ -24,8 +24,8 @@ def test_shape_and_dtype_errors():
         gpugeom.distance_transform_edt(np.array([[None, 1]]))
     with pytest.raises(ValueError, match="threads"):
         gpugeom.Delaunay(np.random.random((10, 2)), threads=-3)
-    with pytest.raises(ValueError, match="furthest_site"):
-        gpugeom.Delaunay(np.random.random((10, 2)), furthest_site=True)
+    with pytest.raises(ValueError, match="furthest_site"):  # (2D only)
+        gpugeom.Delaunay(np.random.random((10, 3)), furthest_site=True)
 
 
 def test_qhull_options():
