@@ -242,6 +242,24 @@ expect 3 "2D points" -- "$G" delaunay3d "$W/c.csv" -o "$W/tf.vtu"
 [ -e "$W/tf.vtu" ] && { echo "FAIL: a failed delaunay3d left an output file"; fail=1; }
 expect 2 "-o takes" -- "$G" delaunay3d "$W/ball.npy" -o "$W/tf.stl"
 expect 0 "usage: gpugeom delaunay3d" -- "$G" delaunay3d --help
+# cells: a ball in its bounding box, periodic or not; the table's volumes fill the box
+expect 0 "check: the cells fill the box" -- "$G" cells "$W/ball.npy" --box -1,1 -o "$W/cells.csv" --check
+expect 0 "check: the cells fill the box" -- "$G" cells "$W/ball.npy" --box -1,-1,-1,1,1,1 --periodic xz -o "$W/cells.npy" --check
+python3 - "$W/cells.csv" "$W/cells.npy" <<'PY' || { echo "FAIL: cells wrote a wrong table"; fail=1; }
+import sys, numpy as np
+c = np.loadtxt(sys.argv[1], delimiter=",", skiprows=1)
+a = np.load(sys.argv[2])
+ok = c.shape == (5000, 7) and abs(c[:, 1].sum() - 8) < 1e-9 and (c[:, 6] >= 4).all()
+ok = ok and a.shape == (5000, 6) and abs(a[:, 0].sum() - 8) < 1e-9
+sys.exit(0 if ok else 1)
+PY
+expect 3 "outside the box" -- "$G" cells "$W/ball.npy" --box 0.25,0.75 -o "$W/cf.csv"
+[ -e "$W/cf.csv" ] && { echo "FAIL: a failed cells left an output file"; fail=1; }
+expect 2 "2 numbers" -- "$G" cells "$W/ball.npy" --box 0,1,2 --check
+expect 2 "x, y, z" -- "$G" cells "$W/ball.npy" --box -1,1 --periodic w --check
+expect 2 "csv or .npy" -- "$G" cells "$W/ball.npy" --box -1,1 -o "$W/cf.vtu"
+expect 3 "2D points" -- "$G" cells "$W/c.csv" --box -10,10 --check
+expect 0 "usage: gpugeom cells" -- "$G" cells --help
 # a failed write leaves no file behind
 expect 3 "cannot create" -- "$G" gen uniform2d -n 10 -o "$W/nodir/x.xyz"
 [ -e "$W/nodir" ] && { echo "FAIL: output folder appeared"; fail=1; }

@@ -78,6 +78,7 @@ int cmd_delaunay2d(const Global& g, Args& a);
 int cmd_cdt2d(const Global& g, Args& a);
 int cmd_hull3d(const Global& g, Args& a);
 int cmd_delaunay3d(const Global& g, Args& a);
+int cmd_cells(const Global& g, Args& a);
 
 // A computation's phase times and counters on stderr (--verbose).
 void print_stats(const Stats& s);

@@ -125,6 +125,7 @@ static const char* kUsageText =
     "  cdt2d IN.poly -o MESH   exact constrained Delaunay (segments, holes, regions; --check)\n"
     "  hull3d P -o MESH        exact 3D convex hull (--check)\n"
     "  delaunay3d P -o MESH    exact 3D Delaunay tetrahedralisation (--check)\n"
+    "  cells P --box B -o T    Voronoi cells of 3D particles in a box, bounded or periodic\n"
     "\n"
     "global options:\n"
     "  --backend B   executor: auto (CUDA if a GPU is usable, else CPU), cpu, cuda;\n"
@@ -182,7 +183,7 @@ static int run(int argc, char** argv) {
                       std::find(rest.begin(), rest.end(), "-h") != rest.end();
     if (g.backend != Backend::Cpu && !help &&
         (cmd == "delaunay2d" || cmd == "cdt2d" || cmd == "hull3d" || cmd == "delaunay3d" ||
-         cmd == "edt" || cmd == "cvd" || cmd == "stipple"))
+         cmd == "edt" || cmd == "cvd" || cmd == "stipple" || cmd == "cells"))
       warm.t = std::thread([&warm] {
         const auto t0 = std::chrono::steady_clock::now();
         prepare_device();
@@ -200,6 +201,7 @@ static int run(int argc, char** argv) {
     if (cmd == "cdt2d") return cmd_cdt2d(g, a);
     if (cmd == "hull3d") return cmd_hull3d(g, a);
     if (cmd == "delaunay3d") return cmd_delaunay3d(g, a);
+    if (cmd == "cells") return cmd_cells(g, a);
     throw UsageError("unknown command '" + cmd + "' (try 'gpugeom --help')");
   } catch (const UsageError& e) {
     std::cerr << "gpugeom" << (cmd.empty() ? "" : " " + cmd) << ": " << e.what() << "\n";
