@@ -14,6 +14,7 @@ CASES = [
     ("edt_labels.py", []),
     ("stipple_photo.py", ["-n", "400", "--iterations", "15"]),
     ("hull_scan.py", ["-n", "20000"]),
+    ("particle_cells.py", ["-n", "3000"]),
 ]
 
 
