@@ -1,5 +1,6 @@
-"""Helpers the Python anchor scripts share: timing one call and appending a CSV row in the
-format every benchmark driver writes (bench_csv.hpp)."""
+"""Helpers the Python anchor scripts share: timing one call (or the median of several) and
+appending a CSV row in the format every benchmark driver writes (bench_csv.hpp)."""
+import statistics
 import time
 
 
@@ -8,6 +9,21 @@ def timed_ms(fn, *args):
     t0 = time.perf_counter()
     out = fn(*args)
     return out, 1e3 * (time.perf_counter() - t0)
+
+
+def med(fn, reps, sync=None):
+    """Median milliseconds of reps calls of fn(), each between two calls of sync (a device
+    synchronise, so that queued GPU work is timed) when given."""
+    ts = []
+    for _ in range(reps):
+        if sync:
+            sync()
+        t0 = time.perf_counter()
+        fn()
+        if sync:
+            sync()
+        ts.append(1e3 * (time.perf_counter() - t0))
+    return statistics.median(ts)
 
 
 def append_row(csv, problem, distribution, n, tool, ms, resident_ms=0):

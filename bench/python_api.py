@@ -17,20 +17,8 @@ import time
 import numpy as np
 
 import gpugeom
+from anchor_common import med
 from gpugeom import _core
-
-
-def med(fn, reps, sync=None):
-    ts = []
-    for _ in range(reps):
-        if sync:
-            sync()
-        t0 = time.perf_counter()
-        fn()
-        if sync:
-            sync()
-        ts.append(1e3 * (time.perf_counter() - t0))
-    return statistics.median(ts)
 
 
 def main():

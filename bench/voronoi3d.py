@@ -15,6 +15,7 @@ import time
 import numpy as np
 
 import gpugeom
+from anchor_common import med
 
 
 def main():
@@ -30,22 +31,14 @@ def main():
     print(f"GPU: {info.get('name')}")
     rng = np.random.default_rng(1)
 
-    def med(f):
-        ts = []
-        for _ in range(a.reps):
-            cp.cuda.runtime.deviceSynchronize()
-            t0 = time.perf_counter()
-            f()
-            cp.cuda.runtime.deviceSynchronize()
-            ts.append(time.perf_counter() - t0)
-        return sorted(ts)[len(ts) // 2] * 1e3
+    sync = cp.cuda.runtime.deviceSynchronize
 
     for n in (int(float(s)) for s in a.sizes.split(",")):
         p = rng.random((n, 3))
         d = cp.asarray(p)
         gpugeom.Voronoi(d, backend="cuda")  # (warm-up)
-        e2e = med(lambda: gpugeom.Voronoi(p, backend="cuda"))
-        dev = med(lambda: gpugeom.Voronoi(d, backend="cuda"))
+        e2e = med(lambda: gpugeom.Voronoi(p, backend="cuda"), a.reps, sync)
+        dev = med(lambda: gpugeom.Voronoi(d, backend="cuda"), a.reps, sync)
         v = gpugeom.Voronoi(d, backend="cuda")
         line = (f"3D Voronoi uniform {n}: gpugeom end to end {e2e:.1f} ms, device-resident "
                 f"{dev:.1f} ms, {len(v.vertices)} vertices")

@@ -18,6 +18,7 @@ import time
 import numpy as np
 
 import gpugeom
+from anchor_common import med
 
 
 def clustered(rng, n):
@@ -52,15 +53,7 @@ def main():
           f"{freud.__version__ if freud else 'not installed'}")
     rng = np.random.default_rng(1)
 
-    def med(f, reps):
-        ts = []
-        for _ in range(reps):
-            cp.cuda.runtime.deviceSynchronize()
-            t0 = time.perf_counter()
-            f()
-            cp.cuda.runtime.deviceSynchronize()
-            ts.append(time.perf_counter() - t0)
-        return sorted(ts)[len(ts) // 2] * 1e3
+    sync = cp.cuda.runtime.deviceSynchronize
 
     for n in (int(float(s)) for s in a.sizes.split(",")):
         reps = a.reps if n <= 1e6 else 1
@@ -70,11 +63,11 @@ def main():
             d = cp.asarray(p)
             run = dict(box=[0, 1], periodic=periodic, backend="cuda")
             c = gpugeom.VoronoiCells(d, **run)  # (warm-up)
-            e2e = med(lambda: gpugeom.VoronoiCells(p, **run), reps)
-            dev = med(lambda: gpugeom.VoronoiCells(d, **run), reps)
+            e2e = med(lambda: gpugeom.VoronoiCells(p, **run), reps, sync)
+            dev = med(lambda: gpugeom.VoronoiCells(d, **run), reps, sync)
             nop = dict(run, polygons=False)
-            e2e_np = med(lambda: gpugeom.VoronoiCells(p, **nop), reps)
-            dev_np = med(lambda: gpugeom.VoronoiCells(d, **nop), reps)
+            e2e_np = med(lambda: gpugeom.VoronoiCells(p, **nop), reps, sync)
+            dev_np = med(lambda: gpugeom.VoronoiCells(d, **nop), reps, sync)
             c = gpugeom.VoronoiCells(d, **run)
             vsum = float(c.volumes.sum())
             st = c.stats

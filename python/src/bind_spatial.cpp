@@ -20,6 +20,19 @@ namespace {
 
 using sz = std::size_t;
 
+// A 2D triangulation on the host as the dict every 2D binding returns.
+nb::dict triangulation2d_dict(Triangulation2d& t, std::int64_t n) {
+  nb::dict r;
+  const sz nt = t.num_triangles();
+  t.triangles.resize(3 * nt);  // the host path may size them for the most triangles
+  t.neighbors.resize(3 * nt);
+  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
+  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});
+  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
+  r["stats"] = stats_dict(t.stats);
+  return r;
+}
+
 nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
                          int threads, const std::string& method, std::int64_t grid) {
   const Input in = points_input(points, 2);
@@ -38,14 +51,7 @@ nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, std
     return r;
   }
   Triangulation2d t = unlocked([&] { return delaunay2d(pts(in), n, o); });
-  const sz nt = t.num_triangles();
-  t.triangles.resize(3 * nt);  // the host path may size them for the most triangles
-  t.neighbors.resize(3 * nt);
-  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
-  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});
-  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
-  r["stats"] = stats_dict(t.stats);
-  return r;
+  return triangulation2d_dict(t, n);
 }
 
 // A 2D triangulation kept between calls (Delaunay(incremental=True) in 2D; issue 47). Its
@@ -156,12 +162,7 @@ nb::dict dynamic2d_result(const Dynamic2dState& self) {
     return r;
   }
   Triangulation2d t = unlocked([&] { return self.t.triangulation(); });
-  const sz nt = t.num_triangles();
-  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
-  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});
-  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
-  r["stats"] = stats_dict(t.stats);
-  return r;
+  return triangulation2d_dict(t, n);
 }
 
 void put_voronoi_host(nb::dict& r, Voronoi2d& v, std::int64_t n) {
@@ -242,13 +243,7 @@ nb::dict furthest_site2d_bind(const AnyArray& points, int threads, bool voronoi)
     Voronoi2d v = unlocked([&] { return voronoi2d(pts(in), n, t); });
     return voronoi_dict(t, v, n);
   }
-  nb::dict r;
-  const sz nt = t.num_triangles();
-  r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
-  r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});
-  r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
-  r["stats"] = stats_dict(t.stats);
-  return r;
+  return triangulation2d_dict(t, n);
 }
 
 // The Voronoi diagram of a kept 2D triangulation (Voronoi(incremental=True); issue 47), made from

@@ -35,8 +35,9 @@ class Args {
   std::vector<std::string> a_;
 };
 
-long long to_count(const std::string& s, const char* what);  // accepts 1e6, 1000000
-double to_real(const std::string& s, const char* what);      // a finite number
+long long to_count(const std::string& s, const char* what);            // accepts 1e6, 1000000
+double to_real(const std::string& s, const char* what);                // a finite number
+std::vector<double> to_reals(const std::string& s, const char* what);  // 1.5,2,3e-2
 
 // --method incremental|digital and --grid SIDE (digital only) into opt's method and grid.
 template <class Options>

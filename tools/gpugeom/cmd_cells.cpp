@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -31,13 +30,6 @@ const char* kHelp =
     "                 but a copy's must have a positive volume; exit status 1 otherwise\n"
     "With --verbose, the phase table and counters on stderr.\n";
 
-std::vector<double> reals(const std::string& s, const char* what) {
-  std::vector<double> v;
-  std::stringstream in(s);
-  std::string part;
-  while (std::getline(in, part, ',')) v.push_back(to_real(part, what));
-  return v;
-}
 }  // namespace
 
 int cmd_cells(const Global& g, Args& a) {
@@ -59,7 +51,7 @@ int cmd_cells(const Global& g, Args& a) {
   VoronoiCellsOptions opt;
   opt.backend = g.backend;
   opt.polygons = false;
-  const std::vector<double> b = reals(box_s, "--box");
+  const std::vector<double> b = to_reals(box_s, "--box");
   if (b.size() == 2) {
     for (int d = 0; d < 3; ++d) opt.lo[d] = b[0], opt.hi[d] = b[1];
   } else if (b.size() == 6) {

@@ -86,13 +86,7 @@ std::string voronoi_json(const Voronoi2d& v, const ClippedCells* clip) {
 }
 
 std::vector<double> parse_box(const std::string& s) {
-  std::vector<double> b;
-  std::size_t at = 0;
-  while (at <= s.size()) {
-    const std::size_t c = std::min(s.find(',', at), s.size());
-    b.push_back(to_real(s.substr(at, c - at), "--clip"));
-    at = c + 1;
-  }
+  const std::vector<double> b = to_reals(s, "--clip");
   if (b.size() != 4 || !(b[0] < b[2] && b[1] < b[3]))
     throw UsageError("--clip takes xmin,ymin,xmax,ymax with xmin < xmax and ymin < ymax");
   return b;

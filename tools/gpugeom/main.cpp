@@ -106,6 +106,17 @@ double to_real(const std::string& s, const char* what) {
     throw UsageError(std::string("expected a number for ") + what + ", got '" + s + "'");
   return v;
 }
+
+std::vector<double> to_reals(const std::string& s, const char* what) {
+  std::vector<double> v;
+  std::size_t at = 0;
+  while (at <= s.size()) {
+    const std::size_t c = std::min(s.find(',', at), s.size());
+    v.push_back(to_real(s.substr(at, c - at), what));
+    at = c + 1;
+  }
+  return v;
+}
 }  // namespace gpugeom::cli
 
 using namespace gpugeom;
