@@ -182,7 +182,6 @@ TEST(VoronoiCells, LatticeCellsAreCubes) {
       for (int d = 0; d < 3; ++d) EXPECT_NEAR(c.centroids[3 * i + d], p[3 * i + d], 1e-15);
       const int x = int(i % m), y = int(i / m % m), z = int(i / (m * m));
       std::vector<int> want;  // walls (-1 .. -6) and the six lattice neighbours
-      const int at[3] = {x, y, z};
       for (int d = 0; d < 3; ++d)
         for (int s : {-1, 1}) {
           int k[3] = {x, y, z};
@@ -196,7 +195,6 @@ TEST(VoronoiCells, LatticeCellsAreCubes) {
           }
           want.push_back(k[0] + m * k[1] + m * m * k[2]);
         }
-      (void)at;
       std::vector<int> got(c.neighbors.begin() + c.face_offsets[i],
                            c.neighbors.begin() + c.face_offsets[i + 1]);
       std::sort(want.begin(), want.end());
