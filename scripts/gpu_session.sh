@@ -46,8 +46,9 @@ if [ -d .devbin/py/gpugeom ] && [ "${PYTHON_SET:-1}" != 0 ]; then
     echo "== 3D Voronoi diagram against SciPy (issue 49)"
     PYTHONPATH=$PWD/.devbin/py python3 bench/voronoi3d.py --reps 3 2>&1 | tee "$OUT/voronoi3d.txt"
     # freud's wheels come carried in .whl/ (the GPU machine has no network)
-    python3 -c "import freud" 2>/dev/null || python3 -m pip install -q --no-index --find-links .whl freud-analysis 2>&1 | tail -1
-    PYTHONPATH=$PWD/.devbin/py python3 bench/voronoi_cells.py --reps 3 2>&1 | tee "$OUT/voronoi_cells.txt"
+    # (--no-deps: their dependencies NumPy and friends are there already; pip would look for them in .whl)
+    python3 -c "import freud" 2>/dev/null || python3 -m pip install -q --no-deps --no-index --target /tmp/gg_wheels .whl/*.whl 2>&1 | tail -1
+    PYTHONPATH=$PWD/.devbin/py:/tmp/gg_wheels python3 bench/voronoi_cells.py --reps 3 2>&1 | tee "$OUT/voronoi_cells.txt"
   fi
 fi
 [ "${ONLY_PY:-0}" = 1 ] && exit $status
