@@ -1,7 +1,9 @@
-// Exact Euclidean distance transform, feature transform and digital Voronoi diagram of 2D and
-// 3D grids (the Parallel Banding Algorithm, thesis 4.2), on the GPU or the CPU.
+// Exact Euclidean distance transform, feature transform and digital Voronoi diagram of grids of
+// 2 to 8 axes (the Parallel Banding Algorithm, thesis 4.2; 4.2.6 for more than three axes), on
+// the GPU or the CPU.
 //
-// Shapes are in C order, as NumPy has them: (rows, cols) or (slices, rows, cols). Sites are the
+// Shapes are in C order, as NumPy has them: (rows, cols), (slices, rows, cols), or any shape of
+// 4 to 8 axes. Sites are the
 // grid points chosen by a mask, or an explicit list of integer coordinates (same axis order).
 // Every voxel gets its nearest site; among equally near sites the one first in raster (C)
 // order wins — so results are deterministic, identical on both backends, and identical
@@ -64,7 +66,10 @@ struct EdtOptions : RunOptions {
   // fewer take less device memory, more launches). Tuning too: never changes the result.
   std::int64_t slice_block = 0;
   std::vector<std::int64_t> slices;  // 3D only: compute just these z slices (slice-by-slice)
-  EdtBuffers into;                   // caller-provided output arrays (optional)
+  // Grids of 4 to 8 axes index their sites by 32 bits below 2^32 - 1 voxels, by 64 from there;
+  // true takes 64 bits for any grid (for tests: never changes the result).
+  bool wide_indices = false;
+  EdtBuffers into;  // caller-provided output arrays (optional)
 };
 
 struct EdtResult {
@@ -80,14 +85,14 @@ struct EdtResult {
 };
 
 // Sites where the grid's values say so (rule). Throws Error(InvalidInput) for a grid without
-// sites or with NaN values, shapes that are not 2D/3D, whole grids of 2^32-1 voxels or more
-// (1625^3 is the largest cube; by slices a volume may hold any number, each slice fewer than
-// 2^31-1), extents above 65536 (3D) or 131072 (2D), or labels asked for more than 2^31-1
-// sites; Error(OutOfMemory) before any launch for a whole volume whose arrays cannot fit the
-// device (use slices: they hold the sites' list, 8 B a site, 12 with labels, and blocks of
-// slices), or for slices whose sites' list cannot. The grid is read where it is: on the CUDA
-// executor its bytes go to the device as they are (the rule is applied there), so a uint8 or bool
-// grid costs its size over the bus.
+// sites or with NaN values, shapes of fewer than 2 or more than 8 axes, whole 2D / 3D grids of
+// 2^32-1 voxels or more (1625^3 is the largest cube; by slices a volume may hold any number,
+// each slice fewer than 2^31-1; grids of 4 to 8 axes may hold any number), extents above 65536
+// (3D and up) or 131072 (2D), or labels asked for more than 2^31-1 sites; Error(OutOfMemory) before
+// any launch for a whole volume whose arrays cannot fit the device (use slices: they hold the
+// sites' list, 8 B a site, 12 with labels, and blocks of slices), or for slices whose sites' list
+// cannot. The grid is read where it is: on the CUDA executor its bytes go to the device as they are
+// (the rule is applied there), so a uint8 or bool grid costs its size over the bus.
 EdtResult distance_transform(const GridView& grid, SiteRule rule, const EdtOptions& opt = {});
 EdtResult distance_transform(const io::Grid& grid, SiteRule rule, const EdtOptions& opt = {});
 // Sites given by coordinates (ndim per site, C order). Duplicates keep the lower index.

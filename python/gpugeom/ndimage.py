@@ -1,5 +1,5 @@
 """Exact Euclidean distance and feature transforms (``scipy.ndimage.distance_transform_edt``)
-and digital Voronoi labels of 2D and 3D grids (1D grids are taken as one row).
+and digital Voronoi labels of grids of 1 to 8 dimensions (1D grids are taken as one row).
 
 Ties between equally near sites go to the site first in C order, so results are deterministic
 and the same on the CPU and the GPU. CuPy / PyTorch CUDA arrays stay on the GPU.
@@ -28,8 +28,8 @@ def _grid(input, name="input"):
         # SciPy); one byte per element also crosses the bus faster.
         arr = arr != 0
     nd = arr.ndim
-    if nd not in (1, 2, 3):
-        raise ValueError(f"{name} must be 1D, 2D or 3D, got {nd} dimensions")
+    if not 1 <= nd <= 8:
+        raise ValueError(f"{name} must have 1 to 8 dimensions, got {nd}")
     if any(int(e) == 0 for e in arr.shape):
         raise ValueError(f"{name} is empty (shape {tuple(arr.shape)})")
     return arr, kind, nd

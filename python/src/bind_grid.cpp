@@ -67,7 +67,8 @@ nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sa
                   const std::string& backend, std::uintptr_t stream, int threads,
                   std::vector<std::int64_t> slices) {
   const Input in = inspect(input, "input");
-  if (in.shape.size() != 2 && in.shape.size() != 3) throw nb::value_error("input must be 2D or 3D");
+  if (in.shape.size() < 2 || in.shape.size() > 8)
+    throw nb::value_error("input must have 2 to 8 dimensions");
   auto o = options_for<EdtOptions>(backend, stream, threads, in);
   o.slices = std::move(slices);
   o.sampling = std::move(sampling);

@@ -75,8 +75,12 @@ def test_edt_errors(backend):
         gpugeom.distance_transform_edt(np.ones((8, 8)), backend=backend)  # no zero element
     with pytest.raises(RuntimeError):
         gpugeom.distance_transform_edt(np.ones((8, 8)), return_distances=False)
-    with pytest.raises(ValueError, match="1D, 2D or 3D"):
-        gpugeom.distance_transform_edt(np.ones((2, 2, 2, 2)))
+    with pytest.raises(ValueError, match="1 to 8 dimensions"):
+        gpugeom.distance_transform_edt(np.ones((2,) * 9))
+    with pytest.raises(ValueError, match="no zero element|no site"):  # 4D, no site
+        gpugeom.distance_transform_edt(np.ones((2, 3, 2, 3)), backend=backend)
+    with pytest.raises(ValueError, match="slices"):
+        gpugeom.distance_transform_edt(np.zeros((2, 3, 2, 3)), slices=[0])
     with pytest.raises(RuntimeError, match="shape"):
         gpugeom.distance_transform_edt(np.ones((8, 8)), distances=np.zeros((8, 9)))
     with pytest.raises(ValueError, match="sampling"):

@@ -19,10 +19,11 @@ def tie_free_indices_equal(mine, ref, dist, shape, sampling=None):
     return np.allclose(dm, dr, rtol=1e-12, atol=0)
 
 
-@pytest.mark.parametrize("shape", [(1,), (37,), (64, 48), (17, 23, 29)])
+@pytest.mark.parametrize("shape", [(1,), (37,), (64, 48), (17, 23, 29), (9, 8, 7, 6),
+                                   (11, 1, 12, 10), (5, 6, 4, 5, 3), (3, 2, 3, 2, 3, 2, 2, 3)])
 @pytest.mark.parametrize("sampling", [None, "aniso"])
 def test_edt_equals_scipy(shape, sampling, backend, rng):
-    a = rng.random(shape) > 0.1
+    a = rng.random(shape) > (0.1 if len(shape) < 4 else 0.02)
     a.flat[0] = False
     samp = None if sampling is None else [0.5 + 0.7 * k for k in range(len(shape))]
     d, i = gpugeom.distance_transform_edt(a, sampling=samp, return_indices=True, backend=backend)
@@ -116,6 +117,46 @@ def test_voronoi_labels(backend, rng):
     grid = np.indices(lab.shape).reshape(2, -1).T
     d2 = ((grid[:, None, :] - coords[None, :, :]) ** 2).sum(-1)
     best = d2.argmin(axis=1)  # the first of equally near sites in C order, as gpugeom's rule
+    np.testing.assert_array_equal(site.reshape(-1), nz[best])
+    np.testing.assert_array_equal(out.reshape(-1), lab.reshape(-1)[nz[best]])
+    np.testing.assert_allclose(dist.reshape(-1), np.sqrt(d2.min(axis=1)))
+
+
+@pytest.mark.parametrize("shape", [(6, 7, 5, 8), (4, 3, 5, 4, 3)])
+def test_edt_nd_output_arrays_and_sites(shape, backend, rng):
+    """N-D grids: the caller's arrays, float32, a single site, all sites."""
+    a = rng.random(shape) > 0.05
+    a.flat[3] = False
+    d = np.empty(shape)
+    i = np.empty((len(shape),) + shape, dtype=np.int32)
+    assert gpugeom.distance_transform_edt(a, return_indices=True, distances=d, indices=i,
+                                          backend=backend) is None
+    rd, ri = ndi.distance_transform_edt(a, return_indices=True)
+    np.testing.assert_allclose(d, rd, rtol=1e-13, atol=0)
+    assert tie_free_indices_equal(i, ri, d, shape)
+    d32 = gpugeom.distance_transform_edt(a, float64_distances=False, backend=backend)
+    assert d32.dtype == np.float32 and d32.shape == shape
+    np.testing.assert_allclose(d32, rd, rtol=1e-6)
+    one = np.ones(shape, dtype=bool)
+    one.flat[one.size // 2] = False
+    np.testing.assert_allclose(gpugeom.distance_transform_edt(one, backend=backend),
+                               ndi.distance_transform_edt(one), rtol=1e-13, atol=0)
+    zeros = np.zeros(shape, dtype=np.uint8)
+    assert not gpugeom.distance_transform_edt(zeros, backend=backend).any()
+
+
+def test_voronoi_labels_4d(backend, rng):
+    shape = (7, 6, 8, 5)
+    lab = np.zeros(shape, dtype=np.int64)
+    pts = rng.integers(0, shape, size=(25, 4))
+    lab[tuple(pts.T)] = np.arange(1, 26)
+    out, dist, site = gpugeom.voronoi_labels(lab, return_distances=True, return_sites=True,
+                                             backend=backend)
+    nz = np.flatnonzero(lab)
+    coords = np.column_stack(np.unravel_index(nz, shape))
+    grid = np.indices(shape).reshape(4, -1).T
+    d2 = ((grid[:, None, :] - coords[None, :, :]) ** 2).sum(-1)
+    best = d2.argmin(axis=1)
     np.testing.assert_array_equal(site.reshape(-1), nz[best])
     np.testing.assert_array_equal(out.reshape(-1), lab.reshape(-1)[nz[best]])
     np.testing.assert_allclose(dist.reshape(-1), np.sqrt(d2.min(axis=1)))

@@ -46,7 +46,7 @@ void set_column_packing_for_testing(bool on) {
 // (the slices' own site packing, SliceLayout, needs no more).
 Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing packing) {
   if (shape.size() != 2 && shape.size() != 3)
-    throw Error(ErrorCode::InvalidInput, "the distance transform needs a 2D or 3D grid, got " +
+    throw Error(ErrorCode::InvalidInput, "these grids must be 2D or 3D, got " +
                                              std::to_string(shape.size()) + " dimensions");
   Layout L;
   L.nd = int(shape.size());
@@ -104,8 +104,9 @@ Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing 
 
 namespace {
 
-edt::Metric make_metric(const std::vector<double>& sampling, int nd) {
-  edt::Metric m;
+template <int D>
+edt::MetricT<D> make_metric(const std::vector<double>& sampling, int nd) {
+  edt::MetricT<D> m;
   if (sampling.empty()) return m;
   if (int(sampling.size()) != nd)
     throw Error(ErrorCode::InvalidArgument, "sampling needs one value per axis (" +
@@ -123,6 +124,55 @@ edt::Metric make_metric(const std::vector<double>& sampling, int nd) {
     if (s != 1.0) m.iso = false;
   }
   return m;
+}
+
+// The shape of a grid of 4 to 8 axes, checked. Its passes decide in doubles on the GPU (exact
+// below 2^53: the largest term, 2 n_a F + n_a^3 with F the squared diagonal, is bounded here)
+// and index sites by 32 bits where the grid has fewer than 2^32 - 1 voxels, else by 64.
+edt::NdShape make_nd_shape(const std::vector<std::int64_t>& shape, bool wide) {
+  const int nd = int(shape.size());
+  if (nd < 4 || nd > edt::kMaxAxes)
+    throw Error(ErrorCode::InvalidInput, "the distance transform takes grids of 2 to " +
+                                             std::to_string(edt::kMaxAxes) + " axes, got " +
+                                             std::to_string(nd));
+  edt::NdShape g;
+  g.nd = nd;
+  double diag = 0, most = 0, count = 1;
+  for (int a = 0; a < nd; ++a) {
+    const std::int64_t e = shape[nd - 1 - a];
+    if (e <= 0) throw Error(ErrorCode::InvalidInput, "grid extents must be positive");
+    if (e > 65536)
+      throw Error(ErrorCode::InvalidInput,
+                  "grid extent " + std::to_string(e) + " too large: at most 65536 along an axis");
+    g.n[a] = e;
+    diag += double(e) * double(e);
+    most = std::max(most, double(e));
+    count *= double(e);
+  }
+  if (2 * most * diag + most * most * most >= 9007199254740992.0)
+    throw Error(ErrorCode::InvalidInput,
+                "grid extents too large for the exact passes of a " + std::to_string(nd) +
+                    "D grid: 2 n (sum of n_k^2) + n^3 must stay below 2^53 for the longest axis n");
+  if (count >= 9.2e18) throw Error(ErrorCode::InvalidInput, "grid too large");
+  g.wide = wide || g.count() >= (std::int64_t(1) << 32) - 1;
+  return g;
+}
+
+// The grid's shape and metric in the request: a 2D / 3D layout, or an N-D shape.
+void set_grid(edt::Request& rq, const std::vector<std::int64_t>& shape, const EdtOptions& opt) {
+  if (shape.size() < 2 || shape.size() > std::size_t(edt::kMaxAxes))
+    throw Error(ErrorCode::InvalidInput, "the distance transform takes grids of 2 to " +
+                                             std::to_string(edt::kMaxAxes) + " axes, got " +
+                                             std::to_string(shape.size()));
+  if (shape.size() >= 4) {
+    rq.nd = make_nd_shape(shape, opt.wide_indices);
+    rq.nd_metric = make_metric<edt::kMaxAxes>(opt.sampling, rq.nd.nd);
+    if (opt.method != EdtMethod::Pba)
+      throw Error(ErrorCode::InvalidArgument, "grids of 4 or more axes take the PBA method only");
+    return;
+  }
+  rq.layout = edt::make_layout(shape, !opt.slices.empty());
+  rq.metric = make_metric<3>(opt.sampling, rq.layout.nd);
 }
 
 // The request's output choices from the options; the caller's arrays checked against the
@@ -255,9 +305,8 @@ void check_view(const GridView& g) {
 EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions& opt) {
   check_view(g);
   edt::Request rq;
-  rq.layout = edt::make_layout(g.shape, !opt.slices.empty());
-  rq.metric = make_metric(opt.sampling, rq.layout.nd);
-  if (opt.slices.empty()) {  // the executor reads the grid as it is
+  set_grid(rq, g.shape, opt);
+  if (opt.slices.empty() || rq.nd.nd) {  // the executor reads the grid as it is
     rq.grid = g.data;
     rq.type = g.type;
     rq.rule = rule;
@@ -293,8 +342,7 @@ DeviceEdtResult distance_transform_device(const GridView& g, SiteRule rule, cons
   check_view(g);
   const Backend b = device_entry_backend(opt.backend, opt.device, "distance_transform_device");
   edt::Request rq;
-  rq.layout = edt::make_layout(g.shape, !opt.slices.empty());
-  rq.metric = make_metric(opt.sampling, rq.layout.nd);
+  set_grid(rq, g.shape, opt);
   rq.grid = g.data;
   rq.type = g.type;
   rq.rule = rule;
@@ -317,9 +365,8 @@ DeviceEdtResult distance_transform_device(const GridView& g, SiteRule rule, cons
 EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
                                    const std::vector<std::int64_t>& sites, const EdtOptions& opt) {
   edt::Request rq;
-  rq.layout = edt::make_layout(shape, !opt.slices.empty());
-  rq.metric = make_metric(opt.sampling, rq.layout.nd);
-  const int nd = rq.layout.nd;
+  set_grid(rq, shape, opt);
+  const int nd = int(shape.size());
   if (sites.empty() || sites.size() % nd)
     throw Error(ErrorCode::InvalidInput,
                 sites.empty() ? "no sites given: every distance would be infinite"
@@ -327,23 +374,29 @@ EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
   const std::int64_t ns = std::int64_t(sites.size()) / nd;
   if (ns >= (std::int64_t(1) << 31))
     throw Error(ErrorCode::InvalidInput, "too many sites (at most 2^31-1)");
-  const bool sliced = !opt.slices.empty();
-  if (sliced)
+  const bool sliced = !opt.slices.empty() && !rq.nd.nd;
+  if (rq.nd.nd)
+    rq.nd_sites.resize(std::size_t(ns));
+  else if (sliced)
     rq.column_sites.resize(std::size_t(ns));
   else
     rq.sites.resize(std::size_t(ns));
   rq.site_count = ns;
   for (std::int64_t i = 0; i < ns; ++i) {
     std::int64_t c[3] = {0, 0, 0};
+    std::uint64_t raster = 0;
     for (int j = 0; j < nd; ++j) {
       const std::int64_t v = sites[i * nd + j];
       if (v < 0 || v >= shape[j])
         throw Error(ErrorCode::InvalidInput,
                     "site " + std::to_string(i) + " lies outside the grid (coordinate " +
                         std::to_string(v) + " on axis " + std::to_string(j) + ")");
-      c[nd - 1 - j] = v;
+      raster = raster * std::uint64_t(shape[j]) + std::uint64_t(v);
+      if (nd <= 3) c[nd - 1 - j] = v;
     }
-    if (sliced)
+    if (rq.nd.nd)
+      rq.nd_sites[i] = raster;
+    else if (sliced)
       rq.column_sites[i] = edt::column_key(c[0] + rq.layout.n[0] * c[1], c[2]);
     else
       rq.sites[i] = rq.layout.pack_any(c[0], c[1], c[2]);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "edt/edt_common.hpp"
+#include "edt/nd_layout.hpp"
 #include "gpugeom/edt.hpp"
 
 namespace gpugeom::edt {
@@ -12,6 +13,11 @@ namespace gpugeom::edt {
 struct Request {
   Layout layout;
   Metric metric;
+  // Grids of 4 to 8 axes (nd.nd != 0) take these instead of layout and metric, and a site list
+  // as raster indices (nd_sites).
+  NdShape nd;
+  NdMetric nd_metric;
+  std::vector<std::uint64_t> nd_sites;
   EdtMethod method = EdtMethod::Pba;
   Tuning tune;
   RunOptions run;

@@ -65,6 +65,7 @@ struct Divider {
 
 // The grid's shape and the bit-field packing (the default; see LinearLayout).
 struct Layout {
+  static constexpr int kAxes = 3;
   int nd = 2;
   std::int64_t n[3] = {1, 1, 1};  // extent along x, y, z (z = 1 in 2D)
   int shift[3] = {0, 0, 0};       // bit position of x, y, z in a packed site
@@ -194,34 +195,47 @@ GG_INLINE std::uint64_t column_key(std::int64_t column, std::int64_t z) {
   return std::uint64_t(column) << kColumnZBits | std::uint64_t(z);
 }
 
-struct Metric {
-  bool iso = true;
-  double wh[3] = {1, 1, 1}, wl[3] = {0, 0, 0};  // w_k = wh + wl exactly (sampling_k^2)
-  double w[3] = {1, 1, 1};                      // rounded, for filters and output distances
-};
+// The most axes a grid may have (N-D transforms, nd_layout.hpp); 2D and 3D grids take the
+// three-axis layouts above.
+constexpr int kMaxAxes = 8;
 
-// sign(sum_k w_k I_k), exactly. The I_k are integers below 2^51 held in T: int64_t, or
-// double, where they are exact too (grid coordinates are below 2^16, so every product the
-// passes form is below 2^49). Doubles are faster than 64-bit integer multiplies on the GPU,
-// integers faster on the CPU; each executor picks its own (pba.inl).
-template <class T>
-GG_INLINE int weighted_sign(const Metric& m, const T I[3]) {
+// Per-axis weights w_k = sampling_k^2 of D axes (internal order: axis 0 is C's last).
+template <int D>
+struct MetricT {
+  bool iso = true;
+  double wh[D], wl[D];  // w_k = wh + wl exactly (sampling_k^2)
+  double w[D];          // rounded, for filters and output distances
+  GG_HD MetricT() {
+    for (int k = 0; k < D; ++k) wh[k] = 1, wl[k] = 0, w[k] = 1;
+  }
+};
+using Metric = MetricT<3>;
+using NdMetric = MetricT<kMaxAxes>;
+
+// sign(sum_k w_k I_k) over the first K axes, exactly. The I_k are integers below 2^51 held in
+// T: int64_t, or double, where they are exact too (every product the passes form is below
+// 2^51: make_layout and make_nd_layout bound the extents so). Doubles are faster than 64-bit
+// integer multiplies on the GPU, integers faster on the CPU; each executor picks its own
+// (pba.inl).
+template <int D, class T>
+GG_INLINE int weighted_sign(const MetricT<D>& m, const T (&I)[D], int K = D) {
   if (m.iso) {
-    const T s = I[0] + I[1] + I[2];  // exact: below 2^53
+    T s = 0;
+    for (int k = 0; k < K; ++k) s += I[k];  // exact: below 2^53
     return (s > 0) - (s < 0);
   }
   double approx = 0, mag = 0;
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < K; ++k) {
     const double t = m.w[k] * double(I[k]);
     approx += t;
     mag += t < 0 ? -t : t;
   }
-  const double bound = 8 * 1.1102230246251565e-16 * mag;
+  const double bound = (4 + 2 * K) * 1.1102230246251565e-16 * mag;
   if (approx > bound) return 1;
   if (-approx > bound) return -1;
-  double acc[12], tmp[12], part[4];
+  double acc[4 * D], tmp[4 * D], part[4];
   int len = 0;
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < K; ++k) {
     const double h[2] = {m.wl[k], m.wh[k]};
     const int hl = m.wl[k] != 0 ? 2 : 1;
     const int pl = exact::scale_expansion(hl, m.wl[k] != 0 ? h : h + 1, double(I[k]), part);
@@ -234,26 +248,25 @@ GG_INLINE int weighted_sign(const Metric& m, const T I[3]) {
 
 // Does site q beat site p at voxel position (v[0], v[1], v[2])? Nearer, or as near and first
 // in raster order.
-template <class T, class Lay>
-GG_INLINE bool beats(const Lay& L, const Metric& m, std::uint32_t q, std::uint32_t p,
-                     const std::int64_t v[3]) {
-  T I[3] = {0, 0, 0};
+template <class T, class Lay, class S>
+GG_INLINE bool beats(const Lay& L, const MetricT<Lay::kAxes>& m, S q, S p, const std::int64_t v[]) {
+  T I[Lay::kAxes] = {};
   for (int k = 0; k < L.nd; ++k) {
     const T dq = T(L.coord(q, k) - v[k]), dp = T(L.coord(p, k) - v[k]);
     I[k] = dq * dq - dp * dp;
   }
-  const int s = weighted_sign(m, I);
+  const int s = weighted_sign(m, I, L.nd);
   return s < 0 || (s == 0 && L.before(q, p));
 }
 
 // Along axis a of a line whose other coordinates are v[], can site b be dropped given its
 // neighbours a_ (before) and c (after) in the candidate list? Yes when the A|B bisector lies at
 // or beyond the B|C bisector, unless the three tie exactly at a grid point that B wins.
-template <class T, class Lay>
-GG_INLINE bool dominated(const Lay& L, const Metric& m, int a, std::uint32_t A, std::uint32_t B,
-                         std::uint32_t C, const std::int64_t v[3]) {
+template <class T, class Lay, class S>
+GG_INLINE bool dominated(const Lay& L, const MetricT<Lay::kAxes>& m, int a, S A, S B, S C,
+                         const std::int64_t v[]) {
   const T ta = T(L.coord(A, a)), tb = T(L.coord(B, a)), tc = T(L.coord(C, a));
-  T I[3] = {0, 0, 0};
+  T I[Lay::kAxes] = {};
   for (int p = 0; p < L.nd; ++p) {
     if (p == a) {
       I[p] = (tc - tb) * (tb - ta) * (ta - tc);
@@ -263,7 +276,7 @@ GG_INLINE bool dominated(const Lay& L, const Metric& m, int a, std::uint32_t A, 
       I[p] = (tc - tb) * (db * db - da * da) - (tb - ta) * (dc * dc - db * db);
     }
   }
-  const int s = weighted_sign(m, I);
+  const int s = weighted_sign(m, I, L.nd);
   if (s != 0) return s > 0;
   // u == v: B's cell on this line is one point. Keep B only if that point is a grid point
   // where B is first in raster order among the three.
@@ -276,14 +289,55 @@ GG_INLINE bool dominated(const Lay& L, const Metric& m, int a, std::uint32_t A, 
   }
   const double u = num / (2 * m.w[a] * double(tb - ta));
   const std::int64_t t0 = std::int64_t(u < 0 ? u - 0.5 : u + 0.5);
-  std::int64_t w[3] = {v[0], v[1], v[2]};
+  std::int64_t w[Lay::kAxes];
+  for (int k = 0; k < L.nd; ++k) w[k] = v[k];
   w[a] = t0;
-  T J[3] = {0, 0, 0};
+  T J[Lay::kAxes] = {};
   for (int k = 0; k < L.nd; ++k) {
     const T db = T(L.coord(B, k) - w[k]), da = T(L.coord(A, k) - w[k]);
     J[k] = db * db - da * da;
   }
-  return weighted_sign(m, J) != 0;  // not a grid-point tie: B colours nothing
+  return weighted_sign(m, J, L.nd) != 0;  // not a grid-point tie: B colours nothing
+}
+
+// A candidate as the line passes compare it: its site, its position t along the pass axis and,
+// when the metric is isotropic, f = its squared distance to the line (the other axes). With
+// those two numbers the isotropic tests are a few exact double operations (values < 2^51);
+// anisotropic metrics take the general exact tests above.
+template <class S>
+struct CandOf {
+  S s;
+  double t, f;
+};
+
+// Iso: the metric is isotropic (known at compile time, so the isotropic kernels carry none of
+// the general tests' registers except the exact-tie fallback). Num: the exact tests' number
+// type (each executor's own, pba.inl).
+template <bool Iso, class Num, class Lay, class S>
+GG_INLINE bool cand_dominated(const Lay& L, const MetricT<Lay::kAxes>& M, int a, const CandOf<S>& A,
+                              const CandOf<S>& B, const CandOf<S>& C, const std::int64_t v[]) {
+  if constexpr (Iso) {
+    const double e = (C.t - B.t) * (B.f - A.f) - (B.t - A.t) * (C.f - B.f) +
+                     (C.t - B.t) * (B.t - A.t) * (A.t - C.t);
+    if (e != 0) return e > 0;
+  }
+  return dominated<Num>(L, M, a, A.s, B.s, C.s, v);  // anisotropic, or an exact tie
+}
+
+// Does Q beat P at position t of the line through v along axis a?
+template <bool Iso, class Num, class Lay, class S>
+GG_INLINE bool cand_beats(const Lay& L, const MetricT<Lay::kAxes>& M, int a, const CandOf<S>& Q,
+                          const CandOf<S>& P, std::int64_t t, const std::int64_t v[]) {
+  if constexpr (Iso) {
+    const double dq = Q.t - double(t), dp = P.t - double(t);
+    const double e = (Q.f + dq * dq) - (P.f + dp * dp);
+    return e < 0 || (e == 0 && L.before(Q.s, P.s));
+  } else {
+    std::int64_t w[Lay::kAxes];
+    for (int k = 0; k < L.nd; ++k) w[k] = v[k];
+    w[a] = t;
+    return beats<Num>(L, M, Q.s, P.s, w);
+  }
 }
 
 }  // namespace gpugeom::edt

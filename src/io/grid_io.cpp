@@ -102,10 +102,9 @@ double Grid::value(std::int64_t i) const {
 namespace {
 
 void check_shape(const std::vector<std::int64_t>& shape, const std::string& name) {
-  if (shape.size() != 2 && shape.size() != 3)
-    parse_fail(
-        name, 0,
-        "a grid must be 2D or 3D, this one has " + std::to_string(shape.size()) + " dimensions");
+  if (shape.size() < 2 || shape.size() > 8)
+    parse_fail(name, 0,
+               "a grid must have 2 to 8 dimensions, this one has " + std::to_string(shape.size()));
   for (auto s : shape)
     if (s <= 0) parse_fail(name, 0, "grid dimensions must be positive");
 }

@@ -7,7 +7,7 @@ Report check_edt(const std::vector<std::int64_t>& shape, const std::vector<std::
                  const std::int64_t* sqdist, const std::int32_t* nearest) {
   Report r;
   const int d = int(shape.size());
-  if (d != 2 && d != 3) return r.fail("the grid must be 2D or 3D"), r;
+  if (d < 2 || d > 8) return r.fail("the grid must have 2 to 8 axes"), r;
   if (sites.empty() || sites.size() % d)
     return r.fail("no sites, or a site list not a multiple of the dimension"), r;
   const std::int64_t ns = std::int64_t(sites.size()) / d;
@@ -17,7 +17,7 @@ Report check_edt(const std::vector<std::int64_t>& shape, const std::vector<std::
   std::string why;
 #pragma omp parallel for
   for (std::int64_t i = 0; i < total; ++i) {
-    std::int64_t c[3], rem = i;
+    std::int64_t c[8], rem = i;
     for (int k = d - 1; k >= 0; --k) c[k] = rem % shape[k], rem /= shape[k];
     std::int64_t best = INT64_MAX;
     for (std::int64_t s = 0; s < ns; ++s) {

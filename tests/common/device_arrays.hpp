@@ -39,4 +39,16 @@ std::vector<T> from_device(const std::shared_ptr<T>& p, std::int64_t n) {
   return v;
 }
 
+// n elements of device memory at d, on the host.
+template <class T>
+std::vector<T> back(const T* d, std::int64_t n) {
+  std::vector<T> h(static_cast<std::size_t>(n));
+  EXPECT_EQ(cudaMemcpy(h.data(), d, sizeof(T) * std::size_t(n), cudaMemcpyDeviceToHost),
+            cudaSuccess);
+  return h;
+}
+
 }  // namespace gg_test
+
+// A CUDA call that must succeed (in a test body).
+#define GG_CK(x) ASSERT_EQ((x), cudaSuccess) << #x

@@ -1,8 +1,11 @@
 // Random site grids of many shapes and densities, and a brute-force reference transform.
 #pragma once
 #include <gmpxx.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -92,7 +95,7 @@ inline Reference brute_force(const gpugeom::io::Grid& g, const std::vector<doubl
   ref.nearest.resize(n);
   const bool iso = sampling.empty();
   for (std::int64_t i = 0; i < n; ++i) {
-    std::int64_t c[3], s[3];
+    std::int64_t c[8], s[8];
     coords(i, c);
     if (iso) {  // integers are exact and much faster than rationals
       std::int64_t best = -1, at = 0;
@@ -185,6 +188,46 @@ inline SliceReference slice_reference(const TallVolume& t, const std::int64_t w[
       ref.label[i] = std::int32_t(at);
     }
   return ref;
+}
+
+inline gpugeom::EdtOptions all_outputs(gpugeom::Backend b = gpugeom::Backend::Cpu) {
+  using namespace gpugeom;
+  EdtOptions o;
+  o.backend = b;
+  o.squared = true;
+  o.distance = 64;
+  o.features = true;
+  o.labels = true;
+  return o;
+}
+
+// Every output of the transform of g against the brute-force reference: the nearest site (its
+// features and label, ties to the first in raster order), squared and plain distances.
+inline void expect_exact(const gpugeom::io::Grid& g, const gpugeom::EdtOptions& o,
+                         const std::string& what) {
+  using namespace gpugeom;
+  const auto ref = brute_force(g, o.sampling);
+  const auto r = distance_transform(g, SiteRule::NonZero, o);
+  const std::int64_t n = g.count();
+  const int nd = int(g.shape.size());
+  ASSERT_EQ(r.labels.size(), std::size_t(n)) << what;
+  // labels are raster ranks of the sites
+  std::vector<std::int64_t> rank(n, -1);
+  for (std::int64_t i = 0, k = 0; i < n; ++i)
+    if (g.data[i]) rank[i] = k++;
+  for (std::int64_t i = 0; i < n; ++i) {
+    std::int64_t f = 0;
+    for (int j = 0; j < nd; ++j) f = f * g.shape[j] + r.features[std::size_t(j) * n + i];
+    ASSERT_EQ(f, ref.nearest[i]) << what << " voxel " << i << ": wrong nearest site (tie rule?)";
+    ASSERT_EQ(r.labels[i], rank[ref.nearest[i]]) << what << " voxel " << i;
+    if (o.sampling.empty()) {
+      ASSERT_EQ(mpq_class((long)r.sqdist_int[i]), ref.sq[i]) << what << " voxel " << i;
+    } else {
+      ASSERT_NEAR(r.sqdist_real[i], ref.sq[i].get_d(), 1e-12 * (1 + ref.sq[i].get_d())) << what;
+    }
+    ASSERT_NEAR(r.distance64[i], std::sqrt(ref.sq[i].get_d()), 1e-12 * (1 + r.distance64[i]))
+        << what;
+  }
 }
 
 }  // namespace gg_edt

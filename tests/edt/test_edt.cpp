@@ -14,44 +14,8 @@ using namespace gpugeom;
 using gg_edt::brute_force;
 using gg_edt::random_grid;
 
-namespace {
-
-EdtOptions all_outputs(Backend b = Backend::Cpu) {
-  EdtOptions o;
-  o.backend = b;
-  o.squared = true;
-  o.distance = 64;
-  o.features = true;
-  o.labels = true;
-  return o;
-}
-
-void expect_exact(const io::Grid& g, const EdtOptions& o, const std::string& what) {
-  const auto ref = brute_force(g, o.sampling);
-  const auto r = distance_transform(g, SiteRule::NonZero, o);
-  const std::int64_t n = g.count();
-  const int nd = int(g.shape.size());
-  ASSERT_EQ(r.labels.size(), std::size_t(n)) << what;
-  // labels are raster ranks of the sites
-  std::vector<std::int64_t> rank(n, -1);
-  for (std::int64_t i = 0, k = 0; i < n; ++i)
-    if (g.data[i]) rank[i] = k++;
-  for (std::int64_t i = 0; i < n; ++i) {
-    std::int64_t f = 0;
-    for (int j = 0; j < nd; ++j) f = f * g.shape[j] + r.features[std::size_t(j) * n + i];
-    ASSERT_EQ(f, ref.nearest[i]) << what << " voxel " << i << ": wrong nearest site (tie rule?)";
-    ASSERT_EQ(r.labels[i], rank[ref.nearest[i]]) << what << " voxel " << i;
-    if (o.sampling.empty()) {
-      ASSERT_EQ(mpq_class((long)r.sqdist_int[i]), ref.sq[i]) << what << " voxel " << i;
-    } else {
-      ASSERT_NEAR(r.sqdist_real[i], ref.sq[i].get_d(), 1e-12 * (1 + ref.sq[i].get_d())) << what;
-    }
-    ASSERT_NEAR(r.distance64[i], std::sqrt(ref.sq[i].get_d()), 1e-12 * (1 + r.distance64[i]))
-        << what;
-  }
-}
-
-}  // namespace
+using gg_edt::all_outputs;
+using gg_edt::expect_exact;
 
 TEST(Edt, ShapesAndDensities2d) {
   const std::vector<std::vector<std::int64_t>> shapes{{1, 1},   {1, 37},  {41, 1}, {7, 13},

@@ -217,16 +217,7 @@ TEST(CudaEdt, SiteListsSameAsCpu) {
     }
 }
 
-namespace {
-#define GG_CK(x) ASSERT_EQ((x), cudaSuccess) << #x
-template <class T>
-std::vector<T> back(const T* d, std::int64_t n) {
-  std::vector<T> h(static_cast<std::size_t>(n));
-  EXPECT_EQ(cudaMemcpy(h.data(), d, sizeof(T) * std::size_t(n), cudaMemcpyDeviceToHost),
-            cudaSuccess);
-  return h;
-}
-}  // namespace
+using gg_test::back;
 
 // The device entry point: a float32 grid on the device (SciPy's zero rule) on a stream of the
 // caller's, outputs in the library's device arrays and in the caller's; the same values as the

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """SciPy's distance_transform_edt as the oracle for `gpugeom edt`: distances (isotropic and
-anisotropic, 2D and 3D) must match, and every reported index must be a site at the reported
+anisotropic, 2D, 3D, 4D and 5D) must match, and every reported index must be a site at the reported
 distance (ties may pick a different site: gpugeom takes the first in raster order)."""
 import os, subprocess, sys, tempfile
 
@@ -14,7 +14,8 @@ def main(gpugeom):
     rng = np.random.default_rng(7)
     cases = [((1, 97), None, 0.3), ((83, 1), None, 0.3), ((301, 211), None, 0.05), ((256, 256), None, 0.5),
              ((200, 150), (1.5, 0.7), 0.02), ((40, 50, 60), None, 0.01), ((30, 20, 25), (2.0, 1.0, 0.5), 0.1),
-             ((64, 64), None, 0.9)]
+             ((64, 64), None, 0.9), ((7, 9, 8, 10), None, 0.05), ((6, 5, 7, 4), (2.0, 1.0, 0.5, 1.5), 0.1),
+             ((4, 3, 5, 4, 3), None, 0.05)]
     bad = 0
     with tempfile.TemporaryDirectory() as tmp:
         for shape, samp, zeros in cases:

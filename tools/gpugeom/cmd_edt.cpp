@@ -63,11 +63,12 @@ int cmd_edt(const Global& g, Args& a) {
   if (a.help()) {
     std::cout
         << "usage: gpugeom edt IN -o OUT.npy [options]\n\n"
-           "Exact Euclidean distance transform of a 2D image or 3D volume (.png .pgm .pbm .npy,\n"
-           "or raw with --shape and --dtype). Writes float32 distances to OUT.npy.\n\n"
+           "Exact Euclidean distance transform of a 2D image, a 3D volume or a grid of up to 8\n"
+           "axes (.png .pgm .pbm .npy, or raw with --shape and --dtype). Writes float32 distances\n"
+           "to OUT.npy.\n\n"
            "  --sites nonzero|zero  which elements are sites (default nonzero; 'zero' computes\n"
            "                        SciPy's distance_transform_edt: distance to the nearest zero)\n"
-           "  --sampling a,b[,c]    voxel spacing per axis (C order), as in SciPy\n"
+           "  --sampling a,b,...    voxel spacing per axis (C order), as in SciPy\n"
            "  --float64             write float64 distances\n"
            "  --squared FILE.npy    squared distances (int64, or float64 with --sampling)\n"
            "  --indices FILE.npy    nearest-site coordinates, int32 (ndim, *shape), SciPy's "
@@ -81,7 +82,7 @@ int cmd_edt(const Global& g, Args& a) {
            "  --slices z1,z2,...    3D: compute only these z slices (slice-by-slice mode)\n"
            "  --method pba|jfa      jfa is approximate, a baseline for comparison only\n"
            "  --bands kx,ky[,kz]    PBA band counts (default: chosen by size)\n"
-           "  --shape S0,S1[,S2] --dtype T   for raw input (T: uint8 uint16 int32 float32 ...)\n";
+           "  --shape S0,S1,... --dtype T    for raw input (T: uint8 uint16 int32 float32 ...)\n";
     return kOk;
   }
   std::string out, sites = "nonzero", sampling, squared, indices, labels, prev, slices,

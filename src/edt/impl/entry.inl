@@ -1,10 +1,14 @@
-// The entry points edt_backend.hpp and edt_device.hpp declare, the same for both executors: a
-// whole grid runs the passes compiled for the request's site packing (run.inl, included once
-// for each in namespaces bits and linear), slices theirs by blocks (slices.inl, once for each
-// block layout).
+// The entry points edt_backend.hpp and edt_device.hpp declare, the same for both executors: an
+// N-D grid (4 to 8 axes) runs nd.inl's passes for its index width; a whole 2D / 3D grid runs the
+// passes compiled for the request's site packing (run.inl, included once for each in namespaces
+// bits and linear), slices theirs by blocks (slices.inl, once for each block layout).
 
 void run(const Request& req, Output& out, Stats& stats) {
-  if (!req.slices.empty() && req.layout.columns)
+  if (req.nd.nd && req.nd.wide)
+    nd64::run_nd(req, out, stats);
+  else if (req.nd.nd)
+    nd32::run_nd(req, out, stats);
+  else if (!req.slices.empty() && req.layout.columns)
     column_slices::run_slices(req, out, stats);
   else if (!req.slices.empty() && req.layout.linear)
     linear_slices::run_slices(req, out, stats);

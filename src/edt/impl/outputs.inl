@@ -43,10 +43,35 @@ template <class Lay>
 struct RankLabels {
   const std::int32_t* rank;
   Lay L;
-  GG_INLINE std::int32_t operator()(std::uint32_t f, std::int64_t) const {
+  template <class S>
+  GG_INLINE std::int32_t operator()(S f, std::int64_t) const {
     return rank[L.voxel_of(f)];
   }
 };
+
+// The coordinates of voxel i of a block (v: Lay::kAxes entries) and of a site f: the 2D / 3D
+// layouts decode their bit fields or raster indices (plane k of a block is slice plane_z(k)),
+// the N-D layouts their raster indices.
+template <class Lay>
+GG_INLINE void voxel_position(const Lay& L, std::int64_t i, std::int64_t v[]) {
+  if constexpr (Lay::kAxes > 3) {
+    L.coords(i, v);
+  } else {
+    const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
+    const std::uint32_t rest = std::uint32_t(i) / nx;
+    v[0] = std::int64_t(std::uint32_t(i) - rest * nx);
+    v[1] = std::int64_t(rest % ny);
+    v[2] = L.plane_z(rest / ny);
+  }
+}
+template <class Lay, class S>
+GG_INLINE void site_position(const Lay& L, S f, std::int64_t c[]) {
+  if constexpr (Lay::kAxes > 3) {
+    L.coords(f, c);
+  } else {
+    for (int k = 0; k < L.nd; ++k) c[k] = L.coord(f, k);
+  }
+}
 
 // Labels are int32: a grid's sites are counted before anything is computed.
 inline void check_label_count(const Request& rq, std::int64_t sites) {
@@ -61,14 +86,14 @@ inline void check_label_count(const Request& rq, std::int64_t sites) {
 // through a block-sized array on the executor and one copy back each. Lay: the block's site
 // packing; label_of(site, i): the label of the site voxel i holds (called only when labels are
 // asked for).
-template <class Lay, class LabelOf>
-inline void emit_outputs(Exec& ex, const Request& rq, const Lay& L, const std::uint32_t* feat,
-                         LabelOf label_of, Output& out, DeviceArrays& lib, std::int64_t at,
-                         std::int64_t total) {
+template <class Lay, class S, class LabelOf>
+inline void emit_outputs(Exec& ex, const Request& rq, const Lay& L,
+                         const MetricT<Lay::kAxes>& metric, const S* feat, LabelOf label_of,
+                         Output& out, DeviceArrays& lib, std::int64_t at, std::int64_t total) {
   const std::int64_t n = L.count();
   const Lay Ly = L;
-  const Metric Mt = rq.metric;
-  const bool iso = rq.metric.iso;
+  const MetricT<Lay::kAxes> Mt = metric;
+  const bool iso = metric.iso;
   const auto dsi = dest_of(ex, rq, rq.into.sqdist_int, rq.want_sqdist && iso, total, at, lib.sqi,
                            out.sqdist_int);
   const auto dsr = dest_of(ex, rq, rq.into.sqdist_real, rq.want_sqdist && !iso, total, at, lib.sqr,
@@ -96,19 +121,18 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Lay& L, const std::u
   std::int32_t* lp = where(dlb, slb);
   const bool dist = si || sr || dd || df;
   if (dist || lp) {  // one pass over the features writes every array asked for
-    const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
     ex.for_each_index(
         n, GG_LAMBDA(std::int64_t i) {
-          const std::uint32_t f = feat[i];
+          const S f = feat[i];
           if (lp) lp[i] = label_of(f, i);
           if (!dist) return;
-          const std::uint32_t rest = std::uint32_t(i) / nx;
-          const std::int64_t v[3] = {std::int64_t(std::uint32_t(i) - rest * nx),
-                                     std::int64_t(rest % ny), Ly.plane_z(rest / ny)};
+          std::int64_t v[Lay::kAxes], c[Lay::kAxes];
+          voxel_position(Ly, i, v);
+          site_position(Ly, f, c);
           std::int64_t q = 0;
           double r = 0;
           for (int k = 0; k < Ly.nd; ++k) {
-            const std::int64_t d = Ly.coord(f, k) - v[k];
+            const std::int64_t d = c[k] - v[k];
             q += d * d;
             r += Mt.w[k] * double(d * d);
           }

@@ -1,8 +1,17 @@
-// The passes compiled once for each site packing (edt_common.hpp): bit fields and raster
-// indices for whole grids; for blocks of slices the same with the slices' z, or columns.
-// Included by edt_cpu.cpp and edt_cuda.cu inside their executor's namespace, after
-// GG_EDT_TILES and GG_EDT_PASSES name the executor's own tiled and whole-grid passes.
+// The passes compiled once for each site packing (edt_common.hpp): N-D grids by 32- and 64-bit
+// raster indices (nd.inl); bit fields and raster indices for whole 2D / 3D grids; for blocks of
+// slices the same with the slices' z, or columns. Included by edt_cpu.cpp and edt_cuda.cu inside
+// their executor's namespace, after GG_EDT_TILES and GG_EDT_PASSES name the executor's own tiled
+// and whole-grid passes.
 #include "edt/impl/outputs.inl"
+namespace nd32 {
+using S = std::uint32_t;
+#include "edt/impl/nd.inl"
+}  // namespace nd32
+namespace nd64 {
+using S = std::uint64_t;
+#include "edt/impl/nd.inl"
+}  // namespace nd64
 namespace bits {
 #include "edt/impl/pba.inl"
 #include GG_EDT_TILES

@@ -74,10 +74,7 @@ struct Segs {
 // and, when the metric is isotropic, f = its squared distance to the line (other axes). With
 // those two numbers the isotropic tests are a few exact double operations (values < 2^51);
 // anisotropic metrics take the general exact tests of edt_common.hpp.
-struct Cand {
-  std::uint32_t s;
-  double t, f;
-};
+using Cand = CandOf<std::uint32_t>;
 
 GG_INLINE Cand decode(const Layout& L, int a, std::uint32_t s, const std::int64_t v[3]) {
   Cand c{s, double(L.coord(s, a)), 0.0};
@@ -87,33 +84,6 @@ GG_INLINE Cand decode(const Layout& L, int a, std::uint32_t s, const std::int64_
       c.f += d * d;
     }
   return c;
-}
-
-// Iso: the metric is isotropic (known at compile time, so the isotropic kernels carry none of
-// the general tests' registers except the exact-tie fallback).
-template <bool Iso>
-GG_INLINE bool cand_dominated(const Layout& L, const Metric& M, int a, const Cand& A, const Cand& B,
-                              const Cand& C, const std::int64_t v[3]) {
-  if constexpr (Iso) {
-    const double e = (C.t - B.t) * (B.f - A.f) - (B.t - A.t) * (C.f - B.f) +
-                     (C.t - B.t) * (B.t - A.t) * (A.t - C.t);
-    if (e != 0) return e > 0;
-  }
-  return dominated<Num>(L, M, a, A.s, B.s, C.s, v);  // anisotropic, or an exact tie
-}
-
-template <bool Iso>
-GG_INLINE bool cand_beats(const Layout& L, const Metric& M, int a, const Cand& Q, const Cand& P,
-                          std::int64_t t, const std::int64_t v[3]) {
-  if constexpr (Iso) {
-    const double dq = Q.t - double(t), dp = P.t - double(t);
-    const double e = (Q.f + dq * dq) - (P.f + dp * dp);
-    return e < 0 || (e == 0 && L.before(Q.s, P.s));
-  } else {
-    std::int64_t w[3] = {v[0], v[1], v[2]};
-    w[a] = t;
-    return beats<Num>(L, M, Q.s, P.s, w);
-  }
 }
 
 // One band's stack: scans positions [t0, t1) of a line (in[base + t * stride]) and keeps the
@@ -136,7 +106,7 @@ GG_INLINE std::int32_t band_stack(const Layout& L, const Metric& M, int a, const
     if (t + 2 < t1) ahead2 = in[base + (t + 2) * stride];
     if (cs == kNone) continue;
     const Cand c = decode(L, a, cs, v);
-    while (n >= 2 && cand_dominated<Iso>(L, M, a, second, top, c, v)) {
+    while (n >= 2 && cand_dominated<Iso, Num>(L, M, a, second, top, c, v)) {
       --n;
       top = second;
       if (n >= 2) second = decode(L, a, s[(n - 2) * stride], v);
@@ -194,7 +164,7 @@ GG_INLINE void merge_groups(const Layout& L, const Metric& M, int a, const std::
         back(pb, pi);
         sec = decode(L, a, S.at(pb, pi), v);
       }
-      if (!cand_dominated<Iso>(L, M, a, sec, t, c, v)) break;
+      if (!cand_dominated<Iso, Num>(L, M, a, sec, t, c, v)) break;
       if (pushed == 1) {
         pushed = 0;
         ++dropped;
@@ -265,7 +235,8 @@ GG_INLINE void colour_band(const Layout& L, const Metric& M, int a, const std::i
     locate(mid, b, i);
     b2 = b, i2 = i;
     next(b2, i2);
-    if (cand_beats<Iso>(L, M, a, decode(L, a, S.at(b2, i2), v), decode(L, a, S.at(b, i), v), t0, v))
+    if (cand_beats<Iso, Num>(L, M, a, decode(L, a, S.at(b2, i2), v), decode(L, a, S.at(b, i), v),
+                             t0, v))
       lo_k = mid + 1;
     else
       hi_k = mid;
@@ -283,7 +254,7 @@ GG_INLINE void colour_band(const Layout& L, const Metric& M, int a, const std::i
   if (ab < nbands) next(ab, ai);
   std::uint32_t after = ab < nbands ? S.at(ab, ai) : kNone;
   for (std::int64_t t = t0; t < t1; ++t) {
-    while (nxt.s != kNone && cand_beats<Iso>(L, M, a, nxt, cur, t, v)) {
+    while (nxt.s != kNone && cand_beats<Iso, Num>(L, M, a, nxt, cur, t, v)) {
       cur = nxt;
       nxt = decode(L, a, after, v);
       if (ab < nbands) next(ab, ai);

@@ -98,7 +98,7 @@ inline void run_whole(const Request& rq, Output& out, Stats& stats) {
           r.fetch_min(std::int32_t(j), cuda::memory_order_relaxed);
         });
   }
-  emit_outputs(ex, rq, L, fp, RankLabels<Layout>{rp, L}, out, lib, 0, nvox);
+  emit_outputs(ex, rq, L, rq.metric, fp, RankLabels<Layout>{rp, L}, out, lib, 0, nvox);
   // Labels' grid, distance and label kernels, before any copy back (features excluded).
   stats.phase_ms.push_back({"outputs_device", out.device_outputs_at - t2});
   if (rq.device_out) hand_over(ex, lib, out);

@@ -278,8 +278,8 @@ inline void run_slices(const Request& rq, Output& out, Stats& stats) {
     }
     ex.sync();
     transform += now_ms() - t1;
-    emit_outputs(ex, rq, Lb, cand.data(), ColumnLabels{lab.data(), Lb}, out, arrays, k0 * nxy,
-                 nsl * nxy);
+    emit_outputs(ex, rq, Lb, rq.metric, cand.data(), ColumnLabels{lab.data(), Lb}, out, arrays,
+                 k0 * nxy, nsl * nxy);
   }
   for (int a = 0; a < 2; ++a) stats.counters[std::string("bands_") + "xy"[a]] = bands[a];
   stats.counters["slices_per_block"] = per_block;
