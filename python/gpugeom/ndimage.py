@@ -51,11 +51,12 @@ def _sampling(sampling, nd) -> list:
 
 
 def _slices(slices, shape):
-    """The z slices asked for (None: the whole volume), negative ones counted from the end."""
+    """The indices along axis 0 asked for (None: the whole array), negative ones counted from
+    the end."""
     if slices is None:
         return None
-    if len(shape) != 3:
-        raise ValueError(f"slices apply to 3D input only, got {len(shape)} dimensions")
+    if len(shape) < 3:
+        raise ValueError(f"slices apply to input of 3 or more dimensions, got {len(shape)}")
     zs = [int(z) for z in np.asarray(slices, dtype=np.int64).reshape(-1)]
     if not zs:
         raise ValueError("slices is empty: give at least one index along axis 0")
@@ -92,8 +93,8 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     float32 distances, and int32 indices); as in SciPy, the outputs written there are not
     returned. ``float64_distances=False`` returns float32 distances (as CuPy's option).
 
-    ``slices`` (3D input only; not in SciPy): compute only these indices along axis 0, each
-    exactly as the whole volume would have it; the outputs' first axis is then
+    ``slices`` (input of 3 or more dimensions; not in SciPy): compute only these indices along
+    axis 0, each exactly as the whole array would have it; the outputs' first axis is then
     ``len(slices)``. The device then holds the list of the zero elements and a few slices at a
     time, never the volume's outputs, so a volume of any size that fits the host (more than
     2**32 elements too) can be taken slice by slice.

@@ -80,7 +80,9 @@ def test_edt_errors(backend):
     with pytest.raises(ValueError, match="no zero element|no site"):  # 4D, no site
         gpugeom.distance_transform_edt(np.ones((2, 3, 2, 3)), backend=backend)
     with pytest.raises(ValueError, match="slices"):
-        gpugeom.distance_transform_edt(np.zeros((2, 3, 2, 3)), slices=[0])
+        gpugeom.distance_transform_edt(np.zeros((2, 3)), slices=[0])
+    with pytest.raises(IndexError):
+        gpugeom.distance_transform_edt(np.zeros((2, 3, 2, 3)), slices=[2])
     with pytest.raises(RuntimeError, match="shape"):
         gpugeom.distance_transform_edt(np.ones((8, 8)), distances=np.zeros((8, 9)))
     with pytest.raises(ValueError, match="sampling"):

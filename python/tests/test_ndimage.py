@@ -86,7 +86,7 @@ def test_edt_slices_equal_whole_volume(sampling, backend, rng):
     assert gpugeom.distance_transform_edt(a, sampling=sampling, distances=dist, slices=[3, 4],
                                           backend=backend) is None
     np.testing.assert_array_equal(dist, d[3:5].astype(np.float32))
-    with pytest.raises(ValueError, match="3D"):
+    with pytest.raises(ValueError, match="3 or more dimensions"):
         gpugeom.distance_transform_edt(a[0], slices=[0], backend=backend)
     with pytest.raises(IndexError, match="out of bounds"):
         gpugeom.distance_transform_edt(a, slices=[23], backend=backend)
@@ -160,3 +160,16 @@ def test_voronoi_labels_4d(backend, rng):
     np.testing.assert_array_equal(site.reshape(-1), nz[best])
     np.testing.assert_array_equal(out.reshape(-1), lab.reshape(-1)[nz[best]])
     np.testing.assert_allclose(dist.reshape(-1), np.sqrt(d2.min(axis=1)))
+
+
+@pytest.mark.parametrize("shape", [(9, 6, 5, 7), (6, 4, 3, 5, 3)])
+def test_edt_nd_slices_equal_whole(shape, backend, rng):
+    a = rng.random(shape) > 0.03
+    a.flat[-1] = False
+    samp = [1.0 + 0.5 * k for k in range(len(shape))]
+    d, i = gpugeom.distance_transform_edt(a, sampling=samp, return_indices=True, backend=backend)
+    zs = [shape[0] - 1, 0, 3, 3]
+    ds, js = gpugeom.distance_transform_edt(a, sampling=samp, return_indices=True, slices=zs,
+                                            backend=backend)
+    np.testing.assert_array_equal(ds, d[zs])
+    np.testing.assert_array_equal(js, i[:, zs])

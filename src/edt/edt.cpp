@@ -154,6 +154,10 @@ edt::NdShape make_nd_shape(const std::vector<std::int64_t>& shape, bool wide) {
                 "grid extents too large for the exact passes of a " + std::to_string(nd) +
                     "D grid: 2 n (sum of n_k^2) + n^3 must stay below 2^53 for the longest axis n");
   if (count >= 9.2e18) throw Error(ErrorCode::InvalidInput, "grid too large");
+  if (count / double(g.n[nd - 1]) >= 140737488355328.0)  // column keys hold 47 bits
+    throw Error(ErrorCode::InvalidInput,
+                "grid too large: a slice along axis 0 must hold fewer "
+                "than 2^47 elements");
   g.wide = wide || g.count() >= (std::int64_t(1) << 32) - 1;
   return g;
 }
@@ -212,7 +216,8 @@ std::vector<std::int64_t> output_shape(edt::Request& rq, const EdtOptions& opt,
                                        const std::vector<std::int64_t>& shape) {
   std::vector<std::int64_t> out = shape;
   if (!opt.slices.empty()) {
-    if (shape.size() != 3) throw Error(ErrorCode::InvalidArgument, "slices apply to 3D grids only");
+    if (shape.size() < 3)
+      throw Error(ErrorCode::InvalidArgument, "slices apply to grids of 3 or more axes only");
     if (opt.method != EdtMethod::Pba)
       throw Error(ErrorCode::InvalidArgument, "slices need the PBA method");
     for (auto z : opt.slices)
@@ -260,13 +265,13 @@ EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std:
   return r;
 }
 
-// The sites of a host grid as column keys, in raster order, on all host threads: each chunk
+// The sites of a host grid of n voxels (slices of `plane` voxels along C axis 0) as column keys,
+// in raster order, on all host threads: each chunk
 // counts its sites, then writes them at its offset. Elements are read as their own type (a
 // conversion to double per element took 3.7 ns an element a thread). False if a NaN is met.
 template <class T>
-bool list_column_sites(const T* data, const edt::Layout& L, bool nonzero,
+bool list_column_sites(const T* data, std::int64_t n, std::int64_t plane, bool nonzero,
                        std::vector<std::uint64_t>& out) {
-  const std::int64_t n = L.count(), plane = L.n[0] * L.n[1];
   constexpr std::int64_t kChunk = std::int64_t(1) << 20;
   const std::int64_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<std::int64_t> at(std::size_t(chunks) + 1, 0);
@@ -306,7 +311,7 @@ EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions&
   check_view(g);
   edt::Request rq;
   set_grid(rq, g.shape, opt);
-  if (opt.slices.empty() || rq.nd.nd) {  // the executor reads the grid as it is
+  if (opt.slices.empty()) {  // the executor reads the grid as it is
     rq.grid = g.data;
     rq.type = g.type;
     rq.rule = rule;
@@ -315,8 +320,11 @@ EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions&
   // Slice by slice: the device holds the site list and a block of slices, never the volume, so
   // the sites are listed here as column keys (raster order: labels are raster ranks as usual).
   bool finite = true;
+  std::int64_t n = 1;
+  for (auto e : g.shape) n *= e;
+  const std::int64_t plane = n / g.shape[0];
   grid_input::visit(g.type, [&](auto tag) {
-    finite = list_column_sites(static_cast<const decltype(tag)*>(g.data), rq.layout,
+    finite = list_column_sites(static_cast<const decltype(tag)*>(g.data), n, plane,
                                rule == SiteRule::NonZero, rq.column_sites);
   });
   if (!finite) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
@@ -374,8 +382,8 @@ EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
   const std::int64_t ns = std::int64_t(sites.size()) / nd;
   if (ns >= (std::int64_t(1) << 31))
     throw Error(ErrorCode::InvalidInput, "too many sites (at most 2^31-1)");
-  const bool sliced = !opt.slices.empty() && !rq.nd.nd;
-  if (rq.nd.nd)
+  const bool sliced = !opt.slices.empty();
+  if (rq.nd.nd && !sliced)
     rq.nd_sites.resize(std::size_t(ns));
   else if (sliced)
     rq.column_sites.resize(std::size_t(ns));
@@ -394,7 +402,10 @@ EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
       raster = raster * std::uint64_t(shape[j]) + std::uint64_t(v);
       if (nd <= 3) c[nd - 1 - j] = v;
     }
-    if (rq.nd.nd)
+    const std::uint64_t plane = std::uint64_t(rq.nd.nd ? rq.nd.count() / shape[0] : 0);
+    if (rq.nd.nd && sliced)
+      rq.column_sites[i] = edt::column_key(std::int64_t(raster % plane), sites[i * nd]);
+    else if (rq.nd.nd)
       rq.nd_sites[i] = raster;
     else if (sliced)
       rq.column_sites[i] = edt::column_key(c[0] + rq.layout.n[0] * c[1], c[2]);

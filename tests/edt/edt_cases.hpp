@@ -52,7 +52,7 @@ inline gpugeom::EdtResult slices_of(const gpugeom::EdtResult& whole,
   gpugeom::EdtResult r;
   r.shape = whole.shape;
   r.shape[0] = std::int64_t(slices.size());
-  const std::int64_t plane = whole.shape[1] * whole.shape[2], n = whole.count(), m = r.count();
+  const std::int64_t n = whole.count(), plane = n / whole.shape[0], m = r.count();
   auto take = [&](const auto& from, auto& to, int arrays) {
     if (from.empty()) return;
     to.resize(std::size_t(arrays * m));
@@ -66,7 +66,7 @@ inline gpugeom::EdtResult slices_of(const gpugeom::EdtResult& whole,
   take(whole.sqdist_real, r.sqdist_real, 1);
   take(whole.distance32, r.distance32, 1);
   take(whole.distance64, r.distance64, 1);
-  take(whole.features, r.features, 3);
+  take(whole.features, r.features, int(whole.shape.size()));
   take(whole.labels, r.labels, 1);
   return r;
 }

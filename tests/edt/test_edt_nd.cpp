@@ -181,7 +181,7 @@ TEST(EdtNd, ClearErrors) {
             }),
             ErrorCode::InvalidArgument);
   o = all_outputs();
-  o.slices = {0};
+  o.slices = {2};  // outside the grid
   EXPECT_EQ(code([&] {
               distance_transform(constant_grid({2, 2, 2, 2}, 1), SiteRule::NonZero, o);
             }),
@@ -206,4 +206,45 @@ TEST(EdtNd, ClearErrors) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("no site"), std::string::npos) << e.what();
   }
+}
+
+TEST(EdtNd, SlicesEqualWholeVolume) {
+  // Slices along C axis 0 (in order, out of order, repeated), several per block or one, from a
+  // grid and from a site list, isotropic and not, 32- and 64-bit indices.
+  const std::vector<std::vector<std::int64_t>> shapes{{9, 5, 6, 7}, {7, 4, 3, 5, 4}};
+  unsigned seed = 60;
+  for (auto& shape : shapes)
+    for (auto& sampling :
+         std::vector<std::vector<double>>{{}, std::vector<double>(shape.size(), 1.5)}) {
+      const io::Grid g = random_grid(shape, 0.01, seed++);
+      auto o = all_outputs();
+      o.sampling = sampling;
+      const auto whole = distance_transform(g, SiteRule::NonZero, o);
+      std::vector<std::int64_t> list;
+      for (std::int64_t i = 0, n = g.count(); i < n; ++i) {
+        if (!g.data[std::size_t(i)]) continue;
+        std::int64_t c[8], r = i;
+        for (int j = int(shape.size()) - 1; j >= 0; --j) c[j] = r % shape[j], r /= shape[j];
+        list.insert(list.end(), c, c + shape.size());
+      }
+      const auto whole_list = distance_transform_sites(shape, list, o);
+      const std::int64_t plane = g.count() / shape[0];
+      for (auto& slices : std::vector<std::vector<std::int64_t>>{
+               {0, 1, 2, 3, 4, 5, 6}, {6, 0, 3}, {2, 2, 5}, {shape[0] - 1}}) {
+        for (std::int64_t block : {0, 1, 2}) {
+          for (bool wide : {false, true}) {
+            auto so = o;
+            so.slices = slices;
+            so.slice_block = block * plane;
+            so.wide_indices = wide;
+            const std::string what = name_of(shape) + " slices " + std::to_string(slices[0]) +
+                                     "... block " + std::to_string(block);
+            expect_same(distance_transform(g, SiteRule::NonZero, so),
+                        gg_edt::slices_of(whole, slices), what);
+            expect_same(distance_transform_sites(shape, list, so),
+                        gg_edt::slices_of(whole_list, slices), what + " list");
+          }
+        }
+      }
+    }
 }

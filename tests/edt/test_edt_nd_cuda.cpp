@@ -54,6 +54,14 @@ TEST(CudaEdtNd, SameAsCpuBitForBit) {
       EXPECT_EQ(gpu.sqdist_int, cpu.sqdist_int);
       EXPECT_EQ(gpu.sqdist_real, cpu.sqdist_real);
       EXPECT_EQ(gpu.distance32, cpu.distance32);
+      o.slices = {c.shape[0] - 1, 0, c.shape[0] / 2};
+      const auto gs = distance_transform(g, SiteRule::NonZero, o);
+      o.backend = Backend::Cpu;
+      const auto cs = distance_transform(g, SiteRule::NonZero, o);
+      EXPECT_EQ(gs.labels, cs.labels);
+      EXPECT_EQ(gs.features, cs.features);
+      EXPECT_EQ(gs.distance32, cs.distance32);
+      EXPECT_EQ(gs.labels, gg_edt::slices_of(cpu, o.slices).labels);
     }
   }
 }

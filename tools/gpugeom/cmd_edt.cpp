@@ -79,7 +79,8 @@ int cmd_edt(const Global& g, Args& a) {
            "                        raster order\n"
            "  --preview FILE.png    look at it: grey distance field (2D, or the first slice)\n"
            "  --voronoi             make the preview the coloured Voronoi cells\n"
-           "  --slices z1,z2,...    3D: compute only these z slices (slice-by-slice mode)\n"
+           "  --slices z1,z2,...    3D and up: compute only these indices along axis 0 (slice by\n"
+           "                        slice: the device never holds the volume)\n"
            "  --method pba|jfa      jfa is approximate, a baseline for comparison only\n"
            "  --bands kx,ky[,kz]    PBA band counts (default: chosen by size)\n"
            "  --shape S0,S1,... --dtype T    for raw input (T: uint8 uint16 int32 float32 ...)\n";

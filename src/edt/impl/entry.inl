@@ -4,7 +4,11 @@
 // bits and linear), slices theirs by blocks (slices.inl, once for each block layout).
 
 void run(const Request& req, Output& out, Stats& stats) {
-  if (req.nd.nd && req.nd.wide)
+  if (req.nd.nd && !req.slices.empty() && req.nd.wide)
+    nd64::run_nd_slices(req, out, stats);
+  else if (req.nd.nd && !req.slices.empty())
+    nd32::run_nd_slices(req, out, stats);
+  else if (req.nd.nd && req.nd.wide)
     nd64::run_nd(req, out, stats);
   else if (req.nd.nd)
     nd32::run_nd(req, out, stats);

@@ -11,15 +11,27 @@
 // raster order at every step, so the result is "the nearest site, first in C order".
 
 using Num = std::conditional_t<Exec::backend == Backend::Cuda, double, std::int64_t>;
-using NdL = NdLayout<S>;
 using NdCand = CandOf<S>;
-constexpr S kNoSite = NdL::kNoSite;
+constexpr S kNoSite = NdLayout<S>::kNoSite;
+
+// The layout of the grid computed: a whole grid, or a block of slices (zs: the volume's index
+// along C axis 0 of each of the block's planes; the sites keep their volume's raster indices).
+struct NdL : NdLayout<S> {
+  const std::uint16_t* zs = nullptr;  // executor memory; null: a whole grid
+  NdL() = default;
+  explicit NdL(const NdShape& s, const std::uint16_t* z = nullptr) : NdLayout<S>(s), zs(z) {}
+  // Where voxel i of the grid computed lies in the volume.
+  GG_INLINE void position(std::int64_t i, std::int64_t v[]) const {
+    this->coords(S(i), v);
+    if (zs) v[this->nd - 1] = zs[v[this->nd - 1]];
+  }
+};
 
 // Line l of the pass along axis a: its first voxel, whose coordinates go to v (v[a] = 0).
 GG_INLINE std::int64_t nd_line(const NdL& L, int a, std::int64_t l, std::int64_t v[]) {
   const std::int64_t st = L.stride[a];
   const std::int64_t base = (l / st) * st * L.n[a] + l % st;
-  L.coords(S(base), v);
+  L.position(base, v);
   return base;
 }
 
@@ -204,4 +216,131 @@ inline void run_nd(const Request& rq, Output& out, Stats& stats) {
   if (rq.device_out) hand_over(ex, lib, out);
   stats.phase_ms.push_back({"outputs", now_ms() - t2});
   stats.counters["index_bits"] = 8 * std::int64_t(sizeof(S));
+}
+
+// A block's candidates (column_candidates, columns.inl): the site at z of column c, as the
+// volume's raster index.
+struct NdColumnPut {
+  S* cand;
+  std::int64_t plane;
+  GG_INLINE void operator()(std::int64_t i, std::int64_t c, std::int64_t, std::int64_t z) const {
+    cand[i] = z < 0 ? kNoSite : S(z * plane + c);
+  }
+};
+
+// Labels of a block: those of its planes' candidates (voxel i's site is a candidate of i's plane,
+// in the site's column).
+struct NdColumnLabels {
+  const std::int32_t* lab;
+  std::int64_t plane;
+  GG_INLINE std::int32_t operator()(S f, std::int64_t i) const {
+    return lab[(i / plane) * plane + std::int64_t(f % S(plane))];
+  }
+};
+
+// The slice-by-slice mode of an N-D grid (as slices.inl for 3D): only the requested indices
+// along C axis 0 are computed, from the list of the volume's sites, never from the volume
+// itself, so the volume may be larger than the device. Each plane of a block takes, for every
+// column, the nearest of the column's sites along axis 0 (columns.inl); the passes along the
+// other axes then run on the block.
+inline void run_nd_slices(const Request& rq, Output& out, Stats& stats) {
+  Exec ex(rq.run);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
+  const NdLayout<S> V(rq.nd);
+  const int nd = V.nd;
+  const std::int64_t plane = V.stride[nd - 1], nvox = V.count();
+  const std::int64_t nsl = std::int64_t(rq.slices.size());
+  const bool labels = rq.want_labels;
+  const std::int64_t want = rq.tune.slice_block > 0 ? rq.tune.slice_block : std::int64_t(1) << 24;
+  const std::int64_t per_block = std::min(nsl, std::max<std::int64_t>(1, want / plane));
+  // Device memory, as slices.inl: the keys (and labels), twice while sorted; a block's arrays
+  // (candidates, stacks, labels, staging); the columns' starts and places; the library's arrays
+  // of every computed slice; a device grid's mask while its sites are listed.
+  const auto& in = rq.into;
+  const bool direct = rq.device_out || Exec::backend == Backend::Cpu;
+  double per_voxel = 2.0 * sizeof(S) + (labels ? 4 : 0);
+  if (!direct) per_voxel += (rq.want_sqdist ? 8 : 0) + rq.want_distance / 8 + (labels ? 4 : 0);
+  double lib = 0;
+  if (rq.device_out) {
+    if (rq.want_sqdist && !in.sqdist_int && !in.sqdist_real) lib += 8;
+    if (rq.want_distance == 32 && !in.distance32) lib += 4;
+    if (rq.want_distance == 64 && !in.distance64) lib += 8;
+    if (labels && !in.labels) lib += 4;
+    if (rq.want_features && !in.features) lib += 4.0 * nd;
+  }
+  const bool bytes_mask = rq.rule == SiteRule::NonZero &&
+                          (rq.type == io::ScalarType::U8 || rq.type == io::ScalarType::Bool);
+  const double block = double(per_block) * double(plane);
+  auto require = [&](std::int64_t sites, bool listing) {
+    const double keys = double(sites) * (8 + (labels ? 4 : 0));
+    const double bytes = keys + std::max(keys, block * per_voxel + double(plane) * 16) +
+                         double(nsl) * double(plane) * lib +
+                         (listing && !bytes_mask ? double(nvox) : 0);
+    ::gpugeom::detail::require_device_bytes(ex, std::uint64_t(bytes),
+                                            "a distance transform of " + std::to_string(nsl) +
+                                                " slices of " + std::to_string(plane) +
+                                                " voxels with " + std::to_string(sites) + " sites");
+  };
+  const double t0 = now_ms();
+  typename Exec::template Buffer<std::uint64_t> keys;
+  typename Exec::template Buffer<std::int32_t> vals;
+  std::int64_t ns = 0;
+  if (rq.grid) {
+    require(0, true);
+    typename Exec::template Buffer<unsigned char> raw;
+    typename Exec::template Buffer<std::uint8_t> mbuf;
+    std::int64_t count = 0;
+    const std::uint8_t* mask = grid_mask(ex, rq, nvox, raw, mbuf, count);
+    check_label_count(rq, count);
+    require(count, true);
+    keys = ex.template alloc<std::uint64_t>(std::size_t(count));
+    ns = list_column_keys(ex, nvox, plane, mask, keys.data());
+  } else {
+    ns = std::int64_t(rq.column_sites.size());
+    check_label_count(rq, ns);
+    require(ns, false);
+    keys = ex.template alloc<std::uint64_t>(std::size_t(ns));
+    ex.from_host(rq.column_sites.data(), ns, keys.data());
+  }
+  if (labels) vals = ex.template alloc<std::int32_t>(std::size_t(ns));
+  auto start = column_runs(ex, keys.data(), labels ? vals.data() : nullptr, ns, plane);
+  ex.sync();
+  stats.phase_ms.push_back({"upload", now_ms() - t0});
+
+  auto zs = ex.template alloc<std::uint16_t>(std::size_t(nsl));
+  {
+    std::vector<std::uint16_t> z(rq.slices.begin(), rq.slices.end());
+    ex.from_host(z.data(), nsl, zs.data());
+  }
+  const std::size_t bv = std::size_t(per_block * plane);
+  auto cand = ex.template alloc<S>(bv);
+  auto stk = ex.template alloc<S>(bv);
+  auto lab = ex.template alloc<std::int32_t>(labels ? bv : 0);
+  auto at = ex.template alloc<std::int64_t>(std::size_t(plane));
+  DeviceArrays arrays;
+  double transform = 0;
+  for (std::int64_t k0 = 0; k0 < nsl; k0 += per_block) {
+    NdShape bs = rq.nd;
+    bs.n[nd - 1] = std::min(per_block, nsl - k0);
+    const NdL Lb(bs, zs.data() + k0);
+    const double t1 = now_ms();
+    column_candidates(ex, plane, bs.n[nd - 1], zs.data() + k0, keys.data(), vals.data(),
+                      start.data(), at.data(), k0 ? rq.slices[std::size_t(k0 - 1)] : -1,
+                      labels ? lab.data() : nullptr, NdColumnPut{cand.data(), plane});
+    for (int a = 0; a < nd - 1; ++a) {
+      if (rq.nd_metric.iso)
+        nd_pass_t<true>(ex, Lb, rq.nd_metric, a, cand.data(), stk.data());
+      else
+        nd_pass_t<false>(ex, Lb, rq.nd_metric, a, cand.data(), stk.data());
+    }
+    ex.sync();
+    transform += now_ms() - t1;
+    emit_outputs(ex, rq, Lb, rq.nd_metric, cand.data(), NdColumnLabels{lab.data(), plane}, out,
+                 arrays, k0 * plane, nsl * plane);
+  }
+  stats.counters["slices_per_block"] = per_block;
+  stats.counters["index_bits"] = 8 * std::int64_t(sizeof(S));
+  if (rq.device_out) hand_over(ex, arrays, out);
+  out.transform_ms = transform;
+  stats.phase_ms.push_back({"transform", transform});
 }

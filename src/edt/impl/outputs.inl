@@ -55,7 +55,7 @@ struct RankLabels {
 template <class Lay>
 GG_INLINE void voxel_position(const Lay& L, std::int64_t i, std::int64_t v[]) {
   if constexpr (Lay::kAxes > 3) {
-    L.coords(i, v);
+    L.position(i, v);
   } else {
     const std::uint32_t nx = std::uint32_t(L.n[0]), ny = std::uint32_t(L.n[1]);
     const std::uint32_t rest = std::uint32_t(i) / nx;

@@ -4,6 +4,7 @@
 // their executor's namespace, after GG_EDT_TILES and GG_EDT_PASSES name the executor's own tiled
 // and whole-grid passes.
 #include "edt/impl/outputs.inl"
+#include "edt/impl/columns.inl"
 namespace nd32 {
 using S = std::uint32_t;
 #include "edt/impl/nd.inl"

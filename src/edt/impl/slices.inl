@@ -4,101 +4,30 @@
 // 2^31 - 1 voxels.
 //
 // The sites are column keys (column_key: the column x + nx y above the z), sorted once, so each
-// column's sites form one run ordered by z. Slices are computed in blocks of about 2^24 voxels
-// (one slice of 1024^2 alone left the device mostly idle between launches): each plane of a
-// block takes, for every column, the nearest of its sites along z (a binary search in the
+// column's sites form one run ordered by z (columns.inl). Slices are computed in blocks of about
+// 2^24 voxels (one slice of 1024^2 alone left the device mostly idle between launches): each plane
+// of a block takes, for every column, the nearest of its sites along z (a binary search in the
 // column's run; ties to the smaller z, as raster order has it), and the x and y passes run on
 // the block. Included after pba.inl in one namespace per block layout (Layout: SlicePlanes of
 // the volume's own packing, or ColumnLayout).
 
-// Where a block's columns put their candidates: the packed site (kNone where the column has no
-// site), its z (ColumnLayout) and its label (labels asked for), per plane and column.
+// Where a block's columns put their candidates (column_candidates, columns.inl): the packed site
+// (kNone where the column has no site) and, with ColumnLayout, its z, per plane and column.
 struct SliceColumns {
   std::uint32_t* cand;
   std::uint16_t* zcol;
-  std::int32_t* lab;  // null: no labels asked for
+  Layout L;
+  GG_INLINE void operator()(std::int64_t i, std::int64_t c, std::int64_t k, std::int64_t z) const {
+    if (z < 0) {
+      cand[i] = kNone;
+      return;
+    }
+    const std::uint32_t nx = std::uint32_t(L.n[0]);
+    const std::uint32_t y = std::uint32_t(c) / nx, x = std::uint32_t(c) - y * nx;
+    cand[i] = L.candidate(x, y, k, z);
+    if constexpr (Layout::kColumns) zcol[i] = std::uint16_t(z);
+  }
 };
-
-// For every column c of every plane k of the block: the nearest site along z among
-// keys[start[c], start[c+1]). A thread takes one column through the block's planes, so where
-// the planes' z increase (the slices of a range, in order) it moves forward from the previous
-// plane's place in the run, reading the run about once, where a search per plane and column
-// made several scattered reads each (1600^3, every slice: 350 ms of 866). at[c] carries the
-// place from block to block: the first key of the column at or above z `prev` (-1: none yet).
-inline void column_candidates(Exec& ex, const Layout& Lb, const std::uint64_t* keys,
-                              const std::int32_t* vals, const std::int64_t* start, std::int64_t* at,
-                              std::int64_t prev_z, const SliceColumns& out) {
-  const Layout Ly = Lb;
-  const SliceColumns o = out;
-  const std::uint32_t nx = std::uint32_t(Lb.n[0]);
-  const std::int64_t nxy = Lb.n[0] * Lb.n[1], planes = Lb.n[2];
-  ex.for_each_index(
-      nxy, GG_LAMBDA(std::int64_t c) {
-        const std::int64_t s = start[c], e = start[c + 1];
-        auto first_at_least = [&](std::int64_t lo, std::int64_t hi, std::uint64_t want) {
-          while (lo < hi) {
-            const std::int64_t mid = (lo + hi) / 2;
-            if (keys[mid] < want)
-              lo = mid + 1;
-            else
-              hi = mid;
-          }
-          return lo;
-        };
-        const std::uint32_t y = std::uint32_t(c) / nx, x = std::uint32_t(c) - y * nx;
-        std::int64_t lo = prev_z < 0 ? s : at[c], prev = prev_z;  // keys before lo: below prev
-        // The keys around lo (and their labels, once asked for) stay in registers while lo
-        // stays: most planes then read nothing.
-        constexpr std::uint64_t kNoKey = ~std::uint64_t(0);
-        std::uint64_t above = kNoKey, below = kNoKey;
-        std::int32_t lab_above = -1, lab_below = -1;
-        auto refresh = [&]() {
-          above = lo < e ? keys[lo] : kNoKey;
-          below = lo > s ? keys[lo - 1] : kNoKey;
-          lab_above = lab_below = -1;
-        };
-        refresh();
-        for (std::int64_t k = 0; k < planes; ++k) {
-          const std::int64_t z0 = Ly.plane_z(k), i = k * nxy + c;
-          const std::uint64_t want = column_key(c, z0);
-          if (z0 < prev) {  // planes out of order: search the whole run again
-            lo = first_at_least(s, e, want);
-            refresh();
-          } else if (above < want) {  // (kNoKey is above every key)
-            // the first key at or above z0: the next one (slices in order), else a search
-            ++lo;
-            if (lo < e && keys[lo] < want) lo = first_at_least(lo + 1, e, want);
-            refresh();
-          }
-          prev = z0;
-          // The nearer of the sites above and below; ties to the one below (smaller z: first
-          // in raster order).
-          bool use_below = below != kNoKey;
-          if (use_below && above != kNoKey)
-            use_below =
-                z0 - std::int64_t(below & kColumnZMask) <= std::int64_t(above & kColumnZMask) - z0;
-          if (!use_below && above == kNoKey) {
-            o.cand[i] = kNone;
-            continue;
-          }
-          const std::int64_t z = std::int64_t((use_below ? below : above) & kColumnZMask);
-          o.cand[i] = Ly.candidate(x, y, k, z);
-          if constexpr (Layout::kColumns) o.zcol[i] = std::uint16_t(z);
-          if (!o.lab) continue;
-          // A repeated site's label is its first copy's (a stable sort kept the list order):
-          // the site above is its first copy (lo is the first key at or above z0), the one below
-          // may have copies before it.
-          if (use_below) {
-            if (lab_below < 0) lab_below = vals[first_at_least(s, lo - 1, below)];
-            o.lab[i] = lab_below;
-          } else {
-            if (lab_above < 0) lab_above = vals[lo];
-            o.lab[i] = lab_above;
-          }
-        }
-        at[c] = lo;
-      });
-}
 
 // Labels of a block: those of its planes' candidates (voxel i's site is a candidate of i's
 // plane).
@@ -119,31 +48,6 @@ inline std::int64_t planes_per_block(const edt::Layout& L, std::int64_t voxels,
   std::int64_t k = std::max<std::int64_t>(1, (voxels > 0 ? voxels : std::int64_t(1) << 24) / nxy);
   if (Layout::kColumns) k = std::min<std::int64_t>(k, std::int64_t(1) << (32 - L.shift[2]));
   return std::min(k, slices);
-}
-
-// The sites of a grid on the executor as column keys (raster order; a site's label is its
-// place), in chunks of 2^30 voxels (compact_indices writes int32 positions).
-inline std::int64_t list_column_keys(Exec& ex, const edt::Layout& L, const std::uint8_t* mask,
-                                     std::uint64_t* keys) {
-  constexpr std::int64_t kChunk = std::int64_t(1) << 30;
-  const std::int64_t nvox = L.count(), nxy = L.n[0] * L.n[1];
-  auto vox = ex.template alloc<std::int32_t>(std::size_t(std::min(nvox, kChunk)));
-  std::int64_t ns = 0;
-  for (std::int64_t c0 = 0; c0 < nvox; c0 += kChunk) {
-    const std::uint8_t* mp = mask + c0;
-    const std::int64_t k = ex.compact_indices(
-        std::min(kChunk, nvox - c0), GG_LAMBDA(std::int64_t i) { return mp[i] != 0; }, vox.data());
-    const std::int32_t* vp = vox.data();
-    std::uint64_t* kp = keys + ns;
-    const std::int64_t first = c0, plane = nxy;
-    ex.for_each_index(
-        k, GG_LAMBDA(std::int64_t i) {
-          const std::int64_t v = first + vp[i];
-          kp[i] = column_key(v % plane, v / plane);
-        });
-    ns += k;
-  }
-  return ns;
 }
 
 inline void run_slices(const Request& rq, Output& out, Stats& stats) {
@@ -197,7 +101,7 @@ inline void run_slices(const Request& rq, Output& out, Stats& stats) {
     check_label_count(rq, count);
     require(count, true);
     keys = ex.template alloc<std::uint64_t>(std::size_t(count));
-    ns = list_column_keys(ex, L, mask, keys.data());
+    ns = list_column_keys(ex, nvox, nxy, mask, keys.data());
   } else {
     ns = std::int64_t(rq.column_sites.size());
     check_label_count(rq, ns);
@@ -205,36 +109,9 @@ inline void run_slices(const Request& rq, Output& out, Stats& stats) {
     keys = ex.template alloc<std::uint64_t>(std::size_t(ns));
     ex.from_host(rq.column_sites.data(), ns, keys.data());
   }
-  // Labels: the raster rank of a grid's site, the index of a listed one; a stable sort keeps
-  // repeated sites in list order, so a column's run holds a site's first copy first.
-  if (labels) {
-    vals = ex.template alloc<std::int32_t>(std::size_t(ns));
-    std::int32_t* vp = vals.data();
-    ex.for_each_index(
-        ns, GG_LAMBDA(std::int64_t i) { vp[i] = std::int32_t(i); });
-    ex.sort_by_key(keys.data(), vals.data(), ns);
-  } else {
-    ex.sort(keys.data(), ns);
-  }
-  auto start = ex.template alloc<std::int64_t>(std::size_t(nxy + 1));
-  {
-    const std::uint64_t* kp = keys.data();
-    std::int64_t* sp = start.data();
-    const std::int64_t n = ns;
-    ex.for_each_index(
-        nxy + 1, GG_LAMBDA(std::int64_t c) {
-          std::int64_t lo = 0, hi = n;
-          const std::uint64_t want = column_key(c, 0);
-          while (lo < hi) {
-            const std::int64_t mid = (lo + hi) / 2;
-            if (kp[mid] < want)
-              lo = mid + 1;
-            else
-              hi = mid;
-          }
-          sp[c] = lo;
-        });
-  }
+  // Labels: the raster rank of a grid's site, the index of a listed one.
+  if (labels) vals = ex.template alloc<std::int32_t>(std::size_t(ns));
+  auto start = column_runs(ex, keys.data(), labels ? vals.data() : nullptr, ns, nxy);
   ex.sync();
   stats.phase_ms.push_back({"upload", now_ms() - t0});
 
@@ -266,9 +143,9 @@ inline void run_slices(const Request& rq, Output& out, Stats& stats) {
       steps[j] += now - last;
       last = now;
     };
-    column_candidates(ex, Lb, keys.data(), vals.data(), start.data(), at.data(),
-                      k0 ? rq.slices[std::size_t(k0 - 1)] : -1,
-                      SliceColumns{cand.data(), zcol.data(), labels ? lab.data() : nullptr});
+    column_candidates(ex, nxy, planes.n[2], zs.data() + k0, keys.data(), vals.data(), start.data(),
+                      at.data(), k0 ? rq.slices[std::size_t(k0 - 1)] : -1,
+                      labels ? lab.data() : nullptr, SliceColumns{cand.data(), zcol.data(), Lb});
     step(0);
     PassWork w(ex, Lb, rq.tune, 2);
     for (int a = 0; a < 2; ++a) {
