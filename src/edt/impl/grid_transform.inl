@@ -99,10 +99,14 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
 // the x pass reads a byte per voxel instead of a word.
 // sites: how many there are (0 if unknown), to choose the windowed passes.
 // profile_step(a), when given, is called after the pass along axis a (to time the passes).
+// naxes: the passes along axes [0, naxes) only (0: all; grids of more axes run their first two
+// passes here, viewed as 3D grids of n0 x n1 x (the rest), nd.inl).
 inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
                               const std::uint8_t* mask, const Tuning& tune, std::int64_t sites,
-                              Stats* stats, const std::function<void(int)>& profile_step = {}) {
-  PassWork w(ex, L, tune, L.nd);
+                              Stats* stats, const std::function<void(int)>& profile_step = {},
+                              int naxes = 0) {
+  if (naxes <= 0) naxes = L.nd;
+  PassWork w(ex, L, tune, naxes);
   // Windowed passes where sites are dense enough that most voxels settle within the reach,
   // judged by the mean site spacing (voxels per site)^(1/d). CPU executor (the generic loop):
   // spacing at most 4, reach 16, the rule first tuned for that loop when it ran on the GPU too
@@ -126,8 +130,8 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
   std::uint32_t* other = w.stk.data();
   // Reading a mask, the x pass may write either array: it picks the one that makes the last
   // windowed pass end in feat (no copy back: a whole array's read and write at 16384^2).
-  if (mask && windowed && (L.nd - 1) % 2 == 1) std::swap(cur, other);
-  for (int a = 0; a < L.nd; ++a) {
+  if (mask && windowed && (naxes - 1) % 2 == 1) std::swap(cur, other);
+  for (int a = 0; a < naxes; ++a) {
     if (a == 0) {  // the sites themselves are the candidates: the x pass of the rows
       x_pass_rows(ex, L, M, w.gs[0], mask, feat, cur, other, w.lo.data(), w.hi.data());
     } else if (windowed) {

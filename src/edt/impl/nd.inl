@@ -121,8 +121,13 @@ void nd_pass_t(Exec& ex, const NdL& L, const NdMetric& M, int a, S* feat, S* stk
       });
 }
 
+// The passes of a whole grid, in place in feat (see nd_pass_first for what it holds first).
+// With 32-bit indices the first two run as the 3D transform's x and y passes (grid_transform.inl:
+// a warp per row, windowed and tiled where they pay), on the grid seen as a 3D grid of n0 x n1 x
+// (the rest) packed by raster index, which is the N-D raster index: their lines are the N-D
+// grid's lines along those axes, and every candidate lies in its voxel's plane.
 inline void nd_transform(Exec& ex, const NdL& L, const NdMetric& M, const std::uint8_t* mask,
-                         S* feat, S* stk, Stats* stats) {
+                         S* feat, S* stk, const Tuning& tune, std::int64_t sites, Stats* stats) {
   double last = now_ms();
   auto step = [&](int a) {
     if (!stats) return;
@@ -131,9 +136,26 @@ inline void nd_transform(Exec& ex, const NdL& L, const NdMetric& M, const std::u
     stats->phase_ms.push_back({"pass_" + std::to_string(a), now - last});
     last = now;
   };
-  nd_pass_first(ex, L, mask, feat);
-  step(0);
-  for (int a = 1; a < L.nd; ++a) {
+  int done = 1;
+  if constexpr (sizeof(S) == 4) {
+    edt::Layout L3;
+    L3.nd = 3;
+    L3.n[0] = L.n[0];
+    L3.n[1] = L.n[1];
+    L3.n[2] = L.count() / (L.n[0] * L.n[1]);
+    L3.linear = true;
+    Metric M3;
+    M3.iso = M.iso;
+    for (int k = 0; k < 3; ++k) M3.wh[k] = M.wh[k], M3.wl[k] = M.wl[k], M3.w[k] = M.w[k];
+    // (S is uint32_t here; the cast only lets the 64-bit instantiation compile this branch)
+    linear::feature_transform(ex, LinearLayout(L3), M3, reinterpret_cast<std::uint32_t*>(feat),
+                              mask, tune, sites, nullptr, {}, 2);
+    done = 2;
+  } else {
+    nd_pass_first(ex, L, mask, feat);
+  }
+  step(done - 1);
+  for (int a = done; a < L.nd; ++a) {
     if (M.iso)
       nd_pass_t<true>(ex, L, M, a, feat, stk);
     else
@@ -188,7 +210,8 @@ inline void run_nd(const Request& rq, Output& out, Stats& stats) {
   const double t1 = now_ms();
   {
     auto stk = ex.template alloc<S>(std::size_t(nvox));
-    nd_transform(ex, L, rq.nd_metric, mask_p, fp, stk.data(), rq.run.profile ? &stats : nullptr);
+    nd_transform(ex, L, rq.nd_metric, mask_p, fp, stk.data(), rq.tune, site_count,
+                 rq.run.profile ? &stats : nullptr);
     ex.sync();
   }
   out.transform_ms = now_ms() - t1;

@@ -5,14 +5,6 @@
 // and whole-grid passes.
 #include "edt/impl/outputs.inl"
 #include "edt/impl/columns.inl"
-namespace nd32 {
-using S = std::uint32_t;
-#include "edt/impl/nd.inl"
-}  // namespace nd32
-namespace nd64 {
-using S = std::uint64_t;
-#include "edt/impl/nd.inl"
-}  // namespace nd64
 namespace bits {
 #include "edt/impl/pba.inl"
 #include GG_EDT_TILES
@@ -30,6 +22,14 @@ using Layout = LinearLayout;
 #include GG_EDT_PASSES
 #include "edt/impl/run.inl"
 }  // namespace linear
+namespace nd32 {
+using S = std::uint32_t;
+#include "edt/impl/nd.inl"
+}  // namespace nd32
+namespace nd64 {
+using S = std::uint64_t;
+#include "edt/impl/nd.inl"
+}  // namespace nd64
 namespace bits_slices {
 using Layout = SlicePlanes<edt::Layout>;
 #include "edt/impl/pba.inl"
