@@ -63,6 +63,29 @@ def test_edt_cupy_on_a_stream(rng):
     assert isinstance(lab, cupy.ndarray)
 
 
+@pytest.mark.parametrize("shape", [(20, 18, 16, 22), (9, 8, 10, 7, 6)])
+def test_edt_nd_cupy_and_torch(shape, rng):
+    """N-D grids on the device (CuPy and PyTorch): the same as the CPU executor's, slices too."""
+    a = rng.random(shape) > 0.02
+    a.flat[0] = False
+    ref_d, ref_i = gpugeom.distance_transform_edt(a, return_indices=True, backend="cpu")
+    d, i = gpugeom.distance_transform_edt(cupy.asarray(a), return_indices=True)
+    assert isinstance(d, cupy.ndarray) and d.shape == shape
+    np.testing.assert_array_equal(cupy.asnumpy(d), ref_d)
+    np.testing.assert_array_equal(cupy.asnumpy(i), ref_i)
+    ds = gpugeom.distance_transform_edt(cupy.asarray(a), slices=[shape[0] - 1, 2])
+    np.testing.assert_array_equal(cupy.asnumpy(ds), ref_d[[shape[0] - 1, 2]])
+    lab = a.astype(np.int32) * 0
+    lab.flat[[5, 77, 300]] = [3, 1, 2]
+    ref = gpugeom.voronoi_labels(lab, backend="cpu")
+    np.testing.assert_array_equal(cupy.asnumpy(gpugeom.voronoi_labels(cupy.asarray(lab))), ref)
+    torch = pytest.importorskip("torch")
+    t = torch.as_tensor(a, device="cuda")
+    dt = gpugeom.distance_transform_edt(t)
+    assert isinstance(dt, torch.Tensor) and dt.is_cuda
+    np.testing.assert_array_equal(dt.cpu().numpy(), ref_d)
+
+
 def test_cvd_cupy(rng):
     y, x = np.mgrid[0:64, 0:80]
     dens = np.exp(-((x - 40) ** 2 + (y - 30) ** 2) / 400.0) + 0.05

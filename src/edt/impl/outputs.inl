@@ -2,6 +2,14 @@
 // slice): where each output goes, the per-voxel outputs of a computed block, the grid's sites
 // on the executor. Included once per executor, before the packings' namespaces.
 
+// Unrolls the loop that follows under nvcc, whose arrays then stay in registers (host compilers
+// choose for themselves).
+#if defined(__CUDACC__)
+#define GG_EDT_UNROLL _Pragma("unroll")
+#else
+#define GG_EDT_UNROLL
+#endif
+
 // Where one output goes: the caller's array (into), else the library's: on the executor
 // (device_out, kept in `lib`), or the host array `host`. `at` voxels in.
 template <class T>
@@ -51,7 +59,7 @@ struct RankLabels {
 
 // The coordinates of voxel i of a block (v: Lay::kAxes entries) and of a site f: the 2D / 3D
 // layouts decode their bit fields or raster indices (plane k of a block is slice plane_z(k)),
-// the N-D layouts their raster indices.
+// the N-D layouts their raster indices (nd.inl's NdL).
 template <class Lay>
 GG_INLINE void voxel_position(const Lay& L, std::int64_t i, std::int64_t v[]) {
   if constexpr (Lay::kAxes > 3) {
@@ -69,7 +77,9 @@ GG_INLINE void site_position(const Lay& L, S f, std::int64_t c[]) {
   if constexpr (Lay::kAxes > 3) {
     L.coords(f, c);
   } else {
-    for (int k = 0; k < L.nd; ++k) c[k] = L.coord(f, k);
+    GG_EDT_UNROLL
+    for (int k = 0; k < Lay::kAxes; ++k)
+      if (k < L.nd) c[k] = L.coord(f, k);
   }
 }
 
@@ -126,12 +136,15 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Lay& L,
           const S f = feat[i];
           if (lp) lp[i] = label_of(f, i);
           if (!dist) return;
-          std::int64_t v[Lay::kAxes], c[Lay::kAxes];
+          std::int64_t v[Lay::kAxes] = {}, c[Lay::kAxes] = {};
           voxel_position(Ly, i, v);
           site_position(Ly, f, c);
           std::int64_t q = 0;
           double r = 0;
-          for (int k = 0; k < Ly.nd; ++k) {
+          // (unrolled over the most axes, guarded: the arrays stay in registers)
+          GG_EDT_UNROLL
+          for (int k = 0; k < Lay::kAxes; ++k) {
+            if (k >= Ly.nd) continue;
             const std::int64_t d = c[k] - v[k];
             q += d * d;
             r += Mt.w[k] * double(d * d);
