@@ -63,8 +63,9 @@ inline typename Exec::template Buffer<std::int64_t> column_runs(Exec& ex, std::u
 
 // For every column c of every plane k of a block (planes of `columns` voxels, plane k being the
 // volume's slice zs[k]): the nearest site along z among keys[start[c], start[c+1]), handed to
-// put(i, c, k, z) with i = k columns + c (z = -1: the column has no site), and its label to
-// lab[i] where lab is given. A thread takes one column through the block's planes, so where the
+// put(i, col, k, z) with i = k columns + c and col = put.column(c), what put needs of the column
+// (worked out once a column), z = -1 where the column has no site; and its label to lab[i] where
+// lab is given. A thread takes one column through the block's planes, so where the
 // planes' z increase (the slices of a range, in order) it moves forward from the previous
 // plane's place in the run, reading the run about once, where a search per plane and column
 // made several scattered reads each (1600^3, every slice: 350 ms of 866). at[c] carries the
@@ -87,6 +88,7 @@ inline void column_candidates(Exec& ex, std::int64_t columns, std::int64_t plane
           }
           return lo;
         };
+        const auto col = put.column(c);
         std::int64_t lo = prev_z < 0 ? s : at[c], prev = prev_z;  // keys before lo: below prev
         // The keys around lo (and their labels, once asked for) stay in registers while lo
         // stays: most planes then read nothing.
@@ -119,10 +121,10 @@ inline void column_candidates(Exec& ex, std::int64_t columns, std::int64_t plane
             use_below =
                 z0 - std::int64_t(below & kColumnZMask) <= std::int64_t(above & kColumnZMask) - z0;
           if (!use_below && above == kNoKey) {
-            put(i, c, k, std::int64_t(-1));
+            put(i, col, k, std::int64_t(-1));
             continue;
           }
-          put(i, c, k, std::int64_t((use_below ? below : above) & kColumnZMask));
+          put(i, col, k, std::int64_t((use_below ? below : above) & kColumnZMask));
           if (!lab) continue;
           // A repeated site's label is its first copy's (a stable sort kept the list order):
           // the site above is its first copy (lo is the first key at or above z0), the one below

@@ -16,119 +16,41 @@ constexpr S kNoSite = NdLayout<S>::kNoSite;
 
 // The layout of the grid computed: a whole grid, or a block of slices (zs: the volume's index
 // along C axis 0 of each of the block's planes; the sites keep their volume's raster indices).
-// Its loops run over the most axes a grid may have, fully unrolled, each step guarded by the
-// grid's own axis count: arrays indexed by constants stay in registers, where an array indexed
-// by a run-time bound lives in local memory on the GPU (the first version's passes: 56 ms at
-// 128^4, predicted 15).
 struct NdL : NdLayout<S> {
   const std::uint16_t* zs = nullptr;  // executor memory; null: a whole grid
   NdL() = default;
   explicit NdL(const NdShape& s, const std::uint16_t* z = nullptr) : NdLayout<S>(s), zs(z) {}
-  GG_INLINE S quotient(int k, S s) const {
-    if constexpr (sizeof(S) == 4)
-      return this->by[k].div(s);
-    else
-      return s / S(this->n[k]);
-  }
-  // Every coordinate of site (or voxel) s.
-  GG_INLINE void coords(S s, std::int64_t c[]) const {
-    GG_EDT_UNROLL
-    for (int k = 0; k < kMaxAxes; ++k) {
-      if (k < this->nd - 1) {
-        const S q = quotient(k, s);
-        c[k] = std::int64_t(s - q * S(this->n[k]));
-        s = q;
-      } else if (k == this->nd - 1) {
-        c[k] = std::int64_t(s);
-      }
-    }
-  }
-  // Coordinate a of site s (the exact tests, edt_common.hpp, and the features).
-  GG_INLINE std::int64_t coord(S s, int a) const {
-    std::int64_t r = 0;
-    GG_EDT_UNROLL
-    for (int k = 0; k < kMaxAxes; ++k) {
-      if (k < this->nd - 1) {
-        const S q = quotient(k, s);
-        if (k == a) r = std::int64_t(s - q * S(this->n[k]));
-        s = q;
-      } else if (k == this->nd - 1 && k == a) {
-        r = std::int64_t(s);
-      }
-    }
-    return r;
-  }
   // Where voxel i of the grid computed lies in the volume.
   GG_INLINE void position(std::int64_t i, std::int64_t v[]) const {
-    coords(S(i), v);
-    if (!zs) return;
-    GG_EDT_UNROLL
-    for (int k = 0; k < kMaxAxes; ++k)
-      if (k == this->nd - 1) v[k] = zs[v[k]];
+    this->coords(S(i), v);
+    if (zs) v[this->nd - 1] = zs[v[this->nd - 1]];
   }
 };
 
-// A line's position (its first voxel's coordinates, v[a] = 0), held in registers.
-struct NdPos {
-  std::int64_t v[kMaxAxes];
-};
-
-// Line l of the pass along axis a: its first voxel.
-GG_INLINE std::int64_t nd_line(const NdL& L, int a, std::int64_t l, NdPos& p) {
+// Line l of the pass along axis a: its first voxel, whose coordinates go to v (v[a] = 0).
+GG_INLINE std::int64_t nd_line(const NdL& L, int a, std::int64_t l, std::int64_t v[]) {
   const std::int64_t st = L.stride[a];
   const std::int64_t base = (l / st) * st * L.n[a] + l % st;
-  L.position(base, p.v);
+  L.position(base, v);
   return base;
 }
 
-GG_INLINE NdCand nd_decode(const NdL& L, int a, S s, const NdPos& p) {
+// (The loops below run to the grid's own axis count. Unrolled over the most axes with guards,
+// to keep these arrays in registers, the passes and the outputs took 2-4x longer on the H200:
+// 128^4 123 ms against 56, 48^5 210 against 56; docs/performance.md.)
+GG_INLINE NdCand nd_decode(const NdL& L, int a, S s, const std::int64_t v[]) {
   NdCand c{s, 0.0, 0.0};
   if (s == kNoSite) return c;
-  std::int64_t x[kMaxAxes] = {};
+  std::int64_t x[kMaxAxes];
   L.coords(s, x);
-  GG_EDT_UNROLL
-  for (int k = 0; k < kMaxAxes; ++k) {
-    if (k >= L.nd) continue;
-    const double d = double(x[k] - p.v[k]);
+  for (int k = 0; k < L.nd; ++k) {
+    const double d = double(x[k] - v[k]);
     if (k == a)
       c.t = double(x[k]);
     else
       c.f += d * d;
   }
   return c;
-}
-
-// The candidate tests of cand_dominated / cand_beats (edt_common.hpp) with the line in registers:
-// the exact general tests index it by run-time axis, so they get a copy of their own, out of
-// line (taken for anisotropic metrics and exact ties only).
-GG_COLD bool nd_dominated_exact(const NdL& L, const NdMetric& M, int a, NdCand A, NdCand B,
-                                NdCand C, NdPos p) {
-  return cand_dominated<false, Num>(L, M, a, A, B, C, p.v);
-}
-GG_COLD bool nd_beats_exact(const NdL& L, const NdMetric& M, int a, NdCand Q, NdCand P,
-                            std::int64_t t, NdPos p) {
-  return cand_beats<false, Num>(L, M, a, Q, P, t, p.v);
-}
-template <bool Iso>
-GG_INLINE bool nd_dominated(const NdL& L, const NdMetric& M, int a, const NdCand& A,
-                            const NdCand& B, const NdCand& C, const NdPos& p) {
-  if constexpr (Iso) {
-    const double e = (C.t - B.t) * (B.f - A.f) - (B.t - A.t) * (C.f - B.f) +
-                     (C.t - B.t) * (B.t - A.t) * (A.t - C.t);
-    if (e != 0) return e > 0;
-  }
-  return nd_dominated_exact(L, M, a, A, B, C, p);
-}
-template <bool Iso>
-GG_INLINE bool nd_beats(const NdL& L, const NdMetric& M, int a, const NdCand& Q, const NdCand& P,
-                        std::int64_t t, const NdPos& p) {
-  if constexpr (Iso) {
-    const double dq = Q.t - double(t), dp = P.t - double(t);
-    const double e = (Q.f + dq * dq) - (P.f + dp * dp);
-    return e < 0 || (e == 0 && Q.s < P.s);
-  } else {
-    return nd_beats_exact(L, M, a, Q, P, t, p);
-  }
 }
 
 // Pass 0: the nearest site on each line of axis 0, ties to the lower index. Sites are the
@@ -168,8 +90,8 @@ void nd_pass_t(Exec& ex, const NdL& L, const NdMetric& M, int a, S* feat, S* stk
   const std::int64_t len = L.n[a], st = L.stride[a];
   ex.for_each_index(
       L.count() / len, GG_LAMBDA(std::int64_t l) {
-        NdPos p{};
-        const std::int64_t base = nd_line(Ly, a, l, p);
+        std::int64_t v[kMaxAxes];
+        const std::int64_t base = nd_line(Ly, a, l, v);
         S* f = feat + base;
         S* s = stk + base;
         std::int64_t n = 0;
@@ -181,11 +103,11 @@ void nd_pass_t(Exec& ex, const NdL& L, const NdMetric& M, int a, S* feat, S* stk
           ahead1 = ahead2;
           if (t + 2 < len) ahead2 = f[(t + 2) * st];
           if (cs == kNoSite) continue;
-          const NdCand c = nd_decode(Ly, a, cs, p);
-          while (n >= 2 && nd_dominated<Iso>(Ly, Mt, a, second, top, c, p)) {
+          const NdCand c = nd_decode(Ly, a, cs, v);
+          while (n >= 2 && cand_dominated<Iso, Num>(Ly, Mt, a, second, top, c, v)) {
             --n;
             top = second;
-            if (n >= 2) second = nd_decode(Ly, a, s[(n - 2) * st], p);
+            if (n >= 2) second = nd_decode(Ly, a, s[(n - 2) * st], v);
           }
           s[n * st] = cs;
           ++n;
@@ -194,14 +116,14 @@ void nd_pass_t(Exec& ex, const NdL& L, const NdMetric& M, int a, S* feat, S* stk
         }
         if (n == 0) return;  // no site in the line's hyperplanes yet: it stays empty
         std::int64_t k = 0;
-        NdCand cur = nd_decode(Ly, a, s[0], p);
-        NdCand nxt = nd_decode(Ly, a, n > 1 ? s[st] : kNoSite, p);
+        NdCand cur = nd_decode(Ly, a, s[0], v);
+        NdCand nxt = nd_decode(Ly, a, n > 1 ? s[st] : kNoSite, v);
         S after = n > 2 ? s[2 * st] : kNoSite;  // the one after nxt, loaded an advance ahead
         for (std::int64_t t = 0; t < len; ++t) {
-          while (nxt.s != kNoSite && nd_beats<Iso>(Ly, Mt, a, nxt, cur, t, p)) {
+          while (nxt.s != kNoSite && cand_beats<Iso, Num>(Ly, Mt, a, nxt, cur, t, v)) {
             ++k;
             cur = nxt;
-            nxt = nd_decode(Ly, a, after, p);
+            nxt = nd_decode(Ly, a, after, v);
             after = k + 2 < n ? s[(k + 2) * st] : kNoSite;
           }
           f[t * st] = cur.s;
@@ -334,6 +256,7 @@ inline void run_nd(const Request& rq, Output& out, Stats& stats) {
 struct NdColumnPut {
   S* cand;
   std::int64_t plane;
+  GG_INLINE std::int64_t column(std::int64_t c) const { return c; }
   GG_INLINE void operator()(std::int64_t i, std::int64_t c, std::int64_t, std::int64_t z) const {
     cand[i] = z < 0 ? kNoSite : S(z * plane + c);
   }

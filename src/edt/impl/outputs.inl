@@ -141,13 +141,19 @@ inline void emit_outputs(Exec& ex, const Request& rq, const Lay& L,
           site_position(Ly, f, c);
           std::int64_t q = 0;
           double r = 0;
-          // (unrolled over the most axes, guarded: the arrays stay in registers)
-          GG_EDT_UNROLL
-          for (int k = 0; k < Lay::kAxes; ++k) {
-            if (k >= Ly.nd) continue;
+          auto term = [&](int k) {
             const std::int64_t d = c[k] - v[k];
             q += d * d;
             r += Mt.w[k] * double(d * d);
+          };
+          if constexpr (Lay::kAxes <= 3) {
+            // (2D / 3D: unrolled and guarded, the arrays stay in registers: 8192^2 1.30 -> 1.19
+            // ms with outputs; N-D: the plain loop, measured faster there, nd.inl)
+            GG_EDT_UNROLL
+            for (int k = 0; k < Lay::kAxes; ++k)
+              if (k < Ly.nd) term(k);
+          } else {
+            for (int k = 0; k < Ly.nd; ++k) term(k);
           }
           const double d2 = Mt.iso ? double(q) : r;
           if (si) si[i] = q;

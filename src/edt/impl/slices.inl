@@ -17,14 +17,20 @@ struct SliceColumns {
   std::uint32_t* cand;
   std::uint16_t* zcol;
   Layout L;
-  GG_INLINE void operator()(std::int64_t i, std::int64_t c, std::int64_t k, std::int64_t z) const {
+  struct Column {
+    std::uint32_t x, y;
+  };
+  GG_INLINE Column column(std::int64_t c) const {
+    const std::uint32_t nx = std::uint32_t(L.n[0]);
+    const std::uint32_t y = std::uint32_t(c) / nx;
+    return {std::uint32_t(c) - y * nx, y};
+  }
+  GG_INLINE void operator()(std::int64_t i, Column col, std::int64_t k, std::int64_t z) const {
     if (z < 0) {
       cand[i] = kNone;
       return;
     }
-    const std::uint32_t nx = std::uint32_t(L.n[0]);
-    const std::uint32_t y = std::uint32_t(c) / nx, x = std::uint32_t(c) - y * nx;
-    cand[i] = L.candidate(x, y, k, z);
+    cand[i] = L.candidate(col.x, col.y, k, z);
     if constexpr (Layout::kColumns) zcol[i] = std::uint16_t(z);
   }
 };
