@@ -12,38 +12,93 @@
 
 using Num = std::conditional_t<Exec::backend == Backend::Cuda, double, std::int64_t>;
 using NdCand = CandOf<S>;
-constexpr S kNoSite = NdLayout<S>::kNoSite;
+constexpr S kNoSite = NdLayout<S>::kNoSite;  // (nd_layout.hpp)
 
-// The layout of the grid computed: a whole grid, or a block of slices (zs: the volume's index
-// along C axis 0 of each of the block's planes; the sites keep their volume's raster indices).
-struct NdL : NdLayout<S> {
+// The layout of the grid computed, ND axes (4 to 8, a compile-time constant: every loop over the
+// axes unrolls and every per-axis array stays in registers or the kernel's parameters; with the
+// axis count known at run time only, the pass kernel kept an 816-byte stack frame and moved
+// about 300 bytes an element through local memory, docs/performance.md). A whole grid, or a
+// block of slices (zs: the volume's index along C axis 0 of each of the block's planes; the
+// sites keep their volume's raster indices).
+template <int ND>
+struct NdL {
+  static constexpr int kAxes = ND;
+  static constexpr int nd = ND;
+  std::int64_t n[ND], stride[ND];
+  Divider by[ND];                     // by n[k] (32-bit indices only)
   const std::uint16_t* zs = nullptr;  // executor memory; null: a whole grid
   NdL() = default;
-  explicit NdL(const NdShape& s, const std::uint16_t* z = nullptr) : NdLayout<S>(s), zs(z) {}
+  explicit NdL(const NdShape& s, const std::uint16_t* z = nullptr) : zs(z) {
+    std::int64_t st = 1;
+    for (int k = 0; k < ND; ++k) {
+      n[k] = s.n[k];
+      stride[k] = st;
+      st *= n[k];
+      by[k] = Divider::of(std::uint32_t(n[k] < 0xFFFFFFFF ? n[k] : 1));
+    }
+  }
+  std::int64_t count() const { return stride[ND - 1] * n[ND - 1]; }
+  GG_INLINE S quotient(int k, S s) const {
+    if constexpr (sizeof(S) == 4)
+      return by[k].div(s);
+    else
+      return s / S(n[k]);
+  }
+  // Every coordinate of site (or voxel) s.
+  GG_INLINE void coords(S s, std::int64_t c[]) const {
+    for (int k = 0; k < ND - 1; ++k) {
+      const S q = quotient(k, s);
+      c[k] = std::int64_t(s - q * S(n[k]));
+      s = q;
+    }
+    c[ND - 1] = std::int64_t(s);
+  }
+  // Coordinate a of site s (the exact tests of edt_common.hpp, and the features): every axis
+  // decoded, a selected (no array indexed by a).
+  GG_INLINE std::int64_t coord(S s, int a) const {
+    std::int64_t r = 0;
+    for (int k = 0; k < ND - 1; ++k) {
+      const S q = quotient(k, s);
+      if (k == a) r = std::int64_t(s - q * S(n[k]));
+      s = q;
+    }
+    return a == ND - 1 ? std::int64_t(s) : r;
+  }
   // Where voxel i of the grid computed lies in the volume.
   GG_INLINE void position(std::int64_t i, std::int64_t v[]) const {
-    this->coords(S(i), v);
-    if (zs) v[this->nd - 1] = zs[v[this->nd - 1]];
+    coords(S(i), v);
+    if (zs) v[ND - 1] = zs[v[ND - 1]];
   }
+  GG_INLINE std::int64_t voxel_of(S s) const { return std::int64_t(s); }
+  GG_INLINE bool before(S q, S p) const { return q < p; }
 };
 
-// Line l of the pass along axis a: its first voxel, whose coordinates go to v (v[a] = 0).
-GG_INLINE std::int64_t nd_line(const NdL& L, int a, std::int64_t l, std::int64_t v[]) {
-  const std::int64_t st = L.stride[a];
-  const std::int64_t base = (l / st) * st * L.n[a] + l % st;
+// The metric of ND axes (the exact tests take the layout's axis count).
+template <int ND>
+MetricT<ND> nd_metric(const NdMetric& M) {
+  MetricT<ND> m;
+  m.iso = M.iso;
+  for (int k = 0; k < ND; ++k) m.wh[k] = M.wh[k], m.wl[k] = M.wl[k], m.w[k] = M.w[k];
+  return m;
+}
+
+// Line l of a pass along an axis of stride st and length len: its first voxel, whose coordinates
+// go to v (v[a] = 0).
+template <int ND>
+GG_INLINE std::int64_t nd_line(const NdL<ND>& L, std::int64_t st, std::int64_t len, std::int64_t l,
+                               std::int64_t v[]) {
+  const std::int64_t base = (l / st) * st * len + l % st;
   L.position(base, v);
   return base;
 }
 
-// (The loops below run to the grid's own axis count. Unrolled over the most axes with guards,
-// to keep these arrays in registers, the passes and the outputs took 2-4x longer on the H200:
-// 128^4 123 ms against 56, 48^5 210 against 56; docs/performance.md.)
-GG_INLINE NdCand nd_decode(const NdL& L, int a, S s, const std::int64_t v[]) {
+template <int ND>
+GG_INLINE NdCand nd_decode(const NdL<ND>& L, int a, S s, const std::int64_t v[]) {
   NdCand c{s, 0.0, 0.0};
   if (s == kNoSite) return c;
-  std::int64_t x[kMaxAxes];
+  std::int64_t x[ND];
   L.coords(s, x);
-  for (int k = 0; k < L.nd; ++k) {
+  for (int k = 0; k < ND; ++k) {
     const double d = double(x[k] - v[k]);
     if (k == a)
       c.t = double(x[k]);
@@ -55,7 +110,8 @@ GG_INLINE NdCand nd_decode(const NdL& L, int a, S s, const std::int64_t v[]) {
 
 // Pass 0: the nearest site on each line of axis 0, ties to the lower index. Sites are the
 // voxels whose mask byte is non-zero, or (mask null) those whose feature is themselves.
-inline void nd_pass_first(Exec& ex, const NdL& L, const std::uint8_t* mask, S* feat) {
+template <int ND>
+inline void nd_pass_first(Exec& ex, const NdL<ND>& L, const std::uint8_t* mask, S* feat) {
   const std::int64_t len = L.n[0];
   ex.for_each_index(
       L.count() / len, GG_LAMBDA(std::int64_t l) {
@@ -83,15 +139,15 @@ inline void nd_pass_first(Exec& ex, const NdL& L, const std::uint8_t* mask, S* f
 
 // Pass a over every line, in place in feat; the stacks live in stk at the lines' positions. The
 // loads run ahead of the loop (it is latency-bound, as band_stack in pba.inl).
-template <bool Iso>
-void nd_pass_t(Exec& ex, const NdL& L, const NdMetric& M, int a, S* feat, S* stk) {
-  const NdL Ly = L;
-  const NdMetric Mt = M;
+template <bool Iso, int ND>
+void nd_pass_t(Exec& ex, const NdL<ND>& L, const MetricT<ND>& M, int a, S* feat, S* stk) {
+  const NdL<ND> Ly = L;
+  const MetricT<ND> Mt = M;
   const std::int64_t len = L.n[a], st = L.stride[a];
   ex.for_each_index(
       L.count() / len, GG_LAMBDA(std::int64_t l) {
-        std::int64_t v[kMaxAxes];
-        const std::int64_t base = nd_line(Ly, a, l, v);
+        std::int64_t v[ND];
+        const std::int64_t base = nd_line(Ly, st, len, l, v);
         S* f = feat + base;
         S* s = stk + base;
         std::int64_t n = 0;
@@ -136,7 +192,8 @@ void nd_pass_t(Exec& ex, const NdL& L, const NdMetric& M, int a, S* feat, S* stk
 // a warp per row, windowed and tiled where they pay), on the grid seen as a 3D grid of n0 x n1 x
 // (the rest) packed by raster index, which is the N-D raster index: their lines are the N-D
 // grid's lines along those axes, and every candidate lies in its voxel's plane.
-inline void nd_transform(Exec& ex, const NdL& L, const NdMetric& M, const std::uint8_t* mask,
+template <int ND>
+inline void nd_transform(Exec& ex, const NdL<ND>& L, const MetricT<ND>& M, const std::uint8_t* mask,
                          S* feat, S* stk, const Tuning& tune, std::int64_t sites, Stats* stats) {
   double last = now_ms();
   auto step = [&](int a) {
@@ -167,19 +224,21 @@ inline void nd_transform(Exec& ex, const NdL& L, const NdMetric& M, const std::u
   step(done - 1);
   for (int a = done; a < L.nd; ++a) {
     if (M.iso)
-      nd_pass_t<true>(ex, L, M, a, feat, stk);
+      nd_pass_t<true, ND>(ex, L, M, a, feat, stk);
     else
-      nd_pass_t<false>(ex, L, M, a, feat, stk);
+      nd_pass_t<false, ND>(ex, L, M, a, feat, stk);
     step(a);
   }
 }
 
 // The backend entry for an N-D grid: upload, feature transform, outputs, download (as run.inl
 // for 2D and 3D).
-inline void run_nd(const Request& rq, Output& out, Stats& stats) {
+template <int ND>
+inline void run_nd_t(const Request& rq, Output& out, Stats& stats) {
   Exec ex(rq.run);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
-  const NdL L(rq.nd);
+  const NdL<ND> L(rq.nd);
+  const MetricT<ND> M = nd_metric<ND>(rq.nd_metric);
   const std::int64_t nvox = L.count();
   {
     // The grid where it is uploaded and its mask, the features and the stacks (an index each),
@@ -220,7 +279,7 @@ inline void run_nd(const Request& rq, Output& out, Stats& stats) {
   const double t1 = now_ms();
   {
     auto stk = ex.template alloc<S>(std::size_t(nvox));
-    nd_transform(ex, L, rq.nd_metric, mask_p, fp, stk.data(), rq.tune, site_count,
+    nd_transform(ex, L, M, mask_p, fp, stk.data(), rq.tune, site_count,
                  rq.run.profile ? &stats : nullptr);
     ex.sync();
   }
@@ -244,7 +303,7 @@ inline void run_nd(const Request& rq, Output& out, Stats& stats) {
           r.fetch_min(std::int32_t(j), cuda::memory_order_relaxed);
         });
   }
-  emit_outputs(ex, rq, L, rq.nd_metric, fp, RankLabels<NdL>{rp, L}, out, lib, 0, nvox);
+  emit_outputs(ex, rq, L, M, fp, RankLabels<NdL<ND>>{rp, L}, out, lib, 0, nvox);
   stats.phase_ms.push_back({"outputs_device", out.device_outputs_at - t2});
   if (rq.device_out) hand_over(ex, lib, out);
   stats.phase_ms.push_back({"outputs", now_ms() - t2});
@@ -277,11 +336,13 @@ struct NdColumnLabels {
 // itself, so the volume may be larger than the device. Each plane of a block takes, for every
 // column, the nearest of the column's sites along axis 0 (columns.inl); the passes along the
 // other axes then run on the block.
-inline void run_nd_slices(const Request& rq, Output& out, Stats& stats) {
+template <int ND>
+inline void run_nd_slices_t(const Request& rq, Output& out, Stats& stats) {
   Exec ex(rq.run);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
-  const NdLayout<S> V(rq.nd);
-  const int nd = V.nd;
+  const NdL<ND> V(rq.nd);
+  const MetricT<ND> M = nd_metric<ND>(rq.nd_metric);
+  constexpr int nd = ND;
   const std::int64_t plane = V.stride[nd - 1], nvox = V.count();
   const std::int64_t nsl = std::int64_t(rq.slices.size());
   const bool labels = rq.want_labels;
@@ -356,25 +417,58 @@ inline void run_nd_slices(const Request& rq, Output& out, Stats& stats) {
   for (std::int64_t k0 = 0; k0 < nsl; k0 += per_block) {
     NdShape bs = rq.nd;
     bs.n[nd - 1] = std::min(per_block, nsl - k0);
-    const NdL Lb(bs, zs.data() + k0);
+    const NdL<ND> Lb(bs, zs.data() + k0);
     const double t1 = now_ms();
     column_candidates(ex, plane, bs.n[nd - 1], zs.data() + k0, keys.data(), vals.data(),
                       start.data(), at.data(), k0 ? rq.slices[std::size_t(k0 - 1)] : -1,
                       labels ? lab.data() : nullptr, NdColumnPut{cand.data(), plane});
     for (int a = 0; a < nd - 1; ++a) {
-      if (rq.nd_metric.iso)
-        nd_pass_t<true>(ex, Lb, rq.nd_metric, a, cand.data(), stk.data());
+      if (M.iso)
+        nd_pass_t<true, ND>(ex, Lb, M, a, cand.data(), stk.data());
       else
-        nd_pass_t<false>(ex, Lb, rq.nd_metric, a, cand.data(), stk.data());
+        nd_pass_t<false, ND>(ex, Lb, M, a, cand.data(), stk.data());
     }
     ex.sync();
     transform += now_ms() - t1;
-    emit_outputs(ex, rq, Lb, rq.nd_metric, cand.data(), NdColumnLabels{lab.data(), plane}, out,
-                 arrays, k0 * plane, nsl * plane);
+    emit_outputs(ex, rq, Lb, M, cand.data(), NdColumnLabels{lab.data(), plane}, out, arrays,
+                 k0 * plane, nsl * plane);
   }
   stats.counters["slices_per_block"] = per_block;
   stats.counters["index_bits"] = 8 * std::int64_t(sizeof(S));
   if (rq.device_out) hand_over(ex, arrays, out);
   out.transform_ms = transform;
   stats.phase_ms.push_back({"transform", transform});
+}
+
+// The entries (entry.inl): the request's axis count picks the compiled instance.
+template <template <int> class Run>
+inline void by_axes(int nd, const Request& rq, Output& out, Stats& stats) {
+  switch (nd) {
+    case 4:
+      return Run<4>::go(rq, out, stats);
+    case 5:
+      return Run<5>::go(rq, out, stats);
+    case 6:
+      return Run<6>::go(rq, out, stats);
+    case 7:
+      return Run<7>::go(rq, out, stats);
+    default:
+      return Run<8>::go(rq, out, stats);
+  }
+}
+template <int ND>
+struct WholeRun {
+  static void go(const Request& rq, Output& out, Stats& stats) { run_nd_t<ND>(rq, out, stats); }
+};
+template <int ND>
+struct SliceRun {
+  static void go(const Request& rq, Output& out, Stats& stats) {
+    run_nd_slices_t<ND>(rq, out, stats);
+  }
+};
+inline void run_nd(const Request& rq, Output& out, Stats& stats) {
+  by_axes<WholeRun>(rq.nd.nd, rq, out, stats);
+}
+inline void run_nd_slices(const Request& rq, Output& out, Stats& stats) {
+  by_axes<SliceRun>(rq.nd.nd, rq, out, stats);
 }
