@@ -15,6 +15,7 @@ CASES = [
     ("stipple_photo.py", ["-n", "400", "--iterations", "15"]),
     ("hull_scan.py", ["-n", "20000"]),
     ("particle_cells.py", ["-n", "3000"]),
+    ("spacetime_clearance.py", ["-n", "24", "--frames", "12"]),
 ]
 
 
