@@ -43,6 +43,8 @@ if [ -d .devbin/py/gpugeom ] && [ "${PYTHON_SET:-1}" != 0 ]; then
     echo "== Python package benchmark (SciPy and CuPy in the same run)"
     PYTHONPATH=$PWD/.devbin/py python3 bench/python_api.py --reps 3 --csv "$OUT/python_api.csv" 2>&1 |
       tee "$OUT/python_api.txt"
+    echo "== N-D distance transform against CuPy and SciPy (issue 54; SciPy takes minutes there: skipped)"
+    PYTHONPATH=$PWD/.devbin/py python3 bench/edt_nd.py --reps 3 --indices --scipy-max 0 2>&1 | tee "$OUT/edt_nd.txt"
     echo "== 3D Voronoi diagram against SciPy (issue 49)"
     PYTHONPATH=$PWD/.devbin/py python3 bench/voronoi3d.py --reps 3 2>&1 | tee "$OUT/voronoi3d.txt"
     # freud's wheels come carried in .whl/ (the GPU machine has no network)
