@@ -12,8 +12,12 @@
 
 using Num = std::conditional_t<Exec::backend == Backend::Cuda, double, std::int64_t>;
 using NdCand = CandOf<S>;
-constexpr S kNoSite = NdLayout<S>::kNoSite;  // (nd_layout.hpp)
+constexpr S kNoSite = S(~S(0));  // (no site; never a raster index: grids hold fewer elements)
 
+// Sites are raster indices, so packed order is raster order and ties go to the first site in C
+// order, as in 2D and 3D. S is uint32 where the grid has fewer than 2^32 - 1 elements (coordinates
+// decoded by multiply-high divisions), else uint64.
+//
 // The layout of the grid computed, ND axes (4 to 8, a compile-time constant: every loop over the
 // axes unrolls and every per-axis array stays in registers or the kernel's parameters; with the
 // axis count known at run time only, the pass kernel kept an 816-byte stack frame and moved
