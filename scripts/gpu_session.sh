@@ -61,8 +61,10 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del2d ]; then
   D=.devbin/gpugeom_bench_del2d
   SZ=${DEL2D_SIZES:-1e5,1e6,1e7}
   for n in 1e6 1e7; do python3 bench/terrain_contours.py -n $n -o /tmp/terrain_$n.npy; done
-  # Triangle's wheel comes carried in .whl/ (the GPU machine has no network)
-  python3 -c "import triangle" 2>/dev/null || python3 -m pip install -q --no-index --find-links .whl triangle 2>&1 | tail -1
+  # Triangle's wheel comes carried in .whl/ (the GPU machine has no network; --no-deps: pip
+  # would look for NumPy there too)
+  python3 -c "import triangle" 2>/dev/null || python3 -m pip install -q --no-deps --no-index --target /tmp/gg_wheels .whl/triangle-*.whl 2>&1 | tail -1
+  export PYTHONPATH=/tmp/gg_wheels${PYTHONPATH:+:$PYTHONPATH}
   {
     $D --backend cuda --dists uniform,gaussian,thin_circle,circle,grid,two_segments --sizes $SZ --reps 3 --csv "$CSV"
     $D --backend cuda --files /tmp/terrain_1e6.npy,/tmp/terrain_1e7.npy --reps 3 --csv "$CSV" | tail -n +3
@@ -79,7 +81,8 @@ if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = del2d ]; then
 fi
 if [ "${BENCH_SET:-all}" = all ] || [ "${BENCH_SET:-all}" = cdt2d ]; then
   echo "== 2D constrained Delaunay (end to end; the plain Delaunay of the same points; CGAL CDT_2 and Triangle -p on one core)"
-  python3 -c "import triangle" 2>/dev/null || python3 -m pip install -q --no-index --find-links .whl triangle 2>&1 | tail -1
+  python3 -c "import triangle" 2>/dev/null || python3 -m pip install -q --no-deps --no-index --target /tmp/gg_wheels .whl/triangle-*.whl 2>&1 | tail -1
+  export PYTHONPATH=/tmp/gg_wheels${PYTHONPATH:+:$PYTHONPATH}
   CI=/tmp/cdt_inputs
   rm -rf $CI && mkdir -p $CI
   IN=""
