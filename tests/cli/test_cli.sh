@@ -48,7 +48,7 @@ expect 0 "15 voxels on cpu, exact" -- "$G" edt "$W/one.pgm" -o "$W/d.npy" --labe
 [ -s "$W/d.npy" ] && [ -s "$W/l.npy" ] && [ -s "$W/p.png" ] || { echo "FAIL: edt outputs missing"; fail=1; }
 expect 0 "usage: gpugeom edt" -- "$G" edt --help
 expect 0 "JFA \(approximate\)" -- "$G" edt "$W/one.pgm" -o "$W/j.npy" --sites zero --sampling 1,2 --method jfa
-expect 2 "slices apply to 3D grids only" -- "$G" edt "$W/one.pgm" -o "$W/z.npy" --slices 0
+expect 2 "slices apply to grids of 3 or more axes" -- "$G" edt "$W/one.pgm" -o "$W/z.npy" --slices 0
 printf 'P2\n2 2\n255\n0 0\n0 0\n' >"$W/none.pgm"
 expect 3 "has no site" -- "$G" edt "$W/none.pgm" -o "$W/z.npy"
 [ -e "$W/z.npy" ] && { echo "FAIL: a failed edt left an output file"; fail=1; }
