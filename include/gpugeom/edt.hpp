@@ -65,7 +65,8 @@ struct EdtOptions : RunOptions {
   // Slice-by-slice mode: about how many voxels of slices are computed together (0: 2^24;
   // fewer take less device memory, more launches). Tuning too: never changes the result.
   std::int64_t slice_block = 0;
-  std::vector<std::int64_t> slices;  // 3D only: compute just these z slices (slice-by-slice)
+  // Grids of 3 or more axes: compute just these indices along C axis 0 (slice by slice).
+  std::vector<std::int64_t> slices;
   // Grids of 4 to 8 axes index their sites by 32 bits below 2^32 - 1 voxels, by 64 from there;
   // true takes 64 bits for any grid (for tests: never changes the result).
   bool wide_indices = false;
@@ -105,9 +106,9 @@ EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
 // be ready in that stream's order, and the call returns once the outputs are. The library's
 // arrays are freed when the last copy of their pointer goes; they can be wrapped without a copy
 // (CuPy, PyTorch through DLPack). With opt.backend == Backend::Cpu "device" memory is host
-// memory and the CPU executor runs (the same results). Slices (opt.slices) compute only those z
-// slices from the whole grid on the device. Throws Error(Unsupported) where the build or the
-// machine has no CUDA device (and the CPU was not asked for), and as distance_transform.
+// memory and the CPU executor runs (the same results). Slices (opt.slices) compute only those
+// indices along axis 0 from the whole grid on the device. Throws Error(Unsupported) where the build
+// or the machine has no CUDA device (and the CPU was not asked for), and as distance_transform.
 struct DeviceEdtResult {
   std::vector<std::int64_t> shape;  // of each output (slices replace the first extent)
   std::shared_ptr<std::int64_t> sqdist_int;
