@@ -34,6 +34,8 @@ namespace gpugeom {
 struct Cdt2dRegion {
   double x = 0, y = 0;
   double attribute = 0;
+  // The region's largest triangle area for refine2d (refine2d.hpp; <= 0: none); cdt2d ignores it.
+  double max_area = 0;
 };
 
 struct Cdt2dOptions : RunOptions {

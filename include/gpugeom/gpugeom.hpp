@@ -1,6 +1,7 @@
 // Umbrella header: everything public in gpugeom.
 #pragma once
 #include "gpugeom/cdt2d.hpp"
+#include "gpugeom/refine2d.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/cvd.hpp"
 #include "gpugeom/delaunay2d.hpp"

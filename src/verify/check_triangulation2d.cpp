@@ -92,40 +92,6 @@ Report check_triangulation2d(const double* p, std::int64_t n, const std::int32_t
   return r;
 }
 
-namespace {
-std::uint64_t directed(std::uint32_t u, std::uint32_t v) {
-  return (std::uint64_t(u) << 32) | v;
-}
-std::uint64_t undirected(std::uint32_t u, std::uint32_t v) {
-  return u < v ? directed(u, v) : directed(v, u);
-}
-
-// Every interior edge of a valid triangulation locally Delaunay (exact in-circle; cocircular
-// allowed), except the edges in `exempt` (undirected keys).
-bool locally_delaunay(Report& r, const double* p, const std::int32_t* t, std::int64_t nt,
-                      const std::unordered_set<std::uint64_t>& exempt) {
-  std::unordered_map<std::uint64_t, std::int64_t> dir;
-  dir.reserve(std::size_t(nt) * 6);
-  for (std::int64_t c = 0; c < nt; ++c)
-    for (int j = 0; j < 3; ++j) dir.emplace(directed(t[3 * c + j], t[3 * c + (j + 1) % 3]), c);
-  for (std::int64_t c = 0; c < nt; ++c)
-    for (int j = 0; j < 3; ++j) {
-      std::uint32_t u = t[3 * c + j], v = t[3 * c + (j + 1) % 3];
-      auto it = dir.find(directed(v, u));
-      if (it == dir.end() || exempt.count(undirected(u, v))) continue;
-      std::int64_t o = it->second;
-      std::int64_t far = std::int64_t(t[3 * o]) + t[3 * o + 1] + t[3 * o + 2] - u - v;
-      const std::int32_t* a = t + 3 * c;
-      if (pred::incircle(at<2>(p, a[0]), at<2>(p, a[1]), at<2>(p, a[2]), at<2>(p, far), scratch()) >
-          0)
-        return r.fail("edge " + std::to_string(u) + "-" + std::to_string(v) +
-                      (exempt.empty() ? "" : " (on no segment)") +
-                      " is not locally Delaunay: vertex " + std::to_string(far) +
-                      " lies inside the circumcircle of " + cell_name(3, c, t));
-    }
-  return true;
-}
-}  // namespace
 
 Report check_delaunay2d(const double* p, std::int64_t n, const std::int32_t* t, std::int64_t nt,
                         const std::int32_t* dup_of) {

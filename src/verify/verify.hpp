@@ -35,6 +35,19 @@ Report check_delaunay2d(const double* pts, std::int64_t n, const std::int32_t* t
 Report check_constrained_delaunay2d(const double* pts, std::int64_t n, const std::int32_t* tris,
                                     std::int64_t ntri, const std::int32_t* segs, std::int64_t nseg,
                                     const std::int32_t* dup_of = nullptr);
+// A quality mesh of a domain (refine2d): ntri counter-clockwise triangles whose directed edges
+// occur once each; seg_of (3 per triangle, the edge opposite vertex k) marks edges on a segment
+// (its index, or any value below -1 for a boundary edge that is no input segment; -1: none) and
+// must agree on both sides; every boundary edge is marked; every other edge is locally Delaunay
+// (exact in-circle); each input segment (segs: nseg pairs) that has marked edges is one path of
+// them from its first end to its last, through vertices within 1e-9 of its length's scale of its
+// line; every triangle but the exempt ones has its smallest angle >= min_angle (degrees, to
+// 1e-9) and its area <= max_area (when > 0).
+Report check_refined_mesh2d(const double* pts, std::int64_t n, const std::int32_t* tris,
+                            std::int64_t ntri, const std::int32_t* seg_of,
+                            const std::int32_t* segs, std::int64_t nseg,
+                            const std::int32_t* dup_of, double min_angle, double max_area,
+                            const std::int32_t* exempt, std::int64_t nexempt);
 Report check_triangulation3d(const double* pts, std::int64_t n, const std::int32_t* tets,
                              std::int64_t ntet, const std::int32_t* dup_of = nullptr);
 Report check_delaunay3d(const double* pts, std::int64_t n, const std::int32_t* tets,

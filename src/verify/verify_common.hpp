@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "predicates/predicates.hpp"
@@ -24,5 +25,13 @@ inline double* scratch() {
 bool check_cells(Report& r, std::int64_t n, const std::int32_t* cells, std::int64_t ncell, int k,
                  const std::int32_t* dup_of, const double* pts, int dim);
 std::string cell_name(int k, std::int64_t c, const std::int32_t* cells);
+
+// Edge keys: directed (u to v), and undirected (the lower index first).
+std::uint64_t directed(std::uint32_t u, std::uint32_t v);
+std::uint64_t undirected(std::uint32_t u, std::uint32_t v);
+// Every interior edge of a valid triangulation locally Delaunay (exact in-circle; cocircular
+// allowed), except the edges in `exempt` (undirected keys).
+bool locally_delaunay(Report& r, const double* p, const std::int32_t* t, std::int64_t nt,
+                      const std::unordered_set<std::uint64_t>& exempt);
 
 }  // namespace gpugeom::verify::detail

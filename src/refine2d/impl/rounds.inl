@@ -1,0 +1,320 @@
+// One round of Delaunay refinement on the executor; included inside
+// gpugeom::refine::{cpu,cuda}_impl, with Exec the executor and quality.hpp's geometry.
+//
+// A round reads the round's exact constrained triangulation (cdt2d's device core) and decides,
+// in parallel and from that triangulation alone, which subsegments to split, which free Steiner
+// points to remove and which new points to add; build_next() then writes the next round's
+// points and subsegments. The order of everything written is by index (subsegment, triangle,
+// point), never by thread timing, so the rounds are the same on every executor.
+
+template <class T>
+using Buf = typename Exec::template Buffer<T>;
+
+// A triangulation of one round, in the executor's memory (cdt2d's DeviceResult, viewed).
+struct RoundMesh {
+  const double* xy;
+  const std::int32_t *tri, *nbr, *seg, *dup;
+  const double* attribute;  // region index + 1 per triangle, or null
+  std::int64_t nt;
+};
+
+// The subsegments as the triangulation has them: each marked edge once (from the triangle with
+// the lower index, or the only one), and per half-edge (3 t + k, the edge opposite vertex k) the
+// index of its subsegment (-1 off segments).
+struct Subsegments {
+  Buf<std::int32_t> ends, base, of_edge;
+  std::int64_t count = 0;
+};
+
+inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m, const std::int32_t* old_base) {
+  Subsegments s;
+  const std::int64_t ne = 3 * m.nt;
+  auto index = ex.template alloc<std::int32_t>(std::size_t(ne) + 1);
+  std::int32_t* I = index.data();
+  const std::int32_t *T = m.tri, *N = m.nbr, *G = m.seg;
+  ex.exclusive_scan_of(
+      ne + 1,
+      GG_LAMBDA(std::int64_t e)->std::int32_t {
+        return e < ne && G[e] >= 0 && (N[e] < 0 || e / 3 < N[e]) ? 1 : 0;
+      },
+      I);
+  std::int32_t count = 0;
+  ex.to_host(I + ne, 1, &count);
+  s.count = count;
+  s.ends = ex.template alloc<std::int32_t>(2 * std::size_t(std::max(count, 1)));
+  s.base = ex.template alloc<std::int32_t>(std::size_t(std::max(count, 1)));
+  s.of_edge = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(ne, 1)));
+  std::int32_t *E = s.ends.data(), *B = s.base.data(), *O = s.of_edge.data();
+  ex.for_each_index(
+      ne, GG_LAMBDA(std::int64_t e) {
+        const std::int64_t t = e / 3;
+        const int k = int(e % 3);
+        if (G[e] < 0 || !(N[e] < 0 || t < N[e])) {
+          O[e] = -1;
+          return;
+        }
+        const std::int32_t j = I[e];
+        E[2 * j] = T[3 * t + (k + 1) % 3];
+        E[2 * j + 1] = T[3 * t + (k + 2) % 3];
+        B[j] = old_base[G[e]];
+        O[e] = j;
+      });
+  // The other half of each marked interior edge reads its twin's index.
+  ex.for_each_index(
+      ne, GG_LAMBDA(std::int64_t e) {
+        const std::int64_t t = e / 3;
+        if (G[e] < 0 || N[e] < 0 || t < N[e]) return;
+        const std::int64_t o = N[e];
+        for (int j = 0; j < 3; ++j)
+          if (N[3 * o + j] == t) O[e] = O[3 * o + j];
+      });
+  return s;
+}
+
+// What a round decided, per subsegment, per point and per triangle.
+struct Decisions {
+  Buf<std::int32_t> split;     // per subsegment: 1 to split
+  Buf<std::int32_t> drop;      // per point: 1 to remove (a free point that encroaches)
+  Buf<double> point;           // per triangle: its new point
+  Buf<std::int32_t> land;      // per triangle: the triangle its point lands in (-1: none)
+  Buf<std::uint64_t> key;      // per triangle: its rank (lower first) and index
+  Buf<std::int8_t> reason;     // per triangle: SmallAngle left (0: none)
+  Buf<std::int8_t> large;      // per triangle: 1 when still too large and not refined
+};
+
+// The bounds a triangle is judged by (device-readable).
+struct Bounds {
+  double sin2 = 0;       // squared sine of the smallest angle allowed (0: none)
+  double cot_half = 0;   // cot(bound / 2) / 2: the off-centre's height over the edge's length
+  double max_area = 0;   // global (0: none)
+  const double* region_area = nullptr;  // per region (<= 0: none), by attribute - 1
+  const double* triangle_area = nullptr;  // per triangle, from the host's sizing function
+  const double* grid = nullptr;
+  std::int64_t rows = 0, cols = 0;
+  double x0 = 0, y0 = 0, x1 = 1, y1 = 1;
+};
+
+GG_HD inline double area_bound(const Bounds& b, const RoundMesh& m, std::int64_t t,
+                               const double* p0, const double* p1, const double* p2) {
+  double a = b.max_area > 0 ? b.max_area : 0;
+  auto take = [&a](double v) {
+    if (v > 0 && (a == 0 || v < a)) a = v;
+  };
+  if (b.region_area && m.attribute) {
+    const std::int64_t r = std::int64_t(m.attribute[t]);
+    if (r > 0) take(b.region_area[r - 1]);
+  }
+  if (b.triangle_area) take(b.triangle_area[t]);
+  if (b.grid) {
+    const double cx = add_rn(add_rn(p0[0], p1[0]), p2[0]) / 3.0;
+    const double cy = add_rn(add_rn(p0[1], p1[1]), p2[1]) / 3.0;
+    take(grid_sample(b.grid, b.rows, b.cols, b.x0, b.y0, b.x1, b.y1, cx, cy));
+  }
+  return a;
+}
+
+// Marks subsegment j for splitting (several threads may).
+GG_INLINE void mark(std::int32_t* flags, std::int64_t j) {
+  atomic_max(flags + j, std::int32_t(1));
+}
+
+// Encroached subsegments: the apex of each triangle beside a subsegment strictly inside its
+// diametral circle. That apex is the one vertex to test: the triangle's circumcircle covers the
+// half of the diametral disc on its side unless the apex is inside it, so no other vertex seen
+// from the subsegment can be. A free Steiner point that encroaches is removed as well.
+inline void find_encroached(Exec& ex, const RoundMesh& m, const Subsegments& s,
+                            const std::int8_t* free_pt, Decisions& d) {
+  const std::int32_t *T = m.tri, *O = s.of_edge.data();
+  const double* P = m.xy;
+  std::int32_t *split = d.split.data(), *drop = d.drop.data();
+  ex.for_each_index(
+      3 * m.nt, GG_LAMBDA(std::int64_t e) {
+        const std::int32_t j = O[e];
+        if (j < 0) return;
+        const std::int64_t t = e / 3;
+        const int k = int(e % 3);
+        const std::int32_t apex = T[3 * t + k];
+        const double* a = P + 2 * std::int64_t(T[3 * t + (k + 1) % 3]);
+        const double* b = P + 2 * std::int64_t(T[3 * t + (k + 2) % 3]);
+        if (!encroaches(a, b, P + 2 * std::int64_t(apex))) return;
+        mark(split, j);
+        if (free_pt[apex]) atomic_max(drop + apex, std::int32_t(1));
+      });
+}
+
+// The vertices and bases the terminator reads (device-readable).
+struct Terminator {
+  const std::int32_t* on_base;  // per point: the base segment a split vertex lies on, else -1
+  const std::int32_t* base;     // base segment ends, 2 per base
+};
+
+// Shewchuk's terminator, for a triangle whose smallest angle (at vertex k, opposite its shortest
+// edge) is below the bound: InputAngle when both edges at that vertex lie on segments (the angle
+// is one the input makes), Shell when the shortest edge joins split vertices on two segments
+// from one input vertex at equal distances from it (concentric-shell vertices of a small input
+// angle, whose split would only cut that angle again); else 0.
+GG_HD inline std::int8_t forced(const RoundMesh& m, const Terminator& tm, std::int64_t t, int k) {
+  if (m.seg[3 * t + (k + 1) % 3] >= 0 && m.seg[3 * t + (k + 2) % 3] >= 0)
+    return std::int8_t(SmallAngle::InputAngle);
+  const std::int32_t p = m.tri[3 * t + (k + 1) % 3], q = m.tri[3 * t + (k + 2) % 3];
+  const std::int32_t bp = tm.on_base[p], bq = tm.on_base[q];
+  if (bp < 0 || bq < 0 || bp == bq) return 0;
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      const std::int32_t c = tm.base[2 * bp + i];
+      if (c != tm.base[2 * bq + j]) continue;
+      const double* pc = m.xy + 2 * std::int64_t(c);
+      const double* pp = m.xy + 2 * std::int64_t(p);
+      const double* pq = m.xy + 2 * std::int64_t(q);
+      const double ax = sub_rn(pp[0], pc[0]), ay = sub_rn(pp[1], pc[1]);
+      const double bx = sub_rn(pq[0], pc[0]), by = sub_rn(pq[1], pc[1]);
+      const double la = add_rn(mul_rn(ax, ax), mul_rn(ay, ay));
+      const double lb = add_rn(mul_rn(bx, bx), mul_rn(by, by));
+      // Shell vertices are at equal powers of two from the corner, up to their rounding.
+      if (std::fabs(sub_rn(la, lb)) <= mul_rn(1e-6, la > lb ? la : lb))
+        return std::int8_t(SmallAngle::Shell);
+    }
+  return 0;
+}
+
+// Walks from triangle t towards q without crossing a subsegment. Returns the triangle holding q
+// (q strictly inside or on an edge that is on no subsegment), or -1 after marking the
+// subsegment met (crossed, or holding q), or -2 when q is a vertex or the walk ran too long.
+GG_HD inline std::int64_t walk_to(const RoundMesh& m, const std::int32_t* of_edge, std::int64_t t,
+                                  const double* q, std::int32_t* split) {
+  double s[pred::kOrient2dScratch];
+  for (std::int64_t step = 0; step <= m.nt; ++step) {
+    int beyond = -1, zeros = 0, zero_edge = -1;
+    for (int i = 0; i < 3; ++i) {
+      const int k = int((step + i) % 3);
+      const double* a = m.xy + 2 * std::int64_t(m.tri[3 * t + (k + 1) % 3]);
+      const double* b = m.xy + 2 * std::int64_t(m.tri[3 * t + (k + 2) % 3]);
+      const int o = pred::orient2d(a, b, q, s);
+      if (o < 0) {
+        beyond = k;
+        break;
+      }
+      if (o == 0) ++zeros, zero_edge = k;
+    }
+    if (beyond < 0) {
+      if (zeros >= 2) return -2;  // q is a vertex
+      if (zeros == 1 && of_edge[3 * t + zero_edge] >= 0) {
+        mark(split, of_edge[3 * t + zero_edge]);
+        return -1;
+      }
+      return t;
+    }
+    const std::int32_t j = of_edge[3 * t + beyond];
+    if (j >= 0) {
+      mark(split, j);
+      return -1;
+    }
+    const std::int32_t next = m.nbr[3 * t + beyond];
+    if (next < 0) return -2;  // (a boundary edge is always a subsegment)
+    t = next;
+  }
+  return -2;
+}
+
+// The bad triangles: each gets its new point, or splits the subsegment that hides it or that it
+// would encroach upon, or is left (the terminator's triangles, reasons recorded).
+inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const Bounds& bounds,
+                     const Terminator& tm, Decisions& d) {
+  const std::int32_t* O = s.of_edge.data();
+  const std::int32_t* E = s.ends.data();
+  std::int32_t* split = d.split.data();
+  double* NP = d.point.data();
+  std::int32_t* L = d.land.data();
+  std::uint64_t* K = d.key.data();
+  std::int8_t *R = d.reason.data(), *LG = d.large.data();
+  const Bounds b = bounds;
+  ex.for_each_index(
+      m.nt, GG_LAMBDA(std::int64_t t) {
+        L[t] = -1;
+        R[t] = 0;
+        LG[t] = 0;
+        const double* p[3];
+        for (int k = 0; k < 3; ++k) p[k] = m.xy + 2 * std::int64_t(m.tri[3 * t + k]);
+        const TriangleShape sh = shape_of(p[0], p[1], p[2]);
+        const bool thin = b.sin2 > 0 && skinny(sh, b.sin2);
+        const double limit = area_bound(b, m, t, p[0], p[1], p[2]);
+        const bool big = limit > 0 && mul_rn(0.5, sh.area2) > limit;
+        if (!thin && !big) return;
+        const int k = sh.shortest;
+        if (thin && !big) {
+          const std::int8_t f = forced(m, tm, t, k);
+          if (f) {
+            R[t] = f;
+            return;
+          }
+        }
+        // From here the triangle is refined; Limit stays where no point can be placed.
+        if (thin) R[t] = std::int8_t(SmallAngle::Limit);
+        if (big) LG[t] = 1;
+        if (!(sh.area2 > 0)) return;
+        double c[2], q[2];
+        circumcentre(p[0], p[1], p[2], c);
+        if (thin)
+          off_centre(p[(k + 1) % 3], p[(k + 2) % 3], c, b.cot_half, q);
+        else
+          q[0] = c[0], q[1] = c[1];
+        if (!std::isfinite(q[0]) || !std::isfinite(q[1])) return;
+        const std::int64_t at = walk_to(m, O, t, q, split);
+        if (at < 0) return;
+        // A point inside the diametral circle of a subsegment of its triangle or of a neighbour
+        // would be removed next round: split those subsegments now instead.
+        bool enc = false;
+        for (int i = -1; i < 3; ++i) {
+          const std::int64_t u = i < 0 ? at : m.nbr[3 * at + i];
+          if (u < 0) continue;
+          for (int j = 0; j < 3; ++j) {
+            const std::int32_t g = O[3 * u + j];
+            if (g < 0) continue;
+            if (encroaches(m.xy + 2 * std::int64_t(E[2 * g]), m.xy + 2 * std::int64_t(E[2 * g + 1]),
+                           q)) {
+              mark(split, g);
+              enc = true;
+            }
+          }
+        }
+        if (enc) return;
+        NP[2 * t] = q[0];
+        NP[2 * t + 1] = q[1];
+        L[t] = std::int32_t(at);
+        K[t] = std::uint64_t(badness_rank(sh)) << 32 | std::uint64_t(t);
+      });
+}
+
+// The new points that claim their landing triangle and its neighbours unopposed (the lowest key
+// wins each triangle): no two land in touching triangles, so one round never crowds a place.
+inline std::int64_t choose_points(Exec& ex, const RoundMesh& m, Decisions& d,
+                                  Buf<std::int32_t>& winners) {
+  auto claim = ex.template alloc<std::uint64_t>(std::size_t(std::max<std::int64_t>(m.nt, 1)));
+  std::uint64_t* C = claim.data();
+  ex.fill(C, m.nt, ~std::uint64_t(0));
+  const std::int32_t *L = d.land.data(), *N = m.nbr;
+  const std::uint64_t* K = d.key.data();
+  ex.for_each_index(
+      m.nt, GG_LAMBDA(std::int64_t t) {
+        const std::int32_t a = L[t];
+        if (a < 0) return;
+        atomic_min(C + a, K[t]);
+        for (int i = 0; i < 3; ++i)
+          if (N[3 * a + i] >= 0) atomic_min(C + N[3 * a + i], K[t]);
+      });
+  winners = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(m.nt, 1)));
+  auto count = ex.template alloc<std::int64_t>(1);
+  ex.compact_indices_to(
+      m.nt,
+      GG_LAMBDA(std::int64_t t)->bool {
+        const std::int32_t a = L[t];
+        if (a < 0 || C[a] != K[t]) return false;
+        for (int i = 0; i < 3; ++i)
+          if (N[3 * a + i] >= 0 && C[N[3 * a + i]] != K[t]) return false;
+        return true;
+      },
+      winners.data(), count.data());
+  std::int64_t w = 0;
+  ex.to_host(count.data(), 1, &w);
+  return w;
+}

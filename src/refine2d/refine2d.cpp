@@ -1,0 +1,160 @@
+// Public entries of Delaunay refinement: check the bounds and the input, split crossing segments
+// where asked (cdt2d's crossings.hpp), run the rounds on the executor opt picks
+// (refine2d_backend.hpp), and name the counters.
+#include "gpugeom/refine2d.hpp"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "cdt2d/crossings.hpp"
+#include "delaunay2d/del2d_backend.hpp"
+#include "exec/deliver.hpp"
+#include "exec/dispatch.hpp"
+#include "refine2d/refine2d_backend.hpp"
+
+namespace gpugeom {
+
+namespace {
+
+void check_options(std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
+                   const Refine2dOptions& opt) {
+  del2d::check_count(n);
+  if (nseg < 0 || (nseg > 0 && !segments))
+    throw Error(ErrorCode::InvalidArgument,
+                "segments: " + std::to_string(nseg) + " pairs given" +
+                    (nseg > 0 ? " but the pointer is null" : ": the count must not be negative"));
+  if (!(opt.min_angle >= 0) || opt.min_angle > kRefineMaxAngle)
+    throw Error(ErrorCode::InvalidArgument,
+                "min_angle " + std::to_string(opt.min_angle) +
+                    " degrees: give 0 (no angle bound) up to " + std::to_string(kRefineMaxAngle) +
+                    " (above it Delaunay refinement need not end; Triangle refuses it too)");
+  if (!(opt.max_area >= 0) || std::isinf(opt.max_area))
+    throw Error(ErrorCode::InvalidArgument,
+                "max_area must be a finite area > 0, or 0 for no bound (got " +
+                    std::to_string(opt.max_area) + ")");
+  for (std::size_t i = 0; i < opt.regions.size(); ++i)
+    if (!std::isfinite(opt.regions[i].max_area))
+      throw Error(ErrorCode::InvalidArgument,
+                  "region " + std::to_string(i) + ": max_area is not finite");
+  const AreaGrid& g = opt.area_grid;
+  if (g.rows || g.cols || !g.values.empty()) {
+    if (g.rows < 1 || g.cols < 1 || std::int64_t(g.values.size()) != g.rows * g.cols)
+      throw Error(ErrorCode::InvalidArgument,
+                  "area_grid: " + std::to_string(g.values.size()) + " values for a " +
+                      std::to_string(g.rows) + " x " + std::to_string(g.cols) + " grid");
+    if (!(g.x1 > g.x0) || !(g.y1 > g.y0) || !std::isfinite(g.x1 - g.x0) ||
+        !std::isfinite(g.y1 - g.y0))
+      throw Error(ErrorCode::InvalidArgument,
+                  "area_grid: its extent must have x1 > x0 and y1 > y0, finite");
+    for (double v : g.values)
+      if (!std::isfinite(v))
+        throw Error(ErrorCode::InvalidArgument, "area_grid: a value is not finite");
+  }
+  if (opt.max_steiner_points < -1)
+    throw Error(ErrorCode::InvalidArgument, "max_steiner_points must be -1 (no limit) or >= 0");
+  for (const auto& h : opt.holes)
+    if (!std::isfinite(h.x) || !std::isfinite(h.y))
+      throw Error(ErrorCode::InvalidInput, "a hole point is not finite");
+  for (const auto& g2 : opt.regions)
+    if (!std::isfinite(g2.x) || !std::isfinite(g2.y))
+      throw Error(ErrorCode::InvalidInput, "a region point is not finite");
+}
+
+std::string crossing_message(std::int32_t s1, std::int32_t s2) {
+  return "segments " + std::to_string(std::min(s1, s2)) + " and " +
+         std::to_string(std::max(s1, s2)) +
+         " cross each other at a point that is not an input point: split them there, or have "
+         "them split: Crossings::Split, crossings=\"split\" in Python";
+}
+
+void set_counters(Stats& st, const refine::Tally& t, std::int64_t triangles) {
+  st.counters["rounds"] = t.rounds;
+  st.counters["steiner_points"] = t.splits + t.points - t.dropped;
+  st.counters["segment_splits"] = t.splits;
+  st.counters["rejected_points"] = t.dropped;
+  st.counters["triangles"] = triangles;
+}
+}  // namespace
+
+RefinedMesh2d refine2d(const double* xy, std::int64_t n, const std::int32_t* segments,
+                       std::int64_t nseg, const Refine2dOptions& opt) {
+  check_options(n, segments, nseg, opt);
+  for (std::int64_t k = 0; k < 2 * nseg; ++k)
+    if (segments[k] < 0 || segments[k] >= n)
+      throw Error(ErrorCode::InvalidInput, "segment " + std::to_string(k / 2) + " names point " +
+                                               std::to_string(segments[k]) + ", outside 0.." +
+                                               std::to_string(n - 1));
+  const Backend b = resolve_backend(opt.backend, opt.device);
+  // Crossing segments split first: the pieces are the segments refined, their marks the input
+  // segments they came from.
+  cdt::SplitSegments sp;
+  std::vector<double> pts;
+  const double* P = xy;
+  const std::int32_t* S = segments;
+  std::int64_t np = n, ns = nseg;
+  std::vector<std::int32_t> final_of_base(static_cast<std::size_t>(nseg));
+  for (std::int64_t j = 0; j < nseg; ++j) final_of_base[std::size_t(j)] = std::int32_t(j);
+  if (opt.crossings == Cdt2dOptions::Crossings::Split) {
+    sp = cdt::split_crossings(xy, n, segments, nseg, {});
+    if (!sp.pieces.empty()) {
+      pts.assign(xy, xy + 2 * n);
+      pts.insert(pts.end(), sp.points.begin(), sp.points.end());
+      P = pts.data(), np = std::int64_t(pts.size() / 2);
+      S = sp.pieces.data(), ns = std::int64_t(sp.pieces.size() / 2);
+      final_of_base = sp.piece_segment;
+    }
+  }
+  RefinedMesh2d r;
+  cdt::RecoveryCounts rc;
+  refine::Tally tally;
+  GG_ON_EXECUTOR(b, refine, refine, P, np, S, ns, final_of_base, opt, r, rc, tally);
+  if (rc.cross_a >= 0)
+    throw Error(ErrorCode::InvalidInput,
+                crossing_message(final_of_base[std::size_t(rc.cross_a)],
+                                 final_of_base[std::size_t(rc.cross_b)]));
+  r.num_input_points = np;
+  r.stats.backend = b;
+  set_counters(r.stats, tally, std::int64_t(r.num_triangles()));
+  return r;
+}
+
+DeviceRefinedMesh2d refine2d_device(const double* device_xy, std::int64_t n,
+                                    const std::int32_t* device_segments, std::int64_t nseg,
+                                    const Refine2dOptions& opt) {
+  check_options(n, device_segments, nseg, opt);
+  if (opt.crossings == Cdt2dOptions::Crossings::Split)
+    throw Error(ErrorCode::InvalidArgument,
+                "refine2d_device: Crossings::Split reads the segments on the host: call refine2d "
+                "with host arrays for it");
+  if (opt.max_area_at)
+    throw Error(ErrorCode::InvalidArgument,
+                "refine2d_device: max_area_at is a host function: give the sizes as an "
+                "area_grid, or call refine2d");
+  const Backend b = device_entry_backend(opt.backend, opt.device, "refine2d_device");
+  refine::DeviceResult d;
+  cdt::RecoveryCounts rc;
+  refine::Tally tally;
+  GG_ON_EXECUTOR(b, refine, refine_device, device_xy, n, device_segments, nseg, opt, d, rc,
+                 tally);
+  if (rc.cross_a >= 0) throw Error(ErrorCode::InvalidInput, crossing_message(rc.cross_a, rc.cross_b));
+  DeviceRefinedMesh2d r;
+  r.backend = r.stats.backend = b;
+  r.num_points = d.np;
+  r.num_input_points = n;
+  r.num_triangles = d.nt;
+  r.points = std::move(d.xy);
+  r.triangles = std::move(d.tri);
+  r.neighbors = std::move(d.nbr);
+  r.segment_of = std::move(d.seg);
+  r.duplicate_of = std::move(d.dup);
+  r.attribute = std::move(d.attribute);
+  r.small_angles = std::move(d.small);
+  r.small_angle_reasons = std::move(d.reasons);
+  r.large_triangles = std::move(d.large);
+  r.removed_triangles = d.removed;
+  set_counters(r.stats, tally, d.nt);
+  return r;
+}
+
+}  // namespace gpugeom
