@@ -3,6 +3,7 @@
 * ``Delaunay`` (2D, 3D), ``Voronoi`` (2D), ``ConvexHull`` (3D) as in ``scipy.spatial``;
 * ``distance_transform_edt`` as in ``scipy.ndimage``, and ``voronoi_labels``;
 * ``centroidal_voronoi`` and ``stipple``;
+* ``mesh2d`` and ``triangulate``: quality meshes of 2D domains, as the ``triangle`` package;
 * ``device_info()``, ``verify`` (the exact checkers).
 
 Every function takes NumPy arrays (computed on the GPU when there is one, through the library's
@@ -16,6 +17,7 @@ from ._arrays import device_info
 from . import verify
 from .cells import VoronoiCells
 from .cvd import CentroidalVoronoi, Progress, Stipple, centroidal_voronoi, stipple
+from .mesh import Mesh2d, mesh2d, triangulate
 from .ndimage import distance_transform_edt, voronoi_labels
 from .spatial import ConstrainedDelaunay, ConvexHull, Delaunay, Voronoi
 
@@ -33,6 +35,7 @@ def release_cached_device_memory() -> None:
 __all__ = [
     "Delaunay", "Voronoi", "ConvexHull", "ConstrainedDelaunay", "VoronoiCells",
     "distance_transform_edt", "voronoi_labels",
+    "mesh2d", "triangulate", "Mesh2d",
     "centroidal_voronoi", "stipple", "CentroidalVoronoi", "Stipple", "Progress", "device_info",
     "built_with_cuda", "release_cached_device_memory", "verify", "DegenerateInputError",
     "UnsupportedError", "CudaError", "__version__",

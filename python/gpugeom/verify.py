@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _arrays, _core
 
-__all__ = ["check_delaunay", "check_convex_hull", "check_constrained_delaunay"]
+__all__ = ["check_delaunay", "check_convex_hull", "check_constrained_delaunay", "check_mesh2d"]
 
 
 def _host(a, dtype):
@@ -43,3 +43,20 @@ def check_constrained_delaunay(points, simplices, segments,
     seg = _host(segments, np.int32).reshape(-1, 2)
     return _core.check("cdt2d", p, _host(simplices, np.int32), dup, seg)
 
+
+
+def check_mesh2d(mesh, segments, min_angle: float = 0.0, max_area: float = 0.0,
+                 exempt=None) -> Tuple[bool, str]:
+    """(ok, first violation) for a refined mesh (``mesh2d``'s result): counter-clockwise
+    triangles, each directed edge once, every boundary edge on a segment, every other edge on no
+    segment locally Delaunay (exact in-circle), each input segment one path of edges from end to
+    end, and every triangle but ``exempt`` (default: the mesh's ``small_angles``) with its
+    smallest angle >= ``min_angle`` degrees and its area <= ``max_area`` (when > 0)."""
+    p = _host(mesh["vertices"], np.float64)
+    seg = _host(np.zeros((0, 2)) if segments is None else segments, np.int32).reshape(-1, 2)
+    if exempt is None:
+        exempt = getattr(mesh, "small_angles", np.zeros(0, np.int32))
+    return _core.check_refined2d(p, _host(mesh["triangles"], np.int32),
+                                 _host(mesh.segment_of, np.int32), seg,
+                                 _host(mesh.duplicate_of, np.int32), float(min_angle),
+                                 float(max_area), _host(exempt, np.int32))

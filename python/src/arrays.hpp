@@ -109,7 +109,12 @@ inline const double* pts(const Input& in) {
   return static_cast<const double*>(in.data);
 }
 
+// Host int32 / float64 arrays of shape (rows, k), C order (rows returned), or a ValueError.
+const std::int32_t* cells_of(const AnyArray& a, const char* name, int k, std::int64_t* rows);
+const double* reals_of(const AnyArray& a, const char* name, int k, std::int64_t* rows);
+
 void bind_spatial(nb::module_& m);
+void bind_mesh(nb::module_& m);
 void bind_cells(nb::module_& m);
 void bind_grid(nb::module_& m);
 

@@ -519,19 +519,6 @@ nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, std
   return tets_dict(unlocked([&] { return delaunay3d(pts(in), n, o); }));
 }
 
-// Host int32 (rows, k) array, C order.
-const std::int32_t* cells_of(const AnyArray& a, const char* name, int k, std::int64_t* rows) {
-  Input in = inspect(a, name);
-  if (in.on_device) throw nb::value_error((std::string(name) + " must be in host memory").c_str());
-  if (!holds<std::int32_t>(in))
-    throw nb::type_error((std::string(name) + " must be int32").c_str());
-  if (in.shape.size() != 2 || in.shape[1] != k)
-    throw nb::value_error(
-        (std::string(name) + " must have shape (m, " + std::to_string(k) + ")").c_str());
-  *rows = in.shape[0];
-  return static_cast<const std::int32_t*>(in.data);
-}
-
 nb::object find_simplex_bind(const AnyArray& points, const AnyArray& simplices,
                              const AnyArray& neighbors, const AnyArray& queries, int threads) {
   Input p = inspect(points, "points");
@@ -554,17 +541,6 @@ nb::object find_simplex_bind(const AnyArray& points, const AnyArray& simplices,
                  : find_simplex3d(pts(p), p.shape[0], s, nb_, ns, pts(q), q.shape[0], threads);
   }
   return host_array(std::move(r), {sz(q.shape[0])});
-}
-
-// Host float64 (rows, k) array, C order.
-const double* reals_of(const AnyArray& a, const char* name, int k, std::int64_t* rows) {
-  Input in = inspect(a, name);
-  if (in.on_device || !holds<double>(in) || in.shape.size() != 2 || in.shape[1] != k)
-    throw nb::value_error((std::string(name) + " must be a host float64 array of shape (m, " +
-                           std::to_string(k) + ")")
-                              .c_str());
-  *rows = in.shape[0];
-  return static_cast<const double*>(in.data);
 }
 
 // The constrained Delaunay triangulation of host points and segments (cdt2d.hpp); holes (h, 2)

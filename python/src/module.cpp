@@ -81,6 +81,30 @@ nb::dict stats_dict(const Stats& s) {
   return d;
 }
 
+// Host int32 (rows, k) array, C order.
+const std::int32_t* cells_of(const AnyArray& a, const char* name, int k, std::int64_t* rows) {
+  Input in = inspect(a, name);
+  if (in.on_device) throw nb::value_error((std::string(name) + " must be in host memory").c_str());
+  if (!holds<std::int32_t>(in))
+    throw nb::type_error((std::string(name) + " must be int32").c_str());
+  if (in.shape.size() != 2 || in.shape[1] != k)
+    throw nb::value_error(
+        (std::string(name) + " must have shape (m, " + std::to_string(k) + ")").c_str());
+  *rows = in.shape[0];
+  return static_cast<const std::int32_t*>(in.data);
+}
+
+// Host float64 (rows, k) array, C order.
+const double* reals_of(const AnyArray& a, const char* name, int k, std::int64_t* rows) {
+  Input in = inspect(a, name);
+  if (in.on_device || !holds<double>(in) || in.shape.size() != 2 || in.shape[1] != k)
+    throw nb::value_error((std::string(name) + " must be a host float64 array of shape (m, " +
+                           std::to_string(k) + ")")
+                              .c_str());
+  *rows = in.shape[0];
+  return static_cast<const double*>(in.data);
+}
+
 }  // namespace gpugeom::py
 
 using namespace gpugeom;
@@ -164,5 +188,6 @@ NB_MODULE(_core, m) {
 
   bind_spatial(m);
   bind_cells(m);
+  bind_mesh(m);
   bind_grid(m);
 }

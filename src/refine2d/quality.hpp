@@ -18,9 +18,9 @@ using exact::add_rn;
 using exact::mul_rn;
 using exact::sub_rn;
 
-// Is p strictly inside the circle with diameter ab (the angle apb obtuse)? The sign of
+// Is the angle apb obtuse (p strictly inside the circle with diameter ab)? The sign of
 // (a - p) . (b - p), exact: a floating-point filter, then the expansion of the four products.
-GG_HD inline bool encroaches(const double* a, const double* b, const double* p) {
+GG_HD inline bool obtuse(const double* a, const double* b, const double* p) {
   const double ax = sub_rn(a[0], p[0]), ay = sub_rn(a[1], p[1]);
   const double bx = sub_rn(b[0], p[0]), by = sub_rn(b[1], p[1]);
   const double xx = mul_rn(ax, bx), yy = mul_rn(ay, by);
@@ -45,6 +45,24 @@ GG_HD inline bool encroaches(const double* a, const double* b, const double* p) 
   const int ly = exact::expansion_product(len[2], e[2], len[3], e[3], py, t1, t2);
   const int ls = exact::expansion_sum(lx, px, ly, py, sum);
   return exact::expansion_sign(ls, sum) < 0;
+}
+
+// Does p encroach upon the subsegment ab? Triangle's rule (Shewchuk's diametral lens): the angle
+// apb is obtuse (p strictly inside the circle with diameter ab: the sign of (a - p) . (b - p),
+// exact) and at least 180 degrees less twice the angle bound: dot^2 >= lens * |a - p|^2 |b - p|^2
+// with lens = cos^2(2 bound) (1 without an angle bound: only a straight angle; 0 for the whole
+// diametral circle). The lens keeps vertices that cannot make a bad triangle from splitting a
+// subsegment; the comparison is in doubles, which only moves where points go, never what the
+// triangulation of them is.
+GG_HD inline bool encroaches(const double* a, const double* b, const double* p, double lens) {
+  if (!obtuse(a, b, p)) return false;
+  if (lens <= 0) return true;
+  const double ax = sub_rn(a[0], p[0]), ay = sub_rn(a[1], p[1]);
+  const double bx = sub_rn(b[0], p[0]), by = sub_rn(b[1], p[1]);
+  const double dot = add_rn(mul_rn(ax, bx), mul_rn(ay, by));
+  const double la = add_rn(mul_rn(ax, ax), mul_rn(ay, ay));
+  const double lb = add_rn(mul_rn(bx, bx), mul_rn(by, by));
+  return mul_rn(dot, dot) >= mul_rn(mul_rn(lens, la), lb);
 }
 
 // The squared edge lengths (l[k]: the edge opposite vertex k), twice the signed area, and the
@@ -104,7 +122,8 @@ GG_HD inline void circumcentre(const double* p0, const double* p1, const double*
 
 // Ungor's off-centre for a triangle whose smallest angle is below the bound: on the bisector of
 // the shortest edge (from a to b, the triangle's other vertex to its left), at the height from
-// the edge's midpoint where the edge subtends the bound (cot_half: cot(bound / 2) / 2, times the
+// the edge's midpoint a little below where the edge subtends the bound (cot_half: about
+// cot(bound / 2) / 2, times the
 // edge's length), unless the circumcentre c is nearer; the result in o.
 GG_HD inline void off_centre(const double* a, const double* b, const double* c, double cot_half,
                              double* o) {

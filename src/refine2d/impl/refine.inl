@@ -301,7 +301,11 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
   if (opt.min_angle > 0) {
     const double r = opt.min_angle * 3.14159265358979323846 / 180;
     bounds.sin2 = std::sin(r) * std::sin(r);
-    bounds.cot_half = 0.5 / std::tan(r / 2);
+    // 95 % of the height at which the shortest edge subtends the bound exactly: the new triangle
+    // is then strictly good despite rounding (on the bound exactly, half would come out bad and
+    // be split again); Triangle uses the same margin.
+    bounds.cot_half = 0.475 / std::tan(r / 2);
+    bounds.lens = std::cos(2 * r) * std::cos(2 * r);
   }
   bounds.max_area = opt.max_area > 0 ? opt.max_area : 0;
   if (!region_area.empty()) bounds.region_area = dregion.data();
@@ -311,7 +315,11 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     bounds.x0 = ag.x0, bounds.y0 = ag.y0, bounds.x1 = ag.x1, bounds.y1 = ag.y1;
   }
 
-  bool hull = opt.domain == Cdt2dOptions::Domain::ConvexHull, last = false;
+  // With no bound at all there is nothing to refine (not even encroached subsegments: Triangle
+  // splits them only for -q or -a): the constrained triangulation is the mesh.
+  bool bounded = bounds.sin2 > 0 || bounds.max_area > 0 || grid || bool(opt.max_area_at);
+  for (double a : region_area) bounded = bounded || a > 0;
+  bool hull = opt.domain == Cdt2dOptions::Domain::ConvexHull, last = !bounded;
   Buf<std::int8_t> corner;
   Buf<std::int32_t> dbase;
   for (std::int64_t round = 0;; ++round) {
@@ -367,7 +375,7 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
       host_sizes(ex, m, st.np, opt.max_area_at, sizes);
       b.triangle_area = sizes.data();
     }
-    find_encroached(ex, m, s, st.free_pt.data(), d);
+    find_encroached(ex, m, s, st.free_pt.data(), bounds.lens, d);
     const Terminator tm{st.on_base.data(), dbase.data()};
     find_bad(ex, m, s, b, tm, d);
     Buf<std::int32_t> winners;

@@ -86,6 +86,7 @@ struct Decisions {
 struct Bounds {
   double sin2 = 0;       // squared sine of the smallest angle allowed (0: none)
   double cot_half = 0;   // cot(bound / 2) / 2: the off-centre's height over the edge's length
+  double lens = 1;       // cos^2(2 bound): encroaches()'s diametral lens
   double max_area = 0;   // global (0: none)
   const double* region_area = nullptr;  // per region (<= 0: none), by attribute - 1
   const double* triangle_area = nullptr;  // per triangle, from the host's sizing function
@@ -118,12 +119,13 @@ GG_INLINE void mark(std::int32_t* flags, std::int64_t j) {
   atomic_max(flags + j, std::int32_t(1));
 }
 
-// Encroached subsegments: the apex of each triangle beside a subsegment strictly inside its
-// diametral circle. That apex is the one vertex to test: the triangle's circumcircle covers the
+// Encroached subsegments: the apex of each triangle beside a subsegment in its diametral lens
+// (encroaches()). That apex is the one vertex to test: the triangle's circumcircle covers the
 // half of the diametral disc on its side unless the apex is inside it, so no other vertex seen
-// from the subsegment can be. A free Steiner point that encroaches is removed as well.
+// from the subsegment can be (Triangle tests the same vertex). A free Steiner point that
+// encroaches is removed as well (Ruppert's rejected circumcentre).
 inline void find_encroached(Exec& ex, const RoundMesh& m, const Subsegments& s,
-                            const std::int8_t* free_pt, Decisions& d) {
+                            const std::int8_t* free_pt, double lens, Decisions& d) {
   const std::int32_t *T = m.tri, *O = s.of_edge.data();
   const double* P = m.xy;
   std::int32_t *split = d.split.data(), *drop = d.drop.data();
@@ -136,7 +138,7 @@ inline void find_encroached(Exec& ex, const RoundMesh& m, const Subsegments& s,
         const std::int32_t apex = T[3 * t + k];
         const double* a = P + 2 * std::int64_t(T[3 * t + (k + 1) % 3]);
         const double* b = P + 2 * std::int64_t(T[3 * t + (k + 2) % 3]);
-        if (!encroaches(a, b, P + 2 * std::int64_t(apex))) return;
+        if (!encroaches(a, b, P + 2 * std::int64_t(apex), lens)) return;
         mark(split, j);
         if (free_pt[apex]) atomic_max(drop + apex, std::int32_t(1));
       });
@@ -271,7 +273,7 @@ inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const B
             const std::int32_t g = O[3 * u + j];
             if (g < 0) continue;
             if (encroaches(m.xy + 2 * std::int64_t(E[2 * g]), m.xy + 2 * std::int64_t(E[2 * g + 1]),
-                           q)) {
+                           q, b.lens)) {
               mark(split, g);
               enc = true;
             }
