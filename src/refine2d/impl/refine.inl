@@ -257,6 +257,36 @@ inline void host_sizes(Exec& ex, const RoundMesh& m, std::int64_t np,
   ex.from_host(a.data(), std::int64_t(a.size()), out.data());
 }
 
+// Per input vertex: 0, or kCorner where two or more base segments end (their subsegments are
+// split on concentric shells), kAcute where two of them meet at less than 60 degrees (a small
+// input angle: the terminator's rules apply there). Host code, once per call.
+inline std::vector<std::int8_t> corner_kinds(Exec& ex, const double* dxy, std::int64_t n,
+                                             const std::vector<std::int32_t>& base) {
+  std::vector<double> xy(2 * static_cast<std::size_t>(n));
+  ex.to_host(dxy, 2 * n, xy.data());
+  std::vector<std::vector<double>> dirs(static_cast<std::size_t>(n));
+  for (std::size_t j = 0; j + 1 < base.size(); j += 2) {
+    const std::int32_t a = base[j], b = base[j + 1];
+    if (a == b) continue;
+    const double dx = xy[2 * std::size_t(b)] - xy[2 * std::size_t(a)];
+    const double dy = xy[2 * std::size_t(b) + 1] - xy[2 * std::size_t(a) + 1];
+    if (dx == 0 && dy == 0) continue;
+    dirs[std::size_t(a)].push_back(std::atan2(dy, dx));
+    dirs[std::size_t(b)].push_back(std::atan2(-dy, -dx));
+  }
+  std::vector<std::int8_t> kind(static_cast<std::size_t>(n), 0);
+  const double pi = 3.14159265358979323846;
+  for (std::size_t v = 0; v < dirs.size(); ++v) {
+    auto& d = dirs[v];
+    if (d.size() < 2) continue;
+    std::sort(d.begin(), d.end());
+    double gap = d.front() + 2 * pi - d.back();
+    for (std::size_t i = 1; i < d.size(); ++i) gap = std::min(gap, d[i] - d[i - 1]);
+    kind[v] = gap < pi / 3 ? kAcute : kCorner;
+  }
+  return kind;
+}
+
 // xy (n points) and segs (nseg pairs) in the executor's memory. final_of_base: per given
 // segment, the name its marks take in the output. Stops early, out untouched, when two segments
 // cross (rc.cross_a).
@@ -322,6 +352,9 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
   bool hull = opt.domain == Cdt2dOptions::Domain::ConvexHull, last = !bounded;
   Buf<std::int8_t> corner;
   Buf<std::int32_t> dbase;
+  constexpr std::int64_t kStall = 48;
+  std::int64_t fewest_bad = INT64_MAX, best_round = 0;
+  bool stalled = false;
   for (std::int64_t round = 0;; ++round) {
     cdt::DeviceResult dr;
     Stats cst;
@@ -339,23 +372,11 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
       continue;
     }
     if (!corner.size()) {
-      // Corners: input vertices where two or more base segments end.
       dbase = ex.template alloc<std::int32_t>(std::max<std::size_t>(base.size(), 2));
       ex.from_host(base.data(), std::int64_t(base.size()), dbase.data());
-      auto deg = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(n, 1)));
-      std::int32_t* D = deg.data();
-      ex.fill(D, n, std::int32_t(0));
-      const std::int32_t* BB = dbase.data();
-      ex.for_each_index(
-          std::int64_t(base.size() / 2), GG_LAMBDA(std::int64_t j) {
-            if (BB[2 * j] == BB[2 * j + 1]) return;
-            atomic_add(D + BB[2 * j], std::int32_t(1));
-            atomic_add(D + BB[2 * j + 1], std::int32_t(1));
-          });
-      corner = ex.template alloc<std::int8_t>(std::size_t(std::max<std::int64_t>(n, 1)));
-      std::int8_t* C = corner.data();
-      ex.for_each_index(
-          n, GG_LAMBDA(std::int64_t v) { C[v] = D[v] >= 2 ? 1 : 0; });
+      const std::vector<std::int8_t> c = corner_kinds(ex, xy, n, base);
+      corner = ex.template alloc<std::int8_t>(std::max<std::size_t>(c.size(), 1));
+      ex.from_host(c.data(), std::int64_t(c.size()), corner.data());
     }
     const Subsegments s = subsegments_of(ex, m, st.seg_base.data());
     Decisions d;
@@ -376,11 +397,11 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
       b.triangle_area = sizes.data();
     }
     find_encroached(ex, m, s, st.free_pt.data(), bounds.lens, d);
-    const Terminator tm{st.on_base.data(), dbase.data()};
-    find_bad(ex, m, s, b, tm, d);
+    const Terminator tm{st.on_base.data(), dbase.data(), corner.data(), n};
+    find_bad(ex, m, s, b, tm, Corners{corner.data(), n}, d);
     Buf<std::int32_t> winners;
-    const std::int64_t nwin = choose_points(ex, m, d, winners);
-    auto any = ex.template alloc<std::int64_t>(1);
+    const std::int64_t nwin = choose_points(ex, m, s, d, winners);
+    auto any = ex.template alloc<std::int64_t>(2);
     std::int64_t flagged = 0;
     if (!last) {
       const std::int32_t *SP = d.split.data(), *DR = d.drop.data();
@@ -389,9 +410,24 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
           ns + st.np,
           GG_LAMBDA(std::int64_t i)->std::int64_t { return i < ns ? SP[i] : DR[i - ns]; },
           std::int64_t(0), thrust::plus<std::int64_t>(), any.data());
-      ex.to_host(any.data(), 1, &flagged);
+      // The bad triangles refinement still works on (the terminator's excepted).
+      const std::int8_t *R = d.reason.data(), *LG = d.large.data();
+      ex.transform_reduce_into(
+          m.nt,
+          GG_LAMBDA(std::int64_t t)->std::int64_t {
+            return R[t] == std::int8_t(SmallAngle::Limit) || LG[t] ? 1 : 0;
+          },
+          std::int64_t(0), thrust::plus<std::int64_t>(), any.data() + 1);
+      std::int64_t h[2];
+      ex.to_host(any.data(), 2, h);
+      flagged = h[0];
+      // Refinement that has not lowered its count of bad triangles for kStall rounds has stalled
+      // (near the angle limit new points can make bad triangles as fast as they remove them):
+      // it stops, the bad triangles reported as Limit, rather than run on without end.
+      if (h[1] < fewest_bad) fewest_bad = h[1], best_round = round;
+      if (round - best_round > kStall) stalled = true;
     }
-    if (last || (flagged == 0 && nwin == 0)) {
+    if (last || stalled || (flagged == 0 && nwin == 0)) {
       out.rounds = round + 1;
       finish(ex, st, dr, s, d, final_of_base, opt, out);
       return;

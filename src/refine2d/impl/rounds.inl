@@ -10,6 +10,9 @@
 template <class T>
 using Buf = typename Exec::template Buffer<T>;
 
+// Kinds of input vertices (refine.inl's corner_kinds).
+constexpr std::int8_t kCorner = 1, kAcute = 2;
+
 // A triangulation of one round, in the executor's memory (cdt2d's DeviceResult, viewed).
 struct RoundMesh {
   const double* xy;
@@ -148,12 +151,14 @@ inline void find_encroached(Exec& ex, const RoundMesh& m, const Subsegments& s,
 struct Terminator {
   const std::int32_t* on_base;  // per point: the base segment a split vertex lies on, else -1
   const std::int32_t* base;     // base segment ends, 2 per base
+  const std::int8_t* corner;    // per input vertex: its kind (kAcute: a small input angle)
+  std::int64_t n_in;
 };
 
 // Shewchuk's terminator, for a triangle whose smallest angle (at vertex k, opposite its shortest
 // edge) is below the bound: InputAngle when both edges at that vertex lie on segments (the angle
 // is one the input makes), Shell when the shortest edge joins split vertices on two segments
-// from one input vertex at equal distances from it (concentric-shell vertices of a small input
+// from one input vertex where segments meet at less than 60 degrees, at equal distances from it (concentric-shell vertices of a small input
 // angle, whose split would only cut that angle again); else 0.
 GG_HD inline std::int8_t forced(const RoundMesh& m, const Terminator& tm, std::int64_t t, int k) {
   if (m.seg[3 * t + (k + 1) % 3] >= 0 && m.seg[3 * t + (k + 2) % 3] >= 0)
@@ -164,7 +169,7 @@ GG_HD inline std::int8_t forced(const RoundMesh& m, const Terminator& tm, std::i
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j) {
       const std::int32_t c = tm.base[2 * bp + i];
-      if (c != tm.base[2 * bq + j]) continue;
+      if (c != tm.base[2 * bq + j] || c >= tm.n_in || tm.corner[c] != kAcute) continue;
       const double* pc = m.xy + 2 * std::int64_t(c);
       const double* pp = m.xy + 2 * std::int64_t(p);
       const double* pq = m.xy + 2 * std::int64_t(q);
@@ -180,10 +185,11 @@ GG_HD inline std::int8_t forced(const RoundMesh& m, const Terminator& tm, std::i
 }
 
 // Walks from triangle t towards q without crossing a subsegment. Returns the triangle holding q
-// (q strictly inside or on an edge that is on no subsegment), or -1 after marking the
-// subsegment met (crossed, or holding q), or -2 when q is a vertex or the walk ran too long.
+// (q strictly inside, or on an edge that is on no subsegment); -1 - j when subsegment j stops it
+// (crossed, or holding q); kNoPlace when q is a vertex or the walk ran too long.
+constexpr std::int64_t kNoPlace = INT64_MIN;
 GG_HD inline std::int64_t walk_to(const RoundMesh& m, const std::int32_t* of_edge, std::int64_t t,
-                                  const double* q, std::int32_t* split) {
+                                  const double* q) {
   double s[pred::kOrient2dScratch];
   for (std::int64_t step = 0; step <= m.nt; ++step) {
     int beyond = -1, zeros = 0, zero_edge = -1;
@@ -199,29 +205,47 @@ GG_HD inline std::int64_t walk_to(const RoundMesh& m, const std::int32_t* of_edg
       if (o == 0) ++zeros, zero_edge = k;
     }
     if (beyond < 0) {
-      if (zeros >= 2) return -2;  // q is a vertex
-      if (zeros == 1 && of_edge[3 * t + zero_edge] >= 0) {
-        mark(split, of_edge[3 * t + zero_edge]);
-        return -1;
-      }
+      if (zeros >= 2) return kNoPlace;  // q is a vertex
+      if (zeros == 1 && of_edge[3 * t + zero_edge] >= 0) return -1 - of_edge[3 * t + zero_edge];
       return t;
     }
     const std::int32_t j = of_edge[3 * t + beyond];
-    if (j >= 0) {
-      mark(split, j);
-      return -1;
-    }
+    if (j >= 0) return -1 - std::int64_t(j);
     const std::int32_t next = m.nbr[3 * t + beyond];
-    if (next < 0) return -2;  // (a boundary edge is always a subsegment)
+    if (next < 0) return kNoPlace;  // (a boundary edge is always a subsegment)
     t = next;
   }
-  return -2;
+  return kNoPlace;
+}
+
+// The corners (input vertices where segments meet) and the input's size, for the terminator.
+struct Corners {
+  const std::int8_t* corner;
+  std::int64_t n_in;
+};
+
+// Shewchuk's terminator for subsegments: a skinny triangle's point that would make the split of
+// a subsegment at a small input angle's corner (kAcute) put the new vertex nearer the corner
+// than the triangle's shortest edge is long splits nothing (the triangle is left, Shell): such
+// splits would only cut the angle at ever smaller shells, and never end.
+GG_HD inline bool terminated(const RoundMesh& m, const Corners& cn, const std::int32_t* ends,
+                             std::int64_t j, double shortest2) {
+  const std::int32_t a = ends[2 * j], b = ends[2 * j + 1];
+  const bool ca = a < cn.n_in && cn.corner[a], cb = b < cn.n_in && cn.corner[b];
+  if (ca == cb || (ca ? cn.corner[a] : cn.corner[b]) != kAcute) return false;
+  double sp[2];
+  const double* pa = m.xy + 2 * std::int64_t(a);
+  const double* pb = m.xy + 2 * std::int64_t(b);
+  split_point(pa, pb, ca, cb, sp);
+  const double* c = ca ? pa : pb;
+  const double dx = sub_rn(sp[0], c[0]), dy = sub_rn(sp[1], c[1]);
+  return add_rn(mul_rn(dx, dx), mul_rn(dy, dy)) < shortest2;
 }
 
 // The bad triangles: each gets its new point, or splits the subsegment that hides it or that it
 // would encroach upon, or is left (the terminator's triangles, reasons recorded).
 inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const Bounds& bounds,
-                     const Terminator& tm, Decisions& d) {
+                     const Terminator& tm, const Corners& cn, Decisions& d) {
   const std::int32_t* O = s.of_edge.data();
   const std::int32_t* E = s.ends.data();
   std::int32_t* split = d.split.data();
@@ -261,25 +285,42 @@ inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const B
         else
           q[0] = c[0], q[1] = c[1];
         if (!std::isfinite(q[0]) || !std::isfinite(q[1])) return;
-        const std::int64_t at = walk_to(m, O, t, q, split);
-        if (at < 0) return;
-        // A point inside the diametral circle of a subsegment of its triangle or of a neighbour
-        // would be removed next round: split those subsegments now instead.
-        bool enc = false;
+        // Subsegments in the way: the one hiding q, else those of the landing triangle and its
+        // neighbours whose lens q lies in (q would be removed next round). A skinny triangle
+        // splits none the terminator stops; if that leaves none, it is left as it is.
+        const bool skinny_only = thin && !big;
+        const double shortest2 = sh.l[k];
+        const std::int64_t at = walk_to(m, O, t, q);
+        if (at == kNoPlace) return;
+        if (at < 0) {
+          const std::int64_t j = -1 - at;
+          if (skinny_only && terminated(m, cn, E, j, shortest2))
+            R[t] = std::int8_t(SmallAngle::Shell);
+          else
+            mark(split, j);
+          return;
+        }
+        int enc = 0, stopped = 0;
         for (int i = -1; i < 3; ++i) {
           const std::int64_t u = i < 0 ? at : m.nbr[3 * at + i];
           if (u < 0) continue;
           for (int j = 0; j < 3; ++j) {
             const std::int32_t g = O[3 * u + j];
             if (g < 0) continue;
-            if (encroaches(m.xy + 2 * std::int64_t(E[2 * g]), m.xy + 2 * std::int64_t(E[2 * g + 1]),
-                           q, b.lens)) {
+            if (!encroaches(m.xy + 2 * std::int64_t(E[2 * g]), m.xy + 2 * std::int64_t(E[2 * g + 1]),
+                            q, b.lens))
+              continue;
+            ++enc;
+            if (skinny_only && terminated(m, cn, E, g, shortest2))
+              ++stopped;
+            else
               mark(split, g);
-              enc = true;
-            }
           }
         }
-        if (enc) return;
+        if (enc) {
+          if (enc == stopped) R[t] = std::int8_t(SmallAngle::Shell);
+          return;
+        }
         NP[2 * t] = q[0];
         NP[2 * t + 1] = q[1];
         L[t] = std::int32_t(at);
@@ -287,32 +328,63 @@ inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const B
       });
 }
 
-// The new points that claim their landing triangle and its neighbours unopposed (the lowest key
-// wins each triangle): no two land in touching triangles, so one round never crowds a place.
-inline std::int64_t choose_points(Exec& ex, const RoundMesh& m, Decisions& d,
-                                  Buf<std::int32_t>& winners) {
+// A new point's cavity: the triangles whose circumcircles hold it, reachable from its landing
+// triangle without crossing a subsegment (the triangles its insertion replaces), at most
+// kCavity of them. The in-circle test is the exact predicate's filter, with "cannot tell" taken
+// as inside: a definite answer is the exact sign, so the cavity is the same on both executors.
+constexpr int kCavity = 64;
+GG_HD inline int cavity_of(const RoundMesh& m, const std::int32_t* of_edge, std::int32_t land,
+                           const double* q, std::int32_t* list) {
+  int n = 0;
+  list[n++] = land;
+  for (int i = 0; i < n; ++i) {
+    const std::int64_t t = list[i];
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t u = m.nbr[3 * t + k];
+      if (u < 0 || of_edge[3 * t + k] >= 0) continue;
+      bool seen = false;
+      for (int j = 0; j < n && !seen; ++j) seen = list[j] == u;
+      if (seen) continue;
+      const double* a = m.xy + 2 * std::int64_t(m.tri[3 * std::int64_t(u)]);
+      const double* b = m.xy + 2 * std::int64_t(m.tri[3 * std::int64_t(u) + 1]);
+      const double* c = m.xy + 2 * std::int64_t(m.tri[3 * std::int64_t(u) + 2]);
+      if (pred::incircle_fast(a, b, c, q) < 0) continue;
+      if (n == kCavity) return n;  // (a huge cavity: claimed in part)
+      list[n++] = u;
+    }
+  }
+  return n;
+}
+
+// The new points whose cavities no better-ranked point's cavity touches (the lowest key wins
+// each triangle): the points of one round replace disjoint sets of triangles, as if inserted one
+// after another, so they never crowd each other (two points in one cavity would make an edge
+// far shorter than the mesh asks for there, and new bad triangles).
+inline std::int64_t choose_points(Exec& ex, const RoundMesh& m, const Subsegments& s,
+                                  Decisions& d, Buf<std::int32_t>& winners) {
   auto claim = ex.template alloc<std::uint64_t>(std::size_t(std::max<std::int64_t>(m.nt, 1)));
   std::uint64_t* C = claim.data();
   ex.fill(C, m.nt, ~std::uint64_t(0));
-  const std::int32_t *L = d.land.data(), *N = m.nbr;
+  const std::int32_t *L = d.land.data(), *O = s.of_edge.data();
   const std::uint64_t* K = d.key.data();
+  const double* NP = d.point.data();
   ex.for_each_index(
       m.nt, GG_LAMBDA(std::int64_t t) {
-        const std::int32_t a = L[t];
-        if (a < 0) return;
-        atomic_min(C + a, K[t]);
-        for (int i = 0; i < 3; ++i)
-          if (N[3 * a + i] >= 0) atomic_min(C + N[3 * a + i], K[t]);
+        if (L[t] < 0) return;
+        std::int32_t list[kCavity];
+        const int n = cavity_of(m, O, L[t], NP + 2 * t, list);
+        for (int i = 0; i < n; ++i) atomic_min(C + list[i], K[t]);
       });
   winners = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(m.nt, 1)));
   auto count = ex.template alloc<std::int64_t>(1);
   ex.compact_indices_to(
       m.nt,
       GG_LAMBDA(std::int64_t t)->bool {
-        const std::int32_t a = L[t];
-        if (a < 0 || C[a] != K[t]) return false;
-        for (int i = 0; i < 3; ++i)
-          if (N[3 * a + i] >= 0 && C[N[3 * a + i]] != K[t]) return false;
+        if (L[t] < 0) return false;
+        std::int32_t list[kCavity];
+        const int n = cavity_of(m, O, L[t], NP + 2 * t, list);
+        for (int i = 0; i < n; ++i)
+          if (C[list[i]] != K[t]) return false;
         return true;
       },
       winners.data(), count.data());
