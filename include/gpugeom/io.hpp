@@ -92,12 +92,13 @@ void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& o
 // A planar straight-line graph as Triangle's .poly file holds it (2D): the points (from the
 // .node file of the same name where the .poly lists none), segments as pairs of point indices
 // counted from 0 whatever the file's first index, hole points (x, y) and regional attributes
-// (x, y, attribute; a maximum area is read and ignored). Boundary markers and point attributes
-// are read and ignored.
+// (x, y, attribute) with each region's maximum area in region_areas (0 where the file gives
+// none). Boundary markers and point attributes are read and ignored.
 struct Pslg {
   PointSet points;
   std::vector<std::int32_t> segments;
   std::vector<double> holes, regions;
+  std::vector<double> region_areas;  // one per region (refine2d's per-region bound)
 };
 Pslg read_poly(const std::string& path);
 // Writes g as a .poly file (points inline, indices from 0); markers, when given, one boundary

@@ -95,6 +95,7 @@ Pslg parse_poly(std::string_view text, const std::string& path) {
       l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(nr) + " regions");
     auto v = fields(l, line, 4, "<index> x y <attribute> [<maximum area>]");
     for (int k = 1; k <= 3; ++k) g.regions.push_back(need_double(l, v[std::size_t(k)], "a number"));
+    g.region_areas.push_back(v.size() > 4 ? need_double(l, v[4], "an area") : 0.0);
   }
   return g;
 }

@@ -4,6 +4,7 @@
 #include "gpugeom/refine2d.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -17,6 +18,12 @@ namespace gpugeom {
 
 namespace {
 
+std::string number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
 void check_options(std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
                    const Refine2dOptions& opt) {
   del2d::check_count(n);
@@ -26,13 +33,13 @@ void check_options(std::int64_t n, const std::int32_t* segments, std::int64_t ns
                     (nseg > 0 ? " but the pointer is null" : ": the count must not be negative"));
   if (!(opt.min_angle >= 0) || opt.min_angle > kRefineMaxAngle)
     throw Error(ErrorCode::InvalidArgument,
-                "min_angle " + std::to_string(opt.min_angle) +
-                    " degrees: give 0 (no angle bound) up to " + std::to_string(kRefineMaxAngle) +
+                "min_angle " + number(opt.min_angle) + " degrees: give 0 (no angle bound) up to " +
+                    number(kRefineMaxAngle) +
                     " (above it Delaunay refinement need not end; Triangle refuses it too)");
   if (!(opt.max_area >= 0) || std::isinf(opt.max_area))
     throw Error(ErrorCode::InvalidArgument,
                 "max_area must be a finite area > 0, or 0 for no bound (got " +
-                    std::to_string(opt.max_area) + ")");
+                    number(opt.max_area) + ")");
   for (std::size_t i = 0; i < opt.regions.size(); ++i)
     if (!std::isfinite(opt.regions[i].max_area))
       throw Error(ErrorCode::InvalidArgument,

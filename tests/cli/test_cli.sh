@@ -175,6 +175,13 @@ PY
 grep -q 'Name="attribute"' "$W/l.vtu" || { echo "FAIL: cdt2d .vtu has no attribute cell data"; fail=1; }
 expect 0 "12 segments" -- "$G" cdt2d "$W/l.poly" --draw "$W/l.svg"
 grep -q 'stroke="#15c"' "$W/l.svg" || { echo "FAIL: cdt2d drawing has no segments"; fail=1; }
+# mesh2d: the same domain refined (Triangle's -q and -a), checked, written as Triangle writes.
+expect 0 "check: valid quality mesh" -- "$G" mesh2d "$W/l.poly" -q 30 -a 0.5 -o "$W/m.ele" --check
+[ -s "$W/m.node" ] || { echo "FAIL: mesh2d wrote no .node beside the .ele"; fail=1; }
+expect 0 "smallest angles" -- "$G" mesh2d "$W/l.poly" -q 25 -o "$W/m.vtu" --draw "$W/m.svg"
+expect 2 "33.8" -- "$G" mesh2d "$W/l.poly" -q 40 -o "$W/refused.ele"
+[ ! -e "$W/refused.ele" ] || { echo "FAIL: a refused mesh2d wrote its output"; fail=1; }
+expect 0 "usage: gpugeom mesh2d" -- "$G" mesh2d --help
 expect 0 "12 segments" -- "$G" cdt2d "$W/l.poly" --draw "$W/l.png"
 [ -s "$W/l.png" ] || { echo "FAIL: cdt2d PNG"; fail=1; }
 # its segment edges as a .poly, triangulated again: the same triangles

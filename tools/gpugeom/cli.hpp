@@ -77,6 +77,7 @@ int cmd_cvd(const Global& g, Args& a);
 int cmd_stipple(const Global& g, Args& a);
 int cmd_delaunay2d(const Global& g, Args& a);
 int cmd_cdt2d(const Global& g, Args& a);
+int cmd_mesh2d(const Global& g, Args& a);
 int cmd_hull3d(const Global& g, Args& a);
 int cmd_delaunay3d(const Global& g, Args& a);
 int cmd_cells(const Global& g, Args& a);

@@ -134,6 +134,7 @@ static const char* kUsageText =
     "  stipple IMG -o OUT.svg  stipple drawing of a photograph (also --png)\n"
     "  delaunay2d P -o MESH    exact 2D Delaunay triangulation (--voronoi, --draw, --check)\n"
     "  cdt2d IN.poly -o MESH   exact constrained Delaunay (segments, holes, regions; --check)\n"
+    "  mesh2d IN.poly -q 30 -a 0.01 -o MESH   quality mesh of a domain (Triangle's -q -a)\n"
     "  hull3d P -o MESH        exact 3D convex hull (--check)\n"
     "  delaunay3d P -o MESH    exact 3D Delaunay tetrahedralisation (--check)\n"
     "  cells P --box B -o T    Voronoi cells of 3D particles in a box, bounded or periodic\n"
@@ -168,7 +169,7 @@ static int run(int argc, char** argv) {
       std::string s = argv[i];
       if (s == "--verbose" || s == "-v")
         g.verbose = true;
-      else if (s == "--quiet" || s == "-q")
+      else if (s == "--quiet" || (s == "-q" && cmd != "mesh2d"))  // (mesh2d: -q is the angle, as Triangle's)
         g.quiet = true;
       else if (s == "--backend" && i + 1 < argc)
         g.backend = parse_backend(argv[++i]);
@@ -193,7 +194,7 @@ static int run(int argc, char** argv) {
     const bool help = std::find(rest.begin(), rest.end(), "--help") != rest.end() ||
                       std::find(rest.begin(), rest.end(), "-h") != rest.end();
     if (g.backend != Backend::Cpu && !help &&
-        (cmd == "delaunay2d" || cmd == "cdt2d" || cmd == "hull3d" || cmd == "delaunay3d" ||
+        (cmd == "delaunay2d" || cmd == "cdt2d" || cmd == "mesh2d" || cmd == "hull3d" || cmd == "delaunay3d" ||
          cmd == "edt" || cmd == "cvd" || cmd == "stipple" || cmd == "cells"))
       warm.t = std::thread([&warm] {
         const auto t0 = std::chrono::steady_clock::now();
@@ -210,6 +211,7 @@ static int run(int argc, char** argv) {
     if (cmd == "stipple") return cmd_stipple(g, a);
     if (cmd == "delaunay2d") return cmd_delaunay2d(g, a);
     if (cmd == "cdt2d") return cmd_cdt2d(g, a);
+    if (cmd == "mesh2d") return cmd_mesh2d(g, a);
     if (cmd == "hull3d") return cmd_hull3d(g, a);
     if (cmd == "delaunay3d") return cmd_delaunay3d(g, a);
     if (cmd == "cells") return cmd_cells(g, a);

@@ -352,8 +352,9 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
   bool hull = opt.domain == Cdt2dOptions::Domain::ConvexHull, last = !bounded;
   Buf<std::int8_t> corner;
   Buf<std::int32_t> dbase;
-  constexpr std::int64_t kStall = 48;
-  std::int64_t fewest_bad = INT64_MAX, best_round = 0;
+  constexpr std::int64_t kStall = 64;
+  double best_share = 2;
+  std::int64_t best_round = 0;
   bool stalled = false;
   for (std::int64_t round = 0;; ++round) {
     cdt::DeviceResult dr;
@@ -421,10 +422,13 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
       std::int64_t h[2];
       ex.to_host(any.data(), 2, h);
       flagged = h[0];
-      // Refinement that has not lowered its count of bad triangles for kStall rounds has stalled
+      // Refinement whose share of bad triangles has not fallen for kStall rounds has stalled
       // (near the angle limit new points can make bad triangles as fast as they remove them):
-      // it stops, the bad triangles reported as Limit, rather than run on without end.
-      if (h[1] < fewest_bad) fewest_bad = h[1], best_round = round;
+      // it stops, the bad triangles reported as Limit, rather than run on without end. (The
+      // share, not the count: refining to an area bound multiplies the large triangles for many
+      // rounds before their number falls.)
+      const double share = double(h[1]) / double(std::max<std::int64_t>(m.nt, 1));
+      if (share < best_share) best_share = share, best_round = round;
       if (round - best_round > kStall) stalled = true;
     }
     if (last || stalled || (flagged == 0 && nwin == 0)) {
