@@ -19,8 +19,8 @@ using sz = std::size_t;
 
 // The options both entries share: holes (h, 2), regions (r, 4: x, y, attribute, max area),
 // bounds, an area grid (rows, cols) with its extent (x0, y0, x1, y1), or a sizing function.
-void fill_options(Refine2dOptions& o, const AnyArray& holes, const AnyArray& regions,
-                  bool enclosed, double min_angle, double max_area, const nb::object& grid,
+void fill_options(Refine2dOptions& o, const AnyArray& holes, const AnyArray& regions, bool enclosed,
+                  double min_angle, double max_area, const nb::object& grid,
                   const nb::object& extent, std::int64_t max_steiner) {
   std::int64_t nh = 0, nr = 0;
   const double* h = reals_of(holes, "holes", 2, &nh);
@@ -95,9 +95,9 @@ nb::dict refine2d_bind(const AnyArray& points, const AnyArray& segments, const A
 
 nb::dict refine2d_device_bind(const AnyArray& points, const AnyArray& segments,
                               const AnyArray& holes, const AnyArray& regions, bool enclosed,
-                              double min_angle, double max_area, nb::object grid,
-                              nb::object extent, std::int64_t max_steiner,
-                              const std::string& backend, std::uintptr_t stream, int threads) {
+                              double min_angle, double max_area, nb::object grid, nb::object extent,
+                              std::int64_t max_steiner, const std::string& backend,
+                              std::uintptr_t stream, int threads) {
   const Input p = points_input(points, 2), sg = inspect(segments, "segments");
   if (!holds<std::int32_t>(sg) || sg.shape.size() != 2 || sg.shape[1] != 2)
     throw nb::value_error("segments must be an int32 array of shape (m, 2)");
@@ -106,9 +106,8 @@ nb::dict refine2d_device_bind(const AnyArray& points, const AnyArray& segments,
   auto o = options_for<Refine2dOptions>(backend, stream, threads, p);
   fill_options(o, holes, regions, enclosed, min_angle, max_area, grid, extent, max_steiner);
   const std::int64_t n = p.shape[0], m = sg.shape[0];
-  DeviceRefinedMesh2d t = unlocked([&] {
-    return refine2d_device(pts(p), n, static_cast<const std::int32_t*>(sg.data), m, o);
-  });
+  DeviceRefinedMesh2d t = unlocked(
+      [&] { return refine2d_device(pts(p), n, static_cast<const std::int32_t*>(sg.data), m, o); });
   const DeviceOut out{t.backend, device_of(o)};
   const sz nt = sz(t.num_triangles), np = sz(t.num_points);
   nb::dict r;
@@ -126,8 +125,7 @@ nb::dict refine2d_device_bind(const AnyArray& points, const AnyArray& segments,
 }
 
 // The exact checker of refined meshes (verify.hpp), on host arrays.
-std::pair<bool, std::string> check_refined2d_bind(const AnyArray& points,
-                                                  const AnyArray& triangles,
+std::pair<bool, std::string> check_refined2d_bind(const AnyArray& points, const AnyArray& triangles,
                                                   const AnyArray& segment_of,
                                                   const AnyArray& segments,
                                                   const AnyArray& duplicate_of, double min_angle,
@@ -146,10 +144,9 @@ std::pair<bool, std::string> check_refined2d_bind(const AnyArray& points,
   verify::Report rep;
   {
     nb::gil_scoped_release released;
-    rep = verify::check_refined_mesh2d(p, n, t, nt, g, s, ns,
-                                       static_cast<const std::int32_t*>(d.data), min_angle,
-                                       max_area, static_cast<const std::int32_t*>(e.data),
-                                       e.shape[0]);
+    rep = verify::check_refined_mesh2d(
+        p, n, t, nt, g, s, ns, static_cast<const std::int32_t*>(d.data), min_angle, max_area,
+        static_cast<const std::int32_t*>(e.data), e.shape[0]);
   }
   return {rep.ok, rep.message};
 }
@@ -162,10 +159,10 @@ void bind_mesh(nb::module_& m) {
         "enclosed"_a = true, "split"_a = false, "min_angle"_a = 20.0, "max_area"_a = 0.0,
         "grid"_a = nb::none(), "extent"_a = nb::none(), "sizing"_a = nb::none(),
         "max_steiner"_a = -1, "backend"_a = "auto", "threads"_a = 0);
-  m.def("refine2d_device", &refine2d_device_bind, "points"_a, "segments"_a, "holes"_a,
-        "regions"_a, "enclosed"_a = true, "min_angle"_a = 20.0, "max_area"_a = 0.0,
-        "grid"_a = nb::none(), "extent"_a = nb::none(), "max_steiner"_a = -1,
-        "backend"_a = "auto", "stream"_a = 0, "threads"_a = 0);
+  m.def("refine2d_device", &refine2d_device_bind, "points"_a, "segments"_a, "holes"_a, "regions"_a,
+        "enclosed"_a = true, "min_angle"_a = 20.0, "max_area"_a = 0.0, "grid"_a = nb::none(),
+        "extent"_a = nb::none(), "max_steiner"_a = -1, "backend"_a = "auto", "stream"_a = 0,
+        "threads"_a = 0);
   m.def("check_refined2d", &check_refined2d_bind, "points"_a, "triangles"_a, "segment_of"_a,
         "segments"_a, "duplicate_of"_a, "min_angle"_a, "max_area"_a, "exempt"_a);
 }

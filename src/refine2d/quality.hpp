@@ -122,9 +122,9 @@ GG_HD inline void circumcentre(const double* p0, const double* p1, const double*
 
 // Ungor's off-centre for a triangle whose smallest angle is below the bound: on the bisector of
 // the shortest edge (from a to b, the triangle's other vertex to its left), at the height from
-// the edge's midpoint a little below where the edge subtends the bound (cot_half: about
-// cot(bound / 2) / 2, times the
-// edge's length), unless the circumcentre c is nearer; the result in o.
+// the edge's midpoint a little below where the edge subtends the bound (cot_half, about
+// cot(bound / 2) / 2, times the edge's length), unless the circumcentre c is nearer; the result
+// in o.
 GG_HD inline void off_centre(const double* a, const double* b, const double* c, double cot_half,
                              double* o) {
   const double mx = mul_rn(0.5, add_rn(a[0], b[0])), my = mul_rn(0.5, add_rn(a[1], b[1]));

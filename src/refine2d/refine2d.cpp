@@ -37,9 +37,9 @@ void check_options(std::int64_t n, const std::int32_t* segments, std::int64_t ns
                     number(kRefineMaxAngle) +
                     " (above it Delaunay refinement need not end; Triangle refuses it too)");
   if (!(opt.max_area >= 0) || std::isinf(opt.max_area))
-    throw Error(ErrorCode::InvalidArgument,
-                "max_area must be a finite area > 0, or 0 for no bound (got " +
-                    number(opt.max_area) + ")");
+    throw Error(
+        ErrorCode::InvalidArgument,
+        "max_area must be a finite area > 0, or 0 for no bound (got " + number(opt.max_area) + ")");
   for (std::size_t i = 0; i < opt.regions.size(); ++i)
     if (!std::isfinite(opt.regions[i].max_area))
       throw Error(ErrorCode::InvalidArgument,
@@ -47,9 +47,9 @@ void check_options(std::int64_t n, const std::int32_t* segments, std::int64_t ns
   const AreaGrid& g = opt.area_grid;
   if (g.rows || g.cols || !g.values.empty()) {
     if (g.rows < 1 || g.cols < 1 || std::int64_t(g.values.size()) != g.rows * g.cols)
-      throw Error(ErrorCode::InvalidArgument,
-                  "area_grid: " + std::to_string(g.values.size()) + " values for a " +
-                      std::to_string(g.rows) + " x " + std::to_string(g.cols) + " grid");
+      throw Error(ErrorCode::InvalidArgument, "area_grid: " + std::to_string(g.values.size()) +
+                                                  " values for a " + std::to_string(g.rows) +
+                                                  " x " + std::to_string(g.cols) + " grid");
     if (!(g.x1 > g.x0) || !(g.y1 > g.y0) || !std::isfinite(g.x1 - g.x0) ||
         !std::isfinite(g.y1 - g.y0))
       throw Error(ErrorCode::InvalidArgument,
@@ -117,9 +117,8 @@ RefinedMesh2d refine2d(const double* xy, std::int64_t n, const std::int32_t* seg
   refine::Tally tally;
   GG_ON_EXECUTOR(b, refine, refine, P, np, S, ns, final_of_base, opt, r, rc, tally);
   if (rc.cross_a >= 0)
-    throw Error(ErrorCode::InvalidInput,
-                crossing_message(final_of_base[std::size_t(rc.cross_a)],
-                                 final_of_base[std::size_t(rc.cross_b)]));
+    throw Error(ErrorCode::InvalidInput, crossing_message(final_of_base[std::size_t(rc.cross_a)],
+                                                          final_of_base[std::size_t(rc.cross_b)]));
   r.num_input_points = np;
   r.stats.backend = b;
   set_counters(r.stats, tally, std::int64_t(r.num_triangles()));
@@ -142,9 +141,9 @@ DeviceRefinedMesh2d refine2d_device(const double* device_xy, std::int64_t n,
   refine::DeviceResult d;
   cdt::RecoveryCounts rc;
   refine::Tally tally;
-  GG_ON_EXECUTOR(b, refine, refine_device, device_xy, n, device_segments, nseg, opt, d, rc,
-                 tally);
-  if (rc.cross_a >= 0) throw Error(ErrorCode::InvalidInput, crossing_message(rc.cross_a, rc.cross_b));
+  GG_ON_EXECUTOR(b, refine, refine_device, device_xy, n, device_segments, nseg, opt, d, rc, tally);
+  if (rc.cross_a >= 0)
+    throw Error(ErrorCode::InvalidInput, crossing_message(rc.cross_a, rc.cross_b));
   DeviceRefinedMesh2d r;
   r.backend = r.stats.backend = b;
   r.num_points = d.np;

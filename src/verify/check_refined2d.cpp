@@ -39,17 +39,19 @@ void measure(const double* a, const double* b, const double* c, double& angle, d
 }
 }  // namespace
 
-Report check_refined_mesh2d(const double* p, std::int64_t n, const std::int32_t* t,
-                            std::int64_t nt, const std::int32_t* seg_of, const std::int32_t* segs,
-                            std::int64_t nseg, const std::int32_t* dup_of, double min_angle,
-                            double max_area, const std::int32_t* exempt, std::int64_t nexempt) {
+Report check_refined_mesh2d(const double* p, std::int64_t n, const std::int32_t* t, std::int64_t nt,
+                            const std::int32_t* seg_of, const std::int32_t* segs, std::int64_t nseg,
+                            const std::int32_t* dup_of, double min_angle, double max_area,
+                            const std::int32_t* exempt, std::int64_t nexempt) {
   Report r;
   if (nt == 0) return r.fail("the mesh has no triangles"), r;
   for (std::int64_t c = 0; c < nt; ++c)
     for (int j = 0; j < 3; ++j) {
       const std::int32_t v = t[3 * c + j];
-      if (v < 0 || v >= n) return r.fail(cell_name(3, c, t) + " names a point outside 0.." + std::to_string(n - 1)), r;
-      if (dup_of && dup_of[v] >= 0) return r.fail(cell_name(3, c, t) + " uses duplicate point " + std::to_string(v)), r;
+      if (v < 0 || v >= n)
+        return r.fail(cell_name(3, c, t) + " names a point outside 0.." + std::to_string(n - 1)), r;
+      if (dup_of && dup_of[v] >= 0)
+        return r.fail(cell_name(3, c, t) + " uses duplicate point " + std::to_string(v)), r;
       if (v == t[3 * c + (j + 1) % 3]) return r.fail(cell_name(3, c, t) + " repeats a vertex"), r;
     }
   for (std::int64_t c = 0; c < nt; ++c) {
@@ -119,24 +121,23 @@ Report check_refined_mesh2d(const double* p, std::int64_t n, const std::int32_t*
     std::size_t steps = 0;
     const double *pa = at<2>(p, a), *pb = at<2>(p, b);
     const double len = std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
-    const double scale = std::max({std::fabs(pa[0]), std::fabs(pa[1]), std::fabs(pb[0]),
-                                   std::fabs(pb[1]), len});
+    const double scale =
+        std::max({std::fabs(pa[0]), std::fabs(pa[1]), std::fabs(pb[0]), std::fabs(pb[1]), len});
     while (cur != std::uint32_t(b)) {
       const auto& l = adj[cur];
       const std::uint32_t next = l[0] != prev ? l[0] : (l.size() > 1 ? l[1] : prev);
       if (next == prev || ++steps > it->second.size())
         return r.fail(name + "'s edges break off at vertex " + std::to_string(cur)), r;
       const double* q = at<2>(p, next);
-      const double off = std::fabs((pb[0] - pa[0]) * (q[1] - pa[1]) -
-                                   (pb[1] - pa[1]) * (q[0] - pa[0])) / len;
+      const double off =
+          std::fabs((pb[0] - pa[0]) * (q[1] - pa[1]) - (pb[1] - pa[1]) * (q[0] - pa[0])) / len;
       if (off > 1e-9 * scale)
         return r.fail(name + " runs through vertex " + std::to_string(next) + ", " +
                       std::to_string(off) + " off its line"),
                r;
       prev = cur, cur = next;
     }
-    if (steps != it->second.size())
-      return r.fail(name + " has marked edges off its path"), r;
+    if (steps != it->second.size()) return r.fail(name + " has marked edges off its path"), r;
   }
   if (!locally_delaunay(r, p, t, nt, marked)) return r;
   // Quality: every triangle not exempt within the bounds (the angle to 1e-9 degrees: points are
@@ -160,8 +161,9 @@ Report check_refined_mesh2d(const double* p, std::int64_t n, const std::int32_t*
   r.notes.push_back(std::to_string(nt) + " triangles, " + std::to_string(boundary) +
                     " boundary edges all on segments, " + std::to_string(nseg) +
                     " segments covered; every other edge locally Delaunay (exact in-circle); "
-                    "smallest angle " + std::to_string(worst) + " degrees outside " +
-                    std::to_string(nexempt) + " exempt triangles");
+                    "smallest angle " +
+                    std::to_string(worst) + " degrees outside " + std::to_string(nexempt) +
+                    " exempt triangles");
   return r;
 }
 

@@ -27,7 +27,8 @@ struct Domain {
 inline void polygon(Pslg& g, const std::vector<double>& xy) {
   const std::int32_t first = std::int32_t(g.xy.size() / 2), m = std::int32_t(xy.size() / 2);
   g.xy.insert(g.xy.end(), xy.begin(), xy.end());
-  for (std::int32_t i = 0; i < m; ++i) g.segs.insert(g.segs.end(), {first + i, first + (i + 1) % m});
+  for (std::int32_t i = 0; i < m; ++i)
+    g.segs.insert(g.segs.end(), {first + i, first + (i + 1) % m});
 }
 
 inline Domain square_with_hole() {
@@ -101,18 +102,18 @@ inline void expect_quality(const Domain& d, const gpugeom::RefinedMesh2d& r,
   for (auto why : r.small_angle_reasons)
     EXPECT_TRUE(why >= 1 && why <= 3) << d.g.name << ": reason " << int(why);
   const auto rep = gpugeom::verify::check_refined_mesh2d(
-      pts.data(), std::int64_t(r.num_points()), r.triangles.data(),
-      std::int64_t(r.num_triangles()), r.segment_of.data(), d.g.segs.data(),
-      std::int64_t(d.g.segs.size() / 2), r.duplicate_of.data(), o.min_angle, o.max_area,
-      r.small_angles.data(), std::int64_t(r.small_angles.size()));
+      pts.data(), std::int64_t(r.num_points()), r.triangles.data(), std::int64_t(r.num_triangles()),
+      r.segment_of.data(), d.g.segs.data(), std::int64_t(d.g.segs.size() / 2),
+      r.duplicate_of.data(), o.min_angle, o.max_area, r.small_angles.data(),
+      std::int64_t(r.small_angles.size()));
   ASSERT_TRUE(rep.ok) << d.g.name << ": " << rep.message;
   gpugeom::Cdt2dOptions c;
   c.backend = gpugeom::Backend::Cpu;
   c.domain = d.enclosed ? gpugeom::Cdt2dOptions::Domain::Enclosed
                         : gpugeom::Cdt2dOptions::Domain::ConvexHull;
   c.holes = d.holes;
-  const auto base = gpugeom::cdt2d(d.g.xy.data(), std::int64_t(d.g.xy.size() / 2),
-                                   d.g.segs.data(), std::int64_t(d.g.segs.size() / 2), c);
+  const auto base = gpugeom::cdt2d(d.g.xy.data(), std::int64_t(d.g.xy.size() / 2), d.g.segs.data(),
+                                   std::int64_t(d.g.segs.size() / 2), c);
   const double a0 = mesh_area(d.g.xy, base.triangles.data(), base.num_triangles());
   const double a1 = mesh_area(pts, r.triangles.data(), r.num_triangles());
   EXPECT_NEAR(a1, a0, 1e-9 * std::fabs(a0)) << d.g.name;

@@ -58,10 +58,9 @@ TEST(CudaRefine2d, DeviceEntry) {
   const auto host = refine2d(d.g.xy.data(), std::int64_t(d.g.xy.size() / 2), d.g.segs.data(),
                              std::int64_t(d.g.segs.size() / 2), o);
   gg_test::DeviceCopy xy(d.g.xy), segs(d.g.segs);
-  const auto dev =
-      refine2d_device(xy.doubles(), std::int64_t(d.g.xy.size() / 2),
-                      static_cast<const std::int32_t*>(segs.data()),
-                      std::int64_t(d.g.segs.size() / 2), o);
+  const auto dev = refine2d_device(xy.doubles(), std::int64_t(d.g.xy.size() / 2),
+                                   static_cast<const std::int32_t*>(segs.data()),
+                                   std::int64_t(d.g.segs.size() / 2), o);
   ASSERT_EQ(dev.num_triangles, std::int64_t(host.num_triangles()));
   ASSERT_EQ(dev.num_points, std::int64_t(host.num_points()));
   EXPECT_EQ(gg_test::from_device(dev.triangles, 3 * dev.num_triangles),

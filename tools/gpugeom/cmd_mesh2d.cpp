@@ -38,7 +38,8 @@ void measure(const double* xy, const std::int32_t* tri, std::size_t t, double& a
              double& area) {
   const double* p[3];
   for (int k = 0; k < 3; ++k) p[k] = xy + 2 * std::size_t(tri[3 * t + k]);
-  area = 0.5 * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]));
+  area =
+      0.5 * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]));
   angle = 180;
   for (int k = 0; k < 3; ++k) {
     const double ux = p[(k + 1) % 3][0] - p[k][0], uy = p[(k + 1) % 3][1] - p[k][1];
@@ -65,8 +66,8 @@ void print_quality(const RefinedMesh2d& r) {
   std::printf("  (worst %.2f degrees)\n", worst);
   if (!areas.empty()) {
     std::sort(areas.begin(), areas.end());
-    std::printf("areas: min %.3g, median %.3g, max %.3g\n", areas.front(),
-                areas[areas.size() / 2], areas.back());
+    std::printf("areas: min %.3g, median %.3g, max %.3g\n", areas.front(), areas[areas.size() / 2],
+                areas.back());
   }
 }
 

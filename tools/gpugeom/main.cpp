@@ -169,7 +169,8 @@ static int run(int argc, char** argv) {
       std::string s = argv[i];
       if (s == "--verbose" || s == "-v")
         g.verbose = true;
-      else if (s == "--quiet" || (s == "-q" && cmd != "mesh2d"))  // (mesh2d: -q is the angle, as Triangle's)
+      else if (s == "--quiet" ||
+               (s == "-q" && cmd != "mesh2d"))  // (mesh2d: -q is the angle, as Triangle's)
         g.quiet = true;
       else if (s == "--backend" && i + 1 < argc)
         g.backend = parse_backend(argv[++i]);
@@ -194,8 +195,8 @@ static int run(int argc, char** argv) {
     const bool help = std::find(rest.begin(), rest.end(), "--help") != rest.end() ||
                       std::find(rest.begin(), rest.end(), "-h") != rest.end();
     if (g.backend != Backend::Cpu && !help &&
-        (cmd == "delaunay2d" || cmd == "cdt2d" || cmd == "mesh2d" || cmd == "hull3d" || cmd == "delaunay3d" ||
-         cmd == "edt" || cmd == "cvd" || cmd == "stipple" || cmd == "cells"))
+        (cmd == "delaunay2d" || cmd == "cdt2d" || cmd == "mesh2d" || cmd == "hull3d" ||
+         cmd == "delaunay3d" || cmd == "edt" || cmd == "cvd" || cmd == "stipple" || cmd == "cells"))
       warm.t = std::thread([&warm] {
         const auto t0 = std::chrono::steady_clock::now();
         prepare_device();

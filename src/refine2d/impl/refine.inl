@@ -249,7 +249,8 @@ inline void host_sizes(Exec& ex, const RoundMesh& m, std::int64_t np,
   ex.to_host(m.xy, 2 * np, xy.data());
   for (std::size_t t = 0; t < a.size(); ++t) {
     double cx = 0, cy = 0;
-    for (int k = 0; k < 3; ++k) cx += xy[2 * std::size_t(tri[3 * t + k])], cy += xy[2 * std::size_t(tri[3 * t + k]) + 1];
+    for (int k = 0; k < 3; ++k)
+      cx += xy[2 * std::size_t(tri[3 * t + k])], cy += xy[2 * std::size_t(tri[3 * t + k]) + 1];
     const double v = f(cx / 3, cy / 3);
     a[t] = std::isfinite(v) && v > 0 ? v : 0.0;
   }
@@ -362,8 +363,12 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     rc = {};
     cdt_impl::triangulate_device(st.xy.data(), st.np, st.segs.data(), st.ns, copt, dr, cst, rc);
     if (rc.cross_a >= 0) return;
-    const RoundMesh m{st.xy.data(),        dr.triangles.get(), dr.neighbors.get(),
-                      dr.segment_of.get(), dr.duplicate_of.get(), dr.attribute.get(),
+    const RoundMesh m{st.xy.data(),
+                      dr.triangles.get(),
+                      dr.neighbors.get(),
+                      dr.segment_of.get(),
+                      dr.duplicate_of.get(),
+                      dr.attribute.get(),
                       dr.count};
     if (hull) {
       // Once: the hull's edges become segments, and the mesh is the domain they enclose.
@@ -436,8 +441,8 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
       finish(ex, st, dr, s, d, final_of_base, opt, out);
       return;
     }
-    const Counts c = build_next(ex, st, m, s, d, winners, nwin, corner.data(), n,
-                                opt.max_steiner_points);
+    const Counts c =
+        build_next(ex, st, m, s, d, winners, nwin, corner.data(), n, opt.max_steiner_points);
     out.splits += c.splits;
     out.points += c.points;
     out.dropped += c.dropped;

@@ -76,22 +76,22 @@ inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m, const std::int32
 
 // What a round decided, per subsegment, per point and per triangle.
 struct Decisions {
-  Buf<std::int32_t> split;     // per subsegment: 1 to split
-  Buf<std::int32_t> drop;      // per point: 1 to remove (a free point that encroaches)
-  Buf<double> point;           // per triangle: its new point
-  Buf<std::int32_t> land;      // per triangle: the triangle its point lands in (-1: none)
-  Buf<std::uint64_t> key;      // per triangle: its rank (lower first) and index
-  Buf<std::int8_t> reason;     // per triangle: SmallAngle left (0: none)
-  Buf<std::int8_t> large;      // per triangle: 1 when still too large and not refined
+  Buf<std::int32_t> split;  // per subsegment: 1 to split
+  Buf<std::int32_t> drop;   // per point: 1 to remove (a free point that encroaches)
+  Buf<double> point;        // per triangle: its new point
+  Buf<std::int32_t> land;   // per triangle: the triangle its point lands in (-1: none)
+  Buf<std::uint64_t> key;   // per triangle: its rank (lower first) and index
+  Buf<std::int8_t> reason;  // per triangle: SmallAngle left (0: none)
+  Buf<std::int8_t> large;   // per triangle: 1 when still too large and not refined
 };
 
 // The bounds a triangle is judged by (device-readable).
 struct Bounds {
-  double sin2 = 0;       // squared sine of the smallest angle allowed (0: none)
-  double cot_half = 0;   // cot(bound / 2) / 2: the off-centre's height over the edge's length
-  double lens = 1;       // cos^2(2 bound): encroaches()'s diametral lens
-  double max_area = 0;   // global (0: none)
-  const double* region_area = nullptr;  // per region (<= 0: none), by attribute - 1
+  double sin2 = 0;      // squared sine of the smallest angle allowed (0: none)
+  double cot_half = 0;  // cot(bound / 2) / 2: the off-centre's height over the edge's length
+  double lens = 1;      // cos^2(2 bound): encroaches()'s diametral lens
+  double max_area = 0;  // global (0: none)
+  const double* region_area = nullptr;    // per region (<= 0: none), by attribute - 1
   const double* triangle_area = nullptr;  // per triangle, from the host's sizing function
   const double* grid = nullptr;
   std::int64_t rows = 0, cols = 0;
@@ -158,8 +158,9 @@ struct Terminator {
 // Shewchuk's terminator, for a triangle whose smallest angle (at vertex k, opposite its shortest
 // edge) is below the bound: InputAngle when both edges at that vertex lie on segments (the angle
 // is one the input makes), Shell when the shortest edge joins split vertices on two segments
-// from one input vertex where segments meet at less than 60 degrees, at equal distances from it (concentric-shell vertices of a small input
-// angle, whose split would only cut that angle again); else 0.
+// from one input vertex where segments meet at less than 60 degrees, at equal distances from it
+// (concentric-shell vertices of a small input angle, whose split would only cut that angle again);
+// else 0.
 GG_HD inline std::int8_t forced(const RoundMesh& m, const Terminator& tm, std::int64_t t, int k) {
   if (m.seg[3 * t + (k + 1) % 3] >= 0 && m.seg[3 * t + (k + 2) % 3] >= 0)
     return std::int8_t(SmallAngle::InputAngle);
@@ -307,8 +308,8 @@ inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const B
           for (int j = 0; j < 3; ++j) {
             const std::int32_t g = O[3 * u + j];
             if (g < 0) continue;
-            if (!encroaches(m.xy + 2 * std::int64_t(E[2 * g]), m.xy + 2 * std::int64_t(E[2 * g + 1]),
-                            q, b.lens))
+            if (!encroaches(m.xy + 2 * std::int64_t(E[2 * g]),
+                            m.xy + 2 * std::int64_t(E[2 * g + 1]), q, b.lens))
               continue;
             ++enc;
             if (skinny_only && terminated(m, cn, E, g, shortest2))
@@ -360,8 +361,8 @@ GG_HD inline int cavity_of(const RoundMesh& m, const std::int32_t* of_edge, std:
 // each triangle): the points of one round replace disjoint sets of triangles, as if inserted one
 // after another, so they never crowd each other (two points in one cavity would make an edge
 // far shorter than the mesh asks for there, and new bad triangles).
-inline std::int64_t choose_points(Exec& ex, const RoundMesh& m, const Subsegments& s,
-                                  Decisions& d, Buf<std::int32_t>& winners) {
+inline std::int64_t choose_points(Exec& ex, const RoundMesh& m, const Subsegments& s, Decisions& d,
+                                  Buf<std::int32_t>& winners) {
   auto claim = ex.template alloc<std::uint64_t>(std::size_t(std::max<std::int64_t>(m.nt, 1)));
   std::uint64_t* C = claim.data();
   ex.fill(C, m.nt, ~std::uint64_t(0));
