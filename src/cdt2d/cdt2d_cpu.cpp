@@ -22,6 +22,7 @@
 namespace gpugeom::cdt::cpu_impl {
 using Exec = CpuExec;
 namespace dt_impl = ::gpugeom::del2d::cpu_impl;
+#include "cdt2d/impl/segment_check.inl"
 #include "cdt2d/impl/recover.inl"
 #include "cdt2d/impl/domain.inl"
 #include "cdt2d/impl/triangulate.inl"

@@ -23,6 +23,7 @@
 namespace gpugeom::cdt::cuda_impl {
 GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 namespace dt_impl = ::gpugeom::del2d::cuda_impl;
+#include "cdt2d/impl/segment_check.inl"
 #include "cdt2d/impl/recover.inl"
 #include "cdt2d/impl/domain.inl"
 #include "cdt2d/impl/triangulate.inl"

@@ -3,6 +3,7 @@
 // judged by the exact checker with the bounds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "refine2d_cases.hpp"
@@ -58,4 +59,126 @@ TEST(Refine2d, CoastlineAndRandomPslgs) {
     gg_refine::expect_quality(d, r, o2);
     for (auto v : r.segment_of) EXPECT_GE(v, RefinedMesh2d::kHullSegment);
   }
+}
+
+// The same arrays on one thread and on all, and from the device entry on the CPU executor.
+TEST(Refine2d, ThreadCountsAndDeviceEntry) {
+  const Domain d = gg_refine::letter_a();
+  auto o = options(30, 2e-4);
+  o.threads = 1;
+  const auto one = gg_refine::refine(d, o);
+  o.threads = 0;
+  const auto all = gg_refine::refine(d, o);
+  EXPECT_EQ(one.points, all.points);
+  EXPECT_EQ(one.triangles, all.triangles);
+  EXPECT_EQ(one.segment_of, all.segment_of);
+  o.domain = Cdt2dOptions::Domain::Enclosed;
+  o.holes = d.holes;
+  const auto dev = refine2d_device(d.g.xy.data(), std::int64_t(d.g.xy.size() / 2), d.g.segs.data(),
+                                   std::int64_t(d.g.segs.size() / 2), o);
+  ASSERT_EQ(dev.backend, Backend::Cpu);
+  ASSERT_EQ(dev.num_triangles, std::int64_t(all.num_triangles()));
+  EXPECT_TRUE(std::equal(all.triangles.begin(), all.triangles.end(), dev.triangles.get()));
+  EXPECT_TRUE(std::equal(all.points.begin(), all.points.end(), dev.points.get()));
+}
+
+// Regions with their own bounds and attributes, a sizing grid and a sizing function.
+TEST(Refine2d, RegionsAndSizing) {
+  // Two halves of a square, split by a segment.
+  gg_refine::Domain d{{"two regions",
+                       {0, 0, 1, 0, 1, 1, 0, 1, .5, 0, .5, 1},
+                       {0, 4, 4, 1, 1, 2, 2, 5, 5, 3, 3, 0, 4, 5}},
+                      {},
+                      true};
+  auto o = options(25);
+  o.regions = {{.25, .5, 1.0, 1e-3}, {.75, .5, 2.0, 0.0}};
+  const auto r = gg_refine::refine(d, o);
+  gg_refine::expect_quality(d, r, o);
+  const std::vector<double> pts(r.points.begin(), r.points.end());
+  double left = 0, right = 0;
+  for (std::size_t t = 0; t < r.num_triangles(); ++t) {
+    const double a = gg_refine::mesh_area(pts, r.triangles.data() + 3 * t, 1);
+    ASSERT_TRUE(r.attribute[t] == 1.0 || r.attribute[t] == 2.0);
+    if (r.attribute[t] == 1.0) EXPECT_LE(a, 1e-3 * (1 + 1e-12));
+    (r.attribute[t] == 1.0 ? left : right) += a;
+  }
+  EXPECT_NEAR(left, 0.5, 1e-12);
+  EXPECT_NEAR(right, 0.5, 1e-12);
+  // A grid: fine at the top (row 1), coarse at the bottom; and the same from a function.
+  auto g = options(25);
+  g.area_grid = {{1e-3, 1e-3, 1e-4, 1e-4}, 2, 2, 0, 0, 1, 1};
+  const auto rg = gg_refine::refine(d, g);
+  auto f = options(25);
+  f.max_area_at = [](double, double y) { return 1e-3 - 9e-4 * y; };
+  const auto rf = gg_refine::refine(d, f);
+  for (const auto* m : {&rg, &rf}) {
+    const std::vector<double> p(m->points.begin(), m->points.end());
+    for (std::size_t t = 0; t < m->num_triangles(); ++t) {
+      double cy = 0;
+      for (int k = 0; k < 3; ++k) cy += p[2 * std::size_t(m->triangles[3 * t + k]) + 1] / 3;
+      EXPECT_LE(gg_refine::mesh_area(p, m->triangles.data() + 3 * t, 1),
+                (1e-3 - 9e-4 * cy) * (1 + 1e-9));
+    }
+  }
+  EXPECT_GT(rg.num_triangles(), 300u);
+}
+
+// The Steiner limit: no more points than allowed, the triangles left bad reported.
+TEST(Refine2d, SteinerLimit) {
+  const Domain d = gg_refine::square_with_hole();
+  auto o = options(30, 1e-4);
+  o.max_steiner_points = 40;
+  const auto r = gg_refine::refine(d, o);
+  EXPECT_LE(r.num_points(), d.g.xy.size() / 2 + 40);
+  EXPECT_FALSE(r.large_triangles.empty());
+  for (auto why : r.small_angle_reasons) EXPECT_EQ(why, std::int8_t(SmallAngle::Limit));
+}
+
+TEST(Refine2d, BadInputIsRefused) {
+  const Domain d = gg_refine::square_with_hole();
+  const std::int64_t n = std::int64_t(d.g.xy.size() / 2), m = std::int64_t(d.g.segs.size() / 2);
+  auto expect_error = [&](Refine2dOptions o, ErrorCode code, const char* what) {
+    try {
+      refine2d(d.g.xy.data(), n, d.g.segs.data(), m, o);
+      ADD_FAILURE() << "no error for " << what;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), code) << what << ": " << e.what();
+    }
+  };
+  expect_error(options(40), ErrorCode::InvalidArgument, "an angle above 33.8");
+  expect_error(options(-1), ErrorCode::InvalidArgument, "a negative angle");
+  expect_error(options(20, -1), ErrorCode::InvalidArgument, "a negative area");
+  auto g = options(20);
+  g.area_grid = {{1, 2, 3}, 2, 2, 0, 0, 1, 1};
+  expect_error(g, ErrorCode::InvalidArgument, "a grid of the wrong size");
+  auto s = options(20);
+  s.max_steiner_points = -5;
+  expect_error(s, ErrorCode::InvalidArgument, "a negative Steiner limit");
+  std::vector<std::int32_t> bad = d.g.segs;
+  bad[3] = 99;
+  Refine2dOptions o = options(20);
+  EXPECT_THROW(refine2d(d.g.xy.data(), n, bad.data(), m, o), Error);
+  try {
+    refine2d_device(d.g.xy.data(), n, bad.data(), m, o);
+    ADD_FAILURE() << "the device entry took point 99";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("names point 99"), std::string::npos) << e.what();
+  }
+  // Crossing segments are named; Split and a host sizing function are host-entry only.
+  const std::vector<double> xy{0, 0, 1, 1, 1, 0, 0, 1};
+  const std::vector<std::int32_t> cross{0, 1, 2, 3};
+  try {
+    refine2d(xy.data(), 4, cross.data(), 2, o);
+    ADD_FAILURE() << "crossing segments taken";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("segments 0 and 1"), std::string::npos) << e.what();
+  }
+  auto split = o;
+  split.crossings = Cdt2dOptions::Crossings::Split;
+  const auto r = refine2d(xy.data(), 4, cross.data(), 2, split);
+  EXPECT_EQ(r.num_input_points, 5);
+  EXPECT_THROW(refine2d_device(xy.data(), 4, cross.data(), 2, split), Error);
+  auto fn = o;
+  fn.max_area_at = [](double, double) { return 1.0; };
+  EXPECT_THROW(refine2d_device(xy.data(), 4, cross.data(), 0, fn), Error);
 }

@@ -105,23 +105,6 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const std:
                                     std::int64_t nseg, const Cdt2dOptions& opt, DeviceResult& d,
                                     Stats& st, RecoveryCounts& rc) {
   Exec ex(opt);
-  {
-    auto bad = ex.template alloc<std::int64_t>(1);
-    ex.transform_reduce_into(
-        2 * nseg,
-        GG_LAMBDA(std::int64_t k)->std::int64_t {
-          return segments[k] < 0 || segments[k] >= n ? k : INT64_MAX;
-        },
-        std::int64_t(INT64_MAX), thrust::minimum<std::int64_t>(), bad.data());
-    std::int64_t k = INT64_MAX;
-    if (nseg > 0) ex.to_host(bad.data(), 1, &k);
-    if (k != INT64_MAX) {
-      std::int32_t v = 0;
-      ex.to_host(segments + k, 1, &v);
-      throw Error(ErrorCode::InvalidInput, "segment " + std::to_string(k / 2) + " names point " +
-                                               std::to_string(v) + ", outside 0.." +
-                                               std::to_string(n - 1));
-    }
-  }
+  check_segment_indices(ex, segments, nseg, n);
   triangulate_core(ex, xy, n, segments, nseg, opt, d, st, rc);
 }

@@ -491,24 +491,7 @@ inline void refine_device_impl(const double* xy, std::int64_t n, const std::int3
                                std::int64_t nseg, const Refine2dOptions& opt, DeviceResult& d,
                                cdt::RecoveryCounts& rc, Tally& tally) {
   Exec ex(opt);
-  {
-    auto bad = ex.template alloc<std::int64_t>(1);
-    ex.transform_reduce_into(
-        2 * nseg,
-        GG_LAMBDA(std::int64_t k)->std::int64_t {
-          return segs[k] < 0 || segs[k] >= n ? k : INT64_MAX;
-        },
-        std::int64_t(INT64_MAX), thrust::minimum<std::int64_t>(), bad.data());
-    std::int64_t k = INT64_MAX;
-    if (nseg > 0) ex.to_host(bad.data(), 1, &k);
-    if (k != INT64_MAX) {
-      std::int32_t v = 0;
-      ex.to_host(segs + k, 1, &v);
-      throw Error(ErrorCode::InvalidInput, "segment " + std::to_string(k / 2) + " names point " +
-                                               std::to_string(v) + ", outside 0.." +
-                                               std::to_string(n - 1));
-    }
-  }
+  check_segment_indices(ex, segs, nseg, n);
   std::vector<std::int32_t> final_of_base(static_cast<std::size_t>(nseg));
   for (std::int64_t j = 0; j < nseg; ++j) final_of_base[std::size_t(j)] = std::int32_t(j);
   Output o;
