@@ -194,6 +194,37 @@ def mesh2d(points, segments=None, *, holes=None, regions=None, min_angle: float 
     if not (0 <= angle <= MAX_MIN_ANGLE):
         raise ValueError(f"min_angle must be between 0 and {MAX_MIN_ANGLE} degrees (above it "
                          f"refinement need not end), got {min_angle!r}")
+    h = _float_array(holes, 2, "holes")
+    g = _regions(regions)
+    area, grid, extent, fn = _sizing(max_area)
+    steiner = -1 if max_steiner is None else int(max_steiner)
+    if segment_markers is not None and segments is not None and \
+            len(np.asarray(segment_markers).reshape(-1)) != len(_arrays.to_host(segments)):
+        raise ValueError("segment_markers must have one marker per segment")
+    kind = _arrays.classify(points)
+    if kind.device:
+        # CuPy / PyTorch CUDA points: refined where they are, the mesh left there.
+        if crossings == "split" or fn is not None:
+            raise ValueError("crossings='split' and a max_area function run on the host: give "
+                             "host (NumPy) arrays for them")
+        arr, kind = _arrays.points_input(points, (2,), backend, threads)
+        seg = np.zeros((0, 2), np.int32) if segments is None else segments
+        if not _arrays.classify(seg).device:
+            seg = np.asarray(seg)
+            if seg.size and not np.issubdtype(seg.dtype, np.integer):
+                raise TypeError("segments must be integer point indices")
+            seg = kind.from_xp(kind.xp().asarray(
+                np.ascontiguousarray(seg, dtype=np.int32).reshape(-1, 2)))
+        sarr, _ = _arrays.as_input(seg, np.int32, "segments", kind)
+        r = _core.refine2d_device(arr, sarr.reshape(-1, 2), h, g, enclosed=domain == "enclosed",
+                                  min_angle=angle, max_area=area, grid=grid, extent=extent,
+                                  max_steiner=steiner, backend=backend, stream=kind.stream,
+                                  threads=threads)
+        for k in ("points", "simplices", "neighbors", "segment_of", "duplicate_of", "attribute"):
+            if k in r:
+                r[k] = kind.to_xp(kind.back(r[k]))
+        return _as_mesh(r, int(arr.shape[0]), h, g, segment_markers, vertex_markers,
+                        kind.xp(), kind)
     p = np.ascontiguousarray(_arrays.to_host(points), dtype=np.float64)
     if p.ndim != 2 or p.shape[1] != 2:
         raise ValueError(f"points must have shape (n, 2), got {p.shape}")
@@ -202,62 +233,60 @@ def mesh2d(points, segments=None, *, holes=None, regions=None, min_angle: float 
     if seg.size and not np.issubdtype(seg.dtype, np.integer):
         raise TypeError("segments must be integer point indices")
     seg = np.ascontiguousarray(seg, dtype=np.int32).reshape(-1, 2)
-    h = _float_array(holes, 2, "holes")
-    g = _regions(regions)
-    area, grid, extent, fn = _sizing(max_area)
-    steiner = -1 if max_steiner is None else int(max_steiner)
     r = _core.refine2d(p, seg, h, g, enclosed=domain == "enclosed", split=crossings == "split",
                        min_angle=angle, max_area=area, grid=grid, extent=extent, sizing=fn,
                        max_steiner=steiner, backend=backend, threads=threads)
-    return _as_mesh(r, p, seg, h, g, segment_markers, vertex_markers)
+    return _as_mesh(r, len(p), h, g, segment_markers, vertex_markers)
 
 
-def _as_mesh(r, p, seg, holes, regions, segment_markers, vertex_markers) -> Mesh2d:
+def _as_mesh(r, n, holes, regions, segment_markers, vertex_markers, xp=np,
+             kind=None) -> Mesh2d:
+    """The extension's result as Triangle's dict; xp: the arrays' module (NumPy, or CuPy for a
+    device result, given back as the caller's kind)."""
     pts, tri, seg_of = r["points"], r["simplices"], r["segment_of"]
+    nbr = r["neighbors"]
     # The subsegments: each marked edge once (from the triangle with the lower index).
     nt = len(tri)
-    nbr = r["neighbors"]
-    t_idx = np.repeat(np.arange(nt), 3)
-    k = np.tile(np.arange(3), nt)
+    t_idx = xp.repeat(xp.arange(nt), 3)
+    k = xp.tile(xp.arange(3), nt)
     marks = seg_of.ravel()
     other = nbr.ravel()
     keep = (marks != -1) & ((other < 0) | (t_idx < other))
     a = tri[t_idx[keep], (k[keep] + 1) % 3]
     b = tri[t_idx[keep], (k[keep] + 2) % 3]
-    sub = np.column_stack([a, b]).astype(np.int32)
+    sub = xp.stack([a, b], axis=1).astype(xp.int32)
     which = marks[keep]
     if segment_markers is not None:
-        sm = np.asarray(segment_markers, dtype=np.int32).reshape(-1)
-        if len(sm) != len(seg):
-            raise ValueError(f"segment_markers: {len(sm)} for {len(seg)} segments")
-        sub_markers = np.where(which >= 0, sm[np.maximum(which, 0)], 1)
+        sm = xp.asarray(np.asarray(segment_markers, dtype=np.int32).reshape(-1))
+        sub_markers = xp.where(which >= 0, sm[xp.clip(which, 0, max(len(sm) - 1, 0))], 1)
     else:
-        sub_markers = np.ones(len(sub), dtype=np.int32)
-    vm = np.zeros(len(pts), dtype=np.int32)
+        sub_markers = xp.ones(len(sub), dtype=xp.int32)
+    vm = xp.zeros(len(pts), dtype=xp.int32)
     vm[sub.ravel()] = 1
     if vertex_markers is not None:
-        given = np.asarray(vertex_markers, dtype=np.int32).reshape(-1)
-        if len(given) != len(p):
-            raise ValueError(f"vertex_markers: {len(given)} for {len(p)} points")
-        vm[:len(given)] = np.where(given != 0, given, vm[:len(given)])
+        given = xp.asarray(np.asarray(vertex_markers, dtype=np.int32).reshape(-1))
+        if len(given) != n:
+            raise ValueError(f"vertex_markers: {len(given)} for {n} points")
+        vm[:n] = xp.where(given != 0, given, vm[:n])
+    back = (lambda v: v) if kind is None else kind.from_xp
     m = Mesh2d()
-    m["vertices"] = pts
-    m["vertex_markers"] = vm.reshape(-1, 1)
-    m["triangles"] = tri
-    m["neighbors"] = nbr
-    m["segments"] = sub
-    m["segment_markers"] = sub_markers.astype(np.int32).reshape(-1, 1)
+    m["vertices"] = back(pts)
+    m["vertex_markers"] = back(vm.reshape(-1, 1))
+    m["triangles"] = back(tri)
+    m["neighbors"] = back(nbr)
+    m["segments"] = back(sub)
+    m["segment_markers"] = back(sub_markers.astype(xp.int32).reshape(-1, 1))
     if "attribute" in r:
-        m["triangle_attributes"] = np.asarray(r["attribute"]).reshape(-1, 1)
+        m["triangle_attributes"] = back(r["attribute"].reshape(-1, 1))
     if len(holes):
         m["holes"] = holes
     if len(regions):
         m["regions"] = regions
-    m.segment_of = seg_of
-    m.small_angles = r["small_angles"]
+    m.segment_of = back(seg_of)
+    m.small_angles = np.asarray(r["small_angles"])
     m.small_angle_reasons = [_REASONS.get(int(v), "?") for v in r["small_angle_reasons"]]
-    m.large_triangles = r["large_triangles"]
-    m.duplicate_of = r["duplicate_of"]
+    m.large_triangles = np.asarray(r["large_triangles"])
+    m.duplicate_of = back(r["duplicate_of"])
     m.stats = r["stats"]
     m.stats["counters"]["removed_triangles"] = int(r["removed_triangles"])
     return m

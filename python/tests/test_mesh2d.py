@@ -215,3 +215,22 @@ def test_meshio_and_pyvista():
     meshio = pytest.importorskip("meshio")
     mm = m.to_meshio()
     assert isinstance(mm, meshio.Mesh) and len(mm.cells[0].data) == len(m["triangles"])
+
+
+@pytest.mark.skipif(not HAVE_GPU, reason="no usable GPU")
+def test_device_arrays_stay_on_the_device():
+    cupy = pytest.importorskip("cupy")
+    d = letter_a()
+    host = gpugeom.mesh2d(d["vertices"], d["segments"], holes=d["holes"], min_angle=30,
+                          max_area=1e-3)
+    dev = gpugeom.mesh2d(cupy.asarray(d["vertices"]), cupy.asarray(d["segments"]),
+                         holes=d["holes"], min_angle=30, max_area=1e-3)
+    for k in ("vertices", "triangles", "neighbors", "segments", "segment_markers",
+              "vertex_markers"):
+        assert isinstance(dev[k], cupy.ndarray), k
+        np.testing.assert_array_equal(cupy.asnumpy(dev[k]), host[k])
+    torch = pytest.importorskip("torch")
+    t = gpugeom.mesh2d(torch.as_tensor(d["vertices"], device="cuda"), d["segments"],
+                       holes=d["holes"], min_angle=30, max_area=1e-3)
+    assert t["triangles"].is_cuda
+    np.testing.assert_array_equal(t["triangles"].cpu().numpy(), host["triangles"])
