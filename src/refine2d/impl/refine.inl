@@ -31,16 +31,24 @@ inline Counts build_next(Exec& ex, State& st, const RoundMesh& m, const Subsegme
                          std::int64_t room) {
   Counts c;
   const std::int64_t np = st.np, ns = s.count;
-  // Kept points.
+  // Kept points: all but the free points that encroach or repeat another, and never a
+  // subsegment's end (a split vertex can fall exactly on a free point, which the triangulation
+  // then takes as the segment's vertex).
   auto kidx = ex.template alloc<std::int32_t>(std::size_t(np) + 1);
+  auto ends = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(np, 1)));
   std::int32_t* KI = kidx.data();
   {
+    std::int32_t* END = ends.data();
+    const std::int32_t* E = s.ends.data();
+    ex.fill(END, np, std::int32_t(0));
+    ex.for_each_index(
+        2 * ns, GG_LAMBDA(std::int64_t i) { atomic_max(END + E[i], std::int32_t(1)); });
     const std::int32_t *drop = d.drop.data(), *dup = m.dup;
     const std::int8_t* F = st.free_pt.data();
     ex.exclusive_scan_of(
         np + 1,
         GG_LAMBDA(std::int64_t v)->std::int32_t {
-          return v < np && !drop[v] && !(F[v] && dup[v] >= 0) ? 1 : 0;
+          return v < np && (END[v] || (!drop[v] && !(F[v] && dup[v] >= 0))) ? 1 : 0;
         },
         KI);
   }
