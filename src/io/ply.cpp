@@ -370,7 +370,8 @@ PlyData parse_ply(std::string_view bytes, const std::string& name) {
           continue;
         }
         double c = body.get(p.count_t);
-        if (c < 0 || c > 1e6) l.fail("list length " + std::to_string(c) + " is out of range");
+        // (written so that NaN fails too: a float count type can hold one)
+        if (!(c >= 0 && c <= 1e6)) l.fail("list length " + std::to_string(c) + " is out of range");
         const int n = int(c);
         if (k == il) {
           const int want = e.name == "tetra" ? 4 : 3;
@@ -382,7 +383,7 @@ PlyData parse_ply(std::string_view bytes, const std::string& name) {
         for (int j = 0; j < n; ++j) {
           double v = body.get(p.t);
           if (k == il) {
-            if (v < 0 || v > 2147483647.0 || v != double(std::int64_t(v)))
+            if (!(v >= 0 && v <= 2147483647.0) || v != double(std::int64_t(v)))
               l.fail(e.name + " " + std::to_string(i) + " has an invalid vertex index");
             out.cells.push_back(std::int32_t(v));
           }
