@@ -92,7 +92,6 @@ Report check_triangulation2d(const double* p, std::int64_t n, const std::int32_t
   return r;
 }
 
-
 Report check_delaunay2d(const double* p, std::int64_t n, const std::int32_t* t, std::int64_t nt,
                         const std::int32_t* dup_of) {
   Report r = check_triangulation2d(p, n, t, nt, dup_of);

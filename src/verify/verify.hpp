@@ -44,10 +44,9 @@ Report check_constrained_delaunay2d(const double* pts, std::int64_t n, const std
 // line; every triangle but the exempt ones has its smallest angle >= min_angle (degrees, to
 // 1e-9) and its area <= max_area (when > 0).
 Report check_refined_mesh2d(const double* pts, std::int64_t n, const std::int32_t* tris,
-                            std::int64_t ntri, const std::int32_t* seg_of,
-                            const std::int32_t* segs, std::int64_t nseg,
-                            const std::int32_t* dup_of, double min_angle, double max_area,
-                            const std::int32_t* exempt, std::int64_t nexempt);
+                            std::int64_t ntri, const std::int32_t* seg_of, const std::int32_t* segs,
+                            std::int64_t nseg, const std::int32_t* dup_of, double min_angle,
+                            double max_area, const std::int32_t* exempt, std::int64_t nexempt);
 Report check_triangulation3d(const double* pts, std::int64_t n, const std::int32_t* tets,
                              std::int64_t ntet, const std::int32_t* dup_of = nullptr);
 Report check_delaunay3d(const double* pts, std::int64_t n, const std::int32_t* tets,
