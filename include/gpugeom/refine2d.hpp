@@ -88,9 +88,16 @@ struct RefinedMesh2d {
   HostVector<std::int8_t> small_angle_reasons;  // SmallAngle values
   // Triangles left larger than their bound (only when max_steiner_points stopped refinement).
   HostVector<std::int32_t> large_triangles;
+  // The subsegments: every edge on a segment once (point index pairs, in the order of the
+  // half-edges 3 t + k of the triangle with the lower index), and the segment each lies on (as
+  // segment_of: an input segment, or kHullSegment).
+  HostVector<std::int32_t> subsegments, subsegment_of;
   std::int64_t removed_triangles = 0;
-  // Phases "refine" (the rounds), "to_host"; counters "rounds", "steiner_points",
-  // "segment_splits", "rejected_points" (free points removed for encroaching), "triangles".
+  // Phases "triangulate" (the input's constrained triangulation), "decide", "insert", "flip"
+  // (the rounds' three steps), "output", then "refine" (all of them) and "to_host"; counters
+  // "rounds", "steiner_points", "segment_splits", "rejected_points" (new points not inserted
+  // because they would encroach upon a subsegment, which is split instead), "flips",
+  // "flip_passes", "triangles".
   Stats stats;
   std::size_t num_points() const { return points.size() / 2; }
   std::size_t num_triangles() const { return triangles.size() / 3; }
@@ -110,6 +117,8 @@ struct DeviceRefinedMesh2d {
   std::shared_ptr<std::int32_t> triangles, neighbors, segment_of;  // 3 * num_triangles each
   std::shared_ptr<std::int32_t> duplicate_of;                      // num_points
   std::shared_ptr<double> attribute;                               // with regions
+  std::int64_t num_subsegments = 0;
+  std::shared_ptr<std::int32_t> subsegments, subsegment_of;  // 2 and 1 per subsegment
   // (host memory) as RefinedMesh2d's.
   std::vector<std::int32_t> small_angles, large_triangles;
   std::vector<std::int8_t> small_angle_reasons;

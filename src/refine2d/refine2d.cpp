@@ -77,10 +77,20 @@ std::string crossing_message(std::int32_t s1, std::int32_t s2) {
 
 void set_counters(Stats& st, const refine::Tally& t, std::int64_t triangles) {
   st.counters["rounds"] = t.rounds;
-  st.counters["steiner_points"] = t.splits + t.points - t.dropped;
+  st.counters["steiner_points"] = t.splits + t.points;
   st.counters["segment_splits"] = t.splits;
-  st.counters["rejected_points"] = t.dropped;
+  st.counters["rejected_points"] = t.rejected;
+  st.counters["flips"] = t.flips;
+  st.counters["flip_passes"] = t.flip_passes;
   st.counters["triangles"] = triangles;
+  // The refinement's phases first (the host entry appends its transfer after them).
+  std::vector<std::pair<std::string, double>> ph = {{"triangulate", t.cdt_ms},
+                                                    {"decide", t.decide_ms},
+                                                    {"insert", t.insert_ms},
+                                                    {"flip", t.flip_ms},
+                                                    {"output", t.output_ms}};
+  ph.insert(ph.end(), st.phase_ms.begin(), st.phase_ms.end());
+  st.phase_ms = std::move(ph);
 }
 }  // namespace
 
@@ -155,6 +165,9 @@ DeviceRefinedMesh2d refine2d_device(const double* device_xy, std::int64_t n,
   r.segment_of = std::move(d.seg);
   r.duplicate_of = std::move(d.dup);
   r.attribute = std::move(d.attribute);
+  r.num_subsegments = d.nsub;
+  r.subsegments = std::move(d.sub);
+  r.subsegment_of = std::move(d.sub_of);
   r.small_angles = std::move(d.small);
   r.small_angle_reasons = std::move(d.reasons);
   r.large_triangles = std::move(d.large);

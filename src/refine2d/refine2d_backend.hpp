@@ -9,16 +9,18 @@
 
 namespace gpugeom::refine {
 
-// The rounds' totals (Stats counters in refine2d.cpp).
+// The rounds' totals (Stats counters in refine2d.cpp) and where their time went (measured at
+// the host reads the rounds make anyway: no synchronisation of their own).
 struct Tally {
-  std::int64_t rounds = 0, splits = 0, points = 0, dropped = 0;
+  std::int64_t rounds = 0, splits = 0, points = 0, rejected = 0, flips = 0, flip_passes = 0;
+  double cdt_ms = 0, decide_ms = 0, insert_ms = 0, flip_ms = 0, output_ms = 0;
 };
 
 // A mesh in the executor's memory (np points, nt triangles), the report lists on the host.
 struct DeviceResult {
   std::shared_ptr<double> xy, attribute;
-  std::shared_ptr<std::int32_t> tri, nbr, seg, dup;
-  std::int64_t np = 0, nt = 0, removed = 0;
+  std::shared_ptr<std::int32_t> tri, nbr, seg, dup, sub, sub_of;
+  std::int64_t np = 0, nt = 0, nsub = 0, removed = 0;
   std::vector<std::int32_t> small, large;
   std::vector<std::int8_t> reasons;
 };

@@ -21,6 +21,7 @@ using Exec = CpuExec;
 namespace cdt_impl = ::gpugeom::cdt::cpu_impl;
 #include "cdt2d/impl/segment_check.inl"
 #include "refine2d/impl/rounds.inl"
+#include "refine2d/impl/kept_mesh.inl"
 #include "refine2d/impl/refine.inl"
 void refine(const double* xy, std::int64_t n, const std::int32_t* segs, std::int64_t nseg,
             const std::vector<std::int32_t>& final_of_base, const Refine2dOptions& opt,

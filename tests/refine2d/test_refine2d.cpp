@@ -82,6 +82,34 @@ TEST(Refine2d, ThreadCountsAndDeviceEntry) {
   EXPECT_TRUE(std::equal(all.points.begin(), all.points.end(), dev.points.get()));
 }
 
+// Degenerate input for the kept triangulation's flips: free points on a grid and on a circle
+// inside a square (many exact co-circular quadruples, where a flip must not be done), refined
+// to bounds; the same arrays on one thread and on all.
+TEST(Refine2d, CocircularAndGridPoints) {
+  Domain d{{"grid and circle", {}, {}}, {}, true};
+  gg_refine::polygon(d.g, {-1, -1, 1, -1, 1, 1, -1, 1});
+  for (int i = -4; i <= 4; ++i)
+    for (int j = -4; j <= 4; ++j) d.g.xy.insert(d.g.xy.end(), {0.2 * i, 0.2 * j});
+  for (int k = 0; k < 32; ++k) {
+    const double a = k * 3.141592653589793 / 16;
+    d.g.xy.insert(d.g.xy.end(), {0.93 * std::cos(a), 0.93 * std::sin(a)});
+  }
+  for (double angle : {20.0, 30.0})
+    for (double area : {0.0, 0.005}) {
+      auto o = options(angle, area);
+      o.threads = 1;
+      const auto one = gg_refine::refine(d, o);
+      SCOPED_TRACE("angle " + std::to_string(angle) + " area " + std::to_string(area));
+      gg_refine::expect_quality(d, one, o);
+      EXPECT_TRUE(one.small_angles.empty());
+      o.threads = 0;
+      const auto all = gg_refine::refine(d, o);
+      EXPECT_EQ(one.points, all.points);
+      EXPECT_EQ(one.triangles, all.triangles);
+      EXPECT_EQ(one.neighbors, all.neighbors);
+    }
+}
+
 // Regions with their own bounds and attributes, a sizing grid and a sizing function.
 TEST(Refine2d, RegionsAndSizing) {
   // Two halves of a square, split by a segment.

@@ -1,11 +1,11 @@
 // One round of Delaunay refinement on the executor; included inside
 // gpugeom::refine::{cpu,cuda}_impl, with Exec the executor and quality.hpp's geometry.
 //
-// A round reads the round's exact constrained triangulation (cdt2d's device core) and decides,
-// in parallel and from that triangulation alone, which subsegments to split, which free Steiner
-// points to remove and which new points to add; build_next() then writes the next round's
-// points and subsegments. The order of everything written is by index (subsegment, triangle,
-// point), never by thread timing, so the rounds are the same on every executor.
+// A round reads the kept constrained Delaunay triangulation (kept_mesh.inl) and decides, in
+// parallel and from that triangulation alone, which subsegments to split and which new points
+// to add, and which of them go in this round (no two touching one triangle); refine.inl then
+// inserts them. The order of everything written is by index (subsegment, triangle), never by
+// thread timing, so the rounds are the same on every executor.
 
 template <class T>
 using Buf = typename Exec::template Buffer<T>;
@@ -13,7 +13,7 @@ using Buf = typename Exec::template Buffer<T>;
 // Kinds of input vertices (refine.inl's corner_kinds).
 constexpr std::int8_t kCorner = 1, kAcute = 2;
 
-// A triangulation of one round, in the executor's memory (cdt2d's DeviceResult, viewed).
+// A triangulation of one round, in the executor's memory; seg holds base segment indices.
 struct RoundMesh {
   const double* xy;
   const std::int32_t *tri, *nbr, *seg, *dup;
@@ -22,14 +22,14 @@ struct RoundMesh {
 };
 
 // The subsegments as the triangulation has them: each marked edge once (from the triangle with
-// the lower index, or the only one), and per half-edge (3 t + k, the edge opposite vertex k) the
-// index of its subsegment (-1 off segments).
+// the lower index, or the only one: its half-edge), and per half-edge (3 t + k, the edge opposite
+// vertex k) the index of its subsegment (-1 off segments).
 struct Subsegments {
-  Buf<std::int32_t> ends, base, of_edge;
+  Buf<std::int32_t> ends, base, half, of_edge;
   std::int64_t count = 0;
 };
 
-inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m, const std::int32_t* old_base) {
+inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m) {
   Subsegments s;
   const std::int64_t ne = 3 * m.nt;
   auto index = ex.template alloc<std::int32_t>(std::size_t(ne) + 1);
@@ -46,8 +46,9 @@ inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m, const std::int32
   s.count = count;
   s.ends = ex.template alloc<std::int32_t>(2 * std::size_t(std::max(count, 1)));
   s.base = ex.template alloc<std::int32_t>(std::size_t(std::max(count, 1)));
+  s.half = ex.template alloc<std::int32_t>(std::size_t(std::max(count, 1)));
   s.of_edge = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(ne, 1)));
-  std::int32_t *E = s.ends.data(), *B = s.base.data(), *O = s.of_edge.data();
+  std::int32_t *E = s.ends.data(), *B = s.base.data(), *H = s.half.data(), *O = s.of_edge.data();
   ex.for_each_index(
       ne, GG_LAMBDA(std::int64_t e) {
         const std::int64_t t = e / 3;
@@ -59,7 +60,8 @@ inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m, const std::int32
         const std::int32_t j = I[e];
         E[2 * j] = T[3 * t + (k + 1) % 3];
         E[2 * j + 1] = T[3 * t + (k + 2) % 3];
-        B[j] = old_base[G[e]];
+        B[j] = G[e];
+        H[j] = std::int32_t(e);
         O[e] = j;
       });
   // The other half of each marked interior edge reads its twin's index.
@@ -76,13 +78,13 @@ inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m, const std::int32
 
 // What a round decided, per subsegment, per point and per triangle.
 struct Decisions {
-  Buf<std::int32_t> split;  // per subsegment: 1 to split
-  Buf<std::int32_t> drop;   // per point: 1 to remove (a free point that encroaches)
-  Buf<double> point;        // per triangle: its new point
-  Buf<std::int32_t> land;   // per triangle: the triangle its point lands in (-1: none)
-  Buf<std::uint64_t> key;   // per triangle: its rank (lower first) and index
-  Buf<std::int8_t> reason;  // per triangle: SmallAngle left (0: none)
-  Buf<std::int8_t> large;   // per triangle: 1 when still too large and not refined
+  Buf<std::int32_t> split;    // per subsegment: 1 to split
+  Buf<double> point;          // per triangle: its new point
+  Buf<std::int32_t> land;     // per triangle: the triangle its point lands in (-1: none)
+  Buf<std::uint64_t> key;     // per triangle: its rank (lower first) and index
+  Buf<std::int8_t> reason;    // per triangle: SmallAngle left (0: none)
+  Buf<std::int8_t> large;     // per triangle: 1 when still too large and not refined
+  Buf<std::int8_t> rejected;  // per triangle: 1 when its point would encroach (a split instead)
 };
 
 // The bounds a triangle is judged by (device-readable).
@@ -125,13 +127,14 @@ GG_INLINE void mark(std::int32_t* flags, std::int64_t j) {
 // Encroached subsegments: the apex of each triangle beside a subsegment in its diametral lens
 // (encroaches()). That apex is the one vertex to test: the triangle's circumcircle covers the
 // half of the diametral disc on its side unless the apex is inside it, so no other vertex seen
-// from the subsegment can be (Triangle tests the same vertex). A free Steiner point that
-// encroaches is removed as well (Ruppert's rejected circumcentre).
-inline void find_encroached(Exec& ex, const RoundMesh& m, const Subsegments& s,
-                            const std::int8_t* free_pt, double lens, Decisions& d) {
+// from the subsegment can be (Triangle tests the same vertex). Points are never removed (as in
+// Triangle): a new point that would encroach is not inserted (find_bad), so a free point that
+// encroaches is rare, and the split it causes is all it costs.
+inline void find_encroached(Exec& ex, const RoundMesh& m, const Subsegments& s, double lens,
+                            Decisions& d) {
   const std::int32_t *T = m.tri, *O = s.of_edge.data();
   const double* P = m.xy;
-  std::int32_t *split = d.split.data(), *drop = d.drop.data();
+  std::int32_t* split = d.split.data();
   ex.for_each_index(
       3 * m.nt, GG_LAMBDA(std::int64_t e) {
         const std::int32_t j = O[e];
@@ -143,7 +146,6 @@ inline void find_encroached(Exec& ex, const RoundMesh& m, const Subsegments& s,
         const double* b = P + 2 * std::int64_t(T[3 * t + (k + 2) % 3]);
         if (!encroaches(a, b, P + 2 * std::int64_t(apex), lens)) return;
         mark(split, j);
-        if (free_pt[apex]) atomic_max(drop + apex, std::int32_t(1));
       });
 }
 
@@ -253,13 +255,14 @@ inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const B
   double* NP = d.point.data();
   std::int32_t* L = d.land.data();
   std::uint64_t* K = d.key.data();
-  std::int8_t *R = d.reason.data(), *LG = d.large.data();
+  std::int8_t *R = d.reason.data(), *LG = d.large.data(), *RJ = d.rejected.data();
   const Bounds b = bounds;
   ex.for_each_index(
       m.nt, GG_LAMBDA(std::int64_t t) {
         L[t] = -1;
         R[t] = 0;
         LG[t] = 0;
+        RJ[t] = 0;
         const double* p[3];
         for (int k = 0; k < 3; ++k) p[k] = m.xy + 2 * std::int64_t(m.tri[3 * t + k]);
         const TriangleShape sh = shape_of(p[0], p[1], p[2]);
@@ -298,7 +301,7 @@ inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const B
           if (skinny_only && terminated(m, cn, E, j, shortest2))
             R[t] = std::int8_t(SmallAngle::Shell);
           else
-            mark(split, j);
+            mark(split, j), RJ[t] = 1;
           return;
         }
         int enc = 0, stopped = 0;
@@ -319,7 +322,10 @@ inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const B
           }
         }
         if (enc) {
-          if (enc == stopped) R[t] = std::int8_t(SmallAngle::Shell);
+          if (enc == stopped)
+            R[t] = std::int8_t(SmallAngle::Shell);
+          else
+            RJ[t] = 1;
           return;
         }
         NP[2 * t] = q[0];
@@ -357,39 +363,111 @@ GG_HD inline int cavity_of(const RoundMesh& m, const std::int32_t* of_edge, std:
   return n;
 }
 
-// The new points whose cavities no better-ranked point's cavity touches (the lowest key wins
-// each triangle): the points of one round replace disjoint sets of triangles, as if inserted one
-// after another, so they never crowd each other (two points in one cavity would make an edge
-// far shorter than the mesh asks for there, and new bad triangles).
-inline std::int64_t choose_points(Exec& ex, const RoundMesh& m, const Subsegments& s, Decisions& d,
-                                  Buf<std::int32_t>& winners) {
-  auto claim = ex.template alloc<std::uint64_t>(std::size_t(std::max<std::int64_t>(m.nt, 1)));
-  std::uint64_t* C = claim.data();
-  ex.fill(C, m.nt, ~std::uint64_t(0));
+// A round's choice: the subsegment splits and the new points that go in, no two touching one
+// triangle. Splits come first (as in Triangle): each claims the triangles beside its
+// subsegment, the lowest subsegment index winning. A new point claims its cavity (the lowest
+// key wins each triangle) and goes in when it holds all of it and no split claimed any of it:
+// the points of one round replace disjoint sets of triangles, as if inserted one after another,
+// so they never crowd each other (two points in one cavity would make an edge far shorter than
+// the mesh asks for there, and new bad triangles). A split goes in only where its point is a
+// double strictly inside the subsegment and its four triangles keep their orientation.
+struct Choice {
+  Buf<std::int32_t> splits, points;  // winning subsegments and triangles, in index order
+  Buf<double> at;                    // per subsegment: its split point
+  std::int64_t nsplits = 0, npoints = 0;
+};
+
+inline Choice choose(Exec& ex, const RoundMesh& m, const Subsegments& s, const Decisions& d,
+                     const std::int8_t* corner, std::int64_t n_in) {
+  Choice c;
+  const std::size_t tn = std::size_t(std::max<std::int64_t>(m.nt, 1));
+  const std::size_t sn = std::size_t(std::max<std::int64_t>(s.count, 1));
+  auto cs = ex.template alloc<std::uint64_t>(tn);
+  auto cp = ex.template alloc<std::uint64_t>(tn);
+  auto ok = ex.template alloc<std::int8_t>(sn);
+  c.at = ex.template alloc<double>(2 * sn);
+  std::uint64_t *CS = cs.data(), *CP = cp.data();
+  std::int8_t* OK = ok.data();
+  double* M = c.at.data();
+  constexpr std::uint64_t kFree = ~std::uint64_t(0);
+  ex.fill(CS, m.nt, kFree);
+  ex.fill(CP, m.nt, kFree);
+  const std::int32_t *SP = d.split.data(), *H = s.half.data(), *E = s.ends.data();
   const std::int32_t *L = d.land.data(), *O = s.of_edge.data();
   const std::uint64_t* K = d.key.data();
   const double* NP = d.point.data();
+  ex.for_each_index(
+      s.count, GG_LAMBDA(std::int64_t j) {
+        OK[j] = 0;
+        if (!SP[j]) return;
+        const std::int32_t a = E[2 * j], b = E[2 * j + 1];
+        const double *pa = m.xy + 2 * std::int64_t(a), *pb = m.xy + 2 * std::int64_t(b);
+        double* q = M + 2 * j;
+        split_point(pa, pb, a < n_in && corner[a], b < n_in && corner[b], q);
+        if (!std::isfinite(q[0]) || !std::isfinite(q[1])) return;
+        if ((q[0] == pa[0] && q[1] == pa[1]) || (q[0] == pb[0] && q[1] == pb[1])) return;
+        // Both halves of each triangle beside it counter-clockwise (the point is rounded, and may
+        // lie a little off the subsegment's line).
+        double sc[pred::kOrient2dScratch];
+        const std::int32_t e = H[j], t = e / 3;
+        const std::int32_t apex = m.tri[3 * std::int64_t(t) + e % 3];
+        const double* pc = m.xy + 2 * std::int64_t(apex);
+        if (pred::orient2d(pc, pa, q, sc) <= 0 || pred::orient2d(pc, q, pb, sc) <= 0) return;
+        const std::int32_t u = m.nbr[e];
+        if (u >= 0) {
+          int ku = 0;
+          while (ku < 3 && m.nbr[3 * std::int64_t(u) + ku] != t) ++ku;
+          if (ku == 3) return;
+          const double* pd = m.xy + 2 * std::int64_t(m.tri[3 * std::int64_t(u) + ku]);
+          if (pred::orient2d(pd, pb, q, sc) <= 0 || pred::orient2d(pd, q, pa, sc) <= 0) return;
+          atomic_min(CS + u, std::uint64_t(j));
+        }
+        atomic_min(CS + t, std::uint64_t(j));
+        OK[j] = 1;
+      });
   ex.for_each_index(
       m.nt, GG_LAMBDA(std::int64_t t) {
         if (L[t] < 0) return;
         std::int32_t list[kCavity];
         const int n = cavity_of(m, O, L[t], NP + 2 * t, list);
-        for (int i = 0; i < n; ++i) atomic_min(C + list[i], K[t]);
+        for (int i = 0; i < n; ++i) atomic_min(CP + list[i], K[t]);
       });
-  winners = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(m.nt, 1)));
-  auto count = ex.template alloc<std::int64_t>(1);
+  c.splits = ex.template alloc<std::int32_t>(sn);
+  c.points = ex.template alloc<std::int32_t>(tn);
+  auto count = ex.template alloc<std::int64_t>(2);
+  ex.compact_indices_to(
+      s.count,
+      GG_LAMBDA(std::int64_t j)->bool {
+        if (!OK[j]) return false;
+        const std::int32_t e = H[j], u = m.nbr[e];
+        return CS[e / 3] == std::uint64_t(j) && (u < 0 || CS[u] == std::uint64_t(j));
+      },
+      c.splits.data(), count.data());
   ex.compact_indices_to(
       m.nt,
       GG_LAMBDA(std::int64_t t)->bool {
         if (L[t] < 0) return false;
+        const double* q = NP + 2 * t;
         std::int32_t list[kCavity];
-        const int n = cavity_of(m, O, L[t], NP + 2 * t, list);
+        const int n = cavity_of(m, O, L[t], q, list);
         for (int i = 0; i < n; ++i)
-          if (C[list[i]] != K[t]) return false;
+          if (CP[list[i]] != K[t] || CS[list[i]] != kFree) return false;
+        // On an edge of its landing triangle, the triangle beside that edge is split too: it
+        // must be this point's as well.
+        double sc[pred::kOrient2dScratch];
+        const std::int64_t l3 = 3 * std::int64_t(L[t]);
+        for (int k = 0; k < 3; ++k) {
+          const double* a = m.xy + 2 * std::int64_t(m.tri[l3 + (k + 1) % 3]);
+          const double* b = m.xy + 2 * std::int64_t(m.tri[l3 + (k + 2) % 3]);
+          if (pred::orient2d(a, b, q, sc) != 0) continue;
+          const std::int32_t u = m.nbr[l3 + k];
+          if (u < 0 || CP[u] != K[t] || CS[u] != kFree) return false;
+        }
         return true;
       },
-      winners.data(), count.data());
-  std::int64_t w = 0;
-  ex.to_host(count.data(), 1, &w);
-  return w;
+      c.points.data(), count.data() + 1);
+  std::int64_t h[2];
+  ex.to_host(count.data(), 2, h);
+  c.nsplits = h[0], c.npoints = h[1];
+  return c;
 }
