@@ -70,8 +70,11 @@ def main():
         v, s, holes = make()
         kw = dict(holes=holes, min_angle=angle, max_area=area, backend=backend)
         m, ms = best_ms(lambda: gpugeom.mesh2d(v, s, **kw), a.repeat)
+        c = m.stats["counters"]
+        phases = " ".join(f"{k} {v:.1f}" for k, v in m.stats["phase_ms"].items())
         print(f"{name:12s} {angle:4.0f} {area:7.0e} {'gpugeom ' + backend + ' e2e':22s} "
-              f"{ms:9.1f} {len(m['triangles']):10d} {m.stats['counters']['rounds']:6d}",
+              f"{ms:9.1f} {len(m['triangles']):10d} {c['rounds']:6d}  "
+              f"[{phases}; flips {c.get('flips', 0)} in {c.get('flip_passes', 0)} passes]",
               flush=True)
         append_row(a.csv, "mesh2d", f"{name}-q{angle}-a{area:g}", len(m["triangles"]),
                    f"gpugeom-{backend}-e2e", ms)

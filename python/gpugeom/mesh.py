@@ -57,8 +57,10 @@ class Mesh2d(dict):
     large_triangles : (k,) int32
         Triangles left above their area bound (only when ``max_steiner`` stopped refinement).
     stats : dict
-        Phases and counters (``rounds``, ``steiner_points``, ``segment_splits``,
-        ``rejected_points``, ``triangles``).
+        Phases (``triangulate``, ``decide``, ``insert``, ``flip``, ``output``, ``refine``,
+        ``to_host``) and counters (``rounds``, ``steiner_points``, ``segment_splits``,
+        ``rejected_points``: new points not inserted because they would encroach upon a
+        subsegment, which was split instead; ``flips``, ``flip_passes``, ``triangles``).
     """
 
     segment_of: np.ndarray
@@ -220,7 +222,8 @@ def mesh2d(points, segments=None, *, holes=None, regions=None, min_angle: float 
                                   min_angle=angle, max_area=area, grid=grid, extent=extent,
                                   max_steiner=steiner, backend=backend, stream=kind.stream,
                                   threads=threads)
-        for k in ("points", "simplices", "neighbors", "segment_of", "duplicate_of", "attribute"):
+        for k in ("points", "simplices", "neighbors", "segment_of", "duplicate_of", "attribute",
+                  "subsegments", "subsegment_of"):
             if k in r:
                 r[k] = kind.to_xp(kind.back(r[k]))
         return _as_mesh(r, int(arr.shape[0]), h, g, segment_markers, vertex_markers,
@@ -245,17 +248,8 @@ def _as_mesh(r, n, holes, regions, segment_markers, vertex_markers, xp=np,
     device result, given back as the caller's kind)."""
     pts, tri, seg_of = r["points"], r["simplices"], r["segment_of"]
     nbr = r["neighbors"]
-    # The subsegments: each marked edge once (from the triangle with the lower index).
-    nt = len(tri)
-    t_idx = xp.repeat(xp.arange(nt), 3)
-    k = xp.tile(xp.arange(3), nt)
-    marks = seg_of.ravel()
-    other = nbr.ravel()
-    keep = (marks != -1) & ((other < 0) | (t_idx < other))
-    a = tri[t_idx[keep], (k[keep] + 1) % 3]
-    b = tri[t_idx[keep], (k[keep] + 2) % 3]
-    sub = xp.stack([a, b], axis=1).astype(xp.int32)
-    which = marks[keep]
+    # The subsegments (each marked edge once, listed by the library) and their segments.
+    sub, which = r["subsegments"], r["subsegment_of"]
     if segment_markers is not None:
         sm = xp.asarray(np.asarray(segment_markers, dtype=np.int32).reshape(-1))
         sub_markers = xp.where(which >= 0, sm[xp.clip(which, 0, max(len(sm) - 1, 0))], 1)

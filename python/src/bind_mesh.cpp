@@ -86,6 +86,9 @@ nb::dict refine2d_bind(const AnyArray& points, const AnyArray& segments, const A
   r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});
   r["segment_of"] = host_array(std::move(t.segment_of), {nt, 3});
   r["duplicate_of"] = host_array(std::move(t.duplicate_of), {np});
+  const sz ns = t.subsegment_of.size();
+  r["subsegments"] = host_array(std::move(t.subsegments), {ns, 2});
+  r["subsegment_of"] = host_array(std::move(t.subsegment_of), {ns});
   if (!t.attribute.empty()) r["attribute"] = host_array(std::move(t.attribute), {nt});
   r["num_input_points"] = t.num_input_points;
   r["removed_triangles"] = t.removed_triangles;
@@ -116,6 +119,9 @@ nb::dict refine2d_device_bind(const AnyArray& points, const AnyArray& segments,
   r["neighbors"] = out(t.neighbors, {nt, 3});
   r["segment_of"] = out(t.segment_of, {nt, 3});
   r["duplicate_of"] = out(t.duplicate_of, {np});
+  const sz ns = sz(t.num_subsegments);
+  r["subsegments"] = out(t.subsegments, {ns, 2});
+  r["subsegment_of"] = out(t.subsegment_of, {ns});
   if (t.attribute) r["attribute"] = out(t.attribute, {nt});
   r["num_input_points"] = t.num_input_points;
   r["removed_triangles"] = t.removed_triangles;

@@ -264,19 +264,19 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     if (!last) {
       // The bad triangles refinement still works on (the terminator's excepted), and the points
       // rejected for encroaching.
-      auto any = ex.template alloc<std::int64_t>(2);
+      // One pass, both sums: the rejected points above bit 32.
+      auto any = ex.template alloc<std::int64_t>(1);
       const std::int8_t *R = d.reason.data(), *LG = d.large.data(), *RJ = d.rejected.data();
       ex.transform_reduce_into(
           m.nt,
           GG_LAMBDA(std::int64_t t)->std::int64_t {
-            return R[t] == std::int8_t(SmallAngle::Limit) || LG[t] ? 1 : 0;
+            const bool bad = R[t] == std::int8_t(SmallAngle::Limit) || LG[t];
+            return (std::int64_t(RJ[t]) << 32) + (bad ? 1 : 0);
           },
           std::int64_t(0), thrust::plus<std::int64_t>(), any.data());
-      ex.transform_reduce_into(
-          m.nt, GG_LAMBDA(std::int64_t t)->std::int64_t { return RJ[t]; }, std::int64_t(0),
-          thrust::plus<std::int64_t>(), any.data() + 1);
-      std::int64_t h[2];
-      ex.to_host(any.data(), 2, h);
+      std::int64_t sums = 0;
+      ex.to_host(any.data(), 1, &sums);
+      const std::int64_t h[2] = {sums & 0xffffffff, sums >> 32};
       out.tally.rejected += h[1];
       // Refinement whose share of bad triangles has not fallen for kStall rounds has stalled
       // (near the angle limit new points can make bad triangles as fast as they remove them):

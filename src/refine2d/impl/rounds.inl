@@ -132,20 +132,31 @@ GG_INLINE void mark(std::int32_t* flags, std::int64_t j) {
 // encroaches is rare, and the split it causes is all it costs.
 inline void find_encroached(Exec& ex, const RoundMesh& m, const Subsegments& s, double lens,
                             Decisions& d) {
-  const std::int32_t *T = m.tri, *O = s.of_edge.data();
+  const std::int32_t *T = m.tri, *N = m.nbr, *H = s.half.data(), *O = s.of_edge.data();
   const double* P = m.xy;
   std::int32_t* split = d.split.data();
+  // Per subsegment, its two sides (the half-edge listed and its twin), not every half-edge.
   ex.for_each_index(
-      3 * m.nt, GG_LAMBDA(std::int64_t e) {
-        const std::int32_t j = O[e];
-        if (j < 0) return;
-        const std::int64_t t = e / 3;
-        const int k = int(e % 3);
-        const std::int32_t apex = T[3 * t + k];
-        const double* a = P + 2 * std::int64_t(T[3 * t + (k + 1) % 3]);
-        const double* b = P + 2 * std::int64_t(T[3 * t + (k + 2) % 3]);
-        if (!encroaches(a, b, P + 2 * std::int64_t(apex), lens)) return;
-        mark(split, j);
+      s.count, GG_LAMBDA(std::int64_t j) {
+        std::int64_t e = H[j];
+        for (int side = 0; side < 2; ++side) {
+          if (side) {
+            const std::int32_t u = N[e];
+            if (u < 0) return;
+            int ku = 0;
+            while (ku < 3 && O[3 * std::int64_t(u) + ku] != j) ++ku;
+            if (ku == 3) return;
+            e = 3 * std::int64_t(u) + ku;
+          }
+          const std::int64_t t = e / 3;
+          const int k = int(e % 3);
+          const double* a = P + 2 * std::int64_t(T[3 * t + (k + 1) % 3]);
+          const double* b = P + 2 * std::int64_t(T[3 * t + (k + 2) % 3]);
+          if (encroaches(a, b, P + 2 * std::int64_t(T[3 * t + k]), lens)) {
+            split[j] = 1;  // (this thread's subsegment alone)
+            return;
+          }
+        }
       });
 }
 
