@@ -1,12 +1,20 @@
 #!/usr/bin/env python3
 """Quality meshing: gpugeom.mesh2d (end to end from NumPy arrays, and device-resident from CuPy
-arrays) against Shewchuk's Triangle (the `triangle` package, one core) on the same domains and
-bounds, in one run. Prints the machine, a table (time, triangles, rounds) and appends CSV rows.
+arrays) against Shewchuk's Triangle (the `triangle` package, one core) and CGAL's Delaunay
+mesher (bench/anchor_cgal_mesh2d, one core, when --cgal names it) on the same domains and bounds,
+in one run. Prints the machine, a table (time, triangles, rounds, gpugeom's phases) and appends
+CSV rows.
 
-    python3 bench/mesh2d.py [--csv out.csv] [--quick]
+    python3 bench/mesh2d.py [--csv out.csv] [--quick] [--cgal PATH [--cgal-max-area-inv N]]
+
+CGAL bounds edge lengths, not areas: its anchor uses the side of the equilateral triangle of the
+area bound (so its meshes meet the area bound too, with more triangles).
 """
 import argparse
+import os
+import subprocess
 import sys
+import tempfile
 import time
 
 import numpy as np
@@ -31,6 +39,21 @@ def coastline(m=5000, seed=3):
     return v, s, None
 
 
+def write_poly(path, v, s, holes):
+    """The domain as a Triangle .poly file (indices from 0)."""
+    with open(path, "w") as f:
+        f.write(f"{len(v)} 2 0 0\n")
+        for i, (x, y) in enumerate(v):
+            f.write(f"{i} {float(x)!r} {float(y)!r}\n")
+        f.write(f"{len(s)} 0\n")
+        for j, (a, b) in enumerate(s):
+            f.write(f"{j} {a} {b}\n")
+        h = [] if holes is None else holes
+        f.write(f"{len(h)}\n")
+        for k, (x, y) in enumerate(h):
+            f.write(f"{k} {float(x)!r} {float(y)!r}\n")
+
+
 def best_ms(f, repeat):
     out, best = None, float("inf")
     for _ in range(repeat):
@@ -45,7 +68,11 @@ def main():
     ap.add_argument("--csv")
     ap.add_argument("--quick", action="store_true", help="the smaller sizes only")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--cgal", help="path of anchor_cgal_mesh2d (CGAL's mesher), if built")
+    ap.add_argument("--cgal-min-area", type=float, default=1e-6,
+                    help="smallest area bound CGAL is run for (it is slow below)")
     a = ap.parse_args()
+    tmp = tempfile.mkdtemp()
     import gpugeom
     try:
         import triangle
@@ -102,6 +129,16 @@ def main():
                   f"{len(t['triangles']):10d}", flush=True)
             append_row(a.csv, "mesh2d", f"{name}-q{angle}-a{area:g}", len(t["triangles"]),
                        "triangle", ms)
+        if a.cgal and area >= a.cgal_min_area:
+            poly = os.path.join(tmp, f"{name}.poly")
+            write_poly(poly, v, s, holes)
+            rep = "1" if area < 1e-5 else str(a.repeat)
+            out = subprocess.run([a.cgal, poly, str(angle), repr(area), rep], check=True,
+                                 capture_output=True, text=True).stdout.split()
+            ms, nt = float(out[0]), int(out[1])
+            print(f"{name:12s} {angle:4.0f} {area:7.0e} {'cgal mesher (1 core)':22s} {ms:9.1f} "
+                  f"{nt:10d}", flush=True)
+            append_row(a.csv, "mesh2d", f"{name}-q{angle}-a{area:g}", nt, "cgal-mesher", ms)
     return 0
 
 
