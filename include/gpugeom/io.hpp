@@ -6,7 +6,8 @@
 // Meshes out: .ply, .off, .obj, .ele (+ .node beside it), .vtk (legacy VTK 4.2, binary or
 //             ascii; read: ascii and binary, 4.x and 5.1 cell layouts), .vtu (VTK XML, ParaView:
 //             raw appended binary, optionally zlib-compressed, or ascii), .npy (the cell array
-//             only, int32 N x 3 or N x 4). The same formats read back; .vtu in every encoding
+//             only, int32 N x 3 or N x 4), .msh (Gmsh 2.2 ascii, written only: region tags from
+//             an integer cell array "attribute"). The others read back; .vtu in every encoding
 //             VTK writes (ascii, inline base64, appended raw or base64; zlib or not; 32- or
 //             64-bit headers; either byte order), with the point and cell data arrays a
 //             mesh carries (Mesh::point_data, cell_data; the delaunay commands attach the

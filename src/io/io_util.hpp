@@ -335,6 +335,10 @@ PlyData parse_ply(std::string_view bytes, const std::string& name);
 Text format_ply(const double* coords, int dim, std::size_t nv, const std::int32_t* cells,
                 int cell_size, std::size_t nc, bool binary);
 
+// Gmsh MSH 2.2 ASCII (msh.cpp): nodes and triangles or tetrahedra, region tags from a cell
+// array "attribute" of integers.
+Text format_msh(const Mesh& m);
+
 void append_double(std::string& out, double v);  // shortest round-trip text
 void append_int(std::string& out, std::int64_t v);
 // A data array of `type` from values read as doubles (the readers' common form); false, with

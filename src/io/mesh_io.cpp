@@ -171,12 +171,14 @@ void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {
     return;
   } else if (ext == ".vtk") {
     out = format_vtk(m, o.binary);
+  } else if (ext == ".msh") {
+    out = format_msh(m);
   } else if (ext == ".npy") {
     out = format_npy("<i4", {std::int64_t(nc), m.cell_size}, m.cells.data(), m.cells.size() * 4);
   } else {
     throw Error(ErrorCode::InvalidArgument,
                 path + ": unknown mesh format '" + ext +
-                    "': expected .ply .off .obj .ele .vtu .vtk or .npy");
+                    "': expected .ply .off .obj .ele .vtu .vtk .msh (written only) or .npy");
   }
   write_file_atomic(path, out);
 }

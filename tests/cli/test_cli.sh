@@ -179,6 +179,8 @@ grep -q 'stroke="#15c"' "$W/l.svg" || { echo "FAIL: cdt2d drawing has no segment
 expect 0 "check: valid quality mesh" -- "$G" mesh2d "$W/l.poly" -q 30 -a 0.5 -o "$W/m.ele" --check
 [ -s "$W/m.node" ] || { echo "FAIL: mesh2d wrote no .node beside the .ele"; fail=1; }
 expect 0 "smallest angles" -- "$G" mesh2d "$W/l.poly" -q 25 -o "$W/m.vtu" --draw "$W/m.svg"
+expect 0 "smallest angles" -- "$G" mesh2d "$W/l.poly" -q 30 -o "$W/m.msh"
+grep -q '^\$Elements' "$W/m.msh" || { echo "FAIL: mesh2d .msh has no elements"; fail=1; }
 expect 2 "33.8" -- "$G" mesh2d "$W/l.poly" -q 40 -o "$W/refused.ele"
 [ ! -e "$W/refused.ele" ] || { echo "FAIL: a refused mesh2d wrote its output"; fail=1; }
 expect 0 "usage: gpugeom mesh2d" -- "$G" mesh2d --help

@@ -478,6 +478,38 @@ TEST(Io, MeshRoundTrips) {
   EXPECT_TRUE(no_temp_files());
 }
 
+// Gmsh 2.2 ascii (written only): nodes numbered from 1 with z = 0 for 2D, triangles (type 2)
+// and tetrahedra (type 4), region tags from an integer "attribute" cell array, else 1.
+TEST(Io, MshWritten) {
+  io::Mesh tri;
+  tri.dim = 2;
+  tri.coords = {0, 0, 1, 0, 0, 1, 1, 1};
+  tri.cells = {0, 1, 2, 1, 3, 2};
+  const double attr[2] = {3, 7};
+  tri.cell_data.push_back(io::make_data_array("attribute", io::ScalarType::F64, 1, attr, 2));
+  io::write_mesh(path("m.msh"), tri);
+  std::ifstream in(path("m.msh"));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text,
+            "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+            "4 1 1 0\n$EndNodes\n$Elements\n2\n1 2 2 3 3 1 2 3\n2 2 2 7 7 2 4 3\n"
+            "$EndElements\n");
+  io::Mesh tet;
+  tet.dim = 3;
+  tet.coords = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0.5};
+  tet.cell_size = 4;
+  tet.cells = {0, 1, 2, 3};
+  const double frac[1] = {0.5};  // not an integer: every tag 1
+  tet.cell_data.push_back(io::make_data_array("attribute", io::ScalarType::F64, 1, frac, 1));
+  io::write_mesh(path("t.msh"), tet);
+  std::ifstream in2(path("t.msh"));
+  const std::string t2((std::istreambuf_iterator<char>(in2)), std::istreambuf_iterator<char>());
+  EXPECT_NE(t2.find("4 0 0 0.5\n"), std::string::npos);
+  EXPECT_NE(t2.find("\n1 4 2 1 1 1 2 3 4\n"), std::string::npos);
+  EXPECT_THROW(io::read_mesh(path("t.msh")), Error);  // written only
+  EXPECT_TRUE(no_temp_files());
+}
+
 // VTU in each encoding gpugeom writes: binary (raw appended), zlib-compressed (blocks of
 // 1 MiB: the large mesh spans several), ascii; doubles bit for bit, including values whose
 // shortest text is long.
