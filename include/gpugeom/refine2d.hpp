@@ -93,8 +93,9 @@ struct RefinedMesh2d {
   // segment_of: an input segment, or kHullSegment).
   HostVector<std::int32_t> subsegments, subsegment_of;
   std::int64_t removed_triangles = 0;
-  // Phases "triangulate" (the input's constrained triangulation), "decide", "insert", "flip"
-  // (the rounds' three steps), "output", then "refine" (all of them) and "to_host"; counters
+  // Phases "triangulate" (the input's constrained triangulation), "decide" and "insert" (the
+  // rounds' two steps: what goes in; inserting it and flipping), "output", then "refine" (all of
+  // them) and "to_host"; counters
   // "rounds", "steiner_points", "segment_splits", "rejected_points" (new points not inserted
   // because they would encroach upon a subsegment, which is split instead), "flips",
   // "flip_passes", "triangles".

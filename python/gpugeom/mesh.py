@@ -57,7 +57,7 @@ class Mesh2d(dict):
     large_triangles : (k,) int32
         Triangles left above their area bound (only when ``max_steiner`` stopped refinement).
     stats : dict
-        Phases (``triangulate``, ``decide``, ``insert``, ``flip``, ``output``, ``refine``,
+        Phases (``triangulate``, ``decide``, ``insert`` (with the flips), ``output``, ``refine``,
         ``to_host``) and counters (``rounds``, ``steiner_points``, ``segment_splits``,
         ``rejected_points``: new points not inserted because they would encroach upon a
         subsegment, which was split instead; ``flips``, ``flip_passes``, ``triangles``).

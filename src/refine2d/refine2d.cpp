@@ -87,7 +87,6 @@ void set_counters(Stats& st, const refine::Tally& t, std::int64_t triangles) {
   std::vector<std::pair<std::string, double>> ph = {{"triangulate", t.cdt_ms},
                                                     {"decide", t.decide_ms},
                                                     {"insert", t.insert_ms},
-                                                    {"flip", t.flip_ms},
                                                     {"output", t.output_ms}};
   ph.insert(ph.end(), st.phase_ms.begin(), st.phase_ms.end());
   st.phase_ms = std::move(ph);

@@ -13,7 +13,7 @@ namespace gpugeom::refine {
 // the host reads the rounds make anyway: no synchronisation of their own).
 struct Tally {
   std::int64_t rounds = 0, splits = 0, points = 0, rejected = 0, flips = 0, flip_passes = 0;
-  double cdt_ms = 0, decide_ms = 0, insert_ms = 0, flip_ms = 0, output_ms = 0;
+  double cdt_ms = 0, decide_ms = 0, insert_ms = 0, output_ms = 0;
 };
 
 // A mesh in the executor's memory (np points, nt triangles), the report lists on the host.

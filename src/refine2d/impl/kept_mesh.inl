@@ -31,6 +31,7 @@ struct Kept {
   Buf<std::int32_t> tri, nbr, seg;  // 3 cap_t
   Buf<std::int32_t> stamp, fam;     // cap_t, 2 cap_t: the edit pass that last wrote a triangle
   Buf<std::uint64_t> claim;         // cap_t: flip claims, all ones between passes
+  Buf<std::int64_t> broken;         // 1: edges found without a twin (a bug), read once at the end
   std::int64_t np = 0, nt = 0, cap_p = 0, cap_t = 0;
   std::int32_t epoch = 0;
   bool has_attr = false;
@@ -77,6 +78,8 @@ inline void reserve(Exec& ex, Kept& K, std::int64_t need_p, std::int64_t need_t)
 inline Kept kept_from(Exec& ex, const double* xy, std::int64_t n, const cdt::DeviceResult& dr) {
   Kept K;
   K.has_attr = bool(dr.attribute);
+  K.broken = ex.template alloc<std::int64_t>(1);
+  ex.fill(K.broken.data(), 1, std::int64_t(0));
   reserve(ex, K, n, dr.count);
   K.np = n, K.nt = dr.count;
   ex.copy(xy, 2 * n, K.xy.data());
@@ -210,13 +213,11 @@ GG_HD inline bool resolve(const EditView& V, std::int32_t p, std::int32_t epoch)
 }
 
 // Lawson's flips from the half-edges in `list` (count entries, -1 skipped) until every edge is
-// locally constrained Delaunay. Returns the flips done; broken counts edges without twins,
-// passes the passes made.
+// locally constrained Delaunay. Returns the flips done and counts the passes made (edges found
+// without twins go to K.broken).
 inline std::int64_t flip_until_legal(Exec& ex, Kept& K, Buf<std::int32_t> list, std::int64_t count,
-                                     std::int64_t& broken, std::int64_t& passes) {
+                                     std::int64_t& passes) {
   std::int64_t flips = 0;
-  auto bad = ex.template alloc<std::int64_t>(1);
-  ex.fill(bad.data(), 1, std::int64_t(0));
   while (count > 0) {
     ++passes;
     const EditView V = edit_view(K);
@@ -227,7 +228,7 @@ inline std::int64_t flip_until_legal(Exec& ex, Kept& K, Buf<std::int32_t> list, 
     std::uint64_t* KEY = key.data();
     std::int32_t *L = list.data(), *TW = twin.data();
     std::int8_t* W = won.data();
-    std::int64_t* BAD = bad.data();
+    std::int64_t* BAD = K.broken.data();
     constexpr std::uint64_t kNone = ~std::uint64_t(0);
     // Proposals: an illegal edge claims its two triangles.
     ex.for_each_index(
@@ -321,19 +322,17 @@ inline std::int64_t flip_until_legal(Exec& ex, Kept& K, Buf<std::int32_t> list, 
     list = std::move(nl);
     count = next;
   }
-  std::int64_t b = 0;
-  ex.to_host(bad.data(), 1, &b);
-  broken += b;
   return flips;
 }
 
 // Inserts a round's first nsw chosen splits and npw chosen points (choose()): the splits' points
 // are appended first, then the new points; each split edge's second halves and each point's two
-// new pieces are appended in item order. Returns the link edges to flip from (4 per item, -1
-// where none), their number in `count`.
+// new pieces are appended in item order. split_tris: the triangles the nsw splits add, or -1 to
+// count them here (a read). Returns the link edges to flip from (4 per item, -1 where none),
+// their number in `count`.
 inline Buf<std::int32_t> insert_chosen(Exec& ex, Kept& K, const Subsegments& s, const Choice& ch,
                                        const Decisions& d, std::int64_t nsw, std::int64_t npw,
-                                       std::int64_t& count, std::int64_t& broken) {
+                                       std::int64_t split_tris, std::int64_t& count) {
   const std::int64_t np = K.np, nt = K.nt;
   // New triangles per split: two with a triangle on each side of it, one on the boundary.
   auto toff = ex.template alloc<std::int64_t>(std::size_t(nsw) + 1);
@@ -347,8 +346,7 @@ inline Buf<std::int32_t> insert_chosen(Exec& ex, Kept& K, const Subsegments& s, 
         },
         TO);
   }
-  std::int64_t split_tris = 0;
-  ex.to_host(TO + nsw, 1, &split_tris);
+  if (split_tris < 0) ex.to_host(TO + nsw, 1, &split_tris);
   reserve(ex, K, np + nsw + npw, nt + split_tris + 2 * npw);
   const EditView V = edit_view(K);
   const std::int32_t epoch = ++K.epoch;
@@ -404,18 +402,13 @@ inline Buf<std::int32_t> insert_chosen(Exec& ex, Kept& K, const Subsegments& s, 
         });
   }
   // Every piece's outer neighbours linked (the list names each piece once, by its outer edge).
-  auto bad = ex.template alloc<std::int64_t>(1);
-  ex.fill(bad.data(), 1, std::int64_t(0));
   {
-    std::int64_t* BAD = bad.data();
+    std::int64_t* BAD = K.broken.data();
     ex.for_each_index(
         count, GG_LAMBDA(std::int64_t i) {
           if (LI[i] >= 0 && !resolve(V, LI[i] / 3, epoch)) atomic_add(BAD, std::int64_t(1));
         });
   }
-  std::int64_t b = 0;
-  ex.to_host(bad.data(), 1, &b);
-  broken += b;
   K.np = np + nsw + npw;
   K.nt = nt + split_tris + 2 * npw;
   return list;

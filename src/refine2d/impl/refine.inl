@@ -235,11 +235,13 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
   bool last = !bounded;
   constexpr std::int64_t kStall = 64;
   double best_share = 2;
-  std::int64_t best_round = 0, broken = 0;
+  std::int64_t best_round = 0, nsub = -1;
   const std::int64_t room = opt.max_steiner_points;
+  auto counts = ex.template alloc<std::int64_t>(4);
   for (std::int64_t round = 0;; ++round) {
     const RoundMesh m = K.view();
-    const Subsegments s = subsegments_of(ex, m);
+    const Subsegments s = subsegments_of(ex, m, nsub);
+    nsub = s.count;
     Decisions d;
     d.split = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(s.count, 1)));
     const std::size_t tn = std::size_t(std::max<std::int64_t>(m.nt, 1));
@@ -262,10 +264,9 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     bool stalled = false;
     Choice ch;
     if (!last) {
-      // The bad triangles refinement still works on (the terminator's excepted), and the points
-      // rejected for encroaching.
-      // One pass, both sums: the rejected points above bit 32.
-      auto any = ex.template alloc<std::int64_t>(1);
+      // The choice, and in the same read the bad triangles refinement still works on (the
+      // terminator's excepted) and the points rejected for encroaching (above bit 32).
+      ch = choose(ex, m, s, d, corner.data(), n, counts.data());
       const std::int8_t *R = d.reason.data(), *LG = d.large.data(), *RJ = d.rejected.data();
       ex.transform_reduce_into(
           m.nt,
@@ -273,10 +274,11 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
             const bool bad = R[t] == std::int8_t(SmallAngle::Limit) || LG[t];
             return (std::int64_t(RJ[t]) << 32) + (bad ? 1 : 0);
           },
-          std::int64_t(0), thrust::plus<std::int64_t>(), any.data());
-      std::int64_t sums = 0;
-      ex.to_host(any.data(), 1, &sums);
-      const std::int64_t h[2] = {sums & 0xffffffff, sums >> 32};
+          std::int64_t(0), thrust::plus<std::int64_t>(), counts.data() + 3);
+      std::int64_t c[4];
+      ex.to_host(counts.data(), 4, c);
+      ch.nsplits = c[0], ch.npoints = c[1], ch.split_tris = c[2];
+      const std::int64_t h[2] = {c[3] & 0xffffffff, c[3] >> 32};
       out.tally.rejected += h[1];
       // Refinement whose share of bad triangles has not fallen for kStall rounds has stalled
       // (near the angle limit new points can make bad triangles as fast as they remove them):
@@ -286,10 +288,11 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
       const double share = double(h[0]) / double(std::max<std::int64_t>(m.nt, 1));
       if (share < best_share) best_share = share, best_round = round;
       if (round - best_round > kStall) stalled = true;
-      if (!stalled) ch = choose(ex, m, s, d, corner.data(), n);
     }
     // Nothing left to insert (or the Steiner limit reached): the kept triangulation is the mesh.
     if (last || stalled || ch.nsplits + ch.npoints == 0) {
+      std::int64_t broken = 0;
+      ex.to_host(K.broken.data(), 1, &broken);
       if (broken)
         throw Error(ErrorCode::Internal, "refine2d: the kept triangulation lost " +
                                              std::to_string(broken) + " edge twins (a bug)");
@@ -306,10 +309,11 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     const std::int64_t npw = std::min(ch.npoints, avail - nsw);
     lap(tl.decide_ms);
     std::int64_t nlist = 0;
-    Buf<std::int32_t> list = insert_chosen(ex, K, s, ch, d, nsw, npw, nlist, broken);
+    Buf<std::int32_t> list =
+        insert_chosen(ex, K, s, ch, d, nsw, npw, nsw == ch.nsplits ? ch.split_tris : -1, nlist);
+    tl.flips += flip_until_legal(ex, K, std::move(list), nlist, tl.flip_passes);
     lap(tl.insert_ms);
-    tl.flips += flip_until_legal(ex, K, std::move(list), nlist, broken, tl.flip_passes);
-    lap(tl.flip_ms);
+    nsub += nsw;  // (a split subsegment becomes two)
     out.tally.splits += nsw;
     out.tally.points += npw;
     if (room >= 0 && K.np - n >= room) last = true;

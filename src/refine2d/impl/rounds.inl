@@ -29,7 +29,9 @@ struct Subsegments {
   std::int64_t count = 0;
 };
 
-inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m) {
+// known: their number when the caller knows it (after the first round: the first count plus the
+// splits since), so that no read waits for the scan; -1 to read it.
+inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m, std::int64_t known = -1) {
   Subsegments s;
   const std::int64_t ne = 3 * m.nt;
   auto index = ex.template alloc<std::int32_t>(std::size_t(ne) + 1);
@@ -41,8 +43,8 @@ inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m) {
         return e < ne && G[e] >= 0 && (N[e] < 0 || e / 3 < N[e]) ? 1 : 0;
       },
       I);
-  std::int32_t count = 0;
-  ex.to_host(I + ne, 1, &count);
+  std::int32_t count = std::int32_t(known);
+  if (known < 0) ex.to_host(I + ne, 1, &count);
   s.count = count;
   s.ends = ex.template alloc<std::int32_t>(2 * std::size_t(std::max(count, 1)));
   s.base = ex.template alloc<std::int32_t>(std::size_t(std::max(count, 1)));
@@ -382,14 +384,29 @@ GG_HD inline int cavity_of(const RoundMesh& m, const std::int32_t* of_edge, std:
 // so they never crowd each other (two points in one cavity would make an edge far shorter than
 // the mesh asks for there, and new bad triangles). A split goes in only where its point is a
 // double strictly inside the subsegment and its four triangles keep their orientation.
+// A chosen split holds the claims on both triangles beside its subsegment.
+struct SplitWins {
+  const std::int8_t* ok;
+  const std::int32_t *half, *nbr;
+  const std::uint64_t* claim;
+  GG_HD bool operator()(std::int64_t j) const {
+    if (!ok[j]) return false;
+    const std::int32_t e = half[j], u = nbr[e];
+    return claim[e / 3] == std::uint64_t(j) && (u < 0 || claim[u] == std::uint64_t(j));
+  }
+};
+
+// The counts are left on the device for the caller's one read: cnt[0] the winning splits,
+// cnt[1] the winning points, cnt[2] the triangles the winning splits add (two beside an inner
+// subsegment, one on the boundary).
 struct Choice {
   Buf<std::int32_t> splits, points;  // winning subsegments and triangles, in index order
   Buf<double> at;                    // per subsegment: its split point
-  std::int64_t nsplits = 0, npoints = 0;
+  std::int64_t nsplits = 0, npoints = 0, split_tris = 0;  // (set by the caller's read)
 };
 
 inline Choice choose(Exec& ex, const RoundMesh& m, const Subsegments& s, const Decisions& d,
-                     const std::int8_t* corner, std::int64_t n_in) {
+                     const std::int8_t* corner, std::int64_t n_in, std::int64_t* cnt) {
   Choice c;
   const std::size_t tn = std::size_t(std::max<std::int64_t>(m.nt, 1));
   const std::size_t sn = std::size_t(std::max<std::int64_t>(s.count, 1));
@@ -445,15 +462,14 @@ inline Choice choose(Exec& ex, const RoundMesh& m, const Subsegments& s, const D
       });
   c.splits = ex.template alloc<std::int32_t>(sn);
   c.points = ex.template alloc<std::int32_t>(tn);
-  auto count = ex.template alloc<std::int64_t>(2);
+  const SplitWins wins{OK, H, m.nbr, CS};
   ex.compact_indices_to(
-      s.count,
-      GG_LAMBDA(std::int64_t j)->bool {
-        if (!OK[j]) return false;
-        const std::int32_t e = H[j], u = m.nbr[e];
-        return CS[e / 3] == std::uint64_t(j) && (u < 0 || CS[u] == std::uint64_t(j));
-      },
-      c.splits.data(), count.data());
+      s.count, GG_LAMBDA(std::int64_t j)->bool { return wins(j); }, c.splits.data(), cnt);
+  ex.fill(cnt + 2, 1, std::int64_t(0));
+  ex.for_each_index(
+      s.count, GG_LAMBDA(std::int64_t j) {
+        if (wins(j)) atomic_add(cnt + 2, std::int64_t(m.nbr[H[j]] >= 0 ? 2 : 1));
+      });
   ex.compact_indices_to(
       m.nt,
       GG_LAMBDA(std::int64_t t)->bool {
@@ -476,9 +492,6 @@ inline Choice choose(Exec& ex, const RoundMesh& m, const Subsegments& s, const D
         }
         return true;
       },
-      c.points.data(), count.data() + 1);
-  std::int64_t h[2];
-  ex.to_host(count.data(), 2, h);
-  c.nsplits = h[0], c.npoints = h[1];
+      c.points.data(), cnt + 1);
   return c;
 }
