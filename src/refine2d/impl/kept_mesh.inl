@@ -4,14 +4,16 @@
 // gpugeom::refine::{cpu,cuda}_impl after rounds.inl.
 //
 // Triangles are flat arrays: tri[3t + k] the vertices counter-clockwise, nbr[3t + k] the triangle
-// across the edge opposite vertex k (-1 on the boundary), seg[3t + k] its base segment (-1 off
-// segments). An edit writes its triangles in two passes, because the triangles beside it may be
-// edited at the same time: the first writes each edited triangle, an outer neighbour x kept as
-// the code kUnresolved(x); the second resolves every such code: x unedited, its back link is
-// written; x edited this pass (stamp == epoch), the piece of x that holds the edge is found among
-// x and its family (the slots its old area went to). No two edits write one triangle, so the
-// result never depends on timing. Slots are reused and appended in item order: the same input
-// gives the same arrays.
+// across the edge opposite vertex k (-1 on the boundary), seg[3t + k] its subsegment (-1 off
+// segments; sub_base gives each subsegment's base segment). A triangle an edit writes is marked
+// dirty: the next round judges only the dirty triangles (and those still bad), since a triangle
+// found good stays good until it is rewritten. An edit writes its triangles in two passes, because
+// the triangles beside it may be edited at the same time: the first writes each edited triangle, an
+// outer neighbour x kept as the code kUnresolved(x); the second resolves every such code: x
+// unedited, its back link is written; x edited this pass (stamp == epoch), the piece of x that
+// holds the edge is found among x and its family (the slots its old area went to). No two edits
+// write one triangle, so the result never depends on timing. Slots are reused and appended in item
+// order: the same input gives the same arrays.
 //
 // The flips are Lawson's with the exact in-circle test (flip only when strictly inside, never a
 // segment): every illegal edge proposes its flip, keyed by its lower half-edge and its list
@@ -29,10 +31,12 @@ struct Kept {
   Buf<double> xy, attr;             // 2 cap_p; cap_t (region index + 1, or empty)
   Buf<std::int32_t> on_base;        // cap_p: the base segment a split vertex lies on, else -1
   Buf<std::int32_t> tri, nbr, seg;  // 3 cap_t
+  Buf<std::int8_t> dirty;           // cap_t: judge it next round
+  Buf<std::int32_t> sub_base;       // cap_s: per subsegment, its base segment
   Buf<std::int32_t> stamp, fam;     // cap_t, 2 cap_t: the edit pass that last wrote a triangle
   Buf<std::uint64_t> claim;         // cap_t: flip claims, all ones between passes
   Buf<std::int64_t> broken;         // 1: edges found without a twin (a bug), read once at the end
-  std::int64_t np = 0, nt = 0, cap_p = 0, cap_t = 0;
+  std::int64_t np = 0, nt = 0, nsub = 0, cap_p = 0, cap_t = 0, cap_s = 0;
   std::int32_t epoch = 0;
   bool has_attr = false;
 
@@ -51,8 +55,15 @@ inline void regrow(Exec& ex, Buf<T>& b, std::size_t used, std::size_t cap, bool 
   b = std::move(nb);
 }
 
-// Room for need_p points and need_t triangles (by half again, so that growth is rare).
-inline void reserve(Exec& ex, Kept& K, std::int64_t need_p, std::int64_t need_t) {
+// Room for need_p points, need_t triangles and need_s subsegments (by half again, so that
+// growth is rare).
+inline void reserve(Exec& ex, Kept& K, std::int64_t need_p, std::int64_t need_t,
+                    std::int64_t need_s) {
+  if (need_s > K.cap_s) {
+    const std::int64_t cap = std::max(need_s, K.cap_s + K.cap_s / 2 + 1024);
+    regrow(ex, K.sub_base, std::size_t(K.nsub), std::size_t(cap), false, std::int32_t(0));
+    K.cap_s = cap;
+  }
   if (need_p > K.cap_p) {
     const std::int64_t cap = std::max(need_p, K.cap_p + K.cap_p / 2 + 1024);
     regrow(ex, K.xy, 2 * std::size_t(K.np), 2 * std::size_t(cap), false, 0.0);
@@ -66,6 +77,7 @@ inline void reserve(Exec& ex, Kept& K, std::int64_t need_p, std::int64_t need_t)
     regrow(ex, K.nbr, 3 * u, 3 * c, false, std::int32_t(0));
     regrow(ex, K.seg, 3 * u, 3 * c, false, std::int32_t(0));
     if (K.has_attr) regrow(ex, K.attr, u, c, false, 0.0);
+    regrow(ex, K.dirty, u, c, true, std::int8_t(0));
     regrow(ex, K.stamp, u, c, true, std::int32_t(-1));
     regrow(ex, K.fam, 2 * u, 2 * c, false, std::int32_t(-1));
     regrow(ex, K.claim, u, c, true, ~std::uint64_t(0));
@@ -74,22 +86,51 @@ inline void reserve(Exec& ex, Kept& K, std::int64_t need_p, std::int64_t need_t)
 }
 
 // The kept mesh from a constrained triangulation in the executor's memory (its marks base
-// segment indices), with the n points.
+// segment indices), with the n points: each marked edge becomes a subsegment (numbered in the
+// order of the half-edges of the triangle with the lower index), and every triangle is dirty.
 inline Kept kept_from(Exec& ex, const double* xy, std::int64_t n, const cdt::DeviceResult& dr) {
   Kept K;
   K.has_attr = bool(dr.attribute);
   K.broken = ex.template alloc<std::int64_t>(1);
   ex.fill(K.broken.data(), 1, std::int64_t(0));
-  reserve(ex, K, n, dr.count);
-  K.np = n, K.nt = dr.count;
+  const std::int64_t nt = dr.count, ne = 3 * nt;
+  const std::int32_t *G = dr.segment_of.get(), *N = dr.neighbors.get();
+  auto index = ex.template alloc<std::int32_t>(std::size_t(ne) + 1);
+  std::int32_t* I = index.data();
+  ex.exclusive_scan_of(
+      ne + 1,
+      GG_LAMBDA(std::int64_t e)->std::int32_t {
+        return e < ne && G[e] >= 0 && (N[e] < 0 || e / 3 < N[e]) ? 1 : 0;
+      },
+      I);
+  std::int32_t ns = 0;
+  ex.to_host(I + ne, 1, &ns);
+  reserve(ex, K, n, nt, ns);
+  K.np = n, K.nt = nt, K.nsub = ns;
   ex.copy(xy, 2 * n, K.xy.data());
   ex.fill(K.on_base.data(), n, std::int32_t(-1));
-  ex.copy(dr.triangles.get(), 3 * dr.count, K.tri.data());
-  ex.copy(dr.neighbors.get(), 3 * dr.count, K.nbr.data());
-  ex.copy(dr.segment_of.get(), 3 * dr.count, K.seg.data());
-  if (K.has_attr) ex.copy(dr.attribute.get(), dr.count, K.attr.data());
-  ex.fill(K.stamp.data(), dr.count, std::int32_t(-1));
-  ex.fill(K.claim.data(), dr.count, ~std::uint64_t(0));
+  ex.copy(dr.triangles.get(), 3 * nt, K.tri.data());
+  ex.copy(N, 3 * nt, K.nbr.data());
+  if (K.has_attr) ex.copy(dr.attribute.get(), nt, K.attr.data());
+  ex.fill(K.stamp.data(), nt, std::int32_t(-1));
+  ex.fill(K.claim.data(), nt, ~std::uint64_t(0));
+  ex.fill(K.dirty.data(), nt, std::int8_t(1));
+  std::int32_t *S = K.seg.data(), *SB = K.sub_base.data();
+  ex.for_each_index(
+      ne, GG_LAMBDA(std::int64_t e) {
+        const bool first = G[e] >= 0 && (N[e] < 0 || e / 3 < N[e]);
+        S[e] = first ? I[e] : -1;
+        if (first) SB[I[e]] = G[e];
+      });
+  // The other half of each marked inner edge takes its twin's index.
+  ex.for_each_index(
+      ne, GG_LAMBDA(std::int64_t e) {
+        const std::int64_t t = e / 3;
+        if (G[e] < 0 || N[e] < 0 || t < N[e]) return;
+        const std::int64_t o = N[e];
+        for (int j = 0; j < 3; ++j)
+          if (N[3 * o + j] == t) S[e] = I[3 * o + j];
+      });
   return K;
 }
 
@@ -98,14 +139,18 @@ struct EditView {
   double* xy;
   double* attr;
   std::int32_t *on_base, *tri, *nbr, *seg, *stamp, *fam;
+  std::int8_t* dirty;
   std::uint64_t* claim;
 };
 inline EditView edit_view(Kept& K) {
-  return {K.xy.data(),      K.has_attr ? K.attr.data() : nullptr,
-          K.on_base.data(), K.tri.data(),
-          K.nbr.data(),     K.seg.data(),
-          K.stamp.data(),   K.fam.data(),
-          K.claim.data()};
+  EditView v;
+  v.xy = K.xy.data();
+  v.attr = K.has_attr ? K.attr.data() : nullptr;
+  v.on_base = K.on_base.data(), v.tri = K.tri.data(), v.nbr = K.nbr.data();
+  v.seg = K.seg.data(), v.stamp = K.stamp.data(), v.fam = K.fam.data();
+  v.dirty = K.dirty.data();
+  v.claim = K.claim.data();
+  return v;
 }
 
 GG_HD inline void put(const EditView& V, std::int32_t t, std::int32_t v0, std::int32_t v1,
@@ -117,6 +162,7 @@ GG_HD inline void put(const EditView& V, std::int32_t t, std::int32_t v0, std::i
   T[0] = v0, T[1] = v1, T[2] = v2;
   N[0] = n0, N[1] = n1, N[2] = n2;
   G[0] = g0, G[1] = g1, G[2] = g2;
+  V.dirty[t] = 1;
 }
 
 // An outer neighbour, kept unresolved for the second pass (the boundary stays -1).
@@ -134,10 +180,11 @@ GG_HD inline int slot_of_edge(const std::int32_t* tri, std::int32_t u, std::int3
 }
 
 // Splits the edge opposite vertex k of t (and its twin in the neighbour u, if any) at point m:
-// t keeps (c, a, m), t2 gets (c, m, b); u keeps (d, b, m), u2 gets (d, m, a). The halves of the
-// split edge take the mark g.
+// t keeps (c, a, m), t2 gets (c, m, b); u keeps (d, b, m), u2 gets (d, m, a). The half (a, m)
+// takes the mark ga, the half (m, b) the mark gb.
 GG_HD inline void split_edge(const EditView& V, std::int32_t t, int k, std::int32_t m,
-                             std::int32_t g, std::int32_t t2, std::int32_t u2, std::int32_t epoch) {
+                             std::int32_t ga, std::int32_t gb, std::int32_t t2, std::int32_t u2,
+                             std::int32_t epoch) {
   const std::int64_t b3 = 3 * std::int64_t(t);
   const std::int32_t c = V.tri[b3 + k], a = V.tri[b3 + (k + 1) % 3], b = V.tri[b3 + (k + 2) % 3];
   const std::int32_t u = V.nbr[b3 + k];
@@ -152,14 +199,14 @@ GG_HD inline void split_edge(const EditView& V, std::int32_t t, int k, std::int3
     // u = (d, b, a): (d, b) opposite a, (a, d) opposite b.
     const std::int32_t n_db = V.nbr[u3 + (ku + 2) % 3], g_db = V.seg[u3 + (ku + 2) % 3];
     const std::int32_t n_ad = V.nbr[u3 + (ku + 1) % 3], g_ad = V.seg[u3 + (ku + 1) % 3];
-    put(V, u, d, b, m, t2, u2, outer(n_db), g, -1, g_db);
-    put(V, u2, d, m, a, t, outer(n_ad), u, g, g_ad, -1);
+    put(V, u, d, b, m, t2, u2, outer(n_db), gb, -1, g_db);
+    put(V, u2, d, m, a, t, outer(n_ad), u, ga, g_ad, -1);
     if (V.attr) V.attr[u2] = V.attr[u];
     V.stamp[u] = V.stamp[u2] = epoch;
     V.fam[2 * std::int64_t(u)] = u2, V.fam[2 * std::int64_t(u) + 1] = -1;
   }
-  put(V, t, c, a, m, u >= 0 ? u2 : -1, t2, outer(n_ca), g, -1, g_ca);
-  put(V, t2, c, m, b, u >= 0 ? u : -1, outer(n_bc), t, g, g_bc, -1);
+  put(V, t, c, a, m, u >= 0 ? u2 : -1, t2, outer(n_ca), ga, -1, g_ca);
+  put(V, t2, c, m, b, u >= 0 ? u : -1, outer(n_bc), t, gb, g_bc, -1);
   if (V.attr) V.attr[t2] = V.attr[t];
   V.stamp[t] = V.stamp[t2] = epoch;
   V.fam[2 * std::int64_t(t)] = t2, V.fam[2 * std::int64_t(t) + 1] = -1;
@@ -330,15 +377,17 @@ inline std::int64_t flip_until_legal(Exec& ex, Kept& K, Buf<std::int32_t> list, 
 // new pieces are appended in item order. split_tris: the triangles the nsw splits add, or -1 to
 // count them here (a read). Returns the link edges to flip from (4 per item, -1 where none),
 // their number in `count`.
-inline Buf<std::int32_t> insert_chosen(Exec& ex, Kept& K, const Subsegments& s, const Choice& ch,
-                                       const Decisions& d, std::int64_t nsw, std::int64_t npw,
-                                       std::int64_t split_tris, std::int64_t& count) {
-  const std::int64_t np = K.np, nt = K.nt;
+// A split keeps its subsegment's index for the half (a, m) and gives the half (m, b) the next
+// new index.
+inline Buf<std::int32_t> insert_chosen(Exec& ex, Kept& K, const Choice& ch, const Decisions& d,
+                                       std::int64_t nsw, std::int64_t npw, std::int64_t split_tris,
+                                       std::int64_t& count) {
+  const std::int64_t np = K.np, nt = K.nt, nsub = K.nsub;
   // New triangles per split: two with a triangle on each side of it, one on the boundary.
   auto toff = ex.template alloc<std::int64_t>(std::size_t(nsw) + 1);
   std::int64_t* TO = toff.data();
   {
-    const std::int32_t *SW = ch.splits.data(), *H = s.half.data(), *N = K.nbr.data();
+    const std::int32_t *SW = ch.splits.data(), *H = d.half.data(), *N = K.nbr.data();
     ex.exclusive_scan_of(
         nsw + 1,
         GG_LAMBDA(std::int64_t i)->std::int64_t {
@@ -347,14 +396,15 @@ inline Buf<std::int32_t> insert_chosen(Exec& ex, Kept& K, const Subsegments& s, 
         TO);
   }
   if (split_tris < 0) ex.to_host(TO + nsw, 1, &split_tris);
-  reserve(ex, K, np + nsw + npw, nt + split_tris + 2 * npw);
+  reserve(ex, K, np + nsw + npw, nt + split_tris + 2 * npw, nsub + nsw);
   const EditView V = edit_view(K);
   const std::int32_t epoch = ++K.epoch;
   count = 4 * (nsw + npw);
   auto list = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(count, 1)));
   std::int32_t* LI = list.data();
   {
-    const std::int32_t *SW = ch.splits.data(), *H = s.half.data(), *B = s.base.data();
+    const std::int32_t *SW = ch.splits.data(), *H = d.half.data();
+    std::int32_t* SB = K.sub_base.data();
     const double* M = ch.at.data();
     ex.for_each_index(
         nsw, GG_LAMBDA(std::int64_t i) {
@@ -362,10 +412,12 @@ inline Buf<std::int32_t> insert_chosen(Exec& ex, Kept& K, const Subsegments& s, 
           const std::int32_t v = std::int32_t(np + i);
           V.xy[2 * std::int64_t(v)] = M[2 * j];
           V.xy[2 * std::int64_t(v) + 1] = M[2 * j + 1];
-          V.on_base[v] = B[j];
+          V.on_base[v] = SB[j];
+          const std::int32_t J = std::int32_t(nsub + i);
+          SB[J] = SB[j];
           const std::int32_t u = V.nbr[e], t2 = std::int32_t(nt + TO[i]);
           const std::int32_t u2 = u >= 0 ? t2 + 1 : -1;
-          split_edge(V, t, k, v, B[j], t2, u2, epoch);
+          split_edge(V, t, k, v, j, J, t2, u2, epoch);
           std::int32_t* o = LI + 4 * i;
           o[0] = 3 * t + 2, o[1] = 3 * t2 + 1;
           o[2] = u >= 0 ? 3 * u + 2 : -1, o[3] = u >= 0 ? 3 * u2 + 1 : -1;
@@ -396,7 +448,7 @@ inline Buf<std::int32_t> insert_chosen(Exec& ex, Kept& K, const Subsegments& s, 
             o[0] = 3 * t, o[1] = 3 * s1 + 1, o[2] = 3 * s2 + 2, o[3] = -1;
           } else {
             const std::int32_t u = V.nbr[3 * std::int64_t(t) + on];
-            split_edge(V, t, on, v, -1, s1, s2, epoch);
+            split_edge(V, t, on, v, -1, -1, s1, s2, epoch);
             o[0] = 3 * t + 2, o[1] = 3 * s1 + 1, o[2] = 3 * u + 2, o[3] = 3 * s2 + 1;
           }
         });
@@ -409,6 +461,7 @@ inline Buf<std::int32_t> insert_chosen(Exec& ex, Kept& K, const Subsegments& s, 
           if (LI[i] >= 0 && !resolve(V, LI[i] / 3, epoch)) atomic_add(BAD, std::int64_t(1));
         });
   }
+  K.nsub = nsub + nsw;
   K.np = np + nsw + npw;
   K.nt = nt + split_tris + 2 * npw;
   return list;

@@ -21,7 +21,7 @@ struct Output {
 // segment or RefinedMesh2d::kHullSegment), region attributes as given, the input points'
 // duplicate_of (dup, n entries; new points never repeat one), and the triangles left bad.
 inline void finish(Exec& ex, const Kept& K, const std::int32_t* dup, std::int64_t n,
-                   std::int64_t removed, const Subsegments& s, const Decisions& d,
+                   std::int64_t removed, const Decisions& d,
                    const std::vector<std::int32_t>& final_of_base, const Refine2dOptions& opt,
                    Output& out) {
   const std::int64_t nt = K.nt, np = K.np;
@@ -41,19 +41,27 @@ inline void finish(Exec& ex, const Kept& K, const std::int32_t* dup, std::int64_
   auto fob = ex.template alloc<std::int32_t>(std::max<std::size_t>(final_of_base.size(), 1));
   ex.from_host(final_of_base.data(), std::int64_t(final_of_base.size()), fob.data());
   {
-    const std::int32_t *S = K.seg.data(), *FB = fob.data();
+    const std::int32_t *S = K.seg.data(), *N = K.nbr.data(), *T = K.tri.data();
+    const std::int32_t *FB = fob.data(), *SB = K.sub_base.data();
     std::int32_t* G = out.seg.data();
+    // The subsegments as a list (what Triangle returns as its segments), in index order, each
+    // from the triangle with the lower index.
+    const std::int64_t ns = K.nsub;
+    out.nsub = ns;
+    out.sub = ex.template alloc<std::int32_t>(2 * std::size_t(std::max<std::int64_t>(ns, 1)));
+    out.sub_of = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(ns, 1)));
+    std::int32_t *SE = out.sub.data(), *SO = out.sub_of.data();
     ex.for_each_index(
-        3 * nt, GG_LAMBDA(std::int64_t e) { G[e] = S[e] < 0 ? -1 : FB[S[e]]; });
-    // The subsegments as a list (what Triangle returns as its segments).
-    out.nsub = s.count;
-    out.sub = ex.template alloc<std::int32_t>(2 * std::size_t(std::max<std::int64_t>(s.count, 1)));
-    out.sub_of = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(s.count, 1)));
-    ex.copy(s.ends.data(), 2 * s.count, out.sub.data());
-    const std::int32_t* SB = s.base.data();
-    std::int32_t* SO = out.sub_of.data();
+        3 * nt, GG_LAMBDA(std::int64_t e) {
+          const std::int32_t j = S[e];
+          G[e] = j < 0 ? -1 : FB[SB[j]];
+          if (j < 0 || !(N[e] < 0 || e / 3 < N[e])) return;
+          const std::int64_t t = e / 3;
+          SE[2 * j] = T[3 * t + (e % 3 + 1) % 3];
+          SE[2 * j + 1] = T[3 * t + (e % 3 + 2) % 3];
+        });
     ex.for_each_index(
-        s.count, GG_LAMBDA(std::int64_t j) { SO[j] = FB[SB[j]]; });
+        ns, GG_LAMBDA(std::int64_t j) { SO[j] = FB[SB[j]]; });
   }
   if (!opt.regions.empty()) {
     std::vector<double> attr;
@@ -235,48 +243,59 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
   bool last = !bounded;
   constexpr std::int64_t kStall = 64;
   double best_share = 2;
-  std::int64_t best_round = 0, nsub = -1;
+  std::int64_t best_round = 0;
   const std::int64_t room = opt.max_steiner_points;
-  auto counts = ex.template alloc<std::int64_t>(4);
+  auto counts = ex.template alloc<std::int64_t>(5);
+  const Corners cn{corner.data(), n};
   for (std::int64_t round = 0;; ++round) {
-    const RoundMesh m = K.view();
-    const Subsegments s = subsegments_of(ex, m, nsub);
-    nsub = s.count;
-    Decisions d;
-    d.split = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(s.count, 1)));
+    const RoundMesh m = K.view();  // (the kept arrays move when they grow: views per round)
+    const Terminator tm{K.on_base.data(), dbase.data(), corner.data(), n};
     const std::size_t tn = std::size_t(std::max<std::int64_t>(m.nt, 1));
+    const std::size_t sn = std::size_t(std::max<std::int64_t>(K.nsub, 1));
+    Decisions d;
+    d.split = ex.template alloc<std::int32_t>(sn);
+    d.half = ex.template alloc<std::int32_t>(sn);
     d.point = ex.template alloc<double>(2 * tn);
     d.land = ex.template alloc<std::int32_t>(tn);
     d.key = ex.template alloc<std::uint64_t>(tn);
     d.reason = ex.template alloc<std::int8_t>(tn);
     d.large = ex.template alloc<std::int8_t>(tn);
     d.rejected = ex.template alloc<std::int8_t>(tn);
-    ex.fill(d.split.data(), s.count, std::int32_t(0));
+    ex.fill(d.split.data(), K.nsub, std::int32_t(0));
+    ex.fill(d.half.data(), K.nsub, std::numeric_limits<std::int32_t>::max());
     Buf<double> sizes;
     Bounds b = bounds;
     if (opt.max_area_at) {
       host_sizes(ex, m, K.np, opt.max_area_at, sizes);
       b.triangle_area = sizes.data();
     }
-    if (!last) find_encroached(ex, m, s, bounds.lens, d);
-    const Terminator tm{K.on_base.data(), dbase.data(), corner.data(), n};
-    find_bad(ex, m, s, b, tm, Corners{corner.data(), n}, d);
     bool stalled = false;
     Choice ch;
     if (!last) {
-      // The choice, and in the same read the bad triangles refinement still works on (the
-      // terminator's excepted) and the points rejected for encroaching (above bit 32).
-      ch = choose(ex, m, s, d, corner.data(), n, counts.data());
+      // The candidates (written since judged, or still bad), judged; the choice; and in the same
+      // read the bad triangles refinement still works on (the terminator's excepted) and the
+      // points rejected for encroaching (above bit 32).
+      auto cand = ex.template alloc<std::int32_t>(tn);
+      const std::int8_t* DI = K.dirty.data();
+      ex.compact_indices_to(
+          m.nt, GG_LAMBDA(std::int64_t t)->bool { return DI[t] != 0; }, cand.data(),
+          counts.data() + 4);
+      std::int64_t nc = 0;
+      ex.to_host(counts.data() + 4, 1, &nc);
+      find_bad(ex, m, cand.data(), nc, b, tm, cn, d, K.dirty.data());
+      ch = choose(ex, m, d, cand.data(), nc, K.nsub, corner.data(), n, counts.data());
       const std::int8_t *R = d.reason.data(), *LG = d.large.data(), *RJ = d.rejected.data();
+      const std::int32_t* CA = cand.data();
       ex.transform_reduce_into(
-          m.nt,
-          GG_LAMBDA(std::int64_t t)->std::int64_t {
+          nc,
+          GG_LAMBDA(std::int64_t i)->std::int64_t {
+            const std::int32_t t = CA[i];
             const bool bad = R[t] == std::int8_t(SmallAngle::Limit) || LG[t];
             return (std::int64_t(RJ[t]) << 32) + (bad ? 1 : 0);
           },
           std::int64_t(0), thrust::plus<std::int64_t>(), counts.data() + 3);
-      std::int64_t c[4];
-      ex.to_host(counts.data(), 4, c);
+      std::int64_t c[4] = {0, 0, 0, 0};
+      if (nc > 0) ex.to_host(counts.data(), 4, c);
       ch.nsplits = c[0], ch.npoints = c[1], ch.split_tris = c[2];
       const std::int64_t h[2] = {c[3] & 0xffffffff, c[3] >> 32};
       out.tally.rejected += h[1];
@@ -289,7 +308,8 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
       if (share < best_share) best_share = share, best_round = round;
       if (round - best_round > kStall) stalled = true;
     }
-    // Nothing left to insert (or the Steiner limit reached): the kept triangulation is the mesh.
+    // Nothing left to insert (or the Steiner limit reached): the kept triangulation is the mesh,
+    // every triangle judged once more for the report.
     if (last || stalled || ch.nsplits + ch.npoints == 0) {
       std::int64_t broken = 0;
       ex.to_host(K.broken.data(), 1, &broken);
@@ -297,8 +317,9 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
         throw Error(ErrorCode::Internal, "refine2d: the kept triangulation lost " +
                                              std::to_string(broken) + " edge twins (a bug)");
       out.tally.rounds = round + 1;
+      find_bad(ex, m, nullptr, m.nt, b, tm, cn, d, K.dirty.data());
       lap(tl.decide_ms);
-      finish(ex, K, dr.duplicate_of.get(), n, dr.removed, s, d, final_of_base, opt, out);
+      finish(ex, K, dr.duplicate_of.get(), n, dr.removed, d, final_of_base, opt, out);
       ex.sync();
       lap(tl.output_ms);
       return;
@@ -310,10 +331,9 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     lap(tl.decide_ms);
     std::int64_t nlist = 0;
     Buf<std::int32_t> list =
-        insert_chosen(ex, K, s, ch, d, nsw, npw, nsw == ch.nsplits ? ch.split_tris : -1, nlist);
+        insert_chosen(ex, K, ch, d, nsw, npw, nsw == ch.nsplits ? ch.split_tris : -1, nlist);
     tl.flips += flip_until_legal(ex, K, std::move(list), nlist, tl.flip_passes);
     lap(tl.insert_ms);
-    nsub += nsw;  // (a split subsegment becomes two)
     out.tally.splits += nsw;
     out.tally.points += npw;
     if (room >= 0 && K.np - n >= room) last = true;

@@ -4,8 +4,11 @@
 // A round reads the kept constrained Delaunay triangulation (kept_mesh.inl) and decides, in
 // parallel and from that triangulation alone, which subsegments to split and which new points
 // to add, and which of them go in this round (no two touching one triangle); refine.inl then
-// inserts them. The order of everything written is by index (subsegment, triangle), never by
-// thread timing, so the rounds are the same on every executor.
+// inserts them. Only the round's candidates are judged: the triangles written since they were
+// last judged, and those still bad (a triangle found good stays good while it is unchanged; its
+// subsegments' encroachment, too, depends only on its own apex). The order of everything written
+// is by index (subsegment, triangle), never by thread timing, so the rounds are the same on
+// every executor.
 
 template <class T>
 using Buf = typename Exec::template Buffer<T>;
@@ -13,7 +16,7 @@ using Buf = typename Exec::template Buffer<T>;
 // Kinds of input vertices (refine.inl's corner_kinds).
 constexpr std::int8_t kCorner = 1, kAcute = 2;
 
-// A triangulation of one round, in the executor's memory; seg holds base segment indices.
+// A triangulation of one round, in the executor's memory; seg holds subsegment indices.
 struct RoundMesh {
   const double* xy;
   const std::int32_t *tri, *nbr, *seg, *dup;
@@ -21,66 +24,11 @@ struct RoundMesh {
   std::int64_t nt;
 };
 
-// The subsegments as the triangulation has them: each marked edge once (from the triangle with
-// the lower index, or the only one: its half-edge), and per half-edge (3 t + k, the edge opposite
-// vertex k) the index of its subsegment (-1 off segments).
-struct Subsegments {
-  Buf<std::int32_t> ends, base, half, of_edge;
-  std::int64_t count = 0;
-};
-
-// known: their number when the caller knows it (after the first round: the first count plus the
-// splits since), so that no read waits for the scan; -1 to read it.
-inline Subsegments subsegments_of(Exec& ex, const RoundMesh& m, std::int64_t known = -1) {
-  Subsegments s;
-  const std::int64_t ne = 3 * m.nt;
-  auto index = ex.template alloc<std::int32_t>(std::size_t(ne) + 1);
-  std::int32_t* I = index.data();
-  const std::int32_t *T = m.tri, *N = m.nbr, *G = m.seg;
-  ex.exclusive_scan_of(
-      ne + 1,
-      GG_LAMBDA(std::int64_t e)->std::int32_t {
-        return e < ne && G[e] >= 0 && (N[e] < 0 || e / 3 < N[e]) ? 1 : 0;
-      },
-      I);
-  std::int32_t count = std::int32_t(known);
-  if (known < 0) ex.to_host(I + ne, 1, &count);
-  s.count = count;
-  s.ends = ex.template alloc<std::int32_t>(2 * std::size_t(std::max(count, 1)));
-  s.base = ex.template alloc<std::int32_t>(std::size_t(std::max(count, 1)));
-  s.half = ex.template alloc<std::int32_t>(std::size_t(std::max(count, 1)));
-  s.of_edge = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(ne, 1)));
-  std::int32_t *E = s.ends.data(), *B = s.base.data(), *H = s.half.data(), *O = s.of_edge.data();
-  ex.for_each_index(
-      ne, GG_LAMBDA(std::int64_t e) {
-        const std::int64_t t = e / 3;
-        const int k = int(e % 3);
-        if (G[e] < 0 || !(N[e] < 0 || t < N[e])) {
-          O[e] = -1;
-          return;
-        }
-        const std::int32_t j = I[e];
-        E[2 * j] = T[3 * t + (k + 1) % 3];
-        E[2 * j + 1] = T[3 * t + (k + 2) % 3];
-        B[j] = G[e];
-        H[j] = std::int32_t(e);
-        O[e] = j;
-      });
-  // The other half of each marked interior edge reads its twin's index.
-  ex.for_each_index(
-      ne, GG_LAMBDA(std::int64_t e) {
-        const std::int64_t t = e / 3;
-        if (G[e] < 0 || N[e] < 0 || t < N[e]) return;
-        const std::int64_t o = N[e];
-        for (int j = 0; j < 3; ++j)
-          if (N[3 * o + j] == t) O[e] = O[3 * o + j];
-      });
-  return s;
-}
-
-// What a round decided, per subsegment, per point and per triangle.
+// What a round decided, per subsegment and per triangle (the per-triangle arrays are written
+// for the round's candidates only).
 struct Decisions {
   Buf<std::int32_t> split;    // per subsegment: 1 to split
+  Buf<std::int32_t> half;     // per subsegment to split: a half-edge of it (the least seen)
   Buf<double> point;          // per triangle: its new point
   Buf<std::int32_t> land;     // per triangle: the triangle its point lands in (-1: none)
   Buf<std::uint64_t> key;     // per triangle: its rank (lower first) and index
@@ -121,45 +69,12 @@ GG_HD inline double area_bound(const Bounds& b, const RoundMesh& m, std::int64_t
   return a;
 }
 
-// Marks subsegment j for splitting (several threads may).
-GG_INLINE void mark(std::int32_t* flags, std::int64_t j) {
-  atomic_max(flags + j, std::int32_t(1));
-}
-
-// Encroached subsegments: the apex of each triangle beside a subsegment in its diametral lens
-// (encroaches()). That apex is the one vertex to test: the triangle's circumcircle covers the
-// half of the diametral disc on its side unless the apex is inside it, so no other vertex seen
-// from the subsegment can be (Triangle tests the same vertex). Points are never removed (as in
-// Triangle): a new point that would encroach is not inserted (find_bad), so a free point that
-// encroaches is rare, and the split it causes is all it costs.
-inline void find_encroached(Exec& ex, const RoundMesh& m, const Subsegments& s, double lens,
-                            Decisions& d) {
-  const std::int32_t *T = m.tri, *N = m.nbr, *H = s.half.data(), *O = s.of_edge.data();
-  const double* P = m.xy;
-  std::int32_t* split = d.split.data();
-  // Per subsegment, its two sides (the half-edge listed and its twin), not every half-edge.
-  ex.for_each_index(
-      s.count, GG_LAMBDA(std::int64_t j) {
-        std::int64_t e = H[j];
-        for (int side = 0; side < 2; ++side) {
-          if (side) {
-            const std::int32_t u = N[e];
-            if (u < 0) return;
-            int ku = 0;
-            while (ku < 3 && O[3 * std::int64_t(u) + ku] != j) ++ku;
-            if (ku == 3) return;
-            e = 3 * std::int64_t(u) + ku;
-          }
-          const std::int64_t t = e / 3;
-          const int k = int(e % 3);
-          const double* a = P + 2 * std::int64_t(T[3 * t + (k + 1) % 3]);
-          const double* b = P + 2 * std::int64_t(T[3 * t + (k + 2) % 3]);
-          if (encroaches(a, b, P + 2 * std::int64_t(T[3 * t + k]), lens)) {
-            split[j] = 1;  // (this thread's subsegment alone)
-            return;
-          }
-        }
-      });
+// Marks the subsegment on half-edge e for splitting (several threads may): its flag, and the
+// least half-edge seen on it (choose() takes the lower of it and its twin).
+GG_INLINE void mark(const RoundMesh& m, std::int32_t* split, std::int32_t* half, std::int64_t e) {
+  const std::int32_t j = m.seg[e];
+  atomic_max(split + j, std::int32_t(1));
+  atomic_min(half + j, std::int32_t(e));
 }
 
 // The vertices and bases the terminator reads (device-readable).
@@ -201,11 +116,11 @@ GG_HD inline std::int8_t forced(const RoundMesh& m, const Terminator& tm, std::i
 }
 
 // Walks from triangle t towards q without crossing a subsegment. Returns the triangle holding q
-// (q strictly inside, or on an edge that is on no subsegment); -1 - j when subsegment j stops it
-// (crossed, or holding q); kNoPlace when q is a vertex or the walk ran too long.
+// (q strictly inside, or on an edge that is on no subsegment); -1 - e when the subsegment on
+// half-edge e stops it (crossed, or holding q); kNoPlace when q is a vertex or the walk ran too
+// long.
 constexpr std::int64_t kNoPlace = INT64_MIN;
-GG_HD inline std::int64_t walk_to(const RoundMesh& m, const std::int32_t* of_edge, std::int64_t t,
-                                  const double* q) {
+GG_HD inline std::int64_t walk_to(const RoundMesh& m, std::int64_t t, const double* q) {
   double s[pred::kOrient2dScratch];
   for (std::int64_t step = 0; step <= m.nt; ++step) {
     int beyond = -1, zeros = 0, zero_edge = -1;
@@ -222,11 +137,10 @@ GG_HD inline std::int64_t walk_to(const RoundMesh& m, const std::int32_t* of_edg
     }
     if (beyond < 0) {
       if (zeros >= 2) return kNoPlace;  // q is a vertex
-      if (zeros == 1 && of_edge[3 * t + zero_edge] >= 0) return -1 - of_edge[3 * t + zero_edge];
+      if (zeros == 1 && m.seg[3 * t + zero_edge] >= 0) return -1 - (3 * t + zero_edge);
       return t;
     }
-    const std::int32_t j = of_edge[3 * t + beyond];
-    if (j >= 0) return -1 - std::int64_t(j);
+    if (m.seg[3 * t + beyond] >= 0) return -1 - (3 * t + beyond);
     const std::int32_t next = m.nbr[3 * t + beyond];
     if (next < 0) return kNoPlace;  // (a boundary edge is always a subsegment)
     t = next;
@@ -241,12 +155,11 @@ struct Corners {
 };
 
 // Shewchuk's terminator for subsegments: a skinny triangle's point that would make the split of
-// a subsegment at a small input angle's corner (kAcute) put the new vertex nearer the corner
-// than the triangle's shortest edge is long splits nothing (the triangle is left, Shell): such
-// splits would only cut the angle at ever smaller shells, and never end.
-GG_HD inline bool terminated(const RoundMesh& m, const Corners& cn, const std::int32_t* ends,
-                             std::int64_t j, double shortest2) {
-  const std::int32_t a = ends[2 * j], b = ends[2 * j + 1];
+// the subsegment a-b at a small input angle's corner (kAcute) put the new vertex nearer the
+// corner than the triangle's shortest edge is long splits nothing (the triangle is left, Shell):
+// such splits would only cut the angle at ever smaller shells, and never end.
+GG_HD inline bool terminated(const RoundMesh& m, const Corners& cn, std::int32_t a, std::int32_t b,
+                             double shortest2) {
   const bool ca = a < cn.n_in && cn.corner[a], cb = b < cn.n_in && cn.corner[b];
   if (ca == cb || (ca ? cn.corner[a] : cn.corner[b]) != kAcute) return false;
   double sp[2];
@@ -258,30 +171,54 @@ GG_HD inline bool terminated(const RoundMesh& m, const Corners& cn, const std::i
   return add_rn(mul_rn(dx, dx), mul_rn(dy, dy)) < shortest2;
 }
 
-// The bad triangles: each gets its new point, or splits the subsegment that hides it or that it
-// would encroach upon, or is left (the terminator's triangles, reasons recorded).
-inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const Bounds& bounds,
-                     const Terminator& tm, const Corners& cn, Decisions& d) {
-  const std::int32_t* O = s.of_edge.data();
-  const std::int32_t* E = s.ends.data();
-  std::int32_t* split = d.split.data();
+// The ends of half-edge e (its triangle's vertices after the opposite one).
+GG_HD inline std::int32_t end_a(const RoundMesh& m, std::int64_t e) {
+  return m.tri[3 * (e / 3) + (e % 3 + 1) % 3];
+}
+GG_HD inline std::int32_t end_b(const RoundMesh& m, std::int64_t e) {
+  return m.tri[3 * (e / 3) + (e % 3 + 2) % 3];
+}
+
+// Judges the round's candidates (cand: nc triangle indices, or null for every triangle):
+// - the subsegments on its edges whose diametral lens holds its apex (encroaches(); that apex is
+//   the one vertex to test: the triangle's circumcircle covers the half of the diametral disc on
+//   its side unless the apex is inside it, so no other vertex seen from the subsegment can be;
+//   Triangle tests the same vertex) are marked for splitting;
+// - a bad triangle gets its new point, or splits the subsegment that hides it or that it would
+//   encroach upon, or is left (the terminator's triangles, reasons recorded).
+// Points are never removed (as in Triangle): a new point that would encroach is not inserted, so
+// a free point that encroaches is rare, and the split it causes is all it costs. A candidate
+// stays dirty (judged again next round) while it is bad or encroaches.
+inline void find_bad(Exec& ex, const RoundMesh& m, const std::int32_t* cand, std::int64_t nc,
+                     const Bounds& bounds, const Terminator& tm, const Corners& cn, Decisions& d,
+                     std::int8_t* dirty) {
+  std::int32_t *split = d.split.data(), *half = d.half.data();
   double* NP = d.point.data();
   std::int32_t* L = d.land.data();
   std::uint64_t* K = d.key.data();
   std::int8_t *R = d.reason.data(), *LG = d.large.data(), *RJ = d.rejected.data();
   const Bounds b = bounds;
   ex.for_each_index(
-      m.nt, GG_LAMBDA(std::int64_t t) {
+      nc, GG_LAMBDA(std::int64_t i) {
+        const std::int64_t t = cand ? cand[i] : i;
         L[t] = -1;
         R[t] = 0;
         LG[t] = 0;
         RJ[t] = 0;
         const double* p[3];
         for (int k = 0; k < 3; ++k) p[k] = m.xy + 2 * std::int64_t(m.tri[3 * t + k]);
+        bool encroached = false;
+        for (int k = 0; k < 3; ++k) {
+          if (m.seg[3 * t + k] < 0) continue;
+          if (!encroaches(p[(k + 1) % 3], p[(k + 2) % 3], p[k], b.lens)) continue;
+          mark(m, split, half, 3 * t + k);
+          encroached = true;
+        }
         const TriangleShape sh = shape_of(p[0], p[1], p[2]);
         const bool thin = b.sin2 > 0 && skinny(sh, b.sin2);
         const double limit = area_bound(b, m, t, p[0], p[1], p[2]);
         const bool big = limit > 0 && mul_rn(0.5, sh.area2) > limit;
+        dirty[t] = thin || big || encroached ? 1 : 0;
         if (!thin && !big) return;
         const int k = sh.shortest;
         if (thin && !big) {
@@ -303,35 +240,35 @@ inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const B
           q[0] = c[0], q[1] = c[1];
         if (!std::isfinite(q[0]) || !std::isfinite(q[1])) return;
         // Subsegments in the way: the one hiding q, else those of the landing triangle and its
-        // neighbours whose lens q lies in (q would be removed next round). A skinny triangle
-        // splits none the terminator stops; if that leaves none, it is left as it is.
+        // neighbours whose lens q lies in (q would encroach upon them). A skinny triangle splits
+        // none the terminator stops; if that leaves none, it is left as it is.
         const bool skinny_only = thin && !big;
         const double shortest2 = sh.l[k];
-        const std::int64_t at = walk_to(m, O, t, q);
+        const std::int64_t at = walk_to(m, t, q);
         if (at == kNoPlace) return;
         if (at < 0) {
-          const std::int64_t j = -1 - at;
-          if (skinny_only && terminated(m, cn, E, j, shortest2))
+          const std::int64_t e = -1 - at;
+          if (skinny_only && terminated(m, cn, end_a(m, e), end_b(m, e), shortest2))
             R[t] = std::int8_t(SmallAngle::Shell);
           else
-            mark(split, j), RJ[t] = 1;
+            mark(m, split, half, e), RJ[t] = 1;
           return;
         }
         int enc = 0, stopped = 0;
-        for (int i = -1; i < 3; ++i) {
-          const std::int64_t u = i < 0 ? at : m.nbr[3 * at + i];
+        for (int i2 = -1; i2 < 3; ++i2) {
+          const std::int64_t u = i2 < 0 ? at : m.nbr[3 * at + i2];
           if (u < 0) continue;
           for (int j = 0; j < 3; ++j) {
-            const std::int32_t g = O[3 * u + j];
-            if (g < 0) continue;
-            if (!encroaches(m.xy + 2 * std::int64_t(E[2 * g]),
-                            m.xy + 2 * std::int64_t(E[2 * g + 1]), q, b.lens))
+            const std::int64_t e = 3 * u + j;
+            if (m.seg[e] < 0) continue;
+            const std::int32_t ea = end_a(m, e), eb = end_b(m, e);
+            if (!encroaches(m.xy + 2 * std::int64_t(ea), m.xy + 2 * std::int64_t(eb), q, b.lens))
               continue;
             ++enc;
-            if (skinny_only && terminated(m, cn, E, g, shortest2))
+            if (skinny_only && terminated(m, cn, ea, eb, shortest2))
               ++stopped;
             else
-              mark(split, g);
+              mark(m, split, half, e);
           }
         }
         if (enc) {
@@ -353,15 +290,15 @@ inline void find_bad(Exec& ex, const RoundMesh& m, const Subsegments& s, const B
 // kCavity of them. The in-circle test is the exact predicate's filter, with "cannot tell" taken
 // as inside: a definite answer is the exact sign, so the cavity is the same on both executors.
 constexpr int kCavity = 64;
-GG_HD inline int cavity_of(const RoundMesh& m, const std::int32_t* of_edge, std::int32_t land,
-                           const double* q, std::int32_t* list) {
+GG_HD inline int cavity_of(const RoundMesh& m, std::int32_t land, const double* q,
+                           std::int32_t* list) {
   int n = 0;
   list[n++] = land;
   for (int i = 0; i < n; ++i) {
     const std::int64_t t = list[i];
     for (int k = 0; k < 3; ++k) {
       const std::int32_t u = m.nbr[3 * t + k];
-      if (u < 0 || of_edge[3 * t + k] >= 0) continue;
+      if (u < 0 || m.seg[3 * t + k] >= 0) continue;
       bool seen = false;
       for (int j = 0; j < n && !seen; ++j) seen = list[j] == u;
       if (seen) continue;
@@ -378,12 +315,21 @@ GG_HD inline int cavity_of(const RoundMesh& m, const std::int32_t* of_edge, std:
 
 // A round's choice: the subsegment splits and the new points that go in, no two touching one
 // triangle. Splits come first (as in Triangle): each claims the triangles beside its
-// subsegment, the lowest subsegment index winning. A new point claims its cavity (the lowest
-// key wins each triangle) and goes in when it holds all of it and no split claimed any of it:
-// the points of one round replace disjoint sets of triangles, as if inserted one after another,
-// so they never crowd each other (two points in one cavity would make an edge far shorter than
-// the mesh asks for there, and new bad triangles). A split goes in only where its point is a
-// double strictly inside the subsegment and its four triangles keep their orientation.
+// subsegment with its index. A new point claims its cavity with its key (at least 2^32: a point
+// has a positive rank), so every split's claim beats every point's; it goes in when it holds
+// all of its cavity: the points of one round replace disjoint sets of triangles, as if inserted
+// one after another, so they never crowd each other (two points in one cavity would make an
+// edge far shorter than the mesh asks for there, and new bad triangles). A split goes in only
+// where its point is a double strictly inside the subsegment and its four triangles keep their
+// orientation. The counts are left on the device for the caller's one read: cnt[0] the winning
+// splits, cnt[1] the winning points, cnt[2] the triangles the winning splits add (two beside an
+// inner subsegment, one on the boundary).
+struct Choice {
+  Buf<std::int32_t> splits, points;  // winning subsegments and triangles, in index order
+  Buf<double> at;                    // per subsegment: its split point
+  std::int64_t nsplits = 0, npoints = 0, split_tris = 0;  // (set by the caller's read)
+};
+
 // A chosen split holds the claims on both triangles beside its subsegment.
 struct SplitWins {
   const std::int8_t* ok;
@@ -396,39 +342,38 @@ struct SplitWins {
   }
 };
 
-// The counts are left on the device for the caller's one read: cnt[0] the winning splits,
-// cnt[1] the winning points, cnt[2] the triangles the winning splits add (two beside an inner
-// subsegment, one on the boundary).
-struct Choice {
-  Buf<std::int32_t> splits, points;  // winning subsegments and triangles, in index order
-  Buf<double> at;                    // per subsegment: its split point
-  std::int64_t nsplits = 0, npoints = 0, split_tris = 0;  // (set by the caller's read)
-};
-
-inline Choice choose(Exec& ex, const RoundMesh& m, const Subsegments& s, const Decisions& d,
-                     const std::int8_t* corner, std::int64_t n_in, std::int64_t* cnt) {
+inline Choice choose(Exec& ex, const RoundMesh& m, Decisions& d, const std::int32_t* cand,
+                     std::int64_t nc, std::int64_t nsub, const std::int8_t* corner,
+                     std::int64_t n_in, std::int64_t* cnt) {
   Choice c;
-  const std::size_t tn = std::size_t(std::max<std::int64_t>(m.nt, 1));
-  const std::size_t sn = std::size_t(std::max<std::int64_t>(s.count, 1));
-  auto cs = ex.template alloc<std::uint64_t>(tn);
-  auto cp = ex.template alloc<std::uint64_t>(tn);
+  const std::size_t sn = std::size_t(std::max<std::int64_t>(nsub, 1));
+  auto claim = ex.template alloc<std::uint64_t>(std::size_t(std::max<std::int64_t>(m.nt, 1)));
   auto ok = ex.template alloc<std::int8_t>(sn);
   c.at = ex.template alloc<double>(2 * sn);
-  std::uint64_t *CS = cs.data(), *CP = cp.data();
+  std::uint64_t* C = claim.data();
   std::int8_t* OK = ok.data();
   double* M = c.at.data();
-  constexpr std::uint64_t kFree = ~std::uint64_t(0);
-  ex.fill(CS, m.nt, kFree);
-  ex.fill(CP, m.nt, kFree);
-  const std::int32_t *SP = d.split.data(), *H = s.half.data(), *E = s.ends.data();
-  const std::int32_t *L = d.land.data(), *O = s.of_edge.data();
+  ex.fill(C, m.nt, ~std::uint64_t(0));
+  const std::int32_t* SP = d.split.data();
+  std::int32_t* H = d.half.data();
+  const std::int32_t* L = d.land.data();
   const std::uint64_t* K = d.key.data();
   const double* NP = d.point.data();
   ex.for_each_index(
-      s.count, GG_LAMBDA(std::int64_t j) {
+      nsub, GG_LAMBDA(std::int64_t j) {
         OK[j] = 0;
         if (!SP[j]) return;
-        const std::int32_t a = E[2 * j], b = E[2 * j + 1];
+        // The half-edge on the triangle with the lower index: the same whichever side found it.
+        std::int32_t e = H[j];
+        const std::int32_t t0 = e / 3, u0 = m.nbr[e];
+        if (u0 >= 0 && u0 < t0) {
+          int ku = 0;
+          while (ku < 3 && m.nbr[3 * std::int64_t(u0) + ku] != t0) ++ku;
+          if (ku == 3) return;
+          e = 3 * u0 + ku;
+        }
+        H[j] = e;
+        const std::int32_t a = end_a(m, e), b = end_b(m, e);
         const double *pa = m.xy + 2 * std::int64_t(a), *pb = m.xy + 2 * std::int64_t(b);
         double* q = M + 2 * j;
         split_point(pa, pb, a < n_in && corner[a], b < n_in && corner[b], q);
@@ -437,9 +382,8 @@ inline Choice choose(Exec& ex, const RoundMesh& m, const Subsegments& s, const D
         // Both halves of each triangle beside it counter-clockwise (the point is rounded, and may
         // lie a little off the subsegment's line).
         double sc[pred::kOrient2dScratch];
-        const std::int32_t e = H[j], t = e / 3;
-        const std::int32_t apex = m.tri[3 * std::int64_t(t) + e % 3];
-        const double* pc = m.xy + 2 * std::int64_t(apex);
+        const std::int32_t t = e / 3;
+        const double* pc = m.xy + 2 * std::int64_t(m.tri[3 * std::int64_t(t) + e % 3]);
         if (pred::orient2d(pc, pa, q, sc) <= 0 || pred::orient2d(pc, q, pb, sc) <= 0) return;
         const std::int32_t u = m.nbr[e];
         if (u >= 0) {
@@ -448,37 +392,38 @@ inline Choice choose(Exec& ex, const RoundMesh& m, const Subsegments& s, const D
           if (ku == 3) return;
           const double* pd = m.xy + 2 * std::int64_t(m.tri[3 * std::int64_t(u) + ku]);
           if (pred::orient2d(pd, pb, q, sc) <= 0 || pred::orient2d(pd, q, pa, sc) <= 0) return;
-          atomic_min(CS + u, std::uint64_t(j));
+          atomic_min(C + u, std::uint64_t(j));
         }
-        atomic_min(CS + t, std::uint64_t(j));
+        atomic_min(C + t, std::uint64_t(j));
         OK[j] = 1;
       });
   ex.for_each_index(
-      m.nt, GG_LAMBDA(std::int64_t t) {
+      nc, GG_LAMBDA(std::int64_t i) {
+        const std::int64_t t = cand[i];
         if (L[t] < 0) return;
         std::int32_t list[kCavity];
-        const int n = cavity_of(m, O, L[t], NP + 2 * t, list);
-        for (int i = 0; i < n; ++i) atomic_min(CP + list[i], K[t]);
+        const int n = cavity_of(m, L[t], NP + 2 * t, list);
+        for (int k = 0; k < n; ++k) atomic_min(C + list[k], K[t]);
       });
   c.splits = ex.template alloc<std::int32_t>(sn);
-  c.points = ex.template alloc<std::int32_t>(tn);
-  const SplitWins wins{OK, H, m.nbr, CS};
+  c.points = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(nc, 1)));
+  const SplitWins wins{OK, H, m.nbr, C};
   ex.compact_indices_to(
-      s.count, GG_LAMBDA(std::int64_t j)->bool { return wins(j); }, c.splits.data(), cnt);
+      nsub, GG_LAMBDA(std::int64_t j)->bool { return wins(j); }, c.splits.data(), cnt);
   ex.fill(cnt + 2, 1, std::int64_t(0));
   ex.for_each_index(
-      s.count, GG_LAMBDA(std::int64_t j) {
+      nsub, GG_LAMBDA(std::int64_t j) {
         if (wins(j)) atomic_add(cnt + 2, std::int64_t(m.nbr[H[j]] >= 0 ? 2 : 1));
       });
-  ex.compact_indices_to(
-      m.nt,
-      GG_LAMBDA(std::int64_t t)->bool {
+  ex.copy_if_to(
+      cand, nc, c.points.data(),
+      GG_LAMBDA(std::int32_t t)->bool {
         if (L[t] < 0) return false;
-        const double* q = NP + 2 * t;
+        const double* q = NP + 2 * std::int64_t(t);
         std::int32_t list[kCavity];
-        const int n = cavity_of(m, O, L[t], q, list);
-        for (int i = 0; i < n; ++i)
-          if (CP[list[i]] != K[t] || CS[list[i]] != kFree) return false;
+        const int n = cavity_of(m, L[t], q, list);
+        for (int k = 0; k < n; ++k)
+          if (C[list[k]] != K[t]) return false;
         // On an edge of its landing triangle, the triangle beside that edge is split too: it
         // must be this point's as well.
         double sc[pred::kOrient2dScratch];
@@ -488,10 +433,10 @@ inline Choice choose(Exec& ex, const RoundMesh& m, const Subsegments& s, const D
           const double* b = m.xy + 2 * std::int64_t(m.tri[l3 + (k + 2) % 3]);
           if (pred::orient2d(a, b, q, sc) != 0) continue;
           const std::int32_t u = m.nbr[l3 + k];
-          if (u < 0 || CP[u] != K[t] || CS[u] != kFree) return false;
+          if (u < 0 || C[u] != K[t]) return false;
         }
         return true;
       },
-      c.points.data(), cnt + 1);
+      cnt + 1);
   return c;
 }
