@@ -26,9 +26,10 @@ def med(fn, reps, sync=None):
     return statistics.median(ts)
 
 
-def append_row(csv, problem, distribution, n, tool, ms, resident_ms=0):
-    """One CPU anchor row: compute and with-copies time are the same measurement."""
+def append_row(csv, problem, distribution, n, tool, ms, resident_ms=0, machine="cpu-1core"):
+    """One row whose compute and with-copies times are the same measurement (a CPU anchor, or an
+    end-to-end call); machine: where it ran (the GPU's name for gpugeom's rows)."""
     if not csv:
         return
     with open(csv, "a") as c:
-        c.write(f"{problem},{distribution},{n},{tool},cpu-1core,0,{ms},0,{resident_ms},{ms},0\n")
+        c.write(f"{problem},{distribution},{n},{tool},{machine},0,{ms},0,{resident_ms},{ms},0\n")

@@ -104,7 +104,7 @@ def main():
               f"[{phases}; flips {c.get('flips', 0)} in {c.get('flip_passes', 0)} passes]",
               flush=True)
         append_row(a.csv, "mesh2d", f"{name}-q{angle}-a{area:g}", len(m["triangles"]),
-                   f"gpugeom-{backend}-e2e", ms)
+                   f"gpugeom-{backend}-e2e", ms, machine=gpu if backend == "cuda" else "cpu")
         if cupy is not None and backend == "cuda":
             dv, ds = cupy.asarray(v), cupy.asarray(s)
             h = np.zeros((0, 2)) if holes is None else holes
@@ -118,7 +118,8 @@ def main():
             nt = r["stats"]["counters"]["triangles"]
             print(f"{name:12s} {angle:4.0f} {area:7.0e} {'gpugeom device':22s} {ms:9.1f} "
                   f"{nt:10d}", flush=True)
-            append_row(a.csv, "mesh2d", f"{name}-q{angle}-a{area:g}", nt, "gpugeom-device", ms)
+            append_row(a.csv, "mesh2d", f"{name}-q{angle}-a{area:g}", nt, "gpugeom-device", ms,
+                       machine=gpu)
         if triangle is not None:
             d = dict(vertices=v, segments=s)
             if holes is not None:

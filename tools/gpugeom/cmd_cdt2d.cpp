@@ -21,7 +21,7 @@ const char* kHelp =
     "holes; regional attributes); POINTS any 2D point file with --segments an int (m, 2) .npy\n"
     "of point indices (from 0). Segments through points become chains; two segments crossing\n"
     "inside both are refused, naming them, unless --split.\n"
-    "  -o MESH        .ele(+.node) .vtu .vtk .ply .off .obj, or .npy (the int32 triangles);\n"
+    "  -o MESH        .ele(+.node) .vtu .vtk .msh .ply .off .obj, or .npy (the int32 triangles);\n"
     "                 .vtu/.vtk carry the regions' attribute per triangle\n"
     "  --hull         keep the convex hull's triangles (a .poly's outside is removed by default,\n"
     "                 as Triangle -p does; -c there)\n"

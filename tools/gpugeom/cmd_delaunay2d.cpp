@@ -21,7 +21,7 @@ const char* kHelp =
     "                          [--method incremental|digital] [--grid SIDE]\n\n"
     "Exact Delaunay triangulation of the 2D points in POINTS (.xyz .txt .csv .ply .off .obj\n"
     ".node .npy; 3D files are accepted when every z is 0). Duplicate points are kept once.\n"
-    "  -o MESH        .ply .off .obj .ele(+.node) .vtu .vtk, or .npy (the int32 triangle array)\n"
+    "  -o MESH        .ply .off .obj .ele(+.node) .vtu .vtk .msh, or .npy (the int32 triangles)\n"
     "  --compress     .vtu: zlib-compressed blocks (ParaView reads them)\n"
     "  --ascii        .vtu, .vtk and .ply as text instead of binary\n"
     "  --voronoi F    the Voronoi diagram as JSON in SciPy's terms: vertices, ridge_points,\n"

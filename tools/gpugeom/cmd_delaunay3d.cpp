@@ -19,7 +19,7 @@ const char* kHelp =
     ".obj .node .npy). Degenerate input (cospherical, coplanar on the hull, duplicates) is\n"
     "resolved by simulation of simplicity; of several copies of a point one is used.\n"
     "  -o MESH     .vtu (ParaView), .vtk (legacy VTK), .ele (with its .node, as TetGen writes\n"
-    "              them), .ply: the input points and the tetrahedra; .npy: the int32\n"
+    "              them), .msh (Gmsh), .ply: the input points and the tetrahedra; .npy: the int32\n"
     "              tetrahedron array (T x 4)\n"
     "              indexing the input points, like SciPy's Delaunay.simplices\n"
     "  --compress  .vtu: zlib-compressed blocks\n"
@@ -67,7 +67,7 @@ int cmd_delaunay3d(const Global& g, Args& a) {
   Delaunay3dOptions opt;
   opt.backend = g.backend;
   read_method(a, opt);
-  PointsToMesh job = points_to_mesh(g, a, "delaunay3d", {".vtu", ".vtk", ".ele", ".ply", ".npy"},
+  PointsToMesh job = points_to_mesh(g, a, "delaunay3d", {".vtu", ".vtk", ".msh", ".ele", ".ply", ".npy"},
                                     "for tetrahedra", " (see delaunay2d)");
   io::PointSet& p = job.p;
   const std::string& out = job.out;
