@@ -67,8 +67,9 @@ int cmd_delaunay3d(const Global& g, Args& a) {
   Delaunay3dOptions opt;
   opt.backend = g.backend;
   read_method(a, opt);
-  PointsToMesh job = points_to_mesh(g, a, "delaunay3d", {".vtu", ".vtk", ".msh", ".ele", ".ply", ".npy"},
-                                    "for tetrahedra", " (see delaunay2d)");
+  PointsToMesh job =
+      points_to_mesh(g, a, "delaunay3d", {".vtu", ".vtk", ".msh", ".ele", ".ply", ".npy"},
+                     "for tetrahedra", " (see delaunay2d)");
   io::PointSet& p = job.p;
   const std::string& out = job.out;
   const std::string& ext = job.ext;
