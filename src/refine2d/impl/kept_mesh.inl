@@ -424,11 +424,11 @@ inline Buf<std::int32_t> insert_chosen(Exec& ex, Kept& K, const Choice& ch, cons
         });
   }
   {
-    const std::int32_t *PW = ch.points.data(), *LD = d.land.data();
+    const std::int32_t *PW = ch.points.data(), *CA = ch.cand, *LD = d.land.data();
     const double* NP = d.point.data();
     ex.for_each_index(
         npw, GG_LAMBDA(std::int64_t i) {
-          const std::int32_t w = PW[i], t = LD[w];
+          const std::int32_t w = CA[PW[i]], t = LD[w];
           const std::int32_t v = std::int32_t(np + nsw + i);
           const double* q = NP + 2 * std::int64_t(w);
           V.xy[2 * std::int64_t(v)] = q[0];

@@ -271,11 +271,12 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     }
     bool stalled = false;
     Choice ch;
+    Buf<std::int32_t> cand;  // (the choice's points index it until they are inserted)
     if (!last) {
       // The candidates (written since judged, or still bad), judged; the choice; and in the same
       // read the bad triangles refinement still works on (the terminator's excepted) and the
       // points rejected for encroaching (above bit 32).
-      auto cand = ex.template alloc<std::int32_t>(tn);
+      cand = ex.template alloc<std::int32_t>(tn);
       const std::int8_t* DI = K.dirty.data();
       ex.compact_indices_to(
           m.nt, GG_LAMBDA(std::int64_t t)->bool { return DI[t] != 0; }, cand.data(),

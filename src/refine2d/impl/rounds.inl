@@ -281,7 +281,9 @@ inline void find_bad(Exec& ex, const RoundMesh& m, const std::int32_t* cand, std
         NP[2 * t] = q[0];
         NP[2 * t + 1] = q[1];
         L[t] = std::int32_t(at);
-        K[t] = std::uint64_t(badness_rank(sh)) << 32 | std::uint64_t(t);
+        // (A rank of at least 1: a point's key stays above every split's, see choose().)
+        const std::uint32_t rank = badness_rank(sh);
+        K[t] = std::uint64_t(rank ? rank : 1u) << 32 | std::uint64_t(t);
       });
 }
 
@@ -325,8 +327,9 @@ GG_HD inline int cavity_of(const RoundMesh& m, std::int32_t land, const double* 
 // splits, cnt[1] the winning points, cnt[2] the triangles the winning splits add (two beside an
 // inner subsegment, one on the boundary).
 struct Choice {
-  Buf<std::int32_t> splits, points;  // winning subsegments and triangles, in index order
-  Buf<double> at;                    // per subsegment: its split point
+  Buf<std::int32_t> splits, points;    // winning subsegments, and points as candidate positions
+  const std::int32_t* cand = nullptr;  // the candidates (points[i] indexes them)
+  Buf<double> at;                      // per subsegment: its split point
   std::int64_t nsplits = 0, npoints = 0, split_tris = 0;  // (set by the caller's read)
 };
 
@@ -397,13 +400,29 @@ inline Choice choose(Exec& ex, const RoundMesh& m, Decisions& d, const std::int3
         atomic_min(C + t, std::uint64_t(j));
         OK[j] = 1;
       });
+  // Each point claims its cavity with its rank and its position among the candidates (their
+  // order is the triangles', so ties go to the lower triangle); it holds its cavity when every
+  // triangle of it kept its key, counted per point in one pass over the claims (no second walk
+  // of the cavity).
+  auto size = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(nc, 1)));
+  auto held = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(nc, 1)));
+  std::int32_t *SZ = size.data(), *HD = held.data();
   ex.for_each_index(
       nc, GG_LAMBDA(std::int64_t i) {
         const std::int64_t t = cand[i];
+        HD[i] = 0;
+        SZ[i] = -1;
         if (L[t] < 0) return;
+        const std::uint64_t key = (K[t] >> 32 << 32) | std::uint64_t(i);
         std::int32_t list[kCavity];
         const int n = cavity_of(m, L[t], NP + 2 * t, list);
-        for (int k = 0; k < n; ++k) atomic_min(C + list[k], K[t]);
+        SZ[i] = n;
+        for (int k = 0; k < n; ++k) atomic_min(C + list[k], key);
+      });
+  ex.for_each_index(
+      m.nt, GG_LAMBDA(std::int64_t x) {
+        const std::uint64_t v = C[x];
+        if (v != ~std::uint64_t(0) && v >> 32) atomic_add(HD + (v & 0xffffffffu), std::int32_t(1));
       });
   c.splits = ex.template alloc<std::int32_t>(sn);
   c.points = ex.template alloc<std::int32_t>(std::size_t(std::max<std::int64_t>(nc, 1)));
@@ -415,17 +434,17 @@ inline Choice choose(Exec& ex, const RoundMesh& m, Decisions& d, const std::int3
       nsub, GG_LAMBDA(std::int64_t j) {
         if (wins(j)) atomic_add(cnt + 2, std::int64_t(m.nbr[H[j]] >= 0 ? 2 : 1));
       });
-  ex.copy_if_to(
-      cand, nc, c.points.data(),
-      GG_LAMBDA(std::int32_t t)->bool {
-        if (L[t] < 0) return false;
-        const double* q = NP + 2 * std::int64_t(t);
-        std::int32_t list[kCavity];
-        const int n = cavity_of(m, L[t], q, list);
-        for (int k = 0; k < n; ++k)
-          if (C[list[k]] != K[t]) return false;
+  // The points that hold their cavities, as positions among the candidates (insert_chosen
+  // reads the triangle through cand).
+  ex.compact_indices_to(
+      nc,
+      GG_LAMBDA(std::int64_t i)->bool {
+        const std::int64_t t = cand[i];
+        if (SZ[i] < 0 || HD[i] != SZ[i]) return false;
         // On an edge of its landing triangle, the triangle beside that edge is split too: it
         // must be this point's as well.
+        const std::uint64_t key = (K[t] >> 32 << 32) | std::uint64_t(i);
+        const double* q = NP + 2 * t;
         double sc[pred::kOrient2dScratch];
         const std::int64_t l3 = 3 * std::int64_t(L[t]);
         for (int k = 0; k < 3; ++k) {
@@ -433,10 +452,11 @@ inline Choice choose(Exec& ex, const RoundMesh& m, Decisions& d, const std::int3
           const double* b = m.xy + 2 * std::int64_t(m.tri[l3 + (k + 2) % 3]);
           if (pred::orient2d(a, b, q, sc) != 0) continue;
           const std::int32_t u = m.nbr[l3 + k];
-          if (u < 0 || C[u] != K[t]) return false;
+          if (u < 0 || C[u] != key) return false;
         }
         return true;
       },
-      cnt + 1);
+      c.points.data(), cnt + 1);
+  c.cand = cand;
   return c;
 }
