@@ -4,18 +4,16 @@
 // refine2d starts from the constrained Delaunay triangulation of points and segments (cdt2d.hpp:
 // the same holes, regions, domain and crossing rules) and adds Steiner points in parallel rounds
 // until every triangle has its smallest angle at least min_angle and its area at most the bound
-// that applies to it. Each round re-triangulates the points exactly (constrained Delaunay, exact
-// predicates, a perturbation that depends on the points alone) and then, in parallel:
-//   * splits every subsegment encroached upon (a vertex strictly inside its diametral circle)
-//     and removes the free Steiner points that encroach (Ruppert's rule: a circumcentre that
-//     would encroach is rejected, the subsegment split instead);
+// that applies to it. The input's triangulation is made once and kept; each round, in parallel:
+//   * splits every subsegment encroached upon (a vertex in its diametral lens, Triangle's test);
 //   * gives each bad triangle its new point: Ungor's off-centre for a small angle (the point on
 //     the bisector of the shortest edge that makes that edge's new triangle just good, or the
 //     circumcentre when nearer), the circumcentre for a large area; a point a segment hides from
-//     its triangle, or one inside the diametral circle of a subsegment next to where it lands,
-//     splits that subsegment instead;
-//   * keeps the new points whose landing triangles (and their neighbours) no better-ranked point
-//     claims: the worst triangles first, so the points of one round never crowd each other.
+//     its triangle, or one in the lens of a subsegment next to where it lands, is rejected and
+//     splits that subsegment instead (no point is ever removed, as in Triangle);
+//   * inserts the splits, then the new points whose cavities no better-ranked point touches (the
+//     worst triangles first, so the points of one round never crowd each other), and restores
+//     the constrained Delaunay property by exact flips.
 // Subsegments at an input vertex where segments meet are split on concentric shells (at powers
 // of two from the vertex, Ruppert's and Shewchuk's rule), and a triangle whose smallest angle is
 // an input angle between two segments, or whose shortest edge joins two shell vertices of such a

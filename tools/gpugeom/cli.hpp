@@ -102,4 +102,10 @@ PointsToMesh points_to_mesh(const Global& g, Args& a, const char* cmd,
 // output path `out` (UsageError where they do not apply).
 io::WriteOptions mesh_write_options(Args& a, const std::string& out);
 
+// A 2D triangle mesh as the writers take it: the coordinates and triangles (moved in), and the
+// regions' attribute per triangle as cell data "attribute" when there is one (.vtu/.vtk carry
+// it, .msh makes its integers the physical tags).
+io::Mesh triangle_mesh2d(HostVector<double> coords, HostVector<std::int32_t> triangles,
+                         const HostVector<double>& attribute);
+
 }  // namespace gpugeom::cli

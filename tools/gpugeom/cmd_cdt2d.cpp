@@ -157,16 +157,10 @@ int cmd_cdt2d(const Global& g, Args& a) {
   }
   if (!out.empty()) {
     Timer t(g, "write");
-    io::Mesh mesh;
-    mesh.dim = 2;
-    mesh.cell_size = 3;
-    mesh.coords = std::move(in.points.coords);
-    mesh.cells = std::move(r.triangles);
+    io::Mesh mesh =
+        triangle_mesh2d(std::move(in.points.coords), std::move(r.triangles), r.attribute);
     mesh.point_data.push_back(io::make_data_array("duplicate_of", io::ScalarType::I32, 1,
                                                   r.duplicate_of.data(), r.duplicate_of.size()));
-    if (!r.attribute.empty())
-      mesh.cell_data.push_back(io::make_data_array("attribute", io::ScalarType::F64, 1,
-                                                   r.attribute.data(), r.attribute.size()));
     io::write_mesh(out, mesh, wo);
   }
   return status;

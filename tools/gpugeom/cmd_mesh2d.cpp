@@ -157,15 +157,8 @@ int cmd_mesh2d(const Global& g, Args& a) {
   }
   if (!out.empty()) {
     Timer t(g, "write");
-    io::Mesh mesh;
-    mesh.dim = 2;
-    mesh.cell_size = 3;
-    mesh.coords = std::move(coords);
-    mesh.cells.assign(r.triangles.begin(), r.triangles.end());
-    if (!r.attribute.empty())
-      mesh.cell_data.push_back(io::make_data_array("attribute", io::ScalarType::F64, 1,
-                                                   r.attribute.data(), r.attribute.size()));
-    io::write_mesh(out, mesh, wo);
+    io::write_mesh(out, triangle_mesh2d(std::move(coords), std::move(r.triangles), r.attribute),
+                   wo);
   }
   return status;
 }

@@ -83,6 +83,19 @@ io::WriteOptions mesh_write_options(Args& a, const std::string& out) {
   return wo;
 }
 
+io::Mesh triangle_mesh2d(HostVector<double> coords, HostVector<std::int32_t> triangles,
+                         const HostVector<double>& attribute) {
+  io::Mesh mesh;
+  mesh.dim = 2;
+  mesh.cell_size = 3;
+  mesh.coords = std::move(coords);
+  mesh.cells = std::move(triangles);
+  if (!attribute.empty())
+    mesh.cell_data.push_back(io::make_data_array("attribute", io::ScalarType::F64, 1,
+                                                 attribute.data(), attribute.size()));
+  return mesh;
+}
+
 std::vector<std::string> Args::positionals() {
   for (auto& s : a_)
     if (s.size() > 1 && s[0] == '-' && !(s[1] >= '0' && s[1] <= '9'))

@@ -41,9 +41,7 @@ struct Kept {
   bool has_attr = false;
 
   RoundMesh view() const {
-    return {xy.data(),  tri.data(), nbr.data(),
-            seg.data(), nullptr,    has_attr ? attr.data() : nullptr,
-            nt};
+    return {xy.data(), tri.data(), nbr.data(), seg.data(), has_attr ? attr.data() : nullptr, nt};
   }
 };
 
@@ -193,8 +191,7 @@ GG_HD inline void split_edge(const EditView& V, std::int32_t t, int k, std::int3
   const std::int32_t n_bc = V.nbr[b3 + (k + 1) % 3], g_bc = V.seg[b3 + (k + 1) % 3];
   if (u >= 0) {
     const std::int64_t u3 = 3 * std::int64_t(u);
-    int ku = 0;
-    while (ku < 3 && V.nbr[u3 + ku] != t) ++ku;
+    const int ku = slot_facing(V.nbr, u, t);
     const std::int32_t d = V.tri[u3 + ku];
     // u = (d, b, a): (d, b) opposite a, (a, d) opposite b.
     const std::int32_t n_db = V.nbr[u3 + (ku + 2) % 3], g_db = V.seg[u3 + (ku + 2) % 3];
@@ -287,8 +284,7 @@ inline std::int64_t flip_until_legal(Exec& ex, Kept& K, Buf<std::int32_t> list, 
           const std::int32_t t = e / 3, u = V.nbr[e];
           if (u < 0 || V.seg[e] >= 0) return;
           const std::int64_t u3 = 3 * std::int64_t(u);
-          int ku = 0;
-          while (ku < 3 && V.nbr[u3 + ku] != t) ++ku;
+          const int ku = slot_facing(V.nbr, u, t);
           if (ku == 3) {
             atomic_add(BAD, std::int64_t(1));
             return;

@@ -19,7 +19,7 @@ constexpr std::int8_t kCorner = 1, kAcute = 2;
 // A triangulation of one round, in the executor's memory; seg holds subsegment indices.
 struct RoundMesh {
   const double* xy;
-  const std::int32_t *tri, *nbr, *seg, *dup;
+  const std::int32_t *tri, *nbr, *seg;
   const double* attribute;  // region index + 1 per triangle, or null
   std::int64_t nt;
 };
@@ -169,6 +169,13 @@ GG_HD inline bool terminated(const RoundMesh& m, const Corners& cn, std::int32_t
   const double* c = ca ? pa : pb;
   const double dx = sub_rn(sp[0], c[0]), dy = sub_rn(sp[1], c[1]);
   return add_rn(mul_rn(dx, dx), mul_rn(dy, dy)) < shortest2;
+}
+
+// The slot of triangle u whose neighbour is t (3 when there is none: a broken mesh).
+GG_HD inline int slot_facing(const std::int32_t* nbr, std::int64_t u, std::int64_t t) {
+  int k = 0;
+  while (k < 3 && nbr[3 * u + k] != t) ++k;
+  return k;
 }
 
 // The ends of half-edge e (its triangle's vertices after the opposite one).
@@ -370,8 +377,7 @@ inline Choice choose(Exec& ex, const RoundMesh& m, Decisions& d, const std::int3
         std::int32_t e = H[j];
         const std::int32_t t0 = e / 3, u0 = m.nbr[e];
         if (u0 >= 0 && u0 < t0) {
-          int ku = 0;
-          while (ku < 3 && m.nbr[3 * std::int64_t(u0) + ku] != t0) ++ku;
+          const int ku = slot_facing(m.nbr, u0, t0);
           if (ku == 3) return;
           e = 3 * u0 + ku;
         }
@@ -390,8 +396,7 @@ inline Choice choose(Exec& ex, const RoundMesh& m, Decisions& d, const std::int3
         if (pred::orient2d(pc, pa, q, sc) <= 0 || pred::orient2d(pc, q, pb, sc) <= 0) return;
         const std::int32_t u = m.nbr[e];
         if (u >= 0) {
-          int ku = 0;
-          while (ku < 3 && m.nbr[3 * std::int64_t(u) + ku] != t) ++ku;
+          const int ku = slot_facing(m.nbr, u, t);
           if (ku == 3) return;
           const double* pd = m.xy + 2 * std::int64_t(m.tri[3 * std::int64_t(u) + ku]);
           if (pred::orient2d(pd, pb, q, sc) <= 0 || pred::orient2d(pd, q, pa, sc) <= 0) return;
