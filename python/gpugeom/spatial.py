@@ -362,6 +362,21 @@ class Delaunay(_OfPoints):
         return _core.delaunay3d(arr, progress=_arrays.progress_callback(self._progress),
                                 method=self._method, grid=self._grid, **self._run)
 
+    @classmethod
+    def _from_arrays(cls, points, simplices, neighbors, duplicate_of, stats):
+        """A host triangulation from its arrays (``gpugeom.dask``'s gather), as if computed."""
+        self = cls.__new__(cls)
+        arr, kind = _arrays.points_input(points, (2, 3), "cpu", 0)
+        self._kind = kind
+        self._run = dict(backend="cpu", stream=kind.stream, threads=0)
+        self._set_points(arr)
+        self.furthest_site = False
+        self._method, self._grid, self._progress = "incremental", 0, None
+        self._incremental, self._dyn = False, None
+        self._take(dict(simplices=simplices, neighbors=neighbors, duplicate_of=duplicate_of,
+                        stats=stats))
+        return self
+
     def _take(self, r):
         kind = self._kind
         self.simplices = kind.back(r["simplices"])

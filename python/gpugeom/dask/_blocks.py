@@ -1,0 +1,110 @@
+"""The block decomposition of the distributed triangulation: a grid of cells over the points'
+bounding box, each point owned by the cell it falls in, and the regions a block covers.
+
+Pure NumPy: nothing here knows about Dask, so the rules can be tested alone.
+"""
+import numpy as np
+
+
+def _prime_factors(n: int) -> list:
+    out, p = [], 2
+    while p * p <= n:
+        while n % p == 0:
+            out.append(p)
+            n //= p
+        p += 1
+    if n > 1:
+        out.append(n)
+    return out
+
+
+def choose_counts(extent, nblocks: int) -> tuple:
+    """Cells per axis, their product ``nblocks``: each prime factor, largest first, splits the
+    axis whose cells are then the longest (ties: the lower axis), so cells stay close to cubes.
+    A flat axis (extent 0) is never split while another is not."""
+    extent = np.asarray(extent, dtype=np.float64)
+    counts = [1] * len(extent)
+    for f in sorted(_prime_factors(int(nblocks)), reverse=True):
+        k = int(np.argmax(extent / np.asarray(counts, dtype=np.float64)))
+        counts[k] *= f
+    return tuple(counts)
+
+
+class Grid:
+    """``counts[0] x ... x counts[d-1]`` cells over the closed box ``[lo, hi]`` of all points.
+
+    A point belongs to the cell ``floor((x - lo) / width)`` (clamped), computed once per point in
+    one place (``cell_of``). Where floating point puts a point just outside its cell's box nothing
+    breaks: a block always holds its own points, and the regions below only decide which *other*
+    points a block takes, by exact comparisons of the coordinates.
+    """
+
+    def __init__(self, lo, hi, counts):
+        self.lo = np.asarray(lo, dtype=np.float64)
+        self.hi = np.asarray(hi, dtype=np.float64)
+        self.counts = np.asarray(counts, dtype=np.int64)
+        self.width = (self.hi - self.lo) / self.counts
+        self.ndim = len(self.lo)
+
+    @property
+    def nblocks(self) -> int:
+        return int(np.prod(self.counts))
+
+    def cell_of(self, pts: np.ndarray) -> np.ndarray:
+        """The owning block of each point (row-major cell index)."""
+        idx = np.zeros(len(pts), dtype=np.int64)
+        for k in range(self.ndim):
+            if self.width[k] > 0:
+                c = np.floor((pts[:, k] - self.lo[k]) / self.width[k])
+                c = np.clip(c, 0, self.counts[k] - 1).astype(np.int64)
+            else:
+                c = np.zeros(len(pts), dtype=np.int64)
+            idx = idx * self.counts[k] + c
+        return idx
+
+    def cell_box(self, b: int):
+        """The box of cell ``b`` (the last cell along an axis ends exactly at ``hi``)."""
+        ijk = np.array(np.unravel_index(int(b), tuple(self.counts)), dtype=np.int64)
+        lo = self.lo + ijk * self.width
+        hi = np.where(ijk + 1 == self.counts, self.hi, self.lo + (ijk + 1) * self.width)
+        return lo, hi
+
+    def region(self, b: int, ghost: float):
+        """The closed box a block with ghost width ``ghost`` covers: every point in it is one of
+        the block's local points."""
+        lo, hi = self.cell_box(b)
+        return lo - ghost, hi + ghost
+
+    def covers_all(self, b: int, ghost: float) -> bool:
+        lo, hi = self.region(b, ghost)
+        return bool(np.all(lo <= self.lo) and np.all(hi >= self.hi))
+
+
+def in_box(pts: np.ndarray, lo, hi) -> np.ndarray:
+    """Exact test of the closed box (comparisons of the doubles, no arithmetic)."""
+    return np.all((pts >= lo) & (pts <= hi), axis=1)
+
+
+def boxes_meet(alo, ahi, blo, bhi) -> bool:
+    return bool(np.all(alo <= bhi) and np.all(blo <= ahi))
+
+
+def match_rows(table: np.ndarray, queries: np.ndarray) -> np.ndarray:
+    """For each row of ``queries`` (vertex ids, each row sorted), the index of the equal row of
+    ``table`` (rows sorted here; each row unique), or -1."""
+    if len(queries) == 0:
+        return np.zeros(0, dtype=np.int64)
+    t = np.sort(table, axis=1)
+    rows = np.concatenate([t, queries]).astype(np.int64, copy=False)
+    tag = np.concatenate([np.zeros(len(t), np.int8), np.ones(len(queries), np.int8)])
+    keys = (tag,) + tuple(rows[:, k] for k in range(rows.shape[1] - 1, -1, -1))
+    order = np.lexsort(keys)  # by the row (column 0 first), table rows before equal queries
+    s = rows[order]
+    new_group = np.ones(len(s), dtype=bool)
+    new_group[1:] = np.any(s[1:] != s[:-1], axis=1)
+    start = np.maximum.accumulate(np.where(new_group, np.arange(len(s)), 0))
+    first = order[start]  # the first row of each one's group: a table row where there is one
+    out = np.full(len(rows), -1, dtype=np.int64)
+    hit = first < len(t)
+    out[order[hit]] = first[hit]
+    return out[len(t):]

@@ -1,0 +1,375 @@
+"""The distributed Delaunay triangulation as a Dask computation: input pieces, blocks, rounds of
+ghost growth, owned simplices and their neighbours across blocks."""
+import operator
+import os
+import uuid
+from pathlib import Path
+from typing import Optional, Sequence, Union
+
+import dask
+import dask.array as da
+import numpy as np
+from dask import delayed
+
+from .. import _core
+from ..spatial import ConvexHull, Delaunay
+from . import _vtu
+from ._blocks import Grid, boxes_meet, choose_counts, in_box, match_rows
+from ._ghost import triangulate_block
+
+# ---------------------------------------------------------------------------------------------
+# Input: pieces of rows, each a delayed float64 (k, d) array, with their row offsets.
+
+
+def _load(piece):
+    if isinstance(piece, (str, os.PathLike)):
+        piece = np.load(piece, mmap_mode="r")
+    return np.ascontiguousarray(piece, dtype=np.float64)
+
+
+def _npy_shape(path) -> tuple:
+    try:
+        return np.load(path, mmap_mode="r").shape
+    except (OSError, ValueError) as e:
+        raise ValueError(f"cannot read points from {str(path)!r} (a .npy file of shape (n, 2) "
+                         f"or (n, 3) is expected): {e}") from None
+
+
+def _pieces(points, nblocks: Optional[int]):
+    """(list of delayed pieces, their row counts, the dimension)."""
+    if isinstance(points, da.Array):
+        if points.ndim != 2 or points.shape[1] not in (2, 3):
+            raise ValueError(f"points must have shape (n, 2) or (n, 3), got {points.shape}")
+        if any(np.isnan(c) for c in points.chunks[0]):
+            raise ValueError("points has chunks of unknown size along axis 0; call "
+                             "points.compute_chunk_sizes() first")
+        if len(points.chunks[1]) != 1:
+            raise ValueError(f"points is chunked along its coordinate axis (chunks "
+                             f"{points.chunks[1]}); each chunk must hold whole points: use "
+                             f"points.rechunk({{1: -1}})")
+        if not np.issubdtype(points.dtype, np.number):
+            raise TypeError(f"points must be numeric, got dtype {points.dtype}")
+        return list(points.to_delayed().ravel()), [int(c) for c in points.chunks[0]], \
+            int(points.shape[1])
+    if isinstance(points, (list, tuple)):
+        if not points:
+            raise ValueError("points is an empty list")
+        shapes = [_npy_shape(p) if isinstance(p, (str, os.PathLike)) else np.shape(p)
+                  for p in points]
+        widths = {s[1] if len(s) == 2 else None for s in shapes}
+        if len(widths) != 1 or widths - {2, 3}:
+            raise ValueError(f"every piece of points must have shape (k, 2) or (k, 3), all with "
+                             f"the same width; got shapes {shapes}")
+        return [delayed(_load)(p) for p in points], [int(s[0]) for s in shapes], widths.pop()
+    arr = np.asarray(points)
+    if arr.ndim != 2 or arr.shape[1] not in (2, 3):
+        raise ValueError(f"points must have shape (n, 2) or (n, 3), got {arr.shape}")
+    parts = np.array_split(np.arange(len(arr)), max(1, nblocks or 1))
+    return ([delayed(np.ascontiguousarray)(arr[p[0]:p[-1] + 1], dtype=np.float64)
+             for p in parts if len(p)], [len(p) for p in parts if len(p)], int(arr.shape[1]))
+
+
+def _summary(pts):
+    pts = _load(pts)
+    finite = np.isfinite(pts).all(axis=1)
+    bad = int(np.argmin(finite)) if not finite.all() else -1
+    if len(pts) == 0 or bad >= 0:
+        return dict(n=len(pts), bad=bad, lo=None, hi=None)
+    return dict(n=len(pts), bad=-1, lo=pts.min(axis=0), hi=pts.max(axis=0))
+
+
+def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
+    """A piece's points by owning block, and its hull candidates (its extreme points)."""
+    pts = _load(pts)
+    ids = np.arange(offset, offset + len(pts), dtype=np.int64)
+    cell = grid.cell_of(pts)
+    order = np.argsort(cell, kind="stable")
+    cuts = np.searchsorted(cell[order], np.arange(grid.nblocks + 1))
+    parts = {int(b): (pts[order[cuts[b]:cuts[b + 1]]], ids[order[cuts[b]:cuts[b + 1]]])
+             for b in np.nonzero(np.diff(cuts))[0]}
+    try:
+        cand = np.asarray(ConvexHull(pts, backend=backend, threads=threads).vertices, np.int64)
+    except (_core.DegenerateInputError, ValueError):
+        cand = np.arange(len(pts))  # too few or flat: every point may be extreme
+    return parts, (pts[cand], ids[cand], cell[cand])
+
+
+def _own(splits, block: int, d: int):
+    got = [s[0][block] for s in splits if block in s[0]]
+    if not got:
+        return np.zeros((0, d)), np.zeros(0, np.int64)
+    return np.concatenate([g[0] for g in got]), np.concatenate([g[1] for g in got])
+
+
+def _own_box(own):
+    pts = own[0]
+    return (len(pts), pts.min(axis=0), pts.max(axis=0)) if len(pts) else None
+
+
+def _global_hull(splits, backend: str, threads: int):
+    pts = np.concatenate([s[1][0] for s in splits])
+    ids = np.concatenate([s[1][1] for s in splits])
+    blk = np.concatenate([s[1][2] for s in splits])
+    order = np.argsort(ids)
+    pts, ids, blk = pts[order], ids[order], blk[order]
+    try:
+        h = ConvexHull(pts, backend=backend, threads=threads)
+    except _core.DegenerateInputError as e:
+        raise _core.DegenerateInputError(f"the points are degenerate as a whole: {e}") from None
+    v = np.sort(np.asarray(h.vertices, np.int64))
+    # the planes (unit outward normals) pushed out by a margin far above their rounding, so
+    # that every point lies inside each of them
+    planes = np.array(h.equations, dtype=np.float64)
+    scale = float(np.abs(pts).max()) if len(pts) else 1.0
+    planes[:, -1] -= 1e-9 * scale
+    return pts[v], ids[v], blk[v], planes
+
+
+def _select(own, block: int, boxes):
+    """A block's points in any of the boxes (another block's region and extra boxes)."""
+    pts, ids = own
+    keep = np.zeros(len(ids), dtype=bool)
+    for lo, hi in boxes:
+        keep |= in_box(pts, lo, hi)
+    return pts[keep], ids[keep], np.full(int(keep.sum()), block, np.int64)
+
+
+def _meta(r: dict) -> dict:
+    out = {k: v for k, v in r.items() if np.isscalar(v) or v is None or k == "boxes"}
+    if r["done"]:
+        out["nsimplex"] = len(r["simplices"])
+        out["owners"] = sorted(set(np.unique(r["req_owner"]).tolist()))
+    return out
+
+
+def _neighbors(r: dict, offsets: np.ndarray, block: int, owners: dict) -> np.ndarray:
+    """The neighbours of block ``block``'s simplices in global simplex indices."""
+    nbl = r["nb_local"]
+    out = np.where(nbl >= 0, nbl + offsets[block], -1).astype(np.int64)
+    flat = out.reshape(-1)
+    for c, simplices in owners.items():
+        sel = np.nonzero(r["req_owner"] == c)[0]
+        at = match_rows(simplices, r["req_key"][sel])
+        if (at < 0).any():
+            raise RuntimeError(f"gpugeom.dask: block {block}'s neighbour was not found in block "
+                               f"{c} (a bug: please report it with the input)")
+        flat[r["req_pos"][sel]] = at + offsets[c]
+    return out
+
+
+class DistributedTriangulation:
+    """A Delaunay triangulation computed block by block with Dask (``gpugeom.dask.delaunay``).
+
+    Attributes
+    ----------
+    ndim, npoints, nsimplex : int
+    simplices : dask.array (nsimplex, ndim + 1) of int64
+        Global point indices, block by block (each block's owned simplices, in its local
+        triangulation's order), each simplex positively oriented.
+    neighbors : dask.array (nsimplex, ndim + 1) of int64
+        ``neighbors[i, j]``: the simplex opposite vertex j of simplex i, in global simplex
+        indices (across blocks), -1 on the hull, as SciPy's.
+    blocks : tuple
+        Cells per axis.
+    block_stats : list of dict
+        Per block: its ghost width, rounds, local points and owned simplices.
+    """
+
+    def __init__(self, pieces, counts, results, offsets, neighbors, grid, stats):
+        self._pieces, self._counts, self._results = pieces, counts, results
+        self._grid, self.block_stats = grid, stats
+        self.ndim = grid.ndim
+        self.npoints = int(sum(counts))
+        self.blocks = tuple(int(c) for c in grid.counts)
+        sizes = np.diff(offsets)
+        self.nsimplex = int(offsets[-1])
+        d1 = self.ndim + 1
+
+        def part(objs, key, dtype):
+            arrays = [da.from_delayed(delayed(operator.getitem)(o, key) if key else o,
+                                      shape=(int(m), d1), dtype=dtype)
+                      for o, m in zip(objs, sizes)]
+            return da.concatenate(arrays) if arrays else da.zeros((0, d1), dtype=dtype)
+
+        self.simplices = part(results, "simplices", np.int64)
+        self.neighbors = part(neighbors, None, np.int64)
+
+    def points(self) -> np.ndarray:
+        """All points, in input order (computed)."""
+        return np.concatenate(dask.compute(*self._pieces)) if self._pieces else np.zeros(
+            (0, self.ndim))
+
+    def duplicate_of(self) -> np.ndarray:
+        """Per point: -1, or the earlier point with the same coordinates (computed)."""
+        dup = np.full(self.npoints, -1, dtype=np.int64)
+        for c in dask.compute(*[delayed(operator.getitem)(r, "copies") for r in self._results]):
+            dup[c[:, 0]] = c[:, 1]
+        return dup
+
+    def gather(self) -> Delaunay:
+        """The whole triangulation as a ``gpugeom.Delaunay`` (on the host), when it fits."""
+        if self.npoints >= 2**31 - 1:
+            raise ValueError(f"{self.npoints} points do not fit a gpugeom.Delaunay's int32 "
+                             "indices; use .simplices and .neighbors as Dask arrays")
+        simplices, neighbors = dask.compute(self.simplices, self.neighbors)
+        stats = {"blocks": float(len(self.block_stats)),
+                 "rounds": float(max((s["rounds"] for s in self.block_stats), default=0))}
+        return Delaunay._from_arrays(self.points(), simplices.astype(np.int32),
+                                     neighbors.astype(np.int32),
+                                     self.duplicate_of().astype(np.int32), stats)
+
+    def to_pvtu(self, path: Union[str, os.PathLike]) -> list:
+        """Writes one ``.vtu`` piece per block (``<stem>_<block>.vtu`` beside ``path``, written by
+        the workers) and the ``.pvtu`` ``path`` over them, which ParaView opens as one mesh.
+        Point data ``global_id``, cell data ``simplex_id``. Returns the files written."""
+        path = Path(path)
+        if path.suffix != ".pvtu":
+            raise ValueError(f"the path must end in .pvtu, got {str(path)!r}")
+        if not path.parent.is_dir():
+            raise ValueError(f"no folder {str(path.parent)!r} to write {path.name!r} into")
+        names = [f"{path.stem}_{b}.vtu" for b in range(len(self._results))]
+        offsets = np.concatenate([[0], np.cumsum([s["nsimplex"] for s in self.block_stats])])
+        writes = [delayed(_write_piece)(str(path.parent / n), r, int(o))
+                  for n, r, o in zip(names, self._results, offsets)]
+        dask.compute(*writes)
+        _vtu.write_index(str(path), names)
+        return [str(path)] + [str(path.parent / n) for n in names]
+
+
+def _write_piece(path: str, r: dict, offset: int) -> None:
+    s = r["simplices"]
+    _vtu.write_piece(path, r["vertex_points"], r["vertices"], s,
+                     np.arange(offset, offset + len(s), dtype=np.int64))
+
+
+def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
+             ghost: Optional[float] = None, backend: str = "auto",
+             threads: int = 1) -> DistributedTriangulation:
+    """Exact Delaunay triangulation of 2D or 3D points, block by block on a Dask cluster.
+
+    The points are split into blocks by a grid over their bounding box; each block triangulates
+    its points with a layer of ghost points around them (and the global hull's extreme points),
+    keeps the simplices no outside point can change, and grows its ghost layer until those
+    include every simplex round its own points. Each simplex is output by the block owning its
+    lowest-indexed vertex. The result is exactly ``gpugeom.Delaunay(points)``'s set of
+    simplices, degenerate input included (the perturbation depends on the points alone); the
+    order differs.
+
+    Parameters
+    ----------
+    points : dask.array (n, 2|3), NumPy array, or list of arrays or ``.npy`` paths
+        A Dask array must hold whole points in each chunk (one chunk along axis 1).
+    blocks : int or sequence of int, optional
+        Blocks in all (split over the axes, cells kept close to cubes) or per axis. Default: one
+        block per input chunk or file.
+    ghost : float, optional
+        The first ghost width (default: 2.5 mean point spacings); a block grows it as it needs.
+    backend : {"auto", "cuda", "cpu"}
+        Where each block is triangulated (on each worker: "auto" takes its GPU).
+    threads : int
+        CPU threads per block (0: all of the worker's cores).
+
+    Raises
+    ------
+    ValueError
+        Before any block runs: bad shapes or chunks, NaN or infinite coordinates.
+    gpugeom.DegenerateInputError
+        The points are all on one line (2D) or plane (3D), or fewer than ndim + 1 are distinct.
+    """
+    pieces, counts, d = _pieces(points, blocks if isinstance(blocks, int) else None)
+    n = int(sum(counts))
+    if n >= 2**31 - 1:
+        raise ValueError(f"{n} points: the distributed triangulation takes fewer than 2^31 - 1")
+    summaries = dask.compute(*[delayed(_summary)(p) for p in pieces])
+    start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    for i, s in enumerate(summaries):
+        if s["bad"] >= 0:
+            raise ValueError(f"point {start[i] + s['bad']} has a NaN or infinite coordinate")
+        if s["n"] != counts[i]:
+            raise ValueError(f"piece {i} holds {s['n']} points where its shape says {counts[i]}")
+    filled = [s for s in summaries if s["n"] > 0]
+    if not filled:
+        raise ValueError("no points")
+    lo = np.min([s["lo"] for s in filled], axis=0)
+    hi = np.max([s["hi"] for s in filled], axis=0)
+    if blocks is None:
+        blocks = len(pieces)
+    if isinstance(blocks, (int, np.integer)):
+        if blocks < 1:
+            raise ValueError(f"blocks must be at least 1, got {blocks}")
+        cells = choose_counts(hi - lo, int(blocks))
+    else:
+        cells = tuple(int(b) for b in blocks)
+        if len(cells) != d or min(cells) < 1:
+            raise ValueError(f"blocks per axis must be {d} positive counts, got {blocks}")
+    grid = Grid(lo, hi, cells)
+    if ghost is None:
+        ext = (hi - lo)[hi > lo]
+        ghost = 2.5 * float(np.prod(ext) / n) ** (1.0 / len(ext)) if len(ext) else 1.0
+    elif not ghost > 0:
+        raise ValueError(f"ghost must be positive, got {ghost}")
+
+    run = dict(backend=backend, threads=threads)
+    splits = [delayed(_split)(p, int(o), grid, **run) for p, o in zip(pieces, start)]
+    # persisted together, so that the pieces are split once
+    *own, hull = dask.persist(*[delayed(_own)(splits, b, d) for b in range(grid.nblocks)],
+                              delayed(_global_hull)(splits, **run))
+    boxes_of = dask.compute(*[delayed(_own_box)(o) for o in own])
+    filled_blocks = [b for b in range(grid.nblocks) if boxes_of[b] is not None]
+
+    tag = uuid.uuid4().hex[:12]
+    width = {b: float(ghost) for b in filled_blocks}
+    extras = {b: {} for b in filled_blocks}  # boxes along the hull a block asked for
+    rounds = {b: 0 for b in filled_blocks}
+    final, metas = {}, {}
+    pending = list(filled_blocks)
+    while pending:
+        tasks = []
+        for b in pending:
+            boxes = [grid.region(b, width[b])] + list(extras[b].values())
+            near = [delayed(_select)(own[c], c, boxes) for c in filled_blocks
+                    if c != b and any(boxes_meet(boxes_of[c][1], boxes_of[c][2], lo, hi)
+                                      for lo, hi in boxes)]
+            tasks.append(delayed(triangulate_block)(
+                b, grid, width[b], dict(extras[b]), own[b], near, hull, backend, threads,
+                dask_key_name=f"gpugeom-delaunay-block-{tag}-{rounds[b]}-{b}"))
+            rounds[b] += 1
+        done = dask.persist(*tasks)
+        for b, r, m in zip(pending, done, dask.compute(*[delayed(_meta)(r) for r in done])):
+            if m["done"]:
+                final[b], metas[b] = r, m
+                continue
+            width[b] = m["next_ghost"]
+            for key, (lo, hi) in m["boxes"]:
+                if key in extras[b]:
+                    lo, hi = np.minimum(lo, extras[b][key][0]), np.maximum(hi, extras[b][key][1])
+                extras[b][key] = (lo, hi)
+            if rounds[b] >= 4:
+                # every block ends: from the fifth round the ghost layer doubles too, until it
+                # covers the bounding box, where every simplex is final
+                width[b] = max(width[b], 2.0 * m["ghost"])
+        pending = [b for b in pending if b not in final]
+
+    order = filled_blocks
+    sizes = [metas[b]["nsimplex"] for b in order]
+    offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    index = {b: i for i, b in enumerate(order)}
+    position = np.full(grid.nblocks, -1, dtype=np.int64)  # grid cell -> place among the results
+    position[order] = np.arange(len(order))
+    results = [final[b] for b in order]
+    neighbors = []
+    for i, b in enumerate(order):
+        owners = {index[c]: delayed(operator.getitem)(final[c], "simplices")
+                  for c in metas[b]["owners"]}
+        neighbors.append(delayed(_neighbors_of)(final[b], offsets, i, position, owners))
+    stats = [dict(block=b, ghost=metas[b]["ghost"], extra_boxes=len(extras[b]), rounds=rounds[b],
+                  nlocal=metas[b]["nlocal"],
+                  nsimplex=metas[b]["nsimplex"], tested=metas[b]["tested"]) for b in order]
+    return DistributedTriangulation(pieces, counts, results, offsets, neighbors, grid, stats)
+
+
+def _neighbors_of(r, offsets, i, position, owners):
+    # the requests name blocks by grid cell; the offsets go by place among the filled blocks
+    r = dict(r)
+    r["req_owner"] = position[r["req_owner"]]
+    return _neighbors(r, offsets, i, owners)

@@ -1,0 +1,273 @@
+"""One block of the distributed triangulation: its points, the ghosts around them and the global
+hull's extreme points, triangulated together; which of the simplices are final; which the block
+owns.
+
+The rule (docs/design-notes.md, "Distributed Delaunay"):
+
+* A block's *local* points are its own points, every other point in its region (its cell grown
+  by the ghost width, a closed box, tested exactly) and the extreme points of the global hull.
+  The local points therefore have the global hull, and every point that is not local lies in
+  the global bounding box strictly outside the region.
+* A local simplex is *final* when no point outside the region can lie in its closed
+  circumball: the ball misses every slab of the bounding box beyond the region, by a margin that
+  covers the rounding of its centre and radius. Then it is a simplex of the global triangulation:
+  the perturbation depends on the points alone, so the local points decide it as all do.
+  A face without a neighbour lies on the global hull (the local hull is the global one), so it
+  has none globally either.
+* The block is *done* when every simplex with one of its own points as a vertex is final (the
+  stars of its points are then exactly the global stars), and so is the neighbour of each
+  owned simplex across the face opposite its lowest vertex (so every neighbour is known).
+  Otherwise it grows its ghost width and is triangulated again.
+* Each simplex is *owned* by the block that owns its lowest-indexed vertex, so exactly one
+  block outputs it; its neighbours are final in that block, so their vertices are known there.
+"""
+import numpy as np
+
+from .. import _core
+from ..spatial import Delaunay
+from ._blocks import Grid
+
+_EPS = float(np.finfo(np.float64).eps)
+# The centre of a simplex whose condition number passes this is not trusted: the block grows.
+_MAX_CONDITION = 1e10
+
+
+def _circumcentres(pts: np.ndarray, s: np.ndarray):
+    """Circumcentres, radii and an upper bound of their rounding error, for simplices ``s``.
+
+    The centre solves ``A x = b`` (rows of A: the edges from the first vertex, b: half their
+    squared lengths) by the adjugate; the error bound is a generous multiple of
+    eps * cond(A) * |x| (cond from the Frobenius norms of A and its adjugate). Where the
+    determinant is zero or the condition is beyond ``_MAX_CONDITION`` the bound is infinite."""
+    p0 = pts[s[:, 0]]
+    a = pts[s[:, 1:]] - p0[:, None, :]
+    rhs = 0.5 * np.einsum("mij,mij->mi", a, a)
+    if pts.shape[1] == 2:
+        det = a[:, 0, 0] * a[:, 1, 1] - a[:, 0, 1] * a[:, 1, 0]
+        cols = np.stack([np.stack([a[:, 1, 1], -a[:, 1, 0]], 1),
+                         np.stack([-a[:, 0, 1], a[:, 0, 0]], 1)], 1)
+    else:
+        c0 = np.cross(a[:, 1], a[:, 2])
+        cols = np.stack([c0, np.cross(a[:, 2], a[:, 0]), np.cross(a[:, 0], a[:, 1])], 1)
+        det = np.einsum("mi,mi->m", a[:, 0], c0)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        x = np.einsum("mi,mij->mj", rhs, cols) / det[:, None]
+        radius = np.sqrt(np.einsum("mi,mi->m", x, x))
+        cond = (np.sqrt(np.einsum("mij,mij->m", a, a)) * np.sqrt(np.einsum("mij,mij->m", cols, cols))
+                / np.abs(det))
+        edge = np.sqrt(np.einsum("mij,mij->mi", a, a).max(axis=1))
+        err = 1e3 * _EPS * cond * (radius + edge)
+    bad = ~np.isfinite(x).all(axis=1) | ~(cond < _MAX_CONDITION)
+    err[bad] = np.inf
+    x[bad] = 0.0
+    return p0 + x, radius, err
+
+
+def _slabs(region_lo, region_hi, box_lo, box_hi):
+    """The boxes where points outside the region may lie: the bounding box beyond the region,
+    one slab per axis and side that has room."""
+    out = []
+    for k in range(len(box_lo)):
+        if region_lo[k] > box_lo[k]:
+            hi = box_hi.copy()
+            hi[k] = region_lo[k]
+            out.append((box_lo.copy(), hi))
+        if region_hi[k] < box_hi[k]:
+            lo = box_lo.copy()
+            lo[k] = region_hi[k]
+            out.append((lo, box_hi.copy()))
+    return out
+
+
+def _ball_misses(centre, reach, slabs):
+    ok = np.isfinite(reach)
+    for lo, hi in slabs:
+        gap = np.maximum(np.maximum(lo - centre, centre - hi), 0.0)
+        ok &= np.sqrt(np.einsum("mi,mi->m", gap, gap)) > reach
+    return ok
+
+
+def _covered(klo, khi, slabs, extras):
+    """Whether the part of each box (klo, khi) in every slab is empty or inside an extra box."""
+    ok = np.ones(len(klo), dtype=bool)
+    for lo, hi in slabs:
+        plo, phi = np.maximum(klo, lo), np.minimum(khi, hi)
+        inside = np.any(plo > phi, axis=1)  # empty
+        for elo, ehi in extras:
+            inside |= np.all((plo >= elo) & (phi <= ehi), axis=1)
+        ok &= inside
+    return ok
+
+
+def _ball_in_box(centre, reach, lo, hi):
+    """The exact bounding box of each ball's part in the box [lo, hi] (empty: lo > hi). Along
+    axis k, x_k = t is reachable where (t - c_k)^2 plus the squared distance to the box in the
+    other axes (which does not depend on t) is at most r^2."""
+    gap = np.maximum(np.maximum(lo - centre, centre - hi), 0.0) ** 2
+    other = gap.sum(axis=1)[:, None] - gap
+    half = np.sqrt(np.maximum(reach[:, None] ** 2 - other, 0.0))
+    blo, bhi = np.maximum(centre - half, lo), np.minimum(centre + half, hi)
+    blo[other > reach[:, None] ** 2] = np.inf  # misses the box
+    return blo, bhi
+
+
+def _hull_cap(centre, reach, planes):
+    """Where a ball's centre lies beyond a hull plane (outward unit normal n, offset t: inside
+    n.x + t <= 0), the hull's points in the ball lie in the cap on the inner side of the plane
+    furthest behind the centre: the disc of radius sqrt(r^2 - h^2) round the centre's foot on
+    the plane, swept inwards by the cap's depth r - h. Returns whether there was a cut and the
+    box round the cap (the ball's box elsewhere)."""
+    h = centre @ planes[:, :-1].T + planes[:, -1]
+    best = np.argmax(h, axis=1)
+    hb = h[np.arange(len(h)), best]
+    cut = (hb > 0) & (hb < reach)
+    n = planes[best, :-1]
+    foot = centre - hb[:, None] * n
+    rim = np.sqrt(np.maximum(reach * reach - hb * hb, 0.0))
+    depth = (reach - hb)[:, None]
+    spread = rim[:, None] * np.sqrt(np.maximum(1.0 - n * n, 0.0))
+    lo = foot - spread + np.minimum(0.0, -depth * n)
+    hi = foot + spread + np.maximum(0.0, -depth * n)
+    lo = np.where(cut[:, None], lo, centre - reach[:, None])
+    hi = np.where(cut[:, None], hi, centre + reach[:, None])
+    return cut, lo, hi
+
+
+def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_hi, planes,
+                    extras=()):
+    """For simplices ``s`` of local points ``pts``: which are final; for the others the ghost
+    width that would hold their circumball (inf where the centre is not trusted), whether they
+    lie along the hull, and the box where outside points could break them (``klo``, ``khi``).
+
+    Points outside the region lie in the bounding box, inside every hull plane (``planes``,
+    pushed outwards by a margin), and outside the extra boxes the block already holds. A ball
+    is final when it misses the bounding box beyond the region. Failing that, the box round its
+    part in the bounding box, cut down where the centre lies beyond a hull plane to the box round
+    the cap inside it (simplices along the hull have huge circumballs with a thin part inside),
+    must meet the bounding box beyond the region only inside the extra boxes."""
+    centre, radius, err = _circumcentres(pts, s)
+    scale = max(np.abs(box_lo).max(), np.abs(box_hi).max())
+    reach = radius + 2.0 * err + 64.0 * _EPS * (scale + np.abs(centre).max(axis=1) + radius)
+    slabs = _slabs(region_lo, region_hi, box_lo, box_hi)
+    ok = _ball_misses(centre, reach, slabs)
+    m = len(s)
+    along = np.zeros(m, dtype=bool)
+    klo, khi = centre - reach[:, None], centre + reach[:, None]
+    retry = np.nonzero(~ok & np.isfinite(reach))[0]
+    if len(retry):
+        c, r = centre[retry], reach[retry]
+        lo, hi = _ball_in_box(c, r, box_lo, box_hi)
+        cut = np.zeros(len(retry), dtype=bool)
+        if len(planes):
+            cut, clo, chi = _hull_cap(c, r, planes)
+            lo, hi = np.maximum(lo, clo), np.minimum(hi, chi)
+        pad = (1e-9 * scale + 64.0 * _EPS * (np.abs(c).max(axis=1) + r))[:, None]
+        lo, hi = lo - pad, hi + pad
+        ok[retry] = _covered(lo, hi, slabs, extras)
+        along[retry] = cut | np.any((c < box_lo) | (c > box_hi), axis=1)
+        klo[retry], khi[retry] = lo, hi
+    with np.errstate(invalid="ignore"):
+        need = np.maximum(centre + reach[:, None] - cell_hi, cell_lo - centre + reach[:, None])
+    need = np.where(np.isfinite(reach), need.max(axis=1), np.inf)
+    return ok, need, along, klo, khi
+
+
+def _not_done(block, ghost, next_ghost, nlocal, tested, boxes=()):
+    return dict(block=block, done=False, ghost=ghost, next_ghost=next_ghost, nlocal=nlocal,
+                tested=tested, boxes=list(boxes))
+
+
+def _thin_boxes(lo, hi, cell_lo, cell_hi):
+    """Boxes along the hull, merged by their thinnest axis and the side of the cell they lie on
+    (along one face of the hull they are thin across it): at most 2d boxes."""
+    out = {}
+    mid = 0.5 * (cell_lo + cell_hi)
+    axis = np.argmin(hi - lo, axis=1)
+    side = (0.5 * (lo + hi))[np.arange(len(lo)), axis] > mid[axis]
+    for key in sorted(set(zip(axis.tolist(), side.tolist()))):
+        sel = (axis == key[0]) & (side == key[1])
+        out[key] = (lo[sel].min(axis=0), hi[sel].max(axis=0))
+    return out
+
+
+def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, pieces, hull,
+                      backend: str, threads: int) -> dict:
+    """Triangulates block ``block`` with ghost width ``ghost`` and the extra boxes ``extras``
+    it asked for earlier along the hull (a dict of boxes).
+
+    ``own``: (points, global ids) of the block's points; ``pieces``: (points, ids, owner blocks)
+    of other blocks' points in the region; ``hull``: (points, ids, owner blocks) of the global
+    hull's extreme points. Returns a dict: ``done``; when done, ``simplices`` (global ids, the
+    owned ones), ``nb_local`` (per face: an owned simplex's row here, -1 none, -2 another
+    block's), the requests for the others (``req_owner``, ``req_key``: sorted vertex ids,
+    ``req_pos``: row * (d + 1) + face) and ``copies`` (pairs: an own point, its earlier copy), ``vertices`` and ``vertex_points`` (the
+    owned simplices' vertices, sorted, and their coordinates);
+    when not, ``next_ghost`` and ``boxes`` (extra boxes to take, as ``extras``' items)."""
+    d = grid.ndim
+    own_pts, own_ids = own
+    covers = grid.covers_all(block, ghost)
+    if len(own_ids) == 0:
+        return dict(block=block, done=True, ghost=ghost, nlocal=0, tested=0,
+                    simplices=np.zeros((0, d + 1), np.int64),
+                    nb_local=np.zeros((0, d + 1), np.int64), req_owner=np.zeros(0, np.int64),
+                    req_key=np.zeros((0, d + 1), np.int64), req_pos=np.zeros(0, np.int64),
+                    copies=np.zeros((0, 2), np.int64), vertices=np.zeros(0, np.int64),
+                    vertex_points=np.zeros((0, d)))
+    all_pts = np.concatenate([own_pts] + [p[0] for p in pieces] + [hull[0]])
+    all_ids = np.concatenate([own_ids] + [p[1] for p in pieces] + [hull[1]])
+    all_blk = np.concatenate([np.full(len(own_ids), block, np.int64)] + [p[2] for p in pieces]
+                             + [hull[2]])
+    ids, first = np.unique(all_ids, return_index=True)  # in global order: copies read as the first
+    pts = np.ascontiguousarray(all_pts[first])
+    blk = all_blk[first]
+    owned = blk == block
+    try:
+        tri = Delaunay(pts, backend=backend, threads=threads)
+    except _core.DegenerateInputError:
+        if covers:
+            raise  # every point is here: the whole set is degenerate, as a single run says
+        return _not_done(block, ghost, 2.0 * ghost, len(ids), 0)
+    s = np.asarray(tri.simplices, dtype=np.int64)
+    nb = np.asarray(tri.neighbors, dtype=np.int64)
+    # the stars of the own points, and across the face opposite the lowest vertex of each owned
+    # simplex its neighbour (across the other faces the neighbours are in the star of that
+    # vertex): all must be final
+    required = owned[s].any(axis=1)
+    low = np.argmin(s, axis=1)
+    mine = np.nonzero(owned[s[np.arange(len(s)), low]])[0]
+    ring = nb[mine, low[mine]]
+    required[ring[ring >= 0]] = True
+    tested = 0
+    if not covers:
+        rlo, rhi = grid.region(block, ghost)
+        clo, chi = grid.cell_box(block)
+        req = np.nonzero(required)[0]
+        tested = len(req)
+        ok, need, along, klo, khi = final_simplices(pts, s[req], rlo, rhi, grid.lo, grid.hi,
+                                                    clo, chi, hull[3], list(extras.values()))
+        if not ok.all():
+            # a thin box along the hull is asked for; anything else asks for a wider ghost layer
+            # (by what the balls need, between 1.25 and 2 times: a simplex reaching into the
+            # sparse zone beyond the region is bigger than it will be once that fills in)
+            thin = ~ok & along & ((khi - klo).min(axis=1) < ghost)
+            grow = ~ok & ~thin
+            want = float(need[grow].max()) * 1.05 if grow.any() else ghost
+            nxt = min(max(1.25 * ghost, want), 2.0 * ghost) if grow.any() else ghost
+            boxes = _thin_boxes(klo[thin], khi[thin], clo, chi) if thin.any() else {}
+            return _not_done(block, ghost, nxt, len(ids), tested, boxes.items())
+    rows = np.nonzero(owned[s.min(axis=1)])[0]  # local order is global order: min is the lowest id
+    pos = np.full(len(s), -1, dtype=np.int64)
+    pos[rows] = np.arange(len(rows))
+    nbr = nb[rows]
+    nb_local = np.where(nbr >= 0, pos[np.maximum(nbr, 0)], -1)
+    nb_local[(nbr >= 0) & (nb_local < 0)] = -2
+    fi, fj = np.nonzero(nb_local == -2)
+    tau = s[nbr[fi, fj]]
+    dup = np.asarray(tri.duplicate_of, dtype=np.int64)
+    copy = np.nonzero((dup >= 0) & owned)[0]
+    used = np.unique(s[rows])
+    return dict(block=block, done=True, ghost=ghost, nlocal=len(ids), tested=tested,
+                simplices=ids[s[rows]], nb_local=nb_local, req_owner=blk[tau.min(axis=1)],
+                req_key=np.sort(ids[tau], axis=1), req_pos=fi * (d + 1) + fj,
+                copies=np.stack([ids[copy], ids[dup[copy]]], axis=1), vertices=ids[used],
+                vertex_points=pts[used])
