@@ -23,6 +23,11 @@ if ! "$PY" -c "import numpy, scipy, matplotlib, nanobind, scikit_build_core, pyt
   echo "[install_deps] pip install numpy scipy matplotlib nanobind scikit-build-core pytest meshio"
   "$PY" -m pip install -q numpy scipy matplotlib "nanobind>=2.0" "scikit-build-core>=0.10" pytest meshio
 fi
+# gpugeom.dask (distributed triangulations) and its tests: Dask and its distributed scheduler.
+if ! "$PY" -c "import dask.array, distributed" >/dev/null 2>&1; then
+  echo "[install_deps] pip install dask[array] distributed"
+  "$PY" -m pip install -q "dask[array]" distributed
+fi
 # Benchmark-only anchor (Shewchuk's Triangle): optional, the tests never need it.
 if ! "$PY" -c "import triangle" >/dev/null 2>&1; then
   "$PY" -m pip install -q triangle >/dev/null 2>&1 || echo "[install_deps] note: the 'triangle' package (a benchmark anchor) could not be installed"

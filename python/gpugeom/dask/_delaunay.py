@@ -2,6 +2,7 @@
 ghost growth, owned simplices and their neighbours across blocks."""
 import operator
 import os
+import time
 import uuid
 from pathlib import Path
 from typing import Optional, Sequence, Union
@@ -172,7 +173,12 @@ class DistributedTriangulation:
     blocks : tuple
         Cells per axis.
     block_stats : list of dict
-        Per block: its ghost width, rounds, local points and owned simplices.
+        Per block: its ghost width, extra boxes along the hull, rounds, local points, owned
+        simplices and simplices tested.
+    timings : dict
+        Milliseconds of the call's phases (client wall clock): ``check`` (shapes, finite
+        coordinates, bounds), ``split`` (points to blocks, the global hull), ``round1``... (each
+        round of block triangulations). The neighbours are computed when asked for.
     """
 
     def __init__(self, pieces, counts, results, offsets, neighbors, grid, stats):
@@ -280,7 +286,15 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     n = int(sum(counts))
     if n >= 2**31 - 1:
         raise ValueError(f"{n} points: the distributed triangulation takes fewer than 2^31 - 1")
+    clock = [time.perf_counter()]
+    timings = {}
+
+    def lap(name):
+        clock.append(time.perf_counter())
+        timings[name] = 1e3 * (clock[-1] - clock[-2])
+
     summaries = dask.compute(*[delayed(_summary)(p) for p in pieces])
+    lap("check")
     start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     for i, s in enumerate(summaries):
         if s["bad"] >= 0:
@@ -315,6 +329,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     *own, hull = dask.persist(*[delayed(_own)(splits, b, d) for b in range(grid.nblocks)],
                               delayed(_global_hull)(splits, **run))
     boxes_of = dask.compute(*[delayed(_own_box)(o) for o in own])
+    lap("split")
     filled_blocks = [b for b in range(grid.nblocks) if boxes_of[b] is not None]
 
     tag = uuid.uuid4().hex[:12]
@@ -349,6 +364,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
                 # covers the bounding box, where every simplex is final
                 width[b] = max(width[b], 2.0 * m["ghost"])
         pending = [b for b in pending if b not in final]
+        lap(f"round{len(timings) - 1}")
 
     order = filled_blocks
     sizes = [metas[b]["nsimplex"] for b in order]
@@ -365,7 +381,9 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     stats = [dict(block=b, ghost=metas[b]["ghost"], extra_boxes=len(extras[b]), rounds=rounds[b],
                   nlocal=metas[b]["nlocal"],
                   nsimplex=metas[b]["nsimplex"], tested=metas[b]["tested"]) for b in order]
-    return DistributedTriangulation(pieces, counts, results, offsets, neighbors, grid, stats)
+    out = DistributedTriangulation(pieces, counts, results, offsets, neighbors, grid, stats)
+    out.timings = timings
+    return out
 
 
 def _neighbors_of(r, offsets, i, position, owners):

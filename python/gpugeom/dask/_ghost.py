@@ -117,9 +117,13 @@ def _hull_cap(centre, reach, planes):
     furthest behind the centre: the disc of radius sqrt(r^2 - h^2) round the centre's foot on
     the plane, swept inwards by the cap's depth r - h. Returns whether there was a cut and the
     box round the cap (the ball's box elsewhere)."""
-    h = centre @ planes[:, :-1].T + planes[:, -1]
-    best = np.argmax(h, axis=1)
-    hb = h[np.arange(len(h)), best]
+    best = np.zeros(len(centre), dtype=np.int64)
+    hb = np.zeros(len(centre))
+    step = max(1, (1 << 23) // len(planes))  # rows at a time: at most 64 MiB of distances
+    for i in range(0, len(centre), step):
+        h = centre[i:i + step] @ planes[:, :-1].T + planes[:, -1]
+        best[i:i + step] = np.argmax(h, axis=1)
+        hb[i:i + step] = h[np.arange(len(h)), best[i:i + step]]
     cut = (hb > 0) & (hb < reach)
     n = planes[best, :-1]
     foot = centre - hb[:, None] * n

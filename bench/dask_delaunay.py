@@ -1,0 +1,120 @@
+"""Distributed Delaunay (gpugeom.dask.delaunay) on one host's GPUs, one Dask worker per GPU,
+against the single-GPU gpugeom.Delaunay of the same points, in one run.
+
+    python bench/dask_delaunay.py --gpus 1,2,4 --dims 3 --n 1e7 --dist uniform,clustered
+
+Each worker is a process that sees one GPU (CUDA_VISIBLE_DEVICES; what dask-cuda's
+LocalCUDACluster does, without needing it). The points are made on the workers, chunk by chunk,
+so the client never holds them. Timed: the whole distributed call until the simplices and their
+neighbours are in the workers' memory (wall clock), the single-GPU call inside one worker on all
+points (from host arrays, as the blocks are), the bytes the workers sent each other, the rounds
+and the local points per own point. --cpu runs CPU workers instead (--gpus: worker counts).
+"""
+import argparse
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from anchor_common import append_row  # noqa: E402
+
+
+def make_chunk(seed, i, m, d, dist):
+    rng = np.random.default_rng([seed, i])
+    if dist == "uniform":
+        return rng.random((m, d))
+    if dist == "clustered":  # 64 gaussian clusters, the same centres in every chunk
+        centres = np.random.default_rng(seed).random((64, d))
+        return centres[rng.integers(0, 64, m)] + 0.01 * rng.normal(size=(m, d))
+    raise ValueError(dist)
+
+
+def points(n, d, dist, chunks, seed=1):
+    import dask
+    import dask.array as da
+    m = [n // chunks + (i < n % chunks) for i in range(chunks)]
+    parts = [da.from_delayed(dask.delayed(make_chunk)(seed, i, mi, d, dist), shape=(mi, d),
+                             dtype=np.float64) for i, mi in enumerate(m)]
+    return da.concatenate(parts)
+
+
+def single(pts, backend):
+    import gpugeom
+    t0 = time.perf_counter()
+    tri = gpugeom.Delaunay(pts, backend=backend)
+    ms = 1e3 * (time.perf_counter() - t0)
+    return ms, tri.nsimplex, gpugeom.device_info().get("name", "cpu")
+
+
+def cluster(workers, cpu):
+    from distributed import Nanny, Scheduler, SpecCluster
+    spec = {i: {"cls": Nanny, "options": {"nthreads": 1, "env": {} if cpu else {
+        "CUDA_VISIBLE_DEVICES": str(i)}}} for i in range(workers)}
+    return SpecCluster(scheduler={"cls": Scheduler, "options": {"dashboard_address": None}},
+                       workers=spec, silence_logs=40)
+
+
+def moved(client):
+    def sent(dask_worker):
+        return int(getattr(dask_worker, "transfer_outgoing_bytes_total", 0))
+    return sum(client.run(sent).values())
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("--gpus", default="1,2,4")
+    p.add_argument("--dims", default="3")
+    p.add_argument("--n", default="1e7")
+    p.add_argument("--dist", default="uniform,clustered")
+    p.add_argument("--blocks-per-worker", type=int, default=2)
+    p.add_argument("--chunks", type=int, default=16,
+                   help="chunks the points are made in (the same points for every worker count)")
+    p.add_argument("--cpu", action="store_true")
+    p.add_argument("--check", action="store_true", help="compare with the single run")
+    p.add_argument("--csv", default="")
+    a = p.parse_args()
+    import dask
+    from distributed import Client, wait
+    import gpugeom.dask as gd
+    backend = "cpu" if a.cpu else "cuda"
+    for d in [int(x) for x in a.dims.split(",")]:
+        for n in [int(float(x)) for x in a.n.split(",")]:
+            for dist in a.dist.split(","):
+                base = None
+                for w in [int(x) for x in a.gpus.split(",")]:
+                    with cluster(w, a.cpu) as cl, Client(cl) as client:
+                        pts = points(n, d, dist, chunks=a.chunks)
+                        if base is None:
+                            base = dask.delayed(single)(pts, backend).compute()
+                            ref_ms, ref_m, name = base
+                            print(f"{d}D {dist} n={n}: single {name}: {ref_ms:.0f} ms, "
+                                  f"{ref_m} simplices", flush=True)
+                            append_row(a.csv, f"dask-delaunay{d}d", dist, n, "gpugeom-single",
+                                       ref_ms, machine=name)
+                        before = moved(client)
+                        t0 = time.perf_counter()
+                        dt = gd.delaunay(pts, blocks=w * a.blocks_per_worker, backend=backend)
+                        s, nb = dask.persist(dt.simplices, dt.neighbors)
+                        wait([s, nb])  # every block's arrays in the workers' memory
+                        ms = 1e3 * (time.perf_counter() - t0)
+                        sent = moved(client) - before
+                        local = sum(st["nlocal"] for st in dt.block_stats) / n
+                        rounds = max(st["rounds"] for st in dt.block_stats)
+                        ok = ""
+                        if a.check:
+                            ok = f", {'same' if dt.nsimplex == ref_m else 'DIFFERENT'} count"
+                        print(f"  {w} workers, {len(dt.block_stats)} blocks: {ms:.0f} ms "
+                              f"({ref_ms / ms:.2f}x the single run; efficiency "
+                              f"{ref_ms / ms / w:.2f}), {sent / 2**20:.0f} MiB between workers, "
+                              f"{rounds} rounds, {local:.2f} local points per point, "
+                              f"{dt.nsimplex} simplices{ok}; phases "
+                              + " ".join(f"{k} {v:.0f}" for k, v in dt.timings.items()),
+                              flush=True)
+                        append_row(a.csv, f"dask-delaunay{d}d", dist, n,
+                                   f"gpugeom-dask-{w}", ms, machine=f"{name} x{w}")
+
+
+if __name__ == "__main__":
+    main()

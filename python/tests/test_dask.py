@@ -1,0 +1,213 @@
+"""gpugeom.dask: the distributed triangulation equals the single run, simplex for simplex and
+neighbour for neighbour, on uniform, clustered and degenerate input across 2, 3 and 8 blocks, on
+a LocalCluster of CPU workers (one of them killed mid-run) and on Dask's threads."""
+import os
+
+import numpy as np
+import pytest
+
+import gpugeom
+
+dask = pytest.importorskip("dask")
+da = pytest.importorskip("dask.array")
+distributed = pytest.importorskip("distributed")
+gd = pytest.importorskip("gpugeom.dask")
+from gpugeom.dask._blocks import Grid, choose_counts, match_rows  # noqa: E402
+
+
+def _keys(simplices):
+    return np.sort(np.asarray(simplices, dtype=np.int64), axis=1)
+
+
+def _relation(simplices, neighbors):
+    """Every (simplex, vertex, neighbour across the opposite face) as sorted vertex tuples, so
+    two triangulations compare whatever their order."""
+    s = np.asarray(simplices, dtype=np.int64)
+    nb = np.asarray(neighbors, dtype=np.int64)
+    key = _keys(s)
+    d1 = s.shape[1]
+    rows = []
+    for j in range(d1):
+        other = np.where(nb[:, j:j + 1] >= 0, key[np.maximum(nb[:, j], 0)], -1)
+        rows.append(np.concatenate([key, s[:, j:j + 1], other], axis=1))
+    r = np.concatenate(rows)
+    return r[np.lexsort(r.T[::-1])]
+
+
+def _same_as_single(pts, dt):
+    ref = gpugeom.Delaunay(pts, backend="cpu")
+    g = dt.gather()
+    assert g.nsimplex == ref.nsimplex == dt.nsimplex
+    np.testing.assert_array_equal(_relation(g.simplices, g.neighbors),
+                                  _relation(ref.simplices, ref.neighbors))
+    np.testing.assert_array_equal(g.duplicate_of, ref.duplicate_of)
+    # every simplex positively oriented, as the single run's
+    s = np.asarray(g.simplices)
+    e = pts[s[:, 1:]] - pts[s[:, :1]]
+    assert (np.linalg.det(e) > 0).all()
+    return g
+
+
+def _families(d, rng):
+    n = 3000 if d == 2 else 2500
+    centres = rng.random((6, d))
+    k = 8 if d == 2 else 6
+    grid = np.stack(np.meshgrid(*[np.arange(float(k * (4 - d)))] * d, indexing="ij"),
+                    -1).reshape(-1, d)
+    sphere = rng.normal(size=(400, d))
+    sphere /= np.linalg.norm(sphere, axis=1)[:, None]
+    uniform = rng.random((n, d))
+    copies = np.concatenate([uniform[:500], uniform[:50]])
+    return {
+        "uniform": uniform,
+        "clustered": (centres[rng.integers(0, 6, n)] + 0.02 * rng.normal(size=(n, d))),
+        "grid": grid,
+        "sphere": sphere,
+        "copies": copies,
+    }
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_equal_to_single_run_on_threads(d):
+    rng = np.random.default_rng(7 + d)
+    with dask.config.set(scheduler="threads"):
+        for name, pts in _families(d, rng).items():
+            for blocks in (2, 3, 8):
+                dt = gd.delaunay(pts, blocks=blocks, backend="cpu")
+                assert len(dt.block_stats) <= blocks, name
+                _same_as_single(pts, dt)
+
+
+def test_inputs_as_dask_array_list_and_files(tmp_path):
+    rng = np.random.default_rng(3)
+    pts = rng.random((4000, 3))
+    ref = _relation(*(lambda t: (t.simplices, t.neighbors))(gpugeom.Delaunay(pts, backend="cpu")))
+    files = []
+    for i, part in enumerate(np.array_split(pts, 3)):
+        files.append(str(tmp_path / f"part{i}.npy"))
+        np.save(files[-1], part)
+    with dask.config.set(scheduler="threads"):
+        for points in (da.from_array(pts, chunks=(1000, 3)), list(np.array_split(pts, 4)),
+                       files):
+            dt = gd.delaunay(points, backend="cpu")
+            g = dt.gather()
+            np.testing.assert_array_equal(_relation(g.simplices, g.neighbors), ref)
+            # the Dask arrays themselves: global indices, neighbours across blocks
+            s, nb = dask.compute(dt.simplices, dt.neighbors)
+            assert s.dtype == np.int64 and s.shape == (dt.nsimplex, 4)
+            np.testing.assert_array_equal(_relation(s, nb), ref)
+        assert gd.delaunay(files, backend="cpu").blocks == (1, 1, 3)
+
+
+def test_same_arrays_every_run():
+    pts = np.random.default_rng(5).random((3000, 2))
+    with dask.config.set(scheduler="threads"):
+        a = dask.compute(gd.delaunay(pts, blocks=6, backend="cpu").simplices)[0]
+        b = dask.compute(gd.delaunay(pts, blocks=6, backend="cpu").simplices)[0]
+    np.testing.assert_array_equal(a, b)
+
+
+@pytest.fixture(scope="module")
+def cluster_client():
+    from distributed import Client, LocalCluster
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=40)
+    client = Client(cluster)
+    yield client
+    client.close()
+    cluster.close()
+
+
+def test_local_cluster(cluster_client):
+    rng = np.random.default_rng(11)
+    for d in (2, 3):
+        pts = rng.random((5000, d))
+        dt = gd.delaunay(da.from_array(pts, chunks=(1250, d)), blocks=8, backend="cpu")
+        assert len(dt.block_stats) == 8
+        _same_as_single(pts, dt)
+
+
+class _KillOnce:
+    """Ends the worker process the first time a block starts (a crash mid-run)."""
+
+    def __init__(self, marker):
+        self.marker = marker
+
+    def transition(self, key, start, finish, **kwargs):
+        if (finish == "executing" and "gpugeom-delaunay-block" in str(key)
+                and not os.path.exists(self.marker)):
+            open(self.marker, "w").close()
+            os._exit(1)
+
+
+def test_worker_killed_mid_run(cluster_client, tmp_path):
+    from distributed import WorkerPlugin
+    plugin = type("KillOnce", (_KillOnce, WorkerPlugin), {})(str(tmp_path / "killed"))
+    cluster_client.register_plugin(plugin, name="kill-once")
+    try:
+        pts = np.random.default_rng(13).random((4000, 3))
+        dt = gd.delaunay(da.from_array(pts, chunks=(1000, 3)), blocks=4, backend="cpu")
+        assert os.path.exists(tmp_path / "killed")  # a worker did die, Dask ran its task again
+        _same_as_single(pts, dt)
+    finally:
+        cluster_client.unregister_worker_plugin("kill-once")
+
+
+def test_to_pvtu(tmp_path):
+    meshio = pytest.importorskip("meshio")
+    pts = np.random.default_rng(17).random((3000, 3))
+    with dask.config.set(scheduler="threads"):
+        dt = gd.delaunay(pts, blocks=4, backend="cpu")
+        files = dt.to_pvtu(tmp_path / "mesh.pvtu")
+    assert len(files) == 5 and files[0].endswith("mesh.pvtu")
+    text = open(files[0]).read()
+    assert text.count("<Piece Source=") == 4
+    cells = []
+    for f in files[1:]:
+        m = meshio.read(f)
+        gid = np.asarray(m.point_data["global_id"]).ravel()
+        np.testing.assert_array_equal(m.points, pts[gid])
+        cells.append(gid[m.cells_dict["tetra"]])
+    got = np.concatenate(cells)
+    want = dask.compute(dt.simplices, scheduler="threads")[0]
+    np.testing.assert_array_equal(got, want)
+    assert not [f for f in os.listdir(tmp_path) if ".tmp" in f]
+    with pytest.raises(ValueError, match="pvtu"):
+        dt.to_pvtu(tmp_path / "mesh.vtu")
+
+
+def test_bad_input_refused_before_any_block_runs():
+    pts = np.random.default_rng(19).random((1000, 3))
+    bad = pts.copy()
+    bad[617, 1] = np.nan
+    with dask.config.set(scheduler="threads"):
+        with pytest.raises(ValueError, match="point 617 has a NaN"):
+            gd.delaunay(da.from_array(bad, chunks=(300, 3)), blocks=4, backend="cpu")
+        with pytest.raises(ValueError, match="rechunk"):
+            gd.delaunay(da.from_array(pts, chunks=(500, 2)), backend="cpu")
+        with pytest.raises(ValueError, match="same width"):
+            gd.delaunay([pts, pts[:, :2]], backend="cpu")
+        with pytest.raises(ValueError, match=r"shape \(n, 2\) or \(n, 3\)"):
+            gd.delaunay(np.zeros((10, 4)), backend="cpu")
+        with pytest.raises(ValueError, match="blocks"):
+            gd.delaunay(pts, blocks=0, backend="cpu")
+        with pytest.raises(ValueError, match="unknown size"):
+            x = da.from_array(pts, chunks=(500, 3))
+            gd.delaunay(x[x[:, 0] > 0.5], backend="cpu")
+        with pytest.raises(gpugeom.DegenerateInputError):
+            flat = pts.copy()
+            flat[:, 2] = 0.25
+            gd.delaunay(flat, blocks=4, backend="cpu")
+
+
+def test_blocks_and_rows():
+    assert choose_counts([1.0, 1.0, 1.0], 8) == (2, 2, 2)
+    assert choose_counts([4.0, 1.0], 8) == (8, 1)
+    assert choose_counts([1.0, 0.0], 3) == (3, 1)
+    g = Grid([0, 0], [1, 1], (2, 2))
+    np.testing.assert_array_equal(g.cell_of(np.array([[0.0, 0.0], [1.0, 1.0], [0.5, 0.2]])),
+                                  [0, 3, 2])
+    assert g.covers_all(0, 1.0) and not g.covers_all(0, 0.4)
+    table = np.array([[3, 1, 2], [4, 5, 6], [0, 1, 9]])
+    queries = np.array([[4, 5, 6], [1, 2, 3], [1, 2, 4], [4, 5, 6]])
+    np.testing.assert_array_equal(match_rows(table, queries), [1, 0, -1, 1])
