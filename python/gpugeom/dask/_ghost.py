@@ -21,6 +21,8 @@ The rule (docs/design-notes.md, "Distributed Delaunay"):
 * Each simplex is *owned* by the block that owns its lowest-indexed vertex, so exactly one
   block outputs it; its neighbours are final in that block, so their vertices are known there.
 """
+import contextlib
+
 import numpy as np
 
 from .. import _core
@@ -28,11 +30,36 @@ from ..spatial import Delaunay
 from ._blocks import Grid
 
 _EPS = float(np.finfo(np.float64).eps)
+
+
+def _quiet(xp):
+    """NumPy's warnings off for divisions by zero and infinities, which are expected here (CuPy
+    does not warn)."""
+    if xp is np:
+        return np.errstate(divide="ignore", invalid="ignore", over="ignore")
+    return contextlib.nullcontext()
+
+
+def _array_module(backend: str):
+    """CuPy when the block runs on a GPU and CuPy is there (the triangulation, the tests and
+    the ownership stay on the device; only the block's results come back), else NumPy."""
+    if backend == "cpu" or not _core.built_with_cuda():
+        return np
+    try:
+        import cupy
+    except ImportError:
+        return np
+    from .._arrays import device_info
+    return cupy if device_info().get("available") else np
+
+
+def _host(a):
+    return a.get() if hasattr(a, "get") and not isinstance(a, np.ndarray) else np.asarray(a)
 # The centre of a simplex whose condition number passes this is not trusted: the block grows.
 _MAX_CONDITION = 1e10
 
 
-def _circumcentres(pts: np.ndarray, s: np.ndarray):
+def _circumcentres(pts, s, xp=np):
     """Circumcentres, radii and an upper bound of their rounding error, for simplices ``s``.
 
     The centre solves ``A x = b`` (rows of A: the edges from the first vertex, b: half their
@@ -41,24 +68,24 @@ def _circumcentres(pts: np.ndarray, s: np.ndarray):
     determinant is zero or the condition is beyond ``_MAX_CONDITION`` the bound is infinite."""
     p0 = pts[s[:, 0]]
     a = pts[s[:, 1:]] - p0[:, None, :]
-    rhs = 0.5 * np.einsum("mij,mij->mi", a, a)
+    rhs = 0.5 * xp.einsum("mij,mij->mi", a, a)
     if pts.shape[1] == 2:
         det = a[:, 0, 0] * a[:, 1, 1] - a[:, 0, 1] * a[:, 1, 0]
-        cols = np.stack([np.stack([a[:, 1, 1], -a[:, 1, 0]], 1),
-                         np.stack([-a[:, 0, 1], a[:, 0, 0]], 1)], 1)
+        cols = xp.stack([xp.stack([a[:, 1, 1], -a[:, 1, 0]], 1),
+                         xp.stack([-a[:, 0, 1], a[:, 0, 0]], 1)], 1)
     else:
-        c0 = np.cross(a[:, 1], a[:, 2])
-        cols = np.stack([c0, np.cross(a[:, 2], a[:, 0]), np.cross(a[:, 0], a[:, 1])], 1)
-        det = np.einsum("mi,mi->m", a[:, 0], c0)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        x = np.einsum("mi,mij->mj", rhs, cols) / det[:, None]
-        radius = np.sqrt(np.einsum("mi,mi->m", x, x))
-        cond = (np.sqrt(np.einsum("mij,mij->m", a, a)) * np.sqrt(np.einsum("mij,mij->m", cols, cols))
-                / np.abs(det))
-        edge = np.sqrt(np.einsum("mij,mij->mi", a, a).max(axis=1))
+        c0 = xp.cross(a[:, 1], a[:, 2])
+        cols = xp.stack([c0, xp.cross(a[:, 2], a[:, 0]), xp.cross(a[:, 0], a[:, 1])], 1)
+        det = xp.einsum("mi,mi->m", a[:, 0], c0)
+    with _quiet(xp):
+        x = xp.einsum("mi,mij->mj", rhs, cols) / det[:, None]
+        radius = xp.sqrt(xp.einsum("mi,mi->m", x, x))
+        cond = (xp.sqrt(xp.einsum("mij,mij->m", a, a)) * xp.sqrt(xp.einsum("mij,mij->m", cols, cols))
+                / xp.abs(det))
+        edge = xp.sqrt(xp.einsum("mij,mij->mi", a, a).max(axis=1))
         err = 1e3 * _EPS * cond * (radius + edge)
-    bad = ~np.isfinite(x).all(axis=1) | ~(cond < _MAX_CONDITION)
-    err[bad] = np.inf
+    bad = ~xp.isfinite(x).all(axis=1) | ~(cond < _MAX_CONDITION)
+    err[bad] = xp.inf
     x[bad] = 0.0
     return p0 + x, radius, err
 
@@ -79,66 +106,66 @@ def _slabs(region_lo, region_hi, box_lo, box_hi):
     return out
 
 
-def _ball_misses(centre, reach, slabs):
-    ok = np.isfinite(reach)
+def _ball_misses(centre, reach, slabs, xp=np):
+    ok = xp.isfinite(reach)
     for lo, hi in slabs:
-        gap = np.maximum(np.maximum(lo - centre, centre - hi), 0.0)
-        ok &= np.sqrt(np.einsum("mi,mi->m", gap, gap)) > reach
+        gap = xp.maximum(xp.maximum(lo - centre, centre - hi), 0.0)
+        ok &= xp.sqrt(xp.einsum("mi,mi->m", gap, gap)) > reach
     return ok
 
 
-def _covered(klo, khi, slabs, extras):
+def _covered(klo, khi, slabs, extras, xp=np):
     """Whether the part of each box (klo, khi) in every slab is empty or inside an extra box."""
-    ok = np.ones(len(klo), dtype=bool)
+    ok = xp.ones(len(klo), dtype=bool)
     for lo, hi in slabs:
-        plo, phi = np.maximum(klo, lo), np.minimum(khi, hi)
-        inside = np.any(plo > phi, axis=1)  # empty
+        plo, phi = xp.maximum(klo, lo), xp.minimum(khi, hi)
+        inside = xp.any(plo > phi, axis=1)  # empty
         for elo, ehi in extras:
-            inside |= np.all((plo >= elo) & (phi <= ehi), axis=1)
+            inside |= xp.all((plo >= elo) & (phi <= ehi), axis=1)
         ok &= inside
     return ok
 
 
-def _ball_in_box(centre, reach, lo, hi):
+def _ball_in_box(centre, reach, lo, hi, xp=np):
     """The exact bounding box of each ball's part in the box [lo, hi] (empty: lo > hi). Along
     axis k, x_k = t is reachable where (t - c_k)^2 plus the squared distance to the box in the
     other axes (which does not depend on t) is at most r^2."""
-    gap = np.maximum(np.maximum(lo - centre, centre - hi), 0.0) ** 2
+    gap = xp.maximum(xp.maximum(lo - centre, centre - hi), 0.0) ** 2
     other = gap.sum(axis=1)[:, None] - gap
-    half = np.sqrt(np.maximum(reach[:, None] ** 2 - other, 0.0))
-    blo, bhi = np.maximum(centre - half, lo), np.minimum(centre + half, hi)
-    blo[other > reach[:, None] ** 2] = np.inf  # misses the box
+    half = xp.sqrt(xp.maximum(reach[:, None] ** 2 - other, 0.0))
+    blo, bhi = xp.maximum(centre - half, lo), xp.minimum(centre + half, hi)
+    blo[other > reach[:, None] ** 2] = xp.inf  # misses the box
     return blo, bhi
 
 
-def _hull_cap(centre, reach, planes):
+def _hull_cap(centre, reach, planes, xp=np):
     """Where a ball's centre lies beyond a hull plane (outward unit normal n, offset t: inside
     n.x + t <= 0), the hull's points in the ball lie in the cap on the inner side of the plane
     furthest behind the centre: the disc of radius sqrt(r^2 - h^2) round the centre's foot on
     the plane, swept inwards by the cap's depth r - h. Returns whether there was a cut and the
     box round the cap (the ball's box elsewhere)."""
-    best = np.zeros(len(centre), dtype=np.int64)
-    hb = np.zeros(len(centre))
+    best = xp.zeros(len(centre), dtype=xp.int64)
+    hb = xp.zeros(len(centre))
     step = max(1, (1 << 23) // len(planes))  # rows at a time: at most 64 MiB of distances
     for i in range(0, len(centre), step):
         h = centre[i:i + step] @ planes[:, :-1].T + planes[:, -1]
-        best[i:i + step] = np.argmax(h, axis=1)
-        hb[i:i + step] = h[np.arange(len(h)), best[i:i + step]]
+        best[i:i + step] = xp.argmax(h, axis=1)
+        hb[i:i + step] = h[xp.arange(len(h)), best[i:i + step]]
     cut = (hb > 0) & (hb < reach)
     n = planes[best, :-1]
     foot = centre - hb[:, None] * n
-    rim = np.sqrt(np.maximum(reach * reach - hb * hb, 0.0))
+    rim = xp.sqrt(xp.maximum(reach * reach - hb * hb, 0.0))
     depth = (reach - hb)[:, None]
-    spread = rim[:, None] * np.sqrt(np.maximum(1.0 - n * n, 0.0))
-    lo = foot - spread + np.minimum(0.0, -depth * n)
-    hi = foot + spread + np.maximum(0.0, -depth * n)
-    lo = np.where(cut[:, None], lo, centre - reach[:, None])
-    hi = np.where(cut[:, None], hi, centre + reach[:, None])
+    spread = rim[:, None] * xp.sqrt(xp.maximum(1.0 - n * n, 0.0))
+    lo = foot - spread + xp.minimum(0.0, -depth * n)
+    hi = foot + spread + xp.maximum(0.0, -depth * n)
+    lo = xp.where(cut[:, None], lo, centre - reach[:, None])
+    hi = xp.where(cut[:, None], hi, centre + reach[:, None])
     return cut, lo, hi
 
 
 def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_hi, planes,
-                    extras=()):
+                    extras=(), xp=np):
     """For simplices ``s`` of local points ``pts``: which are final; for the others the ghost
     width that would hold their circumball (inf where the centre is not trusted), whether they
     lie along the hull, and the box where outside points could break them (``klo``, ``khi``).
@@ -149,30 +176,34 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
     part in the bounding box, cut down where the centre lies beyond a hull plane to the box round
     the cap inside it (simplices along the hull have huge circumballs with a thin part inside),
     must meet the bounding box beyond the region only inside the extra boxes."""
-    centre, radius, err = _circumcentres(pts, s)
-    scale = max(np.abs(box_lo).max(), np.abs(box_hi).max())
-    reach = radius + 2.0 * err + 64.0 * _EPS * (scale + np.abs(centre).max(axis=1) + radius)
-    slabs = _slabs(region_lo, region_hi, box_lo, box_hi)
-    ok = _ball_misses(centre, reach, slabs)
+    scale = float(max(np.abs(box_lo).max(), np.abs(box_hi).max()))
+    slabs = [(xp.asarray(lo), xp.asarray(hi)) for lo, hi in
+             _slabs(region_lo, region_hi, box_lo, box_hi)]
+    extras = [(xp.asarray(lo), xp.asarray(hi)) for lo, hi in extras]
+    box_lo, box_hi = xp.asarray(box_lo), xp.asarray(box_hi)
+    centre, radius, err = _circumcentres(pts, s, xp)
+    reach = radius + 2.0 * err + 64.0 * _EPS * (scale + xp.abs(centre).max(axis=1) + radius)
+    ok = _ball_misses(centre, reach, slabs, xp)
     m = len(s)
-    along = np.zeros(m, dtype=bool)
+    along = xp.zeros(m, dtype=bool)
     klo, khi = centre - reach[:, None], centre + reach[:, None]
-    retry = np.nonzero(~ok & np.isfinite(reach))[0]
+    retry = xp.nonzero(~ok & xp.isfinite(reach))[0]
     if len(retry):
         c, r = centre[retry], reach[retry]
-        lo, hi = _ball_in_box(c, r, box_lo, box_hi)
-        cut = np.zeros(len(retry), dtype=bool)
+        lo, hi = _ball_in_box(c, r, box_lo, box_hi, xp)
+        cut = xp.zeros(len(retry), dtype=bool)
         if len(planes):
-            cut, clo, chi = _hull_cap(c, r, planes)
-            lo, hi = np.maximum(lo, clo), np.minimum(hi, chi)
-        pad = (1e-9 * scale + 64.0 * _EPS * (np.abs(c).max(axis=1) + r))[:, None]
+            cut, clo, chi = _hull_cap(c, r, xp.asarray(planes), xp)
+            lo, hi = xp.maximum(lo, clo), xp.minimum(hi, chi)
+        pad = (1e-9 * scale + 64.0 * _EPS * (xp.abs(c).max(axis=1) + r))[:, None]
         lo, hi = lo - pad, hi + pad
-        ok[retry] = _covered(lo, hi, slabs, extras)
-        along[retry] = cut | np.any((c < box_lo) | (c > box_hi), axis=1)
+        ok[retry] = _covered(lo, hi, slabs, extras, xp)
+        along[retry] = cut | xp.any((c < box_lo) | (c > box_hi), axis=1)
         klo[retry], khi[retry] = lo, hi
-    with np.errstate(invalid="ignore"):
-        need = np.maximum(centre + reach[:, None] - cell_hi, cell_lo - centre + reach[:, None])
-    need = np.where(np.isfinite(reach), need.max(axis=1), np.inf)
+    cell_lo, cell_hi = xp.asarray(cell_lo), xp.asarray(cell_hi)
+    with _quiet(xp):
+        need = xp.maximum(centre + reach[:, None] - cell_hi, cell_lo - centre + reach[:, None])
+    need = xp.where(xp.isfinite(reach), need.max(axis=1), xp.inf)
     return ok, need, along, klo, khi
 
 
@@ -224,54 +255,59 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     ids, first = np.unique(all_ids, return_index=True)  # in global order: copies read as the first
     pts = np.ascontiguousarray(all_pts[first])
     blk = all_blk[first]
-    owned = blk == block
+    xp = _array_module(backend)
+    dpts = xp.asarray(pts)
+    owned = xp.asarray(blk == block)
     try:
-        tri = Delaunay(pts, backend=backend, threads=threads)
+        tri = Delaunay(dpts, backend=backend, threads=threads)
     except _core.DegenerateInputError:
         if covers:
             raise  # every point is here: the whole set is degenerate, as a single run says
         return _not_done(block, ghost, 2.0 * ghost, len(ids), 0)
-    s = np.asarray(tri.simplices, dtype=np.int64)
-    nb = np.asarray(tri.neighbors, dtype=np.int64)
+    s = tri.simplices.astype(xp.int64)
+    nb = tri.neighbors.astype(xp.int64)
     # the stars of the own points, and across the face opposite the lowest vertex of each owned
     # simplex its neighbour (across the other faces the neighbours are in the star of that
     # vertex): all must be final
     required = owned[s].any(axis=1)
-    low = np.argmin(s, axis=1)
-    mine = np.nonzero(owned[s[np.arange(len(s)), low]])[0]
+    low = xp.argmin(s, axis=1)
+    mine = xp.nonzero(owned[s[xp.arange(len(s)), low]])[0]
     ring = nb[mine, low[mine]]
     required[ring[ring >= 0]] = True
     tested = 0
     if not covers:
         rlo, rhi = grid.region(block, ghost)
         clo, chi = grid.cell_box(block)
-        req = np.nonzero(required)[0]
-        tested = len(req)
-        ok, need, along, klo, khi = final_simplices(pts, s[req], rlo, rhi, grid.lo, grid.hi,
-                                                    clo, chi, hull[3], list(extras.values()))
-        if not ok.all():
+        req = xp.nonzero(required)[0]
+        tested = int(len(req))
+        ok, need, along, klo, khi = final_simplices(dpts, s[req], rlo, rhi, grid.lo, grid.hi,
+                                                    clo, chi, hull[3], list(extras.values()), xp)
+        if not bool(ok.all()):
             # a thin box along the hull is asked for; anything else asks for a wider ghost layer
             # (by what the balls need, between 1.25 and 2 times: a simplex reaching into the
             # sparse zone beyond the region is bigger than it will be once that fills in)
             thin = ~ok & along & ((khi - klo).min(axis=1) < ghost)
             grow = ~ok & ~thin
-            want = float(need[grow].max()) * 1.05 if grow.any() else ghost
-            nxt = min(max(1.25 * ghost, want), 2.0 * ghost) if grow.any() else ghost
-            boxes = _thin_boxes(klo[thin], khi[thin], clo, chi) if thin.any() else {}
+            some = bool(grow.any())
+            want = float(need[grow].max()) * 1.05 if some else ghost
+            nxt = min(max(1.25 * ghost, want), 2.0 * ghost) if some else ghost
+            boxes = _thin_boxes(_host(klo[thin]), _host(khi[thin]), clo, chi) \
+                if bool(thin.any()) else {}
             return _not_done(block, ghost, nxt, len(ids), tested, boxes.items())
-    rows = np.nonzero(owned[s.min(axis=1)])[0]  # local order is global order: min is the lowest id
-    pos = np.full(len(s), -1, dtype=np.int64)
-    pos[rows] = np.arange(len(rows))
+    rows = xp.nonzero(owned[s.min(axis=1)])[0]  # local order is global order: min: lowest id
+    pos = xp.full(len(s), -1, dtype=xp.int64)
+    pos[rows] = xp.arange(len(rows))
     nbr = nb[rows]
-    nb_local = np.where(nbr >= 0, pos[np.maximum(nbr, 0)], -1)
+    nb_local = xp.where(nbr >= 0, pos[xp.maximum(nbr, 0)], -1)
     nb_local[(nbr >= 0) & (nb_local < 0)] = -2
-    fi, fj = np.nonzero(nb_local == -2)
-    tau = s[nbr[fi, fj]]
-    dup = np.asarray(tri.duplicate_of, dtype=np.int64)
-    copy = np.nonzero((dup >= 0) & owned)[0]
-    used = np.unique(s[rows])
+    fi, fj = xp.nonzero(nb_local == -2)
+    tau = _host(s[nbr[fi, fj]])
+    dup = _host(tri.duplicate_of).astype(np.int64)
+    copy = np.nonzero((dup >= 0) & (blk == block))[0]
+    used = _host(xp.unique(s[rows]))
     return dict(block=block, done=True, ghost=ghost, nlocal=len(ids), tested=tested,
-                simplices=ids[s[rows]], nb_local=nb_local, req_owner=blk[tau.min(axis=1)],
-                req_key=np.sort(ids[tau], axis=1), req_pos=fi * (d + 1) + fj,
+                simplices=ids[_host(s[rows])], nb_local=_host(nb_local),
+                req_owner=blk[tau.min(axis=1)] if len(tau) else np.zeros(0, np.int64),
+                req_key=np.sort(ids[tau], axis=1), req_pos=_host(fi * (d + 1) + fj),
                 copies=np.stack([ids[copy], ids[dup[copy]]], axis=1), vertices=ids[used],
                 vertex_points=pts[used])
