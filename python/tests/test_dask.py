@@ -78,6 +78,29 @@ def test_equal_to_single_run_on_threads(d):
                 _same_as_single(pts, dt)
 
 
+def test_each_backend(backend):
+    """The blocks on the GPU (a block's tests in CuPy where it is installed) and on the CPU."""
+    rng = np.random.default_rng(23)
+    with dask.config.set(scheduler="threads"):
+        for d in (2, 3):
+            fam = _families(d, rng)
+            for name in ("uniform", "grid", "copies"):
+                _same_as_single(fam[name], gd.delaunay(fam[name], blocks=5, backend=backend))
+
+
+def test_judged_in_pieces(monkeypatch):
+    """A block tests its simplices in pieces (to bound the temporaries): the same result."""
+    from gpugeom.dask import _ghost
+    pts = np.random.default_rng(29).random((3000, 3))
+    with dask.config.set(scheduler="threads"):
+        whole = gd.delaunay(pts, blocks=4, backend="cpu")
+        monkeypatch.setattr(_ghost, "_PIECE", 97)
+        pieces = gd.delaunay(pts, blocks=4, backend="cpu")
+        a, b = dask.compute(whole.simplices, pieces.simplices)
+    np.testing.assert_array_equal(a, b)
+    assert [s["rounds"] for s in whole.block_stats] == [s["rounds"] for s in pieces.block_stats]
+
+
 def test_inputs_as_dask_array_list_and_files(tmp_path):
     rng = np.random.default_rng(3)
     pts = rng.random((4000, 3))

@@ -57,6 +57,8 @@ def _host(a):
     return a.get() if hasattr(a, "get") and not isinstance(a, np.ndarray) else np.asarray(a)
 # The centre of a simplex whose condition number passes this is not trusted: the block grows.
 _MAX_CONDITION = 1e10
+# Simplices tested at a time (the temporaries: about 1 KB a simplex).
+_PIECE = 1 << 22
 
 
 def _circumcentres(pts, s, xp=np):
@@ -200,11 +202,54 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
         ok[retry] = _covered(lo, hi, slabs, extras, xp)
         along[retry] = cut | xp.any((c < box_lo) | (c > box_hi), axis=1)
         klo[retry], khi[retry] = lo, hi
+    # the ghost width that puts the box where outside points could break a simplex inside
+    # the region
     cell_lo, cell_hi = xp.asarray(cell_lo), xp.asarray(cell_hi)
     with _quiet(xp):
-        need = xp.maximum(centre + reach[:, None] - cell_hi, cell_lo - centre + reach[:, None])
-    need = xp.where(xp.isfinite(reach), need.max(axis=1), xp.inf)
+        need = xp.maximum(khi - cell_hi, cell_lo - klo).max(axis=1)
+    need = xp.where(xp.isfinite(reach), need, xp.inf)
     return ok, need, along, klo, khi
+
+
+def _judge(dpts, s, req, grid, block, ghost, planes, extras, xp):
+    """Tests simplices ``s[req]`` (in pieces of ``_PIECE``, so that the temporaries stay small).
+    None when all are final; else the next ghost width and the extra boxes to ask for."""
+    rlo, rhi = grid.region(block, ghost)
+    clo, chi = grid.cell_box(block)
+    want_free, want_held = -np.inf, -np.inf
+    thin_lo, thin_hi = [], []
+    for i in range(0, len(req), _PIECE):
+        t = s[req[i:i + _PIECE]]
+        ok, need, along, klo, khi = final_simplices(dpts, t, rlo, rhi, grid.lo, grid.hi, clo, chi,
+                                                    planes, extras, xp)
+        if bool(ok.all()):
+            continue
+        # a thin box along the hull is asked for; anything else asks for a wider ghost layer:
+        # by what the balls need, between 1.25 and 2 times where a simplex reaches into the
+        # sparse zone beyond the region (it is bigger than it will be once that fills in). A
+        # simplex with every vertex in the region is as the global points make it: the width
+        # its box needs is taken as it is (voids between clusters need wide layers at once).
+        thin = ~ok & along & ((khi - klo).min(axis=1) < ghost)
+        grow = ~ok & ~thin
+        v = dpts[t]
+        held = xp.all((v >= xp.asarray(rlo)) & (v <= xp.asarray(rhi)), axis=(1, 2))
+        if bool((grow & ~held).any()):
+            want_free = max(want_free, float(need[grow & ~held].max()))
+        if bool((grow & held).any()):
+            want_held = max(want_held, float(need[grow & held].max()))
+        if bool(thin.any()):
+            thin_lo.append(_host(klo[thin]))
+            thin_hi.append(_host(khi[thin]))
+    if want_free == -np.inf and want_held == -np.inf and not thin_lo:
+        return None
+    nxt = ghost
+    if want_free > -np.inf:
+        nxt = min(max(1.25 * ghost, 1.05 * want_free), 2.0 * ghost)
+    if want_held > -np.inf:
+        nxt = max(nxt, 1.25 * ghost, 1.05 * want_held if np.isfinite(want_held) else 2.0 * ghost)
+    boxes = _thin_boxes(np.concatenate(thin_lo), np.concatenate(thin_hi), clo, chi) \
+        if thin_lo else {}
+    return nxt, boxes
 
 
 def _not_done(block, ghost, next_ghost, nlocal, tested, boxes=()):
@@ -276,23 +321,11 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     required[ring[ring >= 0]] = True
     tested = 0
     if not covers:
-        rlo, rhi = grid.region(block, ghost)
-        clo, chi = grid.cell_box(block)
         req = xp.nonzero(required)[0]
         tested = int(len(req))
-        ok, need, along, klo, khi = final_simplices(dpts, s[req], rlo, rhi, grid.lo, grid.hi,
-                                                    clo, chi, hull[3], list(extras.values()), xp)
-        if not bool(ok.all()):
-            # a thin box along the hull is asked for; anything else asks for a wider ghost layer
-            # (by what the balls need, between 1.25 and 2 times: a simplex reaching into the
-            # sparse zone beyond the region is bigger than it will be once that fills in)
-            thin = ~ok & along & ((khi - klo).min(axis=1) < ghost)
-            grow = ~ok & ~thin
-            some = bool(grow.any())
-            want = float(need[grow].max()) * 1.05 if some else ghost
-            nxt = min(max(1.25 * ghost, want), 2.0 * ghost) if some else ghost
-            boxes = _thin_boxes(_host(klo[thin]), _host(khi[thin]), clo, chi) \
-                if bool(thin.any()) else {}
+        verdict = _judge(dpts, s, req, grid, block, ghost, hull[3], list(extras.values()), xp)
+        if verdict is not None:
+            nxt, boxes = verdict
             return _not_done(block, ghost, nxt, len(ids), tested, boxes.items())
     rows = xp.nonzero(owned[s.min(axis=1)])[0]  # local order is global order: min: lowest id
     pos = xp.full(len(s), -1, dtype=xp.int64)
