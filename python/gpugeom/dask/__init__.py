@@ -11,7 +11,7 @@ Needs ``dask`` (and ``distributed`` for a cluster; ``dask-cuda`` gives one worke
 """
 try:
     import dask  # noqa: F401
-    import dask.array  # noqa: F401
+    import dask.array  # noqa: F401  (dask[array]: NumPy and toolz too)
 except ImportError as e:  # pragma: no cover - depends on the environment
     raise ImportError("gpugeom.dask needs Dask: pip install \"dask[array]\" distributed") from e
 

@@ -2,22 +2,25 @@
 hull's extreme points, triangulated together; which of the simplices are final; which the block
 owns.
 
-The rule (docs/design-notes.md, "Distributed Delaunay"):
+The rule (docs/design-notes.md, "Distributed Delaunay on Dask"):
 
 * A block's *local* points are its own points, every other point in its region (its cell grown
-  by the ghost width, a closed box, tested exactly) and the extreme points of the global hull.
-  The local points therefore have the global hull, and every point that is not local lies in
-  the global bounding box strictly outside the region.
-* A local simplex is *final* when no point outside the region can lie in its closed
-  circumball: the ball misses every slab of the bounding box beyond the region, by a margin that
-  covers the rounding of its centre and radius. Then it is a simplex of the global triangulation:
-  the perturbation depends on the points alone, so the local points decide it as all do.
-  A face without a neighbour lies on the global hull (the local hull is the global one), so it
-  has none globally either.
+  by the ghost width, a closed box, tested exactly) or in the extra boxes it asked for, and the
+  extreme points of the global hull. The local points therefore have the global hull, and every
+  point that is not local lies in the global bounding box strictly outside the region and the
+  extra boxes.
+* A local simplex is *final* when no outside point can lie in its closed circumball: the ball
+  misses every slab of the bounding box beyond the region, or the box round its part inside
+  the bounding box and the hull meets those slabs only inside the extra boxes; by margins that
+  cover the rounding of centre and radius. Then it is a simplex of the global triangulation:
+  the perturbation depends on the points alone, so the local points decide it as all do. A face
+  without a neighbour lies on the global hull (the local hull is the global one), so it has
+  none globally either.
 * The block is *done* when every simplex with one of its own points as a vertex is final (the
   stars of its points are then exactly the global stars), and so is the neighbour of each
   owned simplex across the face opposite its lowest vertex (so every neighbour is known).
-  Otherwise it grows its ghost width and is triangulated again.
+  Otherwise it grows its ghost width or asks for boxes along the hull, and is triangulated
+  again.
 * Each simplex is *owned* by the block that owns its lowest-indexed vertex, so exactly one
   block outputs it; its neighbours are final in that block, so their vertices are known there.
 """
@@ -82,8 +85,8 @@ def _circumcentres(pts, s, xp=np):
     with _quiet(xp):
         x = xp.einsum("mi,mij->mj", rhs, cols) / det[:, None]
         radius = xp.sqrt(xp.einsum("mi,mi->m", x, x))
-        cond = (xp.sqrt(xp.einsum("mij,mij->m", a, a)) * xp.sqrt(xp.einsum("mij,mij->m", cols, cols))
-                / xp.abs(det))
+        cond = (xp.sqrt(xp.einsum("mij,mij->m", a, a))
+                * xp.sqrt(xp.einsum("mij,mij->m", cols, cols)) / xp.abs(det))
         edge = xp.sqrt(xp.einsum("mij,mij->mi", a, a).max(axis=1))
         err = 1e3 * _EPS * cond * (radius + edge)
     bad = ~xp.isfinite(x).all(axis=1) | ~(cond < _MAX_CONDITION)
@@ -276,13 +279,14 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     it asked for earlier along the hull (a dict of boxes).
 
     ``own``: (points, global ids) of the block's points; ``pieces``: (points, ids, owner blocks)
-    of other blocks' points in the region; ``hull``: (points, ids, owner blocks) of the global
-    hull's extreme points. Returns a dict: ``done``; when done, ``simplices`` (global ids, the
-    owned ones), ``nb_local`` (per face: an owned simplex's row here, -1 none, -2 another
-    block's), the requests for the others (``req_owner``, ``req_key``: sorted vertex ids,
-    ``req_pos``: row * (d + 1) + face) and ``copies`` (pairs: an own point, its earlier copy), ``vertices`` and ``vertex_points`` (the
-    owned simplices' vertices, sorted, and their coordinates);
-    when not, ``next_ghost`` and ``boxes`` (extra boxes to take, as ``extras``' items)."""
+    of other blocks' points in the region; ``hull``: (points, ids, owner blocks, facet planes)
+    of the global hull (its extreme points; the planes pushed outwards by a margin). Returns a
+    dict: ``done``; when done, ``simplices`` (global ids, the owned ones), ``nb_local`` (per
+    face: an owned simplex's row here, -1 none, -2 another block's), the requests for the
+    others (``req_owner``, ``req_key``: sorted vertex ids, ``req_pos``: row * (d + 1) + face),
+    ``copies`` (pairs: an own point, its earlier copy), ``vertices`` and ``vertex_points`` (the
+    owned simplices' vertices, sorted, and their coordinates); when not, ``next_ghost`` and
+    ``boxes`` (extra boxes to take, as ``extras``' items)."""
     d = grid.ndim
     own_pts, own_ids = own
     covers = grid.covers_all(block, ghost)

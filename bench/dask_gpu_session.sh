@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Developer helper for the lent multi-GPU machine: the gpugeom.dask tests with the blocks on the
+# GPU, then bench/dask_delaunay.py on 1 and 2 (or more) GPUs, one Dask worker per GPU.
+# Expects what scripts/stage_gpu.sh carried (.devbin/py, .devbin/lib) and Dask's wheels in
+# .devbin/wheels (pip download "dask[array]" distributed for the machine's Python).
+# Results go to $OUT (or ./dask-results): the tests' summary, the bench's lines and CSV.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+OUT=${OUT:-dask-results}
+mkdir -p "$OUT"
+[ -d .devbin ] && (cd .devbin && gunzip -f ./*.gz py/gpugeom/*.gz 2>/dev/null || true)
+python3 -m pip install -q --no-deps --target /tmp/gg_wheels .devbin/wheels/*.whl >/dev/null 2>&1
+export LD_LIBRARY_PATH=$PWD/.devbin/lib:${LD_LIBRARY_PATH:-}
+export PYTHONPATH=$PWD/.devbin/py:/tmp/gg_wheels
+nvidia-smi --query-gpu=name,memory.total --format=csv,noheader | tee "$OUT/gpus.txt"
+python3 -c "import gpugeom, cupy; print(gpugeom.device_info())" | tee -a "$OUT/gpus.txt"
+timeout "${TEST_S:-150}" python3 -m pytest -q -p no:cacheprovider -x \
+  python/tests/test_dask.py 2>&1 | grep -v "^INFO\|^WARNING\|distributed\." | tail -15 |
+  tee "$OUT/tests.txt"
+GPUS=${GPUS:-1,2}
+for job in ${JOBS:-"3 1e7 uniform,clustered" "2 5e7 uniform"}; do
+  set -- $job
+  timeout "${BENCH_S:-180}" python3 bench/dask_delaunay.py --gpus "$GPUS" --dims "$1" --n "$2" \
+    --dist "$3" --csv "$OUT/dask_delaunay.csv" 2>&1 | grep -v "^INFO\|^WARNING\|distributed\." |
+    tee -a "$OUT/bench.txt"
+done
