@@ -143,18 +143,26 @@ def _meta(r: dict) -> dict:
     return out
 
 
+def _border(r: dict):
+    """A block's owned simplices that have a neighbour owned elsewhere (a face with -2): the only
+    ones another block can ask for. Their rows and their sorted vertices."""
+    rows = np.nonzero((r["nb_local"] == -2).any(axis=1))[0]
+    return rows, np.sort(r["simplices"][rows], axis=1)
+
+
 def _neighbors(r: dict, offsets: np.ndarray, block: int, owners: dict) -> np.ndarray:
-    """The neighbours of block ``block``'s simplices in global simplex indices."""
+    """The neighbours of block ``block``'s simplices in global simplex indices; ``owners``: per
+    block asked, its border (``_border``)."""
     nbl = r["nb_local"]
     out = np.where(nbl >= 0, nbl + offsets[block], -1).astype(np.int64)
     flat = out.reshape(-1)
-    for c, simplices in owners.items():
+    for c, (rows, keys) in owners.items():
         sel = np.nonzero(r["req_owner"] == c)[0]
-        at = match_rows(simplices, r["req_key"][sel])
+        at = match_rows(keys, r["req_key"][sel])
         if (at < 0).any():
             raise RuntimeError(f"gpugeom.dask: block {block}'s neighbour was not found in block "
                                f"{c} (a bug: please report it with the input)")
-        flat[r["req_pos"][sel]] = at + offsets[c]
+        flat[r["req_pos"][sel]] = rows[at] + offsets[c]
     return out
 
 
@@ -374,9 +382,9 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     position[order] = np.arange(len(order))
     results = [final[b] for b in order]
     neighbors = []
+    borders = {b: delayed(_border)(final[b]) for b in order}
     for i, b in enumerate(order):
-        owners = {index[c]: delayed(operator.getitem)(final[c], "simplices")
-                  for c in metas[b]["owners"]}
+        owners = {index[c]: borders[c] for c in metas[b]["owners"]}
         neighbors.append(delayed(_neighbors_of)(final[b], offsets, i, position, owners))
     stats = [dict(block=b, ghost=metas[b]["ghost"], extra_boxes=len(extras[b]), rounds=rounds[b],
                   nlocal=metas[b]["nlocal"],

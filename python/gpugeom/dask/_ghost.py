@@ -169,8 +169,156 @@ def _hull_cap(centre, reach, planes, xp=np):
     return cut, lo, hi
 
 
+def _face_caps(pts, t, nbt, xp=np):
+    """Boxes round the part inside the hull of the circumballs of simplices ``t`` that have a
+    face on the hull (no neighbour in ``nbt``) with the centre beyond it, computed from that
+    face, without the centre (which is far and ill-conditioned for the flat simplices along
+    the hull).
+
+    The spheres through a face F (circumcentre p, radius rho, unit normal n towards the
+    opposite vertex q, h = (q - p).n) have centres p + t n, and the one through q has
+    t = w / 2h, w = |q - p|^2 - rho^2: the centre is beyond F exactly when q lies inside F's
+    diametral sphere (w < 0). The ball's part on q's side (the hull's side: F is a hull facet)
+    is then the cap over F's circumdisc of depth rho^2 / (r + |t|) <= rho^2 h / |w|, a bound
+    that stays accurate however far the centre is. Returns (applies, lo, hi)."""
+    m, d1 = t.shape
+    d = d1 - 1
+    lo = xp.full((m, d), -xp.inf)
+    hi = xp.full((m, d), xp.inf)
+    applies = xp.zeros(m, dtype=bool)
+    for j in range(d1):
+        face = nbt[:, j] < 0
+        if not bool(face.any()):
+            continue
+        rows = xp.nonzero(face)[0]
+        p, n, rho, h, w, ew, span, good = _face_sphere(pts, t[rows], j, xp)
+        with _quiet(xp):
+            depth = rho * rho * (h * (1 + 1e-9) + 1e-12 * span) / (-w - ew)
+        ok = good & (w < -ew) & xp.isfinite(depth)
+        flo, fhi = _cap_box(p, n, rho, depth, xp)
+        at = rows[ok]
+        lo[at] = xp.maximum(lo[at], flo[ok])
+        hi[at] = xp.minimum(hi[at], fhi[ok])
+        applies[at] = True
+    return applies, lo, hi
+
+
+def _face_sphere(pts, t, j, xp):
+    """Face j of simplices t (the face opposite vertex j, q): its circumcentre p, unit normal n
+    towards q, circumradius rho (rounded up), h = (q - p).n, w = |q - p|^2 - rho^2 with a bound
+    ew of its rounding, the face's size and whether it is far from flat."""
+    d1 = t.shape[1]
+    others = [k for k in range(d1) if k != j]
+    q = pts[t[:, j]]
+    a = pts[t[:, others[0]]]
+    u = pts[t[:, others[1]]] - a
+    if d1 == 3:
+        p = a + 0.5 * u
+        rho2 = 0.25 * xp.einsum("mi,mi->m", u, u)
+        n = xp.stack([-u[:, 1], u[:, 0]], axis=1)
+        span = xp.sqrt(xp.einsum("mi,mi->m", u, u))
+        good = span > 0
+    else:
+        v = pts[t[:, others[2]]] - a
+        uv = xp.cross(u, v)
+        uv2 = xp.einsum("mi,mi->m", uv, uv)
+        uu, vv = xp.einsum("mi,mi->m", u, u), xp.einsum("mi,mi->m", v, v)
+        with _quiet(xp):
+            off = (uu[:, None] * xp.cross(v, uv) + vv[:, None] * xp.cross(uv, u)) \
+                / (2.0 * uv2[:, None])
+        p = a + off
+        rho2 = xp.einsum("mi,mi->m", off, off)
+        n = uv
+        span = xp.sqrt(xp.maximum(uu, vv))
+        good = uv2 > 1e-16 * uu * vv  # a face far from flat: its circle is well defined
+    with _quiet(xp):
+        n = n / xp.sqrt(xp.einsum("mi,mi->m", n, n))[:, None]
+        qp = q - p
+        h = xp.einsum("mi,mi->m", qp, n)
+        n = xp.where((h < 0)[:, None], -n, n)
+        h = xp.abs(h)
+        qq = xp.einsum("mi,mi->m", qp, qp)
+        w = qq - rho2
+        ew = 1e-9 * (qq + rho2)  # far above the rounding of the terms
+        rho = xp.sqrt(rho2) * (1 + 1e-9) + 1e-9 * span
+    return p, n, rho, h, w, ew, span, good & xp.isfinite(w)
+
+
+def _cap_box(foot, n, rim, depth, xp):
+    """The box round a cap: the disc of radius ``rim`` round ``foot`` in the plane of unit
+    normal ``n``, swept by ``depth`` along n (a negative depth: against n)."""
+    spread = rim[:, None] * xp.sqrt(xp.maximum(1.0 - n * n, 0.0))
+    return (foot - spread + xp.minimum(0.0, depth[:, None] * n),
+            foot + spread + xp.maximum(0.0, depth[:, None] * n))
+
+
+def _far_caps(pts, t, planes, xp):
+    """For simplices whose circumcentre lies beyond one of their faces (far away for the flat
+    simplices along the hull, where its computed place is too rough for the hull-plane cut),
+    the hull-plane cut computed from that face: the centre is p + tau n (tau = w / 2h < 0, in
+    the terms of ``_face_sphere``), r^2 = rho^2 + tau^2, and for a hull plane with unit normal
+    m and offset o, at d = m.p + o and k = m.n, the centre lies h_m = d + tau k beyond it and
+    r^2 - h_m^2 = rho^2 - d^2 - 2 d tau k + tau^2 |m x n|^2, every term accurate however large
+    tau. The cap inside the plane furthest behind the centre has depth (r^2 - h_m^2) /
+    (r + h_m), rim sqrt(r^2 - h_m^2), foot p - d m + tau (n - k m). Returns (applies, lo, hi)."""
+    m, d1 = t.shape
+    d = d1 - 1
+    has = xp.zeros(m, dtype=bool)
+    p, n = xp.zeros((m, d)), xp.zeros((m, d))
+    rho, tau, rel = xp.zeros(m), xp.zeros(m), xp.zeros(m)
+    for j in range(d1):
+        pj, nj, rhoj, hj, wj, ewj, spanj, goodj = _face_sphere(pts, t, j, xp)
+        new = ~has & goodj & (wj < -ewj) & (hj > 1e-9 * spanj)
+        with _quiet(xp):
+            tj = wj / (2.0 * hj)
+        p = xp.where(new[:, None], pj, p)
+        n = xp.where(new[:, None], -nj, n)  # tau > 0 along -n: the side away from q
+        rho = xp.where(new, rhoj, rho)
+        tau = xp.where(new, -tj, tau)
+        with _quiet(xp):  # tau's relative error, twice (tau^2), with room
+            rel = xp.where(new, 1e-8 + 2.0 * ewj / xp.abs(wj) + 2e-9 * spanj / hj, rel)
+        has |= new
+    lo, hi = xp.full((m, d), -xp.inf), xp.full((m, d), xp.inf)
+    rows = xp.nonzero(has)[0]
+    if len(rows) == 0 or len(planes) == 0:
+        return has, lo, hi
+    p, n, rho, tau, rel = p[rows], n[rows], rho[rows], tau[rows], rel[rows]
+    normals, offsets = planes[:, :-1], planes[:, -1]
+    best = xp.zeros(len(rows), dtype=xp.int64)
+    step = max(1, (1 << 23) // len(planes))
+    for i in range(0, len(rows), step):
+        hm = p[i:i + step] @ normals.T + offsets + tau[i:i + step, None] * (n[i:i + step]
+                                                                           @ normals.T)
+        best[i:i + step] = xp.argmax(hm, axis=1)
+    mn = normals[best]
+    dd = xp.einsum("mi,mi->m", mn, p) + offsets[best]
+    k = xp.einsum("mi,mi->m", mn, n)
+    if d == 2:
+        sin2 = (mn[:, 0] * n[:, 1] - mn[:, 1] * n[:, 0]) ** 2
+    else:
+        cr = xp.cross(mn, n)
+        sin2 = xp.einsum("mi,mi->m", cr, cr)
+    hm = dd + tau * k
+    num = rho * rho - dd * dd - 2.0 * dd * tau * k + tau * tau * sin2
+    terms = rho * rho + dd * dd + 2.0 * xp.abs(dd * tau * k) + tau * tau * sin2
+    # rounded up, so the cap only grows: tau's error, and sin2's own (a few eps) times tau^2
+    num = num + rel * terms + 1e-15 * tau * tau + 1e-12 * (rho * rho)
+    r = xp.sqrt(rho * rho + tau * tau)
+    ok = (hm > 0) & (num > 0) & xp.isfinite(num)
+    with _quiet(xp):
+        depth = num / (r + hm)
+        rim = xp.sqrt(num)
+        foot = p - dd[:, None] * mn + tau[:, None] * (n - k[:, None] * mn)
+    flo, fhi = _cap_box(foot, mn, rim, -depth, xp)
+    at = rows[ok]
+    lo[at], hi[at] = flo[ok], fhi[ok]
+    has[:] = False
+    has[at] = True
+    return has, lo, hi
+
+
 def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_hi, planes,
-                    extras=(), xp=np):
+                    extras=(), xp=np, nbs=None):
     """For simplices ``s`` of local points ``pts``: which are final; for the others the ghost
     width that would hold their circumball (inf where the centre is not trusted), whether they
     lie along the hull, and the box where outside points could break them (``klo``, ``khi``).
@@ -200,6 +348,14 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
         if len(planes):
             cut, clo, chi = _hull_cap(c, r, xp.asarray(planes), xp)
             lo, hi = xp.maximum(lo, clo), xp.minimum(hi, chi)
+        if nbs is not None:
+            fc, flo, fhi = _face_caps(pts, s[retry], nbs[retry], xp)
+            cut = cut | fc
+            lo, hi = xp.maximum(lo, flo), xp.minimum(hi, fhi)
+        if len(planes):
+            fc, flo, fhi = _far_caps(pts, s[retry], xp.asarray(planes), xp)
+            cut = cut | fc
+            lo, hi = xp.maximum(lo, flo), xp.minimum(hi, fhi)
         pad = (1e-9 * scale + 64.0 * _EPS * (xp.abs(c).max(axis=1) + r))[:, None]
         lo, hi = lo - pad, hi + pad
         ok[retry] = _covered(lo, hi, slabs, extras, xp)
@@ -214,7 +370,7 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
     return ok, need, along, klo, khi
 
 
-def _judge(dpts, s, req, grid, block, ghost, planes, extras, xp):
+def _judge(dpts, s, nb, req, grid, block, ghost, planes, extras, xp):
     """Tests simplices ``s[req]`` (in pieces of ``_PIECE``, so that the temporaries stay small).
     None when all are final; else the next ghost width and the extra boxes to ask for."""
     rlo, rhi = grid.region(block, ghost)
@@ -224,22 +380,25 @@ def _judge(dpts, s, req, grid, block, ghost, planes, extras, xp):
     for i in range(0, len(req), _PIECE):
         t = s[req[i:i + _PIECE]]
         ok, need, along, klo, khi = final_simplices(dpts, t, rlo, rhi, grid.lo, grid.hi, clo, chi,
-                                                    planes, extras, xp)
+                                                    planes, extras, xp, nb[req[i:i + _PIECE]])
         if bool(ok.all()):
             continue
-        # a thin box along the hull is asked for; anything else asks for a wider ghost layer:
-        # by what the balls need, between 1.25 and 2 times where a simplex reaches into the
-        # sparse zone beyond the region (it is bigger than it will be once that fills in). A
-        # simplex with every vertex in the region is as the global points make it: the width
-        # its box needs is taken as it is (voids between clusters need wide layers at once).
+        # A thin box along the hull is asked for; anything else asks for a wider ghost layer:
+        # by what the boxes need, between 1.25 and 2 times where a simplex reaches into the
+        # sparse zone beyond the region or lies along the hull (it is bigger than it will be
+        # once the zone fills in; along the hull the box is long and what is missing is
+        # usually near). A simplex inside the hull with every vertex in the region is as the
+        # global points make it: the width its box needs is taken as it is (voids between
+        # clusters need wide layers at once).
         thin = ~ok & along & ((khi - klo).min(axis=1) < ghost)
-        grow = ~ok & ~thin
         v = dpts[t]
-        held = xp.all((v >= xp.asarray(rlo)) & (v <= xp.asarray(rhi)), axis=(1, 2))
-        if bool((grow & ~held).any()):
-            want_free = max(want_free, float(need[grow & ~held].max()))
-        if bool((grow & held).any()):
-            want_held = max(want_held, float(need[grow & held].max()))
+        held = xp.all((v >= xp.asarray(rlo)) & (v <= xp.asarray(rhi)), axis=(1, 2)) & ~along
+        free = ~ok & ~thin & ~held
+        trusted = ~ok & ~thin & held
+        if bool(free.any()):
+            want_free = max(want_free, float(need[free].max()))
+        if bool(trusted.any()):
+            want_held = max(want_held, float(need[trusted].max()))
         if bool(thin.any()):
             thin_lo.append(_host(klo[thin]))
             thin_hi.append(_host(khi[thin]))
@@ -327,7 +486,8 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     if not covers:
         req = xp.nonzero(required)[0]
         tested = int(len(req))
-        verdict = _judge(dpts, s, req, grid, block, ghost, hull[3], list(extras.values()), xp)
+        verdict = _judge(dpts, s, nb, req, grid, block, ghost, hull[3], list(extras.values()),
+                         xp)
         if verdict is not None:
             nxt, boxes = verdict
             return _not_done(block, ghost, nxt, len(ids), tested, boxes.items())
