@@ -50,8 +50,11 @@ def single(pts, backend):
 
 def cluster(workers, cpu):
     from distributed import Nanny, Scheduler, SpecCluster
-    spec = {i: {"cls": Nanny, "options": {"nthreads": 1, "env": {} if cpu else {
-        "CUDA_VISIBLE_DEVICES": str(i)}}} for i in range(workers)}
+    # no memory limit (a block's arrays would be spilled to disk past Dask's default share of
+    # the host's memory), scratch space on the local disk
+    spec = {i: {"cls": Nanny, "options": {
+        "nthreads": 1, "memory_limit": 0, "local_directory": "/tmp/gpugeom-dask",
+        "env": {} if cpu else {"CUDA_VISIBLE_DEVICES": str(i)}}} for i in range(workers)}
     return SpecCluster(scheduler={"cls": Scheduler, "options": {"dashboard_address": None}},
                        workers=spec, silence_logs=40)
 
