@@ -187,6 +187,9 @@ class DistributedTriangulation:
         Milliseconds of the call's phases (client wall clock): ``check`` (shapes, finite
         coordinates, bounds), ``split`` (points to blocks, the global hull), ``round1``... (each
         round of block triangulations). The neighbours are computed when asked for.
+
+    The input points stay in the cluster's memory (read once) while the result is alive, for
+    ``points()`` and ``gather()``.
     """
 
     def __init__(self, pieces, counts, results, offsets, neighbors, grid, stats):
@@ -301,6 +304,8 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         clock.append(time.perf_counter())
         timings[name] = 1e3 * (clock[-1] - clock[-2])
 
+    # the pieces are read (or made) once: the check, the split and gather() use the same
+    pieces = list(dask.persist(*[delayed(_load)(p) for p in pieces]))
     summaries = dask.compute(*[delayed(_summary)(p) for p in pieces])
     lap("check")
     start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
