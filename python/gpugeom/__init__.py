@@ -4,7 +4,9 @@
 * ``distance_transform_edt`` as in ``scipy.ndimage``, and ``voronoi_labels``;
 * ``centroidal_voronoi`` and ``stipple``;
 * ``mesh2d`` and ``triangulate``: quality meshes of 2D domains, as the ``triangle`` package;
-* ``device_info()``, ``verify`` (the exact checkers).
+* ``device_info()``, ``verify`` (the exact checkers);
+* ``gpugeom.dask`` (imported on its own, needs Dask): Delaunay triangulations block by block on
+  a Dask cluster, equal to the single run.
 
 Every function takes NumPy arrays (computed on the GPU when there is one, through the library's
 fast host path) or CuPy / PyTorch CUDA arrays (computed where they are, on the caller's current
