@@ -44,6 +44,35 @@ struct EdtBuffers {
   OutBuffer<std::int32_t> labels;
 };
 
+// One slab of a larger grid (EdtOptions::slab), for transforms split along C axis 0 across
+// processes or devices: the grid given holds the indices [first, first + its extent) along axis
+// 0 of a grid whose axis 0 has `extent` indices (its other axes as the grid given). What lies
+// outside the slab enters only through every column's nearest site on either side — along axis
+// 0 no farther site of a column can be nearer to a voxel of the slab, nor win a tie — so the
+// outputs are exactly those of the whole grid's indices [first, first + extent of the slab),
+// features in the whole grid's coordinates.
+struct EdtSlab {
+  std::int64_t extent = 0;  // the whole grid's extent along axis 0; 0: the grid is not a slab
+  std::int64_t first = 0;   // the slab's first index along axis 0 in the whole grid
+  // Per column (the slab's elements of one axis-0 index, in C order): the axis-0 index of the
+  // nearest site before `first` (the largest below it), and of the nearest site at or after the
+  // slab's end (the smallest); -1 where the column has none there. One value per column each.
+  std::vector<std::int64_t> before, after;
+};
+
+// Per column of a grid (its elements of one index along C axis 0... in C order of the other
+// axes), the first and the last site's index along axis 0, moved by `offset` (a slab's first
+// index in the whole grid), -1 where the column has none: what the slabs on either side of this
+// one need (EdtSlab::before is the last site of the slabs before, after the first of those
+// after). Reads host memory on run.threads host threads (0: all); 1D grids are one column.
+// Throws Error(InvalidInput) for NaN values.
+struct ColumnSiteBounds {
+  HostVector<std::int64_t> first, last;
+  std::int64_t columns_with_sites = 0;
+};
+ColumnSiteBounds column_site_bounds(const GridView& grid, SiteRule rule, std::int64_t offset = 0,
+                                    const RunOptions& run = {});
+
 struct EdtOptions : RunOptions {
   EdtMethod method = EdtMethod::Pba;
   std::vector<double> sampling;  // per axis, C order; empty = all 1. Positive and finite.
@@ -70,6 +99,12 @@ struct EdtOptions : RunOptions {
   // Grids of 4 to 8 axes index their sites by 32 bits below 2^32 - 1 voxels, by 64 from there;
   // true takes 64 bits for any grid (for tests: never changes the result).
   bool wide_indices = false;
+  // A slab of a larger grid (EdtSlab), for the host entry and grid sites (distance_transform of
+  // a grid): it computes every index of the slab (no slices), and no labels (a site's rank in
+  // the whole grid is unknown here), on grids of 3 to 8 axes (give a 2D grid as (rows, 1,
+  // columns), its sampling as (s0, 1, s1)). Throws Error(InvalidArgument) otherwise, or where
+  // the bounds are out of place.
+  EdtSlab slab;
   EdtBuffers into;  // caller-provided output arrays (optional)
 };
 

@@ -61,16 +61,36 @@ OutBuffer<T> out_buffer(const std::optional<OutArray>& a, const Input& grid, con
   return OutBuffer<T>{static_cast<T*>(a->data()), count};
 }
 
+// A slab's bound per column (EdtSlab): a host int64 array.
+std::vector<std::int64_t> column_bound(const std::optional<AnyArray>& a, const char* name) {
+  if (!a) throw nb::value_error((std::string(name) + " is needed with slab_extent").c_str());
+  const Input b = inspect(*a, name);
+  if (b.on_device || !holds<std::int64_t>(b))
+    throw nb::type_error((std::string(name) + " must be a host int64 array").c_str());
+  std::int64_t c = 1;
+  for (auto e : b.shape) c *= e;
+  const auto* p = static_cast<const std::int64_t*>(b.data);
+  return std::vector<std::int64_t>(p, p + c);
+}
+
 nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sampling,
                   int distance, bool squared, bool features, bool labels,
                   std::optional<OutArray> distances_out, std::optional<OutArray> features_out,
                   const std::string& backend, std::uintptr_t stream, int threads,
-                  std::vector<std::int64_t> slices) {
+                  std::vector<std::int64_t> slices, std::int64_t slab_extent,
+                  std::int64_t slab_first, std::optional<AnyArray> slab_before,
+                  std::optional<AnyArray> slab_after) {
   const Input in = inspect(input, "input");
   if (in.shape.size() < 2 || in.shape.size() > 8)
     throw nb::value_error("input must have 2 to 8 dimensions");
   auto o = options_for<EdtOptions>(backend, stream, threads, in);
   o.slices = std::move(slices);
+  if (slab_extent) {
+    o.slab.extent = slab_extent;
+    o.slab.first = slab_first;
+    o.slab.before = column_bound(slab_before, "slab_before");
+    o.slab.after = column_bound(slab_after, "slab_after");
+  }
   o.sampling = std::move(sampling);
   o.distance = distance;
   o.squared = squared;
@@ -108,6 +128,20 @@ nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sa
   if (!e.labels.empty()) r["labels"] = host_array(std::move(e.labels), dims(e.shape));
   r["stats"] = stats_dict(e.stats);
   return r;
+}
+
+// Per column, the first and last site along axis 0 (a slab's bounds for its neighbours).
+nb::tuple column_bounds_bind(const AnyArray& input, bool zero_sites, std::int64_t offset,
+                             int threads) {
+  const Input in = inspect(input, "input");
+  if (in.on_device) throw nb::value_error("column_site_bounds reads host arrays");
+  RunOptions run;
+  run.threads = threads;
+  const SiteRule rule = zero_sites ? SiteRule::Zero : SiteRule::NonZero;
+  ColumnSiteBounds b = unlocked([&] { return column_site_bounds(view(in), rule, offset, run); });
+  const sz cols = b.first.size();
+  return nb::make_tuple(host_array(std::move(b.first), {cols}),
+                        host_array(std::move(b.last), {cols}), b.columns_with_sites);
 }
 
 // The Lloyd options shared by cvd and stipple; the callback runs with the interpreter locked and
@@ -205,7 +239,10 @@ void bind_grid(nb::module_& m) {
   m.def("distance_transform", &edt_bind, "input"_a, "zero_sites"_a, "sampling"_a, "distance"_a,
         "squared"_a, "features"_a, "labels"_a, "distances_out"_a = nb::none(),
         "features_out"_a = nb::none(), "backend"_a = "auto", "stream"_a = 0, "threads"_a = 0,
-        "slices"_a = std::vector<std::int64_t>{});
+        "slices"_a = std::vector<std::int64_t>{}, "slab_extent"_a = 0, "slab_first"_a = 0,
+        "slab_before"_a = nb::none(), "slab_after"_a = nb::none());
+  m.def("column_site_bounds", &column_bounds_bind, "input"_a, "zero_sites"_a, "offset"_a = 0,
+        "threads"_a = 0);
   m.def("centroidal_voronoi", &cvd_bind, "density"_a, "num_sites"_a, "initial_sites"_a = nb::none(),
         "max_iterations"_a = 200, "move_tolerance"_a = 0.1, "energy_tolerance"_a = 0.0,
         "supersample"_a = 1, "seed"_a = 1, "progress"_a = nb::none(), "backend"_a = "auto",

@@ -130,17 +130,6 @@ def test_same_arrays_every_run():
     np.testing.assert_array_equal(a, b)
 
 
-@pytest.fixture(scope="module")
-def cluster_client():
-    from distributed import Client, LocalCluster
-    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                           dashboard_address=None, silence_logs=40)
-    client = Client(cluster)
-    yield client
-    client.close()
-    cluster.close()
-
-
 def test_local_cluster(cluster_client):
     rng = np.random.default_rng(11)
     for d in (2, 3):

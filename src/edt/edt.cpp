@@ -271,7 +271,7 @@ EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std:
 // conversion to double per element took 3.7 ns an element a thread). False if a NaN is met.
 template <class T>
 bool list_column_sites(const T* data, std::int64_t n, std::int64_t plane, bool nonzero,
-                       std::vector<std::uint64_t>& out) {
+                       std::vector<std::uint64_t>& out, std::int64_t z0 = 0) {
   constexpr std::int64_t kChunk = std::int64_t(1) << 20;
   const std::int64_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<std::int64_t> at(std::size_t(chunks) + 1, 0);
@@ -296,7 +296,7 @@ bool list_column_sites(const T* data, std::int64_t n, std::int64_t plane, bool n
     std::int64_t k = at[std::size_t(c)];
     for (std::int64_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
       if (nonzero ? data[i] != T(0) : data[i] == T(0))
-        out[std::size_t(k++)] = edt::column_key(i % plane, i / plane);
+        out[std::size_t(k++)] = edt::column_key(i % plane, i / plane + z0);
   }
   return true;
 }
@@ -305,10 +305,89 @@ void check_view(const GridView& g) {
   if (!g.data) throw Error(ErrorCode::InvalidArgument, "the grid's data pointer is null");
 }
 
+// A slab of a larger grid (EdtOptions::slab): the slice-by-slice mode on the whole grid's shape,
+// computing the slab's indices, from the slab's sites (their axis-0 index moved by `first`) and
+// every column's nearest site before and after it.
+EdtResult slab_transform(const GridView& g, SiteRule rule, const EdtOptions& opt) {
+  const EdtSlab& s = opt.slab;
+  const std::size_t nd = g.shape.size();
+  if (nd < 3)
+    throw Error(ErrorCode::InvalidArgument,
+                "a slab (EdtOptions::slab) takes grids of 3 to 8 axes: give a 2D grid as (rows, 1, "
+                "columns)");
+  if (!opt.slices.empty())
+    throw Error(ErrorCode::InvalidArgument,
+                "a slab computes all its indices along axis 0: slices cannot be given with it");
+  if (opt.labels)
+    throw Error(ErrorCode::InvalidArgument,
+                "a slab gives no labels (a site's rank in the whole grid is not known to it): ask "
+                "for features instead");
+  const std::int64_t n0 = g.shape[0];
+  if (s.first < 0 || s.first + n0 > s.extent)
+    throw Error(ErrorCode::InvalidArgument,
+                "the slab's indices along axis 0, " + std::to_string(s.first) + ".." +
+                    std::to_string(s.first + n0 - 1) + ", must lie in the whole grid's 0.." +
+                    std::to_string(s.extent - 1));
+  std::int64_t n = 1;
+  for (auto e : g.shape) n *= e;
+  const std::int64_t plane = n / n0;
+  if (std::int64_t(s.before.size()) != plane || std::int64_t(s.after.size()) != plane)
+    throw Error(ErrorCode::InvalidArgument,
+                "slab.before and slab.after need one value per column (" + std::to_string(plane) +
+                    "), got " + std::to_string(s.before.size()) + " and " +
+                    std::to_string(s.after.size()));
+  std::vector<std::int64_t> whole = g.shape;
+  whole[0] = s.extent;
+  EdtOptions o = opt;
+  o.slab = {};
+  o.slices.resize(std::size_t(n0));
+  for (std::int64_t z = 0; z < n0; ++z) o.slices[std::size_t(z)] = s.first + z;
+  edt::Request rq;
+  set_grid(rq, whole, o);
+  bool finite = true;
+  grid_input::visit(g.type, [&](auto tag) {
+    finite = list_column_sites(static_cast<const decltype(tag)*>(g.data), n, plane,
+                               rule == SiteRule::NonZero, rq.column_sites, s.first);
+  });
+  if (!finite) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
+  const std::int64_t end = s.first + n0;
+  for (std::int64_t c = 0; c < plane; ++c) {
+    const std::int64_t b = s.before[std::size_t(c)], a = s.after[std::size_t(c)];
+    if (b != -1 && (b < 0 || b >= s.first))
+      throw Error(ErrorCode::InvalidArgument,
+                  "slab.before[" + std::to_string(c) + "] = " + std::to_string(b) +
+                      " is neither -1 nor an index before the slab (0.." +
+                      std::to_string(s.first - 1) + ")");
+    if (a != -1 && (a < end || a >= s.extent))
+      throw Error(ErrorCode::InvalidArgument,
+                  "slab.after[" + std::to_string(c) + "] = " + std::to_string(a) +
+                      " is neither -1 nor an index after the slab (" + std::to_string(end) + ".." +
+                      std::to_string(s.extent - 1) + ")");
+    if (b >= 0) rq.column_sites.push_back(edt::column_key(c, b));
+    if (a >= 0) rq.column_sites.push_back(edt::column_key(c, a));
+  }
+  if (rq.column_sites.empty())
+    throw Error(ErrorCode::InvalidInput,
+                std::string("neither the slab nor its bounds hold a site (no ") +
+                    (rule == SiteRule::NonZero ? "nonzero" : "zero") +
+                    " element): every distance would be infinite");
+  rq.site_count = std::int64_t(rq.column_sites.size());
+  return finish(rq, o, whole);
+}
+
+void refuse_slab(const EdtOptions& opt, const char* entry) {
+  if (opt.slab.extent)
+    throw Error(ErrorCode::InvalidArgument,
+                std::string(entry) +
+                    " takes no slab (EdtOptions::slab): the host entry for a grid, "
+                    "distance_transform, lists a slab's sites with its bounds");
+}
+
 }  // namespace
 
 EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions& opt) {
   check_view(g);
+  if (opt.slab.extent) return slab_transform(g, rule, opt);
   edt::Request rq;
   set_grid(rq, g.shape, opt);
   if (opt.slices.empty()) {  // the executor reads the grid as it is
@@ -348,6 +427,7 @@ std::int64_t DeviceEdtResult::count() const {
 
 DeviceEdtResult distance_transform_device(const GridView& g, SiteRule rule, const EdtOptions& opt) {
   check_view(g);
+  refuse_slab(opt, "distance_transform_device");
   const Backend b = device_entry_backend(opt.backend, opt.device, "distance_transform_device");
   edt::Request rq;
   set_grid(rq, g.shape, opt);
@@ -372,6 +452,7 @@ DeviceEdtResult distance_transform_device(const GridView& g, SiteRule rule, cons
 
 EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,
                                    const std::vector<std::int64_t>& sites, const EdtOptions& opt) {
+  refuse_slab(opt, "distance_transform_sites");
   edt::Request rq;
   set_grid(rq, shape, opt);
   const int nd = int(shape.size());

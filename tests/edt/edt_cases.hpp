@@ -71,6 +71,36 @@ inline gpugeom::EdtResult slices_of(const gpugeom::EdtResult& whole,
   return r;
 }
 
+// Indices [first, first + count) along axis 0 of a u8 grid as a grid of their own, with the
+// bounds EdtOptions::slab needs: per column, the last site before the slab and the first after.
+struct Slab {
+  gpugeom::io::Grid grid;
+  gpugeom::EdtSlab bounds;
+};
+inline Slab slab_of(const gpugeom::io::Grid& g, std::int64_t first, std::int64_t count,
+                    gpugeom::SiteRule rule) {
+  Slab s;
+  const std::int64_t plane = g.count() / g.shape[0];
+  s.grid.shape = g.shape;
+  s.grid.shape[0] = count;
+  s.grid.type = g.type;
+  s.grid.data.assign(g.data.begin() + first * plane, g.data.begin() + (first + count) * plane);
+  s.bounds.extent = g.shape[0];
+  s.bounds.first = first;
+  s.bounds.before.assign(std::size_t(plane), -1);
+  s.bounds.after.assign(std::size_t(plane), -1);
+  auto site = [&](std::int64_t z, std::int64_t c) {
+    return (g.data[std::size_t(z * plane + c)] != 0) == (rule == gpugeom::SiteRule::NonZero);
+  };
+  for (std::int64_t c = 0; c < plane; ++c) {
+    for (std::int64_t z = first - 1; z >= 0 && s.bounds.before[std::size_t(c)] < 0; --z)
+      if (site(z, c)) s.bounds.before[std::size_t(c)] = z;
+    for (std::int64_t z = first + count; z < g.shape[0] && s.bounds.after[std::size_t(c)] < 0; ++z)
+      if (site(z, c)) s.bounds.after[std::size_t(c)] = z;
+  }
+  return s;
+}
+
 struct Reference {
   std::vector<mpq_class> sq;  // exact weighted squared distance
   std::vector<std::int64_t>

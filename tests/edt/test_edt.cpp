@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "edt/edt_backend.hpp"
 #include "edt_cases.hpp"
@@ -16,6 +17,9 @@ using gg_edt::random_grid;
 
 using gg_edt::all_outputs;
 using gg_edt::expect_exact;
+using gg_edt::Slab;
+using gg_edt::slab_of;
+using gg_edt::slices_of;
 
 TEST(Edt, ShapesAndDensities2d) {
   const std::vector<std::vector<std::int64_t>> shapes{{1, 1},   {1, 37},  {41, 1}, {7, 13},
@@ -117,6 +121,144 @@ TEST(Edt, SlicesEqualWholeVolume) {
       for (int j = 0; j < 3; ++j)
         ASSERT_EQ(part.features[j * part.count() + p], whole.features[j * n + w]);
     }
+}
+
+// A slab of a grid with its columns' nearest sites on either side (EdtOptions::slab, the
+// distributed transform's block) gives the whole grid's outputs for its indices, features in the
+// whole grid's coordinates: 3D and 4D, sparse and dense, both rules, isotropic or not, slabs at
+// either end, in the middle and whole, and slabs whose columns hold no site of their own.
+TEST(Edt, SlabEqualsWholeGrid) {
+  unsigned seed = 70;
+  for (auto shape : {std::vector<std::int64_t>{40, 13, 11}, std::vector<std::int64_t>{23, 7, 5, 6}})
+    for (double d : {0.004, 0.1, 0.7})
+      for (SiteRule rule : {SiteRule::NonZero, SiteRule::Zero})
+        for (bool aniso : {false, true}) {
+          const io::Grid g = random_grid(shape, d, seed++);
+          EdtOptions o = all_outputs();
+          o.labels = false;
+          if (aniso)
+            for (std::size_t a = 0; a < shape.size(); ++a) o.sampling.push_back(0.5 + 0.75 * a);
+          const auto whole = distance_transform(g, rule, o);
+          const std::int64_t n0 = shape[0];
+          for (auto [first, count] : {std::pair<std::int64_t, std::int64_t>{0, 1},
+                                      {0, 9},
+                                      {5, 3},
+                                      {n0 / 2, n0 / 3},
+                                      {n0 - 4, 4},
+                                      {0, n0}}) {
+            const Slab sl = slab_of(g, first, count, rule);
+            EdtOptions so = o;
+            so.slab = sl.bounds;
+            std::vector<std::int64_t> zs;
+            for (std::int64_t z = first; z < first + count; ++z) zs.push_back(z);
+            const auto want = slices_of(whole, zs);
+            const auto got = distance_transform(sl.grid, rule, so);
+            const std::string what = "shape " + std::to_string(shape.size()) + "D d " +
+                                     std::to_string(d) + " slab " + std::to_string(first) + "+" +
+                                     std::to_string(count);
+            EXPECT_EQ(got.shape, want.shape) << what;
+            EXPECT_EQ(got.sqdist_int, want.sqdist_int) << what;
+            EXPECT_EQ(got.sqdist_real, want.sqdist_real) << what;
+            EXPECT_EQ(got.distance64, want.distance64) << what;
+            EXPECT_EQ(got.features, want.features) << what;
+          }
+        }
+}
+
+// Every column's first and last site along axis 0 (what slabs hand each other), on 1, 3 and all
+// threads, for grids of 1 to 4 axes and float grids; NaN refused.
+TEST(Edt, ColumnSiteBounds) {
+  unsigned seed = 80;
+  for (auto shape : {std::vector<std::int64_t>{50}, std::vector<std::int64_t>{30, 9000},
+                     std::vector<std::int64_t>{17, 11, 13}, std::vector<std::int64_t>{6, 5, 4, 3}})
+    for (double d : {0.01, 0.3})
+      for (SiteRule rule : {SiteRule::NonZero, SiteRule::Zero})
+        for (int threads : {0, 1, 3}) {
+          const io::Grid g = random_grid(shape, d, seed++);
+          const std::int64_t plane = g.count() / shape[0], offset = 7;
+          RunOptions run;
+          run.threads = threads;
+          GridView v;
+          v.data = g.data.data();
+          v.type = g.type;
+          v.shape = shape;
+          const auto b = column_site_bounds(v, rule, offset, run);
+          ASSERT_EQ(std::int64_t(b.first.size()), plane);
+          std::int64_t with = 0;
+          for (std::int64_t c = 0; c < plane; ++c) {
+            std::int64_t lo = -1, hi = -1;
+            for (std::int64_t z = 0; z < shape[0]; ++z)
+              if ((g.data[std::size_t(z * plane + c)] != 0) == (rule == SiteRule::NonZero)) {
+                if (lo < 0) lo = z + offset;
+                hi = z + offset;
+              }
+            with += lo >= 0;
+            ASSERT_EQ(b.first[std::size_t(c)], lo) << "column " << c;
+            ASSERT_EQ(b.last[std::size_t(c)], hi) << "column " << c;
+          }
+          EXPECT_EQ(b.columns_with_sites, with);
+        }
+  std::vector<double> f{1, 0, 2, 0, 0, 3};  // columns (1, 2, 0) and (0, 0, 3)
+  GridView v;
+  v.data = f.data();
+  v.type = io::ScalarType::F64;
+  v.shape = {3, 2};
+  const auto b = column_site_bounds(v, SiteRule::Zero);
+  EXPECT_EQ(std::vector<std::int64_t>(b.first.begin(), b.first.end()),
+            (std::vector<std::int64_t>{2, 0}));
+  EXPECT_EQ(std::vector<std::int64_t>(b.last.begin(), b.last.end()),
+            (std::vector<std::int64_t>{2, 1}));
+  f[4] = std::nan("");
+  EXPECT_THROW(column_site_bounds(v, SiteRule::Zero), Error);
+}
+
+// A slab's bad options get typed errors that say what to change.
+TEST(Edt, SlabErrors) {
+  const io::Grid g = random_grid({12, 5, 4}, 0.2, 3);
+  const Slab sl = slab_of(g, 4, 5, SiteRule::NonZero);
+  EdtOptions o;
+  o.distance = 64;
+  o.slab = sl.bounds;
+  auto code = [&](const io::Grid& grid, const EdtOptions& opt) -> std::optional<ErrorCode> {
+    try {
+      distance_transform(grid, SiteRule::NonZero, opt);
+    } catch (const Error& e) {
+      return e.code();
+    }
+    return std::nullopt;
+  };
+  EXPECT_EQ(code(sl.grid, o), std::nullopt);
+  EdtOptions bad = o;
+  bad.labels = true;
+  EXPECT_EQ(code(sl.grid, bad), ErrorCode::InvalidArgument);
+  bad = o;
+  bad.slices = {5};
+  EXPECT_EQ(code(sl.grid, bad), ErrorCode::InvalidArgument);
+  bad = o;
+  bad.slab.first = 8;  // 8 + 5 > 12
+  EXPECT_EQ(code(sl.grid, bad), ErrorCode::InvalidArgument);
+  bad = o;
+  bad.slab.before.pop_back();
+  EXPECT_EQ(code(sl.grid, bad), ErrorCode::InvalidArgument);
+  bad = o;
+  bad.slab.before[0] = 4;  // inside the slab
+  EXPECT_EQ(code(sl.grid, bad), ErrorCode::InvalidArgument);
+  bad = o;
+  bad.slab.after[0] = 12;  // past the grid
+  EXPECT_EQ(code(sl.grid, bad), ErrorCode::InvalidArgument);
+  io::Grid flat = sl.grid;
+  flat.shape = {5, 20};
+  EXPECT_EQ(code(flat, o), ErrorCode::InvalidArgument);
+  io::Grid empty = sl.grid;
+  std::fill(empty.data.begin(), empty.data.end(), 0);
+  EdtOptions none = o;
+  std::fill(none.slab.before.begin(), none.slab.before.end(), -1);
+  std::fill(none.slab.after.begin(), none.slab.after.end(), -1);
+  EXPECT_EQ(code(empty, none), ErrorCode::InvalidInput);
+  GridView v;
+  v.data = sl.grid.data.data();
+  v.shape = sl.grid.shape;
+  EXPECT_THROW(distance_transform_device(v, SiteRule::NonZero, o), Error);
 }
 
 TEST(Edt, ExplicitSitesAndZeroRule) {

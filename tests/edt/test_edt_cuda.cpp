@@ -76,6 +76,44 @@ TEST(CudaEdt, SameAsCpuBitForBit) {
   }
 }
 
+// A slab of a grid with its columns' bounds (EdtOptions::slab) on the GPU: the CPU's whole-grid
+// outputs for its indices, on grids large enough for many bands, isotropic or not, with the
+// column packing (volumes past 2^32 voxels take it) as well.
+TEST(CudaEdt, SlabsSameAsCpuWholeGrid) {
+  unsigned seed = 90;
+  for (auto shape : {std::vector<std::int64_t>{96, 130, 150}, std::vector<std::int64_t>{40, 9, 300},
+                     std::vector<std::int64_t>{20, 6, 7, 80}})
+    for (double d : {0.0005, 0.05})
+      for (bool aniso : {false, true})
+        for (bool columns : {false, true}) {
+          const io::Grid g = gg_edt::random_grid(shape, d, seed++);
+          std::vector<double> samp;
+          if (aniso)
+            for (std::size_t a = 0; a < shape.size(); ++a) samp.push_back(1.0 + 0.5 * a);
+          EdtOptions o = every_output(samp, Backend::Cpu);
+          o.labels = false;
+          const auto whole = distance_transform(g, SiteRule::Zero, o);
+          std::unique_ptr<gg_edt::ColumnPacking> packing;
+          if (columns) packing = std::make_unique<gg_edt::ColumnPacking>();
+          const std::int64_t n0 = shape[0];
+          for (std::int64_t first : {std::int64_t(0), n0 / 3, n0 - n0 / 4}) {
+            const std::int64_t count = first == 0 ? n0 / 3 : std::min(n0 / 3, n0 - first);
+            const auto sl = gg_edt::slab_of(g, first, count, SiteRule::Zero);
+            EdtOptions so = o;
+            so.backend = Backend::Cuda;
+            so.slab = sl.bounds;
+            std::vector<std::int64_t> zs;
+            for (std::int64_t z = first; z < first + count; ++z) zs.push_back(z);
+            const auto want = gg_edt::slices_of(whole, zs);
+            const auto got = distance_transform(sl.grid, SiteRule::Zero, so);
+            EXPECT_EQ(got.features, want.features) << shape.size() << "D slab " << first;
+            EXPECT_EQ(got.sqdist_int, want.sqdist_int) << shape.size() << "D slab " << first;
+            EXPECT_EQ(got.sqdist_real, want.sqdist_real) << shape.size() << "D slab " << first;
+            EXPECT_EQ(got.distance32, want.distance32) << shape.size() << "D slab " << first;
+          }
+        }
+}
+
 // The y and z passes on shared-memory tiles (forced here: by default they take grids with blocks
 // enough for every SM), on shapes whose x extent is not a multiple of the 32-line tile.
 TEST(CudaEdt, TiledPassesSameAsCpu) {

@@ -1,0 +1,189 @@
+"""The distributed exact distance transform: slabs along axis 0, each computed on its worker from
+its own elements and, per column, the nearest zero on either side of it.
+
+Why this is exact. The squared distance is separable: the nearest zero of a voxel is, over the
+columns (lines along axis 0), the best of each column's nearest zero along axis 0, whatever the
+other axes. So a slab's voxels need, of each column outside the slab, only its last zero before
+the slab and its first zero after it: any other zero of that column lies farther along axis 0
+from every voxel of the slab than one of these two, so it can neither be nearer nor win a tie
+(ties go to the first zero in C order, and of two zeros in a column the nearer one along axis 0
+is the one the whole volume's transform keeps too). The library computes a slab from these
+(``EdtOptions::slab``), so every slab's outputs are the whole volume's, bit for bit.
+
+What moves between workers is two planes of one int64 per column for each slab border, not the
+volume: the slabs' first and last zeros are reduced to every slab's bounds by a running maximum
+(before) and minimum (after) along axis 0.
+"""
+from typing import Optional, Sequence, Union
+
+import dask
+import dask.array as da
+import numpy as np
+from dask import delayed
+
+from .. import _arrays, _core
+from ..ndimage import _DIRECT, _sampling
+
+_NONE = np.int64(-1)
+
+
+def _as_grid(block):
+    """A slab the library reads as it is: its own element type where it can, else zero / non-zero
+    as bool (NaN counts as non-zero, as in SciPy). CuPy blocks come to the host."""
+    if hasattr(block, "get") and not isinstance(block, np.ndarray):  # CuPy
+        block = block.get()
+    block = np.ascontiguousarray(block)
+    if block.dtype not in _DIRECT:
+        block = block != 0
+    return block
+
+
+def _zero_bounds(block, first: int, threads: int):
+    """(first zero, last zero, columns with a zero) per column of a slab, as whole-volume indices
+    along axis 0 (-1 where the column has none): one sweep of the slab on the worker's cores."""
+    return _core.column_site_bounds(_as_grid(block), zero_sites=True, offset=first,
+                                    threads=threads)
+
+
+def _before(prev, last):
+    """The nearest zero before the next slab: this slab's last zero, else the one before it."""
+    return np.where(last >= 0, last, prev)
+
+
+def _after(nxt, first):
+    return np.where(first >= 0, first, nxt)
+
+
+def _slab(block, first, extent, before, after, sampling, bits, features, backend, threads):
+    g = _as_grid(block)
+    r = _core.distance_transform(
+        g, zero_sites=True, sampling=sampling, distance=bits, squared=False,
+        features=features, labels=False, backend=backend, threads=threads,
+        slab_extent=extent, slab_first=first, slab_before=before, slab_after=after)
+    return r.get("distances"), r.get("indices")
+
+
+def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] = None,
+                           return_distances: bool = True, return_indices: bool = False, *,
+                           float64_distances: bool = True, slabs: Optional[int] = None,
+                           backend: str = "auto", threads: int = 0):
+    """Exact Euclidean distance transform of a Dask array, as
+    ``scipy.ndimage.distance_transform_edt``, slab by slab on the cluster's workers.
+
+    The input is split along axis 0 (its chunks there, or ``slabs`` equal slabs), each slab whole
+    along the other axes (the input is rechunked so: it moves once, in its own element type).
+    Each slab runs ``gpugeom.ndimage.distance_transform_edt``'s transform on its worker's GPU (or
+    CPU) with, per column along axis 0, the nearest zero before and after the slab. The result
+    equals the single run's (``gpugeom.ndimage.distance_transform_edt``) element for element,
+    indices and ties included.
+
+    Parameters
+    ----------
+    input : dask.array or array-like, 1 to 8 dimensions
+        Distances are to the nearest zero element. A NumPy array becomes one slab per ``slabs``.
+    sampling : float or sequence of float, optional
+        Spacing along each axis.
+    return_distances, return_indices : bool
+        As SciPy: the distances (float64, or float32 with ``float64_distances=False``) and the
+        nearest zero's coordinates, shape ``(input.ndim,) + input.shape``, int32.
+    slabs : int, optional
+        Split axis 0 into this many slabs of equal extent (default: the input's chunks there).
+    backend : {"auto", "cuda", "cpu"}
+        Where each slab runs (on each worker: "auto" takes its GPU).
+    threads : int
+        CPU threads per slab (0: all the worker's cores).
+
+    Returns
+    -------
+    Dask arrays, as SciPy returns NumPy ones: the distances, the indices, or both (a tuple).
+    Store them with ``dask.array.to_zarr`` to stay out of core.
+
+    Raises
+    ------
+    ValueError
+        At the call, before any slab is transformed: no zero element, an empty or wrongly shaped
+        input, bad ``sampling``.
+    """
+    if not return_distances and not return_indices:
+        raise RuntimeError("at least one of return_distances/return_indices must be True")
+    _arrays.check_backend(backend)
+    _arrays.check_threads(threads)
+    if not isinstance(input, da.Array):
+        a = np.asarray(input)
+        if a.ndim == 0 or a.size == 0:
+            raise ValueError(f"input must have 1 to 8 dimensions and elements, got shape "
+                             f"{a.shape}")
+        input = da.from_array(a, chunks=a.shape)
+    nd = input.ndim
+    if not 1 <= nd <= 8:
+        raise ValueError(f"input must have 1 to 8 dimensions, got {nd}")
+    shape = tuple(int(e) for e in input.shape)
+    if any(np.isnan(e) for e in input.shape):
+        raise ValueError("input has chunks of unknown size; call input.compute_chunk_sizes() "
+                         "first")
+    if any(e == 0 for e in shape):
+        raise ValueError(f"input is empty (shape {shape})")
+    samp = _sampling(sampling, nd)
+    if slabs is not None and (int(slabs) != slabs or slabs < 1):
+        raise ValueError(f"slabs must be a positive integer, got {slabs!r}")
+    # 1D and 2D grids as 3D ones, (n, 1, 1) and (rows, 1, cols): the slab transform takes 3 to 8
+    # axes, and a unit axis changes no distance.
+    x = input
+    if nd == 1:
+        x = x[:, None, None]
+        samp = (samp + [1.0, 1.0]) if samp else []
+    elif nd == 2:
+        x = x[:, None, :]
+        samp = [samp[0], 1.0, samp[1]] if samp else []
+    if slabs is not None:
+        x = x.rechunk({0: max(1, -(-shape[0] // int(slabs)))})
+    x = x.rechunk({a: -1 for a in range(1, x.ndim)})
+    rows = [int(c) for c in x.chunks[0]]
+    starts = np.concatenate([[0], np.cumsum(rows)[:-1]]).astype(int).tolist()
+    blocks = list(x.to_delayed().ravel())
+    extent = shape[0]
+
+    # Every slab's first and last zero per column, kept on the workers; only the counts come
+    # back, to refuse an input without zeros now rather than in a slab.
+    bounds = [delayed(_zero_bounds, nout=3, pure=True)(b, s, threads)
+              for b, s in zip(blocks, starts)]
+    bounds = dask.persist(*bounds)
+    if sum(dask.compute(*[b[2] for b in bounds])) == 0:
+        raise ValueError("input has no zero element: every distance would be infinite")
+    k = len(blocks)
+    plane = int(np.prod(x.shape[1:]))
+    none = delayed(np.full, pure=True)(plane, _NONE, dtype=np.int64)
+    before = [none]
+    for i in range(1, k):
+        before.append(delayed(_before, pure=True)(before[-1], bounds[i - 1][1]))
+    after = [none]
+    for i in range(k - 2, -1, -1):
+        after.append(delayed(_after, pure=True)(after[-1], bounds[i + 1][0]))
+    after.reverse()
+
+    bits = (64 if float64_distances else 32) if return_distances else 0
+    dist_parts, idx_parts = [], []
+    inner = tuple(int(e) for e in x.shape[1:])
+    for i in range(k):
+        d, f = delayed(_slab, nout=2, pure=True)(
+            blocks[i], starts[i], extent, before[i], after[i], samp, bits,
+            bool(return_indices), backend, threads)
+        if return_distances:
+            dist_parts.append(da.from_delayed(
+                d, shape=(rows[i],) + inner,
+                dtype=np.float64 if float64_distances else np.float32))
+        if return_indices:
+            idx_parts.append(da.from_delayed(f, shape=(len(x.shape), rows[i]) + inner,
+                                             dtype=np.int32))
+    result = []
+    if return_distances:
+        dist = da.concatenate(dist_parts, axis=0)
+        result.append(dist.reshape(shape) if nd < 3 else dist)
+    if return_indices:
+        idx = da.concatenate(idx_parts, axis=1)
+        if nd == 1:
+            idx = idx[:1, :, 0, 0]
+        elif nd == 2:
+            idx = idx[[0, 2], :, 0, :]
+        result.append(idx)
+    return tuple(result) if len(result) == 2 else result[0]
