@@ -19,6 +19,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from anchor_common import append_row  # noqa: E402
+from dask_cluster import cluster, moved  # noqa: E402
 
 
 def make_chunk(seed, i, m, d, dist):
@@ -46,23 +47,6 @@ def single(pts, backend):
     tri = gpugeom.Delaunay(pts, backend=backend)
     ms = 1e3 * (time.perf_counter() - t0)
     return ms, tri.nsimplex, gpugeom.device_info().get("name", "cpu")
-
-
-def cluster(workers, cpu):
-    from distributed import Nanny, Scheduler, SpecCluster
-    # no memory limit (a block's arrays would be spilled to disk past Dask's default share of
-    # the host's memory), scratch space on the local disk
-    spec = {i: {"cls": Nanny, "options": {
-        "nthreads": 1, "memory_limit": 0, "local_directory": "/tmp/gpugeom-dask",
-        "env": {} if cpu else {"CUDA_VISIBLE_DEVICES": str(i)}}} for i in range(workers)}
-    return SpecCluster(scheduler={"cls": Scheduler, "options": {"dashboard_address": None}},
-                       workers=spec, silence_logs=40)
-
-
-def moved(client):
-    def sent(dask_worker):
-        return int(getattr(dask_worker, "transfer_outgoing_bytes_total", 0))
-    return sum(client.run(sent).values())
 
 
 def main():

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Developer helper for the lent multi-GPU machine: the gpugeom.dask tests with the blocks on the
-# GPU, then bench/dask_delaunay.py on 1 and 2 (or more) GPUs, one Dask worker per GPU.
+# GPU, then bench/dask_delaunay.py and bench/dask_edt.py on 1 and 2 (or more) GPUs, one Dask
+# worker per GPU; the GPU test binaries carried in .devbin (test_*_cuda) first, where there are.
 # Expects what scripts/stage_gpu.sh carried (.devbin/py, .devbin/lib) and Dask's wheels in
 # .devbin/wheels (pip download "dask[array]" distributed for the machine's Python).
 # Results go to $OUT (or ./dask-results): the tests' summary, the bench's lines and CSV.
@@ -21,8 +22,22 @@ with dask.config.set(scheduler='sync'):
     for d in (2, 3):
         gd.delaunay(np.random.default_rng(d).random((20000, d)), blocks=4).gather()
 print('CuPy kernels compiled')" 2>&1 | tail -3 | tee "$OUT/warmup.txt"
+for t in .devbin/test_*_cuda; do
+  [ -x "$t" ] || continue
+  "$t" --gtest_brief=1 >"$OUT/$(basename "$t").log" 2>&1
+  echo "$(basename "$t"): rc=$? $(grep -E '^\[  (PASSED|FAILED)' "$OUT/$(basename "$t").log" | tr '\n' ' ')" |
+    tee -a "$OUT/tests.txt"
+  # SANITIZE: a gtest filter to run under compute-sanitizer's memcheck (none: skip)
+  if [ -n "${SANITIZE:-}" ]; then
+    CS=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
+    GG_UNDER_SANITIZER=1 timeout 300 "$CS" --tool memcheck --leak-check full \
+      --error-exitcode 9 "$t" --gtest_brief=1 --gtest_filter="$SANITIZE" >"$OUT/memcheck.log" 2>&1
+    echo "memcheck $(basename "$t") $SANITIZE: rc=$? $(grep 'ERROR SUMMARY' "$OUT/memcheck.log" | tail -1)" |
+      tee -a "$OUT/tests.txt"
+  fi
+done
 [ "${TEST_S:-150}" = 0 ] || timeout "${TEST_S:-150}" python3 -m pytest -q -p no:cacheprovider -x \
-  python/tests/test_dask.py 2>&1 | grep -v "^INFO\|^WARNING" | tail -15 |
+  python/tests/test_dask.py python/tests/test_dask_edt.py 2>&1 | grep -v "^INFO\|^WARNING" | tail -15 |
   tee "$OUT/tests.txt"
 GPUS=${GPUS:-1,2}
 # JOBS: "dims n dists" jobs separated by ';'
@@ -33,3 +48,9 @@ for job in "${jobs[@]}"; do
     --dist "$3" --csv "$OUT/dask_delaunay.csv" 2>&1 | grep -v "^INFO\|^WARNING\|UserWarn\|warnings.warn\|next(self" |
     tee -a "$OUT/bench.txt"
 done
+# EDT_N: the edges of the cubes for bench/dask_edt.py (none: skip)
+if [ "${EDT_N:-1024,2048}" != none ]; then
+  timeout "${EDT_S:-300}" python3 bench/dask_edt.py --gpus "$GPUS" --n "${EDT_N:-1024,2048}" \
+    --csv "$OUT/dask_edt.csv" 2>&1 | grep -v "^INFO\|^WARNING\|UserWarn\|warnings.warn\|distributed\." |
+    tee -a "$OUT/bench.txt"
+fi

@@ -1,0 +1,22 @@
+"""The Dask cluster the gpugeom.dask benches run on: one worker process per GPU of the host (what
+dask-cuda's LocalCUDACluster does, without needing it), and the bytes the workers sent each
+other."""
+from distributed import Nanny, Scheduler, SpecCluster
+
+
+def cluster(workers, cpu=False):
+    """`workers` worker processes, each seeing one GPU (CUDA_VISIBLE_DEVICES; cpu: none), one
+    Dask thread each. No memory limit (a block's arrays would be spilled to disk past Dask's
+    default share of the host's memory), scratch space on the local disk."""
+    spec = {i: {"cls": Nanny, "options": {
+        "nthreads": 1, "memory_limit": 0, "local_directory": "/tmp/gpugeom-dask",
+        "env": {} if cpu else {"CUDA_VISIBLE_DEVICES": str(i)}}} for i in range(workers)}
+    return SpecCluster(scheduler={"cls": Scheduler, "options": {"dashboard_address": None}},
+                       workers=spec, silence_logs=40)
+
+
+def moved(client):
+    """Bytes the workers have sent each other so far."""
+    def sent(dask_worker):
+        return int(getattr(dask_worker, "transfer_outgoing_bytes_total", 0))
+    return sum(client.run(sent).values())

@@ -1,0 +1,102 @@
+"""Distributed exact distance transform (gpugeom.dask.distance_transform_edt) on one host's GPUs,
+one Dask worker per GPU, against the single-GPU gpugeom.ndimage.distance_transform_edt of the
+same volume, in one run.
+
+    python bench/dask_edt.py --gpus 1,2 --n 1024,2048 --zeros 0.01
+
+The volume (n^3 uint8, a fraction --zeros of its voxels zero at random) is made on the workers
+in --chunks slabs along axis 0, the same slabs for every worker count, and kept there. Timed:
+the distributed call until every slab's float32 distances are in the workers' memory (wall
+clock), and the single-GPU call inside one worker on the whole volume (host array in, host array
+out; by slices where the volume has 2^32 voxels or more, as the library requires); the bytes
+the workers sent each other. --check compares the two results element for element (small n).
+"""
+import argparse
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from anchor_common import append_row  # noqa: E402
+from dask_cluster import cluster, moved  # noqa: E402
+
+
+def make_slab(seed, i, rows, n, zeros):
+    """Slab i: ones, with zeros at random voxels (about `zeros` of them)."""
+    rng = np.random.default_rng([seed, i])
+    a = np.ones((rows, n, n), np.uint8)
+    a.reshape(-1)[rng.integers(0, a.size, int(zeros * a.size) + 1)] = 0
+    return a
+
+
+def volume(n, zeros, chunks, seed=1):
+    import dask
+    import dask.array as da
+    rows = [n // chunks + (i < n % chunks) for i in range(chunks)]
+    parts = [da.from_delayed(dask.delayed(make_slab)(seed, i, r, n, zeros), shape=(r, n, n),
+                             dtype=np.uint8) for i, r in enumerate(rows)]
+    return da.concatenate(parts)
+
+
+def single(vol, backend, keep):
+    import gpugeom
+    import gpugeom.ndimage as gn
+    n = vol.shape[0]
+    slices = list(range(n)) if vol.size >= 2**32 - 1 else None
+    t0 = time.perf_counter()
+    d = gn.distance_transform_edt(vol, float64_distances=False, slices=slices, backend=backend)
+    ms = 1e3 * (time.perf_counter() - t0)
+    name = gpugeom.device_info().get("name", "cpu")
+    return ms, name, (d if keep else None)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("--gpus", default="1,2")
+    p.add_argument("--n", default="1024,2048")
+    p.add_argument("--zeros", type=float, default=0.01)
+    p.add_argument("--chunks", type=int, default=16)
+    p.add_argument("--cpu", action="store_true")
+    p.add_argument("--check", action="store_true", help="compare with the single run (small n)")
+    p.add_argument("--csv", default="")
+    a = p.parse_args()
+    import dask
+    from distributed import Client, wait
+    import gpugeom.dask as gd
+    backend = "cpu" if a.cpu else "cuda"
+    for n in [int(float(x)) for x in a.n.split(",")]:
+        base = None
+        for w in [int(x) for x in a.gpus.split(",")]:
+            with cluster(w, a.cpu) as cl, Client(cl) as client:
+                vol = volume(n, a.zeros, a.chunks).persist()
+                wait(vol)
+                if base is None:
+                    base = dask.delayed(single)(vol, backend, a.check).compute()
+                    ref_ms, name, ref = base
+                    print(f"EDT {n}^3 ({a.zeros:g} zeros): single {name}: {ref_ms:.0f} ms",
+                          flush=True)
+                    append_row(a.csv, "dask-edt3d", f"zeros{a.zeros:g}", n**3, "gpugeom-single",
+                               ref_ms, machine=name)
+                before = moved(client)
+                t0 = time.perf_counter()
+                d = gd.distance_transform_edt(vol, float64_distances=False, backend=backend)
+                d = d.persist()
+                wait(d)  # every slab's distances in the workers' memory
+                ms = 1e3 * (time.perf_counter() - t0)
+                sent = moved(client) - before
+                ok = ""
+                if a.check:
+                    ok = ", same as the single run" if np.array_equal(d.compute(), ref) \
+                        else ", DIFFERENT from the single run"
+                print(f"  {w} workers, {len(d.chunks[0])} slabs: {ms:.0f} ms ({ref_ms / ms:.2f}x "
+                      f"the single run; efficiency {ref_ms / ms / w:.2f}), "
+                      f"{sent / 2**20:.0f} MiB between workers{ok}", flush=True)
+                append_row(a.csv, "dask-edt3d", f"zeros{a.zeros:g}", n**3, f"gpugeom-dask-{w}",
+                           ms, machine=f"{name} x{w}")
+                del d
+
+
+if __name__ == "__main__":
+    main()
