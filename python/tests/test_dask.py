@@ -139,30 +139,12 @@ def test_local_cluster(cluster_client):
         _same_as_single(pts, dt)
 
 
-class _KillOnce:
-    """Ends the worker process the first time a block starts (a crash mid-run)."""
-
-    def __init__(self, marker):
-        self.marker = marker
-
-    def transition(self, key, start, finish, **kwargs):
-        if (finish == "executing" and "gpugeom-delaunay-block" in str(key)
-                and not os.path.exists(self.marker)):
-            open(self.marker, "w").close()
-            os._exit(1)
-
-
-def test_worker_killed_mid_run(cluster_client, tmp_path):
-    from distributed import WorkerPlugin
-    plugin = type("KillOnce", (_KillOnce, WorkerPlugin), {})(str(tmp_path / "killed"))
-    cluster_client.register_plugin(plugin, name="kill-once")
-    try:
+def test_worker_killed_mid_run(kill_worker_once):
+    with kill_worker_once("gpugeom-delaunay-block") as killed:
         pts = np.random.default_rng(13).random((4000, 3))
         dt = gd.delaunay(da.from_array(pts, chunks=(1000, 3)), blocks=4, backend="cpu")
-        assert os.path.exists(tmp_path / "killed")  # a worker did die, Dask ran its task again
+        assert killed()  # a worker did die, Dask ran its task again
         _same_as_single(pts, dt)
-    finally:
-        cluster_client.unregister_worker_plugin("kill-once")
 
 
 def test_to_pvtu(tmp_path):

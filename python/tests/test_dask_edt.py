@@ -1,6 +1,7 @@
 """gpugeom.dask.distance_transform_edt: slab by slab along axis 0, equal element for element to
 the single run (distances, indices and their ties) and to SciPy's distances, in 1 to 4
-dimensions, across 1 to 9 slabs, isotropic or not, on Dask's threads and on a LocalCluster."""
+dimensions, across 1 to 9 slabs, isotropic or not, on Dask's threads and on a LocalCluster (a
+worker killed mid-run too)."""
 import numpy as np
 import pytest
 
@@ -101,6 +102,14 @@ def test_local_cluster(cluster_client):
     b = (rng.random((70, 90)) > 0.01).astype(np.uint8)
     b[0, 0] = 0
     _check(b, 4, sampling=(0.5, 2.0))
+
+
+def test_worker_killed_mid_run(kill_worker_once):
+    a = (np.random.default_rng(31).random((60, 30, 20)) > 0.002).astype(np.uint8)
+    a[0, 0, 0] = 0
+    with kill_worker_once("_slab") as killed:
+        _check(a, 4)
+        assert killed()  # a worker did die, Dask ran its slab again
 
 
 def test_bad_input_refused_at_the_call():

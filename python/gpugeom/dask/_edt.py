@@ -45,13 +45,11 @@ def _zero_bounds(block, first: int, threads: int):
                                     threads=threads)
 
 
-def _before(prev, last):
-    """The nearest zero before the next slab: this slab's last zero, else the one before it."""
-    return np.where(last >= 0, last, prev)
-
-
-def _after(nxt, first):
-    return np.where(first >= 0, first, nxt)
+def _nearest(farther, this):
+    """Per column, the nearest zero beyond a slab: its neighbour's bound (that neighbour's last
+    zero for the slab after it, its first for the slab before it) where the neighbour has one,
+    else the bound from beyond the neighbour."""
+    return np.where(this >= 0, this, farther)
 
 
 def _slab(block, first, extent, before, after, sampling, bits, features, backend, threads):
@@ -155,10 +153,10 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     none = delayed(np.full, pure=True)(plane, _NONE, dtype=np.int64)
     before = [none]
     for i in range(1, k):
-        before.append(delayed(_before, pure=True)(before[-1], bounds[i - 1][1]))
+        before.append(delayed(_nearest, pure=True)(before[-1], bounds[i - 1][1]))
     after = [none]
     for i in range(k - 2, -1, -1):
-        after.append(delayed(_after, pure=True)(after[-1], bounds[i + 1][0]))
+        after.append(delayed(_nearest, pure=True)(after[-1], bounds[i + 1][0]))
     after.reverse()
 
     bits = (64 if float64_distances else 32) if return_distances else 0
