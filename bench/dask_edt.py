@@ -10,6 +10,8 @@ the distributed call until every slab's float32 distances are in the workers' me
 clock), and the single-GPU call inside one worker on the whole volume (host array in, host array
 out; by slices where the volume has 2^32 voxels or more, as the library requires); the bytes
 the workers sent each other. --check compares the two results element for element (small n).
+First, unless --no-devices, the same volume in the bench's own process: one call, then
+distance_transform_edt(devices=[0..w-1]) (several GPUs of the host without Dask).
 """
 import argparse
 import os
@@ -48,8 +50,36 @@ def single(vol, backend, keep):
     t0 = time.perf_counter()
     d = gn.distance_transform_edt(vol, float64_distances=False, slices=slices, backend=backend)
     ms = 1e3 * (time.perf_counter() - t0)
-    name = gpugeom.device_info().get("name", "cpu")
+    name = (gpugeom.device_info().get("name") or "cpu")
     return ms, name, (d if keep else None)
+
+
+def in_process(n, zeros, chunks, gpus, csv, cpu):
+    """The same volume in this process: one call on one device, then distance_transform_edt's
+    devices= over 1, 2, ... of them (no Dask: one host thread and slab per device)."""
+    import gpugeom
+    import gpugeom.ndimage as gn
+    backend = "cpu" if cpu else "cuda"
+    rows = [n // chunks + (i < n % chunks) for i in range(chunks)]
+    vol = np.concatenate([make_slab(1, i, r, n, zeros) for i, r in enumerate(rows)])
+    name = (gpugeom.device_info().get("name") or "cpu")
+    for w in gpus:  # each device's context made before the clock starts
+        gn.distance_transform_edt(vol[:2, :8, :8], devices=list(range(w)), backend=backend)
+    slices = list(range(n)) if vol.size >= 2**32 - 1 else None
+    t0 = time.perf_counter()
+    gn.distance_transform_edt(vol, float64_distances=False, slices=slices, backend=backend)
+    one = 1e3 * (time.perf_counter() - t0)
+    print(f"EDT {n}^3 in one process, {name}: one call {one:.0f} ms", flush=True)
+    append_row(csv, "devices-edt3d", f"zeros{zeros:g}", n**3, "gpugeom-single", one, machine=name)
+    for w in gpus:
+        t0 = time.perf_counter()
+        gn.distance_transform_edt(vol, float64_distances=False, devices=list(range(w)),
+                                  backend=backend)
+        ms = 1e3 * (time.perf_counter() - t0)
+        print(f"  devices={list(range(w))}: {ms:.0f} ms ({one / ms:.2f}x one call; efficiency "
+              f"{one / ms / w:.2f})", flush=True)
+        append_row(csv, "devices-edt3d", f"zeros{zeros:g}", n**3, f"gpugeom-devices-{w}", ms,
+                   machine=f"{name} x{w}")
 
 
 def main():
@@ -61,12 +91,16 @@ def main():
     p.add_argument("--cpu", action="store_true")
     p.add_argument("--check", action="store_true", help="compare with the single run (small n)")
     p.add_argument("--csv", default="")
+    p.add_argument("--no-devices", action="store_true",
+                   help="skip the in-process runs over several devices (devices=)")
     a = p.parse_args()
     import dask
     from distributed import Client, wait
     import gpugeom.dask as gd
     backend = "cpu" if a.cpu else "cuda"
     for n in [int(float(x)) for x in a.n.split(",")]:
+        if not a.no_devices:
+            in_process(n, a.zeros, a.chunks, [int(x) for x in a.gpus.split(",")], a.csv, a.cpu)
         base = None
         for w in [int(x) for x in a.gpus.split(",")]:
             with cluster(w, a.cpu) as cl, Client(cl) as client:

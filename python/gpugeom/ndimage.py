@@ -68,6 +68,27 @@ def _slices(slices, shape):
     return out
 
 
+def _devices(devices, kind, slices):
+    """The device list for the library (None: one device; []: every one)."""
+    if devices is None:
+        return None
+    if kind.device:
+        raise ValueError("devices= takes host (NumPy) arrays: each device copies in its slab")
+    if slices is not None:
+        raise ValueError("devices= and slices= cannot be combined (the devices split axis 0)")
+    if isinstance(devices, str):
+        if devices != "all":
+            raise ValueError(f"devices must be a list of device ordinals or 'all', got "
+                             f"{devices!r}")
+        return []
+    out = [int(d) for d in devices]
+    if not out:
+        raise ValueError("devices is empty: name at least one device, or 'all'")
+    if any(d < 0 for d in out):
+        raise ValueError(f"device ordinals are 0 or more, got {out}")
+    return out
+
+
 def _c_contiguous(a) -> bool:
     if hasattr(a, "is_contiguous"):  # torch
         return bool(a.is_contiguous())
@@ -82,7 +103,8 @@ def _as_2d(arr, nd):
 def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] = None,
                            return_distances: bool = True, return_indices: bool = False,
                            distances=None, indices=None, *, float64_distances: bool = True,
-                           slices: Optional[Sequence[int]] = None, backend: str = "auto",
+                           slices: Optional[Sequence[int]] = None,
+                           devices: Union[None, str, Sequence[int]] = None, backend: str = "auto",
                            threads: int = 0):
     """Exact Euclidean distance transform, as ``scipy.ndimage.distance_transform_edt``.
 
@@ -98,6 +120,11 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     ``len(slices)``. The device then holds the list of the zero elements and a few slices at a
     time, never the volume's outputs, so a volume of any size that fits the host (more than
     2**32 elements too) can be taken slice by slice.
+
+    ``devices`` (host arrays; not in SciPy): several GPUs of this host, a list of CUDA device
+    ordinals or ``"all"``: the array is split along axis 0 into one slab per device, every slab
+    transformed at once on its device, straight into its place in the outputs; the same result.
+    (With ``backend="cpu"`` each entry is a slab on the CPU.)
 
     Raises ValueError when ``input`` has no zero element (no nearest zero exists).
     """
@@ -138,13 +165,18 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     # its (2, 1, n) result instead); others get the result copied in.
     d_direct = distances is not None and _c_contiguous(distances)
     f_direct = indices is not None and nd > 1 and _c_contiguous(indices)
+    devs = _devices(devices, kind, zs)
+    if devs is not None and nd < 3:  # slabs take 3 axes or more: (n, 1, 1) and (rows, 1, cols)
+        g = arr.reshape((shape[0], 1, 1) if nd == 1 else (shape[0], 1, shape[1]))
+        samp2 = ([samp[0], 1.0, 1.0] if nd == 1 else [samp[0], 1.0, samp[1]]) if samp else []
+        f_direct = False
     r = _core.distance_transform(
         g, zero_sites=True, sampling=samp2, distance=bits, squared=False,
         features=bool(return_indices), labels=False,
         distances_out=distances.reshape(shape if zs is not None else g.shape) if d_direct
         else None,
         features_out=indices if f_direct else None, backend=backend, stream=kind.stream,
-        threads=threads, slices=zs if zs is not None else [])
+        threads=threads, slices=zs if zs is not None else [], devices=devs)
     result = []
     if return_distances:
         if distances is None:
@@ -153,7 +185,9 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
             distances[...] = kind.back(r["distances"]).reshape(shape)
     if return_indices:
         ft = kind.back(r["indices"]) if not f_direct else None
-        if ft is not None and nd == 1:
+        if ft is not None and devs is not None and nd < 3:  # from (n, 1, 1) or (rows, 1, cols)
+            ft = ft[[0] if nd == 1 else [0, 2]].reshape((nd,) + shape)
+        elif ft is not None and nd == 1:
             ft = ft[1].reshape((1,) + shape)
         if indices is None:
             result.append(ft)

@@ -11,6 +11,7 @@
 #include "arrays.hpp"
 #include "gpugeom/cvd.hpp"
 #include "gpugeom/edt.hpp"
+#include "gpugeom/multi_gpu.hpp"
 
 namespace gpugeom::py {
 
@@ -79,7 +80,7 @@ nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sa
                   const std::string& backend, std::uintptr_t stream, int threads,
                   std::vector<std::int64_t> slices, std::int64_t slab_extent,
                   std::int64_t slab_first, std::optional<AnyArray> slab_before,
-                  std::optional<AnyArray> slab_after) {
+                  std::optional<AnyArray> slab_after, std::optional<std::vector<int>> devices) {
   const Input in = inspect(input, "input");
   if (in.shape.size() < 2 || in.shape.size() > 8)
     throw nb::value_error("input must have 2 to 8 dimensions");
@@ -107,6 +108,7 @@ nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sa
   const int nd = int(in.shape.size());
   nb::dict r;
   if (in.on_device) {
+    if (devices) throw nb::value_error("devices= reads host arrays (each device takes its slab)");
     const DeviceEdtResult e =
         unlocked([&] { return distance_transform_device(view(in), rule, o); });
     const DeviceOut out{e.backend, device_of(o)};
@@ -119,7 +121,10 @@ nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sa
     r["stats"] = stats_dict(e.stats);
     return r;
   }
-  EdtResult e = unlocked([&] { return distance_transform(view(in), rule, o); });
+  EdtResult e = unlocked([&] {
+    return devices ? distance_transform_devices(view(in), rule, *devices, o)
+                   : distance_transform(view(in), rule, o);
+  });
   if (!e.distance64.empty()) r["distances"] = host_array(std::move(e.distance64), dims(e.shape));
   if (!e.distance32.empty()) r["distances"] = host_array(std::move(e.distance32), dims(e.shape));
   if (!e.sqdist_int.empty()) r["sqdist"] = host_array(std::move(e.sqdist_int), dims(e.shape));
@@ -240,7 +245,7 @@ void bind_grid(nb::module_& m) {
         "squared"_a, "features"_a, "labels"_a, "distances_out"_a = nb::none(),
         "features_out"_a = nb::none(), "backend"_a = "auto", "stream"_a = 0, "threads"_a = 0,
         "slices"_a = std::vector<std::int64_t>{}, "slab_extent"_a = 0, "slab_first"_a = 0,
-        "slab_before"_a = nb::none(), "slab_after"_a = nb::none());
+        "slab_before"_a = nb::none(), "slab_after"_a = nb::none(), "devices"_a = nb::none());
   m.def("column_site_bounds", &column_bounds_bind, "input"_a, "zero_sites"_a, "offset"_a = 0,
         "threads"_a = 0);
   m.def("centroidal_voronoi", &cvd_bind, "density"_a, "num_sites"_a, "initial_sites"_a = nb::none(),

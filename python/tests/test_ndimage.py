@@ -95,6 +95,32 @@ def test_edt_slices_equal_whole_volume(sampling, backend, rng):
                                        backend=backend)
 
 
+@pytest.mark.parametrize("shape", [(60,), (40, 33), (23, 31, 19), (7, 6, 9, 8)])
+def test_edt_several_devices_equal_one(shape, backend, rng):
+    """devices=: one slab per device (on the CPU backend, per entry), the same arrays, into the
+    caller's arrays too."""
+    a = rng.random(shape) > 0.03
+    a.flat[-1] = False
+    sampling = [1.0 + 0.5 * j for j in range(len(shape))]
+    d, i = gpugeom.distance_transform_edt(a, sampling=sampling, return_indices=True,
+                                          backend=backend)
+    for devices in ([0, 0, 0], [0], "all"):
+        d2, i2 = gpugeom.distance_transform_edt(a, sampling=sampling, return_indices=True,
+                                                devices=devices, backend=backend)
+        np.testing.assert_array_equal(d2, d)
+        np.testing.assert_array_equal(i2, i)
+    dist, ind = np.empty(shape, np.float32), np.empty((len(shape),) + shape, np.int32)
+    assert gpugeom.distance_transform_edt(a, sampling=sampling, return_indices=True,
+                                          distances=dist, indices=ind, devices=[0, 0],
+                                          backend=backend) is None
+    np.testing.assert_array_equal(dist, d.astype(np.float32))
+    np.testing.assert_array_equal(ind, i)
+    with pytest.raises(ValueError, match="slices"):
+        gpugeom.distance_transform_edt(a, devices=[0, 0], slices=[0], backend=backend)
+    with pytest.raises(ValueError, match="ordinals"):
+        gpugeom.distance_transform_edt(a, devices="first", backend=backend)
+
+
 def test_edt_only_indices_and_float32(backend, rng):
     a = rng.random((33, 21)) > 0.3
     a[5, 5] = False

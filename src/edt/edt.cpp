@@ -200,10 +200,12 @@ void set_outputs(edt::Request& rq, const EdtOptions& opt, std::int64_t total, in
                   std::string("into.") + name + " holds " + std::to_string(b.size) +
                       " elements; this output needs " + std::to_string(need));
   };
-  check(opt.into.sqdist_int, opt.squared && rq.metric.iso, "sqdist_int",
+  // (grids of 4 to 8 axes keep their metric in nd_metric)
+  const bool iso = rq.nd.nd ? rq.nd_metric.iso : rq.metric.iso;
+  check(opt.into.sqdist_int, opt.squared && iso, "sqdist_int",
         "squared isotropic distances were not asked for (squared, no sampling other than 1)",
         total);
-  check(opt.into.sqdist_real, opt.squared && !rq.metric.iso, "sqdist_real",
+  check(opt.into.sqdist_real, opt.squared && !iso, "sqdist_real",
         "squared anisotropic distances were not asked for (squared, with sampling)", total);
   check(opt.into.distance32, opt.distance == 32, "distance32", "distance is not 32", total);
   check(opt.into.distance64, opt.distance == 64, "distance64", "distance is not 64", total);

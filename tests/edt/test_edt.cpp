@@ -9,6 +9,7 @@
 
 #include "edt/edt_backend.hpp"
 #include "edt_cases.hpp"
+#include "gpugeom/multi_gpu.hpp"
 #include "verify.hpp"
 
 using namespace gpugeom;
@@ -210,6 +211,63 @@ TEST(Edt, ColumnSiteBounds) {
             (std::vector<std::int64_t>{2, 1}));
   f[4] = std::nan("");
   EXPECT_THROW(column_site_bounds(v, SiteRule::Zero), Error);
+}
+
+// Split into slabs (distance_transform_devices on the CPU executor: one slab per entry), the
+// whole grid's outputs exactly, into the caller's arrays too; bad requests refused.
+TEST(Edt, SlabsOfSeveralDevicesEqualOneCall) {
+  unsigned seed = 85;
+  for (auto shape : {std::vector<std::int64_t>{29, 14, 12}, std::vector<std::int64_t>{3, 40, 41},
+                     std::vector<std::int64_t>{11, 4, 5, 6}})
+    for (double d : {0.002, 0.2})
+      for (std::size_t slabs : {1, 2, 3, 5}) {
+        const io::Grid g = random_grid(shape, d, seed++);
+        EdtOptions o = all_outputs();
+        o.labels = false;
+        o.distance = 32;
+        if (seed % 2)
+          for (std::size_t a = 0; a < shape.size(); ++a) o.sampling.push_back(1.0 + 0.5 * a);
+        const auto want = distance_transform(g, SiteRule::Zero, o);
+        const std::vector<int> devices(slabs, 0);
+        const auto got = distance_transform_devices(view_of(g), SiteRule::Zero, devices, o);
+        EXPECT_EQ(got.shape, want.shape);
+        EXPECT_EQ(got.sqdist_int, want.sqdist_int);
+        EXPECT_EQ(got.sqdist_real, want.sqdist_real);
+        EXPECT_EQ(got.distance32, want.distance32);
+        EXPECT_EQ(got.features, want.features);
+        EXPECT_EQ(got.stats.counters.at("slabs"),
+                  std::min<std::int64_t>(std::int64_t(slabs), shape[0]));
+        EdtOptions into = o;
+        into.squared = false;
+        std::vector<float> dist(std::size_t(g.count()));
+        std::vector<std::int32_t> feat(shape.size() * std::size_t(g.count()));
+        into.into.distance32 = {dist.data(), g.count()};
+        into.into.features = {feat.data(), std::int64_t(feat.size())};
+        const auto in = distance_transform_devices(view_of(g), SiteRule::Zero, devices, into);
+        EXPECT_TRUE(in.distance32.empty() && in.features.empty());
+        EXPECT_TRUE(std::equal(dist.begin(), dist.end(), want.distance32.begin()));
+        EXPECT_TRUE(std::equal(feat.begin(), feat.end(), want.features.begin()));
+      }
+  const io::Grid g = random_grid({6, 5, 4}, 0.3, 1);
+  EdtOptions o;
+  o.backend = Backend::Cpu;
+  o.distance = 64;
+  o.labels = true;
+  EXPECT_THROW(distance_transform_devices(view_of(g), SiteRule::Zero, {0, 0}, o), Error);
+  o.labels = false;
+  o.slices = {1};
+  EXPECT_THROW(distance_transform_devices(view_of(g), SiteRule::Zero, {0, 0}, o), Error);
+  o.slices = {};
+  std::vector<double> wrong(7);
+  o.into.distance64 = {wrong.data(), 7};
+  EXPECT_THROW(distance_transform_devices(view_of(g), SiteRule::Zero, {0, 0}, o), Error);
+  o.into = {};
+  io::Grid flat = g;
+  flat.shape = {30, 4};
+  EXPECT_THROW(distance_transform_devices(view_of(flat), SiteRule::Zero, {0, 0}, o), Error);
+  io::Grid ones = g;
+  std::fill(ones.data.begin(), ones.data.end(), 1);
+  EXPECT_THROW(distance_transform_devices(view_of(ones), SiteRule::Zero, {0, 0}, o), Error);
 }
 
 // A slab's bad options get typed errors that say what to change.

@@ -16,6 +16,7 @@
 #include "exec/cuda_device.hpp"
 #include "../common/device_arrays.hpp"
 #include "edt_cases.hpp"
+#include "gpugeom/multi_gpu.hpp"
 
 using namespace gpugeom;
 
@@ -112,6 +113,23 @@ TEST(CudaEdt, SlabsSameAsCpuWholeGrid) {
             EXPECT_EQ(got.distance32, want.distance32) << shape.size() << "D slab " << first;
           }
         }
+}
+
+// Several devices of the host (every one, and device 0 named twice: two slabs at once on one
+// device from two host threads) give the CPU's whole-grid outputs.
+TEST(CudaEdt, SeveralDevicesSameAsCpu) {
+  const io::Grid g = gg_edt::random_grid({150, 120, 140}, 0.002, 97);
+  EdtOptions o = every_output({}, Backend::Cpu);
+  o.labels = false;
+  const auto want = distance_transform(g, SiteRule::Zero, o);
+  o.backend = Backend::Cuda;
+  for (const auto& devices : {std::vector<int>{}, std::vector<int>{0, 0}, std::vector<int>{0}}) {
+    const auto got = distance_transform_devices(view_of(g), SiteRule::Zero, devices, o);
+    EXPECT_EQ(got.stats.backend, Backend::Cuda);
+    EXPECT_EQ(got.features, want.features) << devices.size() << " devices";
+    EXPECT_EQ(got.sqdist_int, want.sqdist_int) << devices.size() << " devices";
+    EXPECT_EQ(got.distance32, want.distance32) << devices.size() << " devices";
+  }
 }
 
 // The y and z passes on shared-memory tiles (forced here: by default they take grids with blocks

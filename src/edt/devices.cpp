@@ -1,0 +1,202 @@
+// distance_transform_devices: the grid split along axis 0 into one slab per device, each slab
+// computed by the slab transform (EdtOptions::slab) on its own host thread and device, straight
+// into its place in the whole grid's outputs. Two rounds of threads: every slab's column bounds
+// first (a slab needs its neighbours'), then the transforms.
+#include <omp.h>
+
+#include <algorithm>
+#include <exception>
+#include <string>
+#include <thread>
+
+#include "base/clock.hpp"
+#include "gpugeom/io.hpp"
+#include "gpugeom/multi_gpu.hpp"
+
+namespace gpugeom {
+
+namespace {
+
+// f(i) for i in [0, k) on k host threads; the first exception (by slab) is rethrown.
+template <class F>
+void on_threads(std::size_t k, F&& f) {
+  std::vector<std::exception_ptr> err(k);
+  std::vector<std::thread> ts;
+  ts.reserve(k);
+  for (std::size_t i = 0; i < k; ++i)
+    ts.emplace_back([&, i] {
+      try {
+        f(i);
+      } catch (...) {
+        err[i] = std::current_exception();
+      }
+    });
+  for (auto& t : ts) t.join();
+  for (auto& e : err)
+    if (e) std::rethrow_exception(e);
+}
+
+// An output of the whole grid: the caller's array (checked) or the result's, and where slab
+// `first` (of `count` elements) writes.
+template <class T>
+OutBuffer<T> whole_output(OutBuffer<T> given, HostVector<T>& own, std::int64_t n, const char* name,
+                          std::int64_t arrays = 1) {
+  if (given) {
+    if (given.size != arrays * n)
+      throw Error(ErrorCode::InvalidArgument,
+                  std::string("into.") + name + " holds " + std::to_string(given.size) +
+                      " elements; this output needs " + std::to_string(arrays * n));
+    return given;
+  }
+  own.resize(std::size_t(arrays * n));
+  return {own.data(), arrays * n};
+}
+
+template <class T>
+OutBuffer<T> part(const OutBuffer<T>& whole, std::int64_t first, std::int64_t count) {
+  if (!whole) return {};
+  return {whole.data + first, count};
+}
+
+}  // namespace
+
+EdtResult distance_transform_devices(const GridView& g, SiteRule rule,
+                                     const std::vector<int>& devices_in, const EdtOptions& opt) {
+  if (!g.data) throw Error(ErrorCode::InvalidArgument, "the grid's data pointer is null");
+  const std::size_t nd = g.shape.size();
+  if (nd < 3 || nd > 8)
+    throw Error(ErrorCode::InvalidArgument,
+                "distance_transform_devices takes grids of 3 to 8 axes (give a 2D grid as (rows, "
+                "1, columns)), got " +
+                    std::to_string(nd));
+  if (opt.labels)
+    throw Error(ErrorCode::InvalidArgument,
+                "distance_transform_devices gives no labels (a slab cannot rank the whole grid's "
+                "sites): ask for features, or use distance_transform");
+  if (!opt.slices.empty() || opt.slab.extent)
+    throw Error(ErrorCode::InvalidArgument,
+                "distance_transform_devices splits the grid itself: no slices or slab in opt");
+  if (opt.threads < 0)
+    throw Error(ErrorCode::InvalidArgument, "threads must be 0 (all) or positive");
+  std::vector<int> devices = devices_in;
+  const Backend b = resolve_backend(opt.backend, devices.empty() ? -1 : devices[0]);
+  if (devices.empty()) {
+    const int count = b == Backend::Cuda ? query_device().device_count : 1;
+    for (int d = 0; d < std::max(1, count); ++d) devices.push_back(d);
+  }
+  std::int64_t n = 1;
+  for (auto e : g.shape) {
+    if (e < 1) throw Error(ErrorCode::InvalidInput, "the grid is empty");
+    n *= e;
+  }
+  const std::int64_t n0 = g.shape[0], plane = n / n0;
+  const std::size_t k = std::size_t(std::min<std::int64_t>(std::int64_t(devices.size()), n0));
+  std::vector<std::int64_t> start(k + 1);
+  for (std::size_t i = 0; i <= k; ++i) start[i] = n0 * std::int64_t(i) / std::int64_t(k);
+  const int all = opt.threads > 0 ? opt.threads : omp_get_max_threads();
+  RunOptions run;
+  run.threads = std::max(1, all / int(k));
+  const std::size_t elem = io::scalar_size(g.type);
+  auto slab_view = [&](std::size_t i) {
+    GridView v = g;
+    v.data = static_cast<const unsigned char*>(g.data) + std::size_t(start[i] * plane) * elem;
+    v.shape[0] = start[i + 1] - start[i];
+    return v;
+  };
+
+  // Every slab's first and last sites per column, then each slab's bounds: the nearest site
+  // before it (a running maximum) and after it (a running minimum).
+  const double t0 = now_ms();
+  std::vector<ColumnSiteBounds> cb(k);
+  on_threads(k,
+             [&](std::size_t i) { cb[i] = column_site_bounds(slab_view(i), rule, start[i], run); });
+  std::int64_t with = 0;
+  for (auto& c : cb) with += c.columns_with_sites;
+  if (with == 0)
+    throw Error(ErrorCode::InvalidInput, std::string("the grid has no site (no ") +
+                                             (rule == SiteRule::NonZero ? "nonzero" : "zero") +
+                                             " element): every distance would be infinite");
+  std::vector<EdtSlab> slabs(k);
+  for (std::size_t i = 0; i < k; ++i) {
+    slabs[i].extent = n0;
+    slabs[i].first = start[i];
+    slabs[i].before.assign(std::size_t(plane), -1);
+    slabs[i].after.assign(std::size_t(plane), -1);
+  }
+  for (std::size_t i = 1; i < k; ++i)
+    for (std::int64_t c = 0; c < plane; ++c) {
+      const std::int64_t last = cb[i - 1].last[std::size_t(c)];
+      slabs[i].before[std::size_t(c)] = last >= 0 ? last : slabs[i - 1].before[std::size_t(c)];
+    }
+  for (std::size_t i = k - 1; i-- > 0;)
+    for (std::int64_t c = 0; c < plane; ++c) {
+      const std::int64_t first = cb[i + 1].first[std::size_t(c)];
+      slabs[i].after[std::size_t(c)] = first >= 0 ? first : slabs[i + 1].after[std::size_t(c)];
+    }
+  cb.clear();
+  const double bounds_ms = now_ms() - t0;
+
+  // The whole grid's outputs, each slab writing its part in place; features are laid out axis
+  // by axis, so a slab's come back and are copied into each axis' part.
+  EdtResult r;
+  r.shape = g.shape;
+  const bool iso = opt.sampling.empty() || std::all_of(opt.sampling.begin(), opt.sampling.end(),
+                                                       [](double s) { return s == 1.0; });
+  if (opt.distance != 0 && opt.distance != 32 && opt.distance != 64)
+    throw Error(ErrorCode::InvalidArgument, "distance must be 0, 32 or 64 (bits)");
+  auto refuse = [](bool given, bool asked, const char* name) {
+    if (given && !asked)
+      throw Error(ErrorCode::InvalidArgument, std::string("an array for the ") + name +
+                                                  " was given (into." + name +
+                                                  "), but that output was not asked for");
+  };
+  refuse(bool(opt.into.sqdist_int), opt.squared && iso, "sqdist_int");
+  refuse(bool(opt.into.sqdist_real), opt.squared && !iso, "sqdist_real");
+  refuse(bool(opt.into.distance32), opt.distance == 32, "distance32");
+  refuse(bool(opt.into.distance64), opt.distance == 64, "distance64");
+  refuse(bool(opt.into.features), opt.features, "features");
+  refuse(bool(opt.into.labels), false, "labels");
+  OutBuffer<std::int64_t> sq_int;
+  OutBuffer<double> sq_real, d64;
+  OutBuffer<float> d32;
+  OutBuffer<std::int32_t> feat;
+  if (opt.squared && iso) sq_int = whole_output(opt.into.sqdist_int, r.sqdist_int, n, "sqdist_int");
+  if (opt.squared && !iso)
+    sq_real = whole_output(opt.into.sqdist_real, r.sqdist_real, n, "sqdist_real");
+  if (opt.distance == 32) d32 = whole_output(opt.into.distance32, r.distance32, n, "distance32");
+  if (opt.distance == 64) d64 = whole_output(opt.into.distance64, r.distance64, n, "distance64");
+  if (opt.features)
+    feat = whole_output(opt.into.features, r.features, n, "features", std::int64_t(nd));
+  const double t1 = now_ms();
+  std::vector<Stats> stats(k);
+  on_threads(k, [&](std::size_t i) {
+    EdtOptions o = opt;
+    o.backend = b;
+    o.device = b == Backend::Cuda ? devices[i] : -1;
+    o.stream = nullptr;
+    o.threads = run.threads;
+    o.slab = std::move(slabs[i]);
+    const std::int64_t first = start[i] * plane, count = (start[i + 1] - start[i]) * plane;
+    o.into = {};
+    o.into.sqdist_int = part(sq_int, first, count);
+    o.into.sqdist_real = part(sq_real, first, count);
+    o.into.distance32 = part(d32, first, count);
+    o.into.distance64 = part(d64, first, count);
+    EdtResult s = distance_transform(slab_view(i), rule, o);
+    for (std::size_t a = 0; a < (opt.features ? nd : 0); ++a)
+      std::copy(s.features.begin() + std::ptrdiff_t(a * std::size_t(count)),
+                s.features.begin() + std::ptrdiff_t((a + 1) * std::size_t(count)),
+                feat.data + std::int64_t(a) * n + first);
+    stats[i] = std::move(s.stats);
+  });
+  r.stats.backend = b;
+  r.stats.phase_ms.push_back({"bounds", bounds_ms});
+  r.stats.phase_ms.push_back({"slabs", now_ms() - t1});
+  for (std::size_t i = 0; i < k; ++i)
+    for (auto& [name, ms] : stats[i].phase_ms)
+      r.stats.phase_ms.push_back({"slab" + std::to_string(i) + "_" + name, ms});
+  r.stats.counters["slabs"] = std::int64_t(k);
+  return r;
+}
+
+}  // namespace gpugeom
