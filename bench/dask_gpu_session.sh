@@ -16,7 +16,8 @@ export PYTHONPATH=$PWD/.devbin/py:/tmp/gg_wheels
 nvidia-smi --query-gpu=name,memory.total --format=csv,noheader | tee "$OUT/gpus.txt"
 python3 -c "import gpugeom, cupy; print(gpugeom.device_info())" | tee -a "$OUT/gpus.txt"
 # CuPy compiles its kernels on first use (about a minute; cached on disk after): once, here.
-timeout 200 python3 -c "
+# (WARMUP=0 skips it: the EDT needs no CuPy kernel)
+[ "${WARMUP:-1}" = 0 ] || timeout 200 python3 -c "
 import numpy as np, dask, gpugeom.dask as gd
 with dask.config.set(scheduler='sync'):
     for d in (2, 3):
@@ -37,12 +38,13 @@ for t in .devbin/test_*_cuda; do
   fi
 done
 [ "${TEST_S:-150}" = 0 ] || timeout "${TEST_S:-150}" python3 -m pytest -q -p no:cacheprovider -x \
-  python/tests/test_dask.py python/tests/test_dask_edt.py 2>&1 | grep -v "^INFO\|^WARNING" | tail -15 |
+  ${PYTESTS:-python/tests/test_dask.py python/tests/test_dask_edt.py} 2>&1 | grep -v "^INFO\|^WARNING" | tail -15 |
   tee "$OUT/tests.txt"
 GPUS=${GPUS:-1,2}
 # JOBS: "dims n dists" jobs separated by ';'
 IFS=';' read -ra jobs <<<"${JOBS:-3 1e7 uniform;2 5e7 uniform;3 1e7 clustered}"
 for job in "${jobs[@]}"; do
+  [ "$job" = none ] && continue
   set -- $job
   timeout "${BENCH_S:-180}" python3 bench/dask_delaunay.py --gpus "$GPUS" --dims "$1" --n "$2" \
     --dist "$3" --csv "$OUT/dask_delaunay.csv" 2>&1 | grep -v "^INFO\|^WARNING\|UserWarn\|warnings.warn\|next(self" |

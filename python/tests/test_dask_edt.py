@@ -55,6 +55,19 @@ def test_equal_to_single_run_on_threads(slabs):
             _check(a, slabs, sampling=[1.5 + 0.25 * j for j in range(a.ndim)])
 
 
+def test_each_backend(backend):
+    """Slabs on the GPU where there is one: the CPU's single run, element for element."""
+    rng = np.random.default_rng(7)
+    a = (rng.random((90, 70, 60)) > 0.002).astype(np.uint8)
+    a[45, 0, 0] = 0
+    ref = gn.distance_transform_edt(a, return_indices=True, backend="cpu")
+    with dask.config.set(scheduler="threads"):
+        got = dask.compute(*gd.distance_transform_edt(a, return_indices=True, slabs=4,
+                                                      backend=backend))
+    for x, y in zip(got, ref):
+        np.testing.assert_array_equal(x, y)
+
+
 def test_chunks_of_the_input_are_the_slabs():
     """A Dask array's chunks along axis 0 are the slabs, whatever its chunks along the others
     (they are merged), uneven ones and a slab with no zero of its own included."""
