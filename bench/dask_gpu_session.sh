@@ -53,6 +53,6 @@ done
 # EDT_N: the edges of the cubes for bench/dask_edt.py (none: skip)
 if [ "${EDT_N:-1024,2048}" != none ]; then
   timeout "${EDT_S:-300}" python3 bench/dask_edt.py --gpus "$GPUS" --n "${EDT_N:-1024,2048}" \
-    --csv "$OUT/dask_edt.csv" 2>&1 | grep -v "^INFO\|^WARNING\|UserWarn\|warnings.warn\|distributed\." |
+    --csv "$OUT/dask_edt.csv" ${EDT_ARGS:-} 2>&1 | grep -v "^INFO\|^WARNING\|UserWarn\|warnings.warn\|distributed\." |
     tee -a "$OUT/bench.txt"
 fi
