@@ -1,6 +1,8 @@
 """The Dask cluster the gpugeom.dask benches run on: one worker process per GPU of the host (what
 dask-cuda's LocalCUDACluster does, without needing it), and the bytes the workers sent each
 other."""
+import os
+
 from distributed import Nanny, Scheduler, SpecCluster
 
 
@@ -8,9 +10,14 @@ def cluster(workers, cpu=False):
     """`workers` worker processes, each seeing one GPU (CUDA_VISIBLE_DEVICES; cpu: none), one
     Dask thread each. No memory limit (a block's arrays would be spilled to disk past Dask's
     default share of the host's memory), scratch space on the local disk."""
+    # Dask starts its workers with OMP_NUM_THREADS=1 (distributed.nanny.pre-spawn-environ): the
+    # library's host-side work (listing sites, the staged copies' helpers) would run on one core.
+    # Each worker gets its share of the host's cores instead.
+    cores = str(max(1, (os.cpu_count() or 1) // workers))
     spec = {i: {"cls": Nanny, "options": {
         "nthreads": 1, "memory_limit": 0, "local_directory": "/tmp/gpugeom-dask",
-        "env": {} if cpu else {"CUDA_VISIBLE_DEVICES": str(i)}}} for i in range(workers)}
+        "env": {"OMP_NUM_THREADS": cores} | ({} if cpu else {"CUDA_VISIBLE_DEVICES": str(i)})}}
+        for i in range(workers)}
     return SpecCluster(scheduler={"cls": Scheduler, "options": {"dashboard_address": None}},
                        workers=spec, silence_logs=40)
 

@@ -54,7 +54,15 @@ def single(vol, backend, keep):
     return ms, name, (d if keep else None)
 
 
-def in_process(n, zeros, chunks, gpus, csv, cpu):
+def phase_line(vol, devices, backend):
+    """The library's phases (ms) of one more such call."""
+    from gpugeom import _core
+    r = _core.distance_transform(vol, zero_sites=True, sampling=[], distance=32, squared=False,
+                                 features=False, labels=False, backend=backend, devices=devices)
+    return " ".join(f"{k} {v:.0f}" for k, v in r["stats"]["phase_ms"].items())
+
+
+def in_process(n, zeros, chunks, gpus, csv, cpu, phases=False):
     """The same volume in this process: one call on one device, then distance_transform_edt's
     devices= over 1, 2, ... of them (no Dask: one host thread and slab per device)."""
     import gpugeom
@@ -70,6 +78,8 @@ def in_process(n, zeros, chunks, gpus, csv, cpu):
     gn.distance_transform_edt(vol, float64_distances=False, slices=slices, backend=backend)
     one = 1e3 * (time.perf_counter() - t0)
     print(f"EDT {n}^3 in one process, {name}: one call {one:.0f} ms", flush=True)
+    if phases:
+        print("    phases: " + phase_line(vol, None, backend), flush=True)
     append_row(csv, "devices-edt3d", f"zeros{zeros:g}", n**3, "gpugeom-single", one, machine=name)
     for w in gpus:
         t0 = time.perf_counter()
@@ -78,6 +88,8 @@ def in_process(n, zeros, chunks, gpus, csv, cpu):
         ms = 1e3 * (time.perf_counter() - t0)
         print(f"  devices={list(range(w))}: {ms:.0f} ms ({one / ms:.2f}x one call; efficiency "
               f"{one / ms / w:.2f})", flush=True)
+        if phases:
+            print("    phases: " + phase_line(vol, list(range(w)), backend), flush=True)
         append_row(csv, "devices-edt3d", f"zeros{zeros:g}", n**3, f"gpugeom-devices-{w}", ms,
                    machine=f"{name} x{w}")
 
@@ -91,6 +103,8 @@ def main():
     p.add_argument("--cpu", action="store_true")
     p.add_argument("--check", action="store_true", help="compare with the single run (small n)")
     p.add_argument("--csv", default="")
+    p.add_argument("--phases", action="store_true",
+                   help="print the library's phases of each in-process configuration")
     p.add_argument("--no-devices", action="store_true",
                    help="skip the in-process runs over several devices (devices=)")
     a = p.parse_args()
@@ -100,7 +114,8 @@ def main():
     backend = "cpu" if a.cpu else "cuda"
     for n in [int(float(x)) for x in a.n.split(",")]:
         if not a.no_devices:
-            in_process(n, a.zeros, a.chunks, [int(x) for x in a.gpus.split(",")], a.csv, a.cpu)
+            in_process(n, a.zeros, a.chunks, [int(x) for x in a.gpus.split(",")], a.csv, a.cpu,
+                       a.phases)
         base = None
         for w in [int(x) for x in a.gpus.split(",")]:
             with cluster(w, a.cpu) as cl, Client(cl) as client:
