@@ -89,7 +89,9 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     backend : {"auto", "cuda", "cpu"}
         Where each slab runs (on each worker: "auto" takes its GPU).
     threads : int
-        CPU threads per slab (0: all the worker's cores).
+        Host threads per slab (0: OpenMP's default in the worker; Dask starts its workers with
+        ``OMP_NUM_THREADS=1``, so give ``threads=`` or set that variable for the workers: the
+        slab's sites are listed and its outputs copied back on them).
 
     Returns
     -------
