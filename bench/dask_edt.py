@@ -5,12 +5,12 @@ same volume, in one run.
     python bench/dask_edt.py --gpus 1,2 --n 1024,2048 --zeros 0.01
 
 The volume (n^3 uint8, a fraction --zeros of its voxels zero at random) is made on the workers
-in --chunks slabs along axis 0, the same slabs for every worker count, and kept there. Timed:
+in --slabs-per-worker slabs along axis 0 for each worker, and kept there; those are the slabs. Timed:
 the distributed call until every slab's float32 distances are in the workers' memory (wall
 clock), and the single-GPU call inside one worker on the whole volume (host array in, host array
 out; by slices where the volume has 2^32 voxels or more, as the library requires); the bytes
 the workers sent each other. --check compares the two results element for element (small n).
-First, unless --no-devices, the same volume in the bench's own process: one call, then
+First, unless --no-devices, a volume of the same kind in the bench's own process: one call, then
 distance_transform_edt(devices=[0..w-1]) (several GPUs of the host without Dask).
 """
 import argparse
@@ -99,7 +99,9 @@ def main():
     p.add_argument("--gpus", default="1,2")
     p.add_argument("--n", default="1024,2048")
     p.add_argument("--zeros", type=float, default=0.01)
-    p.add_argument("--chunks", type=int, default=16)
+    p.add_argument("--chunks", type=int, default=16,
+                   help="slabs the in-process volume is made in (the same volume as Dask's)")
+    p.add_argument("--slabs-per-worker", type=int, default=2)
     p.add_argument("--cpu", action="store_true")
     p.add_argument("--check", action="store_true", help="compare with the single run (small n)")
     p.add_argument("--csv", default="")
@@ -119,7 +121,8 @@ def main():
         base = None
         for w in [int(x) for x in a.gpus.split(",")]:
             with cluster(w, a.cpu) as cl, Client(cl) as client:
-                vol = volume(n, a.zeros, a.chunks).persist()
+                # the slabs: the volume's chunks, --slabs-per-worker for each worker
+                vol = volume(n, a.zeros, w * a.slabs_per_worker).persist()
                 wait(vol)
                 if base is None:
                     base = dask.delayed(single)(vol, backend, a.check).compute()
