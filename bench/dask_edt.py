@@ -83,8 +83,10 @@ def in_process(n, zeros, chunks, gpus, csv, cpu, phases=False):
     rows = [n // chunks + (i < n % chunks) for i in range(chunks)]
     vol = np.concatenate([make_slab(1, i, r, n, zeros) for i, r in enumerate(rows)])
     name = (gpugeom.device_info().get("name") or "cpu")
-    for w in gpus:  # each device's context made before the clock starts
-        gn.distance_transform_edt(vol[:2, :8, :8], devices=list(range(w)), backend=backend)
+    tiny = np.ones((64, 64, 64), np.uint8)
+    tiny[0, 0, 0] = 0
+    for w in gpus:  # each device's context and staging buffers made before the clock starts
+        gn.distance_transform_edt(tiny, devices=list(range(w)), backend=backend)
     slices = list(range(n)) if vol.size >= 2**32 - 1 else None
     t0 = time.perf_counter()
     gn.distance_transform_edt(vol, float64_distances=False, slices=slices, backend=backend)
