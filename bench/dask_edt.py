@@ -10,7 +10,7 @@ the distributed call until every slab's float32 distances are in the workers' me
 clock), and the single-GPU call inside one worker on the whole volume (host array in, host array
 out; by slices where the volume has 2^32 voxels or more, as the library requires); the bytes
 the workers sent each other. --check compares the two results element for element (small n).
-First, unless --no-devices, a volume of the same kind in the bench's own process: one call, then
+First, unless --no-devices, the same volume in the bench's own process: one call, then
 distance_transform_edt(devices=[0..w-1]) (several GPUs of the host without Dask).
 """
 import argparse
@@ -25,20 +25,27 @@ from anchor_common import append_row  # noqa: E402
 from dask_cluster import cluster, moved  # noqa: E402
 
 
-def make_slab(seed, i, rows, n, zeros):
-    """Slab i: ones, with zeros at random voxels (about `zeros` of them)."""
-    rng = np.random.default_rng([seed, i])
+def make_slab(seed, first, rows, n, zeros):
+    """The slab of `rows` planes from plane `first`: ones, with zeros at random voxels (about
+    `zeros` of them), each plane from its own seed, so that the volume is the same whatever its
+    slabs."""
     a = np.ones((rows, n, n), np.uint8)
-    a.reshape(-1)[rng.integers(0, a.size, int(zeros * a.size) + 1)] = 0
+    for z in range(rows):
+        rng = np.random.default_rng([seed, first + z])
+        a[z].reshape(-1)[rng.integers(0, n * n, int(zeros * n * n) + 1)] = 0
     return a
+
+
+def starts(rows):
+    return np.concatenate([[0], np.cumsum(rows)[:-1]]).astype(int).tolist()
 
 
 def volume(n, zeros, chunks, seed=1):
     import dask
     import dask.array as da
     rows = [n // chunks + (i < n % chunks) for i in range(chunks)]
-    parts = [da.from_delayed(dask.delayed(make_slab)(seed, i, r, n, zeros), shape=(r, n, n),
-                             dtype=np.uint8) for i, r in enumerate(rows)]
+    parts = [da.from_delayed(dask.delayed(make_slab)(seed, s, r, n, zeros), shape=(r, n, n),
+                             dtype=np.uint8) for s, r in zip(starts(rows), rows)]
     return da.concatenate(parts)
 
 
@@ -81,7 +88,7 @@ def in_process(n, zeros, chunks, gpus, csv, cpu, phases=False):
     import gpugeom.ndimage as gn
     backend = "cpu" if cpu else "cuda"
     rows = [n // chunks + (i < n % chunks) for i in range(chunks)]
-    vol = np.concatenate([make_slab(1, i, r, n, zeros) for i, r in enumerate(rows)])
+    vol = np.concatenate([make_slab(1, s, r, n, zeros) for s, r in zip(starts(rows), rows)])
     name = (gpugeom.device_info().get("name") or "cpu")
     tiny = np.ones((64, 64, 64), np.uint8)
     tiny[0, 0, 0] = 0
