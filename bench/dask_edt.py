@@ -128,11 +128,12 @@ def main():
     p.add_argument("--csv", default="")
     p.add_argument("--phases", action="store_true",
                    help="print the library's phases of each in-process configuration")
+    p.add_argument("--tasks", action="store_true", help="print the Dask tasks' timeline")
     p.add_argument("--no-devices", action="store_true",
                    help="skip the in-process runs over several devices (devices=)")
     a = p.parse_args()
     import dask
-    from distributed import Client, wait
+    from distributed import Client, get_task_stream, wait
     import gpugeom.dask as gd
     backend = "cpu" if a.cpu else "cuda"
     for n in [int(float(x)) for x in a.n.split(",")]:
@@ -154,11 +155,18 @@ def main():
                                ref_ms, machine=name)
                 client.run(warm, backend)
                 before = moved(client)
-                t0 = time.perf_counter()
-                d = gd.distance_transform_edt(vol, float64_distances=False, backend=backend)
-                d = d.persist()
-                wait(d)  # every slab's distances in the workers' memory
+                t0, t0_wall = time.perf_counter(), time.time()
+                with get_task_stream() as ts:
+                    d = gd.distance_transform_edt(vol, float64_distances=False, backend=backend)
+                    d = d.persist()
+                    wait(d)  # every slab's distances in the workers' memory
                 ms = 1e3 * (time.perf_counter() - t0)
+                if a.tasks:  # where each task ran and when (ms from the call), by key prefix
+                    for t in sorted(ts.data, key=lambda t: t["startstops"][0]["start"]):
+                        for ss in t["startstops"]:
+                            print(f"    {str(t['key'])[:40]:40s} {t['worker'][-5:]} {ss['action']:9s}"
+                                  f" {1e3 * (ss['start'] - t0_wall):8.0f} "
+                                  f"{1e3 * (ss['stop'] - t0_wall):8.0f}")
                 sent = moved(client) - before
                 ok = ""
                 if a.check:
