@@ -40,12 +40,19 @@ def starts(rows):
     return np.concatenate([[0], np.cumsum(rows)[:-1]]).astype(int).tolist()
 
 
-def volume(n, zeros, chunks, seed=1):
+def volume(client, n, zeros, chunks, seed=1):
+    """The volume made on the workers, slab i on worker i * workers // chunks: each worker holds
+    consecutive slabs, as many as the others (left to itself Dask placed them all on one
+    worker once, and the slabs then ran there one after the other)."""
     import dask
     import dask.array as da
+    workers = sorted(client.scheduler_info()["workers"])
     rows = [n // chunks + (i < n % chunks) for i in range(chunks)]
-    parts = [da.from_delayed(dask.delayed(make_slab)(seed, s, r, n, zeros), shape=(r, n, n),
-                             dtype=np.uint8) for s, r in zip(starts(rows), rows)]
+    parts = []
+    for i, (s, r) in enumerate(zip(starts(rows), rows)):
+        f = client.submit(make_slab, seed, s, r, n, zeros, pure=False,
+                          workers=[workers[i * len(workers) // chunks]])
+        parts.append(da.from_delayed(dask.delayed(f), shape=(r, n, n), dtype=np.uint8))
     return da.concatenate(parts)
 
 
@@ -144,7 +151,7 @@ def main():
         for w in [int(x) for x in a.gpus.split(",")]:
             with cluster(w, a.cpu) as cl, Client(cl) as client:
                 # the slabs: the volume's chunks, --slabs-per-worker for each worker
-                vol = volume(n, a.zeros, w * a.slabs_per_worker).persist()
+                vol = volume(client, n, a.zeros, w * a.slabs_per_worker).persist()
                 wait(vol)
                 if base is None:
                     base = dask.delayed(single)(vol, backend, a.check).compute()
