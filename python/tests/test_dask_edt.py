@@ -88,6 +88,16 @@ def test_chunks_of_the_input_are_the_slabs():
             a, return_distances=False, return_indices=True, backend="cpu"))
 
 
+def test_many_slabs_most_without_zeros():
+    """17 slabs of one to four planes, zeros in three of them only: every slab's bounds come
+    from slabs far away (the scans' longest reach), per column."""
+    a = np.ones((45, 7, 6), np.uint8)
+    a[3, 1, 2] = a[30, 6, 5] = a[44, 0, 0] = a[30, 0, 0] = 0
+    x = da.from_array(a, chunks=((1, 4, 2, 3, 1, 4, 2, 3, 1, 4, 2, 3, 1, 4, 2, 3, 5), 7, 6))
+    with dask.config.set(scheduler="threads"):
+        _check(a, None, x=x)
+
+
 def test_nan_counts_as_non_zero():
     a = np.ones((20, 6, 7))
     a[5, 1, 1] = 0

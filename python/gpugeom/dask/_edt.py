@@ -10,9 +10,9 @@ from every voxel of the slab than one of these two, so it can neither be nearer 
 is the one the whole volume's transform keeps too). The library computes a slab from these
 (``EdtOptions::slab``), so every slab's outputs are the whole volume's, bit for bit.
 
-What moves between workers is two planes of one int64 per column for each slab border, not the
-volume: the slabs' first and last zeros are reduced to every slab's bounds by a running maximum
-(before) and minimum (after) along axis 0.
+What moves between workers is planes of one int32 per column, not the volume: every slab's first
+and last zeros are reduced to every slab's bounds by scans along the slabs (the last zero before
+each slab, the first after it), in log2(slabs) rounds of tasks that run side by side.
 """
 from typing import Optional, Sequence, Union
 
@@ -24,7 +24,7 @@ from dask import delayed
 from .. import _arrays, _core
 from ..ndimage import _DIRECT, _sampling
 
-_NONE = np.int64(-1)
+_NONE = np.int32(-1)
 
 
 def _as_grid(block):
@@ -41,8 +41,10 @@ def _as_grid(block):
 def _zero_bounds(block, first: int, threads: int):
     """(first zero, last zero, columns with a zero) per column of a slab, as whole-volume indices
     along axis 0 (-1 where the column has none): one sweep of the slab on the worker's cores."""
-    return _core.column_site_bounds(_as_grid(block), zero_sites=True, offset=first,
-                                    threads=threads)
+    lo, hi, count = _core.column_site_bounds(_as_grid(block), zero_sites=True, offset=first,
+                                             threads=threads)
+    # int32 (indices below 65536, the transform's largest extent): half the bytes to move
+    return lo.astype(np.int32), hi.astype(np.int32), count
 
 
 def _nearest(farther, this):
@@ -52,8 +54,24 @@ def _nearest(farther, this):
     return np.where(this >= 0, this, farther)
 
 
+def _scan(planes, forward: bool):
+    """Every slab's nearest zero per column over it and the slabs before it (forward) or after
+    it: a scan of _nearest in log2(k) rounds of tasks that run side by side (Hillis and
+    Steele), where a chain along the slabs would hand one plane on k times in a row."""
+    cur, step, k = list(planes), 1, len(planes)
+    while step < k:
+        nxt = list(cur)
+        for i in range(k):
+            j = i - step if forward else i + step  # the farther part
+            if 0 <= j < k:
+                nxt[i] = delayed(_nearest, pure=True)(cur[j], cur[i])
+        cur, step = nxt, 2 * step
+    return cur
+
+
 def _slab(block, first, extent, before, after, sampling, bits, features, backend, threads):
     g = _as_grid(block)
+    before, after = before.astype(np.int64), after.astype(np.int64)
     r = _core.distance_transform(
         g, zero_sites=True, sampling=sampling, distance=bits, squared=False,
         features=features, labels=False, backend=backend, threads=threads,
@@ -152,14 +170,11 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
         raise ValueError("input has no zero element: every distance would be infinite")
     k = len(blocks)
     plane = int(np.prod(x.shape[1:]))
-    none = delayed(np.full, pure=True)(plane, _NONE, dtype=np.int64)
-    before = [none]
-    for i in range(1, k):
-        before.append(delayed(_nearest, pure=True)(before[-1], bounds[i - 1][1]))
-    after = [none]
-    for i in range(k - 2, -1, -1):
-        after.append(delayed(_nearest, pure=True)(after[-1], bounds[i + 1][0]))
-    after.reverse()
+    none = delayed(np.full, pure=True)(plane, _NONE, dtype=np.int32)
+    last = _scan([b[1] for b in bounds], forward=True)  # the last zero of slabs 0..i
+    first = _scan([b[0] for b in bounds], forward=False)  # the first zero of slabs i..k-1
+    before = [none] + last[:-1]
+    after = first[1:] + [none]
 
     bits = (64 if float64_distances else 32) if return_distances else 0
     dist_parts, idx_parts = [], []
