@@ -58,7 +58,10 @@ def volume(client, n, zeros, chunks, seed=1):
 
 def warm(backend):
     """A worker's device context and its pinned staging buffers made before the clock starts
-    (the single run does it for the first worker; the others would pay it in the timed call)."""
+    (the single run does it for the first worker; the others would pay it in the timed call),
+    and gpugeom.dask imported (Dask's array module with it: about a second on the GPU host the
+    first time a worker unpickles a slab's task)."""
+    import gpugeom.dask  # noqa: F401
     import gpugeom.ndimage as gn
     a = np.ones((64, 64, 64), np.uint8)
     a[0, 0, 0] = 0
