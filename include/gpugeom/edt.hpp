@@ -99,11 +99,11 @@ struct EdtOptions : RunOptions {
   // Grids of 4 to 8 axes index their sites by 32 bits below 2^32 - 1 voxels, by 64 from there;
   // true takes 64 bits for any grid (for tests: never changes the result).
   bool wide_indices = false;
-  // A slab of a larger grid (EdtSlab), for the host entry and grid sites (distance_transform of
-  // a grid): it computes every index of the slab (no slices), and no labels (a site's rank in
-  // the whole grid is unknown here), on grids of 3 to 8 axes (give a 2D grid as (rows, 1,
-  // columns), its sampling as (s0, 1, s1)). Throws Error(InvalidArgument) otherwise, or where
-  // the bounds are out of place.
+  // A slab of a larger grid (EdtSlab), for a grid's sites (distance_transform and
+  // distance_transform_device; the bounds are host arrays in either): it computes every index of
+  // the slab (no slices), and no labels (a site's rank in the whole grid is unknown here), on
+  // grids of 3 to 8 axes (give a 2D grid as (rows, 1, columns), its sampling as (s0, 1, s1)).
+  // Throws Error(InvalidArgument) otherwise, or where the bounds are out of place.
   EdtSlab slab;
   EdtBuffers into;  // caller-provided output arrays (optional)
 };

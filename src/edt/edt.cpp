@@ -313,10 +313,13 @@ void check_view(const GridView& g) {
 // A slab of a larger grid (EdtOptions::slab): the slice-by-slice mode on the whole grid's shape,
 // computing the slab's indices, from the slab's sites (their axis-0 index moved by `first`) and
 // every column's nearest site before and after it.
-EdtResult slab_transform(const GridView& g, SiteRule rule, const EdtOptions& opt) {
+// A slab (EdtOptions::slab) of a grid of `shape`, checked: returns the whole grid's shape, with
+// `o` the options for it (the slab's indices as slices, no slab) and the slab's bounds appended
+// to `keys` as column keys.
+std::vector<std::int64_t> slab_setup(const std::vector<std::int64_t>& shape, const EdtOptions& opt,
+                                     EdtOptions& o, std::vector<std::uint64_t>& keys) {
   const EdtSlab& s = opt.slab;
-  const std::size_t nd = g.shape.size();
-  if (nd < 3)
+  if (shape.size() < 3)
     throw Error(ErrorCode::InvalidArgument,
                 "a slab (EdtOptions::slab) takes grids of 3 to 8 axes: give a 2D grid as (rows, 1, "
                 "columns)");
@@ -327,34 +330,19 @@ EdtResult slab_transform(const GridView& g, SiteRule rule, const EdtOptions& opt
     throw Error(ErrorCode::InvalidArgument,
                 "a slab gives no labels (a site's rank in the whole grid is not known to it): ask "
                 "for features instead");
-  const std::int64_t n0 = g.shape[0];
+  const std::int64_t n0 = shape[0];
   if (s.first < 0 || s.first + n0 > s.extent)
     throw Error(ErrorCode::InvalidArgument,
                 "the slab's indices along axis 0, " + std::to_string(s.first) + ".." +
                     std::to_string(s.first + n0 - 1) + ", must lie in the whole grid's 0.." +
                     std::to_string(s.extent - 1));
-  std::int64_t n = 1;
-  for (auto e : g.shape) n *= e;
-  const std::int64_t plane = n / n0;
+  std::int64_t plane = 1;
+  for (std::size_t a = 1; a < shape.size(); ++a) plane *= shape[a];
   if (std::int64_t(s.before.size()) != plane || std::int64_t(s.after.size()) != plane)
     throw Error(ErrorCode::InvalidArgument,
                 "slab.before and slab.after need one value per column (" + std::to_string(plane) +
                     "), got " + std::to_string(s.before.size()) + " and " +
                     std::to_string(s.after.size()));
-  std::vector<std::int64_t> whole = g.shape;
-  whole[0] = s.extent;
-  EdtOptions o = opt;
-  o.slab = {};
-  o.slices.resize(std::size_t(n0));
-  for (std::int64_t z = 0; z < n0; ++z) o.slices[std::size_t(z)] = s.first + z;
-  edt::Request rq;
-  set_grid(rq, whole, o);
-  bool finite = true;
-  grid_input::visit(g.type, [&](auto tag) {
-    finite = list_column_sites(static_cast<const decltype(tag)*>(g.data), n, plane,
-                               rule == SiteRule::NonZero, rq.column_sites, opt.threads, s.first);
-  });
-  if (!finite) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
   const std::int64_t end = s.first + n0;
   for (std::int64_t c = 0; c < plane; ++c) {
     const std::int64_t b = s.before[std::size_t(c)], a = s.after[std::size_t(c)];
@@ -368,9 +356,36 @@ EdtResult slab_transform(const GridView& g, SiteRule rule, const EdtOptions& opt
                   "slab.after[" + std::to_string(c) + "] = " + std::to_string(a) +
                       " is neither -1 nor an index after the slab (" + std::to_string(end) + ".." +
                       std::to_string(s.extent - 1) + ")");
-    if (b >= 0) rq.column_sites.push_back(edt::column_key(c, b));
-    if (a >= 0) rq.column_sites.push_back(edt::column_key(c, a));
+    if (b >= 0) keys.push_back(edt::column_key(c, b));
+    if (a >= 0) keys.push_back(edt::column_key(c, a));
   }
+  o = opt;
+  o.slab = {};
+  o.slices.resize(std::size_t(n0));
+  for (std::int64_t z = 0; z < n0; ++z) o.slices[std::size_t(z)] = s.first + z;
+  std::vector<std::int64_t> whole = shape;
+  whole[0] = s.extent;
+  return whole;
+}
+
+// A host slab: the slice-by-slice mode on the whole grid's shape, computing the slab's indices,
+// from the slab's sites (their axis-0 index moved by `first`) and its bounds, listed here.
+EdtResult slab_transform(const GridView& g, SiteRule rule, const EdtOptions& opt) {
+  EdtOptions o;
+  std::vector<std::uint64_t> bounds;
+  const std::vector<std::int64_t> whole = slab_setup(g.shape, opt, o, bounds);
+  edt::Request rq;
+  set_grid(rq, whole, o);
+  std::int64_t n = 1;
+  for (auto e : g.shape) n *= e;
+  bool finite = true;
+  grid_input::visit(g.type, [&](auto tag) {
+    finite =
+        list_column_sites(static_cast<const decltype(tag)*>(g.data), n, n / g.shape[0],
+                          rule == SiteRule::NonZero, rq.column_sites, opt.threads, opt.slab.first);
+  });
+  if (!finite) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
+  rq.column_sites.insert(rq.column_sites.end(), bounds.begin(), bounds.end());
   if (rq.column_sites.empty())
     throw Error(ErrorCode::InvalidInput,
                 std::string("neither the slab nor its bounds hold a site (no ") +
@@ -384,8 +399,8 @@ void refuse_slab(const EdtOptions& opt, const char* entry) {
   if (opt.slab.extent)
     throw Error(ErrorCode::InvalidArgument,
                 std::string(entry) +
-                    " takes no slab (EdtOptions::slab): the host entry for a grid, "
-                    "distance_transform, lists a slab's sites with its bounds");
+                    " takes no slab (EdtOptions::slab): a slab is a grid, given to "
+                    "distance_transform or distance_transform_device");
 }
 
 }  // namespace
@@ -432,10 +447,19 @@ std::int64_t DeviceEdtResult::count() const {
 
 DeviceEdtResult distance_transform_device(const GridView& g, SiteRule rule, const EdtOptions& opt) {
   check_view(g);
-  refuse_slab(opt, "distance_transform_device");
   const Backend b = device_entry_backend(opt.backend, opt.device, "distance_transform_device");
   edt::Request rq;
-  set_grid(rq, g.shape, opt);
+  // A slab (EdtOptions::slab): the slices of the whole grid's shape that the slab holds, its
+  // sites listed on the device with its bounds.
+  EdtOptions so;
+  std::vector<std::int64_t> shape = g.shape;
+  if (opt.slab.extent) {
+    shape = slab_setup(g.shape, opt, so, rq.column_sites);
+    rq.slab_first = opt.slab.first;
+    rq.slab_planes = g.shape[0];
+  }
+  const EdtOptions& o = opt.slab.extent ? so : opt;
+  set_grid(rq, shape, o);
   rq.grid = g.data;
   rq.type = g.type;
   rq.rule = rule;
@@ -443,7 +467,7 @@ DeviceEdtResult distance_transform_device(const GridView& g, SiteRule rule, cons
   rq.device_out = true;
   DeviceEdtResult r;
   r.backend = b;
-  prepare(rq, opt, g.shape, r.shape);
+  prepare(rq, o, shape, r.shape);
   edt::Output out;
   run_backend(b, rq, out, r.stats);
   r.sqdist_int = std::move(out.dev_sqdist_int);

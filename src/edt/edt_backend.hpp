@@ -33,6 +33,10 @@ struct Request {
   std::int64_t site_count = 0;  // sites in the list (a grid's are counted by the executor)
   // Slice-by-slice: the z values to compute (3D only); empty = the whole volume.
   std::vector<std::int64_t> slices;
+  // A grid on the executor that is a slab of the layout (EdtOptions::slab): it holds the
+  // slab_planes planes from slab_first; column_sites then holds the slab's bounds as column keys,
+  // listed with the grid's sites.
+  std::int64_t slab_first = 0, slab_planes = 0;
   bool want_sqdist = false, want_features = false, want_labels = false;
   int want_distance = 0;  // 0 none, 32 float32, 64 float64
   // Outputs: into the caller's arrays where given, else the library's; device_out leaves them

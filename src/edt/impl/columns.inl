@@ -6,9 +6,10 @@
 
 // The sites of a grid on the executor as column keys (raster order; a site's label is its
 // place), in chunks of 2^30 voxels (compact_indices writes int32 positions). plane: voxels in a
-// slice.
+// slice; z0: the grid's first slice in the layout (a slab's).
 inline std::int64_t list_column_keys(Exec& ex, std::int64_t nvox, std::int64_t plane,
-                                     const std::uint8_t* mask, std::uint64_t* keys) {
+                                     const std::uint8_t* mask, std::uint64_t* keys,
+                                     std::int64_t z0 = 0) {
   constexpr std::int64_t kChunk = std::int64_t(1) << 30;
   auto vox = ex.template alloc<std::int32_t>(std::size_t(std::min(nvox, kChunk)));
   std::int64_t ns = 0;
@@ -22,11 +23,35 @@ inline std::int64_t list_column_keys(Exec& ex, std::int64_t nvox, std::int64_t p
     ex.for_each_index(
         k, GG_LAMBDA(std::int64_t i) {
           const std::int64_t v = first + vp[i];
-          kp[i] = column_key(v % pl, v / pl);
+          kp[i] = column_key(v % pl, v / pl + z0);
         });
     ns += k;
   }
   return ns;
+}
+
+// The column keys of a grid on the executor (rq.grid), listed there; where the grid is a slab of
+// the layout (rq.slab_planes), its sites' z moved to the layout's and the slab's bounds
+// (rq.column_sites) appended, and a slab without sites of its own is no error. nvox: the
+// layout's voxels; require(sites, voxels listed): the caller's device-memory check. Returns the
+// count.
+template <class Require>
+inline std::int64_t grid_column_keys(Exec& ex, const Request& rq, std::int64_t nvox,
+                                     std::int64_t plane, Require require,
+                                     typename Exec::template Buffer<std::uint64_t>& keys) {
+  const std::int64_t gvox = rq.slab_planes ? rq.slab_planes * plane : nvox;
+  const std::int64_t extra = rq.slab_planes ? std::int64_t(rq.column_sites.size()) : 0;
+  require(extra, gvox);
+  typename Exec::template Buffer<unsigned char> raw;
+  typename Exec::template Buffer<std::uint8_t> mbuf;
+  std::int64_t count = 0;
+  const std::uint8_t* mask = grid_mask(ex, rq, gvox, raw, mbuf, count, extra > 0);
+  check_label_count(rq, count + extra);
+  require(count + extra, gvox);
+  keys = ex.template alloc<std::uint64_t>(std::size_t(count + extra));
+  std::int64_t ns = list_column_keys(ex, gvox, plane, mask, keys.data(), rq.slab_first);
+  if (extra) ex.from_host(rq.column_sites.data(), extra, keys.data() + ns);
+  return ns + extra;
 }
 
 // Sorts the keys (with their labels, vals, where asked for: a stable sort keeps repeated sites in

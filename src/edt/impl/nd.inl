@@ -370,11 +370,11 @@ inline void run_nd_slices_t(const Request& rq, Output& out, Stats& stats) {
   const bool bytes_mask = rq.rule == SiteRule::NonZero &&
                           (rq.type == io::ScalarType::U8 || rq.type == io::ScalarType::Bool);
   const double block = double(per_block) * double(plane);
-  auto require = [&](std::int64_t sites, bool listing) {
+  // listing: the voxels of a grid whose sites are being listed (its mask's bytes), else 0
+  auto require = [&](std::int64_t sites, std::int64_t listing) {
     const double keys = double(sites) * (8 + (labels ? 4 : 0));
     const double bytes = keys + std::max(keys, block * per_voxel + double(plane) * 16) +
-                         double(nsl) * double(plane) * lib +
-                         (listing && !bytes_mask ? double(nvox) : 0);
+                         double(nsl) * double(plane) * lib + (!bytes_mask ? double(listing) : 0);
     ::gpugeom::detail::require_device_bytes(ex, std::uint64_t(bytes),
                                             "a distance transform of " + std::to_string(nsl) +
                                                 " slices of " + std::to_string(plane) +
@@ -385,19 +385,11 @@ inline void run_nd_slices_t(const Request& rq, Output& out, Stats& stats) {
   typename Exec::template Buffer<std::int32_t> vals;
   std::int64_t ns = 0;
   if (rq.grid) {
-    require(0, true);
-    typename Exec::template Buffer<unsigned char> raw;
-    typename Exec::template Buffer<std::uint8_t> mbuf;
-    std::int64_t count = 0;
-    const std::uint8_t* mask = grid_mask(ex, rq, nvox, raw, mbuf, count);
-    check_label_count(rq, count);
-    require(count, true);
-    keys = ex.template alloc<std::uint64_t>(std::size_t(count));
-    ns = list_column_keys(ex, nvox, plane, mask, keys.data());
+    ns = grid_column_keys(ex, rq, nvox, plane, require, keys);
   } else {
     ns = std::int64_t(rq.column_sites.size());
     check_label_count(rq, ns);
-    require(ns, false);
+    require(ns, 0);
     keys = ex.template alloc<std::uint64_t>(std::size_t(ns));
     ex.from_host(rq.column_sites.data(), ns, keys.data());
   }

@@ -221,7 +221,7 @@ struct CountAndFlag {
 inline const std::uint8_t* grid_mask(Exec& ex, const Request& rq, std::int64_t nvox,
                                      typename Exec::template Buffer<unsigned char>& raw,
                                      typename Exec::template Buffer<std::uint8_t>& mbuf,
-                                     std::int64_t& sites) {
+                                     std::int64_t& sites, bool may_be_empty = false) {
   const void* src = grid_input::on_executor(ex, rq.grid, nvox, rq.type, rq.grid_on_device, raw);
   const bool zero = rq.rule == SiteRule::Zero;
   const bool bytes_mask =
@@ -246,7 +246,7 @@ inline const std::uint8_t* grid_mask(Exec& ex, const Request& rq, std::int64_t n
   ex.to_host(sum.data(), 1, &h);
   if (h & kNanFlag) throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
   sites = std::int64_t(h);
-  if (sites == 0)
+  if (sites == 0 && !may_be_empty)
     throw Error(ErrorCode::InvalidInput, std::string("the grid has no site (no ") +
                                              (zero ? "zero" : "nonzero") +
                                              " element): every distance would be infinite");
