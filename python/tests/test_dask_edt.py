@@ -5,6 +5,7 @@ worker killed mid-run too)."""
 import numpy as np
 import pytest
 
+import gpugeom
 import gpugeom.ndimage as gn
 
 dask = pytest.importorskip("dask")
@@ -66,6 +67,27 @@ def test_each_backend(backend):
                                                       backend=backend))
     for x, y in zip(got, ref):
         np.testing.assert_array_equal(x, y)
+
+
+def test_cupy_chunks_stay_on_the_gpu():
+    """A Dask array of CuPy chunks: every slab transformed on the GPU where it is, its results
+    CuPy chunks there; the CPU's single run, element for element."""
+    if not (gpugeom.built_with_cuda() and gpugeom.device_info()["available"]):
+        pytest.skip("no usable CUDA device")
+    cupy = pytest.importorskip("cupy")
+    rng = np.random.default_rng(8)
+    a = (rng.random((70, 40, 50)) > 0.002).astype(np.uint8)
+    a[69, 39, 0] = 0
+    ref = gn.distance_transform_edt(a, sampling=(1.0, 2.0, 0.5), return_indices=True,
+                                    backend="cpu")
+    x = da.from_array(cupy.asarray(a), chunks=((10, 25, 5, 30), 40, 50), asarray=False)
+    with dask.config.set(scheduler="threads"):
+        d, i = gd.distance_transform_edt(x, sampling=(1.0, 2.0, 0.5), return_indices=True)
+        assert isinstance(d._meta, cupy.ndarray)
+        d, i = dask.compute(d, i)
+    assert isinstance(d, cupy.ndarray) and isinstance(i, cupy.ndarray)
+    np.testing.assert_array_equal(d.get(), ref[0])
+    np.testing.assert_array_equal(i.get(), ref[1])
 
 
 def test_chunks_of_the_input_are_the_slabs():

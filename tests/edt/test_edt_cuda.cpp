@@ -111,6 +111,20 @@ TEST(CudaEdt, SlabsSameAsCpuWholeGrid) {
             EXPECT_EQ(got.sqdist_int, want.sqdist_int) << shape.size() << "D slab " << first;
             EXPECT_EQ(got.sqdist_real, want.sqdist_real) << shape.size() << "D slab " << first;
             EXPECT_EQ(got.distance32, want.distance32) << shape.size() << "D slab " << first;
+            // The slab on the device (its sites listed there, with its bounds).
+            gg_test::DeviceCopy dg(sl.grid.data);
+            GridView v;
+            v.data = dg.data();
+            v.type = sl.grid.type;
+            v.shape = sl.grid.shape;
+            const auto dev = distance_transform_device(v, SiteRule::Zero, so);
+            const std::int64_t m = got.count();
+            EXPECT_EQ(gg_test::from_device(dev.features, m * std::int64_t(shape.size())),
+                      std::vector<std::int32_t>(want.features.begin(), want.features.end()))
+                << shape.size() << "D device slab " << first;
+            EXPECT_EQ(gg_test::from_device(dev.distance32, m),
+                      std::vector<float>(want.distance32.begin(), want.distance32.end()))
+                << shape.size() << "D device slab " << first;
           }
         }
 }

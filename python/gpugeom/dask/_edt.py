@@ -22,29 +22,47 @@ import numpy as np
 from dask import delayed
 
 from .. import _arrays, _core
-from ..ndimage import _DIRECT, _sampling
+from ..ndimage import _grid, _sampling
 
 _NONE = np.int32(-1)
 
 
 def _as_grid(block):
-    """A slab the library reads as it is: its own element type where it can, else zero / non-zero
-    as bool (NaN counts as non-zero, as in SciPy). CuPy blocks come to the host."""
-    if hasattr(block, "get") and not isinstance(block, np.ndarray):  # CuPy
-        block = block.get()
-    block = np.ascontiguousarray(block)
-    if block.dtype not in _DIRECT:
-        block = block != 0
-    return block
+    """A slab the library reads where it is (NumPy, or CuPy on the worker's GPU), in its own
+    element type where it can, else zero / non-zero as bool (NaN counts as non-zero, as in
+    SciPy): (array, its kind)."""
+    arr, kind, _ = _grid(block)
+    return arr, kind
 
 
 def _zero_bounds(block, first: int, threads: int):
     """(first zero, last zero, columns with a zero) per column of a slab, as whole-volume indices
-    along axis 0 (-1 where the column has none): one sweep of the slab on the worker's cores."""
-    lo, hi, count = _core.column_site_bounds(_as_grid(block), zero_sites=True, offset=first,
-                                             threads=threads)
-    # int32 (indices below 65536, the transform's largest extent): half the bytes to move
-    return lo.astype(np.int32), hi.astype(np.int32), count
+    along axis 0 (-1 where the column has none), int32 NumPy planes (indices below 65536, the
+    transform's largest extent: half the bytes to move): one sweep of the slab, on the worker's
+    cores or its GPU."""
+    g, kind = _as_grid(block)
+    if not kind.device:
+        lo, hi, count = _core.column_site_bounds(g, zero_sites=True, offset=first,
+                                                 threads=threads)
+        return lo.astype(np.int32), hi.astype(np.int32), count
+    xp = kind.xp()
+    zeros = (kind.to_xp(g) == 0).reshape(g.shape[0], -1)
+    has = zeros.any(axis=0)
+    lo = xp.where(has, xp.argmax(zeros, axis=0) + first, -1).astype(np.int32)
+    hi = xp.where(has, first + g.shape[0] - 1 - xp.argmax(zeros[::-1], axis=0), -1)
+    return _host(lo), _host(hi.astype(np.int32)), int(has.sum())
+
+
+def _chunk_module(x):
+    """NumPy, or CuPy where the Dask array's chunks are CuPy arrays."""
+    if type(x._meta).__module__.split(".")[0] == "cupy":
+        import cupy
+        return cupy
+    return np
+
+
+def _host(a):
+    return a.get() if hasattr(a, "get") and not isinstance(a, np.ndarray) else np.asarray(a)
 
 
 def _nearest(farther, this):
@@ -70,13 +88,14 @@ def _scan(planes, forward: bool):
 
 
 def _slab(block, first, extent, before, after, sampling, bits, features, backend, threads):
-    g = _as_grid(block)
+    """The slab's outputs, where the slab is (a CuPy slab's stay on the GPU)."""
+    g, kind = _as_grid(block)
     before, after = before.astype(np.int64), after.astype(np.int64)
     r = _core.distance_transform(
         g, zero_sites=True, sampling=sampling, distance=bits, squared=False,
-        features=features, labels=False, backend=backend, threads=threads,
+        features=features, labels=False, backend=backend, stream=kind.stream, threads=threads,
         slab_extent=extent, slab_first=first, slab_before=before, slab_after=after)
-    return r.get("distances"), r.get("indices")
+    return kind.back(r.get("distances")), kind.back(r.get("indices"))
 
 
 def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] = None,
@@ -179,17 +198,20 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     bits = (64 if float64_distances else 32) if return_distances else 0
     dist_parts, idx_parts = [], []
     inner = tuple(int(e) for e in x.shape[1:])
+    # the outputs' chunks are of the input's kind: CuPy slabs give CuPy results, on their GPU
+    xp = _chunk_module(x)
+    fdt = np.float64 if float64_distances else np.float32
     for i in range(k):
         d, f = delayed(_slab, nout=2, pure=True)(
             blocks[i], starts[i], extent, before[i], after[i], samp, bits,
             bool(return_indices), backend, threads)
         if return_distances:
-            dist_parts.append(da.from_delayed(
-                d, shape=(rows[i],) + inner,
-                dtype=np.float64 if float64_distances else np.float32))
+            dist_parts.append(da.from_delayed(d, shape=(rows[i],) + inner, dtype=fdt,
+                                              meta=xp.empty((0,) * x.ndim, fdt)))
         if return_indices:
             idx_parts.append(da.from_delayed(f, shape=(len(x.shape), rows[i]) + inner,
-                                             dtype=np.int32))
+                                             dtype=np.int32,
+                                             meta=xp.empty((0,) * (x.ndim + 1), np.int32)))
     result = []
     if return_distances:
         dist = da.concatenate(dist_parts, axis=0)
