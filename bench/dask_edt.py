@@ -36,11 +36,17 @@ def make_slab(seed, first, rows, n, zeros):
     return a
 
 
+def make_slab_gpu(seed, first, rows, n, zeros):
+    """make_slab's slab on the worker's GPU (a CuPy array)."""
+    import cupy
+    return cupy.asarray(make_slab(seed, first, rows, n, zeros))
+
+
 def starts(rows):
     return np.concatenate([[0], np.cumsum(rows)[:-1]]).astype(int).tolist()
 
 
-def volume(client, n, zeros, chunks, seed=1):
+def volume(client, n, zeros, chunks, device=False, seed=1):
     """The volume made on the workers, slab i on worker i * workers // chunks: each worker holds
     consecutive slabs, as many as the others (left to itself Dask placed them all on one
     worker once, and the slabs then ran there one after the other)."""
@@ -50,9 +56,11 @@ def volume(client, n, zeros, chunks, seed=1):
     rows = [n // chunks + (i < n % chunks) for i in range(chunks)]
     parts = []
     for i, (s, r) in enumerate(zip(starts(rows), rows)):
-        f = client.submit(make_slab, seed, s, r, n, zeros, pure=False,
-                          workers=[workers[i * len(workers) // chunks]])
-        parts.append(da.from_delayed(dask.delayed(f), shape=(r, n, n), dtype=np.uint8))
+        f = client.submit(make_slab_gpu if device else make_slab, seed, s, r, n, zeros,
+                          pure=False, workers=[workers[i * len(workers) // chunks]])
+        meta = __import__("cupy").empty((0, 0, 0), np.uint8) if device else None
+        parts.append(da.from_delayed(dask.delayed(f), shape=(r, n, n), dtype=np.uint8,
+                                     meta=meta))
     return da.concatenate(parts)
 
 
@@ -139,6 +147,9 @@ def main():
     p.add_argument("--phases", action="store_true",
                    help="print the library's phases of each in-process configuration")
     p.add_argument("--tasks", action="store_true", help="print the Dask tasks' timeline")
+    p.add_argument("--device", action="store_true",
+                   help="device-resident: the slabs made on the workers' GPUs (CuPy chunks), the "
+                        "results left there; the single run on a CuPy volume (no in-process runs)")
     p.add_argument("--no-devices", action="store_true",
                    help="skip the in-process runs over several devices (devices=)")
     a = p.parse_args()
@@ -146,22 +157,23 @@ def main():
     from distributed import Client, get_task_stream, wait
     import gpugeom.dask as gd
     backend = "cpu" if a.cpu else "cuda"
+    problem = "dask-edt3d-device" if a.device else "dask-edt3d"
     for n in [int(float(x)) for x in a.n.split(",")]:
-        if not a.no_devices:
+        if not a.no_devices and not a.device:
             in_process(n, a.zeros, a.chunks, [int(x) for x in a.gpus.split(",")], a.csv, a.cpu,
                        a.phases)
         base = None
         for w in [int(x) for x in a.gpus.split(",")]:
             with cluster(w, a.cpu) as cl, Client(cl) as client:
                 # the slabs: the volume's chunks, --slabs-per-worker for each worker
-                vol = volume(client, n, a.zeros, w * a.slabs_per_worker).persist()
+                vol = volume(client, n, a.zeros, w * a.slabs_per_worker, a.device).persist()
                 wait(vol)
                 if base is None:
                     base = dask.delayed(single)(vol, backend, a.check).compute()
                     ref_ms, name, ref = base
                     print(f"EDT {n}^3 ({a.zeros:g} zeros): single {name}: {ref_ms:.0f} ms",
                           flush=True)
-                    append_row(a.csv, "dask-edt3d", f"zeros{a.zeros:g}", n**3, "gpugeom-single",
+                    append_row(a.csv, problem, f"zeros{a.zeros:g}", n**3, "gpugeom-single",
                                ref_ms, machine=name)
                 client.run(warm, backend)
                 before = moved(client)
@@ -185,7 +197,7 @@ def main():
                 print(f"  {w} workers, {len(d.chunks[0])} slabs: {ms:.0f} ms ({ref_ms / ms:.2f}x "
                       f"the single run; efficiency {ref_ms / ms / w:.2f}), "
                       f"{sent / 2**20:.0f} MiB between workers{ok}", flush=True)
-                append_row(a.csv, "dask-edt3d", f"zeros{a.zeros:g}", n**3, f"gpugeom-dask-{w}",
+                append_row(a.csv, problem, f"zeros{a.zeros:g}", n**3, f"gpugeom-dask-{w}",
                            ms, machine=f"{name} x{w}")
                 del d
 
