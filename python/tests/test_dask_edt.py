@@ -169,6 +169,9 @@ def test_bad_input_refused_at_the_call():
             gd.distance_transform_edt(np.zeros((4, 4, 4)), sampling=(1, 0, 1), backend="cpu")
         with pytest.raises(RuntimeError, match="input rank"):
             gd.distance_transform_edt(np.zeros((4, 4, 4)), sampling=(1, 1), backend="cpu")
+        with pytest.raises(ValueError, match="65536"):
+            gd.distance_transform_edt(da.zeros((65537, 2, 2), chunks=(4096, 2, 2)),
+                                      backend="cpu")
         with pytest.raises(ValueError, match="slabs"):
             gd.distance_transform_edt(np.zeros((4, 4, 4)), slabs=0, backend="cpu")
         with pytest.raises(RuntimeError, match="at least one"):

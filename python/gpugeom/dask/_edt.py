@@ -175,6 +175,13 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     if slabs is not None:
         x = x.rechunk({0: max(1, -(-shape[0] // int(slabs)))})
     x = x.rechunk({a: -1 for a in range(1, x.ndim)})
+    # the library's limits for slices, checked now rather than in the first slab
+    if max(x.shape) > 65536:
+        raise ValueError(f"input has an extent above 65536 (shape {shape}): the transform by "
+                         f"slabs takes extents up to 65536")
+    if int(np.prod(x.shape[1:])) >= 2**31 - 1:
+        raise ValueError(f"input's elements along the axes after the first number 2^31 - 1 or "
+                         f"more (shape {shape}): a slab's slice must hold fewer")
     rows = [int(c) for c in x.chunks[0]]
     starts = np.concatenate([[0], np.cumsum(rows)[:-1]]).astype(int).tolist()
     blocks = list(x.to_delayed().ravel())
