@@ -72,6 +72,10 @@ struct ColumnSiteBounds {
 };
 ColumnSiteBounds column_site_bounds(const GridView& grid, SiteRule rule, std::int64_t offset = 0,
                                     const RunOptions& run = {});
+// The same of a grid in device memory (on run.device and run.stream, as the device entries), the
+// bounds to host arrays; with run.backend == Backend::Cpu the grid is host memory.
+ColumnSiteBounds column_site_bounds_device(const GridView& device_grid, SiteRule rule,
+                                           std::int64_t offset = 0, const RunOptions& run = {});
 
 struct EdtOptions : RunOptions {
   EdtMethod method = EdtMethod::Pba;

@@ -137,13 +137,14 @@ nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sa
 
 // Per column, the first and last site along axis 0 (a slab's bounds for its neighbours).
 nb::tuple column_bounds_bind(const AnyArray& input, bool zero_sites, std::int64_t offset,
-                             int threads) {
+                             int threads, std::uintptr_t stream) {
   const Input in = inspect(input, "input");
-  if (in.on_device) throw nb::value_error("column_site_bounds reads host arrays");
-  RunOptions run;
-  run.threads = threads;
+  const RunOptions run = run_options("auto", stream, threads, in);
   const SiteRule rule = zero_sites ? SiteRule::Zero : SiteRule::NonZero;
-  ColumnSiteBounds b = unlocked([&] { return column_site_bounds(view(in), rule, offset, run); });
+  ColumnSiteBounds b = unlocked([&] {
+    return in.on_device ? column_site_bounds_device(view(in), rule, offset, run)
+                        : column_site_bounds(view(in), rule, offset, run);
+  });
   const sz cols = b.first.size();
   return nb::make_tuple(host_array(std::move(b.first), {cols}),
                         host_array(std::move(b.last), {cols}), b.columns_with_sites);
@@ -247,7 +248,7 @@ void bind_grid(nb::module_& m) {
         "slices"_a = std::vector<std::int64_t>{}, "slab_extent"_a = 0, "slab_first"_a = 0,
         "slab_before"_a = nb::none(), "slab_after"_a = nb::none(), "devices"_a = nb::none());
   m.def("column_site_bounds", &column_bounds_bind, "input"_a, "zero_sites"_a, "offset"_a = 0,
-        "threads"_a = 0);
+        "threads"_a = 0, "stream"_a = 0);
   m.def("centroidal_voronoi", &cvd_bind, "density"_a, "num_sites"_a, "initial_sites"_a = nb::none(),
         "max_iterations"_a = 200, "move_tolerance"_a = 0.1, "energy_tolerance"_a = 0.0,
         "supersample"_a = 1, "seed"_a = 1, "progress"_a = nb::none(), "backend"_a = "auto",

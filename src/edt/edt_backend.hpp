@@ -78,11 +78,23 @@ void set_linear_packing_for_testing(bool on);
 // 2^32 - 2 voxels otherwise). Not thread-safe either.
 void set_column_packing_for_testing(bool on);
 
+// Every column's first and last site of a grid in the executor's memory (column_site_bounds_
+// device), to host arrays of `plane` each; true where the grid holds a NaN.
+struct BoundsRequest {
+  RunOptions run;
+  const void* grid = nullptr;
+  io::ScalarType type = io::ScalarType::U8;
+  SiteRule rule = SiteRule::NonZero;
+  std::int64_t planes = 0, plane = 0, offset = 0;
+};
+
 namespace cpu_impl {
 void run(const Request& req, Output& out, Stats& stats);
-}
+bool column_bounds(const BoundsRequest& rq, std::int64_t* first, std::int64_t* last);
+}  // namespace cpu_impl
 namespace cuda_impl {
 void run(const Request& req, Output& out, Stats& stats);
-}
+bool column_bounds(const BoundsRequest& rq, std::int64_t* first, std::int64_t* last);
+}  // namespace cuda_impl
 
 }  // namespace gpugeom::edt

@@ -199,6 +199,11 @@ TEST(Edt, ColumnSiteBounds) {
           v.type = g.type;
           v.shape = shape;
           const auto b = column_site_bounds(v, rule, offset, run);
+          RunOptions cpu = run;
+          cpu.backend = Backend::Cpu;  // the device entry on host memory: the same
+          const auto bd = column_site_bounds_device(v, rule, offset, cpu);
+          EXPECT_EQ(bd.first, b.first);
+          EXPECT_EQ(bd.last, b.last);
           ASSERT_EQ(std::int64_t(b.first.size()), plane);
           std::int64_t with = 0;
           for (std::int64_t c = 0; c < plane; ++c) {

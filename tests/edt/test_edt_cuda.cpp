@@ -129,6 +129,43 @@ TEST(CudaEdt, SlabsSameAsCpuWholeGrid) {
         }
 }
 
+// Every column's first and last site of a grid on the device: the host sweep's, for every
+// element type read; NaN refused.
+TEST(CudaEdt, ColumnSiteBoundsOnTheDevice) {
+  unsigned seed = 60;
+  for (auto shape : {std::vector<std::int64_t>{70, 33, 41}, std::vector<std::int64_t>{9, 5000},
+                     std::vector<std::int64_t>{5, 4, 6, 7}})
+    for (SiteRule rule : {SiteRule::NonZero, SiteRule::Zero}) {
+      const io::Grid g = gg_edt::random_grid(shape, 0.02, seed++);
+      std::vector<float> f(g.data.begin(), g.data.end());
+      for (bool as_float : {false, true}) {
+        GridView h;
+        h.data = as_float ? static_cast<const void*>(f.data()) : g.data.data();
+        h.type = as_float ? io::ScalarType::F32 : g.type;
+        h.shape = shape;
+        const auto want = column_site_bounds(h, rule, 11);
+        gg_test::DeviceCopy dg(g.data), df(f);
+        GridView d = h;
+        d.data = as_float ? df.data() : dg.data();
+        RunOptions run;
+        run.backend = Backend::Cuda;
+        const auto got = column_site_bounds_device(d, rule, 11, run);
+        EXPECT_EQ(got.first, want.first);
+        EXPECT_EQ(got.last, want.last);
+        EXPECT_EQ(got.columns_with_sites, want.columns_with_sites);
+      }
+    }
+  std::vector<double> nan{1, 0, std::nan(""), 2};
+  gg_test::DeviceCopy dn(nan);
+  GridView d;
+  d.data = dn.data();
+  d.type = io::ScalarType::F64;
+  d.shape = {2, 2};
+  RunOptions run;
+  run.backend = Backend::Cuda;
+  EXPECT_THROW(column_site_bounds_device(d, SiteRule::Zero, 0, run), Error);
+}
+
 // Several devices of the host (every one, and device 0 named twice: two slabs at once on one
 // device from two host threads) give the CPU's whole-grid outputs.
 TEST(CudaEdt, SeveralDevicesSameAsCpu) {

@@ -38,19 +38,12 @@ def _as_grid(block):
 def _zero_bounds(block, first: int, threads: int):
     """(first zero, last zero, columns with a zero) per column of a slab, as whole-volume indices
     along axis 0 (-1 where the column has none), int32 NumPy planes (indices below 65536, the
-    transform's largest extent: half the bytes to move): one sweep of the slab, on the worker's
-    cores or its GPU."""
+    transform's largest extent: half the bytes to move): one sweep of the slab where it is, on
+    the worker's cores or its GPU."""
     g, kind = _as_grid(block)
-    if not kind.device:
-        lo, hi, count = _core.column_site_bounds(g, zero_sites=True, offset=first,
-                                                 threads=threads)
-        return lo.astype(np.int32), hi.astype(np.int32), count
-    xp = kind.xp()
-    zeros = (kind.to_xp(g) == 0).reshape(g.shape[0], -1)
-    has = zeros.any(axis=0)
-    lo = xp.where(has, xp.argmax(zeros, axis=0) + first, -1).astype(np.int32)
-    hi = xp.where(has, first + g.shape[0] - 1 - xp.argmax(zeros[::-1], axis=0), -1)
-    return _host(lo), _host(hi.astype(np.int32)), int(has.sum())
+    lo, hi, count = _core.column_site_bounds(g, zero_sites=True, offset=first, threads=threads,
+                                             stream=kind.stream)
+    return lo.astype(np.int32), hi.astype(np.int32), count
 
 
 def _chunk_module(x):
@@ -59,10 +52,6 @@ def _chunk_module(x):
         import cupy
         return cupy
     return np
-
-
-def _host(a):
-    return a.get() if hasattr(a, "get") and not isinstance(a, np.ndarray) else np.asarray(a)
 
 
 def _nearest(farther, this):

@@ -43,3 +43,45 @@ void feature_transform_held(HeldExec& caller, const Layout& L, const Metric& M, 
   Exec ex(held_place(caller));
   bits::feature_transform(ex, L, M, feat, nullptr, Tuning{}, sites, nullptr);
 }
+
+// Every column's first and last site of a grid on the executor (BoundsRequest): a thread per
+// column walks it through the planes, so that a warp reads consecutive columns of a plane.
+template <class T>
+void bounds_sweep(Exec& ex, const BoundsRequest& rq, std::int64_t* lo, std::int64_t* hi,
+                  std::uint32_t* nan) {
+  const T* g = static_cast<const T*>(rq.grid);
+  const std::int64_t planes = rq.planes, plane = rq.plane, offset = rq.offset;
+  const bool nonzero = rq.rule == SiteRule::NonZero;
+  ex.for_each_index(
+      plane, GG_LAMBDA(std::int64_t c) {
+        std::int64_t f = -1, l = -1;
+        bool bad = false;
+        for (std::int64_t z = 0; z < planes; ++z) {
+          const T v = g[z * plane + c];
+          if constexpr (std::is_floating_point_v<T>) bad |= v != v;
+          if ((v != T(0)) == nonzero) {
+            if (f < 0) f = z + offset;
+            l = z + offset;
+          }
+        }
+        lo[c] = f;
+        hi[c] = l;
+        if (bad) nan[0] = 1;  // (every writer writes 1)
+      });
+}
+
+bool column_bounds(const BoundsRequest& rq, std::int64_t* first, std::int64_t* last) {
+  Exec ex(rq.run);
+  auto lo = ex.template alloc<std::int64_t>(std::size_t(rq.plane));
+  auto hi = ex.template alloc<std::int64_t>(std::size_t(rq.plane));
+  auto nan = ex.template alloc<std::uint32_t>(1);
+  ex.fill(nan.data(), 1, std::uint32_t(0));
+  grid_input::visit(rq.type, [&](auto tag) {
+    bounds_sweep<decltype(tag)>(ex, rq, lo.data(), hi.data(), nan.data());
+  });
+  ex.to_host(lo.data(), rq.plane, first);
+  ex.to_host(hi.data(), rq.plane, last);
+  std::uint32_t h = 0;
+  ex.to_host(nan.data(), 1, &h);
+  return h != 0;
+}
