@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "base/clock.hpp"
+#include "edt/entries.hpp"
 #include "gpugeom/io.hpp"
 #include "gpugeom/multi_gpu.hpp"
 
@@ -36,20 +37,13 @@ void on_threads(std::size_t k, F&& f) {
     if (e) std::rethrow_exception(e);
 }
 
-// An output of the whole grid: the caller's array (checked) or the result's, and where slab
-// `first` (of `count` elements) writes.
+// An output of the whole grid: the caller's array (checked by edt::checked_outputs) or the
+// result's.
 template <class T>
-OutBuffer<T> whole_output(OutBuffer<T> given, HostVector<T>& own, std::int64_t n, const char* name,
-                          std::int64_t arrays = 1) {
-  if (given) {
-    if (given.size != arrays * n)
-      throw Error(ErrorCode::InvalidArgument,
-                  std::string("into.") + name + " holds " + std::to_string(given.size) +
-                      " elements; this output needs " + std::to_string(arrays * n));
-    return given;
-  }
-  own.resize(std::size_t(arrays * n));
-  return {own.data(), arrays * n};
+OutBuffer<T> whole_output(OutBuffer<T> given, HostVector<T>& own, std::int64_t count) {
+  if (given) return given;
+  own.resize(std::size_t(count));
+  return {own.data(), count};
 }
 
 template <class T>
@@ -78,6 +72,7 @@ EdtResult distance_transform_devices(const GridView& g, SiteRule rule,
                 "distance_transform_devices splits the grid itself: no slices or slab in opt");
   if (opt.threads < 0)
     throw Error(ErrorCode::InvalidArgument, "threads must be 0 (all) or positive");
+  const bool iso = edt::checked_outputs(g.shape, opt);  // before any work
   std::vector<int> devices = devices_in;
   const Backend b = resolve_backend(opt.backend, devices.empty() ? -1 : devices[0]);
   if (devices.empty()) {
@@ -140,33 +135,15 @@ EdtResult distance_transform_devices(const GridView& g, SiteRule rule,
   // by axis, so a slab's come back and are copied into each axis' part.
   EdtResult r;
   r.shape = g.shape;
-  const bool iso = opt.sampling.empty() || std::all_of(opt.sampling.begin(), opt.sampling.end(),
-                                                       [](double s) { return s == 1.0; });
-  if (opt.distance != 0 && opt.distance != 32 && opt.distance != 64)
-    throw Error(ErrorCode::InvalidArgument, "distance must be 0, 32 or 64 (bits)");
-  auto refuse = [](bool given, bool asked, const char* name) {
-    if (given && !asked)
-      throw Error(ErrorCode::InvalidArgument, std::string("an array for the ") + name +
-                                                  " was given (into." + name +
-                                                  "), but that output was not asked for");
-  };
-  refuse(bool(opt.into.sqdist_int), opt.squared && iso, "sqdist_int");
-  refuse(bool(opt.into.sqdist_real), opt.squared && !iso, "sqdist_real");
-  refuse(bool(opt.into.distance32), opt.distance == 32, "distance32");
-  refuse(bool(opt.into.distance64), opt.distance == 64, "distance64");
-  refuse(bool(opt.into.features), opt.features, "features");
-  refuse(bool(opt.into.labels), false, "labels");
   OutBuffer<std::int64_t> sq_int;
   OutBuffer<double> sq_real, d64;
   OutBuffer<float> d32;
   OutBuffer<std::int32_t> feat;
-  if (opt.squared && iso) sq_int = whole_output(opt.into.sqdist_int, r.sqdist_int, n, "sqdist_int");
-  if (opt.squared && !iso)
-    sq_real = whole_output(opt.into.sqdist_real, r.sqdist_real, n, "sqdist_real");
-  if (opt.distance == 32) d32 = whole_output(opt.into.distance32, r.distance32, n, "distance32");
-  if (opt.distance == 64) d64 = whole_output(opt.into.distance64, r.distance64, n, "distance64");
-  if (opt.features)
-    feat = whole_output(opt.into.features, r.features, n, "features", std::int64_t(nd));
+  if (opt.squared && iso) sq_int = whole_output(opt.into.sqdist_int, r.sqdist_int, n);
+  if (opt.squared && !iso) sq_real = whole_output(opt.into.sqdist_real, r.sqdist_real, n);
+  if (opt.distance == 32) d32 = whole_output(opt.into.distance32, r.distance32, n);
+  if (opt.distance == 64) d64 = whole_output(opt.into.distance64, r.distance64, n);
+  if (opt.features) feat = whole_output(opt.into.features, r.features, std::int64_t(nd) * n);
   const double t1 = now_ms();
   std::vector<Stats> stats(k);
   on_threads(k, [&](std::size_t i) {

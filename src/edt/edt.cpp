@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "edt/edt_backend.hpp"
+#include "edt/entries.hpp"
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
 #include "exec/grid_input.hpp"
@@ -215,6 +216,23 @@ void set_outputs(edt::Request& rq, const EdtOptions& opt, std::int64_t total, in
   check(opt.into.labels, opt.labels, "labels", "labels is false", total);
 }
 
+}  // namespace
+
+namespace edt {
+bool checked_outputs(const std::vector<std::int64_t>& shape, const EdtOptions& opt) {
+  Request rq;
+  EdtOptions o = opt;
+  o.slices = {0};  // (the sliced packing: a whole grid's size limit is not this check's)
+  set_grid(rq, shape, o);
+  std::int64_t total = 1;
+  for (auto e : shape) total *= e;
+  set_outputs(rq, opt, total, int(shape.size()));
+  return rq.nd.nd ? rq.nd_metric.iso : rq.metric.iso;
+}
+}  // namespace edt
+
+namespace {
+
 // Checks the slices and returns the output shape.
 std::vector<std::int64_t> output_shape(edt::Request& rq, const EdtOptions& opt,
                                        const std::vector<std::int64_t>& shape) {
@@ -310,9 +328,6 @@ void check_view(const GridView& g) {
   if (!g.data) throw Error(ErrorCode::InvalidArgument, "the grid's data pointer is null");
 }
 
-// A slab of a larger grid (EdtOptions::slab): the slice-by-slice mode on the whole grid's shape,
-// computing the slab's indices, from the slab's sites (their axis-0 index moved by `first`) and
-// every column's nearest site before and after it.
 // A slab (EdtOptions::slab) of a grid of `shape`, checked: returns the whole grid's shape, with
 // `o` the options for it (the slab's indices as slices, no slab) and the slab's bounds appended
 // to `keys` as column keys.
