@@ -28,92 +28,98 @@
 
 namespace gpugeom {
 
-// A region point: every triangle reachable from its triangle without crossing a segment gets the
-// attribute (Triangle's regional attributes; where regions are not separated by segments the
-// first one given wins). A point on an edge takes one of the triangles beside it.
+/// A region point: every triangle reachable from its triangle without crossing a segment gets the
+/// attribute (Triangle's regional attributes; where regions are not separated by segments the
+/// first one given wins). A point on an edge takes one of the triangles beside it.
 struct Cdt2dRegion {
   double x = 0, y = 0;
   double attribute = 0;
-  // The region's largest triangle area for refine2d (refine2d.hpp; <= 0: none); cdt2d ignores it.
+  /// The region's largest triangle area for refine2d (refine2d.hpp; <= 0: none); cdt2d ignores it.
   double max_area = 0;
 };
 
+/// How cdt2d and cdt2d_device run: the domain, holes, regions and what to do where segments cross.
 struct Cdt2dOptions : RunOptions {
+  /// Which triangles are kept: the whole hull, or only those enclosed by segments.
   enum class Domain {
-    ConvexHull,  // every triangle of the convex hull (less the holes)
-    Enclosed,    // Triangle's -p: the triangles outside the segments are removed too
+    ConvexHull,  ///< every triangle of the convex hull (less the holes)
+    Enclosed,    ///< Triangle's -p: the triangles outside the segments are removed too
   };
   Domain domain = Domain::ConvexHull;
+  /// What happens where input segments cross: refused, or split at a new vertex.
   enum class Crossings {
-    Refuse,  // Error(InvalidInput) naming two segments that cross
-    Split,   // a new vertex where they cross; each segment the chain through its new vertices
+    Refuse,  ///< Error(InvalidInput) naming two segments that cross
+    Split,   ///< a new vertex where they cross; each segment the chain through its new vertices
   };
   Crossings crossings = Crossings::Refuse;
-  // Hole points (x, y): the triangle holding each and all reachable from it without crossing a
-  // segment are removed. A point outside the convex hull removes nothing.
+  /// Hole points (x, y): the triangle holding each and all reachable from it without crossing a
+  /// segment are removed. A point outside the convex hull removes nothing.
   std::vector<Point2> holes;
   std::vector<Cdt2dRegion> regions;
 };
 
+/// The result of cdt2d: triangles, neighbours and the segment each edge lies on, in host memory.
 struct ConstrainedTriangulation2d {
-  // Counter-clockwise triangles, 3 input-point indices each, and the triangle opposite vertex k
-  // of triangle i (-1 on the hull), as Triangulation2d's.
+  /// Counter-clockwise triangles, 3 input-point indices each, and the triangle opposite vertex k
+  /// of triangle i (-1 on the hull), as Triangulation2d's.
   HostVector<std::int32_t> triangles;
   HostVector<std::int32_t> neighbors;
-  // segment_of[3*i + k]: the input segment the edge opposite vertex k of triangle i lies on
-  // (the first one, where several given segments overlap it), -1 for an edge on none.
+  /// segment_of[3*i + k]: the input segment the edge opposite vertex k of triangle i lies on
+  /// (the first one, where several given segments overlap it), -1 for an edge on none.
   HostVector<std::int32_t> segment_of;
-  // One entry per point (the input points, then the new ones): -1 when the point is a vertex,
-  // else the index of the earlier point with the same coordinates, which is the one used
-  // (segments' ends included).
+  /// One entry per point (the input points, then the new ones): -1 when the point is a vertex,
+  /// else the index of the earlier point with the same coordinates, which is the one used
+  /// (segments' ends included).
   HostVector<std::int32_t> duplicate_of;
-  // Crossings::Split: the vertices added where segments cross, x and y (point indices n, n+1,
-  // ... in triangles), and for each the two input segments that cross there (where more than
-  // two meet at one point, two of them). An intersection exactly at an input point adds none.
+  /// Crossings::Split: the vertices added where segments cross, x and y (point indices n, n+1,
+  /// ... in triangles), and for each the two input segments that cross there (where more than
+  /// two meet at one point, two of them). An intersection exactly at an input point adds none.
   HostVector<double> new_points;
   HostVector<std::int32_t> new_point_segments;
   std::int64_t num_duplicates = 0;
-  // Segments given with both ends at one point (or at duplicates of it), and segments that
-  // repeat an earlier one (either direction): dropped, counted here.
+  /// Segments given with both ends at one point (or at duplicates of it), and segments that
+  /// repeat an earlier one (either direction): dropped, counted here.
   std::int64_t zero_length_segments = 0, repeated_segments = 0;
-  // One per triangle when regions are given: the attribute of the region that reached it (0
-  // where none did).
+  /// One per triangle when regions are given: the attribute of the region that reached it (0
+  /// where none did).
   HostVector<double> attribute;
-  // Triangles removed as holes or outside the domain (they are not in the arrays above, whose
-  // neighbours across a removed triangle are -1).
+  /// Triangles removed as holes or outside the domain (they are not in the arrays above, whose
+  /// neighbours across a removed triangle are -1).
   std::int64_t removed_triangles = 0;
-  // Phases "delaunay", "segments", "to_host" (and "domain" with holes, regions or Enclosed);
-  // counters "segments", "segments_present" (chains of Delaunay edges already),
-  // "segments_recovered" (by rebuilding cavities), "segment_pieces" (edges on segments),
-  // "cavity_triangles" (triangles rebuilt), "cavity_antennas" (edges off a segment with both
-  // triangles in its cavity), "recovery_rounds", "crossings" (new vertices) and
-  // "segments_split" (input segments cut at them), with delaunay2d's counters; segment counts
-  // are of the pieces where segments were split.
+  /// Phases "delaunay", "segments", "to_host" (and "domain" with holes, regions or Enclosed);
+  /// counters "segments", "segments_present" (chains of Delaunay edges already),
+  /// "segments_recovered" (by rebuilding cavities), "segment_pieces" (edges on segments),
+  /// "cavity_triangles" (triangles rebuilt), "cavity_antennas" (edges off a segment with both
+  /// triangles in its cavity), "recovery_rounds", "crossings" (new vertices) and
+  /// "segments_split" (input segments cut at them), with delaunay2d's counters; segment counts
+  /// are of the pieces where segments were split.
   Stats stats;
+  /// The number of triangles.
   std::size_t num_triangles() const { return triangles.size() / 3; }
 };
 
-// xy: n points, x and y interleaved; segments: nseg pairs of point indices. Throws
-// Error(InvalidInput) for a segment naming a point outside 0..n-1, and (Crossings::Refuse) for
-// two segments that cross each other at a point inside both, naming both (segments that meet at
-// an input point, or overlap along one line, are fine); and as delaunay2d does for the points.
+/// xy: n points, x and y interleaved; segments: nseg pairs of point indices. Throws
+/// Error(InvalidInput) for a segment naming a point outside 0..n-1, and (Crossings::Refuse) for
+/// two segments that cross each other at a point inside both, naming both (segments that meet at
+/// an input point, or overlap along one line, are fine); and as delaunay2d does for the points.
 ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
                                  std::int64_t nseg, const Cdt2dOptions& opt = {});
 
-// The device entry: points (n, x and y interleaved) and segments (nseg index pairs) in the
-// memory of the executor opt picks (CUDA device memory, or host memory for Backend::Cpu), the
-// result left there (arrays the caller then owns; freed with the last copy of the pointer).
-// The same triangles, marks and counts as cdt2d. Crossings::Split is refused here
-// (Error(InvalidArgument)): splitting reads the segments on the host, so call cdt2d.
+/// The result of cdt2d_device: arrays in device memory (host memory on the CPU executor).
 struct DeviceConstrainedTriangulation2d {
   std::int64_t num_points = 0, num_triangles = 0, num_duplicates = 0;
-  std::shared_ptr<std::int32_t> triangles, neighbors, segment_of;  // 3 * num_triangles each
-  std::shared_ptr<std::int32_t> duplicate_of;                      // num_points
-  std::shared_ptr<double> attribute;  // num_triangles, when regions are given
+  std::shared_ptr<std::int32_t> triangles, neighbors, segment_of;  ///< 3 * num_triangles each
+  std::shared_ptr<std::int32_t> duplicate_of;                      ///< num_points
+  std::shared_ptr<double> attribute;  ///< num_triangles, when regions are given
   std::int64_t zero_length_segments = 0, repeated_segments = 0, removed_triangles = 0;
-  Backend backend = Backend::Cuda;  // where the arrays are: Cuda = device memory
+  Backend backend = Backend::Cuda;  ///< where the arrays are: Cuda = device memory
   Stats stats;
 };
+/// The device entry: points (n, x and y interleaved) and segments (nseg index pairs) in the
+/// memory of the executor opt picks (CUDA device memory, or host memory for Backend::Cpu), the
+/// result left there (arrays the caller then owns; freed with the last copy of the pointer).
+/// The same triangles, marks and counts as cdt2d. Crossings::Split is refused here
+/// (Error(InvalidArgument)): splitting reads the segments on the host, so call cdt2d.
 DeviceConstrainedTriangulation2d cdt2d_device(const double* device_xy, std::int64_t n,
                                               const std::int32_t* device_segments,
                                               std::int64_t nseg, const Cdt2dOptions& opt = {});

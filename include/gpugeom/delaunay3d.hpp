@@ -23,203 +23,221 @@
 
 namespace gpugeom {
 
-// Where a run is (see Delaunay3dOptions::progress).
+/// Where a run is (see Delaunay3dOptions::progress).
 struct Delaunay3dProgress {
-  const char* phase = "";     // "insert_flip" (after each batch), "splay", "output" (as they begin)
-  std::int64_t inserted = 0;  // distinct points in the tetrahedralisation so far
-  std::int64_t total = 0;     // distinct points
-  std::int64_t batch = 0;     // insertion batches so far
+  const char* phase = "";  ///< "insert_flip" (after each batch), "splay", "output" (as they begin)
+  std::int64_t inserted = 0;  ///< distinct points in the tetrahedralisation so far
+  std::int64_t total = 0;     ///< distinct points
+  std::int64_t batch = 0;     ///< insertion batches so far
 };
 
-// Arrays the caller provides for the results (OutBuffer, common.hpp; SciPy's `out=` pattern):
-// host memory for delaunay3d, device memory for delaunay3d_device (host memory where it runs on
-// the CPU executor). tetrahedra and neighbors must hold at least 4 times the tetrahedron count,
-// hull_facets at least 3 times the hull facet count (both depend on the result, and no bound
-// linear in n exists in 3D: give what you expect and be told what was needed),
-// duplicate_of and vertex_to_simplex at least n. They are checked once the counts are known and
-// before anything is written (Error(InvalidArgument) naming the array and both lengths). An
-// output written into a caller's array is empty (null) in the result.
+/// Arrays the caller provides for the results (OutBuffer, common.hpp; SciPy's `out=` pattern):
+/// host memory for delaunay3d, device memory for delaunay3d_device (host memory where it runs on
+/// the CPU executor). tetrahedra and neighbors must hold at least 4 times the tetrahedron count,
+/// hull_facets at least 3 times the hull facet count (both depend on the result, and no bound
+/// linear in n exists in 3D: give what you expect and be told what was needed),
+/// duplicate_of and vertex_to_simplex at least n. They are checked once the counts are known and
+/// before anything is written (Error(InvalidArgument) naming the array and both lengths). An
+/// output written into a caller's array is empty (null) in the result.
 struct Triangulation3dBuffers {
   OutBuffer<std::int32_t> tetrahedra, neighbors, duplicate_of, vertex_to_simplex, hull_facets;
 };
 
+/// How delaunay3d and delaunay3d_device run (RunOptions), the method, progress and the caller's
+/// output arrays.
 struct Delaunay3dOptions : RunOptions {
-  Triangulation3dBuffers into;  // optional
-  // Called on the calling thread after each insertion batch and as phase 2 and the output
-  // begin (a few dozen calls). An exception it throws ends the run and reaches the caller
-  // (a way to cancel), with nothing leaked.
+  Triangulation3dBuffers into;  ///< optional
+  /// Called on the calling thread after each insertion batch and as phase 2 and the output
+  /// begin (a few dozen calls). An exception it throws ends the run and reaches the caller
+  /// (a way to cancel), with nothing leaked.
   std::function<void(const Delaunay3dProgress&)> progress;
-  // Test switch: at most this many flip rounds after each batch (-1: until no flip is left),
-  // so that star splaying must repair a tetrahedralisation far from Delaunay (0: none).
+  /// Test switch: at most this many flip rounds after each batch (-1: until no flip is left),
+  /// so that star splaying must repair a tetrahedralisation far from Delaunay (0: none).
   std::int64_t max_flip_rounds = -1;
-  // The method (common.hpp): the result does not depend on it. Method::Digital is the thesis'
-  // DigiDel3D (4.5.2): a digital Voronoi diagram of the points on a grid (3D PBA), a working
-  // set of neighbours for every point from the grid corners where its cell meets others (read
-  // as a perturbed grid), a convex star for every point from its working set (beneath-beyond),
-  // then star splaying until every star agrees with its neighbours' (Shewchuk), all on the
-  // executor. Adds phases "digital_*" (grid, pba, working_sets, stars, splay, tetrahedra; the
-  // splay's parts as "digital_splay.check", ".sort", ".take") and counters "digital_grid",
-  // "sites", "sketch_missing", "digital_working_pairs", "digital_splay_rounds",
-  // "digital_star_insertions", "digital_star_growths" (passes that gave new runs to stars
-  // that outgrew theirs; a take gives them in its kernel while the room past the last run
-  // lasts), "digital_splay_request_spills" (checks run again for
-  // requests past the round's buffer) and "digital_fallback" (1 where stars
-  // grew too large to splay on the executor, as on the hull planes of integer grids: the
-  // incremental method then ran, and its phases follow).
+  /// The method (common.hpp): the result does not depend on it. Method::Digital is the thesis'
+  /// DigiDel3D (4.5.2): a digital Voronoi diagram of the points on a grid (3D PBA), a working
+  /// set of neighbours for every point from the grid corners where its cell meets others (read
+  /// as a perturbed grid), a convex star for every point from its working set (beneath-beyond),
+  /// then star splaying until every star agrees with its neighbours' (Shewchuk), all on the
+  /// executor. Adds phases "digital_*" (grid, pba, working_sets, stars, splay, tetrahedra; the
+  /// splay's parts as "digital_splay.check", ".sort", ".take") and counters "digital_grid",
+  /// "sites", "sketch_missing", "digital_working_pairs", "digital_splay_rounds",
+  /// "digital_star_insertions", "digital_star_growths" (passes that gave new runs to stars
+  /// that outgrew theirs; a take gives them in its kernel while the room past the last run
+  /// lasts), "digital_splay_request_spills" (checks run again for
+  /// requests past the round's buffer) and "digital_fallback" (1 where stars
+  /// grew too large to splay on the executor, as on the hull planes of integer grids: the
+  /// incremental method then ran, and its phases follow).
   Method method = Method::Incremental;
-  // Method::Digital: the grid's side along the points' longest extent (16..1024; 0 chooses
-  // it from the point count, about 32 grid cells a point, and doubles it once where more than
-  // a tenth of the points share a cell: counter "digital_grid_refined").
+  /// Method::Digital: the grid's side along the points' longest extent (16..1024; 0 chooses
+  /// it from the point count, about 32 grid cells a point, and doubles it once where more than
+  /// a tenth of the points share a cell: counter "digital_grid_refined").
   std::int64_t grid = 0;
 };
 
+/// The result of delaunay3d: tetrahedra, neighbours, duplicates and hull facets, in host memory.
 struct Triangulation3d {
-  // Positively oriented tetrahedra (orient3d > 0), 4 input-point indices each.
+  /// Positively oriented tetrahedra (orient3d > 0), 4 input-point indices each.
   HostVector<std::int32_t> tetrahedra;
-  // neighbors[4*i + k]: the tetrahedron opposite vertex k of tetrahedron i, -1 on the hull
-  // (SciPy's convention).
+  /// neighbors[4*i + k]: the tetrahedron opposite vertex k of tetrahedron i, -1 on the hull
+  /// (SciPy's convention).
   HostVector<std::int32_t> neighbors;
-  // One entry per input point: -1 when the point is a vertex, else the index of the earlier
-  // point with the same coordinates, which is the one used.
+  /// One entry per input point: -1 when the point is a vertex, else the index of the earlier
+  /// point with the same coordinates, which is the one used.
   HostVector<std::int32_t> duplicate_of;
   std::int64_t num_duplicates = 0;
-  // The hull facets: 3 input indices each, counter-clockwise seen from outside.
+  /// The hull facets: 3 input indices each, counter-clockwise seen from outside.
   HostVector<std::int32_t> hull_facets;
-  // One entry per input point: a tetrahedron having it as a vertex (a duplicate: that of the
-  // point it duplicates).
+  /// One entry per input point: a tetrahedron having it as a vertex (a duplicate: that of the
+  /// point it duplicates).
   HostVector<std::int32_t> vertex_to_simplex;
-  // Stats: phases "prepare", "insert_flip", "find_failed", "splay" (phase 2, star splaying on
-  // the executor), "drop_flats", "output"; counters "points", "distinct_points", "duplicates",
-  // "batches", "flip_rounds", "flips23", "flips32", "unflippable_tests", "failed_faces",
-  // "failed_vertices", "flat_tetrahedra" (removed from the hull), "stars_built", "stars_changed",
-  // "star_insertions", "splay_rounds", "splay_removed", "splay_added", "device_bytes_phase1"
-  // (phase 1's arrays at their largest), "device_peak_bytes" (CUDA: the call's device peak),
-  // "slots_used", "slots_capacity" (of the tetrahedron store), phase 1's sizing ("halts",
-  // "max_list", "max_epoch_records", "max_free_slots", "max_splits", "list_capacity",
-  // "log_capacity", "ring_capacity", "round_chunks", "team_launches", "carried_batches": batches
-  // whose short flip list went on in the next batch's rounds), and times in
-  // microseconds "us_*" (phase 1: choosing and splitting, flip rounds as kernels and in one
-  // block; phase 2: building stars, splaying rounds, checks, takes, patch).
-  // Every array, and phase 1's counters, are the same run after run, on any thread count and on
-  // both executors (the same tetrahedra in the same order, with the same neighbours).
+  /// Stats: phases "prepare", "insert_flip", "find_failed", "splay" (phase 2, star splaying on
+  /// the executor), "drop_flats", "output"; counters "points", "distinct_points", "duplicates",
+  /// "batches", "flip_rounds", "flips23", "flips32", "unflippable_tests", "failed_faces",
+  /// "failed_vertices", "flat_tetrahedra" (removed from the hull), "stars_built", "stars_changed",
+  /// "star_insertions", "splay_rounds", "splay_removed", "splay_added", "device_bytes_phase1"
+  /// (phase 1's arrays at their largest), "device_peak_bytes" (CUDA: the call's device peak),
+  /// "slots_used", "slots_capacity" (of the tetrahedron store), phase 1's sizing ("halts",
+  /// "max_list", "max_epoch_records", "max_free_slots", "max_splits", "list_capacity",
+  /// "log_capacity", "ring_capacity", "round_chunks", "team_launches", "carried_batches": batches
+  /// whose short flip list went on in the next batch's rounds), and times in
+  /// microseconds "us_*" (phase 1: choosing and splitting, flip rounds as kernels and in one
+  /// block; phase 2: building stars, splaying rounds, checks, takes, patch).
+  /// Every array, and phase 1's counters, are the same run after run, on any thread count and on
+  /// both executors (the same tetrahedra in the same order, with the same neighbours).
   Stats stats;
-  // Tetrahedra and hull facets written (also where they went into the caller's arrays).
+  /// Tetrahedra and hull facets written (also where they went into the caller's arrays).
   std::int64_t tetrahedron_count = 0, hull_facet_count = 0;
+  /// The number of tetrahedra.
   std::size_t num_tetrahedra() const { return std::size_t(tetrahedron_count); }
 };
 
-// xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
-// outside the exactly representable range, or more than 1.4·10^8 points (the store's 32-bit
-// neighbour encoding addresses 2^30 - 1 tetrahedra, about 7.3 a point with the dead and
-// infinite ones); Error(OutOfMemory), before any launch, where the device's free memory is
-// below what the points certainly need (the bytes needed and free in the message);
-// Error(DegenerateInput)
-// naming the case for fewer than 4 distinct points or all points on one line or one plane.
+/// xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
+/// outside the exactly representable range, or more than 1.4·10^8 points (the store's 32-bit
+/// neighbour encoding addresses 2^30 - 1 tetrahedra, about 7.3 a point with the dead and
+/// infinite ones); Error(OutOfMemory), before any launch, where the device's free memory is
+/// below what the points certainly need (the bytes needed and free in the message);
+/// Error(DegenerateInput)
+/// naming the case for fewer than 4 distinct points or all points on one line or one plane.
 Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt = {});
+/// The same for a vector of points.
 Triangulation3d delaunay3d(const std::vector<Point3>& pts, const Delaunay3dOptions& opt = {});
 
-// The same tetrahedralisation with the points already on the GPU and the result left there:
-// device_xyz is device memory holding n points, x, y and z interleaved, on opt.device. The work
-// runs on opt.stream (see RunOptions), so the points must be ready in that stream's order; the
-// call returns once the result is ready; both phases run on the device. The arrays are the
-// library's device memory, freed when the last copy of their pointer goes (they can be wrapped
-// without copying, e.g. by CuPy), or the caller's (opt.into). With opt.backend == Backend::Cpu the
-// CPU executor runs it on host memory (the same result); otherwise CUDA runs it, whatever
-// GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA device can be used (and the CPU was
-// not asked for), and as delaunay3d otherwise.
+/// The result of delaunay3d_device: arrays in device memory (host memory on the CPU executor).
 struct DeviceTriangulation3d {
   std::int64_t num_points = 0, num_tetrahedra = 0, num_duplicates = 0, num_hull_facets = 0;
-  std::shared_ptr<std::int32_t> tetrahedra;         // 4 * num_tetrahedra, as Triangulation3d's
-  std::shared_ptr<std::int32_t> neighbors;          // 4 * num_tetrahedra
-  std::shared_ptr<std::int32_t> duplicate_of;       // num_points
-  std::shared_ptr<std::int32_t> vertex_to_simplex;  // num_points
-  std::shared_ptr<std::int32_t> hull_facets;        // 3 * num_hull_facets
-  Backend backend = Backend::Cuda;  // where the arrays are: Cuda = device memory, Cpu = host
+  std::shared_ptr<std::int32_t> tetrahedra;         ///< 4 * num_tetrahedra, as Triangulation3d's
+  std::shared_ptr<std::int32_t> neighbors;          ///< 4 * num_tetrahedra
+  std::shared_ptr<std::int32_t> duplicate_of;       ///< num_points
+  std::shared_ptr<std::int32_t> vertex_to_simplex;  ///< num_points
+  std::shared_ptr<std::int32_t> hull_facets;        ///< 3 * num_hull_facets
+  Backend backend = Backend::Cuda;  ///< where the arrays are: Cuda = device memory, Cpu = host
   Stats stats;
 };
+/// The same tetrahedralisation with the points already on the GPU and the result left there:
+/// device_xyz is device memory holding n points, x, y and z interleaved, on opt.device. The work
+/// runs on opt.stream (see RunOptions), so the points must be ready in that stream's order; the
+/// call returns once the result is ready; both phases run on the device. The arrays are the
+/// library's device memory, freed when the last copy of their pointer goes (they can be wrapped
+/// without copying, e.g. by CuPy), or the caller's (opt.into). With opt.backend == Backend::Cpu the
+/// CPU executor runs it on host memory (the same result); otherwise CUDA runs it, whatever
+/// GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA device can be used (and the CPU
+/// was not asked for), and as delaunay3d otherwise.
 DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n,
                                         const Delaunay3dOptions& opt = {});
 
-// A 3D Delaunay tetrahedralisation that follows its points (issue 47): kept on the executor
-// between calls, it takes new points and is brought up to date from where it was, not rebuilt.
-// After any sequence of calls it is exactly the tetrahedralisation delaunay3d gives for all the
-// points so far: the same tetrahedra with the same neighbours and hull facets (their order in
-// the arrays may differ), degenerate input included, as the symbolic perturbation depends on the
-// points alone (docs/design-notes.md). Points keep the indices they were given: the first
-// call's are 0 .. n - 1, each insert's follow on. A point equal to an earlier one (given before
-// or in the same call) is not a vertex; duplicate_of names the earliest, as delaunay3d's does.
-//
-// The state lives where the executor runs: device memory of opt.device on CUDA (the device is
-// fixed at construction; the work runs on opt.stream, which must outlive the object), host
-// memory on the CPU executor. Calls on one object must not overlap; separate objects are
-// independent. A call that throws leaves the object as it was (a moved-from object may only be
-// assigned or destroyed). Today an insertion still sorts all points again (the one global step
-// left; the tetrahedralisation itself is only repaired where the new points fall):
-// docs/performance.md has what it costs.
+/// A 3D Delaunay tetrahedralisation that follows its points (issue 47): kept on the executor
+/// between calls, it takes new points and is brought up to date from where it was, not rebuilt.
+/// After any sequence of calls it is exactly the tetrahedralisation delaunay3d gives for all the
+/// points so far: the same tetrahedra with the same neighbours and hull facets (their order in
+/// the arrays may differ), degenerate input included, as the symbolic perturbation depends on the
+/// points alone (docs/design-notes.md). Points keep the indices they were given: the first
+/// call's are 0 .. n - 1, each insert's follow on. A point equal to an earlier one (given before
+/// or in the same call) is not a vertex; duplicate_of names the earliest, as delaunay3d's does.
+///
+/// The state lives where the executor runs: device memory of opt.device on CUDA (the device is
+/// fixed at construction; the work runs on opt.stream, which must outlive the object), host
+/// memory on the CPU executor. Calls on one object must not overlap; separate objects are
+/// independent. A call that throws leaves the object as it was (a moved-from object may only be
+/// assigned or destroyed). Today an insertion still sorts all points again (the one global step
+/// left; the tetrahedralisation itself is only repaired where the new points fall):
+/// docs/performance.md has what it costs.
 class DynamicDelaunay3d {
  public:
-  // Tetrahedralises n host points (x, y and z interleaved) on the executor opt picks. Throws as
-  // delaunay3d; Error(Unsupported) for Method::Digital or opt.into (results are read with
-  // tetrahedralisation()). opt.progress is called during every later insertion too.
+  /// Tetrahedralises n host points (x, y and z interleaved) on the executor opt picks. Throws as
+  /// delaunay3d; Error(Unsupported) for Method::Digital or opt.into (results are read with
+  /// tetrahedralisation()). opt.progress is called during every later insertion too.
   DynamicDelaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt = {});
-  // The same from points in executor memory (device memory, as delaunay3d_device takes them;
-  // host memory with opt.backend == Backend::Cpu).
+  /// The same from points in executor memory (device memory, as delaunay3d_device takes them;
+  /// host memory with opt.backend == Backend::Cpu).
   static DynamicDelaunay3d from_device(const double* device_xyz, std::int64_t n,
                                        const Delaunay3dOptions& opt = {});
   DynamicDelaunay3d(DynamicDelaunay3d&&) noexcept;
   DynamicDelaunay3d& operator=(DynamicDelaunay3d&&) noexcept;
   ~DynamicDelaunay3d();
 
-  // Adds n points (host memory; insert_device: executor memory, as from_device), numbered
-  // num_points() on, and brings the tetrahedralisation up to date. Throws as delaunay3d for bad
-  // coordinates or too many points in all; the object is then unchanged.
+  /// Adds n points (host memory; insert_device: executor memory, as from_device), numbered
+  /// num_points() on, and brings the tetrahedralisation up to date. Throws as delaunay3d for bad
+  /// coordinates or too many points in all; the object is then unchanged.
   void insert(const double* xyz, std::int64_t n);
+  /// As insert, with the points in executor memory (device memory on CUDA, host memory with
+  /// Backend::Cpu).
   void insert_device(const double* device_xyz, std::int64_t n);
-  // New coordinates for every point (n == num_points(); host memory, or executor memory for
-  // move_device), and the tetrahedralisation brought up to date from the kept one: the vertices
-  // of tetrahedra that turned over (checked exactly) are taken out, their holes filled at the
-  // new places, the rest flipped (phase 1's rounds) and star-splayed until Delaunay, and those
-  // vertices inserted again (stats counters "move_rounds", "move_taken_out",
-  // "move_reinserted"). Where that would take out more than an eighth of the points, or where
-  // points came to coincide or to part, it is made afresh (stats counter "move_rebuilt"). Any
-  // displacement gives the right tetrahedralisation; only the time depends on how far the
-  // points moved. Throws as insert, and Error(InvalidArgument) for another count; the object is
-  // then unchanged.
+  /// New coordinates for every point (n == num_points(); host memory, or executor memory for
+  /// move_device), and the tetrahedralisation brought up to date from the kept one: the vertices
+  /// of tetrahedra that turned over (checked exactly) are taken out, their holes filled at the
+  /// new places, the rest flipped (phase 1's rounds) and star-splayed until Delaunay, and those
+  /// vertices inserted again (stats counters "move_rounds", "move_taken_out",
+  /// "move_reinserted"). Where that would take out more than an eighth of the points, or where
+  /// points came to coincide or to part, it is made afresh (stats counter "move_rebuilt"). Any
+  /// displacement gives the right tetrahedralisation; only the time depends on how far the
+  /// points moved. Throws as insert, and Error(InvalidArgument) for another count; the object is
+  /// then unchanged.
   void move(const double* xyz, std::int64_t n);
+  /// As move, with the coordinates in executor memory (device memory on CUDA, host memory with
+  /// Backend::Cpu).
   void move_device(const double* device_xyz, std::int64_t n);
-  // Removes the points with the given indices (count of them, each once, none removed before;
-  // host memory, or executor memory for remove_device) and brings the tetrahedralisation up to
-  // date. A removed point is no vertex but keeps its index: duplicate_of reads kRemovedPoint
-  // there (an equal point given before or after is a vertex in its place). The holes are filled
-  // with the tetrahedra of the tetrahedralisation of their own vertices that fit in them (the
-  // tetrahedra of the kept one without a removed vertex stay); where that cannot be done (too few
-  // such vertices, all in one plane) the points left are tetrahedralised afresh (stats counter
-  // "remove_rebuilt"). vertex_to_simplex is -1 at removed points. Throws Error(InvalidArgument) for
-  // a bad index list, and as the constructor where the points left have no tetrahedralisation; the
-  // object is then unchanged.
+  /// Removes the points with the given indices (count of them, each once, none removed before;
+  /// host memory, or executor memory for remove_device) and brings the tetrahedralisation up to
+  /// date. A removed point is no vertex but keeps its index: duplicate_of reads kRemovedPoint
+  /// there (an equal point given before or after is a vertex in its place). The holes are filled
+  /// with the tetrahedra of the tetrahedralisation of their own vertices that fit in them (the
+  /// tetrahedra of the kept one without a removed vertex stay); where that cannot be done (too few
+  /// such vertices, all in one plane) the points left are tetrahedralised afresh (stats counter
+  /// "remove_rebuilt"). vertex_to_simplex is -1 at removed points. Throws Error(InvalidArgument)
+  /// for a bad index list, and as the constructor where the points left have no tetrahedralisation;
+  /// the object is then unchanged.
   void remove(const std::int32_t* indices, std::int64_t count);
+  /// As remove, with the indices in executor memory (device memory on CUDA, host memory with
+  /// Backend::Cpu).
   void remove_device(const std::int32_t* device_indices, std::int64_t count);
 
-  std::int64_t num_points() const;  // every index given so far, removed ones included
+  std::int64_t num_points() const;  ///< every index given so far, removed ones included
+  /// Points removed so far.
   std::int64_t num_removed() const;
+  /// Tetrahedra of the current tetrahedralisation.
   std::int64_t num_tetrahedra() const;
+  /// Points equal to an earlier point (not vertices).
   std::int64_t num_duplicates() const;
-  Backend backend() const;  // the executor holding the state
-  // Copies of the current tetrahedralisation: host arrays as delaunay3d returns them, or new
-  // arrays in executor memory as delaunay3d_device returns them.
+  Backend backend() const;  ///< the executor holding the state
+  /// Copies of the current tetrahedralisation: host arrays as delaunay3d returns them, or new
+  /// arrays in executor memory as delaunay3d_device returns them.
   Triangulation3d tetrahedralisation() const;
+  /// The current tetrahedralisation in executor memory (copies of the kept arrays).
   DeviceTriangulation3d device_tetrahedralisation() const;
-  // Which tetrahedra the last update (insert, move or remove) changed (changes.hpp): per tetrahedra
-  // of the current results its index in the results before that update, or -1 where it is new, and
-  // the indices of those that went. Off by default: with track_changes(true), each update keeps
-  // the state it replaces until the next one (a second copy of the state, in the executor's
-  // memory); track_changes(false) frees it. changes() / device_changes() (executor memory, as
-  // device_tetrahedralisation's) throw Error(InvalidArgument) where no update ran with
-  // tracking on.
+  /// Which tetrahedra the last update (insert, move or remove) changed (changes.hpp): per
+  /// tetrahedra of the current results its index in the results before that update, or -1 where it
+  /// is new, and the indices of those that went. Off by default: with track_changes(true), each
+  /// update keeps the state it replaces until the next one (a second copy of the state, in the
+  /// executor's memory); track_changes(false) frees it. changes() / device_changes() (executor
+  /// memory, as device_tetrahedralisation's) throw Error(InvalidArgument) where no update ran with
+  /// tracking on.
   void track_changes(bool on = true);
+  /// Since track_changes: the tetrahedra that were removed and those added, in host memory.
   SimplexChanges changes() const;
+  /// As changes, in executor memory.
   DeviceSimplexChanges device_changes() const;
-  // Phases and counters of the last call that changed the points.
+  /// Phases and counters of the last call that changed the points.
   const Stats& stats() const;
 
  private:

@@ -8,17 +8,17 @@
 
 namespace gpugeom {
 
-// `data` points to the product of `shape` elements of `type`, in C order and native byte order:
-// host memory for the host entry points, device memory for the *_device ones (host memory again
-// where those run on the CPU executor).
+/// `data` points to the product of `shape` elements of `type`, in C order and native byte order:
+/// host memory for the host entry points, device memory for the *_device ones (host memory again
+/// where those run on the CPU executor).
 struct GridView {
   const void* data = nullptr;
   io::ScalarType type = io::ScalarType::U8;
   std::vector<std::int64_t> shape;
 };
 
-// A view of a grid read from a file (no copy). Throws Error(InvalidArgument) when its data does
-// not hold the bytes its shape and type need.
+/// A view of a grid read from a file (no copy). Throws Error(InvalidArgument) when its data does
+/// not hold the bytes its shape and type need.
 GridView view_of(const io::Grid& g);
 
 }  // namespace gpugeom

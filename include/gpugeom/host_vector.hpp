@@ -23,20 +23,24 @@
 namespace gpugeom {
 
 namespace detail {
-// Large blocks: anonymous pages mapped for the block, huge pages asked for, unmapped when freed
-// (never recycled through the C heap, so they come back untouched). Throws std::bad_alloc.
+/// Large blocks: anonymous pages mapped for the block, huge pages asked for, unmapped when freed
+/// (never recycled through the C heap, so they come back untouched). Throws std::bad_alloc.
 void* host_map(std::size_t bytes);
 void host_unmap(void* p, std::size_t bytes) noexcept;
 constexpr std::size_t kHostMapMin = std::size_t(2) << 20;
 }  // namespace detail
 
 template <class T>
+/// The allocator of HostVector: memory that is not zero-filled on allocation, so that the threads
+/// that write a result fault its pages in themselves.
 struct HostAllocator {
+  /// The element type.
   using value_type = T;
   HostAllocator() noexcept = default;
   template <class U>
   HostAllocator(const HostAllocator<U>&) noexcept {}
 
+  /// n elements, uninitialised.
   T* allocate(std::size_t n) {
     if (n > std::size_t(-1) / sizeof(T)) throw std::bad_alloc();
     const std::size_t bytes = n * sizeof(T);
@@ -44,6 +48,7 @@ struct HostAllocator {
     return static_cast<T*>(
         ::operator new(bytes, std::align_val_t(alignof(T) > 16 ? alignof(T) : 16)));
   }
+  /// Frees what allocate gave.
   void deallocate(T* p, std::size_t n) noexcept {
     const std::size_t bytes = n * sizeof(T);
     if (bytes >= detail::kHostMapMin)
@@ -51,11 +56,13 @@ struct HostAllocator {
     else
       ::operator delete(p, std::align_val_t(alignof(T) > 16 ? alignof(T) : 16));
   }
-  // Default construction of arithmetic elements does nothing: the library writes them all.
+  /// Default construction of arithmetic elements does nothing: the library writes them all.
+  /// Default-initialises (leaves trivial types unset: the point of the allocator).
   template <class U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
     ::new (static_cast<void*>(p)) U;
   }
+  /// Constructs from args, as std::allocator does.
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
@@ -71,14 +78,17 @@ struct HostAllocator {
 };
 
 template <class T>
+/// A std::vector whose growth leaves elements uninitialised: the host arrays of every result.
 using HostVector = std::vector<T, HostAllocator<T>>;
 
-// Element-wise comparison with a plain vector (tests and callers compare results with
-// expectations held in std::vector).
+/// Element-wise comparison with a plain vector (tests and callers compare results with
+/// expectations held in std::vector).
+/// Element-wise equality with a std::vector of another allocator.
 template <class T, class A, class = std::enable_if_t<!std::is_same_v<A, HostAllocator<T>>>>
 bool operator==(const HostVector<T>& a, const std::vector<T, A>& b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
 }
+/// Element-wise equality with a std::vector of another allocator.
 template <class T, class A, class = std::enable_if_t<!std::is_same_v<A, HostAllocator<T>>>>
 bool operator==(const std::vector<T, A>& a, const HostVector<T>& b) {
   return b == a;

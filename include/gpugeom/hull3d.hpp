@@ -20,159 +20,178 @@
 
 namespace gpugeom {
 
-// Arrays the caller provides for the results (OutBuffer, common.hpp; SciPy's `out=` pattern):
-// host memory for convex_hull3d, device memory for convex_hull3d_device (host memory where it
-// runs on the CPU executor). Their lengths depend on the result: triangles and neighbors at least
-// 3 times the facet count, equations 4 times, vertices at least the vertex count;
-// convex_hull3d_max_facets(n) facets and n vertices always suffice. They are checked once the
-// counts are known and before anything is written (Error(InvalidArgument) naming the array and
-// both lengths). An output written into a caller's array is empty (null) in the result.
+/// Arrays the caller provides for the results (OutBuffer, common.hpp; SciPy's `out=` pattern):
+/// host memory for convex_hull3d, device memory for convex_hull3d_device (host memory where it
+/// runs on the CPU executor). Their lengths depend on the result: triangles and neighbors at least
+/// 3 times the facet count, equations 4 times, vertices at least the vertex count;
+/// convex_hull3d_max_facets(n) facets and n vertices always suffice. They are checked once the
+/// counts are known and before anything is written (Error(InvalidArgument) naming the array and
+/// both lengths). An output written into a caller's array is empty (null) in the result.
 struct Hull3dBuffers {
   OutBuffer<std::int32_t> triangles, neighbors, vertices;
   OutBuffer<double> equations;
 };
 
+/// How convex_hull3d and convex_hull3d_device run (RunOptions), the method and the caller's output
+/// arrays.
 struct Hull3dOptions : RunOptions {
-  Hull3dBuffers into;  // optional
-  // The method (common.hpp): the result does not depend on it. Method::Digital is the thesis'
-  // DigiHull3D (4.4): the points with a cell on the six faces of a grid around them (a slice of
-  // their digital Voronoi diagram on each face) give a first hull; a digital depth test against
-  // it (six depth images, one pixel of tolerance, Lemma 4.10) keeps every point that may lie
-  // outside or on it; the hull of those is the hull. Both entries take it.
+  Hull3dBuffers into;  ///< optional
+  /// The method (common.hpp): the result does not depend on it. Method::Digital is the thesis'
+  /// DigiHull3D (4.4): the points with a cell on the six faces of a grid around them (a slice of
+  /// their digital Voronoi diagram on each face) give a first hull; a digital depth test against
+  /// it (six depth images, one pixel of tolerance, Lemma 4.10) keeps every point that may lie
+  /// outside or on it; the hull of those is the hull. Both entries take it.
   Method method = Method::Incremental;
-  // Method::Digital: the faces' grid side (16..8192; 0 chooses from the point count, at most
-  // 1024); the depth images have half as many pixels a side.
+  /// Method::Digital: the faces' grid side (16..8192; 0 chooses from the point count, at most
+  /// 1024); the depth images have half as many pixels a side.
   std::int64_t grid = 0;
 };
 
-// The most facets the hull of n points has (2n - 4, for n >= 4): sizes `into` ahead.
+/// The most facets the hull of n points has (2n - 4, for n >= 4): sizes `into` ahead.
 std::int64_t convex_hull3d_max_facets(std::int64_t n);
 
+/// The result of convex_hull3d: facets, their neighbours, the hull's vertices and its planes, in
+/// host memory.
 struct ConvexHull3d {
-  // Facets: 3 input-point indices each, counter-clockwise seen from outside.
+  /// Facets: 3 input-point indices each, counter-clockwise seen from outside.
   HostVector<std::int32_t> triangles;
-  // neighbors[3*i + k]: the facet across the edge opposite vertex k of facet i (the surface is
-  // closed: never -1).
+  /// neighbors[3*i + k]: the facet across the edge opposite vertex k of facet i (the surface is
+  /// closed: never -1).
   HostVector<std::int32_t> neighbors;
-  // The extreme points, as sorted input indices.
+  /// The extreme points, as sorted input indices.
   HostVector<std::int32_t> vertices;
-  // Plane of each facet as in Qhull / SciPy's `equations`: unit outward normal (a, b, c) and
-  // offset d, with a x + b y + c z + d <= 0 for every input point up to rounding (the planes
-  // are computed in floating point; the hull itself is exact).
+  /// Plane of each facet as in Qhull / SciPy's `equations`: unit outward normal (a, b, c) and
+  /// offset d, with a x + b y + c z + d <= 0 for every input point up to rounding (the planes
+  /// are computed in floating point; the hull itself is exact).
   HostVector<double> equations;
-  // Stats: phases "upload" (CUDA), "sort" (validation, curve order, copies merged),
-  // "prepare", "construct", "flip", "extreme_test", "input_indices",
-  // "copy_back" (CUDA), "planes"; counters "duplicates", "insert_rounds", "flip_rounds",
-  // "flips22", "flips31", "labelled_nonextreme", "exact_predicates", "first_pass_vertices",
-  // "nonextreme_vertices_dropped", "passes" (2 when the extreme points needed a hull of their
-  // own). Method::Digital adds phases "digital_slices", "digital_sketch_hull",
-  // "digital_depth_test" and counters "digital_grid", "digital_render", "sketch_points",
-  // "sketch_facets", "depth_kept", "hull_input" (the points the last hull was computed from),
-  // "digital_fallback" (1 where the sketch had no hull: the incremental method ran).
+  /// Stats: phases "upload" (CUDA), "sort" (validation, curve order, copies merged),
+  /// "prepare", "construct", "flip", "extreme_test", "input_indices",
+  /// "copy_back" (CUDA), "planes"; counters "duplicates", "insert_rounds", "flip_rounds",
+  /// "flips22", "flips31", "labelled_nonextreme", "exact_predicates", "first_pass_vertices",
+  /// "nonextreme_vertices_dropped", "passes" (2 when the extreme points needed a hull of their
+  /// own). Method::Digital adds phases "digital_slices", "digital_sketch_hull",
+  /// "digital_depth_test" and counters "digital_grid", "digital_render", "sketch_points",
+  /// "sketch_facets", "depth_kept", "hull_input" (the points the last hull was computed from),
+  /// "digital_fallback" (1 where the sketch had no hull: the incremental method ran).
   Stats stats;
-  // Facets and extreme points written (also where they went into the caller's arrays).
+  /// Facets and extreme points written (also where they went into the caller's arrays).
   std::int64_t facet_count = 0, vertex_count = 0;
+  /// The number of facets.
   std::size_t num_facets() const { return std::size_t(facet_count); }
 };
 
-// xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
-// outside the exactly representable range, more than 2^31 - 2 points, or a hull of more than
-// 2^28 extreme points (the facets' neighbour encoding; found while the hull grows);
-// Error(OutOfMemory) with the bytes needed and free where the GPU's memory runs out;
-// Error(DegenerateInput) naming the case when all points coincide, lie on one line or on one
-// plane (which includes fewer than 4 distinct points).
+/// xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates
+/// outside the exactly representable range, more than 2^31 - 2 points, or a hull of more than
+/// 2^28 extreme points (the facets' neighbour encoding; found while the hull grows);
+/// Error(OutOfMemory) with the bytes needed and free where the GPU's memory runs out;
+/// Error(DegenerateInput) naming the case when all points coincide, lie on one line or on one
+/// plane (which includes fewer than 4 distinct points).
 ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOptions& opt = {});
+/// The same for a vector of points.
 ConvexHull3d convex_hull3d(const std::vector<Point3>& pts, const Hull3dOptions& opt = {});
 
-// The same hull with the points already on the GPU and the result left there: device_xyz is
-// device memory holding n points on opt.device, ready in opt.stream's order (see RunOptions; work
-// on the legacy default stream always is); the call returns once the result is ready, and waits
-// for nothing else on the device. The arrays are the library's device memory, freed when the last
-// copy of their pointer goes, or the caller's (opt.into). With opt.backend == Backend::Cpu the CPU
-// executor runs it on host memory (the same result); otherwise CUDA runs it, whatever
-// GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA device can be used (and the CPU
-// was not asked for), and as convex_hull3d otherwise.
+/// The result of convex_hull3d_device: arrays in device memory (host memory on the CPU executor).
 struct DeviceHull3d {
   std::int64_t num_points = 0, num_facets = 0, num_vertices = 0;
-  std::shared_ptr<std::int32_t> triangles;  // 3 * num_facets, as ConvexHull3d's
-  std::shared_ptr<std::int32_t> neighbors;  // 3 * num_facets
-  std::shared_ptr<std::int32_t> vertices;   // num_vertices
-  std::shared_ptr<double> equations;        // 4 * num_facets
-  Backend backend = Backend::Cuda;          // where the arrays are: Cuda = device memory
+  std::shared_ptr<std::int32_t> triangles;  ///< 3 * num_facets, as ConvexHull3d's
+  std::shared_ptr<std::int32_t> neighbors;  ///< 3 * num_facets
+  std::shared_ptr<std::int32_t> vertices;   ///< num_vertices
+  std::shared_ptr<double> equations;        ///< 4 * num_facets
+  Backend backend = Backend::Cuda;          ///< where the arrays are: Cuda = device memory
   Stats stats;
 };
+/// The same hull with the points already on the GPU and the result left there: device_xyz is
+/// device memory holding n points on opt.device, ready in opt.stream's order (see RunOptions; work
+/// on the legacy default stream always is); the call returns once the result is ready, and waits
+/// for nothing else on the device. The arrays are the library's device memory, freed when the last
+/// copy of their pointer goes, or the caller's (opt.into). With opt.backend == Backend::Cpu the CPU
+/// executor runs it on host memory (the same result); otherwise CUDA runs it, whatever
+/// GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA device can be used (and the CPU
+/// was not asked for), and as convex_hull3d otherwise.
 DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
                                   const Hull3dOptions& opt = {});
 
-// A 3D convex hull that follows its points (issue 47): kept on the executor between calls, it
-// takes new points, new coordinates and removals. After any sequence of calls it is exactly the
-// hull convex_hull3d gives for the points there are (removed ones left out): the same facets with
-// the same neighbours and extreme points (the facets' order in the arrays may differ, and with it
-// where each facet starts, so its plane may differ by rounding).
-// Points keep the indices they were given: the first call's are 0 .. n - 1, each insert's follow
-// on; a removed point keeps its index and is never a vertex.
-//
-// What each call costs: an insertion makes the hull of the old hull's vertices and those new points
-// not strictly inside the old hull only (a point that is not extreme stays so when points join),
-// so it does not grow with the points inside, and where every new point is inside no hull is
-// made (stats counter "outside_points"); a removal that takes no vertex changes nothing, one that
-// does makes the hull of all points left; a move makes the hull of all the moved points. Stats
-// counter "hull_candidates" says how many points the last hull was made from.
-//
-// The state lives where the executor runs: device memory of opt.device on CUDA (fixed at
-// construction; the work runs on opt.stream, which must outlive the object), host memory on the
-// CPU executor. Calls on one object must not overlap; separate objects are independent. A call
-// that throws leaves the object as it was (a moved-from object may only be assigned or
-// destroyed). opt.method is used for every hull made (the result does not depend on it).
+/// A 3D convex hull that follows its points (issue 47): kept on the executor between calls, it
+/// takes new points, new coordinates and removals. After any sequence of calls it is exactly the
+/// hull convex_hull3d gives for the points there are (removed ones left out): the same facets with
+/// the same neighbours and extreme points (the facets' order in the arrays may differ, and with it
+/// where each facet starts, so its plane may differ by rounding).
+/// Points keep the indices they were given: the first call's are 0 .. n - 1, each insert's follow
+/// on; a removed point keeps its index and is never a vertex.
+///
+/// What each call costs: an insertion makes the hull of the old hull's vertices and those new
+/// points not strictly inside the old hull only (a point that is not extreme stays so when points
+/// join), so it does not grow with the points inside, and where every new point is inside no hull
+/// is made (stats counter "outside_points"); a removal that takes no vertex changes nothing, one
+/// that does makes the hull of all points left; a move makes the hull of all the moved points.
+/// Stats counter "hull_candidates" says how many points the last hull was made from.
+///
+/// The state lives where the executor runs: device memory of opt.device on CUDA (fixed at
+/// construction; the work runs on opt.stream, which must outlive the object), host memory on the
+/// CPU executor. Calls on one object must not overlap; separate objects are independent. A call
+/// that throws leaves the object as it was (a moved-from object may only be assigned or
+/// destroyed). opt.method is used for every hull made (the result does not depend on it).
 class DynamicHull3d {
  public:
-  // The hull of n host points (x, y and z interleaved) on the executor opt picks. Throws as
-  // convex_hull3d; Error(Unsupported) for opt.into (results are read with hull()).
+  /// The hull of n host points (x, y and z interleaved) on the executor opt picks. Throws as
+  /// convex_hull3d; Error(Unsupported) for opt.into (results are read with hull()).
   DynamicHull3d(const double* xyz, std::int64_t n, const Hull3dOptions& opt = {});
-  // The same from points in executor memory (device memory, as convex_hull3d_device takes them;
-  // host memory with opt.backend == Backend::Cpu).
+  /// The same from points in executor memory (device memory, as convex_hull3d_device takes them;
+  /// host memory with opt.backend == Backend::Cpu).
   static DynamicHull3d from_device(const double* device_xyz, std::int64_t n,
                                    const Hull3dOptions& opt = {});
   DynamicHull3d(DynamicHull3d&&) noexcept;
   DynamicHull3d& operator=(DynamicHull3d&&) noexcept;
   ~DynamicHull3d();
 
-  // Adds n points (host memory; insert_device: executor memory, as from_device), numbered
-  // num_points() on. Throws as convex_hull3d for bad coordinates or too many points in all; the
-  // object is then unchanged.
+  /// Adds n points (host memory; insert_device: executor memory, as from_device), numbered
+  /// num_points() on. Throws as convex_hull3d for bad coordinates or too many points in all; the
+  /// object is then unchanged.
   void insert(const double* xyz, std::int64_t n);
+  /// As insert, with the points in executor memory (device memory on CUDA, host memory with
+  /// Backend::Cpu).
   void insert_device(const double* device_xyz, std::int64_t n);
-  // New coordinates for every point (n == num_points(); host memory, or executor memory for
-  // move_device). Throws as insert, Error(InvalidArgument) for another count, and
-  // Error(DegenerateInput) where the points (removed ones left out) came to lie on one plane;
-  // the object is then unchanged.
+  /// New coordinates for every point (n == num_points(); host memory, or executor memory for
+  /// move_device). Throws as insert, Error(InvalidArgument) for another count, and
+  /// Error(DegenerateInput) where the points (removed ones left out) came to lie on one plane;
+  /// the object is then unchanged.
   void move(const double* xyz, std::int64_t n);
+  /// As move, with the coordinates in executor memory (device memory on CUDA, host memory with
+  /// Backend::Cpu).
   void move_device(const double* device_xyz, std::int64_t n);
-  // Removes the points with the given indices (count of them, each once, none removed before;
-  // host memory, or executor memory for remove_device). Stats counter "removed_vertices": how
-  // many of them were vertices. Throws Error(InvalidArgument) for a bad index list and
-  // Error(DegenerateInput) where the points left have no hull (fewer than 4, or all on one
-  // plane); the object is then unchanged.
+  /// Removes the points with the given indices (count of them, each once, none removed before;
+  /// host memory, or executor memory for remove_device). Stats counter "removed_vertices": how
+  /// many of them were vertices. Throws Error(InvalidArgument) for a bad index list and
+  /// Error(DegenerateInput) where the points left have no hull (fewer than 4, or all on one
+  /// plane); the object is then unchanged.
   void remove(const std::int32_t* indices, std::int64_t count);
+  /// As remove, with the indices in executor memory (device memory on CUDA, host memory with
+  /// Backend::Cpu).
   void remove_device(const std::int32_t* device_indices, std::int64_t count);
 
-  std::int64_t num_points() const;  // every index given so far, removed ones included
+  std::int64_t num_points() const;  ///< every index given so far, removed ones included
+  /// Points removed so far.
   std::int64_t num_removed() const;
+  /// Facets of the current hull.
   std::int64_t num_facets() const;
+  /// Vertices of the current hull (extreme points).
   std::int64_t num_vertices() const;
-  Backend backend() const;  // the executor holding the state
-  // Copies of the current hull: host arrays as convex_hull3d returns them, or new arrays in
-  // executor memory as convex_hull3d_device returns them.
+  Backend backend() const;  ///< the executor holding the state
+  /// Copies of the current hull: host arrays as convex_hull3d returns them, or new arrays in
+  /// executor memory as convex_hull3d_device returns them.
   ConvexHull3d hull() const;
+  /// The current hull in executor memory (copies of the kept arrays).
   DeviceHull3d device_hull() const;
-  // Which facets the last update (insert, move or remove) changed (changes.hpp), as
-  // DynamicDelaunay3d's: off by default; with track_changes(true) each update keeps the arrays it
-  // replaces until the next one. changes() / device_changes() throw Error(InvalidArgument) where
-  // no update ran with tracking on.
+  /// Which facets the last update (insert, move or remove) changed (changes.hpp), as
+  /// DynamicDelaunay3d's: off by default; with track_changes(true) each update keeps the arrays it
+  /// replaces until the next one. changes() / device_changes() throw Error(InvalidArgument) where
+  /// no update ran with tracking on.
   void track_changes(bool on = true);
+  /// Since track_changes: the facets that were removed and those added, in host memory.
   SimplexChanges changes() const;
+  /// As changes, in executor memory.
   DeviceSimplexChanges device_changes() const;
-  // Phases and counters of the last call that changed the points.
+  /// Phases and counters of the last call that changed the points.
   const Stats& stats() const;
 
  private:

@@ -18,13 +18,13 @@
 
 namespace gpugeom {
 
-// xy: n points (x, y interleaved); triangles / neighbors: 3 per triangle; queries: m points.
-// Throws Error(InvalidInput) for NaN/Inf queries or indices outside [0, n).
+/// xy: n points (x, y interleaved); triangles / neighbors: 3 per triangle; queries: m points.
+/// Throws Error(InvalidInput) for NaN/Inf queries or indices outside [0, n).
 HostVector<std::int32_t> find_simplex2d(const double* xy, std::int64_t n,
                                         const std::int32_t* triangles,
                                         const std::int32_t* neighbors, std::int64_t num_triangles,
                                         const double* queries, std::int64_t m, int threads = 0);
-// xyz: n points; tetrahedra / neighbors: 4 per tetrahedron; queries: m points (x, y, z).
+/// xyz: n points; tetrahedra / neighbors: 4 per tetrahedron; queries: m points (x, y, z).
 HostVector<std::int32_t> find_simplex3d(const double* xyz, std::int64_t n,
                                         const std::int32_t* tetrahedra,
                                         const std::int32_t* neighbors, std::int64_t num_tetrahedra,

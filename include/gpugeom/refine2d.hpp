@@ -34,97 +34,104 @@
 
 namespace gpugeom {
 
-// The largest smallest-angle bound accepted (Triangle's: above it refinement need not end).
+/// The largest smallest-angle bound accepted (Triangle's: above it refinement need not end).
 constexpr double kRefineMaxAngle = 33.8;
 
-// A sizing field given as samples on a regular grid: values[r * cols + c] is the largest area
-// allowed at (x0 + c * (x1 - x0) / (cols - 1), y0 + r * (y1 - y0) / (rows - 1)), bilinear in
-// between and clamped to the grid outside it. A triangle is too large when its area exceeds the
-// field at its centroid.
+/// A sizing field given as samples on a regular grid: values[r * cols + c] is the largest area
+/// allowed at (x0 + c * (x1 - x0) / (cols - 1), y0 + r * (y1 - y0) / (rows - 1)), bilinear in
+/// between and clamped to the grid outside it. A triangle is too large when its area exceeds the
+/// field at its centroid.
 struct AreaGrid {
   std::vector<double> values;
   std::int64_t rows = 0, cols = 0;
   double x0 = 0, y0 = 0, x1 = 1, y1 = 1;
 };
 
+/// How refine2d meshes a domain: the smallest angle, the largest area (a number, per region or a
+/// function), the Steiner point limit, and the domain's options (Cdt2dOptions).
 struct Refine2dOptions : Cdt2dOptions {
-  // Degrees, 0 < min_angle <= kRefineMaxAngle; 0 turns the angle bound off (-a alone).
+  /// Degrees, 0 < min_angle <= kRefineMaxAngle; 0 turns the angle bound off (-a alone).
   double min_angle = 20;
-  // The largest triangle area anywhere (0: none); per region, Cdt2dRegion::max_area.
+  /// The largest triangle area anywhere (0: none); per region, Cdt2dRegion::max_area.
   double max_area = 0;
-  AreaGrid area_grid;  // (empty: none)
-  // A sizing function of position, called on the host at triangle centroids (host entry only):
-  // the largest area allowed there (<= 0 or not finite: no bound).
+  AreaGrid area_grid;  ///< (empty: none)
+  /// A sizing function of position, called on the host at triangle centroids (host entry only):
+  /// the largest area allowed there (<= 0 or not finite: no bound).
   std::function<double(double, double)> max_area_at;
-  // Triangle's -S: at most this many Steiner points (-1: no limit); the bad triangles left are
-  // reported in small_angles / large_triangles.
+  /// Triangle's -S: at most this many Steiner points (-1: no limit); the bad triangles left are
+  /// reported in small_angles / large_triangles.
   std::int64_t max_steiner_points = -1;
 };
 
-// Why a triangle kept an angle below the bound.
+/// Why a triangle kept an angle below the bound.
 enum class SmallAngle : std::int8_t {
-  InputAngle = 1,  // its smallest angle lies between two segments at an input vertex
-  Shell = 2,       // its shortest edge joins the two shell vertices of a small input angle
-  Limit = 3,       // max_steiner_points was reached, or no double lies where the point belongs
+  InputAngle = 1,  ///< its smallest angle lies between two segments at an input vertex
+  Shell = 2,       ///< its shortest edge joins the two shell vertices of a small input angle
+  Limit = 3,       ///< max_steiner_points was reached, or no double lies where the point belongs
 };
 
+/// The result of refine2d: points (input and Steiner), triangles, neighbours, segments and the
+/// triangles the bounds could not reach, in host memory.
 struct RefinedMesh2d {
-  // Every vertex, x and y: the input points (their indices kept; with Crossings::Split the
-  // crossing vertices follow them), then the Steiner points in the order they were added.
+  /// Every vertex, x and y: the input points (their indices kept; with Crossings::Split the
+  /// crossing vertices follow them), then the Steiner points in the order they were added.
   HostVector<double> points;
-  std::int64_t num_input_points = 0;  // input points and crossing vertices
-  // Counter-clockwise triangles in point indices, the neighbour opposite vertex k (-1 on the
-  // boundary), and the segment the edge opposite vertex k lies on: an input segment's index,
-  // kHullSegment for a convex hull edge taken as a segment, -1 for none.
+  std::int64_t num_input_points = 0;  ///< input points and crossing vertices
+  /// Counter-clockwise triangles in point indices, the neighbour opposite vertex k (-1 on the
+  /// boundary), and the segment the edge opposite vertex k lies on: an input segment's index,
+  /// kHullSegment for a convex hull edge taken as a segment, -1 for none.
   HostVector<std::int32_t> triangles, neighbors, segment_of;
   static constexpr std::int32_t kHullSegment = -2;
-  // As cdt2d's: -1 for a vertex, else the earlier point with the same coordinates.
+  /// As cdt2d's: -1 for a vertex, else the earlier point with the same coordinates.
   HostVector<std::int32_t> duplicate_of;
-  HostVector<double> attribute;  // one per triangle, with regions
-  // Triangles left with an angle below min_angle (indices into triangles) and why.
+  HostVector<double> attribute;  ///< one per triangle, with regions
+  /// Triangles left with an angle below min_angle (indices into triangles) and why.
   HostVector<std::int32_t> small_angles;
-  HostVector<std::int8_t> small_angle_reasons;  // SmallAngle values
-  // Triangles left larger than their bound (only when max_steiner_points stopped refinement).
+  HostVector<std::int8_t> small_angle_reasons;  ///< SmallAngle values
+  /// Triangles left larger than their bound (only when max_steiner_points stopped refinement).
   HostVector<std::int32_t> large_triangles;
-  // The subsegments: every edge on a segment once (point index pairs, in the order of the
-  // half-edges 3 t + k of the triangle with the lower index), and the segment each lies on (as
-  // segment_of: an input segment, or kHullSegment).
+  /// The subsegments: every edge on a segment once (point index pairs, in the order of the
+  /// half-edges 3 t + k of the triangle with the lower index), and the segment each lies on (as
+  /// segment_of: an input segment, or kHullSegment).
   HostVector<std::int32_t> subsegments, subsegment_of;
   std::int64_t removed_triangles = 0;
-  // Phases "triangulate" (the input's constrained triangulation), "decide" and "insert" (the
-  // rounds' two steps: what goes in; inserting it and flipping), "output", then "refine" (all of
-  // them) and "to_host"; counters
-  // "rounds", "steiner_points", "segment_splits", "rejected_points" (new points not inserted
-  // because they would encroach upon a subsegment, which is split instead), "flips",
-  // "flip_passes", "triangles".
+  /// Phases "triangulate" (the input's constrained triangulation), "decide" and "insert" (the
+  /// rounds' two steps: what goes in; inserting it and flipping), "output", then "refine" (all of
+  /// them) and "to_host"; counters
+  /// "rounds", "steiner_points", "segment_splits", "rejected_points" (new points not inserted
+  /// because they would encroach upon a subsegment, which is split instead), "flips",
+  /// "flip_passes", "triangles".
   Stats stats;
+  /// The number of points.
   std::size_t num_points() const { return points.size() / 2; }
+  /// The number of triangles.
   std::size_t num_triangles() const { return triangles.size() / 3; }
 };
 
-// xy: n points; segments: nseg pairs of point indices. Throws Error(InvalidArgument) for a bound
-// out of range, and as cdt2d throws for the input.
+/// xy: n points; segments: nseg pairs of point indices. Throws Error(InvalidArgument) for a bound
+/// out of range, and as cdt2d throws for the input.
 RefinedMesh2d refine2d(const double* xy, std::int64_t n, const std::int32_t* segments,
                        std::int64_t nseg, const Refine2dOptions& opt = {});
 
-// The device entry: points and segments in the memory of the executor opt picks, the result left
-// there (arrays the caller then owns). Refuses Crossings::Split and max_area_at
-// (Error(InvalidArgument)): both run on the host, so call refine2d.
+/// The result of refine2d_device: arrays in device memory (host memory on the CPU executor).
 struct DeviceRefinedMesh2d {
   std::int64_t num_points = 0, num_input_points = 0, num_triangles = 0;
-  std::shared_ptr<double> points;                                  // 2 * num_points
-  std::shared_ptr<std::int32_t> triangles, neighbors, segment_of;  // 3 * num_triangles each
-  std::shared_ptr<std::int32_t> duplicate_of;                      // num_points
-  std::shared_ptr<double> attribute;                               // with regions
+  std::shared_ptr<double> points;                                  ///< 2 * num_points
+  std::shared_ptr<std::int32_t> triangles, neighbors, segment_of;  ///< 3 * num_triangles each
+  std::shared_ptr<std::int32_t> duplicate_of;                      ///< num_points
+  std::shared_ptr<double> attribute;                               ///< with regions
   std::int64_t num_subsegments = 0;
-  std::shared_ptr<std::int32_t> subsegments, subsegment_of;  // 2 and 1 per subsegment
-  // (host memory) as RefinedMesh2d's.
+  std::shared_ptr<std::int32_t> subsegments, subsegment_of;  ///< 2 and 1 per subsegment
+  /// (host memory) as RefinedMesh2d's.
   std::vector<std::int32_t> small_angles, large_triangles;
   std::vector<std::int8_t> small_angle_reasons;
   std::int64_t removed_triangles = 0;
   Backend backend = Backend::Cuda;
   Stats stats;
 };
+/// The device entry: points and segments in the memory of the executor opt picks, the result left
+/// there (arrays the caller then owns). Refuses Crossings::Split and max_area_at
+/// (Error(InvalidArgument)): both run on the host, so call refine2d.
 DeviceRefinedMesh2d refine2d_device(const double* device_xy, std::int64_t n,
                                     const std::int32_t* device_segments, std::int64_t nseg,
                                     const Refine2dOptions& opt = {});

@@ -10,56 +10,57 @@
 
 namespace gpugeom {
 
-// The Voronoi diagram of the points (issue 49), dual to their Delaunay tetrahedralisation, in
-// SciPy's `Voronoi` layout with flat arrays. Its vertices are the circumcentres of the
-// tetrahedra, one per sphere: tetrahedra whose points lie on one sphere exactly (the exact
-// in-sphere test) share a vertex, numbered in the order of their first tetrahedra. A ridge
-// separates two points whose cells share a face of positive area (an edge of the Delaunay
-// subdivision); edges that only cut a cospherical cell into tetrahedra have none, so no ridge is
-// degenerate.
+/// The Voronoi diagram of the points (issue 49), dual to their Delaunay tetrahedralisation, in
+/// SciPy's `Voronoi` layout with flat arrays. Its vertices are the circumcentres of the
+/// tetrahedra, one per sphere: tetrahedra whose points lie on one sphere exactly (the exact
+/// in-sphere test) share a vertex, numbered in the order of their first tetrahedra. A ridge
+/// separates two points whose cells share a face of positive area (an edge of the Delaunay
+/// subdivision); edges that only cut a cospherical cell into tetrahedra have none, so no ridge is
+/// degenerate.
 struct Voronoi3d {
-  HostVector<double> vertices;             // 3 per vertex
-  HostVector<std::int32_t> ridge_points;   // 2 per ridge: the points it separates
-  HostVector<std::int64_t> ridge_offsets;  // ridges + 1 offsets into ridge_vertices
-  // Each ridge's vertices in cyclic order; an unbounded ridge starts with -1 (the vertex at
-  // infinity), its first and last vertices then being where its two rays leave.
+  HostVector<double> vertices;             ///< 3 per vertex
+  HostVector<std::int32_t> ridge_points;   ///< 2 per ridge: the points it separates
+  HostVector<std::int64_t> ridge_offsets;  ///< ridges + 1 offsets into ridge_vertices
+  /// Each ridge's vertices in cyclic order; an unbounded ridge starts with -1 (the vertex at
+  /// infinity), its first and last vertices then being where its two rays leave.
   HostVector<std::int32_t> ridge_vertices;
-  // Per input point, its cell's vertices in increasing order, -1 first for an unbounded cell.
-  // Duplicate points share the cell of the point they duplicate; a point removed from a kept
-  // tetrahedralisation has an empty cell.
-  HostVector<std::int64_t> region_offsets;  // n + 1 offsets into region_vertices
+  /// Per input point, its cell's vertices in increasing order, -1 first for an unbounded cell.
+  /// Duplicate points share the cell of the point they duplicate; a point removed from a kept
+  /// tetrahedralisation has an empty cell.
+  HostVector<std::int64_t> region_offsets;  ///< n + 1 offsets into region_vertices
   HostVector<std::int32_t> region_vertices;
-  HostVector<std::int32_t> simplex_vertex;  // per tetrahedron, its Voronoi vertex
-  Stats stats;  // phase "voronoi"; counters "voronoi_vertices", "voronoi_ridges"
+  HostVector<std::int32_t> simplex_vertex;  ///< per tetrahedron, its Voronoi vertex
+  Stats stats;  ///< phase "voronoi"; counters "voronoi_vertices", "voronoi_ridges"
 };
-// From a tetrahedralisation on the host (delaunay3d's, its arrays in the result), computed on the
-// host threads. Throws Error(InvalidArgument) when tri does not belong to these n points.
+/// From a tetrahedralisation on the host (delaunay3d's, its arrays in the result), computed on the
+/// host threads. Throws Error(InvalidArgument) when tri does not belong to these n points.
 Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tri);
-// The tetrahedralisation of host points and its Voronoi diagram in one call, both made on the
-// executor opt picks: on CUDA the points cross the bus once and only the results come back
-// (voronoi3d(xyz, n, tri) computes the diagram on the host threads). tri, when given, receives
-// the tetrahedralisation (as delaunay3d returns it; opt.into is not used). Throws as delaunay3d.
+/// The tetrahedralisation of host points and its Voronoi diagram in one call, both made on the
+/// executor opt picks: on CUDA the points cross the bus once and only the results come back
+/// (voronoi3d(xyz, n, tri) computes the diagram on the host threads). tri, when given, receives
+/// the tetrahedralisation (as delaunay3d returns it; opt.into is not used). Throws as delaunay3d.
 Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                     Triangulation3d* tri = nullptr);
 
-// The same diagram for a tetrahedralisation left where delaunay3d_device or a kept one put it,
-// computed there (tri.backend's executor, run.stream of run.device): device_xyz its n points
-// (device memory; host memory where tri.backend is Backend::Cpu). The arrays as Voronoi3d's, in
-// the library's device memory (freed when the last copy of their pointer goes). Throws as
-// voronoi3d.
+/// The result of voronoi3d_device: arrays in device memory (host memory on the CPU executor).
 struct DeviceVoronoi3d {
   std::int64_t num_points = 0, num_vertices = 0, num_ridges = 0, num_ridge_vertices = 0,
                num_region_vertices = 0;
-  std::shared_ptr<double> vertices;               // 3 * num_vertices
-  std::shared_ptr<std::int32_t> ridge_points;     // 2 * num_ridges
-  std::shared_ptr<std::int64_t> ridge_offsets;    // num_ridges + 1
-  std::shared_ptr<std::int32_t> ridge_vertices;   // num_ridge_vertices
-  std::shared_ptr<std::int64_t> region_offsets;   // num_points + 1
-  std::shared_ptr<std::int32_t> region_vertices;  // num_region_vertices
-  std::shared_ptr<std::int32_t> simplex_vertex;   // tri.num_tetrahedra
-  Backend backend = Backend::Cuda;                // where the arrays are: Cuda = device memory
+  std::shared_ptr<double> vertices;               ///< 3 * num_vertices
+  std::shared_ptr<std::int32_t> ridge_points;     ///< 2 * num_ridges
+  std::shared_ptr<std::int64_t> ridge_offsets;    ///< num_ridges + 1
+  std::shared_ptr<std::int32_t> ridge_vertices;   ///< num_ridge_vertices
+  std::shared_ptr<std::int64_t> region_offsets;   ///< num_points + 1
+  std::shared_ptr<std::int32_t> region_vertices;  ///< num_region_vertices
+  std::shared_ptr<std::int32_t> simplex_vertex;   ///< tri.num_tetrahedra
+  Backend backend = Backend::Cuda;                ///< where the arrays are: Cuda = device memory
   Stats stats;
 };
+/// The same diagram for a tetrahedralisation left where delaunay3d_device or a kept one put it,
+/// computed there (tri.backend's executor, run.stream of run.device): device_xyz its n points
+/// (device memory; host memory where tri.backend is Backend::Cpu). The arrays as Voronoi3d's, in
+/// the library's device memory (freed when the last copy of their pointer goes). Throws as
+/// voronoi3d.
 DeviceVoronoi3d voronoi3d_device(const double* device_xyz, std::int64_t n,
                                  const DeviceTriangulation3d& tri, const RunOptions& run = {});
 

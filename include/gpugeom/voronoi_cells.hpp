@@ -10,65 +10,63 @@
 
 namespace gpugeom {
 
-// The box [lo, hi] and, per axis, whether it wraps round. Along an axis that does not wrap, the
-// cells are cut by the box's walls and the points must lie in [lo, hi]; along one that wraps,
-// a point's coordinate is taken modulo the box (any value is accepted) and its cell meets the
-// images of the points across the box's sides, as freud and Voro++ compute periodic cells.
+/// The box [lo, hi] and, per axis, whether it wraps round. Along an axis that does not wrap, the
+/// cells are cut by the box's walls and the points must lie in [lo, hi]; along one that wraps,
+/// a point's coordinate is taken modulo the box (any value is accepted) and its cell meets the
+/// images of the points across the box's sides, as freud and Voro++ compute periodic cells.
 struct VoronoiCellsOptions : RunOptions {
   double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
   bool periodic[3] = {false, false, false};
-  // The polygons: each cell's vertices and each face's vertex list. Without them (false) the
-  // measures, neighbours and face areas and normals come sooner (each cell is built once, not
-  // twice) and the polygon arrays are left empty.
+  /// The polygons: each cell's vertices and each face's vertex list. Without them (false) the
+  /// measures, neighbours and face areas and normals come sooner (each cell is built once, not
+  /// twice) and the polygon arrays are left empty.
   bool polygons = true;
 };
 
-// Every point's Voronoi cell within the box. The cells are the Voronoi diagram's (its
-// neighbours are the exact ridges of the Delaunay tetrahedralisation, voronoi3d.hpp), cut by the
-// walls of the box where it does not wrap. Their measures are computed in double precision: a
-// cell no wall cuts (in a periodic box, every cell) from the diagram's circumcentres round its
-// ridges; a cell a wall cuts from the box cut by its neighbours' bisector planes (a vertex within
-// 10^-12 of the cell's size from a plane counts as on it, so no face of area 10^-30 is left where
-// four cells meet at a point). Stats counter "cells_cut" says how many were cut.
-//
-// - Faces: per cell, in the order of their neighbours (walls first), counter-clockwise seen from
-//   outside. A face's neighbour is a point index, or a wall: -1 and -2 for the low and high x
-//   walls, -3, -4 for y, -5, -6 for z (Voro++'s numbering). In a periodic box a point can meet
-//   several images of one neighbour (and even of itself, in a box a few cells wide): one face
-//   each.
-// - A duplicate point (equal to an earlier one) has an empty cell: volume 0, no faces. The
-//   volumes of the others sum to the box's volume, up to rounding.
-// - Deterministic: the same arrays, bit for bit, on any thread count and on both executors.
+/// Every point's Voronoi cell within the box. The cells are the Voronoi diagram's (its
+/// neighbours are the exact ridges of the Delaunay tetrahedralisation, voronoi3d.hpp), cut by the
+/// walls of the box where it does not wrap. Their measures are computed in double precision: a
+/// cell no wall cuts (in a periodic box, every cell) from the diagram's circumcentres round its
+/// ridges; a cell a wall cuts from the box cut by its neighbours' bisector planes (a vertex within
+/// 10^-12 of the cell's size from a plane counts as on it, so no face of area 10^-30 is left where
+/// four cells meet at a point). Stats counter "cells_cut" says how many were cut.
+///
+/// - Faces: per cell, in the order of their neighbours (walls first), counter-clockwise seen from
+///   outside. A face's neighbour is a point index, or a wall: -1 and -2 for the low and high x
+///   walls, -3, -4 for y, -5, -6 for z (Voro++'s numbering). In a periodic box a point can meet
+///   several images of one neighbour (and even of itself, in a box a few cells wide): one face
+///   each.
+/// - A duplicate point (equal to an earlier one) has an empty cell: volume 0, no faces. The
+///   volumes of the others sum to the box's volume, up to rounding.
+/// - Deterministic: the same arrays, bit for bit, on any thread count and on both executors.
 struct VoronoiCells {
-  HostVector<double> volumes;    // n
-  HostVector<double> areas;      // n: each cell's surface area, walls included
-  HostVector<double> centroids;  // 3 n
-  // Per cell, its faces face_offsets[i] .. face_offsets[i + 1]; per face its neighbour, area,
-  // outward unit normal and vertices (face_vertex_offsets, into face_vertices: indices of
-  // `vertices`, each cell holding its own).
-  HostVector<std::int64_t> face_offsets;         // n + 1
-  HostVector<std::int32_t> neighbors;            // one per face
-  HostVector<double> face_areas;                 // one per face
-  HostVector<double> face_normals;               // 3 per face
-  HostVector<std::int64_t> face_vertex_offsets;  // faces + 1
+  HostVector<double> volumes;    ///< n
+  HostVector<double> areas;      ///< n: each cell's surface area, walls included
+  HostVector<double> centroids;  ///< 3 n
+  /// Per cell, its faces face_offsets[i] .. face_offsets[i + 1]; per face its neighbour, area,
+  /// outward unit normal and vertices (face_vertex_offsets, into face_vertices: indices of
+  /// `vertices`, each cell holding its own).
+  HostVector<std::int64_t> face_offsets;         ///< n + 1
+  HostVector<std::int32_t> neighbors;            ///< one per face
+  HostVector<double> face_areas;                 ///< one per face
+  HostVector<double> face_normals;               ///< 3 per face
+  HostVector<std::int64_t> face_vertex_offsets;  ///< faces + 1
   HostVector<std::int32_t> face_vertices;
-  HostVector<std::int64_t> vertex_offsets;  // n + 1: each cell's vertices in `vertices`
-  HostVector<double> vertices;              // 3 per vertex
-  // Phases "upload", "images" (the periodic images, each attempt), "delaunay", "ridges",
-  // "cells", "cells_write"; counters "images" (periodic images added, last attempt), "attempts"
-  // (a periodic box is tried with a wider layer of images while some cell reaches past it),
-  // "faces", "cells_cut" (cells a wall cuts, cut from the box), "cell_overflows" (of those, cells
-  // built again with more room than a thread keeps).
+  HostVector<std::int64_t> vertex_offsets;  ///< n + 1: each cell's vertices in `vertices`
+  HostVector<double> vertices;              ///< 3 per vertex
+  /// Phases "upload", "images" (the periodic images, each attempt), "delaunay", "ridges",
+  /// "cells", "cells_write"; counters "images" (periodic images added, last attempt), "attempts"
+  /// (a periodic box is tried with a wider layer of images while some cell reaches past it),
+  /// "faces", "cells_cut" (cells a wall cuts, cut from the box), "cell_overflows" (of those, cells
+  /// built again with more room than a thread keeps).
   Stats stats;
 };
-// Throws Error(InvalidArgument) for a box with hi <= lo or bounds that are not finite,
-// Error(InvalidInput) for a coordinate that is not finite or a point outside the box along an
-// axis that does not wrap; as delaunay3d otherwise.
+/// Throws Error(InvalidArgument) for a box with hi <= lo or bounds that are not finite,
+/// Error(InvalidInput) for a coordinate that is not finite or a point outside the box along an
+/// axis that does not wrap; as delaunay3d otherwise.
 VoronoiCells voronoi_cells(const double* xyz, std::int64_t n, const VoronoiCellsOptions& opt = {});
 
-// The same for points already on the executor (device memory for Backend::Cuda): the arrays as
-// VoronoiCells's, in the library's device memory (freed when the last copy of their pointer
-// goes), the counts beside them.
+/// The result of voronoi_cells_device: arrays in device memory (host memory on the CPU executor).
 struct DeviceVoronoiCells {
   std::int64_t num_points = 0, num_faces = 0, num_face_vertices = 0, num_vertices = 0;
   std::shared_ptr<double> volumes, areas, centroids;
@@ -82,6 +80,9 @@ struct DeviceVoronoiCells {
   Backend backend = Backend::Cuda;
   Stats stats;
 };
+/// The same for points already on the executor (device memory for Backend::Cuda): the arrays as
+/// VoronoiCells's, in the library's device memory (freed when the last copy of their pointer
+/// goes), the counts beside them.
 DeviceVoronoiCells voronoi_cells_device(const double* device_xyz, std::int64_t n,
                                         const VoronoiCellsOptions& opt = {});
 
