@@ -125,6 +125,7 @@ int run(int argc, char** argv) {
   std::int64_t cgal_max = 10'000'000;
   std::vector<std::string> jobs;
   std::vector<std::int64_t> digital;  // grid sides of the digital rows (0: automatic)
+  std::string csv;                    // rows appended for bench/plot.py and the docs' plots
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--check")
@@ -135,6 +136,8 @@ int run(int argc, char** argv) {
       verbose = true;
     else if (a == "--reps" && i + 1 < argc)
       reps = std::atoi(argv[++i]);
+    else if (a == "--csv" && i + 1 < argc)
+      csv = argv[++i];
     else if (a == "--cgal-max" && i + 1 < argc)
       cgal_max = std::int64_t(std::atof(argv[++i]));
     else if (a == "--digital" && i + 1 < argc)
@@ -148,6 +151,7 @@ int run(int argc, char** argv) {
   }
   const DeviceInfo dev = query_device();
   std::printf("# device: %s\n", dev.available ? dev.name.c_str() : "none");
+  std::ofstream f = bench::open_bench_csv(csv);
   std::printf("%-12s %9s %-5s %10s %8s %8s %8s %8s %9s %8s %7s %10s %6s %9s %9s %6s\n", "dist", "n",
               "back", "total_ms", "on_dev", "prep", "ins+flip", "splay", "flips", "failed", "stars",
               "tets", "B/pt", "cgal_ms", "cgal_par", "check");
@@ -159,6 +163,12 @@ int run(int argc, char** argv) {
     std::int64_t cells = 0;
     const double cg = n <= cgal_max ? cgal_ms(pts, cells) : -1;
     const double cgp = n <= cgal_max ? cgal_par_ms(pts) : -1;
+    if (f && cg >= 0)
+      f << "delaunay3d," << dist << "," << n << ",cgal,cpu-1core,0," << cg << ",0,0," << cg
+        << ",0\n";
+    if (f && cgp >= 0)
+      f << "delaunay3d," << dist << "," << n << ",cgal-parallel,cpu-all-cores,0," << cgp << ",0,0,"
+        << cgp << ",0\n";
     for (Backend b : {Backend::Cuda, Backend::Cpu}) {
       if (b == Backend::Cuda && !dev.available) continue;
       if (b == Backend::Cpu && !with_cpu && dev.available) continue;
@@ -196,6 +206,10 @@ int run(int argc, char** argv) {
                                                           3.0 * t.hull_facet_count)));
       if (verbose) bench::print_stats_lines(t.stats);
       std::fflush(stdout);
+      if (f)
+        f << "delaunay3d," << dist << "," << n << "," << backend_name(b) << ","
+          << (b == Backend::Cuda ? dev.name : std::string("cpu")) << ",0," << total << ",0,"
+          << (on_dev > 0 ? on_dev : 0) << "," << total << ",0\n";
       for (const std::int64_t g : digital) {
         Delaunay3dOptions od = o;
         od.method = Method::Digital;

@@ -13,7 +13,8 @@ mkdir -p "$OUT"
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee "$OUT/gpu_del3d.txt"
 REPS=${DEL3D_REPS:-3}
 JOBS=${DEL3D_JOBS:-uniform:1000000 ball:1000000 gaussian:1000000 sphere:1000000 thin_sphere:1000000 grid:1000000 uniform:10000000}
-.devbin/gpugeom_bench_del3d --reps "$REPS" --cgal-max "${CGAL_MAX:-1e6}" $JOBS 2>&1 | tee "$OUT/del3d_gpugeom.txt"
+CSV=${DEL3D_CSV:-$OUT/del3d.csv}
+.devbin/gpugeom_bench_del3d --reps "$REPS" --cgal-max "${CGAL_MAX:-1e6}" --csv "$CSV" $JOBS 2>&1 | tee "$OUT/del3d_gpugeom.txt"
 G=.devbin/gdel3d_bench_nocheck
 : >"$OUT/del3d_gdel3d.txt"
 if [ -x "$G" ]; then
@@ -25,7 +26,8 @@ if [ -x "$G" ]; then
   done
 fi
 echo "== side by side (ms; gpugeom end to end, median of $REPS)"
-python3 - "$OUT/del3d_gpugeom.txt" "$OUT/del3d_gdel3d.txt" <<'PY'
+GPU=$(nvidia-smi --query-gpu=name --format=csv,noheader | head -1)
+python3 - "$OUT/del3d_gpugeom.txt" "$OUT/del3d_gdel3d.txt" "$CSV" "$GPU" <<'PY'
 import re, sys
 ours = {}
 for line in open(sys.argv[1]):
@@ -37,6 +39,10 @@ for line in open(sys.argv[2]):
     m = re.search(r"n=(\d+) dist=(\S+) median_total_ms=([\d.]+)", line)
     if m:
         gd[(m.group(2).replace("thinsphere", "thin_sphere"), int(m.group(1)))] = float(m.group(3))
+# gDel3D's rows in the same CSV (its own median total, points already in its arrays)
+with open(sys.argv[3], "a") as csv:
+    for (d, n), ms in gd.items():
+        csv.write(f"delaunay3d,{d},{n},gdel3d,{sys.argv[4]},0,{ms},0,{ms},{ms},0\n")
 print(f"{'dist':12} {'n':>9} {'total':>9} {'on_dev':>8} {'ins+flip':>8} {'splay':>8} {'failed':>7} {'B/pt':>6} {'gDel3D':>9} {'gDel3D/us':>9} {'CGAL1':>8} {'CGALpar':>8}")
 for (d, n), f in ours.items():
     g = gd.get((d, n))

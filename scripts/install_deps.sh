@@ -5,6 +5,8 @@ set -euo pipefail
 APT_PKGS=(cmake g++ make ninja-build ccache clang libomp-dev libgtest-dev googletest
           libpng-dev zlib1g-dev libcgal-dev libgmp-dev libmpfr-dev libbenchmark-dev libtbb-dev
           clang-format pkg-config)
+# The documentation (scripts/docs.sh): Doxygen reads the headers for the C++ reference.
+[ "${DOCS_DEPS:-1}" = 1 ] && APT_PKGS+=(doxygen)
 missing=()
 for p in "${APT_PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -27,6 +29,12 @@ fi
 if ! "$PY" -c "import dask.array, distributed" >/dev/null 2>&1; then
   echo "[install_deps] pip install dask[array] distributed"
   "$PY" -m pip install -q "dask[array]" distributed
+fi
+# The documentation site (scripts/docs.sh): Sphinx with Markdown pages, the gallery, the C++
+# reference through Breathe and the Furo theme.
+if [ "${DOCS_DEPS:-1}" = 1 ] && ! "$PY" -c "import sphinx, myst_parser, sphinx_gallery, breathe, furo" >/dev/null 2>&1; then
+  echo "[install_deps] pip install sphinx myst-parser sphinx-gallery breathe furo"
+  "$PY" -m pip install -q "sphinx>=7" "myst-parser>=3" "sphinx-gallery>=0.16" "breathe>=4.35" furo
 fi
 # Benchmark-only anchor (Shewchuk's Triangle): optional, the tests never need it.
 if ! "$PY" -c "import triangle" >/dev/null 2>&1; then

@@ -1,5 +1,9 @@
 #!/usr/bin/env python3
-"""The exact Euclidean distance transform of an image and its digital Voronoi labels.
+"""
+Distance transform and Voronoi labels of a photograph
+=====================================================
+
+The exact Euclidean distance transform of an image and its digital Voronoi labels.
 
 Dark regions of a photograph (matplotlib's sample portrait of Grace Hopper) are the sites;
 every pixel gets its distance to the nearest dark pixel (scipy.ndimage's

@@ -1,5 +1,9 @@
 #!/usr/bin/env python3
-"""The exact convex hull of a scanned point cloud.
+"""
+The convex hull of a terrain scan
+=================================
+
+The exact convex hull of a scanned point cloud.
 
 A LiDAR-like scan of terrain: matplotlib's sample elevation model of the Jacksboro fault,
 sampled at a few hundred thousand random positions with bilinear interpolation and scanner

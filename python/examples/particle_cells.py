@@ -1,5 +1,9 @@
 #!/usr/bin/env python3
-"""Voronoi cells of particles in a periodic box, as a molecular-dynamics or granular-matter
+"""
+Voronoi cells of particles in a periodic box
+============================================
+
+Voronoi cells of particles in a periodic box, as a molecular-dynamics or granular-matter
 analysis uses them.
 
 Two particle sets in the unit box: an ideal gas (uniform points) and a jittered crystal (a

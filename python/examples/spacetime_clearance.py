@@ -1,5 +1,9 @@
 #!/usr/bin/env python3
-"""Clearance in space and time: the exact distance transform of a 4D grid (time, z, y, x).
+"""
+Clearance in space and time: a 4D distance transform
+====================================================
+
+Clearance in space and time: the exact distance transform of a 4D grid (time, z, y, x).
 
 Spheres drift through a box over a number of frames. Every cell of the 4D grid gets its
 distance to the nearest occupied cell in space *and* time, with one frame weighted as `--dt`

@@ -1,5 +1,9 @@
 #!/usr/bin/env python3
-"""A stipple drawing of a photograph: dots at the sites of the weighted centroidal Voronoi
+"""
+Stippling a photograph with a centroidal Voronoi diagram
+========================================================
+
+A stipple drawing of a photograph: dots at the sites of the weighted centroidal Voronoi
 diagram of its darkness (Lloyd's iteration on the GPU), each dot as large as its cell is dark.
 A tqdm bar follows the iterations when tqdm is installed.
 

@@ -1,5 +1,9 @@
 #!/usr/bin/env python3
-"""Terrain contour lines as breaklines: the exact constrained Delaunay triangulation.
+"""
+Contour lines as breaklines: constrained Delaunay
+=================================================
+
+Terrain contour lines as breaklines: the exact constrained Delaunay triangulation.
 
 A TIN from contour points alone (the Delaunay triangulation) cuts across the contour lines
 wherever two points of one line are closer to a point of the next line than to each other, so

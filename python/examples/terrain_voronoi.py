@@ -1,5 +1,9 @@
 #!/usr/bin/env python3
-"""Terrain contour points, their exact Delaunay triangulation (a TIN) and Voronoi cells.
+"""
+A terrain TIN and its Voronoi cells
+===================================
+
+Terrain contour points, their exact Delaunay triangulation (a TIN) and Voronoi cells.
 
 Contour lines of matplotlib's sample elevation model (the Jacksboro fault, 3 arc-second samples) give a
 point set typical of terrain modelling: long runs of nearly collinear points along each line.

@@ -117,12 +117,22 @@ NB_MODULE(_core, m) {
   // The library's errors by kind: bad input is a ValueError (degenerate input a subclass, so a
   // caller can tell it apart), an impossible request a RuntimeError subclass.
   // (Raw references kept for the life of the process: the translator may run until the end.)
-  static PyObject* degenerate =
-      PyErr_NewException("gpugeom._core.DegenerateInputError", PyExc_ValueError, nullptr);
-  static PyObject* unsupported =
-      PyErr_NewException("gpugeom._core.UnsupportedError", PyExc_RuntimeError, nullptr);
-  static PyObject* cuda_error =
-      PyErr_NewException("gpugeom._core.CudaError", PyExc_RuntimeError, nullptr);
+  static PyObject* degenerate = PyErr_NewExceptionWithDoc(
+      "gpugeom._core.DegenerateInputError",
+      "The input has no result of the kind asked for: too few distinct points, or all of them "
+      "on one line (2D) or one plane (3D). The message names the case. A ValueError.",
+      PyExc_ValueError, nullptr);
+  static PyObject* unsupported = PyErr_NewExceptionWithDoc(
+      "gpugeom._core.UnsupportedError",
+      "Asked for what this build or machine cannot do, e.g. backend=\"cuda\" where no GPU can "
+      "be used (gpugeom.device_info() says why), or an option a device entry cannot honour. "
+      "A RuntimeError.",
+      PyExc_RuntimeError, nullptr);
+  static PyObject* cuda_error = PyErr_NewExceptionWithDoc(
+      "gpugeom._core.CudaError",
+      "A failure of the CUDA runtime other than running out of memory (which raises "
+      "MemoryError). A RuntimeError.",
+      PyExc_RuntimeError, nullptr);
   m.attr("DegenerateInputError") = nb::borrow(degenerate);
   m.attr("UnsupportedError") = nb::borrow(unsupported);
   m.attr("CudaError") = nb::borrow(cuda_error);

@@ -16,6 +16,10 @@ CASES = [
     ("hull_scan.py", ["-n", "20000"]),
     ("particle_cells.py", ["-n", "3000"]),
     ("spacetime_clearance.py", ["-n", "24", "--frames", "12"]),
+    ("terrain_breaklines.py", ["--levels", "6"]),
+    ("mesh_domain.py", ["--size", "0.01"]),
+    ("dtfe_density.py", ["-n", "20000", "--pixels", "120"]),
+    ("digital_methods.py", ["-n", "3000"]),
 ]
 
 
