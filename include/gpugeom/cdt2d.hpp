@@ -1,23 +1,24 @@
-// Exact 2D constrained Delaunay triangulation of points and segments (issue 21).
-//
-// The triangulation starts from the exact Delaunay triangulation (delaunay2d.hpp), on the
-// executor opt picks, where the segments are then recovered in parallel rounds: each missing
-// piece of a segment (up to the next input point on it) removes the triangles it crosses, and
-// the two polygons left on its sides are triangulated again by the empty-circle rule (exact
-// in-circle); pieces whose cavities share no triangle, nor a triangle beside one, are rebuilt in
-// the same round. The result is the constrained Delaunay triangulation of the convex hull: every
-// segment is a union of edges, and every other edge is locally Delaunay (cocircular points
-// allowed either way). A segment through other input points is the chain of edges between them.
-// The result is the same on every executor and thread count.
-//
-// Holes and the domain's outside are removed as Triangle does for a .poly file: the triangles
-// reachable from a hole's point without crossing a segment go, and with Domain::Enclosed also
-// those reachable from outside the convex hull; region points carry an attribute to the
-// triangles they reach.
-//
-// Segments that cross each other at a point inside both are refused, naming both, or split at
-// their intersection (Cdt2dOptions::crossings): a new vertex at the intersection rounded to
-// doubles, reported with the two segments that made it.
+/// @file
+/// Exact 2D constrained Delaunay triangulation of points and segments (issue 21).
+///
+/// The triangulation starts from the exact Delaunay triangulation (delaunay2d.hpp), on the
+/// executor opt picks, where the segments are then recovered in parallel rounds: each missing
+/// piece of a segment (up to the next input point on it) removes the triangles it crosses, and
+/// the two polygons left on its sides are triangulated again by the empty-circle rule (exact
+/// in-circle); pieces whose cavities share no triangle, nor a triangle beside one, are rebuilt in
+/// the same round. The result is the constrained Delaunay triangulation of the convex hull: every
+/// segment is a union of edges, and every other edge is locally Delaunay (cocircular points
+/// allowed either way). A segment through other input points is the chain of edges between them.
+/// The result is the same on every executor and thread count.
+///
+/// Holes and the domain's outside are removed as Triangle does for a .poly file: the triangles
+/// reachable from a hole's point without crossing a segment go, and with Domain::Enclosed also
+/// those reachable from outside the convex hull; region points carry an attribute to the
+/// triangles they reach.
+///
+/// Segments that cross each other at a point inside both are refused, naming both, or split at
+/// their intersection (Cdt2dOptions::crossings): a new vertex at the intersection rounded to
+/// doubles, reported with the two segments that made it.
 #pragma once
 #include <cstdint>
 #include <memory>

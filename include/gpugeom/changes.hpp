@@ -1,7 +1,8 @@
-// Which simplices an update of a triangulation that follows its points changed
-// (DynamicDelaunay2d / DynamicDelaunay3d::changes, issue 47), for callers that keep data per
-// simplex (a finite-element matrix, a Voronoi vertex, a cell's volume) and want to update only
-// what the update touched.
+/// @file
+/// Which simplices an update of a triangulation that follows its points changed
+/// (DynamicDelaunay2d / DynamicDelaunay3d::changes, issue 47), for callers that keep data per
+/// simplex (a finite-element matrix, a Voronoi vertex, a cell's volume) and want to update only
+/// what the update touched.
 #pragma once
 #include <cstdint>
 #include <memory>

@@ -1,4 +1,5 @@
-// Common vocabulary of the public API: points, backends, errors, statistics.
+/// @file
+/// Common vocabulary of the public API: points, backends, errors, statistics.
 #pragma once
 #include <cstdint>
 #include <map>

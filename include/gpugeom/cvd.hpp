@@ -1,17 +1,18 @@
-// Weighted centroidal Voronoi diagrams of a 2D density image or a 3D density volume (thesis
-// 4.2.7): Lloyd's iteration with the digital Voronoi diagram (PBA) and every cell's weighted
-// centroid computed on the device (column prefix sums, chunk sums stored in the row of the
-// site, segmented reductions), on the GPU or the CPU.
-//
-// Sites live on the points of a Voronoi grid (the density's pixels, or `supersample` grid
-// points per pixel along each axis). Each iteration moves every site to the grid point nearest
-// its cell's weighted centroid, and only when that point is strictly nearer the centroid than
-// where the site is: the energy sum_p w(p) |p - site(p)|^2 then never increases (every
-// decision is exact integer arithmetic, with weights quantised to 16 bits of the density's
-// maximum), and the iteration always terminates.
-//
-// Coordinates are geometric: (x, y) or (x, y, z) with x the column, y the row, z the slice of
-// the density (C order (slices, rows, cols)); pixel centres at integers.
+/// @file
+/// Weighted centroidal Voronoi diagrams of a 2D density image or a 3D density volume (thesis
+/// 4.2.7): Lloyd's iteration with the digital Voronoi diagram (PBA) and every cell's weighted
+/// centroid computed on the device (column prefix sums, chunk sums stored in the row of the
+/// site, segmented reductions), on the GPU or the CPU.
+///
+/// Sites live on the points of a Voronoi grid (the density's pixels, or `supersample` grid
+/// points per pixel along each axis). Each iteration moves every site to the grid point nearest
+/// its cell's weighted centroid, and only when that point is strictly nearer the centroid than
+/// where the site is: the energy sum_p w(p) |p - site(p)|^2 then never increases (every
+/// decision is exact integer arithmetic, with weights quantised to 16 bits of the density's
+/// maximum), and the iteration always terminates.
+///
+/// Coordinates are geometric: (x, y) or (x, y, z) with x the column, y the row, z the slice of
+/// the density (C order (slices, rows, cols)); pixel centres at integers.
 #pragma once
 #include <cstdint>
 #include <functional>

@@ -1,10 +1,11 @@
-// Exact 2D Delaunay triangulation (batch insertion with parallel flipping, thesis 5.3 applied
-// to 2D) and the Voronoi diagram derived from it.
-//
-// Exactness: every decision is an exact predicate with simulation of simplicity, so
-// cocircular and collinear subsets get one consistent answer; the triangulation returned is a
-// Delaunay triangulation of the distinct input points, every distinct point is a vertex, and
-// no triangle is degenerate (collinear points on the hull become hull vertices).
+/// @file
+/// Exact 2D Delaunay triangulation (batch insertion with parallel flipping, thesis 5.3 applied
+/// to 2D) and the Voronoi diagram derived from it.
+///
+/// Exactness: every decision is an exact predicate with simulation of simplicity, so
+/// cocircular and collinear subsets get one consistent answer; the triangulation returned is a
+/// Delaunay triangulation of the distinct input points, every distinct point is a vertex, and
+/// no triangle is degenerate (collinear points on the hull become hull vertices).
 #pragma once
 #include <cstdint>
 #include <memory>

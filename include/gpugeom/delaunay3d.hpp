@@ -1,15 +1,16 @@
-// Exact 3D Delaunay tetrahedralisation (thesis 5.3: batch insertion with parallel 2-3 / 3-2
-// flipping on the executor, then adaptive star splaying where flipping got stuck).
-//
-// Exactness: every decision is an exact predicate with simulation of simplicity, so cospherical
-// and coplanar subsets get one consistent answer; the result is a Delaunay tetrahedralisation
-// of the distinct input points (every empty-sphere test is exact), every distinct point is a
-// vertex, and every tetrahedron has positive volume (the flat tetrahedra the perturbation may
-// put on the hull, over points exactly in a hull facet's plane, are removed, so such a facet's
-// plane may be covered by several hull facets). The perturbation depends on each point's
-// coordinates alone (lifts in decreasing lexicographic order, as CGAL's symbolic perturbation,
-// so the tetrahedra equal CGAL's on cospherical input): the result depends on the point set
-// only, and a tetrahedron stays when points join whose spheres it does not contain.
+/// @file
+/// Exact 3D Delaunay tetrahedralisation (thesis 5.3: batch insertion with parallel 2-3 / 3-2
+/// flipping on the executor, then adaptive star splaying where flipping got stuck).
+///
+/// Exactness: every decision is an exact predicate with simulation of simplicity, so cospherical
+/// and coplanar subsets get one consistent answer; the result is a Delaunay tetrahedralisation
+/// of the distinct input points (every empty-sphere test is exact), every distinct point is a
+/// vertex, and every tetrahedron has positive volume (the flat tetrahedra the perturbation may
+/// put on the hull, over points exactly in a hull facet's plane, are removed, so such a facet's
+/// plane may be covered by several hull facets). The perturbation depends on each point's
+/// coordinates alone (lifts in decreasing lexicographic order, as CGAL's symbolic perturbation,
+/// so the tetrahedra equal CGAL's on cospherical input): the result depends on the point set
+/// only, and a tetrahedron stays when points join whose spheres it does not contain.
 #pragma once
 #include <cstdint>
 #include <functional>

@@ -1,14 +1,15 @@
-// Exact Euclidean distance transform, feature transform and digital Voronoi diagram of grids of
-// 2 to 8 axes (the Parallel Banding Algorithm, thesis 4.2; 4.2.6 for more than three axes), on
-// the GPU or the CPU.
-//
-// Shapes are in C order, as NumPy has them: (rows, cols), (slices, rows, cols), or any shape of
-// 4 to 8 axes. Sites are the
-// grid points chosen by a mask, or an explicit list of integer coordinates (same axis order).
-// Every voxel gets its nearest site; among equally near sites the one first in raster (C)
-// order wins — so results are deterministic, identical on both backends, and identical
-// between the whole-volume and the slice-by-slice modes. Distances use
-// d^2 = sum_k (sampling_k * delta_k)^2; all comparisons are exact, ties included.
+/// @file
+/// Exact Euclidean distance transform, feature transform and digital Voronoi diagram of grids of
+/// 2 to 8 axes (the Parallel Banding Algorithm, thesis 4.2; 4.2.6 for more than three axes), on
+/// the GPU or the CPU.
+///
+/// Shapes are in C order, as NumPy has them: (rows, cols), (slices, rows, cols), or any shape of
+/// 4 to 8 axes. Sites are the
+/// grid points chosen by a mask, or an explicit list of integer coordinates (same axis order).
+/// Every voxel gets its nearest site; among equally near sites the one first in raster (C)
+/// order wins — so results are deterministic, identical on both backends, and identical
+/// between the whole-volume and the slice-by-slice modes. Distances use
+/// d^2 = sum_k (sampling_k * delta_k)^2; all comparisons are exact, ties included.
 #pragma once
 #include <cstdint>
 #include <memory>

@@ -1,5 +1,6 @@
-// Seeded point generators for the thesis' distributions (chapter 2.3) and the pathological
-// ones. Output depends only on (distribution, n, seed), not on the number of threads.
+/// @file
+/// Seeded point generators for the thesis' distributions (chapter 2.3) and the pathological
+/// ones. Output depends only on (distribution, n, seed), not on the number of threads.
 #pragma once
 #include <cstdint>
 #include <string>

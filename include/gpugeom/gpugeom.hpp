@@ -1,4 +1,5 @@
-// Umbrella header: everything public in gpugeom.
+/// @file
+/// Umbrella header: everything public in gpugeom.
 #pragma once
 #include "gpugeom/cdt2d.hpp"
 #include "gpugeom/refine2d.hpp"

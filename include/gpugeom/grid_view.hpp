@@ -1,5 +1,6 @@
-// A grid the caller holds, as the grid capabilities (distance transform, centroidal Voronoi
-// diagram) read it without a copy on the host.
+/// @file
+/// A grid the caller holds, as the grid capabilities (distance transform, centroidal Voronoi
+/// diagram) read it without a copy on the host.
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -1,16 +1,17 @@
-// The host arrays results come in: std::vector with an allocator made for arrays the library
-// writes whole (issue 18, "results at bus speed").
-//
-// A plain std::vector<T>(n) writes n zeros on one thread before the library can copy a result
-// into it; on the lent H100 host that took 177 ms for 256 MB, 35x the 5 ms the link needs to
-// bring the same bytes back. A HostVector's resize(n) leaves new elements of arithmetic type
-// uninitialised (as `new T[n]` does), and blocks from 2 MB up are fresh pages with transparent
-// huge pages asked for: the library's copy back then touches each page once, on all the
-// threads that copy, at the rate of the copy (about 20 GB/s there).
-//
-// Everything else is std::vector: data(), size(), iterators, move, swap. Use resize(n, value)
-// or assign(n, value) where elements must start with a value. To hand the memory elsewhere
-// (a NumPy array, say), move the vector into an owner that outlives the view.
+/// @file
+/// The host arrays results come in: std::vector with an allocator made for arrays the library
+/// writes whole (issue 18, "results at bus speed").
+///
+/// A plain std::vector<T>(n) writes n zeros on one thread before the library can copy a result
+/// into it; on the lent H100 host that took 177 ms for 256 MB, 35x the 5 ms the link needs to
+/// bring the same bytes back. A HostVector's resize(n) leaves new elements of arithmetic type
+/// uninitialised (as `new T[n]` does), and blocks from 2 MB up are fresh pages with transparent
+/// huge pages asked for: the library's copy back then touches each page once, on all the
+/// threads that copy, at the rate of the copy (about 20 GB/s there).
+///
+/// Everything else is std::vector: data(), size(), iterators, move, swap. Use resize(n, value)
+/// or assign(n, value) where elements must start with a value. To hand the memory elsewhere
+/// (a NumPy array, say), move the vector into an owner that outlives the view.
 #pragma once
 #include <algorithm>
 #include <cstddef>

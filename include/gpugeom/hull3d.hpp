@@ -1,14 +1,15 @@
-// Exact 3D convex hull (thesis 5.2: star-shaped construction, then Flip-Flop; or thesis 4.4's
-// digital method, Hull3dOptions::method).
-//
-// Exactness: every decision is an exact predicate with simulation of simplicity, and the
-// vertices returned are exactly the extreme points: a point inside a hull face or on a hull
-// edge is not a vertex, and of several copies of an extreme point exactly one is: the first in
-// input order. Coplanar extreme points of a face are triangulated; no facet is degenerate. The
-// points are processed along a Hilbert curve, and the perturbation depends on each point's
-// coordinates alone, so the result (which diagonals cut a flat face, the facet order) depends
-// on the point set only, not on the order of the input, and is the same on every executor and
-// every run; a flat face keeps its diagonals when points join that do not change the face.
+/// @file
+/// Exact 3D convex hull (thesis 5.2: star-shaped construction, then Flip-Flop; or thesis 4.4's
+/// digital method, Hull3dOptions::method).
+///
+/// Exactness: every decision is an exact predicate with simulation of simplicity, and the
+/// vertices returned are exactly the extreme points: a point inside a hull face or on a hull
+/// edge is not a vertex, and of several copies of an extreme point exactly one is: the first in
+/// input order. Coplanar extreme points of a face are triangulated; no facet is degenerate. The
+/// points are processed along a Hilbert curve, and the perturbation depends on each point's
+/// coordinates alone, so the result (which diagonals cut a flat face, the facet order) depends
+/// on the point set only, not on the order of the input, and is the same on every executor and
+/// every run; a flat face keeps its diagonals when points join that do not change the face.
 #pragma once
 #include <cstdint>
 #include <memory>

@@ -1,24 +1,25 @@
-// Reading and writing the files users already have. Formats are chosen by extension.
-//
-// Points in:  .xyz .txt .csv (2 or 3 numeric columns), .ply (ascii / binary little / big
-//             endian), .off, .obj (v lines), .node (Triangle/TetGen), .npy (float32/float64,
-//             N x 2 or N x 3).
-// Meshes out: .ply, .off, .obj, .ele (+ .node beside it), .vtk (legacy VTK 4.2, binary or
-//             ascii; read: ascii and binary, 4.x and 5.1 cell layouts), .vtu (VTK XML, ParaView:
-//             raw appended binary, optionally zlib-compressed, or ascii), .npy (the cell array
-//             only, int32 N x 3 or N x 4), .msh (Gmsh 2.2 ascii, written only: region tags from
-//             an integer cell array "attribute"). The others read back; .vtu in every encoding
-//             VTK writes (ascii, inline base64, appended raw or base64; zlib or not; 32- or
-//             64-bit headers; either byte order), with the point and cell data arrays a
-//             mesh carries (Mesh::point_data, cell_data; the delaunay commands attach the
-//             duplicate map).
-// Grids:      .pgm/.pbm (P1/P2/P4/P5, 8/16-bit), .png (8/16-bit grey; colour is converted to
-//             luminance), .npy (2D/3D, bool/uint8/uint16/int32/int64/float32/float64), raw
-//             (shape and type given by the caller).
-//
-// Every parse error is an Error(Parse) naming the file, the line (text formats) and what was
-// expected. Writers go to a temporary file in the same folder, renamed over the target only
-// once complete, so a failure never leaves a half-written file.
+/// @file
+/// Reading and writing the files users already have. Formats are chosen by extension.
+///
+/// Points in:  .xyz .txt .csv (2 or 3 numeric columns), .ply (ascii / binary little / big
+///             endian), .off, .obj (v lines), .node (Triangle/TetGen), .npy (float32/float64,
+///             N x 2 or N x 3).
+/// Meshes out: .ply, .off, .obj, .ele (+ .node beside it), .vtk (legacy VTK 4.2, binary or
+///             ascii; read: ascii and binary, 4.x and 5.1 cell layouts), .vtu (VTK XML, ParaView:
+///             raw appended binary, optionally zlib-compressed, or ascii), .npy (the cell array
+///             only, int32 N x 3 or N x 4), .msh (Gmsh 2.2 ascii, written only: region tags from
+///             an integer cell array "attribute"). The others read back; .vtu in every encoding
+///             VTK writes (ascii, inline base64, appended raw or base64; zlib or not; 32- or
+///             64-bit headers; either byte order), with the point and cell data arrays a
+///             mesh carries (Mesh::point_data, cell_data; the delaunay commands attach the
+///             duplicate map).
+/// Grids:      .pgm/.pbm (P1/P2/P4/P5, 8/16-bit), .png (8/16-bit grey; colour is converted to
+///             luminance), .npy (2D/3D, bool/uint8/uint16/int32/int64/float32/float64), raw
+///             (shape and type given by the caller).
+///
+/// Every parse error is an Error(Parse) naming the file, the line (text formats) and what was
+/// expected. Writers go to a temporary file in the same folder, renamed over the target only
+/// once complete, so a failure never leaves a half-written file.
 #pragma once
 #include <cstdint>
 #include <string>

@@ -1,15 +1,16 @@
-// Exact point location in a triangulation (SciPy's Delaunay.find_simplex): for each query point,
-// a simplex that contains it, or -1 outside the convex hull.
-//
-// Exactness: "contains" is decided by exact orientation tests without perturbation, so a query
-// on a shared edge, face or vertex gets one of the simplices that hold it (never -1), and a query
-// outside the hull by any margin gets -1. The triangulation must be convex (a Delaunay
-// triangulation or tetrahedralisation as this library returns it, with neighbors in its
-// convention: the simplex opposite vertex k, -1 on the hull).
-//
-// Queries run on the host threads (RunOptions::threads), each a visibility walk from the simplex
-// found for the previous query of its thread (so sorted or clustered queries walk little), with
-// an exhaustive scan as the bound on any walk, so the answer never depends on the walk.
+/// @file
+/// Exact point location in a triangulation (SciPy's Delaunay.find_simplex): for each query point,
+/// a simplex that contains it, or -1 outside the convex hull.
+///
+/// Exactness: "contains" is decided by exact orientation tests without perturbation, so a query
+/// on a shared edge, face or vertex gets one of the simplices that hold it (never -1), and a query
+/// outside the hull by any margin gets -1. The triangulation must be convex (a Delaunay
+/// triangulation or tetrahedralisation as this library returns it, with neighbors in its
+/// convention: the simplex opposite vertex k, -1 on the hull).
+///
+/// Queries run on the host threads (RunOptions::threads), each a visibility walk from the simplex
+/// found for the previous query of its thread (so sorted or clustered queries walk little), with
+/// an exhaustive scan as the bound on any walk, so the answer never depends on the walk.
 #pragma once
 #include <cstdint>
 

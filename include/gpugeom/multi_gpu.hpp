@@ -1,6 +1,7 @@
-// Several GPUs of one host without a cluster (issue 51): a call takes a list of devices and
-// splits the work by the blocks gpugeom.dask uses; one host thread and stream per device, each
-// part computed from host memory into its place in the host result.
+/// @file
+/// Several GPUs of one host without a cluster (issue 51): a call takes a list of devices and
+/// splits the work by the blocks gpugeom.dask uses; one host thread and stream per device, each
+/// part computed from host memory into its place in the host result.
 #pragma once
 #include <vector>
 

@@ -1,10 +1,11 @@
-// Exact geometric predicates for host code (see src/predicates/predicates.hpp for the
-// conventions; device code includes that header directly). Results are -1, 0 or +1; the
-// *_sos variants break every tie by simulation of simplicity, are consistent under any
-// permutation of their arguments, and never return 0 for distinct points (or distinct indices).
-// The perturbation depends on the points' coordinates alone (the index orders only equal
-// points): lifts in decreasing lexicographic order, as CGAL's Delaunay perturbation, and
-// coordinates in Z order of their bits (src/predicates/sos.hpp).
+/// @file
+/// Exact geometric predicates for host code (see src/predicates/predicates.hpp for the
+/// conventions; device code includes that header directly). Results are -1, 0 or +1; the
+/// *_sos variants break every tie by simulation of simplicity, are consistent under any
+/// permutation of their arguments, and never return 0 for distinct points (or distinct indices).
+/// The perturbation depends on the points' coordinates alone (the index orders only equal
+/// points): lifts in decreasing lexicographic order, as CGAL's Delaunay perturbation, and
+/// coordinates in Z order of their bits (src/predicates/sos.hpp).
 #pragma once
 #include "gpugeom/common.hpp"
 

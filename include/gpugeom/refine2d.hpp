@@ -1,27 +1,28 @@
-// Quality triangular meshes of a 2D domain by Delaunay refinement (issue 50): Triangle's -q and
-// -a on the executor.
-//
-// refine2d starts from the constrained Delaunay triangulation of points and segments (cdt2d.hpp:
-// the same holes, regions, domain and crossing rules) and adds Steiner points in parallel rounds
-// until every triangle has its smallest angle at least min_angle and its area at most the bound
-// that applies to it. The input's triangulation is made once and kept; each round, in parallel:
-//   * splits every subsegment encroached upon (a vertex in its diametral lens, Triangle's test);
-//   * gives each bad triangle its new point: Ungor's off-centre for a small angle (the point on
-//     the bisector of the shortest edge that makes that edge's new triangle just good, or the
-//     circumcentre when nearer), the circumcentre for a large area; a point a segment hides from
-//     its triangle, or one in the lens of a subsegment next to where it lands, is rejected and
-//     splits that subsegment instead (no point is ever removed, as in Triangle);
-//   * inserts the splits, then the new points whose cavities no better-ranked point touches (the
-//     worst triangles first, so the points of one round never crowd each other), and restores
-//     the constrained Delaunay property by exact flips.
-// Subsegments at an input vertex where segments meet are split on concentric shells (at powers
-// of two from the vertex, Ruppert's and Shewchuk's rule), and a triangle whose smallest angle is
-// an input angle between two segments, or whose shortest edge joins two shell vertices of such a
-// corner, is left as it is (Shewchuk's terminator): those are the small angles the input forces,
-// reported in `small_angles` with the reason. Without Domain::Enclosed the convex hull's edges
-// are taken as segments (Triangle's -c). The result is the same on every executor and thread
-// count: each round's choices are functions of the exact triangulation and of arithmetic that
-// rounds the same way on both.
+/// @file
+/// Quality triangular meshes of a 2D domain by Delaunay refinement (issue 50): Triangle's -q and
+/// -a on the executor.
+///
+/// refine2d starts from the constrained Delaunay triangulation of points and segments (cdt2d.hpp:
+/// the same holes, regions, domain and crossing rules) and adds Steiner points in parallel rounds
+/// until every triangle has its smallest angle at least min_angle and its area at most the bound
+/// that applies to it. The input's triangulation is made once and kept; each round, in parallel:
+///   * splits every subsegment encroached upon (a vertex in its diametral lens, Triangle's test);
+///   * gives each bad triangle its new point: Ungor's off-centre for a small angle (the point on
+///     the bisector of the shortest edge that makes that edge's new triangle just good, or the
+///     circumcentre when nearer), the circumcentre for a large area; a point a segment hides from
+///     its triangle, or one in the lens of a subsegment next to where it lands, is rejected and
+///     splits that subsegment instead (no point is ever removed, as in Triangle);
+///   * inserts the splits, then the new points whose cavities no better-ranked point touches (the
+///     worst triangles first, so the points of one round never crowd each other), and restores
+///     the constrained Delaunay property by exact flips.
+/// Subsegments at an input vertex where segments meet are split on concentric shells (at powers
+/// of two from the vertex, Ruppert's and Shewchuk's rule), and a triangle whose smallest angle is
+/// an input angle between two segments, or whose shortest edge joins two shell vertices of such a
+/// corner, is left as it is (Shewchuk's terminator): those are the small angles the input forces,
+/// reported in `small_angles` with the reason. Without Domain::Enclosed the convex hull's edges
+/// are taken as segments (Triangle's -c). The result is the same on every executor and thread
+/// count: each round's choices are functions of the exact triangulation and of arithmetic that
+/// rounds the same way on both.
 #pragma once
 #include <cstdint>
 #include <functional>

@@ -1,5 +1,6 @@
-// What the triangulations that follow their points (DynamicDelaunay2d, DynamicDelaunay3d) mark a
-// removed point with.
+/// @file
+/// What the triangulations that follow their points (DynamicDelaunay2d, DynamicDelaunay3d) mark a
+/// removed point with.
 #pragma once
 #include <cstdint>
 

@@ -1,4 +1,5 @@
-// Spatial sorting: the permutation that puts points in Hilbert-curve order.
+/// @file
+/// Spatial sorting: the permutation that puts points in Hilbert-curve order.
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -1,5 +1,6 @@
-// The Voronoi diagram of 3D points (issue 49), from their Delaunay tetrahedralisation
-// (delaunay3d.hpp), on either executor.
+/// @file
+/// The Voronoi diagram of 3D points (issue 49), from their Delaunay tetrahedralisation
+/// (delaunay3d.hpp), on either executor.
 #pragma once
 #include <cstdint>
 #include <memory>

@@ -1,6 +1,7 @@
-// Voronoi cells of 3D particles in a box, bounded or periodic (issue 49): per point its cell's
-// volume, surface area, centroid, faces and neighbours, as particle codes (Voro++, freud) use
-// them, on either executor.
+/// @file
+/// Voronoi cells of 3D particles in a box, bounded or periodic (issue 49): per point its cell's
+/// volume, surface area, centroid, faces and neighbours, as particle codes (Voro++, freud) use
+/// them, on either executor.
 #pragma once
 #include <cstdint>
 #include <memory>
