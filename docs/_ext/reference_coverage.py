@@ -3,11 +3,13 @@
 - C++: every public function, class, struct and enum Doxygen finds in include/gpugeom (namespace
   gpugeom and the namespaces in it, not `detail`) must carry a comment (/// or ///<). Members of
   a struct are its fields: their comments are welcome, not required.
-- Python: every name in the public ``__all__`` of gpugeom and its public modules must have a
-  docstring and must appear in the Python domain of the built site (an autodoc entry).
+- Python: every name in the public ``__all__`` of gpugeom and its public modules, and every
+  public method and property of those classes, must have a docstring, and every such name must
+  appear in the Python domain of the built site (an autodoc entry).
 
 Each gap is a Sphinx warning, so the -W build stops on it and names what lacks a description.
 """
+import functools
 import importlib
 import inspect
 import xml.etree.ElementTree as ET
@@ -89,6 +91,14 @@ def check_python(app, exception):
         seen.add(id(obj))
         if not (getattr(obj, "__doc__", None) or "").strip():
             log.warning(f"Python reference: {modname}.{n} has no docstring")
+        if inspect.isclass(obj) and not issubclass(obj, BaseException):
+            for attr, v in vars(obj).items():  # its public methods and properties
+                if attr.startswith("_") or not (inspect.isfunction(v) or isinstance(
+                        v, (property, functools.cached_property, staticmethod, classmethod))):
+                    continue
+                f = v.fget if isinstance(v, property) else getattr(v, "__func__", v)
+                if not (getattr(f, "__doc__", None) or "").strip():
+                    log.warning(f"Python reference: {modname}.{n}.{attr} has no docstring")
         names = {f"{modname}.{n}", full, f"gpugeom.{n}"}
         if not names & documented:
             log.warning(f"Python reference: {modname}.{n} is not in the API pages "

@@ -388,6 +388,7 @@ class Delaunay(_OfPoints):
 
     @property
     def nsimplex(self) -> int:
+        """The number of simplices (triangles in 2D, tetrahedra in 3D)."""
         return int(self.simplices.shape[0])
 
     @property
@@ -472,6 +473,7 @@ class Delaunay(_OfPoints):
 
     @property
     def paraboloid_shift(self) -> float:
+        """As SciPy's: added to the scaled sum of squares in the lifted coordinate."""
         return self._paraboloid[1]
 
     def lift_points(self, x):
@@ -668,6 +670,7 @@ class Voronoi(_OfPoints):
 
     @cached_property
     def ridge_dict(self) -> dict:
+        """``{(p, q): ridge vertices}`` for every ridge, as SciPy's (built on first use)."""
         rp = _arrays.to_host(self.ridge_points).tolist()
         return {tuple(p): v for p, v in zip(rp, self.ridge_vertices)}
 
@@ -761,6 +764,7 @@ class ConvexHull(_OfPoints):
 
     @property
     def nsimplex(self) -> int:
+        """The number of facets (edges in 2D, triangles in 3D)."""
         return int(self.simplices.shape[0])
 
     def _facets(self):
@@ -771,6 +775,7 @@ class ConvexHull(_OfPoints):
 
     @cached_property
     def area(self) -> float:
+        """The hull's surface area (in 2D its perimeter, as SciPy's)."""
         if self.ndim == 2:
             return self._perimeter
         a, b, c = self._facets()
@@ -778,6 +783,7 @@ class ConvexHull(_OfPoints):
 
     @cached_property
     def volume(self) -> float:
+        """The hull's volume (in 2D its area, as SciPy's)."""
         if self.ndim == 2:
             return self._area2d
         a, b, c = self._facets()
