@@ -9,7 +9,8 @@ built, so the page shows the measurements themselves.
 - ``:distribution:`` (scaling) the distribution, or a prefix ending in ``*`` for a family of
   them (each row's n on the axis); ``:distributions:`` (bars) a comma list
 - ``:n:``        (bars) the size compared
-- ``:backends:`` a comma list of backends to show, in order (default: all in the file)
+- ``:backends:`` a comma list of backends to show, in order (default: all in the file); in
+  ``bars``, ``B@device`` is backend B's device-resident time as a bar of its own
 - ``:labels:``   backend=label pairs separated by semicolons, for the legend
 - ``:caption:``  the figure's caption; the machine (the CSV's device column) is added to it
 - ``:xlabel:``   (scaling) what n counts (default "n")
@@ -100,7 +101,7 @@ class BenchPlot(SphinxDirective):
             n = self.options.get("n")
             rows = [r for r in rows if r["distribution"] in dists and int(r["n"]) == n]
         if want:
-            rows = [r for r in rows if r["backend"] in want]
+            rows = [r for r in rows if r["backend"] in {b.split("@")[0] for b in want}]
         if not rows:
             raise self.error(f"bench-plot: no rows for {prob} in {files} with these options")
         backends = want or sorted({r["backend"] for r in rows}, key=lambda b: (not _ours(b), b))
@@ -131,8 +132,11 @@ class BenchPlot(SphinxDirective):
             dists = [d for d in dists if any(k[1] == d for k in series)]
             width = 0.8 / max(1, len(backends))
             for i, b in enumerate(backends):
-                ys = [float(series[(b, d, n)]["with_copies_ms"]) if (b, d, n) in series
-                      else np.nan for d in dists]
+                # "cuda@device": that backend's device-resident time, as a bar of its own
+                base, col = (b.split("@")[0], "device_resident_ms") if "@" in b else \
+                    (b, "with_copies_ms")
+                ys = [float(series[(base, d, n)][col]) if (base, d, n) in series
+                      and float(series[(base, d, n)][col] or 0) > 0 else np.nan for d in dists]
                 ax.bar(np.arange(len(dists)) + i * width, ys, width, label=labels.get(b, b))
             ax.set_xticks(np.arange(len(dists)) + width * (len(backends) - 1) / 2)
             ax.set_xticklabels(dists, rotation=20)
