@@ -25,6 +25,10 @@
 
 namespace gpugeom {
 
+namespace io {
+struct Grid;  // gpugeom/io.hpp; the overloads taking one are in gpugeom_io
+}  // namespace io
+
 /// Where a centroidal Voronoi run is, passed to CvdOptions::progress after each iteration.
 struct CvdProgress {
   int iteration = 0;       ///< 1-based
@@ -80,7 +84,8 @@ struct CvdResult {
 /// are and are checked and quantised on the device). Throws Error(InvalidInput) for bad densities
 /// or sites, Error(InvalidArgument) for bad options.
 CvdResult centroidal_voronoi(const GridView& density, const CvdOptions& opt = {});
-/// The same for a grid read from a file (io::read_grid).
+/// The same for a grid read from a file (io::read_grid); defined in gpugeom_io (link
+/// gpugeom::gpugeom_io).
 CvdResult centroidal_voronoi(const io::Grid& density, const CvdOptions& opt = {});
 
 /// The result of centroidal_voronoi_device: arrays in device memory (host memory on the CPU

@@ -18,9 +18,12 @@
 #include "gpugeom/common.hpp"
 #include "gpugeom/grid_view.hpp"
 #include "gpugeom/host_vector.hpp"
-#include "gpugeom/io.hpp"
 
 namespace gpugeom {
+
+namespace io {
+struct Grid;  // gpugeom/io.hpp; the overloads taking one are in gpugeom_io
+}  // namespace io
 
 /// How the distance transform is computed; every method gives the same exact result.
 enum class EdtMethod {
@@ -143,7 +146,8 @@ struct EdtResult {
 /// list cannot. The grid is read where it is: on the CUDA executor its bytes go to the device as
 /// they are (the rule is applied there), so a uint8 or bool grid costs its size over the bus.
 EdtResult distance_transform(const GridView& grid, SiteRule rule, const EdtOptions& opt = {});
-/// The same for a grid read from a file (io::read_grid).
+/// The same for a grid read from a file (io::read_grid); defined in gpugeom_io (link
+/// gpugeom::gpugeom_io).
 EdtResult distance_transform(const io::Grid& grid, SiteRule rule, const EdtOptions& opt = {});
 /// Sites given by coordinates (ndim per site, C order). Duplicates keep the lower index.
 EdtResult distance_transform_sites(const std::vector<std::int64_t>& shape,

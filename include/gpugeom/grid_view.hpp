@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "gpugeom/io.hpp"
+#include "gpugeom/scalar_type.hpp"
 
 namespace gpugeom {
 
@@ -14,12 +14,8 @@ namespace gpugeom {
 /// where those run on the CPU executor).
 struct GridView {
   const void* data = nullptr;
-  io::ScalarType type = io::ScalarType::U8;
+  ScalarType type = ScalarType::U8;
   std::vector<std::int64_t> shape;
 };
-
-/// A view of a grid read from a file (no copy). Throws Error(InvalidArgument) when its data does
-/// not hold the bytes its shape and type need.
-GridView view_of(const io::Grid& g);
 
 }  // namespace gpugeom

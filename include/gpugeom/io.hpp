@@ -27,6 +27,8 @@
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/grid_view.hpp"
+#include "gpugeom/scalar_type.hpp"
 #include "gpugeom/host_vector.hpp"
 
 namespace gpugeom::io {
@@ -39,14 +41,6 @@ struct PointSet {
   /// The number of points.
   std::size_t size() const { return dim ? coords.size() / dim : 0; }
 };
-
-/// Element types of grids and data arrays.
-enum class ScalarType { Bool, U8, U16, I32, I64, F32, F64 };
-/// Bytes per element of the type.
-std::size_t scalar_size(ScalarType t);
-/// NumPy's name of the type: "bool", "uint8", ..., "float64".
-const char* scalar_name(ScalarType t);
-ScalarType parse_scalar(const std::string& name);  ///< "uint8", "float32", ...
 
 /// Values attached to a mesh's vertices (point data) or cells (cell data), as VTK files carry
 /// them: `components` values per vertex or cell, of `type`, native byte order. .vtu writes and
@@ -149,6 +143,10 @@ Mesh parse_mesh(std::string_view bytes, const std::string& ext, const std::strin
 Grid parse_grid(const std::string& bytes, const std::string& ext, const std::string& name);
 /// A .poly file's text; name is its path (a .node beside it is read where it lists no points).
 Pslg parse_poly(std::string_view text, const std::string& name);
+
+/// A view of a grid read from a file (no copy), for the grid capabilities. Throws
+/// Error(InvalidArgument) when its data does not hold the bytes its shape and type need.
+GridView view_of(const Grid& g);
 
 /// Lower-case extension with the dot, e.g. ".ply".
 std::string extension(const std::string& path);

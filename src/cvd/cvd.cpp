@@ -12,7 +12,6 @@
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
 #include "gpugeom/cvd.hpp"
-#include "gpugeom/io.hpp"
 
 namespace gpugeom {
 
@@ -138,10 +137,6 @@ CvdResult centroidal_voronoi(const GridView& g, const CvdOptions& opt) {
   r.site_count = out.num_sites;
   finish(out, r);
   return r;
-}
-
-CvdResult centroidal_voronoi(const io::Grid& g, const CvdOptions& opt) {
-  return centroidal_voronoi(view_of(g), opt);
 }
 
 DeviceCvdResult centroidal_voronoi_device(const GridView& g, const CvdOptions& opt) {

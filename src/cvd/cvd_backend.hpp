@@ -9,7 +9,7 @@
 #include "gpugeom/common.hpp"
 #include "gpugeom/cvd.hpp"
 #include "gpugeom/host_vector.hpp"
-#include "gpugeom/io.hpp"
+#include "gpugeom/scalar_type.hpp"
 
 namespace gpugeom::cvd {
 

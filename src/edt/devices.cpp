@@ -11,7 +11,7 @@
 
 #include "base/clock.hpp"
 #include "edt/entries.hpp"
-#include "gpugeom/io.hpp"
+#include "gpugeom/scalar_type.hpp"
 #include "gpugeom/multi_gpu.hpp"
 
 namespace gpugeom {

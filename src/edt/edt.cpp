@@ -14,7 +14,6 @@
 #include "exec/grid_input.hpp"
 #include "base/hd.hpp"
 #include "gpugeom/edt.hpp"
-#include "gpugeom/io.hpp"
 
 namespace gpugeom {
 
@@ -448,10 +447,6 @@ EdtResult distance_transform(const GridView& g, SiteRule rule, const EdtOptions&
                                              " element): every distance would be infinite");
   rq.site_count = std::int64_t(rq.column_sites.size());
   return finish(rq, opt, g.shape);
-}
-
-EdtResult distance_transform(const io::Grid& g, SiteRule rule, const EdtOptions& opt) {
-  return distance_transform(view_of(g), rule, opt);
 }
 
 std::int64_t DeviceEdtResult::count() const {

@@ -6,7 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "gpugeom/io.hpp"
+#include "gpugeom/common.hpp"
+#include "gpugeom/scalar_type.hpp"
 
 namespace gpugeom::grid_input {
 

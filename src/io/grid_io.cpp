@@ -11,46 +11,6 @@
 namespace gpugeom::io {
 using namespace detail;
 
-std::size_t scalar_size(ScalarType t) {
-  switch (t) {
-    case ScalarType::Bool:
-    case ScalarType::U8:
-      return 1;
-    case ScalarType::U16:
-      return 2;
-    case ScalarType::I32:
-    case ScalarType::F32:
-      return 4;
-    default:
-      return 8;
-  }
-}
-const char* scalar_name(ScalarType t) {
-  switch (t) {
-    case ScalarType::Bool:
-      return "bool";
-    case ScalarType::U8:
-      return "uint8";
-    case ScalarType::U16:
-      return "uint16";
-    case ScalarType::I32:
-      return "int32";
-    case ScalarType::I64:
-      return "int64";
-    case ScalarType::F32:
-      return "float32";
-    default:
-      return "float64";
-  }
-}
-ScalarType parse_scalar(const std::string& s) {
-  for (ScalarType t : {ScalarType::Bool, ScalarType::U8, ScalarType::U16, ScalarType::I32,
-                       ScalarType::I64, ScalarType::F32, ScalarType::F64})
-    if (s == scalar_name(t)) return t;
-  throw Error(ErrorCode::InvalidArgument,
-              "unknown element type '" + s +
-                  "': expected bool, uint8, uint16, int32, int64, float32 or float64");
-}
 static const char* npy_descr(ScalarType t) {
   switch (t) {
     case ScalarType::Bool:
@@ -423,11 +383,7 @@ void write_grid(const std::string& path, const Grid& g) {
   write_file_atomic(path, out);
 }
 
-}  // namespace gpugeom::io
-
-namespace gpugeom {
-
-GridView view_of(const io::Grid& g) {
+GridView view_of(const Grid& g) {
   const std::int64_t need = g.count() * std::int64_t(io::scalar_size(g.type));
   if (std::int64_t(g.data.size()) != need)
     throw Error(ErrorCode::InvalidArgument, "the grid holds " + std::to_string(g.data.size()) +
@@ -440,4 +396,4 @@ GridView view_of(const io::Grid& g) {
   return v;
 }
 
-}  // namespace gpugeom
+}  // namespace gpugeom::io
