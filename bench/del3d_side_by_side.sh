@@ -26,7 +26,7 @@ if [ -x "$G" ]; then
   done
 fi
 echo "== side by side (ms; gpugeom end to end, median of $REPS)"
-GPU=$(nvidia-smi --query-gpu=name --format=csv,noheader | head -1)
+GPU=$(cut -d, -f1 "$OUT/gpu_del3d.txt" | head -1)  # the name printed at the start
 python3 - "$OUT/del3d_gpugeom.txt" "$OUT/del3d_gdel3d.txt" "$CSV" "$GPU" <<'PY'
 import re, sys
 ours = {}
