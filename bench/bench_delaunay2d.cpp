@@ -10,11 +10,12 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "bench_csv.hpp"
-#include "delaunay2d/del2d_backend.hpp"
+#include "exec/tuning.hpp"
 #include "device_timing.hpp"
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/generate.hpp"
@@ -183,6 +184,7 @@ int main(int argc, char** argv) {
   std::string dists = "uniform", sizes = "1e5,1e6", backends = "all", csv, files, digital;
   int reps = 3;
   bool cgal = false, check = false, voronoi = false;
+  std::shared_ptr<const detail::Tuning> tuning;  // --capacities
   std::int64_t sample = 0;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
@@ -204,13 +206,14 @@ int main(int argc, char** argv) {
     else if (a == "--sample")  // K triangles checked exactly (any size)
       sample = std::stoll(next());
     else if (a == "--capacities") {  // B,L,X: the flip rounds' capacities (0 = the default)
-      del2d::Capacities c;
+      auto t = std::make_shared<detail::Tuning>();
+      detail::Tuning::Del2d& c = t->del2d;
       if (std::sscanf(next().c_str(), "%lld,%lld,%lld", (long long*)&c.batch_points,
                       (long long*)&c.log_records, (long long*)&c.exact_entries) != 3) {
         std::cout << "--capacities takes three counts: batch points, log records, exact entries\n";
         return 2;
       }
-      del2d::set_capacities_for_testing(c);
+      tuning = t;
     } else if (a == "--digital") {  // grid sides for the digital method (0: automatic)
       digital = next();
     } else if (a == "--voronoi")
@@ -261,6 +264,7 @@ int main(int argc, char** argv) {
     for (Backend b : bks) {
       Delaunay2dOptions o;
       o.backend = b;
+      o.tuning = tuning;
       // GPUGEOM_PROFILE=1: per-step times (the library synchronises after each step).
       o.profile = std::getenv("GPUGEOM_PROFILE") != nullptr;
       const double free0 = b == Backend::Cuda ? double(query_device().free_memory) / 1e9 : 0;

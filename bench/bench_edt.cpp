@@ -17,13 +17,14 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "bench_csv.hpp"
 #ifdef GPUGEOM_HAVE_CUDA
 #include <cuda_runtime.h>
 #endif
-#include "edt/edt_backend.hpp"
+#include "exec/tuning.hpp"
 #include "gpugeom/edt.hpp"
 #include "gpugeom/io.hpp"
 
@@ -118,7 +119,7 @@ std::int64_t check_sample(const io::Grid& g, const EdtResult& r, std::int64_t k,
 int main(int argc, char** argv) {
   std::string sides = "1024,2048", dens = "0.1", backends = "all", csv, shapes;
   int dim = 2, reps = 5;
-  bool jfa = false, dist_only = false;
+  bool jfa = false, dist_only = false, columns = false;
   std::int64_t check = 0, slice_step = 0, slice_block = 0;
   int tiles = -1;
   std::int64_t bands[3] = {0, 0, 0};
@@ -150,7 +151,7 @@ int main(int argc, char** argv) {
     else if (a == "--tiles")  // -1: where they pay, 0: never, 1: wherever they fit
       tiles = std::stoi(next());
     else if (a == "--columns")  // slices packed by column whatever the volume's size
-      edt::set_column_packing_for_testing(true);
+      columns = true;
     else if (a == "--bands") {  // kx,ky[,kz]: PBA band counts (0: the automatic rule)
       std::stringstream bs(next());
       int k = 0;
@@ -193,6 +194,11 @@ int main(int argc, char** argv) {
         for (int m = 0; m < (jfa ? 2 : 1); ++m) {
           EdtOptions o;
           o.backend = b;
+          if (columns) {
+            auto t = std::make_shared<detail::Tuning>();
+            t->edt.column_packing = true;
+            o.tuning = t;
+          }
           // GPUGEOM_EDT_PROFILE=1: per-pass times (the library synchronises after each pass).
           o.profile = std::getenv("GPUGEOM_EDT_PROFILE") != nullptr;
           o.distance = 32;

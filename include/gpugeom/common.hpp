@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,6 +33,11 @@ Backend resolve_backend(Backend requested, int device = -1);
 /// True when this build was compiled with CUDA support.
 bool built_with_cuda();
 
+namespace detail {
+/// The library's own knobs for its tests and benchmarks (defined in the sources, not here).
+struct Tuning;
+}  // namespace detail
+
 /// Where and how an algorithm runs; every capability's options carry these.
 struct RunOptions {
   Backend backend = Backend::Auto;
@@ -49,6 +55,9 @@ struct RunOptions {
   /// Per-phase timings in Stats synchronise the executor after each phase (slower, exact
   /// attribution); off, phases that overlap are timed as they come.
   bool profile = false;
+  /// The library's internal knobs, set by its own tests and benchmarks (user code leaves it
+  /// empty: the library's rules apply). No knob changes a result.
+  std::shared_ptr<const detail::Tuning> tuning;
 };
 
 /// How a triangulation is computed (issue 20; Delaunay2dOptions::method). Both give exactly

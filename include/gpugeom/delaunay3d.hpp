@@ -52,9 +52,6 @@ struct Delaunay3dOptions : RunOptions {
   /// begin (a few dozen calls). An exception it throws ends the run and reaches the caller
   /// (a way to cancel), with nothing leaked.
   std::function<void(const Delaunay3dProgress&)> progress;
-  /// Test switch: at most this many flip rounds after each batch (-1: until no flip is left),
-  /// so that star splaying must repair a tetrahedralisation far from Delaunay (0: none).
-  std::int64_t max_flip_rounds = -1;
   /// The method (common.hpp): the result does not depend on it. Method::Digital is the thesis'
   /// DigiDel3D (4.5.2): a digital Voronoi diagram of the points on a grid (3D PBA), a working
   /// set of neighbours for every point from the grid corners where its cell meets others (read

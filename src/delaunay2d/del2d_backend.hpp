@@ -36,30 +36,12 @@ struct DeviceVoronoiOutput {
 
 // triangulate: xy holds n points on the host; triangulate_device: n points in the executor's
 // memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
-// triangulate_from: the same from a start (the digital method's sketch, issue 20): nstart
-// counter-clockwise triangles of input indices (3 each, host memory) that cover the convex hull
-// of their vertices, each directed edge once; the other points are inserted into it and the
-// whole is flipped until Delaunay by the same batches and rounds. twin (host, 3 nstart, or
-// null: found by sorting the edges): per half-edge 3t + k (vertex k to k + 1) its reverse, -1 on
-// the hull. hint (host, n entries, or null): for each point not in the start, a start vertex near
-// it where its walk begins (-1: anywhere). The result equals triangulate's. Refuses counts no
-// triangulation can be made of (Error, as the public entries say).
 // triangulate_digital: Method::Digital from host points (digital/digital.hpp says what it
-// reports); the points go to the executor once and every phase's arrays stay there.
+// reports); the points go to the executor once and every phase's arrays stay there. It starts
+// from a triangulation (run_from_start in impl/triangulate.inl; src/testing enters that from
+// host arrays).
+// check_count refuses counts no triangulation can be made of (Error, as the public entries say).
 void check_count(std::int64_t n);
-// Tests: the first triangle slot's number (clamped so that the last slot is 2^30 - 1), so that
-// small inputs run through the top of the wide slot encoding. Not thread-safe; 0 restores.
-void set_slot_base_for_testing(std::int64_t base);
-std::int64_t slot_base_for_testing();
-// Tests: the flip rounds' capacities, in place of those sized from the point count (0 keeps
-// that one): points one batch inserts, flip-log records, exact-list entries. Small values
-// send small inputs through the paths large inputs take past each capacity. Not thread-safe.
-struct Capacities {
-  std::int64_t batch_points = 0, log_records = 0, exact_entries = 0;
-};
-void set_capacities_for_testing(const Capacities& c);
-Capacities capacities_for_testing();
-
 // DynamicDelaunay2d's state on one executor (impl/dynamic.inl).
 using Kept = detail::KeptState<Output, DeviceOutput>;
 
@@ -69,9 +51,6 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                  Stats& stats);
 void triangulate_digital(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                          Output& out, Stats& stats);
-void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
-                      std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,
-                      const Delaunay2dOptions& opt, Output& out, Stats& stats);
 void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                         DeviceOutput& out, Stats& stats);
 // The Voronoi diagram of nt triangles (tri, nb; dup may be null: no duplicates) of n points xy,
@@ -86,9 +65,6 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                  Stats& stats);
 void triangulate_digital(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                          Output& out, Stats& stats);
-void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
-                      std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,
-                      const Delaunay2dOptions& opt, Output& out, Stats& stats);
 void triangulate_device(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                         DeviceOutput& out, Stats& stats);
 void voronoi(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,

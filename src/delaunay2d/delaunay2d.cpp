@@ -16,23 +16,6 @@ namespace del2d {
 // at least: 5·10^8 points on 80 GB), and is checked before any launch.
 constexpr std::int64_t kMaxPoints = (std::int64_t(1) << 29) - 2;
 
-namespace {
-std::int64_t g_slot_base = 0;
-Capacities g_capacities;
-}  // namespace
-void set_capacities_for_testing(const Capacities& c) {
-  g_capacities = c;
-}
-Capacities capacities_for_testing() {
-  return g_capacities;
-}
-void set_slot_base_for_testing(std::int64_t base) {
-  g_slot_base = base;
-}
-std::int64_t slot_base_for_testing() {
-  return g_slot_base;
-}
-
 void check_count(std::int64_t n) {
   if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
   if (n > kMaxPoints)

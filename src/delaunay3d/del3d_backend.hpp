@@ -33,25 +33,6 @@ struct DeviceOutput {
 
 // triangulate: xyz holds n points on the host; triangulate_device: n points in the executor's
 // memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
-// Tests: the digital method's stars on the CPU executor, after creation (splay 0), after
-// splaying (1), or after splaying by the tetrahedra's rounds and the proof alone (2). pts: the
-// distinct points in curve order (3 each); star v is tri[3 start[v], 3
-// start[v + 1]) (link triangles, 3 point indices each; index pts.size() / 3 is the infinity point),
-// its vertex table table_vertex / table_hash [table_start[v], table_start[v + 1]) (the link
-// vertices, each with its ring's hash). built is false where the method fell back.
-// first_requests > 0 sizes the splaying's request buffer (so that requests overflow it);
-// request_spills counts the checks run again for those.
-struct StarsForTesting {
-  bool built = false;
-  std::vector<double> pts;
-  std::vector<std::int64_t> start;
-  std::vector<std::int32_t> tri;
-  std::vector<std::int64_t> table_start;
-  std::vector<std::int32_t> table_vertex;
-  std::vector<std::uint32_t> table_hash;
-  std::int64_t request_spills = 0;
-};
-
 // Refuses counts no tetrahedralisation can be made of, or past the store's reach (Error).
 void check_count(std::int64_t n);
 // The backends' outputs as the public results.
@@ -63,8 +44,6 @@ using Kept = detail::KeptState<Output, DeviceOutput>;
 
 namespace cpu_impl {
 std::unique_ptr<Kept> make_kept(const Delaunay3dOptions& opt);
-void digital_stars_for_testing(const double* xyz, std::int64_t n, std::int64_t grid, int splay,
-                               StarsForTesting& out, std::int64_t first_requests = 0);
 void triangulate(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
                  Stats& stats);
 void triangulate_device(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,

@@ -7,6 +7,7 @@
 #include "delaunay3d/del3d_backend.hpp"
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
+#include "exec/tuning.hpp"
 
 namespace gpugeom {
 
@@ -62,10 +63,10 @@ namespace {
 using del3d::check_count;
 void check_method(const Delaunay3dOptions& opt) {
   detail::check_method_grid(opt.method, opt.grid, 16, 1024, "the digital method's grid side");
-  if (opt.method == Method::Digital && opt.max_flip_rounds >= 0)
+  if (opt.method == Method::Digital && detail::tuning_of(opt).del3d.max_flip_rounds >= 0)
     throw Error(ErrorCode::InvalidArgument,
-                "max_flip_rounds: a switch of the incremental method; Method::Digital has no "
-                "flip rounds");
+                "the max_flip_rounds knob is the incremental method's; Method::Digital has "
+                "no flip rounds");
 }
 }  // namespace
 

@@ -33,20 +33,10 @@ int bits_for(std::int64_t n) {
 }
 }  // namespace
 
-namespace {
-bool g_force_linear = false;
-bool g_force_columns = false;
-}  // namespace
-void set_linear_packing_for_testing(bool on) {
-  g_force_linear = on;
-}
-void set_column_packing_for_testing(bool on) {
-  g_force_columns = on;
-}
-
 // sliced: only slices of nx * ny voxels are held at once, so only they must fit int32 indexing
 // (the slices' own site packing, SliceLayout, needs no more).
-Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing packing) {
+Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing packing,
+                   const detail::Tuning& tuning) {
   if (shape.size() != 2 && shape.size() != 3)
     throw Error(ErrorCode::InvalidInput, "these grids must be 2D or 3D, got " +
                                              std::to_string(shape.size()) + " dimensions");
@@ -81,7 +71,7 @@ Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing 
       throw Error(ErrorCode::InvalidInput,
                   "a slice of " + std::to_string(L.n[0] * L.n[1]) +
                       " voxels is too large: at most 2^31-2 (e.g. 46340 x 46340)");
-    if (n >= (std::int64_t(1) << 32) - 1 || g_force_columns) {
+    if (n >= (std::int64_t(1) << 32) - 1 || tuning.edt.column_packing) {
       L.columns = true;
       return L;
     }
@@ -91,7 +81,7 @@ Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced, Packing 
                 "grid too large for a whole transform: " + std::to_string(n) +
                     " voxels, at most 2^32-2 (4294967294; e.g. 1625^3, 2048 x 2048 x 1023); "
                     "compute it by slices (EdtOptions::slices), which takes any number");
-  if (shift > 32 || (g_force_linear && packing == Packing::Any)) {
+  if (shift > 32 || (tuning.edt.linear_packing && packing == Packing::Any)) {
     if (packing == Packing::Bits)
       throw Error(ErrorCode::InvalidInput,
                   "grid extents too large: the coordinates of a grid point must fit 32 bits "
@@ -177,7 +167,8 @@ void set_grid(edt::Request& rq, const std::vector<std::int64_t>& shape, const Ed
       throw Error(ErrorCode::InvalidArgument, "grids of 4 or more axes take the PBA method only");
     return;
   }
-  rq.layout = edt::make_layout(shape, !opt.slices.empty());
+  rq.layout =
+      edt::make_layout(shape, !opt.slices.empty(), edt::Packing::Any, detail::tuning_of(opt));
   rq.metric = make_metric<3>(opt.sampling, rq.layout.nd);
 }
 

@@ -4,6 +4,7 @@
 #include <memory>
 #include <vector>
 
+#include "exec/tuning.hpp"
 #include "edt/edt_common.hpp"
 #include "edt/nd_layout.hpp"
 #include "gpugeom/edt.hpp"
@@ -67,16 +68,12 @@ struct Output {
 // cannot hold (sliced: only one z slice must fit int32 indexing). Packing::Bits: bit fields
 // only (modules that decode the sites themselves, cvd/); Any: raster indices where the bit
 // fields need more than 32 bits.
+// tuning.edt may ask for raster indices (Any only) or column packing (sliced only) where the
+// rule would not take them; the passes give identical results on every packing.
 enum class Packing { Any, Bits };
 Layout make_layout(const std::vector<std::int64_t>& shape, bool sliced = false,
-                   Packing packing = Packing::Any);
-
-// Tests: raster-index packing for every grid (the bit-field grids then take the linear passes,
-// which must give identical results). Not thread-safe; set it before the calls it is for.
-void set_linear_packing_for_testing(bool on);
-// Tests: column packing (ColumnLayout) for every slice-by-slice request (it is taken only past
-// 2^32 - 2 voxels otherwise). Not thread-safe either.
-void set_column_packing_for_testing(bool on);
+                   Packing packing = Packing::Any,
+                   const detail::Tuning& tuning = detail::kDefaultTuning);
 
 // Every column's first and last site of a grid in the executor's memory (column_site_bounds_
 // device), to host arrays of `plane` each; true where the grid holds a NaN.

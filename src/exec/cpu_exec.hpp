@@ -21,6 +21,7 @@
 #include "gpugeom/common.hpp"
 #include "base/hd.hpp"
 #include "exec/lanes.hpp"
+#include "exec/tuning.hpp"
 
 namespace gpugeom {
 
@@ -85,7 +86,7 @@ struct CpuExec {
   CpuExec() = default;
   // run.threads > 0 sets the OpenMP thread count of the calling thread for the executor's
   // lifetime (restored after), which every parallel step here and in Thrust's omp policy uses.
-  explicit CpuExec(const RunOptions& run) {
+  explicit CpuExec(const RunOptions& run) : tuning_(detail::tuning_of(run)) {
     if (run.threads > 0) {
       prev_threads_ = omp_get_max_threads();
       omp_set_num_threads(run.threads);
@@ -96,6 +97,8 @@ struct CpuExec {
   }
   CpuExec(const CpuExec&) = delete;
   CpuExec& operator=(const CpuExec&) = delete;
+  // The call's internal knobs (exec/tuning.hpp), copied from its options.
+  const detail::Tuning& tuning() const { return tuning_; }
 
   template <class T>
   Buffer<T> alloc(std::size_t n) {
@@ -302,6 +305,7 @@ struct CpuExec {
 
  private:
   int prev_threads_ = 0;
+  detail::Tuning tuning_;
 };
 
 }  // namespace gpugeom

@@ -21,6 +21,7 @@
 #include "exec/cuda_device.hpp"
 #include "exec/host_staging.hpp"
 #include "exec/lanes.hpp"
+#include "exec/tuning.hpp"
 #include "base/hd.hpp"
 
 namespace gpugeom {
@@ -277,11 +278,14 @@ class CudaExec {
       : dev_(cuda_device::resolve(run)),
         on_(dev_),
         s_(run.stream ? cudaStream_t(run.stream) : cudaStreamPerThread),
-        pool_(cuda_device::pool(dev_)) {
+        pool_(cuda_device::pool(dev_)),
+        tuning_(detail::tuning_of(run)) {
     GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms_, cudaDevAttrMultiProcessorCount, dev_));
   }
   CudaExec(const CudaExec&) = delete;
   CudaExec& operator=(const CudaExec&) = delete;
+  // The call's internal knobs (exec/tuning.hpp), copied from its options.
+  const detail::Tuning& tuning() const { return tuning_; }
   cudaStream_t stream() const { return s_; }
   // See cuda_device::require_memory: refuses, before any launch, a problem that cannot fit.
   void require_memory(std::uint64_t bytes, const std::string& what) {
@@ -557,6 +561,7 @@ class CudaExec {
   cuda_device::Scope on_;
   cudaStream_t s_;
   cudaMemPool_t pool_;
+  detail::Tuning tuning_;
   int sms_ = 1;
 };
 

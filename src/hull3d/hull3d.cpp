@@ -3,7 +3,6 @@
 #include "gpugeom/hull3d.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <climits>
 #include <cmath>
 #include <string>
@@ -51,20 +50,13 @@ void to_public(DeviceOutput&& out, DeviceHull3d& r) {
   r.equations = std::move(out.equations);
 }
 
-namespace {
-std::atomic<std::int64_t> g_first_slots{0};
-}
 // A tenth of the slots of a hull on every point (2n), and at least 2^16: uniform balls and
 // cubes keep a few thousand facets of 10^8 points; points on a sphere grow the store by
-// doubling, a few copies of its used part.
-std::int64_t first_facet_slots(std::int64_t n) {
-  const std::int64_t forced = g_first_slots.load();
+// doubling, a few copies of its used part. forced > 0 (Tuning::Hull3d) takes its place.
+std::int64_t first_facet_slots(std::int64_t n, std::int64_t forced) {
   const std::int64_t want =
       forced > 0 ? forced : std::max<std::int64_t>(std::int64_t(1) << 16, n / 5);
   return std::max<std::int64_t>(8, std::min({want, 2 * n, kMaxFacetSlots}));
-}
-void set_first_facet_slots_for_testing(std::int64_t slots) {
-  g_first_slots.store(slots);
 }
 
 // The executor gives each facet's unit outward normal and offset from (b - a) x (c - a) in

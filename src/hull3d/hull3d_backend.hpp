@@ -29,10 +29,9 @@ struct DeviceOutput {
 
 // The facet store grows with the hull (construct.inl): it starts at first_facet_slots(n) slots
 // and at most kMaxFacetSlots exist (the neighbour encoding 4 * slot + local index is an int32).
-// Tests set a small first size to make every hull grow it many times (0: back to the default).
+// Tests set a small first size (forced, Tuning::Hull3d) to make every hull grow it many times.
 constexpr std::int64_t kMaxFacetSlots = std::int64_t(1) << 29;
-std::int64_t first_facet_slots(std::int64_t n);
-void set_first_facet_slots_for_testing(std::int64_t slots);
+std::int64_t first_facet_slots(std::int64_t n, std::int64_t forced = 0);
 
 // The planes the executor could not give in double (NaN), redone in long double on the host: p
 // holds the points, t the nf facets, eq their planes (host memory). Defined in hull3d.cpp.

@@ -11,10 +11,11 @@
 #include "gpugeom/predicates.hpp"
 #include "../common/on_host_threads.hpp"
 #include "del2d_cases.hpp"
-#include "delaunay2d/del2d_backend.hpp"
+#include "../common/tuning.hpp"
 
 using namespace gpugeom;
 using gg_del2d::expect_valid;
+using Capacities = detail::Tuning::Del2d;  // (the flip rounds' capacities forced)
 
 namespace {
 Delaunay2dOptions cpu() {
@@ -591,9 +592,10 @@ TEST(Delaunay2d, TopOfTheWideSlotRange) {
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
     const auto ref = delaunay2d(c.pts, cpu());
-    del2d::set_slot_base_for_testing(std::int64_t(1) << 30);  // clamped: last slot 2^30 - 1
-    const auto r = delaunay2d(c.pts, cpu());
-    del2d::set_slot_base_for_testing(0);
+    const auto r = delaunay2d(c.pts, gg_test::tuned(cpu(), [](detail::Tuning& t) {
+                                t.del2d.slot_base = std::int64_t(1)
+                                                    << 30;  // clamped: 2^30 - 1 last
+                              }));
     expect_valid(c.pts, r);
     EXPECT_EQ(r.triangles, ref.triangles);
     EXPECT_EQ(r.neighbors, ref.neighbors);
@@ -627,10 +629,8 @@ TEST(Delaunay2d, PastTheRoundsCapacities) {
   std::vector<gg_del2d::Case> cases = gg_del2d::degenerate_cases();
   for (auto& c : gg_del2d::distribution_cases({100, 20000}, 5)) cases.push_back(std::move(c));
   std::map<std::string, std::int64_t> seen;
-  auto run = [&](const gg_del2d::Case& c, const del2d::Capacities& f) {
-    del2d::set_capacities_for_testing(f);
-    auto r = delaunay2d(c.pts, cpu());
-    del2d::set_capacities_for_testing({});
+  auto run = [&](const gg_del2d::Case& c, const Capacities& f) {
+    auto r = delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) { t.del2d = f; }));
     expect_valid(c.pts, r);
     for (const char* k : {"exact_rest_passes", "log_relocations", "split_flip_rounds"})
       seen[k] += r.stats.counters.at(k);
@@ -639,7 +639,7 @@ TEST(Delaunay2d, PastTheRoundsCapacities) {
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
     const auto ref = delaunay2d(c.pts, cpu());
-    for (const del2d::Capacities f : {del2d::Capacities{0, 16, 0}, {0, 0, 3}, {0, 16, 2}}) {
+    for (const Capacities f : {Capacities{0, 16, 0}, {0, 0, 3}, {0, 16, 2}}) {
       const auto r = run(c, f);
       EXPECT_EQ(r.triangles, ref.triangles) << f.log_records << "/" << f.exact_entries;
       EXPECT_EQ(r.neighbors, ref.neighbors) << f.log_records << "/" << f.exact_entries;

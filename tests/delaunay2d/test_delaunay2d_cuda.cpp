@@ -17,9 +17,7 @@
 #include "../common/capped_sizes.hpp"
 #include "../common/device_arrays.hpp"
 #include "del2d_cases.hpp"
-#include "delaunay2d/del2d_backend.hpp"
-#include "delaunay2d/digital/shift.hpp"
-#include "delaunay2d/digital/sketch.hpp"
+#include "testing/testing.hpp"
 
 using namespace gpugeom;
 
@@ -299,19 +297,18 @@ TEST(CudaDelaunay2d, PastTheRoundsCapacities) {
   std::vector<gg_del2d::Case> cases = gg_del2d::degenerate_cases();
   for (auto& c : gg_del2d::distribution_cases(sizes({5000, 50000}), 7))
     cases.push_back(std::move(c));
-  const del2d::Capacities forced[] = {{97, 0, 0}, {0, 16, 0}, {0, 0, 3}, {97, 16, 2}};
+  const detail::Tuning::Del2d forced[] = {{97, 0, 0}, {0, 16, 0}, {0, 0, 3}, {97, 16, 2}};
   std::int64_t rest = 0, parts = 0;
   for (const auto& c : cases)
     for (const auto& f : forced) {
       SCOPED_TRACE(c.name + " " + std::to_string(f.batch_points) + "/" +
                    std::to_string(f.log_records) + "/" + std::to_string(f.exact_entries));
-      del2d::set_capacities_for_testing(f);
       Delaunay2dOptions o;
       o.backend = Backend::Cpu;
+      o.tuning = gg_test::tuning([&](detail::Tuning& t) { t.del2d = f; });
       const auto cpu = delaunay2d(c.pts, o);
       o.backend = Backend::Cuda;
       const auto gpu = delaunay2d(c.pts, o);
-      del2d::set_capacities_for_testing({});
       gg_del2d::expect_valid(c.pts, gpu);
       EXPECT_EQ(gpu.triangles, cpu.triangles);
       EXPECT_EQ(gpu.neighbors, cpu.neighbors);
@@ -332,9 +329,9 @@ TEST(CudaDelaunay2d, TopOfTheWideSlotRange) {
     o.backend = Backend::Cpu;
     const auto cpu = delaunay2d(c.pts, o);
     o.backend = Backend::Cuda;
-    del2d::set_slot_base_for_testing(std::int64_t(1) << 30);
+    o.tuning =
+        gg_test::tuning([](detail::Tuning& t) { t.del2d.slot_base = std::int64_t(1) << 30; });
     const auto gpu = delaunay2d(c.pts, o);
-    del2d::set_slot_base_for_testing(0);
     gg_del2d::expect_valid(c.pts, gpu);
     EXPECT_EQ(gpu.triangles, cpu.triangles);
     EXPECT_EQ(gpu.neighbors, cpu.neighbors);
@@ -367,8 +364,8 @@ TEST(CudaDelaunay2d, DigitalSketchSameAsCpu) {
     cpu.backend = Backend::Cpu;
     gpu.backend = Backend::Cuda;
     const std::int64_t n = std::int64_t(c.xy.size() / 2);
-    const dg::Sketch a = dg::digital_sketch(c.xy.data(), n, c.side, cpu, true);
-    const dg::Sketch b = dg::digital_sketch(c.xy.data(), n, c.side, gpu, true);
+    const dg::Sketch a = gpugeom::testing::digital_sketch(c.xy.data(), n, c.side, cpu, true);
+    const dg::Sketch b = gpugeom::testing::digital_sketch(c.xy.data(), n, c.side, gpu, true);
     EXPECT_EQ(a.colour, b.colour) << "side " << c.side;
     EXPECT_EQ(a.missing, b.missing) << "side " << c.side;
     EXPECT_EQ(a.triangles, b.triangles) << "side " << c.side;
@@ -395,7 +392,7 @@ TEST(CudaDelaunay2d, TriangulatorFromAStart) {
   const auto part = delaunay2d(xy.data(), k, o);
   del2d::Output out;
   Stats st;
-  del2d::cuda_impl::triangulate_from(xy.data(), n, part.triangles.data(), part.triangle_count,
+  gpugeom::testing::triangulate_from(xy.data(), n, part.triangles.data(), part.triangle_count,
                                      nullptr, nullptr, o, out, st);
   EXPECT_EQ(gg_del2d::triangle_set(out.triangles.data(), std::size_t(out.num_triangles)),
             gg_del2d::triangle_set(whole.triangles.data(), std::size_t(whole.triangle_count)));
@@ -451,10 +448,10 @@ TEST(CudaDelaunay2d, DigitalStartIsRepeatable) {
   RunOptions gpu, cpu;
   gpu.backend = Backend::Cuda;
   cpu.backend = Backend::Cpu;
-  const dg::Sketch s = dg::digital_sketch(&pts.data()->x, n, 1024, gpu);
-  const dg::Start a = dg::shift_sketch(&pts.data()->x, n, s, gpu);
-  const dg::Start b = dg::shift_sketch(&pts.data()->x, n, s, gpu);
-  const dg::Start c = dg::shift_sketch(&pts.data()->x, n, s, cpu);
+  const dg::Sketch s = gpugeom::testing::digital_sketch(&pts.data()->x, n, 1024, gpu);
+  const dg::Start a = gpugeom::testing::shift_sketch(&pts.data()->x, n, s, gpu);
+  const dg::Start b = gpugeom::testing::shift_sketch(&pts.data()->x, n, s, gpu);
+  const dg::Start c = gpugeom::testing::shift_sketch(&pts.data()->x, n, s, cpu);
   ASSERT_TRUE(a.valid) << a.reason;
   EXPECT_GT(a.bad_inner + a.bad_boundary, 0);
   EXPECT_EQ(a.triangles, b.triangles);

@@ -13,10 +13,9 @@
 
 #include "del2d_cases.hpp"
 #include "delaunay2d/digital/digital.hpp"
-#include "delaunay2d/digital/shift.hpp"
-#include "delaunay2d/digital/sketch.hpp"
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/predicates.hpp"
+#include "testing/testing.hpp"
 
 using namespace gpugeom;
 namespace dg = gpugeom::del2d::digital;
@@ -63,9 +62,9 @@ TEST(DigitalMethod, SameTrianglesAsIncrementalOnEveryInput) {
               std::vector<std::int32_t>(inc.duplicate_of.begin(), inc.duplicate_of.end()));
     const auto& k = dig.stats.counters;
     // The sketch is used wherever it has a triangle (three sites not on one line).
-    const dg::Sketch sk = dg::digital_sketch(
+    const dg::Sketch sk = gpugeom::testing::digital_sketch(
         &c.pts.data()->x, n, c.grid ? c.grid : dg::auto_side(&c.pts.data()->x, n), o);
-    const dg::Start st = dg::shift_sketch(&c.pts.data()->x, n, sk, o);
+    const dg::Start st = gpugeom::testing::shift_sketch(&c.pts.data()->x, n, sk, o);
     EXPECT_EQ(st.valid, !sk.triangles.empty()) << st.reason;
     EXPECT_EQ(k.at("digital_fallback"), st.valid ? 0 : 1);
     if (st.valid) {
@@ -110,7 +109,7 @@ TEST(DigitalMethod, SmallSketchBoundaries) {
         o.grid = side;
         const auto dig = delaunay2d(pts, o);
         EXPECT_EQ(gg_del2d::triangle_set(dig), gg_del2d::triangle_set(inc));
-        const dg::Sketch sk = dg::digital_sketch(&pts.data()->x, n, side, o);
+        const dg::Sketch sk = gpugeom::testing::digital_sketch(&pts.data()->x, n, side, o);
         std::int64_t rim = 0;
         for (std::int32_t t : sk.twin) rim += t < 0;
         if (dig.stats.counters.at("digital_fallback") == 0 && rim >= 3 && rim <= 5) ++small;

@@ -14,11 +14,10 @@
 #include <vector>
 
 #include "del2d_cases.hpp"
-#include "delaunay2d/del2d_backend.hpp"
-#include "delaunay2d/digital/sketch.hpp"
 #include "gpugeom/cdt2d.hpp"
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/predicates.hpp"
+#include "testing/testing.hpp"
 
 using namespace gpugeom;
 namespace dg = gpugeom::del2d::digital;
@@ -119,7 +118,7 @@ TEST(DigitalSketch, RecolouredDiagramIsTheStandardFloodingAndItsDualIsATriangula
     const std::int64_t n = std::int64_t(c.xy.size() / 2);
     RunOptions run;
     run.backend = Backend::Cpu;
-    const dg::Sketch s = dg::digital_sketch(c.xy.data(), n, c.side, run, true);
+    const dg::Sketch s = gpugeom::testing::digital_sketch(c.xy.data(), n, c.side, run, true);
     const std::int64_t w = s.width, h = s.height;
     EXPECT_TRUE(s.exact);
     EXPECT_LE(std::max(w, h), c.side + 2);
@@ -251,8 +250,8 @@ TEST(DigitalSketch, TriangulatorFromAStartEqualsIncremental) {
       for (const std::int32_t* h : std::vector<const std::int32_t*>{nullptr, hint.data()}) {
         del2d::Output out;
         Stats st;
-        del2d::cpu_impl::triangulate_from(xy.data(), n, s.data(), std::int64_t(s.size() / 3),
-                                          nullptr, h, o, out, st);
+        gpugeom::testing::triangulate_from(xy.data(), n, s.data(), std::int64_t(s.size() / 3),
+                                           nullptr, h, o, out, st);
         EXPECT_EQ(gg_del2d::triangle_set(out.triangles.data(), std::size_t(out.num_triangles)),
                   ref);
         EXPECT_EQ(out.duplicate_of, whole.duplicate_of);

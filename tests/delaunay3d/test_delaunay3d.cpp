@@ -7,6 +7,7 @@
 #include <string>
 
 #include "../common/caller_arrays.hpp"
+#include "../common/tuning.hpp"
 #include "../common/first_copies.hpp"
 #include "del3d_cases.hpp"
 #include "gpugeom/predicates.hpp"
@@ -56,7 +57,7 @@ TEST(Delaunay3d, StarSplayingRepairs) {
       SCOPED_TRACE(std::string(d) + ", rounds " + std::to_string(rounds));
       const auto pts = generate3d(d, 600, 5);
       Delaunay3dOptions o = cpu();
-      o.max_flip_rounds = rounds;
+      o.tuning = gg_test::tuning([&](detail::Tuning& t) { t.del3d.max_flip_rounds = rounds; });
       const auto t = delaunay3d(pts, o);
       expect_valid(pts, t);
       EXPECT_GT(t.stats.counters.at("failed_vertices"), 0);
@@ -72,7 +73,7 @@ TEST(Delaunay3d, StarSplayingGrowsTheStore) {
     for (std::int64_t rounds : {1, 2, 3, 5, 8}) {
       SCOPED_TRACE(c.name + ", rounds " + std::to_string(rounds));
       Delaunay3dOptions o = cpu();
-      o.max_flip_rounds = rounds;
+      o.tuning = gg_test::tuning([&](detail::Tuning& t) { t.del3d.max_flip_rounds = rounds; });
       expect_valid(c.pts, delaunay3d(c.pts, o));
     }
 }
@@ -406,7 +407,7 @@ TEST(DynamicDelaunay3d, StarSplayingRepairsInsertions) {
   for (const char* d : {"uniform", "grid", "sphere"}) {
     SCOPED_TRACE(d);
     Delaunay3dOptions o = cpu();
-    o.max_flip_rounds = 0;
+    o.tuning = gg_test::tuning([&](detail::Tuning& t) { t.del3d.max_flip_rounds = 0; });
     gg_del3d::follow_in_chunks({d, generate3d(d, 800, 6)}, o, 77);
   }
 }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "../common/capped_sizes.hpp"
+#include "../common/tuning.hpp"
 #include "../common/device_arrays.hpp"
 #include "del3d_cases.hpp"
 
@@ -56,7 +57,7 @@ TEST(CudaDelaunay3d, StarSplayingRepairs) {
       const auto pts = gpugeom::generate3d(d, sizes({3000})[0], 5);
       Delaunay3dOptions o;
       o.backend = Backend::Cuda;
-      o.max_flip_rounds = rounds;
+      o.tuning = gg_test::tuning([&](detail::Tuning& t) { t.del3d.max_flip_rounds = rounds; });
       const auto gpu = delaunay3d(pts, o);
       gg_del3d::expect_valid(pts, gpu);
       EXPECT_GT(gpu.stats.counters.at("failed_vertices"), 0);

@@ -10,8 +10,9 @@
 #include <string>
 
 #include "del3d_cases.hpp"
-#include "delaunay3d/del3d_backend.hpp"
+#include "../common/tuning.hpp"
 #include "gpugeom/predicates.hpp"
+#include "testing/testing.hpp"
 
 using namespace gpugeom;
 using gg_del3d::expect_valid;
@@ -133,7 +134,7 @@ TEST(DigitalDelaunay3d, Errors) {
     EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
   }
   Delaunay3dOptions o = cpu(Method::Digital);
-  o.max_flip_rounds = 1;
+  o.tuning = gg_test::tuning([&](detail::Tuning& t) { t.del3d.max_flip_rounds = 1; });
   EXPECT_THROW(delaunay3d(pts, o), Error);
   // Too few distinct points: the same error as the incremental method's.
   const std::vector<Point3> flat = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 2, 0}};
@@ -145,10 +146,10 @@ TEST(DigitalDelaunay3d, Errors) {
 // convex link around its point; after splaying every tetrahedron of a star is in the stars of
 // its other points, and the finite ones with positive volume are the incremental method's.
 namespace {
-using gpugeom::del3d::StarsForTesting;
+using Stars = gpugeom::testing::Stars;
 
 struct StarView {
-  const StarsForTesting& s;
+  const Stars& s;
   std::int32_t m;
   Point3 at(std::int32_t i) const {
     return {s.pts[3 * std::size_t(i)], s.pts[3 * std::size_t(i) + 1],
@@ -176,7 +177,7 @@ struct StarView {
   }
 };
 
-void expect_closed_convex_stars(const StarsForTesting& s) {
+void expect_closed_convex_stars(const Stars& s) {
   const StarView V{s, std::int32_t(s.pts.size() / 3)};
   for (std::int32_t v = 0; v < V.m; ++v) {
     const auto st = V.star(v);
@@ -211,8 +212,8 @@ TEST(DigitalDelaunay3d, StarsOnTheirOwn) {
     for (int splay : {0, 1, 2}) {
       SCOPED_TRACE(splay);
       const bool splayed = splay > 0;
-      StarsForTesting s;
-      gpugeom::del3d::cpu_impl::digital_stars_for_testing(&pts.data()->x, 2000, 0, splay, s);
+      Stars s;
+      gpugeom::testing::digital_stars(&pts.data()->x, 2000, 0, splay, s);
       ASSERT_TRUE(s.built);
       expect_closed_convex_stars(s);
       const StarView V{s, std::int32_t(s.pts.size() / 3)};
@@ -281,7 +282,7 @@ std::map<std::int32_t, Ring> rings(const StarView& V, std::int32_t v) {
     }
   return r;
 }
-std::map<std::int32_t, std::uint32_t> table(const StarsForTesting& s, std::int32_t v) {
+std::map<std::int32_t, std::uint32_t> table(const Stars& s, std::int32_t v) {
   std::map<std::int32_t, std::uint32_t> r;
   for (std::int64_t j = s.table_start[std::size_t(v)]; j < s.table_start[std::size_t(v) + 1]; ++j) {
     EXPECT_EQ(r.count(s.table_vertex[std::size_t(j)]), 0u) << "star " << v << ": listed twice";
@@ -297,8 +298,8 @@ TEST(DigitalDelaunay3d, VertexTablesFollowTheStars) {
     const auto pts = generate3d(d, 2000, 5);
     for (int splay : {0, 1}) {
       SCOPED_TRACE(splay);
-      StarsForTesting s;
-      gpugeom::del3d::cpu_impl::digital_stars_for_testing(&pts.data()->x, 2000, 0, splay, s);
+      Stars s;
+      gpugeom::testing::digital_stars(&pts.data()->x, 2000, 0, splay, s);
       ASSERT_TRUE(s.built);
       const StarView V{s, std::int32_t(s.pts.size() / 3)};
       std::vector<std::map<std::int32_t, Ring>> R(std::size_t(V.m));
@@ -334,9 +335,9 @@ TEST(DigitalDelaunay3d, RequestsPastTheBuffer) {
   for (const char* d : {"uniform", "thin_sphere"}) {
     SCOPED_TRACE(d);
     const auto pts = generate3d(d, 2000, 6);
-    StarsForTesting roomy, tight;
-    gpugeom::del3d::cpu_impl::digital_stars_for_testing(&pts.data()->x, 2000, 0, 1, roomy);
-    gpugeom::del3d::cpu_impl::digital_stars_for_testing(&pts.data()->x, 2000, 0, 1, tight, 64);
+    Stars roomy, tight;
+    gpugeom::testing::digital_stars(&pts.data()->x, 2000, 0, 1, roomy);
+    gpugeom::testing::digital_stars(&pts.data()->x, 2000, 0, 1, tight, 64);
     ASSERT_TRUE(roomy.built && tight.built);
     EXPECT_EQ(roomy.request_spills, 0);
     EXPECT_GT(tight.request_spills, 0);

@@ -7,11 +7,13 @@
 #include <cmath>
 #include <string>
 #include <cstdint>
+#include <memory>
 #include <random>
 #include <vector>
 
 #include "gpugeom/edt.hpp"
 #include "edt/edt_backend.hpp"
+#include "../common/tuning.hpp"
 #include "gpugeom/io.hpp"
 
 namespace gg_edt {
@@ -29,22 +31,14 @@ inline gpugeom::io::Grid random_grid(const std::vector<std::int64_t>& shape, dou
   return g;
 }
 
-// Raster-index packing (edt::LinearLayout) for every grid while alive (the library's test
-// switch).
-struct LinearPacking {
-  LinearPacking() { gpugeom::edt::set_linear_packing_for_testing(true); }
-  ~LinearPacking() { gpugeom::edt::set_linear_packing_for_testing(false); }
-  LinearPacking(const LinearPacking&) = delete;
-  LinearPacking& operator=(const LinearPacking&) = delete;
-};
-
-// Column packing (edt::ColumnLayout) for every slice-by-slice request while alive.
-struct ColumnPacking {
-  ColumnPacking() { gpugeom::edt::set_column_packing_for_testing(true); }
-  ~ColumnPacking() { gpugeom::edt::set_column_packing_for_testing(false); }
-  ColumnPacking(const ColumnPacking&) = delete;
-  ColumnPacking& operator=(const ColumnPacking&) = delete;
-};
+// The library's knobs (RunOptions::tuning) for raster-index packing (edt::LinearLayout) of every
+// grid, and for column packing (edt::ColumnLayout) of every slice-by-slice request.
+inline std::shared_ptr<const gpugeom::detail::Tuning> linear_packing() {
+  return gg_test::tuning([](gpugeom::detail::Tuning& t) { t.edt.linear_packing = true; });
+}
+inline std::shared_ptr<const gpugeom::detail::Tuning> column_packing() {
+  return gg_test::tuning([](gpugeom::detail::Tuning& t) { t.edt.column_packing = true; });
+}
 
 // The slices (z values) of a whole-volume result, as the slice-by-slice mode returns them.
 inline gpugeom::EdtResult slices_of(const gpugeom::EdtResult& whole,

@@ -595,7 +595,7 @@ TEST(Edt, RasterIndexPackingSameResults) {
     if (c.shape.size() == 3) so.slices = {c.shape[0] - 1, 0, c.shape[0] / 2};
     const auto slices_bits =
         c.shape.size() == 3 ? distance_transform(g, SiteRule::NonZero, so) : EdtResult{};
-    gg_edt::LinearPacking on;
+    o.tuning = jo.tuning = so.tuning = gg_edt::linear_packing();
     expect_same(distance_transform(g, SiteRule::NonZero, o), bits, what);
     if (zeros)
       expect_same(distance_transform(g, SiteRule::Zero, o), zero_bits, what + " zero rule");
@@ -643,8 +643,7 @@ TEST(Edt, SliceBlocksAndColumnPackingSameResults) {
     so.slices = {nz - 1, 0, nz / 2, nz / 2, nz - 1};
     for (std::int64_t z = 1; z < nz; z += 3) so.slices.push_back(z);
     for (bool columns : {false, true}) {
-      std::unique_ptr<gg_edt::ColumnPacking> on;
-      if (columns) on = std::make_unique<gg_edt::ColumnPacking>();
+      so.tuning = columns ? gg_edt::column_packing() : nullptr;
       for (std::int64_t block : {std::int64_t(0), std::int64_t(1), 2 * plane, 3 * plane + 1}) {
         so.slice_block = block;
         const std::string what = "shape " + std::to_string(c.shape[0]) + "x" +

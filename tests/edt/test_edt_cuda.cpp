@@ -94,8 +94,7 @@ TEST(CudaEdt, SlabsSameAsCpuWholeGrid) {
           EdtOptions o = every_output(samp, Backend::Cpu);
           o.labels = false;
           const auto whole = distance_transform(g, SiteRule::Zero, o);
-          std::unique_ptr<gg_edt::ColumnPacking> packing;
-          if (columns) packing = std::make_unique<gg_edt::ColumnPacking>();
+          if (columns) o.tuning = gg_edt::column_packing();
           const std::int64_t n0 = shape[0];
           for (std::int64_t first : {std::int64_t(0), n0 / 3, n0 - n0 / 4}) {
             const std::int64_t count = first == 0 ? n0 / 3 : std::min(n0 / 3, n0 - first);
@@ -476,7 +475,7 @@ TEST(CudaEdt, RasterIndexPackingSameAsCpu) {
         list.insert(list.end(), p.begin(), p.end());
       }
     const auto cpu_list = distance_transform_sites(c.shape, list, o);
-    gg_edt::LinearPacking linear;
+    o.tuning = so.tuning = gg_edt::linear_packing();
     o.backend = so.backend = Backend::Cuda;
     const auto gpu = distance_transform(g, SiteRule::NonZero, o);
     EXPECT_EQ(gpu.labels, cpu.labels) << what;
@@ -533,10 +532,9 @@ TEST(CudaEdt, SliceBlocksSameAsCpu) {
     for (std::int64_t z = 1; z < nz; z += 2) so.slices.push_back(z);
     const auto want = gg_edt::slices_of(whole, so.slices);
     for (int packing = 0; packing < 3; ++packing) {
-      std::unique_ptr<gg_edt::LinearPacking> linear;
-      std::unique_ptr<gg_edt::ColumnPacking> columns;
-      if (packing == 1) linear = std::make_unique<gg_edt::LinearPacking>();
-      if (packing == 2) columns = std::make_unique<gg_edt::ColumnPacking>();
+      so.tuning = packing == 1   ? gg_edt::linear_packing()
+                  : packing == 2 ? gg_edt::column_packing()
+                                 : nullptr;
       for (int tiles : {-1, 1})
         for (std::int64_t block : {std::int64_t(0), plane, 5 * plane}) {
           so.tiles = tiles;

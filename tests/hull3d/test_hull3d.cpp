@@ -6,7 +6,7 @@
 #include <set>
 
 #include "../common/caller_arrays.hpp"
-#include "hull3d/hull3d_backend.hpp"
+#include "../common/tuning.hpp"
 #include "../common/on_host_threads.hpp"
 #include "hull3d_cases.hpp"
 
@@ -49,11 +49,9 @@ TEST(Hull3d, GrowingFacetStoreGivesTheSameHull) {
   for (auto& c : gg_hull3d::distribution_cases({100, 20000}, 5)) cases.push_back(std::move(c));
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
-    hull3d::set_first_facet_slots_for_testing(0);
     const auto ref = convex_hull3d(c.pts, cpu());
-    hull3d::set_first_facet_slots_for_testing(8);
-    const auto r = convex_hull3d(c.pts, cpu());
-    hull3d::set_first_facet_slots_for_testing(0);
+    const auto r = convex_hull3d(
+        c.pts, gg_test::tuned(cpu(), [](detail::Tuning& t) { t.hull3d.first_facet_slots = 8; }));
     expect_valid(c.pts, r);
     EXPECT_EQ(r.triangles, ref.triangles);
     EXPECT_EQ(r.neighbors, ref.neighbors);

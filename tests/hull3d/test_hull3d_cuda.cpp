@@ -6,7 +6,7 @@
 #include <cstdlib>
 
 #include "../common/capped_sizes.hpp"
-#include "hull3d/hull3d_backend.hpp"
+#include "../common/tuning.hpp"
 #include "hull3d_cases.hpp"
 
 using namespace gpugeom;
@@ -48,11 +48,9 @@ TEST(CudaHull3d, GrowingFacetStoreGivesTheSameHull) {
     const auto p = generate3d(d, sizes({200000, 20000}).front(), 6);
     Hull3dOptions o;
     o.backend = Backend::Cuda;
-    hull3d::set_first_facet_slots_for_testing(0);
     const auto ref = convex_hull3d(p, o);
-    hull3d::set_first_facet_slots_for_testing(8);
-    const auto r = convex_hull3d(p, o);
-    hull3d::set_first_facet_slots_for_testing(0);
+    const auto r = convex_hull3d(
+        p, gg_test::tuned(o, [](detail::Tuning& t) { t.hull3d.first_facet_slots = 8; }));
     EXPECT_EQ(r.triangles, ref.triangles) << d;
     EXPECT_EQ(r.neighbors, ref.neighbors) << d;
     EXPECT_GT(r.stats.counters.at("facet_store_grown"), 0) << d;

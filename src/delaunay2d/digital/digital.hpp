@@ -1,6 +1,6 @@
 // The digital 2D Delaunay method (issue 20, thesis 4.3; Delaunay2dOptions::method = Digital):
 // the sketch (sketch.hpp: grid, PBA, debris, dual, hull), the shifting phase (shift.hpp), then
-// the 2D Triangulator from that start (del2d_backend.hpp, triangulate_from): the points the
+// the 2D Triangulator from that start (impl/triangulate.inl, run_from_start): the points the
 // sketch lost are inserted by its batches (Alg. 4.6) and everything flipped by its rounds
 // (Phase 3b). The result equals the incremental method's.
 #pragma once

@@ -6,7 +6,6 @@
 #include <unordered_map>
 
 #include "delaunay2d/digital/convex_turn.hpp"
-#include "exec/dispatch.hpp"
 
 namespace gpugeom::del2d::digital {
 
@@ -48,21 +47,6 @@ std::string check_start(const std::vector<RimEdge>& rim, const Start& s) {
   if (steps != next.size()) return "the boundary is not one cycle";
   if (lowest != 1) return "the boundary winds more than once";
   return {};
-}
-
-Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s, const RunOptions& run) {
-  Start out;
-  if (!s.exact) {
-    out.reason = "the grid points are not exact doubles";
-    return out;
-  }
-  if (s.triangles.empty()) {
-    out.reason = "the sketch has no triangle";
-    return out;
-  }
-  const Backend b = resolve_backend(run.backend, run.device);
-  GG_ON_EXECUTOR(b, del2d, digital_shift, xy, n, s, run, out);
-  return out;
 }
 
 }  // namespace gpugeom::del2d::digital

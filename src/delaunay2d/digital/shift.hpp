@@ -10,8 +10,8 @@
 //
 // The result is checked as a whole before it is used (every triangle counter-clockwise, the
 // boundary one convex cycle turning once, V - E + F = 1): a triangulation covering the convex
-// hull of its vertices, the start the 2D Triangulator takes (del2d_backend.hpp,
-// triangulate_from). Where that check fails the caller uses the incremental method (the same
+// hull of its vertices, the start the 2D Triangulator takes (impl/triangulate.inl,
+// run_from_start). Where that check fails the caller uses the incremental method (the same
 // result; the tests require it never to happen).
 #pragma once
 #include <cstdint>
@@ -45,20 +45,4 @@ struct Start {
 // counts (triangle_count, vertices, not_ccw): empty where it is a start, else the reason.
 std::string check_start(const std::vector<RimEdge>& rim, const Start& s);
 
-// xy: the n points the sketch was made of; the work runs on run's executor.
-Start shift_sketch(const double* xy, std::int64_t n, const Sketch& s, const RunOptions& run);
-
 }  // namespace gpugeom::del2d::digital
-
-namespace gpugeom::del2d {
-// The rounds on an executor (impl/shift.inl): fills out's triangles, twins, hints, counts and
-// the check's verdict.
-namespace cpu_impl {
-void digital_shift(const double* xy, std::int64_t n, const digital::Sketch& s,
-                   const RunOptions& run, digital::Start& out);
-}
-namespace cuda_impl {
-void digital_shift(const double* xy, std::int64_t n, const digital::Sketch& s,
-                   const RunOptions& run, digital::Start& out);
-}
-}  // namespace gpugeom::del2d

@@ -10,7 +10,6 @@
 #include <tuple>
 
 #include "delaunay2d/digital/sketch_backend.hpp"
-#include "exec/dispatch.hpp"
 
 namespace gpugeom::del2d::digital {
 
@@ -153,19 +152,6 @@ void set_frame(Sketch& s, const double lo[2], const double hi[2], std::int64_t s
             std::abs(s.oy / h) + double(s.height) < lim &&
             std::abs(s.ox) + double(s.width) * h < 0x1p179 &&
             std::abs(s.oy) + double(s.height) * h < 0x1p179;
-}
-
-Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run,
-                      bool keep_colour) {
-  Sketch s;
-  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-  for (std::int64_t i = 0; i < n; ++i)
-    for (int d = 0; d < 2; ++d)
-      lo[d] = std::min(lo[d], xy[2 * i + d]), hi[d] = std::max(hi[d], xy[2 * i + d]);
-  set_frame(s, lo, hi, side);
-  const Backend b = resolve_backend(run.backend, run.device);
-  GG_ON_EXECUTOR(b, del2d, digital_sketch_dual, xy, n, run, keep_colour, s);
-  return s;
 }
 
 }  // namespace gpugeom::del2d::digital

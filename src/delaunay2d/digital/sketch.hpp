@@ -51,11 +51,4 @@ struct Sketch {
 // `side` (4..46338; else Error(InvalidArgument)).
 void set_frame(Sketch& s, const double lo[2], const double hi[2], std::int64_t side);
 
-// side: the grid's largest extent (4..46338): the pixel size is the least power of two with which
-// the points' bounding box spans at most side pixels (between side / 2 and side), and the grid
-// is trimmed to the box (two pixels more at most: the origin rounded down, the last pixel).
-// keep_colour: also bring the whole colouring to the host (tests).
-Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side, const RunOptions& run,
-                      bool keep_colour = false);
-
 }  // namespace gpugeom::del2d::digital

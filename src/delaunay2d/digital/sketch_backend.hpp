@@ -19,16 +19,3 @@ std::vector<std::int32_t> recolour_debris(std::int64_t w, std::int64_t h,
                                           const std::vector<std::int32_t>& block);
 
 }  // namespace gpugeom::del2d::digital
-
-namespace gpugeom::del2d {
-// s holds the frame (width, height, ox, oy, h); fills pixel, missing, site_of, debris, pinched,
-// triangles and twins (the dual and the hull fill), colour where keep_colour, and phase times.
-namespace cpu_impl {
-void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run, bool keep_colour,
-                         digital::Sketch& s);
-}
-namespace cuda_impl {
-void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run, bool keep_colour,
-                         digital::Sketch& s);
-}
-}  // namespace gpugeom::del2d

@@ -32,11 +32,12 @@ class Triangulator {
       : ex_(ex), P_(P), st_(st), profile_(profile) {
     m_ = std::int32_t(P.m);
     tmax_ = 2 * std::int64_t(m_) - 2;
-    // Tests only (del2d::set_slot_base_for_testing): slots numbered from base_ rather than 0,
-    // up to the encoding's last slot, so that small inputs run through the top of the wide
-    // encoding (bit 31 set in neighbour pointers and list entries). The slot-indexed arrays
-    // are then addressed through pointers offset by -base_ (tri(), best(), srank(), M_).
-    base_ = std::clamp<std::int64_t>(slot_base_for_testing(), 0, Adj::kMaxSlots - tmax_);
+    // Tests only (Tuning::Del2d::slot_base): slots numbered from base_ rather than 0, up to
+    // the encoding's last slot, so that small inputs run through the top of the wide encoding
+    // (bit 31 set in neighbour pointers and list entries). The slot-indexed arrays are then
+    // addressed through pointers offset by -base_ (tri(), best(), srank(), M_).
+    const detail::Tuning::Del2d& forced = ex.tuning().del2d;
+    base_ = std::clamp<std::int64_t>(forced.slot_base, 0, Adj::kMaxSlots - tmax_);
     g_.p = P.pts.data();
     g_.s[0] = P.kernel[0];
     g_.s[1] = P.kernel[1];
@@ -51,7 +52,6 @@ class Triangulator {
     // The exact pass's list holds a sixteenth of the slots (at least 2^20, so the rounds that
     // run unchecked never overflow it): the filter decides nearly every test on most input,
     // and a round with more undecided entries decides them in further passes.
-    const Capacities forced = capacities_for_testing();
     exact_cap_ =
         std::min(tmax_, forced.exact_entries > 0 ? forced.exact_entries
                                                  : std::max<std::int64_t>(tmax_ / 16, 1 << 20));
@@ -1234,43 +1234,4 @@ inline typename Triangulator::Finished run_from_start(
   auto out = T.finish();
   st.phase_ms.push_back({"finish", ms_since(t0)});
   return out;
-}
-
-// From a start triangulation (del2d_backend.hpp), host points in, host arrays out.
-inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::int32_t* start,
-                                  std::int64_t nstart, const std::int32_t* twin,
-                                  const std::int32_t* hint, const Delaunay2dOptions& opt,
-                                  Output& out, Stats& st) {
-  if (nstart < 1) throw Error(ErrorCode::InvalidArgument, "start triangulation: no triangle");
-  for (std::int64_t i = 0; i < 3 * nstart; ++i)
-    if (start[i] < 0 || start[i] >= n)
-      throw Error(ErrorCode::InvalidArgument, "start triangulation: vertex out of range");
-  Exec ex(opt);
-  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
-  ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
-                                           "a 2D Delaunay triangulation", "points");
-  auto t0 = std::chrono::steady_clock::now();
-  Prepared P = prepare(ex, xy, n, false);
-  detail::Prefault pf;
-  size_host_results(opt.into, n, P, out, pf);
-  st.counters["points"] = n;
-  st.counters["distinct_points"] = P.m;
-  st.counters["duplicates"] = P.duplicates;
-  auto up = [&](const std::int32_t* h, std::int64_t len) {
-    auto b = ex.template alloc<std::int32_t>(h ? std::size_t(len) : 0);
-    if (h) ex.from_host(h, len, b.data());
-    return b;
-  };
-  auto d_tris = up(start, 3 * nstart), d_twin = up(twin, 3 * nstart), d_hint = up(hint, n);
-  if (!twin) {
-    d_twin = ex.template alloc<std::int32_t>(std::size_t(3 * nstart));
-    if (mesh::pair_half_edges(ex, d_tris.data(), nstart, d_twin.data()))
-      throw Error(ErrorCode::InvalidArgument,
-                  "start triangulation: an edge in three triangles or more");
-  }
-  ex.sync();
-  st.phase_ms.push_back({"prepare", ms_since(t0)});
-  auto f = run_from_start(ex, P, n, d_tris.data(), nstart, d_twin.data(),
-                          hint ? d_hint.data() : nullptr, opt.profile, st);
-  deliver_host_results(ex, opt.into, n, P, f, out, st, pf);
 }

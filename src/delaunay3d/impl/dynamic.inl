@@ -317,8 +317,8 @@ inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const std::int8_t* now,
     Stats sd;
     Prepared PD = prepare_points(ex, p, nv, true, sd);
     if (PD.S.duplicates) return out;  // (the hole's vertices are distinct points)
-    Triangulator TD(ex, PD.S.pts.data(), std::int32_t(PD.S.m), PD.first, opt.max_flip_rounds,
-                    opt.progress, sd);
+    Triangulator TD(ex, PD.S.pts.data(), std::int32_t(PD.S.m), PD.first,
+                    ex.tuning().del3d.max_flip_rounds, opt.progress, sd);
     TD.run();
     repair_phase(ex, TD, PD.S.m, opt.progress, sd);
     dused = TD.counters().used;
@@ -538,7 +538,8 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
   if (!fresh && how == Update::Move)
     for (int k = 0; k < 3; ++k) first.s[k] = moved.kernel[k];
   auto t0 = Clock::now();
-  Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, opt.max_flip_rounds, opt.progress, st);
+  Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, ex.tuning().del3d.max_flip_rounds,
+                 opt.progress, st);
   if (fresh) {
     T.run();
     st.phase_ms.push_back({"insert_flip", ms_since(t0)});

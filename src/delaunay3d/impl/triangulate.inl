@@ -1330,7 +1330,7 @@ inline std::int64_t repair_phase(Exec& ex, Triangulator& T, std::int64_t m,
 template <class Body>
 inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on_device,
                              const Delaunay3dOptions& opt, Stats& st, Body body) {
-  const std::int64_t max_rounds = opt.max_flip_rounds;
+  const std::int64_t max_rounds = ex.tuning().del3d.max_flip_rounds;
   const ProgressFn& progress = opt.progress;
   Prepared P = prepare_points(ex, in, n, on_device, st);
   mesh::SortedPoints<Exec>& S = P.S;

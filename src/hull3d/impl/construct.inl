@@ -49,7 +49,7 @@ struct PassState {
     g.n = std::int32_t(np);
     // A closed triangulated sphere on V <= n vertices has 2V - 4 facets, but V is mostly far
     // below n: the store starts smaller and grows (reserve) as the rounds need.
-    cap = first_facet_slots(np);
+    cap = first_facet_slots(np, ex.tuning().hull3d.first_facet_slots);
     tv = ex.template alloc<std::int32_t>(std::size_t(3 * cap));
     to = ex.template alloc<std::int32_t>(std::size_t(3 * cap));
     stamp = ex.template alloc<std::int32_t>(std::size_t(cap));

@@ -517,32 +517,3 @@ inline HeldStart shift_on(Exec& ex, const double* P, std::int64_t n, const digit
   phase("shift_check");
   return S;
 }
-
-// The held start brought to the host (the tests' view, shift.hpp).
-inline void download_start(Exec& ex, const HeldStart& S, std::int64_t n, digital::Start& out) {
-  out.triangles.resize(std::size_t(3 * S.nt));
-  out.twin.resize(std::size_t(3 * S.nt));
-  out.hint.resize(std::size_t(n));
-  ex.to_host(S.tri.data(), 3 * S.nt, out.triangles.data());
-  ex.to_host(S.twin.data(), 3 * S.nt, out.twin.data());
-  ex.to_host(S.hint.data(), n, out.hint.data());
-}
-
-// The shifting phase from a host sketch (tests, shift.hpp).
-inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::Sketch& sk,
-                               const RunOptions& run, digital::Start& out) {
-  Exec ex(run);
-  auto pts = ex.template alloc<double>(std::size_t(2 * n));
-  ex.from_host(xy, 2 * n, pts.data());
-  HeldSketch H;
-  auto up = [&](const std::vector<std::int32_t>& v) {
-    auto b = ex.template alloc<std::int32_t>(v.size());
-    ex.from_host(v.data(), std::int64_t(v.size()), b.data());
-    return b;
-  };
-  H.pixel = up(sk.pixel), H.site_of = up(sk.site_of), H.colour = up(sk.colour);
-  H.tri = up(sk.triangles), H.twin = up(sk.twin);
-  H.nt = std::int64_t(sk.triangles.size() / 3);
-  const HeldStart S = shift_on(ex, pts.data(), n, sk, H, out);
-  download_start(ex, S, n, out);
-}

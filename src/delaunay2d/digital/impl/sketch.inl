@@ -343,31 +343,3 @@ inline HeldSketch sketch_on(Exec& ex, const double* P, std::int64_t n, digital::
   phase("hull_fill");
   return H;
 }
-
-// The held arrays brought to the host (the tests' view, sketch.hpp).
-inline void download_sketch(Exec& ex, const HeldSketch& H, std::int64_t n, bool keep_colour,
-                            digital::Sketch& s) {
-  s.pixel.resize(std::size_t(n));
-  ex.to_host(H.pixel.data(), n, s.pixel.data());
-  s.missing.resize(std::size_t(H.nmiss));
-  ex.to_host(H.missing.data(), H.nmiss, s.missing.data());
-  s.site_of.resize(std::size_t(n));
-  ex.to_host(H.site_of.data(), n, s.site_of.data());
-  if (keep_colour) {
-    s.colour.resize(std::size_t(s.width * s.height));
-    ex.to_host(H.colour.data(), s.width * s.height, s.colour.data());
-  }
-  s.triangles.resize(std::size_t(3 * H.nt));
-  ex.to_host(H.tri.data(), 3 * H.nt, s.triangles.data());
-  s.twin.resize(std::size_t(3 * H.nt));
-  ex.to_host(H.twin.data(), 3 * H.nt, s.twin.data());
-}
-
-inline void digital_sketch_dual_impl(const double* xy, std::int64_t n, const RunOptions& run,
-                                     bool keep_colour, digital::Sketch& s) {
-  Exec ex(run);
-  auto pts = ex.template alloc<double>(std::size_t(2 * n));
-  ex.from_host(xy, 2 * n, pts.data());
-  const HeldSketch H = sketch_on(ex, pts.data(), n, s);
-  download_sketch(ex, H, n, keep_colour, s);
-}

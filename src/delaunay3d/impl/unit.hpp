@@ -1,0 +1,35 @@
+// The headers 3D Delaunay's algorithm (unit.inl) needs: included, before the executor's own header,
+// by every translation unit that compiles it for an executor (the library's and the tests').
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+#include "base/clock.hpp"
+#include "delaunay3d/del3d_backend.hpp"
+#include "delaunay3d/tet.hpp"
+#include "edt/edt_backend.hpp"
+#include "edt/edt_device.hpp"
+#include "exec/atomics.hpp"
+#include "exec/deliver.hpp"
+#include "exec/peak.hpp"
+#include "exec/scratch_lease.hpp"
+#include "mesh/adjacency.hpp"
+#include "mesh/compact.hpp"
+#include "mesh/hole_refill.hpp"
+#include "mesh/simplex_changes.hpp"
+#include "mesh/kept_points.hpp"
+#include "mesh/first_tetrahedron.hpp"
+#include "mesh/flip_fix.hpp"
+#include "mesh/history.hpp"
+#include "mesh/prepare.hpp"
+#include "mesh/priority.hpp"
+#include "mesh/work_list.hpp"
+#include "predicates/predicates.hpp"
