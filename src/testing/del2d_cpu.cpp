@@ -12,17 +12,8 @@ namespace edt_impl = gpugeom::edt::cpu_impl;
 }  // namespace gpugeom::del2d::cpu_impl
 
 namespace gpugeom::testing::cpu_impl {
-void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
-                      std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,
-                      const Delaunay2dOptions& opt, del2d::Output& out, Stats& stats) {
-  del2d::cpu_impl::triangulate_from_impl(xy, n, start, nstart, twin, hint, opt, out, stats);
-}
-void digital_sketch_dual(const double* xy, std::int64_t n, const RunOptions& run, bool keep_colour,
-                         del2d::digital::Sketch& s) {
-  del2d::cpu_impl::digital_sketch_dual_impl(xy, n, run, keep_colour, s);
-}
-void digital_shift(const double* xy, std::int64_t n, const del2d::digital::Sketch& s,
-                   const RunOptions& run, del2d::digital::Start& out) {
-  del2d::cpu_impl::digital_shift_impl(xy, n, s, run, out);
-}
+namespace del2d_impl = del2d::cpu_impl;
+#define GG_TESTING_DEFINE
+#include "testing/impl/entries.inl"
+#undef GG_TESTING_DEFINE
 }  // namespace gpugeom::testing::cpu_impl
