@@ -16,6 +16,7 @@
 
 #include "../common/capped_sizes.hpp"
 #include "../common/device_arrays.hpp"
+#include "../common/tuning.hpp"
 #include "del2d_cases.hpp"
 #include "testing/testing.hpp"
 
