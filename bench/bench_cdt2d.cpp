@@ -230,7 +230,7 @@ int main(int argc, char** argv) {
         if (a != c) segs.insert(segs.end(), {a, c});
       }
       const auto rep = verify::check_constrained_delaunay2d(
-          in.xy.data(), in.n(), r.triangles.data(), std::int64_t(r.num_triangles()), segs.data(),
+          in.xy.data(), in.n(), r.triangles.data(), std::int64_t(r.num_triangles), segs.data(),
           std::int64_t(segs.size() / 2), r.duplicate_of.data());
       verdict = rep.ok ? "exact" : "FAILED: " + rep.message;
     }

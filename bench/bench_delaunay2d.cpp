@@ -55,7 +55,7 @@ double cgal_ms(const std::vector<Point2>& p) {
 // over the whole output, the count 2m - 2 - h for m distinct points and h hull edges. With
 // every point a vertex (checked always), these are the checker's tests on a sample.
 std::string sample_check(const std::vector<Point2>& p, const Triangulation2d& r, std::int64_t k) {
-  const std::int64_t nt = r.triangle_count;
+  const std::int64_t nt = r.num_triangles;
   const std::int32_t* t = r.triangles.data();
   const std::int32_t* nb = r.neighbors.data();
   std::int64_t hull = 0, distinct = 0;
@@ -132,7 +132,7 @@ void digital_rows(const std::string& name, const std::vector<Point2>& pts, Backe
   const std::int64_t n = std::int64_t(pts.size());
   std::vector<std::array<std::int32_t, 3>> ref;
   auto tri_set = [](const Triangulation2d& t) {
-    return verify::canonical_triangles(t.triangles.data(), t.triangle_count);
+    return verify::canonical_triangles(t.triangles.data(), t.num_triangles);
   };
   ref = tri_set(inc);
   for (double g : bench::numbers(grids)) {
@@ -296,7 +296,7 @@ int main(int argc, char** argv) {
       if (check) {
         const auto rep =
             verify::check_delaunay2d(&in.pts.data()->x, n, r.triangles.data(),
-                                     std::int64_t(r.num_triangles()), r.duplicate_of.data());
+                                     std::int64_t(r.num_triangles), r.duplicate_of.data());
         verdict += rep.ok ? ", valid" : ", INVALID: " + rep.message;
       }
       if (sample > 0) verdict += ", " + sample_check(in.pts, r, sample);
@@ -340,7 +340,7 @@ int main(int argc, char** argv) {
       if (b == Backend::Cuda)
         std::printf("    upload %.1f ms, copy back %.1f ms, bus floor %.1f ms\n",
                     bench::phase_ms(r.stats, "upload"), bench::phase_ms(r.stats, "copy_back"),
-                    bench::bus_floor_ms(16.0 * n + 4.0 * (6.0 * r.triangle_count + n)));
+                    bench::bus_floor_ms(16.0 * n + 4.0 * (6.0 * r.num_triangles + n)));
       for (auto& ph : r.stats.phase_ms)
         if (ph.first.rfind("insert/", 0) == 0)
           std::printf("    %-28s %8.2f ms\n", ph.first.c_str(), ph.second);

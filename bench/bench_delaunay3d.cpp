@@ -184,9 +184,8 @@ int run(int argc, char** argv) {
               : -1;
       std::string ok = "-";
       if (check) {
-        auto rep =
-            verify::check_delaunay3d(&pts.data()->x, n, t.tetrahedra.data(),
-                                     std::int64_t(t.num_tetrahedra()), t.duplicate_of.data());
+        auto rep = verify::check_delaunay3d(&pts.data()->x, n, t.tetrahedra.data(),
+                                            std::int64_t(t.num_tetrahedra), t.duplicate_of.data());
         ok = rep.ok ? "ok" : "FAIL";
         if (!rep.ok) std::printf("# %s\n", rep.message.c_str());
       }
@@ -197,13 +196,13 @@ int run(int argc, char** argv) {
           phase(t.stats, "prepare"), phase(t.stats, "insert_flip"), phase(t.stats, "splay"),
           (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
           (long long)counter(t.stats, "failed_vertices"),
-          (long long)counter(t.stats, "stars_built"), t.num_tetrahedra(),
+          (long long)counter(t.stats, "stars_built"), t.num_tetrahedra,
           (long long)(bytes_per_point(t.stats) / std::max<std::int64_t>(n, 1)), cg, cgp,
           ok.c_str());
       if (b == Backend::Cuda)  // points in; the five arrays out
         std::printf("#   bus floor %.1f ms\n",
-                    bench::bus_floor_ms(24.0 * n + 4.0 * (8.0 * t.tetrahedron_count + 2.0 * n +
-                                                          3.0 * t.hull_facet_count)));
+                    bench::bus_floor_ms(24.0 * n + 4.0 * (8.0 * t.num_tetrahedra + 2.0 * n +
+                                                          3.0 * t.num_hull_facets)));
       if (verbose) bench::print_stats_lines(t.stats);
       std::fflush(stdout);
       if (f)

@@ -111,7 +111,7 @@ struct Two {
     return std::vector<std::int32_t>(&c.data()->front(), &c.data()->front() + 3 * c.size());
   }
   static auto simplices(const Triangulation2d& t) {
-    auto c = verify::canonical_triangles(t.triangles.data(), t.triangle_count);
+    auto c = verify::canonical_triangles(t.triangles.data(), t.num_triangles);
     return std::vector<std::int32_t>(&c.data()->front(), &c.data()->front() + 3 * c.size());
   }
   // Which path a move or a removal took (the triangulations' stats counters).
@@ -147,7 +147,7 @@ struct Three {
     return out;
   }
   static auto simplices(const Triangulation3d& t) {
-    std::vector<std::array<std::int32_t, 4>> c(t.num_tetrahedra());
+    std::vector<std::array<std::int32_t, 4>> c(t.num_tetrahedra);
     for (std::size_t i = 0; i < c.size(); ++i) {
       for (int k = 0; k < 4; ++k) c[i][std::size_t(k)] = t.tetrahedra[4 * i + std::size_t(k)];
       std::sort(c[i].begin(), c[i].end());

@@ -69,7 +69,7 @@ double cgal_ms(const std::vector<Point3>& p, std::int64_t& vertices) {
 }  // namespace
 
 std::vector<std::array<std::int32_t, 3>> facets(const ConvexHull3d& h) {
-  return verify::canonical_triangles(h.triangles.data(), h.facet_count);
+  return verify::canonical_triangles(h.triangles.data(), h.num_facets);
 }
 
 int main(int argc, char** argv) {
@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
                                                           : " FACETS DIFFER FROM INCREMENTAL";
         if (check) {
           const auto rep = verify::check_hull3d(&pts.data()->x, n, r.triangles.data(),
-                                                std::int64_t(r.num_facets()), 2'000'000'000LL);
+                                                std::int64_t(r.num_facets), 2'000'000'000LL);
           verdict += rep.ok ? " valid" : " INVALID: " + rep.message;
         }
         const double dev = timed[bi].dev;
@@ -223,7 +223,7 @@ int main(int argc, char** argv) {
         for (double x : t) std::printf(" %.1f", x);
         if (b == Backend::Cuda)  // points in; facets, neighbours, vertices and planes out
           std::printf("; bus floor %.2f ms",
-                      bench::bus_floor_ms(24.0 * n + 56.0 * r.facet_count + 4.0 * r.vertex_count));
+                      bench::bus_floor_ms(24.0 * n + 56.0 * r.num_facets + 4.0 * r.num_vertices));
         std::printf("\n");
         std::fflush(stdout);
         if (f)

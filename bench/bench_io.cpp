@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
         mesh.dim = 2;
         for (const auto& q : p2) mesh.coords.insert(mesh.coords.end(), {q.x, q.y});
         mesh.cell_size = 3;
-        mesh.cells.assign(t.triangles.begin(), t.triangles.begin() + 3 * t.triangle_count);
+        mesh.cells.assign(t.triangles.begin(), t.triangles.begin() + 3 * t.num_triangles);
         have_mesh = true;
       }
       std::string ext = "." + f.substr(0, f.find('-'));

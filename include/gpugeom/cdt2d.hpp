@@ -95,8 +95,8 @@ struct ConstrainedTriangulation2d {
   /// "segments_split" (input segments cut at them), with delaunay2d's counters; segment counts
   /// are of the pieces where segments were split.
   Stats stats;
-  /// The number of triangles.
-  std::size_t num_triangles() const { return triangles.size() / 3; }
+  /// Triangles (each array above holds 3 per triangle).
+  std::int64_t num_triangles = 0;
 };
 
 /// xy: n points, x and y interleaved; segments: nseg pairs of point indices. Throws

@@ -74,9 +74,7 @@ struct CvdResult {
   int iterations = 0;
   bool converged = false;  ///< the move (or energy) tolerance was met
   Stats stats;
-  std::int64_t site_count = 0;  ///< sites (also where they went into the caller's arrays)
-  /// The number of sites.
-  std::int64_t size() const { return site_count; }
+  std::int64_t num_sites = 0;  ///< sites (also where they went into the caller's arrays)
 };
 
 /// density: 2D or 3D, finite and non-negative values, not all zero, of any element type

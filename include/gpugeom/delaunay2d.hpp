@@ -66,9 +66,7 @@ struct Triangulation2d {
   /// could not be used, and the incremental method ran on the same preparation).
   Stats stats;
   /// Triangles written (also where they went into the caller's arrays, Delaunay2dOptions::into).
-  std::int64_t triangle_count = 0;
-  /// The number of triangles.
-  std::size_t num_triangles() const { return std::size_t(triangle_count); }
+  std::int64_t num_triangles = 0;
 };
 
 /// xy: n points, x and y interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates

@@ -105,9 +105,7 @@ struct Triangulation3d {
   /// both executors (the same tetrahedra in the same order, with the same neighbours).
   Stats stats;
   /// Tetrahedra and hull facets written (also where they went into the caller's arrays).
-  std::int64_t tetrahedron_count = 0, hull_facet_count = 0;
-  /// The number of tetrahedra.
-  std::size_t num_tetrahedra() const { return std::size_t(tetrahedron_count); }
+  std::int64_t num_tetrahedra = 0, num_hull_facets = 0;
 };
 
 /// xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates

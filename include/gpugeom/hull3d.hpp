@@ -76,9 +76,7 @@ struct ConvexHull3d {
   /// "digital_fallback" (1 where the sketch had no hull: the incremental method ran).
   Stats stats;
   /// Facets and extreme points written (also where they went into the caller's arrays).
-  std::int64_t facet_count = 0, vertex_count = 0;
-  /// The number of facets.
-  std::size_t num_facets() const { return std::size_t(facet_count); }
+  std::int64_t num_facets = 0, num_vertices = 0;
 };
 
 /// xyz: n points, x, y and z interleaved. Throws Error(InvalidInput) for NaN/Inf or coordinates

@@ -103,10 +103,8 @@ struct RefinedMesh2d {
   /// because they would encroach upon a subsegment, which is split instead), "flips",
   /// "flip_passes", "triangles".
   Stats stats;
-  /// The number of points.
-  std::size_t num_points() const { return points.size() / 2; }
-  /// The number of triangles.
-  std::size_t num_triangles() const { return triangles.size() / 3; }
+  /// Points (2 values each in `points`) and triangles (3 values each in the triangle arrays).
+  std::int64_t num_points = 0, num_triangles = 0;
 };
 
 /// xy: n points; segments: nseg pairs of point indices. Throws Error(InvalidArgument) for a bound

@@ -182,7 +182,7 @@ void lloyd_options(CvdOptions& o, std::int64_t num_sites, std::optional<AnyArray
 }
 
 void put_cvd_host(nb::dict& r, CvdResult& c) {
-  const sz k = sz(c.site_count), it = c.energy.size();
+  const sz k = sz(c.num_sites), it = c.energy.size();
   r["sites"] = host_array(std::move(c.sites), {k, sz(c.dim)});
   r["mass"] = host_array(std::move(c.mass), {k});
   r["energy"] = host_array(std::move(c.energy), {it});
@@ -232,7 +232,7 @@ nb::dict stipple_bind(const AnyArray& image, std::int64_t num_sites, bool invert
   o.ink = ink;
   Stipple s = unlocked([&] { return stipple(view(in), o); });
   nb::dict r;
-  const sz k = sz(s.cvd.site_count);
+  const sz k = sz(s.cvd.num_sites);
   r["radius"] = host_array(std::move(s.radius), {k});
   put_cvd_host(r, s.cvd);
   return r;

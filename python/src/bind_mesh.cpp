@@ -76,7 +76,7 @@ nb::dict refine2d_bind(const AnyArray& points, const AnyArray& segments, const A
     };
   }
   RefinedMesh2d t = unlocked([&] { return refine2d(p, n, s, m, o); });
-  const sz nt = t.num_triangles(), np = t.num_points();
+  const sz nt = t.num_triangles, np = t.num_points;
   std::vector<std::int32_t> small(t.small_angles.begin(), t.small_angles.end()),
       large(t.large_triangles.begin(), t.large_triangles.end());
   std::vector<std::int8_t> why(t.small_angle_reasons.begin(), t.small_angle_reasons.end());

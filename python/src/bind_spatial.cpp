@@ -23,7 +23,7 @@ using sz = std::size_t;
 // A 2D triangulation on the host as the dict every 2D binding returns.
 nb::dict triangulation2d_dict(Triangulation2d& t, std::int64_t n) {
   nb::dict r;
-  const sz nt = t.num_triangles();
+  const sz nt = t.num_triangles;
   t.triangles.resize(3 * nt);  // the host path may size them for the most triangles
   t.neighbors.resize(3 * nt);
   r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
@@ -196,7 +196,7 @@ nb::dict voronoi_dict(DeviceTriangulation2d& t, DeviceVoronoi2d& v, std::int64_t
 }
 nb::dict voronoi_dict(Triangulation2d& t, Voronoi2d& v, std::int64_t n) {
   nb::dict r;
-  const sz nt = t.num_triangles();
+  const sz nt = t.num_triangles;
   t.triangles.resize(3 * nt);
   r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
   r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
@@ -288,14 +288,14 @@ nb::dict hull_dict(DeviceHull3d h, int device) {
 }
 nb::dict hull_dict(ConvexHull3d h) {
   nb::dict r;
-  const sz nf = h.num_facets();
+  const sz nf = h.num_facets;
   h.triangles.resize(3 * nf);
   h.neighbors.resize(3 * nf);
   h.equations.resize(4 * nf);
-  h.vertices.resize(sz(h.vertex_count));
+  h.vertices.resize(sz(h.num_vertices));
   r["simplices"] = host_array(std::move(h.triangles), {nf, 3});
   r["neighbors"] = host_array(std::move(h.neighbors), {nf, 3});
-  r["vertices"] = host_array(std::move(h.vertices), {sz(h.vertex_count)});
+  r["vertices"] = host_array(std::move(h.vertices), {sz(h.num_vertices)});
   r["equations"] = host_array(std::move(h.equations), {nf, 4});
   r["stats"] = stats_dict(h.stats);
   return r;
@@ -356,7 +356,7 @@ nb::dict tets_dict(DeviceTriangulation3d&& t, int device) {
 }
 nb::dict tets_dict(Triangulation3d&& t) {
   nb::dict r;
-  const sz n = t.duplicate_of.size(), nt = t.num_tetrahedra(), nh = sz(t.hull_facet_count);
+  const sz n = t.duplicate_of.size(), nt = t.num_tetrahedra, nh = sz(t.num_hull_facets);
   t.tetrahedra.resize(4 * nt);
   t.neighbors.resize(4 * nt);
   t.hull_facets.resize(3 * nh);
@@ -388,7 +388,7 @@ nb::dict voronoi3d_dict(DeviceTriangulation3d& t, DeviceVoronoi3d& v, std::int64
 }
 nb::dict voronoi3d_dict(Triangulation3d& t, Voronoi3d& v, std::int64_t n) {
   nb::dict r;
-  const sz nt = t.num_tetrahedra();
+  const sz nt = t.num_tetrahedra;
   t.tetrahedra.resize(4 * nt);
   r["simplices"] = host_array(std::move(t.tetrahedra), {nt, 4});
   r["duplicate_of"] = host_array(std::move(t.duplicate_of), {sz(n)});
@@ -559,7 +559,7 @@ nb::dict cdt2d_bind(const AnyArray& points, const AnyArray& segments, const AnyA
   for (std::int64_t i = 0; i < nh; ++i) o.holes.push_back({h[2 * i], h[2 * i + 1]});
   for (std::int64_t i = 0; i < nr; ++i) o.regions.push_back({g[3 * i], g[3 * i + 1], g[3 * i + 2]});
   ConstrainedTriangulation2d t = unlocked([&] { return cdt2d(p, n, s, m, o); });
-  const sz nt = t.num_triangles();
+  const sz nt = t.num_triangles;
   nb::dict r;
   r["simplices"] = host_array(std::move(t.triangles), {nt, 3});
   r["neighbors"] = host_array(std::move(t.neighbors), {nt, 3});

@@ -137,6 +137,7 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
     r.new_point_segments.assign(sp.point_segments.begin(), sp.point_segments.end());
     count_dropped(segments, nseg, r.duplicate_of.data(), r);
   }
+  r.num_triangles = std::int64_t(r.triangles.size() / 3);
   set_counters(r.stats, nseg, rc, sp);
   return r;
 }

@@ -134,7 +134,7 @@ CvdResult centroidal_voronoi(const GridView& g, const CvdOptions& opt) {
   run(resolve_backend(opt.backend, opt.device), rq, opt, out, r.stats);
   r.sites = std::move(out.sites);
   r.mass = std::move(out.mass);
-  r.site_count = out.num_sites;
+  r.num_sites = out.num_sites;
   finish(out, r);
   return r;
 }

@@ -61,10 +61,10 @@ Stipple stipple(const GridView& image, const StippleOptions& opt) {
   s.rows = image.shape[0];
   s.cols = image.shape[1];
   s.cvd = centroidal_voronoi(dv, static_cast<const CvdOptions&>(opt));
-  s.radius.resize(std::size_t(s.cvd.site_count));
+  s.radius.resize(std::size_t(s.cvd.num_sites));
   const double* mass = s.cvd.mass.data();
   if (s.cvd.mass.empty() && opt.into.mass) mass = opt.into.mass.data;
-  for (std::int64_t i = 0; i < s.cvd.site_count; ++i)
+  for (std::int64_t i = 0; i < s.cvd.num_sites; ++i)
     s.radius[std::size_t(i)] = std::sqrt(opt.ink * mass[i] / M_PI);
   return s;
 }

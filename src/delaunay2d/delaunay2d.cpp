@@ -47,7 +47,7 @@ Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOpt
   r.neighbors = std::move(out.neighbors);
   r.duplicate_of = std::move(out.duplicate_of);
   r.num_duplicates = out.num_duplicates;
-  r.triangle_count = out.num_triangles;
+  r.num_triangles = out.num_triangles;
   return r;
 }
 

@@ -112,7 +112,7 @@ Triangulation2d DynamicDelaunay2d::triangulation() const {
   r.neighbors = std::move(out.neighbors);
   r.duplicate_of = std::move(out.duplicate_of);
   r.num_duplicates = out.num_duplicates;
-  r.triangle_count = out.num_triangles;
+  r.num_triangles = out.num_triangles;
   r.stats = impl_->stats;
   return r;
 }

@@ -64,7 +64,7 @@ Triangulation2d furthest_site_delaunay2d(const double* xy, std::int64_t n,
   o.into = {};
   const Triangulation2d dt = delaunay2d(xy, n, o);  // (its boundary gives the extreme points)
   const HostVector<std::int32_t> hull =
-      convex_hull2d_vertices(xy, n, dt.triangles.data(), dt.neighbors.data(), dt.triangle_count);
+      convex_hull2d_vertices(xy, n, dt.triangles.data(), dt.neighbors.data(), dt.num_triangles);
   const std::int64_t h = std::int64_t(hull.size());
   if (h < 3)
     throw Error(ErrorCode::DegenerateInput,
@@ -119,7 +119,7 @@ Triangulation2d furthest_site_delaunay2d(const double* xy, std::int64_t n,
       const auto it = tri_of.find({b, a});
       r.neighbors[3 * t + k] = it == tri_of.end() ? -1 : it->second;
     }
-  r.triangle_count = nt;
+  r.num_triangles = nt;
   // copies keep their twin; the other points that are no vertex are marked as removed ones are
   // (kRemovedPoint: no cell in the diagram)
   std::vector<char> vertex(std::size_t(n), 0);

@@ -52,7 +52,7 @@ void voronoi_from_host(const double* xy, std::int64_t n, const Delaunay2dOptions
   deliver::to_host(ex, d.triangles.get(), 3 * d.num_triangles, none, tri->triangles);
   deliver::to_host(ex, d.neighbors.get(), 3 * d.num_triangles, none, tri->neighbors);
   deliver::to_host(ex, d.duplicate_of.get(), n, none, tri->duplicate_of);
-  tri->triangle_count = d.num_triangles;
+  tri->num_triangles = d.num_triangles;
   tri->num_duplicates = d.num_duplicates;
   stats.phase_ms.push_back({"copy_triangulation", ms_since(t1)});
 }

@@ -38,8 +38,8 @@ Triangulation3d to_public(Output&& out) {
   r.num_duplicates = out.num_duplicates;
   r.hull_facets = std::move(out.hull_facets);
   r.vertex_to_simplex = std::move(out.vertex_to_simplex);
-  r.tetrahedron_count = out.num_tetrahedra;
-  r.hull_facet_count = out.num_hull_facets;
+  r.num_tetrahedra = out.num_tetrahedra;
+  r.num_hull_facets = out.num_hull_facets;
   return r;
 }
 

@@ -14,7 +14,7 @@ namespace gpugeom {
 // The host entry runs the executor's algorithm on the CPU executor over the caller's arrays (all
 // host threads; the same arrays as the device entry's, bit for bit).
 Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tri) {
-  const std::int64_t nt = tri.tetrahedron_count;
+  const std::int64_t nt = tri.num_tetrahedra;
   if (tri.tetrahedra.size() != std::size_t(4 * nt) || tri.neighbors.size() != std::size_t(4 * nt))
     throw Error(ErrorCode::InvalidArgument,
                 "the tetrahedralisation's tetrahedra or neighbours are not in its result (were "

@@ -62,8 +62,8 @@ void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3dOption
   deliver::to_host(ex, d.duplicate_of.get(), n, none, tri->duplicate_of);
   deliver::to_host(ex, d.vertex_to_simplex.get(), n, none, tri->vertex_to_simplex);
   deliver::to_host(ex, d.hull_facets.get(), 3 * d.num_hull_facets, none, tri->hull_facets);
-  tri->tetrahedron_count = d.num_tetrahedra;
-  tri->hull_facet_count = d.num_hull_facets;
+  tri->num_tetrahedra = d.num_tetrahedra;
+  tri->num_hull_facets = d.num_hull_facets;
   tri->num_duplicates = d.num_duplicates;
   tri->stats = d.stats;
   tri->stats.phase_ms.push_back({"copy_tetrahedralisation", ms_since(t1)});

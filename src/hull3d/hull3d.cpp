@@ -38,8 +38,8 @@ void to_public(Output&& out, ConvexHull3d& r) {
   r.neighbors = std::move(out.neighbors);
   r.vertices = std::move(out.vertices);
   r.equations = std::move(out.equations);
-  r.facet_count = out.num_facets;
-  r.vertex_count = out.num_vertices;
+  r.num_facets = out.num_facets;
+  r.num_vertices = out.num_vertices;
 }
 void to_public(DeviceOutput&& out, DeviceHull3d& r) {
   r.num_facets = out.num_facets;

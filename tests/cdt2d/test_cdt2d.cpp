@@ -208,7 +208,7 @@ TEST(Cdt2d, DeviceEntryOnTheCpu) {
     }
     const auto h = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
     const auto d = cdt2d_device(g.xy.data(), n, g.segs.data(), m, o);
-    ASSERT_EQ(d.num_triangles, std::int64_t(h.num_triangles()));
+    ASSERT_EQ(d.num_triangles, std::int64_t(h.num_triangles));
     EXPECT_EQ(d.backend, Backend::Cpu);
     const std::size_t k = 3 * std::size_t(d.num_triangles);
     EXPECT_EQ(std::vector<std::int32_t>(d.triangles.get(), d.triangles.get() + k), h.triangles);
@@ -269,7 +269,7 @@ TEST(Cdt2d, HolesOutsideAndRegions) {
   const std::int64_t n = std::int64_t(xy.size() / 2), m = std::int64_t(segs.size() / 2);
   auto area = [&](const ConstrainedTriangulation2d& r, double attr, bool any) {
     double a = 0;
-    for (std::size_t t = 0; t < r.num_triangles(); ++t) {
+    for (std::size_t t = 0; t < r.num_triangles; ++t) {
       if (!any && r.attribute[t] != attr) continue;
       const double* p = &xy[2 * r.triangles[3 * t]];
       const double* q = &xy[2 * r.triangles[3 * t + 1]];
@@ -317,7 +317,7 @@ TEST(Cdt2d, HolesOutsideAndRegions) {
   o.holes = {{3, 2}};
   o.regions = {{1, 8, 7.0}, {8, 2, 9.0}, {1.5, 9.5, 4.0}};  // the third lies in the first's part
   const auto r = cdt2d(xy.data(), n, segs.data(), m, o);
-  ASSERT_EQ(r.attribute.size(), r.num_triangles());
+  ASSERT_EQ(r.attribute.size(), r.num_triangles);
   EXPECT_EQ(area(r, 7.0, false), 46);
   EXPECT_EQ(area(r, 9.0, false), 25);
   EXPECT_EQ(area(r, 4.0, false), 0);
@@ -359,7 +359,7 @@ TEST(Cdt2d, SameAsCgal) {
         for (int k = 0; k < 3; ++k) faces.push_back(f->vertex(k)->info());
       const auto r = run(g);
       const auto ref = gg_del2d::triangle_set(faces.data(), faces.size() / 3);
-      const auto got = gg_del2d::triangle_set(r.triangles.data(), r.num_triangles());
+      const auto got = gg_del2d::triangle_set(r.triangles.data(), r.num_triangles);
       EXPECT_EQ(got, ref);
     }
 }

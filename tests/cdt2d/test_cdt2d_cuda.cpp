@@ -44,7 +44,7 @@ TEST(CudaCdt2d, SameAsCpu) {
     EXPECT_EQ(gpu.stats.backend, Backend::Cuda) << g.name;
     std::printf(
         "%s: %zu triangles, %lld segments (%lld recovered, %lld cavity triangles, %lld rounds)",
-        g.name.c_str(), gpu.num_triangles(), (long long)m,
+        g.name.c_str(), gpu.num_triangles, (long long)m,
         (long long)gpu.stats.counters.at("segments_recovered"),
         (long long)gpu.stats.counters.at("cavity_triangles"),
         (long long)gpu.stats.counters.at("recovery_rounds"));
@@ -82,7 +82,7 @@ TEST(CudaCdt2d, DomainSameAsCpu) {
   EXPECT_GT(gpu.removed_triangles, 0);
   EXPECT_EQ(gpu.removed_triangles, cpu.removed_triangles);
   EXPECT_EQ(gpu.attribute, cpu.attribute);
-  std::printf("contour domain: %zu kept, %lld removed, phases:", gpu.num_triangles(),
+  std::printf("contour domain: %zu kept, %lld removed, phases:", gpu.num_triangles,
               (long long)gpu.removed_triangles);
   for (const auto& ph : gpu.stats.phase_ms) std::printf(" %s %.1f ms", ph.first.c_str(), ph.second);
   std::printf("\n");
@@ -100,7 +100,7 @@ TEST(CudaCdt2d, DeviceEntry) {
   const gg_test::DeviceCopy dxy(g.xy), dsegs(g.segs);
   const auto d = cdt2d_device(static_cast<const double*>(dxy.data()), n,
                               static_cast<const std::int32_t*>(dsegs.data()), m, o);
-  ASSERT_EQ(d.num_triangles, std::int64_t(h.num_triangles()));
+  ASSERT_EQ(d.num_triangles, std::int64_t(h.num_triangles));
   EXPECT_EQ(d.backend, Backend::Cuda);
   EXPECT_EQ(gg_test::from_device(d.triangles, 3 * d.num_triangles), h.triangles);
   EXPECT_EQ(gg_test::from_device(d.neighbors, 3 * d.num_triangles), h.neighbors);

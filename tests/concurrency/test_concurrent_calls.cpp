@@ -222,7 +222,7 @@ std::vector<Job> jobs() {
                    q.insert(q.end(), {(p2[std::size_t(i)].x + p2[std::size_t(i + 1)].x) / 2,
                                       (p2[std::size_t(i)].y + p2[std::size_t(i + 1)].y) / 2});
                  const auto s = find_simplex2d(xy(p2), n2, t.triangles.data(), t.neighbors.data(),
-                                               t.triangle_count, q.data(),
+                                               t.num_triangles, q.data(),
                                                std::int64_t(q.size() / 2), 1 + k % 2);
                  return Arrays().add("simplices", s);
                }});

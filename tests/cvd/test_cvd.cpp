@@ -210,9 +210,9 @@ TEST(Cvd, DrawnSitesAreDistinctAndOnPositiveDensity) {
     o.num_sites = positive * s * s;  // every positive grid point: the draw must find them all
     o.max_iterations = 1;
     const auto r = centroidal_voronoi(g, o);
-    EXPECT_EQ(r.size(), o.num_sites);
-    for (double m : r.mass) EXPECT_GT(m, 0);       // a repeated point would have no cell
-    for (std::int64_t i = 0; i < r.size(); ++i) {  // on positive density
+    EXPECT_EQ(r.num_sites, o.num_sites);
+    for (double m : r.mass) EXPECT_GT(m, 0);          // a repeated point would have no cell
+    for (std::int64_t i = 0; i < r.num_sites; ++i) {  // on positive density
       const std::int64_t x = std::lround(r.sites[2 * i]), y = std::lround(r.sites[2 * i + 1]);
       EXPECT_GT(g.value(y * 40 + x), 0);
     }
@@ -286,7 +286,7 @@ TEST(Cvd, TypedDensitiesAndDeviceEntry) {
   o.max_iterations = 15;
   o.seed = 5;
   const auto ref = centroidal_voronoi(g16, o);
-  ASSERT_EQ(ref.size(), 70);
+  ASSERT_EQ(ref.num_sites, 70);
   for (auto [data, type] : {std::pair<const void*, io::ScalarType>{f.data(), io::ScalarType::F32},
                             {d.data(), io::ScalarType::F64}}) {
     GridView v;
@@ -299,7 +299,7 @@ TEST(Cvd, TypedDensitiesAndDeviceEntry) {
     EXPECT_EQ(r.energy, ref.energy);
     const auto dv = centroidal_voronoi_device(v, o);
     EXPECT_EQ(dv.backend, Backend::Cpu);
-    ASSERT_EQ(dv.num_sites, ref.size());
+    ASSERT_EQ(dv.num_sites, ref.num_sites);
     EXPECT_EQ(dv.dim, 2);
     EXPECT_EQ(std::vector<double>(dv.sites.get(), dv.sites.get() + 2 * dv.num_sites),
               std::vector<double>(ref.sites.begin(), ref.sites.end()));
@@ -348,7 +348,7 @@ TEST(Cvd, CallerArrays) {
     } else {
       const auto r = centroidal_voronoi(g, o);
       EXPECT_TRUE(r.sites.empty() && r.mass.empty());
-      EXPECT_EQ(r.size(), 25);
+      EXPECT_EQ(r.num_sites, 25);
     }
     EXPECT_EQ(s, std::vector<double>(ref.sites.begin(), ref.sites.end()));
     EXPECT_EQ(m, std::vector<double>(ref.mass.begin(), ref.mass.end()));

@@ -88,7 +88,7 @@ TEST(CudaCvd, DeviceEntrySameAsHost) {
   o.stream = s;  // the copy above is ordered before the call's work on s
   const auto r = centroidal_voronoi_device(v, o);
   EXPECT_EQ(r.backend, Backend::Cuda);
-  ASSERT_EQ(r.num_sites, ref.size());
+  ASSERT_EQ(r.num_sites, ref.num_sites);
   std::vector<double> sites(std::size_t(2 * r.num_sites)), mass(std::size_t(r.num_sites));
   ASSERT_EQ(cudaMemcpy(sites.data(), r.sites.get(), sites.size() * 8, cudaMemcpyDeviceToHost),
             cudaSuccess);

@@ -70,7 +70,7 @@ void expect_device_entry_as_host(const std::vector<Point2>& p, const DeviceTrian
   Delaunay2dOptions o;
   o.backend = Backend::Cuda;
   const auto h = delaunay2d(p, o);
-  ASSERT_EQ(r.num_triangles, std::int64_t(h.num_triangles()));
+  ASSERT_EQ(r.num_triangles, std::int64_t(h.num_triangles));
   EXPECT_EQ(r.num_duplicates, h.num_duplicates);
   EXPECT_EQ(gg_test::from_device(r.triangles, 3 * r.num_triangles), h.triangles);
   EXPECT_EQ(gg_test::from_device(r.neighbors, 3 * r.num_triangles), h.neighbors);
@@ -247,9 +247,9 @@ void expect_voronoi_as_on_the_host(const std::vector<Point2>& p) {
   Stats st;
   const auto both = voronoi2d(&p.data()->x, n, o, &t2, &st);
   EXPECT_EQ(st.backend, Backend::Cuda);
-  EXPECT_EQ(t2.triangle_count, h.triangle_count);
+  EXPECT_EQ(t2.num_triangles, h.num_triangles);
   EXPECT_EQ(t2.triangles, std::vector<std::int32_t>(h.triangles.begin(),
-                                                    h.triangles.begin() + 3 * h.triangle_count));
+                                                    h.triangles.begin() + 3 * h.num_triangles));
   EXPECT_EQ(t2.duplicate_of,
             std::vector<std::int32_t>(h.duplicate_of.begin(), h.duplicate_of.end()));
   ASSERT_EQ(both.vertices.size(), ref.vertices.size());
@@ -393,10 +393,10 @@ TEST(CudaDelaunay2d, TriangulatorFromAStart) {
   const auto part = delaunay2d(xy.data(), k, o);
   del2d::Output out;
   Stats st;
-  gpugeom::testing::triangulate_from(xy.data(), n, part.triangles.data(), part.triangle_count,
+  gpugeom::testing::triangulate_from(xy.data(), n, part.triangles.data(), part.num_triangles,
                                      nullptr, nullptr, o, out, st);
   EXPECT_EQ(gg_del2d::triangle_set(out.triangles.data(), std::size_t(out.num_triangles)),
-            gg_del2d::triangle_set(whole.triangles.data(), std::size_t(whole.triangle_count)));
+            gg_del2d::triangle_set(whole.triangles.data(), std::size_t(whole.num_triangles)));
   std::printf("from a start of %lld points: %lld batches, %lld flips (incremental: %lld, %lld)\n",
               (long long)k, (long long)st.counters["batches"], (long long)st.counters["flips"],
               (long long)whole.stats.counters.at("batches"),
@@ -514,7 +514,7 @@ TEST(CudaDynamicDelaunay2d, DeviceResident) {
   ASSERT_EQ(r.backend, Backend::Cuda);
   const auto host = d.triangulation();
   gg_del2d::expect_valid(p, host);
-  ASSERT_EQ(r.num_triangles, std::int64_t(host.num_triangles()));
+  ASSERT_EQ(r.num_triangles, std::int64_t(host.num_triangles));
   const auto tri = gg_test::from_device(r.triangles, 3 * r.num_triangles);
   const auto nb = gg_test::from_device(r.neighbors, 3 * r.num_triangles);
   const auto dup = gg_test::from_device(r.duplicate_of, n + 1);

@@ -224,7 +224,7 @@ TEST(DigitalSketch, TriangulatorFromAStartEqualsIncremental) {
     o.backend = Backend::Cpu;
     const auto whole = delaunay2d(xy.data(), n, o);
     const auto ref =
-        gg_del2d::triangle_set(whole.triangles.data(), std::size_t(whole.triangle_count));
+        gg_del2d::triangle_set(whole.triangles.data(), std::size_t(whole.num_triangles));
     // Starts: the Delaunay triangulation of the first k points, and a constrained one of them
     // (segments between far points: many of its edges are not Delaunay).
     std::vector<std::vector<std::int32_t>> starts;

@@ -26,8 +26,8 @@ void expect_furthest(const std::vector<Point2>& p) {
   const Triangulation2d t = furthest_site_delaunay2d(&p[0].x, n, o);
   const Triangulation2d d = delaunay2d(&p[0].x, n, o);
   const HostVector<std::int32_t> hull =
-      convex_hull2d_vertices(&p[0].x, n, d.triangles.data(), d.neighbors.data(), d.triangle_count);
-  const std::int64_t nt = t.triangle_count;
+      convex_hull2d_vertices(&p[0].x, n, d.triangles.data(), d.neighbors.data(), d.num_triangles);
+  const std::int64_t nt = t.num_triangles;
   ASSERT_EQ(nt, std::int64_t(hull.size()) - 2);  // (a triangulated convex polygon)
   std::set<std::int32_t> verts;
   std::map<std::pair<int, int>, int> edges;

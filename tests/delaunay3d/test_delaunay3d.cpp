@@ -88,7 +88,7 @@ TEST(Delaunay3d, CheckerSamplesInsideTheHull) {
     if (c.name == "magnitudes") pts = c.pts;
   ASSERT_FALSE(pts.empty());
   const auto t = delaunay3d(pts, cpu());
-  const std::int64_t nt = std::int64_t(t.num_tetrahedra());
+  const std::int64_t nt = std::int64_t(t.num_tetrahedra);
   int needles = 0;
   for (std::int64_t c = 0; c < nt; ++c) {
     Point3 q{0, 0, 0};
@@ -157,7 +157,7 @@ TEST(Delaunay3d, PerturbationDependsOnThePointsAlone) {
     expect_valid(more, b);
     const auto in_b = gg_del3d::tet_set(b.tetrahedra);
     std::size_t checked = 0, kept = 0;
-    for (std::size_t t = 0; t < a.num_tetrahedra(); ++t) {
+    for (std::size_t t = 0; t < a.num_tetrahedra; ++t) {
       Point3 v[4];
       for (int k = 0; k < 4; ++k) v[k] = c.pts[std::size_t(a.tetrahedra[4 * t + k])];
       const int o = orient3d(v[0], v[1], v[2], v[3]);
@@ -170,7 +170,7 @@ TEST(Delaunay3d, PerturbationDependsOnThePointsAlone) {
       std::sort(s4.begin(), s4.end());
       kept += in_b.count(s4);
     }
-    EXPECT_GT(checked, a.num_tetrahedra() / 2);
+    EXPECT_GT(checked, a.num_tetrahedra / 2);
     EXPECT_EQ(kept, checked);
   }
 }
@@ -331,7 +331,7 @@ TEST(Delaunay3d, DeviceEntryAndCallerArrays) {
   const std::int64_t n = std::int64_t(p.size());
   const double* xyz = &p.data()->x;
   const auto ref = delaunay3d(p, cpu());
-  const std::int64_t nt = ref.tetrahedron_count, nh = ref.hull_facet_count;
+  const std::int64_t nt = ref.num_tetrahedra, nh = ref.num_hull_facets;
   ASSERT_EQ(ref.tetrahedra.size(), std::size_t(4 * nt));
   ASSERT_EQ(ref.hull_facets.size(), std::size_t(3 * nh));
   // Each result is checked whole (its tetrahedra may come in another order than ref's).
@@ -347,8 +347,8 @@ TEST(Delaunay3d, DeviceEntryAndCallerArrays) {
     t.vertex_to_simplex.assign(v2s.begin(), v2s.end());
     t.hull_facets.assign(hull.begin(), hull.end());
     t.num_duplicates = ref.num_duplicates;
-    t.tetrahedron_count = nt;
-    t.hull_facet_count = nh;
+    t.num_tetrahedra = nt;
+    t.num_hull_facets = nh;
     expect_valid(p, t);
   };
   const auto dv = delaunay3d_device(xyz, n, cpu());
@@ -372,7 +372,7 @@ TEST(Delaunay3d, DeviceEntryAndCallerArrays) {
     } else {
       const auto r = delaunay3d(xyz, n, o);
       EXPECT_TRUE(r.tetrahedra.empty() && r.hull_facets.empty() && r.vertex_to_simplex.empty());
-      c = r.tetrahedron_count;
+      c = r.num_tetrahedra;
     }
     ASSERT_EQ(c, nt);
     check(t.v, nb.v, dup.v, vs.v, host_prefix(hf.v.data(), 3 * nh));
@@ -464,7 +464,7 @@ TEST(DynamicDelaunay3d, DeviceEntriesOnTheCpuExecutor) {
   const auto dev = d.device_tetrahedralisation();
   ASSERT_EQ(dev.backend, Backend::Cpu);
   const auto host = d.tetrahedralisation();
-  ASSERT_EQ(dev.num_tetrahedra, std::int64_t(host.num_tetrahedra()));
+  ASSERT_EQ(dev.num_tetrahedra, std::int64_t(host.num_tetrahedra));
   EXPECT_TRUE(std::equal(host.tetrahedra.begin(), host.tetrahedra.end(), dev.tetrahedra.get()));
   EXPECT_TRUE(std::equal(host.hull_facets.begin(), host.hull_facets.end(), dev.hull_facets.get()));
   expect_valid(pts, host);

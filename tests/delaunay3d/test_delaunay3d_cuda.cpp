@@ -92,7 +92,7 @@ TEST(CudaDelaunay3d, DeviceResident) {  // points on the GPU in, result left the
   Delaunay3dOptions o;
   o.backend = Backend::Cuda;
   const auto h = delaunay3d(p, o);
-  ASSERT_EQ(r.num_tetrahedra, std::int64_t(h.num_tetrahedra()));
+  ASSERT_EQ(r.num_tetrahedra, std::int64_t(h.num_tetrahedra));
   EXPECT_EQ(r.num_duplicates, 1);
   const std::int64_t nt = r.num_tetrahedra;
   const std::int64_t np = std::int64_t(p.size());
@@ -102,7 +102,7 @@ TEST(CudaDelaunay3d, DeviceResident) {  // points on the GPU in, result left the
   EXPECT_EQ(gg_del3d::tet_set(tets), gg_del3d::tet_set(h.tetrahedra));
   EXPECT_EQ(dup, h.duplicate_of);
   // The vertex map and the hull facets: every vertex's tetrahedron has it; the same hull.
-  ASSERT_EQ(r.num_hull_facets, h.hull_facet_count);
+  ASSERT_EQ(r.num_hull_facets, h.num_hull_facets);
   const auto v2s = gg_test::from_device(r.vertex_to_simplex, np);
   const auto hull = gg_test::from_device(r.hull_facets, 3 * r.num_hull_facets);
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -194,7 +194,7 @@ TEST(CudaDynamicDelaunay3d, DeviceResident) {
   ASSERT_EQ(r.backend, Backend::Cuda);
   const auto host = d.tetrahedralisation();
   gg_del3d::expect_valid(p, host);
-  ASSERT_EQ(r.num_tetrahedra, std::int64_t(host.num_tetrahedra()));
+  ASSERT_EQ(r.num_tetrahedra, std::int64_t(host.num_tetrahedra));
   const auto tet = gg_test::from_device(r.tetrahedra, 4 * r.num_tetrahedra);
   const auto dup = gg_test::from_device(r.duplicate_of, n + 1);
   EXPECT_TRUE(std::equal(tet.begin(), tet.end(), host.tetrahedra.begin()));

@@ -30,7 +30,7 @@ Delaunay3dOptions cpu() {
 // the tetrahedralisation whose vertices all lie on tetrahedra round that edge, every edge with
 // three or more classes round it a ridge, and every region the classes round its point.
 void expect_consistent(const std::vector<Point3>& p, const Triangulation3d& t, const Voronoi3d& v) {
-  const std::int64_t n = std::int64_t(p.size()), nt = t.tetrahedron_count;
+  const std::int64_t n = std::int64_t(p.size()), nt = t.num_tetrahedra;
   const std::int64_t nv = std::int64_t(v.vertices.size() / 3);
   ASSERT_EQ(std::int64_t(v.simplex_vertex.size()), nt);
   ASSERT_EQ(std::int64_t(v.region_offsets.size()), n + 1);
@@ -123,8 +123,8 @@ TEST(Voronoi3d, GeneralPosition) {
   const auto v = voronoi3d(&p.data()->x, std::int64_t(p.size()), t);
   expect_consistent(p, t, v);
   // no five points on a sphere: a vertex per tetrahedron, a ridge per edge
-  EXPECT_EQ(v.vertices.size(), 3 * t.num_tetrahedra());
-  for (std::size_t k = 0; k < t.num_tetrahedra(); ++k) EXPECT_EQ(v.simplex_vertex[k], k);
+  EXPECT_EQ(v.vertices.size(), 3 * t.num_tetrahedra);
+  for (std::size_t k = 0; k < t.num_tetrahedra; ++k) EXPECT_EQ(v.simplex_vertex[k], k);
 }
 
 // The Voronoi cells of an integer grid are the unit cubes round its points: one vertex per cube

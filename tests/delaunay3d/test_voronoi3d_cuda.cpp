@@ -44,10 +44,10 @@ void expect_as_on_the_host(const std::vector<Point3>& p) {
   // host points, both structures made on the GPU in one call: the same arrays
   Triangulation3d t2;
   const auto both = voronoi3d(&p.data()->x, n, o, &t2);
-  ASSERT_EQ(t2.tetrahedron_count, h.tetrahedron_count);
-  EXPECT_EQ(vec(t2.tetrahedra),
-            std::vector<std::int32_t>(h.tetrahedra.begin(),
-                                      h.tetrahedra.begin() + 4 * h.tetrahedron_count));
+  ASSERT_EQ(t2.num_tetrahedra, h.num_tetrahedra);
+  EXPECT_EQ(
+      vec(t2.tetrahedra),
+      std::vector<std::int32_t>(h.tetrahedra.begin(), h.tetrahedra.begin() + 4 * h.num_tetrahedra));
   EXPECT_EQ(both.ridge_points, ref.ridge_points);
   EXPECT_EQ(both.ridge_vertices, ref.ridge_vertices);
   EXPECT_EQ(both.region_vertices, ref.region_vertices);

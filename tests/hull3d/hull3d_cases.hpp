@@ -174,7 +174,7 @@ inline std::vector<Case> degenerate_cases() {
 inline void expect_valid(const std::vector<Point3>& pts, const gpugeom::ConvexHull3d& h) {
   const double* p = &pts.data()->x;
   const std::int64_t n = std::int64_t(pts.size());
-  const auto nt = std::int64_t(h.num_facets());
+  const auto nt = std::int64_t(h.num_facets);
   auto r = gpugeom::verify::check_hull3d(p, n, h.triangles.data(), nt, 1'000'000'000LL);
   ASSERT_TRUE(r.ok) << r.message;
   std::set<std::int32_t> vs(h.triangles.begin(), h.triangles.end());
@@ -226,7 +226,7 @@ inline std::set<std::array<std::int32_t, 3>> facet_set(const std::vector<std::in
 
 // The facets in canonical order (the methods build the same hull in different slot orders).
 inline std::vector<std::array<std::int32_t, 3>> facet_set(const gpugeom::ConvexHull3d& h) {
-  return gpugeom::verify::canonical_triangles(h.triangles.data(), h.facet_count);
+  return gpugeom::verify::canonical_triangles(h.triangles.data(), h.num_facets);
 }
 
 // The digital method's hull is valid and is the incremental method's, facet for facet, on the
@@ -267,7 +267,7 @@ struct KeptHull {
   static void valid(const std::vector<Point>& p, const Result& h) { expect_valid(p, h); }
   static const std::int32_t* simplices(const Result& h) { return h.triangles.data(); }
   static const std::int32_t* neighbors(const Result& h) { return h.neighbors.data(); }
-  static std::int64_t count(const Result& h) { return h.facet_count; }
+  static std::int64_t count(const Result& h) { return h.num_facets; }
   static void expect_same(const Result& got, const Result& fresh,
                           const std::vector<std::int32_t>& ids, std::size_t) {
     std::vector<std::int32_t> want;

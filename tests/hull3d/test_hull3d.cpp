@@ -89,7 +89,7 @@ TEST(Hull3d, IndependentOfInputOrder) {
     using Tri = std::array<std::array<double, 3>, 3>;
     auto facets = [](const std::vector<Point3>& p, const ConvexHull3d& h) {
       std::set<Tri> out;
-      for (std::size_t f = 0; f < h.num_facets(); ++f) {
+      for (std::size_t f = 0; f < h.num_facets; ++f) {
         Tri t;
         for (int k = 0; k < 3; ++k) {
           const Point3& q = p[std::size_t(h.triangles[3 * f + k])];
@@ -129,9 +129,9 @@ TEST(Hull3d, PerturbationDependsOnThePointsAlone) {
     return k;
   };
   std::set<std::array<std::int32_t, 3>> in_b;
-  for (std::size_t f = 0; f < b.num_facets(); ++f) in_b.insert(key(&b.triangles[3 * f]));
+  for (std::size_t f = 0; f < b.num_facets; ++f) in_b.insert(key(&b.triangles[3 * f]));
   std::size_t checked = 0, kept = 0;
-  for (std::size_t f = 0; f < a.num_facets(); ++f) {
+  for (std::size_t f = 0; f < a.num_facets; ++f) {
     bool top = true;
     for (int k = 0; k < 3; ++k) top = top && pts[std::size_t(a.triangles[3 * f + k])].z == 1;
     if (!top) continue;
@@ -255,7 +255,7 @@ TEST(Hull3d, DeviceEntryAndCallerArrays) {
     const std::int64_t n = std::int64_t(p.size());
     const double* xyz = &p.data()->x;
     const auto ref = convex_hull3d(p, cpu());
-    const std::int64_t nf = ref.facet_count, nv = ref.vertex_count;
+    const std::int64_t nf = ref.num_facets, nv = ref.num_vertices;
     ASSERT_EQ(ref.triangles.size(), std::size_t(3 * nf));
     ASSERT_EQ(ref.vertices.size(), std::size_t(nv));
     ASSERT_LE(nf, convex_hull3d_max_facets(n));
@@ -284,7 +284,7 @@ TEST(Hull3d, DeviceEntryAndCallerArrays) {
       } else {
         const auto r = convex_hull3d(xyz, n, o);
         EXPECT_TRUE(r.triangles.empty() && r.vertices.empty() && r.equations.empty());
-        f = r.facet_count, v = r.vertex_count;
+        f = r.num_facets, v = r.num_vertices;
       }
       ASSERT_EQ(f, nf);
       ASSERT_EQ(v, nv);

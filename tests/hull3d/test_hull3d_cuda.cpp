@@ -103,7 +103,7 @@ TEST(CudaHull3d, DeviceResident) {  // points on the GPU in, result left there
     Hull3dOptions o;
     o.backend = Backend::Cuda;
     const auto h = convex_hull3d(p, o);
-    ASSERT_EQ(r.num_facets, std::int64_t(h.num_facets()));
+    ASSERT_EQ(r.num_facets, std::int64_t(h.num_facets));
     std::vector<std::int32_t> tris(3 * r.num_facets), nbrs(tris.size()), verts(r.num_vertices);
     cudaMemcpy(tris.data(), r.triangles.get(), tris.size() * 4, cudaMemcpyDeviceToHost);
     cudaMemcpy(nbrs.data(), r.neighbors.get(), nbrs.size() * 4, cudaMemcpyDeviceToHost);
@@ -124,7 +124,7 @@ TEST(CudaHull3d, DeviceEntryIntoCallerArrays) {
   Hull3dOptions o;
   o.backend = Backend::Cuda;
   const auto h = convex_hull3d(p, o);
-  const std::int64_t nf = h.facet_count, nv = h.vertex_count;
+  const std::int64_t nf = h.num_facets, nv = h.num_vertices;
   double* dp = nullptr;
   std::int32_t *t = nullptr, *v = nullptr;
   double* eq = nullptr;
@@ -234,7 +234,7 @@ TEST(CudaDynamicHull3d, SameArraysAsTheCpuExecutor) {
   EXPECT_EQ(hg.equations, hc.equations);
   const auto dh = g.device_hull();
   ASSERT_EQ(dh.backend, Backend::Cuda);
-  ASSERT_EQ(dh.num_facets, hc.facet_count);
+  ASSERT_EQ(dh.num_facets, hc.num_facets);
   std::vector<std::int32_t> t(std::size_t(3 * dh.num_facets));
   ASSERT_EQ(cudaMemcpy(t.data(), dh.triangles.get(), t.size() * sizeof(std::int32_t),
                        cudaMemcpyDeviceToHost),

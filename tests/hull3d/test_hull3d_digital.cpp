@@ -75,7 +75,7 @@ TEST(DigitalHull3d, DeviceEntryOnTheCpuExecutor) {
   o.method = Method::Digital;
   const auto ref = convex_hull3d(p, o);
   const auto dv = convex_hull3d_device(&p.data()->x, std::int64_t(p.size()), o);
-  ASSERT_EQ(dv.num_facets, ref.facet_count);
+  ASSERT_EQ(dv.num_facets, ref.num_facets);
   const std::vector<std::int32_t> tri(dv.triangles.get(), dv.triangles.get() + 3 * dv.num_facets);
   EXPECT_EQ(tri, std::vector<std::int32_t>(ref.triangles.begin(), ref.triangles.end()));
 }

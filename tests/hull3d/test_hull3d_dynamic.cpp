@@ -204,8 +204,8 @@ TEST(DynamicHull3d, ExecutorMemoryEntries) {
   const auto h = a.hull();
   const auto dh = b.device_hull();
   ASSERT_EQ(dh.backend, Backend::Cpu);
-  ASSERT_EQ(dh.num_facets, h.facet_count);
-  ASSERT_EQ(dh.num_vertices, h.vertex_count);
+  ASSERT_EQ(dh.num_facets, h.num_facets);
+  ASSERT_EQ(dh.num_vertices, h.num_vertices);
   EXPECT_EQ(dh.num_points, 3000);
   EXPECT_TRUE(std::equal(h.triangles.begin(), h.triangles.end(), dh.triangles.get()));
   EXPECT_TRUE(std::equal(h.neighbors.begin(), h.neighbors.end(), dh.neighbors.get()));

@@ -96,13 +96,13 @@ inline double mesh_area(const std::vector<double>& xy, const std::int32_t* t, st
 inline void expect_quality(const Domain& d, const gpugeom::RefinedMesh2d& r,
                            const gpugeom::Refine2dOptions& o) {
   const std::vector<double> pts(r.points.begin(), r.points.end());
-  ASSERT_GE(r.num_points(), d.g.xy.size() / 2) << d.g.name;
+  ASSERT_GE(r.num_points, d.g.xy.size() / 2) << d.g.name;
   for (std::size_t i = 0; i < d.g.xy.size(); ++i) ASSERT_EQ(pts[i], d.g.xy[i]) << d.g.name;
   ASSERT_EQ(r.small_angles.size(), r.small_angle_reasons.size());
   for (auto why : r.small_angle_reasons)
     EXPECT_TRUE(why >= 1 && why <= 3) << d.g.name << ": reason " << int(why);
   const auto rep = gpugeom::verify::check_refined_mesh2d(
-      pts.data(), std::int64_t(r.num_points()), r.triangles.data(), std::int64_t(r.num_triangles()),
+      pts.data(), std::int64_t(r.num_points), r.triangles.data(), std::int64_t(r.num_triangles),
       r.segment_of.data(), d.g.segs.data(), std::int64_t(d.g.segs.size() / 2),
       r.duplicate_of.data(), o.min_angle, o.max_area, r.small_angles.data(),
       std::int64_t(r.small_angles.size()));
@@ -114,8 +114,8 @@ inline void expect_quality(const Domain& d, const gpugeom::RefinedMesh2d& r,
   c.holes = d.holes;
   const auto base = gpugeom::cdt2d(d.g.xy.data(), std::int64_t(d.g.xy.size() / 2), d.g.segs.data(),
                                    std::int64_t(d.g.segs.size() / 2), c);
-  const double a0 = mesh_area(d.g.xy, base.triangles.data(), base.num_triangles());
-  const double a1 = mesh_area(pts, r.triangles.data(), r.num_triangles());
+  const double a0 = mesh_area(d.g.xy, base.triangles.data(), base.num_triangles);
+  const double a1 = mesh_area(pts, r.triangles.data(), r.num_triangles);
   EXPECT_NEAR(a1, a0, 1e-9 * std::fabs(a0)) << d.g.name;
 }
 

@@ -77,7 +77,7 @@ TEST(Refine2d, ThreadCountsAndDeviceEntry) {
   const auto dev = refine2d_device(d.g.xy.data(), std::int64_t(d.g.xy.size() / 2), d.g.segs.data(),
                                    std::int64_t(d.g.segs.size() / 2), o);
   ASSERT_EQ(dev.backend, Backend::Cpu);
-  ASSERT_EQ(dev.num_triangles, std::int64_t(all.num_triangles()));
+  ASSERT_EQ(dev.num_triangles, std::int64_t(all.num_triangles));
   EXPECT_TRUE(std::equal(all.triangles.begin(), all.triangles.end(), dev.triangles.get()));
   EXPECT_TRUE(std::equal(all.points.begin(), all.points.end(), dev.points.get()));
 }
@@ -124,7 +124,7 @@ TEST(Refine2d, RegionsAndSizing) {
   gg_refine::expect_quality(d, r, o);
   const std::vector<double> pts(r.points.begin(), r.points.end());
   double left = 0, right = 0;
-  for (std::size_t t = 0; t < r.num_triangles(); ++t) {
+  for (std::size_t t = 0; t < r.num_triangles; ++t) {
     const double a = gg_refine::mesh_area(pts, r.triangles.data() + 3 * t, 1);
     ASSERT_TRUE(r.attribute[t] == 1.0 || r.attribute[t] == 2.0);
     if (r.attribute[t] == 1.0) EXPECT_LE(a, 1e-3 * (1 + 1e-12));
@@ -141,14 +141,14 @@ TEST(Refine2d, RegionsAndSizing) {
   const auto rf = gg_refine::refine(d, f);
   for (const auto* m : {&rg, &rf}) {
     const std::vector<double> p(m->points.begin(), m->points.end());
-    for (std::size_t t = 0; t < m->num_triangles(); ++t) {
+    for (std::size_t t = 0; t < std::size_t(m->num_triangles); ++t) {
       double cy = 0;
       for (int k = 0; k < 3; ++k) cy += p[2 * std::size_t(m->triangles[3 * t + k]) + 1] / 3;
       EXPECT_LE(gg_refine::mesh_area(p, m->triangles.data() + 3 * t, 1),
                 (1e-3 - 9e-4 * cy) * (1 + 1e-9));
     }
   }
-  EXPECT_GT(rg.num_triangles(), 300u);
+  EXPECT_GT(rg.num_triangles, 300u);
 }
 
 // The Steiner limit: no more points than allowed, the triangles left bad reported.
@@ -157,7 +157,7 @@ TEST(Refine2d, SteinerLimit) {
   auto o = options(30, 1e-4);
   o.max_steiner_points = 40;
   const auto r = gg_refine::refine(d, o);
-  EXPECT_LE(r.num_points(), d.g.xy.size() / 2 + 40);
+  EXPECT_LE(r.num_points, d.g.xy.size() / 2 + 40);
   EXPECT_FALSE(r.large_triangles.empty());
   for (auto why : r.small_angle_reasons) EXPECT_EQ(why, std::int8_t(SmallAngle::Limit));
 }

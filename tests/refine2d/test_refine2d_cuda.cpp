@@ -45,7 +45,7 @@ TEST(CudaRefine2d, SameAsCpu) {
       const auto r = on_both(d, o);
       gg_refine::expect_quality(d, r, o);
       std::printf("%s, angle %.1f: %zu triangles, %lld rounds\n", d.g.name.c_str(), angle,
-                  r.num_triangles(), (long long)r.stats.counters.at("rounds"));
+                  r.num_triangles, (long long)r.stats.counters.at("rounds"));
     }
 }
 
@@ -61,8 +61,8 @@ TEST(CudaRefine2d, DeviceEntry) {
   const auto dev = refine2d_device(xy.doubles(), std::int64_t(d.g.xy.size() / 2),
                                    static_cast<const std::int32_t*>(segs.data()),
                                    std::int64_t(d.g.segs.size() / 2), o);
-  ASSERT_EQ(dev.num_triangles, std::int64_t(host.num_triangles()));
-  ASSERT_EQ(dev.num_points, std::int64_t(host.num_points()));
+  ASSERT_EQ(dev.num_triangles, std::int64_t(host.num_triangles));
+  ASSERT_EQ(dev.num_points, std::int64_t(host.num_points));
   EXPECT_EQ(gg_test::from_device(dev.triangles, 3 * dev.num_triangles),
             std::vector<std::int32_t>(host.triangles.begin(), host.triangles.end()));
   EXPECT_EQ(gg_test::from_device(dev.points, 2 * dev.num_points),
@@ -83,6 +83,6 @@ TEST(CudaRefine2d, Larger) {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (area >= 1e-5) gg_refine::expect_quality(d, r, o);
     std::printf("square with a hole, area %g: %zu triangles, %lld rounds, %.1f ms\n", area,
-                r.num_triangles(), (long long)r.stats.counters.at("rounds"), ms);
+                r.num_triangles, (long long)r.stats.counters.at("rounds"), ms);
   }
 }

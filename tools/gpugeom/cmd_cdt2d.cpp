@@ -90,7 +90,7 @@ int cmd_cdt2d(const Global& g, Args& a) {
       std::cout << " (" << r.zero_length_segments << " zero-length, " << r.repeated_segments
                 << " repeated: dropped)";
     if (!r.new_points.empty()) std::cout << ", " << r.new_points.size() / 2 << " crossings split";
-    std::cout << " -> " << r.num_triangles() << " triangles";
+    std::cout << " -> " << r.num_triangles << " triangles";
     if (r.removed_triangles) std::cout << " (" << r.removed_triangles << " removed)";
     std::cout << " on " << backend_name(r.stats.backend) << "\n";
     if (g.verbose) print_stats(r.stats);
@@ -120,7 +120,7 @@ int cmd_cdt2d(const Global& g, Args& a) {
                                    w.triangles[i - i % 3 + (i % 3 + 2) % 3]});
     }
     const auto rep = verify::check_constrained_delaunay2d(
-        xy.data(), std::int64_t(xy.size() / 2), w.triangles.data(), std::int64_t(w.num_triangles()),
+        xy.data(), std::int64_t(xy.size() / 2), w.triangles.data(), std::int64_t(w.num_triangles),
         segs.data(), std::int64_t(segs.size() / 2), w.duplicate_of.data());
     if (!rep.ok) {
       std::cerr << "INVALID cdt2d: " << rep.message << "\n";
@@ -136,7 +136,7 @@ int cmd_cdt2d(const Global& g, Args& a) {
     Triangulation2d tri;  // the drawing's view of the result
     tri.triangles.assign(r.triangles.begin(), r.triangles.end());
     tri.neighbors.assign(r.neighbors.begin(), r.neighbors.end());
-    tri.triangle_count = std::int64_t(r.num_triangles());
+    tri.num_triangles = std::int64_t(r.num_triangles);
     draw_triangulation(draw, in.points.coords, tri, nullptr, r.segment_of.data());
   }
   if (!poly_out.empty()) {

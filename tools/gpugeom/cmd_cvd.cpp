@@ -18,7 +18,7 @@ void preview(const std::string& path, const io::Grid& density, const CvdResult& 
   const std::int64_t rows = density.shape[nd - 2], cols = density.shape[nd - 1];
   std::vector<std::int64_t> shape{rows, cols}, sites;
   std::vector<std::int32_t> index;  // preview site -> CVD site
-  for (std::int64_t i = 0; i < r.size(); ++i) {
+  for (std::int64_t i = 0; i < r.num_sites; ++i) {
     if (nd == 3 && std::lround(r.sites[i * 3 + 2]) != 0) continue;  // slice 0 only
     sites.push_back(std::lround(r.sites[i * nd + 1]));
     sites.push_back(std::lround(r.sites[i * nd]));
@@ -107,7 +107,7 @@ int cmd_cvd(const Global& g, Args& a) {
     io::write_points(out, p);
     if (!mass.empty()) {
       io::Grid m;
-      m.shape = {r.size()};
+      m.shape = {r.num_sites};
       m.type = io::ScalarType::F64;
       m.data.resize(r.mass.size() * 8);
       std::memcpy(m.data.data(), r.mass.data(), m.data.size());
@@ -122,7 +122,7 @@ int cmd_cvd(const Global& g, Args& a) {
     if (!prev.empty()) preview(prev, density, r);
   }
   if (!g.quiet)
-    std::cout << "cvd " << pos[0] << ": " << r.size() << " sites, " << r.iterations
+    std::cout << "cvd " << pos[0] << ": " << r.num_sites << " sites, " << r.iterations
               << " iterations, energy " << r.energy.back() << "\n";
   return kOk;
 }

@@ -139,8 +139,7 @@ int cmd_delaunay2d(const Global& g, Args& a) {
   if (!g.quiet) {
     std::cout << n << " points";
     if (tri.num_duplicates) std::cout << " (" << tri.num_duplicates << " duplicates kept once)";
-    std::cout << " -> " << tri.num_triangles() << " triangles on "
-              << backend_name(tri.stats.backend)
+    std::cout << " -> " << tri.num_triangles << " triangles on " << backend_name(tri.stats.backend)
               << (opt.method == Method::Digital ? " (digital method)" : "") << "\n";
     if (g.verbose) print_stats(tri.stats);
   }
@@ -149,7 +148,7 @@ int cmd_delaunay2d(const Global& g, Args& a) {
     Timer t(g, "check");
     const auto r =
         verify::check_delaunay2d(p.coords.data(), n, tri.triangles.data(),
-                                 std::int64_t(tri.num_triangles()), tri.duplicate_of.data());
+                                 std::int64_t(tri.num_triangles), tri.duplicate_of.data());
     if (!r.ok) {
       std::cerr << "INVALID delaunay2d: " << r.message << "\n";
       status = kCheckFailed;
@@ -163,12 +162,12 @@ int cmd_delaunay2d(const Global& g, Args& a) {
     io::Mesh m;
     m.dim = 2;
     m.cell_size = 3;
-    const bool whole = tri.triangles.size() == 3 * tri.num_triangles();
+    const bool whole = tri.triangles.size() == 3 * tri.num_triangles;
     m.coords.swap(p.coords);
     if (whole)
       m.cells.swap(tri.triangles);
     else
-      m.cells.assign(tri.triangles.begin(), tri.triangles.begin() + 3 * tri.triangle_count);
+      m.cells.assign(tri.triangles.begin(), tri.triangles.begin() + 3 * tri.num_triangles);
     struct Back {  // (also when the write throws)
       io::Mesh& m;
       io::PointSet& p;

@@ -91,7 +91,7 @@ int cmd_delaunay3d(const Global& g, Args& a) {
   if (!g.quiet) {
     std::cout << n << " points";
     if (t3.num_duplicates) std::cout << " (" << t3.num_duplicates << " duplicates kept once)";
-    std::cout << " -> " << t3.num_tetrahedra() << " tetrahedra, " << t3.hull_facets.size() / 3
+    std::cout << " -> " << t3.num_tetrahedra << " tetrahedra, " << t3.hull_facets.size() / 3
               << " hull facets on " << backend_name(t3.stats.backend)
               << (opt.method == Method::Digital ? " (digital method)" : "") << "\n";
     if (g.verbose) print_stats(t3.stats);
@@ -101,7 +101,7 @@ int cmd_delaunay3d(const Global& g, Args& a) {
     Timer t(g, "check");
     const auto r =
         verify::check_delaunay3d(p.coords.data(), n, t3.tetrahedra.data(),
-                                 std::int64_t(t3.num_tetrahedra()), t3.duplicate_of.data());
+                                 std::int64_t(t3.num_tetrahedra), t3.duplicate_of.data());
     if (!r.ok) {
       std::cerr << "INVALID delaunay3d: " << r.message << "\n";
       status = kCheckFailed;

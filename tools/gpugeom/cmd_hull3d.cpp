@@ -53,7 +53,7 @@ int cmd_hull3d(const Global& g, Args& a) {
     h = convex_hull3d(p.coords.data(), n, opt);
   }
   if (!g.quiet) {
-    std::cout << n << " points -> " << h.vertices.size() << " extreme points, " << h.num_facets()
+    std::cout << n << " points -> " << h.vertices.size() << " extreme points, " << h.num_facets
               << " facets on " << backend_name(h.stats.backend)
               << (opt.method == Method::Digital ? " (digital method)" : "") << "\n";
     if (g.verbose) print_stats(h.stats);
@@ -62,7 +62,7 @@ int cmd_hull3d(const Global& g, Args& a) {
   if (check) {
     Timer t(g, "check");
     const auto r =
-        verify::check_hull3d(p.coords.data(), n, h.triangles.data(), std::int64_t(h.num_facets()));
+        verify::check_hull3d(p.coords.data(), n, h.triangles.data(), std::int64_t(h.num_facets));
     if (!r.ok) {
       std::cerr << "INVALID hull3d: " << r.message << "\n";
       status = kCheckFailed;

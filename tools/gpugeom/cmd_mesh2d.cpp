@@ -53,9 +53,9 @@ void measure(const double* xy, const std::int32_t* tri, std::size_t t, double& a
 // The quality histogram: smallest angles in 10-degree bins, and the areas' spread.
 void print_quality(const RefinedMesh2d& r) {
   std::size_t bins[6] = {0, 0, 0, 0, 0, 0};
-  std::vector<double> areas(r.num_triangles());
+  std::vector<double> areas(r.num_triangles);
   double worst = 180;
-  for (std::size_t t = 0; t < r.num_triangles(); ++t) {
+  for (std::size_t t = 0; t < r.num_triangles; ++t) {
     double a, s;
     measure(r.points.data(), r.triangles.data(), t, a, s);
     bins[std::min<std::size_t>(5, std::size_t(a / 10))]++;
@@ -115,8 +115,8 @@ int cmd_mesh2d(const Global& g, Args& a) {
     r = refine2d(in.points.coords.data(), n, in.segments.data(), m, opt);
   }
   if (!g.quiet) {
-    std::cout << n << " points, " << m << " segments -> " << r.num_points() << " vertices, "
-              << r.num_triangles() << " triangles (" << r.stats.counters.at("rounds")
+    std::cout << n << " points, " << m << " segments -> " << r.num_points << " vertices, "
+              << r.num_triangles << " triangles (" << r.stats.counters.at("rounds")
               << " rounds) on " << backend_name(r.stats.backend) << "\n";
     print_quality(r);
     if (!r.small_angles.empty()) {
@@ -134,8 +134,8 @@ int cmd_mesh2d(const Global& g, Args& a) {
   if (check) {
     Timer t(g, "check");
     const auto rep = verify::check_refined_mesh2d(
-        r.points.data(), std::int64_t(r.num_points()), r.triangles.data(),
-        std::int64_t(r.num_triangles()), r.segment_of.data(), in.segments.data(), m,
+        r.points.data(), std::int64_t(r.num_points), r.triangles.data(),
+        std::int64_t(r.num_triangles), r.segment_of.data(), in.segments.data(), m,
         r.duplicate_of.data(), opt.min_angle, opt.max_area, r.small_angles.data(),
         std::int64_t(r.small_angles.size()));
     if (!rep.ok) {
@@ -152,7 +152,7 @@ int cmd_mesh2d(const Global& g, Args& a) {
     Triangulation2d tri;
     tri.triangles.assign(r.triangles.begin(), r.triangles.end());
     tri.neighbors.assign(r.neighbors.begin(), r.neighbors.end());
-    tri.triangle_count = std::int64_t(r.num_triangles());
+    tri.num_triangles = std::int64_t(r.num_triangles);
     draw_triangulation(draw, coords, tri, nullptr, r.segment_of.data());
   }
   if (!out.empty()) {

@@ -23,7 +23,7 @@ void write_svg(const std::string& path, std::int64_t rows, std::int64_t cols, co
        "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<g "
        "fill=\"black\">\n";
   char buf[96];
-  for (std::int64_t i = 0; i < r.size(); ++i) {
+  for (std::int64_t i = 0; i < r.num_sites; ++i) {
     if (radius[i] <= 0) continue;
     std::snprintf(buf, sizeof buf, "<circle cx=\"%.3f\" cy=\"%.3f\" r=\"%.3f\"/>\n",
                   r.sites[2 * i] + 0.5, r.sites[2 * i + 1] + 0.5, radius[i]);
@@ -38,7 +38,7 @@ void write_png(const std::string& path, std::int64_t rows, std::int64_t cols, in
                const CvdResult& r, const HostVector<double>& radius) {
   const std::int64_t H = rows * scale, W = cols * scale;
   std::vector<float> white(std::size_t(H * W), 1.0f);
-  for (std::int64_t i = 0; i < r.size(); ++i) {
+  for (std::int64_t i = 0; i < r.num_sites; ++i) {
     const double cx = (r.sites[2 * i] + 0.5) * scale, cy = (r.sites[2 * i + 1] + 0.5) * scale;
     const double rad = radius[i] * scale;
     if (rad <= 0) continue;
@@ -122,7 +122,7 @@ int cmd_stipple(const Global& g, Args& a) {
     if (!png.empty()) write_png(png, img.shape[0], img.shape[1], sc, r, radius);
   }
   if (!g.quiet)
-    std::cout << "stipple " << pos[0] << ": " << r.size() << " dots, " << r.iterations
+    std::cout << "stipple " << pos[0] << ": " << r.num_sites << " dots, " << r.iterations
               << " iterations -> " << out << (png.empty() ? "" : " and " + png) << "\n";
   return kOk;
 }

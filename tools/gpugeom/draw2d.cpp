@@ -42,7 +42,7 @@ struct View {
 
 template <class F>
 void each_edge(const Triangulation2d& tri, F f) {  // every edge once
-  const std::size_t nt = tri.num_triangles();
+  const std::size_t nt = tri.num_triangles;
   for (std::size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
       const std::int32_t o = tri.neighbors[3 * t + k];
@@ -54,7 +54,7 @@ void each_edge(const Triangulation2d& tri, F f) {  // every edge once
 template <class F>
 void each_marked_edge(const Triangulation2d& tri, const std::int32_t* marks, F f) {
   if (!marks) return;
-  const std::size_t nt = tri.num_triangles();
+  const std::size_t nt = tri.num_triangles;
   for (std::size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
       const std::int32_t o = tri.neighbors[3 * t + k];
