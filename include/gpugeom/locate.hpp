@@ -10,7 +10,8 @@
 ///
 /// Queries run on the host threads (RunOptions::threads), each a visibility walk from the simplex
 /// found for the previous query of its thread (so sorted or clustered queries walk little), with
-/// an exhaustive scan as the bound on any walk, so the answer never depends on the walk.
+/// an exhaustive scan as the bound on any walk, so the answer never depends on the walk. There is
+/// no device entry: the walks are short, and the triangulation is on the host already.
 #pragma once
 #include <cstdint>
 
@@ -19,16 +20,27 @@
 
 namespace gpugeom {
 
+/// Options of find_simplex2d and find_simplex3d. The walks run on the host threads
+/// (RunOptions::threads); Backend::Cuda is refused (Error(Unsupported)), as there is no device
+/// point location to run.
+struct LocateOptions : RunOptions {
+  /// The caller's array for the answers (m entries); the result is then empty.
+  OutBuffer<std::int32_t> into;
+};
+
 /// xy: n points (x, y interleaved); triangles / neighbors: 3 per triangle; queries: m points.
-/// Throws Error(InvalidInput) for NaN/Inf queries or indices outside [0, n).
+/// Throws Error(InvalidInput) for NaN/Inf queries or indices outside [0, n), and
+/// Error(InvalidArgument) for an `into` of another length than m.
 HostVector<std::int32_t> find_simplex2d(const double* xy, std::int64_t n,
                                         const std::int32_t* triangles,
                                         const std::int32_t* neighbors, std::int64_t num_triangles,
-                                        const double* queries, std::int64_t m, int threads = 0);
+                                        const double* queries, std::int64_t m,
+                                        const LocateOptions& opt = {});
 /// xyz: n points; tetrahedra / neighbors: 4 per tetrahedron; queries: m points (x, y, z).
 HostVector<std::int32_t> find_simplex3d(const double* xyz, std::int64_t n,
                                         const std::int32_t* tetrahedra,
                                         const std::int32_t* neighbors, std::int64_t num_tetrahedra,
-                                        const double* queries, std::int64_t m, int threads = 0);
+                                        const double* queries, std::int64_t m,
+                                        const LocateOptions& opt = {});
 
 }  // namespace gpugeom

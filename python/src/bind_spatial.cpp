@@ -537,8 +537,10 @@ nb::object find_simplex_bind(const AnyArray& points, const AnyArray& simplices,
   HostVector<std::int32_t> r;
   {
     nb::gil_scoped_release released;
-    r = dim == 2 ? find_simplex2d(pts(p), p.shape[0], s, nb_, ns, pts(q), q.shape[0], threads)
-                 : find_simplex3d(pts(p), p.shape[0], s, nb_, ns, pts(q), q.shape[0], threads);
+    LocateOptions o;
+    o.threads = threads;
+    r = dim == 2 ? find_simplex2d(pts(p), p.shape[0], s, nb_, ns, pts(q), q.shape[0], o)
+                 : find_simplex3d(pts(p), p.shape[0], s, nb_, ns, pts(q), q.shape[0], o);
   }
   return host_array(std::move(r), {sz(q.shape[0])});
 }

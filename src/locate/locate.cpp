@@ -4,11 +4,13 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <string>
 #include <vector>
 
+#include "exec/deliver.hpp"
 #include "locate/walk.hpp"
 
 namespace gpugeom {
@@ -19,8 +21,14 @@ using locate_detail::Mesh;
 using locate_detail::walk;
 
 template <int D>
-HostVector<std::int32_t> locate(const Mesh<D>& m, const double* q, std::int64_t nq, int threads) {
+HostVector<std::int32_t> locate(const Mesh<D>& m, const double* q, std::int64_t nq,
+                                const LocateOptions& opt) {
   if (nq < 0) throw Error(ErrorCode::InvalidArgument, "find_simplex: negative query count");
+  if (opt.backend == Backend::Cuda)
+    throw Error(ErrorCode::Unsupported,
+                "find_simplex runs on the host threads (there is no device point location): "
+                "use Backend::Cpu or Backend::Auto");
+  deliver::check(opt.into, nq, "into", true);
   for (std::int64_t i = 0; i < std::int64_t(D + 1) * m.ncell; ++i) {
     if (m.cells[i] < 0 || m.cells[i] >= m.n)
       throw Error(ErrorCode::InvalidInput, "find_simplex: simplex " + std::to_string(i / (D + 1)) +
@@ -36,9 +44,17 @@ HostVector<std::int32_t> locate(const Mesh<D>& m, const double* q, std::int64_t 
     if (!std::isfinite(q[i]))
       throw Error(ErrorCode::InvalidInput, "find_simplex: query point " + std::to_string(i / D) +
                                                " has a coordinate that is NaN or infinite");
-  HostVector<std::int32_t> out(std::size_t(nq), -1);
-  if (m.ncell == 0 || nq == 0) return out;
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  HostVector<std::int32_t> own;
+  std::int32_t* out = opt.into.data;
+  if (!out) {
+    own = HostVector<std::int32_t>(std::size_t(nq));
+    out = own.data();
+  }
+  if (m.ncell == 0) {  // (else every answer is written below)
+    std::fill(out, out + nq, std::int32_t(-1));
+    return own;
+  }
+  const int nt = opt.threads > 0 ? opt.threads : omp_get_max_threads();
 #pragma omp parallel num_threads(nt)
   {
     std::vector<double> s(D == 2 ? pred::kOrient2dScratch : pred::kOrient3dScratch);
@@ -46,11 +62,11 @@ HostVector<std::int32_t> locate(const Mesh<D>& m, const double* q, std::int64_t 
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < nq; ++i) {
       const std::int32_t r = walk(m, c, q + D * i, s.data());
-      out[std::size_t(i)] = r;
+      out[i] = r;
       if (r >= 0) c = r;
     }
   }
-  return out;
+  return own;
 }
 
 }  // namespace
@@ -58,15 +74,17 @@ HostVector<std::int32_t> locate(const Mesh<D>& m, const double* q, std::int64_t 
 HostVector<std::int32_t> find_simplex2d(const double* xy, std::int64_t n,
                                         const std::int32_t* triangles,
                                         const std::int32_t* neighbors, std::int64_t num_triangles,
-                                        const double* queries, std::int64_t m, int threads) {
-  return locate(Mesh<2>{xy, n, triangles, neighbors, num_triangles}, queries, m, threads);
+                                        const double* queries, std::int64_t m,
+                                        const LocateOptions& opt) {
+  return locate(Mesh<2>{xy, n, triangles, neighbors, num_triangles}, queries, m, opt);
 }
 
 HostVector<std::int32_t> find_simplex3d(const double* xyz, std::int64_t n,
                                         const std::int32_t* tetrahedra,
                                         const std::int32_t* neighbors, std::int64_t num_tetrahedra,
-                                        const double* queries, std::int64_t m, int threads) {
-  return locate(Mesh<3>{xyz, n, tetrahedra, neighbors, num_tetrahedra}, queries, m, threads);
+                                        const double* queries, std::int64_t m,
+                                        const LocateOptions& opt) {
+  return locate(Mesh<3>{xyz, n, tetrahedra, neighbors, num_tetrahedra}, queries, m, opt);
 }
 
 }  // namespace gpugeom

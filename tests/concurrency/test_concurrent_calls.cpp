@@ -217,13 +217,15 @@ std::vector<Job> jobs() {
                }});
   J.push_back({"find_simplex2d", [=](int k) {
                  const Triangulation2d t = delaunay2d(xy(p2), n2, on_backend<Delaunay2dOptions>(1));
+                 LocateOptions lo;  // (host threads on either executor)
+                 lo.threads = 1 + k % 2;
                  std::vector<double> q;  // midpoints of consecutive points
                  for (std::int64_t i = 0; i + 1 < 5000; ++i)
                    q.insert(q.end(), {(p2[std::size_t(i)].x + p2[std::size_t(i + 1)].x) / 2,
                                       (p2[std::size_t(i)].y + p2[std::size_t(i + 1)].y) / 2});
-                 const auto s = find_simplex2d(xy(p2), n2, t.triangles.data(), t.neighbors.data(),
-                                               t.num_triangles, q.data(),
-                                               std::int64_t(q.size() / 2), 1 + k % 2);
+                 const auto s =
+                     find_simplex2d(xy(p2), n2, t.triangles.data(), t.neighbors.data(),
+                                    t.num_triangles, q.data(), std::int64_t(q.size() / 2), lo);
                  return Arrays().add("simplices", s);
                }});
   return J;

@@ -8,6 +8,7 @@
 
 #include "../common/caller_arrays.hpp"
 #include "../common/first_copies.hpp"
+#include "gpugeom/locate.hpp"
 #include "gpugeom/predicates.hpp"
 #include "../common/on_host_threads.hpp"
 #include "del2d_cases.hpp"
@@ -652,6 +653,50 @@ TEST(Delaunay2d, PastTheRoundsCapacities) {
     EXPECT_EQ(all.neighbors, batch.neighbors);
   }
   for (const auto& [k, v] : seen) EXPECT_GT(v, 0) << k;
+}
+
+// Point location into the caller's array: the same answers as into the library's, on any thread
+// count; an array of another length, or the CUDA backend (there is no device point location),
+// refused before anything is written.
+TEST(Delaunay2d, PointLocationIntoTheCallersArray) {
+  const auto pts = generate2d("uniform", 5000, 21);
+  const auto t = delaunay2d(pts, cpu());
+  std::vector<double> q;
+  for (std::size_t i = 0; i + 1 < pts.size(); i += 3)
+    q.insert(q.end(), {(pts[i].x + pts[i + 1].x) / 2, (pts[i].y + pts[i + 1].y) / 2});
+  q.insert(q.end(), {-1.0, 0.5, 2.0, 2.0});  // outside the hull
+  const std::int64_t m = std::int64_t(q.size() / 2);
+  const auto own = find_simplex2d(&pts.data()->x, std::int64_t(pts.size()), t.triangles.data(),
+                                  t.neighbors.data(), t.num_triangles, q.data(), m);
+  ASSERT_EQ(std::int64_t(own.size()), m);
+  EXPECT_EQ(own[std::size_t(m - 1)], -1);
+  EXPECT_EQ(own[std::size_t(m - 2)], -1);
+  for (int threads : {1, 2}) {
+    std::vector<std::int32_t> mine(std::size_t(m), 7);
+    LocateOptions o;
+    o.threads = threads;
+    o.into = {mine.data(), m};
+    const auto r = find_simplex2d(&pts.data()->x, std::int64_t(pts.size()), t.triangles.data(),
+                                  t.neighbors.data(), t.num_triangles, q.data(), m, o);
+    EXPECT_TRUE(r.empty());
+    EXPECT_EQ(mine, std::vector<std::int32_t>(own.begin(), own.end())) << threads;
+  }
+  std::vector<std::int32_t> short_one(std::size_t(m - 1), 7);
+  LocateOptions bad;
+  bad.into = {short_one.data(), m - 1};
+  EXPECT_THROW(find_simplex2d(&pts.data()->x, std::int64_t(pts.size()), t.triangles.data(),
+                              t.neighbors.data(), t.num_triangles, q.data(), m, bad),
+               Error);
+  EXPECT_EQ(short_one, std::vector<std::int32_t>(std::size_t(m - 1), 7));
+  LocateOptions gpu;
+  gpu.backend = Backend::Cuda;
+  try {
+    find_simplex2d(&pts.data()->x, std::int64_t(pts.size()), t.triangles.data(), t.neighbors.data(),
+                   t.num_triangles, q.data(), m, gpu);
+    ADD_FAILURE() << "CUDA point location accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(int(e.code()), int(ErrorCode::Unsupported));
+  }
 }
 
 // The limit the header states: refused before any work, with the number.
