@@ -20,17 +20,21 @@
 
 namespace gpugeom {
 
+/// The caller's array for the answers (m entries, as every capability's `into`): given, the
+/// answers are written there and the result is empty.
+struct LocateBuffers {
+  OutBuffer<std::int32_t> simplices;  ///< the simplex of each query, -1 outside
+};
 /// Options of find_simplex2d and find_simplex3d. The walks run on the host threads
 /// (RunOptions::threads); Backend::Cuda is refused (Error(Unsupported)), as there is no device
 /// point location to run.
 struct LocateOptions : RunOptions {
-  /// The caller's array for the answers (m entries); the result is then empty.
-  OutBuffer<std::int32_t> into;
+  LocateBuffers into;  ///< optional
 };
 
 /// xy: n points (x, y interleaved); triangles / neighbors: 3 per triangle; queries: m points.
 /// Throws Error(InvalidInput) for NaN/Inf queries or indices outside [0, n), and
-/// Error(InvalidArgument) for an `into` of another length than m.
+/// Error(InvalidArgument) for an `into.simplices` of another length than m.
 HostVector<std::int32_t> find_simplex2d(const double* xy, std::int64_t n,
                                         const std::int32_t* triangles,
                                         const std::int32_t* neighbors, std::int64_t num_triangles,

@@ -31,7 +31,7 @@ void check_sizes(std::int64_t n, const Triangulation2d& tri) {
 // point that is not a vertex.
 std::vector<std::int64_t> star_starts(std::int64_t n, const Triangulation2d& tri) {
   std::vector<std::int64_t> key(std::size_t(n), -1);
-  const std::int64_t nt = std::int64_t(tri.num_triangles);
+  const std::int64_t nt = tri.num_triangles;
   for (std::int64_t c = 0; c < 3 * nt; ++c) {
     std::int64_t& k = key[std::size_t(tri.triangles[c])];
     k = std::max(k, del2d::vor::start_key(tri.neighbors.data(), c));
@@ -43,8 +43,8 @@ std::vector<std::int64_t> star_starts(std::int64_t n, const Triangulation2d& tri
 // Triangles around vertex tri[c] counter-clockwise from corner c, and whether the star is open.
 template <class F>
 bool walk_star(const Triangulation2d& tri, std::int64_t c, F visit) {
-  return del2d::vor::walk_star(tri.triangles.data(), tri.neighbors.data(), c,
-                               std::int64_t(tri.num_triangles), visit);
+  return del2d::vor::walk_star(tri.triangles.data(), tri.neighbors.data(), c, tri.num_triangles,
+                               visit);
 }
 
 }  // namespace
@@ -60,7 +60,7 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
   run.backend = Backend::Cpu;
   del2d::cpu_impl::voronoi(xy, n, tri.triangles.data(), tri.neighbors.data(),
                            tri.duplicate_of.data(),  // (copies; removed points: empty cells)
-                           std::int64_t(tri.num_triangles), run, unused, st, &v);
+                           tri.num_triangles, run, unused, st, &v);
   return v;
 }
 

@@ -28,7 +28,7 @@ HostVector<std::int32_t> locate(const Mesh<D>& m, const double* q, std::int64_t 
     throw Error(ErrorCode::Unsupported,
                 "find_simplex runs on the host threads (there is no device point location): "
                 "use Backend::Cpu or Backend::Auto");
-  deliver::check(opt.into, nq, "into", true);
+  deliver::check(opt.into.simplices, nq, "simplices", true);
   for (std::int64_t i = 0; i < std::int64_t(D + 1) * m.ncell; ++i) {
     if (m.cells[i] < 0 || m.cells[i] >= m.n)
       throw Error(ErrorCode::InvalidInput, "find_simplex: simplex " + std::to_string(i / (D + 1)) +
@@ -45,7 +45,7 @@ HostVector<std::int32_t> locate(const Mesh<D>& m, const double* q, std::int64_t 
       throw Error(ErrorCode::InvalidInput, "find_simplex: query point " + std::to_string(i / D) +
                                                " has a coordinate that is NaN or infinite");
   HostVector<std::int32_t> own;
-  std::int32_t* out = opt.into.data;
+  std::int32_t* out = opt.into.simplices.data;
   if (!out) {
     own = HostVector<std::int32_t>(std::size_t(nq));
     out = own.data();

@@ -191,7 +191,7 @@ inline void expect_split_cdt(const Pslg& g, const gpugeom::ConstrainedTriangulat
     edges_of[std::size_t(s)].insert(edges_of[std::size_t(s)].end(), {u, v});
   }
   auto rep = gpugeom::verify::check_constrained_delaunay2d(
-      xy.data(), np, r.triangles.data(), std::int64_t(r.num_triangles), marked.data(),
+      xy.data(), np, r.triangles.data(), r.num_triangles, marked.data(),
       std::int64_t(marked.size() / 2), r.duplicate_of.data());
   ASSERT_TRUE(rep.ok) << g.name << ": " << rep.message;
   for (std::size_t s = 0; s < g.segs.size() / 2; ++s) {
@@ -256,7 +256,7 @@ inline void expect_cdt(const Pslg& g, const gpugeom::ConstrainedTriangulation2d&
     if (a != b) segs.insert(segs.end(), {a, b});
   }
   auto rep = gpugeom::verify::check_constrained_delaunay2d(
-      g.xy.data(), n, r.triangles.data(), std::int64_t(r.num_triangles), segs.data(),
+      g.xy.data(), n, r.triangles.data(), r.num_triangles, segs.data(),
       std::int64_t(segs.size() / 2), r.duplicate_of.data());
   ASSERT_TRUE(rep.ok) << g.name << ": " << rep.message;
   for (std::size_t i = 0; i < r.segment_of.size(); ++i) {

@@ -208,7 +208,7 @@ TEST(Cdt2d, DeviceEntryOnTheCpu) {
     }
     const auto h = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
     const auto d = cdt2d_device(g.xy.data(), n, g.segs.data(), m, o);
-    ASSERT_EQ(d.num_triangles, std::int64_t(h.num_triangles));
+    ASSERT_EQ(d.num_triangles, h.num_triangles);
     EXPECT_EQ(d.backend, Backend::Cpu);
     const std::size_t k = 3 * std::size_t(d.num_triangles);
     EXPECT_EQ(std::vector<std::int32_t>(d.triangles.get(), d.triangles.get() + k), h.triangles);

@@ -100,7 +100,7 @@ TEST(CudaCdt2d, DeviceEntry) {
   const gg_test::DeviceCopy dxy(g.xy), dsegs(g.segs);
   const auto d = cdt2d_device(static_cast<const double*>(dxy.data()), n,
                               static_cast<const std::int32_t*>(dsegs.data()), m, o);
-  ASSERT_EQ(d.num_triangles, std::int64_t(h.num_triangles));
+  ASSERT_EQ(d.num_triangles, h.num_triangles);
   EXPECT_EQ(d.backend, Backend::Cuda);
   EXPECT_EQ(gg_test::from_device(d.triangles, 3 * d.num_triangles), h.triangles);
   EXPECT_EQ(gg_test::from_device(d.neighbors, 3 * d.num_triangles), h.neighbors);

@@ -173,11 +173,11 @@ inline void expect_valid(const std::vector<Point2>& pts, const Triangulation2d& 
     ASSERT_TRUE(pts[d].x == pts[i].x && pts[d].y == pts[i].y) << "point " << i;
   }
   EXPECT_EQ(ndup, t.num_duplicates);
-  const auto r = verify::check_delaunay2d(&pts.data()->x, n, t.triangles.data(),
-                                          std::int64_t(t.num_triangles), t.duplicate_of.data());
+  const auto r = verify::check_delaunay2d(&pts.data()->x, n, t.triangles.data(), t.num_triangles,
+                                          t.duplicate_of.data());
   ASSERT_TRUE(r.ok) << r.message;
   // neighbours: opposite vertex k, shared edge, symmetric
-  const std::int64_t nt = std::int64_t(t.num_triangles);
+  const std::int64_t nt = t.num_triangles;
   ASSERT_EQ(t.neighbors.size(), t.triangles.size());
   std::int64_t hull = 0;
   for (std::int64_t c = 0; c < nt; ++c)
@@ -274,7 +274,7 @@ struct Kept2d : gg_test::KeptTriangulation<Kept2d> {
   static void valid(const std::vector<Point2>& p, const Result& t) { expect_valid(p, t); }
   static const std::int32_t* simplices(const Result& t) { return t.triangles.data(); }
   static const std::int32_t* neighbors(const Result& t) { return t.neighbors.data(); }
-  static std::int64_t count(const Result& t) { return std::int64_t(t.num_triangles); }
+  static std::int64_t count(const Result& t) { return t.num_triangles; }
   static std::vector<std::int32_t> dup(const Result& t) {
     return std::vector<std::int32_t>(t.duplicate_of.begin(), t.duplicate_of.end());
   }

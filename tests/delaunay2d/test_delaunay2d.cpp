@@ -245,7 +245,7 @@ TEST(Delaunay2d, VoronoiMergesCocircularTriangles) {
     const std::int64_t n = std::int64_t(c.pts.size());
     const auto t = delaunay2d(c.pts, cpu());
     const auto v = voronoi2d(&c.pts.data()->x, n, t);
-    const std::int64_t nt = std::int64_t(t.num_triangles);
+    const std::int64_t nt = t.num_triangles;
     ASSERT_EQ(std::int64_t(v.simplex_vertex.size()), nt);
     auto cocircular = [&](std::int64_t a, std::int64_t b) {
       std::int32_t d = -1;  // b's vertex that is not a's
@@ -675,7 +675,7 @@ TEST(Delaunay2d, PointLocationIntoTheCallersArray) {
     std::vector<std::int32_t> mine(std::size_t(m), 7);
     LocateOptions o;
     o.threads = threads;
-    o.into = {mine.data(), m};
+    o.into.simplices = {mine.data(), m};
     const auto r = find_simplex2d(&pts.data()->x, std::int64_t(pts.size()), t.triangles.data(),
                                   t.neighbors.data(), t.num_triangles, q.data(), m, o);
     EXPECT_TRUE(r.empty());
@@ -683,7 +683,7 @@ TEST(Delaunay2d, PointLocationIntoTheCallersArray) {
   }
   std::vector<std::int32_t> short_one(std::size_t(m - 1), 7);
   LocateOptions bad;
-  bad.into = {short_one.data(), m - 1};
+  bad.into.simplices = {short_one.data(), m - 1};
   EXPECT_THROW(find_simplex2d(&pts.data()->x, std::int64_t(pts.size()), t.triangles.data(),
                               t.neighbors.data(), t.num_triangles, q.data(), m, bad),
                Error);
@@ -802,7 +802,7 @@ TEST(DynamicDelaunay2d, DeviceEntriesOnTheCpuExecutor) {
   const auto dev = d.device_triangulation();
   ASSERT_EQ(dev.backend, Backend::Cpu);
   const auto host = d.triangulation();
-  ASSERT_EQ(dev.num_triangles, std::int64_t(host.num_triangles));
+  ASSERT_EQ(dev.num_triangles, host.num_triangles);
   EXPECT_TRUE(std::equal(host.triangles.begin(), host.triangles.end(), dev.triangles.get()));
   EXPECT_TRUE(std::equal(host.neighbors.begin(), host.neighbors.end(), dev.neighbors.get()));
   expect_valid(pts, host);

@@ -70,7 +70,7 @@ void expect_device_entry_as_host(const std::vector<Point2>& p, const DeviceTrian
   Delaunay2dOptions o;
   o.backend = Backend::Cuda;
   const auto h = delaunay2d(p, o);
-  ASSERT_EQ(r.num_triangles, std::int64_t(h.num_triangles));
+  ASSERT_EQ(r.num_triangles, h.num_triangles);
   EXPECT_EQ(r.num_duplicates, h.num_duplicates);
   EXPECT_EQ(gg_test::from_device(r.triangles, 3 * r.num_triangles), h.triangles);
   EXPECT_EQ(gg_test::from_device(r.neighbors, 3 * r.num_triangles), h.neighbors);
@@ -514,7 +514,7 @@ TEST(CudaDynamicDelaunay2d, DeviceResident) {
   ASSERT_EQ(r.backend, Backend::Cuda);
   const auto host = d.triangulation();
   gg_del2d::expect_valid(p, host);
-  ASSERT_EQ(r.num_triangles, std::int64_t(host.num_triangles));
+  ASSERT_EQ(r.num_triangles, host.num_triangles);
   const auto tri = gg_test::from_device(r.triangles, 3 * r.num_triangles);
   const auto nb = gg_test::from_device(r.neighbors, 3 * r.num_triangles);
   const auto dup = gg_test::from_device(r.duplicate_of, n + 1);

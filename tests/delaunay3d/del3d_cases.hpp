@@ -26,7 +26,7 @@ using gpugeom::Point3;
 inline void expect_valid(const std::vector<Point3>& pts, const gpugeom::Triangulation3d& t) {
   const double* p = &pts.data()->x;
   const std::int64_t n = std::int64_t(pts.size());
-  const auto nt = std::int64_t(t.num_tetrahedra);
+  const auto nt = t.num_tetrahedra;
   auto r = gpugeom::verify::check_delaunay3d(p, n, t.tetrahedra.data(), nt, t.duplicate_of.data());
   ASSERT_TRUE(r.ok) << r.message;
   ASSERT_EQ(t.neighbors.size(), t.tetrahedra.size());
@@ -135,7 +135,7 @@ inline gpugeom::Triangulation3d follow_in_chunks(const Case& c,
     SCOPED_TRACE(std::to_string(k) + " of " + std::to_string(n) + " points");
     const Triangulation3d t = dyn->tetrahedralisation();
     EXPECT_EQ(dyn->num_points(), std::int64_t(k));
-    EXPECT_EQ(dyn->num_tetrahedra(), std::int64_t(t.num_tetrahedra));
+    EXPECT_EQ(dyn->num_tetrahedra(), t.num_tetrahedra);
     expect_valid(sofar, t);
     const Triangulation3d fresh = delaunay3d(sofar, fresh_opt);
     EXPECT_EQ(tet_set(t.tetrahedra), tet_set(fresh.tetrahedra));
@@ -167,7 +167,7 @@ struct Kept3d : gg_test::KeptTriangulation<Kept3d> {
   static void valid(const std::vector<Point>& p, const Result& t) { expect_valid(p, t); }
   static const std::int32_t* simplices(const Result& t) { return t.tetrahedra.data(); }
   static const std::int32_t* neighbors(const Result& t) { return t.neighbors.data(); }
-  static std::int64_t count(const Result& t) { return std::int64_t(t.num_tetrahedra); }
+  static std::int64_t count(const Result& t) { return t.num_tetrahedra; }
   static std::vector<std::int32_t> dup(const Result& t) {
     return std::vector<std::int32_t>(t.duplicate_of.begin(), t.duplicate_of.end());
   }

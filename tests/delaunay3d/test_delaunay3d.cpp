@@ -88,7 +88,7 @@ TEST(Delaunay3d, CheckerSamplesInsideTheHull) {
     if (c.name == "magnitudes") pts = c.pts;
   ASSERT_FALSE(pts.empty());
   const auto t = delaunay3d(pts, cpu());
-  const std::int64_t nt = std::int64_t(t.num_tetrahedra);
+  const std::int64_t nt = t.num_tetrahedra;
   int needles = 0;
   for (std::int64_t c = 0; c < nt; ++c) {
     Point3 q{0, 0, 0};
@@ -464,7 +464,7 @@ TEST(DynamicDelaunay3d, DeviceEntriesOnTheCpuExecutor) {
   const auto dev = d.device_tetrahedralisation();
   ASSERT_EQ(dev.backend, Backend::Cpu);
   const auto host = d.tetrahedralisation();
-  ASSERT_EQ(dev.num_tetrahedra, std::int64_t(host.num_tetrahedra));
+  ASSERT_EQ(dev.num_tetrahedra, host.num_tetrahedra);
   EXPECT_TRUE(std::equal(host.tetrahedra.begin(), host.tetrahedra.end(), dev.tetrahedra.get()));
   EXPECT_TRUE(std::equal(host.hull_facets.begin(), host.hull_facets.end(), dev.hull_facets.get()));
   expect_valid(pts, host);

@@ -92,7 +92,7 @@ TEST(CudaDelaunay3d, DeviceResident) {  // points on the GPU in, result left the
   Delaunay3dOptions o;
   o.backend = Backend::Cuda;
   const auto h = delaunay3d(p, o);
-  ASSERT_EQ(r.num_tetrahedra, std::int64_t(h.num_tetrahedra));
+  ASSERT_EQ(r.num_tetrahedra, h.num_tetrahedra);
   EXPECT_EQ(r.num_duplicates, 1);
   const std::int64_t nt = r.num_tetrahedra;
   const std::int64_t np = std::int64_t(p.size());
@@ -194,7 +194,7 @@ TEST(CudaDynamicDelaunay3d, DeviceResident) {
   ASSERT_EQ(r.backend, Backend::Cuda);
   const auto host = d.tetrahedralisation();
   gg_del3d::expect_valid(p, host);
-  ASSERT_EQ(r.num_tetrahedra, std::int64_t(host.num_tetrahedra));
+  ASSERT_EQ(r.num_tetrahedra, host.num_tetrahedra);
   const auto tet = gg_test::from_device(r.tetrahedra, 4 * r.num_tetrahedra);
   const auto dup = gg_test::from_device(r.duplicate_of, n + 1);
   EXPECT_TRUE(std::equal(tet.begin(), tet.end(), host.tetrahedra.begin()));

@@ -111,7 +111,7 @@ TEST(DigitalDelaunay3d, DeviceEntryOnTheCpuExecutor) {
   const auto host = delaunay3d(pts, cpu(Method::Digital));
   const auto dev =
       delaunay3d_device(&pts.data()->x, std::int64_t(pts.size()), cpu(Method::Digital));
-  ASSERT_EQ(dev.num_tetrahedra, std::int64_t(host.num_tetrahedra));
+  ASSERT_EQ(dev.num_tetrahedra, host.num_tetrahedra);
   std::vector<std::int32_t> t(dev.tetrahedra.get(), dev.tetrahedra.get() + 4 * dev.num_tetrahedra);
   EXPECT_EQ(tet_set(t), tet_set(host.tetrahedra));
 }

@@ -174,7 +174,7 @@ inline std::vector<Case> degenerate_cases() {
 inline void expect_valid(const std::vector<Point3>& pts, const gpugeom::ConvexHull3d& h) {
   const double* p = &pts.data()->x;
   const std::int64_t n = std::int64_t(pts.size());
-  const auto nt = std::int64_t(h.num_facets);
+  const auto nt = h.num_facets;
   auto r = gpugeom::verify::check_hull3d(p, n, h.triangles.data(), nt, 1'000'000'000LL);
   ASSERT_TRUE(r.ok) << r.message;
   std::set<std::int32_t> vs(h.triangles.begin(), h.triangles.end());

@@ -103,7 +103,7 @@ TEST(CudaHull3d, DeviceResident) {  // points on the GPU in, result left there
     Hull3dOptions o;
     o.backend = Backend::Cuda;
     const auto h = convex_hull3d(p, o);
-    ASSERT_EQ(r.num_facets, std::int64_t(h.num_facets));
+    ASSERT_EQ(r.num_facets, h.num_facets);
     std::vector<std::int32_t> tris(3 * r.num_facets), nbrs(tris.size()), verts(r.num_vertices);
     cudaMemcpy(tris.data(), r.triangles.get(), tris.size() * 4, cudaMemcpyDeviceToHost);
     cudaMemcpy(nbrs.data(), r.neighbors.get(), nbrs.size() * 4, cudaMemcpyDeviceToHost);

@@ -102,10 +102,9 @@ inline void expect_quality(const Domain& d, const gpugeom::RefinedMesh2d& r,
   for (auto why : r.small_angle_reasons)
     EXPECT_TRUE(why >= 1 && why <= 3) << d.g.name << ": reason " << int(why);
   const auto rep = gpugeom::verify::check_refined_mesh2d(
-      pts.data(), std::int64_t(r.num_points), r.triangles.data(), std::int64_t(r.num_triangles),
-      r.segment_of.data(), d.g.segs.data(), std::int64_t(d.g.segs.size() / 2),
-      r.duplicate_of.data(), o.min_angle, o.max_area, r.small_angles.data(),
-      std::int64_t(r.small_angles.size()));
+      pts.data(), r.num_points, r.triangles.data(), r.num_triangles, r.segment_of.data(),
+      d.g.segs.data(), std::int64_t(d.g.segs.size() / 2), r.duplicate_of.data(), o.min_angle,
+      o.max_area, r.small_angles.data(), std::int64_t(r.small_angles.size()));
   ASSERT_TRUE(rep.ok) << d.g.name << ": " << rep.message;
   gpugeom::Cdt2dOptions c;
   c.backend = gpugeom::Backend::Cpu;

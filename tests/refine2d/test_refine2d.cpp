@@ -77,7 +77,7 @@ TEST(Refine2d, ThreadCountsAndDeviceEntry) {
   const auto dev = refine2d_device(d.g.xy.data(), std::int64_t(d.g.xy.size() / 2), d.g.segs.data(),
                                    std::int64_t(d.g.segs.size() / 2), o);
   ASSERT_EQ(dev.backend, Backend::Cpu);
-  ASSERT_EQ(dev.num_triangles, std::int64_t(all.num_triangles));
+  ASSERT_EQ(dev.num_triangles, all.num_triangles);
   EXPECT_TRUE(std::equal(all.triangles.begin(), all.triangles.end(), dev.triangles.get()));
   EXPECT_TRUE(std::equal(all.points.begin(), all.points.end(), dev.points.get()));
 }

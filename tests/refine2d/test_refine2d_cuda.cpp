@@ -61,8 +61,8 @@ TEST(CudaRefine2d, DeviceEntry) {
   const auto dev = refine2d_device(xy.doubles(), std::int64_t(d.g.xy.size() / 2),
                                    static_cast<const std::int32_t*>(segs.data()),
                                    std::int64_t(d.g.segs.size() / 2), o);
-  ASSERT_EQ(dev.num_triangles, std::int64_t(host.num_triangles));
-  ASSERT_EQ(dev.num_points, std::int64_t(host.num_points));
+  ASSERT_EQ(dev.num_triangles, host.num_triangles);
+  ASSERT_EQ(dev.num_points, host.num_points);
   EXPECT_EQ(gg_test::from_device(dev.triangles, 3 * dev.num_triangles),
             std::vector<std::int32_t>(host.triangles.begin(), host.triangles.end()));
   EXPECT_EQ(gg_test::from_device(dev.points, 2 * dev.num_points),

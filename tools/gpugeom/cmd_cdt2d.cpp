@@ -120,8 +120,8 @@ int cmd_cdt2d(const Global& g, Args& a) {
                                    w.triangles[i - i % 3 + (i % 3 + 2) % 3]});
     }
     const auto rep = verify::check_constrained_delaunay2d(
-        xy.data(), std::int64_t(xy.size() / 2), w.triangles.data(), std::int64_t(w.num_triangles),
-        segs.data(), std::int64_t(segs.size() / 2), w.duplicate_of.data());
+        xy.data(), std::int64_t(xy.size() / 2), w.triangles.data(), w.num_triangles, segs.data(),
+        std::int64_t(segs.size() / 2), w.duplicate_of.data());
     if (!rep.ok) {
       std::cerr << "INVALID cdt2d: " << rep.message << "\n";
       status = kCheckFailed;
@@ -136,7 +136,7 @@ int cmd_cdt2d(const Global& g, Args& a) {
     Triangulation2d tri;  // the drawing's view of the result
     tri.triangles.assign(r.triangles.begin(), r.triangles.end());
     tri.neighbors.assign(r.neighbors.begin(), r.neighbors.end());
-    tri.num_triangles = std::int64_t(r.num_triangles);
+    tri.num_triangles = r.num_triangles;
     draw_triangulation(draw, in.points.coords, tri, nullptr, r.segment_of.data());
   }
   if (!poly_out.empty()) {

@@ -146,9 +146,8 @@ int cmd_delaunay2d(const Global& g, Args& a) {
   int status = kOk;
   if (check) {
     Timer t(g, "check");
-    const auto r =
-        verify::check_delaunay2d(p.coords.data(), n, tri.triangles.data(),
-                                 std::int64_t(tri.num_triangles), tri.duplicate_of.data());
+    const auto r = verify::check_delaunay2d(p.coords.data(), n, tri.triangles.data(),
+                                            tri.num_triangles, tri.duplicate_of.data());
     if (!r.ok) {
       std::cerr << "INVALID delaunay2d: " << r.message << "\n";
       status = kCheckFailed;

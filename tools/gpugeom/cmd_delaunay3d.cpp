@@ -99,9 +99,8 @@ int cmd_delaunay3d(const Global& g, Args& a) {
   int status = kOk;
   if (check) {
     Timer t(g, "check");
-    const auto r =
-        verify::check_delaunay3d(p.coords.data(), n, t3.tetrahedra.data(),
-                                 std::int64_t(t3.num_tetrahedra), t3.duplicate_of.data());
+    const auto r = verify::check_delaunay3d(p.coords.data(), n, t3.tetrahedra.data(),
+                                            t3.num_tetrahedra, t3.duplicate_of.data());
     if (!r.ok) {
       std::cerr << "INVALID delaunay3d: " << r.message << "\n";
       status = kCheckFailed;

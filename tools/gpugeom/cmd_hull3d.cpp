@@ -61,8 +61,7 @@ int cmd_hull3d(const Global& g, Args& a) {
   int status = kOk;
   if (check) {
     Timer t(g, "check");
-    const auto r =
-        verify::check_hull3d(p.coords.data(), n, h.triangles.data(), std::int64_t(h.num_facets));
+    const auto r = verify::check_hull3d(p.coords.data(), n, h.triangles.data(), h.num_facets);
     if (!r.ok) {
       std::cerr << "INVALID hull3d: " << r.message << "\n";
       status = kCheckFailed;

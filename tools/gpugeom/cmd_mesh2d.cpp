@@ -134,10 +134,9 @@ int cmd_mesh2d(const Global& g, Args& a) {
   if (check) {
     Timer t(g, "check");
     const auto rep = verify::check_refined_mesh2d(
-        r.points.data(), std::int64_t(r.num_points), r.triangles.data(),
-        std::int64_t(r.num_triangles), r.segment_of.data(), in.segments.data(), m,
-        r.duplicate_of.data(), opt.min_angle, opt.max_area, r.small_angles.data(),
-        std::int64_t(r.small_angles.size()));
+        r.points.data(), r.num_points, r.triangles.data(), r.num_triangles, r.segment_of.data(),
+        in.segments.data(), m, r.duplicate_of.data(), opt.min_angle, opt.max_area,
+        r.small_angles.data(), std::int64_t(r.small_angles.size()));
     if (!rep.ok) {
       std::cerr << "INVALID mesh2d: " << rep.message << "\n";
       status = kCheckFailed;
@@ -152,7 +151,7 @@ int cmd_mesh2d(const Global& g, Args& a) {
     Triangulation2d tri;
     tri.triangles.assign(r.triangles.begin(), r.triangles.end());
     tri.neighbors.assign(r.neighbors.begin(), r.neighbors.end());
-    tri.num_triangles = std::int64_t(r.num_triangles);
+    tri.num_triangles = r.num_triangles;
     draw_triangulation(draw, coords, tri, nullptr, r.segment_of.data());
   }
   if (!out.empty()) {
