@@ -3,9 +3,9 @@
 backend and anchor (with copies), and the speed-up of each gpugeom backend over each anchor
 measured at the same n (device-resident time for gpugeom, as the anchors keep their data where
 they compute)."""
-import collections, csv, os, sys
+import collections, os, sys
 
-GPUGEOM = {"cpu", "cuda"}
+from bench_csv import is_ours, read_rows
 
 def main(path, outdir):
     try:
@@ -15,7 +15,7 @@ def main(path, outdir):
     except ImportError:
         print("note: matplotlib missing, no plots")
         return 0
-    rows = list(csv.DictReader(open(path)))
+    rows = read_rows(path)
     groups = collections.defaultdict(lambda: collections.defaultdict(dict))
     for r in rows:
         g = groups[(r["problem"], r["distribution"])][r["backend"]]
@@ -23,8 +23,8 @@ def main(path, outdir):
     os.makedirs(outdir, exist_ok=True)
     written = 0
     for (prob, dist), series in groups.items():
-        anchors = [b for b in series if b not in GPUGEOM]
-        ours = [b for b in series if b in GPUGEOM]
+        anchors = [b for b in series if not is_ours(b)]
+        ours = [b for b in series if is_ours(b)]
         fig, axes = plt.subplots(1, 2 if anchors and ours else 1, figsize=(11 if anchors and ours else 6, 4))
         axes = axes if hasattr(axes, "__len__") else [axes]
         for bk, pts in sorted(series.items()):

@@ -19,8 +19,8 @@ Every plot names its machine: the GPU for gpugeom's rows and the CPU anchors' ro
 names them. A CSV without a header line gets the benches' standard columns. Rows repeated for
 one backend and n keep the last (the benches append as they go; the last run is the final one).
 """
-import csv
 import hashlib
+import sys
 from pathlib import Path
 
 from docutils import nodes
@@ -28,22 +28,8 @@ from docutils.parsers.rst import directives
 from sphinx.errors import ExtensionError
 from sphinx.util.docutils import SphinxDirective
 
-COLUMNS = ["problem", "distribution", "n", "backend", "device", "upload_ms", "compute_ms",
-           "download_ms", "device_resident_ms", "with_copies_ms", "exact_fraction"]
-GPUGEOM = ("cuda", "cpu", "gpugeom")
-
-
-def read_rows(path):
-    with open(path, newline="") as f:
-        first = f.readline()
-        f.seek(0)
-        if first.startswith("problem,"):
-            return list(csv.DictReader(f))
-        return list(csv.DictReader(f, fieldnames=COLUMNS))
-
-
-def _ours(backend):
-    return backend.startswith(GPUGEOM)
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
+from bench_csv import is_ours as _ours, read_rows  # noqa: E402  (the benches' one reader)
 
 
 def _machine(rows):
