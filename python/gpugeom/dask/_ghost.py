@@ -143,27 +143,33 @@ def _ball_in_box(centre, reach, lo, hi, xp=np):
     return blo, bhi
 
 
+def _furthest_plane(count, planes, heights, xp):
+    """For each of ``count`` centres, the hull plane it lies furthest beyond and how far:
+    ``heights(i, j)`` gives centres i:j's signed heights over every plane (rows by planes),
+    computed a slice of rows at a time (at most 64 MiB of heights)."""
+    best = xp.zeros(count, dtype=xp.int64)
+    top = xp.zeros(count)
+    step = max(1, (1 << 23) // len(planes))
+    for i in range(0, count, step):
+        h = heights(i, i + step)
+        best[i:i + step] = xp.argmax(h, axis=1)
+        top[i:i + step] = h[xp.arange(len(h)), best[i:i + step]]
+    return best, top
+
+
 def _hull_cap(centre, reach, planes, xp=np):
     """Where a ball's centre lies beyond a hull plane (outward unit normal n, offset t: inside
     n.x + t <= 0), the hull's points in the ball lie in the cap on the inner side of the plane
     furthest behind the centre: the disc of radius sqrt(r^2 - h^2) round the centre's foot on
     the plane, swept inwards by the cap's depth r - h. Returns whether there was a cut and the
     box round the cap (the ball's box elsewhere)."""
-    best = xp.zeros(len(centre), dtype=xp.int64)
-    hb = xp.zeros(len(centre))
-    step = max(1, (1 << 23) // len(planes))  # rows at a time: at most 64 MiB of distances
-    for i in range(0, len(centre), step):
-        h = centre[i:i + step] @ planes[:, :-1].T + planes[:, -1]
-        best[i:i + step] = xp.argmax(h, axis=1)
-        hb[i:i + step] = h[xp.arange(len(h)), best[i:i + step]]
+    best, hb = _furthest_plane(
+        len(centre), planes, lambda i, j: centre[i:j] @ planes[:, :-1].T + planes[:, -1], xp)
     cut = (hb > 0) & (hb < reach)
     n = planes[best, :-1]
     foot = centre - hb[:, None] * n
     rim = xp.sqrt(xp.maximum(reach * reach - hb * hb, 0.0))
-    depth = (reach - hb)[:, None]
-    spread = rim[:, None] * xp.sqrt(xp.maximum(1.0 - n * n, 0.0))
-    lo = foot - spread + xp.minimum(0.0, -depth * n)
-    hi = foot + spread + xp.maximum(0.0, -depth * n)
+    lo, hi = _cap_box(foot, n, rim, -(reach - hb), xp)
     lo = xp.where(cut[:, None], lo, centre - reach[:, None])
     hi = xp.where(cut[:, None], hi, centre + reach[:, None])
     return cut, lo, hi
@@ -284,12 +290,9 @@ def _far_caps(pts, t, planes, xp):
         return has, lo, hi
     p, n, rho, tau, rel = p[rows], n[rows], rho[rows], tau[rows], rel[rows]
     normals, offsets = planes[:, :-1], planes[:, -1]
-    best = xp.zeros(len(rows), dtype=xp.int64)
-    step = max(1, (1 << 23) // len(planes))
-    for i in range(0, len(rows), step):
-        hm = p[i:i + step] @ normals.T + offsets + tau[i:i + step, None] * (n[i:i + step]
-                                                                           @ normals.T)
-        best[i:i + step] = xp.argmax(hm, axis=1)
+    best, _ = _furthest_plane(
+        len(rows), planes,
+        lambda i, j: p[i:j] @ normals.T + offsets + tau[i:j, None] * (n[i:j] @ normals.T), xp)
     mn = normals[best]
     dd = xp.einsum("mi,mi->m", mn, p) + offsets[best]
     k = xp.einsum("mi,mi->m", mn, n)
