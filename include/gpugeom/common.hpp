@@ -33,6 +33,8 @@ Backend resolve_backend(Backend requested, int device = -1);
 /// True when this build was compiled with CUDA support.
 bool built_with_cuda();
 
+class DeviceMemoryResource;  // gpugeom/memory.hpp
+
 namespace detail {
 /// The library's own knobs for its tests and benchmarks (defined in the sources, not here).
 struct Tuning;
@@ -55,6 +57,11 @@ struct RunOptions {
   /// Per-phase timings in Stats synchronise the executor after each phase (slower, exact
   /// attribution); off, phases that overlap are timed as they come.
   bool profile = false;
+  /// CUDA: where the call takes its device memory (gpugeom/memory.hpp), every temporary array
+  /// and the device results it returns; empty: the library's own pool on the device
+  /// (library_memory_resource()). A device result holds the resource until its last reference
+  /// is dropped. The CPU executor does not use it.
+  std::shared_ptr<DeviceMemoryResource> memory;
   /// The library's internal knobs, set by its own tests and benchmarks (user code leaves it
   /// empty: the library's rules apply). No knob changes a result.
   std::shared_ptr<const detail::Tuning> tuning;
@@ -108,7 +115,9 @@ std::string built_cuda_architectures();
 /// nothing where there is no usable device; never throws.
 void prepare_device(int device = -1) noexcept;
 /// Hands the device memory the library keeps for reuse (its own pool, one per device) back to
-/// the driver. Call between phases of a program that needs the memory elsewhere.
+/// the driver. Call between phases of a program that needs the memory elsewhere. Blocks whose
+/// stream-ordered free has not yet run on its stream stay in the pool (nothing here waits for
+/// the device): synchronise the streams of earlier calls first to hand back everything.
 void release_cached_device_memory();
 
 /// Every failure the library reports is an Error with one of these codes, so callers can

@@ -102,11 +102,12 @@ struct DeviceCvdResult {
 /// The same iteration with the density in device memory and the sites left there, on opt.stream of
 /// opt.device: the density must be ready in that stream's order, and the call returns once the
 /// result is. Only the iteration's three convergence figures (and the initial draws' pixel
-/// numbers) cross the bus. The arrays are the library's device memory, freed when the last copy of
-/// their pointer goes (they can be wrapped without a copy by CuPy or PyTorch). With opt.backend ==
-/// Backend::Cpu the CPU executor runs it on host memory (the same result); otherwise CUDA runs it,
-/// whatever GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA device can be used (and
-/// the CPU was not asked for), and as centroidal_voronoi otherwise.
+/// numbers) cross the bus. The arrays are device memory of the call's resource
+/// (RunOptions::memory), freed when the last copy of their pointer goes (they can be wrapped
+/// without a copy by CuPy or PyTorch). With opt.backend == Backend::Cpu the CPU executor runs it on
+/// host memory (the same result); otherwise CUDA runs it, whatever GPUGEOM_BACKEND says. Throws
+/// Error(Unsupported) where no CUDA device can be used (and the CPU was not asked for), and as
+/// centroidal_voronoi otherwise.
 DeviceCvdResult centroidal_voronoi_device(const GridView& device_density,
                                           const CvdOptions& opt = {});
 

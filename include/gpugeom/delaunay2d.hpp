@@ -82,10 +82,11 @@ Triangulation2d delaunay2d(const std::vector<Point2>& pts, const Delaunay2dOptio
 /// is device memory holding n points, x and y interleaved, on opt.device. The work runs on
 /// opt.stream (see RunOptions), so the points must be ready in that stream's order (work on the
 /// legacy default stream always is); the call returns once the result is ready, and waits for
-/// nothing else on the device. The arrays are the library's device memory, freed when the last copy
-/// of their pointer goes (they can be wrapped without copying, e.g. by CuPy), or the caller's
-/// (opt.into). With opt.backend == Backend::Cpu the CPU executor runs it on host memory (the same
-/// result); otherwise CUDA runs it, whatever GPUGEOM_BACKEND says.
+/// nothing else on the device. The arrays are device memory of the call's resource
+/// (RunOptions::memory), freed when the last copy of their pointer goes (they can be wrapped
+/// without copying, e.g. by CuPy), or the caller's (opt.into). With opt.backend == Backend::Cpu the
+/// CPU executor runs it on host memory (the same result); otherwise CUDA runs it, whatever
+/// GPUGEOM_BACKEND says.
 struct DeviceTriangulation2d {
   std::int64_t num_points = 0, num_triangles = 0, num_duplicates = 0;
   std::shared_ptr<std::int32_t> triangles;     ///< 3 * num_triangles, as Triangulation2d's
@@ -243,10 +244,10 @@ struct DeviceVoronoi2d {
 };
 /// The same diagram for a triangulation left on the device (delaunay2d_device), computed there:
 /// device_xy its n points (device memory; host memory where tri.backend is Backend::Cpu), on
-/// run.stream of run.device; the arrays as Voronoi2d's, in the library's device memory (freed when
-/// the last copy of their pointer goes). The executor is tri's (tri.backend). Throws
-/// Error(InvalidArgument) when tri's arrays went into the caller's arrays (into) or do not belong
-/// to these points.
+/// run.stream of run.device; the arrays as Voronoi2d's, in device memory of the call's resource
+/// (RunOptions::memory) (freed when the last copy of their pointer goes). The executor is tri's
+/// (tri.backend). Throws Error(InvalidArgument) when tri's arrays went into the caller's arrays
+/// (into) or do not belong to these points.
 DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
                                  const DeviceTriangulation2d& tri, const RunOptions& run = {});
 

@@ -134,11 +134,11 @@ struct DeviceTriangulation3d {
 /// device_xyz is device memory holding n points, x, y and z interleaved, on opt.device. The work
 /// runs on opt.stream (see RunOptions), so the points must be ready in that stream's order; the
 /// call returns once the result is ready; both phases run on the device. The arrays are the
-/// library's device memory, freed when the last copy of their pointer goes (they can be wrapped
-/// without copying, e.g. by CuPy), or the caller's (opt.into). With opt.backend == Backend::Cpu the
-/// CPU executor runs it on host memory (the same result); otherwise CUDA runs it, whatever
-/// GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA device can be used (and the CPU
-/// was not asked for), and as delaunay3d otherwise.
+/// device memory of the call's resource (RunOptions::memory), freed when the last copy of their
+/// pointer goes (they can be wrapped without copying, e.g. by CuPy), or the caller's (opt.into).
+/// With opt.backend == Backend::Cpu the CPU executor runs it on host memory (the same result);
+/// otherwise CUDA runs it, whatever GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA
+/// device can be used (and the CPU was not asked for), and as delaunay3d otherwise.
 DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n,
                                         const Delaunay3dOptions& opt = {});
 

@@ -172,7 +172,8 @@ struct DeviceEdtResult {
 /// The same transform with the grid in device memory and the outputs left there (or written
 /// into the caller's device arrays, EdtOptions::into), on opt.stream of opt.device: the grid must
 /// be ready in that stream's order, and the call returns once the outputs are. The library's
-/// arrays are freed when the last copy of their pointer goes; they can be wrapped without a copy
+/// arrays come from the call's resource (RunOptions::memory) and are freed when the last copy
+/// of their pointer goes; they can be wrapped without a copy
 /// (CuPy, PyTorch through DLPack). With opt.backend == Backend::Cpu "device" memory is host
 /// memory and the CPU executor runs (the same results). Slices (opt.slices) compute only those
 /// indices along axis 0 from the whole grid on the device. Throws Error(Unsupported) where the

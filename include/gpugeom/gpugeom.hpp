@@ -13,6 +13,7 @@
 #include "gpugeom/hull3d.hpp"
 #include "gpugeom/io.hpp"
 #include "gpugeom/locate.hpp"
+#include "gpugeom/memory.hpp"
 #include "gpugeom/predicates.hpp"
 #include "gpugeom/spatial.hpp"
 #include "gpugeom/voronoi3d.hpp"

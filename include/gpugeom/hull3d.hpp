@@ -102,11 +102,11 @@ struct DeviceHull3d {
 /// The same hull with the points already on the GPU and the result left there: device_xyz is
 /// device memory holding n points on opt.device, ready in opt.stream's order (see RunOptions; work
 /// on the legacy default stream always is); the call returns once the result is ready, and waits
-/// for nothing else on the device. The arrays are the library's device memory, freed when the last
-/// copy of their pointer goes, or the caller's (opt.into). With opt.backend == Backend::Cpu the CPU
-/// executor runs it on host memory (the same result); otherwise CUDA runs it, whatever
-/// GPUGEOM_BACKEND says. Throws Error(Unsupported) where no CUDA device can be used (and the CPU
-/// was not asked for), and as convex_hull3d otherwise.
+/// for nothing else on the device. The arrays are device memory of the call's resource
+/// (RunOptions::memory), freed when the last copy of their pointer goes, or the caller's
+/// (opt.into). With opt.backend == Backend::Cpu the CPU executor runs it on host memory (the same
+/// result); otherwise CUDA runs it, whatever GPUGEOM_BACKEND says. Throws Error(Unsupported) where
+/// no CUDA device can be used (and the CPU was not asked for), and as convex_hull3d otherwise.
 DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
                                   const Hull3dOptions& opt = {});
 

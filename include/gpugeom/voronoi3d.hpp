@@ -60,8 +60,8 @@ struct DeviceVoronoi3d {
 /// The same diagram for a tetrahedralisation left where delaunay3d_device or a kept one put it,
 /// computed there (tri.backend's executor, run.stream of run.device): device_xyz its n points
 /// (device memory; host memory where tri.backend is Backend::Cpu). The arrays as Voronoi3d's, in
-/// the library's device memory (freed when the last copy of their pointer goes). Throws as
-/// voronoi3d.
+/// device memory of the call's resource (RunOptions::memory) (freed when the last copy of their
+/// pointer goes). Throws as voronoi3d.
 DeviceVoronoi3d voronoi3d_device(const double* device_xyz, std::int64_t n,
                                  const DeviceTriangulation3d& tri, const RunOptions& run = {});
 

@@ -82,8 +82,8 @@ struct DeviceVoronoiCells {
   Stats stats;
 };
 /// The same for points already on the executor (device memory for Backend::Cuda): the arrays as
-/// VoronoiCells's, in the library's device memory (freed when the last copy of their pointer
-/// goes), the counts beside them.
+/// VoronoiCells's, in device memory of the call's resource (RunOptions::memory) (freed when the
+/// last copy of their pointer goes), the counts beside them.
 DeviceVoronoiCells voronoi_cells_device(const double* device_xyz, std::int64_t n,
                                         const VoronoiCellsOptions& opt = {});
 

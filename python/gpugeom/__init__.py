@@ -30,7 +30,8 @@ def built_with_cuda() -> bool:
 
 
 def release_cached_device_memory() -> None:
-    """Hands the GPU memory the library keeps for reuse back to the driver."""
+    """Hands the GPU memory the library's own pool keeps for reuse back to the driver (calls on
+    CuPy or PyTorch arrays take theirs from that framework's allocator instead)."""
     _core.release_cached_device_memory()
 
 

@@ -14,6 +14,7 @@ from typing import Any, Callable, Optional
 import numpy as np
 
 from . import _core
+from ._memory import call_stream
 
 _BACKENDS = ("auto", "cuda", "cpu")
 _KDL_CUDA = 2
@@ -25,7 +26,9 @@ class Kind:
 
     name: str  # "numpy", "torch-cpu", "cupy", "torch", "dlpack"
     device: bool
-    stream: int = 0
+    # The extension's stream argument: a CUDA stream handle (0: the per-thread default stream),
+    # or (handle, allocator) where the framework's allocator serves the call (_memory.py).
+    stream: Any = 0
     torch_device: Any = None
 
     def back(self, a):
@@ -111,12 +114,13 @@ def classify(a) -> Kind:
     if mod == "cupy":
         import cupy
 
-        return Kind("cupy", True, int(cupy.cuda.get_current_stream().ptr))
+        return Kind("cupy", True, call_stream("cupy", int(cupy.cuda.get_current_stream().ptr)))
     if mod == "torch":
         import torch
 
         if isinstance(a, torch.Tensor) and a.is_cuda:
-            return Kind("torch", True, int(torch.cuda.current_stream(a.device).cuda_stream), a.device)
+            stream = int(torch.cuda.current_stream(a.device).cuda_stream)
+            return Kind("torch", True, call_stream("torch", stream), a.device)
         if isinstance(a, torch.Tensor) and a.device.type == "cpu":
             return Kind("torch-cpu", False)
         raise TypeError(f"a torch tensor on {a.device} cannot be read: give a CPU or CUDA tensor")

@@ -39,10 +39,13 @@ bool holds(const Input& in) {
   return in.dtype == nb::dtype<T>();
 }
 
-// The run options every binding takes: backend name, the caller's CUDA stream (an integer
-// handle, 0: the per-thread default stream), CPU threads; the device is the input's.
-RunOptions run_options(const std::string& backend, std::uintptr_t stream, int threads,
-                       const Input& in);
+// The run options every binding takes: backend name, the caller's CUDA stream, CPU threads; the
+// device is the input's. The stream is an integer handle (0: the per-thread default stream), or
+// a pair (handle, allocator) where the caller's array framework lends its allocator: an object
+// with allocate(nbytes, stream) -> pointer, deallocate(pointer, nbytes, stream) and
+// cached_bytes(device), through which the call takes all its device memory (memory.cpp).
+RunOptions run_options(const std::string& backend, nb::handle stream, int threads, const Input& in);
+void set_stream(RunOptions& o, nb::handle stream);
 
 // Host results: the vector moves into the array's owner (no copy).
 template <class T>
@@ -75,7 +78,7 @@ nb::object device_array(std::shared_ptr<T> p, std::vector<std::size_t> shape, Ba
 
 // Options of type Opt (a RunOptions) from the Python keywords and the input.
 template <class Opt>
-Opt options_for(const std::string& backend, std::uintptr_t stream, int threads, const Input& in) {
+Opt options_for(const std::string& backend, nb::handle stream, int threads, const Input& in) {
   Opt o;
   static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
   return o;

@@ -16,7 +16,7 @@ using sz = std::size_t;
 // computed on their device, the arrays left there.
 nb::dict voronoi_cells_bind(const AnyArray& points, std::array<double, 3> lo,
                             std::array<double, 3> hi, std::array<bool, 3> periodic, bool polygons,
-                            const std::string& backend, std::uintptr_t stream, int threads) {
+                            const std::string& backend, nb::handle stream, int threads) {
   const Input in = points_input(points, 3);
   auto o = options_for<VoronoiCellsOptions>(backend, stream, threads, in);
   for (int d = 0; d < 3; ++d) o.lo[d] = lo[d], o.hi[d] = hi[d], o.periodic[d] = periodic[d];

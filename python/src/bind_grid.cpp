@@ -77,7 +77,7 @@ std::vector<std::int64_t> column_bound(const std::optional<AnyArray>& a, const c
 nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sampling,
                   int distance, bool squared, bool features, bool labels,
                   std::optional<OutArray> distances_out, std::optional<OutArray> features_out,
-                  const std::string& backend, std::uintptr_t stream, int threads,
+                  const std::string& backend, nb::handle stream, int threads,
                   std::vector<std::int64_t> slices, std::int64_t slab_extent,
                   std::int64_t slab_first, std::optional<AnyArray> slab_before,
                   std::optional<AnyArray> slab_after, std::optional<std::vector<int>> devices) {
@@ -137,7 +137,7 @@ nb::dict edt_bind(const AnyArray& input, bool zero_sites, std::vector<double> sa
 
 // Per column, the first and last site along axis 0 (a slab's bounds for its neighbours).
 nb::tuple column_bounds_bind(const AnyArray& input, bool zero_sites, std::int64_t offset,
-                             int threads, std::uintptr_t stream) {
+                             int threads, nb::handle stream) {
   const Input in = inspect(input, "input");
   const RunOptions run = run_options("auto", stream, threads, in);
   const SiteRule rule = zero_sites ? SiteRule::Zero : SiteRule::NonZero;
@@ -194,7 +194,7 @@ void put_cvd_host(nb::dict& r, CvdResult& c) {
 nb::dict cvd_bind(const AnyArray& density, std::int64_t num_sites, std::optional<AnyArray> initial,
                   int max_iterations, double move_tolerance, double energy_tolerance,
                   int supersample, std::uint64_t seed, nb::object progress,
-                  const std::string& backend, std::uintptr_t stream, int threads) {
+                  const std::string& backend, nb::handle stream, int threads) {
   const Input in = inspect(density, "density");
   auto o = options_for<CvdOptions>(backend, stream, threads, in);
   lloyd_options(o, num_sites, initial, max_iterations, move_tolerance, energy_tolerance,
@@ -223,7 +223,7 @@ nb::dict stipple_bind(const AnyArray& image, std::int64_t num_sites, bool invert
                       nb::object progress, const std::string& backend, int threads) {
   const Input in = inspect(image, "image");
   if (in.on_device) throw nb::value_error("stipple reads the image from host memory");
-  auto o = options_for<StippleOptions>(backend, 0, threads, in);
+  auto o = options_for<StippleOptions>(backend, nb::int_(0), threads, in);
   lloyd_options(o, num_sites, std::nullopt, max_iterations, move_tolerance, energy_tolerance,
                 supersample, seed, progress);
   o.invert = invert;

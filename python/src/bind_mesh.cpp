@@ -64,7 +64,7 @@ nb::dict refine2d_bind(const AnyArray& points, const AnyArray& segments, const A
   std::int64_t n = 0, m = 0;
   const double* p = reals_of(points, "points", 2, &n);
   const std::int32_t* s = cells_of(segments, "segments", 2, &m);
-  auto o = options_for<Refine2dOptions>(backend, 0, threads, inspect(points, "points"));
+  auto o = options_for<Refine2dOptions>(backend, nb::int_(0), threads, inspect(points, "points"));
   fill_options(o, holes, regions, enclosed, min_angle, max_area, grid, extent, max_steiner);
   o.crossings = split ? Cdt2dOptions::Crossings::Split : Cdt2dOptions::Crossings::Refuse;
   if (!sizing.is_none()) {
@@ -100,7 +100,7 @@ nb::dict refine2d_device_bind(const AnyArray& points, const AnyArray& segments,
                               const AnyArray& holes, const AnyArray& regions, bool enclosed,
                               double min_angle, double max_area, nb::object grid, nb::object extent,
                               std::int64_t max_steiner, const std::string& backend,
-                              std::uintptr_t stream, int threads) {
+                              nb::handle stream, int threads) {
   const Input p = points_input(points, 2), sg = inspect(segments, "segments");
   if (!holds<std::int32_t>(sg) || sg.shape.size() != 2 || sg.shape[1] != 2)
     throw nb::value_error("segments must be an int32 array of shape (m, 2)");

@@ -33,7 +33,7 @@ nb::dict triangulation2d_dict(Triangulation2d& t, std::int64_t n) {
   return r;
 }
 
-nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, nb::handle stream,
                          int threads, const std::string& method, std::int64_t grid) {
   const Input in = points_input(points, 2);
   auto o = options_for<Delaunay2dOptions>(backend, stream, threads, in);
@@ -66,7 +66,7 @@ struct Dynamic2dState {
 };
 
 void dynamic2d_init(Dynamic2dState* self, const AnyArray& points, const std::string& backend,
-                    std::uintptr_t stream, int threads) {
+                    nb::handle stream, int threads) {
   const Input in = points_input(points, 2);
   auto o = options_for<Delaunay2dOptions>(backend, stream, threads, in);
   const std::int64_t n = in.shape[0];
@@ -205,7 +205,7 @@ nb::dict voronoi_dict(Triangulation2d& t, Voronoi2d& v, std::int64_t n) {
   return r;
 }
 
-nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, nb::handle stream,
                         int threads) {
   const Input in = points_input(points, 2);
   auto o = options_for<Delaunay2dOptions>(backend, stream, threads, in);
@@ -301,7 +301,7 @@ nb::dict hull_dict(ConvexHull3d h) {
   return r;
 }
 
-nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+nb::dict hull3d_bind(const AnyArray& points, const std::string& backend, nb::handle stream,
                      int threads, const std::string& method, std::int64_t grid) {
   const Input in = points_input(points, 3);
   auto o = options_for<Hull3dOptions>(backend, stream, threads, in);
@@ -323,7 +323,7 @@ struct DynamicHullState {
 };
 
 void dynamic_hull_init(DynamicHullState* self, const AnyArray& points, const std::string& backend,
-                       std::uintptr_t stream, int threads, const std::string& method,
+                       nb::handle stream, int threads, const std::string& method,
                        std::int64_t grid) {
   const Input in = points_input(points, 3);
   auto o = options_for<Hull3dOptions>(backend, stream, threads, in);
@@ -410,7 +410,7 @@ nb::dict voronoi3d_dict(Triangulation3d& t, Voronoi3d& v, std::int64_t n) {
 
 // Host points: both structures on the executor the options pick, host results; device points:
 // both where the points are.
-nb::dict voronoi3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+nb::dict voronoi3d_bind(const AnyArray& points, const std::string& backend, nb::handle stream,
                         int threads) {
   const Input in = points_input(points, 3);
   auto o = options_for<Delaunay3dOptions>(backend, stream, threads, in);
@@ -445,7 +445,7 @@ struct Dynamic3dState {
 };
 
 void dynamic3d_init(Dynamic3dState* self, const AnyArray& points, const std::string& backend,
-                    std::uintptr_t stream, int threads) {
+                    nb::handle stream, int threads) {
   const Input in = points_input(points, 3);
   auto o = options_for<Delaunay3dOptions>(backend, stream, threads, in);
   o.progress = [](const Delaunay3dProgress&) {
@@ -493,7 +493,7 @@ nb::dict dynamic3d_result(const Dynamic3dState& self) {
   return tets_dict(unlocked([&] { return self.t.tetrahedralisation(); }));
 }
 
-nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, std::uintptr_t stream,
+nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, nb::handle stream,
                          int threads, nb::object progress, const std::string& method,
                          std::int64_t grid) {
   const Input in = points_input(points, 3);
@@ -555,7 +555,7 @@ nb::dict cdt2d_bind(const AnyArray& points, const AnyArray& segments, const AnyA
   const std::int32_t* s = cells_of(segments, "segments", 2, &m);
   const double* h = reals_of(holes, "holes", 2, &nh);
   const double* g = reals_of(regions, "regions", 3, &nr);
-  auto o = options_for<Cdt2dOptions>(backend, 0, threads, inspect(points, "points"));
+  auto o = options_for<Cdt2dOptions>(backend, nb::int_(0), threads, inspect(points, "points"));
   o.domain = enclosed ? Cdt2dOptions::Domain::Enclosed : Cdt2dOptions::Domain::ConvexHull;
   o.crossings = split ? Cdt2dOptions::Crossings::Split : Cdt2dOptions::Crossings::Refuse;
   for (std::int64_t i = 0; i < nh; ++i) o.holes.push_back({h[2 * i], h[2 * i + 1]});
@@ -582,7 +582,7 @@ nb::dict cdt2d_bind(const AnyArray& points, const AnyArray& segments, const AnyA
 // the results left there (cdt2d_device).
 nb::dict cdt2d_device_bind(const AnyArray& points, const AnyArray& segments, const AnyArray& holes,
                            const AnyArray& regions, bool enclosed, const std::string& backend,
-                           std::uintptr_t stream, int threads) {
+                           nb::handle stream, int threads) {
   const Input p = points_input(points, 2), sg = inspect(segments, "segments");
   if (!holds<std::int32_t>(sg) || sg.shape.size() != 2 || sg.shape[1] != 2)
     throw nb::value_error("segments must be an int32 array of shape (m, 2)");

@@ -50,11 +50,11 @@ Input inspect(const AnyArray& a, const char* name) {
   return in;
 }
 
-RunOptions run_options(const std::string& backend, std::uintptr_t stream, int threads,
+RunOptions run_options(const std::string& backend, nb::handle stream, int threads,
                        const Input& in) {
   RunOptions o;
   o.backend = parse_backend(backend);
-  o.stream = reinterpret_cast<void*>(stream);
+  set_stream(o, stream);
   o.threads = threads;
   o.device = in.on_device ? in.device_id : -1;
   if (in.on_device && o.backend == Backend::Cpu)

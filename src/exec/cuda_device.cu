@@ -2,11 +2,13 @@
 #include "exec/cuda_device.hpp"
 
 #include <cstdio>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include "exec/cuda_check.cuh"
+#include "gpugeom/memory.hpp"
 
 #ifndef GPUGEOM_CUDA_ARCH_LIST
 #define GPUGEOM_CUDA_ARCH_LIST "unknown"
@@ -54,6 +56,52 @@ Pools& pools() {
   static Pools* p = new Pools;  // never destroyed: pools live as long as the process
   return *p;
 }
+
+// The library's resource over those pools: the device is the current one (the executor's).
+class PoolResource final : public DeviceMemoryResource {
+ public:
+  void* allocate(std::size_t bytes, std::size_t, void* stream) override {
+    int dev = 0;
+    GG_CUDA_CHECK(cudaGetDevice(&dev));
+    const cudaStream_t s = cudaStream_t(stream);
+    const cudaMemPool_t pool = cuda_device::pool(dev);
+    void* p = nullptr;
+    cudaError_t e = cudaMallocFromPoolAsync(&p, bytes, pool, s);
+    if (e == cudaErrorMemoryAllocation) {
+      // The pool keeps freed blocks; hand them back to the driver and retry once.
+      (void)cudaGetLastError();
+      GG_CUDA_CHECK(cudaStreamSynchronize(s));
+      cuda_device::trim(dev);
+      e = cudaMallocFromPoolAsync(&p, bytes, pool, s);
+    }
+    if (e == cudaErrorMemoryAllocation) {
+      (void)cudaGetLastError();
+      cuda_device::throw_out_of_memory(bytes, "device allocation");
+    }
+    GG_CUDA_CHECK(e);
+    return p;
+  }
+  // (cudaFreeAsync, not the synchronous free: a pool's block freed that way stays counted as
+  // used by the pool, measured on the H100, and the next call's memory check would refuse work
+  // that fits.)
+  void deallocate(void* p, std::size_t, std::size_t, void* stream) noexcept override {
+    (void)cudaFreeAsync(p, cudaStream_t(stream));  // (a failure surfaces at the next check)
+  }
+  std::uint64_t cached_bytes(int device) const noexcept override {
+    try {
+      unsigned long long reserved = 0, used = 0;  // (cuuint64_t attributes)
+      const cudaMemPool_t p = cuda_device::pool(device);
+      if (cudaMemPoolGetAttribute(p, cudaMemPoolAttrReservedMemCurrent, &reserved) != cudaSuccess ||
+          cudaMemPoolGetAttribute(p, cudaMemPoolAttrUsedMemCurrent, &used) != cudaSuccess) {
+        (void)cudaGetLastError();
+        return 0;
+      }
+      return reserved > used ? reserved - used : 0;
+    } catch (...) {
+      return 0;
+    }
+  }
+};
 
 }  // namespace
 
@@ -155,12 +203,17 @@ void prepare_device(int device) noexcept {
     const DeviceInfo d = query_device(device);
     if (!d.available) return;
     usable().mark(d.device);
+    (void)cudaInitDevice(d.device, 0, 0);  // creates the device's primary context
     cuda_device::Scope on(d.device);
-    (void)cudaFree(nullptr);  // creates the device's primary context
     (void)cuda_device::pool(d.device);
   } catch (...) {  // (a later call reports whatever went wrong here)
   }
   (void)cudaGetLastError();
+}
+
+std::shared_ptr<DeviceMemoryResource> library_memory_resource() {
+  static const std::shared_ptr<DeviceMemoryResource> r = std::make_shared<PoolResource>();
+  return r;
 }
 
 void release_cached_device_memory() {
@@ -169,7 +222,6 @@ void release_cached_device_memory() {
   for (std::size_t i = 0; i < P.pool.size(); ++i)
     if (P.pool[i]) {
       cuda_device::Scope on(int(i));
-      GG_CUDA_CHECK(cudaDeviceSynchronize());  // blocks freed on streams still running
       GG_CUDA_CHECK(cudaMemPoolTrimTo(P.pool[i], 0));
     }
 }
@@ -222,53 +274,40 @@ void trim(int device) {
   GG_CUDA_CHECK(cudaMemPoolTrimTo(pool(device), 0));
 }
 
-std::uint64_t available_memory(int device) {
-  Scope on(device);
+std::uint64_t available_memory(const detail::CallMemory& mem) {
   std::size_t fr = 0, tot = 0;
-  GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));
-  unsigned long long reserved = 0, used = 0;  // (cuuint64_t attributes)
-  cudaMemPool_t p = pool(device);
-  GG_CUDA_CHECK(cudaMemPoolGetAttribute(p, cudaMemPoolAttrReservedMemCurrent, &reserved));
-  GG_CUDA_CHECK(cudaMemPoolGetAttribute(p, cudaMemPoolAttrUsedMemCurrent, &used));
-  return std::uint64_t(fr) + (reserved > used ? reserved - used : 0);
+  GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));  // (the executor has made the device current)
+  return std::uint64_t(fr) + mem.resource().cached_bytes(mem.device());
 }
 
-void require_memory(int device, std::uint64_t bytes, const std::string& what) {
-  {
+void require_memory(detail::CallMemory& mem, cudaStream_t s, std::uint64_t bytes,
+                    const std::string& what) {
+  const int device = mem.device();
+  std::size_t fr = 0, tot = 0;
+  GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));
+  if (bytes > fr && mem.is_library_pool()) {
     // A problem larger than the driver's free memory would run in the pool's blocks of
     // earlier calls (or of this call's earlier steps), which were cut for other sizes and
     // need not fit its largest arrays. The unused blocks go back to the driver first, so
-    // that the arrays are cut afresh.
-    Scope on(device);
-    std::size_t fr = 0, tot = 0;
-    GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));
-    if (bytes > fr) {
-      GG_CUDA_CHECK(cudaDeviceSynchronize());  // (frees still queued on streams land first)
-      trim(device);
-    }
+    // that the arrays are cut afresh (once the call's own queued frees have run).
+    GG_CUDA_CHECK(cudaStreamSynchronize(s));
+    trim(device);
   }
-  const std::uint64_t avail = available_memory(device);
+  const std::uint64_t avail = available_memory(mem);
   if (bytes <= avail) return;
-  std::size_t fr = 0, tot = 0;
-  unsigned long long reserved = 0, used = 0;
-  {
-    Scope on(device);
-    GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));
-    GG_CUDA_CHECK(
-        cudaMemPoolGetAttribute(pool(device), cudaMemPoolAttrReservedMemCurrent, &reserved));
-    GG_CUDA_CHECK(cudaMemPoolGetAttribute(pool(device), cudaMemPoolAttrUsedMemCurrent, &used));
-  }
+  GG_CUDA_CHECK(cudaMemGetInfo(&fr, &tot));
+  const std::uint64_t cached = mem.resource().cached_bytes(device);
   auto gb = [](std::uint64_t b) {
-    char s[32];
-    std::snprintf(s, sizeof s, "%.1f GB", double(b) / 1e9);
-    return std::string(s);
+    char t[32];
+    std::snprintf(t, sizeof t, "%.1f GB", double(b) / 1e9);
+    return std::string(t);
   };
   throw Error(ErrorCode::OutOfMemory,
               what + " needs at least " + gb(bytes) + " (" + std::to_string(bytes) +
                   " bytes) of GPU memory and " + gb(avail) + " (" + std::to_string(avail) +
                   " bytes) are free on device " + std::to_string(device) + " (of " + gb(tot) +
-                  "; this process holds " + gb(used) + " in arrays, " + gb(reserved - used) +
-                  " more in its pool): use a smaller input, or the CPU backend (--backend cpu)");
+                  "; " + gb(cached) + " of it unused in the memory resource's cache)" +
+                  ": use a smaller input, or the CPU backend (--backend cpu)");
 }
 
 void throw_out_of_memory(std::size_t bytes, const char* what) {

@@ -1,5 +1,6 @@
 // Per-device state the CUDA executor needs and the library owns (CUDA builds only): which device
-// a call runs on, the library's own stream-ordered memory pool on each device. Nothing here
+// a call runs on, the library's own stream-ordered memory pool on each device (the default
+// memory resource, gpugeom/memory.hpp), the memory check before a large call. Nothing here
 // changes process-wide CUDA state (the device's default pool, the current device of a thread
 // beyond the call that set it).
 #pragma once
@@ -10,6 +11,7 @@
 #include <cuda_runtime.h>
 
 #include "gpugeom/common.hpp"
+#include "exec/device_memory.hpp"
 
 namespace gpugeom::cuda_device {
 
@@ -43,12 +45,15 @@ class Scope {
 [[noreturn]] void throw_out_of_memory(std::size_t bytes, const char* what);
 
 // Refuses, before any launch, a problem whose least memory exceeds what the device has left
-// (free memory plus what the pool holds unused): Error(OutOfMemory) naming the problem, the bytes
-// needed and the bytes free. `bytes` is a lower bound (the arrays a run certainly holds at once,
-// docs/performance.md's bytes per element), so a refusal is certain; a problem that passes may
-// still run out later (the typed error of the allocation that fails).
-void require_memory(int device, std::uint64_t bytes, const std::string& what);
-// What the device has left for a call: free memory plus what the pool holds unused.
-std::uint64_t available_memory(int device);
+// (free memory plus what the call's resource holds unused): Error(OutOfMemory) naming the
+// problem, the bytes needed and the bytes free. `bytes` is a lower bound (the arrays a run
+// certainly holds at once, docs/performance.md's bytes per element), so a refusal is certain; a
+// problem that passes may still run out later (the typed error of the allocation that fails).
+// With the library's pool, a problem larger than the driver's free memory first hands the
+// pool's unused blocks back (after the call's own stream has run its queued frees).
+void require_memory(detail::CallMemory& mem, cudaStream_t s, std::uint64_t bytes,
+                    const std::string& what);
+// What the device has left for a call: free memory plus what its resource holds unused.
+std::uint64_t available_memory(const detail::CallMemory& mem);
 
 }  // namespace gpugeom::cuda_device

@@ -1,7 +1,7 @@
 // The CUDA executor: one device and one stream given by the caller, stream-ordered allocation
-// from the library's own pool on that device, CUB for scans, sorts, selection and reductions.
-// Same members as CpuExec. Members marked [synchronises] wait for the stream; every other member
-// only queues work. Only for nvcc translation units.
+// from the caller's memory resource or the library's own pool on that device, CUB for scans, sorts,
+// selection and reductions. Same members as CpuExec. Members marked [synchronises] wait for the
+// stream; every other member only queues work. Only for nvcc translation units.
 #pragma once
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_reduce.cuh>
@@ -19,6 +19,7 @@
 
 #include "exec/cuda_check.cuh"
 #include "exec/cuda_device.hpp"
+#include "exec/device_memory.hpp"
 #include "exec/host_staging.hpp"
 #include "exec/lanes.hpp"
 #include "exec/tuning.hpp"
@@ -30,27 +31,12 @@ template <class T>
 class DeviceBuffer {
  public:
   DeviceBuffer() = default;
-  // Stream-ordered from the library's pool on the current device (see cuda_device.hpp).
-  DeviceBuffer(std::size_t n, cudaStream_t s, cudaMemPool_t pool, int device)
-      : n_(n), s_(s), d_(device) {
+  // Stream-ordered from the call's memory (the caller's resource or the library's pool).
+  DeviceBuffer(std::size_t n, cudaStream_t s, std::shared_ptr<detail::CallMemory> mem)
+      : n_(n), s_(s) {
     if (!n) return;
-    void** pp = reinterpret_cast<void**>(&p_);
-    const std::size_t bytes = n * sizeof(T);
-    cudaError_t e = cudaMallocFromPoolAsync(pp, bytes, pool, s);
-    if (e == cudaErrorMemoryAllocation) {
-      // The pool keeps freed blocks; hand them back to the driver and retry once.
-      (void)cudaGetLastError();
-      GG_CUDA_CHECK(cudaStreamSynchronize(s));
-      cuda_device::trim(device);
-      e = cudaMallocFromPoolAsync(pp, bytes, pool, s);
-    }
-    if (e == cudaErrorMemoryAllocation) {
-      (void)cudaGetLastError();
-      p_ = nullptr;
-      n_ = 0;
-      cuda_device::throw_out_of_memory(bytes, "device allocation");
-    }
-    GG_CUDA_CHECK(e);
+    p_ = static_cast<T*>(mem->allocate(n * sizeof(T), s));
+    mem_ = std::move(mem);
   }
   DeviceBuffer(DeviceBuffer&& o) noexcept { swap(o); }
   DeviceBuffer& operator=(DeviceBuffer&& o) noexcept {
@@ -60,36 +46,32 @@ class DeviceBuffer {
   }
   DeviceBuffer(const DeviceBuffer&) = delete;
   DeviceBuffer& operator=(const DeviceBuffer&) = delete;
-  // A destructor cannot throw: a failed free is left to surface at the next checked call.
+  // Stream-ordered: work queued on the stream before the free may still use the block.
   ~DeviceBuffer() {
-    if (p_) (void)cudaFreeAsync(p_, s_);
+    if (p_) mem_->deallocate(p_, n_ * sizeof(T), s_);
   }
   T* data() { return p_; }
   const T* data() const { return p_; }
   std::size_t size() const { return n_; }
-  // Gives up ownership (for results handed to the caller); free with cudaFree (which waits for
-  // the device) or cudaFreeAsync.
-  T* release() {
+  // Hands the buffer to the caller (the device entry points' results) as a shared pointer whose
+  // last copy gives the block back to the call's memory resource, stream-ordered on the call's
+  // stream (the per-thread default stream of the thread dropping it, where the call had none):
+  // the caller orders its own uses on other streams before that, as with rmm::device_buffer or
+  // a PyTorch tensor. Nothing waits for the device. Call after the stream was synchronised.
+  std::shared_ptr<T> hand_over() {
+    if (!p_) return {};
+    const std::size_t bytes = n_ * sizeof(T);
+    const cudaStream_t s = s_;
+    std::shared_ptr<detail::CallMemory> mem = std::move(mem_);
     T* p = p_;
     p_ = nullptr;
     n_ = 0;
-    return p;
-  }
-  // Hands the buffer to the caller (the device entry points' results) as a shared pointer whose
-  // last copy gives the block back to the library's pool. Call after the stream was
-  // synchronised. The caller may have used the memory on any stream, so the free waits for the
-  // device, as cudaFree would; but cudaFree on a pool's block leaves the pool counting it as
-  // used (measured on the H100: a dropped result's bytes stayed in UsedMemCurrent), and the
-  // next call's memory check then refuses work that fits. cudaFreeAsync returns it.
-  std::shared_ptr<T> hand_over() {
-    const int dev = d_;
-    return std::shared_ptr<T>(release(), [dev](T* q) {
+    return std::shared_ptr<T>(p, [mem, bytes, s](T* q) {
       int prev = -1;  // a deleter must not throw: errors are left to the next checked call
       (void)cudaGetDevice(&prev);
+      const int dev = mem->device();
       if (prev != dev) (void)cudaSetDevice(dev);
-      (void)cudaDeviceSynchronize();
-      (void)cudaFreeAsync(q, cudaStreamLegacy);
-      (void)cudaStreamSynchronize(cudaStreamLegacy);
+      mem->deallocate(q, bytes, s);
       if (prev >= 0 && prev != dev) (void)cudaSetDevice(prev);
     });
   }
@@ -99,12 +81,12 @@ class DeviceBuffer {
     std::swap(p_, o.p_);
     std::swap(n_, o.n_);
     std::swap(s_, o.s_);
-    std::swap(d_, o.d_);
+    std::swap(mem_, o.mem_);
   }
   T* p_ = nullptr;
   std::size_t n_ = 0;
   cudaStream_t s_ = nullptr;
-  int d_ = 0;
+  std::shared_ptr<detail::CallMemory> mem_;
 };
 
 namespace cuda_detail {
@@ -278,7 +260,7 @@ class CudaExec {
       : dev_(cuda_device::resolve(run)),
         on_(dev_),
         s_(run.stream ? cudaStream_t(run.stream) : cudaStreamPerThread),
-        pool_(cuda_device::pool(dev_)),
+        mem_(std::make_shared<detail::CallMemory>(run.memory, dev_)),
         tuning_(detail::tuning_of(run)) {
     GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms_, cudaDevAttrMultiProcessorCount, dev_));
   }
@@ -289,26 +271,19 @@ class CudaExec {
   cudaStream_t stream() const { return s_; }
   // See cuda_device::require_memory: refuses, before any launch, a problem that cannot fit.
   void require_memory(std::uint64_t bytes, const std::string& what) {
-    cuda_device::require_memory(dev_, bytes, what);
+    cuda_device::require_memory(*mem_, s_, bytes, what);
   }
   // Memory a call may still take (cuda_device::available_memory).
-  std::uint64_t available_memory() const { return cuda_device::available_memory(dev_); }
-  // The device pool's peak use from reset_peak() on (exec/peak.hpp): what a call needed, plus
-  // whatever other live buffers of the pool (a concurrent call's, a kept device result) held.
-  void reset_peak() {
-    unsigned long long zero = 0;  // (the attribute is a cuuint64_t)
-    GG_CUDA_CHECK(cudaMemPoolSetAttribute(pool_, cudaMemPoolAttrUsedMemHigh, &zero));
-  }
-  std::int64_t peak_bytes() const {
-    unsigned long long high = 0;
-    GG_CUDA_CHECK(cudaMemPoolGetAttribute(pool_, cudaMemPoolAttrUsedMemHigh, &high));
-    return std::int64_t(high);
-  }
+  std::uint64_t available_memory() const { return cuda_device::available_memory(*mem_); }
+  // The most device memory this executor's arrays held at once from reset_peak() on
+  // (exec/peak.hpp), whatever other calls held from the same resource.
+  void reset_peak() { mem_->reset_peak(); }
+  std::int64_t peak_bytes() const { return mem_->peak(); }
   int device() const { return dev_; }
 
   template <class T>
   Buffer<T> alloc(std::size_t n) {
-    return Buffer<T>(n, s_, pool_, dev_);
+    return Buffer<T>(n, s_, mem_);
   }
 
   // f(i) for i < n.
@@ -560,7 +535,7 @@ class CudaExec {
   int dev_;
   cuda_device::Scope on_;
   cudaStream_t s_;
-  cudaMemPool_t pool_;
+  std::shared_ptr<detail::CallMemory> mem_;
   detail::Tuning tuning_;
   int sms_ = 1;
 };

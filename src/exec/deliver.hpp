@@ -53,8 +53,9 @@ void fill_host(Exec& ex, std::int64_t count, T v, const OutBuffer<T>& into, Host
 // Device entry: the first `count` elements of the executor array `buf` to the caller's array
 // (a copy on the executor; returns null), or `buf` itself, handed over. The copy is queued on
 // the executor; call ex.sync() before the caller may read it (the device entries return once
-// their results are ready), and on CUDA before hand_over's owner may free it (cudaFree is not
-// stream-ordered): use in two steps, place() then own().
+// their results are ready), and on CUDA before hand_over's owner may free it (the caller may
+// drop it on another thread or after using it on another stream): use in two steps, place()
+// then own().
 template <class Exec, class T>
 struct Placed {
   typename Exec::template Buffer<T>* buf = nullptr;  // the library's array, unless copied away

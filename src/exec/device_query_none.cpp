@@ -1,5 +1,6 @@
 // Device query for builds without CUDA: there is never a device to use.
 #include "gpugeom/common.hpp"
+#include "gpugeom/memory.hpp"
 
 namespace gpugeom {
 bool built_with_cuda() {
@@ -14,5 +15,8 @@ DeviceInfo query_device(int) {
   return d;
 }
 void release_cached_device_memory() {}
+std::shared_ptr<DeviceMemoryResource> library_memory_resource() {
+  return nullptr;
+}
 void prepare_device(int) noexcept {}
 }  // namespace gpugeom

@@ -563,8 +563,9 @@ TEST(CudaEdt, SliceBlocksSameAsCpu) {
   }
 }
 
-// A device result dropped by the caller gives its memory back to the library's pool at once,
-// so the next call's memory check and allocations can use it (a 1600^3 transform needs most of
+// A device result dropped by the caller gives its memory back to the library's pool, ordered on
+// the call's stream (here the per-thread default stream), so the next call's memory check and
+// allocations can use it (a 1600^3 transform needs most of
 // an 80 GB device, and one dropped result must not make the next one refused).
 TEST(CudaEdt, DroppedDeviceResultsAreFreed) {
   const std::vector<std::int64_t> shape{64, 128, 256};
@@ -589,6 +590,7 @@ TEST(CudaEdt, DroppedDeviceResultsAreFreed) {
     const auto r = distance_transform_device(v, SiteRule::NonZero, o);
     EXPECT_GE(used() - before, 2ull * 4 * std::uint64_t(g.count()));
   }
+  ASSERT_EQ(cudaStreamSynchronize(cudaStreamPerThread), cudaSuccess);  // the free has run
   EXPECT_EQ(used(), before);
   cudaFree(dg);
 }
