@@ -48,7 +48,9 @@ struct RunOptions {
   /// thread's current device; stream nullptr takes the calling thread's per-thread default
   /// stream (cudaStreamPerThread), which is ordered after work on the legacy default stream.
   /// The calling thread's current device is restored when the call returns. Several host
-  /// threads may run calls at once, each with its own device or stream.
+  /// threads may run calls at once, each with its own device or stream. A device result gives
+  /// its memory back on this stream when its last reference goes, so a stream of the caller's
+  /// must outlive the device results of calls on it (as with rmm::device_buffer).
   int device = -1;
   void* stream = nullptr;
   /// CPU: OpenMP threads (0: OpenMP's default for the calling thread). Results do not depend on

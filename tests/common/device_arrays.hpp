@@ -30,6 +30,24 @@ class DeviceCopy {
   std::size_t bytes_ = 0;
 };
 
+// A non-blocking stream of the test's own, destroyed with this object (after its work is done).
+// Declare it before the results of calls on it: a device result gives its memory back on its
+// call's stream when it goes, so the stream must outlive it.
+class Stream {
+ public:
+  Stream() { EXPECT_EQ(cudaStreamCreateWithFlags(&s_, cudaStreamNonBlocking), cudaSuccess); }
+  ~Stream() {
+    cudaStreamSynchronize(s_);
+    cudaStreamDestroy(s_);
+  }
+  Stream(const Stream&) = delete;
+  Stream& operator=(const Stream&) = delete;
+  operator cudaStream_t() const { return s_; }
+
+ private:
+  cudaStream_t s_ = nullptr;
+};
+
 // n elements of a device array, on the host.
 template <class T>
 std::vector<T> from_device(const std::shared_ptr<T>& p, std::int64_t n) {

@@ -3,6 +3,8 @@
 #include <cuda_runtime.h>
 #include <gtest/gtest.h>
 
+#include "../common/device_arrays.hpp"
+
 #include "cvd_cases.hpp"
 
 using namespace gpugeom;
@@ -75,8 +77,7 @@ TEST(CudaCvd, DeviceEntrySameAsHost) {
   o.move_tolerance = 0;
   o.backend = Backend::Cuda;
   const auto ref = centroidal_voronoi(g16, o);
-  cudaStream_t s = nullptr;
-  ASSERT_EQ(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking), cudaSuccess);
+  const gg_test::Stream s;  // (outlives the result below)
   float* df = nullptr;
   ASSERT_EQ(cudaMallocAsync(reinterpret_cast<void**>(&df), n * sizeof(float), s), cudaSuccess);
   ASSERT_EQ(cudaMemcpyAsync(df, f.data(), n * sizeof(float), cudaMemcpyHostToDevice, s),
@@ -98,6 +99,4 @@ TEST(CudaCvd, DeviceEntrySameAsHost) {
   EXPECT_EQ(mass, std::vector<double>(ref.mass.begin(), ref.mass.end()));
   EXPECT_EQ(r.energy, ref.energy);
   cudaFreeAsync(df, s);
-  cudaStreamSynchronize(s);
-  cudaStreamDestroy(s);
 }

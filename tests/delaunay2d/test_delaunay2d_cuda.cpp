@@ -153,8 +153,7 @@ TEST(CudaDelaunay2d, ConcurrentStreamsAndDevices) {
 // The device entry point on a caller's non-blocking stream.
 TEST(CudaDelaunay2d, DeviceEntryOnCallersStream) {
   const auto p = generate2d("gaussian", 50000, 12);
-  cudaStream_t s = nullptr;
-  ASSERT_EQ(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking), cudaSuccess);
+  const gg_test::Stream s;  // (outlives the results below)
   double* dp = nullptr;
   const std::size_t bytes = p.size() * sizeof(Point2);
   ASSERT_EQ(cudaMallocAsync(reinterpret_cast<void**>(&dp), bytes, s), cudaSuccess);
@@ -188,8 +187,6 @@ TEST(CudaDelaunay2d, DeviceEntryOnCallersStream) {
   cudaFreeAsync(t, s);
   cudaFreeAsync(d, s);
   cudaFreeAsync(dp, s);
-  cudaStreamSynchronize(s);
-  cudaStreamDestroy(s);
 }
 
 // The Voronoi diagram on the GPU from a device triangulation equals the host's from the same

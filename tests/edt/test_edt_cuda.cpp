@@ -341,8 +341,7 @@ TEST(CudaEdt, DeviceEntrySameAsHost) {
     o.backend = Backend::Cpu;
     const auto ref = distance_transform(g, SiteRule::NonZero, o);
     const std::int64_t n = ref.count(), nd = std::int64_t(shape.size());
-    cudaStream_t s;
-    GG_CK(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking));
+    const gg_test::Stream s;  // (outlives the results below)
     float* dg = nullptr;
     GG_CK(cudaMalloc(&dg, f.size() * sizeof(float)));
     GG_CK(cudaMemcpyAsync(dg, f.data(), f.size() * sizeof(float), cudaMemcpyHostToDevice, s));
@@ -388,7 +387,6 @@ TEST(CudaEdt, DeviceEntrySameAsHost) {
     GG_CK(cudaFreeHost(pinned));
     GG_CK(cudaFree(dl));
     GG_CK(cudaFree(dg));
-    GG_CK(cudaStreamDestroy(s));
   }
 }
 
@@ -411,9 +409,7 @@ TEST(CudaEdt, DeviceEntryWaitsForItsStreamOnly) {
   std::uint8_t* dg = nullptr;
   GG_CK(cudaMalloc(&dg, g.data.size()));
   GG_CK(cudaMemcpy(dg, g.data.data(), g.data.size(), cudaMemcpyHostToDevice));
-  cudaStream_t mine, other;
-  GG_CK(cudaStreamCreateWithFlags(&mine, cudaStreamNonBlocking));
-  GG_CK(cudaStreamCreateWithFlags(&other, cudaStreamNonBlocking));
+  const gg_test::Stream mine, other;  // (outlive the results below)
   EdtOptions o;
   o.distance = 32;
   o.backend = Backend::Cuda;
@@ -434,8 +430,6 @@ TEST(CudaEdt, DeviceEntryWaitsForItsStreamOnly) {
   EXPECT_LT(s, 10.0);
   ASSERT_TRUE(r.distance32);
   GG_CK(cudaFree(dg));
-  GG_CK(cudaStreamDestroy(mine));
-  GG_CK(cudaStreamDestroy(other));
 }
 
 // Raster-index packing (grids past 32 bits of bit fields, 1600^3) forced on small grids: the

@@ -84,8 +84,7 @@ TEST(CudaEdtNd, DeviceEntrySameAsHost) {
   EdtOptions o = every_output_nd({}, Backend::Cpu);
   const auto ref = distance_transform(g, SiteRule::NonZero, o);
   const std::int64_t n = ref.count(), nd = std::int64_t(shape.size());
-  cudaStream_t s;
-  GG_CK(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking));
+  const gg_test::Stream s;  // (outlives the results below)
   float* dg = nullptr;
   GG_CK(cudaMalloc(&dg, f.size() * sizeof(float)));
   GG_CK(cudaMemcpyAsync(dg, f.data(), f.size() * sizeof(float), cudaMemcpyHostToDevice, s));
@@ -110,5 +109,4 @@ TEST(CudaEdtNd, DeviceEntrySameAsHost) {
   EXPECT_EQ(back(df, n * nd), ref.features);
   GG_CK(cudaFree(df));
   GG_CK(cudaFree(dg));
-  GG_CK(cudaStreamDestroy(s));
 }
