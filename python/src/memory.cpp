@@ -20,20 +20,24 @@ namespace {
 // the interpreter unlocked (its work runs without the GIL), so each call takes the GIL.
 class PythonResource final : public DeviceMemoryResource {
  public:
-  explicit PythonResource(nb::handle obj) : obj_(nb::borrow(obj)) {}
+  // (the bound methods looked up once: a call takes tens to hundreds of blocks)
+  explicit PythonResource(nb::handle obj)
+      : alloc_(obj.attr("allocate")),
+        free_(obj.attr("deallocate")),
+        cached_(obj.attr("cached_bytes")) {}
   ~PythonResource() override {
     if (!nb::is_alive()) {  // the interpreter is gone: its objects with it
-      (void)obj_.release();
+      (void)alloc_.release(), (void)free_.release(), (void)cached_.release();
       return;
     }
     nb::gil_scoped_acquire gil;
-    obj_.reset();
+    alloc_.reset(), free_.reset(), cached_.reset();
   }
   void* allocate(std::size_t bytes, std::size_t, void* stream) override {
     nb::gil_scoped_acquire gil;
     try {
-      const auto p = nb::cast<std::uintptr_t>(
-          obj_.attr("allocate")(bytes, reinterpret_cast<std::uintptr_t>(stream)));
+      const auto p =
+          nb::cast<std::uintptr_t>(alloc_(bytes, reinterpret_cast<std::uintptr_t>(stream)));
       return reinterpret_cast<void*>(p);
     } catch (const nb::python_error& e) {
       throw Error(ErrorCode::OutOfMemory,
@@ -47,8 +51,7 @@ class PythonResource final : public DeviceMemoryResource {
     if (!nb::is_alive()) return;  // at exit the framework's pool is gone with the process
     nb::gil_scoped_acquire gil;
     try {
-      obj_.attr("deallocate")(reinterpret_cast<std::uintptr_t>(p), bytes,
-                              reinterpret_cast<std::uintptr_t>(stream));
+      free_(reinterpret_cast<std::uintptr_t>(p), bytes, reinterpret_cast<std::uintptr_t>(stream));
     } catch (nb::python_error& e) {
       e.discard_as_unraisable("gpugeom: freeing device memory through the caller's allocator");
     }
@@ -57,7 +60,7 @@ class PythonResource final : public DeviceMemoryResource {
     if (!nb::is_alive()) return 0;
     nb::gil_scoped_acquire gil;
     try {
-      const auto b = nb::cast<std::int64_t>(obj_.attr("cached_bytes")(device));
+      const auto b = nb::cast<std::int64_t>(cached_(device));
       return b > 0 ? std::uint64_t(b) : 0;
     } catch (nb::python_error& e) {
       e.discard_as_unraisable("gpugeom: reading the caller's allocator's cache");
@@ -66,7 +69,7 @@ class PythonResource final : public DeviceMemoryResource {
   }
 
  private:
-  nb::object obj_;
+  nb::object alloc_, free_, cached_;
 };
 
 }  // namespace
