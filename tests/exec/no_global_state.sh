@@ -16,6 +16,8 @@ allowed=(
   # the device memory pools and the device probe, one per device, behind a mutex
   'gpugeom::\(anonymous namespace\)::pools\(\)::p'
   'gpugeom::\(anonymous namespace\)::usable\(\)::u'
+  # the library's memory resource over those pools: made once, never changed
+  'gpugeom::library_memory_resource\(\)::r'
   # each kernel's resident blocks per SM, an atomic memo per device
   'gpugeom::cuda_detail::resident_blocks<.*>\(.*\)::cache'
   # host staging: pinned buffers behind a mutex, copy threads, a thread_local mailbox
