@@ -29,6 +29,7 @@
 namespace gpugeom::del3d::cpu_impl {
 using Exec = CpuExec;
 #include "delaunay3d/impl/voronoi.inl"
+#include "delaunay3d/impl/cells_kernels.inl"
 #include "delaunay3d/impl/cells.inl"
 void voronoi(const double* xyz, std::int64_t n, const std::int32_t* tet, const std::int32_t* nb,
              const std::int32_t* dup, std::int64_t nt, const RunOptions& run, DeviceVoronoi3d& out,
