@@ -8,7 +8,7 @@
 //                            dist:n [dist:n ...]
 // (--cpu: the CPU executor too where there is a GPU; --verbose: every phase and counter;
 // --cgal-max: CGAL only up to N points, default 10^7; B/pt: the device peak per point of the
-// end-to-end call (the pool's high-water mark; the CPU executor: what phase 1 holds);
+// end-to-end call (the most it held at once; the CPU executor: what phase 1 holds);
 // --digital: a row of the digital method (DigiDel3D) per grid side after each incremental row,
 // 0 the automatic side, with its phases and whether its tetrahedra are the incremental ones)
 #include <algorithm>
