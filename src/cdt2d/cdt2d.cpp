@@ -116,7 +116,7 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
     }
     const auto split_ms = r.stats.phase_ms;
     rc = {};
-    GG_ON_EXECUTOR(b, cdt, triangulate, P, np, S, ns, opt, r, rc);
+    GG_ENTRIES(b, cdt).triangulate(P, np, S, ns, opt, r, rc);
     if (split) r.stats.phase_ms.insert(r.stats.phase_ms.begin(), split_ms.back());
     if (rc.cross_a < 0) break;
     const bool pieces = !sp.pieces.empty();
@@ -154,8 +154,7 @@ DeviceConstrainedTriangulation2d cdt2d_device(const double* device_xy, std::int6
   const Backend b = device_entry_backend(opt.backend, opt.device, "cdt2d_device");
   cdt::RecoveryCounts rc;
   cdt::DeviceResult d;
-  GG_ON_EXECUTOR(b, cdt, triangulate_device, device_xy, n, device_segments, nseg, opt, d, r.stats,
-                 rc);
+  GG_ENTRIES(b, cdt).triangulate_device(device_xy, n, device_segments, nseg, opt, d, r.stats, rc);
   if (rc.cross_a >= 0)
     throw Error(ErrorCode::InvalidInput, crossing_message(rc.cross_a, rc.cross_b, false));
   r.backend = r.stats.backend = b;

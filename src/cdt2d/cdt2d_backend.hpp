@@ -28,19 +28,20 @@ struct DeviceResult {
 // triangles, neighbors, segment_of, duplicate_of, num_duplicates, removed_triangles, attribute
 // and stats, unless two segments cross (rc.cross_a >= 0: r holds nothing). triangulate_device:
 // both in the executor's memory (indices checked there), the result left there.
+// One executor's entries (exec/dispatch.hpp), filled by each executor's unit.
+struct Entries {
+  void (*triangulate)(const double* xy, std::int64_t n, const std::int32_t* segments,
+                      std::int64_t nseg, const Cdt2dOptions& opt, ConstrainedTriangulation2d& r,
+                      RecoveryCounts& rc);
+  void (*triangulate_device)(const double* xy, std::int64_t n, const std::int32_t* segments,
+                             std::int64_t nseg, const Cdt2dOptions& opt, DeviceResult& d, Stats& st,
+                             RecoveryCounts& rc);
+};
 namespace cpu_impl {
-void triangulate(const double* xy, std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
-                 const Cdt2dOptions& opt, ConstrainedTriangulation2d& r, RecoveryCounts& rc);
-void triangulate_device(const double* xy, std::int64_t n, const std::int32_t* segments,
-                        std::int64_t nseg, const Cdt2dOptions& opt, DeviceResult& d, Stats& st,
-                        RecoveryCounts& rc);
-}  // namespace cpu_impl
+extern const Entries entries;
+}
 namespace cuda_impl {
-void triangulate(const double* xy, std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
-                 const Cdt2dOptions& opt, ConstrainedTriangulation2d& r, RecoveryCounts& rc);
-void triangulate_device(const double* xy, std::int64_t n, const std::int32_t* segments,
-                        std::int64_t nseg, const Cdt2dOptions& opt, DeviceResult& d, Stats& st,
-                        RecoveryCounts& rc);
-}  // namespace cuda_impl
+extern const Entries entries;
+}
 
 }  // namespace gpugeom::cdt

@@ -112,7 +112,7 @@ void run(Backend b, cvd::Request& rq, const CvdOptions& opt, cvd::Output& out, S
     };
   st.backend = b;
   st.counters["grid_points"] = rq.layout.count();
-  GG_ON_EXECUTOR(b, cvd, lloyd, rq, out, st);
+  GG_ENTRIES(b, cvd).lloyd(rq, out, st);
 }
 
 // What both results share: the energies in density units, the iteration count and the verdict.

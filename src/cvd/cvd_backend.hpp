@@ -58,11 +58,15 @@ struct Output {
   bool converged = false;
 };
 
+// One executor's entries (exec/dispatch.hpp), filled by each executor's unit.
+struct Entries {
+  void (*lloyd)(const Request& rq, Output& out, Stats& stats);
+};
 namespace cpu_impl {
-void lloyd(const Request& rq, Output& out, Stats& stats);
+extern const Entries entries;
 }
 namespace cuda_impl {
-void lloyd(const Request& rq, Output& out, Stats& stats);
+extern const Entries entries;
 }
 
 }  // namespace gpugeom::cvd

@@ -38,16 +38,10 @@ Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOpt
   Triangulation2d r;
   const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
-  del2d::Output out;
   if (opt.method == Method::Digital)
-    del2d::digital::triangulate(xy, n, opt, b, out, r.stats);
+    del2d::digital::triangulate(xy, n, opt, b, r, r.stats);
   else
-    GG_ON_EXECUTOR(b, del2d, triangulate, xy, n, opt, out, r.stats);
-  r.triangles = std::move(out.triangles);
-  r.neighbors = std::move(out.neighbors);
-  r.duplicate_of = std::move(out.duplicate_of);
-  r.num_duplicates = out.num_duplicates;
-  r.num_triangles = out.num_triangles;
+    GG_ENTRIES(b, del2d).triangulate(xy, n, opt, r, r.stats);
   return r;
 }
 
@@ -62,13 +56,7 @@ DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
   const Backend b = device_entry_backend(opt.backend, opt.device, "delaunay2d_device");
   r.backend = r.stats.backend = b;
   r.num_points = n;
-  del2d::DeviceOutput out;
-  GG_ON_EXECUTOR(b, del2d, triangulate_device, device_xy, n, opt, out, r.stats);
-  r.num_triangles = out.num_triangles;
-  r.num_duplicates = out.num_duplicates;
-  r.triangles = std::move(out.triangles);
-  r.neighbors = std::move(out.neighbors);
-  r.duplicate_of = std::move(out.duplicate_of);
+  GG_ENTRIES(b, del2d).triangulate_device(device_xy, n, opt, r, r.stats);
   return r;
 }
 

@@ -36,7 +36,7 @@ DynamicDelaunay2d::DynamicDelaunay2d(const double* xy, std::int64_t n,
   del2d::check_count(n);
   auto impl = std::make_unique<Impl>();
   impl->backend = resolve_backend(opt.backend, opt.device);
-  impl->kept = GG_ON_EXECUTOR(impl->backend, del2d, make_kept, opt);
+  impl->kept = GG_ENTRIES(impl->backend, del2d).make_kept(opt);
   impl->insert(xy, n, false);
   impl_ = std::move(impl);
 }
@@ -47,7 +47,7 @@ DynamicDelaunay2d DynamicDelaunay2d::from_device(const double* device_xy, std::i
   del2d::check_count(n);
   auto impl = std::make_unique<Impl>();
   impl->backend = device_entry_backend(opt.backend, opt.device, "DynamicDelaunay2d::from_device");
-  impl->kept = GG_ON_EXECUTOR(impl->backend, del2d, make_kept, opt);
+  impl->kept = GG_ENTRIES(impl->backend, del2d).make_kept(opt);
   impl->insert(device_xy, n, true);
   return DynamicDelaunay2d(std::move(impl));
 }
@@ -105,28 +105,16 @@ const Stats& DynamicDelaunay2d::stats() const {
 }
 
 Triangulation2d DynamicDelaunay2d::triangulation() const {
-  del2d::Output out;
-  impl_->kept->host_copy(out);
   Triangulation2d r;
-  r.triangles = std::move(out.triangles);
-  r.neighbors = std::move(out.neighbors);
-  r.duplicate_of = std::move(out.duplicate_of);
-  r.num_duplicates = out.num_duplicates;
-  r.num_triangles = out.num_triangles;
+  impl_->kept->host_copy(r);
   r.stats = impl_->stats;
   return r;
 }
 
 DeviceTriangulation2d DynamicDelaunay2d::device_triangulation() const {
-  del2d::DeviceOutput out;
-  impl_->kept->device_copy(out);
   DeviceTriangulation2d r;
+  impl_->kept->device_copy(r);
   r.num_points = impl_->kept->points();
-  r.num_triangles = out.num_triangles;
-  r.num_duplicates = out.num_duplicates;
-  r.triangles = std::move(out.triangles);
-  r.neighbors = std::move(out.neighbors);
-  r.duplicate_of = std::move(out.duplicate_of);
   r.backend = impl_->backend;
   r.stats = impl_->stats;
   return r;

@@ -58,9 +58,10 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
   Stats st;
   RunOptions run;
   run.backend = Backend::Cpu;
-  del2d::cpu_impl::voronoi(xy, n, tri.triangles.data(), tri.neighbors.data(),
-                           tri.duplicate_of.data(),  // (copies; removed points: empty cells)
-                           tri.num_triangles, run, unused, st, &v);
+  del2d::cpu_impl::voronoi_entries.voronoi(
+      xy, n, tri.triangles.data(), tri.neighbors.data(),
+      tri.duplicate_of.data(),  // (copies; removed points: empty cells)
+      tri.num_triangles, run, unused, st, &v);
   return v;
 }
 
@@ -70,14 +71,13 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Delaunay2dOptions& o
   Stats local;
   Stats& st = stats ? *stats : local;
   st.backend = b;
-#ifdef GPUGEOM_HAVE_CUDA
-  if (b == Backend::Cuda && opt.method == Method::Incremental) {
+  const auto& on = GG_TABLE(b, del2d, voronoi_entries);
+  if (on.from_host && opt.method == Method::Incremental) {
     del2d::check_count(n);
     Voronoi2d v;
-    del2d::cuda_impl::voronoi_from_host(xy, n, opt, v, tri, st);
+    on.from_host(xy, n, opt, v, tri, st);
     return v;
   }
-#endif
   Triangulation2d t = delaunay2d(xy, n, opt);
   Voronoi2d v = voronoi2d(xy, n, t);
   st = t.stats;
@@ -96,22 +96,12 @@ DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
                 "they written into the caller's arrays, Delaunay2dOptions::into?): the Voronoi "
                 "diagram needs them there");
   DeviceVoronoi2d v;
+  const std::int32_t* dup = tri.duplicate_of.get();  // (a kept one's may mark removed points)
+  GG_TABLE(tri.backend, del2d, voronoi_entries)
+      .voronoi(device_xy, n, tri.triangles.get(), tri.neighbors.get(), dup, tri.num_triangles, run,
+               v, v.stats, nullptr);
   v.num_points = n;
   v.backend = v.stats.backend = tri.backend;
-  del2d::DeviceVoronoiOutput out;
-  const std::int32_t* dup = tri.duplicate_of.get();  // (a kept one's may mark removed points)
-  GG_ON_EXECUTOR(tri.backend, del2d, voronoi, device_xy, n, tri.triangles.get(),
-                 tri.neighbors.get(), dup, tri.num_triangles, run, out, v.stats);
-  v.num_vertices = out.num_vertices;
-  v.num_ridges = out.num_ridges;
-  v.num_cell_vertices = out.num_cell_vertices;
-  v.vertices = std::move(out.vertices);
-  v.ridge_points = std::move(out.ridge_points);
-  v.ridge_vertices = std::move(out.ridge_vertices);
-  v.ridge_directions = std::move(out.ridge_directions);
-  v.cell_offsets = std::move(out.cell_offsets);
-  v.cell_vertices = std::move(out.cell_vertices);
-  v.simplex_vertex = std::move(out.simplex_vertex);
   return v;
 }
 

@@ -30,7 +30,7 @@ VoronoiCells voronoi_cells(const double* xyz, std::int64_t n, const VoronoiCells
   VoronoiCells c;
   const Backend b = resolve_backend(opt.backend, opt.device);
   c.stats.backend = b;
-  GG_ON_EXECUTOR(b, del3d, cells, xyz, n, true, opt, nullptr, &c);
+  GG_TABLE(b, del3d, voronoi_entries).cells(xyz, n, true, opt, nullptr, &c);
   return c;
 }
 
@@ -41,7 +41,7 @@ DeviceVoronoiCells voronoi_cells_device(const double* device_xyz, std::int64_t n
   const Backend b = resolve_backend(opt.backend, opt.device);
   c.backend = c.stats.backend = b;
   c.num_points = n;
-  GG_ON_EXECUTOR(b, del3d, cells, device_xyz, n, false, opt, &c, nullptr);
+  GG_TABLE(b, del3d, voronoi_entries).cells(device_xyz, n, false, opt, &c, nullptr);
   return c;
 }
 

@@ -30,33 +30,6 @@ void check_count(std::int64_t n) {
                     "): a 3D Delaunay triangulation needs 4 points not on one plane");
 }
 
-Triangulation3d to_public(Output&& out) {
-  Triangulation3d r;
-  r.tetrahedra = std::move(out.tetrahedra);
-  r.neighbors = std::move(out.neighbors);
-  r.duplicate_of = std::move(out.duplicate_of);
-  r.num_duplicates = out.num_duplicates;
-  r.hull_facets = std::move(out.hull_facets);
-  r.vertex_to_simplex = std::move(out.vertex_to_simplex);
-  r.num_tetrahedra = out.num_tetrahedra;
-  r.num_hull_facets = out.num_hull_facets;
-  return r;
-}
-
-DeviceTriangulation3d to_public(DeviceOutput&& out, std::int64_t n, Backend b) {
-  DeviceTriangulation3d r;
-  r.backend = r.stats.backend = b;
-  r.num_points = n;
-  r.num_tetrahedra = out.num_tetrahedra;
-  r.num_duplicates = out.num_duplicates;
-  r.num_hull_facets = out.num_hull_facets;
-  r.tetrahedra = std::move(out.tetrahedra);
-  r.neighbors = std::move(out.neighbors);
-  r.duplicate_of = std::move(out.duplicate_of);
-  r.vertex_to_simplex = std::move(out.vertex_to_simplex);
-  r.hull_facets = std::move(out.hull_facets);
-  return r;
-}
 }  // namespace del3d
 
 namespace {
@@ -74,12 +47,9 @@ Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOp
   check_count(n);
   check_method(opt);
   const Backend b = resolve_backend(opt.backend, opt.device);
-  Stats st;
-  st.backend = b;
-  del3d::Output out;
-  GG_ON_EXECUTOR(b, del3d, triangulate, xyz, n, opt, out, st);
-  Triangulation3d r = del3d::to_public(std::move(out));
-  r.stats = std::move(st);
+  Triangulation3d r;
+  r.stats.backend = b;
+  GG_ENTRIES(b, del3d).triangulate(xyz, n, opt, r, r.stats);
   return r;
 }
 
@@ -88,12 +58,10 @@ DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n
   check_count(n);
   check_method(opt);
   const Backend b = device_entry_backend(opt.backend, opt.device, "delaunay3d_device");
-  Stats st;
-  st.backend = b;
-  del3d::DeviceOutput out;
-  GG_ON_EXECUTOR(b, del3d, triangulate_device, device_xyz, n, opt, out, st);
-  DeviceTriangulation3d r = del3d::to_public(std::move(out), n, b);
-  r.stats = std::move(st);
+  DeviceTriangulation3d r;
+  r.backend = r.stats.backend = b;
+  r.num_points = n;
+  GG_ENTRIES(b, del3d).triangulate_device(device_xyz, n, opt, r, r.stats);
   return r;
 }
 

@@ -38,7 +38,7 @@ DynamicDelaunay3d::DynamicDelaunay3d(const double* xyz, std::int64_t n,
   del3d::check_count(n);
   auto impl = std::make_unique<Impl>();
   impl->backend = resolve_backend(opt.backend, opt.device);
-  impl->kept = GG_ON_EXECUTOR(impl->backend, del3d, make_kept, opt);
+  impl->kept = GG_ENTRIES(impl->backend, del3d).make_kept(opt);
   impl->insert(xyz, n, false);
   impl_ = std::move(impl);
 }
@@ -49,7 +49,7 @@ DynamicDelaunay3d DynamicDelaunay3d::from_device(const double* device_xyz, std::
   del3d::check_count(n);
   auto impl = std::make_unique<Impl>();
   impl->backend = device_entry_backend(opt.backend, opt.device, "DynamicDelaunay3d::from_device");
-  impl->kept = GG_ON_EXECUTOR(impl->backend, del3d, make_kept, opt);
+  impl->kept = GG_ENTRIES(impl->backend, del3d).make_kept(opt);
   impl->insert(device_xyz, n, true);
   return DynamicDelaunay3d(std::move(impl));
 }
@@ -107,17 +107,17 @@ const Stats& DynamicDelaunay3d::stats() const {
 }
 
 Triangulation3d DynamicDelaunay3d::tetrahedralisation() const {
-  del3d::Output out;
-  impl_->kept->host_copy(out);
-  Triangulation3d r = del3d::to_public(std::move(out));
+  Triangulation3d r;
+  impl_->kept->host_copy(r);
   r.stats = impl_->stats;
   return r;
 }
 
 DeviceTriangulation3d DynamicDelaunay3d::device_tetrahedralisation() const {
-  del3d::DeviceOutput out;
-  impl_->kept->device_copy(out);
-  DeviceTriangulation3d r = del3d::to_public(std::move(out), impl_->kept->points(), impl_->backend);
+  DeviceTriangulation3d r;
+  impl_->kept->device_copy(r);
+  r.num_points = impl_->kept->points();
+  r.backend = impl_->backend;
   r.stats = impl_->stats;
   return r;
 }

@@ -27,23 +27,22 @@ Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tr
   DeviceVoronoi3d unused;
   RunOptions run;
   run.backend = Backend::Cpu;
-  del3d::cpu_impl::voronoi(xyz, n, tri.tetrahedra.data(), tri.neighbors.data(),
-                           tri.duplicate_of.data(), nt, run, unused, v.stats, &v);
+  del3d::cpu_impl::voronoi_entries.voronoi(xyz, n, tri.tetrahedra.data(), tri.neighbors.data(),
+                                           tri.duplicate_of.data(), nt, run, unused, v.stats, &v);
   return v;
 }
 
 Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                     Triangulation3d* tri) {
-#ifdef GPUGEOM_HAVE_CUDA
-  if (resolve_backend(opt.backend, opt.device) == Backend::Cuda &&
-      opt.method == Method::Incremental) {
+  const Backend b = resolve_backend(opt.backend, opt.device);
+  const auto& on = GG_TABLE(b, del3d, voronoi_entries);
+  if (on.from_host && opt.method == Method::Incremental) {
     del3d::check_count(n);
     Voronoi3d v;
-    v.stats.backend = Backend::Cuda;
-    del3d::cuda_impl::voronoi_from_host(xyz, n, opt, v, tri);
+    v.stats.backend = b;
+    on.from_host(xyz, n, opt, v, tri);
     return v;
   }
-#endif
   Delaunay3dOptions o = opt;
   o.into = {};
   Triangulation3d t = delaunay3d(xyz, n, o);
@@ -66,8 +65,9 @@ DeviceVoronoi3d voronoi3d_device(const double* device_xyz, std::int64_t n,
   v.num_points = n;
   v.backend = v.stats.backend = tri.backend;
   const std::int32_t* dup = tri.duplicate_of.get();  // (a kept one's may mark removed points)
-  GG_ON_EXECUTOR(tri.backend, del3d, voronoi, device_xyz, n, tri.tetrahedra.get(),
-                 tri.neighbors.get(), dup, tri.num_tetrahedra, run, v, v.stats, nullptr);
+  GG_TABLE(tri.backend, del3d, voronoi_entries)
+      .voronoi(device_xyz, n, tri.tetrahedra.get(), tri.neighbors.get(), dup, tri.num_tetrahedra,
+               run, v, v.stats, nullptr);
   return v;
 }
 

@@ -86,7 +86,7 @@ ColumnSiteBounds column_site_bounds_device(const GridView& g, SiteRule rule, std
   ColumnSiteBounds r;
   r.first.resize(std::size_t(plane));
   r.last.resize(std::size_t(plane));
-  if (GG_ON_EXECUTOR(b, edt, column_bounds, rq, r.first.data(), r.last.data()))
+  if (GG_ENTRIES(b, edt).column_bounds(rq, r.first.data(), r.last.data()))
     throw Error(ErrorCode::InvalidInput, "the grid contains NaN values");
   r.columns_with_sites = std::int64_t(
       std::count_if(r.first.begin(), r.first.end(), [](std::int64_t f) { return f >= 0; }));

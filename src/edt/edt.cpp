@@ -260,7 +260,7 @@ void prepare(edt::Request& rq, const EdtOptions& opt, const std::vector<std::int
 
 void run_backend(Backend b, const edt::Request& rq, edt::Output& out, Stats& stats) {
   stats.backend = b;
-  GG_ON_EXECUTOR(b, edt, run, rq, out, stats);
+  GG_ENTRIES(b, edt).run(rq, out, stats);
 }
 
 EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std::int64_t>& shape) {

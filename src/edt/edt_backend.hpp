@@ -85,13 +85,17 @@ struct BoundsRequest {
   std::int64_t planes = 0, plane = 0, offset = 0;
 };
 
+// One executor's entries (exec/dispatch.hpp): impl/entry.inl defines them for each executor.
+struct Entries {
+  void (*run)(const Request& req, Output& out, Stats& stats);
+  // True where the grid holds a NaN.
+  bool (*column_bounds)(const BoundsRequest& rq, std::int64_t* first, std::int64_t* last);
+};
 namespace cpu_impl {
-void run(const Request& req, Output& out, Stats& stats);
-bool column_bounds(const BoundsRequest& rq, std::int64_t* first, std::int64_t* last);
-}  // namespace cpu_impl
+extern const Entries entries;
+}
 namespace cuda_impl {
-void run(const Request& req, Output& out, Stats& stats);
-bool column_bounds(const BoundsRequest& rq, std::int64_t* first, std::int64_t* last);
-}  // namespace cuda_impl
+extern const Entries entries;
+}
 
 }  // namespace gpugeom::edt

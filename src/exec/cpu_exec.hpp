@@ -97,6 +97,12 @@ struct CpuExec {
   }
   CpuExec(const CpuExec&) = delete;
   CpuExec& operator=(const CpuExec&) = delete;
+  // The options a state kept across calls (DynamicDelaunay2d, ...) runs its later calls with:
+  // as given (CudaExec pins the device).
+  template <class Options>
+  static Options kept_options(Options opt) {
+    return opt;
+  }
   // The call's internal knobs (exec/tuning.hpp), copied from its options.
   const detail::Tuning& tuning() const { return tuning_; }
 

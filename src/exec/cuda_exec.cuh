@@ -266,6 +266,14 @@ class CudaExec {
   }
   CudaExec(const CudaExec&) = delete;
   CudaExec& operator=(const CudaExec&) = delete;
+  // The options a state kept across calls (DynamicDelaunay2d, ...) runs its later calls with:
+  // pinned to the device this one resolves to, whatever the calling thread's current device is
+  // at those later calls.
+  template <class Options>
+  static Options kept_options(Options opt) {
+    opt.device = cuda_device::resolve(opt);
+    return opt;
+  }
   // The call's internal knobs (exec/tuning.hpp), copied from its options.
   const detail::Tuning& tuning() const { return tuning_; }
   cudaStream_t stream() const { return s_; }

@@ -1,13 +1,28 @@
-// Runs a module's backend function on the executor a run resolved to (internal): every module
-// compiles its algorithm twice, into NS::cpu_impl and NS::cuda_impl (the latter only in CUDA
-// builds), and each public entry picks one with this.
+// A module's entries on the executor a run resolved to (internal).
+//
+// A module's algorithm is one source, written over a type named `Exec` (its impl/*.inl files),
+// and compiled once per executor: the executor's unit (NS/*_cpu.cpp, NS/*_cuda.cu, a few lines
+// each) names `Exec` inside NS::cpu_impl or NS::cuda_impl (the latter only in CUDA builds),
+// includes the algorithm, and then the module's impl/entries.inl, which fills the module's
+// table of entries as `entries` in that namespace. The table is a struct of function pointers,
+// declared once, in the module's backend header; the public entries pick a table with
+// GG_ENTRIES(backend, NS) and call through it, and one module reaches another's entries the
+// same way.
+//
+// Why a table of functions and not function templates over Exec instantiated per executor:
+// a CUDA unit compiles its algorithm over a type of its own (exec/tu_exec.hpp says why), which
+// no other unit can name, and the host code that calls it (built by the host compiler) cannot
+// construct a CudaExec. The unit boundary therefore has to be plain functions; inside a unit
+// everything is written over `Exec` once.
 #pragma once
 #include "gpugeom/common.hpp"
 
+// GG_TABLE(backend, NS, name) picks another table of the module's (one per unit where a
+// module has two, as Delaunay and its Voronoi diagram do).
 #ifdef GPUGEOM_HAVE_CUDA
-#define GG_ON_EXECUTOR(backend, ns, fn, ...)                              \
-  ((backend) == ::gpugeom::Backend::Cuda ? ns::cuda_impl::fn(__VA_ARGS__) \
-                                         : ns::cpu_impl::fn(__VA_ARGS__))
+#define GG_TABLE(backend, ns, name) \
+  ((backend) == ::gpugeom::Backend::Cuda ? ns::cuda_impl::name : ns::cpu_impl::name)
 #else
-#define GG_ON_EXECUTOR(backend, ns, fn, ...) ((void)(backend), ns::cpu_impl::fn(__VA_ARGS__))
+#define GG_TABLE(backend, ns, name) ((void)(backend), ns::cpu_impl::name)
 #endif
+#define GG_ENTRIES(backend, ns) GG_TABLE(backend, ns, entries)

@@ -36,7 +36,7 @@ std::unique_ptr<Impl> start(const Hull3dOptions& opt, std::int64_t n, Backend b)
   hull3d::check_count(n);
   auto impl = std::make_unique<Impl>();
   impl->backend = b;
-  impl->kept = GG_ON_EXECUTOR(b, hull3d, make_kept, opt);
+  impl->kept = GG_ENTRIES(b, hull3d).make_kept(opt);
   return impl;
 }
 }  // namespace
@@ -108,20 +108,16 @@ const Stats& DynamicHull3d::stats() const {
 }
 
 ConvexHull3d DynamicHull3d::hull() const {
-  hull3d::Output out;
-  impl_->kept->host_copy(out);
   ConvexHull3d r;
-  hull3d::to_public(std::move(out), r);
+  impl_->kept->host_copy(r);
   return impl_->with_stats(std::move(r));
 }
 
 DeviceHull3d DynamicHull3d::device_hull() const {
-  hull3d::DeviceOutput out;
-  impl_->kept->device_copy(out);
   DeviceHull3d r;
+  impl_->kept->device_copy(r);
   r.backend = impl_->backend;
   r.num_points = impl_->kept->points();
-  hull3d::to_public(std::move(out), r);
   return impl_->with_stats(std::move(r));
 }
 

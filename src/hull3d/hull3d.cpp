@@ -33,23 +33,6 @@ void check_count(std::int64_t n) {
                     "): a convex hull in 3D needs 4 points not on one plane");
 }
 
-void to_public(Output&& out, ConvexHull3d& r) {
-  r.triangles = std::move(out.triangles);
-  r.neighbors = std::move(out.neighbors);
-  r.vertices = std::move(out.vertices);
-  r.equations = std::move(out.equations);
-  r.num_facets = out.num_facets;
-  r.num_vertices = out.num_vertices;
-}
-void to_public(DeviceOutput&& out, DeviceHull3d& r) {
-  r.num_facets = out.num_facets;
-  r.num_vertices = out.num_vertices;
-  r.triangles = std::move(out.triangles);
-  r.neighbors = std::move(out.neighbors);
-  r.vertices = std::move(out.vertices);
-  r.equations = std::move(out.equations);
-}
-
 // A tenth of the slots of a hull on every point (2n), and at least 2^16: uniform balls and
 // cubes keep a few thousand facets of 10^8 points; points on a sphere grow the store by
 // doubling, a few copies of its used part. forced > 0 (Tuning::Hull3d) takes its place.
@@ -101,9 +84,7 @@ ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOption
   ConvexHull3d r;
   const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
-  hull3d::Output out;
-  GG_ON_EXECUTOR(b, hull3d, compute, xyz, n, opt, out, r.stats);
-  hull3d::to_public(std::move(out), r);
+  GG_ENTRIES(b, hull3d).compute(xyz, n, opt, r, r.stats);
   return r;
 }
 
@@ -119,9 +100,7 @@ DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
   const Backend b = device_entry_backend(opt.backend, opt.device, "convex_hull3d_device");
   r.backend = r.stats.backend = b;
   r.num_points = n;
-  hull3d::DeviceOutput out;
-  GG_ON_EXECUTOR(b, hull3d, compute_device, device_xyz, n, opt, out, r.stats);
-  hull3d::to_public(std::move(out), r);
+  GG_ENTRIES(b, hull3d).compute_device(device_xyz, n, opt, r, r.stats);
   return r;
 }
 

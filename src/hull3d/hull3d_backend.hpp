@@ -11,21 +11,10 @@
 
 namespace gpugeom::hull3d {
 
-struct Output {
-  HostVector<std::int32_t> triangles;  // 3 per facet, input indices, counter-clockwise outside
-  HostVector<std::int32_t> neighbors;  // 3 per facet
-  HostVector<std::int32_t> vertices;   // sorted input indices of the extreme points
-  HostVector<double> equations;        // 4 per facet (unit outward normal, offset)
-  std::int64_t num_facets = 0, num_vertices = 0;
-};
-
-// The result of the device entry: the library's arrays (executor memory; null where the caller's
-// arrays, opt.into, took the output).
-struct DeviceOutput {
-  std::shared_ptr<std::int32_t> triangles, neighbors, vertices;
-  std::shared_ptr<double> equations;
-  std::int64_t num_facets = 0, num_vertices = 0;
-};
+// The backends fill the public results' fields (their other fields are the public entry's):
+// one result type per memory space.
+using Output = ConvexHull3d;
+using DeviceOutput = DeviceHull3d;
 
 // The facet store grows with the hull (construct.inl): it starts at first_facet_slots(n) slots
 // and at most kMaxFacetSlots exist (the neighbour encoding 4 * slot + local index is an int32).
@@ -45,25 +34,22 @@ class Kept : public detail::KeptUpdates<Output, DeviceOutput> {
 
 // Refuses counts no hull can be made of (Error); defined in hull3d.cpp.
 void check_count(std::int64_t n);
-// The backends' outputs moved into the public results (their other fields as they were).
-void to_public(Output&& out, ConvexHull3d& r);
-void to_public(DeviceOutput&& out, DeviceHull3d& r);
 
+// One executor's entries (exec/dispatch.hpp): impl/entries.inl fills them for each executor.
 // compute: xyz holds n points on the host; compute_device: n points in the executor's memory.
 // Both validate the points on the executor (throw Error) and honour opt.into.
+struct Entries {
+  std::unique_ptr<Kept> (*make_kept)(const Hull3dOptions& opt);
+  void (*compute)(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
+                  Stats& stats);
+  void (*compute_device)(const double* xyz, std::int64_t n, const Hull3dOptions& opt,
+                         DeviceOutput& out, Stats& stats);
+};
 namespace cpu_impl {
-std::unique_ptr<Kept> make_kept(const Hull3dOptions& opt);
-void compute(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
-             Stats& stats);
-void compute_device(const double* xyz, std::int64_t n, const Hull3dOptions& opt, DeviceOutput& out,
-                    Stats& stats);
-}  // namespace cpu_impl
+extern const Entries entries;
+}
 namespace cuda_impl {
-std::unique_ptr<Kept> make_kept(const Hull3dOptions& opt);
-void compute(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
-             Stats& stats);
-void compute_device(const double* xyz, std::int64_t n, const Hull3dOptions& opt, DeviceOutput& out,
-                    Stats& stats);
-}  // namespace cuda_impl
+extern const Entries entries;
+}
 
 }  // namespace gpugeom::hull3d

@@ -124,7 +124,7 @@ RefinedMesh2d refine2d(const double* xy, std::int64_t n, const std::int32_t* seg
   RefinedMesh2d r;
   cdt::RecoveryCounts rc;
   refine::Tally tally;
-  GG_ON_EXECUTOR(b, refine, refine, P, np, S, ns, final_of_base, opt, r, rc, tally);
+  GG_ENTRIES(b, refine).refine(P, np, S, ns, final_of_base, opt, r, rc, tally);
   if (rc.cross_a >= 0)
     throw Error(ErrorCode::InvalidInput, crossing_message(final_of_base[std::size_t(rc.cross_a)],
                                                           final_of_base[std::size_t(rc.cross_b)]));
@@ -152,7 +152,7 @@ DeviceRefinedMesh2d refine2d_device(const double* device_xy, std::int64_t n,
   refine::DeviceResult d;
   cdt::RecoveryCounts rc;
   refine::Tally tally;
-  GG_ON_EXECUTOR(b, refine, refine_device, device_xy, n, device_segments, nseg, opt, d, rc, tally);
+  GG_ENTRIES(b, refine).refine_device(device_xy, n, device_segments, nseg, opt, d, rc, tally);
   if (rc.cross_a >= 0)
     throw Error(ErrorCode::InvalidInput, crossing_message(rc.cross_a, rc.cross_b));
   DeviceRefinedMesh2d r;

@@ -28,19 +28,20 @@ struct DeviceResult {
 // refine: host points (n) and segments (nseg pairs, indices checked), final_of_base naming each
 // segment's marks in the output; fills r unless two segments cross (rc.cross_a >= 0).
 // refine_device: both in the executor's memory, indices checked there, marks the given indices.
-#define GG_REFINE_BACKEND                                                                    \
-  void refine(const double* xy, std::int64_t n, const std::int32_t* segs, std::int64_t nseg, \
-              const std::vector<std::int32_t>& final_of_base, const Refine2dOptions& opt,    \
-              RefinedMesh2d& r, cdt::RecoveryCounts& rc, Tally& tally);                      \
-  void refine_device(const double* xy, std::int64_t n, const std::int32_t* segs,             \
-                     std::int64_t nseg, const Refine2dOptions& opt, DeviceResult& d,         \
-                     cdt::RecoveryCounts& rc, Tally& tally);
+// One executor's entries (exec/dispatch.hpp), filled by each executor's unit.
+struct Entries {
+  void (*refine)(const double* xy, std::int64_t n, const std::int32_t* segs, std::int64_t nseg,
+                 const std::vector<std::int32_t>& final_of_base, const Refine2dOptions& opt,
+                 RefinedMesh2d& r, cdt::RecoveryCounts& rc, Tally& tally);
+  void (*refine_device)(const double* xy, std::int64_t n, const std::int32_t* segs,
+                        std::int64_t nseg, const Refine2dOptions& opt, DeviceResult& d,
+                        cdt::RecoveryCounts& rc, Tally& tally);
+};
 namespace cpu_impl {
-GG_REFINE_BACKEND
+extern const Entries entries;
 }
 namespace cuda_impl {
-GG_REFINE_BACKEND
+extern const Entries entries;
 }
-#undef GG_REFINE_BACKEND
 
 }  // namespace gpugeom::refine

@@ -1,5 +1,5 @@
 // The 2D test entries (testing.hpp) compiled for the CPU executor: the module's algorithm (its
-// own unit.inl, as the library compiles it) and the entries' wrappers (impl/del2d.inl).
+// own unit.inl, as the library compiles it) and the entries (impl/del2d.inl).
 #include "exec/cpu_exec.hpp"
 #include "delaunay2d/impl/unit.hpp"
 #include "testing/backend.hpp"
@@ -12,8 +12,7 @@ namespace edt_impl = gpugeom::edt::cpu_impl;
 }  // namespace gpugeom::del2d::cpu_impl
 
 namespace gpugeom::testing::cpu_impl {
-namespace del2d_impl = del2d::cpu_impl;
-#define GG_TESTING_DEFINE
-#include "testing/impl/entries.inl"
-#undef GG_TESTING_DEFINE
+const Entries entries{&del2d::cpu_impl::triangulate_from_impl,
+                      &del2d::cpu_impl::digital_sketch_dual_impl,
+                      &del2d::cpu_impl::digital_shift_impl};
 }  // namespace gpugeom::testing::cpu_impl

@@ -13,8 +13,7 @@ namespace edt_impl = gpugeom::edt::cuda_impl;
 }  // namespace gpugeom::del2d::cuda_impl
 
 namespace gpugeom::testing::cuda_impl {
-namespace del2d_impl = del2d::cuda_impl;
-#define GG_TESTING_DEFINE
-#include "testing/impl/entries.inl"
-#undef GG_TESTING_DEFINE
+const Entries entries{&del2d::cuda_impl::triangulate_from_impl,
+                      &del2d::cuda_impl::digital_sketch_dual_impl,
+                      &del2d::cuda_impl::digital_shift_impl};
 }  // namespace gpugeom::testing::cuda_impl

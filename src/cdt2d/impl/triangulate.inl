@@ -13,7 +13,7 @@ inline void triangulate_core(Exec& ex, const double* pts, std::int64_t n, const 
   static_cast<RunOptions&>(dopt) = opt;
   del2d::DeviceOutput dt;
   Stats dst;
-  dt_impl::triangulate_device(pts, n, dopt, dt, dst);
+  dt_impl::entries.triangulate_device(pts, n, dopt, dt, dst);
   st = dst;
   st.phase_ms = {{"delaunay", ms_since(t0)}};
   const auto t1 = Clock::now();

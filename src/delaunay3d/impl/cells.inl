@@ -3,8 +3,8 @@
 // after cells_kernels.inl.
 
 inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_on_host,
-                               const VoronoiCellsOptions& opt, Backend backend,
-                               DeviceVoronoiCells* dev, VoronoiCells* host) {
+                               const VoronoiCellsOptions& opt, DeviceVoronoiCells* dev,
+                               VoronoiCells* host) {
   using I8 = std::int8_t;
   using I32 = std::int32_t;
   using I64 = std::int64_t;
@@ -147,7 +147,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     t0 = std::chrono::steady_clock::now();
     Delaunay3dOptions o;
     static_cast<RunOptions&>(o) = opt;
-    o.backend = backend;
+    o.backend = Exec::backend;
     const DeviceTriangulation3d tri = delaunay3d_device(aug, N, o);
     st.phase_ms.push_back({"delaunay", ms_since(t0)});
     t0 = std::chrono::steady_clock::now();

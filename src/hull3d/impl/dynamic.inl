@@ -288,6 +288,6 @@ class KeptHullOn final : public Kept {
   ::gpugeom::detail::Before<KeptHull> before_;
 };
 
-std::unique_ptr<Kept> make_kept(const Hull3dOptions& opt) {
-  return std::make_unique<KeptHullOn>(opt);
+inline std::unique_ptr<Kept> make_kept(const Hull3dOptions& opt) {
+  return std::make_unique<KeptHullOn>(Exec::kept_options(opt));
 }

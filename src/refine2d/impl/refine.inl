@@ -218,7 +218,7 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
   cdt::DeviceResult dr;
   Stats cst;
   rc = {};
-  cdt_impl::triangulate_device(xy, n, segs, nseg, copt, dr, cst, rc);
+  cdt_impl::entries.triangulate_device(xy, n, segs, nseg, copt, dr, cst, rc);
   if (rc.cross_a >= 0) return;
   if (opt.domain == Cdt2dOptions::Domain::ConvexHull) {
     add_boundary(ex, dr, base, final_of_base);
@@ -227,7 +227,7 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     copt.domain = Cdt2dOptions::Domain::Enclosed;
     dr = {};
     rc = {};
-    cdt_impl::triangulate_device(xy, n, dsegs.data(), std::int64_t(base.size() / 2), copt, dr, cst,
+    cdt_impl::entries.triangulate_device(xy, n, dsegs.data(), std::int64_t(base.size() / 2), copt, dr, cst,
                                  rc);
     if (rc.cross_a >= 0) return;
   }
