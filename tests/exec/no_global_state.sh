@@ -25,9 +25,11 @@ allowed=(
 )
 pattern=$(IFS='|'; echo "^(${allowed[*]})$")
 # Objects in writable sections (.data, .bss and their thread-local forms), demangled; read-only
-# constants (.rodata) are not state.
+# constants are not state: .rodata, and .data.rel.ro, the constants that hold addresses (the
+# modules' tables of entries), which the loader makes read-only once it has relocated them.
 symbols=$("$objdump_tool" -t -C "$lib" 2>/dev/null |
-  awk '$0 ~ /[ \t]\.(data|bss|tdata|tbss)[.a-zA-Z0-9_]*[ \t]/ {
+  awk '$0 !~ /[ \t]\.data\.rel\.ro[.a-zA-Z0-9_]*[ \t]/ &&
+       $0 ~ /[ \t]\.(data|bss|tdata|tbss)[.a-zA-Z0-9_]*[ \t]/ {
          sub(/^.*[ \t]\.(data|bss|tdata|tbss)[.a-zA-Z0-9_]*[ \t]+[0-9a-f]+[ \t]+/, ""); print }' |
   grep -E '^gpugeom::' | sort -u || true)
 if [[ -z $symbols ]]; then
