@@ -40,25 +40,6 @@ void count_dropped(const std::int32_t* segs, std::int64_t m, const std::int32_t*
       std::int64_t(keys.size()) - (std::unique(keys.begin(), keys.end()) - keys.begin());
 }
 
-// The checks both entries make before any work (the device entry checks indices on the device).
-void check_input(std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
-                 const Cdt2dOptions& opt) {
-  del2d::check_count(n);
-  if (nseg < 0 || (nseg > 0 && !segments))
-    throw Error(ErrorCode::InvalidArgument,
-                "segments: " + std::to_string(nseg) + " pairs given" +
-                    (nseg > 0 ? " but the pointer is null" : ": the count must not be negative"));
-  if (nseg > (std::int64_t(1) << 31) - 2)
-    throw Error(ErrorCode::InvalidInput, "too many segments (" + std::to_string(nseg) +
-                                             "): at most 2^31 - 2 per triangulation");
-  for (const auto& h : opt.holes)
-    if (!std::isfinite(h.x) || !std::isfinite(h.y))
-      throw Error(ErrorCode::InvalidInput, "a hole point is not finite");
-  for (const auto& g : opt.regions)
-    if (!std::isfinite(g.x) || !std::isfinite(g.y))
-      throw Error(ErrorCode::InvalidInput, "a region point is not finite");
-}
-
 std::string crossing_message(std::int32_t s1, std::int32_t s2, bool split) {
   return "segments " + std::to_string(std::min(s1, s2)) + " and " +
          std::to_string(std::max(s1, s2)) +
@@ -85,38 +66,24 @@ void set_counters(Stats& st, std::int64_t nseg, const cdt::RecoveryCounts& rc,
 
 ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
                                  std::int64_t nseg, const Cdt2dOptions& opt) {
-  check_input(n, segments, nseg, opt);
-  for (std::int64_t k = 0; k < 2 * nseg; ++k)
-    if (segments[k] < 0 || segments[k] >= n)
-      throw Error(ErrorCode::InvalidInput, "segment " + std::to_string(k / 2) + " names point " +
-                                               std::to_string(segments[k]) + ", outside 0.." +
-                                               std::to_string(n - 1));
+  cdt::check_input(n, segments, nseg, opt);
+  cdt::check_segment_indices(segments, nseg, n);
   ConstrainedTriangulation2d r;
   const Backend b = resolve_backend(opt.backend, opt.device);
   const bool split = opt.crossings == Cdt2dOptions::Crossings::Split;
   cdt::RecoveryCounts rc;
   cdt::SplitSegments sp;
-  std::vector<double> pts;  // the input points and the new ones, when segments were split
   std::vector<std::pair<std::int32_t, std::int32_t>> known;  // crossings the recovery met
-  const double* P = xy;
-  std::int64_t np = n;
   for (int attempt = 0;; ++attempt) {
-    const std::int32_t* S = segments;
-    std::int64_t ns = nseg;
-    if (split) {
-      const auto t0 = Clock::now();
-      sp = cdt::split_crossings(xy, n, segments, nseg, known);
-      if (!sp.pieces.empty()) {
-        pts.assign(xy, xy + 2 * n);
-        pts.insert(pts.end(), sp.points.begin(), sp.points.end());
-        P = pts.data(), np = std::int64_t(pts.size() / 2);
-        S = sp.pieces.data(), ns = std::int64_t(sp.pieces.size() / 2);
-      }
-      r.stats.phase_ms.push_back({"crossings", ms_since(t0)});
-    }
+    const auto t0 = Clock::now();
+    if (split) sp = cdt::split_crossings(xy, n, segments, nseg, known);
+    // the input points and the new ones, when segments were split
+    const cdt::SplitInput in = cdt::split_input(xy, n, segments, nseg, sp);
+    if (split) r.stats.phase_ms.push_back({"crossings", ms_since(t0)});
     const auto split_ms = r.stats.phase_ms;
     rc = {};
-    GG_ENTRIES(b, cdt).triangulate(P, np, S, ns, opt, r, rc);
+    GG_ENTRIES(b, cdt).triangulate(in.points, in.num_points, in.segments, in.num_segments, opt, r,
+                                   rc);
     if (split) r.stats.phase_ms.insert(r.stats.phase_ms.begin(), split_ms.back());
     if (rc.cross_a < 0) break;
     const bool pieces = !sp.pieces.empty();
@@ -145,7 +112,7 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
 DeviceConstrainedTriangulation2d cdt2d_device(const double* device_xy, std::int64_t n,
                                               const std::int32_t* device_segments,
                                               std::int64_t nseg, const Cdt2dOptions& opt) {
-  check_input(n, device_segments, nseg, opt);
+  cdt::check_input(n, device_segments, nseg, opt);
   if (opt.crossings == Cdt2dOptions::Crossings::Split)
     throw Error(ErrorCode::InvalidArgument,
                 "cdt2d_device: Crossings::Split reads the segments on the host: call cdt2d with "

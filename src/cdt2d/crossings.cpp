@@ -7,6 +7,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "delaunay2d/del2d_backend.hpp"
 #include "gpugeom/common.hpp"
 #include "predicates/predicates.hpp"
 
@@ -204,6 +205,47 @@ SplitSegments split_crossings(const double* xy, std::int64_t n, const std::int32
   }
   for (std::int32_t k : pieces_of) out.split_segments += k > 1;
   return out;
+}
+
+void check_input(std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
+                 const Cdt2dOptions& opt) {
+  del2d::check_count(n);
+  if (nseg < 0 || (nseg > 0 && !segments))
+    throw Error(ErrorCode::InvalidArgument,
+                "segments: " + std::to_string(nseg) + " pairs given" +
+                    (nseg > 0 ? " but the pointer is null" : ": the count must not be negative"));
+  if (nseg > (std::int64_t(1) << 31) - 2)
+    throw Error(ErrorCode::InvalidInput, "too many segments (" + std::to_string(nseg) +
+                                             "): at most 2^31 - 2 per triangulation");
+  for (const auto& h : opt.holes)
+    if (!std::isfinite(h.x) || !std::isfinite(h.y))
+      throw Error(ErrorCode::InvalidInput, "a hole point is not finite");
+  for (const auto& g : opt.regions)
+    if (!std::isfinite(g.x) || !std::isfinite(g.y))
+      throw Error(ErrorCode::InvalidInput, "a region point is not finite");
+}
+
+void check_segment_indices(const std::int32_t* segs, std::int64_t m, std::int64_t n) {
+  for (std::int64_t k = 0; k < 2 * m; ++k)
+    if (segs[k] < 0 || segs[k] >= n)
+      throw Error(ErrorCode::InvalidInput, "segment " + std::to_string(k / 2) + " names point " +
+                                               std::to_string(segs[k]) + ", outside 0.." +
+                                               std::to_string(n - 1));
+}
+
+SplitInput split_input(const double* xy, std::int64_t n, const std::int32_t* segs, std::int64_t m,
+                       const SplitSegments& sp) {
+  SplitInput in;
+  if (sp.pieces.empty()) {
+    in.points = xy, in.num_points = n;
+    in.segments = segs, in.num_segments = m;
+    return in;
+  }
+  in.joined.assign(xy, xy + 2 * n);
+  in.joined.insert(in.joined.end(), sp.points.begin(), sp.points.end());
+  in.points = in.joined.data(), in.num_points = std::int64_t(in.joined.size() / 2);
+  in.segments = sp.pieces.data(), in.num_segments = std::int64_t(sp.pieces.size() / 2);
+  return in;
 }
 
 }  // namespace gpugeom::cdt

@@ -1,4 +1,5 @@
-// Segments that cross each other, split at their intersections (internal to cdt2d, host code).
+// Segments that cross each other, split at their intersections, and the input checks the
+// constrained and the refining entries share (internal to cdt2d, host code).
 //
 // Crossing pairs are found through a uniform grid of cells (each segment listed in the cells it
 // passes, every pair sharing a cell tested exactly: both pairs of ends strictly on opposite
@@ -13,6 +14,8 @@
 #include <cstdint>
 #include <utility>
 #include <vector>
+
+#include "gpugeom/cdt2d.hpp"
 
 namespace gpugeom::cdt {
 
@@ -30,5 +33,28 @@ struct SplitSegments {
 SplitSegments split_crossings(const double* xy, std::int64_t n, const std::int32_t* segs,
                               std::int64_t m,
                               const std::vector<std::pair<std::int32_t, std::int32_t>>& extra);
+
+// The checks the constrained and the refining entries make before any work (counts, the segments'
+// pointer, finite hole and region points); the host entries then check the indices
+// (check_segment_indices), the device entries check them on the device.
+void check_input(std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
+                 const Cdt2dOptions& opt);
+
+// Throws Error(InvalidInput) naming the first of the m segments (index pairs, host memory) that
+// names a point outside 0..n-1.
+void check_segment_indices(const std::int32_t* segs, std::int64_t m, std::int64_t n);
+
+// What a triangulation runs on after split_crossings: the caller's points and segments where
+// nothing was split, else the points followed by the new vertices (held here), and the pieces
+// (held by the SplitSegments, which must outlive this).
+struct SplitInput {
+  std::vector<double> joined;
+  const double* points = nullptr;
+  std::int64_t num_points = 0;
+  const std::int32_t* segments = nullptr;
+  std::int64_t num_segments = 0;
+};
+SplitInput split_input(const double* xy, std::int64_t n, const std::int32_t* segs, std::int64_t m,
+                       const SplitSegments& sp);
 
 }  // namespace gpugeom::cdt

@@ -1,5 +1,6 @@
 // Backend and method names, parsing and resolution (Auto, GPUGEOM_BACKEND), shared by every
 // module.
+#include <iterator>
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -11,15 +12,9 @@
 namespace gpugeom {
 
 const char* backend_name(Backend b) {
-  switch (b) {
-    case Backend::Auto:
-      return "auto";
-    case Backend::Cpu:
-      return "cpu";
-    case Backend::Cuda:
-      return "cuda";
-  }
-  return "?";
+  static constexpr const char* names[] = {"auto", "cpu", "cuda"};  // (Backend's order)
+  const auto i = std::size_t(b);
+  return i < std::size(names) ? names[i] : "?";
 }
 
 Backend parse_backend(const std::string& s) {
@@ -78,27 +73,12 @@ Backend device_entry_backend(Backend requested, int device, const char* entry) {
 }
 
 const char* error_code_name(ErrorCode c) {
-  switch (c) {
-    case ErrorCode::InvalidArgument:
-      return "invalid argument";
-    case ErrorCode::InvalidInput:
-      return "invalid input";
-    case ErrorCode::DegenerateInput:
-      return "degenerate input";
-    case ErrorCode::Parse:
-      return "parse error";
-    case ErrorCode::Io:
-      return "I/O error";
-    case ErrorCode::Unsupported:
-      return "unsupported";
-    case ErrorCode::OutOfMemory:
-      return "out of memory";
-    case ErrorCode::Cuda:
-      return "CUDA error";
-    case ErrorCode::Internal:
-      return "internal error";
-  }
-  return "error";
+  static constexpr const char* names[] = {// (ErrorCode's order)
+                                          "invalid argument", "invalid input", "degenerate input",
+                                          "parse error",      "I/O error",     "unsupported",
+                                          "out of memory",    "CUDA error",    "internal error"};
+  const auto i = std::size_t(c);
+  return i < std::size(names) ? names[i] : "error";
 }
 
 double Stats::total_ms() const {

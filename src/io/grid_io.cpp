@@ -6,29 +6,11 @@
 
 #include "gpugeom/grid_view.hpp"
 #include "gpugeom/io.hpp"
+#include "exec/scalar_table.hpp"
 #include "io/io_util.hpp"
 
 namespace gpugeom::io {
 using namespace detail;
-
-static const char* npy_descr(ScalarType t) {
-  switch (t) {
-    case ScalarType::Bool:
-      return "|b1";
-    case ScalarType::U8:
-      return "|u1";
-    case ScalarType::U16:
-      return "<u2";
-    case ScalarType::I32:
-      return "<i4";
-    case ScalarType::I64:
-      return "<i8";
-    case ScalarType::F32:
-      return "<f4";
-    default:
-      return "<f8";
-  }
-}
 
 std::int64_t Grid::count() const {
   std::int64_t n = 1;
@@ -349,7 +331,7 @@ void write_grid(const std::string& path, const Grid& g) {
     throw Error(ErrorCode::InvalidArgument, "grid data size does not match its shape");
   std::string out;
   if (ext == ".npy") {
-    out = format_npy(npy_descr(g.type), g.shape, g.data.data(), g.data.size());
+    out = format_npy(scalar_info(g.type).npy_descr, g.shape, g.data.data(), g.data.size());
   } else if (ext == ".png") {
     out = format_png(g);
   } else if (ext == ".pgm" || ext == ".pbm") {

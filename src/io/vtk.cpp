@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "gpugeom/io.hpp"
+#include "exec/scalar_table.hpp"
 #include "io/io_util.hpp"
 
 namespace gpugeom::io::detail {
@@ -315,25 +316,6 @@ Mesh parse_vtk(std::string_view bytes, const std::string& name) {
 
 namespace {
 
-const char* vtk_name(ScalarType t) {
-  switch (t) {
-    case ScalarType::Bool:
-    case ScalarType::U8:
-      return "unsigned_char";
-    case ScalarType::U16:
-      return "unsigned_short";
-    case ScalarType::I32:
-      return "int";
-    case ScalarType::I64:
-      return "vtktypeint64";
-    case ScalarType::F32:
-      return "float";
-    case ScalarType::F64:
-      return "double";
-  }
-  return "double";
-}
-
 // n little-endian values of w bytes each, as big-endian bytes (BINARY legacy files).
 void put_big_endian(Text& out, const void* data, std::size_t n, std::size_t w) {
   std::string b(n * w, '\0');
@@ -407,8 +389,8 @@ Text format_vtk(const Mesh& m, bool binary) {
     for (const DataArray& d : arrays) {
       std::string nm = d.name.empty() ? "data" : d.name;
       std::replace(nm.begin(), nm.end(), ' ', '_');
-      o += "SCALARS " + nm + " " + vtk_name(d.type) + " " + std::to_string(d.components) +
-           "\nLOOKUP_TABLE default\n";
+      o += "SCALARS " + nm + " " + scalar_info(d.type).vtk_legacy + " " +
+           std::to_string(d.components) + "\nLOOKUP_TABLE default\n";
       if (binary)
         put_big_endian(o, d.bytes.data(), d.count(), scalar_size(d.type));
       else

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "gpugeom/io.hpp"
+#include "exec/scalar_table.hpp"
 #include "io/io_util.hpp"
 
 namespace gpugeom::io::detail {
@@ -146,28 +147,9 @@ class VtuArrays {
   std::size_t num_point_data_ = 0;
 };
 
-const char* vtk_type(ScalarType t) {
-  switch (t) {
-    case ScalarType::Bool:
-    case ScalarType::U8:
-      return "UInt8";
-    case ScalarType::U16:
-      return "UInt16";
-    case ScalarType::I32:
-      return "Int32";
-    case ScalarType::I64:
-      return "Int64";
-    case ScalarType::F32:
-      return "Float32";
-    case ScalarType::F64:
-      return "Float64";
-  }
-  return "Float64";
-}
-
 // The opening tag of a data array's DataArray element (no closing '>').
 std::string data_array_tag(const DataArray& d) {
-  return "<DataArray type=\"" + std::string(vtk_type(d.type)) + "\" Name=\"" + d.name +
+  return "<DataArray type=\"" + std::string(scalar_info(d.type).vtk_xml) + "\" Name=\"" + d.name +
          "\" NumberOfComponents=\"" + std::to_string(d.components) + "\"";
 }
 

@@ -26,11 +26,7 @@ std::string number(double v) {
 
 void check_options(std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
                    const Refine2dOptions& opt) {
-  del2d::check_count(n);
-  if (nseg < 0 || (nseg > 0 && !segments))
-    throw Error(ErrorCode::InvalidArgument,
-                "segments: " + std::to_string(nseg) + " pairs given" +
-                    (nseg > 0 ? " but the pointer is null" : ": the count must not be negative"));
+  cdt::check_input(n, segments, nseg, opt);
   if (!(opt.min_angle >= 0) || opt.min_angle > kRefineMaxAngle)
     throw Error(ErrorCode::InvalidArgument,
                 "min_angle " + number(opt.min_angle) + " degrees: give 0 (no angle bound) up to " +
@@ -96,39 +92,28 @@ void set_counters(Stats& st, const refine::Tally& t, std::int64_t triangles) {
 RefinedMesh2d refine2d(const double* xy, std::int64_t n, const std::int32_t* segments,
                        std::int64_t nseg, const Refine2dOptions& opt) {
   check_options(n, segments, nseg, opt);
-  for (std::int64_t k = 0; k < 2 * nseg; ++k)
-    if (segments[k] < 0 || segments[k] >= n)
-      throw Error(ErrorCode::InvalidInput, "segment " + std::to_string(k / 2) + " names point " +
-                                               std::to_string(segments[k]) + ", outside 0.." +
-                                               std::to_string(n - 1));
+  cdt::check_segment_indices(segments, nseg, n);
   const Backend b = resolve_backend(opt.backend, opt.device);
   // Crossing segments split first: the pieces are the segments refined, their marks the input
   // segments they came from.
   cdt::SplitSegments sp;
-  std::vector<double> pts;
-  const double* P = xy;
-  const std::int32_t* S = segments;
-  std::int64_t np = n, ns = nseg;
-  std::vector<std::int32_t> final_of_base(static_cast<std::size_t>(nseg));
-  for (std::int64_t j = 0; j < nseg; ++j) final_of_base[std::size_t(j)] = std::int32_t(j);
-  if (opt.crossings == Cdt2dOptions::Crossings::Split) {
+  if (opt.crossings == Cdt2dOptions::Crossings::Split)
     sp = cdt::split_crossings(xy, n, segments, nseg, {});
-    if (!sp.pieces.empty()) {
-      pts.assign(xy, xy + 2 * n);
-      pts.insert(pts.end(), sp.points.begin(), sp.points.end());
-      P = pts.data(), np = std::int64_t(pts.size() / 2);
-      S = sp.pieces.data(), ns = std::int64_t(sp.pieces.size() / 2);
-      final_of_base = sp.piece_segment;
-    }
+  const cdt::SplitInput in = cdt::split_input(xy, n, segments, nseg, sp);
+  std::vector<std::int32_t> final_of_base = sp.piece_segment;
+  if (sp.pieces.empty()) {
+    final_of_base.resize(std::size_t(nseg));
+    for (std::int64_t j = 0; j < nseg; ++j) final_of_base[std::size_t(j)] = std::int32_t(j);
   }
   RefinedMesh2d r;
   cdt::RecoveryCounts rc;
   refine::Tally tally;
-  GG_ENTRIES(b, refine).refine(P, np, S, ns, final_of_base, opt, r, rc, tally);
+  GG_ENTRIES(b, refine).refine(in.points, in.num_points, in.segments, in.num_segments,
+                               final_of_base, opt, r, rc, tally);
   if (rc.cross_a >= 0)
     throw Error(ErrorCode::InvalidInput, crossing_message(final_of_base[std::size_t(rc.cross_a)],
                                                           final_of_base[std::size_t(rc.cross_b)]));
-  r.num_input_points = np;
+  r.num_input_points = in.num_points;
   r.num_points = std::int64_t(r.points.size() / 2);
   r.num_triangles = std::int64_t(r.triangles.size() / 3);
   r.stats.backend = b;
