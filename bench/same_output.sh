@@ -5,6 +5,7 @@
 # Usage: bench/same_output.sh CLI_A CLI_B [cpu|cuda] [sets]. Prints one line per case; exit 1
 # on a difference. With "sets", meshes are compared as sets of oriented simplices (the same
 # triangles in any order, each from any starting corner), for changes that may reorder them.
+# ONLY="cdt2d mesh2d": those commands only.
 set -u
 A=$1 B=$2 BK=${3:-cpu} MODE=${4:-bytes}
 W=$(mktemp -d)
@@ -32,6 +33,24 @@ for src, dst in (("grid2.npy", "dup2.npy"), ("grid3.npy", "dup3.npy")):
     q = np.concatenate([p, p[rng.permutation(len(p))[: len(p) // 3]]])
     np.save(f"{w}/{dst}", q[rng.permutation(len(q))])
 EOF
+# A planar straight-line graph (Triangle's .poly): random points, a square boundary and random
+# chords (some crossing, for --split); and an image and a volume for the distance transform.
+python3 - "$W" <<'EOF'
+import sys, numpy as np
+w = sys.argv[1]
+rng = np.random.default_rng(3)
+pts = np.concatenate([[[0, 0], [1, 0], [1, 1], [0, 1]], rng.random((3000, 2)) * 0.96 + 0.02])
+seg = [[0, 1], [1, 2], [2, 3], [3, 0]]
+seg += [list(rng.choice(np.arange(4, len(pts)), 2, replace=False)) for _ in range(40)]
+with open(f"{w}/pslg.poly", "w") as f:
+    f.write(f"{len(pts)} 2 0 0\n")
+    f.writelines(f"{i} {float(x)!r} {float(y)!r}\n" for i, (x, y) in enumerate(pts))
+    f.write(f"{len(seg)} 0\n")
+    f.writelines(f"{i} {a} {b}\n" for i, (a, b) in enumerate(seg))
+    f.write("0\n")
+np.save(f"{w}/img.npy", (rng.random((300, 200)) < 0.01).astype(np.uint8))
+np.save(f"{w}/vol.npy", (rng.random((40, 50, 60)) < 0.002).astype(np.uint8))
+EOF
 same_sets() {  # two .off meshes: the same oriented triangles?
   python3 - "$1" "$2" <<'PY'
 import sys
@@ -48,11 +67,12 @@ def faces(path):
 sys.exit(0 if faces(sys.argv[1]) == faces(sys.argv[2]) else 1)
 PY
 }
-run() {  # $1 command, $2 input, $3 output extension
-  local name="$1 $2"
-  "$A" --quiet --backend "$BK" "$1" "$W/$2" -o "$W/a.$3" >"$W/a.log" 2>&1
+run() {  # $1 command, $2 input, $3 output extension, then the command's options
+  [ -z "${ONLY:-}" ] || [[ " $ONLY " == *" $1 "* ]] || return 0  # ONLY="cdt2d edt": those only
+  local name="$1 $2${4:+ ${*:4}}"
+  "$A" --quiet --backend "$BK" "$1" "$W/$2" -o "$W/a.$3" "${@:4}" >"$W/a.log" 2>&1
   local ra=$?
-  "$B" --quiet --backend "$BK" "$1" "$W/$2" -o "$W/b.$3" >"$W/b.log" 2>&1
+  "$B" --quiet --backend "$BK" "$1" "$W/$2" -o "$W/b.$3" "${@:4}" >"$W/b.log" 2>&1
   local rb=$?
   if [ $ra -ne $rb ]; then
     echo "DIFF  $name: exit $ra vs $rb"
@@ -76,5 +96,13 @@ EXT=ply
 [ "$MODE" = sets ] && EXT=off
 for f in u2 g2 grid2 c2 tc2 s2 dup2; do run delaunay2d $f.npy $EXT; done
 for f in u3 b3 sp3 grid3 tb3 dup3; do run hull3d $f.npy $EXT; done
+# The other capabilities (their outputs compared byte for byte whatever the mode).
+for f in u3 b3 sp3 grid3 tb3 dup3; do run delaunay3d $f.npy npy; done
+run cdt2d pslg.poly ply --split
+run mesh2d pslg.poly ply -q 25 --split
+run edt img.npy npy
+run edt vol.npy npy
+run cells u3.npy npy --box 0,1
+run cells u3.npy npy --box 0,1 --periodic xyz
 echo "differences: $diffs"
 [ $diffs -eq 0 ]
