@@ -19,26 +19,11 @@ std::int64_t Grid::count() const {
 }
 double Grid::value(std::int64_t i) const {
   const unsigned char* p = data.data() + std::size_t(i) * scalar_size(type);
-  auto get = [p](auto v) {
+  if (type == ScalarType::Bool) return p[0] ? 1.0 : 0.0;  // (any non-zero byte is true)
+  return visit_scalar(type, [p](auto v) {
     std::memcpy(&v, p, sizeof v);
     return double(v);
-  };
-  switch (type) {
-    case ScalarType::Bool:
-      return p[0] ? 1.0 : 0.0;
-    case ScalarType::U8:
-      return p[0];
-    case ScalarType::U16:
-      return get(std::uint16_t());
-    case ScalarType::I32:
-      return get(std::int32_t());
-    case ScalarType::I64:
-      return get(std::int64_t());
-    case ScalarType::F32:
-      return get(float());
-    default:
-      return get(double());
-  }
+  });
 }
 
 namespace {

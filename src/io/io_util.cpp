@@ -6,6 +6,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <type_traits>
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
@@ -13,6 +14,8 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+
+#include "exec/scalar_table.hpp"
 
 namespace gpugeom::io::detail {
 
@@ -257,54 +260,25 @@ bool data_array_from(const std::string& name, ScalarType type, int components,
   a.components = components;
   a.bytes.resize(v.size() * scalar_size(type));
   unsigned char* p = a.bytes.data();
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    auto put = [&](auto x) { std::memcpy(p + i * sizeof x, &x, sizeof x); };
-    switch (type) {
-      case ScalarType::Bool:
-      case ScalarType::U8:
-        put(std::uint8_t(v[i]));
-        break;
-      case ScalarType::U16:
-        put(std::uint16_t(v[i]));
-        break;
-      case ScalarType::I32:
-        put(std::int32_t(v[i]));
-        break;
-      case ScalarType::I64:
-        put(std::int64_t(v[i]));
-        break;
-      case ScalarType::F32:
-        put(float(v[i]));  // (out of float's range: inf, as a cast of a double does)
-        break;
-      case ScalarType::F64:
-        put(v[i]);
-        break;
+  visit_scalar(type, [&](auto zero) {
+    using T = decltype(zero);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const T x = T(v[i]);  // (a float out of range: inf, as a cast of a double does)
+      std::memcpy(p + i * sizeof x, &x, sizeof x);
     }
-  }
+  });
   return true;
 }
 
 void append_value(std::string& o, const DataArray& d, std::size_t i) {
   const unsigned char* p = d.bytes.data() + i * scalar_size(d.type);
-  auto get = [&](auto x) {
+  visit_scalar(d.type, [&](auto x) {
     std::memcpy(&x, p, sizeof x);
-    return x;
-  };
-  switch (d.type) {
-    case ScalarType::Bool:
-    case ScalarType::U8:
-      return append_int(o, get(std::uint8_t{}));
-    case ScalarType::U16:
-      return append_int(o, get(std::uint16_t{}));
-    case ScalarType::I32:
-      return append_int(o, get(std::int32_t{}));
-    case ScalarType::I64:
-      return append_int(o, get(std::int64_t{}));
-    case ScalarType::F32:
-      return append_double(o, double(get(float{})));
-    case ScalarType::F64:
-      return append_double(o, get(double{}));
-  }
+    if constexpr (std::is_floating_point_v<decltype(x)>)
+      append_double(o, double(x));
+    else
+      append_int(o, std::int64_t(x));
+  });
 }
 
 void append_int(std::string& out, std::int64_t v) {
