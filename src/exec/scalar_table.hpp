@@ -7,6 +7,7 @@
 #include <tuple>
 #include <utility>
 
+#include "base/type_visit.hpp"
 #include "gpugeom/scalar_type.hpp"
 
 namespace gpugeom::io::detail {
@@ -50,21 +51,11 @@ inline const ScalarInfo& scalar_info(ScalarType t) {
 using ScalarCppTypes = std::tuple<std::uint8_t, std::uint8_t, std::uint16_t, std::int32_t,
                                   std::int64_t, float, double>;
 
-template <class R, class F, std::size_t... I>
-R visit_scalar_at(std::size_t i, F& f, std::index_sequence<I...>) {
-  using Fn = R (*)(F&);
-  static constexpr Fn arms[] = {
-      [](F& g) -> R { return g(std::tuple_element_t<I, ScalarCppTypes>{}); }...};
-  return arms[i < sizeof...(I) ? i : sizeof...(I) - 1](f);
-}
-
 // f(T{}) with T the C++ type of t (double for a value out of range, as scalar_info): the type
 // decided once, not per element. Every arm must return the same type.
 template <class F>
 decltype(auto) visit_scalar(ScalarType t, F&& f) {
-  using R = decltype(f(double{}));
-  return visit_scalar_at<R>(std::size_t(t), f,
-                            std::make_index_sequence<std::tuple_size_v<ScalarCppTypes>>{});
+  return gpugeom::detail::visit_type<ScalarCppTypes>(std::size_t(t), std::forward<F>(f));
 }
 
 }  // namespace gpugeom::io::detail

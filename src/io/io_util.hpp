@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "base/type_visit.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/io.hpp"
 
@@ -382,31 +383,19 @@ struct NumType {
   char kind = 0;
 };
 
-// f(T{}) with T the C++ type of a binary element type (the type decided once, not per element).
+// f(T{}) with T the C++ type of a binary element type (the type decided once, not per element);
+// double for what is none of them.
 template <class F>
 void visit_num(const NumType& e, F&& f) {
-  switch (e.kind * 16 + e.bytes) {
-    case 'i' * 16 + 1:
-      return f(std::int8_t{});
-    case 'u' * 16 + 1:
-      return f(std::uint8_t{});
-    case 'i' * 16 + 2:
-      return f(std::int16_t{});
-    case 'u' * 16 + 2:
-      return f(std::uint16_t{});
-    case 'i' * 16 + 4:
-      return f(std::int32_t{});
-    case 'u' * 16 + 4:
-      return f(std::uint32_t{});
-    case 'i' * 16 + 8:
-      return f(std::int64_t{});
-    case 'u' * 16 + 8:
-      return f(std::uint64_t{});
-    case 'f' * 16 + 4:
-      return f(float{});
-    default:
-      return f(double{});
-  }
+  using Types = std::tuple<std::int8_t, std::uint8_t, std::int16_t, std::uint16_t, std::int32_t,
+                           std::uint32_t, std::int64_t, std::uint64_t, float, double>;
+  const int width = e.bytes == 1 ? 0 : e.bytes == 2 ? 1 : e.bytes == 4 ? 2 : e.bytes == 8 ? 3 : -1;
+  std::size_t i = 9;  // double
+  if ((e.kind == 'i' || e.kind == 'u') && width >= 0)
+    i = std::size_t(2 * width + (e.kind == 'u'));
+  else if (e.kind == 'f' && e.bytes == 4)
+    i = 8;
+  gpugeom::detail::visit_type<Types>(i, std::forward<F>(f));
 }
 
 // Element i of type T from raw bytes, big-endian files swapped.

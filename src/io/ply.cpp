@@ -20,21 +20,11 @@ bool type_of(std::string_view s, T& t) {
     if (s == e.a || s == e.b) return t = e.t, true;
   return false;
 }
+// The C++ type of each PLY type, in T's order.
+using PlyTypes = std::tuple<std::int8_t, std::uint8_t, std::int16_t, std::uint16_t, std::int32_t,
+                            std::uint32_t, float, double>;
 std::size_t size_of(T t) {
-  switch (t) {
-    case T::I8:
-    case T::U8:
-      return 1;
-    case T::I16:
-    case T::U16:
-      return 2;
-    case T::I32:
-    case T::U32:
-    case T::F32:
-      return 4;
-    default:
-      return 8;
-  }
+  return gpugeom::detail::visit_type<PlyTypes>(std::size_t(t), [](auto v) { return sizeof v; });
 }
 
 struct Prop {
@@ -50,28 +40,10 @@ struct Elem {
 
 // A little-endian value of type t at p, as a double.
 double value_at(const unsigned char* p, T t) {
-  auto as = [&](auto v) {
+  return gpugeom::detail::visit_type<PlyTypes>(std::size_t(t), [p](auto v) {
     std::memcpy(&v, p, sizeof v);
     return double(v);
-  };
-  switch (t) {
-    case T::I8:
-      return as(std::int8_t());
-    case T::U8:
-      return as(std::uint8_t());
-    case T::I16:
-      return as(std::int16_t());
-    case T::U16:
-      return as(std::uint16_t());
-    case T::I32:
-      return as(std::int32_t());
-    case T::U32:
-      return as(std::uint32_t());
-    case T::F32:
-      return as(float());
-    default:
-      return as(double());
-  }
+  });
 }
 
 // Reads values from the body, in whichever encoding the header declared.
