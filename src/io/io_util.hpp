@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -36,6 +37,17 @@ class FileView {
   std::size_t size_ = 0;
   std::string copy_;
 };
+// parse(text, ext, path) over the file at path, mapped, where ext is one of the known
+// extensions; for any other, parse("", ext, path), which reports the unknown format before the
+// file is touched.
+template <std::size_t N, class Parse>
+auto parse_file(const std::string& path, const std::string& ext, const char* const (&known)[N],
+                Parse parse) {
+  if (std::find(std::begin(known), std::end(known), ext) == std::end(known))
+    return parse(std::string_view(), ext, path);
+  const FileView f(path);  // (mapped: parsed where the page cache holds it, no copy)
+  return parse(f.view(), ext, path);
+}
 // A file written piece by piece to path.tmp-XXXX beside the target and renamed over path by
 // commit(); destroyed without commit() (an error on the way), the temporary is removed, so a
 // failure never leaves a half-written file. Errors are Error(Io) naming the target.

@@ -133,11 +133,8 @@ Mesh read_mesh(const std::string& path) {
     m.coords = std::move(p.coords);
     return m;
   }
-  static const char* known[] = {".ply", ".off", ".obj", ".vtu", ".vtk", ".npy"};
-  if (std::find(std::begin(known), std::end(known), ext) == std::end(known))
-    return parse_mesh("", ext, path);  // reports the unknown format before touching the file
-  const FileView f(path);              // (mapped: parsed where the page cache holds it, no copy)
-  return parse_mesh(f.view(), ext, path);
+  static const char* const known[] = {".ply", ".off", ".obj", ".vtu", ".vtk", ".npy"};
+  return parse_file(path, ext, known, &parse_mesh);
 }
 
 void write_mesh(const std::string& path, const Mesh& m, const WriteOptions& o) {

@@ -307,11 +307,9 @@ PointSet parse_points(std::string_view b, const std::string& ext, const std::str
 
 PointSet read_points(const std::string& path) {
   const std::string ext = extension(path);
-  static const char* known[] = {".xyz", ".txt", ".csv", ".off", ".obj", ".node", ".npy", ".ply"};
-  if (std::find(std::begin(known), std::end(known), ext) == std::end(known))
-    return parse_points("", ext, path);  // reports the unknown format before touching the file
-  const FileView f(path);                // (mapped: parsed where the page cache holds it, no copy)
-  return parse_points(f.view(), ext, path);
+  static const char* const known[] = {".xyz", ".txt",  ".csv", ".off",
+                                      ".obj", ".node", ".npy", ".ply"};
+  return parse_file(path, ext, known, &parse_points);
 }
 
 void write_points(const std::string& path, const PointSet& p, const WriteOptions& o) {
