@@ -135,7 +135,7 @@ enum class ErrorCode {
   Cuda,             ///< any other CUDA runtime failure
   Internal,         ///< an invariant of an algorithm failed: a bug, please report it
 };
-/// The code's name, e.g. "InvalidInput".
+/// The code's name as messages print it, e.g. "invalid input".
 const char* error_code_name(ErrorCode c);
 
 /// The exception every failure of the library throws: a code (ErrorCode) and a message saying what
