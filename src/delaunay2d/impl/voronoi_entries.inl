@@ -31,5 +31,5 @@ inline void voronoi_from_host(const double* xy, std::int64_t n, const Delaunay2d
   stats.phase_ms.push_back({"copy_triangulation", ms_since(t1)});
 }
 
-const VoronoiEntries voronoi_entries{
-    &voronoi_impl, Exec::backend == Backend::Cpu ? nullptr : &voronoi_from_host};
+const VoronoiEntries voronoi_entries{&voronoi_impl,
+                                     Exec::backend == Backend::Cpu ? nullptr : &voronoi_from_host};

@@ -227,8 +227,8 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     copt.domain = Cdt2dOptions::Domain::Enclosed;
     dr = {};
     rc = {};
-    cdt_impl::entries.triangulate_device(xy, n, dsegs.data(), std::int64_t(base.size() / 2), copt, dr, cst,
-                                 rc);
+    cdt_impl::entries.triangulate_device(xy, n, dsegs.data(), std::int64_t(base.size() / 2), copt,
+                                         dr, cst, rc);
     if (rc.cross_a >= 0) return;
   }
   Kept K = kept_from(ex, xy, n, dr);
