@@ -1,6 +1,7 @@
-// Every name and size of an element type, in one table (internal): NumPy's name and .npy
-// descriptor, the legacy VTK and the VTK XML type names. The public scalar_size/scalar_name and
-// the file formats read it instead of switching over the type each on its own.
+// Every name of an element type, in one table (internal): NumPy's name and .npy descriptor,
+// the legacy VTK and the VTK XML type names; and its C++ type (visit_scalar, below), whose size
+// is the element's. The public scalar_size/scalar_name and the file formats read these instead
+// of switching over the type each on its own.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -14,7 +15,6 @@ namespace gpugeom::io::detail {
 
 struct ScalarInfo {
   ScalarType type;
-  std::size_t size;
   const char* numpy;       // NumPy's dtype name
   const char* npy_descr;   // the .npy header's descr (little-endian)
   const char* vtk_legacy;  // legacy .vtk (bool as bytes)
@@ -23,13 +23,13 @@ struct ScalarInfo {
 
 // In the enum's order (checked below).
 inline constexpr ScalarInfo kScalars[] = {
-    {ScalarType::Bool, 1, "bool", "|b1", "unsigned_char", "UInt8"},
-    {ScalarType::U8, 1, "uint8", "|u1", "unsigned_char", "UInt8"},
-    {ScalarType::U16, 2, "uint16", "<u2", "unsigned_short", "UInt16"},
-    {ScalarType::I32, 4, "int32", "<i4", "int", "Int32"},
-    {ScalarType::I64, 8, "int64", "<i8", "vtktypeint64", "Int64"},
-    {ScalarType::F32, 4, "float32", "<f4", "float", "Float32"},
-    {ScalarType::F64, 8, "float64", "<f8", "double", "Float64"},
+    {ScalarType::Bool, "bool", "|b1", "unsigned_char", "UInt8"},
+    {ScalarType::U8, "uint8", "|u1", "unsigned_char", "UInt8"},
+    {ScalarType::U16, "uint16", "<u2", "unsigned_short", "UInt16"},
+    {ScalarType::I32, "int32", "<i4", "int", "Int32"},
+    {ScalarType::I64, "int64", "<i8", "vtktypeint64", "Int64"},
+    {ScalarType::F32, "float32", "<f4", "float", "Float32"},
+    {ScalarType::F64, "float64", "<f8", "double", "Float64"},
 };
 
 constexpr bool scalars_in_enum_order() {
@@ -50,6 +50,9 @@ inline const ScalarInfo& scalar_info(ScalarType t) {
 // The C++ type of each element type, in the enum's order (bool as its byte).
 using ScalarCppTypes = std::tuple<std::uint8_t, std::uint8_t, std::uint16_t, std::int32_t,
                                   std::int64_t, float, double>;
+
+static_assert(std::tuple_size_v<ScalarCppTypes> == sizeof kScalars / sizeof kScalars[0],
+              "one C++ type per entry of kScalars");
 
 // f(T{}) with T the C++ type of t (double for a value out of range, as scalar_info): the type
 // decided once, not per element. Every arm must return the same type.

@@ -8,7 +8,7 @@
 namespace gpugeom {
 
 std::size_t scalar_size(ScalarType t) {
-  return io::detail::scalar_info(t).size;
+  return io::detail::visit_scalar(t, [](auto v) { return sizeof v; });
 }
 const char* scalar_name(ScalarType t) {
   return io::detail::scalar_info(t).numpy;

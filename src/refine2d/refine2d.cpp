@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <string>
 #include <utility>
 
@@ -56,12 +57,6 @@ void check_options(std::int64_t n, const std::int32_t* segments, std::int64_t ns
   }
   if (opt.max_steiner_points < -1)
     throw Error(ErrorCode::InvalidArgument, "max_steiner_points must be -1 (no limit) or >= 0");
-  for (const auto& h : opt.holes)
-    if (!std::isfinite(h.x) || !std::isfinite(h.y))
-      throw Error(ErrorCode::InvalidInput, "a hole point is not finite");
-  for (const auto& g2 : opt.regions)
-    if (!std::isfinite(g2.x) || !std::isfinite(g2.y))
-      throw Error(ErrorCode::InvalidInput, "a region point is not finite");
 }
 
 std::string crossing_message(std::int32_t s1, std::int32_t s2) {
@@ -100,10 +95,10 @@ RefinedMesh2d refine2d(const double* xy, std::int64_t n, const std::int32_t* seg
   if (opt.crossings == Cdt2dOptions::Crossings::Split)
     sp = cdt::split_crossings(xy, n, segments, nseg, {});
   const cdt::SplitInput in = cdt::split_input(xy, n, segments, nseg, sp);
-  std::vector<std::int32_t> final_of_base = sp.piece_segment;
+  std::vector<std::int32_t> final_of_base = sp.piece_segment;  // (the marks: input segments)
   if (sp.pieces.empty()) {
     final_of_base.resize(std::size_t(nseg));
-    for (std::int64_t j = 0; j < nseg; ++j) final_of_base[std::size_t(j)] = std::int32_t(j);
+    std::iota(final_of_base.begin(), final_of_base.end(), 0);
   }
   RefinedMesh2d r;
   cdt::RecoveryCounts rc;
