@@ -3,11 +3,11 @@
 // A module's algorithm is one source, written over a type named `Exec` (its impl/*.inl files),
 // and compiled once per executor: the executor's unit (NS/*_cpu.cpp, NS/*_cuda.cu, a few lines
 // each) names `Exec` inside NS::cpu_impl or NS::cuda_impl (the latter only in CUDA builds),
-// includes the algorithm, and then the module's impl/entries.inl, which fills the module's
-// table of entries as `entries` in that namespace. The table is a struct of function pointers,
-// declared once, in the module's backend header; the public entries pick a table with
-// GG_ENTRIES(backend, NS) and call through it, and one module reaches another's entries the
-// same way.
+// includes the algorithm, and then fills the module's table of entries as `entries` in that
+// namespace (impl/entries.inl, or one line in the unit where the table is short). The table is a
+// struct of function pointers, declared once, in the module's backend header; the public entries
+// pick a table with GG_ENTRIES(backend, NS) and call through it, and one module reaches another's
+// entries the same way.
 //
 // Why a table of functions and not function templates over Exec instantiated per executor:
 // a CUDA unit compiles its algorithm over a type of its own (exec/tu_exec.hpp says why), which
