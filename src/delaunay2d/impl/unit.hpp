@@ -43,6 +43,7 @@
 #include "mesh/history.hpp"
 #include "mesh/prepare.hpp"
 #include "mesh/priority.hpp"
+#include "mesh/walk.hpp"
 #include "mesh/work_list.hpp"
 #include "predicates/predicates.hpp"
 #include "spatial/hilbert.hpp"

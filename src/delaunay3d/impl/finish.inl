@@ -1,0 +1,87 @@
+// The end of phase 1 (triangulator.inl): the faces it left not locally Delaunay (phase 2's
+// work), the finite tetrahedra in input indices, and its statistics.
+
+// The store as the output step reads it: finite tetrahedra, in input indices.
+struct FiniteTets {
+  const Tet* tet;
+  const std::int32_t* orig;
+  std::int32_t m;
+  GG_HD bool live(std::int64_t t) const {
+    const std::int32_t* v = tet[t].v;
+    return v[0] >= 0 && v[0] != m && v[1] != m && v[2] != m && v[3] != m;
+  }
+  GG_HD mesh::SimplexRecord<4> get(std::int64_t t) const {
+    const Tet T = tet[t];
+    mesh::SimplexRecord<4> r;
+    for (int k = 0; k < 4; ++k) r.v[k] = orig[T.v[k]], r.n[k] = simplex_of(T.n[k]);
+    return r;
+  }
+};
+
+// Every face of the tetrahedralisation tested; the vertices of faces that are not locally
+// Delaunay are marked (failed: m + 1 entries). Counts the flat finite tetrahedra (flat_ext)
+// in flat. Returns the number of failed faces. only (per slot, or null: all): the faces of
+// these slots alone (the others' faces are known to be locally Delaunay: DynamicDelaunay3d's
+// slots that no flip or split rewrote).
+inline std::int64_t Triangulator::find_failed(typename Exec::template Buffer<std::int8_t>& failed,
+                                              std::int64_t& flat, const std::int8_t* only) {
+  const Geo g = g_;
+  const Mesh M = M_;
+  std::int8_t* f = failed.data();
+  ex_.fill(f, std::int64_t(m_) + 1, std::int8_t(0));
+  Counters* ctr = ctr_.data();
+  const Counters c = counters();
+  ex_.for_each_index(
+      c.used, GG_LAMBDA(std::int64_t t) {
+        const Tet T = M.tet[t];
+        if (T.v[0] < 0 || (only && !only[t])) return;
+        for (int k = 0; k < 4; ++k) {
+          const std::int32_t nb = simplex_of(T.n[k]);
+          if (nb < t && (!only || only[nb])) continue;  // (each face once, from its higher slot)
+          const std::int32_t d = M.tet[nb].v[loc_of(T.n[k])];
+          if (!in_sphere_ext(g, T.v, d)) continue;
+          atomic_add(&ctr->failed_faces, std::int64_t(1));
+          std::int32_t x[3];
+          face_of(T.v, k, x);
+          for (int j = 0; j < 3; ++j) f[x[j]] = 1;
+        }
+        if (flat_ext(g, T.v)) atomic_add(&ctr->flat, std::int64_t(1));
+      });
+  const Counters after = counters();
+  flat = after.flat;
+  return after.failed_faces;
+}
+
+inline Triangulator::Finished Triangulator::finish(const std::int32_t* orig) {
+  const Counters c = counters();
+  return mesh::compact_live<4>(ex_, c.used, FiniteTets{tet_.data(), orig, m_});
+}
+
+inline void Triangulator::report() {
+  const Counters c = counters();
+  st_.counters["device_bytes_phase1"] = peak_bytes_;
+  st_.counters["slots_used"] = c.used;
+  st_.counters["slots_capacity"] = cap_;
+  st_.counters["batches"] = batches_;
+  st_.counters["max_list"] = c.max_len;
+  st_.counters["max_epoch_records"] = c.max_log;
+  st_.counters["max_free_slots"] = c.max_free;
+  st_.counters["max_splits"] = max_nins_;
+  st_.counters["halts"] = c.halts;
+  st_.counters["carried_batches"] = c.carries;
+  st_.counters["log_capacity"] = log_cap_;
+  st_.counters["list_capacity"] = list_cap_;
+  st_.counters["ring_capacity"] = ring_cap_;
+  st_.counters["flip_rounds"] = c.rounds;
+  st_.counters["flips23"] = c.flips23;
+  st_.counters["flips32"] = c.flips32;
+  st_.counters["unflippable_tests"] = c.unflippable;
+  // Where phase 1's time goes (host clock; each part ends with a read of the counters):
+  // choosing and splitting, rounds as kernels, rounds in a team.
+  st_.counters["us_choose_split"] = std::int64_t(1000 * ms_choose_);
+  st_.counters["us_rounds_wide"] = std::int64_t(1000 * ms_wide_);
+  st_.counters["us_rounds_team"] = std::int64_t(1000 * ms_team_);
+  st_.counters["round_chunks"] = chunks_;
+  st_.counters["team_launches"] = team_calls_;
+  st_.counters["failed_faces"] = c.failed_faces;
+}
