@@ -39,8 +39,24 @@ struct Cdt2dRegion {
   double max_area = 0;
 };
 
-/// How cdt2d and cdt2d_device run: the domain, holes, regions and what to do where segments cross.
-struct Cdt2dOptions : RunOptions {
+/// Arrays the caller provides for the results (OutBuffer, common.hpp; as Triangulation2dBuffers):
+/// host memory for cdt2d, device memory for cdt2d_device (host memory where it runs on the CPU
+/// executor). triangles, neighbors and segment_of must hold at least 3 times the triangle count,
+/// which depends on the result (3 * delaunay2d_max_triangles(n) always suffices), attribute (with
+/// regions) at least the count, duplicate_of at least n. They are checked once the count is known
+/// and before anything is written (Error(InvalidArgument) naming the array and both lengths). An
+/// output written into a caller's array is empty (null) in the result; num_triangles says how
+/// much of it was written. Crossings::Split refuses them (Error(InvalidArgument)): the new points
+/// it adds are known only after the run, and so is the length of duplicate_of.
+struct Cdt2dBuffers {
+  OutBuffer<std::int32_t> triangles, neighbors, segment_of, duplicate_of;
+  OutBuffer<double> attribute;
+};
+
+/// The domain of a constrained triangulation, shared by cdt2d (Cdt2dOptions) and refine2d
+/// (Refine2dOptions): which triangles are kept, holes, regions and what to do where segments
+/// cross.
+struct Cdt2dDomainOptions : RunOptions {
   /// Which triangles are kept: the whole hull, or only those enclosed by segments.
   enum class Domain {
     ConvexHull,  ///< every triangle of the convex hull (less the holes)
@@ -57,6 +73,11 @@ struct Cdt2dOptions : RunOptions {
   /// segment are removed. A point outside the convex hull removes nothing.
   std::vector<Point2> holes;
   std::vector<Cdt2dRegion> regions;
+};
+
+/// How cdt2d and cdt2d_device run: the domain (Cdt2dDomainOptions) and the caller's output arrays.
+struct Cdt2dOptions : Cdt2dDomainOptions {
+  Cdt2dBuffers into;  ///< optional
 };
 
 /// The result of cdt2d: triangles, neighbours and the segment each edge lies on, in host memory.
@@ -106,7 +127,8 @@ struct ConstrainedTriangulation2d {
 ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
                                  std::int64_t nseg, const Cdt2dOptions& opt = {});
 
-/// The result of cdt2d_device: arrays in device memory (host memory on the CPU executor).
+/// The result of cdt2d_device: arrays in device memory (host memory on the CPU executor). An
+/// array written into the caller's (Cdt2dOptions::into) is null here.
 struct DeviceConstrainedTriangulation2d {
   std::int64_t num_points = 0, num_triangles = 0, num_duplicates = 0;
   std::shared_ptr<std::int32_t> triangles, neighbors, segment_of;  ///< 3 * num_triangles each

@@ -49,8 +49,8 @@ struct AreaGrid {
 };
 
 /// How refine2d meshes a domain: the smallest angle, the largest area (a number, per region or a
-/// function), the Steiner point limit, and the domain's options (Cdt2dOptions).
-struct Refine2dOptions : Cdt2dOptions {
+/// function), the Steiner point limit, and the domain's options (Cdt2dDomainOptions).
+struct Refine2dOptions : Cdt2dDomainOptions {
   /// Degrees, 0 < min_angle <= kRefineMaxAngle; 0 turns the angle bound off (-a alone).
   double min_angle = 20;
   /// The largest triangle area anywhere (0: none); per region, Cdt2dRegion::max_area.

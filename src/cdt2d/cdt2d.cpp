@@ -50,6 +50,15 @@ std::string crossing_message(std::int32_t s1, std::int32_t s2, bool split) {
                   "--split on the command line");
 }
 
+// The caller's arrays need lengths known before the run; a split adds points found during it.
+void refuse_into_with_split(const Cdt2dBuffers& into) {
+  if (into.triangles || into.neighbors || into.segment_of || into.duplicate_of || into.attribute)
+    throw Error(ErrorCode::InvalidArgument,
+                "cdt2d: Cdt2dOptions::into cannot be used with Crossings::Split (the points it "
+                "adds, and so the outputs' lengths, are known only after the run): leave into "
+                "empty and read the result's arrays");
+}
+
 void set_counters(Stats& st, std::int64_t nseg, const cdt::RecoveryCounts& rc,
                   const cdt::SplitSegments& sp) {
   st.counters["segments"] = nseg;
@@ -71,6 +80,7 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
   ConstrainedTriangulation2d r;
   const Backend b = resolve_backend(opt.backend, opt.device);
   const bool split = opt.crossings == Cdt2dOptions::Crossings::Split;
+  if (split) refuse_into_with_split(opt.into);
   cdt::RecoveryCounts rc;
   cdt::SplitSegments sp;
   std::vector<std::pair<std::int32_t, std::int32_t>> known;  // crossings the recovery met
@@ -104,7 +114,6 @@ ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::in
     r.new_point_segments.assign(sp.point_segments.begin(), sp.point_segments.end());
     count_dropped(segments, nseg, r.duplicate_of.data(), r);
   }
-  r.num_triangles = std::int64_t(r.triangles.size() / 3);
   set_counters(r.stats, nseg, rc, sp);
   return r;
 }
@@ -120,22 +129,12 @@ DeviceConstrainedTriangulation2d cdt2d_device(const double* device_xy, std::int6
   DeviceConstrainedTriangulation2d r;
   const Backend b = device_entry_backend(opt.backend, opt.device, "cdt2d_device");
   cdt::RecoveryCounts rc;
-  cdt::DeviceResult d;
-  GG_ENTRIES(b, cdt).triangulate_device(device_xy, n, device_segments, nseg, opt, d, r.stats, rc);
+  GG_ENTRIES(b, cdt).triangulate_device(device_xy, n, device_segments, nseg, opt, r, rc);
   if (rc.cross_a >= 0)
     throw Error(ErrorCode::InvalidInput, crossing_message(rc.cross_a, rc.cross_b, false));
   r.backend = r.stats.backend = b;
-  r.num_points = n;
-  r.num_triangles = d.count;
-  r.num_duplicates = d.num_duplicates;
-  r.triangles = std::move(d.triangles);
-  r.neighbors = std::move(d.neighbors);
-  r.segment_of = std::move(d.segment_of);
-  r.duplicate_of = std::move(d.duplicate_of);
-  r.attribute = std::move(d.attribute);
   r.zero_length_segments = rc.zero_length;
   r.repeated_segments = rc.repeated;
-  r.removed_triangles = d.removed;
   set_counters(r.stats, nseg, rc, cdt::SplitSegments{});
   return r;
 }

@@ -208,7 +208,7 @@ SplitSegments split_crossings(const double* xy, std::int64_t n, const std::int32
 }
 
 void check_input(std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
-                 const Cdt2dOptions& opt) {
+                 const Cdt2dDomainOptions& opt) {
   del2d::check_count(n);
   if (nseg < 0 || (nseg > 0 && !segments))
     throw Error(ErrorCode::InvalidArgument,

@@ -38,7 +38,7 @@ SplitSegments split_crossings(const double* xy, std::int64_t n, const std::int32
 // pointer, finite hole and region points); the host entries then check the indices
 // (check_segment_indices), the device entries check them on the device.
 void check_input(std::int64_t n, const std::int32_t* segments, std::int64_t nseg,
-                 const Cdt2dOptions& opt);
+                 const Cdt2dDomainOptions& opt);
 
 // Throws Error(InvalidInput) naming the first of the m segments (index pairs, host memory) that
 // names a point outside 0..n-1.

@@ -69,6 +69,17 @@ Placed<Exec, T> place(Exec& ex, typename Exec::template Buffer<T>& buf, std::int
   return {};
 }
 
+// Device entry, for an array already handed over (shared, e.g. another capability's result):
+// its first `count` elements copied to the caller's array, where given (queued on the executor,
+// as place()'s). Returns whether it was: the caller drops the array after ex.sync().
+template <class Exec, class T>
+bool place_shared(Exec& ex, const std::shared_ptr<T>& arr, std::int64_t count,
+                  const OutBuffer<T>& into) {
+  if (!into) return false;
+  if (count > 0) ex.copy(arr.get(), count, into.data);
+  return true;
+}
+
 }  // namespace gpugeom::deliver
 
 namespace gpugeom {

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 
+#include "../common/caller_arrays.hpp"
 #include "cdt2d_cases.hpp"
 #include "gpugeom/delaunay2d.hpp"
 
@@ -240,6 +241,65 @@ TEST(Cdt2d, DeviceEntryOnTheCpu) {
   EXPECT_THROW(cdt2d_device(xy.data(), 4, x.data(), 2, o), Error);
   o.crossings = Cdt2dOptions::Crossings::Split;
   EXPECT_THROW(cdt2d_device(xy.data(), 4, x.data(), 2, o), Error);
+}
+
+// Into the caller's arrays (Cdt2dOptions::into), from both entries: the same arrays as the
+// library's, the result's own left empty; an array too short refused once the count is known,
+// with nothing written anywhere; Crossings::Split refuses them.
+TEST(Cdt2d, IntoCallersArrays) {
+  using gg_test::CallerArray;
+  const auto g = gg_cdt::contour_pslg(8, 500, 2000, 3);
+  const std::int64_t n = std::int64_t(g.xy.size() / 2), m = std::int64_t(g.segs.size() / 2);
+  Cdt2dOptions o;
+  o.backend = Backend::Cpu;
+  o.domain = Cdt2dOptions::Domain::Enclosed;
+  o.regions = {{0.0, 0.5, 3.0}};
+  const auto ref = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
+  const std::int64_t nt = ref.num_triangles, cap = 3 * delaunay2d_max_triangles(n);
+  ASSERT_GT(nt, 0);
+  for (bool device : {false, true}) {
+    SCOPED_TRACE(device ? "device entry" : "host entry");
+    CallerArray<std::int32_t> t(cap, 7), nb(cap, 7), sg(cap, 7), dup(n, 7);
+    CallerArray<double> at(cap / 3, 7);
+    auto mine = o;
+    mine.into = {t.buf(), nb.buf(), sg.buf(), dup.buf(), at.buf()};
+    std::int64_t count = 0;
+    if (device) {
+      const auto r = cdt2d_device(g.xy.data(), n, g.segs.data(), m, mine);
+      EXPECT_FALSE(r.triangles || r.neighbors || r.segment_of || r.duplicate_of || r.attribute);
+      count = r.num_triangles;
+    } else {
+      const auto r = cdt2d(g.xy.data(), n, g.segs.data(), m, mine);
+      EXPECT_TRUE(r.triangles.empty() && r.neighbors.empty() && r.segment_of.empty() &&
+                  r.duplicate_of.empty() && r.attribute.empty());
+      EXPECT_EQ(r.removed_triangles, ref.removed_triangles);
+      count = r.num_triangles;
+    }
+    ASSERT_EQ(count, nt);
+    EXPECT_EQ(gg_test::host_prefix(t.v.data(), 3 * nt), ref.triangles);
+    EXPECT_EQ(gg_test::host_prefix(nb.v.data(), 3 * nt), ref.neighbors);
+    EXPECT_EQ(gg_test::host_prefix(sg.v.data(), 3 * nt), ref.segment_of);
+    EXPECT_EQ(gg_test::host_prefix(at.v.data(), nt), ref.attribute);
+    EXPECT_EQ(dup.v, ref.duplicate_of);
+    // One array too short: refused, and nothing written.
+    CallerArray<std::int32_t> t2(cap, 7), sg2(3 * nt - 1, 7);
+    mine.into = {t2.buf(), {}, sg2.buf(), {}, {}};
+    gg_test::expect_refused(
+        [&] {
+          device ? (void)cdt2d_device(g.xy.data(), n, g.segs.data(), m, mine)
+                 : (void)cdt2d(g.xy.data(), n, g.segs.data(), m, mine);
+        },
+        "into.segment_of holds " + std::to_string(3 * nt - 1) +
+            " elements; this result needs at least " + std::to_string(3 * nt));
+    EXPECT_TRUE(t2.untouched(7) && sg2.untouched(7));
+  }
+  auto split = o;
+  split.crossings = Cdt2dOptions::Crossings::Split;
+  CallerArray<std::int32_t> t(cap, 7);
+  split.into.triangles = t.buf();
+  gg_test::expect_refused([&] { (void)cdt2d(g.xy.data(), n, g.segs.data(), m, split); },
+                          "Crossings::Split");
+  EXPECT_TRUE(t.untouched(7));
 }
 
 // An L-shaped domain (its hull a pentagon of area 87.5, the L 75) with a 2x2 square hole and a

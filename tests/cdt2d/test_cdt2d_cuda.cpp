@@ -114,3 +114,45 @@ TEST(CudaCdt2d, DeviceEntry) {
                             static_cast<const std::int32_t*>(dbad.data()), m, o),
                Error);
 }
+
+// Into the caller's device arrays (Cdt2dOptions::into) from the device entry, and into host
+// arrays from the host entry, on CUDA: the same arrays as the library's.
+TEST(CudaCdt2d, IntoCallersArrays) {
+  const auto g = gg_cdt::random_pslg(20000, 3000, 7);
+  const std::int64_t n = std::int64_t(g.xy.size() / 2), m = std::int64_t(g.segs.size() / 2);
+  Cdt2dOptions o;
+  o.backend = Backend::Cuda;
+  const auto ref = cdt2d(g.xy.data(), n, g.segs.data(), m, o);
+  const std::int64_t nt = ref.num_triangles, cap = 3 * delaunay2d_max_triangles(n);
+  std::vector<std::int32_t> ht(std::size_t(cap), 7), hs(std::size_t(cap), 7);
+  auto mine = o;
+  mine.into.triangles = {ht.data(), cap};
+  mine.into.segment_of = {hs.data(), cap};
+  const auto h = cdt2d(g.xy.data(), n, g.segs.data(), m, mine);
+  EXPECT_TRUE(h.triangles.empty() && h.segment_of.empty());
+  EXPECT_EQ(h.neighbors, ref.neighbors);
+  ASSERT_EQ(h.num_triangles, nt);
+  EXPECT_EQ(std::vector<std::int32_t>(ht.begin(), ht.begin() + 3 * nt), ref.triangles);
+  EXPECT_EQ(std::vector<std::int32_t>(hs.begin(), hs.begin() + 3 * nt), ref.segment_of);
+
+  const gg_test::DeviceCopy dxy(g.xy), dsegs(g.segs);
+  std::int32_t *t = nullptr, *d = nullptr;
+  ASSERT_EQ(cudaMalloc(&t, cap * 4), cudaSuccess);
+  ASSERT_EQ(cudaMalloc(&d, n * 4), cudaSuccess);
+  auto dev = o;
+  dev.into.triangles = {t, cap};
+  dev.into.duplicate_of = {d, n};
+  const auto r =
+      cdt2d_device(dxy.doubles(), n, static_cast<const std::int32_t*>(dsegs.data()), m, dev);
+  EXPECT_FALSE(r.triangles || r.duplicate_of);
+  ASSERT_TRUE(r.neighbors && r.segment_of);
+  ASSERT_EQ(r.num_triangles, nt);
+  std::vector<std::int32_t> t2(std::size_t(3 * nt)), d2(std::size_t(n));
+  ASSERT_EQ(cudaMemcpy(t2.data(), t, t2.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(d2.data(), d, d2.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
+  EXPECT_EQ(t2, ref.triangles);
+  EXPECT_EQ(d2, ref.duplicate_of);
+  EXPECT_EQ(gg_test::from_device(r.segment_of, 3 * nt), ref.segment_of);
+  cudaFree(t);
+  cudaFree(d);
+}

@@ -6,8 +6,9 @@
 // executor's memory: the Delaunay triangulation (delaunay2d's device entry), the segments
 // recovered, and the domain where asked for. Stops early when two segments cross (rc.cross_a).
 inline void triangulate_core(Exec& ex, const double* pts, std::int64_t n, const std::int32_t* sp,
-                             std::int64_t nseg, const Cdt2dOptions& opt, DeviceResult& out,
-                             Stats& st, RecoveryCounts& rc) {
+                             std::int64_t nseg, const Cdt2dOptions& opt,
+                             DeviceConstrainedTriangulation2d& out, RecoveryCounts& rc) {
+  Stats& st = out.stats;
   const auto t0 = Clock::now();
   Delaunay2dOptions dopt;
   static_cast<RunOptions&>(dopt) = opt;
@@ -26,17 +27,18 @@ inline void triangulate_core(Exec& ex, const double* pts, std::int64_t n, const 
   ex.sync();
   if (rc.cross_a >= 0) return;
   st.phase_ms.push_back({"segments", ms_since(t1)});
+  out.num_points = n;
   out.num_duplicates = dt.num_duplicates;
   out.duplicate_of = dt.duplicate_of;
-  out.count = nt;
+  out.num_triangles = nt;
   if (opt.domain != Cdt2dOptions::Domain::ConvexHull || !opt.holes.empty() ||
       !opt.regions.empty()) {
     // Holes, the outside and regions: the kept triangles compacted.
     const auto t3 = Clock::now();
     DomainResult dom = apply_domain(ex, m, nt, opt);
     ex.sync();
-    out.count = dom.kept;
-    out.removed = nt - dom.kept;
+    out.num_triangles = dom.kept;
+    out.removed_triangles = nt - dom.kept;
     out.triangles = dom.tri.hand_over();
     out.neighbors = dom.nbr.hand_over();
     out.segment_of = dom.seg.hand_over();
@@ -49,23 +51,37 @@ inline void triangulate_core(Exec& ex, const double* pts, std::int64_t n, const 
   }
 }
 
-// Host points and segments in, host arrays out.
+// The outputs' lengths, checked against the caller's arrays before any is written.
+inline void check_into(const Cdt2dBuffers& into, const DeviceConstrainedTriangulation2d& d) {
+  deliver::check(into.triangles, 3 * d.num_triangles, "triangles");
+  deliver::check(into.neighbors, 3 * d.num_triangles, "neighbors");
+  deliver::check(into.segment_of, 3 * d.num_triangles, "segment_of");
+  deliver::check(into.duplicate_of, d.num_points, "duplicate_of");
+  if (d.attribute) deliver::check(into.attribute, d.num_triangles, "attribute");
+}
+
+// Host points and segments in, host arrays out (the caller's, opt.into, or the result's).
 inline void triangulate_impl(const double* xy, std::int64_t n, const std::int32_t* segments,
                              std::int64_t nseg, const Cdt2dOptions& opt,
                              ConstrainedTriangulation2d& r, RecoveryCounts& rc) {
   Exec ex(opt);
+  const Cdt2dBuffers& into = opt.into;
   // On the GPU the host is idle meanwhile: the result arrays are sized for the most triangles n
   // points can have (cut to the count later, keeping the pages) and faulted in by host threads,
   // so that the copy back runs at the transfer's rate (as delaunay2d's host entry does).
   detail::Prefault pf;
   if constexpr (Exec::backend == Backend::Cuda) {
     const std::size_t bound = 3 * std::size_t(delaunay2d_max_triangles(n));
-    for (HostVector<std::int32_t>* v : {&r.triangles, &r.neighbors, &r.segment_of}) {
-      v->resize(bound);
-      pf.add(v->data(), bound * sizeof(std::int32_t));
-    }
-    r.duplicate_of.resize(std::size_t(n));
-    pf.add(r.duplicate_of.data(), std::size_t(n) * sizeof(std::int32_t));
+    auto size = [&](HostVector<std::int32_t>& v, const OutBuffer<std::int32_t>& mine,
+                    std::size_t len) {
+      if (mine) return;
+      v.resize(len);
+      pf.add(v.data(), len * sizeof(std::int32_t));
+    };
+    size(r.triangles, into.triangles, bound);
+    size(r.neighbors, into.neighbors, bound);
+    size(r.segment_of, into.segment_of, bound);
+    size(r.duplicate_of, into.duplicate_of, std::size_t(n));
     pf.start();
   }
   // The points and segments where the executor reads them (the CPU executor reads the
@@ -82,29 +98,49 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const std::int32_
     ex.from_host(segments, 2 * nseg, dsegs.data());
     sp = dsegs.data();
   }
-  DeviceResult d;
-  triangulate_core(ex, pts, n, sp, nseg, opt, d, r.stats, rc);
+  DeviceConstrainedTriangulation2d d;
+  triangulate_core(ex, pts, n, sp, nseg, opt, d, rc);
+  r.stats = std::move(d.stats);
   if (rc.cross_a >= 0) return;
   const auto t2 = Clock::now();
   pf.wait();
   r.stats.phase_ms.push_back({"prefault_wait", ms_since(t2)});
-  deliver::to_host(ex, d.triangles.get(), 3 * d.count, OutBuffer<std::int32_t>{}, r.triangles);
-  deliver::to_host(ex, d.neighbors.get(), 3 * d.count, OutBuffer<std::int32_t>{}, r.neighbors);
-  deliver::to_host(ex, d.segment_of.get(), 3 * d.count, OutBuffer<std::int32_t>{}, r.segment_of);
+  check_into(into, d);
+  const std::int64_t c3 = 3 * d.num_triangles;
+  deliver::to_host(ex, d.triangles.get(), c3, into.triangles, r.triangles);
+  deliver::to_host(ex, d.neighbors.get(), c3, into.neighbors, r.neighbors);
+  deliver::to_host(ex, d.segment_of.get(), c3, into.segment_of, r.segment_of);
   if (d.attribute)
-    deliver::to_host(ex, d.attribute.get(), d.count, OutBuffer<double>{}, r.attribute);
-  deliver::to_host(ex, d.duplicate_of.get(), n, OutBuffer<std::int32_t>{}, r.duplicate_of);
+    deliver::to_host(ex, d.attribute.get(), d.num_triangles, into.attribute, r.attribute);
+  deliver::to_host(ex, d.duplicate_of.get(), n, into.duplicate_of, r.duplicate_of);
+  r.num_triangles = d.num_triangles;
   r.num_duplicates = d.num_duplicates;
-  r.removed_triangles = d.removed;
+  r.removed_triangles = d.removed_triangles;
   r.stats.phase_ms.push_back({"to_host", ms_since(t2)});
 }
 
-// Points and segments in the executor's memory, the result left there. Segment indices are
-// checked on the executor.
+// Points and segments in the executor's memory, the result left there (or in the caller's
+// arrays of that memory, opt.into). Segment indices are checked on the executor.
 inline void triangulate_device_impl(const double* xy, std::int64_t n, const std::int32_t* segments,
-                                    std::int64_t nseg, const Cdt2dOptions& opt, DeviceResult& d,
-                                    Stats& st, RecoveryCounts& rc) {
+                                    std::int64_t nseg, const Cdt2dOptions& opt,
+                                    DeviceConstrainedTriangulation2d& r, RecoveryCounts& rc) {
   Exec ex(opt);
   check_segment_indices(ex, segments, nseg, n);
-  triangulate_core(ex, xy, n, segments, nseg, opt, d, st, rc);
+  triangulate_core(ex, xy, n, segments, nseg, opt, r, rc);
+  if (rc.cross_a >= 0) return;
+  const Cdt2dBuffers& into = opt.into;
+  check_into(into, r);
+  const std::int64_t c3 = 3 * r.num_triangles;
+  const bool t = deliver::place_shared(ex, r.triangles, c3, into.triangles);
+  const bool nb = deliver::place_shared(ex, r.neighbors, c3, into.neighbors);
+  const bool sg = deliver::place_shared(ex, r.segment_of, c3, into.segment_of);
+  const bool dp = deliver::place_shared(ex, r.duplicate_of, n, into.duplicate_of);
+  const bool at =
+      r.attribute && deliver::place_shared(ex, r.attribute, r.num_triangles, into.attribute);
+  ex.sync();  // the caller may read them now; the library's copies go
+  if (t) r.triangles.reset();
+  if (nb) r.neighbors.reset();
+  if (sg) r.segment_of.reset();
+  if (dp) r.duplicate_of.reset();
+  if (at) r.attribute.reset();
 }

@@ -86,12 +86,13 @@ inline void reserve(Exec& ex, Kept& K, std::int64_t need_p, std::int64_t need_t,
 // The kept mesh from a constrained triangulation in the executor's memory (its marks base
 // segment indices), with the n points: each marked edge becomes a subsegment (numbered in the
 // order of the half-edges of the triangle with the lower index), and every triangle is dirty.
-inline Kept kept_from(Exec& ex, const double* xy, std::int64_t n, const cdt::DeviceResult& dr) {
+inline Kept kept_from(Exec& ex, const double* xy, std::int64_t n,
+                      const DeviceConstrainedTriangulation2d& dr) {
   Kept K;
   K.has_attr = bool(dr.attribute);
   K.broken = ex.template alloc<std::int64_t>(1);
   ex.fill(K.broken.data(), 1, std::int64_t(0));
-  const std::int64_t nt = dr.count, ne = 3 * nt;
+  const std::int64_t nt = dr.num_triangles, ne = 3 * nt;
   const std::int32_t *G = dr.segment_of.get(), *N = dr.neighbors.get();
   auto index = ex.template alloc<std::int32_t>(std::size_t(ne) + 1);
   std::int32_t* I = index.data();

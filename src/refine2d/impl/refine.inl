@@ -97,13 +97,14 @@ inline void finish(Exec& ex, const Kept& K, const std::int32_t* dup, std::int64_
 
 // The hull's boundary edges on no segment, appended as new base segments (Triangle's -c:
 // without Domain::Enclosed the convex hull bounds the mesh).
-inline void add_boundary(Exec& ex, const cdt::DeviceResult& dr, std::vector<std::int32_t>& base,
+inline void add_boundary(Exec& ex, const DeviceConstrainedTriangulation2d& dr,
+                         std::vector<std::int32_t>& base,
                          std::vector<std::int32_t>& final_of_base) {
-  const std::size_t nt = std::size_t(dr.count);
+  const std::size_t nt = std::size_t(dr.num_triangles);
   std::vector<std::int32_t> tri(3 * nt), nbr(3 * nt), seg(3 * nt);
-  ex.to_host(dr.triangles.get(), 3 * dr.count, tri.data());
-  ex.to_host(dr.neighbors.get(), 3 * dr.count, nbr.data());
-  ex.to_host(dr.segment_of.get(), 3 * dr.count, seg.data());
+  ex.to_host(dr.triangles.get(), 3 * dr.num_triangles, tri.data());
+  ex.to_host(dr.neighbors.get(), 3 * dr.num_triangles, nbr.data());
+  ex.to_host(dr.segment_of.get(), 3 * dr.num_triangles, seg.data());
   for (std::size_t e = 0; e < tri.size(); ++e) {
     if (nbr[e] >= 0 || seg[e] >= 0) continue;
     const std::size_t t = e / 3, k = e % 3;
@@ -215,10 +216,9 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     into += std::chrono::duration<double, std::milli>(now - tick).count();
     tick = now;
   };
-  cdt::DeviceResult dr;
-  Stats cst;
+  DeviceConstrainedTriangulation2d dr;
   rc = {};
-  cdt_impl::entries.triangulate_device(xy, n, segs, nseg, copt, dr, cst, rc);
+  cdt_impl::entries.triangulate_device(xy, n, segs, nseg, copt, dr, rc);
   if (rc.cross_a >= 0) return;
   if (opt.domain == Cdt2dOptions::Domain::ConvexHull) {
     add_boundary(ex, dr, base, final_of_base);
@@ -228,7 +228,7 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
     dr = {};
     rc = {};
     cdt_impl::entries.triangulate_device(xy, n, dsegs.data(), std::int64_t(base.size() / 2), copt,
-                                         dr, cst, rc);
+                                         dr, rc);
     if (rc.cross_a >= 0) return;
   }
   Kept K = kept_from(ex, xy, n, dr);
@@ -320,7 +320,7 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
       out.tally.rounds = round + 1;
       find_bad(ex, m, nullptr, m.nt, b, tm, cn, d, K.dirty.data());
       lap(tl.decide_ms);
-      finish(ex, K, dr.duplicate_of.get(), n, dr.removed, d, final_of_base, opt, out);
+      finish(ex, K, dr.duplicate_of.get(), n, dr.removed_triangles, d, final_of_base, opt, out);
       ex.sync();
       lap(tl.output_ms);
       return;
