@@ -7,6 +7,7 @@
 
 #include "../common/device_arrays.hpp"
 #include "cdt2d_cases.hpp"
+#include "gpugeom/delaunay2d.hpp"
 
 using namespace gpugeom;
 
@@ -147,7 +148,7 @@ TEST(CudaCdt2d, IntoCallersArrays) {
   EXPECT_FALSE(r.triangles || r.duplicate_of);
   ASSERT_TRUE(r.neighbors && r.segment_of);
   ASSERT_EQ(r.num_triangles, nt);
-  std::vector<std::int32_t> t2(std::size_t(3 * nt)), d2(std::size_t(n));
+  std::vector<std::int32_t> t2(static_cast<std::size_t>(3 * nt)), d2(static_cast<std::size_t>(n));
   ASSERT_EQ(cudaMemcpy(t2.data(), t, t2.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
   ASSERT_EQ(cudaMemcpy(d2.data(), d, d2.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
   EXPECT_EQ(t2, ref.triangles);
