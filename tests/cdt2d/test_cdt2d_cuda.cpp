@@ -44,8 +44,8 @@ TEST(CudaCdt2d, SameAsCpu) {
     gg_cdt::expect_cdt(g, gpu);
     EXPECT_EQ(gpu.stats.backend, Backend::Cuda) << g.name;
     std::printf(
-        "%s: %zu triangles, %lld segments (%lld recovered, %lld cavity triangles, %lld rounds)",
-        g.name.c_str(), gpu.num_triangles, (long long)m,
+        "%s: %lld triangles, %lld segments (%lld recovered, %lld cavity triangles, %lld rounds)",
+        g.name.c_str(), (long long)gpu.num_triangles, (long long)m,
         (long long)gpu.stats.counters.at("segments_recovered"),
         (long long)gpu.stats.counters.at("cavity_triangles"),
         (long long)gpu.stats.counters.at("recovery_rounds"));
@@ -83,7 +83,7 @@ TEST(CudaCdt2d, DomainSameAsCpu) {
   EXPECT_GT(gpu.removed_triangles, 0);
   EXPECT_EQ(gpu.removed_triangles, cpu.removed_triangles);
   EXPECT_EQ(gpu.attribute, cpu.attribute);
-  std::printf("contour domain: %zu kept, %lld removed, phases:", gpu.num_triangles,
+  std::printf("contour domain: %lld kept, %lld removed, phases:", (long long)gpu.num_triangles,
               (long long)gpu.removed_triangles);
   for (const auto& ph : gpu.stats.phase_ms) std::printf(" %s %.1f ms", ph.first.c_str(), ph.second);
   std::printf("\n");
