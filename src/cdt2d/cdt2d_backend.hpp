@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "exec/dispatch.hpp"
 #include "gpugeom/cdt2d.hpp"
 
 namespace gpugeom::cdt {
@@ -30,11 +31,6 @@ struct Entries {
                              std::int64_t nseg, const Cdt2dOptions& opt,
                              DeviceConstrainedTriangulation2d& r, RecoveryCounts& rc);
 };
-namespace cpu_impl {
-extern const Entries entries;
-}
-namespace cuda_impl {
-extern const Entries entries;
-}
+GG_DECLARE_TABLE(Entries, entries)
 
 }  // namespace gpugeom::cdt

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "edt/edt_common.hpp"
+#include "exec/dispatch.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/cvd.hpp"
 #include "gpugeom/host_vector.hpp"
@@ -62,11 +63,6 @@ struct Output {
 struct Entries {
   void (*lloyd)(const Request& rq, Output& out, Stats& stats);
 };
-namespace cpu_impl {
-extern const Entries entries;
-}
-namespace cuda_impl {
-extern const Entries entries;
-}
+GG_DECLARE_TABLE(Entries, entries)
 
 }  // namespace gpugeom::cvd

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "exec/dynamic_state.hpp"
+#include "exec/point_entries.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/host_vector.hpp"
@@ -17,9 +18,7 @@ using Output = Triangulation2d;
 using DeviceOutput = DeviceTriangulation2d;
 using DeviceVoronoiOutput = DeviceVoronoi2d;
 
-// triangulate: xy holds n points on the host; triangulate_device: n points in the executor's
-// memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
-// triangulate_digital: Method::Digital from host points (digital/digital.hpp says what it
+// digital: Method::Digital from host points (digital/digital.hpp says what it
 // reports); the points go to the executor once and every phase's arrays stay there. It starts
 // from a triangulation (run_from_start in impl/triangulate.inl; src/testing enters that from
 // host arrays).
@@ -28,15 +27,11 @@ void check_count(std::int64_t n);
 // DynamicDelaunay2d's state on one executor (impl/dynamic.inl).
 using Kept = detail::KeptState<Output, DeviceOutput>;
 
-// One executor's entries (exec/dispatch.hpp): impl/entries.inl fills them for each executor.
-struct Entries {
-  std::unique_ptr<Kept> (*make_kept)(const RunOptions& run);
-  void (*triangulate)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
-                      Stats& stats);
-  void (*triangulate_digital)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
-                              Output& out, Stats& stats);
-  void (*triangulate_device)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
-                             DeviceOutput& out, Stats& stats);
+// One executor's entries (exec/dispatch.hpp, exec/point_entries.hpp): impl/entries.inl fills
+// them for each executor.
+struct Entries : detail::PointEntries<Delaunay2dOptions, Output, DeviceOutput, Kept> {
+  void (*digital)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
+                  Stats& stats);
 };
 
 // The Voronoi diagram's entries on one executor (impl/voronoi.inl, its own unit).
@@ -52,13 +47,7 @@ struct VoronoiEntries {
                     Triangulation2d* tri, Stats& stats);
 };
 
-namespace cpu_impl {
-extern const Entries entries;
-extern const VoronoiEntries voronoi_entries;
-}  // namespace cpu_impl
-namespace cuda_impl {
-extern const Entries entries;
-extern const VoronoiEntries voronoi_entries;
-}  // namespace cuda_impl
+GG_DECLARE_TABLE(Entries, entries)
+GG_DECLARE_TABLE(VoronoiEntries, voronoi_entries)
 
 }  // namespace gpugeom::del2d

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "base/point_count.hpp"
 #include "delaunay2d/del2d_backend.hpp"
 #include "delaunay2d/digital/digital.hpp"
 #include "exec/deliver.hpp"
@@ -17,14 +18,8 @@ namespace del2d {
 constexpr std::int64_t kMaxPoints = (std::int64_t(1) << 29) - 2;
 
 void check_count(std::int64_t n) {
-  if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
-  if (n > kMaxPoints)
-    throw Error(ErrorCode::InvalidInput, "too many points (" + std::to_string(n) + "): at most " +
-                                             std::to_string(kMaxPoints) + " per triangulation");
-  if (n < 3)
-    throw Error(ErrorCode::DegenerateInput,
-                "fewer than 3 points (" + std::to_string(n) +
-                    "): a triangulation needs at least 3 points not on one line");
+  detail::check_point_count(n, 3, kMaxPoints, "per triangulation",
+                            "a triangulation needs at least 3 points not on one line");
 }
 }  // namespace del2d
 using del2d::check_count;
@@ -35,13 +30,11 @@ std::int64_t delaunay2d_max_triangles(std::int64_t n) {
 
 Triangulation2d delaunay2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt) {
   check_count(n);
+  if (opt.method != Method::Digital) return detail::run_host_entry(GG_PICK(del2d), xy, n, opt);
   Triangulation2d r;
   const Backend b = resolve_backend(opt.backend, opt.device);
   r.stats.backend = b;
-  if (opt.method == Method::Digital)
-    del2d::digital::triangulate(xy, n, opt, b, r, r.stats);
-  else
-    GG_ENTRIES(b, del2d).triangulate(xy, n, opt, r, r.stats);
+  del2d::digital::triangulate(xy, n, opt, b, r, r.stats);
   return r;
 }
 
@@ -52,12 +45,7 @@ DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
     throw Error(ErrorCode::Unsupported,
                 "delaunay2d_device: Method::Digital runs from host points (call delaunay2d); "
                 "the device entry computes Method::Incremental (the same triangulation)");
-  DeviceTriangulation2d r;
-  const Backend b = device_entry_backend(opt.backend, opt.device, "delaunay2d_device");
-  r.backend = r.stats.backend = b;
-  r.num_points = n;
-  GG_ENTRIES(b, del2d).triangulate_device(device_xy, n, opt, r, r.stats);
-  return r;
+  return detail::run_device_entry(GG_PICK(del2d), device_xy, n, opt, "delaunay2d_device");
 }
 
 Triangulation2d delaunay2d(const std::vector<Point2>& pts, const Delaunay2dOptions& opt) {

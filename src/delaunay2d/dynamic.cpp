@@ -7,42 +7,17 @@
 
 namespace gpugeom {
 
-struct DynamicDelaunay2d::Impl : detail::DynamicImpl<del2d::Kept> {};
-
 namespace {
-void refuse_options(const Delaunay2dOptions& opt) {
-  if (opt.method == Method::Digital)
-    throw Error(ErrorCode::Unsupported,
-                "DynamicDelaunay2d: Method::Digital is not offered (Method::Incremental gives "
-                "the same triangulation)");
-  if (opt.into.triangles || opt.into.neighbors || opt.into.duplicate_of)
-    throw Error(ErrorCode::Unsupported,
-                "DynamicDelaunay2d: opt.into is not used; read the results with triangulation() "
-                "or device_triangulation()");
+void refuse_options(const Delaunay2dOptions& o) {
+  detail::refuse_dynamic_options(o, "DynamicDelaunay2d", "triangulation",
+                                 "triangulation() or device_triangulation()", o.into.triangles,
+                                 o.into.neighbors, o.into.duplicate_of);
 }
 }  // namespace
 
 GG_DYNAMIC_MEMBERS(DynamicDelaunay2d, del2d, Delaunay2dOptions)
 
-std::int64_t DynamicDelaunay2d::num_triangles() const {
-  return impl_->kept->simplices();
-}
-std::int64_t DynamicDelaunay2d::num_duplicates() const {
-  return impl_->kept->duplicates();
-}
-
-Triangulation2d DynamicDelaunay2d::triangulation() const {
-  Triangulation2d r;
-  impl_->kept->host_copy(r);
-  return impl_->with_stats(std::move(r));
-}
-
-DeviceTriangulation2d DynamicDelaunay2d::device_triangulation() const {
-  DeviceTriangulation2d r;
-  impl_->kept->device_copy(r);
-  r.num_points = impl_->kept->points();
-  r.backend = impl_->backend;
-  return impl_->with_stats(std::move(r));
-}
+GG_DYNAMIC_RESULTS(DynamicDelaunay2d, num_triangles, num_duplicates, duplicates, Triangulation2d,
+                   triangulation, DeviceTriangulation2d, device_triangulation)
 
 }  // namespace gpugeom

@@ -87,22 +87,9 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Delaunay2dOptions& o
 
 DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
                                  const DeviceTriangulation2d& tri, const RunOptions& run) {
-  if (tri.num_points != n)
-    throw Error(ErrorCode::InvalidArgument,
-                "the triangulation does not belong to these " + std::to_string(n) + " points");
-  if (!tri.triangles || !tri.neighbors || (!tri.duplicate_of && tri.num_duplicates))
-    throw Error(ErrorCode::InvalidArgument,
-                "the triangulation's triangles, neighbours or duplicate map are not in it (were "
-                "they written into the caller's arrays, Delaunay2dOptions::into?): the Voronoi "
-                "diagram needs them there");
-  DeviceVoronoi2d v;
-  const std::int32_t* dup = tri.duplicate_of.get();  // (a kept one's may mark removed points)
-  GG_TABLE(tri.backend, del2d, voronoi_entries)
-      .voronoi(device_xy, n, tri.triangles.get(), tri.neighbors.get(), dup, tri.num_triangles, run,
-               v, v.stats, nullptr);
-  v.num_points = n;
-  v.backend = v.stats.backend = tri.backend;
-  return v;
+  return detail::run_device_voronoi<DeviceVoronoi2d>(
+      GG_TABLE(tri.backend, del2d, voronoi_entries), device_xy, n, tri, tri.triangles.get(),
+      tri.num_triangles, run, "triangulation", "triangles", "Delaunay2dOptions");
 }
 
 ClippedCells clip_voronoi_cells(const double* xy, std::int64_t n, const Triangulation2d& tri,

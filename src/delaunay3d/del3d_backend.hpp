@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "exec/dynamic_state.hpp"
+#include "exec/point_entries.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
 #include "gpugeom/delaunay3d.hpp"
@@ -19,27 +20,15 @@ using ProgressFn = std::function<void(const Delaunay3dProgress&)>;
 using Output = Triangulation3d;
 using DeviceOutput = DeviceTriangulation3d;
 
-// triangulate: xyz holds n points on the host; triangulate_device: n points in the executor's
-// memory. Both validate the coordinates on the executor (throw Error) and honour opt.into.
 // Refuses counts no tetrahedralisation can be made of, or past the store's reach (Error).
 void check_count(std::int64_t n);
 
 // DynamicDelaunay3d's state on one executor (impl/dynamic.inl).
 using Kept = detail::KeptState<Output, DeviceOutput>;
 
-// One executor's entries (exec/dispatch.hpp): impl/entries.inl fills them for each executor.
-struct Entries {
-  std::unique_ptr<Kept> (*make_kept)(const Delaunay3dOptions& opt);
-  void (*triangulate)(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Output& out,
-                      Stats& stats);
-  void (*triangulate_device)(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
-                             DeviceOutput& out, Stats& stats);
-};
-namespace cpu_impl {
-extern const Entries entries;
-}
-namespace cuda_impl {
-extern const Entries entries;
-}
+// One executor's entries (exec/dispatch.hpp, exec/point_entries.hpp): impl/entries.inl fills
+// them for each executor.
+using Entries = detail::PointEntries<Delaunay3dOptions, Output, DeviceOutput, Kept>;
+GG_DECLARE_TABLE(Entries, entries)
 
 }  // namespace gpugeom::del3d

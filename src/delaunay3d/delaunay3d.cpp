@@ -4,6 +4,7 @@
 #include <string>
 
 #include "base/method_grid.hpp"
+#include "base/point_count.hpp"
 #include "delaunay3d/del3d_backend.hpp"
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
@@ -17,17 +18,10 @@ namespace del3d {
 constexpr std::int64_t kMaxPoints = ((std::int64_t(1) << 30) - 1) * 2 / 15;
 
 void check_count(std::int64_t n) {
-  if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
-  if (n > kMaxPoints)
-    throw Error(ErrorCode::InvalidInput, "too many points (" + std::to_string(n) + "): at most " +
-                                             std::to_string(kMaxPoints) +
-                                             " per 3D triangulation (the 2^30 - 1 "
-                                             "tetrahedra its 32-bit neighbour encoding "
-                                             "addresses)");
-  if (n < 4)
-    throw Error(ErrorCode::DegenerateInput,
-                "fewer than 4 points (" + std::to_string(n) +
-                    "): a 3D Delaunay triangulation needs 4 points not on one plane");
+  detail::check_point_count(n, 4, kMaxPoints,
+                            "per 3D triangulation (the 2^30 - 1 tetrahedra its 32-bit neighbour "
+                            "encoding addresses)",
+                            "a 3D Delaunay triangulation needs 4 points not on one plane");
 }
 
 }  // namespace del3d
@@ -46,23 +40,14 @@ void check_method(const Delaunay3dOptions& opt) {
 Triangulation3d delaunay3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt) {
   check_count(n);
   check_method(opt);
-  const Backend b = resolve_backend(opt.backend, opt.device);
-  Triangulation3d r;
-  r.stats.backend = b;
-  GG_ENTRIES(b, del3d).triangulate(xyz, n, opt, r, r.stats);
-  return r;
+  return detail::run_host_entry(GG_PICK(del3d), xyz, n, opt);
 }
 
 DeviceTriangulation3d delaunay3d_device(const double* device_xyz, std::int64_t n,
                                         const Delaunay3dOptions& opt) {
   check_count(n);
   check_method(opt);
-  const Backend b = device_entry_backend(opt.backend, opt.device, "delaunay3d_device");
-  DeviceTriangulation3d r;
-  r.backend = r.stats.backend = b;
-  r.num_points = n;
-  GG_ENTRIES(b, del3d).triangulate_device(device_xyz, n, opt, r, r.stats);
-  return r;
+  return detail::run_device_entry(GG_PICK(del3d), device_xyz, n, opt, "delaunay3d_device");
 }
 
 Triangulation3d delaunay3d(const std::vector<Point3>& pts, const Delaunay3dOptions& opt) {

@@ -53,22 +53,9 @@ Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& 
 
 DeviceVoronoi3d voronoi3d_device(const double* device_xyz, std::int64_t n,
                                  const DeviceTriangulation3d& tri, const RunOptions& run) {
-  if (tri.num_points != n)
-    throw Error(ErrorCode::InvalidArgument,
-                "the tetrahedralisation does not belong to these " + std::to_string(n) + " points");
-  if (!tri.tetrahedra || !tri.neighbors || (!tri.duplicate_of && tri.num_duplicates))
-    throw Error(ErrorCode::InvalidArgument,
-                "the tetrahedralisation's tetrahedra, neighbours or duplicate map are not in it "
-                "(were they written into the caller's arrays, Delaunay3dOptions::into?): the "
-                "Voronoi diagram needs them there");
-  DeviceVoronoi3d v;
-  v.num_points = n;
-  v.backend = v.stats.backend = tri.backend;
-  const std::int32_t* dup = tri.duplicate_of.get();  // (a kept one's may mark removed points)
-  GG_TABLE(tri.backend, del3d, voronoi_entries)
-      .voronoi(device_xyz, n, tri.tetrahedra.get(), tri.neighbors.get(), dup, tri.num_tetrahedra,
-               run, v, v.stats, nullptr);
-  return v;
+  return detail::run_device_voronoi<DeviceVoronoi3d>(
+      GG_TABLE(tri.backend, del3d, voronoi_entries), device_xyz, n, tri, tri.tetrahedra.get(),
+      tri.num_tetrahedra, run, "tetrahedralisation", "tetrahedra", "Delaunay3dOptions");
 }
 
 }  // namespace gpugeom

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "exec/dispatch.hpp"
 #include "gpugeom/voronoi3d.hpp"
 #include "gpugeom/voronoi_cells.hpp"
 
@@ -27,11 +28,6 @@ struct VoronoiEntries {
   void (*cells)(const double* xyz, std::int64_t n, bool on_host, const VoronoiCellsOptions& opt,
                 DeviceVoronoiCells* dev, VoronoiCells* host);
 };
-namespace cpu_impl {
-extern const VoronoiEntries voronoi_entries;
-}
-namespace cuda_impl {
-extern const VoronoiEntries voronoi_entries;
-}
+GG_DECLARE_TABLE(VoronoiEntries, voronoi_entries)
 
 }  // namespace gpugeom::del3d

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "edt/edt_backend.hpp"
 #include "edt/entries.hpp"
@@ -263,17 +264,24 @@ void run_backend(Backend b, const edt::Request& rq, edt::Output& out, Stats& sta
   GG_ENTRIES(b, edt).run(rq, out, stats);
 }
 
+// The result's six arrays from the backend's (host or device) arrays of the same names.
+template <class R, class A, class B, class C, class D, class E>
+void take_arrays(R& r, A& sqdist_int, B& sqdist_real, C& dist32, D& dist64, E& features,
+                 E& labels) {
+  r.sqdist_int = std::move(sqdist_int);
+  r.sqdist_real = std::move(sqdist_real);
+  r.distance32 = std::move(dist32);
+  r.distance64 = std::move(dist64);
+  r.features = std::move(features);
+  r.labels = std::move(labels);
+}
+
 EdtResult finish(edt::Request& rq, const EdtOptions& opt, const std::vector<std::int64_t>& shape) {
   EdtResult r;
   prepare(rq, opt, shape, r.shape);
   edt::Output out;
   run_backend(resolve_backend(opt.backend, opt.device), rq, out, r.stats);
-  r.sqdist_int = std::move(out.sqdist_int);
-  r.sqdist_real = std::move(out.sqdist_real);
-  r.distance32 = std::move(out.dist32);
-  r.distance64 = std::move(out.dist64);
-  r.features = std::move(out.features);
-  r.labels = std::move(out.labels);
+  take_arrays(r, out.sqdist_int, out.sqdist_real, out.dist32, out.dist64, out.features, out.labels);
   return r;
 }
 
@@ -471,12 +479,8 @@ DeviceEdtResult distance_transform_device(const GridView& g, SiteRule rule, cons
   prepare(rq, o, shape, r.shape);
   edt::Output out;
   run_backend(b, rq, out, r.stats);
-  r.sqdist_int = std::move(out.dev_sqdist_int);
-  r.sqdist_real = std::move(out.dev_sqdist_real);
-  r.distance32 = std::move(out.dev_dist32);
-  r.distance64 = std::move(out.dev_dist64);
-  r.features = std::move(out.dev_features);
-  r.labels = std::move(out.dev_labels);
+  take_arrays(r, out.dev_sqdist_int, out.dev_sqdist_real, out.dev_dist32, out.dev_dist64,
+              out.dev_features, out.dev_labels);
   return r;
 }
 

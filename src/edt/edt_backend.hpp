@@ -4,9 +4,10 @@
 #include <memory>
 #include <vector>
 
-#include "exec/tuning.hpp"
 #include "edt/edt_common.hpp"
 #include "edt/nd_layout.hpp"
+#include "exec/dispatch.hpp"
+#include "exec/tuning.hpp"
 #include "gpugeom/edt.hpp"
 
 namespace gpugeom::edt {
@@ -91,11 +92,6 @@ struct Entries {
   // True where the grid holds a NaN.
   bool (*column_bounds)(const BoundsRequest& rq, std::int64_t* first, std::int64_t* last);
 };
-namespace cpu_impl {
-extern const Entries entries;
-}
-namespace cuda_impl {
-extern const Entries entries;
-}
+GG_DECLARE_TABLE(Entries, entries)
 
 }  // namespace gpugeom::edt

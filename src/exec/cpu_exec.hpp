@@ -20,6 +20,7 @@
 
 #include "gpugeom/common.hpp"
 #include "base/hd.hpp"
+#include "exec/exec_context.hpp"
 #include "exec/lanes.hpp"
 #include "exec/tuning.hpp"
 
@@ -92,6 +93,9 @@ struct CpuExec {
       omp_set_num_threads(run.threads);
     }
   }
+  // (The CPU executor shares nothing with an outer one: the thread count is run's, as there.)
+  CpuExec(const RunOptions& run, const detail::ExecContext*) : CpuExec(run) {}
+  detail::ExecContext context() const { return {}; }
   ~CpuExec() {
     if (prev_threads_) omp_set_num_threads(prev_threads_);
   }

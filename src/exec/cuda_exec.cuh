@@ -20,6 +20,7 @@
 #include "exec/cuda_check.cuh"
 #include "exec/cuda_device.hpp"
 #include "exec/device_memory.hpp"
+#include "exec/exec_context.hpp"
 #include "exec/host_staging.hpp"
 #include "exec/lanes.hpp"
 #include "exec/tuning.hpp"
@@ -256,14 +257,21 @@ class CudaExec {
   // Binds the executor to the device and stream of `run` (cuda_device::resolve) for its
   // lifetime: the calling thread's current device is that device until the executor is
   // destroyed, then restored. One executor is used by one host thread.
-  explicit CudaExec(const RunOptions& run = {})
-      : dev_(cuda_device::resolve(run)),
+  explicit CudaExec(const RunOptions& run = {}) : CudaExec(run, nullptr) {}
+  // With `outer` (another executor's context(), exec/exec_context.hpp): on its device and
+  // stream, taking memory through its call's count; the knobs are still run's.
+  CudaExec(const RunOptions& run, const detail::ExecContext* outer)
+      : dev_(outer ? outer->device : cuda_device::resolve(run)),
         on_(dev_),
-        s_(run.stream ? cudaStream_t(run.stream) : cudaStreamPerThread),
-        mem_(std::make_shared<detail::CallMemory>(run.memory, dev_)),
+        s_(outer        ? cudaStream_t(outer->stream)
+           : run.stream ? cudaStream_t(run.stream)
+                        : cudaStreamPerThread),
+        mem_(outer ? outer->memory : std::make_shared<detail::CallMemory>(run.memory, dev_)),
         tuning_(detail::tuning_of(run)) {
     GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms_, cudaDevAttrMultiProcessorCount, dev_));
   }
+  // What a capability this one calls runs on (its entry's `outer`).
+  detail::ExecContext context() const { return {dev_, (void*)s_, mem_}; }
   CudaExec(const CudaExec&) = delete;
   CudaExec& operator=(const CudaExec&) = delete;
   // The options a state kept across calls (DynamicDelaunay2d, ...) runs its later calls with:
@@ -395,26 +403,26 @@ class CudaExec {
 
   template <class T>
   void exclusive_scan(const T* in, T* out, std::int64_t n) {
-    if (n <= 0) return;
-    run_cub([&](void* tmp, std::size_t& bytes) {
-      return cub::DeviceScan::ExclusiveSum(tmp, bytes, in, out, n, s_);
-    });
+    sum_scan(in, out, n, false);
   }
   // out[i] = f(0) + ... + f(i-1): the scan reads f's values straight from the function.
   template <class F, class T>
   void exclusive_scan_of(std::int64_t n, F f, T* out) {
-    if (n <= 0) return;
-    auto it = thrust::make_transform_iterator(thrust::counting_iterator<std::int64_t>(0),
-                                              cuda_detail::IndexMap<F, T>{f});
-    run_cub([&](void* tmp, std::size_t& bytes) {
-      return cub::DeviceScan::ExclusiveSum(tmp, bytes, it, out, n, s_);
-    });
+    sum_scan(thrust::make_transform_iterator(thrust::counting_iterator<std::int64_t>(0),
+                                             cuda_detail::IndexMap<F, T>{f}),
+             out, n, false);
   }
   template <class T>
   void inclusive_scan(const T* in, T* out, std::int64_t n) {
+    sum_scan(in, out, n, true);
+  }
+  // The prefix sums of n values read from `in` (a pointer or an iterator) into out.
+  template <class It, class T>
+  void sum_scan(It in, T* out, std::int64_t n, bool inclusive) {
     if (n <= 0) return;
     run_cub([&](void* tmp, std::size_t& bytes) {
-      return cub::DeviceScan::InclusiveSum(tmp, bytes, in, out, n, s_);
+      return inclusive ? cub::DeviceScan::InclusiveSum(tmp, bytes, in, out, n, s_)
+                       : cub::DeviceScan::ExclusiveSum(tmp, bytes, in, out, n, s_);
     });
   }
   // [synchronises] returns the value on the host.

@@ -26,3 +26,13 @@
 #define GG_TABLE(backend, ns, name) ((void)(backend), ns::cpu_impl::name)
 #endif
 #define GG_ENTRIES(backend, ns) GG_TABLE(backend, ns, entries)
+
+// Declares the module's table `name` of type `type` once for each executor, in the module's
+// namespace (the backend header's one line; each executor's unit defines it).
+#define GG_DECLARE_TABLE(type, name) \
+  namespace cpu_impl {               \
+  extern const type name;            \
+  }                                  \
+  namespace cuda_impl {              \
+  extern const type name;            \
+  }

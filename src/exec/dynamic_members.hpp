@@ -5,14 +5,19 @@
 // they share this list of definitions, each a forward to the state (dynamic_state.hpp).
 //
 // GG_DYNAMIC_MEMBERS(CLS, NS, OPTIONS), in namespace gpugeom of the class's source, after a
-// `refuse_options(const OPTIONS&)` there (the options the structure does not take) and with
-// `struct CLS::Impl : detail::DynamicImpl<NS::Kept>` defined: the constructors (host points, and
+// `refuse_options(const OPTIONS&)` there (the options the structure does not take): CLS::Impl
+// (detail::DynamicImpl over the module's kept state), the constructors (host points, and
 // from_device), the moves and destructor, insert, move and remove (host and executor memory), the
 // counts every structure has, the backend, changes and stats. NS: the module's backend namespace
 // (its entry table's make_kept, and check_count).
+// GG_DYNAMIC_RESULTS(CLS, SIMPLICES, OTHER, KEPT_OTHER, HOST, HOST_FN, DEVICE, DEVICE_FN): the
+// members whose names are the structure's: the simplex count SIMPLICES(), a second count
+// OTHER() (the kept state's KEPT_OTHER()), and the results HOST HOST_FN() (host arrays) and
+// DEVICE DEVICE_FN() (the executor's memory).
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <utility>
 
 #include "exec/deliver.hpp"
@@ -34,12 +39,44 @@ struct DynamicImpl : DynamicState<Kept> {
     r.stats = this->stats;
     return r;
   }
+  // The structure as it stands, copied to host arrays, or to arrays in the executor's memory.
+  template <class Result>
+  Result host_result() const {
+    Result r;
+    this->kept->host_copy(r);
+    return with_stats(std::move(r));
+  }
+  template <class Result>
+  Result device_result() const {
+    Result r;
+    this->kept->device_copy(r);
+    r.num_points = this->kept->points();
+    r.backend = this->backend;
+    return with_stats(std::move(r));
+  }
 };
+
+// The options a dynamic structure does not take: Method::Digital where `same` is given (it names
+// what Method::Incremental gives instead), and any of the `into` arrays (`readers` names the
+// getters to read the results with).
+template <class Options, class... Into>
+void refuse_dynamic_options(const Options& opt, const char* cls, const char* same,
+                            const char* readers, const Into&... into) {
+  if (same && opt.method == Method::Digital)
+    throw Error(ErrorCode::Unsupported, std::string(cls) +
+                                            ": Method::Digital is not offered (Method::Incremental "
+                                            "gives the same " +
+                                            same + ")");
+  if ((... || bool(into)))
+    throw Error(ErrorCode::Unsupported,
+                std::string(cls) + ": opt.into is not used; read the results with " + readers);
+}
 
 }  // namespace gpugeom::detail
 
 // clang-format off
 #define GG_DYNAMIC_MEMBERS(CLS, NS, OPTIONS)                                                      \
+  struct CLS::Impl : ::gpugeom::detail::DynamicImpl<NS::Kept> {};                                 \
   namespace {                                                                                     \
   /* A state on backend b before its first points. (Impl is private: named by the members.) */  \
   template <class Impl>                                                                           \
@@ -88,4 +125,9 @@ struct DynamicImpl : DynamicState<Kept> {
   SimplexChanges CLS::changes() const { return impl_->changes(#CLS); }                            \
   DeviceSimplexChanges CLS::device_changes() const { return impl_->device_changes(#CLS); }        \
   const Stats& CLS::stats() const { return impl_->stats; }
+#define GG_DYNAMIC_RESULTS(CLS, SIMPLICES, OTHER, KEPT_OTHER, HOST, HOST_FN, DEVICE, DEVICE_FN)   \
+  std::int64_t CLS::SIMPLICES() const { return impl_->kept->simplices(); }                        \
+  std::int64_t CLS::OTHER() const { return impl_->kept->KEPT_OTHER(); }                           \
+  HOST CLS::HOST_FN() const { return impl_->host_result<HOST>(); }                                \
+  DEVICE CLS::DEVICE_FN() const { return impl_->device_result<DEVICE>(); }
 // clang-format on

@@ -65,6 +65,23 @@ int find_distribution(const std::string& d, const std::vector<std::string>& name
   throw Error(ErrorCode::InvalidArgument, "unknown distribution '" + d + "': expected " + all);
 }
 
+// n points of distribution d (one of names; the grid's is number grid_which) in `dim`
+// dimensions: point(which, i, rng, grid) makes point i, on all host threads.
+template <class P, class F>
+std::vector<P> generate(const std::string& d, std::int64_t n, std::uint64_t seed,
+                        const std::vector<std::string>& names, int dim, int grid_which, F point) {
+  check_n(n);
+  const int which = find_distribution(d, names);
+  std::vector<P> p(static_cast<std::size_t>(n));
+  const GridPick grid(which == grid_which ? n : 1, dim, seed);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Rng r{seed, std::uint64_t(i)};
+    p[std::size_t(i)] = point(which, i, r, grid);
+  }
+  return p;
+}
+
 }  // namespace
 
 const std::vector<std::string>& distributions2d() {
@@ -79,101 +96,81 @@ const std::vector<std::string>& distributions3d() {
 }
 
 std::vector<Point2> generate2d(const std::string& d, std::int64_t n, std::uint64_t seed) {
-  check_n(n);
-  const int which = find_distribution(d, distributions2d());
-  std::vector<Point2> p(n);
-  GridPick grid(which == 4 ? n : 1, 2, seed);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    Rng r{seed, std::uint64_t(i)};
-    Point2& q = p[i];
-    switch (which) {
-      case 0:
-        q = {r.u(), r.u()};
-        break;
-      case 1:
-        q = {r.gauss(), r.gauss()};
-        break;
-      case 2:
-      case 3: {
-        double t = 2 * kPi * r.u();
-        // Uniform in the annulus: radius with density proportional to r.
-        double rad = which == 3 ? kR1 : std::sqrt(kR1 * kR1 + r.u() * (kR2 * kR2 - kR1 * kR1));
-        q = {0.5 + rad * std::cos(t), 0.5 + rad * std::sin(t)};
-        break;
-      }
-      case 4: {
-        std::uint64_t c = grid.cell(i);
-        q = {double(c % grid.side), double(c / grid.side)};
-        break;
-      }
-      default: {
-        double t = r.u();
-        q = (i & 1) ? Point2{t, 0.0} : Point2{0.5 + 0.25 * t, 0.5 + 0.5 * t};
-      }
-    }
-  }
-  return p;
+  return generate<Point2>(
+      d, n, seed, distributions2d(), 2, 4,
+      [](int which, std::int64_t i, Rng& r, const GridPick& grid) -> Point2 {
+        switch (which) {
+          case 0:
+            return {r.u(), r.u()};
+          case 1:
+            return {r.gauss(), r.gauss()};
+          case 2:
+          case 3: {
+            double t = 2 * kPi * r.u();
+            // Uniform in the annulus: radius with density proportional to r.
+            double rad = which == 3 ? kR1 : std::sqrt(kR1 * kR1 + r.u() * (kR2 * kR2 - kR1 * kR1));
+            return {0.5 + rad * std::cos(t), 0.5 + rad * std::sin(t)};
+          }
+          case 4: {
+            std::uint64_t c = grid.cell(std::uint64_t(i));
+            return {double(c % grid.side), double(c / grid.side)};
+          }
+          default: {
+            double t = r.u();
+            return (i & 1) ? Point2{t, 0.0} : Point2{0.5 + 0.25 * t, 0.5 + 0.5 * t};
+          }
+        }
+      });
 }
 
 std::vector<Point3> generate3d(const std::string& d, std::int64_t n, std::uint64_t seed) {
-  check_n(n);
-  const int which = find_distribution(d, distributions3d());
-  std::vector<Point3> p(n);
-  GridPick grid(which == 5 ? n : 1, 3, seed);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    Rng r{seed, std::uint64_t(i)};
-    Point3& q = p[i];
-    auto direction = [&r]() {
-      double x, y, z, l;
-      do {
-        x = r.gauss(), y = r.gauss(), z = r.gauss();
-        l = std::sqrt(x * x + y * y + z * z);
-      } while (l == 0.0);
-      return Point3{x / l, y / l, z / l};
-    };
-    switch (which) {
-      case 0:
-        q = {r.u(), r.u(), r.u()};
-        break;
-      case 1:
-      case 3:
-      case 4: {
-        Point3 v = direction();
-        double rad = which == 4 ? kR1
-                     : which == 1
-                         ? kR1 * std::cbrt(r.u())
-                         : std::cbrt(kR1 * kR1 * kR1 + r.u() * (kR2 * kR2 * kR2 - kR1 * kR1 * kR1));
-        q = {0.5 + rad * v.x, 0.5 + rad * v.y, 0.5 + rad * v.z};
-        break;
-      }
-      case 2:
-        q = {r.gauss(), r.gauss(), r.gauss()};
-        break;
-      case 5: {
-        std::uint64_t c = grid.cell(i);
-        q = {double(c % grid.side), double(c / grid.side % grid.side),
-             double(c / grid.side / grid.side)};
-        break;
-      }
-      case 6: {
-        // Between two concentric cubes: pick a face, a point on it, a depth in the shell.
-        double s = kR1 + r.u() * (kR2 - kR1);
-        int face = int(r.u() * 6) % 6;
-        double a = (2 * r.u() - 1) * s, b = (2 * r.u() - 1) * s;
-        double f = (face & 1) ? s : -s;
-        Point3 v = face < 2 ? Point3{f, a, b} : face < 4 ? Point3{a, f, b} : Point3{a, b, f};
-        q = {0.5 + v.x, 0.5 + v.y, 0.5 + v.z};
-        break;
-      }
-      default: {
-        double t = r.u();
-        q = (i & 1) ? Point3{t, 0.0, 0.0} : Point3{0.5, t, 1.0};
-      }
-    }
-  }
-  return p;
+  return generate<Point3>(
+      d, n, seed, distributions3d(), 3, 5,
+      [](int which, std::int64_t i, Rng& r, const GridPick& grid) -> Point3 {
+        auto direction = [&r]() {
+          double x, y, z, l;
+          do {
+            x = r.gauss(), y = r.gauss(), z = r.gauss();
+            l = std::sqrt(x * x + y * y + z * z);
+          } while (l == 0.0);
+          return Point3{x / l, y / l, z / l};
+        };
+        switch (which) {
+          case 0:
+            return {r.u(), r.u(), r.u()};
+          case 1:
+          case 3:
+          case 4: {
+            Point3 v = direction();
+            double rad =
+                which == 4 ? kR1
+                : which == 1
+                    ? kR1 * std::cbrt(r.u())
+                    : std::cbrt(kR1 * kR1 * kR1 + r.u() * (kR2 * kR2 * kR2 - kR1 * kR1 * kR1));
+            return {0.5 + rad * v.x, 0.5 + rad * v.y, 0.5 + rad * v.z};
+          }
+          case 2:
+            return {r.gauss(), r.gauss(), r.gauss()};
+          case 5: {
+            std::uint64_t c = grid.cell(std::uint64_t(i));
+            return {double(c % grid.side), double(c / grid.side % grid.side),
+                    double(c / grid.side / grid.side)};
+          }
+          case 6: {
+            // Between two concentric cubes: pick a face, a point on it, a depth in the shell.
+            double s = kR1 + r.u() * (kR2 - kR1);
+            int face = int(r.u() * 6) % 6;
+            double a = (2 * r.u() - 1) * s, b = (2 * r.u() - 1) * s;
+            double f = (face & 1) ? s : -s;
+            Point3 v = face < 2 ? Point3{f, a, b} : face < 4 ? Point3{a, f, b} : Point3{a, b, f};
+            return {0.5 + v.x, 0.5 + v.y, 0.5 + v.z};
+          }
+          default: {
+            double t = r.u();
+            return (i & 1) ? Point3{t, 0.0, 0.0} : Point3{0.5, t, 1.0};
+          }
+        }
+      });
 }
 
 }  // namespace gpugeom

@@ -10,6 +10,7 @@
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
 #include "base/method_grid.hpp"
+#include "base/point_count.hpp"
 #include "hull3d/hull3d_backend.hpp"
 
 namespace gpugeom {
@@ -23,14 +24,8 @@ constexpr std::int64_t kMaxPoints = std::int64_t(INT32_MAX) - 1;
 
 namespace hull3d {
 void check_count(std::int64_t n) {
-  if (n < 0) throw Error(ErrorCode::InvalidArgument, "negative point count");
-  if (n > kMaxPoints)
-    throw Error(ErrorCode::InvalidInput, "too many points (" + std::to_string(n) + "): at most " +
-                                             std::to_string(kMaxPoints) + " per hull");
-  if (n < 4)
-    throw Error(ErrorCode::DegenerateInput,
-                "fewer than 4 points (" + std::to_string(n) +
-                    "): a convex hull in 3D needs 4 points not on one plane");
+  detail::check_point_count(n, 4, kMaxPoints, "per hull",
+                            "a convex hull in 3D needs 4 points not on one plane");
 }
 
 // A tenth of the slots of a hull on every point (2n), and at least 2^16: uniform balls and
@@ -81,11 +76,7 @@ std::int64_t convex_hull3d_max_facets(std::int64_t n) {
 ConvexHull3d convex_hull3d(const double* xyz, std::int64_t n, const Hull3dOptions& opt) {
   hull3d::check_count(n);
   check_method(opt);
-  ConvexHull3d r;
-  const Backend b = resolve_backend(opt.backend, opt.device);
-  r.stats.backend = b;
-  GG_ENTRIES(b, hull3d).compute(xyz, n, opt, r, r.stats);
-  return r;
+  return detail::run_host_entry(GG_PICK(hull3d), xyz, n, opt);
 }
 
 ConvexHull3d convex_hull3d(const std::vector<Point3>& pts, const Hull3dOptions& opt) {
@@ -96,12 +87,7 @@ DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
                                   const Hull3dOptions& opt) {
   hull3d::check_count(n);
   check_method(opt);
-  DeviceHull3d r;
-  const Backend b = device_entry_backend(opt.backend, opt.device, "convex_hull3d_device");
-  r.backend = r.stats.backend = b;
-  r.num_points = n;
-  GG_ENTRIES(b, hull3d).compute_device(device_xyz, n, opt, r, r.stats);
-  return r;
+  return detail::run_device_entry(GG_PICK(hull3d), device_xyz, n, opt, "convex_hull3d_device");
 }
 
 }  // namespace gpugeom

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "exec/dynamic_state.hpp"
+#include "exec/point_entries.hpp"
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
 #include "gpugeom/hull3d.hpp"
@@ -35,21 +36,9 @@ class Kept : public detail::KeptUpdates<Output, DeviceOutput> {
 // Refuses counts no hull can be made of (Error); defined in hull3d.cpp.
 void check_count(std::int64_t n);
 
-// One executor's entries (exec/dispatch.hpp): impl/entries.inl fills them for each executor.
-// compute: xyz holds n points on the host; compute_device: n points in the executor's memory.
-// Both validate the points on the executor (throw Error) and honour opt.into.
-struct Entries {
-  std::unique_ptr<Kept> (*make_kept)(const Hull3dOptions& opt);
-  void (*compute)(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
-                  Stats& stats);
-  void (*compute_device)(const double* xyz, std::int64_t n, const Hull3dOptions& opt,
-                         DeviceOutput& out, Stats& stats);
-};
-namespace cpu_impl {
-extern const Entries entries;
-}
-namespace cuda_impl {
-extern const Entries entries;
-}
+// One executor's entries (exec/dispatch.hpp, exec/point_entries.hpp): impl/entries.inl fills
+// them for each executor.
+using Entries = detail::PointEntries<Hull3dOptions, Output, DeviceOutput, Kept>;
+GG_DECLARE_TABLE(Entries, entries)
 
 }  // namespace gpugeom::hull3d

@@ -21,15 +21,20 @@ std::string read_file(const std::string& path);
 // The file beside path with the extension ext instead of its own (a .ele's .node).
 std::string sibling(const std::string& path, const std::string& ext);
 
+// A base of the classes below, which own an open file: they are neither copied nor moved.
+struct OwnsFile {
+  OwnsFile() = default;
+  OwnsFile(const OwnsFile&) = delete;
+  OwnsFile& operator=(const OwnsFile&) = delete;
+};
+
 // A read-only view of a whole file without a copy: mapped where the system allows (its pages
 // come in as the parsers touch them, on the parsers' threads), else read into memory. Opening
 // errors are read_file's.
-class FileView {
+class FileView : OwnsFile {
  public:
   explicit FileView(const std::string& path);
   ~FileView();
-  FileView(const FileView&) = delete;
-  FileView& operator=(const FileView&) = delete;
   std::string_view view() const { return map_ ? std::string_view(map_, size_) : copy_; }
 
  private:
@@ -51,12 +56,10 @@ auto parse_file(const std::string& path, const std::string& ext, const char* con
 // A file written piece by piece to path.tmp-XXXX beside the target and renamed over path by
 // commit(); destroyed without commit() (an error on the way), the temporary is removed, so a
 // failure never leaves a half-written file. Errors are Error(Io) naming the target.
-class AtomicFile {
+class AtomicFile : OwnsFile {
  public:
   explicit AtomicFile(const std::string& path);
   ~AtomicFile();
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
   void write(const void* data, std::size_t bytes);
   void write(std::string_view s) { write(s.data(), s.size()); }
   void commit();

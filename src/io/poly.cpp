@@ -19,6 +19,26 @@ std::vector<std::string_view> fields(const Lines& l, std::string_view line, std:
   if (t.size() < least) l.fail(std::string("expected '") + expect + "'");
   return {t.begin(), t.end()};
 }
+// A section's count from the line `line` (laid out as `header`; `what`: "the hole count"), at
+// least 0 and at most the text's size (a section cannot have more lines than bytes).
+std::int64_t section_count(const Lines& l, std::string_view line, const char* header,
+                           const std::string& what, std::size_t text_size) {
+  const std::int64_t c = need_int(l, fields(l, line, 1, header)[0], what.c_str());
+  if (c < 0 || std::uint64_t(c) > text_size) l.fail(what + " is out of range");
+  return c;
+}
+// The section's `count` lines (`what`: "holes"), each of at least `least` fields laid out as
+// `layout`: row(i, fields) for each.
+template <class Row>
+void section_rows(Lines& l, std::string_view& line, std::int64_t count, const char* what,
+                  std::size_t least, const char* layout, Row row) {
+  for (std::int64_t i = 0; i < count; ++i) {
+    if (!l.next(line))
+      l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(count) + " " +
+             what);
+    row(i, fields(l, line, least, layout));
+  }
+}
 }  // namespace
 
 Pslg read_poly(const std::string& path) {
@@ -44,11 +64,7 @@ Pslg parse_poly(std::string_view text, const std::string& path) {
     if (g.points.dim != 2) parse_fail(node, 1, "the points must be 2D for a .poly file");
   } else {
     g.points.coords.resize(2 * std::size_t(nv));
-    for (std::int64_t i = 0; i < nv; ++i) {
-      if (!l.next(line))
-        l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(nv) +
-               " vertices");
-      auto v = fields(l, line, 3, "<index> x y");
+    section_rows(l, line, nv, "vertices", 3, "<index> x y", [&](std::int64_t i, const auto& v) {
       const std::int64_t idx = need_int(l, v[0], "the vertex index");
       if (i == 0) {
         if (idx != 0 && idx != 1) l.fail("the first vertex index must be 0 or 1");
@@ -56,47 +72,37 @@ Pslg parse_poly(std::string_view text, const std::string& path) {
       }
       g.points.coords[2 * std::size_t(i)] = need_double(l, v[1], "a coordinate");
       g.points.coords[2 * std::size_t(i) + 1] = need_double(l, v[2], "a coordinate");
-    }
+    });
   }
   const std::int64_t n = std::int64_t(g.points.size());
   if (!l.next(line)) l.fail("the file ends before the segment count");
-  auto s = fields(l, line, 1, "<#segments> <#markers>");
-  const std::int64_t ns = need_int(l, s[0], "the segment count");
-  if (ns < 0 || std::uint64_t(ns) > text.size()) l.fail("the segment count is out of range");
+  const std::int64_t ns =
+      section_count(l, line, "<#segments> <#markers>", "the segment count", text.size());
   g.segments.resize(2 * std::size_t(ns));
-  for (std::int64_t i = 0; i < ns; ++i) {
-    if (!l.next(line))
-      l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(ns) +
-             " segments");
-    auto v = fields(l, line, 3, "<index> <endpoint> <endpoint>");
-    for (int k = 0; k < 2; ++k) {
-      const std::int64_t e = need_int(l, v[1 + k], "an endpoint") - base;
-      if (e < 0 || e >= n)
-        l.fail("segment endpoint " + std::string(v[1 + k]) + " names no vertex (" +
-               std::to_string(base) + ".." + std::to_string(n - 1 + base) + ")");
-      g.segments[2 * std::size_t(i) + k] = std::int32_t(e);
-    }
-  }
+  section_rows(l, line, ns, "segments", 3, "<index> <endpoint> <endpoint>",
+               [&](std::int64_t i, const auto& v) {
+                 for (int k = 0; k < 2; ++k) {
+                   const std::int64_t e = need_int(l, v[1 + k], "an endpoint") - base;
+                   if (e < 0 || e >= n)
+                     l.fail("segment endpoint " + std::string(v[1 + k]) + " names no vertex (" +
+                            std::to_string(base) + ".." + std::to_string(n - 1 + base) + ")");
+                   g.segments[2 * std::size_t(i) + k] = std::int32_t(e);
+                 }
+               });
   if (!l.next(line)) l.fail("the file ends before the hole count");
-  const std::int64_t nh = need_int(l, fields(l, line, 1, "<#holes>")[0], "the hole count");
-  if (nh < 0 || std::uint64_t(nh) > text.size()) l.fail("the hole count is out of range");
-  for (std::int64_t i = 0; i < nh; ++i) {
-    if (!l.next(line))
-      l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(nh) + " holes");
-    auto v = fields(l, line, 3, "<index> x y");
+  const std::int64_t nh = section_count(l, line, "<#holes>", "the hole count", text.size());
+  section_rows(l, line, nh, "holes", 3, "<index> x y", [&](std::int64_t, const auto& v) {
     g.holes.push_back(need_double(l, v[1], "a coordinate"));
     g.holes.push_back(need_double(l, v[2], "a coordinate"));
-  }
+  });
   if (!l.next(line)) return g;  // (regional attributes are optional)
-  const std::int64_t nr = need_int(l, fields(l, line, 1, "<#regions>")[0], "the region count");
-  if (nr < 0 || std::uint64_t(nr) > text.size()) l.fail("the region count is out of range");
-  for (std::int64_t i = 0; i < nr; ++i) {
-    if (!l.next(line))
-      l.fail("the file ends after " + std::to_string(i) + " of " + std::to_string(nr) + " regions");
-    auto v = fields(l, line, 4, "<index> x y <attribute> [<maximum area>]");
-    for (int k = 1; k <= 3; ++k) g.regions.push_back(need_double(l, v[std::size_t(k)], "a number"));
-    g.region_areas.push_back(v.size() > 4 ? need_double(l, v[4], "an area") : 0.0);
-  }
+  const std::int64_t nr = section_count(l, line, "<#regions>", "the region count", text.size());
+  section_rows(l, line, nr, "regions", 4, "<index> x y <attribute> [<maximum area>]",
+               [&](std::int64_t, const auto& v) {
+                 for (int k = 1; k <= 3; ++k)
+                   g.regions.push_back(need_double(l, v[std::size_t(k)], "a number"));
+                 g.region_areas.push_back(v.size() > 4 ? need_double(l, v[4], "an area") : 0.0);
+               });
   return g;
 }
 

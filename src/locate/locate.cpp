@@ -71,20 +71,16 @@ HostVector<std::int32_t> locate(const Mesh<D>& m, const double* q, std::int64_t 
 
 }  // namespace
 
-HostVector<std::int32_t> find_simplex2d(const double* xy, std::int64_t n,
-                                        const std::int32_t* triangles,
-                                        const std::int32_t* neighbors, std::int64_t num_triangles,
-                                        const double* queries, std::int64_t m,
-                                        const LocateOptions& opt) {
-  return locate(Mesh<2>{xy, n, triangles, neighbors, num_triangles}, queries, m, opt);
+// (The definitions name the arrays short: the header documents them.)
+HostVector<std::int32_t> find_simplex2d(const double* xy, std::int64_t n, const std::int32_t* tri,
+                                        const std::int32_t* nb, std::int64_t nt, const double* q,
+                                        std::int64_t m, const LocateOptions& opt) {
+  return locate(Mesh<2>{xy, n, tri, nb, nt}, q, m, opt);
 }
-
-HostVector<std::int32_t> find_simplex3d(const double* xyz, std::int64_t n,
-                                        const std::int32_t* tetrahedra,
-                                        const std::int32_t* neighbors, std::int64_t num_tetrahedra,
-                                        const double* queries, std::int64_t m,
-                                        const LocateOptions& opt) {
-  return locate(Mesh<3>{xyz, n, tetrahedra, neighbors, num_tetrahedra}, queries, m, opt);
+HostVector<std::int32_t> find_simplex3d(const double* xyz, std::int64_t n, const std::int32_t* tet,
+                                        const std::int32_t* nb, std::int64_t nt, const double* q,
+                                        std::int64_t m, const LocateOptions& opt) {
+  return locate(Mesh<3>{xyz, n, tet, nb, nt}, q, m, opt);
 }
 
 }  // namespace gpugeom

@@ -365,20 +365,18 @@ GG_HD inline int orient4d_translated(const double* a, const double* b, const dou
 }
 
 // ---- tiers 1-3 (scratch: k*MidScratch); kUndecided leaves the rest to *_exact ----
-GG_HD inline int orient3d_mid(const double* a, const double* b, const double* c, const double* d,
-                              double* s) {
-  if (int r = orient3d_fast(a, b, c, d)) return r;
-  int si;
-  if (orient3d_int(a, b, c, d, si)) return si;
-  return orient3d_translated(a, b, c, d, s);
-}
-GG_HD inline int incircle_mid(const double* a, const double* b, const double* c, const double* d,
-                              double* s) {
-  if (int r = incircle_fast(a, b, c, d)) return r;
-  int si;
-  if (incircle_int(a, b, c, d, si)) return si;
-  return incircle_translated(a, b, c, d, s);
-}
+// orient3d's and incircle's: the filter, whole numbers, then the translated expansion.
+#define GG_MID_OF_FOUR(P)                                                                      \
+  GG_HD inline int P##_mid(const double* a, const double* b, const double* c, const double* d, \
+                           double* s) {                                                        \
+    if (int r = P##_fast(a, b, c, d)) return r;                                                \
+    int si;                                                                                    \
+    if (P##_int(a, b, c, d, si)) return si;                                                    \
+    return P##_translated(a, b, c, d, s);                                                      \
+  }
+GG_MID_OF_FOUR(orient3d)
+GG_MID_OF_FOUR(incircle)
+#undef GG_MID_OF_FOUR
 GG_HD inline int insphere_mid(const double* a, const double* b, const double* c, const double* d,
                               const double* e, double* s) {
   if (int r = insphere_fast(a, b, c, d, e)) return r;
@@ -424,6 +422,32 @@ GG_HD inline int orient4d_lifted(const double* a, const double* b, const double*
 }
 
 // ---- simulation of simplicity (indices must be distinct) ----
+// Each predicate P's entries with SoS chain the same three steps: P_mid (tiers 1-3) or P_exact
+// (tier 4), then P_tie (SoS) on an exact zero; P_sos runs P_sos_mid and, where tier 3 could not
+// tell, P_sos_last. GG_SOS_CHAIN4 and GG_SOS_CHAIN5 write them for four and five points.
+#define GG_SOS_STEP(P, STEP, FIRST, PARAMS, POINTS, ALL) \
+  GG_HD inline int P##_sos_##STEP PARAMS {               \
+    const int r = P##_##FIRST POINTS;                    \
+    return r != 0 ? r : P##_tie ALL;                     \
+  }
+#define GG_SOS_CHAIN(P, PARAMS, POINTS, ALL)       \
+  GG_SOS_STEP(P, mid, mid, PARAMS, POINTS, ALL)    \
+  GG_SOS_STEP(P, last, exact, PARAMS, POINTS, ALL) \
+  GG_HD inline int P##_sos PARAMS {                \
+    const int r = P##_sos_mid ALL;                 \
+    return r != kUndecided ? r : P##_sos_last ALL; \
+  }
+#define GG_SOS_CHAIN4(P)                                                                   \
+  GG_SOS_CHAIN(P,                                                                          \
+               (const double* a, int ia, const double* b, int ib, const double* c, int ic, \
+                const double* d, int id, double* s),                                       \
+               (a, b, c, d, s), (a, ia, b, ib, c, ic, d, id, s))
+#define GG_SOS_CHAIN5(P)                                                                   \
+  GG_SOS_CHAIN(P,                                                                          \
+               (const double* a, int ia, const double* b, int ib, const double* c, int ic, \
+                const double* d, int id, const double* e, int ie, double* s),              \
+               (a, b, c, d, e, s), (a, ia, b, ib, c, ic, d, id, e, ie, s))
+
 // Each *_sos_mid returns the sign, resolving an exact zero by SoS, or kUndecided when tier 3
 // could not tell; *_sos_last finishes such a test (tier 4, then SoS on a zero).
 GG_HD inline int orient2d_sos(const double* a, int ia, const double* b, int ib, const double* c,
@@ -475,21 +499,7 @@ GG_HD inline int orient3d_sos_quick(const double* a, int ia, const double* b, in
   const int idx[4] = {ia, ib, ic, id};
   return sos_int<4>(r, idx, false, -1);
 }
-GG_HD inline int orient3d_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
-                                  int ic, const double* d, int id, double* s) {
-  const int r = orient3d_mid(a, b, c, d, s);
-  return r != 0 ? r : orient3d_tie(a, ia, b, ib, c, ic, d, id, s);
-}
-GG_HD inline int orient3d_sos_last(const double* a, int ia, const double* b, int ib,
-                                   const double* c, int ic, const double* d, int id, double* s) {
-  const int r = orient3d_exact(a, b, c, d, s);
-  return r != 0 ? r : orient3d_tie(a, ia, b, ib, c, ic, d, id, s);
-}
-GG_HD inline int orient3d_sos(const double* a, int ia, const double* b, int ib, const double* c,
-                              int ic, const double* d, int id, double* s) {
-  const int r = orient3d_sos_mid(a, ia, b, ib, c, ic, d, id, s);
-  return r != kUndecided ? r : orient3d_sos_last(a, ia, b, ib, c, ic, d, id, s);
-}
+GG_SOS_CHAIN4(orient3d)
 
 GG_HD inline int incircle_tie(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, double* s) {
@@ -500,21 +510,7 @@ GG_HD inline int incircle_tie(const double* a, int ia, const double* b, int ib, 
   int parity = sort_rows<4, 2>(r, idx, l.p, l.len, co);
   return parity * sos_resolve<2, 4>(r, l.p, l.len, s, co);
 }
-GG_HD inline int incircle_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
-                                  int ic, const double* d, int id, double* s) {
-  const int r = incircle_mid(a, b, c, d, s);
-  return r != 0 ? r : incircle_tie(a, ia, b, ib, c, ic, d, id, s);
-}
-GG_HD inline int incircle_sos_last(const double* a, int ia, const double* b, int ib,
-                                   const double* c, int ic, const double* d, int id, double* s) {
-  const int r = incircle_exact(a, b, c, d, s);
-  return r != 0 ? r : incircle_tie(a, ia, b, ib, c, ic, d, id, s);
-}
-GG_HD inline int incircle_sos(const double* a, int ia, const double* b, int ib, const double* c,
-                              int ic, const double* d, int id, double* s) {
-  const int r = incircle_sos_mid(a, ia, b, ib, c, ic, d, id, s);
-  return r != kUndecided ? r : incircle_sos_last(a, ia, b, ib, c, ic, d, id, s);
-}
+GG_SOS_CHAIN4(incircle)
 
 GG_HD inline int insphere_tie(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, const double* e, int ie, double* s) {
@@ -541,23 +537,7 @@ GG_HD inline int insphere_sos_quick(const double* a, int ia, const double* b, in
   const int idx[5] = {ia, ib, ic, id, ie};
   return sos_int<5>(r, idx, true, -1);
 }
-GG_HD inline int insphere_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
-                                  int ic, const double* d, int id, const double* e, int ie,
-                                  double* s) {
-  const int r = insphere_mid(a, b, c, d, e, s);
-  return r != 0 ? r : insphere_tie(a, ia, b, ib, c, ic, d, id, e, ie, s);
-}
-GG_HD inline int insphere_sos_last(const double* a, int ia, const double* b, int ib,
-                                   const double* c, int ic, const double* d, int id,
-                                   const double* e, int ie, double* s) {
-  const int r = insphere_exact(a, b, c, d, e, s);
-  return r != 0 ? r : insphere_tie(a, ia, b, ib, c, ic, d, id, e, ie, s);
-}
-GG_HD inline int insphere_sos(const double* a, int ia, const double* b, int ib, const double* c,
-                              int ic, const double* d, int id, const double* e, int ie, double* s) {
-  const int r = insphere_sos_mid(a, ia, b, ib, c, ic, d, id, e, ie, s);
-  return r != kUndecided ? r : insphere_sos_last(a, ia, b, ib, c, ic, d, id, e, ie, s);
-}
+GG_SOS_CHAIN5(insphere)
 
 GG_HD inline int orient4d_tie(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, const double* e, int ie, double* s) {
@@ -573,27 +553,16 @@ GG_HD inline int orient4d_tie(const double* a, int ia, const double* b, int ib, 
   int parity = sort_rows<5, 4>(r, idx, l, ll, co);
   return parity * sos_resolve<3, 1>(r, l, ll, s, co);
 }
-GG_HD inline int orient4d_sos_mid(const double* a, int ia, const double* b, int ib, const double* c,
-                                  int ic, const double* d, int id, const double* e, int ie,
-                                  double* s) {
-  const int r = orient4d_mid(a, b, c, d, e, s);
-  return r != 0 ? r : orient4d_tie(a, ia, b, ib, c, ic, d, id, e, ie, s);
-}
-GG_HD inline int orient4d_sos_last(const double* a, int ia, const double* b, int ib,
-                                   const double* c, int ic, const double* d, int id,
-                                   const double* e, int ie, double* s) {
-  const int r = orient4d_exact(a, b, c, d, e, s);
-  return r != 0 ? r : orient4d_tie(a, ia, b, ib, c, ic, d, id, e, ie, s);
-}
-GG_HD inline int orient4d_sos(const double* a, int ia, const double* b, int ib, const double* c,
-                              int ic, const double* d, int id, const double* e, int ie, double* s) {
-  const int r = orient4d_sos_mid(a, ia, b, ib, c, ic, d, id, e, ie, s);
-  return r != kUndecided ? r : orient4d_sos_last(a, ia, b, ib, c, ic, d, id, e, ie, s);
-}
+GG_SOS_CHAIN5(orient4d)
 GG_HD inline int orient4d_lifted_sos(const double* a, int ia, const double* b, int ib,
                                      const double* c, int ic, const double* d, int id,
                                      const double* e, int ie, double* s) {
   return -insphere_sos(a, ia, b, ib, c, ic, d, id, e, ie, s);
 }
+
+#undef GG_SOS_CHAIN5
+#undef GG_SOS_CHAIN4
+#undef GG_SOS_CHAIN
+#undef GG_SOS_STEP
 
 }  // namespace gpugeom::pred

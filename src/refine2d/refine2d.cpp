@@ -129,31 +129,14 @@ DeviceRefinedMesh2d refine2d_device(const double* device_xy, std::int64_t n,
                 "refine2d_device: max_area_at is a host function: give the sizes as an "
                 "area_grid, or call refine2d");
   const Backend b = device_entry_backend(opt.backend, opt.device, "refine2d_device");
-  refine::DeviceResult d;
+  DeviceRefinedMesh2d r;
   cdt::RecoveryCounts rc;
   refine::Tally tally;
-  GG_ENTRIES(b, refine).refine_device(device_xy, n, device_segments, nseg, opt, d, rc, tally);
+  GG_ENTRIES(b, refine).refine_device(device_xy, n, device_segments, nseg, opt, r, rc, tally);
   if (rc.cross_a >= 0)
     throw Error(ErrorCode::InvalidInput, crossing_message(rc.cross_a, rc.cross_b));
-  DeviceRefinedMesh2d r;
   r.backend = r.stats.backend = b;
-  r.num_points = d.np;
-  r.num_input_points = n;
-  r.num_triangles = d.nt;
-  r.points = std::move(d.xy);
-  r.triangles = std::move(d.tri);
-  r.neighbors = std::move(d.nbr);
-  r.segment_of = std::move(d.seg);
-  r.duplicate_of = std::move(d.dup);
-  r.attribute = std::move(d.attribute);
-  r.num_subsegments = d.nsub;
-  r.subsegments = std::move(d.sub);
-  r.subsegment_of = std::move(d.sub_of);
-  r.small_angles = std::move(d.small);
-  r.small_angle_reasons = std::move(d.reasons);
-  r.large_triangles = std::move(d.large);
-  r.removed_triangles = d.removed;
-  set_counters(r.stats, tally, d.nt);
+  set_counters(r.stats, tally, r.num_triangles);
   return r;
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cdt2d/cdt2d_backend.hpp"
+#include "exec/dispatch.hpp"
 #include "gpugeom/refine2d.hpp"
 
 namespace gpugeom::refine {
@@ -16,32 +17,19 @@ struct Tally {
   double cdt_ms = 0, decide_ms = 0, insert_ms = 0, output_ms = 0;
 };
 
-// A mesh in the executor's memory (np points, nt triangles), the report lists on the host.
-struct DeviceResult {
-  std::shared_ptr<double> xy, attribute;
-  std::shared_ptr<std::int32_t> tri, nbr, seg, dup, sub, sub_of;
-  std::int64_t np = 0, nt = 0, nsub = 0, removed = 0;
-  std::vector<std::int32_t> small, large;
-  std::vector<std::int8_t> reasons;
-};
-
 // refine: host points (n) and segments (nseg pairs, indices checked), final_of_base naming each
 // segment's marks in the output; fills r unless two segments cross (rc.cross_a >= 0).
-// refine_device: both in the executor's memory, indices checked there, marks the given indices.
+// refine_device: both in the executor's memory, indices checked there, marks the given indices;
+// fills r's arrays and counts (its backend and stats are the public entry's).
 // One executor's entries (exec/dispatch.hpp), filled by each executor's unit.
 struct Entries {
   void (*refine)(const double* xy, std::int64_t n, const std::int32_t* segs, std::int64_t nseg,
                  const std::vector<std::int32_t>& final_of_base, const Refine2dOptions& opt,
                  RefinedMesh2d& r, cdt::RecoveryCounts& rc, Tally& tally);
   void (*refine_device)(const double* xy, std::int64_t n, const std::int32_t* segs,
-                        std::int64_t nseg, const Refine2dOptions& opt, DeviceResult& d,
+                        std::int64_t nseg, const Refine2dOptions& opt, DeviceRefinedMesh2d& r,
                         cdt::RecoveryCounts& rc, Tally& tally);
 };
-namespace cpu_impl {
-extern const Entries entries;
-}
-namespace cuda_impl {
-extern const Entries entries;
-}
+GG_DECLARE_TABLE(Entries, entries)
 
 }  // namespace gpugeom::refine

@@ -1,10 +1,11 @@
 // The test entries' work on each executor (testing.hpp says what each does; exec/dispatch.hpp).
 #pragma once
+#include "exec/dispatch.hpp"
 #include "testing/testing.hpp"
 
 namespace gpugeom::testing {
-// One executor's entries, filled by each executor's unit (del2d_cpu.cpp, del2d_cuda.cu) from
-// impl/del2d.inl.
+// One executor's entries: impl/del2d.inl fills them as del2d's `testing_entries`, in each
+// executor's unit (del2d_cpu.cpp, del2d_cuda.cu); GG_TABLE(b, del2d, testing_entries) picks them.
 struct Entries {
   void (*triangulate_from)(const double* xy, std::int64_t n, const std::int32_t* start,
                            std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,
@@ -18,10 +19,8 @@ struct Entries {
   void (*digital_shift)(const double* xy, std::int64_t n, const del2d::digital::Sketch& s,
                         const RunOptions& run, del2d::digital::Start& out);
 };
-namespace cpu_impl {
-extern const Entries entries;
-}
-namespace cuda_impl {
-extern const Entries entries;
-}
 }  // namespace gpugeom::testing
+
+namespace gpugeom::del2d {
+GG_DECLARE_TABLE(testing::Entries, testing_entries)
+}  // namespace gpugeom::del2d

@@ -10,9 +10,3 @@ namespace edt_impl = gpugeom::edt::cpu_impl;
 #include "delaunay2d/impl/unit.inl"
 #include "testing/impl/del2d.inl"
 }  // namespace gpugeom::del2d::cpu_impl
-
-namespace gpugeom::testing::cpu_impl {
-const Entries entries{&del2d::cpu_impl::triangulate_from_impl,
-                      &del2d::cpu_impl::digital_sketch_dual_impl,
-                      &del2d::cpu_impl::digital_shift_impl};
-}  // namespace gpugeom::testing::cpu_impl

@@ -11,9 +11,3 @@ namespace edt_impl = gpugeom::edt::cuda_impl;
 #include "delaunay2d/impl/unit.inl"
 #include "testing/impl/del2d.inl"
 }  // namespace gpugeom::del2d::cuda_impl
-
-namespace gpugeom::testing::cuda_impl {
-const Entries entries{&del2d::cuda_impl::triangulate_from_impl,
-                      &del2d::cuda_impl::digital_sketch_dual_impl,
-                      &del2d::cuda_impl::digital_shift_impl};
-}  // namespace gpugeom::testing::cuda_impl

@@ -15,7 +15,8 @@ void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* star
                       const Delaunay2dOptions& opt, del2d::Output& out, Stats& stats) {
   del2d::check_count(n);
   const Backend b = resolve_backend(opt.backend, opt.device);
-  GG_ENTRIES(b, testing).triangulate_from(xy, n, start, nstart, twin, hint, opt, out, stats);
+  GG_TABLE(b, del2d, testing_entries)
+      .triangulate_from(xy, n, start, nstart, twin, hint, opt, out, stats);
 }
 
 del2d::digital::Sketch digital_sketch(const double* xy, std::int64_t n, std::int64_t side,
@@ -27,7 +28,7 @@ del2d::digital::Sketch digital_sketch(const double* xy, std::int64_t n, std::int
       lo[d] = std::min(lo[d], xy[2 * i + d]), hi[d] = std::max(hi[d], xy[2 * i + d]);
   del2d::digital::set_frame(s, lo, hi, side);
   const Backend b = resolve_backend(run.backend, run.device);
-  GG_ENTRIES(b, testing).digital_sketch_dual(xy, n, run, keep_colour, s);
+  GG_TABLE(b, del2d, testing_entries).digital_sketch_dual(xy, n, run, keep_colour, s);
   return s;
 }
 
@@ -43,7 +44,7 @@ del2d::digital::Start shift_sketch(const double* xy, std::int64_t n,
     return out;
   }
   const Backend b = resolve_backend(run.backend, run.device);
-  GG_ENTRIES(b, testing).digital_shift(xy, n, s, run, out);
+  GG_TABLE(b, del2d, testing_entries).digital_shift(xy, n, s, run, out);
   return out;
 }
 

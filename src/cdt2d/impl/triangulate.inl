@@ -14,7 +14,8 @@ inline void triangulate_core(Exec& ex, const double* pts, std::int64_t n, const 
   static_cast<RunOptions&>(dopt) = opt;
   del2d::DeviceOutput dt;
   Stats dst;
-  dt_impl::entries.triangulate_device(pts, n, dopt, dt, dst);
+  const ::gpugeom::detail::ExecContext ctx = ex.context();  // (one stream, one memory count)
+  dt_impl::entries.device(pts, n, dopt, dt, dst, &ctx);
   st = dst;
   st.phase_ms = {{"delaunay", ms_since(t0)}};
   const auto t1 = Clock::now();
@@ -130,17 +131,17 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const std:
   if (rc.cross_a >= 0) return;
   const Cdt2dBuffers& into = opt.into;
   check_into(into, r);
+  // The library's arrays whose contents were copied into the caller's: they leave the result,
+  // and are freed once the copies are done (triangulate_core has waited for the rest).
+  std::vector<std::shared_ptr<const void>> copied;
+  auto place = [&](auto& mine, std::int64_t len, const auto& theirs) {
+    if (deliver::place_shared(ex, mine, len, theirs)) copied.push_back(std::move(mine));
+  };
   const std::int64_t c3 = 3 * r.num_triangles;
-  const bool t = deliver::place_shared(ex, r.triangles, c3, into.triangles);
-  const bool nb = deliver::place_shared(ex, r.neighbors, c3, into.neighbors);
-  const bool sg = deliver::place_shared(ex, r.segment_of, c3, into.segment_of);
-  const bool dp = deliver::place_shared(ex, r.duplicate_of, n, into.duplicate_of);
-  const bool at =
-      r.attribute && deliver::place_shared(ex, r.attribute, r.num_triangles, into.attribute);
-  ex.sync();  // the caller may read them now; the library's copies go
-  if (t) r.triangles.reset();
-  if (nb) r.neighbors.reset();
-  if (sg) r.segment_of.reset();
-  if (dp) r.duplicate_of.reset();
-  if (at) r.attribute.reset();
+  place(r.triangles, c3, into.triangles);
+  place(r.neighbors, c3, into.neighbors);
+  place(r.segment_of, c3, into.segment_of);
+  place(r.duplicate_of, n, into.duplicate_of);
+  if (r.attribute) place(r.attribute, r.num_triangles, into.attribute);
+  if (!copied.empty()) ex.sync();  // the caller may read its arrays now
 }

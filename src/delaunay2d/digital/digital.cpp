@@ -38,7 +38,7 @@ void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                 "grid: the digital method's grid side must be 4..46338 (or 0: chosen from the "
                 "point count), got " +
                     std::to_string(opt.grid));
-  GG_ENTRIES(b, del2d).triangulate_digital(xy, n, opt, out, st);
+  GG_ENTRIES(b, del2d).digital(xy, n, opt, out, st);
 }
 
 }  // namespace gpugeom::del2d::digital

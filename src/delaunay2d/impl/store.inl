@@ -17,7 +17,7 @@ struct TriStore {
     // Tests only (Tuning::Del2d::slot_base): slots numbered from base_ rather than 0, up to
     // the encoding's last slot, so that small inputs run through the top of the wide encoding
     // (bit 31 set in neighbour pointers and list entries). The slot-indexed arrays are then
-    // addressed through pointers offset by -base_ (tri(), best(), srank(), M_).
+    // addressed through pointers offset by -base_ (tri(), claims(), srank(), M_).
     const detail::Tuning::Del2d& forced = ex.tuning().del2d;
     base_ = std::clamp<std::int64_t>(forced.slot_base, 0, Adj::kMaxSlots - tmax_);
     const std::size_t T = std::size_t(tmax_), n = std::size_t(m_);

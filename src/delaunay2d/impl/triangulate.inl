@@ -104,8 +104,9 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dO
 
 // Points in executor memory, result left there (or in the caller's arrays of that memory).
 inline void triangulate_device_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
-                                    DeviceOutput& out, Stats& st) {
-  Exec ex(opt);
+                                    DeviceOutput& out, Stats& st,
+                                    const ::gpugeom::detail::ExecContext* outer) {
+  Exec ex(opt, outer);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint - 16,
                                            "a 2D Delaunay triangulation", "points");

@@ -15,7 +15,8 @@ inline void voronoi_from_host(const double* xy, std::int64_t n, const Delaunay2d
   Delaunay2dOptions o = opt;
   o.into = {};
   DeviceOutput d;
-  entries.triangulate_device(up.data(), n, o, d, stats);
+  const ::gpugeom::detail::ExecContext ctx = ex.context();
+  entries.device(up.data(), n, o, d, stats, &ctx);
   DeviceVoronoiOutput unused;
   voronoi_impl(up.data(), n, d.triangles.get(), d.neighbors.get(),
                d.num_duplicates ? d.duplicate_of.get() : nullptr, d.num_triangles, opt, unused,

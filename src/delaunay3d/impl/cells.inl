@@ -147,8 +147,10 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     t0 = std::chrono::steady_clock::now();
     Delaunay3dOptions o;
     static_cast<RunOptions&>(o) = opt;
-    o.backend = Exec::backend;
-    const DeviceTriangulation3d tri = delaunay3d_device(aug, N, o);
+    check_count(N);
+    DeviceTriangulation3d tri;
+    const ::gpugeom::detail::ExecContext ctx = ex.context();  // (one stream, one memory count)
+    entries.device(aug, N, o, tri, tri.stats, &ctx);
     st.phase_ms.push_back({"delaunay", ms_since(t0)});
     t0 = std::chrono::steady_clock::now();
     const I32* tet = tri.tetrahedra.get();

@@ -228,8 +228,9 @@ inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3d
 }
 
 inline void triangulate_device_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
-                                    DeviceOutput& out, Stats& st) {
-  Exec ex(opt);
+                                    DeviceOutput& out, Stats& st,
+                                    const ::gpugeom::detail::ExecContext* outer) {
+  Exec ex(opt, outer);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint - 24,
                                            "a 3D Delaunay tetrahedralisation", "points");

@@ -13,8 +13,10 @@ inline void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3
   v.stats.phase_ms.push_back({"upload", ms_since(t0)});
   Delaunay3dOptions o = opt;
   o.into = {};
-  o.backend = Exec::backend;
-  const DeviceTriangulation3d d = delaunay3d_device(up.data(), n, o);
+  DeviceTriangulation3d d;  // (voronoi3d checked n)
+  d.stats.backend = Exec::backend;
+  const ::gpugeom::detail::ExecContext ctx = ex.context();
+  entries.device(up.data(), n, o, d, d.stats, &ctx);
   DeviceVoronoi3d unused;
   voronoi3d_impl(up.data(), n, d.tetrahedra.get(), d.neighbors.get(),
                  d.num_duplicates ? d.duplicate_of.get() : nullptr, d.num_tetrahedra, opt, unused,

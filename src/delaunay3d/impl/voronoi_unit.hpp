@@ -13,6 +13,7 @@
 
 #include "base/clock.hpp"
 #include "delaunay3d/convex_cell.hpp"
+#include "delaunay3d/del3d_backend.hpp"
 #include "delaunay3d/voronoi3d_backend.hpp"
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"

@@ -390,8 +390,9 @@ inline void compute_impl(const double* xyz, std::int64_t n, const Hull3dOptions&
 
 // Points in executor memory, result left there (or in the caller's arrays of that memory).
 inline void compute_device_impl(const double* xyz, std::int64_t n, const Hull3dOptions& opt,
-                                DeviceOutput& out, Stats& st) {
-  Exec ex(opt);
+                                DeviceOutput& out, Stats& st,
+                                const ::gpugeom::detail::ExecContext* outer) {
+  Exec ex(opt, outer);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint - 24, "a convex hull",
                                            "points");  // (the points are there already)

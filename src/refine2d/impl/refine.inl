@@ -377,8 +377,8 @@ inline void refine_host(const double* xy, std::int64_t n, const std::int32_t* se
 
 // Executor memory in (segment indices checked there), executor memory out.
 inline void refine_device_impl(const double* xy, std::int64_t n, const std::int32_t* segs,
-                               std::int64_t nseg, const Refine2dOptions& opt, DeviceResult& d,
-                               cdt::RecoveryCounts& rc, Tally& tally) {
+                               std::int64_t nseg, const Refine2dOptions& opt,
+                               DeviceRefinedMesh2d& r, cdt::RecoveryCounts& rc, Tally& tally) {
   Exec ex(opt);
   check_segment_indices(ex, segs, nseg, n);
   std::vector<std::int32_t> final_of_base(static_cast<std::size_t>(nseg));
@@ -387,18 +387,19 @@ inline void refine_device_impl(const double* xy, std::int64_t n, const std::int3
   refine_core(ex, xy, n, segs, nseg, final_of_base, opt, o, rc);
   if (rc.cross_a >= 0) return;
   ex.sync();
-  d.np = o.np, d.nt = o.nt, d.removed = o.removed;
-  d.xy = o.xy.hand_over();
-  d.tri = o.tri.hand_over();
-  d.nbr = o.nbr.hand_over();
-  d.seg = o.seg.hand_over();
-  d.dup = o.dup.hand_over();
-  d.nsub = o.nsub;
-  d.sub = o.sub.hand_over();
-  d.sub_of = o.sub_of.hand_over();
-  if (!opt.regions.empty()) d.attribute = o.attribute.hand_over();
-  d.small = std::move(o.small);
-  d.large = std::move(o.large);
-  d.reasons = std::move(o.reasons);
+  r.num_points = o.np, r.num_input_points = n, r.num_triangles = o.nt;
+  r.removed_triangles = o.removed;
+  r.points = o.xy.hand_over();
+  r.triangles = o.tri.hand_over();
+  r.neighbors = o.nbr.hand_over();
+  r.segment_of = o.seg.hand_over();
+  r.duplicate_of = o.dup.hand_over();
+  r.num_subsegments = o.nsub;
+  r.subsegments = o.sub.hand_over();
+  r.subsegment_of = o.sub_of.hand_over();
+  if (!opt.regions.empty()) r.attribute = o.attribute.hand_over();
+  r.small_angles = std::move(o.small);
+  r.small_angle_reasons = std::move(o.reasons);
+  r.large_triangles = std::move(o.large);
   tally = o.tally;
 }

@@ -98,3 +98,6 @@ inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::i
                           hint ? d_hint.data() : nullptr, opt.profile, st);
   deliver_host_results(ex, opt.into, n, P, f, out, st, pf);
 }
+
+const testing::Entries testing_entries{&triangulate_from_impl, &digital_sketch_dual_impl,
+                                       &digital_shift_impl};
