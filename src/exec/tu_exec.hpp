@@ -9,11 +9,13 @@
 // address 0 (seen: DynamicDelaunay3d::remove from Python, mesh::gather_live's compaction).
 // Instantiated with a type that belongs to the unit, every such template is the unit's own.
 #pragma once
+#include "exec/exec_context.hpp"
 #include "gpugeom/common.hpp"
 
-#define GG_TU_EXECUTOR(Base)                                 \
-  namespace {                                                \
-  struct Exec : Base {                                       \
-    explicit Exec(const RunOptions& run = {}) : Base(run) {} \
-  };                                                         \
+#define GG_TU_EXECUTOR(Base)                                                                       \
+  namespace {                                                                                      \
+  struct Exec : Base {                                                                             \
+    explicit Exec(const RunOptions& run = {}) : Base(run) {}                                       \
+    Exec(const RunOptions& run, const ::gpugeom::detail::ExecContext* outer) : Base(run, outer) {} \
+  };                                                                                               \
   }
