@@ -37,10 +37,12 @@ struct Entries : detail::PointEntries<Delaunay2dOptions, Output, DeviceOutput, K
 // The Voronoi diagram's entries on one executor (impl/voronoi.inl, its own unit).
 struct VoronoiEntries {
   // The diagram of nt triangles (tri, nb; dup may be null: no duplicates) of n points xy, all in
-  // the executor's memory; into `host` where given (the host entry), else left in `out`.
+  // the executor's memory; into `host` where given (the host entry), else left in `out`. outer:
+  // the calling executor's context (exec/exec_context.hpp), or null.
   void (*voronoi)(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
                   const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
-                  DeviceVoronoiOutput& out, Stats& stats, Voronoi2d* host);
+                  DeviceVoronoiOutput& out, Stats& stats, Voronoi2d* host,
+                  const detail::ExecContext* outer);
   // voronoi2d(xy, n, opt, tri) where the executor does not read host memory: the points go up
   // once, both structures are made there, and only the results come back. Null on the CPU.
   void (*from_host)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Voronoi2d& v,

@@ -61,7 +61,7 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
   del2d::cpu_impl::voronoi_entries.voronoi(
       xy, n, tri.triangles.data(), tri.neighbors.data(),
       tri.duplicate_of.data(),  // (copies; removed points: empty cells)
-      tri.num_triangles, run, unused, st, &v);
+      tri.num_triangles, run, unused, st, &v, nullptr);
   return v;
 }
 

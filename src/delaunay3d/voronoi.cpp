@@ -28,7 +28,8 @@ Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tr
   RunOptions run;
   run.backend = Backend::Cpu;
   del3d::cpu_impl::voronoi_entries.voronoi(xyz, n, tri.tetrahedra.data(), tri.neighbors.data(),
-                                           tri.duplicate_of.data(), nt, run, unused, v.stats, &v);
+                                           tri.duplicate_of.data(), nt, run, unused, v.stats, &v,
+                                           nullptr);
   return v;
 }
 

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "exec/dispatch.hpp"
+#include "exec/exec_context.hpp"
 #include "gpugeom/voronoi3d.hpp"
 #include "gpugeom/voronoi_cells.hpp"
 
@@ -15,10 +16,12 @@ struct VoronoiEntries {
   // tet, nb: nt tetrahedra as Triangulation3d has them; dup: the duplicate map (null: none; a kept
   // tetrahedralisation's marks removed points), all in the executor's memory, as xyz. out: the
   // arrays in the executor's memory (its counts and arrays; the caller sets the rest), or, with
-  // host, the host entry's result instead (then `out` is left empty).
+  // host, the host entry's result instead (then `out` is left empty). outer: the calling
+  // executor's context (exec/exec_context.hpp), or null.
   void (*voronoi)(const double* xyz, std::int64_t n, const std::int32_t* tet,
                   const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                  const RunOptions& run, DeviceVoronoi3d& out, Stats& stats, Voronoi3d* host);
+                  const RunOptions& run, DeviceVoronoi3d& out, Stats& stats, Voronoi3d* host,
+                  const detail::ExecContext* outer);
   // voronoi3d(xyz, n, opt, tri) where the executor does not read host memory: the points go up
   // once, both structures are made there, and only the results come back. Null on the CPU.
   void (*from_host)(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Voronoi3d& v,

@@ -267,7 +267,8 @@ class CudaExec {
            : run.stream ? cudaStream_t(run.stream)
                         : cudaStreamPerThread),
         mem_(outer ? outer->memory : std::make_shared<detail::CallMemory>(run.memory, dev_)),
-        tuning_(detail::tuning_of(run)) {
+        tuning_(detail::tuning_of(run)),
+        nested_(outer != nullptr) {
     GG_CUDA_CHECK(cudaDeviceGetAttribute(&sms_, cudaDevAttrMultiProcessorCount, dev_));
   }
   // What a capability this one calls runs on (its entry's `outer`).
@@ -294,6 +295,8 @@ class CudaExec {
   // The most device memory this executor's arrays held at once from reset_peak() on
   // (exec/peak.hpp), whatever other calls held from the same resource.
   void reset_peak() { mem_->reset_peak(); }
+  // Built from an outer executor's context: the peak is the outer call's to reset.
+  bool nested() const { return nested_; }
   std::int64_t peak_bytes() const { return mem_->peak(); }
   int device() const { return dev_; }
 
@@ -553,6 +556,7 @@ class CudaExec {
   cudaStream_t s_;
   std::shared_ptr<detail::CallMemory> mem_;
   detail::Tuning tuning_;
+  bool nested_;
   int sms_ = 1;
 };
 

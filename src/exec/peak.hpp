@@ -1,8 +1,9 @@
 // The device memory a call needs: measured for its Stats, and checked before it starts
 // (internal; issue 23).
-// Declared right after a module's executor, it resets the device pool's high-water mark and,
-// when the call ends (returns or throws), records the pool's peak use in the counter
-// "device_peak_bytes". Nothing on the CPU executor.
+// Declared right after a module's executor, it resets the call's high-water mark and, when the
+// call ends (returns or throws), records the call's peak use in the counter "device_peak_bytes".
+// An executor run inside another call (exec/exec_context.hpp) leaves the mark to that call,
+// whose peak then includes its own: it records the peak so far. Nothing on the CPU executor.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -15,7 +16,8 @@ template <class Exec>
 class DevicePeak {
  public:
   DevicePeak(Exec& ex, Stats& st) : ex_(ex), st_(st) {
-    if constexpr (Exec::backend == Backend::Cuda) ex_.reset_peak();
+    if constexpr (Exec::backend == Backend::Cuda)
+      if (!ex_.nested()) ex_.reset_peak();
   }
   ~DevicePeak() {
     if constexpr (Exec::backend == Backend::Cuda) {

@@ -83,7 +83,7 @@ Vor run_device_voronoi(const Table& table, const double* p, std::int64_t n, cons
   v.num_points = n;
   v.backend = v.stats.backend = tri.backend;
   const std::int32_t* dup = tri.duplicate_of.get();  // (a kept one's may mark removed points)
-  table.voronoi(p, n, simplices, tri.neighbors.get(), dup, ns, run, v, v.stats, nullptr);
+  table.voronoi(p, n, simplices, tri.neighbors.get(), dup, ns, run, v, v.stats, nullptr, nullptr);
   return v;
 }
 

@@ -66,6 +66,7 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const std::int32_
                              std::int64_t nseg, const Cdt2dOptions& opt,
                              ConstrainedTriangulation2d& r, RecoveryCounts& rc) {
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, r.stats);  // (the whole call's)
   const Cdt2dBuffers& into = opt.into;
   // On the GPU the host is idle meanwhile: the result arrays are sized for the most triangles n
   // points can have (cut to the count later, keeping the pages) and faulted in by host threads,
@@ -126,6 +127,7 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const std:
                                     std::int64_t nseg, const Cdt2dOptions& opt,
                                     DeviceConstrainedTriangulation2d& r, RecoveryCounts& rc) {
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, r.stats);  // (the whole call's)
   check_segment_indices(ex, segments, nseg, n);
   triangulate_core(ex, xy, n, segments, nseg, opt, r, rc);
   if (rc.cross_a >= 0) return;

@@ -3,6 +3,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 #include <climits>
@@ -15,6 +16,7 @@
 #include "gpugeom/delaunay2d.hpp"
 #include "exec/atomics.hpp"
 #include "exec/deliver.hpp"
+#include "exec/peak.hpp"
 #include "exec/prefault.hpp"
 #include "exec/scratch_slots.hpp"
 #include "locate/walk.hpp"

@@ -20,7 +20,7 @@ inline void voronoi_from_host(const double* xy, std::int64_t n, const Delaunay2d
   DeviceVoronoiOutput unused;
   voronoi_impl(up.data(), n, d.triangles.get(), d.neighbors.get(),
                d.num_duplicates ? d.duplicate_of.get() : nullptr, d.num_triangles, opt, unused,
-               stats, &v);
+               stats, &v, &ctx);
   if (!tri) return;
   const auto t1 = std::chrono::steady_clock::now();
   const OutBuffer<std::int32_t> none{};

@@ -254,10 +254,10 @@ inline void vor3_ridge_lengths(Exec& ex, const double* xyz, const std::int32_t* 
 
 inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t* tet,
                            const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                           const RunOptions& run, DeviceVoronoi3d& out, Stats& st,
-                           Voronoi3d* host) {
+                           const RunOptions& run, DeviceVoronoi3d& out, Stats& st, Voronoi3d* host,
+                           const ::gpugeom::detail::ExecContext* outer) {
   const auto t0 = std::chrono::steady_clock::now();
-  Exec ex(run);
+  Exec ex(run, outer);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   using I32 = std::int32_t;
   using I64 = std::int64_t;

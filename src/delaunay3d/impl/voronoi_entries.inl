@@ -8,6 +8,7 @@ inline void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3
                               Voronoi3d& v, Triangulation3d* tri) {
   const auto t0 = std::chrono::steady_clock::now();
   Exec ex(opt);
+  const ::gpugeom::detail::DevicePeak<Exec> peak(ex, v.stats);  // (the whole call's)
   auto up = ex.template alloc<double>(std::size_t(3 * n));
   ex.from_host(xyz, 3 * n, up.data());
   v.stats.phase_ms.push_back({"upload", ms_since(t0)});
@@ -20,7 +21,7 @@ inline void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3
   DeviceVoronoi3d unused;
   voronoi3d_impl(up.data(), n, d.tetrahedra.get(), d.neighbors.get(),
                  d.num_duplicates ? d.duplicate_of.get() : nullptr, d.num_tetrahedra, opt, unused,
-                 v.stats, &v);
+                 v.stats, &v, &ctx);
   if (!tri) return;
   const auto t1 = std::chrono::steady_clock::now();
   const OutBuffer<std::int32_t> none{};
