@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -199,6 +200,59 @@ TEST_F(Memory, DeviceEdtOutputsAreTheCallersMemory) {
               gg_test::from_device(want.distance32, want.count()));
   }
   all_returned(*c, "distance_transform_device");
+}
+
+// A capability that runs another inside its call (the CDT its Delaunay triangulation, the 3D
+// Voronoi diagram its tetrahedralisation) runs it on the call's executor: the same stream and
+// resource, and one count of the call's memory, so that the call's peak includes the points it
+// uploaded while the inner triangulation ran (an inner executor of its own reported the inner
+// run's peak alone, which is the device entry's on the same points).
+TEST_F(Memory, NestedCapabilitiesShareTheCall) {
+  const std::int64_t n2 = 30000, k = 256;
+  std::vector<double> xy;
+  for (const Point2& p : generate2d("uniform", n2 - k, 9)) xy.insert(xy.end(), {p.x, p.y});
+  std::vector<std::int32_t> segs;
+  for (std::int64_t i = 0; i < k; ++i) {  // a convex polygon around the middle: no crossings
+    const double a = 6.283185307179586 * double(i) / double(k);
+    xy.insert(xy.end(), {0.5 + 0.3 * std::cos(a), 0.5 + 0.3 * std::sin(a)});
+    segs.insert(segs.end(), {std::int32_t(n2 - k + i), std::int32_t(n2 - k + (i + 1) % k)});
+  }
+  const gg_test::DeviceCopy dxy(xy);
+  auto c0 = std::make_shared<Counting>();
+  std::int64_t dt_peak = 0;
+  {
+    const auto dt = delaunay2d_device(dxy.doubles(), n2, with<Delaunay2dOptions>(c0));
+    dt_peak = dt.stats.counters.at("device_peak_bytes");
+  }
+  auto c = std::make_shared<Counting>();
+  {
+    const auto got = cdt2d(xy.data(), n2, segs.data(), k, with<Cdt2dOptions>(c));
+    const std::int64_t peak = got.stats.counters.at("device_peak_bytes");
+    EXPECT_GE(peak, dt_peak + 16 * n2) << "the CDT's peak leaves out its upload of the points";
+    EXPECT_LE(peak, c->high());
+  }
+  all_returned(*c, "cdt2d");
+
+  const std::int64_t n3 = 20000;
+  const auto pts = generate3d("uniform", n3, 11);
+  const gg_test::DeviceCopy dxyz(coords3(pts));
+  std::int64_t tet_peak = 0;
+  {
+    const auto dt = delaunay3d_device(dxyz.doubles(), n3, with<Delaunay3dOptions>(c0));
+    tet_peak = dt.stats.counters.at("device_peak_bytes");
+  }
+  auto c3 = std::make_shared<Counting>();
+  {
+    Triangulation3d tri;
+    const auto v = voronoi3d(&pts.data()->x, n3, with<Delaunay3dOptions>(c3), &tri);
+    const std::int64_t peak = v.stats.counters.at("device_peak_bytes");
+    EXPECT_GE(peak, tet_peak + 24 * n3) << "the diagram's peak leaves out the tetrahedralisation's";
+    EXPECT_LE(peak, c3->high());
+    EXPECT_EQ(tri.stats.backend, Backend::Cuda);
+    const auto want = delaunay3d(pts, with<Delaunay3dOptions>(c0));
+    EXPECT_EQ(tri.tetrahedra, want.tetrahedra);
+  }
+  all_returned(*c3, "voronoi3d");
 }
 
 // A resource that refuses: the call fails with OutOfMemory, naming the resource and the
