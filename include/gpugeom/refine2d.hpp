@@ -48,9 +48,27 @@ struct AreaGrid {
   double x0 = 0, y0 = 0, x1 = 1, y1 = 1;
 };
 
+/// The caller's arrays for refine2d's outputs (Refine2dOptions::into; each optional): host memory
+/// for refine2d, device memory for refine2d_device (host memory where it runs on the CPU
+/// executor). Every length depends on the result: points at least 2 * num_points, triangles,
+/// neighbors and segment_of at least 3 * num_triangles, duplicate_of at least num_points,
+/// attribute (with regions) at least num_triangles, subsegments at least 2 * num_subsegments and
+/// subsegment_of at least num_subsegments. They are checked once the counts are known and before
+/// anything is written (Error(InvalidArgument) naming the array and both lengths): size them for
+/// the Steiner points you allow (max_steiner_points) or retry with the counts the error gives. An
+/// output written into a caller's array is empty (null) in the result; the counts say how much
+/// of it was written.
+struct Refine2dBuffers {
+  OutBuffer<double> points, attribute;
+  OutBuffer<std::int32_t> triangles, neighbors, segment_of, duplicate_of, subsegments,
+      subsegment_of;
+};
+
 /// How refine2d meshes a domain: the smallest angle, the largest area (a number, per region or a
-/// function), the Steiner point limit, and the domain's options (Cdt2dDomainOptions).
+/// function), the Steiner point limit, the domain's options (Cdt2dDomainOptions) and the caller's
+/// arrays.
 struct Refine2dOptions : Cdt2dDomainOptions {
+  Refine2dBuffers into;  ///< optional
   /// Degrees, 0 < min_angle <= kRefineMaxAngle; 0 turns the angle bound off (-a alone).
   double min_angle = 20;
   /// The largest triangle area anywhere (0: none); per region, Cdt2dRegion::max_area.

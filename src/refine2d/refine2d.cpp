@@ -109,8 +109,6 @@ RefinedMesh2d refine2d(const double* xy, std::int64_t n, const std::int32_t* seg
     throw Error(ErrorCode::InvalidInput, crossing_message(final_of_base[std::size_t(rc.cross_a)],
                                                           final_of_base[std::size_t(rc.cross_b)]));
   r.num_input_points = in.num_points;
-  r.num_points = std::int64_t(r.points.size() / 2);
-  r.num_triangles = std::int64_t(r.triangles.size() / 3);
   r.stats.backend = b;
   set_counters(r.stats, tally, r.num_triangles);
   return r;

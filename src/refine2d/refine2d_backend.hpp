@@ -18,7 +18,8 @@ struct Tally {
 };
 
 // refine: host points (n) and segments (nseg pairs, indices checked), final_of_base naming each
-// segment's marks in the output; fills r unless two segments cross (rc.cross_a >= 0).
+// segment's marks in the output; fills r (its arrays, or opt.into's, its counts) unless two
+// segments cross (rc.cross_a >= 0).
 // refine_device: both in the executor's memory, indices checked there, marks the given indices;
 // fills r's arrays and counts (its backend and stats are the public entry's).
 // One executor's entries (exec/dispatch.hpp), filled by each executor's unit.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "../common/caller_arrays.hpp"
 #include "refine2d_cases.hpp"
 
 using namespace gpugeom;
@@ -209,4 +210,66 @@ TEST(Refine2d, BadInputIsRefused) {
   auto fn = o;
   fn.max_area_at = [](double, double) { return 1.0; };
   EXPECT_THROW(refine2d_device(xy.data(), 4, cross.data(), 0, fn), Error);
+}
+
+// The caller's arrays (Refine2dOptions::into), from both entries: the same values as the
+// library's arrays, the library's left empty; a short array is refused before anything is
+// written.
+TEST(Refine2d, IntoCallersArrays) {
+  using gg_test::CallerArray;
+  const Domain d = gg_refine::square_with_hole();
+  const std::int64_t n = std::int64_t(d.g.xy.size() / 2), m = std::int64_t(d.g.segs.size() / 2);
+  auto o = options(30, 2e-3);
+  o.regions = {{0.05, 0.05, 4.0, 0.0}};
+  const auto ref = refine2d(d.g.xy.data(), n, d.g.segs.data(), m, o);
+  const std::int64_t np = ref.num_points, nt = ref.num_triangles,
+                     ns = std::int64_t(ref.subsegment_of.size());
+  ASSERT_GT(nt, 0);
+  ASSERT_EQ(std::int64_t(ref.attribute.size()), nt);
+  for (bool device : {false, true}) {
+    SCOPED_TRACE(device ? "device entry" : "host entry");
+    CallerArray<double> p(2 * np + 5, 7), at(nt, 7);
+    CallerArray<std::int32_t> t(3 * nt, 7), nb(3 * nt + 1, 7), sg(3 * nt, 7), dup(np, 7),
+        sub(2 * ns, 7), sub_of(ns, 7);
+    auto mine = o;
+    mine.into = {p.buf(),  at.buf(),  t.buf(),   nb.buf(),
+                 sg.buf(), dup.buf(), sub.buf(), sub_of.buf()};
+    if (device) {
+      const auto r = refine2d_device(d.g.xy.data(), n, d.g.segs.data(), m, mine);
+      EXPECT_FALSE(r.points || r.triangles || r.neighbors || r.segment_of || r.duplicate_of ||
+                   r.attribute || r.subsegments || r.subsegment_of);
+      ASSERT_EQ(r.num_points, np);
+      ASSERT_EQ(r.num_triangles, nt);
+      ASSERT_EQ(r.num_subsegments, ns);
+    } else {
+      const auto r = refine2d(d.g.xy.data(), n, d.g.segs.data(), m, mine);
+      EXPECT_TRUE(r.points.empty() && r.triangles.empty() && r.neighbors.empty() &&
+                  r.segment_of.empty() && r.duplicate_of.empty() && r.attribute.empty() &&
+                  r.subsegments.empty() && r.subsegment_of.empty());
+      EXPECT_EQ(r.small_angles, ref.small_angles);
+      ASSERT_EQ(r.num_points, np);
+      ASSERT_EQ(r.num_triangles, nt);
+    }
+    EXPECT_EQ(gg_test::host_prefix(p.v.data(), 2 * np), ref.points);
+    EXPECT_EQ(p.v[std::size_t(2 * np)], 7.0);  // (nothing past the result's length)
+    EXPECT_EQ(t.v, ref.triangles);
+    EXPECT_EQ(gg_test::host_prefix(nb.v.data(), 3 * nt), ref.neighbors);
+    EXPECT_EQ(sg.v, ref.segment_of);
+    EXPECT_EQ(dup.v, ref.duplicate_of);
+    EXPECT_EQ(at.v, ref.attribute);
+    EXPECT_EQ(sub.v, ref.subsegments);
+    EXPECT_EQ(sub_of.v, ref.subsegment_of);
+    // One array too short: refused, and nothing written.
+    CallerArray<double> p2(2 * np, 7);
+    CallerArray<std::int32_t> sub2(2 * ns - 1, 7);
+    mine.into = {p2.buf(), {}, {}, {}, {}, {}, sub2.buf(), {}};
+    gg_test::expect_refused(
+        [&] {
+          device ? (void)refine2d_device(d.g.xy.data(), n, d.g.segs.data(), m, mine)
+                 : (void)refine2d(d.g.xy.data(), n, d.g.segs.data(), m, mine);
+        },
+        "into.subsegments holds " + std::to_string(2 * ns - 1) +
+            " elements; this result needs at least " + std::to_string(2 * ns));
+    EXPECT_TRUE(p2.untouched(7) && sub2.untouched(7));
+  }
 }

@@ -71,6 +71,49 @@ TEST(CudaRefine2d, DeviceEntry) {
             std::vector<std::int32_t>(host.segment_of.begin(), host.segment_of.end()));
 }
 
+// The caller's arrays (Refine2dOptions::into) on the GPU: host arrays from the host entry,
+// device arrays from the device entry, the same values as the library's own.
+TEST(CudaRefine2d, IntoCallersArrays) {
+  const Domain d = gg_refine::letter_a();
+  const std::int64_t n = std::int64_t(d.g.xy.size() / 2), m = std::int64_t(d.g.segs.size() / 2);
+  Refine2dOptions o = options(30, 1e-3);
+  o.backend = Backend::Cuda;
+  const auto ref = refine2d(d.g.xy.data(), n, d.g.segs.data(), m, o);
+  const std::int64_t np = ref.num_points, nt = ref.num_triangles,
+                     ns = std::int64_t(ref.subsegment_of.size());
+  std::vector<double> hp(std::size_t(2 * np));
+  std::vector<std::int32_t> hs(std::size_t(2 * ns));
+  auto mine = o;
+  mine.into.points = {hp.data(), 2 * np};
+  mine.into.subsegments = {hs.data(), 2 * ns};
+  const auto h = refine2d(d.g.xy.data(), n, d.g.segs.data(), m, mine);
+  EXPECT_TRUE(h.points.empty() && h.subsegments.empty());
+  EXPECT_EQ(h.triangles, ref.triangles);
+  EXPECT_EQ(hp, ref.points);
+  EXPECT_EQ(hs, ref.subsegments);
+
+  const gg_test::DeviceCopy dxy(d.g.xy), dsegs(d.g.segs);
+  const gg_test::DeviceCopy out_t(std::vector<std::int32_t>(std::size_t(3 * nt + 3), 7));
+  const gg_test::DeviceCopy out_p(std::vector<double>(std::size_t(2 * np), 7));
+  auto dev = o;
+  dev.into.triangles = {static_cast<std::int32_t*>(out_t.data()), 3 * nt + 3};
+  dev.into.points = {static_cast<double*>(out_p.data()), 2 * np};
+  const auto r =
+      refine2d_device(dxy.doubles(), n, static_cast<const std::int32_t*>(dsegs.data()), m, dev);
+  EXPECT_FALSE(r.triangles || r.points);
+  ASSERT_TRUE(r.neighbors && r.subsegments);
+  ASSERT_EQ(r.num_triangles, nt);
+  std::vector<std::int32_t> t(std::size_t(3 * nt + 3));
+  std::vector<double> p(std::size_t(2 * np));
+  ASSERT_EQ(cudaMemcpy(t.data(), out_t.data(), t.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(p.data(), out_p.data(), p.size() * 8, cudaMemcpyDeviceToHost), cudaSuccess);
+  EXPECT_EQ(std::vector<std::int32_t>(t.begin(), t.begin() + 3 * nt), ref.triangles);
+  EXPECT_EQ(t[std::size_t(3 * nt)], 7);  // (nothing past the result's length)
+  EXPECT_EQ(p, ref.points);
+  EXPECT_EQ(gg_test::from_device(r.neighbors, 3 * nt), ref.neighbors);
+  EXPECT_EQ(gg_test::from_device(r.subsegments, 2 * ns), ref.subsegments);
+}
+
 // Larger meshes: times printed for the notes (the bench measures them properly).
 TEST(CudaRefine2d, Larger) {
   for (double area : {1e-5, 1e-6, 1e-7}) {

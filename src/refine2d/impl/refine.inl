@@ -341,6 +341,18 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
   }
 }
 
+// The outputs' lengths against the caller's arrays (opt.into), before any is written.
+inline void check_into(const Refine2dBuffers& into, const Output& o, bool regions) {
+  deliver::check(into.points, 2 * o.np, "points");
+  deliver::check(into.triangles, 3 * o.nt, "triangles");
+  deliver::check(into.neighbors, 3 * o.nt, "neighbors");
+  deliver::check(into.segment_of, 3 * o.nt, "segment_of");
+  deliver::check(into.duplicate_of, o.np, "duplicate_of");
+  deliver::check(into.subsegments, 2 * o.nsub, "subsegments");
+  deliver::check(into.subsegment_of, o.nsub, "subsegment_of");
+  if (regions) deliver::check(into.attribute, o.nt, "attribute");
+}
+
 // Host arrays in (checked), host arrays out.
 inline void refine_host(const double* xy, std::int64_t n, const std::int32_t* segs,
                         std::int64_t nseg, const std::vector<std::int32_t>& final_of_base,
@@ -357,21 +369,24 @@ inline void refine_host(const double* xy, std::int64_t n, const std::int32_t* se
   if (rc.cross_a >= 0) return;
   r.stats.phase_ms.push_back({"refine", ms_since(t0)});
   const auto t1 = Clock::now();
-  const OutBuffer<double> nod;
-  const OutBuffer<std::int32_t> noi;
-  deliver::to_host(ex, o.xy.data(), 2 * o.np, nod, r.points);
-  deliver::to_host(ex, o.tri.data(), 3 * o.nt, noi, r.triangles);
-  deliver::to_host(ex, o.nbr.data(), 3 * o.nt, noi, r.neighbors);
-  deliver::to_host(ex, o.seg.data(), 3 * o.nt, noi, r.segment_of);
-  deliver::to_host(ex, o.dup.data(), o.np, noi, r.duplicate_of);
-  deliver::to_host(ex, o.sub.data(), 2 * o.nsub, noi, r.subsegments);
-  deliver::to_host(ex, o.sub_of.data(), o.nsub, noi, r.subsegment_of);
-  if (!opt.regions.empty()) deliver::to_host(ex, o.attribute.data(), o.nt, nod, r.attribute);
+  const Refine2dBuffers& into = opt.into;
+  check_into(into, o, !opt.regions.empty());
+  deliver::to_host(ex, o.xy.data(), 2 * o.np, into.points, r.points);
+  deliver::to_host(ex, o.tri.data(), 3 * o.nt, into.triangles, r.triangles);
+  deliver::to_host(ex, o.nbr.data(), 3 * o.nt, into.neighbors, r.neighbors);
+  deliver::to_host(ex, o.seg.data(), 3 * o.nt, into.segment_of, r.segment_of);
+  deliver::to_host(ex, o.dup.data(), o.np, into.duplicate_of, r.duplicate_of);
+  deliver::to_host(ex, o.sub.data(), 2 * o.nsub, into.subsegments, r.subsegments);
+  deliver::to_host(ex, o.sub_of.data(), o.nsub, into.subsegment_of, r.subsegment_of);
+  if (!opt.regions.empty())
+    deliver::to_host(ex, o.attribute.data(), o.nt, into.attribute, r.attribute);
   r.stats.phase_ms.push_back({"to_host", ms_since(t1)});
   r.small_angles.assign(o.small.begin(), o.small.end());
   r.small_angle_reasons.assign(o.reasons.begin(), o.reasons.end());
   r.large_triangles.assign(o.large.begin(), o.large.end());
   r.removed_triangles = o.removed;
+  r.num_points = o.np;
+  r.num_triangles = o.nt;
   tally = o.tally;
 }
 
@@ -386,18 +401,30 @@ inline void refine_device_impl(const double* xy, std::int64_t n, const std::int3
   Output o;
   refine_core(ex, xy, n, segs, nseg, final_of_base, opt, o, rc);
   if (rc.cross_a >= 0) return;
-  ex.sync();
   r.num_points = o.np, r.num_input_points = n, r.num_triangles = o.nt;
   r.removed_triangles = o.removed;
-  r.points = o.xy.hand_over();
-  r.triangles = o.tri.hand_over();
-  r.neighbors = o.nbr.hand_over();
-  r.segment_of = o.seg.hand_over();
-  r.duplicate_of = o.dup.hand_over();
   r.num_subsegments = o.nsub;
-  r.subsegments = o.sub.hand_over();
-  r.subsegment_of = o.sub_of.hand_over();
-  if (!opt.regions.empty()) r.attribute = o.attribute.hand_over();
+  const Refine2dBuffers& into = opt.into;
+  check_into(into, o, !opt.regions.empty());
+  auto p_xy = deliver::place(ex, o.xy, 2 * o.np, into.points);
+  auto p_tri = deliver::place(ex, o.tri, 3 * o.nt, into.triangles);
+  auto p_nbr = deliver::place(ex, o.nbr, 3 * o.nt, into.neighbors);
+  auto p_seg = deliver::place(ex, o.seg, 3 * o.nt, into.segment_of);
+  auto p_dup = deliver::place(ex, o.dup, o.np, into.duplicate_of);
+  auto p_sub = deliver::place(ex, o.sub, 2 * o.nsub, into.subsegments);
+  auto p_sub_of = deliver::place(ex, o.sub_of, o.nsub, into.subsegment_of);
+  const bool regions = !opt.regions.empty();
+  auto p_att = regions ? deliver::place(ex, o.attribute, o.nt, into.attribute)
+                       : deliver::Placed<Exec, double>{};
+  ex.sync();  // the caller's arrays are written; the library's own go to the result
+  r.points = p_xy.own();
+  r.triangles = p_tri.own();
+  r.neighbors = p_nbr.own();
+  r.segment_of = p_seg.own();
+  r.duplicate_of = p_dup.own();
+  r.subsegments = p_sub.own();
+  r.subsegment_of = p_sub_of.own();
+  r.attribute = p_att.own();
   r.small_angles = std::move(o.small);
   r.small_angle_reasons = std::move(o.reasons);
   r.large_triangles = std::move(o.large);
