@@ -11,6 +11,26 @@
 
 namespace gpugeom {
 
+/// The caller's arrays for the cells (VoronoiCellsOptions::into; each optional, each as the
+/// result's array of that name): host memory for voronoi_cells, device memory for
+/// voronoi_cells_device (host memory on the CPU executor). volumes and areas need at least n
+/// elements, centroids 3 n, face_offsets and vertex_offsets n + 1; the others depend on the
+/// result: neighbors and face_areas at least num_faces, face_normals 3 num_faces,
+/// face_vertex_offsets num_faces + 1, face_vertices num_face_vertices, vertices 3 num_vertices.
+/// They are checked once the counts are known and before anything is written
+/// (Error(InvalidArgument) naming the array and both lengths). An output written into a caller's
+/// array is empty (null) in the result; the counts say how much of it was written.
+struct VoronoiCellsBuffers {
+  OutBuffer<double> volumes, areas, centroids;
+  OutBuffer<std::int64_t> face_offsets;
+  OutBuffer<std::int32_t> neighbors;
+  OutBuffer<double> face_areas, face_normals;
+  OutBuffer<std::int64_t> face_vertex_offsets;
+  OutBuffer<std::int32_t> face_vertices;
+  OutBuffer<std::int64_t> vertex_offsets;
+  OutBuffer<double> vertices;
+};
+
 /// The box [lo, hi] and, per axis, whether it wraps round. Along an axis that does not wrap, the
 /// cells are cut by the box's walls and the points must lie in [lo, hi]; along one that wraps,
 /// a point's coordinate is taken modulo the box (any value is accepted) and its cell meets the
@@ -22,6 +42,7 @@ struct VoronoiCellsOptions : RunOptions {
   /// measures, neighbours and face areas and normals come sooner (each cell is built once, not
   /// twice) and the polygon arrays are left empty.
   bool polygons = true;
+  VoronoiCellsBuffers into;  ///< optional
 };
 
 /// Every point's Voronoi cell within the box. The cells are the Voronoi diagram's (its
@@ -55,6 +76,9 @@ struct VoronoiCells {
   HostVector<std::int32_t> face_vertices;
   HostVector<std::int64_t> vertex_offsets;  ///< n + 1: each cell's vertices in `vertices`
   HostVector<double> vertices;              ///< 3 per vertex
+  /// The points, faces, face vertex entries and cell vertices (the arrays' lengths, written into
+  /// the caller's arrays or not).
+  std::int64_t num_points = 0, num_faces = 0, num_face_vertices = 0, num_vertices = 0;
   /// Phases "upload", "images" (the periodic images, each attempt), "delaunay", "ridges",
   /// "cells", "cells_write"; counters "images" (periodic images added, last attempt), "attempts"
   /// (a periodic box is tried with a wider layer of images while some cell reaches past it),

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <map>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -310,6 +311,84 @@ TEST(VoronoiCells, SameBitsOnAnyThreadCount) {
   EXPECT_TRUE(z.face_areas == x.face_areas);
   EXPECT_TRUE(z.face_normals == x.face_normals);
   EXPECT_TRUE(z.vertices.empty() && z.face_vertices.empty() && z.face_vertex_offsets.empty());
+}
+
+// The caller's arrays (VoronoiCellsOptions::into), from both entries: the same values as the
+// library's arrays, the library's left empty, the counts set; a short array is refused before
+// anything is written.
+TEST(VoronoiCells, IntoCallersArrays) {
+  const std::int64_t n = 500;
+  const auto p = uniform(n, 23);
+  const VoronoiCellsOptions o = box(0, 1, true, false, false);
+  const VoronoiCells ref = voronoi_cells(p.data(), n, o);
+  const std::int64_t nf = std::int64_t(ref.neighbors.size()),
+                     ne = std::int64_t(ref.face_vertices.size()),
+                     nv = std::int64_t(ref.vertices.size() / 3);
+  ASSERT_EQ(ref.num_faces, nf);
+  ASSERT_EQ(ref.num_face_vertices, ne);
+  ASSERT_EQ(ref.num_vertices, nv);
+  for (bool device : {false, true}) {
+    SCOPED_TRACE(device ? "device entry" : "host entry");
+    std::vector<double> vol(std::size_t(n), 7), cen(std::size_t(3 * n), 7),
+        fa(std::size_t(nf + 2), 7), vx(std::size_t(3 * nv), 7);
+    std::vector<std::int64_t> foff(std::size_t(n + 1), 7), fvo(std::size_t(nf + 1), 7);
+    std::vector<std::int32_t> nb(std::size_t(nf), 7), fv(std::size_t(ne), 7);
+    VoronoiCellsOptions mine = o;
+    mine.into.volumes = {vol.data(), n};
+    mine.into.centroids = {cen.data(), 3 * n};
+    mine.into.face_areas = {fa.data(), nf + 2};
+    mine.into.vertices = {vx.data(), 3 * nv};
+    mine.into.face_offsets = {foff.data(), n + 1};
+    mine.into.face_vertex_offsets = {fvo.data(), nf + 1};
+    mine.into.neighbors = {nb.data(), nf};
+    mine.into.face_vertices = {fv.data(), ne};
+    if (device) {
+      const DeviceVoronoiCells r = voronoi_cells_device(p.data(), n, mine);
+      EXPECT_FALSE(r.volumes || r.centroids || r.face_areas || r.vertices || r.face_offsets ||
+                   r.face_vertex_offsets || r.neighbors || r.face_vertices);
+      ASSERT_TRUE(r.areas && r.face_normals && r.vertex_offsets);
+      EXPECT_EQ(r.num_faces, nf);
+      EXPECT_TRUE(std::equal(ref.areas.begin(), ref.areas.end(), r.areas.get()));
+    } else {
+      const VoronoiCells r = voronoi_cells(p.data(), n, mine);
+      EXPECT_TRUE(r.volumes.empty() && r.centroids.empty() && r.face_areas.empty() &&
+                  r.vertices.empty() && r.face_offsets.empty() && r.face_vertex_offsets.empty() &&
+                  r.neighbors.empty() && r.face_vertices.empty());
+      EXPECT_TRUE(r.areas == ref.areas);
+      EXPECT_TRUE(r.face_normals == ref.face_normals);
+      EXPECT_EQ(r.num_faces, nf);
+      EXPECT_EQ(r.num_vertices, nv);
+    }
+    EXPECT_TRUE(vol == ref.volumes);
+    EXPECT_TRUE(cen == ref.centroids);
+    EXPECT_TRUE(std::vector<double>(fa.begin(), fa.begin() + nf) == ref.face_areas);
+    EXPECT_EQ(fa[std::size_t(nf)], 7.0);  // (nothing past the result's length)
+    EXPECT_TRUE(vx == ref.vertices);
+    EXPECT_TRUE(foff == ref.face_offsets);
+    EXPECT_TRUE(fvo == ref.face_vertex_offsets);
+    EXPECT_TRUE(nb == ref.neighbors);
+    EXPECT_TRUE(fv == ref.face_vertices);
+    // One array too short: refused, and nothing written.
+    std::vector<double> vol2(std::size_t(n), 7);
+    std::vector<std::int32_t> fv2(std::size_t(ne - 1), 7);
+    VoronoiCellsOptions short_one = o;
+    short_one.into.volumes = {vol2.data(), n};
+    short_one.into.face_vertices = {fv2.data(), ne - 1};
+    try {
+      if (device)
+        (void)voronoi_cells_device(p.data(), n, short_one);
+      else
+        (void)voronoi_cells(p.data(), n, short_one);
+      ADD_FAILURE() << "a short face_vertices taken";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
+      EXPECT_NE(std::string(e.what()).find("into.face_vertices holds " + std::to_string(ne - 1)),
+                std::string::npos)
+          << e.what();
+    }
+    EXPECT_TRUE(std::all_of(vol2.begin(), vol2.end(), [](double x) { return x == 7; }));
+    EXPECT_TRUE(std::all_of(fv2.begin(), fv2.end(), [](std::int32_t x) { return x == 7; }));
+  }
 }
 
 TEST(VoronoiCells, BadInputGetsTypedErrors) {

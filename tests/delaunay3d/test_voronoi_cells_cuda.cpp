@@ -94,3 +94,46 @@ TEST(CudaVoronoiCells, AsOnTheHost) {
   }
   expect_as_on_the_host(s, box(false, false, false));
 }
+
+// The caller's device arrays (VoronoiCellsOptions::into) from the device entry, host arrays from
+// the host entry on the GPU: the same values as the library's own.
+TEST(CudaVoronoiCells, IntoCallersArrays) {
+  const std::int64_t n = 5000;
+  std::mt19937_64 g(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<double> p(std::size_t(3 * n));
+  for (double& x : p) x = u(g);
+  VoronoiCellsOptions o = box(true, true, false);
+  o.backend = Backend::Cuda;
+  const VoronoiCells ref = voronoi_cells(p.data(), n, o);
+  const std::int64_t nf = ref.num_faces, ne = ref.num_face_vertices;
+  std::vector<double> hv(std::size_t(n));
+  std::vector<std::int32_t> hf(std::size_t(ne));
+  VoronoiCellsOptions h = o;
+  h.into.volumes = {hv.data(), n};
+  h.into.face_vertices = {hf.data(), ne};
+  const VoronoiCells hc = voronoi_cells(p.data(), n, h);
+  EXPECT_TRUE(hc.volumes.empty() && hc.face_vertices.empty());
+  EXPECT_EQ(hv, vec(ref.volumes));
+  EXPECT_EQ(hf, vec(ref.face_vertices));
+  EXPECT_EQ(vec(hc.neighbors), vec(ref.neighbors));
+
+  const gg_test::DeviceCopy d(p);
+  const gg_test::DeviceCopy dv(std::vector<double>(std::size_t(n), 7));
+  const gg_test::DeviceCopy dn(std::vector<std::int32_t>(std::size_t(nf + 4), 7));
+  VoronoiCellsOptions dev = o;
+  dev.into.volumes = {static_cast<double*>(dv.data()), n};
+  dev.into.neighbors = {static_cast<std::int32_t*>(dn.data()), nf + 4};
+  const DeviceVoronoiCells dc = voronoi_cells_device(d.doubles(), n, dev);
+  EXPECT_FALSE(dc.volumes || dc.neighbors);
+  ASSERT_TRUE(dc.areas && dc.face_vertices);
+  ASSERT_EQ(dc.num_faces, nf);
+  std::vector<double> v(std::size_t(n));
+  std::vector<std::int32_t> nb(std::size_t(nf + 4));
+  ASSERT_EQ(cudaMemcpy(v.data(), dv.data(), v.size() * 8, cudaMemcpyDeviceToHost), cudaSuccess);
+  ASSERT_EQ(cudaMemcpy(nb.data(), dn.data(), nb.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
+  EXPECT_EQ(v, vec(ref.volumes));
+  EXPECT_EQ(std::vector<std::int32_t>(nb.begin(), nb.begin() + nf), vec(ref.neighbors));
+  EXPECT_EQ(nb[std::size_t(nf)], 7);
+  EXPECT_EQ(gg_test::from_device(dc.face_vertices, ne), vec(ref.face_vertices));
+}

@@ -317,6 +317,20 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
       ex.to_host(eoff + n, 1, &ne);
     }
     st.counters["faces"] = nf;
+    const VoronoiCellsBuffers& into = opt.into;
+    deliver::check(into.volumes, n, "volumes");
+    deliver::check(into.areas, n, "areas");
+    deliver::check(into.centroids, 3 * n, "centroids");
+    deliver::check(into.face_offsets, n + 1, "face_offsets");
+    deliver::check(into.neighbors, nf, "neighbors");
+    deliver::check(into.face_areas, nf, "face_areas");
+    deliver::check(into.face_normals, 3 * nf, "face_normals");
+    if (polygons) {
+      deliver::check(into.face_vertex_offsets, nf + 1, "face_vertex_offsets");
+      deliver::check(into.face_vertices, ne, "face_vertices");
+      deliver::check(into.vertex_offsets, n + 1, "vertex_offsets");
+      deliver::check(into.vertices, 3 * nv, "vertices");
+    }
     auto d_nbr = ex.template alloc<I32>(std::size_t(nf));
     auto d_farea = ex.template alloc<double>(std::size_t(nf));
     auto d_fnrm = ex.template alloc<double>(std::size_t(3 * nf));
@@ -375,34 +389,48 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     }
     st.phase_ms.push_back({"cells_write", ms_since(t0)});
     if (host) {
-      const OutBuffer<double> nd{};
-      const OutBuffer<I32> ni{};
-      const OutBuffer<I64> nl{};
-      deliver::to_host(ex, d_vol.data(), n, nd, host->volumes);
-      deliver::to_host(ex, d_area.data(), n, nd, host->areas);
-      deliver::to_host(ex, d_cen.data(), 3 * n, nd, host->centroids);
-      deliver::to_host(ex, foff, n + 1, nl, host->face_offsets);
-      deliver::to_host(ex, d_nbr.data(), nf, ni, host->neighbors);
-      deliver::to_host(ex, d_farea.data(), nf, nd, host->face_areas);
-      deliver::to_host(ex, d_fnrm.data(), 3 * nf, nd, host->face_normals);
+      host->num_points = n, host->num_faces = nf, host->num_face_vertices = ne;
+      host->num_vertices = nv;
+      deliver::to_host(ex, d_vol.data(), n, into.volumes, host->volumes);
+      deliver::to_host(ex, d_area.data(), n, into.areas, host->areas);
+      deliver::to_host(ex, d_cen.data(), 3 * n, into.centroids, host->centroids);
+      deliver::to_host(ex, foff, n + 1, into.face_offsets, host->face_offsets);
+      deliver::to_host(ex, d_nbr.data(), nf, into.neighbors, host->neighbors);
+      deliver::to_host(ex, d_farea.data(), nf, into.face_areas, host->face_areas);
+      deliver::to_host(ex, d_fnrm.data(), 3 * nf, into.face_normals, host->face_normals);
       if (polygons) {
-        deliver::to_host(ex, d_fvo.data(), nf + 1, nl, host->face_vertex_offsets);
-        deliver::to_host(ex, d_fv.data(), ne, ni, host->face_vertices);
-        deliver::to_host(ex, voff, n + 1, nl, host->vertex_offsets);
-        deliver::to_host(ex, d_vx.data(), 3 * nv, nd, host->vertices);
+        deliver::to_host(ex, d_fvo.data(), nf + 1, into.face_vertex_offsets,
+                         host->face_vertex_offsets);
+        deliver::to_host(ex, d_fv.data(), ne, into.face_vertices, host->face_vertices);
+        deliver::to_host(ex, voff, n + 1, into.vertex_offsets, host->vertex_offsets);
+        deliver::to_host(ex, d_vx.data(), 3 * nv, into.vertices, host->vertices);
       }
       return;
     }
-    ex.sync();
     dev->num_points = n, dev->num_faces = nf, dev->num_face_vertices = ne, dev->num_vertices = nv;
-    dev->volumes = d_vol.hand_over(), dev->areas = d_area.hand_over();
-    dev->centroids = d_cen.hand_over(), dev->face_offsets = d_foff.hand_over();
-    dev->neighbors = d_nbr.hand_over(), dev->face_areas = d_farea.hand_over();
-    dev->face_normals = d_fnrm.hand_over();
+    auto p_vol = deliver::place(ex, d_vol, n, into.volumes);
+    auto p_area = deliver::place(ex, d_area, n, into.areas);
+    auto p_cen = deliver::place(ex, d_cen, 3 * n, into.centroids);
+    auto p_foff = deliver::place(ex, d_foff, n + 1, into.face_offsets);
+    auto p_nbr = deliver::place(ex, d_nbr, nf, into.neighbors);
+    auto p_farea = deliver::place(ex, d_farea, nf, into.face_areas);
+    auto p_fnrm = deliver::place(ex, d_fnrm, 3 * nf, into.face_normals);
+    deliver::Placed<Exec, I64> p_fvo, p_voff;
+    deliver::Placed<Exec, I32> p_fv;
+    deliver::Placed<Exec, double> p_vx;
     if (polygons) {
-      dev->face_vertex_offsets = d_fvo.hand_over(), dev->face_vertices = d_fv.hand_over();
-      dev->vertex_offsets = d_voff.hand_over(), dev->vertices = d_vx.hand_over();
+      p_fvo = deliver::place(ex, d_fvo, nf + 1, into.face_vertex_offsets);
+      p_fv = deliver::place(ex, d_fv, ne, into.face_vertices);
+      p_voff = deliver::place(ex, d_voff, n + 1, into.vertex_offsets);
+      p_vx = deliver::place(ex, d_vx, 3 * nv, into.vertices);
     }
+    ex.sync();  // the results (the caller's arrays among them) are complete
+    dev->volumes = p_vol.own(), dev->areas = p_area.own();
+    dev->centroids = p_cen.own(), dev->face_offsets = p_foff.own();
+    dev->neighbors = p_nbr.own(), dev->face_areas = p_farea.own();
+    dev->face_normals = p_fnrm.own();
+    dev->face_vertex_offsets = p_fvo.own(), dev->face_vertices = p_fv.own();
+    dev->vertex_offsets = p_voff.own(), dev->vertices = p_vx.own();
     return;
   }
 }
