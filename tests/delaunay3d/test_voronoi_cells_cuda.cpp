@@ -107,8 +107,8 @@ TEST(CudaVoronoiCells, IntoCallersArrays) {
   o.backend = Backend::Cuda;
   const VoronoiCells ref = voronoi_cells(p.data(), n, o);
   const std::int64_t nf = ref.num_faces, ne = ref.num_face_vertices;
-  std::vector<double> hv(std::size_t(n));
-  std::vector<std::int32_t> hf(std::size_t(ne));
+  std::vector<double> hv(static_cast<std::size_t>(n));
+  std::vector<std::int32_t> hf(static_cast<std::size_t>(ne));
   VoronoiCellsOptions h = o;
   h.into.volumes = {hv.data(), n};
   h.into.face_vertices = {hf.data(), ne};
@@ -128,7 +128,7 @@ TEST(CudaVoronoiCells, IntoCallersArrays) {
   EXPECT_FALSE(dc.volumes || dc.neighbors);
   ASSERT_TRUE(dc.areas && dc.face_vertices);
   ASSERT_EQ(dc.num_faces, nf);
-  std::vector<double> v(std::size_t(n));
+  std::vector<double> v(static_cast<std::size_t>(n));
   std::vector<std::int32_t> nb(std::size_t(nf + 4));
   ASSERT_EQ(cudaMemcpy(v.data(), dv.data(), v.size() * 8, cudaMemcpyDeviceToHost), cudaSuccess);
   ASSERT_EQ(cudaMemcpy(nb.data(), dn.data(), nb.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
