@@ -40,7 +40,6 @@ DeviceVoronoiCells voronoi_cells_device(const double* device_xyz, std::int64_t n
   DeviceVoronoiCells c;
   const Backend b = resolve_backend(opt.backend, opt.device);
   c.backend = c.stats.backend = b;
-  c.num_points = n;
   GG_TABLE(b, del3d, voronoi_entries).cells(device_xyz, n, false, opt, &c, nullptr);
   return c;
 }

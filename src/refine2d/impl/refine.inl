@@ -405,7 +405,8 @@ inline void refine_device_impl(const double* xy, std::int64_t n, const std::int3
   r.removed_triangles = o.removed;
   r.num_subsegments = o.nsub;
   const Refine2dBuffers& into = opt.into;
-  check_into(into, o, !opt.regions.empty());
+  const bool regions = !opt.regions.empty();
+  check_into(into, o, regions);
   auto p_xy = deliver::place(ex, o.xy, 2 * o.np, into.points);
   auto p_tri = deliver::place(ex, o.tri, 3 * o.nt, into.triangles);
   auto p_nbr = deliver::place(ex, o.nbr, 3 * o.nt, into.neighbors);
@@ -413,7 +414,6 @@ inline void refine_device_impl(const double* xy, std::int64_t n, const std::int3
   auto p_dup = deliver::place(ex, o.dup, o.np, into.duplicate_of);
   auto p_sub = deliver::place(ex, o.sub, 2 * o.nsub, into.subsegments);
   auto p_sub_of = deliver::place(ex, o.sub_of, o.nsub, into.subsegment_of);
-  const bool regions = !opt.regions.empty();
   auto p_att = regions ? deliver::place(ex, o.attribute, o.nt, into.attribute)
                        : deliver::Placed<Exec, double>{};
   ex.sync();  // the caller's arrays are written; the library's own go to the result
