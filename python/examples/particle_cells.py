@@ -33,6 +33,18 @@ def crystal(n, rng, shake=0.08):
     return (sites + rng.normal(0, shake / m, sites.shape)) % 1.0
 
 
+def padded(faces):
+    """The faces (ragged: 3 to a dozen vertices each) as one masked array, each padded with its
+    last vertex. Given the ragged list, matplotlib (3.11) pads it with uninitialised rows, and
+    its autoscaling reads them: limits of whatever the memory held."""
+    k = max(len(f) for f in faces)
+    out = np.ma.masked_all((len(faces), k, 3))
+    for j, f in enumerate(faces):
+        out[j] = np.concatenate([f, np.repeat(f[-1:], k - len(f), axis=0)])
+        out[j, len(f):] = np.ma.masked
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("-n", type=int, default=20000)
@@ -64,8 +76,9 @@ def main():
     ax3 = fig.add_subplot(1, 3, 3, projection="3d")
     centre = np.argsort(np.linalg.norm(np.asarray(cells.centroids) - 0.5, axis=1))[:6]
     for i, colour in zip(centre, plt.cm.tab10.colors):
-        ax3.add_collection3d(Poly3DCollection(cells.cell_faces(int(i)), alpha=0.35,
-                                              facecolor=colour, edgecolor="k", linewidths=0.3))
+        ax3.add_collection3d(Poly3DCollection(padded(cells.cell_faces(int(i))), alpha=0.35,
+                                              facecolor=colour, edgecolor="k", linewidths=0.3),
+                             autolim=False)
     pts = np.concatenate([np.concatenate(cells.cell_faces(int(i))) for i in centre])
     for set_lim, d in ((ax3.set_xlim, 0), (ax3.set_ylim, 1), (ax3.set_zlim, 2)):
         set_lim(pts[:, d].min(), pts[:, d].max())
