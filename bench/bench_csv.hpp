@@ -44,24 +44,26 @@ inline double ms_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // A phase's time in a run's Stats, 0 when the run had no such phase.
-inline double phase_ms(const Stats& s, const char* name) {
+inline double phase_ms(const RunStats& s, const char* name) {
   for (auto& p : s.phase_ms)
     if (p.first == name) return p.second;
   return 0;
 }
 
-// A counter of a run's Stats, 0 when the run had no such counter.
-inline std::int64_t counter(const Stats& s, const char* name) {
-  auto it = s.counters.find(name);
-  return it == s.counters.end() ? 0 : it->second;
+// A counter of a run's statistics by name, 0 when the run had no such counter (typed
+// statistics: read the field).
+inline std::int64_t counter(const RunStats& s, const char* name) {
+  const auto m = s.counter_map();
+  const auto it = m.find(name);
+  return it == m.end() ? 0 : it->second;
 }
 
 // Every phase and counter of a run, as two comment lines (the benchmarks' --verbose).
-inline void print_stats_lines(const Stats& s) {
+inline void print_stats_lines(const RunStats& s) {
   std::printf("#   phases:");
   for (auto& p : s.phase_ms) std::printf(" %s %.1f", p.first.c_str(), p.second);
   std::printf("\n#   counters:");
-  for (auto& c : s.counters) std::printf(" %s %lld", c.first.c_str(), (long long)c.second);
+  for (auto& c : s.counter_map()) std::printf(" %s %lld", c.first.c_str(), (long long)c.second);
   std::printf("\n");
 }
 

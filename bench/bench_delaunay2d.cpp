@@ -321,7 +321,7 @@ int main(int argc, char** argv) {
           (long long)r.stats.counters["flips"], (long long)r.stats.counters["exact_rest_passes"],
           (long long)r.stats.counters["log_relocations"],
           (long long)r.stats.counters["split_flip_rounds"],
-          double(r.stats.counters["device_peak_bytes"]) / double(n));
+          double(r.stats.device_peak_bytes) / double(n));
       if (!digital.empty())
         digital_rows(in.name, in.pts, b, reps, digital, r, &f, b == Backend::Cuda ? gpu : "cpu");
       if (voronoi) {  // the Voronoi diagram of the result: host loop, and on the executor

@@ -44,7 +44,7 @@ using bench::ms_since;
 
 // Bytes a point: the device peak where the call ran on the GPU, else phase 1's bytes.
 std::int64_t bytes_per_point(const gpugeom::Stats& st) {
-  const std::int64_t peak = bench::counter(st, "device_peak_bytes");
+  const std::int64_t peak = st.device_peak_bytes;
   return peak > 0 ? peak : bench::counter(st, "device_bytes_phase1");
 }
 double phase(const Stats& s, const char* name) {

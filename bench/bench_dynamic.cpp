@@ -59,14 +59,15 @@ double median_ms(int reps, const std::function<void()>& prepare, const std::func
   return t[t.size() / 2];
 }
 
-void print_phases(const Stats& s) {
+void print_phases(const RunStats& s) {
+  const auto counters = s.counter_map();
   std::printf("    insert phases:");
   for (const auto& [name, ms] : s.phase_ms) std::printf(" %s %.2f", name.c_str(), ms);
   for (const char* c : {"inserted_points", "batches", "flips", "flip_rounds", "start_walk_steps",
                         "move_rounds", "move_taken_out", "move_grown", "hole_vertices",
                         "splayed_vertices", "hull_candidates", "removed_vertices"}) {
-    const auto it = s.counters.find(c);
-    if (it != s.counters.end()) std::printf(" | %s %lld", c, (long long)it->second);
+    const auto it = counters.find(c);
+    if (it != counters.end()) std::printf(" | %s %lld", c, (long long)it->second);
   }
   std::printf("\n");
 }
@@ -178,9 +179,9 @@ struct Hull {
   static auto simplices(const ConvexHull3d& h) {
     return Two::canonical(std::vector<std::int32_t>(h.triangles.begin(), h.triangles.end()));
   }
-  static const char* moved(const Stats&) { return "hull of all"; }
-  static const char* removed(const Stats& s) {
-    return s.counters.at("removed_vertices") ? "hull of all left" : "no vertex: kept";
+  static const char* moved(const Hull3dStats&) { return "hull of all"; }
+  static const char* removed(const Hull3dStats& s) {
+    return s.removed_vertices ? "hull of all left" : "no vertex: kept";
   }
 };
 

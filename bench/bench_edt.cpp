@@ -270,8 +270,8 @@ int main(int argc, char** argv) {
                         (long long)bad);
             if (bad) return 1;
           }
-          if (b == Backend::Cuda && r.stats.counters.count("device_peak_bytes")) {
-            const double peak = double(r.stats.counters.at("device_peak_bytes"));
+          if (b == Backend::Cuda && r.stats.device_peak_bytes) {
+            const double peak = double(r.stats.device_peak_bytes);
             std::printf("# device peak %.2f GB (%.2f B a computed voxel)", peak / 1e9,
                         peak / out_vox);
             if (r.stats.counters.count("slices_per_block"))

@@ -212,12 +212,12 @@ int main(int argc, char** argv) {
             bench::phase_ms(r.stats, "upload") + bench::phase_ms(r.stats, "copy_back"),
             bench::phase_ms(r.stats, "construct"), bench::phase_ms(r.stats, "flip"),
             r.vertices.size(),
-            (long long)(r.stats.counters["insert_rounds"] + r.stats.counters["flip_rounds"]), cg,
+            (long long)(r.stats.insert_rounds + r.stats.flip_rounds), cg,
             verdict.c_str());
         std::printf("   ");
         for (auto& ph : r.stats.phase_ms) std::printf(" %s %.1f", ph.first.c_str(), ph.second);
         std::printf(" ms;");
-        for (auto& c : r.stats.counters)
+        for (auto& c : r.stats.counter_map())
           std::printf(" %s %lld", c.first.c_str(), (long long)c.second);
         std::printf("; end-to-end runs:");
         for (double x : t) std::printf(" %.1f", x);
@@ -230,7 +230,7 @@ int main(int argc, char** argv) {
           f << "hull3d," << (cfgs[bi].m == Method::Digital ? name + "+digital" : name) << "," << n
             << "," << backend_name(b) << "," << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med
             << ",0," << (dev > 0 ? dev : 0) << "," << med << ","
-            << double(r.stats.counters["exact_predicates"]) / std::max<double>(1, n) << "\n";
+            << double(r.stats.exact_predicates) / std::max<double>(1, n) << "\n";
       }
       if (f && cg >= 0)
         f << "hull3d," << name << "," << n << ",cgal,cpu-1core,0," << cg << ",0,0," << cg << ",0\n";

@@ -1,5 +1,5 @@
 // gpugeom_bench_memory: the device memory each capability needs per element (issue 23), from
-// the counter "device_peak_bytes" (the device pool's peak during the call, exec/peak.hpp), host
+// RunStats::device_peak_bytes (the device pool's peak during the call, exec/peak.hpp), host
 // arrays in and out. Rows: capability, input, n (points or voxels), peak MB, bytes per element.
 //
 //   gpugeom_bench_memory [--sizes 1e6,1e7] [--grids 2048,8192] [--volumes 256,512]
@@ -24,9 +24,8 @@ std::vector<double> numbers(const std::string& s) {
   return v;
 }
 
-void row(const char* what, const char* input, std::int64_t n, const Stats& st) {
-  const auto it = st.counters.find("device_peak_bytes");
-  const double b = it == st.counters.end() ? -1 : double(it->second);
+void row(const char* what, const char* input, std::int64_t n, const RunStats& st) {
+  const double b = st.device_peak_bytes ? double(st.device_peak_bytes) : -1;
   std::printf("%-12s %-18s %12lld %10.1f MB %8.1f B/element\n", what, input, (long long)n, b / 1e6,
               b / double(n));
   std::fflush(stdout);

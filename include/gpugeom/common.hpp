@@ -150,13 +150,36 @@ class Error : public std::runtime_error {
   ErrorCode code_;
 };
 
-/// Phase timings and counters of one run.
-struct Stats {
+/// What every run's statistics hold: where it ran, its phases' times in the order they ran,
+/// and the device memory it used. Each capability's statistics derive from it and add their
+/// counters as named fields (Hull3dStats), or, where not typed yet, as a map (Stats).
+struct RunStats {
   Backend backend = Backend::Cpu;
-  std::vector<std::pair<std::string, double>> phase_ms;  ///< in the order they ran
-  std::map<std::string, std::int64_t> counters;
+  /// Phase names and times in milliseconds, in the order they ran (a log: some phases repeat
+  /// or are named at run time, per axis or per device).
+  std::vector<std::pair<std::string, double>> phase_ms;
+  /// The CUDA executor's peak device memory over the call, in bytes (from RunOptions::memory's
+  /// resource, the library's pool by default); 0 on the CPU executor.
+  std::int64_t device_peak_bytes = 0;
   /// The sum of the phases' times in milliseconds.
   double total_ms() const;
+  /// The counters by name, device_peak_bytes among them where it is not 0: for printing (the
+  /// CLI's --verbose, the benches' tables, Python's stats dict). Programs read the fields.
+  virtual std::map<std::string, std::int64_t> counter_map() const;
+
+  RunStats() = default;
+  RunStats(const RunStats&) = default;
+  RunStats(RunStats&&) = default;
+  RunStats& operator=(const RunStats&) = default;
+  RunStats& operator=(RunStats&&) = default;
+  virtual ~RunStats() = default;
+};
+
+/// Phase timings and counters of one run, the counters by name: the capabilities whose
+/// counters are not typed fields yet.
+struct Stats : RunStats {
+  std::map<std::string, std::int64_t> counters;
+  std::map<std::string, std::int64_t> counter_map() const override;
 };
 
 }  // namespace gpugeom

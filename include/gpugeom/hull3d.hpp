@@ -12,7 +12,9 @@
 /// every run; a flat face keeps its diagonals when points join that do not change the face.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "gpugeom/changes.hpp"
@@ -48,6 +50,43 @@ struct Hull3dOptions : RunOptions {
   std::int64_t grid = 0;
 };
 
+/// Statistics of a convex hull: RunStats (where it ran, its phases in the order they ran, its
+/// device peak) and the counters as fields, 0 where their step did not run. Phases: "upload"
+/// (CUDA), "sort" (validation, curve order, copies merged), "prepare", "construct", "flip" (again
+/// for a second pass), "extreme_test", "input_indices", "copy_back" (CUDA), "planes";
+/// Method::Digital adds "digital_slices", "digital_sketch_hull", "digital_depth_test";
+/// DynamicHull3d's updates "kept_indices", "inside_test", "append" and "total".
+struct Hull3dStats : RunStats {
+  /// Input points that repeat an earlier one's coordinates (merged before the hull).
+  std::int64_t duplicates = 0;
+  /// Hull passes made: 2 where the first pass's vertices were not all extreme (points inside a
+  /// face or an edge) and the extreme points needed a hull of their own; 0 where a DynamicHull3d
+  /// update needed no hull.
+  std::int64_t passes = 0;
+  /// The star-shaped construction's insertion rounds, and the times its facet store grew.
+  std::int64_t insert_rounds = 0, facet_store_grown = 0;
+  /// Flip-Flop's rounds, its 2-2 flips and 3-1 removals, and the vertices it labelled not
+  /// extreme.
+  std::int64_t flip_rounds = 0, flips22 = 0, flips31 = 0, labelled_nonextreme = 0;
+  /// Tests the floating-point filter left to the exact predicates.
+  std::int64_t exact_predicates = 0;
+  /// The first pass's vertices, and of them those the exact test found not extreme.
+  std::int64_t first_pass_vertices = 0, nonextreme_vertices_dropped = 0;
+  /// Method::Digital: the faces' grid side, the depth images' side, the points with a cell on a
+  /// face (the sketch) and the facets of their hull, the points the depth test kept besides the
+  /// sketch, and the points the hull was computed from (all of them after a fallback).
+  std::int64_t digital_grid = 0, digital_render = 0, sketch_points = 0, sketch_facets = 0,
+               depth_kept = 0, hull_input = 0;
+  /// Method::Digital: 1 where the sketch had no hull and the incremental method ran.
+  std::int64_t digital_fallback = 0;
+  /// DynamicHull3d: the points the last hull was made from (the old hull's vertices and the new
+  /// points outside it), the inserted points outside the old hull, and the removed points that
+  /// were vertices.
+  std::int64_t hull_candidates = 0, outside_points = 0, removed_vertices = 0;
+
+  std::map<std::string, std::int64_t> counter_map() const override;
+};
+
 /// The most facets the hull of n points has (2n - 4, for n >= 4): sizes `into` ahead.
 std::int64_t convex_hull3d_max_facets(std::int64_t n);
 
@@ -65,16 +104,7 @@ struct ConvexHull3d {
   /// offset d, with a x + b y + c z + d <= 0 for every input point up to rounding (the planes
   /// are computed in floating point; the hull itself is exact).
   HostVector<double> equations;
-  /// Stats: phases "upload" (CUDA), "sort" (validation, curve order, copies merged),
-  /// "prepare", "construct", "flip", "extreme_test", "input_indices",
-  /// "copy_back" (CUDA), "planes"; counters "duplicates", "insert_rounds", "flip_rounds",
-  /// "flips22", "flips31", "labelled_nonextreme", "exact_predicates", "first_pass_vertices",
-  /// "nonextreme_vertices_dropped", "passes" (2 when the extreme points needed a hull of their
-  /// own). Method::Digital adds phases "digital_slices", "digital_sketch_hull",
-  /// "digital_depth_test" and counters "digital_grid", "digital_render", "sketch_points",
-  /// "sketch_facets", "depth_kept", "hull_input" (the points the last hull was computed from),
-  /// "digital_fallback" (1 where the sketch had no hull: the incremental method ran).
-  Stats stats;
+  Hull3dStats stats;
   /// Facets and extreme points written (also where they went into the caller's arrays).
   std::int64_t num_facets = 0, num_vertices = 0;
 };
@@ -97,7 +127,7 @@ struct DeviceHull3d {
   std::shared_ptr<std::int32_t> vertices;   ///< num_vertices
   std::shared_ptr<double> equations;        ///< 4 * num_facets
   Backend backend = Backend::Cuda;          ///< where the arrays are: Cuda = device memory
-  Stats stats;
+  Hull3dStats stats;
 };
 /// The same hull with the points already on the GPU and the result left there: device_xyz is
 /// device memory holding n points on opt.device, ready in opt.stream's order (see RunOptions; work
@@ -121,9 +151,9 @@ DeviceHull3d convex_hull3d_device(const double* device_xyz, std::int64_t n,
 /// What each call costs: an insertion makes the hull of the old hull's vertices and those new
 /// points not strictly inside the old hull only (a point that is not extreme stays so when points
 /// join), so it does not grow with the points inside, and where every new point is inside no hull
-/// is made (stats counter "outside_points"); a removal that takes no vertex changes nothing, one
+/// is made (Hull3dStats::outside_points); a removal that takes no vertex changes nothing, one
 /// that does makes the hull of all points left; a move makes the hull of all the moved points.
-/// Stats counter "hull_candidates" says how many points the last hull was made from.
+/// Hull3dStats::hull_candidates says how many points the last hull was made from.
 ///
 /// The state lives where the executor runs: device memory of opt.device on CUDA (fixed at
 /// construction; the work runs on opt.stream, which must outlive the object), host memory on the
@@ -159,7 +189,7 @@ class DynamicHull3d {
   /// Backend::Cpu).
   void move_device(const double* device_xyz, std::int64_t n);
   /// Removes the points with the given indices (count of them, each once, none removed before;
-  /// host memory, or executor memory for remove_device). Stats counter "removed_vertices": how
+  /// host memory, or executor memory for remove_device). Hull3dStats::removed_vertices: how
   /// many of them were vertices. Throws Error(InvalidArgument) for a bad index list and
   /// Error(DegenerateInput) where the points left have no hull (fewer than 4, or all on one
   /// plane); the object is then unchanged.
@@ -191,7 +221,7 @@ class DynamicHull3d {
   /// As changes, in executor memory.
   DeviceSimplexChanges device_changes() const;
   /// Phases and counters of the last call that changed the points.
-  const Stats& stats() const;
+  const Hull3dStats& stats() const;
 
  private:
   struct Impl;

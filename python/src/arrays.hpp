@@ -101,7 +101,7 @@ struct DeviceOut {
   }
 };
 
-nb::dict stats_dict(const Stats& s);
+nb::dict stats_dict(const RunStats& s);
 
 // The device a CUDA run used (the input's, else the calling thread's current one).
 int device_of(const RunOptions& o);

@@ -70,10 +70,10 @@ int device_of(const RunOptions& o) {
   return d.device < 0 ? 0 : d.device;
 }
 
-nb::dict stats_dict(const Stats& s) {
+nb::dict stats_dict(const RunStats& s) {
   nb::dict d, phases, counters;
   for (const auto& [k, v] : s.phase_ms) phases[k.c_str()] = v;
-  for (const auto& [k, v] : s.counters) counters[k.c_str()] = v;
+  for (const auto& [k, v] : s.counter_map()) counters[k.c_str()] = v;
   d["backend"] = backend_name(s.backend);
   d["phase_ms"] = phases;
   d["counters"] = counters;

@@ -81,10 +81,22 @@ const char* error_code_name(ErrorCode c) {
   return i < std::size(names) ? names[i] : "error";
 }
 
-double Stats::total_ms() const {
+double RunStats::total_ms() const {
   double t = 0;
   for (auto& p : phase_ms) t += p.second;
   return t;
+}
+
+std::map<std::string, std::int64_t> RunStats::counter_map() const {
+  std::map<std::string, std::int64_t> m;
+  if (device_peak_bytes) m["device_peak_bytes"] = device_peak_bytes;
+  return m;
+}
+
+std::map<std::string, std::int64_t> Stats::counter_map() const {
+  auto m = RunStats::counter_map();
+  m.insert(counters.begin(), counters.end());
+  return m;
 }
 
 }  // namespace gpugeom

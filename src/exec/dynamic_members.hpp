@@ -124,7 +124,7 @@ void refuse_dynamic_options(const Options& opt, const char* cls, const char* sam
   void CLS::track_changes(bool on) { impl_->kept->track_changes(on); }                            \
   SimplexChanges CLS::changes() const { return impl_->changes(#CLS); }                            \
   DeviceSimplexChanges CLS::device_changes() const { return impl_->device_changes(#CLS); }        \
-  const Stats& CLS::stats() const { return impl_->stats; }
+  auto CLS::stats() const->const decltype(impl_->stats)& { return impl_->stats; }
 #define GG_DYNAMIC_RESULTS(CLS, SIMPLICES, OTHER, KEPT_OTHER, HOST, HOST_FN, DEVICE, DEVICE_FN)   \
   std::int64_t CLS::SIMPLICES() const { return impl_->kept->simplices(); }                        \
   std::int64_t CLS::OTHER() const { return impl_->kept->KEPT_OTHER(); }                           \

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "gpugeom/changes.hpp"
@@ -16,10 +17,11 @@ namespace gpugeom::detail {
 
 // A structure's state on one executor (each module's impl/dynamic.inl): the points and the
 // simplices (triangles, tetrahedra, hull facets), kept in the executor's memory between calls.
-// Every call that throws leaves the state unchanged.
+// Every call that throws leaves the state unchanged. The calls' statistics are the results'.
 template <class Output, class DeviceOutput>
 class KeptUpdates {
  public:
+  using Stats = decltype(std::declval<Output&>().stats);
   virtual ~KeptUpdates() = default;
   // Appends n points (executor memory when on_device, else host memory), numbered from points()
   // on, and brings the triangulation up to date. Throws as the module's triangulate.
@@ -73,6 +75,7 @@ struct Before {
 
 template <class Kept>
 struct DynamicState {
+  using Stats = typename Kept::Stats;
   std::unique_ptr<Kept> kept;
   Backend backend = Backend::Cpu;
   Stats stats;

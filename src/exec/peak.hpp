@@ -1,7 +1,7 @@
 // The device memory a call needs: measured for its Stats, and checked before it starts
 // (internal; issue 23).
 // Declared right after a module's executor, it resets the call's high-water mark and, when the
-// call ends (returns or throws), records the call's peak use in the counter "device_peak_bytes".
+// call ends (returns or throws), records the call's peak use in RunStats::device_peak_bytes.
 // An executor run inside another call (exec/exec_context.hpp) leaves the mark to that call,
 // whose peak then includes its own: it records the peak so far. Nothing on the CPU executor.
 #pragma once
@@ -15,14 +15,14 @@ namespace gpugeom::detail {
 template <class Exec>
 class DevicePeak {
  public:
-  DevicePeak(Exec& ex, Stats& st) : ex_(ex), st_(st) {
+  DevicePeak(Exec& ex, RunStats& st) : ex_(ex), st_(st) {
     if constexpr (Exec::backend == Backend::Cuda)
       if (!ex_.nested()) ex_.reset_peak();
   }
   ~DevicePeak() {
     if constexpr (Exec::backend == Backend::Cuda) {
       try {
-        st_.counters["device_peak_bytes"] = ex_.peak_bytes();
+        st_.device_peak_bytes = std::int64_t(ex_.peak_bytes());
       } catch (...) {  // (a statistic: never a reason to fail, nor to throw from a destructor)
       }
     }
@@ -32,7 +32,7 @@ class DevicePeak {
 
  private:
   Exec& ex_;
-  Stats& st_;
+  RunStats& st_;
 };
 
 // The least device memory a problem needs, in bytes, checked before any launch on the CUDA

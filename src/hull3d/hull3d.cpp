@@ -11,6 +11,7 @@
 #include "exec/dispatch.hpp"
 #include "base/method_grid.hpp"
 #include "base/point_count.hpp"
+#include "base/stats_fields.hpp"
 #include "hull3d/hull3d_backend.hpp"
 
 namespace gpugeom {
@@ -21,6 +22,18 @@ namespace {
 constexpr std::int64_t kMaxPoints = std::int64_t(INT32_MAX) - 1;
 
 }  // namespace
+
+// The counters' names as strings, each its field's own (base/stats_fields.hpp).
+// clang-format off
+#define GG_HULL3D_COUNTERS(X)                                                                   \
+  X(duplicates) X(passes) X(insert_rounds) X(facet_store_grown) X(flip_rounds) X(flips22)       \
+  X(flips31) X(labelled_nonextreme) X(exact_predicates) X(first_pass_vertices)                  \
+  X(nonextreme_vertices_dropped) X(digital_grid) X(digital_render) X(sketch_points)             \
+  X(sketch_facets) X(depth_kept) X(hull_input) X(digital_fallback) X(hull_candidates)           \
+  X(outside_points) X(removed_vertices)
+// clang-format on
+GG_COUNTER_MAP(Hull3dStats, GG_HULL3D_COUNTERS);
+#undef GG_HULL3D_COUNTERS
 
 namespace hull3d {
 void check_count(std::int64_t n) {

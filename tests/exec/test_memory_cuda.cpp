@@ -138,7 +138,7 @@ TEST_F(Memory, DeviceDelaunay3dTakesAndReturnsTheCallersMemory) {
     // The result's arrays are still the resource's.
     const std::int64_t held = 4 * (8 * got.num_tetrahedra + 2 * got.num_points);
     EXPECT_GE(c->live(), held);
-    const std::int64_t peak = got.stats.counters.at("device_peak_bytes");
+    const std::int64_t peak = got.stats.device_peak_bytes;
     EXPECT_GE(peak, c->live());
     EXPECT_LE(peak, c->high());
   }
@@ -222,12 +222,12 @@ TEST_F(Memory, NestedCapabilitiesShareTheCall) {
   std::int64_t dt_peak = 0;
   {
     const auto dt = delaunay2d_device(dxy.doubles(), n2, with<Delaunay2dOptions>(c0));
-    dt_peak = dt.stats.counters.at("device_peak_bytes");
+    dt_peak = dt.stats.device_peak_bytes;
   }
   auto c = std::make_shared<Counting>();
   {
     const auto got = cdt2d(xy.data(), n2, segs.data(), k, with<Cdt2dOptions>(c));
-    const std::int64_t peak = got.stats.counters.at("device_peak_bytes");
+    const std::int64_t peak = got.stats.device_peak_bytes;
     EXPECT_GE(peak, dt_peak + 16 * n2) << "the CDT's peak leaves out its upload of the points";
     EXPECT_LE(peak, c->high());
   }
@@ -239,13 +239,13 @@ TEST_F(Memory, NestedCapabilitiesShareTheCall) {
   std::int64_t tet_peak = 0;
   {
     const auto dt = delaunay3d_device(dxyz.doubles(), n3, with<Delaunay3dOptions>(c0));
-    tet_peak = dt.stats.counters.at("device_peak_bytes");
+    tet_peak = dt.stats.device_peak_bytes;
   }
   auto c3 = std::make_shared<Counting>();
   {
     Triangulation3d tri;
     const auto v = voronoi3d(&pts.data()->x, n3, with<Delaunay3dOptions>(c3), &tri);
-    const std::int64_t peak = v.stats.counters.at("device_peak_bytes");
+    const std::int64_t peak = v.stats.device_peak_bytes;
     EXPECT_GE(peak, tet_peak + 24 * n3) << "the diagram's peak leaves out the tetrahedralisation's";
     EXPECT_LE(peak, c3->high());
     EXPECT_EQ(tri.stats.backend, Backend::Cuda);

@@ -244,9 +244,8 @@ inline gpugeom::ConvexHull3d expect_digital_same(const Case& c, gpugeom::Hull3dO
   EXPECT_EQ(facet_set(dig), facet_set(inc));
   EXPECT_EQ(dig.vertices, inc.vertices);
   // Every point the last hull saw: the sketch's and those the depth test kept.
-  const auto& k = dig.stats.counters;
-  if (!k.at("digital_fallback"))
-    EXPECT_EQ(k.at("hull_input"), k.at("sketch_points") + k.at("depth_kept"));
+  const auto& k = dig.stats;
+  if (!k.digital_fallback) EXPECT_EQ(k.hull_input, k.sketch_points + k.depth_kept);
   return dig;
 }
 
@@ -275,8 +274,8 @@ struct KeptHull {
     EXPECT_EQ(std::vector<std::int32_t>(got.vertices.begin(), got.vertices.end()), want);
   }
   // (no vertex removed: the hull stayed)
-  static bool local_removal(const gpugeom::Stats& st) {
-    return st.counters.at("removed_vertices") == 0;
+  static bool local_removal(const gpugeom::Hull3dStats& st) {
+    return st.removed_vertices == 0;
   }
   static bool enough_local(int local, int) { return local > 0; }
   static void shift(Point& p, double s, std::mt19937_64& rng) {

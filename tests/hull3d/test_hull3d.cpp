@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
+#include <map>
 #include <set>
+#include <string>
 
 #include "../common/caller_arrays.hpp"
 #include "../common/tuning.hpp"
@@ -56,7 +59,7 @@ TEST(Hull3d, GrowingFacetStoreGivesTheSameHull) {
     EXPECT_EQ(r.triangles, ref.triangles);
     EXPECT_EQ(r.neighbors, ref.neighbors);
     EXPECT_EQ(r.vertices, ref.vertices);
-    if (c.pts.size() > 100) EXPECT_GT(r.stats.counters.at("facet_store_grown"), 0);
+    if (c.pts.size() > 100) EXPECT_GT(r.stats.facet_store_grown, 0);
   }
 }
 
@@ -148,8 +151,68 @@ TEST(Hull3d, FirstCopyIsTheVertex) {
                            {1, 0, 0},       {0, 0, 0}, {0, 0, 1}, {0, 1, 0}, {0, 0, 0}};
   const auto h = convex_hull3d(p, cpu());
   EXPECT_EQ(h.vertices, (std::vector<std::int32_t>{1, 2, 3, 4}));
-  EXPECT_EQ(h.stats.counters.at("duplicates"), 5);
+  EXPECT_EQ(h.stats.duplicates, 5);
   expect_valid(p, h);
+}
+
+// The counters are fields; counter_map() (the CLI's, the benches' and Python's) names each by
+// its field's name, with its value. A cube with points inside its faces: the first pass may make
+// them vertices, the extreme test drops them.
+TEST(Hull3d, StatsAreNamedFields) {
+  std::vector<Point3> p;
+  for (int i = 0; i < 8; ++i) p.push_back({double(i & 1), double(i >> 1 & 1), double(i >> 2 & 1)});
+  for (int d = 0; d < 3; ++d)
+    for (double s : {0.0, 1.0}) {
+      Point3 c{0.5, 0.5, 0.5};
+      (d == 0 ? c.x : d == 1 ? c.y : c.z) = s;
+      p.push_back(c);
+    }
+  p.push_back({0.5, 0.5, 0.5});
+  p.push_back(p[3]);
+  const auto h = convex_hull3d(p, cpu());
+  expect_valid(p, h);
+  const Hull3dStats& s = h.stats;
+  EXPECT_EQ(h.num_vertices, 8);
+  EXPECT_EQ(s.duplicates, 1);
+  EXPECT_EQ(s.first_pass_vertices - s.nonextreme_vertices_dropped, 8);
+  EXPECT_EQ(s.passes, s.nonextreme_vertices_dropped ? 2 : 1);
+  EXPECT_GT(s.insert_rounds, 0);
+  EXPECT_EQ(s.device_peak_bytes, 0);  // (the CPU executor)
+  const std::pair<const char*, std::int64_t Hull3dStats::*> fields[] = {
+      {"duplicates", &Hull3dStats::duplicates},
+      {"passes", &Hull3dStats::passes},
+      {"insert_rounds", &Hull3dStats::insert_rounds},
+      {"facet_store_grown", &Hull3dStats::facet_store_grown},
+      {"flip_rounds", &Hull3dStats::flip_rounds},
+      {"flips22", &Hull3dStats::flips22},
+      {"flips31", &Hull3dStats::flips31},
+      {"labelled_nonextreme", &Hull3dStats::labelled_nonextreme},
+      {"exact_predicates", &Hull3dStats::exact_predicates},
+      {"first_pass_vertices", &Hull3dStats::first_pass_vertices},
+      {"nonextreme_vertices_dropped", &Hull3dStats::nonextreme_vertices_dropped},
+      {"digital_grid", &Hull3dStats::digital_grid},
+      {"digital_render", &Hull3dStats::digital_render},
+      {"sketch_points", &Hull3dStats::sketch_points},
+      {"sketch_facets", &Hull3dStats::sketch_facets},
+      {"depth_kept", &Hull3dStats::depth_kept},
+      {"hull_input", &Hull3dStats::hull_input},
+      {"digital_fallback", &Hull3dStats::digital_fallback},
+      {"hull_candidates", &Hull3dStats::hull_candidates},
+      {"outside_points", &Hull3dStats::outside_points},
+      {"removed_vertices", &Hull3dStats::removed_vertices}};
+  const auto m = s.counter_map();
+  EXPECT_EQ(m.size(), std::size(fields));
+  for (const auto& [name, field] : fields) {
+    ASSERT_TRUE(m.count(name)) << name;
+    EXPECT_EQ(m.at(name), s.*field) << name;
+  }
+  // A peak is printed where there is one; the untyped statistics print their map.
+  Hull3dStats peak = s;
+  peak.device_peak_bytes = 4096;
+  EXPECT_EQ(peak.counter_map().at("device_peak_bytes"), 4096);
+  Stats untyped;
+  untyped.counters["flips"] = 3;
+  EXPECT_EQ(untyped.counter_map(), (std::map<std::string, std::int64_t>{{"flips", 3}}));
 }
 
 TEST(Hull3d, ConcurrentCallsFromHostThreads) {

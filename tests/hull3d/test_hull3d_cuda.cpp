@@ -29,7 +29,7 @@ void same_on_both(const gg_hull3d::Case& c) {
   EXPECT_EQ(gpu.neighbors, cpu.neighbors);
   EXPECT_EQ(gpu.equations, cpu.equations);  // computed on each executor: equal bit for bit
   EXPECT_EQ(gpu.vertices, cpu.vertices);
-  EXPECT_EQ(gpu.stats.counters.at("flips22"), cpu.stats.counters.at("flips22"));
+  EXPECT_EQ(gpu.stats.flips22, cpu.stats.flips22);
 }
 }  // namespace
 
@@ -53,7 +53,7 @@ TEST(CudaHull3d, GrowingFacetStoreGivesTheSameHull) {
         p, gg_test::tuned(o, [](detail::Tuning& t) { t.hull3d.first_facet_slots = 8; }));
     EXPECT_EQ(r.triangles, ref.triangles) << d;
     EXPECT_EQ(r.neighbors, ref.neighbors) << d;
-    EXPECT_GT(r.stats.counters.at("facet_store_grown"), 0) << d;
+    EXPECT_GT(r.stats.facet_store_grown, 0) << d;
   }
 }
 
@@ -179,7 +179,7 @@ TEST(CudaHull3d, DigitalSameAsIncrementalAndAsCpu) {
       const auto cpu = convex_hull3d(c.pts, o);
       EXPECT_EQ(gpu.triangles, cpu.triangles) << c.name;
       EXPECT_EQ(gpu.vertices, cpu.vertices) << c.name;
-      EXPECT_EQ(gpu.stats.counters.at("hull_input"), cpu.stats.counters.at("hull_input"));
+      EXPECT_EQ(gpu.stats.hull_input, cpu.stats.hull_input);
     }
 }
 
@@ -190,8 +190,8 @@ TEST(CudaHull3d, DigitalSameAsIncrementalLarge) {
       Hull3dOptions o;
       o.backend = Backend::Cuda;
       const auto h = gg_hull3d::expect_digital_same(c, o, 0);
-      std::cout << c.name << ": hull of " << h.stats.counters.at("hull_input") << " points ("
-                << h.stats.counters.at("sketch_points") << " from the sketch)\n";
+      std::cout << c.name << ": hull of " << h.stats.hull_input << " points ("
+                << h.stats.sketch_points << " from the sketch)\n";
     }
 }
 
@@ -221,7 +221,7 @@ TEST(CudaDynamicHull3d, SameArraysAsTheCpuExecutor) {
     DynamicHull3d h(&p.data()->x, first, o);
     h.insert(&p[std::size_t(first)].x, n - first);
     // (the insertion looked at the first half's vertices and the second half)
-    EXPECT_LT(h.stats().counters.at("hull_candidates"), n);
+    EXPECT_LT(h.stats().hull_candidates, n);
     h.remove(gone.data(), std::int64_t(gone.size()));
     h.move(&moved.data()->x, n);
     return h;

@@ -17,7 +17,7 @@ TEST(DigitalHull3d, SameHullAsIncrementalOnDistributions) {
   for (const auto& c : gg_hull3d::distribution_cases({4, 5, 10, 100, 1000, 20000}, 11))
     for (std::int64_t grid : {0, 16}) {
       const auto h = gg_hull3d::expect_digital_same(c, cpu(), grid);
-      fallbacks += h.stats.counters.at("digital_fallback");
+      fallbacks += h.stats.digital_fallback;
       ++cases;
     }
   std::cout << "digital hull over " << cases << " cases: " << fallbacks << " fall backs\n";
@@ -57,15 +57,15 @@ TEST(DigitalHull3d, SameHullOnShapesAGridFramesBadly) {
 TEST(DigitalHull3d, DepthTestDropsInteriorPointsAndKeepsExtremeOnes) {
   const gg_hull3d::Case ball{"ball", generate3d("ball", 100000, 3)};
   const auto b = gg_hull3d::expect_digital_same(ball, cpu(), 0);
-  EXPECT_EQ(b.stats.counters.at("digital_fallback"), 0);
-  EXPECT_LT(b.stats.counters.at("hull_input"), 100000 / 5);
-  EXPECT_GT(b.stats.counters.at("sketch_points"), 0);
+  EXPECT_EQ(b.stats.digital_fallback, 0);
+  EXPECT_LT(b.stats.hull_input, 100000 / 5);
+  EXPECT_GT(b.stats.sketch_points, 0);
   const gg_hull3d::Case sphere{"sphere", generate3d("sphere", 20000, 4)};
   const auto s = gg_hull3d::expect_digital_same(sphere, cpu(), 0);
-  EXPECT_EQ(s.stats.counters.at("hull_input"), 20000);
+  EXPECT_EQ(s.stats.hull_input, 20000);
   // A coarse grid: few sketch points, so most vertices come from the depth test.
   const auto c = gg_hull3d::expect_digital_same(sphere, cpu(), 16);
-  EXPECT_GT(c.stats.counters.at("depth_kept"), c.stats.counters.at("sketch_points"));
+  EXPECT_GT(c.stats.depth_kept, c.stats.sketch_points);
 }
 
 TEST(DigitalHull3d, DeviceEntryOnTheCpuExecutor) {

@@ -82,7 +82,7 @@ TEST(DynamicHull3d, ChangesNeedTracking) {
 TEST(DynamicHull3d, InsertionLooksAtTheVerticesAndTheNewPointsOnly) {
   auto p = generate3d("ball", 20000, 8);
   DynamicHull3d d(&p.data()->x, std::int64_t(p.size()), cpu());
-  EXPECT_EQ(d.stats().counters.at("hull_candidates"), 20000);
+  EXPECT_EQ(d.stats().hull_candidates, 20000);
   const std::int64_t nv = d.num_vertices();
   auto more = generate3d("ball", 300, 9);
   auto scale = [](std::vector<Point3>& v, double f) {  // about the ball's centre (0.5, 0.5, 0.5)
@@ -90,10 +90,10 @@ TEST(DynamicHull3d, InsertionLooksAtTheVerticesAndTheNewPointsOnly) {
   };
   scale(more, 1.05);  // some outside
   d.insert(&more.data()->x, std::int64_t(more.size()));
-  const std::int64_t out = d.stats().counters.at("outside_points");
+  const std::int64_t out = d.stats().outside_points;
   EXPECT_GT(out, 0);
   EXPECT_LT(out, 300);  // (those strictly inside the old hull are not looked at)
-  EXPECT_EQ(d.stats().counters.at("hull_candidates"), nv + out);
+  EXPECT_EQ(d.stats().hull_candidates, nv + out);
   p.insert(p.end(), more.begin(), more.end());
   EXPECT_EQ(d.num_points(), std::int64_t(p.size()));
   expect_valid(p, d.hull());
@@ -103,7 +103,7 @@ TEST(DynamicHull3d, InsertionLooksAtTheVerticesAndTheNewPointsOnly) {
   auto inner = generate3d("ball", 500, 10);
   scale(inner, 0.5);
   d.insert(&inner.data()->x, std::int64_t(inner.size()));
-  EXPECT_EQ(d.stats().counters.at("outside_points"), 0);
+  EXPECT_EQ(d.stats().outside_points, 0);
   Snapshot after(d);
   after.n = s.n;
   EXPECT_TRUE(after == s);
@@ -129,14 +129,14 @@ TEST(DynamicHull3d, RemovalsAndCopies) {
   const Snapshot s(d);
   d.remove(&inside, 1);
   gone[std::size_t(inside)] = 1;
-  EXPECT_EQ(d.stats().counters.at("removed_vertices"), 0);
+  EXPECT_EQ(d.stats().removed_vertices, 0);
   Snapshot after(d);
   after.removed = s.removed;
   EXPECT_TRUE(after == s);
   // the vertex: its copy takes its place
   d.remove(&v, 1);
   gone[std::size_t(v)] = 1;
-  EXPECT_EQ(d.stats().counters.at("removed_vertices"), 1);
+  EXPECT_EQ(d.stats().removed_vertices, 1);
   const auto h = d.hull();
   EXPECT_TRUE(std::binary_search(h.vertices.begin(), h.vertices.end(), 2000));
   EXPECT_FALSE(std::binary_search(h.vertices.begin(), h.vertices.end(), v));

@@ -83,7 +83,7 @@ int cmd_delaunay3d(const Global& g, Args& a);
 int cmd_cells(const Global& g, Args& a);
 
 // A computation's phase times and counters on stderr (--verbose).
-void print_stats(const Stats& s);
+void print_stats(const RunStats& s);
 
 // What the 3D mesh commands (hull3d, delaunay3d) share: one point file read as 3D points, -o
 // MESH with one of `exts` (what: "for a hull", ...) and/or --check, the writers' options.

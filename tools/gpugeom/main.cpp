@@ -38,10 +38,10 @@ bool Args::value(const std::string& name, std::string& out) {
   return false;
 }
 
-void print_stats(const Stats& s) {
+void print_stats(const RunStats& s) {
   for (auto& ph : s.phase_ms)
     std::fprintf(stderr, "[phase] %-18s %10.2f ms\n", ph.first.c_str(), ph.second);
-  for (auto& c : s.counters)
+  for (auto& c : s.counter_map())
     std::fprintf(stderr, "[count] %-28s %lld\n", c.first.c_str(), (long long)c.second);
 }
 

@@ -38,9 +38,9 @@ struct PassState {
   ScratchSlots<Exec> slots;  // of the exact stages (passes, and teams: one per thread)
   typename Exec::template Buffer<std::int32_t> exl;  // exact-stage work list
   std::int64_t exl_cap = 0;
-  Stats& st;
+  Hull3dStats& st;
 
-  PassState(Exec& e, const double* pts, std::int64_t np, const double* s, Stats& stats)
+  PassState(Exec& e, const double* pts, std::int64_t np, const double* s, Hull3dStats& stats)
       : ex(e), n(np), st(stats) {
     kernel_point = ex.template alloc<double>(3);
     ex.from_host(s, 3, kernel_point.data());
@@ -87,7 +87,7 @@ struct PassState {
     grow(stamp, 1, used, true);
     grow(remap, 3, used, false);
     cap = grown;
-    st.counters["facet_store_grown"] += 1;
+    st.facet_store_grown += 1;
   }
   // Zeroes the per-round counters of an insertion round on the executor (no host round trip),
   // adding them into the totals.
@@ -204,7 +204,7 @@ class Constructor {
         ++rounds;
       }
     }
-    S_.st.counters["insert_rounds"] += rounds;
+    S_.st.insert_rounds += rounds;
   }
 
   void start() {

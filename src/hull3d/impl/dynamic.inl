@@ -33,7 +33,7 @@ struct KeptHull {
 // The hull of `count` candidate points (coordinates p; input indices ids, increasing, or null
 // where they are all of K's points in order) into K, whose points are already the new ones.
 inline void hull_of(Exec& ex, KeptHull& K, const double* p, const std::int32_t* ids,
-                    std::int64_t count, const Hull3dOptions& opt, Stats& st) {
+                    std::int64_t count, const Hull3dOptions& opt, Hull3dStats& st) {
   if (count < 4)
     throw Error(ErrorCode::DegenerateInput,
                 "fewer than 4 points (" + std::to_string(count) +
@@ -53,12 +53,12 @@ inline void hull_of(Exec& ex, KeptHull& K, const double* p, const std::int32_t* 
   K.facets = std::move(R.facets);
   K.vertices = std::move(R.vertices);
   K.nv = R.num_vertices;
-  st.counters["hull_candidates"] = count;
+  st.hull_candidates = count;
   st.phase_ms.emplace_back("kept_indices", ms_since(t0));
 }
 
 // The hull of every point of K not removed (gathered only where some are).
-inline void hull_of_live(Exec& ex, KeptHull& K, const Hull3dOptions& opt, Stats& st) {
+inline void hull_of_live(Exec& ex, KeptHull& K, const Hull3dOptions& opt, Hull3dStats& st) {
   if (!K.gone_map()) return hull_of(ex, K, K.xyz.data(), nullptr, K.n, opt, st);
   const auto L = mesh::gather_live<3>(ex, K.xyz.data(), K.n, K.gone_map());
   hull_of(ex, K, L.p.data(), L.ids.data(), L.count, opt, st);
@@ -157,7 +157,7 @@ inline std::int64_t removed_vertices(Exec& ex, const KeptHull& K, const std::int
 class KeptHullOn final : public Kept {
  public:
   explicit KeptHullOn(const Hull3dOptions& opt) : opt_(opt) { opt_.into = Hull3dBuffers(); }
-  void insert(const double* xyz, std::int64_t n, bool on_device, Stats& st) override {
+  void insert(const double* xyz, std::int64_t n, bool on_device, Hull3dStats& st) override {
     if (n == 0 && K_.n) return;
     Exec ex(opt_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
@@ -171,7 +171,7 @@ class KeptHullOn final : public Kept {
       const auto t0 = Clock::now();
       std::int64_t out = 0;
       auto more = maybe_outside(ex, K_, R, out);
-      st.counters["outside_points"] = out;
+      st.outside_points = out;
       st.phase_ms.emplace_back("inside_test", ms_since(t0));
       if (out) {
         const auto C = vertices_and(ex, K_, R, more.data(), out);
@@ -182,7 +182,7 @@ class KeptHullOn final : public Kept {
     }
     commit(ex, std::move(R));
   }
-  void move(const double* xyz, bool on_device, Stats& st) override {
+  void move(const double* xyz, bool on_device, Hull3dStats& st) override {
     Exec ex(opt_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
     ::gpugeom::detail::require_device_memory(ex, K_.n, kLeastBytesPerPoint, "a convex hull",
@@ -191,7 +191,7 @@ class KeptHullOn final : public Kept {
     hull_of_live(ex, R, opt_, st);
     commit(ex, std::move(R));
   }
-  void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Stats& st) override {
+  void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Hull3dStats& st) override {
     if (count == 0) return;
     Exec ex(opt_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
@@ -206,7 +206,7 @@ class KeptHullOn final : public Kept {
     R.gone = std::move(gone);
     R.nremoved = K_.nremoved + count;
     const std::int64_t hit = removed_vertices(ex, K_, idx, count);
-    st.counters["removed_vertices"] = hit;
+    st.removed_vertices = hit;
     if (hit)
       hull_of_live(ex, R, opt_, st);
     else
@@ -262,7 +262,7 @@ class KeptHullOn final : public Kept {
   // The kept points with `add` more appended (host memory, or executor memory when on_device),
   // or all n replaced (move); the hull arrays still empty.
   KeptHull with_points(Exec& ex, const double* xyz, std::int64_t add, bool on_device, bool replace,
-                       Stats& st) const {
+                       Hull3dStats& st) const {
     const auto t0 = Clock::now();
     const std::int64_t keep = replace ? 0 : K_.n, n = keep + add;
     KeptHull R;

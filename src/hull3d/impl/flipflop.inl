@@ -275,10 +275,10 @@ class FlipFlop {
       len = l[round & 1];
     }
     const Counters c = S_.counters();
-    S_.st.counters["flip_rounds"] += c.flip_rounds;
-    S_.st.counters["flips22"] += c.flips22;
-    S_.st.counters["flips31"] += c.flips31;
-    S_.st.counters["labelled_nonextreme"] += c.labels_all;
+    S_.st.flip_rounds += c.flip_rounds;
+    S_.st.flips22 += c.flips22;
+    S_.st.flips31 += c.flips31;
+    S_.st.labelled_nonextreme += c.labels_all;
   }
 
   FlipRound make_round(std::int32_t round) {

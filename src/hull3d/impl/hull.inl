@@ -30,7 +30,7 @@ inline Facets compact(PassState& S) {
 }
 
 // n_input: the caller's point count, for messages.
-inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st,
+inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Hull3dStats& st,
                        std::int64_t n_input) {
   auto t0 = Clock::now();
   const Tetra t = first_tetrahedron(ex, pts, n, n_input);
@@ -51,7 +51,7 @@ inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Stats& st,
   Facets out = compact(S);
   ex.sync();
   st.phase_ms.emplace_back("flip", ms_since(t0));
-  st.counters["exact_predicates"] += S.counters().exact_all;
+  st.exact_predicates += S.counters().exact_all;
   return out;
 }
 
@@ -175,10 +175,11 @@ struct Result {
 };
 
 // The hull of n distinct points (of n_input given) on the executor, in their indices.
-inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Stats& st,
+inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Hull3dStats& st,
                             std::int64_t n_input) {
   Result R;
   R.facets = one_pass(ex, pts, n, st, n_input);
+  st.passes = 1;
   auto t0 = Clock::now();
   // The vertices, each with one corner, in index order.
   auto corner = ex.template alloc<std::int32_t>(std::size_t(n));
@@ -209,8 +210,8 @@ inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Stats& 
   auto kept = ex.template alloc<std::int32_t>(std::size_t(nv));
   const std::int64_t nk = ex.copy_if(
       kp, nv, kept.data(), GG_LAMBDA(std::int32_t v) { return v >= 0; });
-  st.counters["first_pass_vertices"] = nv;
-  st.counters["nonextreme_vertices_dropped"] = nv - nk;
+  st.first_pass_vertices = nv;
+  st.nonextreme_vertices_dropped = nv - nk;
   ex.sync();
   st.phase_ms.emplace_back("extreme_test", ms_since(t0));
   if (nk == nv) {
@@ -230,7 +231,7 @@ inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Stats& 
   std::int32_t* t2 = F2.simplices.data();
   ex.for_each_index(
       3 * F2.count, GG_LAMBDA(std::int64_t i) { t2[i] = kv[t2[i]]; });
-  st.counters["passes"] = 2;
+  st.passes = 2;
   R.facets = std::move(F2);
   R.vertices = std::move(kept);
   R.num_vertices = nk;
@@ -243,16 +244,16 @@ inline Result distinct_hull(Exec& ex, const double* pts, std::int64_t n, Stats& 
 // perturbation follows the coordinates (predicates/sos.hpp), so the output does not depend on
 // the order of the input. A point with copies is represented by its first index.
 inline Result digital_distinct_hull(Exec& ex, const double* pts, std::int64_t m,
-                                    const mesh::Bounds<3>& box, std::int64_t grid, Stats& st,
+                                    const mesh::Bounds<3>& box, std::int64_t grid, Hull3dStats& st,
                                     std::int64_t n_input);  // (digital/impl/digital.inl)
 
 inline Result hull_core(Exec& ex, const double* in, std::int64_t n, const Hull3dOptions& opt,
-                        Stats& st) {
+                        Hull3dStats& st) {
   auto t0 = Clock::now();
   const mesh::Bounds<3> box = mesh::bounds<3>(ex, in, n);
   if (box.bad) throw_bad(box.bad);
   mesh::SortedPoints<Exec> S = mesh::sort_distinct<3>(ex, in, n, box);
-  st.counters["duplicates"] = S.duplicates;
+  st.duplicates = S.duplicates;
   ex.sync();
   st.phase_ms.emplace_back("sort", ms_since(t0));
   Result R = opt.method == Method::Digital
@@ -355,7 +356,7 @@ constexpr double kLeastBytesPerPoint = 48;
 
 // Host points in, host arrays (the caller's or the result's) out.
 inline void compute_impl(const double* xyz, std::int64_t n, const Hull3dOptions& opt, Output& out,
-                         Stats& st) {
+                         Hull3dStats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   // (at least the points, their sort keys and the live lists: 90 B a point measured on a ball)
@@ -390,7 +391,7 @@ inline void compute_impl(const double* xyz, std::int64_t n, const Hull3dOptions&
 
 // Points in executor memory, result left there (or in the caller's arrays of that memory).
 inline void compute_device_impl(const double* xyz, std::int64_t n, const Hull3dOptions& opt,
-                                DeviceOutput& out, Stats& st,
+                                DeviceOutput& out, Hull3dStats& st,
                                 const ::gpugeom::detail::ExecContext* outer) {
   Exec ex(opt, outer);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);

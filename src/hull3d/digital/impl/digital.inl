@@ -88,7 +88,7 @@ struct Frame {
 // Points kept by the method's sketch and depth test (inQ), or false where no sketch hull exists
 // (the caller runs the incremental method). pts: the m distinct points in curve order.
 inline bool digital_candidates(Exec& ex, const double* pts, std::int64_t m,
-                               const mesh::Bounds<3>& box, std::int64_t grid, Stats& st,
+                               const mesh::Bounds<3>& box, std::int64_t grid, Hull3dStats& st,
                                std::int64_t n_input, std::int8_t* inQ) {
   using namespace digital_hull;
   auto t0 = Clock::now();
@@ -104,7 +104,7 @@ inline bool digital_candidates(Exec& ex, const double* pts, std::int64_t m,
   Frame F;
   F.h = h;
   for (int d = 0; d < 3; ++d) F.o[d] = 0.5 * (box.lo[d] + box.hi[d]) - 0.5 * double(g) * h;
-  st.counters["digital_grid"] = g;
+  st.digital_grid = g;
   // 1a. The six slices.
   auto d_inS = ex.template alloc<std::int8_t>(std::size_t(m));
   std::int8_t* inS = d_inS.data();
@@ -183,7 +183,7 @@ inline bool digital_candidates(Exec& ex, const double* pts, std::int64_t m,
   auto d_spos = ex.template alloc<std::int32_t>(std::size_t(m));
   const std::int64_t ns = ex.compact_indices(
       m, GG_LAMBDA(std::int64_t i) { return inS[i] != 0; }, d_spos.data());
-  st.counters["sketch_points"] = ns;
+  st.sketch_points = ns;
   ex.sync();
   st.phase_ms.emplace_back("digital_slices", ms_since(t0));
   if (ns < 4) return false;
@@ -196,7 +196,7 @@ inline bool digital_candidates(Exec& ex, const double* pts, std::int64_t m,
     const std::int32_t* spos = d_spos.data();
     ex.for_each_index(
         3 * ns, GG_LAMBDA(std::int64_t i) { sp[i] = pts[3 * std::int64_t(spos[i / 3]) + i % 3]; });
-    Stats inner;
+    Hull3dStats inner;
     try {
       S1 = distinct_hull(ex, sp, ns, inner, n_input);
     } catch (const Error& e) {
@@ -208,14 +208,14 @@ inline bool digital_candidates(Exec& ex, const double* pts, std::int64_t m,
         3 * S1.facets.count, GG_LAMBDA(std::int64_t i) { t[i] = spos[t[i]]; });
   }
   const std::int64_t nf = S1.facets.count;
-  st.counters["sketch_facets"] = nf;
+  st.sketch_facets = nf;
   ex.sync();
   st.phase_ms.emplace_back("digital_sketch_hull", ms_since(t0));
   // 3a. The depth images: direction dir looks along axis a = dir / 2, towards +a (dir even:
   // depth z = X_a, front = least) or -a (depth z = -X_a); X = (p - o) / hr, hr = g h / R.
   t0 = Clock::now();
   const std::int64_t R = std::max<std::int64_t>(16, g / 2);
-  st.counters["digital_render"] = R;
+  st.digital_render = R;
   const double hr = double(g) * h / double(R);
   Frame X;
   X.h = hr;
@@ -355,22 +355,22 @@ inline bool digital_candidates(Exec& ex, const double* pts, std::int64_t m,
 // The hull of m distinct points in curve order by the digital method (its result in their
 // indices, as distinct_hull's).
 inline Result digital_distinct_hull(Exec& ex, const double* pts, std::int64_t m,
-                                    const mesh::Bounds<3>& box, std::int64_t grid, Stats& st,
+                                    const mesh::Bounds<3>& box, std::int64_t grid, Hull3dStats& st,
                                     std::int64_t n_input) {
   auto d_inQ = ex.template alloc<std::int8_t>(std::size_t(m));
   std::int8_t* inQ = d_inQ.data();
   if (!digital_candidates(ex, pts, m, box, grid, st, n_input, inQ)) {
-    st.counters["digital_fallback"] = 1;
-    st.counters["hull_input"] = m;
+    st.digital_fallback = 1;
+    st.hull_input = m;
     return distinct_hull(ex, pts, m, st, n_input);
   }
-  st.counters["digital_fallback"] = 0;
+  st.digital_fallback = 0;
   auto d_q = ex.template alloc<std::int32_t>(std::size_t(m));
   const std::int32_t* qpos = d_q.data();
   const std::int64_t nq = ex.compact_indices(
       m, GG_LAMBDA(std::int64_t i) { return inQ[i] != 0; }, d_q.data());
-  st.counters["depth_kept"] = nq - st.counters["sketch_points"];
-  st.counters["hull_input"] = nq;
+  st.depth_kept = nq - st.sketch_points;
+  st.hull_input = nq;
   auto sub = ex.template alloc<double>(std::size_t(3 * nq));
   double* sp = sub.data();
   ex.for_each_index(
