@@ -274,9 +274,8 @@ int main(int argc, char** argv) {
             const double peak = double(r.stats.device_peak_bytes);
             std::printf("# device peak %.2f GB (%.2f B a computed voxel)", peak / 1e9,
                         peak / out_vox);
-            if (r.stats.counters.count("slices_per_block"))
-              std::printf(", %lld slices a block",
-                          (long long)r.stats.counters.at("slices_per_block"));
+            if (r.stats.slices_per_block)
+              std::printf(", %lld slices a block", (long long)r.stats.slices_per_block);
             std::printf("\n");
           }
           if (std::getenv("GPUGEOM_EDT_PROFILE"))

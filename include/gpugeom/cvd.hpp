@@ -16,7 +16,9 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "gpugeom/common.hpp"
@@ -62,6 +64,17 @@ struct CvdOptions : RunOptions {
   CvdBuffers into;  ///< optional
 };
 
+/// Statistics of a centroidal Voronoi diagram: RunStats (phases "setup": the density quantised
+/// and spread, the first sites drawn; "iterations": Lloyd's iterations) and its counters.
+struct CvdStats : RunStats {
+  /// The density's grid points (at the options' supersampling), and the sites.
+  std::int64_t grid_points = 0, sites = 0;
+  /// Lloyd iterations run (as the result's `iterations`).
+  std::int64_t iterations = 0;
+
+  std::map<std::string, std::int64_t> counter_map() const override;
+};
+
 /// The result of centroidal_voronoi: the sites, their masses and the energy per iteration, in host
 /// memory.
 struct CvdResult {
@@ -73,7 +86,7 @@ struct CvdResult {
   HostVector<double> energy;  ///< per iteration: sum_p density(p) |p - site(p)|^2 (pixels^2)
   int iterations = 0;
   bool converged = false;  ///< the move (or energy) tolerance was met
-  Stats stats;
+  CvdStats stats;
   std::int64_t num_sites = 0;  ///< sites (also where they went into the caller's arrays)
 };
 
@@ -97,7 +110,7 @@ struct DeviceCvdResult {
   int iterations = 0;
   bool converged = false;
   Backend backend = Backend::Cuda;  ///< where the arrays are: Cuda = device memory, Cpu = host
-  Stats stats;
+  CvdStats stats;
 };
 /// The same iteration with the density in device memory and the sites left there, on opt.stream of
 /// opt.device: the density must be ready in that stream's order, and the call returns once the

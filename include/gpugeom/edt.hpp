@@ -12,7 +12,9 @@
 /// d^2 = sum_k (sampling_k * delta_k)^2; all comparisons are exact, ties included.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "gpugeom/common.hpp"
@@ -122,6 +124,23 @@ struct EdtOptions : RunOptions {
   EdtBuffers into;  ///< caller-provided output arrays (optional)
 };
 
+/// Statistics of a distance transform: RunStats (phases "upload", a pass per axis ("pass_x",
+/// "pass_y", "pass_z"; "pass_0" ... for 4 to 8 axes; "candidates" first by slices), "transform",
+/// "outputs_device", "outputs"; distance_transform_devices: "bounds", "slabs" and each device's
+/// own as "slab<i>_<phase>") and its counters, 0 where their step did not run.
+struct EdtStats : RunStats {
+  /// The banded passes' bands along x, y and z (0 for a pass that ran whole lines).
+  std::int64_t bands_x = 0, bands_y = 0, bands_z = 0;
+  /// By slices: the slices computed together in one block.
+  std::int64_t slices_per_block = 0;
+  /// Grids of 4 to 8 axes: the bits of the nearest sites' indices (32 or 64).
+  std::int64_t index_bits = 0;
+  /// distance_transform_devices: the slabs (one per device).
+  std::int64_t slabs = 0;
+
+  std::map<std::string, std::int64_t> counter_map() const override;
+};
+
 /// The result of distance_transform, in host memory: the outputs EdtOptions asked for.
 struct EdtResult {
   std::vector<std::int64_t> shape;      ///< of the output (slices replace the first extent)
@@ -131,7 +150,7 @@ struct EdtResult {
   HostVector<double> distance64;
   HostVector<std::int32_t> features;  ///< ndim arrays of count() each (axis 0 first)
   HostVector<std::int32_t> labels;
-  Stats stats;
+  EdtStats stats;
   /// The number of grid elements.
   std::int64_t count() const;
 };
@@ -165,7 +184,7 @@ struct DeviceEdtResult {
   std::shared_ptr<std::int32_t> features;  ///< ndim arrays of count() each (axis 0 first)
   std::shared_ptr<std::int32_t> labels;
   Backend backend = Backend::Cuda;  ///< where the arrays are: Cuda = device memory, Cpu = host
-  Stats stats;
+  EdtStats stats;
   /// The number of grid elements.
   std::int64_t count() const;
 };

@@ -3,13 +3,23 @@
 /// (delaunay3d.hpp), on either executor.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <string>
 
 #include "gpugeom/common.hpp"
 #include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/host_vector.hpp"
 
 namespace gpugeom {
+
+/// Statistics of a 3D Voronoi diagram: RunStats (phase "voronoi"; the one-call host entry adds
+/// "upload" and, with tri, "copy_tetrahedralisation") and the counters.
+struct Voronoi3dStats : RunStats {
+  std::int64_t voronoi_vertices = 0, voronoi_ridges = 0;  ///< the diagram's
+
+  std::map<std::string, std::int64_t> counter_map() const override;
+};
 
 /// The Voronoi diagram of the points (issue 49), dual to their Delaunay tetrahedralisation, in
 /// SciPy's `Voronoi` layout with flat arrays. Its vertices are the circumcentres of the
@@ -31,7 +41,7 @@ struct Voronoi3d {
   HostVector<std::int64_t> region_offsets;  ///< n + 1 offsets into region_vertices
   HostVector<std::int32_t> region_vertices;
   HostVector<std::int32_t> simplex_vertex;  ///< per tetrahedron, its Voronoi vertex
-  Stats stats;  ///< phase "voronoi"; counters "voronoi_vertices", "voronoi_ridges"
+  Voronoi3dStats stats;
 };
 /// From a tetrahedralisation on the host (delaunay3d's, its arrays in the result), computed on the
 /// host threads. Throws Error(InvalidArgument) when tri does not belong to these n points.
@@ -55,7 +65,7 @@ struct DeviceVoronoi3d {
   std::shared_ptr<std::int32_t> region_vertices;  ///< num_region_vertices
   std::shared_ptr<std::int32_t> simplex_vertex;   ///< tri.num_tetrahedra
   Backend backend = Backend::Cuda;                ///< where the arrays are: Cuda = device memory
-  Stats stats;
+  Voronoi3dStats stats;
 };
 /// The same diagram for a tetrahedralisation left where delaunay3d_device or a kept one put it,
 /// computed there (tri.backend's executor, run.stream of run.device): device_xyz its n points

@@ -4,7 +4,9 @@
 /// them, on either executor.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <string>
 
 #include "gpugeom/common.hpp"
 #include "gpugeom/host_vector.hpp"
@@ -45,13 +47,28 @@ struct VoronoiCellsOptions : RunOptions {
   VoronoiCellsBuffers into;  ///< optional
 };
 
+/// Statistics of the Voronoi cells: RunStats (phases "upload", "images" (the periodic images,
+/// each attempt), "delaunay", "ridges", "cells", "cells_write") and the counters.
+struct VoronoiCellsStats : RunStats {
+  /// Periodic images added (last attempt), and the attempts: a periodic box is tried with a
+  /// wider layer of images while some cell reaches past it.
+  std::int64_t images = 0, attempts = 0;
+  /// The faces of all cells.
+  std::int64_t faces = 0;
+  /// Cells a wall cuts (cut from the box), and of those, cells built again with more room than
+  /// a thread keeps.
+  std::int64_t cells_cut = 0, cell_overflows = 0;
+
+  std::map<std::string, std::int64_t> counter_map() const override;
+};
+
 /// Every point's Voronoi cell within the box. The cells are the Voronoi diagram's (its
 /// neighbours are the exact ridges of the Delaunay tetrahedralisation, voronoi3d.hpp), cut by the
 /// walls of the box where it does not wrap. Their measures are computed in double precision: a
 /// cell no wall cuts (in a periodic box, every cell) from the diagram's circumcentres round its
 /// ridges; a cell a wall cuts from the box cut by its neighbours' bisector planes (a vertex within
 /// 10^-12 of the cell's size from a plane counts as on it, so no face of area 10^-30 is left where
-/// four cells meet at a point). Stats counter "cells_cut" says how many were cut.
+/// four cells meet at a point). VoronoiCellsStats::cells_cut says how many were cut.
 ///
 /// - Faces: per cell, in the order of their neighbours (walls first), counter-clockwise seen from
 ///   outside. A face's neighbour is a point index, or a wall: -1 and -2 for the low and high x
@@ -79,12 +96,7 @@ struct VoronoiCells {
   /// The points, faces, face vertex entries and cell vertices (the arrays' lengths, written into
   /// the caller's arrays or not).
   std::int64_t num_points = 0, num_faces = 0, num_face_vertices = 0, num_vertices = 0;
-  /// Phases "upload", "images" (the periodic images, each attempt), "delaunay", "ridges",
-  /// "cells", "cells_write"; counters "images" (periodic images added, last attempt), "attempts"
-  /// (a periodic box is tried with a wider layer of images while some cell reaches past it),
-  /// "faces", "cells_cut" (cells a wall cuts, cut from the box), "cell_overflows" (of those, cells
-  /// built again with more room than a thread keeps).
-  Stats stats;
+  VoronoiCellsStats stats;
 };
 /// Throws Error(InvalidArgument) for a box with hi <= lo or bounds that are not finite,
 /// Error(InvalidInput) for a coordinate that is not finite or a point outside the box along an
@@ -103,7 +115,7 @@ struct DeviceVoronoiCells {
   std::shared_ptr<std::int64_t> vertex_offsets;
   std::shared_ptr<double> vertices;
   Backend backend = Backend::Cuda;
-  Stats stats;
+  VoronoiCellsStats stats;
 };
 /// The same for points already on the executor (device memory for Backend::Cuda): the arrays as
 /// VoronoiCells's, in device memory of the call's resource (RunOptions::memory) (freed when the

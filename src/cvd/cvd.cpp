@@ -7,6 +7,7 @@
 #include <string>
 #include <unordered_set>
 
+#include "base/stats_fields.hpp"
 #include "cvd/cvd_backend.hpp"
 #include "edt/edt_backend.hpp"
 #include "exec/deliver.hpp"
@@ -99,7 +100,7 @@ cvd::Request make_request(const GridView& g, const CvdOptions& opt, bool on_devi
 
 // Runs the backend; energies and progress in density units (known once the backend has the
 // density's maximum: the progress callback gets them through `unit`).
-void run(Backend b, cvd::Request& rq, const CvdOptions& opt, cvd::Output& out, Stats& st) {
+void run(Backend b, cvd::Request& rq, const CvdOptions& opt, cvd::Output& out, CvdStats& st) {
   const int s = rq.s;
   if (opt.progress)
     rq.progress = [&opt, &out, s](int it, const cvd::Scalars& sc) {
@@ -111,7 +112,7 @@ void run(Backend b, cvd::Request& rq, const CvdOptions& opt, cvd::Output& out, S
       return opt.progress(p);
     };
   st.backend = b;
-  st.counters["grid_points"] = rq.layout.count();
+  st.grid_points = rq.layout.count();
   GG_ENTRIES(b, cvd).lloyd(rq, out, st);
 }
 
@@ -125,6 +126,12 @@ void finish(const cvd::Output& out, Result& r) {
 }
 
 }  // namespace
+
+// clang-format off
+#define GG_CVD_COUNTERS(X) X(grid_points) X(sites) X(iterations)
+// clang-format on
+GG_COUNTER_MAP(CvdStats, GG_CVD_COUNTERS);
+#undef GG_CVD_COUNTERS
 
 CvdResult centroidal_voronoi(const GridView& g, const CvdOptions& opt) {
   cvd::Request rq = make_request(g, opt, false);

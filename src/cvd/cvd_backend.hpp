@@ -61,7 +61,7 @@ struct Output {
 
 // One executor's entries (exec/dispatch.hpp), filled by each executor's unit.
 struct Entries {
-  void (*lloyd)(const Request& rq, Output& out, Stats& stats);
+  void (*lloyd)(const Request& rq, Output& out, CvdStats& stats);
 };
 GG_DECLARE_TABLE(Entries, entries)
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "base/stats_fields.hpp"
 #include "delaunay3d/del3d_backend.hpp"
 #include "delaunay3d/voronoi3d_backend.hpp"
 #include "exec/dispatch.hpp"
@@ -24,6 +25,12 @@ void check_box(const VoronoiCellsOptions& opt, std::int64_t n) {
 }
 
 }  // namespace
+
+// clang-format off
+#define GG_CELLS_COUNTERS(X) X(images) X(attempts) X(faces) X(cells_cut) X(cell_overflows)
+// clang-format on
+GG_COUNTER_MAP(VoronoiCellsStats, GG_CELLS_COUNTERS);
+#undef GG_CELLS_COUNTERS
 
 VoronoiCells voronoi_cells(const double* xyz, std::int64_t n, const VoronoiCellsOptions& opt) {
   check_box(opt, n);

@@ -4,12 +4,17 @@
 #include <string>
 #include <utility>
 
+#include "base/stats_fields.hpp"
 #include "delaunay3d/del3d_backend.hpp"
 #include "delaunay3d/voronoi3d_backend.hpp"
 #include "exec/dispatch.hpp"
 #include "gpugeom/voronoi3d.hpp"
 
 namespace gpugeom {
+
+#define GG_VORONOI3D_COUNTERS(X) X(voronoi_vertices) X(voronoi_ridges)
+GG_COUNTER_MAP(Voronoi3dStats, GG_VORONOI3D_COUNTERS);
+#undef GG_VORONOI3D_COUNTERS
 
 // The host entry runs the executor's algorithm on the CPU executor over the caller's arrays (all
 // host threads; the same arrays as the device entry's, bit for bit).

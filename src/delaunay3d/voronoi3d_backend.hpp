@@ -20,8 +20,8 @@ struct VoronoiEntries {
   // executor's context (exec/exec_context.hpp), or null.
   void (*voronoi)(const double* xyz, std::int64_t n, const std::int32_t* tet,
                   const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                  const RunOptions& run, DeviceVoronoi3d& out, Stats& stats, Voronoi3d* host,
-                  const detail::ExecContext* outer);
+                  const RunOptions& run, DeviceVoronoi3d& out, Voronoi3dStats& stats,
+                  Voronoi3d* host, const detail::ExecContext* outer);
   // voronoi3d(xyz, n, opt, tri) where the executor does not read host memory: the points go up
   // once, both structures are made there, and only the results come back. Null on the CPU.
   void (*from_host)(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Voronoi3d& v,

@@ -145,7 +145,7 @@ EdtResult distance_transform_devices(const GridView& g, SiteRule rule,
   if (opt.distance == 64) d64 = whole_output(opt.into.distance64, r.distance64, n);
   if (opt.features) feat = whole_output(opt.into.features, r.features, std::int64_t(nd) * n);
   const double t1 = now_ms();
-  std::vector<Stats> stats(k);
+  std::vector<EdtStats> stats(k);
   on_threads(k, [&](std::size_t i) {
     EdtOptions o = opt;
     o.backend = b;
@@ -172,7 +172,7 @@ EdtResult distance_transform_devices(const GridView& g, SiteRule rule,
   for (std::size_t i = 0; i < k; ++i)
     for (auto& [name, ms] : stats[i].phase_ms)
       r.stats.phase_ms.push_back({"slab" + std::to_string(i) + "_" + name, ms});
-  r.stats.counters["slabs"] = std::int64_t(k);
+  r.stats.slabs = std::int64_t(k);
   return r;
 }
 

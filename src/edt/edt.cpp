@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "base/stats_fields.hpp"
 #include "edt/edt_backend.hpp"
 #include "edt/entries.hpp"
 #include "exec/deliver.hpp"
@@ -17,6 +18,12 @@
 #include "gpugeom/edt.hpp"
 
 namespace gpugeom {
+
+// clang-format off
+#define GG_EDT_COUNTERS(X) X(bands_x) X(bands_y) X(bands_z) X(slices_per_block) X(index_bits) X(slabs)
+// clang-format on
+GG_COUNTER_MAP(EdtStats, GG_EDT_COUNTERS);
+#undef GG_EDT_COUNTERS
 
 std::int64_t EdtResult::count() const {
   std::int64_t n = 1;
@@ -259,7 +266,7 @@ void prepare(edt::Request& rq, const EdtOptions& opt, const std::vector<std::int
   set_outputs(rq, opt, total, int(shape.size()));
 }
 
-void run_backend(Backend b, const edt::Request& rq, edt::Output& out, Stats& stats) {
+void run_backend(Backend b, const edt::Request& rq, edt::Output& out, EdtStats& stats) {
   stats.backend = b;
   GG_ENTRIES(b, edt).run(rq, out, stats);
 }

@@ -86,9 +86,14 @@ struct BoundsRequest {
   std::int64_t planes = 0, plane = 0, offset = 0;
 };
 
+// The banded pass's bands along axis a (0..2) into its field.
+inline void set_bands(EdtStats& s, int a, std::int64_t bands) {
+  (a == 0 ? s.bands_x : a == 1 ? s.bands_y : s.bands_z) = bands;
+}
+
 // One executor's entries (exec/dispatch.hpp): impl/entry.inl defines them for each executor.
 struct Entries {
-  void (*run)(const Request& req, Output& out, Stats& stats);
+  void (*run)(const Request& req, Output& out, EdtStats& stats);
   // True where the grid holds a NaN.
   bool (*column_bounds)(const BoundsRequest& rq, std::int64_t* first, std::int64_t* last);
 };

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <numeric>
@@ -151,6 +152,13 @@ TEST(Cvd, UniformDensityConvergesToEqualMasses) {
   EXPECT_LT(cv(r.mass) * 3, start);
   const double total = std::accumulate(r.mass.begin(), r.mass.end(), 0.0);
   EXPECT_NEAR(total, 160.0 * 160.0 * 255, 1e-6 * total);  // the density is 255 everywhere
+  // The statistics' counters are fields, printed under their names.
+  EXPECT_EQ(r.stats.sites, 80);
+  EXPECT_EQ(r.stats.iterations, r.iterations);
+  EXPECT_EQ(r.stats.grid_points, 640 * 640);  // (supersampled 4 times a side)
+  EXPECT_EQ(r.stats.counter_map(),
+            (std::map<std::string, std::int64_t>{
+                {"grid_points", 640 * 640}, {"sites", 80}, {"iterations", r.iterations}}));
 }
 
 TEST(Cvd, SupersampleIsTheUpsampledDensity) {

@@ -140,10 +140,10 @@ TEST(VoronoiCells, BoundedCellsFillTheBoxAndMatchTheDiagram) {
   const auto p = uniform(n, 7);
   const VoronoiCells c = voronoi_cells(p.data(), n, box(0, 1));
   expect_cells(p, c, 1.0, p);
-  EXPECT_EQ(c.stats.counters.at("attempts"), 1);
+  EXPECT_EQ(c.stats.attempts, 1);
   // cells no wall cuts are read from the diagram; the others cut from the box
-  EXPECT_GT(c.stats.counters.at("cells_cut"), 0);
-  EXPECT_LT(c.stats.counters.at("cells_cut"), n / 2);
+  EXPECT_GT(c.stats.cells_cut, 0);
+  EXPECT_LT(c.stats.cells_cut, n / 2);
   // inner cells: the volume summed from the diagram's circumcentres
   Delaunay3dOptions o;
   o.backend = Backend::Cpu;
@@ -226,7 +226,7 @@ TEST(VoronoiCells, PeriodicCellsEqualTheInnerCopyOfReplicas) {
         }
       }
   expect_cells(w, c, 8.0, rep);
-  EXPECT_EQ(c.stats.counters.at("cells_cut"), 0);  // (no walls: every cell from the diagram)
+  EXPECT_EQ(c.stats.cells_cut, 0);  // (no walls: every cell from the diagram)
   Delaunay3dOptions d;
   d.backend = Backend::Cpu;
   const Voronoi3d v = voronoi3d(rep.data(), std::int64_t(rep.size() / 3), d);

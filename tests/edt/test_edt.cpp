@@ -255,8 +255,7 @@ TEST(Edt, SlabsOfSeveralDevicesEqualOneCall) {
         EXPECT_EQ(got.sqdist_real, want.sqdist_real);
         EXPECT_EQ(got.distance32, want.distance32);
         EXPECT_EQ(got.features, want.features);
-        EXPECT_EQ(got.stats.counters.at("slabs"),
-                  std::min<std::int64_t>(std::int64_t(slabs), shape[0]));
+        EXPECT_EQ(got.stats.slabs, std::min<std::int64_t>(std::int64_t(slabs), shape[0]));
         EdtOptions into = o;
         into.squared = false;
         std::vector<float> dist(std::size_t(g.count()));
@@ -651,7 +650,7 @@ TEST(Edt, SliceBlocksAndColumnPackingSameResults) {
                                  (columns ? " columns" : "") + " block " + std::to_string(block);
         const auto r = distance_transform(g, SiteRule::NonZero, so);
         expect_same(r, gg_edt::slices_of(whole, so.slices), what);
-        const std::int64_t per = r.stats.counters.at("slices_per_block");
+        const std::int64_t per = r.stats.slices_per_block;
         EXPECT_EQ(per, block == 0 ? std::int64_t(so.slices.size())
                                   : std::max<std::int64_t>(1, block / plane))
             << what;

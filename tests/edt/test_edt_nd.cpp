@@ -122,8 +122,8 @@ TEST(EdtNd, WideIndicesSameResults) {
     const auto narrow = distance_transform(g, SiteRule::NonZero, o);
     o.wide_indices = true;
     const auto wide = distance_transform(g, SiteRule::NonZero, o);
-    EXPECT_EQ(narrow.stats.counters.at("index_bits"), 32);
-    EXPECT_EQ(wide.stats.counters.at("index_bits"), 64);
+    EXPECT_EQ(narrow.stats.index_bits, 32);
+    EXPECT_EQ(wide.stats.index_bits, 64);
     expect_same(narrow, wide, "64-bit indices");
   }
 }

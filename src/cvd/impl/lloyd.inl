@@ -146,7 +146,7 @@ inline void collapse(Exec& ex, const Layout& L, int a, const u64* in_m, Planes i
       });
 }
 
-inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
+inline void lloyd_impl(const Request& rq, Output& out, CvdStats& stats) {
   Exec ex(rq.run);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
   const Layout L = rq.layout;
@@ -166,7 +166,7 @@ inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
                 : rq.sites;
   }
   const std::int64_t ns = std::int64_t(sites.size()) / nd;
-  stats.counters["sites"] = ns;
+  stats.sites = ns;
   // Units of the results: the progress callback needs the energy's from the first iteration.
   const double unit_mass = vmax / kLevels / std::pow(double(rq.s), nd);
   out.unit_energy = unit_mass / (double(rq.s) * rq.s);
@@ -306,7 +306,7 @@ inline void lloyd_impl(const Request& rq, Output& out, Stats& stats) {
     if (!go) break;
   }
   stats.phase_ms.push_back({"iterations", ms_since(t_iter)});
-  stats.counters["iterations"] = out.iterations;
+  stats.iterations = out.iterations;
   // The sites in density pixels and the cells' mass in density times pixel area, made on the
   // executor (the same doubles the host made before), then where the caller wants them.
   out.num_sites = ns;

@@ -10,7 +10,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
   using I64 = std::int64_t;
   using U64 = std::uint64_t;
   using vcells::CellJob;
-  Stats& st = host ? host->stats : dev->stats;
+  VoronoiCellsStats& st = host ? host->stats : dev->stats;
   auto t0 = std::chrono::steady_clock::now();
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
@@ -141,8 +141,8 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
               }
         });
     st.phase_ms.push_back({"images", ms_since(t0)});
-    st.counters["images"] = nimg;
-    st.counters["attempts"] = attempt;
+    st.images = nimg;
+    st.attempts = attempt;
     // 2. The tetrahedralisation and its ridges: each original's neighbours, sorted.
     t0 = std::chrono::steady_clock::now();
     Delaunay3dOptions o;
@@ -243,7 +243,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     I32* clip = d_clip.data();
     const I64 nclip = ex.compact_indices(
         n, GG_LAMBDA(I64 i)->bool { return how[i] == 1; }, clip);
-    st.counters["cells_cut"] = nclip;
+    st.cells_cut = nclip;
     ex.for_each_index(
         nclip, GG_LAMBDA(I64 j) {
           using namespace vcells;
@@ -261,7 +261,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     I32* big = d_big.data();
     const I64 nbig = ex.compact_indices(
         n, GG_LAMBDA(I64 i)->bool { return flag[i] == 2; }, big);
-    st.counters["cell_overflows"] = nbig;
+    st.cell_overflows = nbig;
     auto d_kmax = ex.template alloc<I64>(1);
     vcells::Room room{0, 0, 0};
     I64 chunk = 0;
@@ -316,7 +316,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
       ex.to_host(voff + n, 1, &nv);
       ex.to_host(eoff + n, 1, &ne);
     }
-    st.counters["faces"] = nf;
+    st.faces = nf;
     const VoronoiCellsBuffers& into = opt.into;
     deliver::check(into.volumes, n, "volumes");
     deliver::check(into.areas, n, "areas");

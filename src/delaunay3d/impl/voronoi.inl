@@ -254,8 +254,8 @@ inline void vor3_ridge_lengths(Exec& ex, const double* xyz, const std::int32_t* 
 
 inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t* tet,
                            const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                           const RunOptions& run, DeviceVoronoi3d& out, Stats& st, Voronoi3d* host,
-                           const ::gpugeom::detail::ExecContext* outer) {
+                           const RunOptions& run, DeviceVoronoi3d& out, Voronoi3dStats& st,
+                           Voronoi3d* host, const ::gpugeom::detail::ExecContext* outer) {
   const auto t0 = std::chrono::steady_clock::now();
   Exec ex(run, outer);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
@@ -272,7 +272,7 @@ inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t
   double* v = vx.data();
   ex.for_each_index(
       nv, GG_LAMBDA(I64 j) { circumcentre3(xyz, tet, first[j], v + 3 * j); });
-  st.counters["voronoi_vertices"] = nv;
+  st.voronoi_vertices = nv;
   // Ridges: per (tetrahedron, edge), where its ridge's vertex list starts (vor3_ridge_lengths).
   auto d_len = ex.template alloc<I64>(std::size_t(6 * nt + 1));
   I64* len = d_len.data();
@@ -308,7 +308,7 @@ inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t
           if (run.step(vid[t]) && at < m) o[at++] = vid[t];
         });
       });
-  st.counters["voronoi_ridges"] = nr;
+  st.voronoi_ridges = nr;
   // Regions: the (point, class) pairs of every corner, sorted, once each.
   auto d_keys = ex.template alloc<std::uint64_t>(std::size_t(4 * nt));
   std::uint64_t* keys = d_keys.data();

@@ -3,7 +3,7 @@
 // passes compiled for the request's site packing (run.inl, included once for each in namespaces
 // bits and linear), slices theirs by blocks (slices.inl, once for each block layout).
 
-void run(const Request& req, Output& out, Stats& stats) {
+void run(const Request& req, Output& out, EdtStats& stats) {
   if (req.nd.nd && !req.slices.empty() && req.nd.wide)
     nd64::run_nd_slices(req, out, stats);
   else if (req.nd.nd && !req.slices.empty())

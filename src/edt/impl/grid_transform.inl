@@ -103,7 +103,7 @@ void x_pass_rows(Exec& ex, const Layout& L, const Metric& M, const PassGeom& g,
 // passes here, viewed as 3D grids of n0 x n1 x (the rest), nd.inl).
 inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::uint32_t* feat,
                               const std::uint8_t* mask, const Tuning& tune, std::int64_t sites,
-                              Stats* stats, const std::function<void(int)>& profile_step = {},
+                              EdtStats* stats, const std::function<void(int)>& profile_step = {},
                               int naxes = 0) {
   if (naxes <= 0) naxes = L.nd;
   PassWork w(ex, L, tune, naxes);
@@ -146,7 +146,7 @@ inline void feature_transform(Exec& ex, const Layout& L, const Metric& M, std::u
       banded_pass(ex, L, M, tune, w, a, cur, other);
     }
     if (profile_step) profile_step(a);
-    if (stats) stats->counters[std::string("bands_") + "xyz"[a]] = w.gs[a].bands;
+    if (stats) set_bands(*stats, a, w.gs[a].bands);
   }
   if (cur != feat) ex.copy(cur, L.count(), feat);
 }

@@ -198,7 +198,7 @@ void nd_pass_t(Exec& ex, const NdL<ND>& L, const MetricT<ND>& M, int a, S* feat,
 // grid's lines along those axes, and every candidate lies in its voxel's plane.
 template <int ND>
 inline void nd_transform(Exec& ex, const NdL<ND>& L, const MetricT<ND>& M, const std::uint8_t* mask,
-                         S* feat, S* stk, const Tuning& tune, std::int64_t sites, Stats* stats) {
+                         S* feat, S* stk, const Tuning& tune, std::int64_t sites, EdtStats* stats) {
   double last = now_ms();
   auto step = [&](int a) {
     if (!stats) return;
@@ -238,7 +238,7 @@ inline void nd_transform(Exec& ex, const NdL<ND>& L, const MetricT<ND>& M, const
 // The backend entry for an N-D grid: upload, feature transform, outputs, download (as run.inl
 // for 2D and 3D).
 template <int ND>
-inline void run_nd_t(const Request& rq, Output& out, Stats& stats) {
+inline void run_nd_t(const Request& rq, Output& out, EdtStats& stats) {
   Exec ex(rq.run);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
   const NdL<ND> L(rq.nd);
@@ -311,7 +311,7 @@ inline void run_nd_t(const Request& rq, Output& out, Stats& stats) {
   stats.phase_ms.push_back({"outputs_device", out.device_outputs_at - t2});
   if (rq.device_out) hand_over(ex, lib, out);
   stats.phase_ms.push_back({"outputs", now_ms() - t2});
-  stats.counters["index_bits"] = 8 * std::int64_t(sizeof(S));
+  stats.index_bits = 8 * std::int64_t(sizeof(S));
 }
 
 // A block's candidates (column_candidates, columns.inl): the site at z of column c, as the
@@ -341,7 +341,7 @@ struct NdColumnLabels {
 // column, the nearest of the column's sites along axis 0 (columns.inl); the passes along the
 // other axes then run on the block.
 template <int ND>
-inline void run_nd_slices_t(const Request& rq, Output& out, Stats& stats) {
+inline void run_nd_slices_t(const Request& rq, Output& out, EdtStats& stats) {
   Exec ex(rq.run);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
   const NdL<ND> V(rq.nd);
@@ -429,8 +429,8 @@ inline void run_nd_slices_t(const Request& rq, Output& out, Stats& stats) {
     emit_outputs(ex, rq, Lb, M, cand.data(), NdColumnLabels{lab.data(), plane}, out, arrays,
                  k0 * plane, nsl * plane);
   }
-  stats.counters["slices_per_block"] = per_block;
-  stats.counters["index_bits"] = 8 * std::int64_t(sizeof(S));
+  stats.slices_per_block = per_block;
+  stats.index_bits = 8 * std::int64_t(sizeof(S));
   if (rq.device_out) hand_over(ex, arrays, out);
   out.transform_ms = transform;
   stats.phase_ms.push_back({"transform", transform});
@@ -438,7 +438,7 @@ inline void run_nd_slices_t(const Request& rq, Output& out, Stats& stats) {
 
 // The entries (entry.inl): the request's axis count picks the compiled instance.
 template <template <int> class Run>
-inline void by_axes(int nd, const Request& rq, Output& out, Stats& stats) {
+inline void by_axes(int nd, const Request& rq, Output& out, EdtStats& stats) {
   switch (nd) {
     case 4:
       return Run<4>::go(rq, out, stats);
@@ -454,17 +454,17 @@ inline void by_axes(int nd, const Request& rq, Output& out, Stats& stats) {
 }
 template <int ND>
 struct WholeRun {
-  static void go(const Request& rq, Output& out, Stats& stats) { run_nd_t<ND>(rq, out, stats); }
+  static void go(const Request& rq, Output& out, EdtStats& stats) { run_nd_t<ND>(rq, out, stats); }
 };
 template <int ND>
 struct SliceRun {
-  static void go(const Request& rq, Output& out, Stats& stats) {
+  static void go(const Request& rq, Output& out, EdtStats& stats) {
     run_nd_slices_t<ND>(rq, out, stats);
   }
 };
-inline void run_nd(const Request& rq, Output& out, Stats& stats) {
+inline void run_nd(const Request& rq, Output& out, EdtStats& stats) {
   by_axes<WholeRun>(rq.nd.nd, rq, out, stats);
 }
-inline void run_nd_slices(const Request& rq, Output& out, Stats& stats) {
+inline void run_nd_slices(const Request& rq, Output& out, EdtStats& stats) {
   by_axes<SliceRun>(rq.nd.nd, rq, out, stats);
 }

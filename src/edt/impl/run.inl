@@ -2,7 +2,7 @@
 // after grid_transform.inl and jfa.inl, once for each site packing (the slice-by-slice mode is
 // slices.inl).
 
-inline void run_whole(const Request& rq, Output& out, Stats& stats) {
+inline void run_whole(const Request& rq, Output& out, EdtStats& stats) {
   Exec ex(rq.run);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
   {

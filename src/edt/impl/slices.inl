@@ -56,7 +56,7 @@ inline std::int64_t planes_per_block(const edt::Layout& L, std::int64_t voxels,
   return std::min(k, slices);
 }
 
-inline void run_slices(const Request& rq, Output& out, Stats& stats) {
+inline void run_slices(const Request& rq, Output& out, EdtStats& stats) {
   Exec ex(rq.run);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);
   const edt::Layout L = rq.layout;
@@ -156,8 +156,8 @@ inline void run_slices(const Request& rq, Output& out, Stats& stats) {
     emit_outputs(ex, rq, Lb, rq.metric, cand.data(), ColumnLabels{lab.data(), Lb}, out, arrays,
                  k0 * nxy, nsl * nxy);
   }
-  for (int a = 0; a < 2; ++a) stats.counters[std::string("bands_") + "xy"[a]] = bands[a];
-  stats.counters["slices_per_block"] = per_block;
+  for (int a = 0; a < 2; ++a) set_bands(stats, a, bands[a]);
+  stats.slices_per_block = per_block;
   if (rq.device_out) hand_over(ex, arrays, out);
   out.transform_ms = transform;
   if (rq.run.profile) {
