@@ -26,7 +26,9 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "gpugeom/cdt2d.hpp"
@@ -89,6 +91,23 @@ enum class SmallAngle : std::int8_t {
   Limit = 3,       ///< max_steiner_points was reached, or no double lies where the point belongs
 };
 
+/// Statistics of a quality mesh: RunStats (phases "triangulate" (the input's constrained
+/// triangulation), "decide" and "insert" (the rounds' two steps: what goes in; inserting it and
+/// flipping), "output", then "refine" (all of them) and "to_host") and the counters.
+struct Refine2dStats : RunStats {
+  /// Refinement rounds, and the Steiner points inserted (segment splits among them).
+  std::int64_t rounds = 0, steiner_points = 0, segment_splits = 0;
+  /// New points not inserted because they would encroach upon a subsegment (which is split
+  /// instead).
+  std::int64_t rejected_points = 0;
+  /// Edge flips, and the flip passes they took.
+  std::int64_t flips = 0, flip_passes = 0;
+  /// Triangles of the mesh.
+  std::int64_t triangles = 0;
+
+  std::map<std::string, std::int64_t> counter_map() const override;
+};
+
 /// The result of refine2d: points (input and Steiner), triangles, neighbours, segments and the
 /// triangles the bounds could not reach, in host memory.
 struct RefinedMesh2d {
@@ -114,13 +133,7 @@ struct RefinedMesh2d {
   /// segment_of: an input segment, or kHullSegment).
   HostVector<std::int32_t> subsegments, subsegment_of;
   std::int64_t removed_triangles = 0;
-  /// Phases "triangulate" (the input's constrained triangulation), "decide" and "insert" (the
-  /// rounds' two steps: what goes in; inserting it and flipping), "output", then "refine" (all of
-  /// them) and "to_host"; counters
-  /// "rounds", "steiner_points", "segment_splits", "rejected_points" (new points not inserted
-  /// because they would encroach upon a subsegment, which is split instead), "flips",
-  /// "flip_passes", "triangles".
-  Stats stats;
+  Refine2dStats stats;
   /// Points (2 values each in `points`) and triangles (3 values each in the triangle arrays).
   std::int64_t num_points = 0, num_triangles = 0;
 };
@@ -144,7 +157,7 @@ struct DeviceRefinedMesh2d {
   std::vector<std::int8_t> small_angle_reasons;
   std::int64_t removed_triangles = 0;
   Backend backend = Backend::Cuda;
-  Stats stats;
+  Refine2dStats stats;
 };
 /// The device entry: points and segments in the memory of the executor opt picks, the result left
 /// there (arrays the caller then owns). Refuses Crossings::Split and max_area_at

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "base/stats_fields.hpp"
 #include "cdt2d/crossings.hpp"
 #include "delaunay2d/del2d_backend.hpp"
 #include "exec/deliver.hpp"
@@ -16,6 +17,14 @@
 #include "refine2d/refine2d_backend.hpp"
 
 namespace gpugeom {
+
+// clang-format off
+#define GG_REFINE2D_COUNTERS(X)                                                                  \
+  X(rounds) X(steiner_points) X(segment_splits) X(rejected_points) X(flips) X(flip_passes)     \
+  X(triangles)
+// clang-format on
+GG_COUNTER_MAP(Refine2dStats, GG_REFINE2D_COUNTERS);
+#undef GG_REFINE2D_COUNTERS
 
 namespace {
 
@@ -66,14 +75,14 @@ std::string crossing_message(std::int32_t s1, std::int32_t s2) {
          "them split: Crossings::Split, crossings=\"split\" in Python";
 }
 
-void set_counters(Stats& st, const refine::Tally& t, std::int64_t triangles) {
-  st.counters["rounds"] = t.rounds;
-  st.counters["steiner_points"] = t.splits + t.points;
-  st.counters["segment_splits"] = t.splits;
-  st.counters["rejected_points"] = t.rejected;
-  st.counters["flips"] = t.flips;
-  st.counters["flip_passes"] = t.flip_passes;
-  st.counters["triangles"] = triangles;
+void set_counters(Refine2dStats& st, const refine::Tally& t, std::int64_t triangles) {
+  st.rounds = t.rounds;
+  st.steiner_points = t.splits + t.points;
+  st.segment_splits = t.splits;
+  st.rejected_points = t.rejected;
+  st.flips = t.flips;
+  st.flip_passes = t.flip_passes;
+  st.triangles = triangles;
   // The refinement's phases first (the host entry appends its transfer after them).
   std::vector<std::pair<std::string, double>> ph = {{"triangulate", t.cdt_ms},
                                                     {"decide", t.decide_ms},

@@ -10,7 +10,7 @@
 
 namespace gpugeom::refine {
 
-// The rounds' totals (Stats counters in refine2d.cpp) and where their time went (measured at
+// The rounds' totals (Refine2dStats' counters, refine2d.cpp) and where their time went (measured at
 // the host reads the rounds make anyway: no synchronisation of their own).
 struct Tally {
   std::int64_t rounds = 0, splits = 0, points = 0, rejected = 0, flips = 0, flip_passes = 0;

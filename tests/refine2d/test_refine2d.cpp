@@ -33,7 +33,7 @@ TEST(Refine2d, ClassicDomains) {
         gg_refine::expect_quality(d, r, o);
         EXPECT_TRUE(r.small_angles.empty());
         EXPECT_TRUE(r.large_triangles.empty());
-        if (area > 0 || angle > 30) EXPECT_GT(r.stats.counters.at("steiner_points"), 0);
+        if (area > 0 || angle > 30) EXPECT_GT(r.stats.steiner_points, 0);
       }
 }
 

@@ -45,7 +45,7 @@ TEST(CudaRefine2d, SameAsCpu) {
       const auto r = on_both(d, o);
       gg_refine::expect_quality(d, r, o);
       std::printf("%s, angle %.1f: %zu triangles, %lld rounds\n", d.g.name.c_str(), angle,
-                  r.num_triangles, (long long)r.stats.counters.at("rounds"));
+                  r.num_triangles, (long long)r.stats.rounds);
     }
 }
 
@@ -126,6 +126,6 @@ TEST(CudaRefine2d, Larger) {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (area >= 1e-5) gg_refine::expect_quality(d, r, o);
     std::printf("square with a hole, area %g: %zu triangles, %lld rounds, %.1f ms\n", area,
-                r.num_triangles, (long long)r.stats.counters.at("rounds"), ms);
+                r.num_triangles, (long long)r.stats.rounds, ms);
   }
 }

@@ -116,8 +116,8 @@ int cmd_mesh2d(const Global& g, Args& a) {
   }
   if (!g.quiet) {
     std::cout << n << " points, " << m << " segments -> " << r.num_points << " vertices, "
-              << r.num_triangles << " triangles (" << r.stats.counters.at("rounds")
-              << " rounds) on " << backend_name(r.stats.backend) << "\n";
+              << r.num_triangles << " triangles (" << r.stats.rounds << " rounds) on "
+              << backend_name(r.stats.backend) << "\n";
     print_quality(r);
     if (!r.small_angles.empty()) {
       std::size_t why[4] = {0, 0, 0, 0};
