@@ -241,11 +241,9 @@ int main(int argc, char** argv) {
         "%4lld | %9.0f %6.0f | %s\n",
         in.name.c_str(), (long long)in.n(), (long long)in.m(), median(tdt), cdt_ms, on_dev,
         median(tpart), median(tseg), median(thost), median(tdom),
-        (long long)r.stats.counters.at("segments_recovered"),
-        (long long)r.stats.counters.at("cavity_triangles"),
-        (long long)r.stats.counters.at("recovery_rounds"),
-        (long long)r.stats.counters.at("cavity_antennas"), cg, cg > 0 ? cg / cdt_ms : 0.0,
-        verdict.c_str());
+        (long long)r.stats.segments_recovered, (long long)r.stats.cavity_triangles,
+        (long long)r.stats.recovery_rounds, (long long)r.stats.cavity_antennas, cg,
+        cg > 0 ? cg / cdt_ms : 0.0, verdict.c_str());
     std::fflush(stdout);
     if (f.is_open()) {
       const char* bn = b == Backend::Cuda ? "cuda" : "cpu";

@@ -154,18 +154,17 @@ void digital_rows(const std::string& name, const std::vector<Point2>& pts, Backe
       continue;
     }
     std::sort(t.begin(), t.end());
-    auto& c = r.stats.counters;
+    auto& c = r.stats;
     const bool same = tri_set(r) == ref;
     std::printf(
         "  %-20s %10lld %-5s %10.1f  digital %lldx%lld: left to insert %lld (%.1f %%: %lld "
         "sharing a pixel, %lld deleted), flips %lld (incremental %lld), batches %lld, %s%s\n",
-        name.c_str(), (long long)n, backend_name(b), t[t.size() / 2], (long long)c["grid_width"],
-        (long long)c["grid_height"], (long long)(n - c["start_vertices"]),
-        100.0 * double(n - c["start_vertices"]) / double(n), (long long)c["sketch_missing"],
-        (long long)(c["bad_inner"] + c["bad_boundary"]), (long long)c["flips"],
-        (long long)inc.stats.counters.at("flips"), (long long)c["batches"],
-        same ? "identical" : "DIFFERENT TRIANGLES",
-        c["digital_fallback"] ? " (FELL BACK to incremental)" : "");
+        name.c_str(), (long long)n, backend_name(b), t[t.size() / 2], (long long)c.grid_width,
+        (long long)c.grid_height, (long long)(n - c.start_vertices),
+        100.0 * double(n - c.start_vertices) / double(n), (long long)c.sketch_missing,
+        (long long)(c.bad_inner + c.bad_boundary), (long long)c.flips, (long long)inc.stats.flips,
+        (long long)c.batches, same ? "identical" : "DIFFERENT TRIANGLES",
+        c.digital_fallback ? " (FELL BACK to incremental)" : "");
     std::printf("   ");
     for (auto& ph : r.stats.phase_ms)
       if (ph.first.rfind("insert/", 0) != 0) std::printf(" %s %.1f", ph.first.c_str(), ph.second);
@@ -312,15 +311,13 @@ int main(int argc, char** argv) {
       std::printf("%-22s %10lld %-5s %10.1f %9.1f %9.1f %9.1f %9.1f %9.1f %7lld %7lld %9.1f %s\n",
                   in.name.c_str(), (long long)n, backend_name(b), med, dev,
                   bench::phase_ms(r.stats, "prepare"), bench::phase_ms(r.stats, "insert"),
-                  bench::phase_ms(r.stats, "output"), n / med / 1e3,
-                  (long long)r.stats.counters["batches"],
-                  (long long)r.stats.counters["flip_rounds"], cg, verdict.c_str());
+                  bench::phase_ms(r.stats, "output"), n / med / 1e3, (long long)r.stats.batches,
+                  (long long)r.stats.flip_rounds, cg, verdict.c_str());
       std::printf(
           "    flips %lld, exact-list rest passes %lld, relocations for a full log %lld, "
           "rounds flipped in parts %lld, device peak %.1f B a point\n",
-          (long long)r.stats.counters["flips"], (long long)r.stats.counters["exact_rest_passes"],
-          (long long)r.stats.counters["log_relocations"],
-          (long long)r.stats.counters["split_flip_rounds"],
+          (long long)r.stats.flips, (long long)r.stats.exact_rest_passes,
+          (long long)r.stats.log_relocations, (long long)r.stats.split_flip_rounds,
           double(r.stats.device_peak_bytes) / double(n));
       if (!digital.empty())
         digital_rows(in.name, in.pts, b, reps, digital, r, &f, b == Backend::Cuda ? gpu : "cpu");
@@ -345,7 +342,7 @@ int main(int argc, char** argv) {
         if (ph.first.rfind("insert/", 0) == 0)
           std::printf("    %-28s %8.2f ms\n", ph.first.c_str(), ph.second);
       if (std::getenv("GPUGEOM_PROFILE")) {
-        for (auto& c : r.stats.counters)
+        for (auto& c : r.stats.counter_map())
           std::printf(" %s=%lld", c.first.c_str(), (long long)c.second);
         for (auto& ph : r.stats.phase_ms)
           if (ph.first.rfind("insert/", 0) != 0)
@@ -356,8 +353,7 @@ int main(int argc, char** argv) {
       if (f)
         f << "delaunay2d," << in.name << "," << n << "," << backend_name(b) << ","
           << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med << ",0," << (dev > 0 ? dev : 0)
-          << "," << med << ","
-          << double(r.stats.counters["exact_predicates"]) / std::max<double>(1, n) << "\n";
+          << "," << med << "," << double(r.stats.exact_predicates) / std::max<double>(1, n) << "\n";
     }
     if (f && cg >= 0)
       f << "delaunay2d," << in.name << "," << n << ",cgal,cpu-1core,0," << cg << ",0,0," << cg

@@ -21,10 +21,13 @@
 /// doubles, reported with the two segments that made it.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "gpugeom/common.hpp"
+#include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/host_vector.hpp"
 
 namespace gpugeom {
@@ -80,6 +83,26 @@ struct Cdt2dOptions : Cdt2dDomainOptions {
   Cdt2dBuffers into;  ///< optional
 };
 
+/// Statistics of a constrained Delaunay triangulation: the Delaunay triangulation's
+/// (Delaunay2dStats: its phases and counters) and the constraints' (phases "delaunay",
+/// "segments", "to_host", "domain" with holes, regions or Enclosed, "crossings" first where
+/// segments were split). Segment counts are of the pieces where segments were split.
+struct Cdt2dStats : Delaunay2dStats {
+  /// Segments, those that were chains of Delaunay edges already, and those recovered by
+  /// rebuilding cavities.
+  std::int64_t segments = 0, segments_present = 0, segments_recovered = 0;
+  /// Edges on segments.
+  std::int64_t segment_pieces = 0;
+  /// Triangles rebuilt in cavities, and edges off a segment with both triangles in its cavity.
+  std::int64_t cavity_triangles = 0, cavity_antennas = 0;
+  /// Recovery rounds.
+  std::int64_t recovery_rounds = 0;
+  /// Crossings::Split: the new vertices, and the input segments cut at them.
+  std::int64_t crossings = 0, segments_split = 0;
+
+  std::map<std::string, std::int64_t> counter_map() const override;
+};
+
 /// The result of cdt2d: triangles, neighbours and the segment each edge lies on, in host memory.
 struct ConstrainedTriangulation2d {
   /// Counter-clockwise triangles, 3 input-point indices each, and the triangle opposite vertex k
@@ -108,14 +131,7 @@ struct ConstrainedTriangulation2d {
   /// Triangles removed as holes or outside the domain (they are not in the arrays above, whose
   /// neighbours across a removed triangle are -1).
   std::int64_t removed_triangles = 0;
-  /// Phases "delaunay", "segments", "to_host" (and "domain" with holes, regions or Enclosed);
-  /// counters "segments", "segments_present" (chains of Delaunay edges already),
-  /// "segments_recovered" (by rebuilding cavities), "segment_pieces" (edges on segments),
-  /// "cavity_triangles" (triangles rebuilt), "cavity_antennas" (edges off a segment with both
-  /// triangles in its cavity), "recovery_rounds", "crossings" (new vertices) and
-  /// "segments_split" (input segments cut at them), with delaunay2d's counters; segment counts
-  /// are of the pieces where segments were split.
-  Stats stats;
+  Cdt2dStats stats;
   /// Triangles (each array above holds 3 per triangle).
   std::int64_t num_triangles = 0;
 };
@@ -136,7 +152,7 @@ struct DeviceConstrainedTriangulation2d {
   std::shared_ptr<double> attribute;  ///< num_triangles, when regions are given
   std::int64_t zero_length_segments = 0, repeated_segments = 0, removed_triangles = 0;
   Backend backend = Backend::Cuda;  ///< where the arrays are: Cuda = device memory
-  Stats stats;
+  Cdt2dStats stats;
 };
 /// The device entry: points (n, x and y interleaved) and segments (nseg index pairs) in the
 /// memory of the executor opt picks (CUDA device memory, or host memory for Backend::Cpu), the

@@ -8,7 +8,9 @@
 /// no triangle is degenerate (collinear points on the hull become hull vertices).
 #pragma once
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "gpugeom/common.hpp"
@@ -45,6 +47,51 @@ struct Delaunay2dOptions : RunOptions {
 /// The most triangles a triangulation of n points has (2n - 5, for n >= 3): sizes `into` ahead.
 std::int64_t delaunay2d_max_triangles(std::int64_t n);
 
+/// Statistics of a 2D Delaunay triangulation: RunStats (phases "prepare", "insert" (with its
+/// flips; "insert/<step>" under RunOptions::profile), "finish" and "copies"; Method::Digital adds
+/// "digital_*" (grid, pba, debris, dual, adjacency, hull_fill, shift_*) and "start";
+/// DynamicDelaunay2d's updates their own and "total") and the counters, 0 where their step did
+/// not run.
+struct Delaunay2dStats : RunStats {
+  /// The points given, those distinct, and those equal to an earlier one.
+  std::int64_t points = 0, distinct_points = 0, duplicates = 0;
+  /// Insertion batches, flip rounds (with a non-empty work list; of them those shorter than a
+  /// full round: small_flip_rounds) and flips.
+  std::int64_t batches = 0, flip_rounds = 0, small_flip_rounds = 0, flips = 0;
+  /// Work-list entries, and of them those the floating-point filter left to the exact
+  /// predicates.
+  std::int64_t work_list_entries = 0, exact_predicates = 0;
+  /// Further exact passes past the exact list's capacity; relocations within a batch for a full
+  /// flip log; flip rounds run in parts past the first.
+  std::int64_t exact_rest_passes = 0, log_relocations = 0, split_flip_rounds = 0;
+  /// Triangles left flat on the hull and peeled (points on one line at the boundary).
+  std::int64_t flat_triangles = 0;
+  /// The start's point location by walks: steps, scans, and the longest walk.
+  std::int64_t start_walk_steps = 0, start_walk_scans = 0, start_walk_longest = 0;
+  /// Method::Digital: the grid's width and height, the points with a pixel of their own (sites)
+  /// and those the sketch missed, the debris pixels and candidates removed, pinched corners, the
+  /// sketch's hull triangles, and whether it was not a disk.
+  std::int64_t grid_width = 0, grid_height = 0, sites = 0, sketch_missing = 0, debris_pixels = 0,
+               debris_candidates = 0, pinched_corners = 0, hull_triangles = 0, sketch_not_disk = 0;
+  /// Method::Digital: the start triangulation's repair (vertices shifted, bad inner and boundary
+  /// triangles, shift and delete rounds) and its size.
+  std::int64_t shifted = 0, bad_inner = 0, bad_boundary = 0, shift_rounds = 0, delete_rounds = 0,
+               start_vertices = 0, start_triangles = 0;
+  /// Method::Digital: 1 where the sketch could not be used and the incremental method ran on
+  /// the same preparation.
+  std::int64_t digital_fallback = 0;
+  /// DynamicDelaunay2d: points inserted; points removed, the holes' vertices and triangles, and
+  /// whether the removal made the triangulation afresh; a move's rounds, the vertices it took
+  /// out and put back, and whether it made the triangulation afresh.
+  std::int64_t inserted_points = 0, removed_points = 0, hole_vertices = 0, hole_triangles = 0,
+               remove_rebuilt = 0, move_rounds = 0, move_taken_out = 0, move_reinserted = 0,
+               move_rebuilt = 0;
+  /// delaunay2d_furthest: the furthest-site triangulation's vertices (the hull's).
+  std::int64_t furthest_site_vertices = 0;
+
+  std::map<std::string, std::int64_t> counter_map() const override;
+};
+
 /// The result of delaunay2d: triangles, neighbours and duplicates, in host memory.
 struct Triangulation2d {
   /// Counter-clockwise triangles, 3 input-point indices each.
@@ -56,15 +103,7 @@ struct Triangulation2d {
   /// point with the same coordinates, which is the one used.
   HostVector<std::int32_t> duplicate_of;
   std::int64_t num_duplicates = 0;
-  /// Stats: phases "prepare", "insert" (with its flips), "finish" and "copies"; counters
-  /// "batches", "flips", "flip_rounds", "exact_predicates", "points", "distinct_points".
-  /// Method::Digital adds phases "digital_*" (grid, pba, debris, dual, adjacency, hull_fill,
-  /// shift_*) and "start", and counters "grid_width", "grid_height", "sites", "sketch_missing",
-  /// "debris_pixels", "debris_candidates", "pinched_corners", "hull_triangles",
-  /// "sketch_not_disk", "shifted", "bad_inner", "bad_boundary", "shift_rounds",
-  /// "delete_rounds", "start_vertices", "start_triangles" and "digital_fallback" (1: the sketch
-  /// could not be used, and the incremental method ran on the same preparation).
-  Stats stats;
+  Delaunay2dStats stats;
   /// Triangles written (also where they went into the caller's arrays, Delaunay2dOptions::into).
   std::int64_t num_triangles = 0;
 };
@@ -93,7 +132,7 @@ struct DeviceTriangulation2d {
   std::shared_ptr<std::int32_t> neighbors;     ///< 3 * num_triangles
   std::shared_ptr<std::int32_t> duplicate_of;  ///< num_points
   Backend backend = Backend::Cuda;             ///< where the arrays are: Cuda = device memory
-  Stats stats;
+  Delaunay2dStats stats;
 };
 /// Throws Error(Unsupported) where no CUDA device can be used (and the CPU was not asked for), and
 /// as delaunay2d otherwise.
@@ -139,10 +178,10 @@ class DynamicDelaunay2d {
   /// New coordinates for every point (n == num_points(); host memory, or executor memory for
   /// move_device), and the triangulation brought up to date from the kept one: the vertices of
   /// triangles that turned over (checked exactly) are taken out, their holes filled at the new
-  /// places, the rest flipped until Delaunay and those vertices inserted again (stats counters
-  /// "move_rounds", "move_taken_out", "move_reinserted"). Where that would take out more than an
+  /// places, the rest flipped until Delaunay and those vertices inserted again (Delaunay2dStats'
+  /// move_rounds, move_taken_out, move_reinserted). Where that would take out more than an
   /// eighth of the points, or where points came to coincide or to part, the triangulation is
-  /// made afresh (stats counter "move_rebuilt"). Any displacement gives the right
+  /// made afresh (Delaunay2dStats::move_rebuilt). Any displacement gives the right
   /// triangulation; only the time depends on how far the points moved. Throws as insert, and
   /// Error(InvalidArgument) for another count; the object is then unchanged.
   void move(const double* xy, std::int64_t n);
@@ -155,9 +194,9 @@ class DynamicDelaunay2d {
   /// there (an equal point given before or after is a vertex in its place). The holes are filled
   /// with the triangles of the triangulation of their own vertices that fit in them (the
   /// triangles of the kept one without a removed vertex stay); where that cannot be done (too few
-  /// such vertices, all in one line) the points left are triangulated afresh (stats counter
-  /// "remove_rebuilt"). Throws Error(InvalidArgument) for a bad index list, and as the
-  /// constructor where the points left have no triangulation; the object is then unchanged.
+  /// such vertices, all in one line) the points left are triangulated afresh
+  /// (Delaunay2dStats::remove_rebuilt). Throws Error(InvalidArgument) for a bad index list, and as
+  /// the constructor where the points left have no triangulation; the object is then unchanged.
   void remove(const std::int32_t* indices, std::int64_t count);
   /// As remove, with the indices in executor memory (device memory on CUDA, host memory with
   /// Backend::Cpu).
@@ -189,7 +228,7 @@ class DynamicDelaunay2d {
   /// As changes, in executor memory.
   DeviceSimplexChanges device_changes() const;
   /// Phases and counters of the last call that changed the points.
-  const Stats& stats() const;
+  const Delaunay2dStats& stats() const;
 
  private:
   struct Impl;
@@ -227,7 +266,7 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
 /// there). tri, when given, receives the triangulation (as delaunay2d returns it; opt.into is not
 /// used); stats, when given, the phases and counters of both. Throws as delaunay2d.
 Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
-                    Triangulation2d* tri = nullptr, Stats* stats = nullptr);
+                    Triangulation2d* tri = nullptr, Delaunay2dStats* stats = nullptr);
 
 /// The result of voronoi2d_device: arrays in device memory (host memory on the CPU executor).
 struct DeviceVoronoi2d {
@@ -240,7 +279,7 @@ struct DeviceVoronoi2d {
   std::shared_ptr<std::int32_t> cell_vertices;   ///< num_cell_vertices
   std::shared_ptr<std::int32_t> simplex_vertex;  ///< tri.num_triangles
   Backend backend = Backend::Cuda;               ///< where the arrays are: Cuda = device memory
-  Stats stats;
+  RunStats stats;                                ///< phase "voronoi"
 };
 /// The same diagram for a triangulation left on the device (delaunay2d_device), computed there:
 /// device_xy its n points (device memory; host memory where tri.backend is Backend::Cpu), on

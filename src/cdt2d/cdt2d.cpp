@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "base/clock.hpp"
+#include "base/stats_fields.hpp"
 #include "cdt2d/cdt2d_backend.hpp"
 #include "cdt2d/crossings.hpp"
 #include "delaunay2d/del2d_backend.hpp"
@@ -59,19 +60,27 @@ void refuse_into_with_split(const Cdt2dBuffers& into) {
                 "empty and read the result's arrays");
 }
 
-void set_counters(Stats& st, std::int64_t nseg, const cdt::RecoveryCounts& rc,
+void set_counters(Cdt2dStats& st, std::int64_t nseg, const cdt::RecoveryCounts& rc,
                   const cdt::SplitSegments& sp) {
-  st.counters["segments"] = nseg;
-  st.counters["segments_present"] = rc.kept - rc.recovered;
-  st.counters["segments_recovered"] = rc.recovered;
-  st.counters["segment_pieces"] = rc.pieces;
-  st.counters["cavity_triangles"] = rc.cavity_triangles;
-  st.counters["cavity_antennas"] = rc.antennas;
-  st.counters["recovery_rounds"] = rc.rounds;
-  st.counters["crossings"] = std::int64_t(sp.points.size() / 2);
-  st.counters["segments_split"] = sp.split_segments;
+  st.segments = nseg;
+  st.segments_present = rc.kept - rc.recovered;
+  st.segments_recovered = rc.recovered;
+  st.segment_pieces = rc.pieces;
+  st.cavity_triangles = rc.cavity_triangles;
+  st.cavity_antennas = rc.antennas;
+  st.recovery_rounds = rc.rounds;
+  st.crossings = std::int64_t(sp.points.size() / 2);
+  st.segments_split = sp.split_segments;
 }
 }  // namespace
+
+// clang-format off
+#define GG_CDT2D_COUNTERS(X)                                                                    \
+  X(segments) X(segments_present) X(segments_recovered) X(segment_pieces) X(cavity_triangles)  \
+  X(cavity_antennas) X(recovery_rounds) X(crossings) X(segments_split)
+// clang-format on
+GG_COUNTER_MAP_OVER(Cdt2dStats, Delaunay2dStats, GG_CDT2D_COUNTERS);
+#undef GG_CDT2D_COUNTERS
 
 ConstrainedTriangulation2d cdt2d(const double* xy, std::int64_t n, const std::int32_t* segments,
                                  std::int64_t nseg, const Cdt2dOptions& opt) {

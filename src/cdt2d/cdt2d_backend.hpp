@@ -8,7 +8,7 @@
 
 namespace gpugeom::cdt {
 
-// The segments as recovery saw them (Stats counters in cdt2d.cpp).
+// The segments as recovery saw them (Cdt2dStats' counters, cdt2d.cpp).
 struct RecoveryCounts {
   std::int64_t kept = 0, zero_length = 0, repeated = 0, recovered = 0, pieces = 0,
                cavity_triangles = 0, antennas = 0, rounds = 0;

@@ -31,7 +31,7 @@ using Kept = detail::KeptState<Output, DeviceOutput>;
 // them for each executor.
 struct Entries : detail::PointEntries<Delaunay2dOptions, Output, DeviceOutput, Kept> {
   void (*digital)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Output& out,
-                  Stats& stats);
+                  Delaunay2dStats& stats);
 };
 
 // The Voronoi diagram's entries on one executor (impl/voronoi.inl, its own unit).
@@ -41,12 +41,12 @@ struct VoronoiEntries {
   // the calling executor's context (exec/exec_context.hpp), or null.
   void (*voronoi)(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
                   const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
-                  DeviceVoronoiOutput& out, Stats& stats, Voronoi2d* host,
+                  DeviceVoronoiOutput& out, RunStats& stats, Voronoi2d* host,
                   const detail::ExecContext* outer);
   // voronoi2d(xy, n, opt, tri) where the executor does not read host memory: the points go up
   // once, both structures are made there, and only the results come back. Null on the CPU.
   void (*from_host)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Voronoi2d& v,
-                    Triangulation2d* tri, Stats& stats);
+                    Triangulation2d* tri, Delaunay2dStats& stats);
 };
 
 GG_DECLARE_TABLE(Entries, entries)

@@ -133,7 +133,7 @@ Triangulation2d furthest_site_delaunay2d(const double* xy, std::int64_t n,
   }
   r.num_duplicates = dt.num_duplicates;
   r.stats = dt.stats;
-  r.stats.counters["furthest_site_vertices"] = h;
+  r.stats.furthest_site_vertices = h;
   return r;
 }
 

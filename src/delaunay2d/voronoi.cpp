@@ -55,7 +55,7 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
   check_sizes(n, tri);
   Voronoi2d v;
   del2d::DeviceVoronoiOutput unused;
-  Stats st;
+  RunStats st;
   RunOptions run;
   run.backend = Backend::Cpu;
   del2d::cpu_impl::voronoi_entries.voronoi(
@@ -66,10 +66,10 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri
 }
 
 Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
-                    Triangulation2d* tri, Stats* stats) {
+                    Triangulation2d* tri, Delaunay2dStats* stats) {
   const Backend b = resolve_backend(opt.backend, opt.device);
-  Stats local;
-  Stats& st = stats ? *stats : local;
+  Delaunay2dStats local;
+  Delaunay2dStats& st = stats ? *stats : local;
   st.backend = b;
   const auto& on = GG_TABLE(b, del2d, voronoi_entries);
   if (on.from_host && opt.method == Method::Incremental) {

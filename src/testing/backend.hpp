@@ -9,7 +9,8 @@ namespace gpugeom::testing {
 struct Entries {
   void (*triangulate_from)(const double* xy, std::int64_t n, const std::int32_t* start,
                            std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,
-                           const Delaunay2dOptions& opt, del2d::Output& out, Stats& stats);
+                           const Delaunay2dOptions& opt, del2d::Output& out,
+                           Delaunay2dStats& stats);
   // s holds the frame (width, height, ox, oy, h); fills pixel, missing, site_of, debris,
   // pinched, triangles and twins (the dual and the hull fill), colour where keep_colour, and
   // phase times.

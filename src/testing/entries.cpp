@@ -12,7 +12,7 @@ namespace gpugeom::testing {
 
 void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
                       std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,
-                      const Delaunay2dOptions& opt, del2d::Output& out, Stats& stats) {
+                      const Delaunay2dOptions& opt, del2d::Output& out, Delaunay2dStats& stats) {
   del2d::check_count(n);
   const Backend b = resolve_backend(opt.backend, opt.device);
   GG_TABLE(b, del2d, testing_entries)

@@ -21,7 +21,7 @@ namespace gpugeom::testing {
 // walk begins (-1: anywhere). The result equals delaunay2d's. Runs on opt's executor.
 void triangulate_from(const double* xy, std::int64_t n, const std::int32_t* start,
                       std::int64_t nstart, const std::int32_t* twin, const std::int32_t* hint,
-                      const Delaunay2dOptions& opt, del2d::Output& out, Stats& stats);
+                      const Delaunay2dOptions& opt, del2d::Output& out, Delaunay2dStats& stats);
 
 // The digital sketch (delaunay2d/digital/sketch.hpp) of host points, on run's executor. side:
 // the grid's largest extent (4..46338): the pixel size is the least power of two with which the

@@ -26,9 +26,8 @@ TEST(Cdt2d, RandomPslgs) {
       const auto g = gg_cdt::random_pslg(n, n / 2, seed);
       const auto r = run(g);
       gg_cdt::expect_cdt(g, r);
-      EXPECT_GT(r.stats.counters.at("segments_recovered"), 0) << g.name;
-      EXPECT_EQ(r.stats.counters.at("segments_present") +
-                    r.stats.counters.at("segments_recovered") + r.repeated_segments +
+      EXPECT_GT(r.stats.segments_recovered, 0) << g.name;
+      EXPECT_EQ(r.stats.segments_present + r.stats.segments_recovered + r.repeated_segments +
                     r.zero_length_segments,
                 std::int64_t(g.segs.size() / 2))
           << g.name;
@@ -52,8 +51,8 @@ TEST(Cdt2d, LongSegmentsAndThreadCounts) {
       EXPECT_EQ(one.triangles, r.triangles) << g.name;
       EXPECT_EQ(one.neighbors, r.neighbors) << g.name;
       EXPECT_EQ(one.segment_of, r.segment_of) << g.name;
-      EXPECT_GT(r.stats.counters.at("cavity_triangles"), 0) << g.name;
-      antennas += r.stats.counters.at("cavity_antennas");
+      EXPECT_GT(r.stats.cavity_triangles, 0) << g.name;
+      antennas += r.stats.cavity_antennas;
     }
   EXPECT_GT(antennas, 0);  // (the cases exercise them)
   std::printf("antenna edges met: %lld\n", static_cast<long long>(antennas));
@@ -65,7 +64,7 @@ TEST(Cdt2d, ContourLines) {
                         gg_cdt::contour_pslg(3, 2000, 100, 3)}) {
     const auto r = run(g);
     gg_cdt::expect_cdt(g, r);
-    EXPECT_EQ(r.stats.counters.at("segments_present") + r.stats.counters.at("segments_recovered"),
+    EXPECT_EQ(r.stats.segments_present + r.stats.segments_recovered,
               std::int64_t(g.segs.size() / 2))
         << g.name;
   }
@@ -80,7 +79,7 @@ TEST(Cdt2d, DegenerateLayouts) {
   // A segment through collinear points is the chain of edges between them.
   const auto t = gg_cdt::thin_polygon(40);
   const auto r = run(t);
-  EXPECT_GT(r.repeated_segments + r.stats.counters.at("segment_pieces"), 0);
+  EXPECT_GT(r.repeated_segments + r.stats.segment_pieces, 0);
 }
 
 // Every Delaunay edge given as a segment: nothing to flip.
@@ -93,9 +92,9 @@ TEST(Cdt2d, DelaunayEdgesNeedNoFlips) {
                                    dt.triangles[i - i % 3 + (i % 3 + 2) % 3]});
   const auto r = run(g);
   gg_cdt::expect_cdt(g, r);
-  EXPECT_EQ(r.stats.counters.at("segments_recovered"), 0);
-  EXPECT_EQ(r.stats.counters.at("cavity_triangles"), 0);
-  EXPECT_EQ(r.stats.counters.at("recovery_rounds"), 0);
+  EXPECT_EQ(r.stats.segments_recovered, 0);
+  EXPECT_EQ(r.stats.cavity_triangles, 0);
+  EXPECT_EQ(r.stats.recovery_rounds, 0);
   EXPECT_EQ(r.triangles, dt.triangles);
 }
 
@@ -112,7 +111,7 @@ TEST(Cdt2d, RepeatedZeroLengthAndDuplicatePoints) {
   EXPECT_EQ(r.duplicate_of[n], 0);
   // the reversed first segment repeats it; n-7 is 0-7 (a repeat if 0-7 was given)
   EXPECT_GE(r.repeated_segments, 1);
-  EXPECT_EQ(r.stats.counters.at("segments"), std::int64_t(kept) + 4);
+  EXPECT_EQ(r.stats.segments, std::int64_t(kept) + 4);
 }
 
 TEST(Cdt2d, CrossingSegmentsAreNamed) {
@@ -133,7 +132,7 @@ TEST(Cdt2d, CrossingSegmentsAreNamed) {
   const gg_cdt::Pslg g{"cross at a point", xy2, segs2};
   const auto r = run(g);
   gg_cdt::expect_cdt(g, r);
-  EXPECT_EQ(r.stats.counters.at("segment_pieces"), 4);
+  EXPECT_EQ(r.stats.segment_pieces, 4);
 }
 
 ConstrainedTriangulation2d run_split(const gg_cdt::Pslg& g, Backend b = Backend::Cpu) {
@@ -157,8 +156,8 @@ TEST(Cdt2d, CrossingSegmentsSplit) {
     EXPECT_EQ(r.new_points[0], 1.0);
     EXPECT_EQ(r.new_points[1], 1.0);
     EXPECT_EQ(r.new_point_segments, (std::vector<std::int32_t>{1, 2}));
-    EXPECT_EQ(r.stats.counters.at("crossings"), 1);
-    EXPECT_EQ(r.stats.counters.at("segments_split"), 2);
+    EXPECT_EQ(r.stats.crossings, 1);
+    EXPECT_EQ(r.stats.segments_split, 2);
   }
   {
     gg_cdt::Pslg g{"line grid", {}, {}};
@@ -174,8 +173,8 @@ TEST(Cdt2d, CrossingSegmentsSplit) {
     for (int i = 0; i < 200; ++i) add(0.37 + 0.049 * i, 0.11 + 0.0517 * (i % 190));
     const auto r = run_split(g);
     gg_cdt::expect_split_cdt(g, r);
-    EXPECT_EQ(r.stats.counters.at("crossings"), 100);  // the diagonal's 10 are among them
-    EXPECT_EQ(r.stats.counters.at("segments_split"), 21);
+    EXPECT_EQ(r.stats.crossings, 100);  // the diagonal's 10 are among them
+    EXPECT_EQ(r.stats.segments_split, 21);
     // Refused without the option, naming two of the lines.
     EXPECT_THROW(run(g), Error);
   }
@@ -184,7 +183,7 @@ TEST(Cdt2d, CrossingSegmentsSplit) {
       const auto g = gg_cdt::crossing_pslg(n, n / 6, seed);
       const auto r = run_split(g);
       gg_cdt::expect_split_cdt(g, r);
-      EXPECT_GT(r.stats.counters.at("crossings"), 0) << g.name;
+      EXPECT_GT(r.stats.crossings, 0) << g.name;
     }
   {
     // Two segments crossing exactly at an input point: nothing to add.
@@ -223,7 +222,7 @@ TEST(Cdt2d, DeviceEntryOnTheCpu) {
       EXPECT_EQ(std::vector<double>(d.attribute.get(), d.attribute.get() + d.num_triangles),
                 h.attribute);
     }
-    EXPECT_EQ(d.stats.counters.at("segments_recovered"), h.stats.counters.at("segments_recovered"));
+    EXPECT_EQ(d.stats.segments_recovered, h.stats.segments_recovered);
   }
   Cdt2dOptions o;
   o.backend = Backend::Cpu;

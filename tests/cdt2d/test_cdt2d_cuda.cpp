@@ -46,9 +46,8 @@ TEST(CudaCdt2d, SameAsCpu) {
     std::printf(
         "%s: %lld triangles, %lld segments (%lld recovered, %lld cavity triangles, %lld rounds)",
         g.name.c_str(), (long long)gpu.num_triangles, (long long)m,
-        (long long)gpu.stats.counters.at("segments_recovered"),
-        (long long)gpu.stats.counters.at("cavity_triangles"),
-        (long long)gpu.stats.counters.at("recovery_rounds"));
+        (long long)gpu.stats.segments_recovered, (long long)gpu.stats.cavity_triangles,
+        (long long)gpu.stats.recovery_rounds);
     for (const auto& ph : gpu.stats.phase_ms)
       std::printf(", %s %.1f ms", ph.first.c_str(), ph.second);
     std::printf("\n");
@@ -65,8 +64,7 @@ TEST(CudaCdt2d, SplitSameAsCpu) {
     gg_cdt::expect_split_cdt(g, gpu);
     EXPECT_EQ(gpu.new_points, cpu.new_points) << g.name;
     std::printf("%s: %lld crossings split, %lld segments cut\n", g.name.c_str(),
-                (long long)gpu.stats.counters.at("crossings"),
-                (long long)gpu.stats.counters.at("segments_split"));
+                (long long)gpu.stats.crossings, (long long)gpu.stats.segments_split);
   }
 }
 

@@ -40,8 +40,7 @@ TEST(Delaunay2d, Degenerate) {
     SCOPED_TRACE(c.name);
     const auto t = delaunay2d(c.pts, cpu());
     expect_valid(c.pts, t);
-    const auto it = t.stats.counters.find("flat_triangles");
-    if (it != t.stats.counters.end()) flat += it->second;
+    flat += t.stats.flat_triangles;
   }
   // collinear hull points: some case must leave flat triangles for the final peel to remove
   EXPECT_GT(flat, 0);
@@ -155,7 +154,7 @@ TEST(Delaunay2d, SameForEveryThreadCount) {
       const auto r = delaunay2d(p, o);
       EXPECT_EQ(r.triangles, ref.triangles) << d << ", " << t << " threads";
       EXPECT_EQ(r.neighbors, ref.neighbors) << d << ", " << t << " threads";
-      EXPECT_EQ(r.stats.counters.at("flips"), ref.stats.counters.at("flips"));
+      EXPECT_EQ(r.stats.flips, ref.stats.flips);
     }
   }
 }
@@ -600,7 +599,7 @@ TEST(Delaunay2d, TopOfTheWideSlotRange) {
     expect_valid(c.pts, r);
     EXPECT_EQ(r.triangles, ref.triangles);
     EXPECT_EQ(r.neighbors, ref.neighbors);
-    EXPECT_EQ(r.stats.counters.at("flips"), ref.stats.counters.at("flips"));
+    EXPECT_EQ(r.stats.flips, ref.stats.flips);
   }
 }
 
@@ -634,7 +633,7 @@ TEST(Delaunay2d, PastTheRoundsCapacities) {
     auto r = delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) { t.del2d = f; }));
     expect_valid(c.pts, r);
     for (const char* k : {"exact_rest_passes", "log_relocations", "split_flip_rounds"})
-      seen[k] += r.stats.counters.at(k);
+      seen[k] += r.stats.counter_map().at(k);
     return r;
   };
   for (const auto& c : cases) {
@@ -644,7 +643,7 @@ TEST(Delaunay2d, PastTheRoundsCapacities) {
       const auto r = run(c, f);
       EXPECT_EQ(r.triangles, ref.triangles) << f.log_records << "/" << f.exact_entries;
       EXPECT_EQ(r.neighbors, ref.neighbors) << f.log_records << "/" << f.exact_entries;
-      EXPECT_EQ(r.stats.counters.at("flips"), ref.stats.counters.at("flips"));
+      EXPECT_EQ(r.stats.flips, ref.stats.flips);
     }
     const auto batch = run(c, {29, 0, 0});
     EXPECT_EQ(gg_del2d::triangle_set(batch), gg_del2d::triangle_set(ref));
@@ -823,8 +822,8 @@ TEST(DynamicDelaunay2d, MoveGivesTheFreshTriangulation) {
     const auto fresh = delaunay2d(q, cpu());
     EXPECT_EQ(gg_del2d::triangle_set(t), gg_del2d::triangle_set(fresh));
     EXPECT_EQ(t.duplicate_of, fresh.duplicate_of);
-    const auto& c = d.stats().counters;
-    (c.at("move_rebuilt") ? rebuilt : c.count("move_reinserted") ? reinserted : repaired)++;
+    const Delaunay2dStats& c = d.stats();
+    (c.move_rebuilt ? rebuilt : c.move_reinserted ? reinserted : repaired)++;
   };
   auto cases = gg_del2d::degenerate_cases();
   for (const auto& c : gg_del2d::distribution_cases({1000, 20000}, 37)) cases.push_back(c);

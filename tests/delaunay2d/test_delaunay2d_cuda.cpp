@@ -39,7 +39,7 @@ void same_on_both(const gg_del2d::Case& c) {
   EXPECT_EQ(gpu.triangles, cpu.triangles);
   EXPECT_EQ(gpu.neighbors, cpu.neighbors);
   EXPECT_EQ(gpu.duplicate_of, cpu.duplicate_of);
-  EXPECT_EQ(gpu.stats.counters.at("flips"), cpu.stats.counters.at("flips"));
+  EXPECT_EQ(gpu.stats.flips, cpu.stats.flips);
 }
 }  // namespace
 
@@ -241,7 +241,7 @@ void expect_voronoi_as_on_the_host(const std::vector<Point2>& p) {
   cudaFree(dp);
   // The host entry that makes both on the device: the same triangulation and diagram.
   Triangulation2d t2;
-  Stats st;
+  Delaunay2dStats st;
   const auto both = voronoi2d(&p.data()->x, n, o, &t2, &st);
   EXPECT_EQ(st.backend, Backend::Cuda);
   EXPECT_EQ(t2.num_triangles, h.num_triangles);
@@ -310,8 +310,8 @@ TEST(CudaDelaunay2d, PastTheRoundsCapacities) {
       gg_del2d::expect_valid(c.pts, gpu);
       EXPECT_EQ(gpu.triangles, cpu.triangles);
       EXPECT_EQ(gpu.neighbors, cpu.neighbors);
-      rest += gpu.stats.counters.at("exact_rest_passes");
-      parts += gpu.stats.counters.at("split_flip_rounds");
+      rest += gpu.stats.exact_rest_passes;
+      parts += gpu.stats.split_flip_rounds;
     }
   EXPECT_GT(rest, 0);
   EXPECT_GT(parts, 0);
@@ -389,15 +389,14 @@ TEST(CudaDelaunay2d, TriangulatorFromAStart) {
   const auto whole = delaunay2d(xy.data(), n, o);
   const auto part = delaunay2d(xy.data(), k, o);
   del2d::Output out;
-  Stats st;
+  Delaunay2dStats st;
   gpugeom::testing::triangulate_from(xy.data(), n, part.triangles.data(), part.num_triangles,
                                      nullptr, nullptr, o, out, st);
   EXPECT_EQ(gg_del2d::triangle_set(out.triangles.data(), std::size_t(out.num_triangles)),
             gg_del2d::triangle_set(whole.triangles.data(), std::size_t(whole.num_triangles)));
   std::printf("from a start of %lld points: %lld batches, %lld flips (incremental: %lld, %lld)\n",
-              (long long)k, (long long)st.counters["batches"], (long long)st.counters["flips"],
-              (long long)whole.stats.counters.at("batches"),
-              (long long)whole.stats.counters.at("flips"));
+              (long long)k, (long long)st.batches, (long long)st.flips,
+              (long long)whole.stats.batches, (long long)whole.stats.flips);
 }
 
 // The digital method (issue 20) with its sketch on the GPU: the same triangles as the incremental
@@ -416,17 +415,17 @@ void digital_same_as_incremental(const std::vector<gg_del2d::DigitalCase>& cases
     EXPECT_EQ(gg_del2d::triangle_set(dig), gg_del2d::triangle_set(inc));
     EXPECT_EQ(std::vector<std::int32_t>(dig.duplicate_of.begin(), dig.duplicate_of.end()),
               std::vector<std::int32_t>(inc.duplicate_of.begin(), inc.duplicate_of.end()));
-    const auto& k = dig.stats.counters;
-    fallbacks += k.at("digital_fallback");
+    const auto& k = dig.stats;
+    fallbacks += k.digital_fallback;
     if (c.pts.size() >= 1000000) {
       gg_del2d::expect_valid(c.pts, dig);
-      EXPECT_EQ(k.at("digital_fallback"), 0);
-      left += std::int64_t(c.pts.size()) - k.at("start_vertices");
-      flips_dig += k.at("flips"), flips_inc += inc.stats.counters.at("flips");
+      EXPECT_EQ(k.digital_fallback, 0);
+      left += std::int64_t(c.pts.size()) - k.start_vertices;
+      flips_dig += k.flips, flips_inc += inc.stats.flips;
       std::printf("%s: grid %lldx%lld, %lld left to insert, flips %lld (incremental %lld)\n",
-                  c.name.c_str(), (long long)k.at("grid_width"), (long long)k.at("grid_height"),
-                  (long long)(std::int64_t(c.pts.size()) - k.at("start_vertices")),
-                  (long long)k.at("flips"), (long long)inc.stats.counters.at("flips"));
+                  c.name.c_str(), (long long)k.grid_width, (long long)k.grid_height,
+                  (long long)(std::int64_t(c.pts.size()) - k.start_vertices), (long long)k.flips,
+                  (long long)inc.stats.flips);
     }
   }
   std::printf("digital on the GPU: %zu inputs, %lld fall backs (tiny inputs)\n", cases.size(),

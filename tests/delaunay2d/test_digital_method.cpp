@@ -60,22 +60,22 @@ TEST(DigitalMethod, SameTrianglesAsIncrementalOnEveryInput) {
     EXPECT_EQ(gg_del2d::triangle_set(dig), gg_del2d::triangle_set(inc));
     EXPECT_EQ(std::vector<std::int32_t>(dig.duplicate_of.begin(), dig.duplicate_of.end()),
               std::vector<std::int32_t>(inc.duplicate_of.begin(), inc.duplicate_of.end()));
-    const auto& k = dig.stats.counters;
+    const auto& k = dig.stats;
     // The sketch is used wherever it has a triangle (three sites not on one line).
     const dg::Sketch sk = gpugeom::testing::digital_sketch(
         &c.pts.data()->x, n, c.grid ? c.grid : dg::auto_side(&c.pts.data()->x, n), o);
     const dg::Start st = gpugeom::testing::shift_sketch(&c.pts.data()->x, n, sk, o);
     EXPECT_EQ(st.valid, !sk.triangles.empty()) << st.reason;
-    EXPECT_EQ(k.at("digital_fallback"), st.valid ? 0 : 1);
+    EXPECT_EQ(k.digital_fallback, st.valid ? 0 : 1);
     if (st.valid) {
       expect_valid_start(c.pts, st);
-      EXPECT_LE(k.at("shifted") + k.at("bad_inner") + k.at("bad_boundary"), k.at("sites"));
-      EXPECT_EQ(k.at("sites") + k.at("sketch_missing"), n);
-      EXPECT_EQ(k.at("start_vertices"), st.vertices);
-      shifted += k.at("shifted"), bad_inner += k.at("bad_inner");
-      bad_boundary += k.at("bad_boundary"), missing += k.at("sketch_missing");
+      EXPECT_LE(k.shifted + k.bad_inner + k.bad_boundary, k.sites);
+      EXPECT_EQ(k.sites + k.sketch_missing, n);
+      EXPECT_EQ(k.start_vertices, st.vertices);
+      shifted += k.shifted, bad_inner += k.bad_inner;
+      bad_boundary += k.bad_boundary, missing += k.sketch_missing;
     }
-    fallbacks += k.at("digital_fallback");
+    fallbacks += k.digital_fallback;
   }
   // The cases reach both kinds of deletion.
   EXPECT_GT(bad_inner, 0);
@@ -112,11 +112,11 @@ TEST(DigitalMethod, SmallSketchBoundaries) {
         const dg::Sketch sk = gpugeom::testing::digital_sketch(&pts.data()->x, n, side, o);
         std::int64_t rim = 0;
         for (std::int32_t t : sk.twin) rim += t < 0;
-        if (dig.stats.counters.at("digital_fallback") == 0 && rim >= 3 && rim <= 5) ++small;
+        if (dig.stats.digital_fallback == 0 && rim >= 3 && rim <= 5) ++small;
         // A dual whose boundary passes a vertex twice is no disk: the method says so and runs
         // the incremental one (the same triangles, checked above).
-        const std::int64_t pinched = dig.stats.counters.at("sketch_not_disk");
-        if (pinched) EXPECT_EQ(dig.stats.counters.at("digital_fallback"), 1);
+        const std::int64_t pinched = dig.stats.sketch_not_disk;
+        if (pinched) EXPECT_EQ(dig.stats.digital_fallback, 1);
         no_disk += pinched;
         ++cases;
       }
@@ -140,7 +140,7 @@ TEST(DigitalMethod, FarFromTheOriginFallsBack) {
   const auto inc = delaunay2d(pts, o);
   o.method = Method::Digital;
   const auto dig = delaunay2d(pts, o);
-  EXPECT_EQ(dig.stats.counters.at("digital_fallback"), 1);
+  EXPECT_EQ(dig.stats.digital_fallback, 1);
   EXPECT_EQ(gg_del2d::triangle_set(dig), gg_del2d::triangle_set(inc));
 }
 

@@ -241,7 +241,7 @@ TEST(DigitalSketch, TriangulatorFromAStartEqualsIncremental) {
     Cdt2dOptions co;
     co.backend = Backend::Cpu;
     const auto c = cdt2d(xy.data(), k, segs.data(), std::int64_t(segs.size() / 2), co);
-    EXPECT_GT(c.stats.counters.at("segments_recovered"), 0);
+    EXPECT_GT(c.stats.segments_recovered, 0);
     starts.emplace_back(c.triangles.begin(), c.triangles.end());
     // Walk hints (a start vertex per point, where its walk begins) change nothing but the walks.
     std::vector<std::int32_t> hint(static_cast<std::size_t>(n));
@@ -249,7 +249,7 @@ TEST(DigitalSketch, TriangulatorFromAStartEqualsIncremental) {
     for (const auto& s : starts)
       for (const std::int32_t* h : std::vector<const std::int32_t*>{nullptr, hint.data()}) {
         del2d::Output out;
-        Stats st;
+        Delaunay2dStats st;
         gpugeom::testing::triangulate_from(xy.data(), n, s.data(), std::int64_t(s.size() / 3),
                                            nullptr, h, o, out, st);
         EXPECT_EQ(gg_del2d::triangle_set(out.triangles.data(), std::size_t(out.num_triangles)),

@@ -8,15 +8,15 @@
 inline void triangulate_core(Exec& ex, const double* pts, std::int64_t n, const std::int32_t* sp,
                              std::int64_t nseg, const Cdt2dOptions& opt,
                              DeviceConstrainedTriangulation2d& out, RecoveryCounts& rc) {
-  Stats& st = out.stats;
+  Cdt2dStats& st = out.stats;
   const auto t0 = Clock::now();
   Delaunay2dOptions dopt;
   static_cast<RunOptions&>(dopt) = opt;
   del2d::DeviceOutput dt;
-  Stats dst;
+  Delaunay2dStats dst;
   const ::gpugeom::detail::ExecContext ctx = ex.context();  // (one stream, one memory count)
   dt_impl::entries.device(pts, n, dopt, dt, dst, &ctx);
-  st = dst;
+  static_cast<Delaunay2dStats&>(st) = dst;  // (its counters are the CDT's too)
   st.phase_ms = {{"delaunay", ms_since(t0)}};
   const auto t1 = Clock::now();
   const std::int64_t nt = dt.num_triangles;

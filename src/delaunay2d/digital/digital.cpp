@@ -32,7 +32,7 @@ std::int64_t auto_side(const double* xy, std::int64_t n) {
 }
 
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Backend b,
-                 Output& out, Stats& st) {
+                 Output& out, Delaunay2dStats& st) {
   if (opt.grid != 0 && (opt.grid < 4 || opt.grid > 46338))
     throw Error(ErrorCode::InvalidArgument,
                 "grid: the digital method's grid side must be 4..46338 (or 0: chosen from the "

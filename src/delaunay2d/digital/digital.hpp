@@ -18,12 +18,10 @@ std::int64_t auto_side(const double* xy, std::int64_t n);
 
 // The public host entry's work for Method::Digital on executor b (del2d_backend.hpp,
 // triangulate_digital, after the grid side is checked). Stats: the sketch's and the
-// shift's phases, then the Triangulator's; counters "grid_width", "grid_height", "sites",
-// "sketch_missing", "debris_pixels", "pinched_corners", "hull_triangles", "shifted",
-// "bad_inner", "bad_boundary", "start_vertices", "start_triangles", "digital_fallback" (1 where
-// the sketch could not be used and the incremental method ran instead: points whose grid
-// points are not exact doubles, fewer than 3 sites).
+// shift's phases, then the Triangulator's; the digital counters (Delaunay2dStats), and
+// digital_fallback 1 where the sketch could not be used and the incremental method ran instead
+// (points whose grid points are not exact doubles, fewer than 3 sites).
 void triangulate(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Backend b,
-                 Output& out, Stats& st);
+                 Output& out, Delaunay2dStats& st);
 
 }  // namespace gpugeom::del2d::digital

@@ -198,7 +198,7 @@ inline bool hole_triangulation(Exec& ex, const double* xy, const std::int32_t* i
       });
   bool got = false;
   try {
-    Stats sd;
+    Delaunay2dStats sd;
     triangulate_core(
         ex, p, nv, true, false, sd, [](Prepared&) {},
         [&](Prepared& P, typename Triangulator::Finished& f) {
@@ -236,7 +236,7 @@ inline std::int64_t hull_edges(Exec& ex, const std::int32_t* nb, std::int64_t nt
 // points left; mark (or null): set at the vertices of the staying triangles across boundary
 // edges D lacks (mesh::refill_holes).
 inline Refill2d refill_2d(Exec& ex, const KeptArrays& K, const std::int8_t* now, const double* xy,
-                          const std::int32_t* new_dup, std::int64_t m, Stats& st,
+                          const std::int32_t* new_dup, std::int64_t m, Delaunay2dStats& st,
                           std::int8_t* mark = nullptr) {
   Refill2d out;
   const std::int64_t n = K.n;  // (a removal keeps every index)
@@ -254,13 +254,13 @@ inline Refill2d refill_2d(Exec& ex, const KeptArrays& K, const std::int8_t* now,
   auto d_ids = ex.template alloc<std::int32_t>(std::size_t(n));
   const std::int64_t nv = mesh::hole_vertices<3>(ex, K.tri.data(), K.nt, d_hole.data(), now,
                                                  K.dup_map(), new_dup, n, d_ids.data());
-  st.counters["hole_vertices"] = nv;
+  st.hole_vertices = nv;
   typename Exec::template Buffer<std::int32_t> dtri, dnb;
   std::int64_t dnt = 0;
   if (nv < 3 || !hole_triangulation(ex, xy, d_ids.data(), nv, dtri, dnb, dnt)) return out;
   auto f = mesh::refill_holes<3>(ex, K.tri.data(), K.nb.data(), K.nt, d_hole.data(), dtri.data(),
                                  dnb.data(), dnt, false, mark);
-  st.counters["hole_triangles"] = f.inside;
+  st.hole_triangles = f.inside;
   out.unmatched = f.unmatched;
   // Euler: a triangulation of m points with h hull edges has 2m - 2 - h triangles
   if (!f.ok || f.count != 2 * m - 2 - hull_edges(ex, f.n.data(), f.count)) return out;
@@ -294,7 +294,7 @@ struct MovedStart2d {
   bool ok = false;
 };
 inline MovedStart2d moved_start(Exec& ex, const KeptArrays& K, const double* xy, std::int64_t n,
-                                std::int64_t m, Stats& st) {
+                                std::int64_t m, Delaunay2dStats& st) {
   MovedStart2d M;
   M.out = ex.template alloc<std::int8_t>(std::size_t(n));
   auto d_grow = ex.template alloc<std::int8_t>(std::size_t(n));
@@ -307,7 +307,7 @@ inline MovedStart2d moved_start(Exec& ex, const KeptArrays& K, const double* xy,
   std::int64_t nt = K.nt;
   bool grown = false;  // the last fill did not fit: its hole grew, fill again
   for (int round = 0; round < kMoveRounds; ++round) {
-    st.counters["move_rounds"] = round + 1;
+    st.move_rounds = round + 1;
     if (!grown) {
       const MoveTest t = test_moved(ex, tri, nb, nt, xy, n, out);
       if (!t.placed) return M;
@@ -320,7 +320,7 @@ inline MovedStart2d moved_start(Exec& ex, const KeptArrays& K, const double* xy,
       }
     }
     M.nout = mesh::count_flags(ex, out, n);
-    st.counters["move_taken_out"] = M.nout;
+    st.move_taken_out = M.nout;
     if (M.nout > n / 8 || m - M.nout < 3) return M;
     ex.fill(d_grow.data(), n, std::int8_t(0));
     const auto t0 = std::chrono::steady_clock::now();
@@ -346,7 +346,7 @@ inline MovedStart2d moved_start(Exec& ex, const KeptArrays& K, const double* xy,
 // vertices go back in as new points; where that cannot be done, the points are triangulated
 // afresh (counter "move_rebuilt").
 inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::int64_t n,
-                              Update how, bool profile, Stats& st) {
+                              Update how, bool profile, Delaunay2dStats& st) {
   auto keep = [&](Prepared& P, typename Triangulator::Finished& f) {
     R.n = n;
     R.nt = f.count;
@@ -361,7 +361,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     prepare_kept(ex, R, n, [&](const double* xy, std::int64_t m, auto widen) {
       triangulate_core(ex, xy, m, true, profile, st, widen, keep, false);
     });
-    if (R.nremoved) st.counters["points"] = n, st.counters["removed_points"] = R.nremoved;
+    if (R.nremoved) st.points = n, st.removed_points = R.nremoved;
     ex.sync();
     return std::move(R);
   };
@@ -379,10 +379,10 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     widen(P);
   });
   const std::int32_t* dup_map = P.duplicates || R.nremoved ? P.dup.data() : nullptr;
-  st.counters["points"] = n;
-  st.counters["distinct_points"] = P.m;
-  st.counters["duplicates"] = P.duplicates;
-  if (R.nremoved) st.counters["removed_points"] = R.nremoved;
+  st.points = n;
+  st.distinct_points = P.m;
+  st.duplicates = P.duplicates;
+  if (R.nremoved) st.removed_points = R.nremoved;
   // the triangulation the Triangulator starts from: the kept one, or after a removal the refilled
   const std::int32_t* start_tri = K.tri.data();
   const std::int32_t* start_nb = K.nb.data();
@@ -397,7 +397,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     auto d_now = mesh::removed_now(ex, R.gone.data(), K.gone_map(), n);
     filled = refill_2d(ex, K, d_now.data(), R.xy.data(), dup_map, P.m, st);
     st.phase_ms.push_back({"refill", ms_since(t1)});
-    st.counters["remove_rebuilt"] = !filled.ok;
+    st.remove_rebuilt = !filled.ok;
     if (!filled.ok) return afresh(P);
     start_tri = filled.tri.data(), start_nb = filled.nb.data(), start_nt = filled.nt;
     // The kernel point must lie inside the start's hull: the first build's is inside every
@@ -405,14 +405,14 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     // triangle's is.
     kernel[0] = P.kernel[0], kernel[1] = P.kernel[1];
   } else if (how == Update::Insert) {
-    st.counters["inserted_points"] = P.m - (K.n - K.ndup - K.nremoved);
+    st.inserted_points = P.m - (K.n - K.ndup - K.nremoved);
     mesh::curve_hints(ex, P.orig.data(), P.m, n, mesh::BelowIndex{std::int32_t(K.n)},
                       d_hint.data());
   } else {
     const bool same_points =
         P.duplicates == K.ndup && mesh::dup_changes(ex, K.dup_map(), dup_map, n) == 0;
     if (same_points) moved = moved_start(ex, K, R.xy.data(), n, P.m, st);
-    st.counters["move_rebuilt"] = !moved.ok;
+    st.move_rebuilt = !moved.ok;
     st.phase_ms.push_back({"move_start", ms_since(t0)});
     if (!moved.ok) return afresh(P);
     if (moved.tri.size())
@@ -420,7 +420,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     kernel[0] = moved.kernel[0], kernel[1] = moved.kernel[1];
     if (moved.nout) {
       walks = true;
-      st.counters["move_reinserted"] = moved.nout;
+      st.move_reinserted = moved.nout;
       mesh::curve_hints(ex, P.orig.data(), P.m, n, mesh::NotFlagged{moved.out.data()},
                         d_hint.data());
     }
@@ -443,7 +443,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
 // The kept points with `add` more appended (host memory, or executor memory when on_device), or
 // all n replaced (move).
 inline KeptArrays with_points(Exec& ex, const KeptArrays& K, const double* xy, std::int64_t add,
-                              bool on_device, bool replace, Stats& st) {
+                              bool on_device, bool replace, Delaunay2dStats& st) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::int64_t keep = replace ? 0 : K.n, n = keep + add;
   KeptArrays R;
@@ -462,7 +462,7 @@ inline KeptArrays with_points(Exec& ex, const KeptArrays& K, const double* xy, s
 class KeptOn final : public Kept {
  public:
   explicit KeptOn(const RunOptions& run) : run_(run) {}
-  void insert(const double* xy, std::int64_t n, bool on_device, Stats& st) override {
+  void insert(const double* xy, std::int64_t n, bool on_device, Delaunay2dStats& st) override {
     if (n == 0 && K_.n) return;
     Exec ex(run_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
@@ -472,7 +472,7 @@ class KeptOn final : public Kept {
     before_.commit(K_,
                    kept_update(ex, K_, std::move(R), K_.n + n, Update::Insert, run_.profile, st));
   }
-  void move(const double* xy, bool on_device, Stats& st) override {
+  void move(const double* xy, bool on_device, Delaunay2dStats& st) override {
     Exec ex(run_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
     ::gpugeom::detail::require_device_memory(ex, K_.n, kLeastBytesPerPoint,
@@ -480,7 +480,8 @@ class KeptOn final : public Kept {
     KeptArrays R = with_points(ex, K_, xy, K_.n, on_device, true, st);
     before_.commit(K_, kept_update(ex, K_, std::move(R), K_.n, Update::Move, run_.profile, st));
   }
-  void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Stats& st) override {
+  void remove(const std::int32_t* idx, std::int64_t count, bool on_device,
+              Delaunay2dStats& st) override {
     if (count == 0) return;
     Exec ex(run_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);

@@ -62,7 +62,7 @@ inline void Triangulator::peel() {
           ? 0
           : ex_.compact_indices(
                 tmax_, GG_LAMBDA(std::int64_t t) { return flat(tri[B + t]); }, lists_[0].data());
-  st_.counters["flat_triangles"] = nflat;
+  st_.flat_triangles = nflat;
   if (nflat == 0) return;
   if (B != 0) {  // positions to slots
     std::int32_t* l0 = lists_[0].data();
@@ -124,15 +124,15 @@ inline Triangulator::Finished Triangulator::finish() {
 inline void Triangulator::report() {
   const Counters c = counters();
   for (auto& p : prof_) st_.phase_ms.push_back({"insert/" + p.first, p.second});
-  st_.counters["batches"] = batches_;
-  st_.counters["flip_rounds"] = c.rounds;
-  st_.counters["flips"] = flips_;
-  st_.counters["exact_predicates"] = c.exact_total;  // work-list entries the filter left open
-  st_.counters["work_list_entries"] = c.listed;
-  st_.counters["small_flip_rounds"] = c.small_rounds;
-  st_.counters["exact_rest_passes"] = exact_rest_passes_;  // past the exact list's capacity
-  st_.counters["log_relocations"] = relocations_;          // within a batch, for a full log
-  st_.counters["split_flip_rounds"] = split_rounds_;       // flip parts past the first
+  st_.batches = batches_;
+  st_.flip_rounds = c.rounds;
+  st_.flips = flips_;
+  st_.exact_predicates = c.exact_total;  // work-list entries the filter left open
+  st_.work_list_entries = c.listed;
+  st_.small_flip_rounds = c.small_rounds;
+  st_.exact_rest_passes = exact_rest_passes_;  // past the exact list's capacity
+  st_.log_relocations = relocations_;          // within a batch, for a full log
+  st_.split_flip_rounds = split_rounds_;       // flip parts past the first
 }
 
 // RunOptions::profile: each step is synchronised and timed (slower; for finding where the time

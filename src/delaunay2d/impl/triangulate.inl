@@ -9,8 +9,8 @@ constexpr double kLeastBytesPerPoint = 168;
 
 // The pipeline after the preparation: body(P, f) takes the result.
 template <class Body>
-inline void triangulate_prepared(Exec& ex, Prepared& P, bool profile, Stats& st, Body body,
-                                 bool peel_flats = true) {
+inline void triangulate_prepared(Exec& ex, Prepared& P, bool profile, Delaunay2dStats& st,
+                                 Body body, bool peel_flats = true) {
   // The rounds' arrays, checked again now that the points are prepared: where they exceed the
   // driver's free memory, the preparation's freed blocks go back to the driver first
   // (require_memory), so that the largest arrays are not cut from the pool's pieces of them.
@@ -30,14 +30,14 @@ inline void triangulate_prepared(Exec& ex, Prepared& P, bool profile, Stats& st,
 // before(P) runs once the distinct points are known, before the device work.
 template <class Before, class Body>
 inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device,
-                             bool profile, Stats& st, Before before, Body body,
+                             bool profile, Delaunay2dStats& st, Before before, Body body,
                              bool peel_flats = true) {
   auto t0 = std::chrono::steady_clock::now();
   Prepared P = prepare(ex, xy, n, on_device);
   before(P);
-  st.counters["points"] = n;
-  st.counters["distinct_points"] = P.m;
-  st.counters["duplicates"] = P.duplicates;
+  st.points = n;
+  st.distinct_points = P.m;
+  st.duplicates = P.duplicates;
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   st.phase_ms.push_back({"upload", P.upload_ms});  // (part of prepare)
@@ -71,7 +71,7 @@ inline void size_host_results(const Triangulation2dBuffers& into, std::int64_t n
 
 inline void deliver_host_results(Exec& ex, const Triangulation2dBuffers& into, std::int64_t n,
                                  Prepared& P, typename Triangulator::Finished& f, Output& out,
-                                 Stats& st, detail::Prefault& pf) {
+                                 Delaunay2dStats& st, detail::Prefault& pf) {
   const auto t0 = std::chrono::steady_clock::now();
   pf.wait();
   st.phase_ms.push_back({"prefault_wait", ms_since(t0)});
@@ -88,7 +88,7 @@ inline void deliver_host_results(Exec& ex, const Triangulation2dBuffers& into, s
 }
 
 inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
-                             Output& out, Stats& st) {
+                             Output& out, Delaunay2dStats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
@@ -104,7 +104,7 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dO
 
 // Points in executor memory, result left there (or in the caller's arrays of that memory).
 inline void triangulate_device_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
-                                    DeviceOutput& out, Stats& st,
+                                    DeviceOutput& out, Delaunay2dStats& st,
                                     const ::gpugeom::detail::ExecContext* outer) {
   Exec ex(opt, outer);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
@@ -138,7 +138,7 @@ inline void triangulate_device_impl(const double* xy, std::int64_t n, const Dela
 // placed inside the start's first triangle.
 inline typename Triangulator::Finished run_from_start(
     Exec& ex, Prepared& P, std::int64_t n, std::int32_t* tris, std::int64_t f,
-    const std::int32_t* twin, const std::int32_t* hint, bool profile, Stats& st,
+    const std::int32_t* twin, const std::int32_t* hint, bool profile, Delaunay2dStats& st,
     const double* kernel = nullptr, bool peel_flats = true, bool start_delaunay = false) {
   auto t0 = std::chrono::steady_clock::now();
   // Input index -> prepared index (a duplicate's: the point kept for it).

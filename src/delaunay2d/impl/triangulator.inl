@@ -28,7 +28,7 @@ constexpr int kChunkRounds = 4;
 // (Every member is public: nvcc's extended lambdas may not live in private members.)
 class Triangulator : public TriStore {
  public:
-  Triangulator(Exec& ex, Prepared& P, Stats& st, bool profile)
+  Triangulator(Exec& ex, Prepared& P, Delaunay2dStats& st, bool profile)
       : TriStore(ex, P), st_(st), profile_(profile) {
     g_.p = P.pts.data();
     g_.s[0] = P.kernel[0];
@@ -95,7 +95,7 @@ class Triangulator : public TriStore {
   void report();
 
   // state (the store's is TriStore's)
-  Stats& st_;
+  Delaunay2dStats& st_;
   bool profile_ = false;
   Geo g_;
   std::int64_t ntri_ = 0, nun_ = 0, nact_ = 0;  // slots in use; points not yet inserted; list

@@ -62,7 +62,7 @@ GG_HD inline bool vor_ridge(const std::int32_t* nb, const std::int32_t* vid, std
 
 inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* tri,
                          const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                         const RunOptions& run, DeviceVoronoiOutput& out, Stats& st,
+                         const RunOptions& run, DeviceVoronoiOutput& out, RunStats& st,
                          Voronoi2d* host, const ::gpugeom::detail::ExecContext* outer) {
   const auto t0 = std::chrono::steady_clock::now();
   Exec ex(run, outer);

@@ -5,7 +5,7 @@
 // bus once, the triangulation and the diagram are made there, and only the results come back
 // (through the executor's staged copies into the host vectors).
 inline void voronoi_from_host(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
-                              Voronoi2d& v, Triangulation2d* tri, Stats& stats) {
+                              Voronoi2d& v, Triangulation2d* tri, Delaunay2dStats& stats) {
   const auto t0 = std::chrono::steady_clock::now();
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, stats);

@@ -64,7 +64,7 @@ inline void digital_shift_impl(const double* xy, std::int64_t n, const digital::
 inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::int32_t* start,
                                   std::int64_t nstart, const std::int32_t* twin,
                                   const std::int32_t* hint, const Delaunay2dOptions& opt,
-                                  Output& out, Stats& st) {
+                                  Output& out, Delaunay2dStats& st) {
   if (nstart < 1) throw Error(ErrorCode::InvalidArgument, "start triangulation: no triangle");
   for (std::int64_t i = 0; i < 3 * nstart; ++i)
     if (start[i] < 0 || start[i] >= n)
@@ -77,9 +77,9 @@ inline void triangulate_from_impl(const double* xy, std::int64_t n, const std::i
   Prepared P = prepare(ex, xy, n, false);
   detail::Prefault pf;
   size_host_results(opt.into, n, P, out, pf);
-  st.counters["points"] = n;
-  st.counters["distinct_points"] = P.m;
-  st.counters["duplicates"] = P.duplicates;
+  st.points = n;
+  st.distinct_points = P.m;
+  st.duplicates = P.duplicates;
   auto up = [&](const std::int32_t* h, std::int64_t len) {
     auto b = ex.template alloc<std::int32_t>(h ? std::size_t(len) : 0);
     if (h) ex.from_host(h, len, b.data());
