@@ -50,14 +50,6 @@ inline double phase_ms(const RunStats& s, const char* name) {
   return 0;
 }
 
-// A counter of a run's statistics by name, 0 when the run had no such counter (typed
-// statistics: read the field).
-inline std::int64_t counter(const RunStats& s, const char* name) {
-  const auto m = s.counter_map();
-  const auto it = m.find(name);
-  return it == m.end() ? 0 : it->second;
-}
-
 // Every phase and counter of a run, as two comment lines (the benchmarks' --verbose).
 inline void print_stats_lines(const RunStats& s) {
   std::printf("#   phases:");

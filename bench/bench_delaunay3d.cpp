@@ -39,15 +39,14 @@ using namespace gpugeom;
 
 namespace {
 using clk = std::chrono::steady_clock;
-using bench::counter;
 using bench::ms_since;
 
 // Bytes a point: the device peak where the call ran on the GPU, else phase 1's bytes.
-std::int64_t bytes_per_point(const gpugeom::Stats& st) {
+std::int64_t bytes_per_point(const gpugeom::Delaunay3dStats& st) {
   const std::int64_t peak = st.device_peak_bytes;
-  return peak > 0 ? peak : bench::counter(st, "device_bytes_phase1");
+  return peak > 0 ? peak : st.device_bytes_phase1;
 }
-double phase(const Stats& s, const char* name) {
+double phase(const RunStats& s, const char* name) {
   return bench::phase_ms(s, name);
 }
 
@@ -194,9 +193,8 @@ int run(int argc, char** argv) {
           "%9.1f %6s\n",
           dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu", total, on_dev,
           phase(t.stats, "prepare"), phase(t.stats, "insert_flip"), phase(t.stats, "splay"),
-          (long long)(counter(t.stats, "flips23") + counter(t.stats, "flips32")),
-          (long long)counter(t.stats, "failed_vertices"),
-          (long long)counter(t.stats, "stars_built"), t.num_tetrahedra,
+          (long long)(t.stats.flips23 + t.stats.flips32), (long long)t.stats.failed_vertices,
+          (long long)t.stats.stars_built, t.num_tetrahedra,
           (long long)(bytes_per_point(t.stats) / std::max<std::int64_t>(n, 1)), cg, cgp,
           ok.c_str());
       if (b == Backend::Cuda)  // points in; the five arrays out
@@ -227,12 +225,11 @@ int run(int argc, char** argv) {
             "%.1f splay %.1f (%lld rounds, %lld insertions, %lld growths) tets %.1f; "
             "dig/incr %.2fx, cgal/dig %.1fx, %s\n",
             dist.c_str(), (long long)n, b == Backend::Cuda ? "cuda" : "cpu", dt, d_on_dev,
-            (long long)counter(d.stats, "digital_grid"),
+            (long long)d.stats.digital_grid,
             phase(d.stats, "digital_grid") + phase(d.stats, "digital_pba"),
             phase(d.stats, "digital_working_sets"), phase(d.stats, "digital_stars"),
-            phase(d.stats, "digital_splay"), (long long)counter(d.stats, "digital_splay_rounds"),
-            (long long)counter(d.stats, "digital_star_insertions"),
-            (long long)counter(d.stats, "digital_star_growths"),
+            phase(d.stats, "digital_splay"), (long long)d.stats.digital_splay_rounds,
+            (long long)d.stats.digital_star_insertions, (long long)d.stats.digital_star_growths,
             phase(d.stats, "digital_tetrahedra"), dt / total, cg > 0 ? cg / dt : -1.0,
             same ? "identical" : "DIFFERENT");
         if (verbose) bench::print_stats_lines(d.stats);

@@ -205,15 +205,13 @@ int main(int argc, char** argv) {
           verdict += rep.ok ? " valid" : " INVALID: " + rep.message;
         }
         const double dev = timed[bi].dev;
-        std::printf(
-            "%-18s %10lld %-5s %9.1f %9.1f %8.1f %9.1f %7.1f %9zu %8lld %9.1f %s\n",
-            (cfgs[bi].m == Method::Digital ? name + " digital" : name).c_str(), (long long)n,
-            backend_name(b), med, dev,
-            bench::phase_ms(r.stats, "upload") + bench::phase_ms(r.stats, "copy_back"),
-            bench::phase_ms(r.stats, "construct"), bench::phase_ms(r.stats, "flip"),
-            r.vertices.size(),
-            (long long)(r.stats.insert_rounds + r.stats.flip_rounds), cg,
-            verdict.c_str());
+        std::printf("%-18s %10lld %-5s %9.1f %9.1f %8.1f %9.1f %7.1f %9zu %8lld %9.1f %s\n",
+                    (cfgs[bi].m == Method::Digital ? name + " digital" : name).c_str(),
+                    (long long)n, backend_name(b), med, dev,
+                    bench::phase_ms(r.stats, "upload") + bench::phase_ms(r.stats, "copy_back"),
+                    bench::phase_ms(r.stats, "construct"), bench::phase_ms(r.stats, "flip"),
+                    r.vertices.size(), (long long)(r.stats.insert_rounds + r.stats.flip_rounds), cg,
+                    verdict.c_str());
         std::printf("   ");
         for (auto& ph : r.stats.phase_ms) std::printf(" %s %.1f", ph.first.c_str(), ph.second);
         std::printf(" ms;");

@@ -56,7 +56,7 @@ struct RunOptions {
   /// CPU: OpenMP threads (0: OpenMP's default for the calling thread). Results do not depend on
   /// it.
   int threads = 0;
-  /// Per-phase timings in Stats synchronise the executor after each phase (slower, exact
+  /// Per-phase timings in the statistics synchronise the executor after each phase (slower, exact
   /// attribution); off, phases that overlap are timed as they come.
   bool profile = false;
   /// CUDA: where the call takes its device memory (gpugeom/memory.hpp), every temporary array
@@ -152,7 +152,7 @@ class Error : public std::runtime_error {
 
 /// What every run's statistics hold: where it ran, its phases' times in the order they ran,
 /// and the device memory it used. Each capability's statistics derive from it and add their
-/// counters as named fields (Hull3dStats), or, where not typed yet, as a map (Stats).
+/// counters as named fields (Delaunay3dStats, Hull3dStats, EdtStats, ...).
 struct RunStats {
   Backend backend = Backend::Cpu;
   /// Phase names and times in milliseconds, in the order they ran (a log: some phases repeat
@@ -173,13 +173,6 @@ struct RunStats {
   RunStats& operator=(const RunStats&) = default;
   RunStats& operator=(RunStats&&) = default;
   virtual ~RunStats() = default;
-};
-
-/// Phase timings and counters of one run, the counters by name: the capabilities whose
-/// counters are not typed fields yet.
-struct Stats : RunStats {
-  std::map<std::string, std::int64_t> counters;
-  std::map<std::string, std::int64_t> counter_map() const override;
 };
 
 }  // namespace gpugeom

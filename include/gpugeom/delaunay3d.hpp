@@ -14,7 +14,9 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "gpugeom/common.hpp"
@@ -58,19 +60,77 @@ struct Delaunay3dOptions : RunOptions {
   /// as a perturbed grid), a convex star for every point from its working set (beneath-beyond),
   /// then star splaying until every star agrees with its neighbours' (Shewchuk), all on the
   /// executor. Adds phases "digital_*" (grid, pba, working_sets, stars, splay, tetrahedra; the
-  /// splay's parts as "digital_splay.check", ".sort", ".take") and counters "digital_grid",
-  /// "sites", "sketch_missing", "digital_working_pairs", "digital_splay_rounds",
-  /// "digital_star_insertions", "digital_star_growths" (passes that gave new runs to stars
-  /// that outgrew theirs; a take gives them in its kernel while the room past the last run
-  /// lasts), "digital_splay_request_spills" (checks run again for
-  /// requests past the round's buffer) and "digital_fallback" (1 where stars
-  /// grew too large to splay on the executor, as on the hull planes of integer grids: the
-  /// incremental method then ran, and its phases follow).
+  /// splay's parts as "digital_splay.check", ".sort", ".take") and the digital counters of
+  /// Delaunay3dStats (digital_fallback 1 where stars grew too large to splay on the executor,
+  /// as on the hull planes of integer grids: the incremental method then ran).
   Method method = Method::Incremental;
   /// Method::Digital: the grid's side along the points' longest extent (16..1024; 0 chooses
   /// it from the point count, about 32 grid cells a point, and doubles it once where more than
-  /// a tenth of the points share a cell: counter "digital_grid_refined").
+  /// a tenth of the points share a cell: Delaunay3dStats::digital_grid_refined).
   std::int64_t grid = 0;
+};
+
+/// Statistics of a 3D Delaunay tetrahedralisation: RunStats (phases "prepare", "insert_flip",
+/// "find_failed", "splay" (phase 2, star splaying on the executor), "drop_flats", "output";
+/// Method::Digital's "digital_*"; DynamicDelaunay3d's updates their own and "total") and the
+/// counters, 0 where their step did not run. Every array, and phase 1's counters, are the same
+/// run after run, on any thread count and on both executors.
+struct Delaunay3dStats : RunStats {
+  /// The points given, those distinct, and those equal to an earlier one.
+  std::int64_t points = 0, distinct_points = 0, duplicates = 0;
+  /// Phase 1: insertion batches, flip rounds, 2-3 and 3-2 flips, and the tests that found a
+  /// face not flippable.
+  std::int64_t batches = 0, flip_rounds = 0, flips23 = 0, flips32 = 0, unflippable_tests = 0;
+  /// Faces found not locally Delaunay after phase 1, and their vertices (phase 2's stars).
+  std::int64_t failed_faces = 0, failed_vertices = 0;
+  /// Phase 2 (star splaying): stars built and changed, insertions into stars, rounds, and the
+  /// tetrahedra it removed and added.
+  std::int64_t stars_built = 0, stars_changed = 0, star_insertions = 0, splay_rounds = 0,
+               splay_removed = 0, splay_added = 0;
+  /// Flat tetrahedra removed from the hull.
+  std::int64_t flat_tetrahedra = 0;
+  /// Phase 1's arrays at their largest, in bytes, and the tetrahedron store's slots used and
+  /// allocated.
+  std::int64_t device_bytes_phase1 = 0, slots_used = 0, slots_capacity = 0;
+  /// Phase 1's sizing: halts for room, the longest flip list, the most flip records in an
+  /// epoch, the most free slots, the most splits in a batch, the lists', log's and ring's
+  /// capacities, chunks of rounds launched, team launches, and batches whose short flip list
+  /// went on in the next batch's rounds.
+  std::int64_t halts = 0, max_list = 0, max_epoch_records = 0, max_free_slots = 0, max_splits = 0,
+               list_capacity = 0, log_capacity = 0, ring_capacity = 0, round_chunks = 0,
+               team_launches = 0, carried_batches = 0;
+  /// Times in microseconds: phase 1's choosing and splitting, flip rounds as kernels and in one
+  /// block; phase 2's building stars, splaying rounds, checks, patch and takes.
+  std::int64_t us_choose_split = 0, us_rounds_wide = 0, us_rounds_team = 0, us_splay_build = 0,
+               us_splay_rounds = 0, us_splay_check = 0, us_splay_patch = 0, us_splay_take = 0;
+  /// The start's point location by walks: steps, scans, and the longest walk.
+  std::int64_t start_walk_steps = 0, start_walk_scans = 0, start_walk_longest = 0;
+  /// Method::Digital: the grid's side (and 1 where it was doubled because more than a tenth of
+  /// the points shared a cell), points on the grid's box, the points with a cell of their own
+  /// (sites) and those the sketch missed.
+  std::int64_t digital_grid = 0, digital_grid_refined = 0, digital_points_on_box = 0, sites = 0,
+               sketch_missing = 0;
+  /// Method::Digital: the working sets' neighbour pairs, their points, and the sets augmented.
+  std::int64_t digital_working_pairs = 0, digital_working_set_points = 0,
+               digital_working_sets_augmented = 0;
+  /// Method::Digital: the stars' slots made at first and in all, passes that gave new runs to
+  /// stars that outgrew theirs, insertions and requests, splaying rounds (and rounds by
+  /// vertex), and checks run again for requests past the round's buffer.
+  std::int64_t digital_star_slots_created = 0, digital_star_slots = 0, digital_star_growths = 0,
+               digital_star_insertions = 0, digital_star_requests = 0, digital_splay_rounds = 0,
+               digital_splay_vertex_rounds = 0, digital_splay_request_spills = 0;
+  /// Method::Digital: 1 where stars grew too large to splay on the executor (as on the hull
+  /// planes of integer grids): the incremental method then ran, and its phases follow.
+  std::int64_t digital_fallback = 0;
+  /// DynamicDelaunay3d: points inserted; points removed, the holes' vertices and tetrahedra,
+  /// and whether the removal made the tetrahedralisation afresh; a move's rounds, the vertices
+  /// it took out and put back, the times its store grew, and whether it made the
+  /// tetrahedralisation afresh.
+  std::int64_t inserted_points = 0, removed_points = 0, hole_vertices = 0, hole_tetrahedra = 0,
+               remove_rebuilt = 0, move_rounds = 0, move_taken_out = 0, move_reinserted = 0,
+               move_grown = 0, move_rebuilt = 0;
+
+  std::map<std::string, std::int64_t> counter_map() const override;
 };
 
 /// The result of delaunay3d: tetrahedra, neighbours, duplicates and hull facets, in host memory.
@@ -89,21 +149,7 @@ struct Triangulation3d {
   /// One entry per input point: a tetrahedron having it as a vertex (a duplicate: that of the
   /// point it duplicates).
   HostVector<std::int32_t> vertex_to_simplex;
-  /// Stats: phases "prepare", "insert_flip", "find_failed", "splay" (phase 2, star splaying on
-  /// the executor), "drop_flats", "output"; counters "points", "distinct_points", "duplicates",
-  /// "batches", "flip_rounds", "flips23", "flips32", "unflippable_tests", "failed_faces",
-  /// "failed_vertices", "flat_tetrahedra" (removed from the hull), "stars_built", "stars_changed",
-  /// "star_insertions", "splay_rounds", "splay_removed", "splay_added", "device_bytes_phase1"
-  /// (phase 1's arrays at their largest), "device_peak_bytes" (CUDA: the call's device peak),
-  /// "slots_used", "slots_capacity" (of the tetrahedron store), phase 1's sizing ("halts",
-  /// "max_list", "max_epoch_records", "max_free_slots", "max_splits", "list_capacity",
-  /// "log_capacity", "ring_capacity", "round_chunks", "team_launches", "carried_batches": batches
-  /// whose short flip list went on in the next batch's rounds), and times in
-  /// microseconds "us_*" (phase 1: choosing and splitting, flip rounds as kernels and in one
-  /// block; phase 2: building stars, splaying rounds, checks, takes, patch).
-  /// Every array, and phase 1's counters, are the same run after run, on any thread count and on
-  /// both executors (the same tetrahedra in the same order, with the same neighbours).
-  Stats stats;
+  Delaunay3dStats stats;
   /// Tetrahedra and hull facets written (also where they went into the caller's arrays).
   std::int64_t num_tetrahedra = 0, num_hull_facets = 0;
 };
@@ -128,7 +174,7 @@ struct DeviceTriangulation3d {
   std::shared_ptr<std::int32_t> vertex_to_simplex;  ///< num_points
   std::shared_ptr<std::int32_t> hull_facets;        ///< 3 * num_hull_facets
   Backend backend = Backend::Cuda;  ///< where the arrays are: Cuda = device memory, Cpu = host
-  Stats stats;
+  Delaunay3dStats stats;
 };
 /// The same tetrahedralisation with the points already on the GPU and the result left there:
 /// device_xyz is device memory holding n points, x, y and z interleaved, on opt.device. The work
@@ -183,9 +229,9 @@ class DynamicDelaunay3d {
   /// move_device), and the tetrahedralisation brought up to date from the kept one: the vertices
   /// of tetrahedra that turned over (checked exactly) are taken out, their holes filled at the
   /// new places, the rest flipped (phase 1's rounds) and star-splayed until Delaunay, and those
-  /// vertices inserted again (stats counters "move_rounds", "move_taken_out",
-  /// "move_reinserted"). Where that would take out more than an eighth of the points, or where
-  /// points came to coincide or to part, it is made afresh (stats counter "move_rebuilt"). Any
+  /// vertices inserted again (Delaunay3dStats' move_rounds, move_taken_out,
+  /// move_reinserted). Where that would take out more than an eighth of the points, or where
+  /// points came to coincide or to part, it is made afresh (Delaunay3dStats::move_rebuilt). Any
   /// displacement gives the right tetrahedralisation; only the time depends on how far the
   /// points moved. Throws as insert, and Error(InvalidArgument) for another count; the object is
   /// then unchanged.
@@ -199,10 +245,10 @@ class DynamicDelaunay3d {
   /// there (an equal point given before or after is a vertex in its place). The holes are filled
   /// with the tetrahedra of the tetrahedralisation of their own vertices that fit in them (the
   /// tetrahedra of the kept one without a removed vertex stay); where that cannot be done (too few
-  /// such vertices, all in one plane) the points left are tetrahedralised afresh (stats counter
-  /// "remove_rebuilt"). vertex_to_simplex is -1 at removed points. Throws Error(InvalidArgument)
-  /// for a bad index list, and as the constructor where the points left have no tetrahedralisation;
-  /// the object is then unchanged.
+  /// such vertices, all in one plane) the points left are tetrahedralised afresh
+  /// (Delaunay3dStats::remove_rebuilt). vertex_to_simplex is -1 at removed points. Throws
+  /// Error(InvalidArgument) for a bad index list, and as the constructor where the points left have
+  /// no tetrahedralisation; the object is then unchanged.
   void remove(const std::int32_t* indices, std::int64_t count);
   /// As remove, with the indices in executor memory (device memory on CUDA, host memory with
   /// Backend::Cpu).
@@ -234,7 +280,7 @@ class DynamicDelaunay3d {
   /// As changes, in executor memory.
   DeviceSimplexChanges device_changes() const;
   /// Phases and counters of the last call that changed the points.
-  const Stats& stats() const;
+  const Delaunay3dStats& stats() const;
 
  private:
   struct Impl;

@@ -403,12 +403,14 @@ nb::dict voronoi3d_dict(Triangulation3d& t, Voronoi3d& v, std::int64_t n) {
   r["cell_offsets"] = host_array(std::move(v.region_offsets), {sz(n) + 1});
   r["cell_vertices"] = host_array(std::move(v.region_vertices), {ncv});
   r["simplex_vertex"] = host_array(std::move(v.simplex_vertex), {nt});
-  Stats st = t.stats;  // (the diagram's peak is the whole call's where it made both)
+  Delaunay3dStats st = t.stats;  // (the diagram's peak is the whole call's where it made both)
   st.device_peak_bytes = std::max(t.stats.device_peak_bytes, v.stats.device_peak_bytes);
-  st.counters["voronoi_vertices"] = v.stats.voronoi_vertices;
-  st.counters["voronoi_ridges"] = v.stats.voronoi_ridges;
   st.phase_ms.insert(st.phase_ms.end(), v.stats.phase_ms.begin(), v.stats.phase_ms.end());
-  r["stats"] = stats_dict(st);
+  nb::dict d = stats_dict(st);
+  nb::dict counters = nb::cast<nb::dict>(d["counters"]);  // (the diagram's beside the tetrahedra's)
+  counters["voronoi_vertices"] = v.stats.voronoi_vertices;
+  counters["voronoi_ridges"] = v.stats.voronoi_ridges;
+  r["stats"] = d;
   return r;
 }
 

@@ -5,12 +5,35 @@
 
 #include "base/method_grid.hpp"
 #include "base/point_count.hpp"
+#include "base/stats_fields.hpp"
 #include "delaunay3d/del3d_backend.hpp"
 #include "exec/deliver.hpp"
 #include "exec/dispatch.hpp"
 #include "exec/tuning.hpp"
 
 namespace gpugeom {
+
+// clang-format off
+#define GG_DELAUNAY3D_COUNTERS(X)                                                                 \
+  X(points) X(distinct_points) X(duplicates) X(batches) X(flip_rounds) X(flips23) X(flips32)     \
+  X(unflippable_tests) X(failed_faces) X(failed_vertices) X(stars_built) X(stars_changed)        \
+  X(star_insertions) X(splay_rounds) X(splay_removed) X(splay_added) X(flat_tetrahedra)          \
+  X(device_bytes_phase1) X(slots_used) X(slots_capacity) X(halts) X(max_list)                    \
+  X(max_epoch_records) X(max_free_slots) X(max_splits) X(list_capacity) X(log_capacity)          \
+  X(ring_capacity) X(round_chunks) X(team_launches) X(carried_batches) X(us_choose_split)        \
+  X(us_rounds_wide) X(us_rounds_team) X(us_splay_build) X(us_splay_rounds) X(us_splay_check)     \
+  X(us_splay_patch) X(us_splay_take) X(start_walk_steps) X(start_walk_scans)                     \
+  X(start_walk_longest) X(digital_grid) X(digital_grid_refined) X(digital_points_on_box)         \
+  X(sites) X(sketch_missing) X(digital_working_pairs) X(digital_working_set_points)              \
+  X(digital_working_sets_augmented) X(digital_star_slots_created) X(digital_star_slots)          \
+  X(digital_star_growths) X(digital_star_insertions) X(digital_star_requests)                    \
+  X(digital_splay_rounds) X(digital_splay_vertex_rounds) X(digital_splay_request_spills)         \
+  X(digital_fallback) X(inserted_points) X(removed_points) X(hole_vertices) X(hole_tetrahedra)   \
+  X(remove_rebuilt) X(move_rounds) X(move_taken_out) X(move_reinserted) X(move_grown)            \
+  X(move_rebuilt)
+// clang-format on
+GG_COUNTER_MAP(Delaunay3dStats, GG_DELAUNAY3D_COUNTERS);
+#undef GG_DELAUNAY3D_COUNTERS
 
 namespace del3d {
 // About 7.3 slots a point (tetrahedra with the dead and infinite ones; 7.5 with a margin) must

@@ -93,10 +93,4 @@ std::map<std::string, std::int64_t> RunStats::counter_map() const {
   return m;
 }
 
-std::map<std::string, std::int64_t> Stats::counter_map() const {
-  auto m = RunStats::counter_map();
-  m.insert(counters.begin(), counters.end());
-  return m;
-}
-
 }  // namespace gpugeom

@@ -74,19 +74,12 @@ WalkCounts locate_by_walks(Exec& ex, std::int64_t m, std::int64_t slots, const S
   return WalkCounts{w[0], w[1], w[2]};
 }
 
-// The counts as a run's statistics report them: into typed statistics' fields, or (untyped) a
-// map by name.
+// The counts into a run's statistics (Delaunay2dStats, Delaunay3dStats: their fields).
 template <class S>
-void put_walk_fields(S& st, const WalkCounts& w) {
+void put_walk_counts(S& st, const WalkCounts& w) {
   st.start_walk_steps = w.steps;
   st.start_walk_scans = w.scans;
   st.start_walk_longest = w.longest;
-}
-template <class Map>
-void put_walk_counts(Map& counters, const WalkCounts& w) {
-  counters["start_walk_steps"] = w.steps;
-  counters["start_walk_scans"] = w.scans;
-  counters["start_walk_longest"] = w.longest;
 }
 
 }  // namespace gpugeom::mesh

@@ -17,7 +17,7 @@ void digital_stars(const double* xyz, std::int64_t n, std::int64_t grid, int spl
   Delaunay3dOptions opt;
   opt.backend = Backend::Cpu;
   Exec ex(opt);
-  Stats st;
+  Delaunay3dStats st;
   Prepared P = prepare_points(ex, xyz, n, false, st);
   mesh::SortedPoints<Exec>& S = P.S;
   const mesh::Bounds<3>& box = P.box;
@@ -26,7 +26,7 @@ void digital_stars(const double* xyz, std::int64_t n, std::int64_t grid, int spl
   out.built = digital_stars(ex, S, box, first, grid, st, D) &&
               (splay == 0 || digital_splay(ex, D, st, splay == 1, first_requests));
   if (!out.built) return;
-  if (splay > 0) out.request_spills = st.counters.at("digital_splay_request_spills");
+  if (splay > 0) out.request_spills = st.digital_splay_request_spills;
   const std::int64_t m = S.m;
   out.pts.resize(std::size_t(3 * m));
   ex.to_host(S.pts.data(), 3 * m, out.pts.data());

@@ -60,7 +60,7 @@ TEST(Delaunay3d, StarSplayingRepairs) {
       o.tuning = gg_test::tuning([&](detail::Tuning& t) { t.del3d.max_flip_rounds = rounds; });
       const auto t = delaunay3d(pts, o);
       expect_valid(pts, t);
-      EXPECT_GT(t.stats.counters.at("failed_vertices"), 0);
+      EXPECT_GT(t.stats.failed_vertices, 0);
     }
   }
 }
@@ -191,7 +191,7 @@ TEST(Delaunay3d, ProgressAndCancel) {
     last = p.inserted;
     if (std::string(p.phase) == "insert_flip") ++batches;
   }
-  EXPECT_EQ(batches, t.stats.counters.at("batches"));
+  EXPECT_EQ(batches, t.stats.batches);
   EXPECT_EQ(std::string(seen.back().phase), "output");
   EXPECT_EQ(seen.back().inserted, 20000);
   struct Stop {};
@@ -212,10 +212,10 @@ TEST(Delaunay3d, FullGrid) {
       for (int z = 0; z < 24; ++z) pts.push_back({double(x), double(y), double(z)});
   const auto t = delaunay3d(pts, cpu());
   expect_valid(pts, t);
-  EXPECT_GT(t.stats.counters.at("flat_tetrahedra"), 0);
+  EXPECT_GT(t.stats.flat_tetrahedra, 0);
   EXPECT_EQ(t.hull_facets.size() / 3, std::size_t(6 * 2 * 23 * 23));  // two per unit square
   // (the hull planes' flips outlast their batch: their lists go on in the next batches' rounds)
-  EXPECT_GT(t.stats.counters.at("carried_batches"), 0);
+  EXPECT_GT(t.stats.carried_batches, 0);
 }
 
 TEST(Delaunay3d, Errors) {
@@ -484,8 +484,8 @@ TEST(DynamicDelaunay3d, MoveGivesTheFreshTetrahedralisation) {
     const auto fresh = delaunay3d(q, cpu());
     EXPECT_EQ(gg_del3d::tet_set(t.tetrahedra), gg_del3d::tet_set(fresh.tetrahedra));
     EXPECT_EQ(t.duplicate_of, fresh.duplicate_of);
-    const auto& c = d.stats().counters;
-    (c.at("move_rebuilt") ? rebuilt : c.count("move_reinserted") ? reinserted : repaired)++;
+    const Delaunay3dStats& c = d.stats();
+    (c.move_rebuilt ? rebuilt : c.move_reinserted ? reinserted : repaired)++;
   };
   std::vector<gg_hull3d::Case> cases = gg_hull3d::degenerate_cases();
   {  // a jittered lattice: no slivers, so tiny moves keep every tetrahedron positive

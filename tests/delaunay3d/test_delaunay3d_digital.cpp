@@ -36,8 +36,8 @@ bool same_as_incremental(const gg_hull3d::Case& c, std::int64_t grid) {
   EXPECT_EQ(tet_set(dig.tetrahedra), tet_set(inc.tetrahedra));
   EXPECT_EQ(dig.num_duplicates, inc.num_duplicates);
   EXPECT_EQ(dig.hull_facets.size(), inc.hull_facets.size());
-  const bool fell_back = dig.stats.counters.at("digital_fallback") != 0;
-  if (!fell_back) EXPECT_GT(dig.stats.counters.at("digital_splay_rounds"), 0);
+  const bool fell_back = dig.stats.digital_fallback != 0;
+  if (!fell_back) EXPECT_GT(dig.stats.digital_splay_rounds, 0);
   return fell_back;
 }
 bool is(const gg_hull3d::Case& c, const char* prefix) {
@@ -78,7 +78,7 @@ TEST(DigitalDelaunay3d, GridHullPlanesFallBack) {
   const gg_hull3d::Case t{"turned_grid_29791", turned};
   EXPECT_TRUE(same_as_incremental(t, 0));
   Delaunay3dOptions o = cpu(Method::Digital);
-  EXPECT_LT(delaunay3d(turned, o).stats.counters.at("digital_points_on_box"), 4096);
+  EXPECT_LT(delaunay3d(turned, o).stats.digital_points_on_box, 4096);
 }
 
 // A coarse grid leaves most points missing (their stars start from their site's set) and a
@@ -95,10 +95,10 @@ TEST(DigitalDelaunay3d, PhasesAndCounters) {
   const auto pts = generate3d("uniform", 20000, 5);
   const auto t = delaunay3d(pts, cpu(Method::Digital));
   expect_valid(pts, t);
-  const auto& k = t.stats.counters;
-  EXPECT_EQ(k.at("digital_grid"), 86);  // (cube root of 32 points' cells, rounded)
-  EXPECT_EQ(k.at("sites") + k.at("sketch_missing"), 20000);
-  EXPECT_GT(k.at("digital_working_pairs"), 20000);
+  const auto& k = t.stats;
+  EXPECT_EQ(k.digital_grid, 86);  // (cube root of 32 points' cells, rounded)
+  EXPECT_EQ(k.sites + k.sketch_missing, 20000);
+  EXPECT_GT(k.digital_working_pairs, 20000);
   std::set<std::string> phases;
   for (const auto& p : t.stats.phase_ms) phases.insert(p.first);
   for (const char* p : {"prepare", "digital_grid", "digital_pba", "digital_working_sets",

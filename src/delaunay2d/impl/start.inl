@@ -182,7 +182,7 @@ inline void Triangulator::start_from(const std::int32_t* tris, const std::int32_
   const mesh::WalkCounts w =
       mesh::locate_by_walks<3>(ex_, m_, nt, StartTriangles{g_, tri, B},
                                WalkFrom{near, used, slot_of}, B, loc, &ctr_.data()->lost);
-  mesh::put_walk_fields(st_, w);
+  mesh::put_walk_counts(st_, w);
   nun_ = ex_.compact_indices(
       m_, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, un_.data());
   check_lost();

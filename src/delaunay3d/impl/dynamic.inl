@@ -87,7 +87,7 @@ struct MovedStart3d {
   bool ok = false;
 };
 inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz, std::int64_t n,
-                                const Delaunay3dOptions& opt, Stats& st) {
+                                const Delaunay3dOptions& opt, Delaunay3dStats& st) {
   MovedStart3d M;
   M.out = ex.template alloc<std::int8_t>(std::size_t(n));
   ex.fill(M.out.data(), n, std::int8_t(0));
@@ -97,7 +97,7 @@ inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz
   bool grown = false;  // the last fill lacked boundary faces: its hole grew, fill again
   std::optional<GrowScratch> scratch;
   for (int round = 0; round < kMoveRounds; ++round) {
-    st.counters["move_rounds"] = round + 1;
+    st.move_rounds = round + 1;
     if (!grown) {
       const MoveTest t = test_moved(ex, cur, used, xyz, n, M.out.data());
       if (!t.placed) return M;
@@ -116,12 +116,12 @@ inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz
       if (!scratch) scratch.emplace(ex, n);
       for (int g = 0; g < 4; ++g) {
         const std::int64_t more = grow_predicted(ex, *scratch, cur, used, xyz, n, M.out.data());
-        st.counters["move_grown"] += more;
+        st.move_grown += more;
         M.nout += more;
         if (!more) break;
       }
     }
-    st.counters["move_taken_out"] = M.nout;
+    st.move_taken_out = M.nout;
     if (M.nout > n / 8) return M;
     const auto t0 = Clock::now();
     f = refill_3d(ex, K, M.out.data(), xyz, K.dup_map(), opt, st, M.out.data());
@@ -140,7 +140,7 @@ inline MovedStart3d moved_start(Exec& ex, const KeptArrays& K, const double* xyz
 // and those vertices go back in as new points; where that cannot be done, the points are
 // tetrahedralised afresh (counter "move_rebuilt").
 inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::int64_t n,
-                              Update how, const Delaunay3dOptions& opt, Stats& st) {
+                              Update how, const Delaunay3dOptions& opt, Delaunay3dStats& st) {
   Prepared P = prepare_kept(ex, R, n, st);
   mesh::SortedPoints<Exec>& S = P.S;
   const std::int32_t* dup_map = S.duplicates || R.nremoved ? S.dup.data() : nullptr;
@@ -156,7 +156,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     filled = refill_3d(ex, K, d_now.data(), R.xyz.data(), dup_map, opt, st);
     st.phase_ms.push_back({"refill", ms_since(t1)});
     fresh = !filled.ok;
-    st.counters["remove_rebuilt"] = fresh;
+    st.remove_rebuilt = fresh;
     start = filled.tet.data(), start_used = filled.used;
   }
   MovedStart3d moved;
@@ -166,7 +166,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
         S.duplicates == K.ndup && mesh::dup_changes(ex, K.dup_map(), dup_map, n) == 0;
     if (same_points) moved = moved_start(ex, K, R.xyz.data(), n, opt, st);
     fresh = !moved.ok;
-    st.counters["move_rebuilt"] = fresh;
+    st.move_rebuilt = fresh;
     st.phase_ms.push_back({"move_start", ms_since(t1)});
     if (moved.tet.size()) start = moved.tet.data(), start_used = moved.used;
   }
@@ -185,7 +185,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     st.phase_ms.push_back({"insert_flip", ms_since(t0)});
     repair_phase(ex, T, S.m, opt.progress, st);
   } else {
-    if (how == Update::Insert) st.counters["inserted_points"] = S.m - (K.n - K.ndup - K.nremoved);
+    if (how == Update::Insert) st.inserted_points = S.m - (K.n - K.ndup - K.nremoved);
     // input index -> prepared index; each new point's walk start (prepared indices; a move's
     // points taken out go back in as new points)
     const bool walks = how == Update::Insert || (how == Update::Move && moved.nout);
@@ -201,7 +201,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
     if (how == Update::Insert)
       mesh::curve_hints(ex, orig, S.m, n, mesh::BelowIndex{std::int32_t(K.n)}, hint);
     if (how == Update::Move && moved.nout) {
-      st.counters["move_reinserted"] = moved.nout;
+      st.move_reinserted = moved.nout;
       mesh::curve_hints(ex, orig, S.m, n, mesh::NotFlagged{moved.out.data()}, hint);
     }
     if (walks)
@@ -246,7 +246,7 @@ inline KeptArrays kept_update(Exec& ex, const KeptArrays& K, KeptArrays R, std::
 class KeptOn final : public Kept {
  public:
   explicit KeptOn(const Delaunay3dOptions& opt) : opt_(opt) {}
-  void insert(const double* xyz, std::int64_t n, bool on_device, Stats& st) override {
+  void insert(const double* xyz, std::int64_t n, bool on_device, Delaunay3dStats& st) override {
     if (n == 0 && K_.n) return;
     Exec ex(opt_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
@@ -255,7 +255,7 @@ class KeptOn final : public Kept {
     KeptArrays R = with_points(ex, K_, xyz, n, on_device, false, st);
     before_.commit(K_, kept_update(ex, K_, std::move(R), K_.n + n, Update::Insert, opt_, st));
   }
-  void move(const double* xyz, bool on_device, Stats& st) override {
+  void move(const double* xyz, bool on_device, Delaunay3dStats& st) override {
     Exec ex(opt_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
     ::gpugeom::detail::require_device_memory(ex, K_.n, kLeastBytesPerPoint,
@@ -263,7 +263,8 @@ class KeptOn final : public Kept {
     KeptArrays R = with_points(ex, K_, xyz, K_.n, on_device, true, st);
     before_.commit(K_, kept_update(ex, K_, std::move(R), K_.n, Update::Move, opt_, st));
   }
-  void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Stats& st) override {
+  void remove(const std::int32_t* idx, std::int64_t count, bool on_device,
+              Delaunay3dStats& st) override {
     if (count == 0) return;
     Exec ex(opt_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);

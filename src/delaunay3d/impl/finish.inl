@@ -59,29 +59,29 @@ inline Triangulator::Finished Triangulator::finish(const std::int32_t* orig) {
 
 inline void Triangulator::report() {
   const Counters c = counters();
-  st_.counters["device_bytes_phase1"] = peak_bytes_;
-  st_.counters["slots_used"] = c.used;
-  st_.counters["slots_capacity"] = cap_;
-  st_.counters["batches"] = batches_;
-  st_.counters["max_list"] = c.max_len;
-  st_.counters["max_epoch_records"] = c.max_log;
-  st_.counters["max_free_slots"] = c.max_free;
-  st_.counters["max_splits"] = max_nins_;
-  st_.counters["halts"] = c.halts;
-  st_.counters["carried_batches"] = c.carries;
-  st_.counters["log_capacity"] = log_cap_;
-  st_.counters["list_capacity"] = list_cap_;
-  st_.counters["ring_capacity"] = ring_cap_;
-  st_.counters["flip_rounds"] = c.rounds;
-  st_.counters["flips23"] = c.flips23;
-  st_.counters["flips32"] = c.flips32;
-  st_.counters["unflippable_tests"] = c.unflippable;
+  st_.device_bytes_phase1 = peak_bytes_;
+  st_.slots_used = c.used;
+  st_.slots_capacity = cap_;
+  st_.batches = batches_;
+  st_.max_list = c.max_len;
+  st_.max_epoch_records = c.max_log;
+  st_.max_free_slots = c.max_free;
+  st_.max_splits = max_nins_;
+  st_.halts = c.halts;
+  st_.carried_batches = c.carries;
+  st_.log_capacity = log_cap_;
+  st_.list_capacity = list_cap_;
+  st_.ring_capacity = ring_cap_;
+  st_.flip_rounds = c.rounds;
+  st_.flips23 = c.flips23;
+  st_.flips32 = c.flips32;
+  st_.unflippable_tests = c.unflippable;
   // Where phase 1's time goes (host clock; each part ends with a read of the counters):
   // choosing and splitting, rounds as kernels, rounds in a team.
-  st_.counters["us_choose_split"] = std::int64_t(1000 * ms_choose_);
-  st_.counters["us_rounds_wide"] = std::int64_t(1000 * ms_wide_);
-  st_.counters["us_rounds_team"] = std::int64_t(1000 * ms_team_);
-  st_.counters["round_chunks"] = chunks_;
-  st_.counters["team_launches"] = team_calls_;
-  st_.counters["failed_faces"] = c.failed_faces;
+  st_.us_choose_split = std::int64_t(1000 * ms_choose_);
+  st_.us_rounds_wide = std::int64_t(1000 * ms_wide_);
+  st_.us_rounds_team = std::int64_t(1000 * ms_team_);
+  st_.round_chunks = chunks_;
+  st_.team_launches = team_calls_;
+  st_.failed_faces = c.failed_faces;
 }

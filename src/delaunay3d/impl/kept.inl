@@ -201,7 +201,7 @@ inline MoveTest test_moved(Exec& ex, const Tet* tet, std::int64_t used, const do
 // The kept points with `add` more appended (host memory, or executor memory when on_device), or
 // all of them replaced (replace: move).
 inline KeptArrays with_points(Exec& ex, const KeptArrays& K, const double* xyz, std::int64_t add,
-                              bool on_device, bool replace, Stats& st) {
+                              bool on_device, bool replace, Delaunay3dStats& st) {
   const auto t0 = Clock::now();
   const std::int64_t keep = replace ? 0 : K.n, n = keep + add;
   KeptArrays R;
@@ -221,15 +221,15 @@ enum class Update { Insert, Move, Remove };
 
 // prepare_points over the points not removed (R.gone), its indices made input indices again
 // and its duplicate map widened to all n (mesh::to_input_indices).
-inline Prepared prepare_kept(Exec& ex, const KeptArrays& R, std::int64_t n, Stats& st) {
+inline Prepared prepare_kept(Exec& ex, const KeptArrays& R, std::int64_t n, Delaunay3dStats& st) {
   if (!R.nremoved) return prepare_points(ex, R.xyz.data(), n, true, st);
   const auto L = mesh::gather_live<3>(ex, R.xyz.data(), n, R.gone.data());
   Prepared P = prepare_points(ex, L.p.data(), L.count, true, st);
   mesh::SortedPoints<Exec>& S = P.S;
   S.dup =
       mesh::to_input_indices(ex, L, S.orig.data(), S.m, S.duplicates ? S.dup.data() : nullptr, n);
-  st.counters["points"] = n;
-  st.counters["removed_points"] = R.nremoved;
+  st.points = n;
+  st.removed_points = R.nremoved;
   return P;
 }
 
@@ -281,8 +281,8 @@ inline void store_of(Exec& ex, const std::int32_t* v, const std::int32_t* nb, st
 // set at the vertices of the staying tetrahedra across boundary faces D lacks
 // (mesh::refill_holes).
 inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const std::int8_t* now, const double* xyz,
-                          const std::int32_t* new_dup, const Delaunay3dOptions& opt, Stats& st,
-                          std::int8_t* mark = nullptr) {
+                          const std::int32_t* new_dup, const Delaunay3dOptions& opt,
+                          Delaunay3dStats& st, std::int8_t* mark = nullptr) {
   Refill3d out;
   const std::int64_t n = K.n;  // (a removal keeps every index)
   auto d_ov = ex.template alloc<std::int32_t>(std::size_t(4 * K.used));
@@ -303,7 +303,7 @@ inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const std::int8_t* now,
   std::int32_t* ids = d_ids.data();
   const std::int64_t nv = mesh::hole_vertices<4>(ex, d_ov.data(), K.used, d_hole.data(), now,
                                                  K.dup_map(), new_dup, n, ids);
-  st.counters["hole_vertices"] = nv;
+  st.hole_vertices = nv;
   if (nv < 4) return out;
   // D: the hole vertices' tetrahedralisation, its store in input indices
   auto d_p = ex.template alloc<double>(std::size_t(3 * nv));
@@ -315,7 +315,7 @@ inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const std::int8_t* now,
   typename Exec::template Buffer<Tet> dstore;
   std::int64_t dused = 0;
   try {
-    Stats sd;
+    Delaunay3dStats sd;
     Prepared PD = prepare_points(ex, p, nv, true, sd);
     if (PD.S.duplicates) return out;  // (the hole's vertices are distinct points)
     Triangulator TD(ex, PD.S.pts.data(), std::int32_t(PD.S.m), PD.first,
@@ -339,7 +339,7 @@ inline Refill3d refill_3d(Exec& ex, const KeptArrays& K, const std::int8_t* now,
       });
   auto f = mesh::refill_holes<4>(ex, d_ov.data(), d_on.data(), K.used, d_hole.data(), dv,
                                  d_dn.data(), dused, true, mark);
-  st.counters["hole_tetrahedra"] = f.inside;
+  st.hole_tetrahedra = f.inside;
   out.unmatched = f.unmatched;
   if (!f.ok) return out;
   out.tet = ex.template alloc<Tet>(std::size_t(f.count));

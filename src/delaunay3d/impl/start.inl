@@ -69,7 +69,7 @@ inline void Triangulator::start_from(const Tet* kept, std::int64_t used, const s
   std::int32_t* loc = loc_.data();
   const mesh::WalkCounts w = mesh::locate_by_walks<4>(
       ex_, m_, used, StartTets{g_, tet}, WalkFrom{near, in, slot_of}, 0, loc, &ctr_.data()->lost);
-  mesh::put_walk_counts(st_.counters, w);
+  mesh::put_walk_counts(st_, w);
   nun_ = ex_.compact_indices(
       m_, GG_LAMBDA(std::int64_t i) { return loc[i] >= 0; }, un_.data());
   check_errors();

@@ -11,7 +11,7 @@ struct Prepared {
   mesh::Tetra first;
 };
 inline Prepared prepare_points(Exec& ex, const double* in, std::int64_t n, bool on_device,
-                               Stats& st) {
+                               Delaunay3dStats& st) {
   const auto t0 = Clock::now();
   auto raw = ex.template alloc<double>(std::size_t(3 * n));
   if (on_device)
@@ -22,9 +22,9 @@ inline Prepared prepare_points(Exec& ex, const double* in, std::int64_t n, bool 
   if (box.bad) mesh::throw_bad_coordinates(box.bad);
   mesh::SortedPoints<Exec> S = mesh::sort_distinct<3>(ex, raw.data(), n, box);
   raw = typename Exec::template Buffer<double>();
-  st.counters["points"] = n;
-  st.counters["distinct_points"] = S.m;
-  st.counters["duplicates"] = S.duplicates;
+  st.points = n;
+  st.distinct_points = S.m;
+  st.duplicates = S.duplicates;
   if (S.m < 4)
     throw Error(ErrorCode::DegenerateInput,
                 "fewer than 4 distinct points (" + std::to_string(S.m) +
@@ -41,7 +41,7 @@ inline Prepared prepare_points(Exec& ex, const double* in, std::int64_t n, bool 
 // tetrahedra included; returns how many of those it holds. Counters and phases into st.
 // only: as find_failed's.
 inline std::int64_t repair_phase(Exec& ex, Triangulator& T, std::int64_t m,
-                                 const ProgressFn& progress, Stats& st,
+                                 const ProgressFn& progress, Delaunay3dStats& st,
                                  const std::int8_t* only = nullptr) {
   auto t0 = Clock::now();
   auto failed = ex.template alloc<std::int8_t>(std::size_t(m + 1));
@@ -58,18 +58,18 @@ inline std::int64_t repair_phase(Exec& ex, Triangulator& T, std::int64_t m,
     T.set_used(used);
   }
   st.phase_ms.push_back({"splay", ms_since(t0)});
-  st.counters["failed_vertices"] = rc.failed_vertices;
-  st.counters["stars_built"] = rc.stars_built;
-  st.counters["stars_changed"] = rc.stars_changed;
-  st.counters["star_insertions"] = rc.insertions;
-  st.counters["splay_rounds"] = rc.rounds;
-  st.counters["splay_removed"] = rc.removed;
-  st.counters["splay_added"] = rc.added;
-  st.counters["us_splay_build"] = std::int64_t(1000 * rc.build_ms);
-  st.counters["us_splay_rounds"] = std::int64_t(1000 * rc.splay_ms);
-  st.counters["us_splay_patch"] = std::int64_t(1000 * rc.patch_ms);
-  st.counters["us_splay_check"] = std::int64_t(1000 * rc.check_ms);
-  st.counters["us_splay_take"] = std::int64_t(1000 * rc.take_ms);
+  st.failed_vertices = rc.failed_vertices;
+  st.stars_built = rc.stars_built;
+  st.stars_changed = rc.stars_changed;
+  st.star_insertions = rc.insertions;
+  st.splay_rounds = rc.rounds;
+  st.splay_removed = rc.removed;
+  st.splay_added = rc.added;
+  st.us_splay_build = std::int64_t(1000 * rc.build_ms);
+  st.us_splay_rounds = std::int64_t(1000 * rc.splay_ms);
+  st.us_splay_patch = std::int64_t(1000 * rc.patch_ms);
+  st.us_splay_check = std::int64_t(1000 * rc.check_ms);
+  st.us_splay_take = std::int64_t(1000 * rc.take_ms);
   return nflat;
 }
 
@@ -78,7 +78,7 @@ inline std::int64_t repair_phase(Exec& ex, Triangulator& T, std::int64_t m,
 // duplicate map.
 template <class Body>
 inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on_device,
-                             const Delaunay3dOptions& opt, Stats& st, Body body) {
+                             const Delaunay3dOptions& opt, Delaunay3dStats& st, Body body) {
   const std::int64_t max_rounds = ex.tuning().del3d.max_flip_rounds;
   const ProgressFn& progress = opt.progress;
   Prepared P = prepare_points(ex, in, n, on_device, st);
@@ -104,7 +104,7 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   t0 = Clock::now();
   std::int64_t flats = 0;
   if (nflat > 0) flats = drop_flats(ex, T.g_, T.tet_.data(), T.counters().used);
-  st.counters["flat_tetrahedra"] = flats;
+  st.flat_tetrahedra = flats;
   st.phase_ms.push_back({"drop_flats", ms_since(t0)});
   t0 = Clock::now();
   if (progress) progress(Delaunay3dProgress{"output", S.m, S.m, 0});
@@ -216,7 +216,7 @@ inline void to_device_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compac
 constexpr double kLeastBytesPerPoint = 7 * 52 + 40;
 
 inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
-                             Output& out, Stats& st) {
+                             Output& out, Delaunay3dStats& st) {
   Exec ex(opt);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
   ::gpugeom::detail::require_device_memory(ex, n, kLeastBytesPerPoint,
@@ -228,7 +228,7 @@ inline void triangulate_impl(const double* xyz, std::int64_t n, const Delaunay3d
 }
 
 inline void triangulate_device_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
-                                    DeviceOutput& out, Stats& st,
+                                    DeviceOutput& out, Delaunay3dStats& st,
                                     const ::gpugeom::detail::ExecContext* outer) {
   Exec ex(opt, outer);
   const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);

@@ -31,7 +31,7 @@
 class Triangulator : public TetStore {
  public:
   Triangulator(Exec& ex, const double* pts, std::int32_t m, const mesh::Tetra& first,
-               std::int64_t max_rounds, const ProgressFn& progress, Stats& st)
+               std::int64_t max_rounds, const ProgressFn& progress, Delaunay3dStats& st)
       : TetStore(ex), st_(st), max_rounds_(max_rounds), progress_(progress) {
     m_ = m;
     g_.p = pts;
@@ -117,7 +117,7 @@ class Triangulator : public TetStore {
   void report();
 
   // state (the store's is TetStore's)
-  Stats& st_;
+  Delaunay3dStats& st_;
   std::int64_t max_rounds_ = -1;
   const ProgressFn& progress_;
   Geo g_;

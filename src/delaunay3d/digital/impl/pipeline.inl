@@ -22,7 +22,8 @@ struct DigitalStars {
 // Phases 1 and 2: the diagram, the working sets and every point's first star. Returns false,
 // building nothing, where many points lie on the box's planes (the incremental method then).
 inline bool digital_stars(Exec& ex, mesh::SortedPoints<Exec>& S, const mesh::Bounds<3>& box,
-                          const mesh::Tetra& first, std::int64_t grid, Stats& st, DigitalStars& D) {
+                          const mesh::Tetra& first, std::int64_t grid, Delaunay3dStats& st,
+                          DigitalStars& D) {
   auto t0 = Clock::now();
   auto phase = [&](const char* name) {
     ex.sync();
@@ -47,9 +48,9 @@ inline bool digital_stars(Exec& ex, mesh::SortedPoints<Exec>& S, const mesh::Bou
         std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
     std::int64_t on_box = 0;
     ex.to_host(cnt.data(), 1, &on_box);
-    st.counters["digital_points_on_box"] = on_box;
+    st.digital_points_on_box = on_box;
     if (on_box > std::max<std::int64_t>(4096, m / 100)) {
-      st.counters["digital_fallback"] = 1;
+      st.digital_fallback = 1;
       phase("digital_box_planes");
       return false;
     }
@@ -70,20 +71,20 @@ inline bool digital_stars(Exec& ex, mesh::SortedPoints<Exec>& S, const mesh::Bou
       side = finer;
       F = digital_frame(box, side);
       V = map_point_sites(ex, S.pts.data(), m, F);
-      st.counters["digital_grid_refined"] = 1;
+      st.digital_grid_refined = 1;
     }
   }
   phase("digital_grid");
   colour_cells(ex, m, F, V);
   phase("digital_pba");
-  st.counters["digital_grid"] = side;
-  st.counters["sites"] = V.nsites;
-  st.counters["sketch_missing"] = V.nmiss;
+  st.digital_grid = side;
+  st.sites = V.nsites;
+  st.sketch_missing = V.nmiss;
   WorkingSets W = working_sets(ex, m, F, V);
   V = PointVoronoi();
-  st.counters["digital_working_pairs"] = W.pairs;
-  st.counters["digital_working_set_points"] = W.total;
-  st.counters["digital_working_sets_augmented"] = W.augmented;
+  st.digital_working_pairs = W.pairs;
+  st.digital_working_set_points = W.total;
+  st.digital_working_sets_augmented = W.augmented;
   phase("digital_working_sets");
   D.g.p = S.pts.data();
   for (int k = 0; k < 3; ++k) D.g.s[k] = first.s[k];
@@ -94,25 +95,25 @@ inline bool digital_stars(Exec& ex, mesh::SortedPoints<Exec>& S, const mesh::Bou
   D.g.lease = D.pool.view;
   D.ctr = ex.template alloc<digital3d_impl::StarCounters>(1);
   D.T = create_stars(ex, D.g, m, W.start.data(), W.size.data(), W.pts.data(), D.ctr);
-  st.counters["digital_star_slots_created"] = D.T.slots;
+  st.digital_star_slots_created = D.T.slots;
   phase("digital_stars");
   return true;
 }
 
 // Phase 3 on the stars: splaying; false where a star grew too large (kHugeStar).
 // (vertex_rounds, first_requests: see splay_stars)
-inline bool digital_splay(Exec& ex, DigitalStars& D, Stats& st, bool vertex_rounds = true,
+inline bool digital_splay(Exec& ex, DigitalStars& D, Delaunay3dStats& st, bool vertex_rounds = true,
                           std::int64_t first_requests = 0) {
   const auto t0 = Clock::now();
   const SplayCount sc = splay_stars(ex, D.g, D.T, D.ctr, vertex_rounds, first_requests);
-  st.counters["digital_fallback"] = sc.gave_up ? 1 : 0;
-  st.counters["digital_splay_rounds"] = sc.rounds;
-  st.counters["digital_splay_vertex_rounds"] = sc.vertex_rounds;
-  st.counters["digital_star_insertions"] = sc.insertions;
-  st.counters["digital_star_requests"] = sc.requests;
-  st.counters["digital_splay_request_spills"] = sc.spills;
-  st.counters["digital_star_growths"] = D.T.growths;
-  st.counters["digital_star_slots"] = D.T.slots;
+  st.digital_fallback = sc.gave_up ? 1 : 0;
+  st.digital_splay_rounds = sc.rounds;
+  st.digital_splay_vertex_rounds = sc.vertex_rounds;
+  st.digital_star_insertions = sc.insertions;
+  st.digital_star_requests = sc.requests;
+  st.digital_splay_request_spills = sc.spills;
+  st.digital_star_growths = D.T.growths;
+  st.digital_star_slots = D.T.slots;
   ex.sync();
   st.phase_ms.push_back({"digital_splay", ms_since(t0)});
   // (the splay's parts, within digital_splay: the checks, the requests' sort, the takes)
@@ -124,11 +125,9 @@ inline bool digital_splay(Exec& ex, DigitalStars& D, Stats& st, bool vertex_roun
 
 // The whole method. Returns no result where it fell back (see above): the caller then runs
 // the incremental method.
-inline std::optional<mesh::Compacted<Exec>> digital_tets(Exec& ex, mesh::SortedPoints<Exec>& S,
-                                                         const mesh::Bounds<3>& box,
-                                                         const mesh::Tetra& first,
-                                                         std::int64_t grid,
-                                                         const ProgressFn& progress, Stats& st) {
+inline std::optional<mesh::Compacted<Exec>> digital_tets(
+    Exec& ex, mesh::SortedPoints<Exec>& S, const mesh::Bounds<3>& box, const mesh::Tetra& first,
+    std::int64_t grid, const ProgressFn& progress, Delaunay3dStats& st) {
   const std::int64_t m = S.m;
   DigitalStars D;
   if (!digital_stars(ex, S, box, first, grid, st, D)) return std::nullopt;
@@ -138,7 +137,7 @@ inline std::optional<mesh::Compacted<Exec>> digital_tets(Exec& ex, mesh::SortedP
   const auto t0 = Clock::now();
   std::int64_t flats = 0;
   mesh::Compacted<Exec> f = star_tets(ex, D.g, D.T, S.orig.data(), flats);
-  st.counters["flat_tetrahedra"] = flats;
+  st.flat_tetrahedra = flats;
   ex.sync();
   st.phase_ms.push_back({"digital_tetrahedra", ms_since(t0)});
   return f;
