@@ -274,9 +274,7 @@ struct KeptHull {
     EXPECT_EQ(std::vector<std::int32_t>(got.vertices.begin(), got.vertices.end()), want);
   }
   // (no vertex removed: the hull stayed)
-  static bool local_removal(const gpugeom::Hull3dStats& st) {
-    return st.removed_vertices == 0;
-  }
+  static bool local_removal(const gpugeom::Hull3dStats& st) { return st.removed_vertices == 0; }
   static bool enough_local(int local, int) { return local > 0; }
   static void shift(Point& p, double s, std::mt19937_64& rng) {
     std::normal_distribution<double> N(0, s);

@@ -191,7 +191,8 @@ class KeptHullOn final : public Kept {
     hull_of_live(ex, R, opt_, st);
     commit(ex, std::move(R));
   }
-  void remove(const std::int32_t* idx, std::int64_t count, bool on_device, Hull3dStats& st) override {
+  void remove(const std::int32_t* idx, std::int64_t count, bool on_device,
+              Hull3dStats& st) override {
     if (count == 0) return;
     Exec ex(opt_);
     const ::gpugeom::detail::DevicePeak<Exec> peak(ex, st);
