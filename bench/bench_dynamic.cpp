@@ -116,11 +116,13 @@ struct Two {
     return std::vector<std::int32_t>(&c.data()->front(), &c.data()->front() + 3 * c.size());
   }
   // Which path a move or a removal took (the triangulations' stats counters).
-  static const char* moved(const RunStats& s) {
-    return s.counter_map().at("move_rebuilt") ? "rebuilt" : "repaired";
+  template <class Stats>  // (Delaunay2dStats, Delaunay3dStats)
+  static const char* moved(const Stats& s) {
+    return s.move_rebuilt ? "rebuilt" : "repaired";
   }
-  static const char* removed(const RunStats& s) {
-    return s.counter_map().at("remove_rebuilt") ? "rebuilt" : "holes filled";
+  template <class Stats>
+  static const char* removed(const Stats& s) {
+    return s.remove_rebuilt ? "rebuilt" : "holes filled";
   }
 };
 struct Three {
@@ -158,8 +160,8 @@ struct Three {
     for (const auto& a : c) v.insert(v.end(), a.begin(), a.end());
     return v;
   }
-  static const char* moved(const RunStats& s) { return Two::moved(s); }
-  static const char* removed(const RunStats& s) { return Two::removed(s); }
+  static const char* moved(const Delaunay3dStats& s) { return Two::moved(s); }
+  static const char* removed(const Delaunay3dStats& s) { return Two::removed(s); }
 };
 struct Hull {
   using Point = Point3;

@@ -27,7 +27,7 @@ namespace gg_test {
 //   std::int64_t count(const Result&)
 //   void expect_same(got, fresh, ids, n)    what else must equal the fresh call's (ids: the
 //                                           points left, n: all points)
-//   bool local_removal(const RunStats&)     a removal that did not start over
+//   bool local_removal(const Stats&)        a removal that did not start over
 //   bool enough_local(int local, int removes)
 //   void shift(Point&, double scale, std::mt19937_64&)          a random displacement
 // KeptTriangulation gives the triangulations' expect_same (the duplicate map, from
@@ -44,8 +44,9 @@ struct KeptTriangulation {
     EXPECT_EQ(Derived::dup(got), want);
   }
   // (the holes filled, not the points left made afresh)
-  static bool local_removal(const gpugeom::RunStats& st) {
-    return st.counter_map().at("remove_rebuilt") == 0;
+  template <class Stats>  // (Delaunay2dStats, Delaunay3dStats)
+  static bool local_removal(const Stats& st) {
+    return st.remove_rebuilt == 0;
   }
   static bool enough_local(int local, int removes) { return local > removes / 2; }
 };
