@@ -93,12 +93,13 @@ double voronoi_device_ms(const std::vector<Point2>& p, Backend b, int reps) {
   const std::int64_t n = std::int64_t(p.size());
   Delaunay2dOptions o;
   o.backend = b;
+  const auto vo = options_from<Voronoi2dOptions>(o);
   if (b == Backend::Cpu) {
     const auto dt = delaunay2d_device(&p.data()->x, n, o);
     std::vector<double> t;
     for (int k = 0; k < reps; ++k) {
       const auto t0 = clk::now();
-      voronoi2d_device(&p.data()->x, n, dt, o);
+      voronoi2d_device(&p.data()->x, n, dt, vo);
       t.push_back(bench::ms_since(t0));
     }
     std::sort(t.begin(), t.end());
@@ -108,11 +109,11 @@ double voronoi_device_ms(const std::vector<Point2>& p, Backend b, int reps) {
   bench::device_resident_ms(p, 1, [&](const double* d, std::int64_t m) {
     if (out >= 0) return;  // (the warm-up call does the work)
     const auto dt = delaunay2d_device(d, m, o);
-    voronoi2d_device(d, m, dt, o);  // warm-up
+    voronoi2d_device(d, m, dt, vo);  // warm-up
     std::vector<double> t;
     for (int k = 0; k < reps; ++k) {
       const auto t0 = clk::now();
-      voronoi2d_device(d, m, dt, o);
+      voronoi2d_device(d, m, dt, vo);
       t.push_back(bench::ms_since(t0));
     }
     std::sort(t.begin(), t.end());
@@ -321,11 +322,13 @@ int main(int argc, char** argv) {
           double(r.stats.device_peak_bytes) / double(n));
       if (!digital.empty())
         digital_rows(in.name, in.pts, b, reps, digital, r, &f, b == Backend::Cuda ? gpu : "cpu");
-      if (voronoi) {  // the Voronoi diagram of the result: host loop, and on the executor
+      if (voronoi) {  // the Voronoi diagram of the result: host threads, and on the executor
         std::vector<double> th;
+        Voronoi2dOptions on_host;
+        on_host.backend = Backend::Cpu;
         for (int k = 0; k < reps; ++k) {
           const auto t0 = clk::now();
-          const Voronoi2d v = voronoi2d(&in.pts.data()->x, n, r);
+          const Voronoi2d v = voronoi2d(&in.pts.data()->x, n, r, on_host);
           th.push_back(bench::ms_since(t0));
         }
         std::sort(th.begin(), th.end());

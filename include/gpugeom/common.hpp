@@ -69,6 +69,17 @@ struct RunOptions {
   std::shared_ptr<const detail::Tuning> tuning;
 };
 
+/// A capability's options (Options derives from RunOptions) that run as `run` does: its
+/// RunOptions part copied, the rest Options' defaults. For passing one call's executor, stream,
+/// threads and memory on to another capability, e.g. voronoi2d_device(xy, n, tri,
+/// options_from<Voronoi2dOptions>(run)).
+template <class Options>
+Options options_from(const RunOptions& run) {
+  Options o;
+  static_cast<RunOptions&>(o) = run;
+  return o;
+}
+
 /// How a triangulation is computed (issue 20; Delaunay2dOptions::method). Both give exactly
 /// the same result (the same triangles for the same points: one simulation of simplicity).
 ///   Incremental: batches of points inserted, each followed by rounds of parallel flips.

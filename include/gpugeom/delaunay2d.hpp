@@ -236,12 +236,35 @@ class DynamicDelaunay2d {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Where voronoi2d and voronoi2d_device write the diagram, when given: the caller's arrays (host
+/// memory for voronoi2d, device memory for voronoi2d_device; host memory where it runs on the
+/// CPU executor), each at least as long as the result's array of that name: vertices 2
+/// num_vertices, ridge_points, ridge_vertices and ridge_directions 2 num_ridges, cell_offsets
+/// num_points + 1, cell_vertices num_cell_vertices, simplex_vertex the triangulation's
+/// num_triangles. They are checked once the counts are known and before anything is written
+/// (Error(InvalidArgument) naming the array and both lengths). An output written into a caller's
+/// array is empty (null) in the result; the counts say how much of it was written.
+struct Voronoi2dBuffers {
+  OutBuffer<double> vertices;
+  OutBuffer<std::int32_t> ridge_points, ridge_vertices;
+  OutBuffer<double> ridge_directions;
+  OutBuffer<std::int64_t> cell_offsets;
+  OutBuffer<std::int32_t> cell_vertices, simplex_vertex;
+};
+
+/// How voronoi2d (from a triangulation) and voronoi2d_device run: the executor (RunOptions) and
+/// where the arrays go.
+struct Voronoi2dOptions : RunOptions {
+  Voronoi2dBuffers into;  ///< optional
+};
+
 /// The Voronoi diagram dual to a Delaunay triangulation, in SciPy's `Voronoi` conventions.
 /// Its vertices are the circumcentres of the triangles, one per circle: triangles whose points lie
 /// on one circle exactly (the exact in-circle test) share a vertex, so no ridge has length zero
 /// (as SciPy's: a 3x3 grid has 4 vertices). They are numbered in the order of their first
 /// triangles.
 struct Voronoi2d {
+  std::int64_t num_points = 0, num_vertices = 0, num_ridges = 0, num_cell_vertices = 0;
   HostVector<double> vertices;  ///< circumcentres, x and y interleaved
   /// Ridges: the pair of input points each ridge separates, and its two Voronoi vertices
   /// (-1 for a ridge that goes to infinity).
@@ -256,15 +279,24 @@ struct Voronoi2d {
   HostVector<double> ridge_directions;
   /// Per triangle of the triangulation, its Voronoi vertex.
   HostVector<std::int32_t> simplex_vertex;
+  /// Phase "voronoi" ("upload" before it where a host triangulation went up to CUDA; the
+  /// one-call entry's phases are in its stats argument).
+  RunStats stats;
 };
 /// The Voronoi diagram of the n points xy (x and y interleaved) from their triangulation tri
-/// (delaunay2d's result for the same points).
-Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri);
+/// (delaunay2d's result for the same points, its arrays in the result), computed on the executor
+/// opt picks: on the CPU executor from the caller's arrays where they are; on CUDA the points and
+/// the triangulation go up once and only the diagram comes back (or goes into opt.into). The
+/// arrays are the same on both. Throws Error(InvalidArgument) when tri does not belong to these
+/// points or an array of opt.into is too short.
+Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri,
+                    const Voronoi2dOptions& opt = {});
 /// The triangulation of host points and its Voronoi diagram in one call, both made on the
-/// executor opt picks: on CUDA the points cross the bus once and only the results come back
-/// (voronoi2d(xy, n, tri) computes the diagram on the host threads, from a triangulation already
-/// there). tri, when given, receives the triangulation (as delaunay2d returns it; opt.into is not
-/// used); stats, when given, the phases and counters of both. Throws as delaunay2d.
+/// executor opt picks: on CUDA the points cross the bus once and only the results come back.
+/// tri, when given, receives the triangulation (as delaunay2d returns it; opt.into is not used);
+/// stats, when given, the phases and counters of both. A composition of two capabilities: for
+/// the diagram in the caller's arrays, run delaunay2d (or delaunay2d_device) and voronoi2d (or
+/// voronoi2d_device) with Voronoi2dOptions::into. Throws as delaunay2d.
 Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                     Triangulation2d* tri = nullptr, Delaunay2dStats* stats = nullptr);
 
@@ -283,12 +315,14 @@ struct DeviceVoronoi2d {
 };
 /// The same diagram for a triangulation left on the device (delaunay2d_device), computed there:
 /// device_xy its n points (device memory; host memory where tri.backend is Backend::Cpu), on
-/// run.stream of run.device; the arrays as Voronoi2d's, in device memory of the call's resource
-/// (RunOptions::memory) (freed when the last copy of their pointer goes). The executor is tri's
-/// (tri.backend). Throws Error(InvalidArgument) when tri's arrays went into the caller's arrays
-/// (into) or do not belong to these points.
+/// opt.stream of opt.device; the arrays as Voronoi2d's, in device memory of the call's resource
+/// (RunOptions::memory) (freed when the last copy of their pointer goes), or in the caller's
+/// (opt.into). The executor is tri's (tri.backend): opt.backend is not read. Throws
+/// Error(InvalidArgument) when tri's arrays went into the caller's arrays (into) or do not belong
+/// to these points, or an array of opt.into is too short.
 DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
-                                 const DeviceTriangulation2d& tri, const RunOptions& run = {});
+                                 const DeviceTriangulation2d& tri,
+                                 const Voronoi2dOptions& opt = {});
 
 /// The furthest-site Delaunay triangulation (issue 49; SciPy's furthest_site=True): of the
 /// extreme points of the hull, counter-clockwise triangles whose circumcircles each hold every

@@ -13,12 +13,37 @@
 
 namespace gpugeom {
 
-/// Statistics of a 3D Voronoi diagram: RunStats (phase "voronoi"; the one-call host entry adds
-/// "upload" and, with tri, "copy_tetrahedralisation") and the counters.
+/// Statistics of a 3D Voronoi diagram: RunStats (phase "voronoi"; "upload" before it where the
+/// points went up to CUDA; the one-call host entry adds, with tri, "copy_tetrahedralisation")
+/// and the counters.
 struct Voronoi3dStats : RunStats {
   std::int64_t voronoi_vertices = 0, voronoi_ridges = 0;  ///< the diagram's
 
   std::map<std::string, std::int64_t> counter_map() const override;
+};
+
+/// Where voronoi3d and voronoi3d_device write the diagram, when given: the caller's arrays (host
+/// memory for voronoi3d, device memory for voronoi3d_device; host memory where it runs on the
+/// CPU executor), each at least as long as the result's array of that name: vertices 3
+/// num_vertices, ridge_points 2 num_ridges, ridge_offsets num_ridges + 1, ridge_vertices
+/// num_ridge_vertices, region_offsets num_points + 1, region_vertices num_region_vertices,
+/// simplex_vertex the tetrahedralisation's num_tetrahedra. They are checked once the counts are
+/// known and before anything is written (Error(InvalidArgument) naming the array and both
+/// lengths). An output written into a caller's array is empty (null) in the result; the counts
+/// say how much of it was written.
+struct Voronoi3dBuffers {
+  OutBuffer<double> vertices;
+  OutBuffer<std::int32_t> ridge_points;
+  OutBuffer<std::int64_t> ridge_offsets;
+  OutBuffer<std::int32_t> ridge_vertices;
+  OutBuffer<std::int64_t> region_offsets;
+  OutBuffer<std::int32_t> region_vertices, simplex_vertex;
+};
+
+/// How voronoi3d (from a tetrahedralisation) and voronoi3d_device run: the executor
+/// (RunOptions) and where the arrays go.
+struct Voronoi3dOptions : RunOptions {
+  Voronoi3dBuffers into;  ///< optional
 };
 
 /// The Voronoi diagram of the points (issue 49), dual to their Delaunay tetrahedralisation, in
@@ -29,6 +54,8 @@ struct Voronoi3dStats : RunStats {
 /// subdivision); edges that only cut a cospherical cell into tetrahedra have none, so no ridge is
 /// degenerate.
 struct Voronoi3d {
+  std::int64_t num_points = 0, num_vertices = 0, num_ridges = 0, num_ridge_vertices = 0,
+               num_region_vertices = 0;
   HostVector<double> vertices;             ///< 3 per vertex
   HostVector<std::int32_t> ridge_points;   ///< 2 per ridge: the points it separates
   HostVector<std::int64_t> ridge_offsets;  ///< ridges + 1 offsets into ridge_vertices
@@ -43,13 +70,19 @@ struct Voronoi3d {
   HostVector<std::int32_t> simplex_vertex;  ///< per tetrahedron, its Voronoi vertex
   Voronoi3dStats stats;
 };
-/// From a tetrahedralisation on the host (delaunay3d's, its arrays in the result), computed on the
-/// host threads. Throws Error(InvalidArgument) when tri does not belong to these n points.
-Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tri);
+/// From a tetrahedralisation on the host (delaunay3d's, its arrays in the result), computed on
+/// the executor opt picks: on the CPU executor from the caller's arrays where they are; on CUDA
+/// the points and the tetrahedralisation go up once and only the diagram comes back (or goes
+/// into opt.into). The arrays are the same on both. Throws Error(InvalidArgument) when tri does
+/// not belong to these n points or an array of opt.into is too short.
+Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tri,
+                    const Voronoi3dOptions& opt = {});
 /// The tetrahedralisation of host points and its Voronoi diagram in one call, both made on the
-/// executor opt picks: on CUDA the points cross the bus once and only the results come back
-/// (voronoi3d(xyz, n, tri) computes the diagram on the host threads). tri, when given, receives
-/// the tetrahedralisation (as delaunay3d returns it; opt.into is not used). Throws as delaunay3d.
+/// executor opt picks: on CUDA the points cross the bus once and only the results come back.
+/// tri, when given, receives the tetrahedralisation (as delaunay3d returns it; opt.into is not
+/// used). A composition of two capabilities: for the diagram in the caller's arrays, run
+/// delaunay3d (or delaunay3d_device) and voronoi3d (or voronoi3d_device) with
+/// Voronoi3dOptions::into. Throws as delaunay3d.
 Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                     Triangulation3d* tri = nullptr);
 
@@ -68,11 +101,12 @@ struct DeviceVoronoi3d {
   Voronoi3dStats stats;
 };
 /// The same diagram for a tetrahedralisation left where delaunay3d_device or a kept one put it,
-/// computed there (tri.backend's executor, run.stream of run.device): device_xyz its n points
-/// (device memory; host memory where tri.backend is Backend::Cpu). The arrays as Voronoi3d's, in
-/// device memory of the call's resource (RunOptions::memory) (freed when the last copy of their
-/// pointer goes). Throws as voronoi3d.
+/// computed there (tri.backend's executor, opt.stream of opt.device; opt.backend is not read):
+/// device_xyz its n points (device memory; host memory where tri.backend is Backend::Cpu). The
+/// arrays as Voronoi3d's, in device memory of the call's resource (RunOptions::memory) (freed
+/// when the last copy of their pointer goes), or in the caller's (opt.into). Throws as voronoi3d.
 DeviceVoronoi3d voronoi3d_device(const double* device_xyz, std::int64_t n,
-                                 const DeviceTriangulation3d& tri, const RunOptions& run = {});
+                                 const DeviceTriangulation3d& tri,
+                                 const Voronoi3dOptions& opt = {});
 
 }  // namespace gpugeom

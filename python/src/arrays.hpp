@@ -79,9 +79,7 @@ nb::object device_array(std::shared_ptr<T> p, std::vector<std::size_t> shape, Ba
 // Options of type Opt (a RunOptions) from the Python keywords and the input.
 template <class Opt>
 Opt options_for(const std::string& backend, nb::handle stream, int threads, const Input& in) {
-  Opt o;
-  static_cast<RunOptions&>(o) = run_options(backend, stream, threads, in);
-  return o;
+  return options_from<Opt>(run_options(backend, stream, threads, in));
 }
 
 // f() with the interpreter unlocked (the library's work never touches Python objects).

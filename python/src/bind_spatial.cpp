@@ -167,6 +167,16 @@ nb::dict dynamic2d_result(const Dynamic2dState& self) {
   return triangulation2d_dict(t, n);
 }
 
+// The options of a Voronoi diagram made from host arrays on the host threads (the kept
+// triangulations' host results, the furthest-site triangulation): run's thread count.
+template <class Options>
+Options on_host(const RunOptions& run) {
+  Options o;
+  o.backend = Backend::Cpu;
+  o.threads = run.threads;
+  return o;
+}
+
 void put_voronoi_host(nb::dict& r, Voronoi2d& v, std::int64_t n) {
   const sz nv = v.vertices.size() / 2, nr = v.ridge_points.size() / 2;
   const sz ncv = v.cell_vertices.size(), nt = v.simplex_vertex.size();
@@ -218,7 +228,7 @@ nb::dict voronoi2d_bind(const AnyArray& points, const std::string& backend, nb::
     {
       nb::gil_scoped_release released;
       t = delaunay2d_device(pts(in), n, o);
-      v = voronoi2d_device(pts(in), n, t, o);
+      v = voronoi2d_device(pts(in), n, t, options_from<Voronoi2dOptions>(o));
     }
     return voronoi_dict(t, v, n, device_of(o));
   }
@@ -242,7 +252,7 @@ nb::dict furthest_site2d_bind(const AnyArray& points, int threads, bool voronoi)
   const std::int64_t n = in.shape[0];
   Triangulation2d t = unlocked([&] { return furthest_site_delaunay2d(pts(in), n, o); });
   if (voronoi) {
-    Voronoi2d v = unlocked([&] { return voronoi2d(pts(in), n, t); });
+    Voronoi2d v = unlocked([&] { return voronoi2d(pts(in), n, t, on_host<Voronoi2dOptions>(o)); });
     return voronoi_dict(t, v, n);
   }
   return triangulation2d_dict(t, n);
@@ -263,7 +273,7 @@ nb::dict dynamic_voronoi(const Dynamic2dState& self, const AnyArray& points) {
     {
       nb::gil_scoped_release released;
       t = self.t.device_triangulation();
-      v = voronoi2d_device(pts(in), n, t, self.run);
+      v = voronoi2d_device(pts(in), n, t, options_from<Voronoi2dOptions>(self.run));
     }
     return voronoi_dict(t, v, n, self.device);
   }
@@ -272,7 +282,7 @@ nb::dict dynamic_voronoi(const Dynamic2dState& self, const AnyArray& points) {
   {
     nb::gil_scoped_release released;
     t = self.t.triangulation();
-    v = voronoi2d(pts(in), n, t);
+    v = voronoi2d(pts(in), n, t, on_host<Voronoi2dOptions>(self.run));
   }
   return voronoi_dict(t, v, n);
 }
@@ -427,7 +437,7 @@ nb::dict voronoi3d_bind(const AnyArray& points, const std::string& backend, nb::
     {
       nb::gil_scoped_release released;
       t = delaunay3d_device(pts(in), n, o);
-      v = voronoi3d_device(pts(in), n, t, o);
+      v = voronoi3d_device(pts(in), n, t, options_from<Voronoi3dOptions>(o));
     }
     return voronoi3d_dict(t, v, n, device_of(o));
   }
@@ -479,7 +489,7 @@ nb::dict dynamic_voronoi3d(const Dynamic3dState& self, const AnyArray& points) {
     {
       nb::gil_scoped_release released;
       t = self.t.device_tetrahedralisation();
-      v = voronoi3d_device(pts(in), n, t, self.run);
+      v = voronoi3d_device(pts(in), n, t, options_from<Voronoi3dOptions>(self.run));
     }
     return voronoi3d_dict(t, v, n, self.device);
   }
@@ -488,7 +498,7 @@ nb::dict dynamic_voronoi3d(const Dynamic3dState& self, const AnyArray& points) {
   {
     nb::gil_scoped_release released;
     t = self.t.tetrahedralisation();
-    v = voronoi3d(pts(in), n, t);
+    v = voronoi3d(pts(in), n, t, on_host<Voronoi3dOptions>(self.run));
   }
   return voronoi3d_dict(t, v, n);
 }

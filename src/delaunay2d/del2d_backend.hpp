@@ -40,9 +40,15 @@ struct VoronoiEntries {
   // the executor's memory; into `host` where given (the host entry), else left in `out`. outer:
   // the calling executor's context (exec/exec_context.hpp), or null.
   void (*voronoi)(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
-                  const std::int32_t* dup, std::int64_t nt, const RunOptions& run,
+                  const std::int32_t* dup, std::int64_t nt, const Voronoi2dOptions& run,
                   DeviceVoronoiOutput& out, RunStats& stats, Voronoi2d* host,
                   const detail::ExecContext* outer);
+  // voronoi2d(xy, n, tri, opt): the same diagram from host arrays (dup: the duplicate map, n
+  // entries), into v (its arrays or opt.into's): over them where the executor reads host
+  // memory, else uploaded once.
+  void (*of_host)(const double* xy, std::int64_t n, const std::int32_t* tri, const std::int32_t* nb,
+                  const std::int32_t* dup, std::int64_t nt, const Voronoi2dOptions& opt,
+                  Voronoi2d& v);
   // voronoi2d(xy, n, opt, tri) where the executor does not read host memory: the points go up
   // once, both structures are made there, and only the results come back. Null on the CPU.
   void (*from_host)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt, Voronoi2d& v,

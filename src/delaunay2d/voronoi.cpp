@@ -49,19 +49,18 @@ bool walk_star(const Triangulation2d& tri, std::int64_t c, F visit) {
 
 }  // namespace
 
-// The host entry runs the executor's algorithm on the CPU executor over the caller's arrays
-// (all host threads; the same arrays as the device entry's, bit for bit).
-Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri) {
+// The host entry: the executor's algorithm over the caller's arrays (the CPU executor), or over
+// their one upload; the same arrays on both, bit for bit.
+Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Triangulation2d& tri,
+                    const Voronoi2dOptions& opt) {
   check_sizes(n, tri);
+  const Backend b = resolve_backend(opt.backend, opt.device);
   Voronoi2d v;
-  del2d::DeviceVoronoiOutput unused;
-  RunStats st;
-  RunOptions run;
-  run.backend = Backend::Cpu;
-  del2d::cpu_impl::voronoi_entries.voronoi(
-      xy, n, tri.triangles.data(), tri.neighbors.data(),
-      tri.duplicate_of.data(),  // (copies; removed points: empty cells)
-      tri.num_triangles, run, unused, st, &v, nullptr);
+  v.stats.backend = b;
+  GG_TABLE(b, del2d, voronoi_entries)
+      .of_host(xy, n, tri.triangles.data(), tri.neighbors.data(),
+               tri.duplicate_of.data(),  // (copies; removed points: empty cells)
+               tri.num_triangles, opt, v);
   return v;
 }
 
@@ -75,21 +74,24 @@ Voronoi2d voronoi2d(const double* xy, std::int64_t n, const Delaunay2dOptions& o
   if (on.from_host && opt.method == Method::Incremental) {
     del2d::check_count(n);
     Voronoi2d v;
+    v.stats.backend = b;
     on.from_host(xy, n, opt, v, tri, st);
     return v;
   }
-  Triangulation2d t = delaunay2d(xy, n, opt);
-  Voronoi2d v = voronoi2d(xy, n, t);
+  Delaunay2dOptions o = opt;
+  o.into = {};
+  Triangulation2d t = delaunay2d(xy, n, o);
+  Voronoi2d v = voronoi2d(xy, n, t, options_from<Voronoi2dOptions>(opt));
   st = t.stats;
   if (tri) *tri = std::move(t);
   return v;
 }
 
 DeviceVoronoi2d voronoi2d_device(const double* device_xy, std::int64_t n,
-                                 const DeviceTriangulation2d& tri, const RunOptions& run) {
+                                 const DeviceTriangulation2d& tri, const Voronoi2dOptions& opt) {
   return detail::run_device_voronoi<DeviceVoronoi2d>(
       GG_TABLE(tri.backend, del2d, voronoi_entries), device_xy, n, tri, tri.triangles.get(),
-      tri.num_triangles, run, "triangulation", "triangles", "Delaunay2dOptions");
+      tri.num_triangles, opt, "triangulation", "triangles", "Delaunay2dOptions");
 }
 
 ClippedCells clip_voronoi_cells(const double* xy, std::int64_t n, const Triangulation2d& tri,

@@ -16,9 +16,10 @@ namespace gpugeom {
 GG_COUNTER_MAP(Voronoi3dStats, GG_VORONOI3D_COUNTERS);
 #undef GG_VORONOI3D_COUNTERS
 
-// The host entry runs the executor's algorithm on the CPU executor over the caller's arrays (all
-// host threads; the same arrays as the device entry's, bit for bit).
-Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tri) {
+// The host entry: the executor's algorithm over the caller's arrays (the CPU executor), or over
+// their one upload; the same arrays on both, bit for bit.
+Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tri,
+                    const Voronoi3dOptions& opt) {
   const std::int64_t nt = tri.num_tetrahedra;
   if (tri.tetrahedra.size() != std::size_t(4 * nt) || tri.neighbors.size() != std::size_t(4 * nt))
     throw Error(ErrorCode::InvalidArgument,
@@ -28,13 +29,12 @@ Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Triangulation3d& tr
   if (std::int64_t(tri.duplicate_of.size()) != n)
     throw Error(ErrorCode::InvalidArgument,
                 "the tetrahedralisation does not belong to these " + std::to_string(n) + " points");
+  const Backend b = resolve_backend(opt.backend, opt.device);
   Voronoi3d v;
-  DeviceVoronoi3d unused;
-  RunOptions run;
-  run.backend = Backend::Cpu;
-  del3d::cpu_impl::voronoi_entries.voronoi(xyz, n, tri.tetrahedra.data(), tri.neighbors.data(),
-                                           tri.duplicate_of.data(), nt, run, unused, v.stats, &v,
-                                           nullptr);
+  v.stats.backend = b;
+  GG_TABLE(b, del3d, voronoi_entries)
+      .of_host(xyz, n, tri.tetrahedra.data(), tri.neighbors.data(), tri.duplicate_of.data(), nt,
+               opt, v);
   return v;
 }
 
@@ -52,16 +52,16 @@ Voronoi3d voronoi3d(const double* xyz, std::int64_t n, const Delaunay3dOptions& 
   Delaunay3dOptions o = opt;
   o.into = {};
   Triangulation3d t = delaunay3d(xyz, n, o);
-  Voronoi3d v = voronoi3d(xyz, n, t);
+  Voronoi3d v = voronoi3d(xyz, n, t, options_from<Voronoi3dOptions>(opt));
   if (tri) *tri = std::move(t);
   return v;
 }
 
 DeviceVoronoi3d voronoi3d_device(const double* device_xyz, std::int64_t n,
-                                 const DeviceTriangulation3d& tri, const RunOptions& run) {
+                                 const DeviceTriangulation3d& tri, const Voronoi3dOptions& opt) {
   return detail::run_device_voronoi<DeviceVoronoi3d>(
       GG_TABLE(tri.backend, del3d, voronoi_entries), device_xyz, n, tri, tri.tetrahedra.get(),
-      tri.num_tetrahedra, run, "tetrahedralisation", "tetrahedra", "Delaunay3dOptions");
+      tri.num_tetrahedra, opt, "tetrahedralisation", "tetrahedra", "Delaunay3dOptions");
 }
 
 }  // namespace gpugeom

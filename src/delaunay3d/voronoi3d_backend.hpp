@@ -20,8 +20,14 @@ struct VoronoiEntries {
   // executor's context (exec/exec_context.hpp), or null.
   void (*voronoi)(const double* xyz, std::int64_t n, const std::int32_t* tet,
                   const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                  const RunOptions& run, DeviceVoronoi3d& out, Voronoi3dStats& stats,
+                  const Voronoi3dOptions& run, DeviceVoronoi3d& out, Voronoi3dStats& stats,
                   Voronoi3d* host, const detail::ExecContext* outer);
+  // voronoi3d(xyz, n, tri, opt): the same diagram from host arrays (dup: the duplicate map, n
+  // entries), into v (its arrays or opt.into's): over them where the executor reads host
+  // memory, else uploaded once.
+  void (*of_host)(const double* xyz, std::int64_t n, const std::int32_t* tet,
+                  const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
+                  const Voronoi3dOptions& opt, Voronoi3d& v);
   // voronoi3d(xyz, n, opt, tri) where the executor does not read host memory: the points go up
   // once, both structures are made there, and only the results come back. Null on the CPU.
   void (*from_host)(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt, Voronoi3d& v,

@@ -65,9 +65,9 @@ auto run_device_entry(Pick pick, const double* device_p, std::int64_t n, const O
 // with tri.neighbors and tri.duplicate_of) belongs to the n points p and holds its arrays, then
 // runs `table`'s voronoi on tri's executor. what: the structure's name in the messages
 // ("triangulation"); parts: its arrays'; options: its options type.
-template <class Vor, class Table, class Tri>
+template <class Vor, class Table, class Tri, class Options>
 Vor run_device_voronoi(const Table& table, const double* p, std::int64_t n, const Tri& tri,
-                       const std::int32_t* simplices, std::int64_t ns, const RunOptions& run,
+                       const std::int32_t* simplices, std::int64_t ns, const Options& run,
                        const std::string& what, const std::string& parts,
                        const std::string& options) {
   if (tri.num_points != n)

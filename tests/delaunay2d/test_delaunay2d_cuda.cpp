@@ -201,7 +201,9 @@ void expect_voronoi_as_on_the_host(const std::vector<Point2>& p) {
   Delaunay2dOptions o;
   o.backend = Backend::Cuda;
   const auto h = delaunay2d(p, o);
-  const auto ref = voronoi2d(&p.data()->x, n, h);
+  Voronoi2dOptions cpu;
+  cpu.backend = Backend::Cpu;
+  const auto ref = voronoi2d(&p.data()->x, n, h, cpu);
   ASSERT_EQ(v.num_ridges, std::int64_t(ref.ridge_points.size() / 2));
   ASSERT_EQ(v.num_cell_vertices, std::int64_t(ref.cell_vertices.size()));
   auto get = [](const auto& ptr, std::int64_t count) {
@@ -238,6 +240,41 @@ void expect_voronoi_as_on_the_host(const std::vector<Point2>& p) {
             std::vector<std::int32_t>(ref.cell_vertices.begin(), ref.cell_vertices.end()));
   EXPECT_EQ(get(v.simplex_vertex, dt.num_triangles),
             std::vector<std::int32_t>(ref.simplex_vertex.begin(), ref.simplex_vertex.end()));
+  // The diagram of the host triangulation made on the GPU (Voronoi2dOptions, one upload): the
+  // same arrays.
+  Voronoi2dOptions gpu;
+  gpu.backend = Backend::Cuda;
+  const auto up = voronoi2d(&p.data()->x, n, h, gpu);
+  EXPECT_EQ(up.stats.backend, Backend::Cuda);
+  ASSERT_EQ(up.stats.phase_ms.size(), 2u);
+  EXPECT_EQ(up.stats.phase_ms[0].first, "upload");
+  EXPECT_EQ(up.num_ridges, v.num_ridges);
+  EXPECT_EQ(up.ridge_points, ref.ridge_points);
+  EXPECT_EQ(up.ridge_vertices, ref.ridge_vertices);
+  EXPECT_EQ(up.cell_offsets, ref.cell_offsets);
+  EXPECT_EQ(up.cell_vertices, ref.cell_vertices);
+  EXPECT_EQ(up.simplex_vertex, ref.simplex_vertex);
+  // The device entry into the caller's device arrays: the same arrays, the library's left null.
+  if (v.num_cell_vertices > 0 && dt.num_triangles > 0) {
+    std::int32_t* cv = nullptr;
+    std::int32_t* sv = nullptr;
+    ASSERT_EQ(cudaMalloc(&cv, v.num_cell_vertices * sizeof(std::int32_t)), cudaSuccess);
+    ASSERT_EQ(cudaMalloc(&sv, dt.num_triangles * sizeof(std::int32_t)), cudaSuccess);
+    gpu.into.cell_vertices = {cv, v.num_cell_vertices};
+    gpu.into.simplex_vertex = {sv, dt.num_triangles};
+    const auto vi = voronoi2d_device(dp, n, dt, gpu);
+    EXPECT_FALSE(vi.cell_vertices || vi.simplex_vertex);
+    EXPECT_TRUE(vi.ridge_points && vi.cell_offsets);
+    EXPECT_EQ(vi.num_cell_vertices, v.num_cell_vertices);
+    std::vector<std::int32_t> hc(std::size_t(v.num_cell_vertices)),
+        hs(std::size_t(dt.num_triangles));
+    EXPECT_EQ(cudaMemcpy(hc.data(), cv, hc.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
+    EXPECT_EQ(cudaMemcpy(hs.data(), sv, hs.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
+    EXPECT_EQ(hc, std::vector<std::int32_t>(ref.cell_vertices.begin(), ref.cell_vertices.end()));
+    EXPECT_EQ(hs, std::vector<std::int32_t>(ref.simplex_vertex.begin(), ref.simplex_vertex.end()));
+    cudaFree(cv);
+    cudaFree(sv);
+  }
   cudaFree(dp);
   // The host entry that makes both on the device: the same triangulation and diagram.
   Triangulation2d t2;

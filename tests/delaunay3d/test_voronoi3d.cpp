@@ -190,14 +190,15 @@ TEST(Voronoi3d, Errors) {
     dt = delaunay3d_device(&p.data()->x, 100, o);
   }
   const auto v = voronoi3d(&p.data()->x, 100, t);
-  const auto d = voronoi3d_device(&p.data()->x, 100, dt, cpu());
+  const auto d = voronoi3d_device(&p.data()->x, 100, dt, options_from<Voronoi3dOptions>(cpu()));
   ASSERT_EQ(d.num_vertices, std::int64_t(v.vertices.size() / 3));
   EXPECT_EQ(std::vector<double>(d.vertices.get(), d.vertices.get() + 3 * d.num_vertices),
             std::vector<double>(v.vertices.begin(), v.vertices.end()));
   EXPECT_EQ(std::vector<std::int32_t>(d.ridge_vertices.get(),
                                       d.ridge_vertices.get() + d.num_ridge_vertices),
             std::vector<std::int32_t>(v.ridge_vertices.begin(), v.ridge_vertices.end()));
-  EXPECT_THROW((void)voronoi3d_device(&p.data()->x, 99, dt, cpu()), Error);
+  EXPECT_THROW((void)voronoi3d_device(&p.data()->x, 99, dt, options_from<Voronoi3dOptions>(cpu())),
+               Error);
   // both structures in one call: the same as one after the other
   Triangulation3d t2;
   const auto both = voronoi3d(&p.data()->x, 100, cpu(), &t2);

@@ -28,7 +28,9 @@ void expect_as_on_the_host(const std::vector<Point3>& p) {
   Delaunay3dOptions o;
   o.backend = Backend::Cuda;
   const auto h = delaunay3d(p, o);  // (the same tetrahedra, in the same order)
-  const auto ref = voronoi3d(&p.data()->x, n, h);
+  Voronoi3dOptions cpu;
+  cpu.backend = Backend::Cpu;
+  const auto ref = voronoi3d(&p.data()->x, n, h, cpu);
   ASSERT_EQ(3 * v.num_vertices, std::int64_t(ref.vertices.size()));
   const auto x = gg_test::from_device(v.vertices, 3 * v.num_vertices);
   for (std::size_t k = 0; k < x.size(); ++k)  // (equal, or NaN on both)
@@ -52,6 +54,36 @@ void expect_as_on_the_host(const std::vector<Point3>& p) {
   EXPECT_EQ(both.ridge_vertices, ref.ridge_vertices);
   EXPECT_EQ(both.region_vertices, ref.region_vertices);
   EXPECT_EQ(both.simplex_vertex, ref.simplex_vertex);
+  // The diagram of the host tetrahedralisation made on the GPU (Voronoi3dOptions, one upload):
+  // the same arrays.
+  Voronoi3dOptions gpu;
+  gpu.backend = Backend::Cuda;
+  const auto up = voronoi3d(&p.data()->x, n, h, gpu);
+  EXPECT_EQ(up.stats.backend, Backend::Cuda);
+  ASSERT_EQ(up.stats.phase_ms.size(), 2u);
+  EXPECT_EQ(up.stats.phase_ms[0].first, "upload");
+  EXPECT_EQ(up.num_ridges, ref.num_ridges);
+  EXPECT_EQ(up.ridge_offsets, ref.ridge_offsets);
+  EXPECT_EQ(up.ridge_vertices, ref.ridge_vertices);
+  EXPECT_EQ(up.region_offsets, ref.region_offsets);
+  EXPECT_EQ(up.region_vertices, ref.region_vertices);
+  EXPECT_EQ(up.simplex_vertex, ref.simplex_vertex);
+  // The device entry into the caller's device arrays: the same arrays, the library's left null.
+  if (ref.num_ridge_vertices > 0 && dt.num_tetrahedra > 0) {
+    const gg_test::DeviceCopy rv(
+        std::vector<std::int32_t>(std::size_t(ref.num_ridge_vertices), -7));
+    const gg_test::DeviceCopy sv(std::vector<std::int32_t>(std::size_t(dt.num_tetrahedra), -7));
+    gpu.into.ridge_vertices = {static_cast<std::int32_t*>(rv.data()), ref.num_ridge_vertices};
+    gpu.into.simplex_vertex = {static_cast<std::int32_t*>(sv.data()), dt.num_tetrahedra};
+    const auto vi = voronoi3d_device(dp, n, dt, gpu);
+    EXPECT_FALSE(vi.ridge_vertices || vi.simplex_vertex);
+    EXPECT_TRUE(vi.ridge_points && vi.region_vertices);
+    EXPECT_EQ(vi.num_ridge_vertices, ref.num_ridge_vertices);
+    EXPECT_EQ(gg_test::back(static_cast<const std::int32_t*>(rv.data()), ref.num_ridge_vertices),
+              vec(ref.ridge_vertices));
+    EXPECT_EQ(gg_test::back(static_cast<const std::int32_t*>(sv.data()), dt.num_tetrahedra),
+              vec(ref.simplex_vertex));
+  }
 }
 }  // namespace
 

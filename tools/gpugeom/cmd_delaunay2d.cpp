@@ -187,7 +187,7 @@ int cmd_delaunay2d(const Global& g, Args& a) {
   const bool want_vor = !vor_path.empty();
   if (want_vor) {
     Timer t(g, "voronoi");
-    vor = voronoi2d(p.coords.data(), n, tri);
+    vor = voronoi2d(p.coords.data(), n, tri, options_from<Voronoi2dOptions>(opt));
     std::vector<double> box;
     if (!clip_s.empty()) box = parse_box(clip_s);
     if (!box.empty() || !draw.empty()) {

@@ -10,8 +10,7 @@ inline void triangulate_core(Exec& ex, const double* pts, std::int64_t n, const 
                              DeviceConstrainedTriangulation2d& out, RecoveryCounts& rc) {
   Cdt2dStats& st = out.stats;
   const auto t0 = Clock::now();
-  Delaunay2dOptions dopt;
-  static_cast<RunOptions&>(dopt) = opt;
+  Delaunay2dOptions dopt = options_from<Delaunay2dOptions>(opt);
   del2d::DeviceOutput dt;
   Delaunay2dStats dst;
   const ::gpugeom::detail::ExecContext ctx = ex.context();  // (one stream, one memory count)

@@ -62,7 +62,7 @@ GG_HD inline bool vor_ridge(const std::int32_t* nb, const std::int32_t* vid, std
 
 inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* tri,
                          const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                         const RunOptions& run, DeviceVoronoiOutput& out, RunStats& st,
+                         const Voronoi2dOptions& run, DeviceVoronoiOutput& out, RunStats& st,
                          Voronoi2d* host, const ::gpugeom::detail::ExecContext* outer) {
   const auto t0 = std::chrono::steady_clock::now();
   Exec ex(run, outer);
@@ -152,30 +152,47 @@ inline void voronoi_impl(const double* xy, std::int64_t n, const std::int32_t* t
           if (run.step(vid[t]) && at < len) o[at++] = vid[t];
         });
       });
+  // The caller's arrays, checked before anything is written to them.
+  const Voronoi2dBuffers& into = run.into;
+  deliver::check(into.vertices, 2 * nv, "vertices");
+  deliver::check(into.ridge_points, 2 * nr, "ridge_points");
+  deliver::check(into.ridge_vertices, 2 * nr, "ridge_vertices");
+  deliver::check(into.ridge_directions, 2 * nr, "ridge_directions");
+  deliver::check(into.cell_offsets, n + 1, "cell_offsets");
+  deliver::check(into.cell_vertices, ncv, "cell_vertices");
+  deliver::check(into.simplex_vertex, nt, "simplex_vertex");
   if (host) {  // the host entry: into its HostVectors (on the CPU executor a parallel copy)
-    const OutBuffer<double> nd{};
-    const OutBuffer<I32> ni{};
-    const OutBuffer<I64> nl{};
-    deliver::to_host(ex, v, 2 * nv, nd, host->vertices);
-    deliver::to_host(ex, rp, 2 * nr, ni, host->ridge_points);
-    deliver::to_host(ex, rv, 2 * nr, ni, host->ridge_vertices);
-    deliver::to_host(ex, rd, 2 * nr, nd, host->ridge_directions);
-    deliver::to_host(ex, off, n + 1, nl, host->cell_offsets);
-    deliver::to_host(ex, cv, ncv, ni, host->cell_vertices);
-    deliver::to_host(ex, vid, nt, ni, host->simplex_vertex);
+    deliver::to_host(ex, v, 2 * nv, into.vertices, host->vertices);
+    deliver::to_host(ex, rp, 2 * nr, into.ridge_points, host->ridge_points);
+    deliver::to_host(ex, rv, 2 * nr, into.ridge_vertices, host->ridge_vertices);
+    deliver::to_host(ex, rd, 2 * nr, into.ridge_directions, host->ridge_directions);
+    deliver::to_host(ex, off, n + 1, into.cell_offsets, host->cell_offsets);
+    deliver::to_host(ex, cv, ncv, into.cell_vertices, host->cell_vertices);
+    deliver::to_host(ex, vid, nt, into.simplex_vertex, host->simplex_vertex);
+    host->num_points = n;
+    host->num_vertices = nv;
+    host->num_ridges = nr;
+    host->num_cell_vertices = ncv;
     st.phase_ms.push_back({"voronoi", ms_since(t0)});
     return;
   }
+  auto p_v = deliver::place(ex, vx, 2 * nv, into.vertices);
+  auto p_rp = deliver::place(ex, rpb, 2 * nr, into.ridge_points);
+  auto p_rv = deliver::place(ex, rvb, 2 * nr, into.ridge_vertices);
+  auto p_rd = deliver::place(ex, rdb, 2 * nr, into.ridge_directions);
+  auto p_off = deliver::place(ex, offb, n + 1, into.cell_offsets);
+  auto p_cv = deliver::place(ex, cvb, ncv, into.cell_vertices);
+  auto p_sv = deliver::place(ex, V.of, nt, into.simplex_vertex);
   ex.sync();  // the caller may read them now (and free them on any stream)
   out.num_vertices = nv;
   out.num_ridges = nr;
   out.num_cell_vertices = ncv;
-  out.vertices = vx.hand_over();
-  out.ridge_points = rpb.hand_over();
-  out.ridge_vertices = rvb.hand_over();
-  out.ridge_directions = rdb.hand_over();
-  out.cell_offsets = offb.hand_over();
-  out.cell_vertices = cvb.hand_over();
-  out.simplex_vertex = V.of.hand_over();
+  out.vertices = p_v.own();
+  out.ridge_points = p_rp.own();
+  out.ridge_vertices = p_rv.own();
+  out.ridge_directions = p_rd.own();
+  out.cell_offsets = p_off.own();
+  out.cell_vertices = p_cv.own();
+  out.simplex_vertex = p_sv.own();
   st.phase_ms.push_back({"voronoi", ms_since(t0)});
 }

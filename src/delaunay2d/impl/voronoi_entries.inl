@@ -18,8 +18,9 @@ inline void voronoi_from_host(const double* xy, std::int64_t n, const Delaunay2d
   const ::gpugeom::detail::ExecContext ctx = ex.context();
   entries.device(up.data(), n, o, d, stats, &ctx);
   DeviceVoronoiOutput unused;
+  const auto vo = options_from<Voronoi2dOptions>(opt);
   voronoi_impl(up.data(), n, d.triangles.get(), d.neighbors.get(),
-               d.num_duplicates ? d.duplicate_of.get() : nullptr, d.num_triangles, opt, unused,
+               d.num_duplicates ? d.duplicate_of.get() : nullptr, d.num_triangles, vo, unused,
                stats, &v, &ctx);
   if (!tri) return;
   const auto t1 = std::chrono::steady_clock::now();
@@ -32,5 +33,33 @@ inline void voronoi_from_host(const double* xy, std::int64_t n, const Delaunay2d
   stats.phase_ms.push_back({"copy_triangulation", ms_since(t1)});
 }
 
-const VoronoiEntries voronoi_entries{&voronoi_impl,
+// voronoi2d(xy, n, tri, opt): on the CPU executor over the caller's arrays where they are; on
+// one that does not read host memory, the points and the triangulation go up once and only the
+// diagram comes back.
+inline void voronoi_of_host(const double* xy, std::int64_t n, const std::int32_t* tri,
+                            const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
+                            const Voronoi2dOptions& opt, Voronoi2d& v) {
+  DeviceVoronoiOutput unused;
+  if constexpr (Exec::backend == Backend::Cpu) {
+    voronoi_impl(xy, n, tri, nb, dup, nt, opt, unused, v.stats, &v, nullptr);
+  } else {
+    const auto t0 = std::chrono::steady_clock::now();
+    Exec ex(opt);
+    const ::gpugeom::detail::DevicePeak<Exec> peak(ex, v.stats);  // (the whole call's)
+    auto d_xy = ex.template alloc<double>(std::size_t(2 * n));
+    auto d_tri = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
+    auto d_nb = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
+    auto d_dup = ex.template alloc<std::int32_t>(std::size_t(n));
+    ex.from_host(xy, 2 * n, d_xy.data());
+    ex.from_host(tri, 3 * nt, d_tri.data());
+    ex.from_host(nb, 3 * nt, d_nb.data());
+    ex.from_host(dup, n, d_dup.data());
+    v.stats.phase_ms.push_back({"upload", ms_since(t0)});
+    const ::gpugeom::detail::ExecContext ctx = ex.context();
+    voronoi_impl(d_xy.data(), n, d_tri.data(), d_nb.data(), d_dup.data(), nt, opt, unused, v.stats,
+                 &v, &ctx);
+  }
+}
+
+const VoronoiEntries voronoi_entries{&voronoi_impl, &voronoi_of_host,
                                      Exec::backend == Backend::Cpu ? nullptr : &voronoi_from_host};

@@ -145,8 +145,7 @@ inline void voronoi_cells_impl(const double* xyz_in, std::int64_t n, bool input_
     st.attempts = attempt;
     // 2. The tetrahedralisation and its ridges: each original's neighbours, sorted.
     t0 = std::chrono::steady_clock::now();
-    Delaunay3dOptions o;
-    static_cast<RunOptions&>(o) = opt;
+    Delaunay3dOptions o = options_from<Delaunay3dOptions>(opt);
     check_count(N);
     DeviceTriangulation3d tri;
     const ::gpugeom::detail::ExecContext ctx = ex.context();  // (one stream, one memory count)

@@ -254,7 +254,7 @@ inline void vor3_ridge_lengths(Exec& ex, const double* xyz, const std::int32_t* 
 
 inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t* tet,
                            const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
-                           const RunOptions& run, DeviceVoronoi3d& out, Voronoi3dStats& st,
+                           const Voronoi3dOptions& run, DeviceVoronoi3d& out, Voronoi3dStats& st,
                            Voronoi3d* host, const ::gpugeom::detail::ExecContext* outer) {
   const auto t0 = std::chrono::steady_clock::now();
   Exec ex(run, outer);
@@ -385,31 +385,49 @@ inline void voronoi3d_impl(const double* xyz, std::int64_t n, const std::int32_t
                 std::to_string(nmiss) +
                     " point(s) are not vertices of the tetrahedralisation: it does not belong to "
                     "these points");
+  // The caller's arrays, checked before anything is written to them.
+  const Voronoi3dBuffers& into = run.into;
+  deliver::check(into.vertices, 3 * nv, "vertices");
+  deliver::check(into.ridge_points, 2 * nr, "ridge_points");
+  deliver::check(into.ridge_offsets, nr + 1, "ridge_offsets");
+  deliver::check(into.ridge_vertices, nrv, "ridge_vertices");
+  deliver::check(into.region_offsets, n + 1, "region_offsets");
+  deliver::check(into.region_vertices, ncv, "region_vertices");
+  deliver::check(into.simplex_vertex, nt, "simplex_vertex");
   if (host) {  // the host entry: into its HostVectors (on the CPU executor a parallel copy)
-    const OutBuffer<double> nd{};
-    const OutBuffer<I32> ni{};
-    const OutBuffer<I64> nl{};
-    deliver::to_host(ex, v, 3 * nv, nd, host->vertices);
-    deliver::to_host(ex, rp, 2 * nr, ni, host->ridge_points);
-    deliver::to_host(ex, ro, nr + 1, nl, host->ridge_offsets);
-    deliver::to_host(ex, rv, nrv, ni, host->ridge_vertices);
-    deliver::to_host(ex, off, n + 1, nl, host->region_offsets);
-    deliver::to_host(ex, cv, ncv, ni, host->region_vertices);
-    deliver::to_host(ex, vid, nt, ni, host->simplex_vertex);
+    deliver::to_host(ex, v, 3 * nv, into.vertices, host->vertices);
+    deliver::to_host(ex, rp, 2 * nr, into.ridge_points, host->ridge_points);
+    deliver::to_host(ex, ro, nr + 1, into.ridge_offsets, host->ridge_offsets);
+    deliver::to_host(ex, rv, nrv, into.ridge_vertices, host->ridge_vertices);
+    deliver::to_host(ex, off, n + 1, into.region_offsets, host->region_offsets);
+    deliver::to_host(ex, cv, ncv, into.region_vertices, host->region_vertices);
+    deliver::to_host(ex, vid, nt, into.simplex_vertex, host->simplex_vertex);
+    host->num_points = n;
+    host->num_vertices = nv;
+    host->num_ridges = nr;
+    host->num_ridge_vertices = nrv;
+    host->num_region_vertices = ncv;
     st.phase_ms.push_back({"voronoi", ms_since(t0)});
     return;
   }
+  auto p_v = deliver::place(ex, vx, 3 * nv, into.vertices);
+  auto p_rp = deliver::place(ex, rpb, 2 * nr, into.ridge_points);
+  auto p_ro = deliver::place(ex, rob, nr + 1, into.ridge_offsets);
+  auto p_rv = deliver::place(ex, rvb, nrv, into.ridge_vertices);
+  auto p_off = deliver::place(ex, offb, n + 1, into.region_offsets);
+  auto p_cv = deliver::place(ex, cvb, ncv, into.region_vertices);
+  auto p_sv = deliver::place(ex, V.of, nt, into.simplex_vertex);
   ex.sync();  // the caller may read them now (and free them on any stream)
   out.num_vertices = nv;
   out.num_ridges = nr;
   out.num_ridge_vertices = nrv;
   out.num_region_vertices = ncv;
-  out.vertices = vx.hand_over();
-  out.ridge_points = rpb.hand_over();
-  out.ridge_offsets = rob.hand_over();
-  out.ridge_vertices = rvb.hand_over();
-  out.region_offsets = offb.hand_over();
-  out.region_vertices = cvb.hand_over();
-  out.simplex_vertex = V.of.hand_over();
+  out.vertices = p_v.own();
+  out.ridge_points = p_rp.own();
+  out.ridge_offsets = p_ro.own();
+  out.ridge_vertices = p_rv.own();
+  out.region_offsets = p_off.own();
+  out.region_vertices = p_cv.own();
+  out.simplex_vertex = p_sv.own();
   st.phase_ms.push_back({"voronoi", ms_since(t0)});
 }

@@ -19,8 +19,9 @@ inline void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3
   const ::gpugeom::detail::ExecContext ctx = ex.context();
   entries.device(up.data(), n, o, d, d.stats, &ctx);
   DeviceVoronoi3d unused;
+  const auto vo = options_from<Voronoi3dOptions>(opt);
   voronoi3d_impl(up.data(), n, d.tetrahedra.get(), d.neighbors.get(),
-                 d.num_duplicates ? d.duplicate_of.get() : nullptr, d.num_tetrahedra, opt, unused,
+                 d.num_duplicates ? d.duplicate_of.get() : nullptr, d.num_tetrahedra, vo, unused,
                  v.stats, &v, &ctx);
   if (!tri) return;
   const auto t1 = std::chrono::steady_clock::now();
@@ -37,6 +38,34 @@ inline void voronoi_from_host(const double* xyz, std::int64_t n, const Delaunay3
   tri->stats.phase_ms.push_back({"copy_tetrahedralisation", ms_since(t1)});
 }
 
-const VoronoiEntries voronoi_entries{&voronoi3d_impl,
+// voronoi3d(xyz, n, tri, opt): on the CPU executor over the caller's arrays where they are; on
+// one that does not read host memory, the points and the tetrahedralisation go up once and only
+// the diagram comes back.
+inline void voronoi_of_host(const double* xyz, std::int64_t n, const std::int32_t* tet,
+                            const std::int32_t* nb, const std::int32_t* dup, std::int64_t nt,
+                            const Voronoi3dOptions& opt, Voronoi3d& v) {
+  DeviceVoronoi3d unused;
+  if constexpr (Exec::backend == Backend::Cpu) {
+    voronoi3d_impl(xyz, n, tet, nb, dup, nt, opt, unused, v.stats, &v, nullptr);
+  } else {
+    const auto t0 = std::chrono::steady_clock::now();
+    Exec ex(opt);
+    const ::gpugeom::detail::DevicePeak<Exec> peak(ex, v.stats);  // (the whole call's)
+    auto d_xyz = ex.template alloc<double>(std::size_t(3 * n));
+    auto d_tet = ex.template alloc<std::int32_t>(std::size_t(4 * nt));
+    auto d_nb = ex.template alloc<std::int32_t>(std::size_t(4 * nt));
+    auto d_dup = ex.template alloc<std::int32_t>(std::size_t(n));
+    ex.from_host(xyz, 3 * n, d_xyz.data());
+    ex.from_host(tet, 4 * nt, d_tet.data());
+    ex.from_host(nb, 4 * nt, d_nb.data());
+    ex.from_host(dup, n, d_dup.data());
+    v.stats.phase_ms.push_back({"upload", ms_since(t0)});
+    const ::gpugeom::detail::ExecContext ctx = ex.context();
+    voronoi3d_impl(d_xyz.data(), n, d_tet.data(), d_nb.data(), d_dup.data(), nt, opt, unused,
+                   v.stats, &v, &ctx);
+  }
+}
+
+const VoronoiEntries voronoi_entries{&voronoi3d_impl, &voronoi_of_host,
                                      Exec::backend == Backend::Cpu ? nullptr : &voronoi_from_host,
                                      &voronoi_cells_impl};

@@ -170,8 +170,7 @@ inline void refine_core(Exec& ex, const double* xy, std::int64_t n, const std::i
   std::vector<std::int32_t> base(2 * std::size_t(nseg));
   ex.to_host(segs, 2 * nseg, base.data());
 
-  Cdt2dOptions copt;
-  static_cast<RunOptions&>(copt) = opt;
+  Cdt2dOptions copt = options_from<Cdt2dOptions>(opt);
   copt.domain = opt.domain;
   copt.holes = opt.holes;
   for (std::size_t i = 0; i < opt.regions.size(); ++i)
