@@ -108,7 +108,11 @@ inline void Triangulator::peel() {
             atomic_add(&ctr->flips, std::int64_t(1));
           }
         });
-    fix_round(act, &ctr->peel_list, nflat);
+    FlipRound F = make_round();  // (its fix over the peel's list)
+    F.act = act;
+    F.count = &ctr->peel_list;
+    listed(
+        F.count, nflat, GG_LAMBDA(std::int64_t i) { F.fix(i); });
     const Counters c = counters();
     flips_ += c.flips;
     if (c.flips == 0) break;

@@ -15,12 +15,11 @@
 // away at the end, which leaves every finite triangle of positive area.
 //
 // The parts: the store (store.inl), this class with the start (start.inl), the batches and the
-// points' relocation (batch.inl), the flip rounds (rounds.inl), the flat triangles' peel, the
+// points' relocation (batch.inl), the flip round's steps (flip_round.inl) and their schedule
+// (rounds.inl), the flat triangles' peel, the
 // output and the statistics (finish.inl); the pipeline around it is triangulate.inl.
 
 constexpr std::int64_t kMaxRounds = 1000000;  // per batch; every round flips at least once
-constexpr bool kReadAhead = Exec::backend == Backend::Cuda;  // (see the flip kernel)
-constexpr std::int64_t kSmallRound = 8192;  // (counted: rounds whose launches are mostly latency)
 // Lists this short run this many rounds between two reads of the counters.
 constexpr std::int64_t kChunkList = 65536;
 constexpr int kChunkRounds = 4;
@@ -73,13 +72,12 @@ class Triangulator : public TriStore {
     ex_.for_each_counted(count, bound, f);
   }
   void flip_until_delaunay(bool first_round);
+  FlipRound make_round(int edges = 3);
   void flip_round(std::int64_t bound, bool first_round, bool checked);
   void count_proposals(std::int64_t bound);
   std::vector<std::int64_t> check_round(std::int64_t bound, int edges);
-  void vote_and_flip(const std::int32_t* act, const std::int64_t* count, std::int64_t bound,
-                     std::int64_t lo_in, std::int64_t hi_in, bool first_part);
+  void vote_and_flip(std::int64_t bound, std::int64_t lo_in, std::int64_t hi_in, bool first_part);
   void exact_pass(std::int64_t bound, int edges, const std::int64_t* listed, bool first);
-  void fix_round(const std::int32_t* act, const std::int64_t* count, std::int64_t bound);
 
   // finish.inl: the flat triangles peeled, the finite triangles in input indices (left on the
   // executor), the statistics.

@@ -4,6 +4,7 @@
 #include "delaunay2d/impl/geometry.inl"
 #include "delaunay2d/impl/prepare.inl"
 #include "delaunay2d/impl/mesh.inl"
+#include "delaunay2d/impl/flip_round.inl"
 #include "delaunay2d/impl/store.inl"
 #include "delaunay2d/impl/triangulator.inl"
 #include "delaunay2d/impl/start.inl"
