@@ -184,7 +184,7 @@ int main(int argc, char** argv) {
   std::string dists = "uniform", sizes = "1e5,1e6", backends = "all", csv, files, digital;
   int reps = 3;
   bool cgal = false, check = false, voronoi = false;
-  std::shared_ptr<const detail::Tuning> tuning;  // --capacities
+  std::shared_ptr<detail::Tuning> tuning;  // --capacities, --team
   std::int64_t sample = 0;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
@@ -205,15 +205,17 @@ int main(int argc, char** argv) {
       check = true;
     else if (a == "--sample")  // K triangles checked exactly (any size)
       sample = std::stoll(next());
-    else if (a == "--capacities") {  // B,L,X: the flip rounds' capacities (0 = the default)
-      auto t = std::make_shared<detail::Tuning>();
-      detail::Tuning::Del2d& c = t->del2d;
+    else if (a == "--team") {  // the longest list whose rounds run in a team (-1: none)
+      if (!tuning) tuning = std::make_shared<detail::Tuning>();
+      tuning->del2d.team_list = std::stoll(next());
+    } else if (a == "--capacities") {  // B,L,X: the flip rounds' capacities (0 = the default)
+      if (!tuning) tuning = std::make_shared<detail::Tuning>();
+      detail::Tuning::Del2d& c = tuning->del2d;
       if (std::sscanf(next().c_str(), "%lld,%lld,%lld", (long long*)&c.batch_points,
                       (long long*)&c.log_records, (long long*)&c.exact_entries) != 3) {
         std::cout << "--capacities takes three counts: batch points, log records, exact entries\n";
         return 2;
       }
-      tuning = t;
     } else if (a == "--digital") {  // grid sides for the digital method (0: automatic)
       digital = next();
     } else if (a == "--voronoi")
@@ -221,10 +223,10 @@ int main(int argc, char** argv) {
     else if (a == "--csv")
       csv = next();
     else {
-      std::cout
-          << "usage: gpugeom_bench_del2d [--dists uniform,circle] [--sizes 1e5,1e6] "
-             "[--files a.npy,b.npy] [--backend cpu|cuda|all] [--reps 3] [--cgal] [--check] "
-             "[--sample K] [--capacities B,L,X] [--voronoi] [--digital 0,8192] [--csv FILE]\n";
+      std::cout << "usage: gpugeom_bench_del2d [--dists uniform,circle] [--sizes 1e5,1e6] "
+                   "[--files a.npy,b.npy] [--backend cpu|cuda|all] [--reps 3] [--cgal] [--check] "
+                   "[--sample K] [--capacities B,L,X] [--team N] [--voronoi] [--digital 0,8192] "
+                   "[--csv FILE]\n";
       return a == "--help" ? 0 : 2;
     }
   }
@@ -304,7 +306,7 @@ int main(int argc, char** argv) {
       if (b == Backend::Cuda) {
         try {  // (the points on the device besides the library's arrays: may not fit)
           dev = bench::device_resident_ms(
-              in.pts, reps, [](const double* d, std::int64_t n) { delaunay2d_device(d, n); });
+              in.pts, reps, [&](const double* d, std::int64_t n) { delaunay2d_device(d, n, o); });
         } catch (const Error& e) {
           std::printf("    device-resident entry refused: %s\n", e.what());
         }
@@ -315,11 +317,11 @@ int main(int argc, char** argv) {
                   bench::phase_ms(r.stats, "output"), n / med / 1e3, (long long)r.stats.batches,
                   (long long)r.stats.flip_rounds, cg, verdict.c_str());
       std::printf(
-          "    flips %lld, exact-list rest passes %lld, relocations for a full log %lld, "
-          "rounds flipped in parts %lld, device peak %.1f B a point\n",
-          (long long)r.stats.flips, (long long)r.stats.exact_rest_passes,
-          (long long)r.stats.log_relocations, (long long)r.stats.split_flip_rounds,
-          double(r.stats.device_peak_bytes) / double(n));
+          "    flips %lld, rounds in a team %lld, exact-list rest passes %lld, relocations for a "
+          "full log %lld, rounds flipped in parts %lld, device peak %.1f B a point\n",
+          (long long)r.stats.flips, (long long)r.stats.team_flip_rounds,
+          (long long)r.stats.exact_rest_passes, (long long)r.stats.log_relocations,
+          (long long)r.stats.split_flip_rounds, double(r.stats.device_peak_bytes) / double(n));
       if (!digital.empty())
         digital_rows(in.name, in.pts, b, reps, digital, r, &f, b == Backend::Cuda ? gpu : "cpu");
       if (voronoi) {  // the Voronoi diagram of the result: host threads, and on the executor

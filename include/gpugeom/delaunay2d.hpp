@@ -56,8 +56,9 @@ struct Delaunay2dStats : RunStats {
   /// The points given, those distinct, and those equal to an earlier one.
   std::int64_t points = 0, distinct_points = 0, duplicates = 0;
   /// Insertion batches, flip rounds (with a non-empty work list; of them those shorter than a
-  /// full round: small_flip_rounds) and flips.
-  std::int64_t batches = 0, flip_rounds = 0, small_flip_rounds = 0, flips = 0;
+  /// full round: small_flip_rounds, and those run in one team of threads, without a launch per
+  /// step: team_flip_rounds) and flips.
+  std::int64_t batches = 0, flip_rounds = 0, small_flip_rounds = 0, team_flip_rounds = 0, flips = 0;
   /// Work-list entries, and of them those the floating-point filter left to the exact
   /// predicates.
   std::int64_t work_list_entries = 0, exact_predicates = 0;

@@ -14,15 +14,15 @@ namespace gpugeom {
 
 // clang-format off
 #define GG_DELAUNAY2D_COUNTERS(X)                                                                 \
-  X(points) X(distinct_points) X(duplicates) X(batches) X(flip_rounds) X(small_flip_rounds)      \
-  X(flips) X(work_list_entries) X(exact_predicates) X(exact_rest_passes) X(log_relocations)      \
-  X(split_flip_rounds) X(flat_triangles) X(start_walk_steps) X(start_walk_scans)                 \
-  X(start_walk_longest) X(grid_width) X(grid_height) X(sites) X(sketch_missing)                  \
-  X(debris_pixels) X(debris_candidates) X(pinched_corners) X(hull_triangles) X(sketch_not_disk) \
-  X(shifted) X(bad_inner) X(bad_boundary) X(shift_rounds) X(delete_rounds) X(start_vertices)     \
-  X(start_triangles) X(digital_fallback) X(inserted_points) X(removed_points) X(hole_vertices)    \
-  X(hole_triangles) X(remove_rebuilt) X(move_rounds) X(move_taken_out) X(move_reinserted)        \
-  X(move_rebuilt) X(furthest_site_vertices)
+  X(points) X(distinct_points) X(duplicates) X(batches) X(flip_rounds) X(small_flip_rounds)       \
+  X(team_flip_rounds) X(flips) X(work_list_entries) X(exact_predicates) X(exact_rest_passes)      \
+  X(log_relocations) X(split_flip_rounds) X(flat_triangles) X(start_walk_steps)                   \
+  X(start_walk_scans) X(start_walk_longest) X(grid_width) X(grid_height) X(sites)                 \
+  X(sketch_missing) X(debris_pixels) X(debris_candidates) X(pinched_corners) X(hull_triangles)    \
+  X(sketch_not_disk) X(shifted) X(bad_inner) X(bad_boundary) X(shift_rounds) X(delete_rounds)     \
+  X(start_vertices) X(start_triangles) X(digital_fallback) X(inserted_points) X(removed_points)   \
+  X(hole_vertices) X(hole_triangles) X(remove_rebuilt) X(move_rounds) X(move_taken_out)           \
+  X(move_reinserted) X(move_rebuilt) X(furthest_site_vertices)
 // clang-format on
 GG_COUNTER_MAP(Delaunay2dStats, GG_DELAUNAY2D_COUNTERS);
 #undef GG_DELAUNAY2D_COUNTERS

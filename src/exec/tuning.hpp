@@ -24,6 +24,9 @@ struct Tuning {
     // The first triangle slot's number (clamped so that the last slot is 2^30 - 1): small inputs
     // then run through the top of the wide slot encoding (bit 31 set in neighbour pointers).
     std::int64_t slot_base = 0;
+    // The longest work list whose flip rounds run in one team (0: the rule's, twice the team's
+    // size; -1: none, every round as kernels).
+    std::int64_t team_list = 0;
   } del2d;
   struct Hull3d {
     // The facet store's first size in slots (0: the rule's, hull3d::first_facet_slots), so that

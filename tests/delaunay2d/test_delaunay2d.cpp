@@ -654,6 +654,41 @@ TEST(Delaunay2d, PastTheRoundsCapacities) {
   for (const auto& [k, v] : seen) EXPECT_GT(v, 0) << k;
 }
 
+// The flip rounds of short lists in one team of threads (flip_until_delaunay) or as kernels
+// (Tuning::Del2d::team_list -1): the same arrays and the same rounds, whether the team takes
+// every round it may (a list of any length, up to a round that needs a check: past the flip
+// log's or the exact list's capacity, forced small, it hands the round back to the checked
+// kernels), only lists of up to 3 entries, or none.
+TEST(Delaunay2d, RoundsInATeamOrAsKernels) {
+  std::vector<gg_del2d::Case> cases = gg_del2d::degenerate_cases();
+  for (auto& c : gg_del2d::distribution_cases({100, 20000}, 9)) cases.push_back(std::move(c));
+  const std::vector<Capacities> teams = {
+      {0, 0, 0, 0, 1 << 30}, {0, 16, 2, 0, 1 << 30}, {0, 0, 0, 0, 3}, {0, 0, 0, 0, 0}};
+  std::vector<std::int64_t> team_rounds(teams.size(), 0);
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    Capacities none;
+    none.team_list = -1;
+    const auto ref =
+        delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) { t.del2d = none; }));
+    EXPECT_EQ(ref.stats.team_flip_rounds, 0);
+    for (std::size_t k = 0; k < teams.size(); ++k) {
+      const Capacities& f = teams[k];
+      SCOPED_TRACE(std::to_string(f.team_list) + " / " + std::to_string(f.log_records));
+      const auto r =
+          delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) { t.del2d = f; }));
+      expect_valid(c.pts, r);
+      EXPECT_EQ(r.triangles, ref.triangles);
+      EXPECT_EQ(r.neighbors, ref.neighbors);
+      EXPECT_EQ(r.stats.flips, ref.stats.flips);
+      EXPECT_EQ(r.stats.flip_rounds, ref.stats.flip_rounds);
+      EXPECT_LE(r.stats.team_flip_rounds, r.stats.flip_rounds);
+      team_rounds[k] += r.stats.team_flip_rounds;
+    }
+  }
+  for (std::size_t k = 0; k < teams.size(); ++k) EXPECT_GT(team_rounds[k], 0) << k;
+}
+
 // Point location into the caller's array: the same answers as into the library's, on any thread
 // count; an array of another length, or the CUDA backend (there is no device point location),
 // refused before anything is written.

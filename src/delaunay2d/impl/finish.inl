@@ -134,6 +134,7 @@ inline void Triangulator::report() {
   st_.exact_predicates = c.exact_total;  // work-list entries the filter left open
   st_.work_list_entries = c.listed;
   st_.small_flip_rounds = c.small_rounds;
+  st_.team_flip_rounds = c.team_rounds;
   st_.exact_rest_passes = exact_rest_passes_;  // past the exact list's capacity
   st_.log_relocations = relocations_;          // within a batch, for a full log
   st_.split_flip_rounds = split_rounds_;       // flip parts past the first

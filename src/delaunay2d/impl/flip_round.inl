@@ -24,7 +24,8 @@ struct FlipRound {
   // rounds skip the diagonal a flip just made (locally Delaunay by the flip), which the list
   // entry carries.
   int edges;
-  const std::int32_t* act;  // this round's list (mesh::WorkLists::current)
+  mesh::WorkLists L;
+  const std::int32_t* act;  // this round's list (L.current(round)) and its length
   const std::int64_t* count;
   std::int32_t* next;  // the next round's list and its length
   std::int64_t* next_len;
@@ -36,6 +37,14 @@ struct FlipRound {
   Counters* ctr;
 
   GG_HD int parity() const { return round & 1; }
+  // The functor of round r (its lists).
+  GG_HD void go_to(std::int32_t r) {
+    round = r;
+    act = L.current(r);
+    count = L.count(r);
+    next = L.next(r);
+    next_len = L.next_count(r);
+  }
 
   // The filter's tests of entry i's edges up to the first illegal one, which it proposes; an
   // edge the filter cannot decide sends the entry to the exact list (its place past the list's

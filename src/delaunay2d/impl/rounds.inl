@@ -10,9 +10,33 @@
 // The list lengths stay on the executor: short lists (a batch's last rounds) run several
 // rounds between two reads of the counters, so that the host's round trip does not leave
 // the GPU idle once per round (a round past the end finds an empty list and does nothing).
+// Short lists that need no check run their rounds in one team (team_rounds: no launch per step
+// and no read of the counters per few rounds), until the list grows past the team's length or
+// a round needs a check.
 inline void Triangulator::flip_until_delaunay(bool first_round) {
   std::int64_t rounds_here = 0;
+  const std::int64_t team_max = team_list();
   while (nact_ > 0) {
+    if (nact_ <= team_max && logged_ + std::min(nact_, tmax_ / 2) <= log_cap_ &&
+        nact_ <= exact_cap_) {
+      team_rounds(first_round, team_max, kMaxRounds - rounds_here);
+      mark("flip: team");
+      const Counters c = counters();
+      mark("flip: counters");
+      const std::int32_t last = std::int32_t(c.team_end) - 1;
+      if (last > round_) {  // (else none ran: the kernels run the round below)
+        rounds_here += last - round_;
+        if (rounds_here >= kMaxRounds)
+          throw Error(ErrorCode::Internal,
+                      "internal error: flipping did not converge; please report this input");
+        round_ = last;
+        first_round = false;
+        flips_ += c.log - logged_;
+        logged_ = c.log;
+        nact_ = c.len[(round_ + 1) & 1];
+        continue;
+      }
+    }
     // A list at most doubles per round, and a round flips at most one pair per entry and
     // tmax / 2 pairs in all. Rounds run unchecked (several between two reads of the
     // counters) while their records fit the log and their undecided entries the exact
@@ -51,16 +75,12 @@ inline void Triangulator::flip_until_delaunay(bool first_round) {
 // The round's functor (flip_round.inl) over the store as it is now (after a relocation: the
 // log's new numbering).
 inline FlipRound Triangulator::make_round(int edges) {
-  const mesh::WorkLists L = work_lists();
   FlipRound R;
   R.g = g_;
   R.M = M_;
-  R.round = round_;
   R.edges = edges;
-  R.act = L.current(round_);
-  R.count = L.count(round_);
-  R.next = L.next(round_);
-  R.next_len = L.next_count(round_);
+  R.L = work_lists();
+  R.go_to(round_);
   R.dec = dec_.data();
   R.exd = exd_.data();
   R.exc = exc_.data();
@@ -68,6 +88,61 @@ inline FlipRound Triangulator::make_round(int edges) {
   R.exact_cap = exact_cap_;
   R.ctr = ctr_.data();
   return R;
+}
+
+// The longest list whose rounds run in a team: twice the team's size (the steps stride over it
+// in two passes), or Tuning::Del2d::team_list (-1: none).
+inline std::int64_t Triangulator::team_list() {
+  const std::int64_t forced = ex_.tuning().del2d.team_list;
+  if (forced != 0) return std::max<std::int64_t>(forced, 0);
+  return 2 * std::int64_t(ex_.team_size());
+}
+
+// Rounds from round_ + 1 on in one team (Exec::team), while the list is non-empty and at most
+// `max` long, the round needs no check (its records fit the log and its undecided entries the
+// exact list: flip_until_delaunay's rule, read on the executor) and fewer than `limit` have
+// run; leaves the round it stopped at in the counters (team_end). The steps are the kernels'
+// (FlipRound) between barriers, so a team's rounds flip as the kernels' would; the exact tests
+// run on the team's first threads, one scratch slot each.
+inline void Triangulator::team_rounds(bool first_round, std::int64_t max, std::int64_t limit) {
+  FlipRound R0 = make_round(first_round ? 1 : 3);
+  R0.go_to(round_ + 1);
+  const SlotView scratch = slots_.view();
+  const std::int64_t log_cap = log_cap_, half = tmax_ / 2;
+  const std::int32_t stop = std::int32_t(std::min<std::int64_t>(R0.round + limit, INT32_MAX));
+  ex_.team(GG_LAMBDA(const Exec::Team& t) {
+    FlipRound R = R0;
+    Counters* ctr = R.ctr;
+    const std::int64_t workers = std::min<std::int64_t>(t.size, scratch.slots);
+    std::int64_t ran = 0;
+    for (;;) {
+      const std::int64_t n = *R.count;
+      if (n == 0 || n > max || R.round >= stop || ctr->log + std::min(n, half) > log_cap ||
+          n > R.exact_cap)
+        break;
+      t.barrier();  // (every thread has read the counters before the round's first write)
+      for (std::int64_t i = t.rank; i < n; i += t.size) R.test(i);
+      t.barrier();
+      const std::int64_t m = 3 * std::min(ctr->exact[R.parity()], R.exact_cap);
+      if (t.rank < workers)
+        for (std::int64_t j = t.rank; j < m; j += workers) R.decide(j, scratch[t.rank]);
+      t.barrier();
+      if (t.rank == 0) R.tally();
+      t.barrier();
+      for (std::int64_t i = t.rank; i < n; i += t.size)
+        R.vote_flip(i, 0, std::numeric_limits<std::int32_t>::max(), true);
+      t.barrier();
+      for (std::int64_t i = t.rank; i < n; i += t.size) R.fix(i);
+      t.barrier();
+      R.go_to(R.round + 1);
+      R.edges = 3;
+      ++ran;
+    }
+    if (t.rank == 0) {
+      ctr->team_end = R.round;
+      ctr->team_rounds += ran;
+    }
+  });
 }
 
 // One round over its work list (at most bound long); the next round's list is appended.

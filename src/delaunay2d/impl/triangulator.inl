@@ -73,6 +73,8 @@ class Triangulator : public TriStore {
   }
   void flip_until_delaunay(bool first_round);
   FlipRound make_round(int edges = 3);
+  std::int64_t team_list();
+  void team_rounds(bool first_round, std::int64_t max, std::int64_t limit);
   void flip_round(std::int64_t bound, bool first_round, bool checked);
   void count_proposals(std::int64_t bound);
   std::vector<std::int64_t> check_round(std::int64_t bound, int edges);
