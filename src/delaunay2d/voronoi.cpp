@@ -8,6 +8,7 @@
 
 #include "delaunay2d/del2d_backend.hpp"
 #include "delaunay2d/voronoi_core.hpp"
+#include "exec/device_voronoi.hpp"
 #include "exec/dispatch.hpp"
 #include "gpugeom/delaunay2d.hpp"
 

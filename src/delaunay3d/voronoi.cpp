@@ -7,6 +7,7 @@
 #include "base/stats_fields.hpp"
 #include "delaunay3d/del3d_backend.hpp"
 #include "delaunay3d/voronoi3d_backend.hpp"
+#include "exec/device_voronoi.hpp"
 #include "exec/dispatch.hpp"
 #include "gpugeom/voronoi3d.hpp"
 
