@@ -71,21 +71,18 @@ class IntoArrays {
     const std::int64_t len = std::int64_t((ref.*(o.host)).size());
     return CallerArray<U>(shorter == o.name ? len - 1 : len, U(-7));
   }
+  // f(output, array) for each output, on a const or a mutable IntoArrays alike.
   template <class F>
   void each(F f) const {
-    each_impl(f, std::index_sequence_for<T...>{});
-  }
-  template <class F, std::size_t... I>
-  void each_impl(F f, std::index_sequence<I...>) const {
-    (f(std::get<I>(outs_), std::get<I>(arrays_)), ...);
+    each_in(*this, f, std::index_sequence_for<T...>{});
   }
   template <class F>
   void each(F f) {
-    each_impl_mut(f, std::index_sequence_for<T...>{});
+    each_in(*this, f, std::index_sequence_for<T...>{});
   }
-  template <class F, std::size_t... I>
-  void each_impl_mut(F f, std::index_sequence<I...>) {
-    (f(std::get<I>(outs_), std::get<I>(arrays_)), ...);
+  template <class Self, class F, std::size_t... I>
+  static void each_in(Self& self, F f, std::index_sequence<I...>) {
+    (f(std::get<I>(self.outs_), std::get<I>(self.arrays_)), ...);
   }
 
   std::tuple<Output<Buffers, Result, T>...> outs_;

@@ -110,9 +110,9 @@ inline void Triangulator::peel() {
         });
     FlipRound F = make_round();  // (its fix over the peel's list)
     F.act = act;
-    F.count = &ctr->peel_list;
+    F.len = &ctr->peel_list;
     listed(
-        F.count, nflat, GG_LAMBDA(std::int64_t i) { F.fix(i); });
+        F.len, nflat, GG_LAMBDA(std::int64_t i) { F.fix(i); });
     const Counters c = counters();
     flips_ += c.flips;
     if (c.flips == 0) break;
@@ -134,7 +134,7 @@ inline void Triangulator::report() {
   st_.exact_predicates = c.exact_total;  // work-list entries the filter left open
   st_.work_list_entries = c.listed;
   st_.small_flip_rounds = c.small_rounds;
-  st_.team_flip_rounds = c.team_rounds;
+  st_.team_flip_rounds = sched_.team_rounds;
   st_.exact_rest_passes = exact_rest_passes_;  // past the exact list's capacity
   st_.log_relocations = relocations_;          // within a batch, for a full log
   st_.split_flip_rounds = split_rounds_;       // flip parts past the first

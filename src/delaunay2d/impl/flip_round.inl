@@ -26,7 +26,7 @@ struct FlipRound {
   int edges;
   mesh::WorkLists L;
   const std::int32_t* act;  // this round's list (L.current(round)) and its length
-  const std::int64_t* count;
+  const std::int64_t* len;
   std::int32_t* next;  // the next round's list and its length
   std::int64_t* next_len;
   std::int8_t* dec;   // per entry: its decision (mesh::undecided_at while the exact pass runs)
@@ -41,9 +41,16 @@ struct FlipRound {
   GG_HD void go_to(std::int32_t r) {
     round = r;
     act = L.current(r);
-    count = L.count(r);
+    len = L.count(r);
     next = L.next(r);
     next_len = L.next_count(r);
+  }
+  // (mesh/flip_schedule.hpp's team rounds: the list's length, and the next round, whose
+  // entries are all but the first round's children and test three edges)
+  GG_HD const std::int64_t* count() const { return len; }
+  GG_HD void advance() {
+    go_to(round + 1);
+    edges = 3;
   }
 
   // The filter's tests of entry i's edges up to the first illegal one, which it proposes; an
@@ -120,7 +127,7 @@ struct FlipRound {
   }
 
   // Whether entry i proposed (a checked round counts them: each flips at most once).
-  GG_HD bool proposed(std::int64_t i) const { return i < *count && dec[i] >= 0; }
+  GG_HD bool proposed(std::int64_t i) const { return i < *len && dec[i] >= 0; }
 
   // A checked round whose proposals could overflow the flip log: entry i's winning proposal
   // counted in its range of slots (2^shift slots a bucket).

@@ -38,8 +38,8 @@ struct Counters {
   // totals over the flip rounds, for Stats: rounds with a non-empty list, those shorter than
   // kSmallRound, list entries, entries sent to the exact pass
   std::int64_t rounds, small_rounds, listed, exact_total;
-  // The round a team stopped at (did not run), and the rounds teams ran (rounds.inl).
-  std::int64_t team_end, team_rounds;
+  // The round a team stopped at (did not run: mesh::team_rounds).
+  std::int64_t team_end;
 };
 
 // One triangle in one 32-byte record, one memory sector: the flip rounds are bound by scattered

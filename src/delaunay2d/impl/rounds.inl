@@ -7,69 +7,91 @@
 // (each entry stops at its first illegal edge, proposes it and votes at once; an entry the
 // filter cannot decide goes to the exact pass, which goes on from there and votes), the flips
 // (a proposal that won both its triangles), and the fix of the flipped pairs' outer edges.
-// The list lengths stay on the executor: short lists (a batch's last rounds) run several
-// rounds between two reads of the counters, so that the host's round trip does not leave
-// the GPU idle once per round (a round past the end finds an empty list and does nothing).
-// Short lists that need no check run their rounds in one team (team_rounds: no launch per step
-// and no read of the counters per few rounds), until the list grows past the team's length or
-// a round needs a check.
-inline void Triangulator::flip_until_delaunay(bool first_round) {
-  std::int64_t rounds_here = 0;
-  const std::int64_t team_max = team_list();
-  while (nact_ > 0) {
-    if (nact_ <= team_max && logged_ + std::min(nact_, tmax_ / 2) <= log_cap_ &&
-        nact_ <= exact_cap_) {
-      team_rounds(first_round, team_max, kMaxRounds - rounds_here);
-      mark("flip: team");
-      const Counters c = counters();
-      mark("flip: counters");
-      const std::int32_t last = std::int32_t(c.team_end) - 1;
-      if (last > round_) {  // (else none ran: the kernels run the round below)
-        rounds_here += last - round_;
-        if (rounds_here >= kMaxRounds)
-          throw Error(ErrorCode::Internal,
-                      "internal error: flipping did not converge; please report this input");
-        round_ = last;
-        first_round = false;
-        flips_ += c.log - logged_;
-        logged_ = c.log;
-        nact_ = c.len[(round_ + 1) & 1];
-        continue;
-      }
-    }
-    // A list at most doubles per round, and a round flips at most one pair per entry and
-    // tmax / 2 pairs in all. Rounds run unchecked (several between two reads of the
-    // counters) while their records fit the log and their undecided entries the exact
-    // list; a round that could overflow either is checked (flip_round's `checked`).
-    int chunk = nact_ <= kChunkList ? kChunkRounds : 1;
+// The schedule is mesh/flip_schedule.hpp's: the list lengths stay on the executor, short lists
+// (a batch's last rounds) run several rounds between two reads of the counters, and lists
+// short enough for a team whose rounds need no check run in one (team_rounds), until the
+// list grows past the team's length or a round needs a check. This phase is what 2D adds:
+// its room rule (a round is checked when its records could overflow the flip log or its
+// undecided entries the exact list) and its counters.
+struct FlipPhase {
+  Triangulator& T;
+  bool first_round;
+  std::int64_t team_list = T.team_list();
+  bool checked = false;   // (the chunk's rounds are checked: plan)
+  std::int32_t from = 0;  // the round before the chunk's kernels (flip_round counts round_ up)
+
+  std::int64_t pending() const { return T.nact_; }
+  std::int64_t team_max() const { return team_list; }
+  bool team_fits() const { return !T.needs_check(); }
+  // A list at most doubles per round, and a round flips at most one pair per entry and
+  // tmax / 2 pairs in all. Rounds run unchecked (several between two reads of the counters)
+  // while their records fit the log and their undecided entries the exact list; a round that
+  // could overflow either is checked (flip_round's `checked`), alone.
+  std::int64_t plan() {
+    const std::int64_t nact = T.nact_, tmax = T.tmax_;
+    int chunk = nact <= kChunkList ? kChunkRounds : 1;
     auto records = [&](int rounds) {
-      std::int64_t b = nact_, r = 0;
-      for (int c = 0; c < rounds; ++c, b = std::min(2 * b, tmax_)) r += std::min(b, tmax_ / 2);
+      std::int64_t b = nact, r = 0;
+      for (int c = 0; c < rounds; ++c, b = std::min(2 * b, tmax)) r += std::min(b, tmax / 2);
       return r;
     };
     auto longest = [&](int rounds) {
-      std::int64_t b = nact_;
-      for (int c = 1; c < rounds; ++c) b = std::min(2 * b, tmax_);
+      std::int64_t b = nact;
+      for (int c = 1; c < rounds; ++c) b = std::min(2 * b, tmax);
       return b;
     };
     // (A check costs the host a round trip; relocating all points that are left, many
     // more: the log is only emptied when a check finds it would overflow.)
-    if (logged_ + records(chunk) > log_cap_ || longest(chunk) > exact_cap_) chunk = 1;
-    const bool checked = logged_ + records(1) > log_cap_ || nact_ > exact_cap_;
-    if ((rounds_here += chunk) > kMaxRounds)
-      throw Error(ErrorCode::Internal,
-                  "internal error: flipping did not converge; please report this input");
-    std::int64_t bound = nact_;
-    for (int c = 0; c < chunk; ++c, bound = std::min(2 * bound, tmax_)) {
-      flip_round(bound, first_round, checked);
+    if (T.logged_ + records(chunk) > T.log_cap_ || longest(chunk) > T.exact_cap_) chunk = 1;
+    checked = T.needs_check();
+    return chunk;
+  }
+  void team(std::int64_t limit) {
+    T.team_rounds(first_round, team_list, limit);
+    T.mark("flip: team");
+  }
+  void kernels(std::int64_t rounds) {
+    from = T.round_;
+    std::int64_t bound = T.nact_;
+    for (std::int64_t c = 0; c < rounds; ++c, bound = std::min(2 * bound, T.tmax_)) {
+      T.flip_round(bound, first_round, checked);
       first_round = false;
     }
-    const Counters c = counters();
-    mark("flip: counters");
-    flips_ += c.log - logged_;  // one record per flip
-    logged_ = c.log;
-    nact_ = c.len[(round_ + 1) & 1];
   }
+  mesh::ChunkEnd end_chunk(bool team) {
+    const Counters c = T.counters();
+    T.mark("flip: counters");
+    std::int64_t rounds = 0;
+    if (team) {
+      const std::int32_t last = std::int32_t(c.team_end) - 1;
+      if (last <= T.round_) return {};  // (none ran: the kernels take the round)
+      rounds = last - T.round_;
+      T.round_ = last;
+      first_round = false;
+    } else {
+      rounds = T.round_ - from;
+    }
+    T.flips_ += c.log - T.logged_;  // one record per flip
+    T.logged_ = c.log;
+    T.nact_ = c.len[(T.round_ + 1) & 1];
+    return {rounds, false};
+  }
+  [[noreturn]] void out_of_rounds() const {
+    throw Error(ErrorCode::Internal,
+                "internal error: flipping did not converge; please report this input");
+  }
+};
+
+inline void Triangulator::flip_until_delaunay(bool first_round) {
+  FlipPhase p{*this, first_round};
+  mesh::run_rounds(p, kMaxRounds, sched_);
+}
+
+// Whether the next round must be checked: its records could overflow the flip log (a round
+// flips at most one pair per entry and tmax / 2 in all), or its undecided entries the exact
+// list.
+inline bool Triangulator::needs_check() const {
+  return logged_ + std::min(nact_, tmax_ / 2) > log_cap_ || nact_ > exact_cap_;
 }
 
 // The round's functor (flip_round.inl) over the store as it is now (after a relocation: the
@@ -98,29 +120,24 @@ inline std::int64_t Triangulator::team_list() {
   return 2 * std::int64_t(ex_.team_size());
 }
 
-// Rounds from round_ + 1 on in one team (Exec::team), while the list is non-empty and at most
-// `max` long, the round needs no check (its records fit the log and its undecided entries the
-// exact list: flip_until_delaunay's rule, read on the executor) and fewer than `limit` have
-// run; leaves the round it stopped at in the counters (team_end). The steps are the kernels'
-// (FlipRound) between barriers, so a team's rounds flip as the kernels' would; the exact tests
-// run on the team's first threads, one scratch slot each.
+// Rounds from round_ + 1 on in one team (mesh::team_rounds), while the list is non-empty and
+// at most `max` long, the round needs no check (needs_check, read on the executor) and fewer
+// than `limit` have run; leaves the round it stopped at in the counters (team_end). The steps
+// are the kernels' (FlipRound) between barriers, so a team's rounds flip as the kernels'
+// would; the exact tests run on the team's first threads, one scratch slot each.
 inline void Triangulator::team_rounds(bool first_round, std::int64_t max, std::int64_t limit) {
   FlipRound R0 = make_round(first_round ? 1 : 3);
   R0.go_to(round_ + 1);
   const SlotView scratch = slots_.view();
   const std::int64_t log_cap = log_cap_, half = tmax_ / 2;
-  const std::int32_t stop = std::int32_t(std::min<std::int64_t>(R0.round + limit, INT32_MAX));
+  const std::int32_t stop = mesh::team_stop(R0.round, limit);
   ex_.team(GG_LAMBDA(const Exec::Team& t) {
-    FlipRound R = R0;
-    Counters* ctr = R.ctr;
+    Counters* ctr = R0.ctr;
     const std::int64_t workers = std::min<std::int64_t>(t.size, scratch.slots);
-    std::int64_t ran = 0;
-    for (;;) {
-      const std::int64_t n = *R.count;
-      if (n == 0 || n > max || R.round >= stop || ctr->log + std::min(n, half) > log_cap ||
-          n > R.exact_cap)
-        break;
-      t.barrier();  // (every thread has read the counters before the round's first write)
+    auto room = [&](const FlipRound& R, std::int64_t n) {
+      return ctr->log + std::min(n, half) <= log_cap && n <= R.exact_cap;
+    };
+    auto steps = [&](const FlipRound& R, std::int64_t n) {
       for (std::int64_t i = t.rank; i < n; i += t.size) R.test(i);
       t.barrier();
       const std::int64_t m = 3 * std::min(ctr->exact[R.parity()], R.exact_cap);
@@ -134,14 +151,8 @@ inline void Triangulator::team_rounds(bool first_round, std::int64_t max, std::i
       t.barrier();
       for (std::int64_t i = t.rank; i < n; i += t.size) R.fix(i);
       t.barrier();
-      R.go_to(R.round + 1);
-      R.edges = 3;
-      ++ran;
-    }
-    if (t.rank == 0) {
-      ctr->team_end = R.round;
-      ctr->team_rounds += ran;
-    }
+    };
+    mesh::team_rounds(t, R0, max, stop, &ctr->team_end, room, steps);
   });
 }
 
@@ -157,7 +168,7 @@ inline void Triangulator::flip_round(std::int64_t bound, bool first_round, bool 
   const int edges = first_round ? 1 : 3;  // (FlipRound::edges)
   const FlipRound R = make_round(edges);
   listed(
-      R.count, bound, GG_LAMBDA(std::int64_t i) { R.test(i); });
+      R.len, bound, GG_LAMBDA(std::int64_t i) { R.test(i); });
   mark("flip: test");
   exact_pass(bound, edges, &R.ctr->exact[R.parity()], true);
   mark("flip: exact");
@@ -180,7 +191,7 @@ inline void Triangulator::flip_round(std::int64_t bound, bool first_round, bool 
   mark("flip: vote+flip");
   const FlipRound F = make_round();
   listed(
-      F.count, bound, GG_LAMBDA(std::int64_t i) { F.fix(i); });
+      F.len, bound, GG_LAMBDA(std::int64_t i) { F.fix(i); });
   mark("flip: fix");
 }
 
@@ -210,7 +221,7 @@ inline std::vector<std::int64_t> Triangulator::check_round(std::int64_t bound, i
       ex_.for_each_index(
           1, GG_LAMBDA(std::int64_t) { ctr->exact_rest = 0; });
       listed(
-          R.count, bound, GG_LAMBDA(std::int64_t i) { R.relist_undecided(i); });
+          R.len, bound, GG_LAMBDA(std::int64_t i) { R.relist_undecided(i); });
       exact_pass(bound, edges, &ctr->exact_rest, false);
       left = counters().exact_rest - exact_cap_;
     }
@@ -230,7 +241,7 @@ inline std::vector<std::int64_t> Triangulator::check_round(std::int64_t bound, i
   const std::int64_t buckets = wins_.size();
   ex_.fill(wins, buckets, std::int64_t(0));
   listed(
-      W.count, bound, GG_LAMBDA(std::int64_t i) { W.count_win(i, wins, shift); });
+      W.len, bound, GG_LAMBDA(std::int64_t i) { W.count_win(i, wins, shift); });
   std::vector<std::int64_t> w(std::size_t(buckets), 0);
   ex_.to_host(wins, buckets, w.data());
   std::int64_t total = 0;
@@ -257,7 +268,7 @@ inline void Triangulator::vote_and_flip(std::int64_t bound, std::int64_t lo_in, 
   const FlipRound R = make_round();  // (after a relocation: the log's new numbering)
   const std::int32_t lo = std::int32_t(lo_in), hi = std::int32_t(hi_in);
   listed(
-      R.count, bound, GG_LAMBDA(std::int64_t i) { R.vote_flip(i, lo, hi, first_part); });
+      R.len, bound, GG_LAMBDA(std::int64_t i) { R.vote_flip(i, lo, hi, first_part); });
 }
 
 // The exact pass over the entries the filter left open (FlipRound::decide): a bounded number

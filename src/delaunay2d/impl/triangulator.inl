@@ -72,6 +72,7 @@ class Triangulator : public TriStore {
     ex_.for_each_counted(count, bound, f);
   }
   void flip_until_delaunay(bool first_round);
+  bool needs_check() const;
   FlipRound make_round(int edges = 3);
   std::int64_t team_list();
   void team_rounds(bool first_round, std::int64_t max, std::int64_t limit);
@@ -104,6 +105,7 @@ class Triangulator : public TriStore {
   std::int64_t logged_ = 0;                                   // records of the epoch
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;  // points; list entries; splits
   std::int64_t exact_rest_passes_ = 0, relocations_ = 0, split_rounds_ = 0;
+  mesh::ScheduleCounts sched_;  // (how the flip rounds ran: rounds.inl)
   std::int32_t epoch_first_new_ = 0;
   std::map<std::string, double> prof_;
   clock::time_point last_ = clock::now();

@@ -39,6 +39,7 @@
 #include "mesh/kept_points.hpp"
 #include "mesh/decision.hpp"
 #include "mesh/flip_fix.hpp"
+#include "mesh/flip_schedule.hpp"
 #include "mesh/half_edges.hpp"
 #include "mesh/history.hpp"
 #include "mesh/prepare.hpp"

@@ -43,21 +43,12 @@ inline void voronoi_of_host(const double* xy, std::int64_t n, const std::int32_t
   if constexpr (Exec::backend == Backend::Cpu) {
     voronoi_impl(xy, n, tri, nb, dup, nt, opt, unused, v.stats, &v, nullptr);
   } else {
-    const auto t0 = std::chrono::steady_clock::now();
-    Exec ex(opt);
-    const ::gpugeom::detail::DevicePeak<Exec> peak(ex, v.stats);  // (the whole call's)
-    auto d_xy = ex.template alloc<double>(std::size_t(2 * n));
-    auto d_tri = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
-    auto d_nb = ex.template alloc<std::int32_t>(std::size_t(3 * nt));
-    auto d_dup = ex.template alloc<std::int32_t>(std::size_t(n));
-    ex.from_host(xy, 2 * n, d_xy.data());
-    ex.from_host(tri, 3 * nt, d_tri.data());
-    ex.from_host(nb, 3 * nt, d_nb.data());
-    ex.from_host(dup, n, d_dup.data());
-    v.stats.phase_ms.push_back({"upload", ms_since(t0)});
-    const ::gpugeom::detail::ExecContext ctx = ex.context();
-    voronoi_impl(d_xy.data(), n, d_tri.data(), d_nb.data(), d_dup.data(), nt, opt, unused, v.stats,
-                 &v, &ctx);
+    ::gpugeom::detail::voronoi_on_upload<2, 3, Exec>(
+        xy, n, tri, nb, dup, nt, opt, v.stats,
+        [&](const double* p, const std::int32_t* t, const std::int32_t* b, const std::int32_t* d,
+            const ::gpugeom::detail::ExecContext* ctx) {
+          voronoi_impl(p, n, t, b, d, nt, opt, unused, v.stats, &v, ctx);
+        });
   }
 }
 

@@ -14,6 +14,7 @@
 #include "exec/deliver.hpp"
 #include "exec/peak.hpp"
 #include "exec/scratch_lease.hpp"
+#include "exec/voronoi_upload.hpp"
 #include "gpugeom/removed.hpp"
 #include "mesh/union_find.hpp"
 #include "mesh/vertex_classes.hpp"

@@ -79,9 +79,9 @@ inline void Triangulator::report() {
   // Where phase 1's time goes (host clock; each part ends with a read of the counters):
   // choosing and splitting, rounds as kernels, rounds in a team.
   st_.us_choose_split = std::int64_t(1000 * ms_choose_);
-  st_.us_rounds_wide = std::int64_t(1000 * ms_wide_);
-  st_.us_rounds_team = std::int64_t(1000 * ms_team_);
-  st_.round_chunks = chunks_;
-  st_.team_launches = team_calls_;
+  st_.us_rounds_wide = std::int64_t(1000 * sched_.wide_ms);
+  st_.us_rounds_team = std::int64_t(1000 * sched_.team_ms);
+  st_.round_chunks = sched_.chunks;
+  st_.team_launches = sched_.team_calls;
   st_.failed_faces = c.failed_faces;
 }

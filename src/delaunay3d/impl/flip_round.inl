@@ -138,6 +138,7 @@ struct FlipRound {
   GG_HD const std::int64_t* count() const { return L.count(round); }
   GG_HD const std::int64_t* flips() const { return &M.ctr->nflip[round & 1]; }
   GG_HD bool halted() const { return M.ctr->halt != 0; }
+  GG_HD void advance() { ++round; }  // (mesh/flip_schedule.hpp's team rounds)
 
   // The round's counters. A round that could need more slots or records than there are, or
   // whose list is longer than the decisions' scan covers, halts (nothing of it runs) until the

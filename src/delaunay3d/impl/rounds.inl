@@ -1,60 +1,74 @@
-// Phase 1's flip rounds, scheduled (triangulator.inl): chunks of rounds as kernels, the short
-// lists' rounds in one team, a halted round's room made. The steps are FlipRound's
-// (flip_round.inl).
+// Phase 1's flip rounds, scheduled (triangulator.inl) by mesh/flip_schedule.hpp: chunks of
+// rounds as kernels, the short lists' rounds in one team, a halted round's room made. The steps
+// are FlipRound's (flip_round.inl).
 
-inline void Triangulator::flip_until_stuck() {
-  std::int64_t rounds_here = 0;
-  const std::int64_t team_max = 2 * std::int64_t(ex_.team_size());
-  while (nact_ > 0) {
-    if (max_rounds_ >= 0 && rounds_here >= max_rounds_) {  // (test mode: leave it to phase 2)
-      const mesh::WorkLists L = work_lists();
-      std::int64_t* len = L.count(round_ + 1);
-      ex_.for_each_index(
-          1, GG_LAMBDA(std::int64_t) { *len = 0; });
-      nact_ = 0;
-      break;
-    }
-    // The flip log: a round records at most one flip per list entry, in practice at most
-    // 0.7 (0.3 on average). A new epoch starts where the next round may not fit, and the
-    // chunk holds the rounds that should; a round that does not fit halts (make_room).
-    const std::int64_t per_round = nact_ - nact_ * 3 / 10;
-    if (logged_ + per_round > log_cap_) relocate(false);
-    const std::int32_t first = round_ + 1;
-    std::int64_t chunk = std::clamp<std::int64_t>(
-        (log_cap_ - logged_) / std::max<std::int64_t>(per_round, 1), 1, kChunk);
-    if (max_rounds_ >= 0) chunk = std::min<std::int64_t>(chunk, max_rounds_ - rounds_here);
-    const bool team = nact_ <= team_max;
-    const auto t0 = Clock::now();
-    if (team)
-      team_rounds(first, team_max, max_rounds_ >= 0 ? chunk : std::int64_t(1) << 30);
-    else
-      for (std::int64_t k = 0; k < chunk; ++k) launch_round(first + std::int32_t(k), 4 * nact_);
-    Counters c = counters();  // one read per chunk
-    (team ? ms_team_ : ms_wide_) += ms_since(t0);
-    ++(team ? team_calls_ : chunks_);
-    std::int32_t last = team ? std::int32_t(c.team_end) - 1 : first + std::int32_t(chunk) - 1;
+// Phase 1's side of the schedule (mesh/flip_schedule.hpp): the flip log's epochs planned per
+// chunk, a halted round's room made, the list carried to the next batch, and the test mode's
+// cut (Tuning::Del3d::max_flip_rounds: what is left goes to phase 2).
+struct FlipPhase {
+  Triangulator& T;
+  std::int32_t first = 0;  // the chunk's first round
+
+  std::int64_t pending() const { return T.nact_; }
+  std::int64_t team_max() const { return 2 * std::int64_t(T.ex_.team_size()); }
+  bool team_fits() const { return true; }  // (a round without room halts the team)
+  // The flip log: a round records at most one flip per list entry, in practice at most 0.7
+  // (0.3 on average). A new epoch starts where the next round may not fit, and the chunk holds
+  // the rounds that should; a round that does not fit halts (end_chunk makes the room).
+  std::int64_t plan() {
+    const std::int64_t per_round = T.nact_ - T.nact_ * 3 / 10;
+    if (T.logged_ + per_round > T.log_cap_) T.relocate(false);
+    first = T.round_ + 1;
+    return std::clamp<std::int64_t>((T.log_cap_ - T.logged_) / std::max<std::int64_t>(per_round, 1),
+                                    1, Triangulator::kChunk);
+  }
+  void team(std::int64_t limit) { T.team_rounds(first, team_max(), limit); }
+  void kernels(std::int64_t rounds) {
+    for (std::int64_t k = 0; k < rounds; ++k) T.launch_round(first + std::int32_t(k), 4 * T.nact_);
+    kernel_rounds = rounds;
+  }
+  mesh::ChunkEnd end_chunk(bool team) {
+    Counters c = T.counters();  // one read per chunk
+    std::int32_t last =
+        team ? std::int32_t(c.team_end) - 1 : first + std::int32_t(kernel_rounds) - 1;
     const bool carry = c.halt && c.carry;
     if (c.halt) {  // (the halted round did nothing: it runs again after the room is made, or
                    // in the next batch, carried)
       last = std::int32_t(c.halt_round) - 1;
-      used_ = c.used;
-      logged_ = c.log;
+      T.used_ = c.used;
+      T.logged_ = c.log;
       const Counters need = c;
       c.halt = c.carry = 0;
       c.carries += carry;
       c.need_slots = c.need_log = c.need_list = c.need_ring = 0;
-      ex_.from_host(&c, 1, ctr_.data());
-      if (!carry) make_room(need);
-      c = counters();
+      T.ex_.from_host(&c, 1, T.ctr_.data());
+      if (!carry) T.make_room(need);
+      c = T.counters();
     }
-    rounds_here += last - round_;
-    round_ = last;
-    used_ = c.used;
-    logged_ = c.log;
-    nact_ = c.len[(round_ + 1) & 1];
-    if (c.errors) check_errors();
-    if (carry) break;  // (nact_ entries wait in the list of round_ + 1)
+    const std::int64_t rounds = last - T.round_;
+    T.round_ = last;
+    T.used_ = c.used;
+    T.logged_ = c.log;
+    T.nact_ = c.len[(T.round_ + 1) & 1];
+    if (c.errors) T.check_errors();
+    return {rounds, carry};  // (carried: nact_ entries wait in the list of round_ + 1)
   }
+  void out_of_rounds() {
+    if (T.max_rounds_ < 0)
+      throw Error(ErrorCode::Internal,
+                  "internal error: 3D flipping did not converge; please report this input");
+    const mesh::WorkLists L = T.work_lists();  // (test mode: the rest is phase 2's)
+    std::int64_t* len = L.count(T.round_ + 1);
+    T.ex_.for_each_index(
+        1, GG_LAMBDA(std::int64_t) { *len = 0; });
+    T.nact_ = 0;
+  }
+  std::int64_t kernel_rounds = 0;
+};
+
+inline void Triangulator::flip_until_stuck() {
+  FlipPhase p{*this};
+  mesh::run_rounds(p, max_rounds_ >= 0 ? max_rounds_ : kMaxRounds, sched_);
 }
 
 inline FlipRound Triangulator::make_round(std::int32_t round) {
@@ -104,20 +118,16 @@ inline void Triangulator::launch_round(std::int32_t round, std::int64_t bound) {
       count, bound, GG_LAMBDA(std::int64_t i) { R.relist(i); });
 }
 
-// Rounds from `round` on in one team, while the list is non-empty and at most `max` long,
-// nothing halts and fewer than `limit` have run; leaves the round it stopped at in the
-// counters (team_end).
+// Rounds from `round` on in one team (mesh::team_rounds), while the list is non-empty and at
+// most `max` long, nothing halts and fewer than `limit` have run; leaves the round it stopped
+// at in the counters (team_end).
 inline void Triangulator::team_rounds(std::int32_t round, std::int64_t max, std::int64_t limit) {
   const FlipRound R0 = make_round(round);
   Counters* ctr = ctr_.data();
-  const std::int32_t stop = std::int32_t(std::min<std::int64_t>(round + limit, INT32_MAX));
+  const std::int32_t stop = mesh::team_stop(round, limit);
   ex_.team(GG_LAMBDA(const Exec::Team& t) {
-    FlipRound R = R0;
-    std::int32_t r = round;
-    for (;;) {
-      const std::int64_t n = *R.count();
-      if (n == 0 || n > max || r >= stop || ctr->halt) break;
-      t.barrier();  // (every thread has read the length before the round's first write)
+    auto room = [](const FlipRound& R, std::int64_t) { return !R.halted(); };
+    auto steps = [&](const FlipRound& R, std::int64_t n) {
       if (t.rank == 0) R.begin();
       t.barrier();
       for (std::int64_t i = t.rank; i < n; i += t.size) R.test(i);
@@ -134,9 +144,8 @@ inline void Triangulator::team_rounds(std::int32_t round, std::int64_t max, std:
       t.barrier();
       for (std::int64_t i = t.rank; i < n; i += t.size) R.relist(i);
       t.barrier();
-      R.round = ++r;
-    }
-    if (t.rank == 0) ctr->team_end = r;
+    };
+    mesh::team_rounds(t, R0, max, stop, &ctr->team_end, room, steps);
   });
 }
 

@@ -95,6 +95,7 @@ class Triangulator : public TetStore {
   // the host reads the counters once per chunk. Once the list is short (the long tail of each
   // batch), one team runs the rounds in a single launch with barriers between the steps.
   static constexpr int kChunk = 4;
+  static constexpr std::int64_t kMaxRounds = 1000000;  // per batch (a guard: tens are usual)
   // When a batch's rounds hand their list to the next batch (FlipRound::begin): constants, the
   // same on both executors, so that the run is. Measured on the H100 (performance.md,
   // 2026-11-28, the carried lists): after 4 rounds at 2 048 entries or fewer, grid 100³ took
@@ -129,7 +130,7 @@ class Triangulator : public TetStore {
   std::int64_t logged_ = 0;  // records of the epoch
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;
   std::int32_t epoch_first_new_ = 0;
-  double ms_choose_ = 0, ms_wide_ = 0, ms_team_ = 0;
-  std::int64_t chunks_ = 0, team_calls_ = 0;
+  double ms_choose_ = 0;
+  mesh::ScheduleCounts sched_;  // (how the flip rounds ran: rounds.inl)
   LeasePool<Exec> pool_;
 };

@@ -28,6 +28,7 @@
 #include "mesh/kept_points.hpp"
 #include "mesh/first_tetrahedron.hpp"
 #include "mesh/flip_fix.hpp"
+#include "mesh/flip_schedule.hpp"
 #include "mesh/history.hpp"
 #include "mesh/prepare.hpp"
 #include "mesh/priority.hpp"

@@ -48,21 +48,12 @@ inline void voronoi_of_host(const double* xyz, std::int64_t n, const std::int32_
   if constexpr (Exec::backend == Backend::Cpu) {
     voronoi3d_impl(xyz, n, tet, nb, dup, nt, opt, unused, v.stats, &v, nullptr);
   } else {
-    const auto t0 = std::chrono::steady_clock::now();
-    Exec ex(opt);
-    const ::gpugeom::detail::DevicePeak<Exec> peak(ex, v.stats);  // (the whole call's)
-    auto d_xyz = ex.template alloc<double>(std::size_t(3 * n));
-    auto d_tet = ex.template alloc<std::int32_t>(std::size_t(4 * nt));
-    auto d_nb = ex.template alloc<std::int32_t>(std::size_t(4 * nt));
-    auto d_dup = ex.template alloc<std::int32_t>(std::size_t(n));
-    ex.from_host(xyz, 3 * n, d_xyz.data());
-    ex.from_host(tet, 4 * nt, d_tet.data());
-    ex.from_host(nb, 4 * nt, d_nb.data());
-    ex.from_host(dup, n, d_dup.data());
-    v.stats.phase_ms.push_back({"upload", ms_since(t0)});
-    const ::gpugeom::detail::ExecContext ctx = ex.context();
-    voronoi3d_impl(d_xyz.data(), n, d_tet.data(), d_nb.data(), d_dup.data(), nt, opt, unused,
-                   v.stats, &v, &ctx);
+    ::gpugeom::detail::voronoi_on_upload<3, 4, Exec>(
+        xyz, n, tet, nb, dup, nt, opt, v.stats,
+        [&](const double* p, const std::int32_t* t, const std::int32_t* b, const std::int32_t* d,
+            const ::gpugeom::detail::ExecContext* ctx) {
+          voronoi3d_impl(p, n, t, b, d, nt, opt, unused, v.stats, &v, ctx);
+        });
   }
 }
 

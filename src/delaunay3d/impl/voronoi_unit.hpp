@@ -19,6 +19,7 @@
 #include "exec/deliver.hpp"
 #include "exec/peak.hpp"
 #include "exec/scratch_lease.hpp"
+#include "exec/voronoi_upload.hpp"
 #include "gpugeom/removed.hpp"
 #include "gpugeom/voronoi_cells.hpp"
 #include "mesh/sum2.hpp"

@@ -136,8 +136,10 @@ struct FlipRound {
   mesh::WorkLists lists;
   std::int8_t* ne;
   const std::int32_t* act;
+  std::int32_t round;  // (dec.round; mesh/flip_schedule.hpp's team rounds read it here)
 
   GG_HD void set_round(std::int32_t r) {
+    round = r;
     dec.round = r;
     act = lists.current(r);
     next.next = lists.next(r);
@@ -145,6 +147,7 @@ struct FlipRound {
     next.round = r + 1;
   }
   GG_HD const std::int64_t* count() const { return lists.count(dec.round); }
+  GG_HD void advance() { set_round(round + 1); }
   // 1. Edge j % 3 of the list's facet j / 3 with the filter; false: it needs the exact stage
   // (as item enc(facet, edge)).
   GG_HD bool edge_fast(std::int64_t j) const {
@@ -224,9 +227,10 @@ class FlipFlop {
  public:
   explicit FlipFlop(PassState& S) : S_(S) {}
 
-  // Rounds run in chunks with no wait in between: every kernel reads its work-list length on
-  // the executor, so a round past the last one does nothing, and the host checks for the end
-  // once per chunk. Once the list is short, one team runs the rounds in a single launch.
+  // The rounds' schedule is mesh/flip_schedule.hpp's: chunks of rounds with no wait in between
+  // (every kernel reads its work-list length on the executor, so a round past the last one does
+  // nothing, and the host checks for the end once per chunk), and once the list is short, one
+  // team runs the rounds in a single launch. This class is the schedule's phase.
   static constexpr int kChunk = 4;
 
   void run() {
@@ -256,29 +260,44 @@ class FlipFlop {
           ctr->len[1] = 0;
         });
     S_.exact_list(3 * used);
-    const std::int64_t team_max = 2 * ex.team_size();
-    std::int32_t round = 0;
-    std::int64_t len = used;
-    while (len > 0) {
-      if (round >= kMaxFlipRounds)
-        throw Error(ErrorCode::Internal, "convex hull: Flip-Flop did not finish");
-      const bool team =
-          len <= team_max && used <= 8 * team_max && S_.slots.slots() >= ex.team_size();
-      if (team)
-        team_rounds(round, team_max);
-      else
-        for (int k = 0; k < kChunk; ++k) step(round++);
-      // One read: both list lengths and the round a team stopped at (adjacent fields).
-      std::int64_t l[3];
-      ex.to_host(ctr->len, 3, l);
-      if (team) round = std::int32_t(l[2]);
-      len = l[round & 1];
-    }
+    round_ = 0;
+    len_ = used;
+    mesh::ScheduleCounts counts;
+    mesh::run_rounds(*this, kMaxFlipRounds, counts);
     const Counters c = S_.counters();
     S_.st.flip_rounds += c.flip_rounds;
     S_.st.flips22 += c.flips22;
     S_.st.flips31 += c.flips31;
     S_.st.labelled_nonextreme += c.labels_all;
+  }
+
+  // The schedule's phase (mesh/flip_schedule.hpp). A team takes about two facets a thread (a
+  // round then costs a few dependent memory accesses per step rather than a launch per step);
+  // the surface must be small too, since the team scans it on rounds that label.
+  std::int64_t pending() const { return len_; }
+  std::int64_t team_max() const { return 2 * std::int64_t(S_.ex.team_size()); }
+  bool team_fits() const {
+    return S_.used <= 8 * team_max() && S_.slots.slots() >= S_.ex.team_size();
+  }
+  std::int64_t plan() const { return kChunk; }
+  void team(std::int64_t limit) {
+    from_ = round_;
+    team_rounds(round_, team_max(), limit);
+  }
+  void kernels(std::int64_t rounds) {
+    from_ = round_;
+    for (std::int64_t k = 0; k < rounds; ++k) step(round_++);
+  }
+  mesh::ChunkEnd end_chunk(bool team) {
+    // One read: both list lengths and the round a team stopped at (adjacent fields).
+    std::int64_t l[3];
+    S_.ex.to_host(S_.ctr.data()->len, 3, l);
+    if (team) round_ = std::int32_t(l[2]);
+    len_ = l[round_ & 1];
+    return {round_ - from_, false};
+  }
+  [[noreturn]] void out_of_rounds() const {
+    throw Error(ErrorCode::Internal, "convex hull: Flip-Flop did not finish");
   }
 
   FlipRound make_round(std::int32_t round) {
@@ -331,24 +350,20 @@ class FlipFlop {
         1, GG_LAMBDA(std::int64_t) { end_flip_round(ctr, parity); });
   }
 
-  // Rounds from `round` on in one team, while the list is non-empty and at most `max` long
-  // (about two facets per thread: a round then costs a few dependent memory accesses per step
-  // rather than a launch per step; the surface must be small too, since the team scans it on
-  // rounds that label). Leaves the round it stopped at in the counters.
-  void team_rounds(std::int32_t round, std::int64_t max) {
+  // Rounds from `round` on in one team (mesh::team_rounds), while the list is non-empty and at
+  // most `max` long and fewer than `limit` have run; leaves the round it stopped at in the
+  // counters.
+  void team_rounds(std::int32_t round, std::int64_t max, std::int64_t limit) {
     Exec& ex = S_.ex;
     const FlipRound R0 = make_round(round);
     Counters* ctr = S_.ctr.data();
     const SlotView scratch = S_.slots.view();
     const std::int64_t used = S_.used;
-    const std::int32_t stop = std::int32_t(kMaxFlipRounds);
+    const std::int32_t stop = mesh::team_stop(round, limit);
     ex.team(GG_LAMBDA(const Exec::Team& t) {
-      FlipRound R = R0;
-      const ExactOrient exact{R.geo, scratch[t.rank]};
-      std::int32_t r = R.dec.round;
-      for (;;) {
-        const std::int64_t n = *R.count();
-        if (n == 0 || n > max || r >= stop) break;
+      const ExactOrient exact{R0.geo, scratch[t.rank]};
+      auto room = [](const FlipRound&, std::int64_t) { return true; };
+      auto steps = [&](const FlipRound& R, std::int64_t n) {
         for (std::int64_t j = t.rank; j < 3 * n; j += t.size)
           if (!R.edge_fast(j)) {
             atomic_add(&ctr->exact, std::int64_t(1));
@@ -363,11 +378,10 @@ class FlipFlop {
         t.barrier();
         R.labels(t.rank, t.size, used);
         t.barrier();
-        if (t.rank == 0) end_flip_round(ctr, r & 1);
+        if (t.rank == 0) end_flip_round(ctr, R.round & 1);
         t.barrier();
-        R.set_round(++r);
-      }
-      if (t.rank == 0) ctr->round = r;
+      };
+      mesh::team_rounds(t, R0, max, stop, &ctr->round, room, steps);
     });
   }
 
@@ -375,4 +389,6 @@ class FlipFlop {
   typename Exec::template Buffer<std::int32_t> list_[2], prop_, clm_, mark_, labround_, newlab_;
   typename Exec::template Buffer<u64> vote_;
   typename Exec::template Buffer<std::int8_t> ne_, eact_;
+  std::int32_t round_ = 0, from_ = 0;  // the next round; the chunk's first
+  std::int64_t len_ = 0;               // the next round's list length, as last read
 };

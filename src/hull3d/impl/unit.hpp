@@ -23,6 +23,7 @@
 #include "mesh/compact.hpp"
 #include "mesh/decision.hpp"
 #include "mesh/flip_fix.hpp"
+#include "mesh/flip_schedule.hpp"
 #include "mesh/first_tetrahedron.hpp"
 #include "mesh/kept_points.hpp"
 #include "mesh/prepare.hpp"
