@@ -35,6 +35,13 @@ struct PointEntries {
                  RunStats& stats, const ExecContext* outer);
 };
 
+// A table's make_kept on one executor: the state K (deriving from Kept) with the options the
+// executor keeps across calls (its kept_options).
+template <class Kept, class K, class Exec, class Options>
+std::unique_ptr<Kept> make_kept_on(const Options& opt) {
+  return std::make_unique<K>(Exec::kept_options(opt));
+}
+
 // The public host entry's run, after its checks: the executor the options resolve to.
 // pick(backend) gives the module's table on that executor (GG_PICK below).
 template <class Pick, class Options>

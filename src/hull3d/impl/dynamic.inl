@@ -288,7 +288,3 @@ class KeptHullOn final : public Kept {
   KeptHull K_;
   ::gpugeom::detail::Before<KeptHull> before_;
 };
-
-inline std::unique_ptr<Kept> make_kept(const Hull3dOptions& opt) {
-  return std::make_unique<KeptHullOn>(Exec::kept_options(opt));
-}
