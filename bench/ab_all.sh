@@ -5,8 +5,9 @@
 # Each bench prints its end-to-end and device-resident columns as usual.
 # Usage (repository root, .devbin/lib carried): bench/ab_all.sh DIR_A DIR_B [DIR_C ...];
 # DIR_*: folders holding gpugeom_bench_{edt,cvd,del2d,cdt2d,hull3d,del3d,dynamic} (a missing
-# one is skipped; gpugeom_bench_del3d needs libtbb.so.12 in .devbin/lib: scripts/stage_gpu.sh
-# copies it). PASSES (default 2); CAPS="edt del2d ..." runs only those capabilities.
+# one is skipped; gpugeom_bench_del3d needs libtbb.so.12 in .devbin/lib). scripts/stage_ab.sh
+# stages and packs the builds with their libraries. PASSES (default 2); CAPS="edt del2d ..."
+# runs only those capabilities.
 set -u
 OUT=${OUT:-/tmp/gg_out}
 mkdir -p "$OUT"
