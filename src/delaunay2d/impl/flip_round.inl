@@ -12,6 +12,15 @@
 constexpr bool kReadAhead = Exec::backend == Backend::Cuda;  // (see vote_flip)
 constexpr std::int64_t kSmallRound = 8192;  // (counted: rounds whose launches are mostly latency)
 
+// Whether a round of n list entries runs unchecked: its records (a round flips at most one pair
+// per entry, and half the slots in all) fit the flip log after the `logged` records of the
+// epoch, and its undecided entries the exact list. Read by the host before a chunk of kernels
+// or a team, and by a team before each of its rounds (rounds.inl).
+GG_HD inline bool round_fits(std::int64_t logged, std::int64_t n, std::int64_t half_slots,
+                             std::int64_t log_cap, std::int64_t exact_cap) {
+  return logged + (n < half_slots ? n : half_slots) <= log_cap && n <= exact_cap;
+}
+
 struct FlipRound {
   Geo g;
   Mesh M;  // (taken after any relocation of the round: the log's numbering)

@@ -87,11 +87,10 @@ inline void Triangulator::flip_until_delaunay(bool first_round) {
   mesh::run_rounds(p, kMaxRounds, sched_);
 }
 
-// Whether the next round must be checked: its records could overflow the flip log (a round
-// flips at most one pair per entry and tmax / 2 in all), or its undecided entries the exact
-// list.
+// Whether the next round must be checked: its records could overflow the flip log, or its
+// undecided entries the exact list (round_fits, flip_round.inl).
 inline bool Triangulator::needs_check() const {
-  return logged_ + std::min(nact_, tmax_ / 2) > log_cap_ || nact_ > exact_cap_;
+  return !round_fits(logged_, nact_, tmax_ / 2, log_cap_, exact_cap_);
 }
 
 // The round's functor (flip_round.inl) over the store as it is now (after a relocation: the
@@ -121,7 +120,7 @@ inline std::int64_t Triangulator::team_list() {
 }
 
 // Rounds from round_ + 1 on in one team (mesh::team_rounds), while the list is non-empty and
-// at most `max` long, the round needs no check (needs_check, read on the executor) and fewer
+// at most `max` long, the round needs no check (round_fits, read on the executor) and fewer
 // than `limit` have run; leaves the round it stopped at in the counters (team_end). The steps
 // are the kernels' (FlipRound) between barriers, so a team's rounds flip as the kernels'
 // would; the exact tests run on the team's first threads, one scratch slot each.
@@ -135,7 +134,7 @@ inline void Triangulator::team_rounds(bool first_round, std::int64_t max, std::i
     Counters* ctr = R0.ctr;
     const std::int64_t workers = std::min<std::int64_t>(t.size, scratch.slots);
     auto room = [&](const FlipRound& R, std::int64_t n) {
-      return ctr->log + std::min(n, half) <= log_cap && n <= R.exact_cap;
+      return round_fits(ctr->log, n, half, log_cap, R.exact_cap);
     };
     auto steps = [&](const FlipRound& R, std::int64_t n) {
       for (std::int64_t i = t.rank; i < n; i += t.size) R.test(i);
