@@ -149,10 +149,40 @@ struct FlipRound {
       atomic_add(wins + ((t - M.base) >> shift), std::int64_t(1));
   }
 
+  // Where vote_flip's entries and records go. On the GPU (and in a team): atomics on the
+  // counters, in any order.
+  struct ByAtomics {
+    static constexpr bool kApply = true;
+    std::int64_t* next_len;
+    std::int64_t* log;
+    GG_HD void flip(std::int64_t& at, std::int64_t& rec) { append_flip(next_len, log, at, rec); }
+    GG_HD std::int64_t one() { return append_slot(next_len); }
+  };
+  // On the CPU executor: the places of CpuExec::append_in_order (list 0: the next round's
+  // entries, list 1: the flip records), in the order of the round's list.
+  template <class Place>
+  struct InOrder {
+    static constexpr bool kApply = Place::kApply;
+    Place& p;
+    void flip(std::int64_t& at, std::int64_t& rec) {
+      at = p.take(0, 2);
+      rec = p.take(1, 1);
+    }
+    std::int64_t one() { return p.take(0, 1); }
+  };
+  GG_HD void vote_flip(std::int64_t i, std::int32_t lo, std::int32_t hi, bool first_part) const {
+    ByAtomics place{next_len, &ctr->log};
+    vote_flip(i, lo, hi, first_part, place);
+  }
+
   // Entry i's proposal counted against the votes: a proposal that won both its triangles, from
   // a slot in [lo, hi) (counted from the slot base), flips and lists its two triangles; on the
-  // first part (first_part) an entry that does not flip is listed for the next round.
-  GG_HD void vote_flip(std::int64_t i, std::int32_t lo, std::int32_t hi, bool first_part) const {
+  // first part (first_part) an entry that does not flip is listed for the next round. The
+  // entries and the record go where `place` says (a place whose kApply is false only counts
+  // them: nothing is written).
+  template <class Place>
+  GG_HD void vote_flip(std::int64_t i, std::int32_t lo, std::int32_t hi, bool first_part,
+                       Place& place) const {
     const int k = dec[i];
     if (k < 0) return;
     const std::int32_t t = slot_of(act[i]);
@@ -170,9 +200,10 @@ struct FlipRound {
       if (kReadAhead) N = M.tri[nb];
       if (M.vote[nb] == key) {
         if (t - M.base < lo || t - M.base >= hi) return;  // another part's
-        if (!kReadAhead) N = M.tri[nb];
         std::int64_t at, rec;
-        append_flip(next_len, &ctr->log, at, rec);
+        place.flip(at, rec);
+        if constexpr (!Place::kApply) return;
+        if (!kReadAhead) N = M.tri[nb];
         flip_phase1(M, t, T, k, nb, N, round, M.log.base + std::int32_t(rec));
         // t' = (v_k, v_k+1, d): the diagonal is opposite its vertex 1; n' = (v_k, d, v_k+2):
         // opposite its vertex 2
@@ -183,7 +214,9 @@ struct FlipRound {
     } else if (M.vote[voter(M, won)] == won) {
       return;  // the proposal that took t won its own triangle too: it flips t, lists it
     }
-    if (first_part) next[append_slot(next_len)] = list_entry(t, -1);  // lost: tests again
+    if (!first_part) return;
+    const std::int64_t at = place.one();  // lost: tests again
+    if constexpr (Place::kApply) next[at] = list_entry(t, -1);
   }
 
   // Phase 2 of the round's flips: entry i, when its slot is a flipped pair's proposer, fixes

@@ -266,8 +266,27 @@ inline void Triangulator::vote_and_flip(std::int64_t bound, std::int64_t lo_in, 
                                         bool first_part) {
   const FlipRound R = make_round();  // (after a relocation: the log's new numbering)
   const std::int32_t lo = std::int32_t(lo_in), hi = std::int32_t(hi_in);
+  if (flips_in_order(ex_, R, lo, hi, first_part)) return;
   listed(
       R.len, bound, GG_LAMBDA(std::int64_t i) { R.vote_flip(i, lo, hi, first_part); });
+}
+
+// On the CPU executor, vote_and_flip's appends go in the list's order (CpuExec::append_in_order:
+// no counter shared by the threads, each thread's entries and records in one run of memory);
+// returns whether it ran (not on CUDA, whose appends are atomics aggregated per warp).
+template <class E>
+bool Triangulator::flips_in_order(E& ex, const FlipRound& R, std::int32_t lo, std::int32_t hi,
+                                  bool first_part) {
+  if constexpr (E::backend != Backend::Cpu) {
+    return false;
+  } else {
+    std::int64_t* const base[2] = {R.next_len, &R.ctr->log};
+    ex.template append_in_order<2>(*R.len, base, [&](std::int64_t i, auto& place) {
+      FlipRound::InOrder<std::decay_t<decltype(place)>> p{place};
+      R.vote_flip(i, lo, hi, first_part, p);
+    });
+    return true;
+  }
 }
 
 // The exact pass over the entries the filter left open (FlipRound::decide): a bounded number

@@ -80,6 +80,8 @@ class Triangulator : public TriStore {
   void count_proposals(std::int64_t bound);
   std::vector<std::int64_t> check_round(std::int64_t bound, int edges);
   void vote_and_flip(std::int64_t bound, std::int64_t lo_in, std::int64_t hi_in, bool first_part);
+  template <class E>
+  bool flips_in_order(E& ex, const FlipRound& R, std::int32_t lo, std::int32_t hi, bool first_part);
   void exact_pass(std::int64_t bound, int edges, const std::int64_t* listed, bool first);
 
   // finish.inl: the flat triangles peeled, the finite triangles in input indices (left on the
