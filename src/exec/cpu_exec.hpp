@@ -143,6 +143,13 @@ struct CpuExec {
     if (n <= 0) return;
     constexpr std::int64_t kLeastPerThread = 4096;  // (below, one thread: a region costs more)
     const int nt = int(std::clamp<std::int64_t>(n / kLeastPerThread, 1, omp_get_max_threads()));
+    if (nt == 1) {  // one thread: the places follow from the bases, no counting pass
+      OrderedPlace<K> p;
+      for (int k = 0; k < K; ++k) p.at[k] = *base[k];
+      for (std::int64_t i = 0; i < n; ++i) f(i, p);
+      for (int k = 0; k < K; ++k) *base[k] = p.at[k];
+      return;
+    }
     std::vector<std::int64_t> counts(std::size_t(nt) * K, 0);
 #pragma omp parallel num_threads(nt)
     {
