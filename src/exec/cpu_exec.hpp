@@ -150,25 +150,21 @@ struct CpuExec {
       for (int k = 0; k < K; ++k) *base[k] = p.at[k];
       return;
     }
-    std::vector<std::int64_t> counts(std::size_t(nt) * K, 0);
+    std::vector<std::int64_t> shared(
+        static_cast<std::size_t>(nt));  // (CpuTeam::exclusive_scan's slots)
 #pragma omp parallel num_threads(nt)
     {
-      const int r = omp_get_thread_num(), used = omp_get_num_threads();
-      const std::int64_t lo = n * r / used, hi = n * (r + 1) / used;
+      const CpuTeam team{omp_get_thread_num(), omp_get_num_threads(), shared.data()};
+      const std::int64_t lo = n * team.rank / team.size, hi = n * (team.rank + 1) / team.size;
       CountingPlace<K> c;
       for (std::int64_t i = lo; i < hi; ++i) f(i, c);
-      for (int k = 0; k < K; ++k) counts[std::size_t(r) * K + k] = c.n[k];
-#pragma omp barrier
       OrderedPlace<K> p;
-      for (int k = 0; k < K; ++k) {
-        p.at[k] = *base[k];
-        for (int q = 0; q < r; ++q) p.at[k] += counts[std::size_t(q) * K + k];
-      }
+      std::int64_t total[K];
+      for (int k = 0; k < K; ++k) p.at[k] = *base[k] + team.exclusive_scan(c.n[k], &total[k]);
       for (std::int64_t i = lo; i < hi; ++i) f(i, p);
-#pragma omp barrier
-#pragma omp single
-      for (int k = 0; k < K; ++k)
-        for (int q = 0; q < used; ++q) *base[k] += counts[std::size_t(q) * K + k];
+      team.barrier();  // (every thread has read the bases)
+      if (team.rank == 0)
+        for (int k = 0; k < K; ++k) *base[k] += total[k];
     }
   }
   // append_in_order's places: the first pass's, counting, and the second's, handing out.
