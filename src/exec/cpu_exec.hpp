@@ -275,10 +275,11 @@ struct CpuExec {
   }
   // Stable. Unsigned integer keys take a parallel LSD radix sort (Thrust's OpenMP merge sort
   // is an order of magnitude slower on the keys the algorithms sort: Hilbert keys, indices).
+  // key_bits: the keys' low bits that may be set (the others are zero).
   template <class K, class V>
-  void sort_by_key(K* keys, V* vals, std::int64_t n) {
+  void sort_by_key(K* keys, V* vals, std::int64_t n, int key_bits = int(8 * sizeof(K))) {
     if constexpr (std::is_integral_v<K> && std::is_unsigned_v<K>) {
-      radix_sort_pairs(keys, vals, n);
+      radix_sort_pairs(keys, vals, n, key_bits);
     } else {
       thrust::stable_sort_by_key(thrust::omp::par, keys, keys + n, vals);
     }
@@ -306,7 +307,7 @@ struct CpuExec {
   void sync() {}
 
   template <class K, class V>
-  void radix_sort_pairs(K* keys, V* vals, std::int64_t n) {
+  void radix_sort_pairs(K* keys, V* vals, std::int64_t n, int key_bits = int(8 * sizeof(K))) {
     if (n <= 1) return;
     constexpr int kBits = 8, kRadix = 1 << kBits;
     const int nt = omp_get_max_threads();
@@ -319,7 +320,7 @@ struct CpuExec {
       lo = n * t / nt;
       hi = n * (t + 1) / nt;
     };
-    for (int shift = 0; shift < int(8 * sizeof(K)); shift += kBits) {
+    for (int shift = 0; shift < std::min(key_bits, int(8 * sizeof(K))); shift += kBits) {
       std::fill(hist.begin(), hist.end(), 0);
 #pragma omp parallel num_threads(nt)
       {

@@ -460,15 +460,17 @@ class CudaExec {
     });
     if (kb.Current() != keys) copy(kb.Current(), n, keys);
   }
+  // key_bits: the keys' low bits that may be set (the others are zero; fewer radix passes).
   template <class K, class V>
-  void sort_by_key(K* keys, V* vals, std::int64_t n) {
+  void sort_by_key(K* keys, V* vals, std::int64_t n, int key_bits = int(8 * sizeof(K))) {
     if (n <= 1) return;
     Buffer<K> ka = alloc<K>(n);
     Buffer<V> va = alloc<V>(n);
     cub::DoubleBuffer<K> kb(keys, ka.data());
     cub::DoubleBuffer<V> vb(vals, va.data());
     run_cub([&](void* tmp, std::size_t& bytes) {
-      return cub::DeviceRadixSort::SortPairs(tmp, bytes, kb, vb, n, 0, int(sizeof(K) * 8), s_);
+      return cub::DeviceRadixSort::SortPairs(tmp, bytes, kb, vb, n, 0,
+                                             std::min(key_bits, int(sizeof(K) * 8)), s_);
     });
     if (kb.Current() != keys) copy(kb.Current(), n, keys);
     if (vb.Current() != vals) copy(vb.Current(), n, vals);

@@ -247,6 +247,10 @@ inline Triangulation2d follow_in_chunks(const Case& c, const Delaunay2dOptions& 
     expect_valid(sofar, t);
     const Triangulation2d fresh = delaunay2d(sofar, fresh_opt);
     EXPECT_EQ(triangle_set(t), triangle_set(fresh));
+    // array for array: the output's order depends on the triangles alone, not on the slots
+    // the kept triangulation's history left
+    EXPECT_EQ(t.triangles, fresh.triangles);
+    EXPECT_EQ(t.neighbors, fresh.neighbors);
     EXPECT_EQ(t.duplicate_of, fresh.duplicate_of);
     if (k == n || ::testing::Test::HasFailure()) return t;
     const std::size_t left = n - k;

@@ -23,6 +23,9 @@ struct FiniteTriangles {
     const std::int32_t* v = tri[t].v;
     return v[0] != m && v[1] != m && v[2] != m;
   }
+  GG_HD void order_names(std::int64_t t, std::int32_t* w) const {  // (curve positions)
+    for (int k = 0; k < 3; ++k) w[k] = tri[t].v[k];
+  }
   GG_HD mesh::SimplexRecord<3> get(std::int64_t t) const {
     const Tri T = tri[t];
     mesh::SimplexRecord<3> r;
@@ -119,10 +122,13 @@ inline void Triangulator::peel() {
   }
 }
 
+// The finite triangles in the curve order of their vertices (mesh/compact.hpp): the slots'
+// order follows the schedule, and the output must not (the CPU executor's schedule is not the
+// GPU's, and both give the same arrays).
 inline Triangulator::Finished Triangulator::finish() {
   // (the extended triangulation has 2m - 2 slots, all in use)
-  return mesh::compact_live<3>(
-      ex_, tmax_, FiniteTriangles{tri_.data(), P_.orig.data(), m_, std::int32_t(base_)});
+  return mesh::compact_live_sorted(
+      ex_, tmax_, FiniteTriangles{tri_.data(), P_.orig.data(), m_, std::int32_t(base_)}, m_);
 }
 
 inline void Triangulator::report() {
