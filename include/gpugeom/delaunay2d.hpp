@@ -65,6 +65,10 @@ struct Delaunay2dStats : RunStats {
   /// Further exact passes past the exact list's capacity; relocations within a batch for a full
   /// flip log; flip rounds run in parts past the first.
   std::int64_t exact_rest_passes = 0, log_relocations = 0, split_flip_rounds = 0;
+  /// The CPU executor's own schedule: points inserted one by one (each by its cavity), and of
+  /// them those a thread left to the end because their cavity reached another thread's part of
+  /// the curve (0 where the batches ran).
+  std::int64_t cavity_insertions = 0, deferred_points = 0;
   /// Triangles left flat on the hull and peeled (points on one line at the boundary).
   std::int64_t flat_triangles = 0;
   /// The start's point location by walks: steps, scans, and the longest walk.

@@ -22,7 +22,8 @@ namespace gpugeom {
   X(sketch_not_disk) X(shifted) X(bad_inner) X(bad_boundary) X(shift_rounds) X(delete_rounds)     \
   X(start_vertices) X(start_triangles) X(digital_fallback) X(inserted_points) X(removed_points)   \
   X(hole_vertices) X(hole_triangles) X(remove_rebuilt) X(move_rounds) X(move_taken_out)           \
-  X(move_reinserted) X(move_rebuilt) X(furthest_site_vertices)
+  X(move_reinserted) X(move_rebuilt) X(furthest_site_vertices) X(cavity_insertions)           \
+  X(deferred_points)
 // clang-format on
 GG_COUNTER_MAP(Delaunay2dStats, GG_DELAUNAY2D_COUNTERS);
 #undef GG_DELAUNAY2D_COUNTERS

@@ -27,6 +27,9 @@ struct Tuning {
     // The longest work list whose flip rounds run in one team (0: the rule's, twice the team's
     // size; -1: none, every round as kernels).
     std::int64_t team_list = 0;
+    // The CPU executor runs the batches and flip rounds (the GPU's schedule) rather than its own
+    // (points one by one: delaunay2d/impl/one_by_one.inl), as it does where a knob above is set.
+    bool batches = false;
   } del2d;
   struct Hull3d {
     // The facet store's first size in slots (0: the rule's, hull3d::first_facet_slots), so that

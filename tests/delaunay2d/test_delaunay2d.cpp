@@ -592,15 +592,48 @@ TEST(Delaunay2d, TopOfTheWideSlotRange) {
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
     const auto ref = delaunay2d(c.pts, cpu());
-    const auto r = delaunay2d(c.pts, gg_test::tuned(cpu(), [](detail::Tuning& t) {
-                                t.del2d.slot_base = std::int64_t(1)
-                                                    << 30;  // clamped: 2^30 - 1 last
-                              }));
-    expect_valid(c.pts, r);
-    EXPECT_EQ(r.triangles, ref.triangles);
-    EXPECT_EQ(r.neighbors, ref.neighbors);
-    EXPECT_EQ(r.stats.flips, ref.stats.flips);
+    for (const bool batches : {false, true}) {  // (both schedules: one_by_one.inl's and the GPU's)
+      const auto r = delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) {
+                                  t.del2d.slot_base = std::int64_t(1)
+                                                      << 30;  // clamped: 2^30 - 1 last
+                                  t.del2d.batches = batches;
+                                }));
+      expect_valid(c.pts, r);
+      EXPECT_EQ(r.triangles, ref.triangles);
+      EXPECT_EQ(r.neighbors, ref.neighbors);
+    }
   }
+}
+
+// The CPU executor's own schedule (points one by one by their cavities, the threads over chunks
+// of the curve; which points wait for the end depends on timing) and the GPU's (batches and flip
+// rounds, run here on the CPU executor): the same arrays, on every distribution and degenerate
+// case and on any thread count, run after run (issue 53: the executors give the same output).
+TEST(Delaunay2d, BothSchedulesGiveTheSameArrays) {
+  std::vector<gg_del2d::Case> cases = gg_del2d::degenerate_cases();
+  for (auto& c : gg_del2d::distribution_cases({100, 20000, 100000}, 41))
+    cases.push_back(std::move(c));
+  std::int64_t deferred = 0;
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const auto ref =
+        delaunay2d(c.pts, gg_test::tuned(cpu(), [](detail::Tuning& t) { t.del2d.batches = true; }));
+    expect_valid(c.pts, ref);
+    EXPECT_EQ(ref.stats.cavity_insertions, 0);
+    for (const int threads : {1, 2, 3, 8}) {
+      SCOPED_TRACE(threads);
+      Delaunay2dOptions o = cpu();
+      o.threads = threads;
+      const auto r = delaunay2d(c.pts, o);
+      EXPECT_EQ(r.triangles, ref.triangles);
+      EXPECT_EQ(r.neighbors, ref.neighbors);
+      EXPECT_EQ(r.duplicate_of, ref.duplicate_of);
+      EXPECT_EQ(r.stats.cavity_insertions, r.stats.distinct_points - 3);
+      EXPECT_EQ(r.stats.batches, 0);
+      deferred += r.stats.deferred_points;
+    }
+  }
+  EXPECT_GT(deferred, 0);  // (the threads met: the waiting points' path was taken)
 }
 
 // The device entry reads the caller's points where they are (no copy to normalise -0): on the
@@ -630,7 +663,10 @@ TEST(Delaunay2d, PastTheRoundsCapacities) {
   for (auto& c : gg_del2d::distribution_cases({100, 20000}, 5)) cases.push_back(std::move(c));
   std::map<std::string, std::int64_t> seen;
   auto run = [&](const gg_del2d::Case& c, const Capacities& f) {
-    auto r = delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) { t.del2d = f; }));
+    auto r = delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) {
+                          t.del2d = f;
+                          t.del2d.batches = true;
+                        }));
     expect_valid(c.pts, r);
     for (const char* k : {"exact_rest_passes", "log_relocations", "split_flip_rounds"})
       seen[k] += r.stats.counter_map().at(k);
@@ -638,7 +674,7 @@ TEST(Delaunay2d, PastTheRoundsCapacities) {
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
-    const auto ref = delaunay2d(c.pts, cpu());
+    const auto ref = run(c, {});
     for (const Capacities f : {Capacities{0, 16, 0}, {0, 0, 3}, {0, 16, 2}}) {
       const auto r = run(c, f);
       EXPECT_EQ(r.triangles, ref.triangles) << f.log_records << "/" << f.exact_entries;
@@ -670,14 +706,18 @@ TEST(Delaunay2d, RoundsInATeamOrAsKernels) {
     SCOPED_TRACE(c.name);
     Capacities none;
     none.team_list = -1;
-    const auto ref =
-        delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) { t.del2d = none; }));
+    const auto ref = delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) {
+                                  t.del2d = none;
+                                  t.del2d.batches = true;
+                                }));
     EXPECT_EQ(ref.stats.team_flip_rounds, 0);
     for (std::size_t k = 0; k < teams.size(); ++k) {
       const Capacities& f = teams[k];
       SCOPED_TRACE(std::to_string(f.team_list) + " / " + std::to_string(f.log_records));
-      const auto r =
-          delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) { t.del2d = f; }));
+      const auto r = delaunay2d(c.pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) {
+                                  t.del2d = f;
+                                  t.del2d.batches = true;
+                                }));
       expect_valid(c.pts, r);
       EXPECT_EQ(r.triangles, ref.triangles);
       EXPECT_EQ(r.neighbors, ref.neighbors);

@@ -135,6 +135,8 @@ inline void Triangulator::report() {
   const Counters c = counters();
   for (auto& p : prof_) st_.phase_ms.push_back({"insert/" + p.first, p.second});
   st_.batches = batches_;
+  st_.cavity_insertions = cavity_insertions_;
+  st_.deferred_points = deferred_;
   st_.flip_rounds = c.rounds;
   st_.flips = flips_;
   st_.exact_predicates = c.exact_total;  // work-list entries the filter left open

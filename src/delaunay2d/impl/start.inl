@@ -2,8 +2,8 @@
 // neighbours, or a given triangulation (the digital method's sketch, DynamicDelaunay2d's kept
 // one), with every other point located in it.
 
-// The first triangle and its three infinite neighbours; every other point is located.
-inline void Triangulator::start() {
+// The first triangle and its three infinite neighbours, in slots 0 to 3.
+inline void Triangulator::write_first() {
   const std::int32_t a = P_.first[0], b = P_.first[1], c = P_.first[2], I = m_;
   const std::int32_t B = std::int32_t(base_);
   auto e = [B](std::int32_t s, int k) { return enc(B + s, k); };
@@ -14,6 +14,13 @@ inline void Triangulator::start() {
                         {{b, a, I}, {e(2, 1), e(1, 0), e(0, 2)}, -1, 0}};  // (a,I) (I,b) (b,a)
   ex_.from_host(first, 4, tri_.data());
   ntri_ = 4;
+}
+
+// The same, with every other point located in it.
+inline void Triangulator::start() {
+  write_first();
+  const std::int32_t a = P_.first[0], b = P_.first[1], c = P_.first[2];
+  const std::int32_t B = std::int32_t(base_);
   const Geo g = g_;
   std::int32_t* loc = loc_.data();
   const Tri* tri = tri_.data();

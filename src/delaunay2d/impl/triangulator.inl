@@ -39,9 +39,11 @@ class Triangulator : public TriStore {
   // perturbed points, which a later start needs: DynamicDelaunay2d drops them from its output).
   void run(bool peel_flats = true) {
     auto t0 = clock::now();
-    start();
-    remaining_ = nun_;
-    while (remaining_ > 0) batch();
+    if (!insert_one_by_one(ex_)) {
+      start();
+      remaining_ = nun_;
+      while (remaining_ > 0) batch();
+    }
     phase("insert", t0);
     if (!peel_flats) return;
     t0 = clock::now();
@@ -50,12 +52,18 @@ class Triangulator : public TriStore {
   }
 
   // start.inl: the first triangle, or a given triangulation, with every other point located.
+  void write_first();
   void start();
   void run_from(const std::int32_t* tris, const std::int32_t* twin, std::int64_t f,
                 const std::int32_t* near, bool peel_flats = true, bool start_delaunay = false);
   void start_from(const std::int32_t* tris, const std::int32_t* twin, std::int64_t f,
                   const std::int32_t* near, bool start_delaunay);
   void check_lost();
+
+  // one_by_one.inl: the CPU executor's own schedule, the points one by one by their cavities
+  // (false where the batches run instead: CUDA, or the batches' knobs set).
+  template <class E>
+  bool insert_one_by_one(E& ex);
 
   // batch.inl: one batch (choose, split, flip), and the points following their triangles.
   void batch();
@@ -107,7 +115,8 @@ class Triangulator : public TriStore {
   std::int64_t logged_ = 0;                                   // records of the epoch
   std::int64_t remaining_ = 0, dead_ = 0, epoch_splits_ = 0;  // points; list entries; splits
   std::int64_t exact_rest_passes_ = 0, relocations_ = 0, split_rounds_ = 0;
-  mesh::ScheduleCounts sched_;  // (how the flip rounds ran: rounds.inl)
+  std::int64_t cavity_insertions_ = 0, deferred_ = 0;  // (one_by_one.inl)
+  mesh::ScheduleCounts sched_;                         // (how the flip rounds ran: rounds.inl)
   std::int32_t epoch_first_new_ = 0;
   std::map<std::string, double> prof_;
   clock::time_point last_ = clock::now();

@@ -8,6 +8,7 @@
 #include "delaunay2d/impl/store.inl"
 #include "delaunay2d/impl/triangulator.inl"
 #include "delaunay2d/impl/start.inl"
+#include "delaunay2d/impl/one_by_one.inl"
 #include "delaunay2d/impl/batch.inl"
 #include "delaunay2d/impl/rounds.inl"
 #include "delaunay2d/impl/finish.inl"

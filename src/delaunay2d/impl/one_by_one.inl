@@ -1,0 +1,292 @@
+// The CPU executor's schedule for 2D Delaunay (issue 53): the points inserted one by one in
+// curve order, each by its cavity (Bowyer-Watson), the threads over chunks of the curve.
+// Included inside gpugeom::del2d::{cpu,cuda}_impl after triangulator.inl; it runs on the CPU
+// only (Triangulator::insert_one_by_one), over the same store, predicates and perturbation
+// as the batches (store.inl, geometry.inl), and the peel and the output follow as after them.
+//
+// Why a second schedule: the batches' rounds suit thousands of GPU threads, and on a few cores
+// they pay for rounds over global lists, the points' relocation through the flip history and
+// the votes (docs/performance.md, issue 53). One point at a time, located by a walk from the
+// triangle made for the point before it on the curve, touches a few cache lines.
+//
+// Why the output is the same: the Delaunay triangulation of the perturbed points is unique,
+// and both schedules build it with the same predicates (a triangle conflicts with q where the
+// flips would call its edge to q illegal: illegal_fast / illegal_exact), so only the slots
+// differ, and the output's order does not follow the slots (finish.inl).
+//
+// The threads. A sample (every kSampleStride-th point on the curve) goes in first, on one
+// thread. Then thread p inserts the rest of its chunk of the curve, and may change only
+// triangles whose finite vertices all lie in its chunk ("its own"); the infinity vertex lies in
+// every chunk. Where a point's walk or cavity reaches another's triangle, the point waits
+// (deferred), and the deferred points go in last, on one thread. This is safe without locks:
+// - a triangle of thread p's stays p's (a cavity of p's triangles is refilled by triangles of
+//   its boundary's vertices and the point, all in p's chunk), and no other thread changes it;
+// - a triangle with vertices in two chunks ("shared") is in no cavity while the threads run, so
+//   its vertices never change; an edge's two finite vertices lie in one chunk for at most one
+//   thread, and only that thread rewrites a shared triangle's neighbour across such an edge.
+// A thread reads others' triangles only while walking (a torn or stale record can only mislead
+// the walk, which then ends on a triangle that is not the thread's own, and the point waits);
+// every word of the store is read and written atomically (acquire / release: a neighbour
+// pointer is published after the triangle it names). Which points wait depends on timing, the
+// triangulation does not.
+
+constexpr std::int32_t kSampleStride = 32;  // the sample inserted first, on one thread
+constexpr int kWalkSteps = 1 << 16;         // a walk this long gives up (threads only)
+
+// Triangle words that other threads may be reading or writing.
+GG_INLINE std::int32_t load_word(const std::int32_t* p) {
+  cuda::atomic_ref<std::int32_t, cuda::thread_scope_system> r(*const_cast<std::int32_t*>(p));
+  return r.load(cuda::memory_order_acquire);
+}
+GG_INLINE void store_word(std::int32_t* p, std::int32_t v) {
+  cuda::atomic_ref<std::int32_t, cuda::thread_scope_system> r(*p);
+  r.store(v, cuda::memory_order_release);
+}
+
+// One thread's insertions (the sample's and the deferred points' run as chunk 0 of 1).
+struct CavityInserter {
+  Tri* tri;            // by slot number
+  std::int32_t* mark;  // per slot: the last attempt whose cavity took it
+  Geo g;
+  std::int32_t base;       // the first slot's number
+  std::int32_t first[3];   // the first triangle's vertices, sorted
+  std::int64_t chunk = 0;  // points per chunk; 0: one thread alone, nothing is anyone else's
+  std::int32_t own = 0;    // this thread's chunk
+  std::int32_t again = 0;  // m once the deferred points go in: their second attempts' marks
+  std::uint32_t rng = 2463534242u;
+  std::int32_t last = -1;  // a slot made by the last insertion: the next walk starts there
+  std::vector<std::int32_t> cav;
+  struct Edge {
+    std::int32_t a, b, out;  // counter-clockwise seen from the cavity; the outer neighbour
+  };
+  std::vector<Edge> bnd;
+  std::vector<double> scratch = std::vector<double>(std::size_t(kIncircleScratch));
+
+  Tri read(std::int32_t s) const {
+    const std::int32_t* w = tri[s].v;
+    Tri T;
+    for (int k = 0; k < 3; ++k) T.v[k] = load_word(w + k), T.n[k] = load_word(w + 3 + k);
+    return T;
+  }
+  // The two slots point q adds (after the first triangle's four): fixed by q's place on the
+  // curve, so the threads need no shared counter.
+  std::int32_t new_slot(std::int32_t q, int j) const {
+    const std::int32_t r = q - (q > first[0]) - (q > first[1]) - (q > first[2]);
+    return base + 4 + 2 * r + j;
+  }
+  bool is_first(std::int32_t q) const { return q == first[0] || q == first[1] || q == first[2]; }
+  bool mine(const std::int32_t* v) const {
+    if (!chunk) return true;
+    for (int k = 0; k < 3; ++k)
+      if (v[k] != g.m && v[k] / chunk != own) return false;
+    return true;
+  }
+  bool conflict(const std::int32_t* v, std::int32_t q) {
+    int r = illegal_fast(g, v, q);
+    if (!r) r = illegal_exact(g, v, q, scratch.data());
+    return r > 0;
+  }
+  // The triangle (of the extended triangulation: infinite ones are cones from the kernel
+  // point) that holds q, by a stochastic visibility walk from slot t; -1 where it gives up.
+  std::int32_t walk(std::int32_t t, std::int32_t q) {
+    std::int32_t came = -1;
+    for (int step = 0; !chunk || step < kWalkSteps; ++step) {
+      const Tri T = read(t);
+      if (T.v[0] == T.v[1] || T.v[1] == T.v[2] || T.v[2] == T.v[0]) return -1;  // (torn)
+      rng ^= rng << 13, rng ^= rng >> 17, rng ^= rng << 5;
+      const int s = int(rng % 3);
+      std::int32_t next = -1;
+      for (int j = 0; j < 3 && next < 0; ++j) {
+        const int k = (s + j) % 3;
+        const std::int32_t nb = simplex_of(T.n[k]);
+        if (nb != came && orient_ext(g, T.v[(k + 1) % 3], T.v[(k + 2) % 3], q) < 0) next = nb;
+      }
+      if (next < 0) return t;
+      came = t, t = next;
+    }
+    return -1;
+  }
+  // Inserts q, or returns false having changed nothing (its cavity reaches another thread's
+  // triangles).
+  bool insert(std::int32_t q) {
+    const std::int32_t t0 = walk(last >= 0 ? last : base, q);
+    if (t0 < 0) return false;
+    const Tri T0 = read(t0);
+    if (!mine(T0.v)) return false;
+    // The cavity: the triangles whose circles (half-planes, for infinite ones) hold q, found
+    // from the one that holds it; its boundary, counter-clockwise edges seen from inside.
+    cav.clear(), bnd.clear();
+    cav.push_back(t0);
+    const std::int32_t stamp = q + again;  // (a first attempt may have left marks q)
+    store_word(mark + t0, stamp);
+    for (std::size_t i = 0; i < cav.size(); ++i) {
+      const Tri C = read(cav[i]);
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t nb = simplex_of(C.n[k]);
+        if (load_word(mark + nb) == stamp) continue;
+        const Tri N = read(nb);
+        if (conflict(N.v, q)) {
+          if (!mine(N.v)) return false;
+          store_word(mark + nb, stamp);
+          cav.push_back(nb);
+        } else {
+          bnd.push_back({C.v[(k + 1) % 3], C.v[(k + 2) % 3], C.n[k]});
+        }
+      }
+    }
+    // Refilled by the triangles (q, a, b) over the boundary edges, in the cavity's slots and
+    // q's two new ones (a star of e edges has e triangles; the cavity had e - 2).
+    const std::size_t e = bnd.size();
+    if (e != cav.size() + 2)  // (a bug guard: the cavity of a triangulation is a disk)
+      throw Error(ErrorCode::Internal, "a cavity that is no disk; please report this input");
+    auto slot = [&](std::size_t i) {
+      return i < cav.size() ? cav[i] : new_slot(q, int(i - cav.size()));
+    };
+    auto starting_at = [&](std::int32_t a) {  // the boundary edge from a
+      for (std::size_t i = 0; i < e; ++i)
+        if (bnd[i].a == a) return i;
+      return e;  // (unreachable: the boundary is one cycle)
+    };
+    for (std::size_t i = 0; i < e; ++i) {
+      const Edge& E = bnd[i];
+      const std::int32_t after = slot(starting_at(E.b));  // (q, b, c): edge q-b opposite c
+      std::int32_t before = -1;                           // (q, z, a): edge a-q opposite z
+      for (std::size_t j = 0; j < e && before < 0; ++j)
+        if (bnd[j].b == E.a) before = slot(j);
+      std::int32_t* w = tri[slot(i)].v;
+      const std::int32_t rec[6] = {q, E.a, E.b, E.out, enc(after, 2), enc(before, 1)};
+      for (int k = 0; k < 6; ++k) store_word(w + k, rec[k]);
+      tri[slot(i)].stamp = -1, tri[slot(i)].pair = 0;
+    }
+    for (std::size_t i = 0; i < e; ++i)  // the outer neighbours, after the triangles they name
+      store_word(tri[simplex_of(bnd[i].out)].n + loc_of(bnd[i].out), enc(slot(i), 0));
+    last = slot(0);
+    return true;
+  }
+};
+
+// The insertion order (a biased randomised insertion order, as CGAL's spatial sort makes, from
+// Amenta, Choi and Rote): each point gets a level from a hash of its place on the curve, level
+// l for a share 2^-(l+1) of the points; the levels go in from the highest down, each in curve
+// order. In pure curve order one point may see a long chain of earlier ones (two segments: the
+// second one's points each took a fan over the whole first), and each insertion redid the fan.
+constexpr int kLevels = 21;
+constexpr int kSampleLevel = 5;  // levels from here up: the sample, on one thread (1/32)
+GG_INLINE int level_of(std::int32_t q) {
+  std::uint64_t x = std::uint64_t(q) * 0x9E3779B97F4A7C15ull;
+  x ^= x >> 31, x *= 0xBF58476D1CE4E5B9ull, x ^= x >> 29;
+  int l = 0;
+  while (l < kLevels - 1 && !(x & (std::uint64_t(1) << l))) ++l;
+  return l;
+}
+// The points of [lo, hi) but the first triangle's, by level from the highest down, each level in
+// curve order, written from order[lo]; count[l]: how many have level l.
+inline void order_by_level(const CavityInserter& I, std::int32_t lo, std::int32_t hi,
+                           std::int32_t* order, std::int64_t* count) {
+  std::fill(count, count + kLevels, 0);
+  for (std::int32_t q = lo; q < hi; ++q)
+    if (!I.is_first(q)) ++count[level_of(q)];
+  std::int64_t at[kLevels], sum = lo;
+  for (int l = kLevels - 1; l >= 0; --l) at[l] = sum, sum += count[l];
+  for (std::int32_t q = lo; q < hi; ++q)
+    if (!I.is_first(q)) order[at[level_of(q)]++] = q;
+}
+
+template <class E>
+bool Triangulator::insert_one_by_one(E& ex) {
+  if constexpr (E::backend != Backend::Cpu) {
+    return false;
+  } else {
+    const detail::Tuning::Del2d& knobs = ex.tuning().del2d;
+    if (knobs.batches || knobs.batch_points || knobs.log_records || knobs.exact_entries ||
+        knobs.team_list)
+      return false;  // (the batches' knobs ask for the batches)
+    write_first();
+    const std::int32_t m = m_;
+    CavityInserter one{
+        tri(), srank(), g_, std::int32_t(base_), {P_.first[0], P_.first[1], P_.first[2]}};
+    std::sort(one.first, one.first + 3);
+    auto put = [&](CavityInserter& I, std::int32_t q) {  // (one thread alone: always goes in)
+      if (!I.insert(q)) throw Error(ErrorCode::Internal, "a cavity insertion failed alone");
+    };
+    std::int32_t* order = loc_.data();  // (the batches' point locations; free here)
+    cavity_insertions_ = m - 3;
+    ntri_ = tmax_;
+    const int nt = ex.team_size();
+    if (nt <= 1 || m < 64 * std::int64_t(1 << kSampleLevel) * nt) {
+      std::int64_t count[kLevels];
+      order_by_level(one, 0, m, order, count);
+      for (std::int64_t i = 0; i < m - 3; ++i) put(one, order[i]);
+      return true;
+    }
+    // The chunks: thread c's is [c * chunk, (c + 1) * chunk), its points ordered by level.
+    const std::int64_t chunk = (std::int64_t(m) + nt - 1) / nt;
+    std::vector<std::int64_t> counts(std::size_t(nt) * kLevels);
+    auto bounds = [&](std::int64_t c, std::int32_t& lo, std::int32_t& hi) {
+      lo = std::int32_t(std::min<std::int64_t>(m, c * chunk));
+      hi = std::int32_t(std::min<std::int64_t>(m, lo + chunk));
+    };
+    auto each_chunk = [&](auto f) {  // every chunk by some thread (whatever the team's size)
+      ex.team([&](const auto& team) {
+        for (std::int64_t c = team.rank; c < nt; c += team.size) f(c);
+      });
+    };
+    each_chunk([&](std::int64_t c) {
+      std::int32_t lo, hi;
+      bounds(c, lo, hi);
+      order_by_level(one, lo, hi, order, counts.data() + c * kLevels);
+    });
+    // Where level l of chunk c begins in order; the sample, level by level over all chunks.
+    std::vector<std::int64_t> begin(std::size_t(nt) * (kLevels + 1));
+    for (std::int64_t c = 0; c < nt; ++c) {
+      std::int32_t lo, hi;
+      bounds(c, lo, hi);
+      std::int64_t at = lo;
+      for (int l = kLevels - 1; l >= 0; --l)
+        begin[c * (kLevels + 1) + l + 1] = at, at += counts[c * kLevels + l];
+      begin[c * (kLevels + 1)] = at;  // (the chunk's end)
+    }
+    auto level_range = [&](std::int64_t c, int l, std::int64_t& from, std::int64_t& to) {
+      from = begin[c * (kLevels + 1) + l + 1];
+      to = from + counts[c * kLevels + l];
+    };
+    for (int l = kLevels - 1; l >= kSampleLevel; --l)
+      for (std::int64_t c = 0; c < nt; ++c) {
+        std::int64_t from, to;
+        level_range(c, l, from, to);
+        for (std::int64_t i = from; i < to; ++i) put(one, order[i]);
+      }
+    mark("one by one: sample");
+    std::vector<std::vector<std::int32_t>> waiting(static_cast<std::size_t>(nt));
+    const CavityInserter proto = one;
+    each_chunk([&](std::int64_t c) {
+      CavityInserter mine = proto;
+      mine.chunk = chunk, mine.own = std::int32_t(c), mine.rng += std::uint32_t(c);
+      std::int64_t from, to;
+      level_range(c, kSampleLevel, from, to);  // (its sample's last point: a slot near)
+      if (to > from) mine.last = mine.new_slot(order[to - 1], 0);
+      std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
+      for (int l = kSampleLevel - 1; l >= 0; --l) {
+        level_range(c, l, from, to);
+        for (std::int64_t i = from; i < to; ++i)
+          if (!mine.insert(order[i])) wait.push_back(order[i]);
+      }
+    });
+    mark("one by one: chunks");
+    // The waiting points in curve order, each walk from the slot of the point before it on the
+    // curve (inserted by now: before it in this list, or by a thread).
+    one.again = m;
+    for (auto& wait : waiting) {
+      std::sort(wait.begin(), wait.end());
+      deferred_ += std::int64_t(wait.size());
+      for (const std::int32_t q : wait) {
+        one.last = -1;
+        for (std::int32_t p = q - 1; p >= 0 && one.last < 0; --p)
+          if (!one.is_first(p)) one.last = one.new_slot(p, 0);
+        put(one, q);
+      }
+    }
+    mark("one by one: deferred");
+    return true;
+  }
+}
