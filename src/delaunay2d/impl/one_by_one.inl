@@ -14,8 +14,9 @@
 // flips would call its edge to q illegal: illegal_fast / illegal_exact), so only the slots
 // differ, and the output's order does not follow the slots (finish.inl).
 //
-// The threads. A sample (every kSampleStride-th point on the curve) goes in first, on one
-// thread. Then thread p inserts the rest of its chunk of the curve, and may change only
+// The order: levels of a biased randomised order (order_by_level), each in curve order. The
+// threads: the sample (the top levels, a 32nd of the points) goes in first, on one thread. Then
+// thread p inserts the rest of its chunk of the curve, and may change only
 // triangles whose finite vertices all lie in its chunk ("its own"); the infinity vertex lies in
 // every chunk. Where a point's walk or cavity reaches another's triangle, the point waits
 // (deferred), and the deferred points go in last, on one thread. This is safe without locks:
@@ -30,8 +31,7 @@
 // pointer is published after the triangle it names). Which points wait depends on timing, the
 // triangulation does not.
 
-constexpr std::int32_t kSampleStride = 32;  // the sample inserted first, on one thread
-constexpr int kWalkSteps = 1 << 16;         // a walk this long gives up (threads only)
+constexpr int kWalkSteps = 1 << 16;  // a walk this long gives up (threads only)
 
 // Triangle words that other threads may be reading or writing.
 GG_INLINE std::int32_t load_word(const std::int32_t* p) {
@@ -45,6 +45,11 @@ GG_INLINE void store_word(std::int32_t* p, std::int32_t v) {
 
 // One thread's insertions (the sample's and the deferred points' run as chunk 0 of 1).
 struct CavityInserter {
+  CavityInserter(Tri* t, std::int32_t* mk, const Geo& geo, std::int32_t b, const std::int32_t* f)
+      : tri(t), mark(mk), g(geo), base(b) {
+    std::copy(f, f + 3, first);
+    std::sort(first, first + 3);
+  }
   Tri* tri;            // by slot number
   std::int32_t* mark;  // per slot: the last attempt whose cavity took it
   Geo g;
@@ -53,6 +58,7 @@ struct CavityInserter {
   std::int64_t chunk = 0;  // points per chunk; 0: one thread alone, nothing is anyone else's
   std::int32_t own = 0;    // this thread's chunk
   std::int32_t again = 0;  // m once the deferred points go in: their second attempts' marks
+  std::int32_t next = 0;   // the next free slot of the chunk it inserts for
   std::uint32_t rng = 2463534242u;
   std::int32_t last = -1;  // a slot made by the last insertion: the next walk starts there
   std::vector<std::int32_t> cav;
@@ -68,11 +74,11 @@ struct CavityInserter {
     for (int k = 0; k < 3; ++k) T.v[k] = load_word(w + k), T.n[k] = load_word(w + 3 + k);
     return T;
   }
-  // The two slots point q adds (after the first triangle's four): fixed by q's place on the
-  // curve, so the threads need no shared counter.
-  std::int32_t new_slot(std::int32_t q, int j) const {
-    const std::int32_t r = q - (q > first[0]) - (q > first[1]) - (q > first[2]);
-    return base + 4 + 2 * r + j;
+  // Where the slots of a chunk's points begin: each point adds two, after the first triangle's
+  // four, and a chunk takes them in the order it inserts (so that the triangles of points
+  // inserted one after the other lie together), with no counter shared by the threads.
+  std::int32_t first_slot(std::int32_t lo) const {
+    return base + 4 + 2 * (lo - (lo > first[0]) - (lo > first[1]) - (lo > first[2]));
   }
   bool is_first(std::int32_t q) const { return q == first[0] || q == first[1] || q == first[2]; }
   bool mine(const std::int32_t* v) const {
@@ -140,7 +146,7 @@ struct CavityInserter {
     if (e != cav.size() + 2)  // (a bug guard: the cavity of a triangulation is a disk)
       throw Error(ErrorCode::Internal, "a cavity that is no disk; please report this input");
     auto slot = [&](std::size_t i) {
-      return i < cav.size() ? cav[i] : new_slot(q, int(i - cav.size()));
+      return i < cav.size() ? cav[i] : next + std::int32_t(i - cav.size());
     };
     auto starting_at = [&](std::int32_t a) {  // the boundary edge from a
       for (std::size_t i = 0; i < e; ++i)
@@ -161,6 +167,7 @@ struct CavityInserter {
     for (std::size_t i = 0; i < e; ++i)  // the outer neighbours, after the triangles they name
       store_word(tri[simplex_of(bnd[i].out)].n + loc_of(bnd[i].out), enc(slot(i), 0));
     last = slot(0);
+    next += 2;
     return true;
   }
 };
@@ -203,9 +210,7 @@ bool Triangulator::insert_one_by_one(E& ex) {
       return false;  // (the batches' knobs ask for the batches)
     write_first();
     const std::int32_t m = m_;
-    CavityInserter one{
-        tri(), srank(), g_, std::int32_t(base_), {P_.first[0], P_.first[1], P_.first[2]}};
-    std::sort(one.first, one.first + 3);
+    CavityInserter one(tri(), srank(), g_, std::int32_t(base_), P_.first);
     auto put = [&](CavityInserter& I, std::int32_t q) {  // (one thread alone: always goes in)
       if (!I.insert(q)) throw Error(ErrorCode::Internal, "a cavity insertion failed alone");
     };
@@ -216,7 +221,10 @@ bool Triangulator::insert_one_by_one(E& ex) {
     if (nt <= 1 || m < 64 * std::int64_t(1 << kSampleLevel) * nt) {
       std::int64_t count[kLevels];
       order_by_level(one, 0, m, order, count);
+      one.next = one.first_slot(0);
       for (std::int64_t i = 0; i < m - 3; ++i) put(one, order[i]);
+      if (one.next != one.first_slot(m))  // (a bug guard: every slot in use)
+        throw Error(ErrorCode::Internal, "the triangulation's slots are not all in use");
       return true;
     }
     // The chunks: thread c's is [c * chunk, (c + 1) * chunk), its points ordered by level.
@@ -250,11 +258,23 @@ bool Triangulator::insert_one_by_one(E& ex) {
       from = begin[c * (kLevels + 1) + l + 1];
       to = from + counts[c * kLevels + l];
     };
+    std::vector<std::int32_t> next(static_cast<std::size_t>(nt + 1));  // each chunk's free slot
+    for (std::int64_t c = 0; c <= nt; ++c) {
+      std::int32_t lo, hi;
+      bounds(c, lo, hi);
+      next[std::size_t(c)] = one.first_slot(lo);
+    }
+    const std::vector<std::int32_t> ends(next.begin() + 1, next.end());
+    auto for_chunk = [&](CavityInserter& I, std::int64_t c, std::int32_t q) {
+      I.next = next[std::size_t(c)];
+      put(I, q);
+      next[std::size_t(c)] = I.next;
+    };
     for (int l = kLevels - 1; l >= kSampleLevel; --l)
       for (std::int64_t c = 0; c < nt; ++c) {
         std::int64_t from, to;
         level_range(c, l, from, to);
-        for (std::int64_t i = from; i < to; ++i) put(one, order[i]);
+        for (std::int64_t i = from; i < to; ++i) for_chunk(one, c, order[i]);
       }
     mark("one by one: sample");
     std::vector<std::vector<std::int32_t>> waiting(static_cast<std::size_t>(nt));
@@ -262,29 +282,30 @@ bool Triangulator::insert_one_by_one(E& ex) {
     each_chunk([&](std::int64_t c) {
       CavityInserter mine = proto;
       mine.chunk = chunk, mine.own = std::int32_t(c), mine.rng += std::uint32_t(c);
-      std::int64_t from, to;
-      level_range(c, kSampleLevel, from, to);  // (its sample's last point: a slot near)
-      if (to > from) mine.last = mine.new_slot(order[to - 1], 0);
+      mine.next = next[std::size_t(c)];
+      std::int32_t lo, hi;
+      bounds(c, lo, hi);
+      // (the walks start from the chunk's last sample triangle, where it has one)
+      mine.last = mine.next > mine.first_slot(lo) ? mine.next - 2 : -1;
       std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
       for (int l = kSampleLevel - 1; l >= 0; --l) {
+        std::int64_t from, to;
         level_range(c, l, from, to);
         for (std::int64_t i = from; i < to; ++i)
           if (!mine.insert(order[i])) wait.push_back(order[i]);
       }
+      next[std::size_t(c)] = mine.next;
     });
     mark("one by one: chunks");
-    // The waiting points in curve order, each walk from the slot of the point before it on the
-    // curve (inserted by now: before it in this list, or by a thread).
+    // The waiting points in curve order, each walk from the last insertion's triangle.
     one.again = m;
-    for (auto& wait : waiting) {
+    for (std::int64_t c = 0; c < nt; ++c) {
+      std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
       std::sort(wait.begin(), wait.end());
       deferred_ += std::int64_t(wait.size());
-      for (const std::int32_t q : wait) {
-        one.last = -1;
-        for (std::int32_t p = q - 1; p >= 0 && one.last < 0; --p)
-          if (!one.is_first(p)) one.last = one.new_slot(p, 0);
-        put(one, q);
-      }
+      for (const std::int32_t q : wait) for_chunk(one, c, q);
+      if (next[std::size_t(c)] != ends[std::size_t(c)])  // (a bug guard: every slot in use)
+        throw Error(ErrorCode::Internal, "a chunk's slots are not all in use");
     }
     mark("one by one: deferred");
     return true;
