@@ -59,6 +59,7 @@ struct CavityInserter {
   std::int32_t own = 0;    // this thread's chunk
   std::int32_t again = 0;  // m once the deferred points go in: their second attempts' marks
   std::int32_t next = 0;   // the next free slot of the chunk it inserts for
+  bool broken = false;     // a cavity was no disk (a bug guard)
   std::uint32_t rng = 2463534242u;
   std::int32_t last = -1;  // a slot made by the last insertion: the next walk starts there
   std::vector<std::int32_t> cav;
@@ -143,8 +144,10 @@ struct CavityInserter {
     // Refilled by the triangles (q, a, b) over the boundary edges, in the cavity's slots and
     // q's two new ones (a star of e edges has e triangles; the cavity had e - 2).
     const std::size_t e = bnd.size();
-    if (e != cav.size() + 2)  // (a bug guard: the cavity of a triangulation is a disk)
-      throw Error(ErrorCode::Internal, "a cavity that is no disk; please report this input");
+    if (e != cav.size() + 2) {  // (a bug guard: the cavity of a triangulation is a disk)
+      broken = true;            // (no throw: a thread of a team must not; put() throws)
+      return false;
+    }
     auto slot = [&](std::size_t i) {
       return i < cav.size() ? cav[i] : next + std::int32_t(i - cav.size());
     };
@@ -212,7 +215,10 @@ bool Triangulator::insert_one_by_one(E& ex) {
     const std::int32_t m = m_;
     CavityInserter one(tri(), srank(), g_, std::int32_t(base_), P_.first);
     auto put = [&](CavityInserter& I, std::int32_t q) {  // (one thread alone: always goes in)
-      if (!I.insert(q)) throw Error(ErrorCode::Internal, "a cavity insertion failed alone");
+      if (!I.insert(q))
+        throw Error(ErrorCode::Internal, std::string(I.broken ? "a cavity that is no disk"
+                                                              : "a cavity insertion failed") +
+                                             "; please report this input");
     };
     std::int32_t* order = loc_.data();  // (the batches' point locations; free here)
     cavity_insertions_ = m - 3;
