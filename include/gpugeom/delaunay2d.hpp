@@ -99,7 +99,10 @@ struct Delaunay2dStats : RunStats {
 
 /// The result of delaunay2d: triangles, neighbours and duplicates, in host memory.
 struct Triangulation2d {
-  /// Counter-clockwise triangles, 3 input-point indices each.
+  /// Counter-clockwise triangles, 3 input-point indices each, in one order that depends on the
+  /// points alone: each triangle starts at its vertex first on the points' space-filling curve,
+  /// and the triangles follow their first two vertices in that order. So both executors, any
+  /// thread count, either method and DynamicDelaunay2d give the same arrays.
   HostVector<std::int32_t> triangles;
   /// neighbors[3*i + k]: the triangle opposite vertex k of triangle i, -1 on the hull (SciPy's
   /// convention).
@@ -147,7 +150,7 @@ DeviceTriangulation2d delaunay2d_device(const double* device_xy, std::int64_t n,
 /// A 2D Delaunay triangulation that follows its points (issue 47): kept on the executor between
 /// calls, it takes new points and is brought up to date from where it was, not rebuilt. After any
 /// sequence of calls it is exactly the triangulation delaunay2d gives for all the points so far:
-/// the same triangles with the same neighbours (their order in the arrays may differ),
+/// the same arrays of triangles and neighbours,
 /// degenerate input included, as the symbolic perturbation depends on the points alone
 /// (docs/design-notes.md). Points keep the indices they were given: the first call's are
 /// 0 .. n - 1, each insert's follow on. A point equal to an earlier one (given before or in the
