@@ -153,7 +153,9 @@ class _OfPoints:
     def add_points(self, points, restart: bool = False):
         """Adds points (incremental mode, as SciPy's): they take the indices after the current
         ones. ``restart=True`` computes the result from all points afresh; either way the result
-        is exactly that of a new object on all points (the order of simplices may differ).
+        is exactly that of a new object on all points (the same arrays for a 2D ``Delaunay``,
+        whose simplices come in an order that depends on the points alone; elsewhere the order
+        of simplices may differ).
 
         ``Delaunay`` brings its kept triangulation up to date (C++ ``DynamicDelaunay2d`` and
         ``DynamicDelaunay3d``); ``ConvexHull`` makes the hull of its vertices and the new points

@@ -102,14 +102,14 @@ struct CavityInserter {
       if (T.v[0] == T.v[1] || T.v[1] == T.v[2] || T.v[2] == T.v[0]) return -1;  // (torn)
       rng ^= rng << 13, rng ^= rng >> 17, rng ^= rng << 5;
       const int s = int(rng % 3);
-      std::int32_t next = -1;
-      for (int j = 0; j < 3 && next < 0; ++j) {
+      std::int32_t beyond = -1;  // (a neighbour across an edge with q on its far side)
+      for (int j = 0; j < 3 && beyond < 0; ++j) {
         const int k = (s + j) % 3;
         const std::int32_t nb = simplex_of(T.n[k]);
-        if (nb != came && orient_ext(g, T.v[(k + 1) % 3], T.v[(k + 2) % 3], q) < 0) next = nb;
+        if (nb != came && orient_ext(g, T.v[(k + 1) % 3], T.v[(k + 2) % 3], q) < 0) beyond = nb;
       }
-      if (next < 0) return t;
-      came = t, t = next;
+      if (beyond < 0) return t;
+      came = t, t = beyond;
     }
     return -1;
   }
