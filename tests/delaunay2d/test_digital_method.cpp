@@ -58,6 +58,8 @@ TEST(DigitalMethod, SameTrianglesAsIncrementalOnEveryInput) {
     const auto dig = delaunay2d(c.pts, o);
     gg_del2d::expect_valid(c.pts, dig);
     EXPECT_EQ(gg_del2d::triangle_set(dig), gg_del2d::triangle_set(inc));
+    EXPECT_EQ(dig.triangles, inc.triangles);  // (the output's order is the points')
+    EXPECT_EQ(dig.neighbors, inc.neighbors);
     EXPECT_EQ(std::vector<std::int32_t>(dig.duplicate_of.begin(), dig.duplicate_of.end()),
               std::vector<std::int32_t>(inc.duplicate_of.begin(), inc.duplicate_of.end()));
     const auto& k = dig.stats;
