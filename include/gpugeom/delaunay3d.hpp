@@ -81,6 +81,10 @@ struct Delaunay3dStats : RunStats {
   /// Phase 1: insertion batches, flip rounds, 2-3 and 3-2 flips, and the tests that found a
   /// face not flippable.
   std::int64_t batches = 0, flip_rounds = 0, flips23 = 0, flips32 = 0, unflippable_tests = 0;
+  /// The CPU executor's own schedule: points inserted one by one (each by its cavity), and of
+  /// them those a thread left to the end because their walk or cavity reached another thread's
+  /// part of the curve (0 where the batches ran; phase 2 then has nothing to repair).
+  std::int64_t cavity_insertions = 0, deferred_points = 0;
   /// Faces found not locally Delaunay after phase 1, and their vertices (phase 2's stars).
   std::int64_t failed_faces = 0, failed_vertices = 0;
   /// Phase 2 (star splaying): stars built and changed, insertions into stars, rounds, and the

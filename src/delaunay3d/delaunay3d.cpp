@@ -16,7 +16,7 @@ namespace gpugeom {
 // clang-format off
 #define GG_DELAUNAY3D_COUNTERS(X)                                                                 \
   X(points) X(distinct_points) X(duplicates) X(batches) X(flip_rounds) X(flips23) X(flips32)     \
-  X(unflippable_tests) X(failed_faces) X(failed_vertices) X(stars_built) X(stars_changed)        \
+  X(cavity_insertions) X(deferred_points) X(unflippable_tests) X(failed_faces) X(failed_vertices) X(stars_built) X(stars_changed)        \
   X(star_insertions) X(splay_rounds) X(splay_removed) X(splay_added) X(flat_tetrahedra)          \
   X(device_bytes_phase1) X(slots_used) X(slots_capacity) X(halts) X(max_list)                    \
   X(max_epoch_records) X(max_free_slots) X(max_splits) X(list_capacity) X(log_capacity)          \

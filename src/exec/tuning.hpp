@@ -41,6 +41,10 @@ struct Tuning {
     // that star splaying must repair a tetrahedralisation far from Delaunay (0: none). Only the
     // incremental method has rounds; Method::Digital refuses a value >= 0.
     std::int64_t max_flip_rounds = -1;
+    // The CPU executor runs the batches and flip rounds (the GPU's schedule) rather than its own
+    // (points one by one: delaunay3d/impl/one_by_one.inl), as it does where max_flip_rounds is
+    // set.
+    bool batches = false;
   } del3d;
 };
 

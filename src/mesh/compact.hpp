@@ -74,32 +74,79 @@ Compacted<Exec> compact_live(Exec& ex, std::int64_t used, const Store& store) {
   return c;
 }
 
-// The same in one order that depends on the triangles alone (K = 3). The store names each
-// triangle's vertices for the order too (order_names(t, w): delaunay2d's curve positions, so
-// that the order follows the curve, as the slots of either executor roughly do, and the output
-// is read and written nearly in sequence): each triangle is turned so that its vertex first in
-// that order comes first (its orientation kept), and the triangles are sorted by their first
-// two vertices. A directed edge lies in one triangle, so the order is total. Two schedules that
-// build the same triangulation (the executors', a kept one's updates and a fresh call) then
-// give the same arrays, whatever slots their histories left. It costs a sort of the live
-// triangles' keys (docs/performance.md: the canonical order). names_below: every order name is
-// smaller (sizes the keys: fewer radix passes).
+// The same in one order that depends on the simplices alone (K = 3: triangles, K = 4:
+// tetrahedra). The store names each simplex's vertices for the order too (order_names(t, w):
+// the modules' curve positions, so that the order follows the curve, as the slots of either
+// executor roughly do, and the output is read and written nearly in sequence). Each simplex is
+// turned so that its vertex first in that order comes first, with its orientation kept (a
+// rotation of a triangle; for a tetrahedron an even permutation, which also brings the least
+// of the other three second), and the simplices are sorted by their first two vertices, then
+// (K = 4) their third. A directed edge lies in one triangle, an oriented face in one
+// tetrahedron, so the order is total. Two schedules that build the same triangulation (the
+// executors', a kept one's updates and a fresh call) then give the same arrays, whatever slots
+// their histories left. It costs a sort of the live simplices' keys (docs/performance.md: one
+// output order). names_below: every order name is smaller (sizes the keys: fewer radix passes).
 namespace compact_detail {
-GG_HD inline int smallest_first(const std::int32_t* v) {
-  return v[0] < v[1] ? (v[0] < v[2] ? 0 : 2) : (v[1] < v[2] ? 1 : 2);
+// The canonical turn of a simplex named w: perm[k] is the local vertex that goes k-th.
+template <int K>
+GG_HD inline void canonical_turn(const std::int32_t* w, int* perm) {
+  int r = 0;
+  for (int k = 1; k < K; ++k)
+    if (w[k] < w[r]) r = k;
+  if constexpr (K == 3) {
+    for (int k = 0; k < 3; ++k) perm[k] = (r + k) % 3;
+  } else {
+    // r first by a double swap (even): (0 1 2 3), (1 0 3 2), (2 3 0 1), (3 2 1 0); then the other
+    // three turned (an even cycle) so that their least comes second.
+    const int rest[3] = {r ^ 1, r ^ 2, r ^ 3};  // (r ^ 1, r ^ 2, r ^ 3 is that double swap's tail)
+    int j = 0;
+    for (int i = 1; i < 3; ++i)
+      if (w[rest[i]] < w[rest[j]]) j = i;
+    perm[0] = r;
+    for (int i = 0; i < 3; ++i) perm[1 + i] = rest[(j + i) % 3];
+  }
 }
-template <class Store>
+template <int K, class Store>
 struct SortKey {
   Store s;
   const std::int32_t* slot;  // the live slots
   std::uint64_t* keys;
   int shift;
   GG_HD void operator()(std::int64_t i) const {
-    std::int32_t w[3];
+    std::int32_t w[K];
+    int p[K];
     s.order_names(slot[i], w);
-    const int r = smallest_first(w);
-    keys[i] = (std::uint64_t(std::uint32_t(w[r])) << shift) |
-              std::uint64_t(std::uint32_t(w[(r + 1) % 3]));
+    canonical_turn<K>(w, p);
+    keys[i] =
+        (std::uint64_t(std::uint32_t(w[p[0]])) << shift) | std::uint64_t(std::uint32_t(w[p[1]]));
+  }
+};
+// K = 4: the simplices whose first two names are equal (those around one edge whose ends come
+// first in both: a few) sorted by their third, each run by the thread at its start.
+template <class Store>
+struct SortRuns {
+  Store s;
+  const std::uint64_t* keys;  // sorted
+  std::int32_t* slot;
+  std::int64_t count;
+  GG_HD std::int32_t third(std::int32_t t) const {
+    std::int32_t w[4];
+    int p[4];
+    s.order_names(t, w);
+    canonical_turn<4>(w, p);
+    return w[p[2]];
+  }
+  GG_HD void operator()(std::int64_t i) const {
+    if (i > 0 && keys[i - 1] == keys[i]) return;
+    std::int64_t end = i + 1;
+    while (end < count && keys[end] == keys[i]) ++end;
+    for (std::int64_t a = i + 1; a < end; ++a) {  // (insertion sort: runs are short)
+      const std::int32_t t = slot[a];
+      const std::int32_t x = third(t);
+      std::int64_t b = a;
+      for (; b > i && third(slot[b - 1]) > x; --b) slot[b] = slot[b - 1];
+      slot[b] = t;
+    }
   }
 };
 struct PlaceOf {
@@ -107,7 +154,7 @@ struct PlaceOf {
   std::int32_t* place;       // per slot: its position, -1 where not live
   GG_HD void operator()(std::int64_t i) const { place[slot[i]] = std::int32_t(i); }
 };
-template <class Store>
+template <int K, class Store>
 struct EmitSorted {
   Store s;
   const std::int32_t* slot;
@@ -115,22 +162,24 @@ struct EmitSorted {
   std::int32_t* simplices;
   std::int32_t* neighbors;
   GG_HD void operator()(std::int64_t i) const {
-    const SimplexRecord<3> x = s.get(slot[i]);
-    std::int32_t w[3];
+    const SimplexRecord<K> x = s.get(slot[i]);
+    std::int32_t w[K];
+    int p[K];
     s.order_names(slot[i], w);
-    const int r = smallest_first(w);
-    for (int k = 0; k < 3; ++k) {
-      const int j = (r + k) % 3;
-      simplices[3 * i + k] = x.v[j];
-      neighbors[3 * i + k] = x.n[j] >= 0 ? place[x.n[j]] : -1;
+    canonical_turn<K>(w, p);
+    for (int k = 0; k < K; ++k) {
+      const int j = p[k];
+      simplices[K * i + k] = x.v[j];
+      neighbors[K * i + k] = x.n[j] >= 0 ? place[x.n[j]] : -1;
     }
   }
 };
 }  // namespace compact_detail
 
-template <class Exec, class Store>
+template <int K, class Exec, class Store>
 Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& store,
                                     std::int64_t names_below) {
+  static_assert(K == 3 || K == 4, "triangles or tetrahedra");
   auto live = ex.template alloc<std::int32_t>(std::size_t(used));
   std::int32_t* slot = live.data();
   const std::int64_t count =
@@ -139,17 +188,19 @@ Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& st
   while ((std::int64_t(1) << shift) < names_below) ++shift;
   {
     auto keys = ex.template alloc<std::uint64_t>(std::size_t(count));
-    ex.for_each_index(count, compact_detail::SortKey<Store>{store, slot, keys.data(), shift});
+    ex.for_each_index(count, compact_detail::SortKey<K, Store>{store, slot, keys.data(), shift});
     ex.sort_by_key(keys.data(), slot, count, 2 * shift);
+    if constexpr (K == 4)
+      ex.for_each_index(count, compact_detail::SortRuns<Store>{store, keys.data(), slot, count});
   }
   auto where = ex.template alloc<std::int32_t>(std::size_t(used));
   ex.fill(where.data(), used, std::int32_t(-1));
   ex.for_each_index(count, compact_detail::PlaceOf{slot, where.data()});
   Compacted<Exec> c;
   c.count = count;
-  c.simplices = ex.template alloc<std::int32_t>(3 * std::size_t(count));
-  c.neighbors = ex.template alloc<std::int32_t>(3 * std::size_t(count));
-  ex.for_each_index(count, compact_detail::EmitSorted<Store>{
+  c.simplices = ex.template alloc<std::int32_t>(std::size_t(K) * std::size_t(count));
+  c.neighbors = ex.template alloc<std::int32_t>(std::size_t(K) * std::size_t(count));
+  ex.for_each_index(count, compact_detail::EmitSorted<K, Store>{
                                store, slot, where.data(), c.simplices.data(), c.neighbors.data()});
   return c;
 }

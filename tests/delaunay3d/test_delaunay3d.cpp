@@ -175,32 +175,68 @@ TEST(Delaunay3d, PerturbationDependsOnThePointsAlone) {
   }
 }
 
-// Progress comes after every batch with a growing count, then for phase 2 and the output; an
+// Progress comes after every batch (the cavities' schedule: every 4096 points one thread
+// inserts, and after each stage) with a growing count, then for phase 2 and the output; an
 // exception from the callback ends the run and reaches the caller, and the next run is whole.
 TEST(Delaunay3d, ProgressAndCancel) {
   const auto pts = generate3d("uniform", 20000, 6);
-  Delaunay3dOptions o = cpu();
-  std::vector<Delaunay3dProgress> seen;
-  o.progress = [&](const Delaunay3dProgress& p) { seen.push_back(p); };
-  const auto t = delaunay3d(pts, o);
-  ASSERT_GE(seen.size(), 3u);
-  std::int64_t batches = 0, last = 0;
-  for (const auto& p : seen) {
-    EXPECT_EQ(p.total, 20000);
-    EXPECT_GE(p.inserted, last);
-    last = p.inserted;
-    if (std::string(p.phase) == "insert_flip") ++batches;
+  for (const bool batches : {false, true}) {
+    SCOPED_TRACE(batches ? "batches" : "cavities");
+    Delaunay3dOptions o =
+        gg_test::tuned(cpu(), [&](detail::Tuning& t) { t.del3d.batches = batches; });
+    std::vector<Delaunay3dProgress> seen;
+    o.progress = [&](const Delaunay3dProgress& p) { seen.push_back(p); };
+    const auto t = delaunay3d(pts, o);
+    ASSERT_GE(seen.size(), 3u);
+    std::int64_t reports = 0, last = 0;
+    for (const auto& p : seen) {
+      EXPECT_EQ(p.total, 20000);
+      EXPECT_GE(p.inserted, last);
+      last = p.inserted;
+      if (std::string(p.phase) == "insert_flip") EXPECT_EQ(p.batch, ++reports);
+    }
+    if (batches) EXPECT_EQ(reports, t.stats.batches);
+    EXPECT_GE(reports, 2);
+    EXPECT_EQ(std::string(seen.back().phase), "output");
+    EXPECT_EQ(seen.back().inserted, 20000);
+    struct Stop {};
+    o.progress = [](const Delaunay3dProgress& p) {
+      if (p.batch == 2) throw Stop{};
+    };
+    EXPECT_THROW(delaunay3d(pts, o), Stop);
+    o.progress = nullptr;
+    EXPECT_EQ(gg_del3d::tet_set(delaunay3d(pts, o).tetrahedra), gg_del3d::tet_set(t.tetrahedra));
   }
-  EXPECT_EQ(batches, t.stats.batches);
-  EXPECT_EQ(std::string(seen.back().phase), "output");
-  EXPECT_EQ(seen.back().inserted, 20000);
-  struct Stop {};
-  o.progress = [](const Delaunay3dProgress& p) {
-    if (p.batch == 2) throw Stop{};
-  };
-  EXPECT_THROW(delaunay3d(pts, o), Stop);
-  o.progress = nullptr;
-  EXPECT_EQ(gg_del3d::tet_set(delaunay3d(pts, o).tetrahedra), gg_del3d::tet_set(t.tetrahedra));
+}
+
+// The CPU executor's own schedule (points one by one by their cavities, the threads over chunks
+// of the curve; which points wait for the end depends on timing) and the GPU's (batches, flip
+// rounds and star splaying, run here on the CPU executor): the same arrays, on every distribution
+// and degenerate case and on any thread count (issue 53: the executors give the same output).
+TEST(Delaunay3d, BothSchedulesGiveTheSameArrays) {
+  std::vector<gg_hull3d::Case> cases = gg_hull3d::degenerate_cases();
+  for (auto& c : gg_hull3d::distribution_cases({100, 20000, 60000}, 43))
+    if (c.name.rfind("two_lines", 0) != 0 || c.pts.size() <= 100)  // (quadratic: a benchmark)
+      cases.push_back(std::move(c));
+  std::int64_t deferred = 0;
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const auto ref =
+        delaunay3d(c.pts, gg_test::tuned(cpu(), [](detail::Tuning& t) { t.del3d.batches = true; }));
+    expect_valid(c.pts, ref);
+    EXPECT_EQ(ref.stats.cavity_insertions, 0);
+    for (const int threads : {1, 2, 3, 8}) {
+      Delaunay3dOptions o = cpu();
+      o.threads = threads;
+      const auto r = delaunay3d(c.pts, o);
+      gg_del3d::expect_same_arrays(ref, r, c.name + ", threads " + std::to_string(threads));
+      EXPECT_EQ(r.stats.cavity_insertions, r.stats.distinct_points - 4);
+      EXPECT_EQ(r.stats.batches, 0);
+      EXPECT_EQ(r.stats.failed_vertices, 0);
+      deferred += r.stats.deferred_points;
+    }
+  }
+  EXPECT_GT(deferred, 0);  // (the threads met: the waiting points' path was taken)
 }
 
 // A full integer grid: every hull facet's plane holds a square of points, every cube eight
@@ -210,12 +246,15 @@ TEST(Delaunay3d, FullGrid) {
   for (int x = 0; x < 24; ++x)
     for (int y = 0; y < 24; ++y)
       for (int z = 0; z < 24; ++z) pts.push_back({double(x), double(y), double(z)});
-  const auto t = delaunay3d(pts, cpu());
-  expect_valid(pts, t);
-  EXPECT_GT(t.stats.flat_tetrahedra, 0);
-  EXPECT_EQ(t.hull_facets.size() / 3, std::size_t(6 * 2 * 23 * 23));  // two per unit square
-  // (the hull planes' flips outlast their batch: their lists go on in the next batches' rounds)
-  EXPECT_GT(t.stats.carried_batches, 0);
+  for (const bool batches : {false, true}) {
+    const auto t = delaunay3d(
+        pts, gg_test::tuned(cpu(), [&](detail::Tuning& t) { t.del3d.batches = batches; }));
+    expect_valid(pts, t);
+    EXPECT_GT(t.stats.flat_tetrahedra, 0);
+    EXPECT_EQ(t.hull_facets.size() / 3, std::size_t(6 * 2 * 23 * 23));  // two per unit square
+    // (the hull planes' flips outlast their batch: their lists go on in the next batches' rounds)
+    if (batches) EXPECT_GT(t.stats.carried_batches, 0);
+  }
 }
 
 TEST(Delaunay3d, Errors) {

@@ -127,7 +127,7 @@ inline void Triangulator::peel() {
 // GPU's, and both give the same arrays).
 inline Triangulator::Finished Triangulator::finish() {
   // (the extended triangulation has 2m - 2 slots, all in use)
-  return mesh::compact_live_sorted(
+  return mesh::compact_live_sorted<3>(
       ex_, tmax_, FiniteTriangles{tri_.data(), P_.orig.data(), m_, std::int32_t(base_)}, m_);
 }
 

@@ -32,16 +32,8 @@
 // triangulation does not.
 
 constexpr int kWalkSteps = 1 << 16;  // a walk this long gives up (threads only)
-
-// Triangle words that other threads may be reading or writing.
-GG_INLINE std::int32_t load_word(const std::int32_t* p) {
-  cuda::atomic_ref<std::int32_t, cuda::thread_scope_system> r(*const_cast<std::int32_t*>(p));
-  return r.load(cuda::memory_order_acquire);
-}
-GG_INLINE void store_word(std::int32_t* p, std::int32_t v) {
-  cuda::atomic_ref<std::int32_t, cuda::thread_scope_system> r(*p);
-  r.store(v, cuda::memory_order_release);
-}
+using mesh::cavities::load_word;
+using mesh::cavities::store_word;
 
 // One thread's insertions (the sample's and the deferred points' run as chunk 0 of 1).
 struct CavityInserter {
@@ -108,7 +100,16 @@ struct CavityInserter {
         const std::int32_t nb = simplex_of(T.n[k]);
         if (nb != came && orient_ext(g, T.v[(k + 1) % 3], T.v[(k + 2) % 3], q) < 0) beyond = nb;
       }
-      if (beyond < 0) return t;
+      if (beyond < 0) {
+        // (threads: the record walked from may have been stale, so the edge back to it is
+        // tested too, or the walk could end on a triangle that does not hold q)
+        if (chunk && came >= 0)
+          for (int k = 0; k < 3; ++k)
+            if (simplex_of(T.n[k]) == came &&
+                orient_ext(g, T.v[(k + 1) % 3], T.v[(k + 2) % 3], q) < 0)
+              return -1;
+        return t;
+      }
       came = t, t = beyond;
     }
     return -1;
@@ -175,33 +176,6 @@ struct CavityInserter {
   }
 };
 
-// The insertion order (a biased randomised insertion order, as CGAL's spatial sort makes, from
-// Amenta, Choi and Rote): each point gets a level from a hash of its place on the curve, level
-// l for a share 2^-(l+1) of the points; the levels go in from the highest down, each in curve
-// order. In pure curve order one point may see a long chain of earlier ones (two segments: the
-// second one's points each took a fan over the whole first), and each insertion redid the fan.
-constexpr int kLevels = 21;
-constexpr int kSampleLevel = 5;  // levels from here up: the sample, on one thread (1/32)
-GG_INLINE int level_of(std::int32_t q) {
-  std::uint64_t x = std::uint64_t(q) * 0x9E3779B97F4A7C15ull;
-  x ^= x >> 31, x *= 0xBF58476D1CE4E5B9ull, x ^= x >> 29;
-  int l = 0;
-  while (l < kLevels - 1 && !(x & (std::uint64_t(1) << l))) ++l;
-  return l;
-}
-// The points of [lo, hi) but the first triangle's, by level from the highest down, each level in
-// curve order, written from order[lo]; count[l]: how many have level l.
-inline void order_by_level(const CavityInserter& I, std::int32_t lo, std::int32_t hi,
-                           std::int32_t* order, std::int64_t* count) {
-  std::fill(count, count + kLevels, 0);
-  for (std::int32_t q = lo; q < hi; ++q)
-    if (!I.is_first(q)) ++count[level_of(q)];
-  std::int64_t at[kLevels], sum = lo;
-  for (int l = kLevels - 1; l >= 0; --l) at[l] = sum, sum += count[l];
-  for (std::int32_t q = lo; q < hi; ++q)
-    if (!I.is_first(q)) order[at[level_of(q)]++] = q;
-}
-
 template <class E>
 bool Triangulator::insert_one_by_one(E& ex) {
   if constexpr (E::backend != Backend::Cpu) {
@@ -214,106 +188,44 @@ bool Triangulator::insert_one_by_one(E& ex) {
     write_first();
     const std::int32_t m = m_;
     CavityInserter one(tri(), srank(), g_, std::int32_t(base_), P_.first);
-    auto put = [&](CavityInserter& I, std::int32_t q) {  // (one thread alone: always goes in)
-      if (!I.insert(q))
-        throw Error(ErrorCode::Internal, std::string(I.broken ? "a cavity that is no disk"
-                                                              : "a cavity insertion failed") +
-                                             "; please report this input");
-    };
-    std::int32_t* order = loc_.data();  // (the batches' point locations; free here)
     cavity_insertions_ = m - 3;
     ntri_ = tmax_;
-    const int nt = ex.team_size();
-    if (nt <= 1 || m < 64 * std::int64_t(1 << kSampleLevel) * nt) {
-      std::int64_t count[kLevels];
-      order_by_level(one, 0, m, order, count);
-      one.next = one.first_slot(0);
-      for (std::int64_t i = 0; i < m - 3; ++i) put(one, order[i]);
-      if (one.next != one.first_slot(m))  // (a bug guard: every slot in use)
+    // Each chunk's next free slot (a chunk's points take theirs in the order it inserts).
+    struct Hooks {
+      Triangulator& T;
+      const CavityInserter& one;
+      std::int32_t m;
+      std::vector<std::int32_t> next, starts, ends;
+      bool skip(std::int32_t q) const { return one.is_first(q); }
+      void chunks(std::int64_t nc, std::int64_t chunk) {
+        for (std::int64_t c = 0; c <= nc; ++c)
+          next.push_back(one.first_slot(std::int32_t(std::min<std::int64_t>(m, c * chunk))));
+        starts = next;
+        ends.assign(next.begin() + 1, next.end());
+      }
+      void put(CavityInserter& I, std::int64_t c, std::int32_t q) {  // (always goes in)
+        I.next = next[std::size_t(c)];
+        if (!I.insert(q))
+          throw Error(ErrorCode::Internal, std::string(I.broken ? "a cavity that is no disk"
+                                                                : "a cavity insertion failed") +
+                                               "; please report this input");
+        next[std::size_t(c)] = I.next;
+      }
+      void enter(CavityInserter& I, std::int64_t c) {
+        I.next = next[std::size_t(c)];
+        // (the walks start from the chunk's last sample triangle, where it has one)
+        I.last = I.next > starts[std::size_t(c)] ? I.next - 2 : -1;
+      }
+      void leave(const CavityInserter& I, std::int64_t c) { next[std::size_t(c)] = I.next; }
+      void threads_begin() {}
+      void threads_done(std::int64_t) {}
+      void mark(const char* what) { T.mark((std::string("one by one: ") + what).c_str()); }
+    };
+    Hooks h{*this, one, m, {}, {}, {}};
+    deferred_ = mesh::cavities::insert_by_chunks(ex, m, loc_.data(), one, h);
+    for (std::size_t c = 0; c < h.ends.size(); ++c)  // (a bug guard: every slot in use)
+      if (h.next[c] != h.ends[c])
         throw Error(ErrorCode::Internal, "the triangulation's slots are not all in use");
-      return true;
-    }
-    // The chunks: thread c's is [c * chunk, (c + 1) * chunk), its points ordered by level.
-    const std::int64_t chunk = (std::int64_t(m) + nt - 1) / nt;
-    std::vector<std::int64_t> counts(std::size_t(nt) * kLevels);
-    auto bounds = [&](std::int64_t c, std::int32_t& lo, std::int32_t& hi) {
-      lo = std::int32_t(std::min<std::int64_t>(m, c * chunk));
-      hi = std::int32_t(std::min<std::int64_t>(m, lo + chunk));
-    };
-    auto each_chunk = [&](auto f) {  // every chunk by some thread (whatever the team's size)
-      ex.team([&](const auto& team) {
-        for (std::int64_t c = team.rank; c < nt; c += team.size) f(c);
-      });
-    };
-    each_chunk([&](std::int64_t c) {
-      std::int32_t lo, hi;
-      bounds(c, lo, hi);
-      order_by_level(one, lo, hi, order, counts.data() + c * kLevels);
-    });
-    // Where level l of chunk c begins in order; the sample, level by level over all chunks.
-    std::vector<std::int64_t> begin(std::size_t(nt) * (kLevels + 1));
-    for (std::int64_t c = 0; c < nt; ++c) {
-      std::int32_t lo, hi;
-      bounds(c, lo, hi);
-      std::int64_t at = lo;
-      for (int l = kLevels - 1; l >= 0; --l)
-        begin[c * (kLevels + 1) + l + 1] = at, at += counts[c * kLevels + l];
-      begin[c * (kLevels + 1)] = at;  // (the chunk's end)
-    }
-    auto level_range = [&](std::int64_t c, int l, std::int64_t& from, std::int64_t& to) {
-      from = begin[c * (kLevels + 1) + l + 1];
-      to = from + counts[c * kLevels + l];
-    };
-    std::vector<std::int32_t> next(static_cast<std::size_t>(nt + 1));  // each chunk's free slot
-    for (std::int64_t c = 0; c <= nt; ++c) {
-      std::int32_t lo, hi;
-      bounds(c, lo, hi);
-      next[std::size_t(c)] = one.first_slot(lo);
-    }
-    const std::vector<std::int32_t> ends(next.begin() + 1, next.end());
-    auto for_chunk = [&](CavityInserter& I, std::int64_t c, std::int32_t q) {
-      I.next = next[std::size_t(c)];
-      put(I, q);
-      next[std::size_t(c)] = I.next;
-    };
-    for (int l = kLevels - 1; l >= kSampleLevel; --l)
-      for (std::int64_t c = 0; c < nt; ++c) {
-        std::int64_t from, to;
-        level_range(c, l, from, to);
-        for (std::int64_t i = from; i < to; ++i) for_chunk(one, c, order[i]);
-      }
-    mark("one by one: sample");
-    std::vector<std::vector<std::int32_t>> waiting(static_cast<std::size_t>(nt));
-    const CavityInserter proto = one;
-    each_chunk([&](std::int64_t c) {
-      CavityInserter mine = proto;
-      mine.chunk = chunk, mine.own = std::int32_t(c), mine.rng += std::uint32_t(c);
-      mine.next = next[std::size_t(c)];
-      std::int32_t lo, hi;
-      bounds(c, lo, hi);
-      // (the walks start from the chunk's last sample triangle, where it has one)
-      mine.last = mine.next > mine.first_slot(lo) ? mine.next - 2 : -1;
-      std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
-      for (int l = kSampleLevel - 1; l >= 0; --l) {
-        std::int64_t from, to;
-        level_range(c, l, from, to);
-        for (std::int64_t i = from; i < to; ++i)
-          if (!mine.insert(order[i])) wait.push_back(order[i]);
-      }
-      next[std::size_t(c)] = mine.next;
-    });
-    mark("one by one: chunks");
-    // The waiting points in curve order, each walk from the last insertion's triangle.
-    one.again = m;
-    for (std::int64_t c = 0; c < nt; ++c) {
-      std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
-      std::sort(wait.begin(), wait.end());
-      deferred_ += std::int64_t(wait.size());
-      for (const std::int32_t q : wait) for_chunk(one, c, q);
-      if (next[std::size_t(c)] != ends[std::size_t(c)])  // (a bug guard: every slot in use)
-        throw Error(ErrorCode::Internal, "a chunk's slots are not all in use");
-    }
-    mark("one by one: deferred");
     return true;
   }
 }

@@ -1,7 +1,8 @@
 // The end of phase 1 (triangulator.inl): the faces it left not locally Delaunay (phase 2's
 // work), the finite tetrahedra in input indices, and its statistics.
 
-// The store as the output step reads it: finite tetrahedra, in input indices.
+// The store as the output step reads it: finite tetrahedra, in input indices, in one order
+// (mesh/compact.hpp), whatever the schedule and the slots it left.
 struct FiniteTets {
   const Tet* tet;
   const std::int32_t* orig;
@@ -9,6 +10,9 @@ struct FiniteTets {
   GG_HD bool live(std::int64_t t) const {
     const std::int32_t* v = tet[t].v;
     return v[0] >= 0 && v[0] != m && v[1] != m && v[2] != m && v[3] != m;
+  }
+  GG_HD void order_names(std::int64_t t, std::int32_t* w) const {  // (curve positions)
+    for (int k = 0; k < 4; ++k) w[k] = tet[t].v[k];
   }
   GG_HD mesh::SimplexRecord<4> get(std::int64_t t) const {
     const Tet T = tet[t];
@@ -54,7 +58,7 @@ inline std::int64_t Triangulator::find_failed(typename Exec::template Buffer<std
 
 inline Triangulator::Finished Triangulator::finish(const std::int32_t* orig) {
   const Counters c = counters();
-  return mesh::compact_live<4>(ex_, c.used, FiniteTets{tet_.data(), orig, m_});
+  return mesh::compact_live_sorted<4>(ex_, c.used, FiniteTets{tet_.data(), orig, m_}, m_);
 }
 
 inline void Triangulator::report() {
@@ -84,4 +88,6 @@ inline void Triangulator::report() {
   st_.round_chunks = sched_.chunks;
   st_.team_launches = sched_.team_calls;
   st_.failed_faces = c.failed_faces;
+  st_.cavity_insertions = cavity_insertions_;
+  st_.deferred_points = deferred_;
 }

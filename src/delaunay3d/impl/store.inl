@@ -58,6 +58,7 @@ struct TetStore {
   Mesh M_{};
   std::int64_t cap_ = 0, log_cap_ = 0, list_cap_ = 0, ring_cap_ = 0;  // capacities
   bool phase1_released_ = false;    // release_phase1 ran: grow keeps the store only
+  bool cavities_ = false;           // the CPU's cavities (one_by_one.inl): the store and marks
   std::int64_t scratch_bytes_ = 0;  // the exact stages' (the Triangulator's lease pool)
   std::int64_t peak_bytes_ = 0;
   typename Exec::template Buffer<Tet> tet_;
@@ -89,10 +90,18 @@ inline void TetStore::grow(std::int64_t cap) {
     M_ = Mesh{tet_.data(), nullptr, FlipLog{}, nullptr, cap_, 0, ctr_.data()};
     return;
   }
+  const std::int32_t minus1 = -1;
+  if (cavities_) {  // (the cavities' schedule counts no slots until it ends: all are kept)
+    regrow<Tet>(ex_, tet_, cap, cap_, nullptr);
+    regrow(ex_, srank_, cap, cap_, &minus1);
+    cap_ = cap;
+    set_mesh();
+    note_bytes();
+    return;
+  }
   const std::int64_t keep = cap_ ? std::min<std::int64_t>(counters().used, cap_) : 0;
   regrow<Tet>(ex_, tet_, cap, keep, nullptr);
   const u64 none = ~u64(0);
-  const std::int32_t minus1 = -1;
   const Hist nohist{-1, -1};
   regrow(ex_, key_, cap, keep, &none);
   regrow(ex_, hist_, cap, keep, &nohist);

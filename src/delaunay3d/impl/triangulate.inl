@@ -44,6 +44,7 @@ inline std::int64_t repair_phase(Exec& ex, Triangulator& T, std::int64_t m,
                                  const ProgressFn& progress, Delaunay3dStats& st,
                                  const std::int8_t* only = nullptr) {
   auto t0 = Clock::now();
+  if (T.cavities_) return -1;  // (Bowyer-Watson leaves no face to repair; flats not counted)
   auto failed = ex.template alloc<std::int8_t>(std::size_t(m + 1));
   std::int64_t nflat = 0;
   const std::int64_t nfailed = T.find_failed(failed, nflat, only);
@@ -97,13 +98,14 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
     // (stars too large to splay here: the incremental method, counter digital_fallback)
   }
   t0 = Clock::now();
-  Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, max_rounds, progress, st);
+  Triangulator T(ex, S.pts.data(), std::int32_t(S.m), first, max_rounds, progress, st,
+                 Triangulator::cavities_for(ex));
   T.run();
   st.phase_ms.push_back({"insert_flip", ms_since(t0)});
   const std::int64_t nflat = repair_phase(ex, T, S.m, progress, st);
   t0 = Clock::now();
   std::int64_t flats = 0;
-  if (nflat > 0) flats = drop_flats(ex, T.g_, T.tet_.data(), T.counters().used);
+  if (nflat != 0) flats = drop_flats(ex, T.g_, T.tet_.data(), T.counters().used);
   st.flat_tetrahedra = flats;
   st.phase_ms.push_back({"drop_flats", ms_since(t0)});
   t0 = Clock::now();

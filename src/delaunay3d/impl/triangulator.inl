@@ -30,10 +30,14 @@
 // (Every member is public: nvcc's extended lambdas may not live in private members.)
 class Triangulator : public TetStore {
  public:
+  // by_cavities: the CPU executor's own schedule (one_by_one.inl) rather than the batches;
+  // only the store and its marks are then made.
   Triangulator(Exec& ex, const double* pts, std::int32_t m, const mesh::Tetra& first,
-               std::int64_t max_rounds, const ProgressFn& progress, Delaunay3dStats& st)
+               std::int64_t max_rounds, const ProgressFn& progress, Delaunay3dStats& st,
+               bool by_cavities = false)
       : TetStore(ex), st_(st), max_rounds_(max_rounds), progress_(progress) {
     m_ = m;
+    cavities_ = by_cavities;
     g_.p = pts;
     for (int k = 0; k < 3; ++k) g_.s[k] = first.s[k];
     g_.m = m;
@@ -47,17 +51,21 @@ class Triangulator : public TetStore {
     scratch_bytes_ = std::int64_t(pool_.scratch.size()) * 8;
     const std::size_t n = std::size_t(m);
     loc_ = ex.template alloc<std::int32_t>(n);
-    un_ = ex.template alloc<std::int32_t>(n);
-    un2_ = ex.template alloc<std::int32_t>(n);
+    const std::int64_t m64 = m;
     ctr_ = ex.template alloc<Counters>(1);
     Counters zero{};
     ex.from_host(&zero, 1, ctr_.data());
+    if (cavities_) {  // (the store at the size the cavities' threads take: one_by_one.inl)
+      grow(std::min(m64 * 17 / 2 + 16384, kMaxSlots));
+      return;
+    }
+    un_ = ex.template alloc<std::int32_t>(n);
+    un2_ = ex.template alloc<std::int32_t>(n);
     // First sizes, from what uniform points use (design notes, "Phase 1's memory"): slots in
     // use reach 7.2-7.33 a point (7.35 held; more on small sets: the constant), lists 2.2 (batches
     // of at most a quarter of the points; 2.4 at 10^6), records of an epoch 1.9 (1.75 held: a new
     // epoch starts early), freed slots waiting 0.5-0.8. Each grows where a round needs more
     // (settle halts the round, make_room grows).
-    const std::int64_t m64 = m;
     grow(std::min(m64 * 147 / 20 + 4096, kMaxSlots));
     grow_lists(std::max<std::int64_t>(m64 * 9 / 4, 1024));
     grow_ring(std::max<std::int64_t>(m64 * 3 / 4, 1024));
@@ -65,9 +73,24 @@ class Triangulator : public TetStore {
   }
 
   void run() {
+    if (cavities_) {
+      insert_by_cavities();
+      ex_.sync();
+      release_phase1();
+      return;
+    }
     start();
     insert_all();
   }
+  // The CPU executor's own schedule (one_by_one.inl) where no knob asks for the batches.
+  static bool cavities_for(Exec& ex) {
+    const detail::Tuning::Del3d& knobs = ex.tuning().del3d;
+    return Exec::backend == Backend::Cpu && !knobs.batches && knobs.max_flip_rounds < 0;
+  }
+  // one_by_one.inl: the points one by one by their cavities, the threads over chunks of the
+  // curve (CPU only).
+  void insert_by_cavities();
+  std::int64_t cavity_insertions_ = 0, deferred_ = 0;
   // The batches, until every located point is inserted; then phase 1's arrays go.
   void insert_all() {
     remaining_ = nun_;

@@ -22,6 +22,7 @@
 #include "exec/peak.hpp"
 #include "exec/scratch_lease.hpp"
 #include "mesh/adjacency.hpp"
+#include "mesh/cavity_schedule.hpp"
 #include "mesh/compact.hpp"
 #include "mesh/hole_refill.hpp"
 #include "mesh/simplex_changes.hpp"

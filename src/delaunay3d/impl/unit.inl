@@ -15,6 +15,7 @@
 #include "delaunay3d/impl/store.inl"
 #include "delaunay3d/impl/triangulator.inl"
 #include "delaunay3d/impl/start.inl"
+#include "delaunay3d/impl/one_by_one.inl"
 #include "delaunay3d/impl/batch.inl"
 #include "delaunay3d/impl/rounds.inl"
 #include "delaunay3d/impl/finish.inl"

@@ -1,0 +1,148 @@
+// The CPU executor's schedule for the Delaunay triangulations (issue 53): the points inserted
+// one by one, each by its cavity (Bowyer-Watson), in a biased randomised order, the threads
+// over chunks of the curve. What 2D and 3D share (delaunay2d/impl/one_by_one.inl and
+// delaunay3d/impl/one_by_one.inl are the cavities themselves): the store's words read and
+// written by several threads, the insertion order, and the chunks' schedule.
+//
+// The schedule: the sample (the top levels of the order, a 32nd of the points) goes in first,
+// on one thread. Then each thread inserts the rest of one chunk of the curve, and may change
+// only simplices whose finite vertices all lie in its chunk ("its own"); the infinity vertex
+// lies in every chunk. Where a point's walk or cavity reaches another chunk's simplex, the
+// point waits, and the waiting points go in last, on one thread. The modules' notes say why
+// this is safe without locks; which points wait depends on timing, the triangulation does not.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include <cuda/atomic>
+
+#include "base/hd.hpp"
+
+namespace gpugeom::mesh::cavities {
+
+// Store words that other threads may be reading or writing (acquire / release: a neighbour
+// pointer is published after the simplex it names).
+GG_INLINE std::int32_t load_word(const std::int32_t* p) {
+  cuda::atomic_ref<std::int32_t, cuda::thread_scope_system> r(*const_cast<std::int32_t*>(p));
+  return r.load(cuda::memory_order_acquire);
+}
+GG_INLINE void store_word(std::int32_t* p, std::int32_t v) {
+  cuda::atomic_ref<std::int32_t, cuda::thread_scope_system> r(*p);
+  r.store(v, cuda::memory_order_release);
+}
+
+// The insertion order (a biased randomised insertion order, as CGAL's spatial sort makes, from
+// Amenta, Choi and Rote): each point gets a level from a hash of its place on the curve, level
+// l for a share 2^-(l+1) of the points; the levels go in from the highest down, each in curve
+// order. In pure curve order one point may see a long chain of earlier ones (2D, two segments:
+// the second one's points each took a fan over the whole first), and each insertion redid it.
+constexpr int kLevels = 21;
+constexpr int kSampleLevel = 5;  // levels from here up: the sample, on one thread (1/32)
+GG_INLINE int level_of(std::int32_t q) {
+  std::uint64_t x = std::uint64_t(q) * 0x9E3779B97F4A7C15ull;
+  x ^= x >> 31, x *= 0xBF58476D1CE4E5B9ull, x ^= x >> 29;
+  int l = 0;
+  while (l < kLevels - 1 && !(x & (std::uint64_t(1) << l))) ++l;
+  return l;
+}
+// The points of [lo, hi) but those skipped (the first simplex's), by level from the highest
+// down, each level in curve order, written from order[lo]; count[l]: how many have level l.
+template <class Skip>
+void order_by_level(std::int32_t lo, std::int32_t hi, Skip skip, std::int32_t* order,
+                    std::int64_t* count) {
+  std::fill(count, count + kLevels, 0);
+  for (std::int32_t q = lo; q < hi; ++q)
+    if (!skip(q)) ++count[level_of(q)];
+  std::int64_t at[kLevels], sum = lo;
+  for (int l = kLevels - 1; l >= 0; --l) at[l] = sum, sum += count[l];
+  for (std::int32_t q = lo; q < hi; ++q)
+    if (!skip(q)) order[at[level_of(q)]++] = q;
+}
+
+// The chunks' schedule over m points (curve positions), on ex's team (CPU). order: m entries of
+// scratch. one: the inserter for one thread alone; each chunk's thread gets a copy of it with
+// its chunk (fields chunk, own, rng, again; bool insert(q): false having changed nothing where
+// the point must wait). The module's hooks:
+//   skip(q): the first simplex's vertices (not inserted);
+//   chunks(nc, chunk): the chunks are [c * chunk, (c + 1) * chunk) for c < nc (1 where the
+//     threads do not pay: one thread inserts all), before any insertion;
+//   put(I, c, q): one thread alone inserts q for chunk c (it must go in);
+//   threads_begin() / threads_done(w): before and after the threads (one thread; w points
+//     wait);
+//   enter(I, c) / leave(I, c): chunk c's thread begins with / ends with its inserter I;
+//   mark(what): a profile mark.
+// Returns how many points waited.
+template <class E, class Ins, class Hooks>
+std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& one, Hooks& h) {
+  const int nt = ex.team_size();
+  const std::int64_t nc =
+      nt <= 1 || m < 64 * std::int64_t(1 << kSampleLevel) * nt ? 1 : std::int64_t(nt);
+  const std::int64_t chunk = (std::int64_t(m) + nc - 1) / nc;
+  h.chunks(nc, chunk);
+  auto skip = [&](std::int32_t q) { return h.skip(q); };
+  std::vector<std::int64_t> counts(std::size_t(nc) * kLevels);
+  auto bounds = [&](std::int64_t c, std::int32_t& lo, std::int32_t& hi) {
+    lo = std::int32_t(std::min<std::int64_t>(m, c * chunk));
+    hi = std::int32_t(std::min<std::int64_t>(m, lo + chunk));
+  };
+  auto each_chunk = [&](auto f) {  // every chunk by some thread (whatever the team's size)
+    ex.team([&](const auto& team) {
+      for (std::int64_t c = team.rank; c < nc; c += team.size) f(c);
+    });
+  };
+  each_chunk([&](std::int64_t c) {
+    std::int32_t lo, hi;
+    bounds(c, lo, hi);
+    order_by_level(lo, hi, skip, order, counts.data() + c * kLevels);
+  });
+  // Where level l of chunk c begins in order.
+  std::vector<std::int64_t> begin(std::size_t(nc) * kLevels);
+  for (std::int64_t c = 0; c < nc; ++c) {
+    std::int32_t lo, hi;
+    bounds(c, lo, hi);
+    std::int64_t at = lo;
+    for (int l = kLevels - 1; l >= 0; --l)
+      begin[c * kLevels + l] = at, at += counts[c * kLevels + l];
+  }
+  auto level = [&](std::int64_t c, int l, auto f) {
+    const std::int64_t from = begin[c * kLevels + l], to = from + counts[c * kLevels + l];
+    for (std::int64_t i = from; i < to; ++i) f(order[i]);
+  };
+  // The sample level by level over all chunks (one chunk alone: every level).
+  const int lowest = nc == 1 ? 0 : kSampleLevel;
+  for (int l = kLevels - 1; l >= lowest; --l)
+    for (std::int64_t c = 0; c < nc; ++c) level(c, l, [&](std::int32_t q) { h.put(one, c, q); });
+  h.mark("sample");
+  if (nc == 1) return 0;
+  h.threads_begin();
+  std::vector<std::vector<std::int32_t>> waiting(static_cast<std::size_t>(nc));
+  const Ins proto = one;
+  each_chunk([&](std::int64_t c) {
+    Ins mine = proto;
+    mine.chunk = chunk, mine.own = std::int32_t(c), mine.rng += std::uint32_t(c);
+    h.enter(mine, c);
+    std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
+    for (int l = kSampleLevel - 1; l >= 0; --l)
+      level(c, l, [&](std::int32_t q) {
+        if (!mine.insert(q)) wait.push_back(q);
+      });
+    h.leave(mine, c);
+  });
+  std::int64_t waited = 0;
+  for (const auto& w : waiting) waited += std::int64_t(w.size());
+  h.threads_done(waited);
+  h.mark("chunks");
+  // The waiting points in curve order, each walk from the last insertion's simplex; their
+  // second attempts mark the cavities with q + m (a first attempt may have left marks q).
+  one.again = m;
+  for (std::int64_t c = 0; c < nc; ++c) {
+    std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
+    std::sort(wait.begin(), wait.end());
+    for (const std::int32_t q : wait) h.put(one, c, q);
+  }
+  h.mark("deferred");
+  return waited;
+}
+
+}  // namespace gpugeom::mesh::cavities
