@@ -111,6 +111,7 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
   t0 = Clock::now();
   if (progress) progress(Delaunay3dProgress{"output", S.m, S.m, 0});
   auto f = T.finish(S.orig.data());
+  st.phase_ms.push_back({"output.compact", ms_since(t0)});
   T.report();
   body(S, f);
   st.phase_ms.push_back({"output", ms_since(t0)});
