@@ -139,7 +139,13 @@ struct Delaunay3dStats : RunStats {
 
 /// The result of delaunay3d: tetrahedra, neighbours, duplicates and hull facets, in host memory.
 struct Triangulation3d {
-  /// Positively oriented tetrahedra (orient3d > 0), 4 input-point indices each.
+  /// Positively oriented tetrahedra (orient3d > 0), 4 input-point indices each. The incremental
+  /// method gives them in one order, whatever schedule built them (the GPU's batches, the CPU
+  /// executor's insertions one by one, any thread count): each starts at its vertex first on
+  /// the points' space-filling curve, the least of the other three second (an even permutation,
+  /// so the orientation is kept), and the tetrahedra follow their first three vertices in that
+  /// curve order. (Method::Digital and DynamicDelaunay3d give the same tetrahedra in orders of
+  /// their own.)
   HostVector<std::int32_t> tetrahedra;
   /// neighbors[4*i + k]: the tetrahedron opposite vertex k of tetrahedron i, -1 on the hull
   /// (SciPy's convention).

@@ -62,14 +62,18 @@ void order_by_level(std::int32_t lo, std::int32_t hi, Skip skip, std::int32_t* o
 
 // The chunks' schedule over m points (curve positions), on ex's team (CPU). order: m entries of
 // scratch. one: the inserter for one thread alone; each chunk's thread gets a copy of it with
-// its chunk (fields chunk, own, rng, again; bool insert(q): false having changed nothing where
-// the point must wait). The module's hooks:
+// its chunk (fields chunk, own, shift, rng, again; bool insert(q): false having changed nothing
+// where the point must wait; a vertex v is its own where ((v + shift) mod m) / chunk == own). The
+// module's hooks:
 //   skip(q): the first simplex's vertices (not inserted);
 //   chunks(nc, chunk): the chunks are [c * chunk, (c + 1) * chunk) for c < nc (1 where the
 //     threads do not pay: one thread inserts all), before any insertion;
 //   put(I, c, q): one thread alone inserts q for chunk c (it must go in);
-//   threads_begin() / threads_done(w): before and after the threads (one thread; w points
-//     wait);
+//   threads_begin(points, shift) / threads_done(w): before and after the threads (one thread;
+//     points[c]: how many chunk c's thread may insert; shift: the chunks' ownership is shifted
+//     by so many curve positions, the inserters' too; w points wait);
+//   second_round(): whether the points that waited may go in by threads again, over shifted
+//     chunks (slots that do not depend on a point's first chunk);
 //   enter(I, c) / leave(I, c): chunk c's thread begins with / ends with its inserter I;
 //   mark(what): a profile mark.
 // Returns how many points waited.
@@ -115,27 +119,71 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
     for (std::int64_t c = 0; c < nc; ++c) level(c, l, [&](std::int32_t q) { h.put(one, c, q); });
   h.mark("sample");
   if (nc == 1) return 0;
-  h.threads_begin();
-  std::vector<std::vector<std::int32_t>> waiting(static_cast<std::size_t>(nc));
+  // The threads, each over its chunk's points (pts[c], in order): those that must wait go to
+  // wait[c]. shift: the chunks' ownership is shifted by that many curve positions.
   const Ins proto = one;
-  each_chunk([&](std::int64_t c) {
-    Ins mine = proto;
-    mine.chunk = chunk, mine.own = std::int32_t(c), mine.rng += std::uint32_t(c);
-    h.enter(mine, c);
-    std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
-    for (int l = kSampleLevel - 1; l >= 0; --l)
-      level(c, l, [&](std::int32_t q) {
-        if (!mine.insert(q)) wait.push_back(q);
+  auto threads = [&](std::int64_t shift, std::int32_t again, auto pts,
+                     std::vector<std::vector<std::int32_t>>& wait) {
+    wait.assign(std::size_t(nc), {});
+    each_chunk([&](std::int64_t c) {
+      Ins mine = proto;
+      mine.chunk = chunk, mine.own = std::int32_t(c), mine.shift = shift, mine.again = again;
+      mine.rng += std::uint32_t(c + again);
+      h.enter(mine, c);
+      std::vector<std::int32_t>& w = wait[std::size_t(c)];
+      pts(c, [&](std::int32_t q) {
+        if (!mine.insert(q)) w.push_back(q);
       });
-    h.leave(mine, c);
-  });
-  std::int64_t waited = 0;
-  for (const auto& w : waiting) waited += std::int64_t(w.size());
+      h.leave(mine, c);
+    });
+    std::int64_t n = 0;
+    for (const auto& x : wait) n += std::int64_t(x.size());
+    return n;
+  };
+  std::vector<std::int64_t> sizes(static_cast<std::size_t>(nc));
+  for (std::int64_t c = 0; c < nc; ++c)
+    for (int l = kSampleLevel - 1; l >= 0; --l) sizes[std::size_t(c)] += counts[c * kLevels + l];
+  h.threads_begin(sizes, 0);
+  std::vector<std::vector<std::int32_t>> waiting;
+  std::int64_t waited = threads(
+      0, 0,
+      [&](std::int64_t c, auto f) {
+        for (int l = kSampleLevel - 1; l >= 0; --l) level(c, l, f);
+      },
+      waiting);
   h.threads_done(waited);
   h.mark("chunks");
-  // The waiting points in curve order, each walk from the last insertion's simplex; their
-  // second attempts mark the cavities with q + m (a first attempt may have left marks q).
-  one.again = m;
+  std::int32_t again = m;  // (a later attempt's marks: a first one may have left marks q)
+  // The waiting points lie along the chunks' borders. With the chunks shifted by half a chunk
+  // (the last one wrapping round to the curve's start) those borders lie inside chunks, and
+  // the threads insert most of them again (modules whose slots allow it: h.second_round()).
+  if (h.second_round() && waited > 0) {
+    const std::int64_t shift = chunk / 2;
+    std::vector<std::vector<std::int32_t>> by_owner(static_cast<std::size_t>(nc));
+    for (const auto& w : waiting)
+      for (const std::int32_t q : w) {
+        std::int64_t x = q + shift;
+        if (x >= m) x -= m;
+        by_owner[std::size_t(x / chunk)].push_back(q);
+      }
+    for (std::int64_t c = 0; c < nc; ++c) {
+      std::sort(by_owner[std::size_t(c)].begin(), by_owner[std::size_t(c)].end());
+      sizes[std::size_t(c)] = std::int64_t(by_owner[std::size_t(c)].size());
+    }
+    h.threads_begin(sizes, shift);
+    waited = threads(
+        shift, again,
+        [&](std::int64_t c, auto f) {
+          for (const std::int32_t q : by_owner[std::size_t(c)]) f(q);
+        },
+        waiting);
+    h.threads_done(waited);
+    h.mark("borders");
+    again += m;
+  }
+  // The points still waiting, in curve order, on one thread, each walk from the last
+  // insertion's simplex.
+  one.again = again;
   for (std::int64_t c = 0; c < nc; ++c) {
     std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
     std::sort(wait.begin(), wait.end());

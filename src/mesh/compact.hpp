@@ -9,6 +9,8 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <tuple>
+#include <utility>
 
 #include "base/hd.hpp"
 #include "mesh/adjacency.hpp"
@@ -27,6 +29,22 @@ template <class Exec>
 struct Compacted {
   typename Exec::template Buffer<std::int32_t> simplices, neighbors;  // K per simplex
   std::int64_t count = 0;
+  // Where compact_live_sorted's `into` placed the arrays instead (null: the buffers hold them).
+  std::int32_t* placed_simplices = nullptr;
+  std::int32_t* placed_neighbors = nullptr;
+  const std::int32_t* simplices_data() const {
+    return placed_simplices ? placed_simplices : simplices.data();
+  }
+  const std::int32_t* neighbors_data() const {
+    return placed_neighbors ? placed_neighbors : neighbors.data();
+  }
+};
+
+// Where compact_live_sorted writes: into(count) returns arrays of K·count entries in executor
+// memory for the simplices and the neighbours (the host result's own, on the CPU executor: no
+// copy), or nulls for new buffers of the executor's (OwnArrays).
+struct OwnArrays {
+  std::pair<std::int32_t*, std::int32_t*> operator()(std::int64_t) const { return {}; }
 };
 
 namespace compact_detail {
@@ -176,9 +194,9 @@ struct EmitSorted {
 };
 }  // namespace compact_detail
 
-template <int K, class Exec, class Store>
+template <int K, class Exec, class Store, class Into = OwnArrays>
 Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& store,
-                                    std::int64_t names_below) {
+                                    std::int64_t names_below, Into into = {}) {
   static_assert(K == 3 || K == 4, "triangles or tetrahedra");
   auto live = ex.template alloc<std::int32_t>(std::size_t(used));
   std::int32_t* slot = live.data();
@@ -198,10 +216,15 @@ Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& st
   ex.for_each_index(count, compact_detail::PlaceOf{slot, where.data()});
   Compacted<Exec> c;
   c.count = count;
-  c.simplices = ex.template alloc<std::int32_t>(std::size_t(K) * std::size_t(count));
-  c.neighbors = ex.template alloc<std::int32_t>(std::size_t(K) * std::size_t(count));
-  ex.for_each_index(count, compact_detail::EmitSorted<K, Store>{
-                               store, slot, where.data(), c.simplices.data(), c.neighbors.data()});
+  std::tie(c.placed_simplices, c.placed_neighbors) = into(count);
+  if (!c.placed_simplices) {
+    c.simplices = ex.template alloc<std::int32_t>(std::size_t(K) * std::size_t(count));
+    c.neighbors = ex.template alloc<std::int32_t>(std::size_t(K) * std::size_t(count));
+  }
+  std::int32_t* sp = c.placed_simplices ? c.placed_simplices : c.simplices.data();
+  std::int32_t* np = c.placed_simplices ? c.placed_neighbors : c.neighbors.data();
+  ex.for_each_index(count,
+                    compact_detail::EmitSorted<K, Store>{store, slot, where.data(), sp, np});
   return c;
 }
 

@@ -49,6 +49,7 @@ struct CavityInserter {
   std::int32_t first[3];   // the first triangle's vertices, sorted
   std::int64_t chunk = 0;  // points per chunk; 0: one thread alone, nothing is anyone else's
   std::int32_t own = 0;    // this thread's chunk
+  std::int64_t shift = 0;  // (unused: 2D runs no second round over shifted chunks)
   std::int32_t again = 0;  // m once the deferred points go in: their second attempts' marks
   std::int32_t next = 0;   // the next free slot of the chunk it inserts for
   bool broken = false;     // a cavity was no disk (a bug guard)
@@ -217,7 +218,8 @@ bool Triangulator::insert_one_by_one(E& ex) {
         I.last = I.next > starts[std::size_t(c)] ? I.next - 2 : -1;
       }
       void leave(const CavityInserter& I, std::int64_t c) { next[std::size_t(c)] = I.next; }
-      void threads_begin() {}
+      void threads_begin(const std::vector<std::int64_t>&, std::int64_t) {}
+      bool second_round() const { return false; }  // (slots by each point's first chunk)
       void threads_done(std::int64_t) {}
       void mark(const char* what) { T.mark((std::string("one by one: ") + what).c_str()); }
     };

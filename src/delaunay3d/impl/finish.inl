@@ -56,9 +56,10 @@ inline std::int64_t Triangulator::find_failed(typename Exec::template Buffer<std
   return after.failed_faces;
 }
 
-inline Triangulator::Finished Triangulator::finish(const std::int32_t* orig) {
+template <class Into>
+Triangulator::Finished Triangulator::finish(const std::int32_t* orig, Into into) {
   const Counters c = counters();
-  return mesh::compact_live_sorted<4>(ex_, c.used, FiniteTets{tet_.data(), orig, m_}, m_);
+  return mesh::compact_live_sorted<4>(ex_, c.used, FiniteTets{tet_.data(), orig, m_}, m_, into);
 }
 
 inline void Triangulator::report() {

@@ -77,10 +77,16 @@ struct TetInserter {
   bool is_first(std::int32_t q) const {
     return q == first[0] || q == first[1] || q == first[2] || q == first[3];
   }
+  std::int64_t shift = 0;  // the chunks' ownership shifted along the curve (the second round)
+  std::int64_t owner(std::int32_t v) const {
+    std::int64_t x = v + shift;
+    if (x >= g.m) x -= g.m;
+    return x / chunk;
+  }
   bool mine(const Tet& T) const {
     if (!chunk) return true;
     for (int k = 0; k < 4; ++k)
-      if (T.v[k] != g.m && T.v[k] / chunk != own) return false;
+      if (T.v[k] != g.m && owner(T.v[k]) != own) return false;
     return true;
   }
   static bool torn(const Tet& T) {
@@ -249,119 +255,129 @@ struct TetInserter {
   }
 };
 
-inline void Triangulator::insert_by_cavities() {
-  const std::int32_t I = m_;
-  const std::int32_t m = m_;
-  // The first tetrahedron and its four infinite neighbours (start()'s, without the location).
-  {
-    Tet t[5];
-    for (int k = 0; k < 4; ++k) t[0].v[k] = first_.v[k];
-    for (int k = 0; k < 4; ++k) {  // infinite tetrahedron k + 1 over face k (outward)
-      std::int32_t f[3];
-      face_of(t[0].v, k, f);
-      t[k + 1] = Tet{{f[0], f[1], f[2], I}, {-1, -1, -1, -1}};
-    }
-    for (int a = 0; a < 5; ++a)  // adjacency by matching faces
-      for (int k = 0; k < 4; ++k) {
+template <class E>
+void Triangulator::insert_by_cavities(E& ex) {
+  if constexpr (E::backend != Backend::Cpu) {
+    throw Error(ErrorCode::Internal, "the cavities' schedule is the CPU executor's");
+  } else {
+    const std::int32_t I = m_;
+    const std::int32_t m = m_;
+    // The first tetrahedron and its four infinite neighbours (start()'s, without the location).
+    {
+      Tet t[5];
+      for (int k = 0; k < 4; ++k) t[0].v[k] = first_.v[k];
+      for (int k = 0; k < 4; ++k) {  // infinite tetrahedron k + 1 over face k (outward)
         std::int32_t f[3];
-        face_of(t[a].v, k, f);
-        for (int b = 0; b < 5; ++b) {
-          const int l = b == a ? -1 : opposite_of_face(t[b].v, f[0], f[1], f[2]);
-          if (l >= 0) t[a].n[k] = enc(b, l);
+        face_of(t[0].v, k, f);
+        t[k + 1] = Tet{{f[0], f[1], f[2], I}, {-1, -1, -1, -1}};
+      }
+      for (int a = 0; a < 5; ++a)  // adjacency by matching faces
+        for (int k = 0; k < 4; ++k) {
+          std::int32_t f[3];
+          face_of(t[a].v, k, f);
+          for (int b = 0; b < 5; ++b) {
+            const int l = b == a ? -1 : opposite_of_face(t[b].v, f[0], f[1], f[2]);
+            if (l >= 0) t[a].n[k] = enc(b, l);
+          }
         }
+      std::copy(t, t + 5, tet_.data());
+    }
+    TetInserter one(tet_.data(), srank_.data(), g_, first_.v);
+    one.next = 5, one.end = cap_;
+    struct Hooks {
+      Triangulator& T;
+      TetInserter& one;
+      std::int32_t m;
+      std::int64_t nc = 1, chunk = 0;
+      std::vector<std::int32_t> start;      // per chunk: where its thread's walks begin
+      std::vector<std::int64_t> next, end;  // per chunk: its range of slots
+      std::vector<std::vector<std::int32_t>> freed;
+      Clock::time_point t0 = Clock::now();
+      bool skip(std::int32_t q) const { return one.is_first(q); }
+      void chunks(std::int64_t n, std::int64_t c) {
+        nc = n, chunk = c;
+        start.assign(std::size_t(n), -1);
       }
-    std::copy(t, t + 5, tet_.data());
+      // One thread alone: the slots past every chunk's range, the store grown where they end.
+      void put(TetInserter& I, std::int64_t c, std::int32_t q) {
+        for (;;) {
+          if (I.insert(q)) break;
+          if (!I.full)
+            throw Error(ErrorCode::Internal, std::string(I.broken ? "a cavity that is no ball"
+                                                                  : "a cavity insertion failed") +
+                                                 "; please report this input");
+          I.full = false;
+          T.reserve(T.cap_ + T.cap_ / 8 + 1024);
+          I.tet = T.tet_.data(), I.mark = T.srank_.data(), I.end = T.cap_;
+        }
+        start[std::size_t(c)] = I.last;
+        if (++done % 4096 == 0) report();
+      }
+      // Progress (and a place for the callback to cancel: never inside the threads): every 4096
+      // points one thread inserts, and as each stage ends; "batch" counts the reports.
+      std::int64_t done = 4, reports = 0;
+      void report() {
+        if (T.progress_) T.progress_(Delaunay3dProgress{"insert_flip", done, m, ++reports});
+      }
+      // A tetrahedron with a vertex in chunk c is c's own or shared: no other thread removes it.
+      bool holds_chunk(const TetInserter& I, std::int32_t s, std::int64_t c) const {
+        const Tet& X = T.tet_.data()[s];
+        if (X.v[0] < 0) return false;
+        for (int k = 0; k < 4; ++k)
+          if (X.v[k] != m && I.owner(X.v[k]) == c) return true;
+        return false;
+      }
+      // The threads: chunk c's range of slots is sized from its points (a tetrahedralisation holds
+      // about 6.7 a point; 8, and a chunk that runs out leaves its points to wait); each thread's
+      // walks begin at a tetrahedron of its chunk's that no other thread removes (the last
+      // insertion's for its chunk, else the first such slot).
+      bool second_round() const { return true; }
+      void threads_begin(const std::vector<std::int64_t>& points, std::int64_t shift) {
+        TetInserter probe = one;
+        probe.chunk = chunk, probe.shift = shift;
+        next.resize(std::size_t(nc)), end.resize(std::size_t(nc)), freed.resize(std::size_t(nc));
+        std::int64_t at = one.next;
+        for (std::size_t c = 0; c < std::size_t(nc); ++c)
+          next[c] = at, at += 8 * points[c] + 1024, end[c] = at;
+        for (std::int64_t c = 0; c < nc; ++c) {
+          std::int32_t& s = start[std::size_t(c)];
+          if (s >= 0 && holds_chunk(probe, s, c)) continue;
+          s = -1;
+          for (std::int64_t t = 0; t < one.next && s < 0; ++t)
+            if (holds_chunk(probe, std::int32_t(t), c)) s = std::int32_t(t);
+        }
+        T.reserve(at + 1024);
+        one.tet = T.tet_.data(), one.mark = T.srank_.data();
+        one.next = at, one.end = T.cap_;
+      }
+      void enter(TetInserter& I, std::int64_t c) {
+        I.tet = T.tet_.data(), I.mark = T.srank_.data();
+        I.next = next[std::size_t(c)], I.end = end[std::size_t(c)];
+        I.freed.clear();
+        I.last = start[std::size_t(c)];
+      }
+      void leave(TetInserter& I, std::int64_t c) {
+        // (the range's slots it did not take are dead; its walks go on from where it ended)
+        for (std::int64_t s = I.next; s < I.end; ++s) T.tet_.data()[s].v[0] = -1;
+        freed[std::size_t(c)] = std::move(I.freed);
+        start[std::size_t(c)] = I.last;
+      }
+      void threads_done(std::int64_t waiting) {  // (their freed slots to the one thread)
+        for (auto& f : freed) one.freed.insert(one.freed.end(), f.begin(), f.end());
+        done = m - waiting;  // (the threads inserted all others)
+      }
+      void mark(const char* what) {
+        T.st_.phase_ms.push_back({std::string("insert_flip.") + what, ms_since(t0)});
+        if (std::string(what) == "deferred") done = m;
+        report();
+        t0 = Clock::now();
+      }
+    };
+    Hooks h{*this, one, m, 1, 0, {}, {}, {}, {}, Clock::now()};
+    deferred_ = mesh::cavities::insert_by_chunks(ex, m, loc_.data(), one, h);
+    cavity_insertions_ = m - 4;
+    Counters c = counters();
+    c.used = one.next;
+    ex_.from_host(&c, 1, ctr_.data());
   }
-  TetInserter one(tet_.data(), srank_.data(), g_, first_.v);
-  one.next = 5, one.end = cap_;
-  struct Hooks {
-    Triangulator& T;
-    TetInserter& one;
-    std::int32_t m;
-    std::int64_t nc = 1, chunk = 0;
-    std::vector<std::int32_t> start;      // per chunk: where its thread's walks begin
-    std::vector<std::int64_t> next, end;  // per chunk: its range of slots
-    std::vector<std::vector<std::int32_t>> freed;
-    Clock::time_point t0 = Clock::now();
-    bool skip(std::int32_t q) const { return one.is_first(q); }
-    void chunks(std::int64_t n, std::int64_t c) {
-      nc = n, chunk = c;
-      start.assign(std::size_t(n), -1);
-    }
-    // One thread alone: the slots past every chunk's range, the store grown where they end.
-    void put(TetInserter& I, std::int64_t c, std::int32_t q) {
-      for (;;) {
-        if (I.insert(q)) break;
-        if (!I.full)
-          throw Error(ErrorCode::Internal, std::string(I.broken ? "a cavity that is no ball"
-                                                                : "a cavity insertion failed") +
-                                               "; please report this input");
-        I.full = false;
-        T.reserve(T.cap_ + T.cap_ / 8 + 1024);
-        I.tet = T.tet_.data(), I.mark = T.srank_.data(), I.end = T.cap_;
-      }
-      start[std::size_t(c)] = I.last;
-      if (++done % 4096 == 0) report();
-    }
-    // Progress (and a place for the callback to cancel: never inside the threads): every 4096
-    // points one thread inserts, and as each stage ends; "batch" counts the reports.
-    std::int64_t done = 4, reports = 0;
-    void report() {
-      if (T.progress_) T.progress_(Delaunay3dProgress{"insert_flip", done, m, ++reports});
-    }
-    // A tetrahedron with a vertex in chunk c is c's own or shared: no other thread removes it.
-    bool holds_chunk(std::int32_t s, std::int64_t c) const {
-      const Tet& X = T.tet_.data()[s];
-      if (X.v[0] < 0) return false;
-      for (int k = 0; k < 4; ++k)
-        if (X.v[k] != m && X.v[k] / chunk == c) return true;
-      return false;
-    }
-    // The threads: chunk c's range of slots is sized from its points (a tetrahedralisation holds
-    // about 6.7 a point; 8, and a chunk that runs out leaves its points to wait); each thread's
-    // walks begin at a tetrahedron of its chunk's that no other thread removes.
-    void threads_begin() {
-      next.resize(std::size_t(nc)), end.resize(std::size_t(nc)), freed.resize(std::size_t(nc));
-      std::int64_t at = one.next;
-      for (std::size_t c = 0; c < std::size_t(nc); ++c)
-        next[c] = at, at += 8 * chunk + 1024, end[c] = at;
-      for (std::int64_t c = 0; c < nc; ++c) {
-        std::int32_t& s = start[std::size_t(c)];
-        if (s >= 0 && holds_chunk(s, c)) continue;
-        s = -1;
-        for (std::int64_t t = 0; t < one.next && s < 0; ++t)
-          if (holds_chunk(std::int32_t(t), c)) s = std::int32_t(t);
-      }
-      T.reserve(at + 1024);
-      one.tet = T.tet_.data(), one.mark = T.srank_.data();
-      one.next = at, one.end = T.cap_;
-    }
-    void enter(TetInserter& I, std::int64_t c) {
-      I.tet = T.tet_.data(), I.mark = T.srank_.data();
-      I.next = next[std::size_t(c)], I.end = end[std::size_t(c)];
-      I.freed.clear();
-      I.last = start[std::size_t(c)];
-    }
-    void leave(TetInserter& I, std::int64_t c) {
-      // (the range's slots it did not take are dead)
-      for (std::int64_t s = I.next; s < I.end; ++s) T.tet_.data()[s].v[0] = -1;
-      freed[std::size_t(c)] = std::move(I.freed);
-    }
-    void threads_done(std::int64_t waiting) {  // (their freed slots to the one thread)
-      for (auto& f : freed) one.freed.insert(one.freed.end(), f.begin(), f.end());
-      done = m - waiting;  // (the threads inserted all others)
-    }
-    void mark(const char* what) {
-      T.st_.phase_ms.push_back({std::string("insert_flip.") + what, ms_since(t0)});
-      if (std::string(what) == "deferred") done = m;
-      report();
-      t0 = Clock::now();
-    }
-  };
-  Hooks h{*this, one, m, 1, 0, {}, {}, {}, {}, Clock::now()};
-  deferred_ = mesh::cavities::insert_by_chunks(ex_, m, loc_.data(), one, h);
-  cavity_insertions_ = m - 4;
-  Counters c = counters();
-  c.used = one.next;
-  ex_.from_host(&c, 1, ctr_.data());
 }

@@ -74,7 +74,7 @@ class Triangulator : public TetStore {
 
   void run() {
     if (cavities_) {
-      insert_by_cavities();
+      insert_by_cavities(ex_);
       ex_.sync();
       release_phase1();
       return;
@@ -89,7 +89,8 @@ class Triangulator : public TetStore {
   }
   // one_by_one.inl: the points one by one by their cavities, the threads over chunks of the
   // curve (CPU only).
-  void insert_by_cavities();
+  template <class E>
+  void insert_by_cavities(E& ex);
   std::int64_t cavity_insertions_ = 0, deferred_ = 0;
   // The batches, until every located point is inserted; then phase 1's arrays go.
   void insert_all() {
@@ -137,7 +138,8 @@ class Triangulator : public TetStore {
   std::int64_t find_failed(typename Exec::template Buffer<std::int8_t>& failed, std::int64_t& flat,
                            const std::int8_t* only = nullptr);
   using Finished = mesh::Compacted<Exec>;  // finite tetrahedra in input indices, on the executor
-  Finished finish(const std::int32_t* orig);
+  template <class Into = mesh::OwnArrays>  // (where the arrays go: mesh/compact.hpp)
+  Finished finish(const std::int32_t* orig, Into into = {});
   void report();
 
   // state (the store's is TetStore's)
