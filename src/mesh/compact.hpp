@@ -129,6 +129,7 @@ struct SortKey {
   Store s;
   const std::int32_t* slot;  // the live slots
   std::uint64_t* keys;
+  std::uint64_t* third;  // K = 4: the third name above the slot (SortRuns reads no record)
   int shift;
   GG_HD void operator()(std::int64_t i) const {
     std::int32_t w[K];
@@ -137,34 +138,29 @@ struct SortKey {
     canonical_turn<K>(w, p);
     keys[i] =
         (std::uint64_t(std::uint32_t(w[p[0]])) << shift) | std::uint64_t(std::uint32_t(w[p[1]]));
+    if constexpr (K == 4)
+      third[i] = (std::uint64_t(std::uint32_t(w[p[2]])) << 32) | std::uint32_t(slot[i]);
   }
 };
 // K = 4: the simplices whose first two names are equal (those around one edge whose ends come
-// first in both: a few) sorted by their third, each run by the thread at its start.
-template <class Store>
+// first in both: a few) sorted by their third, each run by the thread at its start, and the
+// slots taken out in that order.
 struct SortRuns {
-  Store s;
   const std::uint64_t* keys;  // sorted
+  std::uint64_t* third;       // sorted with them
   std::int32_t* slot;
   std::int64_t count;
-  GG_HD std::int32_t third(std::int32_t t) const {
-    std::int32_t w[4];
-    int p[4];
-    s.order_names(t, w);
-    canonical_turn<4>(w, p);
-    return w[p[2]];
-  }
   GG_HD void operator()(std::int64_t i) const {
     if (i > 0 && keys[i - 1] == keys[i]) return;
     std::int64_t end = i + 1;
     while (end < count && keys[end] == keys[i]) ++end;
     for (std::int64_t a = i + 1; a < end; ++a) {  // (insertion sort: runs are short)
-      const std::int32_t t = slot[a];
-      const std::int32_t x = third(t);
+      const std::uint64_t x = third[a];
       std::int64_t b = a;
-      for (; b > i && third(slot[b - 1]) > x; --b) slot[b] = slot[b - 1];
-      slot[b] = t;
+      for (; b > i && (third[b - 1] >> 32) > (x >> 32); --b) third[b] = third[b - 1];
+      third[b] = x;
     }
+    for (std::int64_t a = i; a < end; ++a) slot[a] = std::int32_t(std::uint32_t(third[a]));
   }
 };
 struct PlaceOf {
@@ -206,10 +202,17 @@ Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& st
   while ((std::int64_t(1) << shift) < names_below) ++shift;
   {
     auto keys = ex.template alloc<std::uint64_t>(std::size_t(count));
-    ex.for_each_index(count, compact_detail::SortKey<K, Store>{store, slot, keys.data(), shift});
-    ex.sort_by_key(keys.data(), slot, count, 2 * shift);
-    if constexpr (K == 4)
-      ex.for_each_index(count, compact_detail::SortRuns<Store>{store, keys.data(), slot, count});
+    if constexpr (K == 3) {
+      ex.for_each_index(
+          count, compact_detail::SortKey<K, Store>{store, slot, keys.data(), nullptr, shift});
+      ex.sort_by_key(keys.data(), slot, count, 2 * shift);
+    } else {
+      auto third = ex.template alloc<std::uint64_t>(std::size_t(count));
+      ex.for_each_index(
+          count, compact_detail::SortKey<K, Store>{store, slot, keys.data(), third.data(), shift});
+      ex.sort_by_key(keys.data(), third.data(), count, 2 * shift);
+      ex.for_each_index(count, compact_detail::SortRuns{keys.data(), third.data(), slot, count});
+    }
   }
   auto where = ex.template alloc<std::int32_t>(std::size_t(used));
   ex.fill(where.data(), used, std::int32_t(-1));
@@ -223,8 +226,7 @@ Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& st
   }
   std::int32_t* sp = c.placed_simplices ? c.placed_simplices : c.simplices.data();
   std::int32_t* np = c.placed_simplices ? c.placed_neighbors : c.neighbors.data();
-  ex.for_each_index(count,
-                    compact_detail::EmitSorted<K, Store>{store, slot, where.data(), sp, np});
+  ex.for_each_index(count, compact_detail::EmitSorted<K, Store>{store, slot, where.data(), sp, np});
   return c;
 }
 

@@ -32,17 +32,15 @@ constexpr int kWalkSteps3 = 1 << 16;  // a walk this long gives up (threads only
 
 // One thread's insertions (the sample's and the waiting points' run as chunk 0 of 1).
 struct TetInserter {
-  TetInserter(Tet* t, std::int32_t* mk, const Geo& geo, const std::int32_t* f)
-      : tet(t), mark(mk), g(geo) {
+  TetInserter(Tet* t, const Geo& geo, const std::int32_t* f) : tet(t), g(geo) {
     std::copy(f, f + 4, first);
   }
-  Tet* tet;            // by slot number
-  std::int32_t* mark;  // per slot: the last attempt whose cavity took it
+  Tet* tet;  // by slot number
   Geo g;
   std::int32_t first[4];   // the first tetrahedron's vertices
   std::int64_t chunk = 0;  // points per chunk; 0: one thread alone, nothing is anyone else's
   std::int32_t own = 0;    // this thread's chunk
-  std::int32_t again = 0;  // m once the waiting points go in: their second attempts' marks
+  std::int32_t again = 0;  // (the schedule's field: 3D marks no slots, its cavity is a set)
   std::int64_t next = 0, end = 0;   // the slots it may still take: [next, end)
   std::vector<std::int32_t> freed;  // and the slots its cavities freed
   bool broken = false;              // a cavity's boundary was no sphere (a bug guard)
@@ -50,10 +48,46 @@ struct TetInserter {
   std::uint32_t rng = 2463534242u;
   std::int32_t last = -1;  // a slot made by the last insertion: the next walk starts there
   std::vector<std::int32_t> cav;
+  std::vector<Tet> held;  // the cavity's tetrahedra as read (their records are settled)
+  // The cavity's slots as a set: open addressing, grown as the cavity grows (a per-slot array
+  // of marks cost a cache miss a neighbour).
+  struct SlotSet {
+    std::vector<std::int32_t> at = std::vector<std::int32_t>(64, -1);
+    std::vector<std::size_t> filled;  // (so that a reset clears only those)
+    void reset() {
+      for (const std::size_t h : filled) at[h] = -1;
+      filled.clear();
+    }
+    static std::size_t hash(std::int32_t s) { return std::size_t(std::uint32_t(s) * 2654435761u); }
+    bool has(std::int32_t s) const {
+      const std::size_t mask = at.size() - 1;
+      for (std::size_t h = hash(s) & mask;; h = (h + 1) & mask) {
+        if (at[h] == s) return true;
+        if (at[h] < 0) return false;
+      }
+    }
+    void put(std::int32_t s) {
+      const std::size_t mask = at.size() - 1;
+      std::size_t h = hash(s) & mask;
+      while (at[h] >= 0) h = (h + 1) & mask;
+      at[h] = s;
+      filled.push_back(h);
+    }
+    // s, which all has (the cavity's slots, s last), at most a quarter full
+    void add(std::int32_t s, const std::vector<std::int32_t>& all) {
+      if (4 * all.size() > at.size()) {
+        at.assign(2 * at.size(), -1);
+        filled.clear();
+        for (const std::int32_t x : all) put(x);
+      } else {
+        put(s);
+      }
+    }
+  } taken;
   struct Face {
-    std::int32_t slot;  // the cavity tetrahedron it bounds (its new one takes its vertices)
-    int k;              // the face is that tetrahedron's face k; q takes vertex k's place
-    std::int32_t out;   // the neighbour beyond it (encoded)
+    std::int32_t at;  // the cavity tetrahedron it bounds (held[at]; its new one takes its vertices)
+    int k;            // the face is that tetrahedron's face k; q takes vertex k's place
+    std::int32_t out;  // the neighbour beyond it (encoded)
   };
   std::vector<Face> bnd;
   std::vector<std::int32_t> made;  // per boundary face: its new tetrahedron's slot
@@ -167,22 +201,22 @@ struct TetInserter {
     if (!mine(T0)) return false;
     // The cavity: the tetrahedra whose spheres (half-spaces, for infinite ones) hold q, found
     // from the one that holds it; its boundary, the faces to the others.
-    cav.clear(), bnd.clear();
-    cav.push_back(t0);
-    const std::int32_t stamp = q + again;  // (a first attempt may have left marks q)
-    mesh::cavities::store_word(mark + t0, stamp);
+    cav.clear(), bnd.clear(), held.clear();
+    taken.reset();
+    cav.push_back(t0), held.push_back(T0);
+    taken.add(t0, cav);
     for (std::size_t i = 0; i < cav.size(); ++i) {
-      const Tet C = read(cav[i]);
+      const Tet C = held[i];
       for (int k = 0; k < 4; ++k) {
         const std::int32_t nb = simplex_of(C.n[k]);
-        if (mesh::cavities::load_word(mark + nb) == stamp) continue;
+        if (taken.has(nb)) continue;
         const Tet N = read(nb);
         if (in_sphere_ext(g, N.v, q)) {
           if (!mine(N)) return false;
-          mesh::cavities::store_word(mark + nb, stamp);
-          cav.push_back(nb);
+          cav.push_back(nb), held.push_back(N);
+          taken.add(nb, cav);
         } else {
-          bnd.push_back({cav[i], k, C.n[k]});
+          bnd.push_back({std::int32_t(i), k, C.n[k]});
         }
       }
     }
@@ -194,8 +228,7 @@ struct TetInserter {
       return false;
     }
     if (f > cav.size() && std::int64_t(f - cav.size()) > std::int64_t(freed.size()) + end - next) {
-      full = true;  // (put() grows the store and tries again with the same marks: unmarked)
-      for (const std::int32_t t : cav) mesh::cavities::store_word(mark + t, -1);
+      full = true;
       return false;
     }
     fresh.resize(f);
@@ -204,7 +237,7 @@ struct TetInserter {
     edges.assign(size, Edge{~std::uint64_t(0), 0});
     for (std::size_t i = 0; i < f; ++i) {
       const Face& F = bnd[i];
-      Tet N = read(F.slot);  // (the cavity's tetrahedron: its record is settled)
+      Tet N = held[F.at];  // (the cavity's tetrahedron: its record is settled)
       N.v[F.k] = q;
       N.n[F.k] = F.out;
       fresh[i] = N;
@@ -282,7 +315,7 @@ void Triangulator::insert_by_cavities(E& ex) {
         }
       std::copy(t, t + 5, tet_.data());
     }
-    TetInserter one(tet_.data(), srank_.data(), g_, first_.v);
+    TetInserter one(tet_.data(), g_, first_.v);
     one.next = 5, one.end = cap_;
     struct Hooks {
       Triangulator& T;
@@ -308,7 +341,7 @@ void Triangulator::insert_by_cavities(E& ex) {
                                                  "; please report this input");
           I.full = false;
           T.reserve(T.cap_ + T.cap_ / 8 + 1024);
-          I.tet = T.tet_.data(), I.mark = T.srank_.data(), I.end = T.cap_;
+          I.tet = T.tet_.data(), I.end = T.cap_;
         }
         start[std::size_t(c)] = I.last;
         if (++done % 4096 == 0) report();
@@ -347,11 +380,11 @@ void Triangulator::insert_by_cavities(E& ex) {
             if (holds_chunk(probe, std::int32_t(t), c)) s = std::int32_t(t);
         }
         T.reserve(at + 1024);
-        one.tet = T.tet_.data(), one.mark = T.srank_.data();
+        one.tet = T.tet_.data();
         one.next = at, one.end = T.cap_;
       }
       void enter(TetInserter& I, std::int64_t c) {
-        I.tet = T.tet_.data(), I.mark = T.srank_.data();
+        I.tet = T.tet_.data();
         I.next = next[std::size_t(c)], I.end = end[std::size_t(c)];
         I.freed.clear();
         I.last = start[std::size_t(c)];

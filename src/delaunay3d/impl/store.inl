@@ -58,7 +58,7 @@ struct TetStore {
   Mesh M_{};
   std::int64_t cap_ = 0, log_cap_ = 0, list_cap_ = 0, ring_cap_ = 0;  // capacities
   bool phase1_released_ = false;    // release_phase1 ran: grow keeps the store only
-  bool cavities_ = false;           // the CPU's cavities (one_by_one.inl): the store and marks
+  bool cavities_ = false;           // the CPU's cavities (one_by_one.inl): the store alone
   std::int64_t scratch_bytes_ = 0;  // the exact stages' (the Triangulator's lease pool)
   std::int64_t peak_bytes_ = 0;
   typename Exec::template Buffer<Tet> tet_;
@@ -93,7 +93,6 @@ inline void TetStore::grow(std::int64_t cap) {
   const std::int32_t minus1 = -1;
   if (cavities_) {  // (the cavities' schedule counts no slots until it ends: all are kept)
     regrow<Tet>(ex_, tet_, cap, cap_, nullptr);
-    regrow(ex_, srank_, cap, cap_, &minus1);
     cap_ = cap;
     set_mesh();
     note_bytes();

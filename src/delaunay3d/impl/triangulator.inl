@@ -31,7 +31,7 @@
 class Triangulator : public TetStore {
  public:
   // by_cavities: the CPU executor's own schedule (one_by_one.inl) rather than the batches;
-  // only the store and its marks are then made.
+  // only the store is then made.
   Triangulator(Exec& ex, const double* pts, std::int32_t m, const mesh::Tetra& first,
                std::int64_t max_rounds, const ProgressFn& progress, Delaunay3dStats& st,
                bool by_cavities = false)
