@@ -39,6 +39,9 @@ GG_INLINE void store_word(std::int32_t* p, std::int32_t v) {
 // the second one's points each took a fan over the whole first), and each insertion redid it.
 constexpr int kLevels = 21;
 constexpr int kSampleLevel = 5;  // levels from here up: the sample, on one thread (1/32)
+// Rounds over other parts for the points that waited, at most (their marks q + r m stay
+// below 2^31 for the 3D store's 1.4·10^8 points; 2D runs none).
+constexpr int kMaxRounds = 8;
 GG_INLINE int level_of(std::int32_t q) {
   std::uint64_t x = std::uint64_t(q) * 0x9E3779B97F4A7C15ull;
   x ^= x >> 31, x *= 0xBF58476D1CE4E5B9ull, x ^= x >> 29;
@@ -62,18 +65,19 @@ void order_by_level(std::int32_t lo, std::int32_t hi, Skip skip, std::int32_t* o
 
 // The chunks' schedule over m points (curve positions), on ex's team (CPU). order: m entries of
 // scratch. one: the inserter for one thread alone; each chunk's thread gets a copy of it with
-// its chunk (fields chunk, own, shift, rng, again; bool insert(q): false having changed nothing
-// where the point must wait; a vertex v is its own where ((v + shift) mod m) / chunk == own). The
+// its part (fields chunk, own, rng, again; bool insert(q): false having changed nothing where
+// the point must wait). The parts are the chunks of the curve (v / chunk) at first; a module
+// with rounds gives others through its inserter (owner(v)). The
 // module's hooks:
 //   skip(q): the first simplex's vertices (not inserted);
 //   chunks(nc, chunk): the chunks are [c * chunk, (c + 1) * chunk) for c < nc (1 where the
 //     threads do not pay: one thread inserts all), before any insertion;
 //   put(I, c, q): one thread alone inserts q for chunk c (it must go in);
-//   threads_begin(points, shift) / threads_done(w): before and after the threads (one thread;
-//     points[c]: how many chunk c's thread may insert; shift: the chunks' ownership is shifted
-//     by so many curve positions, the inserters' too; w points wait);
-//   second_round(): whether the points that waited may go in by threads again, over shifted
-//     chunks (slots that do not depend on a point's first chunk);
+//   threads_begin(points, split) / threads_done(w): before and after the threads (one thread;
+//     points[c]: how many part c's thread may insert; split: an inserter that knows the parts;
+//     w points wait);
+//   split(r, I, waiting): round r's parts, set in I (I.owner(v) < nc); false: no more rounds
+//     (2D: its slots follow each point's chunk of the curve);
 //   enter(I, c) / leave(I, c): chunk c's thread begins with / ends with its inserter I;
 //   mark(what): a profile mark.
 // Returns how many points waited.
@@ -119,15 +123,14 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
     for (std::int64_t c = 0; c < nc; ++c) level(c, l, [&](std::int32_t q) { h.put(one, c, q); });
   h.mark("sample");
   if (nc == 1) return 0;
-  // The threads, each over its chunk's points (pts[c], in order): those that must wait go to
-  // wait[c]. shift: the chunks' ownership is shifted by that many curve positions.
-  const Ins proto = one;
-  auto threads = [&](std::int64_t shift, std::int32_t again, auto pts,
+  // The threads, each over its part's points (pts(c, f): f for each, in order), its inserter a
+  // copy of `split` (which knows the parts: Ins::owner); those that must wait go to wait[c].
+  auto threads = [&](const Ins& split, std::int32_t again, auto pts,
                      std::vector<std::vector<std::int32_t>>& wait) {
     wait.assign(std::size_t(nc), {});
     each_chunk([&](std::int64_t c) {
-      Ins mine = proto;
-      mine.chunk = chunk, mine.own = std::int32_t(c), mine.shift = shift, mine.again = again;
+      Ins mine = split;
+      mine.own = std::int32_t(c), mine.again = again;
       mine.rng += std::uint32_t(c + again);
       h.enter(mine, c);
       std::vector<std::int32_t>& w = wait[std::size_t(c)];
@@ -140,46 +143,50 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
     for (const auto& x : wait) n += std::int64_t(x.size());
     return n;
   };
+  Ins split = one;  // (the parts: the chunks of the curve)
+  split.chunk = chunk;
   std::vector<std::int64_t> sizes(static_cast<std::size_t>(nc));
   for (std::int64_t c = 0; c < nc; ++c)
     for (int l = kSampleLevel - 1; l >= 0; --l) sizes[std::size_t(c)] += counts[c * kLevels + l];
-  h.threads_begin(sizes, 0);
+  h.threads_begin(sizes, split);
   std::vector<std::vector<std::int32_t>> waiting;
   std::int64_t waited = threads(
-      0, 0,
+      split, 0,
       [&](std::int64_t c, auto f) {
         for (int l = kSampleLevel - 1; l >= 0; --l) level(c, l, f);
       },
       waiting);
   h.threads_done(waited);
   h.mark("chunks");
-  std::int32_t again = m;  // (a later attempt's marks: a first one may have left marks q)
-  // The waiting points lie along the chunks' borders. With the chunks shifted by half a chunk
-  // (the last one wrapping round to the curve's start) those borders lie inside chunks, and
-  // the threads insert most of them again (modules whose slots allow it: h.second_round()).
-  if (h.second_round() && waited > 0) {
-    const std::int64_t shift = chunk / 2;
+  // The waiting points lie along the chunks' borders, and a chunk of the curve touches several
+  // others in space, not only its neighbours on the curve: chunks shifted along the curve keep
+  // most of those borders (3D, 4 threads: a shift left 60 % waiting). Modules that can
+  // (h.split(r, split, waiting) gives round r's parts, false where it has none) insert them in
+  // further rounds of threads over other parts (3D: slabs across an axis, one axis a round),
+  // while a round inserts at least a quarter of what it is given.
+  std::int32_t again = m;  // (round r's attempts mark with q + r m: a first one left marks q)
+  for (int r = 1; r <= kMaxRounds && waited > 256 * nc; ++r) {
+    split = one;
+    if (!h.split(r, split, waiting)) break;
     std::vector<std::vector<std::int32_t>> by_owner(static_cast<std::size_t>(nc));
     for (const auto& w : waiting)
-      for (const std::int32_t q : w) {
-        std::int64_t x = q + shift;
-        if (x >= m) x -= m;
-        by_owner[std::size_t(x / chunk)].push_back(q);
-      }
+      for (const std::int32_t q : w) by_owner[std::size_t(split.owner(q))].push_back(q);
     for (std::int64_t c = 0; c < nc; ++c) {
       std::sort(by_owner[std::size_t(c)].begin(), by_owner[std::size_t(c)].end());
       sizes[std::size_t(c)] = std::int64_t(by_owner[std::size_t(c)].size());
     }
-    h.threads_begin(sizes, shift);
+    h.threads_begin(sizes, split);
+    const std::int64_t given = waited;
     waited = threads(
-        shift, again,
+        split, again,
         [&](std::int64_t c, auto f) {
           for (const std::int32_t q : by_owner[std::size_t(c)]) f(q);
         },
         waiting);
     h.threads_done(waited);
-    h.mark("borders");
+    h.mark("rounds");
     again += m;
+    if (4 * (given - waited) < given) break;
   }
   // The points still waiting, in curve order, on one thread, each walk from the last
   // insertion's simplex.

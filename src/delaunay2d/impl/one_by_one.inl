@@ -49,7 +49,6 @@ struct CavityInserter {
   std::int32_t first[3];   // the first triangle's vertices, sorted
   std::int64_t chunk = 0;  // points per chunk; 0: one thread alone, nothing is anyone else's
   std::int32_t own = 0;    // this thread's chunk
-  std::int64_t shift = 0;  // (unused: 2D runs no second round over shifted chunks)
   std::int32_t again = 0;  // m once the deferred points go in: their second attempts' marks
   std::int32_t next = 0;   // the next free slot of the chunk it inserts for
   bool broken = false;     // a cavity was no disk (a bug guard)
@@ -75,10 +74,11 @@ struct CavityInserter {
     return base + 4 + 2 * (lo - (lo > first[0]) - (lo > first[1]) - (lo > first[2]));
   }
   bool is_first(std::int32_t q) const { return q == first[0] || q == first[1] || q == first[2]; }
+  std::int64_t owner(std::int32_t v) const { return v / chunk; }  // (the chunks of the curve)
   bool mine(const std::int32_t* v) const {
     if (!chunk) return true;
     for (int k = 0; k < 3; ++k)
-      if (v[k] != g.m && v[k] / chunk != own) return false;
+      if (v[k] != g.m && owner(v[k]) != own) return false;
     return true;
   }
   bool conflict(const std::int32_t* v, std::int32_t q) {
@@ -218,8 +218,11 @@ bool Triangulator::insert_one_by_one(E& ex) {
         I.last = I.next > starts[std::size_t(c)] ? I.next - 2 : -1;
       }
       void leave(const CavityInserter& I, std::int64_t c) { next[std::size_t(c)] = I.next; }
-      void threads_begin(const std::vector<std::int64_t>&, std::int64_t) {}
-      bool second_round() const { return false; }  // (slots by each point's first chunk)
+      void threads_begin(const std::vector<std::int64_t>&, const CavityInserter&) {}
+      // (no rounds over other parts: each point's slots follow its chunk of the curve)
+      bool split(int, CavityInserter&, const std::vector<std::vector<std::int32_t>>&) {
+        return false;
+      }
       void threads_done(std::int64_t) {}
       void mark(const char* what) { T.mark((std::string("one by one: ") + what).c_str()); }
     };

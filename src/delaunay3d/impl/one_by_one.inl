@@ -116,11 +116,16 @@ struct TetInserter {
   bool is_first(std::int32_t q) const {
     return q == first[0] || q == first[1] || q == first[2] || q == first[3];
   }
-  std::int64_t shift = 0;  // the chunks' ownership shifted along the curve (the second round)
+  // Whose a vertex is: its chunk of the curve, or in the later rounds its slab across an axis
+  // (axis >= 0: how many cuts lie at or below its coordinate).
+  int axis = -1;
+  std::vector<double> cuts;
   std::int64_t owner(std::int32_t v) const {
-    std::int64_t x = v + shift;
-    if (x >= g.m) x -= g.m;
-    return x / chunk;
+    if (axis < 0) return v / chunk;
+    const double x = g.at(v)[axis];
+    std::int64_t k = 0;
+    while (k < std::int64_t(cuts.size()) && cuts[std::size_t(k)] <= x) ++k;
+    return k;
   }
   bool mine(const Tet& T) const {
     if (!chunk) return true;
@@ -381,10 +386,25 @@ void Triangulator::insert_by_cavities(E& ex) {
       // about 6.7 a point; 8, and a chunk that runs out leaves its points to wait); each thread's
       // walks begin at a tetrahedron of its chunk's that no other thread removes (the last
       // insertion's for its chunk, else the first such slot).
-      bool second_round() const { return true; }
-      void threads_begin(const std::vector<std::int64_t>& points, std::int64_t shift) {
-        TetInserter probe = one;
-        probe.chunk = chunk, probe.shift = shift;
+      // The later rounds' parts: slabs across x, y, z in turn (the waiting points lie along the
+      // curve's chunks' borders, which slabs cross), cut at the points' quantiles (c + 1/2) / nc:
+      // the curve's chunks of 2^k points are cut at dyadic planes (the median among them), and
+      // cuts there left the points along them waiting again.
+      bool split(int r, TetInserter& I, const std::vector<std::vector<std::int32_t>>&) {
+        I.chunk = chunk, I.axis = (r - 1) % 3;
+        std::vector<double> x;  // (a sample of the points: every step-th on the curve)
+        const std::int64_t step = std::max<std::int64_t>(1, m / (4096 * nc));
+        for (std::int64_t v = 0; v < m; v += step) x.push_back(T.g_.at(std::int32_t(v))[I.axis]);
+        I.cuts.clear();
+        for (std::int64_t c = 0; c + 1 < nc; ++c) {  // (at the points' quantiles (c + 1/2) / nc)
+          const std::size_t at = std::size_t(std::int64_t(x.size()) * (2 * c + 1) / (2 * nc));
+          std::nth_element(x.begin(), x.begin() + std::ptrdiff_t(at), x.end());
+          I.cuts.push_back(x[at]);
+        }
+        std::sort(I.cuts.begin(), I.cuts.end());
+        return true;
+      }
+      void threads_begin(const std::vector<std::int64_t>& points, const TetInserter& probe) {
         next.resize(std::size_t(nc)), end.resize(std::size_t(nc)), freed.resize(std::size_t(nc));
         std::int64_t at = one.next;
         for (std::size_t c = 0; c < std::size_t(nc); ++c)
