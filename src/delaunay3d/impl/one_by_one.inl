@@ -386,22 +386,42 @@ void Triangulator::insert_by_cavities(E& ex) {
       // about 6.7 a point; 8, and a chunk that runs out leaves its points to wait); each thread's
       // walks begin at a tetrahedron of its chunk's that no other thread removes (the last
       // insertion's for its chunk, else the first such slot).
-      // The later rounds' parts: slabs across x, y, z in turn (the waiting points lie along the
-      // curve's chunks' borders, which slabs cross), cut at the points' quantiles (c + 1/2) / nc:
-      // the curve's chunks of 2^k points are cut at dyadic planes (the median among them), and
-      // cuts there left the points along them waiting again.
-      bool split(int r, TetInserter& I, const std::vector<std::vector<std::int32_t>>&) {
-        I.chunk = chunk, I.axis = (r - 1) % 3;
-        std::vector<double> x;  // (a sample of the points: every step-th on the curve)
+      // The later rounds' parts: slabs across an axis. The waiting points lie along the curve's
+      // chunks' borders, often planes (the chunks of 2^k points are cut at dyadic planes), and
+      // slabs cut where those are dense would leave them waiting again. So of the axes but the
+      // last round's, and of two ways to cut (at the waiting points' quantiles c / nc, which
+      // share them out evenly, or at all the points' quantiles (c + 1/2) / nc, which miss the
+      // median and the dyadic planes), the one whose cuts have the fewest waiting points near
+      // them (within two of the points' mean spacings); the first way where they tie.
+      int last_axis = -1;
+      bool split(int, TetInserter& I, const std::vector<std::vector<std::int32_t>>& waiting) {
+        std::int64_t best = -1;
         const std::int64_t step = std::max<std::int64_t>(1, m / (4096 * nc));
-        for (std::int64_t v = 0; v < m; v += step) x.push_back(T.g_.at(std::int32_t(v))[I.axis]);
-        I.cuts.clear();
-        for (std::int64_t c = 0; c + 1 < nc; ++c) {  // (at the points' quantiles (c + 1/2) / nc)
-          const std::size_t at = std::size_t(std::int64_t(x.size()) * (2 * c + 1) / (2 * nc));
-          std::nth_element(x.begin(), x.begin() + std::ptrdiff_t(at), x.end());
-          I.cuts.push_back(x[at]);
+        for (int axis = 0; axis < 3; ++axis) {
+          if (axis == last_axis) continue;
+          std::vector<double> x, all;
+          for (const auto& w : waiting)
+            for (const std::int32_t q : w) x.push_back(T.g_.at(q)[axis]);
+          for (std::int64_t v = 0; v < m; v += step) all.push_back(T.g_.at(std::int32_t(v))[axis]);
+          std::sort(x.begin(), x.end());
+          std::sort(all.begin(), all.end());
+          const double near = 2 * (all.back() - all.front()) / std::cbrt(double(m));
+          for (int way = 0; way < 2; ++way) {
+            std::vector<double> cuts;
+            std::int64_t crowd = 0;
+            for (std::int64_t c = 1; c < nc; ++c) {
+              const double at =
+                  way == 0 ? x[std::size_t(std::int64_t(x.size()) * c / nc)]
+                           : all[std::size_t(std::int64_t(all.size()) * (2 * c - 1) / (2 * nc))];
+              cuts.push_back(at);
+              crowd += std::upper_bound(x.begin(), x.end(), at + near) -
+                       std::lower_bound(x.begin(), x.end(), at - near);
+            }
+            if (best < 0 || crowd < best) best = crowd, I.axis = axis, I.cuts = cuts;
+          }
         }
-        std::sort(I.cuts.begin(), I.cuts.end());
+        I.chunk = chunk;
+        last_axis = I.axis;
         return true;
       }
       void threads_begin(const std::vector<std::int64_t>& points, const TetInserter& probe) {
