@@ -14,12 +14,13 @@
 // flips would call its edge to q illegal: illegal_fast / illegal_exact), so only the slots
 // differ, and the output's order does not follow the slots (finish.inl).
 //
-// The order: levels of a biased randomised order (order_by_level), each in curve order. The
-// threads: the sample (the top levels, a 32nd of the points) goes in first, on one thread. Then
-// thread p inserts the rest of its chunk of the curve, and may change only
-// triangles whose finite vertices all lie in its chunk ("its own"); the infinity vertex lies in
-// every chunk. Where a point's walk or cavity reaches another's triangle, the point waits
-// (deferred), and the deferred points go in last, on one thread. This is safe without locks:
+// The order and the chunks' schedule are shared with 3D (mesh/cavity_schedule.hpp): levels of a
+// biased randomised order (order_by_level), each in curve order. The threads: the sample (the top
+// levels, a 32nd of the points) goes in first, on one thread. Then thread p inserts the rest of its
+// chunk of the curve, and may change only triangles whose finite vertices all lie in its chunk
+// ("its own"); the infinity vertex lies in every chunk. Where a point's walk or cavity reaches
+// another's triangle, the point waits (deferred), and the deferred points go in last, on one
+// thread. This is safe without locks:
 // - a triangle of thread p's stays p's (a cavity of p's triangles is refilled by triangles of
 //   its boundary's vertices and the point, all in p's chunk), and no other thread changes it;
 // - a triangle with vertices in two chunks ("shared") is in no cavity while the threads run, so

@@ -26,7 +26,8 @@
 // settled records. Others' tetrahedra are read only by the walks: a torn or stale record can only
 // mislead a walk, which then ends on a tetrahedron that is not p's (the point waits) or on one
 // of p's, where the end is tested again on p's settled record. Each thread's slots come from its
-// own range and its own freed slots, so a slot is written by one thread alone.
+// own range and its own freed slots, so a slot is written by one thread alone. The points that
+// wait go in by further rounds of threads over slabs (Hooks::split), then on one thread.
 
 constexpr int kWalkSteps3 = 1 << 16;  // a walk this long gives up (threads only)
 
