@@ -76,8 +76,8 @@ void order_by_level(std::int32_t lo, std::int32_t hi, Skip skip, std::int32_t* o
 //   threads_begin(points, split) / threads_done(w): before and after the threads (one thread;
 //     points[c]: how many part c's thread may insert; split: an inserter that knows the parts;
 //     w points wait);
-//   split(r, I, waiting): round r's parts, set in I (I.owner(v) < nc); false: no more rounds
-//     (2D: its slots follow each point's chunk of the curve);
+//   split(r, parts, I, waiting): round r's parts, set in I (I.owner(v) < parts); false: no
+//     more rounds (2D: its slots follow each point's chunk of the curve);
 //   enter(I, c) / leave(I, c): chunk c's thread begins with / ends with its inserter I;
 //   mark(what): a profile mark.
 // Returns how many points waited.
@@ -94,11 +94,12 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
     lo = std::int32_t(std::min<std::int64_t>(m, c * chunk));
     hi = std::int32_t(std::min<std::int64_t>(m, lo + chunk));
   };
-  auto each_chunk = [&](auto f) {  // every chunk by some thread (whatever the team's size)
+  auto each_part = [&](std::int64_t parts, auto f) {  // each by some thread (any team size)
     ex.team([&](const auto& team) {
-      for (std::int64_t c = team.rank; c < nc; c += team.size) f(c);
+      for (std::int64_t c = team.rank; c < parts; c += team.size) f(c);
     });
   };
+  auto each_chunk = [&](auto f) { each_part(nc, f); };
   each_chunk([&](std::int64_t c) {
     std::int32_t lo, hi;
     bounds(c, lo, hi);
@@ -125,10 +126,10 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
   if (nc == 1) return 0;
   // The threads, each over its part's points (pts(c, f): f for each, in order), its inserter a
   // copy of `split` (which knows the parts: Ins::owner); those that must wait go to wait[c].
-  auto threads = [&](const Ins& split, std::int32_t again, auto pts,
+  auto threads = [&](std::int64_t parts, const Ins& split, std::int32_t again, auto pts,
                      std::vector<std::vector<std::int32_t>>& wait) {
-    wait.assign(std::size_t(nc), {});
-    each_chunk([&](std::int64_t c) {
+    wait.assign(std::size_t(parts), {});
+    each_part(parts, [&](std::int64_t c) {
       Ins mine = split;
       mine.own = std::int32_t(c), mine.again = again;
       mine.rng += std::uint32_t(c + again);
@@ -151,7 +152,7 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
   h.threads_begin(sizes, split);
   std::vector<std::vector<std::int32_t>> waiting;
   std::int64_t waited = threads(
-      split, 0,
+      nc, split, 0,
       [&](std::int64_t c, auto f) {
         for (int l = kSampleLevel - 1; l >= 0; --l) level(c, l, f);
       },
@@ -162,23 +163,27 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
   // others in space, not only its neighbours on the curve: chunks shifted along the curve keep
   // most of those borders (3D, 4 threads: a shift left 60 % waiting). Modules that can
   // (h.split(r, split, waiting) gives round r's parts, false where it has none) insert them in
-  // further rounds of threads over other parts (3D: slabs across an axis, one axis a round),
-  // while a round inserts at least a quarter of what it is given.
+  // further rounds of threads over other parts (3D: slabs across an axis), while a round
+  // inserts at least an eighth of what it is given.
   std::int32_t again = m;  // (round r's attempts mark with q + r m: a first one left marks q)
   for (int r = 1; r <= kMaxRounds && waited > 256 * nc; ++r) {
+    // (half as many parts a round, down to two: the waiting points are missing from the
+    // tetrahedralisation together, so their cavities are large and cross thin parts' borders)
+    const std::int64_t parts = std::max<std::int64_t>(2, nc >> r);
     split = one;
-    if (!h.split(r, split, waiting)) break;
-    std::vector<std::vector<std::int32_t>> by_owner(static_cast<std::size_t>(nc));
+    if (!h.split(r, parts, split, waiting)) break;
+    std::vector<std::vector<std::int32_t>> by_owner(static_cast<std::size_t>(parts));
     for (const auto& w : waiting)
       for (const std::int32_t q : w) by_owner[std::size_t(split.owner(q))].push_back(q);
-    for (std::int64_t c = 0; c < nc; ++c) {
+    sizes.assign(std::size_t(parts), 0);
+    for (std::int64_t c = 0; c < parts; ++c) {
       std::sort(by_owner[std::size_t(c)].begin(), by_owner[std::size_t(c)].end());
       sizes[std::size_t(c)] = std::int64_t(by_owner[std::size_t(c)].size());
     }
     h.threads_begin(sizes, split);
     const std::int64_t given = waited;
     waited = threads(
-        split, again,
+        parts, split, again,
         [&](std::int64_t c, auto f) {
           for (const std::int32_t q : by_owner[std::size_t(c)]) f(q);
         },
@@ -186,12 +191,12 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
     h.threads_done(waited);
     h.mark("rounds");
     again += m;
-    if (4 * (given - waited) < given) break;
+    if (8 * (given - waited) < given) break;
   }
   // The points still waiting, in curve order, on one thread, each walk from the last
   // insertion's simplex.
   one.again = again;
-  for (std::int64_t c = 0; c < nc; ++c) {
+  for (std::int64_t c = 0; c < std::int64_t(waiting.size()); ++c) {
     std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
     std::sort(wait.begin(), wait.end());
     for (const std::int32_t q : wait) h.put(one, c, q);

@@ -221,7 +221,8 @@ bool Triangulator::insert_one_by_one(E& ex) {
       void leave(const CavityInserter& I, std::int64_t c) { next[std::size_t(c)] = I.next; }
       void threads_begin(const std::vector<std::int64_t>&, const CavityInserter&) {}
       // (no rounds over other parts: each point's slots follow its chunk of the curve)
-      bool split(int, CavityInserter&, const std::vector<std::vector<std::int32_t>>&) {
+      bool split(int, std::int64_t, CavityInserter&,
+                 const std::vector<std::vector<std::int32_t>>&) {
         return false;
       }
       void threads_done(std::int64_t) {}

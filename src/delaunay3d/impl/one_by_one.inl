@@ -395,9 +395,10 @@ void Triangulator::insert_by_cavities(E& ex) {
       // median and the dyadic planes), the one whose cuts have the fewest waiting points near
       // them (within two of the points' mean spacings); the first way where they tie.
       int last_axis = -1;
-      bool split(int, TetInserter& I, const std::vector<std::vector<std::int32_t>>& waiting) {
+      bool split(int, std::int64_t parts, TetInserter& I,
+                 const std::vector<std::vector<std::int32_t>>& waiting) {
         std::int64_t best = -1;
-        const std::int64_t step = std::max<std::int64_t>(1, m / (4096 * nc));
+        const std::int64_t step = std::max<std::int64_t>(1, m / (4096 * parts));
         for (int axis = 0; axis < 3; ++axis) {
           if (axis == last_axis) continue;
           std::vector<double> x, all;
@@ -410,10 +411,10 @@ void Triangulator::insert_by_cavities(E& ex) {
           for (int way = 0; way < 2; ++way) {
             std::vector<double> cuts;
             std::int64_t crowd = 0;
-            for (std::int64_t c = 1; c < nc; ++c) {
+            for (std::int64_t c = 1; c < parts; ++c) {
               const double at =
-                  way == 0 ? x[std::size_t(std::int64_t(x.size()) * c / nc)]
-                           : all[std::size_t(std::int64_t(all.size()) * (2 * c - 1) / (2 * nc))];
+                  way == 0 ? x[std::size_t(std::int64_t(x.size()) * c / parts)]
+                           : all[std::size_t(std::int64_t(all.size()) * (2 * c - 1) / (2 * parts))];
               cuts.push_back(at);
               crowd += std::upper_bound(x.begin(), x.end(), at + near) -
                        std::lower_bound(x.begin(), x.end(), at - near);
@@ -426,11 +427,12 @@ void Triangulator::insert_by_cavities(E& ex) {
         return true;
       }
       void threads_begin(const std::vector<std::int64_t>& points, const TetInserter& probe) {
-        next.resize(std::size_t(nc)), end.resize(std::size_t(nc)), freed.resize(std::size_t(nc));
+        const std::size_t parts = points.size();  // (nc, or fewer in the later rounds)
+        next.resize(parts), end.resize(parts), freed.assign(parts, {});
         std::int64_t at = one.next;
-        for (std::size_t c = 0; c < std::size_t(nc); ++c)
+        for (std::size_t c = 0; c < parts; ++c)
           next[c] = at, at += 8 * points[c] + 1024, end[c] = at;
-        for (std::int64_t c = 0; c < nc; ++c) {
+        for (std::int64_t c = 0; c < std::int64_t(parts); ++c) {
           std::int32_t& s = start[std::size_t(c)];
           if (s >= 0 && holds_chunk(probe, s, c)) continue;
           s = -1;
