@@ -316,28 +316,8 @@ void Triangulator::insert_by_cavities(E& ex) {
   if constexpr (E::backend != Backend::Cpu) {
     throw Error(ErrorCode::Internal, "the cavities' schedule is the CPU executor's");
   } else {
-    const std::int32_t I = m_;
     const std::int32_t m = m_;
-    // The first tetrahedron and its four infinite neighbours (start()'s, without the location).
-    {
-      Tet t[5];
-      for (int k = 0; k < 4; ++k) t[0].v[k] = first_.v[k];
-      for (int k = 0; k < 4; ++k) {  // infinite tetrahedron k + 1 over face k (outward)
-        std::int32_t f[3];
-        face_of(t[0].v, k, f);
-        t[k + 1] = Tet{{f[0], f[1], f[2], I}, {-1, -1, -1, -1}};
-      }
-      for (int a = 0; a < 5; ++a)  // adjacency by matching faces
-        for (int k = 0; k < 4; ++k) {
-          std::int32_t f[3];
-          face_of(t[a].v, k, f);
-          for (int b = 0; b < 5; ++b) {
-            const int l = b == a ? -1 : opposite_of_face(t[b].v, f[0], f[1], f[2]);
-            if (l >= 0) t[a].n[k] = enc(b, l);
-          }
-        }
-      std::copy(t, t + 5, tet_.data());
-    }
+    first_five(tet_.data());  // (start()'s, without the points' location: the walks find them)
     TetInserter one(tet_.data(), g_, first_.v);
     one.next = 5, one.end = cap_;
     struct Hooks {

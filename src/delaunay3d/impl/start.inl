@@ -97,10 +97,10 @@ inline void Triangulator::flip_start() {
   ex_.sync();
 }
 
-// The first tetrahedron and its four infinite neighbours; every other point is located.
-inline void Triangulator::start() {
+// The first tetrahedron (slot 0) and its four infinite neighbours (slots 1-4), linked: the
+// start of both schedules (the batches', and the CPU's cavities: one_by_one.inl).
+inline void Triangulator::first_five(Tet* t) const {
   const std::int32_t I = m_;
-  Tet t[5];
   for (int k = 0; k < 4; ++k) t[0].v[k] = first_.v[k];
   for (int k = 0; k < 4; ++k) {  // infinite tetrahedron k + 1 over face k (outward)
     std::int32_t f[3];
@@ -116,6 +116,12 @@ inline void Triangulator::start() {
         if (l >= 0) t[a].n[k] = enc(b, l);
       }
     }
+}
+
+// The first tetrahedron and its four infinite neighbours; every other point is located.
+inline void Triangulator::start() {
+  Tet t[5];
+  first_five(t);
   ex_.from_host(t, 5, tet_.data());
   Counters c{};
   c.used = 5;

@@ -103,6 +103,7 @@ class Triangulator : public TetStore {
   // start.inl: the first tetrahedron, or a kept tetrahedralisation (DynamicDelaunay3d), with
   // every other point located in it.
   void start();
+  void first_five(Tet* t) const;
   static constexpr std::int32_t kKeptInfinity = -2;  // (start_from's infinity point)
   void start_from(const Tet* kept, std::int64_t used, const std::int32_t* inv,
                   const std::int32_t* near);
