@@ -94,7 +94,7 @@ struct TetInserter {
   std::vector<std::int32_t> made;  // per boundary face: its new tetrahedron's slot
   struct Edge {
     std::uint64_t key;  // the edge's two vertices (the lesser high), ~0: empty
-    std::int32_t at;    // enc(slot, local face) of the first new tetrahedron seen with it
+    std::int32_t at;    // enc(boundary face, local face) of the first new one seen with it
   };
   std::vector<Edge> edges;  // open addressing: the new tetrahedra's faces through q, paired
   std::int64_t pairs = 0;   // edges paired (-1: one was in three faces)
@@ -130,8 +130,8 @@ struct TetInserter {
   }
   bool mine(const Tet& T) const {
     if (!chunk) return true;
-    for (int k = 0; k < 4; ++k)
-      if (T.v[k] != g.m && owner(T.v[k]) != own) return false;
+    for (int k = 0; k < 4; ++k)  // (a dead record, v[0] = -1, is nobody's)
+      if (T.v[k] < 0 || (T.v[k] != g.m && owner(T.v[k]) != own)) return false;
     return true;
   }
   static bool torn(const Tet& T) {
