@@ -5,9 +5,10 @@
 /// A plain std::vector<T>(n) writes n zeros on one thread before the library can copy a result
 /// into it; on the lent H100 host that took 177 ms for 256 MB, 35x the 5 ms the link needs to
 /// bring the same bytes back. A HostVector's resize(n) leaves new elements of arithmetic type
-/// uninitialised (as `new T[n]` does), and blocks from 2 MB up are fresh pages with transparent
-/// huge pages asked for: the library's copy back then touches each page once, on all the
-/// threads that copy, at the rate of the copy (about 20 GB/s there).
+/// uninitialised (as `new T[n]` does), and blocks from 2 MB up are fresh, 2 MB-aligned pages
+/// (huge pages not asked for: making one can stall the thread that touches it first): the
+/// library's copy back then touches each page once, on all the threads that copy (8.6 GB/s on
+/// the H100 host's 16 threads).
 ///
 /// Everything else is std::vector: data(), size(), iterators, move, swap. Use resize(n, value)
 /// or assign(n, value) where elements must start with a value. To hand the memory elsewhere
@@ -24,7 +25,7 @@
 namespace gpugeom {
 
 namespace detail {
-/// Large blocks: anonymous pages mapped for the block, huge pages asked for, unmapped when freed
+/// Large blocks: anonymous pages mapped for the block, 2 MB-aligned, unmapped when freed
 /// (never recycled through the C heap, so they come back untouched). Throws std::bad_alloc.
 void* host_map(std::size_t bytes);
 void host_unmap(void* p, std::size_t bytes) noexcept;

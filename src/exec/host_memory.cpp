@@ -1,7 +1,13 @@
 // Large result blocks of HostAllocator (include/gpugeom/host_vector.hpp): fresh anonymous
-// pages, huge pages asked for. Measured on the lent H100 host (bench/bench_bus.cu): touching
-// 256 MB of fresh 4 kB pages costs 155 ms on one thread and 31 ms on 16; with huge pages 77 and
-// 12 ms. The library's copies into these blocks run on all threads, so they get the last rate.
+// pages, 2 MB-aligned, huge pages not asked for. Measured on the lent H100 host
+// (bench/bench_bus.cu): touching 256 MB of fresh 4 kB pages costs 155 ms on one thread and 31 ms
+// on 16; with huge pages (MADV_HUGEPAGE) 77 and 12 ms. But where the kernel must make a huge page
+// first (direct compaction, the default `defrag` policy for blocks that ask), or where a
+// virtual machine's host must back it again (free page reporting), the faulting thread waits:
+// on the 2-core machine, writing a 10^6-point 3D triangulation's 216 MB of results took 750 ms
+// with huge pages asked for and 207 ms without (docs/performance.md, issue 53). The block stays
+// aligned, so a kernel set to give huge pages to every block (THP "always") gives them where
+// it can without stalling.
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -28,7 +34,7 @@ std::size_t whole_pages(std::size_t bytes) {
 }  // namespace
 
 // Mapped with a huge page of slack and trimmed to start on a 2 MB boundary, so that every
-// whole 2 MB of the block can be a huge page.
+// whole 2 MB of the block can be a huge page where the kernel gives them unasked.
 void* host_map(std::size_t bytes) {
   const std::size_t len = whole_pages(bytes), span = len + kHuge;
   void* m = mmap(nullptr, span, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -37,11 +43,7 @@ void* host_map(std::size_t bytes) {
   const std::uintptr_t a = (b + kHuge - 1) & ~(kHuge - 1);
   if (a > b) (void)munmap(m, a - b);
   if (b + span > a + len) (void)munmap(reinterpret_cast<void*>(a + len), b + span - (a + len));
-  void* p = reinterpret_cast<void*>(a);
-#ifdef MADV_HUGEPAGE
-  (void)madvise(p, len, MADV_HUGEPAGE);  // a failure only means small pages
-#endif
-  return p;
+  return reinterpret_cast<void*>(a);
 }
 
 void host_unmap(void* p, std::size_t bytes) noexcept {

@@ -1,9 +1,9 @@
 // Faulting in the pages of result arrays while the device computes (internal). A fresh result
 // array costs its page faults on first write: on the lent H100 host, copying out of pinned
-// staging into fresh huge pages runs at 15-30 GB/s on 16 threads, into touched pages at 66 GB/s
-// (bench/bench_bus.cu). A module that knows a bound of its result before the device work starts
-// sizes the host arrays to it (HostVector: no fill) and hands them here; host threads fault them
-// in during the device work, and the copy back then runs at the transfer's rate.
+// staging into fresh pages runs at 8-30 GB/s on 16 threads (4 kB or huge pages), into touched pages
+// at 66 GB/s (bench/bench_bus.cu). A module that knows a bound of its result before the device work
+// starts sizes the host arrays to it (HostVector: no fill) and hands them here; host threads fault
+// them in during the device work, and the copy back then runs at the transfer's rate.
 #pragma once
 #include <cstddef>
 #include <thread>

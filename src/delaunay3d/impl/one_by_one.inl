@@ -238,6 +238,9 @@ struct TetInserter {
           if (!mine(N)) return false;
           cav.push_back(nb), held.push_back(N);
           taken.add(nb, cav);
+          // (its neighbours asked for now, while the tetrahedra before it in the queue are
+          // tested: they are read when its turn comes)
+          for (int j = 0; j < 4; ++j) prefetch(tet + simplex_of(N.n[j]));
         } else {
           bnd.push_back({std::int32_t(i), k, C.n[k]});
         }
@@ -370,38 +373,51 @@ void Triangulator::insert_by_cavities(E& ex) {
       // The later rounds' parts: slabs across an axis. The waiting points lie along the curve's
       // chunks' borders, often planes (the chunks of 2^k points are cut at dyadic planes), and
       // slabs cut where those are dense would leave them waiting again. So of the axes but the
-      // last round's, and of two ways to cut (at the waiting points' quantiles c / nc, which
-      // share them out evenly, or at all the points' quantiles (c + 1/2) / nc, which miss the
-      // median and the dyadic planes), the one whose cuts have the fewest waiting points near
-      // them (within two of the points' mean spacings); the first way where they tie.
+      // last round's, each cut is placed at one of the waiting points' quantiles (c + d) / parts,
+      // d in [-1/4, 1/4] (the slabs share them out to within a half), the one with the fewest
+      // waiting points near it (within two of the points' mean spacings), the nearest to c /
+      // parts where they tie; the axis whose cuts have the fewest near them in all. (A first
+      // version also tried all the points' quantiles offset by half a slab: at two parts that
+      // is a quarter, and one thread inserted nearly all of the round's points.)
       int last_axis = -1;
       bool split(int, std::int64_t parts, TetInserter& I,
                  const std::vector<std::vector<std::int32_t>>& waiting) {
         std::int64_t best = -1;
         const std::int64_t step = std::max<std::int64_t>(1, m / (4096 * parts));
+        constexpr int kTries = 8;  // quantiles tried each side of c / parts
         for (int axis = 0; axis < 3; ++axis) {
           if (axis == last_axis) continue;
           std::vector<double> x, all;
           for (const auto& w : waiting)
             for (const std::int32_t q : w) x.push_back(T.g_.at(q)[axis]);
           for (std::int64_t v = 0; v < m; v += step) all.push_back(T.g_.at(std::int32_t(v))[axis]);
+          if (x.empty()) continue;
           std::sort(x.begin(), x.end());
           std::sort(all.begin(), all.end());
           const double near = 2 * (all.back() - all.front()) / std::cbrt(double(m));
-          for (int way = 0; way < 2; ++way) {
-            std::vector<double> cuts;
-            std::int64_t crowd = 0;
-            for (std::int64_t c = 1; c < parts; ++c) {
-              const double at =
-                  way == 0 ? x[std::size_t(std::int64_t(x.size()) * c / parts)]
-                           : all[std::size_t(std::int64_t(all.size()) * (2 * c - 1) / (2 * parts))];
-              cuts.push_back(at);
-              crowd += std::upper_bound(x.begin(), x.end(), at + near) -
-                       std::lower_bound(x.begin(), x.end(), at - near);
+          const auto crowd_at = [&](double at) {
+            return std::upper_bound(x.begin(), x.end(), at + near) -
+                   std::lower_bound(x.begin(), x.end(), at - near);
+          };
+          const std::int64_t nx = std::int64_t(x.size());
+          std::vector<double> cuts;
+          std::int64_t crowd = 0;
+          for (std::int64_t c = 1; c < parts; ++c) {
+            double at = 0;
+            std::int64_t least = -1;
+            for (int d = 0; d <= 2 * kTries; ++d) {  // 0, +1, -1, +2, ...: nearest first
+              const std::int64_t off = (d + 1) / 2 * (d % 2 ? 1 : -1);
+              const std::int64_t i = (nx * (4 * kTries * c + off)) / (4 * kTries * parts);
+              const double y = x[std::size_t(std::clamp<std::int64_t>(i, 0, nx - 1))];
+              const std::int64_t n = crowd_at(y);
+              if (least < 0 || n < least) least = n, at = y;
             }
-            if (best < 0 || crowd < best) best = crowd, I.axis = axis, I.cuts = cuts;
+            cuts.push_back(at);
+            crowd += least;
           }
+          if (best < 0 || crowd < best) best = crowd, I.axis = axis, I.cuts = cuts;
         }
+        if (best < 0) return false;
         I.chunk = chunk;
         last_axis = I.axis;
         return true;

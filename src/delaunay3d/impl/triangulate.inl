@@ -133,8 +133,14 @@ inline Extras extras(Exec& ex, const std::int32_t* dup, mesh::Compacted<Exec>& f
   const std::int32_t* tv = f.simplices_data();
   const std::int32_t* nb = f.neighbors_data();
   ex.fill(v, n, std::int32_t(-1));
+  // (from the last tetrahedron down: a vertex's first entry seen is then mostly its largest, and
+  // the later ones see it with a plain read; upwards every entry was an atomic: 27 a vertex)
+  const std::int64_t entries = 4 * f.count;
   ex.for_each_index(
-      4 * f.count, GG_LAMBDA(std::int64_t i) { atomic_max(v + tv[i], std::int32_t(i / 4)); });
+      entries, GG_LAMBDA(std::int64_t i) {
+        const std::int64_t e = entries - 1 - i;
+        atomic_max(v + tv[e], std::int32_t(e / 4));
+      });
   if (dup) {
     ex.for_each_index(
         n, GG_LAMBDA(std::int64_t i) {
