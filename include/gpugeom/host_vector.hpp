@@ -6,9 +6,9 @@
 /// into it; on the lent H100 host that took 177 ms for 256 MB, 35x the 5 ms the link needs to
 /// bring the same bytes back. A HostVector's resize(n) leaves new elements of arithmetic type
 /// uninitialised (as `new T[n]` does), and blocks from 2 MB up are fresh, 2 MB-aligned pages
-/// (huge pages not asked for: making one can stall the thread that touches it first): the
-/// library's copy back then touches each page once, on all the threads that copy (8.6 GB/s on
-/// the H100 host's 16 threads).
+/// (huge pages asked for where the GPU's results are copied in; not where the CPU executor's
+/// threads write them, as making one can stall the thread that touches it first): the library's
+/// copy back then touches each page once, on all the threads that copy.
 ///
 /// Everything else is std::vector: data(), size(), iterators, move, swap. Use resize(n, value)
 /// or assign(n, value) where elements must start with a value. To hand the memory elsewhere

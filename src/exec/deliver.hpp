@@ -11,6 +11,7 @@
 #include <string>
 
 #include "gpugeom/common.hpp"
+#include "exec/prefault.hpp"
 #include "gpugeom/host_vector.hpp"
 
 namespace gpugeom::deliver {
@@ -35,6 +36,8 @@ void to_host(Exec& ex, const T* src, std::int64_t count, const OutBuffer<T>& int
   if (!dst) {
     host.resize(std::size_t(count));  // (no fill: the copy touches the pages)
     dst = host.data();
+    if constexpr (Exec::backend == Backend::Cuda)
+      detail::advise_huge_pages(dst, std::size_t(count) * sizeof(T));  // (prefault.hpp says why)
   }
   ex.to_host(src, count, dst);
 }
@@ -46,6 +49,8 @@ void fill_host(Exec& ex, std::int64_t count, T v, const OutBuffer<T>& into, Host
   if (!dst) {
     host.resize(std::size_t(count));
     dst = host.data();
+    if constexpr (Exec::backend == Backend::Cuda)
+      detail::advise_huge_pages(dst, std::size_t(count) * sizeof(T));
   }
   ex.fill_host(dst, count, v);
 }

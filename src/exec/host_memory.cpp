@@ -1,13 +1,13 @@
 // Large result blocks of HostAllocator (include/gpugeom/host_vector.hpp): fresh anonymous
-// pages, 2 MB-aligned, huge pages not asked for. Measured on the lent H100 host
-// (bench/bench_bus.cu): touching 256 MB of fresh 4 kB pages costs 155 ms on one thread and 31 ms
-// on 16; with huge pages (MADV_HUGEPAGE) 77 and 12 ms. But where the kernel must make a huge page
-// first (direct compaction, the default `defrag` policy for blocks that ask), or where a
+// pages, 2 MB-aligned, so that each whole 2 MB can be a huge page. Huge pages are asked for
+// (advise_huge_pages) only for the CUDA executor's results, whose copy back they made faster on
+// the lent GPU host (bench/bench_bus.cu: touching 256 MB of fresh 4 kB pages costs 155 ms on
+// one thread and 31 ms on 16; with huge pages 77 and 12 ms). Where the kernel must make a huge
+// page first (direct compaction, the default `defrag` policy for blocks that ask), or where a
 // virtual machine's host must back it again (free page reporting), the faulting thread waits:
-// on the 2-core machine, writing a 10^6-point 3D triangulation's 216 MB of results took 750 ms
-// with huge pages asked for and 207 ms without (docs/performance.md, issue 53). The block stays
-// aligned, so a kernel set to give huge pages to every block (THP "always") gives them where
-// it can without stalling.
+// on the 2-core machine the CPU executor's 216 MB of a 10^6-point 3D triangulation took 750 ms
+// to write with huge pages asked for and 207 ms without (docs/design-notes.md, issue 53's fourth
+// step). A kernel set to give huge pages to every block (THP "always") still gives them.
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -44,6 +44,14 @@ void* host_map(std::size_t bytes) {
   if (a > b) (void)munmap(m, a - b);
   if (b + span > a + len) (void)munmap(reinterpret_cast<void*>(a + len), b + span - (a + len));
   return reinterpret_cast<void*>(a);
+}
+
+void advise_huge_pages(void* p, std::size_t bytes) noexcept {
+  const std::uintptr_t a = reinterpret_cast<std::uintptr_t>(p);
+  if (!p || bytes < kHostMapMin || (a & (kHuge - 1))) return;  // (not a host_map block)
+#ifdef MADV_HUGEPAGE
+  (void)madvise(p, whole_pages(bytes), MADV_HUGEPAGE);  // a failure only means small pages
+#endif
 }
 
 void host_unmap(void* p, std::size_t bytes) noexcept {
