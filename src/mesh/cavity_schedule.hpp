@@ -4,12 +4,13 @@
 // delaunay3d/impl/one_by_one.inl are the cavities themselves): the store's words read and
 // written by several threads, the insertion order, and the chunks' schedule.
 //
-// The schedule: the sample (the top levels of the order, a 32nd of the points) goes in first,
-// on one thread. Then each thread inserts the rest of one chunk of the curve, and may change
-// only simplices whose finite vertices all lie in its chunk ("its own"); the infinity vertex
-// lies in every chunk. Where a point's walk or cavity reaches another chunk's simplex, the
-// point waits, and the waiting points go in last, on one thread. The modules' notes say why
-// this is safe without locks; which points wait depends on timing, the triangulation does not.
+// The schedule: the sample (the top levels of the order) goes in first, on one thread. Then
+// each thread inserts the rest of one chunk of the curve. What a thread may change is the
+// module's rule: in 2D only triangles whose finite vertices all lie in its chunk ("its own";
+// the infinity vertex lies in every chunk), in 3D the tetrahedra it has locked. Where a point's
+// walk or cavity reaches what the thread may not change, the point waits, and the waiting points
+// go in by further rounds (modules that have them) and last on one thread. The modules' notes
+// say why this is safe; which points wait depends on timing, the triangulation does not.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -38,7 +39,12 @@ GG_INLINE void store_word(std::int32_t* p, std::int32_t v) {
 // order. In pure curve order one point may see a long chain of earlier ones (2D, two segments:
 // the second one's points each took a fan over the whole first), and each insertion redid it.
 constexpr int kLevels = 21;
-constexpr int kSampleLevel = 5;  // levels from here up: the sample, on one thread (1/32)
+// Levels from sample_level up: the sample, on one thread. A module whose threads may change
+// only their own chunk's simplices (2D) needs a dense one (5: a 32nd of the points), as the
+// points within reach of the sample's simplices across a border wait; one whose threads lock
+// the simplices they change (3D) needs one only to spread the threads' first cavities (8: a
+// 256th; at 16 threads the 32nd took a quarter of the insertion's time on one thread).
+constexpr int kSampleLevel = 5;
 // Rounds over other parts for the points that waited, at most (their marks q + r m stay
 // below 2^31 for the 3D store's 1.4·10^8 points; 2D runs none).
 constexpr int kMaxRounds = 8;
@@ -82,7 +88,8 @@ void order_by_level(std::int32_t lo, std::int32_t hi, Skip skip, std::int32_t* o
 //   mark(what): a profile mark.
 // Returns how many points waited.
 template <class E, class Ins, class Hooks>
-std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& one, Hooks& h) {
+std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& one, Hooks& h,
+                              int sample_level = kSampleLevel) {
   const int nt = ex.team_size();
   const std::int64_t nc =
       nt <= 1 || m < 64 * std::int64_t(1 << kSampleLevel) * nt ? 1 : std::int64_t(nt);
@@ -119,7 +126,7 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
     for (std::int64_t i = from; i < to; ++i) f(order[i]);
   };
   // The sample level by level over all chunks (one chunk alone: every level).
-  const int lowest = nc == 1 ? 0 : kSampleLevel;
+  const int lowest = nc == 1 ? 0 : sample_level;
   for (int l = kLevels - 1; l >= lowest; --l)
     for (std::int64_t c = 0; c < nc; ++c) level(c, l, [&](std::int32_t q) { h.put(one, c, q); });
   h.mark("sample");
@@ -148,13 +155,13 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
   split.chunk = chunk;
   std::vector<std::int64_t> sizes(static_cast<std::size_t>(nc));
   for (std::int64_t c = 0; c < nc; ++c)
-    for (int l = kSampleLevel - 1; l >= 0; --l) sizes[std::size_t(c)] += counts[c * kLevels + l];
+    for (int l = sample_level - 1; l >= 0; --l) sizes[std::size_t(c)] += counts[c * kLevels + l];
   h.threads_begin(sizes, split);
   std::vector<std::vector<std::int32_t>> waiting;
   std::int64_t waited = threads(
       nc, split, 0,
       [&](std::int64_t c, auto f) {
-        for (int l = kSampleLevel - 1; l >= 0; --l) level(c, l, f);
+        for (int l = sample_level - 1; l >= 0; --l) level(c, l, f);
       },
       waiting);
   h.threads_done(waited);

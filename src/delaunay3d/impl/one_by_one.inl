@@ -16,18 +16,20 @@
 // tetrahedron conflicts with q where find_failed would call q inside its sphere: in_sphere_ext),
 // so only the slots differ, and the output's order does not follow them (finish.inl).
 //
-// The threads (the 2D schedule's argument, delaunay2d/impl/one_by_one.inl, in 3D): a
-// tetrahedron whose finite vertices all lie in thread p's chunk is p's; a cavity of p's is
-// refilled with tetrahedra of its boundary's vertices and the point, all p's, so no other thread
-// ever changes one. A tetrahedron with vertices in two chunks is in no cavity while the threads
-// run, so its vertices never change; a face's three finite vertices lie in one chunk for at most
-// one thread, and only that thread rewrites the neighbour across it. The neighbours of a cavity
-// tetrahedron, across its faces (all p's vertices), are p's or shared, so the cavity's tests read
-// settled records. Others' tetrahedra are read only by the walks: a torn or stale record can only
-// mislead a walk, which then ends on a tetrahedron that is not p's (the point waits) or on one
-// of p's, where the end is tested again on p's settled record. Each thread's slots come from its
-// own range and its own freed slots, so a slot is written by one thread alone. The points that
-// wait go in by further rounds of threads over slabs (Hooks::split), then on one thread.
+// The threads: each holds the tetrahedra it reads for a cavity by a lock word per slot (a
+// compare-and-swap from -1 to its number; never waited for). A thread locks the tetrahedron its
+// walk ended on, then every neighbour it tests while growing the cavity (the cavity's and those
+// beyond its boundary, whose neighbour words it rewrites), and reads each record after locking
+// it, so the tests read settled records: a record is written only by the thread that holds it,
+// and a new tetrahedron is reachable only through a boundary tetrahedron it holds until all are
+// written. Where a lock is held by another thread, it lets go of all it holds, changes nothing,
+// and the point waits. Walks read without locks: a torn or stale record can only mislead a walk,
+// whose end is tested again on the locked record. Each thread's slots come from its cavities and
+// its own range (its freed slots wait for one thread alone: another may still hold one), so a
+// slot is written by one thread at a time. Conflicts come only where two threads work on the
+// same tetrahedra at the same time, not wherever a cavity has another chunk's vertex (the first
+// version's rule, under which a third of the points waited at 16 threads). The points that wait
+// go in by further rounds of threads over slabs (Hooks::split), then on one thread.
 
 constexpr int kWalkSteps3 = 1 << 16;  // a walk this long gives up (threads only)
 
@@ -47,7 +49,8 @@ struct TetInserter {
   bool broken = false;              // a cavity's boundary was no sphere (a bug guard)
   bool full = false;                // an insertion needed more slots than it may take
   std::uint32_t rng = 2463534242u;
-  std::int32_t last = -1;  // a slot made by the last insertion: the next walk starts there
+  std::int32_t last = -1;        // a slot made by the last insertion: the next walk starts there
+  std::int32_t* lock = nullptr;  // per slot: the thread that holds it, -1: none (threads only)
   std::vector<std::int32_t> cav;
   std::vector<Tet> held;  // the cavity's tetrahedra as read (their records are settled)
   // The cavity's slots as a set: open addressing, grown as the cavity grows (a per-slot array
@@ -84,7 +87,24 @@ struct TetInserter {
         put(s);
       }
     }
-  } taken;
+  } taken, held_set;                  // the cavity's slots; all the slots this thread holds
+  std::vector<std::int32_t> holding;  // (held_set's slots)
+  bool hold(std::int32_t s) {         // a tetrahedron locked (or held already); false: another's
+    if (held_set.has(s)) return true;
+    cuda::atomic_ref<std::int32_t, cuda::thread_scope_system> r(lock[s]);
+    std::int32_t free = -1;
+    if (!r.compare_exchange_strong(free, own, cuda::memory_order_acquire,
+                                   cuda::memory_order_relaxed))
+      return false;
+    holding.push_back(s);
+    held_set.add(s, holding);
+    return true;
+  }
+  void let_go() {  // (after every write, so a thread that locks a slot next reads them)
+    for (const std::int32_t s : holding) mesh::cavities::store_word(lock + s, -1);
+    holding.clear();
+    held_set.reset();
+  }
   struct Face {
     std::int32_t at;  // the cavity tetrahedron it bounds (held[at]; its new one takes its vertices)
     int k;            // the face is that tetrahedron's face k; q takes vertex k's place
@@ -114,6 +134,12 @@ struct TetInserter {
     __builtin_prefetch(p);
 #endif
   }
+  void prefetch_slot(std::int32_t t) const {  // its record, and its lock word to be written
+    prefetch(tet + t);
+#if defined(__GNUC__)
+    if (lock) __builtin_prefetch(lock + t, 1);
+#endif
+  }
   bool is_first(std::int32_t q) const {
     return q == first[0] || q == first[1] || q == first[2] || q == first[3];
   }
@@ -127,12 +153,6 @@ struct TetInserter {
     std::int64_t k = 0;
     while (k < std::int64_t(cuts.size()) && cuts[std::size_t(k)] <= x) ++k;
     return k;
-  }
-  bool mine(const Tet& T) const {
-    if (!chunk) return true;
-    for (int k = 0; k < 4; ++k)  // (a dead record, v[0] = -1, is nobody's)
-      if (T.v[k] < 0 || (T.v[k] != g.m && owner(T.v[k]) != own)) return false;
-    return true;
   }
   static bool torn(const Tet& T) {
     if (T.v[0] < 0) return true;
@@ -173,8 +193,11 @@ struct TetInserter {
   std::int32_t slot(std::size_t i) const {
     if (i < cav.size()) return cav[i];
     i -= cav.size();
-    if (i < freed.size()) return freed[freed.size() - 1 - i];
-    return std::int32_t(next + std::int64_t(i - freed.size()));
+    if (i < usable_freed()) return freed[freed.size() - 1 - i];
+    return std::int32_t(next + std::int64_t(i - usable_freed()));
+  }
+  std::size_t usable_freed() const {
+    return lock ? 0 : freed.size();
   }
   void pair_edge(std::int32_t a, std::int32_t b, std::int32_t at) {
     if (a > b) std::swap(a, b);
@@ -208,10 +231,22 @@ struct TetInserter {
   // Inserts q, or returns false having changed nothing (its walk or cavity reaches another
   // thread's tetrahedra, or it needs more slots than it may take: full).
   bool insert(std::int32_t q) {
+    const bool ok = cavity_and_refill(q);
+    if (lock) let_go();
+    return ok;
+  }
+  // Is q in the tetrahedron T (as the walk ends: no face with q beyond it)?
+  bool holds(const Tet& T, std::int32_t q) const {
+    for (int k = 0; k < 4; ++k)
+      if (orient_with(g, T.v, k, q) < 0) return false;
+    return true;
+  }
+  bool cavity_and_refill(std::int32_t q) {
     const std::int32_t t0 = walk(last >= 0 ? last : 0, q);
     if (t0 < 0) return false;
+    if (lock && !hold(t0)) return false;
     const Tet T0 = read(t0);
-    if (!mine(T0)) return false;
+    if (lock && (T0.v[0] < 0 || !holds(T0, q))) return false;  // (the walk read a stale record)
     // The cavity: the tetrahedra whose spheres (half-spaces, for infinite ones) hold q, found
     // from the one that holds it; its boundary, the faces to the others.
     cav.clear(), bnd.clear(), held.clear();
@@ -222,11 +257,12 @@ struct TetInserter {
       const Tet C = held[i];
       // (the neighbours' records, then their points, asked for before any is tested: the
       // misses overlap, where one at a time they were half of an insertion's time)
-      for (int k = 0; k < 4; ++k) prefetch(tet + simplex_of(C.n[k]));
+      for (int k = 0; k < 4; ++k) prefetch_slot(simplex_of(C.n[k]));
       Tet N4[4];
       for (int k = 0; k < 4; ++k) {
         const std::int32_t nb = simplex_of(C.n[k]);
         if (taken.has(nb)) continue;
+        if (lock && !hold(nb)) return false;
         N4[k] = read(nb);
         for (int j = 0; j < 4; ++j) prefetch(g.at(N4[k].v[j]));
       }
@@ -235,12 +271,11 @@ struct TetInserter {
         if (taken.has(nb)) continue;
         const Tet& N = N4[k];
         if (in_sphere_ext(g, N.v, q)) {
-          if (!mine(N)) return false;
           cav.push_back(nb), held.push_back(N);
           taken.add(nb, cav);
           // (its neighbours asked for now, while the tetrahedra before it in the queue are
           // tested: they are read when its turn comes)
-          for (int j = 0; j < 4; ++j) prefetch(tet + simplex_of(N.n[j]));
+          for (int j = 0; j < 4; ++j) prefetch_slot(simplex_of(N.n[j]));
         } else {
           bnd.push_back({std::int32_t(i), k, C.n[k]});
         }
@@ -253,7 +288,8 @@ struct TetInserter {
       broken = true;       // (no throw: a thread of a team must not; put() throws)
       return false;
     }
-    if (f > cav.size() && std::int64_t(f - cav.size()) > std::int64_t(freed.size()) + end - next) {
+    if (f > cav.size() &&
+        std::int64_t(f - cav.size()) > std::int64_t(usable_freed()) + end - next) {
       full = true;
       return false;
     }
@@ -305,7 +341,7 @@ struct TetInserter {
       }
     } else {
       const std::size_t extra = f - cav.size();
-      const std::size_t from_freed = std::min(extra, freed.size());
+      const std::size_t from_freed = std::min(extra, usable_freed());
       freed.resize(freed.size() - from_freed);
       next += std::int64_t(extra - from_freed);
     }
@@ -331,6 +367,7 @@ void Triangulator::insert_by_cavities(E& ex) {
       std::vector<std::int32_t> start;      // per chunk: where its thread's walks begin
       std::vector<std::int64_t> next, end;  // per chunk: its range of slots
       std::vector<std::vector<std::int32_t>> freed;
+      std::vector<std::int32_t> locks;  // per slot, while threads run (TetInserter::hold)
       Clock::time_point t0 = Clock::now();
       bool skip(std::int32_t q) const { return one.is_first(q); }
       void chunks(std::int64_t n, std::int64_t c) {
@@ -358,7 +395,8 @@ void Triangulator::insert_by_cavities(E& ex) {
       void report() {
         if (T.progress_) T.progress_(Delaunay3dProgress{"insert_flip", done, m, ++reports});
       }
-      // A tetrahedron with a vertex in chunk c is c's own or shared: no other thread removes it.
+      // A tetrahedron with a vertex in chunk c: near c's points (another thread may remove it;
+      // a walk that meets a removed one gives up, and the point waits).
       bool holds_chunk(const TetInserter& I, std::int32_t s, std::int64_t c) const {
         const Tet& X = T.tet_.data()[s];
         if (X.v[0] < 0) return false;
@@ -368,8 +406,8 @@ void Triangulator::insert_by_cavities(E& ex) {
       }
       // The threads: chunk c's range of slots is sized from its points (a tetrahedralisation holds
       // about 6.7 a point; 8, and a chunk that runs out leaves its points to wait); each thread's
-      // walks begin at a tetrahedron of its chunk's that no other thread removes (the last
-      // insertion's for its chunk, else the first such slot).
+      // walks begin at a tetrahedron with a vertex of its part (the last insertion's for its
+      // chunk, else the first such slot).
       // The later rounds' parts: slabs across an axis. The waiting points lie along the curve's
       // chunks' borders, often planes (the chunks of 2^k points are cut at dyadic planes), and
       // slabs cut where those are dense would leave them waiting again. So of the axes but the
@@ -436,11 +474,13 @@ void Triangulator::insert_by_cavities(E& ex) {
             if (holds_chunk(probe, std::int32_t(t), c)) s = std::int32_t(t);
         }
         T.reserve(at + 1024);
+        if (locks.size() < std::size_t(T.cap_)) locks.resize(std::size_t(T.cap_), -1);
         one.tet = T.tet_.data();
         one.next = at, one.end = T.cap_;
       }
       void enter(TetInserter& I, std::int64_t c) {
         I.tet = T.tet_.data();
+        I.lock = locks.data();
         I.next = next[std::size_t(c)], I.end = end[std::size_t(c)];
         I.freed.clear();
         I.last = start[std::size_t(c)];
@@ -462,8 +502,8 @@ void Triangulator::insert_by_cavities(E& ex) {
         t0 = Clock::now();
       }
     };
-    Hooks h{*this, one, m, 1, 0, {}, {}, {}, {}, Clock::now()};
-    deferred_ = mesh::cavities::insert_by_chunks(ex, m, loc_.data(), one, h);
+    Hooks h{*this, one, m, 1, 0, {}, {}, {}, {}, {}, Clock::now()};
+    deferred_ = mesh::cavities::insert_by_chunks(ex, m, loc_.data(), one, h, 8);
     cavity_insertions_ = m - 4;
     Counters c = counters();
     c.used = one.next;
