@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <set>
 
 #include "gpugeom/generate.hpp"
@@ -31,6 +32,52 @@ void check_curve() {
     for (int d = 0; d < D; ++d) dist += std::abs(int(at[h][d]) - int(at[h - 1][d]));
     ASSERT_EQ(dist, 1) << "indices " << h - 1 << " and " << h << " are not adjacent";
   }
+}
+
+// The index as first written (Skilling's transpose form, a branch a level and the bits
+// interleaved one at a time): the library's branch-free form must give the same keys, as
+// they fix the curve order, and with it every output order.
+template <int D, int B>
+std::uint64_t hilbert_bit_by_bit(std::uint32_t x[D]) {
+  const std::uint32_t m = 1u << (B - 1);
+  for (std::uint32_t q = m; q > 1; q >>= 1) {
+    const std::uint32_t p = q - 1;
+    for (int i = 0; i < D; ++i) {
+      if (x[i] & q) {
+        x[0] ^= p;
+      } else {
+        const std::uint32_t t = (x[0] ^ x[i]) & p;
+        x[0] ^= t;
+        x[i] ^= t;
+      }
+    }
+  }
+  for (int i = 1; i < D; ++i) x[i] ^= x[i - 1];
+  std::uint32_t t = 0;
+  for (std::uint32_t q = m; q > 1; q >>= 1)
+    if (x[D - 1] & q) t ^= q - 1;
+  for (int i = 0; i < D; ++i) x[i] ^= t;
+  std::uint64_t key = 0;
+  for (int b = B - 1; b >= 0; --b)
+    for (int i = 0; i < D; ++i) key = (key << 1) | ((x[i] >> b) & 1u);
+  return key;
+}
+template <int D, int B>
+void check_against_bit_by_bit(int n) {
+  std::mt19937_64 r(7);
+  for (int k = 0; k < n; ++k) {
+    std::uint32_t a[D], b[D];
+    for (int d = 0; d < D; ++d) a[d] = b[d] = std::uint32_t(r() & ((std::uint64_t(1) << B) - 1));
+    const std::uint64_t want = hilbert_bit_by_bit<D, B>(b);
+    const std::uint64_t got = spatial::hilbert_index<D, B>(a);
+    ASSERT_EQ(got, want) << "case " << k;
+  }
+}
+TEST(Hilbert, SameKeysAsBitByBit) {
+  check_against_bit_by_bit<3, 21>(200000);
+  check_against_bit_by_bit<2, 31>(200000);
+  check_against_bit_by_bit<3, 4>(5000);
+  check_against_bit_by_bit<2, 5>(5000);
 }
 
 TEST(Hilbert, Curve2d) {
