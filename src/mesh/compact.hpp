@@ -12,7 +12,10 @@
 #include <tuple>
 #include <utility>
 
+#include <cuda/atomic>
+
 #include "base/hd.hpp"
+#include "gpugeom/common.hpp"
 #include "mesh/adjacency.hpp"
 
 namespace gpugeom::mesh {
@@ -163,6 +166,60 @@ struct SortRuns {
     for (std::int64_t a = i; a < end; ++a) slot[a] = std::int32_t(std::uint32_t(third[a]));
   }
 };
+// The CPU executor's way to the same order (BucketSlots): the live simplices counted by their
+// first name (buckets), placed in their bucket, and each bucket (a few: 6.7 tetrahedra or 2
+// triangles a vertex, on average) sorted by the rest. No radix passes over 16-byte pairs, and
+// a third of the temporary memory; the order within a bucket before its sort depends on the
+// threads, after it on the names alone (they are distinct within a bucket: see above).
+template <int K, class Store>
+struct CountFirst {
+  Store s;
+  std::int64_t used;
+  std::int32_t* count;  // per first name
+  GG_HD void operator()(std::int64_t t) const {
+    if (!s.live(t)) return;
+    std::int32_t w[K];
+    int p[K];
+    s.order_names(t, w);
+    canonical_turn<K>(w, p);
+    cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> c(count[w[p[0]]]);
+    c.fetch_add(1, cuda::memory_order_relaxed);
+  }
+};
+template <int K, class Store>
+struct PlaceInBucket {
+  Store s;
+  std::int32_t* next;   // per first name: its bucket's next free entry
+  std::int32_t* slot;   // per entry
+  std::uint64_t* rest;  // per entry: the second name above the third (K = 4), or the second
+  GG_HD void operator()(std::int64_t t) const {
+    if (!s.live(t)) return;
+    std::int32_t w[K];
+    int p[K];
+    s.order_names(t, w);
+    canonical_turn<K>(w, p);
+    cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> c(next[w[p[0]]]);
+    const std::int32_t at = c.fetch_add(1, cuda::memory_order_relaxed);
+    slot[at] = std::int32_t(t);
+    const std::uint64_t second = std::uint32_t(w[p[1]]);
+    rest[at] = K == 4 ? (second << 32) | std::uint32_t(w[p[2]]) : second;
+  }
+};
+struct SortBucket {
+  const std::int32_t* begin;  // per first name, and one past the last
+  std::int32_t* slot;
+  std::uint64_t* rest;
+  GG_HD void operator()(std::int64_t a) const {
+    const std::int32_t lo = begin[a], hi = begin[a + 1];
+    for (std::int32_t i = lo + 1; i < hi; ++i) {  // (insertion sort: buckets are small)
+      const std::uint64_t x = rest[i];
+      const std::int32_t y = slot[i];
+      std::int32_t j = i;
+      for (; j > lo && rest[j - 1] > x; --j) rest[j] = rest[j - 1], slot[j] = slot[j - 1];
+      rest[j] = x, slot[j] = y;
+    }
+  }
+};
 struct PlaceOf {
   const std::int32_t* slot;  // in output order
   std::int32_t* place;       // per slot: its position, -1 where not live
@@ -190,17 +247,41 @@ struct EmitSorted {
 };
 }  // namespace compact_detail
 
+// The live slots in the output order, by buckets (the CPU executor's way): returns how many.
+template <int K, class Exec, class Store>
+std::int64_t live_by_buckets(Exec& ex, std::int64_t used, const Store& store, std::int64_t names,
+                             typename Exec::template Buffer<std::int32_t>& live) {
+  auto count = ex.template alloc<std::int32_t>(std::size_t(names) + 1);
+  auto begin = ex.template alloc<std::int32_t>(std::size_t(names) + 1);
+  std::int32_t* b = begin.data();
+  ex.fill(count.data(), names + 1, std::int32_t(0));
+  ex.for_each_index(used, compact_detail::CountFirst<K, Store>{store, used, count.data()});
+  ex.exclusive_scan(count.data(), b, names + 1);
+  std::int32_t total = 0;
+  ex.to_host(b + names, 1, &total);
+  ex.copy(b, names, count.data());  // (each bucket's next free entry)
+  live = ex.template alloc<std::int32_t>(std::size_t(total));
+  auto rest = ex.template alloc<std::uint64_t>(std::size_t(total));
+  ex.for_each_index(
+      used, compact_detail::PlaceInBucket<K, Store>{store, count.data(), live.data(), rest.data()});
+  ex.for_each_index(names, compact_detail::SortBucket{b, live.data(), rest.data()});
+  return total;
+}
+
 template <int K, class Exec, class Store, class Into = OwnArrays>
 Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& store,
                                     std::int64_t names_below, Into into = {}) {
   static_assert(K == 3 || K == 4, "triangles or tetrahedra");
-  auto live = ex.template alloc<std::int32_t>(std::size_t(used));
-  std::int32_t* slot = live.data();
-  const std::int64_t count =
-      ex.compact_indices(used, compact_detail::Liveness<Store>{store, used}, slot);
-  int shift = 1;
-  while ((std::int64_t(1) << shift) < names_below) ++shift;
-  {
+  typename Exec::template Buffer<std::int32_t> live;
+  std::int64_t count = 0;
+  if constexpr (Exec::backend == Backend::Cpu) {
+    count = live_by_buckets<K>(ex, used, store, names_below, live);
+  } else {
+    live = ex.template alloc<std::int32_t>(std::size_t(used));
+    count = ex.compact_indices(used, compact_detail::Liveness<Store>{store, used}, live.data());
+    int shift = 1;
+    while ((std::int64_t(1) << shift) < names_below) ++shift;
+    std::int32_t* slot = live.data();
     auto keys = ex.template alloc<std::uint64_t>(std::size_t(count));
     if constexpr (K == 3) {
       ex.for_each_index(
@@ -214,6 +295,7 @@ Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& st
       ex.for_each_index(count, compact_detail::SortRuns{keys.data(), third.data(), slot, count});
     }
   }
+  const std::int32_t* slot = live.data();
   auto where = ex.template alloc<std::int32_t>(std::size_t(used));
   ex.fill(where.data(), used, std::int32_t(-1));
   ex.for_each_index(count, compact_detail::PlaceOf{slot, where.data()});
