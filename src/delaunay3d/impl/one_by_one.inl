@@ -45,6 +45,8 @@ struct TetInserter {
   std::int32_t own = 0;    // this thread's chunk
   std::int32_t again = 0;  // (the schedule's field: 3D marks no slots, its cavity is a set)
   std::int64_t next = 0, end = 0;   // the slots it may still take: [next, end)
+  std::int64_t own_first = 0;       // threads: where its range begins
+  std::int64_t before_ranges = 0;   // threads: where this stage's first range begins
   std::vector<std::int32_t> freed;  // and the slots its cavities freed
   bool broken = false;              // a cavity's boundary was no sphere (a bug guard)
   bool full = false;                // an insertion needed more slots than it may take
@@ -235,6 +237,23 @@ struct TetInserter {
     if (lock) let_go();
     return ok;
   }
+  // Where a walk may start: t, or where it has been removed since it was made (by another
+  // thread, or on one thread by the threads before), the nearest live slot below it. On one
+  // thread any slot below `next` will do (each was written whole or marked dead). With threads,
+  // a slot of another thread's range may hold a record being written for the first time, so
+  // only this thread's own range, then the slots below every range of this stage (written
+  // before it, or since by a thread that held them: every word a valid one). -1: none.
+  std::int32_t live_from(std::int32_t t) const {
+    auto live_in = [&](std::int64_t hi, std::int64_t lo) {  // [lo, hi], from the top
+      for (std::int64_t s = hi; s >= lo; --s)
+        if (mesh::cavities::load_word(tet[s].v) >= 0) return std::int32_t(s);
+      return std::int32_t(-1);
+    };
+    if (mesh::cavities::load_word(tet[t].v) >= 0) return t;
+    if (!lock) return live_in(t, 0);
+    const std::int32_t s = live_in(next - 1, own_first);
+    return s >= 0 ? s : live_in(std::min<std::int64_t>(t, before_ranges - 1), 0);
+  }
   // Is q in the tetrahedron T (as the walk ends: no face with q beyond it)?
   bool holds(const Tet& T, std::int32_t q) const {
     for (int k = 0; k < 4; ++k)
@@ -242,7 +261,9 @@ struct TetInserter {
     return true;
   }
   bool cavity_and_refill(std::int32_t q) {
-    const std::int32_t t0 = walk(last >= 0 ? last : 0, q);
+    const std::int32_t from = live_from(last >= 0 ? last : 0);
+    if (from < 0) return false;
+    const std::int32_t t0 = walk(from, q);
     if (t0 < 0) return false;
     if (lock && !hold(t0)) return false;
     const Tet T0 = read(t0);
@@ -482,6 +503,8 @@ void Triangulator::insert_by_cavities(E& ex) {
         I.tet = T.tet_.data();
         I.lock = locks.data();
         I.next = next[std::size_t(c)], I.end = end[std::size_t(c)];
+        I.own_first = I.next;
+        I.before_ranges = next.front();
         I.freed.clear();
         I.last = start[std::size_t(c)];
       }
