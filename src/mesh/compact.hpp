@@ -171,26 +171,13 @@ struct SortRuns {
 // triangles a vertex, on average) sorted by the rest. No radix passes over 16-byte pairs, and
 // a third of the temporary memory; the order within a bucket before its sort depends on the
 // threads, after it on the names alone (they are distinct within a bucket: see above).
+// Two passes over the slots: the first counts each bucket's simplices (slot null), the second
+// places them (next: each bucket's next free entry, from its start).
 template <int K, class Store>
-struct CountFirst {
+struct ToBucket {
   Store s;
-  std::int64_t used;
-  std::int32_t* count;  // per first name
-  GG_HD void operator()(std::int64_t t) const {
-    if (!s.live(t)) return;
-    std::int32_t w[K];
-    int p[K];
-    s.order_names(t, w);
-    canonical_turn<K>(w, p);
-    cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> c(count[w[p[0]]]);
-    c.fetch_add(1, cuda::memory_order_relaxed);
-  }
-};
-template <int K, class Store>
-struct PlaceInBucket {
-  Store s;
-  std::int32_t* next;   // per first name: its bucket's next free entry
-  std::int32_t* slot;   // per entry
+  std::int32_t* next;   // per first name: the count, or the next free entry
+  std::int32_t* slot;   // per entry (null: count only)
   std::uint64_t* rest;  // per entry: the second name above the third (K = 4), or the second
   GG_HD void operator()(std::int64_t t) const {
     if (!s.live(t)) return;
@@ -200,6 +187,7 @@ struct PlaceInBucket {
     canonical_turn<K>(w, p);
     cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> c(next[w[p[0]]]);
     const std::int32_t at = c.fetch_add(1, cuda::memory_order_relaxed);
+    if (!slot) return;
     slot[at] = std::int32_t(t);
     const std::uint64_t second = std::uint32_t(w[p[1]]);
     rest[at] = K == 4 ? (second << 32) | std::uint32_t(w[p[2]]) : second;
@@ -255,7 +243,8 @@ std::int64_t live_by_buckets(Exec& ex, std::int64_t used, const Store& store, st
   auto begin = ex.template alloc<std::int32_t>(std::size_t(names) + 1);
   std::int32_t* b = begin.data();
   ex.fill(count.data(), names + 1, std::int32_t(0));
-  ex.for_each_index(used, compact_detail::CountFirst<K, Store>{store, used, count.data()});
+  ex.for_each_index(used,
+                    compact_detail::ToBucket<K, Store>{store, count.data(), nullptr, nullptr});
   ex.exclusive_scan(count.data(), b, names + 1);
   std::int32_t total = 0;
   ex.to_host(b + names, 1, &total);
@@ -263,7 +252,7 @@ std::int64_t live_by_buckets(Exec& ex, std::int64_t used, const Store& store, st
   live = ex.template alloc<std::int32_t>(std::size_t(total));
   auto rest = ex.template alloc<std::uint64_t>(std::size_t(total));
   ex.for_each_index(
-      used, compact_detail::PlaceInBucket<K, Store>{store, count.data(), live.data(), rest.data()});
+      used, compact_detail::ToBucket<K, Store>{store, count.data(), live.data(), rest.data()});
   ex.for_each_index(names, compact_detail::SortBucket{b, live.data(), rest.data()});
   return total;
 }

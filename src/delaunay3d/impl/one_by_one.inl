@@ -20,16 +20,17 @@
 // compare-and-swap from -1 to its number; never waited for). A thread locks the tetrahedron its
 // walk ended on, then every neighbour it tests while growing the cavity (the cavity's and those
 // beyond its boundary, whose neighbour words it rewrites), and reads each record after locking
-// it, so the tests read settled records: a record is written only by the thread that holds it,
-// and a new tetrahedron is reachable only through a boundary tetrahedron it holds until all are
-// written. Where a lock is held by another thread, it lets go of all it holds, changes nothing,
-// and the point waits. Walks read without locks: a torn or stale record can only mislead a walk,
-// whose end is tested again on the locked record. Each thread's slots come from its cavities and
-// its own range (its freed slots wait for one thread alone: another may still hold one), so a
-// slot is written by one thread at a time. Conflicts come only where two threads work on the
-// same tetrahedra at the same time, not wherever a cavity has another chunk's vertex (the first
-// version's rule, under which a third of the points waited at 16 threads). The points that wait
-// go in by further rounds of threads over slabs (Hooks::split), then on one thread.
+// it, so the tests read settled records: a record is written only by the thread that holds it
+// or, in a new slot of its range, before any record names it (new slots are written first), and
+// every new tetrahedron has a boundary tetrahedron as a neighbour, held until all are written, so
+// no other cavity can take one in before. Where a lock is held by another thread, it lets go of all
+// it holds, changes nothing, and the point waits. Walks read without locks: a torn or stale record
+// can only mislead a walk, whose end is tested again on the locked record. Each thread's slots come
+// from its cavities and its own range (its freed slots wait for one thread alone: another may still
+// hold one), so a slot is written by one thread at a time. Conflicts come only where two threads
+// work on the same tetrahedra at the same time, not wherever a cavity has another chunk's vertex
+// (the first version's rule, under which a third of the points waited at 16 threads). The points
+// that wait go in by further rounds of threads over slabs (Hooks::split), then on one thread.
 
 constexpr int kWalkSteps3 = 1 << 16;  // a walk this long gives up (threads only)
 
@@ -345,7 +346,10 @@ struct TetInserter {
     // Slots: the cavity's first; those left over are freed (dead), or new ones taken.
     made.resize(f);
     for (std::size_t i = 0; i < f; ++i) made[i] = slot(i);
-    for (std::size_t i = 0; i < f; ++i) {
+    // (the slots past the cavity's first, from the last down: a new slot is named only by the
+    // new tetrahedra and the boundary, so none is reachable before it is written whole; a walk
+    // reaching a slot that held another thread's unwritten bytes could end there and lock it)
+    for (std::size_t i = f; i-- > 0;) {
       Tet N = fresh[i];
       for (int j = 0; j < 4; ++j)
         if (j != bnd[i].k) N.n[j] = enc(made[std::size_t(simplex_of(N.n[j]))], loc_of(N.n[j]));
