@@ -159,7 +159,9 @@ struct CavityInserter {
         if (bnd[i].a == a) return i;
       return e;  // (unreachable: the boundary is one cycle)
     };
-    for (std::size_t i = 0; i < e; ++i) {
+    // (the two new slots first, from the last down: the cavity's slots name them, and a walk of
+    // another thread reading one could otherwise reach a new slot before it is written)
+    for (std::size_t i = e; i-- > 0;) {
       const Edge& E = bnd[i];
       const std::int32_t after = slot(starting_at(E.b));  // (q, b, c): edge q-b opposite c
       std::int32_t before = -1;                           // (q, z, a): edge a-q opposite z
