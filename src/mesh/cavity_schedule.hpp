@@ -45,6 +45,7 @@ constexpr int kLevels = 21;
 // the simplices they change (3D) needs one only to spread the threads' first cavities (8: a
 // 256th; at 16 threads the 32nd took a quarter of the insertion's time on one thread).
 constexpr int kSampleLevel = 5;
+constexpr int kLockingSampleLevel = 8;
 // Rounds over other parts for the points that waited, at most (their marks q + r m stay
 // below 2^31 for the 3D store's 1.4·10^8 points; 2D runs none).
 constexpr int kMaxRounds = 8;

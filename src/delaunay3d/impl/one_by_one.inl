@@ -530,7 +530,8 @@ void Triangulator::insert_by_cavities(E& ex) {
       }
     };
     Hooks h{*this, one, m, 1, 0, {}, {}, {}, {}, {}, Clock::now()};
-    deferred_ = mesh::cavities::insert_by_chunks(ex, m, loc_.data(), one, h, 8);
+    deferred_ = mesh::cavities::insert_by_chunks(ex, m, loc_.data(), one, h,
+                                                 mesh::cavities::kLockingSampleLevel);
     cavity_insertions_ = m - 4;
     Counters c = counters();
     c.used = one.next;
