@@ -9,7 +9,6 @@
 #include <omp.h>
 #include <type_traits>
 #include <vector>
-#include <thrust/copy.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/iterator/transform_iterator.h>
 #include <thrust/reduce.h>
@@ -287,14 +286,47 @@ struct CpuExec {
   // Copies the elements satisfying pred, keeping their order; returns how many.
   template <class T, class Pred>
   std::int64_t copy_if(const T* in, std::int64_t n, T* out, Pred pred) {
-    return thrust::copy_if(thrust::omp::par, in, in + n, out, pred) - out;
+    return kept_in_order<T>(
+        n, [&](std::int64_t i) { return bool(pred(in[i])); }, [&](std::int64_t i) { return in[i]; },
+        out);
   }
   // Writes the indices i in [0, n) with pred(i), in increasing order; returns how many.
   template <class Pred>
   std::int64_t compact_indices(std::int64_t n, Pred pred, std::int32_t* out) {
-    thrust::counting_iterator<std::int32_t> first(0);
-    auto by_index = [&](std::int32_t i) { return bool(pred(std::int64_t(i))); };
-    return thrust::copy_if(thrust::omp::par, first, first + n, out, by_index) - out;
+    return kept_in_order<std::int32_t>(
+        n, [&](std::int64_t i) { return bool(pred(i)); },
+        [](std::int64_t i) { return std::int32_t(i); }, out);
+  }
+  // The two above: each thread tests its contiguous part of [0, n) once, keeping value(i) for
+  // the i that pass in its own list, and copies the list to its place after those of the parts
+  // before. Thrust's OpenMP copy_if made flag and scan arrays as long as the input: the 3D
+  // output's hull facets, a few thousand of 2.7·10^7 faces, took 94 ms on two threads.
+  template <class T, class Keep, class Value>
+  std::int64_t kept_in_order(std::int64_t n, Keep keep, Value value, T* out) {
+    if (n <= 0) return 0;
+    constexpr std::int64_t kLeastPerThread = 1 << 15;  // (below, one thread: a region costs more)
+    const int nt = int(std::clamp<std::int64_t>(n / kLeastPerThread, 1, omp_get_max_threads()));
+    if (nt == 1) {
+      std::int64_t c = 0;
+      for (std::int64_t i = 0; i < n; ++i)
+        if (keep(i)) out[c++] = value(i);
+      return c;
+    }
+    std::vector<std::int64_t> shared(static_cast<std::size_t>(nt));
+    std::int64_t all = 0;
+#pragma omp parallel num_threads(nt)
+    {
+      const CpuTeam team{omp_get_thread_num(), omp_get_num_threads(), shared.data()};
+      const std::int64_t lo = n * team.rank / team.size, hi = n * (team.rank + 1) / team.size;
+      std::vector<T> mine;
+      for (std::int64_t i = lo; i < hi; ++i)
+        if (keep(i)) mine.push_back(value(i));
+      std::int64_t total = 0;
+      const std::int64_t at = team.exclusive_scan(std::int64_t(mine.size()), &total);
+      std::copy(mine.begin(), mine.end(), out + at);
+      if (team.rank == 0) all = total;
+    }
+    return all;
   }
   template <class T, class Pred>
   void copy_if_to(const T* in, std::int64_t n, T* out, Pred pred, std::int64_t* count) {

@@ -204,6 +204,69 @@ GG_INLINE int insphere_fast(const double* a, const double* b, const double* c, c
   return -decide(det, perm, kInsphereBound);  // det = det(M); insphere = -det(M)
 }
 
+// In-sphere with a semi-static bound: the filter's determinant, and in place of its permanent
+// one from the differences' largest magnitudes per axis, mx, my, mz. Why it is a bound: every
+// term of the permanent as det4_translated computes it is a rounded sum of rounded products of
+// the differences' magnitudes, and rounding is monotone, so each term is at most the same
+// expression with every |x| replaced by mx (|y| by my, |z| by mz): the 2x2 minors' terms
+// 2 (mx my), the 3x3 minors' 3 (mz (2 (mx my))), the lifts L = (mx^2 + my^2) + mz^2, the whole
+// 4 (L (3 (mz (2 (mx my))))), each operation rounded as here (the doublings are exact). That
+// permanent's bound, kInsphereBound, then holds for it too. It costs maxima where the
+// permanent cost some 50 operations: what the Bowyer-Watson cavities on the CPU spend most of
+// their tests in. Where a magnitude is outside [2^-150, 2^190] (so that an underflow or an
+// overflow could spoil the bound: every product then stays in [2^-600, 2^960]), or the bound
+// cannot tell, 0: the caller goes on to insphere_fast's sharper bound and the later tiers.
+// (x > y ? x : y compiles to one instruction; std::fmax's NaN rules need several)
+GG_INLINE double max2(double x, double y) {
+  return x > y ? x : y;
+}
+GG_INLINE double min2(double x, double y) {
+  return x < y ? x : y;
+}
+GG_INLINE int insphere_semistatic(const double* a, const double* b, const double* c,
+                                  const double* d, const double* e) {
+  const double aex = sub_rn(a[0], e[0]), bex = sub_rn(b[0], e[0]), cex = sub_rn(c[0], e[0]),
+               dex = sub_rn(d[0], e[0]);
+  const double aey = sub_rn(a[1], e[1]), bey = sub_rn(b[1], e[1]), cey = sub_rn(c[1], e[1]),
+               dey = sub_rn(d[1], e[1]);
+  const double aez = sub_rn(a[2], e[2]), bez = sub_rn(b[2], e[2]), cez = sub_rn(c[2], e[2]),
+               dez = sub_rn(d[2], e[2]);
+  const double mx =
+      max2(max2(std::fabs(aex), std::fabs(bex)), max2(std::fabs(cex), std::fabs(dex)));
+  const double my =
+      max2(max2(std::fabs(aey), std::fabs(bey)), max2(std::fabs(cey), std::fabs(dey)));
+  const double mz =
+      max2(max2(std::fabs(aez), std::fabs(bez)), max2(std::fabs(cez), std::fabs(dez)));
+  const double lo = min2(min2(mx, my), mz), hi = max2(max2(mx, my), mz);
+  if (!(lo >= 0x1p-150) || !(hi <= 0x1p190)) return 0;
+  const double aexbey = mul_rn(aex, bey), bexaey = mul_rn(bex, aey);
+  const double bexcey = mul_rn(bex, cey), cexbey = mul_rn(cex, bey);
+  const double cexdey = mul_rn(cex, dey), dexcey = mul_rn(dex, cey);
+  const double dexaey = mul_rn(dex, aey), aexdey = mul_rn(aex, dey);
+  const double aexcey = mul_rn(aex, cey), cexaey = mul_rn(cex, aey);
+  const double bexdey = mul_rn(bex, dey), dexbey = mul_rn(dex, bey);
+  const double ab = sub_rn(aexbey, bexaey), bc = sub_rn(bexcey, cexbey),
+               cd = sub_rn(cexdey, dexcey), da = sub_rn(dexaey, aexdey),
+               ac = sub_rn(aexcey, cexaey), bd = sub_rn(bexdey, dexbey);
+  const double abc = add_rn(sub_rn(mul_rn(aez, bc), mul_rn(bez, ac)), mul_rn(cez, ab));
+  const double bcd = add_rn(sub_rn(mul_rn(bez, cd), mul_rn(cez, bd)), mul_rn(dez, bc));
+  const double cda = add_rn(add_rn(mul_rn(cez, da), mul_rn(dez, ac)), mul_rn(aez, cd));
+  const double dab = add_rn(add_rn(mul_rn(dez, ab), mul_rn(aez, bd)), mul_rn(bez, da));
+  auto lift = [](double x, double y, double z) {
+    return add_rn(add_rn(mul_rn(x, x), mul_rn(y, y)), mul_rn(z, z));
+  };
+  const double la = lift(aex, aey, aez), lb = lift(bex, bey, bez), lc = lift(cex, cey, cez),
+               ld = lift(dex, dey, dez);
+  const double det =
+      add_rn(sub_rn(mul_rn(ld, abc), mul_rn(lc, dab)), sub_rn(mul_rn(lb, cda), mul_rn(la, bcd)));
+  const double minor3 = mul_rn(3.0, mul_rn(mz, 2.0 * mul_rn(mx, my)));
+  const double perm = 4.0 * mul_rn(lift(mx, my, mz), minor3);
+  const double err = mul_rn(kInsphereBound, perm);
+  if (det > err) return -1;  // insphere = -det(M)
+  if (-det > err) return 1;
+  return 0;
+}
+
 // In-sphere in double-word arithmetic (double_word.hpp): the determinant of the filter, on the
 // exact differences, every operation a double-word one; 0 where its bound cannot tell (or the
 // magnitudes are outside those the bound holds for).

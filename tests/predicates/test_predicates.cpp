@@ -134,6 +134,26 @@ TEST_P(Scales, InsphereMatchesRationals) {
     EXPECT_GT(c.zero, 10) << "exact degeneracies expected at power-of-two scales";
 }
 
+// The semi-static in-sphere filter is never wrong (the rational sign or 0) on nearly
+// cospherical, exactly cospherical and random tuples at every scale, and decides most of the
+// random ones the permanent's filter decides (its bound is looser, not useless).
+TEST_P(Scales, InsphereSemistaticNeverWrong) {
+  int sharp = 0, both = 0;
+  auto t = make_tuples(3, 5, 6000, 17, GetParam(), true);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double *a = t.at(i, 0), *b = t.at(i, 1), *c = t.at(i, 2), *d = t.at(i, 3),
+                 *e = t.at(i, 4);
+    const int ref = -ref_orient({a, b, c, d, e}, 3, 1);
+    const int st = pred::insphere_semistatic(a, b, c, d, e);
+    if (st != 0) ASSERT_EQ(st, ref) << "case " << i;
+    if (i % 3 != 2) continue;  // (make_tuples: every third tuple is random)
+    const bool f = pred::insphere_fast(a, b, c, d, e) != 0;
+    sharp += f, both += f && st != 0;
+  }
+  EXPECT_GT(sharp, 1900);
+  EXPECT_GE(both, sharp * 9 / 10);
+}
+
 // The double-word in-sphere tier is never wrong (it answers the rational sign or 0) and decides
 // nearly all of the points a few ulps off a sphere that the filter cannot (the case it exists
 // for: points rounded from a sphere), at every scale where its magnitudes hold.
