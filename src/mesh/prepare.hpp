@@ -202,6 +202,28 @@ namespace prepare_detail {
 struct Sum {
   GG_HD std::int64_t operator()(std::int64_t a, std::int64_t b) const { return a + b; }
 };
+struct Max {
+  GG_HD std::int64_t operator()(std::int64_t a, std::int64_t b) const { return a > b ? a : b; }
+};
+// The end of the run of equal keys that begins at i (i itself where none does).
+GG_HD inline std::int64_t run_end(const u64* k, std::int64_t n, std::int64_t i) {
+  if (i > 0 && k[i] == k[i - 1]) return i;
+  std::int64_t e = i + 1;
+  while (e < n && k[e] == k[i]) ++e;
+  return e;
+}
+// The runs' order, as the passes in sort_distinct make it: by the coordinates (+0 for -0),
+// first to last, then by input index.
+template <int D>
+GG_HD inline bool before(const double* r, std::int32_t a, std::int32_t b) {
+  for (int d = 0; d < D; ++d) {
+    const u64 x = ordered_key(r[D * std::int64_t(a) + d] + 0.0),
+              y = ordered_key(r[D * std::int64_t(b) + d] + 0.0);
+    if (x != y) return x < y;
+  }
+  return a < b;
+}
+constexpr std::int64_t kShortRun = 64;  // (runs up to this long are sorted each by one thread)
 }  // namespace prepare_detail
 
 // r: n valid points on the executor, box their bounding box. -0 and +0 are one value here
@@ -240,7 +262,28 @@ SortedPoints<Exec> sort_distinct(Exec& ex, const double* r, std::int64_t n, cons
   ex.to_host(same_key.data(), 1, &nsame);
   const u64* sk = k;  // the keys in the final order
   typename Exec::template Buffer<u64> tmp;
-  if (nsame) {
+  std::int64_t longest = 0;
+  if (nsame) {  // (the longest run of equal keys)
+    auto l = ex.template alloc<std::int64_t>(1);
+    ex.transform_reduce_into(
+        n, GG_LAMBDA(std::int64_t i)->std::int64_t { return prepare_detail::run_end(k, n, i) - i; },
+        std::int64_t(0), prepare_detail::Max{}, l.data());
+    ex.to_host(l.data(), 1, &longest);
+  }
+  if (nsame && longest <= prepare_detail::kShortRun) {
+    // Short runs (points closer than a curve cell, or duplicates): each sorted by one thread,
+    // in the order the passes below give, where those passes sort everything D + 1 times.
+    ex.for_each_index(
+        n, GG_LAMBDA(std::int64_t i) {
+          const std::int64_t e = prepare_detail::run_end(k, n, i);
+          for (std::int64_t a = i + 1; a < e; ++a) {  // (insertion sort: short)
+            const std::int32_t x = o[a];
+            std::int64_t b = a;
+            for (; b > i && prepare_detail::before<D>(r, x, o[b - 1]); --b) o[b] = o[b - 1];
+            o[b] = x;
+          }
+        });
+  } else if (nsame) {
     tmp = ex.template alloc<u64>(std::size_t(n));
     u64* t = tmp.data();
     sk = t;  // (the last pass leaves the curve keys in t)

@@ -204,12 +204,14 @@ TEST(MeshPrepare, ExtremesAndValidation) {
   EXPECT_EQ(b.hi[1], 9);
 }
 
+// side: the lattice's points per axis (few: long runs of duplicates, sorted by passes over
+// everything; more: short runs, each sorted alone).
 template <int D>
-void sorted_distinct_case(std::int64_t n, std::uint32_t seed) {
+void sorted_distinct_case(std::int64_t n, std::uint32_t seed, int side = 16) {
   CpuExec ex;
   std::mt19937 rng(seed);
   std::vector<double> p(std::size_t(D * n));
-  for (auto& x : p) x = double(rng() % 16) * 0.25 - 1.0;  // a coarse lattice: many duplicates
+  for (auto& x : p) x = double(rng() % side) * 0.25 - 1.0;  // a coarse lattice: duplicates
   const std::vector<double> input = p;
   const auto box = mesh::bounds_in_place<D>(ex, p.data(), n);
   ASSERT_EQ(box.bad, 0);
@@ -229,9 +231,13 @@ void sorted_distinct_case(std::int64_t n, std::uint32_t seed) {
     EXPECT_EQ(x, std::vector<double>(&input[D * o], &input[D * o] + D));
     EXPECT_EQ(first.at(x), o);  // the kept copy is the one of smallest index
     kept.insert(o);
-    if (i > 0)
-      EXPECT_LE(spatial::hilbert_key<D>(&S.pts.data()[D * (i - 1)], sb),
-                spatial::hilbert_key<D>(&S.pts.data()[D * i], sb));
+    if (i > 0) {
+      const auto k0 = spatial::hilbert_key<D>(&S.pts.data()[D * (i - 1)], sb),
+                 k1 = spatial::hilbert_key<D>(&S.pts.data()[D * i], sb);
+      EXPECT_LE(k0, k1);
+      if (k0 == k1)  // (points sharing a curve cell: by their coordinates)
+        EXPECT_LT(std::vector<double>(&S.pts.data()[D * (i - 1)], &S.pts.data()[D * i]), x);
+    }
   }
   EXPECT_EQ(std::int64_t(kept.size()), S.m);
   for (std::int64_t i = 0; i < n; ++i) {
@@ -244,6 +250,35 @@ TEST(MeshPrepare, SortedDistinctPoints2d) {
 }
 TEST(MeshPrepare, SortedDistinctPoints3d) {
   sorted_distinct_case<3>(20000, 4);
+}
+TEST(MeshPrepare, SortedDistinctPointsLongRuns) {
+  sorted_distinct_case<2>(3000, 5, 3);
+  sorted_distinct_case<3>(5000, 6, 2);
+}
+// Points closer than a curve cell share keys without being equal: each run in coordinate order.
+TEST(MeshPrepare, SortedDistinctPointsSharingCells) {
+  CpuExec ex;
+  const std::int64_t n = 4000;
+  std::mt19937 rng(7);
+  std::vector<double> p(std::size_t(2 * n));
+  for (std::int64_t i = 0; i < n; ++i) {  // clusters of points a few ulps apart
+    const double c = double(rng() % 512) / 512;
+    p[2 * i] = std::nextafter(c, 2.0) + double(rng() % 4) * 1e-16;
+    p[2 * i + 1] = c * c + double(rng() % 4) * 1e-16;
+  }
+  p[0] = -1, p[1] = -1, p[2] = 2, p[3] = 2;  // (a box wide enough that cells hold several)
+  const auto box = mesh::bounds_in_place<2>(ex, p.data(), n);
+  const auto S = mesh::sort_distinct<2>(ex, p.data(), n, box);
+  spatial::Box sb{};
+  for (int d = 0; d < 2; ++d) sb.lo[d] = box.lo[d], sb.hi[d] = box.hi[d];
+  std::int64_t shared = 0;
+  for (std::int64_t i = 1; i < S.m; ++i) {
+    const double *a = &S.pts.data()[2 * (i - 1)], *b = &S.pts.data()[2 * i];
+    if (spatial::hilbert_key<2>(a, sb) != spatial::hilbert_key<2>(b, sb)) continue;
+    ++shared;
+    ASSERT_TRUE(a[0] < b[0] || (a[0] == b[0] && a[1] < b[1])) << i;
+  }
+  EXPECT_GT(shared, 100);
 }
 
 TEST(ScratchSlots, EveryItemOnceOnItsOwnSlot) {

@@ -265,6 +265,33 @@ inline std::int64_t repair_tets(Exec& ex, const Geo& g, Tet* tet, std::int64_t u
   return now_used;
 }
 
+// How many flat tetrahedra lie next to the outside (share a face with an infinite one). Flat
+// tetrahedra lie in layers over planes of the hull's facets, between the hull's facets on that
+// plane and the faces of the tetrahedra of positive volume below them; where there is a layer
+// the two differ, so a facet on the plane has a flat tetrahedron under it. None here: none at
+// all, and drop_flats need not read every tetrahedron's points (2D's peel looks the same way).
+inline std::int64_t flats_next_to_outside(Exec& ex, const Geo& g, const Tet* tet,
+                                          std::int64_t used) {
+  auto n_d = ex.template alloc<std::int64_t>(1);
+  std::int64_t* n = n_d.data();
+  ex.fill(n, 1, std::int64_t(0));
+  ex.for_each_index(
+      used, GG_LAMBDA(std::int64_t t) {
+        const Tet T = tet[t];
+        if (T.v[0] < 0) return;
+        for (int k = 0; k < 4; ++k) {
+          if (T.v[k] != g.m) continue;
+          const Tet& N = tet[simplex_of(T.n[k])];
+          std::int32_t q[4];
+          for (int j = 0; j < 4; ++j) q[j] = N.v[j];
+          if (flat_ext(g, q)) atomic_add(n, std::int64_t(1));
+        }
+      });
+  std::int64_t flats = 0;
+  ex.to_host(n, 1, &flats);
+  return flats;
+}
+
 // The flat tetrahedra (flat_ext) leave the store: they lie in layers over hull facets' planes,
 // the tetrahedra of positive volume tile the hull by themselves, and the output (finite live
 // slots, -1 across a face to a slot that is not) then has the hull's facets on those planes.

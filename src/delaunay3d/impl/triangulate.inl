@@ -103,9 +103,11 @@ inline void triangulate_core(Exec& ex, const double* in, std::int64_t n, bool on
                  Triangulator::cavities_for(ex));
   T.run();
   st.phase_ms.push_back({"insert_flip", ms_since(t0)});
-  const std::int64_t nflat = repair_phase(ex, T, S.m, progress, st);
+  std::int64_t nflat = repair_phase(ex, T, S.m, progress, st);
   t0 = Clock::now();
   std::int64_t flats = 0;
+  if (nflat < 0 && flats_next_to_outside(ex, T.g_, T.tet_.data(), T.counters().used) == 0)
+    nflat = 0;  // (the cavities count none as they go: the outside tells whether there are any)
   if (nflat != 0) flats = drop_flats(ex, T.g_, T.tet_.data(), T.counters().used);
   st.flat_tetrahedra = flats;
   st.phase_ms.push_back({"drop_flats", ms_since(t0)});
