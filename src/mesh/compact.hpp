@@ -49,6 +49,23 @@ struct Compacted {
 struct OwnArrays {
   std::pair<std::int32_t*, std::int32_t*> operator()(std::int64_t) const { return {}; }
 };
+// The host result's own arrays (Vec: a HostVector), on the CPU executor where the caller gave
+// none: the output is written there (the executor's memory is the host's), with no second
+// array and no copy (at 10^6 3D points 215 MB, 0.3-0.6 s on the 2-core machine, most of it
+// faulting fresh pages in). The caller's arrays are written only after every length is
+// checked, so they take the copy; so does everything on the GPU.
+template <int K, class Exec, class Vec>
+struct IntoResult {
+  bool caller_gave;
+  Vec& simplices;
+  Vec& neighbors;
+  std::pair<std::int32_t*, std::int32_t*> operator()(std::int64_t count) const {
+    if (Exec::backend != Backend::Cpu || caller_gave) return {};
+    simplices.resize(std::size_t(K * count));
+    neighbors.resize(std::size_t(K * count));
+    return {simplices.data(), neighbors.data()};
+  }
+};
 
 namespace compact_detail {
 template <class Store>

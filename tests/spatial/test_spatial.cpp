@@ -69,8 +69,11 @@ void check_against_bit_by_bit(int n) {
     std::uint32_t a[D], b[D];
     for (int d = 0; d < D; ++d) a[d] = b[d] = std::uint32_t(r() & ((std::uint64_t(1) << B) - 1));
     const std::uint64_t want = hilbert_bit_by_bit<D, B>(b);
+    for (int d = 0; d < D; ++d) b[d] = a[d];
+    const std::uint64_t tables = spatial::hilbert_index_by_tables<D, B>(b);
     const std::uint64_t got = spatial::hilbert_index<D, B>(a);
     ASSERT_EQ(got, want) << "case " << k;
+    ASSERT_EQ(tables, want) << "case " << k << " (by tables)";
   }
 }
 TEST(Hilbert, SameKeysAsBitByBit) {

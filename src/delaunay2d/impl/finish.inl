@@ -125,10 +125,11 @@ inline void Triangulator::peel() {
 // The finite triangles in the curve order of their vertices (mesh/compact.hpp): the slots'
 // order follows the schedule, and the output must not (the CPU executor's schedule is not the
 // GPU's, and both give the same arrays).
-inline Triangulator::Finished Triangulator::finish() {
+template <class Into>
+Triangulator::Finished Triangulator::finish(Into into) {
   // (the extended triangulation has 2m - 2 slots, all in use)
   return mesh::compact_live_sorted<3>(
-      ex_, tmax_, FiniteTriangles{tri_.data(), P_.orig.data(), m_, std::int32_t(base_)}, m_);
+      ex_, tmax_, FiniteTriangles{tri_.data(), P_.orig.data(), m_, std::int32_t(base_)}, m_, into);
 }
 
 inline void Triangulator::report() {

@@ -7,10 +7,11 @@
 // point measured at 5·10^8; where memory is left the log takes more, up to 236 B a point).
 constexpr double kLeastBytesPerPoint = 168;
 
-// The pipeline after the preparation: body(P, f) takes the result.
-template <class Body>
+// The pipeline after the preparation: body(P, f) takes the result (written where into says:
+// mesh/compact.hpp).
+template <class Body, class Into = mesh::OwnArrays>
 inline void triangulate_prepared(Exec& ex, Prepared& P, bool profile, Delaunay2dStats& st,
-                                 Body body, bool peel_flats = true) {
+                                 Body body, bool peel_flats = true, Into into = {}) {
   // The rounds' arrays, checked again now that the points are prepared: where they exceed the
   // driver's free memory, the preparation's freed blocks go back to the driver first
   // (require_memory), so that the largest arrays are not cut from the pool's pieces of them.
@@ -21,17 +22,17 @@ inline void triangulate_prepared(Exec& ex, Prepared& P, bool profile, Delaunay2d
   const auto t0 = std::chrono::steady_clock::now();
   T.report();
   T.release_work();
-  auto f = T.finish();
+  auto f = T.finish(into);
   body(P, f);
   st.phase_ms.push_back({"output", ms_since(t0)});
 }
 
 // The whole pipeline; the result stays on the executor (f) with P's duplicate map.
 // before(P) runs once the distinct points are known, before the device work.
-template <class Before, class Body>
+template <class Before, class Body, class Into = mesh::OwnArrays>
 inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on_device,
                              bool profile, Delaunay2dStats& st, Before before, Body body,
-                             bool peel_flats = true) {
+                             bool peel_flats = true, Into into = {}) {
   auto t0 = std::chrono::steady_clock::now();
   Prepared P = prepare(ex, xy, n, on_device);
   before(P);
@@ -41,7 +42,7 @@ inline void triangulate_core(Exec& ex, const double* xy, std::int64_t n, bool on
   ex.sync();
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   st.phase_ms.push_back({"upload", P.upload_ms});  // (part of prepare)
-  triangulate_prepared(ex, P, profile, st, body, peel_flats);
+  triangulate_prepared(ex, P, profile, st, body, peel_flats, into);
 }
 
 // The three outputs' lengths, checked against the caller's arrays before any is written.
@@ -78,8 +79,10 @@ inline void deliver_host_results(Exec& ex, const Triangulation2dBuffers& into, s
   check_into(into, f.count, n);
   out.num_duplicates = P.duplicates;
   out.num_triangles = f.count;
-  deliver::to_host(ex, f.simplices.data(), 3 * f.count, into.triangles, out.triangles);
-  deliver::to_host(ex, f.neighbors.data(), 3 * f.count, into.neighbors, out.neighbors);
+  if (!f.placed_simplices) {  // (else in out's arrays already: mesh::IntoResult)
+    deliver::to_host(ex, f.simplices.data(), 3 * f.count, into.triangles, out.triangles);
+    deliver::to_host(ex, f.neighbors.data(), 3 * f.count, into.neighbors, out.neighbors);
+  }
   if (P.duplicates)
     deliver::to_host(ex, P.dup.data(), n, into.duplicate_of, out.duplicate_of);
   else
@@ -99,7 +102,10 @@ inline void triangulate_impl(const double* xy, std::int64_t n, const Delaunay2dO
       [&](Prepared& P) { size_host_results(opt.into, n, P, out, pf); },
       [&](Prepared& P, typename Triangulator::Finished& f) {
         deliver_host_results(ex, opt.into, n, P, f, out, st, pf);
-      });
+      },
+      true,
+      mesh::IntoResult<3, Exec, decltype(out.triangles)>{
+          bool(opt.into.triangles) || bool(opt.into.neighbors), out.triangles, out.neighbors});
 }
 
 // Points in executor memory, result left there (or in the caller's arrays of that memory).

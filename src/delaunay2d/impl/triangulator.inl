@@ -96,7 +96,8 @@ class Triangulator : public TriStore {
   // executor), the statistics.
   void peel();
   using Finished = mesh::Compacted<Exec>;
-  Finished finish();
+  template <class Into = mesh::OwnArrays>
+  Finished finish(Into into = {});
   using clock = std::chrono::steady_clock;
   void phase(const char* name, clock::time_point t0) {
     ex_.sync();

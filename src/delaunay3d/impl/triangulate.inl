@@ -175,23 +175,11 @@ inline void check_into(const Triangulation3dBuffers& into, std::int64_t count, s
   deliver::check(into.hull_facets, 3 * nh, "hull_facets");
 }
 
-// On the CPU executor, where the caller gave no arrays for them, the tetrahedra and the
-// neighbours are written into the result's own arrays (the executor's memory is the host's): no
-// second array and no copy (at 10^6 points 215 MB, 0.3-0.6 s on the 2-core machine, most of it
-// faulting the fresh pages in). The caller's arrays are written only after every length is
-// checked (check_into), so they take the copy.
-struct HostArrays {
-  const Triangulation3dBuffers& into;
-  Output& out;
-  std::pair<std::int32_t*, std::int32_t*> operator()(std::int64_t count) const {
-    if (Exec::backend != Backend::Cpu || into.tetrahedra || into.neighbors) return {};
-    out.tetrahedra.resize(std::size_t(4 * count));
-    out.neighbors.resize(std::size_t(4 * count));
-    return {out.tetrahedra.data(), out.neighbors.data()};
-  }
-};
-inline HostArrays host_arrays(const Triangulation3dBuffers& into, Output& out) {
-  return HostArrays{into, out};
+// The tetrahedra and neighbours straight into the result's arrays where that may be
+// (mesh::IntoResult).
+inline auto host_arrays(const Triangulation3dBuffers& into, Output& out) {
+  return mesh::IntoResult<4, Exec, decltype(out.tetrahedra)>{
+      bool(into.tetrahedra) || bool(into.neighbors), out.tetrahedra, out.neighbors};
 }
 
 // The finished tetrahedralisation to host arrays: the caller's (into) or the result's.
