@@ -137,19 +137,25 @@ TEST_P(Scales, InsphereMatchesRationals) {
 // The semi-static in-sphere filter is never wrong (the rational sign or 0) on nearly
 // cospherical, exactly cospherical and random tuples at every scale, and decides most of the
 // random ones the permanent's filter decides (its bound is looser, not useless).
+// f(i, points, the rational in-sphere sign) for every tuple of t.
+template <class F>
+void each_insphere_case(const gg_test::Tuples& t, F f) {
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double* p[5] = {t.at(i, 0), t.at(i, 1), t.at(i, 2), t.at(i, 3), t.at(i, 4)};
+    f(i, p, -ref_orient({p[0], p[1], p[2], p[3], p[4]}, 3, 1));
+  }
+}
+
 TEST_P(Scales, InsphereSemistaticNeverWrong) {
   int sharp = 0, both = 0;
-  auto t = make_tuples(3, 5, 6000, 17, GetParam(), true);
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const double *a = t.at(i, 0), *b = t.at(i, 1), *c = t.at(i, 2), *d = t.at(i, 3),
-                 *e = t.at(i, 4);
-    const int ref = -ref_orient({a, b, c, d, e}, 3, 1);
-    const int st = pred::insphere_semistatic(a, b, c, d, e);
-    if (st != 0) ASSERT_EQ(st, ref) << "case " << i;
-    if (i % 3 != 2) continue;  // (make_tuples: every third tuple is random)
-    const bool f = pred::insphere_fast(a, b, c, d, e) != 0;
-    sharp += f, both += f && st != 0;
-  }
+  each_insphere_case(make_tuples(3, 5, 6000, 17, GetParam(), true),
+                     [&](std::size_t i, const double* const* p, int ref) {
+                       const int st = pred::insphere_semistatic(p[0], p[1], p[2], p[3], p[4]);
+                       if (st != 0) ASSERT_EQ(st, ref) << "case " << i;
+                       if (i % 3 != 2) return;  // (make_tuples: every third tuple is random)
+                       const bool f = pred::insphere_fast(p[0], p[1], p[2], p[3], p[4]) != 0;
+                       sharp += f, both += f && st != 0;
+                     });
   EXPECT_GT(sharp, 1900);
   EXPECT_GE(both, sharp * 9 / 10);
 }
@@ -159,16 +165,14 @@ TEST_P(Scales, InsphereSemistaticNeverWrong) {
 // for: points rounded from a sphere), at every scale where its magnitudes hold.
 TEST_P(Scales, InsphereDoubleWordNeverWrong) {
   int hard = 0, decided = 0, zeros = 0;
-  auto t = make_tuples(3, 5, 3000, 16, GetParam(), true);
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const double *a = t.at(i, 0), *b = t.at(i, 1), *c = t.at(i, 2), *d = t.at(i, 3),
-                 *e = t.at(i, 4);
-    const int ref = -ref_orient({a, b, c, d, e}, 3, 1);
-    const int dw = pred::insphere_dw(a, b, c, d, e);
-    if (dw != 0) ASSERT_EQ(dw, ref) << "case " << i;
-    zeros += ref == 0 && dw == 0;
-    if (i % 3 == 0 && pred::insphere_fast(a, b, c, d, e) == 0) hard++, decided += dw != 0;
-  }
+  each_insphere_case(make_tuples(3, 5, 3000, 16, GetParam(), true),
+                     [&](std::size_t i, const double* const* p, int ref) {
+                       const int dw = pred::insphere_dw(p[0], p[1], p[2], p[3], p[4]);
+                       if (dw != 0) ASSERT_EQ(dw, ref) << "case " << i;
+                       zeros += ref == 0 && dw == 0;
+                       if (i % 3 == 0 && pred::insphere_fast(p[0], p[1], p[2], p[3], p[4]) == 0)
+                         hard++, decided += dw != 0;
+                     });
   EXPECT_GT(hard, 500) << "the nearly cospherical cases should defeat the filter";
   if (GetParam() != 0x1p-100)  // (there the differences fall below the tier's range)
     EXPECT_GE(decided, hard - hard / 100) << "of " << hard;
