@@ -518,6 +518,8 @@ GG_HD inline int orient2d_sos(const double* a, int ia, const double* b, int ib, 
   if (int r = orient2d(a, b, c, s)) return r;
   const double* r[3] = {a, b, c};
   int idx[3] = {ia, ib, ic};
+  if (const int f = sos_first_point_terms<3, 2>(r, ExpansionMinors<2, 0>{r, nullptr, nullptr, s}))
+    return f;
   int co[3];
   int parity = sort_rows<3, 2>(r, idx, nullptr, nullptr, co);
   return parity * sos_resolve<2, 0>(r, nullptr, nullptr, s, co);
@@ -527,6 +529,21 @@ GG_HD inline int orient2d_sos(const double* a, int ia, const double* b, int ib, 
 // terms as the expansions give, with no scratch (tiers 1-2 with SoS: *_sos_quick below).
 template <int N>
 GG_HD inline int sos_int(const double* const* pts, const int* ids, bool lift, int sign_factor) {
+  {
+    // the first terms on the rows as given (sos.hpp: no sort), nearly always enough
+    long long p[N][3], w[N];
+    for (int i = 0; i < N; ++i) {
+      for (int k = 0; k < 3; ++k) p[i][k] = (long long)(pts[i][k]);
+      w[i] = p[i][0] * p[i][0] + p[i][1] * p[i][1] + p[i][2] * p[i][2];
+    }
+    const IntMinors mn{p, w};
+    int first;
+    if constexpr (N == 5)
+      first = sos_lift_terms<5, 3>(pts, ids, mn);
+    else
+      first = sos_first_point_terms<4, 3>(pts, mn);
+    if (first != 0) return sign_factor * first;
+  }
   const double* r[N];
   int idx[N];
   for (int i = 0; i < N; ++i) r[i] = pts[i], idx[i] = ids[i];
@@ -546,6 +563,8 @@ GG_HD inline int orient3d_tie(const double* a, int ia, const double* b, int ib, 
   const double* r[4] = {a, b, c, d};
   int idx[4] = {ia, ib, ic, id};
   if (all_small_integers<4, 3>(r, kIntLimitOrient3d)) return sos_int<4>(r, idx, false, -1);
+  if (const int f = sos_first_point_terms<4, 3>(r, ExpansionMinors<3, 0>{r, nullptr, nullptr, s}))
+    return -f;
   int co[4];
   int parity = sort_rows<4, 3>(r, idx, nullptr, nullptr, co);
   return -parity * sos_resolve<3, 0>(r, nullptr, nullptr, s, co);
@@ -568,6 +587,8 @@ GG_HD inline int incircle_tie(const double* a, int ia, const double* b, int ib, 
                               int ic, const double* d, int id, double* s) {
   const double* r[4] = {a, b, c, d};
   int idx[4] = {ia, ib, ic, id};
+  if (const int f = sos_lift_terms<4, 2>(r, idx, ExpansionMinors<2, 4>{r, nullptr, nullptr, s}))
+    return f;
   SquareLifts<4, 2> l(r);
   int co[4];
   int parity = sort_rows<4, 2>(r, idx, l.p, l.len, co);
@@ -580,6 +601,8 @@ GG_HD inline int insphere_tie(const double* a, int ia, const double* b, int ib, 
   const double* r[5] = {a, b, c, d, e};
   int idx[5] = {ia, ib, ic, id, ie};
   if (all_small_integers<5, 3>(r, kIntLimitInsphere)) return sos_int<5>(r, idx, true, -1);
+  if (const int f = sos_lift_terms<5, 3>(r, idx, ExpansionMinors<3, 6>{r, nullptr, nullptr, s}))
+    return -f;
   SquareLifts<5, 3> l(r);
   int co[5];
   int parity = sort_rows<5, 3>(r, idx, l.p, l.len, co);

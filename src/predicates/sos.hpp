@@ -262,6 +262,67 @@ GG_HD int sos_resolve_by(const Minors& mn, const int* corow = nullptr) {
   return 0;  // unreachable: the mask perturbing every coordinate column gives +-1
 }
 
+// The first terms of the perturbed determinant, found without sorting the rows (the loop
+// above needs them sorted; on grids, where ties are common, the sorts were most of a tie's
+// cost, and the first terms nearly always decide). The perturbation belongs to the points, not
+// to the rows' places, so the coefficient of a term that perturbs one entry of row i is that
+// entry's cofactor in the matrix as given, and the sign needs no parity. Both return the sign of
+// det(M + perturbation) for the rows as given, or 0 where these terms all vanish (then the sorted
+// loop decides, from its first term: the same answer either way, as these are its first terms).
+//
+// Lifted predicates (N = D + 2 rows [p w 1]): the first N terms perturb one lift each, from the
+// first point in the lift order on (masks 1, 2, 4, ...; any two lifts share a column); the
+// coefficient of row i's is (-1)^(i + D) det [p 1] without row i. They all vanish only when the
+// points lie on one hyperplane.
+template <int N, int D, class Minors>
+GG_HD int sos_lift_terms(const double* const* rows, const int* idx, const Minors& mn) {
+  static_assert(N == D + 2, "rows [p w 1]");
+  unsigned done = 0;
+  int cols[D];
+  for (int c = 0; c < D; ++c) cols[c] = c;
+  for (int t = 0; t < N; ++t) {
+    int i = -1;
+    for (int j = 0; j < N; ++j)
+      if (!(done >> j & 1u) && (i < 0 || lift_before<D>(rows[j], idx[j], rows[i], idx[i]))) i = j;
+    done |= 1u << i;
+    int rl[N - 1], n = 0;
+    for (int j = 0; j < N; ++j)
+      if (j != i) rl[n++] = j;
+    const int v = mn.orient(D, rl, cols);
+    if (v != 0) return ((i + D) & 1) ? -v : v;
+  }
+  return 0;
+}
+
+// Orientation predicates (N = D + 1 rows [p 1]): the first D terms perturb the coordinates of
+// the point first in the coordinate order, x first (masks 1, 2, 4, ...: two entries of one row
+// are no term); the coefficient of its column c is (-1)^(i + c) det [p 1] without row i and
+// column c. Where another point has its coordinates (the coordinate order then falls back on
+// the lift order) this declines.
+template <int N, int D, class Minors>
+GG_HD int sos_first_point_terms(const double* const* rows, const Minors& mn) {
+  static_assert(N == D + 1, "rows [p 1]");
+  int i = 0;
+  for (int j = 1; j < N; ++j)
+    if (morton_before<D>(rows[j], rows[i])) i = j;
+  int rl[N - 1], n = 0;
+  for (int j = 0; j < N; ++j) {
+    if (j == i) continue;
+    bool same = true;
+    for (int c = 0; c < D; ++c) same = same && rows[j][c] == rows[i][c];
+    if (same) return 0;
+    rl[n++] = j;
+  }
+  for (int c = 0; c < D; ++c) {
+    int cols[D], q = 0;
+    for (int k = 0; k < D; ++k)
+      if (k != c) cols[q++] = k;
+    const int v = mn.orient(D - 1, rl, cols);
+    if (v != 0) return ((i + c) & 1) ? -v : v;
+  }
+  return 0;
+}
+
 template <int D, int LW>
 GG_HD int sos_resolve(const double* const* rows, const double* const* lift, const int* liftlen,
                       double* s, const int* corow = nullptr) {

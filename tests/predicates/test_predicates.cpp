@@ -364,6 +364,82 @@ TEST(Sos, IndicesDoNotMatterForDistinctPoints) {
   EXPECT_GT(tested, 1000);
 }
 
+// The sorted loop alone (sos.hpp's sos_resolve over the rows sort_rows orders), times the sign
+// each predicate's tie gives it: the reference for the first terms the predicates now take
+// on the rows as given.
+template <int N, int D, int LW>
+int sorted_loop(const double* const* pts, const int* ids, int sign_factor) {
+  const double* r[N];
+  int idx[N], co[N];
+  for (int i = 0; i < N; ++i) r[i] = pts[i], idx[i] = ids[i];
+  if constexpr (LW > 0) {
+    exact::SquareLifts<N, D> l(r);
+    const int parity = exact::sort_rows<N, D>(r, idx, l.p, l.len, co);
+    return sign_factor * parity * exact::sos_resolve<D, LW>(r, l.p, l.len, s(), co);
+  } else {
+    const int parity = exact::sort_rows<N, D>(r, idx, nullptr, nullptr, co);
+    return sign_factor * parity * exact::sos_resolve<D, 0>(r, nullptr, nullptr, s(), co);
+  }
+}
+
+// The first terms taken without sorting (the cofactors of the rows as given) agree with the
+// sorted loop on ties: tiny grids, where most tuples are degenerate and many lie on one plane or
+// line (so the shortcut declines and the loop decides), in whole numbers (the integer tier) and
+// halves (the expansions), with the indices scrambled.
+TEST(Sos, FirstTermsWithoutSortingMatchTheSortedLoop) {
+  std::mt19937_64 rng(17);
+  std::uniform_int_distribution<int> u(-1, 1);
+  int ties[4] = {};
+  for (double scale : {1.0, 0.5}) {
+    for (int i = 0; i < 20000; ++i) {
+      double q[5][3];
+      for (auto& x : q)
+        for (double& c : x) c = scale * u(rng);
+      const double* r[5] = {q[0], q[1], q[2], q[3], q[4]};
+      int ids[5];
+      for (int j = 0; j < 5; ++j) ids[j] = int(rng() % 1000) * 5 + j;
+      auto distinct = [&](int n, int dim) {
+        for (int j = 0; j < n; ++j)
+          for (int k = 0; k < j; ++k)
+            if (std::equal(q[j], q[j] + dim, q[k])) return false;
+        return true;
+      };
+      if (distinct(3, 2) && pred::orient2d(r[0], r[1], r[2], s()) == 0) {
+        ++ties[0];
+        ASSERT_EQ(pred::orient2d_sos(r[0], ids[0], r[1], ids[1], r[2], ids[2], s()),
+                  (sorted_loop<3, 2, 0>(r, ids, 1)));
+      }
+      if (distinct(4, 2) && pred::incircle(r[0], r[1], r[2], r[3], s()) == 0) {
+        ++ties[1];
+        ASSERT_EQ(pred::incircle_sos(r[0], ids[0], r[1], ids[1], r[2], ids[2], r[3], ids[3], s()),
+                  (sorted_loop<4, 2, 4>(r, ids, 1)));
+      }
+      if (distinct(4, 3) && pred::orient3d(r[0], r[1], r[2], r[3], s()) == 0) {
+        ++ties[2];
+        const int want = sorted_loop<4, 3, 0>(r, ids, -1);
+        ASSERT_EQ(pred::orient3d_sos(r[0], ids[0], r[1], ids[1], r[2], ids[2], r[3], ids[3], s()),
+                  want);
+        if (scale == 1.0)
+          ASSERT_EQ(
+              pred::orient3d_sos_quick(r[0], ids[0], r[1], ids[1], r[2], ids[2], r[3], ids[3]),
+              want);
+      }
+      if (distinct(5, 3) && pred::insphere(r[0], r[1], r[2], r[3], r[4], s()) == 0) {
+        ++ties[3];
+        const int want = sorted_loop<5, 3, 6>(r, ids, -1);
+        ASSERT_EQ(pred::insphere_sos(r[0], ids[0], r[1], ids[1], r[2], ids[2], r[3], ids[3], r[4],
+                                     ids[4], s()),
+                  want);
+        if (scale == 1.0)
+          ASSERT_EQ(pred::insphere_sos_quick(r[0], ids[0], r[1], ids[1], r[2], ids[2], r[3], ids[3],
+                                             r[4], ids[4]),
+                    want);
+      }
+    }
+  }
+  for (int t : ties) EXPECT_GT(t, 1000);
+}
+
 // Duplicated points (same coordinates, different indices) still get a consistent, nonzero answer.
 TEST(Sos, DuplicatesAreOrderedByIndex) {
   const double a[3] = {1, 2, 3};
