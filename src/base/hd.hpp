@@ -16,3 +16,15 @@
 // A lambda usable by both executors: `GG_LAMBDA(int64_t i) { ... }`. Under nvcc this needs
 // --extended-lambda, which the build sets.
 #define GG_LAMBDA [=] GG_HD
+
+// A hint that the host will soon read (or, write = true, write) p: for the CPU executor's
+// passes that gather through an index (their misses overlap instead of following one another).
+// Nothing on the device, whose warps hide the latency.
+template <bool Write = false>
+GG_INLINE void prefetch_on_host(const void* p) {
+#if !defined(__CUDA_ARCH__) && defined(__GNUC__)
+  __builtin_prefetch(p, Write ? 1 : 0);
+#else
+  (void)p;
+#endif
+}

@@ -123,7 +123,9 @@ Compacted<Exec> compact_live(Exec& ex, std::int64_t used, const Store& store) {
 // tetrahedron, so the order is total. Two schedules that build the same triangulation (the
 // executors', a kept one's updates and a fresh call) then give the same arrays, whatever slots
 // their histories left. It costs a sort of the live simplices' keys (docs/performance.md: one
-// output order). names_below: every order name is smaller (sizes the keys: fewer radix passes).
+// output order). The store also hints its record of a slot soon read (prefetch(t): the host's
+// prefetch, nothing on the device). names_below: every order name is smaller (sizes the keys: fewer
+// radix passes).
 namespace compact_detail {
 // The canonical turn of a simplex named w: perm[k] is the local vertex that goes k-th.
 template <int K>
@@ -183,28 +185,46 @@ struct SortRuns {
     for (std::int64_t a = i; a < end; ++a) slot[a] = std::int32_t(std::uint32_t(third[a]));
   }
 };
+// How far ahead the CPU executor's gathering passes ask for what they will read (prefetch on
+// the host; nothing on the device): ToBucket's counters (a locked add waits for its miss: 65 %
+// of that pass), PlaceOf's and EmitSorted's records through slot[], whose order follows the
+// output, not the store (58 % of EmitSorted on one thread, 10^6 3D points, was that load).
+constexpr std::int64_t kAhead = 16;
 // The CPU executor's way to the same order (BucketSlots): the live simplices counted by their
 // first name (buckets), placed in their bucket, and each bucket (a few: 6.7 tetrahedra or 2
 // triangles a vertex, on average) sorted by the rest. No radix passes over 16-byte pairs, and
 // a third of the temporary memory; the order within a bucket before its sort depends on the
 // threads, after it on the names alone (they are distinct within a bucket: see above).
-// Two passes over the slots: the first counts each bucket's simplices (slot null), the second
-// places them (next: each bucket's next free entry, from its start).
+// Two passes over the slots: the first counts each bucket's simplices and gives each its rank
+// among them (slot null), the second places them at their bucket's start plus their rank. (The
+// second pass bumped the counters again, as the first; a locked add per simplex twice was most
+// of the output's sorting on one thread.)
 template <int K, class Store>
 struct ToBucket {
   Store s;
-  std::int32_t* next;   // per first name: the count, or the next free entry
-  std::int32_t* slot;   // per entry (null: count only)
+  std::int32_t* count;  // per first name: the count (first pass), or where it starts
+  std::int32_t* rank;   // per slot: its rank in its bucket
+  std::int32_t* slot;   // per entry (null: the first pass)
   std::uint64_t* rest;  // per entry: the second name above the third (K = 4), or the second
+  std::int64_t used;
   GG_HD void operator()(std::int64_t t) const {
-    if (!s.live(t)) return;
     std::int32_t w[K];
+    if (!slot && t + kAhead < used) {  // (the counter the slot kAhead on will bump: see kAhead)
+      s.order_names(t + kAhead, w);
+      std::int32_t least = w[0];
+      for (int k = 1; k < K; ++k) least = w[k] < least ? w[k] : least;
+      if (least >= 0) prefetch_on_host<true>(count + least);
+    }
+    if (!s.live(t)) return;
     int p[K];
     s.order_names(t, w);
     canonical_turn<K>(w, p);
-    cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> c(next[w[p[0]]]);
-    const std::int32_t at = c.fetch_add(1, cuda::memory_order_relaxed);
-    if (!slot) return;
+    if (!slot) {
+      cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> c(count[w[p[0]]]);
+      rank[t] = c.fetch_add(1, cuda::memory_order_relaxed);
+      return;
+    }
+    const std::int32_t at = count[w[p[0]]] + rank[t];
     slot[at] = std::int32_t(t);
     const std::uint64_t second = std::uint32_t(w[p[1]]);
     rest[at] = K == 4 ? (second << 32) | std::uint32_t(w[p[2]]) : second;
@@ -228,7 +248,11 @@ struct SortBucket {
 struct PlaceOf {
   const std::int32_t* slot;  // in output order
   std::int32_t* place;       // per slot: its position, -1 where not live
-  GG_HD void operator()(std::int64_t i) const { place[slot[i]] = std::int32_t(i); }
+  std::int64_t count;
+  GG_HD void operator()(std::int64_t i) const {
+    if (i + kAhead < count) prefetch_on_host<true>(place + slot[i + kAhead]);
+    place[slot[i]] = std::int32_t(i);
+  }
 };
 template <int K, class Store>
 struct EmitSorted {
@@ -237,7 +261,9 @@ struct EmitSorted {
   const std::int32_t* place;
   std::int32_t* simplices;
   std::int32_t* neighbors;
+  std::int64_t count;
   GG_HD void operator()(std::int64_t i) const {
+    if (i + kAhead < count) s.prefetch(slot[i + kAhead]);
     const SimplexRecord<K> x = s.get(slot[i]);
     std::int32_t w[K];
     int p[K];
@@ -253,23 +279,24 @@ struct EmitSorted {
 }  // namespace compact_detail
 
 // The live slots in the output order, by buckets (the CPU executor's way): returns how many.
+// rank: used entries of scratch.
 template <int K, class Exec, class Store>
 std::int64_t live_by_buckets(Exec& ex, std::int64_t used, const Store& store, std::int64_t names,
+                             std::int32_t* rank,
                              typename Exec::template Buffer<std::int32_t>& live) {
   auto count = ex.template alloc<std::int32_t>(std::size_t(names) + 1);
   auto begin = ex.template alloc<std::int32_t>(std::size_t(names) + 1);
   std::int32_t* b = begin.data();
   ex.fill(count.data(), names + 1, std::int32_t(0));
-  ex.for_each_index(used,
-                    compact_detail::ToBucket<K, Store>{store, count.data(), nullptr, nullptr});
+  ex.for_each_index(
+      used, compact_detail::ToBucket<K, Store>{store, count.data(), rank, nullptr, nullptr, used});
   ex.exclusive_scan(count.data(), b, names + 1);
   std::int32_t total = 0;
   ex.to_host(b + names, 1, &total);
-  ex.copy(b, names, count.data());  // (each bucket's next free entry)
   live = ex.template alloc<std::int32_t>(std::size_t(total));
   auto rest = ex.template alloc<std::uint64_t>(std::size_t(total));
   ex.for_each_index(
-      used, compact_detail::ToBucket<K, Store>{store, count.data(), live.data(), rest.data()});
+      used, compact_detail::ToBucket<K, Store>{store, b, rank, live.data(), rest.data(), used});
   ex.for_each_index(names, compact_detail::SortBucket{b, live.data(), rest.data()});
   return total;
 }
@@ -279,9 +306,10 @@ Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& st
                                     std::int64_t names_below, Into into = {}) {
   static_assert(K == 3 || K == 4, "triangles or tetrahedra");
   typename Exec::template Buffer<std::int32_t> live;
+  auto where = ex.template alloc<std::int32_t>(std::size_t(used));  // (the buckets' ranks first)
   std::int64_t count = 0;
   if constexpr (Exec::backend == Backend::Cpu) {
-    count = live_by_buckets<K>(ex, used, store, names_below, live);
+    count = live_by_buckets<K>(ex, used, store, names_below, where.data(), live);
   } else {
     live = ex.template alloc<std::int32_t>(std::size_t(used));
     count = ex.compact_indices(used, compact_detail::Liveness<Store>{store, used}, live.data());
@@ -302,9 +330,8 @@ Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& st
     }
   }
   const std::int32_t* slot = live.data();
-  auto where = ex.template alloc<std::int32_t>(std::size_t(used));
   ex.fill(where.data(), used, std::int32_t(-1));
-  ex.for_each_index(count, compact_detail::PlaceOf{slot, where.data()});
+  ex.for_each_index(count, compact_detail::PlaceOf{slot, where.data(), count});
   Compacted<Exec> c;
   c.count = count;
   std::tie(c.placed_simplices, c.placed_neighbors) = into(count);
@@ -314,7 +341,8 @@ Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& st
   }
   std::int32_t* sp = c.placed_simplices ? c.placed_simplices : c.simplices.data();
   std::int32_t* np = c.placed_simplices ? c.placed_neighbors : c.neighbors.data();
-  ex.for_each_index(count, compact_detail::EmitSorted<K, Store>{store, slot, where.data(), sp, np});
+  ex.for_each_index(count,
+                    compact_detail::EmitSorted<K, Store>{store, slot, where.data(), sp, np, count});
   return c;
 }
 

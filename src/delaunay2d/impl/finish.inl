@@ -23,6 +23,7 @@ struct FiniteTriangles {
     const std::int32_t* v = tri[t].v;
     return v[0] != m && v[1] != m && v[2] != m;
   }
+  GG_HD void prefetch(std::int64_t t) const { prefetch_on_host(tri + t); }
   GG_HD void order_names(std::int64_t t, std::int32_t* w) const {  // (curve positions)
     for (int k = 0; k < 3; ++k) w[k] = tri[t].v[k];
   }

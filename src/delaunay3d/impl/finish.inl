@@ -11,6 +11,7 @@ struct FiniteTets {
     const std::int32_t* v = tet[t].v;
     return v[0] >= 0 && v[0] != m && v[1] != m && v[2] != m && v[3] != m;
   }
+  GG_HD void prefetch(std::int64_t t) const { prefetch_on_host(tet + t); }
   GG_HD void order_names(std::int64_t t, std::int32_t* w) const {  // (curve positions)
     for (int k = 0; k < 4; ++k) w[k] = tet[t].v[k];
   }
