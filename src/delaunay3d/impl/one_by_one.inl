@@ -530,8 +530,8 @@ void Triangulator::insert_by_cavities(E& ex) {
       }
     };
     Hooks h{*this, one, m, 1, 0, {}, {}, {}, {}, {}, Clock::now()};
-    deferred_ = mesh::cavities::insert_by_chunks(ex, m, loc_.data(), one, h,
-                                                 mesh::cavities::kLockingSampleLevel);
+    deferred_ = mesh::cavities::insert_by_chunks(
+        ex, m, loc_.data(), one, h, mesh::cavities::locking_sample_level(m, ex.team_size()));
     cavity_insertions_ = m - 4;
     Counters c = counters();
     c.used = one.next;
