@@ -116,11 +116,14 @@ struct TetInserter {
   std::vector<Face> bnd;
   std::vector<std::int32_t> made;  // per boundary face: its new tetrahedron's slot
   struct Edge {
-    std::uint64_t key;  // the edge's two vertices (the lesser high), ~0: empty
-    std::int32_t at;    // enc(boundary face, local face) of the first new one seen with it
+    std::uint64_t key;    // the edge's two vertices (the lesser high)
+    std::int32_t at;      // enc(boundary face, local face) of the first new one seen with it
+    std::uint32_t stamp;  // the insertion that filled it; another's: empty (no clearing)
   };
-  std::vector<Edge> edges;  // open addressing: the new tetrahedra's faces through q, paired
-  std::int64_t pairs = 0;   // edges paired (-1: one was in three faces)
+  std::vector<Edge> edges;    // open addressing: the new tetrahedra's faces through q, paired
+  std::size_t edge_mask = 0;  // this insertion's part of edges: [0, edge_mask]
+  std::uint32_t stamp = 0;
+  std::int64_t pairs = 0;  // edges paired (-1: one was in three faces)
 
   Tet read(std::int32_t s) const {
     const std::int32_t* w = tet[s].v;
@@ -205,12 +208,12 @@ struct TetInserter {
   void pair_edge(std::int32_t a, std::int32_t b, std::int32_t at) {
     if (a > b) std::swap(a, b);
     const std::uint64_t key = (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-    const std::size_t mask = edges.size() - 1;
+    const std::size_t mask = edge_mask;
     std::size_t h = std::size_t((key * 0x9E3779B97F4A7C15ull) >> 32) & mask;
     for (;; h = (h + 1) & mask) {
       Edge& E = edges[h];
-      if (E.key == ~std::uint64_t(0)) {
-        E.key = key, E.at = at;
+      if (E.stamp != stamp) {
+        E.key = key, E.at = at, E.stamp = stamp;
         return;
       }
       if (E.key == key) {  // (the other new tetrahedron through q and this edge)
@@ -317,26 +320,27 @@ struct TetInserter {
     }
     fresh.resize(f);
     std::size_t size = 16;
-    while (size < 3 * f) size *= 2;  // (3f/2 edges, at most half full)
-    edges.assign(size, Edge{~std::uint64_t(0), 0});
-    for (std::size_t i = 0; i < f; ++i) {
-      const Face& F = bnd[i];
-      Tet N = held[F.at];  // (the cavity's tetrahedron: its record is settled)
-      N.v[F.k] = q;
-      N.n[F.k] = F.out;
-      fresh[i] = N;
+    while (size < 3 * f) size *= 2;             // (3f/2 edges, at most half full)
+    if (++stamp == 0 || edges.size() < size) {  // (else the stamps tell the entries apart)
+      edges.assign(std::max(size, edges.size()), Edge{0, 0, 0});
+      stamp = 1;
     }
+    edge_mask = size - 1;
     pairs = 0;
     for (std::size_t i = 0; i < f; ++i) {
       const Face& F = bnd[i];
-      for (int j = 0; j < 4; ++j) {
-        if (j == F.k) continue;
-        // (the face opposite vertex j holds q and the edge of the two others)
-        std::int32_t e[2], ne = 0;
-        for (int l = 0; l < 4; ++l)
-          if (l != j && l != F.k) e[ne++] = fresh[i].v[l];
-        pair_edge(e[0], e[1], enc(std::int32_t(i), j));
-      }
+      Tet& N = fresh[i];
+      N = held[F.at];  // (the cavity's tetrahedron: its record is settled)
+      N.v[F.k] = q;
+      N.n[F.k] = F.out;
+      // Its faces through q: the one opposite vertex o[j] holds the edge of the other two.
+      int o[3], no = 0;
+      for (int l = 0; l < 4; ++l)
+        if (l != F.k) o[no++] = l;
+      const std::int32_t at = std::int32_t(i);
+      pair_edge(N.v[o[1]], N.v[o[2]], enc(at, o[0]));
+      pair_edge(N.v[o[0]], N.v[o[2]], enc(at, o[1]));
+      pair_edge(N.v[o[0]], N.v[o[1]], enc(at, o[2]));
     }
     if (pairs !=
         std::int64_t(3 * f / 2)) {  // (a bug guard: every edge in two faces of the boundary)
