@@ -305,10 +305,10 @@ template <int K, class Exec, class Store, class Into = OwnArrays>
 Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& store,
                                     std::int64_t names_below, Into into = {}) {
   static_assert(K == 3 || K == 4, "triangles or tetrahedra");
-  typename Exec::template Buffer<std::int32_t> live;
-  auto where = ex.template alloc<std::int32_t>(std::size_t(used));  // (the buckets' ranks first)
+  typename Exec::template Buffer<std::int32_t> live, where;  // (where: per slot, its place)
   std::int64_t count = 0;
   if constexpr (Exec::backend == Backend::Cpu) {
+    where = ex.template alloc<std::int32_t>(std::size_t(used));  // (the buckets' ranks first)
     count = live_by_buckets<K>(ex, used, store, names_below, where.data(), live);
   } else {
     live = ex.template alloc<std::int32_t>(std::size_t(used));
@@ -329,6 +329,9 @@ Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& st
       ex.for_each_index(count, compact_detail::SortRuns{keys.data(), third.data(), slot, count});
     }
   }
+  // (on the GPU after the sort's keys are freed, so that it does not raise the peak beside them)
+  if constexpr (Exec::backend != Backend::Cpu)
+    where = ex.template alloc<std::int32_t>(std::size_t(used));
   const std::int32_t* slot = live.data();
   ex.fill(where.data(), used, std::int32_t(-1));
   ex.for_each_index(count, compact_detail::PlaceOf{slot, where.data(), count});

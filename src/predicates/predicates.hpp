@@ -527,42 +527,44 @@ GG_HD inline int orient2d_sos(const double* a, int ia, const double* b, int ib, 
 
 // The ties of whole-number points (integer.hpp's bounds) are resolved in integers: the same
 // terms as the expansions give, with no scratch (tiers 1-2 with SoS: *_sos_quick below).
+// The rows as whole numbers, with their lifts |p|^2.
 template <int N>
-GG_HD inline int sos_int(const double* const* pts, const int* ids, bool lift, int sign_factor) {
-  {
-    // the first terms on the rows as given (sos.hpp: no sort), nearly always enough
-    long long p[N][3], w[N];
-    for (int i = 0; i < N; ++i) {
-      for (int k = 0; k < 3; ++k) p[i][k] = (long long)(pts[i][k]);
-      w[i] = p[i][0] * p[i][0] + p[i][1] * p[i][1] + p[i][2] * p[i][2];
-    }
-    const IntMinors mn{p, w};
-    int first;
-    if constexpr (N == 5)
-      first = sos_lift_terms<5, 3>(pts, ids, mn);
-    else
-      first = sos_first_point_terms<4, 3>(pts, mn);
-    if (first != 0) return sign_factor * first;
+GG_HD inline void int_rows(const double* const* r, long long (*p)[3], long long* w) {
+  for (int i = 0; i < N; ++i) {
+    for (int k = 0; k < 3; ++k) p[i][k] = (long long)(r[i][k]);
+    w[i] = p[i][0] * p[i][0] + p[i][1] * p[i][1] + p[i][2] * p[i][2];
   }
+}
+// N = 5: in-sphere (lifted); N = 4: orientation.
+template <int N>
+GG_HD inline int sos_int(const double* const* pts, const int* ids, int sign_factor) {
+  constexpr bool kLift = N == 5;
+  long long p[N][3], w[N];
+  int_rows<N>(pts, p, w);
+  // the first terms on the rows as given (sos.hpp: no sort), nearly always enough
+  int first;
+  if constexpr (kLift)
+    first = sos_lift_terms<5, 3>(pts, ids, IntMinors{p, w});
+  else
+    first = sos_first_point_terms<4, 3>(pts, IntMinors{p, w});
+  if (first != 0) return sign_factor * first;
   const double* r[N];
   int idx[N];
   for (int i = 0; i < N; ++i) r[i] = pts[i], idx[i] = ids[i];
   int co[N];
   const int parity = sort_rows<N, 3>(r, idx, nullptr, nullptr, co);
-  long long p[N][3], w[N];
-  for (int i = 0; i < N; ++i) {
-    for (int k = 0; k < 3; ++k) p[i][k] = (long long)(r[i][k]);
-    w[i] = p[i][0] * p[i][0] + p[i][1] * p[i][1] + p[i][2] * p[i][2];
-  }
-  if (lift) return sign_factor * parity * sos_resolve_by<3, 6>(IntMinors{p, w}, co);
-  return sign_factor * parity * sos_resolve_by<3, 0>(IntMinors{p, nullptr}, co);
+  int_rows<N>(r, p, w);  // (in the sorted order)
+  if constexpr (kLift)
+    return sign_factor * parity * sos_resolve_by<3, 6>(IntMinors{p, w}, co);
+  else
+    return sign_factor * parity * sos_resolve_by<3, 0>(IntMinors{p, nullptr}, co);
 }
 
 GG_HD inline int orient3d_tie(const double* a, int ia, const double* b, int ib, const double* c,
                               int ic, const double* d, int id, double* s) {
   const double* r[4] = {a, b, c, d};
   int idx[4] = {ia, ib, ic, id};
-  if (all_small_integers<4, 3>(r, kIntLimitOrient3d)) return sos_int<4>(r, idx, false, -1);
+  if (all_small_integers<4, 3>(r, kIntLimitOrient3d)) return sos_int<4>(r, idx, -1);
   if (const int f = sos_first_point_terms<4, 3>(r, ExpansionMinors<3, 0>{r, nullptr, nullptr, s}))
     return -f;
   int co[4];
@@ -579,7 +581,7 @@ GG_HD inline int orient3d_sos_quick(const double* a, int ia, const double* b, in
   if (si) return si;
   const double* r[4] = {a, b, c, d};
   const int idx[4] = {ia, ib, ic, id};
-  return sos_int<4>(r, idx, false, -1);
+  return sos_int<4>(r, idx, -1);
 }
 GG_SOS_CHAIN4(orient3d)
 
@@ -600,7 +602,7 @@ GG_HD inline int insphere_tie(const double* a, int ia, const double* b, int ib, 
                               int ic, const double* d, int id, const double* e, int ie, double* s) {
   const double* r[5] = {a, b, c, d, e};
   int idx[5] = {ia, ib, ic, id, ie};
-  if (all_small_integers<5, 3>(r, kIntLimitInsphere)) return sos_int<5>(r, idx, true, -1);
+  if (all_small_integers<5, 3>(r, kIntLimitInsphere)) return sos_int<5>(r, idx, -1);
   if (const int f = sos_lift_terms<5, 3>(r, idx, ExpansionMinors<3, 6>{r, nullptr, nullptr, s}))
     return -f;
   SquareLifts<5, 3> l(r);
@@ -621,7 +623,7 @@ GG_HD inline int insphere_sos_quick(const double* a, int ia, const double* b, in
   if (si) return si;
   const double* r[5] = {a, b, c, d, e};
   const int idx[5] = {ia, ib, ic, id, ie};
-  return sos_int<5>(r, idx, true, -1);
+  return sos_int<5>(r, idx, -1);
 }
 GG_SOS_CHAIN5(insphere)
 
