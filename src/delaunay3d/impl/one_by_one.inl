@@ -135,16 +135,9 @@ struct TetInserter {
     std::int32_t* w = tet[s].v;
     for (int k = 0; k < 8; ++k) mesh::cavities::store_word(w + k, k < 4 ? T.v[k] : T.n[k - 4]);
   }
-  static void prefetch(const void* p) {
-#if defined(__GNUC__)
-    __builtin_prefetch(p);
-#endif
-  }
   void prefetch_slot(std::int32_t t) const {  // its record, and its lock word to be written
-    prefetch(tet + t);
-#if defined(__GNUC__)
-    if (lock) __builtin_prefetch(lock + t, 1);
-#endif
+    prefetch_on_host(tet + t);
+    if (lock) prefetch_on_host<true>(lock + t);
   }
   bool is_first(std::int32_t q) const {
     return q == first[0] || q == first[1] || q == first[2] || q == first[3];
@@ -202,9 +195,7 @@ struct TetInserter {
     if (i < usable_freed()) return freed[freed.size() - 1 - i];
     return std::int32_t(next + std::int64_t(i - usable_freed()));
   }
-  std::size_t usable_freed() const {
-    return lock ? 0 : freed.size();
-  }
+  std::size_t usable_freed() const { return lock ? 0 : freed.size(); }
   void pair_edge(std::int32_t a, std::int32_t b, std::int32_t at) {
     if (a > b) std::swap(a, b);
     const std::uint64_t key = (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
@@ -230,9 +221,7 @@ struct TetInserter {
     }
   }
   std::vector<Tet> fresh;  // the new tetrahedra, by boundary face, before they are written
-  std::int32_t& made_n(std::int32_t at) {
-    return fresh[std::size_t(simplex_of(at))].n[loc_of(at)];
-  }
+  std::int32_t& made_n(std::int32_t at) { return fresh[std::size_t(simplex_of(at))].n[loc_of(at)]; }
 
   // Inserts q, or returns false having changed nothing (its walk or cavity reaches another
   // thread's tetrahedra, or it needs more slots than it may take: full).
@@ -289,7 +278,7 @@ struct TetInserter {
         if (taken.has(nb)) continue;
         if (lock && !hold(nb)) return false;
         N4[k] = read(nb);
-        for (int j = 0; j < 4; ++j) prefetch(g.at(N4[k].v[j]));
+        for (int j = 0; j < 4; ++j) prefetch_on_host(g.at(N4[k].v[j]));
       }
       for (int k = 0; k < 4; ++k) {
         const std::int32_t nb = simplex_of(C.n[k]);
