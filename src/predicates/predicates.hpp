@@ -518,11 +518,13 @@ GG_HD inline int orient2d_sos(const double* a, int ia, const double* b, int ib, 
   if (int r = orient2d(a, b, c, s)) return r;
   const double* r[3] = {a, b, c};
   int idx[3] = {ia, ib, ic};
-  if (const int f = sos_first_point_terms<3, 2>(r, ExpansionMinors<2, 0>{r, nullptr, nullptr, s}))
+  std::uint32_t from;
+  if (const int f =
+          sos_first_point_terms<3, 2>(r, ExpansionMinors<2, 0>{r, nullptr, nullptr, s}, from))
     return f;
   int co[3];
   int parity = sort_rows<3, 2>(r, idx, nullptr, nullptr, co);
-  return parity * sos_resolve<2, 0>(r, nullptr, nullptr, s, co);
+  return parity * sos_resolve<2, 0>(r, nullptr, nullptr, s, co, from);
 }
 
 // The ties of whole-number points (integer.hpp's bounds) are resolved in integers: the same
@@ -543,10 +545,11 @@ GG_HD inline int sos_int(const double* const* pts, const int* ids, int sign_fact
   int_rows<N>(pts, p, w);
   // the first terms on the rows as given (sos.hpp: no sort), nearly always enough
   int first;
+  std::uint32_t from = sos_past_first_terms<3, 6>();  // (the lift terms are always all taken)
   if constexpr (kLift)
     first = sos_lift_terms<5, 3>(pts, ids, IntMinors{p, w});
   else
-    first = sos_first_point_terms<4, 3>(pts, IntMinors{p, w});
+    first = sos_first_point_terms<4, 3>(pts, IntMinors{p, w}, from);
   if (first != 0) return sign_factor * first;
   const double* r[N];
   int idx[N];
@@ -555,9 +558,9 @@ GG_HD inline int sos_int(const double* const* pts, const int* ids, int sign_fact
   const int parity = sort_rows<N, 3>(r, idx, nullptr, nullptr, co);
   int_rows<N>(r, p, w);  // (in the sorted order)
   if constexpr (kLift)
-    return sign_factor * parity * sos_resolve_by<3, 6>(IntMinors{p, w}, co);
+    return sign_factor * parity * sos_resolve_by<3, 6>(IntMinors{p, w}, co, from);
   else
-    return sign_factor * parity * sos_resolve_by<3, 0>(IntMinors{p, nullptr}, co);
+    return sign_factor * parity * sos_resolve_by<3, 0>(IntMinors{p, nullptr}, co, from);
 }
 
 GG_HD inline int orient3d_tie(const double* a, int ia, const double* b, int ib, const double* c,
@@ -565,11 +568,13 @@ GG_HD inline int orient3d_tie(const double* a, int ia, const double* b, int ib, 
   const double* r[4] = {a, b, c, d};
   int idx[4] = {ia, ib, ic, id};
   if (all_small_integers<4, 3>(r, kIntLimitOrient3d)) return sos_int<4>(r, idx, -1);
-  if (const int f = sos_first_point_terms<4, 3>(r, ExpansionMinors<3, 0>{r, nullptr, nullptr, s}))
+  std::uint32_t from;
+  if (const int f =
+          sos_first_point_terms<4, 3>(r, ExpansionMinors<3, 0>{r, nullptr, nullptr, s}, from))
     return -f;
   int co[4];
   int parity = sort_rows<4, 3>(r, idx, nullptr, nullptr, co);
-  return -parity * sos_resolve<3, 0>(r, nullptr, nullptr, s, co);
+  return -parity * sos_resolve<3, 0>(r, nullptr, nullptr, s, co, from);
 }
 // orient3d with SoS without scratch: the sign, or kUndecided where the filter cannot tell and
 // the points are not small whole numbers (then orient3d_sos, with scratch, must).
@@ -594,7 +599,7 @@ GG_HD inline int incircle_tie(const double* a, int ia, const double* b, int ib, 
   SquareLifts<4, 2> l(r);
   int co[4];
   int parity = sort_rows<4, 2>(r, idx, l.p, l.len, co);
-  return parity * sos_resolve<2, 4>(r, l.p, l.len, s, co);
+  return parity * sos_resolve<2, 4>(r, l.p, l.len, s, co, sos_past_first_terms<2, 4>());
 }
 GG_SOS_CHAIN4(incircle)
 
@@ -608,7 +613,7 @@ GG_HD inline int insphere_tie(const double* a, int ia, const double* b, int ib, 
   SquareLifts<5, 3> l(r);
   int co[5];
   int parity = sort_rows<5, 3>(r, idx, l.p, l.len, co);
-  return -parity * sos_resolve<3, 6>(r, l.p, l.len, s, co);
+  return -parity * sos_resolve<3, 6>(r, l.p, l.len, s, co, sos_past_first_terms<3, 6>());
 }
 // insphere with SoS without scratch, as orient3d_sos_quick.
 GG_HD inline int insphere_sos_quick(const double* a, int ia, const double* b, int ib,
