@@ -56,57 +56,60 @@ struct TetInserter {
   std::int32_t* lock = nullptr;  // per slot: the thread that holds it, -1: none (threads only)
   std::vector<std::int32_t> cav;
   std::vector<Tet> held;  // the cavity's tetrahedra as read (their records are settled)
-  // The cavity's slots as a set: open addressing, grown as the cavity grows (a per-slot array
-  // of marks cost a cache miss a neighbour).
-  struct SlotSet {
-    std::vector<std::int32_t> at = std::vector<std::int32_t>(64, -1);
+  // The slots this insertion has read, each with what it was found to be: open addressing
+  // (a per-slot array of marks cost a cache miss a neighbour). A tetrahedron beyond the cavity
+  // is often next to two or three of its tetrahedra: found outside once, it is not tested (nor
+  // locked, nor read) again. With threads every slot in it is one this thread holds.
+  static constexpr std::int32_t kUnseen = -1, kOutside = 0, kInCavity = 1;
+  struct SlotMap {
+    struct Entry {
+      std::int32_t slot, what;
+    };
+    std::vector<Entry> at = std::vector<Entry>(64, Entry{-1, kUnseen});
     std::vector<std::size_t> filled;  // (so that a reset clears only those)
     void reset() {
-      for (const std::size_t h : filled) at[h] = -1;
+      for (const std::size_t h : filled) at[h].slot = -1;
       filled.clear();
     }
     static std::size_t hash(std::int32_t s) { return std::size_t(std::uint32_t(s) * 2654435761u); }
-    bool has(std::int32_t s) const {
+    std::int32_t what(std::int32_t s) const {
       const std::size_t mask = at.size() - 1;
       for (std::size_t h = hash(s) & mask;; h = (h + 1) & mask) {
-        if (at[h] == s) return true;
-        if (at[h] < 0) return false;
+        if (at[h].slot == s) return at[h].what;
+        if (at[h].slot < 0) return kUnseen;
       }
     }
-    void put(std::int32_t s) {
+    void place(Entry e) {
       const std::size_t mask = at.size() - 1;
-      std::size_t h = hash(s) & mask;
-      while (at[h] >= 0) h = (h + 1) & mask;
-      at[h] = s;
+      std::size_t h = hash(e.slot) & mask;
+      while (at[h].slot >= 0) h = (h + 1) & mask;
+      at[h] = e;
       filled.push_back(h);
     }
-    // s, which all has (the cavity's slots, s last), at most a quarter full
-    void add(std::int32_t s, const std::vector<std::int32_t>& all) {
-      if (4 * all.size() > at.size()) {
-        at.assign(2 * at.size(), -1);
+    void put(std::int32_t s, std::int32_t w) {  // (s unseen; at most a quarter full)
+      if (4 * (filled.size() + 1) > at.size()) {
+        std::vector<Entry> old;
+        for (const std::size_t h : filled) old.push_back(at[h]);
+        at.assign(2 * at.size(), Entry{-1, kUnseen});
         filled.clear();
-        for (const std::int32_t x : all) put(x);
-      } else {
-        put(s);
+        for (const Entry& e : old) place(e);
       }
+      place(Entry{s, w});
     }
-  } taken, held_set;                  // the cavity's slots; all the slots this thread holds
-  std::vector<std::int32_t> holding;  // (held_set's slots)
-  bool hold(std::int32_t s) {         // a tetrahedron locked (or held already); false: another's
-    if (held_set.has(s)) return true;
+  } seen;
+  std::vector<std::int32_t> holding;  // threads: the slots this thread holds
+  bool hold(std::int32_t s) {         // a tetrahedron not yet seen locked; false: another's
     cuda::atomic_ref<std::int32_t, cuda::thread_scope_system> r(lock[s]);
     std::int32_t free = -1;
     if (!r.compare_exchange_strong(free, own, cuda::memory_order_acquire,
                                    cuda::memory_order_relaxed))
       return false;
     holding.push_back(s);
-    held_set.add(s, holding);
     return true;
   }
   void let_go() {  // (after every write, so a thread that locks a slot next reads them)
     for (const std::int32_t s : holding) mesh::cavities::store_word(lock + s, -1);
     holding.clear();
-    held_set.reset();
   }
   struct Face {
     std::int32_t at;  // the cavity tetrahedron it bounds (held[at]; its new one takes its vertices)
@@ -264,33 +267,38 @@ struct TetInserter {
     // The cavity: the tetrahedra whose spheres (half-spaces, for infinite ones) hold q, found
     // from the one that holds it; its boundary, the faces to the others.
     cav.clear(), bnd.clear(), held.clear();
-    taken.reset();
+    seen.reset();
     cav.push_back(t0), held.push_back(T0);
-    taken.add(t0, cav);
+    seen.put(t0, kInCavity);
     for (std::size_t i = 0; i < cav.size(); ++i) {
       const Tet C = held[i];
       // (the neighbours' records, then their points, asked for before any is tested: the
       // misses overlap, where one at a time they were half of an insertion's time)
-      for (int k = 0; k < 4; ++k) prefetch_slot(simplex_of(C.n[k]));
+      std::int32_t was[4];
+      for (int k = 0; k < 4; ++k) {
+        was[k] = seen.what(simplex_of(C.n[k]));
+        if (was[k] == kUnseen) prefetch_slot(simplex_of(C.n[k]));
+      }
       Tet N4[4];
       for (int k = 0; k < 4; ++k) {
+        if (was[k] != kUnseen) continue;
         const std::int32_t nb = simplex_of(C.n[k]);
-        if (taken.has(nb)) continue;
         if (lock && !hold(nb)) return false;
         N4[k] = read(nb);
         for (int j = 0; j < 4; ++j) prefetch_on_host(g.at(N4[k].v[j]));
       }
       for (int k = 0; k < 4; ++k) {
+        if (was[k] == kInCavity) continue;
         const std::int32_t nb = simplex_of(C.n[k]);
-        if (taken.has(nb)) continue;
         const Tet& N = N4[k];
-        if (in_sphere_ext(g, N.v, q)) {
+        if (was[k] == kUnseen && in_sphere_ext(g, N.v, q)) {
           cav.push_back(nb), held.push_back(N);
-          taken.add(nb, cav);
+          seen.put(nb, kInCavity);
           // (its neighbours asked for now, while the tetrahedra before it in the queue are
           // tested: they are read when its turn comes)
           for (int j = 0; j < 4; ++j) prefetch_slot(simplex_of(N.n[j]));
         } else {
+          if (was[k] == kUnseen) seen.put(nb, kOutside);
           bnd.push_back({std::int32_t(i), k, C.n[k]});
         }
       }
