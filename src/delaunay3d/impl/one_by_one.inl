@@ -532,7 +532,8 @@ void Triangulator::insert_by_cavities(E& ex) {
     };
     Hooks h{*this, one, m, 1, 0, {}, {}, {}, {}, {}, Clock::now()};
     deferred_ = mesh::cavities::insert_by_chunks(
-        ex, m, loc_.data(), one, h, mesh::cavities::locking_sample_level(m, ex.team_size()));
+        ex, m, loc_.data(), one, h, mesh::cavities::locking_sample_level(m, ex.team_size()),
+        mesh::cavities::kLockingPartsPerThread);
     cavity_insertions_ = m - 4;
     Counters c = counters();
     c.used = one.next;
