@@ -186,7 +186,7 @@ struct SortRuns {
   }
 };
 // How far ahead the CPU executor's gathering passes ask for what they will read (prefetch on
-// the host; nothing on the device): ToBucket's counters (a locked add waits for its miss: 65 %
+// the host; nothing on the device): CountInBucket's counters (a locked add waits for its miss: 65 %
 // of that pass), PlaceOf's and EmitSorted's records through slot[], whose order follows the
 // output, not the store (58 % of EmitSorted on one thread, 10^6 3D points, was that load).
 constexpr std::int64_t kAhead = 16;
@@ -196,20 +196,18 @@ constexpr std::int64_t kAhead = 16;
 // a third of the temporary memory; the order within a bucket before its sort depends on the
 // threads, after it on the names alone (they are distinct within a bucket: see above).
 // Two passes over the slots: the first counts each bucket's simplices and gives each its rank
-// among them (slot null), the second places them at their bucket's start plus their rank. (The
-// second pass bumped the counters again, as the first; a locked add per simplex twice was most
-// of the output's sorting on one thread.)
+// among them (CountInBucket), the second places them at their bucket's start plus their rank
+// (PlaceInBucket). (The second pass bumped the counters again, as the first; a locked add per
+// simplex twice was most of the output's sorting on one thread.)
 template <int K, class Store>
-struct ToBucket {
+struct CountInBucket {
   Store s;
-  std::int32_t* count;  // per first name: the count (first pass), or where it starts
+  std::int32_t* count;  // per first name
   std::int32_t* rank;   // per slot: its rank in its bucket
-  std::int32_t* slot;   // per entry (null: the first pass)
-  std::uint64_t* rest;  // per entry: the second name above the third (K = 4), or the second
   std::int64_t used;
   GG_HD void operator()(std::int64_t t) const {
     std::int32_t w[K];
-    if (!slot && t + kAhead < used) {  // (the counter the slot kAhead on will bump: see kAhead)
+    if (t + kAhead < used) {  // (the counter the slot kAhead on will bump: see kAhead)
       s.order_names(t + kAhead, w);
       std::int32_t least = w[0];
       for (int k = 1; k < K; ++k) least = w[k] < least ? w[k] : least;
@@ -219,12 +217,24 @@ struct ToBucket {
     int p[K];
     s.order_names(t, w);
     canonical_turn<K>(w, p);
-    if (!slot) {
-      cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> c(count[w[p[0]]]);
-      rank[t] = c.fetch_add(1, cuda::memory_order_relaxed);
-      return;
-    }
-    const std::int32_t at = count[w[p[0]]] + rank[t];
+    cuda::atomic_ref<std::int32_t, cuda::thread_scope_device> c(count[w[p[0]]]);
+    rank[t] = c.fetch_add(1, cuda::memory_order_relaxed);
+  }
+};
+template <int K, class Store>
+struct PlaceInBucket {
+  Store s;
+  const std::int32_t* begin;  // per first name: where its bucket starts
+  const std::int32_t* rank;   // per slot: its rank in its bucket (CountInBucket)
+  std::int32_t* slot;         // per entry
+  std::uint64_t* rest;        // per entry: the second name above the third (K = 4), or the second
+  GG_HD void operator()(std::int64_t t) const {
+    if (!s.live(t)) return;
+    std::int32_t w[K];
+    int p[K];
+    s.order_names(t, w);
+    canonical_turn<K>(w, p);
+    const std::int32_t at = begin[w[p[0]]] + rank[t];
     slot[at] = std::int32_t(t);
     const std::uint64_t second = std::uint32_t(w[p[1]]);
     rest[at] = K == 4 ? (second << 32) | std::uint32_t(w[p[2]]) : second;
@@ -288,15 +298,14 @@ std::int64_t live_by_buckets(Exec& ex, std::int64_t used, const Store& store, st
   auto begin = ex.template alloc<std::int32_t>(std::size_t(names) + 1);
   std::int32_t* b = begin.data();
   ex.fill(count.data(), names + 1, std::int32_t(0));
-  ex.for_each_index(
-      used, compact_detail::ToBucket<K, Store>{store, count.data(), rank, nullptr, nullptr, used});
+  ex.for_each_index(used, compact_detail::CountInBucket<K, Store>{store, count.data(), rank, used});
   ex.exclusive_scan(count.data(), b, names + 1);
   std::int32_t total = 0;
   ex.to_host(b + names, 1, &total);
   live = ex.template alloc<std::int32_t>(std::size_t(total));
   auto rest = ex.template alloc<std::uint64_t>(std::size_t(total));
   ex.for_each_index(
-      used, compact_detail::ToBucket<K, Store>{store, b, rank, live.data(), rest.data(), used});
+      used, compact_detail::PlaceInBucket<K, Store>{store, b, rank, live.data(), rest.data()});
   ex.for_each_index(names, compact_detail::SortBucket{b, live.data(), rest.data()});
   return total;
 }
