@@ -55,6 +55,7 @@ double median_run(const std::vector<Point3>& pts, const Delaunay3dOptions& o, in
                   Triangulation3d& t) {
   std::vector<double> ms;
   for (int r = 0; r < reps; ++r) {
+    t = Triangulation3d{};  // (the last run's result freed before the clock: not this call's work)
     const auto t0 = clk::now();
     t = delaunay3d(pts, o);
     ms.push_back(ms_since(t0));

@@ -17,8 +17,8 @@
 // so only the slots differ, and the output's order does not follow them (finish.inl).
 //
 // The threads: each holds the tetrahedra it reads for a cavity by a lock word per slot (a
-// compare-and-swap from -1 to its number; never waited for). A thread locks the tetrahedron its
-// walk ended on, then every neighbour it tests while growing the cavity (the cavity's and those
+// compare-and-swap from 0 to its number plus one; never waited for). A thread locks the tetrahedron
+// its walk ended on, then every neighbour it tests while growing the cavity (the cavity's and those
 // beyond its boundary, whose neighbour words it rewrites), and reads each record after locking
 // it, so the tests read settled records: a record is written only by the thread that holds it
 // or, in a new slot of its range, before any record names it (new slots are written first), and
@@ -53,7 +53,7 @@ struct TetInserter {
   bool full = false;                // an insertion needed more slots than it may take
   std::uint32_t rng = 2463534242u;
   std::int32_t last = -1;        // a slot made by the last insertion: the next walk starts there
-  std::int32_t* lock = nullptr;  // per slot: the thread that holds it, -1: none (threads only)
+  std::int32_t* lock = nullptr;  // per slot: 1 + the part that holds it, 0: none (threads only)
   std::vector<std::int32_t> cav;
   std::vector<Tet> held;  // the cavity's tetrahedra as read (their records are settled)
   // The slots this insertion has read, each with what it was found to be: open addressing
@@ -100,15 +100,15 @@ struct TetInserter {
   std::vector<std::int32_t> holding;  // threads: the slots this thread holds
   bool hold(std::int32_t s) {         // a tetrahedron not yet seen locked; false: another's
     cuda::atomic_ref<std::int32_t, cuda::thread_scope_system> r(lock[s]);
-    std::int32_t free = -1;
-    if (!r.compare_exchange_strong(free, own, cuda::memory_order_acquire,
+    std::int32_t free = 0;
+    if (!r.compare_exchange_strong(free, own + 1, cuda::memory_order_acquire,
                                    cuda::memory_order_relaxed))
       return false;
     holding.push_back(s);
     return true;
   }
   void let_go() {  // (after every write, so a thread that locks a slot next reads them)
-    for (const std::int32_t s : holding) mesh::cavities::store_word(lock + s, -1);
+    for (const std::int32_t s : holding) mesh::cavities::store_word(lock + s, 0);
     holding.clear();
   }
   struct Face {
@@ -393,8 +393,12 @@ void Triangulator::insert_by_cavities(E& ex) {
       std::vector<std::int32_t> start;      // per chunk: where its thread's walks begin
       std::vector<std::int64_t> next, end;  // per chunk: its range of slots
       std::vector<std::vector<std::int32_t>> freed;
-      std::vector<std::int32_t> locks;  // per slot, while threads run (TetInserter::hold)
       Clock::time_point t0 = Clock::now();
+      // Per slot, while threads run (TetInserter::hold), 0 where free: fresh zeroed pages, faulted
+      // in by the threads that lock them. (Filled with -1 by one thread, as they were, they took
+      // 20 ms of a 10^6-point run on 16 threads, and 200 ms at 10^7.)
+      std::unique_ptr<std::int32_t, void (*)(void*)> locks{nullptr, std::free};
+      std::size_t lock_slots = 0;
       bool skip(std::int32_t q) const { return one.is_first(q); }
       void chunks(std::int64_t n, std::int64_t c) {
         nc = n, chunk = c;
@@ -500,13 +504,21 @@ void Triangulator::insert_by_cavities(E& ex) {
             if (holds_chunk(probe, std::int32_t(t), c)) s = std::int32_t(t);
         }
         T.reserve(at + 1024);
-        if (locks.size() < std::size_t(T.cap_)) locks.resize(std::size_t(T.cap_), -1);
+        if (lock_slots < std::size_t(T.cap_)) {  // (every lock is free between the stages)
+          locks.reset();
+          lock_slots = std::size_t(T.cap_);
+          locks.reset(static_cast<std::int32_t*>(std::calloc(lock_slots, sizeof(std::int32_t))));
+          if (!locks)
+            throw Error(ErrorCode::OutOfMemory, "host allocation of " +
+                                                    std::to_string(lock_slots * 4) +
+                                                    " bytes for the threads' locks failed");
+        }
         one.tet = T.tet_.data();
         one.next = at, one.end = T.cap_;
       }
       void enter(TetInserter& I, std::int64_t c) {
         I.tet = T.tet_.data();
-        I.lock = locks.data();
+        I.lock = locks.get();
         I.next = next[std::size_t(c)], I.end = end[std::size_t(c)];
         I.own_first = I.next;
         I.before_ranges = next.front();
@@ -519,9 +531,9 @@ void Triangulator::insert_by_cavities(E& ex) {
         freed[std::size_t(c)] = std::move(I.freed);
         start[std::size_t(c)] = I.last;
       }
-      void threads_done(std::int64_t waiting) {  // (their freed slots to the one thread)
+      void threads_done(std::int64_t inserted) {  // (their freed slots to the one thread)
         for (auto& f : freed) one.freed.insert(one.freed.end(), f.begin(), f.end());
-        done = m - waiting;  // (the threads inserted all others)
+        done += inserted;
       }
       void mark(const char* what) {
         T.st_.phase_ms.push_back({std::string("insert_flip.") + what, ms_since(t0)});
@@ -530,10 +542,11 @@ void Triangulator::insert_by_cavities(E& ex) {
         t0 = Clock::now();
       }
     };
-    Hooks h{*this, one, m, 1, 0, {}, {}, {}, {}, {}, Clock::now()};
+    Hooks h{*this, one, m, 1, 0, {}, {}, {}, {}, Clock::now()};
     deferred_ = mesh::cavities::insert_by_chunks(
         ex, m, loc_.data(), one, h, mesh::cavities::locking_sample_level(m, ex.team_size()),
-        mesh::cavities::kLockingPartsPerThread);
+        mesh::cavities::kLockingPartsPerThread,
+        mesh::cavities::alone_sample_level(m, ex.team_size()));
     cavity_insertions_ = m - 4;
     Counters c = counters();
     c.used = one.next;
