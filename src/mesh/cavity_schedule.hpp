@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <cuda/atomic>
@@ -101,6 +102,109 @@ void order_by_level(std::int32_t lo, std::int32_t hi, Skip skip, std::int32_t* o
     if (!skip(q)) order[at[level_of(q)]++] = q;
 }
 
+// How the schedule runs (insert_by_chunks). The defaults are for a module whose threads may
+// change only their own chunk's simplices (2D); locking_schedule gives a locking module's (3D).
+struct Schedule {
+  int sample_level = kSampleLevel;  // the sample: the levels from this one up
+  int parts_per_thread = 1;         // the chunks of the curve, per thread
+  int alone_level = 0;  // the sample's levels from this one up on one thread, the rest by threads
+  // The threads lock what they change (3D): a thread with no part left splits off the back half
+  // of the part with most points left (PartPoints), and a part's waiting points are tried again
+  // when its own are done.
+  bool locks = false;
+};
+// Parts with fewer points left than this are not split (a split part's thread walks to its
+// points from afar once, and its slots' range has a floor).
+constexpr std::int64_t kMinSplit = 128;
+// Parts split off in a stage, at most, per thread.
+constexpr std::int64_t kSplitsPerThread = 4;
+inline Schedule locking_schedule(std::int64_t m, int threads) {
+  Schedule s;
+  s.sample_level = locking_sample_level(m, threads);
+  s.parts_per_thread = kLockingPartsPerThread;
+  s.alone_level = alone_sample_level(m, threads);
+  s.locks = true;
+  return s;
+}
+
+// The points of the parts the threads take, and what is left of each. A part's points are taken
+// one at a time from its front; where the module allows it (its threads lock what they change),
+// a thread with no part left to take splits off the back half of the part with the most points
+// left and inserts those. The parts' costs differ (3D grid, 10^6 points on 16 threads: 160-420 ms,
+// the heaviest along the hull's planes, whose points are mostly ties), and without splitting the
+// stage ran 28 % past the parts' mean load per thread (the last parts taken were heavy ones).
+// The back half lies apart on the curve from where the part's own thread works, so the two
+// meet only at one border.
+struct PartPoints {
+  struct Span {
+    const std::int32_t* at = nullptr;
+    std::int64_t n = 0;
+    std::int64_t root = -1;  // the given part its points come from (-1: none yet)
+  };
+  std::vector<Span> span;  // per part, then the parts split off (up to `cap` in all)
+  std::unique_ptr<std::atomic<std::uint64_t>[]> left;  // per part: next << 32 | end
+  std::atomic<std::int64_t> made;                      // parts so far (given and split off)
+  std::int64_t cap;
+  PartPoints(std::vector<Span> given, std::int64_t cap_)
+      : span(std::move(given)),
+        left(new std::atomic<std::uint64_t>[std::size_t(cap_)]),
+        made(std::int64_t(span.size())),
+        cap(cap_) {
+    for (std::int64_t c = 0; c < cap; ++c)
+      left[c].store(c < made ? std::uint64_t(span[std::size_t(c)].n) : 0,
+                    std::memory_order_relaxed);
+    for (std::size_t c = 0; c < span.size(); ++c) span[c].root = std::int64_t(c);
+    span.resize(std::size_t(cap));
+  }
+  // The next point of part c (an index into its span), or -1 where none is left.
+  std::int64_t take(std::int64_t c) {
+    std::uint64_t x = left[c].load(std::memory_order_relaxed);
+    for (;;) {
+      const std::uint64_t next = x >> 32, end = x & 0xffffffffu;
+      if (next >= end) return -1;
+      if (left[c].compare_exchange_weak(x, x + (std::uint64_t(1) << 32), std::memory_order_acq_rel,
+                                        std::memory_order_relaxed))
+        return std::int64_t(next);
+    }
+  }
+  // Splits off the back half of the part with the most points left, if at least min_left:
+  // the new part's number (perhaps with no points, where the others took them first), or -1.
+  // room(id, root, n): the module readies the new part's inserter for up to n points of given
+  // part root's (false: it has no room, and nothing is split).
+  template <class Room>
+  std::int64_t split_off(std::int64_t min_left, Room room) {
+    std::int64_t best = -1, most = min_left;
+    const std::int64_t k = std::min(made.load(std::memory_order_acquire), cap);
+    for (std::int64_t c = 0; c < k; ++c) {
+      const std::uint64_t x = left[c].load(std::memory_order_acquire);  // (then its span)
+      const std::int64_t n = std::int64_t(x & 0xffffffffu) - std::int64_t(x >> 32);
+      if (n > most) best = c, most = n;
+    }
+    if (best < 0) return -1;
+    const std::int64_t id = made.fetch_add(1, std::memory_order_acq_rel);
+    const std::int64_t root = span[std::size_t(best)].root;
+    if (id >= cap || !room(id, root, most / 2 + 1)) return -1;
+    std::uint64_t x = left[best].load(std::memory_order_relaxed);
+    std::uint64_t mid = 0, end = 0;
+    for (;;) {  // (the part's points left only shrink, so no more than most / 2 + 1 are taken)
+      const std::uint64_t next = x >> 32;
+      end = x & 0xffffffffu;
+      if (end < next + std::uint64_t(min_left)) {
+        mid = end;
+        break;
+      }
+      mid = next + (end - next) / 2;
+      if (left[best].compare_exchange_weak(x, (next << 32) | mid, std::memory_order_acq_rel,
+                                           std::memory_order_relaxed))
+        break;
+    }
+    const Span& b = span[std::size_t(best)];
+    span[std::size_t(id)] = Span{b.at + mid, std::int64_t(end - mid), root};
+    left[id].store(end - mid, std::memory_order_release);
+    return id;
+  }
+};
+
 // The chunks' schedule over m points (curve positions), on ex's team (CPU). order: m entries of
 // scratch. one: the inserter for one thread alone; each chunk's thread gets a copy of it with
 // its part (fields chunk, own, rng, again; bool insert(q): false having changed nothing where
@@ -111,20 +215,22 @@ void order_by_level(std::int32_t lo, std::int32_t hi, Skip skip, std::int32_t* o
 //   chunks(nc, chunk): the chunks are [c * chunk, (c + 1) * chunk) for c < nc (1 where the
 //     threads do not pay: one thread inserts all), before any insertion;
 //   put(I, c, q): one thread alone inserts q for chunk c (it must go in);
-//   threads_begin(points, split) / threads_done(k): before and after the threads (one thread;
-//     points[c]: how many part c's thread may insert; split: an inserter that knows the parts;
-//     k points went in, the others given wait);
+//   threads_begin(points, split, most) / threads_done(k): before and after the threads (one
+//     thread; points[c]: how many part c's thread may insert; split: an inserter that knows the
+//     parts; most: the parts given and split off are numbered below it; k points went in, the
+//     others given wait);
 //   split(r, parts, I, waiting): round r's parts, set in I (I.owner(v) < parts); false: no
 //     more rounds (2D: its slots follow each point's chunk of the curve);
 //   enter(I, c) / leave(I, c): chunk c's thread begins with / ends with its inserter I;
+//   enter_split(I, id, root, n): (where parts are split) part id, split off given part root's
+//     points, begins with I, for up to n points; false: no room for it (leave(I, id) follows);
 //   mark(what): a profile mark.
 // Returns how many points waited.
-// alone_level (a module whose threads lock what they change): the sample's levels from it up
-// go in on one thread, those below it by the threads, chunk by chunk, before the rest.
 template <class E, class Ins, class Hooks>
 std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& one, Hooks& h,
-                              int sample_level = kSampleLevel, int parts_per_thread = 1,
-                              int alone_level = 0) {
+                              const Schedule& how = Schedule{}) {
+  const int sample_level = how.sample_level, parts_per_thread = how.parts_per_thread;
+  const int alone_level = how.alone_level;
   const int nt = ex.team_size();
   const std::int64_t nc = nt <= 1 || m < 64 * std::int64_t(1 << kSampleLevel) * nt
                               ? 1
@@ -148,7 +254,8 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
   // consecutive ones, taken in the order: every share's first part, then every share's second,
   // and so on, so that the parts running at one time lie apart on the curve (parts next to each
   // other in space wait for each other's tetrahedra).
-  auto each_part_as_free = [&](std::int64_t parts, auto f) {
+  // Each thread then runs `then` (once no part is left to take).
+  auto each_part_as_free = [&](std::int64_t parts, auto f, auto then) {
     const std::int64_t shares = std::min<std::int64_t>(parts, nt);
     const std::int64_t per = (parts + shares - 1) / shares;
     std::atomic<std::int64_t> taken{0};
@@ -157,6 +264,7 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
         const std::int64_t c = (i % shares) * per + i / shares;
         if (c < parts) f(c);
       }
+      then();
     });
   };
   each_chunk([&](std::int64_t c) {
@@ -184,22 +292,73 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
     for (std::int64_t c = 0; c < nc; ++c) level(c, l, [&](std::int32_t q) { h.put(one, c, q); });
   h.mark("sample");
   if (nc == 1) return 0;
-  // The threads, each over its part's points (pts(c, f): f for each, in order), its inserter a
-  // copy of `split` (which knows the parts: Ins::owner); those that must wait go to wait[c].
-  auto threads = [&](std::int64_t parts, const Ins& split, std::int32_t again, auto pts,
+  // The threads, each over its part's points (spans[c], in order), its inserter a copy of
+  // `split` (which knows the parts: Ins::owner); those that must wait go to wait[c]. Where parts
+  // are split, a part split off is numbered from `parts` on, and its waiting points join those
+  // of the given part its points came from.
+  auto most_parts = [&](std::int64_t parts) {
+    return how.locks ? parts + kSplitsPerThread * nt : parts;
+  };
+  auto threads = [&](std::int64_t parts, const Ins& split, std::int32_t again,
+                     std::vector<PartPoints::Span> spans,
                      std::vector<std::vector<std::int32_t>>& wait) {
-    wait.assign(std::size_t(parts), {});
-    each_part_as_free(parts, [&](std::int64_t c) {
-      Ins mine = split;
+    const std::int64_t cap = most_parts(parts);
+    PartPoints P(std::move(spans), cap);
+    wait.assign(std::size_t(cap), {});
+    auto ready = [&](Ins& mine, std::int64_t c) {
+      mine = split;
       mine.own = std::int32_t(c), mine.again = again;
       mine.rng += std::uint32_t(c + again);
-      h.enter(mine, c);
+    };
+    auto insert_part = [&](Ins& mine, std::int64_t c) {
       std::vector<std::int32_t>& w = wait[std::size_t(c)];
-      pts(c, [&](std::int32_t q) {
-        if (!mine.insert(q)) w.push_back(q);
-      });
+      const std::int32_t* at = P.span[std::size_t(c)].at;
+      if (how.locks) {
+        for (std::int64_t i; (i = P.take(c)) >= 0;)
+          if (!mine.insert(at[i])) w.push_back(at[i]);
+        // (a point waits where another thread held what its cavity needed at that moment; by
+        // now that thread mostly works elsewhere: 3D uniform 10^6 on 16 threads, 440-800 points
+        // were left to wait, now 0-3; on a grid 1 500-3 000, now 90-420, mostly on the hull's
+        // planes, whose cavities are large)
+        std::size_t kept = 0;
+        for (const std::int32_t q : w)
+          if (!mine.insert(q)) w[kept++] = q;
+        w.resize(kept);
+      } else {  // (nothing is split: the part's thread alone takes its points)
+        for (std::int64_t i = 0; i < P.span[std::size_t(c)].n; ++i)
+          if (!mine.insert(at[i])) w.push_back(at[i]);
+      }
       h.leave(mine, c);
-    });
+    };
+    each_part_as_free(
+        parts,
+        [&](std::int64_t c) {
+          Ins mine = split;
+          ready(mine, c);
+          h.enter(mine, c);
+          insert_part(mine, c);
+        },
+        [&] {
+          if (!how.locks) return;
+          for (;;) {
+            Ins mine = split;
+            const std::int64_t id =
+                P.split_off(kMinSplit, [&](std::int64_t c, std::int64_t root, std::int64_t n) {
+                  ready(mine, c);
+                  return h.enter_split(mine, c, root, n);
+                });
+            if (id < 0) break;
+            insert_part(mine, id);
+          }
+        });
+    const std::int64_t made = std::min(P.made.load(), cap);
+    for (std::int64_t c = parts; c < made; ++c) {
+      if (P.span[std::size_t(c)].root < 0) continue;  // (numbered, but no room was found for it)
+      std::vector<std::int32_t>& to = wait[std::size_t(P.span[std::size_t(c)].root)];
+      const std::vector<std::int32_t>& w = wait[std::size_t(c)];
+      to.insert(to.end(), w.begin(), w.end());
+    }
+    wait.resize(std::size_t(parts));
     std::int64_t n = 0;
     for (const auto& x : wait) n += std::int64_t(x.size());
     return n;
@@ -214,13 +373,11 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
     for (std::int64_t c = 0; c < nc; ++c)
       for (int l = hi - 1; l >= lo; --l) sizes[std::size_t(c)] += counts[c * kLevels + l];
     for (const std::int64_t k : sizes) given += k;
-    h.threads_begin(sizes, split);
-    const std::int64_t w = threads(
-        nc, split, 0,
-        [&](std::int64_t c, auto f) {
-          for (int l = hi - 1; l >= lo; --l) level(c, l, f);
-        },
-        waiting);
+    h.threads_begin(sizes, split, most_parts(std::int64_t(sizes.size())));
+    std::vector<PartPoints::Span> spans(static_cast<std::size_t>(nc));
+    for (std::int64_t c = 0; c < nc; ++c)  // (a chunk's levels lie in order, highest first)
+      spans[std::size_t(c)] = {order + begin[c * kLevels + hi - 1], sizes[std::size_t(c)]};
+    const std::int64_t w = threads(nc, split, 0, std::move(spans), waiting);
     h.threads_done(given - w);
     return w;
   };
@@ -259,14 +416,12 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
       std::sort(by_owner[std::size_t(c)].begin(), by_owner[std::size_t(c)].end());
       sizes[std::size_t(c)] = std::int64_t(by_owner[std::size_t(c)].size());
     }
-    h.threads_begin(sizes, split);
+    h.threads_begin(sizes, split, most_parts(std::int64_t(sizes.size())));
     const std::int64_t given = waited;
-    waited = threads(
-        parts, split, again,
-        [&](std::int64_t c, auto f) {
-          for (const std::int32_t q : by_owner[std::size_t(c)]) f(q);
-        },
-        waiting);
+    std::vector<PartPoints::Span> spans(static_cast<std::size_t>(parts));
+    for (std::int64_t c = 0; c < parts; ++c)
+      spans[std::size_t(c)] = {by_owner[std::size_t(c)].data(), sizes[std::size_t(c)]};
+    waited = threads(parts, split, again, std::move(spans), waiting);
     h.threads_done(given - waited);
     h.mark("rounds");
     again += m;

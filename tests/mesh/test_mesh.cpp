@@ -10,6 +10,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <thread>
 #include <unordered_set>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "exec/cpu_exec.hpp"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
+#include "mesh/cavity_schedule.hpp"
 #include "delaunay3d/tet.hpp"
 #include "mesh/compact.hpp"
 #include "mesh/decision.hpp"
@@ -304,4 +306,89 @@ TEST(ScratchSlots, EveryItemOnceOnItsOwnSlot) {
       ex, 100, CountAt{&len, 3}, [&](std::int64_t, double*) { items++; }, [&] { once++; });
   EXPECT_EQ(items.load(), 120);
   EXPECT_EQ(once.load(), 1);
+}
+
+// The parts' points of the CPU cavities' schedule (issue 53): taken from the front, the back
+// half split off for an idle thread; every point is taken once, by the part it was given to or
+// by one split off it.
+TEST(MeshCavitySchedule, SplitTakesTheBackHalfOfThePartWithMostLeft) {
+  std::vector<std::int32_t> pts(1000);
+  for (std::size_t i = 0; i < pts.size(); ++i) pts[i] = std::int32_t(i);
+  using Span = mesh::cavities::PartPoints::Span;
+  mesh::cavities::PartPoints P({Span{pts.data(), 300}, Span{pts.data() + 300, 700}}, 4);
+  for (int k = 0; k < 100; ++k) ASSERT_EQ(P.take(1), k);  // part 1: 600 left, part 0: 300
+  std::int64_t asked = -1, root = -1;
+  auto room = [&](std::int64_t id, std::int64_t r, std::int64_t n) {
+    EXPECT_EQ(id, 2);
+    root = r, asked = n;
+    return true;
+  };
+  ASSERT_EQ(P.split_off(128, room), 2);
+  EXPECT_EQ(root, 1);
+  EXPECT_EQ(asked, 301);  // (room for half of what was left, and one)
+  EXPECT_EQ(P.span[2].at, pts.data() + 300 + 400);
+  EXPECT_EQ(P.span[2].n, 300);
+  EXPECT_EQ(P.span[2].root, 1);
+  for (int k = 0; k < 300; ++k) ASSERT_EQ(P.take(2), k);
+  EXPECT_EQ(P.take(2), -1);
+  for (int k = 100; k < 400; ++k) ASSERT_EQ(P.take(1), k);
+  EXPECT_EQ(P.take(1), -1);  // (its back half went to part 2)
+  // A split off part 0 (its 300 left); one of part 2 would be its root's, part 1's.
+  ASSERT_EQ(P.split_off(128,
+                        [&](std::int64_t, std::int64_t r, std::int64_t) {
+                          EXPECT_EQ(r, 0);
+                          return true;
+                        }),
+            3);
+  // No room: nothing is split. Fewer left than asked: nothing either. No number left: -1.
+  EXPECT_EQ(P.split_off(100, [](std::int64_t, std::int64_t, std::int64_t) { return false; }), -1);
+  EXPECT_EQ(P.left[0].load(), std::uint64_t(150));
+  EXPECT_EQ(P.split_off(151, room), -1);
+  EXPECT_EQ(P.split_off(1, room), -1);  // (4 numbers, all used)
+}
+
+TEST(MeshCavitySchedule, EveryPointTakenOnceWhileThreadsSplit) {
+  constexpr int kThreads = 8, kParts = 5;
+  std::vector<std::int32_t> pts(200000);
+  for (std::size_t i = 0; i < pts.size(); ++i) pts[i] = std::int32_t(i);
+  for (int run = 0; run < 20; ++run) {
+    using Span = mesh::cavities::PartPoints::Span;
+    std::vector<Span> given;
+    std::int64_t at = 0;
+    for (int c = 0; c < kParts; ++c) {  // (uneven parts: the last is the largest)
+      const std::int64_t n = c + 1 < kParts ? 1000 * (c + 1) : std::int64_t(pts.size()) - at;
+      given.push_back(Span{pts.data() + at, n});
+      at += n;
+    }
+    mesh::cavities::PartPoints P(given, kParts + 4 * kThreads);
+    std::vector<std::atomic<int>> hits(pts.size());
+    std::vector<std::atomic<int>> by_root(pts.size());
+    std::atomic<int> next_part{0}, splits{0};
+    auto insert_all = [&](std::int64_t c) {
+      for (std::int64_t i; (i = P.take(c)) >= 0;) {
+        const std::int32_t q = P.span[std::size_t(c)].at[i];
+        hits[std::size_t(q)]++;
+        by_root[std::size_t(q)] = int(P.span[std::size_t(c)].root);
+      }
+    };
+    std::vector<std::thread> team;
+    for (int t = 0; t < kThreads; ++t)
+      team.emplace_back([&] {
+        for (int c; (c = next_part++) < kParts;) insert_all(c);
+        for (std::int64_t id; (id = P.split_off(16, [](std::int64_t, std::int64_t, std::int64_t) {
+                                return true;
+                              })) >= 0;) {
+          splits++;
+          insert_all(id);
+        }
+      });
+    for (auto& t : team) t.join();
+    for (std::size_t q = 0; q < pts.size(); ++q) {
+      ASSERT_EQ(hits[q].load(), 1) << "point " << q << ", run " << run;
+      std::int64_t root = 0, end = 0;
+      while ((end += given[std::size_t(root)].n) <= std::int64_t(q)) ++root;
+      ASSERT_EQ(by_root[q].load(), root) << "point " << q;
+    }
+    EXPECT_LE(splits.load(), 4 * kThreads);
+  }
 }

@@ -221,13 +221,15 @@ bool Triangulator::insert_one_by_one(E& ex) {
         I.last = I.next > starts[std::size_t(c)] ? I.next - 2 : -1;
       }
       void leave(const CavityInserter& I, std::int64_t c) { next[std::size_t(c)] = I.next; }
-      void threads_begin(const std::vector<std::int64_t>&, const CavityInserter&) {}
+      void threads_begin(const std::vector<std::int64_t>&, const CavityInserter&, std::int64_t) {}
       // (no rounds over other parts: each point's slots follow its chunk of the curve)
       bool split(int, std::int64_t, CavityInserter&,
                  const std::vector<std::vector<std::int32_t>>&) {
         return false;
       }
       void threads_done(std::int64_t) {}
+      // (never asked: a part is not split where threads change only their own chunk's triangles)
+      bool enter_split(CavityInserter&, std::int64_t, std::int64_t, std::int64_t) { return false; }
       void mark(const char* what) { T.mark((std::string("one by one: ") + what).c_str()); }
     };
     Hooks h{*this, one, m, {}, {}, {}};
