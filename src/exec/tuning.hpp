@@ -45,6 +45,10 @@ struct Tuning {
     // (points one by one: delaunay3d/impl/one_by_one.inl), as it does where max_flip_rounds is
     // set.
     bool batches = false;
+    // Slots of the room from which the CPU's split parts take their ranges (mesh/
+    // cavity_schedule.hpp, PartPoints), in a stage; -1: a quarter of a slot a point and 1024 a
+    // split part. Tests make it small, so that it runs out.
+    std::int64_t split_room = -1;
   } del3d;
 };
 

@@ -491,9 +491,9 @@ void Triangulator::insert_by_cavities(E& ex) {
         last_axis = I.axis;
         return true;
       }
-      // The parts split off (PartPoints) take their ranges from one room after the parts' (half a
-      // slot a point, while it lasts: 3D on 2-16 threads, 10^6 points, the splits took 0.1-0.37
-      // of a slot a point).
+      // The parts split off (PartPoints) take their ranges from one room after the parts' (a
+      // quarter of a slot a point, while it lasts: 3D on 2-16 threads, 10^6 points, the splits
+      // took 0.1-0.37 of a slot a point, and fewer splits do almost as well).
       std::size_t parts_now = 0;
       std::vector<std::int32_t> start_now;  // start as the stage began (a split part's walks)
       std::atomic<std::int64_t> split_next{0};
@@ -508,7 +508,8 @@ void Triangulator::insert_by_cavities(E& ex) {
         for (std::size_t c = 0; c < parts; ++c)
           next[c] = at, at += 8 * points[c] + 1024, end[c] = at, all += points[c];
         split_next = at;
-        at += all / 2 + 1024 * std::int64_t(cap - parts);
+        const std::int64_t room = T.ex_.tuning().del3d.split_room;
+        at += room >= 0 ? room : all / 4 + 1024 * std::int64_t(cap - parts);
         split_end = at;
         for (std::int64_t c = 0; c < std::int64_t(parts); ++c) {
           std::int32_t& s = start[std::size_t(c)];
@@ -545,7 +546,10 @@ void Triangulator::insert_by_cavities(E& ex) {
       bool enter_split(TetInserter& I, std::int64_t, std::int64_t root, std::int64_t n) {
         const std::int64_t size = 8 * n + 1024;
         const std::int64_t a = split_next.fetch_add(size, std::memory_order_relaxed);
-        if (a + size > split_end) return false;
+        if (a + size > split_end) {  // (the room's end: what this thread was given of it is dead)
+          for (std::int64_t s = a; s < split_end; ++s) T.tet_.data()[s].v[0] = -1;
+          return false;
+        }
         I.tet = T.tet_.data();
         I.lock = locks.get();
         I.next = a, I.end = a + size, I.own_first = a;

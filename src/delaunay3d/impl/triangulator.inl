@@ -56,7 +56,13 @@ class Triangulator : public TetStore {
     Counters zero{};
     ex.from_host(&zero, 1, ctr_.data());
     if (cavities_) {  // (the store at the size the cavities' threads take: one_by_one.inl)
-      grow(std::min(m64 * 17 / 2 + 16384, kMaxSlots));
+      // (8 slots a point in the parts' ranges, a quarter in the split parts' room, and 1024 for
+      // each part and split part of the sample's stage and the rest's)
+      const std::int64_t parts = mesh::cavities::kLockingPartsPerThread +
+                                 mesh::cavities::kSplitsPerThread;  // (a thread's, a stage)
+      std::int64_t threads = 1;
+      if constexpr (Exec::backend == Backend::Cpu) threads = ex.team_size();
+      grow(std::min(m64 * 17 / 2 + 16384 + 2 * 1024 * parts * threads, kMaxSlots));
       return;
     }
     un_ = ex.template alloc<std::int32_t>(n);
