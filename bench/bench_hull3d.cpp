@@ -11,12 +11,14 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "bench_csv.hpp"
+#include "exec/tuning.hpp"
 #include "device_timing.hpp"
 #include "gpugeom/generate.hpp"
 #include "gpugeom/hull3d.hpp"
@@ -77,7 +79,7 @@ int main(int argc, char** argv) {
               methods = "incremental";
   int reps = 3;
   std::int64_t cgal_max = 0;
-  bool check = false, presort = false;
+  bool check = false, presort = false, rounds = false;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -101,24 +103,33 @@ int main(int argc, char** argv) {
       methods = next();
     else if (a == "--presort" && next() == "hilbert")
       presort = true;
+    else if (a == "--rounds")  // the CPU rows also with the GPU's schedule (the rounds): "cpu-r"
+      rounds = true;
     else {
       std::cout << "usage: gpugeom_bench_hull3d [--dists ball,uniform,thin_box,thin_sphere,sphere,"
                    "scal:10000] [--sizes 1e6,1e7] [--backend cpu|cuda|all] [--reps 3] [--cgal "
                    "MAX_N] [--check] [--csv FILE] [--save DIR] [--presort hilbert] [--methods "
-                   "incremental,digital]\n";
+                   "incremental,digital] [--rounds]\n";
       return a == "--help" ? 0 : 2;
     }
   }
   struct Config {
     Backend b;
     Method m;
+    bool rounds = false;  // the CPU executor on the GPU's schedule
+    std::string bk() const { return std::string(backend_name(b)) + (rounds ? "-r" : ""); }
   };
   std::vector<Config> cfgs;
   for (Backend b : bench::backends(backends)) {
     std::stringstream ms(methods);
     for (std::string m; std::getline(ms, m, ',');)
-      if (!m.empty()) cfgs.push_back({b, parse_method(m)});
+      if (!m.empty()) {
+        cfgs.push_back({b, parse_method(m)});
+        if (rounds && b == Backend::Cpu) cfgs.push_back({b, parse_method(m), true});
+      }
   }
+  auto tuned_rounds = std::make_shared<detail::Tuning>();
+  tuned_rounds->hull3d.rounds = true;
   const std::string gpu = query_device().available ? query_device().name : "none";
   std::printf("GPU: %s\n", gpu.c_str());
   std::ofstream f = bench::open_bench_csv(csv);
@@ -167,6 +178,7 @@ int main(int argc, char** argv) {
         Hull3dOptions o;
         o.backend = b;
         o.method = cfg.m;
+        if (cfg.rounds) o.tuning = tuned_rounds;
         Timed x;
         x.r = convex_hull3d(pts, o);  // warm-up
         for (int k = 0; k < reps; ++k) {
@@ -197,7 +209,8 @@ int main(int argc, char** argv) {
                                           : "";
         if (cfgs[bi].m == Method::Digital)
           for (std::size_t bj = 0; bj < cfgs.size(); ++bj)
-            if (cfgs[bj].b == b && cfgs[bj].m == Method::Incremental)
+            if (cfgs[bj].b == b && cfgs[bj].rounds == cfgs[bi].rounds &&
+                cfgs[bj].m == Method::Incremental)
               verdict += facets(r) == facets(timed[bj].r) ? " same facets as incremental"
                                                           : " FACETS DIFFER FROM INCREMENTAL";
         if (check) {
@@ -208,7 +221,7 @@ int main(int argc, char** argv) {
         const double dev = timed[bi].dev;
         std::printf("%-18s %10lld %-5s %9.1f %9.1f %8.1f %9.1f %7.1f %9zu %8lld %9.1f %s\n",
                     (cfgs[bi].m == Method::Digital ? name + " digital" : name).c_str(),
-                    (long long)n, backend_name(b), med, dev,
+                    (long long)n, cfgs[bi].bk().c_str(), med, dev,
                     bench::phase_ms(r.stats, "upload") + bench::phase_ms(r.stats, "copy_back"),
                     bench::phase_ms(r.stats, "construct"), bench::phase_ms(r.stats, "flip"),
                     r.vertices.size(), (long long)(r.stats.insert_rounds + r.stats.flip_rounds), cg,
@@ -227,7 +240,7 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
         if (f)
           f << "hull3d," << (cfgs[bi].m == Method::Digital ? name + "+digital" : name) << "," << n
-            << "," << backend_name(b) << "," << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med
+            << "," << cfgs[bi].bk() << "," << (b == Backend::Cuda ? gpu : "cpu") << ",0," << med
             << ",0," << (dev > 0 ? dev : 0) << "," << med << ","
             << double(r.stats.exact_predicates) / std::max<double>(1, n) << "\n";
       }

@@ -83,6 +83,10 @@ struct Hull3dStats : RunStats {
   /// points outside it), the inserted points outside the old hull, and the removed points that
   /// were vertices.
   std::int64_t hull_candidates = 0, outside_points = 0, removed_vertices = 0;
+  /// The CPU executor's own schedule: points inserted one by one (each by its cavity; those
+  /// found inside the hull so far are dropped, not counted), and of them those a thread left to
+  /// the end because their cavity reached another thread's part of the hull.
+  std::int64_t cavity_insertions = 0, deferred_points = 0;
 
   std::map<std::string, std::int64_t> counter_map() const override;
 };

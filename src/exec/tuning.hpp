@@ -35,6 +35,9 @@ struct Tuning {
     // The facet store's first size in slots (0: the rule's, hull3d::first_facet_slots), so that
     // small hulls grow the store.
     std::int64_t first_facet_slots = 0;
+    // The CPU executor runs the rounds (the GPU's schedule: splits, then Flip-Flop) rather than
+    // its own (points one by one: hull3d/impl/one_by_one.inl).
+    bool rounds = false;
   } hull3d;
   struct Del3d {
     // At most this many flip rounds after each insertion batch (-1: until no flip is left), so

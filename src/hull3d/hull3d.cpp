@@ -30,7 +30,7 @@ constexpr std::int64_t kMaxPoints = std::int64_t(INT32_MAX) - 1;
   X(flips31) X(labelled_nonextreme) X(exact_predicates) X(first_pass_vertices)                  \
   X(nonextreme_vertices_dropped) X(digital_grid) X(digital_render) X(sketch_points)             \
   X(sketch_facets) X(depth_kept) X(hull_input) X(digital_fallback) X(hull_candidates)           \
-  X(outside_points) X(removed_vertices)
+  X(outside_points) X(removed_vertices) X(cavity_insertions) X(deferred_points)
 // clang-format on
 GG_COUNTER_MAP(Hull3dStats, GG_HULL3D_COUNTERS);
 #undef GG_HULL3D_COUNTERS

@@ -46,20 +46,53 @@ TEST(Hull3d, Degenerate) {
 
 // The facet store grows with the hull (issue 23: the slots are no longer 2n up front). Forced to
 // start at 8 slots it grows many times on every input, and the arrays are the same as with the
-// default start (the growth keeps the slots, so the rounds run slot for slot alike).
+// default start. The store is the rounds' (the CPU executor's own schedule sizes its slots from
+// the points), so the rounds run here, and their arrays are the CPU schedule's too.
 TEST(Hull3d, GrowingFacetStoreGivesTheSameHull) {
   std::vector<gg_hull3d::Case> cases = gg_hull3d::degenerate_cases();
   for (auto& c : gg_hull3d::distribution_cases({100, 20000}, 5)) cases.push_back(std::move(c));
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
     const auto ref = convex_hull3d(c.pts, cpu());
-    const auto r = convex_hull3d(
-        c.pts, gg_test::tuned(cpu(), [](detail::Tuning& t) { t.hull3d.first_facet_slots = 8; }));
+    const auto r = convex_hull3d(c.pts, gg_test::tuned(cpu(), [](detail::Tuning& t) {
+                                   t.hull3d.rounds = true;
+                                   t.hull3d.first_facet_slots = 8;
+                                 }));
     expect_valid(c.pts, r);
     EXPECT_EQ(r.triangles, ref.triangles);
     EXPECT_EQ(r.neighbors, ref.neighbors);
     EXPECT_EQ(r.vertices, ref.vertices);
     if (c.pts.size() > 100) EXPECT_GT(r.stats.facet_store_grown, 0);
+  }
+}
+
+// The CPU executor's own schedule (points one by one by their cavities, the threads over chunks
+// of the curve: hull3d/impl/one_by_one.inl) gives the rounds' arrays (the GPU's schedule, run
+// here on the CPU executor), on every distribution and degenerate input, on 1, 2, 3 and 8
+// threads: at 40 000 points the threads take chunks (and some points wait for the end); the
+// small cases run on one thread alone whatever the count.
+TEST(Hull3d, BothSchedulesGiveTheSameArrays) {
+  std::vector<gg_hull3d::Case> cases = gg_hull3d::degenerate_cases();
+  for (auto& c : gg_hull3d::distribution_cases({5, 1000, 40000}, 23)) cases.push_back(std::move(c));
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    Hull3dOptions o = gg_test::tuned(cpu(), [](detail::Tuning& t) { t.hull3d.rounds = true; });
+    o.threads = 2;
+    const auto ref = convex_hull3d(c.pts, o);
+    EXPECT_EQ(ref.stats.cavity_insertions, 0);
+    for (int t : {1, 2, 3, 8}) {
+      Hull3dOptions one = cpu();
+      one.threads = t;
+      const auto r = convex_hull3d(c.pts, one);
+      SCOPED_TRACE(std::to_string(t) + " threads");
+      expect_valid(c.pts, r);
+      EXPECT_EQ(r.triangles, ref.triangles);
+      EXPECT_EQ(r.neighbors, ref.neighbors);
+      EXPECT_EQ(r.vertices, ref.vertices);
+      EXPECT_EQ(r.equations, ref.equations);
+      EXPECT_EQ(r.stats.flips22 + r.stats.insert_rounds, 0);
+      EXPECT_GE(r.stats.cavity_insertions, r.stats.first_pass_vertices - 4);
+    }
   }
 }
 
@@ -176,7 +209,7 @@ TEST(Hull3d, StatsAreNamedFields) {
   EXPECT_EQ(s.duplicates, 1);
   EXPECT_EQ(s.first_pass_vertices - s.nonextreme_vertices_dropped, 8);
   EXPECT_EQ(s.passes, s.nonextreme_vertices_dropped ? 2 : 1);
-  EXPECT_GT(s.insert_rounds, 0);
+  EXPECT_GT(s.cavity_insertions, 0);  // (the CPU executor's own schedule)
   EXPECT_EQ(s.device_peak_bytes, 0);  // (the CPU executor)
   const std::pair<const char*, std::int64_t Hull3dStats::*> fields[] = {
       {"duplicates", &Hull3dStats::duplicates},
@@ -199,7 +232,9 @@ TEST(Hull3d, StatsAreNamedFields) {
       {"digital_fallback", &Hull3dStats::digital_fallback},
       {"hull_candidates", &Hull3dStats::hull_candidates},
       {"outside_points", &Hull3dStats::outside_points},
-      {"removed_vertices", &Hull3dStats::removed_vertices}};
+      {"removed_vertices", &Hull3dStats::removed_vertices},
+      {"cavity_insertions", &Hull3dStats::cavity_insertions},
+      {"deferred_points", &Hull3dStats::deferred_points}};
   const auto m = s.counter_map();
   EXPECT_EQ(m.size(), std::size(fields));
   for (const auto& [name, field] : fields) {

@@ -12,11 +12,16 @@
 
 using Facets = mesh::Compacted<Exec>;
 
-// The surface as the output step reads it: every facet not removed.
+// The surface as the output step reads it: every facet not removed, named by its vertices'
+// curve positions (the points are in curve order) for the output's order.
 struct LiveFacets {
   const std::int32_t* tv;
   const std::int32_t* to;
   GG_HD bool live(std::int64_t f) const { return tv[3 * f] >= 0; }
+  GG_HD void prefetch(std::int64_t f) const { prefetch_on_host(tv + 3 * f); }
+  GG_HD void order_names(std::int64_t f, std::int32_t* w) const {
+    for (int k = 0; k < 3; ++k) w[k] = tv[3 * f + k];
+  }
   GG_HD mesh::SimplexRecord<3> get(std::int64_t f) const {
     mesh::SimplexRecord<3> r;
     for (int k = 0; k < 3; ++k) r.v[k] = tv[3 * f + k], r.n[k] = mesh::simplex_of(to[3 * f + k]);
@@ -24,9 +29,13 @@ struct LiveFacets {
   }
 };
 
-// Live facets of the final surface, renumbered, with neighbours among them.
-inline Facets compact(PassState& S) {
-  return mesh::compact_live<3>(S.ex, S.used, LiveFacets{S.tv.data(), S.to.data()});
+// Live facets of the final surface, renumbered, with neighbours among them, in one order that
+// depends on the facets alone (mesh/compact.hpp: each turned to start at its vertex first on the
+// curve, sorted by their first two vertices): the slots follow the schedule, the rounds' on
+// either executor or the CPU's points one by one, and the output must not.
+inline Facets compact(Exec& ex, std::int64_t used, const std::int32_t* tv, const std::int32_t* to,
+                      std::int64_t n) {
+  return mesh::compact_live_sorted<3>(ex, used, LiveFacets{tv, to}, n);
 }
 
 // n_input: the caller's point count, for messages.
@@ -36,6 +45,17 @@ inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Hull3dStats&
   const Tetra t = first_tetrahedron(ex, pts, n, n_input);
   st.phase_ms.emplace_back("prepare", ms_since(t0));
   t0 = Clock::now();
+  if constexpr (Exec::backend == Backend::Cpu) {
+    if (!ex.tuning().hull3d.rounds) {  // the CPU's own schedule (one_by_one.inl)
+      typename Exec::template Buffer<std::int32_t> tv, to;
+      const std::int64_t used = insert_one_by_one(ex, pts, n, t, tv, to, st);
+      st.phase_ms.emplace_back("insert", ms_since(t0));
+      t0 = Clock::now();
+      Facets out = compact(ex, used, tv.data(), to.data(), n);
+      st.phase_ms.emplace_back("output", ms_since(t0));
+      return out;
+    }
+  }
   PassState S(ex, pts, n, t.s, st);
   {
     Constructor C(S, t);
@@ -48,7 +68,7 @@ inline Facets one_pass(Exec& ex, const double* pts, std::int64_t n, Hull3dStats&
     FlipFlop F(S);
     F.run();
   }
-  Facets out = compact(S);
+  Facets out = compact(ex, S.used, S.tv.data(), S.to.data(), n);
   ex.sync();
   st.phase_ms.emplace_back("flip", ms_since(t0));
   st.exact_predicates += S.counters().exact_all;

@@ -2,6 +2,7 @@
 // header, by each executor's unit (hull3d_cpu.cpp, hull3d_cuda.cu).
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <chrono>
 #include <cstdint>
@@ -20,6 +21,7 @@
 #include "hull3d/hull3d_backend.hpp"
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
+#include "mesh/cavity_schedule.hpp"
 #include "mesh/compact.hpp"
 #include "mesh/decision.hpp"
 #include "mesh/flip_fix.hpp"

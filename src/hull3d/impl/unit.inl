@@ -5,6 +5,7 @@
 #include "hull3d/impl/surface.inl"
 #include "hull3d/impl/construct.inl"
 #include "hull3d/impl/flipflop.inl"
+#include "hull3d/impl/one_by_one.inl"
 #include "hull3d/impl/hull.inl"
 #include "hull3d/digital/impl/digital.inl"
 #include "hull3d/impl/dynamic.inl"
