@@ -205,6 +205,20 @@ struct PartPoints {
   }
 };
 
+// The hooks a module whose threads may change only their own chunk's simplices (2D, the hull)
+// has no use for: nothing to ready around the threads, no rounds over other parts (each point's
+// slots follow its chunk of the curve), and no split parts (insert_by_chunks splits none where
+// the schedule does not lock: enter_split is never asked).
+template <class Ins>
+struct OwnChunkHooks {
+  void threads_begin(const std::vector<std::int64_t>&, const Ins&, std::int64_t) {}
+  bool split(int, std::int64_t, Ins&, const std::vector<std::vector<std::int32_t>>&) {
+    return false;
+  }
+  void threads_done(std::int64_t) {}
+  bool enter_split(Ins&, std::int64_t, std::int64_t, std::int64_t) { return false; }
+};
+
 // The chunks' schedule over m points (curve positions), on ex's team (CPU). order: m entries of
 // scratch. one: the inserter for one thread alone; each chunk's thread gets a copy of it with
 // its part (fields chunk, own, rng, again; bool insert(q): false having changed nothing where

@@ -195,7 +195,7 @@ bool Triangulator::insert_one_by_one(E& ex) {
     cavity_insertions_ = m - 3;
     ntri_ = tmax_;
     // Each chunk's next free slot (a chunk's points take theirs in the order it inserts).
-    struct Hooks {
+    struct Hooks : mesh::cavities::OwnChunkHooks<CavityInserter> {
       Triangulator& T;
       const CavityInserter& one;
       std::int32_t m;
@@ -221,18 +221,9 @@ bool Triangulator::insert_one_by_one(E& ex) {
         I.last = I.next > starts[std::size_t(c)] ? I.next - 2 : -1;
       }
       void leave(const CavityInserter& I, std::int64_t c) { next[std::size_t(c)] = I.next; }
-      void threads_begin(const std::vector<std::int64_t>&, const CavityInserter&, std::int64_t) {}
-      // (no rounds over other parts: each point's slots follow its chunk of the curve)
-      bool split(int, std::int64_t, CavityInserter&,
-                 const std::vector<std::vector<std::int32_t>>&) {
-        return false;
-      }
-      void threads_done(std::int64_t) {}
-      // (never asked: a part is not split where threads change only their own chunk's triangles)
-      bool enter_split(CavityInserter&, std::int64_t, std::int64_t, std::int64_t) { return false; }
       void mark(const char* what) { T.mark((std::string("one by one: ") + what).c_str()); }
     };
-    Hooks h{*this, one, m, {}, {}, {}};
+    Hooks h{{}, *this, one, m, {}, {}, {}};
     deferred_ = mesh::cavities::insert_by_chunks(ex, m, loc_.data(), one, h);
     for (std::size_t c = 0; c < h.ends.size(); ++c)  // (a bug guard: every slot in use)
       if (h.next[c] != h.ends[c])

@@ -492,7 +492,7 @@ void Triangulator::insert_by_cavities(E& ex) {
         return true;
       }
       // The parts split off (PartPoints) take their ranges from one room after the parts' (a
-      // quarter of a slot a point, while it lasts: 3D on 2-16 threads, 10^6 points, the splits
+      // quarter of a slot a point, while it lasts: 3D on 2 and 4 threads, 10^6 points, the splits
       // took 0.1-0.37 of a slot a point, and fewer splits do almost as well).
       std::size_t parts_now = 0;
       std::vector<std::int32_t> start_now;  // start as the stage began (a split part's walks)
@@ -532,14 +532,21 @@ void Triangulator::insert_by_cavities(E& ex) {
         one.tet = T.tet_.data();
         one.next = at, one.end = T.cap_;
       }
-      void enter(TetInserter& I, std::int64_t c) {
+      // Slots [a, b) marked dead (a part's range or the room's ends, not taken).
+      void mark_dead(std::int64_t a, std::int64_t b) {
+        for (std::int64_t s = a; s < b; ++s) T.tet_.data()[s].v[0] = -1;
+      }
+      // A part's thread begins on slots [a, b), its walks from slot `from`.
+      void begin_range(TetInserter& I, std::int64_t a, std::int64_t b, std::int32_t from) {
         I.tet = T.tet_.data();
         I.lock = locks.get();
-        I.next = next[std::size_t(c)], I.end = end[std::size_t(c)];
-        I.own_first = I.next;
+        I.next = a, I.end = b, I.own_first = a;
         I.before_ranges = next.front();
         I.freed.clear();
-        I.last = start[std::size_t(c)];
+        I.last = from;
+      }
+      void enter(TetInserter& I, std::int64_t c) {
+        begin_range(I, next[std::size_t(c)], end[std::size_t(c)], start[std::size_t(c)]);
       }
       // Part id, split off part root's points: a range from the room for n points, its walks
       // from where root's began (or a live slot near it: live_from).
@@ -547,27 +554,21 @@ void Triangulator::insert_by_cavities(E& ex) {
         const std::int64_t size = 8 * n + 1024;
         const std::int64_t a = split_next.fetch_add(size, std::memory_order_relaxed);
         if (a + size > split_end) {  // (the room's end: what this thread was given of it is dead)
-          for (std::int64_t s = a; s < split_end; ++s) T.tet_.data()[s].v[0] = -1;
+          mark_dead(a, split_end);
           return false;
         }
-        I.tet = T.tet_.data();
-        I.lock = locks.get();
-        I.next = a, I.end = a + size, I.own_first = a;
-        I.before_ranges = next.front();
-        I.freed.clear();
-        I.last = start_now[std::size_t(root)];
+        begin_range(I, a, a + size, start_now[std::size_t(root)]);
         return true;
       }
       void leave(TetInserter& I, std::int64_t c) {
         // (the range's slots it did not take are dead; its walks go on from where it ended)
-        for (std::int64_t s = I.next; s < I.end; ++s) T.tet_.data()[s].v[0] = -1;
+        mark_dead(I.next, I.end);
         freed[std::size_t(c)] = std::move(I.freed);
         if (std::size_t(c) < parts_now) start[std::size_t(c)] = I.last;
       }
       void threads_done(std::int64_t inserted) {  // (their freed slots to the one thread)
         // (the room's slots no part took are dead)
-        for (std::int64_t s = std::min(split_next.load(), split_end); s < split_end; ++s)
-          T.tet_.data()[s].v[0] = -1;
+        mark_dead(std::min(split_next.load(), split_end), split_end);
         for (auto& f : freed) one.freed.insert(one.freed.end(), f.begin(), f.end());
         done += inserted;
       }
