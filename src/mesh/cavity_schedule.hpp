@@ -1,14 +1,16 @@
-// The CPU executor's schedule for the Delaunay triangulations (issue 53): the points inserted
-// one by one, each by its cavity (Bowyer-Watson), in a biased randomised order, the threads
-// over chunks of the curve. What 2D and 3D share (delaunay2d/impl/one_by_one.inl and
-// delaunay3d/impl/one_by_one.inl are the cavities themselves): the store's words read and
-// written by several threads, the insertion order, and the chunks' schedule.
+// The CPU executor's schedule for the Delaunay triangulations and the 3D hull (issue 53): the
+// points inserted one by one, each by its cavity (Bowyer-Watson; the facets a point sees, for
+// the hull), in a biased randomised order, the threads over chunks of the curve. What 2D, 3D and
+// the hull share (delaunay2d/impl/one_by_one.inl, delaunay3d/impl/one_by_one.inl and
+// hull3d/impl/one_by_one.inl are the cavities themselves): the store's words read and written by
+// several threads, the insertion order, and the chunks' schedule.
 //
 // The schedule: the sample (the top levels of the order) goes in first, on one thread. Then
 // the threads insert the rest of the chunks of the curve, each chunk by the next thread to come
 // free (one chunk a thread, or several where the module's rule allows). What a thread may change is
 // the module's rule: in 2D only triangles whose finite vertices all lie in its chunk ("its own";
-// the infinity vertex lies in every chunk), in 3D the tetrahedra it has locked. Where a point's
+// the infinity vertex lies in every chunk), and in the hull likewise its own facets, in 3D the
+// tetrahedra it has locked. Where a point's
 // walk or cavity reaches what the thread may not change, the point waits, and the waiting points
 // go in by further rounds (modules that have them) and last on one thread. The modules' notes
 // say why this is safe; which points wait depends on timing, the triangulation does not.
@@ -43,8 +45,8 @@ GG_INLINE void store_word(std::int32_t* p, std::int32_t v) {
 // the second one's points each took a fan over the whole first), and each insertion redid it.
 constexpr int kLevels = 21;
 // Levels from sample_level up: the sample, on one thread. A module whose threads may change
-// only their own chunk's simplices (2D) needs a dense one (5: a 32nd of the points), as the
-// points within reach of the sample's simplices across a border wait; one whose threads lock
+// only their own chunk's simplices (2D, the hull) needs a dense one (5: a 32nd of the points), as
+// the points within reach of the sample's simplices across a border wait; one whose threads lock
 // the simplices they change (3D) needs one only to spread the threads' first cavities (8: a
 // 256th; at 16 threads the 32nd took a quarter of the insertion's time on one thread).
 constexpr int kSampleLevel = 5;
@@ -103,7 +105,8 @@ void order_by_level(std::int32_t lo, std::int32_t hi, Skip skip, std::int32_t* o
 }
 
 // How the schedule runs (insert_by_chunks). The defaults are for a module whose threads may
-// change only their own chunk's simplices (2D); locking_schedule gives a locking module's (3D).
+// change only their own chunk's simplices (2D, the hull); locking_schedule gives a locking module's
+// (3D).
 struct Schedule {
   int sample_level = kSampleLevel;  // the sample: the levels from this one up
   int parts_per_thread = 1;         // the chunks of the curve, per thread
