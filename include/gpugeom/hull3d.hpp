@@ -63,10 +63,11 @@ struct Hull3dStats : RunStats {
   /// face or an edge) and the extreme points needed a hull of their own; 0 where a DynamicHull3d
   /// update needed no hull.
   std::int64_t passes = 0;
-  /// The star-shaped construction's insertion rounds, and the times its facet store grew.
+  /// The star-shaped construction's insertion rounds, and the times its facet store grew (the
+  /// GPU's schedule: 0 where the CPU executor runs its own, cavity_insertions below).
   std::int64_t insert_rounds = 0, facet_store_grown = 0;
   /// Flip-Flop's rounds, its 2-2 flips and 3-1 removals, and the vertices it labelled not
-  /// extreme.
+  /// extreme (the GPU's schedule, as insert_rounds).
   std::int64_t flip_rounds = 0, flips22 = 0, flips31 = 0, labelled_nonextreme = 0;
   /// Tests the floating-point filter left to the exact predicates.
   std::int64_t exact_predicates = 0;
@@ -97,7 +98,9 @@ std::int64_t convex_hull3d_max_facets(std::int64_t n);
 /// The result of convex_hull3d: facets, their neighbours, the hull's vertices and its planes, in
 /// host memory.
 struct ConvexHull3d {
-  /// Facets: 3 input-point indices each, counter-clockwise seen from outside.
+  /// Facets: 3 input-point indices each, counter-clockwise seen from outside. In one order on
+  /// every executor and thread count: along the Hilbert curve of the points, each facet starting
+  /// at its vertex first on the curve.
   HostVector<std::int32_t> triangles;
   /// neighbors[3*i + k]: the facet across the edge opposite vertex k of facet i (the surface is
   /// closed: never -1).

@@ -684,7 +684,9 @@ class ConvexHull(_OfPoints):
     """Exact convex hull of 2D or 3D points (``scipy.spatial.ConvexHull``): only extreme points
     are vertices (points inside a face or on an edge are not).
 
-    3D: facets counter-clockwise seen from outside, flat faces triangulated. 2D: the hull of the
+    3D: facets counter-clockwise seen from outside, flat faces triangulated, in one order on
+    either backend and any thread count (along the points' Hilbert curve; Qhull's order differs).
+    2D: the hull of the
     exact Delaunay triangulation's boundary; ``vertices`` counter-clockwise (as SciPy's),
     ``simplices`` its edges, ``area`` the perimeter and ``volume`` the enclosed area (SciPy's
     convention in 2D).

@@ -110,6 +110,14 @@ struct HullInserter {
     ++exact;
     return ExactOrient{g, scratch.data()}(i, j, k, l);
   }
+  // q against the plane through s and facet R's edge k (opposite vertex k): < 0 where q lies
+  // beyond it, outside R's cone.
+  int side(const Rec& R, int k, std::int32_t q) {
+    return orient(g.n, R.v[(k + 1) % 3], R.v[(k + 2) % 3], q);
+  }
+  bool in_cone(const Rec& R, std::int32_t q) {
+    return side(R, 0, q) > 0 && side(R, 1, q) > 0 && side(R, 2, q) > 0;
+  }
   static bool sane(const Rec& R) {  // (a removed slot, or a record torn by another thread)
     return R.v[0] >= 0 && R.v[1] >= 0 && R.v[2] >= 0 && R.v[0] != R.v[1] && R.v[1] != R.v[2] &&
            R.v[2] != R.v[0];
@@ -117,7 +125,6 @@ struct HullInserter {
   // The facet whose cone from s holds q, by a stochastic visibility walk from slot f (its
   // record in R); -1 where it gives up (a removed or torn record, or too long a walk).
   std::int32_t walk(std::int32_t f, std::int32_t q, Rec& R) {
-    const std::int32_t s = g.n;
     std::int32_t came = -1;
     for (int step = 0; step < kHullWalkSteps; ++step) {
       R = read(f);
@@ -128,15 +135,14 @@ struct HullInserter {
       for (int j = 0; j < 3 && beyond < 0; ++j) {
         const int k = (r + j) % 3;
         const std::int32_t nb = simplex_of(R.n[k]);
-        if (nb != came && orient(s, R.v[(k + 1) % 3], R.v[(k + 2) % 3], q) < 0) beyond = nb;
+        if (nb != came && side(R, k, q) < 0) beyond = nb;
       }
       if (beyond < 0) {
         // (threads: the record walked from may have been stale, so the edge back to it is
         // tested too, or the walk could end on a facet whose cone does not hold q)
         if (chunk && came >= 0)
           for (int k = 0; k < 3; ++k)
-            if (simplex_of(R.n[k]) == came && orient(s, R.v[(k + 1) % 3], R.v[(k + 2) % 3], q) < 0)
-              return -1;
+            if (simplex_of(R.n[k]) == came && side(R, k, q) < 0) return -1;
         return f;
       }
       came = f, f = beyond;
@@ -153,13 +159,9 @@ struct HullInserter {
   }
   // The facet whose cone holds q when no walk found it (one thread alone: every facet tried).
   std::int32_t scan(std::int32_t q, Rec& R) {
-    const std::int32_t s = g.n;
     for (std::int64_t f = 0; f < used; ++f) {
       R = read(std::int32_t(f));
-      if (!sane(R)) continue;
-      bool in = true;
-      for (int k = 0; k < 3 && in; ++k) in = orient(s, R.v[(k + 1) % 3], R.v[(k + 2) % 3], q) > 0;
-      if (in) return std::int32_t(f);
+      if (sane(R) && in_cone(R, q)) return std::int32_t(f);
     }
     return -1;
   }
@@ -191,16 +193,13 @@ struct HullInserter {
       if (!chunk) broken = true;  // (cannot happen: the cones cover space)
       return false;
     }
-    const std::int32_t s = g.n;
     if (orient(R.v[0], R.v[1], R.v[2], q) < 0) {
       // q lies below the facet whose cone holds it: inside the tetrahedron (s, facet), hence
       // inside the hull. A record read while another thread rewrote it may be no facet: then
       // the tetrahedron is checked to be one with s below (a, b, c) and q inside the cone (the
       // walk's end tested two or three of its sides).
       if (chunk) {
-        if (orient(R.v[0], R.v[1], R.v[2], s) > 0) return last = -1, false;
-        for (int k = 0; k < 3; ++k)
-          if (orient(s, R.v[(k + 1) % 3], R.v[(k + 2) % 3], q) < 0) return last = -1, false;
+        if (orient(R.v[0], R.v[1], R.v[2], g.n) > 0 || !in_cone(R, q)) return last = -1, false;
       }
       last = f0;
       ++dropped;
