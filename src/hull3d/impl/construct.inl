@@ -210,19 +210,9 @@ class Constructor {
   void start() {
     Exec& ex = S_.ex;
     const std::int64_t n = S_.n;
-    // The four facets (a, b, c), (a, d, b), (b, d, c), (c, d, a), counter-clockwise from
-    // outside since d lies below (a, b, c); neighbours found by matching reversed edges.
     const std::int32_t a = t_.v[0], b = t_.v[1], c = t_.v[2], d = t_.v[3];
-    const std::int32_t fv[12] = {a, b, c, a, d, b, b, d, c, c, d, a};
-    std::int32_t fo[12];
-    for (int f = 0; f < 4; ++f)
-      for (int k = 0; k < 3; ++k) {
-        const std::int32_t u = fv[3 * f + (k + 1) % 3], v = fv[3 * f + (k + 2) % 3];
-        for (int h = 0; h < 4; ++h)
-          for (int j = 0; j < 3; ++j)
-            if (fv[3 * h + (j + 1) % 3] == v && fv[3 * h + (j + 2) % 3] == u)
-              fo[3 * f + k] = enc(h, j);
-      }
+    std::int32_t fv[12], fo[12];
+    first_facets(t_, fv, fo);
     ex.from_host(fv, 12, S_.tv.data());
     ex.from_host(fo, 12, S_.to.data());
     std::int32_t* deg = S_.deg.data();

@@ -290,18 +290,7 @@ std::int64_t insert_one_by_one(E& ex, const double* pts, std::int64_t n, const T
     ex.fill(tv, 3 * used, std::int32_t(-1));
     ex.fill(mk, used, std::int32_t(0));
     ex.fill(bposb.data(), n, std::int32_t(-1));
-    // The first tetrahedron's four facets, as the rounds start (construct.inl).
-    const std::int32_t a = t.v[0], b = t.v[1], c = t.v[2], d = t.v[3];
-    const std::int32_t fv[12] = {a, b, c, a, d, b, b, d, c, c, d, a};
-    for (int f = 0; f < 4; ++f)
-      for (int k = 0; k < 3; ++k) {
-        const std::int32_t u = fv[3 * f + (k + 1) % 3], v = fv[3 * f + (k + 2) % 3];
-        for (int h = 0; h < 4; ++h)
-          for (int j = 0; j < 3; ++j)
-            if (fv[3 * h + (j + 1) % 3] == v && fv[3 * h + (j + 2) % 3] == u)
-              to[3 * f + k] = enc(h, j);
-        tv[3 * f + k] = fv[3 * f + k];
-      }
+    first_facets(t, tv, to);  // (slots 0-3, as the rounds start)
     const Geo geo{pts, t.s, std::int32_t(n)};
     HullInserter one(tv, to, mk, bposb.data(), geo, t.v, used);
     one.last = 0;

@@ -19,6 +19,22 @@ struct Surface {
   std::int32_t* deg;    // per vertex: its number of facets (0: not a vertex)
 };
 
+// The first tetrahedron t's four facets (a, b, c), (a, d, b), (b, d, c), (c, d, a), counter-
+// clockwise from outside since d lies below (a, b, c), into fv (vertices) and fo (neighbours,
+// found by matching reversed edges): where both schedules start (construct.inl, one_by_one.inl).
+inline void first_facets(const Tetra& t, std::int32_t* fv, std::int32_t* fo) {
+  const std::int32_t a = t.v[0], b = t.v[1], c = t.v[2], d = t.v[3];
+  const std::int32_t v[12] = {a, b, c, a, d, b, b, d, c, c, d, a};
+  std::copy(v, v + 12, fv);
+  for (int f = 0; f < 4; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t x = v[3 * f + (k + 1) % 3], y = v[3 * f + (k + 2) % 3];
+      for (int h = 0; h < 4; ++h)
+        for (int j = 0; j < 3; ++j)
+          if (v[3 * h + (j + 1) % 3] == y && v[3 * h + (j + 2) % 3] == x) fo[3 * f + k] = enc(h, j);
+    }
+}
+
 // Splits facet f at p into child k = (p, v[k+1], v[k+2]) in slots c[k] = f, base, base + 1.
 // split_rank / first_new give the child slots of neighbours split in the same round; a
 // neighbour not split gets its back pointer from the child that now holds the shared edge.
