@@ -16,6 +16,7 @@
 
 #include "base/hd.hpp"
 #include "gpugeom/common.hpp"
+#include "exec/atomics.hpp"
 #include "mesh/adjacency.hpp"
 
 namespace gpugeom::mesh {
@@ -32,6 +33,10 @@ template <class Exec>
 struct Compacted {
   typename Exec::template Buffer<std::int32_t> simplices, neighbors;  // K per simplex
   std::int64_t count = 0;
+  // Where compact_live_sorted was asked for it: per order name, the last simplex naming it (-1:
+  // none). 3D's vertex map, made here where the names are at hand and near one another: from the
+  // output's vertices (input indices, in no order) every entry was a cache miss.
+  typename Exec::template Buffer<std::int32_t> last;
   // Where compact_live_sorted's `into` placed the arrays instead (null: the buffers hold them).
   std::int32_t* placed_simplices = nullptr;
   std::int32_t* placed_neighbors = nullptr;
@@ -228,7 +233,19 @@ struct PlaceInBucket {
   const std::int32_t* rank;   // per slot: its rank in its bucket (CountInBucket)
   std::int32_t* slot;         // per entry
   std::uint64_t* rest;        // per entry: the second name above the third (K = 4), or the second
+  std::int64_t used;
   GG_HD void operator()(std::int64_t t) const {
+#ifndef __CUDA_ARCH__
+    if (t + kAhead < used && s.live(t + kAhead)) {  // (the entry the slot kAhead on will write)
+      std::int32_t w[K];
+      s.order_names(t + kAhead, w);
+      std::int32_t least = w[0];
+      for (int k = 1; k < K; ++k) least = w[k] < least ? w[k] : least;
+      const std::int32_t at = begin[least] + rank[t + kAhead];
+      prefetch_on_host<true>(slot + at);
+      prefetch_on_host<true>(rest + at);
+    }
+#endif
     if (!s.live(t)) return;
     std::int32_t w[K];
     int p[K];
@@ -264,6 +281,11 @@ struct PlaceOf {
     place[slot[i]] = std::int32_t(i);
   }
 };
+// Downwards (i from count - 1), so that `last` takes few atomics: a thread's first write of a
+// name is its greatest there, and the later ones see a greater value with a plain read (upwards
+// every entry would be an atomic). The record kAhead on is asked for, and the neighbours' places
+// of the one kAhead / 2 on, whose record is then in the cache (the places, by slot, were most of
+// this pass's misses at 10^7 points).
 template <int K, class Store>
 struct EmitSorted {
   Store s;
@@ -271,9 +293,18 @@ struct EmitSorted {
   const std::int32_t* place;
   std::int32_t* simplices;
   std::int32_t* neighbors;
+  std::int32_t* last;  // per order name: the greatest place naming it, or null (not asked for)
   std::int64_t count;
-  GG_HD void operator()(std::int64_t i) const {
-    if (i + kAhead < count) s.prefetch(slot[i + kAhead]);
+  GG_HD void operator()(std::int64_t j) const {
+    const std::int64_t i = count - 1 - j;
+#ifndef __CUDA_ARCH__
+    if (i >= kAhead) s.prefetch(slot[i - kAhead]);
+    if (i >= kAhead / 2) {
+      const SimplexRecord<K> y = s.get(slot[i - kAhead / 2]);
+      for (int k = 0; k < K; ++k)
+        if (y.n[k] >= 0) prefetch_on_host(place + y.n[k]);
+    }
+#endif
     const SimplexRecord<K> x = s.get(slot[i]);
     std::int32_t w[K];
     int p[K];
@@ -284,6 +315,8 @@ struct EmitSorted {
       simplices[K * i + k] = x.v[j];
       neighbors[K * i + k] = x.n[j] >= 0 ? place[x.n[j]] : -1;
     }
+    if (last)
+      for (int k = 0; k < K; ++k) atomic_max(last + w[k], std::int32_t(i));
   }
 };
 }  // namespace compact_detail
@@ -304,15 +337,17 @@ std::int64_t live_by_buckets(Exec& ex, std::int64_t used, const Store& store, st
   ex.to_host(b + names, 1, &total);
   live = ex.template alloc<std::int32_t>(std::size_t(total));
   auto rest = ex.template alloc<std::uint64_t>(std::size_t(total));
-  ex.for_each_index(
-      used, compact_detail::PlaceInBucket<K, Store>{store, b, rank, live.data(), rest.data()});
+  ex.for_each_index(used, compact_detail::PlaceInBucket<K, Store>{store, b, rank, live.data(),
+                                                                  rest.data(), used});
   ex.for_each_index(names, compact_detail::SortBucket{b, live.data(), rest.data()});
   return total;
 }
 
+// with_last: also each order name's last simplex (Compacted::last).
 template <int K, class Exec, class Store, class Into = OwnArrays>
 Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& store,
-                                    std::int64_t names_below, Into into = {}) {
+                                    std::int64_t names_below, Into into = {},
+                                    bool with_last = false) {
   static_assert(K == 3 || K == 4, "triangles or tetrahedra");
   typename Exec::template Buffer<std::int32_t> live, where;  // (where: per slot, its place)
   std::int64_t count = 0;
@@ -353,8 +388,12 @@ Compacted<Exec> compact_live_sorted(Exec& ex, std::int64_t used, const Store& st
   }
   std::int32_t* sp = c.placed_simplices ? c.placed_simplices : c.simplices.data();
   std::int32_t* np = c.placed_simplices ? c.placed_neighbors : c.neighbors.data();
-  ex.for_each_index(count,
-                    compact_detail::EmitSorted<K, Store>{store, slot, where.data(), sp, np, count});
+  if (with_last) {
+    c.last = ex.template alloc<std::int32_t>(std::size_t(names_below));
+    ex.fill(c.last.data(), names_below, std::int32_t(-1));
+  }
+  ex.for_each_index(count, compact_detail::EmitSorted<K, Store>{store, slot, where.data(), sp, np,
+                                                                c.last.data(), count});
   return c;
 }
 

@@ -53,6 +53,10 @@ inline void expect_valid(const std::vector<Point3>& pts, const gpugeom::Triangul
     }
   ASSERT_EQ(std::int64_t(t.hull_facets.size()), 3 * hull);
   ASSERT_EQ(t.vertex_to_simplex.size(), pts.size());
+  // The vertex map's rule, which both executors keep: each vertex's last tetrahedron.
+  std::vector<std::int32_t> last(pts.size(), -1);
+  for (std::int64_t e = 0; e < 4 * nt; ++e)
+    last[std::size_t(t.tetrahedra[std::size_t(e)])] = std::int32_t(e / 4);
   std::int64_t dups = 0;
   for (std::int64_t i = 0; i < n; ++i) {
     const std::int32_t s = t.vertex_to_simplex[std::size_t(i)];
@@ -69,6 +73,7 @@ inline void expect_valid(const std::vector<Point3>& pts, const gpugeom::Triangul
     bool has = false;
     for (int k = 0; k < 4; ++k) has = has || t.tetrahedra[4 * std::size_t(s) + k] == v;
     ASSERT_TRUE(has) << "vertex_to_simplex of point " << i;
+    ASSERT_EQ(s, last[std::size_t(v)]) << "vertex_to_simplex of point " << i << " is not its last";
   }
   ASSERT_EQ(dups, t.num_duplicates);
 }

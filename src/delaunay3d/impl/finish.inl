@@ -60,7 +60,8 @@ inline std::int64_t Triangulator::find_failed(typename Exec::template Buffer<std
 template <class Into>
 Triangulator::Finished Triangulator::finish(const std::int32_t* orig, Into into) {
   const Counters c = counters();
-  return mesh::compact_live_sorted<4>(ex_, c.used, FiniteTets{tet_.data(), orig, m_}, m_, into);
+  return mesh::compact_live_sorted<4>(ex_, c.used, FiniteTets{tet_.data(), orig, m_}, m_, into,
+                                      /*with_last=*/true);
 }
 
 inline void Triangulator::report() {

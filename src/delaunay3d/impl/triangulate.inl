@@ -127,22 +127,31 @@ struct Extras {
   typename Exec::template Buffer<std::int32_t> vertex_to_simplex, hull_facets;
   std::int64_t num_hull_facets = 0;
 };
-// dup: the duplicate map (n entries), or null where there is no duplicate.
-inline Extras extras(Exec& ex, const std::int32_t* dup, mesh::Compacted<Exec>& f, std::int64_t n) {
+// dup: the duplicate map (n entries), or null where there is no duplicate. orig: where the
+// compaction made each curve position's last tetrahedron (f.last; finish()), the input index of
+// each of the m positions, else null.
+inline Extras extras(Exec& ex, const std::int32_t* dup, mesh::Compacted<Exec>& f, std::int64_t n,
+                     const std::int32_t* orig = nullptr, std::int64_t m = 0) {
   Extras E;
   E.vertex_to_simplex = ex.template alloc<std::int32_t>(std::size_t(n));
   std::int32_t* v = E.vertex_to_simplex.data();
   const std::int32_t* tv = f.simplices_data();
   const std::int32_t* nb = f.neighbors_data();
   ex.fill(v, n, std::int32_t(-1));
-  // (from the last tetrahedron down: a vertex's first entry seen is then mostly its largest, and
-  // the later ones see it with a plain read; upwards every entry was an atomic: 27 a vertex)
-  const std::int64_t entries = 4 * f.count;
-  ex.for_each_index(
-      entries, GG_LAMBDA(std::int64_t i) {
-        const std::int64_t e = entries - 1 - i;
-        atomic_max(v + tv[e], std::int32_t(e / 4));
-      });
+  if (orig && f.last.data()) {
+    const std::int32_t* last = f.last.data();
+    ex.for_each_index(
+        m, GG_LAMBDA(std::int64_t w) { v[orig[w]] = last[w]; });
+  } else {
+    // (from the last tetrahedron down: a vertex's first entry seen is then mostly its largest,
+    // and the later ones see it with a plain read; upwards every entry was an atomic: 27 a vertex)
+    const std::int64_t entries = 4 * f.count;
+    ex.for_each_index(
+        entries, GG_LAMBDA(std::int64_t i) {
+          const std::int64_t e = entries - 1 - i;
+          atomic_max(v + tv[e], std::int32_t(e / 4));
+        });
+  }
   if (dup) {
     ex.for_each_index(
         n, GG_LAMBDA(std::int64_t i) {
@@ -185,7 +194,7 @@ inline auto host_arrays(const Triangulation3dBuffers& into, Output& out) {
 // The finished tetrahedralisation to host arrays: the caller's (into) or the result's.
 inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec>& f,
                       std::int64_t n, const Triangulation3dBuffers& into, Output& out) {
-  Extras E = extras(ex, S.duplicates ? S.dup.data() : nullptr, f, n);
+  Extras E = extras(ex, S.duplicates ? S.dup.data() : nullptr, f, n, S.orig.data(), S.m);
   check_into(into, f.count, E.num_hull_facets, n);
   out.num_duplicates = S.duplicates;
   out.num_tetrahedra = f.count;
@@ -208,7 +217,7 @@ inline void to_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exe
 inline void to_device_output(Exec& ex, mesh::SortedPoints<Exec>& S, mesh::Compacted<Exec>& f,
                              std::int64_t n, const Triangulation3dBuffers& into,
                              DeviceOutput& out) {
-  Extras E = extras(ex, S.duplicates ? S.dup.data() : nullptr, f, n);
+  Extras E = extras(ex, S.duplicates ? S.dup.data() : nullptr, f, n, S.orig.data(), S.m);
   const std::int64_t nh = E.num_hull_facets;
   check_into(into, f.count, nh, n);
   if (!S.duplicates && !into.duplicate_of)  // no duplicates: the map is all -1
