@@ -33,6 +33,9 @@
 #include <CGAL/Spatial_lock_grid_3.h>
 #include <CGAL/Triangulation_data_structure_3.h>
 #include <CGAL/Triangulation_vertex_base_3.h>
+#include <tbb/global_control.h>
+#include <cstdlib>
+#include <memory>
 #endif
 
 using namespace gpugeom;
@@ -88,10 +91,16 @@ double cgal_ms(const std::vector<Point3>& p, std::int64_t& cells) {
   return -1;
 #endif
 }
-// CGAL's parallel construction (TBB, every host core; its documented set-up: a parallel data
-// structure and a grid of locks over the points' box), -1 where the build has no TBB.
+// CGAL's parallel construction (TBB; its documented set-up: a parallel data structure and a grid
+// of locks over the points' box), -1 where the build has no TBB. On OMP_NUM_THREADS threads
+// where that is set, as the CPU executor (bench/cpu_scaling.sh compares the two at each count),
+// else on every host core.
 double cgal_par_ms(const std::vector<Point3>& p) {
 #ifdef GG_BENCH_CGAL_PAR
+  std::unique_ptr<tbb::global_control> limit;
+  if (const char* e = std::getenv("OMP_NUM_THREADS"); e && std::atoi(e) > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  std::size_t(std::atoi(e)));
   using Tds = CGAL::Triangulation_data_structure_3<CGAL::Triangulation_vertex_base_3<K>,
                                                    CGAL::Delaunay_triangulation_cell_base_3<K>,
                                                    CGAL::Parallel_tag>;
