@@ -404,8 +404,12 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
   std::int64_t sample_waited = 0;
   if (alone_level > sample_level) {
     sample_waited = levels_by_threads(sample_level, alone_level);
+    // (their attempts by the threads marked with q, and may have left marks: 2D's cavities are
+    // found by marks, so these attempts mark with q + m, as the deferred points' second ones)
+    one.again = m;
     for (std::int64_t c = 0; c < std::int64_t(waiting.size()); ++c)
       for (const std::int32_t q : waiting[std::size_t(c)]) h.put(one, c, q);
+    one.again = 0;
     h.mark("sample_threads");
   }
   std::int64_t waited = levels_by_threads(0, sample_level);
