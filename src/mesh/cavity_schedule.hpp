@@ -66,9 +66,9 @@ inline int locking_sample_level(std::int64_t m, int threads) {
 // first, so that the threads' first cavities lie apart. On one thread the sample held 15 threads
 // idle (3D, 16 threads: 31-38 ms of a 10^6-point run, 50 ms at 10^7).
 constexpr std::int64_t kAloneSamplePerThread = 16;
-inline int alone_sample_level(std::int64_t m, int threads) {
+inline int alone_sample_level(std::int64_t m, int threads, int level_bits = 1) {
   int l = 0;
-  while (l < kLevels - 1 && (m >> l) > kAloneSamplePerThread * threads) ++l;
+  while (l < kLevels - 1 && (m >> (level_bits * l)) > kAloneSamplePerThread * threads) ++l;
   return l;
 }
 // The parts a thread gets, in a module whose threads lock what they change (3D). The parts'
@@ -83,25 +83,27 @@ constexpr int kLockingPartsPerThread = 4;
 // Rounds over other parts for the points that waited, at most (their marks q + r m stay
 // below 2^31 for the 3D store's 1.4·10^8 points; 2D runs none).
 constexpr int kMaxRounds = 8;
-GG_INLINE int level_of(std::int32_t q) {
+// bits: each level holds a 2^bits-th as many points as the one below (1: a half, as above).
+GG_INLINE int level_of(std::int32_t q, int bits = 1) {
   std::uint64_t x = std::uint64_t(q) * 0x9E3779B97F4A7C15ull;
   x ^= x >> 31, x *= 0xBF58476D1CE4E5B9ull, x ^= x >> 29;
+  const std::uint64_t mask = (std::uint64_t(1) << bits) - 1;
   int l = 0;
-  while (l < kLevels - 1 && !(x & (std::uint64_t(1) << l))) ++l;
+  while (l < kLevels - 1 && !((x >> (bits * l)) & mask)) ++l;
   return l;
 }
 // The points of [lo, hi) but those skipped (the first simplex's), by level from the highest
 // down, each level in curve order, written from order[lo]; count[l]: how many have level l.
 template <class Skip>
 void order_by_level(std::int32_t lo, std::int32_t hi, Skip skip, std::int32_t* order,
-                    std::int64_t* count) {
+                    std::int64_t* count, int bits = 1) {
   std::fill(count, count + kLevels, 0);
   for (std::int32_t q = lo; q < hi; ++q)
-    if (!skip(q)) ++count[level_of(q)];
+    if (!skip(q)) ++count[level_of(q, bits)];
   std::int64_t at[kLevels], sum = lo;
   for (int l = kLevels - 1; l >= 0; --l) at[l] = sum, sum += count[l];
   for (std::int32_t q = lo; q < hi; ++q)
-    if (!skip(q)) order[at[level_of(q)]++] = q;
+    if (!skip(q)) order[at[level_of(q, bits)]++] = q;
 }
 
 // How the schedule runs (insert_by_chunks). The defaults are for a module whose threads may
@@ -111,6 +113,7 @@ struct Schedule {
   int sample_level = kSampleLevel;  // the sample: the levels from this one up
   int parts_per_thread = 1;         // the chunks of the curve, per thread
   int alone_level = 0;  // the sample's levels from this one up on one thread, the rest by threads
+  int level_bits = 1;   // level_of's: each level a 2^level_bits-th of the one below
   // The threads lock what they change (3D): a thread with no part left splits off the back half
   // of the part with most points left (PartPoints), and a part's waiting points are tried again
   // when its own are done.
@@ -287,7 +290,7 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
   each_chunk([&](std::int64_t c) {
     std::int32_t lo, hi;
     bounds(c, lo, hi);
-    order_by_level(lo, hi, skip, order, counts.data() + c * kLevels);
+    order_by_level(lo, hi, skip, order, counts.data() + c * kLevels, how.level_bits);
   });
   // Where level l of chunk c begins in order.
   std::vector<std::int64_t> begin(std::size_t(nc) * kLevels);

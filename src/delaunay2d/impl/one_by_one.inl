@@ -227,7 +227,8 @@ bool Triangulator::insert_one_by_one(E& ex) {
     // The sample's top levels on one thread, the rest of it by the threads (as the hull's; on one
     // thread the sample held the other threads idle), then the chunks.
     mesh::cavities::Schedule how;
-    how.alone_level = mesh::cavities::alone_sample_level(m, ex.team_size());
+    how.level_bits = 3, how.sample_level = 2;
+    how.alone_level = mesh::cavities::alone_sample_level(m, ex.team_size(), how.level_bits);
     deferred_ = mesh::cavities::insert_by_chunks(ex, m, loc_.data(), one, h, how);
     for (std::size_t c = 0; c < h.ends.size(); ++c)  // (a bug guard: every slot in use)
       if (h.next[c] != h.ends[c])
