@@ -7,10 +7,12 @@
 // over liveness gives each live slot its rank, and the rank steps where a slot is live, so a
 // neighbour's liveness needs no second test.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include <cuda/atomic>
 
@@ -257,12 +259,27 @@ struct PlaceInBucket {
     rest[at] = K == 4 ? (second << 32) | std::uint32_t(w[p[2]]) : second;
   }
 };
+// (Buckets are small, but not always: the fan around one end of a segment over the points of
+// another holds a bucket of thousands, which the insertion sort made quadratic; those go by
+// std::sort. SortBucket runs on the host only: live_by_buckets is the CPU executor's.)
+constexpr std::int32_t kInsertionSortMost = 32;
 struct SortBucket {
   const std::int32_t* begin;  // per first name, and one past the last
   std::int32_t* slot;
   std::uint64_t* rest;
   GG_HD void operator()(std::int64_t a) const {
     const std::int32_t lo = begin[a], hi = begin[a + 1];
+#ifndef __CUDA_ARCH__
+    if (hi - lo > kInsertionSortMost) {
+      std::vector<std::pair<std::uint64_t, std::int32_t>> b;
+      b.reserve(std::size_t(hi - lo));
+      for (std::int32_t i = lo; i < hi; ++i) b.push_back({rest[i], slot[i]});
+      std::sort(b.begin(), b.end());
+      for (std::int32_t i = lo; i < hi; ++i)
+        rest[i] = b[std::size_t(i - lo)].first, slot[i] = b[std::size_t(i - lo)].second;
+      return;
+    }
+#endif
     for (std::int32_t i = lo + 1; i < hi; ++i) {  // (insertion sort: buckets are small)
       const std::uint64_t x = rest[i];
       const std::int32_t y = slot[i];

@@ -32,7 +32,7 @@
 // pointer is published after the triangle it names). Which points wait depends on timing, the
 // triangulation does not.
 
-constexpr int kWalkSteps = 1 << 16;  // a walk this long gives up (threads only)
+constexpr int kWalkSteps = 1 << 8;  // a walk this long gives up (threads only)
 using mesh::cavities::load_word;
 using mesh::cavities::store_word;
 
@@ -54,12 +54,16 @@ struct CavityInserter {
   std::int32_t next = 0;   // the next free slot of the chunk it inserts for
   bool broken = false;     // a cavity was no disk (a bug guard)
   std::uint32_t rng = 2463534242u;
-  std::int32_t last = -1;  // a slot made by the last insertion: the next walk starts there
+  std::int32_t last = -1;     // a slot made by the last insertion: the next walk starts there
+  std::int32_t reached = -1;  // the last slot the last walk read
   std::vector<std::int32_t> cav;
   struct Edge {
     std::int32_t a, b, out;  // counter-clockwise seen from the cavity; the outer neighbour
   };
   std::vector<Edge> bnd;
+  std::vector<std::int32_t> after,
+      before;  // per boundary edge: the edges from its end, into its start
+  std::vector<std::pair<std::int32_t, std::int32_t>> starts;  // (start vertex, edge), sorted
   std::vector<double> scratch = std::vector<double>(std::size_t(kIncircleScratch));
 
   Tri read(std::int32_t s) const {
@@ -92,6 +96,7 @@ struct CavityInserter {
   std::int32_t walk(std::int32_t t, std::int32_t q) {
     std::int32_t came = -1;
     for (int step = 0; !chunk || step < kWalkSteps; ++step) {
+      reached = t;
       const Tri T = read(t);
       if (T.v[0] == T.v[1] || T.v[1] == T.v[2] || T.v[2] == T.v[0]) return -1;  // (torn)
       rng ^= rng << 13, rng ^= rng >> 17, rng ^= rng << 5;
@@ -116,13 +121,55 @@ struct CavityInserter {
     }
     return -1;
   }
+  // The cavity's boundary as one cycle (after, before); false where it is none (a bug guard).
+  // Small boundaries by search; a point that takes over a fan around a vertex of high degree (on
+  // two segments, the fan of one segment's end over the other) has thousands of edges, which
+  // the search made quadratic (10^5 points on two segments: 0.6 s, 10^6: minutes): sorted then.
+  bool link_boundary() {
+    const std::size_t e = bnd.size();
+    after.assign(e, -1), before.assign(e, -1);
+    if (e <= 16) {
+      for (std::size_t i = 0; i < e; ++i)
+        for (std::size_t j = 0; j < e; ++j)
+          if (bnd[j].a == bnd[i].b) {
+            after[i] = std::int32_t(j);
+            break;
+          }
+    } else {
+      starts.clear();
+      for (std::size_t i = 0; i < e; ++i) starts.push_back({bnd[i].a, std::int32_t(i)});
+      std::sort(starts.begin(), starts.end());
+      for (std::size_t i = 0; i < e; ++i) {
+        const auto it = std::lower_bound(starts.begin(), starts.end(),
+                                         std::pair<std::int32_t, std::int32_t>{bnd[i].b, -1});
+        if (it != starts.end() && it->first == bnd[i].b) after[i] = it->second;
+      }
+    }
+    for (std::size_t i = 0; i < e; ++i) {
+      if (after[i] < 0) return false;
+      before[std::size_t(after[i])] = std::int32_t(i);
+    }
+    for (std::size_t i = 0; i < e; ++i)
+      if (before[i] < 0) return false;
+    return true;
+  }
   // Inserts q, or returns false having changed nothing (its cavity reaches another thread's
   // triangles).
   bool insert(std::int32_t q) {
+    // (where q must wait, the next walk starts where this one got to: from the last insertion's
+    // triangle, each walk of a run of waiting points went further, and on points whose
+    // triangles span the chunks, e.g. two segments, every point came to wait, at the cost of a
+    // walk of up to kWalkSteps)
     const std::int32_t t0 = walk(last >= 0 ? last : base, q);
-    if (t0 < 0) return false;
+    if (t0 < 0) {
+      last = reached;
+      return false;
+    }
     const Tri T0 = read(t0);
-    if (!mine(T0.v)) return false;
+    if (!mine(T0.v)) {
+      last = t0;
+      return false;
+    }
     // The cavity: the triangles whose circles (half-planes, for infinite ones) hold q, found
     // from the one that holds it; its boundary, counter-clockwise edges seen from inside.
     cav.clear(), bnd.clear();
@@ -136,7 +183,10 @@ struct CavityInserter {
         if (load_word(mark + nb) == stamp) continue;
         const Tri N = read(nb);
         if (conflict(N.v, q)) {
-          if (!mine(N.v)) return false;
+          if (!mine(N.v)) {
+            last = t0;
+            return false;
+          }
           store_word(mark + nb, stamp);
           cav.push_back(nb);
         } else {
@@ -154,21 +204,19 @@ struct CavityInserter {
     auto slot = [&](std::size_t i) {
       return i < cav.size() ? cav[i] : next + std::int32_t(i - cav.size());
     };
-    auto starting_at = [&](std::int32_t a) {  // the boundary edge from a
-      for (std::size_t i = 0; i < e; ++i)
-        if (bnd[i].a == a) return i;
-      return e;  // (unreachable: the boundary is one cycle)
-    };
+    if (!link_boundary()) {
+      broken = true;
+      return false;
+    }
     // (the two new slots first, from the last down: the cavity's slots name them, and a walk of
     // another thread reading one could otherwise reach a new slot before it is written)
     for (std::size_t i = e; i-- > 0;) {
       const Edge& E = bnd[i];
-      const std::int32_t after = slot(starting_at(E.b));  // (q, b, c): edge q-b opposite c
-      std::int32_t before = -1;                           // (q, z, a): edge a-q opposite z
-      for (std::size_t j = 0; j < e && before < 0; ++j)
-        if (bnd[j].b == E.a) before = slot(j);
+      // (q, b, c) across edge q-b, opposite c; (q, z, a) across edge a-q, opposite z
+      const std::int32_t nb_after = slot(std::size_t(after[i]));
+      const std::int32_t nb_before = slot(std::size_t(before[i]));
       std::int32_t* w = tri[slot(i)].v;
-      const std::int32_t rec[6] = {q, E.a, E.b, E.out, enc(after, 2), enc(before, 1)};
+      const std::int32_t rec[6] = {q, E.a, E.b, E.out, enc(nb_after, 2), enc(nb_before, 1)};
       for (int k = 0; k < 6; ++k) store_word(w + k, rec[k]);
       tri[slot(i)].stamp = -1, tri[slot(i)].pair = 0;
     }
