@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -111,6 +112,14 @@ int main(int argc, char** argv) {
                    "MAX_N] [--check] [--csv FILE] [--save DIR] [--presort hilbert] [--methods "
                    "incremental,digital] [--rounds]\n";
       return a == "--help" ? 0 : 2;
+    }
+  }
+  if (!save.empty()) {  // (the inputs' folder, made where it is missing)
+    std::error_code ec;
+    std::filesystem::create_directories(save, ec);
+    if (ec) {
+      std::cout << "--save: cannot make the folder '" << save << "': " << ec.message() << "\n";
+      return 2;
     }
   }
   struct Config {
