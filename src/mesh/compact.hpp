@@ -206,6 +206,15 @@ constexpr std::int64_t kAhead = 16;
 // among them (CountInBucket), the second places them at their bucket's start plus their rank
 // (PlaceInBucket). (The second pass bumped the counters again, as the first; a locked add per
 // simplex twice was most of the output's sorting on one thread.)
+// The least of slot t's order names: its bucket (negative for a dead slot's).
+template <int K, class Store>
+GG_HD inline std::int32_t least_name(const Store& s, std::int64_t t) {
+  std::int32_t w[K];
+  s.order_names(t, w);
+  std::int32_t least = w[0];
+  for (int k = 1; k < K; ++k) least = w[k] < least ? w[k] : least;
+  return least;
+}
 template <int K, class Store>
 struct CountInBucket {
   Store s;
@@ -215,9 +224,7 @@ struct CountInBucket {
   GG_HD void operator()(std::int64_t t) const {
     std::int32_t w[K];
     if (t + kAhead < used) {  // (the counter the slot kAhead on will bump: see kAhead)
-      s.order_names(t + kAhead, w);
-      std::int32_t least = w[0];
-      for (int k = 1; k < K; ++k) least = w[k] < least ? w[k] : least;
+      const std::int32_t least = least_name<K>(s, t + kAhead);
       if (least >= 0) prefetch_on_host<true>(count + least);
     }
     if (!s.live(t)) return;
@@ -239,11 +246,7 @@ struct PlaceInBucket {
   GG_HD void operator()(std::int64_t t) const {
 #ifndef __CUDA_ARCH__
     if (t + kAhead < used && s.live(t + kAhead)) {  // (the entry the slot kAhead on will write)
-      std::int32_t w[K];
-      s.order_names(t + kAhead, w);
-      std::int32_t least = w[0];
-      for (int k = 1; k < K; ++k) least = w[k] < least ? w[k] : least;
-      const std::int32_t at = begin[least] + rank[t + kAhead];
+      const std::int32_t at = begin[least_name<K>(s, t + kAhead)] + rank[t + kAhead];
       prefetch_on_host<true>(slot + at);
       prefetch_on_host<true>(rest + at);
     }

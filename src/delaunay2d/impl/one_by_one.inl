@@ -61,8 +61,8 @@ struct CavityInserter {
     std::int32_t a, b, out;  // counter-clockwise seen from the cavity; the outer neighbour
   };
   std::vector<Edge> bnd;
-  std::vector<std::int32_t> after,
-      before;  // per boundary edge: the edges from its end, into its start
+  // Per boundary edge: the edge from its end, and the edge into its start.
+  std::vector<std::int32_t> after, before;
   std::vector<std::pair<std::int32_t, std::int32_t>> starts;  // (start vertex, edge), sorted
   std::vector<double> scratch = std::vector<double>(std::size_t(kIncircleScratch));
 
@@ -160,16 +160,14 @@ struct CavityInserter {
     // triangle, each walk of a run of waiting points went further, and on points whose
     // triangles span the chunks, e.g. two segments, every point came to wait, at the cost of a
     // walk of up to kWalkSteps)
+    auto wait_from = [&](std::int32_t t) {
+      last = t;
+      return false;
+    };
     const std::int32_t t0 = walk(last >= 0 ? last : base, q);
-    if (t0 < 0) {
-      last = reached;
-      return false;
-    }
+    if (t0 < 0) return wait_from(reached);
     const Tri T0 = read(t0);
-    if (!mine(T0.v)) {
-      last = t0;
-      return false;
-    }
+    if (!mine(T0.v)) return wait_from(t0);
     // The cavity: the triangles whose circles (half-planes, for infinite ones) hold q, found
     // from the one that holds it; its boundary, counter-clockwise edges seen from inside.
     cav.clear(), bnd.clear();
@@ -183,10 +181,7 @@ struct CavityInserter {
         if (load_word(mark + nb) == stamp) continue;
         const Tri N = read(nb);
         if (conflict(N.v, q)) {
-          if (!mine(N.v)) {
-            last = t0;
-            return false;
-          }
+          if (!mine(N.v)) return wait_from(t0);
           store_word(mark + nb, stamp);
           cav.push_back(nb);
         } else {
