@@ -80,8 +80,7 @@ inline int alone_sample_level(std::int64_t m, int threads, int level_bits = 1) {
 // part a thread. A module whose threads may change only their own part's simplices (2D) keeps one
 // part a thread: its waiting points go in on one thread.
 constexpr int kLockingPartsPerThread = 4;
-// Rounds over other parts for the points that waited, at most (their marks q + r m stay
-// below 2^31 for the 3D store's 1.4·10^8 points; 2D runs none).
+// Rounds over other parts for the points that waited, at most (2D and the hull run none).
 constexpr int kMaxRounds = 8;
 // bits: each level holds a 2^bits-th as many points as the one below (1: a half, as above).
 GG_INLINE int level_of(std::int32_t q, int bits = 1) {
@@ -227,7 +226,7 @@ struct OwnChunkHooks {
 
 // The chunks' schedule over m points (curve positions), on ex's team (CPU). order: m entries of
 // scratch. one: the inserter for one thread alone; each chunk's thread gets a copy of it with
-// its part (fields chunk, own, rng, again; bool insert(q): false having changed nothing where
+// its part (fields chunk, own, rng; bool insert(q): false having changed nothing where
 // the point must wait). The parts are the chunks of the curve (v / chunk) at first; a module
 // with rounds gives others through its inserter (owner(v)). The
 // module's hooks:
@@ -319,7 +318,7 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
   auto most_parts = [&](std::int64_t parts) {
     return how.locks ? parts + kSplitsPerThread * nt : parts;
   };
-  auto threads = [&](std::int64_t parts, const Ins& split, std::int32_t again,
+  auto threads = [&](std::int64_t parts, const Ins& split, std::uint32_t round,
                      std::vector<PartPoints::Span> spans,
                      std::vector<std::vector<std::int32_t>>& wait) {
     const std::int64_t cap = most_parts(parts);
@@ -327,8 +326,8 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
     wait.assign(std::size_t(cap), {});
     auto ready = [&](Ins& mine, std::int64_t c) {
       mine = split;
-      mine.own = std::int32_t(c), mine.again = again;
-      mine.rng += std::uint32_t(c + again);
+      mine.own = std::int32_t(c);
+      mine.rng += std::uint32_t(c) + round;  // (each part and round walks its own way)
     };
     auto insert_part = [&](Ins& mine, std::int64_t c) {
       std::vector<std::int32_t>& w = wait[std::size_t(c)];
@@ -407,12 +406,8 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
   std::int64_t sample_waited = 0;
   if (alone_level > sample_level) {
     sample_waited = levels_by_threads(sample_level, alone_level);
-    // (their attempts by the threads marked with q, and may have left marks: 2D's cavities are
-    // found by marks, so these attempts mark with q + m, as the deferred points' second ones)
-    one.again = m;
     for (std::int64_t c = 0; c < std::int64_t(waiting.size()); ++c)
       for (const std::int32_t q : waiting[std::size_t(c)]) h.put(one, c, q);
-    one.again = 0;
     h.mark("sample_threads");
   }
   std::int64_t waited = levels_by_threads(0, sample_level);
@@ -425,7 +420,6 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
   // (h.split(r, split, waiting) gives round r's parts, false where it has none) insert them in
   // further rounds of threads over other parts (3D: slabs across an axis), while a round
   // inserts at least an eighth of what it is given.
-  std::int32_t again = m;  // (round r's attempts mark with q + r m: a first one left marks q)
   for (int r = 1; r <= kMaxRounds && waited > 256 * teams; ++r) {
     // (half as many parts a round, down to two: the waiting points are missing from the
     // tetrahedralisation together, so their cavities are large and cross thin parts' borders)
@@ -445,15 +439,13 @@ std::int64_t insert_by_chunks(E& ex, std::int32_t m, std::int32_t* order, Ins& o
     std::vector<PartPoints::Span> spans(static_cast<std::size_t>(parts));
     for (std::int64_t c = 0; c < parts; ++c)
       spans[std::size_t(c)] = {by_owner[std::size_t(c)].data(), sizes[std::size_t(c)]};
-    waited = threads(parts, split, again, std::move(spans), waiting);
+    waited = threads(parts, split, std::uint32_t(r) * std::uint32_t(m), std::move(spans), waiting);
     h.threads_done(given - waited);
     h.mark("rounds");
-    again += m;
     if (8 * (given - waited) < given) break;
   }
   // The points still waiting, in curve order, on one thread, each walk from the last
   // insertion's simplex.
-  one.again = again;
   for (std::int64_t c = 0; c < std::int64_t(waiting.size()); ++c) {
     std::vector<std::int32_t>& wait = waiting[std::size_t(c)];
     std::sort(wait.begin(), wait.end());

@@ -38,19 +38,18 @@ using mesh::cavities::store_word;
 
 // One thread's insertions (the sample's and the deferred points' run as chunk 0 of 1).
 struct CavityInserter {
-  CavityInserter(Tri* t, std::int32_t* mk, const Geo& geo, std::int32_t b, const std::int32_t* f)
-      : tri(t), mark(mk), g(geo), base(b) {
+  CavityInserter(Tri* t, std::int64_t slots, const Geo& geo, std::int32_t b, const std::int32_t* f)
+      : tri(t), most(std::size_t(slots)), g(geo), base(b) {
     std::copy(f, f + 3, first);
     std::sort(first, first + 3);
   }
-  Tri* tri;            // by slot number
-  std::int32_t* mark;  // per slot: the last attempt whose cavity took it
+  Tri* tri;          // by slot number
+  std::size_t most;  // slots in all: no cavity holds more
   Geo g;
   std::int32_t base;       // the first slot's number
   std::int32_t first[3];   // the first triangle's vertices, sorted
   std::int64_t chunk = 0;  // points per chunk; 0: one thread alone, nothing is anyone else's
   std::int32_t own = 0;    // this thread's chunk
-  std::int32_t again = 0;  // m once the deferred points go in: their second attempts' marks
   std::int32_t next = 0;   // the next free slot of the chunk it inserts for
   bool broken = false;     // a cavity was no disk (a bug guard)
   std::uint32_t rng = 2463534242u;
@@ -60,10 +59,12 @@ struct CavityInserter {
   struct Edge {
     std::int32_t a, b, out;  // counter-clockwise seen from the cavity; the outer neighbour
   };
-  std::vector<Edge> bnd;
-  // Per boundary edge: the edge from its end, and the edge into its start.
-  std::vector<std::int32_t> after, before;
-  std::vector<std::pair<std::int32_t, std::int32_t>> starts;  // (start vertex, edge), sorted
+  std::vector<Edge> bnd;  // in order round the cavity
+  struct Frame {          // the cavity's search: a triangle and its edges left to cross
+    Tri C;
+    std::int8_t k, left;  // the next edge, and how many
+  };
+  std::vector<Frame> dfs;
   std::vector<double> scratch = std::vector<double>(std::size_t(kIncircleScratch));
 
   Tri read(std::int32_t s) const {
@@ -80,10 +81,11 @@ struct CavityInserter {
   }
   bool is_first(std::int32_t q) const { return q == first[0] || q == first[1] || q == first[2]; }
   std::int64_t owner(std::int32_t v) const { return v / chunk; }  // (the chunks of the curve)
-  bool mine(const std::int32_t* v) const {
+  bool mine(const std::int32_t* v) const {  // (by the chunk's range: no division)
     if (!chunk) return true;
+    const std::int64_t lo = own * chunk;
     for (int k = 0; k < 3; ++k)
-      if (v[k] != g.m && owner(v[k]) != own) return false;
+      if (v[k] != g.m && std::uint64_t(v[k] - lo) >= std::uint64_t(chunk)) return false;
     return true;
   }
   bool conflict(const std::int32_t* v, std::int32_t q) {
@@ -121,38 +123,6 @@ struct CavityInserter {
     }
     return -1;
   }
-  // The cavity's boundary as one cycle (after, before); false where it is none (a bug guard).
-  // Small boundaries by search; a point that takes over a fan around a vertex of high degree (on
-  // two segments, the fan of one segment's end over the other) has thousands of edges, which
-  // the search made quadratic (10^5 points on two segments: 0.6 s, 10^6: minutes): sorted then.
-  bool link_boundary() {
-    const std::size_t e = bnd.size();
-    after.assign(e, -1), before.assign(e, -1);
-    if (e <= 16) {
-      for (std::size_t i = 0; i < e; ++i)
-        for (std::size_t j = 0; j < e; ++j)
-          if (bnd[j].a == bnd[i].b) {
-            after[i] = std::int32_t(j);
-            break;
-          }
-    } else {
-      starts.clear();
-      for (std::size_t i = 0; i < e; ++i) starts.push_back({bnd[i].a, std::int32_t(i)});
-      std::sort(starts.begin(), starts.end());
-      for (std::size_t i = 0; i < e; ++i) {
-        const auto it = std::lower_bound(starts.begin(), starts.end(),
-                                         std::pair<std::int32_t, std::int32_t>{bnd[i].b, -1});
-        if (it != starts.end() && it->first == bnd[i].b) after[i] = it->second;
-      }
-    }
-    for (std::size_t i = 0; i < e; ++i) {
-      if (after[i] < 0) return false;
-      before[std::size_t(after[i])] = std::int32_t(i);
-    }
-    for (std::size_t i = 0; i < e; ++i)
-      if (before[i] < 0) return false;
-    return true;
-  }
   // Inserts q, or returns false having changed nothing (its cavity reaches another thread's
   // triangles).
   bool insert(std::int32_t q) {
@@ -169,24 +139,35 @@ struct CavityInserter {
     const Tri T0 = read(t0);
     if (!mine(T0.v)) return wait_from(t0);
     // The cavity: the triangles whose circles (half-planes, for infinite ones) hold q, found
-    // from the one that holds it; its boundary, counter-clockwise edges seen from inside.
-    cav.clear(), bnd.clear();
+    // from the one that holds it by a depth-first search that turns counter-clockwise, so that
+    // its boundary edges (counter-clockwise seen from inside) come out in order around it.
+    // Every vertex of a cavity lies on its boundary (each becomes q's neighbour), so its
+    // triangles, joined across their shared edges, form a tree: the search reaches each once
+    // from the edge it came by, with no marks (a mark array cost a cache line more a neighbour,
+    // and linking the boundary edges into a cycle afterwards a search or a sort).
+    cav.clear(), bnd.clear(), dfs.clear();
     cav.push_back(t0);
-    const std::int32_t stamp = q + again;  // (a first attempt may have left marks q)
-    store_word(mark + t0, stamp);
-    for (std::size_t i = 0; i < cav.size(); ++i) {
-      const Tri C = read(cav[i]);
-      for (int k = 0; k < 3; ++k) {
-        const std::int32_t nb = simplex_of(C.n[k]);
-        if (load_word(mark + nb) == stamp) continue;
-        const Tri N = read(nb);
-        if (conflict(N.v, q)) {
-          if (!mine(N.v)) return wait_from(t0);
-          store_word(mark + nb, stamp);
-          cav.push_back(nb);
-        } else {
-          bnd.push_back({C.v[(k + 1) % 3], C.v[(k + 2) % 3], C.n[k]});
-        }
+    dfs.push_back({T0, std::int8_t(0), std::int8_t(3)});
+    while (!dfs.empty()) {
+      Frame& F = dfs.back();
+      if (!F.left) {
+        dfs.pop_back();
+        continue;
+      }
+      const int k = F.k;
+      F.k = k == 2 ? 0 : k + 1, --F.left;
+      const std::int32_t across = F.C.n[k];
+      const std::int32_t nb = simplex_of(across);
+      const Tri N = read(nb);
+      if (conflict(N.v, q)) {
+        if (!mine(N.v)) return wait_from(t0);
+        // (a bug guard: a cavity with a vertex inside would lead the search round it forever)
+        if (cav.size() >= most) return broken = true, false;
+        cav.push_back(nb);
+        const int in = loc_of(across);  // (N's edge back to C; its next two edges in turn)
+        dfs.push_back({N, std::int8_t(in == 2 ? 0 : in + 1), std::int8_t(2)});
+      } else {
+        bnd.push_back({F.C.v[k == 2 ? 0 : k + 1], F.C.v[k == 0 ? 2 : k - 1], across});
       }
     }
     // Refilled by the triangles (q, a, b) over the boundary edges, in the cavity's slots and
@@ -199,17 +180,13 @@ struct CavityInserter {
     auto slot = [&](std::size_t i) {
       return i < cav.size() ? cav[i] : next + std::int32_t(i - cav.size());
     };
-    if (!link_boundary()) {
-      broken = true;
-      return false;
-    }
     // (the two new slots first, from the last down: the cavity's slots name them, and a walk of
     // another thread reading one could otherwise reach a new slot before it is written)
     for (std::size_t i = e; i-- > 0;) {
       const Edge& E = bnd[i];
       // (q, b, c) across edge q-b, opposite c; (q, z, a) across edge a-q, opposite z
-      const std::int32_t nb_after = slot(std::size_t(after[i]));
-      const std::int32_t nb_before = slot(std::size_t(before[i]));
+      const std::int32_t nb_after = slot(i + 1 == e ? 0 : i + 1);  // (the boundary's cycle)
+      const std::int32_t nb_before = slot(i == 0 ? e - 1 : i - 1);
       std::int32_t* w = tri[slot(i)].v;
       const std::int32_t rec[6] = {q, E.a, E.b, E.out, enc(nb_after, 2), enc(nb_before, 1)};
       for (int k = 0; k < 6; ++k) store_word(w + k, rec[k]);
@@ -234,7 +211,7 @@ bool Triangulator::insert_one_by_one(E& ex) {
       return false;  // (the batches' knobs ask for the batches)
     write_first();
     const std::int32_t m = m_;
-    CavityInserter one(tri(), srank(), g_, std::int32_t(base_), P_.first);
+    CavityInserter one(tri(), tmax_, g_, std::int32_t(base_), P_.first);
     cavity_insertions_ = m - 3;
     ntri_ = tmax_;
     // Each chunk's next free slot (a chunk's points take theirs in the order it inserts).

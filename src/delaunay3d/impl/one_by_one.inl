@@ -44,7 +44,6 @@ struct TetInserter {
   std::int32_t first[4];   // the first tetrahedron's vertices
   std::int64_t chunk = 0;  // points per chunk; 0: one thread alone, nothing is anyone else's
   std::int32_t own = 0;    // this thread's chunk
-  std::int32_t again = 0;  // (the schedule's field: 3D marks no slots, its cavity is a set)
   std::int64_t next = 0, end = 0;   // the slots it may still take: [next, end)
   std::int64_t own_first = 0;       // threads: where its range begins
   std::int64_t before_ranges = 0;   // threads: where this stage's first range begins

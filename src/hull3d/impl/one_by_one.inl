@@ -63,7 +63,6 @@ struct HullInserter {
   std::int32_t first[4];   // the first tetrahedron's vertices, sorted
   std::int64_t chunk = 0;  // points per chunk; 0: one thread alone, nothing is anyone else's
   std::int32_t own = 0;    // this thread's chunk
-  std::int32_t again = 0;  // (the schedule's; unused: an abandoned attempt takes its marks back)
   std::int32_t next = 0;   // the next free slot of the chunk it inserts for
   std::int32_t from = 0;   // the first slot of that chunk (a live facet is looked for there)
   bool broken = false;     // a cavity was no disk (a bug guard)
