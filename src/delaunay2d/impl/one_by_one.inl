@@ -60,11 +60,19 @@ struct CavityInserter {
     std::int32_t a, b, out;  // counter-clockwise seen from the cavity; the outer neighbour
   };
   std::vector<Edge> bnd;  // in order round the cavity
-  struct Frame {          // the cavity's search: a triangle and its edges left to cross
-    Tri C;
+  // The cavity's search: a triangle's slot and its edges left to cross. (Each built field by
+  // field where it is kept, as the edges are: a record assembled on the stack from narrower
+  // stores and copied by wider loads stalls on store forwarding, which cost a tenth of the
+  // insertion's time on the 2-core machine.)
+  struct Frame {
+    std::int32_t s;
     std::int8_t k, left;  // the next edge, and how many
   };
   std::vector<Frame> dfs;
+  void push_frame(std::int32_t s, int k, int left) {
+    Frame& F = dfs.emplace_back();
+    F.s = s, F.k = std::int8_t(k), F.left = std::int8_t(left);
+  }
   std::vector<double> scratch = std::vector<double>(std::size_t(kIncircleScratch));
 
   Tri read(std::int32_t s) const {
@@ -93,6 +101,11 @@ struct CavityInserter {
     if (!r) r = illegal_exact(g, v, q, scratch.data());
     return r > 0;
   }
+  // (records are read after their neighbours' pointers, each a likely cache miss: the loads are
+  // started while the tests on the triangle that names them run)
+  void prefetch_neighbours(const Tri& T) const {
+    for (int k = 0; k < 3; ++k) prefetch_on_host(tri + simplex_of(T.n[k]));
+  }
   // The triangle (of the extended triangulation: infinite ones are cones from the kernel
   // point) that holds q, by a stochastic visibility walk from slot t; -1 where it gives up.
   std::int32_t walk(std::int32_t t, std::int32_t q) {
@@ -101,6 +114,7 @@ struct CavityInserter {
       reached = t;
       const Tri T = read(t);
       if (T.v[0] == T.v[1] || T.v[1] == T.v[2] || T.v[2] == T.v[0]) return -1;  // (torn)
+      prefetch_neighbours(T);  // (the next step's, or the cavity search's first reads)
       rng ^= rng << 13, rng ^= rng >> 17, rng ^= rng << 5;
       const int s = int(rng % 3);
       std::int32_t beyond = -1;  // (a neighbour across an edge with q on its far side)
@@ -147,7 +161,7 @@ struct CavityInserter {
     // and linking the boundary edges into a cycle afterwards a search or a sort).
     cav.clear(), bnd.clear(), dfs.clear();
     cav.push_back(t0);
-    dfs.push_back({T0, std::int8_t(0), std::int8_t(3)});
+    push_frame(t0, 0, 3);
     while (!dfs.empty()) {
       Frame& F = dfs.back();
       if (!F.left) {
@@ -156,7 +170,8 @@ struct CavityInserter {
       }
       const int k = F.k;
       F.k = k == 2 ? 0 : k + 1, --F.left;
-      const std::int32_t across = F.C.n[k];
+      const std::int32_t* w = tri[F.s].v;  // (this thread's own triangle: no one changes it)
+      const std::int32_t across = load_word(w + 3 + k);
       const std::int32_t nb = simplex_of(across);
       const Tri N = read(nb);
       if (conflict(N.v, q)) {
@@ -164,10 +179,13 @@ struct CavityInserter {
         // (a bug guard: a cavity with a vertex inside would lead the search round it forever)
         if (cav.size() >= most) return broken = true, false;
         cav.push_back(nb);
+        prefetch_neighbours(N);
         const int in = loc_of(across);  // (N's edge back to C; its next two edges in turn)
-        dfs.push_back({N, std::int8_t(in == 2 ? 0 : in + 1), std::int8_t(2)});
+        push_frame(nb, in == 2 ? 0 : in + 1, 2);
       } else {
-        bnd.push_back({F.C.v[k == 2 ? 0 : k + 1], F.C.v[k == 0 ? 2 : k - 1], across});
+        Edge& E = bnd.emplace_back();
+        E.a = load_word(w + (k == 2 ? 0 : k + 1)), E.b = load_word(w + (k == 0 ? 2 : k - 1));
+        E.out = across;
       }
     }
     // Refilled by the triangles (q, a, b) over the boundary edges, in the cavity's slots and
