@@ -68,7 +68,8 @@ inline void Triangulator::peel() {
                 tmax_, GG_LAMBDA(std::int64_t t) { return flat(tri[B + t]); }, lists_[0].data());
   st_.flat_triangles = nflat;
   if (nflat == 0) return;
-  if (B != 0) {  // positions to slots
+  ready_rounds();  // (flipped as the rounds flip)
+  if (B != 0) {    // positions to slots
     std::int32_t* l0 = lists_[0].data();
     ex_.for_each_index(
         nflat, GG_LAMBDA(std::int64_t i) { l0[i] += B; });

@@ -18,6 +18,7 @@ inline void Triangulator::write_first() {
 
 // The same, with every other point located in it.
 inline void Triangulator::start() {
+  ready_rounds();
   write_first();
   const std::int32_t a = P_.first[0], b = P_.first[1], c = P_.first[2];
   const std::int32_t B = std::int32_t(base_);
@@ -101,6 +102,7 @@ struct WalkFrom {
 inline void Triangulator::start_from(const std::int32_t* tris, const std::int32_t* twin,
                                      std::int64_t f, const std::int32_t* near,
                                      bool start_delaunay) {
+  ready_rounds();
   const std::int32_t I = m_, B = std::int32_t(base_);
   const std::int64_t nh = 3 * f;
   auto in = ex_.template alloc<std::int8_t>(std::size_t(m_));
