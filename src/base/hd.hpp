@@ -12,6 +12,16 @@
 #define GG_INLINE inline
 #define GG_COLD inline
 #endif
+// A small test on a CPU executor's hot path: inlined on the host too, where the compiler's own
+// choice varies with what surrounds the call (2D's orientation test stayed a call from the
+// cavity insertion's walk in one build and not in the next, 10-15 % of its time).
+#if defined(__CUDACC__)
+#define GG_ALWAYS_INLINE __host__ __device__ __forceinline__
+#elif defined(__GNUC__)
+#define GG_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define GG_ALWAYS_INLINE inline
+#endif
 
 // A lambda usable by both executors: `GG_LAMBDA(int64_t i) { ... }`. Under nvcc this needs
 // --extended-lambda, which the build sets.

@@ -29,7 +29,7 @@ GG_COLD int orient_tie(const double* pa, std::int32_t a, const double* pb, std::
   return pred::orient2d_sos(pa, a, pb, b, pc, c, scratch);
 }
 // Orientation with the infinity vertex standing for s, sign reversed; q is finite.
-GG_INLINE int orient_ext(const Geo& g, std::int32_t a, std::int32_t b, std::int32_t c) {
+GG_ALWAYS_INLINE int orient_ext(const Geo& g, std::int32_t a, std::int32_t b, std::int32_t c) {
   const int flip = (a == g.m || b == g.m || c == g.m) ? -1 : 1;
   const double *pa = g.at(a), *pb = g.at(b), *pc = g.at(c);
   int r = pred::orient2d_fast(pa, pb, pc);

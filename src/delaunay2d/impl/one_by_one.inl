@@ -107,35 +107,19 @@ struct CavityInserter {
     for (int k = 0; k < 3; ++k) prefetch_on_host(tri + simplex_of(T.n[k]));
   }
   // The triangle (of the extended triangulation: infinite ones are cones from the kernel
-  // point) that holds q, by a stochastic visibility walk from slot t; -1 where it gives up.
-  std::int32_t walk(std::int32_t t, std::int32_t q) {
-    std::int32_t came = -1;
-    for (int step = 0; !chunk || step < kWalkSteps; ++step) {
-      reached = t;
-      const Tri T = read(t);
-      if (T.v[0] == T.v[1] || T.v[1] == T.v[2] || T.v[2] == T.v[0]) return -1;  // (torn)
-      prefetch_neighbours(T);  // (the next step's, or the cavity search's first reads)
-      rng ^= rng << 13, rng ^= rng >> 17, rng ^= rng << 5;
-      const int s = int(rng % 3);
-      std::int32_t beyond = -1;  // (a neighbour across an edge with q on its far side)
-      for (int j = 0; j < 3 && beyond < 0; ++j) {
-        const int k = (s + j) % 3;
-        const std::int32_t nb = simplex_of(T.n[k]);
-        if (nb != came && orient_ext(g, T.v[(k + 1) % 3], T.v[(k + 2) % 3], q) < 0) beyond = nb;
-      }
-      if (beyond < 0) {
-        // (threads: the record walked from may have been stale, so the edge back to it is
-        // tested too, or the walk could end on a triangle that does not hold q)
-        if (chunk && came >= 0)
-          for (int k = 0; k < 3; ++k)
-            if (simplex_of(T.n[k]) == came &&
-                orient_ext(g, T.v[(k + 1) % 3], T.v[(k + 2) % 3], q) < 0)
-              return -1;
-        return t;
-      }
-      came = t, t = beyond;
-    }
-    return -1;
+  // point) that holds q, by the stochastic visibility walk from slot t (its record in T); -1
+  // where it gives up (threads: after kWalkSteps, or on a torn record).
+  std::int32_t walk(std::int32_t t, std::int32_t q, Tri& T) {
+    return mesh::cavities::visibility_walk<3, Adj>(
+        t, rng, chunk ? kWalkSteps : -1, chunk != 0, T, [&](std::int32_t s) { return read(s); },
+        [](const Tri& R) { return R.v[0] != R.v[1] && R.v[1] != R.v[2] && R.v[2] != R.v[0]; },
+        [&](const Tri& R, int k) {
+          return orient_ext(g, R.v[(k + 1) % 3], R.v[(k + 2) % 3], q) < 0;
+        },
+        [&](std::int32_t s, const Tri& R) {
+          reached = s;
+          prefetch_neighbours(R);  // (the next step's, or the cavity search's first reads)
+        });
   }
   // Inserts q, or returns false having changed nothing (its cavity reaches another thread's
   // triangles).
@@ -148,9 +132,9 @@ struct CavityInserter {
       last = t;
       return false;
     };
-    const std::int32_t t0 = walk(last >= 0 ? last : base, q);
+    Tri T0;
+    const std::int32_t t0 = walk(last >= 0 ? last : base, q, T0);
     if (t0 < 0) return wait_from(reached);
-    const Tri T0 = read(t0);
     if (!mine(T0.v)) return wait_from(t0);
     // The cavity: the triangles whose circles (half-planes, for infinite ones) hold q, found
     // from the one that holds it by a depth-first search that turns counter-clockwise, so that

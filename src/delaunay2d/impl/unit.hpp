@@ -34,6 +34,7 @@
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
 #include "mesh/cavity_schedule.hpp"
+#include "mesh/visibility_walk.hpp"
 #include "mesh/compact.hpp"
 #include "mesh/hole_refill.hpp"
 #include "mesh/simplex_changes.hpp"

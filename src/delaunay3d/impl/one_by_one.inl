@@ -163,32 +163,15 @@ struct TetInserter {
     return false;
   }
   // The tetrahedron (of the extended tetrahedralisation: infinite ones are cones from the
-  // kernel point) that holds q, by a stochastic visibility walk from slot t; -1 where it gives
+  // kernel point) that holds q, by the stochastic visibility walk from slot t; -1 where it gives
   // up or ends on a record it cannot trust (threads).
   std::int32_t walk(std::int32_t t, std::int32_t q) {
-    std::int32_t came = -1;
-    for (int step = 0; !chunk || step < kWalkSteps3; ++step) {
-      const Tet T = read(t);
-      if (chunk && torn(T)) return -1;
-      rng ^= rng << 13, rng ^= rng >> 17, rng ^= rng << 5;
-      const int s = int(rng & 3);
-      std::int32_t beyond = -1;  // (a neighbour across a face with q on its far side)
-      for (int j = 0; j < 4 && beyond < 0; ++j) {
-        const int k = (s + j) & 3;
-        const std::int32_t nb = simplex_of(T.n[k]);
-        if (nb != came && orient_with(g, T.v, k, q) < 0) beyond = nb;
-      }
-      if (beyond < 0) {
-        // (threads: the record walked from may have been stale, so the face back to it is
-        // tested too, or the walk could end on a tetrahedron that does not hold q)
-        if (chunk && came >= 0)
-          for (int k = 0; k < 4; ++k)
-            if (simplex_of(T.n[k]) == came && orient_with(g, T.v, k, q) < 0) return -1;
-        return t;
-      }
-      came = t, t = beyond;
-    }
-    return -1;
+    Tet T;
+    return mesh::cavities::visibility_walk<4, TetAdjacency>(
+        t, rng, chunk ? kWalkSteps3 : -1, chunk != 0, T, [&](std::int32_t s) { return read(s); },
+        [&](const Tet& R) { return !chunk || !torn(R); },
+        [&](const Tet& R, int k) { return orient_with(g, R.v, k, q) < 0; },
+        [](std::int32_t, const Tet&) {});
   }
   // A slot for the i-th new tetrahedron: the cavity's own, then freed ones, then new ones.
   std::int32_t slot(std::size_t i) const {

@@ -121,32 +121,13 @@ struct HullInserter {
     return R.v[0] >= 0 && R.v[1] >= 0 && R.v[2] >= 0 && R.v[0] != R.v[1] && R.v[1] != R.v[2] &&
            R.v[2] != R.v[0];
   }
-  // The facet whose cone from s holds q, by a stochastic visibility walk from slot f (its
+  // The facet whose cone from s holds q, by the stochastic visibility walk from slot f (its
   // record in R); -1 where it gives up (a removed or torn record, or too long a walk).
   std::int32_t walk(std::int32_t f, std::int32_t q, Rec& R) {
-    std::int32_t came = -1;
-    for (int step = 0; step < kHullWalkSteps; ++step) {
-      R = read(f);
-      if (!sane(R)) return -1;
-      rng ^= rng << 13, rng ^= rng >> 17, rng ^= rng << 5;
-      const int r = int(rng % 3);
-      std::int32_t beyond = -1;  // (a neighbour across an edge with q on its far side)
-      for (int j = 0; j < 3 && beyond < 0; ++j) {
-        const int k = (r + j) % 3;
-        const std::int32_t nb = simplex_of(R.n[k]);
-        if (nb != came && side(R, k, q) < 0) beyond = nb;
-      }
-      if (beyond < 0) {
-        // (threads: the record walked from may have been stale, so the edge back to it is
-        // tested too, or the walk could end on a facet whose cone does not hold q)
-        if (chunk && came >= 0)
-          for (int k = 0; k < 3; ++k)
-            if (simplex_of(R.n[k]) == came && side(R, k, q) < 0) return -1;
-        return f;
-      }
-      came = f, f = beyond;
-    }
-    return -1;
+    return mesh::cavities::visibility_walk<3, mesh::Adjacency>(
+        f, rng, kHullWalkSteps, chunk != 0, R, [&](std::int32_t s) { return read(s); },
+        [](const Rec& T) { return sane(T); },
+        [&](const Rec& T, int k) { return side(T, k, q) < 0; }, [](std::int32_t, const Rec&) {});
   }
   // A live facet at or after slot `at` (the walks' start where none is known), or -1.
   std::int32_t live_from(std::int32_t at) const {

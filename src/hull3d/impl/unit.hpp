@@ -22,6 +22,7 @@
 #include "exec/scratch_slots.hpp"
 #include "mesh/adjacency.hpp"
 #include "mesh/cavity_schedule.hpp"
+#include "mesh/visibility_walk.hpp"
 #include "mesh/compact.hpp"
 #include "mesh/decision.hpp"
 #include "mesh/flip_fix.hpp"
