@@ -172,6 +172,7 @@ int main(int argc, char** argv) {
   std::printf("%-12s %9s %8s | %9s %9s %9s | %8s %8s %8s %8s | %6s %9s %5s %4s | %9s %6s | %s\n",
               "input", "n", "segs", "delaunay", "cdt", "cdt dev", "dt part", "segments", "to_host",
               "domain", "recov", "cavity_t", "rnds", "ant", "cgal", "x cgal", "check");
+  if (!save_dir.empty() && !bench::make_save_dir(save_dir)) return 2;
   std::ofstream f = bench::open_bench_csv(csv);
   std::stringstream ss(inputs);
   for (std::string item; std::getline(ss, item, ',');) {

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -19,6 +21,15 @@ inline std::vector<Backend> backends(const std::string& which) {
   if (which == "all" || which == "cpu") b.push_back(Backend::Cpu);
   if ((which == "all" || which == "cuda") && query_device().available) b.push_back(Backend::Cuda);
   return b;
+}
+
+// --save DIR: the inputs' folder, made where it is missing; false (said on stdout) where it
+// cannot be (a driver writing into a missing folder aborted with the library's uncaught error).
+inline bool make_save_dir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) std::cout << "--save: cannot make the folder '" << dir << "': " << ec.message() << "\n";
+  return !ec;
 }
 
 // "1024,2048,1e6" -> {1024, 2048, 1000000}

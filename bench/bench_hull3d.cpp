@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -114,14 +113,7 @@ int main(int argc, char** argv) {
       return a == "--help" ? 0 : 2;
     }
   }
-  if (!save.empty()) {  // (the inputs' folder, made where it is missing)
-    std::error_code ec;
-    std::filesystem::create_directories(save, ec);
-    if (ec) {
-      std::cout << "--save: cannot make the folder '" << save << "': " << ec.message() << "\n";
-      return 2;
-    }
-  }
+  if (!save.empty() && !bench::make_save_dir(save)) return 2;
   struct Config {
     Backend b;
     Method m;
