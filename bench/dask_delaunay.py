@@ -7,7 +7,8 @@ Each worker is a process that sees one GPU (CUDA_VISIBLE_DEVICES; what dask-cuda
 LocalCUDACluster does, without needing it). The points are made on the workers, chunk by chunk,
 so the client never holds them. Timed: the whole distributed call until the simplices and their
 neighbours are in the workers' memory (wall clock), the single-GPU call inside one worker on all
-points (from host arrays, as the blocks are), the bytes the workers sent each other, the rounds
+points (from host arrays, as the blocks are; with --cpu, the single call in the client process
+on all cores), the bytes the workers sent each other, the rounds
 and the local points per own point. --cpu runs CPU workers instead (--gpus: worker counts).
 """
 import argparse
@@ -73,8 +74,14 @@ def main():
                 for w in [int(x) for x in a.gpus.split(",")]:
                     with cluster(w, a.cpu) as cl, Client(cl) as client:
                         pts = points(n, d, dist, chunks=a.chunks)
+                        # the workers import gpugeom before the clock starts, as a long-lived
+                        # cluster has
+                        client.run(lambda: __import__("gpugeom.dask"))
                         if base is None:
-                            base = dask.delayed(single)(pts, backend).compute()
+                            # a GPU: on one worker's GPU; the CPU: in this process on all of
+                            # the host's cores, as a user without Dask runs it
+                            base = single(pts.compute(), backend) if a.cpu else \
+                                dask.delayed(single)(pts, backend).compute()
                             ref_ms, ref_m, name = base
                             print(f"{d}D {dist} n={n}: single {name}: {ref_ms:.0f} ms, "
                                   f"{ref_m} simplices", flush=True)

@@ -4,10 +4,12 @@
 #include <nanobind/stl/function.h>
 #include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
 
 #include <algorithm>
 
 #include "arrays.hpp"
+#include "gpugeom/blocks.hpp"
 #include "gpugeom/cdt2d.hpp"
 #include "gpugeom/delaunay2d.hpp"
 #include "gpugeom/delaunay3d.hpp"
@@ -645,6 +647,46 @@ nb::object hull2d_bind(const AnyArray& points, const AnyArray& simplices,
   return host_array(std::move(v), {h});
 }
 
+// gpugeom.dask's bulk finality test of a block's simplices (include/gpugeom/blocks.hpp): host
+// arrays, one byte per listed simplex.
+nb::object circumballs_inside_bind(const AnyArray& points, const AnyArray& simplices,
+                                   const AnyArray& rows, const std::vector<double>& region_lo,
+                                   const std::vector<double>& region_hi,
+                                   const std::vector<double>& bounds_lo,
+                                   const std::vector<double>& bounds_hi, double scale,
+                                   int threads) {
+  Input p = inspect(points, "points");
+  if (p.on_device || !holds<double>(p) || p.shape.size() != 2 ||
+      (p.shape[1] != 2 && p.shape[1] != 3))
+    throw nb::value_error("points must be a host float64 array of shape (n, 2) or (n, 3)");
+  const int dim = int(p.shape[1]);
+  Input s = inspect(simplices, "simplices");
+  if (s.on_device || !holds<std::int64_t>(s) || s.shape.size() != 2 || s.shape[1] != dim + 1)
+    throw nb::value_error("simplices must be a host int64 array of shape (m, dim + 1)");
+  Input r = inspect(rows, "rows");
+  if (r.on_device || !holds<std::int64_t>(r) || r.shape.size() != 1)
+    throw nb::value_error("rows must be a host int64 array of shape (k,)");
+  BlockBoxes b;
+  for (const auto* v : {&region_lo, &region_hi, &bounds_lo, &bounds_hi})
+    if (int(v->size()) != dim) throw nb::value_error("each box corner needs dim coordinates");
+  for (int k = 0; k < dim; ++k) {
+    b.region_lo[k] = region_lo[k], b.region_hi[k] = region_hi[k];
+    b.bounds_lo[k] = bounds_lo[k], b.bounds_hi[k] = bounds_hi[k];
+  }
+  b.scale = scale;
+  const auto* rw = static_cast<const std::int64_t*>(r.data);
+  const std::int64_t k = r.shape[0], m = s.shape[0], n = p.shape[0];
+  const auto* sx = static_cast<const std::int64_t*>(s.data);
+  // the indices are checked here, once: the library reads them unchecked
+  for (std::int64_t i = 0; i < k; ++i)
+    if (rw[i] < 0 || rw[i] >= m) throw nb::value_error("rows: an index out of range");
+  for (std::int64_t i = 0; i < m * (dim + 1); ++i)
+    if (sx[i] < 0 || sx[i] >= n) throw nb::value_error("simplices: a vertex out of range");
+  HostVector<std::uint8_t> out(static_cast<sz>(k));
+  unlocked([&] { circumballs_inside_region(pts(p), dim, sx, rw, k, b, out.data(), threads); });
+  return host_array(std::move(out), {sz(k)});
+}
+
 // The independent exact checkers (src/verify), for tests and for users who want proof.
 std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray& points,
                                         const AnyArray& cells, nb::object duplicate_of,
@@ -739,6 +781,8 @@ void bind_spatial(nb::module_& m) {
   m.def("find_simplex", &find_simplex_bind, "points"_a, "simplices"_a, "neighbors"_a, "xi"_a,
         "threads"_a = 0);
   m.def("hull2d_vertices", &hull2d_bind, "points"_a, "simplices"_a, "neighbors"_a);
+  m.def("circumballs_inside_region", &circumballs_inside_bind, "points"_a, "simplices"_a, "rows"_a,
+        "region_lo"_a, "region_hi"_a, "bounds_lo"_a, "bounds_hi"_a, "scale"_a, "threads"_a = 0);
   m.def("check", &check_bind, "what"_a, "points"_a, "simplices"_a, "duplicate_of"_a = nb::none(),
         "segments"_a = nb::none());
   m.def("cdt2d", &cdt2d_bind, "points"_a, "segments"_a, "holes"_a, "regions"_a,

@@ -205,3 +205,59 @@ def test_blocks_and_rows():
     table = np.array([[3, 1, 2], [4, 5, 6], [0, 1, 9]])
     queries = np.array([[4, 5, 6], [1, 2, 3], [1, 2, 4], [4, 5, 6]])
     np.testing.assert_array_equal(match_rows(table, queries), [1, 0, -1, 1])
+
+
+def test_bulk_circumball_test():
+    """The C++ first test of a block's simplices (_core.circumballs_inside_region) accepts only
+    simplices whose circumball, computed exactly, holds no point outside the region, and agrees
+    with the NumPy test it stands in for (the same centre, bound and slabs)."""
+    from fractions import Fraction
+
+    from gpugeom import _core
+    from gpugeom.dask import _ghost
+    for d in (2, 3):
+        pts = np.random.default_rng(31 + d).random((1500, d))
+        s = np.asarray(gpugeom.Delaunay(pts, backend="cpu").simplices, dtype=np.int64)
+        lo, hi = np.full(d, 0.25), np.full(d, 0.75)
+        box_lo, box_hi = pts.min(axis=0), pts.max(axis=0)
+        rows = np.arange(len(s), dtype=np.int64)
+        got = _core.circumballs_inside_region(pts, s, rows, lo.tolist(), hi.tolist(),
+                                              box_lo.tolist(), box_hi.tolist(), 1.0, 2)
+        assert got.dtype == np.uint8 and got.shape == (len(s),)
+        assert 0 < int(got.sum()) < len(s)
+        centre, radius, err = _ghost._circumcentres(pts, s)
+        reach = radius + 2.0 * err + 64.0 * _ghost._EPS * (1.0 + np.abs(centre).max(axis=1)
+                                                           + radius)
+        slabs = _ghost._slabs(lo, hi, box_lo, box_hi)
+        want = _ghost._ball_misses(centre, reach, slabs)
+        assert int((want != got.astype(bool)).sum()) <= len(s) // 1000
+        # exact: no point outside the region in an accepted simplex's closed circumball
+        outside = pts[~np.all((pts >= lo) & (pts <= hi), axis=1)]
+        for i in np.nonzero(got)[0][:: max(1, int(got.sum()) // 40)]:
+            v = [[Fraction(float(c)) for c in pts[j]] for j in s[i]]
+            a = [[v[k + 1][m] - v[0][m] for m in range(d)] for k in range(d)]
+            b = [sum(x * x for x in row) / 2 for row in a]
+            x = _solve(a, b)
+            r2 = sum(t * t for t in x)
+            c = [v[0][m] + x[m] for m in range(d)]
+            near = outside[np.sum((outside - np.array([float(t) for t in c])) ** 2, axis=1)
+                           < float(r2) * 1.01]
+            for q in near:
+                assert sum((Fraction(float(q[m])) - c[m]) ** 2 for m in range(d)) > r2
+        with pytest.raises(ValueError, match="rows"):
+            _core.circumballs_inside_region(pts, s, np.array([len(s)], np.int64), lo.tolist(),
+                                            hi.tolist(), box_lo.tolist(), box_hi.tolist(), 1.0)
+
+
+def _solve(a, b):
+    """Gaussian elimination over Fractions (exact)."""
+    n = len(b)
+    m = [row[:] + [b[i]] for i, row in enumerate(a)]
+    for c in range(n):
+        p = next(r for r in range(c, n) if m[r][c] != 0)
+        m[c], m[p] = m[p], m[c]
+        for r in range(n):
+            if r != c and m[r][c] != 0:
+                f = m[r][c] / m[c][c]
+                m[r] = [x - f * y for x, y in zip(m[r], m[c])]
+    return [m[i][n] / m[i][i] for i in range(n)]

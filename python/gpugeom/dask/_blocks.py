@@ -82,7 +82,10 @@ class Grid:
 
 def in_box(pts: np.ndarray, lo, hi) -> np.ndarray:
     """Exact test of the closed box (comparisons of the doubles, no arithmetic)."""
-    return np.all((pts >= lo) & (pts <= hi), axis=1)
+    keep = (pts[:, 0] >= lo[0]) & (pts[:, 0] <= hi[0])
+    for k in range(1, pts.shape[1]):  # column by column: a reduction along axis 1 is slow
+        keep &= (pts[:, k] >= lo[k]) & (pts[:, k] <= hi[k])
+    return keep
 
 
 def boxes_meet(alo, ahi, blo, bhi) -> bool:

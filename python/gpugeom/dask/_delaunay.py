@@ -18,6 +18,8 @@ from . import _vtu
 from ._blocks import Grid, boxes_meet, choose_counts, in_box, match_rows
 from ._ghost import triangulate_block
 
+_EPS = float(np.finfo(np.float64).eps)
+
 # ---------------------------------------------------------------------------------------------
 # Input: pieces of rows, each a delayed float64 (k, d) array, with their row offsets.
 
@@ -72,8 +74,9 @@ def _pieces(points, nblocks: Optional[int]):
 
 def _summary(pts):
     pts = _load(pts)
-    finite = np.isfinite(pts).all(axis=1)
-    bad = int(np.argmin(finite)) if not finite.all() else -1
+    bad = -1
+    if not np.isfinite(pts).all():  # (a reduction along the short axis only where one is bad)
+        bad = int(np.argmin(np.isfinite(pts).all(axis=1)))
     if len(pts) == 0 or bad >= 0:
         return dict(n=len(pts), bad=bad, lo=None, hi=None)
     return dict(n=len(pts), bad=-1, lo=pts.min(axis=0), hi=pts.max(axis=0))
@@ -88,11 +91,46 @@ def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
     cuts = np.searchsorted(cell[order], np.arange(grid.nblocks + 1))
     parts = {int(b): (pts[order[cuts[b]:cuts[b + 1]]], ids[order[cuts[b]:cuts[b + 1]]])
              for b in np.nonzero(np.diff(cuts))[0]}
-    try:
-        cand = np.asarray(ConvexHull(pts, backend=backend, threads=threads).vertices, np.int64)
-    except (_core.DegenerateInputError, ValueError):
-        cand = np.arange(len(pts))  # too few or flat: every point may be extreme
+    if pts.shape[1] == 2:
+        cand = _hull_candidates2d(pts)
+    else:
+        try:
+            cand = np.asarray(ConvexHull(pts, backend=backend, threads=threads).vertices,
+                              np.int64)
+        except (_core.DegenerateInputError, ValueError):
+            cand = np.arange(len(pts))  # too few or flat: every point may be extreme
     return parts, (pts[cand], ids[cand], cell[cand])
+
+
+# Shewchuk's bound on the rounding of a 2D orientation computed in doubles, relative to the sum
+# of its two products' magnitudes (his ccwerrboundA, with epsilon half an ulp of 1).
+_ORIENT_BOUND = (3.0 + 16.0 * (_EPS / 2)) * (_EPS / 2)
+
+
+def _hull_candidates2d(pts: np.ndarray) -> np.ndarray:
+    """The points of a 2D piece that may be extreme points of the whole set: all but those
+    strictly inside the polygon through the piece's extreme points in 8 directions (a point
+    strictly left of every edge of a closed counter-clockwise polygon of input points lies
+    strictly inside their hull, whatever the rounding of the directions chose, so no
+    perturbation makes it extreme). The orientations are computed in doubles and a point is
+    dropped only where each is positive beyond its rounding bound. A 2D ConvexHull costs a
+    Delaunay triangulation of the piece; this costs a few passes over it."""
+    if len(pts) < 4:
+        return np.arange(len(pts))
+    angle = 2.0 * np.pi * np.arange(8) / 8
+    v = np.argmax(pts @ np.stack([np.cos(angle), np.sin(angle)]), axis=0)
+    v = v[np.r_[True, v[1:] != v[:-1]]]
+    if v[0] == v[-1]:
+        v = v[:-1]
+    if len(v) < 3:
+        return np.arange(len(pts))
+    x, y = pts[:, 0], pts[:, 1]
+    inside = np.ones(len(pts), dtype=bool)
+    for i in range(len(v)):
+        (ax, ay), (bx, by) = pts[v[i]], pts[v[(i + 1) % len(v)]]
+        left, right = (ax - x) * (by - y), (ay - y) * (bx - x)
+        inside &= (left - right) > _ORIENT_BOUND * (np.abs(left) + np.abs(right))
+    return np.nonzero(~inside)[0]
 
 
 def _own(splits, block: int, d: int):

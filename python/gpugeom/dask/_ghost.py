@@ -373,11 +373,22 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
     return ok, need, along, klo, khi
 
 
-def _judge(dpts, s, nb, req, grid, block, ghost, planes, extras, xp):
+def _judge(dpts, s, nb, req, grid, block, ghost, planes, extras, xp, threads=1):
     """Tests simplices ``s[req]`` (in pieces of ``_PIECE``, so that the temporaries stay small).
-    None when all are final; else the next ghost width and the extra boxes to ask for."""
+    None when all are final; else the next ghost width and the extra boxes to ask for.
+
+    On the host, the first test (the circumball with its rounding bound misses the bounding box
+    beyond the region), which almost every simplex passes, runs in C++ over all of them
+    (``_core.circumballs_inside_region``: the same centre, bound and slabs as
+    ``final_simplices``); only the others are tested here."""
     rlo, rhi = grid.region(block, ghost)
     clo, chi = grid.cell_box(block)
+    if xp is np and len(req):
+        scale = float(max(np.abs(grid.lo).max(), np.abs(grid.hi).max()))
+        inside = _core.circumballs_inside_region(dpts, s, req, rlo.tolist(), rhi.tolist(),
+                                                 grid.lo.tolist(), grid.hi.tolist(), scale,
+                                                 threads)
+        req = req[inside == 0]
     want_free, want_held = -np.inf, -np.inf
     thin_lo, thin_hi = [], []
     for i in range(0, len(req), _PIECE):
@@ -412,7 +423,7 @@ def _judge(dpts, s, nb, req, grid, block, ghost, planes, extras, xp):
         nxt = min(max(1.25 * ghost, 1.05 * want_free), 2.0 * ghost)
     if want_held > -np.inf:
         nxt = max(nxt, 1.25 * ghost, 1.05 * want_held if np.isfinite(want_held) else 2.0 * ghost)
-    boxes = _thin_boxes(np.concatenate(thin_lo), np.concatenate(thin_hi), clo, chi) \
+    boxes = _thin_boxes(np.concatenate(thin_lo), np.concatenate(thin_hi), clo, chi, nxt) \
         if thin_lo else {}
     return nxt, boxes
 
@@ -422,16 +433,31 @@ def _not_done(block, ghost, next_ghost, nlocal, tested, boxes=()):
                 tested=tested, boxes=list(boxes))
 
 
-def _thin_boxes(lo, hi, cell_lo, cell_hi):
+def _thin_boxes(lo, hi, cell_lo, cell_hi, ghost):
     """Boxes along the hull, merged by their thinnest axis and the side of the cell they lie on
-    (along one face of the hull they are thin across it): at most 2d boxes."""
+    (along one face of the hull they are thin across it): at most 2d boxes.
+
+    Each is grown on every side by the (next round's) ghost width and a quarter of its length,
+    and across, towards the cell, to at least twice that width deep. The points a box brings make new simplices
+    along the hull whose caps are a little deeper and longer than the ones that asked (measured
+    on uniform squares: a box of exactly the caps' size was asked for again, a hair thicker or
+    a little longer, in the next round and the one after); such a strip holds few points and
+    mostly ends that."""
     out = {}
     mid = 0.5 * (cell_lo + cell_hi)
     axis = np.argmin(hi - lo, axis=1)
     side = (0.5 * (lo + hi))[np.arange(len(lo)), axis] > mid[axis]
     for key in sorted(set(zip(axis.tolist(), side.tolist()))):
         sel = (axis == key[0]) & (side == key[1])
-        out[key] = (lo[sel].min(axis=0), hi[sel].max(axis=0))
+        blo, bhi = lo[sel].min(axis=0), hi[sel].max(axis=0)
+        grow = ghost + 0.25 * (bhi - blo)
+        blo, bhi = blo - grow, bhi + grow
+        a = key[0]
+        if key[1]:  # on the high side: at least twice the width deep towards the cell
+            blo[a] = min(blo[a], hi[sel, a].max() - 2.0 * ghost)
+        else:
+            bhi[a] = max(bhi[a], lo[sel, a].min() + 2.0 * ghost)
+        out[key] = (blo, bhi)
     return out
 
 
@@ -463,7 +489,14 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     all_ids = np.concatenate([own_ids] + [p[1] for p in pieces] + [hull[1]])
     all_blk = np.concatenate([np.full(len(own_ids), block, np.int64)] + [p[2] for p in pieces]
                              + [hull[2]])
-    ids, first = np.unique(all_ids, return_index=True)  # in global order: copies read as the first
+    # in global order (copies read as the first), each point once (a hull point may be an own
+    # point or a ghost too). Each part is sorted already, so the stable sort merges runs.
+    order = np.argsort(all_ids, kind="stable")
+    sorted_ids = all_ids[order]
+    once = np.ones(len(order), dtype=bool)
+    once[1:] = sorted_ids[1:] != sorted_ids[:-1]
+    first = order[once]
+    ids = sorted_ids[once]
     pts = np.ascontiguousarray(all_pts[first])
     blk = all_blk[first]
     xp = _array_module(backend)
@@ -479,22 +512,28 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     nb = tri.neighbors.astype(xp.int64)
     # the stars of the own points, and across the face opposite the lowest vertex of each owned
     # simplex its neighbour (across the other faces the neighbours are in the star of that
-    # vertex): all must be final
-    required = owned[s].any(axis=1)
-    low = xp.argmin(s, axis=1)
-    mine = xp.nonzero(owned[s[xp.arange(len(s)), low]])[0]
-    ring = nb[mine, low[mine]]
+    # vertex): all must be final. Column by column: NumPy's reductions along a short axis are
+    # slow.
+    cols = [s[:, k] for k in range(d + 1)]
+    required = owned[cols[0]]
+    lowest = cols[0]
+    for c in cols[1:]:
+        required = required | owned[c]
+        lowest = xp.minimum(lowest, c)
+    mine = xp.nonzero(owned[lowest])[0]  # local order is global order: the lowest id
+    low = xp.argmin(s[mine], axis=1)
+    ring = nb[mine, low]
     required[ring[ring >= 0]] = True
     tested = 0
     if not covers:
         req = xp.nonzero(required)[0]
         tested = int(len(req))
         verdict = _judge(dpts, s, nb, req, grid, block, ghost, hull[3], list(extras.values()),
-                         xp)
+                         xp, threads)
         if verdict is not None:
             nxt, boxes = verdict
             return _not_done(block, ghost, nxt, len(ids), tested, boxes.items())
-    rows = xp.nonzero(owned[s.min(axis=1)])[0]  # local order is global order: min: lowest id
+    rows = mine
     pos = xp.full(len(s), -1, dtype=xp.int64)
     pos[rows] = xp.arange(len(rows))
     nbr = nb[rows]
@@ -504,7 +543,9 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     tau = _host(s[nbr[fi, fj]])
     dup = _host(tri.duplicate_of).astype(np.int64)
     copy = np.nonzero((dup >= 0) & (blk == block))[0]
-    used = _host(xp.unique(s[rows]))
+    mark = xp.zeros(len(ids), dtype=bool)
+    mark[s[rows].ravel()] = True
+    used = _host(xp.nonzero(mark)[0])
     return dict(block=block, done=True, ghost=ghost, nlocal=len(ids), tested=tested,
                 simplices=ids[_host(s[rows])], nb_local=_host(nb_local),
                 req_owner=blk[tau.min(axis=1)] if len(tau) else np.zeros(0, np.int64),

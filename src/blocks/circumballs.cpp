@@ -1,0 +1,152 @@
+// The bulk finality test of a distributed-Delaunay block (include/gpugeom/blocks.hpp). It is the
+// first test of gpugeom.dask's final_simplices (python/gpugeom/dask/_ghost.py: _circumcentres
+// and _ball_misses) with the same centre, the same rounding bound and the same slabs, one
+// simplex at a time: almost every simplex of a block passes here, and only the few that do not
+// go on to the Python tests along the hull.
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "gpugeom/blocks.hpp"
+#include "gpugeom/common.hpp"
+
+namespace gpugeom {
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+// As _ghost.py's _MAX_CONDITION: beyond it the centre is not trusted.
+constexpr double kMaxCondition = 1e10;
+
+// The boxes where points outside the region may lie: per axis and side with room, the part of
+// the bounds beyond the region's face.
+struct Slabs {
+  int count = 0;
+  double lo[6][3], hi[6][3];
+};
+
+Slabs slabs_of(const BlockBoxes& b, int dim) {
+  Slabs s;
+  for (int k = 0; k < dim; ++k)
+    for (int side = 0; side < 2; ++side) {
+      const bool room =
+          side == 0 ? b.region_lo[k] > b.bounds_lo[k] : b.region_hi[k] < b.bounds_hi[k];
+      if (!room) continue;
+      for (int j = 0; j < dim; ++j) {
+        s.lo[s.count][j] = b.bounds_lo[j];
+        s.hi[s.count][j] = b.bounds_hi[j];
+      }
+      if (side == 0)
+        s.hi[s.count][k] = b.region_lo[k];
+      else
+        s.lo[s.count][k] = b.region_hi[k];
+      ++s.count;
+    }
+  return s;
+}
+
+// The circumcentre by the adjugate (A x = rhs, rows of A the edges from vertex 0, rhs half their
+// squared lengths) and the reach: the radius grown by twice a generous multiple of
+// eps * cond(A) * (|x| + longest edge) and by the rounding of the centre's coordinates. False
+// where the centre is not trusted.
+template <int D>
+bool circumball(const double* pts, const std::int64_t* v, double* centre, double* reach,
+                double scale) {
+  const double* p0 = pts + v[0] * D;
+  double a[D][D], rhs[D], cols[D][D], det;
+  for (int i = 0; i < D; ++i) {
+    const double* p = pts + v[i + 1] * D;
+    double sq = 0;
+    for (int k = 0; k < D; ++k) {
+      a[i][k] = p[k] - p0[k];
+      sq += a[i][k] * a[i][k];
+    }
+    rhs[i] = 0.5 * sq;
+  }
+  if constexpr (D == 2) {
+    det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+    cols[0][0] = a[1][1], cols[0][1] = -a[1][0];
+    cols[1][0] = -a[0][1], cols[1][1] = a[0][0];
+  } else {
+    auto cross = [](const double* u, const double* w, double* out) {
+      out[0] = u[1] * w[2] - u[2] * w[1];
+      out[1] = u[2] * w[0] - u[0] * w[2];
+      out[2] = u[0] * w[1] - u[1] * w[0];
+    };
+    cross(a[1], a[2], cols[0]);
+    cross(a[2], a[0], cols[1]);
+    cross(a[0], a[1], cols[2]);
+    det = a[0][0] * cols[0][0] + a[0][1] * cols[0][1] + a[0][2] * cols[0][2];
+  }
+  double x[D], r2 = 0, na = 0, nc = 0, edge2 = 0;
+  for (int j = 0; j < D; ++j) {
+    double s = 0;
+    for (int i = 0; i < D; ++i) s += rhs[i] * cols[i][j];
+    x[j] = s / det;
+    r2 += x[j] * x[j];
+  }
+  for (int i = 0; i < D; ++i) {
+    double e2 = 0;
+    for (int k = 0; k < D; ++k) {
+      e2 += a[i][k] * a[i][k];
+      nc += cols[i][k] * cols[i][k];
+    }
+    na += e2;
+    edge2 = std::max(edge2, e2);
+  }
+  const double radius = std::sqrt(r2);
+  const double cond = std::sqrt(na) * std::sqrt(nc) / std::fabs(det);
+  if (!(cond < kMaxCondition) || !std::isfinite(radius)) return false;
+  const double err = 1e3 * kEps * cond * (radius + std::sqrt(edge2));
+  double top = 0;
+  for (int k = 0; k < D; ++k) {
+    centre[k] = p0[k] + x[k];
+    top = std::max(top, std::fabs(centre[k]));
+  }
+  *reach = radius + 2.0 * err + 64.0 * kEps * (scale + top + radius);
+  return std::isfinite(*reach);
+}
+
+template <int D>
+void run(const double* pts, const std::int64_t* simplices, const std::int64_t* rows,
+         std::int64_t count, const BlockBoxes& boxes, std::uint8_t* inside) {
+  const Slabs slabs = slabs_of(boxes, D);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const std::int64_t* v = simplices + (rows ? rows[i] : i) * (D + 1);
+    double c[D], reach;
+    bool ok = circumball<D>(pts, v, c, &reach, boxes.scale);
+    for (int s = 0; ok && s < slabs.count; ++s) {
+      double g2 = 0;
+      for (int k = 0; k < D; ++k) {
+        const double gap = std::max(std::max(slabs.lo[s][k] - c[k], c[k] - slabs.hi[s][k]), 0.0);
+        g2 += gap * gap;
+      }
+      ok = std::sqrt(g2) > reach;
+    }
+    inside[i] = ok ? 1 : 0;
+  }
+}
+
+}  // namespace
+
+void circumballs_inside_region(const double* points, int dim, const std::int64_t* simplices,
+                               const std::int64_t* rows, std::int64_t count,
+                               const BlockBoxes& boxes, std::uint8_t* inside, int threads) {
+  if (dim != 2 && dim != 3)
+    throw Error(ErrorCode::InvalidArgument,
+                "circumballs_inside_region: dim must be 2 or 3, got " + std::to_string(dim));
+  if (count <= 0) return;
+  const int saved = omp_get_max_threads();
+  if (threads > 0) omp_set_num_threads(threads);
+  if (dim == 2)
+    run<2>(points, simplices, rows, count, boxes, inside);
+  else
+    run<3>(points, simplices, rows, count, boxes, inside);
+  if (threads > 0) omp_set_num_threads(saved);
+}
+
+}  // namespace gpugeom
