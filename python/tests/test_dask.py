@@ -101,6 +101,21 @@ def test_judged_in_pieces(monkeypatch):
     assert [s["rounds"] for s in whole.block_stats] == [s["rounds"] for s in pieces.block_stats]
 
 
+def test_patch_rounds(backend):
+    """A block whose first round fails at a few places triangulates again only windows round
+    its pending points and joins their simplices to the first round's (2D uniform points of
+    this size do, at 4 and 6 blocks; where the windows would be wide it runs whole rounds, as
+    for the clustered points): the same triangulation, and copies kept."""
+    rng = np.random.default_rng(41)
+    pts = rng.random((20000, 2))
+    pts = np.concatenate([pts, pts[::997]])  # copies across the blocks' windows too
+    with dask.config.set(scheduler="threads"):
+        for blocks in (4, 6):
+            dt = gd.delaunay(pts, blocks=blocks, backend=backend)
+            assert any(s["patched"] for s in dt.block_stats)
+            _same_as_single(pts, dt)
+
+
 def test_inputs_as_dask_array_list_and_files(tmp_path):
     rng = np.random.default_rng(3)
     pts = rng.random((4000, 3))
