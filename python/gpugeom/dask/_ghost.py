@@ -708,6 +708,23 @@ def _too_wide(windows, width, grid, cell, ghost):
     return sum(volume(lo - width, hi + width) for lo, hi in windows) > _PATCH_SHARE * whole
 
 
+def _triangulated(dpts, marked, d, xp, backend, threads):
+    """The local triangulation and what a round requires of it: the stars of the ``marked``
+    points (a block's own points, or a patch's pending ones) and, across the face opposite the
+    lowest vertex of each simplex a marked point owns, its neighbour; all must be final. Returns
+    (the Delaunay, simplices, neighbours, lowest vertices, the marked-owned simplices, their
+    neighbours opposite it, the required mask). Raises DegenerateInputError as Delaunay does."""
+    tri = Delaunay(dpts, backend=backend, threads=threads)
+    s = tri.simplices.astype(xp.int64)
+    nb = tri.neighbors.astype(xp.int64)
+    low = _lowest(s, d, xp)
+    mine = xp.nonzero(marked[low])[0]
+    ring = _ring(s, nb, mine, xp)
+    required = _touching(s, d, marked)
+    required[ring[ring >= 0]] = True
+    return tri, s, nb, low, mine, ring, required
+
+
 def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, pieces, hull,
                       backend: str, threads: int) -> dict:
     """Triangulates block ``block`` with ghost width ``ghost`` and the extra boxes ``extras``
@@ -739,20 +756,12 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     dpts = xp.asarray(pts)
     owned = xp.asarray(blk == block)
     try:
-        tri = Delaunay(dpts, backend=backend, threads=threads)
+        tri, s, nb, low, mine, ring, required = _triangulated(dpts, owned, d, xp, backend,
+                                                              threads)
     except _core.DegenerateInputError:
         if covers:
             raise  # every point is here: the whole set is degenerate, as a single run says
         return _not_done(block, ghost, 2.0 * ghost, len(ids), 0)
-    s = tri.simplices.astype(xp.int64)
-    nb = tri.neighbors.astype(xp.int64)
-    # the stars of the own points, and across the face opposite the lowest vertex of each owned
-    # simplex its neighbour: all must be final
-    low = _lowest(s, d, xp)
-    mine = xp.nonzero(owned[low])[0]
-    ring = _ring(s, nb, mine, xp)
-    required = _touching(s, d, owned)
-    required[ring[ring >= 0]] = True
     tested = 0
     if not covers:
         req = xp.nonzero(required)[0]
@@ -805,18 +814,12 @@ def triangulate_patch(block: int, grid: Grid, width: float, extras: dict, pieces
     grp[xp.asarray(at)] = xp.asarray(patch["group"])
     tested = 0
     try:
-        tri = Delaunay(dpts, backend=backend, threads=threads)
+        _, s, nb, low, mine, ring, required = _triangulated(dpts, pending, d, xp, backend,
+                                                            threads)
     except _core.DegenerateInputError:
         if covers:
             raise
         return _not_done(block, width, 2.0 * width, len(ids), 0, (), patch)
-    s = tri.simplices.astype(xp.int64)
-    nb = tri.neighbors.astype(xp.int64)
-    low = _lowest(s, d, xp)
-    mine = xp.nonzero(pending[low])[0]
-    ring = _ring(s, nb, mine, xp)
-    required = _touching(s, d, pending)
-    required[ring[ring >= 0]] = True
     if not covers:
         # each group's simplices against its window (every window's points are local, so any
         # window would do for any simplex: the group is the one likeliest to hold its ball)
