@@ -5,6 +5,8 @@
 #pragma once
 #include <cstdint>
 
+#include "gpugeom/host_vector.hpp"
+
 namespace gpugeom {
 
 /// The boxes of a block's finality test, in the first `dim` entries (2 or 3): `region` is the
@@ -28,5 +30,37 @@ struct BlockBoxes {
 void circumballs_inside_region(const double* points, int dim, const std::int64_t* simplices,
                                const std::int64_t* rows, std::int64_t count,
                                const BlockBoxes& boxes, std::uint8_t* inside, int threads = 0);
+
+/// What a block requires of its local triangulation (`m` simplices of `dim` + 1 local vertex
+/// indices each, and their neighbours: `neighbors[i * (dim + 1) + j]` is the simplex across the
+/// face opposite vertex j, -1 on the hull). Local indices follow the global order, so a
+/// simplex's lowest local vertex is its lowest global one, and it is *owned* by the block where
+/// that vertex is one of the block's own points (`owned[v]` nonzero).
+struct BlockRequired {
+  /// The owned simplices, in increasing order.
+  HostVector<std::int64_t> owned_rows;
+  /// Per simplex, 1 where it must be final: it has an own vertex, or it is the neighbour of an
+  /// owned simplex across the face opposite that simplex's lowest vertex (across the other faces
+  /// the neighbours are in that vertex's star).
+  HostVector<std::uint8_t> required;
+};
+BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* neighbors,
+                             std::int64_t m, int dim, const std::uint8_t* owned, int threads = 0);
+
+/// A block's output: its owned simplices `rows` (all of them, as block_required lists them)
+/// in global point ids (`ids`: per local point), and per face the neighbour as an index into
+/// `rows` or -1 (none) or -2 (a simplex another block owns). Each -2 face is a request, in
+/// row-major order: the owner (`blk[v]` of the neighbour's lowest vertex v), the neighbour's
+/// global vertex ids sorted, and the face's position row * (dim + 1) + face. `vertices`: the
+/// local points the rows use, in increasing order.
+struct BlockOutput {
+  HostVector<std::int64_t> simplices, neighbors;
+  HostVector<std::int64_t> request_owner, request_key, request_pos;
+  HostVector<std::int64_t> vertices;
+};
+BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
+                         std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
+                         const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
+                         int threads = 0);
 
 }  // namespace gpugeom

@@ -687,6 +687,78 @@ nb::object circumballs_inside_bind(const AnyArray& points, const AnyArray& simpl
   return host_array(std::move(out), {sz(k)});
 }
 
+// A host int64 array of the given shape (-1: any) whose entries lie in [lo, hi), checked once
+// here: the library reads indices unchecked.
+const std::int64_t* host_indices(const AnyArray& a, const char* name, std::int64_t rows,
+                                 std::int64_t cols, std::int64_t lo, std::int64_t hi,
+                                 std::int64_t* count = nullptr) {
+  Input in = inspect(a, name);
+  const bool shaped = cols < 0 ? in.shape.size() == 1 : in.shape.size() == 2 && in.shape[1] == cols;
+  if (in.on_device || !holds<std::int64_t>(in) || !shaped || (rows >= 0 && in.shape[0] != rows))
+    throw nb::value_error((std::string(name) + " must be a host int64 array of shape (" +
+                           (rows >= 0 ? std::to_string(rows) : std::string("k")) +
+                           (cols >= 0 ? ", " + std::to_string(cols) : std::string(",")) + ")")
+                              .c_str());
+  const auto* p = static_cast<const std::int64_t*>(in.data);
+  const std::int64_t total = in.shape[0] * (cols < 0 ? 1 : cols);
+  for (std::int64_t i = 0; i < total; ++i)
+    if (p[i] < lo || p[i] >= hi)
+      throw nb::value_error((std::string(name) + ": an index out of range").c_str());
+  if (count) *count = in.shape[0];
+  return p;
+}
+
+// gpugeom.dask's block passes (include/gpugeom/blocks.hpp) on host arrays: what a block
+// requires of its triangulation, and the output of its owned simplices.
+nb::dict block_required_bind(const AnyArray& simplices, const AnyArray& neighbors,
+                             const AnyArray& owned, int threads) {
+  Input o = inspect(owned, "owned");
+  if (o.on_device || o.shape.size() != 1 || !(holds<bool>(o) || holds<std::uint8_t>(o)))
+    throw nb::value_error("owned must be a host bool array of shape (n,)");
+  const std::int64_t n = o.shape[0];
+  Input si = inspect(simplices, "simplices");
+  if (si.shape.size() != 2 || (si.shape[1] != 3 && si.shape[1] != 4))
+    throw nb::value_error("simplices must have shape (m, 3) or (m, 4)");
+  const int d1 = int(si.shape[1]);
+  std::int64_t m = 0;
+  const std::int64_t* s = host_indices(simplices, "simplices", -1, d1, 0, n, &m);
+  const std::int64_t* nbr = host_indices(neighbors, "neighbors", m, d1, -1, m);
+  BlockRequired r = unlocked([&] {
+    return block_required(s, nbr, m, d1 - 1, static_cast<const std::uint8_t*>(o.data), threads);
+  });
+  nb::dict out;
+  const sz k = r.owned_rows.size();
+  out["owned_rows"] = host_array(std::move(r.owned_rows), {k});
+  out["required"] = host_array(std::move(r.required), {sz(m)});
+  return out;
+}
+
+nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
+                           const AnyArray& rows, const AnyArray& ids, const AnyArray& blk,
+                           int threads) {
+  std::int64_t n = 0, m = 0, k = 0;
+  const std::int64_t* id = host_indices(ids, "ids", -1, -1, 0, INT64_MAX, &n);
+  const std::int64_t* bk = host_indices(blk, "blk", n, -1, 0, INT64_MAX);
+  Input si = inspect(simplices, "simplices");
+  if (si.shape.size() != 2 || (si.shape[1] != 3 && si.shape[1] != 4))
+    throw nb::value_error("simplices must have shape (m, 3) or (m, 4)");
+  const int d1 = int(si.shape[1]);
+  const std::int64_t* s = host_indices(simplices, "simplices", -1, d1, 0, n, &m);
+  const std::int64_t* nbr = host_indices(neighbors, "neighbors", m, d1, -1, m);
+  const std::int64_t* rw = host_indices(rows, "rows", -1, -1, 0, m, &k);
+  BlockOutput r =
+      unlocked([&] { return block_output(s, nbr, m, d1 - 1, rw, k, id, bk, n, threads); });
+  nb::dict out;
+  const sz q = r.request_owner.size(), nv = r.vertices.size();
+  out["simplices"] = host_array(std::move(r.simplices), {sz(k), sz(d1)});
+  out["nb_local"] = host_array(std::move(r.neighbors), {sz(k), sz(d1)});
+  out["req_owner"] = host_array(std::move(r.request_owner), {q});
+  out["req_key"] = host_array(std::move(r.request_key), {q, sz(d1)});
+  out["req_pos"] = host_array(std::move(r.request_pos), {q});
+  out["used"] = host_array(std::move(r.vertices), {nv});
+  return out;
+}
+
 // The independent exact checkers (src/verify), for tests and for users who want proof.
 std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray& points,
                                         const AnyArray& cells, nb::object duplicate_of,
@@ -760,6 +832,10 @@ void bind_spatial(nb::module_& m) {
       .def_prop_ro("npoints", [](const Dynamic3dState& s) { return s.t.num_points(); });
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);
+  m.def("block_required", &block_required_bind, "simplices"_a, "neighbors"_a, "owned"_a,
+        "threads"_a = 0);
+  m.def("block_output", &block_output_bind, "simplices"_a, "neighbors"_a, "rows"_a, "ids"_a,
+        "blk"_a, "threads"_a = 0);
   m.def("furthest_site2d", &furthest_site2d_bind, "points"_a, "threads"_a = 0, "voronoi"_a = false);
   m.def("voronoi3d", &voronoi3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);

@@ -101,21 +101,6 @@ def test_judged_in_pieces(monkeypatch):
     assert [s["rounds"] for s in whole.block_stats] == [s["rounds"] for s in pieces.block_stats]
 
 
-def test_patch_rounds(backend):
-    """A block whose first round fails at a few places triangulates again only windows round
-    its pending points and joins their simplices to the first round's (2D uniform points of
-    this size do, at 4 and 6 blocks; where the windows would be wide it runs whole rounds, as
-    for the clustered points): the same triangulation, and copies kept."""
-    rng = np.random.default_rng(41)
-    pts = rng.random((20000, 2))
-    pts = np.concatenate([pts, pts[::997]])  # copies across the blocks' windows too
-    with dask.config.set(scheduler="threads"):
-        for blocks in (4, 6):
-            dt = gd.delaunay(pts, blocks=blocks, backend=backend)
-            assert any(s["patched"] for s in dt.block_stats)
-            _same_as_single(pts, dt)
-
-
 def test_inputs_as_dask_array_list_and_files(tmp_path):
     rng = np.random.default_rng(3)
     pts = rng.random((4000, 3))
@@ -262,6 +247,40 @@ def test_bulk_circumball_test():
         with pytest.raises(ValueError, match="rows"):
             _core.circumballs_inside_region(pts, s, np.array([len(s)], np.int64), lo.tolist(),
                                             hi.tolist(), box_lo.tolist(), box_hi.tolist(), 1.0)
+
+
+def test_block_passes_in_cpp_and_numpy():
+    """A block's required simplices and its output, from C++ (``_core.block_required``,
+    ``_core.block_output``: the CPU blocks) and from the array code the GPU blocks run in CuPy,
+    here on NumPy: the same arrays, on random blocks of 2D and 3D triangulations; bad indices
+    refused."""
+    from gpugeom import _core
+    from gpugeom.dask import _ghost
+    rng = np.random.default_rng(43)
+    for d in (2, 3):
+        pts = rng.random((3000, d))
+        tri = gpugeom.Delaunay(pts, backend="cpu")
+        s = np.asarray(tri.simplices, dtype=np.int64)
+        nb = np.asarray(tri.neighbors, dtype=np.int64)
+        blk = rng.integers(0, 3, len(pts)).astype(np.int64)
+        blk[pts[:, 0] < 0.4] = 1  # a region of one block, and mixed ones elsewhere
+        ids = np.sort(rng.choice(10**6, len(pts), replace=False)).astype(np.int64)
+        owned = blk == 1
+        r = _core.block_required(s, nb, owned, 2)
+        mine, required = _ghost._required_xp(s, nb, owned, d, np)
+        np.testing.assert_array_equal(r["owned_rows"], mine)
+        np.testing.assert_array_equal(r["required"].view(bool), required)
+        got = _ghost._emit(ids, pts, blk, s, nb, mine, d, np, 2)
+        want = _ghost._emit_xp(ids, pts, blk, s, nb, mine, d, np)
+        assert set(got) == set(want) and len(got["req_pos"]) > 0
+        for k in want:
+            np.testing.assert_array_equal(got[k], want[k], err_msg=k)
+        bad = s.copy()
+        bad[5, 1] = len(pts)
+        with pytest.raises(ValueError, match="simplices"):
+            _core.block_required(bad, nb, owned)
+        with pytest.raises(ValueError, match="rows"):
+            _core.block_output(s, nb, np.array([len(s)], np.int64), ids, blk)
 
 
 def _solve(a, b):

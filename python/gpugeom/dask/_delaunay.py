@@ -16,7 +16,7 @@ from .. import _core
 from ..spatial import ConvexHull, Delaunay
 from . import _vtu
 from ._blocks import Grid, boxes_meet, choose_counts, in_box, match_rows
-from ._ghost import triangulate_block, triangulate_patch
+from ._ghost import _array_module, triangulate_block
 
 _EPS = float(np.finfo(np.float64).eps)
 
@@ -91,7 +91,9 @@ def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
     cuts = np.searchsorted(cell[order], np.arange(grid.nblocks + 1))
     parts = {int(b): (pts[order[cuts[b]:cuts[b + 1]]], ids[order[cuts[b]:cuts[b + 1]]])
              for b in np.nonzero(np.diff(cuts))[0]}
-    if pts.shape[1] == 2:
+    if pts.shape[1] == 2 and _array_module(backend) is np:
+        # on the host a 2D ConvexHull is a Delaunay triangulation of the piece; on a GPU that
+        # costs less than the filter's passes in NumPy
         cand = _hull_candidates2d(pts)
     else:
         try:
@@ -134,14 +136,10 @@ def _hull_candidates2d(pts: np.ndarray) -> np.ndarray:
 
 
 def _own(splits, block: int, d: int):
-    """A block's points and their global ids (in global order), and their order along the
-    first axis with those coordinates sorted (so that a box's points are found in a slice)."""
     got = [s[0][block] for s in splits if block in s[0]]
     if not got:
-        return np.zeros((0, d)), np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
-    pts = np.concatenate([g[0] for g in got])
-    order = np.argsort(pts[:, 0], kind="stable")
-    return pts, np.concatenate([g[1] for g in got]), order, pts[order, 0]
+        return np.zeros((0, d)), np.zeros(0, np.int64)
+    return np.concatenate([g[0] for g in got]), np.concatenate([g[1] for g in got])
 
 
 def _own_box(own):
@@ -169,21 +167,16 @@ def _global_hull(splits, backend: str, threads: int):
 
 
 def _select(own, block: int, boxes):
-    """A block's points in any of the boxes (another block's region, the windows of a patch
-    round and extra boxes), in global order: each box's candidates are the slice of its range
-    along the first axis (a patch round has up to 8^d windows)."""
-    pts, ids, order, first = own
-    hits = []
+    """A block's points in any of the boxes (another block's region and extra boxes)."""
+    pts, ids = own
+    keep = np.zeros(len(ids), dtype=bool)
     for lo, hi in boxes:
-        at = order[np.searchsorted(first, lo[0], "left"):np.searchsorted(first, hi[0], "right")]
-        hits.append(at[in_box(pts[at], lo, hi)])
-    keep = np.unique(np.concatenate(hits)) if hits else np.zeros(0, np.int64)
-    return pts[keep], ids[keep], np.full(len(keep), block, np.int64)
+        keep |= in_box(pts, lo, hi)
+    return pts[keep], ids[keep], np.full(int(keep.sum()), block, np.int64)
 
 
 def _meta(r: dict) -> dict:
-    out = {k: v for k, v in r.items()
-           if np.isscalar(v) or k in ("boxes", "cell") or (v is None and k != "patch")}
+    out = {k: v for k, v in r.items() if np.isscalar(v) or v is None or k == "boxes"}
     if r["done"]:
         out["nsimplex"] = len(r["simplices"])
         out["owners"] = sorted(set(np.unique(r["req_owner"]).tolist()))
@@ -228,9 +221,8 @@ class DistributedTriangulation:
     blocks : tuple
         Cells per axis.
     block_stats : list of dict
-        Per block: its ghost width, extra boxes along the hull, rounds, local points (of its
-        last round), whether it ended with a patch round (only the windows round its pending
-        points triangulated again), owned simplices and simplices tested (last round).
+        Per block: its ghost width, extra boxes along the hull, rounds, local points, owned
+        simplices and simplices tested.
     timings : dict
         Milliseconds of the call's phases (client wall clock): ``check`` (shapes, finite
         coordinates, bounds), ``split`` (points to blocks, the global hull), ``round1``... (each
@@ -398,43 +390,23 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     extras = {b: {} for b in filled_blocks}  # boxes along the hull a block asked for
     rounds = {b: 0 for b in filled_blocks}
     final, metas = {}, {}
-    last, cells = {}, {}  # after a failed first round: the last result, the pending groups' boxes
     pending = list(filled_blocks)
     while pending:
         tasks = []
         for b in pending:
-            # the first round: the block's cell grown by the ghost width; later ones, when the
-            # first triangulated: the boxes round its pending points' groups grown by the width
-            if b in cells:
-                regions = [(lo - width[b], hi + width[b]) for lo, hi in cells[b]]
-            else:
-                regions = [grid.region(b, width[b])]
-            boxes = regions + list(extras[b].values())
+            boxes = [grid.region(b, width[b])] + list(extras[b].values())
             near = [delayed(_select)(own[c], c, boxes) for c in filled_blocks
-                    if (c != b or b in cells)
-                    and any(boxes_meet(boxes_of[c][1], boxes_of[c][2], lo, hi)
-                            for lo, hi in boxes)]
-            name = f"gpugeom-delaunay-block-{tag}-{rounds[b]}-{b}"
-            if b in cells:
-                tasks.append(delayed(triangulate_patch)(
-                    b, grid, width[b], dict(extras[b]), near, hull, last[b], backend, threads,
-                    n, dask_key_name=name))
-            else:
-                tasks.append(delayed(triangulate_block)(
-                    b, grid, width[b], dict(extras[b]), own[b], near, hull, backend, threads,
-                    dask_key_name=name))
+                    if c != b and any(boxes_meet(boxes_of[c][1], boxes_of[c][2], lo, hi)
+                                      for lo, hi in boxes)]
+            tasks.append(delayed(triangulate_block)(
+                b, grid, width[b], dict(extras[b]), own[b], near, hull, backend, threads,
+                dask_key_name=f"gpugeom-delaunay-block-{tag}-{rounds[b]}-{b}"))
             rounds[b] += 1
         done = dask.persist(*tasks)
         for b, r, m in zip(pending, done, dask.compute(*[delayed(_meta)(r) for r in done])):
             if m["done"]:
                 final[b], metas[b] = r, m
-                last.pop(b, None)
                 continue
-            if m.get("cell") is not None:
-                last[b], cells[b] = r, m["cell"]
-            else:  # (back to) whole rounds
-                last.pop(b, None)
-                cells.pop(b, None)
             width[b] = m["next_ghost"]
             for key, (lo, hi) in m["boxes"]:
                 if key in extras[b]:
@@ -460,7 +432,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         owners = {index[c]: borders[c] for c in metas[b]["owners"]}
         neighbors.append(delayed(_neighbors_of)(final[b], offsets, i, position, owners))
     stats = [dict(block=b, ghost=metas[b]["ghost"], extra_boxes=len(extras[b]), rounds=rounds[b],
-                  nlocal=metas[b]["nlocal"], patched=bool(metas[b]["patched"]),
+                  nlocal=metas[b]["nlocal"],
                   nsimplex=metas[b]["nsimplex"], tested=metas[b]["tested"]) for b in order]
     out = DistributedTriangulation(pieces, counts, results, offsets, neighbors, grid, stats)
     out.timings = timings

@@ -30,7 +30,7 @@ import numpy as np
 
 from .. import _core
 from ..spatial import Delaunay
-from ._blocks import Grid, match_rows
+from ._blocks import Grid
 
 _EPS = float(np.finfo(np.float64).eps)
 
@@ -375,8 +375,8 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
 
 def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, xp, threads=1):
     """Tests simplices ``s[req]`` (in pieces of ``_PIECE``, so that the temporaries stay small)
-    against the region ``cell`` grown by ``ghost``. None when all are final; else the failed
-    simplices (indices into ``s``), the next ghost width and the extra boxes to ask for.
+    against the region ``cell`` grown by ``ghost``. None when all are final; else the next ghost
+    width and the extra boxes to ask for.
 
     On the host, the first test (the circumball with its rounding bound misses the bounding box
     beyond the region), which almost every simplex passes, runs in C++ over all of them
@@ -391,14 +391,13 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, xp, threads=1):
                                                  threads)
         req = req[inside == 0]
     want_free, want_held = -np.inf, -np.inf
-    thin_lo, thin_hi, failed = [], [], []
+    thin_lo, thin_hi = [], []
     for i in range(0, len(req), _PIECE):
         t = s[req[i:i + _PIECE]]
         ok, need, along, klo, khi = final_simplices(dpts, t, rlo, rhi, grid.lo, grid.hi, clo, chi,
                                                     planes, extras, xp, nb[req[i:i + _PIECE]])
         if bool(ok.all()):
             continue
-        failed.append(req[i:i + _PIECE][~ok])
         # A thin box along the hull is asked for; anything else asks for a wider ghost layer:
         # by what the boxes need, between 1.25 and 2 times where a simplex reaches into the
         # sparse zone beyond the region or lies along the hull (it is bigger than it will be
@@ -427,13 +426,12 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, xp, threads=1):
         nxt = max(nxt, 1.25 * ghost, 1.05 * want_held if np.isfinite(want_held) else 2.0 * ghost)
     boxes = _thin_boxes(np.concatenate(thin_lo), np.concatenate(thin_hi), clo, chi, nxt) \
         if thin_lo else {}
-    return xp.concatenate(failed), nxt, boxes
+    return nxt, boxes
 
 
-def _not_done(block, ghost, next_ghost, nlocal, tested, boxes=(), patch=None):
+def _not_done(block, ghost, next_ghost, nlocal, tested, boxes=()):
     return dict(block=block, done=False, ghost=ghost, next_ghost=next_ghost, nlocal=nlocal,
-                tested=tested, boxes=list(boxes), patch=patch,
-                cell=None if patch is None else patch["cell"])
+                tested=tested, boxes=list(boxes))
 
 
 def _thin_boxes(lo, hi, cell_lo, cell_hi, ghost):
@@ -502,74 +500,44 @@ def _ring(s, nb, rows, xp):
     return nb[rows, xp.argmin(s[rows], axis=1)]
 
 
-def _emit(ids, pts, blk, block, s, nb, low, rows, part, d, xp):
-    """The output of simplices ``rows`` (the ones whose lowest vertex is marked in ``part``: a
-    block's owned simplices, or one of the two parts a patch round joins), every neighbour of
-    which is final: global ids, and per face the neighbour as a row here (-1: none), -2 (another
-    block's: ``req_owner``, ``req_key`` its sorted vertex ids, ``req_pos`` row * (d + 1) + face)
-    or -3 (this block's, in the other part: ``seam_key``, ``seam_pos``); the vertices used and
-    their coordinates."""
+def _emit(ids, pts, blk, s, nb, rows, d, xp, threads=1):
+    """The output of the owned simplices ``rows`` (every simplex whose lowest vertex is an own
+    point), every neighbour of which is final: global ids, and per face the neighbour as a row
+    here (-1: none) or -2 (another block's: ``req_owner``, ``req_key`` its sorted vertex ids,
+    ``req_pos`` row * (d + 1) + face); the vertices used and their coordinates. On the host in
+    C++ (``_core.block_output``), on a GPU in CuPy (``_emit_xp``): the same arrays."""
+    if xp is np:
+        out = _core.block_output(s, nb, rows, ids, blk, threads)
+        used = out.pop("used")
+        return dict(out, vertices=ids[used], vertex_points=pts[used])
+    return _emit_xp(ids, pts, blk, s, nb, rows, d, xp)
+
+
+def _emit_xp(ids, pts, blk, s, nb, rows, d, xp):
     d1 = d + 1
-    owned = xp.asarray(blk == block)
     pos = xp.full(len(s), -1, dtype=xp.int64)
     pos[rows] = xp.arange(len(rows))
     nbr = nb[rows]
-    # ``rows`` are all the simplices whose lowest vertex is in ``part``: a neighbour is a row
-    # here exactly where its lowest vertex is in the part, so only the few faces that are not
-    # need their neighbour's lowest vertex
+    # the rows are all the simplices whose lowest vertex is owned: a neighbour is a row here
+    # exactly where it is owned here, so only the few faces whose neighbour is not need its
+    # lowest vertex (its owner)
     nb_local = xp.where(nbr >= 0, pos[xp.maximum(nbr, 0)], -1)
-    oi, oj = xp.nonzero((nbr >= 0) & (nb_local < 0))
-    other = nbr[oi, oj]
-    mine = owned[low[other]]
-    nb_local[oi, oj] = xp.where(mine, -3, -2)
-    fi, fj = oi[~mine], oj[~mine]
-    si, sj = oi[mine], oj[mine]
-    tlow = low[other[~mine]]
-    tau = _host(s[other[~mine]])
-    sig = _host(s[other[mine]])
+    fi, fj = xp.nonzero((nbr >= 0) & (nb_local < 0))
+    other = nbr[fi, fj]
+    nb_local[fi, fj] = -2
+    tau = _host(s[other])
     mark = xp.zeros(len(ids), dtype=bool)
     mark[s[rows].ravel()] = True
     used = _host(xp.nonzero(mark)[0])
     return dict(simplices=ids[_host(s[rows])], nb_local=_host(nb_local),
-                req_owner=blk[_host(tlow)], req_key=np.sort(ids[tau], axis=1),
-                req_pos=_host(fi * d1 + fj), seam_key=np.sort(ids[sig], axis=1),
-                seam_pos=_host(si * d1 + sj), vertices=ids[used], vertex_points=pts[used])
+                req_owner=blk[tau.min(axis=1)] if len(tau) else np.zeros(0, np.int64),
+                req_key=np.sort(ids[tau], axis=1), req_pos=_host(fi * d1 + fj),
+                vertices=ids[used], vertex_points=pts[used])
 
 
-def _join(a, b, d):
-    """One block's output from a patch round's two parts: ``a`` (the first round's simplices
-    whose lowest vertex was settled there) then ``b`` (the patch's); each part's -3 faces are
-    found in the other by their sorted vertex ids. A simplex of b next to one of a is next to
-    it in the first round too (both are final), so only a's rows with a -3 face are searched."""
-    d1 = d + 1
-    na = len(a["simplices"])
-    nb_b = b["nb_local"]
-    nb_local = np.concatenate([a["nb_local"], np.where(nb_b >= 0, nb_b + na, nb_b)])
-    flat = nb_local.reshape(-1)
-    at = match_rows(b["simplices"], a["seam_key"])
-    cand = np.unique(a["seam_pos"] // d1)
-    back = match_rows(a["simplices"][cand], b["seam_key"])
-    if (at < 0).any() or (back < 0).any():
-        raise RuntimeError("gpugeom.dask: a patch round's simplices do not meet the first "
-                           "round's (a bug: please report it with the input)")
-    flat[a["seam_pos"]] = na + at
-    flat[na * d1 + b["seam_pos"]] = cand[back]
-    vertices = np.concatenate([a["vertices"], b["vertices"]])
-    points = np.concatenate([a["vertex_points"], b["vertex_points"]])
-    order = np.argsort(vertices, kind="stable")
-    keep = np.ones(len(order), dtype=bool)
-    keep[1:] = vertices[order][1:] != vertices[order][:-1]
-    return dict(simplices=np.concatenate([a["simplices"], b["simplices"]]), nb_local=nb_local,
-                req_owner=np.concatenate([a["req_owner"], b["req_owner"]]),
-                req_key=np.concatenate([a["req_key"], b["req_key"]]),
-                req_pos=np.concatenate([a["req_pos"], b["req_pos"] + na * d1]),
-                vertices=vertices[order][keep], vertex_points=points[order][keep])
-
-
-def _done(block, ghost, nlocal, tested, out, copies, patched=False):
-    out = {k: v for k, v in out.items() if not k.startswith("seam")}
+def _done(block, ghost, nlocal, tested, out, copies):
     return dict(block=block, done=True, ghost=ghost, nlocal=nlocal, tested=tested,
-                copies=copies, patched=patched, **out)
+                copies=copies, **out)
 
 
 def _copies(ids, blk, block, tri):
@@ -579,150 +547,28 @@ def _copies(ids, blk, block, tri):
     return np.stack([ids[copy], ids[dup[copy]]], axis=1)
 
 
-# A first round's pending points are grouped by a grid of this many cells per axis over the
-# block's cell; each group is judged against its own window (the box round its points grown by
-# the width), so that failures at a few places of a block do not make one window of it all.
-_GROUPS = 8
-
-
-def _groups(coords, cell):
-    """Groups of pending points (a group per occupied cell of a ``_GROUPS``-per-axis grid over
-    the block's cell): per point its group, and per group the box round its points."""
-    lo, hi = cell
-    size = np.where(hi > lo, (hi - lo) / _GROUPS, 1.0)
-    key = np.clip(np.floor((coords - lo) / size), 0, _GROUPS - 1).astype(np.int64)
-    flat = np.ravel_multi_index(tuple(key.T), (_GROUPS,) * coords.shape[1])
-    _, group = np.unique(flat, return_inverse=True)
-    group = group.reshape(-1)
-    boxes = [(coords[group == g].min(axis=0), coords[group == g].max(axis=0))
-             for g in range(int(group.max()) + 1)]
-    return group, boxes
-
-
-def _group_of(s, d, grp, mine, ring, low, xp):
-    """Per simplex, a group that one of its pending vertices has (-1: none); the neighbour across
-    the face opposite the lowest vertex of a simplex a pending point owns takes that point's
-    group where it has none."""
-    g = grp[s[:, 0]]
-    for k in range(1, d + 1):
-        g = xp.maximum(g, grp[s[:, k]])
-    owner = grp[low[mine]]
-    at = (ring >= 0) & (owner >= 0)
-    r, o = ring[at], owner[at]
-    g[r] = xp.where(g[r] >= 0, g[r], o)
-    return g
-
-
-def _reach(dpts, t, nbt, grid, region, planes, extras, xp):
-    """Boxes that hold the part of each simplex's circumball (with its rounding) where points
-    may lie: in the bounding box, cut along the hull as ``final_simplices`` does."""
-    ok, _, along, klo, khi = final_simplices(dpts, t, region[0], region[1], grid.lo, grid.hi,
-                                             region[0], region[1], planes, extras, xp, nbt)
-    centre, radius, err = _circumcentres(dpts, t, xp)
-    scale = float(max(np.abs(grid.lo).max(), np.abs(grid.hi).max()))
-    reach = radius + 2.0 * err + 64.0 * _EPS * (scale + xp.abs(centre).max(axis=1) + radius)
-    blo, bhi = _ball_in_box(centre, reach, xp.asarray(grid.lo), xp.asarray(grid.hi), xp)
-    klo = xp.where(ok[:, None], xp.maximum(klo, blo), klo)
-    khi = xp.where(ok[:, None], xp.minimum(khi, bhi), khi)
-    return klo, khi, along
-
-
-def _windows(dpts, s, nb, q, group, boxes, grid, region, planes, extras, ghost, xp):
-    """Per group, the box round its points and the balls (as ``_reach``, inside the bounding
-    box) of its simplices ``q``; and the boxes of those balls that are long and thin (strips
-    along the hull or along a side of the bounding box, which would make a group's box long in
-    both axes at a corner), asked for as strips instead. A ball whose centre is not trusted
-    adds nothing: it fails in the next round, which grows the windows."""
-    lo = [b[0].copy() for b in boxes]
-    hi = [b[1].copy() for b in boxes]
-    strip_lo, strip_hi = [], []
-    for i in range(0, len(q), _PIECE):
-        rows = q[i:i + _PIECE]
-        klo, khi, _ = _reach(dpts, s[rows], nb[rows], grid, region, planes, extras, xp)
-        klo = _host(xp.maximum(klo, xp.asarray(grid.lo)))
-        khi = _host(xp.minimum(khi, xp.asarray(grid.hi)))
-        size = khi - klo
-        finite = np.isfinite(size).all(axis=1) & (size >= 0).all(axis=1)
-        thin = finite & (size.min(axis=1) < 4.0 * ghost) & (size.max(axis=1) > 4.0 * ghost)
-        strip_lo.append(klo[thin])
-        strip_hi.append(khi[thin])
-        g = _host(group[rows])
-        for k in np.unique(g[finite & ~thin]):
-            at = (g == k) & finite & ~thin
-            lo[k] = np.minimum(lo[k], klo[at].min(axis=0))
-            hi[k] = np.maximum(hi[k], khi[at].max(axis=0))
-    return list(zip(lo, hi)), np.concatenate(strip_lo), np.concatenate(strip_hi)
-
-
-def _patch(dpts, ids, pts, blk, block, s, nb, low, mine, ring, required, failed, verdict_next,
-           grid, cell, ghost, planes, extras, tri, d, xp):
-    """What a block keeps of a first round that failed: the pending own points P (the vertices
-    of failed simplices, and the lowest vertex of an owned simplex whose neighbour across the
-    opposite face failed), the output of the owned simplices whose lowest vertex is not in P
-    (their stars are complete and final: they are the global ones), P's groups and per group a
-    window that holds the balls of the simplices P needs (its stars, and those neighbours) as
-    this round sees them, but for long thin ones, which it asks for as strips (extra boxes).
-    Returns the patch, the width the windows are grown by next (this round's ghost width) and
-    the strips."""
-    owned = xp.asarray(blk == block)
-    bad = xp.zeros(len(s), dtype=bool)
-    bad[failed] = True
-    pending = xp.zeros(len(ids), dtype=bool)
-    for k in range(d + 1):
-        pending[s[failed, k]] = True
-    pending &= owned
-    pending[low[mine[(ring >= 0) & bad[xp.maximum(ring, 0)]]]] = True
-    at = xp.nonzero(pending)[0]
-    group, boxes = _groups(_host(dpts[at]), cell)
-    grp = xp.full(len(ids), -1, dtype=xp.int64)
-    grp[at] = xp.asarray(group)
-    sg = _group_of(s, d, grp, mine, ring, low, xp)
-    q = xp.nonzero(required & (sg >= 0))[0]
-    region = (cell[0] - ghost, cell[1] + ghost)
-    windows, slo, shi = _windows(dpts, s, nb, q, sg, boxes, grid, region, planes, extras,
-                                 ghost, xp)
-    strips = _thin_boxes(slo, shi, cell[0], cell[1], ghost) if len(slo) else {}
-    need_p = pending[low[mine]]
-    settled = owned & ~pending
-    a = _emit(ids, pts, blk, block, s, nb, low, mine[~need_p], settled, d, xp)
-    return dict(pending=ids[_host(at)], group=group, part=a, cell=windows,
-                copies=_copies(ids, blk, block, tri)), ghost, strips
-
-
-# A patch whose windows cover more than this share of the block's next region is not worth it:
-# the block is triangulated whole again (3D blocks, whose hull simplices fail all over their
-# faces, and clustered points, whose voids need wide layers).
-_PATCH_SHARE = 0.25
-# Patch rounds a block runs before it goes back to whole rounds: one (where a patch fails, its
-# windows were too narrow for the points around them, and growing them round by round cost
-# more rounds than whole ones on clustered points).
-_PATCH_ROUNDS = 1
-
-
-def _too_wide(windows, width, grid, cell, ghost):
-    def volume(lo, hi):
-        lo, hi = np.maximum(lo, grid.lo), np.minimum(hi, grid.hi)
-        ext = hi - lo
-        return float(np.prod(np.maximum(ext[grid.hi > grid.lo], 0.0)))
-    whole = volume(cell[0] - 2.0 * ghost, cell[1] + 2.0 * ghost)
-    return sum(volume(lo - width, hi + width) for lo, hi in windows) > _PATCH_SHARE * whole
-
-
-def _triangulated(dpts, marked, d, xp, backend, threads):
-    """The local triangulation and what a round requires of it: the stars of the ``marked``
-    points (a block's own points, or a patch's pending ones) and, across the face opposite the
-    lowest vertex of each simplex a marked point owns, its neighbour; all must be final. Returns
-    (the Delaunay, simplices, neighbours, lowest vertices, the marked-owned simplices, their
-    neighbours opposite it, the required mask). Raises DegenerateInputError as Delaunay does."""
+def _triangulated(dpts, owned, d, xp, backend, threads):
+    """The local triangulation and what a round requires of it: the stars of the own points
+    and, across the face opposite the lowest vertex of each owned simplex, its neighbour; all
+    must be final. Returns (the Delaunay, simplices, neighbours, the owned simplices, the
+    required mask); on the host in C++ (``_core.block_required``), on a GPU in CuPy
+    (``_required_xp``). Raises DegenerateInputError as Delaunay does."""
     tri = Delaunay(dpts, backend=backend, threads=threads)
     s = tri.simplices.astype(xp.int64)
     nb = tri.neighbors.astype(xp.int64)
+    if xp is np:
+        r = _core.block_required(s, nb, owned, threads)
+        return tri, s, nb, r["owned_rows"], r["required"].view(bool)
+    return (tri, s, nb) + _required_xp(s, nb, owned, d, xp)
+
+
+def _required_xp(s, nb, owned, d, xp):
     low = _lowest(s, d, xp)
-    mine = xp.nonzero(marked[low])[0]
+    mine = xp.nonzero(owned[low])[0]
     ring = _ring(s, nb, mine, xp)
-    required = _touching(s, d, marked)
+    required = _touching(s, d, owned)
     required[ring[ring >= 0]] = True
-    return tri, s, nb, low, mine, ring, required
+    return mine, required
 
 
 def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, pieces, hull,
@@ -730,18 +576,17 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     """Triangulates block ``block`` with ghost width ``ghost`` and the extra boxes ``extras``
     it asked for earlier along the hull (a dict of boxes).
 
-    ``own``: (points, global ids, ...) of the block's points; ``pieces``: (points, ids, owner blocks)
+    ``own``: (points, global ids) of the block's points; ``pieces``: (points, ids, owner blocks)
     of other blocks' points in the region; ``hull``: (points, ids, owner blocks, facet planes)
     of the global hull (its extreme points; the planes pushed outwards by a margin). Returns a
     dict: ``done``; when done, ``simplices`` (global ids, the owned ones), ``nb_local`` (per
     face: an owned simplex's row here, -1 none, -2 another block's), the requests for the
     others (``req_owner``, ``req_key``: sorted vertex ids, ``req_pos``: row * (d + 1) + face),
     ``copies`` (pairs: an own point, its earlier copy), ``vertices`` and ``vertex_points`` (the
-    owned simplices' vertices, sorted, and their coordinates); when not, ``next_ghost``,
-    ``boxes`` (extra boxes to take, as ``extras``' items) and, where the block was
-    triangulated, ``patch``: what the next rounds (``triangulate_patch``) keep and complete."""
+    owned simplices' vertices, sorted, and their coordinates); when not, ``next_ghost`` and
+    ``boxes`` (extra boxes to take, as ``extras``' items)."""
     d = grid.ndim
-    own_pts, own_ids = own[0], own[1]
+    own_pts, own_ids = own
     covers = grid.covers_all(block, ghost)
     if len(own_ids) == 0:
         z = np.zeros(0, np.int64)
@@ -756,8 +601,7 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     dpts = xp.asarray(pts)
     owned = xp.asarray(blk == block)
     try:
-        tri, s, nb, low, mine, ring, required = _triangulated(dpts, owned, d, xp, backend,
-                                                              threads)
+        tri, s, nb, mine, required = _triangulated(dpts, owned, d, xp, backend, threads)
     except _core.DegenerateInputError:
         if covers:
             raise  # every point is here: the whole set is degenerate, as a single run says
@@ -770,79 +614,7 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
         verdict = _judge(dpts, s, nb, req, grid, cell, ghost, hull[3], list(extras.values()),
                          xp, threads)
         if verdict is not None:
-            failed, nxt, boxes = verdict
-            patch, width, strips = _patch(dpts, ids, pts, blk, block, s, nb, low, mine, ring,
-                                          required, failed, nxt, grid, cell, ghost, hull[3],
-                                          list(extras.values()), tri, d, xp)
-            if _too_wide(patch["cell"], width, grid, cell, ghost):
-                return _not_done(block, ghost, nxt, len(ids), tested, boxes.items())
-            patch["fallback"] = nxt
-            for key, (lo, hi) in strips.items():
-                if key in boxes:
-                    lo, hi = np.minimum(lo, boxes[key][0]), np.maximum(hi, boxes[key][1])
-                boxes[key] = (lo, hi)
-            return _not_done(block, ghost, width, len(ids), tested, boxes.items(), patch)
-    out = _emit(ids, pts, blk, block, s, nb, low, mine, owned, d, xp)
+            nxt, boxes = verdict
+            return _not_done(block, ghost, nxt, len(ids), tested, boxes.items())
+    out = _emit(ids, pts, blk, s, nb, mine, d, xp, threads)
     return _done(block, ghost, len(ids), tested, out, _copies(ids, blk, block, tri))
-
-
-def triangulate_patch(block: int, grid: Grid, width: float, extras: dict, pieces, hull, prev,
-                      backend: str, threads: int, total: int) -> dict:
-    """A later round of a block whose first round failed (``prev``: the last round's result,
-    with its ``patch``): the points in the box round the pending points P grown by ``width``
-    and in the extra boxes (``pieces``: (points, ids, owner blocks), the block's own included)
-    with the hull's extreme points, triangulated; done when the stars of P and the neighbours
-    across the face opposite the lowest vertex of the simplices P owns are final. The block's
-    output is then the first round's settled part joined with P's simplices. Returns what
-    ``triangulate_block`` does."""
-    d = grid.ndim
-    patch = prev["patch"]
-    boxes = patch["cell"]
-    ids, pts, blk = _local_points(list(pieces) + [hull[:3]])
-    # every point is local (``total``: all points, copies included): every simplex is final
-    covers = len(ids) == total or any(
-        bool(np.all(lo - width <= grid.lo) and np.all(hi + width >= grid.hi)) for lo, hi in boxes)
-    at = np.searchsorted(ids, patch["pending"])
-    if (at >= len(ids)).any() or (ids[np.minimum(at, len(ids) - 1)] != patch["pending"]).any():
-        raise RuntimeError("gpugeom.dask: a patch round lacks its pending points (a bug: please "
-                           "report it with the input)")
-    xp = _array_module(backend)
-    dpts = xp.asarray(pts)
-    pending = xp.zeros(len(ids), dtype=bool)
-    pending[xp.asarray(at)] = True
-    grp = xp.full(len(ids), -1, dtype=xp.int64)
-    grp[xp.asarray(at)] = xp.asarray(patch["group"])
-    tested = 0
-    try:
-        _, s, nb, low, mine, ring, required = _triangulated(dpts, pending, d, xp, backend,
-                                                            threads)
-    except _core.DegenerateInputError:
-        if covers:
-            raise
-        return _not_done(block, width, 2.0 * width, len(ids), 0, (), patch)
-    if not covers:
-        # each group's simplices against its window (every window's points are local, so any
-        # window would do for any simplex: the group is the one likeliest to hold its ball)
-        sg = _group_of(s, d, grp, mine, ring, low, xp)
-        nxt, asked = None, {}
-        for g, cell in enumerate(boxes):
-            req = xp.nonzero(required & (sg == g))[0]
-            tested += int(len(req))
-            verdict = _judge(dpts, s, nb, req, grid, cell, width, hull[3],
-                             list(extras.values()), xp, threads)
-            if verdict is None:
-                continue
-            nxt = max(nxt or 0.0, verdict[1])
-            for key, (lo, hi) in verdict[2].items():
-                if key in asked:
-                    lo, hi = np.minimum(lo, asked[key][0]), np.maximum(hi, asked[key][1])
-                asked[key] = (lo, hi)
-        if nxt is not None:
-            patch["rounds"] = patch.get("rounds", 0) + 1
-            if patch["rounds"] >= _PATCH_ROUNDS:  # back to whole rounds
-                return _not_done(block, width, patch["fallback"], len(ids), tested,
-                                 asked.items())
-            return _not_done(block, width, nxt, len(ids), tested, asked.items(), patch)
-    b = _emit(ids, pts, blk, block, s, nb, low, mine, pending, d, xp)
-    return _done(block, width, len(ids), tested, _join(patch["part"], b, d), patch["copies"],
-                 patched=True)

@@ -1,0 +1,136 @@
+// What a distributed-Delaunay block requires of its triangulation and the output of its owned
+// simplices (include/gpugeom/blocks.hpp). The same rules as gpugeom.dask's NumPy path
+// (python/gpugeom/dask/_ghost.py: _triangulated and _emit, which the GPU blocks run in CuPy),
+// one simplex at a time: NumPy's gathers over every simplex cost a second for a block of 2·10^6
+// points.
+#include <omp.h>
+
+#include <algorithm>
+#include <string>
+
+#include "gpugeom/blocks.hpp"
+#include "gpugeom/common.hpp"
+
+namespace gpugeom {
+
+namespace {
+
+void check_dim(int dim, const char* who) {
+  if (dim != 2 && dim != 3)
+    throw Error(ErrorCode::InvalidArgument,
+                std::string(who) + ": dim must be 2 or 3, got " + std::to_string(dim));
+}
+
+// The lowest vertex's place (0..dim) in a simplex.
+inline int lowest_at(const std::int64_t* v, int d1) {
+  int at = 0;
+  for (int k = 1; k < d1; ++k)
+    if (v[k] < v[at]) at = k;
+  return at;
+}
+
+// OpenMP's thread count for the calling thread while alive (0: left as it is).
+class Threads {
+ public:
+  explicit Threads(int threads) : saved_(omp_get_max_threads()), set_(threads > 0) {
+    if (set_) omp_set_num_threads(threads);
+  }
+  ~Threads() {
+    if (set_) omp_set_num_threads(saved_);
+  }
+
+ private:
+  int saved_;
+  bool set_;
+};
+
+}  // namespace
+
+BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* neighbors,
+                             std::int64_t m, int dim, const std::uint8_t* owned, int threads) {
+  check_dim(dim, "block_required");
+  const int d1 = dim + 1;
+  Threads scope(threads);
+  BlockRequired out;
+  out.required.resize(std::size_t(m));
+  HostVector<std::uint8_t> mine(static_cast<std::size_t>(m));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < m; ++i) {
+    const std::int64_t* v = simplices + i * d1;
+    std::uint8_t any = 0;
+    for (int k = 0; k < d1; ++k) any |= owned[v[k]] ? 1 : 0;
+    out.required[std::size_t(i)] = any;
+    mine[std::size_t(i)] = owned[v[lowest_at(v, d1)]] ? 1 : 0;
+  }
+  // the owned rows in order, then the rings (on one thread: two owned simplices may share one)
+  std::int64_t count = 0;
+  for (std::int64_t i = 0; i < m; ++i) count += mine[std::size_t(i)];
+  out.owned_rows.resize(std::size_t(count));
+  std::int64_t at = 0;
+  for (std::int64_t i = 0; i < m; ++i)
+    if (mine[std::size_t(i)]) out.owned_rows[std::size_t(at++)] = i;
+  for (std::int64_t r = 0; r < count; ++r) {
+    const std::int64_t i = out.owned_rows[std::size_t(r)];
+    const std::int64_t t = neighbors[i * d1 + lowest_at(simplices + i * d1, d1)];
+    if (t >= 0) out.required[std::size_t(t)] = 1;
+  }
+  return out;
+}
+
+BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
+                         std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
+                         const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
+                         int threads) {
+  check_dim(dim, "block_output");
+  const int d1 = dim + 1;
+  Threads scope(threads);
+  BlockOutput out;
+  HostVector<std::int64_t> pos;
+  pos.assign(std::size_t(m), -1);
+  const std::size_t cells = std::size_t(count) * std::size_t(d1);
+  out.simplices.resize(cells);
+  out.neighbors.resize(cells);
+  HostVector<std::uint8_t> used;
+  used.assign(std::size_t(n), 0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t r = 0; r < count; ++r) pos[std::size_t(rows[r])] = r;
+  std::int64_t requests = 0;
+#pragma omp parallel for schedule(static) reduction(+ : requests)
+  for (std::int64_t r = 0; r < count; ++r) {
+    const std::int64_t* v = simplices + rows[r] * d1;
+    const std::int64_t* nb = neighbors + rows[r] * d1;
+    for (int k = 0; k < d1; ++k) {
+      out.simplices[std::size_t(r * d1 + k)] = ids[v[k]];
+      const std::int64_t t = nb[k];
+      const std::int64_t p = t < 0 ? -1 : pos[std::size_t(t)];
+      out.neighbors[std::size_t(r * d1 + k)] = t < 0 ? -1 : (p >= 0 ? p : -2);
+      requests += t >= 0 && p < 0;
+    }
+  }
+  out.request_owner.resize(std::size_t(requests));
+  out.request_pos.resize(std::size_t(requests));
+  out.request_key.resize(std::size_t(requests) * std::size_t(d1));
+  // on one thread: the requests in row-major order, and the vertices (shared between rows)
+  std::int64_t q = 0;
+  for (std::int64_t c = 0; c < std::int64_t(cells); ++c) {
+    used[std::size_t(simplices[rows[c / d1] * d1 + c % d1])] = 1;
+    if (out.neighbors[std::size_t(c)] != -2) continue;
+    const std::int64_t t = neighbors[rows[c / d1] * d1 + c % d1];
+    const std::int64_t* v = simplices + t * d1;
+    out.request_owner[std::size_t(q)] = blk[v[lowest_at(v, d1)]];
+    out.request_pos[std::size_t(q)] = c;
+    std::int64_t* key = out.request_key.data() + q * d1;
+    for (int k = 0; k < d1; ++k) key[k] = ids[v[k]];
+    std::sort(key, key + d1);
+    ++q;
+  }
+  std::int64_t nv = 0;
+  for (std::int64_t i = 0; i < n; ++i) nv += used[std::size_t(i)];
+  out.vertices.resize(std::size_t(nv));
+  nv = 0;
+  for (std::int64_t i = 0; i < n; ++i)
+    if (used[std::size_t(i)]) out.vertices[std::size_t(nv++)] = i;
+  return out;
+}
+
+}  // namespace gpugeom
