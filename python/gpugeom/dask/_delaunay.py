@@ -83,14 +83,16 @@ def _summary(pts):
 
 
 def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
-    """A piece's points by owning block, and its hull candidates (its extreme points)."""
+    """A piece's points by owning block (a part per block, None where it has none), then its
+    hull candidates (its extreme points): separate outputs, so that each block takes only its
+    parts from the worker that split the piece."""
     pts = _load(pts)
     ids = np.arange(offset, offset + len(pts), dtype=np.int64)
     cell = grid.cell_of(pts)
     order = np.argsort(cell, kind="stable")
     cuts = np.searchsorted(cell[order], np.arange(grid.nblocks + 1))
-    parts = {int(b): (pts[order[cuts[b]:cuts[b + 1]]], ids[order[cuts[b]:cuts[b + 1]]])
-             for b in np.nonzero(np.diff(cuts))[0]}
+    parts = [(pts[order[cuts[b]:cuts[b + 1]]], ids[order[cuts[b]:cuts[b + 1]]])
+             if cuts[b + 1] > cuts[b] else None for b in range(grid.nblocks)]
     if pts.shape[1] == 2 and _array_module(backend) is np:
         # on the host a 2D ConvexHull is a Delaunay triangulation of the piece; on a GPU that
         # costs less than the filter's passes in NumPy
@@ -101,7 +103,7 @@ def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
                               np.int64)
         except (_core.DegenerateInputError, ValueError):
             cand = np.arange(len(pts))  # too few or flat: every point may be extreme
-    return parts, (pts[cand], ids[cand], cell[cand])
+    return (*parts, (pts[cand], ids[cand], cell[cand]))
 
 
 # Shewchuk's bound on the rounding of a 2D orientation computed in doubles, relative to the sum
@@ -135,17 +137,17 @@ def _hull_candidates2d(pts: np.ndarray) -> np.ndarray:
     return np.nonzero(~inside)[0]
 
 
-def _own(splits, block: int, d: int):
-    got = [s[0][block] for s in splits if block in s[0]]
+def _own(parts, d: int):
+    got = [p for p in parts if p is not None]
     if not got:
         return np.zeros((0, d)), np.zeros(0, np.int64)
     return np.concatenate([g[0] for g in got]), np.concatenate([g[1] for g in got])
 
 
-def _global_hull(splits, backend: str, threads: int):
-    pts = np.concatenate([s[1][0] for s in splits])
-    ids = np.concatenate([s[1][1] for s in splits])
-    blk = np.concatenate([s[1][2] for s in splits])
+def _global_hull(cands, backend: str, threads: int):
+    pts = np.concatenate([c[0] for c in cands])
+    ids = np.concatenate([c[1] for c in cands])
+    blk = np.concatenate([c[2] for c in cands])
     order = np.argsort(ids)
     pts, ids, blk = pts[order], ids[order], blk[order]
     try:
@@ -406,10 +408,12 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         raise ValueError(f"ghost must be positive, got {ghost}")
 
     run = dict(backend=backend, threads=threads)
-    splits = [delayed(_split)(p, int(o), grid, **run) for p, o in zip(pieces, start)]
+    splits = [delayed(_split, nout=grid.nblocks + 1)(p, int(o), grid, **run)
+              for p, o in zip(pieces, start)]
     # persisted together, so that the pieces are split once
-    *own, hull = dask.persist(*[delayed(_own)(splits, b, d) for b in range(grid.nblocks)],
-                              delayed(_global_hull)(splits, **run))
+    *own, hull = dask.persist(*[delayed(_own)([s[b] for s in splits], d)
+                                for b in range(grid.nblocks)],
+                              delayed(_global_hull)([s[grid.nblocks] for s in splits], **run))
     lap("split")
     # where a block's points lie: its cell, with a margin far above the rounding of cell_of (no
     # round trip for the blocks' true boxes; an empty block is done at once in the first round)
