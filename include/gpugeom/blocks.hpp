@@ -44,6 +44,8 @@ struct BlockRequired {
   /// the neighbours are in that vertex's star).
   HostVector<std::uint8_t> required;
 };
+/// What a block requires of its local triangulation (BlockRequired), on `threads` host threads
+/// (0: OpenMP's default). Throws Error(InvalidArgument) for a dim other than 2 or 3.
 BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* neighbors,
                              std::int64_t m, int dim, const std::uint8_t* owned, int threads = 0);
 
@@ -58,9 +60,35 @@ struct BlockOutput {
   HostVector<std::int64_t> request_owner, request_key, request_pos;
   HostVector<std::int64_t> vertices;
 };
+/// The output of a block's owned simplices `rows` (BlockOutput), on `threads` host threads (0:
+/// OpenMP's default). Throws Error(InvalidArgument) for a dim other than 2 or 3.
 BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
                          const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
                          int threads = 0);
+
+/// Which of `n` points (`dim` coordinates each, row-major) lie in any of `k` closed boxes (box i:
+/// `lo[i * dim + j] <= x_j <= hi[i * dim + j]`, comparisons of the doubles only): writes
+/// inside[p] = 1 or 0. On `threads` host threads (0: OpenMP's default).
+void points_in_boxes(const double* points, int dim, std::int64_t n, const double* lo,
+                     const double* hi, std::int64_t k, std::uint8_t* inside, int threads = 0);
+
+/// A grid of cells over the box from `lo` (`dim` coordinates), `counts[j]` cells of width
+/// `width[j]` along axis j. A point's cell is floor((x_j - lo_j) / width_j) per axis, clamped to
+/// the grid (0 where the width is 0), row-major over the axes.
+struct CellGrid {
+  double lo[3] = {}, width[3] = {};
+  std::int64_t counts[3] = {1, 1, 1};
+};
+
+/// The points' cells (`cell`, per point) and the points in cell order, stable (`order`), with
+/// `cuts`: the points of cell c are order[cuts[c]:cuts[c + 1]].
+struct CellSplit {
+  HostVector<std::int64_t> cell, order, cuts;
+};
+/// Splits `n` points (`dim` coordinates each) by the cells of `grid`, on `threads` host threads
+/// (0: OpenMP's default). Throws Error(InvalidArgument) for a dim other than 2 or 3.
+CellSplit split_by_cell(const double* points, int dim, std::int64_t n, const CellGrid& grid,
+                        int threads = 0);
 
 }  // namespace gpugeom

@@ -759,6 +759,55 @@ nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
   return out;
 }
 
+// gpugeom.dask's grid and box tests (include/gpugeom/blocks.hpp) on host arrays.
+const double* host_points(const AnyArray& points, int* dim, std::int64_t* n) {
+  Input p = inspect(points, "points");
+  if (p.on_device || !holds<double>(p) || p.shape.size() != 2 ||
+      (p.shape[1] != 2 && p.shape[1] != 3))
+    throw nb::value_error("points must be a host float64 array of shape (n, 2) or (n, 3)");
+  *dim = int(p.shape[1]);
+  *n = p.shape[0];
+  return pts(p);
+}
+
+nb::object points_in_boxes_bind(const AnyArray& points, const AnyArray& lo, const AnyArray& hi,
+                                int threads) {
+  int dim = 0;
+  std::int64_t n = 0;
+  const double* x = host_points(points, &dim, &n);
+  Input l = inspect(lo, "lo"), h = inspect(hi, "hi");
+  for (const Input* b : {&l, &h})
+    if (b->on_device || !holds<double>(*b) || b->shape.size() != 2 || b->shape[1] != dim ||
+        b->shape[0] != l.shape[0])
+      throw nb::value_error("lo and hi must be host float64 arrays of shape (k, dim)");
+  HostVector<std::uint8_t> out(static_cast<sz>(n));
+  unlocked([&] { points_in_boxes(x, dim, n, pts(l), pts(h), l.shape[0], out.data(), threads); });
+  return host_array(std::move(out), {sz(n)});
+}
+
+nb::dict split_by_cell_bind(const AnyArray& points, const std::vector<double>& lo,
+                            const std::vector<double>& width,
+                            const std::vector<std::int64_t>& counts, int threads) {
+  int dim = 0;
+  std::int64_t n = 0;
+  const double* x = host_points(points, &dim, &n);
+  if (int(lo.size()) != dim || int(width.size()) != dim || int(counts.size()) != dim)
+    throw nb::value_error("lo, width and counts need dim entries each");
+  CellGrid g;
+  std::int64_t cells = 1;
+  for (int j = 0; j < dim; ++j) {
+    if (counts[j] < 1 || !(width[j] >= 0)) throw nb::value_error("bad grid");
+    g.lo[j] = lo[j], g.width[j] = width[j], g.counts[j] = counts[j];
+    cells *= counts[j];
+  }
+  CellSplit r = unlocked([&] { return split_by_cell(x, dim, n, g, threads); });
+  nb::dict out;
+  out["cell"] = host_array(std::move(r.cell), {sz(n)});
+  out["order"] = host_array(std::move(r.order), {sz(n)});
+  out["cuts"] = host_array(std::move(r.cuts), {sz(cells + 1)});
+  return out;
+}
+
 // The independent exact checkers (src/verify), for tests and for users who want proof.
 std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray& points,
                                         const AnyArray& cells, nb::object duplicate_of,
@@ -833,6 +882,9 @@ void bind_spatial(nb::module_& m) {
   m.def("voronoi2d", &voronoi2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);
   m.def("block_required", &block_required_bind, "simplices"_a, "neighbors"_a, "owned"_a,
+        "threads"_a = 0);
+  m.def("points_in_boxes", &points_in_boxes_bind, "points"_a, "lo"_a, "hi"_a, "threads"_a = 0);
+  m.def("split_by_cell", &split_by_cell_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
         "threads"_a = 0);
   m.def("block_output", &block_output_bind, "simplices"_a, "neighbors"_a, "rows"_a, "ids"_a,
         "blk"_a, "threads"_a = 0);

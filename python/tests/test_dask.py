@@ -12,7 +12,7 @@ dask = pytest.importorskip("dask")
 da = pytest.importorskip("dask.array")
 distributed = pytest.importorskip("distributed")
 gd = pytest.importorskip("gpugeom.dask")
-from gpugeom.dask._blocks import Grid, choose_counts, match_rows  # noqa: E402
+from gpugeom.dask._blocks import Grid, choose_counts, in_boxes, match_rows  # noqa: E402
 
 
 def _keys(simplices):
@@ -202,6 +202,16 @@ def test_blocks_and_rows():
     np.testing.assert_array_equal(g.cell_of(np.array([[0.0, 0.0], [1.0, 1.0], [0.5, 0.2]])),
                                   [0, 3, 2])
     assert g.covers_all(0, 1.0) and not g.covers_all(0, 0.4)
+    pts = np.random.default_rng(47).random((5000, 2)) * 1.2 - 0.1  # some outside: clamped
+    cell, order, cuts = g.split(pts, 2)
+    want = (np.clip(np.floor(pts[:, 0] / 0.5), 0, 1) * 2 + np.clip(np.floor(pts[:, 1] / 0.5), 0, 1))
+    np.testing.assert_array_equal(cell, want.astype(np.int64))
+    np.testing.assert_array_equal(order, np.argsort(cell, kind="stable"))
+    np.testing.assert_array_equal(cuts, np.searchsorted(cell[order], np.arange(5)))
+    boxes = [(np.array([0.0, 0.0]), np.array([0.25, 0.25])), (pts[7], pts[7])]
+    inside = in_boxes(pts, boxes)
+    np.testing.assert_array_equal(
+        inside, np.all((pts >= 0) & (pts <= 0.25), axis=1) | np.all(pts == pts[7], axis=1))
     table = np.array([[3, 1, 2], [4, 5, 6], [0, 1, 9]])
     queries = np.array([[4, 5, 6], [1, 2, 3], [1, 2, 4], [4, 5, 6]])
     np.testing.assert_array_equal(match_rows(table, queries), [1, 0, -1, 1])
@@ -250,10 +260,10 @@ def test_bulk_circumball_test():
 
 
 def test_block_passes_in_cpp_and_numpy():
-    """A block's required simplices and its output, from C++ (``_core.block_required``,
-    ``_core.block_output``: the CPU blocks) and from the array code the GPU blocks run in CuPy,
-    here on NumPy: the same arrays, on random blocks of 2D and 3D triangulations; bad indices
-    refused."""
+    """A block's required simplices and its output from C++ (``_core.block_required``, which
+    the CPU blocks run, and ``_core.block_output``, which every block runs), against the array
+    code the GPU blocks run in CuPy and a reference in NumPy: the same arrays, on random blocks
+    of 2D and 3D triangulations; bad indices refused."""
     from gpugeom import _core
     from gpugeom.dask import _ghost
     rng = np.random.default_rng(43)
@@ -270,8 +280,8 @@ def test_block_passes_in_cpp_and_numpy():
         mine, required = _ghost._required_xp(s, nb, owned, d, np)
         np.testing.assert_array_equal(r["owned_rows"], mine)
         np.testing.assert_array_equal(r["required"].view(bool), required)
-        got = _ghost._emit(ids, pts, blk, s, nb, mine, d, np, 2)
-        want = _ghost._emit_xp(ids, pts, blk, s, nb, mine, d, np)
+        got = _ghost._emit(ids, pts, blk, s, nb, mine, 2)
+        want = _emit_reference(ids, pts, blk, s, nb, mine, d)
         assert set(got) == set(want) and len(got["req_pos"]) > 0
         for k in want:
             np.testing.assert_array_equal(got[k], want[k], err_msg=k)
@@ -281,6 +291,29 @@ def test_block_passes_in_cpp_and_numpy():
             _core.block_required(bad, nb, owned)
         with pytest.raises(ValueError, match="rows"):
             _core.block_output(s, nb, np.array([len(s)], np.int64), ids, blk)
+
+
+def _emit_reference(ids, pts, blk, s, nb, rows, d, xp=np):
+    """The owned simplices' output in array code (NumPy here), as the C++ pass must give it."""
+    d1 = d + 1
+    pos = xp.full(len(s), -1, dtype=xp.int64)
+    pos[rows] = xp.arange(len(rows))
+    nbr = nb[rows]
+    # the rows are all the simplices whose lowest vertex is owned: a neighbour is a row here
+    # exactly where it is owned here, so only the few faces whose neighbour is not need its
+    # lowest vertex (its owner)
+    nb_local = xp.where(nbr >= 0, pos[xp.maximum(nbr, 0)], -1)
+    fi, fj = xp.nonzero((nbr >= 0) & (nb_local < 0))
+    other = nbr[fi, fj]
+    nb_local[fi, fj] = -2
+    tau = np.asarray(s[other])
+    mark = xp.zeros(len(ids), dtype=bool)
+    mark[s[rows].ravel()] = True
+    used = np.asarray(xp.nonzero(mark)[0])
+    return dict(simplices=ids[np.asarray(s[rows])], nb_local=np.asarray(nb_local),
+                req_owner=blk[tau.min(axis=1)] if len(tau) else np.zeros(0, np.int64),
+                req_key=np.sort(ids[tau], axis=1), req_pos=np.asarray(fi * d1 + fj),
+                vertices=ids[used], vertex_points=pts[used])
 
 
 def _solve(a, b):

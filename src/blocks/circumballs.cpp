@@ -3,8 +3,6 @@
 // and _ball_misses) with the same centre, the same rounding bound and the same slabs, one
 // simplex at a time: almost every simplex of a block passes here, and only the few that do not
 // go on to the Python tests along the hull.
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,6 +10,7 @@
 
 #include "gpugeom/blocks.hpp"
 #include "gpugeom/common.hpp"
+#include "blocks/threads.hpp"
 
 namespace gpugeom {
 
@@ -140,13 +139,11 @@ void circumballs_inside_region(const double* points, int dim, const std::int64_t
     throw Error(ErrorCode::InvalidArgument,
                 "circumballs_inside_region: dim must be 2 or 3, got " + std::to_string(dim));
   if (count <= 0) return;
-  const int saved = omp_get_max_threads();
-  if (threads > 0) omp_set_num_threads(threads);
+  blocks_detail::ThreadScope scope(threads);
   if (dim == 2)
     run<2>(points, simplices, rows, count, boxes, inside);
   else
     run<3>(points, simplices, rows, count, boxes, inside);
-  if (threads > 0) omp_set_num_threads(saved);
 }
 
 }  // namespace gpugeom

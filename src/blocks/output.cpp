@@ -1,15 +1,13 @@
 // What a distributed-Delaunay block requires of its triangulation and the output of its owned
-// simplices (include/gpugeom/blocks.hpp). The same rules as gpugeom.dask's NumPy path
-// (python/gpugeom/dask/_ghost.py: _triangulated and _emit, which the GPU blocks run in CuPy),
-// one simplex at a time: NumPy's gathers over every simplex cost a second for a block of 2·10^6
-// points.
-#include <omp.h>
-
+// simplices (include/gpugeom/blocks.hpp). The rules of gpugeom.dask (python/gpugeom/dask/
+// _ghost.py: the GPU blocks find what they require in CuPy, _required_xp), one simplex at a
+// time: NumPy's gathers over every simplex cost a second for a block of 2·10^6 points.
 #include <algorithm>
 #include <string>
 
 #include "gpugeom/blocks.hpp"
 #include "gpugeom/common.hpp"
+#include "blocks/threads.hpp"
 
 namespace gpugeom {
 
@@ -30,19 +28,6 @@ inline int lowest_at(const std::int64_t* v, int d1) {
 }
 
 // OpenMP's thread count for the calling thread while alive (0: left as it is).
-class Threads {
- public:
-  explicit Threads(int threads) : saved_(omp_get_max_threads()), set_(threads > 0) {
-    if (set_) omp_set_num_threads(threads);
-  }
-  ~Threads() {
-    if (set_) omp_set_num_threads(saved_);
-  }
-
- private:
-  int saved_;
-  bool set_;
-};
 
 }  // namespace
 
@@ -50,7 +35,7 @@ BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* 
                              std::int64_t m, int dim, const std::uint8_t* owned, int threads) {
   check_dim(dim, "block_required");
   const int d1 = dim + 1;
-  Threads scope(threads);
+  blocks_detail::ThreadScope scope(threads);
   BlockRequired out;
   out.required.resize(std::size_t(m));
   HostVector<std::uint8_t> mine(static_cast<std::size_t>(m));
@@ -83,7 +68,7 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
                          int threads) {
   check_dim(dim, "block_output");
   const int d1 = dim + 1;
-  Threads scope(threads);
+  blocks_detail::ThreadScope scope(threads);
   BlockOutput out;
   HostVector<std::int64_t> pos;
   pos.assign(std::size_t(m), -1);

@@ -1,9 +1,12 @@
 """The block decomposition of the distributed triangulation: a grid of cells over the points'
 bounding box, each point owned by the cell it falls in, and the regions a block covers.
 
-Pure NumPy: nothing here knows about Dask, so the rules can be tested alone.
+NumPy and the library's block passes: nothing here knows about Dask, so the rules can be tested
+alone.
 """
 import numpy as np
+
+from .. import _core
 
 
 def _prime_factors(n: int) -> list:
@@ -34,7 +37,7 @@ class Grid:
     """``counts[0] x ... x counts[d-1]`` cells over the closed box ``[lo, hi]`` of all points.
 
     A point belongs to the cell ``floor((x - lo) / width)`` (clamped), computed once per point in
-    one place (``cell_of``). Where floating point puts a point just outside its cell's box nothing
+    one place (``split``). Where floating point puts a point just outside its cell's box nothing
     breaks: a block always holds its own points, and the regions below only decide which *other*
     points a block takes, by exact comparisons of the coordinates.
     """
@@ -50,17 +53,17 @@ class Grid:
     def nblocks(self) -> int:
         return int(np.prod(self.counts))
 
+    def split(self, pts: np.ndarray, threads: int = 0):
+        """The owning block of each point (row-major cell index: floor((x - lo) / width) per
+        axis, clamped), the points in block order (stable) and the cuts between blocks: one
+        pass in C++ (``_core.split_by_cell``)."""
+        r = _core.split_by_cell(np.ascontiguousarray(pts, dtype=np.float64), self.lo.tolist(),
+                                self.width.tolist(), self.counts.tolist(), threads)
+        return r["cell"], r["order"], r["cuts"]
+
     def cell_of(self, pts: np.ndarray) -> np.ndarray:
         """The owning block of each point (row-major cell index)."""
-        idx = np.zeros(len(pts), dtype=np.int64)
-        for k in range(self.ndim):
-            if self.width[k] > 0:
-                c = np.floor((pts[:, k] - self.lo[k]) / self.width[k])
-                c = np.clip(c, 0, self.counts[k] - 1).astype(np.int64)
-            else:
-                c = np.zeros(len(pts), dtype=np.int64)
-            idx = idx * self.counts[k] + c
-        return idx
+        return self.split(pts)[0]
 
     def cell_box(self, b: int):
         """The box of cell ``b`` (the last cell along an axis ends exactly at ``hi``)."""
@@ -80,12 +83,14 @@ class Grid:
         return bool(np.all(lo <= self.lo) and np.all(hi >= self.hi))
 
 
-def in_box(pts: np.ndarray, lo, hi) -> np.ndarray:
-    """Exact test of the closed box (comparisons of the doubles, no arithmetic)."""
-    keep = (pts[:, 0] >= lo[0]) & (pts[:, 0] <= hi[0])
-    for k in range(1, pts.shape[1]):  # column by column: a reduction along axis 1 is slow
-        keep &= (pts[:, k] >= lo[k]) & (pts[:, k] <= hi[k])
-    return keep
+def in_boxes(pts: np.ndarray, boxes, threads: int = 0) -> np.ndarray:
+    """Exact test of closed boxes (comparisons of the doubles, no arithmetic): which points lie
+    in any of them, in one pass in C++ (``_core.points_in_boxes``)."""
+    d = pts.shape[1]
+    lo = np.array([b[0] for b in boxes], dtype=np.float64).reshape(-1, d)
+    hi = np.array([b[1] for b in boxes], dtype=np.float64).reshape(-1, d)
+    return _core.points_in_boxes(np.ascontiguousarray(pts, dtype=np.float64), lo, hi,
+                                 threads).view(bool)
 
 
 def boxes_meet(alo, ahi, blo, bhi) -> bool:

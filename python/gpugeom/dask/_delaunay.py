@@ -15,7 +15,7 @@ from dask import delayed
 from .. import _core
 from ..spatial import ConvexHull, Delaunay
 from . import _vtu
-from ._blocks import Grid, boxes_meet, choose_counts, in_box, match_rows
+from ._blocks import Grid, boxes_meet, choose_counts, in_boxes, match_rows
 from ._ghost import _array_module, triangulate_block
 
 _EPS = float(np.finfo(np.float64).eps)
@@ -74,12 +74,13 @@ def _pieces(points, nblocks: Optional[int]):
 
 def _summary(pts):
     pts = _load(pts)
-    bad = -1
-    if not np.isfinite(pts).all():  # (a reduction along the short axis only where one is bad)
-        bad = int(np.argmin(np.isfinite(pts).all(axis=1)))
-    if len(pts) == 0 or bad >= 0:
-        return dict(n=len(pts), bad=bad, lo=None, hi=None)
-    return dict(n=len(pts), bad=-1, lo=pts.min(axis=0), hi=pts.max(axis=0))
+    if len(pts) == 0:
+        return dict(n=0, bad=-1, lo=None, hi=None)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    if np.isfinite(lo).all() and np.isfinite(hi).all():  # (NaN and infinities reach both)
+        return dict(n=len(pts), bad=-1, lo=lo, hi=hi)
+    bad = int(np.argmin(np.isfinite(pts).all(axis=1)))
+    return dict(n=len(pts), bad=bad, lo=None, hi=None)
 
 
 def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
@@ -88,9 +89,7 @@ def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
     parts from the worker that split the piece."""
     pts = _load(pts)
     ids = np.arange(offset, offset + len(pts), dtype=np.int64)
-    cell = grid.cell_of(pts)
-    order = np.argsort(cell, kind="stable")
-    cuts = np.searchsorted(cell[order], np.arange(grid.nblocks + 1))
+    cell, order, cuts = grid.split(pts, threads)
     parts = [(pts[order[cuts[b]:cuts[b + 1]]], ids[order[cuts[b]:cuts[b + 1]]])
              if cuts[b + 1] > cuts[b] else None for b in range(grid.nblocks)]
     if pts.shape[1] == 2 and _array_module(backend) is np:
@@ -166,9 +165,7 @@ def _global_hull(cands, backend: str, threads: int):
 def _select(own, block: int, boxes):
     """A block's points in any of the boxes (another block's region and extra boxes)."""
     pts, ids = own
-    keep = np.zeros(len(ids), dtype=bool)
-    for lo, hi in boxes:
-        keep |= in_box(pts, lo, hi)
+    keep = in_boxes(pts, boxes)
     return pts[keep], ids[keep], np.full(int(keep.sum()), block, np.int64)
 
 
@@ -330,7 +327,7 @@ def _side_strips(grid: Grid, b: int, depth: float) -> dict:
 
 def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
              ghost: Optional[float] = None, backend: str = "auto",
-             threads: int = 1) -> DistributedTriangulation:
+             threads: int = 0) -> DistributedTriangulation:
     """Exact Delaunay triangulation of 2D or 3D points, block by block on a Dask cluster.
 
     The points are split into blocks by a grid over their bounding box; each block triangulates
@@ -355,7 +352,9 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     backend : {"auto", "cuda", "cpu"}
         Where each block is triangulated (on each worker: "auto" takes its GPU).
     threads : int
-        CPU threads per block (0: all of the worker's cores).
+        CPU threads per block. 0 (the default): OpenMP's default in the worker, that is its
+        ``OMP_NUM_THREADS``, which Dask sets to 1 unless told otherwise (give each worker process
+        its share of the cores there, as ``bench/dask_cluster.py`` does).
 
     Raises
     ------
