@@ -91,4 +91,14 @@ struct CellSplit {
 CellSplit split_by_cell(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                         int threads = 0);
 
+/// The points of a 2D set (`n` points, x and y each) that may be extreme points of a larger set
+/// holding them: all but those strictly inside the polygon through their extreme points in 8
+/// directions. A point is dropped only where every orientation against the polygon's edges is
+/// positive beyond its rounding bound (Shewchuk's ccwerrboundA); a point strictly left of every
+/// edge of a closed counter-clockwise polygon of input points lies strictly inside their hull,
+/// whatever the rounding of the directions chose, so no perturbation makes it extreme. Returns
+/// their indices, increasing; every index for fewer than 4 points or a flat polygon. On
+/// `threads` host threads (0: OpenMP's default).
+HostVector<std::int64_t> hull_candidates2d(const double* points, std::int64_t n, int threads = 0);
+
 }  // namespace gpugeom

@@ -808,6 +808,16 @@ nb::dict split_by_cell_bind(const AnyArray& points, const std::vector<double>& l
   return out;
 }
 
+nb::object hull_candidates2d_bind(const AnyArray& points, int threads) {
+  Input p = inspect(points, "points");
+  if (p.on_device || !holds<double>(p) || p.shape.size() != 2 || p.shape[1] != 2)
+    throw nb::value_error("points must be a host float64 array of shape (n, 2)");
+  HostVector<std::int64_t> v =
+      unlocked([&] { return hull_candidates2d(pts(p), p.shape[0], threads); });
+  const sz k = v.size();
+  return host_array(std::move(v), {k});
+}
+
 // The independent exact checkers (src/verify), for tests and for users who want proof.
 std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray& points,
                                         const AnyArray& cells, nb::object duplicate_of,
@@ -883,6 +893,7 @@ void bind_spatial(nb::module_& m) {
         "threads"_a = 0);
   m.def("block_required", &block_required_bind, "simplices"_a, "neighbors"_a, "owned"_a,
         "threads"_a = 0);
+  m.def("hull_candidates2d", &hull_candidates2d_bind, "points"_a, "threads"_a = 0);
   m.def("points_in_boxes", &points_in_boxes_bind, "points"_a, "lo"_a, "hi"_a, "threads"_a = 0);
   m.def("split_by_cell", &split_by_cell_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
         "threads"_a = 0);

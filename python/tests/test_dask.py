@@ -259,6 +259,24 @@ def test_bulk_circumball_test():
                                             hi.tolist(), box_lo.tolist(), box_hi.tolist(), 1.0)
 
 
+def test_hull_candidates2d():
+    """A 2D piece's hull candidates (``_core.hull_candidates2d``) hold every extreme point, on
+    points in general position, on a circle and on a grid (where many lie on the polygon's
+    edges); most interior points go."""
+    from gpugeom import _core
+    rng = np.random.default_rng(53)
+    t = rng.random(2000) * 2 * np.pi
+    grid = np.stack(np.meshgrid(np.arange(30.0), np.arange(20.0)), -1).reshape(-1, 2)
+    for pts in (rng.random((20000, 2)), np.stack([np.cos(t), np.sin(t)], 1), grid,
+                rng.normal(size=(5000, 2)) * [1e-3, 1e3]):
+        cand = _core.hull_candidates2d(pts, 2)
+        assert np.all(np.diff(cand) > 0)
+        hull = np.asarray(gpugeom.ConvexHull(pts, backend="cpu").vertices)
+        assert set(hull.tolist()) <= set(cand.tolist())
+    assert len(_core.hull_candidates2d(rng.random((20000, 2)))) < 1000
+    np.testing.assert_array_equal(_core.hull_candidates2d(np.zeros((3, 2))), [0, 1, 2])
+
+
 def test_block_passes_in_cpp_and_numpy():
     """A block's required simplices and its output from C++ (``_core.block_required``, which
     the CPU blocks run, and ``_core.block_output``, which every block runs), against the array

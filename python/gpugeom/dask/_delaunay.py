@@ -18,7 +18,6 @@ from . import _vtu
 from ._blocks import Grid, boxes_meet, choose_counts, in_boxes, match_rows
 from ._ghost import _array_module, triangulate_block
 
-_EPS = float(np.finfo(np.float64).eps)
 
 # ---------------------------------------------------------------------------------------------
 # Input: pieces of rows, each a delayed float64 (k, d) array, with their row offsets.
@@ -95,7 +94,7 @@ def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
     if pts.shape[1] == 2 and _array_module(backend) is np:
         # on the host a 2D ConvexHull is a Delaunay triangulation of the piece; on a GPU that
         # costs less than the filter's passes in NumPy
-        cand = _hull_candidates2d(pts)
+        cand = _core.hull_candidates2d(pts, threads)
     else:
         try:
             cand = np.asarray(ConvexHull(pts, backend=backend, threads=threads).vertices,
@@ -103,37 +102,6 @@ def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
         except (_core.DegenerateInputError, ValueError):
             cand = np.arange(len(pts))  # too few or flat: every point may be extreme
     return (*parts, (pts[cand], ids[cand], cell[cand]))
-
-
-# Shewchuk's bound on the rounding of a 2D orientation computed in doubles, relative to the sum
-# of its two products' magnitudes (his ccwerrboundA, with epsilon half an ulp of 1).
-_ORIENT_BOUND = (3.0 + 16.0 * (_EPS / 2)) * (_EPS / 2)
-
-
-def _hull_candidates2d(pts: np.ndarray) -> np.ndarray:
-    """The points of a 2D piece that may be extreme points of the whole set: all but those
-    strictly inside the polygon through the piece's extreme points in 8 directions (a point
-    strictly left of every edge of a closed counter-clockwise polygon of input points lies
-    strictly inside their hull, whatever the rounding of the directions chose, so no
-    perturbation makes it extreme). The orientations are computed in doubles and a point is
-    dropped only where each is positive beyond its rounding bound. A 2D ConvexHull costs a
-    Delaunay triangulation of the piece; this costs a few passes over it."""
-    if len(pts) < 4:
-        return np.arange(len(pts))
-    angle = 2.0 * np.pi * np.arange(8) / 8
-    v = np.argmax(pts @ np.stack([np.cos(angle), np.sin(angle)]), axis=0)
-    v = v[np.r_[True, v[1:] != v[:-1]]]
-    if v[0] == v[-1]:
-        v = v[:-1]
-    if len(v) < 3:
-        return np.arange(len(pts))
-    x, y = pts[:, 0], pts[:, 1]
-    inside = np.ones(len(pts), dtype=bool)
-    for i in range(len(v)):
-        (ax, ay), (bx, by) = pts[v[i]], pts[v[(i + 1) % len(v)]]
-        left, right = (ax - x) * (by - y), (ay - y) * (bx - x)
-        inside &= (left - right) > _ORIENT_BOUND * (np.abs(left) + np.abs(right))
-    return np.nonzero(~inside)[0]
 
 
 def _own(parts, d: int):
