@@ -1,6 +1,8 @@
 // The 2D hull candidates of a piece of gpugeom.dask's input (include/gpugeom/blocks.hpp): where
 // the blocks run on the host, a 2D ConvexHull would triangulate the whole piece, and the same
 // filter in NumPy made a temporary array per edge and operation (0.4 s for 2·10^6 points).
+#include <omp.h>
+
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -27,25 +29,41 @@ HostVector<std::int64_t> hull_candidates2d(const double* points, std::int64_t n,
     return out;
   };
   if (n < 4) return everything();
-  // the extreme point in each of 8 directions, counter-clockwise (the first where several tie)
+  // the extreme point in each of 8 directions, counter-clockwise (the first where several tie):
+  // per thread over a static range, then joined in thread order, so that the choice is the
+  // serial scan's on any thread count
+  blocks_detail::ThreadScope scope(threads);
   const double pi = std::acos(-1.0);
-  double cx[8], cy[8], top[8];
+  double cx[8], cy[8];
+  for (int k = 0; k < 8; ++k) cx[k] = std::cos(2 * pi * k / 8), cy[k] = std::sin(2 * pi * k / 8);
+  const int teams = omp_get_max_threads();
+  std::vector<double> tops(std::size_t(teams) * 8, -std::numeric_limits<double>::infinity());
+  std::vector<std::int64_t> bests(std::size_t(teams) * 8, 0);
+#pragma omp parallel num_threads(teams)
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const std::int64_t lo = n * t / nt, hi = n * (t + 1) / nt;
+    double* top = tops.data() + 8 * t;
+    std::int64_t* best = bests.data() + 8 * t;
+    for (std::int64_t i = lo; i < hi; ++i)
+      for (int k = 0; k < 8; ++k) {
+        const double h = points[2 * i] * cx[k] + points[2 * i + 1] * cy[k];
+        if (h > top[k]) top[k] = h, best[k] = i;
+      }
+  }
   std::int64_t best[8];
   for (int k = 0; k < 8; ++k) {
-    cx[k] = std::cos(2 * pi * k / 8), cy[k] = std::sin(2 * pi * k / 8);
-    best[k] = 0, top[k] = -std::numeric_limits<double>::infinity();
+    double top = -std::numeric_limits<double>::infinity();
+    best[k] = 0;
+    for (int t = 0; t < teams; ++t)
+      if (tops[std::size_t(8 * t + k)] > top)
+        top = tops[std::size_t(8 * t + k)], best[k] = bests[std::size_t(8 * t + k)];
   }
-  for (std::int64_t i = 0; i < n; ++i)
-    for (int k = 0; k < 8; ++k) {
-      const double h = points[2 * i] * cx[k] + points[2 * i + 1] * cy[k];
-      if (h > top[k]) top[k] = h, best[k] = i;
-    }
   std::vector<std::int64_t> poly;
   for (int k = 0; k < 8; ++k)
     if (poly.empty() || poly.back() != best[k]) poly.push_back(best[k]);
   if (poly.size() > 1 && poly.front() == poly.back()) poly.pop_back();
   if (poly.size() < 3) return everything();
-  blocks_detail::ThreadScope scope(threads);
   HostVector<std::uint8_t> keep(static_cast<std::size_t>(n));
   const int m = int(poly.size());
 #pragma omp parallel for schedule(static)
