@@ -647,44 +647,16 @@ nb::object hull2d_bind(const AnyArray& points, const AnyArray& simplices,
   return host_array(std::move(v), {h});
 }
 
-// gpugeom.dask's bulk finality test of a block's simplices (include/gpugeom/blocks.hpp): host
-// arrays, one byte per listed simplex.
-nb::object circumballs_inside_bind(const AnyArray& points, const AnyArray& simplices,
-                                   const AnyArray& rows, const std::vector<double>& region_lo,
-                                   const std::vector<double>& region_hi,
-                                   const std::vector<double>& bounds_lo,
-                                   const std::vector<double>& bounds_hi, double scale,
-                                   int threads) {
+// gpugeom.dask's passes (include/gpugeom/blocks.hpp) take host arrays, checked here once: the
+// library reads their indices unchecked. Points: float64 (n, 2) or (n, 3).
+const double* host_points(const AnyArray& points, int* dim, std::int64_t* n) {
   Input p = inspect(points, "points");
   if (p.on_device || !holds<double>(p) || p.shape.size() != 2 ||
       (p.shape[1] != 2 && p.shape[1] != 3))
     throw nb::value_error("points must be a host float64 array of shape (n, 2) or (n, 3)");
-  const int dim = int(p.shape[1]);
-  Input s = inspect(simplices, "simplices");
-  if (s.on_device || !holds<std::int64_t>(s) || s.shape.size() != 2 || s.shape[1] != dim + 1)
-    throw nb::value_error("simplices must be a host int64 array of shape (m, dim + 1)");
-  Input r = inspect(rows, "rows");
-  if (r.on_device || !holds<std::int64_t>(r) || r.shape.size() != 1)
-    throw nb::value_error("rows must be a host int64 array of shape (k,)");
-  BlockBoxes b;
-  for (const auto* v : {&region_lo, &region_hi, &bounds_lo, &bounds_hi})
-    if (int(v->size()) != dim) throw nb::value_error("each box corner needs dim coordinates");
-  for (int k = 0; k < dim; ++k) {
-    b.region_lo[k] = region_lo[k], b.region_hi[k] = region_hi[k];
-    b.bounds_lo[k] = bounds_lo[k], b.bounds_hi[k] = bounds_hi[k];
-  }
-  b.scale = scale;
-  const auto* rw = static_cast<const std::int64_t*>(r.data);
-  const std::int64_t k = r.shape[0], m = s.shape[0], n = p.shape[0];
-  const auto* sx = static_cast<const std::int64_t*>(s.data);
-  // the indices are checked here, once: the library reads them unchecked
-  for (std::int64_t i = 0; i < k; ++i)
-    if (rw[i] < 0 || rw[i] >= m) throw nb::value_error("rows: an index out of range");
-  for (std::int64_t i = 0; i < m * (dim + 1); ++i)
-    if (sx[i] < 0 || sx[i] >= n) throw nb::value_error("simplices: a vertex out of range");
-  HostVector<std::uint8_t> out(static_cast<sz>(k));
-  unlocked([&] { circumballs_inside_region(pts(p), dim, sx, rw, k, b, out.data(), threads); });
-  return host_array(std::move(out), {sz(k)});
+  *dim = int(p.shape[1]);
+  *n = p.shape[0];
+  return pts(p);
 }
 
 // A host int64 array of the given shape (-1: any) whose entries lie in [lo, hi), checked once
@@ -706,6 +678,32 @@ const std::int64_t* host_indices(const AnyArray& a, const char* name, std::int64
       throw nb::value_error((std::string(name) + ": an index out of range").c_str());
   if (count) *count = in.shape[0];
   return p;
+}
+
+// gpugeom.dask's bulk finality test of a block's simplices (include/gpugeom/blocks.hpp): host
+// arrays, one byte per listed simplex.
+nb::object circumballs_inside_bind(const AnyArray& points, const AnyArray& simplices,
+                                   const AnyArray& rows, const std::vector<double>& region_lo,
+                                   const std::vector<double>& region_hi,
+                                   const std::vector<double>& bounds_lo,
+                                   const std::vector<double>& bounds_hi, double scale,
+                                   int threads) {
+  int dim = 0;
+  std::int64_t n = 0, m = 0, k = 0;
+  const double* x = host_points(points, &dim, &n);
+  const std::int64_t* sx = host_indices(simplices, "simplices", -1, dim + 1, 0, n, &m);
+  const std::int64_t* rw = host_indices(rows, "rows", -1, -1, 0, m, &k);
+  BlockBoxes b;
+  for (const auto* v : {&region_lo, &region_hi, &bounds_lo, &bounds_hi})
+    if (int(v->size()) != dim) throw nb::value_error("each box corner needs dim coordinates");
+  for (int j = 0; j < dim; ++j) {
+    b.region_lo[j] = region_lo[j], b.region_hi[j] = region_hi[j];
+    b.bounds_lo[j] = bounds_lo[j], b.bounds_hi[j] = bounds_hi[j];
+  }
+  b.scale = scale;
+  HostVector<std::uint8_t> out(static_cast<sz>(k));
+  unlocked([&] { circumballs_inside_region(x, dim, sx, rw, k, b, out.data(), threads); });
+  return host_array(std::move(out), {sz(k)});
 }
 
 // gpugeom.dask's block passes (include/gpugeom/blocks.hpp) on host arrays: what a block
@@ -757,17 +755,6 @@ nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
   out["req_pos"] = host_array(std::move(r.request_pos), {q});
   out["used"] = host_array(std::move(r.vertices), {nv});
   return out;
-}
-
-// gpugeom.dask's grid and box tests (include/gpugeom/blocks.hpp) on host arrays.
-const double* host_points(const AnyArray& points, int* dim, std::int64_t* n) {
-  Input p = inspect(points, "points");
-  if (p.on_device || !holds<double>(p) || p.shape.size() != 2 ||
-      (p.shape[1] != 2 && p.shape[1] != 3))
-    throw nb::value_error("points must be a host float64 array of shape (n, 2) or (n, 3)");
-  *dim = int(p.shape[1]);
-  *n = p.shape[0];
-  return pts(p);
 }
 
 nb::object points_in_boxes_bind(const AnyArray& points, const AnyArray& lo, const AnyArray& hi,

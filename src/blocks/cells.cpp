@@ -6,7 +6,7 @@
 
 #include "gpugeom/blocks.hpp"
 #include "gpugeom/common.hpp"
-#include "blocks/threads.hpp"
+#include "blocks/pass.hpp"
 
 namespace gpugeom {
 
@@ -28,9 +28,7 @@ void points_in_boxes(const double* points, int dim, std::int64_t n, const double
 
 CellSplit split_by_cell(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                         int threads) {
-  if (dim != 2 && dim != 3)
-    throw Error(ErrorCode::InvalidArgument,
-                "split_by_cell: dim must be 2 or 3, got " + std::to_string(dim));
+  blocks_detail::check_dim(dim, "split_by_cell");
   blocks_detail::ThreadScope scope(threads);
   CellSplit out;
   out.cell.resize(std::size_t(n));

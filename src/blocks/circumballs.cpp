@@ -10,7 +10,7 @@
 
 #include "gpugeom/blocks.hpp"
 #include "gpugeom/common.hpp"
-#include "blocks/threads.hpp"
+#include "blocks/pass.hpp"
 
 namespace gpugeom {
 
@@ -135,9 +135,7 @@ void run(const double* pts, const std::int64_t* simplices, const std::int64_t* r
 void circumballs_inside_region(const double* points, int dim, const std::int64_t* simplices,
                                const std::int64_t* rows, std::int64_t count,
                                const BlockBoxes& boxes, std::uint8_t* inside, int threads) {
-  if (dim != 2 && dim != 3)
-    throw Error(ErrorCode::InvalidArgument,
-                "circumballs_inside_region: dim must be 2 or 3, got " + std::to_string(dim));
+  blocks_detail::check_dim(dim, "circumballs_inside_region");
   if (count <= 0) return;
   blocks_detail::ThreadScope scope(threads);
   if (dim == 2)

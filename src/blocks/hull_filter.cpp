@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "gpugeom/blocks.hpp"
-#include "blocks/threads.hpp"
+#include "blocks/pass.hpp"
 
 namespace gpugeom {
 

@@ -1,23 +1,17 @@
 // What a distributed-Delaunay block requires of its triangulation and the output of its owned
-// simplices (include/gpugeom/blocks.hpp). The rules of gpugeom.dask (python/gpugeom/dask/
-// _ghost.py: the GPU blocks find what they require in CuPy, _required_xp), one simplex at a
-// time: NumPy's gathers over every simplex cost a second for a block of 2·10^6 points.
+// simplices (include/gpugeom/blocks.hpp): the rules of gpugeom.dask (python/gpugeom/dask/
+// _ghost.py), for its CPU and GPU blocks alike, one simplex at a time. NumPy's gathers over every
+// simplex cost a second for a block of 2·10^6 points.
 #include <algorithm>
 #include <string>
 
 #include "gpugeom/blocks.hpp"
 #include "gpugeom/common.hpp"
-#include "blocks/threads.hpp"
+#include "blocks/pass.hpp"
 
 namespace gpugeom {
 
 namespace {
-
-void check_dim(int dim, const char* who) {
-  if (dim != 2 && dim != 3)
-    throw Error(ErrorCode::InvalidArgument,
-                std::string(who) + ": dim must be 2 or 3, got " + std::to_string(dim));
-}
 
 // The lowest vertex's place (0..dim) in a simplex.
 inline int lowest_at(const std::int64_t* v, int d1) {
@@ -27,13 +21,11 @@ inline int lowest_at(const std::int64_t* v, int d1) {
   return at;
 }
 
-// OpenMP's thread count for the calling thread while alive (0: left as it is).
-
 }  // namespace
 
 BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* neighbors,
                              std::int64_t m, int dim, const std::uint8_t* owned, int threads) {
-  check_dim(dim, "block_required");
+  blocks_detail::check_dim(dim, "block_required");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
   BlockRequired out;
@@ -66,7 +58,7 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
                          const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
                          int threads) {
-  check_dim(dim, "block_output");
+  blocks_detail::check_dim(dim, "block_output");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
   BlockOutput out;

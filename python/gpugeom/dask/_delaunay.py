@@ -387,21 +387,21 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     margin = 1e-9 * float(max(np.abs(grid.lo).max(), np.abs(grid.hi).max(), grid.width.max()))
     boxes_of = {b: tuple(c + e for c, e in zip(grid.cell_box(b), (-margin, margin)))
                 for b in range(grid.nblocks)}
-    filled_blocks = list(range(grid.nblocks))
+    all_blocks = list(range(grid.nblocks))
 
     tag = uuid.uuid4().hex[:12]
-    width = {b: float(ghost) for b in filled_blocks}
+    width = {b: float(ghost) for b in all_blocks}
     # boxes along the hull a block asked for; from the first round, strips along the sides of
     # the bounding box its cell touches
-    extras = {b: _side_strips(grid, b, _STRIP_DEPTH[d] * ghost) for b in filled_blocks}
-    rounds = {b: 0 for b in filled_blocks}
+    extras = {b: _side_strips(grid, b, _STRIP_DEPTH[d] * ghost) for b in all_blocks}
+    rounds = {b: 0 for b in all_blocks}
     final, metas = {}, {}
-    pending = list(filled_blocks)
+    pending = list(all_blocks)
     while pending:
         tasks = []
         for b in pending:
             boxes = [grid.region(b, width[b])] + list(extras[b].values())
-            near = [delayed(_select)(own[c], c, boxes) for c in filled_blocks
+            near = [delayed(_select)(own[c], c, boxes) for c in all_blocks
                     if c != b and any(boxes_meet(boxes_of[c][0], boxes_of[c][1], lo, hi)
                                       for lo, hi in boxes)]
             tasks.append(delayed(triangulate_block)(
@@ -425,7 +425,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         pending = [b for b in pending if b not in final]
         lap(f"round{len(timings) - 1}")
 
-    order = [b for b in filled_blocks if metas[b]["nlocal"] > 0]  # blocks with points
+    order = [b for b in all_blocks if metas[b]["nlocal"] > 0]  # blocks with points
     sizes = [metas[b]["nsimplex"] for b in order]
     offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
     index = {b: i for i, b in enumerate(order)}

@@ -439,11 +439,11 @@ def _thin_boxes(lo, hi, cell_lo, cell_hi, ghost):
     (along one face of the hull they are thin across it): at most 2d boxes.
 
     Each is grown on every side by the (next round's) ghost width and a quarter of its length,
-    and across, towards the cell, to at least twice that width deep. The points a box brings make new simplices
-    along the hull whose caps are a little deeper and longer than the ones that asked (measured
-    on uniform squares: a box of exactly the caps' size was asked for again, a hair thicker or
-    a little longer, in the next round and the one after); such a strip holds few points and
-    mostly ends that."""
+    and across, towards the cell, to at least twice that width deep. The points a box brings
+    make new simplices along the hull whose caps are a little deeper and longer than the ones
+    that asked (measured on uniform squares: a box of exactly the caps' size was asked for
+    again, a hair thicker or a little longer, in the next round and the one after); such a
+    strip holds few points and mostly ends that."""
     out = {}
     mid = 0.5 * (cell_lo + cell_hi)
     axis = np.argmin(hi - lo, axis=1)
@@ -486,38 +486,15 @@ def _local_points(own, others):
     return ids, np.ascontiguousarray(pts), blk
 
 
-def _lowest(s, d, xp):
-    """Per simplex its lowest vertex (local order is global order: the lowest global id), by
-    columns (NumPy's reductions along a short axis are slow)."""
-    low = s[:, 0]
-    for k in range(1, d + 1):
-        low = xp.minimum(low, s[:, k])
-    return low
-
-
-def _touching(s, d, mark):
-    """Per simplex: whether a vertex is marked."""
-    out = mark[s[:, 0]]
-    for k in range(1, d + 1):
-        out = out | mark[s[:, k]]
-    return out
-
-
-def _ring(s, nb, rows, xp):
-    """Per simplex ``rows``: its neighbour across the face opposite its lowest vertex (-1: none).
-    Across the other faces its neighbours are in the star of that vertex."""
-    return nb[rows, xp.argmin(s[rows], axis=1)]
-
-
 def _emit(ids, pts, blk, s, nb, rows, threads=1):
     """The output of the owned simplices ``rows`` (every simplex whose lowest vertex is an own
     point), every neighbour of which is final: global ids, and per face the neighbour as a row
     here (-1: none) or -2 (another block's: ``req_owner``, ``req_key`` its sorted vertex ids,
-    ``req_pos`` row * (d + 1) + face); the vertices used and their coordinates. On the host in
-    C++ (``_core.block_output``), for a GPU block too: its output goes to the host anyway, and
-    the gathers in CuPy and NumPy this replaced cost 2 s for a block of 10^7 points on an H200,
-    where copying the simplices over costs a tenth of that."""
-    out = _core.block_output(_host(s), _host(nb), _host(rows), ids, blk, threads)
+    ``req_pos`` row * (d + 1) + face); the vertices used and their coordinates. In C++
+    (``_core.block_output``) for a GPU block too: its output goes to the host anyway, and the
+    gathers in CuPy and NumPy this replaced cost 2 s for a block of 10^7 points on an H200,
+    where copying the simplices over costs a tenth of that. ``s``, ``nb``: on the host."""
+    out = _core.block_output(s, nb, rows, ids, blk, threads)
     used = out.pop("used")
     return dict(out, vertices=ids[used], vertex_points=pts[used])
 
@@ -534,28 +511,20 @@ def _copies(ids, blk, block, tri):
     return np.stack([ids[copy], ids[dup[copy]]], axis=1)
 
 
-def _triangulated(dpts, owned, d, xp, backend, threads):
+def _triangulated(dpts, owned, xp, backend, threads):
     """The local triangulation and what a round requires of it: the stars of the own points
     and, across the face opposite the lowest vertex of each owned simplex, its neighbour; all
-    must be final. Returns (the Delaunay, simplices, neighbours, the owned simplices, the
-    required mask); on the host in C++ (``_core.block_required``), on a GPU in CuPy
-    (``_required_xp``). Raises DegenerateInputError as Delaunay does."""
+    must be final. Returns (the Delaunay, simplices and neighbours on the host, the same where
+    the block runs, the owned simplices, the required mask where the block runs). The rule is
+    one C++ pass on the host (``_core.block_required``) for GPU blocks too: their simplices go
+    to the host for the output anyway, and only the mask comes back. Raises
+    DegenerateInputError as Delaunay does."""
     tri = Delaunay(dpts, backend=backend, threads=threads)
     s = tri.simplices.astype(xp.int64)
     nb = tri.neighbors.astype(xp.int64)
-    if xp is np:
-        r = _core.block_required(s, nb, owned, threads)
-        return tri, s, nb, r["owned_rows"], r["required"].view(bool)
-    return (tri, s, nb) + _required_xp(s, nb, owned, d, xp)
-
-
-def _required_xp(s, nb, owned, d, xp):
-    low = _lowest(s, d, xp)
-    mine = xp.nonzero(owned[low])[0]
-    ring = _ring(s, nb, mine, xp)
-    required = _touching(s, d, owned)
-    required[ring[ring >= 0]] = True
-    return mine, required
+    hs, hnb = _host(s), _host(nb)
+    r = _core.block_required(hs, hnb, _host(owned), threads)
+    return tri, hs, hnb, s, nb, r["owned_rows"], xp.asarray(r["required"].view(bool))
 
 
 def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, pieces, hull,
@@ -588,7 +557,7 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
     dpts = xp.asarray(pts)
     owned = xp.asarray(blk == block)
     try:
-        tri, s, nb, mine, required = _triangulated(dpts, owned, d, xp, backend, threads)
+        tri, hs, hnb, s, nb, mine, required = _triangulated(dpts, owned, xp, backend, threads)
     except _core.DegenerateInputError:
         if covers:
             raise  # every point is here: the whole set is degenerate, as a single run says
@@ -603,5 +572,5 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, p
         if verdict is not None:
             nxt, boxes = verdict
             return _not_done(block, ghost, nxt, len(ids), tested, boxes.items())
-    out = _emit(ids, pts, blk, s, nb, mine, threads)
+    out = _emit(ids, pts, blk, hs, hnb, mine, threads)
     return _done(block, ghost, len(ids), tested, out, _copies(ids, blk, block, tri))

@@ -1,6 +1,11 @@
-// The OpenMP thread count of the calling thread while a block pass runs (src/blocks/).
+// What every block pass (src/blocks/) shares: the OpenMP thread count of the calling thread
+// while it runs, and the check of the dimension.
 #pragma once
 #include <omp.h>
+
+#include <string>
+
+#include "gpugeom/common.hpp"
 
 namespace gpugeom::blocks_detail {
 
@@ -20,5 +25,12 @@ class ThreadScope {
   int saved_;
   bool set_;
 };
+
+// Error(InvalidArgument) naming the pass where dim is not 2 or 3.
+inline void check_dim(int dim, const char* pass) {
+  if (dim != 2 && dim != 3)
+    throw Error(ErrorCode::InvalidArgument,
+                std::string(pass) + ": dim must be 2 or 3, got " + std::to_string(dim));
+}
 
 }  // namespace gpugeom::blocks_detail
