@@ -67,12 +67,6 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
                          const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
                          int threads = 0);
 
-/// Which of `n` points (`dim` coordinates each, row-major) lie in any of `k` closed boxes (box i:
-/// `lo[i * dim + j] <= x_j <= hi[i * dim + j]`, comparisons of the doubles only): writes
-/// inside[p] = 1 or 0. On `threads` host threads (0: OpenMP's default).
-void points_in_boxes(const double* points, int dim, std::int64_t n, const double* lo,
-                     const double* hi, std::int64_t k, std::uint8_t* inside, int threads = 0);
-
 /// A grid of cells over the box from `lo` (`dim` coordinates), `counts[j]` cells of width
 /// `width[j]` along axis j. A point's cell is floor((x_j - lo_j) / width_j) per axis, clamped to
 /// the grid (0 where the width is 0), row-major over the axes.
@@ -81,15 +75,28 @@ struct CellGrid {
   std::int64_t counts[3] = {1, 1, 1};
 };
 
-/// The points' cells (`cell`, per point) and the points in cell order, stable (`order`), with
-/// `cuts`: the points of cell c are order[cuts[c]:cuts[c + 1]].
+/// The points' cells (`cell`, per point) and the points of each block (`order`, with `cuts`:
+/// block b's points are order[cuts[b]:cuts[b + 1]], in increasing order). Block b is the cell of
+/// that index; its points are those of its cell and, with split_to_blocks, those in its boxes.
 struct CellSplit {
   HostVector<std::int64_t> cell, order, cuts;
 };
 /// Splits `n` points (`dim` coordinates each) by the cells of `grid`, on `threads` host threads
-/// (0: OpenMP's default). Throws Error(InvalidArgument) for a dim other than 2 or 3.
+/// (0: OpenMP's default): each point is in its cell's block only. Throws Error(InvalidArgument)
+/// for a dim other than 2 or 3.
 CellSplit split_by_cell(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                         int threads = 0);
+/// Splits `n` points to the blocks of `grid` (CellSplit): a point goes to its cell's block and
+/// to the block `box_block[i]` of every one of the `nboxes` closed boxes i holding it
+/// (`box_lo[i * dim + j] <= x_j <= box_hi[i * dim + j]`, comparisons of the doubles only), once
+/// per block. The boxes come by block (box_block not decreasing). Where `wanted` is given, only
+/// the blocks b with wanted[b] nonzero get points. Deterministic on any thread count. Throws
+/// Error(InvalidArgument) for a dim other than 2 or 3 or a box's block outside the grid or out of
+/// order.
+CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const CellGrid& grid,
+                          const double* box_lo, const double* box_hi, const std::int64_t* box_block,
+                          std::int64_t nboxes, const std::uint8_t* wanted = nullptr,
+                          int threads = 0);
 
 /// The points of a 2D set (`n` points, x and y each) that may be extreme points of a larger set
 /// holding them: all but those strictly inside the polygon through their extreme points in 8

@@ -2,11 +2,13 @@
 // and the exact checkers. Each takes the points where they are (host or CUDA device) and returns
 // a dict of arrays in the same place.
 #include <nanobind/stl/function.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "arrays.hpp"
 #include "gpugeom/blocks.hpp"
@@ -757,24 +759,14 @@ nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
   return out;
 }
 
-nb::object points_in_boxes_bind(const AnyArray& points, const AnyArray& lo, const AnyArray& hi,
-                                int threads) {
-  int dim = 0;
-  std::int64_t n = 0;
-  const double* x = host_points(points, &dim, &n);
-  Input l = inspect(lo, "lo"), h = inspect(hi, "hi");
-  for (const Input* b : {&l, &h})
-    if (b->on_device || !holds<double>(*b) || b->shape.size() != 2 || b->shape[1] != dim ||
-        b->shape[0] != l.shape[0])
-      throw nb::value_error("lo and hi must be host float64 arrays of shape (k, dim)");
-  HostVector<std::uint8_t> out(static_cast<sz>(n));
-  unlocked([&] { points_in_boxes(x, dim, n, pts(l), pts(h), l.shape[0], out.data(), threads); });
-  return host_array(std::move(out), {sz(n)});
-}
-
-nb::dict split_by_cell_bind(const AnyArray& points, const std::vector<double>& lo,
-                            const std::vector<double>& width,
-                            const std::vector<std::int64_t>& counts, int threads) {
+// The split of points to the blocks of gpugeom.dask's grid: by cell, and (box_lo, box_hi,
+// box_block given) to every block with a box holding them; `wanted`: the blocks to list.
+nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>& lo,
+                              const std::vector<double>& width,
+                              const std::vector<std::int64_t>& counts,
+                              std::optional<AnyArray> box_lo, std::optional<AnyArray> box_hi,
+                              std::optional<AnyArray> box_block, std::optional<AnyArray> wanted,
+                              int threads) {
   int dim = 0;
   std::int64_t n = 0;
   const double* x = host_points(points, &dim, &n);
@@ -783,14 +775,39 @@ nb::dict split_by_cell_bind(const AnyArray& points, const std::vector<double>& l
   CellGrid g;
   std::int64_t cells = 1;
   for (int j = 0; j < dim; ++j) {
-    if (counts[j] < 1 || !(width[j] >= 0)) throw nb::value_error("bad grid");
+    if (counts[j] < 1 || !(width[j] >= 0) || counts[j] > (std::int64_t(1) << 20))
+      throw nb::value_error("bad grid: counts must lie in [1, 2^20] and widths be >= 0");
     g.lo[j] = lo[j], g.width[j] = width[j], g.counts[j] = counts[j];
     cells *= counts[j];
   }
-  CellSplit r = unlocked([&] { return split_by_cell(x, dim, n, g, threads); });
+  if (box_lo.has_value() != box_hi.has_value() || box_lo.has_value() != box_block.has_value())
+    throw nb::value_error("box_lo, box_hi and box_block go together");
+  const double *bl = nullptr, *bh = nullptr;
+  const std::int64_t* bb = nullptr;
+  std::int64_t nboxes = 0;
+  if (box_lo) {
+    bb = host_indices(*box_block, "box_block", -1, -1, 0, cells, &nboxes);
+    Input l = inspect(*box_lo, "box_lo"), h = inspect(*box_hi, "box_hi");
+    for (const Input* b : {&l, &h})
+      if (b->on_device || !holds<double>(*b) || b->shape.size() != 2 || b->shape[1] != dim ||
+          b->shape[0] != nboxes)
+        throw nb::value_error("box_lo and box_hi must be host float64 arrays of shape (k, dim)");
+    bl = pts(l), bh = pts(h);
+  }
+  const std::uint8_t* want = nullptr;
+  if (wanted) {
+    Input w = inspect(*wanted, "wanted");
+    if (w.on_device || w.shape.size() != 1 || w.shape[0] != cells ||
+        !(holds<bool>(w) || holds<std::uint8_t>(w)))
+      throw nb::value_error("wanted must be a host bool array with an entry per block");
+    want = static_cast<const std::uint8_t*>(w.data);
+  }
+  CellSplit r =
+      unlocked([&] { return split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads); });
   nb::dict out;
+  const sz total = r.order.size();
   out["cell"] = host_array(std::move(r.cell), {sz(n)});
-  out["order"] = host_array(std::move(r.order), {sz(n)});
+  out["order"] = host_array(std::move(r.order), {total});
   out["cuts"] = host_array(std::move(r.cuts), {sz(cells + 1)});
   return out;
 }
@@ -881,9 +898,9 @@ void bind_spatial(nb::module_& m) {
   m.def("block_required", &block_required_bind, "simplices"_a, "neighbors"_a, "owned"_a,
         "threads"_a = 0);
   m.def("hull_candidates2d", &hull_candidates2d_bind, "points"_a, "threads"_a = 0);
-  m.def("points_in_boxes", &points_in_boxes_bind, "points"_a, "lo"_a, "hi"_a, "threads"_a = 0);
-  m.def("split_by_cell", &split_by_cell_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
-        "threads"_a = 0);
+  m.def("split_to_blocks", &split_to_blocks_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
+        "box_lo"_a = nb::none(), "box_hi"_a = nb::none(), "box_block"_a = nb::none(),
+        "wanted"_a = nb::none(), "threads"_a = 0);
   m.def("block_output", &block_output_bind, "simplices"_a, "neighbors"_a, "rows"_a, "ids"_a,
         "blk"_a, "threads"_a = 0);
   m.def("furthest_site2d", &furthest_site2d_bind, "points"_a, "threads"_a = 0, "voronoi"_a = false);

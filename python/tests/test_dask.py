@@ -7,12 +7,13 @@ import numpy as np
 import pytest
 
 import gpugeom
+from gpugeom import _core
 
 dask = pytest.importorskip("dask")
 da = pytest.importorskip("dask.array")
 distributed = pytest.importorskip("distributed")
 gd = pytest.importorskip("gpugeom.dask")
-from gpugeom.dask._blocks import Grid, choose_counts, in_boxes, match_rows  # noqa: E402
+from gpugeom.dask._blocks import Grid, choose_counts, match_rows  # noqa: E402
 
 
 def _keys(simplices):
@@ -203,15 +204,47 @@ def test_blocks_and_rows():
                                   [0, 3, 2])
     assert g.covers_all(0, 1.0) and not g.covers_all(0, 0.4)
     pts = np.random.default_rng(47).random((5000, 2)) * 1.2 - 0.1  # some outside: clamped
-    cell, order, cuts = g.split(pts, 2)
+    cell, order, cuts = g.split(pts, threads=2)
     want = (np.clip(np.floor(pts[:, 0] / 0.5), 0, 1) * 2 + np.clip(np.floor(pts[:, 1] / 0.5), 0, 1))
     np.testing.assert_array_equal(cell, want.astype(np.int64))
     np.testing.assert_array_equal(order, np.argsort(cell, kind="stable"))
     np.testing.assert_array_equal(cuts, np.searchsorted(cell[order], np.arange(5)))
-    boxes = [(np.array([0.0, 0.0]), np.array([0.25, 0.25])), (pts[7], pts[7])]
-    inside = in_boxes(pts, boxes)
-    np.testing.assert_array_equal(
-        inside, np.all((pts >= 0) & (pts <= 0.25), axis=1) | np.all(pts == pts[7], axis=1))
+
+
+def test_split_to_blocks():
+    """The split of a piece to the blocks of a round (``Grid.split`` with boxes: each block's
+    own points and those in its boxes, in order) against NumPy: boxes that reach past the
+    grid, that touch points exactly, that overlap within one block, and a block left out."""
+    rng = np.random.default_rng(48)
+    g = Grid([0, 0], [3, 2], (3, 2))
+    pts = rng.random((20000, 2)) * [3.4, 2.4] - 0.2  # some outside the grid: clamped
+    pts[:50] = np.round(pts[:50] * 4) / 4  # on the boxes' sides
+    boxes = {0: [(np.array([-1.0, -1.0]), np.array([1.25, 1.25]))],
+             2: [(np.array([0.75, -1.0]), np.array([2.25, 1.25])),
+                 (np.array([1.0, 0.5]), np.array([1.5, 3.0])), (pts[7], pts[7])],
+             3: [], 5: [(np.array([-5.0, 1.75]), np.array([5.0, 5.0]))]}
+    cell = g.cell_of(pts)
+    ref = {}
+    for b, bs in boxes.items():
+        keep = cell == b
+        for lo, hi in bs:
+            keep |= np.all((pts >= lo) & (pts <= hi), axis=1)
+        ref[b] = np.nonzero(keep)[0]
+    for threads in (1, 2, 3):
+        c, order, cuts = g.split(pts, boxes, threads=threads)
+        np.testing.assert_array_equal(c, cell)
+        for b in range(g.nblocks):
+            np.testing.assert_array_equal(order[cuts[b]:cuts[b + 1]],
+                                          ref.get(b, np.zeros(0, np.int64)))
+    with pytest.raises(ValueError):
+        g.split(pts, {9: [(np.zeros(2), np.ones(2))]})
+    for block in ([1, 0], [0, 7]):  # out of order, outside the grid
+        with pytest.raises(ValueError):
+            _core.split_to_blocks(pts, [0.0, 0.0], [1.0, 1.0], [3, 2], box_lo=np.zeros((2, 2)),
+                                  box_hi=np.ones((2, 2)), box_block=np.array(block, np.int64))
+
+
+def test_match_rows():
     table = np.array([[3, 1, 2], [4, 5, 6], [0, 1, 9]])
     queries = np.array([[4, 5, 6], [1, 2, 3], [1, 2, 4], [4, 5, 6]])
     np.testing.assert_array_equal(match_rows(table, queries), [1, 0, -1, 1])
@@ -223,7 +256,6 @@ def test_bulk_circumball_test():
     with the NumPy test it stands in for (the same centre, bound and slabs)."""
     from fractions import Fraction
 
-    from gpugeom import _core
     from gpugeom.dask import _ghost
     for d in (2, 3):
         pts = np.random.default_rng(31 + d).random((1500, d))
@@ -263,7 +295,6 @@ def test_hull_candidates2d():
     """A 2D piece's hull candidates (``_core.hull_candidates2d``) hold every extreme point, on
     points in general position, on a circle and on a grid (where many lie on the polygon's
     edges); most interior points go."""
-    from gpugeom import _core
     rng = np.random.default_rng(53)
     t = rng.random(2000) * 2 * np.pi
     grid = np.stack(np.meshgrid(np.arange(30.0), np.arange(20.0)), -1).reshape(-1, 2)
@@ -281,7 +312,6 @@ def test_block_passes_in_cpp_and_numpy():
     """A block's required simplices and its output from C++ (``_core.block_required`` and
     ``_core.block_output``, which every block runs), against references in NumPy: the same
     arrays, on random blocks of 2D and 3D triangulations; bad indices refused."""
-    from gpugeom import _core
     from gpugeom.dask import _ghost
     rng = np.random.default_rng(43)
     for d in (2, 3):

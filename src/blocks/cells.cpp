@@ -1,6 +1,10 @@
-// Points to the blocks of gpugeom.dask's grid, and points in boxes (include/gpugeom/
-// blocks.hpp): one pass each, where NumPy made a temporary array per axis and comparison and
-// sorted the cells (an argsort of 10^7 int64 cells took 0.7 s).
+// Points to the blocks of gpugeom.dask's grid (include/gpugeom/blocks.hpp): each point to the
+// block of its cell and to every other block with a box holding it, in one pass, where NumPy made
+// a temporary array per axis and comparison and sorted the cells (an argsort of 10^7 int64 cells
+// took 0.7 s), and a second task per pair of blocks selected the ghosts from the owner's points.
+#include <omp.h>
+
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -10,53 +14,172 @@
 
 namespace gpugeom {
 
-void points_in_boxes(const double* points, int dim, std::int64_t n, const double* lo,
-                     const double* hi, std::int64_t k, std::uint8_t* inside, int threads) {
-  blocks_detail::ThreadScope scope(threads);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t p = 0; p < n; ++p) {
-    const double* x = points + p * dim;
-    std::uint8_t in = 0;
-    for (std::int64_t b = 0; b < k && !in; ++b) {
-      bool all = true;
-      for (int j = 0; j < dim; ++j) all = all && x[j] >= lo[b * dim + j] && x[j] <= hi[b * dim + j];
-      in = all ? 1 : 0;
+namespace {
+
+// A point's cell along axis j: floor((x - lo) / width), the same two roundings as
+// gpugeom.dask's Grid, clamped to the grid (0 where the width is 0).
+inline std::int64_t cell_along(double x, const CellGrid& g, int j) {
+  if (!(g.width[j] > 0)) return 0;
+  const double f = std::floor((x - g.lo[j]) / g.width[j]);
+  return f < 0 ? 0 : (f > double(g.counts[j] - 1) ? g.counts[j] - 1 : std::int64_t(f));
+}
+
+inline bool in_box(const double* x, const double* lo, const double* hi, int dim) {
+  for (int j = 0; j < dim; ++j)
+    if (!(x[j] >= lo[j] && x[j] <= hi[j])) return false;
+  return true;
+}
+
+// A finer grid of bins over the cells (kSub bins a cell along each axis that is not flat), each
+// with the boxes that may hold one of its points (CSR, each list in increasing box order, so by
+// block, as the boxes come): a point tests only its bin's boxes, so away from the boxes' sides
+// none (with a list per cell, each point tested every side strip of its row of cells: 88 ns a
+// point). A superset: the exact test per point is what counts.
+struct BoxBins {
+  CellGrid bins;
+  HostVector<std::int64_t> start, list;
+
+  BoxBins(const CellGrid& g, int dim, const double* box_lo, const double* box_hi,
+          std::int64_t nboxes) {
+    const std::int64_t sub = dim == 2 ? 8 : 4;
+    std::int64_t total = 1;
+    for (int j = 0; j < dim; ++j) {
+      const bool flat = !(g.width[j] > 0);
+      bins.lo[j] = g.lo[j];
+      bins.counts[j] = flat ? 1 : g.counts[j] * sub;
+      bins.width[j] = flat ? 0.0 : g.width[j] / double(sub);
+      total *= bins.counts[j];
     }
-    inside[p] = in;
+    // each box's range of bins along each axis, grown by a margin far above the rounding of a
+    // point's bin and by a bin on each side
+    auto range = [&](std::int64_t b, int j, std::int64_t* first, std::int64_t* last) {
+      const std::int64_t k = bins.counts[j];
+      if (!(bins.width[j] > 0)) {
+        *first = 0, *last = 0;
+        return;
+      }
+      const double margin = 1e-9 * (std::abs(g.lo[j]) + double(g.counts[j]) * g.width[j]);
+      auto at = [&](double x) {
+        const double f = std::floor((x - bins.lo[j]) / bins.width[j]);
+        return !(f >= 0) ? std::int64_t(0) : (f > double(k - 1) ? k - 1 : std::int64_t(f));
+      };
+      *first = at(box_lo[b * dim + j] - margin);
+      *last = at(box_hi[b * dim + j] + margin);
+    };
+    start.assign(std::size_t(total + 1), 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      HostVector<std::int64_t> next;
+      if (pass == 1) {
+        for (std::int64_t c = 0; c < total; ++c) start[std::size_t(c + 1)] += start[std::size_t(c)];
+        list.resize(std::size_t(start[std::size_t(total)]));
+        next.assign(start.begin(), start.end() - 1);
+      }
+      for (std::int64_t b = 0; b < nboxes; ++b) {
+        std::int64_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+        bool empty = false;
+        for (int j = 0; j < dim; ++j) {
+          range(b, j, &lo[j], &hi[j]);
+          empty = empty || !(box_lo[b * dim + j] <= box_hi[b * dim + j]);
+        }
+        if (empty) continue;
+        for (std::int64_t i0 = lo[0]; i0 <= hi[0]; ++i0)
+          for (std::int64_t i1 = lo[1]; i1 <= hi[1]; ++i1)
+            for (std::int64_t i2 = lo[2]; i2 <= hi[2]; ++i2) {
+              std::int64_t c = i0 * bins.counts[1] + i1;
+              if (dim == 3) c = c * bins.counts[2] + i2;
+              if (pass == 0)
+                ++start[std::size_t(c + 1)];
+              else
+                list[std::size_t(next[std::size_t(c)]++)] = b;
+            }
+      }
+    }
   }
+};
+
+}  // namespace
+
+CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const CellGrid& grid,
+                          const double* box_lo, const double* box_hi, const std::int64_t* box_block,
+                          std::int64_t nboxes, const std::uint8_t* wanted, int threads) {
+  blocks_detail::check_dim(dim, "split_to_blocks");
+  std::int64_t cells = 1;
+  for (int j = 0; j < dim; ++j) cells *= grid.counts[j];
+  for (std::int64_t b = 0; b < nboxes; ++b)
+    if (box_block[b] < 0 || box_block[b] >= cells)
+      throw Error(ErrorCode::InvalidArgument, "split_to_blocks: box " + std::to_string(b) +
+                                                  " names block " + std::to_string(box_block[b]) +
+                                                  " of a grid of " + std::to_string(cells));
+  for (std::int64_t b = 1; b < nboxes; ++b)
+    if (box_block[b] < box_block[b - 1])
+      throw Error(ErrorCode::InvalidArgument, "split_to_blocks: the boxes must come by block");
+  blocks_detail::ThreadScope scope(threads);
+  const BoxBins bins(grid, dim, box_lo, box_hi, nboxes);
+  CellSplit out;
+  out.cell.resize(std::size_t(n));
+  // Each thread takes a contiguous range of points, counts them per block, then writes them at
+  // its offsets: every block's points come out in increasing order, on any thread count.
+  const int nt = std::max(1, omp_get_max_threads());
+  HostVector<std::int64_t> counts(std::size_t(nt) * std::size_t(cells), 0);
+  HostVector<std::int64_t> bounds(std::size_t(nt + 1));
+  for (int t = 0; t <= nt; ++t) bounds[std::size_t(t)] = n * t / nt;
+  // calls f(block) for each block point p goes to: its cell's, then those of the boxes holding
+  // it (a block's boxes come together: once one holds p, the block's others are skipped)
+  auto visit = [&](std::int64_t p, auto&& f) {
+    const double* x = points + p * dim;
+    const std::int64_t c = out.cell[std::size_t(p)];
+    if (!wanted || wanted[c]) f(c);
+    if (nboxes == 0) return;
+    std::int64_t bin = 0;
+    for (int j = 0; j < dim; ++j) bin = bin * bins.bins.counts[j] + cell_along(x[j], bins.bins, j);
+    std::int64_t last = -1;
+    for (std::int64_t q = bins.start[std::size_t(bin)]; q < bins.start[std::size_t(bin + 1)]; ++q) {
+      const std::int64_t b = bins.list[std::size_t(q)], blk = box_block[b];
+      if (blk == last || blk == c || (wanted && !wanted[blk])) continue;
+      if (in_box(x, box_lo + b * dim, box_hi + b * dim, dim)) {
+        f(blk);
+        last = blk;
+      }
+    }
+  };
+#pragma omp parallel num_threads(nt)
+  {
+    const int t = omp_get_thread_num();
+    std::int64_t* mine = counts.data() + std::size_t(t) * std::size_t(cells);
+    for (std::int64_t p = bounds[std::size_t(t)]; p < bounds[std::size_t(t + 1)]; ++p) {
+      std::int64_t c = 0;
+      for (int j = 0; j < dim; ++j)
+        c = c * grid.counts[j] + cell_along(points[p * dim + j], grid, j);
+      out.cell[std::size_t(p)] = c;
+      visit(p, [&](std::int64_t b) { ++mine[b]; });
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      // offsets: block by block, and within a block thread by thread
+      out.cuts.assign(std::size_t(cells + 1), 0);
+      std::int64_t at = 0;
+      for (std::int64_t b = 0; b < cells; ++b) {
+        out.cuts[std::size_t(b)] = at;
+        for (int u = 0; u < nt; ++u) {
+          std::int64_t& k = counts[std::size_t(u) * std::size_t(cells) + std::size_t(b)];
+          const std::int64_t here = k;
+          k = at;
+          at += here;
+        }
+      }
+      out.cuts[std::size_t(cells)] = at;
+      out.order.resize(std::size_t(at));
+    }
+    for (std::int64_t p = bounds[std::size_t(t)]; p < bounds[std::size_t(t + 1)]; ++p)
+      visit(p, [&](std::int64_t b) { out.order[std::size_t(mine[b]++)] = p; });
+  }
+  return out;
 }
 
 CellSplit split_by_cell(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                         int threads) {
-  blocks_detail::check_dim(dim, "split_by_cell");
-  blocks_detail::ThreadScope scope(threads);
-  CellSplit out;
-  out.cell.resize(std::size_t(n));
-  std::int64_t cells = 1;
-  for (int j = 0; j < dim; ++j) cells *= grid.counts[j];
-#pragma omp parallel for schedule(static)
-  for (std::int64_t p = 0; p < n; ++p) {
-    std::int64_t c = 0;
-    for (int j = 0; j < dim; ++j) {
-      std::int64_t i = 0;
-      if (grid.width[j] > 0) {
-        // as gpugeom.dask's Grid.cell_of: the same two roundings, then clamped
-        const double f = std::floor((points[p * dim + j] - grid.lo[j]) / grid.width[j]);
-        i = f < 0 ? 0 : (f > double(grid.counts[j] - 1) ? grid.counts[j] - 1 : std::int64_t(f));
-      }
-      c = c * grid.counts[j] + i;
-    }
-    out.cell[std::size_t(p)] = c;
-  }
-  // a counting sort, stable: on one thread (the scatter keeps the points' order in a cell)
-  out.cuts.assign(std::size_t(cells + 1), 0);
-  for (std::int64_t p = 0; p < n; ++p) ++out.cuts[std::size_t(out.cell[std::size_t(p)] + 1)];
-  for (std::int64_t c = 0; c < cells; ++c) out.cuts[std::size_t(c + 1)] += out.cuts[std::size_t(c)];
-  out.order.resize(std::size_t(n));
-  HostVector<std::int64_t> next(out.cuts.begin(), out.cuts.end() - 1);
-  for (std::int64_t p = 0; p < n; ++p)
-    out.order[std::size_t(next[std::size_t(out.cell[std::size_t(p)])]++)] = p;
-  return out;
+  return split_to_blocks(points, dim, n, grid, nullptr, nullptr, nullptr, 0, nullptr, threads);
 }
 
 }  // namespace gpugeom

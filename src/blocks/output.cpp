@@ -89,17 +89,20 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
   out.request_key.resize(std::size_t(requests) * std::size_t(d1));
   // on one thread: the requests in row-major order, and the vertices (shared between rows)
   std::int64_t q = 0;
-  for (std::int64_t c = 0; c < std::int64_t(cells); ++c) {
-    used[std::size_t(simplices[rows[c / d1] * d1 + c % d1])] = 1;
-    if (out.neighbors[std::size_t(c)] != -2) continue;
-    const std::int64_t t = neighbors[rows[c / d1] * d1 + c % d1];
-    const std::int64_t* v = simplices + t * d1;
-    out.request_owner[std::size_t(q)] = blk[v[lowest_at(v, d1)]];
-    out.request_pos[std::size_t(q)] = c;
-    std::int64_t* key = out.request_key.data() + q * d1;
-    for (int k = 0; k < d1; ++k) key[k] = ids[v[k]];
-    std::sort(key, key + d1);
-    ++q;
+  for (std::int64_t r = 0; r < count; ++r) {
+    const std::int64_t* v = simplices + rows[r] * d1;
+    const std::int64_t* nb = neighbors + rows[r] * d1;
+    for (int k = 0; k < d1; ++k) {
+      used[std::size_t(v[k])] = 1;
+      if (out.neighbors[std::size_t(r * d1 + k)] != -2) continue;
+      const std::int64_t* w = simplices + nb[k] * d1;
+      out.request_owner[std::size_t(q)] = blk[w[lowest_at(w, d1)]];
+      out.request_pos[std::size_t(q)] = r * d1 + k;
+      std::int64_t* key = out.request_key.data() + q * d1;
+      for (int j = 0; j < d1; ++j) key[j] = ids[w[j]];
+      std::sort(key, key + d1);
+      ++q;
+    }
   }
   std::int64_t nv = 0;
   for (std::int64_t i = 0; i < n; ++i) nv += used[std::size_t(i)];

@@ -53,12 +53,27 @@ class Grid:
     def nblocks(self) -> int:
         return int(np.prod(self.counts))
 
-    def split(self, pts: np.ndarray, threads: int = 0):
+    def split(self, pts: np.ndarray, boxes=None, threads: int = 0):
         """The owning block of each point (row-major cell index: floor((x - lo) / width) per
-        axis, clamped), the points in block order (stable) and the cuts between blocks: one
-        pass in C++ (``_core.split_by_cell``)."""
-        r = _core.split_by_cell(np.ascontiguousarray(pts, dtype=np.float64), self.lo.tolist(),
-                                self.width.tolist(), self.counts.tolist(), threads)
+        axis, clamped), and each block's points: those of its cell and, where ``boxes`` (a dict:
+        block -> list of closed boxes (lo, hi)) is given, those in its boxes, each point once,
+        in increasing order; only the blocks in ``boxes`` then. One pass in C++
+        (``_core.split_to_blocks``; the box tests are comparisons of the doubles). Returns
+        (cell, order, cuts): block b's points are order[cuts[b]:cuts[b + 1]]."""
+        pts = np.ascontiguousarray(pts, dtype=np.float64)
+        args = {}
+        if boxes is not None:
+            d = self.ndim
+            if any(not 0 <= b < self.nblocks for b in boxes):
+                raise ValueError(f"blocks {sorted(boxes)} outside a grid of {self.nblocks}")
+            listed = [(b, lo, hi) for b in sorted(boxes) for lo, hi in boxes[b]]
+            wanted = np.zeros(self.nblocks, dtype=bool)
+            wanted[list(boxes)] = True
+            args = dict(box_lo=np.array([x[1] for x in listed], np.float64).reshape(-1, d),
+                        box_hi=np.array([x[2] for x in listed], np.float64).reshape(-1, d),
+                        box_block=np.array([x[0] for x in listed], np.int64), wanted=wanted)
+        r = _core.split_to_blocks(pts, self.lo.tolist(), self.width.tolist(),
+                                  self.counts.tolist(), threads=threads, **args)
         return r["cell"], r["order"], r["cuts"]
 
     def cell_of(self, pts: np.ndarray) -> np.ndarray:
@@ -81,20 +96,6 @@ class Grid:
     def covers_all(self, b: int, ghost: float) -> bool:
         lo, hi = self.region(b, ghost)
         return bool(np.all(lo <= self.lo) and np.all(hi >= self.hi))
-
-
-def in_boxes(pts: np.ndarray, boxes, threads: int = 0) -> np.ndarray:
-    """Exact test of closed boxes (comparisons of the doubles, no arithmetic): which points lie
-    in any of them, in one pass in C++ (``_core.points_in_boxes``)."""
-    d = pts.shape[1]
-    lo = np.array([b[0] for b in boxes], dtype=np.float64).reshape(-1, d)
-    hi = np.array([b[1] for b in boxes], dtype=np.float64).reshape(-1, d)
-    return _core.points_in_boxes(np.ascontiguousarray(pts, dtype=np.float64), lo, hi,
-                                 threads).view(bool)
-
-
-def boxes_meet(alo, ahi, blo, bhi) -> bool:
-    return bool(np.all(alo <= bhi) and np.all(blo <= ahi))
 
 
 def match_rows(table: np.ndarray, queries: np.ndarray) -> np.ndarray:

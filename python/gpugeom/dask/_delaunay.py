@@ -15,7 +15,7 @@ from dask import delayed
 from .. import _core
 from ..spatial import ConvexHull, Delaunay
 from . import _vtu
-from ._blocks import Grid, boxes_meet, choose_counts, in_boxes, match_rows
+from ._blocks import Grid, choose_counts, match_rows
 from ._ghost import _array_module, triangulate_block
 
 
@@ -82,15 +82,22 @@ def _summary(pts):
     return dict(n=len(pts), bad=bad, lo=None, hi=None)
 
 
-def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
-    """A piece's points by owning block (a part per block, None where it has none), then its
-    hull candidates (its extreme points): separate outputs, so that each block takes only its
-    parts from the worker that split the piece."""
+def _split(pts, offset: int, grid: Grid, boxes: dict, hull: bool, backend: str, threads: int):
+    """A piece's points for a round: per block of ``boxes`` (a dict: block -> the boxes it takes
+    this round), in increasing block order, the points it owns and those in its boxes as
+    (points, global ids, owner blocks), None where it has none; with ``hull``, last, the piece's
+    hull candidates (its extreme points) likewise. Separate outputs, so that each block takes
+    only its parts from the worker that split the piece, and no second task selects its ghosts
+    from the other blocks' points (one hop, not two: on 4 workers the hop cost more than the
+    selection)."""
     pts = _load(pts)
-    ids = np.arange(offset, offset + len(pts), dtype=np.int64)
-    cell, order, cuts = grid.split(pts, threads)
-    parts = [(pts[order[cuts[b]:cuts[b + 1]]], ids[order[cuts[b]:cuts[b + 1]]])
-             if cuts[b + 1] > cuts[b] else None for b in range(grid.nblocks)]
+    cell, order, cuts = grid.split(pts, boxes, threads)
+    parts = []
+    for b in sorted(boxes):
+        sel = order[cuts[b]:cuts[b + 1]]
+        parts.append((pts[sel], sel + offset, cell[sel]) if len(sel) else None)
+    if not hull:
+        return tuple(parts)
     if pts.shape[1] == 2 and _array_module(backend) is np:
         # on the host a 2D ConvexHull is a Delaunay triangulation of the piece; on a GPU that
         # costs less than the filter's passes in NumPy
@@ -101,14 +108,7 @@ def _split(pts, offset: int, grid: Grid, backend: str, threads: int):
                               np.int64)
         except (_core.DegenerateInputError, ValueError):
             cand = np.arange(len(pts))  # too few or flat: every point may be extreme
-    return (*parts, (pts[cand], ids[cand], cell[cand]))
-
-
-def _own(parts, d: int):
-    got = [p for p in parts if p is not None]
-    if not got:
-        return np.zeros((0, d)), np.zeros(0, np.int64)
-    return np.concatenate([g[0] for g in got]), np.concatenate([g[1] for g in got])
+    return (*parts, (pts[cand], cand + offset, cell[cand]))
 
 
 def _global_hull(cands, backend: str, threads: int):
@@ -128,13 +128,6 @@ def _global_hull(cands, backend: str, threads: int):
     scale = float(np.abs(pts).max()) if len(pts) else 1.0
     planes[:, -1] -= 1e-9 * scale
     return pts[v], ids[v], blk[v], planes
-
-
-def _select(own, block: int, boxes):
-    """A block's points in any of the boxes (another block's region and extra boxes)."""
-    pts, ids = own
-    keep = in_boxes(pts, boxes)
-    return pts[keep], ids[keep], np.full(int(keep.sum()), block, np.int64)
 
 
 def _meta(r: dict) -> dict:
@@ -187,9 +180,9 @@ class DistributedTriangulation:
         simplices and simplices tested.
     timings : dict
         Milliseconds of the call's phases (client wall clock): ``check`` (shapes, finite
-        coordinates, bounds), ``split`` (the split of the points to blocks and the global hull
-        set up; they run on the workers with the first round), ``round1``... (each round of
-        block triangulations). The neighbours are computed when asked for.
+        coordinates, bounds), ``round1``... (each round: the pieces split to the blocks, the
+        global hull in the first, the block triangulations). The neighbours are computed when
+        asked for.
 
     The input points stay in the cluster's memory (read once) while the result is alive, for
     ``points()`` and ``gather()``.
@@ -375,20 +368,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         raise ValueError(f"ghost must be positive, got {ghost}")
 
     run = dict(backend=backend, threads=threads)
-    splits = [delayed(_split, nout=grid.nblocks + 1)(p, int(o), grid, **run)
-              for p, o in zip(pieces, start)]
-    # persisted together, so that the pieces are split once
-    *own, hull = dask.persist(*[delayed(_own)([s[b] for s in splits], d)
-                                for b in range(grid.nblocks)],
-                              delayed(_global_hull)([s[grid.nblocks] for s in splits], **run))
-    lap("split")
-    # where a block's points lie: its cell, with a margin far above the rounding of cell_of (no
-    # round trip for the blocks' true boxes; an empty block is done at once in the first round)
-    margin = 1e-9 * float(max(np.abs(grid.lo).max(), np.abs(grid.hi).max(), grid.width.max()))
-    boxes_of = {b: tuple(c + e for c, e in zip(grid.cell_box(b), (-margin, margin)))
-                for b in range(grid.nblocks)}
     all_blocks = list(range(grid.nblocks))
-
     tag = uuid.uuid4().hex[:12]
     width = {b: float(ghost) for b in all_blocks}
     # boxes along the hull a block asked for; from the first round, strips along the sides of
@@ -397,18 +377,24 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     rounds = {b: 0 for b in all_blocks}
     final, metas = {}, {}
     pending = list(all_blocks)
+    hull = None
     while pending:
+        # each piece is split to the pending blocks' regions and boxes; in the first round the
+        # pieces' hull candidates come too, and the global hull from them, which every round uses
+        first = hull is None
+        boxes = {b: [grid.region(b, width[b])] + list(extras[b].values()) for b in pending}
+        splits = [delayed(_split, nout=len(pending) + first)(p, int(o), grid, boxes, first, **run)
+                  for p, o in zip(pieces, start)]
+        if first:
+            hull = delayed(_global_hull)([s[-1] for s in splits], **run)
         tasks = []
-        for b in pending:
-            boxes = [grid.region(b, width[b])] + list(extras[b].values())
-            near = [delayed(_select)(own[c], c, boxes) for c in all_blocks
-                    if c != b and any(boxes_meet(boxes_of[c][0], boxes_of[c][1], lo, hi)
-                                      for lo, hi in boxes)]
+        for i, b in enumerate(pending):
             tasks.append(delayed(triangulate_block)(
-                b, grid, width[b], dict(extras[b]), own[b], near, hull, backend, threads,
-                dask_key_name=f"gpugeom-delaunay-block-{tag}-{rounds[b]}-{b}"))
+                b, grid, width[b], dict(extras[b]), [s[i] for s in splits], hull, backend,
+                threads, dask_key_name=f"gpugeom-delaunay-block-{tag}-{rounds[b]}-{b}"))
             rounds[b] += 1
-        done = dask.persist(*tasks)
+        # persisted together, so that the pieces are split once a round
+        *done, hull = dask.persist(*tasks, hull)
         for b, r, m in zip(pending, done, dask.compute(*[delayed(_meta)(r) for r in done])):
             if m["done"]:
                 final[b], metas[b] = r, m
@@ -423,7 +409,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
                 # covers the bounding box, where every simplex is final
                 width[b] = max(width[b], 2.0 * m["ghost"])
         pending = [b for b in pending if b not in final]
-        lap(f"round{len(timings) - 1}")
+        lap(f"round{len(timings)}")
 
     order = [b for b in all_blocks if metas[b]["nlocal"] > 0]  # blocks with points
     sizes = [metas[b]["nsimplex"] for b in order]

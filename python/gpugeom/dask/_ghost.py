@@ -462,27 +462,27 @@ def _thin_boxes(lo, hi, cell_lo, cell_hi, ghost):
     return out
 
 
-def _local_points(own, others):
-    """The local points: the block's own (points, global ids, owner blocks; ids sorted) and the
-    others' parts (the same; each part sorted), in global order (copies read as the first),
-    each once (a hull point may be an own point or a ghost too). The others are few: they are
-    sorted alone and put in their places among the own points (an argsort of all of them cost
-    0.5 s for a block of 10^7 points)."""
-    o_pts = np.concatenate([p[0] for p in others])
-    o_ids = np.concatenate([p[1] for p in others])
-    o_blk = np.concatenate([p[2] for p in others])
-    order = np.argsort(o_ids, kind="stable")
-    sorted_ids = o_ids[order]
-    once = np.ones(len(order), dtype=bool)
-    once[1:] = sorted_ids[1:] != sorted_ids[:-1]
-    order = order[once]
-    o_ids = o_ids[order]
-    at = np.searchsorted(own[1], o_ids)
-    new = (at >= len(own[1])) | (own[1][np.minimum(at, len(own[1]) - 1)] != o_ids)
-    order, at = order[new], at[new]
-    ids = np.insert(own[1], at, o_ids[new])
-    pts = np.insert(own[0], at, o_pts[order], axis=0)
-    blk = np.insert(own[2], at, o_blk[order])
+def _local_points(parts, hull):
+    """The local points: the block's parts from the pieces (points, global ids, owner blocks;
+    each part's ids increasing, the pieces in increasing order of their ids, so no sort is
+    needed) and the global hull's extreme points (the same, ids increasing) that are not among
+    them, put in their places; copies read as the first. Returns (ids, points, owners)."""
+    got = [p for p in parts if p is not None]
+    if got:
+        ids = np.concatenate([p[1] for p in got])
+        pts = np.concatenate([p[0] for p in got])
+        blk = np.concatenate([p[2] for p in got])
+    else:
+        ids, pts, blk = np.zeros(0, np.int64), np.zeros((0, hull[0].shape[1])), \
+            np.zeros(0, np.int64)
+    h_pts, h_ids, h_blk = hull
+    at = np.searchsorted(ids, h_ids)
+    new = (at >= len(ids)) | (ids[np.minimum(at, max(len(ids) - 1, 0))] != h_ids) \
+        if len(ids) else np.ones(len(h_ids), dtype=bool)
+    at = at[new]
+    ids = np.insert(ids, at, h_ids[new])
+    pts = np.insert(pts, at, h_pts[new], axis=0)
+    blk = np.insert(blk, at, h_blk[new])
     return ids, np.ascontiguousarray(pts), blk
 
 
@@ -527,32 +527,31 @@ def _triangulated(dpts, owned, xp, backend, threads):
     return tri, hs, hnb, s, nb, r["owned_rows"], xp.asarray(r["required"].view(bool))
 
 
-def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, own, pieces, hull,
+def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts, hull,
                       backend: str, threads: int) -> dict:
     """Triangulates block ``block`` with ghost width ``ghost`` and the extra boxes ``extras``
     it asked for earlier along the hull (a dict of boxes).
 
-    ``own``: (points, global ids) of the block's points; ``pieces``: (points, ids, owner blocks)
-    of other blocks' points in the region; ``hull``: (points, ids, owner blocks, facet planes)
-    of the global hull (its extreme points; the planes pushed outwards by a margin). Returns a
-    dict: ``done``; when done, ``simplices`` (global ids, the owned ones), ``nb_local`` (per
-    face: an owned simplex's row here, -1 none, -2 another block's), the requests for the
-    others (``req_owner``, ``req_key``: sorted vertex ids, ``req_pos``: row * (d + 1) + face),
-    ``copies`` (pairs: an own point, its earlier copy), ``vertices`` and ``vertex_points`` (the
-    owned simplices' vertices, sorted, and their coordinates); when not, ``next_ghost`` and
-    ``boxes`` (extra boxes to take, as ``extras``' items)."""
+    ``parts``: per input piece, (points, global ids, owner blocks) of its points the block
+    owns or that lie in its region or extra boxes (None where none); ``hull``: (points, ids,
+    owner blocks, facet planes) of the global hull (its extreme points; the planes pushed
+    outwards by a margin). Returns a dict: ``done``; when done, ``simplices`` (global ids, the
+    owned ones), ``nb_local`` (per face: an owned simplex's row here, -1 none, -2 another
+    block's), the requests for the others (``req_owner``, ``req_key``: sorted vertex ids,
+    ``req_pos``: row * (d + 1) + face), ``copies`` (pairs: an own point, its earlier copy),
+    ``vertices`` and ``vertex_points`` (the owned simplices' vertices, sorted, and their
+    coordinates); when not, ``next_ghost`` and ``boxes`` (extra boxes to take, as ``extras``'
+    items)."""
     d = grid.ndim
-    own_pts, own_ids = own
     covers = grid.covers_all(block, ghost)
-    if len(own_ids) == 0:
+    if not any(p is not None and bool((p[2] == block).any()) for p in parts):
         z = np.zeros(0, np.int64)
         empty = dict(simplices=np.zeros((0, d + 1), np.int64),
                      nb_local=np.zeros((0, d + 1), np.int64), req_owner=z,
                      req_key=np.zeros((0, d + 1), np.int64), req_pos=z, vertices=z,
                      vertex_points=np.zeros((0, d)))
         return _done(block, ghost, 0, 0, empty, np.zeros((0, 2), np.int64))
-    ids, pts, blk = _local_points((own_pts, own_ids, np.full(len(own_ids), block, np.int64)),
-                                  list(pieces) + [hull[:3]])
+    ids, pts, blk = _local_points(parts, hull[:3])
     xp = _array_module(backend)
     dpts = xp.asarray(pts)
     owned = xp.asarray(blk == block)
