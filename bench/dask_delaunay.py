@@ -13,6 +13,7 @@ and the local points per own point. --cpu runs CPU workers instead (--gpus: work
 """
 import argparse
 import os
+import re
 import sys
 import time
 
@@ -20,7 +21,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from anchor_common import append_row  # noqa: E402
-from dask_cluster import cluster, moved  # noqa: E402
+from dask_cluster import cluster, moved, usable_cores  # noqa: E402
 
 
 def make_chunk(seed, i, m, d, dist):
@@ -48,8 +49,28 @@ def single(pts, backend):
     tri = gpugeom.Delaunay(pts, backend=backend)
     ms = 1e3 * (time.perf_counter() - t0)
     if backend == "cpu":
-        return ms, tri.nsimplex, f"cpu ({os.cpu_count()} cores)"
+        return ms, tri.nsimplex, f"cpu ({usable_cores()} cores)"
     return ms, tri.nsimplex, gpugeom.device_info().get("name", "cpu")
+
+
+def print_tasks(records):
+    """Per kind of task (its function's name), how many ran and their compute and transfer
+    time summed over the workers, and when the last ended (ms from the first start)."""
+    kinds = {}
+    first = min(ss["start"] for r in records for ss in r["startstops"])
+    for r in records:
+        key = r["key"][0] if isinstance(r["key"], tuple) else r["key"]
+        name = "triangulate_block" if key.startswith("gpugeom-delaunay-block") else \
+            re.sub(r"(-[0-9a-f]{4,})+$", "", key)
+        for ss in r["startstops"]:
+            k = kinds.setdefault((name, ss["action"]), [0, 0.0, 0.0])
+            k[0] += 1
+            k[1] += ss["stop"] - ss["start"]
+            k[2] = max(k[2], ss["stop"] - first)
+    for (name, action), (count, total, last) in sorted(kinds.items(), key=lambda kv: -kv[1][1]):
+        if total > 1e-3:
+            print(f"    {name[:36]:36s} {action:9s} {count:5d} tasks {1e3 * total:9.1f} ms, "
+                  f"last ends at {1e3 * last:8.1f} ms")
 
 
 def main():
@@ -64,9 +85,13 @@ def main():
     p.add_argument("--cpu", action="store_true")
     p.add_argument("--check", action="store_true", help="compare with the single run")
     p.add_argument("--csv", default="")
+    p.add_argument("--tasks", action="store_true",
+                   help="per kind of task: its count, compute and transfer time (Dask's task "
+                        "stream), to see where a distributed call spends its time")
     a = p.parse_args()
     import dask
-    from distributed import Client, wait
+    from contextlib import nullcontext
+    from distributed import Client, get_task_stream, wait
     import gpugeom.dask as gd
     backend = "cpu" if a.cpu else "cuda"
     for d in [int(x) for x in a.dims.split(",")]:
@@ -89,12 +114,16 @@ def main():
                                   f"{ref_m} simplices", flush=True)
                             append_row(a.csv, f"dask-delaunay{d}d", dist, n, "gpugeom-single",
                                        ref_ms, machine=name)
+                        pts = pts.persist()  # the caller's points, in the workers' memory
+                        wait(pts)
                         before = moved(client)
-                        t0 = time.perf_counter()
-                        dt = gd.delaunay(pts, blocks=w * a.blocks_per_worker, backend=backend)
-                        s, nb = dask.persist(dt.simplices, dt.neighbors)
-                        wait([s, nb])  # every block's arrays in the workers' memory
-                        ms = 1e3 * (time.perf_counter() - t0)
+                        with get_task_stream() if a.tasks else nullcontext() as stream:
+                            t0 = time.perf_counter()
+                            dt = gd.delaunay(pts, blocks=w * a.blocks_per_worker,
+                                             backend=backend)
+                            s, nb = dask.persist(dt.simplices, dt.neighbors)
+                            wait([s, nb])  # every block's arrays in the workers' memory
+                            ms = 1e3 * (time.perf_counter() - t0)
                         sent = moved(client) - before
                         local = sum(st["nlocal"] for st in dt.block_stats) / n
                         rounds = max(st["rounds"] for st in dt.block_stats)
@@ -110,6 +139,8 @@ def main():
                               flush=True)
                         append_row(a.csv, f"dask-delaunay{d}d", dist, n,
                                    f"gpugeom-dask-{w}", ms, machine=f"{name} x{w}")
+                        if a.tasks:
+                            print_tasks(stream.data)
 
 
 if __name__ == "__main__":

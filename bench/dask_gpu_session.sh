@@ -40,6 +40,19 @@ done
 [ "${TEST_S:-150}" = 0 ] || timeout "${TEST_S:-150}" python3 -m pytest -q -p no:cacheprovider -x \
   ${PYTESTS:-python/tests/test_dask.py python/tests/test_dask_edt.py} 2>&1 | grep -v "^INFO\|^WARNING" | tail -15 |
   tee "$OUT/tests.txt"
+# CPU_CORES: core counts for laptop-sized runs of CPU workers (e.g. "4 8"): on the first N cores
+# (taskset; the workers share them), the single CPU run on all N against 4 workers; CPU_JOBS:
+# "dims n dists" jobs separated by ';'; CPU_BPW: blocks per worker
+IFS=';' read -ra cpu_jobs <<<"${CPU_JOBS:-2 1e6 uniform;2 4e6 uniform;3 1e6 uniform}"
+for c in ${CPU_CORES:-}; do
+  for job in "${cpu_jobs[@]}"; do
+    set -- $job
+    timeout "${BENCH_S:-180}" taskset -c "0-$((c - 1))" python3 bench/dask_delaunay.py --cpu \
+      --gpus 4 --blocks-per-worker "${CPU_BPW:-2}" --dims "$1" --n "$2" --dist "$3" --check \
+      --tasks --csv "$OUT/dask_delaunay_cpu.csv" 2>&1 |
+      grep -v "^INFO\|^WARNING\|UserWarn\|warnings.warn\|next(self\|distributed\." | tee -a "$OUT/bench.txt"
+  done
+done
 GPUS=${GPUS:-1,2}
 # JOBS: "dims n dists" jobs separated by ';'
 IFS=';' read -ra jobs <<<"${JOBS:-3 1e7 uniform;2 5e7 uniform;3 1e7 clustered}"

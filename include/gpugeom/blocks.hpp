@@ -67,6 +67,19 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
                          const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
                          int threads = 0);
 
+/// The bounds of a set of points, and its first point with a NaN or infinite coordinate.
+struct PointBounds {
+  double lo[3] = {}, hi[3] = {};
+  /// The lowest index of a point with a coordinate that is not finite, -1 where there is none
+  /// (then lo and hi are the bounds; for n = 0 they are +inf and -inf).
+  std::int64_t first_bad = -1;
+};
+/// The bounds of `n` points (`dim` coordinates each, row-major) in one pass on `threads` host
+/// threads (0: OpenMP's default): the check of a piece of gpugeom.dask's input, where NumPy's
+/// reductions along the short axis and its finiteness test cost 17 ms for 2.5·10^5 points.
+/// Throws Error(InvalidArgument) for a dim other than 2 or 3.
+PointBounds point_bounds(const double* points, int dim, std::int64_t n, int threads = 0);
+
 /// A grid of cells over the box from `lo` (`dim` coordinates), `counts[j]` cells of width
 /// `width[j]` along axis j. A point's cell is floor((x_j - lo_j) / width_j) per axis, clamped to
 /// the grid (0 where the width is 0), row-major over the axes.

@@ -759,6 +759,19 @@ nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
   return out;
 }
 
+// The bounds of a piece of gpugeom.dask's input and its first point that is not finite.
+nb::dict point_bounds_bind(const AnyArray& points, int threads) {
+  int dim = 0;
+  std::int64_t n = 0;
+  const double* x = host_points(points, &dim, &n);
+  PointBounds r = unlocked([&] { return point_bounds(x, dim, n, threads); });
+  nb::dict out;
+  out["lo"] = std::vector<double>(r.lo, r.lo + dim);
+  out["hi"] = std::vector<double>(r.hi, r.hi + dim);
+  out["first_bad"] = r.first_bad;
+  return out;
+}
+
 // The split of points to the blocks of gpugeom.dask's grid: by cell, and (box_lo, box_hi,
 // box_block given) to every block with a box holding them; `wanted`: the blocks to list.
 nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>& lo,
@@ -898,6 +911,7 @@ void bind_spatial(nb::module_& m) {
   m.def("block_required", &block_required_bind, "simplices"_a, "neighbors"_a, "owned"_a,
         "threads"_a = 0);
   m.def("hull_candidates2d", &hull_candidates2d_bind, "points"_a, "threads"_a = 0);
+  m.def("point_bounds", &point_bounds_bind, "points"_a, "threads"_a = 0);
   m.def("split_to_blocks", &split_to_blocks_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
         "box_lo"_a = nb::none(), "box_hi"_a = nb::none(), "box_block"_a = nb::none(),
         "wanted"_a = nb::none(), "threads"_a = 0);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "gpugeom/blocks.hpp"
@@ -30,7 +31,7 @@ inline bool in_box(const double* x, const double* lo, const double* hi, int dim)
   return true;
 }
 
-// A finer grid of bins over the cells (kSub bins a cell along each axis that is not flat), each
+// A finer grid of bins over the cells (`sub` bins a cell along each axis that is not flat), each
 // with the boxes that may hold one of its points (CSR, each list in increasing box order, so by
 // block, as the boxes come): a point tests only its bin's boxes, so away from the boxes' sides
 // none (with a list per cell, each point tested every side strip of its row of cells: 88 ns a
@@ -41,7 +42,12 @@ struct BoxBins {
 
   BoxBins(const CellGrid& g, int dim, const double* box_lo, const double* box_hi,
           std::int64_t nboxes) {
-    const std::int64_t sub = dim == 2 ? 8 : 4;
+    std::int64_t cells = 1;
+    for (int j = 0; j < dim; ++j) cells *= g.counts[j];
+    // 16 (2D) or 8 (3D) bins a cell along each axis, fewer where that passes 2^18 bins
+    std::int64_t sub = dim == 2 ? 16 : 8;
+    while (sub > 1 && cells * (dim == 2 ? sub * sub : sub * sub * sub) > (std::int64_t(1) << 18))
+      sub /= 2;
     std::int64_t total = 1;
     for (int j = 0; j < dim; ++j) {
       const bool flat = !(g.width[j] > 0);
@@ -98,6 +104,36 @@ struct BoxBins {
 };
 
 }  // namespace
+
+PointBounds point_bounds(const double* points, int dim, std::int64_t n, int threads) {
+  blocks_detail::check_dim(dim, "point_bounds");
+  blocks_detail::ThreadScope scope(threads);
+  const double inf = std::numeric_limits<double>::infinity();
+  PointBounds out;
+  for (int j = 0; j < dim; ++j) out.lo[j] = inf, out.hi[j] = -inf;
+  std::int64_t bad = n;
+#pragma omp parallel
+  {
+    double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
+    std::int64_t first = n;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t p = 0; p < n; ++p)
+      for (int j = 0; j < dim; ++j) {
+        const double x = points[p * dim + j];
+        if (!std::isfinite(x)) first = std::min(first, p);
+        lo[j] = std::min(lo[j], x);  // (a NaN x leaves lo as it is; the point is bad anyway)
+        hi[j] = std::max(hi[j], x);
+      }
+#pragma omp critical(gpugeom_point_bounds)
+    {
+      bad = std::min(bad, first);
+      for (int j = 0; j < dim; ++j)
+        out.lo[j] = std::min(out.lo[j], lo[j]), out.hi[j] = std::max(out.hi[j], hi[j]);
+    }
+  }
+  out.first_bad = bad < n ? bad : -1;
+  return out;
+}
 
 CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                           const double* box_lo, const double* box_hi, const std::int64_t* box_block,

