@@ -111,6 +111,13 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
                           std::int64_t nboxes, const std::uint8_t* wanted = nullptr,
                           int threads = 0);
 
+/// How many of `n` points (`dim` coordinates each) lie in each cell of `grid` (row-major; a
+/// point's cell as CellGrid says), on `threads` host threads (0: OpenMP's default). Throws
+/// Error(InvalidArgument) for a dim other than 2 or 3, more than 2^31 - 1 points or more than
+/// 2^28 cells.
+HostVector<std::int32_t> cell_counts(const double* points, int dim, std::int64_t n,
+                                     const CellGrid& grid, int threads = 0);
+
 /// The points of a 2D set (`n` points, x and y each) that may be extreme points of a larger set
 /// holding them: all but those strictly inside the polygon through their extreme points in 8
 /// directions. A point is dropped only where every orientation against the polygon's edges is

@@ -772,6 +772,33 @@ nb::dict point_bounds_bind(const AnyArray& points, int threads) {
   return out;
 }
 
+// A grid of cells from Python's lists, checked.
+CellGrid cell_grid(const std::vector<double>& lo, const std::vector<double>& width,
+                   const std::vector<std::int64_t>& counts, int dim) {
+  if (int(lo.size()) != dim || int(width.size()) != dim || int(counts.size()) != dim)
+    throw nb::value_error("lo, width and counts need dim entries each");
+  CellGrid g;
+  for (int j = 0; j < dim; ++j) {
+    if (counts[j] < 1 || !(width[j] >= 0) || counts[j] > (std::int64_t(1) << 20))
+      throw nb::value_error("bad grid: counts must lie in [1, 2^20] and widths be >= 0");
+    g.lo[j] = lo[j], g.width[j] = width[j], g.counts[j] = counts[j];
+  }
+  return g;
+}
+
+// How many points lie in each cell of a grid (gpugeom.dask's bins of the points a block lacks).
+nb::object cell_counts_bind(const AnyArray& points, const std::vector<double>& lo,
+                            const std::vector<double>& width,
+                            const std::vector<std::int64_t>& counts, int threads) {
+  int dim = 0;
+  std::int64_t n = 0;
+  const double* x = host_points(points, &dim, &n);
+  CellGrid g = cell_grid(lo, width, counts, dim);
+  HostVector<std::int32_t> r = unlocked([&] { return cell_counts(x, dim, n, g, threads); });
+  std::vector<sz> shape(counts.begin(), counts.end());
+  return host_array(std::move(r), shape);
+}
+
 // The split of points to the blocks of gpugeom.dask's grid: by cell, and (box_lo, box_hi,
 // box_block given) to every block with a box holding them; `wanted`: the blocks to list.
 nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>& lo,
@@ -783,16 +810,9 @@ nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>&
   int dim = 0;
   std::int64_t n = 0;
   const double* x = host_points(points, &dim, &n);
-  if (int(lo.size()) != dim || int(width.size()) != dim || int(counts.size()) != dim)
-    throw nb::value_error("lo, width and counts need dim entries each");
-  CellGrid g;
+  CellGrid g = cell_grid(lo, width, counts, dim);
   std::int64_t cells = 1;
-  for (int j = 0; j < dim; ++j) {
-    if (counts[j] < 1 || !(width[j] >= 0) || counts[j] > (std::int64_t(1) << 20))
-      throw nb::value_error("bad grid: counts must lie in [1, 2^20] and widths be >= 0");
-    g.lo[j] = lo[j], g.width[j] = width[j], g.counts[j] = counts[j];
-    cells *= counts[j];
-  }
+  for (int j = 0; j < dim; ++j) cells *= counts[j];
   if (box_lo.has_value() != box_hi.has_value() || box_lo.has_value() != box_block.has_value())
     throw nb::value_error("box_lo, box_hi and box_block go together");
   const double *bl = nullptr, *bh = nullptr;
@@ -912,6 +932,8 @@ void bind_spatial(nb::module_& m) {
         "threads"_a = 0);
   m.def("hull_candidates2d", &hull_candidates2d_bind, "points"_a, "threads"_a = 0);
   m.def("point_bounds", &point_bounds_bind, "points"_a, "threads"_a = 0);
+  m.def("cell_counts", &cell_counts_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
+        "threads"_a = 0);
   m.def("split_to_blocks", &split_to_blocks_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
         "box_lo"_a = nb::none(), "box_hi"_a = nb::none(), "box_block"_a = nb::none(),
         "wanted"_a = nb::none(), "threads"_a = 0);

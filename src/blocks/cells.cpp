@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -209,6 +210,28 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
     }
     for (std::int64_t p = bounds[std::size_t(t)]; p < bounds[std::size_t(t + 1)]; ++p)
       visit(p, [&](std::int64_t b) { out.order[std::size_t(mine[b]++)] = p; });
+  }
+  return out;
+}
+
+HostVector<std::int32_t> cell_counts(const double* points, int dim, std::int64_t n,
+                                     const CellGrid& grid, int threads) {
+  blocks_detail::check_dim(dim, "cell_counts");
+  std::int64_t cells = 1;
+  for (int j = 0; j < dim; ++j) cells *= grid.counts[j];
+  if (n > std::int64_t(INT32_MAX) || cells > (std::int64_t(1) << 28))
+    throw Error(ErrorCode::InvalidArgument,
+                "cell_counts: at most 2^31 - 1 points and 2^28 cells, got " + std::to_string(n) +
+                    " and " + std::to_string(cells));
+  blocks_detail::ThreadScope scope(threads);
+  HostVector<std::int32_t> out;
+  out.assign(std::size_t(cells), 0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = 0; p < n; ++p) {
+    std::int64_t c = 0;
+    for (int j = 0; j < dim; ++j) c = c * grid.counts[j] + cell_along(points[p * dim + j], grid, j);
+#pragma omp atomic
+    ++out[std::size_t(c)];
   }
   return out;
 }

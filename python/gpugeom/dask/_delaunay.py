@@ -81,21 +81,22 @@ def _summary(pts):
     return dict(n=len(pts), bad=-1, lo=np.array(r["lo"]), hi=np.array(r["hi"]))
 
 
-def _split(pts, offset: int, grid: Grid, boxes: dict, hull: bool, backend: str, threads: int):
+def _split(pts, offset: int, grid: Grid, boxes: dict, bins: Optional[Grid], backend: str,
+           threads: int):
     """A piece's points for a round: per block of ``boxes`` (a dict: block -> the boxes it takes
     this round), in increasing block order, the points it owns and those in its boxes as
-    (points, global ids, owner blocks), None where it has none; with ``hull``, last, the piece's
-    hull candidates (its extreme points) likewise. Separate outputs, so that each block takes
-    only its parts from the worker that split the piece, and no second task selects its ghosts
-    from the other blocks' points (one hop, not two: on 4 workers the hop cost more than the
-    selection)."""
+    (points, global ids, owner blocks), None where it has none; in the first round (``bins``
+    given), then the piece's hull candidates (its extreme points) likewise and its count of
+    points per bin. Separate outputs, so that each block takes only its parts from the worker
+    that split the piece, and no second task selects its ghosts from the other blocks' points
+    (one hop, not two: on 4 workers the hop cost more than the selection)."""
     pts = _load(pts)
     cell, order, cuts = grid.split(pts, boxes, threads)
     parts = []
     for b in sorted(boxes):
         sel = order[cuts[b]:cuts[b + 1]]
         parts.append((pts[sel], sel + offset, cell[sel]) if len(sel) else None)
-    if not hull:
+    if bins is None:
         return tuple(parts)
     if pts.shape[1] == 2 and _array_module(backend) is np:
         # on the host a 2D ConvexHull is a Delaunay triangulation of the piece; on a GPU that
@@ -107,7 +108,27 @@ def _split(pts, offset: int, grid: Grid, boxes: dict, hull: bool, backend: str, 
                               np.int64)
         except (_core.DegenerateInputError, ValueError):
             cand = np.arange(len(pts))  # too few or flat: every point may be extreme
-    return (*parts, (pts[cand], cand + offset, cell[cand]))
+    counts = _core.cell_counts(pts, bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist(),
+                               threads)
+    return (*parts, (pts[cand], cand + offset, cell[cand]), counts)
+
+
+def _total(counts):
+    """The count of all points per bin."""
+    return np.sum(counts, axis=0, dtype=np.int32)
+
+
+def _bins(lo, hi, n: int) -> Grid:
+    """The bins whose counts tell a block where the points it lacks may lie: about one per 8
+    points, at most 2^16 (256 KiB a piece to sum), close to cubes over the bounding box."""
+    ext = hi - lo
+    live = ext > 0
+    target = max(1, min(1 << 16, n // 8))
+    counts = np.ones(len(lo), dtype=np.int64)
+    if live.any():
+        side = float(np.prod(ext[live]) / target) ** (1.0 / int(live.sum()))
+        counts[live] = np.clip(np.ceil(ext[live] / side), 1, 4096).astype(np.int64)
+    return Grid(lo, hi, counts)
 
 
 def _global_hull(cands, backend: str, threads: int):
@@ -376,24 +397,29 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     rounds = {b: 0 for b in all_blocks}
     final, metas = {}, {}
     pending = list(all_blocks)
-    hull = None
+    bins = _bins(lo, hi, n)
+    hull = total = None
     while pending:
         # each piece is split to the pending blocks' regions and boxes; in the first round the
-        # pieces' hull candidates come too, and the global hull from them, which every round uses
+        # pieces' hull candidates and counts per bin come too, and from them the global hull and
+        # the counts of all points, which every round uses
         first = hull is None
         boxes = {b: [grid.region(b, width[b])] + list(extras[b].values()) for b in pending}
-        splits = [delayed(_split, nout=len(pending) + first)(p, int(o), grid, boxes, first, **run)
-                  for p, o in zip(pieces, start)]
+        splits = [delayed(_split, nout=len(pending) + 2 * first)(
+            p, int(o), grid, boxes, bins if first else None, **run)
+            for p, o in zip(pieces, start)]
         if first:
-            hull = delayed(_global_hull)([s[-1] for s in splits], **run)
+            hull = delayed(_global_hull)([s[-2] for s in splits], **run)
+            total = delayed(_total)([s[-1] for s in splits])
         tasks = []
         for i, b in enumerate(pending):
             tasks.append(delayed(triangulate_block)(
-                b, grid, width[b], dict(extras[b]), [s[i] for s in splits], hull, backend,
-                threads, dask_key_name=f"gpugeom-delaunay-block-{tag}-{rounds[b]}-{b}"))
+                b, grid, width[b], dict(extras[b]), [s[i] for s in splits], hull, (bins, total),
+                backend, threads,
+                dask_key_name=f"gpugeom-delaunay-block-{tag}-{rounds[b]}-{b}"))
             rounds[b] += 1
         # persisted together, so that the pieces are split once a round
-        *done, hull = dask.persist(*tasks, hull)
+        *done, hull, total = dask.persist(*tasks, hull, total)
         for b, r, m in zip(pending, done, dask.compute(*[delayed(_meta)(r) for r in done])):
             if m["done"]:
                 final[b], metas[b] = r, m

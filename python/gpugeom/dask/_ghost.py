@@ -321,7 +321,7 @@ def _far_caps(pts, t, planes, xp):
 
 
 def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_hi, planes,
-                    extras=(), xp=np, nbs=None):
+                    extras=(), xp=np, nbs=None, outside=None):
     """For simplices ``s`` of local points ``pts``: which are final; for the others the ghost
     width that would hold their circumball (inf where the centre is not trusted), whether they
     lie along the hull, and the box where outside points could break them (``klo``, ``khi``).
@@ -331,7 +331,8 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
     is final when it misses the bounding box beyond the region. Failing that, the box round its
     part in the bounding box, cut down where the centre lies beyond a hull plane to the box round
     the cap inside it (simplices along the hull have huge circumballs with a thin part inside),
-    must meet the bounding box beyond the region only inside the extra boxes."""
+    must meet the bounding box beyond the region only inside the extra boxes, or (``outside``
+    given, an ``_Outside``) only bins that hold no point outside the block."""
     scale = float(max(np.abs(box_lo).max(), np.abs(box_hi).max()))
     slabs = [(xp.asarray(lo), xp.asarray(hi)) for lo, hi in
              _slabs(region_lo, region_hi, box_lo, box_hi)]
@@ -361,7 +362,10 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
             lo, hi = xp.maximum(lo, flo), xp.minimum(hi, fhi)
         pad = (1e-9 * scale + 64.0 * _EPS * (xp.abs(c).max(axis=1) + r))[:, None]
         lo, hi = lo - pad, hi + pad
-        ok[retry] = _covered(lo, hi, slabs, extras, xp)
+        covered = _covered(lo, hi, slabs, extras, xp)
+        if outside is not None:
+            covered |= outside.misses(lo, hi)
+        ok[retry] = covered
         along[retry] = cut | xp.any((c < box_lo) | (c > box_hi), axis=1)
         klo[retry], khi[retry] = lo, hi
     # the ghost width that puts the box where outside points could break a simplex inside
@@ -373,7 +377,89 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
     return ok, need, along, klo, khi
 
 
-def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, xp, threads=1):
+class _Outside:
+    """Where the points a block does not hold may lie: the bins (a grid over the bounding box)
+    that hold more of all the points than of the block's local points. Each point is counted in
+    its bin by one C++ pass (``_core.cell_counts``), the same for all points and for the local
+    ones, so a bin whose counts agree holds no outside point, and a box that meets no other bin
+    holds none either. It is what makes a ball final that reaches past the region into empty
+    space: between clusters, inside a sphere of points (there a block grew its ghost layer
+    round after round without gaining a point)."""
+
+    def __init__(self, bins: Grid, total: np.ndarray, local_pts: np.ndarray, xp, threads=1):
+        local = _core.cell_counts(np.ascontiguousarray(local_pts, dtype=np.float64),
+                                  bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist(),
+                                  threads)
+        self.table = xp.asarray(_summed((total > local).astype(np.int32)))
+        self.totals = _summed(total)  # (on the host: for the growth of the region)
+        self.any = bool(int(self.table[(-1,) * total.ndim]) > 0)
+        self.bins, self.xp = bins, xp
+        scale = float(max(np.abs(bins.lo).max(), np.abs(bins.hi).max(), bins.width.max()))
+        self.margin = 1e-9 * scale  # far above the rounding of a point's bin
+
+    def misses(self, lo, hi):
+        """Per box (rows of ``lo``, ``hi``): True where it meets no bin with an outside point."""
+        xp = self.xp
+        if not self.any:
+            return xp.ones(len(lo), dtype=bool)
+        count, empty, bad = self._count(self.table, lo, hi, xp)
+        return (empty | (count == 0)) & ~bad
+
+    def widest(self, cell_lo, cell_hi, least: float, most: float, budget: int) -> float:
+        """The widest ghost width in [least, most] whose region's bins hold at most ``budget``
+        points (``least`` where none does): bisection over the counts."""
+        def fits(w):
+            lo, hi = (np.asarray(cell_lo) - w)[None], (np.asarray(cell_hi) + w)[None]
+            return int(self._count(self.totals, lo, hi, np)[0][0]) <= budget
+        if fits(most):
+            return most
+        if not fits(least):
+            return least
+        for _ in range(24):
+            mid = 0.5 * (least + most)
+            least, most = (mid, most) if fits(mid) else (least, mid)
+        return least
+
+    def _count(self, table, lo, hi, xp):
+        """Per box: the sum of ``table``'s bins over the bins it meets (with the margin), whether
+        it is empty (lo > hi along an axis, or beyond every bin), whether it has a NaN."""
+        b = self.bins
+        m = len(lo)
+        first, last, empty = [], [], xp.zeros(m, dtype=bool)
+        bad = xp.isnan(lo).any(axis=1) | xp.isnan(hi).any(axis=1)
+        for j in range(b.ndim):
+            top = int(b.counts[j]) - 1
+            if b.width[j] > 0:
+                with _quiet(xp):
+                    i0 = xp.floor((lo[:, j] - self.margin - b.lo[j]) / b.width[j])
+                    i1 = xp.floor((hi[:, j] + self.margin - b.lo[j]) / b.width[j])
+                empty |= (i1 < 0) | (i0 > top) | (lo[:, j] > hi[:, j])
+                i0 = xp.clip(xp.nan_to_num(i0), 0, top).astype(xp.int64)
+                i1 = xp.clip(xp.nan_to_num(i1), 0, top).astype(xp.int64)
+            else:
+                i0 = xp.zeros(m, dtype=xp.int64)
+                i1 = i0
+                empty |= lo[:, j] > hi[:, j]
+            first.append(i0)
+            last.append(i1 + 1)
+        count = xp.zeros(m, dtype=xp.int64)
+        for corner in range(1 << b.ndim):  # inclusion and exclusion over the box's corners
+            at = tuple(last[j] if corner >> j & 1 else first[j] for j in range(b.ndim))
+            sign = 1 if bin(corner).count("1") % 2 == b.ndim % 2 else -1
+            count += sign * table[at].astype(xp.int64)
+        return count, empty, bad
+
+
+def _summed(counts: np.ndarray) -> np.ndarray:
+    """The summed-area table of counts per bin, with a row of zeros before each axis: the sum
+    over bins [i0, i1] along each axis is an alternating sum of 2^d entries."""
+    table = counts.astype(np.int64)
+    for axis in range(table.ndim):
+        table = np.cumsum(table, axis=axis)
+    return np.pad(table, [(1, 0)] * table.ndim)
+
+
+def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, xp, threads=1, outside=None):
     """Tests simplices ``s[req]`` (in pieces of ``_PIECE``, so that the temporaries stay small)
     against the region ``cell`` grown by ``ghost``. None when all are final; else the next ghost
     width and the extra boxes to ask for.
@@ -395,7 +481,8 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, xp, threads=1):
     for i in range(0, len(req), _PIECE):
         t = s[req[i:i + _PIECE]]
         ok, need, along, klo, khi = final_simplices(dpts, t, rlo, rhi, grid.lo, grid.hi, clo, chi,
-                                                    planes, extras, xp, nb[req[i:i + _PIECE]])
+                                                    planes, extras, xp, nb[req[i:i + _PIECE]],
+                                                    outside)
         if bool(ok.all()):
             continue
         # A thin box along the hull is asked for; anything else asks for a wider ghost layer:
@@ -422,6 +509,12 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, xp, threads=1):
     nxt = ghost
     if want_free > -np.inf:
         nxt = min(max(1.25 * ghost, 1.05 * want_free), 2.0 * ghost)
+        if outside is not None and np.isfinite(want_free) and 1.05 * want_free > nxt:
+            # past twice the width, as far as the balls need while the region holds at most
+            # twice the block's local points (the counts per bin tell): where the zone beyond
+            # is empty (voids between clusters) the layer no longer doubles round after round
+            # without gaining a point
+            nxt = outside.widest(clo, chi, nxt, 1.05 * want_free, 2 * len(dpts))
     if want_held > -np.inf:
         nxt = max(nxt, 1.25 * ghost, 1.05 * want_held if np.isfinite(want_held) else 2.0 * ghost)
     boxes = _thin_boxes(np.concatenate(thin_lo), np.concatenate(thin_hi), clo, chi, nxt) \
@@ -527,7 +620,7 @@ def _triangulated(dpts, owned, xp, backend, threads):
     return tri, hs, hnb, s, nb, r["owned_rows"], xp.asarray(r["required"].view(bool))
 
 
-def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts, hull,
+def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts, hull, counts,
                       backend: str, threads: int) -> dict:
     """Triangulates block ``block`` with ghost width ``ghost`` and the extra boxes ``extras``
     it asked for earlier along the hull (a dict of boxes).
@@ -535,7 +628,8 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts,
     ``parts``: per input piece, (points, global ids, owner blocks) of its points the block
     owns or that lie in its region or extra boxes (None where none); ``hull``: (points, ids,
     owner blocks, facet planes) of the global hull (its extreme points; the planes pushed
-    outwards by a margin). Returns a dict: ``done``; when done, ``simplices`` (global ids, the
+    outwards by a margin); ``counts``: (a Grid of bins, the count of all points per bin). Returns
+    a dict: ``done``; when done, ``simplices`` (global ids, the
     owned ones), ``nb_local`` (per face: an owned simplex's row here, -1 none, -2 another
     block's), the requests for the others (``req_owner``, ``req_key``: sorted vertex ids,
     ``req_pos``: row * (d + 1) + face), ``copies`` (pairs: an own point, its earlier copy),
@@ -566,8 +660,9 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts,
         req = xp.nonzero(required)[0]
         tested = int(len(req))
         cell = grid.cell_box(block)
+        outside = _Outside(counts[0], counts[1], pts, xp, threads)
         verdict = _judge(dpts, s, nb, req, grid, cell, ghost, hull[3], list(extras.values()),
-                         xp, threads)
+                         xp, threads, outside)
         if verdict is not None:
             nxt, boxes = verdict
             return _not_done(block, ghost, nxt, len(ids), tested, boxes.items())
