@@ -54,13 +54,13 @@ for c in ${CPU_CORES:-}; do
   done
 done
 GPUS=${GPUS:-1,2}
-# JOBS: "dims n dists" jobs separated by ';'
+# JOBS: "dims n dists" jobs separated by ';'; BENCH_ARGS: more arguments (e.g. --tasks)
 IFS=';' read -ra jobs <<<"${JOBS:-3 1e7 uniform;2 5e7 uniform;3 1e7 clustered}"
 for job in "${jobs[@]}"; do
   [ "$job" = none ] && continue
   set -- $job
   timeout "${BENCH_S:-180}" python3 bench/dask_delaunay.py --gpus "$GPUS" --dims "$1" --n "$2" \
-    --dist "$3" --csv "$OUT/dask_delaunay.csv" 2>&1 | grep -v "^INFO\|^WARNING\|UserWarn\|warnings.warn\|next(self" |
+    --dist "$3" --csv "$OUT/dask_delaunay.csv" ${BENCH_ARGS:-} 2>&1 | grep -v "^INFO\|^WARNING\|UserWarn\|warnings.warn\|next(self" |
     tee -a "$OUT/bench.txt"
 done
 # EDT_N: the edges of the cubes for bench/dask_edt.py (none: skip)

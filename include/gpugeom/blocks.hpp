@@ -54,11 +54,14 @@ BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* 
 /// `rows` or -1 (none) or -2 (a simplex another block owns). Each -2 face is a request, in
 /// row-major order: the owner (`blk[v]` of the neighbour's lowest vertex v), the neighbour's
 /// global vertex ids sorted, and the face's position row * (dim + 1) + face. `vertices`: the
-/// local points the rows use, in increasing order.
+/// local points the rows use, in increasing order. `border_rows`: the rows with a -2 face, the
+/// only ones another block can ask for, in increasing order, and `border_keys` their global
+/// vertex ids sorted (the keys of the requests).
 struct BlockOutput {
   HostVector<std::int64_t> simplices, neighbors;
   HostVector<std::int64_t> request_owner, request_key, request_pos;
   HostVector<std::int64_t> vertices;
+  HostVector<std::int64_t> border_rows, border_keys;
 };
 /// The output of a block's owned simplices `rows` (BlockOutput), on `threads` host threads (0:
 /// OpenMP's default). Throws Error(InvalidArgument) for a dim other than 2 or 3.
@@ -66,6 +69,28 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
                          const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
                          int threads = 0);
+
+/// One block's border as another block asks it: its place among the blocks' outputs (the
+/// requests' owner), the first global index of its simplices, and `count` rows with their sorted
+/// global vertex ids (BlockOutput's border_rows and border_keys).
+struct BlockBorder {
+  std::int64_t owner = 0, offset = 0, count = 0;
+  const std::int64_t* rows = nullptr;
+  const std::int64_t* keys = nullptr;
+};
+/// The neighbours of a block's `m` output simplices in global simplex indices: `neighbors` is
+/// BlockOutput's (an index into the block's own rows, -1 none, -2 another block's) and `offset`
+/// the block's first global index; each of the `q` requests (BlockOutput's, with the owners
+/// given as places among the blocks) is found by its key in its owner's border. Row-major,
+/// (dim + 1) entries a simplex, -1 on the hull. On `threads` host threads (0: OpenMP's
+/// default). Throws Error(Internal) where a request's owner or key is not among `borders`, and
+/// Error(InvalidArgument) for a dim other than 2 or 3.
+HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,
+                                         std::int64_t offset, const std::int64_t* request_owner,
+                                         const std::int64_t* request_key,
+                                         const std::int64_t* request_pos, std::int64_t q,
+                                         const BlockBorder* borders, std::int64_t nborders,
+                                         int threads = 0);
 
 /// The bounds of a set of points, and its first point with a NaN or infinite coordinate.
 struct PointBounds {

@@ -756,7 +756,42 @@ nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
   out["req_key"] = host_array(std::move(r.request_key), {q, sz(d1)});
   out["req_pos"] = host_array(std::move(r.request_pos), {q});
   out["used"] = host_array(std::move(r.vertices), {nv});
+  const sz nb_ = r.border_rows.size();
+  out["border_rows"] = host_array(std::move(r.border_rows), {nb_});
+  out["border_keys"] = host_array(std::move(r.border_keys), {nb_, sz(d1)});
   return out;
+}
+
+// The neighbours of a block's output in global simplex indices: its requests found in the
+// borders of their owners, each a tuple (owner, offset, border_rows, border_keys).
+nb::object block_neighbors_bind(const AnyArray& nb_local, std::int64_t offset,
+                                const AnyArray& req_owner, const AnyArray& req_key,
+                                const AnyArray& req_pos, const nb::list& borders, int threads) {
+  Input nl = inspect(nb_local, "nb_local");
+  if (nl.shape.size() != 2 || (nl.shape[1] != 3 && nl.shape[1] != 4))
+    throw nb::value_error("nb_local must have shape (m, 3) or (m, 4)");
+  const std::int64_t d1 = nl.shape[1];
+  std::int64_t m = 0, q = 0;
+  const std::int64_t* nbr = host_indices(nb_local, "nb_local", -1, d1, -2, INT64_MAX, &m);
+  const std::int64_t* pos = host_indices(req_pos, "req_pos", -1, -1, 0, m * d1, &q);
+  const std::int64_t* owner = host_indices(req_owner, "req_owner", q, -1, 0, INT64_MAX);
+  const std::int64_t* key = host_indices(req_key, "req_key", q, d1, 0, INT64_MAX);
+  std::vector<BlockBorder> b;
+  for (nb::handle item : borders) {
+    nb::tuple t = nb::cast<nb::tuple>(item);
+    if (t.size() != 4) throw nb::value_error("each border is (owner, offset, rows, keys)");
+    BlockBorder x;
+    x.owner = nb::cast<std::int64_t>(t[0]);
+    x.offset = nb::cast<std::int64_t>(t[1]);
+    x.rows = host_indices(nb::cast<AnyArray>(t[2]), "border rows", -1, -1, 0, INT64_MAX, &x.count);
+    x.keys = host_indices(nb::cast<AnyArray>(t[3]), "border keys", x.count, d1, 0, INT64_MAX);
+    b.push_back(x);
+  }
+  HostVector<std::int64_t> r = unlocked([&] {
+    return block_neighbors(nbr, m, int(d1) - 1, offset, owner, key, pos, q, b.data(),
+                           std::int64_t(b.size()), threads);
+  });
+  return host_array(std::move(r), {sz(m), sz(d1)});
 }
 
 // The bounds of a piece of gpugeom.dask's input and its first point that is not finite.
@@ -937,6 +972,8 @@ void bind_spatial(nb::module_& m) {
   m.def("split_to_blocks", &split_to_blocks_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
         "box_lo"_a = nb::none(), "box_hi"_a = nb::none(), "box_block"_a = nb::none(),
         "wanted"_a = nb::none(), "threads"_a = 0);
+  m.def("block_neighbors", &block_neighbors_bind, "nb_local"_a, "offset"_a, "req_owner"_a,
+        "req_key"_a, "req_pos"_a, "borders"_a, "threads"_a = 0);
   m.def("block_output", &block_output_bind, "simplices"_a, "neighbors"_a, "rows"_a, "ids"_a,
         "blk"_a, "threads"_a = 0);
   m.def("furthest_site2d", &furthest_site2d_bind, "points"_a, "threads"_a = 0, "voronoi"_a = false);

@@ -13,7 +13,7 @@ dask = pytest.importorskip("dask")
 da = pytest.importorskip("dask.array")
 distributed = pytest.importorskip("distributed")
 gd = pytest.importorskip("gpugeom.dask")
-from gpugeom.dask._blocks import Grid, choose_counts, match_rows  # noqa: E402
+from gpugeom.dask._blocks import Grid, choose_counts  # noqa: E402
 
 
 def _keys(simplices):
@@ -244,10 +244,25 @@ def test_split_to_blocks():
                                   box_hi=np.ones((2, 2)), box_block=np.array(block, np.int64))
 
 
-def test_match_rows():
-    table = np.array([[3, 1, 2], [4, 5, 6], [0, 1, 9]])
-    queries = np.array([[4, 5, 6], [1, 2, 3], [1, 2, 4], [4, 5, 6]])
-    np.testing.assert_array_equal(match_rows(table, queries), [1, 0, -1, 1])
+def test_block_neighbors():
+    """A block's neighbours across blocks (``_core.block_neighbors``): its own rows shifted by its
+    offset, -1 kept, each request found by its key in its owner's border whatever the order of
+    the border's rows; a key or an owner that is not there is a bug, reported as one."""
+    nb_local = np.array([[1, -1, -2], [0, -2, -1], [-2, 0, -1]], np.int64)
+    req_owner = np.array([4, 7, 4], np.int64)
+    req_key = np.array([[1, 5, 9], [2, 3, 8], [0, 5, 6]], np.int64)
+    req_pos = np.array([2, 4, 6], np.int64)
+    borders = [(4, 100, np.array([3, 8, 11], np.int64),
+                np.array([[0, 5, 6], [1, 5, 9], [1, 5, 8]], np.int64)),
+               (7, 500, np.array([2], np.int64), np.array([[2, 3, 8]], np.int64))]
+    got = _core.block_neighbors(nb_local, 20, req_owner, req_key, req_pos, borders, 2)
+    np.testing.assert_array_equal(got, [[21, -1, 108], [20, 502, -1], [103, 20, -1]])
+    with pytest.raises(RuntimeError, match="not found"):
+        _core.block_neighbors(nb_local, 20, req_owner, req_key + 1, req_pos, borders)
+    with pytest.raises(RuntimeError, match="not found"):
+        _core.block_neighbors(nb_local, 20, req_owner, req_key, req_pos, borders[:1])
+    with pytest.raises(ValueError, match="req_pos"):
+        _core.block_neighbors(nb_local, 20, req_owner, req_key, req_pos + 3, borders)
 
 
 def test_bulk_circumball_test():
@@ -369,10 +384,13 @@ def _emit_reference(ids, pts, blk, s, nb, rows, d, xp=np):
     mark = xp.zeros(len(ids), dtype=bool)
     mark[s[rows].ravel()] = True
     used = np.asarray(xp.nonzero(mark)[0])
-    return dict(simplices=ids[np.asarray(s[rows])], nb_local=np.asarray(nb_local),
+    simplices = ids[np.asarray(s[rows])]
+    border = np.nonzero((np.asarray(nb_local) == -2).any(axis=1))[0]
+    return dict(simplices=simplices, nb_local=np.asarray(nb_local),
                 req_owner=blk[tau.min(axis=1)] if len(tau) else np.zeros(0, np.int64),
                 req_key=np.sort(ids[tau], axis=1), req_pos=np.asarray(fi * d1 + fj),
-                vertices=ids[used], vertex_points=pts[used])
+                vertices=ids[used], vertex_points=pts[used], border_rows=border,
+                border_keys=np.sort(simplices[border], axis=1))
 
 
 def _solve(a, b):

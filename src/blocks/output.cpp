@@ -4,6 +4,7 @@
 // simplex cost a second for a block of 2·10^6 points.
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "gpugeom/blocks.hpp"
 #include "gpugeom/common.hpp"
@@ -104,12 +105,91 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
       ++q;
     }
   }
+  // the border: the rows with a -2 face, and their keys
+  std::int64_t nborder = 0;
+  for (std::int64_t r = 0; r < count; ++r) {
+    bool asked = false;
+    for (int k = 0; k < d1; ++k) asked = asked || out.neighbors[std::size_t(r * d1 + k)] == -2;
+    nborder += asked ? 1 : 0;
+  }
+  out.border_rows.resize(std::size_t(nborder));
+  out.border_keys.resize(std::size_t(nborder) * std::size_t(d1));
+  nborder = 0;
+  for (std::int64_t r = 0; r < count; ++r) {
+    bool asked = false;
+    for (int k = 0; k < d1; ++k) asked = asked || out.neighbors[std::size_t(r * d1 + k)] == -2;
+    if (!asked) continue;
+    out.border_rows[std::size_t(nborder)] = r;
+    std::int64_t* key = out.border_keys.data() + nborder * d1;
+    for (int k = 0; k < d1; ++k) key[k] = out.simplices[std::size_t(r * d1 + k)];
+    std::sort(key, key + d1);
+    ++nborder;
+  }
   std::int64_t nv = 0;
   for (std::int64_t i = 0; i < n; ++i) nv += used[std::size_t(i)];
   out.vertices.resize(std::size_t(nv));
   nv = 0;
   for (std::int64_t i = 0; i < n; ++i)
     if (used[std::size_t(i)]) out.vertices[std::size_t(nv++)] = i;
+  return out;
+}
+
+HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,
+                                         std::int64_t offset, const std::int64_t* request_owner,
+                                         const std::int64_t* request_key,
+                                         const std::int64_t* request_pos, std::int64_t q,
+                                         const BlockBorder* borders, std::int64_t nborders,
+                                         int threads) {
+  blocks_detail::check_dim(dim, "block_neighbors");
+  const int d1 = dim + 1;
+  blocks_detail::ThreadScope scope(threads);
+  HostVector<std::int64_t> out(std::size_t(m) * std::size_t(d1));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < m * d1; ++c) {
+    const std::int64_t t = neighbors[c];
+    out[std::size_t(c)] = t >= 0 ? t + offset : -1;
+  }
+  // each border's rows in the order of their keys, then a binary search per request
+  auto less = [d1](const std::int64_t* a, const std::int64_t* b) {
+    return std::lexicographical_compare(a, a + d1, b, b + d1);
+  };
+  std::vector<std::vector<std::int64_t>> sorted(static_cast<std::size_t>(nborders));
+#pragma omp parallel for schedule(dynamic)
+  for (std::int64_t i = 0; i < nborders; ++i) {
+    const BlockBorder& b = borders[i];
+    auto& idx = sorted[std::size_t(i)];
+    idx.resize(std::size_t(b.count));
+    for (std::int64_t r = 0; r < b.count; ++r) idx[std::size_t(r)] = r;
+    std::sort(idx.begin(), idx.end(), [&](std::int64_t x, std::int64_t y) {
+      return less(b.keys + x * d1, b.keys + y * d1);
+    });
+  }
+  std::int64_t missing = -1;
+#pragma omp parallel for schedule(static) reduction(max : missing)
+  for (std::int64_t r = 0; r < q; ++r) {
+    const std::int64_t* key = request_key + r * d1;
+    std::int64_t at = -1;
+    for (std::int64_t i = 0; i < nborders && at < 0; ++i) {
+      const BlockBorder& b = borders[i];
+      if (b.owner != request_owner[r]) continue;
+      const auto& idx = sorted[std::size_t(i)];
+      auto it = std::lower_bound(
+          idx.begin(), idx.end(), key,
+          [&](std::int64_t x, const std::int64_t* k) { return less(b.keys + x * d1, k); });
+      if (it != idx.end() && std::equal(key, key + d1, b.keys + *it * d1))
+        at = b.offset + b.rows[*it];
+    }
+    if (at < 0)
+      missing = std::max(missing, r);
+    else
+      out[std::size_t(request_pos[r])] = at;
+  }
+  if (missing >= 0)
+    throw Error(ErrorCode::Internal,
+                "block_neighbors: request " + std::to_string(missing) + " (owner " +
+                    std::to_string(request_owner[missing]) +
+                    ") was not found in its owner's border (a bug: please report it with the "
+                    "input)");
   return out;
 }
 

@@ -96,24 +96,3 @@ class Grid:
     def covers_all(self, b: int, ghost: float) -> bool:
         lo, hi = self.region(b, ghost)
         return bool(np.all(lo <= self.lo) and np.all(hi >= self.hi))
-
-
-def match_rows(table: np.ndarray, queries: np.ndarray) -> np.ndarray:
-    """For each row of ``queries`` (vertex ids, each row sorted), the index of the equal row of
-    ``table`` (rows sorted here; each row unique), or -1."""
-    if len(queries) == 0:
-        return np.zeros(0, dtype=np.int64)
-    t = np.sort(table, axis=1)
-    rows = np.concatenate([t, queries]).astype(np.int64, copy=False)
-    tag = np.concatenate([np.zeros(len(t), np.int8), np.ones(len(queries), np.int8)])
-    keys = (tag,) + tuple(rows[:, k] for k in range(rows.shape[1] - 1, -1, -1))
-    order = np.lexsort(keys)  # by the row (column 0 first), table rows before equal queries
-    s = rows[order]
-    new_group = np.ones(len(s), dtype=bool)
-    new_group[1:] = np.any(s[1:] != s[:-1], axis=1)
-    start = np.maximum.accumulate(np.where(new_group, np.arange(len(s)), 0))
-    first = order[start]  # the first row of each one's group: a table row where there is one
-    out = np.full(len(rows), -1, dtype=np.int64)
-    hit = first < len(t)
-    out[order[hit]] = first[hit]
-    return out[len(t):]

@@ -15,7 +15,7 @@ from dask import delayed
 from .. import _core
 from ..spatial import ConvexHull, Delaunay
 from . import _vtu
-from ._blocks import Grid, choose_counts, match_rows
+from ._blocks import Grid, choose_counts
 from ._ghost import _array_module, triangulate_block
 
 
@@ -160,25 +160,17 @@ def _meta(r: dict) -> dict:
 
 def _border(r: dict):
     """A block's owned simplices that have a neighbour owned elsewhere (a face with -2): the only
-    ones another block can ask for. Their rows and their sorted vertices."""
-    rows = np.nonzero((r["nb_local"] == -2).any(axis=1))[0]
-    return rows, np.sort(r["simplices"][rows], axis=1)
+    ones another block can ask for. Their rows and their sorted vertices (from the block's
+    output pass), alone: the only part of a block's result another block takes."""
+    return r["border_rows"], r["border_keys"]
 
 
 def _neighbors(r: dict, offsets: np.ndarray, block: int, owners: dict) -> np.ndarray:
     """The neighbours of block ``block``'s simplices in global simplex indices; ``owners``: per
-    block asked, its border (``_border``)."""
-    nbl = r["nb_local"]
-    out = np.where(nbl >= 0, nbl + offsets[block], -1).astype(np.int64)
-    flat = out.reshape(-1)
-    for c, (rows, keys) in owners.items():
-        sel = np.nonzero(r["req_owner"] == c)[0]
-        at = match_rows(keys, r["req_key"][sel])
-        if (at < 0).any():
-            raise RuntimeError(f"gpugeom.dask: block {block}'s neighbour was not found in block "
-                               f"{c} (a bug: please report it with the input)")
-        flat[r["req_pos"][sel]] = rows[at] + offsets[c]
-    return out
+    block asked, its border (``_border``). One C++ pass (``_core.block_neighbors``)."""
+    borders = [(int(c), int(offsets[c]), rows, keys) for c, (rows, keys) in owners.items()]
+    return _core.block_neighbors(r["nb_local"], int(offsets[block]), r["req_owner"],
+                                 r["req_key"], r["req_pos"], borders)
 
 
 class DistributedTriangulation:

@@ -643,7 +643,8 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts,
         empty = dict(simplices=np.zeros((0, d + 1), np.int64),
                      nb_local=np.zeros((0, d + 1), np.int64), req_owner=z,
                      req_key=np.zeros((0, d + 1), np.int64), req_pos=z, vertices=z,
-                     vertex_points=np.zeros((0, d)))
+                     vertex_points=np.zeros((0, d)), border_rows=z,
+                     border_keys=np.zeros((0, d + 1), np.int64))
         return _done(block, ghost, 0, 0, empty, np.zeros((0, 2), np.int64))
     ids, pts, blk = _local_points(parts, hull[:3])
     xp = _array_module(backend)
