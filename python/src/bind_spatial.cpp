@@ -675,9 +675,14 @@ const std::int64_t* host_indices(const AnyArray& a, const char* name, std::int64
                               .c_str());
   const auto* p = static_cast<const std::int64_t*>(in.data);
   const std::int64_t total = in.shape[0] * (cols < 0 ? 1 : cols);
-  for (std::int64_t i = 0; i < total; ++i)
-    if (p[i] < lo || p[i] >= hi)
-      throw nb::value_error((std::string(name) + ": an index out of range").c_str());
+  std::int64_t bad = 0;
+  if (lo > INT64_MIN || hi < INT64_MAX) {
+    // on the caller's OpenMP threads: a GPU block's arrays hold 10^8 indices
+    nb::gil_scoped_release unlocked_here;
+#pragma omp parallel for schedule(static) reduction(+ : bad)
+    for (std::int64_t i = 0; i < total; ++i) bad += (p[i] < lo || p[i] >= hi) ? 1 : 0;
+  }
+  if (bad) throw nb::value_error((std::string(name) + ": an index out of range").c_str());
   if (count) *count = in.shape[0];
   return p;
 }

@@ -40,17 +40,22 @@ BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* 
     out.required[std::size_t(i)] = any;
     mine[std::size_t(i)] = owned[v[lowest_at(v, d1)]] ? 1 : 0;
   }
-  // the owned rows in order, then the rings (on one thread: two owned simplices may share one)
-  std::int64_t count = 0;
-  for (std::int64_t i = 0; i < m; ++i) count += mine[std::size_t(i)];
-  out.owned_rows.resize(std::size_t(count));
-  std::int64_t at = 0;
-  for (std::int64_t i = 0; i < m; ++i)
-    if (mine[std::size_t(i)]) out.owned_rows[std::size_t(at++)] = i;
+  // the owned rows in order, then the rings (two owned simplices may share one: the same byte
+  // written by two threads, so atomically)
+  blocks_detail::ordered_compact(
+      m, [&](std::int64_t i) { return mine[std::size_t(i)] != 0; },
+      [&](std::int64_t total) { out.owned_rows.resize(std::size_t(total)); },
+      [&](std::int64_t i, std::int64_t r) { out.owned_rows[std::size_t(r)] = i; });
+  const std::int64_t count = std::int64_t(out.owned_rows.size());
+  std::uint8_t* required = out.required.data();
+#pragma omp parallel for schedule(static)
   for (std::int64_t r = 0; r < count; ++r) {
     const std::int64_t i = out.owned_rows[std::size_t(r)];
     const std::int64_t t = neighbors[i * d1 + lowest_at(simplices + i * d1, d1)];
-    if (t >= 0) out.required[std::size_t(t)] = 1;
+    if (t >= 0) {
+#pragma omp atomic write
+      required[t] = std::uint8_t(1);
+    }
   }
   return out;
 }
@@ -63,13 +68,16 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
   BlockOutput out;
-  HostVector<std::int64_t> pos;
-  pos.assign(std::size_t(m), -1);
+  HostVector<std::int64_t> pos(static_cast<std::size_t>(m));
   const std::size_t cells = std::size_t(count) * std::size_t(d1);
   out.simplices.resize(cells);
   out.neighbors.resize(cells);
-  HostVector<std::uint8_t> used;
-  used.assign(std::size_t(n), 0);
+  HostVector<std::uint8_t> used(static_cast<std::size_t>(n));
+  // (the fills in parallel too: a GPU block's arrays are hundreds of MB)
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < m; ++i) pos[std::size_t(i)] = -1;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) used[std::size_t(i)] = 0;
 #pragma omp parallel for schedule(static)
   for (std::int64_t r = 0; r < count; ++r) pos[std::size_t(rows[r])] = r;
   std::int64_t requests = 0;
@@ -88,49 +96,50 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
   out.request_owner.resize(std::size_t(requests));
   out.request_pos.resize(std::size_t(requests));
   out.request_key.resize(std::size_t(requests) * std::size_t(d1));
-  // on one thread: the requests in row-major order, and the vertices (shared between rows)
-  std::int64_t q = 0;
+  // the vertices the rows use (shared between rows: the same byte written by two threads, so
+  // atomically), then in order: the requests (row-major), the border rows, the vertices
+  std::uint8_t* mark = used.data();
+#pragma omp parallel for schedule(static)
   for (std::int64_t r = 0; r < count; ++r) {
     const std::int64_t* v = simplices + rows[r] * d1;
-    const std::int64_t* nb = neighbors + rows[r] * d1;
     for (int k = 0; k < d1; ++k) {
-      used[std::size_t(v[k])] = 1;
-      if (out.neighbors[std::size_t(r * d1 + k)] != -2) continue;
-      const std::int64_t* w = simplices + nb[k] * d1;
-      out.request_owner[std::size_t(q)] = blk[w[lowest_at(w, d1)]];
-      out.request_pos[std::size_t(q)] = r * d1 + k;
-      std::int64_t* key = out.request_key.data() + q * d1;
-      for (int j = 0; j < d1; ++j) key[j] = ids[w[j]];
-      std::sort(key, key + d1);
-      ++q;
+#pragma omp atomic write
+      mark[v[k]] = std::uint8_t(1);
     }
   }
-  // the border: the rows with a -2 face, and their keys
-  std::int64_t nborder = 0;
-  for (std::int64_t r = 0; r < count; ++r) {
-    bool asked = false;
-    for (int k = 0; k < d1; ++k) asked = asked || out.neighbors[std::size_t(r * d1 + k)] == -2;
-    nborder += asked ? 1 : 0;
-  }
-  out.border_rows.resize(std::size_t(nborder));
-  out.border_keys.resize(std::size_t(nborder) * std::size_t(d1));
-  nborder = 0;
-  for (std::int64_t r = 0; r < count; ++r) {
-    bool asked = false;
-    for (int k = 0; k < d1; ++k) asked = asked || out.neighbors[std::size_t(r * d1 + k)] == -2;
-    if (!asked) continue;
-    out.border_rows[std::size_t(nborder)] = r;
-    std::int64_t* key = out.border_keys.data() + nborder * d1;
-    for (int k = 0; k < d1; ++k) key[k] = out.simplices[std::size_t(r * d1 + k)];
-    std::sort(key, key + d1);
-    ++nborder;
-  }
-  std::int64_t nv = 0;
-  for (std::int64_t i = 0; i < n; ++i) nv += used[std::size_t(i)];
-  out.vertices.resize(std::size_t(nv));
-  nv = 0;
-  for (std::int64_t i = 0; i < n; ++i)
-    if (used[std::size_t(i)]) out.vertices[std::size_t(nv++)] = i;
+  const std::int64_t* nbl = out.neighbors.data();
+  blocks_detail::ordered_compact(
+      std::int64_t(cells), [&](std::int64_t c) { return nbl[c] == -2; }, [&](std::int64_t) {},
+      [&](std::int64_t c, std::int64_t q) {
+        const std::int64_t r = c / d1;
+        const std::int64_t* w = simplices + neighbors[rows[r] * d1 + c % d1] * d1;
+        out.request_owner[std::size_t(q)] = blk[w[lowest_at(w, d1)]];
+        out.request_pos[std::size_t(q)] = c;
+        std::int64_t* key = out.request_key.data() + q * d1;
+        for (int j = 0; j < d1; ++j) key[j] = ids[w[j]];
+        std::sort(key, key + d1);
+      });
+  auto asked = [&](std::int64_t r) {
+    for (int k = 0; k < d1; ++k)
+      if (nbl[r * d1 + k] == -2) return true;
+    return false;
+  };
+  blocks_detail::ordered_compact(
+      count, asked,
+      [&](std::int64_t total) {
+        out.border_rows.resize(std::size_t(total));
+        out.border_keys.resize(std::size_t(total) * std::size_t(d1));
+      },
+      [&](std::int64_t r, std::int64_t b) {
+        out.border_rows[std::size_t(b)] = r;
+        std::int64_t* key = out.border_keys.data() + b * d1;
+        for (int k = 0; k < d1; ++k) key[k] = out.simplices[std::size_t(r * d1 + k)];
+        std::sort(key, key + d1);
+      });
+  blocks_detail::ordered_compact(
+      n, [&](std::int64_t i) { return mark[i] != 0; },
+      [&](std::int64_t total) { out.vertices.resize(std::size_t(total)); },
+      [&](std::int64_t i, std::int64_t k) { out.vertices[std::size_t(k)] = i; });
   return out;
 }
 
