@@ -62,13 +62,18 @@ struct BlockOutput {
   HostVector<std::int64_t> request_owner, request_key, request_pos;
   HostVector<std::int64_t> vertices;
   HostVector<std::int64_t> border_rows, border_keys;
+  /// The vertices' global ids, and (where the points were given) their coordinates, `dim` a
+  /// vertex.
+  HostVector<std::int64_t> vertex_ids;
+  HostVector<double> vertex_points;
 };
 /// The output of a block's owned simplices `rows` (BlockOutput), on `threads` host threads (0:
-/// OpenMP's default). Throws Error(InvalidArgument) for a dim other than 2 or 3.
+/// OpenMP's default); `points` (the `n` local points, or null) for the vertices' coordinates.
+/// Throws Error(InvalidArgument) for a dim other than 2 or 3.
 BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
-                         const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
-                         int threads = 0);
+                         const std::int64_t* ids, const std::int64_t* blk, const double* points,
+                         std::int64_t n, int threads = 0);
 
 /// One block's border as another block asks it: its place among the blocks' outputs (the
 /// requests' owner), the first global index of its simplices, and `count` rows with their sorted

@@ -7,6 +7,8 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <optional>
 
@@ -740,10 +742,17 @@ nb::dict block_required_bind(const AnyArray& simplices, const AnyArray& neighbor
 
 nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
                            const AnyArray& rows, const AnyArray& ids, const AnyArray& blk,
-                           int threads) {
+                           std::optional<AnyArray> points, int threads) {
   std::int64_t n = 0, m = 0, k = 0;
   const std::int64_t* id = host_indices(ids, "ids", -1, -1, 0, INT64_MAX, &n);
   const std::int64_t* bk = host_indices(blk, "blk", n, -1, 0, INT64_MAX);
+  const double* xyz = nullptr;
+  int pdim = 0;
+  if (points) {
+    std::int64_t np_ = 0;
+    xyz = host_points(*points, &pdim, &np_);
+    if (np_ != n) throw nb::value_error("points must have a row per id");
+  }
   Input si = inspect(simplices, "simplices");
   if (si.shape.size() != 2 || (si.shape[1] != 3 && si.shape[1] != 4))
     throw nb::value_error("simplices must have shape (m, 3) or (m, 4)");
@@ -751,8 +760,9 @@ nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
   const std::int64_t* s = host_indices(simplices, "simplices", -1, d1, 0, n, &m);
   const std::int64_t* nbr = host_indices(neighbors, "neighbors", m, d1, -1, m);
   const std::int64_t* rw = host_indices(rows, "rows", -1, -1, 0, m, &k);
+  if (xyz && pdim != d1 - 1) throw nb::value_error("points must have the simplices' dimension");
   BlockOutput r =
-      unlocked([&] { return block_output(s, nbr, m, d1 - 1, rw, k, id, bk, n, threads); });
+      unlocked([&] { return block_output(s, nbr, m, d1 - 1, rw, k, id, bk, xyz, n, threads); });
   nb::dict out;
   const sz q = r.request_owner.size(), nv = r.vertices.size();
   out["simplices"] = host_array(std::move(r.simplices), {sz(k), sz(d1)});
@@ -761,6 +771,8 @@ nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
   out["req_key"] = host_array(std::move(r.request_key), {q, sz(d1)});
   out["req_pos"] = host_array(std::move(r.request_pos), {q});
   out["used"] = host_array(std::move(r.vertices), {nv});
+  out["vertices"] = host_array(std::move(r.vertex_ids), {nv});
+  if (xyz) out["vertex_points"] = host_array(std::move(r.vertex_points), {nv, sz(d1 - 1)});
   const sz nb_ = r.border_rows.size();
   out["border_rows"] = host_array(std::move(r.border_rows), {nb_});
   out["border_keys"] = host_array(std::move(r.border_keys), {nb_, sz(d1)});
@@ -846,7 +858,7 @@ nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>&
                               const std::vector<std::int64_t>& counts,
                               std::optional<AnyArray> box_lo, std::optional<AnyArray> box_hi,
                               std::optional<AnyArray> box_block, std::optional<AnyArray> wanted,
-                              int threads) {
+                              bool gather, int threads) {
   int dim = 0;
   std::int64_t n = 0;
   const double* x = host_points(points, &dim, &n);
@@ -879,6 +891,23 @@ nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>&
       unlocked([&] { return split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads); });
   nb::dict out;
   const sz total = r.order.size();
+  if (gather) {
+    // the blocks' points and cells in their order, gathered on the caller's threads (NumPy's
+    // gathers took 1 s of a GPU block's 10^7 points)
+    HostVector<double> xyz(total * sz(dim));
+    HostVector<std::int64_t> cells(total);
+    const int nt = threads > 0 ? threads : omp_get_max_threads();
+    unlocked([&] {
+#pragma omp parallel for schedule(static) num_threads(nt)
+      for (std::int64_t k = 0; k < std::int64_t(total); ++k) {
+        const std::int64_t p = r.order[sz(k)];
+        for (int j = 0; j < dim; ++j) xyz[sz(k * dim + j)] = x[p * dim + j];
+        cells[sz(k)] = r.cell[sz(p)];
+      }
+    });
+    out["points"] = host_array(std::move(xyz), {total, sz(dim)});
+    out["cells"] = host_array(std::move(cells), {total});
+  }
   out["cell"] = host_array(std::move(r.cell), {sz(n)});
   out["order"] = host_array(std::move(r.order), {total});
   out["cuts"] = host_array(std::move(r.cuts), {sz(cells + 1)});
@@ -976,11 +1005,11 @@ void bind_spatial(nb::module_& m) {
         "threads"_a = 0);
   m.def("split_to_blocks", &split_to_blocks_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
         "box_lo"_a = nb::none(), "box_hi"_a = nb::none(), "box_block"_a = nb::none(),
-        "wanted"_a = nb::none(), "threads"_a = 0);
+        "wanted"_a = nb::none(), "gather"_a = false, "threads"_a = 0);
   m.def("block_neighbors", &block_neighbors_bind, "nb_local"_a, "offset"_a, "req_owner"_a,
         "req_key"_a, "req_pos"_a, "borders"_a, "threads"_a = 0);
   m.def("block_output", &block_output_bind, "simplices"_a, "neighbors"_a, "rows"_a, "ids"_a,
-        "blk"_a, "threads"_a = 0);
+        "blk"_a, "points"_a = nb::none(), "threads"_a = 0);
   m.def("furthest_site2d", &furthest_site2d_bind, "points"_a, "threads"_a = 0, "voronoi"_a = false);
   m.def("voronoi3d", &voronoi3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
         "threads"_a = 0);

@@ -231,8 +231,10 @@ def test_split_to_blocks():
             keep |= np.all((pts >= lo) & (pts <= hi), axis=1)
         ref[b] = np.nonzero(keep)[0]
     for threads in (1, 2, 3):
-        c, order, cuts = g.split(pts, boxes, threads=threads)
+        c, order, cuts, points, cells = g.split(pts, boxes, threads=threads, gather=True)
         np.testing.assert_array_equal(c, cell)
+        np.testing.assert_array_equal(points, pts[order])
+        np.testing.assert_array_equal(cells, cell[order])
         for b in range(g.nblocks):
             np.testing.assert_array_equal(order[cuts[b]:cuts[b + 1]],
                                           ref.get(b, np.zeros(0, np.int64)))
@@ -242,6 +244,39 @@ def test_split_to_blocks():
         with pytest.raises(ValueError):
             _core.split_to_blocks(pts, [0.0, 0.0], [1.0, 1.0], [3, 2], box_lo=np.zeros((2, 2)),
                                   box_hi=np.ones((2, 2)), box_block=np.array(block, np.int64))
+
+
+def test_local_points():
+    """A block's local points from its parts and the hull's extreme points (``_local_points``,
+    by slices between the hull points' places) against a concatenation and a stable sort:
+    parts missing or empty, hull points already among the parts, before, between and after."""
+    from gpugeom.dask._ghost import _local_points
+    rng = np.random.default_rng(49)
+    for _ in range(300):
+        parts, base = [], 0
+        for _ in range(rng.integers(1, 6)):
+            m = int(rng.integers(0, 30))
+            ids = np.sort(rng.choice(np.arange(base, base + 60), m, replace=False)).astype(np.int64)
+            base += 60
+            parts.append((rng.random((m, 2)), ids, rng.integers(0, 5, m))
+                         if m or rng.random() < 0.5 else None)
+        h_ids = np.sort(rng.choice(base + 5, int(rng.integers(0, 12)), replace=False))
+        h_pts, h_blk = rng.random((len(h_ids), 2)), rng.integers(0, 5, len(h_ids))
+        for p in (p for p in parts if p is not None):  # a point present has its coordinates
+            at = np.searchsorted(p[1], h_ids)
+            hit = np.nonzero((at < len(p[1])) & (p[1][np.minimum(at, max(len(p[1]) - 1, 0))]
+                                                 == h_ids))[0] if len(p[1]) else []
+            h_pts[hit], h_blk[hit] = p[0][at[hit]], p[2][at[hit]]
+        got = [p for p in parts if p is not None]
+        ids = np.concatenate([p[1] for p in got] + [np.zeros(0, np.int64)])
+        keep = ~np.isin(h_ids, ids)
+        all_ids = np.concatenate([ids, h_ids[keep]])
+        order = np.argsort(all_ids, kind="stable")
+        want = (all_ids[order],
+                np.concatenate([p[0] for p in got] + [h_pts[keep]])[order],
+                np.concatenate([p[2] for p in got] + [h_blk[keep]])[order])
+        for a, b in zip(_local_points(parts, (h_pts, h_ids, h_blk)), want):
+            np.testing.assert_array_equal(a, b)
 
 
 def test_block_neighbors():

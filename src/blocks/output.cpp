@@ -62,8 +62,8 @@ BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* 
 
 BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
-                         const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
-                         int threads) {
+                         const std::int64_t* ids, const std::int64_t* blk, const double* points,
+                         std::int64_t n, int threads) {
   blocks_detail::check_dim(dim, "block_output");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
@@ -140,6 +140,18 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
       n, [&](std::int64_t i) { return mark[i] != 0; },
       [&](std::int64_t total) { out.vertices.resize(std::size_t(total)); },
       [&](std::int64_t i, std::int64_t k) { out.vertices[std::size_t(k)] = i; });
+  // the vertices' ids and coordinates: gathers over the block, so in parallel too
+  const std::int64_t nv = std::int64_t(out.vertices.size());
+  out.vertex_ids.resize(std::size_t(nv));
+  if (points) out.vertex_points.resize(std::size_t(nv) * std::size_t(dim));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < nv; ++k) {
+    const std::int64_t v = out.vertices[std::size_t(k)];
+    out.vertex_ids[std::size_t(k)] = ids[v];
+    if (points)
+      for (int j = 0; j < dim; ++j)
+        out.vertex_points[std::size_t(k * dim + j)] = points[v * dim + j];
+  }
   return out;
 }
 

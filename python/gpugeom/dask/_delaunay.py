@@ -91,11 +91,12 @@ def _split(pts, offset: int, grid: Grid, boxes: dict, bins: Optional[Grid], back
     that split the piece, and no second task selects its ghosts from the other blocks' points
     (one hop, not two: on 4 workers the hop cost more than the selection)."""
     pts = _load(pts)
-    cell, order, cuts = grid.split(pts, boxes, threads)
+    cell, order, cuts, points, cells = grid.split(pts, boxes, threads, gather=True)
+    ids = order + offset
     parts = []
     for b in sorted(boxes):
-        sel = order[cuts[b]:cuts[b + 1]]
-        parts.append((pts[sel], sel + offset, cell[sel]) if len(sel) else None)
+        at = slice(cuts[b], cuts[b + 1])
+        parts.append((points[at], ids[at], cells[at]) if cuts[b + 1] > cuts[b] else None)
     if bins is None:
         return tuple(parts)
     if pts.shape[1] == 2 and _array_module(backend) is np:
