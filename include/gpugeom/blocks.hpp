@@ -30,6 +30,10 @@ struct BlockBoxes {
 void circumballs_inside_region(const double* points, int dim, const std::int64_t* simplices,
                                const std::int64_t* rows, std::int64_t count,
                                const BlockBoxes& boxes, std::uint8_t* inside, int threads = 0);
+/// The same, for int32 vertex indices (as a triangulation gives them).
+void circumballs_inside_region(const double* points, int dim, const std::int32_t* simplices,
+                               const std::int64_t* rows, std::int64_t count,
+                               const BlockBoxes& boxes, std::uint8_t* inside, int threads = 0);
 
 /// What a block requires of its local triangulation (`m` simplices of `dim` + 1 local vertex
 /// indices each, and their neighbours: `neighbors[i * (dim + 1) + j]` is the simplex across the
@@ -47,6 +51,10 @@ struct BlockRequired {
 /// What a block requires of its local triangulation (BlockRequired), on `threads` host threads
 /// (0: OpenMP's default). Throws Error(InvalidArgument) for a dim other than 2 or 3.
 BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* neighbors,
+                             std::int64_t m, int dim, const std::uint8_t* owned, int threads = 0);
+/// The same, for int32 indices (as a triangulation gives them: half the bytes to copy from a
+/// GPU).
+BlockRequired block_required(const std::int32_t* simplices, const std::int32_t* neighbors,
                              std::int64_t m, int dim, const std::uint8_t* owned, int threads = 0);
 
 /// A block's output: its owned simplices `rows` (all of them, as block_required lists them)
@@ -71,6 +79,11 @@ struct BlockOutput {
 /// OpenMP's default); `points` (the `n` local points, or null) for the vertices' coordinates.
 /// Throws Error(InvalidArgument) for a dim other than 2 or 3.
 BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
+                         std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
+                         const std::int64_t* ids, const std::int64_t* blk, const double* points,
+                         std::int64_t n, int threads = 0);
+/// The same, for int32 simplices and neighbours.
+BlockOutput block_output(const std::int32_t* simplices, const std::int32_t* neighbors,
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
                          const std::int64_t* ids, const std::int64_t* blk, const double* points,
                          std::int64_t n, int threads = 0);

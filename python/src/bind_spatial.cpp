@@ -665,28 +665,46 @@ const double* host_points(const AnyArray& points, int* dim, std::int64_t* n) {
 
 // A host int64 array of the given shape (-1: any) whose entries lie in [lo, hi), checked once
 // here: the library reads indices unchecked.
-const std::int64_t* host_indices(const AnyArray& a, const char* name, std::int64_t rows,
-                                 std::int64_t cols, std::int64_t lo, std::int64_t hi,
-                                 std::int64_t* count = nullptr) {
+template <class T>
+const T* host_indices_of(const AnyArray& a, const char* name, std::int64_t rows, std::int64_t cols,
+                         std::int64_t lo, std::int64_t hi, std::int64_t* count = nullptr,
+                         const char* kinds = "int64") {
   Input in = inspect(a, name);
   const bool shaped = cols < 0 ? in.shape.size() == 1 : in.shape.size() == 2 && in.shape[1] == cols;
-  if (in.on_device || !holds<std::int64_t>(in) || !shaped || (rows >= 0 && in.shape[0] != rows))
-    throw nb::value_error((std::string(name) + " must be a host int64 array of shape (" +
+  if (in.on_device || !holds<T>(in) || !shaped || (rows >= 0 && in.shape[0] != rows))
+    throw nb::value_error((std::string(name) + " must be a host " + kinds + " array of shape (" +
                            (rows >= 0 ? std::to_string(rows) : std::string("k")) +
                            (cols >= 0 ? ", " + std::to_string(cols) : std::string(",")) + ")")
                               .c_str());
-  const auto* p = static_cast<const std::int64_t*>(in.data);
+  const auto* p = static_cast<const T*>(in.data);
   const std::int64_t total = in.shape[0] * (cols < 0 ? 1 : cols);
   std::int64_t bad = 0;
   if (lo > INT64_MIN || hi < INT64_MAX) {
     // on the caller's OpenMP threads: a GPU block's arrays hold 10^8 indices
     nb::gil_scoped_release unlocked_here;
 #pragma omp parallel for schedule(static) reduction(+ : bad)
-    for (std::int64_t i = 0; i < total; ++i) bad += (p[i] < lo || p[i] >= hi) ? 1 : 0;
+    for (std::int64_t i = 0; i < total; ++i)
+      bad += (std::int64_t(p[i]) < lo || std::int64_t(p[i]) >= hi) ? 1 : 0;
   }
   if (bad) throw nb::value_error((std::string(name) + ": an index out of range").c_str());
   if (count) *count = in.shape[0];
   return p;
+}
+
+// A host int64 array of the given shape (-1: any) whose entries lie in [lo, hi), checked once
+// here: the library reads indices unchecked.
+const std::int64_t* host_indices(const AnyArray& a, const char* name, std::int64_t rows,
+                                 std::int64_t cols, std::int64_t lo, std::int64_t hi,
+                                 std::int64_t* count = nullptr) {
+  return host_indices_of<std::int64_t>(a, name, rows, cols, lo, hi, count);
+}
+
+// Calls f with a value of the index type of simplices (and neighbours): int32, as a
+// triangulation gives them, or int64.
+template <class F>
+auto by_index_type(const AnyArray& simplices, F&& f) {
+  Input in = inspect(simplices, "simplices");
+  return holds<std::int32_t>(in) ? f(std::int32_t{}) : f(std::int64_t{});
 }
 
 // gpugeom.dask's bulk finality test of a block's simplices (include/gpugeom/blocks.hpp): host
@@ -700,8 +718,6 @@ nb::object circumballs_inside_bind(const AnyArray& points, const AnyArray& simpl
   int dim = 0;
   std::int64_t n = 0, m = 0, k = 0;
   const double* x = host_points(points, &dim, &n);
-  const std::int64_t* sx = host_indices(simplices, "simplices", -1, dim + 1, 0, n, &m);
-  const std::int64_t* rw = host_indices(rows, "rows", -1, -1, 0, m, &k);
   BlockBoxes b;
   for (const auto* v : {&region_lo, &region_hi, &bounds_lo, &bounds_hi})
     if (int(v->size()) != dim) throw nb::value_error("each box corner needs dim coordinates");
@@ -710,9 +726,15 @@ nb::object circumballs_inside_bind(const AnyArray& points, const AnyArray& simpl
     b.bounds_lo[j] = bounds_lo[j], b.bounds_hi[j] = bounds_hi[j];
   }
   b.scale = scale;
-  HostVector<std::uint8_t> out(static_cast<sz>(k));
-  unlocked([&] { circumballs_inside_region(x, dim, sx, rw, k, b, out.data(), threads); });
-  return host_array(std::move(out), {sz(k)});
+  return by_index_type(simplices, [&](auto index) {
+    using T = decltype(index);
+    const T* sx =
+        host_indices_of<T>(simplices, "simplices", -1, dim + 1, 0, n, &m, "int32 or int64");
+    const std::int64_t* rw = host_indices(rows, "rows", -1, -1, 0, m, &k);
+    HostVector<std::uint8_t> out(static_cast<sz>(k));
+    unlocked([&] { circumballs_inside_region(x, dim, sx, rw, k, b, out.data(), threads); });
+    return host_array(std::move(out), {sz(k)});
+  });
 }
 
 // gpugeom.dask's block passes (include/gpugeom/blocks.hpp) on host arrays: what a block
@@ -728,10 +750,14 @@ nb::dict block_required_bind(const AnyArray& simplices, const AnyArray& neighbor
     throw nb::value_error("simplices must have shape (m, 3) or (m, 4)");
   const int d1 = int(si.shape[1]);
   std::int64_t m = 0;
-  const std::int64_t* s = host_indices(simplices, "simplices", -1, d1, 0, n, &m);
-  const std::int64_t* nbr = host_indices(neighbors, "neighbors", m, d1, -1, m);
-  BlockRequired r = unlocked([&] {
-    return block_required(s, nbr, m, d1 - 1, static_cast<const std::uint8_t*>(o.data), threads);
+  BlockRequired r = by_index_type(simplices, [&](auto index) {
+    using T = decltype(index);
+    const T* s = host_indices_of<T>(simplices, "simplices", -1, d1, 0, n, &m, "int32 or int64");
+    const T* nbr = host_indices_of<T>(neighbors, "neighbors", m, d1, -1, m, nullptr,
+                                      "int32 or int64 (as simplices)");
+    return unlocked([&] {
+      return block_required(s, nbr, m, d1 - 1, static_cast<const std::uint8_t*>(o.data), threads);
+    });
   });
   nb::dict out;
   const sz k = r.owned_rows.size();
@@ -757,12 +783,16 @@ nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
   if (si.shape.size() != 2 || (si.shape[1] != 3 && si.shape[1] != 4))
     throw nb::value_error("simplices must have shape (m, 3) or (m, 4)");
   const int d1 = int(si.shape[1]);
-  const std::int64_t* s = host_indices(simplices, "simplices", -1, d1, 0, n, &m);
-  const std::int64_t* nbr = host_indices(neighbors, "neighbors", m, d1, -1, m);
-  const std::int64_t* rw = host_indices(rows, "rows", -1, -1, 0, m, &k);
   if (xyz && pdim != d1 - 1) throw nb::value_error("points must have the simplices' dimension");
-  BlockOutput r =
-      unlocked([&] { return block_output(s, nbr, m, d1 - 1, rw, k, id, bk, xyz, n, threads); });
+  BlockOutput r = by_index_type(simplices, [&](auto index) {
+    using T = decltype(index);
+    const T* s = host_indices_of<T>(simplices, "simplices", -1, d1, 0, n, &m, "int32 or int64");
+    const T* nbr = host_indices_of<T>(neighbors, "neighbors", m, d1, -1, m, nullptr,
+                                      "int32 or int64 (as simplices)");
+    const std::int64_t* rw = host_indices(rows, "rows", -1, -1, 0, m, &k);
+    return unlocked(
+        [&] { return block_output(s, nbr, m, d1 - 1, rw, k, id, bk, xyz, n, threads); });
+  });
   nb::dict out;
   const sz q = r.request_owner.size(), nv = r.vertices.size();
   out["simplices"] = host_array(std::move(r.simplices), {sz(k), sz(d1)});

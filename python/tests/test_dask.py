@@ -382,6 +382,16 @@ def test_block_passes_in_cpp_and_numpy():
         assert set(got) == set(want) and len(got["req_pos"]) > 0
         for k in want:
             np.testing.assert_array_equal(got[k], want[k], err_msg=k)
+        # int32 indices, as a triangulation gives them, give the same
+        s32, nb32 = s.astype(np.int32), nb.astype(np.int32)
+        r32 = _core.block_required(s32, nb32, owned, 2)
+        for k in ("owned_rows", "required"):
+            np.testing.assert_array_equal(r32[k], r[k], err_msg=k)
+        got32 = _ghost._emit(ids, pts, blk, s32, nb32, mine, 2)
+        for k in want:
+            np.testing.assert_array_equal(got32[k], want[k], err_msg=k)
+        with pytest.raises(ValueError, match="neighbors"):
+            _core.block_required(s32, nb, owned)
         bad = s.copy()
         bad[5, 1] = len(pts)
         with pytest.raises(ValueError, match="simplices"):

@@ -51,9 +51,8 @@ Slabs slabs_of(const BlockBoxes& b, int dim) {
 // squared lengths) and the reach: the radius grown by twice a generous multiple of
 // eps * cond(A) * (|x| + longest edge) and by the rounding of the centre's coordinates. False
 // where the centre is not trusted.
-template <int D>
-bool circumball(const double* pts, const std::int64_t* v, double* centre, double* reach,
-                double scale) {
+template <int D, class I>
+bool circumball(const double* pts, const I* v, double* centre, double* reach, double scale) {
   const double* p0 = pts + v[0] * D;
   double a[D][D], rhs[D], cols[D][D], det;
   for (int i = 0; i < D; ++i) {
@@ -109,13 +108,13 @@ bool circumball(const double* pts, const std::int64_t* v, double* centre, double
   return std::isfinite(*reach);
 }
 
-template <int D>
-void run(const double* pts, const std::int64_t* simplices, const std::int64_t* rows,
-         std::int64_t count, const BlockBoxes& boxes, std::uint8_t* inside) {
+template <int D, class I>
+void run(const double* pts, const I* simplices, const std::int64_t* rows, std::int64_t count,
+         const BlockBoxes& boxes, std::uint8_t* inside) {
   const Slabs slabs = slabs_of(boxes, D);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < count; ++i) {
-    const std::int64_t* v = simplices + (rows ? rows[i] : i) * (D + 1);
+    const I* v = simplices + (rows ? rows[i] : i) * (D + 1);
     double c[D], reach;
     bool ok = circumball<D>(pts, v, c, &reach, boxes.scale);
     for (int s = 0; ok && s < slabs.count; ++s) {
@@ -130,11 +129,9 @@ void run(const double* pts, const std::int64_t* simplices, const std::int64_t* r
   }
 }
 
-}  // namespace
-
-void circumballs_inside_region(const double* points, int dim, const std::int64_t* simplices,
-                               const std::int64_t* rows, std::int64_t count,
-                               const BlockBoxes& boxes, std::uint8_t* inside, int threads) {
+template <class I>
+void inside_region(const double* points, int dim, const I* simplices, const std::int64_t* rows,
+                   std::int64_t count, const BlockBoxes& boxes, std::uint8_t* inside, int threads) {
   blocks_detail::check_dim(dim, "circumballs_inside_region");
   if (count <= 0) return;
   blocks_detail::ThreadScope scope(threads);
@@ -142,6 +139,19 @@ void circumballs_inside_region(const double* points, int dim, const std::int64_t
     run<2>(points, simplices, rows, count, boxes, inside);
   else
     run<3>(points, simplices, rows, count, boxes, inside);
+}
+
+}  // namespace
+
+void circumballs_inside_region(const double* points, int dim, const std::int64_t* simplices,
+                               const std::int64_t* rows, std::int64_t count,
+                               const BlockBoxes& boxes, std::uint8_t* inside, int threads) {
+  inside_region(points, dim, simplices, rows, count, boxes, inside, threads);
+}
+void circumballs_inside_region(const double* points, int dim, const std::int32_t* simplices,
+                               const std::int64_t* rows, std::int64_t count,
+                               const BlockBoxes& boxes, std::uint8_t* inside, int threads) {
+  inside_region(points, dim, simplices, rows, count, boxes, inside, threads);
 }
 
 }  // namespace gpugeom

@@ -15,17 +15,19 @@ namespace gpugeom {
 namespace {
 
 // The lowest vertex's place (0..dim) in a simplex.
-inline int lowest_at(const std::int64_t* v, int d1) {
+template <class I>
+inline int lowest_at(const I* v, int d1) {
   int at = 0;
   for (int k = 1; k < d1; ++k)
     if (v[k] < v[at]) at = k;
   return at;
 }
 
-}  // namespace
-
-BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* neighbors,
-                             std::int64_t m, int dim, const std::uint8_t* owned, int threads) {
+// The passes on simplices and neighbours of either index width (a GPU block's come to the
+// host as the triangulation gives them, int32: half the bytes of int64).
+template <class I>
+BlockRequired required_of(const I* simplices, const I* neighbors, std::int64_t m, int dim,
+                          const std::uint8_t* owned, int threads) {
   blocks_detail::check_dim(dim, "block_required");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
@@ -34,7 +36,7 @@ BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* 
   HostVector<std::uint8_t> mine(static_cast<std::size_t>(m));
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < m; ++i) {
-    const std::int64_t* v = simplices + i * d1;
+    const I* v = simplices + i * d1;
     std::uint8_t any = 0;
     for (int k = 0; k < d1; ++k) any |= owned[v[k]] ? 1 : 0;
     out.required[std::size_t(i)] = any;
@@ -60,10 +62,10 @@ BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* 
   return out;
 }
 
-BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
-                         std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
-                         const std::int64_t* ids, const std::int64_t* blk, const double* points,
-                         std::int64_t n, int threads) {
+template <class I>
+BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, int dim,
+                      const std::int64_t* rows, std::int64_t count, const std::int64_t* ids,
+                      const std::int64_t* blk, const double* points, std::int64_t n, int threads) {
   blocks_detail::check_dim(dim, "block_output");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
@@ -83,8 +85,8 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
   std::int64_t requests = 0;
 #pragma omp parallel for schedule(static) reduction(+ : requests)
   for (std::int64_t r = 0; r < count; ++r) {
-    const std::int64_t* v = simplices + rows[r] * d1;
-    const std::int64_t* nb = neighbors + rows[r] * d1;
+    const I* v = simplices + rows[r] * d1;
+    const I* nb = neighbors + rows[r] * d1;
     for (int k = 0; k < d1; ++k) {
       out.simplices[std::size_t(r * d1 + k)] = ids[v[k]];
       const std::int64_t t = nb[k];
@@ -101,7 +103,7 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
   std::uint8_t* mark = used.data();
 #pragma omp parallel for schedule(static)
   for (std::int64_t r = 0; r < count; ++r) {
-    const std::int64_t* v = simplices + rows[r] * d1;
+    const I* v = simplices + rows[r] * d1;
     for (int k = 0; k < d1; ++k) {
 #pragma omp atomic write
       mark[v[k]] = std::uint8_t(1);
@@ -112,7 +114,7 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
       std::int64_t(cells), [&](std::int64_t c) { return nbl[c] == -2; }, [&](std::int64_t) {},
       [&](std::int64_t c, std::int64_t q) {
         const std::int64_t r = c / d1;
-        const std::int64_t* w = simplices + neighbors[rows[r] * d1 + c % d1] * d1;
+        const I* w = simplices + std::int64_t(neighbors[rows[r] * d1 + c % d1]) * d1;
         out.request_owner[std::size_t(q)] = blk[w[lowest_at(w, d1)]];
         out.request_pos[std::size_t(q)] = c;
         std::int64_t* key = out.request_key.data() + q * d1;
@@ -153,6 +155,29 @@ BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neig
         out.vertex_points[std::size_t(k * dim + j)] = points[v * dim + j];
   }
   return out;
+}
+
+}  // namespace
+
+BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* neighbors,
+                             std::int64_t m, int dim, const std::uint8_t* owned, int threads) {
+  return required_of(simplices, neighbors, m, dim, owned, threads);
+}
+BlockRequired block_required(const std::int32_t* simplices, const std::int32_t* neighbors,
+                             std::int64_t m, int dim, const std::uint8_t* owned, int threads) {
+  return required_of(simplices, neighbors, m, dim, owned, threads);
+}
+BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
+                         std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
+                         const std::int64_t* ids, const std::int64_t* blk, const double* points,
+                         std::int64_t n, int threads) {
+  return output_of(simplices, neighbors, m, dim, rows, count, ids, blk, points, n, threads);
+}
+BlockOutput block_output(const std::int32_t* simplices, const std::int32_t* neighbors,
+                         std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
+                         const std::int64_t* ids, const std::int64_t* blk, const double* points,
+                         std::int64_t n, int threads) {
+  return output_of(simplices, neighbors, m, dim, rows, count, ids, blk, points, n, threads);
 }
 
 HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,

@@ -45,7 +45,7 @@ def _quiet(xp):
 
 def _array_module(backend: str):
     """CuPy when the block runs on a GPU and CuPy is there (the local points go to the device
-    for the triangulation, and its simplices come back as int64), else NumPy."""
+    for the triangulation, and its simplices come back), else NumPy."""
     if backend == "cpu" or not _core.built_with_cuda():
         return np
     try:
@@ -638,8 +638,9 @@ def _triangulated(pts, owned, backend, threads):
     whose triangulation took 0.5 s.) Raises DegenerateInputError as Delaunay does."""
     xp = _array_module(backend)
     tri = Delaunay(xp.asarray(pts), backend=backend, threads=threads)
-    s = _host(tri.simplices.astype(xp.int64))
-    nb = _host(tri.neighbors.astype(xp.int64))
+    # as the triangulation gives them (int32: half the bytes of int64 to copy from a GPU); the
+    # passes take either
+    s, nb = _host(tri.simplices), _host(tri.neighbors)
     r = _core.block_required(s, nb, owned, threads)
     return tri, s, nb, r["owned_rows"], r["required"].view(bool)
 
