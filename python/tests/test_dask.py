@@ -138,6 +138,10 @@ def test_local_cluster(cluster_client):
         dt = gd.delaunay(da.from_array(pts, chunks=(1250, d)), blocks=8, backend="cpu")
         assert len(dt.block_stats) == 8
         _same_as_single(pts, dt)
+    # by default a block a worker where the array has fewer chunks
+    dt = gd.delaunay(da.from_array(pts, chunks=-1), backend="cpu")
+    assert len(dt.block_stats) == 2
+    _same_as_single(pts, dt)
 
 
 def test_worker_killed_mid_run(kill_worker_once):

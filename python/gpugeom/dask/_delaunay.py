@@ -281,6 +281,16 @@ _GHOST = {2: 6.0, 3: 4.0}
 _STRIP_DEPTH = {2: 4.0, 3: 0.5}
 
 
+def _workers() -> int:
+    """The workers of the active distributed client (1 without one): a Dask array of one chunk
+    on a LocalCluster of 4 workers is 4 blocks by default, not 1."""
+    try:
+        from distributed import get_client
+        return max(1, len(get_client().scheduler_info().get("workers", {})))
+    except (ImportError, ValueError):
+        return 1
+
+
 def _side_strips(grid: Grid, b: int, depth: float) -> dict:
     """Per side of the bounding box that block b's cell lies on, the slab of the bounding box
     ``depth`` deep along it (keyed by axis and side, as the strips a block asks for)."""
@@ -320,7 +330,8 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         A Dask array must hold whole points in each chunk (one chunk along axis 1).
     blocks : int or sequence of int, optional
         Blocks in all (split over the axes, cells kept close to cubes) or per axis. Default: one
-        block per input chunk or file.
+        block per input chunk or file, or one per worker of the active distributed client where
+        that is more (a block a worker measured best on uniform points: docs/performance.md).
     ghost : float, optional
         The first ghost width (default: 6 mean point spacings in 2D, 4 in 3D); a block grows it
         as it needs. Blocks on the sides of the bounding box also take a strip along each side
@@ -366,7 +377,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     lo = np.min([s["lo"] for s in filled], axis=0)
     hi = np.max([s["hi"] for s in filled], axis=0)
     if blocks is None:
-        blocks = len(pieces)
+        blocks = max(len(pieces), _workers())
     if isinstance(blocks, (int, np.integer)):
         if blocks < 1:
             raise ValueError(f"blocks must be at least 1, got {blocks}")
