@@ -136,6 +136,9 @@ struct CellGrid {
 /// that index; its points are those of its cell and, with split_to_blocks, those in its boxes.
 struct CellSplit {
   HostVector<std::int64_t> cell, order, cuts;
+  /// After gather_blocks: the points (`dim` coordinates each) and their cells, in `order`.
+  HostVector<double> points;
+  HostVector<std::int64_t> cells;
 };
 /// Splits `n` points (`dim` coordinates each) by the cells of `grid`, on `threads` host threads
 /// (0: OpenMP's default): each point is in its cell's block only. Throws Error(InvalidArgument)
@@ -153,6 +156,10 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
                           const double* box_lo, const double* box_hi, const std::int64_t* box_block,
                           std::int64_t nboxes, const std::uint8_t* wanted = nullptr,
                           int threads = 0);
+
+/// Fills `split.points` and `split.cells` (CellSplit) from the points it split, on `threads`
+/// host threads (0: OpenMP's default): each block's part then lies in one slice.
+void gather_blocks(const double* points, int dim, CellSplit& split, int threads = 0);
 
 /// How many of `n` points (`dim` coordinates each) lie in each cell of `grid` (row-major; a
 /// point's cell as CellGrid says), on `threads` host threads (0: OpenMP's default). Throws

@@ -7,8 +7,6 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <optional>
 
@@ -917,26 +915,16 @@ nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>&
       throw nb::value_error("wanted must be a host bool array with an entry per block");
     want = static_cast<const std::uint8_t*>(w.data);
   }
-  CellSplit r =
-      unlocked([&] { return split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads); });
+  CellSplit r = unlocked([&] {
+    CellSplit split = split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads);
+    if (gather) gather_blocks(x, dim, split, threads);
+    return split;
+  });
   nb::dict out;
   const sz total = r.order.size();
   if (gather) {
-    // the blocks' points and cells in their order, gathered on the caller's threads (NumPy's
-    // gathers took 1 s of a GPU block's 10^7 points)
-    HostVector<double> xyz(total * sz(dim));
-    HostVector<std::int64_t> cells(total);
-    const int nt = threads > 0 ? threads : omp_get_max_threads();
-    unlocked([&] {
-#pragma omp parallel for schedule(static) num_threads(nt)
-      for (std::int64_t k = 0; k < std::int64_t(total); ++k) {
-        const std::int64_t p = r.order[sz(k)];
-        for (int j = 0; j < dim; ++j) xyz[sz(k * dim + j)] = x[p * dim + j];
-        cells[sz(k)] = r.cell[sz(p)];
-      }
-    });
-    out["points"] = host_array(std::move(xyz), {total, sz(dim)});
-    out["cells"] = host_array(std::move(cells), {total});
+    out["points"] = host_array(std::move(r.points), {total, sz(dim)});
+    out["cells"] = host_array(std::move(r.cells), {total});
   }
   out["cell"] = host_array(std::move(r.cell), {sz(n)});
   out["order"] = host_array(std::move(r.order), {total});

@@ -158,8 +158,6 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
   // its offsets: every block's points come out in increasing order, on any thread count.
   const int nt = std::max(1, omp_get_max_threads());
   HostVector<std::int64_t> counts(std::size_t(nt) * std::size_t(cells), 0);
-  HostVector<std::int64_t> bounds(std::size_t(nt + 1));
-  for (int t = 0; t <= nt; ++t) bounds[std::size_t(t)] = n * t / nt;
   // calls f(block) for each block point p goes to: its cell's, then those of the boxes holding
   // it (a block's boxes come together: once one holds p, the block's others are skipped)
   auto visit = [&](std::int64_t p, auto&& f) {
@@ -181,9 +179,11 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
   };
 #pragma omp parallel num_threads(nt)
   {
-    const int t = omp_get_thread_num();
+    // the ranges by the threads the region has (it may get fewer than asked for)
+    const int t = omp_get_thread_num(), threads_here = omp_get_num_threads();
+    const std::int64_t first = n * t / threads_here, end = n * (t + 1) / threads_here;
     std::int64_t* mine = counts.data() + std::size_t(t) * std::size_t(cells);
-    for (std::int64_t p = bounds[std::size_t(t)]; p < bounds[std::size_t(t + 1)]; ++p) {
+    for (std::int64_t p = first; p < end; ++p) {
       std::int64_t c = 0;
       for (int j = 0; j < dim; ++j)
         c = c * grid.counts[j] + cell_along(points[p * dim + j], grid, j);
@@ -208,7 +208,7 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
       out.cuts[std::size_t(cells)] = at;
       out.order.resize(std::size_t(at));
     }
-    for (std::int64_t p = bounds[std::size_t(t)]; p < bounds[std::size_t(t + 1)]; ++p)
+    for (std::int64_t p = first; p < end; ++p)
       visit(p, [&](std::int64_t b) { out.order[std::size_t(mine[b]++)] = p; });
   }
   return out;
@@ -234,6 +234,20 @@ HostVector<std::int32_t> cell_counts(const double* points, int dim, std::int64_t
     ++out[std::size_t(c)];
   }
   return out;
+}
+
+void gather_blocks(const double* points, int dim, CellSplit& split, int threads) {
+  blocks_detail::check_dim(dim, "gather_blocks");
+  blocks_detail::ThreadScope scope(threads);
+  const std::int64_t total = std::int64_t(split.order.size());
+  split.points.resize(std::size_t(total) * std::size_t(dim));
+  split.cells.resize(std::size_t(total));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < total; ++k) {
+    const std::int64_t p = split.order[std::size_t(k)];
+    for (int j = 0; j < dim; ++j) split.points[std::size_t(k * dim + j)] = points[p * dim + j];
+    split.cells[std::size_t(k)] = split.cell[std::size_t(p)];
+  }
 }
 
 CellSplit split_by_cell(const double* points, int dim, std::int64_t n, const CellGrid& grid,

@@ -16,7 +16,7 @@ from .. import _core
 from ..spatial import ConvexHull, Delaunay
 from . import _vtu
 from ._blocks import Grid, choose_counts
-from ._ghost import _array_module, triangulate_block
+from ._ghost import triangulate_block
 
 
 # ---------------------------------------------------------------------------------------------
@@ -99,9 +99,9 @@ def _split(pts, offset: int, grid: Grid, boxes: dict, bins: Optional[Grid], back
         parts.append((points[at], ids[at], cells[at]) if cuts[b + 1] > cuts[b] else None)
     if bins is None:
         return tuple(parts)
-    if pts.shape[1] == 2 and _array_module(backend) is np:
-        # on the host a 2D ConvexHull is a Delaunay triangulation of the piece; on a GPU that
-        # costs less than the filter's passes in NumPy
+    if pts.shape[1] == 2:
+        # a 2D ConvexHull is a Delaunay triangulation of the piece; the filter is a few passes
+        # on the host's threads, whatever runs the blocks
         cand = _core.hull_candidates2d(pts, threads)
     else:
         try:
@@ -425,7 +425,10 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
                 dask_key_name=f"gpugeom-delaunay-block-{tag}-{rounds[b]}-{b}"))
             rounds[b] += 1
         # persisted together, so that the pieces are split once a round
-        *done, hull, total = dask.persist(*tasks, hull, total)
+        if first:
+            *done, hull, total = dask.persist(*tasks, hull, total)
+        else:
+            done = dask.persist(*tasks)
         for b, r, m in zip(pending, done, dask.compute(*[delayed(_meta)(r) for r in done])):
             if m["done"]:
                 final[b], metas[b] = r, m

@@ -24,8 +24,6 @@ The rule (docs/design-notes.md, "Distributed Delaunay on Dask"):
 * Each simplex is *owned* by the block that owns its lowest-indexed vertex, so exactly one
   block outputs it; its neighbours are final in that block, so their vertices are known there.
 """
-import contextlib
-
 import numpy as np
 
 from .. import _core
@@ -35,12 +33,9 @@ from ._blocks import Grid
 _EPS = float(np.finfo(np.float64).eps)
 
 
-def _quiet(xp):
-    """NumPy's warnings off for divisions by zero and infinities, which are expected here (CuPy
-    does not warn)."""
-    if xp is np:
-        return np.errstate(divide="ignore", invalid="ignore", over="ignore")
-    return contextlib.nullcontext()
+def _quiet():
+    """NumPy's warnings off for divisions by zero and infinities, which are expected here."""
+    return np.errstate(divide="ignore", invalid="ignore", over="ignore")
 
 
 def _array_module(backend: str):
@@ -64,7 +59,7 @@ _MAX_CONDITION = 1e10
 _PIECE = 1 << 22
 
 
-def _circumcentres(pts, s, xp=np):
+def _circumcentres(pts, s):
     """Circumcentres, radii and an upper bound of their rounding error, for simplices ``s``.
 
     The centre solves ``A x = b`` (rows of A: the edges from the first vertex, b: half their
@@ -73,24 +68,24 @@ def _circumcentres(pts, s, xp=np):
     determinant is zero or the condition is beyond ``_MAX_CONDITION`` the bound is infinite."""
     p0 = pts[s[:, 0]]
     a = pts[s[:, 1:]] - p0[:, None, :]
-    rhs = 0.5 * xp.einsum("mij,mij->mi", a, a)
+    rhs = 0.5 * np.einsum("mij,mij->mi", a, a)
     if pts.shape[1] == 2:
         det = a[:, 0, 0] * a[:, 1, 1] - a[:, 0, 1] * a[:, 1, 0]
-        cols = xp.stack([xp.stack([a[:, 1, 1], -a[:, 1, 0]], 1),
-                         xp.stack([-a[:, 0, 1], a[:, 0, 0]], 1)], 1)
+        cols = np.stack([np.stack([a[:, 1, 1], -a[:, 1, 0]], 1),
+                         np.stack([-a[:, 0, 1], a[:, 0, 0]], 1)], 1)
     else:
-        c0 = xp.cross(a[:, 1], a[:, 2])
-        cols = xp.stack([c0, xp.cross(a[:, 2], a[:, 0]), xp.cross(a[:, 0], a[:, 1])], 1)
-        det = xp.einsum("mi,mi->m", a[:, 0], c0)
-    with _quiet(xp):
-        x = xp.einsum("mi,mij->mj", rhs, cols) / det[:, None]
-        radius = xp.sqrt(xp.einsum("mi,mi->m", x, x))
-        cond = (xp.sqrt(xp.einsum("mij,mij->m", a, a))
-                * xp.sqrt(xp.einsum("mij,mij->m", cols, cols)) / xp.abs(det))
-        edge = xp.sqrt(xp.einsum("mij,mij->mi", a, a).max(axis=1))
+        c0 = np.cross(a[:, 1], a[:, 2])
+        cols = np.stack([c0, np.cross(a[:, 2], a[:, 0]), np.cross(a[:, 0], a[:, 1])], 1)
+        det = np.einsum("mi,mi->m", a[:, 0], c0)
+    with _quiet():
+        x = np.einsum("mi,mij->mj", rhs, cols) / det[:, None]
+        radius = np.sqrt(np.einsum("mi,mi->m", x, x))
+        cond = (np.sqrt(np.einsum("mij,mij->m", a, a))
+                * np.sqrt(np.einsum("mij,mij->m", cols, cols)) / np.abs(det))
+        edge = np.sqrt(np.einsum("mij,mij->mi", a, a).max(axis=1))
         err = 1e3 * _EPS * cond * (radius + edge)
-    bad = ~xp.isfinite(x).all(axis=1) | ~(cond < _MAX_CONDITION)
-    err[bad] = xp.inf
+    bad = ~np.isfinite(x).all(axis=1) | ~(cond < _MAX_CONDITION)
+    err[bad] = np.inf
     x[bad] = 0.0
     return p0 + x, radius, err
 
@@ -111,71 +106,71 @@ def _slabs(region_lo, region_hi, box_lo, box_hi):
     return out
 
 
-def _ball_misses(centre, reach, slabs, xp=np):
-    ok = xp.isfinite(reach)
+def _ball_misses(centre, reach, slabs):
+    ok = np.isfinite(reach)
     for lo, hi in slabs:
-        gap = xp.maximum(xp.maximum(lo - centre, centre - hi), 0.0)
-        ok &= xp.sqrt(xp.einsum("mi,mi->m", gap, gap)) > reach
+        gap = np.maximum(np.maximum(lo - centre, centre - hi), 0.0)
+        ok &= np.sqrt(np.einsum("mi,mi->m", gap, gap)) > reach
     return ok
 
 
-def _covered(klo, khi, slabs, extras, xp=np):
+def _covered(klo, khi, slabs, extras):
     """Whether the part of each box (klo, khi) in every slab is empty or inside an extra box."""
-    ok = xp.ones(len(klo), dtype=bool)
+    ok = np.ones(len(klo), dtype=bool)
     for lo, hi in slabs:
-        plo, phi = xp.maximum(klo, lo), xp.minimum(khi, hi)
-        inside = xp.any(plo > phi, axis=1)  # empty
+        plo, phi = np.maximum(klo, lo), np.minimum(khi, hi)
+        inside = np.any(plo > phi, axis=1)  # empty
         for elo, ehi in extras:
-            inside |= xp.all((plo >= elo) & (phi <= ehi), axis=1)
+            inside |= np.all((plo >= elo) & (phi <= ehi), axis=1)
         ok &= inside
     return ok
 
 
-def _ball_in_box(centre, reach, lo, hi, xp=np):
+def _ball_in_box(centre, reach, lo, hi):
     """The exact bounding box of each ball's part in the box [lo, hi] (empty: lo > hi). Along
     axis k, x_k = t is reachable where (t - c_k)^2 plus the squared distance to the box in the
     other axes (which does not depend on t) is at most r^2."""
-    gap = xp.maximum(xp.maximum(lo - centre, centre - hi), 0.0) ** 2
+    gap = np.maximum(np.maximum(lo - centre, centre - hi), 0.0) ** 2
     other = gap.sum(axis=1)[:, None] - gap
-    half = xp.sqrt(xp.maximum(reach[:, None] ** 2 - other, 0.0))
-    blo, bhi = xp.maximum(centre - half, lo), xp.minimum(centre + half, hi)
-    blo[other > reach[:, None] ** 2] = xp.inf  # misses the box
+    half = np.sqrt(np.maximum(reach[:, None] ** 2 - other, 0.0))
+    blo, bhi = np.maximum(centre - half, lo), np.minimum(centre + half, hi)
+    blo[other > reach[:, None] ** 2] = np.inf  # misses the box
     return blo, bhi
 
 
-def _furthest_plane(count, planes, heights, xp):
+def _furthest_plane(count, planes, heights):
     """For each of ``count`` centres, the hull plane it lies furthest beyond and how far:
     ``heights(i, j)`` gives centres i:j's signed heights over every plane (rows by planes),
     computed a slice of rows at a time (at most 64 MiB of heights)."""
-    best = xp.zeros(count, dtype=xp.int64)
-    top = xp.zeros(count)
+    best = np.zeros(count, dtype=np.int64)
+    top = np.zeros(count)
     step = max(1, (1 << 23) // len(planes))
     for i in range(0, count, step):
         h = heights(i, i + step)
-        best[i:i + step] = xp.argmax(h, axis=1)
-        top[i:i + step] = h[xp.arange(len(h)), best[i:i + step]]
+        best[i:i + step] = np.argmax(h, axis=1)
+        top[i:i + step] = h[np.arange(len(h)), best[i:i + step]]
     return best, top
 
 
-def _hull_cap(centre, reach, planes, xp=np):
+def _hull_cap(centre, reach, planes):
     """Where a ball's centre lies beyond a hull plane (outward unit normal n, offset t: inside
     n.x + t <= 0), the hull's points in the ball lie in the cap on the inner side of the plane
     furthest behind the centre: the disc of radius sqrt(r^2 - h^2) round the centre's foot on
     the plane, swept inwards by the cap's depth r - h. Returns whether there was a cut and the
     box round the cap (the ball's box elsewhere)."""
     best, hb = _furthest_plane(
-        len(centre), planes, lambda i, j: centre[i:j] @ planes[:, :-1].T + planes[:, -1], xp)
+        len(centre), planes, lambda i, j: centre[i:j] @ planes[:, :-1].T + planes[:, -1])
     cut = (hb > 0) & (hb < reach)
     n = planes[best, :-1]
     foot = centre - hb[:, None] * n
-    rim = xp.sqrt(xp.maximum(reach * reach - hb * hb, 0.0))
-    lo, hi = _cap_box(foot, n, rim, -(reach - hb), xp)
-    lo = xp.where(cut[:, None], lo, centre - reach[:, None])
-    hi = xp.where(cut[:, None], hi, centre + reach[:, None])
+    rim = np.sqrt(np.maximum(reach * reach - hb * hb, 0.0))
+    lo, hi = _cap_box(foot, n, rim, -(reach - hb))
+    lo = np.where(cut[:, None], lo, centre - reach[:, None])
+    hi = np.where(cut[:, None], hi, centre + reach[:, None])
     return cut, lo, hi
 
 
-def _face_caps(pts, t, nbt, xp=np):
+def _face_caps(pts, t, nbt):
     """Boxes round the part inside the hull of the circumballs of simplices ``t`` that have a
     face on the hull (no neighbour in ``nbt``) with the centre beyond it, computed from that
     face, without the centre (which is far and ill-conditioned for the flat simplices along
@@ -189,27 +184,27 @@ def _face_caps(pts, t, nbt, xp=np):
     that stays accurate however far the centre is. Returns (applies, lo, hi)."""
     m, d1 = t.shape
     d = d1 - 1
-    lo = xp.full((m, d), -xp.inf)
-    hi = xp.full((m, d), xp.inf)
-    applies = xp.zeros(m, dtype=bool)
+    lo = np.full((m, d), -np.inf)
+    hi = np.full((m, d), np.inf)
+    applies = np.zeros(m, dtype=bool)
     for j in range(d1):
         face = nbt[:, j] < 0
         if not bool(face.any()):
             continue
-        rows = xp.nonzero(face)[0]
-        p, n, rho, h, w, ew, span, good = _face_sphere(pts, t[rows], j, xp)
-        with _quiet(xp):
+        rows = np.nonzero(face)[0]
+        p, n, rho, h, w, ew, span, good = _face_sphere(pts, t[rows], j)
+        with _quiet():
             depth = rho * rho * (h * (1 + 1e-9) + 1e-12 * span) / (-w - ew)
-        ok = good & (w < -ew) & xp.isfinite(depth)
-        flo, fhi = _cap_box(p, n, rho, depth, xp)
+        ok = good & (w < -ew) & np.isfinite(depth)
+        flo, fhi = _cap_box(p, n, rho, depth)
         at = rows[ok]
-        lo[at] = xp.maximum(lo[at], flo[ok])
-        hi[at] = xp.minimum(hi[at], fhi[ok])
+        lo[at] = np.maximum(lo[at], flo[ok])
+        hi[at] = np.minimum(hi[at], fhi[ok])
         applies[at] = True
     return applies, lo, hi
 
 
-def _face_sphere(pts, t, j, xp):
+def _face_sphere(pts, t, j):
     """Face j of simplices t (the face opposite vertex j, q): its circumcentre p, unit normal n
     towards q, circumradius rho (rounded up), h = (q - p).n, w = |q - p|^2 - rho^2 with a bound
     ew of its rounding, the face's size and whether it is far from flat."""
@@ -220,45 +215,45 @@ def _face_sphere(pts, t, j, xp):
     u = pts[t[:, others[1]]] - a
     if d1 == 3:
         p = a + 0.5 * u
-        rho2 = 0.25 * xp.einsum("mi,mi->m", u, u)
-        n = xp.stack([-u[:, 1], u[:, 0]], axis=1)
-        span = xp.sqrt(xp.einsum("mi,mi->m", u, u))
+        rho2 = 0.25 * np.einsum("mi,mi->m", u, u)
+        n = np.stack([-u[:, 1], u[:, 0]], axis=1)
+        span = np.sqrt(np.einsum("mi,mi->m", u, u))
         good = span > 0
     else:
         v = pts[t[:, others[2]]] - a
-        uv = xp.cross(u, v)
-        uv2 = xp.einsum("mi,mi->m", uv, uv)
-        uu, vv = xp.einsum("mi,mi->m", u, u), xp.einsum("mi,mi->m", v, v)
-        with _quiet(xp):
-            off = (uu[:, None] * xp.cross(v, uv) + vv[:, None] * xp.cross(uv, u)) \
+        uv = np.cross(u, v)
+        uv2 = np.einsum("mi,mi->m", uv, uv)
+        uu, vv = np.einsum("mi,mi->m", u, u), np.einsum("mi,mi->m", v, v)
+        with _quiet():
+            off = (uu[:, None] * np.cross(v, uv) + vv[:, None] * np.cross(uv, u)) \
                 / (2.0 * uv2[:, None])
         p = a + off
-        rho2 = xp.einsum("mi,mi->m", off, off)
+        rho2 = np.einsum("mi,mi->m", off, off)
         n = uv
-        span = xp.sqrt(xp.maximum(uu, vv))
+        span = np.sqrt(np.maximum(uu, vv))
         good = uv2 > 1e-16 * uu * vv  # a face far from flat: its circle is well defined
-    with _quiet(xp):
-        n = n / xp.sqrt(xp.einsum("mi,mi->m", n, n))[:, None]
+    with _quiet():
+        n = n / np.sqrt(np.einsum("mi,mi->m", n, n))[:, None]
         qp = q - p
-        h = xp.einsum("mi,mi->m", qp, n)
-        n = xp.where((h < 0)[:, None], -n, n)
-        h = xp.abs(h)
-        qq = xp.einsum("mi,mi->m", qp, qp)
+        h = np.einsum("mi,mi->m", qp, n)
+        n = np.where((h < 0)[:, None], -n, n)
+        h = np.abs(h)
+        qq = np.einsum("mi,mi->m", qp, qp)
         w = qq - rho2
         ew = 1e-9 * (qq + rho2)  # far above the rounding of the terms
-        rho = xp.sqrt(rho2) * (1 + 1e-9) + 1e-9 * span
-    return p, n, rho, h, w, ew, span, good & xp.isfinite(w)
+        rho = np.sqrt(rho2) * (1 + 1e-9) + 1e-9 * span
+    return p, n, rho, h, w, ew, span, good & np.isfinite(w)
 
 
-def _cap_box(foot, n, rim, depth, xp):
+def _cap_box(foot, n, rim, depth):
     """The box round a cap: the disc of radius ``rim`` round ``foot`` in the plane of unit
     normal ``n``, swept by ``depth`` along n (a negative depth: against n)."""
-    spread = rim[:, None] * xp.sqrt(xp.maximum(1.0 - n * n, 0.0))
-    return (foot - spread + xp.minimum(0.0, depth[:, None] * n),
-            foot + spread + xp.maximum(0.0, depth[:, None] * n))
+    spread = rim[:, None] * np.sqrt(np.maximum(1.0 - n * n, 0.0))
+    return (foot - spread + np.minimum(0.0, depth[:, None] * n),
+            foot + spread + np.maximum(0.0, depth[:, None] * n))
 
 
-def _far_caps(pts, t, planes, xp):
+def _far_caps(pts, t, planes):
     """For simplices whose circumcentre lies beyond one of their faces (far away for the flat
     simplices along the hull, where its computed place is too rough for the hull-plane cut),
     the hull-plane cut computed from that face: the centre is p + tau n (tau = w / 2h < 0, in
@@ -269,50 +264,50 @@ def _far_caps(pts, t, planes, xp):
     (r + h_m), rim sqrt(r^2 - h_m^2), foot p - d m + tau (n - k m). Returns (applies, lo, hi)."""
     m, d1 = t.shape
     d = d1 - 1
-    has = xp.zeros(m, dtype=bool)
-    p, n = xp.zeros((m, d)), xp.zeros((m, d))
-    rho, tau, rel = xp.zeros(m), xp.zeros(m), xp.zeros(m)
+    has = np.zeros(m, dtype=bool)
+    p, n = np.zeros((m, d)), np.zeros((m, d))
+    rho, tau, rel = np.zeros(m), np.zeros(m), np.zeros(m)
     for j in range(d1):
-        pj, nj, rhoj, hj, wj, ewj, spanj, goodj = _face_sphere(pts, t, j, xp)
+        pj, nj, rhoj, hj, wj, ewj, spanj, goodj = _face_sphere(pts, t, j)
         new = ~has & goodj & (wj < -ewj) & (hj > 1e-9 * spanj)
-        with _quiet(xp):
+        with _quiet():
             tj = wj / (2.0 * hj)
-        p = xp.where(new[:, None], pj, p)
-        n = xp.where(new[:, None], -nj, n)  # tau > 0 along -n: the side away from q
-        rho = xp.where(new, rhoj, rho)
-        tau = xp.where(new, -tj, tau)
-        with _quiet(xp):  # tau's relative error, twice (tau^2), with room
-            rel = xp.where(new, 1e-8 + 2.0 * ewj / xp.abs(wj) + 2e-9 * spanj / hj, rel)
+        p = np.where(new[:, None], pj, p)
+        n = np.where(new[:, None], -nj, n)  # tau > 0 along -n: the side away from q
+        rho = np.where(new, rhoj, rho)
+        tau = np.where(new, -tj, tau)
+        with _quiet():  # tau's relative error, twice (tau^2), with room
+            rel = np.where(new, 1e-8 + 2.0 * ewj / np.abs(wj) + 2e-9 * spanj / hj, rel)
         has |= new
-    lo, hi = xp.full((m, d), -xp.inf), xp.full((m, d), xp.inf)
-    rows = xp.nonzero(has)[0]
+    lo, hi = np.full((m, d), -np.inf), np.full((m, d), np.inf)
+    rows = np.nonzero(has)[0]
     if len(rows) == 0 or len(planes) == 0:
         return has, lo, hi
     p, n, rho, tau, rel = p[rows], n[rows], rho[rows], tau[rows], rel[rows]
     normals, offsets = planes[:, :-1], planes[:, -1]
     best, _ = _furthest_plane(
         len(rows), planes,
-        lambda i, j: p[i:j] @ normals.T + offsets + tau[i:j, None] * (n[i:j] @ normals.T), xp)
+        lambda i, j: p[i:j] @ normals.T + offsets + tau[i:j, None] * (n[i:j] @ normals.T))
     mn = normals[best]
-    dd = xp.einsum("mi,mi->m", mn, p) + offsets[best]
-    k = xp.einsum("mi,mi->m", mn, n)
+    dd = np.einsum("mi,mi->m", mn, p) + offsets[best]
+    k = np.einsum("mi,mi->m", mn, n)
     if d == 2:
         sin2 = (mn[:, 0] * n[:, 1] - mn[:, 1] * n[:, 0]) ** 2
     else:
-        cr = xp.cross(mn, n)
-        sin2 = xp.einsum("mi,mi->m", cr, cr)
+        cr = np.cross(mn, n)
+        sin2 = np.einsum("mi,mi->m", cr, cr)
     hm = dd + tau * k
     num = rho * rho - dd * dd - 2.0 * dd * tau * k + tau * tau * sin2
-    terms = rho * rho + dd * dd + 2.0 * xp.abs(dd * tau * k) + tau * tau * sin2
+    terms = rho * rho + dd * dd + 2.0 * np.abs(dd * tau * k) + tau * tau * sin2
     # rounded up, so the cap only grows: tau's error, and sin2's own (a few eps) times tau^2
     num = num + rel * terms + 1e-15 * tau * tau + 1e-12 * (rho * rho)
-    r = xp.sqrt(rho * rho + tau * tau)
-    ok = (hm > 0) & (num > 0) & xp.isfinite(num)
-    with _quiet(xp):
+    r = np.sqrt(rho * rho + tau * tau)
+    ok = (hm > 0) & (num > 0) & np.isfinite(num)
+    with _quiet():
         depth = num / (r + hm)
-        rim = xp.sqrt(num)
+        rim = np.sqrt(num)
         foot = p - dd[:, None] * mn + tau[:, None] * (n - k[:, None] * mn)
-    flo, fhi = _cap_box(foot, mn, rim, -depth, xp)
+    flo, fhi = _cap_box(foot, mn, rim, -depth)
     at = rows[ok]
     lo[at], hi[at] = flo[ok], fhi[ok]
     has[:] = False
@@ -321,7 +316,7 @@ def _far_caps(pts, t, planes, xp):
 
 
 def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_hi, planes,
-                    extras=(), xp=np, nbs=None, outside=None):
+                    extras=(), nbs=None, outside=None):
     """For simplices ``s`` of local points ``pts``: which are final; for the others the ghost
     width that would hold their circumball (inf where the centre is not trusted), whether they
     lie along the hull, and the box where outside points could break them (``klo``, ``khi``).
@@ -334,46 +329,46 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
     must meet the bounding box beyond the region only inside the extra boxes, or (``outside``
     given, an ``_Outside``) only bins that hold no point outside the block."""
     scale = float(max(np.abs(box_lo).max(), np.abs(box_hi).max()))
-    slabs = [(xp.asarray(lo), xp.asarray(hi)) for lo, hi in
+    slabs = [(np.asarray(lo), np.asarray(hi)) for lo, hi in
              _slabs(region_lo, region_hi, box_lo, box_hi)]
-    extras = [(xp.asarray(lo), xp.asarray(hi)) for lo, hi in extras]
-    box_lo, box_hi = xp.asarray(box_lo), xp.asarray(box_hi)
-    centre, radius, err = _circumcentres(pts, s, xp)
-    reach = radius + 2.0 * err + 64.0 * _EPS * (scale + xp.abs(centre).max(axis=1) + radius)
-    ok = _ball_misses(centre, reach, slabs, xp)
+    extras = [(np.asarray(lo), np.asarray(hi)) for lo, hi in extras]
+    box_lo, box_hi = np.asarray(box_lo), np.asarray(box_hi)
+    centre, radius, err = _circumcentres(pts, s)
+    reach = radius + 2.0 * err + 64.0 * _EPS * (scale + np.abs(centre).max(axis=1) + radius)
+    ok = _ball_misses(centre, reach, slabs)
     m = len(s)
-    along = xp.zeros(m, dtype=bool)
+    along = np.zeros(m, dtype=bool)
     klo, khi = centre - reach[:, None], centre + reach[:, None]
-    retry = xp.nonzero(~ok & xp.isfinite(reach))[0]
+    retry = np.nonzero(~ok & np.isfinite(reach))[0]
     if len(retry):
         c, r = centre[retry], reach[retry]
-        lo, hi = _ball_in_box(c, r, box_lo, box_hi, xp)
-        cut = xp.zeros(len(retry), dtype=bool)
+        lo, hi = _ball_in_box(c, r, box_lo, box_hi)
+        cut = np.zeros(len(retry), dtype=bool)
         if len(planes):
-            cut, clo, chi = _hull_cap(c, r, xp.asarray(planes), xp)
-            lo, hi = xp.maximum(lo, clo), xp.minimum(hi, chi)
+            cut, clo, chi = _hull_cap(c, r, np.asarray(planes))
+            lo, hi = np.maximum(lo, clo), np.minimum(hi, chi)
         if nbs is not None:
-            fc, flo, fhi = _face_caps(pts, s[retry], nbs[retry], xp)
+            fc, flo, fhi = _face_caps(pts, s[retry], nbs[retry])
             cut = cut | fc
-            lo, hi = xp.maximum(lo, flo), xp.minimum(hi, fhi)
+            lo, hi = np.maximum(lo, flo), np.minimum(hi, fhi)
         if len(planes):
-            fc, flo, fhi = _far_caps(pts, s[retry], xp.asarray(planes), xp)
+            fc, flo, fhi = _far_caps(pts, s[retry], np.asarray(planes))
             cut = cut | fc
-            lo, hi = xp.maximum(lo, flo), xp.minimum(hi, fhi)
-        pad = (1e-9 * scale + 64.0 * _EPS * (xp.abs(c).max(axis=1) + r))[:, None]
+            lo, hi = np.maximum(lo, flo), np.minimum(hi, fhi)
+        pad = (1e-9 * scale + 64.0 * _EPS * (np.abs(c).max(axis=1) + r))[:, None]
         lo, hi = lo - pad, hi + pad
-        covered = _covered(lo, hi, slabs, extras, xp)
+        covered = _covered(lo, hi, slabs, extras)
         if outside is not None:
             covered |= outside.misses(lo, hi)
         ok[retry] = covered
-        along[retry] = cut | xp.any((c < box_lo) | (c > box_hi), axis=1)
+        along[retry] = cut | np.any((c < box_lo) | (c > box_hi), axis=1)
         klo[retry], khi[retry] = lo, hi
     # the ghost width that puts the box where outside points could break a simplex inside
     # the region
-    cell_lo, cell_hi = xp.asarray(cell_lo), xp.asarray(cell_hi)
-    with _quiet(xp):
-        need = xp.maximum(khi - cell_hi, cell_lo - klo).max(axis=1)
-    need = xp.where(xp.isfinite(reach), need, xp.inf)
+    cell_lo, cell_hi = np.asarray(cell_lo), np.asarray(cell_hi)
+    with _quiet():
+        need = np.maximum(khi - cell_hi, cell_lo - klo).max(axis=1)
+    need = np.where(np.isfinite(reach), need, np.inf)
     return ok, need, along, klo, khi
 
 
@@ -386,24 +381,22 @@ class _Outside:
     space: between clusters, inside a sphere of points (there a block grew its ghost layer
     round after round without gaining a point)."""
 
-    def __init__(self, bins: Grid, total: np.ndarray, local_pts: np.ndarray, threads=1,
-                 xp=np):
+    def __init__(self, bins: Grid, total: np.ndarray, local_pts: np.ndarray, threads=1):
         local = _core.cell_counts(np.ascontiguousarray(local_pts, dtype=np.float64),
                                   bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist(),
                                   threads)
-        self.table = xp.asarray(_summed((total > local).astype(np.int32)))
-        self.totals = _summed(total)  # (on the host: for the growth of the region)
+        self.table = _summed((total > local).astype(np.int32))
+        self.totals = _summed(total)  # (for the growth of the region)
         self.any = bool(int(self.table[(-1,) * total.ndim]) > 0)
-        self.bins, self.xp = bins, xp
+        self.bins = bins
         scale = float(max(np.abs(bins.lo).max(), np.abs(bins.hi).max(), bins.width.max()))
         self.margin = 1e-9 * scale  # far above the rounding of a point's bin
 
     def misses(self, lo, hi):
         """Per box (rows of ``lo``, ``hi``): True where it meets no bin with an outside point."""
-        xp = self.xp
         if not self.any:
-            return xp.ones(len(lo), dtype=bool)
-        count, empty, bad = self._count(self.table, lo, hi, xp)
+            return np.ones(len(lo), dtype=bool)
+        count, empty, bad = self._count(self.table, lo, hi)
         return (empty | (count == 0)) & ~bad
 
     def widest(self, cell_lo, cell_hi, least: float, most: float, budget: int) -> float:
@@ -411,7 +404,7 @@ class _Outside:
         points (``least`` where none does): bisection over the counts."""
         def fits(w):
             lo, hi = (np.asarray(cell_lo) - w)[None], (np.asarray(cell_hi) + w)[None]
-            return int(self._count(self.totals, lo, hi, np)[0][0]) <= budget
+            return int(self._count(self.totals, lo, hi)[0][0]) <= budget
         if fits(most):
             return most
         if not fits(least):
@@ -421,33 +414,33 @@ class _Outside:
             least, most = (mid, most) if fits(mid) else (least, mid)
         return least
 
-    def _count(self, table, lo, hi, xp):
+    def _count(self, table, lo, hi):
         """Per box: the sum of ``table``'s bins over the bins it meets (with the margin), whether
         it is empty (lo > hi along an axis, or beyond every bin), whether it has a NaN."""
         b = self.bins
         m = len(lo)
-        first, last, empty = [], [], xp.zeros(m, dtype=bool)
-        bad = xp.isnan(lo).any(axis=1) | xp.isnan(hi).any(axis=1)
+        first, last, empty = [], [], np.zeros(m, dtype=bool)
+        bad = np.isnan(lo).any(axis=1) | np.isnan(hi).any(axis=1)
         for j in range(b.ndim):
             top = int(b.counts[j]) - 1
             if b.width[j] > 0:
-                with _quiet(xp):
-                    i0 = xp.floor((lo[:, j] - self.margin - b.lo[j]) / b.width[j])
-                    i1 = xp.floor((hi[:, j] + self.margin - b.lo[j]) / b.width[j])
+                with _quiet():
+                    i0 = np.floor((lo[:, j] - self.margin - b.lo[j]) / b.width[j])
+                    i1 = np.floor((hi[:, j] + self.margin - b.lo[j]) / b.width[j])
                 empty |= (i1 < 0) | (i0 > top) | (lo[:, j] > hi[:, j])
-                i0 = xp.clip(xp.nan_to_num(i0), 0, top).astype(xp.int64)
-                i1 = xp.clip(xp.nan_to_num(i1), 0, top).astype(xp.int64)
+                i0 = np.clip(np.nan_to_num(i0), 0, top).astype(np.int64)
+                i1 = np.clip(np.nan_to_num(i1), 0, top).astype(np.int64)
             else:
-                i0 = xp.zeros(m, dtype=xp.int64)
+                i0 = np.zeros(m, dtype=np.int64)
                 i1 = i0
                 empty |= lo[:, j] > hi[:, j]
             first.append(i0)
             last.append(i1 + 1)
-        count = xp.zeros(m, dtype=xp.int64)
+        count = np.zeros(m, dtype=np.int64)
         for corner in range(1 << b.ndim):  # inclusion and exclusion over the box's corners
             at = tuple(last[j] if corner >> j & 1 else first[j] for j in range(b.ndim))
             sign = 1 if bin(corner).count("1") % 2 == b.ndim % 2 else -1
-            count += sign * table[at].astype(xp.int64)
+            count += sign * table[at].astype(np.int64)
         return count, empty, bad
 
 
@@ -469,7 +462,6 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
     misses the bounding box beyond the region), which almost every simplex passes, runs in C++
     over all of them (``_core.circumballs_inside_region``: the same centre, bound and slabs as
     ``final_simplices``); only the others are tested here, in NumPy."""
-    xp = np
     clo, chi = cell
     rlo, rhi = clo - ghost, chi + ghost
     if len(req):
@@ -483,7 +475,7 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
     for i in range(0, len(req), _PIECE):
         t = s[req[i:i + _PIECE]]
         ok, need, along, klo, khi = final_simplices(dpts, t, rlo, rhi, grid.lo, grid.hi, clo, chi,
-                                                    planes, extras, xp, nb[req[i:i + _PIECE]],
+                                                    planes, extras, nb[req[i:i + _PIECE]],
                                                     outside)
         if bool(ok.all()):
             continue
@@ -496,7 +488,7 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
         # clusters need wide layers at once).
         thin = ~ok & along & ((khi - klo).min(axis=1) < 2.0 * ghost)
         v = dpts[t]
-        held = xp.all((v >= xp.asarray(rlo)) & (v <= xp.asarray(rhi)), axis=(1, 2)) & ~along
+        held = np.all((v >= np.asarray(rlo)) & (v <= np.asarray(rhi)), axis=(1, 2)) & ~along
         free = ~ok & ~thin & ~held
         trusted = ~ok & ~thin & held
         if bool(free.any()):
@@ -504,8 +496,8 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
         if bool(trusted.any()):
             want_held = max(want_held, float(need[trusted].max()))
         if bool(thin.any()):
-            thin_lo.append(_host(klo[thin]))
-            thin_hi.append(_host(khi[thin]))
+            thin_lo.append(klo[thin])
+            thin_hi.append(khi[thin])
     if want_free == -np.inf and want_held == -np.inf and not thin_lo:
         return None
     nxt = ghost
@@ -637,7 +629,7 @@ def _triangulated(pts, owned, backend, threads):
     the test in CuPy and the passes on one host thread took 6 s of a block of 5·10^6 3D points
     whose triangulation took 0.5 s.) Raises DegenerateInputError as Delaunay does."""
     xp = _array_module(backend)
-    tri = Delaunay(xp.asarray(pts), backend=backend, threads=threads)
+    tri = Delaunay(np.asarray(pts), backend=backend, threads=threads)
     # as the triangulation gives them (int32: half the bytes of int64 to copy from a GPU); the
     # passes take either
     s, nb = _host(tri.simplices), _host(tri.neighbors)
