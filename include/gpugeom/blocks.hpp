@@ -145,17 +145,27 @@ struct CellSplit {
 /// for a dim other than 2 or 3.
 CellSplit split_by_cell(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                         int threads = 0);
-/// Splits `n` points to the blocks of `grid` (CellSplit): a point goes to its cell's block and
-/// to the block `box_block[i]` of every one of the `nboxes` closed boxes i holding it
-/// (`box_lo[i * dim + j] <= x_j <= box_hi[i * dim + j]`, comparisons of the doubles only), once
-/// per block. The boxes come by block (box_block not decreasing). Where `wanted` is given, only
-/// the blocks b with wanted[b] nonzero get points. Deterministic on any thread count. Throws
-/// Error(InvalidArgument) for a dim other than 2 or 3 or a box's block outside the grid or out of
-/// order.
+/// Whole cells of a second grid (the bins) that blocks ask for: entry i asks for every point in
+/// bin `bin[i]` (its cell of `bins`, as CellGrid says) for block `block[i]`. The entries come by
+/// block (`block` not decreasing).
+struct BinRequests {
+  CellGrid bins;
+  const std::int64_t* bin = nullptr;
+  const std::int64_t* block = nullptr;
+  std::int64_t count = 0;
+};
+/// Splits `n` points to the blocks of `grid` (CellSplit): a point goes to its cell's block, to
+/// the block `box_block[i]` of every one of the `nboxes` closed boxes i holding it
+/// (`box_lo[i * dim + j] <= x_j <= box_hi[i * dim + j]`, comparisons of the doubles only) and,
+/// where `requests` is given, to every block asking for its bin; once per block. The boxes come
+/// by block (box_block not decreasing). Where `wanted` is given, only the blocks b with
+/// wanted[b] nonzero get points. Deterministic on any thread count. Throws
+/// Error(InvalidArgument) for a dim other than 2 or 3, a box's or request's block outside the
+/// grid or out of order, or a request's bin outside its grid.
 CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                           const double* box_lo, const double* box_hi, const std::int64_t* box_block,
                           std::int64_t nboxes, const std::uint8_t* wanted = nullptr,
-                          int threads = 0);
+                          int threads = 0, const BinRequests* requests = nullptr);
 
 /// Fills `split.points` and `split.cells` (CellSplit) from the points it split, on `threads`
 /// host threads (0: OpenMP's default): each block's part then lies in one slice.
@@ -167,6 +177,27 @@ void gather_blocks(const double* points, int dim, CellSplit& split, int threads 
 /// 2^28 cells.
 HostVector<std::int32_t> cell_counts(const double* points, int dim, std::int64_t n,
                                      const CellGrid& grid, int threads = 0);
+
+/// Balls (`m` centres of `dim` coordinates and their reaches), each cut to a closed box (`lo`,
+/// `hi`, `dim` coordinates a ball), against the cells of `grid` with `marked[cell]` nonzero (the
+/// bins that hold points a block lacks): a cell *meets* a ball where its box, grown by `margin`,
+/// meets the cut box and lies within the reach of the centre; a reach that is not finite meets
+/// every marked cell of the cut box. The test of the region past a block's cells for
+/// gpugeom.dask (a ball that meets no marked cell holds no point the block lacks) and its
+/// request (the marked cells the failing balls meet, whose points it asks for next).
+struct BallBins {
+  /// Per ball, 1 where it meets a marked cell.
+  HostVector<std::uint8_t> meets;
+  /// With `collect`: the marked cells any ball meets, increasing (else empty).
+  HostVector<std::int64_t> cells;
+};
+/// The cells the balls meet (BallBins), on `threads` host threads (0: OpenMP's default); without
+/// `collect` only whether each ball meets one (a ball's scan stops at the first). Throws
+/// Error(InvalidArgument) for a dim other than 2 or 3 or more than 2^28 cells.
+BallBins balls_in_bins(const double* centres, const double* reach, const double* lo,
+                       const double* hi, std::int64_t m, int dim, const CellGrid& grid,
+                       const std::uint8_t* marked, double margin, bool collect = true,
+                       int threads = 0);
 
 /// The points of a 2D set (`n` points, x and y each) that may be extreme points of a larger set
 /// holding them: all but those strictly inside the polygon through their extreme points in 8

@@ -5,6 +5,7 @@
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
 #include <algorithm>
@@ -879,14 +880,17 @@ nb::object cell_counts_bind(const AnyArray& points, const std::vector<double>& l
   return host_array(std::move(r), shape);
 }
 
-// The split of points to the blocks of gpugeom.dask's grid: by cell, and (box_lo, box_hi,
-// box_block given) to every block with a box holding them; `wanted`: the blocks to list.
+// The split of points to the blocks of gpugeom.dask's grid: by cell, (box_lo, box_hi,
+// box_block given) to every block with a box holding them, and (bins, bin, bin_block given: the
+// bins as (lo, width, counts)) to every block asking for the bin they lie in; `wanted`: the
+// blocks to list.
 nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>& lo,
                               const std::vector<double>& width,
                               const std::vector<std::int64_t>& counts,
                               std::optional<AnyArray> box_lo, std::optional<AnyArray> box_hi,
                               std::optional<AnyArray> box_block, std::optional<AnyArray> wanted,
-                              bool gather, int threads) {
+                              bool gather, int threads, nb::object bins,
+                              std::optional<AnyArray> bin, std::optional<AnyArray> bin_block) {
   int dim = 0;
   std::int64_t n = 0;
   const double* x = host_points(points, &dim, &n);
@@ -915,8 +919,22 @@ nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>&
       throw nb::value_error("wanted must be a host bool array with an entry per block");
     want = static_cast<const std::uint8_t*>(w.data);
   }
+  if (bins.is_none() != !bin.has_value() || bin.has_value() != bin_block.has_value())
+    throw nb::value_error("bins, bin and bin_block go together");
+  BinRequests asked;
+  if (bin) {
+    auto [blo, bw, bc] =
+        nb::cast<std::tuple<std::vector<double>, std::vector<double>, std::vector<std::int64_t>>>(
+            bins);
+    asked.bins = cell_grid(blo, bw, bc, dim);
+    std::int64_t nbins = 1, k = 0;
+    for (int j = 0; j < dim; ++j) nbins *= bc[std::size_t(j)];
+    asked.bin = host_indices(*bin, "bin", -1, -1, 0, nbins, &asked.count);
+    asked.block = host_indices(*bin_block, "bin_block", asked.count, -1, 0, cells, &k);
+  }
   CellSplit r = unlocked([&] {
-    CellSplit split = split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads);
+    CellSplit split =
+        split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads, bin ? &asked : nullptr);
     if (gather) gather_blocks(x, dim, split, threads);
     return split;
   });
@@ -930,6 +948,42 @@ nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>&
   out["order"] = host_array(std::move(r.order), {total});
   out["cuts"] = host_array(std::move(r.cuts), {sz(cells + 1)});
   return out;
+}
+
+// gpugeom.dask's test of balls (centres, reaches, cut boxes) against the bins with points a
+// block lacks (`marked`, one byte a bin of the grid (lo, width, counts)).
+nb::dict balls_in_bins_bind(const AnyArray& centres, const AnyArray& reach, const AnyArray& lo,
+                            const AnyArray& hi, const std::vector<double>& grid_lo,
+                            const std::vector<double>& width,
+                            const std::vector<std::int64_t>& counts, const AnyArray& marked,
+                            double margin, bool collect, int threads) {
+  int dim = 0;
+  std::int64_t m = 0;
+  const double* c = host_points(centres, &dim, &m);
+  CellGrid g = cell_grid(grid_lo, width, counts, dim);
+  std::int64_t cells = 1;
+  for (int j = 0; j < dim; ++j) cells *= counts[std::size_t(j)];
+  Input r = inspect(reach, "reach"), l = inspect(lo, "lo"), h = inspect(hi, "hi");
+  if (r.on_device || !holds<double>(r) || r.shape.size() != 1 || r.shape[0] != m)
+    throw nb::value_error("reach must be a host float64 array with one entry per centre");
+  for (const Input* b : {&l, &h})
+    if (b->on_device || !holds<double>(*b) || b->shape.size() != 2 || b->shape[0] != m ||
+        b->shape[1] != dim)
+      throw nb::value_error("lo and hi must be host float64 arrays shaped as the centres");
+  Input w = inspect(marked, "marked");
+  std::int64_t size = 1;
+  for (auto e : w.shape) size *= e;
+  if (w.on_device || size != cells || !(holds<bool>(w) || holds<std::uint8_t>(w)))
+    throw nb::value_error("marked must be a host bool array with an entry per bin");
+  const auto* mk = static_cast<const std::uint8_t*>(w.data);
+  BallBins out = unlocked([&] {
+    return balls_in_bins(c, pts(r), pts(l), pts(h), m, dim, g, mk, margin, collect, threads);
+  });
+  nb::dict d;
+  const sz k = out.cells.size();
+  d["meets"] = host_array(std::move(out.meets), {sz(m)});
+  d["cells"] = host_array(std::move(out.cells), {k});
+  return d;
 }
 
 nb::object hull_candidates2d_bind(const AnyArray& points, int threads) {
@@ -1023,7 +1077,10 @@ void bind_spatial(nb::module_& m) {
         "threads"_a = 0);
   m.def("split_to_blocks", &split_to_blocks_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
         "box_lo"_a = nb::none(), "box_hi"_a = nb::none(), "box_block"_a = nb::none(),
-        "wanted"_a = nb::none(), "gather"_a = false, "threads"_a = 0);
+        "wanted"_a = nb::none(), "gather"_a = false, "threads"_a = 0, "bins"_a = nb::none(),
+        "bin"_a = nb::none(), "bin_block"_a = nb::none());
+  m.def("balls_in_bins", &balls_in_bins_bind, "centres"_a, "reach"_a, "lo"_a, "hi"_a, "grid_lo"_a,
+        "width"_a, "counts"_a, "marked"_a, "margin"_a, "collect"_a = true, "threads"_a = 0);
   m.def("block_neighbors", &block_neighbors_bind, "nb_local"_a, "offset"_a, "req_owner"_a,
         "req_key"_a, "req_pos"_a, "borders"_a, "threads"_a = 0);
   m.def("block_output", &block_output_bind, "simplices"_a, "neighbors"_a, "rows"_a, "ids"_a,

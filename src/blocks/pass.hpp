@@ -1,13 +1,15 @@
 // What every block pass (src/blocks/) shares: the OpenMP thread count of the calling thread
-// while it runs, and the check of the dimension.
+// while it runs, the check of the dimension, a point's cell, and ordered listing.
 #pragma once
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "gpugeom/blocks.hpp"
 #include "gpugeom/common.hpp"
 
 namespace gpugeom::blocks_detail {
@@ -34,6 +36,15 @@ inline void check_dim(int dim, const char* pass) {
   if (dim != 2 && dim != 3)
     throw Error(ErrorCode::InvalidArgument,
                 std::string(pass) + ": dim must be 2 or 3, got " + std::to_string(dim));
+}
+
+// A point's cell along axis j: floor((x - lo) / width), the same two roundings as
+// gpugeom.dask's Grid, clamped to the grid (0 where the width is 0). Every pass that puts a point
+// in a cell or bin uses it, so that a bin counted by one pass is the bin another splits by.
+inline std::int64_t cell_along(double x, const CellGrid& g, int j) {
+  if (!(g.width[j] > 0)) return 0;
+  const double f = std::floor((x - g.lo[j]) / g.width[j]);
+  return f < 0 ? 0 : (f > double(g.counts[j] - 1) ? g.counts[j] - 1 : std::int64_t(f));
 }
 
 // Calls emit(i, rank) for each i in [0, n) with keep(i), rank counting them from 0 in

@@ -81,23 +81,25 @@ def _summary(pts):
     return dict(n=len(pts), bad=-1, lo=np.array(r["lo"]), hi=np.array(r["hi"]))
 
 
-def _split(pts, offset: int, grid: Grid, boxes: dict, bins: Optional[Grid], backend: str,
-           threads: int):
+def _split(pts, offset: int, grid: Grid, boxes: dict, asked: dict, bins: Grid, first: bool,
+           sample: Grid, backend: str, threads: int):
     """A piece's points for a round: per block of ``boxes`` (a dict: block -> the boxes it takes
-    this round), in increasing block order, the points it owns and those in its boxes as
-    (points, global ids, owner blocks), None where it has none; in the first round (``bins``
-    given), then the piece's hull candidates (its extreme points) likewise and its count of
-    points per bin. Separate outputs, so that each block takes only its parts from the worker
-    that split the piece, and no second task selects its ghosts from the other blocks' points
-    (one hop, not two: on 4 workers the hop cost more than the selection)."""
+    this round), in increasing block order, the points it owns, those in its boxes and those in
+    the bins it asked for (``asked``: block -> bin ids), as (points, global ids, owner blocks),
+    None where it has none; in the first round, then the piece's hull candidates (its extreme
+    points) likewise, its count of points per bin and its sample (``_sample``). Separate
+    outputs, so that each block takes only its parts from the worker that split the piece, and
+    no second task selects its ghosts from the other blocks' points (one hop, not two: on 4
+    workers the hop cost more than the selection)."""
     pts = _load(pts)
-    cell, order, cuts, points, cells = grid.split(pts, boxes, threads, gather=True)
+    cell, order, cuts, points, cells = grid.split(pts, boxes, threads, gather=True,
+                                                  requests=(bins, asked))
     ids = order + offset
     parts = []
     for b in sorted(boxes):
         at = slice(cuts[b], cuts[b + 1])
         parts.append((points[at], ids[at], cells[at]) if cuts[b + 1] > cuts[b] else None)
-    if bins is None:
+    if not first:
         return tuple(parts)
     if pts.shape[1] == 2:
         # a 2D ConvexHull is a Delaunay triangulation of the piece; the filter is a few passes
@@ -111,7 +113,16 @@ def _split(pts, offset: int, grid: Grid, boxes: dict, bins: Optional[Grid], back
             cand = np.arange(len(pts))  # too few or flat: every point may be extreme
     counts = _core.cell_counts(pts, bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist(),
                                threads)
-    return (*parts, (pts[cand], cand + offset, cell[cand]), counts)
+    return (*parts, (pts[cand], cand + offset, cell[cand]), counts, _sample(pts, offset, cell,
+                                                                           sample, threads))
+
+
+def _sample(pts, offset: int, cell, sample: Grid, threads: int):
+    """The piece's first point in each cell of ``sample`` (points, global ids, owner blocks,
+    sample cells): the piece's part of the sample every block holds (``_global_hull``)."""
+    scell, order, cuts = sample.split(pts, threads=threads)
+    first = order[cuts[:-1][np.diff(cuts) > 0]]
+    return pts[first], first + offset, cell[first], scell[first]
 
 
 def _total(counts):
@@ -119,12 +130,10 @@ def _total(counts):
     return np.sum(counts, axis=0, dtype=np.int32)
 
 
-def _bins(lo, hi, n: int) -> Grid:
-    """The bins whose counts tell a block where the points it lacks may lie: about one per 8
-    points, at most 2^16 (256 KiB a piece to sum), close to cubes over the bounding box."""
+def _cubes(lo, hi, target: int) -> Grid:
+    """About ``target`` cells close to cubes over the box [lo, hi] (one along a flat axis)."""
     ext = hi - lo
     live = ext > 0
-    target = max(1, min(1 << 16, n // 8))
     counts = np.ones(len(lo), dtype=np.int64)
     if live.any():
         side = float(np.prod(ext[live]) / target) ** (1.0 / int(live.sum()))
@@ -132,7 +141,32 @@ def _bins(lo, hi, n: int) -> Grid:
     return Grid(lo, hi, counts)
 
 
-def _global_hull(cands, backend: str, threads: int):
+def _bins(lo, hi, n: int) -> Grid:
+    """The bins whose counts tell a block where the points it lacks may lie, and which it asks
+    for whole: about one per 8 points, at most 2^16 (256 KiB a piece to sum)."""
+    return _cubes(lo, hi, max(1, min(1 << 16, n // 8)))
+
+
+def _sample_size(n: int) -> int:
+    """The points of the sample every block holds: one per 256 points, at most 4096 (a block of
+    uniform points in 8 gains 2-3 % local points)."""
+    return max(1, min(4096, n // 256))
+
+
+def _sample_grid(lo, hi, n: int) -> Grid:
+    """The cells of the sample: 8 per sample point, so that where the points cluster (few cells
+    hold any) each cluster still has several."""
+    return _cubes(lo, hi, 8 * _sample_size(n))
+
+
+def _global_hull(cands, samples, npoints: int, backend: str, threads: int):
+    """The points every block holds from the first round: the global hull's extreme points
+    (from the pieces' candidates) and a coarse sample of all the points (from the pieces'
+    samples: per sample cell the point of lowest id, every k-th of those cells where more than
+    ``_sample_size`` hold points). Without the sample a block's simplices at the side of a
+    cluster reach to the hull's points, and their balls take the clusters between whole; with
+    it they reach the nearest clusters' sides. Returns (points, ids increasing, owner blocks,
+    the hull's facet planes pushed outwards by a margin)."""
     pts = np.concatenate([c[0] for c in cands])
     ids = np.concatenate([c[1] for c in cands])
     blk = np.concatenate([c[2] for c in cands])
@@ -148,11 +182,25 @@ def _global_hull(cands, backend: str, threads: int):
     planes = np.array(h.equations, dtype=np.float64)
     scale = float(np.abs(pts).max()) if len(pts) else 1.0
     planes[:, -1] -= 1e-9 * scale
-    return pts[v], ids[v], blk[v], planes
+    # the sample: per sample cell the lowest id, in the cells' order
+    sp = np.concatenate([x[0] for x in samples])
+    sid = np.concatenate([x[1] for x in samples])
+    sblk = np.concatenate([x[2] for x in samples])
+    scell = np.concatenate([x[3] for x in samples])
+    o = np.lexsort((sid, scell))
+    keep = o[np.concatenate([[True], scell[o][1:] != scell[o][:-1]])] if len(o) else o
+    most = _sample_size(npoints)
+    if len(keep) > most:
+        keep = keep[::-(-len(keep) // most)]
+    aid = np.concatenate([ids[v], sid[keep]])
+    aid, at = np.unique(aid, return_index=True)
+    apts = np.concatenate([pts[v], sp[keep]])[at]
+    ablk = np.concatenate([blk[v], sblk[keep]])[at]
+    return apts, aid, ablk, planes
 
 
 def _meta(r: dict) -> dict:
-    out = {k: v for k, v in r.items() if np.isscalar(v) or v is None or k == "boxes"}
+    out = {k: v for k, v in r.items() if np.isscalar(v) or v is None or k in ("boxes", "bins")}
     if r["done"]:
         out["nsimplex"] = len(r["simplices"])
         out["owners"] = sorted(set(np.unique(r["req_owner"]).tolist()))
@@ -317,12 +365,13 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     """Exact Delaunay triangulation of 2D or 3D points, block by block on a Dask cluster.
 
     The points are split into blocks by a grid over their bounding box; each block triangulates
-    its points with a layer of ghost points around them (and the global hull's extreme points),
-    keeps the simplices no outside point can change, and grows its ghost layer until those
-    include every simplex round its own points. Each simplex is output by the block owning its
-    lowest-indexed vertex. The result is exactly ``gpugeom.Delaunay(points)``'s set of
-    simplices, degenerate input included (the perturbation depends on the points alone); the
-    order differs.
+    its points with a layer of ghost points around them (and the global hull's extreme points
+    and a coarse sample of all the points), keeps the simplices no outside point can change,
+    and asks for the points its other simplices' circumballs may hold (by bins of about 8
+    points) until those include every simplex round its own points. Each simplex is output by
+    the block owning its lowest-indexed vertex. The result is exactly
+    ``gpugeom.Delaunay(points)``'s set of simplices, degenerate input included (the
+    perturbation depends on the points alone); the order differs.
 
     Parameters
     ----------
@@ -333,9 +382,10 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         block per input chunk or file, or one per worker of the active distributed client where
         that is more (a block a worker measured best on uniform points: docs/performance.md).
     ghost : float, optional
-        The first ghost width (default: 6 mean point spacings in 2D, 4 in 3D); a block grows it
-        as it needs. Blocks on the sides of the bounding box also take a strip along each side
-        from the first round (4 ghost widths deep in 2D, half a width in 3D).
+        The ghost width (default: 6 mean point spacings in 2D, 4 in 3D); a block asks for more
+        points by bins as it needs, and doubles the width only where a circumcentre is not
+        trusted. Blocks on the sides of the bounding box also take a strip along each side from
+        the first round (4 ghost widths deep in 2D, half a width in 3D).
     backend : {"auto", "cuda", "cpu"}
         Where each block is triangulated (on each worker: "auto" takes its GPU).
     threads : int
@@ -401,9 +451,11 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     # the bounding box its cell touches
     extras = {b: _side_strips(grid, b, _STRIP_DEPTH[d] * ghost) for b in all_blocks}
     rounds = {b: 0 for b in all_blocks}
+    asked = {b: np.zeros(0, np.int64) for b in all_blocks}  # the bins a block asked for
     final, metas = {}, {}
     pending = list(all_blocks)
     bins = _bins(lo, hi, n)
+    sample = _sample_grid(lo, hi, n)
     hull = total = None
     while pending:
         # each piece is split to the pending blocks' regions and boxes; in the first round the
@@ -411,12 +463,14 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         # the counts of all points, which every round uses
         first = hull is None
         boxes = {b: [grid.region(b, width[b])] + list(extras[b].values()) for b in pending}
-        splits = [delayed(_split, nout=len(pending) + 2 * first)(
-            p, int(o), grid, boxes, bins if first else None, **run)
+        wants = {b: asked[b] for b in pending}
+        splits = [delayed(_split, nout=len(pending) + 3 * first)(
+            p, int(o), grid, boxes, wants, bins, first, sample, **run)
             for p, o in zip(pieces, start)]
         if first:
-            hull = delayed(_global_hull)([s[-2] for s in splits], **run)
-            total = delayed(_total)([s[-1] for s in splits])
+            hull = delayed(_global_hull)([s[-3] for s in splits], [s[-1] for s in splits], n,
+                                         **run)
+            total = delayed(_total)([s[-2] for s in splits])
         tasks = []
         for i, b in enumerate(pending):
             tasks.append(delayed(triangulate_block)(
@@ -434,6 +488,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
                 final[b], metas[b] = r, m
                 continue
             width[b] = m["next_ghost"]
+            asked[b] = np.union1d(asked[b], m["bins"])
             for key, (lo, hi) in m["boxes"]:
                 if key in extras[b]:
                     lo, hi = np.minimum(lo, extras[b][key][0]), np.maximum(hi, extras[b][key][1])

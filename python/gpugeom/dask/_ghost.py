@@ -5,22 +5,26 @@ owns.
 The rule (docs/design-notes.md, "Distributed Delaunay on Dask"):
 
 * A block's *local* points are its own points, every other point in its region (its cell grown
-  by the ghost width, a closed box, tested exactly) or in the extra boxes it asked for, and the
-  extreme points of the global hull. The local points therefore have the global hull, and every
-  point that is not local lies in the global bounding box strictly outside the region and the
-  extra boxes.
+  by the ghost width, a closed box, tested exactly), in the extra boxes or in the bins it asked
+  for, the extreme points of the global hull and a coarse sample of all the points. The local
+  points therefore have the global hull, and every point that is not local lies in the global
+  bounding box strictly outside the region and the extra boxes, in a bin where the count of
+  all points exceeds the count of the local ones.
 * A local simplex is *final* when no outside point can lie in its closed circumball: the ball
   misses every slab of the bounding box beyond the region, or the box round its part inside
-  the bounding box and the hull meets those slabs only inside the extra boxes; by margins that
-  cover the rounding of centre and radius. Then it is a simplex of the global triangulation:
+  the bounding box and the hull meets those slabs only inside the extra boxes, or the ball's
+  part in that box meets no bin with an outside point; by margins that cover the rounding of
+  centre and radius. Then it is a simplex of the global triangulation:
   the perturbation depends on the points alone, so the local points decide it as all do. A face
   without a neighbour lies on the global hull (the local hull is the global one), so it has
   none globally either.
 * The block is *done* when every simplex with one of its own points as a vertex is final (the
   stars of its points are then exactly the global stars), and so is the neighbour of each
   owned simplex across the face opposite its lowest vertex (so every neighbour is known).
-  Otherwise it grows its ghost width or asks for boxes along the hull, and is triangulated
-  again.
+  Otherwise it asks for the bins with outside points that its failing balls meet (boxes along
+  the hull where they are thin there; a wider ghost layer where a centre is not trusted), and
+  is triangulated again. A bin asked for comes whole, so it is never asked for twice, and the
+  rounds end.
 * Each simplex is *owned* by the block that owns its lowest-indexed vertex, so exactly one
   block outputs it; its neighbours are final in that block, so their vertices are known there.
 """
@@ -57,6 +61,12 @@ def _host(a):
 _MAX_CONDITION = 1e10
 # Simplices tested at a time (the temporaries: about 1 KB a simplex).
 _PIECE = 1 << 22
+# Bins a failing ball's request is grown by.
+_ASK_PAD = 1.0
+# Simplices times hull planes beyond which the caps along the hull are not computed (the test
+# stays sound without them, only coarser): a block of points on a sphere has as many planes
+# as points, and every simplex to test.
+_CAP_WORK = 1 << 26
 
 
 def _circumcentres(pts, s):
@@ -319,7 +329,8 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
                     extras=(), nbs=None, outside=None):
     """For simplices ``s`` of local points ``pts``: which are final; for the others the ghost
     width that would hold their circumball (inf where the centre is not trusted), whether they
-    lie along the hull, and the box where outside points could break them (``klo``, ``khi``).
+    lie along the hull, and the box where outside points could break them (``klo``, ``khi``);
+    the centres and reaches (radii grown by their rounding bounds).
 
     Points outside the region lie in the bounding box, inside every hull plane (``planes``,
     pushed outwards by a margin), and outside the extra boxes the block already holds. A ball
@@ -327,7 +338,8 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
     part in the bounding box, cut down where the centre lies beyond a hull plane to the box round
     the cap inside it (simplices along the hull have huge circumballs with a thin part inside),
     must meet the bounding box beyond the region only inside the extra boxes, or (``outside``
-    given, an ``_Outside``) only bins that hold no point outside the block."""
+    given, an ``_Outside``) the ball's part in that box must meet only bins that hold no point
+    outside the block."""
     scale = float(max(np.abs(box_lo).max(), np.abs(box_hi).max()))
     slabs = [(np.asarray(lo), np.asarray(hi)) for lo, hi in
              _slabs(region_lo, region_hi, box_lo, box_hi)]
@@ -344,6 +356,7 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
         c, r = centre[retry], reach[retry]
         lo, hi = _ball_in_box(c, r, box_lo, box_hi)
         cut = np.zeros(len(retry), dtype=bool)
+        planes = planes if len(retry) * len(planes) <= _CAP_WORK else planes[:0]
         if len(planes):
             cut, clo, chi = _hull_cap(c, r, np.asarray(planes))
             lo, hi = np.maximum(lo, clo), np.minimum(hi, chi)
@@ -359,7 +372,8 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
         lo, hi = lo - pad, hi + pad
         covered = _covered(lo, hi, slabs, extras)
         if outside is not None:
-            covered |= outside.misses(lo, hi)
+            rest = np.nonzero(~covered)[0]
+            covered[rest] = ~outside.balls(c[rest], r[rest], lo[rest], hi[rest])[0]
         ok[retry] = covered
         along[retry] = cut | np.any((c < box_lo) | (c > box_hi), axis=1)
         klo[retry], khi[retry] = lo, hi
@@ -369,94 +383,50 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
     with _quiet():
         need = np.maximum(khi - cell_hi, cell_lo - klo).max(axis=1)
     need = np.where(np.isfinite(reach), need, np.inf)
-    return ok, need, along, klo, khi
+    return ok, need, along, klo, khi, centre, reach
 
 
 class _Outside:
     """Where the points a block does not hold may lie: the bins (a grid over the bounding box)
     that hold more of all the points than of the block's local points. Each point is counted in
     its bin by one C++ pass (``_core.cell_counts``), the same for all points and for the local
-    ones, so a bin whose counts agree holds no outside point, and a box that meets no other bin
+    ones, so a bin whose counts agree holds no outside point, and a ball that meets no other bin
     holds none either. It is what makes a ball final that reaches past the region into empty
-    space: between clusters, inside a sphere of points (there a block grew its ghost layer
-    round after round without gaining a point)."""
+    space (between clusters, inside a sphere of points), and what a block asks for next: the
+    bins with outside points that its failing balls meet (the split sends a bin's points whole,
+    by the same bin of each point, so once asked for a bin holds no outside point)."""
 
     def __init__(self, bins: Grid, total: np.ndarray, local_pts: np.ndarray, threads=1):
         local = _core.cell_counts(np.ascontiguousarray(local_pts, dtype=np.float64),
                                   bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist(),
                                   threads)
-        self.table = _summed((total > local).astype(np.int32))
-        self.totals = _summed(total)  # (for the growth of the region)
-        self.any = bool(int(self.table[(-1,) * total.ndim]) > 0)
+        self.marked = np.ascontiguousarray((total > local).ravel())
+        self.any = bool(self.marked.any())
         self.bins = bins
+        self.threads = threads
         scale = float(max(np.abs(bins.lo).max(), np.abs(bins.hi).max(), bins.width.max()))
         self.margin = 1e-9 * scale  # far above the rounding of a point's bin
 
-    def misses(self, lo, hi):
-        """Per box (rows of ``lo``, ``hi``): True where it meets no bin with an outside point."""
-        if not self.any:
-            return np.ones(len(lo), dtype=bool)
-        count, empty, bad = self._count(self.table, lo, hi)
-        return (empty | (count == 0)) & ~bad
-
-    def widest(self, cell_lo, cell_hi, least: float, most: float, budget: int) -> float:
-        """The widest ghost width in [least, most] whose region's bins hold at most ``budget``
-        points (``least`` where none does): bisection over the counts."""
-        def fits(w):
-            lo, hi = (np.asarray(cell_lo) - w)[None], (np.asarray(cell_hi) + w)[None]
-            return int(self._count(self.totals, lo, hi)[0][0]) <= budget
-        if fits(most):
-            return most
-        if not fits(least):
-            return least
-        for _ in range(24):
-            mid = 0.5 * (least + most)
-            least, most = (mid, most) if fits(mid) else (least, mid)
-        return least
-
-    def _count(self, table, lo, hi):
-        """Per box: the sum of ``table``'s bins over the bins it meets (with the margin), whether
-        it is empty (lo > hi along an axis, or beyond every bin), whether it has a NaN."""
+    def balls(self, centre, reach, lo, hi, collect=False):
+        """Per ball (``centre``, ``reach``) cut to its box (rows of ``lo``, ``hi``): True where
+        it meets a bin with an outside point; with ``collect`` also the ids of the bins with
+        outside points the balls meet, increasing (``_core.balls_in_bins``)."""
+        if not self.any or len(centre) == 0:
+            return np.zeros(len(centre), dtype=bool), np.zeros(0, np.int64)
         b = self.bins
-        m = len(lo)
-        first, last, empty = [], [], np.zeros(m, dtype=bool)
-        bad = np.isnan(lo).any(axis=1) | np.isnan(hi).any(axis=1)
-        for j in range(b.ndim):
-            top = int(b.counts[j]) - 1
-            if b.width[j] > 0:
-                with _quiet():
-                    i0 = np.floor((lo[:, j] - self.margin - b.lo[j]) / b.width[j])
-                    i1 = np.floor((hi[:, j] + self.margin - b.lo[j]) / b.width[j])
-                empty |= (i1 < 0) | (i0 > top) | (lo[:, j] > hi[:, j])
-                i0 = np.clip(np.nan_to_num(i0), 0, top).astype(np.int64)
-                i1 = np.clip(np.nan_to_num(i1), 0, top).astype(np.int64)
-            else:
-                i0 = np.zeros(m, dtype=np.int64)
-                i1 = i0
-                empty |= lo[:, j] > hi[:, j]
-            first.append(i0)
-            last.append(i1 + 1)
-        count = np.zeros(m, dtype=np.int64)
-        for corner in range(1 << b.ndim):  # inclusion and exclusion over the box's corners
-            at = tuple(last[j] if corner >> j & 1 else first[j] for j in range(b.ndim))
-            sign = 1 if bin(corner).count("1") % 2 == b.ndim % 2 else -1
-            count += sign * table[at].astype(np.int64)
-        return count, empty, bad
-
-
-def _summed(counts: np.ndarray) -> np.ndarray:
-    """The summed-area table of counts per bin, with a row of zeros before each axis: the sum
-    over bins [i0, i1] along each axis is an alternating sum of 2^d entries."""
-    table = counts.astype(np.int64)
-    for axis in range(table.ndim):
-        table = np.cumsum(table, axis=axis)
-    return np.pad(table, [(1, 0)] * table.ndim)
+        r = _core.balls_in_bins(np.ascontiguousarray(centre, dtype=np.float64),
+                                np.ascontiguousarray(reach, dtype=np.float64),
+                                np.ascontiguousarray(lo, dtype=np.float64),
+                                np.ascontiguousarray(hi, dtype=np.float64), b.lo.tolist(),
+                                b.width.tolist(), b.counts.tolist(), self.marked, self.margin,
+                                collect, self.threads)
+        return r["meets"].view(bool), r["cells"]
 
 
 def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outside=None):
     """Tests simplices ``s[req]`` (in pieces of ``_PIECE``, so that the temporaries stay small)
     against the region ``cell`` grown by ``ghost``. None when all are final; else the next ghost
-    width and the extra boxes to ask for.
+    width, the extra boxes and the bins to ask for.
 
     On the host, for GPU blocks too. The first test (the circumball with its rounding bound
     misses the bounding box beyond the region), which almost every simplex passes, runs in C++
@@ -470,55 +440,60 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
                                                  grid.lo.tolist(), grid.hi.tolist(), scale,
                                                  threads)
         req = req[inside == 0]
-    want_free, want_held = -np.inf, -np.inf
-    thin_lo, thin_hi = [], []
+    grow, failed = False, False
+    thin_lo, thin_hi, asked = [], [], []
     for i in range(0, len(req), _PIECE):
         t = s[req[i:i + _PIECE]]
-        ok, need, along, klo, khi = final_simplices(dpts, t, rlo, rhi, grid.lo, grid.hi, clo, chi,
-                                                    planes, extras, nb[req[i:i + _PIECE]],
-                                                    outside)
+        ok, need, along, klo, khi, centre, reach = final_simplices(
+            dpts, t, rlo, rhi, grid.lo, grid.hi, clo, chi, planes, extras, nb[req[i:i + _PIECE]],
+            outside)
         if bool(ok.all()):
             continue
-        # A thin box along the hull is asked for; anything else asks for a wider ghost layer:
-        # by what the boxes need, between 1.25 and 2 times where a simplex reaches into the
-        # sparse zone beyond the region or lies along the hull (it is bigger than it will be
-        # once the zone fills in; along the hull the box is long and what is missing is
-        # usually near). A simplex inside the hull with every vertex in the region is as the
-        # global points make it: the width its box needs is taken as it is (voids between
-        # clusters need wide layers at once).
-        thin = ~ok & along & ((khi - klo).min(axis=1) < 2.0 * ghost)
-        v = dpts[t]
-        held = np.all((v >= np.asarray(rlo)) & (v <= np.asarray(rhi)), axis=(1, 2)) & ~along
-        free = ~ok & ~thin & ~held
-        trusted = ~ok & ~thin & held
-        if bool(free.any()):
-            want_free = max(want_free, float(need[free].max()))
-        if bool(trusted.any()):
-            want_held = max(want_held, float(need[trusted].max()))
+        failed = True
+        # A simplex whose centre is not trusted (or whose box could not be computed) grows the
+        # ghost layer; a thin box along the hull is asked for as a box (the caps there are long
+        # and flat, and what is missing is usually near); every other failing ball asks for the
+        # bins with outside points that it meets, no more (a wider layer took whole clusters
+        # where a ball between them needs only their sides facing it).
+        lost = ~ok & ~np.isfinite(need)
+        thin = ~ok & ~lost & along & ((khi - klo).min(axis=1) < 2.0 * ghost)
+        ask = ~ok & ~lost & ~thin
+        grow = grow or bool(lost.any())
         if bool(thin.any()):
             thin_lo.append(klo[thin])
             thin_hi.append(khi[thin])
-    if want_free == -np.inf and want_held == -np.inf and not thin_lo:
+        if bool(ask.any()) and outside is not None:
+            # grown by a bin: the balls of the simplices the new points make reach a little
+            # past the ones that asked (2D clusters: 3 rounds in most blocks without, 2 with)
+            pad = _ASK_PAD * float(outside.bins.width.max())
+            c, r = centre[ask], reach[ask] + pad
+            lo, hi = np.maximum(klo[ask] - pad, c - r[:, None]), np.minimum(khi[ask] + pad,
+                                                                          c + r[:, None])
+            span = np.prod(np.maximum(hi - lo, 0.0) / np.where(outside.bins.width > 0,
+                                                                  outside.bins.width, np.inf)
+                           + 1.0, axis=1)
+            # a ball over half the bins (points on a sphere: every ball is the sphere's) asks
+            # for every bin with outside points at once, not bin by bin
+            big = span > outside.marked.size / 2
+            if bool(big.any()):
+                asked.append(np.nonzero(outside.marked)[0])
+            else:
+                asked.append(outside.balls(c, r, lo, hi, collect=True)[1])
+        elif bool(ask.any()):
+            grow = True
+    if not failed:
         return None
-    nxt = ghost
-    if want_free > -np.inf:
-        nxt = min(max(1.25 * ghost, 1.05 * want_free), 2.0 * ghost)
-        if outside is not None and np.isfinite(want_free) and 1.05 * want_free > nxt:
-            # past twice the width, as far as the balls need while the region holds at most
-            # twice the block's local points (the counts per bin tell): where the zone beyond
-            # is empty (voids between clusters) the layer no longer doubles round after round
-            # without gaining a point
-            nxt = outside.widest(clo, chi, nxt, 1.05 * want_free, 2 * len(dpts))
-    if want_held > -np.inf:
-        nxt = max(nxt, 1.25 * ghost, 1.05 * want_held if np.isfinite(want_held) else 2.0 * ghost)
+    nxt = 2.0 * ghost if grow else ghost
     boxes = _thin_boxes(np.concatenate(thin_lo), np.concatenate(thin_hi), clo, chi, nxt) \
         if thin_lo else {}
-    return nxt, boxes
+    bins = np.unique(np.concatenate(asked)) if asked else np.zeros(0, np.int64)
+    return nxt, boxes, bins
 
 
-def _not_done(block, ghost, next_ghost, nlocal, tested, boxes=()):
+def _not_done(block, ghost, next_ghost, nlocal, tested, boxes=(), bins=None):
     return dict(block=block, done=False, ghost=ghost, next_ghost=next_ghost, nlocal=nlocal,
-                tested=tested, boxes=list(boxes))
+                tested=tested, boxes=list(boxes),
+                bins=np.zeros(0, np.int64) if bins is None else bins)
 
 
 def _thin_boxes(lo, hi, cell_lo, cell_hi, ghost):
@@ -651,8 +626,8 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts,
     block's), the requests for the others (``req_owner``, ``req_key``: sorted vertex ids,
     ``req_pos``: row * (d + 1) + face), ``copies`` (pairs: an own point, its earlier copy),
     ``vertices`` and ``vertex_points`` (the owned simplices' vertices, sorted, and their
-    coordinates); when not, ``next_ghost`` and ``boxes`` (extra boxes to take, as ``extras``'
-    items)."""
+    coordinates); when not, ``next_ghost``, ``boxes`` (extra boxes to take, as ``extras``'
+    items) and ``bins`` (the ids of the bins of ``counts`` to take whole, increasing)."""
     d = grid.ndim
     covers = grid.covers_all(block, ghost)
     if not any(p is not None and bool((p[2] == block).any()) for p in parts):
@@ -671,15 +646,15 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts,
             raise  # every point is here: the whole set is degenerate, as a single run says
         return _not_done(block, ghost, 2.0 * ghost, len(ids), 0)
     tested = 0
-    if not covers:
+    outside = None if covers else _Outside(counts[0], counts[1], pts, threads)
+    if outside is not None and outside.any:  # (else every point is here: all is final)
         req = np.nonzero(required)[0]
         tested = int(len(req))
         cell = grid.cell_box(block)
-        outside = _Outside(counts[0], counts[1], pts, threads)
         verdict = _judge(pts, s, nb, req, grid, cell, ghost, hull[3], list(extras.values()),
                          threads, outside)
         if verdict is not None:
-            nxt, boxes = verdict
-            return _not_done(block, ghost, nxt, len(ids), tested, boxes.items())
+            nxt, boxes, bins = verdict
+            return _not_done(block, ghost, nxt, len(ids), tested, boxes.items(), bins)
     out = _emit(ids, pts, blk, s, nb, mine, threads)
     return _done(block, ghost, len(ids), tested, out, _copies(ids, blk, block, tri))

@@ -1,0 +1,131 @@
+// A block's balls against the bins that hold points it lacks (include/gpugeom/blocks.hpp:
+// balls_in_bins): gpugeom.dask's finality test past the region, and the request that follows
+// from it (python/gpugeom/dask/_ghost.py). The box round a ball's part past the region met bins
+// in its corners that the ball never reaches; between clusters those corners hold the clusters'
+// cores, so a test by boxes failed balls no point could break, and a request by boxes (or by a
+// wider ghost layer) brought whole clusters where a block needs only their sides facing it.
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "gpugeom/blocks.hpp"
+#include "gpugeom/common.hpp"
+#include "blocks/pass.hpp"
+
+namespace gpugeom {
+
+namespace {
+
+// The bins along axis j that [a, b] grown by `margin` meets, clamped to the grid: false where it
+// meets none (beyond the grid, or a > b).
+bool bins_along(double a, double b, const CellGrid& g, int j, double margin, std::int64_t* first,
+                std::int64_t* last) {
+  if (!(a <= b)) return false;
+  if (!(g.width[j] > 0)) {  // a flat axis: one bin, every point on it
+    *first = *last = 0;
+    return true;
+  }
+  const double top = double(g.counts[j] - 1);
+  const double f0 = std::floor((a - margin - g.lo[j]) / g.width[j]);
+  const double f1 = std::floor((b + margin - g.lo[j]) / g.width[j]);
+  if (f1 < 0 || f0 > top) return false;
+  *first = f0 < 0 ? 0 : std::int64_t(f0);
+  *last = f1 > top ? g.counts[j] - 1 : std::int64_t(f1);
+  return true;
+}
+
+template <int D>
+void run(const double* centres, const double* reach, const double* lo, const double* hi,
+         std::int64_t m, const CellGrid& g, const std::uint8_t* marked, double margin,
+         std::uint8_t* meets, std::uint8_t* hit) {
+  // without `hit` a ball's scan stops at the first marked cell it meets: a ball as big as the
+  // box (points on a sphere) costs one cell, not all of them
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::int64_t i = 0; i < m; ++i) {
+    const double* c = centres + i * D;
+    const double r = reach[i];
+    bool finite = std::isfinite(r), bad = false;
+    for (int j = 0; j < D; ++j) {
+      finite = finite && std::isfinite(c[j]);
+      bad = bad || std::isnan(lo[i * D + j]) || std::isnan(hi[i * D + j]);
+    }
+    if (bad) {  // a box not computed: the ball may meet anything (the caller grows the block)
+      meets[i] = 1;
+      continue;
+    }
+    std::int64_t first[3] = {0, 0, 0}, last[3] = {0, 0, 0};
+    bool some = true;
+    for (int j = 0; j < D && some; ++j) {
+      double a = lo[i * D + j], b = hi[i * D + j];
+      if (finite) a = std::max(a, c[j] - r), b = std::min(b, c[j] + r);
+      some = bins_along(a, b, g, j, margin, &first[j], &last[j]);
+    }
+    std::uint8_t met = 0;
+    if (some) {
+      const double r2 = finite ? r * r : 0.0;
+      std::int64_t k[3] = {0, 0, 0};
+      const std::int64_t end2 = D == 3 ? last[2] : 0;
+      auto more = [&] { return hit || !met; };
+      for (k[0] = first[0]; k[0] <= last[0] && more(); ++k[0])
+        for (k[1] = first[1]; k[1] <= last[1] && more(); ++k[1])
+          for (k[2] = first[2]; k[2] <= end2 && more(); ++k[2]) {
+            std::int64_t bin = k[0] * g.counts[1] + k[1];
+            if (D == 3) bin = bin * g.counts[2] + k[2];
+            if (!marked[bin]) continue;
+            if (finite) {
+              double d2 = 0;  // from the centre to the bin's box grown by the margin
+              for (int j = 0; j < D; ++j) {
+                const double blo = g.lo[j] + double(k[j]) * g.width[j] - margin;
+                const double bhi = g.lo[j] + double(k[j] + 1) * g.width[j] + margin;
+                const double gap = std::max(std::max(blo - c[j], c[j] - bhi), 0.0);
+                d2 += gap * gap;
+              }
+              if (d2 > r2) continue;
+            }
+            met = 1;
+            // every writer writes 1: the set of bins met does not depend on the threads
+            if (hit) {
+#pragma omp atomic write
+              hit[bin] = 1;
+            }
+          }
+    }
+    meets[i] = met;
+  }
+}
+
+}  // namespace
+
+BallBins balls_in_bins(const double* centres, const double* reach, const double* lo,
+                       const double* hi, std::int64_t m, int dim, const CellGrid& grid,
+                       const std::uint8_t* marked, double margin, bool collect, int threads) {
+  blocks_detail::check_dim(dim, "balls_in_bins");
+  std::int64_t cells = 1;
+  for (int j = 0; j < dim; ++j) cells *= grid.counts[j];
+  if (cells > (std::int64_t(1) << 28))
+    throw Error(ErrorCode::InvalidArgument,
+                "balls_in_bins: at most 2^28 cells, got " + std::to_string(cells));
+  blocks_detail::ThreadScope scope(threads);
+  BallBins out;
+  out.meets.resize(std::size_t(std::max<std::int64_t>(m, 0)));
+  HostVector<std::uint8_t> hit;
+  if (collect) hit.assign(std::size_t(cells), 0);
+  std::uint8_t* h = collect ? hit.data() : nullptr;
+  if (m > 0) {
+    if (dim == 2)
+      run<2>(centres, reach, lo, hi, m, grid, marked, margin, out.meets.data(), h);
+    else
+      run<3>(centres, reach, lo, hi, m, grid, marked, margin, out.meets.data(), h);
+  }
+  if (!collect) return out;
+  blocks_detail::ordered_compact(
+      cells, [&](std::int64_t b) { return hit[std::size_t(b)] != 0; },
+      [&](std::int64_t total) { out.cells.resize(std::size_t(total)); },
+      [&](std::int64_t b, std::int64_t rank) { out.cells[std::size_t(rank)] = b; });
+  return out;
+}
+
+}  // namespace gpugeom
