@@ -154,9 +154,11 @@ def _sample_size(n: int) -> int:
 
 
 def _sample_grid(lo, hi, n: int) -> Grid:
-    """The cells of the sample: 8 per sample point, so that where the points cluster (few cells
-    hold any) each cluster still has several."""
-    return _cubes(lo, hi, 8 * _sample_size(n))
+    """The cells of the sample: 2 per sample point, so that where the points cluster (few cells
+    hold any) each cluster still has several. (8 gave the same local points on clusters, and
+    every piece of uniform points sent its lowest point in each of them: 21 MB and 160 ms on
+    the critical path for 10^6 points in 16 pieces.)"""
+    return _cubes(lo, hi, 2 * _sample_size(n))
 
 
 def _global_hull(cands, samples, npoints: int, backend: str, threads: int):
