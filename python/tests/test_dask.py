@@ -343,6 +343,27 @@ def test_clustered_blocks_ask_for_bins():
         _same_as_single(sphere, gd.delaunay(sphere, blocks=4, backend="cpu"))
 
 
+def test_coarse_paths_are_exact(monkeypatch):
+    """The paths that trade points for work: no caps along the hull (past ``_CAP_WORK``) and a
+    ball that asks for every bin with outside points (past ``_ASK_ALL``). Forced everywhere,
+    they give the same triangulation, with no fewer local points."""
+    from gpugeom.dask import _ghost
+    rng = np.random.default_rng(53)
+    centres = rng.random((10, 2))
+    flat = centres[rng.integers(0, 10, 8000)] + 0.01 * rng.normal(size=(8000, 2))
+    cube = rng.random((4000, 3))
+    with dask.config.set(scheduler="threads"):
+        fine = [gd.delaunay(p, blocks=4, backend="cpu") for p in (flat, cube)]
+        monkeypatch.setattr(_ghost, "_CAP_WORK", 0)
+        monkeypatch.setattr(_ghost, "_ASK_ALL", 0.0)
+        for p, f in zip((flat, cube), fine):
+            dt = gd.delaunay(p, blocks=4, backend="cpu")
+            _same_as_single(p, dt)
+            assert sum(s["nlocal"] for s in dt.block_stats) >= \
+                sum(s["nlocal"] for s in f.block_stats)
+        assert max(s["rounds"] for s in fine[0].block_stats) >= 2
+
+
 def test_local_points():
     """A block's local points from its parts and the hull's extreme points (``_local_points``,
     by slices between the hull points' places) against a concatenation and a stable sort:

@@ -63,6 +63,8 @@ _MAX_CONDITION = 1e10
 _PIECE = 1 << 22
 # Bins a failing ball's request is grown by.
 _ASK_PAD = 1.0
+# The share of the bins past which a ball's box asks for every bin with outside points.
+_ASK_ALL = 0.5
 # Simplices times hull planes beyond which the caps along the hull are not computed (the test
 # stays sound without them, only coarser): a block of points on a sphere has as many planes
 # as points, and every simplex to test.
@@ -474,7 +476,7 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
                            + 1.0, axis=1)
             # a ball over half the bins (points on a sphere: every ball is the sphere's) asks
             # for every bin with outside points at once, not bin by bin
-            big = span > outside.marked.size / 2
+            big = span > _ASK_ALL * outside.marked.size
             if bool(big.any()):
                 asked.append(np.nonzero(outside.marked)[0])
             else:
