@@ -465,7 +465,9 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         # the counts of all points, which every round uses
         first = hull is None
         boxes = {b: [grid.region(b, width[b])] + list(extras[b].values()) for b in pending}
-        wants = {b: asked[b] for b in pending}
+        # the bins asked for, one value in the graph that every split refers to (as literals
+        # they were copied into each split task: pieces x blocks x up to 2^16 ids)
+        wants = delayed({b: asked[b] for b in pending}, traverse=False)
         splits = [delayed(_split, nout=len(pending) + 3 * first)(
             p, int(o), grid, boxes, wants, bins, first, sample, **run)
             for p, o in zip(pieces, start)]
