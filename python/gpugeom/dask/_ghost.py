@@ -42,21 +42,6 @@ def _quiet():
     return np.errstate(divide="ignore", invalid="ignore", over="ignore")
 
 
-def _array_module(backend: str):
-    """CuPy when the block runs on a GPU and CuPy is there (the local points go to the device
-    for the triangulation, and its simplices come back), else NumPy."""
-    if backend == "cpu" or not _core.built_with_cuda():
-        return np
-    try:
-        import cupy
-    except ImportError:
-        return np
-    from .._arrays import device_info
-    return cupy if device_info().get("available") else np
-
-
-def _host(a):
-    return a.get() if hasattr(a, "get") and not isinstance(a, np.ndarray) else np.asarray(a)
 # The centre of a simplex whose condition number passes this is not trusted: the block grows.
 _MAX_CONDITION = 1e10
 # Simplices tested at a time (the temporaries: about 1 KB a simplex).
@@ -327,12 +312,12 @@ def _far_caps(pts, t, planes):
     return has, lo, hi
 
 
-def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_hi, planes,
-                    extras=(), nbs=None, outside=None):
-    """For simplices ``s`` of local points ``pts``: which are final; for the others the ghost
-    width that would hold their circumball (inf where the centre is not trusted), whether they
-    lie along the hull, and the box where outside points could break them (``klo``, ``khi``);
-    the centres and reaches (radii grown by their rounding bounds).
+def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, planes, extras=(), nbs=None,
+                    outside=None):
+    """For simplices ``s`` of local points ``pts``: which are final; for the others whether
+    their centre is trusted (a finite reach and a computed box), whether they lie along the
+    hull, and the box where outside points could break them (``klo``, ``khi``); the centres and
+    reaches (radii grown by their rounding bounds).
 
     Points outside the region lie in the bounding box, inside every hull plane (``planes``,
     pushed outwards by a margin), and outside the extra boxes the block already holds. A ball
@@ -379,13 +364,8 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, cell_lo, cell_
         ok[retry] = covered
         along[retry] = cut | np.any((c < box_lo) | (c > box_hi), axis=1)
         klo[retry], khi[retry] = lo, hi
-    # the ghost width that puts the box where outside points could break a simplex inside
-    # the region
-    cell_lo, cell_hi = np.asarray(cell_lo), np.asarray(cell_hi)
-    with _quiet():
-        need = np.maximum(khi - cell_hi, cell_lo - klo).max(axis=1)
-    need = np.where(np.isfinite(reach), need, np.inf)
-    return ok, need, along, klo, khi, centre, reach
+    trusted = np.isfinite(reach) & ~np.isnan(klo).any(axis=1) & ~np.isnan(khi).any(axis=1)
+    return ok, trusted, along, klo, khi, centre, reach
 
 
 class _Outside:
@@ -446,9 +426,8 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
     thin_lo, thin_hi, asked = [], [], []
     for i in range(0, len(req), _PIECE):
         t = s[req[i:i + _PIECE]]
-        ok, need, along, klo, khi, centre, reach = final_simplices(
-            dpts, t, rlo, rhi, grid.lo, grid.hi, clo, chi, planes, extras, nb[req[i:i + _PIECE]],
-            outside)
+        ok, trusted, along, klo, khi, centre, reach = final_simplices(
+            dpts, t, rlo, rhi, grid.lo, grid.hi, planes, extras, nb[req[i:i + _PIECE]], outside)
         if bool(ok.all()):
             continue
         failed = True
@@ -457,7 +436,7 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
         # and flat, and what is missing is usually near); every other failing ball asks for the
         # bins with outside points that it meets, no more (a wider layer took whole clusters
         # where a ball between them needs only their sides facing it).
-        lost = ~ok & ~np.isfinite(need)
+        lost = ~ok & ~trusted
         thin = ~ok & ~lost & along & ((khi - klo).min(axis=1) < 2.0 * ghost)
         ask = ~ok & ~lost & ~thin
         grow = grow or bool(lost.any())
@@ -591,7 +570,7 @@ def _done(block, ghost, nlocal, tested, out, copies):
 
 def _copies(ids, blk, block, tri):
     """Pairs (an own point, its earlier copy) in global ids."""
-    dup = _host(tri.duplicate_of).astype(np.int64)
+    dup = np.asarray(tri.duplicate_of).astype(np.int64)
     copy = np.nonzero((dup >= 0) & (blk == block))[0]
     return np.stack([ids[copy], ids[dup[copy]]], axis=1)
 
@@ -605,11 +584,10 @@ def _triangulated(pts, owned, backend, threads):
     the rule, the finality test and the output are C++ passes on the host's threads. (On a GPU
     the test in CuPy and the passes on one host thread took 6 s of a block of 5·10^6 3D points
     whose triangulation took 0.5 s.) Raises DegenerateInputError as Delaunay does."""
-    xp = _array_module(backend)
     tri = Delaunay(np.asarray(pts), backend=backend, threads=threads)
-    # as the triangulation gives them (int32: half the bytes of int64 to copy from a GPU); the
-    # passes take either
-    s, nb = _host(tri.simplices), _host(tri.neighbors)
+    # on the host (the input was), as the triangulation gives them (int32: half the bytes of
+    # int64 to copy from a GPU); the passes take either
+    s, nb = np.asarray(tri.simplices), np.asarray(tri.neighbors)
     r = _core.block_required(s, nb, owned, threads)
     return tri, s, nb, r["owned_rows"], r["required"].view(bool)
 
