@@ -40,14 +40,16 @@ def main():
                 spent[label or name] += time.perf_counter() - t
         setattr(owner, name, run)
 
-    for name in ("_local_points", "_triangulated", "Delaunay", "_judge", "_emit", "_copies",
-                 "_Outside", "_host", "final_simplices"):
+    for name in ("_local_points", "_held", "_triangulated", "Delaunay", "_judge", "_borders",
+                 "_border_parts", "_emit", "_copies", "_Outside", "final_simplices"):
         timed(_ghost, name)
-    for name in ("_split", "_summary", "_global_hull", "_total", "_neighbors_of"):
+    for name in ("_split", "_summary", "_global_hull", "_total", "_faces_to", "_match",
+                 "_neighbors_of"):
         timed(_delaunay, name)
     # the C++ passes, as the modules call them
-    for name in ("block_required", "block_output", "circumballs_inside_region",
-                 "split_to_blocks", "block_neighbors", "cell_counts", "hull_candidates2d"):
+    for name in ("block_required", "block_output", "circumballs_inside_region", "block_borders",
+                 "split_to_blocks", "match_faces", "block_neighbors", "cell_counts",
+                 "hull_candidates2d", "balls_in_bins"):
         timed(_core, name, "_core." + name)
     n = int(a.n)
     pts = np.random.default_rng(1).random((n, a.dims))

@@ -43,9 +43,8 @@ void circumballs_inside_region(const double* points, int dim, const std::int32_t
 struct BlockRequired {
   /// The owned simplices, in increasing order.
   HostVector<std::int64_t> owned_rows;
-  /// Per simplex, 1 where it must be final: it has an own vertex, or it is the neighbour of an
-  /// owned simplex across the face opposite that simplex's lowest vertex (across the other faces
-  /// the neighbours are in that vertex's star).
+  /// Per simplex, 1 where it must be final: it has an own vertex (the stars of the own points;
+  /// the neighbours across blocks are matched by their faces, block_output).
   HostVector<std::uint8_t> required;
 };
 /// What a block requires of its local triangulation (BlockRequired), on `threads` host threads
@@ -59,17 +58,21 @@ BlockRequired block_required(const std::int32_t* simplices, const std::int32_t* 
 
 /// A block's output: its owned simplices `rows` (all of them, as block_required lists them)
 /// in global point ids (`ids`: per local point), and per face the neighbour as an index into
-/// `rows` or -1 (none) or -2 (a simplex another block owns). Each -2 face is a request, in
-/// row-major order: the owner (`blk[v]` of the neighbour's lowest vertex v), the neighbour's
-/// global vertex ids sorted, and the face's position row * (dim + 1) + face. `vertices`: the
-/// local points the rows use, in increasing order. `border_rows`: the rows with a -2 face, the
-/// only ones another block can ask for, in increasing order, and `border_keys` their global
-/// vertex ids sorted (the keys of the requests).
+/// `rows` or -1 (none) or -2 (not owned here). A neighbour with an own vertex is final, so
+/// across a -1 or a row the neighbour is the global one; across a -2 it is owned by another
+/// block, which may not be the local neighbour's owner (a neighbour without an own vertex may
+/// not be final), so each -2 face is a request by the face itself, in row-major order: the block
+/// that matches it (`blk[v]` of the face's lowest vertex v), the face's `dim` global vertex ids
+/// sorted, and its position row * (dim + 1) + face (match_faces pairs the two simplices of
+/// each such face). A face on the local hull is on the global hull where it has an own vertex
+/// (-1); without one it is an *open* request (`request_open`), which the matcher answers with
+/// -1 where no other simplex has the face. `vertices`: the local points the rows use, in
+/// increasing order.
 struct BlockOutput {
   HostVector<std::int64_t> simplices, neighbors;
   HostVector<std::int64_t> request_owner, request_key, request_pos;
+  HostVector<std::uint8_t> request_open;
   HostVector<std::int64_t> vertices;
-  HostVector<std::int64_t> border_rows, border_keys;
   /// The vertices' global ids, and (where the points were given) their coordinates, `dim` a
   /// vertex.
   HostVector<std::int64_t> vertex_ids;
@@ -88,26 +91,27 @@ BlockOutput block_output(const std::int32_t* simplices, const std::int32_t* neig
                          const std::int64_t* ids, const std::int64_t* blk, const double* points,
                          std::int64_t n, int threads = 0);
 
-/// One block's border as another block asks it: its place among the blocks' outputs (the
-/// requests' owner), the first global index of its simplices, and `count` rows with their sorted
-/// global vertex ids (BlockOutput's border_rows and border_keys).
-struct BlockBorder {
-  std::int64_t owner = 0, offset = 0, count = 0;
-  const std::int64_t* rows = nullptr;
-  const std::int64_t* keys = nullptr;
-};
+/// Pairs the `q` face requests that come to one block from every block (BlockOutput's, `keys`
+/// their `dim` sorted vertex ids each, `positions` their global positions simplex * (dim + 1) +
+/// face): each face is a face of exactly two owned simplices, so each key comes exactly twice,
+/// but for an open request (`open[i]` nonzero, or null for none) of a face on the hull, which
+/// comes once. Returns per request its partner's position, -1 for an open one alone. Throws
+/// Error(Internal) where a key comes otherwise (a bug), Error(InvalidArgument) for a dim other
+/// than 2 or 3.
+HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_t* positions,
+                                     const std::uint8_t* open, std::int64_t q, int dim,
+                                     int threads = 0);
+
 /// The neighbours of a block's `m` output simplices in global simplex indices: `neighbors` is
 /// BlockOutput's (an index into the block's own rows, -1 none, -2 another block's) and `offset`
-/// the block's first global index; each of the `q` requests (BlockOutput's, with the owners
-/// given as places among the blocks) is found by its key in its owner's border. Row-major,
-/// (dim + 1) entries a simplex, -1 on the hull. On `threads` host threads (0: OpenMP's
-/// default). Throws Error(Internal) where a request's owner or key is not among `borders`, and
-/// Error(InvalidArgument) for a dim other than 2 or 3.
+/// the block's first global index; the `q` answers to its requests are its positions `pos`
+/// (row * (dim + 1) + face) and the global index of the simplex across each (-1: none, an open
+/// face on the hull). Row-major, (dim + 1) entries a simplex, -1 on the hull. On `threads` host
+/// threads (0: OpenMP's default). Throws Error(Internal) where a -2 face has no answer,
+/// Error(InvalidArgument) for a dim other than 2 or 3 or a position out of range.
 HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,
-                                         std::int64_t offset, const std::int64_t* request_owner,
-                                         const std::int64_t* request_key,
-                                         const std::int64_t* request_pos, std::int64_t q,
-                                         const BlockBorder* borders, std::int64_t nborders,
+                                         std::int64_t offset, const std::int64_t* pos,
+                                         const std::int64_t* across, std::int64_t q,
                                          int threads = 0);
 
 /// The bounds of a set of points, and its first point with a NaN or infinite coordinate.
@@ -145,27 +149,17 @@ struct CellSplit {
 /// for a dim other than 2 or 3.
 CellSplit split_by_cell(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                         int threads = 0);
-/// Whole cells of a second grid (the bins) that blocks ask for: entry i asks for every point in
-/// bin `bin[i]` (its cell of `bins`, as CellGrid says) for block `block[i]`. The entries come by
-/// block (`block` not decreasing).
-struct BinRequests {
-  CellGrid bins;
-  const std::int64_t* bin = nullptr;
-  const std::int64_t* block = nullptr;
-  std::int64_t count = 0;
-};
 /// Splits `n` points to the blocks of `grid` (CellSplit): a point goes to its cell's block, to
 /// the block `box_block[i]` of every one of the `nboxes` closed boxes i holding it
-/// (`box_lo[i * dim + j] <= x_j <= box_hi[i * dim + j]`, comparisons of the doubles only) and,
-/// where `requests` is given, to every block asking for its bin; once per block. The boxes come
-/// by block (box_block not decreasing). Where `wanted` is given, only the blocks b with
-/// wanted[b] nonzero get points. Deterministic on any thread count. Throws
-/// Error(InvalidArgument) for a dim other than 2 or 3, a box's or request's block outside the
-/// grid or out of order, or a request's bin outside its grid.
+/// (`box_lo[i * dim + j] <= x_j <= box_hi[i * dim + j]`, comparisons of the doubles only); once
+/// per block. The boxes come by block (box_block not decreasing). Where `wanted` is given, only
+/// the blocks b with wanted[b] nonzero get points. Deterministic on any thread count. Throws
+/// Error(InvalidArgument) for a dim other than 2 or 3, or a box's block outside the grid or out
+/// of order.
 CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                           const double* box_lo, const double* box_hi, const std::int64_t* box_block,
                           std::int64_t nboxes, const std::uint8_t* wanted = nullptr,
-                          int threads = 0, const BinRequests* requests = nullptr);
+                          int threads = 0);
 
 /// Fills `split.points` and `split.cells` (CellSplit) from the points it split, on `threads`
 /// host threads (0: OpenMP's default): each block's part then lies in one slice.
@@ -183,21 +177,39 @@ HostVector<std::int32_t> cell_counts(const double* points, int dim, std::int64_t
 /// bins that hold points a block lacks): a cell *meets* a ball where its box, grown by `margin`,
 /// meets the cut box and lies within the reach of the centre; a reach that is not finite meets
 /// every marked cell of the cut box. The test of the region past a block's cells for
-/// gpugeom.dask (a ball that meets no marked cell holds no point the block lacks) and its
-/// request (the marked cells the failing balls meet, whose points it asks for next).
-struct BallBins {
-  /// Per ball, 1 where it meets a marked cell.
-  HostVector<std::uint8_t> meets;
-  /// With `collect`: the marked cells any ball meets, increasing (else empty).
-  HostVector<std::int64_t> cells;
+/// gpugeom.dask: a ball that meets no marked cell holds no point the block lacks. Returns per
+/// ball 1 where it meets a marked cell (a ball's scan stops at the first), on `threads` host
+/// threads (0: OpenMP's default). Throws Error(InvalidArgument) for a dim other than 2 or 3 or
+/// more than 2^28 cells.
+HostVector<std::uint8_t> balls_in_bins(const double* centres, const double* reach, const double* lo,
+                                       const double* hi, std::int64_t m, int dim,
+                                       const CellGrid& grid, const std::uint8_t* marked,
+                                       double margin, int threads = 0);
+
+/// What a block sends the other blocks of `grid` (block_borders): per target block, in
+/// increasing order (`targets`), the local indices of its own points the target needs,
+/// increasing: `vertices[offsets[k]:offsets[k + 1]]` for targets[k].
+struct BlockBorders {
+  HostVector<std::int64_t> targets, offsets, vertices;
 };
-/// The cells the balls meet (BallBins), on `threads` host threads (0: OpenMP's default); without
-/// `collect` only whether each ball meets one (a ball's scan stops at the first). Throws
-/// Error(InvalidArgument) for a dim other than 2 or 3 or more than 2^28 cells.
-BallBins balls_in_bins(const double* centres, const double* reach, const double* lo,
-                       const double* hi, std::int64_t m, int dim, const CellGrid& grid,
-                       const std::uint8_t* marked, double margin, bool collect = true,
-                       int threads = 0);
+/// The border of block `block` of `grid` (the cells are the blocks) from its local
+/// triangulation (`m` simplices and their neighbours over `n` local points, `owned` marking its
+/// own points): every own point that is a vertex of a simplex whose closed circumball (grown by
+/// a bound of its rounding) meets another block's cell grown by `margin`, or of a hull face (no
+/// neighbour) whose plane meets it; a ball whose centre is not trusted meets every cell. A
+/// block's stars are those of the global triangulation when it holds, besides its own points,
+/// every other block's border for it (docs/design-notes.md). `scale`: the largest coordinate
+/// magnitude of the points' bounds. Deterministic on any thread count. Throws
+/// Error(InvalidArgument) for a dim other than 2 or 3 or a block outside the grid.
+BlockBorders block_borders(const double* points, int dim, const std::int64_t* simplices,
+                           const std::int64_t* neighbors, std::int64_t m, std::int64_t n,
+                           const std::uint8_t* owned, std::int64_t block, const CellGrid& grid,
+                           double margin, double scale, int threads = 0);
+/// The same, for int32 simplices and neighbours.
+BlockBorders block_borders(const double* points, int dim, const std::int32_t* simplices,
+                           const std::int32_t* neighbors, std::int64_t m, std::int64_t n,
+                           const std::uint8_t* owned, std::int64_t block, const CellGrid& grid,
+                           double margin, double scale, int threads = 0);
 
 /// The points of a 2D set (`n` points, x and y each) that may be extreme points of a larger set
 /// holding them: all but those strictly inside the polygon through their extreme points in 8

@@ -797,59 +797,12 @@ nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
   out["simplices"] = host_array(std::move(r.simplices), {sz(k), sz(d1)});
   out["nb_local"] = host_array(std::move(r.neighbors), {sz(k), sz(d1)});
   out["req_owner"] = host_array(std::move(r.request_owner), {q});
-  out["req_key"] = host_array(std::move(r.request_key), {q, sz(d1)});
+  out["req_key"] = host_array(std::move(r.request_key), {q, sz(d1 - 1)});
   out["req_pos"] = host_array(std::move(r.request_pos), {q});
+  out["req_open"] = host_array(std::move(r.request_open), {q});
   out["used"] = host_array(std::move(r.vertices), {nv});
   out["vertices"] = host_array(std::move(r.vertex_ids), {nv});
   if (xyz) out["vertex_points"] = host_array(std::move(r.vertex_points), {nv, sz(d1 - 1)});
-  const sz nb_ = r.border_rows.size();
-  out["border_rows"] = host_array(std::move(r.border_rows), {nb_});
-  out["border_keys"] = host_array(std::move(r.border_keys), {nb_, sz(d1)});
-  return out;
-}
-
-// The neighbours of a block's output in global simplex indices: its requests found in the
-// borders of their owners, each a tuple (owner, offset, border_rows, border_keys).
-nb::object block_neighbors_bind(const AnyArray& nb_local, std::int64_t offset,
-                                const AnyArray& req_owner, const AnyArray& req_key,
-                                const AnyArray& req_pos, const nb::list& borders, int threads) {
-  Input nl = inspect(nb_local, "nb_local");
-  if (nl.shape.size() != 2 || (nl.shape[1] != 3 && nl.shape[1] != 4))
-    throw nb::value_error("nb_local must have shape (m, 3) or (m, 4)");
-  const std::int64_t d1 = nl.shape[1];
-  std::int64_t m = 0, q = 0;
-  const std::int64_t* nbr = host_indices(nb_local, "nb_local", -1, d1, -2, INT64_MAX, &m);
-  const std::int64_t* pos = host_indices(req_pos, "req_pos", -1, -1, 0, m * d1, &q);
-  const std::int64_t* owner = host_indices(req_owner, "req_owner", q, -1, 0, INT64_MAX);
-  const std::int64_t* key = host_indices(req_key, "req_key", q, d1, 0, INT64_MAX);
-  std::vector<BlockBorder> b;
-  for (nb::handle item : borders) {
-    nb::tuple t = nb::cast<nb::tuple>(item);
-    if (t.size() != 4) throw nb::value_error("each border is (owner, offset, rows, keys)");
-    BlockBorder x;
-    x.owner = nb::cast<std::int64_t>(t[0]);
-    x.offset = nb::cast<std::int64_t>(t[1]);
-    x.rows = host_indices(nb::cast<AnyArray>(t[2]), "border rows", -1, -1, 0, INT64_MAX, &x.count);
-    x.keys = host_indices(nb::cast<AnyArray>(t[3]), "border keys", x.count, d1, 0, INT64_MAX);
-    b.push_back(x);
-  }
-  HostVector<std::int64_t> r = unlocked([&] {
-    return block_neighbors(nbr, m, int(d1) - 1, offset, owner, key, pos, q, b.data(),
-                           std::int64_t(b.size()), threads);
-  });
-  return host_array(std::move(r), {sz(m), sz(d1)});
-}
-
-// The bounds of a piece of gpugeom.dask's input and its first point that is not finite.
-nb::dict point_bounds_bind(const AnyArray& points, int threads) {
-  int dim = 0;
-  std::int64_t n = 0;
-  const double* x = host_points(points, &dim, &n);
-  PointBounds r = unlocked([&] { return point_bounds(x, dim, n, threads); });
-  nb::dict out;
-  out["lo"] = std::vector<double>(r.lo, r.lo + dim);
-  out["hi"] = std::vector<double>(r.hi, r.hi + dim);
-  out["first_bad"] = r.first_bad;
   return out;
 }
 
@@ -867,6 +820,90 @@ CellGrid cell_grid(const std::vector<double>& lo, const std::vector<double>& wid
   return g;
 }
 
+// The face requests that come to one block paired (each key twice): per request its partner's
+// position.
+nb::object match_faces_bind(const AnyArray& keys, const AnyArray& positions, const AnyArray& open,
+                            int threads) {
+  Input ki = inspect(keys, "keys");
+  if (ki.shape.size() != 2 || (ki.shape[1] != 2 && ki.shape[1] != 3))
+    throw nb::value_error("keys must have shape (q, 2) or (q, 3)");
+  const std::int64_t dim = ki.shape[1];
+  std::int64_t q = 0;
+  const std::int64_t* k = host_indices(keys, "keys", -1, dim, 0, INT64_MAX, &q);
+  const std::int64_t* p = host_indices(positions, "positions", q, -1, 0, INT64_MAX);
+  Input o = inspect(open, "open");
+  if (o.on_device || o.shape.size() != 1 || o.shape[0] != q ||
+      !(holds<bool>(o) || holds<std::uint8_t>(o)))
+    throw nb::value_error("open must be a host bool array with a value per request");
+  const auto* op = static_cast<const std::uint8_t*>(o.data);
+  HostVector<std::int64_t> r =
+      unlocked([&] { return match_faces(k, p, op, q, int(dim), threads); });
+  return host_array(std::move(r), {sz(q)});
+}
+
+// The neighbours of a block's output in global simplex indices: its -2 faces answered (their
+// positions, and the global index of the simplex across each).
+nb::object block_neighbors_bind(const AnyArray& nb_local, std::int64_t offset, const AnyArray& pos,
+                                const AnyArray& across, int threads) {
+  Input nl = inspect(nb_local, "nb_local");
+  if (nl.shape.size() != 2 || (nl.shape[1] != 3 && nl.shape[1] != 4))
+    throw nb::value_error("nb_local must have shape (m, 3) or (m, 4)");
+  const std::int64_t d1 = nl.shape[1];
+  std::int64_t m = 0, q = 0;
+  const std::int64_t* nbr = host_indices(nb_local, "nb_local", -1, d1, -2, INT64_MAX, &m);
+  const std::int64_t* ps = host_indices(pos, "pos", -1, -1, 0, INT64_MAX, &q);
+  const std::int64_t* ac = host_indices(across, "across", q, -1, -1, INT64_MAX);
+  HostVector<std::int64_t> r =
+      unlocked([&] { return block_neighbors(nbr, m, int(d1) - 1, offset, ps, ac, q, threads); });
+  return host_array(std::move(r), {sz(m), sz(d1)});
+}
+
+// What a block sends the others: per target block, the local indices of its own points.
+nb::dict block_borders_bind(const AnyArray& points, const AnyArray& simplices,
+                            const AnyArray& neighbors, const AnyArray& owned, std::int64_t block,
+                            const std::vector<double>& lo, const std::vector<double>& width,
+                            const std::vector<std::int64_t>& counts, double margin, double scale,
+                            int threads) {
+  int dim = 0;
+  std::int64_t n = 0, m = 0;
+  const double* x = host_points(points, &dim, &n);
+  Input o = inspect(owned, "owned");
+  if (o.on_device || o.shape.size() != 1 || o.shape[0] != n ||
+      !(holds<bool>(o) || holds<std::uint8_t>(o)))
+    throw nb::value_error("owned must be a host bool array with a value per point");
+  const CellGrid g = cell_grid(lo, width, counts, dim);
+  BlockBorders r = by_index_type(simplices, [&](auto index) {
+    using T = decltype(index);
+    const T* s =
+        host_indices_of<T>(simplices, "simplices", -1, dim + 1, 0, n, &m, "int32 or int64");
+    const T* nbr = host_indices_of<T>(neighbors, "neighbors", m, dim + 1, -1, m, nullptr,
+                                      "int32 or int64 (as simplices)");
+    return unlocked([&] {
+      return block_borders(x, dim, s, nbr, m, n, static_cast<const std::uint8_t*>(o.data), block, g,
+                           margin, scale, threads);
+    });
+  });
+  nb::dict out;
+  const sz t = r.targets.size(), v = r.vertices.size();
+  out["targets"] = host_array(std::move(r.targets), {t});
+  out["offsets"] = host_array(std::move(r.offsets), {sz(r.offsets.size())});
+  out["vertices"] = host_array(std::move(r.vertices), {v});
+  return out;
+}
+
+// The bounds of a piece of gpugeom.dask's input and its first point that is not finite.
+nb::dict point_bounds_bind(const AnyArray& points, int threads) {
+  int dim = 0;
+  std::int64_t n = 0;
+  const double* x = host_points(points, &dim, &n);
+  PointBounds r = unlocked([&] { return point_bounds(x, dim, n, threads); });
+  nb::dict out;
+  out["lo"] = std::vector<double>(r.lo, r.lo + dim);
+  out["hi"] = std::vector<double>(r.hi, r.hi + dim);
+  out["first_bad"] = r.first_bad;
+  return out;
+}
+
 // How many points lie in each cell of a grid (gpugeom.dask's bins of the points a block lacks).
 nb::object cell_counts_bind(const AnyArray& points, const std::vector<double>& lo,
                             const std::vector<double>& width,
@@ -880,17 +917,14 @@ nb::object cell_counts_bind(const AnyArray& points, const std::vector<double>& l
   return host_array(std::move(r), shape);
 }
 
-// The split of points to the blocks of gpugeom.dask's grid: by cell, (box_lo, box_hi,
-// box_block given) to every block with a box holding them, and (bins, bin, bin_block given: the
-// bins as (lo, width, counts)) to every block asking for the bin they lie in; `wanted`: the
-// blocks to list.
+// The split of points to the blocks of gpugeom.dask's grid: by cell, and (box_lo, box_hi,
+// box_block given) to every block with a box holding them; `wanted`: the blocks to list.
 nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>& lo,
                               const std::vector<double>& width,
                               const std::vector<std::int64_t>& counts,
                               std::optional<AnyArray> box_lo, std::optional<AnyArray> box_hi,
                               std::optional<AnyArray> box_block, std::optional<AnyArray> wanted,
-                              bool gather, int threads, nb::object bins,
-                              std::optional<AnyArray> bin, std::optional<AnyArray> bin_block) {
+                              bool gather, int threads) {
   int dim = 0;
   std::int64_t n = 0;
   const double* x = host_points(points, &dim, &n);
@@ -919,22 +953,8 @@ nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>&
       throw nb::value_error("wanted must be a host bool array with an entry per block");
     want = static_cast<const std::uint8_t*>(w.data);
   }
-  if (bins.is_none() != !bin.has_value() || bin.has_value() != bin_block.has_value())
-    throw nb::value_error("bins, bin and bin_block go together");
-  BinRequests asked;
-  if (bin) {
-    auto [blo, bw, bc] =
-        nb::cast<std::tuple<std::vector<double>, std::vector<double>, std::vector<std::int64_t>>>(
-            bins);
-    asked.bins = cell_grid(blo, bw, bc, dim);
-    std::int64_t nbins = 1, k = 0;
-    for (int j = 0; j < dim; ++j) nbins *= bc[std::size_t(j)];
-    asked.bin = host_indices(*bin, "bin", -1, -1, 0, nbins, &asked.count);
-    asked.block = host_indices(*bin_block, "bin_block", asked.count, -1, 0, cells, &k);
-  }
   CellSplit r = unlocked([&] {
-    CellSplit split =
-        split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads, bin ? &asked : nullptr);
+    CellSplit split = split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads);
     if (gather) gather_blocks(x, dim, split, threads);
     return split;
   });
@@ -952,11 +972,11 @@ nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>&
 
 // gpugeom.dask's test of balls (centres, reaches, cut boxes) against the bins with points a
 // block lacks (`marked`, one byte a bin of the grid (lo, width, counts)).
-nb::dict balls_in_bins_bind(const AnyArray& centres, const AnyArray& reach, const AnyArray& lo,
-                            const AnyArray& hi, const std::vector<double>& grid_lo,
-                            const std::vector<double>& width,
-                            const std::vector<std::int64_t>& counts, const AnyArray& marked,
-                            double margin, bool collect, int threads) {
+nb::object balls_in_bins_bind(const AnyArray& centres, const AnyArray& reach, const AnyArray& lo,
+                              const AnyArray& hi, const std::vector<double>& grid_lo,
+                              const std::vector<double>& width,
+                              const std::vector<std::int64_t>& counts, const AnyArray& marked,
+                              double margin, int threads) {
   int dim = 0;
   std::int64_t m = 0;
   const double* c = host_points(centres, &dim, &m);
@@ -976,14 +996,9 @@ nb::dict balls_in_bins_bind(const AnyArray& centres, const AnyArray& reach, cons
   if (w.on_device || size != cells || !(holds<bool>(w) || holds<std::uint8_t>(w)))
     throw nb::value_error("marked must be a host bool array with an entry per bin");
   const auto* mk = static_cast<const std::uint8_t*>(w.data);
-  BallBins out = unlocked([&] {
-    return balls_in_bins(c, pts(r), pts(l), pts(h), m, dim, g, mk, margin, collect, threads);
-  });
-  nb::dict d;
-  const sz k = out.cells.size();
-  d["meets"] = host_array(std::move(out.meets), {sz(m)});
-  d["cells"] = host_array(std::move(out.cells), {k});
-  return d;
+  HostVector<std::uint8_t> out = unlocked(
+      [&] { return balls_in_bins(c, pts(r), pts(l), pts(h), m, dim, g, mk, margin, threads); });
+  return host_array(std::move(out), {sz(m)});
 }
 
 nb::object hull_candidates2d_bind(const AnyArray& points, int threads) {
@@ -1077,12 +1092,14 @@ void bind_spatial(nb::module_& m) {
         "threads"_a = 0);
   m.def("split_to_blocks", &split_to_blocks_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
         "box_lo"_a = nb::none(), "box_hi"_a = nb::none(), "box_block"_a = nb::none(),
-        "wanted"_a = nb::none(), "gather"_a = false, "threads"_a = 0, "bins"_a = nb::none(),
-        "bin"_a = nb::none(), "bin_block"_a = nb::none());
+        "wanted"_a = nb::none(), "gather"_a = false, "threads"_a = 0);
   m.def("balls_in_bins", &balls_in_bins_bind, "centres"_a, "reach"_a, "lo"_a, "hi"_a, "grid_lo"_a,
-        "width"_a, "counts"_a, "marked"_a, "margin"_a, "collect"_a = true, "threads"_a = 0);
-  m.def("block_neighbors", &block_neighbors_bind, "nb_local"_a, "offset"_a, "req_owner"_a,
-        "req_key"_a, "req_pos"_a, "borders"_a, "threads"_a = 0);
+        "width"_a, "counts"_a, "marked"_a, "margin"_a, "threads"_a = 0);
+  m.def("block_neighbors", &block_neighbors_bind, "nb_local"_a, "offset"_a, "pos"_a, "across"_a,
+        "threads"_a = 0);
+  m.def("match_faces", &match_faces_bind, "keys"_a, "positions"_a, "open"_a, "threads"_a = 0);
+  m.def("block_borders", &block_borders_bind, "points"_a, "simplices"_a, "neighbors"_a, "owned"_a,
+        "block"_a, "lo"_a, "width"_a, "counts"_a, "margin"_a, "scale"_a, "threads"_a = 0);
   m.def("block_output", &block_output_bind, "simplices"_a, "neighbors"_a, "rows"_a, "ids"_a,
         "blk"_a, "points"_a = nb::none(), "threads"_a = 0);
   m.def("furthest_site2d", &furthest_site2d_bind, "points"_a, "threads"_a = 0, "voronoi"_a = false);

@@ -1,9 +1,8 @@
 // A block's balls against the bins that hold points it lacks (include/gpugeom/blocks.hpp:
-// balls_in_bins): gpugeom.dask's finality test past the region, and the request that follows
-// from it (python/gpugeom/dask/_ghost.py). The box round a ball's part past the region met bins
-// in its corners that the ball never reaches; between clusters those corners hold the clusters'
-// cores, so a test by boxes failed balls no point could break, and a request by boxes (or by a
-// wider ghost layer) brought whole clusters where a block needs only their sides facing it.
+// balls_in_bins): gpugeom.dask's finality test past the region (python/gpugeom/dask/_ghost.py).
+// The box round a ball's part past the region met bins in its corners that the ball never
+// reaches; between clusters those corners hold the clusters' cores, so a test by boxes failed
+// balls no point could break.
 #include <omp.h>
 
 #include <algorithm>
@@ -40,9 +39,9 @@ bool bins_along(double a, double b, const CellGrid& g, int j, double margin, std
 template <int D>
 void run(const double* centres, const double* reach, const double* lo, const double* hi,
          std::int64_t m, const CellGrid& g, const std::uint8_t* marked, double margin,
-         std::uint8_t* meets, std::uint8_t* hit) {
-  // without `hit` a ball's scan stops at the first marked cell it meets: a ball as big as the
-  // box (points on a sphere) costs one cell, not all of them
+         std::uint8_t* meets) {
+  // a ball's scan stops at the first marked cell it meets: a ball as big as the box (points on
+  // a sphere) costs one cell, not all of them
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::int64_t i = 0; i < m; ++i) {
     const double* c = centres + i * D;
@@ -68,10 +67,9 @@ void run(const double* centres, const double* reach, const double* lo, const dou
       const double r2 = finite ? r * r : 0.0;
       std::int64_t k[3] = {0, 0, 0};
       const std::int64_t end2 = D == 3 ? last[2] : 0;
-      auto more = [&] { return hit || !met; };
-      for (k[0] = first[0]; k[0] <= last[0] && more(); ++k[0])
-        for (k[1] = first[1]; k[1] <= last[1] && more(); ++k[1])
-          for (k[2] = first[2]; k[2] <= end2 && more(); ++k[2]) {
+      for (k[0] = first[0]; k[0] <= last[0] && !met; ++k[0])
+        for (k[1] = first[1]; k[1] <= last[1] && !met; ++k[1])
+          for (k[2] = first[2]; k[2] <= end2 && !met; ++k[2]) {
             std::int64_t bin = k[0] * g.counts[1] + k[1];
             if (D == 3) bin = bin * g.counts[2] + k[2];
             if (!marked[bin]) continue;
@@ -86,11 +84,6 @@ void run(const double* centres, const double* reach, const double* lo, const dou
               if (d2 > r2) continue;
             }
             met = 1;
-            // every writer writes 1: the set of bins met does not depend on the threads
-            if (hit) {
-#pragma omp atomic write
-              hit[bin] = 1;
-            }
           }
     }
     meets[i] = met;
@@ -99,9 +92,10 @@ void run(const double* centres, const double* reach, const double* lo, const dou
 
 }  // namespace
 
-BallBins balls_in_bins(const double* centres, const double* reach, const double* lo,
-                       const double* hi, std::int64_t m, int dim, const CellGrid& grid,
-                       const std::uint8_t* marked, double margin, bool collect, int threads) {
+HostVector<std::uint8_t> balls_in_bins(const double* centres, const double* reach, const double* lo,
+                                       const double* hi, std::int64_t m, int dim,
+                                       const CellGrid& grid, const std::uint8_t* marked,
+                                       double margin, int threads) {
   blocks_detail::check_dim(dim, "balls_in_bins");
   std::int64_t cells = 1;
   for (int j = 0; j < dim; ++j) cells *= grid.counts[j];
@@ -109,23 +103,14 @@ BallBins balls_in_bins(const double* centres, const double* reach, const double*
     throw Error(ErrorCode::InvalidArgument,
                 "balls_in_bins: at most 2^28 cells, got " + std::to_string(cells));
   blocks_detail::ThreadScope scope(threads);
-  BallBins out;
-  out.meets.resize(std::size_t(std::max<std::int64_t>(m, 0)));
-  HostVector<std::uint8_t> hit;
-  if (collect) hit.assign(std::size_t(cells), 0);
-  std::uint8_t* h = collect ? hit.data() : nullptr;
+  HostVector<std::uint8_t> meets(std::size_t(std::max<std::int64_t>(m, 0)));
   if (m > 0) {
     if (dim == 2)
-      run<2>(centres, reach, lo, hi, m, grid, marked, margin, out.meets.data(), h);
+      run<2>(centres, reach, lo, hi, m, grid, marked, margin, meets.data());
     else
-      run<3>(centres, reach, lo, hi, m, grid, marked, margin, out.meets.data(), h);
+      run<3>(centres, reach, lo, hi, m, grid, marked, margin, meets.data());
   }
-  if (!collect) return out;
-  blocks_detail::ordered_compact(
-      cells, [&](std::int64_t b) { return hit[std::size_t(b)] != 0; },
-      [&](std::int64_t total) { out.cells.resize(std::size_t(total)); },
-      [&](std::int64_t b, std::int64_t rank) { out.cells[std::size_t(rank)] = b; });
-  return out;
+  return meets;
 }
 
 }  // namespace gpugeom

@@ -98,50 +98,6 @@ struct BoxBins {
   }
 };
 
-// The bins that blocks ask for, each with the blocks asking (CSR, each list increasing).
-struct RequestedBins {
-  CellGrid bins;
-  int dim = 0;
-  std::int64_t count = 0;
-  HostVector<std::int64_t> start, list;
-
-  RequestedBins(const BinRequests* r, int d, std::int64_t cells) : dim(d) {
-    if (!r || r->count <= 0) return;
-    bins = r->bins;
-    count = r->count;
-    std::int64_t total = 1;
-    for (int j = 0; j < dim; ++j) total *= bins.counts[j];
-    if (total > (std::int64_t(1) << 28))
-      throw Error(ErrorCode::InvalidArgument,
-                  "split_to_blocks: at most 2^28 bins, got " + std::to_string(total));
-    for (std::int64_t i = 0; i < count; ++i) {
-      if (r->block[i] < 0 || r->block[i] >= cells || r->bin[i] < 0 || r->bin[i] >= total)
-        throw Error(ErrorCode::InvalidArgument,
-                    "split_to_blocks: request " + std::to_string(i) + " names bin " +
-                        std::to_string(r->bin[i]) + " of " + std::to_string(total) + " for block " +
-                        std::to_string(r->block[i]) + " of " + std::to_string(cells));
-      if (i > 0 && r->block[i] < r->block[i - 1])
-        throw Error(ErrorCode::InvalidArgument,
-                    "split_to_blocks: the bin requests must come by block");
-    }
-    start.assign(std::size_t(total + 1), 0);
-    for (std::int64_t i = 0; i < count; ++i) ++start[std::size_t(r->bin[i] + 1)];
-    for (std::int64_t b = 0; b < total; ++b) start[std::size_t(b + 1)] += start[std::size_t(b)];
-    list.resize(std::size_t(count));
-    HostVector<std::int64_t> next(start.begin(), start.end() - 1);
-    // in entry order, so by block: each bin's list increasing (a block asking twice is listed
-    // twice, and the merge in split_to_blocks takes it once)
-    for (std::int64_t i = 0; i < count; ++i)
-      list[std::size_t(next[std::size_t(r->bin[i])]++)] = r->block[i];
-  }
-
-  std::int64_t bin_of(const double* x) const {
-    std::int64_t b = 0;
-    for (int j = 0; j < dim; ++j) b = b * bins.counts[j] + cell_along(x[j], bins, j);
-    return b;
-  }
-};
-
 }  // namespace
 
 PointBounds point_bounds(const double* points, int dim, std::int64_t n, int threads) {
@@ -176,8 +132,7 @@ PointBounds point_bounds(const double* points, int dim, std::int64_t n, int thre
 
 CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                           const double* box_lo, const double* box_hi, const std::int64_t* box_block,
-                          std::int64_t nboxes, const std::uint8_t* wanted, int threads,
-                          const BinRequests* requests) {
+                          std::int64_t nboxes, const std::uint8_t* wanted, int threads) {
   blocks_detail::check_dim(dim, "split_to_blocks");
   std::int64_t cells = 1;
   for (int j = 0; j < dim; ++j) cells *= grid.counts[j];
@@ -189,7 +144,6 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
   for (std::int64_t b = 1; b < nboxes; ++b)
     if (box_block[b] < box_block[b - 1])
       throw Error(ErrorCode::InvalidArgument, "split_to_blocks: the boxes must come by block");
-  const RequestedBins asked(requests, dim, cells);
   blocks_detail::ThreadScope scope(threads);
   const BoxBins bins(grid, dim, box_lo, box_hi, nboxes);
   CellSplit out;
@@ -199,43 +153,23 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
   const int nt = std::max(1, omp_get_max_threads());
   HostVector<std::int64_t> counts(std::size_t(nt) * std::size_t(cells), 0);
   // calls f(block) for each block point p goes to: its cell's, then those of the boxes holding
-  // it (a block's boxes come together: once one holds p, the block's others are skipped), then
-  // those asking for its bin that no box of theirs gave it to (both lists go by block: a merge)
+  // it (a block's boxes come together: once one holds p, the block's others are skipped)
   auto visit = [&](std::int64_t p, auto&& f) {
     const double* x = points + p * dim;
     const std::int64_t c = out.cell[std::size_t(p)];
     if (!wanted || wanted[c]) f(c);
-    const std::int64_t* ask = nullptr;
-    const std::int64_t* ask_end = nullptr;
-    if (asked.count > 0) {
-      const std::int64_t r = asked.bin_of(x);
-      ask = asked.list.data() + asked.start[std::size_t(r)];
-      ask_end = asked.list.data() + asked.start[std::size_t(r + 1)];
-    }
-    std::int64_t prev = -1;
-    // the requests of the blocks below blk, each once; blk's own are skipped (a box gave p)
-    auto asked_before = [&](std::int64_t blk) {
-      for (; ask != ask_end && *ask < blk; ++ask)
-        if (*ask != prev && *ask != c && (!wanted || wanted[*ask])) f(prev = *ask);
-      while (ask != ask_end && *ask == blk) ++ask;
-    };
-    if (nboxes > 0) {
-      std::int64_t bin = 0;
-      for (int j = 0; j < dim; ++j)
-        bin = bin * bins.bins.counts[j] + cell_along(x[j], bins.bins, j);
-      std::int64_t last = -1;
-      for (std::int64_t q = bins.start[std::size_t(bin)]; q < bins.start[std::size_t(bin + 1)];
-           ++q) {
-        const std::int64_t b = bins.list[std::size_t(q)], blk = box_block[b];
-        if (blk == last || blk == c || (wanted && !wanted[blk])) continue;
-        if (in_box(x, box_lo + b * dim, box_hi + b * dim, dim)) {
-          asked_before(blk);
-          f(blk);
-          last = blk;
-        }
+    if (nboxes == 0) return;
+    std::int64_t bin = 0;
+    for (int j = 0; j < dim; ++j) bin = bin * bins.bins.counts[j] + cell_along(x[j], bins.bins, j);
+    std::int64_t last = -1;
+    for (std::int64_t q = bins.start[std::size_t(bin)]; q < bins.start[std::size_t(bin + 1)]; ++q) {
+      const std::int64_t b = bins.list[std::size_t(q)], blk = box_block[b];
+      if (blk == last || blk == c || (wanted && !wanted[blk])) continue;
+      if (in_box(x, box_lo + b * dim, box_hi + b * dim, dim)) {
+        f(blk);
+        last = blk;
       }
     }
-    asked_before(std::numeric_limits<std::int64_t>::max());
   };
 #pragma omp parallel num_threads(nt)
   {

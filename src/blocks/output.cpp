@@ -1,7 +1,8 @@
-// What a distributed-Delaunay block requires of its triangulation and the output of its owned
-// simplices (include/gpugeom/blocks.hpp): the rules of gpugeom.dask (python/gpugeom/dask/
-// _ghost.py), for its CPU and GPU blocks alike, one simplex at a time. NumPy's gathers over every
-// simplex cost a second for a block of 2·10^6 points.
+// What a distributed-Delaunay block requires of its triangulation, the output of its owned
+// simplices and their neighbours across blocks, matched by their faces
+// (include/gpugeom/blocks.hpp): the rules of gpugeom.dask (python/gpugeom/dask/ _ghost.py), for its
+// CPU and GPU blocks alike, one simplex at a time. NumPy's gathers over every simplex cost a second
+// for a block of 2·10^6 points.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -26,8 +27,8 @@ inline int lowest_at(const I* v, int d1) {
 // The passes on simplices and neighbours of either index width (a GPU block's come to the
 // host as the triangulation gives them, int32: half the bytes of int64).
 template <class I>
-BlockRequired required_of(const I* simplices, const I* neighbors, std::int64_t m, int dim,
-                          const std::uint8_t* owned, int threads) {
+BlockRequired required_of(const I* simplices, std::int64_t m, int dim, const std::uint8_t* owned,
+                          int threads) {
   blocks_detail::check_dim(dim, "block_required");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
@@ -42,23 +43,11 @@ BlockRequired required_of(const I* simplices, const I* neighbors, std::int64_t m
     out.required[std::size_t(i)] = any;
     mine[std::size_t(i)] = owned[v[lowest_at(v, d1)]] ? 1 : 0;
   }
-  // the owned rows in order, then the rings (two owned simplices may share one: the same byte
-  // written by two threads, so atomically)
+  // the owned rows in order
   blocks_detail::ordered_compact(
       m, [&](std::int64_t i) { return mine[std::size_t(i)] != 0; },
       [&](std::int64_t total) { out.owned_rows.resize(std::size_t(total)); },
       [&](std::int64_t i, std::int64_t r) { out.owned_rows[std::size_t(r)] = i; });
-  const std::int64_t count = std::int64_t(out.owned_rows.size());
-  std::uint8_t* required = out.required.data();
-#pragma omp parallel for schedule(static)
-  for (std::int64_t r = 0; r < count; ++r) {
-    const std::int64_t i = out.owned_rows[std::size_t(r)];
-    const std::int64_t t = neighbors[i * d1 + lowest_at(simplices + i * d1, d1)];
-    if (t >= 0) {
-#pragma omp atomic write
-      required[t] = std::uint8_t(1);
-    }
-  }
   return out;
 }
 
@@ -87,19 +76,27 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
   for (std::int64_t r = 0; r < count; ++r) {
     const I* v = simplices + rows[r] * d1;
     const I* nb = neighbors + rows[r] * d1;
+    const std::int64_t block = blk[v[lowest_at(v, d1)]];
     for (int k = 0; k < d1; ++k) {
       out.simplices[std::size_t(r * d1 + k)] = ids[v[k]];
       const std::int64_t t = nb[k];
       const std::int64_t p = t < 0 ? -1 : pos[std::size_t(t)];
-      out.neighbors[std::size_t(r * d1 + k)] = t < 0 ? -1 : (p >= 0 ? p : -2);
-      requests += t >= 0 && p < 0;
+      // a face on the local hull is on the global one where it has an own vertex (both
+      // simplices of the face are then in that vertex's star); else it is asked for as an open
+      // request (-3 until the requests are listed), which no partner answers on the hull
+      bool own_face = false;
+      for (int j = 0; j < d1; ++j) own_face = own_face || (j != k && blk[v[j]] == block);
+      const std::int64_t c = t < 0 ? (own_face ? -1 : -3) : (p >= 0 ? p : -2);
+      out.neighbors[std::size_t(r * d1 + k)] = c;
+      requests += c < -1;
     }
   }
   out.request_owner.resize(std::size_t(requests));
   out.request_pos.resize(std::size_t(requests));
-  out.request_key.resize(std::size_t(requests) * std::size_t(d1));
+  out.request_key.resize(std::size_t(requests) * std::size_t(dim));
+  out.request_open.resize(std::size_t(requests));
   // the vertices the rows use (shared between rows: the same byte written by two threads, so
-  // atomically), then in order: the requests (row-major), the border rows, the vertices
+  // atomically), then in order: the requests (row-major), the vertices
   std::uint8_t* mark = used.data();
 #pragma omp parallel for schedule(static)
   for (std::int64_t r = 0; r < count; ++r) {
@@ -109,35 +106,27 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
       mark[v[k]] = std::uint8_t(1);
     }
   }
-  const std::int64_t* nbl = out.neighbors.data();
+  std::int64_t* nbl = out.neighbors.data();
   blocks_detail::ordered_compact(
-      std::int64_t(cells), [&](std::int64_t c) { return nbl[c] == -2; }, [&](std::int64_t) {},
+      std::int64_t(cells), [&](std::int64_t c) { return nbl[c] < -1; }, [&](std::int64_t) {},
       [&](std::int64_t c, std::int64_t q) {
-        const std::int64_t r = c / d1;
-        const I* w = simplices + std::int64_t(neighbors[rows[r] * d1 + c % d1]) * d1;
-        out.request_owner[std::size_t(q)] = blk[w[lowest_at(w, d1)]];
+        out.request_open[std::size_t(q)] = nbl[c] == -3 ? 1 : 0;
+        const I* v = simplices + rows[c / d1] * d1;
+        const int face = int(c % d1);
+        std::int64_t* key = out.request_key.data() + q * dim;
+        I low = -1;
+        for (int j = 0, k = 0; j < d1; ++j) {
+          if (j == face) continue;
+          key[k++] = ids[v[j]];
+          if (low < 0 || v[j] < low) low = v[j];
+        }
+        std::sort(key, key + dim);
+        out.request_owner[std::size_t(q)] = blk[low];
         out.request_pos[std::size_t(q)] = c;
-        std::int64_t* key = out.request_key.data() + q * d1;
-        for (int j = 0; j < d1; ++j) key[j] = ids[w[j]];
-        std::sort(key, key + d1);
       });
-  auto asked = [&](std::int64_t r) {
-    for (int k = 0; k < d1; ++k)
-      if (nbl[r * d1 + k] == -2) return true;
-    return false;
-  };
-  blocks_detail::ordered_compact(
-      count, asked,
-      [&](std::int64_t total) {
-        out.border_rows.resize(std::size_t(total));
-        out.border_keys.resize(std::size_t(total) * std::size_t(d1));
-      },
-      [&](std::int64_t r, std::int64_t b) {
-        out.border_rows[std::size_t(b)] = r;
-        std::int64_t* key = out.border_keys.data() + b * d1;
-        for (int k = 0; k < d1; ++k) key[k] = out.simplices[std::size_t(r * d1 + k)];
-        std::sort(key, key + d1);
-      });
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < std::int64_t(cells); ++c)
+    if (nbl[c] == -3) nbl[c] = -2;
   blocks_detail::ordered_compact(
       n, [&](std::int64_t i) { return mark[i] != 0; },
       [&](std::int64_t total) { out.vertices.resize(std::size_t(total)); },
@@ -161,11 +150,13 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
 
 BlockRequired block_required(const std::int64_t* simplices, const std::int64_t* neighbors,
                              std::int64_t m, int dim, const std::uint8_t* owned, int threads) {
-  return required_of(simplices, neighbors, m, dim, owned, threads);
+  (void)neighbors;  // (the interface keeps them: the rule may come to need them again)
+  return required_of(simplices, m, dim, owned, threads);
 }
 BlockRequired block_required(const std::int32_t* simplices, const std::int32_t* neighbors,
                              std::int64_t m, int dim, const std::uint8_t* owned, int threads) {
-  return required_of(simplices, neighbors, m, dim, owned, threads);
+  (void)neighbors;  // (the interface keeps them: the rule may come to need them again)
+  return required_of(simplices, m, dim, owned, threads);
 }
 BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
@@ -180,12 +171,50 @@ BlockOutput block_output(const std::int32_t* simplices, const std::int32_t* neig
   return output_of(simplices, neighbors, m, dim, rows, count, ids, blk, points, n, threads);
 }
 
+HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_t* positions,
+                                     const std::uint8_t* open, std::int64_t q, int dim,
+                                     int threads) {
+  blocks_detail::check_dim(dim, "match_faces");
+  blocks_detail::ThreadScope scope(threads);
+  // the requests in the order of their keys (then positions: the order does not depend on
+  // where they came from), so that the two of a face are next to each other
+  std::vector<std::int64_t> idx(static_cast<std::size_t>(std::max<std::int64_t>(q, 0)));
+  for (std::int64_t r = 0; r < q; ++r) idx[std::size_t(r)] = r;
+  std::sort(idx.begin(), idx.end(), [&](std::int64_t x, std::int64_t y) {
+    const std::int64_t *a = keys + x * dim, *b = keys + y * dim;
+    for (int k = 0; k < dim; ++k)
+      if (a[k] != b[k]) return a[k] < b[k];
+    return positions[x] < positions[y];
+  });
+  auto same = [&](std::int64_t x, std::int64_t y) {
+    return std::equal(keys + x * dim, keys + (x + 1) * dim, keys + y * dim);
+  };
+  HostVector<std::int64_t> out(static_cast<std::size_t>(std::max<std::int64_t>(q, 0)));
+  for (std::int64_t k = 0; k < q;) {
+    const std::int64_t x = idx[std::size_t(k)];
+    std::int64_t run = 1;
+    while (k + run < q && same(x, idx[std::size_t(k + run)])) ++run;
+    if (run == 1 && open && open[x]) {  // a face on the hull
+      out[std::size_t(x)] = -1;
+      k += 1;
+      continue;
+    }
+    if (run != 2)
+      throw Error(ErrorCode::Internal,
+                  "match_faces: the face of request " + std::to_string(x) + " (position " +
+                      std::to_string(positions[x]) + ") comes " + std::to_string(run) +
+                      " times, not twice (a bug: please report it with the input)");
+    const std::int64_t y = idx[std::size_t(k + 1)];
+    out[std::size_t(x)] = positions[y];
+    out[std::size_t(y)] = positions[x];
+    k += 2;
+  }
+  return out;
+}
+
 HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,
-                                         std::int64_t offset, const std::int64_t* request_owner,
-                                         const std::int64_t* request_key,
-                                         const std::int64_t* request_pos, std::int64_t q,
-                                         const BlockBorder* borders, std::int64_t nborders,
-                                         int threads) {
+                                         std::int64_t offset, const std::int64_t* pos,
+                                         const std::int64_t* across, std::int64_t q, int threads) {
   blocks_detail::check_dim(dim, "block_neighbors");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
@@ -193,49 +222,23 @@ HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < m * d1; ++c) {
     const std::int64_t t = neighbors[c];
-    out[std::size_t(c)] = t >= 0 ? t + offset : -1;
+    out[std::size_t(c)] = t >= 0 ? t + offset : (t == -1 ? -1 : -2);
   }
-  // each border's rows in the order of their keys, then a binary search per request
-  auto less = [d1](const std::int64_t* a, const std::int64_t* b) {
-    return std::lexicographical_compare(a, a + d1, b, b + d1);
-  };
-  std::vector<std::vector<std::int64_t>> sorted(static_cast<std::size_t>(nborders));
-#pragma omp parallel for schedule(dynamic)
-  for (std::int64_t i = 0; i < nborders; ++i) {
-    const BlockBorder& b = borders[i];
-    auto& idx = sorted[std::size_t(i)];
-    idx.resize(std::size_t(b.count));
-    for (std::int64_t r = 0; r < b.count; ++r) idx[std::size_t(r)] = r;
-    std::sort(idx.begin(), idx.end(), [&](std::int64_t x, std::int64_t y) {
-      return less(b.keys + x * d1, b.keys + y * d1);
-    });
+  for (std::int64_t r = 0; r < q; ++r) {
+    if (pos[r] < 0 || pos[r] >= m * d1 || neighbors[pos[r]] != -2)
+      throw Error(ErrorCode::InvalidArgument, "block_neighbors: answer " + std::to_string(r) +
+                                                  " is for position " + std::to_string(pos[r]) +
+                                                  ", not a face of another block's neighbour");
+    out[std::size_t(pos[r])] = across[r] < 0 ? -1 : across[r];
   }
   std::int64_t missing = -1;
 #pragma omp parallel for schedule(static) reduction(max : missing)
-  for (std::int64_t r = 0; r < q; ++r) {
-    const std::int64_t* key = request_key + r * d1;
-    std::int64_t at = -1;
-    for (std::int64_t i = 0; i < nborders && at < 0; ++i) {
-      const BlockBorder& b = borders[i];
-      if (b.owner != request_owner[r]) continue;
-      const auto& idx = sorted[std::size_t(i)];
-      auto it = std::lower_bound(
-          idx.begin(), idx.end(), key,
-          [&](std::int64_t x, const std::int64_t* k) { return less(b.keys + x * d1, k); });
-      if (it != idx.end() && std::equal(key, key + d1, b.keys + *it * d1))
-        at = b.offset + b.rows[*it];
-    }
-    if (at < 0)
-      missing = std::max(missing, r);
-    else
-      out[std::size_t(request_pos[r])] = at;
-  }
+  for (std::int64_t c = 0; c < m * d1; ++c)
+    if (out[std::size_t(c)] == -2) missing = std::max(missing, c);
   if (missing >= 0)
-    throw Error(ErrorCode::Internal,
-                "block_neighbors: request " + std::to_string(missing) + " (owner " +
-                    std::to_string(request_owner[missing]) +
-                    ") was not found in its owner's border (a bug: please report it with the "
-                    "input)");
+    throw Error(ErrorCode::Internal, "block_neighbors: the face at position " +
+                                         std::to_string(missing) +
+                                         " has no answer (a bug: please report it with the input)");
   return out;
 }
 

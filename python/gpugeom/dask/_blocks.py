@@ -53,17 +53,14 @@ class Grid:
     def nblocks(self) -> int:
         return int(np.prod(self.counts))
 
-    def split(self, pts: np.ndarray, boxes=None, threads: int = 0, gather: bool = False,
-              requests=None):
+    def split(self, pts: np.ndarray, boxes=None, threads: int = 0, gather: bool = False):
         """The owning block of each point (row-major cell index: floor((x - lo) / width) per
         axis, clamped), and each block's points: those of its cell and, where ``boxes`` (a dict:
-        block -> list of closed boxes (lo, hi)) is given, those in its boxes, and where
-        ``requests`` (a Grid of bins, and a dict: block -> the ids of the bins it asks for) is
-        given, those in its bins, each point once, in increasing order; only the blocks in
-        ``boxes`` then. One pass in C++ (``_core.split_to_blocks``; the box tests are
-        comparisons of the doubles, a point's bin is computed as ``_core.cell_counts`` does).
-        Returns (cell, order, cuts): block b's points are order[cuts[b]:cuts[b + 1]]; with
-        ``gather`` also the points and cells in that order (gathered in C++ on ``threads``)."""
+        block -> list of closed boxes (lo, hi)) is given, those in its boxes, each point once,
+        in increasing order; only the blocks in ``boxes`` then. One pass in C++
+        (``_core.split_to_blocks``; the box tests are comparisons of the doubles). Returns
+        (cell, order, cuts): block b's points are order[cuts[b]:cuts[b + 1]]; with ``gather``
+        also the points and cells in that order (gathered in C++ on ``threads``)."""
         pts = np.ascontiguousarray(pts, dtype=np.float64)
         args = {}
         if boxes is not None:
@@ -76,15 +73,6 @@ class Grid:
             args = dict(box_lo=np.array([x[1] for x in listed], np.float64).reshape(-1, d),
                         box_hi=np.array([x[2] for x in listed], np.float64).reshape(-1, d),
                         box_block=np.array([x[0] for x in listed], np.int64), wanted=wanted)
-        if requests is not None:
-            bins, asked = requests
-            listed = [b for b in sorted(asked) if len(asked[b])]
-            if listed:
-                args.update(
-                    bins=(bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist()),
-                    bin=np.concatenate([np.asarray(asked[b], np.int64) for b in listed]),
-                    bin_block=np.repeat(np.array(listed, np.int64),
-                                        [len(asked[b]) for b in listed]))
         r = _core.split_to_blocks(pts, self.lo.tolist(), self.width.tolist(),
                                   self.counts.tolist(), threads=threads, gather=gather, **args)
         if gather:

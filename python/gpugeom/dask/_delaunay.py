@@ -1,5 +1,6 @@
-"""The distributed Delaunay triangulation as a Dask computation: input pieces, blocks, rounds of
-ghost growth, owned simplices and their neighbours across blocks."""
+"""The distributed Delaunay triangulation as a Dask computation: input pieces, blocks, a first
+round with ghost layers and a second from the borders the blocks send each other, owned simplices
+and their neighbours across blocks, matched by their faces."""
 import operator
 import os
 import time
@@ -81,19 +82,17 @@ def _summary(pts):
     return dict(n=len(pts), bad=-1, lo=np.array(r["lo"]), hi=np.array(r["hi"]))
 
 
-def _split(pts, offset: int, grid: Grid, boxes: dict, asked: dict, bins: Grid, first: bool,
-           sample: Grid, backend: str, threads: int):
+def _split(pts, offset: int, grid: Grid, boxes: dict, bins: Grid, first: bool, backend: str,
+           threads: int):
     """A piece's points for a round: per block of ``boxes`` (a dict: block -> the boxes it takes
-    this round), in increasing block order, the points it owns, those in its boxes and those in
-    the bins it asked for (``asked``: block -> bin ids), as (points, global ids, owner blocks),
-    None where it has none; in the first round, then the piece's hull candidates (its extreme
-    points) likewise, its count of points per bin and its sample (``_sample``). Separate
-    outputs, so that each block takes only its parts from the worker that split the piece, and
-    no second task selects its ghosts from the other blocks' points (one hop, not two: on 4
-    workers the hop cost more than the selection)."""
+    this round), in increasing block order, the points it owns and those in its boxes, as
+    (points, global ids, owner blocks), None where it has none; in the first round, then the
+    piece's hull candidates (its extreme points) likewise and its count of points per bin.
+    Separate outputs, so that each block takes only its parts from the
+    worker that split the piece, and no second task selects its ghosts from the other blocks'
+    points (one hop, not two: on 4 workers the hop cost more than the selection)."""
     pts = _load(pts)
-    cell, order, cuts, points, cells = grid.split(pts, boxes, threads, gather=True,
-                                                  requests=(bins, asked))
+    cell, order, cuts, points, cells = grid.split(pts, boxes, threads, gather=True)
     ids = order + offset
     parts = []
     for b in sorted(boxes):
@@ -113,16 +112,7 @@ def _split(pts, offset: int, grid: Grid, boxes: dict, asked: dict, bins: Grid, f
             cand = np.arange(len(pts))  # too few or flat: every point may be extreme
     counts = _core.cell_counts(pts, bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist(),
                                threads)
-    return (*parts, (pts[cand], cand + offset, cell[cand]), counts, _sample(pts, offset, cell,
-                                                                           sample, threads))
-
-
-def _sample(pts, offset: int, cell, sample: Grid, threads: int):
-    """The piece's first point in each cell of ``sample`` (points, global ids, owner blocks,
-    sample cells): the piece's part of the sample every block holds (``_global_hull``)."""
-    scell, order, cuts = sample.split(pts, threads=threads)
-    first = order[cuts[:-1][np.diff(cuts) > 0]]
-    return pts[first], first + offset, cell[first], scell[first]
+    return (*parts, (pts[cand], cand + offset, cell[cand]), counts)
 
 
 def _total(counts):
@@ -142,33 +132,14 @@ def _cubes(lo, hi, target: int) -> Grid:
 
 
 def _bins(lo, hi, n: int) -> Grid:
-    """The bins whose counts tell a block where the points it lacks may lie, and which it asks
-    for whole: about one per 8 points, at most 2^16 (256 KiB a piece to sum)."""
+    """The bins whose counts tell a block where the points it lacks may lie: about one per 8
+    points, at most 2^16 (256 KiB a piece to sum)."""
     return _cubes(lo, hi, max(1, min(1 << 16, n // 8)))
 
 
-def _sample_size(n: int) -> int:
-    """The points of the sample every block holds: one per 256 points, at most 4096 (a block of
-    uniform points in 8 gains 2-3 % local points)."""
-    return max(1, min(4096, n // 256))
-
-
-def _sample_grid(lo, hi, n: int) -> Grid:
-    """The cells of the sample: 2 per sample point, so that where the points cluster (few cells
-    hold any) each cluster still has several. (8 gave the same local points on clusters, and
-    every piece of uniform points sent its lowest point in each of them: 21 MB and 160 ms on
-    the critical path for 10^6 points in 16 pieces.)"""
-    return _cubes(lo, hi, 2 * _sample_size(n))
-
-
-def _global_hull(cands, samples, npoints: int, backend: str, threads: int):
-    """The points every block holds from the first round: the global hull's extreme points
-    (from the pieces' candidates) and a coarse sample of all the points (from the pieces'
-    samples: per sample cell the point of lowest id, every k-th of those cells where more than
-    ``_sample_size`` hold points). Without the sample a block's simplices at the side of a
-    cluster reach to the hull's points, and their balls take the clusters between whole; with
-    it they reach the nearest clusters' sides. Returns (points, ids increasing, owner blocks,
-    the hull's facet planes pushed outwards by a margin)."""
+def _global_hull(cands, backend: str, threads: int):
+    """The global hull from the pieces' candidates: its extreme points (points, ids increasing,
+    owner blocks) and its facet planes pushed outwards by a margin."""
     pts = np.concatenate([c[0] for c in cands])
     ids = np.concatenate([c[1] for c in cands])
     blk = np.concatenate([c[2] for c in cands])
@@ -184,44 +155,48 @@ def _global_hull(cands, samples, npoints: int, backend: str, threads: int):
     planes = np.array(h.equations, dtype=np.float64)
     scale = float(np.abs(pts).max()) if len(pts) else 1.0
     planes[:, -1] -= 1e-9 * scale
-    # the sample: per sample cell the lowest id, in the cells' order
-    sp = np.concatenate([x[0] for x in samples])
-    sid = np.concatenate([x[1] for x in samples])
-    sblk = np.concatenate([x[2] for x in samples])
-    scell = np.concatenate([x[3] for x in samples])
-    o = np.lexsort((sid, scell))
-    keep = o[np.concatenate([[True], scell[o][1:] != scell[o][:-1]])] if len(o) else o
-    most = _sample_size(npoints)
-    if len(keep) > most:
-        keep = keep[::-(-len(keep) // most)]
-    aid = np.concatenate([ids[v], sid[keep]])
-    aid, at = np.unique(aid, return_index=True)
-    apts = np.concatenate([pts[v], sp[keep]])[at]
-    ablk = np.concatenate([blk[v], sblk[keep]])[at]
-    return apts, aid, ablk, planes
+    return pts[v], ids[v], blk[v], planes
 
 
 def _meta(r: dict) -> dict:
-    out = {k: v for k, v in r.items() if np.isscalar(v) or v is None or k in ("boxes", "bins")}
+    out = {k: v for k, v in r.items() if np.isscalar(v) or v is None}
+    out["targets"] = sorted(r["borders"])
     if r["done"]:
         out["nsimplex"] = len(r["simplices"])
         out["owners"] = sorted(set(np.unique(r["req_owner"]).tolist()))
     return out
 
 
-def _border(r: dict):
-    """A block's owned simplices that have a neighbour owned elsewhere (a face with -2): the only
-    ones another block can ask for. Their rows and their sorted vertices (from the block's
-    output pass), alone: the only part of a block's result another block takes."""
-    return r["border_rows"], r["border_keys"]
+def _border_for(r: dict, target: int):
+    """What a first-round result sends block ``target`` (None where nothing)."""
+    return r["borders"].get(target)
 
 
-def _neighbors(r: dict, offsets: np.ndarray, block: int, owners: dict) -> np.ndarray:
-    """The neighbours of block ``block``'s simplices in global simplex indices; ``owners``: per
-    block asked, its border (``_border``). One C++ pass (``_core.block_neighbors``)."""
-    borders = [(int(c), int(offsets[c]), rows, keys) for c, (rows, keys) in owners.items()]
-    return _core.block_neighbors(r["nb_local"], int(offsets[block]), r["req_owner"],
-                                 r["req_key"], r["req_pos"], borders)
+def _faces_to(r: dict, offset: int, d1: int, matcher: int):
+    """A block's face requests that block ``matcher`` pairs: their keys, global positions
+    ((offset + row) * (d + 1) + face) and whether each is open (on the local hull)."""
+    at = r["req_owner"] == matcher
+    return r["req_key"][at], offset * d1 + r["req_pos"][at], r["req_open"][at].view(bool)
+
+
+def _match(parts):
+    """Pairs the face requests that come to one block (``_core.match_faces``): (positions,
+    the positions across them, -1 for a face on the hull)."""
+    keys = np.concatenate([p[0] for p in parts])
+    pos = np.concatenate([p[1] for p in parts])
+    open_ = np.concatenate([p[2] for p in parts])
+    return pos, _core.match_faces(keys, pos, open_)
+
+
+def _neighbors_of(r: dict, offset: int, d1: int, answers) -> np.ndarray:
+    """The neighbours of a block's simplices in global simplex indices, from the answers of
+    the blocks that matched its faces (``_core.block_neighbors``)."""
+    m = len(r["simplices"])
+    pos = np.concatenate([a[0] for a in answers]) if answers else np.zeros(0, np.int64)
+    across = np.concatenate([a[1] for a in answers]) if answers else np.zeros(0, np.int64)
+    mine = (pos >= offset * d1) & (pos < (offset + m) * d1)
+    across = np.where(across[mine] >= 0, across[mine] // d1, -1)
+    return _core.block_neighbors(r["nb_local"], int(offset), pos[mine] - offset * d1, across)
 
 
 class DistributedTriangulation:
@@ -239,13 +214,13 @@ class DistributedTriangulation:
     blocks : tuple
         Cells per axis.
     block_stats : list of dict
-        Per block: its ghost width, extra boxes along the hull, rounds, local points, owned
-        simplices and simplices tested.
+        Per block: its ghost width, strips along the sides, rounds (1, or 2 where its first
+        failed), local points (of its last round), owned simplices and simplices tested.
     timings : dict
         Milliseconds of the call's phases (client wall clock): ``check`` (shapes, finite
-        coordinates, bounds), ``round1``... (each round: the pieces split to the blocks, the
-        global hull in the first, the block triangulations). The neighbours are computed when
-        asked for.
+        coordinates, bounds), ``round1`` (the pieces split to the blocks, the global hull, the
+        block triangulations and their borders) and, where a block needs it, ``round2``. The
+        neighbours are computed when asked for.
 
     The input points stay in the cluster's memory (read once) while the result is alive, for
     ``points()`` and ``gather()``.
@@ -367,11 +342,13 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     """Exact Delaunay triangulation of 2D or 3D points, block by block on a Dask cluster.
 
     The points are split into blocks by a grid over their bounding box; each block triangulates
-    its points with a layer of ghost points around them (and the global hull's extreme points
-    and a coarse sample of all the points), keeps the simplices no outside point can change,
-    and asks for the points its other simplices' circumballs may hold (by bins of about 8
-    points) until those include every simplex round its own points. Each simplex is output by
-    the block owning its lowest-indexed vertex. The result is exactly
+    its points with a layer of ghost points around them (and the global hull's extreme points)
+    and is done where no outside point can change a
+    simplex round its own points. Every block also sends each other block its border: its own
+    points that the other's simplices may use. A block not done is triangulated a second time,
+    with its own points and the borders sent to it, and is then done without a test. Each
+    simplex is output by the block owning its lowest-indexed vertex; neighbours across blocks
+    are matched by their faces. The result is exactly
     ``gpugeom.Delaunay(points)``'s set of simplices, degenerate input included (the
     perturbation depends on the points alone); the order differs.
 
@@ -384,10 +361,10 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         block per input chunk or file, or one per worker of the active distributed client where
         that is more (a block a worker measured best on uniform points: docs/performance.md).
     ghost : float, optional
-        The ghost width (default: 6 mean point spacings in 2D, 4 in 3D); a block asks for more
-        points by bins as it needs, and doubles the width only where a circumcentre is not
-        trusted. Blocks on the sides of the bounding box also take a strip along each side from
-        the first round (4 ghost widths deep in 2D, half a width in 3D).
+        The ghost width of the first round (default: 6 mean point spacings in 2D, 4 in 3D).
+        Blocks on the sides of the bounding box also take a strip along each side (4 ghost
+        widths deep in 2D, half a width in 3D). Wider, more blocks are done in one round;
+        narrower, each first round costs less.
     backend : {"auto", "cuda", "cpu"}
         Where each block is triangulated (on each worker: "auto" takes its GPU).
     threads : int
@@ -448,84 +425,69 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     run = dict(backend=backend, threads=threads)
     all_blocks = list(range(grid.nblocks))
     tag = uuid.uuid4().hex[:12]
-    width = {b: float(ghost) for b in all_blocks}
-    # boxes along the hull a block asked for; from the first round, strips along the sides of
-    # the bounding box its cell touches
+    # from the first round, strips along the sides of the bounding box a block's cell touches
     extras = {b: _side_strips(grid, b, _STRIP_DEPTH[d] * ghost) for b in all_blocks}
-    rounds = {b: 0 for b in all_blocks}
-    asked = {b: np.zeros(0, np.int64) for b in all_blocks}  # the bins a block asked for
-    final, metas = {}, {}
-    pending = list(all_blocks)
     bins = _bins(lo, hi, n)
-    sample = _sample_grid(lo, hi, n)
-    hull = total = None
-    while pending:
-        # each piece is split to the pending blocks' regions and boxes; in the first round the
-        # pieces' hull candidates and counts per bin come too, and from them the global hull and
-        # the counts of all points, which every round uses
-        first = hull is None
-        boxes = {b: [grid.region(b, width[b])] + list(extras[b].values()) for b in pending}
-        # the bins asked for, one value in the graph that every split refers to (as literals
-        # they were copied into each split task: pieces x blocks x up to 2^16 ids)
-        wants = delayed({b: asked[b] for b in pending}, traverse=False)
-        splits = [delayed(_split, nout=len(pending) + 3 * first)(
-            p, int(o), grid, boxes, wants, bins, first, sample, **run)
-            for p, o in zip(pieces, start)]
-        if first:
-            hull = delayed(_global_hull)([s[-3] for s in splits], [s[-1] for s in splits], n,
-                                         **run)
-            total = delayed(_total)([s[-2] for s in splits])
+
+    # the first round: each piece is split to the blocks' regions and strips, and gives its hull
+    # candidates and counts per bin, from which come the global hull and the counts of all
+    # points; every block is triangulated, tests its stars, and takes its borders for the
+    # others
+    boxes = {b: [grid.region(b, float(ghost))] + list(extras[b].values()) for b in all_blocks}
+    splits = [delayed(_split, nout=len(all_blocks) + 2)(p, int(o), grid, boxes, bins, True, **run)
+              for p, o in zip(pieces, start)]
+    hull = delayed(_global_hull)([s[-2] for s in splits], **run)
+    total = delayed(_total)([s[-1] for s in splits])
+    tasks = [delayed(triangulate_block)(
+        b, grid, float(ghost), dict(extras[b]), [s[i] for s in splits], hull, (bins, total),
+        backend, threads, dask_key_name=f"gpugeom-delaunay-block-{tag}-0-{b}")
+        for i, b in enumerate(all_blocks)]
+    *first, hull = dask.persist(*tasks, hull)
+    metas = dict(zip(all_blocks, dask.compute(*[delayed(_meta)(r) for r in first])))
+    final = {b: r for b, r in zip(all_blocks, first) if metas[b]["done"]}
+    rounds = {b: 1 for b in all_blocks}
+    lap("round1")
+
+    # the second round, for the blocks not done: their own points, the hull's and the borders
+    # the others sent them (their stars are then final without a test)
+    pending = [b for b in all_blocks if b not in final]
+    if pending:
+        own = {b: [] for b in pending}
+        splits = [delayed(_split, nout=len(pending))(p, int(o), grid, own, bins, False, **run)
+                  for p, o in zip(pieces, start)]
         tasks = []
         for i, b in enumerate(pending):
+            sent = [delayed(_border_for)(r, b) for c, r in zip(all_blocks, first)
+                    if b in metas[c]["targets"]]
             tasks.append(delayed(triangulate_block)(
-                b, grid, width[b], dict(extras[b]), [s[i] for s in splits], hull, (bins, total),
-                backend, threads,
-                dask_key_name=f"gpugeom-delaunay-block-{tag}-{rounds[b]}-{b}"))
-            rounds[b] += 1
-        # persisted together, so that the pieces are split once a round
-        if first:
-            *done, hull, total = dask.persist(*tasks, hull, total)
-        else:
-            done = dask.persist(*tasks)
-        for b, r, m in zip(pending, done, dask.compute(*[delayed(_meta)(r) for r in done])):
-            if m["done"]:
-                final[b], metas[b] = r, m
-                continue
-            width[b] = m["next_ghost"]
-            asked[b] = np.union1d(asked[b], m["bins"])
-            for key, (lo, hi) in m["boxes"]:
-                if key in extras[b]:
-                    lo, hi = np.minimum(lo, extras[b][key][0]), np.maximum(hi, extras[b][key][1])
-                extras[b][key] = (lo, hi)
-            if rounds[b] >= 4:
-                # every block ends: from the fifth round the ghost layer doubles too, until it
-                # covers the bounding box, where every simplex is final
-                width[b] = max(width[b], 2.0 * m["ghost"])
-        pending = [b for b in pending if b not in final]
-        lap(f"round{len(timings)}")
+                b, grid, float(ghost), {}, [s[i] for s in splits], hull, (bins, total),
+                backend, threads, sent, dask_key_name=f"gpugeom-delaunay-block-{tag}-1-{b}"))
+            rounds[b] = 2
+        second = dask.persist(*tasks)
+        for b, r, m in zip(pending, second, dask.compute(*[delayed(_meta)(r) for r in second])):
+            final[b], metas[b] = r, m
+        lap("round2")
 
     order = [b for b in all_blocks if metas[b]["nlocal"] > 0]  # blocks with points
     sizes = [metas[b]["nsimplex"] for b in order]
     offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-    index = {b: i for i, b in enumerate(order)}
-    position = np.full(grid.nblocks, -1, dtype=np.int64)  # grid cell -> place among the results
-    position[order] = np.arange(len(order))
     results = [final[b] for b in order]
-    neighbors = []
-    borders = {b: delayed(_border)(final[b]) for b in order}
-    for i, b in enumerate(order):
-        owners = {index[c]: borders[c] for c in metas[b]["owners"]}
-        neighbors.append(delayed(_neighbors_of)(final[b], offsets, i, position, owners))
+    # the neighbours across blocks: each block's face requests go to the blocks that match
+    # them (by a face's lowest vertex), and the answers come back
+    d1 = d + 1
+    at = {b: i for i, b in enumerate(order)}
+    senders = {}
+    for b in order:
+        for c in metas[b]["owners"]:
+            senders.setdefault(c, []).append(b)
+    answers = {c: delayed(_match)([delayed(_faces_to)(final[b], int(offsets[at[b]]), d1, c)
+                                   for b in senders[c]]) for c in senders}
+    neighbors = [delayed(_neighbors_of)(final[b], int(offsets[at[b]]), d1,
+                                        [answers[c] for c in metas[b]["owners"]])
+                 for b in order]
     stats = [dict(block=b, ghost=metas[b]["ghost"], extra_boxes=len(extras[b]), rounds=rounds[b],
                   nlocal=metas[b]["nlocal"],
                   nsimplex=metas[b]["nsimplex"], tested=metas[b]["tested"]) for b in order]
     out = DistributedTriangulation(pieces, counts, results, offsets, neighbors, grid, stats)
     out.timings = timings
     return out
-
-
-def _neighbors_of(r, offsets, i, position, owners):
-    # the requests name blocks by grid cell; the offsets go by place among the filled blocks
-    r = dict(r)
-    r["req_owner"] = position[r["req_owner"]]
-    return _neighbors(r, offsets, i, owners)

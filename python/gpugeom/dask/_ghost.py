@@ -1,32 +1,37 @@
 """One block of the distributed triangulation: its points, the ghosts around them and the global
 hull's extreme points, triangulated together; which of the simplices are final; which the block
-owns.
+owns; what it sends the others.
 
-The rule (docs/design-notes.md, "Distributed Delaunay on Dask"):
+The rule (docs/design-notes.md, "Distributed Delaunay on Dask" and "A block is sent the borders
+of the others"):
 
-* A block's *local* points are its own points, every other point in its region (its cell grown
-  by the ghost width, a closed box, tested exactly), in the extra boxes or in the bins it asked
-  for, the extreme points of the global hull and a coarse sample of all the points. The local
+* In the first round a block's *local* points are its own points, every other point in its
+  region (its cell grown by the ghost width, a closed box, tested exactly) or in the strips
+  along the sides of the bounding box, and the extreme points of the global hull. The local
   points therefore have the global hull, and every point that is not local lies in the global
-  bounding box strictly outside the region and the extra boxes, in a bin where the count of
-  all points exceeds the count of the local ones.
+  bounding box strictly outside the region and the strips, in a bin where the count of all
+  points exceeds the count of the local ones.
 * A local simplex is *final* when no outside point can lie in its closed circumball: the ball
   misses every slab of the bounding box beyond the region, or the box round its part inside
-  the bounding box and the hull meets those slabs only inside the extra boxes, or the ball's
-  part in that box meets no bin with an outside point; by margins that cover the rounding of
-  centre and radius. Then it is a simplex of the global triangulation:
-  the perturbation depends on the points alone, so the local points decide it as all do. A face
-  without a neighbour lies on the global hull (the local hull is the global one), so it has
-  none globally either.
-* The block is *done* when every simplex with one of its own points as a vertex is final (the
-  stars of its points are then exactly the global stars), and so is the neighbour of each
-  owned simplex across the face opposite its lowest vertex (so every neighbour is known).
-  Otherwise it asks for the bins with outside points that its failing balls meet (boxes along
-  the hull where they are thin there; a wider ghost layer where a centre is not trusted), and
-  is triangulated again. A bin asked for comes whole, so it is never asked for twice, and the
-  rounds end.
+  the bounding box and the hull meets those slabs only inside the strips, or the ball's part in
+  that box meets no bin with an outside point; by margins that cover the rounding of centre and
+  radius. Then it is a simplex of the global triangulation: the perturbation depends on the
+  points alone, so the local points decide it as all do.
+* The block is *done* when every simplex with one of its own points as a vertex is final: the
+  stars of its points are then exactly the global stars.
+* Every block, done or not, sends each other block its *border* for it: its own points that
+  are vertices of a local simplex whose closed circumball meets that block's cell (or of a hull
+  face whose plane does). The centre of a global ball through an own point q lies in q's
+  Voronoi cell among the local points, so the ball lies in the union of the local balls round
+  q (and of the half-spaces beyond q's hull faces): every point of this block in a global star
+  of another block is in its border for that block.
+* A block not done in the first round is triangulated again with its own points, the hull's
+  points and the borders the others sent it; its stars are then the global ones without a test
+  (every vertex they need is there), so there are at most two rounds.
 * Each simplex is *owned* by the block that owns its lowest-indexed vertex, so exactly one
-  block outputs it; its neighbours are final in that block, so their vertices are known there.
+  block outputs it. Its neighbour across a face is final where it has an own vertex; across
+  the faces where the neighbour is owned elsewhere, the two owners of a face find each other by
+  the face (``match_faces``), so no block needs the neighbours of its stars.
 """
 import numpy as np
 
@@ -42,14 +47,10 @@ def _quiet():
     return np.errstate(divide="ignore", invalid="ignore", over="ignore")
 
 
-# The centre of a simplex whose condition number passes this is not trusted: the block grows.
+# The centre of a simplex whose condition number passes this is not trusted: it is not final.
 _MAX_CONDITION = 1e10
 # Simplices tested at a time (the temporaries: about 1 KB a simplex).
 _PIECE = 1 << 22
-# Bins a failing ball's request is grown by.
-_ASK_PAD = 1.0
-# The share of the bins past which a ball's box asks for every bin with outside points.
-_ASK_ALL = 0.5
 # Simplices times hull planes beyond which the caps along the hull are not computed (the test
 # stays sound without them, only coarser): a block of points on a sphere has as many planes
 # as points, and every simplex to test.
@@ -314,13 +315,10 @@ def _far_caps(pts, t, planes):
 
 def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, planes, extras=(), nbs=None,
                     outside=None):
-    """For simplices ``s`` of local points ``pts``: which are final; for the others whether
-    their centre is trusted (a finite reach and a computed box), whether they lie along the
-    hull, and the box where outside points could break them (``klo``, ``khi``); the centres and
-    reaches (radii grown by their rounding bounds).
+    """For simplices ``s`` of local points ``pts``: which are final.
 
     Points outside the region lie in the bounding box, inside every hull plane (``planes``,
-    pushed outwards by a margin), and outside the extra boxes the block already holds. A ball
+    pushed outwards by a margin), and outside the extra boxes (strips) the block holds. A ball
     is final when it misses the bounding box beyond the region. Failing that, the box round its
     part in the bounding box, cut down where the centre lies beyond a hull plane to the box round
     the cap inside it (simplices along the hull have huge circumballs with a thin part inside),
@@ -335,37 +333,28 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, planes, extras
     centre, radius, err = _circumcentres(pts, s)
     reach = radius + 2.0 * err + 64.0 * _EPS * (scale + np.abs(centre).max(axis=1) + radius)
     ok = _ball_misses(centre, reach, slabs)
-    m = len(s)
-    along = np.zeros(m, dtype=bool)
-    klo, khi = centre - reach[:, None], centre + reach[:, None]
     retry = np.nonzero(~ok & np.isfinite(reach))[0]
     if len(retry):
         c, r = centre[retry], reach[retry]
         lo, hi = _ball_in_box(c, r, box_lo, box_hi)
-        cut = np.zeros(len(retry), dtype=bool)
         planes = planes if len(retry) * len(planes) <= _CAP_WORK else planes[:0]
         if len(planes):
-            cut, clo, chi = _hull_cap(c, r, np.asarray(planes))
+            _, clo, chi = _hull_cap(c, r, np.asarray(planes))
             lo, hi = np.maximum(lo, clo), np.minimum(hi, chi)
         if nbs is not None:
-            fc, flo, fhi = _face_caps(pts, s[retry], nbs[retry])
-            cut = cut | fc
+            _, flo, fhi = _face_caps(pts, s[retry], nbs[retry])
             lo, hi = np.maximum(lo, flo), np.minimum(hi, fhi)
         if len(planes):
-            fc, flo, fhi = _far_caps(pts, s[retry], np.asarray(planes))
-            cut = cut | fc
+            _, flo, fhi = _far_caps(pts, s[retry], np.asarray(planes))
             lo, hi = np.maximum(lo, flo), np.minimum(hi, fhi)
         pad = (1e-9 * scale + 64.0 * _EPS * (np.abs(c).max(axis=1) + r))[:, None]
         lo, hi = lo - pad, hi + pad
         covered = _covered(lo, hi, slabs, extras)
         if outside is not None:
             rest = np.nonzero(~covered)[0]
-            covered[rest] = ~outside.balls(c[rest], r[rest], lo[rest], hi[rest])[0]
+            covered[rest] = ~outside.meets(c[rest], r[rest], lo[rest], hi[rest])
         ok[retry] = covered
-        along[retry] = cut | np.any((c < box_lo) | (c > box_hi), axis=1)
-        klo[retry], khi[retry] = lo, hi
-    trusted = np.isfinite(reach) & ~np.isnan(klo).any(axis=1) & ~np.isnan(khi).any(axis=1)
-    return ok, trusted, along, klo, khi, centre, reach
+    return ok
 
 
 class _Outside:
@@ -374,9 +363,7 @@ class _Outside:
     its bin by one C++ pass (``_core.cell_counts``), the same for all points and for the local
     ones, so a bin whose counts agree holds no outside point, and a ball that meets no other bin
     holds none either. It is what makes a ball final that reaches past the region into empty
-    space (between clusters, inside a sphere of points), and what a block asks for next: the
-    bins with outside points that its failing balls meet (the split sends a bin's points whole,
-    by the same bin of each point, so once asked for a bin holds no outside point)."""
+    space (between clusters, inside a sphere of points)."""
 
     def __init__(self, bins: Grid, total: np.ndarray, local_pts: np.ndarray, threads=1):
         local = _core.cell_counts(np.ascontiguousarray(local_pts, dtype=np.float64),
@@ -389,26 +376,24 @@ class _Outside:
         scale = float(max(np.abs(bins.lo).max(), np.abs(bins.hi).max(), bins.width.max()))
         self.margin = 1e-9 * scale  # far above the rounding of a point's bin
 
-    def balls(self, centre, reach, lo, hi, collect=False):
+    def meets(self, centre, reach, lo, hi):
         """Per ball (``centre``, ``reach``) cut to its box (rows of ``lo``, ``hi``): True where
-        it meets a bin with an outside point; with ``collect`` also the ids of the bins with
-        outside points the balls meet, increasing (``_core.balls_in_bins``)."""
+        it meets a bin with an outside point (``_core.balls_in_bins``)."""
         if not self.any or len(centre) == 0:
-            return np.zeros(len(centre), dtype=bool), np.zeros(0, np.int64)
+            return np.zeros(len(centre), dtype=bool)
         b = self.bins
         r = _core.balls_in_bins(np.ascontiguousarray(centre, dtype=np.float64),
                                 np.ascontiguousarray(reach, dtype=np.float64),
                                 np.ascontiguousarray(lo, dtype=np.float64),
                                 np.ascontiguousarray(hi, dtype=np.float64), b.lo.tolist(),
                                 b.width.tolist(), b.counts.tolist(), self.marked, self.margin,
-                                collect, self.threads)
-        return r["meets"].view(bool), r["cells"]
+                                self.threads)
+        return r.view(bool)
 
 
 def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outside=None):
-    """Tests simplices ``s[req]`` (in pieces of ``_PIECE``, so that the temporaries stay small)
-    against the region ``cell`` grown by ``ghost``. None when all are final; else the next ghost
-    width, the extra boxes and the bins to ask for.
+    """Whether simplices ``s[req]`` are all final (tested in pieces of ``_PIECE``, so that the
+    temporaries stay small) against the region ``cell`` grown by ``ghost``.
 
     On the host, for GPU blocks too. The first test (the circumball with its rounding bound
     misses the bounding box beyond the region), which almost every simplex passes, runs in C++
@@ -422,87 +407,27 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
                                                  grid.lo.tolist(), grid.hi.tolist(), scale,
                                                  threads)
         req = req[inside == 0]
-    grow, failed = False, False
-    thin_lo, thin_hi, asked = [], [], []
     for i in range(0, len(req), _PIECE):
-        t = s[req[i:i + _PIECE]]
-        ok, trusted, along, klo, khi, centre, reach = final_simplices(
-            dpts, t, rlo, rhi, grid.lo, grid.hi, planes, extras, nb[req[i:i + _PIECE]], outside)
-        if bool(ok.all()):
-            continue
-        failed = True
-        # A simplex whose centre is not trusted (or whose box could not be computed) grows the
-        # ghost layer; a thin box along the hull is asked for as a box (the caps there are long
-        # and flat, and what is missing is usually near); every other failing ball asks for the
-        # bins with outside points that it meets, no more (a wider layer took whole clusters
-        # where a ball between them needs only their sides facing it).
-        lost = ~ok & ~trusted
-        thin = ~ok & ~lost & along & ((khi - klo).min(axis=1) < 2.0 * ghost)
-        ask = ~ok & ~lost & ~thin
-        grow = grow or bool(lost.any())
-        if bool(thin.any()):
-            thin_lo.append(klo[thin])
-            thin_hi.append(khi[thin])
-        if bool(ask.any()) and outside is not None:
-            # grown by a bin: the balls of the simplices the new points make reach a little
-            # past the ones that asked (2D clusters: 3 rounds in most blocks without, 2 with)
-            pad = _ASK_PAD * float(outside.bins.width.max())
-            c, r = centre[ask], reach[ask] + pad
-            lo, hi = np.maximum(klo[ask] - pad, c - r[:, None]), np.minimum(khi[ask] + pad,
-                                                                          c + r[:, None])
-            span = np.prod(np.maximum(hi - lo, 0.0) / np.where(outside.bins.width > 0,
-                                                                  outside.bins.width, np.inf)
-                           + 1.0, axis=1)
-            # a ball over half the bins (points on a sphere: every ball is the sphere's) asks
-            # for every bin with outside points at once, not bin by bin
-            big = span > _ASK_ALL * outside.marked.size
-            if bool(big.any()):
-                asked.append(np.nonzero(outside.marked)[0])
-            else:
-                asked.append(outside.balls(c, r, lo, hi, collect=True)[1])
-        elif bool(ask.any()):
-            grow = True
-    if not failed:
-        return None
-    nxt = 2.0 * ghost if grow else ghost
-    boxes = _thin_boxes(np.concatenate(thin_lo), np.concatenate(thin_hi), clo, chi, nxt) \
-        if thin_lo else {}
-    bins = np.unique(np.concatenate(asked)) if asked else np.zeros(0, np.int64)
-    return nxt, boxes, bins
+        ok = final_simplices(dpts, s[req[i:i + _PIECE]], rlo, rhi, grid.lo, grid.hi, planes,
+                             extras, nb[req[i:i + _PIECE]], outside)
+        if not bool(ok.all()):
+            return False
+    return True
 
 
-def _not_done(block, ghost, next_ghost, nlocal, tested, boxes=(), bins=None):
-    return dict(block=block, done=False, ghost=ghost, next_ghost=next_ghost, nlocal=nlocal,
-                tested=tested, boxes=list(boxes),
-                bins=np.zeros(0, np.int64) if bins is None else bins)
+def _borders(pts, s, nb, own, block, grid, threads=1):
+    """What block ``block`` sends the others for their second round (``_core.block_borders``):
+    per target block, (points, global ids, owner blocks) of its own points that the target's
+    stars may use."""
+    scale = float(max(np.abs(grid.lo).max(), np.abs(grid.hi).max()))
+    return _core.block_borders(pts, s, nb, own, int(block), grid.lo.tolist(),
+                               grid.width.tolist(), grid.counts.tolist(), 1e-9 * scale, scale,
+                               threads)
 
 
-def _thin_boxes(lo, hi, cell_lo, cell_hi, ghost):
-    """Boxes along the hull, merged by their thinnest axis and the side of the cell they lie on
-    (along one face of the hull they are thin across it): at most 2d boxes.
-
-    Each is grown on every side by the (next round's) ghost width and a quarter of its length,
-    and across, towards the cell, to at least twice that width deep. The points a box brings
-    make new simplices along the hull whose caps are a little deeper and longer than the ones
-    that asked (measured on uniform squares: a box of exactly the caps' size was asked for
-    again, a hair thicker or a little longer, in the next round and the one after); such a
-    strip holds few points and mostly ends that."""
-    out = {}
-    mid = 0.5 * (cell_lo + cell_hi)
-    axis = np.argmin(hi - lo, axis=1)
-    side = (0.5 * (lo + hi))[np.arange(len(lo)), axis] > mid[axis]
-    for key in sorted(set(zip(axis.tolist(), side.tolist()))):
-        sel = (axis == key[0]) & (side == key[1])
-        blo, bhi = lo[sel].min(axis=0), hi[sel].max(axis=0)
-        grow = ghost + 0.25 * (bhi - blo)
-        blo, bhi = blo - grow, bhi + grow
-        a = key[0]
-        if key[1]:  # on the high side: at least twice the width deep towards the cell
-            blo[a] = min(blo[a], hi[sel, a].max() - 2.0 * ghost)
-        else:
-            bhi[a] = max(bhi[a], lo[sel, a].min() + 2.0 * ghost)
-        out[key] = (blo, bhi)
-    return out
+def _not_done(block, ghost, nlocal, tested, borders):
+    return dict(block=block, done=False, ghost=ghost, nlocal=nlocal, tested=tested,
+                borders=borders)
 
 
 def _local_points(parts, hull):
@@ -552,9 +477,9 @@ def _local_points(parts, hull):
 
 def _emit(ids, pts, blk, s, nb, rows, threads=1):
     """The output of the owned simplices ``rows`` (every simplex whose lowest vertex is an own
-    point), every neighbour of which is final: global ids, and per face the neighbour as a row
-    here (-1: none) or -2 (another block's: ``req_owner``, ``req_key`` its sorted vertex ids,
-    ``req_pos`` row * (d + 1) + face); the vertices used and their coordinates. In C++
+    point): global ids, and per face the neighbour as a row here (-1: none) or -2 (another
+    block's, found by the face: ``req_owner`` the block that matches it, ``req_key`` its sorted
+    vertex ids, ``req_pos`` row * (d + 1) + face); the vertices used and their coordinates. In C++
     (``_core.block_output``) for a GPU block too: its output goes to the host anyway, and the
     gathers in CuPy and NumPy this replaced cost 2 s for a block of 10^7 points on an H200,
     where copying the simplices over costs a tenth of that. ``s``, ``nb``: on the host."""
@@ -577,7 +502,6 @@ def _copies(ids, blk, block, tri):
 
 def _triangulated(pts, owned, backend, threads):
     """The local triangulation and what a round requires of it: the stars of the own points
-    and, across the face opposite the lowest vertex of each owned simplex, its neighbour; all
     must be final. Returns (the Delaunay, its simplices and neighbours on the host, the owned
     simplices, the required mask). Only the triangulation runs where the block runs (its GPU
     where it has one); the simplices then come to the host, which the output needs anyway, and
@@ -592,49 +516,74 @@ def _triangulated(pts, owned, backend, threads):
     return tri, s, nb, r["owned_rows"], r["required"].view(bool)
 
 
+def _held(hull, received):
+    """The points a second round holds besides its own: the hull's extreme points and the
+    borders the other blocks sent (points, ids, owner blocks), each point once, ids increasing."""
+    got = [hull] + [r for r in received if r is not None and len(r[1])]
+    ids = np.concatenate([g[1] for g in got])
+    ids, at = np.unique(ids, return_index=True)
+    return (np.concatenate([g[0] for g in got])[at], ids, np.concatenate([g[2] for g in got])[at])
+
+
+def _border_parts(ids, pts, blk, b):
+    """The borders of ``_core.block_borders`` as a dict: target block -> (points, ids, owner
+    blocks)."""
+    out = {}
+    for k, t in enumerate(b["targets"].tolist()):
+        v = b["vertices"][b["offsets"][k]:b["offsets"][k + 1]]
+        out[t] = (pts[v], ids[v], blk[v])
+    return out
+
+
 def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts, hull, counts,
-                      backend: str, threads: int) -> dict:
-    """Triangulates block ``block`` with ghost width ``ghost`` and the extra boxes ``extras``
-    it asked for earlier along the hull (a dict of boxes).
+                      backend: str, threads: int, received=None) -> dict:
+    """Triangulates block ``block``: in the first round (``received`` None) with ghost width
+    ``ghost`` and the strips ``extras`` along the sides (a dict of boxes), and tests its stars;
+    in the second with the borders the other blocks sent it (``received``: per block, (points,
+    ids, owner blocks) or None), where its stars are final without a test.
 
     ``parts``: per input piece, (points, global ids, owner blocks) of its points the block
-    owns or that lie in its region or extra boxes (None where none); ``hull``: (points, ids,
+    owns or that lie in its region or strips (None where none); ``hull``: (points, ids,
     owner blocks, facet planes) of the global hull (its extreme points; the planes pushed
     outwards by a margin); ``counts``: (a Grid of bins, the count of all points per bin). Returns
-    a dict: ``done``; when done, ``simplices`` (global ids, the
-    owned ones), ``nb_local`` (per face: an owned simplex's row here, -1 none, -2 another
-    block's), the requests for the others (``req_owner``, ``req_key``: sorted vertex ids,
-    ``req_pos``: row * (d + 1) + face), ``copies`` (pairs: an own point, its earlier copy),
-    ``vertices`` and ``vertex_points`` (the owned simplices' vertices, sorted, and their
-    coordinates); when not, ``next_ghost``, ``boxes`` (extra boxes to take, as ``extras``'
-    items) and ``bins`` (the ids of the bins of ``counts`` to take whole, increasing)."""
+    a dict: ``done``; when done, ``simplices`` (global ids, the owned ones), ``nb_local`` (per
+    face: an owned simplex's row here, -1 none, -2 another block's), the face requests for the
+    others (``req_owner``, ``req_key``: sorted face ids, ``req_pos``: row * (d + 1) + face),
+    ``copies`` (pairs: an own point, its earlier copy), ``vertices`` and ``vertex_points`` (the
+    owned simplices' vertices, sorted, and their coordinates); after the first round,
+    ``borders`` (target block -> (points, ids, owner blocks): what this block sends it)."""
     d = grid.ndim
+    second = received is not None
     covers = grid.covers_all(block, ghost)
     if not any(p is not None and bool((p[2] == block).any()) for p in parts):
         z = np.zeros(0, np.int64)
         empty = dict(simplices=np.zeros((0, d + 1), np.int64),
                      nb_local=np.zeros((0, d + 1), np.int64), req_owner=z,
-                     req_key=np.zeros((0, d + 1), np.int64), req_pos=z, vertices=z,
-                     vertex_points=np.zeros((0, d)), border_rows=z,
-                     border_keys=np.zeros((0, d + 1), np.int64))
+                     req_key=np.zeros((0, d), np.int64), req_pos=z, vertices=z,
+                     vertex_points=np.zeros((0, d)), borders={})
         return _done(block, ghost, 0, 0, empty, np.zeros((0, 2), np.int64))
-    ids, pts, blk = _local_points(parts, hull[:3])
+    ids, pts, blk = _local_points(parts, _held(hull[:3], received) if second else hull[:3])
+    own = blk == block
     try:
-        tri, s, nb, mine, required = _triangulated(pts, blk == block, backend, threads)
+        tri, s, nb, mine, required = _triangulated(pts, own, backend, threads)
     except _core.DegenerateInputError:
-        if covers:
-            raise  # every point is here: the whole set is degenerate, as a single run says
-        return _not_done(block, ghost, 2.0 * ghost, len(ids), 0)
+        if covers or second:
+            raise  # the hull's points are here: the whole set is degenerate, as a single run says
+        # no triangulation to take a border from: every own point goes to every block
+        mine_all = (pts[own], ids[own], blk[own])
+        return _not_done(block, ghost, len(ids), 0,
+                         {t: mine_all for t in range(grid.nblocks) if t != block})
     tested = 0
-    outside = None if covers else _Outside(counts[0], counts[1], pts, threads)
-    if outside is not None and outside.any:  # (else every point is here: all is final)
-        req = np.nonzero(required)[0]
-        tested = int(len(req))
-        cell = grid.cell_box(block)
-        verdict = _judge(pts, s, nb, req, grid, cell, ghost, hull[3], list(extras.values()),
-                         threads, outside)
-        if verdict is not None:
-            nxt, boxes, bins = verdict
-            return _not_done(block, ghost, nxt, len(ids), tested, boxes.items(), bins)
+    bord = {}
+    if not second:
+        bord = _border_parts(ids, pts, blk, _borders(pts, s, nb, own, block, grid, threads))
+        outside = None if covers else _Outside(counts[0], counts[1], pts, threads)
+        if outside is not None and outside.any:  # (else every point is here: all is final)
+            req = np.nonzero(required)[0]
+            tested = int(len(req))
+            if not _judge(pts, s, nb, req, grid, grid.cell_box(block), ghost, hull[3],
+                          list(extras.values()), threads, outside):
+                return _not_done(block, ghost, len(ids), tested, bord)
     out = _emit(ids, pts, blk, s, nb, mine, threads)
-    return _done(block, ghost, len(ids), tested, out, _copies(ids, blk, block, tri))
+    return _done(block, ghost, len(ids), tested, dict(out, borders=bord),
+                 _copies(ids, blk, block, tri))
