@@ -199,17 +199,21 @@ struct BlockBorders {
 /// neighbour) whose plane meets it; a ball whose centre is not trusted meets every cell. A
 /// block's stars are those of the global triangulation when it holds, besides its own points,
 /// every other block's border for it (docs/design-notes.md). `scale`: the largest coordinate
-/// magnitude of the points' bounds. Deterministic on any thread count. Throws
+/// magnitude of the points' bounds. Where `boxes` is given, also writes per simplex `inside[i]`
+/// (`m` bytes): circumballs_inside_region's verdict for the simplices with an own vertex (the
+/// same ball, computed once), 0 for the others. Deterministic on any thread count. Throws
 /// Error(InvalidArgument) for a dim other than 2 or 3 or a block outside the grid.
 BlockBorders block_borders(const double* points, int dim, const std::int64_t* simplices,
                            const std::int64_t* neighbors, std::int64_t m, std::int64_t n,
                            const std::uint8_t* owned, std::int64_t block, const CellGrid& grid,
-                           double margin, double scale, int threads = 0);
+                           double margin, double scale, const BlockBoxes* boxes = nullptr,
+                           std::uint8_t* inside = nullptr, int threads = 0);
 /// The same, for int32 simplices and neighbours.
 BlockBorders block_borders(const double* points, int dim, const std::int32_t* simplices,
                            const std::int32_t* neighbors, std::int64_t m, std::int64_t n,
                            const std::uint8_t* owned, std::int64_t block, const CellGrid& grid,
-                           double margin, double scale, int threads = 0);
+                           double margin, double scale, const BlockBoxes* boxes = nullptr,
+                           std::uint8_t* inside = nullptr, int threads = 0);
 
 /// The points of a 2D set (`n` points, x and y each) that may be extreme points of a larger set
 /// holding them: all but those strictly inside the polygon through their extreme points in 8

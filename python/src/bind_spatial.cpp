@@ -858,12 +858,16 @@ nb::object block_neighbors_bind(const AnyArray& nb_local, std::int64_t offset, c
   return host_array(std::move(r), {sz(m), sz(d1)});
 }
 
-// What a block sends the others: per target block, the local indices of its own points.
+// What a block sends the others: per target block, the local indices of its own points; with
+// the region and the bounds, the first finality test of its stars too (on the same balls).
 nb::dict block_borders_bind(const AnyArray& points, const AnyArray& simplices,
                             const AnyArray& neighbors, const AnyArray& owned, std::int64_t block,
                             const std::vector<double>& lo, const std::vector<double>& width,
                             const std::vector<std::int64_t>& counts, double margin, double scale,
-                            int threads) {
+                            std::optional<std::vector<double>> region_lo,
+                            std::optional<std::vector<double>> region_hi,
+                            std::optional<std::vector<double>> bounds_lo,
+                            std::optional<std::vector<double>> bounds_hi, int threads) {
   int dim = 0;
   std::int64_t n = 0, m = 0;
   const double* x = host_points(points, &dim, &n);
@@ -871,16 +875,33 @@ nb::dict block_borders_bind(const AnyArray& points, const AnyArray& simplices,
   if (o.on_device || o.shape.size() != 1 || o.shape[0] != n ||
       !(holds<bool>(o) || holds<std::uint8_t>(o)))
     throw nb::value_error("owned must be a host bool array with a value per point");
+  const auto* own = static_cast<const std::uint8_t*>(o.data);
   const CellGrid g = cell_grid(lo, width, counts, dim);
+  const bool test = region_lo.has_value();
+  if (region_hi.has_value() != test || bounds_lo.has_value() != test ||
+      bounds_hi.has_value() != test)
+    throw nb::value_error("region_lo, region_hi, bounds_lo and bounds_hi go together");
+  BlockBoxes b;
+  if (test) {
+    for (const auto* v : {&*region_lo, &*region_hi, &*bounds_lo, &*bounds_hi})
+      if (int(v->size()) != dim) throw nb::value_error("each box corner needs dim coordinates");
+    for (int j = 0; j < dim; ++j) {
+      b.region_lo[j] = (*region_lo)[j], b.region_hi[j] = (*region_hi)[j];
+      b.bounds_lo[j] = (*bounds_lo)[j], b.bounds_hi[j] = (*bounds_hi)[j];
+    }
+    b.scale = scale;
+  }
+  HostVector<std::uint8_t> inside;
   BlockBorders r = by_index_type(simplices, [&](auto index) {
     using T = decltype(index);
     const T* s =
         host_indices_of<T>(simplices, "simplices", -1, dim + 1, 0, n, &m, "int32 or int64");
     const T* nbr = host_indices_of<T>(neighbors, "neighbors", m, dim + 1, -1, m, nullptr,
                                       "int32 or int64 (as simplices)");
+    if (test) inside.resize(static_cast<sz>(m));
     return unlocked([&] {
-      return block_borders(x, dim, s, nbr, m, n, static_cast<const std::uint8_t*>(o.data), block, g,
-                           margin, scale, threads);
+      return block_borders(x, dim, s, nbr, m, n, own, block, g, margin, scale, test ? &b : nullptr,
+                           test ? inside.data() : nullptr, threads);
     });
   });
   nb::dict out;
@@ -888,6 +909,7 @@ nb::dict block_borders_bind(const AnyArray& points, const AnyArray& simplices,
   out["targets"] = host_array(std::move(r.targets), {t});
   out["offsets"] = host_array(std::move(r.offsets), {sz(r.offsets.size())});
   out["vertices"] = host_array(std::move(r.vertices), {v});
+  if (test) out["inside"] = host_array(std::move(inside), {sz(m)});
   return out;
 }
 
@@ -1099,7 +1121,9 @@ void bind_spatial(nb::module_& m) {
         "threads"_a = 0);
   m.def("match_faces", &match_faces_bind, "keys"_a, "positions"_a, "open"_a, "threads"_a = 0);
   m.def("block_borders", &block_borders_bind, "points"_a, "simplices"_a, "neighbors"_a, "owned"_a,
-        "block"_a, "lo"_a, "width"_a, "counts"_a, "margin"_a, "scale"_a, "threads"_a = 0);
+        "block"_a, "lo"_a, "width"_a, "counts"_a, "margin"_a, "scale"_a, "region_lo"_a = nb::none(),
+        "region_hi"_a = nb::none(), "bounds_lo"_a = nb::none(), "bounds_hi"_a = nb::none(),
+        "threads"_a = 0);
   m.def("block_output", &block_output_bind, "simplices"_a, "neighbors"_a, "rows"_a, "ids"_a,
         "blk"_a, "points"_a = nb::none(), "threads"_a = 0);
   m.def("furthest_site2d", &furthest_site2d_bind, "points"_a, "threads"_a = 0, "voronoi"_a = false);

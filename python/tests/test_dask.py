@@ -457,7 +457,7 @@ def test_block_borders(d):
     radius = np.linalg.norm(centre - pts[s[:, 0]], axis=1)
     for threads, s_, nb_ in ((1, s, nb), (3, s.astype(np.int32), nb.astype(np.int32))):
         got = _core.block_borders(pts, s_, nb_, own, block, [0.0] * d, g.width.tolist(),
-                                  g.counts.tolist(), 1e-9, 1.0, threads)
+                                  g.counts.tolist(), 1e-9, 1.0, threads=threads)
         assert block not in got["targets"].tolist()
         sent = {int(t): got["vertices"][got["offsets"][k]:got["offsets"][k + 1]]
                 for k, t in enumerate(got["targets"])}
@@ -488,6 +488,20 @@ def test_block_borders(d):
             assert np.all(np.diff(v) > 0)
             assert set(want[0].tolist()) <= set(v.tolist()) <= set(want[1].tolist()), t
         assert len(got["vertices"]) > 0
+        # with a region, the first finality test of the stars on the same balls: as the bulk
+        # test gives it (0 off the stars)
+        rlo, rhi = g.cell_box(block)
+        rlo, rhi = rlo - 0.05, rhi + 0.05
+        both = _core.block_borders(pts, s_, nb_, own, block, [0.0] * d, g.width.tolist(),
+                                   g.counts.tolist(), 1e-9, 1.0, rlo.tolist(), rhi.tolist(),
+                                   [0.0] * d, [1.0] * d, threads=threads)
+        np.testing.assert_array_equal(both["vertices"], got["vertices"])
+        star = np.nonzero(own[s].any(axis=1))[0]
+        want = np.zeros(len(s), np.uint8)
+        want[star] = _core.circumballs_inside_region(pts, s_, star, rlo.tolist(), rhi.tolist(),
+                                                     [0.0] * d, [1.0] * d, 1.0, threads)
+        np.testing.assert_array_equal(both["inside"], want)
+        assert 0 < want.sum() < len(star)
     with pytest.raises(ValueError, match="outside"):
         _core.block_borders(pts, s, nb, own, g.nblocks, [0.0] * d, g.width.tolist(),
                             g.counts.tolist(), 1e-9, 1.0)

@@ -21,6 +21,8 @@ namespace {
 
 using blocks_detail::circumball;
 using blocks_detail::kEps;
+using blocks_detail::misses;
+using blocks_detail::Slabs;
 
 struct Cells {
   const CellGrid& g;
@@ -58,7 +60,7 @@ void along(double a, double b, const CellGrid& g, int j, double margin, std::int
 template <int D, class I>
 void run(const double* pts, const I* simplices, const I* neighbors, std::int64_t m,
          const std::uint8_t* owned, std::int64_t block, const Cells& cells, double scale,
-         std::vector<std::vector<std::int64_t>>& found) {
+         const Slabs* slabs, std::uint8_t* inside, std::vector<std::vector<std::int64_t>>& found) {
   const int d1 = D + 1;
   const std::int64_t n_cells = cells.total;
 #pragma omp parallel
@@ -78,9 +80,13 @@ void run(const double* pts, const I* simplices, const I* neighbors, std::int64_t
       std::uint32_t own = 0;
       for (int k = 0; k < d1; ++k)
         if (owned[v[k]]) own |= 1u << k;
+      if (inside) inside[i] = 0;
       if (!own) continue;
       double c[D], reach;
-      if (!circumball<D>(pts, v, c, &reach, scale)) {
+      const bool trusted = circumball<D>(pts, v, c, &reach, scale);
+      // the first finality test of the star, on the same ball (circumballs_inside_region)
+      if (inside && trusted && misses(*slabs, c, reach, D)) inside[i] = 1;
+      if (!trusted) {
         // a centre not trusted: its ball may meet any cell
         for (std::int64_t t = 0; t < n_cells; ++t)
           if (t != block) send(v, t, own);
@@ -164,7 +170,7 @@ template <class I>
 BlockBorders borders_of(const double* points, int dim, const I* simplices, const I* neighbors,
                         std::int64_t m, std::int64_t n, const std::uint8_t* owned,
                         std::int64_t block, const CellGrid& grid, double margin, double scale,
-                        int threads) {
+                        const BlockBoxes* boxes, std::uint8_t* inside, int threads) {
   blocks_detail::check_dim(dim, "block_borders");
   Cells cells{grid, 1, margin};
   for (int j = 0; j < dim; ++j) cells.total *= grid.counts[j];
@@ -174,11 +180,14 @@ BlockBorders borders_of(const double* points, int dim, const I* simplices, const
                                                 std::to_string(cells.total));
   blocks_detail::ThreadScope scope(threads);
   std::vector<std::vector<std::int64_t>> found(std::size_t(std::max(1, omp_get_max_threads())));
+  Slabs slabs;
+  if (boxes) slabs = blocks_detail::slabs_of(*boxes, dim);
+  std::uint8_t* in = boxes ? inside : nullptr;
   if (m > 0) {
     if (dim == 2)
-      run<2>(points, simplices, neighbors, m, owned, block, cells, scale, found);
+      run<2>(points, simplices, neighbors, m, owned, block, cells, scale, &slabs, in, found);
     else
-      run<3>(points, simplices, neighbors, m, owned, block, cells, scale, found);
+      run<3>(points, simplices, neighbors, m, owned, block, cells, scale, &slabs, in, found);
   }
   // (target, vertex) keys, sorted and unique: the result does not depend on the threads
   std::vector<std::int64_t> keys;
@@ -208,16 +217,18 @@ BlockBorders borders_of(const double* points, int dim, const I* simplices, const
 BlockBorders block_borders(const double* points, int dim, const std::int64_t* simplices,
                            const std::int64_t* neighbors, std::int64_t m, std::int64_t n,
                            const std::uint8_t* owned, std::int64_t block, const CellGrid& grid,
-                           double margin, double scale, int threads) {
+                           double margin, double scale, const BlockBoxes* boxes,
+                           std::uint8_t* inside, int threads) {
   return borders_of(points, dim, simplices, neighbors, m, n, owned, block, grid, margin, scale,
-                    threads);
+                    boxes, inside, threads);
 }
 BlockBorders block_borders(const double* points, int dim, const std::int32_t* simplices,
                            const std::int32_t* neighbors, std::int64_t m, std::int64_t n,
                            const std::uint8_t* owned, std::int64_t block, const CellGrid& grid,
-                           double margin, double scale, int threads) {
+                           double margin, double scale, const BlockBoxes* boxes,
+                           std::uint8_t* inside, int threads) {
   return borders_of(points, dim, simplices, neighbors, m, n, owned, block, grid, margin, scale,
-                    threads);
+                    boxes, inside, threads);
 }
 
 }  // namespace gpugeom

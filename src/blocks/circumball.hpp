@@ -1,16 +1,59 @@
 // The circumball of a simplex with a bound of its rounding, as gpugeom.dask's Python computes it
 // (python/gpugeom/dask/_ghost.py: _circumcentres): shared by the block passes that test balls
-// (the finality test, circumballs.cpp, and the border a block sends, borders.cpp).
+// (the finality test, circumballs.cpp, and the border a block sends, borders.cpp), and the slabs
+// of the bounds beyond a block's region that the finality test's balls must miss.
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "gpugeom/blocks.hpp"
 
 namespace gpugeom::blocks_detail {
 
 inline constexpr double kEps = std::numeric_limits<double>::epsilon();
 // As _ghost.py's _MAX_CONDITION: beyond it the centre is not trusted.
 inline constexpr double kMaxCondition = 1e10;
+
+// The boxes where points outside the region may lie: per axis and side with room, the part of
+// the bounds beyond the region's face.
+struct Slabs {
+  int count = 0;
+  double lo[6][3], hi[6][3];
+};
+
+inline Slabs slabs_of(const BlockBoxes& b, int dim) {
+  Slabs s;
+  for (int k = 0; k < dim; ++k)
+    for (int side = 0; side < 2; ++side) {
+      const bool room =
+          side == 0 ? b.region_lo[k] > b.bounds_lo[k] : b.region_hi[k] < b.bounds_hi[k];
+      if (!room) continue;
+      for (int j = 0; j < dim; ++j) {
+        s.lo[s.count][j] = b.bounds_lo[j];
+        s.hi[s.count][j] = b.bounds_hi[j];
+      }
+      if (side == 0)
+        s.hi[s.count][k] = b.region_lo[k];
+      else
+        s.lo[s.count][k] = b.region_hi[k];
+      ++s.count;
+    }
+  return s;
+}
+
+// Whether the ball (c, reach) misses every slab.
+inline bool misses(const Slabs& slabs, const double* c, double reach, int dim) {
+  for (int s = 0; s < slabs.count; ++s) {
+    double g2 = 0;
+    for (int k = 0; k < dim; ++k) {
+      const double gap = std::max(std::max(slabs.lo[s][k] - c[k], c[k] - slabs.hi[s][k]), 0.0);
+      g2 += gap * gap;
+    }
+    if (!(std::sqrt(g2) > reach)) return false;
+  }
+  return true;
+}
 
 // The circumcentre by the adjugate (A x = rhs, rows of A the edges from vertex 0, rhs half their
 // squared lengths) and the reach: the radius grown by twice a generous multiple of

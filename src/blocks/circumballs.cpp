@@ -18,33 +18,9 @@ namespace gpugeom {
 namespace {
 
 using blocks_detail::circumball;
-
-// The boxes where points outside the region may lie: per axis and side with room, the part of
-// the bounds beyond the region's face.
-struct Slabs {
-  int count = 0;
-  double lo[6][3], hi[6][3];
-};
-
-Slabs slabs_of(const BlockBoxes& b, int dim) {
-  Slabs s;
-  for (int k = 0; k < dim; ++k)
-    for (int side = 0; side < 2; ++side) {
-      const bool room =
-          side == 0 ? b.region_lo[k] > b.bounds_lo[k] : b.region_hi[k] < b.bounds_hi[k];
-      if (!room) continue;
-      for (int j = 0; j < dim; ++j) {
-        s.lo[s.count][j] = b.bounds_lo[j];
-        s.hi[s.count][j] = b.bounds_hi[j];
-      }
-      if (side == 0)
-        s.hi[s.count][k] = b.region_lo[k];
-      else
-        s.lo[s.count][k] = b.region_hi[k];
-      ++s.count;
-    }
-  return s;
-}
+using blocks_detail::misses;
+using blocks_detail::Slabs;
+using blocks_detail::slabs_of;
 
 template <int D, class I>
 void run(const double* pts, const I* simplices, const std::int64_t* rows, std::int64_t count,
@@ -54,16 +30,8 @@ void run(const double* pts, const I* simplices, const std::int64_t* rows, std::i
   for (std::int64_t i = 0; i < count; ++i) {
     const I* v = simplices + (rows ? rows[i] : i) * (D + 1);
     double c[D], reach;
-    bool ok = circumball<D>(pts, v, c, &reach, boxes.scale);
-    for (int s = 0; ok && s < slabs.count; ++s) {
-      double g2 = 0;
-      for (int k = 0; k < D; ++k) {
-        const double gap = std::max(std::max(slabs.lo[s][k] - c[k], c[k] - slabs.hi[s][k]), 0.0);
-        g2 += gap * gap;
-      }
-      ok = std::sqrt(g2) > reach;
-    }
-    inside[i] = ok ? 1 : 0;
+    const bool ok = circumball<D>(pts, v, c, &reach, boxes.scale);
+    inside[i] = ok && misses(slabs, c, reach, D) ? 1 : 0;
   }
 }
 

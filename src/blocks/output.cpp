@@ -76,16 +76,20 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
   for (std::int64_t r = 0; r < count; ++r) {
     const I* v = simplices + rows[r] * d1;
     const I* nb = neighbors + rows[r] * d1;
-    const std::int64_t block = blk[v[lowest_at(v, d1)]];
     for (int k = 0; k < d1; ++k) {
       out.simplices[std::size_t(r * d1 + k)] = ids[v[k]];
       const std::int64_t t = nb[k];
       const std::int64_t p = t < 0 ? -1 : pos[std::size_t(t)];
       // a face on the local hull is on the global one where it has an own vertex (both
       // simplices of the face are then in that vertex's star); else it is asked for as an open
-      // request (-3 until the requests are listed), which no partner answers on the hull
+      // request (-3 until the requests are listed), which no partner answers on the hull. (The
+      // owners are looked up for hull faces only: random reads over every simplex cost more
+      // than the rest of the pass.)
       bool own_face = false;
-      for (int j = 0; j < d1; ++j) own_face = own_face || (j != k && blk[v[j]] == block);
+      if (t < 0) {
+        const std::int64_t block = blk[v[lowest_at(v, d1)]];
+        for (int j = 0; j < d1; ++j) own_face = own_face || (j != k && blk[v[j]] == block);
+      }
       const std::int64_t c = t < 0 ? (own_face ? -1 : -3) : (p >= 0 ? p : -2);
       out.neighbors[std::size_t(r * d1 + k)] = c;
       requests += c < -1;

@@ -459,9 +459,10 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         for i, b in enumerate(pending):
             sent = [delayed(_border_for)(r, b) for c, r in zip(all_blocks, first)
                     if b in metas[c]["targets"]]
+            # (no counts: the second round has no test)
             tasks.append(delayed(triangulate_block)(
-                b, grid, float(ghost), {}, [s[i] for s in splits], hull, (bins, total),
-                backend, threads, sent, dask_key_name=f"gpugeom-delaunay-block-{tag}-1-{b}"))
+                b, grid, float(ghost), {}, [s[i] for s in splits], hull, None, backend, threads,
+                sent, dask_key_name=f"gpugeom-delaunay-block-{tag}-1-{b}"))
             rounds[b] = 2
         second = dask.persist(*tasks)
         for b, r, m in zip(pending, second, dask.compute(*[delayed(_meta)(r) for r in second])):

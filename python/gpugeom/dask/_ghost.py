@@ -391,17 +391,21 @@ class _Outside:
         return r.view(bool)
 
 
-def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outside=None):
+def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outside=None,
+           inside=None):
     """Whether simplices ``s[req]`` are all final (tested in pieces of ``_PIECE``, so that the
     temporaries stay small) against the region ``cell`` grown by ``ghost``.
 
     On the host, for GPU blocks too. The first test (the circumball with its rounding bound
     misses the bounding box beyond the region), which almost every simplex passes, runs in C++
-    over all of them (``_core.circumballs_inside_region``: the same centre, bound and slabs as
+    over all of them: ``inside`` (a byte per simplex) where the border pass gave it on the same
+    balls, else ``_core.circumballs_inside_region`` (the same centre, bound and slabs as
     ``final_simplices``); only the others are tested here, in NumPy."""
     clo, chi = cell
     rlo, rhi = clo - ghost, chi + ghost
-    if len(req):
+    if len(req) and inside is not None:
+        req = req[inside[req] == 0]
+    elif len(req):
         scale = float(max(np.abs(grid.lo).max(), np.abs(grid.hi).max()))
         inside = _core.circumballs_inside_region(dpts, s, req, rlo.tolist(), rhi.tolist(),
                                                  grid.lo.tolist(), grid.hi.tolist(), scale,
@@ -415,14 +419,18 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
     return True
 
 
-def _borders(pts, s, nb, own, block, grid, threads=1):
+def _borders(pts, s, nb, own, block, grid, threads=1, region=None):
     """What block ``block`` sends the others for their second round (``_core.block_borders``):
-    per target block, (points, global ids, owner blocks) of its own points that the target's
-    stars may use."""
+    per target block, the local indices of its own points that the target's stars may use;
+    with ``region`` (lo, hi) also the first finality test of its stars (``inside``), on the
+    same balls."""
     scale = float(max(np.abs(grid.lo).max(), np.abs(grid.hi).max()))
+    box = {} if region is None else dict(region_lo=region[0].tolist(),
+                                         region_hi=region[1].tolist(),
+                                         bounds_lo=grid.lo.tolist(), bounds_hi=grid.hi.tolist())
     return _core.block_borders(pts, s, nb, own, int(block), grid.lo.tolist(),
                                grid.width.tolist(), grid.counts.tolist(), 1e-9 * scale, scale,
-                               threads)
+                               threads=threads, **box)
 
 
 def _not_done(block, ghost, nlocal, tested, borders):
@@ -545,7 +553,8 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts,
     ``parts``: per input piece, (points, global ids, owner blocks) of its points the block
     owns or that lie in its region or strips (None where none); ``hull``: (points, ids,
     owner blocks, facet planes) of the global hull (its extreme points; the planes pushed
-    outwards by a margin); ``counts``: (a Grid of bins, the count of all points per bin). Returns
+    outwards by a margin); ``counts``: (a Grid of bins, the count of all points per bin; None in
+    the second round, which has no test). Returns
     a dict: ``done``; when done, ``simplices`` (global ids, the owned ones), ``nb_local`` (per
     face: an owned simplex's row here, -1 none, -2 another block's), the face requests for the
     others (``req_owner``, ``req_key``: sorted face ids, ``req_pos``: row * (d + 1) + face),
@@ -576,13 +585,17 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts,
     tested = 0
     bord = {}
     if not second:
-        bord = _border_parts(ids, pts, blk, _borders(pts, s, nb, own, block, grid, threads))
         outside = None if covers else _Outside(counts[0], counts[1], pts, threads)
-        if outside is not None and outside.any:  # (else every point is here: all is final)
+        test = outside is not None and outside.any  # (else every point is here: all is final)
+        cell = grid.cell_box(block)
+        b = _borders(pts, s, nb, own, block, grid, threads,
+                     (cell[0] - ghost, cell[1] + ghost) if test else None)
+        bord = _border_parts(ids, pts, blk, b)
+        if test:
             req = np.nonzero(required)[0]
             tested = int(len(req))
-            if not _judge(pts, s, nb, req, grid, grid.cell_box(block), ghost, hull[3],
-                          list(extras.values()), threads, outside):
+            if not _judge(pts, s, nb, req, grid, cell, ghost, hull[3], list(extras.values()),
+                          threads, outside, b["inside"]):
                 return _not_done(block, ghost, len(ids), tested, bord)
     out = _emit(ids, pts, blk, s, nb, mine, threads)
     return _done(block, ghost, len(ids), tested, dict(out, borders=bord),
