@@ -63,6 +63,8 @@ void run(const double* pts, const I* simplices, const I* neighbors, std::int64_t
          const Slabs* slabs, std::uint8_t* inside, std::vector<std::vector<std::int64_t>>& found) {
   const int d1 = D + 1;
   const std::int64_t n_cells = cells.total;
+  double own_lo[3], own_hi[3];  // the own cell's box (grown by the margin)
+  cells.box(block, D, own_lo, own_hi);
 #pragma omp parallel
   {
     auto& out = found[std::size_t(omp_get_thread_num())];
@@ -92,9 +94,16 @@ void run(const double* pts, const I* simplices, const I* neighbors, std::int64_t
           if (t != block) send(v, t, own);
         continue;
       }
-      std::int64_t first[3] = {0, 0, 0}, last[3] = {0, 0, 0};
+      // most balls lie well inside the own cell, whose neighbours' boxes (grown by the margin)
+      // they then miss: no cell ranges to compute
+      bool within = true;
       for (int j = 0; j < D; ++j)
-        along(c[j] - reach, c[j] + reach, cells.g, j, cells.margin, &first[j], &last[j]);
+        within = within && c[j] - reach > own_lo[j] + 2 * cells.margin &&
+                 c[j] + reach < own_hi[j] - 2 * cells.margin;
+      std::int64_t first[3] = {0, 0, 0}, last[3] = {-1, 0, 0};
+      if (!within)
+        for (int j = 0; j < D; ++j)
+          along(c[j] - reach, c[j] + reach, cells.g, j, cells.margin, &first[j], &last[j]);
       std::int64_t k[3] = {0, 0, 0};
       for (k[0] = first[0]; k[0] <= last[0]; ++k[0])
         for (k[1] = first[1]; k[1] <= last[1]; ++k[1])
