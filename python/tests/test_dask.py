@@ -356,6 +356,35 @@ def test_second_round_is_exact_everywhere(d, monkeypatch):
     assert second >= 15
 
 
+def test_first_round_without_a_triangulation(monkeypatch):
+    """A block whose first round cannot triangulate (degenerate local points, which the hull's
+    points rule out in practice) sends all its own points to every block; the others' second
+    rounds and its own are still exact."""
+    from gpugeom.dask import _delaunay, _ghost
+    pts = np.random.default_rng(62).random((4000, 2))
+    real_block, real_tri = _delaunay.triangulate_block, _ghost._triangulated
+    failing = []
+
+    def tri(*args, **kwargs):
+        if failing:
+            raise _core.DegenerateInputError("forced")
+        return real_tri(*args, **kwargs)
+
+    def block(b, *args, **kwargs):
+        failing[:] = [True] if b == 1 and len(args) < 9 else []  # block 1's first round
+        try:
+            return real_block(b, *args, **kwargs)
+        finally:
+            failing.clear()
+
+    monkeypatch.setattr(_ghost, "_triangulated", tri)
+    monkeypatch.setattr(_delaunay, "triangulate_block", block)
+    with dask.config.set(scheduler="synchronous"):
+        dt = gd.delaunay(pts, blocks=4, backend="cpu", ghost=0.01)
+    _same_as_single(pts, dt)
+    assert [s["rounds"] for s in dt.block_stats][1] == 2
+
+
 def test_coarse_paths_are_exact(monkeypatch):
     """The path that trades work for a coarser test: no caps along the hull (past
     ``_CAP_WORK``). Forced everywhere, it gives the same triangulation, in no fewer rounds."""
