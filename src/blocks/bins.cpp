@@ -18,24 +18,6 @@ namespace gpugeom {
 
 namespace {
 
-// The bins along axis j that [a, b] grown by `margin` meets, clamped to the grid: false where it
-// meets none (beyond the grid, or a > b).
-bool bins_along(double a, double b, const CellGrid& g, int j, double margin, std::int64_t* first,
-                std::int64_t* last) {
-  if (!(a <= b)) return false;
-  if (!(g.width[j] > 0)) {  // a flat axis: one bin, every point on it
-    *first = *last = 0;
-    return true;
-  }
-  const double top = double(g.counts[j] - 1);
-  const double f0 = std::floor((a - margin - g.lo[j]) / g.width[j]);
-  const double f1 = std::floor((b + margin - g.lo[j]) / g.width[j]);
-  if (f1 < 0 || f0 > top) return false;
-  *first = f0 < 0 ? 0 : std::int64_t(f0);
-  *last = f1 > top ? g.counts[j] - 1 : std::int64_t(f1);
-  return true;
-}
-
 template <int D>
 void run(const double* centres, const double* reach, const double* lo, const double* hi,
          std::int64_t m, const CellGrid& g, const std::uint8_t* marked, double margin,
@@ -60,7 +42,7 @@ void run(const double* centres, const double* reach, const double* lo, const dou
     for (int j = 0; j < D && some; ++j) {
       double a = lo[i * D + j], b = hi[i * D + j];
       if (finite) a = std::max(a, c[j] - r), b = std::min(b, c[j] + r);
-      some = bins_along(a, b, g, j, margin, &first[j], &last[j]);
+      some = blocks_detail::cells_along(a, b, g, j, margin, false, &first[j], &last[j]);
     }
     std::uint8_t met = 0;
     if (some) {

@@ -42,21 +42,6 @@ struct Cells {
   }
 };
 
-// The cells along axis j that [a, b] meets, clamped to the grid (the points of the end cells
-// may lie beyond them by rounding, which the margin covers).
-void along(double a, double b, const CellGrid& g, int j, double margin, std::int64_t* first,
-           std::int64_t* last) {
-  if (!(g.width[j] > 0)) {
-    *first = *last = 0;
-    return;
-  }
-  const double f0 = std::floor((a - margin - g.lo[j]) / g.width[j]);
-  const double f1 = std::floor((b + margin - g.lo[j]) / g.width[j]);
-  const double top = double(g.counts[j] - 1);
-  *first = f0 < 0 ? 0 : (f0 > top ? g.counts[j] - 1 : std::int64_t(f0));
-  *last = f1 < 0 ? 0 : (f1 > top ? g.counts[j] - 1 : std::int64_t(f1));
-}
-
 template <int D, class I>
 void run(const double* pts, const I* simplices, const I* neighbors, std::int64_t m,
          const std::uint8_t* owned, std::int64_t block, const Cells& cells, double scale,
@@ -103,7 +88,8 @@ void run(const double* pts, const I* simplices, const I* neighbors, std::int64_t
       std::int64_t first[3] = {0, 0, 0}, last[3] = {-1, 0, 0};
       if (!within)
         for (int j = 0; j < D; ++j)
-          along(c[j] - reach, c[j] + reach, cells.g, j, cells.margin, &first[j], &last[j]);
+          blocks_detail::cells_along(c[j] - reach, c[j] + reach, cells.g, j, cells.margin, true,
+                                     &first[j], &last[j]);
       std::int64_t k[3] = {0, 0, 0};
       for (k[0] = first[0]; k[0] <= last[0]; ++k[0])
         for (k[1] = first[1]; k[1] <= last[1]; ++k[1])

@@ -1,5 +1,5 @@
 // What every block pass (src/blocks/) shares: the OpenMP thread count of the calling thread
-// while it runs, the check of the dimension, a point's cell, and ordered listing.
+// while it runs, the check of the dimension, a point's cell, a box's cells, and ordered listing.
 #pragma once
 #include <omp.h>
 
@@ -45,6 +45,25 @@ inline std::int64_t cell_along(double x, const CellGrid& g, int j) {
   if (!(g.width[j] > 0)) return 0;
   const double f = std::floor((x - g.lo[j]) / g.width[j]);
   return f < 0 ? 0 : (f > double(g.counts[j] - 1) ? g.counts[j] - 1 : std::int64_t(f));
+}
+
+// The cells along axis j that [a, b] grown by `margin` meets: false where a > b, or where it
+// lies beyond the grid and `clamp` is false; else the range clamped to the grid (a flat axis
+// has one cell).
+inline bool cells_along(double a, double b, const CellGrid& g, int j, double margin, bool clamp,
+                        std::int64_t* first, std::int64_t* last) {
+  if (!(a <= b)) return false;
+  if (!(g.width[j] > 0)) {
+    *first = *last = 0;
+    return true;
+  }
+  const double top = double(g.counts[j] - 1);
+  const double f0 = std::floor((a - margin - g.lo[j]) / g.width[j]);
+  const double f1 = std::floor((b + margin - g.lo[j]) / g.width[j]);
+  if (!clamp && (f1 < 0 || f0 > top)) return false;
+  *first = f0 < 0 ? 0 : (f0 > top ? g.counts[j] - 1 : std::int64_t(f0));
+  *last = f1 < 0 ? 0 : (f1 > top ? g.counts[j] - 1 : std::int64_t(f1));
+  return true;
 }
 
 // Calls emit(i, rank) for each i in [0, n) with keep(i), rank counting them from 0 in
