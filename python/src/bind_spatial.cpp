@@ -662,6 +662,21 @@ const double* host_points(const AnyArray& points, int* dim, std::int64_t* n) {
   return pts(p);
 }
 
+// A host bool (or uint8) array of bytes, one per `per` (`n` of them in all, whatever its shape;
+// -1: a 1D array of any length, written to `*count`): the masks the passes read unchecked.
+const std::uint8_t* host_mask(const AnyArray& a, const char* name, std::int64_t n, const char* per,
+                              std::int64_t* count = nullptr) {
+  Input w = inspect(a, name);
+  std::int64_t size = 1;
+  for (auto e : w.shape) size *= e;
+  if (w.on_device || !(holds<bool>(w) || holds<std::uint8_t>(w)) ||
+      (n < 0 ? w.shape.size() != 1 : size != n))
+    throw nb::value_error(
+        (std::string(name) + " must be a host bool array with an entry per " + per).c_str());
+  if (count) *count = size;
+  return static_cast<const std::uint8_t*>(w.data);
+}
+
 // A host int64 array of the given shape (-1: any) whose entries lie in [lo, hi), checked once
 // here: the library reads indices unchecked.
 template <class T>
@@ -740,10 +755,8 @@ nb::object circumballs_inside_bind(const AnyArray& points, const AnyArray& simpl
 // requires of its triangulation, and the output of its owned simplices.
 nb::dict block_required_bind(const AnyArray& simplices, const AnyArray& neighbors,
                              const AnyArray& owned, int threads) {
-  Input o = inspect(owned, "owned");
-  if (o.on_device || o.shape.size() != 1 || !(holds<bool>(o) || holds<std::uint8_t>(o)))
-    throw nb::value_error("owned must be a host bool array of shape (n,)");
-  const std::int64_t n = o.shape[0];
+  std::int64_t n = 0;
+  const std::uint8_t* own = host_mask(owned, "owned", -1, "point", &n);
   Input si = inspect(simplices, "simplices");
   if (si.shape.size() != 2 || (si.shape[1] != 3 && si.shape[1] != 4))
     throw nb::value_error("simplices must have shape (m, 3) or (m, 4)");
@@ -754,9 +767,7 @@ nb::dict block_required_bind(const AnyArray& simplices, const AnyArray& neighbor
     const T* s = host_indices_of<T>(simplices, "simplices", -1, d1, 0, n, &m, "int32 or int64");
     const T* nbr = host_indices_of<T>(neighbors, "neighbors", m, d1, -1, m, nullptr,
                                       "int32 or int64 (as simplices)");
-    return unlocked([&] {
-      return block_required(s, nbr, m, d1 - 1, static_cast<const std::uint8_t*>(o.data), threads);
-    });
+    return unlocked([&] { return block_required(s, nbr, m, d1 - 1, own, threads); });
   });
   nb::dict out;
   const sz k = r.owned_rows.size();
@@ -831,11 +842,7 @@ nb::object match_faces_bind(const AnyArray& keys, const AnyArray& positions, con
   std::int64_t q = 0;
   const std::int64_t* k = host_indices(keys, "keys", -1, dim, 0, INT64_MAX, &q);
   const std::int64_t* p = host_indices(positions, "positions", q, -1, 0, INT64_MAX);
-  Input o = inspect(open, "open");
-  if (o.on_device || o.shape.size() != 1 || o.shape[0] != q ||
-      !(holds<bool>(o) || holds<std::uint8_t>(o)))
-    throw nb::value_error("open must be a host bool array with a value per request");
-  const auto* op = static_cast<const std::uint8_t*>(o.data);
+  const std::uint8_t* op = host_mask(open, "open", q, "request");
   HostVector<std::int64_t> r =
       unlocked([&] { return match_faces(k, p, op, q, int(dim), threads); });
   return host_array(std::move(r), {sz(q)});
@@ -871,11 +878,7 @@ nb::dict block_borders_bind(const AnyArray& points, const AnyArray& simplices,
   int dim = 0;
   std::int64_t n = 0, m = 0;
   const double* x = host_points(points, &dim, &n);
-  Input o = inspect(owned, "owned");
-  if (o.on_device || o.shape.size() != 1 || o.shape[0] != n ||
-      !(holds<bool>(o) || holds<std::uint8_t>(o)))
-    throw nb::value_error("owned must be a host bool array with a value per point");
-  const auto* own = static_cast<const std::uint8_t*>(o.data);
+  const std::uint8_t* own = host_mask(owned, "owned", n, "point");
   const CellGrid g = cell_grid(lo, width, counts, dim);
   const bool test = region_lo.has_value();
   if (region_hi.has_value() != test || bounds_lo.has_value() != test ||
@@ -968,13 +971,7 @@ nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>&
     bl = pts(l), bh = pts(h);
   }
   const std::uint8_t* want = nullptr;
-  if (wanted) {
-    Input w = inspect(*wanted, "wanted");
-    if (w.on_device || w.shape.size() != 1 || w.shape[0] != cells ||
-        !(holds<bool>(w) || holds<std::uint8_t>(w)))
-      throw nb::value_error("wanted must be a host bool array with an entry per block");
-    want = static_cast<const std::uint8_t*>(w.data);
-  }
+  if (wanted) want = host_mask(*wanted, "wanted", cells, "block");
   CellSplit r = unlocked([&] {
     CellSplit split = split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads);
     if (gather) gather_blocks(x, dim, split, threads);
@@ -1012,12 +1009,7 @@ nb::object balls_in_bins_bind(const AnyArray& centres, const AnyArray& reach, co
     if (b->on_device || !holds<double>(*b) || b->shape.size() != 2 || b->shape[0] != m ||
         b->shape[1] != dim)
       throw nb::value_error("lo and hi must be host float64 arrays shaped as the centres");
-  Input w = inspect(marked, "marked");
-  std::int64_t size = 1;
-  for (auto e : w.shape) size *= e;
-  if (w.on_device || size != cells || !(holds<bool>(w) || holds<std::uint8_t>(w)))
-    throw nb::value_error("marked must be a host bool array with an entry per bin");
-  const auto* mk = static_cast<const std::uint8_t*>(w.data);
+  const std::uint8_t* mk = host_mask(marked, "marked", cells, "bin");
   HostVector<std::uint8_t> out = unlocked(
       [&] { return balls_in_bins(c, pts(r), pts(l), pts(h), m, dim, g, mk, margin, threads); });
   return host_array(std::move(out), {sz(m)});

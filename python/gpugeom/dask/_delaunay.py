@@ -180,23 +180,24 @@ def _faces_to(r: dict, offset: int, d1: int, matcher: int):
 
 
 def _match(parts):
-    """Pairs the face requests that come to one block (``_core.match_faces``): (positions,
-    the positions across them, -1 for a face on the hull)."""
+    """Pairs the face requests that come to one block from several (``_core.match_faces``):
+    per part, in their order, (its positions, the positions across them, -1 for a face on the
+    hull), so that each block takes back only its own answers."""
     keys = np.concatenate([p[0] for p in parts])
     pos = np.concatenate([p[1] for p in parts])
     open_ = np.concatenate([p[2] for p in parts])
-    return pos, _core.match_faces(keys, pos, open_)
+    across = _core.match_faces(keys, pos, open_)
+    cuts = np.cumsum([0] + [len(p[1]) for p in parts])
+    return [(pos[a:b], across[a:b]) for a, b in zip(cuts[:-1], cuts[1:])]
 
 
 def _neighbors_of(r: dict, offset: int, d1: int, answers) -> np.ndarray:
-    """The neighbours of a block's simplices in global simplex indices, from the answers of
+    """The neighbours of a block's simplices in global simplex indices, from its answers from
     the blocks that matched its faces (``_core.block_neighbors``)."""
-    m = len(r["simplices"])
     pos = np.concatenate([a[0] for a in answers]) if answers else np.zeros(0, np.int64)
     across = np.concatenate([a[1] for a in answers]) if answers else np.zeros(0, np.int64)
-    mine = (pos >= offset * d1) & (pos < (offset + m) * d1)
-    across = np.where(across[mine] >= 0, across[mine] // d1, -1)
-    return _core.block_neighbors(r["nb_local"], int(offset), pos[mine] - offset * d1, across)
+    across = np.where(across >= 0, across // d1, -1)
+    return _core.block_neighbors(r["nb_local"], int(offset), pos - offset * d1, across)
 
 
 class DistributedTriangulation:
@@ -483,9 +484,10 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
             senders.setdefault(c, []).append(b)
     answers = {c: delayed(_match)([delayed(_faces_to)(final[b], int(offsets[at[b]]), d1, c)
                                    for b in senders[c]]) for c in senders}
-    neighbors = [delayed(_neighbors_of)(final[b], int(offsets[at[b]]), d1,
-                                        [answers[c] for c in metas[b]["owners"]])
-                 for b in order]
+    neighbors = [delayed(_neighbors_of)(
+        final[b], int(offsets[at[b]]), d1,
+        [delayed(operator.getitem)(answers[c], senders[c].index(b)) for c in metas[b]["owners"]])
+        for b in order]
     stats = [dict(block=b, ghost=metas[b]["ghost"], extra_boxes=len(extras[b]), rounds=rounds[b],
                   nlocal=metas[b]["nlocal"],
                   nsimplex=metas[b]["nsimplex"], tested=metas[b]["tested"]) for b in order]

@@ -154,8 +154,8 @@ def _hull_cap(centre, reach, planes):
     """Where a ball's centre lies beyond a hull plane (outward unit normal n, offset t: inside
     n.x + t <= 0), the hull's points in the ball lie in the cap on the inner side of the plane
     furthest behind the centre: the disc of radius sqrt(r^2 - h^2) round the centre's foot on
-    the plane, swept inwards by the cap's depth r - h. Returns whether there was a cut and the
-    box round the cap (the ball's box elsewhere)."""
+    the plane, swept inwards by the cap's depth r - h. Returns the box round the cap (the
+    ball's box where there is no cut)."""
     best, hb = _furthest_plane(
         len(centre), planes, lambda i, j: centre[i:j] @ planes[:, :-1].T + planes[:, -1])
     cut = (hb > 0) & (hb < reach)
@@ -165,7 +165,7 @@ def _hull_cap(centre, reach, planes):
     lo, hi = _cap_box(foot, n, rim, -(reach - hb))
     lo = np.where(cut[:, None], lo, centre - reach[:, None])
     hi = np.where(cut[:, None], hi, centre + reach[:, None])
-    return cut, lo, hi
+    return lo, hi
 
 
 def _face_caps(pts, t, nbt):
@@ -179,12 +179,12 @@ def _face_caps(pts, t, nbt):
     t = w / 2h, w = |q - p|^2 - rho^2: the centre is beyond F exactly when q lies inside F's
     diametral sphere (w < 0). The ball's part on q's side (the hull's side: F is a hull facet)
     is then the cap over F's circumdisc of depth rho^2 / (r + |t|) <= rho^2 h / |w|, a bound
-    that stays accurate however far the centre is. Returns (applies, lo, hi)."""
+    that stays accurate however far the centre is. Returns the boxes (lo, hi), unbounded where
+    no face applies."""
     m, d1 = t.shape
     d = d1 - 1
     lo = np.full((m, d), -np.inf)
     hi = np.full((m, d), np.inf)
-    applies = np.zeros(m, dtype=bool)
     for j in range(d1):
         face = nbt[:, j] < 0
         if not bool(face.any()):
@@ -198,8 +198,7 @@ def _face_caps(pts, t, nbt):
         at = rows[ok]
         lo[at] = np.maximum(lo[at], flo[ok])
         hi[at] = np.minimum(hi[at], fhi[ok])
-        applies[at] = True
-    return applies, lo, hi
+    return lo, hi
 
 
 def _face_sphere(pts, t, j):
@@ -259,7 +258,8 @@ def _far_caps(pts, t, planes):
     m and offset o, at d = m.p + o and k = m.n, the centre lies h_m = d + tau k beyond it and
     r^2 - h_m^2 = rho^2 - d^2 - 2 d tau k + tau^2 |m x n|^2, every term accurate however large
     tau. The cap inside the plane furthest behind the centre has depth (r^2 - h_m^2) /
-    (r + h_m), rim sqrt(r^2 - h_m^2), foot p - d m + tau (n - k m). Returns (applies, lo, hi)."""
+    (r + h_m), rim sqrt(r^2 - h_m^2), foot p - d m + tau (n - k m). Returns the boxes
+    (lo, hi), unbounded where no cut applies."""
     m, d1 = t.shape
     d = d1 - 1
     has = np.zeros(m, dtype=bool)
@@ -280,7 +280,7 @@ def _far_caps(pts, t, planes):
     lo, hi = np.full((m, d), -np.inf), np.full((m, d), np.inf)
     rows = np.nonzero(has)[0]
     if len(rows) == 0 or len(planes) == 0:
-        return has, lo, hi
+        return lo, hi
     p, n, rho, tau, rel = p[rows], n[rows], rho[rows], tau[rows], rel[rows]
     normals, offsets = planes[:, :-1], planes[:, -1]
     best, _ = _furthest_plane(
@@ -308,9 +308,7 @@ def _far_caps(pts, t, planes):
     flo, fhi = _cap_box(foot, mn, rim, -depth)
     at = rows[ok]
     lo[at], hi[at] = flo[ok], fhi[ok]
-    has[:] = False
-    has[at] = True
-    return has, lo, hi
+    return lo, hi
 
 
 def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, planes, extras=(), nbs=None,
@@ -339,13 +337,13 @@ def final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, planes, extras
         lo, hi = _ball_in_box(c, r, box_lo, box_hi)
         planes = planes if len(retry) * len(planes) <= _CAP_WORK else planes[:0]
         if len(planes):
-            _, clo, chi = _hull_cap(c, r, np.asarray(planes))
+            clo, chi = _hull_cap(c, r, np.asarray(planes))
             lo, hi = np.maximum(lo, clo), np.minimum(hi, chi)
         if nbs is not None:
-            _, flo, fhi = _face_caps(pts, s[retry], nbs[retry])
+            flo, fhi = _face_caps(pts, s[retry], nbs[retry])
             lo, hi = np.maximum(lo, flo), np.minimum(hi, fhi)
         if len(planes):
-            _, flo, fhi = _far_caps(pts, s[retry], np.asarray(planes))
+            flo, fhi = _far_caps(pts, s[retry], np.asarray(planes))
             lo, hi = np.maximum(lo, flo), np.minimum(hi, fhi)
         pad = (1e-9 * scale + 64.0 * _EPS * (np.abs(c).max(axis=1) + r))[:, None]
         lo, hi = lo - pad, hi + pad
