@@ -133,6 +133,9 @@ struct Delaunay3dStats : RunStats {
   std::int64_t inserted_points = 0, removed_points = 0, hole_vertices = 0, hole_tetrahedra = 0,
                remove_rebuilt = 0, move_rounds = 0, move_taken_out = 0, move_reinserted = 0,
                move_grown = 0, move_rebuilt = 0;
+  /// delaunay{2,3}d_devices (multi_gpu.hpp): the blocks, those that took a second round, and
+  /// the local points of their last rounds (all blocks together).
+  std::int64_t blocks = 0, blocks_second_round = 0, block_local_points = 0;
 
   std::map<std::string, std::int64_t> counter_map() const override;
 };

@@ -1,10 +1,12 @@
 /// @file
 /// Several GPUs of one host without a cluster (issue 51): a call takes a list of devices and
 /// splits the work by the blocks gpugeom.dask uses; one host thread and stream per device, each
-/// part computed from host memory into its place in the host result.
+/// part computed from host memory, the parts put together into the host result.
 #pragma once
 #include <vector>
 
+#include "gpugeom/delaunay2d.hpp"
+#include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/edt.hpp"
 
 namespace gpugeom {
@@ -23,5 +25,34 @@ namespace gpugeom {
 /// slab in opt, grids of fewer than 3 axes; otherwise as distance_transform.
 EdtResult distance_transform_devices(const GridView& grid, SiteRule rule,
                                      const std::vector<int>& devices, const EdtOptions& opt = {});
+
+/// delaunay3d of host points on several devices: the same Triangulation3d, array for array and
+/// byte for byte (the tetrahedra, their order, neighbours, duplicates, vertex map and hull facets
+/// of a single call). The points' bounding box is split into one block per entry of `devices`
+/// (CUDA ordinals; a device may be named twice, an empty list takes every device of the host),
+/// by the cells gpugeom.dask uses. Each block is triangulated on its device, on its own host
+/// thread, with its own points, a ghost layer round them (4 mean point spacings) and the
+/// candidates for the global hull's extreme points, and its stars are tested against all the
+/// points (blocks.hpp: stars_final); a block whose stars are not all final is triangulated a
+/// second time with its own points, the candidates and the points the other blocks' first
+/// triangulations name as its borders, and is then exact without a test. The owned tetrahedra
+/// (by their lowest vertex) and their neighbours across blocks (matched by their faces) are
+/// put in delaunay3d's order on the host (docs/design-notes.md, "Several GPUs of one host").
+/// opt.device and opt.stream are not read; opt.threads, where given, is the host threads of
+/// all blocks together; opt.into is written as delaunay3d writes it. With opt.backend ==
+/// Backend::Cpu every entry is a block on the CPU executor (the same result; for machines
+/// without GPUs and for tests). The stats count the blocks, those that took a second round and
+/// their local points, with the phases "blocks.*". Throws as delaunay3d (the points are checked
+/// before any block runs), and Error(InvalidArgument) for Method::Digital or a negative
+/// ordinal.
+Triangulation3d delaunay3d_devices(const double* xyz, std::int64_t n,
+                                   const std::vector<int>& devices,
+                                   const Delaunay3dOptions& opt = {});
+
+/// delaunay2d of host points on several devices, as delaunay3d_devices: the same
+/// Triangulation2d, array for array, as a single call (a ghost layer of 6 mean spacings).
+Triangulation2d delaunay2d_devices(const double* xy, std::int64_t n,
+                                   const std::vector<int>& devices,
+                                   const Delaunay2dOptions& opt = {});
 
 }  // namespace gpugeom

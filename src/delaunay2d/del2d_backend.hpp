@@ -1,9 +1,11 @@
 // What the public 2D Delaunay entry gets back from a backend (internal).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
+#include "blocks/owned.hpp"
 #include "exec/dynamic_state.hpp"
 #include "exec/point_entries.hpp"
 #include "gpugeom/common.hpp"
@@ -56,6 +58,13 @@ struct VoronoiEntries {
 };
 
 GG_DECLARE_TABLE(Entries, entries)
+
+// delaunay2d_devices' frame (impl/assemble.inl, on the CPU executor): the points checked and
+// prepared as delaunay2d prepares them, then `blocks` (the blocks on their devices, timed into
+// the stats), then their owned triangles in delaunay2d's order: the arrays of a single call.
+using BlocksFn = std::function<blocks_detail::OwnedBlocks(Delaunay2dStats&)>;
+Output assemble_blocks(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                       const BlocksFn& blocks);
 GG_DECLARE_TABLE(VoronoiEntries, voronoi_entries)
 
 }  // namespace gpugeom::del2d

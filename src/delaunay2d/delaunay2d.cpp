@@ -23,7 +23,7 @@ namespace gpugeom {
   X(start_vertices) X(start_triangles) X(digital_fallback) X(inserted_points) X(removed_points)   \
   X(hole_vertices) X(hole_triangles) X(remove_rebuilt) X(move_rounds) X(move_taken_out)           \
   X(move_reinserted) X(move_rebuilt) X(furthest_site_vertices) X(cavity_insertions)           \
-  X(deferred_points)
+  X(deferred_points) X(blocks) X(blocks_second_round) X(block_local_points)
 // clang-format on
 GG_COUNTER_MAP(Delaunay2dStats, GG_DELAUNAY2D_COUNTERS);
 #undef GG_DELAUNAY2D_COUNTERS

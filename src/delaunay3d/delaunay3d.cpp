@@ -30,7 +30,7 @@ namespace gpugeom {
   X(digital_splay_rounds) X(digital_splay_vertex_rounds) X(digital_splay_request_spills)         \
   X(digital_fallback) X(inserted_points) X(removed_points) X(hole_vertices) X(hole_tetrahedra)   \
   X(remove_rebuilt) X(move_rounds) X(move_taken_out) X(move_reinserted) X(move_grown)            \
-  X(move_rebuilt)
+  X(move_rebuilt) X(blocks) X(blocks_second_round) X(block_local_points)
 // clang-format on
 GG_COUNTER_MAP(Delaunay3dStats, GG_DELAUNAY3D_COUNTERS);
 #undef GG_DELAUNAY3D_COUNTERS

@@ -1,0 +1,502 @@
+// delaunay2d_devices and delaunay3d_devices (include/gpugeom/multi_gpu.hpp): the blocks of
+// gpugeom.dask's triangulation, one per device, in one process (docs/design-notes.md, "Several
+// GPUs of one host: the blocks in one process"). Every block is triangulated with a ghost layer
+// and the global hull's candidates on its device and its stars tested against all the points
+// (stars_final); each block takes its borders for the others from that triangulation, and a
+// block whose stars are not all final is triangulated again with its own points, the hull's and
+// the borders sent to it. The owned simplices' neighbours across blocks are matched by their
+// faces, and the module puts them in a single call's order (assemble_blocks).
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "gpugeom/blocks.hpp"
+#include "gpugeom/hull3d.hpp"
+#include "gpugeom/multi_gpu.hpp"
+#include "base/clock.hpp"
+#include "blocks/owned.hpp"
+#include "delaunay2d/del2d_backend.hpp"
+#include "delaunay3d/del3d_backend.hpp"
+
+namespace gpugeom {
+
+namespace {
+
+using blocks_detail::OwnedBlocks;
+using I64 = HostVector<std::int64_t>;
+
+// f(i) for i in [0, k) on k host threads; the first exception (by index) is rethrown.
+template <class F>
+void on_threads(std::size_t k, F&& f) {
+  std::vector<std::exception_ptr> err(k);
+  std::vector<std::thread> ts;
+  ts.reserve(k);
+  for (std::size_t i = 0; i < k; ++i)
+    ts.emplace_back([&, i] {
+      try {
+        f(i);
+      } catch (...) {
+        err[i] = std::current_exception();
+      }
+    });
+  for (auto& t : ts) t.join();
+  for (auto& e : err)
+    if (e) std::rethrow_exception(e);
+}
+
+bool degenerate(const Error& e) {
+  return e.code() == ErrorCode::DegenerateInput;
+}
+
+// What differs between the dimensions: the call that triangulates a block, the one that finds
+// a block's candidates for the global hull's extreme points, the ghost width.
+template <int D>
+struct Dim;
+
+template <>
+struct Dim<2> {
+  using Options = Delaunay2dOptions;
+  using Result = Triangulation2d;
+  using Stats = Delaunay2dStats;
+  // (in mean point spacings, as gpugeom.dask's first round: _ghost.py's _GHOST)
+  static constexpr double kGhost = 6.0;
+  static Result triangulate(const double* p, std::int64_t n, const Options& o) {
+    return delaunay2d(p, n, o);
+  }
+  static const HostVector<std::int32_t>& simplices(const Result& r) { return r.triangles; }
+  static std::int64_t count(const Result& r) { return r.num_triangles; }
+  static I64 hull_candidates(const double* p, std::int64_t n, const Options& o) {
+    return hull_candidates2d(p, n, o.threads);
+  }
+  static Result assemble(const double* p, std::int64_t n, const Options& o,
+                         const del2d::BlocksFn& f) {
+    return del2d::assemble_blocks(p, n, o, f);
+  }
+};
+
+template <>
+struct Dim<3> {
+  using Options = Delaunay3dOptions;
+  using Result = Triangulation3d;
+  using Stats = Delaunay3dStats;
+  static constexpr double kGhost = 4.0;
+  static Result triangulate(const double* p, std::int64_t n, const Options& o) {
+    return delaunay3d(p, n, o);
+  }
+  static const HostVector<std::int32_t>& simplices(const Result& r) { return r.tetrahedra; }
+  static std::int64_t count(const Result& r) { return r.num_tetrahedra; }
+  // The extreme points of the block's own points (on its device), or all of them where they
+  // are too few or flat to have a hull.
+  static I64 hull_candidates(const double* p, std::int64_t n, const Options& o) {
+    Hull3dOptions h;
+    static_cast<RunOptions&>(h) = static_cast<const RunOptions&>(o);
+    I64 out;
+    try {
+      const ConvexHull3d r = convex_hull3d(p, n, h);
+      out.assign(r.vertices.begin(), r.vertices.end());
+    } catch (const Error& e) {
+      if (!degenerate(e)) throw;
+      out.resize(std::size_t(n));
+      for (std::int64_t i = 0; i < n; ++i) out[std::size_t(i)] = i;
+    }
+    return out;
+  }
+  static Result assemble(const double* p, std::int64_t n, const Options& o,
+                         const del3d::BlocksFn& f) {
+    return del3d::assemble_blocks(p, n, o, f);
+  }
+};
+
+std::vector<int> prime_factors(int n) {
+  std::vector<int> out;
+  for (int p = 2; p * p <= n; ++p)
+    while (n % p == 0) out.push_back(p), n /= p;
+  if (n > 1) out.push_back(n);
+  return out;
+}
+
+// Cells per axis, their product k (as gpugeom.dask's choose_counts): each prime factor, largest
+// first, splits the axis whose cells are then the longest (ties: the lower axis).
+template <int D>
+CellGrid block_grid(const PointBounds& b, int k) {
+  CellGrid g;
+  auto f = prime_factors(k);
+  std::sort(f.rbegin(), f.rend());
+  for (int p : f) {
+    int best = 0;
+    for (int j = 1; j < D; ++j)
+      if ((b.hi[j] - b.lo[j]) / double(g.counts[j]) >
+          (b.hi[best] - b.lo[best]) / double(g.counts[best]))
+        best = j;
+    g.counts[best] *= p;
+  }
+  for (int j = 0; j < D; ++j) {
+    g.lo[j] = b.lo[j];
+    g.width[j] = (b.hi[j] - b.lo[j]) / double(g.counts[j]);
+  }
+  return g;
+}
+
+// About `target` cells close to cubes over the bounds (one along a flat axis).
+template <int D>
+CellGrid cube_grid(const PointBounds& b, double target) {
+  double vol = 1;
+  int live = 0;
+  for (int j = 0; j < D; ++j)
+    if (b.hi[j] > b.lo[j]) vol *= b.hi[j] - b.lo[j], ++live;
+  CellGrid g;
+  const double side = live ? std::pow(vol / std::max(target, 1.0), 1.0 / live) : 1.0;
+  for (int j = 0; j < D; ++j) {
+    const double e = b.hi[j] - b.lo[j];
+    g.counts[j] = e > 0 ? std::int64_t(std::clamp(std::ceil(e / side), 1.0, double(1 << 20))) : 1;
+    g.lo[j] = b.lo[j];
+    g.width[j] = e / double(g.counts[j]);
+  }
+  return g;
+}
+
+// The sorted union of sorted id lists.
+I64 merged(std::vector<const I64*> lists) {
+  I64 out;
+  std::size_t total = 0;
+  for (auto* l : lists) total += l->size();
+  out.reserve(total);
+  for (auto* l : lists) out.insert(out.end(), l->begin(), l->end());
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+template <int D>
+class Blocks {
+ public:
+  using T = Dim<D>;
+  using Options = typename T::Options;
+
+  Blocks(const double* p, std::int64_t n, const std::vector<int>& devices, Backend backend,
+         const Options& opt)
+      : p_(p), n_(n), devices_(devices), backend_(backend), opt_(opt) {
+    const int all = opt.threads > 0 ? opt.threads : omp_get_max_threads();
+    threads_ = std::max(1, all / int(devices.size()));
+    all_threads_ = all;
+  }
+
+  OwnedBlocks run(typename T::Stats& st) {
+    const double t0 = now_ms();
+    setup();
+    st.phase_ms.push_back({"blocks.split", now_ms() - t0});
+    const double t1 = now_ms();
+    on_threads(k_, [&](std::size_t b) { first_round(b); });
+    st.phase_ms.push_back({"blocks.round1", now_ms() - t1});
+    const double t2 = now_ms();
+    std::vector<std::size_t> pending;
+    for (std::size_t b = 0; b < k_; ++b)
+      if (!blk_[b].done) pending.push_back(b);
+    on_threads(pending.size(), [&](std::size_t i) { second_round(pending[i]); });
+    st.phase_ms.push_back({"blocks.round2", now_ms() - t2});
+    const double t3 = now_ms();
+    OwnedBlocks out = neighbours();
+    st.phase_ms.push_back({"blocks.neighbors", now_ms() - t3});
+    st.blocks = std::int64_t(k_);
+    st.blocks_second_round = std::int64_t(pending.size());
+    st.block_local_points = local_points_;
+    return out;
+  }
+
+ private:
+  struct Block {
+    I64 own;  // global ids of the own points, increasing
+    I64 ids;  // global ids of the local points, increasing
+    HostVector<std::uint8_t> owned;
+    HostVector<double> pts;
+    typename T::Result tri;
+    BlockRequired req;
+    bool done = false;
+    std::vector<std::pair<std::int64_t, I64>> borders;  // (target block, global ids)
+    BlockOutput out;
+  };
+
+  Options block_options(std::size_t b) const {
+    Options o = opt_;
+    o.backend = backend_;
+    o.device = backend_ == Backend::Cuda ? devices_[b] : -1;
+    o.stream = nullptr;
+    o.threads = threads_;
+    o.into = {};
+    return o;
+  }
+
+  void setup() {
+    const PointBounds pb = point_bounds(p_, D, n_, all_threads_);
+    grid_ = block_grid<D>(pb, int(devices_.size()));
+    k_ = devices_.size();
+    double vol = 1, scale = 0;
+    int live = 0;
+    for (int j = 0; j < D; ++j) {
+      if (pb.hi[j] > pb.lo[j]) vol *= pb.hi[j] - pb.lo[j], ++live;
+      scale = std::max({scale, std::fabs(pb.lo[j]), std::fabs(pb.hi[j])});
+    }
+    ghost_ = live ? T::kGhost * std::pow(vol / double(n_), 1.0 / live) : 1.0;
+    margin_ = 1e-9 * scale;
+    // the regions: each cell grown by the ghost width (the last cell ends at the bounds)
+    boxes_.resize(k_);
+    std::vector<double> lo(k_ * D), hi(k_ * D);
+    std::vector<std::int64_t> owner(k_);
+    for (std::size_t b = 0; b < k_; ++b) {
+      std::int64_t c = std::int64_t(b), idx[3] = {0, 0, 0};
+      for (int j = D - 1; j >= 0; --j) idx[j] = c % grid_.counts[j], c /= grid_.counts[j];
+      BlockBoxes& x = boxes_[b];
+      for (int j = 0; j < D; ++j) {
+        const double clo = grid_.lo[j] + double(idx[j]) * grid_.width[j];
+        const double chi = idx[j] + 1 == grid_.counts[j]
+                               ? pb.hi[j]
+                               : grid_.lo[j] + double(idx[j] + 1) * grid_.width[j];
+        x.region_lo[j] = lo[b * D + j] = clo - ghost_;
+        x.region_hi[j] = hi[b * D + j] = chi + ghost_;
+        x.bounds_lo[j] = pb.lo[j];
+        x.bounds_hi[j] = pb.hi[j];
+      }
+      x.scale = scale;
+      owner[b] = std::int64_t(b);
+    }
+    split_ = split_to_blocks(p_, D, n_, grid_, lo.data(), hi.data(), owner.data(), std::int64_t(k_),
+                             nullptr, all_threads_);
+    // the bins of the finality test: about 16 points each
+    bins_ = cube_grid<D>(pb, std::min(double(n_) / 16.0, double(1 << 24)));
+    index_ = split_by_cell(p_, D, n_, bins_, all_threads_);
+    // every block's own points and its candidates for the hull's extreme points, on its device
+    blk_.resize(k_);
+    std::vector<I64> cands(k_);
+    on_threads(k_, [&](std::size_t b) {
+      Block& B = blk_[b];
+      for (std::int64_t q = split_.cuts[b]; q < split_.cuts[b + 1]; ++q) {
+        const std::int64_t id = split_.order[std::size_t(q)];
+        if (split_.cell[std::size_t(id)] == std::int64_t(b)) B.own.push_back(id);
+      }
+      HostVector<double> own = gather(B.own);
+      I64 c = T::hull_candidates(own.data(), std::int64_t(B.own.size()), block_options(b));
+      for (auto& v : c) v = B.own[std::size_t(v)];
+      cands[b] = std::move(c);
+    });
+    std::vector<const I64*> lists;
+    for (auto& c : cands) lists.push_back(&c);
+    held_ = merged(lists);
+  }
+
+  HostVector<double> gather(const I64& ids) const {
+    HostVector<double> out(ids.size() * D);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      for (int j = 0; j < D; ++j) out[i * D + std::size_t(j)] = p_[ids[i] * D + j];
+    return out;
+  }
+
+  // The local points `ids` gathered and triangulated on the block's device.
+  void triangulate(std::size_t b, I64 ids) {
+    Block& B = blk_[b];
+    B.ids = std::move(ids);
+    B.pts = gather(B.ids);
+    B.owned.resize(B.ids.size());
+    for (std::size_t i = 0; i < B.ids.size(); ++i)
+      B.owned[i] = split_.cell[std::size_t(B.ids[i])] == std::int64_t(b) ? 1 : 0;
+    B.tri = T::triangulate(B.pts.data(), std::int64_t(B.ids.size()), block_options(b));
+    const auto& s = T::simplices(B.tri);
+    B.req = block_required(s.data(), B.tri.neighbors.data(), T::count(B.tri), D, B.owned.data(),
+                           threads_);
+  }
+
+  bool covers_all(std::size_t b) const {
+    for (int j = 0; j < D; ++j)
+      if (boxes_[b].region_lo[j] > boxes_[b].bounds_lo[j] ||
+          boxes_[b].region_hi[j] < boxes_[b].bounds_hi[j])
+        return false;
+    return true;
+  }
+
+  void first_round(std::size_t b) {
+    Block& B = blk_[b];
+    if (B.own.empty()) {
+      B.done = true;
+      return;
+    }
+    I64 region(split_.order.begin() + split_.cuts[b], split_.order.begin() + split_.cuts[b + 1]);
+    try {
+      triangulate(b, merged({&region, &held_}));
+    } catch (const Error& e) {
+      if (!degenerate(e) || covers_all(b)) throw;
+      // no triangulation to take a border from: every own point goes to every block
+      for (std::size_t t = 0; t < k_; ++t)
+        if (t != b) B.borders.push_back({std::int64_t(t), B.own});
+      B.tri = {};
+      return;
+    }
+    const auto& s = T::simplices(B.tri);
+    const std::int64_t m = T::count(B.tri), nl = std::int64_t(B.ids.size());
+    HostVector<std::uint8_t> inside(static_cast<std::size_t>(m));
+    const BlockBorders bd = block_borders(B.pts.data(), D, s.data(), B.tri.neighbors.data(), m, nl,
+                                          B.owned.data(), std::int64_t(b), grid_, margin_,
+                                          boxes_[b].scale, &boxes_[b], inside.data(), threads_);
+    for (std::size_t t = 0; t < bd.targets.size(); ++t) {
+      I64 ids;
+      for (std::int64_t q = bd.offsets[t]; q < bd.offsets[t + 1]; ++q)
+        ids.push_back(B.ids[std::size_t(bd.vertices[std::size_t(q)])]);
+      B.borders.push_back({bd.targets[t], std::move(ids)});
+    }
+    // the stars to test: those the first test (inside) did not pass
+    HostVector<std::uint8_t> test(static_cast<std::size_t>(m));
+    for (std::int64_t i = 0; i < m; ++i)
+      test[std::size_t(i)] = B.req.required[std::size_t(i)] && !inside[std::size_t(i)] ? 1 : 0;
+    // (a block that holds every point, as on a circle or sphere where all are the hull's, is
+    // final without a test)
+    B.done = covers_all(b) || std::int64_t(B.ids.size()) == n_ ||
+             stars_final(B.pts.data(), D, s.data(), m, test.data(), boxes_[b], p_, bins_,
+                         index_.order.data(), index_.cuts.data(), held_.data(),
+                         std::int64_t(held_.size()), threads_);
+    if (B.done)
+      emit(b);
+    else
+      B.tri = {};
+  }
+
+  void second_round(std::size_t b) {
+    Block& B = blk_[b];
+    std::vector<const I64*> lists{&B.own, &held_};
+    for (auto& src : blk_)
+      for (auto& [t, ids] : src.borders)
+        if (t == std::int64_t(b)) lists.push_back(&ids);
+    triangulate(b, merged(lists));
+    emit(b);
+  }
+
+  // The block's output (block_output): its owned simplices in global ids, their neighbours
+  // here, and the face requests for the others.
+  void emit(std::size_t b) {
+    Block& B = blk_[b];
+    I64 blk(B.ids.size());
+    for (std::size_t i = 0; i < B.ids.size(); ++i) blk[i] = split_.cell[std::size_t(B.ids[i])];
+    const auto& s = T::simplices(B.tri);
+    B.out = block_output(s.data(), B.tri.neighbors.data(), T::count(B.tri), D,
+                         B.req.owned_rows.data(), std::int64_t(B.req.owned_rows.size()),
+                         B.ids.data(), blk.data(), nullptr, std::int64_t(B.ids.size()), threads_);
+    local_points_ += std::int64_t(B.ids.size());
+    B.tri = {};
+    B.pts = {};
+    B.req = {};
+  }
+
+  // Each block's face requests go to the block that matches them (by the face's lowest vertex),
+  // and each block's neighbours across blocks come from the answers.
+  OwnedBlocks neighbours() {
+    const int d1 = D + 1;
+    OwnedBlocks o;
+    for (std::size_t b = 0; b < k_; ++b)
+      o.offsets.push_back(o.offsets.back() + std::int64_t(blk_[b].out.simplices.size()) / d1);
+    // answers[c][b]: block c's answers to block b's requests (positions here, global across)
+    std::vector<std::vector<std::pair<I64, I64>>> answers(k_, std::vector<std::pair<I64, I64>>(k_));
+    on_threads(k_, [&](std::size_t c) {
+      I64 keys, pos;
+      HostVector<std::uint8_t> open;
+      std::vector<std::size_t> from(k_ + 1, 0);
+      for (std::size_t b = 0; b < k_; ++b) {
+        const BlockOutput& x = blk_[b].out;
+        for (std::size_t r = 0; r < x.request_owner.size(); ++r) {
+          if (x.request_owner[r] != std::int64_t(c)) continue;
+          keys.insert(keys.end(), x.request_key.begin() + std::ptrdiff_t(r * D),
+                      x.request_key.begin() + std::ptrdiff_t((r + 1) * D));
+          pos.push_back(o.offsets[b] * d1 + x.request_pos[r]);
+          open.push_back(x.request_open[r]);
+        }
+        from[b + 1] = pos.size();
+      }
+      const I64 across =
+          match_faces(keys.data(), pos.data(), open.data(), std::int64_t(pos.size()), D, threads_);
+      for (std::size_t b = 0; b < k_; ++b) {
+        auto& [p, a] = answers[c][b];
+        for (std::size_t i = from[b]; i < from[b + 1]; ++i) {
+          p.push_back(pos[i] - o.offsets[b] * d1);
+          a.push_back(across[i] >= 0 ? across[i] / d1 : -1);
+        }
+      }
+    });
+    o.simplices.resize(k_);
+    o.neighbors.resize(k_);
+    on_threads(k_, [&](std::size_t b) {
+      I64 p, a;
+      for (std::size_t c = 0; c < k_; ++c) {
+        p.insert(p.end(), answers[c][b].first.begin(), answers[c][b].first.end());
+        a.insert(a.end(), answers[c][b].second.begin(), answers[c][b].second.end());
+      }
+      BlockOutput& x = blk_[b].out;
+      const std::int64_t m = std::int64_t(x.simplices.size()) / d1;
+      o.neighbors[b] = block_neighbors(x.neighbors.data(), m, D, o.offsets[b], p.data(), a.data(),
+                                       std::int64_t(p.size()), threads_);
+      o.simplices[b] = std::move(x.simplices);
+      x = {};
+    });
+    return o;
+  }
+
+  const double* p_;
+  std::int64_t n_;
+  std::vector<int> devices_;
+  Backend backend_;
+  Options opt_;
+  int threads_ = 1, all_threads_ = 1;
+  std::size_t k_ = 0;
+  CellGrid grid_, bins_;
+  double ghost_ = 0, margin_ = 0;
+  std::vector<BlockBoxes> boxes_;
+  CellSplit split_, index_;
+  I64 held_;
+  std::vector<Block> blk_;
+  std::atomic<std::int64_t> local_points_{0};
+};
+
+template <int D>
+typename Dim<D>::Result run_devices(const double* p, std::int64_t n,
+                                    const std::vector<int>& devices_in,
+                                    const typename Dim<D>::Options& opt, const char* name) {
+  if (opt.threads < 0)
+    throw Error(ErrorCode::InvalidArgument, "threads must be 0 (all) or positive");
+  if (opt.method != Method::Incremental)
+    throw Error(ErrorCode::InvalidArgument,
+                std::string(name) + " runs the incremental method in every block");
+  std::vector<int> devices = devices_in;
+  const Backend b = resolve_backend(opt.backend, devices.empty() ? -1 : devices[0]);
+  if (devices.empty()) {
+    const int count = b == Backend::Cuda ? query_device().device_count : 1;
+    for (int d = 0; d < std::max(1, count); ++d) devices.push_back(d);
+  }
+  for (int d : devices)
+    if (d < 0)
+      throw Error(
+          ErrorCode::InvalidArgument,
+          std::string(name) + ": a device ordinal must be 0 or more, got " + std::to_string(d));
+  typename Dim<D>::Result r = Dim<D>::assemble(p, n, opt, [&](typename Dim<D>::Stats& st) {
+    return Blocks<D>(p, n, devices, b, opt).run(st);
+  });
+  r.stats.backend = b;
+  return r;
+}
+
+}  // namespace
+
+Triangulation2d delaunay2d_devices(const double* xy, std::int64_t n,
+                                   const std::vector<int>& devices, const Delaunay2dOptions& opt) {
+  del2d::check_count(n);
+  return run_devices<2>(xy, n, devices, opt, "delaunay2d_devices");
+}
+
+Triangulation3d delaunay3d_devices(const double* xyz, std::int64_t n,
+                                   const std::vector<int>& devices, const Delaunay3dOptions& opt) {
+  del3d::check_count(n);
+  return run_devices<3>(xyz, n, devices, opt, "delaunay3d_devices");
+}
+
+}  // namespace gpugeom

@@ -1,0 +1,146 @@
+// Whether a block's stars are final, tested against every point (include/gpugeom/blocks.hpp:
+// stars_final): the test of the multi-device triangulation, which holds all the points in one
+// process. gpugeom.dask's blocks see only counts per bin of the points they lack, so their test
+// bounds the balls' parts inside the hull by caps (python/gpugeom/dask/_ghost.py); here the
+// points themselves are at hand, so a ball is final exactly when no point it holds is missing.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+
+#include "gpugeom/blocks.hpp"
+#include "gpugeom/common.hpp"
+#include "blocks/circumball.hpp"
+#include "blocks/pass.hpp"
+
+namespace gpugeom {
+
+namespace {
+
+using blocks_detail::cells_along;
+using blocks_detail::circumball;
+
+struct AllPoints {
+  const double* xyz;
+  const CellGrid& bins;
+  const std::int64_t* order;
+  const std::int64_t* cuts;
+  const std::int64_t* held;  // sorted
+  std::int64_t nheld;
+  double margin;
+};
+
+inline bool in_box(const double* x, const double* lo, const double* hi, int dim) {
+  for (int j = 0; j < dim; ++j)
+    if (!(x[j] >= lo[j] && x[j] <= hi[j])) return false;
+  return true;
+}
+
+// Whether the ball (c, r) holds a point of `a` the block lacks within the box [lo, hi] (a slab
+// of the bounds beyond its region): the bins the ball meets there, row by row, and their points
+// outside the region and not held. Along the last axis the ball's chord over the row bounds the
+// bins scanned, so a ball as large as the box costs its rows, not its bins.
+template <int D>
+bool holds_missing(const AllPoints& a, const BlockBoxes& b, const double* c, double r,
+                   const double* lo, const double* hi) {
+  const CellGrid& g = a.bins;
+  double blo[D], bhi[D];
+  for (int j = 0; j < D; ++j) {
+    blo[j] = std::max(lo[j], c[j] - r);
+    bhi[j] = std::min(hi[j], c[j] + r);
+  }
+  std::int64_t f[D], l[D];
+  for (int j = 0; j < D - 1; ++j)
+    if (!cells_along(blo[j], bhi[j], g, j, a.margin, true, &f[j], &l[j])) return false;
+  const double r2 = r * r;
+  // the squared gap from the centre to bin k's slab along axis j (grown by the margin)
+  auto gap2 = [&](int j, std::int64_t k) {
+    if (!(g.width[j] > 0)) return 0.0;
+    const double s = g.lo[j] + double(k) * g.width[j] - a.margin;
+    const double e = g.lo[j] + double(k + 1) * g.width[j] + a.margin;
+    const double d = std::max(std::max(s - c[j], c[j] - e), 0.0);
+    return d * d;
+  };
+  auto scan = [&](std::int64_t row, double used) {  // the last axis of one row
+    const int j = D - 1;
+    const double half = std::sqrt(std::max(r2 - used, 0.0));
+    std::int64_t s, e;
+    if (!cells_along(std::max(blo[j], c[j] - half), std::min(bhi[j], c[j] + half), g, j, a.margin,
+                     true, &s, &e))
+      return false;
+    for (std::int64_t k = s; k <= e; ++k) {
+      const std::int64_t bin = row * g.counts[j] + k;
+      for (std::int64_t q = a.cuts[bin]; q < a.cuts[bin + 1]; ++q) {
+        const std::int64_t p = a.order[q];
+        const double* x = a.xyz + p * D;
+        if (in_box(x, b.region_lo, b.region_hi, D)) continue;
+        double d2 = 0;
+        for (int i = 0; i < D; ++i) d2 += (x[i] - c[i]) * (x[i] - c[i]);
+        if (!(std::sqrt(d2) <= r)) continue;
+        if (!std::binary_search(a.held, a.held + a.nheld, p)) return true;
+      }
+    }
+    return false;
+  };
+  for (std::int64_t i = f[0]; i <= l[0]; ++i) {
+    const double g0 = gap2(0, i);
+    if (g0 > r2) continue;
+    if constexpr (D == 2) {
+      if (scan(i, g0)) return true;
+    } else {
+      for (std::int64_t k = f[1]; k <= l[1]; ++k) {
+        const double g1 = g0 + gap2(1, k);
+        if (g1 > r2) continue;
+        if (scan(i * g.counts[1] + k, g1)) return true;
+      }
+    }
+  }
+  return false;
+}
+
+template <int D, class I>
+bool run(const double* pts, const I* simplices, std::int64_t m, const std::uint8_t* test,
+         const BlockBoxes& b, const AllPoints& a) {
+  const blocks_detail::Slabs slabs = blocks_detail::slabs_of(b, D);
+  std::atomic<bool> ok{true};
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t i = 0; i < m; ++i) {
+    if (!test[i] || !ok.load(std::memory_order_relaxed)) continue;
+    double c[D], r;
+    if (!circumball<D>(pts, simplices + i * (D + 1), c, &r, b.scale)) {
+      ok.store(false, std::memory_order_relaxed);  // a centre not trusted: not a verdict
+      continue;
+    }
+    if (blocks_detail::misses(slabs, c, r, D)) continue;
+    for (int s = 0; s < slabs.count; ++s)
+      if (holds_missing<D>(a, b, c, r, slabs.lo[s], slabs.hi[s])) {
+        ok.store(false, std::memory_order_relaxed);
+        break;
+      }
+  }
+  return ok.load();
+}
+
+template <class I>
+bool stars_final_impl(const double* points, int dim, const I* simplices, std::int64_t m,
+                      const std::uint8_t* test, const BlockBoxes& boxes, const double* all,
+                      const CellGrid& bins, const std::int64_t* order, const std::int64_t* cuts,
+                      const std::int64_t* held, std::int64_t nheld, int threads) {
+  blocks_detail::check_dim(dim, "stars_final");
+  blocks_detail::ThreadScope scope(threads);
+  const AllPoints a{all, bins, order, cuts, held, nheld, 1e-9 * boxes.scale};
+  return dim == 2 ? run<2>(points, simplices, m, test, boxes, a)
+                  : run<3>(points, simplices, m, test, boxes, a);
+}
+
+}  // namespace
+
+bool stars_final(const double* points, int dim, const std::int32_t* simplices, std::int64_t m,
+                 const std::uint8_t* test, const BlockBoxes& boxes, const double* all,
+                 const CellGrid& bins, const std::int64_t* order, const std::int64_t* cuts,
+                 const std::int64_t* held, std::int64_t nheld, int threads) {
+  return stars_final_impl(points, dim, simplices, m, test, boxes, all, bins, order, cuts, held,
+                          nheld, threads);
+}
+
+}  // namespace gpugeom
