@@ -220,8 +220,10 @@ BlockBorders block_borders(const double* points, int dim, const std::int32_t* si
 /// counts per bin, test in Python). For the `m` simplices of the block's local triangulation
 /// (`dim` + 1 local indices each into `points`), true where no simplex i with `test[i]` nonzero
 /// has a point of `all` in its closed circumball (grown by a bound of its rounding) that the
-/// block lacks: one outside the closed box `boxes.region` and not among the `nheld` points
-/// `held` (global indices, increasing: the block's local points outside its region). False
+/// block lacks: one outside the closed box `boxes.region` and the `nextra` closed boxes
+/// `extra_lo`/`extra_hi` (`dim` coordinates each: the strips along the bounds a block also
+/// holds) and not among the `nheld` points `held` (global indices, increasing: the block's
+/// other local points). False
 /// also where a centre is not trusted (a singular or ill-conditioned simplex). `all` is indexed
 /// by the cells of `bins` over `boxes.bounds` (split_by_cell's `order` and `cuts`). A simplex
 /// whose ball misses the bounds beyond the region passes at once; the others scan the bins
@@ -230,7 +232,8 @@ BlockBorders block_borders(const double* points, int dim, const std::int32_t* si
 bool stars_final(const double* points, int dim, const std::int32_t* simplices, std::int64_t m,
                  const std::uint8_t* test, const BlockBoxes& boxes, const double* all,
                  const CellGrid& bins, const std::int64_t* order, const std::int64_t* cuts,
-                 const std::int64_t* held, std::int64_t nheld, int threads = 0);
+                 const std::int64_t* held, std::int64_t nheld, const double* extra_lo = nullptr,
+                 const double* extra_hi = nullptr, std::int64_t nextra = 0, int threads = 0);
 
 /// The points of a 2D set (`n` points, x and y each) that may be extreme points of a larger set
 /// holding them: all but those strictly inside the polygon through their extreme points in 8

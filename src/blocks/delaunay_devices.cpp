@@ -65,8 +65,11 @@ struct Dim<2> {
   using Options = Delaunay2dOptions;
   using Result = Triangulation2d;
   using Stats = Delaunay2dStats;
-  // (in mean point spacings, as gpugeom.dask's first round: _ghost.py's _GHOST)
-  static constexpr double kGhost = 6.0;
+  // The ghost width in mean point spacings, and the depth of the strips along the sides of the
+  // bounds in ghost widths, as gpugeom.dask's first round (_delaunay.py's _GHOST and
+  // _STRIP_DEPTH): the simplices along the hull are long and flat, their balls' parts inside
+  // the hull thin lenses along the sides, beyond any ghost layer that costs little.
+  static constexpr double kGhost = 6.0, kStrip = 4.0;
   static Result triangulate(const double* p, std::int64_t n, const Options& o) {
     return delaunay2d(p, n, o);
   }
@@ -86,7 +89,7 @@ struct Dim<3> {
   using Options = Delaunay3dOptions;
   using Result = Triangulation3d;
   using Stats = Delaunay3dStats;
-  static constexpr double kGhost = 4.0;
+  static constexpr double kGhost = 4.0, kStrip = 0.5;
   static Result triangulate(const double* p, std::int64_t n, const Options& o) {
     return delaunay3d(p, n, o);
   }
@@ -245,10 +248,13 @@ class Blocks {
     }
     ghost_ = live ? T::kGhost * std::pow(vol / double(n_), 1.0 / live) : 1.0;
     margin_ = 1e-9 * scale;
-    // the regions: each cell grown by the ghost width (the last cell ends at the bounds)
+    // the regions: each cell grown by the ghost width (the last cell ends at the bounds), and
+    // the strips along the sides of the bounds the cell lies on
     boxes_.resize(k_);
-    std::vector<double> lo(k_ * D), hi(k_ * D);
-    std::vector<std::int64_t> owner(k_);
+    strips_.resize(k_);
+    std::vector<double> lo, hi;
+    std::vector<std::int64_t> owner;
+    const double depth = T::kStrip * ghost_;
     for (std::size_t b = 0; b < k_; ++b) {
       std::int64_t c = std::int64_t(b), idx[3] = {0, 0, 0};
       for (int j = D - 1; j >= 0; --j) idx[j] = c % grid_.counts[j], c /= grid_.counts[j];
@@ -258,16 +264,31 @@ class Blocks {
         const double chi = idx[j] + 1 == grid_.counts[j]
                                ? pb.hi[j]
                                : grid_.lo[j] + double(idx[j] + 1) * grid_.width[j];
-        x.region_lo[j] = lo[b * D + j] = clo - ghost_;
-        x.region_hi[j] = hi[b * D + j] = chi + ghost_;
+        x.region_lo[j] = clo - ghost_;
+        x.region_hi[j] = chi + ghost_;
         x.bounds_lo[j] = pb.lo[j];
         x.bounds_hi[j] = pb.hi[j];
+        lo.push_back(x.region_lo[j]);
+        hi.push_back(x.region_hi[j]);
       }
       x.scale = scale;
-      owner[b] = std::int64_t(b);
+      owner.push_back(std::int64_t(b));
+      for (int j = 0; j < D; ++j) {
+        if (!(pb.hi[j] > pb.lo[j])) continue;
+        for (int high = 0; high < 2; ++high) {
+          if (high ? idx[j] + 1 != grid_.counts[j] : idx[j] != 0) continue;
+          Strips& st = strips_[b];
+          for (int i = 0; i < D; ++i) {
+            double a = pb.lo[i], e = pb.hi[i];
+            if (i == j) (high ? a : e) = high ? pb.hi[j] - depth : pb.lo[j] + depth;
+            st.lo.push_back(a), st.hi.push_back(e), lo.push_back(a), hi.push_back(e);
+          }
+          owner.push_back(std::int64_t(b));
+        }
+      }
     }
-    split_ = split_to_blocks(p_, D, n_, grid_, lo.data(), hi.data(), owner.data(), std::int64_t(k_),
-                             nullptr, all_threads_);
+    split_ = split_to_blocks(p_, D, n_, grid_, lo.data(), hi.data(), owner.data(),
+                             std::int64_t(owner.size()), nullptr, all_threads_);
     // the bins of the finality test: about 16 points each
     bins_ = cube_grid<D>(pb, std::min(double(n_) / 16.0, double(1 << 24)));
     index_ = split_by_cell(p_, D, n_, bins_, all_threads_);
@@ -357,7 +378,8 @@ class Blocks {
     B.done = covers_all(b) || std::int64_t(B.ids.size()) == n_ ||
              stars_final(B.pts.data(), D, s.data(), m, test.data(), boxes_[b], p_, bins_,
                          index_.order.data(), index_.cuts.data(), held_.data(),
-                         std::int64_t(held_.size()), threads_);
+                         std::int64_t(held_.size()), strips_[b].lo.data(), strips_[b].hi.data(),
+                         std::int64_t(strips_[b].lo.size() / D), threads_);
     if (B.done)
       emit(b);
     else
@@ -452,6 +474,10 @@ class Blocks {
   CellGrid grid_, bins_;
   double ghost_ = 0, margin_ = 0;
   std::vector<BlockBoxes> boxes_;
+  struct Strips {
+    std::vector<double> lo, hi;  // D coordinates a box
+  };
+  std::vector<Strips> strips_;
   CellSplit split_, index_;
   I64 held_;
   std::vector<Block> blk_;

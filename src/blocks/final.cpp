@@ -10,6 +10,7 @@
 
 #include "gpugeom/blocks.hpp"
 #include "gpugeom/common.hpp"
+#include "gpugeom/predicates.hpp"
 #include "blocks/circumball.hpp"
 #include "blocks/pass.hpp"
 
@@ -20,6 +21,12 @@ namespace {
 using blocks_detail::cells_along;
 using blocks_detail::circumball;
 
+inline bool in_box(const double* x, const double* lo, const double* hi, int dim) {
+  for (int j = 0; j < dim; ++j)
+    if (!(x[j] >= lo[j] && x[j] <= hi[j])) return false;
+  return true;
+}
+
 struct AllPoints {
   const double* xyz;
   const CellGrid& bins;
@@ -27,22 +34,40 @@ struct AllPoints {
   const std::int64_t* cuts;
   const std::int64_t* held;  // sorted
   std::int64_t nheld;
+  const double* extra_lo;  // further boxes the block holds every point of
+  const double* extra_hi;
+  std::int64_t nextra;
   double margin;
+  // whether the block holds point x by its boxes (the region, then the extra boxes)
+  bool boxed(const double* x, const BlockBoxes& b, int dim) const {
+    if (in_box(x, b.region_lo, b.region_hi, dim)) return true;
+    for (std::int64_t e = 0; e < nextra; ++e)
+      if (in_box(x, extra_lo + e * dim, extra_hi + e * dim, dim)) return true;
+    return false;
+  }
 };
 
-inline bool in_box(const double* x, const double* lo, const double* hi, int dim) {
-  for (int j = 0; j < dim; ++j)
-    if (!(x[j] >= lo[j] && x[j] <= hi[j])) return false;
-  return true;
+// Whether point x lies in the closed circumball of the simplex v (positively oriented):
+// exactly, as the ball's rounding bound is no verdict (the flat simplices along the hull have
+// centres far outside and bounds that reach deep into the hull).
+template <int D>
+bool in_closed_ball(const double* const* v, const double* x) {
+  if constexpr (D == 2)
+    return incircle({v[0][0], v[0][1]}, {v[1][0], v[1][1]}, {v[2][0], v[2][1]}, {x[0], x[1]}) >= 0;
+  else
+    return insphere({v[0][0], v[0][1], v[0][2]}, {v[1][0], v[1][1], v[1][2]},
+                    {v[2][0], v[2][1], v[2][2]}, {v[3][0], v[3][1], v[3][2]},
+                    {x[0], x[1], x[2]}) >= 0;
 }
 
-// Whether the ball (c, r) holds a point of `a` the block lacks within the box [lo, hi] (a slab
-// of the bounds beyond its region): the bins the ball meets there, row by row, and their points
-// outside the region and not held. Along the last axis the ball's chord over the row bounds the
-// bins scanned, so a ball as large as the box costs its rows, not its bins.
+// Whether the circumball of simplex v, within the ball (c, r) that bounds it, holds a point of
+// `a` the block lacks within the box [lo, hi] (a slab of the bounds beyond its region): the bins
+// the bound meets there, row by row, and their points outside the block's boxes, not held, and
+// in the ball by the exact predicate. Along the last axis the bound's chord over the row limits
+// the bins scanned, so a ball as large as the box costs its rows, not its bins.
 template <int D>
-bool holds_missing(const AllPoints& a, const BlockBoxes& b, const double* c, double r,
-                   const double* lo, const double* hi) {
+bool holds_missing(const AllPoints& a, const BlockBoxes& b, const double* const* v, const double* c,
+                   double r, const double* lo, const double* hi) {
   const CellGrid& g = a.bins;
   double blo[D], bhi[D];
   for (int j = 0; j < D; ++j) {
@@ -73,10 +98,10 @@ bool holds_missing(const AllPoints& a, const BlockBoxes& b, const double* c, dou
       for (std::int64_t q = a.cuts[bin]; q < a.cuts[bin + 1]; ++q) {
         const std::int64_t p = a.order[q];
         const double* x = a.xyz + p * D;
-        if (in_box(x, b.region_lo, b.region_hi, D)) continue;
+        if (a.boxed(x, b, D)) continue;
         double d2 = 0;
         for (int i = 0; i < D; ++i) d2 += (x[i] - c[i]) * (x[i] - c[i]);
-        if (!(std::sqrt(d2) <= r)) continue;
+        if (!(std::sqrt(d2) <= r) || !in_closed_ball<D>(v, x)) continue;
         if (!std::binary_search(a.held, a.held + a.nheld, p)) return true;
       }
     }
@@ -112,8 +137,10 @@ bool run(const double* pts, const I* simplices, std::int64_t m, const std::uint8
       continue;
     }
     if (blocks_detail::misses(slabs, c, r, D)) continue;
+    const double* v[D + 1];
+    for (int k = 0; k <= D; ++k) v[k] = pts + std::int64_t(simplices[i * (D + 1) + k]) * D;
     for (int s = 0; s < slabs.count; ++s)
-      if (holds_missing<D>(a, b, c, r, slabs.lo[s], slabs.hi[s])) {
+      if (holds_missing<D>(a, b, v, c, r, slabs.lo[s], slabs.hi[s])) {
         ok.store(false, std::memory_order_relaxed);
         break;
       }
@@ -125,10 +152,12 @@ template <class I>
 bool stars_final_impl(const double* points, int dim, const I* simplices, std::int64_t m,
                       const std::uint8_t* test, const BlockBoxes& boxes, const double* all,
                       const CellGrid& bins, const std::int64_t* order, const std::int64_t* cuts,
-                      const std::int64_t* held, std::int64_t nheld, int threads) {
+                      const std::int64_t* held, std::int64_t nheld, const double* extra_lo,
+                      const double* extra_hi, std::int64_t nextra, int threads) {
   blocks_detail::check_dim(dim, "stars_final");
   blocks_detail::ThreadScope scope(threads);
-  const AllPoints a{all, bins, order, cuts, held, nheld, 1e-9 * boxes.scale};
+  const AllPoints a{all,   bins,     order,    cuts,   held,
+                    nheld, extra_lo, extra_hi, nextra, 1e-9 * boxes.scale};
   return dim == 2 ? run<2>(points, simplices, m, test, boxes, a)
                   : run<3>(points, simplices, m, test, boxes, a);
 }
@@ -138,9 +167,10 @@ bool stars_final_impl(const double* points, int dim, const I* simplices, std::in
 bool stars_final(const double* points, int dim, const std::int32_t* simplices, std::int64_t m,
                  const std::uint8_t* test, const BlockBoxes& boxes, const double* all,
                  const CellGrid& bins, const std::int64_t* order, const std::int64_t* cuts,
-                 const std::int64_t* held, std::int64_t nheld, int threads) {
+                 const std::int64_t* held, std::int64_t nheld, const double* extra_lo,
+                 const double* extra_hi, std::int64_t nextra, int threads) {
   return stars_final_impl(points, dim, simplices, m, test, boxes, all, bins, order, cuts, held,
-                          nheld, threads);
+                          nheld, extra_lo, extra_hi, nextra, threads);
 }
 
 }  // namespace gpugeom
