@@ -18,13 +18,9 @@ namespace gpugeom {
 
 namespace {
 
-using blocks_detail::cell_along;
+using blocks_detail::in_box;
 
-inline bool in_box(const double* x, const double* lo, const double* hi, int dim) {
-  for (int j = 0; j < dim; ++j)
-    if (!(x[j] >= lo[j] && x[j] <= hi[j])) return false;
-  return true;
-}
+using blocks_detail::cell_along;
 
 // A finer grid of bins over the cells (`sub` bins a cell along each axis that is not flat), each
 // with the boxes that may hold one of its points (CSR, each list in increasing box order, so by

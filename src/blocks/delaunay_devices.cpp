@@ -21,6 +21,7 @@
 #include "gpugeom/hull3d.hpp"
 #include "gpugeom/multi_gpu.hpp"
 #include "base/clock.hpp"
+#include "base/on_threads.hpp"
 #include "blocks/owned.hpp"
 #include "delaunay2d/del2d_backend.hpp"
 #include "delaunay3d/del3d_backend.hpp"
@@ -32,24 +33,7 @@ namespace {
 using blocks_detail::OwnedBlocks;
 using I64 = HostVector<std::int64_t>;
 
-// f(i) for i in [0, k) on k host threads; the first exception (by index) is rethrown.
-template <class F>
-void on_threads(std::size_t k, F&& f) {
-  std::vector<std::exception_ptr> err(k);
-  std::vector<std::thread> ts;
-  ts.reserve(k);
-  for (std::size_t i = 0; i < k; ++i)
-    ts.emplace_back([&, i] {
-      try {
-        f(i);
-      } catch (...) {
-        err[i] = std::current_exception();
-      }
-    });
-  for (auto& t : ts) t.join();
-  for (auto& e : err)
-    if (e) std::rethrow_exception(e);
-}
+using detail::on_threads;
 
 bool degenerate(const Error& e) {
   return e.code() == ErrorCode::DegenerateInput;

@@ -18,14 +18,10 @@ namespace gpugeom {
 
 namespace {
 
+using blocks_detail::in_box;
+
 using blocks_detail::cells_along;
 using blocks_detail::circumball;
-
-inline bool in_box(const double* x, const double* lo, const double* hi, int dim) {
-  for (int j = 0; j < dim; ++j)
-    if (!(x[j] >= lo[j] && x[j] <= hi[j])) return false;
-  return true;
-}
 
 struct AllPoints {
   const double* xyz;

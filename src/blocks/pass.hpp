@@ -47,6 +47,14 @@ inline std::int64_t cell_along(double x, const CellGrid& g, int j) {
   return f < 0 ? 0 : (f > double(g.counts[j] - 1) ? g.counts[j] - 1 : std::int64_t(f));
 }
 
+// Whether x lies in the closed box [lo, hi] (comparisons of the doubles: the rule that decides
+// which points a block holds, the same in every pass).
+inline bool in_box(const double* x, const double* lo, const double* hi, int dim) {
+  for (int j = 0; j < dim; ++j)
+    if (!(x[j] >= lo[j] && x[j] <= hi[j])) return false;
+  return true;
+}
+
 // The cells along axis j that [a, b] grown by `margin` meets: false where a > b, or where it
 // lies beyond the grid and `clamp` is false; else the range clamped to the grid (a flat axis
 // has one cell).

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "base/clock.hpp"
+#include "base/on_threads.hpp"
 #include "edt/entries.hpp"
 #include "gpugeom/scalar_type.hpp"
 #include "gpugeom/multi_gpu.hpp"
@@ -18,24 +19,7 @@ namespace gpugeom {
 
 namespace {
 
-// f(i) for i in [0, k) on k host threads; the first exception (by slab) is rethrown.
-template <class F>
-void on_threads(std::size_t k, F&& f) {
-  std::vector<std::exception_ptr> err(k);
-  std::vector<std::thread> ts;
-  ts.reserve(k);
-  for (std::size_t i = 0; i < k; ++i)
-    ts.emplace_back([&, i] {
-      try {
-        f(i);
-      } catch (...) {
-        err[i] = std::current_exception();
-      }
-    });
-  for (auto& t : ts) t.join();
-  for (auto& e : err)
-    if (e) std::rethrow_exception(e);
-}
+using detail::on_threads;
 
 // An output of the whole grid: the caller's array (checked by edt::checked_outputs) or the
 // result's.
