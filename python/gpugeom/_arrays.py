@@ -236,6 +236,26 @@ def is_integer(x) -> bool:
     return isinstance(x, numbers.Integral) and not isinstance(x, bool)
 
 
+def device_list(devices, kind: Kind, why: str):
+    """A devices= argument as the library takes it: None (one device), [] ("all": every one)
+    or a list of device ordinals. `why`: why host arrays are needed, for the error."""
+    if devices is None:
+        return None
+    if kind.device:
+        raise ValueError(f"devices= takes host (NumPy) arrays: {why}")
+    if isinstance(devices, str):
+        if devices != "all":
+            raise ValueError(f"devices must be a list of device ordinals or 'all', got "
+                             f"{devices!r}")
+        return []
+    out = [int(d) for d in devices]
+    if not out:
+        raise ValueError("devices is empty: name at least one device, or 'all'")
+    if any(d < 0 for d in out):
+        raise ValueError(f"device ordinals are 0 or more, got {out}")
+    return out
+
+
 def progress_callback(progress) -> Optional[Callable]:
     """A progress argument as the extension calls it: a callable, or a tqdm-like bar (anything
     with update()), which advances by one per step."""

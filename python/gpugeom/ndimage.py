@@ -68,27 +68,6 @@ def _slices(slices, shape):
     return out
 
 
-def _devices(devices, kind, slices):
-    """The device list for the library (None: one device; []: every one)."""
-    if devices is None:
-        return None
-    if kind.device:
-        raise ValueError("devices= takes host (NumPy) arrays: each device copies in its slab")
-    if slices is not None:
-        raise ValueError("devices= and slices= cannot be combined (the devices split axis 0)")
-    if isinstance(devices, str):
-        if devices != "all":
-            raise ValueError(f"devices must be a list of device ordinals or 'all', got "
-                             f"{devices!r}")
-        return []
-    out = [int(d) for d in devices]
-    if not out:
-        raise ValueError("devices is empty: name at least one device, or 'all'")
-    if any(d < 0 for d in out):
-        raise ValueError(f"device ordinals are 0 or more, got {out}")
-    return out
-
-
 def _c_contiguous(a) -> bool:
     if hasattr(a, "is_contiguous"):  # torch
         return bool(a.is_contiguous())
@@ -165,7 +144,9 @@ def distance_transform_edt(input, sampling: Union[float, Sequence[float], None] 
     # its (2, 1, n) result instead); others get the result copied in.
     d_direct = distances is not None and _c_contiguous(distances)
     f_direct = indices is not None and nd > 1 and _c_contiguous(indices)
-    devs = _devices(devices, kind, zs)
+    if devices is not None and zs is not None:
+        raise ValueError("devices= and slices= cannot be combined (the devices split axis 0)")
+    devs = _arrays.device_list(devices, kind, "each device copies in its slab")
     if devs is not None and nd < 3:  # slabs take 3 axes or more: (n, 1, 1) and (rows, 1, cols)
         g = arr.reshape((shape[0], 1, 1) if nd == 1 else (shape[0], 1, shape[1]))
         samp2 = ([samp[0], 1.0, 1.0] if nd == 1 else [samp[0], 1.0, samp[1]]) if samp else []

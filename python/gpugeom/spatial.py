@@ -9,7 +9,7 @@ stream.
 from __future__ import annotations
 
 from functools import cached_property
-from typing import Any, Callable, Optional
+from typing import Any, Callable, Optional, Sequence, Union
 
 import numpy as np
 
@@ -325,6 +325,12 @@ class Delaunay(_OfPoints):
         the points are and brought up to date by each ``add_points`` (new points located by
         walks, inserted by flips; ``progress`` is not called then). The simplices are those of a
         new object on all points.
+    devices : list of int or "all", optional
+        Several GPUs of this host (host points; not in SciPy): the points are split into one
+        block per entry (a device may be named twice), every block triangulated at once on its
+        device, and the result is the arrays of one call, byte for byte. With
+        ``backend="cpu"`` each entry is a block on the CPU. Not with ``incremental``,
+        ``furthest_site``, ``method="digital"`` or ``progress``.
 
     Attributes
     ----------
@@ -339,12 +345,23 @@ class Delaunay(_OfPoints):
     def __init__(self, points, furthest_site: bool = False, incremental: bool = False,
                  qhull_options: Optional[str] = None, *, backend: str = "auto",
                  threads: int = 0, progress: Optional[Callable] = None,
-                 method: str = "incremental", grid: int = 0):
+                 method: str = "incremental", grid: int = 0,
+                 devices: Union[None, str, Sequence[int]] = None):
         _check_qhull_options(qhull_options)
         arr, kind = self._take_points(points, (2, 3), backend, threads)
         self.furthest_site = _furthest_site(furthest_site, self.ndim, incremental)
         if method not in ("incremental", "digital"):
             raise ValueError(f"method must be 'incremental' or 'digital', got {method!r}")
+        self._devices = _arrays.device_list(devices, kind,
+                                            "each device copies in its block's points")
+        if self._devices is not None:
+            for name, bad in (("incremental=True", incremental),
+                              ("furthest_site=True", self.furthest_site),
+                              ("method='digital'", method != "incremental"),
+                              ("progress", progress is not None)):
+                if bad:
+                    raise ValueError(f"devices= does not take {name} (the blocks are "
+                                     f"triangulated at once, by the incremental method)")
         self._method, self._grid, self._progress = method, grid, progress
         self._incremental = bool(incremental)
         self._dyn = None
@@ -359,10 +376,12 @@ class Delaunay(_OfPoints):
             # kept between calls (DynamicDelaunay2d / 3d): add_points brings it up to date
             make = _core.DynamicDelaunay2d if self.ndim == 2 else _core.DynamicDelaunay3d
             return self._start_kept(make, arr)
+        devs = getattr(self, "_devices", None)
         if self.ndim == 2:
-            return _core.delaunay2d(arr, method=self._method, grid=self._grid, **self._run)
+            return _core.delaunay2d(arr, method=self._method, grid=self._grid, devices=devs,
+                                    **self._run)
         return _core.delaunay3d(arr, progress=_arrays.progress_callback(self._progress),
-                                method=self._method, grid=self._grid, **self._run)
+                                method=self._method, grid=self._grid, devices=devs, **self._run)
 
     @classmethod
     def _from_arrays(cls, points, simplices, neighbors, duplicate_of, stats):

@@ -18,6 +18,7 @@
 #include "gpugeom/delaunay3d.hpp"
 #include "gpugeom/hull3d.hpp"
 #include "gpugeom/locate.hpp"
+#include "gpugeom/multi_gpu.hpp"
 #include "gpugeom/voronoi3d.hpp"
 #include "verify.hpp"
 
@@ -40,14 +41,28 @@ nb::dict triangulation2d_dict(Triangulation2d& t, std::int64_t n) {
   return r;
 }
 
+// devices= (Delaunay(devices=...)): the blocks of several devices of this host read host points
+// (each device takes its block's); checked before anything runs.
+void check_devices_input(const Input& in, const std::optional<std::vector<int>>& devices) {
+  if (devices && in.on_device)
+    throw nb::value_error(
+        "devices= takes host (NumPy) points: each device copies in its block's points");
+}
+
 nb::dict delaunay2d_bind(const AnyArray& points, const std::string& backend, nb::handle stream,
-                         int threads, const std::string& method, std::int64_t grid) {
+                         int threads, const std::string& method, std::int64_t grid,
+                         std::optional<std::vector<int>> devices) {
   const Input in = points_input(points, 2);
+  check_devices_input(in, devices);
   auto o = options_for<Delaunay2dOptions>(backend, stream, threads, in);
   o.method = parse_method(method);
   o.grid = grid;
   const std::int64_t n = in.shape[0];
   nb::dict r;
+  if (devices) {
+    Triangulation2d t = unlocked([&] { return delaunay2d_devices(pts(in), n, *devices, o); });
+    return triangulation2d_dict(t, n);
+  }
   if (in.on_device) {
     DeviceTriangulation2d t = unlocked([&] { return delaunay2d_device(pts(in), n, o); });
     const DeviceOut out{t.backend, device_of(o)};
@@ -516,8 +531,9 @@ nb::dict dynamic3d_result(const Dynamic3dState& self) {
 
 nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, nb::handle stream,
                          int threads, nb::object progress, const std::string& method,
-                         std::int64_t grid) {
+                         std::int64_t grid, std::optional<std::vector<int>> devices) {
   const Input in = points_input(points, 3);
+  check_devices_input(in, devices);
   auto o = options_for<Delaunay3dOptions>(backend, stream, threads, in);
   o.method = parse_method(method);
   o.grid = grid;
@@ -535,6 +551,12 @@ nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, nb:
     }
   };
   const std::int64_t n = in.shape[0];
+  if (devices) {
+    // (the blocks report their own points' progress, from their own threads: the callback
+    // would see several runs interleaved, so only the interrupt check is kept)
+    if (cb) throw nb::value_error("progress= is not taken with devices= (the blocks run at once)");
+    return tets_dict(unlocked([&] { return delaunay3d_devices(pts(in), n, *devices, o); }));
+  }
   if (in.on_device)
     return tets_dict(unlocked([&] { return delaunay3d_device(pts(in), n, o); }), device_of(o));
   return tets_dict(unlocked([&] { return delaunay3d(pts(in), n, o); }));
@@ -1071,7 +1093,7 @@ std::pair<bool, std::string> check_bind(const std::string& what, const AnyArray&
 void bind_spatial(nb::module_& m) {
   using namespace nb::literals;
   m.def("delaunay2d", &delaunay2d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
-        "threads"_a = 0, "method"_a = "incremental", "grid"_a = 0);
+        "threads"_a = 0, "method"_a = "incremental", "grid"_a = 0, "devices"_a = nb::none());
   nb::class_<Dynamic2dState>(m, "DynamicDelaunay2d")
       .def("__init__", &dynamic2d_init, "points"_a, "backend"_a = "auto", "stream"_a = 0,
            "threads"_a = 0)
@@ -1135,7 +1157,8 @@ void bind_spatial(nb::module_& m) {
       .def("result", &dynamic_hull_result)
       .def_prop_ro("npoints", [](const DynamicHullState& s) { return s.t.num_points(); });
   m.def("delaunay3d", &delaunay3d_bind, "points"_a, "backend"_a = "auto", "stream"_a = 0,
-        "threads"_a = 0, "progress"_a = nb::none(), "method"_a = "incremental", "grid"_a = 0);
+        "threads"_a = 0, "progress"_a = nb::none(), "method"_a = "incremental", "grid"_a = 0,
+        "devices"_a = nb::none());
   m.def("find_simplex", &find_simplex_bind, "points"_a, "simplices"_a, "neighbors"_a, "xi"_a,
         "threads"_a = 0);
   m.def("hull2d_vertices", &hull2d_bind, "points"_a, "simplices"_a, "neighbors"_a);

@@ -474,3 +474,37 @@ def test_furthest_site_refusals():
         gpugeom.Voronoi(np.random.rand(10, 2), furthest_site=True, incremental=True)
     with pytest.raises(gpugeom.DegenerateInputError):
         gpugeom.Delaunay(np.array([(0, 0), (1, 1), (2, 2.0)]), furthest_site=True)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_delaunay_several_devices_equal_one(dim, backend, rng):
+    """devices=: one block per entry (on the CPU backend, a CPU block each), the arrays of one
+    call, on random points, a grid with copies, and points on a sphere."""
+    g = np.stack(np.meshgrid(*[np.arange(7.0)] * dim, indexing="ij"), -1).reshape(-1, dim)
+    s = rng.normal(size=(400, dim))
+    cases = [rng.random((3000, dim)), np.concatenate([g, g[::5]]),
+             s / np.linalg.norm(s, axis=1, keepdims=True)]
+    for p in cases:
+        one = gpugeom.Delaunay(p, backend=backend)
+        for devices in ([0, 0], [0, 0, 0], [0], "all"):
+            d = gpugeom.Delaunay(p, backend=backend, devices=devices)
+            for name in ("simplices", "neighbors", "vertex_to_simplex", "duplicate_of"):
+                np.testing.assert_array_equal(getattr(d, name), getattr(one, name),
+                                              err_msg=f"{name} in {devices}")
+            np.testing.assert_array_equal(d.convex_hull, one.convex_hull)
+
+
+def test_delaunay_several_devices_refusals(backend, rng):
+    p = rng.random((100, 3))
+    for kw, what in ((dict(incremental=True), "incremental"), (dict(method="digital"), "digital"),
+                     (dict(progress=lambda *a: None), "progress")):
+        with pytest.raises(ValueError, match=what):
+            gpugeom.Delaunay(p, backend=backend, devices=[0, 0], **kw)
+    with pytest.raises(ValueError, match="ordinals"):
+        gpugeom.Delaunay(p, backend=backend, devices=[0, -1])
+    with pytest.raises(ValueError, match="empty"):
+        gpugeom.Delaunay(p, backend=backend, devices=[])
+    bad = p.copy()
+    bad[7, 1] = np.nan
+    with pytest.raises(ValueError, match="NaN|infinite|Inf"):
+        gpugeom.Delaunay(bad, backend=backend, devices=[0, 0])

@@ -22,6 +22,7 @@
 #include "gpugeom/multi_gpu.hpp"
 #include "base/clock.hpp"
 #include "base/on_threads.hpp"
+#include "exec/dispatch.hpp"
 #include "blocks/owned.hpp"
 #include "delaunay2d/del2d_backend.hpp"
 #include "delaunay3d/del3d_backend.hpp"
@@ -64,7 +65,9 @@ struct Dim<2> {
   }
   static Result assemble(const double* p, std::int64_t n, const Options& o,
                          const del2d::BlocksFn& f) {
-    return del2d::assemble_blocks(p, n, o, f);
+    Result r;
+    GG_TABLE(o.backend, del2d, assembly).run(p, n, o, f, r);
+    return r;
   }
 };
 
@@ -97,7 +100,9 @@ struct Dim<3> {
   }
   static Result assemble(const double* p, std::int64_t n, const Options& o,
                          const del3d::BlocksFn& f) {
-    return del3d::assemble_blocks(p, n, o, f);
+    Result r;
+    GG_TABLE(o.backend, del3d, assembly).run(p, n, o, f, r);
+    return r;
   }
 };
 
@@ -149,17 +154,47 @@ CellGrid cube_grid(const PointBounds& b, double target) {
   return g;
 }
 
-// The sorted union of sorted id lists.
+// The sorted union of sorted id lists, merged pairwise, shortest first (linear in their
+// lengths: a sort of the concatenation took a second at 10^7 points, on one thread).
 I64 merged(std::vector<const I64*> lists) {
-  I64 out;
-  std::size_t total = 0;
-  for (auto* l : lists) total += l->size();
-  out.reserve(total);
-  for (auto* l : lists) out.insert(out.end(), l->begin(), l->end());
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  std::sort(lists.begin(), lists.end(),
+            [](const I64* a, const I64* b) { return a->size() < b->size(); });
+  I64 out, tmp;
+  for (const I64* l : lists) {
+    tmp.resize(out.size() + l->size());
+    tmp.resize(std::size_t(
+        std::set_union(out.begin(), out.end(), l->begin(), l->end(), tmp.begin()) - tmp.begin()));
+    std::swap(out, tmp);
+  }
   return out;
 }
+
+// Milliseconds of one pass summed over the blocks (they run at once, so the sums say where the
+// blocks' time goes, not how long the phase took).
+class PassTimes {
+ public:
+  template <class F>
+  auto time(int pass, F&& f) {
+    const double t = now_ms();
+    struct Add {
+      std::atomic<std::int64_t>& us;
+      double t;
+      ~Add() { us += std::int64_t((now_ms() - t) * 1000.0); }
+    } add{us_[pass], t};
+    return f();
+  }
+  void report(std::vector<std::pair<std::string, double>>& phases) const {
+    for (int i = 0; i < kPasses; ++i)
+      if (us_[i] > 0)
+        phases.push_back({std::string("blocks.sum.") + kNames[i], double(us_[i]) / 1e3});
+  }
+  enum { kGather, kTriangulate, kRequired, kBorders, kFinal, kOutput, kPasses };
+
+ private:
+  static constexpr const char* kNames[kPasses] = {"gather",  "triangulate", "required",
+                                                  "borders", "final",       "output"};
+  std::atomic<std::int64_t> us_[kPasses] = {};
+};
 
 template <int D>
 class Blocks {
@@ -191,6 +226,7 @@ class Blocks {
     const double t3 = now_ms();
     OwnedBlocks out = neighbours();
     st.phase_ms.push_back({"blocks.neighbors", now_ms() - t3});
+    times_.report(st.phase_ms);
     st.blocks = std::int64_t(k_);
     st.blocks_second_round = std::int64_t(pending.size());
     st.block_local_points = local_points_;
@@ -295,11 +331,15 @@ class Blocks {
     held_ = merged(lists);
   }
 
-  HostVector<double> gather(const I64& ids) const {
-    HostVector<double> out(ids.size() * D);
-    for (std::size_t i = 0; i < ids.size(); ++i)
-      for (int j = 0; j < D; ++j) out[i * D + std::size_t(j)] = p_[ids[i] * D + j];
-    return out;
+  HostVector<double> gather(const I64& ids) {
+    return times_.time(PassTimes::kGather, [&] {
+      HostVector<double> out(ids.size() * D);
+      const std::int64_t m = std::int64_t(ids.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+      for (std::int64_t i = 0; i < m; ++i)
+        for (int j = 0; j < D; ++j) out[std::size_t(i * D + j)] = p_[ids[std::size_t(i)] * D + j];
+      return out;
+    });
   }
 
   // The local points `ids` gathered and triangulated on the block's device.
@@ -308,12 +348,17 @@ class Blocks {
     B.ids = std::move(ids);
     B.pts = gather(B.ids);
     B.owned.resize(B.ids.size());
-    for (std::size_t i = 0; i < B.ids.size(); ++i)
-      B.owned[i] = split_.cell[std::size_t(B.ids[i])] == std::int64_t(b) ? 1 : 0;
-    B.tri = T::triangulate(B.pts.data(), std::int64_t(B.ids.size()), block_options(b));
+    const std::int64_t nl = std::int64_t(B.ids.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::int64_t i = 0; i < nl; ++i)
+      B.owned[std::size_t(i)] = split_.cell[std::size_t(B.ids[std::size_t(i)])] == std::int64_t(b);
+    B.tri = times_.time(PassTimes::kTriangulate,
+                        [&] { return T::triangulate(B.pts.data(), nl, block_options(b)); });
     const auto& s = T::simplices(B.tri);
-    B.req = block_required(s.data(), B.tri.neighbors.data(), T::count(B.tri), D, B.owned.data(),
-                           threads_);
+    B.req = times_.time(PassTimes::kRequired, [&] {
+      return block_required(s.data(), B.tri.neighbors.data(), T::count(B.tri), D, B.owned.data(),
+                            threads_);
+    });
   }
 
   bool covers_all(std::size_t b) const {
@@ -344,9 +389,11 @@ class Blocks {
     const auto& s = T::simplices(B.tri);
     const std::int64_t m = T::count(B.tri), nl = std::int64_t(B.ids.size());
     HostVector<std::uint8_t> inside(static_cast<std::size_t>(m));
-    const BlockBorders bd = block_borders(B.pts.data(), D, s.data(), B.tri.neighbors.data(), m, nl,
-                                          B.owned.data(), std::int64_t(b), grid_, margin_,
-                                          boxes_[b].scale, &boxes_[b], inside.data(), threads_);
+    const BlockBorders bd = times_.time(PassTimes::kBorders, [&] {
+      return block_borders(B.pts.data(), D, s.data(), B.tri.neighbors.data(), m, nl, B.owned.data(),
+                           std::int64_t(b), grid_, margin_, boxes_[b].scale, &boxes_[b],
+                           inside.data(), threads_);
+    });
     for (std::size_t t = 0; t < bd.targets.size(); ++t) {
       I64 ids;
       for (std::int64_t q = bd.offsets[t]; q < bd.offsets[t + 1]; ++q)
@@ -359,11 +406,13 @@ class Blocks {
       test[std::size_t(i)] = B.req.required[std::size_t(i)] && !inside[std::size_t(i)] ? 1 : 0;
     // (a block that holds every point, as on a circle or sphere where all are the hull's, is
     // final without a test)
-    B.done = covers_all(b) || std::int64_t(B.ids.size()) == n_ ||
-             stars_final(B.pts.data(), D, s.data(), m, test.data(), boxes_[b], p_, bins_,
-                         index_.order.data(), index_.cuts.data(), held_.data(),
-                         std::int64_t(held_.size()), strips_[b].lo.data(), strips_[b].hi.data(),
-                         std::int64_t(strips_[b].lo.size() / D), threads_);
+    B.done =
+        covers_all(b) || std::int64_t(B.ids.size()) == n_ || times_.time(PassTimes::kFinal, [&] {
+          return stars_final(B.pts.data(), D, s.data(), m, test.data(), boxes_[b], p_, bins_,
+                             index_.order.data(), index_.cuts.data(), held_.data(),
+                             std::int64_t(held_.size()), strips_[b].lo.data(), strips_[b].hi.data(),
+                             std::int64_t(strips_[b].lo.size() / D), threads_);
+        });
     if (B.done)
       emit(b);
     else
@@ -384,12 +433,17 @@ class Blocks {
   // here, and the face requests for the others.
   void emit(std::size_t b) {
     Block& B = blk_[b];
-    I64 blk(B.ids.size());
-    for (std::size_t i = 0; i < B.ids.size(); ++i) blk[i] = split_.cell[std::size_t(B.ids[i])];
-    const auto& s = T::simplices(B.tri);
-    B.out = block_output(s.data(), B.tri.neighbors.data(), T::count(B.tri), D,
-                         B.req.owned_rows.data(), std::int64_t(B.req.owned_rows.size()),
-                         B.ids.data(), blk.data(), nullptr, std::int64_t(B.ids.size()), threads_);
+    B.out = times_.time(PassTimes::kOutput, [&] {
+      const std::int64_t nl = std::int64_t(B.ids.size());
+      I64 blk(B.ids.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+      for (std::int64_t i = 0; i < nl; ++i)
+        blk[std::size_t(i)] = split_.cell[std::size_t(B.ids[std::size_t(i)])];
+      const auto& s = T::simplices(B.tri);
+      return block_output(s.data(), B.tri.neighbors.data(), T::count(B.tri), D,
+                          B.req.owned_rows.data(), std::int64_t(B.req.owned_rows.size()),
+                          B.ids.data(), blk.data(), nullptr, nl, threads_);
+    });
     local_points_ += std::int64_t(B.ids.size());
     B.tri = {};
     B.pts = {};
@@ -430,8 +484,9 @@ class Blocks {
         }
       }
     });
-    o.simplices.resize(k_);
-    o.neighbors.resize(k_);
+    const std::int64_t total = o.offsets.back();
+    o.simplices.resize(std::size_t(d1 * total));
+    o.neighbors.resize(std::size_t(d1 * total));
     on_threads(k_, [&](std::size_t b) {
       I64 p, a;
       for (std::size_t c = 0; c < k_; ++c) {
@@ -440,9 +495,16 @@ class Blocks {
       }
       BlockOutput& x = blk_[b].out;
       const std::int64_t m = std::int64_t(x.simplices.size()) / d1;
-      o.neighbors[b] = block_neighbors(x.neighbors.data(), m, D, o.offsets[b], p.data(), a.data(),
-                                       std::int64_t(p.size()), threads_);
-      o.simplices[b] = std::move(x.simplices);
+      const I64 nb = block_neighbors(x.neighbors.data(), m, D, o.offsets[b], p.data(), a.data(),
+                                     std::int64_t(p.size()), threads_);
+      // (32-bit: input indices and slots fit, as in a single call's arrays)
+      std::int32_t* so = o.simplices.data() + o.offsets[b] * d1;
+      std::int32_t* no = o.neighbors.data() + o.offsets[b] * d1;
+#pragma omp parallel for num_threads(threads_) schedule(static)
+      for (std::int64_t i = 0; i < m * d1; ++i) {
+        so[i] = std::int32_t(x.simplices[std::size_t(i)]);
+        no[i] = std::int32_t(nb[std::size_t(i)]);
+      }
       x = {};
     });
     return o;
@@ -466,6 +528,7 @@ class Blocks {
   I64 held_;
   std::vector<Block> blk_;
   std::atomic<std::int64_t> local_points_{0};
+  PassTimes times_;
 };
 
 template <int D>
@@ -488,7 +551,19 @@ typename Dim<D>::Result run_devices(const double* p, std::int64_t n,
       throw Error(
           ErrorCode::InvalidArgument,
           std::string(name) + ": a device ordinal must be 0 or more, got " + std::to_string(d));
-  typename Dim<D>::Result r = Dim<D>::assemble(p, n, opt, [&](typename Dim<D>::Stats& st) {
+  if (devices.size() == 1) {  // one block: the single call on its device
+    typename Dim<D>::Options o = opt;
+    o.backend = b;
+    if (b == Backend::Cuda) o.device = devices[0];
+    typename Dim<D>::Result r = Dim<D>::triangulate(p, n, o);
+    r.stats.blocks = 1;
+    return r;
+  }
+  // the assembly on the first device (the points prepared, the output ordered, as one call)
+  typename Dim<D>::Options first = opt;
+  first.backend = b;
+  if (b == Backend::Cuda) first.device = devices[0];
+  typename Dim<D>::Result r = Dim<D>::assemble(p, n, first, [&](typename Dim<D>::Stats& st) {
     return Blocks<D>(p, n, devices, b, opt).run(st);
   });
   r.stats.backend = b;

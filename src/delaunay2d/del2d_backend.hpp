@@ -59,12 +59,16 @@ struct VoronoiEntries {
 
 GG_DECLARE_TABLE(Entries, entries)
 
-// delaunay2d_devices' frame (impl/assemble.inl, on the CPU executor): the points checked and
-// prepared as delaunay2d prepares them, then `blocks` (the blocks on their devices, timed into
-// the stats), then their owned triangles in delaunay2d's order: the arrays of a single call.
+// delaunay2d_devices' frame (impl/assemble.inl, on the executor of opt.backend and, on the GPU,
+// opt.device): the points checked and prepared as delaunay2d prepares them, then `blocks` (the
+// blocks on their devices, timed into the stats), then their owned triangles in delaunay2d's
+// order: the arrays of a single call.
 using BlocksFn = std::function<blocks_detail::OwnedBlocks(Delaunay2dStats&)>;
-Output assemble_blocks(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
-                       const BlocksFn& blocks);
+struct Assembly {
+  void (*run)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+              const BlocksFn& blocks, Output& out);
+};
+GG_DECLARE_TABLE(Assembly, assembly)
 GG_DECLARE_TABLE(VoronoiEntries, voronoi_entries)
 
 }  // namespace gpugeom::del2d

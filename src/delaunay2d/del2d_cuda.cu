@@ -9,4 +9,5 @@ GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 namespace edt_impl = gpugeom::edt::cuda_impl;
 #include "delaunay2d/impl/unit.inl"
 #include "delaunay2d/impl/entries.inl"
+#include "delaunay2d/impl/assemble.inl"
 }  // namespace gpugeom::del2d::cuda_impl

@@ -32,12 +32,15 @@ using Kept = detail::KeptState<Output, DeviceOutput>;
 using Entries = detail::PointEntries<Delaunay3dOptions, Output, DeviceOutput, Kept>;
 GG_DECLARE_TABLE(Entries, entries)
 
-// delaunay3d_devices' frame (impl/assemble.inl, on the CPU executor): the points checked and
-// prepared as delaunay3d prepares them, then `blocks` (the blocks on their devices, timed into
-// the stats), then their owned tetrahedra in delaunay3d's order, with its vertex map and hull
-// facets: the arrays of a single call.
+// delaunay3d_devices' frame (impl/assemble.inl, on the executor of opt.backend and, on the GPU,
+// opt.device): the points checked and prepared as delaunay3d prepares them, then `blocks` (the
+// blocks on their devices, timed into the stats), then their owned tetrahedra in delaunay3d's
+// order, with its vertex map and hull facets: the arrays of a single call.
 using BlocksFn = std::function<blocks_detail::OwnedBlocks(Delaunay3dStats&)>;
-Output assemble_blocks(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
-                       const BlocksFn& blocks);
+struct Assembly {
+  void (*run)(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+              const BlocksFn& blocks, Output& out);
+};
+GG_DECLARE_TABLE(Assembly, assembly)
 
 }  // namespace gpugeom::del3d

@@ -8,4 +8,5 @@ GG_TU_EXECUTOR(CudaExec)  // (exec/tu_exec.hpp: this unit's own type)
 namespace edt_impl = gpugeom::edt::cuda_impl;
 #include "delaunay3d/impl/unit.inl"
 #include "delaunay3d/impl/entries.inl"
+#include "delaunay3d/impl/assemble.inl"
 }  // namespace gpugeom::del3d::cuda_impl

@@ -31,5 +31,41 @@ TEST(DelaunayDevices, Blocks2dEqualOneCall) {
   RecordProperty("second_rounds", int(second));
 }
 
+// Bad input is refused before any block runs, with the single call's errors where it has them.
+TEST(DelaunayDevices, BadInputIsRefused) {
+  auto pts = generate3d("uniform", 500, 3);
+  Delaunay3dOptions o;
+  o.backend = Backend::Cpu;
+  auto code = [&](auto f) {
+    try {
+      f();
+    } catch (const Error& e) {
+      return e.code();
+    }
+    return ErrorCode::Internal;  // (nothing thrown)
+  };
+  const double* p = &pts[0].x;
+  const std::int64_t n = std::int64_t(pts.size());
+  EXPECT_EQ(code([&] { delaunay3d_devices(p, n, {0, -1}, o); }), ErrorCode::InvalidArgument);
+  Delaunay3dOptions dig = o;
+  dig.method = Method::Digital;
+  EXPECT_EQ(code([&] { delaunay3d_devices(p, n, {0, 0}, dig); }), ErrorCode::InvalidArgument);
+  Delaunay3dOptions neg = o;
+  neg.threads = -2;
+  EXPECT_EQ(code([&] { delaunay3d_devices(p, n, {0, 0}, neg); }), ErrorCode::InvalidArgument);
+  auto bad = pts;
+  bad[17].y = std::nan("");
+  const ErrorCode nan_code = code([&] { delaunay3d(&bad[0].x, n, o); });
+  EXPECT_NE(nan_code, ErrorCode::Internal);
+  EXPECT_EQ(code([&] { delaunay3d_devices(&bad[0].x, n, {0, 0}, o); }), nan_code);
+  std::vector<Point2> few{{0, 0}, {1, 0}};
+  Delaunay2dOptions o2;
+  o2.backend = Backend::Cpu;
+  EXPECT_EQ(code([&] {
+              delaunay2d_devices(&few[0].x, 2, {0, 0}, o2);
+            }),
+            code([&] { delaunay2d(&few[0].x, 2, o2); }));
+}
+
 }  // namespace
 }  // namespace gg_devices

@@ -1,7 +1,8 @@
-// delaunay2d_devices' frame (del2d_backend.hpp: assemble_blocks), on the CPU executor only
-// (included by del2d_cpu.cpp): the points prepared as a single call prepares them (the checks,
-// the duplicates, the curve), the blocks run, and their owned triangles put in the single call's
-// order, so the arrays are the single call's.
+// delaunay2d_devices' frame (del2d_backend.hpp: assemble_blocks), on either executor: the
+// points prepared as a single call prepares them (the checks, the duplicates, the curve), the
+// blocks run, and their owned triangles put in the single call's order, so the arrays are the
+// single call's. On the GPU this is the single call's own output step, on the first device,
+// around the blocks (the result's pages faulted in meanwhile, as a single call does).
 
 inline void assemble_impl(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
                           const BlocksFn& blocks, Output& out) {
@@ -13,24 +14,28 @@ inline void assemble_impl(const double* xy, std::int64_t n, const Delaunay2dOpti
   st.distinct_points = P.m;
   st.duplicates = P.duplicates;
   st.phase_ms.push_back({"prepare", ms_since(t0)});
+  detail::Prefault pf;
+  size_host_results(opt.into, n, P, out, pf);
   blocks_detail::OwnedBlocks B = blocks(st);
   t0 = Clock::now();
-  auto rank = ex.template alloc<std::int32_t>(std::size_t(n));
-  std::int32_t* rk = rank.data();
-  const std::int32_t* orig = P.orig.data();
-  ex.for_each_index(
-      P.m, GG_LAMBDA(std::int64_t w) { rk[orig[w]] = std::int32_t(w); });
-  std::vector<const std::int64_t*> s, nb;
-  for (std::size_t b = 0; b < B.simplices.size(); ++b)
-    s.push_back(B.simplices[b].data()), nb.push_back(B.neighbors[b].data());
-  using Store = blocks_detail::OwnedStore<3, mesh::SimplexRecord<3>>;
-  const Store store{s.data(), nb.data(), B.offsets.data(), int(s.size()), rk};
-  auto f = mesh::compact_live_sorted<3>(
-      ex, B.offsets.back(), store, P.m,
-      mesh::IntoResult<3, Exec, decltype(out.triangles)>{
-          bool(opt.into.triangles) || bool(opt.into.neighbors), out.triangles, out.neighbors});
-  B = {};
-  detail::Prefault pf;  // (nothing to fault in: the CPU executor wrote the host arrays)
-  deliver_host_results(ex, opt.into, n, P, f, out, st, pf);
+  {
+    auto o = blocks_detail::owned_on<3>(ex, B, P.orig.data(), P.m, n);
+    if constexpr (Exec::backend != Backend::Cpu) B = {};  // (copied)
+    auto f = mesh::compact_live_sorted<3>(
+        ex, o.count, o.store, P.m,
+        mesh::IntoResult<3, Exec, decltype(out.triangles)>{
+            bool(opt.into.triangles) || bool(opt.into.neighbors), out.triangles, out.neighbors});
+    o = {};
+    B = {};
+    deliver_host_results(ex, opt.into, n, P, f, out, st, pf);
+  }
   st.phase_ms.push_back({"output", ms_since(t0)});
 }
+
+inline void assemble_entry(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
+                           const BlocksFn& blocks, Output& out) {
+  out.stats.backend = Exec::backend;
+  assemble_impl(xy, n, opt, blocks, out);
+}
+
+const Assembly assembly{&assemble_entry};

@@ -1,7 +1,8 @@
-// delaunay3d_devices' frame (del3d_backend.hpp: assemble_blocks), on the CPU executor only
-// (included by del3d_cpu.cpp): the points prepared as a single call prepares them (the checks,
-// the duplicates, the curve), the blocks run, and their owned tetrahedra put in the single
-// call's order with its vertex map and hull facets, so the arrays are the single call's.
+// delaunay3d_devices' frame (del3d_backend.hpp: assemble_blocks), on either executor: the
+// points prepared as a single call prepares them (the checks, the duplicates, the curve), the
+// blocks run, and their owned tetrahedra put in the single call's order with its vertex map and
+// hull facets, so the arrays are the single call's. On the GPU this is the single call's own
+// output step, on the first device, around the blocks.
 
 inline void assemble_impl(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
                           const BlocksFn& blocks, Output& out) {
@@ -11,19 +12,22 @@ inline void assemble_impl(const double* xyz, std::int64_t n, const Delaunay3dOpt
   mesh::SortedPoints<Exec>& S = P.S;
   blocks_detail::OwnedBlocks B = blocks(st);
   const auto t0 = Clock::now();
-  auto rank = ex.template alloc<std::int32_t>(std::size_t(n));
-  std::int32_t* rk = rank.data();
-  const std::int32_t* orig = S.orig.data();
-  ex.for_each_index(
-      S.m, GG_LAMBDA(std::int64_t w) { rk[orig[w]] = std::int32_t(w); });
-  std::vector<const std::int64_t*> s, nb;
-  for (std::size_t b = 0; b < B.simplices.size(); ++b)
-    s.push_back(B.simplices[b].data()), nb.push_back(B.neighbors[b].data());
-  using Store = blocks_detail::OwnedStore<4, mesh::SimplexRecord<4>>;
-  const Store store{s.data(), nb.data(), B.offsets.data(), int(s.size()), rk};
-  auto f = mesh::compact_live_sorted<4>(ex, B.offsets.back(), store, S.m,
-                                        host_arrays(opt.into, out), /*with_last=*/true);
-  B = {};
-  to_output(ex, S, f, n, opt.into, out);
+  {
+    auto o = blocks_detail::owned_on<4>(ex, B, S.orig.data(), S.m, n);
+    if constexpr (Exec::backend != Backend::Cpu) B = {};  // (copied)
+    auto f = mesh::compact_live_sorted<4>(ex, o.count, o.store, S.m, host_arrays(opt.into, out),
+                                          /*with_last=*/true);
+    o = {};
+    B = {};
+    to_output(ex, S, f, n, opt.into, out);
+  }
   st.phase_ms.push_back({"output", ms_since(t0)});
 }
+
+inline void assemble_entry(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
+                           const BlocksFn& blocks, Output& out) {
+  out.stats.backend = Exec::backend;
+  assemble_impl(xyz, n, opt, blocks, out);
+}
+
+const Assembly assembly{&assemble_entry};
