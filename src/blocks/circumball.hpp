@@ -55,12 +55,19 @@ inline bool misses(const Slabs& slabs, const double* c, double reach, int dim) {
   return true;
 }
 
-// The circumcentre by the adjugate (A x = rhs, rows of A the edges from vertex 0, rhs half their
-// squared lengths) and the reach: the radius grown by twice a generous multiple of
-// eps * cond(A) * (|x| + longest edge) and by the rounding of the centre's coordinates. False
-// where the centre is not trusted.
+// A circumball as it was computed: vertex 0 (p0), the centre relative to it (x, the solution
+// of A x = rhs, rows of A the edges from vertex 0, rhs half their squared lengths) and a bound
+// of x's error (err: twice a generous multiple of eps * cond(A) * (|x| + longest edge)).
+struct BallParts {
+  const double* p0;
+  double x[3];
+  double radius, err;
+};
+
+// The circumcentre by the adjugate; false where it is not trusted (cond(A) past
+// kMaxCondition, or not finite).
 template <int D, class I>
-bool circumball(const double* pts, const I* v, double* centre, double* reach, double scale) {
+bool circumball_parts(const double* pts, const I* v, BallParts* b) {
   const double* p0 = pts + v[0] * D;
   double a[D][D], rhs[D], cols[D][D], det;
   for (int i = 0; i < D; ++i) {
@@ -87,12 +94,13 @@ bool circumball(const double* pts, const I* v, double* centre, double* reach, do
     cross(a[0], a[1], cols[2]);
     det = a[0][0] * cols[0][0] + a[0][1] * cols[0][1] + a[0][2] * cols[0][2];
   }
-  double x[D], r2 = 0, na = 0, nc = 0, edge2 = 0;
+  double r2 = 0, na = 0, nc = 0, edge2 = 0;
+  b->p0 = p0;
   for (int j = 0; j < D; ++j) {
     double s = 0;
     for (int i = 0; i < D; ++i) s += rhs[i] * cols[i][j];
-    x[j] = s / det;
-    r2 += x[j] * x[j];
+    b->x[j] = s / det;
+    r2 += b->x[j] * b->x[j];
   }
   for (int i = 0; i < D; ++i) {
     double e2 = 0;
@@ -103,17 +111,62 @@ bool circumball(const double* pts, const I* v, double* centre, double* reach, do
     na += e2;
     edge2 = std::max(edge2, e2);
   }
-  const double radius = std::sqrt(r2);
+  b->radius = std::sqrt(r2);
   const double cond = std::sqrt(na) * std::sqrt(nc) / std::fabs(det);
-  if (!(cond < kMaxCondition) || !std::isfinite(radius)) return false;
-  const double err = 1e3 * kEps * cond * (radius + std::sqrt(edge2));
+  if (!(cond < kMaxCondition) || !std::isfinite(b->radius)) return false;
+  b->err = 2.0 * 1e3 * kEps * cond * (b->radius + std::sqrt(edge2));
+  return true;
+}
+
+// The centre and the reach: the radius grown by the centre's error bound and by the rounding of
+// the centre's coordinates. False where the centre is not trusted.
+template <int D>
+bool centre_and_reach(const BallParts& b, double scale, double* centre, double* reach) {
   double top = 0;
   for (int k = 0; k < D; ++k) {
-    centre[k] = p0[k] + x[k];
+    centre[k] = b.p0[k] + b.x[k];
     top = std::max(top, std::fabs(centre[k]));
   }
-  *reach = radius + 2.0 * err + 64.0 * kEps * (scale + top + radius);
+  *reach = b.radius + b.err + 64.0 * kEps * (scale + top + b.radius);
   return std::isfinite(*reach);
+}
+template <int D, class I>
+bool circumball(const double* pts, const I* v, double* centre, double* reach, double scale) {
+  BallParts b;
+  return circumball_parts<D>(pts, v, &b) && centre_and_reach<D>(b, scale, centre, reach);
+}
+
+// Whether the ball may hold a point of the closed box [lo, hi] grown by `margin`, by the ball's
+// own function f(q) = |q - p0|^2 - 2 x.(q - p0), at most 0 exactly in the ball: its least
+// value over the box (per axis, at x clamped to the box's span from p0) against the bound of
+// x's error over the box (2 err |q - p0|) and of the rounding. Much tighter than the reach for
+// the flat simplices along the hull: there the centre is far and its error, times the radius,
+// spans the whole bounds, while f's error stays that of x times the box's distance from p0.
+template <int D>
+bool may_meet(const BallParts& b, const double* lo, const double* hi, double margin) {
+  double f = 0, far2 = 0, mag = 0;
+  for (int j = 0; j < D; ++j) {
+    const double s = lo[j] - margin - b.p0[j], e = hi[j] + margin - b.p0[j];
+    const double d = std::min(std::max(b.x[j], s), e);
+    f += d * (d - 2.0 * b.x[j]);
+    mag += d * d + 2.0 * std::fabs(b.x[j] * d);
+    const double far = std::max(std::fabs(s), std::fabs(e));
+    far2 += far * far;
+  }
+  return !(f > 2.0 * b.err * std::sqrt(far2) * (1.0 + 8.0 * kEps) + 16.0 * kEps * mag);
+}
+
+// The same for one point q.
+template <int D>
+bool may_hold(const BallParts& b, const double* q) {
+  double f = 0, d2 = 0, mag = 0;
+  for (int j = 0; j < D; ++j) {
+    const double d = q[j] - b.p0[j];
+    f += d * (d - 2.0 * b.x[j]);
+    d2 += d * d;
+    mag += d * d + 2.0 * std::fabs(b.x[j] * d);
+  }
+  return !(f > 2.0 * b.err * std::sqrt(d2) * (1.0 + 8.0 * kEps) + 16.0 * kEps * mag);
 }
 
 }  // namespace gpugeom::blocks_detail
