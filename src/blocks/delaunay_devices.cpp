@@ -24,6 +24,7 @@
 #include "base/on_threads.hpp"
 #include "exec/dispatch.hpp"
 #include "blocks/owned.hpp"
+#include "blocks/pass.hpp"
 #include "delaunay2d/del2d_backend.hpp"
 #include "delaunay3d/del3d_backend.hpp"
 
@@ -440,9 +441,9 @@ class Blocks {
       for (std::int64_t i = 0; i < nl; ++i)
         blk[std::size_t(i)] = split_.cell[std::size_t(B.ids[std::size_t(i)])];
       const auto& s = T::simplices(B.tri);
-      return block_output(s.data(), B.tri.neighbors.data(), T::count(B.tri), D,
-                          B.req.owned_rows.data(), std::int64_t(B.req.owned_rows.size()),
-                          B.ids.data(), blk.data(), nullptr, nl, threads_);
+      return blocks_detail::block_output_rows(
+          s.data(), B.tri.neighbors.data(), T::count(B.tri), D, B.req.owned_rows.data(),
+          std::int64_t(B.req.owned_rows.size()), B.ids.data(), blk.data(), nl, threads_);
     });
     local_points_ += std::int64_t(B.ids.size());
     B.tri = {};

@@ -54,7 +54,8 @@ BlockRequired required_of(const I* simplices, std::int64_t m, int dim, const std
 template <class I>
 BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, int dim,
                       const std::int64_t* rows, std::int64_t count, const std::int64_t* ids,
-                      const std::int64_t* blk, const double* points, std::int64_t n, int threads) {
+                      const std::int64_t* blk, const double* points, std::int64_t n, int threads,
+                      bool with_vertices = true) {
   blocks_detail::check_dim(dim, "block_output");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
@@ -63,12 +64,12 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
   const std::size_t cells = std::size_t(count) * std::size_t(d1);
   out.simplices.resize(cells);
   out.neighbors.resize(cells);
-  HostVector<std::uint8_t> used(static_cast<std::size_t>(n));
+  HostVector<std::uint8_t> used(static_cast<std::size_t>(with_vertices ? n : 0));
   // (the fills in parallel too: a GPU block's arrays are hundreds of MB)
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < m; ++i) pos[std::size_t(i)] = -1;
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) used[std::size_t(i)] = 0;
+  for (std::int64_t i = 0; i < std::int64_t(used.size()); ++i) used[std::size_t(i)] = 0;
 #pragma omp parallel for schedule(static)
   for (std::int64_t r = 0; r < count; ++r) pos[std::size_t(rows[r])] = r;
   std::int64_t requests = 0;
@@ -103,7 +104,7 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
   // atomically), then in order: the requests (row-major), the vertices
   std::uint8_t* mark = used.data();
 #pragma omp parallel for schedule(static)
-  for (std::int64_t r = 0; r < count; ++r) {
+  for (std::int64_t r = 0; r < (with_vertices ? count : 0); ++r) {
     const I* v = simplices + rows[r] * d1;
     for (int k = 0; k < d1; ++k) {
 #pragma omp atomic write
@@ -131,6 +132,7 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < std::int64_t(cells); ++c)
     if (nbl[c] == -3) nbl[c] = -2;
+  if (!with_vertices) return out;
   blocks_detail::ordered_compact(
       n, [&](std::int64_t i) { return mark[i] != 0; },
       [&](std::int64_t total) { out.vertices.resize(std::size_t(total)); },
@@ -173,6 +175,14 @@ BlockOutput block_output(const std::int32_t* simplices, const std::int32_t* neig
                          const std::int64_t* ids, const std::int64_t* blk, const double* points,
                          std::int64_t n, int threads) {
   return output_of(simplices, neighbors, m, dim, rows, count, ids, blk, points, n, threads);
+}
+
+BlockOutput blocks_detail::block_output_rows(const std::int32_t* simplices, const std::int32_t* neighbors,
+                              std::int64_t m, int dim, const std::int64_t* rows,
+                              std::int64_t count, const std::int64_t* ids, const std::int64_t* blk,
+                              std::int64_t n, int threads) {
+  return output_of(simplices, neighbors, m, dim, rows, count, ids, blk, nullptr, n, threads,
+                   /*with_vertices=*/false);
 }
 
 HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_t* positions,
