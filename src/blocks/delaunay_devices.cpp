@@ -308,11 +308,24 @@ class Blocks {
         }
       }
     }
-    split_ = split_to_blocks(p_, D, n_, grid_, lo.data(), hi.data(), owner.data(),
-                             std::int64_t(owner.size()), nullptr, all_threads_);
     // the bins of the finality test: about 16 points each
     bins_ = cube_grid<D>(pb, std::min(double(n_) / 16.0, double(1 << 24)));
     index_ = split_by_cell(p_, D, n_, bins_, all_threads_);
+    // The blocks work on the points in the bins' order (their ids here are places in it, mapped
+    // back to input indices at the output): a block's simplices then name points near one
+    // another in memory. In the input's order (random for random points) every vertex a pass
+    // read was a cache miss. Ownership by the lowest id is a rule on these ids, as good as any.
+    perm_ = std::move(index_.order);
+    q_.resize(std::size_t(n_ * D));
+    index_.order.resize(std::size_t(n_));
+#pragma omp parallel for num_threads(all_threads_) schedule(static)
+    for (std::int64_t i = 0; i < n_; ++i) {
+      const std::int64_t from = perm_[std::size_t(i)];
+      for (int j = 0; j < D; ++j) q_[std::size_t(i * D + j)] = p_[from * D + j];
+      index_.order[std::size_t(i)] = i;  // (each bin's points are now a run of places)
+    }
+    split_ = split_to_blocks(q_.data(), D, n_, grid_, lo.data(), hi.data(), owner.data(),
+                             std::int64_t(owner.size()), nullptr, all_threads_);
     // every block's own points and its candidates for the hull's extreme points, on its device
     blk_.resize(k_);
     std::vector<I64> cands(k_);
@@ -338,7 +351,8 @@ class Blocks {
       const std::int64_t m = std::int64_t(ids.size());
 #pragma omp parallel for num_threads(threads_) schedule(static)
       for (std::int64_t i = 0; i < m; ++i)
-        for (int j = 0; j < D; ++j) out[std::size_t(i * D + j)] = p_[ids[std::size_t(i)] * D + j];
+        for (int j = 0; j < D; ++j)
+          out[std::size_t(i * D + j)] = q_[std::size_t(ids[std::size_t(i)] * D + j)];
       return out;
     });
   }
@@ -409,7 +423,7 @@ class Blocks {
     // final without a test)
     B.done =
         covers_all(b) || std::int64_t(B.ids.size()) == n_ || times_.time(PassTimes::kFinal, [&] {
-          return stars_final(B.pts.data(), D, s.data(), m, test.data(), boxes_[b], p_, bins_,
+          return stars_final(B.pts.data(), D, s.data(), m, test.data(), boxes_[b], q_.data(), bins_,
                              index_.order.data(), index_.cuts.data(), held_.data(),
                              std::int64_t(held_.size()), strips_[b].lo.data(), strips_[b].hi.data(),
                              std::int64_t(strips_[b].lo.size() / D), threads_);
@@ -503,7 +517,7 @@ class Blocks {
       std::int32_t* no = o.neighbors.data() + o.offsets[b] * d1;
 #pragma omp parallel for num_threads(threads_) schedule(static)
       for (std::int64_t i = 0; i < m * d1; ++i) {
-        so[i] = std::int32_t(x.simplices[std::size_t(i)]);
+        so[i] = std::int32_t(perm_[std::size_t(x.simplices[std::size_t(i)])]);
         no[i] = std::int32_t(nb[std::size_t(i)]);
       }
       x = {};
@@ -512,6 +526,8 @@ class Blocks {
   }
 
   const double* p_;
+  HostVector<double> q_;  // the points in the bins' order: q_[i] is p_[perm_[i]]
+  I64 perm_;
   std::int64_t n_;
   std::vector<int> devices_;
   Backend backend_;
