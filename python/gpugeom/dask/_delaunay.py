@@ -82,12 +82,13 @@ def _summary(pts):
     return dict(n=len(pts), bad=-1, lo=np.array(r["lo"]), hi=np.array(r["hi"]))
 
 
-def _split(pts, offset: int, grid: Grid, boxes: dict, bins: Grid, first: bool, backend: str,
-           threads: int):
+def _split(pts, offset: int, grid: Grid, boxes: dict, bins: Optional[Grid], first: bool,
+           backend: str, threads: int):
     """A piece's points for a round: per block of ``boxes`` (a dict: block -> the boxes it takes
     this round), in increasing block order, the points it owns and those in its boxes, as
     (points, global ids, owner blocks), None where it has none; in the first round, then the
-    piece's hull candidates (its extreme points) likewise and its count of points per bin.
+    piece's hull candidates (its extreme points) likewise and its count of points per bin of
+    ``bins`` (the first round's only: None in the second).
     Separate outputs, so that each block takes only its parts from the
     worker that split the piece, and no second task selects its ghosts from the other blocks'
     points (one hop, not two: on 4 workers the hop cost more than the selection)."""
@@ -454,7 +455,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     pending = [b for b in all_blocks if b not in final]
     if pending:
         own = {b: [] for b in pending}
-        splits = [delayed(_split, nout=len(pending))(p, int(o), grid, own, bins, False, **run)
+        splits = [delayed(_split, nout=len(pending))(p, int(o), grid, own, None, False, **run)
                   for p, o in zip(pieces, start)]
         tasks = []
         for i, b in enumerate(pending):
