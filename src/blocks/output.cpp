@@ -63,7 +63,8 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
   BlockOutput out;
-  HostVector<std::int64_t> pos(static_cast<std::size_t>(m));
+  // (each simplex's row, in the simplices' own index width: at 10^7 points half the fresh pages)
+  HostVector<I> pos(static_cast<std::size_t>(m));
   const std::size_t cells = std::size_t(count) * std::size_t(d1);
   out.simplices.resize(cells);
   out.neighbors.resize(cells);
@@ -74,7 +75,7 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < std::int64_t(used.size()); ++i) used[std::size_t(i)] = 0;
 #pragma omp parallel for schedule(static)
-  for (std::int64_t r = 0; r < count; ++r) pos[std::size_t(rows[r])] = r;
+  for (std::int64_t r = 0; r < count; ++r) pos[std::size_t(rows[r])] = I(r);
   std::int64_t requests = 0;
 #pragma omp parallel for schedule(static) reduction(+ : requests)
   for (std::int64_t r = 0; r < count; ++r) {
