@@ -109,8 +109,8 @@ std::int64_t ordered_compact(std::int64_t n, Keep&& keep, Sized&& sized, Emit&& 
 // block_output without its vertex lists (vertices, vertex_ids, vertex_points): the several
 // devices of one host have every point at hand and need none of them (output.cpp).
 BlockOutput block_output_rows(const std::int32_t* simplices, const std::int32_t* neighbors,
-                              std::int64_t m, int dim, const std::int64_t* rows,
-                              std::int64_t count, const std::int64_t* ids, const std::int64_t* blk,
-                              std::int64_t n, int threads);
+                              std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
+                              const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
+                              int threads);
 
 }  // namespace gpugeom::blocks_detail

@@ -9,4 +9,3 @@ namespace edt_impl = gpugeom::edt::cpu_impl;
 #include "delaunay2d/impl/entries.inl"
 #include "delaunay2d/impl/assemble.inl"
 }  // namespace gpugeom::del2d::cpu_impl
-

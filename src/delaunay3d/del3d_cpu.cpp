@@ -9,4 +9,3 @@ namespace edt_impl = gpugeom::edt::cpu_impl;
 #include "delaunay3d/impl/entries.inl"
 #include "delaunay3d/impl/assemble.inl"
 }  // namespace gpugeom::del3d::cpu_impl
-
