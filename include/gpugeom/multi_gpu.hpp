@@ -37,14 +37,16 @@ EdtResult distance_transform_devices(const GridView& grid, SiteRule rule,
 /// second time with its own points, the candidates and the points the other blocks' first
 /// triangulations name as its borders, and is then exact without a test. The owned tetrahedra
 /// (by their lowest vertex) and their neighbours across blocks (matched by their faces) are
-/// put in delaunay3d's order on the host (docs/design-notes.md, "Several GPUs of one host").
-/// opt.device and opt.stream are not read; opt.threads, where given, is the host threads of
-/// all blocks together; opt.into is written as delaunay3d writes it. With opt.backend ==
-/// Backend::Cpu every entry is a block on the CPU executor (the same result; for machines
-/// without GPUs and for tests). The stats count the blocks, those that took a second round and
-/// their local points, with the phases "blocks.*". Throws as delaunay3d (the points are checked
-/// before any block runs), and Error(InvalidArgument) for Method::Digital or a negative
-/// ordinal.
+/// put in delaunay3d's order by delaunay3d's own output step, on the first listed device (or the
+/// CPU executor), which also prepares and checks the points (docs/design-notes.md, "Several GPUs
+/// of one host"). A single entry is a single delaunay3d call on that device. The blocks' passes
+/// over their simplices run on host threads. opt.device and opt.stream are not read; opt.threads,
+/// where given, is the host threads of all blocks together; opt.into is written as delaunay3d
+/// writes it. With opt.backend == Backend::Cpu every entry is a block on the CPU executor (the same
+/// result; for machines without GPUs and for tests). The stats count the blocks, those that took a
+/// second round and their local points, with the phases "blocks.*". Throws as delaunay3d (the
+/// points are checked before any block runs), and Error(InvalidArgument) for Method::Digital or a
+/// negative ordinal.
 Triangulation3d delaunay3d_devices(const double* xyz, std::int64_t n,
                                    const std::vector<int>& devices,
                                    const Delaunay3dOptions& opt = {});

@@ -341,6 +341,7 @@ class Delaunay(_OfPoints):
 
     _cached = ("vertex_to_simplex", "convex_hull", "transform", "vertex_neighbor_vertices",
                "coplanar", "_paraboloid", "equations")
+    _devices = None  # devices= (several devices of this host), or None
 
     def __init__(self, points, furthest_site: bool = False, incremental: bool = False,
                  qhull_options: Optional[str] = None, *, backend: str = "auto",
@@ -376,12 +377,12 @@ class Delaunay(_OfPoints):
             # kept between calls (DynamicDelaunay2d / 3d): add_points brings it up to date
             make = _core.DynamicDelaunay2d if self.ndim == 2 else _core.DynamicDelaunay3d
             return self._start_kept(make, arr)
-        devs = getattr(self, "_devices", None)
         if self.ndim == 2:
-            return _core.delaunay2d(arr, method=self._method, grid=self._grid, devices=devs,
-                                    **self._run)
+            return _core.delaunay2d(arr, method=self._method, grid=self._grid,
+                                    devices=self._devices, **self._run)
         return _core.delaunay3d(arr, progress=_arrays.progress_callback(self._progress),
-                                method=self._method, grid=self._grid, devices=devs, **self._run)
+                                method=self._method, grid=self._grid, devices=self._devices,
+                                **self._run)
 
     @classmethod
     def _from_arrays(cls, points, simplices, neighbors, duplicate_of, stats):

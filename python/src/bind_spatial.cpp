@@ -552,8 +552,8 @@ nb::dict delaunay3d_bind(const AnyArray& points, const std::string& backend, nb:
   };
   const std::int64_t n = in.shape[0];
   if (devices) {
-    // (the blocks report their own points' progress, from their own threads: the callback
-    // would see several runs interleaved, so only the interrupt check is kept)
+    // (the blocks would report their own points' progress from their own threads, several
+    // runs interleaved: refused)
     if (cb) throw nb::value_error("progress= is not taken with devices= (the blocks run at once)");
     return tets_dict(unlocked([&] { return delaunay3d_devices(pts(in), n, *devices, o); }));
   }
