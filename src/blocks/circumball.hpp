@@ -1,12 +1,14 @@
 // The circumball of a simplex with a bound of its rounding, as gpugeom.dask's Python computes it
 // (python/gpugeom/dask/_ghost.py: _circumcentres): shared by the block passes that test balls
-// (the finality test, circumballs.cpp, and the border a block sends, borders.cpp), and the slabs
-// of the bounds beyond a block's region that the finality test's balls must miss.
+// (the finality test, circumballs.cpp, and the border a block sends, simplex_rules.hpp) on either
+// executor, and the slabs of the bounds beyond a block's region that the finality test's balls
+// must miss.
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "base/hd.hpp"
 #include "gpugeom/blocks.hpp"
 
 namespace gpugeom::blocks_detail {
@@ -43,7 +45,7 @@ inline Slabs slabs_of(const BlockBoxes& b, int dim) {
 }
 
 // Whether the ball (c, reach) misses every slab.
-inline bool misses(const Slabs& slabs, const double* c, double reach, int dim) {
+GG_HD inline bool misses(const Slabs& slabs, const double* c, double reach, int dim) {
   for (int s = 0; s < slabs.count; ++s) {
     double g2 = 0;
     for (int k = 0; k < dim; ++k) {
@@ -67,7 +69,7 @@ struct BallParts {
 // The circumcentre by the adjugate; false where it is not trusted (cond(A) past
 // kMaxCondition, or not finite).
 template <int D, class I>
-bool circumball_parts(const double* pts, const I* v, BallParts* b) {
+GG_HD bool circumball_parts(const double* pts, const I* v, BallParts* b) {
   const double* p0 = pts + v[0] * D;
   double a[D][D], rhs[D], cols[D][D], det;
   for (int i = 0; i < D; ++i) {
@@ -121,7 +123,7 @@ bool circumball_parts(const double* pts, const I* v, BallParts* b) {
 // The centre and the reach: the radius grown by the centre's error bound and by the rounding of
 // the centre's coordinates. False where the centre is not trusted.
 template <int D>
-bool centre_and_reach(const BallParts& b, double scale, double* centre, double* reach) {
+GG_HD bool centre_and_reach(const BallParts& b, double scale, double* centre, double* reach) {
   double top = 0;
   for (int k = 0; k < D; ++k) {
     centre[k] = b.p0[k] + b.x[k];
@@ -131,7 +133,7 @@ bool centre_and_reach(const BallParts& b, double scale, double* centre, double* 
   return std::isfinite(*reach);
 }
 template <int D, class I>
-bool circumball(const double* pts, const I* v, double* centre, double* reach, double scale) {
+GG_HD bool circumball(const double* pts, const I* v, double* centre, double* reach, double scale) {
   BallParts b;
   return circumball_parts<D>(pts, v, &b) && centre_and_reach<D>(b, scale, centre, reach);
 }
@@ -143,7 +145,7 @@ bool circumball(const double* pts, const I* v, double* centre, double* reach, do
 // the flat simplices along the hull: there the centre is far and its error, times the radius,
 // spans the whole bounds, while f's error stays that of x times the box's distance from p0.
 template <int D>
-bool may_meet(const BallParts& b, const double* lo, const double* hi, double margin) {
+GG_HD bool may_meet(const BallParts& b, const double* lo, const double* hi, double margin) {
   double f = 0, far2 = 0, mag = 0;
   for (int j = 0; j < D; ++j) {
     const double s = lo[j] - margin - b.p0[j], e = hi[j] + margin - b.p0[j];
@@ -158,7 +160,7 @@ bool may_meet(const BallParts& b, const double* lo, const double* hi, double mar
 
 // The same for one point q.
 template <int D>
-bool may_hold(const BallParts& b, const double* q) {
+GG_HD bool may_hold(const BallParts& b, const double* q) {
   double f = 0, d2 = 0, mag = 0;
   for (int j = 0; j < D; ++j) {
     const double d = q[j] - b.p0[j];

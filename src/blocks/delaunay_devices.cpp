@@ -1,11 +1,12 @@
 // delaunay2d_devices and delaunay3d_devices (include/gpugeom/multi_gpu.hpp): the blocks of
 // gpugeom.dask's triangulation, one per device, in one process (docs/design-notes.md, "Several
 // GPUs of one host: the blocks in one process"). Every block is triangulated with a ghost layer
-// and the global hull's candidates on its device and its stars tested against all the points
-// (stars_final); each block takes its borders for the others from that triangulation, and a
-// block whose stars are not all final is triangulated again with its own points, the hull's and
-// the borders sent to it. The owned simplices' neighbours across blocks are matched by their
-// faces, and the module puts them in a single call's order (assemble_blocks).
+// and the global hull's candidates on its device, where its passes run too (block_pass.hpp:
+// its owned simplices, its border for the others, the output rows and face requests); the stars
+// that may reach past its region are tested here against all the points (stars_final). A block
+// whose stars are not all final is triangulated again with its own points, the hull's and the
+// borders sent to it. The owned simplices' neighbours across blocks are matched by their faces,
+// and the module puts them in a single call's order (assemble_blocks).
 #include <omp.h>
 
 #include <algorithm>
@@ -41,8 +42,8 @@ bool degenerate(const Error& e) {
   return e.code() == ErrorCode::DegenerateInput;
 }
 
-// What differs between the dimensions: the call that triangulates a block, the one that finds
-// a block's candidates for the global hull's extreme points, the ghost width.
+// What differs between the dimensions: the module's single call, its block entry and frame, the
+// call that finds a block's candidates for the global hull's extreme points, the ghost width.
 template <int D>
 struct Dim;
 
@@ -59,8 +60,6 @@ struct Dim<2> {
   static Result triangulate(const double* p, std::int64_t n, const Options& o) {
     return delaunay2d(p, n, o);
   }
-  static const HostVector<std::int32_t>& simplices(const Result& r) { return r.triangles; }
-  static std::int64_t count(const Result& r) { return r.num_triangles; }
   static I64 hull_candidates(const double* p, std::int64_t n, const Options& o) {
     return hull_candidates2d(p, n, o.threads);
   }
@@ -69,6 +68,10 @@ struct Dim<2> {
     Result r;
     GG_TABLE(o.backend, del2d, assembly).run(p, n, o, f, r);
     return r;
+  }
+  static void block(const Options& o, const blocks_detail::BlockTask& t,
+                    const blocks_detail::FinalTest& test, blocks_detail::BlockRows& out) {
+    GG_TABLE(o.backend, del2d, assembly).block(o, t, test, out);
   }
 };
 
@@ -81,8 +84,6 @@ struct Dim<3> {
   static Result triangulate(const double* p, std::int64_t n, const Options& o) {
     return delaunay3d(p, n, o);
   }
-  static const HostVector<std::int32_t>& simplices(const Result& r) { return r.tetrahedra; }
-  static std::int64_t count(const Result& r) { return r.num_tetrahedra; }
   // The extreme points of the block's own points (on its device), or all of them where they
   // are too few or flat to have a hull.
   static I64 hull_candidates(const double* p, std::int64_t n, const Options& o) {
@@ -104,6 +105,10 @@ struct Dim<3> {
     Result r;
     GG_TABLE(o.backend, del3d, assembly).run(p, n, o, f, r);
     return r;
+  }
+  static void block(const Options& o, const blocks_detail::BlockTask& t,
+                    const blocks_detail::FinalTest& test, blocks_detail::BlockRows& out) {
+    GG_TABLE(o.backend, del3d, assembly).block(o, t, test, out);
   }
 };
 
@@ -178,22 +183,24 @@ class PassTimes {
   auto time(int pass, F&& f) {
     const double t = now_ms();
     struct Add {
-      std::atomic<std::int64_t>& us;
+      PassTimes& p;
+      int pass;
       double t;
-      ~Add() { us += std::int64_t((now_ms() - t) * 1000.0); }
-    } add{us_[pass], t};
+      ~Add() { p.add(pass, now_ms() - t); }
+    } add{*this, pass, t};
     return f();
   }
+  void add(int pass, double ms) { us_[pass] += std::int64_t(ms * 1000.0); }
   void report(std::vector<std::pair<std::string, double>>& phases) const {
     for (int i = 0; i < kPasses; ++i)
       if (us_[i] > 0)
         phases.push_back({std::string("blocks.sum.") + kNames[i], double(us_[i]) / 1e3});
   }
-  enum { kGather, kTriangulate, kRequired, kBorders, kFinal, kOutput, kPasses };
+  enum { kGather, kTriangulate, kBlockPasses, kFinal, kOutput, kPasses };
 
  private:
-  static constexpr const char* kNames[kPasses] = {"gather",  "triangulate", "required",
-                                                  "borders", "final",       "output"};
+  static constexpr const char* kNames[kPasses] = {"gather", "triangulate", "passes", "final",
+                                                  "output"};
   std::atomic<std::int64_t> us_[kPasses] = {};
 };
 
@@ -238,13 +245,10 @@ class Blocks {
   struct Block {
     I64 own;  // global ids of the own points, increasing
     I64 ids;  // global ids of the local points, increasing
-    HostVector<std::uint8_t> owned;
     HostVector<double> pts;
-    typename T::Result tri;
-    BlockRequired req;
     bool done = false;
     std::vector<std::pair<std::int64_t, I64>> borders;  // (target block, global ids)
-    BlockOutput out;
+    blocks_detail::BlockRows rows;
   };
 
   Options block_options(std::size_t b) const {
@@ -269,6 +273,9 @@ class Blocks {
     }
     ghost_ = live ? T::kGhost * std::pow(vol / double(n_), 1.0 / live) : 1.0;
     margin_ = 1e-9 * scale;
+    cells_.g = grid_;
+    cells_.total = std::int64_t(k_);
+    cells_.margin = margin_;
     // the regions: each cell grown by the ghost width (the last cell ends at the bounds), and
     // the strips along the sides of the bounds the cell lies on
     boxes_.resize(k_);
@@ -357,23 +364,53 @@ class Blocks {
     });
   }
 
-  // The local points `ids` gathered and triangulated on the block's device.
-  void triangulate(std::size_t b, I64 ids) {
+  // The local points `ids` gathered and triangulated on the block's device, and the block's
+  // passes run there (blocks/block_pass.hpp); in the first round with its border and the host's
+  // finality test of the stars that may reach past its region (stars_final).
+  void triangulate(std::size_t b, I64 ids, bool first) {
     Block& B = blk_[b];
     B.ids = std::move(ids);
     B.pts = gather(B.ids);
-    B.owned.resize(B.ids.size());
     const std::int64_t nl = std::int64_t(B.ids.size());
+    HostVector<std::int32_t> in(B.ids.size()), bl(B.ids.size());
 #pragma omp parallel for num_threads(threads_) schedule(static)
-    for (std::int64_t i = 0; i < nl; ++i)
-      B.owned[std::size_t(i)] = split_.cell[std::size_t(B.ids[std::size_t(i)])] == std::int64_t(b);
-    B.tri = times_.time(PassTimes::kTriangulate,
-                        [&] { return T::triangulate(B.pts.data(), nl, block_options(b)); });
-    const auto& s = T::simplices(B.tri);
-    B.req = times_.time(PassTimes::kRequired, [&] {
-      return block_required(s.data(), B.tri.neighbors.data(), T::count(B.tri), D, B.owned.data(),
-                            threads_);
-    });
+    for (std::int64_t i = 0; i < nl; ++i) {
+      const std::int64_t id = B.ids[std::size_t(i)];
+      in[std::size_t(i)] = std::int32_t(perm_[std::size_t(id)]);  // (input indices fit int32)
+      bl[std::size_t(i)] = std::int32_t(split_.cell[std::size_t(id)]);
+    }
+    blocks_detail::BlockTask t;
+    t.points = B.pts.data();
+    t.n = nl;
+    t.ids = in.data();
+    t.blk = bl.data();
+    t.block = std::int64_t(b);
+    if (first) {
+      t.cells = &cells_;
+      t.scale = boxes_[b].scale;
+      t.boxes = &boxes_[b];
+    }
+    B.rows = {};
+    T::block(
+        block_options(b), t,
+        [&](const blocks_detail::BlockRows& r) {
+          // (a block that holds every point, as on a circle or sphere where all are the
+          // hull's, is final without a test)
+          if (covers_all(b) || nl == n_) return true;
+          const std::int64_t m = std::int64_t(r.test.size()) / (D + 1);
+          HostVector<std::uint8_t> all(static_cast<std::size_t>(m), 1);
+          return stars_final(B.pts.data(), D, r.test.data(), m, all.data(), boxes_[b], q_.data(),
+                             bins_, index_.order.data(), index_.cuts.data(), held_.data(),
+                             std::int64_t(held_.size()), strips_[b].lo.data(), strips_[b].hi.data(),
+                             std::int64_t(strips_[b].lo.size() / D), threads_);
+        },
+        B.rows);
+    times_.add(PassTimes::kTriangulate, B.rows.ms_triangulate);
+    times_.add(PassTimes::kBlockPasses, B.rows.ms_passes);
+    times_.add(PassTimes::kFinal, B.rows.ms_final);
+    times_.add(PassTimes::kOutput, B.rows.ms_output);
+    if (B.rows.final) local_points_ += nl;
+    B.pts = {};
   }
 
   bool covers_all(std::size_t b) const {
@@ -392,46 +429,23 @@ class Blocks {
     }
     I64 region(split_.order.begin() + split_.cuts[b], split_.order.begin() + split_.cuts[b + 1]);
     try {
-      triangulate(b, merged({&region, &held_}));
+      triangulate(b, merged({&region, &held_}), true);
     } catch (const Error& e) {
       if (!degenerate(e) || covers_all(b)) throw;
       // no triangulation to take a border from: every own point goes to every block
       for (std::size_t t = 0; t < k_; ++t)
         if (t != b) B.borders.push_back({std::int64_t(t), B.own});
-      B.tri = {};
+      B.rows = {};
       return;
     }
-    const auto& s = T::simplices(B.tri);
-    const std::int64_t m = T::count(B.tri), nl = std::int64_t(B.ids.size());
-    HostVector<std::uint8_t> inside(static_cast<std::size_t>(m));
-    const BlockBorders bd = times_.time(PassTimes::kBorders, [&] {
-      return block_borders(B.pts.data(), D, s.data(), B.tri.neighbors.data(), m, nl, B.owned.data(),
-                           std::int64_t(b), grid_, margin_, boxes_[b].scale, &boxes_[b],
-                           inside.data(), threads_);
-    });
-    for (std::size_t t = 0; t < bd.targets.size(); ++t) {
-      I64 ids;
-      for (std::int64_t q = bd.offsets[t]; q < bd.offsets[t + 1]; ++q)
-        ids.push_back(B.ids[std::size_t(bd.vertices[std::size_t(q)])]);
-      B.borders.push_back({bd.targets[t], std::move(ids)});
+    for (auto& [t, local] : B.rows.borders) {
+      I64 ids(local.size());
+      for (std::size_t q = 0; q < local.size(); ++q) ids[q] = B.ids[std::size_t(local[q])];
+      B.borders.push_back({t, std::move(ids)});
     }
-    // the stars to test: those the first test (inside) did not pass
-    HostVector<std::uint8_t> test(static_cast<std::size_t>(m));
-    for (std::int64_t i = 0; i < m; ++i)
-      test[std::size_t(i)] = B.req.required[std::size_t(i)] && !inside[std::size_t(i)] ? 1 : 0;
-    // (a block that holds every point, as on a circle or sphere where all are the hull's, is
-    // final without a test)
-    B.done =
-        covers_all(b) || std::int64_t(B.ids.size()) == n_ || times_.time(PassTimes::kFinal, [&] {
-          return stars_final(B.pts.data(), D, s.data(), m, test.data(), boxes_[b], q_.data(), bins_,
-                             index_.order.data(), index_.cuts.data(), held_.data(),
-                             std::int64_t(held_.size()), strips_[b].lo.data(), strips_[b].hi.data(),
-                             std::int64_t(strips_[b].lo.size() / D), threads_);
-        });
-    if (B.done)
-      emit(b);
-    else
-      B.tri = {};
+    B.rows.borders = {};
+    B.rows.test = {};
+    B.done = B.rows.final;
   }
 
   void second_round(std::size_t b) {
@@ -440,29 +454,7 @@ class Blocks {
     for (auto& src : blk_)
       for (auto& [t, ids] : src.borders)
         if (t == std::int64_t(b)) lists.push_back(&ids);
-    triangulate(b, merged(lists));
-    emit(b);
-  }
-
-  // The block's output (block_output): its owned simplices in global ids, their neighbours
-  // here, and the face requests for the others.
-  void emit(std::size_t b) {
-    Block& B = blk_[b];
-    B.out = times_.time(PassTimes::kOutput, [&] {
-      const std::int64_t nl = std::int64_t(B.ids.size());
-      I64 blk(B.ids.size());
-#pragma omp parallel for num_threads(threads_) schedule(static)
-      for (std::int64_t i = 0; i < nl; ++i)
-        blk[std::size_t(i)] = split_.cell[std::size_t(B.ids[std::size_t(i)])];
-      const auto& s = T::simplices(B.tri);
-      return blocks_detail::block_output_rows(
-          s.data(), B.tri.neighbors.data(), T::count(B.tri), D, B.req.owned_rows.data(),
-          std::int64_t(B.req.owned_rows.size()), B.ids.data(), blk.data(), nl, threads_);
-    });
-    local_points_ += std::int64_t(B.ids.size());
-    B.tri = {};
-    B.pts = {};
-    B.req = {};
+    triangulate(b, merged(lists), false);
   }
 
   // Each block's face requests go to the block that matches them (by the face's lowest vertex),
@@ -471,7 +463,7 @@ class Blocks {
     const int d1 = D + 1;
     OwnedBlocks o;
     for (std::size_t b = 0; b < k_; ++b)
-      o.offsets.push_back(o.offsets.back() + std::int64_t(blk_[b].out.simplices.size()) / d1);
+      o.offsets.push_back(o.offsets.back() + std::int64_t(blk_[b].rows.simplices.size()) / d1);
     // answers[c][b]: block c's answers to block b's requests (positions here, global across)
     std::vector<std::vector<std::pair<I64, I64>>> answers(k_, std::vector<std::pair<I64, I64>>(k_));
     on_threads(k_, [&](std::size_t c) {
@@ -479,11 +471,10 @@ class Blocks {
       HostVector<std::uint8_t> open;
       std::vector<std::size_t> from(k_ + 1, 0);
       for (std::size_t b = 0; b < k_; ++b) {
-        const BlockOutput& x = blk_[b].out;
+        const blocks_detail::BlockRows& x = blk_[b].rows;
         for (std::size_t r = 0; r < x.request_owner.size(); ++r) {
-          if (x.request_owner[r] != std::int64_t(c)) continue;
-          keys.insert(keys.end(), x.request_key.begin() + std::ptrdiff_t(r * D),
-                      x.request_key.begin() + std::ptrdiff_t((r + 1) * D));
+          if (x.request_owner[r] != std::int32_t(c)) continue;
+          for (int j = 0; j < D; ++j) keys.push_back(x.request_key[r * D + std::size_t(j)]);
           pos.push_back(o.offsets[b] * d1 + x.request_pos[r]);
           open.push_back(x.request_open[r]);
         }
@@ -508,18 +499,15 @@ class Blocks {
         p.insert(p.end(), answers[c][b].first.begin(), answers[c][b].first.end());
         a.insert(a.end(), answers[c][b].second.begin(), answers[c][b].second.end());
       }
-      BlockOutput& x = blk_[b].out;
+      blocks_detail::BlockRows& x = blk_[b].rows;
       const std::int64_t m = std::int64_t(x.simplices.size()) / d1;
-      const I64 nb = block_neighbors(x.neighbors.data(), m, D, o.offsets[b], p.data(), a.data(),
-                                     std::int64_t(p.size()), threads_);
-      // (32-bit: input indices and slots fit, as in a single call's arrays)
+      blocks_detail::block_neighbors_into(x.neighbors.data(), m, D, o.offsets[b], p.data(),
+                                          a.data(), std::int64_t(p.size()),
+                                          o.neighbors.data() + o.offsets[b] * d1, threads_);
       std::int32_t* so = o.simplices.data() + o.offsets[b] * d1;
-      std::int32_t* no = o.neighbors.data() + o.offsets[b] * d1;
+      const std::int32_t* from = x.simplices.data();
 #pragma omp parallel for num_threads(threads_) schedule(static)
-      for (std::int64_t i = 0; i < m * d1; ++i) {
-        so[i] = std::int32_t(perm_[std::size_t(x.simplices[std::size_t(i)])]);
-        no[i] = std::int32_t(nb[std::size_t(i)]);
-      }
+      for (std::int64_t i = 0; i < m * d1; ++i) so[i] = from[i];
       x = {};
     });
     return o;
@@ -535,6 +523,7 @@ class Blocks {
   int threads_ = 1, all_threads_ = 1;
   std::size_t k_ = 0;
   CellGrid grid_, bins_;
+  blocks_detail::BorderCells cells_;  // the blocks' cells for the borders (grid_, margin_)
   double ghost_ = 0, margin_ = 0;
   std::vector<BlockBoxes> boxes_;
   struct Strips {

@@ -13,19 +13,13 @@
 #include "gpugeom/blocks.hpp"
 #include "gpugeom/common.hpp"
 #include "blocks/pass.hpp"
+#include "blocks/simplex_rules.hpp"
 
 namespace gpugeom {
 
 namespace {
 
-// The lowest vertex's place (0..dim) in a simplex.
-template <class I>
-inline int lowest_at(const I* v, int d1) {
-  int at = 0;
-  for (int k = 1; k < d1; ++k)
-    if (v[k] < v[at]) at = k;
-  return at;
-}
+using blocks_detail::lowest_at;
 
 // The passes on simplices and neighbours of either index width (a GPU block's come to the
 // host as the triangulation gives them, int32: half the bytes of int64).
@@ -57,8 +51,7 @@ BlockRequired required_of(const I* simplices, std::int64_t m, int dim, const std
 template <class I>
 BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, int dim,
                       const std::int64_t* rows, std::int64_t count, const std::int64_t* ids,
-                      const std::int64_t* blk, const double* points, std::int64_t n, int threads,
-                      bool with_vertices = true) {
+                      const std::int64_t* blk, const double* points, std::int64_t n, int threads) {
   blocks_detail::check_dim(dim, "block_output");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
@@ -68,7 +61,7 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
   const std::size_t cells = std::size_t(count) * std::size_t(d1);
   out.simplices.resize(cells);
   out.neighbors.resize(cells);
-  HostVector<std::uint8_t> used(static_cast<std::size_t>(with_vertices ? n : 0));
+  HostVector<std::uint8_t> used(static_cast<std::size_t>(n));
   // (the fills in parallel too: a GPU block's arrays are hundreds of MB)
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < m; ++i) pos[std::size_t(i)] = -1;
@@ -84,18 +77,10 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
     for (int k = 0; k < d1; ++k) {
       out.simplices[std::size_t(r * d1 + k)] = ids[v[k]];
       const std::int64_t t = nb[k];
-      const std::int64_t p = t < 0 ? -1 : pos[std::size_t(t)];
-      // a face on the local hull is on the global one where it has an own vertex (both
-      // simplices of the face are then in that vertex's star); else it is asked for as an open
-      // request (-3 until the requests are listed), which no partner answers on the hull. (The
-      // owners are looked up for hull faces only: random reads over every simplex cost more
-      // than the rest of the pass.)
-      bool own_face = false;
-      if (t < 0) {
-        const std::int64_t block = blk[v[lowest_at(v, d1)]];
-        for (int j = 0; j < d1; ++j) own_face = own_face || (j != k && blk[v[j]] == block);
-      }
-      const std::int64_t c = t < 0 ? (own_face ? -1 : -3) : (p >= 0 ? p : -2);
+      // (the owners are looked up for hull faces only: random reads over every simplex cost
+      // more than the rest of the pass)
+      const std::int64_t c = blocks_detail::face_code(
+          v, d1, k, t, t < 0 ? -1 : std::int64_t(pos[std::size_t(t)]), [&](I u) { return blk[u]; });
       out.neighbors[std::size_t(r * d1 + k)] = c;
       requests += c < -1;
     }
@@ -108,7 +93,7 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
   // atomically), then in order: the requests (row-major), the vertices
   std::uint8_t* mark = used.data();
 #pragma omp parallel for schedule(static)
-  for (std::int64_t r = 0; r < (with_vertices ? count : 0); ++r) {
+  for (std::int64_t r = 0; r < count; ++r) {
     const I* v = simplices + rows[r] * d1;
     for (int k = 0; k < d1; ++k) {
 #pragma omp atomic write
@@ -121,22 +106,14 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
       [&](std::int64_t c, std::int64_t q) {
         out.request_open[std::size_t(q)] = nbl[c] == -3 ? 1 : 0;
         const I* v = simplices + rows[c / d1] * d1;
-        const int face = int(c % d1);
-        std::int64_t* key = out.request_key.data() + q * dim;
-        I low = -1;
-        for (int j = 0, k = 0; j < d1; ++j) {
-          if (j == face) continue;
-          key[k++] = ids[v[j]];
-          if (low < 0 || v[j] < low) low = v[j];
-        }
-        std::sort(key, key + dim);
+        const I low = blocks_detail::request_key(
+            v, d1, int(c % d1), [&](I u) { return ids[u]; }, out.request_key.data() + q * dim);
         out.request_owner[std::size_t(q)] = blk[low];
         out.request_pos[std::size_t(q)] = c;
       });
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < std::int64_t(cells); ++c)
     if (nbl[c] == -3) nbl[c] = -2;
-  if (!with_vertices) return out;
   blocks_detail::ordered_compact(
       n, [&](std::int64_t i) { return mark[i] != 0; },
       [&](std::int64_t total) { out.vertices.resize(std::size_t(total)); },
@@ -179,15 +156,6 @@ BlockOutput block_output(const std::int32_t* simplices, const std::int32_t* neig
                          const std::int64_t* ids, const std::int64_t* blk, const double* points,
                          std::int64_t n, int threads) {
   return output_of(simplices, neighbors, m, dim, rows, count, ids, blk, points, n, threads);
-}
-
-BlockOutput blocks_detail::block_output_rows(const std::int32_t* simplices,
-                                             const std::int32_t* neighbors, std::int64_t m, int dim,
-                                             const std::int64_t* rows, std::int64_t count,
-                                             const std::int64_t* ids, const std::int64_t* blk,
-                                             std::int64_t n, int threads) {
-  return output_of(simplices, neighbors, m, dim, rows, count, ids, blk, nullptr, n, threads,
-                   /*with_vertices=*/false);
 }
 
 HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_t* positions,
@@ -238,34 +206,53 @@ HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_
   return out;
 }
 
-HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,
-                                         std::int64_t offset, const std::int64_t* pos,
-                                         const std::int64_t* across, std::int64_t q, int threads) {
+namespace {
+
+// block_neighbors into `out` (m * (dim + 1) entries), for neighbours and output of either width.
+template <class I, class O>
+void neighbors_into(const I* neighbors, std::int64_t m, int dim, std::int64_t offset,
+                    const std::int64_t* pos, const std::int64_t* across, std::int64_t q, O* out,
+                    int threads) {
   blocks_detail::check_dim(dim, "block_neighbors");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
-  HostVector<std::int64_t> out(std::size_t(m) * std::size_t(d1));
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < m * d1; ++c) {
     const std::int64_t t = neighbors[c];
-    out[std::size_t(c)] = t >= 0 ? t + offset : (t == -1 ? -1 : -2);
+    out[c] = O(t >= 0 ? t + offset : (t == -1 ? -1 : -2));
   }
   for (std::int64_t r = 0; r < q; ++r) {
     if (pos[r] < 0 || pos[r] >= m * d1 || neighbors[pos[r]] != -2)
       throw Error(ErrorCode::InvalidArgument, "block_neighbors: answer " + std::to_string(r) +
                                                   " is for position " + std::to_string(pos[r]) +
                                                   ", not a face of another block's neighbour");
-    out[std::size_t(pos[r])] = across[r] < 0 ? -1 : across[r];
+    out[pos[r]] = O(across[r] < 0 ? -1 : across[r]);
   }
   std::int64_t missing = -1;
 #pragma omp parallel for schedule(static) reduction(max : missing)
   for (std::int64_t c = 0; c < m * d1; ++c)
-    if (out[std::size_t(c)] == -2) missing = std::max(missing, c);
+    if (out[c] == -2) missing = std::max(missing, c);
   if (missing >= 0)
     throw Error(ErrorCode::Internal, "block_neighbors: the face at position " +
                                          std::to_string(missing) +
                                          " has no answer (a bug: please report it with the input)");
+}
+
+}  // namespace
+
+HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,
+                                         std::int64_t offset, const std::int64_t* pos,
+                                         const std::int64_t* across, std::int64_t q, int threads) {
+  HostVector<std::int64_t> out(std::size_t(std::max<std::int64_t>(m, 0)) * std::size_t(dim + 1));
+  neighbors_into(neighbors, m, dim, offset, pos, across, q, out.data(), threads);
   return out;
+}
+
+void blocks_detail::block_neighbors_into(const std::int32_t* neighbors, std::int64_t m, int dim,
+                                         std::int64_t offset, const std::int64_t* pos,
+                                         const std::int64_t* across, std::int64_t q,
+                                         std::int32_t* out, int threads) {
+  neighbors_into(neighbors, m, dim, offset, pos, across, q, out, threads);
 }
 
 }  // namespace gpugeom

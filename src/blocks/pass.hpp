@@ -1,5 +1,6 @@
 // What every block pass (src/blocks/) shares: the OpenMP thread count of the calling thread
-// while it runs, the check of the dimension, a point's cell, a box's cells, and ordered listing.
+// while it runs, the check of the dimension, a point's cell, and ordered listing (a box's cells,
+// cells_along, are simplex_rules.hpp's: the device passes need them too).
 #pragma once
 #include <omp.h>
 
@@ -11,6 +12,7 @@
 
 #include "gpugeom/blocks.hpp"
 #include "gpugeom/common.hpp"
+#include "blocks/simplex_rules.hpp"
 
 namespace gpugeom::blocks_detail {
 
@@ -55,25 +57,6 @@ inline bool in_box(const double* x, const double* lo, const double* hi, int dim)
   return true;
 }
 
-// The cells along axis j that [a, b] grown by `margin` meets: false where a > b, or where it
-// lies beyond the grid and `clamp` is false; else the range clamped to the grid (a flat axis
-// has one cell).
-inline bool cells_along(double a, double b, const CellGrid& g, int j, double margin, bool clamp,
-                        std::int64_t* first, std::int64_t* last) {
-  if (!(a <= b)) return false;
-  if (!(g.width[j] > 0)) {
-    *first = *last = 0;
-    return true;
-  }
-  const double top = double(g.counts[j] - 1);
-  const double f0 = std::floor((a - margin - g.lo[j]) / g.width[j]);
-  const double f1 = std::floor((b + margin - g.lo[j]) / g.width[j]);
-  if (!clamp && (f1 < 0 || f0 > top)) return false;
-  *first = f0 < 0 ? 0 : (f0 > top ? g.counts[j] - 1 : std::int64_t(f0));
-  *last = f1 < 0 ? 0 : (f1 > top ? g.counts[j] - 1 : std::int64_t(f1));
-  return true;
-}
-
 // Calls emit(i, rank) for each i in [0, n) with keep(i), rank counting them from 0 in
 // increasing i, on the OpenMP threads of the caller's scope; `sized(total)` runs once between
 // the counting and the emitting (to size the outputs). Each thread takes a contiguous range,
@@ -106,11 +89,10 @@ std::int64_t ordered_compact(std::int64_t n, Keep&& keep, Sized&& sized, Emit&& 
   return total;
 }
 
-// block_output without its vertex lists (vertices, vertex_ids, vertex_points): the several
-// devices of one host have every point at hand and need none of them (output.cpp).
-BlockOutput block_output_rows(const std::int32_t* simplices, const std::int32_t* neighbors,
-                              std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
-                              const std::int64_t* ids, const std::int64_t* blk, std::int64_t n,
-                              int threads);
+// block_neighbors for the several devices of one host: int32 neighbours (block_pass.hpp's rows)
+// written as int32 into `out` (m * (dim + 1) entries: the block's place in the owned arrays).
+void block_neighbors_into(const std::int32_t* neighbors, std::int64_t m, int dim,
+                          std::int64_t offset, const std::int64_t* pos, const std::int64_t* across,
+                          std::int64_t q, std::int32_t* out, int threads);
 
 }  // namespace gpugeom::blocks_detail

@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "blocks/block_pass.hpp"
 #include "blocks/owned.hpp"
 #include "exec/dynamic_state.hpp"
 #include "exec/point_entries.hpp"
@@ -67,6 +68,9 @@ using BlocksFn = std::function<blocks_detail::OwnedBlocks(Delaunay2dStats&)>;
 struct Assembly {
   void (*run)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
               const BlocksFn& blocks, Output& out);
+  // One block (blocks/block_pass.hpp), on opt.backend and, on the GPU, opt.device.
+  void (*block)(const Delaunay2dOptions& opt, const blocks_detail::BlockTask& task,
+                const blocks_detail::FinalTest& test, blocks_detail::BlockRows& out);
 };
 GG_DECLARE_TABLE(Assembly, assembly)
 GG_DECLARE_TABLE(VoronoiEntries, voronoi_entries)

@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "blocks/block_pass.hpp"
 #include "blocks/owned.hpp"
 #include "exec/dynamic_state.hpp"
 #include "exec/point_entries.hpp"
@@ -40,6 +41,9 @@ using BlocksFn = std::function<blocks_detail::OwnedBlocks(Delaunay3dStats&)>;
 struct Assembly {
   void (*run)(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
               const BlocksFn& blocks, Output& out);
+  // One block (blocks/block_pass.hpp), on opt.backend and, on the GPU, opt.device.
+  void (*block)(const Delaunay3dOptions& opt, const blocks_detail::BlockTask& task,
+                const blocks_detail::FinalTest& test, blocks_detail::BlockRows& out);
 };
 GG_DECLARE_TABLE(Assembly, assembly)
 

@@ -46,6 +46,13 @@ GG_INLINE void atomic_max_grouped(T* p, T v) {
   atomic_max(p, v);
 #endif
 }
+// Sets bits: the marks many threads may set in one word (a block's border: per point, the blocks
+// it goes to), the same whatever their order.
+template <class T>
+GG_INLINE void atomic_or(T* p, T v) {
+  cuda::atomic_ref<T, cuda::thread_scope_device> r(*p);
+  if ((r.load(cuda::memory_order_relaxed) & v) != v) r.fetch_or(v, cuda::memory_order_relaxed);
+}
 // A plain read of a word other threads may be writing (their writes atomic too).
 template <class T>
 GG_INLINE T atomic_load(const T* p) {

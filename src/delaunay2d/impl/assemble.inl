@@ -38,4 +38,18 @@ inline void assemble_entry(const double* xy, std::int64_t n, const Delaunay2dOpt
   assemble_impl(xy, n, opt, blocks, out);
 }
 
-const Assembly assembly{&assemble_entry};
+// One block of the several devices (blocks/block_pass.hpp): triangulated on opt's device by the
+// device entry, and its passes there.
+inline void block_entry(const Delaunay2dOptions& opt, const blocks_detail::BlockTask& t,
+                        const blocks_detail::FinalTest& test, blocks_detail::BlockRows& out) {
+  Exec ex(opt);
+  blocks_detail::run_block<2>(
+      ex, t, test, out, [&](const double* p, const ::gpugeom::detail::ExecContext* ctx) {
+        DeviceOutput r;
+        Delaunay2dStats st;
+        triangulate_device_impl(p, t.n, opt, r, st, ctx);
+        return blocks_detail::DeviceSimplices{r.triangles, r.neighbors, r.num_triangles};
+      });
+}
+
+const Assembly assembly{&assemble_entry, &block_entry};

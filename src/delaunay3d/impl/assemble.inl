@@ -30,4 +30,18 @@ inline void assemble_entry(const double* xyz, std::int64_t n, const Delaunay3dOp
   assemble_impl(xyz, n, opt, blocks, out);
 }
 
-const Assembly assembly{&assemble_entry};
+// One block of the several devices (blocks/block_pass.hpp): triangulated on opt's device by the
+// device entry, and its passes there.
+inline void block_entry(const Delaunay3dOptions& opt, const blocks_detail::BlockTask& t,
+                        const blocks_detail::FinalTest& test, blocks_detail::BlockRows& out) {
+  Exec ex(opt);
+  blocks_detail::run_block<3>(
+      ex, t, test, out, [&](const double* p, const ::gpugeom::detail::ExecContext* ctx) {
+        DeviceOutput r;
+        Delaunay3dStats st;
+        triangulate_device_impl(p, t.n, opt, r, st, ctx);
+        return blocks_detail::DeviceSimplices{r.tetrahedra, r.neighbors, r.num_tetrahedra};
+      });
+}
+
+const Assembly assembly{&assemble_entry, &block_entry};

@@ -27,6 +27,7 @@
 #include "mesh/cavity_schedule.hpp"
 #include "mesh/visibility_walk.hpp"
 #include "mesh/compact.hpp"
+#include "blocks/block_pass_on.hpp"
 #include "blocks/owned_on.hpp"
 #include "mesh/hole_refill.hpp"
 #include "mesh/simplex_changes.hpp"
