@@ -1,12 +1,14 @@
 // One block of the several devices of one host (delaunay_devices.cpp), run where its
 // triangulation is made: the block's points go to its device once, are triangulated there, and
 // the per-simplex passes (its owned simplices, the simplices to test, the border for the other
-// blocks, the output rows and the face requests) run on the same device (impl/block_pass.inl);
-// only their compact results come back. The modules' tables run it (Assembly::block in
-// del2d_backend.hpp / del3d_backend.hpp), so one source serves both executors.
+// blocks, the output rows and the face requests) run on the same device (block_pass_on.hpp);
+// only their compact results come back, and the owned rows stay there for the assembly. The
+// modules' tables run it (Assembly::block in del2d_backend.hpp / del3d_backend.hpp), so one source
+// serves both executors.
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -41,12 +43,15 @@ struct BlockRows {
   std::vector<std::pair<std::int64_t, HostVector<std::int32_t>>> borders;
   // Whether the output below was made (the first round's only where the host's test passed).
   bool final = false;
-  // The owned simplices (those whose lowest vertex is an own point), in the triangulation's
-  // order, in input indices; per face the neighbour's row here, -1 (the global hull) or -2
-  // (another block's); and the -2 faces as requests (block_output's rules, in row-major order):
-  // the block that matches each, its D input indices sorted, its position row * (D + 1) + face,
-  // and whether it is open (a local hull face that may lie on the global hull).
-  HostVector<std::int32_t> simplices, neighbors;
+  // The `count` owned simplices (those whose lowest vertex is an own point), in the
+  // triangulation's order, in input indices; per face the neighbour's row here, -1 (the global
+  // hull) or -2 (another block's): left where they were made (the block's device; the host on
+  // the CPU executor), for the assembly to copy (owned_on.hpp). And, in host memory, the -2
+  // faces as requests (block_output's rules, in row-major order): the block that matches each,
+  // its D input indices sorted, its position row * (D + 1) + face, and whether it is open (a
+  // local hull face that may lie on the global hull).
+  std::shared_ptr<std::int32_t> simplices, neighbors;
+  std::int64_t count = 0;
   HostVector<std::int32_t> request_owner, request_key, request_pos;
   HostVector<std::uint8_t> request_open;
   // Milliseconds: the triangulation (with the points' copy), the passes before the test, the

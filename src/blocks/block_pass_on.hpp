@@ -161,18 +161,17 @@ void block_pass(Exec& ex, const double* pts, const std::int32_t* s, const std::i
       });
   ex.for_each_index(
       q, GG_LAMBDA(std::int64_t i) { on[req[i]] = -2; });
-  out.simplices.resize(std::size_t(cellsn));
-  out.neighbors.resize(std::size_t(cellsn));
   out.request_pos.resize(std::size_t(q));
   out.request_key.resize(std::size_t(q * D));
   out.request_owner.resize(std::size_t(q));
   out.request_open.resize(std::size_t(q));
-  ex.to_host(os, cellsn, out.simplices.data());
-  ex.to_host(on, cellsn, out.neighbors.data());
   ex.to_host(req, q, out.request_pos.data());
   ex.to_host(key, q * D, out.request_key.data());
   ex.to_host(owner, q, out.request_owner.data());
   ex.to_host(open, q, out.request_open.data());
+  out.count = count;
+  out.simplices = os_b.hand_over();  // (after the copies above, which waited for the stream)
+  out.neighbors = on_b.hand_over();
   out.ms_output = ms_since(t0);
 }
 

@@ -220,7 +220,7 @@ class Blocks {
 
   OwnedBlocks run(typename T::Stats& st) {
     const double t0 = now_ms();
-    setup();
+    setup(st.phase_ms);
     st.phase_ms.push_back({"blocks.split", now_ms() - t0});
     const double t1 = now_ms();
     on_threads(k_, [&](std::size_t b) { first_round(b); });
@@ -261,7 +261,9 @@ class Blocks {
     return o;
   }
 
-  void setup() {
+  // (phases: the split's parts, timed)
+  void setup(std::vector<std::pair<std::string, double>>& phases) {
+    double t = now_ms();
     const PointBounds pb = point_bounds(p_, D, n_, all_threads_);
     grid_ = block_grid<D>(pb, int(devices_.size()));
     k_ = devices_.size();
@@ -316,6 +318,8 @@ class Blocks {
       }
     }
     // the bins of the finality test: about 16 points each
+    phases.push_back({"blocks.split.bounds", now_ms() - t});
+    t = now_ms();
     bins_ = cube_grid<D>(pb, std::min(double(n_) / 16.0, double(1 << 24)));
     index_ = split_by_cell(p_, D, n_, bins_, all_threads_);
     // The blocks work on the points in the bins' order (their ids here are places in it, mapped
@@ -331,8 +335,12 @@ class Blocks {
       for (int j = 0; j < D; ++j) q_[std::size_t(i * D + j)] = p_[from * D + j];
       index_.order[std::size_t(i)] = i;  // (each bin's points are now a run of places)
     }
+    phases.push_back({"blocks.split.bins", now_ms() - t});
+    t = now_ms();
     split_ = split_to_blocks(q_.data(), D, n_, grid_, lo.data(), hi.data(), owner.data(),
                              std::int64_t(owner.size()), nullptr, all_threads_);
+    phases.push_back({"blocks.split.regions", now_ms() - t});
+    t = now_ms();
     // every block's own points and its candidates for the hull's extreme points, on its device
     blk_.resize(k_);
     std::vector<I64> cands(k_);
@@ -350,6 +358,7 @@ class Blocks {
     std::vector<const I64*> lists;
     for (auto& c : cands) lists.push_back(&c);
     held_ = merged(lists);
+    phases.push_back({"blocks.split.hull", now_ms() - t});
   }
 
   HostVector<double> gather(const I64& ids) {
@@ -462,8 +471,7 @@ class Blocks {
   OwnedBlocks neighbours() {
     const int d1 = D + 1;
     OwnedBlocks o;
-    for (std::size_t b = 0; b < k_; ++b)
-      o.offsets.push_back(o.offsets.back() + std::int64_t(blk_[b].rows.simplices.size()) / d1);
+    for (std::size_t b = 0; b < k_; ++b) o.offsets.push_back(o.offsets.back() + blk_[b].rows.count);
     // answers[c][b]: block c's answers to block b's requests (positions here, global across)
     std::vector<std::vector<std::pair<I64, I64>>> answers(k_, std::vector<std::pair<I64, I64>>(k_));
     on_threads(k_, [&](std::size_t c) {
@@ -490,24 +498,19 @@ class Blocks {
         }
       }
     });
-    const std::int64_t total = o.offsets.back();
-    o.simplices.resize(std::size_t(d1 * total));
-    o.neighbors.resize(std::size_t(d1 * total));
+    // each block's rows stay where they were made, with their answers (owned_on.hpp)
+    o.parts.resize(k_);
     on_threads(k_, [&](std::size_t b) {
-      I64 p, a;
+      blocks_detail::OwnedPart& part = o.parts[b];
       for (std::size_t c = 0; c < k_; ++c) {
-        p.insert(p.end(), answers[c][b].first.begin(), answers[c][b].first.end());
-        a.insert(a.end(), answers[c][b].second.begin(), answers[c][b].second.end());
+        part.pos.insert(part.pos.end(), answers[c][b].first.begin(), answers[c][b].first.end());
+        part.across.insert(part.across.end(), answers[c][b].second.begin(),
+                           answers[c][b].second.end());
       }
       blocks_detail::BlockRows& x = blk_[b].rows;
-      const std::int64_t m = std::int64_t(x.simplices.size()) / d1;
-      blocks_detail::block_neighbors_into(x.neighbors.data(), m, D, o.offsets[b], p.data(),
-                                          a.data(), std::int64_t(p.size()),
-                                          o.neighbors.data() + o.offsets[b] * d1, threads_);
-      std::int32_t* so = o.simplices.data() + o.offsets[b] * d1;
-      const std::int32_t* from = x.simplices.data();
-#pragma omp parallel for num_threads(threads_) schedule(static)
-      for (std::int64_t i = 0; i < m * d1; ++i) so[i] = from[i];
+      part.simplices = std::move(x.simplices);
+      part.neighbors = std::move(x.neighbors);
+      part.count = x.count;
       x = {};
     });
     return o;

@@ -206,53 +206,34 @@ HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_
   return out;
 }
 
-namespace {
-
-// block_neighbors into `out` (m * (dim + 1) entries), for neighbours and output of either width.
-template <class I, class O>
-void neighbors_into(const I* neighbors, std::int64_t m, int dim, std::int64_t offset,
-                    const std::int64_t* pos, const std::int64_t* across, std::int64_t q, O* out,
-                    int threads) {
+HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,
+                                         std::int64_t offset, const std::int64_t* pos,
+                                         const std::int64_t* across, std::int64_t q, int threads) {
   blocks_detail::check_dim(dim, "block_neighbors");
   const int d1 = dim + 1;
   blocks_detail::ThreadScope scope(threads);
+  HostVector<std::int64_t> out(std::size_t(m) * std::size_t(d1));
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < m * d1; ++c) {
     const std::int64_t t = neighbors[c];
-    out[c] = O(t >= 0 ? t + offset : (t == -1 ? -1 : -2));
+    out[std::size_t(c)] = t >= 0 ? t + offset : (t == -1 ? -1 : -2);
   }
   for (std::int64_t r = 0; r < q; ++r) {
     if (pos[r] < 0 || pos[r] >= m * d1 || neighbors[pos[r]] != -2)
       throw Error(ErrorCode::InvalidArgument, "block_neighbors: answer " + std::to_string(r) +
                                                   " is for position " + std::to_string(pos[r]) +
                                                   ", not a face of another block's neighbour");
-    out[pos[r]] = O(across[r] < 0 ? -1 : across[r]);
+    out[std::size_t(pos[r])] = across[r] < 0 ? -1 : across[r];
   }
   std::int64_t missing = -1;
 #pragma omp parallel for schedule(static) reduction(max : missing)
   for (std::int64_t c = 0; c < m * d1; ++c)
-    if (out[c] == -2) missing = std::max(missing, c);
+    if (out[std::size_t(c)] == -2) missing = std::max(missing, c);
   if (missing >= 0)
     throw Error(ErrorCode::Internal, "block_neighbors: the face at position " +
                                          std::to_string(missing) +
                                          " has no answer (a bug: please report it with the input)");
-}
-
-}  // namespace
-
-HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,
-                                         std::int64_t offset, const std::int64_t* pos,
-                                         const std::int64_t* across, std::int64_t q, int threads) {
-  HostVector<std::int64_t> out(std::size_t(std::max<std::int64_t>(m, 0)) * std::size_t(dim + 1));
-  neighbors_into(neighbors, m, dim, offset, pos, across, q, out.data(), threads);
   return out;
-}
-
-void blocks_detail::block_neighbors_into(const std::int32_t* neighbors, std::int64_t m, int dim,
-                                         std::int64_t offset, const std::int64_t* pos,
-                                         const std::int64_t* across, std::int64_t q,
-                                         std::int32_t* out, int threads) {
-  neighbors_into(neighbors, m, dim, offset, pos, across, q, out, threads);
 }
 
 }  // namespace gpugeom

@@ -1,10 +1,14 @@
 // What the blocks of a multi-device triangulation hand the module that assembles it (the
-// modules' assemble_blocks): the blocks' owned simplices in global input indices and their
-// neighbours as global slots (block after block, each block's rows in its order; -1 none), as
-// one pair of 32-bit arrays, so that the assembly copies them to its executor in one piece.
-// (Input indices and slots fit: a single call's arrays are 32-bit too.)
+// modules' assemble_blocks): per block its owned simplices in global input indices and their
+// neighbours' codes (a row of the block, -1 none, -2 another block's: block_pass.hpp), 32-bit,
+// where the block made them (its device's memory; host memory on the CPU executor), with the
+// answers to its face requests. The assembly copies them to its own device (a peer copy where
+// the GPUs have one), turns the rows into global slots and writes the answers there, so the
+// rows never pass through the host. (Input indices and slots fit: a single call's arrays are
+// 32-bit too.)
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "base/hd.hpp"
@@ -12,9 +16,16 @@
 
 namespace gpugeom::blocks_detail {
 
+struct OwnedPart {
+  std::shared_ptr<std::int32_t> simplices, neighbors;  // K entries a simplex, `count` simplices
+  std::int64_t count = 0;
+  // The answers: at position pos[i] (row * K + face) the global slot across, -1 on the hull.
+  HostVector<std::int64_t> pos, across;
+};
+
 struct OwnedBlocks {
-  HostVector<std::int32_t> simplices, neighbors;  // K entries a simplex
-  std::vector<std::int64_t> offsets{0};           // each block's first global slot, then the total
+  std::vector<OwnedPart> parts;
+  std::vector<std::int64_t> offsets{0};  // each block's first global slot, then the total
 };
 
 // The owned simplices as a mesh store (mesh/compact.hpp: live, get, order_names, prefetch) over

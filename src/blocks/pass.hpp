@@ -89,10 +89,4 @@ std::int64_t ordered_compact(std::int64_t n, Keep&& keep, Sized&& sized, Emit&& 
   return total;
 }
 
-// block_neighbors for the several devices of one host: int32 neighbours (block_pass.hpp's rows)
-// written as int32 into `out` (m * (dim + 1) entries: the block's place in the owned arrays).
-void block_neighbors_into(const std::int32_t* neighbors, std::int64_t m, int dim,
-                          std::int64_t offset, const std::int64_t* pos, const std::int64_t* across,
-                          std::int64_t q, std::int32_t* out, int threads);
-
 }  // namespace gpugeom::blocks_detail

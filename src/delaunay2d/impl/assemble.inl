@@ -20,13 +20,12 @@ inline void assemble_impl(const double* xy, std::int64_t n, const Delaunay2dOpti
   t0 = Clock::now();
   {
     auto o = blocks_detail::owned_on<3>(ex, B, P.orig.data(), P.m, n);
-    if constexpr (Exec::backend != Backend::Cpu) B = {};  // (copied)
+    B = {};  // (copied: the blocks' rows freed)
     auto f = mesh::compact_live_sorted<3>(
         ex, o.count, o.store, P.m,
         mesh::IntoResult<3, Exec, decltype(out.triangles)>{
             bool(opt.into.triangles) || bool(opt.into.neighbors), out.triangles, out.neighbors});
     o = {};
-    B = {};
     deliver_host_results(ex, opt.into, n, P, f, out, st, pf);
   }
   st.phase_ms.push_back({"output", ms_since(t0)});

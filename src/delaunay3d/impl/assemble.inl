@@ -14,11 +14,10 @@ inline void assemble_impl(const double* xyz, std::int64_t n, const Delaunay3dOpt
   const auto t0 = Clock::now();
   {
     auto o = blocks_detail::owned_on<4>(ex, B, S.orig.data(), S.m, n);
-    if constexpr (Exec::backend != Backend::Cpu) B = {};  // (copied)
+    B = {};  // (copied: the blocks' rows freed)
     auto f = mesh::compact_live_sorted<4>(ex, o.count, o.store, S.m, host_arrays(opt.into, out),
                                           /*with_last=*/true);
     o = {};
-    B = {};
     to_output(ex, S, f, n, opt.into, out);
   }
   st.phase_ms.push_back({"output", ms_since(t0)});
