@@ -147,7 +147,9 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
   // Each thread takes a contiguous range of points, counts them per block, then writes them at
   // its offsets: every block's points come out in increasing order, on any thread count.
   const int nt = std::max(1, omp_get_max_threads());
-  HostVector<std::int64_t> counts(std::size_t(nt) * std::size_t(cells), 0);
+  // (each thread zeroes its own row: at 10^7 points in bins of 16 the rows are 80 MB)
+  HostVector<std::int64_t> counts(std::size_t(nt) * std::size_t(cells));
+  HostVector<std::int64_t> total(std::size_t(cells) + 1);
   // calls f(block) for each block point p goes to: its cell's, then those of the boxes holding
   // it (a block's boxes come together: once one holds p, the block's others are skipped)
   auto visit = [&](std::int64_t p, auto&& f) {
@@ -173,6 +175,7 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
     const int t = omp_get_thread_num(), threads_here = omp_get_num_threads();
     const std::int64_t first = n * t / threads_here, end = n * (t + 1) / threads_here;
     std::int64_t* mine = counts.data() + std::size_t(t) * std::size_t(cells);
+    std::fill(mine, mine + cells, std::int64_t(0));
     for (std::int64_t p = first; p < end; ++p) {
       std::int64_t c = 0;
       for (int j = 0; j < dim; ++j)
@@ -181,22 +184,35 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
       visit(p, [&](std::int64_t b) { ++mine[b]; });
     }
 #pragma omp barrier
+    // offsets: block by block, and within a block thread by thread (in parallel over the blocks:
+    // with a bin a block, 10^6 bins of 16 threads each, one thread took 0.1-0.3 s here)
+#pragma omp for schedule(static)
+    for (std::int64_t b = 0; b < cells; ++b) {
+      std::int64_t sum = 0;
+      for (int u = 0; u < threads_here; ++u)
+        sum += counts[std::size_t(u) * std::size_t(cells) + std::size_t(b)];
+      total[std::size_t(b)] = sum;
+    }
 #pragma omp single
     {
-      // offsets: block by block, and within a block thread by thread
-      out.cuts.assign(std::size_t(cells + 1), 0);
+      out.cuts.resize(std::size_t(cells + 1));
       std::int64_t at = 0;
       for (std::int64_t b = 0; b < cells; ++b) {
         out.cuts[std::size_t(b)] = at;
-        for (int u = 0; u < nt; ++u) {
-          std::int64_t& k = counts[std::size_t(u) * std::size_t(cells) + std::size_t(b)];
-          const std::int64_t here = k;
-          k = at;
-          at += here;
-        }
+        at += total[std::size_t(b)];
       }
       out.cuts[std::size_t(cells)] = at;
       out.order.resize(std::size_t(at));
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t b = 0; b < cells; ++b) {
+      std::int64_t at = out.cuts[std::size_t(b)];
+      for (int u = 0; u < threads_here; ++u) {
+        std::int64_t& k = counts[std::size_t(u) * std::size_t(cells) + std::size_t(b)];
+        const std::int64_t here = k;
+        k = at;
+        at += here;
+      }
     }
     for (std::int64_t p = first; p < end; ++p)
       visit(p, [&](std::int64_t b) { out.order[std::size_t(mine[b]++)] = p; });

@@ -346,9 +346,14 @@ class Blocks {
     std::vector<I64> cands(k_);
     on_threads(k_, [&](std::size_t b) {
       Block& B = blk_[b];
-      for (std::int64_t q = split_.cuts[b]; q < split_.cuts[b + 1]; ++q) {
-        const std::int64_t id = split_.order[std::size_t(q)];
-        if (split_.cell[std::size_t(id)] == std::int64_t(b)) B.own.push_back(id);
+      {  // (in order, on the block's threads)
+        blocks_detail::ThreadScope scope(threads_);
+        const std::int64_t* region = split_.order.data() + split_.cuts[b];
+        blocks_detail::ordered_compact(
+            split_.cuts[b + 1] - split_.cuts[b],
+            [&](std::int64_t q) { return split_.cell[std::size_t(region[q])] == std::int64_t(b); },
+            [&](std::int64_t total) { B.own.resize(std::size_t(total)); },
+            [&](std::int64_t q, std::int64_t r) { B.own[std::size_t(r)] = region[q]; });
       }
       HostVector<double> own = gather(B.own);
       I64 c = T::hull_candidates(own.data(), std::int64_t(B.own.size()), block_options(b));

@@ -78,12 +78,10 @@ HostVector<std::int64_t> hull_candidates2d(const double* points, std::int64_t n,
     }
     keep[std::size_t(i)] = inside ? 0 : 1;
   }
-  std::int64_t count = 0;
-  for (std::int64_t i = 0; i < n; ++i) count += keep[std::size_t(i)];
-  out.resize(std::size_t(count));
-  count = 0;
-  for (std::int64_t i = 0; i < n; ++i)
-    if (keep[std::size_t(i)]) out[std::size_t(count++)] = i;
+  blocks_detail::ordered_compact(
+      n, [&](std::int64_t i) { return keep[std::size_t(i)] != 0; },
+      [&](std::int64_t total) { out.resize(std::size_t(total)); },
+      [&](std::int64_t i, std::int64_t r) { out[std::size_t(r)] = i; });
   return out;
 }
 
