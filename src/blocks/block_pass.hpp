@@ -52,6 +52,7 @@ struct BlockRows {
   // local hull face that may lie on the global hull).
   std::shared_ptr<std::int32_t> simplices, neighbors;
   std::int64_t count = 0;
+  int device = -1;  // (-1: host memory)
   HostVector<std::int32_t> request_owner, request_key, request_pos;
   HostVector<std::uint8_t> request_open;
   // Milliseconds: the triangulation (with the points' copy), the passes before the test, the

@@ -170,6 +170,7 @@ void block_pass(Exec& ex, const double* pts, const std::int32_t* s, const std::i
   ex.to_host(owner, q, out.request_owner.data());
   ex.to_host(open, q, out.request_open.data());
   out.count = count;
+  if constexpr (Exec::backend == Backend::Cuda) out.device = ex.device();
   out.simplices = os_b.hand_over();  // (after the copies above, which waited for the stream)
   out.neighbors = on_b.hand_over();
   out.ms_output = ms_since(t0);

@@ -516,6 +516,7 @@ class Blocks {
       part.simplices = std::move(x.simplices);
       part.neighbors = std::move(x.neighbors);
       part.count = x.count;
+      part.device = x.device;
       x = {};
     });
     return o;

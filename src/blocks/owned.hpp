@@ -19,6 +19,7 @@ namespace gpugeom::blocks_detail {
 struct OwnedPart {
   std::shared_ptr<std::int32_t> simplices, neighbors;  // K entries a simplex, `count` simplices
   std::int64_t count = 0;
+  int device = -1;  // where they are (-1: host memory)
   // The answers: at position pos[i] (row * K + face) the global slot across, -1 on the hull.
   HostVector<std::int64_t> pos, across;
 };

@@ -8,6 +8,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "blocks/owned.hpp"
 #include "exec/atomics.hpp"
@@ -42,6 +43,9 @@ OwnedOn<K, Exec> owned_on(Exec& ex, const OwnedBlocks& B, const std::int32_t* or
   auto bad_b = ex.template alloc<std::int64_t>(2);  // (an answer not for a -2 face; a -2 left)
   std::int64_t* bad = bad_b.data();
   ex.fill(bad, 2, std::int64_t(-1));
+  // (direct reads of the blocks' devices where the GPUs have them, until the copies have run)
+  std::vector<decltype(ex.peer_access(0))> peers;
+  for (const OwnedPart& p : B.parts) peers.push_back(ex.peer_access(p.device));
   for (std::size_t b = 0; b < B.parts.size(); ++b) {
     const OwnedPart& p = B.parts[b];
     const std::int64_t off = B.offsets[b], cells = K * p.count;

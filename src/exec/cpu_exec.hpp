@@ -337,6 +337,11 @@ struct CpuExec {
     *count = n > 0 ? compact_indices(n, pred, out) : 0;
   }
   void sync() {}
+  // (CudaExec's direct reads of another device's memory: nothing here, all is host memory)
+  struct NoPeer {};
+  NoPeer peer_access(int) const {
+    return {};
+  }
 
   template <class K, class V>
   void radix_sort_pairs(K* keys, V* vals, std::int64_t n, int key_bits = int(8 * sizeof(K))) {

@@ -239,6 +239,29 @@ Scope::~Scope() {
   if (changed_) (void)cudaSetDevice(prev_);
 }
 
+PeerScope::PeerScope(int device, int peer) : device_(device), peer_(peer) {
+  if (device < 0 || peer < 0 || device == peer) return;
+  int can = 0;
+  GG_CUDA_CHECK(cudaDeviceCanAccessPeer(&can, device, peer));
+  if (!can) return;
+  Scope on(device);
+  const cudaError_t e = cudaDeviceEnablePeerAccess(peer, 0);
+  if (e == cudaErrorPeerAccessAlreadyEnabled) {  // (the caller's: left on)
+    (void)cudaGetLastError();
+    return;
+  }
+  GG_CUDA_CHECK(e);
+  enabled_ = true;
+}
+PeerScope::~PeerScope() {
+  if (!enabled_) return;
+  int prev = -1;  // (a destructor does not throw: errors are left to the next checked call)
+  (void)cudaGetDevice(&prev);
+  if (prev != device_) (void)cudaSetDevice(device_);
+  (void)cudaDeviceDisablePeerAccess(peer_);
+  if (prev >= 0 && prev != device_) (void)cudaSetDevice(prev);
+}
+
 int resolve(const RunOptions& run) {
   int dev = run.device;
   if (dev < 0 && run.stream) GG_CUDA_CHECK(cudaStreamGetDevice(cudaStream_t(run.stream), &dev));

@@ -41,6 +41,27 @@ class Scope {
   bool changed_ = false;
 };
 
+// Direct reads by `device` of `peer`'s memory (cudaDeviceEnablePeerAccess) for the scope's life,
+// where the hardware has them and they were not on already; turned off again at the end, so the
+// process's state is as it was. Copies on device's streams from the peer's memory then go over
+// the link instead of through the host. Nothing where device is peer or either is negative.
+// Keep it until the copies that use it have run.
+class PeerScope {
+ public:
+  PeerScope(int device, int peer);
+  ~PeerScope();
+  PeerScope(PeerScope&& o) noexcept : device_(o.device_), peer_(o.peer_), enabled_(o.enabled_) {
+    o.enabled_ = false;
+  }
+  PeerScope(const PeerScope&) = delete;
+  PeerScope& operator=(const PeerScope&) = delete;
+  PeerScope& operator=(PeerScope&&) = delete;
+
+ private:
+  int device_ = -1, peer_ = -1;
+  bool enabled_ = false;
+};
+
 // The message of an allocation failure: the bytes wanted and those free on the device.
 [[noreturn]] void throw_out_of_memory(std::size_t bytes, const char* what);
 

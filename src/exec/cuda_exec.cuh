@@ -299,6 +299,9 @@ class CudaExec {
   bool nested() const { return nested_; }
   std::int64_t peak_bytes() const { return mem_->peak(); }
   int device() const { return dev_; }
+  // Direct reads of device `peer`'s memory by this executor's device while the result lives
+  // (cuda_device::PeerScope): for copies from arrays another device made.
+  cuda_device::PeerScope peer_access(int peer) const { return cuda_device::PeerScope(dev_, peer); }
 
   template <class T>
   Buffer<T> alloc(std::size_t n) {
