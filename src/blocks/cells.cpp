@@ -20,7 +20,7 @@ namespace {
 
 using blocks_detail::in_box;
 
-using blocks_detail::cell_along;
+using blocks_detail::cell_of;
 
 // A finer grid of bins over the cells (`sub` bins a cell along each axis that is not flat), each
 // with the boxes that may hold one of its points (CSR, each list in increasing box order, so by
@@ -157,8 +157,7 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
     const std::int64_t c = out.cell[std::size_t(p)];
     if (!wanted || wanted[c]) f(c);
     if (nboxes == 0) return;
-    std::int64_t bin = 0;
-    for (int j = 0; j < dim; ++j) bin = bin * bins.bins.counts[j] + cell_along(x[j], bins.bins, j);
+    const std::int64_t bin = cell_of(x, bins.bins, dim);
     std::int64_t last = -1;
     for (std::int64_t q = bins.start[std::size_t(bin)]; q < bins.start[std::size_t(bin + 1)]; ++q) {
       const std::int64_t b = bins.list[std::size_t(q)], blk = box_block[b];
@@ -177,10 +176,7 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
     std::int64_t* mine = counts.data() + std::size_t(t) * std::size_t(cells);
     std::fill(mine, mine + cells, std::int64_t(0));
     for (std::int64_t p = first; p < end; ++p) {
-      std::int64_t c = 0;
-      for (int j = 0; j < dim; ++j)
-        c = c * grid.counts[j] + cell_along(points[p * dim + j], grid, j);
-      out.cell[std::size_t(p)] = c;
+      out.cell[std::size_t(p)] = cell_of(points + p * dim, grid, dim);
       visit(p, [&](std::int64_t b) { ++mine[b]; });
     }
 #pragma omp barrier
@@ -234,8 +230,7 @@ HostVector<std::int32_t> cell_counts(const double* points, int dim, std::int64_t
   out.assign(std::size_t(cells), 0);
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = 0; p < n; ++p) {
-    std::int64_t c = 0;
-    for (int j = 0; j < dim; ++j) c = c * grid.counts[j] + cell_along(points[p * dim + j], grid, j);
+    const std::int64_t c = cell_of(points + p * dim, grid, dim);
 #pragma omp atomic
     ++out[std::size_t(c)];
   }

@@ -1,12 +1,13 @@
 // delaunay2d_devices and delaunay3d_devices (include/gpugeom/multi_gpu.hpp): the blocks of
 // gpugeom.dask's triangulation, one per device, in one process (docs/design-notes.md, "Several
-// GPUs of one host: the blocks in one process"). Every block is triangulated with a ghost layer
-// and the global hull's candidates on its device, where its passes run too (block_pass.hpp:
-// its owned simplices, its border for the others, the output rows and face requests); the stars
-// that may reach past its region are tested here against all the points (stars_final). A block
-// whose stars are not all final is triangulated again with its own points, the hull's and the
-// borders sent to it. The owned simplices' neighbours across blocks are matched by their faces,
-// and the module puts them in a single call's order (assemble_blocks).
+// GPUs of one host: the blocks in one process"). The points are split among the blocks where the
+// module prepared them (blocks/split_on.hpp, on the first device). Every block is triangulated with
+// a ghost layer and the global hull's candidates on its device, where its passes run too
+// (block_pass.hpp: its owned simplices, its border for the others, the output rows and face
+// requests); the stars that may reach past its region are tested here against all the points
+// (stars_final). A block whose stars are not all final is triangulated again with its own points,
+// the hull's and the borders sent to it. The owned simplices' neighbours across blocks are matched
+// by their faces, and the module puts them in a single call's order (assemble_blocks).
 #include <omp.h>
 
 #include <algorithm>
@@ -210,12 +211,11 @@ class Blocks {
   using T = Dim<D>;
   using Options = typename T::Options;
 
-  Blocks(const double* p, std::int64_t n, const std::vector<int>& devices, Backend backend,
-         const Options& opt)
-      : p_(p), n_(n), devices_(devices), backend_(backend), opt_(opt) {
+  Blocks(const blocks_detail::PreparedPoints& points, const std::vector<int>& devices,
+         Backend backend, const Options& opt)
+      : points_(points), n_(points.m), devices_(devices), backend_(backend), opt_(opt) {
     const int all = opt.threads > 0 ? opt.threads : omp_get_max_threads();
     threads_ = std::max(1, all / int(devices.size()));
-    all_threads_ = all;
   }
 
   OwnedBlocks run(typename T::Stats& st) {
@@ -264,7 +264,7 @@ class Blocks {
   // (phases: the split's parts, timed)
   void setup(std::vector<std::pair<std::string, double>>& phases) {
     double t = now_ms();
-    const PointBounds pb = point_bounds(p_, D, n_, all_threads_);
+    const PointBounds pb = points_.bounds;
     grid_ = block_grid<D>(pb, int(devices_.size()));
     k_ = devices_.size();
     double vol = 1, scale = 0;
@@ -282,8 +282,9 @@ class Blocks {
     // the strips along the sides of the bounds the cell lies on
     boxes_.resize(k_);
     strips_.resize(k_);
-    std::vector<double> lo, hi;
-    std::vector<std::int64_t> owner;
+    blocks_detail::SplitLayout L;
+    L.grid = grid_;
+    L.blocks = std::int64_t(k_);
     const double depth = T::kStrip * ghost_;
     for (std::size_t b = 0; b < k_; ++b) {
       std::int64_t c = std::int64_t(b), idx[3] = {0, 0, 0};
@@ -298,11 +299,11 @@ class Blocks {
         x.region_hi[j] = chi + ghost_;
         x.bounds_lo[j] = pb.lo[j];
         x.bounds_hi[j] = pb.hi[j];
-        lo.push_back(x.region_lo[j]);
-        hi.push_back(x.region_hi[j]);
+        L.lo.push_back(x.region_lo[j]);
+        L.hi.push_back(x.region_hi[j]);
       }
       x.scale = scale;
-      owner.push_back(std::int64_t(b));
+      L.owner.push_back(std::int32_t(b));
       for (int j = 0; j < D; ++j) {
         if (!(pb.hi[j] > pb.lo[j])) continue;
         for (int high = 0; high < 2; ++high) {
@@ -311,35 +312,32 @@ class Blocks {
           for (int i = 0; i < D; ++i) {
             double a = pb.lo[i], e = pb.hi[i];
             if (i == j) (high ? a : e) = high ? pb.hi[j] - depth : pb.lo[j] + depth;
-            st.lo.push_back(a), st.hi.push_back(e), lo.push_back(a), hi.push_back(e);
+            st.lo.push_back(a), st.hi.push_back(e), L.lo.push_back(a), L.hi.push_back(e);
           }
-          owner.push_back(std::int64_t(b));
+          L.owner.push_back(std::int32_t(b));
         }
       }
     }
     // the bins of the finality test: about 16 points each
-    phases.push_back({"blocks.split.bounds", now_ms() - t});
-    t = now_ms();
     bins_ = cube_grid<D>(pb, std::min(double(n_) / 16.0, double(1 << 24)));
-    index_ = split_by_cell(p_, D, n_, bins_, all_threads_);
-    // The blocks work on the points in the bins' order (their ids here are places in it, mapped
-    // back to input indices at the output): a block's simplices then name points near one
-    // another in memory. In the input's order (random for random points) every vertex a pass
-    // read was a cache miss. Ownership by the lowest id is a rule on these ids, as good as any.
-    perm_ = std::move(index_.order);
-    q_.resize(std::size_t(n_ * D));
-    index_.order.resize(std::size_t(n_));
-#pragma omp parallel for num_threads(all_threads_) schedule(static)
-    for (std::int64_t i = 0; i < n_; ++i) {
-      const std::int64_t from = perm_[std::size_t(i)];
-      for (int j = 0; j < D; ++j) q_[std::size_t(i * D + j)] = p_[from * D + j];
-      index_.order[std::size_t(i)] = i;  // (each bin's points are now a run of places)
-    }
-    phases.push_back({"blocks.split.bins", now_ms() - t});
-    t = now_ms();
-    split_ = split_to_blocks(q_.data(), D, n_, grid_, lo.data(), hi.data(), owner.data(),
-                             std::int64_t(owner.size()), nullptr, all_threads_);
-    phases.push_back({"blocks.split.regions", now_ms() - t});
+    L.bins = bins_;
+    phases.push_back({"blocks.split.bounds", now_ms() - t});
+    // The split where the points were prepared (blocks/split_on.hpp). The blocks' ids are the
+    // prepared points' places (distinct points on the curve), mapped to input indices at the
+    // output: a block's simplices then name points near one another in memory (in the input's
+    // order, random for random points, every vertex a pass read was a cache miss), and no
+    // duplicate reaches a block. Ownership by the lowest id is a rule on these ids, as good as
+    // any.
+    blocks_detail::PointSplit sp = points_.split(L);
+    phases.push_back({"blocks.split.copy", sp.ms_copy});
+    phases.push_back({"blocks.split.bins", sp.ms_bins});
+    phases.push_back({"blocks.split.regions", sp.ms_regions});
+    q_ = std::move(sp.q);
+    orig_ = std::move(sp.orig);
+    cell_ = std::move(sp.cell);
+    bin_order_ = std::move(sp.bin_order);
+    bin_cuts_ = std::move(sp.bin_cuts);
+    regions_ = std::move(sp.regions);
     t = now_ms();
     // every block's own points and its candidates for the hull's extreme points, on its device
     blk_.resize(k_);
@@ -348,12 +346,14 @@ class Blocks {
       Block& B = blk_[b];
       {  // (in order, on the block's threads)
         blocks_detail::ThreadScope scope(threads_);
-        const std::int64_t* region = split_.order.data() + split_.cuts[b];
+        const HostVector<std::int32_t>& region = regions_[b];
         blocks_detail::ordered_compact(
-            split_.cuts[b + 1] - split_.cuts[b],
-            [&](std::int64_t q) { return split_.cell[std::size_t(region[q])] == std::int64_t(b); },
+            std::int64_t(region.size()),
+            [&](std::int64_t q) { return cell_[std::size_t(region[std::size_t(q)])] == int(b); },
             [&](std::int64_t total) { B.own.resize(std::size_t(total)); },
-            [&](std::int64_t q, std::int64_t r) { B.own[std::size_t(r)] = region[q]; });
+            [&](std::int64_t q, std::int64_t r) {
+              B.own[std::size_t(r)] = region[std::size_t(q)];
+            });
       }
       HostVector<double> own = gather(B.own);
       I64 c = T::hull_candidates(own.data(), std::int64_t(B.own.size()), block_options(b));
@@ -390,8 +390,8 @@ class Blocks {
 #pragma omp parallel for num_threads(threads_) schedule(static)
     for (std::int64_t i = 0; i < nl; ++i) {
       const std::int64_t id = B.ids[std::size_t(i)];
-      in[std::size_t(i)] = std::int32_t(perm_[std::size_t(id)]);  // (input indices fit int32)
-      bl[std::size_t(i)] = std::int32_t(split_.cell[std::size_t(id)]);
+      in[std::size_t(i)] = orig_[std::size_t(id)];
+      bl[std::size_t(i)] = cell_[std::size_t(id)];
     }
     blocks_detail::BlockTask t;
     t.points = B.pts.data();
@@ -414,7 +414,7 @@ class Blocks {
           const std::int64_t m = std::int64_t(r.test.size()) / (D + 1);
           HostVector<std::uint8_t> all(static_cast<std::size_t>(m), 1);
           return stars_final(B.pts.data(), D, r.test.data(), m, all.data(), boxes_[b], q_.data(),
-                             bins_, index_.order.data(), index_.cuts.data(), held_.data(),
+                             bins_, bin_order_.data(), bin_cuts_.data(), held_.data(),
                              std::int64_t(held_.size()), strips_[b].lo.data(), strips_[b].hi.data(),
                              std::int64_t(strips_[b].lo.size() / D), threads_);
         },
@@ -441,7 +441,7 @@ class Blocks {
       B.done = true;
       return;
     }
-    I64 region(split_.order.begin() + split_.cuts[b], split_.order.begin() + split_.cuts[b + 1]);
+    const I64 region(regions_[b].begin(), regions_[b].end());
     try {
       triangulate(b, merged({&region, &held_}), true);
     } catch (const Error& e) {
@@ -522,14 +522,17 @@ class Blocks {
     return o;
   }
 
-  const double* p_;
-  HostVector<double> q_;  // the points in the bins' order: q_[i] is p_[perm_[i]]
-  I64 perm_;
-  std::int64_t n_;
+  const blocks_detail::PreparedPoints& points_;
+  // by place (the prepared points' order): the points, input indices, cells of the blocks' grid
+  HostVector<double> q_;
+  HostVector<std::int32_t> orig_, cell_;
+  I64 bin_order_, bin_cuts_;                       // the finality test's bins: places by bin
+  std::vector<HostVector<std::int32_t>> regions_;  // each block's places, increasing
+  std::int64_t n_;                                 // distinct points
   std::vector<int> devices_;
   Backend backend_;
   Options opt_;
-  int threads_ = 1, all_threads_ = 1;
+  int threads_ = 1;
   std::size_t k_ = 0;
   CellGrid grid_, bins_;
   blocks_detail::BorderCells cells_;  // the blocks' cells for the borders (grid_, margin_)
@@ -539,7 +542,6 @@ class Blocks {
     std::vector<double> lo, hi;  // D coordinates a box
   };
   std::vector<Strips> strips_;
-  CellSplit split_, index_;
   I64 held_;
   std::vector<Block> blk_;
   std::atomic<std::int64_t> local_points_{0};
@@ -578,9 +580,10 @@ typename Dim<D>::Result run_devices(const double* p, std::int64_t n,
   typename Dim<D>::Options first = opt;
   first.backend = b;
   if (b == Backend::Cuda) first.device = devices[0];
-  typename Dim<D>::Result r = Dim<D>::assemble(p, n, first, [&](typename Dim<D>::Stats& st) {
-    return Blocks<D>(p, n, devices, b, opt).run(st);
-  });
+  typename Dim<D>::Result r = Dim<D>::assemble(
+      p, n, first, [&](typename Dim<D>::Stats& st, const blocks_detail::PreparedPoints& pts) {
+        return Blocks<D>(pts, devices, b, opt).run(st);
+      });
   r.stats.backend = b;
   return r;
 }

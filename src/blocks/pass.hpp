@@ -1,6 +1,7 @@
-// What every block pass (src/blocks/) shares: the OpenMP thread count of the calling thread
-// while it runs, the check of the dimension, a point's cell, and ordered listing (a box's cells,
-// cells_along, are simplex_rules.hpp's: the device passes need them too).
+// What every block pass (src/blocks/) shares on the host: the OpenMP thread count of the calling
+// thread while it runs, the check of the dimension, and ordered listing (a point's cell,
+// cell_along, in_box and a box's cells, cells_along, are simplex_rules.hpp's: the device passes
+// need them too).
 #pragma once
 #include <omp.h>
 
@@ -38,23 +39,6 @@ inline void check_dim(int dim, const char* pass) {
   if (dim != 2 && dim != 3)
     throw Error(ErrorCode::InvalidArgument,
                 std::string(pass) + ": dim must be 2 or 3, got " + std::to_string(dim));
-}
-
-// A point's cell along axis j: floor((x - lo) / width), the same two roundings as
-// gpugeom.dask's Grid, clamped to the grid (0 where the width is 0). Every pass that puts a point
-// in a cell or bin uses it, so that a bin counted by one pass is the bin another splits by.
-inline std::int64_t cell_along(double x, const CellGrid& g, int j) {
-  if (!(g.width[j] > 0)) return 0;
-  const double f = std::floor((x - g.lo[j]) / g.width[j]);
-  return f < 0 ? 0 : (f > double(g.counts[j] - 1) ? g.counts[j] - 1 : std::int64_t(f));
-}
-
-// Whether x lies in the closed box [lo, hi] (comparisons of the doubles: the rule that decides
-// which points a block holds, the same in every pass).
-inline bool in_box(const double* x, const double* lo, const double* hi, int dim) {
-  for (int j = 0; j < dim; ++j)
-    if (!(x[j] >= lo[j] && x[j] <= hi[j])) return false;
-  return true;
 }
 
 // Calls emit(i, rank) for each i in [0, n) with keep(i), rank counting them from 0 in

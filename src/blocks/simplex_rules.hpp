@@ -31,6 +31,30 @@ struct BorderCells {
   }
 };
 
+// A point's cell along axis j: floor((x - lo) / width), the same two roundings as
+// gpugeom.dask's Grid, clamped to the grid (0 where the width is 0). Every pass that puts a point
+// in a cell or bin uses it, so that a bin counted by one pass is the bin another splits by.
+GG_HD inline std::int64_t cell_along(double x, const CellGrid& g, int j) {
+  if (!(g.width[j] > 0)) return 0;
+  const double f = floor((x - g.lo[j]) / g.width[j]);
+  return f < 0 ? 0 : (f > double(g.counts[j] - 1) ? g.counts[j] - 1 : std::int64_t(f));
+}
+
+// A point's cell of the grid (row-major, the last axis fastest).
+GG_HD inline std::int64_t cell_of(const double* x, const CellGrid& g, int dim) {
+  std::int64_t c = 0;
+  for (int j = 0; j < dim; ++j) c = c * g.counts[j] + cell_along(x[j], g, j);
+  return c;
+}
+
+// Whether x lies in the closed box [lo, hi] (comparisons of the doubles: the rule that decides
+// which points a block holds, the same in every pass).
+GG_HD inline bool in_box(const double* x, const double* lo, const double* hi, int dim) {
+  for (int j = 0; j < dim; ++j)
+    if (!(x[j] >= lo[j] && x[j] <= hi[j])) return false;
+  return true;
+}
+
 // The cells along axis j that [a, b] grown by `margin` meets: false where a > b, or where it
 // lies beyond the grid and `clamp` is false; else the range clamped to the grid (a flat axis
 // has one cell).

@@ -7,6 +7,7 @@
 
 #include "blocks/block_pass.hpp"
 #include "blocks/owned.hpp"
+#include "blocks/point_split.hpp"
 #include "exec/dynamic_state.hpp"
 #include "exec/point_entries.hpp"
 #include "gpugeom/common.hpp"
@@ -62,9 +63,11 @@ GG_DECLARE_TABLE(Entries, entries)
 
 // delaunay2d_devices' frame (impl/assemble.inl, on the executor of opt.backend and, on the GPU,
 // opt.device): the points checked and prepared as delaunay2d prepares them, then `blocks` (the
-// blocks on their devices, timed into the stats), then their owned triangles in delaunay2d's
+// blocks on their devices, timed into the stats, handed the prepared points and their split on
+// this executor: blocks/point_split.hpp), then their owned triangles in delaunay2d's
 // order: the arrays of a single call.
-using BlocksFn = std::function<blocks_detail::OwnedBlocks(Delaunay2dStats&)>;
+using BlocksFn = std::function<blocks_detail::OwnedBlocks(Delaunay2dStats&,
+                                                          const blocks_detail::PreparedPoints&)>;
 struct Assembly {
   void (*run)(const double* xy, std::int64_t n, const Delaunay2dOptions& opt,
               const BlocksFn& blocks, Output& out);

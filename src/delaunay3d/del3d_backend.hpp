@@ -7,6 +7,7 @@
 
 #include "blocks/block_pass.hpp"
 #include "blocks/owned.hpp"
+#include "blocks/point_split.hpp"
 #include "exec/dynamic_state.hpp"
 #include "exec/point_entries.hpp"
 #include "gpugeom/common.hpp"
@@ -35,9 +36,11 @@ GG_DECLARE_TABLE(Entries, entries)
 
 // delaunay3d_devices' frame (impl/assemble.inl, on the executor of opt.backend and, on the GPU,
 // opt.device): the points checked and prepared as delaunay3d prepares them, then `blocks` (the
-// blocks on their devices, timed into the stats), then their owned tetrahedra in delaunay3d's
+// blocks on their devices, timed into the stats, handed the prepared points and their split on
+// this executor: blocks/point_split.hpp), then their owned tetrahedra in delaunay3d's
 // order, with its vertex map and hull facets: the arrays of a single call.
-using BlocksFn = std::function<blocks_detail::OwnedBlocks(Delaunay3dStats&)>;
+using BlocksFn = std::function<blocks_detail::OwnedBlocks(Delaunay3dStats&,
+                                                          const blocks_detail::PreparedPoints&)>;
 struct Assembly {
   void (*run)(const double* xyz, std::int64_t n, const Delaunay3dOptions& opt,
               const BlocksFn& blocks, Output& out);

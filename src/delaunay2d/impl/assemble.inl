@@ -16,7 +16,14 @@ inline void assemble_impl(const double* xy, std::int64_t n, const Delaunay2dOpti
   st.phase_ms.push_back({"prepare", ms_since(t0)});
   detail::Prefault pf;
   size_host_results(opt.into, n, P, out, pf);
-  blocks_detail::OwnedBlocks B = blocks(st);
+  // (the blocks' split made here, where the points are: blocks/split_on.hpp)
+  blocks_detail::PreparedPoints view;
+  view.m = P.m;
+  view.bounds = blocks_detail::points_bounds<2>(P.box);
+  view.split = [&](const blocks_detail::SplitLayout& layout) {
+    return blocks_detail::split_on<2>(ex, P.pts.data(), P.orig.data(), P.m, layout);
+  };
+  blocks_detail::OwnedBlocks B = blocks(st, view);
   t0 = Clock::now();
   {
     auto o = blocks_detail::owned_on<3>(ex, B, P.orig.data(), P.m, n);

@@ -38,6 +38,7 @@
 #include "mesh/compact.hpp"
 #include "blocks/block_pass_on.hpp"
 #include "blocks/owned_on.hpp"
+#include "blocks/split_on.hpp"
 #include "mesh/hole_refill.hpp"
 #include "mesh/simplex_changes.hpp"
 #include "mesh/kept_points.hpp"

@@ -10,7 +10,14 @@ inline void assemble_impl(const double* xyz, std::int64_t n, const Delaunay3dOpt
   Exec ex(opt);
   Prepared P = prepare_points(ex, xyz, n, false, st);
   mesh::SortedPoints<Exec>& S = P.S;
-  blocks_detail::OwnedBlocks B = blocks(st);
+  // (the blocks' split made here, where the points are: blocks/split_on.hpp)
+  blocks_detail::PreparedPoints view;
+  view.m = S.m;
+  view.bounds = blocks_detail::points_bounds<3>(P.box);
+  view.split = [&](const blocks_detail::SplitLayout& layout) {
+    return blocks_detail::split_on<3>(ex, S.pts.data(), S.orig.data(), S.m, layout);
+  };
+  blocks_detail::OwnedBlocks B = blocks(st, view);
   const auto t0 = Clock::now();
   {
     auto o = blocks_detail::owned_on<4>(ex, B, S.orig.data(), S.m, n);
