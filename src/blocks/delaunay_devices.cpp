@@ -20,7 +20,6 @@
 #include <vector>
 
 #include "gpugeom/blocks.hpp"
-#include "gpugeom/hull3d.hpp"
 #include "gpugeom/multi_gpu.hpp"
 #include "base/clock.hpp"
 #include "base/on_threads.hpp"
@@ -44,7 +43,7 @@ bool degenerate(const Error& e) {
 }
 
 // What differs between the dimensions: the module's single call, its block entry and frame, the
-// call that finds a block's candidates for the global hull's extreme points, the ghost width.
+// ghost width.
 template <int D>
 struct Dim;
 
@@ -60,9 +59,6 @@ struct Dim<2> {
   static constexpr double kGhost = 6.0, kStrip = 4.0;
   static Result triangulate(const double* p, std::int64_t n, const Options& o) {
     return delaunay2d(p, n, o);
-  }
-  static I64 hull_candidates(const double* p, std::int64_t n, const Options& o) {
-    return hull_candidates2d(p, n, o.threads);
   }
   static Result assemble(const double* p, std::int64_t n, const Options& o,
                          const del2d::BlocksFn& f) {
@@ -84,22 +80,6 @@ struct Dim<3> {
   static constexpr double kGhost = 4.0, kStrip = 0.5;
   static Result triangulate(const double* p, std::int64_t n, const Options& o) {
     return delaunay3d(p, n, o);
-  }
-  // The extreme points of the block's own points (on its device), or all of them where they
-  // are too few or flat to have a hull.
-  static I64 hull_candidates(const double* p, std::int64_t n, const Options& o) {
-    Hull3dOptions h;
-    static_cast<RunOptions&>(h) = static_cast<const RunOptions&>(o);
-    I64 out;
-    try {
-      const ConvexHull3d r = convex_hull3d(p, n, h);
-      out.assign(r.vertices.begin(), r.vertices.end());
-    } catch (const Error& e) {
-      if (!degenerate(e)) throw;
-      out.resize(std::size_t(n));
-      for (std::int64_t i = 0; i < n; ++i) out[std::size_t(i)] = i;
-    }
-    return out;
   }
   static Result assemble(const double* p, std::int64_t n, const Options& o,
                          const del3d::BlocksFn& f) {
@@ -339,9 +319,12 @@ class Blocks {
     bin_cuts_ = std::move(sp.bin_cuts);
     regions_ = std::move(sp.regions);
     t = now_ms();
-    // every block's own points and its candidates for the hull's extreme points, on its device
+    // the candidates for the global hull's extreme points, where the points are
+    held_ = points_.hull();
+    phases.push_back({"blocks.split.hull", now_ms() - t});
+    t = now_ms();
+    // every block's own points
     blk_.resize(k_);
-    std::vector<I64> cands(k_);
     on_threads(k_, [&](std::size_t b) {
       Block& B = blk_[b];
       {  // (in order, on the block's threads)
@@ -355,15 +338,8 @@ class Blocks {
               B.own[std::size_t(r)] = region[std::size_t(q)];
             });
       }
-      HostVector<double> own = gather(B.own);
-      I64 c = T::hull_candidates(own.data(), std::int64_t(B.own.size()), block_options(b));
-      for (auto& v : c) v = B.own[std::size_t(v)];
-      cands[b] = std::move(c);
     });
-    std::vector<const I64*> lists;
-    for (auto& c : cands) lists.push_back(&c);
-    held_ = merged(lists);
-    phases.push_back({"blocks.split.hull", now_ms() - t});
+    phases.push_back({"blocks.split.own", now_ms() - t});
   }
 
   HostVector<double> gather(const I64& ids) {

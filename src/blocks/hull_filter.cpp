@@ -8,18 +8,10 @@
 #include <vector>
 
 #include "gpugeom/blocks.hpp"
+#include "blocks/hull_rules.hpp"
 #include "blocks/pass.hpp"
 
 namespace gpugeom {
-
-namespace {
-
-// Shewchuk's bound on the rounding of a 2D orientation computed in doubles, relative to the sum
-// of its two products' magnitudes (ccwerrboundA; epsilon is half an ulp of 1).
-constexpr double kEps = std::numeric_limits<double>::epsilon() / 2;
-constexpr double kOrientBound = (3.0 + 16.0 * kEps) * kEps;
-
-}  // namespace
 
 HostVector<std::int64_t> hull_candidates2d(const double* points, std::int64_t n, int threads) {
   HostVector<std::int64_t> out;
@@ -33,9 +25,7 @@ HostVector<std::int64_t> hull_candidates2d(const double* points, std::int64_t n,
   // per thread over a static range, then joined in thread order, so that the choice is the
   // serial scan's on any thread count
   blocks_detail::ThreadScope scope(threads);
-  const double pi = std::acos(-1.0);
-  double cx[8], cy[8];
-  for (int k = 0; k < 8; ++k) cx[k] = std::cos(2 * pi * k / 8), cy[k] = std::sin(2 * pi * k / 8);
+  const blocks_detail::Directions8 dir;
   const int teams = omp_get_max_threads();
   std::vector<double> tops(std::size_t(teams) * 8, -std::numeric_limits<double>::infinity());
   std::vector<std::int64_t> bests(std::size_t(teams) * 8, 0);
@@ -47,7 +37,7 @@ HostVector<std::int64_t> hull_candidates2d(const double* points, std::int64_t n,
     std::int64_t* best = bests.data() + 8 * t;
     for (std::int64_t i = lo; i < hi; ++i)
       for (int k = 0; k < 8; ++k) {
-        const double h = points[2 * i] * cx[k] + points[2 * i + 1] * cy[k];
+        const double h = points[2 * i] * dir.x[k] + points[2 * i + 1] * dir.y[k];
         if (h > top[k]) top[k] = h, best[k] = i;
       }
   }
@@ -59,25 +49,17 @@ HostVector<std::int64_t> hull_candidates2d(const double* points, std::int64_t n,
       if (tops[std::size_t(8 * t + k)] > top)
         top = tops[std::size_t(8 * t + k)], best[k] = bests[std::size_t(8 * t + k)];
   }
-  std::vector<std::int64_t> poly;
-  for (int k = 0; k < 8; ++k)
-    if (poly.empty() || poly.back() != best[k]) poly.push_back(best[k]);
-  if (poly.size() > 1 && poly.front() == poly.back()) poly.pop_back();
-  if (poly.size() < 3) return everything();
-  HostVector<std::uint8_t> keep(static_cast<std::size_t>(n));
+  const std::vector<std::int64_t> poly = blocks_detail::octagon(best);
+  if (poly.empty()) return everything();
+  std::vector<double> corners;
+  for (std::int64_t v : poly)
+    corners.push_back(points[2 * v]), corners.push_back(points[2 * v + 1]);
   const int m = int(poly.size());
+  HostVector<std::uint8_t> keep(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const double x = points[2 * i], y = points[2 * i + 1];
-    bool inside = true;
-    for (int e = 0; e < m && inside; ++e) {
-      const double* a = points + 2 * poly[std::size_t(e)];
-      const double* b = points + 2 * poly[std::size_t((e + 1) % m)];
-      const double left = (a[0] - x) * (b[1] - y), right = (a[1] - y) * (b[0] - x);
-      inside = left - right > kOrientBound * (std::fabs(left) + std::fabs(right));
-    }
-    keep[std::size_t(i)] = inside ? 0 : 1;
-  }
+  for (std::int64_t i = 0; i < n; ++i)
+    keep[std::size_t(i)] =
+        blocks_detail::strictly_inside(points[2 * i], points[2 * i + 1], corners.data(), m) ? 0 : 1;
   blocks_detail::ordered_compact(
       n, [&](std::int64_t i) { return keep[std::size_t(i)] != 0; },
       [&](std::int64_t total) { out.resize(std::size_t(total)); },

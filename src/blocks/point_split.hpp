@@ -35,11 +35,14 @@ struct PointSplit {
   double ms_copy = 0, ms_bins = 0, ms_regions = 0;
 };
 
-// The prepared points as the blocks see them: how many, their bounds, and the split.
+// The prepared points as the blocks see them: how many, their bounds, the split, and the
+// places of a superset of the hull's extreme points, increasing (hull_on.hpp), which every block
+// holds.
 struct PreparedPoints {
   std::int64_t m = 0;
   PointBounds bounds;
   std::function<PointSplit(const SplitLayout&)> split;
+  std::function<HostVector<std::int64_t>()> hull;
 };
 
 // The bounds of a module's box (lo[D], hi[D]) as the blocks read them.

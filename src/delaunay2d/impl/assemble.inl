@@ -23,6 +23,7 @@ inline void assemble_impl(const double* xy, std::int64_t n, const Delaunay2dOpti
   view.split = [&](const blocks_detail::SplitLayout& layout) {
     return blocks_detail::split_on<2>(ex, P.pts.data(), P.orig.data(), P.m, layout);
   };
+  view.hull = [&] { return blocks_detail::hull_filter_on(ex, P.pts.data(), P.m); };
   blocks_detail::OwnedBlocks B = blocks(st, view);
   t0 = Clock::now();
   {

@@ -17,6 +17,7 @@ inline void assemble_impl(const double* xyz, std::int64_t n, const Delaunay3dOpt
   view.split = [&](const blocks_detail::SplitLayout& layout) {
     return blocks_detail::split_on<3>(ex, S.pts.data(), S.orig.data(), S.m, layout);
   };
+  view.hull = [&] { return blocks_detail::hull_vertices_on(ex, S.pts.data(), S.m, opt); };
   blocks_detail::OwnedBlocks B = blocks(st, view);
   const auto t0 = Clock::now();
   {

@@ -28,6 +28,7 @@
 #include "mesh/visibility_walk.hpp"
 #include "mesh/compact.hpp"
 #include "blocks/block_pass_on.hpp"
+#include "blocks/hull_on.hpp"
 #include "blocks/owned_on.hpp"
 #include "blocks/split_on.hpp"
 #include "mesh/hole_refill.hpp"
