@@ -20,9 +20,14 @@ namespace gpugeom::blocks_detail {
 
 // What a block is given (host memory): its local points in increasing global order (so a
 // simplex's lowest local vertex is its lowest global one: the owner rule), each one's input
-// index (the output's names) and block (its own points are those of `block`).
+// index (the output's names) and block (its own points are those of `block`). The points come
+// either as `points`, or where the block's device can read the prepared points (`source`, the
+// first device's memory: peer access, the same device, or the host on the CPU executor) as each
+// local point's place there, gathered on the block's device.
 struct BlockTask {
   const double* points = nullptr;
+  const double* source = nullptr;
+  const std::int32_t* places = nullptr;
   std::int64_t n = 0;
   const std::int32_t* ids = nullptr;
   const std::int32_t* blk = nullptr;

@@ -182,15 +182,26 @@ struct DeviceSimplices {
   std::int64_t m = 0;
 };
 
-// The modules' block entry (Assembly::block): the task's points copied to the executor once,
-// triangulated there by triangulate(points, context) (the module's device entry, on this
-// executor's stream and memory), and the passes.
+// The modules' block entry (Assembly::block): the task's points copied or gathered to the
+// executor once, triangulated there by triangulate(points, context) (the module's device entry,
+// on this executor's stream and memory), and the passes.
 template <int D, class Exec, class Triangulate>
 void run_block(Exec& ex, const BlockTask& t, const FinalTest& final_test, BlockRows& out,
                Triangulate&& triangulate) {
   const auto t0 = Clock::now();
   auto pts = ex.template alloc<double>(std::size_t(t.n * D));
-  ex.from_host(t.points, t.n * D, pts.data());
+  if (t.source) {  // (a sixth of the bytes cross from the host: a place, not D coordinates)
+    auto places_b = ex.template alloc<std::int32_t>(std::size_t(t.n));
+    ex.from_host(t.places, t.n, places_b.data());
+    const std::int32_t* places = places_b.data();
+    const double* source = t.source;
+    double* p = pts.data();
+    ex.for_each_index(
+        t.n * D,
+        GG_LAMBDA(std::int64_t i) { p[i] = source[std::int64_t(places[i / D]) * D + i % D]; });
+  } else {
+    ex.from_host(t.points, t.n * D, pts.data());
+  }
   const detail::ExecContext ctx = ex.context();
   const DeviceSimplices tri = triangulate(pts.data(), &ctx);
   out.ms_triangulate = ms_since(t0);

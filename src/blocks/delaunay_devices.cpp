@@ -24,6 +24,7 @@
 #include "base/clock.hpp"
 #include "base/on_threads.hpp"
 #include "exec/dispatch.hpp"
+#include "exec/peer_reads.hpp"
 #include "blocks/owned.hpp"
 #include "blocks/pass.hpp"
 #include "delaunay2d/del2d_backend.hpp"
@@ -318,6 +319,16 @@ class Blocks {
     bin_order_ = std::move(sp.bin_order);
     bin_cuts_ = std::move(sp.bin_cuts);
     regions_ = std::move(sp.regions);
+    // where each block's device can read the prepared points (the first device's), it gathers
+    // its own there (exec/peer_reads.hpp: peer access for the blocks' life)
+    source_.assign(k_, nullptr);
+    for (std::size_t b = 0; b < k_; ++b) {
+      if (backend_ == Backend::Cuda) {
+        reads_.emplace_back(devices_[b], devices_[0]);
+        if (!reads_.back().readable()) continue;
+      }
+      source_[b] = points_.pts;
+    }
     t = now_ms();
     // the candidates for the global hull's extreme points, where the points are
     held_ = points_.hull();
@@ -360,17 +371,23 @@ class Blocks {
   void triangulate(std::size_t b, I64 ids, bool first) {
     Block& B = blk_[b];
     B.ids = std::move(ids);
-    B.pts = gather(B.ids);
+    // the block's device gathers its points where it can read the prepared ones, else they
+    // are gathered here and copied there
+    const double* source = source_[b];
+    if (!source) B.pts = gather(B.ids);
     const std::int64_t nl = std::int64_t(B.ids.size());
-    HostVector<std::int32_t> in(B.ids.size()), bl(B.ids.size());
+    HostVector<std::int32_t> in(B.ids.size()), bl(B.ids.size()), places(source ? B.ids.size() : 0);
 #pragma omp parallel for num_threads(threads_) schedule(static)
     for (std::int64_t i = 0; i < nl; ++i) {
       const std::int64_t id = B.ids[std::size_t(i)];
       in[std::size_t(i)] = orig_[std::size_t(id)];
       bl[std::size_t(i)] = cell_[std::size_t(id)];
+      if (source) places[std::size_t(i)] = std::int32_t(id);
     }
     blocks_detail::BlockTask t;
     t.points = B.pts.data();
+    t.source = source;
+    t.places = places.data();
     t.n = nl;
     t.ids = in.data();
     t.blk = bl.data();
@@ -387,10 +404,14 @@ class Blocks {
           // (a block that holds every point, as on a circle or sphere where all are the
           // hull's, is final without a test)
           if (covers_all(b) || nl == n_) return true;
+          // (the rows' local vertices as places: the test reads them among all the points)
           const std::int64_t m = std::int64_t(r.test.size()) / (D + 1);
+          HostVector<std::int32_t> rows(r.test.size());
+          for (std::size_t i = 0; i < rows.size(); ++i)
+            rows[i] = std::int32_t(B.ids[std::size_t(r.test[i])]);
           HostVector<std::uint8_t> all(static_cast<std::size_t>(m), 1);
-          return stars_final(B.pts.data(), D, r.test.data(), m, all.data(), boxes_[b], q_.data(),
-                             bins_, bin_order_.data(), bin_cuts_.data(), held_.data(),
+          return stars_final(q_.data(), D, rows.data(), m, all.data(), boxes_[b], q_.data(), bins_,
+                             bin_order_.data(), bin_cuts_.data(), held_.data(),
                              std::int64_t(held_.size()), strips_[b].lo.data(), strips_[b].hi.data(),
                              std::int64_t(strips_[b].lo.size() / D), threads_);
         },
@@ -504,7 +525,9 @@ class Blocks {
   HostVector<std::int32_t> orig_, cell_;
   I64 bin_order_, bin_cuts_;                       // the finality test's bins: places by bin
   std::vector<HostVector<std::int32_t>> regions_;  // each block's places, increasing
-  std::int64_t n_;                                 // distinct points
+  std::vector<const double*> source_;  // per block: the prepared points, where it can read them
+  std::vector<detail::PeerReads> reads_;
+  std::int64_t n_;  // distinct points
   std::vector<int> devices_;
   Backend backend_;
   Options opt_;

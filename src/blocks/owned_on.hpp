@@ -6,6 +6,7 @@
 // output order (compact_live_sorted) and the arrays a single call adds (vertex map, hull
 // facets) are made there as a single call makes them.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -43,6 +44,19 @@ OwnedOn<K, Exec> owned_on(Exec& ex, const OwnedBlocks& B, const std::int32_t* or
   auto bad_b = ex.template alloc<std::int64_t>(2);  // (an answer not for a -2 face; a -2 left)
   std::int64_t* bad = bad_b.data();
   ex.fill(bad, 2, std::int64_t(-1));
+  // every block's answers in one upload: positions, then the slots across
+  std::vector<std::int64_t> at{0};
+  for (const OwnedPart& p : B.parts) at.push_back(at.back() + std::int64_t(p.pos.size()));
+  const std::int64_t answers = at.back();
+  auto ans_b = ex.template alloc<std::int64_t>(std::size_t(2 * answers));
+  {
+    HostVector<std::int64_t> h(static_cast<std::size_t>(2 * answers));
+    for (std::size_t b = 0; b < B.parts.size(); ++b) {
+      std::copy(B.parts[b].pos.begin(), B.parts[b].pos.end(), h.begin() + at[b]);
+      std::copy(B.parts[b].across.begin(), B.parts[b].across.end(), h.begin() + answers + at[b]);
+    }
+    ex.from_host(h.data(), 2 * answers, ans_b.data());
+  }
   // (direct reads of the blocks' devices where the GPUs have them, until the copies have run)
   std::vector<decltype(ex.peer_access(0))> peers;
   for (const OwnedPart& p : B.parts) peers.push_back(ex.peer_access(p.device));
@@ -55,12 +69,8 @@ OwnedOn<K, Exec> owned_on(Exec& ex, const OwnedBlocks& B, const std::int32_t* or
     ex.copy(p.simplices.get(), cells, ps);  // (from the block's device: a peer copy)
     ex.copy(p.neighbors.get(), cells, pn);
     const std::int64_t q = std::int64_t(p.pos.size());
-    auto pos_b = ex.template alloc<std::int64_t>(std::size_t(q));
-    auto across_b = ex.template alloc<std::int64_t>(std::size_t(q));
-    ex.from_host(p.pos.data(), q, pos_b.data());
-    ex.from_host(p.across.data(), q, across_b.data());
-    const std::int64_t* pos = pos_b.data();
-    const std::int64_t* across = across_b.data();
+    const std::int64_t* pos = ans_b.data() + at[b];
+    const std::int64_t* across = ans_b.data() + answers + at[b];
     // the block's rows as global slots, the answers across its -2 faces, and none left
     ex.for_each_index(
         cells, GG_LAMBDA(std::int64_t c) {

@@ -40,6 +40,7 @@ struct PointSplit {
 // holds.
 struct PreparedPoints {
   std::int64_t m = 0;
+  const double* pts = nullptr;  // the m points by place, in the executor's memory (its device)
   PointBounds bounds;
   std::function<PointSplit(const SplitLayout&)> split;
   std::function<HostVector<std::int64_t>()> hull;

@@ -19,6 +19,7 @@ inline void assemble_impl(const double* xy, std::int64_t n, const Delaunay2dOpti
   // (the blocks' split made here, where the points are: blocks/split_on.hpp)
   blocks_detail::PreparedPoints view;
   view.m = P.m;
+  view.pts = P.pts.data();
   view.bounds = blocks_detail::points_bounds<2>(P.box);
   view.split = [&](const blocks_detail::SplitLayout& layout) {
     return blocks_detail::split_on<2>(ex, P.pts.data(), P.orig.data(), P.m, layout);

@@ -13,6 +13,7 @@ inline void assemble_impl(const double* xyz, std::int64_t n, const Delaunay3dOpt
   // (the blocks' split made here, where the points are: blocks/split_on.hpp)
   blocks_detail::PreparedPoints view;
   view.m = S.m;
+  view.pts = S.pts.data();
   view.bounds = blocks_detail::points_bounds<3>(P.box);
   view.split = [&](const blocks_detail::SplitLayout& layout) {
     return blocks_detail::split_on<3>(ex, S.pts.data(), S.orig.data(), S.m, layout);
