@@ -182,6 +182,20 @@ struct DeviceSimplices {
   std::int64_t m = 0;
 };
 
+// The task's points gathered from `source` by their places, into pts (executor memory): a
+// sixth of the bytes cross from the host, a place and not D coordinates. (Apart from run_block:
+// a device lambda may not sit in a template over the caller's lambda type.)
+template <int D, class Exec>
+void gather_places(Exec& ex, const BlockTask& t, double* pts) {
+  auto places_b = ex.template alloc<std::int32_t>(std::size_t(t.n));
+  ex.from_host(t.places, t.n, places_b.data());
+  const std::int32_t* places = places_b.data();
+  const double* source = t.source;
+  ex.for_each_index(
+      t.n * D,
+      GG_LAMBDA(std::int64_t i) { pts[i] = source[std::int64_t(places[i / D]) * D + i % D]; });
+}
+
 // The modules' block entry (Assembly::block): the task's points copied or gathered to the
 // executor once, triangulated there by triangulate(points, context) (the module's device entry,
 // on this executor's stream and memory), and the passes.
@@ -190,18 +204,10 @@ void run_block(Exec& ex, const BlockTask& t, const FinalTest& final_test, BlockR
                Triangulate&& triangulate) {
   const auto t0 = Clock::now();
   auto pts = ex.template alloc<double>(std::size_t(t.n * D));
-  if (t.source) {  // (a sixth of the bytes cross from the host: a place, not D coordinates)
-    auto places_b = ex.template alloc<std::int32_t>(std::size_t(t.n));
-    ex.from_host(t.places, t.n, places_b.data());
-    const std::int32_t* places = places_b.data();
-    const double* source = t.source;
-    double* p = pts.data();
-    ex.for_each_index(
-        t.n * D,
-        GG_LAMBDA(std::int64_t i) { p[i] = source[std::int64_t(places[i / D]) * D + i % D]; });
-  } else {
+  if (t.source)
+    gather_places<D>(ex, t, pts.data());
+  else
     ex.from_host(t.points, t.n * D, pts.data());
-  }
   const detail::ExecContext ctx = ex.context();
   const DeviceSimplices tri = triangulate(pts.data(), &ctx);
   out.ms_triangulate = ms_since(t0);
