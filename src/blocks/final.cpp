@@ -12,6 +12,7 @@
 #include "gpugeom/common.hpp"
 #include "gpugeom/predicates.hpp"
 #include "blocks/circumball.hpp"
+#include "blocks/final.hpp"
 #include "blocks/pass.hpp"
 
 namespace gpugeom {
@@ -38,6 +39,13 @@ struct AllPoints {
   const double* extra_hi;
   std::int64_t nextra;
   double margin;
+  // The points the scans may visit in all (< 0: no limit), and those visited so far.
+  std::int64_t budget;
+  std::atomic<std::int64_t>* visits;
+  // Whether visiting `count` more points passes the budget (then the test answers "not final").
+  bool spent(std::int64_t count) const {
+    return budget >= 0 && visits->fetch_add(count, std::memory_order_relaxed) + count > budget;
+  }
   // whether the block holds point x by its boxes (the region, then the extra boxes)
   bool boxed(const double* x, const BlockBoxes& b, int dim) const {
     if (in_box(x, b.region_lo, b.region_hi, dim)) return true;
@@ -63,8 +71,9 @@ bool in_closed_ball(const double* const* v, const double* x) {
 // Whether the circumball of simplex v, within the ball (c, r) that bounds it, holds a point of
 // `a` the block lacks within the box [lo, hi] (a slab of the bounds beyond its region): the bins
 // the bound meets there, row by row, and their points outside the block's boxes, not held, and
-// in the ball by the exact predicate. Along the last axis the bound's chord over the row limits
-// the bins scanned, so a ball as large as the box costs its rows, not its bins.
+// in the ball by the exact predicate. True also where the scans' budget is spent (no verdict:
+// the block takes its second round, which needs no test). Along the last axis the bound's chord
+// over the row limits the bins scanned, so a ball as large as the box costs its rows, not its bins.
 template <int D>
 bool holds_missing(const AllPoints& a, const BlockBoxes& b, const double* const* v,
                    const BallParts& ball, const double* c, double r, const double* lo,
@@ -107,6 +116,7 @@ bool holds_missing(const AllPoints& a, const BlockBoxes& b, const double* const*
       span(j, k, &rlo[j], &rhi[j]);
       if (!may_meet<D>(ball, rlo, rhi, a.margin)) continue;
       const std::int64_t bin = row * g.counts[j] + k;
+      if (a.spent(a.cuts[bin + 1] - a.cuts[bin])) return true;
       for (std::int64_t q = a.cuts[bin]; q < a.cuts[bin + 1]; ++q) {
         const std::int64_t p = a.order[q];
         const double* x = a.xyz + p * D;
@@ -208,11 +218,14 @@ bool stars_final_impl(const double* points, int dim, const I* simplices, std::in
                       const std::uint8_t* test, const BlockBoxes& boxes, const double* all,
                       const CellGrid& bins, const std::int64_t* order, const std::int64_t* cuts,
                       const std::int64_t* held, std::int64_t nheld, const double* extra_lo,
-                      const double* extra_hi, std::int64_t nextra, int threads) {
+                      const double* extra_hi, std::int64_t nextra, int threads,
+                      std::int64_t budget) {
   blocks_detail::check_dim(dim, "stars_final");
   blocks_detail::ThreadScope scope(threads);
-  const AllPoints a{all,   bins,     order,    cuts,   held,
-                    nheld, extra_lo, extra_hi, nextra, 1e-9 * boxes.scale};
+  std::atomic<std::int64_t> visits{0};
+  const AllPoints a{all,    bins,     order,    cuts,   held,
+                    nheld,  extra_lo, extra_hi, nextra, 1e-9 * boxes.scale,
+                    budget, &visits};
   return dim == 2 ? run<2>(points, simplices, m, test, boxes, a)
                   : run<3>(points, simplices, m, test, boxes, a);
 }
@@ -225,7 +238,19 @@ bool stars_final(const double* points, int dim, const std::int32_t* simplices, s
                  const std::int64_t* held, std::int64_t nheld, const double* extra_lo,
                  const double* extra_hi, std::int64_t nextra, int threads) {
   return stars_final_impl(points, dim, simplices, m, test, boxes, all, bins, order, cuts, held,
-                          nheld, extra_lo, extra_hi, nextra, threads);
+                          nheld, extra_lo, extra_hi, nextra, threads, -1);
+}
+
+bool blocks_detail::stars_final_within(const double* points, int dim, const std::int32_t* simplices,
+                                       std::int64_t m, const std::uint8_t* test,
+                                       const BlockBoxes& boxes, const double* all,
+                                       const CellGrid& bins, const std::int64_t* order,
+                                       const std::int64_t* cuts, const std::int64_t* held,
+                                       std::int64_t nheld, const double* extra_lo,
+                                       const double* extra_hi, std::int64_t nextra, int threads,
+                                       std::int64_t budget) {
+  return stars_final_impl(points, dim, simplices, m, test, boxes, all, bins, order, cuts, held,
+                          nheld, extra_lo, extra_hi, nextra, threads, budget);
 }
 
 }  // namespace gpugeom
