@@ -43,13 +43,13 @@ def main():
     for name in ("_local_points", "_held", "_triangulated", "Delaunay", "_judge", "_borders",
                  "_border_parts", "_emit", "_copies", "_Outside", "final_simplices"):
         timed(_ghost, name)
-    for name in ("_split", "_summary", "_global_hull", "_total", "_faces_to", "_match",
-                 "_neighbors_of"):
+    for name in ("_split", "_survey", "_frontiers", "_summary", "_global_hull", "_total",
+                 "_faces_to", "_match", "_neighbors_of"):
         timed(_delaunay, name)
     # the C++ passes, as the modules call them
     for name in ("block_required", "block_output", "circumballs_inside_region", "block_borders",
                  "split_to_blocks", "match_faces", "block_neighbors", "cell_counts",
-                 "hull_candidates2d", "balls_in_bins"):
+                 "hull_candidates2d", "balls_in_bins", "empty_frontiers"):
         timed(_core, name, "_core." + name)
     n = int(a.n)
     pts = np.random.default_rng(1).random((n, a.dims))

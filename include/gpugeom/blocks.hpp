@@ -149,17 +149,39 @@ struct CellSplit {
 /// for a dim other than 2 or 3.
 CellSplit split_by_cell(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                         int threads = 0);
+/// The bins beside empty space each block takes in its first round besides its region
+/// (empty_frontiers): block b's are bins[offsets[b]:offsets[b + 1]] of `grid` (increasing),
+/// holding points[b] points in all.
+struct BlockFrontiers {
+  CellGrid grid;
+  HostVector<std::int64_t> offsets, bins, points;
+};
+/// For bins (`bins`, row-major, `counts` points each) and `nblocks` blocks' regions (closed
+/// boxes `region_lo`/`region_hi`, `dim` coordinates a block): per block the occupied bins next
+/// to (sharing a side, an edge or a corner with) an empty bin that its region reaches through
+/// empty bins, leaving out the bins strictly inside its region. Where the points leave empty
+/// space (between clusters, round a ball), the Delaunay balls of the points near it span that
+/// space and end on the points across it, which a ghost layer does not hold; gpugeom.dask's
+/// first round holds these bins' points too, so that its test passes. A block whose bins would
+/// hold more than `cap` points gets none (points on a sphere: every bin is beside empty space).
+/// Deterministic; on `threads` host threads (0: OpenMP's default). Throws
+/// Error(InvalidArgument) for a dim other than 2 or 3.
+BlockFrontiers empty_frontiers(const std::int32_t* counts, const CellGrid& bins, int dim,
+                               const double* region_lo, const double* region_hi,
+                               std::int64_t nblocks, std::int64_t cap, int threads = 0);
+
 /// Splits `n` points to the blocks of `grid` (CellSplit): a point goes to its cell's block, to
 /// the block `box_block[i]` of every one of the `nboxes` closed boxes i holding it
-/// (`box_lo[i * dim + j] <= x_j <= box_hi[i * dim + j]`, comparisons of the doubles only); once
-/// per block. The boxes come by block (box_block not decreasing). Where `wanted` is given, only
+/// (`box_lo[i * dim + j] <= x_j <= box_hi[i * dim + j]`, comparisons of the doubles only), and,
+/// where `frontiers` is given, to every block listing its bin of `frontiers->grid`; once per
+/// block. The boxes come by block (box_block not decreasing). Where `wanted` is given, only
 /// the blocks b with wanted[b] nonzero get points. Deterministic on any thread count. Throws
-/// Error(InvalidArgument) for a dim other than 2 or 3, or a box's block outside the grid or out
-/// of order.
+/// Error(InvalidArgument) for a dim other than 2 or 3, a box's block outside the grid or out
+/// of order, or frontiers for another count of blocks or naming a bin outside their grid.
 CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                           const double* box_lo, const double* box_hi, const std::int64_t* box_block,
                           std::int64_t nboxes, const std::uint8_t* wanted = nullptr,
-                          int threads = 0);
+                          int threads = 0, const BlockFrontiers* frontiers = nullptr);
 
 /// Fills `split.points` and `split.cells` (CellSplit) from the points it split, on `threads`
 /// host threads (0: OpenMP's default): each block's part then lies in one slice.

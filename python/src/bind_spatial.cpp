@@ -964,20 +964,77 @@ nb::object cell_counts_bind(const AnyArray& points, const std::vector<double>& l
   return host_array(std::move(r), shape);
 }
 
+// An empty_frontiers dict back as BlockFrontiers (its arrays copied: a few per cent of the bins).
+BlockFrontiers frontiers_from(nb::handle d, int dim, std::int64_t blocks) {
+  BlockFrontiers f;
+  f.grid =
+      cell_grid(nb::cast<std::vector<double>>(d["lo"]), nb::cast<std::vector<double>>(d["width"]),
+                nb::cast<std::vector<std::int64_t>>(d["counts"]), dim);
+  std::int64_t total = 1;
+  for (int j = 0; j < dim; ++j) total *= f.grid.counts[j];
+  std::int64_t k = 0;
+  const std::int64_t* off = host_indices(nb::cast<AnyArray>(d["offsets"]), "frontier offsets",
+                                         blocks + 1, -1, 0, INT64_MAX);
+  const std::int64_t* bins =
+      host_indices(nb::cast<AnyArray>(d["bins"]), "frontier bins", -1, -1, 0, total, &k);
+  if (off[blocks] != k) throw nb::value_error("the frontier offsets do not end at its bins' count");
+  f.offsets.assign(off, off + blocks + 1);
+  f.bins.assign(bins, bins + k);
+  return f;
+}
+
+// empty_frontiers as a dict: "offsets", "bins", "points" (int64 arrays) and the bins' grid
+// ("lo", "width", "counts" lists), which split_to_blocks takes back as it is.
+nb::dict empty_frontiers_bind(const AnyArray& counts, const std::vector<double>& lo,
+                              const std::vector<double>& width,
+                              const std::vector<std::int64_t>& shape, const AnyArray& region_lo,
+                              const AnyArray& region_hi, std::int64_t cap, int threads) {
+  const int dim = int(shape.size());
+  if (dim != 2 && dim != 3) throw nb::value_error("the bins' grid must have 2 or 3 axes");
+  CellGrid g = cell_grid(lo, width, shape, dim);
+  std::int64_t total = 1;
+  for (int j = 0; j < dim; ++j) total *= shape[std::size_t(j)];
+  Input c = inspect(counts, "counts");
+  std::int64_t size = 1;
+  for (auto e : c.shape) size *= e;
+  if (c.on_device || !holds<std::int32_t>(c) || size != total)
+    throw nb::value_error("counts must be a host int32 array with an entry per bin");
+  Input l = inspect(region_lo, "region_lo"), h = inspect(region_hi, "region_hi");
+  for (const Input* b : {&l, &h})
+    if (b->on_device || !holds<double>(*b) || b->shape.size() != 2 || b->shape[1] != dim ||
+        b->shape[0] != l.shape[0])
+      throw nb::value_error(
+          "region_lo and region_hi must be host float64 arrays of shape (k, dim)");
+  BlockFrontiers f = unlocked([&] {
+    return empty_frontiers(static_cast<const std::int32_t*>(c.data), g, dim, pts(l), pts(h),
+                           l.shape[0], cap, threads);
+  });
+  nb::dict out;
+  const sz nb_ = f.points.size(), nbins = f.bins.size();
+  out["offsets"] = host_array(std::move(f.offsets), {nb_ + 1});
+  out["bins"] = host_array(std::move(f.bins), {nbins});
+  out["points"] = host_array(std::move(f.points), {nb_});
+  out["lo"] = lo, out["width"] = width, out["counts"] = shape;
+  return out;
+}
+
 // The split of points to the blocks of gpugeom.dask's grid: by cell, and (box_lo, box_hi,
-// box_block given) to every block with a box holding them; `wanted`: the blocks to list.
+// box_block given) to every block with a box holding them, and (frontiers given: an
+// empty_frontiers dict) to every block that takes their bin; `wanted`: the blocks to list.
 nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>& lo,
                               const std::vector<double>& width,
                               const std::vector<std::int64_t>& counts,
                               std::optional<AnyArray> box_lo, std::optional<AnyArray> box_hi,
                               std::optional<AnyArray> box_block, std::optional<AnyArray> wanted,
-                              bool gather, int threads) {
+                              bool gather, int threads, nb::object frontiers) {
   int dim = 0;
   std::int64_t n = 0;
   const double* x = host_points(points, &dim, &n);
   CellGrid g = cell_grid(lo, width, counts, dim);
   std::int64_t cells = 1;
   for (int j = 0; j < dim; ++j) cells *= counts[j];
+  std::optional<BlockFrontiers> fr;
+  if (!frontiers.is_none()) fr = frontiers_from(frontiers, dim, cells);
   if (box_lo.has_value() != box_hi.has_value() || box_lo.has_value() != box_block.has_value())
     throw nb::value_error("box_lo, box_hi and box_block go together");
   const double *bl = nullptr, *bh = nullptr;
@@ -995,7 +1052,8 @@ nb::dict split_to_blocks_bind(const AnyArray& points, const std::vector<double>&
   const std::uint8_t* want = nullptr;
   if (wanted) want = host_mask(*wanted, "wanted", cells, "block");
   CellSplit r = unlocked([&] {
-    CellSplit split = split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads);
+    CellSplit split =
+        split_to_blocks(x, dim, n, g, bl, bh, bb, nboxes, want, threads, fr ? &*fr : nullptr);
     if (gather) gather_blocks(x, dim, split, threads);
     return split;
   });
@@ -1128,7 +1186,9 @@ void bind_spatial(nb::module_& m) {
         "threads"_a = 0);
   m.def("split_to_blocks", &split_to_blocks_bind, "points"_a, "lo"_a, "width"_a, "counts"_a,
         "box_lo"_a = nb::none(), "box_hi"_a = nb::none(), "box_block"_a = nb::none(),
-        "wanted"_a = nb::none(), "gather"_a = false, "threads"_a = 0);
+        "wanted"_a = nb::none(), "gather"_a = false, "threads"_a = 0, "frontiers"_a = nb::none());
+  m.def("empty_frontiers", &empty_frontiers_bind, "counts"_a, "lo"_a, "width"_a, "shape"_a,
+        "region_lo"_a, "region_hi"_a, "cap"_a, "threads"_a = 0);
   m.def("balls_in_bins", &balls_in_bins_bind, "centres"_a, "reach"_a, "lo"_a, "hi"_a, "grid_lo"_a,
         "width"_a, "counts"_a, "marked"_a, "margin"_a, "threads"_a = 0);
   m.def("block_neighbors", &block_neighbors_bind, "nb_local"_a, "offset"_a, "pos"_a, "across"_a,

@@ -274,6 +274,103 @@ def test_cell_counts():
                                           np.bincount(_bins_of(p, bins), minlength=counts.size))
 
 
+def _frontiers_reference(counts, regions, cap):
+    """``_core.empty_frontiers`` by SciPy: the empty bins' components (sides, edges and corners
+    connect), those an empty bin of a block's region is in, the occupied bins beside them but not
+    strictly inside the region's bins, none past the cap."""
+    from scipy import ndimage
+    d = counts.ndim
+    empty = counts == 0
+    lab, _ = ndimage.label(empty, structure=np.ones((3,) * d))
+    out = []
+    for first, last in regions:
+        box = tuple(slice(a, b + 1) for a, b in zip(first, last))
+        seeds = np.unique(lab[box])
+        near = ndimage.binary_dilation(np.isin(lab, seeds[seeds > 0]),
+                                       structure=np.ones((3,) * d)) & ~empty
+        inner = np.zeros_like(near)
+        inner[tuple(slice(a + 1, b) for a, b in zip(first, last))] = True
+        bins = np.nonzero((near & ~inner).ravel())[0]
+        out.append(bins if counts.ravel()[bins].sum() <= cap else bins[:0])
+    return out
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_empty_frontiers(d):
+    """The bins beside empty space a block's region reaches (``_core.empty_frontiers``) against
+    SciPy's labels: clusters apart, a region inside a cluster (reaching no empty bin), regions
+    past the grid, the cap; then the split gives each block those bins' points once (a point in
+    one of its boxes too is not listed twice)."""
+    rng = np.random.default_rng(70 + d)
+    centres = rng.random((9, d))
+    pts = centres[rng.integers(0, 9, 6000)] + 0.03 * rng.normal(size=(6000, d))
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    bins = Grid(lo, hi, (24,) * d if d == 2 else (12,) * d)
+    counts = _core.cell_counts(pts, bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist())
+    grid = Grid(lo, hi, (2,) + (1,) * (d - 1))
+    regions = [grid.region(b, 0.05) for b in range(grid.nblocks)]
+    # a region inside the densest bin, reaching no empty bin, and one past the whole grid
+    core = np.array(np.unravel_index(int(np.argmax(counts)), counts.shape))
+    at = bins.lo + (core + 0.5) * bins.width
+    regions += [(at, at), (lo - 1.0, hi + 1.0)]
+    rlo = np.array([r[0] for r in regions], np.float64)
+    rhi = np.array([r[1] for r in regions], np.float64)
+    ranges = []
+    for a, b in zip(rlo, rhi):
+        f = np.clip(np.floor((a - bins.lo) / bins.width), 0, bins.counts - 1).astype(int)
+        la = np.clip(np.floor((b - bins.lo) / bins.width), 0, bins.counts - 1).astype(int)
+        ranges.append((f, la))
+    capped = 0
+    for cap in (len(pts), 300):
+        want = _frontiers_reference(counts, ranges, cap)
+        capped = sum(len(w) == 0 for w in want) - capped
+        for threads in (1, 3):
+            f = _core.empty_frontiers(counts, bins.lo.tolist(), bins.width.tolist(),
+                                      bins.counts.tolist(), rlo, rhi, cap, threads)
+            for b, w in enumerate(want):
+                got = f["bins"][f["offsets"][b]:f["offsets"][b + 1]]
+                np.testing.assert_array_equal(got, w)
+                assert f["points"][b] == counts.ravel()[w].sum()
+    full = _core.empty_frontiers(counts, bins.lo.tolist(), bins.width.tolist(),
+                                 bins.counts.tolist(), rlo, rhi, len(pts))
+    # the cases are there: the blocks' and the whole grid's bins, the core's none, the cap hit
+    assert min(full["points"][[0, 1, 3]]) > 0 and full["points"][2] == 0
+    assert capped > 0
+    # the split: the two blocks of `grid` (its own regions only) with a box each
+    f = _core.empty_frontiers(counts, bins.lo.tolist(), bins.width.tolist(),
+                              bins.counts.tolist(), rlo[:2], rhi[:2], len(pts))
+    boxes = {b: [regions[b]] for b in range(2)}
+    cell, bin_of = grid.cell_of(pts), _bins_of(pts, bins)
+    for threads in (1, 3):
+        _, order, cuts = grid.split(pts, boxes, threads=threads, frontiers=f)
+        for b in range(2):
+            keep = (cell == b) | np.all((pts >= regions[b][0]) & (pts <= regions[b][1]), axis=1)
+            keep |= np.isin(bin_of, f["bins"][f["offsets"][b]:f["offsets"][b + 1]])
+            np.testing.assert_array_equal(order[cuts[b]:cuts[b + 1]], np.nonzero(keep)[0])
+    bad = dict(f, bins=np.array([10**6], np.int64), offsets=np.array([0, 1, 1], np.int64))
+    with pytest.raises(ValueError):
+        grid.split(pts, boxes, frontiers=bad)
+
+
+def test_clusters_done_in_one_round(monkeypatch):
+    """Clusters apart in 2D: the bins beside the empty space between them give every block the
+    points across it, so the first round is enough (without them every block takes two), and
+    the result is the single run's."""
+    from gpugeom.dask import _delaunay
+    rng = np.random.default_rng(71)
+    centres = rng.random((16, 2))
+    pts = centres[rng.integers(0, 16, 100000)] + 0.01 * rng.normal(size=(100000, 2))
+    with dask.config.set(scheduler="threads"):
+        dt = gd.delaunay(pts, blocks=4, backend="cpu")
+        _same_as_single(pts, dt)
+        assert [s["rounds"] for s in dt.block_stats] == [1] * 4
+        assert all(0 < s["frontier"] < 0.1 * len(pts) for s in dt.block_stats)
+        monkeypatch.setattr(_delaunay, "_frontiers", lambda *a, **k: None)
+        without = gd.delaunay(pts, blocks=4, backend="cpu")
+        assert max(s["rounds"] for s in without.block_stats) == 2
+        assert all(s["frontier"] == 0 for s in without.block_stats)
+
+
 @pytest.mark.parametrize("d", [2, 3])
 def test_balls_in_bins(d):
     """The test of balls cut to boxes against the bins with outside points
@@ -306,12 +403,15 @@ def test_balls_in_bins(d):
         np.testing.assert_array_equal(r.view(bool), want.any(axis=1))
 
 
-def test_clustered_blocks_take_borders():
+def test_clustered_blocks_take_borders(monkeypatch):
     """Clusters apart: a block whose first round fails is sent the others' borders and is done
     in the second, holding few points beyond its own (asking for the bins its balls met took
     whole clusters: 2.5 local points a point here, 4.5 on 10^6 3D points); points on a sphere
     in 3D, where every ball is the sphere's (the caps along the hull cost simplices times hull
-    planes: 8 s a block at 2·10^4 points)."""
+    planes: 8 s a block at 2·10^4 points). Without the bins beside empty space, which would
+    make the first round enough."""
+    from gpugeom.dask import _delaunay
+    monkeypatch.setattr(_delaunay, "_frontiers", lambda *a, **k: None)
     rng = np.random.default_rng(52)
     sphere = rng.normal(size=(6000, 3))
     sphere /= np.linalg.norm(sphere, axis=1)[:, None]
@@ -387,8 +487,10 @@ def test_first_round_without_a_triangulation(monkeypatch):
 
 def test_coarse_paths_are_exact(monkeypatch):
     """The path that trades work for a coarser test: no caps along the hull (past
-    ``_CAP_WORK``). Forced everywhere, it gives the same triangulation, in no fewer rounds."""
-    from gpugeom.dask import _ghost
+    ``_CAP_WORK``). Forced everywhere, it gives the same triangulation, in no fewer rounds
+    (without the bins beside empty space, so that the clusters take a second round)."""
+    from gpugeom.dask import _delaunay, _ghost
+    monkeypatch.setattr(_delaunay, "_frontiers", lambda *a, **k: None)
     rng = np.random.default_rng(53)
     centres = rng.random((10, 2))
     flat = centres[rng.integers(0, 10, 8000)] + 0.01 * rng.normal(size=(8000, 2))

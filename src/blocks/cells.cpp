@@ -94,6 +94,38 @@ struct BoxBins {
   }
 };
 
+// BlockFrontiers turned round: per bin of their grid the blocks that take it (CSR, by block).
+struct FrontierBins {
+  HostVector<std::int64_t> start, blocks;
+
+  FrontierBins(const BlockFrontiers* f, int dim, std::int64_t nblocks) {
+    if (!f) return;
+    std::int64_t total = 1;
+    for (int j = 0; j < dim; ++j) total *= f->grid.counts[j];
+    if (std::int64_t(f->offsets.size()) != nblocks + 1 ||
+        std::int64_t(f->bins.size()) != f->offsets[std::size_t(nblocks)])
+      throw Error(ErrorCode::InvalidArgument,
+                  "split_to_blocks: the frontiers are for " +
+                      std::to_string(std::int64_t(f->offsets.size()) - 1) +
+                      " blocks (or their offsets do not end at their bins' count), the grid has " +
+                      std::to_string(nblocks));
+    start.assign(std::size_t(total) + 1, 0);
+    for (const std::int64_t b : f->bins) {
+      if (b < 0 || b >= total)
+        throw Error(ErrorCode::InvalidArgument, "split_to_blocks: frontier bin " +
+                                                    std::to_string(b) + " outside a grid of " +
+                                                    std::to_string(total));
+      ++start[std::size_t(b) + 1];
+    }
+    for (std::int64_t b = 0; b < total; ++b) start[std::size_t(b + 1)] += start[std::size_t(b)];
+    blocks.resize(f->bins.size());
+    HostVector<std::int64_t> next(start.begin(), start.end() - 1);
+    for (std::int64_t blk = 0; blk < nblocks; ++blk)
+      for (std::int64_t q = f->offsets[std::size_t(blk)]; q < f->offsets[std::size_t(blk) + 1]; ++q)
+        blocks[std::size_t(next[std::size_t(f->bins[std::size_t(q)])]++)] = blk;
+  }
+};
+
 }  // namespace
 
 PointBounds point_bounds(const double* points, int dim, std::int64_t n, int threads) {
@@ -128,7 +160,8 @@ PointBounds point_bounds(const double* points, int dim, std::int64_t n, int thre
 
 CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const CellGrid& grid,
                           const double* box_lo, const double* box_hi, const std::int64_t* box_block,
-                          std::int64_t nboxes, const std::uint8_t* wanted, int threads) {
+                          std::int64_t nboxes, const std::uint8_t* wanted, int threads,
+                          const BlockFrontiers* frontiers) {
   blocks_detail::check_dim(dim, "split_to_blocks");
   std::int64_t cells = 1;
   for (int j = 0; j < dim; ++j) cells *= grid.counts[j];
@@ -142,6 +175,7 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
       throw Error(ErrorCode::InvalidArgument, "split_to_blocks: the boxes must come by block");
   blocks_detail::ThreadScope scope(threads);
   const BoxBins bins(grid, dim, box_lo, box_hi, nboxes);
+  const FrontierBins fr(frontiers, dim, cells);
   CellSplit out;
   out.cell.resize(std::size_t(n));
   // Each thread takes a contiguous range of points, counts them per block, then writes them at
@@ -156,8 +190,17 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
     const double* x = points + p * dim;
     const std::int64_t c = out.cell[std::size_t(p)];
     if (!wanted || wanted[c]) f(c);
-    if (nboxes == 0) return;
+    if (nboxes == 0 && !frontiers) return;
     const std::int64_t bin = cell_of(x, bins.bins, dim);
+    // whether a box of block blk holds p (the boxes of a bin come by block)
+    auto boxed = [&](std::int64_t blk) {
+      for (std::int64_t q = bins.start[std::size_t(bin)]; q < bins.start[std::size_t(bin + 1)];
+           ++q) {
+        const std::int64_t b = bins.list[std::size_t(q)];
+        if (box_block[b] == blk && in_box(x, box_lo + b * dim, box_hi + b * dim, dim)) return true;
+      }
+      return false;
+    };
     std::int64_t last = -1;
     for (std::int64_t q = bins.start[std::size_t(bin)]; q < bins.start[std::size_t(bin + 1)]; ++q) {
       const std::int64_t b = bins.list[std::size_t(q)], blk = box_block[b];
@@ -166,6 +209,12 @@ CellSplit split_to_blocks(const double* points, int dim, std::int64_t n, const C
         f(blk);
         last = blk;
       }
+    }
+    if (!frontiers) return;
+    const std::int64_t fb = cell_of(x, frontiers->grid, dim);
+    for (std::int64_t q = fr.start[std::size_t(fb)]; q < fr.start[std::size_t(fb + 1)]; ++q) {
+      const std::int64_t blk = fr.blocks[std::size_t(q)];
+      if (blk != c && (!wanted || wanted[blk]) && !boxed(blk)) f(blk);
     }
   };
 #pragma omp parallel num_threads(nt)

@@ -53,11 +53,13 @@ class Grid:
     def nblocks(self) -> int:
         return int(np.prod(self.counts))
 
-    def split(self, pts: np.ndarray, boxes=None, threads: int = 0, gather: bool = False):
+    def split(self, pts: np.ndarray, boxes=None, threads: int = 0, gather: bool = False,
+              frontiers=None):
         """The owning block of each point (row-major cell index: floor((x - lo) / width) per
         axis, clamped), and each block's points: those of its cell and, where ``boxes`` (a dict:
         block -> list of closed boxes (lo, hi)) is given, those in its boxes, each point once,
-        in increasing order; only the blocks in ``boxes`` then. One pass in C++
+        in increasing order; only the blocks in ``boxes`` then; with ``frontiers`` (an
+        ``_core.empty_frontiers`` dict) also those in its bins. One pass in C++
         (``_core.split_to_blocks``; the box tests are comparisons of the doubles). Returns
         (cell, order, cuts): block b's points are order[cuts[b]:cuts[b + 1]]; with ``gather``
         also the points and cells in that order (gathered in C++ on ``threads``)."""
@@ -74,7 +76,8 @@ class Grid:
                         box_hi=np.array([x[2] for x in listed], np.float64).reshape(-1, d),
                         box_block=np.array([x[0] for x in listed], np.int64), wanted=wanted)
         r = _core.split_to_blocks(pts, self.lo.tolist(), self.width.tolist(),
-                                  self.counts.tolist(), threads=threads, gather=gather, **args)
+                                  self.counts.tolist(), threads=threads, gather=gather,
+                                  frontiers=frontiers, **args)
         if gather:
             return r["cell"], r["order"], r["cuts"], r["points"], r["cells"]
         return r["cell"], r["order"], r["cuts"]

@@ -82,25 +82,10 @@ def _summary(pts):
     return dict(n=len(pts), bad=-1, lo=np.array(r["lo"]), hi=np.array(r["hi"]))
 
 
-def _split(pts, offset: int, grid: Grid, boxes: dict, bins: Optional[Grid], first: bool,
-           backend: str, threads: int):
-    """A piece's points for a round: per block of ``boxes`` (a dict: block -> the boxes it takes
-    this round), in increasing block order, the points it owns and those in its boxes, as
-    (points, global ids, owner blocks), None where it has none; in the first round, then the
-    piece's hull candidates (its extreme points) likewise and its count of points per bin of
-    ``bins`` (the first round's only: None in the second).
-    Separate outputs, so that each block takes only its parts from the
-    worker that split the piece, and no second task selects its ghosts from the other blocks'
-    points (one hop, not two: on 4 workers the hop cost more than the selection)."""
+def _survey(pts, offset: int, grid: Grid, bins: Grid, backend: str, threads: int):
+    """A piece's first look, before the split: its hull candidates (its extreme points: points,
+    global ids, owner blocks) and its count of points per bin of ``bins``."""
     pts = _load(pts)
-    cell, order, cuts, points, cells = grid.split(pts, boxes, threads, gather=True)
-    ids = order + offset
-    parts = []
-    for b in sorted(boxes):
-        at = slice(cuts[b], cuts[b + 1])
-        parts.append((points[at], ids[at], cells[at]) if cuts[b + 1] > cuts[b] else None)
-    if not first:
-        return tuple(parts)
     if pts.shape[1] == 2:
         # a 2D ConvexHull is a Delaunay triangulation of the piece; the filter is a few passes
         # on the host's threads, whatever runs the blocks
@@ -113,7 +98,41 @@ def _split(pts, offset: int, grid: Grid, boxes: dict, bins: Optional[Grid], firs
             cand = np.arange(len(pts))  # too few or flat: every point may be extreme
     counts = _core.cell_counts(pts, bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist(),
                                threads)
-    return (*parts, (pts[cand], cand + offset, cell[cand]), counts)
+    return (pts[cand], cand + offset, grid.cell_of(pts[cand])), counts
+
+
+def _split(pts, offset: int, grid: Grid, boxes: dict, frontiers: Optional[dict], threads: int):
+    """A piece's points for a round: per block of ``boxes`` (a dict: block -> the boxes it takes
+    this round), in increasing block order, the points it owns, those in its boxes and (the
+    first round) those in the bins ``frontiers`` gives it, as (points, global ids, owner blocks),
+    None where it has none.
+    Separate outputs, so that each block takes only its parts from the
+    worker that split the piece, and no second task selects its ghosts from the other blocks'
+    points (one hop, not two: on 4 workers the hop cost more than the selection)."""
+    pts = _load(pts)
+    cell, order, cuts, points, cells = grid.split(pts, boxes, threads, gather=True,
+                                                  frontiers=frontiers)
+    ids = order + offset
+    parts = []
+    for b in sorted(boxes):
+        at = slice(cuts[b], cuts[b + 1])
+        parts.append((points[at], ids[at], cells[at]) if cuts[b + 1] > cuts[b] else None)
+    return tuple(parts)
+
+
+def _frontiers(total, bins: Grid, grid: Grid, ghost: float, cap: int, threads: int):
+    """Per block the bins beside empty space its region reaches (``_core.empty_frontiers``),
+    for the split of the first round; None where no block takes any."""
+    regions = [grid.region(b, ghost) for b in range(grid.nblocks)]
+    f = _core.empty_frontiers(total, bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist(),
+                              np.array([r[0] for r in regions], np.float64),
+                              np.array([r[1] for r in regions], np.float64), int(cap), threads)
+    return f if len(f["bins"]) else None
+
+
+def _frontier_points(frontiers, nblocks: int):
+    """The points each block took from its frontier bins."""
+    return [0] * nblocks if frontiers is None else frontiers["points"].tolist()
 
 
 def _total(counts):
@@ -217,7 +236,8 @@ class DistributedTriangulation:
         Cells per axis.
     block_stats : list of dict
         Per block: its ghost width, strips along the sides, rounds (1, or 2 where its first
-        failed), local points (of its last round), owned simplices and simplices tested.
+        failed), the points it took in its first round from the bins beside empty space
+        (``frontier``), local points (of its last round), owned simplices and simplices tested.
     timings : dict
         Milliseconds of the call's phases (client wall clock): ``check`` (shapes, finite
         coordinates, bounds), ``round1`` (the pieces split to the blocks, the global hull, the
@@ -435,17 +455,27 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     # candidates and counts per bin, from which come the global hull and the counts of all
     # points; every block is triangulated, tests its stars, and takes its borders for the
     # others
+    # Each piece first gives its hull candidates and its count per bin; the counts of all
+    # points give each block the bins beside the empty space its region reaches (at most a
+    # quarter of a block's share of the points), whose points a ghost layer misses and the
+    # balls spanning that space need (design notes, "Bins beside empty space").
     boxes = {b: [grid.region(b, float(ghost))] + list(extras[b].values()) for b in all_blocks}
-    splits = [delayed(_split, nout=len(all_blocks) + 2)(p, int(o), grid, boxes, bins, True, **run)
+    surveys = [delayed(_survey, nout=2)(p, int(o), grid, bins, **run)
+               for p, o in zip(pieces, start)]
+    hull = delayed(_global_hull)([s[0] for s in surveys], **run)
+    total = delayed(_total)([s[1] for s in surveys])
+    frontiers = delayed(_frontiers)(total, bins, grid, float(ghost),
+                                    max(1, n // (4 * grid.nblocks)), threads)
+    splits = [delayed(_split, nout=len(all_blocks))(p, int(o), grid, boxes, frontiers, threads)
               for p, o in zip(pieces, start)]
-    hull = delayed(_global_hull)([s[-2] for s in splits], **run)
-    total = delayed(_total)([s[-1] for s in splits])
     tasks = [delayed(triangulate_block)(
         b, grid, float(ghost), dict(extras[b]), [s[i] for s in splits], hull, (bins, total),
         backend, threads, dask_key_name=f"gpugeom-delaunay-block-{tag}-0-{b}")
         for i, b in enumerate(all_blocks)]
     *first, hull = dask.persist(*tasks, hull)
-    metas = dict(zip(all_blocks, dask.compute(*[delayed(_meta)(r) for r in first])))
+    *metas, taken = dask.compute(*[delayed(_meta)(r) for r in first],
+                                 delayed(_frontier_points)(frontiers, grid.nblocks))
+    metas = dict(zip(all_blocks, metas))
     final = {b: r for b, r in zip(all_blocks, first) if metas[b]["done"]}
     rounds = {b: 1 for b in all_blocks}
     lap("round1")
@@ -455,7 +485,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     pending = [b for b in all_blocks if b not in final]
     if pending:
         own = {b: [] for b in pending}
-        splits = [delayed(_split, nout=len(pending))(p, int(o), grid, own, None, False, **run)
+        splits = [delayed(_split, nout=len(pending))(p, int(o), grid, own, None, threads)
                   for p, o in zip(pieces, start)]
         tasks = []
         for i, b in enumerate(pending):
@@ -490,7 +520,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         [delayed(operator.getitem)(answers[c], senders[c].index(b)) for c in metas[b]["owners"]])
         for b in order]
     stats = [dict(block=b, ghost=metas[b]["ghost"], extra_boxes=len(extras[b]), rounds=rounds[b],
-                  nlocal=metas[b]["nlocal"],
+                  frontier=int(taken[b]), nlocal=metas[b]["nlocal"],
                   nsimplex=metas[b]["nsimplex"], tested=metas[b]["tested"]) for b in order]
     out = DistributedTriangulation(pieces, counts, results, offsets, neighbors, grid, stats)
     out.timings = timings
