@@ -364,8 +364,9 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     """Exact Delaunay triangulation of 2D or 3D points, block by block on a Dask cluster.
 
     The points are split into blocks by a grid over their bounding box; each block triangulates
-    its points with a layer of ghost points around them (and the global hull's extreme points)
-    and is done where no outside point can change a
+    its points with a layer of ghost points around them, the global hull's extreme points and
+    the points beside the empty space its layer reaches (between clusters: the points across
+    a gap, where the balls spanning it end), and is done where no outside point can change a
     simplex round its own points. Every block also sends each other block its border: its own
     points that the other's simplices may use. A block not done is triangulated a second time,
     with its own points and the borders sent to it, and is then done without a test. Each
