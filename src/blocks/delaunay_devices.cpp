@@ -358,6 +358,41 @@ class Blocks {
       }
     });
     phases.push_back({"blocks.split.own", now_ms() - t});
+    t = now_ms();
+    frontiers();
+    phases.push_back({"blocks.split.frontier", now_ms() - t});
+  }
+
+  // The bins beside the empty space each block's region reaches (blocks.hpp: empty_frontiers,
+  // the rule gpugeom.dask's first round has): their points join the block's first round, where
+  // the balls that span the empty space end on them (between clusters, round a Gaussian's
+  // tail), and the finality test knows the block holds them (known_). At most a quarter of a
+  // block's share of the points.
+  void frontiers() {
+    frontier_.assign(k_, I64{});
+    const std::int64_t nbins = std::int64_t(bin_cuts_.size()) - 1;
+    HostVector<std::int32_t> counts(static_cast<std::size_t>(nbins));
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::int64_t i = 0; i < nbins; ++i)
+      counts[std::size_t(i)] =
+          std::int32_t(bin_cuts_[std::size_t(i + 1)] - bin_cuts_[std::size_t(i)]);
+    std::vector<double> lo, hi;
+    for (const BlockBoxes& x : boxes_)
+      for (int j = 0; j < D; ++j) lo.push_back(x.region_lo[j]), hi.push_back(x.region_hi[j]);
+    const BlockFrontiers f =
+        empty_frontiers(counts.data(), bins_, D, lo.data(), hi.data(), std::int64_t(k_),
+                        std::max<std::int64_t>(1, n_ / (4 * std::int64_t(k_))), threads_);
+    known_.assign(k_, I64{});
+    on_threads(k_, [&](std::size_t b) {
+      I64& mine = frontier_[b];
+      for (std::int64_t q = f.offsets[b]; q < f.offsets[b + 1]; ++q) {
+        const std::int64_t bin = f.bins[std::size_t(q)];
+        mine.insert(mine.end(), bin_order_.begin() + bin_cuts_[std::size_t(bin)],
+                    bin_order_.begin() + bin_cuts_[std::size_t(bin + 1)]);
+      }
+      std::sort(mine.begin(), mine.end());
+      known_[b] = merged({&held_, &mine});
+    });
   }
 
   HostVector<double> gather(const I64& ids) {
@@ -419,7 +454,7 @@ class Blocks {
           HostVector<std::uint8_t> all(static_cast<std::size_t>(m), 1);
           return blocks_detail::stars_final_within(
               q_.data(), D, rows.data(), m, all.data(), boxes_[b], q_.data(), bins_,
-              bin_order_.data(), bin_cuts_.data(), held_.data(), std::int64_t(held_.size()),
+              bin_order_.data(), bin_cuts_.data(), known_[b].data(), std::int64_t(known_[b].size()),
               strips_[b].lo.data(), strips_[b].hi.data(), std::int64_t(strips_[b].lo.size() / D),
               threads_, kScanBudget * nl);
         },
@@ -448,7 +483,7 @@ class Blocks {
     }
     const I64 region(regions_[b].begin(), regions_[b].end());
     try {
-      triangulate(b, merged({&region, &held_}), true);
+      triangulate(b, merged({&region, &frontier_[b], &held_}), true);
     } catch (const Error& e) {
       if (!degenerate(e) || covers_all(b)) throw;
       // no triangulation to take a border from: every own point goes to every block
@@ -550,6 +585,8 @@ class Blocks {
   };
   std::vector<Strips> strips_;
   I64 held_;
+  // per block: its places in the bins beside empty space, and those with held_ (increasing)
+  std::vector<I64> frontier_, known_;
   std::vector<Block> blk_;
   std::atomic<std::int64_t> local_points_{0};
   PassTimes times_;
