@@ -311,7 +311,8 @@ class DistributedTriangulation:
 
 def _write_piece(path: str, r: dict, offset: int) -> None:
     s = r["simplices"]
-    _vtu.write_piece(path, r["vertex_points"], r["vertices"], s,
+    at = np.argsort(r["vertices"], kind="stable")  # (the piece lists its points by global id)
+    _vtu.write_piece(path, r["vertex_points"][at], r["vertices"][at], s,
                      np.arange(offset, offset + len(s), dtype=np.int64))
 
 
