@@ -485,9 +485,9 @@ def _curve_order(ids, pts, blk):
     """The local points along the Hilbert curve (``_core.hilbert_order``; points with equal
     coordinates keep their order, so a point's first copy is still its lowest id). In the order
     of their ids, a random input made every vertex that the passes over the simplices read (the
-    borders, the output, the test) a cache miss: on one thread 2D 10^6 points in 2 blocks took
-    1.31 s of output and 0.46 s of borders, in this order 0.29 and 0.14 (and the triangulation
-    2.34 s, 1.49 here; docs/performance.md)."""
+    borders, the output, the test) a cache miss: on one thread, 10^6 points in 2 blocks, the
+    borders took 82 ms (2D) and 387 ms (3D), here 44 and 296, the whole call 3-5 % less
+    (docs/performance.md); on a host whose cores were busy the output went from 1.31 s to 0.29."""
     order = _core.hilbert_order(pts)
     return ids[order], pts[order], blk[order]
 
