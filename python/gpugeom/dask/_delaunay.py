@@ -82,10 +82,9 @@ def _summary(pts):
     return dict(n=len(pts), bad=-1, lo=np.array(r["lo"]), hi=np.array(r["hi"]))
 
 
-def _survey(pts, offset: int, grid: Grid, bins: Grid, backend: str, threads: int):
-    """A piece's first look, before the split: its hull candidates (its extreme points: points,
-    global ids, owner blocks) and its count of points per bin of ``bins``."""
-    pts = _load(pts)
+def _survey(pts, grid: Grid, bins: Grid, backend: str, threads: int):
+    """A piece's hull candidates (its extreme points: rows) and its count of points per bin of
+    ``bins``."""
     if pts.shape[1] == 2:
         # a 2D ConvexHull is a Delaunay triangulation of the piece; the filter is a few passes
         # on the host's threads, whatever runs the blocks
@@ -98,14 +97,16 @@ def _survey(pts, offset: int, grid: Grid, bins: Grid, backend: str, threads: int
             cand = np.arange(len(pts))  # too few or flat: every point may be extreme
     counts = _core.cell_counts(pts, bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist(),
                                threads)
-    return (pts[cand], cand + offset, grid.cell_of(pts[cand])), counts
+    return cand, counts
 
 
-def _split(pts, offset: int, grid: Grid, boxes: dict, frontiers: Optional[dict], threads: int):
+def _split(pts, offset: int, grid: Grid, boxes: dict, frontiers: Optional[dict], threads: int,
+           first: Optional[tuple] = None):
     """A piece's points for a round: per block of ``boxes`` (a dict: block -> the boxes it takes
-    this round), in increasing block order, the points it owns, those in its boxes and (the
-    first round) those in the bins ``frontiers`` gives it, as (points, global ids, owner blocks),
-    None where it has none.
+    this round), in increasing block order, the points it owns, those in its boxes and those in
+    the bins ``frontiers`` gives it, as (points, global ids, owner blocks), None where it has
+    none; with ``first`` (the bins, the backend), then the piece's hull candidates (points, ids,
+    owner blocks) and its count of points per bin (the first round's split).
     Separate outputs, so that each block takes only its parts from the
     worker that split the piece, and no second task selects its ghosts from the other blocks'
     points (one hop, not two: on 4 workers the hop cost more than the selection)."""
@@ -117,7 +118,17 @@ def _split(pts, offset: int, grid: Grid, boxes: dict, frontiers: Optional[dict],
     for b in sorted(boxes):
         at = slice(cuts[b], cuts[b + 1])
         parts.append((points[at], ids[at], cells[at]) if cuts[b + 1] > cuts[b] else None)
-    return tuple(parts)
+    if first is None:
+        return tuple(parts)
+    cand, counts = _survey(pts, grid, first[0], first[1], threads)
+    return (*parts, (pts[cand], cand + offset, cell[cand]), counts)
+
+
+def _total_and_frontiers(counts, bins: Grid, grid: Grid, ghost: float, cap: int, threads: int):
+    """The count of all points per bin, and from it the frontiers (one task: a hop less before
+    the split)."""
+    total = _total(counts)
+    return total, _frontiers(total, bins, grid, ghost, cap, threads)
 
 
 def _frontiers(total, bins: Grid, grid: Grid, ghost: float, cap: int, threads: int):
@@ -455,29 +466,36 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
 
     # the first round: each piece is split to the blocks' regions and strips, and gives its hull
     # candidates and counts per bin, from which come the global hull and the counts of all
-    # points; every block is triangulated, tests its stars, and takes its borders for the
-    # others
-    # Each piece first gives its hull candidates and its count per bin; the counts of all
-    # points give each block the bins beside the empty space its region reaches (at most a
-    # quarter of a block's share of the points), whose points a ghost layer misses and the
-    # balls spanning that space need (design notes, "Bins beside empty space").
+    # points. The counts also give each block the bins beside the empty space its region
+    # reaches (at most a quarter of a block's share of the points), whose points a ghost layer
+    # misses and the balls spanning that space need (design notes, "Bins beside empty
+    # space"); where a block has some, the pieces are split again with them (uniform points
+    # have none, and keep the one split). Every block is triangulated, tests its stars, and
+    # takes its borders for the others.
     boxes = {b: [grid.region(b, float(ghost))] + list(extras[b].values()) for b in all_blocks}
-    surveys = [delayed(_survey, nout=2)(p, int(o), grid, bins, **run)
-               for p, o in zip(pieces, start)]
-    hull = delayed(_global_hull)([s[0] for s in surveys], **run)
-    total = delayed(_total)([s[1] for s in surveys])
-    frontiers = delayed(_frontiers)(total, bins, grid, float(ghost),
-                                    max(1, n // (4 * grid.nblocks)), threads)
-    splits = [delayed(_split, nout=len(all_blocks))(p, int(o), grid, boxes, frontiers, threads)
+    k = len(all_blocks)
+    splits = [delayed(_split, nout=k + 2)(p, int(o), grid, boxes, None, threads, (bins, backend))
               for p, o in zip(pieces, start)]
+    hull = delayed(_global_hull)([s[-2] for s in splits], **run)
+    total, frontiers = delayed(_total_and_frontiers, nout=2)(
+        [s[-1] for s in splits], bins, grid, float(ghost), max(1, n // (4 * grid.nblocks)),
+        threads)
+    parts = [[s[i] for i in range(k)] for s in splits]
+    *flat, hull, total, frontiers = dask.persist(*[x for p in parts for x in p], hull, total,
+                                                 frontiers)
+    parts = [flat[i * k:(i + 1) * k] for i in range(len(splits))]
+    front = frontiers.compute()
+    if front is not None:  # (the first split's parts are then let go)
+        parts = [delayed(_split, nout=k)(p, int(o), grid, boxes, front, threads)
+                 for p, o in zip(pieces, start)]
+    del flat
+    taken = _frontier_points(front, grid.nblocks)
     tasks = [delayed(triangulate_block)(
-        b, grid, float(ghost), dict(extras[b]), [s[i] for s in splits], hull, (bins, total),
+        b, grid, float(ghost), dict(extras[b]), [s[i] for s in parts], hull, (bins, total),
         backend, threads, dask_key_name=f"gpugeom-delaunay-block-{tag}-0-{b}")
         for i, b in enumerate(all_blocks)]
-    *first, hull = dask.persist(*tasks, hull)
-    *metas, taken = dask.compute(*[delayed(_meta)(r) for r in first],
-                                 delayed(_frontier_points)(frontiers, grid.nblocks))
-    metas = dict(zip(all_blocks, metas))
+    first = dask.persist(*tasks)
+    metas = dict(zip(all_blocks, dask.compute(*[delayed(_meta)(r) for r in first])))
     final = {b: r for b, r in zip(all_blocks, first) if metas[b]["done"]}
     rounds = {b: 1 for b in all_blocks}
     lap("round1")
