@@ -35,20 +35,18 @@ TEST(DelaunayDevices, Blocks2dEqualOneCall) {
 // points a ghost layer does not hold: without the bins beside empty space every block took a
 // second round; with them none does, and the arrays are still the single call's.
 TEST(DelaunayDevices, BeyondEmptySpaceInOneRound) {
-  const auto p3 = generate3d("gaussian", 100000, 5);
-  Delaunay3dOptions o3;
-  o3.backend = Backend::Cpu;
-  const std::int64_t n3 = std::int64_t(p3.size());
-  const auto got3 = delaunay3d_devices(&p3[0].x, n3, {0, 0, 0, 0}, o3);
-  expect_same(got3, delaunay3d(&p3[0].x, n3, o3), "3D gaussian in 4 blocks");
-  EXPECT_EQ(got3.stats.blocks_second_round, 0);
-  const auto p2 = generate2d("gaussian", 200000, 5);
-  Delaunay2dOptions o2;
-  o2.backend = Backend::Cpu;
-  const std::int64_t n2 = std::int64_t(p2.size());
-  const auto got2 = delaunay2d_devices(&p2[0].x, n2, {0, 0, 0, 0}, o2);
-  expect_same(got2, delaunay2d(&p2[0].x, n2, o2), "2D gaussian in 4 blocks");
-  EXPECT_EQ(got2.stats.blocks_second_round, 0);
+  auto check = [](const auto& pts, auto opt, auto single, auto blocks, const std::string& what) {
+    opt.backend = Backend::Cpu;
+    const double* p = &pts[0].x;
+    const std::int64_t n = std::int64_t(pts.size());
+    const auto got = blocks(p, n, std::vector<int>{0, 0, 0, 0}, opt);
+    expect_same(got, single(p, n, opt), what);
+    EXPECT_EQ(got.stats.blocks_second_round, 0) << what;
+  };
+  check(generate3d("gaussian", 100000, 5), Delaunay3dOptions{}, single3, blocks3,
+        "3D gaussian in 4 blocks");
+  check(generate2d("gaussian", 200000, 5), Delaunay2dOptions{}, single2, blocks2,
+        "2D gaussian in 4 blocks");
 }
 
 // Bad input is refused before any block runs, with the single call's errors where it has them.
