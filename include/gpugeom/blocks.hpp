@@ -163,12 +163,14 @@ struct BlockFrontiers {
 /// space (between clusters, round a ball), the Delaunay balls of the points near it span that
 /// space and end on the points across it, which a ghost layer does not hold; gpugeom.dask's
 /// first round holds these bins' points too, so that its test passes. A block whose bins would
-/// hold more than `cap` points gets none (points on a sphere: every bin is beside empty space).
-/// Deterministic; on `threads` host threads (0: OpenMP's default). Throws
-/// Error(InvalidArgument) for a dim other than 2 or 3.
+/// hold more than `cap` points keeps only those within `band` of its region (points in a ball:
+/// its surface all round is beside one empty space), and past the cap still gets none (points
+/// on a sphere: every bin is beside empty space). Deterministic; on `threads` host threads (0:
+/// OpenMP's default). Throws Error(InvalidArgument) for a dim other than 2 or 3.
 BlockFrontiers empty_frontiers(const std::int32_t* counts, const CellGrid& bins, int dim,
                                const double* region_lo, const double* region_hi,
-                               std::int64_t nblocks, std::int64_t cap, int threads = 0);
+                               std::int64_t nblocks, std::int64_t cap, double band = 0,
+                               int threads = 0);
 
 /// Splits `n` points to the blocks of `grid` (CellSplit): a point goes to its cell's block, to
 /// the block `box_block[i]` of every one of the `nboxes` closed boxes i holding it

@@ -989,7 +989,8 @@ BlockFrontiers frontiers_from(nb::handle d, int dim, std::int64_t blocks) {
 nb::dict empty_frontiers_bind(const AnyArray& counts, const std::vector<double>& lo,
                               const std::vector<double>& width,
                               const std::vector<std::int64_t>& shape, const AnyArray& region_lo,
-                              const AnyArray& region_hi, std::int64_t cap, int threads) {
+                              const AnyArray& region_hi, std::int64_t cap, double band,
+                              int threads) {
   const int dim = int(shape.size());
   if (dim != 2 && dim != 3) throw nb::value_error("the bins' grid must have 2 or 3 axes");
   CellGrid g = cell_grid(lo, width, shape, dim);
@@ -1008,7 +1009,7 @@ nb::dict empty_frontiers_bind(const AnyArray& counts, const std::vector<double>&
           "region_lo and region_hi must be host float64 arrays of shape (k, dim)");
   BlockFrontiers f = unlocked([&] {
     return empty_frontiers(static_cast<const std::int32_t*>(c.data), g, dim, pts(l), pts(h),
-                           l.shape[0], cap, threads);
+                           l.shape[0], cap, band, threads);
   });
   nb::dict out;
   const sz nb_ = f.points.size(), nbins = f.bins.size();
@@ -1211,7 +1212,7 @@ void bind_spatial(nb::module_& m) {
         "box_lo"_a = nb::none(), "box_hi"_a = nb::none(), "box_block"_a = nb::none(),
         "wanted"_a = nb::none(), "gather"_a = false, "threads"_a = 0, "frontiers"_a = nb::none());
   m.def("empty_frontiers", &empty_frontiers_bind, "counts"_a, "lo"_a, "width"_a, "shape"_a,
-        "region_lo"_a, "region_hi"_a, "cap"_a, "threads"_a = 0);
+        "region_lo"_a, "region_hi"_a, "cap"_a, "band"_a = 0.0, "threads"_a = 0);
   m.def("balls_in_bins", &balls_in_bins_bind, "centres"_a, "reach"_a, "lo"_a, "hi"_a, "grid_lo"_a,
         "width"_a, "counts"_a, "marked"_a, "margin"_a, "threads"_a = 0);
   m.def("block_neighbors", &block_neighbors_bind, "nb_local"_a, "offset"_a, "pos"_a, "across"_a,

@@ -274,10 +274,11 @@ def test_cell_counts():
                                           np.bincount(_bins_of(p, bins), minlength=counts.size))
 
 
-def _frontiers_reference(counts, regions, cap):
+def _frontiers_reference(counts, regions, cap, near=None):
     """``_core.empty_frontiers`` by SciPy: the empty bins' components (sides, edges and corners
     connect), those an empty bin of a block's region is in, the occupied bins beside them but not
-    strictly inside the region's bins, none past the cap."""
+    strictly inside the region's bins; past the cap only those in the bins ``near`` (per block
+    its ranges within the band), and past it still none."""
     from scipy import ndimage
     d = counts.ndim
     empty = counts == 0
@@ -286,12 +287,17 @@ def _frontiers_reference(counts, regions, cap):
     for first, last in regions:
         box = tuple(slice(a, b + 1) for a, b in zip(first, last))
         seeds = np.unique(lab[box])
-        near = ndimage.binary_dilation(np.isin(lab, seeds[seeds > 0]),
-                                       structure=np.ones((3,) * d)) & ~empty
-        inner = np.zeros_like(near)
+        beside = ndimage.binary_dilation(np.isin(lab, seeds[seeds > 0]),
+                                         structure=np.ones((3,) * d)) & ~empty
+        inner = np.zeros_like(beside)
         inner[tuple(slice(a + 1, b) for a, b in zip(first, last))] = True
-        bins = np.nonzero((near & ~inner).ravel())[0]
-        out.append(bins if counts.ravel()[bins].sum() <= cap else bins[:0])
+        bins = np.nonzero((beside & ~inner).ravel())[0]
+        out.append(bins)
+    for b, bins in enumerate(out):
+        if counts.ravel()[bins].sum() > cap and near is not None:
+            at = np.stack(np.unravel_index(bins, counts.shape), 1)
+            bins = bins[np.all((at >= near[b][0]) & (at <= near[b][1]), axis=1)]
+        out[b] = bins if counts.ravel()[bins].sum() <= cap else bins[:0]
     return out
 
 
@@ -315,30 +321,38 @@ def test_empty_frontiers(d):
     regions += [(at, at), (lo - 1.0, hi + 1.0)]
     rlo = np.array([r[0] for r in regions], np.float64)
     rhi = np.array([r[1] for r in regions], np.float64)
-    ranges = []
-    for a, b in zip(rlo, rhi):
-        f = np.clip(np.floor((a - bins.lo) / bins.width), 0, bins.counts - 1).astype(int)
-        la = np.clip(np.floor((b - bins.lo) / bins.width), 0, bins.counts - 1).astype(int)
-        ranges.append((f, la))
-    capped = 0
-    for cap in (len(pts), 300):
-        want = _frontiers_reference(counts, ranges, cap)
-        capped = sum(len(w) == 0 for w in want) - capped
+    def ranges(grow):
+        out = []
+        for a, b in zip(rlo - grow, rhi + grow):
+            f = np.clip(np.floor((a - bins.lo) / bins.width), 0, bins.counts - 1).astype(int)
+            la = np.clip(np.floor((b - bins.lo) / bins.width), 0, bins.counts - 1).astype(int)
+            out.append((f, la))
+        return out
+
+    band = 2.5 * float(bins.width.max())
+    sizes = {}
+    for cap, bd in ((len(pts), 0.0), (300, 0.0), (300, band), (900, band)):
+        want = _frontiers_reference(counts, ranges(0.0), cap, ranges(bd) if bd else None)
+        sizes[cap, bd] = [len(w) for w in want]
         for threads in (1, 3):
             f = _core.empty_frontiers(counts, bins.lo.tolist(), bins.width.tolist(),
-                                      bins.counts.tolist(), rlo, rhi, cap, threads)
+                                      bins.counts.tolist(), rlo, rhi, cap, band=bd,
+                                      threads=threads)
             for b, w in enumerate(want):
                 got = f["bins"][f["offsets"][b]:f["offsets"][b + 1]]
                 np.testing.assert_array_equal(got, w)
                 assert f["points"][b] == counts.ravel()[w].sum()
-    full = _core.empty_frontiers(counts, bins.lo.tolist(), bins.width.tolist(),
-                                 bins.counts.tolist(), rlo, rhi, len(pts))
-    # the cases are there: the blocks' and the whole grid's bins, the core's none, the cap hit
-    assert min(full["points"][[0, 1, 3]]) > 0 and full["points"][2] == 0
-    assert capped > 0
+    full = sizes[len(pts), 0.0]
+    # the cases are there: the blocks' and the whole grid's bins, the core's none, the cap hit,
+    # and the band keeping a part where the cap took all
+    assert min(full[0], full[1], full[3]) > 0 and full[2] == 0
+    assert any(c == 0 < f for c, f in zip(sizes[300, 0.0], full))
+    if d == 2:  # (3D's 12^3 bins: every block's bins near it are past 300 points too)
+        assert any(c == 0 < k < f for c, k, f in zip(sizes[300, 0.0], sizes[300, band], full))
     # the split: the two blocks of `grid` (its own regions only) with a box each
     f = _core.empty_frontiers(counts, bins.lo.tolist(), bins.width.tolist(),
                               bins.counts.tolist(), rlo[:2], rhi[:2], len(pts))
+    assert len(f["bins"]) > 0
     boxes = {b: [regions[b]] for b in range(2)}
     cell, bin_of = grid.cell_of(pts), _bins_of(pts, bins)
     for threads in (1, 3):

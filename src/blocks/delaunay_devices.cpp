@@ -381,7 +381,7 @@ class Blocks {
       for (int j = 0; j < D; ++j) lo.push_back(x.region_lo[j]), hi.push_back(x.region_hi[j]);
     const BlockFrontiers f =
         empty_frontiers(counts.data(), bins_, D, lo.data(), hi.data(), std::int64_t(k_),
-                        std::max<std::int64_t>(1, n_ / (4 * std::int64_t(k_))), threads_);
+                        std::max<std::int64_t>(1, n_ / (4 * std::int64_t(k_))), ghost_, threads_);
     known_.assign(k_, I64{});
     on_threads(k_, [&](std::size_t b) {
       I64& mine = frontier_[b];

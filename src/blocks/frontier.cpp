@@ -76,7 +76,7 @@ std::vector<std::int32_t> label_empty(const std::int32_t* counts, const Shape& s
 
 BlockFrontiers empty_frontiers(const std::int32_t* counts, const CellGrid& bins, int dim,
                                const double* region_lo, const double* region_hi,
-                               std::int64_t nblocks, std::int64_t cap, int threads) {
+                               std::int64_t nblocks, std::int64_t cap, double band, int threads) {
   blocks_detail::check_dim(dim, "empty_frontiers");
   for (int j = 0; j < dim; ++j)
     if (bins.counts[j] < 1)
@@ -162,8 +162,28 @@ BlockFrontiers empty_frontiers(const std::int32_t* counts, const CellGrid& bins,
         mine.push_back(b);
         held += counts[b];
       }
-      // past the cap the block holds none of them (points on a sphere: every bin is beside
-      // empty space) and takes its second round where it needs one
+      // Past the cap, only the bins within `band` of the region (a ball's surface all round
+      // is beside one empty space: each block needs the part near it); past the cap still,
+      // none (points on a sphere: every bin is beside empty space), and the block takes its
+      // second round where it needs one.
+      if (held > cap && band > 0) {
+        std::int64_t near_lo[3] = {0, 0, 0}, near_hi[3] = {0, 0, 0};
+        for (int j = 0; j < dim; ++j)
+          blocks_detail::cells_along(region_lo[blk * dim + j] - band,
+                                     region_hi[blk * dim + j] + band, bins, j, 0.0, true,
+                                     &near_lo[j], &near_hi[j]);
+        auto near = [&](std::int64_t b) {
+          const std::int64_t at[3] = {b / (s.n[1] * s.n[2]), (b / s.n[2]) % s.n[1], b % s.n[2]};
+          for (int a = 0; a < dim; ++a)
+            if (at[a] < near_lo[a] || at[a] > near_hi[a]) return false;
+          return true;
+        };
+        std::size_t kept = 0;
+        held = 0;
+        for (const std::int64_t b : mine)
+          if (near(b)) mine[kept++] = b, held += counts[b];
+        mine.resize(kept);
+      }
       if (held > cap) {
         mine.clear();
         held = 0;

@@ -137,7 +137,8 @@ def _frontiers(total, bins: Grid, grid: Grid, ghost: float, cap: int, threads: i
     regions = [grid.region(b, ghost) for b in range(grid.nblocks)]
     f = _core.empty_frontiers(total, bins.lo.tolist(), bins.width.tolist(), bins.counts.tolist(),
                               np.array([r[0] for r in regions], np.float64),
-                              np.array([r[1] for r in regions], np.float64), int(cap), threads)
+                              np.array([r[1] for r in regions], np.float64), int(cap),
+                              band=float(ghost), threads=threads)
     return f if len(f["bins"]) else None
 
 
