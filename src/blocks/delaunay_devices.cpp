@@ -370,6 +370,11 @@ class Blocks {
   // block's share of the points.
   void frontiers() {
     frontier_.assign(k_, I64{});
+    known_.assign(k_, I64{});
+    // (points on a circle or sphere: the hull's candidates are every point, which every block
+    // holds already; the lists below copied them per block: 2·10^7 points on a circle took
+    // 1.35 s on an H200, 0.87 s before the frontier)
+    if (std::int64_t(held_.size()) >= n_) return;
     const std::int64_t nbins = std::int64_t(bin_cuts_.size()) - 1;
     HostVector<std::int32_t> counts(static_cast<std::size_t>(nbins));
 #pragma omp parallel for num_threads(threads_) schedule(static)
@@ -382,7 +387,6 @@ class Blocks {
     const BlockFrontiers f =
         empty_frontiers(counts.data(), bins_, D, lo.data(), hi.data(), std::int64_t(k_),
                         std::max<std::int64_t>(1, n_ / (4 * std::int64_t(k_))), ghost_, threads_);
-    known_.assign(k_, I64{});
     on_threads(k_, [&](std::size_t b) {
       I64& mine = frontier_[b];
       for (std::int64_t q = f.offsets[b]; q < f.offsets[b + 1]; ++q) {
@@ -391,7 +395,7 @@ class Blocks {
                     bin_order_.begin() + bin_cuts_[std::size_t(bin + 1)]);
       }
       std::sort(mine.begin(), mine.end());
-      known_[b] = merged({&held_, &mine});
+      if (!mine.empty()) known_[b] = merged({&held_, &mine});
     });
   }
 
@@ -454,7 +458,7 @@ class Blocks {
           HostVector<std::uint8_t> all(static_cast<std::size_t>(m), 1);
           return blocks_detail::stars_final_within(
               q_.data(), D, rows.data(), m, all.data(), boxes_[b], q_.data(), bins_,
-              bin_order_.data(), bin_cuts_.data(), known_[b].data(), std::int64_t(known_[b].size()),
+              bin_order_.data(), bin_cuts_.data(), known(b).data(), std::int64_t(known(b).size()),
               strips_[b].lo.data(), strips_[b].hi.data(), std::int64_t(strips_[b].lo.size() / D),
               threads_, kScanBudget * nl);
         },
@@ -465,6 +469,11 @@ class Blocks {
     times_.add(PassTimes::kOutput, B.rows.ms_output);
     if (B.rows.final) local_points_ += nl;
     B.pts = {};
+  }
+
+  // the places block b holds besides its boxes: the hull's candidates and its frontier
+  const I64& known(std::size_t b) const {
+    return known_[b].empty() ? held_ : known_[b];
   }
 
   bool covers_all(std::size_t b) const {
