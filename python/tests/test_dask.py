@@ -302,6 +302,28 @@ def _frontiers_reference(counts, regions, cap, near=None):
 
 
 @pytest.mark.parametrize("d", [2, 3])
+def test_empty_frontiers_maze(d):
+    """The empty bins' components are labelled in parallel (a forest linked from higher bins to
+    lower): near the percolation threshold the empty space is a maze of components of every size
+    and shape, long thin ones across many threads' rows included; small regions scattered over it
+    each reach some of them. Every thread count gives SciPy's answer."""
+    rng = np.random.default_rng(90 + d)
+    shape, p_empty = ((300, 200), 0.40) if d == 2 else ((40, 30, 35), 0.10)
+    counts = np.where(rng.random(shape) < p_empty, 0, rng.integers(1, 5, shape)).astype(np.int32)
+    lo, width = [0.0] * d, [1.0] * d
+    rlo = rng.random((12, d)) * (np.array(shape) - 6)
+    rhi = rlo + rng.random((12, d)) * 5
+    regions = [(np.floor(a).astype(int), np.floor(b).astype(int)) for a, b in zip(rlo, rhi)]
+    want = _frontiers_reference(counts, regions, int(counts.sum()))
+    assert len({len(w) for w in want}) > 3  # the regions reach different parts of the maze
+    for threads in (1, 2, 4):
+        f = _core.empty_frontiers(counts, lo, width, list(shape), rlo, rhi, int(counts.sum()),
+                                  threads=threads)
+        for b, w in enumerate(want):
+            np.testing.assert_array_equal(f["bins"][f["offsets"][b]:f["offsets"][b + 1]], w)
+
+
+@pytest.mark.parametrize("d", [2, 3])
 def test_empty_frontiers(d):
     """The bins beside empty space a block's region reaches (``_core.empty_frontiers``) against
     SciPy's labels: clusters apart, a region inside a cluster (reaching no empty bin), regions
