@@ -339,6 +339,15 @@ class Blocks {
     t = now_ms();
     // the candidates for the global hull's extreme points, where the points are
     held_ = points_.hull();
+    // Every point a candidate (points on a circle or a sphere): every block would hold and
+    // triangulate all of them (the balls of such a triangulation span it whole), so the first
+    // block owns them all and the others none: one triangulation, not one per block (2·10^7
+    // points on a circle took four on one H200, 0.93 s against 0.13 s for one call).
+    // That block then has all the call's threads.
+    if (std::int64_t(held_.size()) >= n_) {
+      std::fill(cell_.begin(), cell_.end(), std::int32_t(0));
+      threads_ = all_;
+    }
     phases.push_back({"blocks.split.hull", now_ms() - t});
     t = now_ms();
     // every block's own points

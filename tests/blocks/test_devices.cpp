@@ -49,6 +49,25 @@ TEST(DelaunayDevices, BeyondEmptySpaceInOneRound) {
         "2D gaussian in 4 blocks");
 }
 
+// Points on a circle or a sphere are all candidates for the hull: one block owns and
+// triangulates them all (every block would hold every point), and the arrays are still the
+// single call's.
+TEST(DelaunayDevices, EveryPointOnTheHullInOneBlock) {
+  auto check = [](const auto& pts, auto opt, auto single, auto blocks, const std::string& what) {
+    opt.backend = Backend::Cpu;
+    const double* p = &pts[0].x;
+    const std::int64_t n = std::int64_t(pts.size());
+    const auto want = single(p, n, opt);
+    const auto got = blocks(p, n, std::vector<int>{0, 0, 0, 0}, opt);
+    expect_same(got, want, what);
+    EXPECT_EQ(got.stats.block_local_points, n - want.num_duplicates) << what;
+  };
+  check(generate3d("sphere", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
+        "3D sphere in 4 blocks");
+  check(generate2d("circle", 50000, 5), Delaunay2dOptions{}, single2, blocks2,
+        "2D circle in 4 blocks");
+}
+
 // Bad input is refused before any block runs, with the single call's errors where it has them.
 TEST(DelaunayDevices, BadInputIsRefused) {
   auto pts = generate3d("uniform", 500, 3);
