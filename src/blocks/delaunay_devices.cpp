@@ -343,8 +343,10 @@ class Blocks {
     // triangulate all of them (the balls of such a triangulation span it whole), so the first
     // block owns them all and the others none: one triangulation, not one per block (2·10^7
     // points on a circle took four on one H200, 0.93 s against 0.13 s for one call).
-    // That block then has all the call's threads.
-    if (std::int64_t(held_.size()) >= n_) {
+    // That block then has all the call's threads, and neither a border (no other block has a
+    // round) nor a test (it holds every point).
+    one_block_ = std::int64_t(held_.size()) >= n_;
+    if (one_block_) {
       std::fill(cell_.begin(), cell_.end(), std::int32_t(0));
       threads_ = all_;
     }
@@ -515,7 +517,7 @@ class Blocks {
     }
     const I64 region(regions_[b].begin(), regions_[b].end());
     try {
-      triangulate(b, merged({&region, &frontier_[b], &held_}), true);
+      triangulate(b, merged({&region, &frontier_[b], &held_}), !one_block_);
     } catch (const Error& e) {
       if (!degenerate(e) || covers_all(b)) throw;
       // no triangulation to take a border from: every own point goes to every block
@@ -606,8 +608,9 @@ class Blocks {
   std::vector<int> devices_;
   Backend backend_;
   Options opt_;
-  int all_ = 1;      // the call's threads: the passes once for all the blocks
-  int threads_ = 1;  // a block's share of them: the blocks run side by side
+  bool one_block_ = false;  // every point the hull's candidate: the first block owns all
+  int all_ = 1;             // the call's threads: the passes once for all the blocks
+  int threads_ = 1;         // a block's share of them: the blocks run side by side
   std::size_t k_ = 0;
   CellGrid grid_, bins_;
   blocks_detail::BorderCells cells_;  // the blocks' cells for the borders (grid_, margin_)
