@@ -515,9 +515,13 @@ class Blocks {
       B.done = true;
       return;
     }
-    const I64 region(regions_[b].begin(), regions_[b].end());
     try {
-      triangulate(b, merged({&region, &frontier_[b], &held_}), !one_block_);
+      if (one_block_) {  // (held_ is every place: no merge of 10^7 places with it)
+        triangulate(b, held_, false);
+      } else {
+        const I64 region(regions_[b].begin(), regions_[b].end());
+        triangulate(b, merged({&region, &frontier_[b], &held_}), true);
+      }
     } catch (const Error& e) {
       if (!degenerate(e) || covers_all(b)) throw;
       // no triangulation to take a border from: every own point goes to every block
