@@ -35,7 +35,9 @@ EdtResult distance_transform_devices(const GridView& grid, SiteRule rule,
 /// candidates for the global hull's extreme points, and its stars are tested against all the
 /// points (blocks.hpp: stars_final); a block whose stars are not all final is triangulated a
 /// second time with its own points, the candidates and the points the other blocks' first
-/// triangulations name as its borders, and is then exact without a test. The owned tetrahedra
+/// triangulations name as its borders, and is then exact without a test. Where every point is a
+/// candidate (points on a sphere), the first block owns them all, on all the threads, and the
+/// others none: every block would hold every point. The owned tetrahedra
 /// (by their lowest vertex) and their neighbours across blocks (matched by their faces) are
 /// put in delaunay3d's order by delaunay3d's own output step, on the first listed device (or the
 /// CPU executor), which also prepares and checks the points (docs/design-notes.md, "Several GPUs

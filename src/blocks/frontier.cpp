@@ -43,6 +43,14 @@ struct Shape {
     x[1] = (b / n[2]) % n[1];
     x[0] = b / (n[1] * n[2]);
   }
+  // whether bin b lies within bins lo..hi along each of the first dim axes
+  bool within(std::int64_t b, const std::int64_t* lo, const std::int64_t* hi, int dim) const {
+    std::int64_t x[3];
+    coords(b, x);
+    for (int a = 0; a < dim; ++a)
+      if (x[a] < lo[a] || x[a] > hi[a]) return false;
+    return true;
+  }
   // calls f(b, x) for every bin b, at x, with the rows shared among the threads of the
   // enclosing parallel region (an omp for: the place is worked out once a row, not once a bin)
   template <class F>
@@ -232,13 +240,9 @@ BlockFrontiers empty_frontiers(const std::int32_t* counts, const CellGrid& bins,
             if (l >= 0) seed[std::size_t(l)] = 1, reached = true;
           }
       if (!reached) continue;
-      auto interior = [&](std::int64_t b) {
-        std::int64_t at[3];
-        s.coords(b, at);
-        for (int a = 0; a < dim; ++a)
-          if (at[a] <= first[a] || at[a] >= last[a]) return false;
-        return true;
-      };
+      std::int64_t inner_lo[3], inner_hi[3];
+      for (int j = 0; j < dim; ++j) inner_lo[j] = first[j] + 1, inner_hi[j] = last[j] - 1;
+      auto interior = [&](std::int64_t b) { return s.within(b, inner_lo, inner_hi, dim); };
       auto& mine = lists[std::size_t(blk)];
       std::int64_t held = 0;
       for (std::size_t q = 0; q < beside.size(); ++q) {
@@ -260,17 +264,10 @@ BlockFrontiers empty_frontiers(const std::int32_t* counts, const CellGrid& bins,
           blocks_detail::cells_along(region_lo[blk * dim + j] - band,
                                      region_hi[blk * dim + j] + band, bins, j, 0.0, true,
                                      &near_lo[j], &near_hi[j]);
-        auto near = [&](std::int64_t b) {
-          std::int64_t at[3];
-          s.coords(b, at);
-          for (int a = 0; a < dim; ++a)
-            if (at[a] < near_lo[a] || at[a] > near_hi[a]) return false;
-          return true;
-        };
         std::size_t kept = 0;
         held = 0;
         for (const std::int64_t b : mine)
-          if (near(b)) mine[kept++] = b, held += counts[b];
+          if (s.within(b, near_lo, near_hi, dim)) mine[kept++] = b, held += counts[b];
         mine.resize(kept);
       }
       if (held > cap) {

@@ -19,6 +19,19 @@ Triangulation2d blocks2(const double* p, std::int64_t n, const std::vector<int>&
   return delaunay2d_devices(p, n, d, o);
 }
 
+// The points in 4 blocks on the CPU executor, checked against the single call; the blocks' result.
+template <class Pts, class Opt, class Single, class Blocks>
+auto in_four_blocks(const Pts& pts, Opt opt, Single single, Blocks blocks,
+                    const std::string& what) {
+  opt.backend = Backend::Cpu;
+  const double* p = &pts[0].x;
+  const std::int64_t n = std::int64_t(pts.size());
+  const auto want = single(p, n, opt);
+  auto got = blocks(p, n, std::vector<int>{0, 0, 0, 0}, opt);
+  expect_same(got, want, what);
+  return std::make_pair(std::move(got), want.num_duplicates);
+}
+
 TEST(DelaunayDevices, Blocks3dEqualOneCall) {
   const auto second =
       check_all<Point3, Delaunay3dOptions>(inputs3d(6000), Backend::Cpu, 0, single3, blocks3);
@@ -36,12 +49,8 @@ TEST(DelaunayDevices, Blocks2dEqualOneCall) {
 // second round; with them none does, and the arrays are still the single call's.
 TEST(DelaunayDevices, BeyondEmptySpaceInOneRound) {
   auto check = [](const auto& pts, auto opt, auto single, auto blocks, const std::string& what) {
-    opt.backend = Backend::Cpu;
-    const double* p = &pts[0].x;
-    const std::int64_t n = std::int64_t(pts.size());
-    const auto got = blocks(p, n, std::vector<int>{0, 0, 0, 0}, opt);
-    expect_same(got, single(p, n, opt), what);
-    EXPECT_EQ(got.stats.blocks_second_round, 0) << what;
+    EXPECT_EQ(in_four_blocks(pts, opt, single, blocks, what).first.stats.blocks_second_round, 0)
+        << what;
   };
   check(generate3d("gaussian", 100000, 5), Delaunay3dOptions{}, single3, blocks3,
         "3D gaussian in 4 blocks");
@@ -54,13 +63,8 @@ TEST(DelaunayDevices, BeyondEmptySpaceInOneRound) {
 // single call's.
 TEST(DelaunayDevices, EveryPointOnTheHullInOneBlock) {
   auto check = [](const auto& pts, auto opt, auto single, auto blocks, const std::string& what) {
-    opt.backend = Backend::Cpu;
-    const double* p = &pts[0].x;
-    const std::int64_t n = std::int64_t(pts.size());
-    const auto want = single(p, n, opt);
-    const auto got = blocks(p, n, std::vector<int>{0, 0, 0, 0}, opt);
-    expect_same(got, want, what);
-    EXPECT_EQ(got.stats.block_local_points, n - want.num_duplicates) << what;
+    const auto [got, duplicates] = in_four_blocks(pts, opt, single, blocks, what);
+    EXPECT_EQ(got.stats.block_local_points, std::int64_t(pts.size()) - duplicates) << what;
   };
   check(generate3d("sphere", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
         "3D sphere in 4 blocks");
