@@ -31,6 +31,9 @@ def make_chunk(seed, i, m, d, dist):
     if dist == "clustered":  # 64 gaussian clusters, the same centres in every chunk
         centres = np.random.default_rng(seed).random((64, d))
         return centres[rng.integers(0, 64, m)] + 0.01 * rng.normal(size=(m, d))
+    if dist == "sphere":  # on the unit circle or sphere: one block takes them all
+        v = rng.normal(size=(m, d))
+        return v / np.linalg.norm(v, axis=1)[:, None]
     raise ValueError(dist)
 
 

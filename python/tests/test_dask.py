@@ -448,6 +448,8 @@ def test_clustered_blocks_take_borders(monkeypatch):
     make the first round enough."""
     from gpugeom.dask import _delaunay
     monkeypatch.setattr(_delaunay, "_frontiers", lambda *a, **k: None)
+    # (the sphere split, as it would be without the rule that gives it to one block)
+    monkeypatch.setattr(_delaunay, "_on_convex_surface", lambda *a, **k: False)
     rng = np.random.default_rng(52)
     sphere = rng.normal(size=(6000, 3))
     sphere /= np.linalg.norm(sphere, axis=1)[:, None]
@@ -462,13 +464,44 @@ def test_clustered_blocks_take_borders(monkeypatch):
         _same_as_single(sphere, gd.delaunay(sphere, blocks=4, backend="cpu"))
 
 
+def test_convex_surface_in_one_block():
+    """Points on a circle or a sphere, or on a shell thinner than the sample's spacing, go to one
+    block that owns them all (split, every block would hold most of them); a thicker shell and
+    a ball are split. Each is the single run's triangulation."""
+    rng = np.random.default_rng(63)
+    cases = []
+    for d, n in ((2, 20000), (3, 8000)):
+        surface = rng.normal(size=(n, d))
+        surface /= np.linalg.norm(surface, axis=1)[:, None]
+        thin = surface * (1 + 1e-6 * rng.random((n, 1)))
+        thick = surface * (0.6 + 0.4 * rng.random((n, 1)))
+        cases += [(surface, True), (thin, True), (thick, False), (rng.random((n, d)), False)]
+    with dask.config.set(scheduler="threads"):
+        for pts, one in cases:
+            dt = gd.delaunay(pts, blocks=4, backend="cpu")
+            _same_as_single(pts, dt)
+            if one:
+                assert [(s["block"], s["nlocal"]) for s in dt.block_stats] == [(0, len(pts))]
+            else:
+                assert len(dt.block_stats) == 4
+    # a sample that is flat, too small or in convex position
+    from gpugeom.dask import _delaunay
+    line = np.stack([np.arange(50.0), np.zeros(50)], axis=1)
+    assert not _delaunay._on_convex_surface([line[:20], line[20:]], 1)
+    assert not _delaunay._on_convex_surface([line[:3]], 1)
+    assert _delaunay._on_convex_surface([cases[0][0][:100], cases[0][0][100:300]], 1)
+    assert _delaunay._sample_stride(4096) == 1 and _delaunay._sample_stride(4097) == 2
+
+
 @pytest.mark.parametrize("d", [2, 3])
 def test_second_round_is_exact_everywhere(d, monkeypatch):
     """Every block's first round failed on purpose: the second, from the borders alone, gives
     the single run's triangulation on every family (degenerate ones included: a grid turned off
     the axes has its hull's sides full of collinear or coplanar points), across 2, 3 and 8
     blocks."""
-    from gpugeom.dask import _ghost
+    from gpugeom.dask import _delaunay, _ghost
+    # (the sphere split too, as it would be without the rule that gives it to one block)
+    monkeypatch.setattr(_delaunay, "_on_convex_surface", lambda *a, **k: False)
     rng = np.random.default_rng(60 + d)
     fam = _families(d, rng)
     turn = np.eye(d) * 5

@@ -25,6 +25,7 @@
 #include "base/on_threads.hpp"
 #include "exec/dispatch.hpp"
 #include "exec/peer_reads.hpp"
+#include "blocks/convex_sample.hpp"
 #include "blocks/final.hpp"
 #include "blocks/owned.hpp"
 #include "blocks/pass.hpp"
@@ -337,15 +338,22 @@ class Blocks {
       source_[b] = points_.pts;
     }
     t = now_ms();
-    // the candidates for the global hull's extreme points, where the points are
-    held_ = points_.hull();
-    // Every point a candidate (points on a circle or a sphere): every block would hold and
-    // triangulate all of them (the balls of such a triangulation span it whole), so the first
-    // block owns them all and the others none: one triangulation, not one per block (2·10^7
-    // points on a circle took four on one H200, 0.93 s against 0.13 s for one call).
-    // That block then has all the call's threads, and neither a border (no other block has a
-    // round) nor a test (it holds every point).
-    one_block_ = std::int64_t(held_.size()) >= n_;
+    // Points on a convex surface (a circle, a sphere, a shell thinner than a sample's spacing:
+    // blocks/convex_sample.hpp): every block would hold most of them (each holds the global
+    // hull's extreme points) and its balls span the hollow inside, where no ghost layer
+    // reaches, so the first block owns every point and the others none: one triangulation, not
+    // one per block (2·10^7 points on a circle took four on one H200, 0.93 s against 0.13 s for
+    // one call; a thin shell of 10^7 points two rounds, 2.9 s against 0.85). That block then
+    // has all the call's threads, and neither a border (no other block has a round) nor a test
+    // (it holds every point). The sample decides before the global hull, which such points
+    // make costly (0.56 s of a sphere's 10^7 points on an H200) and one block does not need.
+    one_block_ = blocks_detail::on_convex_surface(q_.data(), D, n_, all_);
+    // else the candidates for the global hull's extreme points, where the points are; where
+    // they are every point all the same (the sample missed it), one block as well
+    if (!one_block_) {
+      held_ = points_.hull();
+      one_block_ = std::int64_t(held_.size()) >= n_;
+    }
     if (one_block_) {
       std::fill(cell_.begin(), cell_.end(), std::int32_t(0));
       threads_ = all_;
@@ -493,6 +501,14 @@ class Blocks {
     B.pts = {};
   }
 
+  // every place, in order (on all the call's threads)
+  I64 all_places() const {
+    I64 out(static_cast<std::size_t>(n_));
+#pragma omp parallel for num_threads(all_) schedule(static)
+    for (std::int64_t i = 0; i < n_; ++i) out[std::size_t(i)] = i;
+    return out;
+  }
+
   // the places block b holds besides its boxes: the hull's candidates and its frontier
   const I64& known(std::size_t b) const {
     return known_[b].empty() ? held_ : known_[b];
@@ -513,8 +529,8 @@ class Blocks {
       return;
     }
     try {
-      if (one_block_) {  // (held_ is every place: no merge of 10^7 places with it)
-        triangulate(b, held_, false);
+      if (one_block_) {  // (every place, as they are: no merge of 10^7 places)
+        triangulate(b, std::int64_t(held_.size()) == n_ ? held_ : all_places(), false);
       } else {
         const I64 region(regions_[b].begin(), regions_[b].end());
         triangulate(b, merged({&region, &frontier_[b], &held_}), true);
@@ -609,7 +625,7 @@ class Blocks {
   std::vector<int> devices_;
   Backend backend_;
   Options opt_;
-  bool one_block_ = false;  // every point the hull's candidate: the first block owns all
+  bool one_block_ = false;  // points on a convex surface: the first block owns all
   int all_ = 1;             // the call's threads: the passes once for all the blocks
   int threads_ = 1;         // a block's share of them: the blocks run side by side
   std::size_t k_ = 0;

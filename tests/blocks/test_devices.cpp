@@ -58,18 +58,35 @@ TEST(DelaunayDevices, BeyondEmptySpaceInOneRound) {
         "2D gaussian in 4 blocks");
 }
 
-// Points on a circle or a sphere are all candidates for the hull: one block owns and
-// triangulates them all (every block would hold every point), and the arrays are still the
-// single call's.
-TEST(DelaunayDevices, EveryPointOnTheHullInOneBlock) {
-  auto check = [](const auto& pts, auto opt, auto single, auto blocks, const std::string& what) {
+// Points on a circle or a sphere, or on a shell thinner than a sample's spacing, lie on a convex
+// surface: one block owns and triangulates them all (every block would hold most of them), and the
+// arrays are still the single call's. A shell thick enough to hold points inside its hull is split.
+TEST(DelaunayDevices, ConvexSurfaceInOneBlock) {
+  auto local = [](const auto& pts, auto opt, auto single, auto blocks, const std::string& what) {
     const auto [got, duplicates] = in_four_blocks(pts, opt, single, blocks, what);
-    EXPECT_EQ(got.stats.block_local_points, std::int64_t(pts.size()) - duplicates) << what;
+    return double(got.stats.block_local_points) / double(std::int64_t(pts.size()) - duplicates);
   };
-  check(generate3d("sphere", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
-        "3D sphere in 4 blocks");
-  check(generate2d("circle", 50000, 5), Delaunay2dOptions{}, single2, blocks2,
-        "2D circle in 4 blocks");
+  EXPECT_EQ(local(generate3d("sphere", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
+                  "3D sphere in 4 blocks"),
+            1.0);
+  EXPECT_EQ(local(generate2d("circle", 50000, 5), Delaunay2dOptions{}, single2, blocks2,
+                  "2D circle in 4 blocks"),
+            1.0);
+  // (radii 0.45 to 0.4501: most of the points are inside the hull, few of the sample's are)
+  EXPECT_EQ(local(generate3d("thin_sphere", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
+                  "3D thin shell in 4 blocks"),
+            1.0);
+  std::vector<Point3> shell = generate3d("sphere", 20000, 6);
+  for (std::size_t i = 0; i < shell.size(); ++i) {
+    // (radii 0.7 to 1 of the sphere's 0.45 round (0.5, 0.5, 0.5))
+    const double r = 0.7 + 0.3 * double(i % 97) / 97.0;
+    shell[i] = {0.5 + (shell[i].x - 0.5) * r, 0.5 + (shell[i].y - 0.5) * r,
+                0.5 + (shell[i].z - 0.5) * r};
+  }
+  EXPECT_GT(local(shell, Delaunay3dOptions{}, single3, blocks3, "3D thick shell in 4 blocks"), 1.0);
+  EXPECT_GT(local(generate3d("ball", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
+                  "3D ball in 4 blocks"),
+            1.0);
 }
 
 // Bad input is refused before any block runs, with the single call's errors where it has them.
