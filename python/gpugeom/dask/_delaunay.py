@@ -248,6 +248,14 @@ def _faces_to(r: dict, offset: int, d1: int, matcher: int):
     return r["req_key"][at], offset * d1 + r["req_pos"][at], r["req_open"][at].view(bool)
 
 
+def _faces_for(r: dict, offset: int, d1: int, matchers):
+    """A block's face requests for each block of ``matchers`` (``_faces_to``), as one task's
+    outputs: the scheduler places a task by its inputs' bytes against the worker's queue, and a
+    task per matcher, each of whose input is the block's whole result, was sent to idle
+    workers with that result (3D 10^6 points, 4 workers: 791 MiB and 1.3 s of transfers)."""
+    return tuple(_faces_to(r, offset, d1, c) for c in matchers)
+
+
 def _match(parts):
     """Pairs the face requests that come to one block from several (``_core.match_faces``):
     per part, in their order, (its positions, the positions across them, -1 for a face on the
@@ -587,8 +595,10 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     for b in order:
         for c in metas[b]["owners"]:
             senders.setdefault(c, []).append(b)
-    answers = {c: delayed(_match)([delayed(_faces_to)(final[b], int(offsets[at[b]]), d1, c)
-                                   for b in senders[c]]) for c in senders}
+    faces = {b: delayed(_faces_for, nout=len(metas[b]["owners"]))(
+        final[b], int(offsets[at[b]]), d1, metas[b]["owners"]) for b in order}
+    answers = {c: delayed(_match)([faces[b][metas[b]["owners"].index(c)] for b in senders[c]])
+               for c in senders}
     neighbors = [delayed(_neighbors_of)(
         final[b], int(offsets[at[b]]), d1,
         [delayed(operator.getitem)(answers[c], senders[c].index(b)) for c in metas[b]["owners"]])
