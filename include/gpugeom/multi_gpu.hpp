@@ -37,23 +37,23 @@ EdtResult distance_transform_devices(const GridView& grid, SiteRule rule,
 /// points, the candidates and the points the other blocks' first triangulations name as its
 /// borders, and is then exact without a test. Where the points lie on a convex surface (a sphere,
 /// or a shell thinner than the spacing of a sample of 4096 of them: half the sample's points or
-/// more are its hull's extreme points), the first block owns them all, on all the threads, and the
-/// others none: every block would hold most of them. The owned tetrahedra (by their lowest vertex)
-/// and their neighbours across blocks (matched by their faces) are put in delaunay3d's order by
-/// delaunay3d's own output step, on the first listed device (or the CPU executor), which also
-/// prepares and checks the points (docs/design-notes.md, "Several GPUs of one host"). A single
-/// entry is a single delaunay3d call on that device. The points are split among the blocks on the
-/// first device, where they were prepared, and each block gathers its points on its device from
-/// there (directly where the GPUs have peer access; through the host where they do not). Each
-/// block's passes over its simplices (owned rows, borders, face requests) run on its device, and
-/// its owned rows stay there until the first device copies them; the finality test of the stars
-/// near a region's edge and the face matching run on host threads. opt.device and opt.stream are
-/// not read; opt.threads, where given, is the host threads of all blocks together; opt.into is
-/// written as delaunay3d writes it. With opt.backend == Backend::Cpu every entry is a block on the
-/// CPU executor (the same result; for machines without GPUs and for tests). The stats count the
-/// blocks, those that took a second round and their local points, with the phases "blocks.*".
-/// Throws as delaunay3d (the points are checked before any block runs), and Error(InvalidArgument)
-/// for Method::Digital or a negative ordinal.
+/// more are its hull's extreme points), the call is a single delaunay3d call on the first device:
+/// every block would hold most of them. The owned tetrahedra (by their lowest vertex) and their
+/// neighbours across blocks (matched by their faces) are put in delaunay3d's order by delaunay3d's
+/// own output step, on the first listed device (or the CPU executor), which also prepares and
+/// checks the points (docs/design-notes.md, "Several GPUs of one host"). A single entry is a single
+/// delaunay3d call on that device. The points are split among the blocks on the first device, where
+/// they were prepared, and each block gathers its points on its device from there (directly where
+/// the GPUs have peer access; through the host where they do not). Each block's passes over its
+/// simplices (owned rows, borders, face requests) run on its device, and its owned rows stay there
+/// until the first device copies them; the finality test of the stars near a region's edge and the
+/// face matching run on host threads. opt.device and opt.stream are not read; opt.threads, where
+/// given, is the host threads of all blocks together; opt.into is written as delaunay3d writes it.
+/// With opt.backend == Backend::Cpu every entry is a block on the CPU executor (the same result;
+/// for machines without GPUs and for tests). The stats count the blocks, those that took a second
+/// round and their local points, with the phases "blocks.*". Throws as delaunay3d (the points are
+/// checked before any block runs), and Error(InvalidArgument) for Method::Digital or a negative
+/// ordinal.
 Triangulation3d delaunay3d_devices(const double* xyz, std::int64_t n,
                                    const std::vector<int>& devices,
                                    const Delaunay3dOptions& opt = {});

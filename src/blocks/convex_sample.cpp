@@ -4,6 +4,7 @@
 #include "blocks/convex_sample.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "gpugeom/hull3d.hpp"
@@ -42,6 +43,10 @@ bool on_convex_surface(const double* pts, int dim, std::int64_t m, int threads) 
   const std::int64_t stride = convex_sample_stride(m);
   const std::int64_t s = (m + stride - 1) / stride;
   if (s < dim + 2) return false;  // (too few to tell: the split handles them)
+  // (a NaN or an infinity says no: the call that follows refuses such input with its error)
+  for (std::int64_t i = 0; i < s; ++i)
+    for (int j = 0; j < dim; ++j)
+      if (!std::isfinite(pts[dim * i * stride + j])) return false;
   std::int64_t extreme = 0;
   if (dim == 2) {
     std::vector<Point2> p(static_cast<std::size_t>(s));
@@ -58,7 +63,8 @@ bool on_convex_surface(const double* pts, int dim, std::int64_t m, int threads) 
     try {
       extreme = convex_hull3d(p.data(), s, o).num_vertices;
     } catch (const Error& e) {
-      if (e.code() != ErrorCode::DegenerateInput) throw;
+      // (flat, or coordinates the hull does not take: the call that follows says which)
+      if (e.code() != ErrorCode::DegenerateInput && e.code() != ErrorCode::InvalidInput) throw;
       return false;
     }
   }

@@ -338,26 +338,8 @@ class Blocks {
       source_[b] = points_.pts;
     }
     t = now_ms();
-    // Points on a convex surface (a circle, a sphere, a shell thinner than a sample's spacing:
-    // blocks/convex_sample.hpp): every block would hold most of them (each holds the global
-    // hull's extreme points) and its balls span the hollow inside, where no ghost layer
-    // reaches, so the first block owns every point and the others none: one triangulation, not
-    // one per block (2·10^7 points on a circle took four on one H200, 0.93 s against 0.13 s for
-    // one call; a thin shell of 10^7 points two rounds, 2.9 s against 0.85). That block then
-    // has all the call's threads, and neither a border (no other block has a round) nor a test
-    // (it holds every point). The sample decides before the global hull, which such points
-    // make costly (0.56 s of a sphere's 10^7 points on an H200) and one block does not need.
-    one_block_ = blocks_detail::on_convex_surface(q_.data(), D, n_, all_);
-    // else the candidates for the global hull's extreme points, where the points are; where
-    // they are every point all the same (the sample missed it), one block as well
-    if (!one_block_) {
-      held_ = points_.hull();
-      one_block_ = std::int64_t(held_.size()) >= n_;
-    }
-    if (one_block_) {
-      std::fill(cell_.begin(), cell_.end(), std::int32_t(0));
-      threads_ = all_;
-    }
+    // the candidates for the global hull's extreme points, where the points are
+    held_ = points_.hull();
     phases.push_back({"blocks.split.hull", now_ms() - t});
     t = now_ms();
     // every block's own points
@@ -390,7 +372,6 @@ class Blocks {
   void frontiers() {
     frontier_.assign(k_, I64{});
     known_.assign(k_, I64{});
-    if (one_block_) return;  // (that block holds every point)
     const std::int64_t nbins = std::int64_t(bin_cuts_.size()) - 1;
     HostVector<std::int32_t> counts(static_cast<std::size_t>(nbins));
     // (once for all the blocks, so on all the threads: a block's share of them made the pass
@@ -501,14 +482,6 @@ class Blocks {
     B.pts = {};
   }
 
-  // every place, in order (on all the call's threads)
-  I64 all_places() const {
-    I64 out(static_cast<std::size_t>(n_));
-#pragma omp parallel for num_threads(all_) schedule(static)
-    for (std::int64_t i = 0; i < n_; ++i) out[std::size_t(i)] = i;
-    return out;
-  }
-
   // the places block b holds besides its boxes: the hull's candidates and its frontier
   const I64& known(std::size_t b) const {
     return known_[b].empty() ? held_ : known_[b];
@@ -529,12 +502,8 @@ class Blocks {
       return;
     }
     try {
-      if (one_block_) {  // (every place, as they are: no merge of 10^7 places)
-        triangulate(b, std::int64_t(held_.size()) == n_ ? held_ : all_places(), false);
-      } else {
-        const I64 region(regions_[b].begin(), regions_[b].end());
-        triangulate(b, merged({&region, &frontier_[b], &held_}), true);
-      }
+      const I64 region(regions_[b].begin(), regions_[b].end());
+      triangulate(b, merged({&region, &frontier_[b], &held_}), true);
     } catch (const Error& e) {
       if (!degenerate(e) || covers_all(b)) throw;
       // no triangulation to take a border from: every own point goes to every block
@@ -625,9 +594,8 @@ class Blocks {
   std::vector<int> devices_;
   Backend backend_;
   Options opt_;
-  bool one_block_ = false;  // points on a convex surface: the first block owns all
-  int all_ = 1;             // the call's threads: the passes once for all the blocks
-  int threads_ = 1;         // a block's share of them: the blocks run side by side
+  int all_ = 1;      // the call's threads: the passes once for all the blocks
+  int threads_ = 1;  // a block's share of them: the blocks run side by side
   std::size_t k_ = 0;
   CellGrid grid_, bins_;
   blocks_detail::BorderCells cells_;  // the blocks' cells for the borders (grid_, margin_)
@@ -665,7 +633,16 @@ typename Dim<D>::Result run_devices(const double* p, std::int64_t n,
       throw Error(
           ErrorCode::InvalidArgument,
           std::string(name) + ": a device ordinal must be 0 or more, got " + std::to_string(d));
-  if (devices.size() == 1) {  // one block: the single call on its device
+  // One block: the single call on the first device, where one device is listed, or where the
+  // points lie on a convex surface (a circle, a sphere, a shell thinner than a sample's spacing:
+  // blocks/convex_sample.hpp), so that every block would hold most of them and its balls would
+  // span the hollow inside, past any ghost layer (2·10^7 points on a circle took four
+  // triangulations on one H200, 0.93 s against 0.13 s for one call; a thin shell of 10^7 points
+  // two rounds, 2.8 s against 0.85). The sample is read from the input as given (every
+  // ceil(n / 4096)-th point, as gpugeom.dask reads its own), before the points are checked: a
+  // sample with a NaN or an infinity says no, and the assembly's check refuses it.
+  if (devices.size() == 1 ||
+      blocks_detail::on_convex_surface(p, D, n, opt.threads > 0 ? opt.threads : 0)) {
     typename Dim<D>::Options o = opt;
     o.backend = b;
     if (b == Backend::Cuda) o.device = devices[0];

@@ -109,6 +109,12 @@ inline void expect_same(const Triangulation2d& got, const Triangulation2d& want,
   EXPECT_EQ(got.num_duplicates, want.num_duplicates) << what;
 }
 
+// The inputs on a convex surface (blocks/convex_sample.hpp), which go to the single call on the
+// first device whatever the devices listed.
+inline bool on_convex_surface(const std::string& name) {
+  return name == "sphere" || name == "thin_sphere" || name == "circle";
+}
+
 // Every input across 1, 2, 3 and 8 blocks (devices: `device` named that often) against one
 // call on `backend`; returns the blocks that took a second round, over all runs.
 template <class P, class Opt, class Single, class Devices>
@@ -124,7 +130,7 @@ std::int64_t check_all(const std::vector<Input<P>>& inputs, Backend backend, int
     for (int k : {1, 2, 3, 8}) {
       const auto got = devices(p, n, std::vector<int>(std::size_t(k), device), o);
       expect_same(got, want, in.name + " in " + std::to_string(k) + " blocks");
-      EXPECT_EQ(got.stats.blocks, k);
+      EXPECT_EQ(got.stats.blocks, on_convex_surface(in.name) ? 1 : k) << in.name;
       second += got.stats.blocks_second_round;
     }
   }

@@ -59,23 +59,24 @@ TEST(DelaunayDevices, BeyondEmptySpaceInOneRound) {
 }
 
 // Points on a circle or a sphere, or on a shell thinner than a sample's spacing, lie on a convex
-// surface: one block owns and triangulates them all (every block would hold most of them), and the
-// arrays are still the single call's. A shell thick enough to hold points inside its hull is split.
+// surface: they go to the single call on the first device (every block would hold most of them),
+// and the arrays are the single call's. A shell thick enough to hold points inside its hull is
+// split; so is a ball. A sample with a NaN is refused as the single call refuses it.
 TEST(DelaunayDevices, ConvexSurfaceInOneBlock) {
-  auto local = [](const auto& pts, auto opt, auto single, auto blocks, const std::string& what) {
-    const auto [got, duplicates] = in_four_blocks(pts, opt, single, blocks, what);
-    return double(got.stats.block_local_points) / double(std::int64_t(pts.size()) - duplicates);
+  auto blocks_of = [](const auto& pts, auto opt, auto single, auto blocks,
+                      const std::string& what) {
+    return in_four_blocks(pts, opt, single, blocks, what).first.stats.blocks;
   };
-  EXPECT_EQ(local(generate3d("sphere", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
-                  "3D sphere in 4 blocks"),
-            1.0);
-  EXPECT_EQ(local(generate2d("circle", 50000, 5), Delaunay2dOptions{}, single2, blocks2,
-                  "2D circle in 4 blocks"),
-            1.0);
+  EXPECT_EQ(blocks_of(generate3d("sphere", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
+                      "3D sphere in 4 blocks"),
+            1);
+  EXPECT_EQ(blocks_of(generate2d("circle", 50000, 5), Delaunay2dOptions{}, single2, blocks2,
+                      "2D circle in 4 blocks"),
+            1);
   // (radii 0.45 to 0.4501: most of the points are inside the hull, few of the sample's are)
-  EXPECT_EQ(local(generate3d("thin_sphere", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
-                  "3D thin shell in 4 blocks"),
-            1.0);
+  EXPECT_EQ(blocks_of(generate3d("thin_sphere", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
+                      "3D thin shell in 4 blocks"),
+            1);
   std::vector<Point3> shell = generate3d("sphere", 20000, 6);
   for (std::size_t i = 0; i < shell.size(); ++i) {
     // (radii 0.7 to 1 of the sphere's 0.45 round (0.5, 0.5, 0.5))
@@ -83,10 +84,29 @@ TEST(DelaunayDevices, ConvexSurfaceInOneBlock) {
     shell[i] = {0.5 + (shell[i].x - 0.5) * r, 0.5 + (shell[i].y - 0.5) * r,
                 0.5 + (shell[i].z - 0.5) * r};
   }
-  EXPECT_GT(local(shell, Delaunay3dOptions{}, single3, blocks3, "3D thick shell in 4 blocks"), 1.0);
-  EXPECT_GT(local(generate3d("ball", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
-                  "3D ball in 4 blocks"),
-            1.0);
+  EXPECT_EQ(blocks_of(shell, Delaunay3dOptions{}, single3, blocks3, "3D thick shell in 4 blocks"),
+            4);
+  EXPECT_EQ(blocks_of(generate3d("ball", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
+                      "3D ball in 4 blocks"),
+            4);
+  // (every sample point on the sphere but one NaN: the single call's error, not the sample's)
+  auto bad = generate3d("sphere", 20000, 5);
+  bad[0].x = std::nan("");
+  Delaunay3dOptions o;
+  o.backend = Backend::Cpu;
+  ErrorCode got = ErrorCode::Internal, want = ErrorCode::Internal;
+  try {
+    delaunay3d(&bad[0].x, std::int64_t(bad.size()), o);
+  } catch (const Error& e) {
+    want = e.code();
+  }
+  try {
+    delaunay3d_devices(&bad[0].x, std::int64_t(bad.size()), {0, 0, 0, 0}, o);
+  } catch (const Error& e) {
+    got = e.code();
+  }
+  EXPECT_NE(want, ErrorCode::Internal);
+  EXPECT_EQ(got, want);
 }
 
 // Bad input is refused before any block runs, with the single call's errors where it has them.
