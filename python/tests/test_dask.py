@@ -142,6 +142,12 @@ def test_local_cluster(cluster_client):
     dt = gd.delaunay(da.from_array(pts, chunks=-1), backend="cpu")
     assert len(dt.block_stats) == 2
     _same_as_single(pts, dt)
+    # points on a sphere: one block in a worker process, on the cores it may run on
+    sphere = rng.normal(size=(5000, 3))
+    sphere /= np.linalg.norm(sphere, axis=1)[:, None]
+    dt = gd.delaunay(da.from_array(sphere, chunks=(1250, 3)), blocks=8, backend="cpu")
+    assert [s["block"] for s in dt.block_stats] == [0]
+    _same_as_single(sphere, dt)
 
 
 def test_worker_killed_mid_run(kill_worker_once):
