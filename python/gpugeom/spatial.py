@@ -328,9 +328,11 @@ class Delaunay(_OfPoints):
     devices : list of int or "all", optional
         Several GPUs of this host (host points; not in SciPy): the points are split into one
         block per entry (a device may be named twice), every block triangulated at once on its
-        device, and the result is the arrays of one call, byte for byte. With
-        ``backend="cpu"`` each entry is a block on the CPU. Not with ``incremental``,
-        ``furthest_site``, ``method="digital"`` or ``progress``.
+        device, and the result is the arrays of one call, byte for byte. Points on a convex
+        surface (a circle, a sphere, a shell thinner than the spacing of a sample of 4096 of
+        them) are not split: that is one call on the first device. With ``backend="cpu"``
+        each entry is a block on the CPU. Not with ``incremental``, ``furthest_site``,
+        ``method="digital"`` or ``progress``.
 
     Attributes
     ----------
