@@ -26,10 +26,20 @@ auto in_four_blocks(const Pts& pts, Opt opt, Single single, Blocks blocks,
   opt.backend = Backend::Cpu;
   const double* p = &pts[0].x;
   const std::int64_t n = std::int64_t(pts.size());
-  const auto want = single(p, n, opt);
   auto got = blocks(p, n, std::vector<int>{0, 0, 0, 0}, opt);
-  expect_same(got, want, what);
-  return std::make_pair(std::move(got), want.num_duplicates);
+  expect_same(got, single(p, n, opt), what);
+  return got;
+}
+
+// The code of the error f throws (Internal where it throws none).
+template <class F>
+ErrorCode code_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.code();
+  }
+  return ErrorCode::Internal;
 }
 
 TEST(DelaunayDevices, Blocks3dEqualOneCall) {
@@ -49,8 +59,7 @@ TEST(DelaunayDevices, Blocks2dEqualOneCall) {
 // second round; with them none does, and the arrays are still the single call's.
 TEST(DelaunayDevices, BeyondEmptySpaceInOneRound) {
   auto check = [](const auto& pts, auto opt, auto single, auto blocks, const std::string& what) {
-    EXPECT_EQ(in_four_blocks(pts, opt, single, blocks, what).first.stats.blocks_second_round, 0)
-        << what;
+    EXPECT_EQ(in_four_blocks(pts, opt, single, blocks, what).stats.blocks_second_round, 0) << what;
   };
   check(generate3d("gaussian", 100000, 5), Delaunay3dOptions{}, single3, blocks3,
         "3D gaussian in 4 blocks");
@@ -65,7 +74,7 @@ TEST(DelaunayDevices, BeyondEmptySpaceInOneRound) {
 TEST(DelaunayDevices, ConvexSurfaceInOneBlock) {
   auto blocks_of = [](const auto& pts, auto opt, auto single, auto blocks,
                       const std::string& what) {
-    return in_four_blocks(pts, opt, single, blocks, what).first.stats.blocks;
+    return in_four_blocks(pts, opt, single, blocks, what).stats.blocks;
   };
   EXPECT_EQ(blocks_of(generate3d("sphere", 20000, 5), Delaunay3dOptions{}, single3, blocks3,
                       "3D sphere in 4 blocks"),
@@ -94,19 +103,10 @@ TEST(DelaunayDevices, ConvexSurfaceInOneBlock) {
   bad[0].x = std::nan("");
   Delaunay3dOptions o;
   o.backend = Backend::Cpu;
-  ErrorCode got = ErrorCode::Internal, want = ErrorCode::Internal;
-  try {
-    delaunay3d(&bad[0].x, std::int64_t(bad.size()), o);
-  } catch (const Error& e) {
-    want = e.code();
-  }
-  try {
-    delaunay3d_devices(&bad[0].x, std::int64_t(bad.size()), {0, 0, 0, 0}, o);
-  } catch (const Error& e) {
-    got = e.code();
-  }
+  const std::int64_t n = std::int64_t(bad.size());
+  const ErrorCode want = code_of([&] { delaunay3d(&bad[0].x, n, o); });
   EXPECT_NE(want, ErrorCode::Internal);
-  EXPECT_EQ(got, want);
+  EXPECT_EQ(code_of([&] { delaunay3d_devices(&bad[0].x, n, {0, 0, 0, 0}, o); }), want);
 }
 
 // Bad input is refused before any block runs, with the single call's errors where it has them.
@@ -114,35 +114,27 @@ TEST(DelaunayDevices, BadInputIsRefused) {
   auto pts = generate3d("uniform", 500, 3);
   Delaunay3dOptions o;
   o.backend = Backend::Cpu;
-  auto code = [&](auto f) {
-    try {
-      f();
-    } catch (const Error& e) {
-      return e.code();
-    }
-    return ErrorCode::Internal;  // (nothing thrown)
-  };
   const double* p = &pts[0].x;
   const std::int64_t n = std::int64_t(pts.size());
-  EXPECT_EQ(code([&] { delaunay3d_devices(p, n, {0, -1}, o); }), ErrorCode::InvalidArgument);
+  EXPECT_EQ(code_of([&] { delaunay3d_devices(p, n, {0, -1}, o); }), ErrorCode::InvalidArgument);
   Delaunay3dOptions dig = o;
   dig.method = Method::Digital;
-  EXPECT_EQ(code([&] { delaunay3d_devices(p, n, {0, 0}, dig); }), ErrorCode::InvalidArgument);
+  EXPECT_EQ(code_of([&] { delaunay3d_devices(p, n, {0, 0}, dig); }), ErrorCode::InvalidArgument);
   Delaunay3dOptions neg = o;
   neg.threads = -2;
-  EXPECT_EQ(code([&] { delaunay3d_devices(p, n, {0, 0}, neg); }), ErrorCode::InvalidArgument);
+  EXPECT_EQ(code_of([&] { delaunay3d_devices(p, n, {0, 0}, neg); }), ErrorCode::InvalidArgument);
   auto bad = pts;
   bad[17].y = std::nan("");
-  const ErrorCode nan_code = code([&] { delaunay3d(&bad[0].x, n, o); });
+  const ErrorCode nan_code = code_of([&] { delaunay3d(&bad[0].x, n, o); });
   EXPECT_NE(nan_code, ErrorCode::Internal);
-  EXPECT_EQ(code([&] { delaunay3d_devices(&bad[0].x, n, {0, 0}, o); }), nan_code);
+  EXPECT_EQ(code_of([&] { delaunay3d_devices(&bad[0].x, n, {0, 0}, o); }), nan_code);
   std::vector<Point2> few{{0, 0}, {1, 0}};
   Delaunay2dOptions o2;
   o2.backend = Backend::Cpu;
-  EXPECT_EQ(code([&] {
+  EXPECT_EQ(code_of([&] {
               delaunay2d_devices(&few[0].x, 2, {0, 0}, o2);
             }),
-            code([&] { delaunay2d(&few[0].x, 2, o2); }));
+            code_of([&] { delaunay2d(&few[0].x, 2, o2); }));
 }
 
 }  // namespace
