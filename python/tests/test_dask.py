@@ -493,9 +493,9 @@ def test_convex_surface_in_one_block():
     # a sample that is flat, too small or in convex position
     from gpugeom.dask import _delaunay
     line = np.stack([np.arange(50.0), np.zeros(50)], axis=1)
-    assert not _delaunay._on_convex_surface([line[:20], line[20:]], 1)
-    assert not _delaunay._on_convex_surface([line[:3]], 1)
-    assert _delaunay._on_convex_surface([cases[0][0][:100], cases[0][0][100:300]], 1)
+    assert not _delaunay._on_convex_surface([line[:20], line[20:]])
+    assert not _delaunay._on_convex_surface([line[:3]])
+    assert _delaunay._on_convex_surface([cases[0][0][:100], cases[0][0][100:300]])
     assert _delaunay._sample_stride(4096) == 1 and _delaunay._sample_stride(4097) == 2
 
 

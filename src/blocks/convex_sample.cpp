@@ -12,7 +12,7 @@
 
 namespace gpugeom::blocks_detail {
 
-bool on_convex_surface(const double* pts, int dim, std::int64_t m, int threads) {
+bool on_convex_surface(const double* pts, int dim, std::int64_t m) {
   const std::int64_t stride = convex_sample_stride(m);
   const std::int64_t s = (m + stride - 1) / stride;
   if (s < dim + 2) return false;  // (too few to tell: the split handles them)
@@ -29,7 +29,7 @@ bool on_convex_surface(const double* pts, int dim, std::int64_t m, int threads) 
     if (dim == 2) {
       Delaunay2dOptions o;
       o.backend = Backend::Cpu;
-      o.threads = threads;
+      o.threads = 1;  // (4096 points: a team of threads costs more than it saves)
       const Triangulation2d t = delaunay2d(p.data(), s, o);
       extreme = std::int64_t(convex_hull2d_vertices(p.data(), s, t.triangles.data(),
                                                     t.neighbors.data(), t.num_triangles)
@@ -37,7 +37,7 @@ bool on_convex_surface(const double* pts, int dim, std::int64_t m, int threads) 
     } else {
       Hull3dOptions o;
       o.backend = Backend::Cpu;
-      o.threads = threads;
+      o.threads = 1;  // (4096 points: a team of threads costs more than it saves)
       extreme = convex_hull3d(p.data(), s, o).num_vertices;
     }
   } catch (const Error& e) {

@@ -641,8 +641,7 @@ typename Dim<D>::Result run_devices(const double* p, std::int64_t n,
   // two rounds, 2.8 s against 0.85). The sample is read from the input as given (every
   // ceil(n / 4096)-th point, as gpugeom.dask reads its own), before the points are checked: a
   // sample with a NaN or an infinity says no, and the assembly's check refuses it.
-  if (devices.size() == 1 ||
-      blocks_detail::on_convex_surface(p, D, n, opt.threads > 0 ? opt.threads : 0)) {
+  if (devices.size() == 1 || blocks_detail::on_convex_surface(p, D, n)) {
     typename Dim<D>::Options o = opt;
     o.backend = b;
     if (b == Backend::Cuda) o.device = devices[0];

@@ -142,14 +142,14 @@ def _sample_stride(n: int) -> int:
     return 1 if n <= _CONVEX_SAMPLE else -(-n // _CONVEX_SAMPLE)
 
 
-def _on_convex_surface(samples, threads: int) -> bool:
+def _on_convex_surface(samples) -> bool:
     """Whether the sample (the pieces' parts of it, from the check) says the points lie on a
     convex surface (decided in the client before any split: a hull of at most 4096 points)."""
     pts = np.concatenate(samples)
     if len(pts) < pts.shape[1] + 2:
         return False  # (too few to tell: the split handles them)
     try:
-        h = ConvexHull(pts, backend="cpu", threads=threads)
+        h = ConvexHull(pts, backend="cpu", threads=1)  # (4096 points: one thread is enough)
     except (_core.DegenerateInputError, ValueError):
         return False  # (a flat sample)
     return 2 * len(h.vertices) >= len(pts)
@@ -544,7 +544,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     # takes its borders for the others.
     boxes = {b: [grid.region(b, float(ghost))] + list(extras[b].values()) for b in all_blocks}
     k = len(all_blocks)
-    if grid.nblocks > 1 and _on_convex_surface([s["sample"] for s in filled], threads):
+    if grid.nblocks > 1 and _on_convex_surface([s["sample"] for s in filled]):
         # points on a convex surface: one block of every point (_one_block); no split, no
         # global hull (as costly as a triangulation there)
         all_blocks, extras, front, hull = [0], {0: {}}, None, None
