@@ -10,6 +10,15 @@ neighbours are in the workers' memory (wall clock), the single-GPU call inside o
 points (from host arrays, as the blocks are; with --cpu, the single call in the client process
 on all cores), the bytes the workers sent each other, the rounds
 and the local points per own point. --cpu runs CPU workers instead (--gpus: worker counts).
+
+Past what one call holds (3D: 1.4·10^8 points; --single-max skips the single call above it),
+--verify judges the result without it: the tetrahedra's (triangles') volumes sum to the convex
+hull's, and the faces without a neighbour are as many as the hull's facets (points in general
+position), so the simplices cover the hull once; every face between blocks was matched by the
+call itself (a face matched other than twice raises).
+
+    python bench/dask_delaunay.py --gpus 1 --blocks-per-worker 4 --n 2e8 --dist uniform \
+        --single-max 1e8 --verify
 """
 import argparse
 import os
@@ -56,6 +65,44 @@ def single(pts, backend):
     return ms, tri.nsimplex, gpugeom.device_info().get("name", "cpu")
 
 
+def _block_measure(r, d):
+    """The sum of a block's owned simplices' volumes (areas), on the worker's GPU (CuPy) where
+    it has one, in parts of 10^7 simplices."""
+    try:
+        import cupy as xp
+        xp.cuda.runtime.getDeviceCount()
+    except Exception:  # (no CuPy or no GPU: NumPy)
+        xp = np
+    s, ids, at = r["simplices"], r["vertices"], r["vertex_points"]
+    order = np.argsort(ids, kind="stable")
+    sorted_ids, pts = xp.asarray(ids[order]), xp.asarray(at[order])
+    total = 0.0
+    step = 10**7
+    for a in range(0, len(s), step):
+        v = xp.searchsorted(sorted_ids, xp.asarray(s[a:a + step]))
+        p = pts[v]  # (k, d + 1, d)
+        e = p[:, 1:, :] - p[:, :1, :]
+        total += float(xp.abs(xp.linalg.det(e)).sum()) / (2.0 if d == 2 else 6.0)
+    return total
+
+
+def _hull_measure(pts):
+    """The convex hull's volume (area) and facet count (gpugeom.ConvexHull on the worker)."""
+    import gpugeom
+    h = gpugeom.ConvexHull(np.ascontiguousarray(pts))
+    return float(h.volume), int(len(h.simplices))
+
+
+def verify(dt, pts, d):
+    """(volumes' sum, hull's volume, faces without a neighbour, hull facets)."""
+    import dask
+    import dask.array as da
+    vols = dask.compute(*[dask.delayed(_block_measure)(r, d) for r in dt._results])
+    hull_vol, facets = dask.delayed(_hull_measure)(pts).compute()
+    open_faces = int(da.count_nonzero(dt.neighbors == -1).compute())
+    return float(np.sum(vols)), hull_vol, open_faces, facets
+
+
 def print_tasks(records):
     """Per kind of task (its function's name), how many ran and their compute and transfer
     time summed over the workers, and when the last ended (ms from the first start)."""
@@ -87,6 +134,10 @@ def main():
                    help="chunks the points are made in (the same points for every worker count)")
     p.add_argument("--cpu", action="store_true")
     p.add_argument("--check", action="store_true", help="compare with the single run")
+    p.add_argument("--single-max", type=float, default=float("inf"),
+                   help="no single call above this many points (past what one call holds)")
+    p.add_argument("--verify", action="store_true",
+                   help="volumes and hull faces against the convex hull's (no single call)")
     p.add_argument("--csv", default="")
     p.add_argument("--tasks", action="store_true",
                    help="per kind of task: its count, compute and transfer time (Dask's task "
@@ -107,6 +158,10 @@ def main():
                         # the workers import gpugeom before the clock starts, as a long-lived
                         # cluster has
                         client.run(lambda: __import__("gpugeom.dask"))
+                        if base is None and n > a.single_max:
+                            base = (float("nan"), -1, "none (past --single-max)")
+                            ref_ms, ref_m, name = base
+                            print(f"{d}D {dist} n={n}: no single call", flush=True)
                         if base is None:
                             # a GPU: on one worker's GPU; the CPU: in this process on all of
                             # the host's cores, as a user without Dask runs it
@@ -131,11 +186,19 @@ def main():
                         local = sum(st["nlocal"] for st in dt.block_stats) / n
                         rounds = max(st["rounds"] for st in dt.block_stats)
                         ok = ""
-                        if a.check:
-                            ok = f", {'same' if dt.nsimplex == ref_m else 'DIFFERENT'} count"
+                        if a.verify:
+                            t1 = time.perf_counter()
+                            vol, hull_vol, open_faces, facets = verify(dt, pts, d)
+                            ok += (f", volumes {vol:.12g} against the hull's {hull_vol:.12g} "
+                                   f"(relative {abs(vol - hull_vol) / hull_vol:.1e}), "
+                                   f"{open_faces} faces on the hull against {facets} facets "
+                                   f"({1e3 * (time.perf_counter() - t1):.0f} ms to verify)")
+                        if a.check and ref_m >= 0:
+                            ok += f", {'same' if dt.nsimplex == ref_m else 'DIFFERENT'} count"
+                        ratio = (f"{ref_ms / ms:.2f}x the single run; efficiency "
+                                 f"{ref_ms / ms / w:.2f}" if ref_m >= 0 else "no single run")
                         print(f"  {w} workers, {len(dt.block_stats)} blocks: {ms:.0f} ms "
-                              f"({ref_ms / ms:.2f}x the single run; efficiency "
-                              f"{ref_ms / ms / w:.2f}), {sent / 2**20:.0f} MiB between workers, "
+                              f"({ratio}), {sent / 2**20:.0f} MiB between workers, "
                               f"{rounds} rounds, {local:.2f} local points per point, "
                               f"{dt.nsimplex} simplices{ok}; phases "
                               + " ".join(f"{k} {v:.0f}" for k, v in dt.timings.items()),

@@ -68,27 +68,33 @@ BlockRequired block_required(const std::int32_t* simplices, const std::int32_t* 
 /// (-1); without one it is an *open* request (`request_open`), which the matcher answers with
 /// -1 where no other simplex has the face. `vertices`: the local points the rows use, in
 /// increasing order.
+///
+/// Every index is 32-bit, as a single triangulation's (gpugeom.dask takes fewer than 2^31 - 1
+/// points; a block's rows are local): half the bytes of the 64-bit output that a distributed
+/// result keeps per block, moves between workers and gathers.
 struct BlockOutput {
-  HostVector<std::int64_t> simplices, neighbors;
-  HostVector<std::int64_t> request_owner, request_key, request_pos;
+  HostVector<std::int32_t> simplices, neighbors;
+  HostVector<std::int32_t> request_owner, request_key, request_pos;
   HostVector<std::uint8_t> request_open;
-  HostVector<std::int64_t> vertices;
+  HostVector<std::int32_t> vertices;
   /// The vertices' global ids, and (where the points were given) their coordinates, `dim` a
   /// vertex.
-  HostVector<std::int64_t> vertex_ids;
+  HostVector<std::int32_t> vertex_ids;
   HostVector<double> vertex_points;
 };
 /// The output of a block's owned simplices `rows` (BlockOutput), on `threads` host threads (0:
-/// OpenMP's default); `points` (the `n` local points, or null) for the vertices' coordinates.
-/// Throws Error(InvalidArgument) for a dim other than 2 or 3.
+/// OpenMP's default); `ids` and `blk` per local point (its global id and its block), `points`
+/// (the `n` local points, or null) for the vertices' coordinates. Throws Error(InvalidArgument)
+/// for a dim other than 2 or 3, Error(Unsupported) where the rows' faces pass 2^31 - 1 (a block
+/// too large for 32-bit positions: more blocks).
 BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
-                         const std::int64_t* ids, const std::int64_t* blk, const double* points,
+                         const std::int32_t* ids, const std::int32_t* blk, const double* points,
                          std::int64_t n, int threads = 0);
 /// The same, for int32 simplices and neighbours.
 BlockOutput block_output(const std::int32_t* simplices, const std::int32_t* neighbors,
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
-                         const std::int64_t* ids, const std::int64_t* blk, const double* points,
+                         const std::int32_t* ids, const std::int32_t* blk, const double* points,
                          std::int64_t n, int threads = 0);
 
 /// Pairs the `q` face requests that come to one block from every block (BlockOutput's, `keys`
@@ -101,18 +107,30 @@ BlockOutput block_output(const std::int32_t* simplices, const std::int32_t* neig
 HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_t* positions,
                                      const std::uint8_t* open, std::int64_t q, int dim,
                                      int threads = 0);
+/// The same, for int32 keys (BlockOutput's).
+HostVector<std::int64_t> match_faces(const std::int32_t* keys, const std::int64_t* positions,
+                                     const std::uint8_t* open, std::int64_t q, int dim,
+                                     int threads = 0);
 
 /// The neighbours of a block's `m` output simplices in global simplex indices: `neighbors` is
 /// BlockOutput's (an index into the block's own rows, -1 none, -2 another block's) and `offset`
 /// the block's first global index; the `q` answers to its requests are its positions `pos`
 /// (row * (dim + 1) + face) and the global index of the simplex across each (-1: none, an open
-/// face on the hull). Row-major, (dim + 1) entries a simplex, -1 on the hull. On `threads` host
-/// threads (0: OpenMP's default). Throws Error(Internal) where a -2 face has no answer,
-/// Error(InvalidArgument) for a dim other than 2 or 3 or a position out of range.
-HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,
-                                         std::int64_t offset, const std::int64_t* pos,
-                                         const std::int64_t* across, std::int64_t q,
-                                         int threads = 0);
+/// face on the hull). Row-major, (dim + 1) entries a simplex, -1 on the hull, as `Index`
+/// (std::int32_t, as a single triangulation's, where every global index fits; else
+/// std::int64_t). On `threads` host threads (0: OpenMP's default). Throws Error(Internal) where
+/// a -2 face has no answer, Error(InvalidArgument) for a dim other than 2 or 3, a position out
+/// of range, or a global index past `Index`.
+template <class Index>
+HostVector<Index> block_neighbors(const std::int32_t* neighbors, std::int64_t m, int dim,
+                                  std::int64_t offset, const std::int64_t* pos,
+                                  const std::int64_t* across, std::int64_t q, int threads = 0);
+extern template HostVector<std::int32_t> block_neighbors<std::int32_t>(
+    const std::int32_t*, std::int64_t, int, std::int64_t, const std::int64_t*, const std::int64_t*,
+    std::int64_t, int);
+extern template HostVector<std::int64_t> block_neighbors<std::int64_t>(
+    const std::int32_t*, std::int64_t, int, std::int64_t, const std::int64_t*, const std::int64_t*,
+    std::int64_t, int);
 
 /// The bounds of a set of points, and its first point with a NaN or infinite coordinate.
 struct PointBounds {

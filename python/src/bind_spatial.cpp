@@ -803,8 +803,11 @@ nb::dict block_output_bind(const AnyArray& simplices, const AnyArray& neighbors,
                            const AnyArray& rows, const AnyArray& ids, const AnyArray& blk,
                            std::optional<AnyArray> points, int threads) {
   std::int64_t n = 0, m = 0, k = 0;
-  const std::int64_t* id = host_indices(ids, "ids", -1, -1, 0, INT64_MAX, &n);
-  const std::int64_t* bk = host_indices(blk, "blk", n, -1, 0, INT64_MAX);
+  // (32-bit, as the output: gpugeom.dask's ids lie below 2^31 - 1)
+  const std::int32_t* id =
+      host_indices_of<std::int32_t>(ids, "ids", -1, -1, 0, INT32_MAX, &n, "int32");
+  const std::int32_t* bk =
+      host_indices_of<std::int32_t>(blk, "blk", n, -1, 0, INT32_MAX, nullptr, "int32");
   const double* xyz = nullptr;
   int pdim = 0;
   if (points) {
@@ -863,28 +866,40 @@ nb::object match_faces_bind(const AnyArray& keys, const AnyArray& positions, con
     throw nb::value_error("keys must have shape (q, 2) or (q, 3)");
   const std::int64_t dim = ki.shape[1];
   std::int64_t q = 0;
-  const std::int64_t* k = host_indices(keys, "keys", -1, dim, 0, INT64_MAX, &q);
-  const std::int64_t* p = host_indices(positions, "positions", q, -1, 0, INT64_MAX);
-  const std::uint8_t* op = host_mask(open, "open", q, "request");
-  HostVector<std::int64_t> r =
-      unlocked([&] { return match_faces(k, p, op, q, int(dim), threads); });
+  // (int32 keys as a block's output gives them, or int64)
+  HostVector<std::int64_t> r = by_index_type(keys, [&](auto index) {
+    using T = decltype(index);
+    const T* k = host_indices_of<T>(keys, "keys", -1, dim, 0, INT64_MAX, &q, "int32 or int64");
+    const std::int64_t* p = host_indices(positions, "positions", q, -1, 0, INT64_MAX);
+    const std::uint8_t* op = host_mask(open, "open", q, "request");
+    return unlocked([&] { return match_faces(k, p, op, q, int(dim), threads); });
+  });
   return host_array(std::move(r), {sz(q)});
 }
 
 // The neighbours of a block's output in global simplex indices: its -2 faces answered (their
-// positions, and the global index of the simplex across each).
+// positions, and the global index of the simplex across each); int32 unless `wide` (a result of
+// 2^31 simplices or more).
 nb::object block_neighbors_bind(const AnyArray& nb_local, std::int64_t offset, const AnyArray& pos,
-                                const AnyArray& across, int threads) {
+                                const AnyArray& across, bool wide, int threads) {
   Input nl = inspect(nb_local, "nb_local");
   if (nl.shape.size() != 2 || (nl.shape[1] != 3 && nl.shape[1] != 4))
     throw nb::value_error("nb_local must have shape (m, 3) or (m, 4)");
   const std::int64_t d1 = nl.shape[1];
   std::int64_t m = 0, q = 0;
-  const std::int64_t* nbr = host_indices(nb_local, "nb_local", -1, d1, -2, INT64_MAX, &m);
+  const std::int32_t* nbr =
+      host_indices_of<std::int32_t>(nb_local, "nb_local", -1, d1, -2, INT32_MAX, &m, "int32");
   const std::int64_t* ps = host_indices(pos, "pos", -1, -1, 0, INT64_MAX, &q);
   const std::int64_t* ac = host_indices(across, "across", q, -1, -1, INT64_MAX);
-  HostVector<std::int64_t> r =
-      unlocked([&] { return block_neighbors(nbr, m, int(d1) - 1, offset, ps, ac, q, threads); });
+  if (wide) {
+    HostVector<std::int64_t> r = unlocked([&] {
+      return block_neighbors<std::int64_t>(nbr, m, int(d1) - 1, offset, ps, ac, q, threads);
+    });
+    return host_array(std::move(r), {sz(m), sz(d1)});
+  }
+  HostVector<std::int32_t> r = unlocked([&] {
+    return block_neighbors<std::int32_t>(nbr, m, int(d1) - 1, offset, ps, ac, q, threads);
+  });
   return host_array(std::move(r), {sz(m), sz(d1)});
 }
 
@@ -1216,7 +1231,7 @@ void bind_spatial(nb::module_& m) {
   m.def("balls_in_bins", &balls_in_bins_bind, "centres"_a, "reach"_a, "lo"_a, "hi"_a, "grid_lo"_a,
         "width"_a, "counts"_a, "marked"_a, "margin"_a, "threads"_a = 0);
   m.def("block_neighbors", &block_neighbors_bind, "nb_local"_a, "offset"_a, "pos"_a, "across"_a,
-        "threads"_a = 0);
+        "wide"_a = false, "threads"_a = 0);
   m.def("match_faces", &match_faces_bind, "keys"_a, "positions"_a, "open"_a, "threads"_a = 0);
   m.def("block_borders", &block_borders_bind, "points"_a, "simplices"_a, "neighbors"_a, "owned"_a,
         "block"_a, "lo"_a, "width"_a, "counts"_a, "margin"_a, "scale"_a, "region_lo"_a = nb::none(),

@@ -118,7 +118,8 @@ def test_inputs_as_dask_array_list_and_files(tmp_path):
             np.testing.assert_array_equal(_relation(g.simplices, g.neighbors), ref)
             # the Dask arrays themselves: global indices, neighbours across blocks
             s, nb = dask.compute(dt.simplices, dt.neighbors)
-            assert s.dtype == np.int64 and s.shape == (dt.nsimplex, 4)
+            # (int32, as SciPy's and a single call's: fewer than 2^31 points and simplices)
+            assert s.dtype == np.int32 and nb.dtype == np.int32 and s.shape == (dt.nsimplex, 4)
             np.testing.assert_array_equal(_relation(s, nb), ref)
         assert gd.delaunay(files, backend="cpu").blocks == (1, 1, 3)
 
@@ -618,23 +619,42 @@ def test_faces_matched_and_neighbors():
     """The neighbours across blocks: the face requests that come to a block paired by their keys
     (``_core.match_faces``), whatever their order, an open one alone answered -1 (a face on
     the hull); a block's neighbours (``_core.block_neighbors``) its own rows shifted by its
-    offset, -1 kept, each -2 answered. A key that comes once (not open) or three times, a face
-    without an answer, or an answer for another face is a bug or a misuse, reported as one."""
+    offset, -1 kept, each -2 answered; keys of either width (a block's are int32), neighbours
+    int32 or, asked for, int64 (past 2^31 simplices in all). A key that comes once (not open) or
+    three times, a face without an answer, an answer for another face, or a global index past
+    the output's width is a bug or a misuse, reported as one."""
     keys = np.array([[1, 5], [2, 3], [1, 5], [0, 9], [2, 3]], np.int64)
     pos = np.array([40, 11, 7, 3, 62], np.int64)
     open_ = np.array([False, False, False, True, False])
     for order in ([0, 1, 2, 3, 4], [4, 3, 2, 1, 0], [2, 0, 4, 3, 1]):
-        got = _core.match_faces(keys[order], pos[order], open_[order], 2)
-        np.testing.assert_array_equal(got, np.array([7, 62, 40, -1, 11])[order])
+        for k in (keys, keys.astype(np.int32)):
+            got = _core.match_faces(k[order], pos[order], open_[order], 2)
+            np.testing.assert_array_equal(got, np.array([7, 62, 40, -1, 11])[order])
     with pytest.raises(RuntimeError, match="comes 1 times"):
         _core.match_faces(keys, pos, np.zeros(5, bool))
     with pytest.raises(RuntimeError, match="comes 3 times"):
         _core.match_faces(np.concatenate([keys, keys[:1]]), np.append(pos, 99),
                           np.append(open_, False))
-    nb_local = np.array([[1, -1, -2], [0, -2, -1], [-2, 0, -2]], np.int64)
+    nb_local = np.array([[1, -1, -2], [0, -2, -1], [-2, 0, -2]], np.int32)
     got = _core.block_neighbors(nb_local, 20, np.array([2, 4, 6, 8]),
-                                np.array([108, 502, 103, -1]), 2)
+                                np.array([108, 502, 103, -1]), False, 2)
+    assert got.dtype == np.int32
     np.testing.assert_array_equal(got, [[21, -1, 108], [20, 502, -1], [103, 20, -1]])
+    big = 2**31 + 5  # (a block past 2^31 simplices: int64 names it, int32 refuses)
+    got = _core.block_neighbors(nb_local, big, np.array([2, 4, 6, 8]),
+                                np.array([108, 502, big + 2**31, -1]), True)
+    assert got.dtype == np.int64
+    np.testing.assert_array_equal(
+        got, [[big + 1, -1, 108], [big, 502, -1], [big + 2**31, big, -1]])
+    with pytest.raises(ValueError, match="32-bit"):
+        _core.block_neighbors(nb_local, big, np.array([2, 4, 6, 8]),
+                              np.array([108, 502, 103, -1]))
+    with pytest.raises(ValueError, match="32-bit"):
+        _core.block_neighbors(nb_local, 20, np.array([2, 4, 6, 8]),
+                              np.array([108, 502, 2**31, -1]))
+    with pytest.raises(ValueError, match="nb_local"):
+        _core.block_neighbors(nb_local.astype(np.int64), 20, np.array([2, 4, 6, 8]),
+                              np.array([108, 502, 103, -1]))
     with pytest.raises(RuntimeError, match="no answer"):
         _core.block_neighbors(nb_local, 20, np.array([2, 4, 6]), np.array([108, 502, 103]))
     with pytest.raises(ValueError, match="not a face"):
@@ -724,9 +744,9 @@ def test_block_passes_in_cpp_and_numpy():
         tri = gpugeom.Delaunay(pts, backend="cpu")
         s = np.asarray(tri.simplices, dtype=np.int64)
         nb = np.asarray(tri.neighbors, dtype=np.int64)
-        blk = rng.integers(0, 3, len(pts)).astype(np.int64)
+        blk = rng.integers(0, 3, len(pts)).astype(np.int32)
         blk[pts[:, 0] < 0.4] = 1  # a region of one block, and mixed ones elsewhere
-        ids = np.sort(rng.choice(10**6, len(pts), replace=False)).astype(np.int64)
+        ids = np.sort(rng.choice(10**6, len(pts), replace=False)).astype(np.int32)
         owned = blk == 1
         r = _core.block_required(s, nb, owned, 2)
         mine, required = _required_reference(s, nb, owned)
@@ -737,6 +757,7 @@ def test_block_passes_in_cpp_and_numpy():
         assert set(got) == set(want) and len(got["req_pos"]) > 0
         for k in want:
             np.testing.assert_array_equal(got[k], want[k], err_msg=k)
+            assert got[k].dtype != np.int64, k  # (32-bit indices, as a single call's)
         # int32 indices, as a triangulation gives them, give the same
         s32, nb32 = s.astype(np.int32), nb.astype(np.int32)
         r32 = _core.block_required(s32, nb32, owned, 2)
@@ -753,6 +774,8 @@ def test_block_passes_in_cpp_and_numpy():
             _core.block_required(bad, nb, owned)
         with pytest.raises(ValueError, match="rows"):
             _core.block_output(s, nb, np.array([len(s)], np.int64), ids, blk)
+        with pytest.raises(ValueError, match="ids"):  # (64-bit ids: the output is 32-bit)
+            _core.block_output(s, nb, mine, ids.astype(np.int64), blk)
 
 
 def _required_reference(s, nb, owned):
@@ -790,3 +813,28 @@ def _emit_reference(ids, pts, blk, s, nb, rows, d, xp=np):
                 req_key=np.sort(ids[fv], axis=1), req_pos=np.asarray(fi * d1 + fj),
                 req_open=open_[fi, fj].astype(np.uint8), vertices=ids[used],
                 vertex_points=pts[used])
+
+
+def test_curve_order_over_the_global_box():
+    """A block's local points go along the Hilbert curve of their bounding box, and the passes
+    take the vertex first on it as a simplex's owner: every block must lay the curve over the
+    same box (each holds the global hull's extreme points, which span it). Two blocks then
+    order their shared points alike; a block whose points did not span the box is refused as
+    the bug it would be."""
+    from gpugeom.dask import _ghost
+    rng = np.random.default_rng(71)
+    pts = rng.random((4000, 3))
+    grid = Grid(pts.min(axis=0), pts.max(axis=0), (2, 1, 1))
+    ext = np.unique(np.concatenate([pts.argmin(axis=0), pts.argmax(axis=0)]))
+    ids = np.arange(len(pts), dtype=np.int32)
+    blk = grid.cell_of(pts).astype(np.int32)
+    orders = []
+    for b in (0, 1):  # each block's points: its cell's, a band of the other's, the extremes
+        near = np.abs(pts[:, 0] - 0.5) < 0.1
+        keep = np.union1d(np.nonzero((blk == b) | near)[0], ext)
+        got = _ghost._curve_order(ids[keep], pts[keep], blk[keep], grid)[0]
+        orders.append(got[np.isin(got, np.nonzero(near)[0])])
+    np.testing.assert_array_equal(orders[0], orders[1])  # the shared band in one order
+    inner = np.setdiff1d(np.arange(len(pts)), ext)
+    with pytest.raises(RuntimeError, match="bounding box"):
+        _ghost._curve_order(ids[inner], pts[inner], blk[inner], grid)

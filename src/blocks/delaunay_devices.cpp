@@ -540,7 +540,8 @@ class Blocks {
     // answers[c][b]: block c's answers to block b's requests (positions here, global across)
     std::vector<std::vector<std::pair<I64, I64>>> answers(k_, std::vector<std::pair<I64, I64>>(k_));
     on_threads(k_, [&](std::size_t c) {
-      I64 keys, pos;
+      HostVector<std::int32_t> keys;  // (the blocks' 32-bit ids, as they come)
+      I64 pos;
       HostVector<std::uint8_t> open;
       std::vector<std::size_t> from(k_ + 1, 0);
       for (std::size_t b = 0; b < k_; ++b) {

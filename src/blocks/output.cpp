@@ -7,6 +7,7 @@
 #if __has_include(<parallel/algorithm>)
 #include <parallel/algorithm>
 #endif
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -50,10 +51,16 @@ BlockRequired required_of(const I* simplices, std::int64_t m, int dim, const std
 
 template <class I>
 BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, int dim,
-                      const std::int64_t* rows, std::int64_t count, const std::int64_t* ids,
-                      const std::int64_t* blk, const double* points, std::int64_t n, int threads) {
+                      const std::int64_t* rows, std::int64_t count, const std::int32_t* ids,
+                      const std::int32_t* blk, const double* points, std::int64_t n, int threads) {
   blocks_detail::check_dim(dim, "block_output");
   const int d1 = dim + 1;
+  constexpr std::int64_t most = std::numeric_limits<std::int32_t>::max();
+  if (count * d1 > most || n > most)
+    throw Error(ErrorCode::Unsupported,
+                "block_output: a block of " + std::to_string(count) + " owned simplices over " +
+                    std::to_string(n) +
+                    " local points is too large for 32-bit positions: use more blocks");
   blocks_detail::ThreadScope scope(threads);
   BlockOutput out;
   // (each simplex's row, in the simplices' own index width: at 10^7 points half the fresh pages)
@@ -81,7 +88,7 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
       // more than the rest of the pass)
       const std::int64_t c = blocks_detail::face_code(
           v, d1, k, t, t < 0 ? -1 : std::int64_t(pos[std::size_t(t)]), [&](I u) { return blk[u]; });
-      out.neighbors[std::size_t(r * d1 + k)] = c;
+      out.neighbors[std::size_t(r * d1 + k)] = std::int32_t(c);
       requests += c < -1;
     }
   }
@@ -100,7 +107,7 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
       mark[v[k]] = std::uint8_t(1);
     }
   }
-  std::int64_t* nbl = out.neighbors.data();
+  std::int32_t* nbl = out.neighbors.data();
   blocks_detail::ordered_compact(
       std::int64_t(cells), [&](std::int64_t c) { return nbl[c] < -1; }, [&](std::int64_t) {},
       [&](std::int64_t c, std::int64_t q) {
@@ -109,7 +116,7 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
         const I low = blocks_detail::request_key(
             v, d1, int(c % d1), [&](I u) { return ids[u]; }, out.request_key.data() + q * dim);
         out.request_owner[std::size_t(q)] = blk[low];
-        out.request_pos[std::size_t(q)] = c;
+        out.request_pos[std::size_t(q)] = std::int32_t(c);
       });
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < std::int64_t(cells); ++c)
@@ -117,7 +124,7 @@ BlockOutput output_of(const I* simplices, const I* neighbors, std::int64_t m, in
   blocks_detail::ordered_compact(
       n, [&](std::int64_t i) { return mark[i] != 0; },
       [&](std::int64_t total) { out.vertices.resize(std::size_t(total)); },
-      [&](std::int64_t i, std::int64_t k) { out.vertices[std::size_t(k)] = i; });
+      [&](std::int64_t i, std::int64_t k) { out.vertices[std::size_t(k)] = std::int32_t(i); });
   // the vertices' ids and coordinates: gathers over the block, so in parallel too
   const std::int64_t nv = std::int64_t(out.vertices.size());
   out.vertex_ids.resize(std::size_t(nv));
@@ -147,20 +154,22 @@ BlockRequired block_required(const std::int32_t* simplices, const std::int32_t* 
 }
 BlockOutput block_output(const std::int64_t* simplices, const std::int64_t* neighbors,
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
-                         const std::int64_t* ids, const std::int64_t* blk, const double* points,
+                         const std::int32_t* ids, const std::int32_t* blk, const double* points,
                          std::int64_t n, int threads) {
   return output_of(simplices, neighbors, m, dim, rows, count, ids, blk, points, n, threads);
 }
 BlockOutput block_output(const std::int32_t* simplices, const std::int32_t* neighbors,
                          std::int64_t m, int dim, const std::int64_t* rows, std::int64_t count,
-                         const std::int64_t* ids, const std::int64_t* blk, const double* points,
+                         const std::int32_t* ids, const std::int32_t* blk, const double* points,
                          std::int64_t n, int threads) {
   return output_of(simplices, neighbors, m, dim, rows, count, ids, blk, points, n, threads);
 }
 
-HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_t* positions,
-                                     const std::uint8_t* open, std::int64_t q, int dim,
-                                     int threads) {
+namespace {
+
+template <class K>
+HostVector<std::int64_t> match_of(const K* keys, const std::int64_t* positions,
+                                  const std::uint8_t* open, std::int64_t q, int dim, int threads) {
   blocks_detail::check_dim(dim, "match_faces");
   blocks_detail::ThreadScope scope(threads);
   // the requests in the order of their keys (then positions: the order does not depend on
@@ -170,7 +179,7 @@ HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_
   // (a strict order: the result does not depend on the sort, so the threads may share it; the
   // several-device path matches 10^5-10^6 faces per block at 10^7 points)
   const auto before = [&](std::int64_t x, std::int64_t y) {
-    const std::int64_t *a = keys + x * dim, *b = keys + y * dim;
+    const K *a = keys + x * dim, *b = keys + y * dim;
     for (int k = 0; k < dim; ++k)
       if (a[k] != b[k]) return a[k] < b[k];
     return positions[x] < positions[y];
@@ -206,24 +215,49 @@ HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_
   return out;
 }
 
-HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int64_t m, int dim,
-                                         std::int64_t offset, const std::int64_t* pos,
-                                         const std::int64_t* across, std::int64_t q, int threads) {
+}  // namespace
+
+HostVector<std::int64_t> match_faces(const std::int64_t* keys, const std::int64_t* positions,
+                                     const std::uint8_t* open, std::int64_t q, int dim,
+                                     int threads) {
+  return match_of(keys, positions, open, q, dim, threads);
+}
+HostVector<std::int64_t> match_faces(const std::int32_t* keys, const std::int64_t* positions,
+                                     const std::uint8_t* open, std::int64_t q, int dim,
+                                     int threads) {
+  return match_of(keys, positions, open, q, dim, threads);
+}
+
+template <class Index>
+HostVector<Index> block_neighbors(const std::int32_t* neighbors, std::int64_t m, int dim,
+                                  std::int64_t offset, const std::int64_t* pos,
+                                  const std::int64_t* across, std::int64_t q, int threads) {
   blocks_detail::check_dim(dim, "block_neighbors");
   const int d1 = dim + 1;
+  constexpr std::int64_t most = std::numeric_limits<Index>::max();
+  if (offset < 0 || offset + m - 1 > most)
+    throw Error(ErrorCode::InvalidArgument,
+                "block_neighbors: the global simplices " + std::to_string(offset) + " to " +
+                    std::to_string(offset + m - 1) + " pass the output's " +
+                    std::to_string(8 * sizeof(Index)) + "-bit indices");
   blocks_detail::ThreadScope scope(threads);
-  HostVector<std::int64_t> out(std::size_t(m) * std::size_t(d1));
+  HostVector<Index> out(std::size_t(m) * std::size_t(d1));
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < m * d1; ++c) {
     const std::int64_t t = neighbors[c];
-    out[std::size_t(c)] = t >= 0 ? t + offset : (t == -1 ? -1 : -2);
+    out[std::size_t(c)] = Index(t >= 0 ? t + offset : (t == -1 ? -1 : -2));
   }
   for (std::int64_t r = 0; r < q; ++r) {
     if (pos[r] < 0 || pos[r] >= m * d1 || neighbors[pos[r]] != -2)
       throw Error(ErrorCode::InvalidArgument, "block_neighbors: answer " + std::to_string(r) +
                                                   " is for position " + std::to_string(pos[r]) +
                                                   ", not a face of another block's neighbour");
-    out[std::size_t(pos[r])] = across[r] < 0 ? -1 : across[r];
+    if (across[r] > most)
+      throw Error(ErrorCode::InvalidArgument,
+                  "block_neighbors: answer " + std::to_string(r) + " names simplex " +
+                      std::to_string(across[r]) + ", past the output's " +
+                      std::to_string(8 * sizeof(Index)) + "-bit indices");
+    out[std::size_t(pos[r])] = Index(across[r] < 0 ? -1 : across[r]);
   }
   std::int64_t missing = -1;
 #pragma omp parallel for schedule(static) reduction(max : missing)
@@ -235,5 +269,16 @@ HostVector<std::int64_t> block_neighbors(const std::int64_t* neighbors, std::int
                                          " has no answer (a bug: please report it with the input)");
   return out;
 }
+
+template HostVector<std::int32_t> block_neighbors<std::int32_t>(const std::int32_t*, std::int64_t,
+                                                                int, std::int64_t,
+                                                                const std::int64_t*,
+                                                                const std::int64_t*, std::int64_t,
+                                                                int);
+template HostVector<std::int64_t> block_neighbors<std::int64_t>(const std::int32_t*, std::int64_t,
+                                                                int, std::int64_t,
+                                                                const std::int64_t*,
+                                                                const std::int64_t*, std::int64_t,
+                                                                int);
 
 }  // namespace gpugeom

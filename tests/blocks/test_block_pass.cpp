@@ -38,12 +38,11 @@ TEST(BlockPass, SameAsTheHostPasses) {
   const std::int64_t block = 1;
   const auto size = static_cast<std::size_t>(n);
   std::vector<std::int32_t> blk(size), ids(size);
-  std::vector<std::int64_t> blk64(size), ids64(size);
   std::vector<std::uint8_t> owned(size);
   for (std::int64_t i = 0; i < n; ++i) {
     const std::int64_t c = std::min<std::int64_t>(2, std::int64_t(p[std::size_t(3 * i)] * 3.0));
-    blk[std::size_t(i)] = std::int32_t(c), blk64[std::size_t(i)] = c;
-    ids[std::size_t(i)] = std::int32_t(7 * i), ids64[std::size_t(i)] = 7 * i;  // (any names)
+    blk[std::size_t(i)] = std::int32_t(c);
+    ids[std::size_t(i)] = std::int32_t(7 * i);  // (any names)
     owned[std::size_t(i)] = c == block;
   }
 
@@ -86,15 +85,15 @@ TEST(BlockPass, SameAsTheHostPasses) {
               want);
   }
   const std::int64_t count = std::int64_t(req.owned_rows.size());
-  const BlockOutput out = block_output(s, nb, m, 3, req.owned_rows.data(), count, ids64.data(),
-                                       blk64.data(), nullptr, n);
+  const BlockOutput out =
+      block_output(s, nb, m, 3, req.owned_rows.data(), count, ids.data(), blk.data(), nullptr, n);
   ASSERT_EQ(got.count, count);
   const std::int32_t* gs = got.simplices.get();
   const std::int32_t* gn = got.neighbors.get();
-  EXPECT_EQ(std::vector<std::int64_t>(gs, gs + 4 * count),
-            std::vector<std::int64_t>(out.simplices.begin(), out.simplices.end()));
-  EXPECT_EQ(std::vector<std::int64_t>(gn, gn + 4 * count),
-            std::vector<std::int64_t>(out.neighbors.begin(), out.neighbors.end()));
+  EXPECT_EQ(std::vector<std::int32_t>(gs, gs + 4 * count),
+            std::vector<std::int32_t>(out.simplices.begin(), out.simplices.end()));
+  EXPECT_EQ(std::vector<std::int32_t>(gn, gn + 4 * count),
+            std::vector<std::int32_t>(out.neighbors.begin(), out.neighbors.end()));
   auto wide = [](const auto& v) { return std::vector<std::int64_t>(v.begin(), v.end()); };
   EXPECT_FALSE(out.request_pos.empty());
   EXPECT_EQ(wide(got.request_pos), wide(out.request_pos));

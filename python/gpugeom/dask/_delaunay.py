@@ -167,14 +167,14 @@ def _one_block(parts, grid: Grid, ghost: float, backend: str, threads: int) -> d
         except AttributeError:  # (not Linux)
             threads = os.cpu_count() or 1
     d = grid.ndim
-    nohull = (np.zeros((0, d)), np.zeros(0, np.int64), np.zeros(0, np.int64), None)
+    nohull = (np.zeros((0, d)), np.zeros(0, np.int32), np.zeros(0, np.int32), None)
     return triangulate_block(0, grid, ghost, {}, parts, nohull, None, backend, threads, [])
 
 
 def _whole(pts, offset: int):
     """A piece's points as a part of the one block that owns every point (block 0)."""
     pts = _load(pts)
-    return pts, np.arange(offset, offset + len(pts), dtype=np.int64), np.zeros(len(pts), np.int64)
+    return pts, np.arange(offset, offset + len(pts), dtype=np.int32), np.zeros(len(pts), np.int32)
 
 
 def _total_and_frontiers(counts, bins: Grid, grid: Grid, ghost: float, cap: int, threads: int):
@@ -261,7 +261,9 @@ def _faces_to(r: dict, offset: int, d1: int, matcher: int):
     """A block's face requests that block ``matcher`` pairs: their keys, global positions
     ((offset + row) * (d + 1) + face) and whether each is open (on the local hull)."""
     at = r["req_owner"] == matcher
-    return r["req_key"][at], offset * d1 + r["req_pos"][at], r["req_open"][at].view(bool)
+    # (the positions widened: past 2^31 faces in all they pass a block's 32-bit rows)
+    return (r["req_key"][at], offset * d1 + r["req_pos"][at].astype(np.int64),
+            r["req_open"][at].view(bool))
 
 
 def _faces_for(r: dict, offset: int, d1: int, matchers):
@@ -284,13 +286,14 @@ def _match(parts):
     return [(pos[a:b], across[a:b]) for a, b in zip(cuts[:-1], cuts[1:])]
 
 
-def _neighbors_of(r: dict, offset: int, d1: int, answers) -> np.ndarray:
+def _neighbors_of(r: dict, offset: int, d1: int, answers, wide: bool = False) -> np.ndarray:
     """The neighbours of a block's simplices in global simplex indices, from its answers from
-    the blocks that matched its faces (``_core.block_neighbors``)."""
+    the blocks that matched its faces (``_core.block_neighbors``): int32, or int64 where
+    ``wide`` (2^31 simplices or more in all)."""
     pos = np.concatenate([a[0] for a in answers]) if answers else np.zeros(0, np.int64)
     across = np.concatenate([a[1] for a in answers]) if answers else np.zeros(0, np.int64)
     across = np.where(across >= 0, across // d1, -1)
-    return _core.block_neighbors(r["nb_local"], int(offset), pos - offset * d1, across)
+    return _core.block_neighbors(r["nb_local"], int(offset), pos - offset * d1, across, wide)
 
 
 class DistributedTriangulation:
@@ -299,12 +302,14 @@ class DistributedTriangulation:
     Attributes
     ----------
     ndim, npoints, nsimplex : int
-    simplices : dask.array (nsimplex, ndim + 1) of int64
+    simplices : dask.array (nsimplex, ndim + 1) of int32
         Global point indices, block by block (each block's owned simplices, in its local
-        triangulation's order), each simplex positively oriented.
-    neighbors : dask.array (nsimplex, ndim + 1) of int64
+        triangulation's order), each simplex positively oriented. int32 as SciPy's and
+        ``gpugeom.Delaunay``'s (the call takes fewer than 2^31 - 1 points).
+    neighbors : dask.array (nsimplex, ndim + 1) of int32, or int64 from 2^31 simplices
         ``neighbors[i, j]``: the simplex opposite vertex j of simplex i, in global simplex
-        indices (across blocks), -1 on the hull, as SciPy's.
+        indices (across blocks), -1 on the hull, as SciPy's. (3D points make about 6.5 simplices
+        a point: from about 3.3·10^8 points the indices need 64 bits.)
     blocks : tuple
         Cells per axis.
     block_stats : list of dict
@@ -322,7 +327,7 @@ class DistributedTriangulation:
     ``points()`` and ``gather()``.
     """
 
-    def __init__(self, pieces, counts, results, offsets, neighbors, grid, stats):
+    def __init__(self, pieces, counts, results, offsets, neighbors, grid, stats, index):
         self._pieces, self._counts, self._results = pieces, counts, results
         self._grid, self.block_stats = grid, stats
         self.ndim = grid.ndim
@@ -338,8 +343,8 @@ class DistributedTriangulation:
                       for o, m in zip(objs, sizes)]
             return da.concatenate(arrays) if arrays else da.zeros((0, d1), dtype=dtype)
 
-        self.simplices = part(results, "simplices", np.int64)
-        self.neighbors = part(neighbors, None, np.int64)
+        self.simplices = part(results, "simplices", np.int32)
+        self.neighbors = part(neighbors, None, index)
 
     def points(self) -> np.ndarray:
         """All points, in input order (computed)."""
@@ -361,8 +366,10 @@ class DistributedTriangulation:
         simplices, neighbors = dask.compute(self.simplices, self.neighbors)
         stats = {"blocks": float(len(self.block_stats)),
                  "rounds": float(max((s["rounds"] for s in self.block_stats), default=0))}
-        return Delaunay._from_arrays(self.points(), simplices.astype(np.int32),
-                                     neighbors.astype(np.int32),
+        if self.nsimplex >= 2**31:
+            raise ValueError(f"{self.nsimplex} simplices do not fit a gpugeom.Delaunay's int32 "
+                             "indices; use .simplices and .neighbors as Dask arrays")
+        return Delaunay._from_arrays(self.points(), simplices, neighbors,
                                      self.duplicate_of().astype(np.int32), stats)
 
     def to_pvtu(self, path: Union[str, os.PathLike]) -> list:
@@ -606,6 +613,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     # the neighbours across blocks: each block's face requests go to the blocks that match
     # them (by a face's lowest vertex), and the answers come back
     d1 = d + 1
+    wide = int(offsets[-1]) >= 2**31  # (neighbours in int64 only where int32 cannot name them)
     at = {b: i for i, b in enumerate(order)}
     senders = {}
     for b in order:
@@ -617,11 +625,12 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
                for c in senders}
     neighbors = [delayed(_neighbors_of)(
         final[b], int(offsets[at[b]]), d1,
-        [delayed(operator.getitem)(answers[c], senders[c].index(b)) for c in metas[b]["owners"]])
-        for b in order]
+        [delayed(operator.getitem)(answers[c], senders[c].index(b)) for c in metas[b]["owners"]],
+        wide) for b in order]
     stats = [dict(block=b, ghost=metas[b]["ghost"], extra_boxes=len(extras[b]), rounds=rounds[b],
                   frontier=int(taken[b]), nlocal=metas[b]["nlocal"],
                   nsimplex=metas[b]["nsimplex"], tested=metas[b]["tested"]) for b in order]
-    out = DistributedTriangulation(pieces, counts, results, offsets, neighbors, grid, stats)
+    out = DistributedTriangulation(pieces, counts, results, offsets, neighbors, grid, stats,
+                                   np.int64 if wide else np.int32)
     out.timings = timings
     return out

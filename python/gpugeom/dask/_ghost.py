@@ -457,9 +457,10 @@ def _local_points(parts, hull):
         before += at
     new = np.nonzero(~present)[0]
     total = sum(len(p[1]) for p in got) + len(new)
-    ids = np.empty(total, dtype=np.int64)
+    # (32-bit ids and blocks, as the output: fewer than 2^31 - 1 points)
+    ids = np.empty(total, dtype=np.int32)
     pts = np.empty((total, d), dtype=np.float64)
-    blk = np.empty(total, dtype=np.int64)
+    blk = np.empty(total, dtype=np.int32)
     slots = before[new] + np.arange(len(new))  # the new hull points' rows
     ids[slots], pts[slots], blk[slots] = h_ids[new], h_pts[new], h_blk[new]
     start = 0  # the first part point's place among the parts' points
@@ -481,13 +482,26 @@ def _local_points(parts, hull):
     return ids, pts, blk
 
 
-def _curve_order(ids, pts, blk):
+def _curve_order(ids, pts, blk, grid: Grid):
     """The local points along the Hilbert curve (``_core.hilbert_order``; points with equal
     coordinates keep their order, so a point's first copy is still its lowest id). In the order
     of their ids, a random input made every vertex that the passes over the simplices read (the
     borders, the output, the test) a cache miss: on one thread, 10^6 points in 2 blocks, the
     borders took 82 ms (2D) and 387 ms (3D), here 44 and 296, the whole call 3-5 % less
-    (docs/performance.md); on a host whose cores were busy the output went from 1.31 s to 0.29."""
+    (docs/performance.md); on a host whose cores were busy the output went from 1.31 s to 0.29.
+
+    The passes take a simplex's *lowest local* vertex as its owner and as the matcher of its
+    faces, so the owner is the vertex first on this curve (ties: the lowest id). Every block
+    must order any two points alike, or a simplex between blocks would be output twice or not
+    at all: the curve is laid over the points' bounding box, and every block's is the global
+    one, since each holds the global hull's extreme points, which attain every bound (a face of
+    the hull has a vertex). Checked here, a pass over the points: a block whose box differed
+    would be a bug, never a wrong answer."""
+    b = _core.point_bounds(pts)
+    if len(pts) and not (np.array_equal(b["lo"], grid.lo) and np.array_equal(b["hi"], grid.hi)):
+        raise RuntimeError("gpugeom.dask: a block's local points do not span the global bounding "
+                           "box, so its curve order would differ from the others' (a bug: "
+                           "please report it with the input)")
     order = _core.hilbert_order(pts)
     return ids[order], pts[order], blk[order]
 
@@ -575,14 +589,14 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts,
     second = received is not None
     covers = grid.covers_all(block, ghost)
     if not any(p is not None and bool((p[2] == block).any()) for p in parts):
-        z = np.zeros(0, np.int64)
-        empty = dict(simplices=np.zeros((0, d + 1), np.int64),
-                     nb_local=np.zeros((0, d + 1), np.int64), req_owner=z,
-                     req_key=np.zeros((0, d), np.int64), req_pos=z, vertices=z,
+        z = np.zeros(0, np.int32)
+        empty = dict(simplices=np.zeros((0, d + 1), np.int32),
+                     nb_local=np.zeros((0, d + 1), np.int32), req_owner=z,
+                     req_key=np.zeros((0, d), np.int32), req_pos=z, vertices=z,
                      vertex_points=np.zeros((0, d)), borders={})
-        return _done(block, ghost, 0, 0, empty, np.zeros((0, 2), np.int64))
+        return _done(block, ghost, 0, 0, empty, np.zeros((0, 2), np.int32))
     ids, pts, blk = _curve_order(*_local_points(parts, _held(hull[:3], received) if second
-                                                else hull[:3]))
+                                                else hull[:3]), grid)
     own = blk == block
     try:
         tri, s, nb, mine, required = _triangulated(pts, own, backend, threads)
