@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const int dim = std::atoi(argv[1]);
-  const std::int64_t n = std::atoll(argv[2]);
+  const std::int64_t n = std::int64_t(std::atof(argv[2]));  // (1e7 as 10000000)
   const std::string dist = argv[3];
   const Backend backend = std::string(argv[4]) == "cpu" ? Backend::Cpu : Backend::Cuda;
   std::vector<std::string> lists;
