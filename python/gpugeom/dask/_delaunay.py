@@ -452,7 +452,8 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
     simplex round its own points. Every block also sends each other block its border: its own
     points that the other's simplices may use. A block not done is triangulated a second time,
     with its own points and the borders sent to it, and is then done without a test. Each
-    simplex is output by the block owning its lowest-indexed vertex; neighbours across blocks
+    simplex is output by the block owning its vertex first along the Hilbert curve of the
+    points' bounding box (ties: the lowest index); neighbours across blocks
     are matched by their faces. Points on a convex surface (a circle, a sphere, a shell thinner
     than the spacing of a sample of 4096 of them: at least half the sample's points are its
     hull's extreme points) go to one block instead, which owns them all: split, every block would

@@ -28,10 +28,12 @@ of the others"):
 * A block not done in the first round is triangulated again with its own points, the hull's
   points and the borders the others sent it; its stars are then the global ones without a test
   (every vertex they need is there), so there are at most two rounds.
-* Each simplex is *owned* by the block that owns its lowest-indexed vertex, so exactly one
-  block outputs it. Its neighbour across a face is final where it has an own vertex; across
-  the faces where the neighbour is owned elsewhere, the two owners of a face find each other by
-  the face (``match_faces``), so no block needs the neighbours of its stars.
+* Each simplex is *owned* by the block that owns its vertex first along the Hilbert curve of
+  the points' bounding box (ties: the lowest index; ``_curve_order``), an order every block
+  sees alike, so exactly one block outputs it. Its neighbour across a face is final where it
+  has an own vertex; across the faces where the neighbour is owned elsewhere, the two owners of
+  a face find each other by the face (``match_faces``), so no block needs the neighbours of its
+  stars.
 """
 import numpy as np
 
