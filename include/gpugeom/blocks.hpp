@@ -120,17 +120,12 @@ HostVector<std::int64_t> match_faces(const std::int32_t* keys, const std::int64_
 /// (std::int32_t, as a single triangulation's, where every global index fits; else
 /// std::int64_t). On `threads` host threads (0: OpenMP's default). Throws Error(Internal) where
 /// a -2 face has no answer, Error(InvalidArgument) for a dim other than 2 or 3, a position out
-/// of range, or a global index past `Index`.
+/// of range, or a global index past `Index`. Defined for those two widths alone (in the
+/// library).
 template <class Index>
 HostVector<Index> block_neighbors(const std::int32_t* neighbors, std::int64_t m, int dim,
                                   std::int64_t offset, const std::int64_t* pos,
                                   const std::int64_t* across, std::int64_t q, int threads = 0);
-extern template HostVector<std::int32_t> block_neighbors<std::int32_t>(
-    const std::int32_t*, std::int64_t, int, std::int64_t, const std::int64_t*, const std::int64_t*,
-    std::int64_t, int);
-extern template HostVector<std::int64_t> block_neighbors<std::int64_t>(
-    const std::int32_t*, std::int64_t, int, std::int64_t, const std::int64_t*, const std::int64_t*,
-    std::int64_t, int);
 
 /// The bounds of a set of points, and its first point with a NaN or infinite coordinate.
 struct PointBounds {
