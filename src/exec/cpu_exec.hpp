@@ -21,6 +21,7 @@
 #include "base/hd.hpp"
 #include "exec/exec_context.hpp"
 #include "exec/lanes.hpp"
+#include "exec/positions.hpp"
 #include "exec/tuning.hpp"
 
 namespace gpugeom {
@@ -293,6 +294,7 @@ struct CpuExec {
   // Writes the indices i in [0, n) with pred(i), in increasing order; returns how many.
   template <class Pred>
   std::int64_t compact_indices(std::int64_t n, Pred pred, std::int32_t* out) {
+    detail::check_int32_positions(n);
     return kept_in_order<std::int32_t>(
         n, [&](std::int64_t i) { return bool(pred(i)); },
         [](std::int64_t i) { return std::int32_t(i); }, out);

@@ -23,6 +23,7 @@
 #include "exec/exec_context.hpp"
 #include "exec/host_staging.hpp"
 #include "exec/lanes.hpp"
+#include "exec/positions.hpp"
 #include "exec/tuning.hpp"
 #include "base/hd.hpp"
 
@@ -516,6 +517,7 @@ class CudaExec {
       fill(count, 1, std::int64_t(0));
       return;
     }
+    detail::check_int32_positions(n);
     thrust::counting_iterator<std::int32_t> first(0);
     cuda_detail::IndexPred<Pred> ip{pred};
     run_cub([&](void* tmp, std::size_t& bytes) {

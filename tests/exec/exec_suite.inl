@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <numeric>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <thrust/functional.h>
@@ -194,6 +195,25 @@ void CompactionKeepsOrder_body() {
   auto neg = to_vec(ex, o.data(), m + 1);
   for (std::int64_t i = 0; i < m; ++i) ASSERT_EQ(neg[i], -ref[i] - 1);
   ASSERT_EQ(neg[m], ri[0]);
+  // Past 2^31 - 1 items the int32 positions cannot name them: refused before the pass runs (the
+  // predicate would read far outside ap), on both forms, with a typed error.
+  const std::int64_t huge = std::int64_t(INT32_MAX) + 1;
+  for (int form = 0; form < 2; ++form) {
+    try {
+      if (form == 0)
+        ex.compact_indices(
+            huge, GG_LAMBDA(std::int64_t i) { return ap[i] < 10; }, o.data());
+      else
+        ex.compact_indices_to(
+            huge, GG_LAMBDA(std::int64_t i) { return ap[i] < 10; }, o.data(), cn);
+      FAIL() << "compact_indices took " << huge << " items";
+    } catch (const gpugeom::Error& e) {
+      EXPECT_EQ(e.code(), gpugeom::ErrorCode::Internal);
+      EXPECT_NE(std::string(e.what()).find("32-bit"), std::string::npos) << e.what();
+    }
+  }
+  ex.sync();  // nothing was launched: the stream is still sound
+  ASSERT_EQ(to_vec(ex, o.data(), 1)[0], neg[0]);
 }
 
 // A team runs rounds separated by barriers: each round every thread reads what all the others

@@ -158,18 +158,44 @@ inline Extras extras(Exec& ex, const std::int32_t* dup, mesh::Compacted<Exec>& f
           if (dup[i] >= 0) v[i] = v[dup[i]];
         });
   }
-  auto at = ex.template alloc<std::int32_t>(std::size_t(4 * f.count));
-  const std::int64_t nh = ex.compact_indices(
-      4 * f.count, GG_LAMBDA(std::int64_t i) { return nb[i] < 0; }, at.data());
+  // The hull facets, found per tetrahedron rather than per face: the 4 * count faces pass 2^31
+  // from about 8·10^7 points, beyond the int32 positions compact_indices writes (10^8 uniform
+  // points read outside the neighbours there, an illegal address on the H200). The tetrahedra
+  // with a face on the hull are counted first, so the lists are as long as the hull, not as the
+  // output (the per-face list was 16 bytes a tetrahedron, 10.8 GB at 10^8 points).
+  auto on_hull = GG_LAMBDA(std::int64_t t)->int {
+    return int(nb[4 * t] < 0) + int(nb[4 * t + 1] < 0) + int(nb[4 * t + 2] < 0) +
+           int(nb[4 * t + 3] < 0);
+  };
+  auto cnt = ex.template alloc<std::int64_t>(1);
+  ex.transform_reduce_into(
+      f.count, GG_LAMBDA(std::int64_t t)->std::int64_t { return on_hull(t) > 0 ? 1 : 0; },
+      std::int64_t(0), thrust::plus<std::int64_t>(), cnt.data());
+  std::int64_t nt = 0;
+  ex.to_host(cnt.data(), 1, &nt);
+  auto ht = ex.template alloc<std::int32_t>(std::size_t(nt + 1));
+  std::int32_t* a = ht.data();
+  ex.compact_indices(
+      f.count, GG_LAMBDA(std::int64_t t) { return on_hull(t) > 0; }, a);
+  auto off = ex.template alloc<std::int32_t>(std::size_t(nt + 1));
+  std::int32_t* o = off.data();
+  ex.exclusive_scan_of(
+      nt + 1, GG_LAMBDA(std::int64_t j)->std::int32_t { return j < nt ? on_hull(a[j]) : 0; }, o);
+  std::int32_t nh32 = 0;
+  ex.to_host(o + nt, 1, &nh32);
+  const std::int64_t nh = nh32;
   E.num_hull_facets = nh;
   E.hull_facets = ex.template alloc<std::int32_t>(std::size_t(3 * nh + 1));
   std::int32_t* h = E.hull_facets.data();
-  const std::int32_t* a = at.data();
   ex.for_each_index(
-      nh, GG_LAMBDA(std::int64_t j) {
-        const std::int64_t t = a[j] / 4;
-        const int k = int(a[j] % 4);
-        for (int i = 0; i < 3; ++i) h[3 * j + i] = tv[4 * t + face_vertex(k, i)];
+      nt, GG_LAMBDA(std::int64_t j) {
+        const std::int64_t t = a[j];
+        std::int64_t at = o[j];
+        for (int k = 0; k < 4; ++k) {
+          if (nb[4 * t + k] >= 0) continue;
+          for (int i = 0; i < 3; ++i) h[3 * at + i] = tv[4 * t + face_vertex(k, i)];
+          ++at;
+        }
       });
   return E;
 }

@@ -14,6 +14,7 @@
 #include <functional>
 #include <string>
 #include <vector>
+#include <thrust/functional.h>
 #include "base/clock.hpp"
 #include "delaunay3d/del3d_backend.hpp"
 #include "delaunay3d/tet.hpp"
