@@ -582,6 +582,104 @@ def test_coarse_paths_are_exact(monkeypatch):
         assert max(s["rounds"] for s in fine[0].block_stats) == 2
 
 
+def test_clip_to_slab_holds_every_point():
+    """The box round a box's part in a slab (``_clip_to_slab``) holds every point of that part
+    (sampled), is inside the box, and is tight where the slab is thin: a slab across a box
+    leaves at most its width plus the tilt times the box."""
+    from gpugeom.dask import _ghost
+    rng = np.random.default_rng(61)
+    for d in (2, 3):
+        m = 400
+        lo = rng.normal(size=(m, d))
+        hi = lo + rng.random((m, d)) * 3
+        n = rng.normal(size=(m, d))
+        n[:20, 0] = 0.0  # no part along an axis
+        n[20:40] *= 1e-12  # nearly no normal: nothing to cut
+        mid = rng.random((m, d)) * (hi - lo) + lo
+        a = np.einsum("mi,mi->m", n, mid) - rng.random(m) * 0.1
+        b = a + rng.random(m) * 0.2
+        clo, chi = _ghost._clip_to_slab(lo, hi, n, a, b)
+        assert np.all(clo >= lo) and np.all(chi <= hi)
+        x = lo[:, None, :] + rng.random((m, 4000, d)) * (hi - lo)[:, None, :]
+        nx = np.einsum("mi,mki->mk", n, x)
+        inside = (nx >= a[:, None]) & (nx <= b[:, None])
+        assert inside.any(axis=1).mean() > 0.9  # (the check below is not empty)
+        for i in range(m):
+            xi = x[i][inside[i]]
+            assert np.all(xi >= clo[i]) and np.all(xi <= chi[i]), i
+        # a thin slab across the middle of a wide box, tilted by 1e-3: a band round it
+        box_lo, box_hi = np.zeros((1, 3)), np.array([[1.0, 1.0, 50.0]])
+        tilt = np.array([[0.0, 1.0, 1e-3]]) / np.hypot(1.0, 1e-3)
+        clo, chi = _ghost._clip_to_slab(box_lo, box_hi, tilt, np.array([0.5]),
+                                        np.array([0.501]))
+        assert chi[0, 1] - clo[0, 1] < 0.001 + 0.05 + 1e-9
+        # empty and unbounded boxes are left as they are
+        e_lo, e_hi = np.array([[1.0, 0.0, 0.0]]), np.array([[0.0, 1.0, 1.0]])
+        for blo, bhi in ((e_lo, e_hi), (np.full((1, 3), -np.inf), np.full((1, 3), np.inf))):
+            got = _ghost._clip_to_slab(blo, bhi, tilt, np.array([0.5]), np.array([0.501]))
+            np.testing.assert_array_equal(got[0], blo)
+            np.testing.assert_array_equal(got[1], bhi)
+
+
+def test_flat_simplex_on_the_hull_is_final():
+    """A flat tetrahedron on the hull's side y = 1, its vertices nearly on one line (from 2·10^6
+    uniform points in 4 blocks): its circumball is 7·10^4 wide, tilted by 4·10^-3 against the
+    side. The box round its cap spans 0.12 across the side, far past the strip along it (0.016);
+    the cap's slab keeps it within 2·10^-3, so the simplex is final where it was not (its block
+    took a second round for it). A ball that reaches across the region's side stays not final."""
+    from gpugeom.dask import _ghost
+    verts = np.array([[0.006196691991378622, 0.9999943487233235, 0.9288728859114753],
+                      [0.012402157640862166, 0.9999989638929876, 0.8219888570473232],
+                      [0.022246983395277642, 0.9999931208083044, 0.5795842167141266],
+                      [0.03596863124237437, 0.9999651081762093, 0.12310216675855123]])
+    box_lo = np.array([1.1209902754938383e-06, 3.572479676527962e-07, 6.092990755268701e-07])
+    box_hi = np.array([0.9999994684391201, 0.9999998646762783, 0.9999997582373656])
+    region_lo = np.array([-0.03174686834144134, 0.4682521216304062, -0.03174738003264131])
+    region_hi = np.array([1.031747457770837, 1.0317478540079952, 0.5317481730999375])
+    strip = 0.0158746
+    extras = []
+    for k in (0, 2):
+        hi = box_hi.copy()
+        hi[k] = box_lo[k] + strip
+        extras.append((box_lo.copy(), hi))
+        lo = box_lo.copy()
+        lo[k] = box_hi[k] - strip
+        extras.append((lo, box_hi.copy()))
+    lo = box_lo.copy()
+    lo[1] = box_hi[1] - strip
+    extras.append((lo, box_hi.copy()))
+    # the hull's planes beside the simplex (outward unit normals, n.x + t <= 0 inside), pushed
+    # out as the hull's are, and the box's other sides
+    planes = [[-0.0037645354884382155, 0.9999928987316017, -0.00017538222471990823,
+               -0.9998010130349306],
+              [-0.0035306732050515532, 0.9999937531263215, -0.00016749642509279237,
+               -0.9998112498650924],
+              [-0.004688895147044331, 0.9999889851178827, -0.00020953569358114546,
+               -0.9997596472400498]]
+    for k in range(3):
+        n = np.zeros(3)
+        n[k] = -1.0
+        planes.append(list(n) + [box_lo[k] - 1e-9])
+        if k != 1:
+            n = np.zeros(3)
+            n[k] = 1.0
+            planes.append(list(n) + [-box_hi[k] - 1e-9])
+    planes = np.array(planes)
+    assert np.all(verts @ planes[:, :3].T + planes[:, 3] <= 0)
+    # a small ball across the region's side z = 0.53, inside the box away from every strip
+    ball = np.array([[0.5, 0.7, 0.52], [0.53, 0.7, 0.52], [0.5, 0.73, 0.52], [0.5, 0.7, 0.55]])
+    pts = np.concatenate([verts, ball])
+    s = np.array([[0, 1, 2, 3], [4, 5, 6, 7]])
+    nbs = np.array([[-1, 7, -1, 7], [9, 9, 9, 9]])
+    ok = _ghost.final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, planes, extras,
+                                nbs)
+    assert ok.tolist() == [True, False]
+    # without its hull faces and planes it is not (nothing tells the cap from the ball)
+    ok = _ghost.final_simplices(pts, s, region_lo, region_hi, box_lo, box_hi, planes[:0],
+                                extras, np.full((2, 4), 9))
+    assert ok.tolist() == [False, False]
+
+
 def test_local_points():
     """A block's local points from its parts and the hull's extreme points (``_local_points``,
     by slices between the hull points' places) against a concatenation and a stable sort:
