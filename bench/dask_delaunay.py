@@ -185,6 +185,9 @@ def main():
                         sent = moved(client) - before
                         local = sum(st["nlocal"] for st in dt.block_stats) / n
                         rounds = max(st["rounds"] for st in dt.block_stats)
+                        # (which blocks took a second round, and how many simplices each tested)
+                        per_block = " ".join(f"{st['rounds']}/{st.get('tested', 0)}"
+                                             for st in dt.block_stats)
                         ok = ""
                         if a.verify:
                             t1 = time.perf_counter()
@@ -199,7 +202,8 @@ def main():
                                  f"{ref_ms / ms / w:.2f}" if ref_m >= 0 else "no single run")
                         print(f"  {w} workers, {len(dt.block_stats)} blocks: {ms:.0f} ms "
                               f"({ratio}), {sent / 2**20:.0f} MiB between workers, "
-                              f"{rounds} rounds, {local:.2f} local points per point, "
+                              f"{rounds} rounds (per block, rounds/tested: {per_block}), "
+                              f"{local:.2f} local points per point, "
                               f"{dt.nsimplex} simplices{ok}; phases "
                               + " ".join(f"{k} {v:.0f}" for k, v in dt.timings.items()),
                               flush=True)
