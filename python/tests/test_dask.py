@@ -580,6 +580,8 @@ def test_coarse_paths_are_exact(monkeypatch):
             assert sum(s["rounds"] for s in dt.block_stats) >= \
                 sum(s["rounds"] for s in f.block_stats)
         assert max(s["rounds"] for s in fine[0].block_stats) == 2
+        # a block's second round keeps its first round's count of tested simplices
+        assert all(s["tested"] > 0 for s in fine[0].block_stats if s["rounds"] == 2)
 
 
 def test_clip_to_slab_holds_every_point():

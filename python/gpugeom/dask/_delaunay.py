@@ -315,7 +315,8 @@ class DistributedTriangulation:
     block_stats : list of dict
         Per block: its ghost width, strips along the sides, rounds (1, or 2 where its first
         failed), the points it took in its first round from the bins beside empty space
-        (``frontier``), local points (of its last round), owned simplices and simplices tested.
+        (``frontier``), local points (of its last round), owned simplices and simplices tested
+        (in its first round: the second has no test).
         One entry (block 0, every point) where the points lie on a convex surface.
     timings : dict
         Milliseconds of the call's phases (client wall clock): ``check`` (shapes, finite
@@ -604,7 +605,7 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
             rounds[b] = 2
         second = dask.persist(*tasks)
         for b, r, m in zip(pending, second, dask.compute(*[delayed(_meta)(r) for r in second])):
-            final[b], metas[b] = r, m
+            final[b], metas[b] = r, dict(m, tested=metas[b]["tested"])  # (round 1's: no test in 2)
         lap("round2")
 
     order = [b for b in all_blocks if metas[b]["nlocal"] > 0]  # blocks with points
