@@ -209,6 +209,9 @@ def main():
                               flush=True)
                         append_row(a.csv, f"dask-delaunay{d}d", dist, n,
                                    f"gpugeom-dask-{w}", ms, machine=f"{name} x{w}")
+                        for st in dt.block_stats:
+                            if st.get("why"):
+                                print(f"    block {st['block']}: {st['why']}", flush=True)
                         if a.tasks:
                             print_tasks(stream.data)
 

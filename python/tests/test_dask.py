@@ -582,6 +582,12 @@ def test_coarse_paths_are_exact(monkeypatch):
         assert max(s["rounds"] for s in fine[0].block_stats) == 2
         # a block's second round keeps its first round's count of tested simplices
         assert all(s["tested"] > 0 for s in fine[0].block_stats if s["rounds"] == 2)
+        # and says why its test failed; a block done in its first round says nothing
+        for st in fine[0].block_stats:
+            if st["rounds"] == 2:
+                assert "tested balls in a piece not final; the first: radius" in st["why"]
+            else:
+                assert st["why"] == ""
 
 
 def test_clip_to_slab_holds_every_point():

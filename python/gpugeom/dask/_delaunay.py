@@ -316,7 +316,8 @@ class DistributedTriangulation:
         Per block: its ghost width, strips along the sides, rounds (1, or 2 where its first
         failed), the points it took in its first round from the bins beside empty space
         (``frontier``), local points (of its last round), owned simplices and simplices tested
-        (in its first round: the second has no test).
+        (in its first round: the second has no test), and ``why``: where the first round's
+        test failed, a line on the balls that were not final (else empty).
         One entry (block 0, every point) where the points lie on a convex surface.
     timings : dict
         Milliseconds of the call's phases (client wall clock): ``check`` (shapes, finite
@@ -605,7 +606,8 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
             rounds[b] = 2
         second = dask.persist(*tasks)
         for b, r, m in zip(pending, second, dask.compute(*[delayed(_meta)(r) for r in second])):
-            final[b], metas[b] = r, dict(m, tested=metas[b]["tested"])  # (round 1's: no test in 2)
+            # (round 1's test: the second has none)
+            final[b], metas[b] = r, dict(m, tested=metas[b]["tested"], why=metas[b]["why"])
         lap("round2")
 
     order = [b for b in all_blocks if metas[b]["nlocal"] > 0]  # blocks with points
@@ -631,7 +633,8 @@ def delaunay(points, *, blocks: Union[None, int, Sequence[int]] = None,
         wide) for b in order]
     stats = [dict(block=b, ghost=metas[b]["ghost"], extra_boxes=len(extras[b]), rounds=rounds[b],
                   frontier=int(taken[b]), nlocal=metas[b]["nlocal"],
-                  nsimplex=metas[b]["nsimplex"], tested=metas[b]["tested"]) for b in order]
+                  nsimplex=metas[b]["nsimplex"], tested=metas[b]["tested"],
+                  why=metas[b].get("why", "")) for b in order]
     out = DistributedTriangulation(pieces, counts, results, offsets, neighbors, grid, stats,
                                    np.int64 if wide else np.int32)
     out.timings = timings

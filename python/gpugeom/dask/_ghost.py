@@ -444,7 +444,7 @@ class _Outside:
 
 
 def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outside=None,
-           inside=None):
+           inside=None, why=None):
     """Whether simplices ``s[req]`` are all final (tested in pieces of ``_PIECE``, so that the
     temporaries stay small) against the region ``cell`` grown by ``ghost``.
 
@@ -452,7 +452,8 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
     misses the bounding box beyond the region), which almost every simplex passes, runs in C++
     over all of them: ``inside`` (a byte per simplex) where the border pass gave it on the same
     balls, else ``_core.circumballs_inside_region`` (the same centre, bound and slabs as
-    ``final_simplices``); only the others are tested here, in NumPy."""
+    ``final_simplices``); only the others are tested here, in NumPy. Where one is not final and
+    ``why`` is a list, a line saying which goes into it (the block's statistics carry it)."""
     clo, chi = cell
     rlo, rhi = clo - ghost, chi + ghost
     if len(req) and inside is not None:
@@ -467,8 +468,21 @@ def _judge(dpts, s, nb, req, grid, cell, ghost, planes, extras, threads=1, outsi
         ok = final_simplices(dpts, s[req[i:i + _PIECE]], rlo, rhi, grid.lo, grid.hi, planes,
                              extras, nb[req[i:i + _PIECE]], outside)
         if not bool(ok.all()):
+            if why is not None:
+                why.append(_why_not_final(dpts, s, nb, req[i:i + _PIECE], ok))
             return False
     return True
+
+
+def _why_not_final(pts, s, nb, piece, ok):
+    """A line on the balls of a piece that are not final: how many, and the first one's radius,
+    centre and whether it has a face on the hull (the flat simplices along the hull do)."""
+    bad = piece[~ok]
+    c, r, _ = _circumcentres(pts, s[bad[:1]])
+    hull = bool((nb[bad[0]] < 0).any())
+    return (f"{len(bad)} of {len(piece)} tested balls in a piece not final; the first: radius "
+            f"{r[0]:.3g}, centre {np.array2string(c[0], precision=4)}, "
+            f"{'a' if hull else 'no'} face on the hull")
 
 
 def _borders(pts, s, nb, own, block, grid, threads=1, region=None):
@@ -485,9 +499,9 @@ def _borders(pts, s, nb, own, block, grid, threads=1, region=None):
                                threads=threads, **box)
 
 
-def _not_done(block, ghost, nlocal, tested, borders):
+def _not_done(block, ghost, nlocal, tested, borders, why=""):
     return dict(block=block, done=False, ghost=ghost, nlocal=nlocal, tested=tested,
-                borders=borders)
+                borders=borders, why=why)
 
 
 def _local_points(parts, hull):
@@ -673,9 +687,10 @@ def triangulate_block(block: int, grid: Grid, ghost: float, extras: dict, parts,
         if test:
             req = np.nonzero(required)[0]
             tested = int(len(req))
+            why = []
             if not _judge(pts, s, nb, req, grid, cell, ghost, hull[3], list(extras.values()),
-                          threads, outside, b["inside"]):
-                return _not_done(block, ghost, len(ids), tested, bord)
+                          threads, outside, b["inside"], why):
+                return _not_done(block, ghost, len(ids), tested, bord, why[0] if why else "")
     out = _emit(ids, pts, blk, s, nb, mine, threads)
     return _done(block, ghost, len(ids), tested, dict(out, borders=bord),
                  _copies(ids, blk, block, tri))
